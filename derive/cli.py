@@ -1,0 +1,51 @@
+"""Command line: ``python -m derive [--check]``.
+
+Thin: it calls the derivation pipeline (`derive.modules`), the code generator
+(`derive.codegen`) and prints what happened.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+from . import codegen, modules
+
+__all__ = ["main"]
+
+
+def _generate(args) -> int:
+    start = time.perf_counter()
+    mods = modules.all_modules()
+    files = codegen.render_all(mods)
+    elapsed = time.perf_counter() - start
+    if args.check:
+        stale = codegen.stale(files)
+        if stale:
+            for rel, diff in stale.items():
+                print(f"STALE generated/{rel}: {diff if len(diff) < 80 else ''}".rstrip())
+                if len(diff) >= 80:
+                    print(diff)
+            print(f"{len(stale)} generated file(s) differ from the derivations; "
+                  "run `python -m derive` to regenerate.", file=sys.stderr)
+            return 1
+        print(f"generated/ is up to date ({len(files)} files, derived in {elapsed:.1f} s).")
+        return 0
+    changed = codegen.write(files)
+    for m in mods:
+        names = ", ".join(f.name for f in m.functions)
+        print(f"generated/{m.name}.py (+ mp/{m.name}.py): {names}")
+    print(f"derived {sum(len(m.functions) for m in mods)} functions in {len(mods)} modules "
+          f"in {elapsed:.1f} s; wrote {len(changed)} changed file(s) of {len(files)}.")
+    return 0
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="python -m derive",
+        description="Derive the model symbolically and regenerate generated/.")
+    parser.add_argument("--check", action="store_true",
+                        help="do not write; exit 1 and name the stale files if "
+                             "generated/ differs from the derivations")
+    args = parser.parse_args(argv)
+    return _generate(args)

@@ -1,0 +1,91 @@
+"""The full equations of motion for simulation: Eq. (4) with loss of contact and energy.
+
+Eq. (1) gives the normal force in contact (``X2 > 0``) and zero in flight. Each
+quantity is derived on both branches and joined entrywise, so the Jacobian of the
+simulated system is the derivative of each branch, not of a kink. The friction
+direction is either ``sgn(X1' - Vb)`` (Eq. 3) or a given value ``sgn`` (the
+simulator's branch; ``sgn = 0`` gives the force that sticking must supply).
+
+The mechanical energy and the power balance let a simulation check itself (the
+paper verifies its simulations with an energy balance, Sect. 3):
+``dE/dt = P_input - P_viscous - P_friction``.
+"""
+from __future__ import annotations
+
+import sympy as sp
+
+from .model import (P, X1, X2, Y1, Y2, contact_potential, excitation,
+                    friction_coefficient, normal_force, t)
+
+__all__ = ["X2r", "sgn", "in_contact", "accelerations", "rhs", "jacobian",
+           "energy", "power_balance"]
+
+#: Penetration as a real number: negative in flight.
+X2r = sp.Symbol("X2", real=True)
+#: Friction direction chosen by the simulator.
+sgn = sp.Symbol("sgn", real=True)
+STATE_R = (X1, Y1, X2r, Y2)
+
+
+def in_contact(expr_contact, expr_flight):
+    """Join a contact-branch expression (in positive ``X2``) and a flight branch.
+
+    ``X2`` enters the contact branch as ``max(X2, 0)``: numpy evaluates both
+    branches of a select, and ``X2**(3/2)`` of a negative number would warn.
+    """
+    contact = sp.sympify(expr_contact).subs(X2, sp.Max(X2r, 0))
+    return sp.Piecewise((contact, X2r > 0), (sp.sympify(expr_flight), True))
+
+
+def accelerations(contact: str = "hertz_damp", direction=None, flight: bool = False):
+    """``(X1'', X2'')`` of Eq. (4) in contact (positive ``X2``) or in flight."""
+    b1, w1, g = P["beta1"], P["omega1"], P["g"]
+    Fn = 0 if flight else normal_force(contact)
+    f_t, f_n = excitation()
+    mu = friction_coefficient(direction)
+    return sp.Matrix([-2 * b1 * w1 * Y1 - w1**2 * X1 - mu * Fn + f_t, -Fn + g + f_n])
+
+
+def rhs(contact: str = "hertz_damp", direction=None) -> sp.Matrix:
+    """Right-hand side ``(X1', Y1', X2', Y2')`` of Eq. (4) with loss of contact."""
+    c = accelerations(contact, direction)
+    f = accelerations(contact, direction, flight=True)
+    return sp.Matrix([Y1, in_contact(c[0], f[0]), Y2, in_contact(c[1], f[1])])
+
+
+def jacobian(contact: str = "hertz_damp", direction=sgn) -> sp.Matrix:
+    """State Jacobian of `rhs` on a fixed friction branch, branch by branch."""
+    def branch(flight):
+        a = accelerations(contact, direction, flight)
+        return sp.Matrix([Y1, a[0], Y2, a[1]]).jacobian((X1, Y1, X2, Y2))
+    c, f = branch(False), branch(True)
+    return sp.Matrix(4, 4, lambda i, j: in_contact(c[i, j], f[i, j]))
+
+
+def energy(contact: str = "hertz_damp") -> sp.Expr:
+    """Mechanical energy per unit mass: kinetic, spring, contact and gravity.
+
+    ``X2`` points into the belt, so gravity's potential is ``-g X2``.
+    """
+    w1, g = P["omega1"], P["g"]
+    return (Y1**2 / 2 + Y2**2 / 2 + w1**2 * X1**2 / 2
+            + in_contact(contact_potential(contact), 0) - g * X2r)
+
+
+def power_balance(contact: str = "hertz_damp", direction=sgn):
+    """``(P_input, P_viscous, P_friction)`` per unit mass.
+
+    ``P_input`` is the work rate of the excitation, ``P_viscous`` that of the
+    tangential dashpot and the contact damping, ``P_friction = mu F_n X1'`` the rate
+    at which friction takes energy from the mass (it includes the belt's work).
+    The split is checked against ``dE/dt`` along `rhs` by the tests.
+    """
+    b1, w1 = P["beta1"], P["omega1"]
+    f_t, f_n = excitation()
+    elastic = normal_force(contact, X2, 0)
+    damping = normal_force(contact) - elastic
+    Fn = in_contact(normal_force(contact), 0)
+    p_input = f_t * Y1 + f_n * Y2
+    p_viscous = 2 * b1 * w1 * Y1**2 + in_contact(damping * Y2, 0)
+    p_friction = friction_coefficient(direction) * Fn * Y1
+    return p_input, p_viscous, p_friction

@@ -1,0 +1,97 @@
+"""The parameter table: every model parameter, once, with unit and base value.
+
+Base values are those of the paper's Fig. 2 (Sect. 3); ``Vb = 4`` is the belt speed
+of Fig. 3. Names follow the paper in ASCII: ``beta2`` and ``omega2`` are the starred
+Hertz-Damp quantities ``beta2*`` and ``omega2*`` of Eq. (4) (for the linear
+Kelvin-Voigt contact of Fig. 16 they are the ordinary damping ratio and natural
+frequency of the normal direction). ``Omega`` is the excitation frequency
+``Omega_e``.
+
+The excitation has its own amplitude, frequency and phase in each direction
+(Figs. 14-15). ``alpha_t, Omega_t, phase_t`` (tangential) and ``alpha_n, Omega_n,
+phase_n`` (normal) default to ``alpha``, ``Omega`` and 0, which gives Eq. (4)
+exactly.
+
+This module is plain Python (no SymPy): the code generator copies the table into
+``generated/parameters.py`` so the runtime layer can read it without SymPy.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["Parameter", "PARAMETERS", "BASE", "names"]
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One model parameter.
+
+    Attributes
+    ----------
+    name : str
+        ASCII name used as keyword argument everywhere.
+    unit : str
+        SI unit (for the Hertz-Damp contact law).
+    base : float or None
+        Value of the paper's base set (Fig. 2); ``None`` for an optional parameter
+        that defaults to another one (see `default_from`).
+    domain : {"positive", "nonnegative", "real"}
+        Admissible values; generated functions raise ``ValueError`` outside it.
+    description : str
+        One line, citing the paper.
+    default_from : str or None
+        For the per-direction excitation: the parameter whose value is taken when
+        this one is not given.
+    """
+
+    name: str
+    unit: str
+    base: float | None
+    domain: str
+    description: str
+    default_from: str | None = None
+
+
+PARAMETERS: tuple[Parameter, ...] = (
+    Parameter("beta1", "1", 0.1, "nonnegative",
+              "tangential damping ratio C1/(2 M omega1), Eq. (4)"),
+    Parameter("omega1", "rad/s", 1.0, "positive",
+              "tangential natural frequency sqrt(K1/M), Eq. (4)"),
+    Parameter("beta2", "1/m^(5/4)", 0.15, "nonnegative",
+              "Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4)"),
+    Parameter("omega2", "rad/(m^(1/4) s)", 0.5, "positive",
+              "Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4)"),
+    Parameter("alpha", "m", 2.0, "nonnegative",
+              "excitation amplitude: force per mass alpha Omega^2, Eq. (4)"),
+    Parameter("Omega", "rad/s", 4.0, "nonnegative",
+              "excitation frequency Omega_e, Eq. (4)"),
+    Parameter("mu_s", "1", 0.4, "nonnegative",
+              "Coulomb friction coefficient, Eq. (3)"),
+    Parameter("g", "m/s^2", 9.81, "positive",
+              "gravity pressing the mass on the belt, Eq. (4)"),
+    Parameter("Vb", "m/s", 4.0, "nonnegative",
+              "belt speed (base value: Fig. 3)"),
+    Parameter("alpha_t", "m", None, "nonnegative",
+              "tangential excitation amplitude (Figs. 14-15)", "alpha"),
+    Parameter("Omega_t", "rad/s", None, "nonnegative",
+              "tangential excitation frequency (Fig. 14b)", "Omega"),
+    Parameter("phase_t", "rad", 0.0, "real",
+              "tangential excitation phase (Fig. 15: pi/2)"),
+    Parameter("alpha_n", "m", None, "nonnegative",
+              "normal excitation amplitude (Figs. 14-15)", "alpha"),
+    Parameter("Omega_n", "rad/s", None, "nonnegative",
+              "normal excitation frequency (Fig. 14b)", "Omega"),
+    Parameter("phase_n", "rad", 0.0, "real",
+              "normal excitation phase"),
+    Parameter("Vhat", "m/s", None, "positive",
+              "velocity amplitude in the effective friction, Eq. (23)"),
+)
+
+BASE: dict[str, float] = {p.name: p.base for p in PARAMETERS
+                          if p.base is not None and p.default_from is None
+                          and not p.name.startswith("phase")}
+
+
+def names() -> tuple[str, ...]:
+    """All parameter names, in table order."""
+    return tuple(p.name for p in PARAMETERS)

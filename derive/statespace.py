@@ -1,0 +1,123 @@
+"""State-space form, equilibrium, Jacobian and characteristic polynomial (Sect. 4.1).
+
+Implements Eqs. (5)-(12) of the paper for either contact law: the first-order
+form on the sliding branch ``X1' < Vb``, ``X2 > 0`` (Eqs. 5-8), the equilibrium
+solved by SymPy (Eq. 9), the Jacobian (Eq. 10) and its value at equilibrium
+(Eq. 11), the characteristic polynomial (Eq. 12) and its exact factorisation into
+the tangential and normal quadratics.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+
+from .model import STATE, X1, X2, Y1, Y2, equations_of_motion, lam
+
+__all__ = [
+    "SLIDING", "state_space_eqs_5_8", "equilibrium_eq_9", "jacobian_eq_10",
+    "jacobian_at_equilibrium_eq_11", "charpoly_eq_12", "Quadratic",
+    "block_quadratics", "free_of",
+]
+
+#: Friction direction on the branch of Eqs. (5)-(8): the mass is slower than the belt.
+SLIDING = -1
+
+
+def state_space_eqs_5_8(contact: str = "hertz_damp", forced: bool = False,
+                        direction=SLIDING) -> sp.Matrix:
+    """Right-hand side ``(X1', Y1', X2', Y2')`` of Eqs. (5)-(8)."""
+    acc = equations_of_motion(contact, direction=direction, forced=forced)
+    return sp.Matrix([Y1, acc[0], Y2, acc[1]])
+
+
+def equilibrium_eq_9(contact: str = "hertz_damp") -> dict[sp.Symbol, sp.Expr]:
+    """Equilibrium of the unforced state equations, Eq. (9), solved by SymPy.
+
+    Raises
+    ------
+    RuntimeError
+        If SymPy does not find exactly one equilibrium with ``X2 > 0``.
+    """
+    solutions = sp.solve(list(state_space_eqs_5_8(contact)), list(STATE), dict=True)
+    if len(solutions) != 1:
+        raise RuntimeError(f"expected one equilibrium in contact, got {solutions}")
+    return {s: sp.simplify(v) for s, v in solutions[0].items()}
+
+
+def jacobian_eq_10(contact: str = "hertz_damp", forced: bool = False) -> sp.Matrix:
+    """Jacobian of Eqs. (5)-(8) with respect to ``(X1, Y1, X2, Y2)``, Eq. (10)."""
+    return state_space_eqs_5_8(contact, forced).jacobian(STATE)
+
+
+def jacobian_at_equilibrium_eq_11(contact: str = "hertz_damp") -> sp.Matrix:
+    """Eq. (10) evaluated at Eq. (9): the matrix ``J^0`` of Eq. (11)."""
+    return jacobian_eq_10(contact).subs(equilibrium_eq_9(contact)).applyfunc(sp.simplify)
+
+
+def charpoly_eq_12(J: sp.Matrix) -> sp.Poly:
+    """Monic characteristic polynomial ``det(lambda I - J)``, Eq. (12).
+
+    Computed as a Berkowitz determinant without a ``simplify`` pass. (SymPy 1.14's
+    ``Matrix.charpoly`` fails on this matrix: it tries to order the block factors
+    by comparing symbolic coefficients.)
+    """
+    n = J.shape[0]
+    return sp.Poly(sp.expand((lam * sp.eye(n) - J).det(method="berkowitz")), lam)
+
+
+@dataclass(frozen=True)
+class Quadratic:
+    """A monic quadratic factor ``lambda^2 + p lambda + q`` of a characteristic polynomial.
+
+    ``disc`` is the quarter discriminant ``(p/2)^2 - q`` in factored form: near a
+    double root it is a difference of nearly equal numbers, and the factored form
+    (for the tangential mode ``omega1^2 (beta1 - 1)(beta1 + 1)``) avoids that
+    cancellation.
+    """
+
+    p: sp.Expr
+    q: sp.Expr
+    disc: sp.Expr
+
+    @classmethod
+    def from_block(cls, block: sp.Matrix) -> "Quadratic":
+        """The characteristic polynomial of a 2x2 block."""
+        p = sp.simplify(-block.trace())
+        q = sp.simplify(block.det())
+        return cls(p, q, sp.factor(sp.expand(p**2 / 4 - q)))
+
+    def expr(self) -> sp.Expr:
+        return lam**2 + self.p * lam + self.q
+
+
+def block_quadratics(J: sp.Matrix) -> tuple[Quadratic, Quadratic]:
+    """Exact factorisation of ``det(lambda I - J)`` for a block-triangular 4x4 ``J``.
+
+    The friction couples the tangential block to the normal one but not back
+    (Eq. 4 is one-way coupled), so the lower-left 2x2 block is zero and the
+    characteristic polynomial is the product of those of the diagonal blocks.
+
+    Returns
+    -------
+    (tangential, normal) : tuple of Quadratic
+
+    Raises
+    ------
+    ValueError
+        If the lower-left block is not identically zero, or the product of the
+        factors is not the characteristic polynomial.
+    """
+    if not J[2:, :2].is_zero_matrix:
+        raise ValueError("Jacobian is not block triangular: lower-left block "
+                         f"{J[2:, :2]} is not zero")
+    factors = Quadratic.from_block(J[:2, :2]), Quadratic.from_block(J[2:, 2:])
+    product = sp.expand(factors[0].expr() * factors[1].expr())
+    if sp.simplify(product - charpoly_eq_12(J).as_expr()) != 0:
+        raise ValueError("factorisation does not reproduce the characteristic polynomial")
+    return factors
+
+
+def free_of(expr, symbol: sp.Symbol) -> bool:
+    """Whether ``symbol`` is absent from ``expr`` (the claim below Eq. 12 for ``mu_s``)."""
+    return symbol not in sp.sympify(expr).free_symbols

@@ -1,0 +1,143 @@
+"""Runtime support shared by the generated modules: argument checks and array shaping.
+
+Copied verbatim into ``generated/_support.py`` by ``python -m derive``; edit the
+template in ``derive/templates/`` and regenerate. Plain numpy and mpmath: importing
+it never imports SymPy.
+"""
+import mpmath
+import numpy
+
+from .parameters import DOMAINS, KNOWN
+
+_DOMAIN_TEST = {
+    "positive": (lambda x: x > 0, "> 0"),
+    "nonnegative": (lambda x: x >= 0, ">= 0"),
+    "real": (lambda x: True, "real"),
+}
+
+
+def reject_unknown(function, extra):
+    """Raise ``TypeError`` for keyword arguments that are not model parameters.
+
+    Known parameters that a function does not use are accepted and ignored, so a
+    single dict of parameters serves every generated function.
+    """
+    unknown = sorted(set(extra) - KNOWN)
+    if unknown:
+        raise TypeError(f"{function}() got unexpected keyword argument(s) "
+                        f"{', '.join(map(repr, unknown))}; known parameters: "
+                        f"{', '.join(sorted(KNOWN))}")
+
+
+def _fail(function, name, domain, why):
+    return ValueError(f"{function}(): parameter {name!r} must be {why}"
+                      + (f" ({domain})" if domain else ""))
+
+
+def param(function, name, value, domain=None, why=None):
+    """``value`` as a float array, checked against ``domain``.
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter, if any element is NaN or outside the domain.
+    """
+    domain = domain or DOMAINS[name]
+    x = numpy.asarray(value, dtype=float)
+    if numpy.isnan(x).any():
+        raise _fail(function, name, None, "a number, not NaN")
+    test, text = _DOMAIN_TEST[domain]
+    if not numpy.all(test(x)):
+        raise _fail(function, name, why, text)
+    return x
+
+
+def mp_param(function, name, value, domain=None, why=None):
+    """`param` for the mpmath variants: a scalar ``mpf``."""
+    domain = domain or DOMAINS[name]
+    x = mpmath.mpf(value)
+    if mpmath.isnan(x):
+        raise _fail(function, name, None, "a number, not NaN")
+    test, text = _DOMAIN_TEST[domain]
+    if not test(x):
+        raise _fail(function, name, why, text)
+    return x
+
+
+def shape_of(*arrays):
+    """The broadcast shape of all inputs."""
+    return numpy.broadcast_shapes(*(numpy.shape(a) for a in arrays))
+
+
+def full(shape, value):
+    """``value`` broadcast to ``shape`` as a fresh float (or complex) array."""
+    value = numpy.asarray(value)
+    dtype = complex if numpy.iscomplexobj(value) else float
+    return numpy.broadcast_to(value, shape).astype(dtype)
+
+
+def tuple_of(shape, *values):
+    return tuple(full(shape, v) for v in values)
+
+
+def matrix(shape, rows):
+    """Stack a nested list of entries into an array of shape ``shape + (n, m)``."""
+    return numpy.stack([numpy.stack([full(shape, v) for v in row], axis=-1)
+                        for row in rows], axis=-2)
+
+
+def vector(shape, values):
+    return numpy.stack([full(shape, v) for v in values], axis=-1)
+
+
+def quadratic_roots(half_p, q, disc):
+    """Both roots of ``lambda^2 + 2 half_p lambda + q`` without cancellation.
+
+    ``disc = half_p^2 - q`` is passed in from a factored closed form, so a double
+    root (``disc`` near 0) loses no digits here. Real roots use the
+    cancellation-free pair ``r1 = -(half_p + sign(half_p) sqrt(disc))``,
+    ``r2 = q / r1``.
+
+    Returns
+    -------
+    (r1, r2) : complex arrays; for complex roots ``r1`` has the positive imaginary part.
+    """
+    half_p, q, disc = numpy.broadcast_arrays(*(numpy.asarray(a, float)
+                                               for a in (half_p, q, disc)))
+    root = numpy.sqrt(numpy.abs(disc))
+    real = disc >= 0
+    big = -(half_p + numpy.copysign(root, half_p))
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        small = numpy.where(big != 0, q / big, 0.0)
+    r1 = numpy.where(real, big, -half_p + 1j * root)
+    r2 = numpy.where(real, small, -half_p - 1j * root)
+    return r1.astype(complex), r2.astype(complex)
+
+
+def mp_quadratic_roots(half_p, q, disc):
+    """`quadratic_roots` for the mpmath variants."""
+    if disc >= 0:
+        big = -(half_p + (1 if half_p >= 0 else -1) * mpmath.sqrt(disc))
+        return mpmath.mpc(big), mpmath.mpc(q / big if big != 0 else 0)
+    root = mpmath.sqrt(-disc)
+    return mpmath.mpc(-half_p, root), mpmath.mpc(-half_p, -root)
+
+
+def choose(function, table, **options):
+    """The implementation in ``table`` (keyed by tuples of option values) for ``options``.
+
+    Raises
+    ------
+    ValueError
+        Naming the option, if a value is not one of its choices.
+    """
+    for position, (option, value) in enumerate(options.items()):
+        choices = list(dict.fromkeys(key[position] for key in table))
+        if not isinstance(value, str) or value not in choices:
+            raise ValueError(f"{function}(): {option} must be one of "
+                             f"{', '.join(map(repr, choices))}; got {value!r}")
+    return table[tuple(options.values())]
+
+
+__all__ = ["reject_unknown", "param", "mp_param", "shape_of", "full", "tuple_of",
+           "matrix", "vector", "quadratic_roots", "mp_quadratic_roots", "choose"]
