@@ -1,7 +1,9 @@
-"""Command line: ``python -m derive [--check]``.
+"""Command line: ``python -m derive [--check]``, ``python -m derive simulate|sweep ...``.
 
 Thin: it calls the derivation pipeline (`derive.modules`), the code generator
-(`derive.codegen`) and prints what happened.
+(`derive.codegen`) and prints what happened. The simulation commands belong to the
+runtime layer (`runtime.cli`), which never imports SymPy; they are dispatched
+before anything symbolic is imported.
 """
 from __future__ import annotations
 
@@ -9,12 +11,14 @@ import argparse
 import sys
 import time
 
-from . import codegen, modules
-
 __all__ = ["main"]
+
+RUNTIME_COMMANDS = ("simulate", "sweep")
 
 
 def _generate(args) -> int:
+    from . import codegen, modules
+
     start = time.perf_counter()
     mods = modules.all_modules()
     files = codegen.render_all(mods)
@@ -41,6 +45,10 @@ def _generate(args) -> int:
 
 
 def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv and argv[0] in RUNTIME_COMMANDS:
+        from runtime.cli import main as runtime_main
+        return runtime_main(argv)
     parser = argparse.ArgumentParser(
         prog="python -m derive",
         description="Derive the model symbolically and regenerate generated/.")
