@@ -161,8 +161,9 @@ def _body(fn, outputs, mp):
     printer = _Mpmath() if mp else _NumPy()
     flat, shape = _flat(fn.returns, outputs)
     params = _params_of(flat, fn.args)
-    lines = [f'_support.reject_unknown("{fn.name}", params)']
     check = "_support.mp_param" if mp else "_support.param"
+    lines = [f'_support.mp_extras("{fn.name}", params)' if mp
+             else f'_extra = _support.extras("{fn.name}", params)']
     for n in params:
         src = _TABLE[n].default_from
         if src:
@@ -174,7 +175,7 @@ def _body(fn, outputs, mp):
     for n in params:
         lines.append(f'{n} = {check}("{fn.name}", "{n}", {n})')
     if not mp:
-        inputs = ", ".join([a.name for a in fn.args] + params)
+        inputs = ", ".join([a.name for a in fn.args] + params + ["*_extra"])
         lines.append(f"_shape = _support.shape_of({inputs})")
     repl, reduced = sp.cse(flat, symbols=sp.numbered_symbols("_x"), order="canonical")
     for sym, e in repl:

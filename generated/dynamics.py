@@ -88,7 +88,7 @@ def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
 
 
 def _rhs__hertz_damp(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.reject_unknown("rhs", params)
+    _extra = _support.extras("rhs", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -113,7 +113,7 @@ def _rhs__hertz_damp(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, 
     alpha_n = _support.param("rhs", "alpha_n", alpha_n)
     Omega_n = _support.param("rhs", "Omega_n", Omega_n)
     phase_n = _support.param("rhs", "phase_n", phase_n)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n)
+    _shape = _support.shape_of(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
     _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
     _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x2 = numpy.greater(X2, 0)
@@ -122,7 +122,7 @@ def _rhs__hertz_damp(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, 
 
 
 def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.reject_unknown("rhs", params)
+    _extra = _support.extras("rhs", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -147,7 +147,7 @@ def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha
     alpha_n = _support.param("rhs", "alpha_n", alpha_n)
     Omega_n = _support.param("rhs", "Omega_n", Omega_n)
     phase_n = _support.param("rhs", "phase_n", phase_n)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n)
+    _shape = _support.shape_of(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
     _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
     _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x2 = numpy.greater(X2, 0)
@@ -234,7 +234,7 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
 
 
 def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.reject_unknown("rhs_branch", params)
+    _extra = _support.extras("rhs_branch", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -259,7 +259,7 @@ def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, ome
     alpha_n = _support.param("rhs_branch", "alpha_n", alpha_n)
     Omega_n = _support.param("rhs_branch", "Omega_n", Omega_n)
     phase_n = _support.param("rhs_branch", "phase_n", phase_n)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n)
+    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
     _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
     _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x2 = numpy.greater(X2, 0)
@@ -268,7 +268,7 @@ def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, ome
 
 
 def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.reject_unknown("rhs_branch", params)
+    _extra = _support.extras("rhs_branch", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -293,7 +293,7 @@ def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, o
     alpha_n = _support.param("rhs_branch", "alpha_n", alpha_n)
     Omega_n = _support.param("rhs_branch", "Omega_n", Omega_n)
     phase_n = _support.param("rhs_branch", "phase_n", phase_n)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n)
+    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
     _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
     _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x2 = numpy.greater(X2, 0)
@@ -358,7 +358,7 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
 
 
 def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.reject_unknown("jacobian_branch", params)
+    _extra = _support.extras("jacobian_branch", params)
     t = _support.param("jacobian_branch", "t", t, "real")
     X1 = _support.param("jacobian_branch", "X1", X1, "real")
     Y1 = _support.param("jacobian_branch", "Y1", Y1, "real")
@@ -370,7 +370,7 @@ def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2
     beta2 = _support.param("jacobian_branch", "beta2", beta2)
     omega2 = _support.param("jacobian_branch", "omega2", omega2)
     mu_s = _support.param("jacobian_branch", "mu_s", mu_s)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s)
+    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, *_extra)
     _x0 = functools.reduce(numpy.maximum, [0, X2])
     _x1 = 2*beta2*omega2
     _x2 = (3/2)*numpy.sqrt(_x0)*(Y2*_x1 + omega2**2)
@@ -386,7 +386,7 @@ def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2
 
 
 def _jacobian_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.reject_unknown("jacobian_branch", params)
+    _extra = _support.extras("jacobian_branch", params)
     t = _support.param("jacobian_branch", "t", t, "real")
     X1 = _support.param("jacobian_branch", "X1", X1, "real")
     Y1 = _support.param("jacobian_branch", "Y1", Y1, "real")
@@ -398,7 +398,7 @@ def _jacobian_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, bet
     beta2 = _support.param("jacobian_branch", "beta2", beta2)
     omega2 = _support.param("jacobian_branch", "omega2", omega2)
     mu_s = _support.param("jacobian_branch", "mu_s", mu_s)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s)
+    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, *_extra)
     _x0 = omega2**2
     _x1 = mu_s*sgn
     _x2 = numpy.greater(X2, 0)
@@ -454,22 +454,22 @@ def normal_force(X2, Y2, *, contact='hertz_damp', **params):
 
 
 def _normal_force__hertz_damp(X2, Y2, *, beta2, omega2, **params):
-    _support.reject_unknown("normal_force", params)
+    _extra = _support.extras("normal_force", params)
     X2 = _support.param("normal_force", "X2", X2, "real")
     Y2 = _support.param("normal_force", "Y2", Y2, "real")
     beta2 = _support.param("normal_force", "beta2", beta2)
     omega2 = _support.param("normal_force", "omega2", omega2)
-    _shape = _support.shape_of(X2, Y2, beta2, omega2)
+    _shape = _support.shape_of(X2, Y2, beta2, omega2, *_extra)
     return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2),0], default=numpy.nan))
 
 
 def _normal_force__kelvin_voigt(X2, Y2, *, beta2, omega2, **params):
-    _support.reject_unknown("normal_force", params)
+    _extra = _support.extras("normal_force", params)
     X2 = _support.param("normal_force", "X2", X2, "real")
     Y2 = _support.param("normal_force", "Y2", Y2, "real")
     beta2 = _support.param("normal_force", "beta2", beta2)
     omega2 = _support.param("normal_force", "omega2", omega2)
-    _shape = _support.shape_of(X2, Y2, beta2, omega2)
+    _shape = _support.shape_of(X2, Y2, beta2, omega2, *_extra)
     return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2]),0], default=numpy.nan))
 
 
@@ -523,7 +523,7 @@ def excitation(t, *, alpha, Omega, alpha_t=None, Omega_t=None, phase_t=0.0, alph
     TypeError
         If a keyword is not a model parameter.
     """
-    _support.reject_unknown("excitation", params)
+    _extra = _support.extras("excitation", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -537,7 +537,7 @@ def excitation(t, *, alpha, Omega, alpha_t=None, Omega_t=None, phase_t=0.0, alph
     alpha_n = _support.param("excitation", "alpha_n", alpha_n)
     Omega_n = _support.param("excitation", "Omega_n", Omega_n)
     phase_n = _support.param("excitation", "phase_n", phase_n)
-    _shape = _support.shape_of(t, alpha, Omega, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n)
+    _shape = _support.shape_of(t, alpha, Omega, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
     return _support.tuple_of(_shape, Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t), -Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n))
 
 
@@ -586,7 +586,7 @@ def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
 
 
 def _energy__hertz_damp(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
-    _support.reject_unknown("energy", params)
+    _extra = _support.extras("energy", params)
     X1 = _support.param("energy", "X1", X1, "real")
     Y1 = _support.param("energy", "Y1", Y1, "real")
     X2 = _support.param("energy", "X2", X2, "real")
@@ -594,12 +594,12 @@ def _energy__hertz_damp(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
     omega1 = _support.param("energy", "omega1", omega1)
     omega2 = _support.param("energy", "omega2", omega2)
     g = _support.param("energy", "g", g)
-    _shape = _support.shape_of(X1, Y1, X2, Y2, omega1, omega2, g)
+    _shape = _support.shape_of(X1, Y1, X2, Y2, omega1, omega2, g, *_extra)
     return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(2/5)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**(5/2),0], default=numpy.nan))
 
 
 def _energy__kelvin_voigt(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
-    _support.reject_unknown("energy", params)
+    _extra = _support.extras("energy", params)
     X1 = _support.param("energy", "X1", X1, "real")
     Y1 = _support.param("energy", "Y1", Y1, "real")
     X2 = _support.param("energy", "X2", X2, "real")
@@ -607,7 +607,7 @@ def _energy__kelvin_voigt(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
     omega1 = _support.param("energy", "omega1", omega1)
     omega2 = _support.param("energy", "omega2", omega2)
     g = _support.param("energy", "g", g)
-    _shape = _support.shape_of(X1, Y1, X2, Y2, omega1, omega2, g)
+    _shape = _support.shape_of(X1, Y1, X2, Y2, omega1, omega2, g, *_extra)
     return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(1/2)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**2,0], default=numpy.nan))
 
 
@@ -684,7 +684,7 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
 
 
 def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.reject_unknown("power_balance", params)
+    _extra = _support.extras("power_balance", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -708,7 +708,7 @@ def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, 
     alpha_n = _support.param("power_balance", "alpha_n", alpha_n)
     Omega_n = _support.param("power_balance", "Omega_n", Omega_n)
     phase_n = _support.param("power_balance", "phase_n", phase_n)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n)
+    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
     _x0 = omega2**2
     _x1 = functools.reduce(numpy.maximum, [0, X2])**(3/2)
     _x2 = 2*Y2*beta2*omega2 + _x0
@@ -717,7 +717,7 @@ def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, 
 
 
 def _power_balance__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.reject_unknown("power_balance", params)
+    _extra = _support.extras("power_balance", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -741,7 +741,7 @@ def _power_balance__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2
     alpha_n = _support.param("power_balance", "alpha_n", alpha_n)
     Omega_n = _support.param("power_balance", "Omega_n", Omega_n)
     phase_n = _support.param("power_balance", "phase_n", phase_n)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n)
+    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
     _x0 = 2*beta2*omega2
     _x1 = numpy.greater(X2, 0)
     return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x1,True], [Y2**2*_x0,0], default=numpy.nan), Y1*mu_s*sgn*numpy.select([_x1,True], [Y2*_x0 + omega2**2*functools.reduce(numpy.maximum, [0, X2]),0], default=numpy.nan))

@@ -51,22 +51,22 @@ def equilibrium(*, contact='hertz_damp', **params):
 
 
 def _equilibrium__hertz_damp(*, omega1, omega2, mu_s, g, **params):
-    _support.reject_unknown("equilibrium", params)
+    _extra = _support.extras("equilibrium", params)
     omega1 = _support.param("equilibrium", "omega1", omega1)
     omega2 = _support.param("equilibrium", "omega2", omega2)
     mu_s = _support.param("equilibrium", "mu_s", mu_s)
     g = _support.param("equilibrium", "g", g)
-    _shape = _support.shape_of(omega1, omega2, mu_s, g)
+    _shape = _support.shape_of(omega1, omega2, mu_s, g, *_extra)
     return _support.tuple_of(_shape, g*mu_s/omega1**2, 0, g**(2/3)/omega2**(4/3), 0)
 
 
 def _equilibrium__kelvin_voigt(*, omega1, omega2, mu_s, g, **params):
-    _support.reject_unknown("equilibrium", params)
+    _extra = _support.extras("equilibrium", params)
     omega1 = _support.param("equilibrium", "omega1", omega1)
     omega2 = _support.param("equilibrium", "omega2", omega2)
     mu_s = _support.param("equilibrium", "mu_s", mu_s)
     g = _support.param("equilibrium", "g", g)
-    _shape = _support.shape_of(omega1, omega2, mu_s, g)
+    _shape = _support.shape_of(omega1, omega2, mu_s, g, *_extra)
     return _support.tuple_of(_shape, g*mu_s/omega1**2, 0, g/omega2**2, 0)
 
 
@@ -124,7 +124,7 @@ def jacobian(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
 
 
 def _jacobian__hertz_damp(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.reject_unknown("jacobian", params)
+    _extra = _support.extras("jacobian", params)
     X1 = _support.param("jacobian", "X1", X1, "real")
     Y1 = _support.param("jacobian", "Y1", Y1, "real")
     X2 = _support.param("jacobian", "X2", X2, "positive", 'Eqs. (5)-(8) hold in contact only, X2 > 0')
@@ -134,7 +134,7 @@ def _jacobian__hertz_damp(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s,
     beta2 = _support.param("jacobian", "beta2", beta2)
     omega2 = _support.param("jacobian", "omega2", omega2)
     mu_s = _support.param("jacobian", "mu_s", mu_s)
-    _shape = _support.shape_of(X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s)
+    _shape = _support.shape_of(X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, *_extra)
     _x0 = 2*beta2*omega2
     _x1 = (3/2)*numpy.sqrt(X2)*(Y2*_x0 + omega2**2)
     _x2 = X2**(3/2)*_x0
@@ -147,7 +147,7 @@ def _jacobian__hertz_damp(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s,
 
 
 def _jacobian__kelvin_voigt(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.reject_unknown("jacobian", params)
+    _extra = _support.extras("jacobian", params)
     X1 = _support.param("jacobian", "X1", X1, "real")
     Y1 = _support.param("jacobian", "Y1", Y1, "real")
     X2 = _support.param("jacobian", "X2", X2, "positive", 'Eqs. (5)-(8) hold in contact only, X2 > 0')
@@ -157,7 +157,7 @@ def _jacobian__kelvin_voigt(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_
     beta2 = _support.param("jacobian", "beta2", beta2)
     omega2 = _support.param("jacobian", "omega2", omega2)
     mu_s = _support.param("jacobian", "mu_s", mu_s)
-    _shape = _support.shape_of(X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s)
+    _shape = _support.shape_of(X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, *_extra)
     _x0 = omega2**2
     _x1 = 2*beta2*omega2
     return _support.matrix(_shape, [
@@ -215,14 +215,14 @@ def jacobian_at_equilibrium(*, contact='hertz_damp', **params):
 
 
 def _jacobian_at_equilibrium__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, **params):
-    _support.reject_unknown("jacobian_at_equilibrium", params)
+    _extra = _support.extras("jacobian_at_equilibrium", params)
     beta1 = _support.param("jacobian_at_equilibrium", "beta1", beta1)
     omega1 = _support.param("jacobian_at_equilibrium", "omega1", omega1)
     beta2 = _support.param("jacobian_at_equilibrium", "beta2", beta2)
     omega2 = _support.param("jacobian_at_equilibrium", "omega2", omega2)
     mu_s = _support.param("jacobian_at_equilibrium", "mu_s", mu_s)
     g = _support.param("jacobian_at_equilibrium", "g", g)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g)
+    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, *_extra)
     _x0 = (3/2)*g**(1/3)*omega2**(4/3)
     _x1 = 2*beta2*g/omega2
     return _support.matrix(_shape, [
@@ -234,13 +234,13 @@ def _jacobian_at_equilibrium__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
 
 
 def _jacobian_at_equilibrium__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.reject_unknown("jacobian_at_equilibrium", params)
+    _extra = _support.extras("jacobian_at_equilibrium", params)
     beta1 = _support.param("jacobian_at_equilibrium", "beta1", beta1)
     omega1 = _support.param("jacobian_at_equilibrium", "omega1", omega1)
     beta2 = _support.param("jacobian_at_equilibrium", "beta2", beta2)
     omega2 = _support.param("jacobian_at_equilibrium", "omega2", omega2)
     mu_s = _support.param("jacobian_at_equilibrium", "mu_s", mu_s)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s)
+    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, *_extra)
     _x0 = omega2**2
     _x1 = 2*beta2*omega2
     return _support.matrix(_shape, [
@@ -299,13 +299,13 @@ def charpoly(*, contact='hertz_damp', **params):
 
 
 def _charpoly__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
-    _support.reject_unknown("charpoly", params)
+    _extra = _support.extras("charpoly", params)
     beta1 = _support.param("charpoly", "beta1", beta1)
     omega1 = _support.param("charpoly", "omega1", omega1)
     beta2 = _support.param("charpoly", "beta2", beta2)
     omega2 = _support.param("charpoly", "omega2", omega2)
     g = _support.param("charpoly", "g", g)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, g)
+    _shape = _support.shape_of(beta1, omega1, beta2, omega2, g, *_extra)
     _x0 = beta1*omega1
     _x1 = beta2*g/omega2
     _x2 = 2*_x1
@@ -316,12 +316,12 @@ def _charpoly__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
 
 
 def _charpoly__kelvin_voigt(*, beta1, omega1, beta2, omega2, **params):
-    _support.reject_unknown("charpoly", params)
+    _extra = _support.extras("charpoly", params)
     beta1 = _support.param("charpoly", "beta1", beta1)
     omega1 = _support.param("charpoly", "omega1", omega1)
     beta2 = _support.param("charpoly", "beta2", beta2)
     omega2 = _support.param("charpoly", "omega2", omega2)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2)
+    _shape = _support.shape_of(beta1, omega1, beta2, omega2, *_extra)
     _x0 = beta1*omega1
     _x1 = 2*_x0
     _x2 = beta2*omega2
@@ -382,13 +382,13 @@ def eigenvalues(*, contact='hertz_damp', **params):
 
 
 def _eigenvalues__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
-    _support.reject_unknown("eigenvalues", params)
+    _extra = _support.extras("eigenvalues", params)
     beta1 = _support.param("eigenvalues", "beta1", beta1)
     omega1 = _support.param("eigenvalues", "omega1", omega1)
     beta2 = _support.param("eigenvalues", "beta2", beta2)
     omega2 = _support.param("eigenvalues", "omega2", omega2)
     g = _support.param("eigenvalues", "g", g)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, g)
+    _shape = _support.shape_of(beta1, omega1, beta2, omega2, g, *_extra)
     _x0 = omega1**2
     _x1 = g**(1/3)
     _r0 = _support.quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
@@ -397,12 +397,12 @@ def _eigenvalues__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
 
 
 def _eigenvalues__kelvin_voigt(*, beta1, omega1, beta2, omega2, **params):
-    _support.reject_unknown("eigenvalues", params)
+    _extra = _support.extras("eigenvalues", params)
     beta1 = _support.param("eigenvalues", "beta1", beta1)
     omega1 = _support.param("eigenvalues", "omega1", omega1)
     beta2 = _support.param("eigenvalues", "beta2", beta2)
     omega2 = _support.param("eigenvalues", "omega2", omega2)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2)
+    _shape = _support.shape_of(beta1, omega1, beta2, omega2, *_extra)
     _x0 = omega1**2
     _x1 = omega2**2
     _r0 = _support.quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))

@@ -16,17 +16,38 @@ _DOMAIN_TEST = {
 }
 
 
-def reject_unknown(function, extra):
-    """Raise ``TypeError`` for keyword arguments that are not model parameters.
-
-    Known parameters that a function does not use are accepted and ignored, so a
-    single dict of parameters serves every generated function.
-    """
+def _reject_unknown(function, extra):
     unknown = sorted(set(extra) - KNOWN)
     if unknown:
         raise TypeError(f"{function}() got unexpected keyword argument(s) "
                         f"{', '.join(map(repr, unknown))}; known parameters: "
                         f"{', '.join(sorted(KNOWN))}")
+
+
+def extras(function, extra):
+    """Check the parameters a function does not use; return them as arrays.
+
+    A single dict of parameters serves every generated function: known parameters
+    that a function does not use are accepted, checked like the others (a bad
+    value is an error wherever it is passed) and take part in broadcasting, so
+    a grid of any parameter gives outputs of the grid's shape. ``None`` (an
+    optional parameter left at its default) is skipped.
+
+    Raises
+    ------
+    TypeError
+        For a keyword that is not a model parameter.
+    """
+    _reject_unknown(function, extra)
+    return [param(function, k, v) for k, v in extra.items() if v is not None]
+
+
+def mp_extras(function, extra):
+    """`extras` for the mpmath variants (checks only)."""
+    _reject_unknown(function, extra)
+    for k, v in extra.items():
+        if v is not None:
+            mp_param(function, k, v)
 
 
 def _fail(function, name, domain, why):
@@ -139,5 +160,5 @@ def choose(function, table, **options):
     return table[tuple(options.values())]
 
 
-__all__ = ["reject_unknown", "param", "mp_param", "shape_of", "full", "tuple_of",
+__all__ = ["extras", "mp_extras", "param", "mp_param", "shape_of", "full", "tuple_of",
            "matrix", "vector", "quadratic_roots", "mp_quadratic_roots", "choose"]

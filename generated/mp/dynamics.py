@@ -91,7 +91,7 @@ def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
 
 
 def _rhs__hertz_damp(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.reject_unknown("rhs", params)
+    _support.mp_extras("rhs", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -124,7 +124,7 @@ def _rhs__hertz_damp(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, 
 
 
 def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.reject_unknown("rhs", params)
+    _support.mp_extras("rhs", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -237,7 +237,7 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
 
 
 def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.reject_unknown("rhs_branch", params)
+    _support.mp_extras("rhs_branch", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -270,7 +270,7 @@ def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, ome
 
 
 def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.reject_unknown("rhs_branch", params)
+    _support.mp_extras("rhs_branch", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -361,7 +361,7 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
 
 
 def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.reject_unknown("jacobian_branch", params)
+    _support.mp_extras("jacobian_branch", params)
     t = _support.mp_param("jacobian_branch", "t", t, "real")
     X1 = _support.mp_param("jacobian_branch", "X1", X1, "real")
     Y1 = _support.mp_param("jacobian_branch", "Y1", Y1, "real")
@@ -388,7 +388,7 @@ def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2
 
 
 def _jacobian_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.reject_unknown("jacobian_branch", params)
+    _support.mp_extras("jacobian_branch", params)
     t = _support.mp_param("jacobian_branch", "t", t, "real")
     X1 = _support.mp_param("jacobian_branch", "X1", X1, "real")
     Y1 = _support.mp_param("jacobian_branch", "Y1", Y1, "real")
@@ -457,7 +457,7 @@ def normal_force(X2, Y2, *, contact='hertz_damp', **params):
 
 
 def _normal_force__hertz_damp(X2, Y2, *, beta2, omega2, **params):
-    _support.reject_unknown("normal_force", params)
+    _support.mp_extras("normal_force", params)
     X2 = _support.mp_param("normal_force", "X2", X2, "real")
     Y2 = _support.mp_param("normal_force", "Y2", Y2, "real")
     beta2 = _support.mp_param("normal_force", "beta2", beta2)
@@ -466,7 +466,7 @@ def _normal_force__hertz_damp(X2, Y2, *, beta2, omega2, **params):
 
 
 def _normal_force__kelvin_voigt(X2, Y2, *, beta2, omega2, **params):
-    _support.reject_unknown("normal_force", params)
+    _support.mp_extras("normal_force", params)
     X2 = _support.mp_param("normal_force", "X2", X2, "real")
     Y2 = _support.mp_param("normal_force", "Y2", Y2, "real")
     beta2 = _support.mp_param("normal_force", "beta2", beta2)
@@ -526,7 +526,7 @@ def excitation(t, *, alpha, Omega, alpha_t=None, Omega_t=None, phase_t=0.0, alph
     TypeError
         If a keyword is not a model parameter.
     """
-    _support.reject_unknown("excitation", params)
+    _support.mp_extras("excitation", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -590,7 +590,7 @@ def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
 
 
 def _energy__hertz_damp(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
-    _support.reject_unknown("energy", params)
+    _support.mp_extras("energy", params)
     X1 = _support.mp_param("energy", "X1", X1, "real")
     Y1 = _support.mp_param("energy", "Y1", Y1, "real")
     X2 = _support.mp_param("energy", "X2", X2, "real")
@@ -602,7 +602,7 @@ def _energy__hertz_damp(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
 
 
 def _energy__kelvin_voigt(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
-    _support.reject_unknown("energy", params)
+    _support.mp_extras("energy", params)
     X1 = _support.mp_param("energy", "X1", X1, "real")
     Y1 = _support.mp_param("energy", "Y1", Y1, "real")
     X2 = _support.mp_param("energy", "X2", X2, "real")
@@ -688,7 +688,7 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
 
 
 def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.reject_unknown("power_balance", params)
+    _support.mp_extras("power_balance", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n
@@ -720,7 +720,7 @@ def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, 
 
 
 def _power_balance__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.reject_unknown("power_balance", params)
+    _support.mp_extras("power_balance", params)
     alpha_t = alpha if alpha_t is None else alpha_t
     Omega_t = Omega if Omega_t is None else Omega_t
     alpha_n = alpha if alpha_n is None else alpha_n

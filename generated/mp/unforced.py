@@ -55,7 +55,7 @@ def equilibrium(*, contact='hertz_damp', **params):
 
 
 def _equilibrium__hertz_damp(*, omega1, omega2, mu_s, g, **params):
-    _support.reject_unknown("equilibrium", params)
+    _support.mp_extras("equilibrium", params)
     omega1 = _support.mp_param("equilibrium", "omega1", omega1)
     omega2 = _support.mp_param("equilibrium", "omega2", omega2)
     mu_s = _support.mp_param("equilibrium", "mu_s", mu_s)
@@ -64,7 +64,7 @@ def _equilibrium__hertz_damp(*, omega1, omega2, mu_s, g, **params):
 
 
 def _equilibrium__kelvin_voigt(*, omega1, omega2, mu_s, g, **params):
-    _support.reject_unknown("equilibrium", params)
+    _support.mp_extras("equilibrium", params)
     omega1 = _support.mp_param("equilibrium", "omega1", omega1)
     omega2 = _support.mp_param("equilibrium", "omega2", omega2)
     mu_s = _support.mp_param("equilibrium", "mu_s", mu_s)
@@ -128,7 +128,7 @@ def jacobian(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
 
 
 def _jacobian__hertz_damp(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.reject_unknown("jacobian", params)
+    _support.mp_extras("jacobian", params)
     X1 = _support.mp_param("jacobian", "X1", X1, "real")
     Y1 = _support.mp_param("jacobian", "Y1", Y1, "real")
     X2 = _support.mp_param("jacobian", "X2", X2, "positive", 'Eqs. (5)-(8) hold in contact only, X2 > 0')
@@ -150,7 +150,7 @@ def _jacobian__hertz_damp(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s,
 
 
 def _jacobian__kelvin_voigt(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.reject_unknown("jacobian", params)
+    _support.mp_extras("jacobian", params)
     X1 = _support.mp_param("jacobian", "X1", X1, "real")
     Y1 = _support.mp_param("jacobian", "Y1", Y1, "real")
     X2 = _support.mp_param("jacobian", "X2", X2, "positive", 'Eqs. (5)-(8) hold in contact only, X2 > 0')
@@ -219,7 +219,7 @@ def jacobian_at_equilibrium(*, contact='hertz_damp', **params):
 
 
 def _jacobian_at_equilibrium__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, **params):
-    _support.reject_unknown("jacobian_at_equilibrium", params)
+    _support.mp_extras("jacobian_at_equilibrium", params)
     beta1 = _support.mp_param("jacobian_at_equilibrium", "beta1", beta1)
     omega1 = _support.mp_param("jacobian_at_equilibrium", "omega1", omega1)
     beta2 = _support.mp_param("jacobian_at_equilibrium", "beta2", beta2)
@@ -237,7 +237,7 @@ def _jacobian_at_equilibrium__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
 
 
 def _jacobian_at_equilibrium__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.reject_unknown("jacobian_at_equilibrium", params)
+    _support.mp_extras("jacobian_at_equilibrium", params)
     beta1 = _support.mp_param("jacobian_at_equilibrium", "beta1", beta1)
     omega1 = _support.mp_param("jacobian_at_equilibrium", "omega1", omega1)
     beta2 = _support.mp_param("jacobian_at_equilibrium", "beta2", beta2)
@@ -303,7 +303,7 @@ def charpoly(*, contact='hertz_damp', **params):
 
 
 def _charpoly__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
-    _support.reject_unknown("charpoly", params)
+    _support.mp_extras("charpoly", params)
     beta1 = _support.mp_param("charpoly", "beta1", beta1)
     omega1 = _support.mp_param("charpoly", "omega1", omega1)
     beta2 = _support.mp_param("charpoly", "beta2", beta2)
@@ -319,7 +319,7 @@ def _charpoly__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
 
 
 def _charpoly__kelvin_voigt(*, beta1, omega1, beta2, omega2, **params):
-    _support.reject_unknown("charpoly", params)
+    _support.mp_extras("charpoly", params)
     beta1 = _support.mp_param("charpoly", "beta1", beta1)
     omega1 = _support.mp_param("charpoly", "omega1", omega1)
     beta2 = _support.mp_param("charpoly", "beta2", beta2)
@@ -386,7 +386,7 @@ def eigenvalues(*, contact='hertz_damp', **params):
 
 
 def _eigenvalues__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
-    _support.reject_unknown("eigenvalues", params)
+    _support.mp_extras("eigenvalues", params)
     beta1 = _support.mp_param("eigenvalues", "beta1", beta1)
     omega1 = _support.mp_param("eigenvalues", "omega1", omega1)
     beta2 = _support.mp_param("eigenvalues", "beta2", beta2)
@@ -400,7 +400,7 @@ def _eigenvalues__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
 
 
 def _eigenvalues__kelvin_voigt(*, beta1, omega1, beta2, omega2, **params):
-    _support.reject_unknown("eigenvalues", params)
+    _support.mp_extras("eigenvalues", params)
     beta1 = _support.mp_param("eigenvalues", "beta1", beta1)
     omega1 = _support.mp_param("eigenvalues", "omega1", omega1)
     beta2 = _support.mp_param("eigenvalues", "beta2", beta2)

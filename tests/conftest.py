@@ -1,0 +1,42 @@
+"""Shared fixtures: parameter sets drawn at random around the paper's base set."""
+import mpmath
+import numpy as np
+import pytest
+
+from generated.parameters import BASE
+
+#: Parameters of the paper's Eq. (4) (the per-direction excitation defaults to these).
+MODEL = ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g", "Vb")
+
+
+def random_params(rng, spread=3.0):
+    """One parameter set: each base value times a log-uniform factor in [1/spread, spread]."""
+    return {k: BASE[k] * float(np.exp(rng.uniform(-np.log(spread), np.log(spread))))
+            for k in MODEL}
+
+
+@pytest.fixture
+def rng():
+    return np.random.default_rng(20261121)
+
+
+@pytest.fixture
+def base():
+    return dict(BASE)
+
+
+@pytest.fixture
+def mp50():
+    with mpmath.workdps(50):
+        yield
+
+
+def rel_err(approx, exact):
+    """Largest relative error of ``approx`` against mpmath ``exact`` (nested sequences)."""
+    a = np.asarray(approx, dtype=complex).ravel()
+    e = [mpmath.mpc(x) for x in np.asarray(exact, dtype=object).ravel()]
+    worst = 0.0
+    for x, y in zip(a, e):
+        scale = max(abs(y), mpmath.mpf(1e-300))
+        worst = max(worst, float(abs(mpmath.mpc(x) - y) / scale))
+    return worst

@@ -1,0 +1,64 @@
+"""Symbolic facts of the derivation, proved by SymPy (not sampled)."""
+import pytest
+import sympy as sp
+
+from derive import dynamics as dyn
+from derive import statespace as ss
+from derive.model import CONTACT_LAWS, P, STATE, X2, equal_excitation, equations_of_motion, t
+
+
+@pytest.mark.parametrize("contact", CONTACT_LAWS)
+def test_equilibrium_satisfies_state_equations_exactly(contact):
+    eq = ss.equilibrium_eq_9(contact)
+    residual = ss.state_space_eqs_5_8(contact).subs(eq)
+    assert residual.applyfunc(sp.simplify) == sp.zeros(4, 1)
+    assert eq[X2].is_positive
+
+
+def test_equilibrium_is_eq9_as_printed():
+    eq = ss.equilibrium_eq_9("hertz_damp")
+    g, w1, w2, mu = P["g"], P["omega1"], P["omega2"], P["mu_s"]
+    assert sp.simplify(eq[STATE[0]] - mu * g / w1**2) == 0
+    assert sp.simplify(eq[X2] - (g / w2**2) ** sp.Rational(2, 3)) == 0
+
+
+@pytest.mark.parametrize("contact", CONTACT_LAWS)
+def test_mu_s_absent_from_characteristic_polynomial(contact):
+    J0 = ss.jacobian_at_equilibrium_eq_11(contact)
+    assert P["mu_s"] in J0.free_symbols          # present in J^0 (Eq. 11) ...
+    assert ss.free_of(ss.charpoly_eq_12(J0).as_expr(), P["mu_s"])  # ... not in Eq. (12)
+
+
+@pytest.mark.parametrize("contact", CONTACT_LAWS)
+def test_block_factorisation_is_exact(contact):
+    J0 = ss.jacobian_at_equilibrium_eq_11(contact)
+    tangential, normal = ss.block_quadratics(J0)
+    product = sp.expand(tangential.expr() * normal.expr())
+    assert sp.simplify(product - ss.charpoly_eq_12(J0).as_expr()) == 0
+    assert sp.simplify(tangential.disc - (tangential.p**2 / 4 - tangential.q)) == 0
+    assert tangential.disc == P["omega1"]**2 * (P["beta1"] - 1) * (P["beta1"] + 1)
+
+
+def test_block_quadratics_rejects_a_coupled_matrix():
+    J = sp.Matrix(4, 4, lambda i, j: sp.Symbol(f"j{i}{j}"))
+    with pytest.raises(ValueError, match="block triangular"):
+        ss.block_quadratics(J)
+
+
+def test_general_excitation_defaults_give_eq4():
+    general = equations_of_motion().subs(equal_excitation())
+    assert (general - equations_of_motion(general=False)).applyfunc(sp.simplify) == sp.zeros(2, 1)
+
+
+@pytest.mark.parametrize("contact", CONTACT_LAWS)
+def test_power_balance_is_the_time_derivative_of_energy(contact):
+    """dE/dt along Eq. (4) equals P_input - P_viscous - P_friction, in contact and in flight."""
+    E = dyn.energy(contact)
+    f = dyn.rhs(contact, dyn.sgn)
+    dEdt = sum(sp.diff(E, s) * fi for s, fi in zip(dyn.STATE_R, f)) + sp.diff(E, t)
+    p_in, p_visc, p_fric = dyn.power_balance(contact)
+    for branch in (dyn.X2r > 0, dyn.X2r < 0):
+        x = sp.Symbol("x", positive=True)
+        value = x if branch == (dyn.X2r > 0) else -x
+        residual = (dEdt - (p_in - p_visc - p_fric)).subs(dyn.X2r, value)
+        assert sp.simplify(residual) == 0
