@@ -56,10 +56,11 @@ class Function:
         First docstring line.
     equations : str
         The paper's equations it implements, e.g. ``"Eq. (9)"``.
-    returns : {"value", "tuple", "vector", "matrix", "roots"}
+    returns : {"value", "tuple", "vector", "matrix", "roots", "growth", "stable"}
         How the outputs are assembled: one array; a tuple of arrays; an array with
         a trailing axis; a matrix with two trailing axes; the complex roots of a
-        list of `Quadratic` factors along a trailing axis.
+        list of `Quadratic` factors along a trailing axis; the largest real part
+        of those roots; ``True`` where every output is positive (Routh-Hurwitz).
     returns_doc : str
         The ``Returns`` section body.
     variants : dict
@@ -75,6 +76,9 @@ class Function:
         ``name -> (domain, reason)`` checks for positional arguments.
     notes : str
         Extra docstring paragraph.
+    vhat : bool
+        The public function resolves ``Vhat`` from ``vhat_model`` (via
+        ``generated.friction.vhat``) unless ``Vhat`` is passed.
     """
 
     name: str
@@ -88,6 +92,7 @@ class Function:
     arg_docs: dict = field(default_factory=dict)
     arg_domains: dict = field(default_factory=dict)
     notes: str = ""
+    vhat: bool = False
 
 
 @dataclass(frozen=True)
@@ -108,12 +113,14 @@ def _flat(returns, outputs):
     if returns == "matrix":
         M = sp.Matrix(outputs)
         return list(M), M.shape
-    if returns == "roots":
+    if returns in ("roots", "growth"):
         flat = []
         for quad in outputs:
             assert isinstance(quad, Quadratic)
             flat += [quad.p / 2, quad.q, quad.disc]
         return flat, len(outputs)
+    if returns == "stable":
+        return [sp.sympify(e) for e in outputs], len(outputs)
     raise ValueError(f"unknown returns kind {returns!r}")
 
 
@@ -130,7 +137,7 @@ def _params_of(exprs, args):
 
 def _signature(args, params, extra=""):
     parts = [a.name for a in args]
-    star = ["*"]
+    star = []
     for n in params:
         p = _TABLE[n]
         if p.default_from:
@@ -141,8 +148,7 @@ def _signature(args, params, extra=""):
             star.append(n)
     if extra:
         star.append(extra)
-    star.append("**params")
-    return ", ".join(parts + star)
+    return ", ".join(parts + (["*"] + star if star else []) + ["**params"])
 
 
 class _NumPy(NumPyPrinter):
@@ -169,7 +175,8 @@ def _body(fn, outputs, mp):
         if src:
             lines.append(f"{n} = {src} if {n} is None else {n}")
     for a in fn.args:
-        domain, why = fn.arg_domains.get(a.name, ("real", None))
+        table_domain = _TABLE[a.name].domain if a.name in _TABLE else "real"
+        domain, why = fn.arg_domains.get(a.name, (table_domain, None))
         why_s = f", {why!r}" if why else ""
         lines.append(f'{a.name} = {check}("{fn.name}", "{a.name}", {a.name}, "{domain}"{why_s})')
     for n in params:
@@ -178,11 +185,14 @@ def _body(fn, outputs, mp):
         inputs = ", ".join([a.name for a in fn.args] + params + ["*_extra"])
         lines.append(f"_shape = _support.shape_of({inputs})")
     repl, reduced = sp.cse(flat, symbols=sp.numbered_symbols("_x"), order="canonical")
-    for sym, e in repl:
-        lines.append(f"{sym} = {printer.doprint(e)}")
+    body = [f"{sym} = {printer.doprint(e)}" for sym, e in repl]
     out = [printer.doprint(e) for e in reduced]
-    lines += _assemble(fn.returns, out, shape, mp)
-    return lines
+    body += _assemble(fn.returns, out, shape, mp)
+    if not mp and any(e.has(sp.Piecewise) for e in flat):
+        # numpy evaluates every branch of a select: silence the unused ones.
+        return lines + ['with numpy.errstate(divide="ignore", invalid="ignore"):'] \
+            + ["    " + b.replace("\n", "\n    ") for b in body]
+    return lines + body
 
 
 def _assemble(returns, out, shape, mp):
@@ -210,6 +220,17 @@ def _assemble(returns, out, shape, mp):
         if mp:
             return lines + [f"return [{items}]"]
         return lines + [f"return _support.vector(_shape, [{items}])"]
+    if returns == "growth":
+        fn = "_support.mp_quadratic_growth" if mp else "_support.quadratic_growth"
+        calls = [f"{fn}({out[3 * k]}, {out[3 * k + 1]}, {out[3 * k + 2]})"
+                 for k in range(shape)]
+        if mp:
+            return [f"return max({', '.join(calls)})"]
+        return [f"return _support.full(_shape, numpy.maximum({', '.join(calls)}))"]
+    if returns == "stable":
+        test = " & ".join(f"({o} > 0)" for o in out) if not mp else \
+            " and ".join(f"({o} > 0)" for o in out)
+        return [f"return bool({test})" if mp else f"return _support.full(_shape, {test})"]
     raise ValueError(returns)
 
 
@@ -235,6 +256,10 @@ def _docstring(fn, mp):
         doc += [f"{n} : {kind}", f"    {p.description} [{p.unit}], {p.domain}{default}."]
     for name, choices, default, what in fn.options:
         doc += [f"{name} : {choices}, default {default!r}", f"    {what}"]
+    if fn.vhat:
+        doc += ['vhat_model : {"tangential", "coupled"}, optional',
+                "    How ``Vhat`` is computed (``generated.friction.vhat``) when it is not",
+                '    passed; default "tangential". Passing both is an error.']
     doc += ["**params", "    Any other model parameter (accepted and ignored); an unknown",
             "    name raises TypeError.", "", "Returns", "-------"]
     doc += fn.returns_doc.strip("\n").split("\n")
@@ -260,17 +285,20 @@ def _function(fn, mp):
     chunks = []
     table = []
     for key, outputs in fn.variants.items():
-        private = f"_{fn.name}__{'__'.join(key)}"
+        private = f"_{fn.name}__{'__'.join(map(str, key))}"
         chunks.append(impl(private, outputs, None))
         table.append(f"    {key!r}: {private},")
     opts = ", ".join(f"{n}={d!r}" for n, _, d, _ in fn.options)
+    if fn.vhat:
+        opts += ", vhat_model=None"
     pos = ", ".join(a.name for a in fn.args)
     sig = ", ".join(([pos] if pos else []) + ["*", opts, "**params"])
     choose = ", ".join(f"{n}={n}" for n, *_ in fn.options)
     call = ", ".join(([pos] if pos else []) + ["**params"])
     tname = f"_{fn.name.upper()}"
-    public = "\n".join([
-        f"def {fn.name}({sig}):", _docstring(fn, mp),
+    resolve = [f'    params = _support.resolve_vhat("{fn.name}", params, vhat_model, '
+               '_friction.vhat, contact)'] if fn.vhat else []
+    public = "\n".join([f"def {fn.name}({sig}):", _docstring(fn, mp)] + resolve + [
         f'    return _support.choose("{fn.name}", {tname}, {choose})({call})'])
     chunks.append(f"{tname} = {{\n" + "\n".join(table) + "\n}")
     return [public] + chunks
@@ -287,6 +315,8 @@ def render(module: Module, mp: bool = False) -> str:
                f"``generated.{module.name}``.\n\n" if mp else "")
     doc = f'"""{variant}{module.doc.strip()}\n"""'
     support = "from .. import _support" if mp else "from . import _support"
+    if any(fn.vhat for fn in module.functions):
+        support += "\nfrom . import friction as _friction"
     parts = [HEADER + doc, "\n".join(f"import {i}" for i in imports) if imports else None,
              support, f"__all__ = [{names}]"]
     return "\n\n".join(p for p in parts if p) + "\n\n\n" + code + "\n"

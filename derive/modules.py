@@ -6,11 +6,16 @@ expressions as `codegen.Function` specs. Nothing here writes files.
 from __future__ import annotations
 
 from . import dynamics as dyn
+from . import fit as ft
+from . import friction as fr
+from . import stability as st
 from . import statespace as ss
 from .codegen import Function, Module
-from .model import CONTACT_LAWS, STATE, X1, Y1, Y2, t, normal_force
+import sympy as sp
 
-__all__ = ["unforced", "dynamics", "all_modules"]
+from .model import CONTACT_LAWS, STATE, P, X1, Y1, Y2, t, normal_force
+
+__all__ = ["unforced", "dynamics", "fit", "friction", "stability", "all_modules"]
 
 CONTACT_OPTION = (("contact", '{"hertz_damp", "kelvin_voigt"}', "hertz_damp",
                    "contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)"),)
@@ -123,6 +128,162 @@ direction as an argument for an event-driven simulator. ``energy`` and
 """, fns)
 
 
+def fit() -> Module:
+    """Eqs. (16)-(17): the least-squares polynomial of X2^(3/2) and its exact errors."""
+    degree = (("degree", "int, 1 to 8", 3, "polynomial degree; 3 gives Eq. (17)"),)
+    arg = (ft.X2max,)
+    docs = {"X2max": "upper end of the fitted range [0, X2max] [m]"}
+
+    def per_degree(build):
+        return {(n,): build(n) for n in ft.DEGREES}
+
+    functions = (
+        Function("coefficients", "Coefficients (c0, ..., c_degree) of the L2 fit of X2^(3/2).",
+                 "Eqs. (16)-(17)", "tuple",
+                 "c : tuple of ndarray\n    X2^(3/2) ~ sum_k c_k X2^k on [0, X2max].",
+                 per_degree(lambda n: list(ft.coefficients_eq_17(n))), degree, arg, docs,
+                 notes="Exact rationals times powers of X2max, from the continuous "
+                       "normal equations (Hilbert matrix) solved by SymPy."),
+        Function("max_error", "Largest absolute error of the fit on [0, X2max], exact.",
+                 "Eq. (17) (the paper: 'about 1e-2')", "value",
+                 "err : ndarray\n    max |X2^(3/2) - fit| (for degree 3: 8/1155 X2max^(3/2)).",
+                 per_degree(lambda n: ft.fit_error(n).max_abs), degree, arg, docs),
+        Function("max_error_location", "Where the largest error of the fit sits.",
+                 "Eq. (17)", "value", "X2 : ndarray",
+                 per_degree(lambda n: ft.fit_error(n).argmax), degree, arg, docs),
+        Function("rms_error", "Root-mean-square error of the fit on [0, X2max], exact.",
+                 "Eq. (17)", "value", "rms : ndarray",
+                 per_degree(lambda n: ft.fit_error(n).rms), degree, arg, docs),
+    )
+    return Module("fit", """Least-squares polynomial fit of X2^(3/2) on [0, X2max] (Eqs. 16-17).
+
+Degrees 1 to 8, exact in X2max. ``X2max`` comes from the scene (for the MDSM: the
+slow penetration plus the amplitude of the fast normal motion), not a constant.
+""", functions)
+
+
+def friction() -> Module:
+    """Eqs. (23)-(25) and the two readings of V_hat."""
+    mu, Vh, Vb = P["mu_s"], P["Vhat"], P["Vb"]
+    docs = {"Vr": "relative velocity X1' - Vb [m/s]",
+            "Vb": "belt speed [m/s]; the equilibrium has Vr = -Vb",
+            "Vhat": "velocity amplitude of Eq. (23) [m/s]",
+            "mu_s": "Coulomb friction coefficient"}
+    vhat_opts = (("model", '{"tangential", "coupled"}', "tangential",
+                  "reading of V_hat (NOTES.md item 1): the tangential oscillator alone, "
+                  "or the 2-DOF system linearised at equilibrium"),) + CONTACT_OPTION
+    functions = (
+        Function("mu_bar", "Effective friction coefficient, with the sign of Vr.",
+                 "Eq. (23)", "value", "mu_bar : ndarray",
+                 {(): fr.mu_bar_eq_23()}, (), (fr.Vr, Vh, mu), docs),
+        Function("mu_bar0", "Effective friction at the slow equilibrium, mu_bar(-Vb).",
+                 "Eq. (25), mu_bar^0", "value",
+                 "mu_bar0 : ndarray\n    Negative: the mass is slower than the belt.",
+                 {(): fr.mu_bar0_eq_25()}, (), (Vb, Vh, mu), docs),
+        Function("mu_bar_slope", "Slope of the effective friction at the equilibrium.",
+                 "Eqs. (24)-(25)", "value",
+                 "slope : ndarray\n    2 mu_s / (pi sqrt((Vhat - Vb)(Vhat + Vb))) for Vb < Vhat;\n"
+                 "    +inf at Vb = Vhat exactly; 0 for Vb > Vhat.",
+                 {(): fr.mu_bar_slope_eq_25()}, (), (Vb, Vh, mu), docs,
+                 notes="The same in both sign conventions: they differ in how the slope "
+                       "enters the slow equations (generated.stability)."),
+        Function("vhat", "Velocity amplitude V_hat of the linear response.",
+                 "Eq. (23) (NOTES.md item 1)", "value", "Vhat : ndarray",
+                 {(m, c): fr.vhat(m, c) for m in fr.VHAT_MODELS for c in CONTACT_LAWS},
+                 vhat_opts,
+                 notes="tangential: alpha_t Omega_t^3 / |omega1^2 - Omega_t^2 + 2i beta1 "
+                       "omega1 Omega_t|. coupled: the normal response drives the "
+                       "tangential one through mu_s times the normal force fluctuation; "
+                       "with Omega_t != Omega_n the two amplitudes add."),
+    )
+    return Module("friction", """Effective friction of the MDSM (Eqs. 23-25) and V_hat.
+
+``mu_bar(Vr, Vhat, mu_s)`` is Eq. (23) as printed (the sign of ``Vr``);
+``mu_bar_slope(Vb, Vhat, mu_s)`` its slope at the equilibrium ``Vr = -Vb``
+(Eq. 25), exact up to ``Vb -> Vhat`` (``+inf`` at equality, 0 beyond);
+``vhat(model=...)`` the two readings of ``V_hat``.
+""", functions)
+
+
+def stability() -> Module:
+    """Sects. 4.2-4.3: forced Jacobian, quartic, Hurwitz, eigenvalues, boundary."""
+    opts = (("convention", '{"paper", "consistent"}', "paper",
+             "sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) "
+             "implies (NOTES.md item 2)"),) + CONTACT_OPTION
+    keys = [(cv, c) for cv in st.CONVENTIONS for c in CONTACT_LAWS]
+
+    def each(build):
+        return {k: build(*k) for k in keys}
+
+    def pqrs(cv, c):
+        return [st.with_friction(e) for e in st.factored(cv, c).pqrs]
+
+    def quads(cv, c):
+        f = st.factored(cv, c)
+        return [ss.Quadratic(*(st.with_friction(e) for e in (q.p, q.q, q.disc)))
+                for q in (f.tangential, f.normal)]
+
+    hurwitz = each(lambda cv, c: st.hurwitz_factored(*pqrs(cv, c)))
+    common = dict(options=opts, vhat=True)
+    functions = (
+        Function("equilibrium", "Slow equilibrium (Z1, S1, Z2, S2) of the forced system.",
+                 "Eq. (A7)", "tuple", "Z1, S1, Z2, S2 : ndarray",
+                 each(lambda cv, c: [st.with_friction(v) for v in
+                                     st.slow_equilibrium_A7(cv, c).values()]), **common,
+                 notes="paper: Z1 = mu_bar^0 g / omega1^2 with mu_bar^0 < 0 (Eq. A7 as "
+                       "printed); consistent: Z1 = -mu_bar^0 g / omega1^2 > 0."),
+        Function("jacobian", "Forced Jacobian J_f^0 at the slow equilibrium.",
+                 "Eq. (22)", "matrix", "J : ndarray, shape (..., 4, 4)",
+                 each(lambda cv, c: st.forced_jacobian_eq_22(cv, c).applyfunc(
+                     st.with_friction)), **common),
+        Function("coefficients", "Coefficients a1..a4 of the monic characteristic quartic.",
+                 "Eqs. (26)-(27), (A8)", "tuple", "a1, a2, a3, a4 : ndarray",
+                 each(lambda cv, c: [st.with_friction(a) for a in st.coefficients_A8(cv, c)]),
+                 **common, notes="Only the slope mu_bar' enters, not mu_bar^0 (Sect. 4.3)."),
+        Function("hurwitz", "Hurwitz determinants H1..H4 in cancellation-free factored form.",
+                 "Eq. (28)", "tuple",
+                 "H1, H2, H3, H4 : ndarray\n    With the quartic = (l^2 + p l + q)(l^2 + r l + s):"
+                 "\n    H1 = p + r, H2 = p (q + r (p + r)) + r s,"
+                 "\n    H3 = p r ((q - s)^2 + (p + r)(p s + q r)), H4 = q s H3.",
+                 hurwitz, **common,
+                 notes="Equal to the determinants of the Hurwitz matrix (H4 = a4 H3; the "
+                       "printed Eq. 28 has a1 a4^2 where the determinant has a1^2 a4^2). "
+                       "The factored form keeps the sign of H3 next to the boundary p = 0, "
+                       "where a1 a2 a3 - a3^2 - a4 a1^2 cancels."),
+        Function("eigenvalues", "Eigenvalues of J_f^0 in closed form.",
+                 "Eq. (26), via its exact factorisation", "roots",
+                 "lam : complex ndarray, shape (..., 4)\n    Tangential pair, then normal pair.",
+                 each(quads), **common),
+        Function("growth_rate", "Largest real part of the eigenvalues of J_f^0.",
+                 "Eq. (26)", "growth",
+                 "sigma : ndarray\n    +inf at Vb = Vhat exactly in the paper convention "
+                 "(infinite slope).", each(quads), **common),
+        Function("is_stable", "Routh-Hurwitz verdict: all of H1..H4 positive.",
+                 "Eq. (28)", "stable", "stable : bool ndarray", hurwitz, **common),
+        Function("critical_belt_speed", "Lower edge of the unstable belt speeds, closed form.",
+                 "Eqs. (25), (28): root of p(Vb) = 0", "value",
+                 "Vb_c : ndarray\n    paper: sqrt((Vhat - m)(Vhat + m)), m = mu_s g / (pi beta1 "
+                 "omega1),\n    unstable for Vb_c < Vb <= Vhat; 0 where m >= Vhat (unstable "
+                 "for all\n    0 <= Vb <= Vhat); consistent: NaN (no belt speed is unstable).",
+                 each(lambda cv, c: st.critical_belt_speed(cv, c)), **common),
+        Function("unstable_interval", "Belt speeds (lower, upper) where the analysis predicts "
+                 "instability.", "Eqs. (25), (28)", "tuple",
+                 "lower, upper : ndarray\n    paper: (critical_belt_speed, Vhat), an interval"
+                 " closed at Vhat\n    (infinite slope); consistent: (NaN, NaN), empty.",
+                 each(lambda cv, c: [st.critical_belt_speed(cv, c),
+                                     P["Vhat"] if cv == "paper" else sp.nan]), **common),
+    )
+    return Module("stability", """Stability of the forced system (Sects. 4.2-4.3, Eqs. 22, 26-28, A7-A8).
+
+Every function takes ``Vb`` and either ``Vhat=`` or ``vhat_model=`` (default
+``"tangential"``), the sign ``convention=`` (``"paper"``, default, or
+``"consistent"``) and ``contact=``. The forced Jacobian is block triangular: the
+quartic factors into a tangential and a normal quadratic, so eigenvalues, Hurwitz
+determinants and the critical belt speed are closed forms. A stability map
+needs only ``is_stable`` (a sign), not eigenvalues.
+""", functions)
+
+
 def all_modules() -> tuple[Module, ...]:
-    return unforced(), dynamics()
+    return unforced(), dynamics(), fit(), friction(), stability()
 

@@ -9,6 +9,7 @@ the tangential and normal quadratics.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import sympy as sp
 
@@ -50,6 +51,7 @@ def jacobian_eq_10(contact: str = "hertz_damp", forced: bool = False) -> sp.Matr
     return state_space_eqs_5_8(contact, forced).jacobian(STATE)
 
 
+@lru_cache(maxsize=None)
 def jacobian_at_equilibrium_eq_11(contact: str = "hertz_damp") -> sp.Matrix:
     """Eq. (10) evaluated at Eq. (9): the matrix ``J^0`` of Eq. (11)."""
     return jacobian_eq_10(contact).subs(equilibrium_eq_9(contact)).applyfunc(sp.simplify)
@@ -85,10 +87,25 @@ class Quadratic:
         """The characteristic polynomial of a 2x2 block."""
         p = sp.simplify(-block.trace())
         q = sp.simplify(block.det())
-        return cls(p, q, sp.factor(sp.expand(p**2 / 4 - q)))
+        disc = sp.factor(sp.expand(p**2 / 4 - q))
+        return cls(p, q, sp.Mul(*(_grouped(f) for f in sp.Mul.make_args(disc))))
 
     def expr(self) -> sp.Expr:
         return lam**2 + self.p * lam + self.q
+
+
+def _grouped(factor: sp.Expr) -> sp.Expr:
+    """A sum with its terms collected on the symbol that leaves the fewest terms.
+
+    ``-2 beta1 omega1 + 2 omega1 + g mu'`` becomes ``-2 omega1 (beta1 - 1) + g mu'``:
+    the difference of inputs (``beta1 - 1``) is then exact in floating point, which is
+    what keeps a double root (a critically damped mode) accurate.
+    """
+    if not factor.is_Add:
+        return factor
+    options = [sp.collect(factor, x, sp.factor)
+               for x in sorted(factor.free_symbols, key=lambda x: x.name)]
+    return min([factor] + options, key=lambda e: len(sp.Add.make_args(e)))
 
 
 def block_quadratics(J: sp.Matrix) -> tuple[Quadratic, Quadratic]:

@@ -4,6 +4,9 @@
 
 * ``unforced``: The unforced system at its equilibrium (Sect. 4.1, Eqs. 9-12).
 * ``dynamics``: The full equations of motion, Eq. (4), for simulation.
+* ``fit``: Least-squares polynomial fit of X2^(3/2) on [0, X2max] (Eqs. 16-17).
+* ``friction``: Effective friction of the MDSM (Eqs. 23-25) and V_hat.
+* ``stability``: Stability of the forced system (Sects. 4.2-4.3, Eqs. 22, 26-28, A7-A8).
 
 Importing them never imports SymPy.
 """

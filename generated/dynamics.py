@@ -114,11 +114,12 @@ def _rhs__hertz_damp(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, 
     Omega_n = _support.param("rhs", "Omega_n", Omega_n)
     phase_n = _support.param("rhs", "phase_n", phase_n)
     _shape = _support.shape_of(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
-    _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
-    _x2 = numpy.greater(X2, 0)
-    _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
-    return _support.vector(_shape, [Y1, numpy.select([_x2,True], [-_x0*mu_s*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), Y2, numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x2 = numpy.greater(X2, 0)
+        _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [Y1, numpy.select([_x2,True], [-_x0*mu_s*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), Y2, numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
 def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
@@ -148,11 +149,12 @@ def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha
     Omega_n = _support.param("rhs", "Omega_n", Omega_n)
     phase_n = _support.param("rhs", "phase_n", phase_n)
     _shape = _support.shape_of(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
-    _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
-    _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
-    _x2 = numpy.greater(X2, 0)
-    _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
-    return _support.vector(_shape, [Y1, numpy.select([_x2,True], [-_x0*mu_s*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), Y2, numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x2 = numpy.greater(X2, 0)
+        _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [Y1, numpy.select([_x2,True], [-_x0*mu_s*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), Y2, numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
 _RHS = {
@@ -260,11 +262,12 @@ def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, ome
     Omega_n = _support.param("rhs_branch", "Omega_n", Omega_n)
     phase_n = _support.param("rhs_branch", "phase_n", phase_n)
     _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
-    _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
-    _x2 = numpy.greater(X2, 0)
-    _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
-    return _support.vector(_shape, [Y1, numpy.select([_x2,True], [-_x0*mu_s*sgn - _x1,-_x1], default=numpy.nan), Y2, numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x2 = numpy.greater(X2, 0)
+        _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [Y1, numpy.select([_x2,True], [-_x0*mu_s*sgn - _x1,-_x1], default=numpy.nan), Y2, numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
 def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
@@ -294,11 +297,12 @@ def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, o
     Omega_n = _support.param("rhs_branch", "Omega_n", Omega_n)
     phase_n = _support.param("rhs_branch", "phase_n", phase_n)
     _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
-    _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
-    _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
-    _x2 = numpy.greater(X2, 0)
-    _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
-    return _support.vector(_shape, [Y1, numpy.select([_x2,True], [-_x0*mu_s*sgn - _x1,-_x1], default=numpy.nan), Y2, numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x2 = numpy.greater(X2, 0)
+        _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [Y1, numpy.select([_x2,True], [-_x0*mu_s*sgn - _x1,-_x1], default=numpy.nan), Y2, numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
 _RHS_BRANCH = {
@@ -371,18 +375,19 @@ def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2
     omega2 = _support.param("jacobian_branch", "omega2", omega2)
     mu_s = _support.param("jacobian_branch", "mu_s", mu_s)
     _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, *_extra)
-    _x0 = functools.reduce(numpy.maximum, [0, X2])
-    _x1 = 2*beta2*omega2
-    _x2 = (3/2)*numpy.sqrt(_x0)*(Y2*_x1 + omega2**2)
-    _x3 = mu_s*sgn
-    _x4 = numpy.greater(X2, 0)
-    _x5 = _x0**(3/2)*_x1
-    return _support.matrix(_shape, [
-            [0, 1, 0, 0],
-            [-omega1**2, -2*beta1*omega1, numpy.select([_x4,True], [-_x2*_x3,0], default=numpy.nan), numpy.select([_x4,True], [-_x3*_x5,0], default=numpy.nan)],
-            [0, 0, 0, 1],
-            [0, 0, numpy.select([_x4,True], [-_x2,0], default=numpy.nan), numpy.select([_x4,True], [-_x5,0], default=numpy.nan)],
-        ])
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = functools.reduce(numpy.maximum, [0, X2])
+        _x1 = 2*beta2*omega2
+        _x2 = (3/2)*numpy.sqrt(_x0)*(Y2*_x1 + omega2**2)
+        _x3 = mu_s*sgn
+        _x4 = numpy.greater(X2, 0)
+        _x5 = _x0**(3/2)*_x1
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, numpy.select([_x4,True], [-_x2*_x3,0], default=numpy.nan), numpy.select([_x4,True], [-_x3*_x5,0], default=numpy.nan)],
+                [0, 0, 0, 1],
+                [0, 0, numpy.select([_x4,True], [-_x2,0], default=numpy.nan), numpy.select([_x4,True], [-_x5,0], default=numpy.nan)],
+            ])
 
 
 def _jacobian_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, mu_s, **params):
@@ -399,16 +404,17 @@ def _jacobian_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, bet
     omega2 = _support.param("jacobian_branch", "omega2", omega2)
     mu_s = _support.param("jacobian_branch", "mu_s", mu_s)
     _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, *_extra)
-    _x0 = omega2**2
-    _x1 = mu_s*sgn
-    _x2 = numpy.greater(X2, 0)
-    _x3 = 2*beta2*omega2
-    return _support.matrix(_shape, [
-            [0, 1, 0, 0],
-            [-omega1**2, -2*beta1*omega1, numpy.select([_x2,True], [-_x0*_x1,0], default=numpy.nan), numpy.select([_x2,True], [-_x1*_x3,0], default=numpy.nan)],
-            [0, 0, 0, 1],
-            [0, 0, numpy.select([_x2,True], [-_x0,0], default=numpy.nan), numpy.select([_x2,True], [-_x3,0], default=numpy.nan)],
-        ])
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2
+        _x1 = mu_s*sgn
+        _x2 = numpy.greater(X2, 0)
+        _x3 = 2*beta2*omega2
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, numpy.select([_x2,True], [-_x0*_x1,0], default=numpy.nan), numpy.select([_x2,True], [-_x1*_x3,0], default=numpy.nan)],
+                [0, 0, 0, 1],
+                [0, 0, numpy.select([_x2,True], [-_x0,0], default=numpy.nan), numpy.select([_x2,True], [-_x3,0], default=numpy.nan)],
+            ])
 
 
 _JACOBIAN_BRANCH = {
@@ -460,7 +466,8 @@ def _normal_force__hertz_damp(X2, Y2, *, beta2, omega2, **params):
     beta2 = _support.param("normal_force", "beta2", beta2)
     omega2 = _support.param("normal_force", "omega2", omega2)
     _shape = _support.shape_of(X2, Y2, beta2, omega2, *_extra)
-    return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2),0], default=numpy.nan))
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2),0], default=numpy.nan))
 
 
 def _normal_force__kelvin_voigt(X2, Y2, *, beta2, omega2, **params):
@@ -470,7 +477,8 @@ def _normal_force__kelvin_voigt(X2, Y2, *, beta2, omega2, **params):
     beta2 = _support.param("normal_force", "beta2", beta2)
     omega2 = _support.param("normal_force", "omega2", omega2)
     _shape = _support.shape_of(X2, Y2, beta2, omega2, *_extra)
-    return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2]),0], default=numpy.nan))
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2]),0], default=numpy.nan))
 
 
 _NORMAL_FORCE = {
@@ -595,7 +603,8 @@ def _energy__hertz_damp(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
     omega2 = _support.param("energy", "omega2", omega2)
     g = _support.param("energy", "g", g)
     _shape = _support.shape_of(X1, Y1, X2, Y2, omega1, omega2, g, *_extra)
-    return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(2/5)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**(5/2),0], default=numpy.nan))
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(2/5)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**(5/2),0], default=numpy.nan))
 
 
 def _energy__kelvin_voigt(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
@@ -608,7 +617,8 @@ def _energy__kelvin_voigt(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
     omega2 = _support.param("energy", "omega2", omega2)
     g = _support.param("energy", "g", g)
     _shape = _support.shape_of(X1, Y1, X2, Y2, omega1, omega2, g, *_extra)
-    return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(1/2)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**2,0], default=numpy.nan))
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(1/2)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**2,0], default=numpy.nan))
 
 
 _ENERGY = {
@@ -709,11 +719,12 @@ def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, 
     Omega_n = _support.param("power_balance", "Omega_n", Omega_n)
     phase_n = _support.param("power_balance", "phase_n", phase_n)
     _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
-    _x0 = omega2**2
-    _x1 = functools.reduce(numpy.maximum, [0, X2])**(3/2)
-    _x2 = 2*Y2*beta2*omega2 + _x0
-    _x3 = numpy.greater(X2, 0)
-    return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x3,True], [Y2*(-_x0*_x1 + _x1*_x2),0], default=numpy.nan), Y1*mu_s*sgn*numpy.select([_x3,True], [_x1*_x2,0], default=numpy.nan))
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2
+        _x1 = functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x2 = 2*Y2*beta2*omega2 + _x0
+        _x3 = numpy.greater(X2, 0)
+        return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x3,True], [Y2*(-_x0*_x1 + _x1*_x2),0], default=numpy.nan), Y1*mu_s*sgn*numpy.select([_x3,True], [_x1*_x2,0], default=numpy.nan))
 
 
 def _power_balance__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
@@ -742,9 +753,10 @@ def _power_balance__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2
     Omega_n = _support.param("power_balance", "Omega_n", Omega_n)
     phase_n = _support.param("power_balance", "phase_n", phase_n)
     _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
-    _x0 = 2*beta2*omega2
-    _x1 = numpy.greater(X2, 0)
-    return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x1,True], [Y2**2*_x0,0], default=numpy.nan), Y1*mu_s*sgn*numpy.select([_x1,True], [Y2*_x0 + omega2**2*functools.reduce(numpy.maximum, [0, X2]),0], default=numpy.nan))
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*beta2*omega2
+        _x1 = numpy.greater(X2, 0)
+        return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x1,True], [Y2**2*_x0,0], default=numpy.nan), Y1*mu_s*sgn*numpy.select([_x1,True], [Y2*_x0 + omega2**2*functools.reduce(numpy.maximum, [0, X2]),0], default=numpy.nan))
 
 
 _POWER_BALANCE = {

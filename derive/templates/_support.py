@@ -93,7 +93,10 @@ def shape_of(*arrays):
 def full(shape, value):
     """``value`` broadcast to ``shape`` as a fresh float (or complex) array."""
     value = numpy.asarray(value)
-    dtype = complex if numpy.iscomplexobj(value) else float
+    if value.dtype == bool:
+        dtype = bool
+    else:
+        dtype = complex if numpy.iscomplexobj(value) else float
     return numpy.broadcast_to(value, shape).astype(dtype)
 
 
@@ -144,6 +147,45 @@ def mp_quadratic_roots(half_p, q, disc):
     return mpmath.mpc(-half_p, root), mpmath.mpc(-half_p, -root)
 
 
+def quadratic_growth(half_p, q, disc):
+    """Largest real part of the roots of ``lambda^2 + 2 half_p lambda + q``.
+
+    The root nearer zero is taken as ``q / r1`` (see `quadratic_roots`) when
+    ``half_p > 0``, so a slowly decaying mode next to a fast one keeps its digits.
+    ``half_p = -inf`` (an infinite negative damping) gives ``+inf``.
+    """
+    half_p, q, disc = numpy.broadcast_arrays(*(numpy.asarray(a, float)
+                                               for a in (half_p, q, disc)))
+    root = numpy.sqrt(numpy.abs(disc))
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        near_zero = numpy.where(half_p > 0, q / -(half_p + root), -half_p + root)
+    return numpy.where(disc >= 0, near_zero, -half_p)
+
+
+def mp_quadratic_growth(half_p, q, disc):
+    """`quadratic_growth` for the mpmath variants."""
+    if disc < 0:
+        return -half_p
+    root = mpmath.sqrt(disc)
+    return q / -(half_p + root) if half_p > 0 else -half_p + root
+
+
+def resolve_vhat(function, params, vhat_model, vhat, contact):
+    """``params`` with ``Vhat`` filled in from ``vhat_model`` unless it was given.
+
+    Raises
+    ------
+    ValueError
+        If both ``Vhat`` and ``vhat_model`` are given.
+    """
+    if params.get("Vhat") is not None:
+        if vhat_model is not None:
+            raise ValueError(f"{function}(): give either Vhat or vhat_model, not both")
+        return params
+    model = "tangential" if vhat_model is None else vhat_model
+    return {**params, "Vhat": vhat(model=model, contact=contact, **params)}
+
+
 def choose(function, table, **options):
     """The implementation in ``table`` (keyed by tuples of option values) for ``options``.
 
@@ -154,11 +196,12 @@ def choose(function, table, **options):
     """
     for position, (option, value) in enumerate(options.items()):
         choices = list(dict.fromkeys(key[position] for key in table))
-        if not isinstance(value, str) or value not in choices:
+        if isinstance(value, bool) or value not in choices:
             raise ValueError(f"{function}(): {option} must be one of "
                              f"{', '.join(map(repr, choices))}; got {value!r}")
     return table[tuple(options.values())]
 
 
 __all__ = ["extras", "mp_extras", "param", "mp_param", "shape_of", "full", "tuple_of",
-           "matrix", "vector", "quadratic_roots", "mp_quadratic_roots", "choose"]
+           "matrix", "vector", "quadratic_roots", "mp_quadratic_roots", "quadratic_growth",
+           "mp_quadratic_growth", "resolve_vhat", "choose"]

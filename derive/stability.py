@@ -1,0 +1,169 @@
+"""Stability of the forced system: Eqs. (20)-(22), (26)-(28), (A3)-(A8).
+
+The slow equations (Eqs. 20-21, state-space form A3-A6) carry the effective friction
+``mu_bar(Z1' - Vb)`` of Eq. (23). Their sign is a choice (NOTES.md item 2):
+
+* ``convention="paper"``: Eq. (A4) as printed, ``+ mu_bar (...) Z2^(3/2)`` with
+  ``mu_bar`` taken literally from Eq. (23) (negative for ``Vr < 0``). Linearised, this
+  gives Eq. (22) as printed (entry ``-2 beta1 omega1 + mu_bar' g``) and Eq. (A7)
+  (``Z1^0 = mu_bar^0 g / omega1^2``, which is negative);
+* ``convention="consistent"``: the sign of Eq. (4), ``- mu_bar(Z1' - Vb) F_n``: the
+  entry becomes ``-2 beta1 omega1 - mu_bar' g`` and ``Z1^0 > 0``.
+
+Derivations are cached (pure functions of the two option strings; SymPy objects
+are immutable). The forced Jacobian is block triangular, so its quartic is the product of a
+tangential quadratic ``lambda^2 + p lambda + q`` and a normal one
+``lambda^2 + r lambda + s``. In those four quantities the Hurwitz determinants of
+Eq. (28) factor exactly:
+
+    H1 = p + r
+    H2 = p (q + r (p + r)) + r s
+    H3 = p r ((q - s)^2 + (p + r)(p s + q r))
+    H4 = q s H3
+
+so with ``q, r, s > 0`` the steady sliding is stable exactly when ``p > 0``, and the
+stability boundary is ``p = 0``: the critical belt speed in closed form.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import sympy as sp
+
+from .friction import mu_bar0_eq_25, mu_bar_slope_eq_25
+from .model import P, normal_force
+from .statespace import Quadratic, block_quadratics, charpoly_eq_12
+
+__all__ = ["CONVENTIONS", "Z1", "S1", "Z2", "S2", "SLOW", "mu_bar", "mu0", "mu1",
+           "slow_state_space_A3_A6", "slow_equilibrium_A7", "forced_jacobian_eq_22",
+           "Factored", "factored", "coefficients_A8", "hurwitz_eq_28", "hurwitz_determinants",
+           "hurwitz_factored", "critical_belt_speed", "with_friction"]
+
+CONVENTIONS = ("paper", "consistent")
+Z1, S1, S2 = sp.symbols("Z1 S1 S2", real=True)
+Z2 = sp.Symbol("Z2", positive=True)
+SLOW = (Z1, S1, Z2, S2)
+#: The effective friction as an unknown function of the relative velocity.
+mu_bar = sp.Function("mu_bar")
+#: Its value and slope at the slow equilibrium (Eqs. 24-25).
+mu0, mu1 = sp.symbols("mu_bar0 mu_bar_slope", real=True)
+
+_SIGN = {"paper": 1, "consistent": -1}
+
+
+def slow_state_space_A3_A6(convention: str = "paper", contact: str = "hertz_damp") -> sp.Matrix:
+    """Right-hand side ``(Z1', S1', Z2', S2')`` of Eqs. (A3)-(A6)."""
+    if convention not in _SIGN:
+        raise ValueError(f"convention must be one of {CONVENTIONS}, got {convention!r}")
+    b1, w1, g = P["beta1"], P["omega1"], P["g"]
+    Fn = normal_force(contact, Z2, S2)
+    friction = _SIGN[convention] * mu_bar(S1 - P["Vb"]) * Fn
+    return sp.Matrix([S1, -2 * b1 * w1 * S1 - w1**2 * Z1 + friction, S2, -Fn + g])
+
+
+def _linearise(expr):
+    """Replace ``mu_bar`` and its derivative at the equilibrium by ``mu0`` and ``mu1``."""
+    at = mu_bar(-P["Vb"])
+    expr = expr.subs(S1, 0).doit()
+    expr = expr.replace(lambda e: isinstance(e, sp.Subs) or isinstance(e, sp.Derivative),
+                        lambda e: mu1)
+    return expr.subs(at, mu0)
+
+
+def slow_equilibrium_A7(convention: str = "paper", contact: str = "hertz_damp") -> dict:
+    """Equilibrium of Eqs. (A3)-(A6), solved by SymPy, in terms of ``mu0``, Eq. (A7)."""
+    rhs = slow_state_space_A3_A6(convention, contact).subs(S1, 0).subs(mu_bar(-P["Vb"]), mu0)
+    sol = sp.solve(list(rhs), [Z1, Z2, S2], dict=True)
+    if len(sol) != 1:
+        raise RuntimeError(f"expected one slow equilibrium, got {sol}")
+    return {Z1: sol[0][Z1], S1: sp.Integer(0), Z2: sol[0][Z2], S2: sol[0][S2]}
+
+
+@lru_cache(maxsize=None)
+def forced_jacobian_eq_22(convention: str = "paper", contact: str = "hertz_damp") -> sp.Matrix:
+    """Jacobian of Eqs. (A3)-(A6) at Eq. (A7), ``J_f^0`` of Eq. (22), in ``mu0, mu1``."""
+    J = slow_state_space_A3_A6(convention, contact).jacobian(SLOW)
+    eq = slow_equilibrium_A7(convention, contact)
+    return J.applyfunc(lambda e: sp.simplify(_linearise(e).subs(eq)))
+
+
+@dataclass(frozen=True)
+class Factored:
+    """The quartic of ``J_f^0`` as tangential (``p, q``) times normal (``r, s``) quadratics."""
+
+    tangential: Quadratic
+    normal: Quadratic
+
+    @property
+    def pqrs(self):
+        return self.tangential.p, self.tangential.q, self.normal.p, self.normal.q
+
+
+@lru_cache(maxsize=None)
+def factored(convention: str = "paper", contact: str = "hertz_damp") -> Factored:
+    """Exact factorisation of Eq. (26) found from the block structure of Eq. (22)."""
+    return Factored(*block_quadratics(forced_jacobian_eq_22(convention, contact)))
+
+
+@lru_cache(maxsize=None)
+def coefficients_A8(convention: str = "paper", contact: str = "hertz_damp") -> tuple[sp.Expr, ...]:
+    """``a1..a4`` of the monic quartic, Eqs. (26)-(27) and (A8)."""
+    J = forced_jacobian_eq_22(convention, contact)
+    return tuple(sp.expand(a) for a in charpoly_eq_12(J).all_coeffs()[1:])
+
+
+def hurwitz_eq_28(a1, a2, a3, a4) -> list[sp.Expr]:
+    """The Hurwitz determinants exactly as printed in Eq. (28).
+
+    The printed ``H4`` has ``- a1 a4^2`` where the determinant has ``- a1^2 a4^2``
+    (see `hurwitz_determinants`); kept here as printed for the paper check.
+    """
+    return [a1, a1 * a2 - a3, a1 * a2 * a3 - a3**2 - a4 * a1**2,
+            a1 * a2 * a3 * a4 - a1 * a4**2 - a4 * a3**2]
+
+
+def hurwitz_determinants(a1, a2, a3, a4) -> list[sp.Expr]:
+    """Leading principal minors of the Hurwitz matrix of the monic quartic, Eq. (28)."""
+    H = sp.Matrix([[a1, a3, 0, 0], [1, a2, a4, 0], [0, a1, a3, 0], [0, 1, a2, a4]])
+    return [sp.expand(H[:k, :k].det()) for k in range(1, 5)]
+
+
+def hurwitz_factored(p, q, r, s) -> list[sp.Expr]:
+    """Eq. (28) in the factored form of the module docstring (proved by the tests)."""
+    H3 = p * r * ((q - s)**2 + (p + r) * (p * s + q * r))
+    return [p + r, p * (q + r * (p + r)) + r * s, H3, q * s * H3]
+
+
+@lru_cache(maxsize=None)
+def critical_belt_speed(convention: str = "paper", contact: str = "hertz_damp") -> sp.Expr:
+    """Lower edge of the unstable belt speeds: the root of ``p(Vb) = 0`` below ``V_hat``.
+
+    SymPy solves ``p = 0`` with the slope of Eq. (25); the root is returned in the
+    factored form ``sqrt((V_hat - m)(V_hat + m))``, ``m = mu_s g / (pi beta1 omega1)``,
+    proved equal to SymPy's. Where ``m >= V_hat`` the whole range ``0 <= Vb < V_hat``
+    is unstable and the value is 0. In the consistent convention ``p > 0`` for
+    every ``Vb``: there is no boundary and the value is NaN.
+    """
+    p = factored(convention, contact).tangential.p
+    Vb, Vh = P["Vb"], P["Vhat"]
+    slope = mu_bar_slope_eq_25().args[0][0]
+    p_of_vb = p.subs(mu1, slope)
+    m = P["mu_s"] * P["g"] / (sp.pi * P["beta1"] * P["omega1"])
+    closed = sp.sqrt((Vh - m) * (Vh + m))
+    # solve() squares the square root away, so each candidate is substituted back
+    # on the branch where it is real (Vhat = m + d, d > 0).
+    d = sp.Symbol("d", positive=True)
+    roots = [r for r in sp.solve(p_of_vb, Vb) if not r.could_extract_minus_sign()
+             and sp.simplify(sp.expand(p_of_vb.subs(Vb, r).subs(Vh, m + d))) == 0]
+    if not roots:
+        return sp.nan
+    if len(roots) != 1 or sp.simplify((roots[0]**2 - closed**2).subs(Vh, m + d)) != 0:
+        raise AssertionError(f"unexpected roots of p(Vb) = 0: {roots}")
+    return sp.Piecewise((closed, m < Vh), (0, True))
+
+
+def with_friction(expr) -> sp.Expr:
+    """``expr`` with ``mu0``, ``mu1`` replaced by Eq. (25) (``Vhat`` stays a parameter)."""
+    return sp.sympify(expr).subs({mu0: mu_bar0_eq_25(), mu1: mu_bar_slope_eq_25()})
+
