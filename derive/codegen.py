@@ -151,6 +151,15 @@ def _signature(args, params, extra=""):
     return ", ".join(parts + (["*"] + star if star else []) + ["**params"])
 
 
+def _domain_of(symbol):
+    """A positional argument's domain: the parameter table's, else its assumptions."""
+    if symbol.name in _TABLE:
+        return _TABLE[symbol.name].domain
+    if symbol.is_positive:
+        return "positive"
+    return "nonnegative" if symbol.is_nonnegative else "real"
+
+
 class _NumPy(NumPyPrinter):
     def _print_Heaviside(self, expr):
         # The derivative of max(X2, 0): 0 out of contact, 1 in contact.
@@ -175,8 +184,7 @@ def _body(fn, outputs, mp):
         if src:
             lines.append(f"{n} = {src} if {n} is None else {n}")
     for a in fn.args:
-        table_domain = _TABLE[a.name].domain if a.name in _TABLE else "real"
-        domain, why = fn.arg_domains.get(a.name, (table_domain, None))
+        domain, why = fn.arg_domains.get(a.name, (_domain_of(a), None))
         why_s = f", {why!r}" if why else ""
         lines.append(f'{a.name} = {check}("{fn.name}", "{a.name}", {a.name}, "{domain}"{why_s})')
     for n in params:

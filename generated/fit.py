@@ -49,14 +49,14 @@ def coefficients(X2max, *, degree=3, **params):
 
 def _coefficients__1(X2max, **params):
     _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "real")
+    X2max = _support.param("coefficients", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.tuple_of(_shape, -4/35*X2max**(3/2), (36/35)*numpy.sqrt(X2max))
 
 
 def _coefficients__2(X2max, **params):
     _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "real")
+    X2max = _support.param("coefficients", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     _x0 = numpy.sqrt(X2max)
     return _support.tuple_of(_shape, -2/105*X2max**(3/2), (16/35)*_x0, (4/7)/_x0)
@@ -64,7 +64,7 @@ def _coefficients__2(X2max, **params):
 
 def _coefficients__3(X2max, **params):
     _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "real")
+    X2max = _support.param("coefficients", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     _x0 = X2max**(3/2)
     _x1 = numpy.sqrt(X2max)
@@ -73,7 +73,7 @@ def _coefficients__3(X2max, **params):
 
 def _coefficients__4(X2max, **params):
     _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "real")
+    X2max = _support.param("coefficients", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     _x0 = X2max**(3/2)
     _x1 = numpy.sqrt(X2max)
@@ -82,7 +82,7 @@ def _coefficients__4(X2max, **params):
 
 def _coefficients__5(X2max, **params):
     _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "real")
+    X2max = _support.param("coefficients", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     _x0 = X2max**(3/2)
     _x1 = numpy.sqrt(X2max)
@@ -91,7 +91,7 @@ def _coefficients__5(X2max, **params):
 
 def _coefficients__6(X2max, **params):
     _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "real")
+    X2max = _support.param("coefficients", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     _x0 = X2max**(3/2)
     _x1 = numpy.sqrt(X2max)
@@ -100,7 +100,7 @@ def _coefficients__6(X2max, **params):
 
 def _coefficients__7(X2max, **params):
     _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "real")
+    X2max = _support.param("coefficients", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     _x0 = X2max**(3/2)
     _x1 = numpy.sqrt(X2max)
@@ -109,7 +109,7 @@ def _coefficients__7(X2max, **params):
 
 def _coefficients__8(X2max, **params):
     _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "real")
+    X2max = _support.param("coefficients", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     _x0 = X2max**(3/2)
     _x1 = numpy.sqrt(X2max)
@@ -161,56 +161,56 @@ def max_error(X2max, *, degree=3, **params):
 
 def _max_error__1(X2max, **params):
     _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "real")
+    X2max = _support.param("max_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (4/35)*X2max**(3/2))
 
 
 def _max_error__2(X2max, **params):
     _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "real")
+    X2max = _support.param("max_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (2/105)*X2max**(3/2))
 
 
 def _max_error__3(X2max, **params):
     _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "real")
+    X2max = _support.param("max_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (8/1155)*X2max**(3/2))
 
 
 def _max_error__4(X2max, **params):
     _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "real")
+    X2max = _support.param("max_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (10/3003)*X2max**(3/2))
 
 
 def _max_error__5(X2max, **params):
     _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "real")
+    X2max = _support.param("max_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (4/2145)*X2max**(3/2))
 
 
 def _max_error__6(X2max, **params):
     _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "real")
+    X2max = _support.param("max_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (14/12155)*X2max**(3/2))
 
 
 def _max_error__7(X2max, **params):
     _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "real")
+    X2max = _support.param("max_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (16/20995)*X2max**(3/2))
 
 
 def _max_error__8(X2max, **params):
     _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "real")
+    X2max = _support.param("max_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (6/11305)*X2max**(3/2))
 
@@ -259,56 +259,56 @@ def max_error_location(X2max, *, degree=3, **params):
 
 def _max_error_location__1(X2max, **params):
     _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, 0)
 
 
 def _max_error_location__2(X2max, **params):
     _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, 0)
 
 
 def _max_error_location__3(X2max, **params):
     _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, 0)
 
 
 def _max_error_location__4(X2max, **params):
     _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, 0)
 
 
 def _max_error_location__5(X2max, **params):
     _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, 0)
 
 
 def _max_error_location__6(X2max, **params):
     _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, 0)
 
 
 def _max_error_location__7(X2max, **params):
     _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, 0)
 
 
 def _max_error_location__8(X2max, **params):
     _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, 0)
 
@@ -357,56 +357,56 @@ def rms_error(X2max, *, degree=3, **params):
 
 def _rms_error__1(X2max, **params):
     _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "real")
+    X2max = _support.param("rms_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (3/70)*X2max**(3/2))
 
 
 def _rms_error__2(X2max, **params):
     _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "real")
+    X2max = _support.param("rms_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (1/210)*X2max**(3/2))
 
 
 def _rms_error__3(X2max, **params):
     _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "real")
+    X2max = _support.param("rms_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (1/770)*X2max**(3/2))
 
 
 def _rms_error__4(X2max, **params):
     _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "real")
+    X2max = _support.param("rms_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (1/2002)*X2max**(3/2))
 
 
 def _rms_error__5(X2max, **params):
     _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "real")
+    X2max = _support.param("rms_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (1/4290)*X2max**(3/2))
 
 
 def _rms_error__6(X2max, **params):
     _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "real")
+    X2max = _support.param("rms_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (3/24310)*X2max**(3/2))
 
 
 def _rms_error__7(X2max, **params):
     _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "real")
+    X2max = _support.param("rms_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (3/41990)*X2max**(3/2))
 
 
 def _rms_error__8(X2max, **params):
     _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "real")
+    X2max = _support.param("rms_error", "X2max", X2max, "positive")
     _shape = _support.shape_of(X2max, *_extra)
     return _support.full(_shape, (1/22610)*X2max**(3/2))
 

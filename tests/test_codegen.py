@@ -49,6 +49,7 @@ def test_check_names_a_hand_edited_file(tmp_path):
     assert "omega1**3" in result.stdout          # the diff is shown
     assert "generated/leftover.py" in result.stdout
 
+
 def test_every_generated_file_has_the_do_not_edit_header():
     for path in (ROOT / "generated").rglob("*.py"):
         head = path.read_text().splitlines()[:2]

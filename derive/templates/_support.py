@@ -91,13 +91,16 @@ def shape_of(*arrays):
 
 
 def full(shape, value):
-    """``value`` broadcast to ``shape`` as a fresh float (or complex) array."""
+    """``value`` broadcast to ``shape`` as a fresh float (complex, bool) array.
+
+    For ``shape == ()`` a numpy scalar, as numpy's ufuncs return for scalar inputs.
+    """
     value = numpy.asarray(value)
     if value.dtype == bool:
         dtype = bool
     else:
         dtype = complex if numpy.iscomplexobj(value) else float
-    return numpy.broadcast_to(value, shape).astype(dtype)
+    return numpy.broadcast_to(value, shape).astype(dtype)[()]
 
 
 def tuple_of(shape, *values):

@@ -53,20 +53,20 @@ def coefficients(X2max, *, degree=3, **params):
 
 def _coefficients__1(X2max, **params):
     _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "real")
+    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
     return (-mpmath.mpf(4)/mpmath.mpf(35)*X2max**(mpmath.mpf(3)/mpmath.mpf(2)), (mpmath.mpf(36)/mpmath.mpf(35))*mpmath.sqrt(X2max),)
 
 
 def _coefficients__2(X2max, **params):
     _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "real")
+    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
     _x0 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(2)/mpmath.mpf(105)*X2max**(mpmath.mpf(3)/mpmath.mpf(2)), (mpmath.mpf(16)/mpmath.mpf(35))*_x0, (mpmath.mpf(4)/mpmath.mpf(7))/_x0,)
 
 
 def _coefficients__3(X2max, **params):
     _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "real")
+    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
     _x0 = X2max**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(8)/mpmath.mpf(1155)*_x0, (mpmath.mpf(24)/mpmath.mpf(77))*_x1, (mpmath.mpf(72)/mpmath.mpf(77))/_x1, -(mpmath.mpf(8)/mpmath.mpf(33))/_x0,)
@@ -74,7 +74,7 @@ def _coefficients__3(X2max, **params):
 
 def _coefficients__4(X2max, **params):
     _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "real")
+    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
     _x0 = X2max**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(10)/mpmath.mpf(3003)*_x0, (mpmath.mpf(240)/mpmath.mpf(1001))*_x1, (mpmath.mpf(180)/mpmath.mpf(143))/_x1, -(mpmath.mpf(320)/mpmath.mpf(429))/_x0, (mpmath.mpf(36)/mpmath.mpf(143))/X2max**(mpmath.mpf(5)/mpmath.mpf(2)),)
@@ -82,7 +82,7 @@ def _coefficients__4(X2max, **params):
 
 def _coefficients__5(X2max, **params):
     _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "real")
+    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
     _x0 = X2max**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(4)/mpmath.mpf(2145)*_x0, (mpmath.mpf(28)/mpmath.mpf(143))*_x1, (mpmath.mpf(224)/mpmath.mpf(143))/_x1, -(mpmath.mpf(224)/mpmath.mpf(143))/_x0, (mpmath.mpf(168)/mpmath.mpf(143))/X2max**(mpmath.mpf(5)/mpmath.mpf(2)), -(mpmath.mpf(24)/mpmath.mpf(65))/X2max**(mpmath.mpf(7)/mpmath.mpf(2)),)
@@ -90,7 +90,7 @@ def _coefficients__5(X2max, **params):
 
 def _coefficients__6(X2max, **params):
     _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "real")
+    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
     _x0 = X2max**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(14)/mpmath.mpf(12155)*_x0, (mpmath.mpf(2016)/mpmath.mpf(12155))*_x1, (mpmath.mpf(4536)/mpmath.mpf(2431))/_x1, -(mpmath.mpf(6720)/mpmath.mpf(2431))/_x0, (mpmath.mpf(756)/mpmath.mpf(221))/X2max**(mpmath.mpf(5)/mpmath.mpf(2)), -(mpmath.mpf(2592)/mpmath.mpf(1105))/X2max**(mpmath.mpf(7)/mpmath.mpf(2)), (mpmath.mpf(56)/mpmath.mpf(85))/X2max**(mpmath.mpf(9)/mpmath.mpf(2)),)
@@ -98,7 +98,7 @@ def _coefficients__6(X2max, **params):
 
 def _coefficients__7(X2max, **params):
     _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "real")
+    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
     _x0 = X2max**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(16)/mpmath.mpf(20995)*_x0, (mpmath.mpf(3024)/mpmath.mpf(20995))*_x1, (mpmath.mpf(9072)/mpmath.mpf(4199))/_x1, -(mpmath.mpf(18480)/mpmath.mpf(4199))/_x0, (mpmath.mpf(33264)/mpmath.mpf(4199))/X2max**(mpmath.mpf(5)/mpmath.mpf(2)), -(mpmath.mpf(14256)/mpmath.mpf(1615))/X2max**(mpmath.mpf(7)/mpmath.mpf(2)), (mpmath.mpf(8624)/mpmath.mpf(1615))/X2max**(mpmath.mpf(9)/mpmath.mpf(2)), -(mpmath.mpf(432)/mpmath.mpf(323))/X2max**(mpmath.mpf(11)/mpmath.mpf(2)),)
@@ -106,7 +106,7 @@ def _coefficients__7(X2max, **params):
 
 def _coefficients__8(X2max, **params):
     _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "real")
+    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
     _x0 = X2max**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(6)/mpmath.mpf(11305)*_x0, (mpmath.mpf(288)/mpmath.mpf(2261))*_x1, (mpmath.mpf(792)/mpmath.mpf(323))/_x1, -(mpmath.mpf(2112)/mpmath.mpf(323))/_x0, (mpmath.mpf(5148)/mpmath.mpf(323))/X2max**(mpmath.mpf(5)/mpmath.mpf(2)), -(mpmath.mpf(41184)/mpmath.mpf(1615))/X2max**(mpmath.mpf(7)/mpmath.mpf(2)), (mpmath.mpf(8008)/mpmath.mpf(323))/X2max**(mpmath.mpf(9)/mpmath.mpf(2)), -(mpmath.mpf(29952)/mpmath.mpf(2261))/X2max**(mpmath.mpf(11)/mpmath.mpf(2)), (mpmath.mpf(396)/mpmath.mpf(133))/X2max**(mpmath.mpf(13)/mpmath.mpf(2)),)
@@ -159,49 +159,49 @@ def max_error(X2max, *, degree=3, **params):
 
 def _max_error__1(X2max, **params):
     _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
     return (mpmath.mpf(4)/mpmath.mpf(35))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _max_error__2(X2max, **params):
     _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
     return (mpmath.mpf(2)/mpmath.mpf(105))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _max_error__3(X2max, **params):
     _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
     return (mpmath.mpf(8)/mpmath.mpf(1155))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _max_error__4(X2max, **params):
     _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
     return (mpmath.mpf(10)/mpmath.mpf(3003))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _max_error__5(X2max, **params):
     _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
     return (mpmath.mpf(4)/mpmath.mpf(2145))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _max_error__6(X2max, **params):
     _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
     return (mpmath.mpf(14)/mpmath.mpf(12155))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _max_error__7(X2max, **params):
     _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
     return (mpmath.mpf(16)/mpmath.mpf(20995))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _max_error__8(X2max, **params):
     _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
     return (mpmath.mpf(6)/mpmath.mpf(11305))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
@@ -251,49 +251,49 @@ def max_error_location(X2max, *, degree=3, **params):
 
 def _max_error_location__1(X2max, **params):
     _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
     return 0
 
 
 def _max_error_location__2(X2max, **params):
     _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
     return 0
 
 
 def _max_error_location__3(X2max, **params):
     _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
     return 0
 
 
 def _max_error_location__4(X2max, **params):
     _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
     return 0
 
 
 def _max_error_location__5(X2max, **params):
     _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
     return 0
 
 
 def _max_error_location__6(X2max, **params):
     _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
     return 0
 
 
 def _max_error_location__7(X2max, **params):
     _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
     return 0
 
 
 def _max_error_location__8(X2max, **params):
     _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "real")
+    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
     return 0
 
 
@@ -343,49 +343,49 @@ def rms_error(X2max, *, degree=3, **params):
 
 def _rms_error__1(X2max, **params):
     _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
     return (mpmath.mpf(3)/mpmath.mpf(70))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _rms_error__2(X2max, **params):
     _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
     return (mpmath.mpf(1)/mpmath.mpf(210))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _rms_error__3(X2max, **params):
     _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
     return (mpmath.mpf(1)/mpmath.mpf(770))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _rms_error__4(X2max, **params):
     _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
     return (mpmath.mpf(1)/mpmath.mpf(2002))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _rms_error__5(X2max, **params):
     _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
     return (mpmath.mpf(1)/mpmath.mpf(4290))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _rms_error__6(X2max, **params):
     _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
     return (mpmath.mpf(3)/mpmath.mpf(24310))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _rms_error__7(X2max, **params):
     _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
     return (mpmath.mpf(3)/mpmath.mpf(41990))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 def _rms_error__8(X2max, **params):
     _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "real")
+    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
     return (mpmath.mpf(1)/mpmath.mpf(22610))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 

@@ -1,0 +1,83 @@
+"""generated.fit against Eq. (17) typed by hand and against mpmath quadrature."""
+import mpmath
+import numpy as np
+import pytest
+
+from generated import fit
+from generated.mp import fit as mp_fit
+
+
+def eq17(X):
+    """Eq. (17) as printed: (c0, c1, c2, c3)."""
+    return (-8 * X**1.5 / 1155, 24 * X**0.5 / 77, 72 / (77 * X**0.5), -8 / (33 * X**1.5))
+
+
+def mp_least_squares(X, degree):
+    """Continuous L2 fit by mpmath: normal equations with quadrature at 50 digits."""
+    n = degree + 1
+    gram = mpmath.matrix(n, n)
+    rhs = mpmath.matrix(n, 1)
+    for j in range(n):
+        rhs[j] = mpmath.quad(lambda x: x**mpmath.mpf(1.5) * x**j, [0, X])
+        for k in range(n):
+            gram[j, k] = mpmath.quad(lambda x: x**(j + k), [0, X])
+    return list(mpmath.lu_solve(gram, rhs))
+
+
+@pytest.mark.parametrize("X", [1e-3, 0.5, 1.0, 11.547, 2e4])
+def test_degree_3_is_eq17(X):
+    np.testing.assert_allclose(fit.coefficients(X), eq17(X), rtol=1e-14)
+
+
+@pytest.mark.parametrize("degree", range(1, 9))
+def test_coefficients_solve_the_continuous_least_squares_problem(mp50, degree):
+    X = mpmath.mpf(3)
+    ref = mp_least_squares(X, degree)
+    got = mp_fit.coefficients(X, degree=degree)
+    assert max(abs(a - b) / abs(b) for a, b in zip(got, ref)) < mpmath.mpf(10)**-35
+    fast = fit.coefficients(3.0, degree=degree)
+    assert max(abs(float(a) - float(b)) / abs(float(b)) for a, b in zip(fast, ref)) < 1e-12
+
+
+@pytest.mark.parametrize("degree", [1, 3, 5, 8])
+def test_max_error_and_location_against_a_dense_scan(degree):
+    X = 2.0
+    x = np.linspace(0.0, X, 400001)
+    c = fit.coefficients(X, degree=degree)
+    err = np.abs(x**1.5 - sum(ck * x**k for k, ck in enumerate(c)))
+    assert fit.max_error(X, degree=degree) == pytest.approx(err.max(), rel=1e-9)
+    assert fit.max_error_location(X, degree=degree) == pytest.approx(x[err.argmax()], abs=1e-4)
+
+
+@pytest.mark.parametrize("degree", [1, 3, 8])
+def test_rms_error_against_mpmath_quadrature(mp50, degree):
+    X = mpmath.mpf(5)
+    c = mp_fit.coefficients(X, degree=degree)
+    mean_sq = mpmath.quad(lambda x: (x**mpmath.mpf(1.5) - sum(ck * x**k for k, ck in
+                                                               enumerate(c)))**2, [0, X]) / X
+    assert abs(mp_fit.rms_error(X, degree=degree) - mpmath.sqrt(mean_sq)) < mpmath.mpf(10)**-30
+
+
+def test_degree_3_largest_error_is_at_zero_and_exact():
+    """NOTES.md item 4: c0 < 0, the error is largest at X2 = 0: |c0| = 8/1155 X2max^(3/2)."""
+    X = np.array([0.1, 1.0, 7.0])
+    np.testing.assert_allclose(fit.max_error(X), 8 / 1155 * X**1.5, rtol=1e-15)
+    np.testing.assert_array_equal(fit.max_error_location(X), 0.0)
+    assert fit.coefficients(1.0)[0] < 0
+
+
+def test_errors_shrink_with_degree():
+    errors = [fit.max_error(1.0, degree=n) for n in range(1, 9)]
+    assert all(a > b for a, b in zip(errors, errors[1:]))
+
+
+@pytest.mark.parametrize("bad", [0.0, -1.0, float("nan")])
+def test_bad_range_raises(bad):
+    with pytest.raises(ValueError, match="'X2max'"):
+        fit.coefficients(bad)
+
+
+@pytest.mark.parametrize("degree", [0, 9, "3", None])
+def test_bad_degree_raises(degree):
+    with pytest.raises(ValueError, match="degree"):
+        fit.max_error(1.0, degree=degree)

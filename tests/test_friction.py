@@ -1,0 +1,155 @@
+"""generated.friction against Eqs. (23)-(25) typed by hand, their definition, and mpmath."""
+import mpmath
+import numpy as np
+import pytest
+
+from generated import friction, unforced
+from generated.mp import friction as mp_friction
+from conftest import random_params
+
+
+def eq23(Vr, Vhat, mu_s):
+    """Eq. (23) as printed."""
+    Vr = np.asarray(Vr, float)
+    inside = mu_s * (1 - 2 / np.pi * np.arccos(np.clip(Vr / Vhat, -1, 1)))
+    return np.where(np.abs(Vr) <= Vhat, inside, mu_s * np.sign(Vr))
+
+
+def eq25(Vb, Vhat, mu_s):
+    """Eq. (25) as printed (valid for Vb < Vhat)."""
+    return 2 * mu_s / (np.pi * Vhat * np.sqrt(1 - (Vb / Vhat)**2))
+
+
+def test_mu_bar_is_eq23():
+    Vr = np.linspace(-12, 12, 241)
+    np.testing.assert_allclose(friction.mu_bar(Vr, 8.5, 0.4), eq23(Vr, 8.5, 0.4),
+                               rtol=1e-13, atol=1e-15)
+
+
+@pytest.mark.parametrize("Vr", [-9.0, -7.99, -4.0, -0.3, 0.0, 2.5, 7.9, 11.0])
+def test_mu_bar_is_the_average_of_coulomb_friction_over_a_harmonic_cycle(mp50, Vr):
+    """Eq. (23)'s meaning: <mu_s sgn(Vr + Vhat sin theta)> over theta."""
+    Vhat, mu_s = mpmath.mpf(8), mpmath.mpf("0.4")
+    Vr = mpmath.mpf(Vr)
+    if abs(Vr) < Vhat:
+        cut = mpmath.asin(-Vr / Vhat)      # where the sign changes
+        points = [-mpmath.pi / 2, cut, mpmath.pi - cut, 3 * mpmath.pi / 2]
+    else:
+        points = [-mpmath.pi / 2, 3 * mpmath.pi / 2]
+    avg = mpmath.quad(lambda th: mu_s * mpmath.sign(Vr + Vhat * mpmath.sin(th)),
+                      points) / (2 * mpmath.pi)
+    assert abs(mp_friction.mu_bar(Vr, Vhat, mu_s) - avg) < mpmath.mpf(10)**-40
+    assert friction.mu_bar(float(Vr), 8.0, 0.4) == pytest.approx(float(avg), abs=1e-15)
+
+
+def test_mu_bar_at_the_ends_of_the_arc_cosine_is_coulomb_exactly(mp50):
+    """At |Vr| = Vhat the sine only touches the sign change: the average is -+mu_s."""
+    assert mp_friction.mu_bar(-8, 8, "0.4") == -mpmath.mpf("0.4")
+    assert mp_friction.mu_bar(8, 8, "0.4") == mpmath.mpf("0.4")
+    assert friction.mu_bar(-8.0, 8.0, 0.4) == -0.4
+
+
+def test_mu_bar0_is_mu_bar_at_minus_vb():
+    Vb = np.linspace(0, 10, 21)
+    np.testing.assert_array_equal(friction.mu_bar0(Vb, 8.5, 0.4), friction.mu_bar(-Vb, 8.5, 0.4))
+
+
+def test_slope_is_eq25_and_the_derivative_of_eq23(mp50):
+    Vb = np.linspace(0, 8, 17)
+    np.testing.assert_allclose(friction.mu_bar_slope(Vb, 8.5, 0.4), eq25(Vb, 8.5, 0.4),
+                               rtol=1e-14)
+    for v in (0.5, 4.0, 8.4):
+        d = mpmath.diff(lambda x: mp_friction.mu_bar(x, 8.5, "0.4"), -mpmath.mpf(v))
+        assert abs(mp_friction.mu_bar_slope(v, 8.5, "0.4") - d) < mpmath.mpf(10)**-30
+
+
+def test_slope_as_vb_approaches_vhat_from_below(mp50):
+    """Relative error <= 1e-13 up to 1e-15 below Vhat; the printed Eq. (25) loses digits."""
+    Vhat = 8.5
+    for k in range(2, 16):
+        Vb = Vhat * (1 - 10.0**-k)
+        exact = mp_friction.mu_bar_slope(Vb, Vhat, "0.4")   # exact input, 50 digits
+        got = friction.mu_bar_slope(Vb, Vhat, 0.4)
+        assert np.isfinite(got)
+        assert abs(got - float(exact)) / float(exact) < 1e-13
+    printed = eq25(Vhat * (1 - 1e-15), Vhat, 0.4)
+    exact = float(mp_friction.mu_bar_slope(Vhat * (1 - 1e-15), Vhat, "0.4"))
+    assert abs(printed - exact) / exact > 1e-3
+
+
+def test_slope_at_and_beyond_vhat_is_documented_and_not_nan():
+    assert friction.mu_bar_slope(8.5, 8.5, 0.4) == np.inf
+    assert friction.mu_bar_slope(np.nextafter(8.5, 9), 8.5, 0.4) == 0.0
+    assert friction.mu_bar_slope(20.0, 8.5, 0.4) == 0.0
+    assert np.isfinite(friction.mu_bar_slope(np.nextafter(8.5, 0), 8.5, 0.4))
+
+
+def test_vhat_tangential_is_the_oscillator_velocity_amplitude(rng):
+    for _ in range(20):
+        p = random_params(rng)
+        b1, w1, a, W = p["beta1"], p["omega1"], p["alpha"], p["Omega"]
+        hand = a * W**3 / abs(w1**2 - W**2 + 2j * b1 * w1 * W)
+        assert friction.vhat(**p) == pytest.approx(hand, rel=1e-13)
+
+
+def coupled_by_linear_algebra(p, contact="hertz_damp"):
+    """Velocity amplitude of X1 for x' = J0 x + b e^(i W t), solved with numpy."""
+    J0 = unforced.jacobian_at_equilibrium(contact=contact, **p)
+
+    def velocity(b, W):
+        x = np.linalg.solve(1j * W * np.eye(4) - J0, b)
+        return 1j * W * x[0]
+
+    Wt = p.get("Omega_t", p["Omega"])
+    Wn = p.get("Omega_n", p["Omega"])
+    Ft = p["alpha"] * Wt**2 * np.exp(1j * p.get("phase_t", 0.0))
+    Fn = -p["alpha"] * Wn**2 * np.exp(1j * p.get("phase_n", 0.0))
+    vt = velocity(np.array([0, Ft, 0, 0]), Wt)
+    vn = velocity(np.array([0, 0, 0, Fn]), Wn)
+    return abs(vt + vn) if Wt == Wn else abs(vt) + abs(vn)
+
+
+@pytest.mark.parametrize("contact", ["hertz_damp", "kelvin_voigt"])
+@pytest.mark.parametrize("extra", [{}, {"phase_t": np.pi / 2}, {"Omega_t": 6.0}])
+def test_vhat_coupled_against_linear_algebra(rng, contact, extra):
+    for _ in range(10):
+        p = {**random_params(rng), **extra}
+        assert friction.vhat(model="coupled", contact=contact, **p) == pytest.approx(
+            coupled_by_linear_algebra(p, contact), rel=1e-11)
+
+
+def test_vhat_readings_differ_at_the_base_set(base):
+    """NOTES.md item 1: the tangential reading is close to the paper's 'about 8'."""
+    tangential = friction.vhat(**base)
+    assert 8.0 < tangential < 9.0
+    assert abs(friction.vhat(model="coupled", **base) - tangential) > 1.0
+
+
+@pytest.mark.parametrize("fn,args", [
+    ("mu_bar", (-3.0, 8.5, 0.4)), ("mu_bar", (12.0, 8.5, 0.4)), ("mu_bar0", (3.0, 8.5, 0.4)),
+    ("mu_bar_slope", (3.0, 8.5, 0.4)), ("mu_bar_slope", (9.0, 8.5, 0.4)),
+])
+def test_numpy_matches_mpmath_variant(mp50, fn, args):
+    fast = getattr(friction, fn)(*args)
+    ref = getattr(mp_friction, fn)(*args)
+    assert fast == pytest.approx(float(ref), rel=1e-14, abs=1e-300)
+
+
+@pytest.mark.parametrize("model", ["tangential", "coupled"])
+def test_vhat_matches_mpmath_variant(mp50, rng, model):
+    for _ in range(10):
+        p = random_params(rng)
+        assert friction.vhat(model=model, **p) == pytest.approx(
+            float(mp_friction.vhat(model=model, **p)), rel=1e-12)
+
+
+@pytest.mark.parametrize("args,name", [((1.0, -8.5, 0.4), "'Vhat'"), ((1.0, 8.5, -0.4), "'mu_s'"),
+                                       ((-1.0, 8.5, 0.4), "'Vb'"), ((np.nan, 8.5, 0.4), "'Vb'")])
+def test_bad_input_raises_naming_the_parameter(args, name):
+    with pytest.raises(ValueError, match=name):
+        friction.mu_bar_slope(*args)
+
+
+def test_unknown_vhat_model_raises(base):
+    with pytest.raises(ValueError, match="model"):
+        friction.vhat(model="linear", **base)
