@@ -8,6 +8,7 @@ from __future__ import annotations
 from . import dynamics as dyn
 from . import fit as ft
 from . import friction as fr
+from . import mdsm
 from . import stability as st
 from . import statespace as ss
 from .codegen import Function, Module
@@ -154,6 +155,11 @@ def fit() -> Module:
         Function("rms_error", "Root-mean-square error of the fit on [0, X2max], exact.",
                  "Eq. (17)", "value", "rms : ndarray",
                  per_degree(lambda n: ft.fit_error(n).rms), degree, arg, docs),
+        Function("x2max_mdsm", "The fitted range for the MDSM: X2^0 plus the fast normal "
+                 "amplitude.", "Eqs. (9), (14), (16)", "value", "X2max : ndarray",
+                 _per_contact(mdsm.x2max), CONTACT_OPTION,
+                 notes="The fast normal motion is the linear response of the normal block "
+                       "of Eq. (11) to the normal excitation."),
     )
     return Module("fit", """Least-squares polynomial fit of X2^(3/2) on [0, X2max] (Eqs. 16-17).
 

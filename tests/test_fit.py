@@ -81,3 +81,16 @@ def test_bad_range_raises(bad):
 def test_bad_degree_raises(degree):
     with pytest.raises(ValueError, match="degree"):
         fit.max_error(1.0, degree=degree)
+
+
+def test_x2max_of_the_mdsm_scene_is_equilibrium_plus_fast_amplitude(rng):
+    """X2max = X2^0 (Eq. 9) + |linear normal response| (normal block of Eq. 11)."""
+    from generated import unforced
+    from conftest import random_params
+    for contact in ("hertz_damp", "kelvin_voigt"):
+        p = random_params(rng)
+        J = unforced.jacobian_at_equilibrium(contact=contact, **p)[2:, 2:]
+        W = p["Omega"]
+        x = np.linalg.solve(1j * W * np.eye(2) - J, [0, -p["alpha"] * W**2])[0]
+        expected = unforced.equilibrium(contact=contact, **p)[2] + abs(x)
+        assert fit.x2max_mdsm(contact=contact, **p) == pytest.approx(expected, rel=1e-12)

@@ -12,7 +12,7 @@ import mpmath
 
 from .. import _support
 
-__all__ = ['coefficients', 'max_error', 'max_error_location', 'rms_error']
+__all__ = ['coefficients', 'max_error', 'max_error_location', 'rms_error', 'x2max_mdsm']
 
 
 def coefficients(X2max, *, degree=3, **params):
@@ -398,4 +398,89 @@ _RMS_ERROR = {
     (6,): _rms_error__6,
     (7,): _rms_error__7,
     (8,): _rms_error__8,
+}
+
+
+def x2max_mdsm(*, contact='hertz_damp', **params):
+    """The fitted range for the MDSM: X2^0 plus the fast normal amplitude.
+
+    Implements Eqs. (9), (14), (16) of the paper.
+
+    The fast normal motion is the linear response of the normal block of Eq. (11) to the
+    normal excitation.
+
+    mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits.
+
+    Parameters
+    ----------
+    beta2 : mpmath number
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : mpmath number
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    alpha : mpmath number
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : mpmath number
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    g : mpmath number
+        gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
+    alpha_n : mpmath number
+        normal excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_n : mpmath number
+        normal excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    X2max : ndarray
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN or outside its domain (the message names it), or an
+        option value is unknown.
+    TypeError
+        If a keyword is not a model parameter.
+    """
+    return _support.choose("x2max_mdsm", _X2MAX_MDSM, contact=contact)(**params)
+
+
+def _x2max_mdsm__hertz_damp(*, beta2, omega2, alpha, Omega, g, alpha_n=None, Omega_n=None, **params):
+    _support.mp_extras("x2max_mdsm", params)
+    alpha_n = alpha if alpha_n is None else alpha_n
+    Omega_n = Omega if Omega_n is None else Omega_n
+    beta2 = _support.mp_param("x2max_mdsm", "beta2", beta2)
+    omega2 = _support.mp_param("x2max_mdsm", "omega2", omega2)
+    alpha = _support.mp_param("x2max_mdsm", "alpha", alpha)
+    Omega = _support.mp_param("x2max_mdsm", "Omega", Omega)
+    g = _support.mp_param("x2max_mdsm", "g", g)
+    alpha_n = _support.mp_param("x2max_mdsm", "alpha_n", alpha_n)
+    Omega_n = _support.mp_param("x2max_mdsm", "Omega_n", Omega_n)
+    _x0 = omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+    _x1 = Omega_n**2
+    return _x1*alpha_n/mpmath.sqrt(4*_x1*beta2**2*g**2/omega2**2 + (mpmath.mpf(1)/mpmath.mpf(4))*(-3*_x0*g**(mpmath.mpf(1)/mpmath.mpf(3)) + 2*_x1)**2) + g**(mpmath.mpf(2)/mpmath.mpf(3))/_x0
+
+
+def _x2max_mdsm__kelvin_voigt(*, beta2, omega2, alpha, Omega, g, alpha_n=None, Omega_n=None, **params):
+    _support.mp_extras("x2max_mdsm", params)
+    alpha_n = alpha if alpha_n is None else alpha_n
+    Omega_n = Omega if Omega_n is None else Omega_n
+    beta2 = _support.mp_param("x2max_mdsm", "beta2", beta2)
+    omega2 = _support.mp_param("x2max_mdsm", "omega2", omega2)
+    alpha = _support.mp_param("x2max_mdsm", "alpha", alpha)
+    Omega = _support.mp_param("x2max_mdsm", "Omega", Omega)
+    g = _support.mp_param("x2max_mdsm", "g", g)
+    alpha_n = _support.mp_param("x2max_mdsm", "alpha_n", alpha_n)
+    Omega_n = _support.mp_param("x2max_mdsm", "Omega_n", Omega_n)
+    _x0 = omega2**2
+    _x1 = Omega_n**2
+    return _x1*alpha_n/mpmath.sqrt(4*_x0*_x1*beta2**2 + (Omega_n - omega2)**2*(Omega_n + omega2)**2) + g/_x0
+
+
+_X2MAX_MDSM = {
+    ('hertz_damp',): _x2max_mdsm__hertz_damp,
+    ('kelvin_voigt',): _x2max_mdsm__kelvin_voigt,
 }
