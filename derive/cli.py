@@ -1,4 +1,5 @@
-"""Command line: ``python -m derive [--check]``, ``python -m derive simulate|sweep ...``.
+"""Command line: ``python -m derive [--check]``, ``python -m derive check-paper``,
+``python -m derive simulate|sweep ...``.
 
 Thin: it calls the derivation pipeline (`derive.modules`), the code generator
 (`derive.codegen`) and prints what happened. The simulation commands belong to the
@@ -49,6 +50,9 @@ def main(argv=None) -> int:
     if argv and argv[0] in RUNTIME_COMMANDS:
         from runtime.cli import main as runtime_main
         return runtime_main(argv)
+    if argv and argv[0] == "check-paper":
+        from .paper_check import main as check_paper
+        return check_paper(argv[1:])
     parser = argparse.ArgumentParser(
         prog="python -m derive",
         description="Derive the model symbolically and regenerate generated/.")

@@ -194,7 +194,11 @@ def _body(fn, outputs, mp):
         lines.append(f"_shape = _support.shape_of({inputs})")
     repl, reduced = sp.cse(flat, symbols=sp.numbered_symbols("_x"), order="canonical")
     body = [f"{sym} = {printer.doprint(e)}" for sym, e in repl]
-    out = [printer.doprint(e) for e in reduced]
+    inputs = {a.name for a in fn.args} | set(params)
+    # An output that is an input unchanged is copied: the caller's array must not
+    # come back as (an alias of) a result.
+    out = [f"numpy.copy({e.name})" if not mp and e.is_Symbol and e.name in inputs
+           else printer.doprint(e) for e in reduced]
     body += _assemble(fn.returns, out, shape, mp)
     if not mp and any(e.has(sp.Piecewise) for e in flat):
         # numpy evaluates every branch of a select: silence the unused ones.

@@ -67,10 +67,13 @@ def param(function, name, value, domain=None, why=None):
     """
     domain = domain or DOMAINS[name]
     x = numpy.asarray(value, dtype=float)
-    if numpy.isnan(x).any():
-        raise _fail(function, name, None, "a number, not NaN")
     test, text = _DOMAIN_TEST[domain]
-    if not numpy.all(test(x)):
+    # One pass in the common case: the comparisons are False for NaN, so NaN is
+    # told apart from a value outside the domain only when the test fails.
+    ok = not numpy.isnan(x).any() if domain == "real" else numpy.all(test(x))
+    if not ok:
+        if numpy.isnan(x).any():
+            raise _fail(function, name, None, "a number, not NaN")
         raise _fail(function, name, why, text)
     return x
 
@@ -102,6 +105,8 @@ def full(shape, value):
         dtype = bool
     else:
         dtype = complex if numpy.iscomplexobj(value) else float
+    if value.shape == shape and value.dtype == dtype:
+        return value[()]
     return numpy.broadcast_to(value, shape).astype(dtype)[()]
 
 

@@ -119,7 +119,7 @@ def _rhs__hertz_damp(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, 
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
         _x2 = numpy.greater(X2, 0)
         _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
-        return _support.vector(_shape, [Y1, numpy.select([_x2,True], [-_x0*mu_s*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), Y2, numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_s*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
 def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
@@ -154,7 +154,7 @@ def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
         _x2 = numpy.greater(X2, 0)
         _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
-        return _support.vector(_shape, [Y1, numpy.select([_x2,True], [-_x0*mu_s*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), Y2, numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_s*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
 _RHS = {
@@ -267,7 +267,7 @@ def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, ome
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
         _x2 = numpy.greater(X2, 0)
         _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
-        return _support.vector(_shape, [Y1, numpy.select([_x2,True], [-_x0*mu_s*sgn - _x1,-_x1], default=numpy.nan), Y2, numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_s*sgn - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
 def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
@@ -302,7 +302,7 @@ def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, o
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
         _x2 = numpy.greater(X2, 0)
         _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
-        return _support.vector(_shape, [Y1, numpy.select([_x2,True], [-_x0*mu_s*sgn - _x1,-_x1], default=numpy.nan), Y2, numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_s*sgn - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
 _RHS_BRANCH = {

@@ -1157,7 +1157,7 @@ def _unstable_interval__paper__hertz_damp(*, beta1, omega1, mu_s, g, Vhat, **par
     _shape = _support.shape_of(beta1, omega1, mu_s, g, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*mu_s/(numpy.pi*beta1*omega1)
-        return _support.tuple_of(_shape, numpy.select([numpy.greater(Vhat, _x0),True], [numpy.sqrt((Vhat - _x0)*(Vhat + _x0)),0], default=numpy.nan), Vhat)
+        return _support.tuple_of(_shape, numpy.select([numpy.greater(Vhat, _x0),True], [numpy.sqrt((Vhat - _x0)*(Vhat + _x0)),0], default=numpy.nan), numpy.copy(Vhat))
 
 
 def _unstable_interval__paper__kelvin_voigt(*, beta1, omega1, mu_s, g, Vhat, **params):
@@ -1170,7 +1170,7 @@ def _unstable_interval__paper__kelvin_voigt(*, beta1, omega1, mu_s, g, Vhat, **p
     _shape = _support.shape_of(beta1, omega1, mu_s, g, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*mu_s/(numpy.pi*beta1*omega1)
-        return _support.tuple_of(_shape, numpy.select([numpy.greater(Vhat, _x0),True], [numpy.sqrt((Vhat - _x0)*(Vhat + _x0)),0], default=numpy.nan), Vhat)
+        return _support.tuple_of(_shape, numpy.select([numpy.greater(Vhat, _x0),True], [numpy.sqrt((Vhat - _x0)*(Vhat + _x0)),0], default=numpy.nan), numpy.copy(Vhat))
 
 
 def _unstable_interval__consistent__hertz_damp(**params):

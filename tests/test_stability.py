@@ -364,3 +364,10 @@ def test_bad_input_raises_naming_the_parameter(base, bad, name):
 def test_unknown_convention_raises(base):
     with pytest.raises(ValueError, match="convention"):
         stability.growth_rate(**base, convention="printed")
+
+
+def test_results_never_alias_the_callers_arrays(base):
+    Vhat = np.array([5.0, 8.0])
+    _, upper = stability.unstable_interval(**{**base, "Vhat": Vhat})
+    upper[:] = 0.0
+    np.testing.assert_array_equal(Vhat, [5.0, 8.0])
