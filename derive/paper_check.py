@@ -23,6 +23,7 @@ The paper's claims in words are re-derived as rows with the status ``holds``,
 """
 from __future__ import annotations
 
+import argparse
 import random
 import re
 import time
@@ -261,7 +262,7 @@ def compare(printed, derived, *, seed: int, assume=None, names=()) -> Outcome:
     a_items, labels = _components(printed, names)
     b_items, _ = _components(derived, names)
     if len(a_items) != len(b_items) or (
-            isinstance(printed, sp.MatrixBase) and printed.shape != derived.shape):
+            getattr(printed, "shape", None) != getattr(derived, "shape", None)):
         raise ValueError(f"shapes differ: {getattr(printed, 'shape', 1)} "
                          f"vs {getattr(derived, 'shape', 1)}")
     a_items = [sp.sympify(x).subs(assume) for x in a_items]
@@ -448,7 +449,7 @@ def rows() -> tuple[Row, ...]:
              Variant(lambda: paper.eq_25_mu0("Vr"), friction.mu_bar0_eq_25, "argument V_r",
                      "read as Eq. (23)'s `mu_bar(V_r)` at `V_r = Z1'^0 = 0` the value is "
                      "`mu_bar(0) = 0`; the expansion point of Eq. (24) is `Z1' = 0`, "
-                     "i.e. `V_r = -Vb`."))),
+                     "i.e. `V_r = -Vb`;"))),
         Row("Eq. 25 (mu_bar')", "slope of the effective friction, for `Vhat > Vb`",
             (Variant(paper.eq_25_slope, friction.mu_bar_slope_eq_25,
                      assume={P["Vhat"]: P["Vb"] + d}),)),
@@ -564,7 +565,7 @@ def _claim_fit():
     order = lambda v: round(float(sp.log(sp.N(v, 30), 10)))  # noqa: E731
     holds = []
     if order(rel) == -2:
-        holds.append("relative to `X2max^(3/2)`")
+        holds.append("relative to X2max^(3/2)")
     if order(absolute) == -2:
         holds.append("absolute, base set")
     return holds, (
@@ -697,7 +698,7 @@ def claims() -> tuple[Claim, ...]:
               "only `mu_bar'`, not `mu_bar^0`, remains in `a1..a4`", (), _claim_only_slope),
         Claim("fit error", "below Eq. 17",
               "the cubic fit has a maximum error of about 1e-2",
-              ("relative to `X2max^(3/2)`", "absolute, base set"), _claim_fit),
+              ("relative to X2max^(3/2)", "absolute, base set"), _claim_fit),
         Claim("overdamped normal", "Sect. 4.2 end",
               "with `beta2* = 0.15` the normal direction is overdamped (unforced and forced)",
               (), _claim_overdamped),
@@ -822,6 +823,10 @@ def main(argv=None) -> int:
 
     Returns 0 whatever the paper says; a broken check raises.
     """
+    argparse.ArgumentParser(
+        prog="python -m derive check-paper",
+        description=f"Compare the paper's equations and claims with the derivation; "
+                    f"write generated/{REPORT}.").parse_args(argv)
     start = time.perf_counter()
     results, claim_results = run()
     text = report(results, claim_results)

@@ -1,0 +1,176 @@
+"""The paper check (derive.paper, derive.paper_check): engine, transcriptions, findings."""
+import pytest
+import sympy as sp
+from sympy.parsing.sympy_parser import TokenError
+
+from derive import codegen, paper, paper_check, stability
+from derive.model import P
+from derive.statespace import jacobian_at_equilibrium_eq_11
+
+#: Every numbered equation the report must cover (issue 4).
+REQUIRED = ([f"Eq. {n}" for n in (*range(4, 13), *range(13, 25), 26, 27, 28)]
+            + ["Eq. 25 (mu_bar^0)", "Eq. 25 (mu_bar')"]
+            + [f"Eq. A{n}" for n in range(1, 9)])
+PARSE_ERRORS = (SyntaxError, NameError, TypeError, TokenError)
+
+
+@pytest.fixture(scope="module")
+def checked():
+    """One full run of the check (rows and claims), shared by the tests below."""
+    results, claims = paper_check.run()
+    return {r.row.key: r for r in results}, {c.claim.key: c for c in claims}, \
+        paper_check.report(results, claims)
+
+
+def _row(key, printed, derived_of_convention=None, derived=None):
+    if derived_of_convention is not None:
+        variants = tuple(paper_check.Variant(printed, derived_of_convention(c), c)
+                         for c in stability.CONVENTIONS)
+    else:
+        variants = (paper_check.Variant(printed, derived),)
+    return paper_check.Row(key, "test", variants)
+
+
+# The engine with deliberately wrong transcriptions --------------------------------------
+
+def test_flipped_sign_is_reported_as_differs():
+    wrong = paper.EQ_11.replace("-omega1**2", "omega1**2")
+    assert wrong != paper.EQ_11
+    result = paper_check.check_row(_row("Eq. 11", lambda: paper.parse(wrong),
+                                        derived=jacobian_at_equilibrium_eq_11))
+    assert result.status == "differs"
+    assert "entry (2,1)" in result.explanation and "2*omega1**2" in result.explanation
+    assert result.problems   # a difference without a reason is flagged
+
+
+def test_wrong_exponent_is_reported_as_differs():
+    wrong = paper.EQ_9.replace("**(2/3)", "**(1/3)")
+    assert wrong != paper.EQ_9
+    result = paper_check.check_row(_row(
+        "Eq. 9", lambda: paper.parse(wrong),
+        derived=lambda: sp.Matrix([paper.eq_9()[i] for i in range(4)])))
+    assert result.status == "differs" and "component 3" in result.explanation
+
+
+def test_numeric_path_reports_a_wrong_piecewise_transcription():
+    """Eq. 23 with arccos replaced by arcsin: only the numeric comparison can decide."""
+    from derive.friction import mu_bar_eq_23
+    wrong = paper.EQ_23.replace("arccos", "arcsin")
+    result = paper_check.check_row(_row(
+        "Eq. 23", lambda: paper.parse(wrong, arcsin=sp.asin),
+        derived=lambda: mu_bar_eq_23(stability.S1 - P["Vb"])))
+    assert result.status == "differs"
+    assert "numeric" in result.outcomes[0].method
+
+
+def test_a_right_transcription_matches_and_the_method_is_named():
+    result = paper_check.check_row(_row("Eq. 11", paper.eq_11,
+                                        derived=jacobian_at_equilibrium_eq_11))
+    assert result.status == "matches" and result.outcomes[0].method.startswith("symbolic")
+    assert result.problems == ()
+
+
+def test_an_explanation_for_a_matching_variant_is_flagged_stale():
+    row = paper_check.Row("Eq. 11", "test", (paper_check.Variant(
+        paper.eq_11, jacobian_at_equilibrium_eq_11, why="a reason that no longer applies"),))
+    result = paper_check.check_row(row)
+    assert result.status == "matches" and "STALE" in result.explanation and result.problems
+
+
+def test_shape_mismatch_breaks_the_check():
+    with pytest.raises(ValueError):
+        paper_check.compare(paper.eq_11(), paper.eq_9(), seed=0)
+
+
+# Typos fail, they are never skipped --------------------------------------------------------
+
+@pytest.mark.parametrize("text", [
+    "3/2*omega1**",                 # syntax error
+    "Matrix([[0, 1], [omega1, 0]",  # unbalanced bracket
+    "omgea1**2",                    # misspelt name: not silently a new symbol
+    "2*beta2*omega2*X2**(3/2)*Y3",  # unknown state
+])
+def test_a_transcription_that_fails_to_parse_raises(text):
+    with pytest.raises(PARSE_ERRORS):
+        paper.parse(text)
+
+
+def test_a_typo_in_a_row_fails_the_check_run():
+    row = _row("Eq. 11", lambda: paper.parse(paper.EQ_11.replace("omega1", "omgea1", 1)),
+               derived=jacobian_at_equilibrium_eq_11)
+    with pytest.raises(NameError):
+        paper_check.check_row(row)
+
+
+@pytest.mark.parametrize("name", [n for n in paper.__all__ if n.startswith("eq_")
+                                  and n != "eq_15"])
+def test_every_transcription_parses_with_exact_numbers(name):
+    expr = sp.sympify(getattr(paper, name)())
+    assert expr.free_symbols and not expr.atoms(sp.Float)
+
+
+def test_eq_28_transcription_agrees_with_the_one_in_stability():
+    """Two transcriptions of Eq. (28) typed independently must agree."""
+    mine = paper.eq_28()
+    theirs = sp.Matrix(stability.hurwitz_eq_28(*paper.a_symbols))
+    assert (mine - theirs).applyfunc(sp.expand) == sp.zeros(4, 1)
+
+
+# The findings --------------------------------------------------------------------------------
+
+def test_the_report_covers_every_numbered_equation(checked):
+    rows, _, _ = checked
+    assert set(REQUIRED) <= set(rows)
+    for key, r in rows.items():
+        assert r.status in ("matches", "differs") or r.status.startswith(
+            "matches under convention"), key
+
+
+def test_every_difference_is_explained_and_no_reason_is_stale(checked):
+    rows, _, _ = checked
+    assert [p for r in rows.values() for p in r.problems] == []
+    for r in rows.values():
+        if r.status != "matches":
+            assert "at the base set" in r.explanation or "seeded point" in r.explanation
+
+
+def test_eq_28_differs_in_h4_only(checked):
+    rows, _, _ = checked
+    r = rows["Eq. 28"]
+    assert r.status == "differs"
+    assert "H4: printed - derived = `a1*a4**2*(a1 - 1)`" in r.explanation
+
+
+@pytest.mark.parametrize("key", ["Eq. 22", "Eq. 26", "Eq. 27", "Eq. A4", "Eq. A7", "Eq. A8"])
+def test_sign_dependent_equations_match_under_convention_paper_only(checked, key):
+    rows, _, _ = checked
+    assert rows[key].status == "matches under convention `paper`"
+
+
+@pytest.mark.parametrize("key", ["Eq. 4", "Eq. 9", "Eq. 10", "Eq. 11", "Eq. 12", "Eq. 17",
+                                 "Eq. 18", "Eq. 19", "Eq. 20", "Eq. 21", "Eq. 23",
+                                 "Eq. 25 (mu_bar')", "Eq. A1", "Eq. A2"])
+def test_equations_that_match(checked, key):
+    rows, _, _ = checked
+    assert rows[key].status == "matches"
+
+
+def test_claims(checked):
+    _, claims, _ = checked
+    assert claims["mu_s absent"].status == "holds"
+    assert claims["only mu_bar'"].status == "holds"
+    assert claims["overdamped normal"].status == "holds"
+    assert claims["slope (Fig. 9)"].status == "holds"
+    assert claims["fit error"].status == "holds under reading `relative to X2max^(3/2)`"
+    assert "`8*X2max**(3/2)/1155` at `X2 = 0`" in claims["fit error"].evidence
+    bif = claims["bifurcation ~ 8"]
+    assert bif.status == "holds under reading `V_hat tangential, convention paper`"
+    assert "unstable [0, 8.521)" in bif.evidence and "[0, 6.375)" in bif.evidence
+    assert claims["A3-A6 = Eqs. 18-21"].status == "does not hold"
+
+
+def test_the_report_in_the_tree_is_up_to_date(checked):
+    _, _, text = checked
+    path = codegen.GENERATED / paper_check.REPORT
+    assert path.read_text() == text, "run `python -m derive check-paper`"
+    assert text.count("\n| Eq. ") == len(checked[0])
