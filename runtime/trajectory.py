@@ -1,0 +1,164 @@
+"""A piecewise-smooth trajectory of Eq. (4): smooth segments between located events.
+
+Both integrators (`runtime.simulate` with solve_ivp, `runtime.superposition` with the
+one-way coupling) produce a `Trajectory`; everything computed from a run (samples,
+friction force, energy balance of Sect. 3, cycle averages of Sect. 5) integrates or
+evaluates segment by segment, never across a switch, and uses the generated
+functions of ``generated.dynamics`` for the physics so that they stay the reference.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from generated import dynamics
+
+from .model import FLIGHT, SLIP_BACK, SLIP_FORWARD, STICK
+
+__all__ = ["Segment", "Trajectory"]
+
+# 5-point Gauss-Legendre on each smooth piece: exact for degree 9, well beyond the
+# order of the dense outputs it integrates, so the quadrature adds no visible error.
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(5)
+
+
+@dataclass
+class Segment:
+    """One smooth piece [t0, t1] in one mode.
+
+    ``evaluate(t) -> (4, n)`` gives the state inside; ``knots`` are the solver's own
+    step points (the pieces on which ``evaluate`` is one polynomial or closed form).
+    """
+    t0: float
+    t1: float
+    mode: int
+    evaluate: object
+    knots: np.ndarray = field(repr=False)
+
+
+class Trajectory:
+    """Segments in time order covering [segments[0].t0, segments[-1].t1]."""
+
+    def __init__(self, segments, params, contact):
+        if not segments:
+            raise ValueError("a trajectory needs at least one segment")
+        self.segments, self.params, self.contact = segments, params, contact
+        self.starts = np.array([s.t0 for s in segments])
+        self.modes_by_segment = np.array([s.mode for s in segments])
+
+    @property
+    def t_end(self):
+        return self.segments[-1].t1
+
+    def _index(self, t):
+        return np.clip(np.searchsorted(self.starts, t, side="right") - 1, 0,
+                       len(self.segments) - 1)
+
+    def state(self, t, index=None):
+        """State (X1, Y1, X2, Y2) at the times ``t``, shape (4, n)."""
+        t = np.asarray(t, dtype=float)
+        index = self._index(t) if index is None else index
+        out = np.empty((4, t.size))
+        order = np.argsort(index, kind="stable")
+        bounds = np.flatnonzero(np.diff(index[order])) + 1
+        for chunk in np.split(order, bounds):
+            if chunk.size:
+                out[:, chunk] = self.segments[index[chunk[0]]].evaluate(t[chunk])
+        return out
+
+    def mode(self, t):
+        return self.modes_by_segment[self._index(np.asarray(t, dtype=float))]
+
+    def forces(self, t, y=None, mode=None):
+        """Normal force Fn (Eq. 1) and friction force on the mass, per unit mass.
+
+        The friction force is the tangential force of the belt on the mass,
+        ``-mu_s sgn(Vr) Fn`` while sliding (Eqs. 2-3), the force that holds the mass
+        (``-a_free``) while sticking and zero in flight; positive = along the belt.
+        """
+        t = np.asarray(t, dtype=float)
+        y = self.state(t) if y is None else y
+        mode = self.mode(t) if mode is None else mode
+        p, c = self.params, self.contact
+        Fn = dynamics.normal_force(y[2], y[3], contact=c, **p)
+        a_free = dynamics.rhs_branch(t, *y, 0.0, contact=c, **p)[..., 1]
+        slip = (mode == SLIP_BACK) | (mode == SLIP_FORWARD)
+        friction = np.where(slip, -p["mu_s"] * np.where(slip, mode, 0) * Fn,
+                            np.where(mode == STICK, -a_free, 0.0))
+        return Fn, friction
+
+    def pieces(self, edges=None):
+        """Smooth pieces (a, b, segment index) split at knots and at ``edges``."""
+        a_all, b_all, i_all = [], [], []
+        for i, s in enumerate(self.segments):
+            cuts = [s.knots]
+            if edges is not None:
+                e = np.asarray(edges, dtype=float)
+                cuts.append(e[(e > s.t0) & (e < s.t1)])
+            pts = np.unique(np.concatenate(cuts + [[s.t0, s.t1]]))
+            pts = pts[(pts >= s.t0) & (pts <= s.t1)]
+            a_all.append(pts[:-1])
+            b_all.append(pts[1:])
+            i_all.append(np.full(pts.size - 1, i))
+        a, b, i = (np.concatenate(v) for v in (a_all, b_all, i_all))
+        keep = b > a
+        return a[keep], b[keep], i[keep]
+
+    def integrate(self, integrand, edges):
+        """Integrals of ``integrand(t, y, mode) -> (k, n)`` over [edges[j], edges[j+1]].
+
+        Gauss-Legendre on every smooth piece, so no switch is integrated across.
+        Returns shape (k, len(edges) - 1).
+        """
+        edges = np.asarray(edges, dtype=float)
+        a, b, seg = self.pieces(edges)
+        mid, half = (a + b) / 2, (b - a) / 2
+        t = (mid[:, None] + half[:, None] * _GL_X[None, :]).ravel()
+        w = (half[:, None] * _GL_W[None, :]).ravel()
+        index = np.repeat(seg, _GL_X.size)
+        y = self.state(t, index)
+        values = np.atleast_2d(integrand(t, y, self.modes_by_segment[index])) * w
+        bins = np.searchsorted(edges, t, side="right") - 1
+        ok = (bins >= 0) & (bins < edges.size - 1)
+        out = np.zeros((values.shape[0], edges.size - 1))
+        for k in range(values.shape[0]):
+            out[k] = np.bincount(bins[ok], weights=values[k, ok], minlength=edges.size - 1)
+        return out
+
+    def energy_balance(self, t0=None, t1=None):
+        """Energy balance of Sect. 3 over [t0, t1] from the generated power terms.
+
+        dE/dt = P_input - P_viscous - P_friction (``generated.dynamics.power_balance``);
+        while sticking the friction power is ``Vb a_free`` (the holding force times
+        the velocity Vb). Returns a dict with the change of E (``energy``: kinetic,
+        spring, Hertz and gravity), the three works and ``residual`` =
+        |Delta E - W_in + W_visc + W_fric| / (int |P_in| + int |P_visc| + int |P_fric|).
+        """
+        p, c = self.params, self.contact
+        t0 = self.segments[0].t0 if t0 is None else t0
+        t1 = self.t_end if t1 is None else t1
+
+        def powers(t, y, mode):
+            sgn = np.where((mode == SLIP_BACK) | (mode == SLIP_FORWARD), mode, 0).astype(float)
+            P_in, P_visc, P_fric = dynamics.power_balance(t, *y, sgn, contact=c, **p)
+            a_free = dynamics.rhs_branch(t, *y, 0.0, contact=c, **p)[..., 1]
+            P_fric = P_fric + np.where(mode == STICK, y[1] * a_free, 0.0)
+            return np.stack([P_in, P_visc, P_fric, np.abs(P_in), np.abs(P_visc), np.abs(P_fric)])
+
+        W = self.integrate(powers, [t0, t1])[:, 0]
+        ends = self.state(np.array([t0, t1]))
+        E0, E1 = dynamics.energy(*ends, contact=c, **p)
+        dE = float(E1 - E0)
+        balance = dE - (W[0] - W[1] - W[2])
+        scale = W[3] + W[4] + W[5]
+        return {"energy_change": dE, "work_input": float(W[0]), "work_viscous": float(W[1]),
+                "work_friction": float(W[2]), "imbalance": float(balance),
+                "residual": float(abs(balance) / scale) if scale > 0 else 0.0}
+
+    def time_in_modes(self, t0, t1):
+        """Time spent in each mode within [t0, t1] (dict mode -> seconds)."""
+        out = {m: 0.0 for m in (SLIP_BACK, SLIP_FORWARD, STICK, FLIGHT)}
+        for s in self.segments:
+            out[s.mode] += max(0.0, min(s.t1, t1) - max(s.t0, t0))
+        return out
