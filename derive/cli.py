@@ -3,7 +3,7 @@
 
 Thin: it calls the derivation pipeline (`derive.modules`), the code generator
 (`derive.codegen`) and prints what happened. The simulation commands belong to the
-runtime layer (`runtime.cli`), which never imports SymPy; they are dispatched
+runtime layer (`runtime.cli`, `runtime.predict`), which never imports SymPy; they are dispatched
 before anything symbolic is imported.
 """
 from __future__ import annotations
@@ -50,6 +50,9 @@ def main(argv=None) -> int:
     if argv and argv[0] in RUNTIME_COMMANDS:
         from runtime.cli import main as runtime_main
         return runtime_main(argv)
+    if argv and argv[0] == "predict":
+        from runtime.predict import main as predict_main
+        return predict_main(argv)
     if argv and argv[0] == "check-paper":
         from .paper_check import main as check_paper
         return check_paper(argv[1:])

@@ -5,6 +5,7 @@ expressions as `codegen.Function` specs. Nothing here writes files.
 """
 from __future__ import annotations
 
+from . import correlation as cr
 from . import dynamics as dyn
 from . import fit as ft
 from . import friction as fr
@@ -16,7 +17,8 @@ import sympy as sp
 
 from .model import CONTACT_LAWS, STATE, P, X1, Y1, Y2, t, normal_force
 
-__all__ = ["unforced", "dynamics", "fit", "friction", "stability", "all_modules"]
+__all__ = ["unforced", "dynamics", "fit", "friction", "stability", "correlation",
+           "all_modules"]
 
 CONTACT_OPTION = (("contact", '{"hertz_damp", "kelvin_voigt"}', "hertz_damp",
                    "contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)"),)
@@ -290,6 +292,51 @@ needs only ``is_stable`` (a sign), not eigenvalues.
 """, functions)
 
 
+def correlation() -> Module:
+    """Beyond the paper: the average of friction times the fast normal force."""
+    args = (cr.u, cr.V, cr.N0, cr.N1, cr.theta)
+    docs = {"u": "slow relative velocity Z1' - Vb [m/s] (-Vb at the equilibrium)",
+            "V": "amplitude of the fast relative velocity [m/s]",
+            "N0": "mean normal force per unit mass [m/s^2] (g at the equilibrium)",
+            "N1": "amplitude of the fast normal force per unit mass [m/s^2]",
+            "theta": "phase of the fast normal force ahead of the fast velocity [rad]"}
+    re, im = {}, {}
+    for contact in CONTACT_LAWS:
+        re[contact], im[contact] = cr.fast_normal_force(contact)
+    functions = (
+        Function("averaged_friction", "Average of sgn(u + V sin) (N0 + N1 sin(. + theta)) "
+                 "over a fast period.", "Eq. (23) generalised (NOTES.md item 3)", "value",
+                 "F : ndarray\n    (2/pi)(N0 asin(u/V) + N1 cos(theta) sqrt(1 - u^2/V^2)) for "
+                 "|u| < V,\n    N0 sgn(u) otherwise. Times mu_s: the mean friction force.",
+                 {(): cr.averaged_friction()}, (), args, docs,
+                 notes="With N1 = 0 and N0 = 1 this is Eq. (23) divided by mu_s."),
+        Function("averaged_friction_slope", "Slope in u of `averaged_friction`.",
+                 "Eq. (25) generalised", "value",
+                 "dF/du : ndarray\n    2 (N0 V - N1 u cos(theta)) / (pi V sqrt((V - u)(V + u)))"
+                 " for |u| < V, 0 otherwise.",
+                 {(): cr.averaged_friction_slope()}, (), args, docs),
+        Function("first_harmonic", "First harmonic (s1, c1) of sgn(u + V sin t)(N0 + N1 sin(t + "
+                 "theta)).", "harmonic balance of Eq. (A1)", "tuple",
+                 "s1, c1 : ndarray\n    The product ~ s1 sin t + c1 cos t + (mean, higher "
+                 "harmonics).", {(): list(cr.first_harmonic())}, (), args, docs),
+        Function("fast_normal_force", "Amplitude and phase of the fast normal force.",
+                 "Eqs. (11), (A2) linearised", "tuple",
+                 "N1, psi : ndarray\n    N(t) = g + N1 sin(Omega_n t + psi) per unit mass, "
+                 "from the\n    linear response of the normal block of Eq. (11).",
+                 {(c,): [sp.sqrt(re[c]**2 + im[c]**2), sp.atan2(im[c], re[c])]
+                  for c in CONTACT_LAWS}, CONTACT_OPTION),
+    )
+    return Module("correlation", """Beyond the paper: friction correlated with the fast normal force.
+
+The paper's slow equations drop the correlation between the fast friction direction
+and the fast normal force (NOTES.md item 3). These closed forms keep it, for a
+harmonic fast motion: the averaged friction and its slope (the consistent
+counterpart of Eqs. 23-25), the first harmonic for the harmonic balance of the
+fast tangential motion, and the fast normal force. ``runtime.predict`` builds the
+stability prediction from them.
+""", functions)
+
+
 def all_modules() -> tuple[Module, ...]:
-    return unforced(), dynamics(), fit(), friction(), stability()
+    return unforced(), dynamics(), fit(), friction(), stability(), correlation()
 

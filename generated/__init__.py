@@ -7,6 +7,7 @@
 * ``fit``: Least-squares polynomial fit of X2^(3/2) on [0, X2max] (Eqs. 16-17).
 * ``friction``: Effective friction of the MDSM (Eqs. 23-25) and V_hat.
 * ``stability``: Stability of the forced system (Sects. 4.2-4.3, Eqs. 22, 26-28, A7-A8).
+* ``correlation``: Beyond the paper: friction correlated with the fast normal force.
 
 Importing them never imports SymPy.
 """

@@ -1,0 +1,124 @@
+"""generated.correlation and runtime.predict: closed forms against mpmath quadrature."""
+import mpmath
+import numpy as np
+import pytest
+
+from generated import correlation, friction, stability, unforced
+from generated.mp import correlation as mp_correlation
+from generated.parameters import BASE
+from runtime import predict
+
+CASES = [(-4.0, 8.0, 9.81, 27.0, 3.9), (-7.5, 8.0, 9.81, 5.0, 0.3), (2.0, 3.0, 1.0, 0.5, -2.0),
+         (-9.0, 8.0, 9.81, 27.0, 3.9), (0.0, 1.0, 2.0, 3.0, 1.0)]
+
+
+def quad_average(u, V, N0, N1, th, weight=lambda t: 1, harmonic=False):
+    """Direct quadrature of sgn(u + V sin t)(N0 + N1 sin(t + th)) weight(t) over a period,
+    divided by 2 pi (an average) or by pi (a Fourier coefficient, ``harmonic=True``)."""
+    scale = 1 / mpmath.pi if harmonic else 1 / (2 * mpmath.pi)   # at the current precision
+    u, V, N0, N1, th = map(mpmath.mpf, (u, V, N0, N1, th))
+    points = [-mpmath.pi / 2, 3 * mpmath.pi / 2]
+    if abs(u) < V:
+        a = mpmath.asin(u / V)
+        points = [-a, mpmath.pi + a, 2 * mpmath.pi - a]
+    f = lambda t: mpmath.sign(u + V * mpmath.sin(t)) * (N0 + N1 * mpmath.sin(t + th)) * weight(t)
+    return scale * mpmath.quad(f, points)
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_averaged_friction_against_quadrature(mp50, case):
+    exact = quad_average(*case)
+    assert abs(mp_correlation.averaged_friction(*case) - exact) < mpmath.mpf(10)**-35
+    assert correlation.averaged_friction(*case) == pytest.approx(float(exact), rel=1e-13,
+                                                                 abs=1e-14)
+
+
+@pytest.mark.parametrize("case", CASES[:3])
+def test_slope_against_mpmath_derivative(mp50, case):
+    u, rest = case[0], case[1:]
+    d = mpmath.diff(lambda x: mp_correlation.averaged_friction(x, *rest), mpmath.mpf(u))
+    assert correlation.averaged_friction_slope(*case) == pytest.approx(float(d), rel=1e-12)
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_first_harmonic_against_quadrature(mp50, case):
+    s1 = quad_average(*case, weight=mpmath.sin, harmonic=True)
+    c1 = quad_average(*case, weight=mpmath.cos, harmonic=True)
+    got = correlation.first_harmonic(*case)
+    assert got[0] == pytest.approx(float(s1), rel=1e-12, abs=1e-13)
+    assert got[1] == pytest.approx(float(c1), rel=1e-12, abs=1e-13)
+
+
+def test_without_correlation_it_is_eq23(base):
+    Vr = np.linspace(-10, 10, 41)
+    np.testing.assert_allclose(0.4 * correlation.averaged_friction(Vr, 8.0, 1.0, 0.0, 0.7),
+                               friction.mu_bar(Vr, 8.0, 0.4), rtol=1e-13, atol=1e-15)
+
+
+@pytest.mark.parametrize("contact", ["hertz_damp", "kelvin_voigt"])
+def test_fast_normal_force_is_the_linear_normal_response(rng, contact):
+    from conftest import random_params
+    for _ in range(10):
+        p = random_params(rng)
+        J = unforced.jacobian_at_equilibrium(contact=contact, **p)[2:, 2:]
+        W = p["Omega"]
+        x = np.linalg.solve(1j * W * np.eye(2) - J, [0, -p["alpha"] * W**2])
+        force = -(J[1, 0] * x[0] + J[1, 1] * x[1])        # stiffness and damping terms
+        N1, psi = correlation.fast_normal_force(contact=contact, **p)
+        assert N1 == pytest.approx(abs(force), rel=1e-12)
+        assert np.exp(1j * psi) == pytest.approx(force / abs(force), rel=1e-12)
+
+
+def test_linear_fast_motion_is_the_coupled_vhat():
+    p = predict.resolve_parameters(Vb=12.0)
+    fast = predict.fast_motion(p)
+    assert not fast.reverses
+    assert fast.V == pytest.approx(friction.vhat(model="coupled", **p), rel=1e-12)
+
+
+def test_harmonic_balance_residual_and_reversal():
+    p = predict.resolve_parameters(Vb=4.0)
+    fast = predict.fast_motion(p)
+    assert fast.reverses and fast.V > 4.0 and fast.residual < 1e-9
+
+
+def test_consistent_mdsm_reduces_to_the_consistent_convention_without_normal_fluctuation():
+    """With N1 = 0 (no normal excitation) the slope is mu_bar' and the damping positive."""
+    p = predict.resolve_parameters(Vb=2.0, alpha_n=0.0)
+    fast = predict.fast_motion(p)
+    assert fast.N1 == 0.0
+    slope = friction.mu_bar_slope(2.0, fast.V, p["mu_s"])
+    expected = 2 * p["beta1"] * p["omega1"] + p["g"] * slope
+    assert predict.consistent_mdsm_damping(p, fast=fast) == pytest.approx(expected, rel=1e-12)
+    assert not predict.unstable_intervals(alpha_n=0.0)[0]
+
+
+def test_prediction_edges_are_roots_or_the_reversal_onset():
+    intervals, table = predict.unstable_intervals()
+    assert len(intervals) == 1
+    lower, upper = intervals[0]
+    p = predict.resolve_parameters()
+    at = {**p, "Vb": lower}
+    assert abs(predict.consistent_mdsm_damping(at)) < 1e-8
+    assert upper == pytest.approx(predict.fast_motion({**p, "Vb": np.inf}).V, rel=1e-12)
+    inside = table["Vb"][(table["Vb"] > lower) & (table["Vb"] < upper)]
+    assert np.all(table["damping"][np.isin(table["Vb"], inside)] < 0)
+
+
+def test_paper_intervals_match_generated_stability():
+    out = predict.paper_intervals(beta1=0.4)
+    lo, up = stability.unstable_interval(**{**BASE, "beta1": 0.4})
+    assert out["tangential"] == [(float(lo), float(up))]
+
+
+def test_two_frequencies_are_refused():
+    with pytest.raises(ValueError, match="one excitation frequency"):
+        predict.unstable_intervals(Omega_t=6.0)
+
+
+def test_predict_cli_json(capsys):
+    assert predict.main(["predict", "--beta1", "0.4", "--json"]) == 0
+    import json
+    out = json.loads(capsys.readouterr().out)
+    assert set(out) == {"paper_tangential_vhat", "paper_coupled_vhat", "consistent_mdsm"}
+    assert out["consistent_mdsm"][0][0] > out["paper_coupled_vhat"][0][0]
