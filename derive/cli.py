@@ -53,6 +53,9 @@ def main(argv=None) -> int:
     if argv and argv[0] == "predict":
         from runtime.predict import main as predict_main
         return predict_main(argv)
+    if argv and argv[0] == "validate":
+        from runtime.validation import main as validate_main
+        return validate_main(argv)
     if argv and argv[0] == "check-paper":
         from .paper_check import main as check_paper
         return check_paper(argv[1:])
