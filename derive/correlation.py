@@ -29,7 +29,7 @@ from functools import lru_cache
 import sympy as sp
 
 __all__ = ["u", "V", "N0", "N1", "theta", "averaged_friction", "averaged_friction_slope",
-           "first_harmonic", "fast_normal_force"]
+           "first_harmonic", "fast_normal_force", "fast_tangential_velocity"]
 
 u = sp.Symbol("u", real=True)
 V = sp.Symbol("V", positive=True)
@@ -106,3 +106,20 @@ def fast_normal_force(contact: str = "hertz_damp") -> tuple[sp.Expr, sp.Expr]:
     amplitude = (normal.q + sp.I * normal.p * W) * force / (a + sp.I * b)
     re, im = sp.expand_complex(amplitude).as_real_imag()
     return sp.simplify(re), sp.simplify(im)
+
+
+def fast_tangential_velocity(contact: str = "hertz_damp") -> tuple[sp.Expr, sp.Expr]:
+    """Complex amplitude ``(Re, Im)`` of the fast relative velocity while friction keeps
+    its direction (``Vr < 0`` throughout the fast cycle), one excitation frequency.
+
+    The linear response of Eq. (11) to both excitations (the ``"coupled"`` reading of
+    ``V_hat`` with its phase): ``X1' = Im((Re + i Im) e^(i Omega t))``.
+    """
+    from .friction import coupled_velocity
+    from .model import P
+
+    W = P["Omega_t"]
+    Ft = P["alpha_t"] * W**2 * sp.exp(sp.I * P["phase_t"])
+    Fn = -P["alpha_n"] * W**2 * sp.exp(sp.I * P["phase_n"])
+    re, im = sp.expand_complex(coupled_velocity(Ft, Fn, W, contact)).as_real_imag()
+    return re, im

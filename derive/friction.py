@@ -25,7 +25,7 @@ from .model import P
 from .statespace import Quadratic, block_quadratics, jacobian_at_equilibrium_eq_11
 
 __all__ = ["Vr", "VHAT_MODELS", "mu_bar_eq_23", "mu_bar0_eq_25", "mu_bar_slope_eq_25",
-           "mu_bar_slope_derived", "vhat"]
+           "mu_bar_slope_derived", "coupled_velocity", "vhat"]
 
 Vr = sp.Symbol("Vr", real=True)
 VHAT_MODELS = ("tangential", "coupled")
@@ -80,6 +80,24 @@ def _companion(block: sp.Matrix) -> None:
         raise ValueError(f"not a companion block: {block}")
 
 
+def coupled_velocity(force_t, force_n, W, contact: str = "hertz_damp") -> sp.Expr:
+    """Complex amplitude of X1' for forces ``force_t``, ``force_n`` e^(i W t) (sliding, Vr < 0).
+
+    The normal block of Eq. (11) responds to ``force_n``; its force fluctuation drives
+    the tangential block through the friction column of Eq. (11) (``mu_s`` times the
+    normal stiffness and damping), added to ``force_t``.
+    """
+    J0 = jacobian_at_equilibrium_eq_11(contact)
+    _companion(J0[:2, :2])
+    _companion(J0[2:, 2:])
+    tangential, normal = block_quadratics(J0)
+    a_n, b_n = _frequency_response(normal, W)
+    x_n = force_n / (a_n + sp.I * b_n)
+    drive = force_t + J0[1, 2] * x_n + J0[1, 3] * sp.I * W * x_n
+    a_t, b_t = _frequency_response(tangential, W)
+    return sp.I * W * drive / (a_t + sp.I * b_t)
+
+
 def vhat(model: str = "tangential", contact: str = "hertz_damp") -> sp.Expr:
     """Velocity amplitude ``V_hat`` of the linear response (NOTES.md item 1).
 
@@ -98,26 +116,16 @@ def vhat(model: str = "tangential", contact: str = "hertz_damp") -> sp.Expr:
     """
     at, Wt, pt = P["alpha_t"], P["Omega_t"], P["phase_t"]
     an, Wn, pn = P["alpha_n"], P["Omega_n"], P["phase_n"]
-    J0 = jacobian_at_equilibrium_eq_11(contact)
-    _companion(J0[:2, :2])
-    _companion(J0[2:, 2:])
-    tangential, normal = block_quadratics(J0)
     if model == "tangential":
-        a, b = _frequency_response(tangential, Wt)
+        J0 = jacobian_at_equilibrium_eq_11(contact)
+        _companion(J0[:2, :2])
+        a, b = _frequency_response(block_quadratics(J0)[0], Wt)
         return at * Wt**3 / sp.sqrt(a**2 + b**2)
     if model != "coupled":
         raise ValueError(f"model must be one of {VHAT_MODELS}, got {model!r}")
-
-    def tangential_velocity(force_t, force_n, W):
-        a_n, b_n = _frequency_response(normal, W)
-        x_n = force_n / (a_n + sp.I * b_n)
-        drive = force_t + J0[1, 2] * x_n + J0[1, 3] * sp.I * W * x_n
-        a_t, b_t = _frequency_response(tangential, W)
-        return sp.I * W * drive / (a_t + sp.I * b_t)
-
     Ft = at * Wt**2 * sp.exp(sp.I * pt)
     Fn = -an * Wn**2 * sp.exp(sp.I * pn)
-    same = tangential_velocity(Ft, Fn.subs(Wn, Wt), Wt)
-    apart = (sp.Abs(tangential_velocity(Ft, 0, Wt), evaluate=False)
-             + sp.Abs(tangential_velocity(0, Fn, Wn), evaluate=False))
+    same = coupled_velocity(Ft, Fn.subs(Wn, Wt), Wt, contact)
+    apart = (sp.Abs(coupled_velocity(Ft, 0, Wt, contact), evaluate=False)
+             + sp.Abs(coupled_velocity(0, Fn, Wn, contact), evaluate=False))
     return sp.Piecewise((sp.Abs(same, evaluate=False), sp.Eq(Wt, Wn)), (apart, True))

@@ -300,9 +300,10 @@ def correlation() -> Module:
             "N0": "mean normal force per unit mass [m/s^2] (g at the equilibrium)",
             "N1": "amplitude of the fast normal force per unit mass [m/s^2]",
             "theta": "phase of the fast normal force ahead of the fast velocity [rad]"}
-    re, im = {}, {}
+    re, im, vre, vim = {}, {}, {}, {}
     for contact in CONTACT_LAWS:
         re[contact], im[contact] = cr.fast_normal_force(contact)
+        vre[contact], vim[contact] = cr.fast_tangential_velocity(contact)
     functions = (
         Function("averaged_friction", "Average of sgn(u + V sin) (N0 + N1 sin(. + theta)) "
                  "over a fast period.", "Eq. (23) generalised (NOTES.md item 3)", "value",
@@ -324,6 +325,13 @@ def correlation() -> Module:
                  "N1, psi : ndarray\n    N(t) = g + N1 sin(Omega_n t + psi) per unit mass, "
                  "from the\n    linear response of the normal block of Eq. (11).",
                  {(c,): [sp.sqrt(re[c]**2 + im[c]**2), sp.atan2(im[c], re[c])]
+                  for c in CONTACT_LAWS}, CONTACT_OPTION),
+        Function("fast_tangential_velocity", "Amplitude and phase of the fast relative velocity "
+                 "without friction reversal.", "Eqs. (11), (A1) linearised", "tuple",
+                 "V, phi : ndarray\n    X1'(t) - Z1' = V sin(Omega_t t + phi) while Vr < 0 "
+                 "throughout\n    (V is the coupled V_hat). One frequency: Omega_n is taken "
+                 "equal to Omega_t.",
+                 {(c,): [sp.sqrt(vre[c]**2 + vim[c]**2), sp.atan2(vim[c], vre[c])]
                   for c in CONTACT_LAWS}, CONTACT_OPTION),
     )
     return Module("correlation", """Beyond the paper: friction correlated with the fast normal force.

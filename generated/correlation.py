@@ -14,7 +14,7 @@ import numpy
 
 from . import _support
 
-__all__ = ['averaged_friction', 'averaged_friction_slope', 'first_harmonic', 'fast_normal_force']
+__all__ = ['averaged_friction', 'averaged_friction_slope', 'first_harmonic', 'fast_normal_force', 'fast_tangential_velocity']
 
 
 def averaged_friction(u, V, N0, N1, theta, **params):
@@ -278,4 +278,162 @@ def _fast_normal_force__kelvin_voigt(*, beta2, omega2, alpha, Omega, alpha_n=Non
 _FAST_NORMAL_FORCE = {
     ('hertz_damp',): _fast_normal_force__hertz_damp,
     ('kelvin_voigt',): _fast_normal_force__kelvin_voigt,
+}
+
+
+def fast_tangential_velocity(*, contact='hertz_damp', **params):
+    """Amplitude and phase of the fast relative velocity without friction reversal.
+
+    Implements Eqs. (11), (A1) linearised of the paper.
+
+    Parameters
+    ----------
+    beta1 : array_like
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : array_like
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    beta2 : array_like
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : array_like
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    alpha : array_like
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : array_like
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    mu_s : array_like
+        Coulomb friction coefficient, Eq. (3) [1], nonnegative.
+    g : array_like
+        gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
+    alpha_t : array_like
+        tangential excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_t : array_like
+        tangential excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_t : array_like
+        tangential excitation phase (Fig. 15: pi/2) [rad], real, default 0.0.
+    alpha_n : array_like
+        normal excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    phase_n : array_like
+        normal excitation phase [rad], real, default 0.0.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    V, phi : ndarray
+        X1'(t) - Z1' = V sin(Omega_t t + phi) while Vr < 0 throughout
+        (V is the coupled V_hat). One frequency: Omega_n is taken equal to Omega_t.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN or outside its domain (the message names it), or an
+        option value is unknown.
+    TypeError
+        If a keyword is not a model parameter.
+    """
+    return _support.choose("fast_tangential_velocity", _FAST_TANGENTIAL_VELOCITY, contact=contact)(**params)
+
+
+def _fast_tangential_velocity__hertz_damp(*, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, phase_n=0.0, **params):
+    _extra = _support.extras("fast_tangential_velocity", params)
+    alpha_t = alpha if alpha_t is None else alpha_t
+    Omega_t = Omega if Omega_t is None else Omega_t
+    alpha_n = alpha if alpha_n is None else alpha_n
+    beta1 = _support.param("fast_tangential_velocity", "beta1", beta1)
+    omega1 = _support.param("fast_tangential_velocity", "omega1", omega1)
+    beta2 = _support.param("fast_tangential_velocity", "beta2", beta2)
+    omega2 = _support.param("fast_tangential_velocity", "omega2", omega2)
+    alpha = _support.param("fast_tangential_velocity", "alpha", alpha)
+    Omega = _support.param("fast_tangential_velocity", "Omega", Omega)
+    mu_s = _support.param("fast_tangential_velocity", "mu_s", mu_s)
+    g = _support.param("fast_tangential_velocity", "g", g)
+    alpha_t = _support.param("fast_tangential_velocity", "alpha_t", alpha_t)
+    Omega_t = _support.param("fast_tangential_velocity", "Omega_t", Omega_t)
+    phase_t = _support.param("fast_tangential_velocity", "phase_t", phase_t)
+    alpha_n = _support.param("fast_tangential_velocity", "alpha_n", alpha_n)
+    phase_n = _support.param("fast_tangential_velocity", "phase_n", phase_n)
+    _shape = _support.shape_of(beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, phase_n, *_extra)
+    _x0 = Omega_t**2
+    _x1 = beta1*omega1
+    _x2 = 4*_x0
+    _x3 = Omega_t + omega1
+    _x4 = Omega_t - omega1
+    _x5 = (_x2*beta1**2*omega1**2 + _x3**2*_x4**2)**(-1.0)
+    _x6 = _x5*numpy.cos(phase_t)
+    _x7 = Omega_t**3
+    _x8 = 2*_x7
+    _x9 = beta2*g/omega2
+    _x10 = numpy.cos(phase_n)
+    _x11 = g**(1/3)
+    _x12 = omega2**(4/3)
+    _x13 = -_x0 + (3/2)*_x11*_x12
+    _x14 = (_x13**2 + _x2*beta2**2*g**2/omega2**2)**(-1.0)
+    _x15 = 2*Omega_t*_x14*_x9
+    _x16 = numpy.sin(phase_n)
+    _x17 = alpha_n*mu_s
+    _x18 = _x17*(-_x10*_x15 + _x13*_x14*_x16)
+    _x19 = _x18*_x5
+    _x20 = _x10*_x13*_x14 + _x15*_x16
+    _x21 = _x8*_x9
+    _x22 = -3/2*_x0*_x11*_x12*_x18 + _x0*alpha_t*numpy.sin(phase_t) - _x17*_x20*_x21
+    _x23 = _x3*_x4
+    _x24 = -4*Omega_t**4*_x1*_x19*_x9 - _x1*_x6*_x8*alpha_t + 3*_x11*_x12*_x20*_x5*_x7*alpha_n*beta1*mu_s*omega1 - _x22*_x23*_x5
+    _x25 = 2*Omega_t*_x22*_x5*beta1*omega1 + (3/2)*_x0*_x11*_x12*_x20*_x3*_x4*_x5*alpha_n*mu_s - _x0*_x23*_x6*alpha_t - _x19*_x21*_x23
+    return _support.tuple_of(_shape, numpy.sqrt(_x0*_x24**2 + _x0*_x25**2), numpy.arctan2(Omega_t*_x25, -Omega_t*_x24))
+
+
+def _fast_tangential_velocity__kelvin_voigt(*, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, phase_n=0.0, **params):
+    _extra = _support.extras("fast_tangential_velocity", params)
+    alpha_t = alpha if alpha_t is None else alpha_t
+    Omega_t = Omega if Omega_t is None else Omega_t
+    alpha_n = alpha if alpha_n is None else alpha_n
+    beta1 = _support.param("fast_tangential_velocity", "beta1", beta1)
+    omega1 = _support.param("fast_tangential_velocity", "omega1", omega1)
+    beta2 = _support.param("fast_tangential_velocity", "beta2", beta2)
+    omega2 = _support.param("fast_tangential_velocity", "omega2", omega2)
+    alpha = _support.param("fast_tangential_velocity", "alpha", alpha)
+    Omega = _support.param("fast_tangential_velocity", "Omega", Omega)
+    mu_s = _support.param("fast_tangential_velocity", "mu_s", mu_s)
+    alpha_t = _support.param("fast_tangential_velocity", "alpha_t", alpha_t)
+    Omega_t = _support.param("fast_tangential_velocity", "Omega_t", Omega_t)
+    phase_t = _support.param("fast_tangential_velocity", "phase_t", phase_t)
+    alpha_n = _support.param("fast_tangential_velocity", "alpha_n", alpha_n)
+    phase_n = _support.param("fast_tangential_velocity", "phase_n", phase_n)
+    _shape = _support.shape_of(beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t, Omega_t, phase_t, alpha_n, phase_n, *_extra)
+    _x0 = Omega_t**2
+    _x1 = beta1*omega1
+    _x2 = 4*_x0
+    _x3 = Omega_t + omega1
+    _x4 = Omega_t - omega1
+    _x5 = (_x2*beta1**2*omega1**2 + _x3**2*_x4**2)**(-1.0)
+    _x6 = _x5*numpy.cos(phase_t)
+    _x7 = Omega_t**3
+    _x8 = 2*_x7
+    _x9 = omega2**2
+    _x10 = Omega_t + omega2
+    _x11 = Omega_t - omega2
+    _x12 = (_x10**2*_x11**2 + _x2*_x9*beta2**2)**(-1.0)
+    _x13 = _x12*numpy.cos(phase_n)
+    _x14 = beta2*omega2
+    _x15 = 2*Omega_t*_x14
+    _x16 = _x12*numpy.sin(phase_n)
+    _x17 = _x10*_x11
+    _x18 = -_x13*_x15 - _x16*_x17
+    _x19 = alpha_n*mu_s
+    _x20 = _x14*_x19
+    _x21 = _x18*_x20
+    _x22 = -_x13*_x17 + _x15*_x16
+    _x23 = -_x0*_x18*_x19*_x9 + _x0*alpha_t*numpy.sin(phase_t) - _x20*_x22*_x8
+    _x24 = _x3*_x4
+    _x25 = -4*Omega_t**4*_x1*_x21*_x5 - _x1*_x6*_x8*alpha_t + 2*_x22*_x5*_x7*_x9*alpha_n*beta1*mu_s*omega1 - _x23*_x24*_x5
+    _x26 = 2*Omega_t*_x23*_x5*beta1*omega1 + _x0*_x22*_x3*_x4*_x5*_x9*alpha_n*mu_s - _x0*_x24*_x6*alpha_t - _x21*_x24*_x5*_x8
+    return _support.tuple_of(_shape, numpy.sqrt(_x0*_x25**2 + _x0*_x26**2), numpy.arctan2(Omega_t*_x26, -Omega_t*_x25))
+
+
+_FAST_TANGENTIAL_VELOCITY = {
+    ('hertz_damp',): _fast_tangential_velocity__hertz_damp,
+    ('kelvin_voigt',): _fast_tangential_velocity__kelvin_voigt,
 }

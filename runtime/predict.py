@@ -95,11 +95,11 @@ def fast_motion(p, contact="hertz_damp", guess=None) -> FastMotion:
     D = p["omega1"]**2 - W**2 + 2j * p["beta1"] * p["omega1"] * W
     Ft = p["alpha_t"] * W**2 * np.exp(1j * p["phase_t"])
     # Friction of constant direction (Vr < 0 throughout): the linear, coupled response.
-    linear = 1j * W * (Ft + p["mu_s"] * N1 * np.exp(1j * psi)) / D
-    if abs(linear) <= p["Vb"]:
-        return FastMotion(abs(linear), float(np.angle(linear)), N1, psi, False, 0.0)
-    start = (guess.V, guess.phi) if guess is not None and guess.reverses \
-        else (abs(linear), float(np.angle(linear)))
+    V_lin, phi_lin = (float(x) for x in correlation.fast_tangential_velocity(contact=contact,
+                                                                            **p))
+    if V_lin <= p["Vb"]:
+        return FastMotion(V_lin, phi_lin, N1, psi, False, 0.0)
+    start = (guess.V, guess.phi) if guess is not None and guess.reverses else (V_lin, phi_lin)
     sol = optimize.root(_balance, start, args=(p, W, N1, psi, D, Ft), method="hybr",
                         options={"xtol": 1e-13})
     V, phi = sol.x

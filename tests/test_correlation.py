@@ -122,3 +122,18 @@ def test_predict_cli_json(capsys):
     out = json.loads(capsys.readouterr().out)
     assert set(out) == {"paper_tangential_vhat", "paper_coupled_vhat", "consistent_mdsm"}
     assert out["consistent_mdsm"][0][0] > out["paper_coupled_vhat"][0][0]
+
+
+@pytest.mark.parametrize("contact", ["hertz_damp", "kelvin_voigt"])
+def test_fast_tangential_velocity_amplitude_and_phase(rng, contact):
+    """X1' = V sin(Omega t + phi) from (i W I - J0) x = b with both excitations."""
+    from conftest import random_params
+    for _ in range(10):
+        p = {**random_params(rng), "phase_t": rng.uniform(-3, 3), "phase_n": rng.uniform(-3, 3)}
+        J0 = unforced.jacobian_at_equilibrium(contact=contact, **p)
+        W, a = p["Omega"], p["alpha"]
+        b = np.array([0, a * W**2 * np.exp(1j * p["phase_t"]), 0,
+                      -a * W**2 * np.exp(1j * p["phase_n"])])
+        v = 1j * W * np.linalg.solve(1j * W * np.eye(4) - J0, b)[0]
+        V, phi = correlation.fast_tangential_velocity(contact=contact, **p)
+        assert V * np.exp(1j * phi) == pytest.approx(v, rel=1e-11)
