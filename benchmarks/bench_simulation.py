@@ -33,7 +33,7 @@ from scipy.integrate import solve_ivp
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from runtime.model import initial_state, resolve_parameters  # noqa: E402
-from runtime.simulate import PEAK_PRESENT_RATIO, SolverSettings, _omega1_band, simulate  # noqa: E402
+from runtime.simulate import PEAK_PRESENT_RATIO, SolverSettings, omega1_band, simulate  # noqa: E402
 from runtime.spectra import peak_amplitudes  # noqa: E402
 
 FAST = dict(solver="superposition", method="DOP853", rtol=1e-7, atol=1e-7)
@@ -60,7 +60,7 @@ def baseline(Vb, t_end, dt, t_discard):
     y = sol.y
     win = grid >= t_discard
     res = 2 * np.pi / (win.sum() * dt)
-    (_, peak1), (_, peakO) = peak_amplitudes(y[1, win], dt, [_omega1_band(p), (Om - res, Om + res)])
+    (_, peak1), (_, peakO) = peak_amplitudes(y[1, win], dt, [omega1_band(p), (Om - res, Om + res)])
     Fn = np.where(y[2] > 0, (2 * b2 * w2 * y[3] + w2 ** 2) * np.maximum(y[2], 0) ** 1.5, 0.0)
     friction = -mu * np.sign(y[1] - Vb) * Fn
     return {"peak_omega1": peak1, "peak_Omega": peakO, "mean_friction": friction[win].mean(),

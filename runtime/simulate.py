@@ -38,7 +38,7 @@ from .trajectory import Segment, Trajectory
 from . import spectra
 
 __all__ = ["SolverSettings", "Simulation", "simulate", "integrate_events", "classify_regime",
-           "REGIMES", "DEFAULT_T_END"]
+           "omega1_band", "REGIMES", "DEFAULT_T_END", "PEAK_PRESENT_RATIO"]
 
 REGIMES = ("continuous_sliding", "sliding_with_reversals", "stick_slip", "contact_loss")
 DEFAULT_T_END = 1000.0
@@ -228,8 +228,12 @@ def classify_regime(trajectory, t0, t1):
     return "continuous_sliding"
 
 
-def _omega1_band(p):
-    """Band around omega1 that keeps clear of the excitation lines."""
+def omega1_band(p):
+    """Band ``(low, high)`` [rad/s] around omega1 in which the omega1 peak is read.
+
+    Half-width 0.25 omega1, narrowed to keep clear of the excitation lines
+    ``Omega_t`` and ``Omega_n``; ``None`` when an excitation line sits at omega1.
+    """
     w1 = p["omega1"]
     half = 0.25 * w1
     for line in (p["Omega_t"], p["Omega_n"]):
@@ -254,7 +258,7 @@ def summarize(sim):
            "t_end": float(t1), "t_discard": float(t0)}
     resolution = 2 * np.pi / (v.size * s.dt)
     bands, keys = [], []
-    band = _omega1_band(p)
+    band = omega1_band(p)
     if band is not None and band[1] - band[0] >= 2 * resolution:
         bands.append(band)
         keys.append("omega1")
