@@ -164,12 +164,17 @@ def quadratic_growth(half_p, q, disc):
     ``half_p > 0``, so a slowly decaying mode next to a fast one keeps its digits.
     ``half_p = -inf`` (an infinite negative damping) gives ``+inf``.
     """
-    half_p, q, disc = numpy.broadcast_arrays(*(numpy.asarray(a, float)
+    shape = numpy.broadcast_shapes(*(numpy.shape(a) for a in (half_p, q, disc)))
+    half_p, q, disc = numpy.broadcast_arrays(*(numpy.atleast_1d(numpy.asarray(a, float))
                                                for a in (half_p, q, disc)))
+    # In place where possible: on large grids this function is memory-bound.
     root = numpy.sqrt(numpy.abs(disc))
+    out = root - half_p                                  # the root for half_p <= 0
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        near_zero = numpy.where(half_p > 0, q / -(half_p + root), -half_p + root)
-    return numpy.where(disc >= 0, near_zero, -half_p)
+        far = numpy.add(half_p, root, out=root)          # |larger root|, reusing root
+        numpy.divide(q, numpy.negative(far, out=far), out=out, where=half_p > 0)
+    numpy.negative(half_p, out=out, where=disc < 0)      # complex pair: real part
+    return out.reshape(shape)
 
 
 def mp_quadratic_growth(half_p, q, disc):
