@@ -135,7 +135,7 @@ def _params_of(exprs, args):
     return sorted(names, key=_ORDER.__getitem__)
 
 
-def _signature(args, params, extra=""):
+def _signature(args, params):
     parts = [a.name for a in args]
     star = []
     for n in params:
@@ -146,8 +146,6 @@ def _signature(args, params, extra=""):
             star.append(f"{n}={p.base!r}")
         else:
             star.append(n)
-    if extra:
-        star.append(extra)
     return ", ".join(parts + (["*"] + star if star else []) + ["**params"])
 
 

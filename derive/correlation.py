@@ -28,6 +28,9 @@ from functools import lru_cache
 
 import sympy as sp
 
+from .friction import coupled_velocity, normal_response
+from .model import P
+
 __all__ = ["u", "V", "N0", "N1", "theta", "averaged_friction", "averaged_friction_slope",
            "first_harmonic", "fast_normal_force", "fast_tangential_velocity"]
 
@@ -95,15 +98,9 @@ def fast_normal_force(contact: str = "hertz_damp") -> tuple[sp.Expr, sp.Expr]:
     force fluctuation is ``(s + i r Omega_n) x2`` with the block's stiffness ``s`` and
     damping ``r``. ``N(t) = g + Im((Re + i Im) e^(i Omega_n t))``.
     """
-    from .friction import _frequency_response
-    from .model import P
-    from .statespace import block_quadratics, jacobian_at_equilibrium_eq_11
-
-    normal = block_quadratics(jacobian_at_equilibrium_eq_11(contact))[1]
     W = P["Omega_n"]
-    a, b = _frequency_response(normal, W)
     force = -P["alpha_n"] * W**2 * sp.exp(sp.I * P["phase_n"])
-    amplitude = (normal.q + sp.I * normal.p * W) * force / (a + sp.I * b)
+    amplitude = normal_response(force, W, contact)[1]
     re, im = sp.expand_complex(amplitude).as_real_imag()
     return sp.simplify(re), sp.simplify(im)
 
@@ -115,9 +112,6 @@ def fast_tangential_velocity(contact: str = "hertz_damp") -> tuple[sp.Expr, sp.E
     The linear response of Eq. (11) to both excitations (the ``"coupled"`` reading of
     ``V_hat`` with its phase): ``X1' = Im((Re + i Im) e^(i Omega t))``.
     """
-    from .friction import coupled_velocity
-    from .model import P
-
     W = P["Omega_t"]
     Ft = P["alpha_t"] * W**2 * sp.exp(sp.I * P["phase_t"])
     Fn = -P["alpha_n"] * W**2 * sp.exp(sp.I * P["phase_n"])

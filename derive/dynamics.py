@@ -15,7 +15,7 @@ from __future__ import annotations
 import sympy as sp
 
 from .model import (P, X1, X2, Y1, Y2, contact_potential, excitation,
-                    friction_coefficient, normal_force, t)
+                    friction_coefficient, normal_force)
 
 __all__ = ["X2r", "sgn", "in_contact", "accelerations", "rhs", "jacobian",
            "energy", "power_balance"]

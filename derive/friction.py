@@ -25,7 +25,8 @@ from .model import P
 from .statespace import Quadratic, block_quadratics, jacobian_at_equilibrium_eq_11
 
 __all__ = ["Vr", "VHAT_MODELS", "mu_bar_eq_23", "mu_bar0_eq_25", "mu_bar_slope_eq_25",
-           "mu_bar_slope_derived", "coupled_velocity", "vhat"]
+           "mu_bar_slope_derived", "frequency_response", "normal_block", "normal_response", "coupled_velocity",
+           "vhat"]
 
 Vr = sp.Symbol("Vr", real=True)
 VHAT_MODELS = ("tangential", "coupled")
@@ -65,7 +66,7 @@ def mu_bar_slope_eq_25() -> sp.Expr:
     return sp.Piecewise((factored, Vb < Vh), (sp.oo, sp.Eq(Vb, Vh)), (0, True))
 
 
-def _frequency_response(quad: Quadratic, W) -> tuple[sp.Expr, sp.Expr]:
+def frequency_response(quad: Quadratic, W) -> tuple[sp.Expr, sp.Expr]:
     """Real and imaginary part of ``q(iW)`` for a quadratic ``lambda^2 + p lambda + q``.
 
     A companion block ``[[0, 1], [-q, -p]]`` forced in its second row with
@@ -80,6 +81,26 @@ def _companion(block: sp.Matrix) -> None:
         raise ValueError(f"not a companion block: {block}")
 
 
+def normal_block(contact: str = "hertz_damp") -> Quadratic:
+    """The normal quadratic ``lambda^2 + r lambda + s`` of Eq. (11), a companion block."""
+    J0 = jacobian_at_equilibrium_eq_11(contact)
+    _companion(J0[2:, 2:])
+    return block_quadratics(J0)[1]
+
+
+def normal_response(force_n, W, contact: str = "hertz_damp") -> tuple[sp.Expr, sp.Expr]:
+    """Complex amplitudes ``(x2, F)`` of the normal block of Eq. (11) under ``force_n e^(i W t)``.
+
+    ``x2`` is the displacement and ``F = (s + i r W) x2`` the fluctuation of the normal
+    force per unit mass, with the block's stiffness ``s`` and damping ``r``. The normal
+    motion does not depend on the tangential one (Eq. 4 is one-way coupled).
+    """
+    normal = normal_block(contact)
+    a, b = frequency_response(normal, W)
+    x2 = force_n / (a + sp.I * b)
+    return x2, (normal.q + sp.I * normal.p * W) * x2
+
+
 def coupled_velocity(force_t, force_n, W, contact: str = "hertz_damp") -> sp.Expr:
     """Complex amplitude of X1' for forces ``force_t``, ``force_n`` e^(i W t) (sliding, Vr < 0).
 
@@ -89,12 +110,10 @@ def coupled_velocity(force_t, force_n, W, contact: str = "hertz_damp") -> sp.Exp
     """
     J0 = jacobian_at_equilibrium_eq_11(contact)
     _companion(J0[:2, :2])
-    _companion(J0[2:, 2:])
-    tangential, normal = block_quadratics(J0)
-    a_n, b_n = _frequency_response(normal, W)
-    x_n = force_n / (a_n + sp.I * b_n)
+    tangential = block_quadratics(J0)[0]
+    x_n = normal_response(force_n, W, contact)[0]
     drive = force_t + J0[1, 2] * x_n + J0[1, 3] * sp.I * W * x_n
-    a_t, b_t = _frequency_response(tangential, W)
+    a_t, b_t = frequency_response(tangential, W)
     return sp.I * W * drive / (a_t + sp.I * b_t)
 
 
@@ -119,7 +138,7 @@ def vhat(model: str = "tangential", contact: str = "hertz_damp") -> sp.Expr:
     if model == "tangential":
         J0 = jacobian_at_equilibrium_eq_11(contact)
         _companion(J0[:2, :2])
-        a, b = _frequency_response(block_quadratics(J0)[0], Wt)
+        a, b = frequency_response(block_quadratics(J0)[0], Wt)
         return at * Wt**3 / sp.sqrt(a**2 + b**2)
     if model != "coupled":
         raise ValueError(f"model must be one of {VHAT_MODELS}, got {model!r}")

@@ -30,7 +30,10 @@ from functools import lru_cache
 
 import sympy as sp
 
-from .model import P, normal_force
+from .fit import X2max, coefficients_eq_17
+from .friction import frequency_response, normal_block
+from .model import X2, P, equal_excitation, normal_force
+from .statespace import equilibrium_eq_9
 
 __all__ = ["fast_normal_amplitude", "x2max", "dropped_at_equilibrium", "tau", "theta", "Z1", "Z2", "Phi1", "Phi2", "c", "mu", "mu_bar", "avg", "cov",
            "split_eqs_13_14", "polynomial_eq_16", "equations_of_motion_split",
@@ -106,8 +109,7 @@ def _average_monomial(term):
     if not fast:
         return term
     product = sp.Mul(*fast)
-    bases = sp.Mul.make_args(product)
-    powers = [sp.Pow(b, 1).as_base_exp() for b in bases]
+    powers = [f.as_base_exp() for f in sp.Mul.make_args(product)]
     if len(powers) == 1 and powers[0][1] == 1:
         return sp.Integer(0)
     derivs = [b for b, e in powers if isinstance(b, sp.Derivative)]
@@ -230,22 +232,15 @@ def harmonic_averages(expr, A1, A2, phase1=0, phase2=0):
 def fast_normal_amplitude(contact: str = "hertz_damp") -> sp.Expr:
     """Displacement amplitude of the fast normal motion, linearised at Eq. (9).
 
-    The normal block of Eq. (11) forced by ``-alpha_n Omega_n^2 sin``:
-    ``alpha_n Omega_n^2 / |s - Omega_n^2 + i r Omega_n|`` (``r, s`` from the block).
+    The normal block of Eq. (11) forced by ``-alpha_n Omega_n^2 sin``
+    (`derive.friction.normal_block`): ``alpha_n Omega_n^2 / |s - Omega_n^2 + i r Omega_n|``.
     """
-    from .friction import _frequency_response
-    from .statespace import block_quadratics, jacobian_at_equilibrium_eq_11
-
-    normal = block_quadratics(jacobian_at_equilibrium_eq_11(contact))[1]
-    a, b = _frequency_response(normal, P["Omega_n"])
+    a, b = frequency_response(normal_block(contact), P["Omega_n"])
     return P["alpha_n"] * P["Omega_n"]**2 / sp.sqrt(a**2 + b**2)
 
 
 def x2max(contact: str = "hertz_damp") -> sp.Expr:
     """Upper end of the fitted range for the MDSM: ``X2^0`` plus the fast amplitude."""
-    from .statespace import equilibrium_eq_9
-    from .model import X2
-
     return equilibrium_eq_9(contact)[X2] + fast_normal_amplitude(contact)
 
 
@@ -263,9 +258,6 @@ def dropped_at_equilibrium(values: dict) -> list[tuple[str, str, float, float]]:
         The correlation ``cov(mu, N)`` is not included: it needs the fast tangential
         motion as well (see NOTES.md item 3).
     """
-    from .fit import X2max, coefficients_eq_17
-    from .model import equal_excitation
-
     subs = {P[k]: v for k, v in values.items() if k in P}
     subs.update({k: sp.sympify(v).subs(subs) for k, v in equal_excitation().items()})
     amp = fast_normal_amplitude().subs(subs)

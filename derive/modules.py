@@ -80,7 +80,6 @@ Fig. 16). Every function takes the parameters as keywords.
 
 def dynamics() -> Module:
     """Eq. (4) for simulation: right-hand side, Jacobian, normal force, energy."""
-    sd = {"sgn": dyn.sgn}
     state_t = (t,) + dyn.STATE_R
     fns = (
         Function("rhs", "Right-hand side (X1', Y1', X2', Y2') of Eq. (4).",

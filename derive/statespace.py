@@ -13,7 +13,7 @@ from functools import lru_cache
 
 import sympy as sp
 
-from .model import STATE, X1, X2, Y1, Y2, equations_of_motion, lam
+from .model import STATE, Y1, Y2, equations_of_motion, lam
 
 __all__ = [
     "SLIDING", "state_space_eqs_5_8", "equilibrium_eq_9", "jacobian_eq_10",

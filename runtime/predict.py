@@ -146,7 +146,7 @@ def unstable_intervals(params=None, *, contact="hertz_damp", vb=None, **override
     p = resolve_parameters(params, contact=contact, **overrides)
     if vb is None:
         # Above the linear amplitude the friction never reverses and the slope is 0.
-        top = 1.05 * fast_motion({**p, "Vb": np.inf}, contact).V
+        top = 1.05 * float(correlation.fast_tangential_velocity(contact=contact, **p)[0])
         vb = np.linspace(top / 400, top, 400)
     vb = np.asarray(vb, float)
     rows, guess = [], None

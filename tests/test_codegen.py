@@ -1,5 +1,4 @@
 """The code generator: up to date, deterministic, detects hand edits, SymPy-free imports."""
-import hashlib
 import os
 import shutil
 import subprocess

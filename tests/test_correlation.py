@@ -100,7 +100,7 @@ def test_prediction_edges_are_roots_or_the_reversal_onset():
     p = predict.resolve_parameters()
     at = {**p, "Vb": lower}
     assert abs(predict.consistent_mdsm_damping(at)) < 1e-8
-    assert upper == pytest.approx(predict.fast_motion({**p, "Vb": np.inf}).V, rel=1e-12)
+    assert upper == pytest.approx(correlation.fast_tangential_velocity(**p)[0], rel=1e-12)
     inside = table["Vb"][(table["Vb"] > lower) & (table["Vb"] < upper)]
     assert np.all(table["damping"][np.isin(table["Vb"], inside)] < 0)
 
