@@ -20,13 +20,15 @@ Each generated function
 from __future__ import annotations
 
 import difflib
+import re
 import textwrap
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
-from sympy.printing.pycode import MpmathPrinter
+from sympy.printing.precedence import PRECEDENCE
+from sympy.printing.pycode import MpmathPrinter, PythonCodePrinter
 
 from .parameters import PARAMETERS
 from .statespace import Quadratic
@@ -79,6 +81,10 @@ class Function:
     vhat : bool
         The public function resolves ``Vhat`` from ``vhat_model`` (via
         ``generated.friction.vhat``) unless ``Vhat`` is passed.
+    accelerate : bool
+        Also generate a scalar kernel that ``generated._support.compiled`` turns
+        into a numba ufunc, selected by the ``backend=`` keyword (one output:
+        ``returns`` in ``"value"``, ``"growth"``, ``"stable"``).
     """
 
     name: str
@@ -93,6 +99,7 @@ class Function:
     arg_domains: dict = field(default_factory=dict)
     notes: str = ""
     vhat: bool = False
+    accelerate: bool = False
 
 
 @dataclass(frozen=True)
@@ -135,7 +142,7 @@ def _params_of(exprs, args):
     return sorted(names, key=_ORDER.__getitem__)
 
 
-def _signature(args, params):
+def _signature(args, params, backend=False):
     parts = [a.name for a in args]
     star = []
     for n in params:
@@ -146,6 +153,8 @@ def _signature(args, params):
             star.append(f"{n}={p.base!r}")
         else:
             star.append(n)
+    if backend:
+        star.append("backend=None")
     return ", ".join(parts + (["*"] + star if star else []) + ["**params"])
 
 
@@ -158,7 +167,55 @@ def _domain_of(symbol):
     return "nonnegative" if symbol.is_nonnegative else "real"
 
 
-class _NumPy(NumPyPrinter):
+def _is_root(e):
+    """``b**(n/d)`` with ``d >= 3`` and ``b`` proved nonnegative (see `_hoisted_roots`)."""
+    return (e.is_Pow and e.exp.is_Rational and e.exp.q >= 3
+            and e.base.is_nonnegative is True)
+
+
+def _hoisted_roots(flat):
+    """The roots ``b**(1/d)``, ``d >= 3``, that a function computes once, up front.
+
+    Why: numpy's ``power`` costs several times its ``cbrt`` plus a multiply, and
+    ``g**(1/3)``, ``omega2**(4/3)``, ``omega2**(10/3)`` then share one root each; in a
+    numba kernel a scalar ``cbrt`` or ``pow`` costs about 20 ns, so the kernels take
+    the roots as inputs computed by numpy's vectorised functions. Only bases SymPy
+    proves nonnegative qualify (for a negative base ``cbrt`` is not SymPy's
+    principal root). Square roots stay in place: they are cheap everywhere.
+    The expressions are not rewritten (a rebuilt tree would be re-evaluated by
+    SymPy, which can turn ``Abs`` of a complex expression into another form);
+    the printers print each such power through the roots (`_RootPrinting`).
+
+    Returns
+    -------
+    list of (name, base, d), in a canonical order.
+    """
+    found = sorted({(e.base, int(e.exp.q)) for x in flat for e in x.atoms(sp.Pow)
+                    if _is_root(e)}, key=lambda bd: (sp.default_sort_key(bd[0]), bd[1]))
+    return [(f"_root{k}", base, d) for k, (base, d) in enumerate(found)]
+
+
+class _RootPrinting:
+    """Print ``b**(n/d)`` as ``b**(n//d) * _rootk**(n % d)`` (reciprocal for ``n < 0``)."""
+
+    def __init__(self, roots=()):
+        super().__init__()
+        self.roots = {(base, d): name for name, base, d in roots}
+
+    def _print_Pow(self, expr, rational=False):
+        name = self.roots.get((expr.base, int(expr.exp.q))) if _is_root(expr) else None
+        if name is None:
+            return super()._print_Pow(expr, rational=rational)
+        n, d = abs(int(expr.exp.p)), int(expr.exp.q)
+        whole, part = divmod(n, d)
+        base = self.parenthesize(expr.base, PRECEDENCE["Pow"], strict=False)
+        factors = ([base if whole == 1 else f"{base}**{whole}"] if whole else []) \
+            + [name if part == 1 else f"{name}**{part}"]
+        product = "*".join(factors) if len(factors) == 1 else f"({'*'.join(factors)})"
+        return product if expr.exp > 0 else f"(1/{product})"
+
+
+class _NumPy(_RootPrinting, NumPyPrinter):
     def _print_Heaviside(self, expr):
         # The derivative of max(X2, 0): 0 out of contact, 1 in contact.
         return f"numpy.heaviside({self._print(expr.args[0])}, 0.0)"
@@ -169,10 +226,28 @@ class _Mpmath(MpmathPrinter):
         return f"(1 if ({self._print(expr.args[0])}) > 0 else 0)"
 
 
-def _body(fn, outputs, mp):
+class _Scalar(_RootPrinting, PythonCodePrinter):
+    """Scalar ``math`` code for the numba kernels (Piecewise as conditional expressions)."""
+
+    def _print_Heaviside(self, expr):
+        return f"(1.0 if ({self._print(expr.args[0])}) > 0 else 0.0)"
+
+
+def _root_line(name, base, d, printer):
+    arg = printer.doprint(base)
+    value = f"numpy.cbrt({arg})" if d == 3 else f"numpy.power({arg}, 1/{d})"
+    return f"{name} = {value}"
+
+
+def _kernel_name(private):
+    return f"{private}__kernel"
+
+
+def _body(fn, outputs, mp, name):
     """Source lines of one implementation (indented, without the def line)."""
-    printer = _Mpmath() if mp else _NumPy()
     flat, shape = _flat(fn.returns, outputs)
+    roots = [] if mp else _hoisted_roots(flat)
+    printer = _Mpmath() if mp else _NumPy(roots)
     params = _params_of(flat, fn.args)
     check = "_support.mp_param" if mp else "_support.param"
     lines = [f'_support.mp_extras("{fn.name}", params)' if mp
@@ -187,11 +262,20 @@ def _body(fn, outputs, mp):
         lines.append(f'{a.name} = {check}("{fn.name}", "{a.name}", {a.name}, "{domain}"{why_s})')
     for n in params:
         lines.append(f'{n} = {check}("{fn.name}", "{n}", {n})')
+    body = []
     if not mp:
         inputs = ", ".join([a.name for a in fn.args] + params + ["*_extra"])
         lines.append(f"_shape = _support.shape_of({inputs})")
+        body += [_root_line(name, base, d, printer) for name, base, d in roots]
+        if fn.accelerate:
+            kernel_args = ", ".join([a.name for a in fn.args] + params
+                                    + [name for name, _, _ in roots])
+            body += [f'_kernel = _support.compiled({_kernel_name(name)}, '
+                     f'"{_KERNEL_RESULT[fn.returns]}", backend)',
+                     "if _kernel is not None:",
+                     f"    return _support.full(_shape, _kernel({kernel_args}))"]
     repl, reduced = sp.cse(flat, symbols=sp.numbered_symbols("_x"), order="canonical")
-    body = [f"{sym} = {printer.doprint(e)}" for sym, e in repl]
+    body += [f"{sym} = {printer.doprint(e)}" for sym, e in repl]
     inputs = {a.name for a in fn.args} | set(params)
     # An output that is an input unchanged is copied: the caller's array must not
     # come back as (an alias of) a result.
@@ -199,10 +283,57 @@ def _body(fn, outputs, mp):
            else printer.doprint(e) for e in reduced]
     body += _assemble(fn.returns, out, shape, mp)
     if not mp and any(e.has(sp.Piecewise) for e in flat):
-        # numpy evaluates every branch of a select: silence the unused ones.
+        # numpy evaluates every branch of a select (and a compiled kernel may
+        # evaluate both sides of a branch): silence the unused ones.
         return lines + ['with numpy.errstate(divide="ignore", invalid="ignore"):'] \
             + ["    " + b.replace("\n", "\n    ") for b in body]
     return lines + body
+
+
+_KERNEL_RESULT = {"value": "float64", "growth": "float64", "stable": "boolean"}
+
+
+def _kernel(fn, outputs, name):
+    """Source of the scalar kernel of one implementation (``fn.accelerate``).
+
+    The same expressions as the numpy implementation (roots hoisted, the same
+    common subexpressions) in ``math`` code, one point per call: numba's
+    ``vectorize`` makes a ufunc of it that evaluates each point in one pass
+    instead of one array pass per operation.
+    """
+    if fn.returns not in _KERNEL_RESULT:
+        raise ValueError(f"{fn.name}: no scalar kernel for returns={fn.returns!r}")
+    flat, shape = _flat(fn.returns, outputs)
+    params = _params_of(flat, fn.args)
+    roots = _hoisted_roots(flat)
+    printer = _Scalar(roots)
+    args = [a.name for a in fn.args] + params + [name for name, _, _ in roots]
+    repl, reduced = sp.cse(flat, symbols=sp.numbered_symbols("_x"), order="canonical")
+    body = [f"{sym} = {printer.doprint(e)}" for sym, e in repl]
+    out = [printer.doprint(e) for e in reduced]
+    if fn.returns == "value":
+        body.append(f"return {out[0]}")
+    elif fn.returns == "stable":
+        body.append("return " + " and ".join(f"({o} > 0)" for o in out))
+    else:
+        # The scalar form of `_support.quadratic_growth`, per quadratic factor.
+        for k in range(shape):
+            h, q, d = out[3 * k:3 * k + 3]
+            body += [f"_h{k}, _q{k}, _d{k} = {h}, {q}, {d}",
+                     f"_s{k} = math.sqrt(abs(_d{k}))",
+                     f"_g{k} = -_h{k} if _d{k} < 0 else "
+                     f"(_q{k} / -(_h{k} + _s{k}) if _h{k} > 0 else _s{k} - _h{k})"]
+        # Like numpy.maximum, a NaN wins.
+        best = "_g0"
+        for k in range(1, shape):
+            body.append(f"_best = {best} if ({best} >= _g{k} or {best} != {best}) else _g{k}")
+            best = "_best"
+        body.append(f"return {best}")
+    doc = (f'    """Scalar kernel of `{name}` for numba (``_support.compiled``).\n\n'
+           f"    Extra arguments: {', '.join(f'{name} = {base}**(1/{d})' for name, base, d in roots) or 'none'}.\n"
+           '    """')
+    return "\n".join([f"def {_kernel_name(name)}({', '.join(args)}):", doc]
+                      + ["    " + b for b in body])
 
 
 def _assemble(returns, out, shape, mp):
@@ -270,6 +401,12 @@ def _docstring(fn, mp):
         doc += ['vhat_model : {"tangential", "coupled"}, optional',
                 "    How ``Vhat`` is computed (``generated.friction.vhat``) when it is not",
                 '    passed; default "tangential". Passing both is an error.']
+    if fn.accelerate and not mp:
+        doc += ['backend : {"numpy", "numba"}, optional',
+                "    numpy array operations, or a numba ufunc compiled from the same",
+                "    expressions (one pass over the points; compiled on first use and",
+                "    cached on disk). Default: numba if it is installed (the ``fast``",
+                "    extra), else numpy. Both give the same results to rounding."]
     doc += ["**params", "    Any other model parameter (accepted and ignored); an unknown",
             "    name raises TypeError.", "", "Returns", "-------"]
     doc += fn.returns_doc.strip("\n").split("\n")
@@ -283,28 +420,34 @@ def _docstring(fn, mp):
 
 def _function(fn, mp):
     """Source of one public function and its variant implementations."""
+    accelerate = fn.accelerate and not mp
+
     def impl(name, outputs, doc):
         exprs = _flat(fn.returns, outputs)[0]
-        sig = _signature(fn.args, _params_of(exprs, fn.args))
+        sig = _signature(fn.args, _params_of(exprs, fn.args), accelerate)
         head = [f"def {name}({sig}):"] + ([doc] if doc else [])
-        return "\n".join(head + ["    " + line.replace("\n", "\n    ")
-                                 for line in _body(fn, outputs, mp)])
+        source = "\n".join(head + ["    " + line.replace("\n", "\n    ")
+                                   for line in _body(fn, outputs, mp, name)])
+        return [source] + ([_kernel(fn, outputs, name)] if accelerate else [])
 
     if not fn.options:
-        return [impl(fn.name, fn.variants[()], _docstring(fn, mp))]
+        return impl(fn.name, fn.variants[()], _docstring(fn, mp))
     chunks = []
     table = []
     for key, outputs in fn.variants.items():
         private = f"_{fn.name}__{'__'.join(map(str, key))}"
-        chunks.append(impl(private, outputs, None))
+        chunks += impl(private, outputs, None)
         table.append(f"    {key!r}: {private},")
     opts = ", ".join(f"{n}={d!r}" for n, _, d, _ in fn.options)
     if fn.vhat:
         opts += ", vhat_model=None"
+    if accelerate:
+        opts += ", backend=None"
     pos = ", ".join(a.name for a in fn.args)
     sig = ", ".join(([pos] if pos else []) + ["*", opts, "**params"])
     choose = ", ".join(f"{n}={n}" for n, *_ in fn.options)
-    call = ", ".join(([pos] if pos else []) + ["**params"])
+    call = ", ".join(([pos] if pos else []) + (["backend=backend"] if accelerate else [])
+                     + ["**params"])
     tname = f"_{fn.name.upper()}"
     resolve = [f'    params = _support.resolve_vhat("{fn.name}", params, vhat_model, '
                '_friction.vhat, contact)'] if fn.vhat else []
@@ -318,8 +461,8 @@ def render(module: Module, mp: bool = False) -> str:
     """Source text of one generated module (numpy, or mpmath with ``mp=True``)."""
     chunks = [c for fn in module.functions for c in _function(fn, mp)]
     code = "\n\n\n".join(chunks)
-    imports = [name for name in ("functools", "mpmath", "numpy")
-               if f"{name}." in code]
+    imports = [name for name in ("functools", "math", "mpmath", "numpy")
+               if re.search(rf"(?<![\w.]){name}\.", code)]
     names = ", ".join(repr(fn.name) for fn in module.functions)
     variant = ("mpmath variant (same names, arbitrary precision) of "
                f"``generated.{module.name}``.\n\n" if mp else "")

@@ -264,9 +264,16 @@ def stability() -> Module:
         Function("growth_rate", "Largest real part of the eigenvalues of J_f^0.",
                  "Eq. (26)", "growth",
                  "sigma : ndarray\n    +inf at Vb = Vhat exactly in the paper convention "
-                 "(infinite slope).", each(quads), **common),
+                 "(infinite slope).", each(quads), **common, accelerate=True),
         Function("is_stable", "Routh-Hurwitz verdict: all of H1..H4 positive.",
-                 "Eq. (28)", "stable", "stable : bool ndarray", hurwitz, **common),
+                 "Eq. (28)", "stable", "stable : bool ndarray",
+                 each(lambda cv, c: [st.with_friction(e) for e in
+                                     st.stability_conditions(cv, c)]), **common,
+                 notes="With the quartic = (l^2 + p l + q)(l^2 + r l + s) and q, s > 0 "
+                       "(proved by SymPy on the parameter domains), all of H1..H4 > 0 "
+                       "holds exactly when p > 0 and r > 0 "
+                       "(derive.stability.stability_conditions): two sign tests, no "
+                       "determinant, root or power.", accelerate=True),
         Function("critical_belt_speed", "Lower edge of the unstable belt speeds, closed form.",
                  "Eqs. (25), (28): root of p(Vb) = 0", "value",
                  "Vb_c : ndarray\n    paper: sqrt((Vhat - m)(Vhat + m)), m = mu_s g / (pi beta1 "

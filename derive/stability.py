@@ -23,6 +23,14 @@ Eq. (28) factor exactly:
 
 so with ``q, r, s > 0`` the steady sliding is stable exactly when ``p > 0``, and the
 stability boundary is ``p = 0``: the critical belt speed in closed form.
+
+`stability_conditions` turns this into the verdict the generated ``is_stable``
+evaluates: ``q`` and ``s`` are proved positive on the parameter domain, and then all
+four ``H_k > 0`` holds exactly when ``p > 0`` and ``r > 0``. The proof is by roots:
+the quartic's roots are those of the two quadratics, and a real quadratic
+``lambda^2 + p lambda + q`` with ``q > 0`` has its roots in the left half-plane
+exactly when ``p > 0`` (their product ``q`` is positive and their sum is ``-p``).
+Two sign tests replace four determinants, and no root or power is needed for them.
 """
 from __future__ import annotations
 
@@ -38,7 +46,8 @@ from .statespace import Quadratic, block_quadratics, charpoly_eq_12
 __all__ = ["CONVENTIONS", "Z1", "S1", "Z2", "S2", "SLOW", "mu_bar", "mu0", "mu1",
            "slow_state_space_A3_A6", "slow_equilibrium_A7", "forced_jacobian_eq_22",
            "Factored", "factored", "coefficients_A8", "hurwitz_eq_28", "hurwitz_determinants",
-           "hurwitz_factored", "critical_belt_speed", "with_friction"]
+           "hurwitz_factored", "stability_conditions", "critical_belt_speed",
+           "with_friction"]
 
 CONVENTIONS = ("paper", "consistent")
 Z1, S1, S2 = sp.symbols("Z1 S1 S2", real=True)
@@ -133,6 +142,25 @@ def hurwitz_factored(p, q, r, s) -> list[sp.Expr]:
     """Eq. (28) in the factored form of the module docstring (proved by the tests)."""
     H3 = p * r * ((q - s)**2 + (p + r) * (p * s + q * r))
     return [p + r, p * (q + r * (p + r)) + r * s, H3, q * s * H3]
+
+
+@lru_cache(maxsize=None)
+def stability_conditions(convention: str = "paper", contact: str = "hertz_damp") -> tuple:
+    """``(p, r)``: ``is_stable`` is ``p > 0 and r > 0``, equivalent to Eq. (28)'s ``H_k > 0``.
+
+    Raises
+    ------
+    AssertionError
+        If SymPy cannot prove ``q > 0`` and ``s > 0`` from the parameter domains
+        (after a change of the model): the reduction would then not hold and the
+        full Hurwitz test must be used.
+    """
+    p, q, r, s = factored(convention, contact).pqrs
+    for name, value in (("q", q), ("s", s)):
+        if value.is_positive is not True:
+            raise AssertionError(f"{name} = {value} is not provably positive: "
+                                 "the Hurwitz test does not reduce to p > 0, r > 0")
+    return p, r
 
 
 @lru_cache(maxsize=None)

@@ -480,9 +480,11 @@ def _x2max_mdsm__hertz_damp(*, beta2, omega2, alpha, Omega, g, alpha_n=None, Ome
     alpha_n = _support.param("x2max_mdsm", "alpha_n", alpha_n)
     Omega_n = _support.param("x2max_mdsm", "Omega_n", Omega_n)
     _shape = _support.shape_of(beta2, omega2, alpha, Omega, g, alpha_n, Omega_n, *_extra)
-    _x0 = omega2**(4/3)
+    _root0 = numpy.cbrt(g)
+    _root1 = numpy.cbrt(omega2)
+    _x0 = (omega2*_root1)
     _x1 = Omega_n**2
-    return _support.full(_shape, _x1*alpha_n/numpy.sqrt(4*_x1*beta2**2*g**2/omega2**2 + (1/4)*(-3*_x0*g**(1/3) + 2*_x1)**2) + g**(2/3)/_x0)
+    return _support.full(_shape, _x1*alpha_n/numpy.sqrt(4*_x1*beta2**2*g**2/omega2**2 + (1/4)*(-3*_x0*_root0 + 2*_x1)**2) + _root0**2/_x0)
 
 
 def _x2max_mdsm__kelvin_voigt(*, beta2, omega2, alpha, Omega, g, alpha_n=None, Omega_n=None, **params):

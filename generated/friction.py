@@ -247,6 +247,8 @@ def _vhat__coupled__hertz_damp(*, beta1, omega1, beta2, omega2, alpha, Omega, mu
     phase_n = _support.param("vhat", "phase_n", phase_n)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
         _x0 = 1j*Omega_t
         _x1 = 2*_x0
         _x2 = beta1*omega1
@@ -255,7 +257,7 @@ def _vhat__coupled__hertz_damp(*, beta1, omega1, beta2, omega2, alpha, Omega, mu
         _x5 = Omega_t**2
         _x6 = numpy.exp(1j*phase_t)
         _x7 = beta2*g/omega2
-        _x8 = g**(1/3)*omega2**(4/3)
+        _x8 = _root0*(omega2*_root1)
         _x9 = -3*_x8
         _x10 = alpha_n*mu_s*numpy.exp(1j*phase_n)
         _x11 = _x10/(_x1*_x7 - _x5 - 1/2*_x9)

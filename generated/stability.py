@@ -10,6 +10,7 @@ determinants and the critical belt speed are closed forms. A stability map
 needs only ``is_stable`` (a sign), not eigenvalues.
 """
 
+import math
 import numpy
 
 from . import _support
@@ -77,7 +78,9 @@ def _equilibrium__paper__hertz_damp(*, omega1, omega2, mu_s, g, Vb, Vhat, **para
     Vhat = _support.param("equilibrium", "Vhat", Vhat)
     _shape = _support.shape_of(omega1, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        return _support.tuple_of(_shape, g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_s*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_s*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, g**(2/3)/omega2**(4/3), 0)
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        return _support.tuple_of(_shape, g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_s*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_s*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, _root0**2/(omega2*_root1), 0)
 
 
 def _equilibrium__paper__kelvin_voigt(*, omega1, omega2, mu_s, g, Vb, Vhat, **params):
@@ -103,7 +106,9 @@ def _equilibrium__consistent__hertz_damp(*, omega1, omega2, mu_s, g, Vb, Vhat, *
     Vhat = _support.param("equilibrium", "Vhat", Vhat)
     _shape = _support.shape_of(omega1, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        return _support.tuple_of(_shape, -g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_s*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_s*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, g**(2/3)/omega2**(4/3), 0)
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        return _support.tuple_of(_shape, -g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_s*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_s*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, _root0**2/(omega2*_root1), 0)
 
 
 def _equilibrium__consistent__kelvin_voigt(*, omega1, omega2, mu_s, g, Vb, Vhat, **params):
@@ -189,9 +194,11 @@ def _jacobian__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, V
     Vhat = _support.param("jacobian", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
         _x0 = 2/numpy.pi
         _x1 = numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_s*(-_x0*numpy.arccos(-Vb/Vhat) + 1),-mu_s*numpy.sign(Vb)], default=numpy.nan)
-        _x2 = (3/2)*g**(1/3)*omega2**(4/3)
+        _x2 = (3/2)*_root0*(omega2*_root1)
         _x3 = 2*beta2*g/omega2
         return _support.matrix(_shape, [
                 [0, 1, 0, 0],
@@ -237,9 +244,11 @@ def _jacobian__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, 
     Vhat = _support.param("jacobian", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
         _x0 = 2/numpy.pi
         _x1 = numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_s*(-_x0*numpy.arccos(-Vb/Vhat) + 1),-mu_s*numpy.sign(Vb)], default=numpy.nan)
-        _x2 = (3/2)*g**(1/3)*omega2**(4/3)
+        _x2 = (3/2)*_root0*(omega2*_root1)
         _x3 = 2*beta2*g/omega2
         return _support.matrix(_shape, [
                 [0, 1, 0, 0],
@@ -345,17 +354,19 @@ def _coefficients__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, V
     Vhat = _support.param("coefficients", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
         _x0 = beta1*omega1
         _x1 = omega2**(-1.0)
         _x2 = 2*_x1*beta2
         _x3 = _x2*g
         _x4 = numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x5 = omega1**2
-        _x6 = g**(1/3)
-        _x7 = omega2**(4/3)
+        _x6 = _root0
+        _x7 = (omega2*_root1)
         _x8 = (3/2)*_x7
         _x9 = _x6*_x8
-        return _support.tuple_of(_shape, 2*_x0 + _x3 - _x4*g, 4*_x0*_x1*beta2*g - _x2*_x4*g**2 + _x5 + _x9, 3*_x0*_x6*_x7 + _x3*_x5 - _x4*_x8*g**(4/3), _x5*_x9)
+        return _support.tuple_of(_shape, 2*_x0 + _x3 - _x4*g, 4*_x0*_x1*beta2*g - _x2*_x4*g**2 + _x5 + _x9, 3*_x0*_x6*_x7 + _x3*_x5 - _x4*_x8*(g*_root0), _x5*_x9)
 
 
 def _coefficients__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
@@ -392,17 +403,19 @@ def _coefficients__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s,
     Vhat = _support.param("coefficients", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
         _x0 = beta1*omega1
         _x1 = omega2**(-1.0)
         _x2 = 2*_x1*beta2
         _x3 = _x2*g
         _x4 = numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x5 = omega1**2
-        _x6 = g**(1/3)
-        _x7 = omega2**(4/3)
+        _x6 = _root0
+        _x7 = (omega2*_root1)
         _x8 = (3/2)*_x7
         _x9 = _x6*_x8
-        return _support.tuple_of(_shape, 2*_x0 + _x3 + _x4*g, 4*_x0*_x1*beta2*g + _x2*_x4*g**2 + _x5 + _x9, 3*_x0*_x6*_x7 + _x3*_x5 + _x4*_x8*g**(4/3), _x5*_x9)
+        return _support.tuple_of(_shape, 2*_x0 + _x3 + _x4*g, 4*_x0*_x1*beta2*g + _x2*_x4*g**2 + _x5 + _x9, 3*_x0*_x6*_x7 + _x3*_x5 + _x4*_x8*(g*_root0), _x5*_x9)
 
 
 def _coefficients__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
@@ -504,12 +517,14 @@ def _hurwitz__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vh
     Vhat = _support.param("hurwitz", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
         _x0 = 2*beta2*g/omega2
         _x1 = 2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x2 = _x0 + _x1
-        _x3 = 3*beta2*g**(4/3)*omega2**(1/3)
+        _x3 = 3*beta2*(g*_root0)*_root1
         _x4 = omega1**2
-        _x5 = (3/2)*g**(1/3)*omega2**(4/3)
+        _x5 = (3/2)*_root0*(omega2*_root1)
         _x6 = _x1*(_x2*(_x0*_x4 + _x1*_x5) + (_x4 - _x5)**2)
         return _support.tuple_of(_shape, _x2, _x1*(_x0*_x2 + _x4) + _x3, _x0*_x6, _x3*_x4*_x6)
 
@@ -549,12 +564,14 @@ def _hurwitz__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, V
     Vhat = _support.param("hurwitz", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
         _x0 = 2*beta2*g/omega2
         _x1 = 2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x2 = _x0 + _x1
-        _x3 = 3*beta2*g**(4/3)*omega2**(1/3)
+        _x3 = 3*beta2*(g*_root0)*_root1
         _x4 = omega1**2
-        _x5 = (3/2)*g**(1/3)*omega2**(4/3)
+        _x5 = (3/2)*_root0*(omega2*_root1)
         _x6 = _x1*(_x2*(_x0*_x4 + _x1*_x5) + (_x4 - _x5)**2)
         return _support.tuple_of(_shape, _x2, _x1*(_x0*_x2 + _x4) + _x3, _x0*_x6, _x3*_x4*_x6)
 
@@ -653,11 +670,13 @@ def _eigenvalues__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb
     Vhat = _support.param("eigenvalues", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
-        _x2 = g**(1/3)
+        _x2 = _root0
         _r0 = _support.quadratic_roots(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1)))
-        _r1 = _support.quadratic_roots(beta2*g/omega2, (3/2)*_x2*omega2**(4/3), (1/2)*(-3*_x2*omega2**(10/3) + 2*beta2**2*g**2)/omega2**2)
+        _r1 = _support.quadratic_roots(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2)
         return _support.vector(_shape, [*_r0, *_r1])
 
 
@@ -693,11 +712,13 @@ def _eigenvalues__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
     Vhat = _support.param("eigenvalues", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
-        _x2 = g**(1/3)
+        _x2 = _root0
         _r0 = _support.quadratic_roots((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1)))
-        _r1 = _support.quadratic_roots(beta2*g/omega2, (3/2)*_x2*omega2**(4/3), (1/2)*(-3*_x2*omega2**(10/3) + 2*beta2**2*g**2)/omega2**2)
+        _r1 = _support.quadratic_roots(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2)
         return _support.vector(_shape, [*_r0, *_r1])
 
 
@@ -729,7 +750,7 @@ _EIGENVALUES = {
 }
 
 
-def growth_rate(*, convention='paper', contact='hertz_damp', vhat_model=None, **params):
+def growth_rate(*, convention='paper', contact='hertz_damp', vhat_model=None, backend=None, **params):
     """Largest real part of the eigenvalues of J_f^0.
 
     Implements Eq. (26) of the paper.
@@ -759,6 +780,11 @@ def growth_rate(*, convention='paper', contact='hertz_damp', vhat_model=None, **
     vhat_model : {"tangential", "coupled"}, optional
         How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
+    backend : {"numpy", "numba"}, optional
+        numpy array operations, or a numba ufunc compiled from the same
+        expressions (one pass over the points; compiled on first use and
+        cached on disk). Default: numba if it is installed (the ``fast``
+        extra), else numpy. Both give the same results to rounding.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -777,10 +803,10 @@ def growth_rate(*, convention='paper', contact='hertz_damp', vhat_model=None, **
         If a keyword is not a model parameter.
     """
     params = _support.resolve_vhat("growth_rate", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("growth_rate", _GROWTH_RATE, convention=convention, contact=contact)(**params)
+    return _support.choose("growth_rate", _GROWTH_RATE, convention=convention, contact=contact)(backend=backend, **params)
 
 
-def _growth_rate__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
+def _growth_rate__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
     _extra = _support.extras("growth_rate", params)
     beta1 = _support.param("growth_rate", "beta1", beta1)
     omega1 = _support.param("growth_rate", "omega1", omega1)
@@ -792,13 +818,36 @@ def _growth_rate__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb
     Vhat = _support.param("growth_rate", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        _kernel = _support.compiled(_growth_rate__paper__hertz_damp__kernel, "float64", backend)
+        if _kernel is not None:
+            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1))
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
-        _x2 = g**(1/3)
-        return _support.full(_shape, numpy.maximum(_support.quadratic_growth(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.quadratic_growth(beta2*g/omega2, (3/2)*_x2*omega2**(4/3), (1/2)*(-3*_x2*omega2**(10/3) + 2*beta2**2*g**2)/omega2**2)))
+        _x2 = _root0
+        return _support.full(_shape, numpy.maximum(_support.quadratic_growth(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.quadratic_growth(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2)))
 
 
-def _growth_rate__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
+def _growth_rate__paper__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
+    """Scalar kernel of `_growth_rate__paper__hertz_damp` for numba (``_support.compiled``).
+
+    Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
+    """
+    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0))
+    _x1 = 2*omega1
+    _x2 = _root0
+    _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
+    _s0 = math.sqrt(abs(_d0))
+    _g0 = -_h0 if _d0 < 0 else (_q0 / -(_h0 + _s0) if _h0 > 0 else _s0 - _h0)
+    _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+    _s1 = math.sqrt(abs(_d1))
+    _g1 = -_h1 if _d1 < 0 else (_q1 / -(_h1 + _s1) if _h1 > 0 else _s1 - _h1)
+    _best = _g0 if (_g0 >= _g1 or _g0 != _g0) else _g1
+    return _best
+
+
+def _growth_rate__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
     _extra = _support.extras("growth_rate", params)
     beta1 = _support.param("growth_rate", "beta1", beta1)
     omega1 = _support.param("growth_rate", "omega1", omega1)
@@ -810,13 +859,34 @@ def _growth_rate__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, 
     Vhat = _support.param("growth_rate", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _kernel = _support.compiled(_growth_rate__paper__kelvin_voigt__kernel, "float64", backend)
+        if _kernel is not None:
+            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = omega2**2
         return _support.full(_shape, numpy.maximum(_support.quadratic_growth(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1))))
 
 
-def _growth_rate__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
+def _growth_rate__paper__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """Scalar kernel of `_growth_rate__paper__kelvin_voigt` for numba (``_support.compiled``).
+
+    Extra arguments: none.
+    """
+    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0))
+    _x1 = 2*omega1
+    _x2 = omega2**2
+    _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
+    _s0 = math.sqrt(abs(_d0))
+    _g0 = -_h0 if _d0 < 0 else (_q0 / -(_h0 + _s0) if _h0 > 0 else _s0 - _h0)
+    _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
+    _s1 = math.sqrt(abs(_d1))
+    _g1 = -_h1 if _d1 < 0 else (_q1 / -(_h1 + _s1) if _h1 > 0 else _s1 - _h1)
+    _best = _g0 if (_g0 >= _g1 or _g0 != _g0) else _g1
+    return _best
+
+
+def _growth_rate__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
     _extra = _support.extras("growth_rate", params)
     beta1 = _support.param("growth_rate", "beta1", beta1)
     omega1 = _support.param("growth_rate", "omega1", omega1)
@@ -828,13 +898,36 @@ def _growth_rate__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
     Vhat = _support.param("growth_rate", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        _kernel = _support.compiled(_growth_rate__consistent__hertz_damp__kernel, "float64", backend)
+        if _kernel is not None:
+            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1))
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
-        _x2 = g**(1/3)
-        return _support.full(_shape, numpy.maximum(_support.quadratic_growth((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.quadratic_growth(beta2*g/omega2, (3/2)*_x2*omega2**(4/3), (1/2)*(-3*_x2*omega2**(10/3) + 2*beta2**2*g**2)/omega2**2)))
+        _x2 = _root0
+        return _support.full(_shape, numpy.maximum(_support.quadratic_growth((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.quadratic_growth(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2)))
 
 
-def _growth_rate__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
+def _growth_rate__consistent__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
+    """Scalar kernel of `_growth_rate__consistent__hertz_damp` for numba (``_support.compiled``).
+
+    Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
+    """
+    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0))
+    _x1 = 2*omega1
+    _x2 = _root0
+    _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
+    _s0 = math.sqrt(abs(_d0))
+    _g0 = -_h0 if _d0 < 0 else (_q0 / -(_h0 + _s0) if _h0 > 0 else _s0 - _h0)
+    _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+    _s1 = math.sqrt(abs(_d1))
+    _g1 = -_h1 if _d1 < 0 else (_q1 / -(_h1 + _s1) if _h1 > 0 else _s1 - _h1)
+    _best = _g0 if (_g0 >= _g1 or _g0 != _g0) else _g1
+    return _best
+
+
+def _growth_rate__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
     _extra = _support.extras("growth_rate", params)
     beta1 = _support.param("growth_rate", "beta1", beta1)
     omega1 = _support.param("growth_rate", "omega1", omega1)
@@ -846,10 +939,31 @@ def _growth_rate__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s
     Vhat = _support.param("growth_rate", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
+        _kernel = _support.compiled(_growth_rate__consistent__kelvin_voigt__kernel, "float64", backend)
+        if _kernel is not None:
+            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = omega2**2
         return _support.full(_shape, numpy.maximum(_support.quadratic_growth((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1))))
+
+
+def _growth_rate__consistent__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """Scalar kernel of `_growth_rate__consistent__kelvin_voigt` for numba (``_support.compiled``).
+
+    Extra arguments: none.
+    """
+    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0))
+    _x1 = 2*omega1
+    _x2 = omega2**2
+    _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
+    _s0 = math.sqrt(abs(_d0))
+    _g0 = -_h0 if _d0 < 0 else (_q0 / -(_h0 + _s0) if _h0 > 0 else _s0 - _h0)
+    _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
+    _s1 = math.sqrt(abs(_d1))
+    _g1 = -_h1 if _d1 < 0 else (_q1 / -(_h1 + _s1) if _h1 > 0 else _s1 - _h1)
+    _best = _g0 if (_g0 >= _g1 or _g0 != _g0) else _g1
+    return _best
 
 
 _GROWTH_RATE = {
@@ -860,10 +974,15 @@ _GROWTH_RATE = {
 }
 
 
-def is_stable(*, convention='paper', contact='hertz_damp', vhat_model=None, **params):
+def is_stable(*, convention='paper', contact='hertz_damp', vhat_model=None, backend=None, **params):
     """Routh-Hurwitz verdict: all of H1..H4 positive.
 
     Implements Eq. (28) of the paper.
+
+    With the quartic = (l^2 + p l + q)(l^2 + r l + s) and q, s > 0 (proved by SymPy on
+    the parameter domains), all of H1..H4 > 0 holds exactly when p > 0 and r > 0
+    (derive.stability.stability_conditions): two sign tests, no determinant, root or
+    power.
 
     Parameters
     ----------
@@ -890,6 +1009,11 @@ def is_stable(*, convention='paper', contact='hertz_damp', vhat_model=None, **pa
     vhat_model : {"tangential", "coupled"}, optional
         How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
+    backend : {"numpy", "numba"}, optional
+        numpy array operations, or a numba ufunc compiled from the same
+        expressions (one pass over the points; compiled on first use and
+        cached on disk). Default: numba if it is installed (the ``fast``
+        extra), else numpy. Both give the same results to rounding.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -907,10 +1031,10 @@ def is_stable(*, convention='paper', contact='hertz_damp', vhat_model=None, **pa
         If a keyword is not a model parameter.
     """
     params = _support.resolve_vhat("is_stable", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("is_stable", _IS_STABLE, convention=convention, contact=contact)(**params)
+    return _support.choose("is_stable", _IS_STABLE, convention=convention, contact=contact)(backend=backend, **params)
 
 
-def _is_stable__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
+def _is_stable__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
     _extra = _support.extras("is_stable", params)
     beta1 = _support.param("is_stable", "beta1", beta1)
     omega1 = _support.param("is_stable", "omega1", omega1)
@@ -922,17 +1046,21 @@ def _is_stable__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, 
     Vhat = _support.param("is_stable", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = 2*beta2*g/omega2
-        _x1 = 2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
-        _x2 = _x0 + _x1
-        _x3 = 3*beta2*g**(4/3)*omega2**(1/3)
-        _x4 = omega1**2
-        _x5 = (3/2)*g**(1/3)*omega2**(4/3)
-        _x6 = _x1*(_x2*(_x0*_x4 + _x1*_x5) + (_x4 - _x5)**2)
-        return _support.full(_shape, (_x2 > 0) & (_x1*(_x0*_x2 + _x4) + _x3 > 0) & (_x0*_x6 > 0) & (_x3*_x4*_x6 > 0))
+        _kernel = _support.compiled(_is_stable__paper__hertz_damp__kernel, "boolean", backend)
+        if _kernel is not None:
+            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+        return _support.full(_shape, (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0))
 
 
-def _is_stable__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
+def _is_stable__paper__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """Scalar kernel of `_is_stable__paper__hertz_damp` for numba (``_support.compiled``).
+
+    Extra arguments: none.
+    """
+    return (2*beta1*omega1 - g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*g/omega2 > 0)
+
+
+def _is_stable__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
     _extra = _support.extras("is_stable", params)
     beta1 = _support.param("is_stable", "beta1", beta1)
     omega1 = _support.param("is_stable", "omega1", omega1)
@@ -944,18 +1072,21 @@ def _is_stable__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb
     Vhat = _support.param("is_stable", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = 2*beta2
-        _x1 = _x0*omega2
-        _x2 = 2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
-        _x3 = _x1 + _x2
-        _x4 = _x0*omega2**3
-        _x5 = omega1**2
-        _x6 = omega2**2
-        _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
-        return _support.full(_shape, (_x3 > 0) & (_x2*(_x1*_x3 + _x5) + _x4 > 0) & (_x1*_x7 > 0) & (_x4*_x5*_x7 > 0))
+        _kernel = _support.compiled(_is_stable__paper__kelvin_voigt__kernel, "boolean", backend)
+        if _kernel is not None:
+            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+        return _support.full(_shape, (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0))
 
 
-def _is_stable__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
+def _is_stable__paper__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """Scalar kernel of `_is_stable__paper__kelvin_voigt` for numba (``_support.compiled``).
+
+    Extra arguments: none.
+    """
+    return (2*beta1*omega1 - g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*omega2 > 0)
+
+
+def _is_stable__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
     _extra = _support.extras("is_stable", params)
     beta1 = _support.param("is_stable", "beta1", beta1)
     omega1 = _support.param("is_stable", "omega1", omega1)
@@ -967,17 +1098,21 @@ def _is_stable__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g,
     Vhat = _support.param("is_stable", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = 2*beta2*g/omega2
-        _x1 = 2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
-        _x2 = _x0 + _x1
-        _x3 = 3*beta2*g**(4/3)*omega2**(1/3)
-        _x4 = omega1**2
-        _x5 = (3/2)*g**(1/3)*omega2**(4/3)
-        _x6 = _x1*(_x2*(_x0*_x4 + _x1*_x5) + (_x4 - _x5)**2)
-        return _support.full(_shape, (_x2 > 0) & (_x1*(_x0*_x2 + _x4) + _x3 > 0) & (_x0*_x6 > 0) & (_x3*_x4*_x6 > 0))
+        _kernel = _support.compiled(_is_stable__consistent__hertz_damp__kernel, "boolean", backend)
+        if _kernel is not None:
+            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+        return _support.full(_shape, (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0))
 
 
-def _is_stable__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
+def _is_stable__consistent__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """Scalar kernel of `_is_stable__consistent__hertz_damp` for numba (``_support.compiled``).
+
+    Extra arguments: none.
+    """
+    return (2*beta1*omega1 + g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*g/omega2 > 0)
+
+
+def _is_stable__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
     _extra = _support.extras("is_stable", params)
     beta1 = _support.param("is_stable", "beta1", beta1)
     omega1 = _support.param("is_stable", "omega1", omega1)
@@ -989,15 +1124,18 @@ def _is_stable__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, 
     Vhat = _support.param("is_stable", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = 2*beta2
-        _x1 = _x0*omega2
-        _x2 = 2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
-        _x3 = _x1 + _x2
-        _x4 = _x0*omega2**3
-        _x5 = omega1**2
-        _x6 = omega2**2
-        _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
-        return _support.full(_shape, (_x3 > 0) & (_x2*(_x1*_x3 + _x5) + _x4 > 0) & (_x1*_x7 > 0) & (_x4*_x5*_x7 > 0))
+        _kernel = _support.compiled(_is_stable__consistent__kelvin_voigt__kernel, "boolean", backend)
+        if _kernel is not None:
+            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+        return _support.full(_shape, (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0))
+
+
+def _is_stable__consistent__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """Scalar kernel of `_is_stable__consistent__kelvin_voigt` for numba (``_support.compiled``).
+
+    Extra arguments: none.
+    """
+    return (2*beta1*omega1 + g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*omega2 > 0)
 
 
 _IS_STABLE = {

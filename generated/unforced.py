@@ -57,7 +57,9 @@ def _equilibrium__hertz_damp(*, omega1, omega2, mu_s, g, **params):
     mu_s = _support.param("equilibrium", "mu_s", mu_s)
     g = _support.param("equilibrium", "g", g)
     _shape = _support.shape_of(omega1, omega2, mu_s, g, *_extra)
-    return _support.tuple_of(_shape, g*mu_s/omega1**2, 0, g**(2/3)/omega2**(4/3), 0)
+    _root0 = numpy.cbrt(g)
+    _root1 = numpy.cbrt(omega2)
+    return _support.tuple_of(_shape, g*mu_s/omega1**2, 0, _root0**2/(omega2*_root1), 0)
 
 
 def _equilibrium__kelvin_voigt(*, omega1, omega2, mu_s, g, **params):
@@ -223,7 +225,9 @@ def _jacobian_at_equilibrium__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
     mu_s = _support.param("jacobian_at_equilibrium", "mu_s", mu_s)
     g = _support.param("jacobian_at_equilibrium", "g", g)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, *_extra)
-    _x0 = (3/2)*g**(1/3)*omega2**(4/3)
+    _root0 = numpy.cbrt(g)
+    _root1 = numpy.cbrt(omega2)
+    _x0 = (3/2)*_root0*(omega2*_root1)
     _x1 = 2*beta2*g/omega2
     return _support.matrix(_shape, [
             [0, 1, 0, 0],
@@ -306,11 +310,13 @@ def _charpoly__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
     omega2 = _support.param("charpoly", "omega2", omega2)
     g = _support.param("charpoly", "g", g)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, g, *_extra)
+    _root0 = numpy.cbrt(g)
+    _root1 = numpy.cbrt(omega2)
     _x0 = beta1*omega1
     _x1 = beta2*g/omega2
     _x2 = 2*_x1
     _x3 = omega1**2
-    _x4 = g**(1/3)*omega2**(4/3)
+    _x4 = _root0*(omega2*_root1)
     _x5 = (3/2)*_x4
     return _support.tuple_of(_shape, 2*_x0 + _x2, 4*_x0*_x1 + _x3 + _x5, 3*_x0*_x4 + _x2*_x3, _x3*_x5)
 
@@ -389,10 +395,12 @@ def _eigenvalues__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
     omega2 = _support.param("eigenvalues", "omega2", omega2)
     g = _support.param("eigenvalues", "g", g)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, g, *_extra)
+    _root0 = numpy.cbrt(g)
+    _root1 = numpy.cbrt(omega2)
     _x0 = omega1**2
-    _x1 = g**(1/3)
+    _x1 = _root0
     _r0 = _support.quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
-    _r1 = _support.quadratic_roots(beta2*g/omega2, (3/2)*_x1*omega2**(4/3), (1/2)*(-3*_x1*omega2**(10/3) + 2*beta2**2*g**2)/omega2**2)
+    _r1 = _support.quadratic_roots(beta2*g/omega2, (3/2)*_x1*(omega2*_root1), (1/2)*(-3*_x1*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2)
     return _support.vector(_shape, [*_r0, *_r1])
 
 

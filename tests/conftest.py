@@ -40,3 +40,11 @@ def rel_err(approx, exact):
         scale = max(abs(y), mpmath.mpf(1e-300))
         worst = max(worst, float(abs(mpmath.mpc(x) - y) / scale))
     return worst
+
+
+@pytest.fixture(params=["numpy", "numba"])
+def backend(request):
+    """Both paths of the accelerated functions (``backend=``); numba's where installed."""
+    if request.param == "numba":
+        pytest.importorskip("numba")
+    return request.param

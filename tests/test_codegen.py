@@ -1,11 +1,18 @@
 """The code generator: up to date, deterministic, detects hand edits, SymPy-free imports."""
+import math
 import os
+import re
 import shutil
 import subprocess
 import sys
 from pathlib import Path
 
+import mpmath
+import numpy as np
 import pytest
+import sympy as sp
+
+from derive import codegen
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -62,3 +69,35 @@ def test_importing_generated_code_does_not_import_sympy(module):
     code = f"import sys, {module}; print('sympy' in sys.modules)"
     assert _run(["-c", code]).stdout.strip() == "False"
 
+
+
+@pytest.mark.parametrize("module", ["generated.stability", "generated.mp.stability"])
+def test_importing_generated_code_does_not_import_numba(module):
+    """numba is loaded on the first accelerated call, not at import (it takes a while)."""
+    code = f"import sys, {module}; print('numba' in sys.modules)"
+    assert _run(["-c", code]).stdout.strip() == "False"
+
+
+@pytest.mark.parametrize("exponent", ["1/3", "2/3", "4/3", "10/3", "14/3", "-1/3", "-4/3",
+                                      "-2/3", "1/6", "7/4"])
+@pytest.mark.parametrize("printer", ["_NumPy", "_Scalar"])
+def test_fractional_powers_print_through_hoisted_roots(exponent, printer):
+    """b**(n/d) (d >= 3) prints as powers of one root per base, with the value of the power."""
+    g, w = sp.symbols("g omega2", positive=True)
+    x = sp.Symbol("x", real=True)
+    e = sp.Rational(exponent)
+    expr = 3 * g**e * w**(2 * e) / (1 + w**e) + x**e
+    roots = codegen._hoisted_roots([expr])
+    expected = {(g, e.q), (w, e.q), (w, (2 * e).q)} if e.q >= 3 else set()
+    assert {(b, d) for _, b, d in roots} == {bd for bd in expected if bd[1] >= 3}
+    assert all(b != x for _, b, _ in roots)                   # x is not provably >= 0
+    text = getattr(codegen, printer)(roots).doprint(expr)
+    left = re.findall(r"(\w+)\*\*\(-?\d+/(\d+)\)", text)     # powers printed as such
+    assert all(base == "x" or int(d) == 2 for base, d in left), text
+    values = {"g": 9.81, "omega2": 1.7, "x": 0.3}
+    namespace = {**values, "numpy": np, "math": math}
+    namespace.update({name: float(mpmath.mpf(values[str(b)]) ** (mpmath.mpf(1) / d))
+                      for name, b, d in roots})
+    exact = sp.N(expr.subs({g: sp.Float("9.81", 30), w: sp.Float("1.7", 30),
+                            x: sp.Float("0.3", 30)}), 30)
+    assert float(eval(text, namespace)) == pytest.approx(float(exact), rel=4e-15)

@@ -3,6 +3,7 @@ import pytest
 import sympy as sp
 
 from derive import dynamics as dyn
+from derive import stability as st
 from derive import statespace as ss
 from derive.model import CONTACT_LAWS, P, STATE, X2, equal_excitation, equations_of_motion, t
 
@@ -62,3 +63,40 @@ def test_power_balance_is_the_time_derivative_of_energy(contact):
         value = x if branch == (dyn.X2r > 0) else -x
         residual = (dEdt - (p_in - p_visc - p_fric)).subs(dyn.X2r, value)
         assert sp.simplify(residual) == 0
+
+
+def test_hurwitz_factored_is_the_hurwitz_determinants():
+    p, q, r, s, lam = sp.symbols("p q r s lambda")
+    quartic = sp.Poly(sp.expand((lam**2 + p * lam + q) * (lam**2 + r * lam + s)), lam)
+    minors = st.hurwitz_determinants(*quartic.all_coeffs()[1:])
+    for factored, minor in zip(st.hurwitz_factored(p, q, r, s), minors):
+        assert sp.expand(factored - minor) == 0
+
+
+def test_reduced_verdict_is_the_hurwitz_test():
+    """With q, s > 0: every H_k > 0 exactly when p > 0 and r > 0.
+
+    If p, r > 0 each factored H_k is a sum of products of positive terms (SymPy proves
+    it); the converse (a root argument, see derive.stability) is checked in exact
+    arithmetic on a grid of signs
+    and magnitudes."""
+    pos = sp.symbols("p q r s", positive=True)
+    assert all(h.is_positive for h in st.hurwitz_factored(*pos))
+    values = [sp.Rational(v) for v in ("-3", "-1", "-1/7", "0", "1/5", "1", "4")]
+    positive = [sp.Rational(v) for v in ("1/9", "1", "3", "25")]
+    for p in values:
+        for r in values:
+            for q in positive:
+                for s in positive:
+                    H = st.hurwitz_factored(p, q, r, s)
+                    assert all(h > 0 for h in H) == (p > 0 and r > 0)
+
+
+@pytest.mark.parametrize("convention", st.CONVENTIONS)
+@pytest.mark.parametrize("contact", CONTACT_LAWS)
+def test_stability_conditions_are_p_and_r_with_q_and_s_positive(convention, contact):
+    p, q, r, s = st.factored(convention, contact).pqrs
+    assert q.is_positive and s.is_positive
+    assert st.stability_conditions(convention, contact) == (p, r)
+    assert p == 2 * P["beta1"] * P["omega1"] + (1 if convention == "consistent" else -1) \
+        * P["g"] * st.mu1

@@ -8,10 +8,12 @@ import numpy as np
 import pytest
 
 from generated import friction, stability, unforced
+from generated.parameters import BASE
 from generated.mp import stability as mp_stability
 from conftest import random_params, rel_err
 
 CONVENTIONS = ("paper", "consistent")
+BASE_ARRAY = {k: v for k, v in BASE.items() if k != "Vb"}
 
 
 # Closed forms typed by hand from the paper -------------------------------------------
@@ -149,23 +151,32 @@ def mp_eigenvalues(p, convention):
 
 
 @pytest.mark.parametrize("convention", CONVENTIONS)
-def test_eigenvalues_and_growth_rate_against_mpmath(rng, mp50, convention):
+def test_eigenvalues_and_growth_rate_against_mpmath(rng, mp50, convention, backend):
     for _ in range(15):
         p = forced_params(rng)
         lam = stability.eigenvalues(convention=convention, **p)
         exact = mp_eigenvalues(p, convention)
         assert rel_err(sorted(lam, key=lambda z: (z.real, z.imag)), exact) < 1e-11
         top = max(z.real for z in exact)
-        assert abs(stability.growth_rate(convention=convention, **p) - float(top)) \
-            <= 1e-12 * max(abs(z) for z in exact)
+        assert abs(stability.growth_rate(convention=convention, backend=backend, **p)
+                   - float(top)) <= 1e-12 * max(abs(z) for z in exact)
 
 
 @pytest.mark.parametrize("convention", CONVENTIONS)
-def test_is_stable_against_mpmath_hurwitz_signs(rng, mp50, convention):
+@pytest.mark.parametrize("contact", ["hertz_damp", "kelvin_voigt"])
+def test_is_stable_against_mpmath_hurwitz_signs(rng, mp50, convention, contact, backend):
+    """The verdict p > 0 and r > 0 against the signs of all four Hurwitz determinants."""
+    seen = set()
     for _ in range(40):
         p = forced_params(rng)
-        H = mp_stability.hurwitz(convention=convention, **p)
-        assert bool(stability.is_stable(convention=convention, **p)) == all(h > 0 for h in H)
+        if rng.uniform() < 0.2:
+            p["beta2"] = 0.0                      # r = 0: marginal normal mode, not stable
+        H = mp_stability.hurwitz(convention=convention, contact=contact, **p)
+        verdict = bool(stability.is_stable(convention=convention, contact=contact,
+                                           backend=backend, **p))
+        assert verdict == all(h > 0 for h in H)
+        seen.add(verdict)
+    assert seen == {True, False}
 
 
 def test_consistent_convention_is_never_unstable(rng):
@@ -174,13 +185,13 @@ def test_consistent_convention_is_never_unstable(rng):
         assert stability.is_stable(convention="consistent", **p)
 
 
-def test_paper_base_set_is_unstable_below_vhat_only(base):
+def test_paper_base_set_is_unstable_below_vhat_only(base, backend):
     """Fig. 5a: positive growth rate below the bifurcation near Vb = 8 (tangential Vhat)."""
     Vhat = friction.vhat(**base)
     Vb = np.linspace(0.25, 16, 64)
-    stable = stability.is_stable(**{**base, "Vb": Vb})
+    stable = stability.is_stable(**{**base, "Vb": Vb}, backend=backend)
     np.testing.assert_array_equal(stable, Vb > Vhat)
-    sigma = stability.growth_rate(**{**base, "Vb": Vb})
+    sigma = stability.growth_rate(**{**base, "Vb": Vb}, backend=backend)
     np.testing.assert_array_equal(sigma > 0, ~stable)
 
 
@@ -229,7 +240,7 @@ def test_higher_beta1_narrows_the_unstable_range(base):
 STIFF = {"omega1": 100.0, "beta1": 1e-3, "beta2": 5.0, "omega2": 1.0, "Vhat": 20.0}
 
 
-def test_verdict_next_to_the_boundary_where_expanded_h3_loses_its_sign(base, mp50):
+def test_verdict_next_to_the_boundary_where_expanded_h3_loses_its_sign(base, mp50, backend):
     """Relative distance 1e-6 ... 1e-14 from the boundary: the factored verdict is right
     everywhere; the expanded H3 = a1 a2 a3 - a3^2 - a4 a1^2 of Eq. (28) gets the sign wrong."""
     p = {**base, **STIFF}
@@ -239,14 +250,15 @@ def test_verdict_next_to_the_boundary_where_expanded_h3_loses_its_sign(base, mp5
         for side in (-1, 1):
             q = {**p, "Vb": Vc * (1 + side * d)}
             exact = mp_stability.hurwitz(**q)[2]                    # 50 digits, same input
-            assert bool(stability.is_stable(**q)) == (exact > 0)
+            assert bool(stability.is_stable(**q, backend=backend)) == (exact > 0)
+            assert np.sign(stability.growth_rate(**q, backend=backend)) == -mpmath.sign(exact)
             assert np.sign(stability.hurwitz(**q)[2]) == mpmath.sign(exact)
             a1, a2, a3, a4 = stability.coefficients(**q)
             expanded_wrong += np.sign(a1 * a2 * a3 - a3**2 - a4 * a1**2) != mpmath.sign(exact)
     assert expanded_wrong >= 1
 
 
-def test_verdict_next_to_the_boundary_on_random_sets(rng, mp50):
+def test_verdict_next_to_the_boundary_on_random_sets(rng, mp50, backend):
     checked = 0
     for _ in range(80):
         p = forced_params(rng)
@@ -257,42 +269,48 @@ def test_verdict_next_to_the_boundary_on_random_sets(rng, mp50):
             for side in (-1, 1):
                 q = {**p, "Vb": Vc * (1 + side * d)}
                 exact = mp_stability.hurwitz(**q)
-                assert bool(stability.is_stable(**q)) == all(h > 0 for h in exact)
+                assert bool(stability.is_stable(**q, backend=backend)) == all(h > 0 for h in exact)
                 checked += 1
     assert checked >= 30
 
 
 @pytest.mark.parametrize("beta1", [1 - 1e-10, 1.0, 1 + 1e-10, 1 + 1e-7])
-def test_double_root_eigenvalues_to_1e12(base, mp50, beta1):
+def test_double_root_eigenvalues_to_1e12(base, mp50, beta1, backend):
     """A critically damped tangential mode (slope zero for Vb > Vhat, and the unforced J0)."""
-    p = {**base, "beta1": beta1, "Vb": 12.0}
+    p = {**base, "beta1": beta1, "Vb": 12.0, "omega2": 4.0, "beta2": 1.0}
     exact = mp_eigenvalues(p, "paper")
     got = sorted(stability.eigenvalues(**p), key=lambda z: (z.real, z.imag))
     assert rel_err(got, exact) < 1e-12
+    top = max(z.real for z in exact)
+    assert abs(top + beta1 * p["omega1"]) < 1e-3 * p["omega1"]   # the tangential mode leads
+    assert rel_err([stability.growth_rate(**p, backend=backend)], [top]) < 1e-12
     got0 = sorted(unforced.eigenvalues(**p), key=lambda z: (z.real, z.imag))
     assert rel_err(got0, exact) < 1e-12
 
 
-def test_vb_to_vhat_from_below_at_and_beyond(base, mp50):
+def test_vb_to_vhat_from_below_at_and_beyond(base, mp50, backend):
     Vhat = 8.0
     p = {**base, "Vhat": Vhat}
     for k in range(1, 16):
         q = {**p, "Vb": Vhat * (1 - 10.0**-k)}
-        sigma = stability.growth_rate(**q)
+        sigma = stability.growth_rate(**q, backend=backend)
         exact = max(z.real for z in mp_eigenvalues(q, "paper"))
         assert np.isfinite(sigma) and sigma == pytest.approx(float(exact), rel=1e-11)
-        assert not stability.is_stable(**q)
+        assert not stability.is_stable(**q, backend=backend)
     at = {**p, "Vb": Vhat}
-    assert stability.growth_rate(**at) == np.inf and not stability.is_stable(**at)
+    assert stability.growth_rate(**at, backend=backend) == np.inf
+    assert not stability.is_stable(**at, backend=backend)
+    # Infinite damping: the slow tangential root -q/p is -0.0, the limit from below.
+    assert stability.growth_rate(**at, convention="consistent", backend=backend) == 0.0
     assert not np.any(np.isnan(stability.hurwitz(**at)))
-    assert stability.is_stable(**at, convention="consistent")
+    assert stability.is_stable(**at, convention="consistent", backend=backend)
     assert not np.any(np.isnan(stability.eigenvalues(**at, convention="consistent")))
     beyond = {**p, "Vb": np.nextafter(Vhat, 20)}
     np.testing.assert_array_equal(stability.eigenvalues(**beyond), unforced.eigenvalues(**beyond))
-    assert stability.is_stable(**beyond)
+    assert stability.is_stable(**beyond, backend=backend)
 
 
-def test_extreme_parameter_scales(mp50):
+def test_extreme_parameter_scales(mp50, backend):
     """Parameters log-uniform in [1e-6, 1e6]: finite results matching mpmath."""
     rng = np.random.default_rng(7)
     names = ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g")
@@ -305,7 +323,12 @@ def test_extreme_parameter_scales(mp50):
             assert np.all(np.isfinite(lam))
             assert rel_err(lam, mp_stability.eigenvalues(convention=conv, **p)) < 1e-9
             H = mp_stability.hurwitz(convention=conv, **p)
-            assert bool(stability.is_stable(convention=conv, **p)) == all(h > 0 for h in H)
+            assert bool(stability.is_stable(convention=conv, backend=backend, **p)) \
+                == all(h > 0 for h in H)
+            sigma = stability.growth_rate(convention=conv, backend=backend, **p)
+            exact = mp_stability.eigenvalues(convention=conv, **p)
+            assert abs(sigma - float(max(z.real for z in exact))) \
+                <= 1e-12 * float(max(abs(z) for z in exact))
         assert np.isfinite(friction.vhat(**p)) and friction.vhat(**p) > 0
         assert friction.vhat(**p) == pytest.approx(float(
             mpmath.mpf(p["alpha"]) * mpmath.mpf(p["Omega"])**3 / abs(
@@ -345,20 +368,64 @@ def test_vhat_model_and_explicit_vhat(base):
         stability.is_stable(**base, vhat_model="linear")
 
 
-def test_grids_broadcast_for_a_stability_map(base):
+def test_grids_broadcast_for_a_stability_map(base, backend):
     """Fig. 6a in a few lines: a (beta1, Vb) map."""
     Vb = np.linspace(0.1, 12, 50)[None, :]
     beta1 = np.linspace(0.01, 0.6, 30)[:, None]
-    stable = stability.is_stable(**{**base, "Vb": Vb, "beta1": beta1})
+    stable = stability.is_stable(**{**base, "Vb": Vb, "beta1": beta1}, backend=backend)
     assert stable.shape == (30, 50) and stable.dtype == bool
     assert stable.any() and not stable.all()
+    alpha = np.array([0.5, 1.0, 2.0])[:, None, None]          # used by Vhat only: broadcasts
+    sigma = stability.growth_rate(**{**base, "Vb": Vb, "beta1": beta1, "alpha": alpha},
+                                  backend=backend)
+    assert sigma.shape == (3, 30, 50) and sigma.dtype == float
+    assert np.isscalar(stability.growth_rate(**base, backend=backend))
 
 
 @pytest.mark.parametrize("bad,name", [({"Vb": -1.0}, "'Vb'"), ({"Vhat": 0.0}, "'Vhat'"),
                                       ({"beta2": -0.1}, "'beta2'"), ({"Vb": np.nan}, "'Vb'")])
-def test_bad_input_raises_naming_the_parameter(base, bad, name):
+def test_bad_input_raises_naming_the_parameter(base, bad, name, backend):
     with pytest.raises(ValueError, match=name):
-        stability.is_stable(**{**base, **bad})
+        stability.is_stable(**{**base, **bad}, backend=backend)
+    with pytest.raises(ValueError, match=name):
+        stability.growth_rate(**{**base, **bad}, backend=backend)
+
+
+# Backends ----------------------------------------------------------------------------
+
+@pytest.mark.parametrize("convention", CONVENTIONS)
+@pytest.mark.parametrize("contact", ["hertz_damp", "kelvin_voigt"])
+def test_numba_kernels_match_the_numpy_path(convention, contact):
+    """Same expressions, one pass per point: equal verdicts, growth rates to rounding."""
+    pytest.importorskip("numba")
+    rng = np.random.default_rng(3)
+    n = 20000
+    p = {k: BASE_ARRAY[k] * np.exp(rng.uniform(-np.log(3), np.log(3), n)) for k in BASE_ARRAY}
+    p["Vhat"] = friction.vhat(**p)
+    p["Vb"] = p["Vhat"] * rng.uniform(0, 1.4, n)
+    p["Vb"][:50] = p["Vhat"][:50]                               # Vb = Vhat exactly
+    opts = dict(convention=convention, contact=contact)
+    stable = {b: stability.is_stable(**opts, backend=b, **p) for b in ("numpy", "numba")}
+    np.testing.assert_array_equal(stable["numba"], stable["numpy"])
+    assert stable["numpy"].any() and (convention == "consistent" or not stable["numpy"].all())
+    sigma = {b: stability.growth_rate(**opts, backend=b, **p) for b in ("numpy", "numba")}
+    scale = np.abs(stability.eigenvalues(**opts, **p)).max(axis=-1)
+    finite = np.isfinite(sigma["numpy"])
+    np.testing.assert_array_equal(sigma["numba"][~finite], sigma["numpy"][~finite])
+    diff = np.abs(sigma["numba"][finite] - sigma["numpy"][finite]) / scale[finite]
+    assert diff.max() <= 4 * np.finfo(float).eps              # a few ulps of the spectrum
+
+
+def test_backend_choice(base, monkeypatch):
+    from generated import _support
+    with pytest.raises(ValueError, match="backend"):
+        stability.growth_rate(**base, backend="cuda")
+    monkeypatch.setattr(_support, "_numba", False)              # as if numba were missing
+    with pytest.raises(ImportError, match="numba"):
+        stability.is_stable(**base, backend="numba")
+    assert stability.is_stable(**base) == stability.is_stable(**base, backend="numpy")
+    assert _support.compiled(stability._is_stable__paper__hertz_damp__kernel, "boolean",
+                             None) is None
 
 
 def test_unknown_convention_raises(base):

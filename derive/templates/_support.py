@@ -199,6 +199,60 @@ def resolve_vhat(function, params, vhat_model, vhat, contact):
     return {**params, "Vhat": vhat(model=model, contact=contact, **params)}
 
 
+_BACKENDS = ("numpy", "numba")
+_COMPILED = {}
+_numba = None
+
+
+def _import_numba(required):
+    global _numba
+    if _numba is None:
+        try:
+            import numba
+        except ImportError:
+            numba = False
+        _numba = numba
+    if _numba is False and required:
+        raise ImportError("backend='numba' needs numba: pip install 'beltmdsm[fast]' "
+                          "(or pip install numba)")
+    return _numba or None
+
+
+def compiled(kernel, result, backend):
+    """The scalar ``kernel`` as a numba ufunc, or ``None`` for the numpy path.
+
+    Parameters
+    ----------
+    kernel : function
+        A generated scalar kernel (plain Python on ``math``), float64 arguments.
+    result : {"float64", "boolean"}
+        Its result type.
+    backend : {"numpy", "numba", None}
+        ``None`` picks numba when it can be imported.
+
+    The ufunc is compiled on first use and cached on disk by numba
+    (``cache=True``), then kept here for the session.
+
+    Raises
+    ------
+    ValueError
+        For an unknown backend.
+    ImportError
+        For ``backend="numba"`` without numba installed.
+    """
+    if backend is not None and backend not in _BACKENDS:
+        raise ValueError(f"backend must be one of {', '.join(map(repr, _BACKENDS))} "
+                         f"or None; got {backend!r}")
+    if backend == "numpy" or _import_numba(backend == "numba") is None:
+        return None
+    ufunc = _COMPILED.get(kernel)
+    if ufunc is None:
+        signature = f"{result}({', '.join(['float64'] * kernel.__code__.co_argcount)})"
+        ufunc = _numba.vectorize([signature], cache=True)(kernel)
+        _COMPILED[kernel] = ufunc
+    return ufunc
+
+
 def choose(function, table, **options):
     """The implementation in ``table`` (keyed by tuples of option values) for ``options``.
 
@@ -217,4 +271,4 @@ def choose(function, table, **options):
 
 __all__ = ["extras", "mp_extras", "param", "mp_param", "shape_of", "full", "tuple_of",
            "matrix", "vector", "quadratic_roots", "mp_quadratic_roots", "quadratic_growth",
-           "mp_quadratic_growth", "resolve_vhat", "choose"]
+           "mp_quadratic_growth", "compiled", "resolve_vhat", "choose"]

@@ -831,6 +831,11 @@ def is_stable(*, convention='paper', contact='hertz_damp', vhat_model=None, **pa
 
     Implements Eq. (28) of the paper.
 
+    With the quartic = (l^2 + p l + q)(l^2 + r l + s) and q, s > 0 (proved by SymPy on
+    the parameter domains), all of H1..H4 > 0 holds exactly when p > 0 and r > 0
+    (derive.stability.stability_conditions): two sign tests, no determinant, root or
+    power.
+
     mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits.
 
     Parameters
@@ -888,14 +893,7 @@ def _is_stable__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, 
     g = _support.mp_param("is_stable", "g", g)
     Vb = _support.mp_param("is_stable", "Vb", Vb)
     Vhat = _support.mp_param("is_stable", "Vhat", Vhat)
-    _x0 = 2*beta2*g/omega2
-    _x1 = 2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
-    _x2 = _x0 + _x1
-    _x3 = 3*beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
-    _x4 = omega1**2
-    _x5 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
-    _x6 = _x1*(_x2*(_x0*_x4 + _x1*_x5) + (_x4 - _x5)**2)
-    return bool((_x2 > 0) and (_x1*(_x0*_x2 + _x4) + _x3 > 0) and (_x0*_x6 > 0) and (_x3*_x4*_x6 > 0))
+    return bool((2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*g/omega2 > 0))
 
 
 def _is_stable__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
@@ -908,15 +906,7 @@ def _is_stable__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb
     g = _support.mp_param("is_stable", "g", g)
     Vb = _support.mp_param("is_stable", "Vb", Vb)
     Vhat = _support.mp_param("is_stable", "Vhat", Vhat)
-    _x0 = 2*beta2
-    _x1 = _x0*omega2
-    _x2 = 2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
-    _x3 = _x1 + _x2
-    _x4 = _x0*omega2**3
-    _x5 = omega1**2
-    _x6 = omega2**2
-    _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
-    return bool((_x3 > 0) and (_x2*(_x1*_x3 + _x5) + _x4 > 0) and (_x1*_x7 > 0) and (_x4*_x5*_x7 > 0))
+    return bool((2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*omega2 > 0))
 
 
 def _is_stable__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
@@ -929,14 +919,7 @@ def _is_stable__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g,
     g = _support.mp_param("is_stable", "g", g)
     Vb = _support.mp_param("is_stable", "Vb", Vb)
     Vhat = _support.mp_param("is_stable", "Vhat", Vhat)
-    _x0 = 2*beta2*g/omega2
-    _x1 = 2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
-    _x2 = _x0 + _x1
-    _x3 = 3*beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
-    _x4 = omega1**2
-    _x5 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
-    _x6 = _x1*(_x2*(_x0*_x4 + _x1*_x5) + (_x4 - _x5)**2)
-    return bool((_x2 > 0) and (_x1*(_x0*_x2 + _x4) + _x3 > 0) and (_x0*_x6 > 0) and (_x3*_x4*_x6 > 0))
+    return bool((2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*g/omega2 > 0))
 
 
 def _is_stable__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
@@ -949,15 +932,7 @@ def _is_stable__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, 
     g = _support.mp_param("is_stable", "g", g)
     Vb = _support.mp_param("is_stable", "Vb", Vb)
     Vhat = _support.mp_param("is_stable", "Vhat", Vhat)
-    _x0 = 2*beta2
-    _x1 = _x0*omega2
-    _x2 = 2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
-    _x3 = _x1 + _x2
-    _x4 = _x0*omega2**3
-    _x5 = omega1**2
-    _x6 = omega2**2
-    _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
-    return bool((_x3 > 0) and (_x2*(_x1*_x3 + _x5) + _x4 > 0) and (_x1*_x7 > 0) and (_x4*_x5*_x7 > 0))
+    return bool((2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*omega2 > 0))
 
 
 _IS_STABLE = {
