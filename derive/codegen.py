@@ -16,6 +16,12 @@ Each generated function
   value outside the parameter's domain);
 * broadcasts over numpy arrays (the numpy variant) or computes at the current
   ``mpmath.mp.dps`` (the variant of the same name in ``generated.mp``).
+
+A function marked ``accelerate`` (one output per point: ``growth_rate``,
+``is_stable``) keeps its checks in the implementation and moves the arithmetic
+into two kernels printed from the same expressions: a numpy one that
+``_support.blockwise`` runs on blocks of points, and a scalar ``math`` one that
+``_support.compiled`` turns into a numba ufunc (``backend=``).
 """
 from __future__ import annotations
 
@@ -243,6 +249,20 @@ def _kernel_name(private):
     return f"{private}__kernel"
 
 
+def _array_name(private):
+    return f"{private}__array"
+
+
+def _errstate(flat, body):
+    """``body`` under ``numpy.errstate`` where the expressions have a Piecewise."""
+    if not any(e.has(sp.Piecewise) for e in flat):
+        return body
+    # numpy evaluates every branch of a select (and a compiled kernel may evaluate
+    # both sides of a branch): silence the unused ones.
+    return ['with numpy.errstate(divide="ignore", invalid="ignore"):'] \
+        + ["    " + b.replace("\n", "\n    ") for b in body]
+
+
 def _body(fn, outputs, mp, name):
     """Source lines of one implementation (indented, without the def line)."""
     flat, shape = _flat(fn.returns, outputs)
@@ -266,14 +286,15 @@ def _body(fn, outputs, mp, name):
     if not mp:
         inputs = ", ".join([a.name for a in fn.args] + params + ["*_extra"])
         lines.append(f"_shape = _support.shape_of({inputs})")
-        body += [_root_line(name, base, d, printer) for name, base, d in roots]
-        if fn.accelerate:
-            kernel_args = ", ".join([a.name for a in fn.args] + params
-                                    + [name for name, _, _ in roots])
-            body += [f'_kernel = _support.compiled({_kernel_name(name)}, '
-                     f'"{_KERNEL_RESULT[fn.returns]}", backend)',
-                     "if _kernel is not None:",
-                     f"    return _support.full(_shape, _kernel({kernel_args}))"]
+        body += [_root_line(root, base, d, printer) for root, base, d in roots]
+    if not mp and fn.accelerate:
+        args = ", ".join([a.name for a in fn.args] + params + [r for r, _, _ in roots])
+        body += [f'_kernel = _support.compiled({_kernel_name(name)}, '
+                 f'"{_KERNEL_RESULT[fn.returns]}", backend)',
+                 "if _kernel is not None:",
+                 f"    return _support.full(_shape, _kernel({args}))",
+                 f"return _support.full(_shape, _support.blockwise({_array_name(name)}, {args}))"]
+        return lines + _errstate(flat, body)
     repl, reduced = sp.cse(flat, symbols=sp.numbered_symbols("_x"), order="canonical")
     body += [f"{sym} = {printer.doprint(e)}" for sym, e in repl]
     inputs = {a.name for a in fn.args} | set(params)
@@ -282,39 +303,42 @@ def _body(fn, outputs, mp, name):
     out = [f"numpy.copy({e.name})" if not mp and e.is_Symbol and e.name in inputs
            else printer.doprint(e) for e in reduced]
     body += _assemble(fn.returns, out, shape, mp)
-    if not mp and any(e.has(sp.Piecewise) for e in flat):
-        # numpy evaluates every branch of a select (and a compiled kernel may
-        # evaluate both sides of a branch): silence the unused ones.
-        return lines + ['with numpy.errstate(divide="ignore", invalid="ignore"):'] \
-            + ["    " + b.replace("\n", "\n    ") for b in body]
-    return lines + body
+    return lines + (body if mp else _errstate(flat, body))
 
 
 _KERNEL_RESULT = {"value": "float64", "growth": "float64", "stable": "boolean"}
 
 
-def _kernel(fn, outputs, name):
-    """Source of the scalar kernel of one implementation (``fn.accelerate``).
+def _kernel_source(fn, outputs, name, scalar):
+    """Source of a kernel of one implementation (``fn.accelerate``), after the checks.
 
-    The same expressions as the numpy implementation (roots hoisted, the same
-    common subexpressions) in ``math`` code, one point per call: numba's
-    ``vectorize`` makes a ufunc of it that evaluates each point in one pass
-    instead of one array pass per operation.
+    The same expressions (roots hoisted, the same common subexpressions) as numpy
+    array code (``scalar=False``: `_support.blockwise` runs it on blocks of points)
+    or as ``math`` code for one point (``scalar=True``: numba's ``vectorize`` makes a
+    ufunc of it that evaluates each point in one pass instead of one array pass per
+    operation).
     """
     if fn.returns not in _KERNEL_RESULT:
-        raise ValueError(f"{fn.name}: no scalar kernel for returns={fn.returns!r}")
+        raise ValueError(f"{fn.name}: no kernel for returns={fn.returns!r}")
     flat, shape = _flat(fn.returns, outputs)
     params = _params_of(flat, fn.args)
     roots = _hoisted_roots(flat)
-    printer = _Scalar(roots)
-    args = [a.name for a in fn.args] + params + [name for name, _, _ in roots]
+    printer = _Scalar(roots) if scalar else _NumPy(roots)
+    args = [a.name for a in fn.args] + params + [r for r, _, _ in roots]
     repl, reduced = sp.cse(flat, symbols=sp.numbered_symbols("_x"), order="canonical")
     body = [f"{sym} = {printer.doprint(e)}" for sym, e in repl]
-    out = [printer.doprint(e) for e in reduced]
+    out = [f"numpy.copy({e.name})" if not scalar and e.is_Symbol and e.name in args
+           else printer.doprint(e) for e in reduced]
     if fn.returns == "value":
         body.append(f"return {out[0]}")
     elif fn.returns == "stable":
-        body.append("return " + " and ".join(f"({o} > 0)" for o in out))
+        join = " and " if scalar else " & "
+        body.append("return " + join.join(f"({o} > 0)" for o in out))
+    elif not scalar:
+        calls = [f"_support.quadratic_growth({', '.join(out[3 * k:3 * k + 3])})"
+                 for k in range(shape)]
+        body.append(f"return numpy.maximum({', '.join(calls)})" if shape > 1
+                    else f"return {calls[0]}")
     else:
         # The scalar form of `_support.quadratic_growth`, per quadratic factor.
         for k in range(shape):
@@ -329,11 +353,15 @@ def _kernel(fn, outputs, name):
             body.append(f"_best = {best} if ({best} >= _g{k} or {best} != {best}) else _g{k}")
             best = "_best"
         body.append(f"return {best}")
-    doc = (f'    """Scalar kernel of `{name}` for numba (``_support.compiled``).\n\n'
-           f"    Extra arguments: {', '.join(f'{name} = {base}**(1/{d})' for name, base, d in roots) or 'none'}.\n"
-           '    """')
-    return "\n".join([f"def {_kernel_name(name)}({', '.join(args)}):", doc]
-                      + ["    " + b for b in body])
+    extra = ", ".join(f"{r} = {base}**(1/{d})" for r, base, d in roots) or "none"
+    what = ("Scalar kernel of `{}` for numba (``_support.compiled``)." if scalar else
+            "numpy kernel of `{}` (``_support.blockwise``).").format(name)
+    doc = f'    """{what}\n\n    Extra arguments: {extra}.\n    """'
+    func = _kernel_name(name) if scalar else _array_name(name)
+    if not scalar:
+        body = _errstate(flat, body)
+    return "\n".join([f"def {func}({', '.join(args)}):", doc]
+                      + ["    " + b.replace("\n", "\n    ") for b in body])
 
 
 def _assemble(returns, out, shape, mp):
@@ -428,7 +456,9 @@ def _function(fn, mp):
         head = [f"def {name}({sig}):"] + ([doc] if doc else [])
         source = "\n".join(head + ["    " + line.replace("\n", "\n    ")
                                    for line in _body(fn, outputs, mp, name)])
-        return [source] + ([_kernel(fn, outputs, name)] if accelerate else [])
+        if not accelerate:
+            return [source]
+        return [source] + [_kernel_source(fn, outputs, name, scalar) for scalar in (False, True)]
 
     if not fn.options:
         return impl(fn.name, fn.variants[()], _docstring(fn, mp))

@@ -823,10 +823,19 @@ def _growth_rate__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb
         _kernel = _support.compiled(_growth_rate__paper__hertz_damp__kernel, "float64", backend)
         if _kernel is not None:
             return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1))
+        return _support.full(_shape, _support.blockwise(_growth_rate__paper__hertz_damp__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1))
+
+
+def _growth_rate__paper__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
+    """numpy kernel of `_growth_rate__paper__hertz_damp` (``_support.blockwise``).
+
+    Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = _root0
-        return _support.full(_shape, numpy.maximum(_support.quadratic_growth(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.quadratic_growth(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2)))
+        return numpy.maximum(_support.quadratic_growth(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.quadratic_growth(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2))
 
 
 def _growth_rate__paper__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
@@ -862,10 +871,19 @@ def _growth_rate__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, 
         _kernel = _support.compiled(_growth_rate__paper__kelvin_voigt__kernel, "float64", backend)
         if _kernel is not None:
             return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+        return _support.full(_shape, _support.blockwise(_growth_rate__paper__kelvin_voigt__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+
+
+def _growth_rate__paper__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """numpy kernel of `_growth_rate__paper__kelvin_voigt` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = omega2**2
-        return _support.full(_shape, numpy.maximum(_support.quadratic_growth(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1))))
+        return numpy.maximum(_support.quadratic_growth(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)))
 
 
 def _growth_rate__paper__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -903,10 +921,19 @@ def _growth_rate__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
         _kernel = _support.compiled(_growth_rate__consistent__hertz_damp__kernel, "float64", backend)
         if _kernel is not None:
             return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1))
+        return _support.full(_shape, _support.blockwise(_growth_rate__consistent__hertz_damp__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1))
+
+
+def _growth_rate__consistent__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
+    """numpy kernel of `_growth_rate__consistent__hertz_damp` (``_support.blockwise``).
+
+    Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = _root0
-        return _support.full(_shape, numpy.maximum(_support.quadratic_growth((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.quadratic_growth(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2)))
+        return numpy.maximum(_support.quadratic_growth((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.quadratic_growth(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2))
 
 
 def _growth_rate__consistent__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
@@ -942,10 +969,19 @@ def _growth_rate__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s
         _kernel = _support.compiled(_growth_rate__consistent__kelvin_voigt__kernel, "float64", backend)
         if _kernel is not None:
             return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+        return _support.full(_shape, _support.blockwise(_growth_rate__consistent__kelvin_voigt__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+
+
+def _growth_rate__consistent__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """numpy kernel of `_growth_rate__consistent__kelvin_voigt` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = omega2**2
-        return _support.full(_shape, numpy.maximum(_support.quadratic_growth((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1))))
+        return numpy.maximum(_support.quadratic_growth((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)))
 
 
 def _growth_rate__consistent__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -1049,7 +1085,16 @@ def _is_stable__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, 
         _kernel = _support.compiled(_is_stable__paper__hertz_damp__kernel, "boolean", backend)
         if _kernel is not None:
             return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-        return _support.full(_shape, (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0))
+        return _support.full(_shape, _support.blockwise(_is_stable__paper__hertz_damp__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+
+
+def _is_stable__paper__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """numpy kernel of `_is_stable__paper__hertz_damp` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0)
 
 
 def _is_stable__paper__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -1075,7 +1120,16 @@ def _is_stable__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb
         _kernel = _support.compiled(_is_stable__paper__kelvin_voigt__kernel, "boolean", backend)
         if _kernel is not None:
             return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-        return _support.full(_shape, (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0))
+        return _support.full(_shape, _support.blockwise(_is_stable__paper__kelvin_voigt__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+
+
+def _is_stable__paper__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """numpy kernel of `_is_stable__paper__kelvin_voigt` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0)
 
 
 def _is_stable__paper__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -1101,7 +1155,16 @@ def _is_stable__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g,
         _kernel = _support.compiled(_is_stable__consistent__hertz_damp__kernel, "boolean", backend)
         if _kernel is not None:
             return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-        return _support.full(_shape, (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0))
+        return _support.full(_shape, _support.blockwise(_is_stable__consistent__hertz_damp__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+
+
+def _is_stable__consistent__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """numpy kernel of `_is_stable__consistent__hertz_damp` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0)
 
 
 def _is_stable__consistent__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -1127,7 +1190,16 @@ def _is_stable__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, 
         _kernel = _support.compiled(_is_stable__consistent__kelvin_voigt__kernel, "boolean", backend)
         if _kernel is not None:
             return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-        return _support.full(_shape, (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0))
+        return _support.full(_shape, _support.blockwise(_is_stable__consistent__kelvin_voigt__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+
+
+def _is_stable__consistent__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """numpy kernel of `_is_stable__consistent__kelvin_voigt` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0)
 
 
 def _is_stable__consistent__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):

@@ -1,0 +1,65 @@
+"""generated._support: blockwise evaluation and the numba backend switch."""
+import numpy as np
+import pytest
+
+from generated import _support
+
+
+def kernel(a, b, c):
+    """A chain of array operations with a branch, like a generated numpy kernel."""
+    return np.where(a < b, np.sqrt(np.abs(a - b)) * c, a * b - c)
+
+
+@pytest.mark.parametrize("shapes", [[(700, 1), (1, 300), ()], [(5000 * 40,), (1,), (5000 * 40,)],
+                                    [(3, 1, 40000), (20, 1), (1, 40000)]])
+def test_blockwise_equals_one_call_for_broadcast_inputs(shapes):
+    rng = np.random.default_rng(1)
+    args = [rng.uniform(0, 2, s) for s in shapes]
+    expected = kernel(*args)
+    assert np.prod(expected.shape) > 2 * 1000                   # several blocks
+    got = _support.blockwise(kernel, *args, block=1000)
+    assert got.shape == expected.shape and got.dtype == expected.dtype
+    np.testing.assert_array_equal(got, expected)
+
+
+def test_blockwise_keeps_bool_and_promotes_an_integer_first_block_to_float():
+    a = np.arange(10_000.0)
+    stable = _support.blockwise(lambda x: x > 5000, a, block=1000)
+    assert stable.dtype == bool and stable.sum() == 4999
+    # a kernel whose first block comes back as integers must not truncate later blocks
+    values = _support.blockwise(lambda x: np.where(x < 1000, 0, x / 3), a, block=1000)
+    assert values.dtype == float and values[-1] == pytest.approx(9999 / 3)
+
+
+def test_blockwise_small_grids_are_one_call():
+    calls = []
+
+    def counting(x):
+        calls.append(len(x))
+        return x * 2
+
+    np.testing.assert_array_equal(_support.blockwise(counting, np.ones(50), block=1000), 2.0)
+    assert calls == [50]
+    _support.blockwise(counting, np.ones(4500), block=1000)
+    assert calls[1:] == [1000] * 4 + [500]
+
+
+def test_compiled_numpy_backend_is_none_and_unknown_backend_raises():
+    def k(x):
+        return x + 1.0
+
+    assert _support.compiled(k, "float64", "numpy") is None
+    with pytest.raises(ValueError, match="backend"):
+        _support.compiled(k, "float64", "gpu")
+
+
+def test_compiled_numba_ufunc_broadcasts_and_is_cached():
+    pytest.importorskip("numba")
+
+    def k(x, y):
+        return x * y + 1.0
+
+    ufunc = _support.compiled(k, "float64", "numba")
+    assert _support.compiled(k, "float64", None) is ufunc       # compiled once per session
+    out = ufunc(np.arange(3.0)[:, None], np.arange(4.0)[None, :])
+    np.testing.assert_array_equal(out, np.arange(3.0)[:, None] * np.arange(4.0) + 1.0)
