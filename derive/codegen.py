@@ -26,6 +26,7 @@ into two kernels printed from the same expressions: a numpy one that
 from __future__ import annotations
 
 import difflib
+import functools
 import re
 import textwrap
 from dataclasses import dataclass, field
@@ -88,9 +89,11 @@ class Function:
         The public function resolves ``Vhat`` from ``vhat_model`` (via
         ``generated.friction.vhat``) unless ``Vhat`` is passed.
     accelerate : bool
-        Also generate a scalar kernel that ``generated._support.compiled`` turns
-        into a numba ufunc, selected by the ``backend=`` keyword (one output:
-        ``returns`` in ``"value"``, ``"growth"``, ``"stable"``).
+        Put the arithmetic in two kernels, numpy code run by
+        ``generated._support.blockwise`` and scalar code that
+        ``generated._support.compiled`` turns into a numba ufunc, selected by the
+        ``backend=`` keyword (for one output per point: ``returns`` in ``"value"``,
+        ``"growth"``, ``"stable"``).
     """
 
     name: str
@@ -329,16 +332,8 @@ def _kernel_source(fn, outputs, name, scalar):
     body = [f"{sym} = {printer.doprint(e)}" for sym, e in repl]
     out = [f"numpy.copy({e.name})" if not scalar and e.is_Symbol and e.name in args
            else printer.doprint(e) for e in reduced]
-    if fn.returns == "value":
-        body.append(f"return {out[0]}")
-    elif fn.returns == "stable":
-        join = " and " if scalar else " & "
-        body.append("return " + join.join(f"({o} > 0)" for o in out))
-    elif not scalar:
-        calls = [f"_support.quadratic_growth({', '.join(out[3 * k:3 * k + 3])})"
-                 for k in range(shape)]
-        body.append(f"return numpy.maximum({', '.join(calls)})" if shape > 1
-                    else f"return {calls[0]}")
+    if not scalar or fn.returns != "growth":
+        body.append(f"return {_one_per_point(fn.returns, out, shape, scalar)}")
     else:
         # The scalar form of `_support.quadratic_growth`, per quadratic factor.
         for k in range(shape):
@@ -364,9 +359,25 @@ def _kernel_source(fn, outputs, name, scalar):
                       + ["    " + b.replace("\n", "\n    ") for b in body])
 
 
-def _assemble(returns, out, shape, mp):
+def _one_per_point(returns, out, shape, mp):
+    """The expression of a function with one output per point (value, growth, stable)."""
     if returns == "value":
-        return [f"return {out[0]}" if mp else f"return _support.full(_shape, {out[0]})"]
+        return out[0]
+    if returns == "stable":
+        return (" and " if mp else " & ").join(f"({o} > 0)" for o in out)
+    growth = "_support.mp_quadratic_growth" if mp else "_support.quadratic_growth"
+    calls = [f"{growth}({', '.join(out[3 * k:3 * k + 3])})" for k in range(shape)]
+    if mp:
+        return f"max({', '.join(calls)})"
+    return functools.reduce(lambda a, b: f"numpy.maximum({a}, {b})", calls)
+
+
+def _assemble(returns, out, shape, mp):
+    if returns in ("value", "growth", "stable"):
+        expr = _one_per_point(returns, out, shape, mp)
+        if mp:
+            return [f"return bool({expr})" if returns == "stable" else f"return {expr}"]
+        return [f"return _support.full(_shape, {expr})"]
     if returns == "tuple":
         items = ", ".join(out)
         return [f"return ({items},)" if mp else f"return _support.tuple_of(_shape, {items})"]
@@ -389,17 +400,6 @@ def _assemble(returns, out, shape, mp):
         if mp:
             return lines + [f"return [{items}]"]
         return lines + [f"return _support.vector(_shape, [{items}])"]
-    if returns == "growth":
-        fn = "_support.mp_quadratic_growth" if mp else "_support.quadratic_growth"
-        calls = [f"{fn}({out[3 * k]}, {out[3 * k + 1]}, {out[3 * k + 2]})"
-                 for k in range(shape)]
-        if mp:
-            return [f"return max({', '.join(calls)})"]
-        return [f"return _support.full(_shape, numpy.maximum({', '.join(calls)}))"]
-    if returns == "stable":
-        test = " & ".join(f"({o} > 0)" for o in out) if not mp else \
-            " and ".join(f"({o} > 0)" for o in out)
-        return [f"return bool({test})" if mp else f"return _support.full(_shape, {test})"]
     raise ValueError(returns)
 
 

@@ -213,8 +213,8 @@ def blockwise(kernel, *args, block=BLOCK):
 
     A generated numpy kernel is a chain of array operations, each allocating a
     temporary as large as the grid. On a large grid those fall out of cache and
-    are fresh allocations (page faults); on blocks the same operations run 1.5 to
-    2 times faster (``benchmarks/bench_stability.py``, backend="numpy"). Inputs
+    are fresh allocations (page faults); on blocks the numpy ``growth_rate`` of
+    ``benchmarks/bench_stability.py`` took 10-40% less time on 10^6 points. Inputs
     broadcast as in numpy; a broadcast (not full-size) input is expanded once.
     Grids of at most ``2 * block`` points are evaluated in one call.
 
