@@ -229,6 +229,19 @@ class _NumPy(_RootPrinting, NumPyPrinter):
         # The derivative of max(X2, 0): 0 out of contact, 1 in contact.
         return f"numpy.heaviside({self._print(expr.args[0])}, 0.0)"
 
+    # SymPy prints And/Or as numpy.logical_and.reduce((a, b)), which stacks its
+    # arguments and fails when they have different shapes: nest the binary ufuncs,
+    # which broadcast.
+    def _print_And(self, expr):
+        return self._nested("numpy.logical_and", expr)
+
+    def _print_Or(self, expr):
+        return self._nested("numpy.logical_or", expr)
+
+    def _nested(self, ufunc, expr):
+        return functools.reduce(lambda a, b: f"{ufunc}({a}, {b})",
+                                (self._print(a) for a in expr.args))
+
 
 class _Mpmath(MpmathPrinter):
     def _print_Heaviside(self, expr):

@@ -55,7 +55,9 @@ def mu_bar_slope_eq_25() -> sp.Expr:
 
     ``Vb < V_hat``: ``2 mu_s / (pi sqrt((V_hat - Vb)(V_hat + Vb)))`` (proved equal to the
     derivative of Eq. 23); ``Vb = V_hat``: ``+oo`` (the arc-cosine's vertical tangent,
-    a documented non-NaN value); ``Vb > V_hat``: 0 (Coulomb's constant value).
+    a documented non-NaN value) if ``mu_s > 0``; ``Vb > V_hat``: 0 (Coulomb's constant
+    value). Without friction (``mu_s = 0``) ``mu_bar`` vanishes and so does its slope,
+    also at ``Vb = V_hat`` (not ``0 * oo``).
     """
     mu, Vh, Vb = P["mu_s"], P["Vhat"], P["Vb"]
     factored = 2 * mu / (sp.pi * sp.sqrt((Vh - Vb) * (Vh + Vb)))
@@ -63,7 +65,7 @@ def mu_bar_slope_eq_25() -> sp.Expr:
     check = (mu_bar_slope_derived() - factored).subs(Vh, Vb + below)
     if sp.simplify(check) != 0:
         raise AssertionError("factored slope differs from the derivative of Eq. (23)")
-    return sp.Piecewise((factored, Vb < Vh), (sp.oo, sp.Eq(Vb, Vh)), (0, True))
+    return sp.Piecewise((factored, Vb < Vh), (sp.oo, sp.Eq(Vb, Vh) & (mu > 0)), (0, True))
 
 
 def frequency_response(quad: Quadratic, W) -> tuple[sp.Expr, sp.Expr]:

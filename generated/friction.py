@@ -132,7 +132,7 @@ def mu_bar_slope(Vb, Vhat, mu_s, **params):
     mu_s = _support.param("mu_bar_slope", "mu_s", mu_s, "nonnegative")
     _shape = _support.shape_of(Vb, Vhat, mu_s, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        return _support.full(_shape, numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan))
+        return _support.full(_shape, numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan))
 
 
 def vhat(*, model='tangential', contact='hertz_damp', **params):

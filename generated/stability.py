@@ -202,7 +202,7 @@ def _jacobian__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, V
         _x3 = 2*beta2*g/omega2
         return _support.matrix(_shape, [
                 [0, 1, 0, 0],
-                [-omega1**2, -2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [_x0*mu_s/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), _x1*_x2, _x1*_x3],
+                [-omega1**2, -2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [_x0*mu_s/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), _x1*_x2, _x1*_x3],
                 [0, 0, 0, 1],
                 [0, 0, -_x2, -_x3],
             ])
@@ -226,7 +226,7 @@ def _jacobian__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb,
         _x3 = 2*beta2*omega2
         return _support.matrix(_shape, [
                 [0, 1, 0, 0],
-                [-omega1**2, -2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [_x0*mu_s/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), _x1*_x2, _x2*_x3],
+                [-omega1**2, -2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [_x0*mu_s/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), _x1*_x2, _x2*_x3],
                 [0, 0, 0, 1],
                 [0, 0, -_x1, -_x3],
             ])
@@ -252,7 +252,7 @@ def _jacobian__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, 
         _x3 = 2*beta2*g/omega2
         return _support.matrix(_shape, [
                 [0, 1, 0, 0],
-                [-omega1**2, -2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [_x0*mu_s/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), -_x1*_x2, -_x1*_x3],
+                [-omega1**2, -2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [_x0*mu_s/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), -_x1*_x2, -_x1*_x3],
                 [0, 0, 0, 1],
                 [0, 0, -_x2, -_x3],
             ])
@@ -276,7 +276,7 @@ def _jacobian__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g
         _x3 = 2*beta2*omega2
         return _support.matrix(_shape, [
                 [0, 1, 0, 0],
-                [-omega1**2, -2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [_x0*mu_s/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), -_x1*_x2, -_x2*_x3],
+                [-omega1**2, -2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [_x0*mu_s/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), -_x1*_x2, -_x2*_x3],
                 [0, 0, 0, 1],
                 [0, 0, -_x1, -_x3],
             ])
@@ -360,7 +360,7 @@ def _coefficients__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, V
         _x1 = omega2**(-1.0)
         _x2 = 2*_x1*beta2
         _x3 = _x2*g
-        _x4 = numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x4 = numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x5 = omega1**2
         _x6 = _root0
         _x7 = (omega2*_root1)
@@ -385,7 +385,7 @@ def _coefficients__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g,
         _x1 = 2*_x0
         _x2 = beta2*omega2
         _x3 = 2*_x2
-        _x4 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x4 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x5 = omega1**2
         _x6 = omega2**2
         return _support.tuple_of(_shape, _x1 + _x3 - _x4, 4*_x0*_x2 - _x3*_x4 + _x5 + _x6, _x1*_x6 + _x3*_x5 - _x4*_x6, _x5*_x6)
@@ -409,7 +409,7 @@ def _coefficients__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s,
         _x1 = omega2**(-1.0)
         _x2 = 2*_x1*beta2
         _x3 = _x2*g
-        _x4 = numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x4 = numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x5 = omega1**2
         _x6 = _root0
         _x7 = (omega2*_root1)
@@ -434,7 +434,7 @@ def _coefficients__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_
         _x1 = 2*_x0
         _x2 = beta2*omega2
         _x3 = 2*_x2
-        _x4 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x4 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x5 = omega1**2
         _x6 = omega2**2
         return _support.tuple_of(_shape, _x1 + _x3 + _x4, 4*_x0*_x2 + _x3*_x4 + _x5 + _x6, _x1*_x6 + _x3*_x5 + _x4*_x6, _x5*_x6)
@@ -520,7 +520,7 @@ def _hurwitz__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vh
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
         _x0 = 2*beta2*g/omega2
-        _x1 = 2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x2 = _x0 + _x1
         _x3 = 3*beta2*(g*_root0)*_root1
         _x4 = omega1**2
@@ -543,7 +543,7 @@ def _hurwitz__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, 
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 2*beta2
         _x1 = _x0*omega2
-        _x2 = 2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x2 = 2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x3 = _x1 + _x2
         _x4 = _x0*omega2**3
         _x5 = omega1**2
@@ -567,7 +567,7 @@ def _hurwitz__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, V
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
         _x0 = 2*beta2*g/omega2
-        _x1 = 2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x2 = _x0 + _x1
         _x3 = 3*beta2*(g*_root0)*_root1
         _x4 = omega1**2
@@ -590,7 +590,7 @@ def _hurwitz__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g,
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 2*beta2
         _x1 = _x0*omega2
-        _x2 = 2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x2 = 2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x3 = _x1 + _x2
         _x4 = _x0*omega2**3
         _x5 = omega1**2
@@ -672,7 +672,7 @@ def _eigenvalues__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
-        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = _root0
         _r0 = _support.quadratic_roots(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1)))
@@ -692,7 +692,7 @@ def _eigenvalues__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, 
     Vhat = _support.param("eigenvalues", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = omega2**2
         _r0 = _support.quadratic_roots(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1)))
@@ -714,7 +714,7 @@ def _eigenvalues__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
-        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = _root0
         _r0 = _support.quadratic_roots((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1)))
@@ -734,7 +734,7 @@ def _eigenvalues__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s
     Vhat = _support.param("eigenvalues", "Vhat", Vhat)
     _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = omega2**2
         _r0 = _support.quadratic_roots((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1)))
@@ -832,7 +832,7 @@ def _growth_rate__paper__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s, g
     Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
     """
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = _root0
         return numpy.maximum(_support.quadratic_growth(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.quadratic_growth(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2))
@@ -843,7 +843,7 @@ def _growth_rate__paper__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, 
 
     Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
     """
-    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0))
+    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = _root0
     _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
@@ -880,7 +880,7 @@ def _growth_rate__paper__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu_s,
     Extra arguments: none.
     """
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = omega2**2
         return numpy.maximum(_support.quadratic_growth(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)))
@@ -891,7 +891,7 @@ def _growth_rate__paper__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s
 
     Extra arguments: none.
     """
-    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0))
+    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = omega2**2
     _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
@@ -930,7 +930,7 @@ def _growth_rate__consistent__hertz_damp__array(beta1, omega1, beta2, omega2, mu
     Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
     """
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = _root0
         return numpy.maximum(_support.quadratic_growth((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.quadratic_growth(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2))
@@ -941,7 +941,7 @@ def _growth_rate__consistent__hertz_damp__kernel(beta1, omega1, beta2, omega2, m
 
     Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
     """
-    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0))
+    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = _root0
     _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
@@ -978,7 +978,7 @@ def _growth_rate__consistent__kelvin_voigt__array(beta1, omega1, beta2, omega2, 
     Extra arguments: none.
     """
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = omega2**2
         return numpy.maximum(_support.quadratic_growth((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)))
@@ -989,7 +989,7 @@ def _growth_rate__consistent__kelvin_voigt__kernel(beta1, omega1, beta2, omega2,
 
     Extra arguments: none.
     """
-    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0))
+    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = omega2**2
     _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
@@ -1094,7 +1094,7 @@ def _is_stable__paper__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s, g, 
     Extra arguments: none.
     """
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        return (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0)
+        return (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0)
 
 
 def _is_stable__paper__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -1102,7 +1102,7 @@ def _is_stable__paper__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g,
 
     Extra arguments: none.
     """
-    return (2*beta1*omega1 - g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*g/omega2 > 0)
+    return (2*beta1*omega1 - g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*g/omega2 > 0)
 
 
 def _is_stable__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
@@ -1129,7 +1129,7 @@ def _is_stable__paper__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu_s, g
     Extra arguments: none.
     """
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        return (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0)
+        return (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0)
 
 
 def _is_stable__paper__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -1137,7 +1137,7 @@ def _is_stable__paper__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, 
 
     Extra arguments: none.
     """
-    return (2*beta1*omega1 - g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*omega2 > 0)
+    return (2*beta1*omega1 - g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*omega2 > 0)
 
 
 def _is_stable__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
@@ -1164,7 +1164,7 @@ def _is_stable__consistent__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s
     Extra arguments: none.
     """
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        return (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0)
+        return (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0)
 
 
 def _is_stable__consistent__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -1172,7 +1172,7 @@ def _is_stable__consistent__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_
 
     Extra arguments: none.
     """
-    return (2*beta1*omega1 + g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*g/omega2 > 0)
+    return (2*beta1*omega1 + g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*g/omega2 > 0)
 
 
 def _is_stable__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
@@ -1199,7 +1199,7 @@ def _is_stable__consistent__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu
     Extra arguments: none.
     """
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        return (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.equal(Vb, Vhat),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0)
+        return (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0)
 
 
 def _is_stable__consistent__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -1207,7 +1207,7 @@ def _is_stable__consistent__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, m
 
     Extra arguments: none.
     """
-    return (2*beta1*omega1 + g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*omega2 > 0)
+    return (2*beta1*omega1 + g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*omega2 > 0)
 
 
 _IS_STABLE = {

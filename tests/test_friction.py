@@ -82,6 +82,8 @@ def test_slope_at_and_beyond_vhat_is_documented_and_not_nan():
     assert friction.mu_bar_slope(np.nextafter(8.5, 9), 8.5, 0.4) == 0.0
     assert friction.mu_bar_slope(20.0, 8.5, 0.4) == 0.0
     assert np.isfinite(friction.mu_bar_slope(np.nextafter(8.5, 0), 8.5, 0.4))
+    # without friction mu_bar is identically 0: so is its slope, at Vb = Vhat too
+    np.testing.assert_array_equal(friction.mu_bar_slope([3.0, 8.5, 20.0], 8.5, 0.0), 0.0)
 
 
 def test_vhat_tangential_is_the_oscillator_velocity_amplitude(rng):

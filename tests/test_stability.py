@@ -305,6 +305,11 @@ def test_vb_to_vhat_from_below_at_and_beyond(base, mp50, backend):
     assert not np.any(np.isnan(stability.hurwitz(**at)))
     assert stability.is_stable(**at, convention="consistent", backend=backend)
     assert not np.any(np.isnan(stability.eigenvalues(**at, convention="consistent")))
+    # no friction: nothing to destabilise, at Vb = Vhat as anywhere (J_f^0 is J^0)
+    frictionless = {**at, "mu_s": 0.0}
+    assert stability.is_stable(**frictionless, backend=backend)
+    assert stability.growth_rate(**frictionless, backend=backend) \
+        == max(unforced.eigenvalues(**frictionless).real)
     beyond = {**p, "Vb": np.nextafter(Vhat, 20)}
     np.testing.assert_array_equal(stability.eigenvalues(**beyond), unforced.eigenvalues(**beyond))
     assert stability.is_stable(**beyond, backend=backend)

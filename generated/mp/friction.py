@@ -134,7 +134,7 @@ def mu_bar_slope(Vb, Vhat, mu_s, **params):
     Vb = _support.mp_param("mu_bar_slope", "Vb", Vb, "nonnegative")
     Vhat = _support.mp_param("mu_bar_slope", "Vhat", Vhat, "positive")
     mu_s = _support.mp_param("mu_bar_slope", "mu_s", mu_s, "nonnegative")
-    return ((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    return ((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
 
 
 def vhat(*, model='tangential', contact='hertz_damp', **params):

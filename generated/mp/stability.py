@@ -191,7 +191,7 @@ def _jacobian__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, V
     _x3 = 2*beta2*g/omega2
     return mpmath.matrix([
             [0, 1, 0, 0],
-            [-omega1**2, -2*beta1*omega1 + g*((_x0*mu_s/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0)), _x1*_x2, _x1*_x3],
+            [-omega1**2, -2*beta1*omega1 + g*((_x0*mu_s/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)), _x1*_x2, _x1*_x3],
             [0, 0, 0, 1],
             [0, 0, -_x2, -_x3],
         ])
@@ -213,7 +213,7 @@ def _jacobian__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb,
     _x3 = 2*beta2*omega2
     return mpmath.matrix([
             [0, 1, 0, 0],
-            [-omega1**2, -2*beta1*omega1 + g*((_x0*mu_s/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0)), _x1*_x2, _x2*_x3],
+            [-omega1**2, -2*beta1*omega1 + g*((_x0*mu_s/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)), _x1*_x2, _x2*_x3],
             [0, 0, 0, 1],
             [0, 0, -_x1, -_x3],
         ])
@@ -235,7 +235,7 @@ def _jacobian__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, 
     _x3 = 2*beta2*g/omega2
     return mpmath.matrix([
             [0, 1, 0, 0],
-            [-omega1**2, -2*beta1*omega1 - g*((_x0*mu_s/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0)), -_x1*_x2, -_x1*_x3],
+            [-omega1**2, -2*beta1*omega1 - g*((_x0*mu_s/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)), -_x1*_x2, -_x1*_x3],
             [0, 0, 0, 1],
             [0, 0, -_x2, -_x3],
         ])
@@ -257,7 +257,7 @@ def _jacobian__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g
     _x3 = 2*beta2*omega2
     return mpmath.matrix([
             [0, 1, 0, 0],
-            [-omega1**2, -2*beta1*omega1 - g*((_x0*mu_s/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0)), -_x1*_x2, -_x2*_x3],
+            [-omega1**2, -2*beta1*omega1 - g*((_x0*mu_s/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)), -_x1*_x2, -_x2*_x3],
             [0, 0, 0, 1],
             [0, 0, -_x1, -_x3],
         ])
@@ -339,7 +339,7 @@ def _coefficients__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, V
     _x1 = 1/omega2
     _x2 = 2*_x1*beta2
     _x3 = _x2*g
-    _x4 = ((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x4 = ((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x5 = omega1**2
     _x6 = g**(mpmath.mpf(1)/mpmath.mpf(3))
     _x7 = omega2**(mpmath.mpf(4)/mpmath.mpf(3))
@@ -362,7 +362,7 @@ def _coefficients__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g,
     _x1 = 2*_x0
     _x2 = beta2*omega2
     _x3 = 2*_x2
-    _x4 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x4 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x5 = omega1**2
     _x6 = omega2**2
     return (_x1 + _x3 - _x4, 4*_x0*_x2 - _x3*_x4 + _x5 + _x6, _x1*_x6 + _x3*_x5 - _x4*_x6, _x5*_x6,)
@@ -382,7 +382,7 @@ def _coefficients__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s,
     _x1 = 1/omega2
     _x2 = 2*_x1*beta2
     _x3 = _x2*g
-    _x4 = ((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x4 = ((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x5 = omega1**2
     _x6 = g**(mpmath.mpf(1)/mpmath.mpf(3))
     _x7 = omega2**(mpmath.mpf(4)/mpmath.mpf(3))
@@ -405,7 +405,7 @@ def _coefficients__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_
     _x1 = 2*_x0
     _x2 = beta2*omega2
     _x3 = 2*_x2
-    _x4 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x4 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x5 = omega1**2
     _x6 = omega2**2
     return (_x1 + _x3 + _x4, 4*_x0*_x2 + _x3*_x4 + _x5 + _x6, _x1*_x6 + _x3*_x5 + _x4*_x6, _x5*_x6,)
@@ -489,7 +489,7 @@ def _hurwitz__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vh
     Vb = _support.mp_param("hurwitz", "Vb", Vb)
     Vhat = _support.mp_param("hurwitz", "Vhat", Vhat)
     _x0 = 2*beta2*g/omega2
-    _x1 = 2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x1 = 2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x2 = _x0 + _x1
     _x3 = 3*beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
     _x4 = omega1**2
@@ -510,7 +510,7 @@ def _hurwitz__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, 
     Vhat = _support.mp_param("hurwitz", "Vhat", Vhat)
     _x0 = 2*beta2
     _x1 = _x0*omega2
-    _x2 = 2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x2 = 2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x3 = _x1 + _x2
     _x4 = _x0*omega2**3
     _x5 = omega1**2
@@ -530,7 +530,7 @@ def _hurwitz__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, V
     Vb = _support.mp_param("hurwitz", "Vb", Vb)
     Vhat = _support.mp_param("hurwitz", "Vhat", Vhat)
     _x0 = 2*beta2*g/omega2
-    _x1 = 2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x1 = 2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x2 = _x0 + _x1
     _x3 = 3*beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
     _x4 = omega1**2
@@ -551,7 +551,7 @@ def _hurwitz__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g,
     Vhat = _support.mp_param("hurwitz", "Vhat", Vhat)
     _x0 = 2*beta2
     _x1 = _x0*omega2
-    _x2 = 2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x2 = 2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x3 = _x1 + _x2
     _x4 = _x0*omega2**3
     _x5 = omega1**2
@@ -631,7 +631,7 @@ def _eigenvalues__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb
     g = _support.mp_param("eigenvalues", "g", g)
     Vb = _support.mp_param("eigenvalues", "Vb", Vb)
     Vhat = _support.mp_param("eigenvalues", "Vhat", Vhat)
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = g**(mpmath.mpf(1)/mpmath.mpf(3))
     _r0 = _support.mp_quadratic_roots(-mpmath.mpf(1)/mpmath.mpf(2)*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1)))
@@ -649,7 +649,7 @@ def _eigenvalues__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, 
     g = _support.mp_param("eigenvalues", "g", g)
     Vb = _support.mp_param("eigenvalues", "Vb", Vb)
     Vhat = _support.mp_param("eigenvalues", "Vhat", Vhat)
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = omega2**2
     _r0 = _support.mp_quadratic_roots(-mpmath.mpf(1)/mpmath.mpf(2)*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1)))
@@ -667,7 +667,7 @@ def _eigenvalues__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
     g = _support.mp_param("eigenvalues", "g", g)
     Vb = _support.mp_param("eigenvalues", "Vb", Vb)
     Vhat = _support.mp_param("eigenvalues", "Vhat", Vhat)
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = g**(mpmath.mpf(1)/mpmath.mpf(3))
     _r0 = _support.mp_quadratic_roots((mpmath.mpf(1)/mpmath.mpf(2))*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1)))
@@ -685,7 +685,7 @@ def _eigenvalues__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s
     g = _support.mp_param("eigenvalues", "g", g)
     Vb = _support.mp_param("eigenvalues", "Vb", Vb)
     Vhat = _support.mp_param("eigenvalues", "Vhat", Vhat)
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = omega2**2
     _r0 = _support.mp_quadratic_roots((mpmath.mpf(1)/mpmath.mpf(2))*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1)))
@@ -764,7 +764,7 @@ def _growth_rate__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb
     g = _support.mp_param("growth_rate", "g", g)
     Vb = _support.mp_param("growth_rate", "Vb", Vb)
     Vhat = _support.mp_param("growth_rate", "Vhat", Vhat)
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = g**(mpmath.mpf(1)/mpmath.mpf(3))
     return max(_support.mp_quadratic_growth(-mpmath.mpf(1)/mpmath.mpf(2)*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.mp_quadratic_growth(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x2*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x2*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2))
@@ -780,7 +780,7 @@ def _growth_rate__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, 
     g = _support.mp_param("growth_rate", "g", g)
     Vb = _support.mp_param("growth_rate", "Vb", Vb)
     Vhat = _support.mp_param("growth_rate", "Vhat", Vhat)
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = omega2**2
     return max(_support.mp_quadratic_growth(-mpmath.mpf(1)/mpmath.mpf(2)*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.mp_quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)))
@@ -796,7 +796,7 @@ def _growth_rate__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
     g = _support.mp_param("growth_rate", "g", g)
     Vb = _support.mp_param("growth_rate", "Vb", Vb)
     Vhat = _support.mp_param("growth_rate", "Vhat", Vhat)
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = g**(mpmath.mpf(1)/mpmath.mpf(3))
     return max(_support.mp_quadratic_growth((mpmath.mpf(1)/mpmath.mpf(2))*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.mp_quadratic_growth(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x2*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x2*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2))
@@ -812,7 +812,7 @@ def _growth_rate__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s
     g = _support.mp_param("growth_rate", "g", g)
     Vb = _support.mp_param("growth_rate", "Vb", Vb)
     Vhat = _support.mp_param("growth_rate", "Vhat", Vhat)
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0))
+    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = omega2**2
     return max(_support.mp_quadratic_growth((mpmath.mpf(1)/mpmath.mpf(2))*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.mp_quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)))
@@ -893,7 +893,7 @@ def _is_stable__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, 
     g = _support.mp_param("is_stable", "g", g)
     Vb = _support.mp_param("is_stable", "Vb", Vb)
     Vhat = _support.mp_param("is_stable", "Vhat", Vhat)
-    return bool((2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*g/omega2 > 0))
+    return bool((2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*g/omega2 > 0))
 
 
 def _is_stable__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
@@ -906,7 +906,7 @@ def _is_stable__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb
     g = _support.mp_param("is_stable", "g", g)
     Vb = _support.mp_param("is_stable", "Vb", Vb)
     Vhat = _support.mp_param("is_stable", "Vhat", Vhat)
-    return bool((2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*omega2 > 0))
+    return bool((2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*omega2 > 0))
 
 
 def _is_stable__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
@@ -919,7 +919,7 @@ def _is_stable__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g,
     g = _support.mp_param("is_stable", "g", g)
     Vb = _support.mp_param("is_stable", "Vb", Vb)
     Vhat = _support.mp_param("is_stable", "Vhat", Vhat)
-    return bool((2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*g/omega2 > 0))
+    return bool((2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*g/omega2 > 0))
 
 
 def _is_stable__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
@@ -932,7 +932,7 @@ def _is_stable__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, 
     g = _support.mp_param("is_stable", "g", g)
     Vb = _support.mp_param("is_stable", "Vb", Vb)
     Vhat = _support.mp_param("is_stable", "Vhat", Vhat)
-    return bool((2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) else (0)) > 0) and (2*beta2*omega2 > 0))
+    return bool((2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*omega2 > 0))
 
 
 _IS_STABLE = {
