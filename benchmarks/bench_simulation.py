@@ -132,7 +132,7 @@ def main(argv=None):
     base = {Vb: baseline(Vb, t_end, args.dt, t_discard) for Vb in values}
     t_base = time.perf_counter() - t0
     from runtime import superposition
-    superposition._shared_cached.cache_clear()
+    superposition.clear_cache()
     t0 = time.perf_counter()
     fast = {Vb: run(Vb, t_end, args.dt, FAST) for Vb in values}
     t_fast = time.perf_counter() - t0

@@ -37,7 +37,7 @@ from generated import dynamics
 from .model import SLIP_BACK, SLIP_FORWARD, STICK, Lean, initial_state
 from .trajectory import Segment, Trajectory
 
-__all__ = ["integrate_superposed", "fundamental_matrix", "GRID_STEP"]
+__all__ = ["integrate_superposed", "fundamental_matrix", "clear_cache", "GRID_STEP"]
 
 GRID_STEP = 0.005       # spline grid [s]
 KNOT_STEP = 10          # grid points per quadrature piece (0.05 s)
@@ -114,6 +114,15 @@ class _Shared:
 def _shared_cached(key, contact, t_end, method, rtol, atol, h):
     # mu_s and Vb do not enter the normal motion or z_f, z_n: any value will do
     return _Shared(dict(key, mu_s=0.0, Vb=0.0), contact, t_end, method, rtol, atol, h)
+
+
+def clear_cache():
+    """Forget the shared normal motions kept for the last parameter sets.
+
+    A sweep over ``Vb`` reuses one normal motion; a benchmark that times a single
+    run from a cold start clears it first.
+    """
+    _shared_cached.cache_clear()
 
 
 def _shared(p, contact, settings, h):

@@ -3,6 +3,8 @@ import numpy as np
 import pytest
 from scipy.linalg import expm
 
+from runtime import superposition
+from runtime.simulate import simulate
 from runtime.superposition import _Member, fundamental_matrix
 
 
@@ -29,3 +31,12 @@ def test_sign_change_is_bracketed_and_no_crossing_is_none():
     t = np.linspace(0, 1, 11)
     assert _Member._first_crossing(t, 0.55 - t, -np.ones_like(t)) == (0.5, pytest.approx(0.6))
     assert _Member._first_crossing(t, 1 + t, np.ones_like(t)) is None
+
+
+def test_clear_cache_forgets_the_shared_normal_motion_without_changing_results():
+    first = simulate(Vb=4.0, solver="superposition", t_end=40.0)
+    assert superposition._shared_cached.cache_info().currsize >= 1
+    superposition.clear_cache()
+    assert superposition._shared_cached.cache_info().currsize == 0
+    again = simulate(Vb=4.0, solver="superposition", t_end=40.0)
+    np.testing.assert_array_equal(again.y, first.y)
