@@ -455,6 +455,8 @@ def _docstring(fn, mp):
             "    If an input is NaN or outside its domain (the message names it), or an",
             "    option value is unknown.",
             "TypeError", "    If a keyword is not a model parameter."]
+    if fn.accelerate and not mp:
+        doc += ["ImportError", '    For backend="numba" when numba is not installed.']
     body = "\n".join(("    " + line).rstrip() for line in doc)
     return f'    """{body.lstrip()}\n    """'
 

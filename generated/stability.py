@@ -801,6 +801,8 @@ def growth_rate(*, convention='paper', contact='hertz_damp', vhat_model=None, ba
         option value is unknown.
     TypeError
         If a keyword is not a model parameter.
+    ImportError
+        For backend="numba" when numba is not installed.
     """
     params = _support.resolve_vhat("growth_rate", params, vhat_model, _friction.vhat, contact)
     return _support.choose("growth_rate", _GROWTH_RATE, convention=convention, contact=contact)(backend=backend, **params)
@@ -1065,6 +1067,8 @@ def is_stable(*, convention='paper', contact='hertz_damp', vhat_model=None, back
         option value is unknown.
     TypeError
         If a keyword is not a model parameter.
+    ImportError
+        For backend="numba" when numba is not installed.
     """
     params = _support.resolve_vhat("is_stable", params, vhat_model, _friction.vhat, contact)
     return _support.choose("is_stable", _IS_STABLE, convention=convention, contact=contact)(backend=backend, **params)
