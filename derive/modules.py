@@ -263,8 +263,9 @@ def stability() -> Module:
                  each(quads), **common),
         Function("growth_rate", "Largest real part of the eigenvalues of J_f^0.",
                  "Eq. (26)", "growth",
-                 "sigma : ndarray\n    +inf at Vb = Vhat exactly in the paper convention "
-                 "(infinite slope).", each(quads), **common, accelerate=True),
+                 "sigma : ndarray\n    At Vb = Vhat exactly (infinite slope, mu_s > 0): +inf "
+                 "in the paper convention;\n    -0.0 in the consistent one (the slow tangential "
+                 "root -q/p, as p -> +inf).", each(quads), **common, accelerate=True),
         Function("is_stable", "Routh-Hurwitz verdict: all of H1..H4 positive.",
                  "Eq. (28)", "stable", "stable : bool ndarray",
                  each(lambda cv, c: [st.with_friction(e) for e in

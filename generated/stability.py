@@ -792,7 +792,8 @@ def growth_rate(*, convention='paper', contact='hertz_damp', vhat_model=None, ba
     Returns
     -------
     sigma : ndarray
-        +inf at Vb = Vhat exactly in the paper convention (infinite slope).
+        At Vb = Vhat exactly (infinite slope, mu_s > 0): +inf in the paper convention;
+        -0.0 in the consistent one (the slow tangential root -q/p, as p -> +inf).
 
     Raises
     ------
