@@ -7,7 +7,7 @@ import mpmath
 import numpy as np
 import pytest
 
-from generated import friction, stability, unforced
+from generated import _support, friction, stability, unforced
 from generated.parameters import BASE
 from generated.mp import stability as mp_stability
 from conftest import random_params, rel_err
@@ -422,7 +422,6 @@ def test_numba_kernels_match_the_numpy_path(convention, contact):
 
 
 def test_backend_choice(base, monkeypatch):
-    from generated import _support
     with pytest.raises(ValueError, match="backend"):
         stability.growth_rate(**base, backend="cuda")
     monkeypatch.setattr(_support, "_numba", False)              # as if numba were missing
