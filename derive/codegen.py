@@ -1,27 +1,30 @@
 """Code generation: SymPy expressions to plain numpy and mpmath modules.
 
 The only place in the package that writes files. A generated module is described
-by a `Module` of `Function` specs (built in `derive.modules`); `render` turns the
-specs into source text, deterministically (common-subexpression elimination over
-all outputs of a function together, canonical ordering, parameters in table
-order), `write` puts the text under ``generated/`` and `stale` compares it with
-what is there.
+by a `ModuleSpec` of `FunctionSpec` entries (built in `derive.modules`); `render`
+turns the specs into source text, deterministically (common-subexpression
+elimination over all outputs of a function together, canonical ordering,
+parameters in table order), `write` puts the text under ``generated/`` and `stale`
+compares it with what is there.
 
-Each generated function
+The layers of a generated function (PyDy's generator / printer / wrapper):
 
-* takes the state (if any) positionally and the parameters as keywords named as
-  in the parameter table, accepts any other known parameter and rejects unknown
-  names with ``TypeError``;
-* checks every input it uses (``ValueError`` naming the parameter for NaN or a
-  value outside the parameter's domain);
-* broadcasts over numpy arrays (the numpy variant) or computes at the current
-  ``mpmath.mp.dps`` (the variant of the same name in ``generated.mp``).
-
-A function marked ``accelerate`` (one output per point: ``growth_rate``,
-``is_stable``) keeps its checks in the implementation and moves the arithmetic
-into two kernels printed from the same expressions: a numpy one that
-``_support.blockwise`` runs on blocks of points, and a scalar ``math`` one that
-``_support.compiled`` turns into a numba ufunc (``backend=``).
+* one unchecked implementation per option variant (``_name__opt1__opt2``): the
+  printed expressions, positional arguments only;
+* the public function: it picks the variant (``_support.choose``), checks every
+  argument once (``_support.arguments``, ``_support.param``: ``ValueError`` naming
+  the parameter for NaN, inf or a value outside its domain, ``TypeError`` for an
+  unknown keyword), and calls the implementation; the numpy variant broadcasts over
+  arrays, the mpmath variant (same name in ``generated.mp``) computes at
+  ``mpmath.mp.dps``;
+* for a spec with ``bind=True``, ``bind_<name>(options, **params)``: it checks the
+  parameters once, as SciPy's ``check_arguments`` does, and returns a
+  ``_support.Bound`` scalar kernel (plain ``math`` code; compiled by
+  ``numba.njit`` when numba is installed) with the parameters bound, for the inner
+  loops of the runtime;
+* for a spec with ``accelerate=True`` (one output per point: ``growth_rate``,
+  ``is_stable``), the numpy kernel runs on blocks of points
+  (``_support.blockwise``) or its scalar twin as a numba ufunc (``backend=``).
 """
 from __future__ import annotations
 
@@ -40,7 +43,7 @@ from sympy.printing.pycode import MpmathPrinter, PythonCodePrinter
 from .parameters import PARAMETERS
 from .statespace import Quadratic
 
-__all__ = ["Function", "Module", "render", "render_all", "write", "stale",
+__all__ = ["FunctionSpec", "ModuleSpec", "render", "render_all", "write", "stale",
            "GENERATED", "HEADER"]
 
 GENERATED = Path(__file__).resolve().parent.parent / "generated"
@@ -54,7 +57,7 @@ _ORDER = {p.name: i for i, p in enumerate(PARAMETERS)}
 
 
 @dataclass(frozen=True)
-class Function:
+class FunctionSpec:
     """One generated function.
 
     Attributes
@@ -69,7 +72,8 @@ class Function:
         How the outputs are assembled: one array; a tuple of arrays; an array with
         a trailing axis; a matrix with two trailing axes; the complex roots of a
         list of `Quadratic` factors along a trailing axis; the largest real part
-        of those roots; ``True`` where every output is positive (Routh-Hurwitz).
+        of those roots (`Quadratic.growth`); ``True`` where every output is
+        positive (Routh-Hurwitz).
     returns_doc : str
         The ``Returns`` section body.
     variants : dict
@@ -79,8 +83,7 @@ class Function:
     args : tuple of sympy.Symbol
         Positional (state) arguments.
     arg_docs : dict
-        Description of each positional argument; ``"X2": ("positive", why)`` style
-        domains go in `arg_domains`.
+        Description of each positional argument.
     arg_domains : dict
         ``name -> (domain, reason)`` checks for positional arguments.
     notes : str
@@ -94,6 +97,11 @@ class Function:
         ``generated._support.compiled`` turns into a numba ufunc, selected by the
         ``backend=`` keyword (for one output per point: ``returns`` in ``"value"``,
         ``"growth"``, ``"stable"``).
+    bind : bool
+        Also generate ``bind_<name>``: the parameters checked once and bound to a
+        scalar kernel (numpy variant only; ``returns`` in ``"value"``, ``"tuple"``,
+        ``"vector"``, ``"matrix"``: the kernel returns a float or a flat tuple,
+        row-major for a matrix).
     """
 
     name: str
@@ -109,13 +117,21 @@ class Function:
     notes: str = ""
     vhat: bool = False
     accelerate: bool = False
+    bind: bool = False
 
 
 @dataclass(frozen=True)
-class Module:
+class ModuleSpec:
+    """One generated module: its docstring, functions and data constants.
+
+    ``constants`` are ``(name, value, comment)`` rows, written with ``repr`` (plain
+    tuples, strings and numbers keep the output deterministic).
+    """
+
     name: str
     doc: str
     functions: tuple
+    constants: tuple = ()
 
 
 # --------------------------------------------------------------------------- helpers
@@ -140,31 +156,55 @@ def _flat(returns, outputs):
     raise ValueError(f"unknown returns kind {returns!r}")
 
 
-def _params_of(exprs, args):
+def _combine(returns, out, flavor):
+    """One output per point from the printed outputs: a value, the largest growth
+    rate of the factors, or the Routh-Hurwitz verdict (every output positive).
+
+    ``flavor`` is ``"numpy"``, ``"scalar"`` or ``"mp"``; a NaN wins the maximum in
+    each, as in ``numpy.maximum``.
+    """
+    if returns == "value":
+        return out[0]
+    if returns == "stable":
+        return (" & " if flavor == "numpy" else " and ").join(f"({o} > 0)" for o in out)
+    if flavor == "numpy":
+        return functools.reduce(lambda a, b: f"numpy.maximum({a}, {b})", out)
+    if flavor == "mp":
+        return f"max({', '.join(out)})"
+    # scalar: `out` are names (see `_growth_lines`), each printed more than once
+    return functools.reduce(lambda a, b: f"({a} if ({a} >= {b} or {a} != {a}) else {b})", out)
+
+
+def _growth_lines(out, printer):
+    """Name ``h, q, disc`` of each quadratic factor and select its growth rate.
+
+    The selection is `Quadratic.largest_real_part` printed in symbols named after
+    the lines, so every printer prints the one definition.
+    Returns the lines and the names of the per-factor growth rates.
+    """
+    lines, names = [], []
+    for k in range(len(out) // 3):
+        h, q, d = (sp.Symbol(f"_{c}{k}", real=True) for c in "hqd")
+        lines.append(f"{h}, {q}, {d} = {', '.join(out[3 * k:3 * k + 3])}")
+        lines.append(f"_g{k} = {printer.doprint(Quadratic.largest_real_part(h, q, d))}")
+        names.append(f"_g{k}")
+    return lines, names
+
+
+def _impl_params(exprs, args):
+    """Parameters an implementation takes, in table order."""
     names = {s.name for e in exprs for s in e.free_symbols} - {a.name for a in args}
     unknown = names - set(_ORDER)
     if unknown:
         raise ValueError(f"expressions use symbols that are not parameters: {unknown}")
-    for n in list(names):
-        if _TABLE[n].default_from:
-            names.add(_TABLE[n].default_from)
     return sorted(names, key=_ORDER.__getitem__)
 
 
-def _signature(args, params, backend=False):
-    parts = [a.name for a in args]
-    star = []
-    for n in params:
-        p = _TABLE[n]
-        if p.default_from:
-            star.append(f"{n}=None")
-        elif p.base is not None and n.startswith("phase"):
-            star.append(f"{n}={p.base!r}")
-        else:
-            star.append(n)
-    if backend:
-        star.append("backend=None")
-    return ", ".join(parts + (["*"] + star if star else []) + ["**params"])
+def _doc_params(exprs, args):
+    """Parameters a user may pass: those used, and those their defaults come from."""
+    names = set(_impl_params(exprs, args))
+    names |= {_TABLE[n].default_from for n in names if _TABLE[n].default_from}
+    return sorted(names, key=_ORDER.__getitem__)
 
 
 def _domain_of(symbol):
@@ -182,15 +222,16 @@ def _is_root(e):
             and e.base.is_nonnegative is True)
 
 
-def _hoisted_roots(flat):
+def _hoisted_roots(flat, args=()):
     """The roots ``b**(1/d)``, ``d >= 3``, that a function computes once, up front.
 
     Why: numpy's ``power`` costs several times its ``cbrt`` plus a multiply, and
     ``g**(1/3)``, ``omega2**(4/3)``, ``omega2**(10/3)`` then share one root each; in a
     numba kernel a scalar ``cbrt`` or ``pow`` costs about 20 ns, so the kernels take
-    the roots as inputs computed by numpy's vectorised functions. Only bases SymPy
-    proves nonnegative qualify (for a negative base ``cbrt`` is not SymPy's
-    principal root). Square roots stay in place: they are cheap everywhere.
+    the roots as inputs computed by numpy's vectorised functions (a bound kernel
+    computes them once, when it is bound). Only bases SymPy proves nonnegative and
+    free of the positional arguments qualify (for a negative base ``cbrt`` is not
+    SymPy's principal root). Square roots stay in place: they are cheap everywhere.
     The expressions are not rewritten (a rebuilt tree would be re-evaluated by
     SymPy, which can turn ``Abs`` of a complex expression into another form);
     the printers print each such power through the roots (`_RootPrinting`).
@@ -200,7 +241,8 @@ def _hoisted_roots(flat):
     list of (name, base, d), in a canonical order.
     """
     found = sorted({(e.base, int(e.exp.q)) for x in flat for e in x.atoms(sp.Pow)
-                    if _is_root(e)}, key=lambda bd: (sp.default_sort_key(bd[0]), bd[1]))
+                    if _is_root(e) and not (e.base.free_symbols & set(args))},
+                   key=lambda bd: (sp.default_sort_key(bd[0]), bd[1]))
     return [(f"_root{k}", base, d) for k, (base, d) in enumerate(found)]
 
 
@@ -249,7 +291,7 @@ class _Mpmath(MpmathPrinter):
 
 
 class _Scalar(_RootPrinting, PythonCodePrinter):
-    """Scalar ``math`` code for the numba kernels (Piecewise as conditional expressions)."""
+    """Scalar ``math`` code for the kernels (Piecewise as conditional expressions)."""
 
     def _print_Heaviside(self, expr):
         return f"(1.0 if ({self._print(expr.args[0])}) > 0 else 0.0)"
@@ -259,14 +301,6 @@ def _root_line(name, base, d, printer):
     arg = printer.doprint(base)
     value = f"numpy.cbrt({arg})" if d == 3 else f"numpy.power({arg}, 1/{d})"
     return f"{name} = {value}"
-
-
-def _kernel_name(private):
-    return f"{private}__kernel"
-
-
-def _array_name(private):
-    return f"{private}__array"
 
 
 def _errstate(flat, body):
@@ -279,118 +313,143 @@ def _errstate(flat, body):
         + ["    " + b.replace("\n", "\n    ") for b in body]
 
 
-def _body(fn, outputs, mp, name):
-    """Source lines of one implementation (indented, without the def line)."""
-    flat, shape = _flat(fn.returns, outputs)
-    roots = [] if mp else _hoisted_roots(flat)
-    printer = _Mpmath() if mp else _NumPy(roots)
-    params = _params_of(flat, fn.args)
-    check = "_support.mp_param" if mp else "_support.param"
-    lines = [f'_support.mp_extras("{fn.name}", params)' if mp
-             else f'_extra = _support.extras("{fn.name}", params)']
-    for n in params:
-        src = _TABLE[n].default_from
-        if src:
-            lines.append(f"{n} = {src} if {n} is None else {n}")
-    for a in fn.args:
-        domain, why = fn.arg_domains.get(a.name, (_domain_of(a), None))
-        why_s = f", {why!r}" if why else ""
-        lines.append(f'{a.name} = {check}("{fn.name}", "{a.name}", {a.name}, "{domain}"{why_s})')
-    for n in params:
-        lines.append(f'{n} = {check}("{fn.name}", "{n}", {n})')
-    body = []
-    if not mp:
-        inputs = ", ".join([a.name for a in fn.args] + params + ["*_extra"])
-        lines.append(f"_shape = _support.shape_of({inputs})")
-        body += [_root_line(root, base, d, printer) for root, base, d in roots]
-    if not mp and fn.accelerate:
-        args = ", ".join([a.name for a in fn.args] + params + [r for r, _, _ in roots])
-        body += [f'_kernel = _support.compiled({_kernel_name(name)}, '
-                 f'"{_KERNEL_RESULT[fn.returns]}", backend)',
-                 "if _kernel is not None:",
-                 f"    return _support.full(_shape, _kernel({args}))",
-                 f"return _support.full(_shape, _support.blockwise({_array_name(name)}, {args}))"]
-        return lines + _errstate(flat, body)
+def _indent(lines):
+    return [("    " + line.replace("\n", "\n    ")).rstrip() for line in lines]
+
+
+def _cse(flat, printer):
     repl, reduced = sp.cse(flat, symbols=sp.numbered_symbols("_x"), order="canonical")
-    body += [f"{sym} = {printer.doprint(e)}" for sym, e in repl]
-    inputs = {a.name for a in fn.args} | set(params)
+    return [f"{sym} = {printer.doprint(e)}" for sym, e in repl], reduced
+
+
+# --------------------------------------------------------------------------- variants
+
+@dataclass(frozen=True)
+class _Variant:
+    """One option variant of a function: its names in the generated source."""
+
+    fn: FunctionSpec
+    key: tuple
+    outputs: object
+
+    @property
+    def impl(self):
+        if not self.fn.options:
+            return f"_{self.fn.name}__impl"
+        return f"_{self.fn.name}__{'__'.join(map(str, self.key))}"
+
+    @property
+    def flat(self):
+        return _flat(self.fn.returns, self.outputs)[0]
+
+    @property
+    def shape(self):
+        return _flat(self.fn.returns, self.outputs)[1]
+
+    @property
+    def params(self):
+        return _impl_params(self.flat, self.fn.args)
+
+    @property
+    def roots(self):
+        return _hoisted_roots(self.flat, self.fn.args)
+
+    @property
+    def has_scalar(self):
+        return self.fn.accelerate or self.fn.bind
+
+    @property
+    def prep(self):
+        return f"{self.impl}__roots" if self.roots and self.has_scalar else None
+
+
+def _numpy_impl(v):
+    """The unchecked numpy implementation of one variant.
+
+    An accelerated function's implementation is its array kernel (roots as inputs,
+    one output per point, shaped by the caller); the others take the broadcast
+    shape first and compute their roots themselves.
+    """
+    fn, args = v.fn, [a.name for a in v.fn.args]
+    roots = v.roots
+    printer = _NumPy(roots)
+    if fn.accelerate:
+        sig = args + v.params + [r for r, _, _ in roots]
+        extra = ", ".join(f"{r} = {base}**(1/{d})" for r, base, d in roots) or "none"
+        doc = [f'"""numpy kernel of `{fn.name}` (``_support.blockwise``).',
+               "", f"Extra arguments: {extra}.", '"""']
+        lines, reduced = _cse(v.flat, printer)
+        out = [f"numpy.copy({e.name})" if e.is_Symbol and e.name in sig
+               else printer.doprint(e) for e in reduced]
+        if fn.returns == "growth":
+            more, out = _growth_lines(out, printer)
+            lines += more
+        body = lines + [f"return {_combine(fn.returns, out, 'numpy')}"]
+        return "\n".join([f"def {v.impl}({', '.join(sig)}):"] + _indent(doc)
+                         + _indent(_errstate(v.flat, body)))
+    body = [_root_line(r, base, d, printer) for r, base, d in roots]
+    lines, reduced = _cse(v.flat, printer)
+    body += lines
+    inputs = set(args) | set(v.params)
     # An output that is an input unchanged is copied: the caller's array must not
     # come back as (an alias of) a result.
-    out = [f"numpy.copy({e.name})" if not mp and e.is_Symbol and e.name in inputs
+    out = [f"numpy.copy({e.name})" if e.is_Symbol and e.name in inputs
            else printer.doprint(e) for e in reduced]
-    body += _assemble(fn.returns, out, shape, mp)
-    return lines + (body if mp else _errstate(flat, body))
+    body += _assemble(fn.returns, out, v.shape, mp=False)
+    sig = ["_shape"] + args + v.params
+    return "\n".join([f"def {v.impl}({', '.join(sig)}):"] + _indent(_errstate(v.flat, body)))
 
 
-_KERNEL_RESULT = {"value": "float64", "growth": "float64", "stable": "boolean"}
+def _mp_impl(v):
+    fn, args = v.fn, [a.name for a in v.fn.args]
+    printer = _Mpmath()
+    lines, reduced = _cse(v.flat, printer)
+    out = [printer.doprint(e) for e in reduced]
+    body = lines + _assemble(fn.returns, out, v.shape, mp=True)
+    return "\n".join([f"def {v.impl}({', '.join(args + v.params)}):"] + _indent(body))
 
 
-def _kernel_source(fn, outputs, name, scalar):
-    """Source of a kernel of one implementation (``fn.accelerate``), after the checks.
-
-    The same expressions (roots hoisted, the same common subexpressions) as numpy
-    array code (``scalar=False``: `_support.blockwise` runs it on blocks of points)
-    or as ``math`` code for one point (``scalar=True``: numba's ``vectorize`` makes a
-    ufunc of it that evaluates each point in one pass instead of one array pass per
-    operation).
-    """
-    if fn.returns not in _KERNEL_RESULT:
-        raise ValueError(f"{fn.name}: no kernel for returns={fn.returns!r}")
-    flat, shape = _flat(fn.returns, outputs)
-    params = _params_of(flat, fn.args)
-    roots = _hoisted_roots(flat)
-    printer = _Scalar(roots) if scalar else _NumPy(roots)
-    args = [a.name for a in fn.args] + params + [r for r, _, _ in roots]
-    repl, reduced = sp.cse(flat, symbols=sp.numbered_symbols("_x"), order="canonical")
-    body = [f"{sym} = {printer.doprint(e)}" for sym, e in repl]
-    out = [f"numpy.copy({e.name})" if not scalar and e.is_Symbol and e.name in args
-           else printer.doprint(e) for e in reduced]
-    if not scalar or fn.returns != "growth":
-        body.append(f"return {_one_per_point(fn.returns, out, shape, scalar)}")
+def _scalar_impl(v):
+    """The scalar ``math`` twin of a variant: for numba (ufunc or njit) and bound kernels."""
+    fn, args = v.fn, [a.name for a in v.fn.args]
+    roots = v.roots
+    printer = _Scalar(roots)
+    sig = args + v.params + [r for r, _, _ in roots]
+    lines, reduced = _cse(v.flat, printer)
+    out = [printer.doprint(e) for e in reduced]
+    if fn.returns == "growth":
+        more, names = _growth_lines(out, printer)
+        lines += more
+        result = _combine(fn.returns, names, "scalar")
+    elif fn.returns in _KERNEL_RESULT:
+        result = _combine(fn.returns, out, "scalar")
     else:
-        # The scalar form of `_support.quadratic_growth`, per quadratic factor.
-        for k in range(shape):
-            h, q, d = out[3 * k:3 * k + 3]
-            body += [f"_h{k}, _q{k}, _d{k} = {h}, {q}, {d}",
-                     f"_s{k} = math.sqrt(abs(_d{k}))",
-                     f"_g{k} = -_h{k} if _d{k} < 0 else "
-                     f"(_q{k} / -(_h{k} + _s{k}) if _h{k} > 0 else _s{k} - _h{k})"]
-        # Like numpy.maximum, a NaN wins.
-        best = "_g0"
-        for k in range(1, shape):
-            body.append(f"_best = {best} if ({best} >= _g{k} or {best} != {best}) else _g{k}")
-            best = "_best"
-        body.append(f"return {best}")
+        result = out[0] if fn.returns == "value" else f"({', '.join(out)},)"
     extra = ", ".join(f"{r} = {base}**(1/{d})" for r, base, d in roots) or "none"
-    what = ("Scalar kernel of `{}` for numba (``_support.compiled``)." if scalar else
-            "numpy kernel of `{}` (``_support.blockwise``).").format(name)
-    doc = f'    """{what}\n\n    Extra arguments: {extra}.\n    """'
-    func = _kernel_name(name) if scalar else _array_name(name)
-    if not scalar:
-        body = _errstate(flat, body)
-    return "\n".join([f"def {func}({', '.join(args)}):", doc]
-                      + ["    " + b.replace("\n", "\n    ") for b in body])
+    doc = [f'"""Scalar kernel of `{fn.name}` (``_support.compiled``, ``_support.Bound``).',
+           "", f"Extra arguments: {extra}.", '"""']
+    return "\n".join([f"def {v.impl}__scalar({', '.join(sig)}):"] + _indent(doc)
+                     + _indent(lines + [f"return {result}"]))
 
 
-def _one_per_point(returns, out, shape, mp):
-    """The expression of a function with one output per point (value, growth, stable)."""
-    if returns == "value":
-        return out[0]
-    if returns == "stable":
-        return (" and " if mp else " & ").join(f"({o} > 0)" for o in out)
-    growth = "_support.mp_quadratic_growth" if mp else "_support.quadratic_growth"
-    calls = [f"{growth}({', '.join(out[3 * k:3 * k + 3])})" for k in range(shape)]
-    if mp:
-        return f"max({', '.join(calls)})"
-    return functools.reduce(lambda a, b: f"numpy.maximum({a}, {b})", calls)
+def _prep_impl(v):
+    """``impl__roots(params) -> roots``: the hoisted roots of a variant's parameters."""
+    printer = _NumPy()
+    lines = [f"    {_root_line(r, base, d, printer)}" for r, base, d in v.roots]
+    names = ", ".join(r for r, _, _ in v.roots)
+    return "\n".join([f"def {v.prep}({', '.join(v.params)}):"] + lines
+                     + [f"    return ({names},)"])
 
 
 def _assemble(returns, out, shape, mp):
-    if returns in ("value", "growth", "stable"):
-        expr = _one_per_point(returns, out, shape, mp)
+    if returns in _KERNEL_RESULT:
+        lines = []
+        if returns == "growth":
+            lines, out = _growth_lines(out, _Mpmath() if mp else _NumPy())
         if mp:
-            return [f"return bool({expr})" if returns == "stable" else f"return {expr}"]
-        return [f"return _support.full(_shape, {expr})"]
+            one = _combine(returns, out, "mp")
+            return lines + [f"return bool({one})" if returns == "stable" else f"return {one}"]
+        return lines + [f"return _support.full(_shape, {_combine(returns, out, 'numpy')})"]
     if returns == "tuple":
         items = ", ".join(out)
         return [f"return ({items},)" if mp else f"return _support.tuple_of(_shape, {items})"]
@@ -416,9 +475,39 @@ def _assemble(returns, out, shape, mp):
     raise ValueError(returns)
 
 
+_KERNEL_RESULT = {"value": "float64", "growth": "float64", "stable": "boolean"}
+
+
+def _table(fn, variants, mp):
+    """``_NAME = {key: _support.Variant(...)}``: what the public function dispatches on."""
+    rows = []
+    for v in variants:
+        names = "(" + "".join(f"{n!r}, " for n in v.params) + ")"
+        parts = [v.impl, names]
+        if not mp and v.has_scalar:
+            parts += [f"{v.impl}__scalar", v.prep or "None"]
+        rows.append(f"    {v.key!r}: _support.Variant({', '.join(parts)}),")
+    return f"_{fn.name.upper()} = {{\n" + "\n".join(rows) + "\n}"
+
+
+# --------------------------------------------------------------------------- docstrings
+
+def _param_docs(params, kind):
+    doc = []
+    for n in params:
+        p = _TABLE[n]
+        default = ""
+        if p.default_from:
+            default = f", default: ``{p.default_from}``"
+        elif n.startswith("phase"):
+            default = f", default {p.base!r}"
+        doc += [f"{n} : {kind}", f"    {p.description} [{p.unit}], {p.domain}{default}."]
+    return doc
+
+
 def _docstring(fn, mp):
     exprs = [e for outs in fn.variants.values() for e in _flat(fn.returns, outs)[0]]
-    params = _params_of(exprs, fn.args)
+    params = _doc_params(exprs, fn.args)
     kind = "mpmath number" if mp else "array_like"
     doc = [fn.summary, "", f"Implements {fn.equations} of the paper."]
     if fn.notes:
@@ -428,14 +517,7 @@ def _docstring(fn, mp):
     doc += ["", "Parameters", "----------"]
     for a in fn.args:
         doc += [f"{a.name} : {kind}", f"    {fn.arg_docs.get(a.name, 'state variable')}"]
-    for n in params:
-        p = _TABLE[n]
-        default = ""
-        if p.default_from:
-            default = f", default: ``{p.default_from}``"
-        elif n.startswith("phase"):
-            default = f", default {p.base!r}"
-        doc += [f"{n} : {kind}", f"    {p.description} [{p.unit}], {p.domain}{default}."]
+    doc += _param_docs(params, kind)
     for name, choices, default, what in fn.options:
         doc += [f"{name} : {choices}, default {default!r}", f"    {what}"]
     if fn.vhat:
@@ -451,72 +533,149 @@ def _docstring(fn, mp):
     doc += ["**params", "    Any other model parameter (accepted and ignored); an unknown",
             "    name raises TypeError.", "", "Returns", "-------"]
     doc += fn.returns_doc.strip("\n").split("\n")
-    doc += ["", "Raises", "------", "ValueError",
-            "    If an input is NaN or outside its domain (the message names it), or an",
-            "    option value is unknown.",
-            "TypeError", "    If a keyword is not a model parameter."]
-    if fn.accelerate and not mp:
+    doc += _raises(fn.accelerate and not mp)
+    return _quote(doc)
+
+
+def _raises(numba):
+    doc = ["", "Raises", "------", "ValueError",
+           "    If an input is NaN, infinite or outside its domain (the message names",
+           "    it), or an option value is unknown.",
+           "TypeError", "    If a keyword is not a model parameter, or a parameter is missing."]
+    if numba:
         doc += ["ImportError", '    For backend="numba" when numba is not installed.']
+    return doc
+
+
+def _quote(doc):
     body = "\n".join(("    " + line).rstrip() for line in doc)
     return f'    """{body.lstrip()}\n    """'
 
 
-def _function(fn, mp):
-    """Source of one public function and its variant implementations."""
-    accelerate = fn.accelerate and not mp
+def _bind_docstring(fn):
+    exprs = [e for outs in fn.variants.values() for e in _flat(fn.returns, outs)[0]]
+    params = _doc_params(exprs, fn.args)
+    args = ", ".join(a.name for a in fn.args)
+    result = {"value": "a float", "tuple": "a tuple of floats", "vector": "a tuple of floats",
+              "matrix": "the entries as a flat tuple, row by row"}[fn.returns]
+    doc = [f"`{fn.name}` as a scalar kernel with the parameters checked once and bound.",
+           "", f"``bind_{fn.name}(**params)({args})`` equals ``{fn.name}({args}, **params)``",
+           f"for scalar inputs and returns {result}. For the inner loops of an",
+           "integrator: the arguments are checked here, not on every call.",
+           "", "Parameters", "----------"]
+    doc += _param_docs(params, "float")
+    for name, choices, default, what in fn.options:
+        doc += [f"{name} : {choices}, default {default!r}", f"    {what}"]
+    doc += ['backend : {"python", "numba"}, optional',
+            "    The kernel as plain Python, or compiled by ``numba.njit`` (on first call;",
+            "    cached on disk). Default: numba if it is installed, else python.",
+            "**params", "    Any other model parameter (accepted and ignored).",
+            "", "Returns", "-------", "_support.Bound",
+            f"    Call it as ``kernel({args})``; ``.kernel`` and ``.args`` are the raw kernel",
+            "    and the bound values, for a caller that compiles its own loop."]
+    doc += _raises(False)[:-2] + ["TypeError", "    If a keyword is not a model parameter, "
+                                  "or a parameter is missing.",
+                                  "ImportError", '    For backend="numba" when numba is not '
+                                  "installed."]
+    return _quote(doc)
 
-    def impl(name, outputs, doc):
-        exprs = _flat(fn.returns, outputs)[0]
-        sig = _signature(fn.args, _params_of(exprs, fn.args), accelerate)
-        head = [f"def {name}({sig}):"] + ([doc] if doc else [])
-        source = "\n".join(head + ["    " + line.replace("\n", "\n    ")
-                                   for line in _body(fn, outputs, mp, name)])
-        if not accelerate:
-            return [source]
-        return [source] + [_kernel_source(fn, outputs, name, scalar) for scalar in (False, True)]
 
-    if not fn.options:
-        return impl(fn.name, fn.variants[()], _docstring(fn, mp))
-    chunks = []
-    table = []
-    for key, outputs in fn.variants.items():
-        private = f"_{fn.name}__{'__'.join(map(str, key))}"
-        chunks += impl(private, outputs, None)
-        table.append(f"    {key!r}: {private},")
-    opts = ", ".join(f"{n}={d!r}" for n, _, d, _ in fn.options)
+# --------------------------------------------------------------------------- functions
+
+def _option_signature(fn, mp, extra=()):
+    opts = [f"{n}={d!r}" for n, _, d, _ in fn.options]
     if fn.vhat:
-        opts += ", vhat_model=None"
-    if accelerate:
-        opts += ", backend=None"
-    pos = ", ".join(a.name for a in fn.args)
-    sig = ", ".join(([pos] if pos else []) + ["*", opts, "**params"])
-    choose = ", ".join(f"{n}={n}" for n, *_ in fn.options)
-    call = ", ".join(([pos] if pos else []) + (["backend=backend"] if accelerate else [])
-                     + ["**params"])
-    tname = f"_{fn.name.upper()}"
-    resolve = [f'    params = _support.resolve_vhat("{fn.name}", params, vhat_model, '
-               '_friction.vhat, contact)'] if fn.vhat else []
-    public = "\n".join([f"def {fn.name}({sig}):", _docstring(fn, mp)] + resolve + [
-        f'    return _support.choose("{fn.name}", {tname}, {choose})({call})'])
-    chunks.append(f"{tname} = {{\n" + "\n".join(table) + "\n}")
-    return [public] + chunks
+        opts.append("vhat_model=None")
+    opts += list(extra)
+    pos = [a.name for a in fn.args]
+    return ", ".join(pos + (["*"] + opts if opts else []) + ["**params"])
 
 
-def render(module: Module, mp: bool = False) -> str:
+def _choose_call(fn, table_name, label):
+    choose = "".join(f", {n}={n}" for n, *_ in fn.options)
+    return f'_variant = _support.choose("{label}", {table_name}{choose})'
+
+
+def _public(fn, mp):
+    """The checked public function: choose the variant, check once, call it."""
+    backend = ("backend=None",) if fn.accelerate and not mp else ()
+    lines = [f"def {fn.name}({_option_signature(fn, mp, backend)}):", _docstring(fn, mp)]
+    body = []
+    if fn.vhat:
+        body.append(f'params = _support.resolve_vhat("{fn.name}", params, vhat_model, '
+                    '_friction.vhat, contact)')
+    body.append(_choose_call(fn, f"_{fn.name.upper()}", fn.name))
+    check = "_support.mp_param" if mp else "_support.param"
+    if mp:
+        body.append(f'_values = _support.mp_arguments("{fn.name}", _variant.names, params)')
+    else:
+        body.append(f'_values, _extra = _support.arguments("{fn.name}", _variant.names, params)')
+    for a in fn.args:
+        domain, why = fn.arg_domains.get(a.name, (_domain_of(a), None))
+        why_s = f", {why!r}" if why else ""
+        body.append(f'{a.name} = {check}("{fn.name}", "{a.name}", {a.name}, "{domain}"{why_s})')
+    args = "".join(f"{a.name}, " for a in fn.args)
+    if mp:
+        body.append(f"return _variant.impl({args}*_values)")
+    elif fn.accelerate:
+        body += [f"_shape = _support.shape_of({args}*_values, *_extra)",
+                 f'return _support.full(_shape, _support.evaluate(_variant, '
+                 f'"{_KERNEL_RESULT[fn.returns]}", backend, {args}*_values))']
+    else:
+        body += [f"_shape = _support.shape_of({args}*_values, *_extra)",
+                 f"return _variant.impl(_shape, {args}*_values)"]
+    return "\n".join(lines + _indent(body))
+
+
+def _binder(fn):
+    opts = "".join(f"{n}={d!r}, " for n, _, d, _ in fn.options)
+    lines = [f"def bind_{fn.name}(*, {opts}backend=None, **params):", _bind_docstring(fn)]
+    body = [_choose_call(fn, f"_{fn.name.upper()}", f"bind_{fn.name}"),
+            f'return _support.bind("{fn.name}", _variant, params, backend)']
+    return "\n".join(lines + _indent(body))
+
+
+def _function(fn, mp):
+    """Source chunks of one public function, its table and its implementations."""
+    if fn.bind and fn.returns not in ("value", "tuple", "vector", "matrix"):
+        raise ValueError(f"{fn.name}: bind needs returns in value/tuple/vector/matrix")
+    if fn.accelerate and fn.returns not in _KERNEL_RESULT:
+        raise ValueError(f"{fn.name}: no kernel for returns={fn.returns!r}")
+    variants = [_Variant(fn, key, outputs) for key, outputs in fn.variants.items()]
+    chunks = [_public(fn, mp)]
+    if fn.bind and not mp:
+        chunks.append(_binder(fn))
+    for v in variants:
+        chunks.append(_mp_impl(v) if mp else _numpy_impl(v))
+        if not mp and v.has_scalar:
+            chunks.append(_scalar_impl(v))
+            if v.prep:
+                chunks.append(_prep_impl(v))
+    chunks.append(_table(fn, variants, mp))
+    return chunks
+
+
+def render(module: ModuleSpec, mp: bool = False) -> str:
     """Source text of one generated module (numpy, or mpmath with ``mp=True``)."""
     chunks = [c for fn in module.functions for c in _function(fn, mp)]
     code = "\n\n\n".join(chunks)
     imports = [name for name in ("functools", "math", "mpmath", "numpy")
                if re.search(rf"(?<![\w.]){name}\.", code)]
-    names = ", ".join(repr(fn.name) for fn in module.functions)
+    public = [fn.name for fn in module.functions]
+    if not mp:
+        public += [f"bind_{fn.name}" for fn in module.functions if fn.bind]
+    public += [name for name, _, _ in module.constants]
+    names = ", ".join(repr(n) for n in public)
     variant = ("mpmath variant (same names, arbitrary precision) of "
                f"``generated.{module.name}``.\n\n" if mp else "")
     doc = f'"""{variant}{module.doc.strip()}\n"""'
     support = "from .. import _support" if mp else "from . import _support"
     if any(fn.vhat for fn in module.functions):
         support += "\nfrom . import friction as _friction"
+    constants = "\n\n".join(f"#: {comment}\n{name} = {value!r}"
+                            for name, value, comment in module.constants)
     parts = [HEADER + doc, "\n".join(f"import {i}" for i in imports) if imports else None,
-             support, f"__all__ = [{names}]"]
+             support, f"__all__ = [{names}]", constants or None]
     return "\n\n".join(p for p in parts if p) + "\n\n\n" + code + "\n"
 
 
@@ -527,14 +686,19 @@ def _parameters_module() -> str:
         for p in PARAMETERS)
     return (HEADER + '"""The parameter table (copied from derive/parameters.py).\n\n'
             "``PARAMETERS``: one dict per parameter; ``BASE``: the paper's base set\n"
-            "(Fig. 2, with ``Vb = 4`` of Fig. 3); ``KNOWN``: every accepted keyword.\n"
+            "(Fig. 2, with ``Vb = 4`` of Fig. 3); ``KNOWN``: every accepted keyword;\n"
+            "``DEFAULT_FROM``: the parameter a per-direction one defaults to;\n"
+            "``DEFAULTS``: the values of the optional parameters (the phases).\n"
             '"""\n\n'
             f"PARAMETERS = (\n{rows}\n)\n\n"
             "BASE = {p['name']: p['base'] for p in PARAMETERS\n"
             "        if p['base'] is not None and p['default_from'] is None\n"
             "        and not p['name'].startswith('phase')}\n"
             "KNOWN = frozenset(p['name'] for p in PARAMETERS)\n"
-            "DOMAINS = {p['name']: p['domain'] for p in PARAMETERS}\n")
+            "DOMAINS = {p['name']: p['domain'] for p in PARAMETERS}\n"
+            "DEFAULT_FROM = {p['name']: p['default_from'] for p in PARAMETERS\n"
+            "                if p['default_from'] is not None}\n"
+            "DEFAULTS = {p['name']: p['base'] for p in PARAMETERS if p['name'].startswith('phase')}\n")
 
 
 def render_all(modules) -> dict[str, str]:

@@ -5,6 +5,9 @@ parts so that each part is a choice:
 
 * the contact law: Hertz-Damp, Eq. (1) (``"hertz_damp"``), or the linear
   Kelvin-Voigt law of Fig. 16 (``"kelvin_voigt"``);
+* the tension law: Eq. (1) as printed, whose force turns negative (tensile) when
+  the damping term outweighs the stiffness term (``"allowed"``), or a contact that
+  cannot pull, ``max(F, 0)`` (``"clipped"``; docs/modelling.md#tension);
 * the friction direction: ``sgn(Vr)`` as in Eq. (3), or a fixed branch
   (``-1`` while the mass is slower than the belt, the branch of Eqs. 5-8);
 * the excitation: amplitude, frequency and phase per direction (Figs. 14-15),
@@ -19,12 +22,13 @@ import sympy as sp
 from .parameters import PARAMETERS
 
 __all__ = [
-    "CONTACT_LAWS", "P", "t", "X1", "Y1", "X2", "Y2", "STATE", "lam",
-    "normal_force", "contact_potential", "friction_coefficient",
+    "CONTACT_LAWS", "TENSION_LAWS", "P", "t", "X1", "Y1", "X2", "Y2", "STATE", "lam",
+    "normal_force", "contact_force", "contact_potential", "friction_coefficient",
     "excitation", "equal_excitation", "equations_of_motion",
 ]
 
 CONTACT_LAWS = ("hertz_damp", "kelvin_voigt")
+TENSION_LAWS = ("allowed", "clipped")
 
 _ASSUMPTIONS = {"positive": {"positive": True},
                 "nonnegative": {"nonnegative": True},
@@ -55,6 +59,24 @@ def normal_force(contact: str = "hertz_damp", X2=X2, Y2=Y2) -> sp.Expr:
     if contact == "kelvin_voigt":
         return w2**2 * X2 + 2 * b2 * w2 * Y2
     raise ValueError(f"contact must be one of {CONTACT_LAWS}, got {contact!r}")
+
+
+def contact_force(contact: str = "hertz_damp", tension: str = "allowed", X2=X2,
+                  Y2=Y2) -> sp.Expr:
+    """The normal force in contact under a tension law.
+
+    ``allowed``: Eq. (1) as printed (`normal_force`), negative when the damping term
+    outweighs the stiffness term. ``clipped``: ``max(F, 0)``, a contact that cannot
+    pull; where Eq. (1) would be tensile the surfaces separate and no force acts.
+    The clipped force is continuous where Eq. (1) crosses zero, so the clip is a kink
+    of the vector field, not a jump.
+    """
+    F = normal_force(contact, X2, Y2)
+    if tension == "allowed":
+        return F
+    if tension == "clipped":
+        return sp.Piecewise((F, F > 0), (0, True))
+    raise ValueError(f"tension must be one of {TENSION_LAWS}, got {tension!r}")
 
 
 def contact_potential(contact: str = "hertz_damp", X2=X2) -> sp.Expr:

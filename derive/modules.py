@@ -1,7 +1,7 @@
 """What ``generated/`` contains: each module as a list of function specs.
 
 This is the pipeline's last pure step: it calls the derivations and packages their
-expressions as `codegen.Function` specs. Nothing here writes files.
+expressions as `codegen.FunctionSpec` specs. Nothing here writes files.
 """
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from . import friction as fr
 from . import mdsm
 from . import stability as st
 from . import statespace as ss
-from .codegen import Function, Module
+from .codegen import FunctionSpec, ModuleSpec
 import sympy as sp
 
 from .model import CONTACT_LAWS, STATE, P, X1, Y1, Y2, t, normal_force
@@ -36,31 +36,31 @@ def _per_contact(build):
     return {(c,): build(c) for c in CONTACT_LAWS}
 
 
-def unforced() -> Module:
+def unforced() -> ModuleSpec:
     """Sect. 4.1: equilibrium, Jacobian and characteristic polynomial (Eqs. 9-12)."""
     eq = _per_contact(ss.equilibrium_eq_9)
     J0 = _per_contact(ss.jacobian_at_equilibrium_eq_11)
     functions = (
-        Function("equilibrium", "Equilibrium (X1, Y1, X2, Y2) of the unforced system.",
+        FunctionSpec("equilibrium", "Equilibrium (X1, Y1, X2, Y2) of the unforced system.",
                  "Eq. (9), solved by SymPy from Eqs. (5)-(8)", "tuple",
                  "X1, Y1, X2, Y2 : ndarray\n    Broadcast to the shape of the inputs.",
                  {k: [v[s] for s in STATE] for k, v in eq.items()}, CONTACT_OPTION),
-        Function("jacobian", "Jacobian of the state equations on the sliding branch.",
+        FunctionSpec("jacobian", "Jacobian of the state equations on the sliding branch.",
                  "Eq. (10)", "matrix",
                  "J : ndarray, shape (..., 4, 4)\n    d(X1', Y1', X2', Y2')/d(X1, Y1, X2, Y2).",
                  _per_contact(ss.jacobian_eq_10), CONTACT_OPTION, STATE, STATE_DOCS,
                  IN_CONTACT),
-        Function("jacobian_at_equilibrium", "The Jacobian at the equilibrium, J^0.",
+        FunctionSpec("jacobian_at_equilibrium", "The Jacobian at the equilibrium, J^0.",
                  "Eq. (11)", "matrix", "J0 : ndarray, shape (..., 4, 4)", J0,
                  CONTACT_OPTION),
-        Function("charpoly", "Coefficients of the monic characteristic quartic of J^0.",
+        FunctionSpec("charpoly", "Coefficients of the monic characteristic quartic of J^0.",
                  "Eq. (12)", "tuple",
                  "a1, a2, a3, a4 : ndarray\n"
                  "    det(lambda I - J0) = lambda^4 + a1 lambda^3 + a2 lambda^2 + a3 lambda + a4.",
                  {k: ss.charpoly_eq_12(v).all_coeffs()[1:] for k, v in J0.items()},
                  CONTACT_OPTION,
                  notes="mu_s does not appear (the claim below Eq. 12)."),
-        Function("eigenvalues", "Eigenvalues of J^0 in closed form.",
+        FunctionSpec("eigenvalues", "Eigenvalues of J^0 in closed form.",
                  "Eq. (12), via its exact factorisation", "roots",
                  "lam : complex ndarray, shape (..., 4)\n"
                  "    Tangential pair, then normal pair; for a complex pair the root with\n"
@@ -71,24 +71,24 @@ def unforced() -> Module:
                        "without cancellation from factored discriminants, which keeps "
                        "full accuracy at a double root (beta1 = 1)."),
     )
-    return Module("unforced", """The unforced system at its equilibrium (Sect. 4.1, Eqs. 9-12).
+    return ModuleSpec("unforced", """The unforced system at its equilibrium (Sect. 4.1, Eqs. 9-12).
 
 Both contact laws (``contact="hertz_damp"``, Eq. 1, the default; ``"kelvin_voigt"``,
 Fig. 16). Every function takes the parameters as keywords.
 """, functions)
 
 
-def dynamics() -> Module:
+def dynamics() -> ModuleSpec:
     """Eq. (4) for simulation: right-hand side, Jacobian, normal force, energy."""
     state_t = (t,) + dyn.STATE_R
     fns = (
-        Function("rhs", "Right-hand side (X1', Y1', X2', Y2') of Eq. (4).",
+        FunctionSpec("rhs", "Right-hand side (X1', Y1', X2', Y2') of Eq. (4).",
                  "Eqs. (1)-(4)", "vector", "dstate : ndarray, shape (..., 4)",
                  _per_contact(lambda c: list(dyn.rhs(c))), CONTACT_OPTION, state_t,
                  STATE_DOCS,
                  notes="Friction direction sgn(X1' - Vb) as in Eq. (3); zero normal "
                        "force when X2 <= 0 (loss of contact, Eq. 1)."),
-        Function("rhs_branch", "Right-hand side of Eq. (4) with a given friction direction.",
+        FunctionSpec("rhs_branch", "Right-hand side of Eq. (4) with a given friction direction.",
                  "Eqs. (1)-(4)", "vector", "dstate : ndarray, shape (..., 4)",
                  _per_contact(lambda c: list(dyn.rhs(c, dyn.sgn))), CONTACT_OPTION,
                  state_t + (dyn.sgn,), STATE_DOCS,
@@ -96,32 +96,32 @@ def dynamics() -> Module:
                        "with sgn = 0 the second entry is the tangential acceleration "
                        "without friction, whose magnitude against mu_s F_n decides "
                        "whether sticking holds."),
-        Function("jacobian_branch", "State Jacobian of `rhs_branch`.",
+        FunctionSpec("jacobian_branch", "State Jacobian of `rhs_branch`.",
                  "Eqs. (1)-(4)", "matrix", "J : ndarray, shape (..., 4, 4)",
                  _per_contact(dyn.jacobian), CONTACT_OPTION, state_t + (dyn.sgn,),
                  STATE_DOCS),
-        Function("normal_force", "Normal force per unit mass, zero out of contact.",
+        FunctionSpec("normal_force", "Normal force per unit mass, zero out of contact.",
                  "Eq. (1)", "value", "Fn : ndarray",
                  _per_contact(lambda c: dyn.in_contact(normal_force(c), 0)),
                  CONTACT_OPTION, (dyn.X2r, Y2), STATE_DOCS),
-        Function("excitation", "Excitation forces per unit mass (tangential, normal).",
+        FunctionSpec("excitation", "Excitation forces per unit mass (tangential, normal).",
                  "Eq. (4), right-hand side", "tuple", "f_t, f_n : ndarray",
                  {(): list(dyn.excitation())}, (), (t,), STATE_DOCS,
                  notes="alpha_t Omega_t^2 sin(Omega_t t + phase_t) and "
                        "-alpha_n Omega_n^2 sin(Omega_n t + phase_n); by default "
                        "both directions use alpha, Omega and zero phase, as in Eq. (4)."),
-        Function("energy", "Mechanical energy per unit mass.",
+        FunctionSpec("energy", "Mechanical energy per unit mass.",
                  "Eq. (4) (energy balance of Sect. 3)", "value", "E : ndarray",
                  _per_contact(dyn.energy), CONTACT_OPTION, (X1, Y1, dyn.X2r, Y2),
                  STATE_DOCS,
                  notes="Kinetic + tangential spring + contact potential - g X2."),
-        Function("power_balance", "Power terms with dE/dt = P_input - P_viscous - P_friction.",
+        FunctionSpec("power_balance", "Power terms with dE/dt = P_input - P_viscous - P_friction.",
                  "Eq. (4) (energy balance of Sect. 3)", "tuple",
                  "P_input, P_viscous, P_friction : ndarray",
                  _per_contact(lambda c: list(dyn.power_balance(c))), CONTACT_OPTION,
                  state_t + (dyn.sgn,), STATE_DOCS),
     )
-    return Module("dynamics", """The full equations of motion, Eq. (4), for simulation.
+    return ModuleSpec("dynamics", """The full equations of motion, Eq. (4), for simulation.
 
 Loss of contact follows Eq. (1): zero normal force for ``X2 <= 0``. ``rhs`` uses the
 sign function of Eq. (3); ``rhs_branch`` and ``jacobian_branch`` take the friction
@@ -130,7 +130,7 @@ direction as an argument for an event-driven simulator. ``energy`` and
 """, fns)
 
 
-def fit() -> Module:
+def fit() -> ModuleSpec:
     """Eqs. (16)-(17): the least-squares polynomial of X2^(3/2) and its exact errors."""
     degree = (("degree", "int, 1 to 8", 3, "polynomial degree; 3 gives Eq. (17)"),)
     arg = (ft.X2max,)
@@ -140,36 +140,36 @@ def fit() -> Module:
         return {(n,): build(n) for n in ft.DEGREES}
 
     functions = (
-        Function("coefficients", "Coefficients (c0, ..., c_degree) of the L2 fit of X2^(3/2).",
+        FunctionSpec("coefficients", "Coefficients (c0, ..., c_degree) of the L2 fit of X2^(3/2).",
                  "Eqs. (16)-(17)", "tuple",
                  "c : tuple of ndarray\n    X2^(3/2) ~ sum_k c_k X2^k on [0, X2max].",
                  per_degree(lambda n: list(ft.coefficients_eq_17(n))), degree, arg, docs,
                  notes="Exact rationals times powers of X2max, from the continuous "
                        "normal equations (Hilbert matrix) solved by SymPy."),
-        Function("max_error", "Largest absolute error of the fit on [0, X2max], exact.",
+        FunctionSpec("max_error", "Largest absolute error of the fit on [0, X2max], exact.",
                  "Eq. (17) (the paper: 'about 1e-2')", "value",
                  "err : ndarray\n    max |X2^(3/2) - fit| (for degree 3: 8/1155 X2max^(3/2)).",
                  per_degree(lambda n: ft.fit_error(n).max_abs), degree, arg, docs),
-        Function("max_error_location", "Where the largest error of the fit sits.",
+        FunctionSpec("max_error_location", "Where the largest error of the fit sits.",
                  "Eq. (17)", "value", "X2 : ndarray",
                  per_degree(lambda n: ft.fit_error(n).argmax), degree, arg, docs),
-        Function("rms_error", "Root-mean-square error of the fit on [0, X2max], exact.",
+        FunctionSpec("rms_error", "Root-mean-square error of the fit on [0, X2max], exact.",
                  "Eq. (17)", "value", "rms : ndarray",
                  per_degree(lambda n: ft.fit_error(n).rms), degree, arg, docs),
-        Function("x2max_mdsm", "The fitted range for the MDSM: X2^0 plus the fast normal "
+        FunctionSpec("x2max_mdsm", "The fitted range for the MDSM: X2^0 plus the fast normal "
                  "amplitude.", "Eqs. (9), (14), (16)", "value", "X2max : ndarray",
                  _per_contact(mdsm.x2max), CONTACT_OPTION,
                  notes="The fast normal motion is the linear response of the normal block "
                        "of Eq. (11) to the normal excitation."),
     )
-    return Module("fit", """Least-squares polynomial fit of X2^(3/2) on [0, X2max] (Eqs. 16-17).
+    return ModuleSpec("fit", """Least-squares polynomial fit of X2^(3/2) on [0, X2max] (Eqs. 16-17).
 
 Degrees 1 to 8, exact in X2max. ``X2max`` comes from the scene (for the MDSM: the
 slow penetration plus the amplitude of the fast normal motion), not a constant.
 """, functions)
 
 
-def friction() -> Module:
+def friction() -> ModuleSpec:
     """Eqs. (23)-(25) and the two readings of V_hat."""
     mu, Vh, Vb = P["mu_s"], P["Vhat"], P["Vb"]
     docs = {"Vr": "relative velocity X1' - Vb [m/s]",
@@ -180,21 +180,21 @@ def friction() -> Module:
                   "reading of V_hat (NOTES.md item 1): the tangential oscillator alone, "
                   "or the 2-DOF system linearised at equilibrium"),) + CONTACT_OPTION
     functions = (
-        Function("mu_bar", "Effective friction coefficient, with the sign of Vr.",
+        FunctionSpec("mu_bar", "Effective friction coefficient, with the sign of Vr.",
                  "Eq. (23)", "value", "mu_bar : ndarray",
                  {(): fr.mu_bar_eq_23()}, (), (fr.Vr, Vh, mu), docs),
-        Function("mu_bar0", "Effective friction at the slow equilibrium, mu_bar(-Vb).",
+        FunctionSpec("mu_bar0", "Effective friction at the slow equilibrium, mu_bar(-Vb).",
                  "Eq. (25), mu_bar^0", "value",
                  "mu_bar0 : ndarray\n    Negative: the mass is slower than the belt.",
                  {(): fr.mu_bar0_eq_25()}, (), (Vb, Vh, mu), docs),
-        Function("mu_bar_slope", "Slope of the effective friction at the equilibrium.",
+        FunctionSpec("mu_bar_slope", "Slope of the effective friction at the equilibrium.",
                  "Eqs. (24)-(25)", "value",
                  "slope : ndarray\n    2 mu_s / (pi sqrt((Vhat - Vb)(Vhat + Vb))) for Vb < Vhat;\n"
                  "    +inf at Vb = Vhat exactly; 0 for Vb > Vhat.",
                  {(): fr.mu_bar_slope_eq_25()}, (), (Vb, Vh, mu), docs,
                  notes="The same in both sign conventions: they differ in how the slope "
                        "enters the slow equations (generated.stability)."),
-        Function("vhat", "Velocity amplitude V_hat of the linear response.",
+        FunctionSpec("vhat", "Velocity amplitude V_hat of the linear response.",
                  "Eq. (23) (NOTES.md item 1)", "value", "Vhat : ndarray",
                  {(m, c): fr.vhat(m, c) for m in fr.VHAT_MODELS for c in CONTACT_LAWS},
                  vhat_opts,
@@ -203,7 +203,7 @@ def friction() -> Module:
                        "tangential one through mu_s times the normal force fluctuation; "
                        "with Omega_t != Omega_n the two amplitudes add."),
     )
-    return Module("friction", """Effective friction of the MDSM (Eqs. 23-25) and V_hat.
+    return ModuleSpec("friction", """Effective friction of the MDSM (Eqs. 23-25) and V_hat.
 
 ``mu_bar(Vr, Vhat, mu_s)`` is Eq. (23) as printed (the sign of ``Vr``);
 ``mu_bar_slope(Vb, Vhat, mu_s)`` its slope at the equilibrium ``Vr = -Vb``
@@ -212,7 +212,7 @@ def friction() -> Module:
 """, functions)
 
 
-def stability() -> Module:
+def stability() -> ModuleSpec:
     """Sects. 4.2-4.3: forced Jacobian, quartic, Hurwitz, eigenvalues, boundary."""
     opts = (("convention", '{"paper", "consistent"}', "paper",
              "sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) "
@@ -233,21 +233,21 @@ def stability() -> Module:
     hurwitz = each(lambda cv, c: st.hurwitz_factored(*pqrs(cv, c)))
     common = dict(options=opts, vhat=True)
     functions = (
-        Function("equilibrium", "Slow equilibrium (Z1, S1, Z2, S2) of the forced system.",
+        FunctionSpec("equilibrium", "Slow equilibrium (Z1, S1, Z2, S2) of the forced system.",
                  "Eq. (A7)", "tuple", "Z1, S1, Z2, S2 : ndarray",
                  each(lambda cv, c: [st.with_friction(v) for v in
                                      st.slow_equilibrium_A7(cv, c).values()]), **common,
                  notes="paper: Z1 = mu_bar^0 g / omega1^2 with mu_bar^0 < 0 (Eq. A7 as "
                        "printed); consistent: Z1 = -mu_bar^0 g / omega1^2 > 0."),
-        Function("jacobian", "Forced Jacobian J_f^0 at the slow equilibrium.",
+        FunctionSpec("jacobian", "Forced Jacobian J_f^0 at the slow equilibrium.",
                  "Eq. (22)", "matrix", "J : ndarray, shape (..., 4, 4)",
                  each(lambda cv, c: st.forced_jacobian_eq_22(cv, c).applyfunc(
                      st.with_friction)), **common),
-        Function("coefficients", "Coefficients a1..a4 of the monic characteristic quartic.",
+        FunctionSpec("coefficients", "Coefficients a1..a4 of the monic characteristic quartic.",
                  "Eqs. (26)-(27), (A8)", "tuple", "a1, a2, a3, a4 : ndarray",
                  each(lambda cv, c: [st.with_friction(a) for a in st.coefficients_A8(cv, c)]),
                  **common, notes="Only the slope mu_bar' enters, not mu_bar^0 (Sect. 4.3)."),
-        Function("hurwitz", "Hurwitz determinants H1..H4 in cancellation-free factored form.",
+        FunctionSpec("hurwitz", "Hurwitz determinants H1..H4 in cancellation-free factored form.",
                  "Eq. (28)", "tuple",
                  "H1, H2, H3, H4 : ndarray\n    With the quartic = (l^2 + p l + q)(l^2 + r l + s):"
                  "\n    H1 = p + r, H2 = p (q + r (p + r)) + r s,"
@@ -257,16 +257,16 @@ def stability() -> Module:
                        "printed Eq. 28 has a1 a4^2 where the determinant has a1^2 a4^2). "
                        "The factored form keeps the sign of H3 next to the boundary p = 0, "
                        "where a1 a2 a3 - a3^2 - a4 a1^2 cancels."),
-        Function("eigenvalues", "Eigenvalues of J_f^0 in closed form.",
+        FunctionSpec("eigenvalues", "Eigenvalues of J_f^0 in closed form.",
                  "Eq. (26), via its exact factorisation", "roots",
                  "lam : complex ndarray, shape (..., 4)\n    Tangential pair, then normal pair.",
                  each(quads), **common),
-        Function("growth_rate", "Largest real part of the eigenvalues of J_f^0.",
+        FunctionSpec("growth_rate", "Largest real part of the eigenvalues of J_f^0.",
                  "Eq. (26)", "growth",
                  "sigma : ndarray\n    At Vb = Vhat exactly (infinite slope, mu_s > 0): +inf "
                  "in the paper convention;\n    -0.0 in the consistent one (the slow tangential "
                  "root -q/p, as p -> +inf).", each(quads), **common, accelerate=True),
-        Function("is_stable", "Routh-Hurwitz verdict: all of H1..H4 positive.",
+        FunctionSpec("is_stable", "Routh-Hurwitz verdict: all of H1..H4 positive.",
                  "Eq. (28)", "stable", "stable : bool ndarray",
                  each(lambda cv, c: [st.with_friction(e) for e in
                                      st.stability_conditions(cv, c)]), **common,
@@ -275,20 +275,20 @@ def stability() -> Module:
                        "holds exactly when p > 0 and r > 0 "
                        "(derive.stability.stability_conditions): two sign tests, no "
                        "determinant, root or power.", accelerate=True),
-        Function("critical_belt_speed", "Lower edge of the unstable belt speeds, closed form.",
+        FunctionSpec("critical_belt_speed", "Lower edge of the unstable belt speeds, closed form.",
                  "Eqs. (25), (28): root of p(Vb) = 0", "value",
                  "Vb_c : ndarray\n    paper: sqrt((Vhat - m)(Vhat + m)), m = mu_s g / (pi beta1 "
                  "omega1),\n    unstable for Vb_c < Vb <= Vhat; 0 where m >= Vhat (unstable "
                  "for all\n    0 <= Vb <= Vhat); consistent: NaN (no belt speed is unstable).",
                  each(lambda cv, c: st.critical_belt_speed(cv, c)), **common),
-        Function("unstable_interval", "Belt speeds (lower, upper) where the analysis predicts "
+        FunctionSpec("unstable_interval", "Belt speeds (lower, upper) where the analysis predicts "
                  "instability.", "Eqs. (25), (28)", "tuple",
                  "lower, upper : ndarray\n    paper: (critical_belt_speed, Vhat), an interval"
                  " closed at Vhat\n    (infinite slope); consistent: (NaN, NaN), empty.",
                  each(lambda cv, c: [st.critical_belt_speed(cv, c),
                                      P["Vhat"] if cv == "paper" else sp.nan]), **common),
     )
-    return Module("stability", """Stability of the forced system (Sects. 4.2-4.3, Eqs. 22, 26-28, A7-A8).
+    return ModuleSpec("stability", """Stability of the forced system (Sects. 4.2-4.3, Eqs. 22, 26-28, A7-A8).
 
 Every function takes ``Vb`` and either ``Vhat=`` or ``vhat_model=`` (default
 ``"tangential"``), the sign ``convention=`` (``"paper"``, default, or
@@ -299,7 +299,7 @@ needs only ``is_stable`` (a sign), not eigenvalues.
 """, functions)
 
 
-def correlation() -> Module:
+def correlation() -> ModuleSpec:
     """Beyond the paper: the average of friction times the fast normal force."""
     args = (cr.u, cr.V, cr.N0, cr.N1, cr.theta)
     docs = {"u": "slow relative velocity Z1' - Vb [m/s] (-Vb at the equilibrium)",
@@ -312,28 +312,28 @@ def correlation() -> Module:
         re[contact], im[contact] = cr.fast_normal_force(contact)
         vre[contact], vim[contact] = cr.fast_tangential_velocity(contact)
     functions = (
-        Function("averaged_friction", "Average of sgn(u + V sin) (N0 + N1 sin(. + theta)) "
+        FunctionSpec("averaged_friction", "Average of sgn(u + V sin) (N0 + N1 sin(. + theta)) "
                  "over a fast period.", "Eq. (23) generalised (NOTES.md item 3)", "value",
                  "F : ndarray\n    (2/pi)(N0 asin(u/V) + N1 cos(theta) sqrt(1 - u^2/V^2)) for "
                  "|u| < V,\n    N0 sgn(u) otherwise. Times mu_s: the mean friction force.",
                  {(): cr.averaged_friction()}, (), args, docs,
                  notes="With N1 = 0 and N0 = 1 this is Eq. (23) divided by mu_s."),
-        Function("averaged_friction_slope", "Slope in u of `averaged_friction`.",
+        FunctionSpec("averaged_friction_slope", "Slope in u of `averaged_friction`.",
                  "Eq. (25) generalised", "value",
                  "dF/du : ndarray\n    2 (N0 V - N1 u cos(theta)) / (pi V sqrt((V - u)(V + u)))"
                  " for |u| < V, 0 otherwise.",
                  {(): cr.averaged_friction_slope()}, (), args, docs),
-        Function("first_harmonic", "First harmonic (s1, c1) of sgn(u + V sin t)(N0 + N1 sin(t + "
+        FunctionSpec("first_harmonic", "First harmonic (s1, c1) of sgn(u + V sin t)(N0 + N1 sin(t + "
                  "theta)).", "harmonic balance of Eq. (A1)", "tuple",
                  "s1, c1 : ndarray\n    The product ~ s1 sin t + c1 cos t + (mean, higher "
                  "harmonics).", {(): list(cr.first_harmonic())}, (), args, docs),
-        Function("fast_normal_force", "Amplitude and phase of the fast normal force.",
+        FunctionSpec("fast_normal_force", "Amplitude and phase of the fast normal force.",
                  "Eqs. (11), (A2) linearised", "tuple",
                  "N1, psi : ndarray\n    N(t) = g + N1 sin(Omega_n t + psi) per unit mass, "
                  "from the\n    linear response of the normal block of Eq. (11).",
                  {(c,): [sp.sqrt(re[c]**2 + im[c]**2), sp.atan2(im[c], re[c])]
                   for c in CONTACT_LAWS}, CONTACT_OPTION),
-        Function("fast_tangential_velocity", "Amplitude and phase of the fast relative velocity "
+        FunctionSpec("fast_tangential_velocity", "Amplitude and phase of the fast relative velocity "
                  "without friction reversal.", "Eqs. (11), (A1) linearised", "tuple",
                  "V, phi : ndarray\n    X1'(t) - Z1' = V sin(Omega_t t + phi) while Vr < 0 "
                  "throughout\n    (V is the coupled V_hat). One frequency: Omega_n is taken "
@@ -341,7 +341,7 @@ def correlation() -> Module:
                  {(c,): [sp.sqrt(vre[c]**2 + vim[c]**2), sp.atan2(vim[c], vre[c])]
                   for c in CONTACT_LAWS}, CONTACT_OPTION),
     )
-    return Module("correlation", """Beyond the paper: friction correlated with the fast normal force.
+    return ModuleSpec("correlation", """Beyond the paper: friction correlated with the fast normal force.
 
 The paper's slow equations drop the correlation between the fast friction direction
 and the fast normal force (NOTES.md item 3). These closed forms keep it, for a
@@ -352,6 +352,6 @@ stability prediction from them.
 """, functions)
 
 
-def all_modules() -> tuple[Module, ...]:
+def all_modules() -> tuple[ModuleSpec, ...]:
     return unforced(), dynamics(), fit(), friction(), stability(), correlation()
 

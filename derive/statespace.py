@@ -93,6 +93,24 @@ class Quadratic:
     def expr(self) -> sp.Expr:
         return lam**2 + self.p * lam + self.q
 
+    def growth(self) -> sp.Expr:
+        """The largest real part of the two roots (see `largest_real_part`)."""
+        return self.largest_real_part(self.p / 2, self.q, self.disc)
+
+    @staticmethod
+    def largest_real_part(h, q, disc) -> sp.Expr:
+        """Largest real part of the roots of ``lambda^2 + 2 h lambda + q``, ``disc = h^2 - q``.
+
+        A complex pair has real part ``-h``. Of two real roots the larger is
+        ``sqrt(disc) - h``; for ``h > 0`` it is the one nearer zero, computed as
+        ``q / (-(h + sqrt(disc)))`` so that a slowly decaying mode beside a fast one
+        keeps its digits. The one definition of the root selection: the code
+        generator prints it, in symbols standing for ``h, q, disc``, for numpy, for
+        the scalar kernels and for mpmath.
+        """
+        root = sp.sqrt(disc)
+        return sp.Piecewise((-h, disc < 0), (q / (-(h + root)), h > 0), (root - h, True))
+
 
 def _grouped(factor: sp.Expr) -> sp.Expr:
     """A sum with its terms collected on the symbol that leaves the fewest terms.

@@ -11,7 +11,7 @@ import math
 import mpmath
 import numpy
 
-from .parameters import DOMAINS, KNOWN
+from .parameters import DEFAULT_FROM, DEFAULTS, DOMAINS, KNOWN
 
 _DOMAIN_TEST = {
     "positive": (lambda x: x > 0, "> 0"),
@@ -28,30 +28,71 @@ def _reject_unknown(function, extra):
                         f"{', '.join(sorted(KNOWN))}")
 
 
-def extras(function, extra):
-    """Check the parameters a function does not use; return them as arrays.
+def _missing(function, name):
+    return TypeError(f"{function}() missing required parameter {name!r}")
 
-    A single dict of parameters serves every generated function: known parameters
-    that a function does not use are accepted, checked like the others (a bad
-    value is an error wherever it is passed) and take part in broadcasting, so
-    a grid of any parameter gives outputs of the grid's shape. ``None`` (an
-    optional parameter left at its default) is skipped.
+
+def _lookup(function, name, params):
+    """The value of parameter ``name``: given, else its default, else its source's."""
+    value = params.get(name)
+    if value is None:
+        if name in DEFAULTS:
+            return DEFAULTS[name]
+        source = DEFAULT_FROM.get(name)
+        value = None if source is None else params.get(source)
+        if value is None:
+            raise _missing(function, source or name)
+    return value
+
+
+def arguments(function, names, params):
+    """Check the parameters of a call once: those the variant uses, then the rest.
+
+    Parameters
+    ----------
+    function : str
+        Public name, for the messages.
+    names : tuple of str
+        The parameters the chosen implementation takes, in its order.
+    params : dict
+        The keywords of the call.
+
+    Returns
+    -------
+    values : list of ndarray
+        The checked parameters in the order of ``names`` (defaults filled in:
+        ``DEFAULTS`` for the phases, ``DEFAULT_FROM`` for the per-direction
+        excitation).
+    extra : list of ndarray
+        The other known parameters passed. A single dict of parameters serves every
+        generated function: those a function does not use are accepted, checked
+        like the others (a bad value is an error wherever it is passed) and take
+        part in broadcasting, so a grid of any parameter gives outputs of the
+        grid's shape. ``None`` (an optional parameter left at its default) is
+        skipped.
 
     Raises
     ------
     TypeError
-        For a keyword that is not a model parameter.
+        For an unknown keyword or a missing parameter.
+    ValueError
+        Naming the parameter, for NaN, inf or a value outside its domain.
     """
-    _reject_unknown(function, extra)
-    return [param(function, k, v) for k, v in extra.items() if v is not None]
+    _reject_unknown(function, params)
+    values = [param(function, n, _lookup(function, n, params)) for n in names]
+    extra = [param(function, k, v) for k, v in params.items()
+             if k not in names and v is not None]
+    return values, extra
 
 
-def mp_extras(function, extra):
-    """`extras` for the mpmath variants (checks only)."""
-    _reject_unknown(function, extra)
-    for k, v in extra.items():
-        if v is not None:
+def mp_arguments(function, names, params):
+    """`arguments` for the mpmath variants: the checked values as ``mpf``."""
+    _reject_unknown(function, params)
+    values = [mp_param(function, n, _lookup(function, n, params)) for n in names]
+    for k, v in params.items():
+        if k not in names and v is not None:
             mp_param(function, k, v)
+    return values
 
 
 def _fail(function, name, domain, why):
@@ -70,12 +111,13 @@ def param(function, name, value, domain=None, why=None):
     domain = domain or DOMAINS[name]
     x = numpy.asarray(value, dtype=float)
     test, text = _DOMAIN_TEST[domain]
-    # One pass in the common case: the comparisons are False for NaN, so NaN is
-    # told apart from a value outside the domain only when the test fails.
-    ok = not numpy.isnan(x).any() if domain == "real" else numpy.all(test(x))
-    if not ok:
+    # One pass in the common case: isfinite is False for NaN and inf alike, so the
+    # two are told apart only when the test fails.
+    if not (numpy.all(numpy.isfinite(x)) and numpy.all(test(x))):
         if numpy.isnan(x).any():
             raise _fail(function, name, None, "a number, not NaN")
+        if numpy.isinf(x).any():
+            raise _fail(function, name, None, "finite, not inf")
         raise _fail(function, name, why, text)
     return x
 
@@ -86,6 +128,8 @@ def mp_param(function, name, value, domain=None, why=None):
     x = mpmath.mpf(value)
     if mpmath.isnan(x):
         raise _fail(function, name, None, "a number, not NaN")
+    if mpmath.isinf(x):
+        raise _fail(function, name, None, "finite, not inf")
     test, text = _DOMAIN_TEST[domain]
     if not test(x):
         raise _fail(function, name, why, text)
@@ -157,34 +201,6 @@ def mp_quadratic_roots(half_p, q, disc):
         return mpmath.mpc(big), mpmath.mpc(q / big if big != 0 else 0)
     root = mpmath.sqrt(-disc)
     return mpmath.mpc(-half_p, root), mpmath.mpc(-half_p, -root)
-
-
-def quadratic_growth(half_p, q, disc):
-    """Largest real part of the roots of ``lambda^2 + 2 half_p lambda + q``.
-
-    The root nearer zero is taken as ``q / r1`` (see `quadratic_roots`) when
-    ``half_p > 0``, so a slowly decaying mode next to a fast one keeps its digits.
-    ``half_p = -inf`` (an infinite negative damping) gives ``+inf``.
-    """
-    shape = numpy.broadcast_shapes(*(numpy.shape(a) for a in (half_p, q, disc)))
-    half_p, q, disc = numpy.broadcast_arrays(*(numpy.atleast_1d(numpy.asarray(a, float))
-                                               for a in (half_p, q, disc)))
-    # In place where possible: on large grids this function is memory-bound.
-    root = numpy.sqrt(numpy.abs(disc))
-    out = root - half_p                                  # the root for half_p <= 0
-    with numpy.errstate(divide="ignore", invalid="ignore"):
-        far = numpy.add(half_p, root, out=root)          # |larger root|, reusing root
-        numpy.divide(q, numpy.negative(far, out=far), out=out, where=half_p > 0)
-    numpy.negative(half_p, out=out, where=disc < 0)      # complex pair: real part
-    return out.reshape(shape)
-
-
-def mp_quadratic_growth(half_p, q, disc):
-    """`quadratic_growth` for the mpmath variants."""
-    if disc < 0:
-        return -half_p
-    root = mpmath.sqrt(disc)
-    return q / -(half_p + root) if half_p > 0 else -half_p + root
 
 
 def resolve_vhat(function, params, vhat_model, vhat, contact):
@@ -259,6 +275,12 @@ def _import_numba(required):
     return _numba or None
 
 
+def _check_backend(backend, choices):
+    if backend is not None and backend not in choices:
+        raise ValueError(f"backend must be one of {', '.join(map(repr, choices))} "
+                         f"or None; got {backend!r}")
+
+
 def compiled(kernel, result, backend):
     """The scalar ``kernel`` as a numba ufunc, or ``None`` for the numpy path.
 
@@ -281,9 +303,7 @@ def compiled(kernel, result, backend):
     ImportError
         For ``backend="numba"`` without numba installed.
     """
-    if backend is not None and backend not in _BACKENDS:
-        raise ValueError(f"backend must be one of {', '.join(map(repr, _BACKENDS))} "
-                         f"or None; got {backend!r}")
+    _check_backend(backend, _BACKENDS)
     if backend == "numpy" or _import_numba(backend == "numba") is None:
         return None
     ufunc = _COMPILED.get(kernel)
@@ -292,6 +312,99 @@ def compiled(kernel, result, backend):
         ufunc = _numba.vectorize([signature], cache=True)(kernel)
         _COMPILED[kernel] = ufunc
     return ufunc
+
+
+def evaluate(variant, result, backend, *values):
+    """An accelerated function's points: its numba ufunc, or its numpy kernel on blocks.
+
+    ``values`` are the checked parameters; the hoisted roots of ``variant.prep`` are
+    appended (both kernels take them as inputs).
+    """
+    roots = variant.prep(*values) if variant.prep is not None else ()
+    kernel = compiled(variant.scalar, result, backend)
+    if kernel is None:
+        return blockwise(variant.impl, *values, *roots)
+    # The compiled kernel may evaluate both sides of a conditional expression (a
+    # select), like numpy does for a Piecewise: the side it discards may divide by 0.
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return kernel(*values, *roots)
+
+
+_JITTED = {}
+
+
+def jit(kernel):
+    """``numba.njit(cache=True)`` of a generated scalar kernel, compiled once per session."""
+    fast = _JITTED.get(kernel)
+    if fast is None:
+        fast = _JITTED[kernel] = _import_numba(True).njit(cache=True)(kernel)
+    return fast
+
+
+class Bound:
+    """A generated scalar kernel with its parameters checked and bound.
+
+    ``bound(*state)`` is ``bound.kernel(*state, *bound.args)``. An integrator that
+    compiles its own loop (numba) takes ``kernel`` and ``args`` and calls the kernel
+    itself; ``params`` maps the parameter names to the bound values.
+    """
+
+    __slots__ = ("name", "kernel", "args", "params", "backend")
+
+    def __init__(self, name, kernel, args, params, backend):
+        self.name, self.kernel, self.args = name, kernel, args
+        self.params, self.backend = params, backend
+
+    def __call__(self, *state):
+        return self.kernel(*state, *self.args)
+
+    def __repr__(self):
+        return f"<bound {self.name} ({self.backend})>"
+
+
+_BIND_BACKENDS = ("python", "numba")
+
+
+def bind(function, variant, params, backend):
+    """`Bound` kernel of ``variant`` with ``params`` checked once (scalars only).
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter, for a value that is not a finite scalar in its domain,
+        or for an unknown backend.
+    TypeError
+        For an unknown keyword or a missing parameter.
+    ImportError
+        For ``backend="numba"`` without numba.
+    """
+    _check_backend(backend, _BIND_BACKENDS)
+    name = f"bind_{function}"
+    values, _ = arguments(name, variant.names, params)
+    for n, v in zip(variant.names, values):
+        if v.ndim:
+            raise ValueError(f"{name}(): parameter {n!r} must be a scalar; got shape {v.shape}")
+    values = tuple(float(v) for v in values)
+    roots = tuple(float(r) for r in variant.prep(*values)) if variant.prep is not None else ()
+    use_numba = backend == "numba" or (backend is None and _import_numba(False) is not None)
+    kernel = jit(variant.scalar) if use_numba else variant.scalar
+    return Bound(function, kernel, values + roots, dict(zip(variant.names, values)),
+                 "numba" if use_numba else "python")
+
+
+class Variant:
+    """One option variant of a generated function.
+
+    ``impl`` is the unchecked numpy (or mpmath) implementation, ``names`` the
+    parameters it takes after the positional arguments; ``scalar`` its scalar
+    ``math`` twin (bound and accelerated functions) and ``prep`` the function of
+    the parameters that returns the roots the scalar kernel takes (or None).
+    """
+
+    __slots__ = ("impl", "names", "scalar", "prep")
+
+    def __init__(self, impl, names, scalar=None, prep=None):
+        self.impl, self.names, self.scalar, self.prep = impl, names, scalar, prep
 
 
 def choose(function, table, **options):
@@ -310,6 +423,7 @@ def choose(function, table, **options):
     return table[tuple(options.values())]
 
 
-__all__ = ["extras", "mp_extras", "param", "mp_param", "shape_of", "full", "tuple_of",
-           "matrix", "vector", "quadratic_roots", "mp_quadratic_roots", "quadratic_growth",
-           "mp_quadratic_growth", "blockwise", "compiled", "resolve_vhat", "choose"]
+__all__ = ["arguments", "mp_arguments", "param", "mp_param",
+           "shape_of", "full", "tuple_of", "matrix", "vector", "quadratic_roots",
+           "mp_quadratic_roots", "blockwise", "compiled", "evaluate", "jit", "bind", "Bound",
+           "Variant", "resolve_vhat", "choose"]

@@ -49,21 +49,31 @@ def averaged_friction(u, V, N0, N1, theta, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _extra = _support.extras("averaged_friction", params)
+    _variant = _support.choose("averaged_friction", _AVERAGED_FRICTION)
+    _values, _extra = _support.arguments("averaged_friction", _variant.names, params)
     u = _support.param("averaged_friction", "u", u, "real")
     V = _support.param("averaged_friction", "V", V, "positive")
     N0 = _support.param("averaged_friction", "N0", N0, "real")
     N1 = _support.param("averaged_friction", "N1", N1, "real")
     theta = _support.param("averaged_friction", "theta", theta, "real")
-    _shape = _support.shape_of(u, V, N0, N1, theta, *_extra)
+    _shape = _support.shape_of(u, V, N0, N1, theta, *_values, *_extra)
+    return _variant.impl(_shape, u, V, N0, N1, theta, *_values)
+
+
+def _averaged_friction__impl(_shape, u, V, N0, N1, theta):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = V**(-1.0)
         return _support.full(_shape, numpy.select([numpy.greater(V, abs(u)),True], [2*_x0*(N0*V*numpy.arcsin(_x0*u) + N1*numpy.sqrt(V**2 - u**2)*numpy.cos(theta))/numpy.pi,N0*numpy.sign(u)], default=numpy.nan))
+
+
+_AVERAGED_FRICTION = {
+    (): _support.Variant(_averaged_friction__impl, ()),
+}
 
 
 def averaged_friction_slope(u, V, N0, N1, theta, **params):
@@ -95,20 +105,30 @@ def averaged_friction_slope(u, V, N0, N1, theta, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _extra = _support.extras("averaged_friction_slope", params)
+    _variant = _support.choose("averaged_friction_slope", _AVERAGED_FRICTION_SLOPE)
+    _values, _extra = _support.arguments("averaged_friction_slope", _variant.names, params)
     u = _support.param("averaged_friction_slope", "u", u, "real")
     V = _support.param("averaged_friction_slope", "V", V, "positive")
     N0 = _support.param("averaged_friction_slope", "N0", N0, "real")
     N1 = _support.param("averaged_friction_slope", "N1", N1, "real")
     theta = _support.param("averaged_friction_slope", "theta", theta, "real")
-    _shape = _support.shape_of(u, V, N0, N1, theta, *_extra)
+    _shape = _support.shape_of(u, V, N0, N1, theta, *_values, *_extra)
+    return _variant.impl(_shape, u, V, N0, N1, theta, *_values)
+
+
+def _averaged_friction_slope__impl(_shape, u, V, N0, N1, theta):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.full(_shape, numpy.select([numpy.greater(V, abs(u)),True], [(2*N0*V - 2*N1*u*numpy.cos(theta))/(numpy.pi*V*numpy.sqrt((V - u)*(V + u))),0], default=numpy.nan))
+
+
+_AVERAGED_FRICTION_SLOPE = {
+    (): _support.Variant(_averaged_friction_slope__impl, ()),
+}
 
 
 def first_harmonic(u, V, N0, N1, theta, **params):
@@ -140,18 +160,23 @@ def first_harmonic(u, V, N0, N1, theta, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _extra = _support.extras("first_harmonic", params)
+    _variant = _support.choose("first_harmonic", _FIRST_HARMONIC)
+    _values, _extra = _support.arguments("first_harmonic", _variant.names, params)
     u = _support.param("first_harmonic", "u", u, "real")
     V = _support.param("first_harmonic", "V", V, "positive")
     N0 = _support.param("first_harmonic", "N0", N0, "real")
     N1 = _support.param("first_harmonic", "N1", N1, "real")
     theta = _support.param("first_harmonic", "theta", theta, "real")
-    _shape = _support.shape_of(u, V, N0, N1, theta, *_extra)
+    _shape = _support.shape_of(u, V, N0, N1, theta, *_values, *_extra)
+    return _variant.impl(_shape, u, V, N0, N1, theta, *_values)
+
+
+def _first_harmonic__impl(_shape, u, V, N0, N1, theta):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = numpy.pi**(-1.0)
         _x1 = V**(-1.0)
@@ -165,6 +190,11 @@ def first_harmonic(u, V, N0, N1, theta, **params):
         _x9 = N1*numpy.sign(u)
         _x10 = numpy.sin(theta)
         return _support.tuple_of(_shape, numpy.select([_x8,True], [_x0*_x1*(4*N0*_x3 + V*_x4*_x7*(_x5 - _x6)),_x4*_x9], default=numpy.nan), numpy.select([_x8,True], [_x0*_x10*_x7*(_x5 + _x6),_x10*_x9], default=numpy.nan))
+
+
+_FIRST_HARMONIC = {
+    (): _support.Variant(_first_harmonic__impl, ()),
+}
 
 
 def fast_normal_force(*, contact='hertz_damp', **params):
@@ -205,27 +235,18 @@ def fast_normal_force(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("fast_normal_force", _FAST_NORMAL_FORCE, contact=contact)(**params)
+    _variant = _support.choose("fast_normal_force", _FAST_NORMAL_FORCE, contact=contact)
+    _values, _extra = _support.arguments("fast_normal_force", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _fast_normal_force__hertz_damp(*, beta2, omega2, alpha, Omega, g, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _extra = _support.extras("fast_normal_force", params)
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    beta2 = _support.param("fast_normal_force", "beta2", beta2)
-    omega2 = _support.param("fast_normal_force", "omega2", omega2)
-    alpha = _support.param("fast_normal_force", "alpha", alpha)
-    Omega = _support.param("fast_normal_force", "Omega", Omega)
-    g = _support.param("fast_normal_force", "g", g)
-    alpha_n = _support.param("fast_normal_force", "alpha_n", alpha_n)
-    Omega_n = _support.param("fast_normal_force", "Omega_n", Omega_n)
-    phase_n = _support.param("fast_normal_force", "phase_n", phase_n)
-    _shape = _support.shape_of(beta2, omega2, alpha, Omega, g, alpha_n, Omega_n, phase_n, *_extra)
+def _fast_normal_force__hertz_damp(_shape, beta2, omega2, g, alpha_n, Omega_n, phase_n):
     _root0 = numpy.cbrt(g)
     _root1 = numpy.cbrt(omega2)
     _x0 = numpy.cos(phase_n)
@@ -246,18 +267,7 @@ def _fast_normal_force__hertz_damp(*, beta2, omega2, alpha, Omega, g, alpha_n=No
     return _support.tuple_of(_shape, numpy.sqrt(_x12*_x13**2 + _x12*_x8**2), numpy.arctan2(_x13*_x14, _x14*_x8))
 
 
-def _fast_normal_force__kelvin_voigt(*, beta2, omega2, alpha, Omega, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _extra = _support.extras("fast_normal_force", params)
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    beta2 = _support.param("fast_normal_force", "beta2", beta2)
-    omega2 = _support.param("fast_normal_force", "omega2", omega2)
-    alpha = _support.param("fast_normal_force", "alpha", alpha)
-    Omega = _support.param("fast_normal_force", "Omega", Omega)
-    alpha_n = _support.param("fast_normal_force", "alpha_n", alpha_n)
-    Omega_n = _support.param("fast_normal_force", "Omega_n", Omega_n)
-    phase_n = _support.param("fast_normal_force", "phase_n", phase_n)
-    _shape = _support.shape_of(beta2, omega2, alpha, Omega, alpha_n, Omega_n, phase_n, *_extra)
+def _fast_normal_force__kelvin_voigt(_shape, beta2, omega2, alpha_n, Omega_n, phase_n):
     _x0 = numpy.cos(phase_n)
     _x1 = omega2**3
     _x2 = Omega_n**2
@@ -278,8 +288,8 @@ def _fast_normal_force__kelvin_voigt(*, beta2, omega2, alpha, Omega, alpha_n=Non
 
 
 _FAST_NORMAL_FORCE = {
-    ('hertz_damp',): _fast_normal_force__hertz_damp,
-    ('kelvin_voigt',): _fast_normal_force__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_fast_normal_force__hertz_damp, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt',): _support.Variant(_fast_normal_force__kelvin_voigt, ('beta2', 'omega2', 'alpha_n', 'Omega_n', 'phase_n', )),
 }
 
 
@@ -331,33 +341,18 @@ def fast_tangential_velocity(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("fast_tangential_velocity", _FAST_TANGENTIAL_VELOCITY, contact=contact)(**params)
+    _variant = _support.choose("fast_tangential_velocity", _FAST_TANGENTIAL_VELOCITY, contact=contact)
+    _values, _extra = _support.arguments("fast_tangential_velocity", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _fast_tangential_velocity__hertz_damp(*, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, phase_n=0.0, **params):
-    _extra = _support.extras("fast_tangential_velocity", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    beta1 = _support.param("fast_tangential_velocity", "beta1", beta1)
-    omega1 = _support.param("fast_tangential_velocity", "omega1", omega1)
-    beta2 = _support.param("fast_tangential_velocity", "beta2", beta2)
-    omega2 = _support.param("fast_tangential_velocity", "omega2", omega2)
-    alpha = _support.param("fast_tangential_velocity", "alpha", alpha)
-    Omega = _support.param("fast_tangential_velocity", "Omega", Omega)
-    mu_s = _support.param("fast_tangential_velocity", "mu_s", mu_s)
-    g = _support.param("fast_tangential_velocity", "g", g)
-    alpha_t = _support.param("fast_tangential_velocity", "alpha_t", alpha_t)
-    Omega_t = _support.param("fast_tangential_velocity", "Omega_t", Omega_t)
-    phase_t = _support.param("fast_tangential_velocity", "phase_t", phase_t)
-    alpha_n = _support.param("fast_tangential_velocity", "alpha_n", alpha_n)
-    phase_n = _support.param("fast_tangential_velocity", "phase_n", phase_n)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, phase_n, *_extra)
+def _fast_tangential_velocity__hertz_damp(_shape, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, phase_n):
     _root0 = numpy.cbrt(g)
     _root1 = numpy.cbrt(omega2)
     _x0 = Omega_t**2
@@ -389,24 +384,7 @@ def _fast_tangential_velocity__hertz_damp(*, beta1, omega1, beta2, omega2, alpha
     return _support.tuple_of(_shape, numpy.sqrt(_x0*_x24**2 + _x0*_x25**2), numpy.arctan2(Omega_t*_x25, -Omega_t*_x24))
 
 
-def _fast_tangential_velocity__kelvin_voigt(*, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, phase_n=0.0, **params):
-    _extra = _support.extras("fast_tangential_velocity", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    beta1 = _support.param("fast_tangential_velocity", "beta1", beta1)
-    omega1 = _support.param("fast_tangential_velocity", "omega1", omega1)
-    beta2 = _support.param("fast_tangential_velocity", "beta2", beta2)
-    omega2 = _support.param("fast_tangential_velocity", "omega2", omega2)
-    alpha = _support.param("fast_tangential_velocity", "alpha", alpha)
-    Omega = _support.param("fast_tangential_velocity", "Omega", Omega)
-    mu_s = _support.param("fast_tangential_velocity", "mu_s", mu_s)
-    alpha_t = _support.param("fast_tangential_velocity", "alpha_t", alpha_t)
-    Omega_t = _support.param("fast_tangential_velocity", "Omega_t", Omega_t)
-    phase_t = _support.param("fast_tangential_velocity", "phase_t", phase_t)
-    alpha_n = _support.param("fast_tangential_velocity", "alpha_n", alpha_n)
-    phase_n = _support.param("fast_tangential_velocity", "phase_n", phase_n)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t, Omega_t, phase_t, alpha_n, phase_n, *_extra)
+def _fast_tangential_velocity__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, phase_n):
     _x0 = Omega_t**2
     _x1 = beta1*omega1
     _x2 = 4*_x0
@@ -438,6 +416,6 @@ def _fast_tangential_velocity__kelvin_voigt(*, beta1, omega1, beta2, omega2, alp
 
 
 _FAST_TANGENTIAL_VELOCITY = {
-    ('hertz_damp',): _fast_tangential_velocity__hertz_damp,
-    ('kelvin_voigt',): _fast_tangential_velocity__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_fast_tangential_velocity__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', )),
+    ('kelvin_voigt',): _support.Variant(_fast_tangential_velocity__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', )),
 }

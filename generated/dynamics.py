@@ -79,41 +79,23 @@ def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("rhs", _RHS, contact=contact)(t, X1, Y1, X2, Y2, **params)
-
-
-def _rhs__hertz_damp(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _extra = _support.extras("rhs", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
+    _variant = _support.choose("rhs", _RHS, contact=contact)
+    _values, _extra = _support.arguments("rhs", _variant.names, params)
     t = _support.param("rhs", "t", t, "real")
     X1 = _support.param("rhs", "X1", X1, "real")
     Y1 = _support.param("rhs", "Y1", Y1, "real")
     X2 = _support.param("rhs", "X2", X2, "real")
     Y2 = _support.param("rhs", "Y2", Y2, "real")
-    beta1 = _support.param("rhs", "beta1", beta1)
-    omega1 = _support.param("rhs", "omega1", omega1)
-    beta2 = _support.param("rhs", "beta2", beta2)
-    omega2 = _support.param("rhs", "omega2", omega2)
-    alpha = _support.param("rhs", "alpha", alpha)
-    Omega = _support.param("rhs", "Omega", Omega)
-    mu_s = _support.param("rhs", "mu_s", mu_s)
-    g = _support.param("rhs", "g", g)
-    Vb = _support.param("rhs", "Vb", Vb)
-    alpha_t = _support.param("rhs", "alpha_t", alpha_t)
-    Omega_t = _support.param("rhs", "Omega_t", Omega_t)
-    phase_t = _support.param("rhs", "phase_t", phase_t)
-    alpha_n = _support.param("rhs", "alpha_n", alpha_n)
-    Omega_n = _support.param("rhs", "Omega_n", Omega_n)
-    phase_n = _support.param("rhs", "phase_n", phase_n)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
+    _shape = _support.shape_of(t, X1, Y1, X2, Y2, *_values, *_extra)
+    return _variant.impl(_shape, t, X1, Y1, X2, Y2, *_values)
+
+
+def _rhs__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
@@ -122,33 +104,7 @@ def _rhs__hertz_damp(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, 
         return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_s*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
-def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _extra = _support.extras("rhs", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    t = _support.param("rhs", "t", t, "real")
-    X1 = _support.param("rhs", "X1", X1, "real")
-    Y1 = _support.param("rhs", "Y1", Y1, "real")
-    X2 = _support.param("rhs", "X2", X2, "real")
-    Y2 = _support.param("rhs", "Y2", Y2, "real")
-    beta1 = _support.param("rhs", "beta1", beta1)
-    omega1 = _support.param("rhs", "omega1", omega1)
-    beta2 = _support.param("rhs", "beta2", beta2)
-    omega2 = _support.param("rhs", "omega2", omega2)
-    alpha = _support.param("rhs", "alpha", alpha)
-    Omega = _support.param("rhs", "Omega", Omega)
-    mu_s = _support.param("rhs", "mu_s", mu_s)
-    g = _support.param("rhs", "g", g)
-    Vb = _support.param("rhs", "Vb", Vb)
-    alpha_t = _support.param("rhs", "alpha_t", alpha_t)
-    Omega_t = _support.param("rhs", "Omega_t", Omega_t)
-    phase_t = _support.param("rhs", "phase_t", phase_t)
-    alpha_n = _support.param("rhs", "alpha_n", alpha_n)
-    Omega_n = _support.param("rhs", "Omega_n", Omega_n)
-    phase_n = _support.param("rhs", "phase_n", phase_n)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
+def _rhs__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
@@ -158,8 +114,8 @@ def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha
 
 
 _RHS = {
-    ('hertz_damp',): _rhs__hertz_damp,
-    ('kelvin_voigt',): _rhs__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_rhs__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt',): _support.Variant(_rhs__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
 }
 
 
@@ -227,41 +183,24 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("rhs_branch", _RHS_BRANCH, contact=contact)(t, X1, Y1, X2, Y2, sgn, **params)
-
-
-def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _extra = _support.extras("rhs_branch", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
+    _variant = _support.choose("rhs_branch", _RHS_BRANCH, contact=contact)
+    _values, _extra = _support.arguments("rhs_branch", _variant.names, params)
     t = _support.param("rhs_branch", "t", t, "real")
     X1 = _support.param("rhs_branch", "X1", X1, "real")
     Y1 = _support.param("rhs_branch", "Y1", Y1, "real")
     X2 = _support.param("rhs_branch", "X2", X2, "real")
     Y2 = _support.param("rhs_branch", "Y2", Y2, "real")
     sgn = _support.param("rhs_branch", "sgn", sgn, "real")
-    beta1 = _support.param("rhs_branch", "beta1", beta1)
-    omega1 = _support.param("rhs_branch", "omega1", omega1)
-    beta2 = _support.param("rhs_branch", "beta2", beta2)
-    omega2 = _support.param("rhs_branch", "omega2", omega2)
-    alpha = _support.param("rhs_branch", "alpha", alpha)
-    Omega = _support.param("rhs_branch", "Omega", Omega)
-    mu_s = _support.param("rhs_branch", "mu_s", mu_s)
-    g = _support.param("rhs_branch", "g", g)
-    alpha_t = _support.param("rhs_branch", "alpha_t", alpha_t)
-    Omega_t = _support.param("rhs_branch", "Omega_t", Omega_t)
-    phase_t = _support.param("rhs_branch", "phase_t", phase_t)
-    alpha_n = _support.param("rhs_branch", "alpha_n", alpha_n)
-    Omega_n = _support.param("rhs_branch", "Omega_n", Omega_n)
-    phase_n = _support.param("rhs_branch", "phase_n", phase_n)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
+    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, *_values, *_extra)
+    return _variant.impl(_shape, t, X1, Y1, X2, Y2, sgn, *_values)
+
+
+def _rhs_branch__hertz_damp(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
@@ -270,33 +209,7 @@ def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, ome
         return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_s*sgn - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
-def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _extra = _support.extras("rhs_branch", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    t = _support.param("rhs_branch", "t", t, "real")
-    X1 = _support.param("rhs_branch", "X1", X1, "real")
-    Y1 = _support.param("rhs_branch", "Y1", Y1, "real")
-    X2 = _support.param("rhs_branch", "X2", X2, "real")
-    Y2 = _support.param("rhs_branch", "Y2", Y2, "real")
-    sgn = _support.param("rhs_branch", "sgn", sgn, "real")
-    beta1 = _support.param("rhs_branch", "beta1", beta1)
-    omega1 = _support.param("rhs_branch", "omega1", omega1)
-    beta2 = _support.param("rhs_branch", "beta2", beta2)
-    omega2 = _support.param("rhs_branch", "omega2", omega2)
-    alpha = _support.param("rhs_branch", "alpha", alpha)
-    Omega = _support.param("rhs_branch", "Omega", Omega)
-    mu_s = _support.param("rhs_branch", "mu_s", mu_s)
-    g = _support.param("rhs_branch", "g", g)
-    alpha_t = _support.param("rhs_branch", "alpha_t", alpha_t)
-    Omega_t = _support.param("rhs_branch", "Omega_t", Omega_t)
-    phase_t = _support.param("rhs_branch", "phase_t", phase_t)
-    alpha_n = _support.param("rhs_branch", "alpha_n", alpha_n)
-    Omega_n = _support.param("rhs_branch", "Omega_n", Omega_n)
-    phase_n = _support.param("rhs_branch", "phase_n", phase_n)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
+def _rhs_branch__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
@@ -306,8 +219,8 @@ def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, o
 
 
 _RHS_BRANCH = {
-    ('hertz_damp',): _rhs_branch__hertz_damp,
-    ('kelvin_voigt',): _rhs_branch__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_rhs_branch__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt',): _support.Variant(_rhs_branch__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
 }
 
 
@@ -353,28 +266,24 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("jacobian_branch", _JACOBIAN_BRANCH, contact=contact)(t, X1, Y1, X2, Y2, sgn, **params)
-
-
-def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _extra = _support.extras("jacobian_branch", params)
+    _variant = _support.choose("jacobian_branch", _JACOBIAN_BRANCH, contact=contact)
+    _values, _extra = _support.arguments("jacobian_branch", _variant.names, params)
     t = _support.param("jacobian_branch", "t", t, "real")
     X1 = _support.param("jacobian_branch", "X1", X1, "real")
     Y1 = _support.param("jacobian_branch", "Y1", Y1, "real")
     X2 = _support.param("jacobian_branch", "X2", X2, "real")
     Y2 = _support.param("jacobian_branch", "Y2", Y2, "real")
     sgn = _support.param("jacobian_branch", "sgn", sgn, "real")
-    beta1 = _support.param("jacobian_branch", "beta1", beta1)
-    omega1 = _support.param("jacobian_branch", "omega1", omega1)
-    beta2 = _support.param("jacobian_branch", "beta2", beta2)
-    omega2 = _support.param("jacobian_branch", "omega2", omega2)
-    mu_s = _support.param("jacobian_branch", "mu_s", mu_s)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, *_extra)
+    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, *_values, *_extra)
+    return _variant.impl(_shape, t, X1, Y1, X2, Y2, sgn, *_values)
+
+
+def _jacobian_branch__hertz_damp(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = functools.reduce(numpy.maximum, [0, X2])
         _x1 = 2*beta2*omega2
@@ -390,20 +299,7 @@ def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2
             ])
 
 
-def _jacobian_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _extra = _support.extras("jacobian_branch", params)
-    t = _support.param("jacobian_branch", "t", t, "real")
-    X1 = _support.param("jacobian_branch", "X1", X1, "real")
-    Y1 = _support.param("jacobian_branch", "Y1", Y1, "real")
-    X2 = _support.param("jacobian_branch", "X2", X2, "real")
-    Y2 = _support.param("jacobian_branch", "Y2", Y2, "real")
-    sgn = _support.param("jacobian_branch", "sgn", sgn, "real")
-    beta1 = _support.param("jacobian_branch", "beta1", beta1)
-    omega1 = _support.param("jacobian_branch", "omega1", omega1)
-    beta2 = _support.param("jacobian_branch", "beta2", beta2)
-    omega2 = _support.param("jacobian_branch", "omega2", omega2)
-    mu_s = _support.param("jacobian_branch", "mu_s", mu_s)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, *_extra)
+def _jacobian_branch__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = omega2**2
         _x1 = mu_s*sgn
@@ -418,8 +314,8 @@ def _jacobian_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, bet
 
 
 _JACOBIAN_BRANCH = {
-    ('hertz_damp',): _jacobian_branch__hertz_damp,
-    ('kelvin_voigt',): _jacobian_branch__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_jacobian_branch__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
+    ('kelvin_voigt',): _support.Variant(_jacobian_branch__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
 }
 
 
@@ -451,43 +347,36 @@ def normal_force(X2, Y2, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("normal_force", _NORMAL_FORCE, contact=contact)(X2, Y2, **params)
-
-
-def _normal_force__hertz_damp(X2, Y2, *, beta2, omega2, **params):
-    _extra = _support.extras("normal_force", params)
+    _variant = _support.choose("normal_force", _NORMAL_FORCE, contact=contact)
+    _values, _extra = _support.arguments("normal_force", _variant.names, params)
     X2 = _support.param("normal_force", "X2", X2, "real")
     Y2 = _support.param("normal_force", "Y2", Y2, "real")
-    beta2 = _support.param("normal_force", "beta2", beta2)
-    omega2 = _support.param("normal_force", "omega2", omega2)
-    _shape = _support.shape_of(X2, Y2, beta2, omega2, *_extra)
+    _shape = _support.shape_of(X2, Y2, *_values, *_extra)
+    return _variant.impl(_shape, X2, Y2, *_values)
+
+
+def _normal_force__hertz_damp(_shape, X2, Y2, beta2, omega2):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2),0], default=numpy.nan))
 
 
-def _normal_force__kelvin_voigt(X2, Y2, *, beta2, omega2, **params):
-    _extra = _support.extras("normal_force", params)
-    X2 = _support.param("normal_force", "X2", X2, "real")
-    Y2 = _support.param("normal_force", "Y2", Y2, "real")
-    beta2 = _support.param("normal_force", "beta2", beta2)
-    omega2 = _support.param("normal_force", "omega2", omega2)
-    _shape = _support.shape_of(X2, Y2, beta2, omega2, *_extra)
+def _normal_force__kelvin_voigt(_shape, X2, Y2, beta2, omega2):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2]),0], default=numpy.nan))
 
 
 _NORMAL_FORCE = {
-    ('hertz_damp',): _normal_force__hertz_damp,
-    ('kelvin_voigt',): _normal_force__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_normal_force__hertz_damp, ('beta2', 'omega2', )),
+    ('kelvin_voigt',): _support.Variant(_normal_force__kelvin_voigt, ('beta2', 'omega2', )),
 }
 
 
-def excitation(t, *, alpha, Omega, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
+def excitation(t, **params):
     """Excitation forces per unit mass (tangential, normal).
 
     Implements Eq. (4), right-hand side of the paper.
@@ -526,27 +415,25 @@ def excitation(t, *, alpha, Omega, alpha_t=None, Omega_t=None, phase_t=0.0, alph
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _extra = _support.extras("excitation", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
+    _variant = _support.choose("excitation", _EXCITATION)
+    _values, _extra = _support.arguments("excitation", _variant.names, params)
     t = _support.param("excitation", "t", t, "real")
-    alpha = _support.param("excitation", "alpha", alpha)
-    Omega = _support.param("excitation", "Omega", Omega)
-    alpha_t = _support.param("excitation", "alpha_t", alpha_t)
-    Omega_t = _support.param("excitation", "Omega_t", Omega_t)
-    phase_t = _support.param("excitation", "phase_t", phase_t)
-    alpha_n = _support.param("excitation", "alpha_n", alpha_n)
-    Omega_n = _support.param("excitation", "Omega_n", Omega_n)
-    phase_n = _support.param("excitation", "phase_n", phase_n)
-    _shape = _support.shape_of(t, alpha, Omega, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
+    _shape = _support.shape_of(t, *_values, *_extra)
+    return _variant.impl(_shape, t, *_values)
+
+
+def _excitation__impl(_shape, t, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     return _support.tuple_of(_shape, Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t), -Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n))
+
+
+_EXCITATION = {
+    (): _support.Variant(_excitation__impl, ('alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+}
 
 
 def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
@@ -585,45 +472,34 @@ def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("energy", _ENERGY, contact=contact)(X1, Y1, X2, Y2, **params)
-
-
-def _energy__hertz_damp(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
-    _extra = _support.extras("energy", params)
+    _variant = _support.choose("energy", _ENERGY, contact=contact)
+    _values, _extra = _support.arguments("energy", _variant.names, params)
     X1 = _support.param("energy", "X1", X1, "real")
     Y1 = _support.param("energy", "Y1", Y1, "real")
     X2 = _support.param("energy", "X2", X2, "real")
     Y2 = _support.param("energy", "Y2", Y2, "real")
-    omega1 = _support.param("energy", "omega1", omega1)
-    omega2 = _support.param("energy", "omega2", omega2)
-    g = _support.param("energy", "g", g)
-    _shape = _support.shape_of(X1, Y1, X2, Y2, omega1, omega2, g, *_extra)
+    _shape = _support.shape_of(X1, Y1, X2, Y2, *_values, *_extra)
+    return _variant.impl(_shape, X1, Y1, X2, Y2, *_values)
+
+
+def _energy__hertz_damp(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(2/5)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**(5/2),0], default=numpy.nan))
 
 
-def _energy__kelvin_voigt(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
-    _extra = _support.extras("energy", params)
-    X1 = _support.param("energy", "X1", X1, "real")
-    Y1 = _support.param("energy", "Y1", Y1, "real")
-    X2 = _support.param("energy", "X2", X2, "real")
-    Y2 = _support.param("energy", "Y2", Y2, "real")
-    omega1 = _support.param("energy", "omega1", omega1)
-    omega2 = _support.param("energy", "omega2", omega2)
-    g = _support.param("energy", "g", g)
-    _shape = _support.shape_of(X1, Y1, X2, Y2, omega1, omega2, g, *_extra)
+def _energy__kelvin_voigt(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(1/2)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**2,0], default=numpy.nan))
 
 
 _ENERGY = {
-    ('hertz_damp',): _energy__hertz_damp,
-    ('kelvin_voigt',): _energy__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_energy__hertz_damp, ('omega1', 'omega2', 'g', )),
+    ('kelvin_voigt',): _support.Variant(_energy__kelvin_voigt, ('omega1', 'omega2', 'g', )),
 }
 
 
@@ -685,40 +561,24 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("power_balance", _POWER_BALANCE, contact=contact)(t, X1, Y1, X2, Y2, sgn, **params)
-
-
-def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _extra = _support.extras("power_balance", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
+    _variant = _support.choose("power_balance", _POWER_BALANCE, contact=contact)
+    _values, _extra = _support.arguments("power_balance", _variant.names, params)
     t = _support.param("power_balance", "t", t, "real")
     X1 = _support.param("power_balance", "X1", X1, "real")
     Y1 = _support.param("power_balance", "Y1", Y1, "real")
     X2 = _support.param("power_balance", "X2", X2, "real")
     Y2 = _support.param("power_balance", "Y2", Y2, "real")
     sgn = _support.param("power_balance", "sgn", sgn, "real")
-    beta1 = _support.param("power_balance", "beta1", beta1)
-    omega1 = _support.param("power_balance", "omega1", omega1)
-    beta2 = _support.param("power_balance", "beta2", beta2)
-    omega2 = _support.param("power_balance", "omega2", omega2)
-    alpha = _support.param("power_balance", "alpha", alpha)
-    Omega = _support.param("power_balance", "Omega", Omega)
-    mu_s = _support.param("power_balance", "mu_s", mu_s)
-    alpha_t = _support.param("power_balance", "alpha_t", alpha_t)
-    Omega_t = _support.param("power_balance", "Omega_t", Omega_t)
-    phase_t = _support.param("power_balance", "phase_t", phase_t)
-    alpha_n = _support.param("power_balance", "alpha_n", alpha_n)
-    Omega_n = _support.param("power_balance", "Omega_n", Omega_n)
-    phase_n = _support.param("power_balance", "phase_n", phase_n)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
+    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, *_values, *_extra)
+    return _variant.impl(_shape, t, X1, Y1, X2, Y2, sgn, *_values)
+
+
+def _power_balance__hertz_damp(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = omega2**2
         _x1 = functools.reduce(numpy.maximum, [0, X2])**(3/2)
@@ -727,32 +587,7 @@ def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, 
         return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x3,True], [Y2*(-_x0*_x1 + _x1*_x2),0], default=numpy.nan), Y1*mu_s*sgn*numpy.select([_x3,True], [_x1*_x2,0], default=numpy.nan))
 
 
-def _power_balance__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _extra = _support.extras("power_balance", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    t = _support.param("power_balance", "t", t, "real")
-    X1 = _support.param("power_balance", "X1", X1, "real")
-    Y1 = _support.param("power_balance", "Y1", Y1, "real")
-    X2 = _support.param("power_balance", "X2", X2, "real")
-    Y2 = _support.param("power_balance", "Y2", Y2, "real")
-    sgn = _support.param("power_balance", "sgn", sgn, "real")
-    beta1 = _support.param("power_balance", "beta1", beta1)
-    omega1 = _support.param("power_balance", "omega1", omega1)
-    beta2 = _support.param("power_balance", "beta2", beta2)
-    omega2 = _support.param("power_balance", "omega2", omega2)
-    alpha = _support.param("power_balance", "alpha", alpha)
-    Omega = _support.param("power_balance", "Omega", Omega)
-    mu_s = _support.param("power_balance", "mu_s", mu_s)
-    alpha_t = _support.param("power_balance", "alpha_t", alpha_t)
-    Omega_t = _support.param("power_balance", "Omega_t", Omega_t)
-    phase_t = _support.param("power_balance", "phase_t", phase_t)
-    alpha_n = _support.param("power_balance", "alpha_n", alpha_n)
-    Omega_n = _support.param("power_balance", "Omega_n", Omega_n)
-    phase_n = _support.param("power_balance", "phase_n", phase_n)
-    _shape = _support.shape_of(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
+def _power_balance__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 2*beta2*omega2
         _x1 = numpy.greater(X2, 0)
@@ -760,6 +595,6 @@ def _power_balance__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2
 
 
 _POWER_BALANCE = {
-    ('hertz_damp',): _power_balance__hertz_damp,
-    ('kelvin_voigt',): _power_balance__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_power_balance__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt',): _support.Variant(_power_balance__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
 }

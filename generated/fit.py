@@ -39,92 +39,72 @@ def coefficients(X2max, *, degree=3, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("coefficients", _COEFFICIENTS, degree=degree)(X2max, **params)
-
-
-def _coefficients__1(X2max, **params):
-    _extra = _support.extras("coefficients", params)
+    _variant = _support.choose("coefficients", _COEFFICIENTS, degree=degree)
+    _values, _extra = _support.arguments("coefficients", _variant.names, params)
     X2max = _support.param("coefficients", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+    _shape = _support.shape_of(X2max, *_values, *_extra)
+    return _variant.impl(_shape, X2max, *_values)
+
+
+def _coefficients__1(_shape, X2max):
     return _support.tuple_of(_shape, -4/35*X2max**(3/2), (36/35)*numpy.sqrt(X2max))
 
 
-def _coefficients__2(X2max, **params):
-    _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _coefficients__2(_shape, X2max):
     _x0 = numpy.sqrt(X2max)
     return _support.tuple_of(_shape, -2/105*X2max**(3/2), (16/35)*_x0, (4/7)/_x0)
 
 
-def _coefficients__3(X2max, **params):
-    _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _coefficients__3(_shape, X2max):
     _x0 = X2max**(3/2)
     _x1 = numpy.sqrt(X2max)
     return _support.tuple_of(_shape, -8/1155*_x0, (24/77)*_x1, (72/77)/_x1, -(8/33)/_x0)
 
 
-def _coefficients__4(X2max, **params):
-    _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _coefficients__4(_shape, X2max):
     _x0 = X2max**(3/2)
     _x1 = numpy.sqrt(X2max)
     return _support.tuple_of(_shape, -10/3003*_x0, (240/1001)*_x1, (180/143)/_x1, -(320/429)/_x0, (36/143)/X2max**(5/2))
 
 
-def _coefficients__5(X2max, **params):
-    _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _coefficients__5(_shape, X2max):
     _x0 = X2max**(3/2)
     _x1 = numpy.sqrt(X2max)
     return _support.tuple_of(_shape, -4/2145*_x0, (28/143)*_x1, (224/143)/_x1, -(224/143)/_x0, (168/143)/X2max**(5/2), -(24/65)/X2max**(7/2))
 
 
-def _coefficients__6(X2max, **params):
-    _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _coefficients__6(_shape, X2max):
     _x0 = X2max**(3/2)
     _x1 = numpy.sqrt(X2max)
     return _support.tuple_of(_shape, -14/12155*_x0, (2016/12155)*_x1, (4536/2431)/_x1, -(6720/2431)/_x0, (756/221)/X2max**(5/2), -(2592/1105)/X2max**(7/2), (56/85)/X2max**(9/2))
 
 
-def _coefficients__7(X2max, **params):
-    _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _coefficients__7(_shape, X2max):
     _x0 = X2max**(3/2)
     _x1 = numpy.sqrt(X2max)
     return _support.tuple_of(_shape, -16/20995*_x0, (3024/20995)*_x1, (9072/4199)/_x1, -(18480/4199)/_x0, (33264/4199)/X2max**(5/2), -(14256/1615)/X2max**(7/2), (8624/1615)/X2max**(9/2), -(432/323)/X2max**(11/2))
 
 
-def _coefficients__8(X2max, **params):
-    _extra = _support.extras("coefficients", params)
-    X2max = _support.param("coefficients", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _coefficients__8(_shape, X2max):
     _x0 = X2max**(3/2)
     _x1 = numpy.sqrt(X2max)
     return _support.tuple_of(_shape, -6/11305*_x0, (288/2261)*_x1, (792/323)/_x1, -(2112/323)/_x0, (5148/323)/X2max**(5/2), -(41184/1615)/X2max**(7/2), (8008/323)/X2max**(9/2), -(29952/2261)/X2max**(11/2), (396/133)/X2max**(13/2))
 
 
 _COEFFICIENTS = {
-    (1,): _coefficients__1,
-    (2,): _coefficients__2,
-    (3,): _coefficients__3,
-    (4,): _coefficients__4,
-    (5,): _coefficients__5,
-    (6,): _coefficients__6,
-    (7,): _coefficients__7,
-    (8,): _coefficients__8,
+    (1,): _support.Variant(_coefficients__1, ()),
+    (2,): _support.Variant(_coefficients__2, ()),
+    (3,): _support.Variant(_coefficients__3, ()),
+    (4,): _support.Variant(_coefficients__4, ()),
+    (5,): _support.Variant(_coefficients__5, ()),
+    (6,): _support.Variant(_coefficients__6, ()),
+    (7,): _support.Variant(_coefficients__7, ()),
+    (8,): _support.Variant(_coefficients__8, ()),
 }
 
 
@@ -151,79 +131,59 @@ def max_error(X2max, *, degree=3, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("max_error", _MAX_ERROR, degree=degree)(X2max, **params)
-
-
-def _max_error__1(X2max, **params):
-    _extra = _support.extras("max_error", params)
+    _variant = _support.choose("max_error", _MAX_ERROR, degree=degree)
+    _values, _extra = _support.arguments("max_error", _variant.names, params)
     X2max = _support.param("max_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+    _shape = _support.shape_of(X2max, *_values, *_extra)
+    return _variant.impl(_shape, X2max, *_values)
+
+
+def _max_error__1(_shape, X2max):
     return _support.full(_shape, (4/35)*X2max**(3/2))
 
 
-def _max_error__2(X2max, **params):
-    _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error__2(_shape, X2max):
     return _support.full(_shape, (2/105)*X2max**(3/2))
 
 
-def _max_error__3(X2max, **params):
-    _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error__3(_shape, X2max):
     return _support.full(_shape, (8/1155)*X2max**(3/2))
 
 
-def _max_error__4(X2max, **params):
-    _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error__4(_shape, X2max):
     return _support.full(_shape, (10/3003)*X2max**(3/2))
 
 
-def _max_error__5(X2max, **params):
-    _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error__5(_shape, X2max):
     return _support.full(_shape, (4/2145)*X2max**(3/2))
 
 
-def _max_error__6(X2max, **params):
-    _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error__6(_shape, X2max):
     return _support.full(_shape, (14/12155)*X2max**(3/2))
 
 
-def _max_error__7(X2max, **params):
-    _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error__7(_shape, X2max):
     return _support.full(_shape, (16/20995)*X2max**(3/2))
 
 
-def _max_error__8(X2max, **params):
-    _extra = _support.extras("max_error", params)
-    X2max = _support.param("max_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error__8(_shape, X2max):
     return _support.full(_shape, (6/11305)*X2max**(3/2))
 
 
 _MAX_ERROR = {
-    (1,): _max_error__1,
-    (2,): _max_error__2,
-    (3,): _max_error__3,
-    (4,): _max_error__4,
-    (5,): _max_error__5,
-    (6,): _max_error__6,
-    (7,): _max_error__7,
-    (8,): _max_error__8,
+    (1,): _support.Variant(_max_error__1, ()),
+    (2,): _support.Variant(_max_error__2, ()),
+    (3,): _support.Variant(_max_error__3, ()),
+    (4,): _support.Variant(_max_error__4, ()),
+    (5,): _support.Variant(_max_error__5, ()),
+    (6,): _support.Variant(_max_error__6, ()),
+    (7,): _support.Variant(_max_error__7, ()),
+    (8,): _support.Variant(_max_error__8, ()),
 }
 
 
@@ -249,79 +209,59 @@ def max_error_location(X2max, *, degree=3, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("max_error_location", _MAX_ERROR_LOCATION, degree=degree)(X2max, **params)
-
-
-def _max_error_location__1(X2max, **params):
-    _extra = _support.extras("max_error_location", params)
+    _variant = _support.choose("max_error_location", _MAX_ERROR_LOCATION, degree=degree)
+    _values, _extra = _support.arguments("max_error_location", _variant.names, params)
     X2max = _support.param("max_error_location", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+    _shape = _support.shape_of(X2max, *_values, *_extra)
+    return _variant.impl(_shape, X2max, *_values)
+
+
+def _max_error_location__1(_shape, X2max):
     return _support.full(_shape, 0)
 
 
-def _max_error_location__2(X2max, **params):
-    _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error_location__2(_shape, X2max):
     return _support.full(_shape, 0)
 
 
-def _max_error_location__3(X2max, **params):
-    _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error_location__3(_shape, X2max):
     return _support.full(_shape, 0)
 
 
-def _max_error_location__4(X2max, **params):
-    _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error_location__4(_shape, X2max):
     return _support.full(_shape, 0)
 
 
-def _max_error_location__5(X2max, **params):
-    _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error_location__5(_shape, X2max):
     return _support.full(_shape, 0)
 
 
-def _max_error_location__6(X2max, **params):
-    _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error_location__6(_shape, X2max):
     return _support.full(_shape, 0)
 
 
-def _max_error_location__7(X2max, **params):
-    _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error_location__7(_shape, X2max):
     return _support.full(_shape, 0)
 
 
-def _max_error_location__8(X2max, **params):
-    _extra = _support.extras("max_error_location", params)
-    X2max = _support.param("max_error_location", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _max_error_location__8(_shape, X2max):
     return _support.full(_shape, 0)
 
 
 _MAX_ERROR_LOCATION = {
-    (1,): _max_error_location__1,
-    (2,): _max_error_location__2,
-    (3,): _max_error_location__3,
-    (4,): _max_error_location__4,
-    (5,): _max_error_location__5,
-    (6,): _max_error_location__6,
-    (7,): _max_error_location__7,
-    (8,): _max_error_location__8,
+    (1,): _support.Variant(_max_error_location__1, ()),
+    (2,): _support.Variant(_max_error_location__2, ()),
+    (3,): _support.Variant(_max_error_location__3, ()),
+    (4,): _support.Variant(_max_error_location__4, ()),
+    (5,): _support.Variant(_max_error_location__5, ()),
+    (6,): _support.Variant(_max_error_location__6, ()),
+    (7,): _support.Variant(_max_error_location__7, ()),
+    (8,): _support.Variant(_max_error_location__8, ()),
 }
 
 
@@ -347,79 +287,59 @@ def rms_error(X2max, *, degree=3, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("rms_error", _RMS_ERROR, degree=degree)(X2max, **params)
-
-
-def _rms_error__1(X2max, **params):
-    _extra = _support.extras("rms_error", params)
+    _variant = _support.choose("rms_error", _RMS_ERROR, degree=degree)
+    _values, _extra = _support.arguments("rms_error", _variant.names, params)
     X2max = _support.param("rms_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+    _shape = _support.shape_of(X2max, *_values, *_extra)
+    return _variant.impl(_shape, X2max, *_values)
+
+
+def _rms_error__1(_shape, X2max):
     return _support.full(_shape, (3/70)*X2max**(3/2))
 
 
-def _rms_error__2(X2max, **params):
-    _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _rms_error__2(_shape, X2max):
     return _support.full(_shape, (1/210)*X2max**(3/2))
 
 
-def _rms_error__3(X2max, **params):
-    _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _rms_error__3(_shape, X2max):
     return _support.full(_shape, (1/770)*X2max**(3/2))
 
 
-def _rms_error__4(X2max, **params):
-    _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _rms_error__4(_shape, X2max):
     return _support.full(_shape, (1/2002)*X2max**(3/2))
 
 
-def _rms_error__5(X2max, **params):
-    _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _rms_error__5(_shape, X2max):
     return _support.full(_shape, (1/4290)*X2max**(3/2))
 
 
-def _rms_error__6(X2max, **params):
-    _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _rms_error__6(_shape, X2max):
     return _support.full(_shape, (3/24310)*X2max**(3/2))
 
 
-def _rms_error__7(X2max, **params):
-    _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _rms_error__7(_shape, X2max):
     return _support.full(_shape, (3/41990)*X2max**(3/2))
 
 
-def _rms_error__8(X2max, **params):
-    _extra = _support.extras("rms_error", params)
-    X2max = _support.param("rms_error", "X2max", X2max, "positive")
-    _shape = _support.shape_of(X2max, *_extra)
+def _rms_error__8(_shape, X2max):
     return _support.full(_shape, (1/22610)*X2max**(3/2))
 
 
 _RMS_ERROR = {
-    (1,): _rms_error__1,
-    (2,): _rms_error__2,
-    (3,): _rms_error__3,
-    (4,): _rms_error__4,
-    (5,): _rms_error__5,
-    (6,): _rms_error__6,
-    (7,): _rms_error__7,
-    (8,): _rms_error__8,
+    (1,): _support.Variant(_rms_error__1, ()),
+    (2,): _support.Variant(_rms_error__2, ()),
+    (3,): _support.Variant(_rms_error__3, ()),
+    (4,): _support.Variant(_rms_error__4, ()),
+    (5,): _support.Variant(_rms_error__5, ()),
+    (6,): _support.Variant(_rms_error__6, ()),
+    (7,): _support.Variant(_rms_error__7, ()),
+    (8,): _support.Variant(_rms_error__8, ()),
 }
 
 
@@ -460,26 +380,18 @@ def x2max_mdsm(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("x2max_mdsm", _X2MAX_MDSM, contact=contact)(**params)
+    _variant = _support.choose("x2max_mdsm", _X2MAX_MDSM, contact=contact)
+    _values, _extra = _support.arguments("x2max_mdsm", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _x2max_mdsm__hertz_damp(*, beta2, omega2, alpha, Omega, g, alpha_n=None, Omega_n=None, **params):
-    _extra = _support.extras("x2max_mdsm", params)
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    beta2 = _support.param("x2max_mdsm", "beta2", beta2)
-    omega2 = _support.param("x2max_mdsm", "omega2", omega2)
-    alpha = _support.param("x2max_mdsm", "alpha", alpha)
-    Omega = _support.param("x2max_mdsm", "Omega", Omega)
-    g = _support.param("x2max_mdsm", "g", g)
-    alpha_n = _support.param("x2max_mdsm", "alpha_n", alpha_n)
-    Omega_n = _support.param("x2max_mdsm", "Omega_n", Omega_n)
-    _shape = _support.shape_of(beta2, omega2, alpha, Omega, g, alpha_n, Omega_n, *_extra)
+def _x2max_mdsm__hertz_damp(_shape, beta2, omega2, g, alpha_n, Omega_n):
     _root0 = numpy.cbrt(g)
     _root1 = numpy.cbrt(omega2)
     _x0 = (omega2*_root1)
@@ -487,24 +399,13 @@ def _x2max_mdsm__hertz_damp(*, beta2, omega2, alpha, Omega, g, alpha_n=None, Ome
     return _support.full(_shape, _x1*alpha_n/numpy.sqrt(4*_x1*beta2**2*g**2/omega2**2 + (1/4)*(-3*_x0*_root0 + 2*_x1)**2) + _root0**2/_x0)
 
 
-def _x2max_mdsm__kelvin_voigt(*, beta2, omega2, alpha, Omega, g, alpha_n=None, Omega_n=None, **params):
-    _extra = _support.extras("x2max_mdsm", params)
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    beta2 = _support.param("x2max_mdsm", "beta2", beta2)
-    omega2 = _support.param("x2max_mdsm", "omega2", omega2)
-    alpha = _support.param("x2max_mdsm", "alpha", alpha)
-    Omega = _support.param("x2max_mdsm", "Omega", Omega)
-    g = _support.param("x2max_mdsm", "g", g)
-    alpha_n = _support.param("x2max_mdsm", "alpha_n", alpha_n)
-    Omega_n = _support.param("x2max_mdsm", "Omega_n", Omega_n)
-    _shape = _support.shape_of(beta2, omega2, alpha, Omega, g, alpha_n, Omega_n, *_extra)
+def _x2max_mdsm__kelvin_voigt(_shape, beta2, omega2, g, alpha_n, Omega_n):
     _x0 = omega2**2
     _x1 = Omega_n**2
     return _support.full(_shape, _x1*alpha_n/numpy.sqrt(4*_x0*_x1*beta2**2 + (Omega_n - omega2)**2*(Omega_n + omega2)**2) + g/_x0)
 
 
 _X2MAX_MDSM = {
-    ('hertz_damp',): _x2max_mdsm__hertz_damp,
-    ('kelvin_voigt',): _x2max_mdsm__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_x2max_mdsm__hertz_damp, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', )),
+    ('kelvin_voigt',): _support.Variant(_x2max_mdsm__kelvin_voigt, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', )),
 }

@@ -39,18 +39,28 @@ def mu_bar(Vr, Vhat, mu_s, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _extra = _support.extras("mu_bar", params)
+    _variant = _support.choose("mu_bar", _MU_BAR)
+    _values, _extra = _support.arguments("mu_bar", _variant.names, params)
     Vr = _support.param("mu_bar", "Vr", Vr, "real")
     Vhat = _support.param("mu_bar", "Vhat", Vhat, "positive")
     mu_s = _support.param("mu_bar", "mu_s", mu_s, "nonnegative")
-    _shape = _support.shape_of(Vr, Vhat, mu_s, *_extra)
+    _shape = _support.shape_of(Vr, Vhat, mu_s, *_values, *_extra)
+    return _variant.impl(_shape, Vr, Vhat, mu_s, *_values)
+
+
+def _mu_bar__impl(_shape, Vr, Vhat, mu_s):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.full(_shape, numpy.select([numpy.greater_equal(Vhat, abs(Vr)),True], [mu_s*(-2*numpy.arccos(Vr/Vhat)/numpy.pi + 1),mu_s*numpy.sign(Vr)], default=numpy.nan))
+
+
+_MU_BAR = {
+    (): _support.Variant(_mu_bar__impl, ()),
+}
 
 
 def mu_bar0(Vb, Vhat, mu_s, **params):
@@ -78,18 +88,28 @@ def mu_bar0(Vb, Vhat, mu_s, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _extra = _support.extras("mu_bar0", params)
+    _variant = _support.choose("mu_bar0", _MU_BAR0)
+    _values, _extra = _support.arguments("mu_bar0", _variant.names, params)
     Vb = _support.param("mu_bar0", "Vb", Vb, "nonnegative")
     Vhat = _support.param("mu_bar0", "Vhat", Vhat, "positive")
     mu_s = _support.param("mu_bar0", "mu_s", mu_s, "nonnegative")
-    _shape = _support.shape_of(Vb, Vhat, mu_s, *_extra)
+    _shape = _support.shape_of(Vb, Vhat, mu_s, *_values, *_extra)
+    return _variant.impl(_shape, Vb, Vhat, mu_s, *_values)
+
+
+def _mu_bar0__impl(_shape, Vb, Vhat, mu_s):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.full(_shape, numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_s*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_s*numpy.sign(Vb)], default=numpy.nan))
+
+
+_MU_BAR0 = {
+    (): _support.Variant(_mu_bar0__impl, ()),
+}
 
 
 def mu_bar_slope(Vb, Vhat, mu_s, **params):
@@ -121,18 +141,28 @@ def mu_bar_slope(Vb, Vhat, mu_s, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _extra = _support.extras("mu_bar_slope", params)
+    _variant = _support.choose("mu_bar_slope", _MU_BAR_SLOPE)
+    _values, _extra = _support.arguments("mu_bar_slope", _variant.names, params)
     Vb = _support.param("mu_bar_slope", "Vb", Vb, "nonnegative")
     Vhat = _support.param("mu_bar_slope", "Vhat", Vhat, "positive")
     mu_s = _support.param("mu_bar_slope", "mu_s", mu_s, "nonnegative")
-    _shape = _support.shape_of(Vb, Vhat, mu_s, *_extra)
+    _shape = _support.shape_of(Vb, Vhat, mu_s, *_values, *_extra)
+    return _variant.impl(_shape, Vb, Vhat, mu_s, *_values)
+
+
+def _mu_bar_slope__impl(_shape, Vb, Vhat, mu_s):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.full(_shape, numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan))
+
+
+_MU_BAR_SLOPE = {
+    (): _support.Variant(_mu_bar_slope__impl, ()),
+}
 
 
 def vhat(*, model='tangential', contact='hertz_damp', **params):
@@ -189,63 +219,26 @@ def vhat(*, model='tangential', contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("vhat", _VHAT, model=model, contact=contact)(**params)
+    _variant = _support.choose("vhat", _VHAT, model=model, contact=contact)
+    _values, _extra = _support.arguments("vhat", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _vhat__tangential__hertz_damp(*, beta1, omega1, alpha, Omega, alpha_t=None, Omega_t=None, **params):
-    _extra = _support.extras("vhat", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    beta1 = _support.param("vhat", "beta1", beta1)
-    omega1 = _support.param("vhat", "omega1", omega1)
-    alpha = _support.param("vhat", "alpha", alpha)
-    Omega = _support.param("vhat", "Omega", Omega)
-    alpha_t = _support.param("vhat", "alpha_t", alpha_t)
-    Omega_t = _support.param("vhat", "Omega_t", Omega_t)
-    _shape = _support.shape_of(beta1, omega1, alpha, Omega, alpha_t, Omega_t, *_extra)
+def _vhat__tangential__hertz_damp(_shape, beta1, omega1, alpha_t, Omega_t):
     return _support.full(_shape, Omega_t**3*alpha_t/numpy.sqrt(4*Omega_t**2*beta1**2*omega1**2 + (Omega_t - omega1)**2*(Omega_t + omega1)**2))
 
 
-def _vhat__tangential__kelvin_voigt(*, beta1, omega1, alpha, Omega, alpha_t=None, Omega_t=None, **params):
-    _extra = _support.extras("vhat", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    beta1 = _support.param("vhat", "beta1", beta1)
-    omega1 = _support.param("vhat", "omega1", omega1)
-    alpha = _support.param("vhat", "alpha", alpha)
-    Omega = _support.param("vhat", "Omega", Omega)
-    alpha_t = _support.param("vhat", "alpha_t", alpha_t)
-    Omega_t = _support.param("vhat", "Omega_t", Omega_t)
-    _shape = _support.shape_of(beta1, omega1, alpha, Omega, alpha_t, Omega_t, *_extra)
+def _vhat__tangential__kelvin_voigt(_shape, beta1, omega1, alpha_t, Omega_t):
     return _support.full(_shape, Omega_t**3*alpha_t/numpy.sqrt(4*Omega_t**2*beta1**2*omega1**2 + (Omega_t - omega1)**2*(Omega_t + omega1)**2))
 
 
-def _vhat__coupled__hertz_damp(*, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _extra = _support.extras("vhat", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    beta1 = _support.param("vhat", "beta1", beta1)
-    omega1 = _support.param("vhat", "omega1", omega1)
-    beta2 = _support.param("vhat", "beta2", beta2)
-    omega2 = _support.param("vhat", "omega2", omega2)
-    alpha = _support.param("vhat", "alpha", alpha)
-    Omega = _support.param("vhat", "Omega", Omega)
-    mu_s = _support.param("vhat", "mu_s", mu_s)
-    g = _support.param("vhat", "g", g)
-    alpha_t = _support.param("vhat", "alpha_t", alpha_t)
-    Omega_t = _support.param("vhat", "Omega_t", Omega_t)
-    phase_t = _support.param("vhat", "phase_t", phase_t)
-    alpha_n = _support.param("vhat", "alpha_n", alpha_n)
-    Omega_n = _support.param("vhat", "Omega_n", Omega_n)
-    phase_n = _support.param("vhat", "phase_n", phase_n)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
+def _vhat__coupled__hertz_damp(_shape, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
@@ -271,26 +264,7 @@ def _vhat__coupled__hertz_damp(*, beta1, omega1, beta2, omega2, alpha, Omega, mu
         return _support.full(_shape, numpy.select([numpy.equal(Omega_n, Omega_t),True], [abs(_x0*_x4*(_x11*_x12*_x5 + _x11*_x13*_x14 - _x5*_x6*alpha_t)),alpha_t*abs(_x13*_x4*_x6) + abs(_x15*(1j*Omega_n**3*_x14*_x18 + _x12*_x17*_x18)/(_x16*_x2 - (Omega_n + _x3)*(Omega_n + omega1)))], default=numpy.nan))
 
 
-def _vhat__coupled__kelvin_voigt(*, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _extra = _support.extras("vhat", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    beta1 = _support.param("vhat", "beta1", beta1)
-    omega1 = _support.param("vhat", "omega1", omega1)
-    beta2 = _support.param("vhat", "beta2", beta2)
-    omega2 = _support.param("vhat", "omega2", omega2)
-    alpha = _support.param("vhat", "alpha", alpha)
-    Omega = _support.param("vhat", "Omega", Omega)
-    mu_s = _support.param("vhat", "mu_s", mu_s)
-    alpha_t = _support.param("vhat", "alpha_t", alpha_t)
-    Omega_t = _support.param("vhat", "Omega_t", Omega_t)
-    phase_t = _support.param("vhat", "phase_t", phase_t)
-    alpha_n = _support.param("vhat", "alpha_n", alpha_n)
-    Omega_n = _support.param("vhat", "Omega_n", Omega_n)
-    phase_n = _support.param("vhat", "phase_n", phase_n)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, *_extra)
+def _vhat__coupled__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 1j*Omega_t
         _x1 = 2*_x0
@@ -313,8 +287,8 @@ def _vhat__coupled__kelvin_voigt(*, beta1, omega1, beta2, omega2, alpha, Omega, 
 
 
 _VHAT = {
-    ('tangential', 'hertz_damp'): _vhat__tangential__hertz_damp,
-    ('tangential', 'kelvin_voigt'): _vhat__tangential__kelvin_voigt,
-    ('coupled', 'hertz_damp'): _vhat__coupled__hertz_damp,
-    ('coupled', 'kelvin_voigt'): _vhat__coupled__kelvin_voigt,
+    ('tangential', 'hertz_damp'): _support.Variant(_vhat__tangential__hertz_damp, ('beta1', 'omega1', 'alpha_t', 'Omega_t', )),
+    ('tangential', 'kelvin_voigt'): _support.Variant(_vhat__tangential__kelvin_voigt, ('beta1', 'omega1', 'alpha_t', 'Omega_t', )),
+    ('coupled', 'hertz_damp'): _support.Variant(_vhat__coupled__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('coupled', 'kelvin_voigt'): _support.Variant(_vhat__coupled__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
 }

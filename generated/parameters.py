@@ -3,7 +3,9 @@
 """The parameter table (copied from derive/parameters.py).
 
 ``PARAMETERS``: one dict per parameter; ``BASE``: the paper's base set
-(Fig. 2, with ``Vb = 4`` of Fig. 3); ``KNOWN``: every accepted keyword.
+(Fig. 2, with ``Vb = 4`` of Fig. 3); ``KNOWN``: every accepted keyword;
+``DEFAULT_FROM``: the parameter a per-direction one defaults to;
+``DEFAULTS``: the values of the optional parameters (the phases).
 """
 
 PARAMETERS = (
@@ -46,3 +48,6 @@ BASE = {p['name']: p['base'] for p in PARAMETERS
         and not p['name'].startswith('phase')}
 KNOWN = frozenset(p['name'] for p in PARAMETERS)
 DOMAINS = {p['name']: p['domain'] for p in PARAMETERS}
+DEFAULT_FROM = {p['name']: p['default_from'] for p in PARAMETERS
+                if p['default_from'] is not None}
+DEFAULTS = {p['name']: p['base'] for p in PARAMETERS if p['name'].startswith('phase')}

@@ -59,76 +59,47 @@ def equilibrium(*, convention='paper', contact='hertz_damp', vhat_model=None, **
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("equilibrium", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("equilibrium", _EQUILIBRIUM, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("equilibrium", _EQUILIBRIUM, convention=convention, contact=contact)
+    _values, _extra = _support.arguments("equilibrium", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _equilibrium__paper__hertz_damp(*, omega1, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("equilibrium", params)
-    omega1 = _support.param("equilibrium", "omega1", omega1)
-    omega2 = _support.param("equilibrium", "omega2", omega2)
-    mu_s = _support.param("equilibrium", "mu_s", mu_s)
-    g = _support.param("equilibrium", "g", g)
-    Vb = _support.param("equilibrium", "Vb", Vb)
-    Vhat = _support.param("equilibrium", "Vhat", Vhat)
-    _shape = _support.shape_of(omega1, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _equilibrium__paper__hertz_damp(_shape, omega1, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
         return _support.tuple_of(_shape, g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_s*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_s*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, _root0**2/(omega2*_root1), 0)
 
 
-def _equilibrium__paper__kelvin_voigt(*, omega1, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("equilibrium", params)
-    omega1 = _support.param("equilibrium", "omega1", omega1)
-    omega2 = _support.param("equilibrium", "omega2", omega2)
-    mu_s = _support.param("equilibrium", "mu_s", mu_s)
-    g = _support.param("equilibrium", "g", g)
-    Vb = _support.param("equilibrium", "Vb", Vb)
-    Vhat = _support.param("equilibrium", "Vhat", Vhat)
-    _shape = _support.shape_of(omega1, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _equilibrium__paper__kelvin_voigt(_shape, omega1, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.tuple_of(_shape, g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_s*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_s*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, g/omega2**2, 0)
 
 
-def _equilibrium__consistent__hertz_damp(*, omega1, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("equilibrium", params)
-    omega1 = _support.param("equilibrium", "omega1", omega1)
-    omega2 = _support.param("equilibrium", "omega2", omega2)
-    mu_s = _support.param("equilibrium", "mu_s", mu_s)
-    g = _support.param("equilibrium", "g", g)
-    Vb = _support.param("equilibrium", "Vb", Vb)
-    Vhat = _support.param("equilibrium", "Vhat", Vhat)
-    _shape = _support.shape_of(omega1, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _equilibrium__consistent__hertz_damp(_shape, omega1, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
         return _support.tuple_of(_shape, -g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_s*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_s*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, _root0**2/(omega2*_root1), 0)
 
 
-def _equilibrium__consistent__kelvin_voigt(*, omega1, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("equilibrium", params)
-    omega1 = _support.param("equilibrium", "omega1", omega1)
-    omega2 = _support.param("equilibrium", "omega2", omega2)
-    mu_s = _support.param("equilibrium", "mu_s", mu_s)
-    g = _support.param("equilibrium", "g", g)
-    Vb = _support.param("equilibrium", "Vb", Vb)
-    Vhat = _support.param("equilibrium", "Vhat", Vhat)
-    _shape = _support.shape_of(omega1, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _equilibrium__consistent__kelvin_voigt(_shape, omega1, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.tuple_of(_shape, -g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_s*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_s*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, g/omega2**2, 0)
 
 
 _EQUILIBRIUM = {
-    ('paper', 'hertz_damp'): _equilibrium__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _equilibrium__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _equilibrium__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _equilibrium__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_equilibrium__paper__hertz_damp, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_equilibrium__paper__kelvin_voigt, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_equilibrium__consistent__hertz_damp, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_equilibrium__consistent__kelvin_voigt, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
 }
 
 
@@ -173,26 +144,19 @@ def jacobian(*, convention='paper', contact='hertz_damp', vhat_model=None, **par
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("jacobian", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("jacobian", _JACOBIAN, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("jacobian", _JACOBIAN, convention=convention, contact=contact)
+    _values, _extra = _support.arguments("jacobian", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _jacobian__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("jacobian", params)
-    beta1 = _support.param("jacobian", "beta1", beta1)
-    omega1 = _support.param("jacobian", "omega1", omega1)
-    beta2 = _support.param("jacobian", "beta2", beta2)
-    omega2 = _support.param("jacobian", "omega2", omega2)
-    mu_s = _support.param("jacobian", "mu_s", mu_s)
-    g = _support.param("jacobian", "g", g)
-    Vb = _support.param("jacobian", "Vb", Vb)
-    Vhat = _support.param("jacobian", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _jacobian__paper__hertz_damp(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
@@ -208,17 +172,7 @@ def _jacobian__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, V
             ])
 
 
-def _jacobian__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("jacobian", params)
-    beta1 = _support.param("jacobian", "beta1", beta1)
-    omega1 = _support.param("jacobian", "omega1", omega1)
-    beta2 = _support.param("jacobian", "beta2", beta2)
-    omega2 = _support.param("jacobian", "omega2", omega2)
-    mu_s = _support.param("jacobian", "mu_s", mu_s)
-    g = _support.param("jacobian", "g", g)
-    Vb = _support.param("jacobian", "Vb", Vb)
-    Vhat = _support.param("jacobian", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _jacobian__paper__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 2/numpy.pi
         _x1 = omega2**2
@@ -232,17 +186,7 @@ def _jacobian__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb,
             ])
 
 
-def _jacobian__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("jacobian", params)
-    beta1 = _support.param("jacobian", "beta1", beta1)
-    omega1 = _support.param("jacobian", "omega1", omega1)
-    beta2 = _support.param("jacobian", "beta2", beta2)
-    omega2 = _support.param("jacobian", "omega2", omega2)
-    mu_s = _support.param("jacobian", "mu_s", mu_s)
-    g = _support.param("jacobian", "g", g)
-    Vb = _support.param("jacobian", "Vb", Vb)
-    Vhat = _support.param("jacobian", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _jacobian__consistent__hertz_damp(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
@@ -258,17 +202,7 @@ def _jacobian__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, 
             ])
 
 
-def _jacobian__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("jacobian", params)
-    beta1 = _support.param("jacobian", "beta1", beta1)
-    omega1 = _support.param("jacobian", "omega1", omega1)
-    beta2 = _support.param("jacobian", "beta2", beta2)
-    omega2 = _support.param("jacobian", "omega2", omega2)
-    mu_s = _support.param("jacobian", "mu_s", mu_s)
-    g = _support.param("jacobian", "g", g)
-    Vb = _support.param("jacobian", "Vb", Vb)
-    Vhat = _support.param("jacobian", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _jacobian__consistent__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 2/numpy.pi
         _x1 = omega2**2
@@ -283,10 +217,10 @@ def _jacobian__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g
 
 
 _JACOBIAN = {
-    ('paper', 'hertz_damp'): _jacobian__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _jacobian__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _jacobian__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _jacobian__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_jacobian__paper__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_jacobian__paper__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_jacobian__consistent__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_jacobian__consistent__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
 }
 
 
@@ -333,26 +267,19 @@ def coefficients(*, convention='paper', contact='hertz_damp', vhat_model=None, *
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("coefficients", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("coefficients", _COEFFICIENTS, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("coefficients", _COEFFICIENTS, convention=convention, contact=contact)
+    _values, _extra = _support.arguments("coefficients", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _coefficients__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("coefficients", params)
-    beta1 = _support.param("coefficients", "beta1", beta1)
-    omega1 = _support.param("coefficients", "omega1", omega1)
-    beta2 = _support.param("coefficients", "beta2", beta2)
-    omega2 = _support.param("coefficients", "omega2", omega2)
-    mu_s = _support.param("coefficients", "mu_s", mu_s)
-    g = _support.param("coefficients", "g", g)
-    Vb = _support.param("coefficients", "Vb", Vb)
-    Vhat = _support.param("coefficients", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _coefficients__paper__hertz_damp(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
@@ -369,17 +296,7 @@ def _coefficients__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, V
         return _support.tuple_of(_shape, 2*_x0 + _x3 - _x4*g, 4*_x0*_x1*beta2*g - _x2*_x4*g**2 + _x5 + _x9, 3*_x0*_x6*_x7 + _x3*_x5 - _x4*_x8*(g*_root0), _x5*_x9)
 
 
-def _coefficients__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("coefficients", params)
-    beta1 = _support.param("coefficients", "beta1", beta1)
-    omega1 = _support.param("coefficients", "omega1", omega1)
-    beta2 = _support.param("coefficients", "beta2", beta2)
-    omega2 = _support.param("coefficients", "omega2", omega2)
-    mu_s = _support.param("coefficients", "mu_s", mu_s)
-    g = _support.param("coefficients", "g", g)
-    Vb = _support.param("coefficients", "Vb", Vb)
-    Vhat = _support.param("coefficients", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _coefficients__paper__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = beta1*omega1
         _x1 = 2*_x0
@@ -391,17 +308,7 @@ def _coefficients__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g,
         return _support.tuple_of(_shape, _x1 + _x3 - _x4, 4*_x0*_x2 - _x3*_x4 + _x5 + _x6, _x1*_x6 + _x3*_x5 - _x4*_x6, _x5*_x6)
 
 
-def _coefficients__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("coefficients", params)
-    beta1 = _support.param("coefficients", "beta1", beta1)
-    omega1 = _support.param("coefficients", "omega1", omega1)
-    beta2 = _support.param("coefficients", "beta2", beta2)
-    omega2 = _support.param("coefficients", "omega2", omega2)
-    mu_s = _support.param("coefficients", "mu_s", mu_s)
-    g = _support.param("coefficients", "g", g)
-    Vb = _support.param("coefficients", "Vb", Vb)
-    Vhat = _support.param("coefficients", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _coefficients__consistent__hertz_damp(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
@@ -418,17 +325,7 @@ def _coefficients__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s,
         return _support.tuple_of(_shape, 2*_x0 + _x3 + _x4*g, 4*_x0*_x1*beta2*g + _x2*_x4*g**2 + _x5 + _x9, 3*_x0*_x6*_x7 + _x3*_x5 + _x4*_x8*(g*_root0), _x5*_x9)
 
 
-def _coefficients__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("coefficients", params)
-    beta1 = _support.param("coefficients", "beta1", beta1)
-    omega1 = _support.param("coefficients", "omega1", omega1)
-    beta2 = _support.param("coefficients", "beta2", beta2)
-    omega2 = _support.param("coefficients", "omega2", omega2)
-    mu_s = _support.param("coefficients", "mu_s", mu_s)
-    g = _support.param("coefficients", "g", g)
-    Vb = _support.param("coefficients", "Vb", Vb)
-    Vhat = _support.param("coefficients", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _coefficients__consistent__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = beta1*omega1
         _x1 = 2*_x0
@@ -441,10 +338,10 @@ def _coefficients__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_
 
 
 _COEFFICIENTS = {
-    ('paper', 'hertz_damp'): _coefficients__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _coefficients__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _coefficients__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _coefficients__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_coefficients__paper__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_coefficients__paper__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_coefficients__consistent__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_coefficients__consistent__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
 }
 
 
@@ -496,26 +393,19 @@ def hurwitz(*, convention='paper', contact='hertz_damp', vhat_model=None, **para
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("hurwitz", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("hurwitz", _HURWITZ, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("hurwitz", _HURWITZ, convention=convention, contact=contact)
+    _values, _extra = _support.arguments("hurwitz", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _hurwitz__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("hurwitz", params)
-    beta1 = _support.param("hurwitz", "beta1", beta1)
-    omega1 = _support.param("hurwitz", "omega1", omega1)
-    beta2 = _support.param("hurwitz", "beta2", beta2)
-    omega2 = _support.param("hurwitz", "omega2", omega2)
-    mu_s = _support.param("hurwitz", "mu_s", mu_s)
-    g = _support.param("hurwitz", "g", g)
-    Vb = _support.param("hurwitz", "Vb", Vb)
-    Vhat = _support.param("hurwitz", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _hurwitz__paper__hertz_damp(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
@@ -529,17 +419,7 @@ def _hurwitz__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vh
         return _support.tuple_of(_shape, _x2, _x1*(_x0*_x2 + _x4) + _x3, _x0*_x6, _x3*_x4*_x6)
 
 
-def _hurwitz__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("hurwitz", params)
-    beta1 = _support.param("hurwitz", "beta1", beta1)
-    omega1 = _support.param("hurwitz", "omega1", omega1)
-    beta2 = _support.param("hurwitz", "beta2", beta2)
-    omega2 = _support.param("hurwitz", "omega2", omega2)
-    mu_s = _support.param("hurwitz", "mu_s", mu_s)
-    g = _support.param("hurwitz", "g", g)
-    Vb = _support.param("hurwitz", "Vb", Vb)
-    Vhat = _support.param("hurwitz", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _hurwitz__paper__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 2*beta2
         _x1 = _x0*omega2
@@ -552,17 +432,7 @@ def _hurwitz__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, 
         return _support.tuple_of(_shape, _x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7)
 
 
-def _hurwitz__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("hurwitz", params)
-    beta1 = _support.param("hurwitz", "beta1", beta1)
-    omega1 = _support.param("hurwitz", "omega1", omega1)
-    beta2 = _support.param("hurwitz", "beta2", beta2)
-    omega2 = _support.param("hurwitz", "omega2", omega2)
-    mu_s = _support.param("hurwitz", "mu_s", mu_s)
-    g = _support.param("hurwitz", "g", g)
-    Vb = _support.param("hurwitz", "Vb", Vb)
-    Vhat = _support.param("hurwitz", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _hurwitz__consistent__hertz_damp(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
@@ -576,17 +446,7 @@ def _hurwitz__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, V
         return _support.tuple_of(_shape, _x2, _x1*(_x0*_x2 + _x4) + _x3, _x0*_x6, _x3*_x4*_x6)
 
 
-def _hurwitz__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("hurwitz", params)
-    beta1 = _support.param("hurwitz", "beta1", beta1)
-    omega1 = _support.param("hurwitz", "omega1", omega1)
-    beta2 = _support.param("hurwitz", "beta2", beta2)
-    omega2 = _support.param("hurwitz", "omega2", omega2)
-    mu_s = _support.param("hurwitz", "mu_s", mu_s)
-    g = _support.param("hurwitz", "g", g)
-    Vb = _support.param("hurwitz", "Vb", Vb)
-    Vhat = _support.param("hurwitz", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _hurwitz__consistent__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 2*beta2
         _x1 = _x0*omega2
@@ -600,10 +460,10 @@ def _hurwitz__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g,
 
 
 _HURWITZ = {
-    ('paper', 'hertz_damp'): _hurwitz__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _hurwitz__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _hurwitz__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _hurwitz__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_hurwitz__paper__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_hurwitz__paper__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_hurwitz__consistent__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_hurwitz__consistent__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
 }
 
 
@@ -649,26 +509,19 @@ def eigenvalues(*, convention='paper', contact='hertz_damp', vhat_model=None, **
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("eigenvalues", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("eigenvalues", _EIGENVALUES, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("eigenvalues", _EIGENVALUES, convention=convention, contact=contact)
+    _values, _extra = _support.arguments("eigenvalues", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _eigenvalues__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("eigenvalues", params)
-    beta1 = _support.param("eigenvalues", "beta1", beta1)
-    omega1 = _support.param("eigenvalues", "omega1", omega1)
-    beta2 = _support.param("eigenvalues", "beta2", beta2)
-    omega2 = _support.param("eigenvalues", "omega2", omega2)
-    mu_s = _support.param("eigenvalues", "mu_s", mu_s)
-    g = _support.param("eigenvalues", "g", g)
-    Vb = _support.param("eigenvalues", "Vb", Vb)
-    Vhat = _support.param("eigenvalues", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _eigenvalues__paper__hertz_damp(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
@@ -680,17 +533,7 @@ def _eigenvalues__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb
         return _support.vector(_shape, [*_r0, *_r1])
 
 
-def _eigenvalues__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("eigenvalues", params)
-    beta1 = _support.param("eigenvalues", "beta1", beta1)
-    omega1 = _support.param("eigenvalues", "omega1", omega1)
-    beta2 = _support.param("eigenvalues", "beta2", beta2)
-    omega2 = _support.param("eigenvalues", "omega2", omega2)
-    mu_s = _support.param("eigenvalues", "mu_s", mu_s)
-    g = _support.param("eigenvalues", "g", g)
-    Vb = _support.param("eigenvalues", "Vb", Vb)
-    Vhat = _support.param("eigenvalues", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _eigenvalues__paper__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
@@ -700,17 +543,7 @@ def _eigenvalues__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, 
         return _support.vector(_shape, [*_r0, *_r1])
 
 
-def _eigenvalues__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("eigenvalues", params)
-    beta1 = _support.param("eigenvalues", "beta1", beta1)
-    omega1 = _support.param("eigenvalues", "omega1", omega1)
-    beta2 = _support.param("eigenvalues", "beta2", beta2)
-    omega2 = _support.param("eigenvalues", "omega2", omega2)
-    mu_s = _support.param("eigenvalues", "mu_s", mu_s)
-    g = _support.param("eigenvalues", "g", g)
-    Vb = _support.param("eigenvalues", "Vb", Vb)
-    Vhat = _support.param("eigenvalues", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _eigenvalues__consistent__hertz_damp(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _root0 = numpy.cbrt(g)
         _root1 = numpy.cbrt(omega2)
@@ -722,17 +555,7 @@ def _eigenvalues__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
         return _support.vector(_shape, [*_r0, *_r1])
 
 
-def _eigenvalues__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _extra = _support.extras("eigenvalues", params)
-    beta1 = _support.param("eigenvalues", "beta1", beta1)
-    omega1 = _support.param("eigenvalues", "omega1", omega1)
-    beta2 = _support.param("eigenvalues", "beta2", beta2)
-    omega2 = _support.param("eigenvalues", "omega2", omega2)
-    mu_s = _support.param("eigenvalues", "mu_s", mu_s)
-    g = _support.param("eigenvalues", "g", g)
-    Vb = _support.param("eigenvalues", "Vb", Vb)
-    Vhat = _support.param("eigenvalues", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
+def _eigenvalues__consistent__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
@@ -743,10 +566,10 @@ def _eigenvalues__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s
 
 
 _EIGENVALUES = {
-    ('paper', 'hertz_damp'): _eigenvalues__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _eigenvalues__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _eigenvalues__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _eigenvalues__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_eigenvalues__paper__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_eigenvalues__paper__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_eigenvalues__consistent__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_eigenvalues__consistent__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
 }
 
 
@@ -798,39 +621,22 @@ def growth_rate(*, convention='paper', contact='hertz_damp', vhat_model=None, ba
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     ImportError
         For backend="numba" when numba is not installed.
     """
     params = _support.resolve_vhat("growth_rate", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("growth_rate", _GROWTH_RATE, convention=convention, contact=contact)(backend=backend, **params)
+    _variant = _support.choose("growth_rate", _GROWTH_RATE, convention=convention, contact=contact)
+    _values, _extra = _support.arguments("growth_rate", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _support.full(_shape, _support.evaluate(_variant, "float64", backend, *_values))
 
 
-def _growth_rate__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
-    _extra = _support.extras("growth_rate", params)
-    beta1 = _support.param("growth_rate", "beta1", beta1)
-    omega1 = _support.param("growth_rate", "omega1", omega1)
-    beta2 = _support.param("growth_rate", "beta2", beta2)
-    omega2 = _support.param("growth_rate", "omega2", omega2)
-    mu_s = _support.param("growth_rate", "mu_s", mu_s)
-    g = _support.param("growth_rate", "g", g)
-    Vb = _support.param("growth_rate", "Vb", Vb)
-    Vhat = _support.param("growth_rate", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
-    with numpy.errstate(divide="ignore", invalid="ignore"):
-        _root0 = numpy.cbrt(g)
-        _root1 = numpy.cbrt(omega2)
-        _kernel = _support.compiled(_growth_rate__paper__hertz_damp__kernel, "float64", backend)
-        if _kernel is not None:
-            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1))
-        return _support.full(_shape, _support.blockwise(_growth_rate__paper__hertz_damp__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1))
-
-
-def _growth_rate__paper__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
-    """numpy kernel of `_growth_rate__paper__hertz_damp` (``_support.blockwise``).
+def _growth_rate__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
+    """numpy kernel of `growth_rate` (``_support.blockwise``).
 
     Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
     """
@@ -838,11 +644,15 @@ def _growth_rate__paper__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s, g
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = _root0
-        return numpy.maximum(_support.quadratic_growth(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.quadratic_growth(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2))
+        _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
+        _g0 = numpy.select([numpy.less(_d0, 0),numpy.greater(_h0, 0),True], [-_h0,_q0/(-numpy.sqrt(_d0) - _h0),numpy.sqrt(_d0) - _h0], default=numpy.nan)
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = numpy.select([numpy.less(_d1, 0),numpy.greater(_h1, 0),True], [-_h1,_q1/(-numpy.sqrt(_d1) - _h1),numpy.sqrt(_d1) - _h1], default=numpy.nan)
+        return numpy.maximum(_g0, _g1)
 
 
-def _growth_rate__paper__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
-    """Scalar kernel of `_growth_rate__paper__hertz_damp` for numba (``_support.compiled``).
+def _growth_rate__paper__hertz_damp__scalar(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
+    """Scalar kernel of `growth_rate` (``_support.compiled``, ``_support.Bound``).
 
     Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
     """
@@ -850,35 +660,20 @@ def _growth_rate__paper__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, 
     _x1 = 2*omega1
     _x2 = _root0
     _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
-    _s0 = math.sqrt(abs(_d0))
-    _g0 = -_h0 if _d0 < 0 else (_q0 / -(_h0 + _s0) if _h0 > 0 else _s0 - _h0)
+    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
     _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
-    _s1 = math.sqrt(abs(_d1))
-    _g1 = -_h1 if _d1 < 0 else (_q1 / -(_h1 + _s1) if _h1 > 0 else _s1 - _h1)
-    _best = _g0 if (_g0 >= _g1 or _g0 != _g0) else _g1
-    return _best
+    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+    return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
 
 
-def _growth_rate__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
-    _extra = _support.extras("growth_rate", params)
-    beta1 = _support.param("growth_rate", "beta1", beta1)
-    omega1 = _support.param("growth_rate", "omega1", omega1)
-    beta2 = _support.param("growth_rate", "beta2", beta2)
-    omega2 = _support.param("growth_rate", "omega2", omega2)
-    mu_s = _support.param("growth_rate", "mu_s", mu_s)
-    g = _support.param("growth_rate", "g", g)
-    Vb = _support.param("growth_rate", "Vb", Vb)
-    Vhat = _support.param("growth_rate", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
-    with numpy.errstate(divide="ignore", invalid="ignore"):
-        _kernel = _support.compiled(_growth_rate__paper__kelvin_voigt__kernel, "float64", backend)
-        if _kernel is not None:
-            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-        return _support.full(_shape, _support.blockwise(_growth_rate__paper__kelvin_voigt__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+def _growth_rate__paper__hertz_damp__roots(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    _root0 = numpy.cbrt(g)
+    _root1 = numpy.cbrt(omega2)
+    return (_root0, _root1,)
 
 
-def _growth_rate__paper__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    """numpy kernel of `_growth_rate__paper__kelvin_voigt` (``_support.blockwise``).
+def _growth_rate__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """numpy kernel of `growth_rate` (``_support.blockwise``).
 
     Extra arguments: none.
     """
@@ -886,11 +681,15 @@ def _growth_rate__paper__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu_s,
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = omega2**2
-        return numpy.maximum(_support.quadratic_growth(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)))
+        _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
+        _g0 = numpy.select([numpy.less(_d0, 0),numpy.greater(_h0, 0),True], [-_h0,_q0/(-numpy.sqrt(_d0) - _h0),numpy.sqrt(_d0) - _h0], default=numpy.nan)
+        _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
+        _g1 = numpy.select([numpy.less(_d1, 0),numpy.greater(_h1, 0),True], [-_h1,_q1/(-numpy.sqrt(_d1) - _h1),numpy.sqrt(_d1) - _h1], default=numpy.nan)
+        return numpy.maximum(_g0, _g1)
 
 
-def _growth_rate__paper__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    """Scalar kernel of `_growth_rate__paper__kelvin_voigt` for numba (``_support.compiled``).
+def _growth_rate__paper__kelvin_voigt__scalar(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """Scalar kernel of `growth_rate` (``_support.compiled``, ``_support.Bound``).
 
     Extra arguments: none.
     """
@@ -898,37 +697,14 @@ def _growth_rate__paper__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s
     _x1 = 2*omega1
     _x2 = omega2**2
     _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
-    _s0 = math.sqrt(abs(_d0))
-    _g0 = -_h0 if _d0 < 0 else (_q0 / -(_h0 + _s0) if _h0 > 0 else _s0 - _h0)
+    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
     _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
-    _s1 = math.sqrt(abs(_d1))
-    _g1 = -_h1 if _d1 < 0 else (_q1 / -(_h1 + _s1) if _h1 > 0 else _s1 - _h1)
-    _best = _g0 if (_g0 >= _g1 or _g0 != _g0) else _g1
-    return _best
+    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+    return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
 
 
-def _growth_rate__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
-    _extra = _support.extras("growth_rate", params)
-    beta1 = _support.param("growth_rate", "beta1", beta1)
-    omega1 = _support.param("growth_rate", "omega1", omega1)
-    beta2 = _support.param("growth_rate", "beta2", beta2)
-    omega2 = _support.param("growth_rate", "omega2", omega2)
-    mu_s = _support.param("growth_rate", "mu_s", mu_s)
-    g = _support.param("growth_rate", "g", g)
-    Vb = _support.param("growth_rate", "Vb", Vb)
-    Vhat = _support.param("growth_rate", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
-    with numpy.errstate(divide="ignore", invalid="ignore"):
-        _root0 = numpy.cbrt(g)
-        _root1 = numpy.cbrt(omega2)
-        _kernel = _support.compiled(_growth_rate__consistent__hertz_damp__kernel, "float64", backend)
-        if _kernel is not None:
-            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1))
-        return _support.full(_shape, _support.blockwise(_growth_rate__consistent__hertz_damp__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1))
-
-
-def _growth_rate__consistent__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
-    """numpy kernel of `_growth_rate__consistent__hertz_damp` (``_support.blockwise``).
+def _growth_rate__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
+    """numpy kernel of `growth_rate` (``_support.blockwise``).
 
     Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
     """
@@ -936,11 +712,15 @@ def _growth_rate__consistent__hertz_damp__array(beta1, omega1, beta2, omega2, mu
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = _root0
-        return numpy.maximum(_support.quadratic_growth((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.quadratic_growth(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2))
+        _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
+        _g0 = numpy.select([numpy.less(_d0, 0),numpy.greater(_h0, 0),True], [-_h0,_q0/(-numpy.sqrt(_d0) - _h0),numpy.sqrt(_d0) - _h0], default=numpy.nan)
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = numpy.select([numpy.less(_d1, 0),numpy.greater(_h1, 0),True], [-_h1,_q1/(-numpy.sqrt(_d1) - _h1),numpy.sqrt(_d1) - _h1], default=numpy.nan)
+        return numpy.maximum(_g0, _g1)
 
 
-def _growth_rate__consistent__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
-    """Scalar kernel of `_growth_rate__consistent__hertz_damp` for numba (``_support.compiled``).
+def _growth_rate__consistent__hertz_damp__scalar(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
+    """Scalar kernel of `growth_rate` (``_support.compiled``, ``_support.Bound``).
 
     Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
     """
@@ -948,35 +728,20 @@ def _growth_rate__consistent__hertz_damp__kernel(beta1, omega1, beta2, omega2, m
     _x1 = 2*omega1
     _x2 = _root0
     _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
-    _s0 = math.sqrt(abs(_d0))
-    _g0 = -_h0 if _d0 < 0 else (_q0 / -(_h0 + _s0) if _h0 > 0 else _s0 - _h0)
+    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
     _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
-    _s1 = math.sqrt(abs(_d1))
-    _g1 = -_h1 if _d1 < 0 else (_q1 / -(_h1 + _s1) if _h1 > 0 else _s1 - _h1)
-    _best = _g0 if (_g0 >= _g1 or _g0 != _g0) else _g1
-    return _best
+    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+    return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
 
 
-def _growth_rate__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
-    _extra = _support.extras("growth_rate", params)
-    beta1 = _support.param("growth_rate", "beta1", beta1)
-    omega1 = _support.param("growth_rate", "omega1", omega1)
-    beta2 = _support.param("growth_rate", "beta2", beta2)
-    omega2 = _support.param("growth_rate", "omega2", omega2)
-    mu_s = _support.param("growth_rate", "mu_s", mu_s)
-    g = _support.param("growth_rate", "g", g)
-    Vb = _support.param("growth_rate", "Vb", Vb)
-    Vhat = _support.param("growth_rate", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
-    with numpy.errstate(divide="ignore", invalid="ignore"):
-        _kernel = _support.compiled(_growth_rate__consistent__kelvin_voigt__kernel, "float64", backend)
-        if _kernel is not None:
-            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-        return _support.full(_shape, _support.blockwise(_growth_rate__consistent__kelvin_voigt__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
+def _growth_rate__consistent__hertz_damp__roots(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    _root0 = numpy.cbrt(g)
+    _root1 = numpy.cbrt(omega2)
+    return (_root0, _root1,)
 
 
-def _growth_rate__consistent__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    """numpy kernel of `_growth_rate__consistent__kelvin_voigt` (``_support.blockwise``).
+def _growth_rate__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """numpy kernel of `growth_rate` (``_support.blockwise``).
 
     Extra arguments: none.
     """
@@ -984,11 +749,15 @@ def _growth_rate__consistent__kelvin_voigt__array(beta1, omega1, beta2, omega2, 
         _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
         _x1 = 2*omega1
         _x2 = omega2**2
-        return numpy.maximum(_support.quadratic_growth((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)))
+        _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
+        _g0 = numpy.select([numpy.less(_d0, 0),numpy.greater(_h0, 0),True], [-_h0,_q0/(-numpy.sqrt(_d0) - _h0),numpy.sqrt(_d0) - _h0], default=numpy.nan)
+        _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
+        _g1 = numpy.select([numpy.less(_d1, 0),numpy.greater(_h1, 0),True], [-_h1,_q1/(-numpy.sqrt(_d1) - _h1),numpy.sqrt(_d1) - _h1], default=numpy.nan)
+        return numpy.maximum(_g0, _g1)
 
 
-def _growth_rate__consistent__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    """Scalar kernel of `_growth_rate__consistent__kelvin_voigt` for numba (``_support.compiled``).
+def _growth_rate__consistent__kelvin_voigt__scalar(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """Scalar kernel of `growth_rate` (``_support.compiled``, ``_support.Bound``).
 
     Extra arguments: none.
     """
@@ -996,20 +765,17 @@ def _growth_rate__consistent__kelvin_voigt__kernel(beta1, omega1, beta2, omega2,
     _x1 = 2*omega1
     _x2 = omega2**2
     _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
-    _s0 = math.sqrt(abs(_d0))
-    _g0 = -_h0 if _d0 < 0 else (_q0 / -(_h0 + _s0) if _h0 > 0 else _s0 - _h0)
+    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
     _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
-    _s1 = math.sqrt(abs(_d1))
-    _g1 = -_h1 if _d1 < 0 else (_q1 / -(_h1 + _s1) if _h1 > 0 else _s1 - _h1)
-    _best = _g0 if (_g0 >= _g1 or _g0 != _g0) else _g1
-    return _best
+    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+    return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
 
 
 _GROWTH_RATE = {
-    ('paper', 'hertz_damp'): _growth_rate__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _growth_rate__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _growth_rate__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _growth_rate__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_growth_rate__paper__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', ), _growth_rate__paper__hertz_damp__scalar, _growth_rate__paper__hertz_damp__roots),
+    ('paper', 'kelvin_voigt'): _support.Variant(_growth_rate__paper__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', ), _growth_rate__paper__kelvin_voigt__scalar, None),
+    ('consistent', 'hertz_damp'): _support.Variant(_growth_rate__consistent__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', ), _growth_rate__consistent__hertz_damp__scalar, _growth_rate__consistent__hertz_damp__roots),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_growth_rate__consistent__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', ), _growth_rate__consistent__kelvin_voigt__scalar, None),
 }
 
 
@@ -1064,37 +830,22 @@ def is_stable(*, convention='paper', contact='hertz_damp', vhat_model=None, back
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     ImportError
         For backend="numba" when numba is not installed.
     """
     params = _support.resolve_vhat("is_stable", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("is_stable", _IS_STABLE, convention=convention, contact=contact)(backend=backend, **params)
+    _variant = _support.choose("is_stable", _IS_STABLE, convention=convention, contact=contact)
+    _values, _extra = _support.arguments("is_stable", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _support.full(_shape, _support.evaluate(_variant, "boolean", backend, *_values))
 
 
-def _is_stable__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
-    _extra = _support.extras("is_stable", params)
-    beta1 = _support.param("is_stable", "beta1", beta1)
-    omega1 = _support.param("is_stable", "omega1", omega1)
-    beta2 = _support.param("is_stable", "beta2", beta2)
-    omega2 = _support.param("is_stable", "omega2", omega2)
-    mu_s = _support.param("is_stable", "mu_s", mu_s)
-    g = _support.param("is_stable", "g", g)
-    Vb = _support.param("is_stable", "Vb", Vb)
-    Vhat = _support.param("is_stable", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
-    with numpy.errstate(divide="ignore", invalid="ignore"):
-        _kernel = _support.compiled(_is_stable__paper__hertz_damp__kernel, "boolean", backend)
-        if _kernel is not None:
-            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-        return _support.full(_shape, _support.blockwise(_is_stable__paper__hertz_damp__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-
-
-def _is_stable__paper__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    """numpy kernel of `_is_stable__paper__hertz_damp` (``_support.blockwise``).
+def _is_stable__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """numpy kernel of `is_stable` (``_support.blockwise``).
 
     Extra arguments: none.
     """
@@ -1102,34 +853,16 @@ def _is_stable__paper__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s, g, 
         return (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0)
 
 
-def _is_stable__paper__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    """Scalar kernel of `_is_stable__paper__hertz_damp` for numba (``_support.compiled``).
+def _is_stable__paper__hertz_damp__scalar(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """Scalar kernel of `is_stable` (``_support.compiled``, ``_support.Bound``).
 
     Extra arguments: none.
     """
     return (2*beta1*omega1 - g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*g/omega2 > 0)
 
 
-def _is_stable__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
-    _extra = _support.extras("is_stable", params)
-    beta1 = _support.param("is_stable", "beta1", beta1)
-    omega1 = _support.param("is_stable", "omega1", omega1)
-    beta2 = _support.param("is_stable", "beta2", beta2)
-    omega2 = _support.param("is_stable", "omega2", omega2)
-    mu_s = _support.param("is_stable", "mu_s", mu_s)
-    g = _support.param("is_stable", "g", g)
-    Vb = _support.param("is_stable", "Vb", Vb)
-    Vhat = _support.param("is_stable", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
-    with numpy.errstate(divide="ignore", invalid="ignore"):
-        _kernel = _support.compiled(_is_stable__paper__kelvin_voigt__kernel, "boolean", backend)
-        if _kernel is not None:
-            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-        return _support.full(_shape, _support.blockwise(_is_stable__paper__kelvin_voigt__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-
-
-def _is_stable__paper__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    """numpy kernel of `_is_stable__paper__kelvin_voigt` (``_support.blockwise``).
+def _is_stable__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """numpy kernel of `is_stable` (``_support.blockwise``).
 
     Extra arguments: none.
     """
@@ -1137,34 +870,16 @@ def _is_stable__paper__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu_s, g
         return (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0)
 
 
-def _is_stable__paper__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    """Scalar kernel of `_is_stable__paper__kelvin_voigt` for numba (``_support.compiled``).
+def _is_stable__paper__kelvin_voigt__scalar(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """Scalar kernel of `is_stable` (``_support.compiled``, ``_support.Bound``).
 
     Extra arguments: none.
     """
     return (2*beta1*omega1 - g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*omega2 > 0)
 
 
-def _is_stable__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
-    _extra = _support.extras("is_stable", params)
-    beta1 = _support.param("is_stable", "beta1", beta1)
-    omega1 = _support.param("is_stable", "omega1", omega1)
-    beta2 = _support.param("is_stable", "beta2", beta2)
-    omega2 = _support.param("is_stable", "omega2", omega2)
-    mu_s = _support.param("is_stable", "mu_s", mu_s)
-    g = _support.param("is_stable", "g", g)
-    Vb = _support.param("is_stable", "Vb", Vb)
-    Vhat = _support.param("is_stable", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
-    with numpy.errstate(divide="ignore", invalid="ignore"):
-        _kernel = _support.compiled(_is_stable__consistent__hertz_damp__kernel, "boolean", backend)
-        if _kernel is not None:
-            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-        return _support.full(_shape, _support.blockwise(_is_stable__consistent__hertz_damp__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-
-
-def _is_stable__consistent__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    """numpy kernel of `_is_stable__consistent__hertz_damp` (``_support.blockwise``).
+def _is_stable__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """numpy kernel of `is_stable` (``_support.blockwise``).
 
     Extra arguments: none.
     """
@@ -1172,34 +887,16 @@ def _is_stable__consistent__hertz_damp__array(beta1, omega1, beta2, omega2, mu_s
         return (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0)
 
 
-def _is_stable__consistent__hertz_damp__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    """Scalar kernel of `_is_stable__consistent__hertz_damp` for numba (``_support.compiled``).
+def _is_stable__consistent__hertz_damp__scalar(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """Scalar kernel of `is_stable` (``_support.compiled``, ``_support.Bound``).
 
     Extra arguments: none.
     """
     return (2*beta1*omega1 + g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*g/omega2 > 0)
 
 
-def _is_stable__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, backend=None, **params):
-    _extra = _support.extras("is_stable", params)
-    beta1 = _support.param("is_stable", "beta1", beta1)
-    omega1 = _support.param("is_stable", "omega1", omega1)
-    beta2 = _support.param("is_stable", "beta2", beta2)
-    omega2 = _support.param("is_stable", "omega2", omega2)
-    mu_s = _support.param("is_stable", "mu_s", mu_s)
-    g = _support.param("is_stable", "g", g)
-    Vb = _support.param("is_stable", "Vb", Vb)
-    Vhat = _support.param("is_stable", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, *_extra)
-    with numpy.errstate(divide="ignore", invalid="ignore"):
-        _kernel = _support.compiled(_is_stable__consistent__kelvin_voigt__kernel, "boolean", backend)
-        if _kernel is not None:
-            return _support.full(_shape, _kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-        return _support.full(_shape, _support.blockwise(_is_stable__consistent__kelvin_voigt__array, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat))
-
-
-def _is_stable__consistent__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    """numpy kernel of `_is_stable__consistent__kelvin_voigt` (``_support.blockwise``).
+def _is_stable__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """numpy kernel of `is_stable` (``_support.blockwise``).
 
     Extra arguments: none.
     """
@@ -1207,8 +904,8 @@ def _is_stable__consistent__kelvin_voigt__array(beta1, omega1, beta2, omega2, mu
         return (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*mu_s/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0)
 
 
-def _is_stable__consistent__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    """Scalar kernel of `_is_stable__consistent__kelvin_voigt` for numba (``_support.compiled``).
+def _is_stable__consistent__kelvin_voigt__scalar(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
+    """Scalar kernel of `is_stable` (``_support.compiled``, ``_support.Bound``).
 
     Extra arguments: none.
     """
@@ -1216,10 +913,10 @@ def _is_stable__consistent__kelvin_voigt__kernel(beta1, omega1, beta2, omega2, m
 
 
 _IS_STABLE = {
-    ('paper', 'hertz_damp'): _is_stable__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _is_stable__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _is_stable__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _is_stable__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_is_stable__paper__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', ), _is_stable__paper__hertz_damp__scalar, None),
+    ('paper', 'kelvin_voigt'): _support.Variant(_is_stable__paper__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', ), _is_stable__paper__kelvin_voigt__scalar, None),
+    ('consistent', 'hertz_damp'): _support.Variant(_is_stable__consistent__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', ), _is_stable__consistent__hertz_damp__scalar, None),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_is_stable__consistent__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', ), _is_stable__consistent__kelvin_voigt__scalar, None),
 }
 
 
@@ -1261,58 +958,43 @@ def critical_belt_speed(*, convention='paper', contact='hertz_damp', vhat_model=
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("critical_belt_speed", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("critical_belt_speed", _CRITICAL_BELT_SPEED, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("critical_belt_speed", _CRITICAL_BELT_SPEED, convention=convention, contact=contact)
+    _values, _extra = _support.arguments("critical_belt_speed", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _critical_belt_speed__paper__hertz_damp(*, beta1, omega1, mu_s, g, Vhat, **params):
-    _extra = _support.extras("critical_belt_speed", params)
-    beta1 = _support.param("critical_belt_speed", "beta1", beta1)
-    omega1 = _support.param("critical_belt_speed", "omega1", omega1)
-    mu_s = _support.param("critical_belt_speed", "mu_s", mu_s)
-    g = _support.param("critical_belt_speed", "g", g)
-    Vhat = _support.param("critical_belt_speed", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, mu_s, g, Vhat, *_extra)
+def _critical_belt_speed__paper__hertz_damp(_shape, beta1, omega1, mu_s, g, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*mu_s/(numpy.pi*beta1*omega1)
         return _support.full(_shape, numpy.select([numpy.greater(Vhat, _x0),True], [numpy.sqrt((Vhat - _x0)*(Vhat + _x0)),0], default=numpy.nan))
 
 
-def _critical_belt_speed__paper__kelvin_voigt(*, beta1, omega1, mu_s, g, Vhat, **params):
-    _extra = _support.extras("critical_belt_speed", params)
-    beta1 = _support.param("critical_belt_speed", "beta1", beta1)
-    omega1 = _support.param("critical_belt_speed", "omega1", omega1)
-    mu_s = _support.param("critical_belt_speed", "mu_s", mu_s)
-    g = _support.param("critical_belt_speed", "g", g)
-    Vhat = _support.param("critical_belt_speed", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, mu_s, g, Vhat, *_extra)
+def _critical_belt_speed__paper__kelvin_voigt(_shape, beta1, omega1, mu_s, g, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*mu_s/(numpy.pi*beta1*omega1)
         return _support.full(_shape, numpy.select([numpy.greater(Vhat, _x0),True], [numpy.sqrt((Vhat - _x0)*(Vhat + _x0)),0], default=numpy.nan))
 
 
-def _critical_belt_speed__consistent__hertz_damp(**params):
-    _extra = _support.extras("critical_belt_speed", params)
-    _shape = _support.shape_of(*_extra)
+def _critical_belt_speed__consistent__hertz_damp(_shape):
     return _support.full(_shape, numpy.nan)
 
 
-def _critical_belt_speed__consistent__kelvin_voigt(**params):
-    _extra = _support.extras("critical_belt_speed", params)
-    _shape = _support.shape_of(*_extra)
+def _critical_belt_speed__consistent__kelvin_voigt(_shape):
     return _support.full(_shape, numpy.nan)
 
 
 _CRITICAL_BELT_SPEED = {
-    ('paper', 'hertz_damp'): _critical_belt_speed__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _critical_belt_speed__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _critical_belt_speed__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _critical_belt_speed__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_critical_belt_speed__paper__hertz_damp, ('beta1', 'omega1', 'mu_s', 'g', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_critical_belt_speed__paper__kelvin_voigt, ('beta1', 'omega1', 'mu_s', 'g', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_critical_belt_speed__consistent__hertz_damp, ()),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_critical_belt_speed__consistent__kelvin_voigt, ()),
 }
 
 
@@ -1353,56 +1035,41 @@ def unstable_interval(*, convention='paper', contact='hertz_damp', vhat_model=No
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("unstable_interval", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("unstable_interval", _UNSTABLE_INTERVAL, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("unstable_interval", _UNSTABLE_INTERVAL, convention=convention, contact=contact)
+    _values, _extra = _support.arguments("unstable_interval", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _unstable_interval__paper__hertz_damp(*, beta1, omega1, mu_s, g, Vhat, **params):
-    _extra = _support.extras("unstable_interval", params)
-    beta1 = _support.param("unstable_interval", "beta1", beta1)
-    omega1 = _support.param("unstable_interval", "omega1", omega1)
-    mu_s = _support.param("unstable_interval", "mu_s", mu_s)
-    g = _support.param("unstable_interval", "g", g)
-    Vhat = _support.param("unstable_interval", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, mu_s, g, Vhat, *_extra)
+def _unstable_interval__paper__hertz_damp(_shape, beta1, omega1, mu_s, g, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*mu_s/(numpy.pi*beta1*omega1)
         return _support.tuple_of(_shape, numpy.select([numpy.greater(Vhat, _x0),True], [numpy.sqrt((Vhat - _x0)*(Vhat + _x0)),0], default=numpy.nan), numpy.copy(Vhat))
 
 
-def _unstable_interval__paper__kelvin_voigt(*, beta1, omega1, mu_s, g, Vhat, **params):
-    _extra = _support.extras("unstable_interval", params)
-    beta1 = _support.param("unstable_interval", "beta1", beta1)
-    omega1 = _support.param("unstable_interval", "omega1", omega1)
-    mu_s = _support.param("unstable_interval", "mu_s", mu_s)
-    g = _support.param("unstable_interval", "g", g)
-    Vhat = _support.param("unstable_interval", "Vhat", Vhat)
-    _shape = _support.shape_of(beta1, omega1, mu_s, g, Vhat, *_extra)
+def _unstable_interval__paper__kelvin_voigt(_shape, beta1, omega1, mu_s, g, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*mu_s/(numpy.pi*beta1*omega1)
         return _support.tuple_of(_shape, numpy.select([numpy.greater(Vhat, _x0),True], [numpy.sqrt((Vhat - _x0)*(Vhat + _x0)),0], default=numpy.nan), numpy.copy(Vhat))
 
 
-def _unstable_interval__consistent__hertz_damp(**params):
-    _extra = _support.extras("unstable_interval", params)
-    _shape = _support.shape_of(*_extra)
+def _unstable_interval__consistent__hertz_damp(_shape):
     return _support.tuple_of(_shape, numpy.nan, numpy.nan)
 
 
-def _unstable_interval__consistent__kelvin_voigt(**params):
-    _extra = _support.extras("unstable_interval", params)
-    _shape = _support.shape_of(*_extra)
+def _unstable_interval__consistent__kelvin_voigt(_shape):
     return _support.tuple_of(_shape, numpy.nan, numpy.nan)
 
 
 _UNSTABLE_INTERVAL = {
-    ('paper', 'hertz_damp'): _unstable_interval__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _unstable_interval__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _unstable_interval__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _unstable_interval__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_unstable_interval__paper__hertz_damp, ('beta1', 'omega1', 'mu_s', 'g', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_unstable_interval__paper__kelvin_voigt, ('beta1', 'omega1', 'mu_s', 'g', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_unstable_interval__consistent__hertz_damp, ()),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_unstable_interval__consistent__kelvin_voigt, ()),
 }

@@ -42,39 +42,30 @@ def equilibrium(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("equilibrium", _EQUILIBRIUM, contact=contact)(**params)
+    _variant = _support.choose("equilibrium", _EQUILIBRIUM, contact=contact)
+    _values, _extra = _support.arguments("equilibrium", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _equilibrium__hertz_damp(*, omega1, omega2, mu_s, g, **params):
-    _extra = _support.extras("equilibrium", params)
-    omega1 = _support.param("equilibrium", "omega1", omega1)
-    omega2 = _support.param("equilibrium", "omega2", omega2)
-    mu_s = _support.param("equilibrium", "mu_s", mu_s)
-    g = _support.param("equilibrium", "g", g)
-    _shape = _support.shape_of(omega1, omega2, mu_s, g, *_extra)
+def _equilibrium__hertz_damp(_shape, omega1, omega2, mu_s, g):
     _root0 = numpy.cbrt(g)
     _root1 = numpy.cbrt(omega2)
     return _support.tuple_of(_shape, g*mu_s/omega1**2, 0, _root0**2/(omega2*_root1), 0)
 
 
-def _equilibrium__kelvin_voigt(*, omega1, omega2, mu_s, g, **params):
-    _extra = _support.extras("equilibrium", params)
-    omega1 = _support.param("equilibrium", "omega1", omega1)
-    omega2 = _support.param("equilibrium", "omega2", omega2)
-    mu_s = _support.param("equilibrium", "mu_s", mu_s)
-    g = _support.param("equilibrium", "g", g)
-    _shape = _support.shape_of(omega1, omega2, mu_s, g, *_extra)
+def _equilibrium__kelvin_voigt(_shape, omega1, omega2, mu_s, g):
     return _support.tuple_of(_shape, g*mu_s/omega1**2, 0, g/omega2**2, 0)
 
 
 _EQUILIBRIUM = {
-    ('hertz_damp',): _equilibrium__hertz_damp,
-    ('kelvin_voigt',): _equilibrium__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_equilibrium__hertz_damp, ('omega1', 'omega2', 'mu_s', 'g', )),
+    ('kelvin_voigt',): _support.Variant(_equilibrium__kelvin_voigt, ('omega1', 'omega2', 'mu_s', 'g', )),
 }
 
 
@@ -117,26 +108,22 @@ def jacobian(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("jacobian", _JACOBIAN, contact=contact)(X1, Y1, X2, Y2, **params)
-
-
-def _jacobian__hertz_damp(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _extra = _support.extras("jacobian", params)
+    _variant = _support.choose("jacobian", _JACOBIAN, contact=contact)
+    _values, _extra = _support.arguments("jacobian", _variant.names, params)
     X1 = _support.param("jacobian", "X1", X1, "real")
     Y1 = _support.param("jacobian", "Y1", Y1, "real")
     X2 = _support.param("jacobian", "X2", X2, "positive", 'Eqs. (5)-(8) hold in contact only, X2 > 0')
     Y2 = _support.param("jacobian", "Y2", Y2, "real")
-    beta1 = _support.param("jacobian", "beta1", beta1)
-    omega1 = _support.param("jacobian", "omega1", omega1)
-    beta2 = _support.param("jacobian", "beta2", beta2)
-    omega2 = _support.param("jacobian", "omega2", omega2)
-    mu_s = _support.param("jacobian", "mu_s", mu_s)
-    _shape = _support.shape_of(X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, *_extra)
+    _shape = _support.shape_of(X1, Y1, X2, Y2, *_values, *_extra)
+    return _variant.impl(_shape, X1, Y1, X2, Y2, *_values)
+
+
+def _jacobian__hertz_damp(_shape, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s):
     _x0 = 2*beta2*omega2
     _x1 = (3/2)*numpy.sqrt(X2)*(Y2*_x0 + omega2**2)
     _x2 = X2**(3/2)*_x0
@@ -148,18 +135,7 @@ def _jacobian__hertz_damp(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s,
         ])
 
 
-def _jacobian__kelvin_voigt(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _extra = _support.extras("jacobian", params)
-    X1 = _support.param("jacobian", "X1", X1, "real")
-    Y1 = _support.param("jacobian", "Y1", Y1, "real")
-    X2 = _support.param("jacobian", "X2", X2, "positive", 'Eqs. (5)-(8) hold in contact only, X2 > 0')
-    Y2 = _support.param("jacobian", "Y2", Y2, "real")
-    beta1 = _support.param("jacobian", "beta1", beta1)
-    omega1 = _support.param("jacobian", "omega1", omega1)
-    beta2 = _support.param("jacobian", "beta2", beta2)
-    omega2 = _support.param("jacobian", "omega2", omega2)
-    mu_s = _support.param("jacobian", "mu_s", mu_s)
-    _shape = _support.shape_of(X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, *_extra)
+def _jacobian__kelvin_voigt(_shape, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s):
     _x0 = omega2**2
     _x1 = 2*beta2*omega2
     return _support.matrix(_shape, [
@@ -171,8 +147,8 @@ def _jacobian__kelvin_voigt(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_
 
 
 _JACOBIAN = {
-    ('hertz_damp',): _jacobian__hertz_damp,
-    ('kelvin_voigt',): _jacobian__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_jacobian__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
+    ('kelvin_voigt',): _support.Variant(_jacobian__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
 }
 
 
@@ -208,23 +184,18 @@ def jacobian_at_equilibrium(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("jacobian_at_equilibrium", _JACOBIAN_AT_EQUILIBRIUM, contact=contact)(**params)
+    _variant = _support.choose("jacobian_at_equilibrium", _JACOBIAN_AT_EQUILIBRIUM, contact=contact)
+    _values, _extra = _support.arguments("jacobian_at_equilibrium", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _jacobian_at_equilibrium__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, **params):
-    _extra = _support.extras("jacobian_at_equilibrium", params)
-    beta1 = _support.param("jacobian_at_equilibrium", "beta1", beta1)
-    omega1 = _support.param("jacobian_at_equilibrium", "omega1", omega1)
-    beta2 = _support.param("jacobian_at_equilibrium", "beta2", beta2)
-    omega2 = _support.param("jacobian_at_equilibrium", "omega2", omega2)
-    mu_s = _support.param("jacobian_at_equilibrium", "mu_s", mu_s)
-    g = _support.param("jacobian_at_equilibrium", "g", g)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, g, *_extra)
+def _jacobian_at_equilibrium__hertz_damp(_shape, beta1, omega1, beta2, omega2, mu_s, g):
     _root0 = numpy.cbrt(g)
     _root1 = numpy.cbrt(omega2)
     _x0 = (3/2)*_root0*(omega2*_root1)
@@ -237,14 +208,7 @@ def _jacobian_at_equilibrium__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
         ])
 
 
-def _jacobian_at_equilibrium__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, **params):
-    _extra = _support.extras("jacobian_at_equilibrium", params)
-    beta1 = _support.param("jacobian_at_equilibrium", "beta1", beta1)
-    omega1 = _support.param("jacobian_at_equilibrium", "omega1", omega1)
-    beta2 = _support.param("jacobian_at_equilibrium", "beta2", beta2)
-    omega2 = _support.param("jacobian_at_equilibrium", "omega2", omega2)
-    mu_s = _support.param("jacobian_at_equilibrium", "mu_s", mu_s)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, mu_s, *_extra)
+def _jacobian_at_equilibrium__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, mu_s):
     _x0 = omega2**2
     _x1 = 2*beta2*omega2
     return _support.matrix(_shape, [
@@ -256,8 +220,8 @@ def _jacobian_at_equilibrium__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s
 
 
 _JACOBIAN_AT_EQUILIBRIUM = {
-    ('hertz_damp',): _jacobian_at_equilibrium__hertz_damp,
-    ('kelvin_voigt',): _jacobian_at_equilibrium__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_jacobian_at_equilibrium__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', )),
+    ('kelvin_voigt',): _support.Variant(_jacobian_at_equilibrium__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
 }
 
 
@@ -294,22 +258,18 @@ def charpoly(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("charpoly", _CHARPOLY, contact=contact)(**params)
+    _variant = _support.choose("charpoly", _CHARPOLY, contact=contact)
+    _values, _extra = _support.arguments("charpoly", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _charpoly__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
-    _extra = _support.extras("charpoly", params)
-    beta1 = _support.param("charpoly", "beta1", beta1)
-    omega1 = _support.param("charpoly", "omega1", omega1)
-    beta2 = _support.param("charpoly", "beta2", beta2)
-    omega2 = _support.param("charpoly", "omega2", omega2)
-    g = _support.param("charpoly", "g", g)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, g, *_extra)
+def _charpoly__hertz_damp(_shape, beta1, omega1, beta2, omega2, g):
     _root0 = numpy.cbrt(g)
     _root1 = numpy.cbrt(omega2)
     _x0 = beta1*omega1
@@ -321,13 +281,7 @@ def _charpoly__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
     return _support.tuple_of(_shape, 2*_x0 + _x2, 4*_x0*_x1 + _x3 + _x5, 3*_x0*_x4 + _x2*_x3, _x3*_x5)
 
 
-def _charpoly__kelvin_voigt(*, beta1, omega1, beta2, omega2, **params):
-    _extra = _support.extras("charpoly", params)
-    beta1 = _support.param("charpoly", "beta1", beta1)
-    omega1 = _support.param("charpoly", "omega1", omega1)
-    beta2 = _support.param("charpoly", "beta2", beta2)
-    omega2 = _support.param("charpoly", "omega2", omega2)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, *_extra)
+def _charpoly__kelvin_voigt(_shape, beta1, omega1, beta2, omega2):
     _x0 = beta1*omega1
     _x1 = 2*_x0
     _x2 = beta2*omega2
@@ -338,8 +292,8 @@ def _charpoly__kelvin_voigt(*, beta1, omega1, beta2, omega2, **params):
 
 
 _CHARPOLY = {
-    ('hertz_damp',): _charpoly__hertz_damp,
-    ('kelvin_voigt',): _charpoly__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_charpoly__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', )),
+    ('kelvin_voigt',): _support.Variant(_charpoly__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', )),
 }
 
 
@@ -379,22 +333,18 @@ def eigenvalues(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("eigenvalues", _EIGENVALUES, contact=contact)(**params)
+    _variant = _support.choose("eigenvalues", _EIGENVALUES, contact=contact)
+    _values, _extra = _support.arguments("eigenvalues", _variant.names, params)
+    _shape = _support.shape_of(*_values, *_extra)
+    return _variant.impl(_shape, *_values)
 
 
-def _eigenvalues__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
-    _extra = _support.extras("eigenvalues", params)
-    beta1 = _support.param("eigenvalues", "beta1", beta1)
-    omega1 = _support.param("eigenvalues", "omega1", omega1)
-    beta2 = _support.param("eigenvalues", "beta2", beta2)
-    omega2 = _support.param("eigenvalues", "omega2", omega2)
-    g = _support.param("eigenvalues", "g", g)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, g, *_extra)
+def _eigenvalues__hertz_damp(_shape, beta1, omega1, beta2, omega2, g):
     _root0 = numpy.cbrt(g)
     _root1 = numpy.cbrt(omega2)
     _x0 = omega1**2
@@ -404,13 +354,7 @@ def _eigenvalues__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
     return _support.vector(_shape, [*_r0, *_r1])
 
 
-def _eigenvalues__kelvin_voigt(*, beta1, omega1, beta2, omega2, **params):
-    _extra = _support.extras("eigenvalues", params)
-    beta1 = _support.param("eigenvalues", "beta1", beta1)
-    omega1 = _support.param("eigenvalues", "omega1", omega1)
-    beta2 = _support.param("eigenvalues", "beta2", beta2)
-    omega2 = _support.param("eigenvalues", "omega2", omega2)
-    _shape = _support.shape_of(beta1, omega1, beta2, omega2, *_extra)
+def _eigenvalues__kelvin_voigt(_shape, beta1, omega1, beta2, omega2):
     _x0 = omega1**2
     _x1 = omega2**2
     _r0 = _support.quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
@@ -419,6 +363,6 @@ def _eigenvalues__kelvin_voigt(*, beta1, omega1, beta2, omega2, **params):
 
 
 _EIGENVALUES = {
-    ('hertz_damp',): _eigenvalues__hertz_damp,
-    ('kelvin_voigt',): _eigenvalues__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_eigenvalues__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', )),
+    ('kelvin_voigt',): _support.Variant(_eigenvalues__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', )),
 }

@@ -428,7 +428,7 @@ def test_backend_choice(base, monkeypatch):
     with pytest.raises(ImportError, match="numba"):
         stability.is_stable(**base, backend="numba")
     assert stability.is_stable(**base) == stability.is_stable(**base, backend="numpy")
-    assert _support.compiled(stability._is_stable__paper__hertz_damp__kernel, "boolean",
+    assert _support.compiled(stability._is_stable__paper__hertz_damp__scalar, "boolean",
                              None) is None
 
 

@@ -53,19 +53,29 @@ def averaged_friction(u, V, N0, N1, theta, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _support.mp_extras("averaged_friction", params)
+    _variant = _support.choose("averaged_friction", _AVERAGED_FRICTION)
+    _values = _support.mp_arguments("averaged_friction", _variant.names, params)
     u = _support.mp_param("averaged_friction", "u", u, "real")
     V = _support.mp_param("averaged_friction", "V", V, "positive")
     N0 = _support.mp_param("averaged_friction", "N0", N0, "real")
     N1 = _support.mp_param("averaged_friction", "N1", N1, "real")
     theta = _support.mp_param("averaged_friction", "theta", theta, "real")
+    return _variant.impl(u, V, N0, N1, theta, *_values)
+
+
+def _averaged_friction__impl(u, V, N0, N1, theta):
     _x0 = 1/V
     return ((2*_x0*(N0*V*mpmath.asin(_x0*u) + N1*mpmath.sqrt(V**2 - u**2)*mpmath.cos(theta))/mpmath.pi) if (V > abs(u)) else (N0*mpmath.sign(u)))
+
+
+_AVERAGED_FRICTION = {
+    (): _support.Variant(_averaged_friction__impl, ()),
+}
 
 
 def averaged_friction_slope(u, V, N0, N1, theta, **params):
@@ -99,18 +109,28 @@ def averaged_friction_slope(u, V, N0, N1, theta, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _support.mp_extras("averaged_friction_slope", params)
+    _variant = _support.choose("averaged_friction_slope", _AVERAGED_FRICTION_SLOPE)
+    _values = _support.mp_arguments("averaged_friction_slope", _variant.names, params)
     u = _support.mp_param("averaged_friction_slope", "u", u, "real")
     V = _support.mp_param("averaged_friction_slope", "V", V, "positive")
     N0 = _support.mp_param("averaged_friction_slope", "N0", N0, "real")
     N1 = _support.mp_param("averaged_friction_slope", "N1", N1, "real")
     theta = _support.mp_param("averaged_friction_slope", "theta", theta, "real")
+    return _variant.impl(u, V, N0, N1, theta, *_values)
+
+
+def _averaged_friction_slope__impl(u, V, N0, N1, theta):
     return (((2*N0*V - 2*N1*u*mpmath.cos(theta))/(mpmath.pi*V*mpmath.sqrt((V - u)*(V + u)))) if (V > abs(u)) else (0))
+
+
+_AVERAGED_FRICTION_SLOPE = {
+    (): _support.Variant(_averaged_friction_slope__impl, ()),
+}
 
 
 def first_harmonic(u, V, N0, N1, theta, **params):
@@ -144,17 +164,22 @@ def first_harmonic(u, V, N0, N1, theta, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _support.mp_extras("first_harmonic", params)
+    _variant = _support.choose("first_harmonic", _FIRST_HARMONIC)
+    _values = _support.mp_arguments("first_harmonic", _variant.names, params)
     u = _support.mp_param("first_harmonic", "u", u, "real")
     V = _support.mp_param("first_harmonic", "V", V, "positive")
     N0 = _support.mp_param("first_harmonic", "N0", N0, "real")
     N1 = _support.mp_param("first_harmonic", "N1", N1, "real")
     theta = _support.mp_param("first_harmonic", "theta", theta, "real")
+    return _variant.impl(u, V, N0, N1, theta, *_values)
+
+
+def _first_harmonic__impl(u, V, N0, N1, theta):
     _x0 = 1/mpmath.pi
     _x1 = 1/V
     _x2 = V**2
@@ -167,6 +192,11 @@ def first_harmonic(u, V, N0, N1, theta, **params):
     _x9 = N1*mpmath.sign(u)
     _x10 = mpmath.sin(theta)
     return (((_x0*_x1*(4*N0*_x3 + V*_x4*_x7*(_x5 - _x6))) if _x8 else (_x4*_x9)), ((_x0*_x10*_x7*(_x5 + _x6)) if _x8 else (_x10*_x9)),)
+
+
+_FIRST_HARMONIC = {
+    (): _support.Variant(_first_harmonic__impl, ()),
+}
 
 
 def fast_normal_force(*, contact='hertz_damp', **params):
@@ -209,26 +239,17 @@ def fast_normal_force(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("fast_normal_force", _FAST_NORMAL_FORCE, contact=contact)(**params)
+    _variant = _support.choose("fast_normal_force", _FAST_NORMAL_FORCE, contact=contact)
+    _values = _support.mp_arguments("fast_normal_force", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _fast_normal_force__hertz_damp(*, beta2, omega2, alpha, Omega, g, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.mp_extras("fast_normal_force", params)
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    beta2 = _support.mp_param("fast_normal_force", "beta2", beta2)
-    omega2 = _support.mp_param("fast_normal_force", "omega2", omega2)
-    alpha = _support.mp_param("fast_normal_force", "alpha", alpha)
-    Omega = _support.mp_param("fast_normal_force", "Omega", Omega)
-    g = _support.mp_param("fast_normal_force", "g", g)
-    alpha_n = _support.mp_param("fast_normal_force", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("fast_normal_force", "Omega_n", Omega_n)
-    phase_n = _support.mp_param("fast_normal_force", "phase_n", phase_n)
+def _fast_normal_force__hertz_damp(beta2, omega2, g, alpha_n, Omega_n, phase_n):
     _x0 = mpmath.cos(phase_n)
     _x1 = 9*g**(mpmath.mpf(2)/mpmath.mpf(3))*omega2**(mpmath.mpf(14)/mpmath.mpf(3))
     _x2 = mpmath.sin(phase_n)
@@ -247,17 +268,7 @@ def _fast_normal_force__hertz_damp(*, beta2, omega2, alpha, Omega, g, alpha_n=No
     return (mpmath.sqrt(_x12*_x13**2 + _x12*_x8**2), mpmath.atan2(_x13*_x14, _x14*_x8),)
 
 
-def _fast_normal_force__kelvin_voigt(*, beta2, omega2, alpha, Omega, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.mp_extras("fast_normal_force", params)
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    beta2 = _support.mp_param("fast_normal_force", "beta2", beta2)
-    omega2 = _support.mp_param("fast_normal_force", "omega2", omega2)
-    alpha = _support.mp_param("fast_normal_force", "alpha", alpha)
-    Omega = _support.mp_param("fast_normal_force", "Omega", Omega)
-    alpha_n = _support.mp_param("fast_normal_force", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("fast_normal_force", "Omega_n", Omega_n)
-    phase_n = _support.mp_param("fast_normal_force", "phase_n", phase_n)
+def _fast_normal_force__kelvin_voigt(beta2, omega2, alpha_n, Omega_n, phase_n):
     _x0 = mpmath.cos(phase_n)
     _x1 = omega2**3
     _x2 = Omega_n**2
@@ -278,8 +289,8 @@ def _fast_normal_force__kelvin_voigt(*, beta2, omega2, alpha, Omega, alpha_n=Non
 
 
 _FAST_NORMAL_FORCE = {
-    ('hertz_damp',): _fast_normal_force__hertz_damp,
-    ('kelvin_voigt',): _fast_normal_force__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_fast_normal_force__hertz_damp, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt',): _support.Variant(_fast_normal_force__kelvin_voigt, ('beta2', 'omega2', 'alpha_n', 'Omega_n', 'phase_n', )),
 }
 
 
@@ -333,32 +344,17 @@ def fast_tangential_velocity(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("fast_tangential_velocity", _FAST_TANGENTIAL_VELOCITY, contact=contact)(**params)
+    _variant = _support.choose("fast_tangential_velocity", _FAST_TANGENTIAL_VELOCITY, contact=contact)
+    _values = _support.mp_arguments("fast_tangential_velocity", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _fast_tangential_velocity__hertz_damp(*, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, phase_n=0.0, **params):
-    _support.mp_extras("fast_tangential_velocity", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    beta1 = _support.mp_param("fast_tangential_velocity", "beta1", beta1)
-    omega1 = _support.mp_param("fast_tangential_velocity", "omega1", omega1)
-    beta2 = _support.mp_param("fast_tangential_velocity", "beta2", beta2)
-    omega2 = _support.mp_param("fast_tangential_velocity", "omega2", omega2)
-    alpha = _support.mp_param("fast_tangential_velocity", "alpha", alpha)
-    Omega = _support.mp_param("fast_tangential_velocity", "Omega", Omega)
-    mu_s = _support.mp_param("fast_tangential_velocity", "mu_s", mu_s)
-    g = _support.mp_param("fast_tangential_velocity", "g", g)
-    alpha_t = _support.mp_param("fast_tangential_velocity", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("fast_tangential_velocity", "Omega_t", Omega_t)
-    phase_t = _support.mp_param("fast_tangential_velocity", "phase_t", phase_t)
-    alpha_n = _support.mp_param("fast_tangential_velocity", "alpha_n", alpha_n)
-    phase_n = _support.mp_param("fast_tangential_velocity", "phase_n", phase_n)
+def _fast_tangential_velocity__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, phase_n):
     _x0 = Omega_t**2
     _x1 = beta1*omega1
     _x2 = 4*_x0
@@ -388,23 +384,7 @@ def _fast_tangential_velocity__hertz_damp(*, beta1, omega1, beta2, omega2, alpha
     return (mpmath.sqrt(_x0*_x24**2 + _x0*_x25**2), mpmath.atan2(Omega_t*_x25, -Omega_t*_x24),)
 
 
-def _fast_tangential_velocity__kelvin_voigt(*, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, phase_n=0.0, **params):
-    _support.mp_extras("fast_tangential_velocity", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    beta1 = _support.mp_param("fast_tangential_velocity", "beta1", beta1)
-    omega1 = _support.mp_param("fast_tangential_velocity", "omega1", omega1)
-    beta2 = _support.mp_param("fast_tangential_velocity", "beta2", beta2)
-    omega2 = _support.mp_param("fast_tangential_velocity", "omega2", omega2)
-    alpha = _support.mp_param("fast_tangential_velocity", "alpha", alpha)
-    Omega = _support.mp_param("fast_tangential_velocity", "Omega", Omega)
-    mu_s = _support.mp_param("fast_tangential_velocity", "mu_s", mu_s)
-    alpha_t = _support.mp_param("fast_tangential_velocity", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("fast_tangential_velocity", "Omega_t", Omega_t)
-    phase_t = _support.mp_param("fast_tangential_velocity", "phase_t", phase_t)
-    alpha_n = _support.mp_param("fast_tangential_velocity", "alpha_n", alpha_n)
-    phase_n = _support.mp_param("fast_tangential_velocity", "phase_n", phase_n)
+def _fast_tangential_velocity__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, phase_n):
     _x0 = Omega_t**2
     _x1 = beta1*omega1
     _x2 = 4*_x0
@@ -436,6 +416,6 @@ def _fast_tangential_velocity__kelvin_voigt(*, beta1, omega1, beta2, omega2, alp
 
 
 _FAST_TANGENTIAL_VELOCITY = {
-    ('hertz_damp',): _fast_tangential_velocity__hertz_damp,
-    ('kelvin_voigt',): _fast_tangential_velocity__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_fast_tangential_velocity__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', )),
+    ('kelvin_voigt',): _support.Variant(_fast_tangential_velocity__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', )),
 }

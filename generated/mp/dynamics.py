@@ -82,40 +82,22 @@ def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("rhs", _RHS, contact=contact)(t, X1, Y1, X2, Y2, **params)
-
-
-def _rhs__hertz_damp(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.mp_extras("rhs", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
+    _variant = _support.choose("rhs", _RHS, contact=contact)
+    _values = _support.mp_arguments("rhs", _variant.names, params)
     t = _support.mp_param("rhs", "t", t, "real")
     X1 = _support.mp_param("rhs", "X1", X1, "real")
     Y1 = _support.mp_param("rhs", "Y1", Y1, "real")
     X2 = _support.mp_param("rhs", "X2", X2, "real")
     Y2 = _support.mp_param("rhs", "Y2", Y2, "real")
-    beta1 = _support.mp_param("rhs", "beta1", beta1)
-    omega1 = _support.mp_param("rhs", "omega1", omega1)
-    beta2 = _support.mp_param("rhs", "beta2", beta2)
-    omega2 = _support.mp_param("rhs", "omega2", omega2)
-    alpha = _support.mp_param("rhs", "alpha", alpha)
-    Omega = _support.mp_param("rhs", "Omega", Omega)
-    mu_s = _support.mp_param("rhs", "mu_s", mu_s)
-    g = _support.mp_param("rhs", "g", g)
-    Vb = _support.mp_param("rhs", "Vb", Vb)
-    alpha_t = _support.mp_param("rhs", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("rhs", "Omega_t", Omega_t)
-    phase_t = _support.mp_param("rhs", "phase_t", phase_t)
-    alpha_n = _support.mp_param("rhs", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("rhs", "Omega_n", Omega_n)
-    phase_n = _support.mp_param("rhs", "phase_n", phase_n)
+    return _variant.impl(t, X1, Y1, X2, Y2, *_values)
+
+
+def _rhs__hertz_damp(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x2 = (X2 > 0)
@@ -123,32 +105,7 @@ def _rhs__hertz_damp(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, 
     return [Y1, ((-_x0*mu_s*mpmath.sign(-Vb + Y1) - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3))]
 
 
-def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, Vb, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.mp_extras("rhs", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    t = _support.mp_param("rhs", "t", t, "real")
-    X1 = _support.mp_param("rhs", "X1", X1, "real")
-    Y1 = _support.mp_param("rhs", "Y1", Y1, "real")
-    X2 = _support.mp_param("rhs", "X2", X2, "real")
-    Y2 = _support.mp_param("rhs", "Y2", Y2, "real")
-    beta1 = _support.mp_param("rhs", "beta1", beta1)
-    omega1 = _support.mp_param("rhs", "omega1", omega1)
-    beta2 = _support.mp_param("rhs", "beta2", beta2)
-    omega2 = _support.mp_param("rhs", "omega2", omega2)
-    alpha = _support.mp_param("rhs", "alpha", alpha)
-    Omega = _support.mp_param("rhs", "Omega", Omega)
-    mu_s = _support.mp_param("rhs", "mu_s", mu_s)
-    g = _support.mp_param("rhs", "g", g)
-    Vb = _support.mp_param("rhs", "Vb", Vb)
-    alpha_t = _support.mp_param("rhs", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("rhs", "Omega_t", Omega_t)
-    phase_t = _support.mp_param("rhs", "phase_t", phase_t)
-    alpha_n = _support.mp_param("rhs", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("rhs", "Omega_n", Omega_n)
-    phase_n = _support.mp_param("rhs", "phase_n", phase_n)
+def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
     _x1 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x2 = (X2 > 0)
@@ -157,8 +114,8 @@ def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, alpha
 
 
 _RHS = {
-    ('hertz_damp',): _rhs__hertz_damp,
-    ('kelvin_voigt',): _rhs__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_rhs__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt',): _support.Variant(_rhs__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
 }
 
 
@@ -228,40 +185,23 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("rhs_branch", _RHS_BRANCH, contact=contact)(t, X1, Y1, X2, Y2, sgn, **params)
-
-
-def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.mp_extras("rhs_branch", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
+    _variant = _support.choose("rhs_branch", _RHS_BRANCH, contact=contact)
+    _values = _support.mp_arguments("rhs_branch", _variant.names, params)
     t = _support.mp_param("rhs_branch", "t", t, "real")
     X1 = _support.mp_param("rhs_branch", "X1", X1, "real")
     Y1 = _support.mp_param("rhs_branch", "Y1", Y1, "real")
     X2 = _support.mp_param("rhs_branch", "X2", X2, "real")
     Y2 = _support.mp_param("rhs_branch", "Y2", Y2, "real")
     sgn = _support.mp_param("rhs_branch", "sgn", sgn, "real")
-    beta1 = _support.mp_param("rhs_branch", "beta1", beta1)
-    omega1 = _support.mp_param("rhs_branch", "omega1", omega1)
-    beta2 = _support.mp_param("rhs_branch", "beta2", beta2)
-    omega2 = _support.mp_param("rhs_branch", "omega2", omega2)
-    alpha = _support.mp_param("rhs_branch", "alpha", alpha)
-    Omega = _support.mp_param("rhs_branch", "Omega", Omega)
-    mu_s = _support.mp_param("rhs_branch", "mu_s", mu_s)
-    g = _support.mp_param("rhs_branch", "g", g)
-    alpha_t = _support.mp_param("rhs_branch", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("rhs_branch", "Omega_t", Omega_t)
-    phase_t = _support.mp_param("rhs_branch", "phase_t", phase_t)
-    alpha_n = _support.mp_param("rhs_branch", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("rhs_branch", "Omega_n", Omega_n)
-    phase_n = _support.mp_param("rhs_branch", "phase_n", phase_n)
+    return _variant.impl(t, X1, Y1, X2, Y2, sgn, *_values)
+
+
+def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x2 = (X2 > 0)
@@ -269,32 +209,7 @@ def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, ome
     return [Y1, ((-_x0*mu_s*sgn - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3))]
 
 
-def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.mp_extras("rhs_branch", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    t = _support.mp_param("rhs_branch", "t", t, "real")
-    X1 = _support.mp_param("rhs_branch", "X1", X1, "real")
-    Y1 = _support.mp_param("rhs_branch", "Y1", Y1, "real")
-    X2 = _support.mp_param("rhs_branch", "X2", X2, "real")
-    Y2 = _support.mp_param("rhs_branch", "Y2", Y2, "real")
-    sgn = _support.mp_param("rhs_branch", "sgn", sgn, "real")
-    beta1 = _support.mp_param("rhs_branch", "beta1", beta1)
-    omega1 = _support.mp_param("rhs_branch", "omega1", omega1)
-    beta2 = _support.mp_param("rhs_branch", "beta2", beta2)
-    omega2 = _support.mp_param("rhs_branch", "omega2", omega2)
-    alpha = _support.mp_param("rhs_branch", "alpha", alpha)
-    Omega = _support.mp_param("rhs_branch", "Omega", Omega)
-    mu_s = _support.mp_param("rhs_branch", "mu_s", mu_s)
-    g = _support.mp_param("rhs_branch", "g", g)
-    alpha_t = _support.mp_param("rhs_branch", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("rhs_branch", "Omega_t", Omega_t)
-    phase_t = _support.mp_param("rhs_branch", "phase_t", phase_t)
-    alpha_n = _support.mp_param("rhs_branch", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("rhs_branch", "Omega_n", Omega_n)
-    phase_n = _support.mp_param("rhs_branch", "phase_n", phase_n)
+def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
     _x1 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x2 = (X2 > 0)
@@ -303,8 +218,8 @@ def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, o
 
 
 _RHS_BRANCH = {
-    ('hertz_damp',): _rhs_branch__hertz_damp,
-    ('kelvin_voigt',): _rhs_branch__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_rhs_branch__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt',): _support.Variant(_rhs_branch__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
 }
 
 
@@ -352,27 +267,23 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("jacobian_branch", _JACOBIAN_BRANCH, contact=contact)(t, X1, Y1, X2, Y2, sgn, **params)
-
-
-def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.mp_extras("jacobian_branch", params)
+    _variant = _support.choose("jacobian_branch", _JACOBIAN_BRANCH, contact=contact)
+    _values = _support.mp_arguments("jacobian_branch", _variant.names, params)
     t = _support.mp_param("jacobian_branch", "t", t, "real")
     X1 = _support.mp_param("jacobian_branch", "X1", X1, "real")
     Y1 = _support.mp_param("jacobian_branch", "Y1", Y1, "real")
     X2 = _support.mp_param("jacobian_branch", "X2", X2, "real")
     Y2 = _support.mp_param("jacobian_branch", "Y2", Y2, "real")
     sgn = _support.mp_param("jacobian_branch", "sgn", sgn, "real")
-    beta1 = _support.mp_param("jacobian_branch", "beta1", beta1)
-    omega1 = _support.mp_param("jacobian_branch", "omega1", omega1)
-    beta2 = _support.mp_param("jacobian_branch", "beta2", beta2)
-    omega2 = _support.mp_param("jacobian_branch", "omega2", omega2)
-    mu_s = _support.mp_param("jacobian_branch", "mu_s", mu_s)
+    return _variant.impl(t, X1, Y1, X2, Y2, sgn, *_values)
+
+
+def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
     _x0 = max(0, X2)
     _x1 = 2*beta2*omega2
     _x2 = (mpmath.mpf(3)/mpmath.mpf(2))*mpmath.sqrt(_x0)*(Y2*_x1 + omega2**2)
@@ -387,19 +298,7 @@ def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2
         ])
 
 
-def _jacobian_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.mp_extras("jacobian_branch", params)
-    t = _support.mp_param("jacobian_branch", "t", t, "real")
-    X1 = _support.mp_param("jacobian_branch", "X1", X1, "real")
-    Y1 = _support.mp_param("jacobian_branch", "Y1", Y1, "real")
-    X2 = _support.mp_param("jacobian_branch", "X2", X2, "real")
-    Y2 = _support.mp_param("jacobian_branch", "Y2", Y2, "real")
-    sgn = _support.mp_param("jacobian_branch", "sgn", sgn, "real")
-    beta1 = _support.mp_param("jacobian_branch", "beta1", beta1)
-    omega1 = _support.mp_param("jacobian_branch", "omega1", omega1)
-    beta2 = _support.mp_param("jacobian_branch", "beta2", beta2)
-    omega2 = _support.mp_param("jacobian_branch", "omega2", omega2)
-    mu_s = _support.mp_param("jacobian_branch", "mu_s", mu_s)
+def _jacobian_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
     _x0 = omega2**2
     _x1 = mu_s*sgn
     _x2 = (X2 > 0)
@@ -413,8 +312,8 @@ def _jacobian_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, bet
 
 
 _JACOBIAN_BRANCH = {
-    ('hertz_damp',): _jacobian_branch__hertz_damp,
-    ('kelvin_voigt',): _jacobian_branch__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_jacobian_branch__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
+    ('kelvin_voigt',): _support.Variant(_jacobian_branch__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
 }
 
 
@@ -448,39 +347,33 @@ def normal_force(X2, Y2, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("normal_force", _NORMAL_FORCE, contact=contact)(X2, Y2, **params)
-
-
-def _normal_force__hertz_damp(X2, Y2, *, beta2, omega2, **params):
-    _support.mp_extras("normal_force", params)
+    _variant = _support.choose("normal_force", _NORMAL_FORCE, contact=contact)
+    _values = _support.mp_arguments("normal_force", _variant.names, params)
     X2 = _support.mp_param("normal_force", "X2", X2, "real")
     Y2 = _support.mp_param("normal_force", "Y2", Y2, "real")
-    beta2 = _support.mp_param("normal_force", "beta2", beta2)
-    omega2 = _support.mp_param("normal_force", "omega2", omega2)
+    return _variant.impl(X2, Y2, *_values)
+
+
+def _normal_force__hertz_damp(X2, Y2, beta2, omega2):
     return (((2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))) if (X2 > 0) else (0))
 
 
-def _normal_force__kelvin_voigt(X2, Y2, *, beta2, omega2, **params):
-    _support.mp_extras("normal_force", params)
-    X2 = _support.mp_param("normal_force", "X2", X2, "real")
-    Y2 = _support.mp_param("normal_force", "Y2", Y2, "real")
-    beta2 = _support.mp_param("normal_force", "beta2", beta2)
-    omega2 = _support.mp_param("normal_force", "omega2", omega2)
+def _normal_force__kelvin_voigt(X2, Y2, beta2, omega2):
     return ((2*Y2*beta2*omega2 + omega2**2*max(0, X2)) if (X2 > 0) else (0))
 
 
 _NORMAL_FORCE = {
-    ('hertz_damp',): _normal_force__hertz_damp,
-    ('kelvin_voigt',): _normal_force__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_normal_force__hertz_damp, ('beta2', 'omega2', )),
+    ('kelvin_voigt',): _support.Variant(_normal_force__kelvin_voigt, ('beta2', 'omega2', )),
 }
 
 
-def excitation(t, *, alpha, Omega, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
+def excitation(t, **params):
     """Excitation forces per unit mass (tangential, normal).
 
     Implements Eq. (4), right-hand side of the paper.
@@ -521,26 +414,24 @@ def excitation(t, *, alpha, Omega, alpha_t=None, Omega_t=None, phase_t=0.0, alph
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _support.mp_extras("excitation", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
+    _variant = _support.choose("excitation", _EXCITATION)
+    _values = _support.mp_arguments("excitation", _variant.names, params)
     t = _support.mp_param("excitation", "t", t, "real")
-    alpha = _support.mp_param("excitation", "alpha", alpha)
-    Omega = _support.mp_param("excitation", "Omega", Omega)
-    alpha_t = _support.mp_param("excitation", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("excitation", "Omega_t", Omega_t)
-    phase_t = _support.mp_param("excitation", "phase_t", phase_t)
-    alpha_n = _support.mp_param("excitation", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("excitation", "Omega_n", Omega_n)
-    phase_n = _support.mp_param("excitation", "phase_n", phase_n)
+    return _variant.impl(t, *_values)
+
+
+def _excitation__impl(t, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     return (Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t), -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n),)
+
+
+_EXCITATION = {
+    (): _support.Variant(_excitation__impl, ('alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+}
 
 
 def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
@@ -581,41 +472,31 @@ def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("energy", _ENERGY, contact=contact)(X1, Y1, X2, Y2, **params)
-
-
-def _energy__hertz_damp(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
-    _support.mp_extras("energy", params)
+    _variant = _support.choose("energy", _ENERGY, contact=contact)
+    _values = _support.mp_arguments("energy", _variant.names, params)
     X1 = _support.mp_param("energy", "X1", X1, "real")
     Y1 = _support.mp_param("energy", "Y1", Y1, "real")
     X2 = _support.mp_param("energy", "X2", X2, "real")
     Y2 = _support.mp_param("energy", "Y2", Y2, "real")
-    omega1 = _support.mp_param("energy", "omega1", omega1)
-    omega2 = _support.mp_param("energy", "omega2", omega2)
-    g = _support.mp_param("energy", "g", g)
+    return _variant.impl(X1, Y1, X2, Y2, *_values)
+
+
+def _energy__hertz_damp(X1, Y1, X2, Y2, omega1, omega2, g):
     return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (((mpmath.mpf(2)/mpmath.mpf(5))*omega2**2*max(0, X2)**(mpmath.mpf(5)/mpmath.mpf(2))) if (X2 > 0) else (0))
 
 
-def _energy__kelvin_voigt(X1, Y1, X2, Y2, *, omega1, omega2, g, **params):
-    _support.mp_extras("energy", params)
-    X1 = _support.mp_param("energy", "X1", X1, "real")
-    Y1 = _support.mp_param("energy", "Y1", Y1, "real")
-    X2 = _support.mp_param("energy", "X2", X2, "real")
-    Y2 = _support.mp_param("energy", "Y2", Y2, "real")
-    omega1 = _support.mp_param("energy", "omega1", omega1)
-    omega2 = _support.mp_param("energy", "omega2", omega2)
-    g = _support.mp_param("energy", "g", g)
+def _energy__kelvin_voigt(X1, Y1, X2, Y2, omega1, omega2, g):
     return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (((mpmath.mpf(1)/mpmath.mpf(2))*omega2**2*max(0, X2)**2) if (X2 > 0) else (0))
 
 
 _ENERGY = {
-    ('hertz_damp',): _energy__hertz_damp,
-    ('kelvin_voigt',): _energy__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_energy__hertz_damp, ('omega1', 'omega2', 'g', )),
+    ('kelvin_voigt',): _support.Variant(_energy__kelvin_voigt, ('omega1', 'omega2', 'g', )),
 }
 
 
@@ -679,39 +560,23 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("power_balance", _POWER_BALANCE, contact=contact)(t, X1, Y1, X2, Y2, sgn, **params)
-
-
-def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.mp_extras("power_balance", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
+    _variant = _support.choose("power_balance", _POWER_BALANCE, contact=contact)
+    _values = _support.mp_arguments("power_balance", _variant.names, params)
     t = _support.mp_param("power_balance", "t", t, "real")
     X1 = _support.mp_param("power_balance", "X1", X1, "real")
     Y1 = _support.mp_param("power_balance", "Y1", Y1, "real")
     X2 = _support.mp_param("power_balance", "X2", X2, "real")
     Y2 = _support.mp_param("power_balance", "Y2", Y2, "real")
     sgn = _support.mp_param("power_balance", "sgn", sgn, "real")
-    beta1 = _support.mp_param("power_balance", "beta1", beta1)
-    omega1 = _support.mp_param("power_balance", "omega1", omega1)
-    beta2 = _support.mp_param("power_balance", "beta2", beta2)
-    omega2 = _support.mp_param("power_balance", "omega2", omega2)
-    alpha = _support.mp_param("power_balance", "alpha", alpha)
-    Omega = _support.mp_param("power_balance", "Omega", Omega)
-    mu_s = _support.mp_param("power_balance", "mu_s", mu_s)
-    alpha_t = _support.mp_param("power_balance", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("power_balance", "Omega_t", Omega_t)
-    phase_t = _support.mp_param("power_balance", "phase_t", phase_t)
-    alpha_n = _support.mp_param("power_balance", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("power_balance", "Omega_n", Omega_n)
-    phase_n = _support.mp_param("power_balance", "phase_n", phase_n)
+    return _variant.impl(t, X1, Y1, X2, Y2, sgn, *_values)
+
+
+def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = omega2**2
     _x1 = max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
     _x2 = 2*Y2*beta2*omega2 + _x0
@@ -719,37 +584,13 @@ def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, 
     return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x1*_x2)) if _x3 else (0)), Y1*mu_s*sgn*((_x1*_x2) if _x3 else (0)),)
 
 
-def _power_balance__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, *, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.mp_extras("power_balance", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    t = _support.mp_param("power_balance", "t", t, "real")
-    X1 = _support.mp_param("power_balance", "X1", X1, "real")
-    Y1 = _support.mp_param("power_balance", "Y1", Y1, "real")
-    X2 = _support.mp_param("power_balance", "X2", X2, "real")
-    Y2 = _support.mp_param("power_balance", "Y2", Y2, "real")
-    sgn = _support.mp_param("power_balance", "sgn", sgn, "real")
-    beta1 = _support.mp_param("power_balance", "beta1", beta1)
-    omega1 = _support.mp_param("power_balance", "omega1", omega1)
-    beta2 = _support.mp_param("power_balance", "beta2", beta2)
-    omega2 = _support.mp_param("power_balance", "omega2", omega2)
-    alpha = _support.mp_param("power_balance", "alpha", alpha)
-    Omega = _support.mp_param("power_balance", "Omega", Omega)
-    mu_s = _support.mp_param("power_balance", "mu_s", mu_s)
-    alpha_t = _support.mp_param("power_balance", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("power_balance", "Omega_t", Omega_t)
-    phase_t = _support.mp_param("power_balance", "phase_t", phase_t)
-    alpha_n = _support.mp_param("power_balance", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("power_balance", "Omega_n", Omega_n)
-    phase_n = _support.mp_param("power_balance", "phase_n", phase_n)
+def _power_balance__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = 2*beta2*omega2
     _x1 = (X2 > 0)
     return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2**2*_x0) if _x1 else (0)), Y1*mu_s*sgn*((Y2*_x0 + omega2**2*max(0, X2)) if _x1 else (0)),)
 
 
 _POWER_BALANCE = {
-    ('hertz_damp',): _power_balance__hertz_damp,
-    ('kelvin_voigt',): _power_balance__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_power_balance__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt',): _support.Variant(_power_balance__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
 }

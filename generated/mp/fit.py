@@ -43,84 +43,71 @@ def coefficients(X2max, *, degree=3, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("coefficients", _COEFFICIENTS, degree=degree)(X2max, **params)
-
-
-def _coefficients__1(X2max, **params):
-    _support.mp_extras("coefficients", params)
+    _variant = _support.choose("coefficients", _COEFFICIENTS, degree=degree)
+    _values = _support.mp_arguments("coefficients", _variant.names, params)
     X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
+    return _variant.impl(X2max, *_values)
+
+
+def _coefficients__1(X2max):
     return (-mpmath.mpf(4)/mpmath.mpf(35)*X2max**(mpmath.mpf(3)/mpmath.mpf(2)), (mpmath.mpf(36)/mpmath.mpf(35))*mpmath.sqrt(X2max),)
 
 
-def _coefficients__2(X2max, **params):
-    _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
+def _coefficients__2(X2max):
     _x0 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(2)/mpmath.mpf(105)*X2max**(mpmath.mpf(3)/mpmath.mpf(2)), (mpmath.mpf(16)/mpmath.mpf(35))*_x0, (mpmath.mpf(4)/mpmath.mpf(7))/_x0,)
 
 
-def _coefficients__3(X2max, **params):
-    _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
+def _coefficients__3(X2max):
     _x0 = X2max**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(8)/mpmath.mpf(1155)*_x0, (mpmath.mpf(24)/mpmath.mpf(77))*_x1, (mpmath.mpf(72)/mpmath.mpf(77))/_x1, -(mpmath.mpf(8)/mpmath.mpf(33))/_x0,)
 
 
-def _coefficients__4(X2max, **params):
-    _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
+def _coefficients__4(X2max):
     _x0 = X2max**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(10)/mpmath.mpf(3003)*_x0, (mpmath.mpf(240)/mpmath.mpf(1001))*_x1, (mpmath.mpf(180)/mpmath.mpf(143))/_x1, -(mpmath.mpf(320)/mpmath.mpf(429))/_x0, (mpmath.mpf(36)/mpmath.mpf(143))/X2max**(mpmath.mpf(5)/mpmath.mpf(2)),)
 
 
-def _coefficients__5(X2max, **params):
-    _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
+def _coefficients__5(X2max):
     _x0 = X2max**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(4)/mpmath.mpf(2145)*_x0, (mpmath.mpf(28)/mpmath.mpf(143))*_x1, (mpmath.mpf(224)/mpmath.mpf(143))/_x1, -(mpmath.mpf(224)/mpmath.mpf(143))/_x0, (mpmath.mpf(168)/mpmath.mpf(143))/X2max**(mpmath.mpf(5)/mpmath.mpf(2)), -(mpmath.mpf(24)/mpmath.mpf(65))/X2max**(mpmath.mpf(7)/mpmath.mpf(2)),)
 
 
-def _coefficients__6(X2max, **params):
-    _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
+def _coefficients__6(X2max):
     _x0 = X2max**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(14)/mpmath.mpf(12155)*_x0, (mpmath.mpf(2016)/mpmath.mpf(12155))*_x1, (mpmath.mpf(4536)/mpmath.mpf(2431))/_x1, -(mpmath.mpf(6720)/mpmath.mpf(2431))/_x0, (mpmath.mpf(756)/mpmath.mpf(221))/X2max**(mpmath.mpf(5)/mpmath.mpf(2)), -(mpmath.mpf(2592)/mpmath.mpf(1105))/X2max**(mpmath.mpf(7)/mpmath.mpf(2)), (mpmath.mpf(56)/mpmath.mpf(85))/X2max**(mpmath.mpf(9)/mpmath.mpf(2)),)
 
 
-def _coefficients__7(X2max, **params):
-    _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
+def _coefficients__7(X2max):
     _x0 = X2max**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(16)/mpmath.mpf(20995)*_x0, (mpmath.mpf(3024)/mpmath.mpf(20995))*_x1, (mpmath.mpf(9072)/mpmath.mpf(4199))/_x1, -(mpmath.mpf(18480)/mpmath.mpf(4199))/_x0, (mpmath.mpf(33264)/mpmath.mpf(4199))/X2max**(mpmath.mpf(5)/mpmath.mpf(2)), -(mpmath.mpf(14256)/mpmath.mpf(1615))/X2max**(mpmath.mpf(7)/mpmath.mpf(2)), (mpmath.mpf(8624)/mpmath.mpf(1615))/X2max**(mpmath.mpf(9)/mpmath.mpf(2)), -(mpmath.mpf(432)/mpmath.mpf(323))/X2max**(mpmath.mpf(11)/mpmath.mpf(2)),)
 
 
-def _coefficients__8(X2max, **params):
-    _support.mp_extras("coefficients", params)
-    X2max = _support.mp_param("coefficients", "X2max", X2max, "positive")
+def _coefficients__8(X2max):
     _x0 = X2max**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = mpmath.sqrt(X2max)
     return (-mpmath.mpf(6)/mpmath.mpf(11305)*_x0, (mpmath.mpf(288)/mpmath.mpf(2261))*_x1, (mpmath.mpf(792)/mpmath.mpf(323))/_x1, -(mpmath.mpf(2112)/mpmath.mpf(323))/_x0, (mpmath.mpf(5148)/mpmath.mpf(323))/X2max**(mpmath.mpf(5)/mpmath.mpf(2)), -(mpmath.mpf(41184)/mpmath.mpf(1615))/X2max**(mpmath.mpf(7)/mpmath.mpf(2)), (mpmath.mpf(8008)/mpmath.mpf(323))/X2max**(mpmath.mpf(9)/mpmath.mpf(2)), -(mpmath.mpf(29952)/mpmath.mpf(2261))/X2max**(mpmath.mpf(11)/mpmath.mpf(2)), (mpmath.mpf(396)/mpmath.mpf(133))/X2max**(mpmath.mpf(13)/mpmath.mpf(2)),)
 
 
 _COEFFICIENTS = {
-    (1,): _coefficients__1,
-    (2,): _coefficients__2,
-    (3,): _coefficients__3,
-    (4,): _coefficients__4,
-    (5,): _coefficients__5,
-    (6,): _coefficients__6,
-    (7,): _coefficients__7,
-    (8,): _coefficients__8,
+    (1,): _support.Variant(_coefficients__1, ()),
+    (2,): _support.Variant(_coefficients__2, ()),
+    (3,): _support.Variant(_coefficients__3, ()),
+    (4,): _support.Variant(_coefficients__4, ()),
+    (5,): _support.Variant(_coefficients__5, ()),
+    (6,): _support.Variant(_coefficients__6, ()),
+    (7,): _support.Variant(_coefficients__7, ()),
+    (8,): _support.Variant(_coefficients__8, ()),
 }
 
 
@@ -149,71 +136,58 @@ def max_error(X2max, *, degree=3, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("max_error", _MAX_ERROR, degree=degree)(X2max, **params)
-
-
-def _max_error__1(X2max, **params):
-    _support.mp_extras("max_error", params)
+    _variant = _support.choose("max_error", _MAX_ERROR, degree=degree)
+    _values = _support.mp_arguments("max_error", _variant.names, params)
     X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
+    return _variant.impl(X2max, *_values)
+
+
+def _max_error__1(X2max):
     return (mpmath.mpf(4)/mpmath.mpf(35))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _max_error__2(X2max, **params):
-    _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
+def _max_error__2(X2max):
     return (mpmath.mpf(2)/mpmath.mpf(105))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _max_error__3(X2max, **params):
-    _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
+def _max_error__3(X2max):
     return (mpmath.mpf(8)/mpmath.mpf(1155))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _max_error__4(X2max, **params):
-    _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
+def _max_error__4(X2max):
     return (mpmath.mpf(10)/mpmath.mpf(3003))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _max_error__5(X2max, **params):
-    _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
+def _max_error__5(X2max):
     return (mpmath.mpf(4)/mpmath.mpf(2145))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _max_error__6(X2max, **params):
-    _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
+def _max_error__6(X2max):
     return (mpmath.mpf(14)/mpmath.mpf(12155))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _max_error__7(X2max, **params):
-    _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
+def _max_error__7(X2max):
     return (mpmath.mpf(16)/mpmath.mpf(20995))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _max_error__8(X2max, **params):
-    _support.mp_extras("max_error", params)
-    X2max = _support.mp_param("max_error", "X2max", X2max, "positive")
+def _max_error__8(X2max):
     return (mpmath.mpf(6)/mpmath.mpf(11305))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 _MAX_ERROR = {
-    (1,): _max_error__1,
-    (2,): _max_error__2,
-    (3,): _max_error__3,
-    (4,): _max_error__4,
-    (5,): _max_error__5,
-    (6,): _max_error__6,
-    (7,): _max_error__7,
-    (8,): _max_error__8,
+    (1,): _support.Variant(_max_error__1, ()),
+    (2,): _support.Variant(_max_error__2, ()),
+    (3,): _support.Variant(_max_error__3, ()),
+    (4,): _support.Variant(_max_error__4, ()),
+    (5,): _support.Variant(_max_error__5, ()),
+    (6,): _support.Variant(_max_error__6, ()),
+    (7,): _support.Variant(_max_error__7, ()),
+    (8,): _support.Variant(_max_error__8, ()),
 }
 
 
@@ -241,71 +215,58 @@ def max_error_location(X2max, *, degree=3, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("max_error_location", _MAX_ERROR_LOCATION, degree=degree)(X2max, **params)
-
-
-def _max_error_location__1(X2max, **params):
-    _support.mp_extras("max_error_location", params)
+    _variant = _support.choose("max_error_location", _MAX_ERROR_LOCATION, degree=degree)
+    _values = _support.mp_arguments("max_error_location", _variant.names, params)
     X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
+    return _variant.impl(X2max, *_values)
+
+
+def _max_error_location__1(X2max):
     return 0
 
 
-def _max_error_location__2(X2max, **params):
-    _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
+def _max_error_location__2(X2max):
     return 0
 
 
-def _max_error_location__3(X2max, **params):
-    _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
+def _max_error_location__3(X2max):
     return 0
 
 
-def _max_error_location__4(X2max, **params):
-    _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
+def _max_error_location__4(X2max):
     return 0
 
 
-def _max_error_location__5(X2max, **params):
-    _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
+def _max_error_location__5(X2max):
     return 0
 
 
-def _max_error_location__6(X2max, **params):
-    _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
+def _max_error_location__6(X2max):
     return 0
 
 
-def _max_error_location__7(X2max, **params):
-    _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
+def _max_error_location__7(X2max):
     return 0
 
 
-def _max_error_location__8(X2max, **params):
-    _support.mp_extras("max_error_location", params)
-    X2max = _support.mp_param("max_error_location", "X2max", X2max, "positive")
+def _max_error_location__8(X2max):
     return 0
 
 
 _MAX_ERROR_LOCATION = {
-    (1,): _max_error_location__1,
-    (2,): _max_error_location__2,
-    (3,): _max_error_location__3,
-    (4,): _max_error_location__4,
-    (5,): _max_error_location__5,
-    (6,): _max_error_location__6,
-    (7,): _max_error_location__7,
-    (8,): _max_error_location__8,
+    (1,): _support.Variant(_max_error_location__1, ()),
+    (2,): _support.Variant(_max_error_location__2, ()),
+    (3,): _support.Variant(_max_error_location__3, ()),
+    (4,): _support.Variant(_max_error_location__4, ()),
+    (5,): _support.Variant(_max_error_location__5, ()),
+    (6,): _support.Variant(_max_error_location__6, ()),
+    (7,): _support.Variant(_max_error_location__7, ()),
+    (8,): _support.Variant(_max_error_location__8, ()),
 }
 
 
@@ -333,71 +294,58 @@ def rms_error(X2max, *, degree=3, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("rms_error", _RMS_ERROR, degree=degree)(X2max, **params)
-
-
-def _rms_error__1(X2max, **params):
-    _support.mp_extras("rms_error", params)
+    _variant = _support.choose("rms_error", _RMS_ERROR, degree=degree)
+    _values = _support.mp_arguments("rms_error", _variant.names, params)
     X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
+    return _variant.impl(X2max, *_values)
+
+
+def _rms_error__1(X2max):
     return (mpmath.mpf(3)/mpmath.mpf(70))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _rms_error__2(X2max, **params):
-    _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
+def _rms_error__2(X2max):
     return (mpmath.mpf(1)/mpmath.mpf(210))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _rms_error__3(X2max, **params):
-    _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
+def _rms_error__3(X2max):
     return (mpmath.mpf(1)/mpmath.mpf(770))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _rms_error__4(X2max, **params):
-    _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
+def _rms_error__4(X2max):
     return (mpmath.mpf(1)/mpmath.mpf(2002))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _rms_error__5(X2max, **params):
-    _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
+def _rms_error__5(X2max):
     return (mpmath.mpf(1)/mpmath.mpf(4290))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _rms_error__6(X2max, **params):
-    _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
+def _rms_error__6(X2max):
     return (mpmath.mpf(3)/mpmath.mpf(24310))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _rms_error__7(X2max, **params):
-    _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
+def _rms_error__7(X2max):
     return (mpmath.mpf(3)/mpmath.mpf(41990))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
-def _rms_error__8(X2max, **params):
-    _support.mp_extras("rms_error", params)
-    X2max = _support.mp_param("rms_error", "X2max", X2max, "positive")
+def _rms_error__8(X2max):
     return (mpmath.mpf(1)/mpmath.mpf(22610))*X2max**(mpmath.mpf(3)/mpmath.mpf(2))
 
 
 _RMS_ERROR = {
-    (1,): _rms_error__1,
-    (2,): _rms_error__2,
-    (3,): _rms_error__3,
-    (4,): _rms_error__4,
-    (5,): _rms_error__5,
-    (6,): _rms_error__6,
-    (7,): _rms_error__7,
-    (8,): _rms_error__8,
+    (1,): _support.Variant(_rms_error__1, ()),
+    (2,): _support.Variant(_rms_error__2, ()),
+    (3,): _support.Variant(_rms_error__3, ()),
+    (4,): _support.Variant(_rms_error__4, ()),
+    (5,): _support.Variant(_rms_error__5, ()),
+    (6,): _support.Variant(_rms_error__6, ()),
+    (7,): _support.Variant(_rms_error__7, ()),
+    (8,): _support.Variant(_rms_error__8, ()),
 }
 
 
@@ -440,47 +388,29 @@ def x2max_mdsm(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("x2max_mdsm", _X2MAX_MDSM, contact=contact)(**params)
+    _variant = _support.choose("x2max_mdsm", _X2MAX_MDSM, contact=contact)
+    _values = _support.mp_arguments("x2max_mdsm", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _x2max_mdsm__hertz_damp(*, beta2, omega2, alpha, Omega, g, alpha_n=None, Omega_n=None, **params):
-    _support.mp_extras("x2max_mdsm", params)
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    beta2 = _support.mp_param("x2max_mdsm", "beta2", beta2)
-    omega2 = _support.mp_param("x2max_mdsm", "omega2", omega2)
-    alpha = _support.mp_param("x2max_mdsm", "alpha", alpha)
-    Omega = _support.mp_param("x2max_mdsm", "Omega", Omega)
-    g = _support.mp_param("x2max_mdsm", "g", g)
-    alpha_n = _support.mp_param("x2max_mdsm", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("x2max_mdsm", "Omega_n", Omega_n)
+def _x2max_mdsm__hertz_damp(beta2, omega2, g, alpha_n, Omega_n):
     _x0 = omega2**(mpmath.mpf(4)/mpmath.mpf(3))
     _x1 = Omega_n**2
     return _x1*alpha_n/mpmath.sqrt(4*_x1*beta2**2*g**2/omega2**2 + (mpmath.mpf(1)/mpmath.mpf(4))*(-3*_x0*g**(mpmath.mpf(1)/mpmath.mpf(3)) + 2*_x1)**2) + g**(mpmath.mpf(2)/mpmath.mpf(3))/_x0
 
 
-def _x2max_mdsm__kelvin_voigt(*, beta2, omega2, alpha, Omega, g, alpha_n=None, Omega_n=None, **params):
-    _support.mp_extras("x2max_mdsm", params)
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    beta2 = _support.mp_param("x2max_mdsm", "beta2", beta2)
-    omega2 = _support.mp_param("x2max_mdsm", "omega2", omega2)
-    alpha = _support.mp_param("x2max_mdsm", "alpha", alpha)
-    Omega = _support.mp_param("x2max_mdsm", "Omega", Omega)
-    g = _support.mp_param("x2max_mdsm", "g", g)
-    alpha_n = _support.mp_param("x2max_mdsm", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("x2max_mdsm", "Omega_n", Omega_n)
+def _x2max_mdsm__kelvin_voigt(beta2, omega2, g, alpha_n, Omega_n):
     _x0 = omega2**2
     _x1 = Omega_n**2
     return _x1*alpha_n/mpmath.sqrt(4*_x0*_x1*beta2**2 + (Omega_n - omega2)**2*(Omega_n + omega2)**2) + g/_x0
 
 
 _X2MAX_MDSM = {
-    ('hertz_damp',): _x2max_mdsm__hertz_damp,
-    ('kelvin_voigt',): _x2max_mdsm__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_x2max_mdsm__hertz_damp, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', )),
+    ('kelvin_voigt',): _support.Variant(_x2max_mdsm__kelvin_voigt, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', )),
 }

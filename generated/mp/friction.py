@@ -43,16 +43,26 @@ def mu_bar(Vr, Vhat, mu_s, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _support.mp_extras("mu_bar", params)
+    _variant = _support.choose("mu_bar", _MU_BAR)
+    _values = _support.mp_arguments("mu_bar", _variant.names, params)
     Vr = _support.mp_param("mu_bar", "Vr", Vr, "real")
     Vhat = _support.mp_param("mu_bar", "Vhat", Vhat, "positive")
     mu_s = _support.mp_param("mu_bar", "mu_s", mu_s, "nonnegative")
+    return _variant.impl(Vr, Vhat, mu_s, *_values)
+
+
+def _mu_bar__impl(Vr, Vhat, mu_s):
     return ((mu_s*(-2*mpmath.acos(Vr/Vhat)/mpmath.pi + 1)) if (Vhat >= abs(Vr)) else (mu_s*mpmath.sign(Vr)))
+
+
+_MU_BAR = {
+    (): _support.Variant(_mu_bar__impl, ()),
+}
 
 
 def mu_bar0(Vb, Vhat, mu_s, **params):
@@ -82,16 +92,26 @@ def mu_bar0(Vb, Vhat, mu_s, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _support.mp_extras("mu_bar0", params)
+    _variant = _support.choose("mu_bar0", _MU_BAR0)
+    _values = _support.mp_arguments("mu_bar0", _variant.names, params)
     Vb = _support.mp_param("mu_bar0", "Vb", Vb, "nonnegative")
     Vhat = _support.mp_param("mu_bar0", "Vhat", Vhat, "positive")
     mu_s = _support.mp_param("mu_bar0", "mu_s", mu_s, "nonnegative")
+    return _variant.impl(Vb, Vhat, mu_s, *_values)
+
+
+def _mu_bar0__impl(Vb, Vhat, mu_s):
     return ((mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))
+
+
+_MU_BAR0 = {
+    (): _support.Variant(_mu_bar0__impl, ()),
+}
 
 
 def mu_bar_slope(Vb, Vhat, mu_s, **params):
@@ -125,16 +145,26 @@ def mu_bar_slope(Vb, Vhat, mu_s, **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    _support.mp_extras("mu_bar_slope", params)
+    _variant = _support.choose("mu_bar_slope", _MU_BAR_SLOPE)
+    _values = _support.mp_arguments("mu_bar_slope", _variant.names, params)
     Vb = _support.mp_param("mu_bar_slope", "Vb", Vb, "nonnegative")
     Vhat = _support.mp_param("mu_bar_slope", "Vhat", Vhat, "positive")
     mu_s = _support.mp_param("mu_bar_slope", "mu_s", mu_s, "nonnegative")
+    return _variant.impl(Vb, Vhat, mu_s, *_values)
+
+
+def _mu_bar_slope__impl(Vb, Vhat, mu_s):
     return ((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
+
+
+_MU_BAR_SLOPE = {
+    (): _support.Variant(_mu_bar_slope__impl, ()),
+}
 
 
 def vhat(*, model='tangential', contact='hertz_damp', **params):
@@ -193,60 +223,25 @@ def vhat(*, model='tangential', contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("vhat", _VHAT, model=model, contact=contact)(**params)
+    _variant = _support.choose("vhat", _VHAT, model=model, contact=contact)
+    _values = _support.mp_arguments("vhat", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _vhat__tangential__hertz_damp(*, beta1, omega1, alpha, Omega, alpha_t=None, Omega_t=None, **params):
-    _support.mp_extras("vhat", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    beta1 = _support.mp_param("vhat", "beta1", beta1)
-    omega1 = _support.mp_param("vhat", "omega1", omega1)
-    alpha = _support.mp_param("vhat", "alpha", alpha)
-    Omega = _support.mp_param("vhat", "Omega", Omega)
-    alpha_t = _support.mp_param("vhat", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("vhat", "Omega_t", Omega_t)
+def _vhat__tangential__hertz_damp(beta1, omega1, alpha_t, Omega_t):
     return Omega_t**3*alpha_t/mpmath.sqrt(4*Omega_t**2*beta1**2*omega1**2 + (Omega_t - omega1)**2*(Omega_t + omega1)**2)
 
 
-def _vhat__tangential__kelvin_voigt(*, beta1, omega1, alpha, Omega, alpha_t=None, Omega_t=None, **params):
-    _support.mp_extras("vhat", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    beta1 = _support.mp_param("vhat", "beta1", beta1)
-    omega1 = _support.mp_param("vhat", "omega1", omega1)
-    alpha = _support.mp_param("vhat", "alpha", alpha)
-    Omega = _support.mp_param("vhat", "Omega", Omega)
-    alpha_t = _support.mp_param("vhat", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("vhat", "Omega_t", Omega_t)
+def _vhat__tangential__kelvin_voigt(beta1, omega1, alpha_t, Omega_t):
     return Omega_t**3*alpha_t/mpmath.sqrt(4*Omega_t**2*beta1**2*omega1**2 + (Omega_t - omega1)**2*(Omega_t + omega1)**2)
 
 
-def _vhat__coupled__hertz_damp(*, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, g, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.mp_extras("vhat", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    beta1 = _support.mp_param("vhat", "beta1", beta1)
-    omega1 = _support.mp_param("vhat", "omega1", omega1)
-    beta2 = _support.mp_param("vhat", "beta2", beta2)
-    omega2 = _support.mp_param("vhat", "omega2", omega2)
-    alpha = _support.mp_param("vhat", "alpha", alpha)
-    Omega = _support.mp_param("vhat", "Omega", Omega)
-    mu_s = _support.mp_param("vhat", "mu_s", mu_s)
-    g = _support.mp_param("vhat", "g", g)
-    alpha_t = _support.mp_param("vhat", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("vhat", "Omega_t", Omega_t)
-    phase_t = _support.mp_param("vhat", "phase_t", phase_t)
-    alpha_n = _support.mp_param("vhat", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("vhat", "Omega_n", Omega_n)
-    phase_n = _support.mp_param("vhat", "phase_n", phase_n)
+def _vhat__coupled__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = 1j*Omega_t
     _x1 = 2*_x0
     _x2 = beta1*omega1
@@ -269,25 +264,7 @@ def _vhat__coupled__hertz_damp(*, beta1, omega1, beta2, omega2, alpha, Omega, mu
     return ((abs(_x0*_x4*(_x11*_x12*_x5 + _x11*_x13*_x14 - _x5*_x6*alpha_t))) if (Omega_n == Omega_t) else (alpha_t*abs(_x13*_x4*_x6) + abs(_x15*(1j*Omega_n**3*_x14*_x18 + _x12*_x17*_x18)/(_x16*_x2 - (Omega_n + _x3)*(Omega_n + omega1)))))
 
 
-def _vhat__coupled__kelvin_voigt(*, beta1, omega1, beta2, omega2, alpha, Omega, mu_s, alpha_t=None, Omega_t=None, phase_t=0.0, alpha_n=None, Omega_n=None, phase_n=0.0, **params):
-    _support.mp_extras("vhat", params)
-    alpha_t = alpha if alpha_t is None else alpha_t
-    Omega_t = Omega if Omega_t is None else Omega_t
-    alpha_n = alpha if alpha_n is None else alpha_n
-    Omega_n = Omega if Omega_n is None else Omega_n
-    beta1 = _support.mp_param("vhat", "beta1", beta1)
-    omega1 = _support.mp_param("vhat", "omega1", omega1)
-    beta2 = _support.mp_param("vhat", "beta2", beta2)
-    omega2 = _support.mp_param("vhat", "omega2", omega2)
-    alpha = _support.mp_param("vhat", "alpha", alpha)
-    Omega = _support.mp_param("vhat", "Omega", Omega)
-    mu_s = _support.mp_param("vhat", "mu_s", mu_s)
-    alpha_t = _support.mp_param("vhat", "alpha_t", alpha_t)
-    Omega_t = _support.mp_param("vhat", "Omega_t", Omega_t)
-    phase_t = _support.mp_param("vhat", "phase_t", phase_t)
-    alpha_n = _support.mp_param("vhat", "alpha_n", alpha_n)
-    Omega_n = _support.mp_param("vhat", "Omega_n", Omega_n)
-    phase_n = _support.mp_param("vhat", "phase_n", phase_n)
+def _vhat__coupled__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = 1j*Omega_t
     _x1 = 2*_x0
     _x2 = beta1*omega1
@@ -309,8 +286,8 @@ def _vhat__coupled__kelvin_voigt(*, beta1, omega1, beta2, omega2, alpha, Omega, 
 
 
 _VHAT = {
-    ('tangential', 'hertz_damp'): _vhat__tangential__hertz_damp,
-    ('tangential', 'kelvin_voigt'): _vhat__tangential__kelvin_voigt,
-    ('coupled', 'hertz_damp'): _vhat__coupled__hertz_damp,
-    ('coupled', 'kelvin_voigt'): _vhat__coupled__kelvin_voigt,
+    ('tangential', 'hertz_damp'): _support.Variant(_vhat__tangential__hertz_damp, ('beta1', 'omega1', 'alpha_t', 'Omega_t', )),
+    ('tangential', 'kelvin_voigt'): _support.Variant(_vhat__tangential__kelvin_voigt, ('beta1', 'omega1', 'alpha_t', 'Omega_t', )),
+    ('coupled', 'hertz_damp'): _support.Variant(_vhat__coupled__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('coupled', 'kelvin_voigt'): _support.Variant(_vhat__coupled__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
 }

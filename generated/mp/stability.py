@@ -62,64 +62,38 @@ def equilibrium(*, convention='paper', contact='hertz_damp', vhat_model=None, **
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("equilibrium", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("equilibrium", _EQUILIBRIUM, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("equilibrium", _EQUILIBRIUM, convention=convention, contact=contact)
+    _values = _support.mp_arguments("equilibrium", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _equilibrium__paper__hertz_damp(*, omega1, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("equilibrium", params)
-    omega1 = _support.mp_param("equilibrium", "omega1", omega1)
-    omega2 = _support.mp_param("equilibrium", "omega2", omega2)
-    mu_s = _support.mp_param("equilibrium", "mu_s", mu_s)
-    g = _support.mp_param("equilibrium", "g", g)
-    Vb = _support.mp_param("equilibrium", "Vb", Vb)
-    Vhat = _support.mp_param("equilibrium", "Vhat", Vhat)
+def _equilibrium__paper__hertz_damp(omega1, omega2, mu_s, g, Vb, Vhat):
     return (g*((mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
 
 
-def _equilibrium__paper__kelvin_voigt(*, omega1, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("equilibrium", params)
-    omega1 = _support.mp_param("equilibrium", "omega1", omega1)
-    omega2 = _support.mp_param("equilibrium", "omega2", omega2)
-    mu_s = _support.mp_param("equilibrium", "mu_s", mu_s)
-    g = _support.mp_param("equilibrium", "g", g)
-    Vb = _support.mp_param("equilibrium", "Vb", Vb)
-    Vhat = _support.mp_param("equilibrium", "Vhat", Vhat)
+def _equilibrium__paper__kelvin_voigt(omega1, omega2, mu_s, g, Vb, Vhat):
     return (g*((mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))/omega1**2, 0, g/omega2**2, 0,)
 
 
-def _equilibrium__consistent__hertz_damp(*, omega1, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("equilibrium", params)
-    omega1 = _support.mp_param("equilibrium", "omega1", omega1)
-    omega2 = _support.mp_param("equilibrium", "omega2", omega2)
-    mu_s = _support.mp_param("equilibrium", "mu_s", mu_s)
-    g = _support.mp_param("equilibrium", "g", g)
-    Vb = _support.mp_param("equilibrium", "Vb", Vb)
-    Vhat = _support.mp_param("equilibrium", "Vhat", Vhat)
+def _equilibrium__consistent__hertz_damp(omega1, omega2, mu_s, g, Vb, Vhat):
     return (-g*((mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
 
 
-def _equilibrium__consistent__kelvin_voigt(*, omega1, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("equilibrium", params)
-    omega1 = _support.mp_param("equilibrium", "omega1", omega1)
-    omega2 = _support.mp_param("equilibrium", "omega2", omega2)
-    mu_s = _support.mp_param("equilibrium", "mu_s", mu_s)
-    g = _support.mp_param("equilibrium", "g", g)
-    Vb = _support.mp_param("equilibrium", "Vb", Vb)
-    Vhat = _support.mp_param("equilibrium", "Vhat", Vhat)
+def _equilibrium__consistent__kelvin_voigt(omega1, omega2, mu_s, g, Vb, Vhat):
     return (-g*((mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))/omega1**2, 0, g/omega2**2, 0,)
 
 
 _EQUILIBRIUM = {
-    ('paper', 'hertz_damp'): _equilibrium__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _equilibrium__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _equilibrium__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _equilibrium__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_equilibrium__paper__hertz_damp, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_equilibrium__paper__kelvin_voigt, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_equilibrium__consistent__hertz_damp, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_equilibrium__consistent__kelvin_voigt, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
 }
 
 
@@ -166,25 +140,18 @@ def jacobian(*, convention='paper', contact='hertz_damp', vhat_model=None, **par
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("jacobian", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("jacobian", _JACOBIAN, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("jacobian", _JACOBIAN, convention=convention, contact=contact)
+    _values = _support.mp_arguments("jacobian", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _jacobian__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("jacobian", params)
-    beta1 = _support.mp_param("jacobian", "beta1", beta1)
-    omega1 = _support.mp_param("jacobian", "omega1", omega1)
-    beta2 = _support.mp_param("jacobian", "beta2", beta2)
-    omega2 = _support.mp_param("jacobian", "omega2", omega2)
-    mu_s = _support.mp_param("jacobian", "mu_s", mu_s)
-    g = _support.mp_param("jacobian", "g", g)
-    Vb = _support.mp_param("jacobian", "Vb", Vb)
-    Vhat = _support.mp_param("jacobian", "Vhat", Vhat)
+def _jacobian__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = 2/mpmath.pi
     _x1 = ((mu_s*(-_x0*mpmath.acos(-Vb/Vhat) + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))
     _x2 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
@@ -197,16 +164,7 @@ def _jacobian__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, V
         ])
 
 
-def _jacobian__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("jacobian", params)
-    beta1 = _support.mp_param("jacobian", "beta1", beta1)
-    omega1 = _support.mp_param("jacobian", "omega1", omega1)
-    beta2 = _support.mp_param("jacobian", "beta2", beta2)
-    omega2 = _support.mp_param("jacobian", "omega2", omega2)
-    mu_s = _support.mp_param("jacobian", "mu_s", mu_s)
-    g = _support.mp_param("jacobian", "g", g)
-    Vb = _support.mp_param("jacobian", "Vb", Vb)
-    Vhat = _support.mp_param("jacobian", "Vhat", Vhat)
+def _jacobian__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = 2/mpmath.pi
     _x1 = omega2**2
     _x2 = ((mu_s*(-_x0*mpmath.acos(-Vb/Vhat) + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))
@@ -219,16 +177,7 @@ def _jacobian__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb,
         ])
 
 
-def _jacobian__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("jacobian", params)
-    beta1 = _support.mp_param("jacobian", "beta1", beta1)
-    omega1 = _support.mp_param("jacobian", "omega1", omega1)
-    beta2 = _support.mp_param("jacobian", "beta2", beta2)
-    omega2 = _support.mp_param("jacobian", "omega2", omega2)
-    mu_s = _support.mp_param("jacobian", "mu_s", mu_s)
-    g = _support.mp_param("jacobian", "g", g)
-    Vb = _support.mp_param("jacobian", "Vb", Vb)
-    Vhat = _support.mp_param("jacobian", "Vhat", Vhat)
+def _jacobian__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = 2/mpmath.pi
     _x1 = ((mu_s*(-_x0*mpmath.acos(-Vb/Vhat) + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))
     _x2 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
@@ -241,16 +190,7 @@ def _jacobian__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, 
         ])
 
 
-def _jacobian__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("jacobian", params)
-    beta1 = _support.mp_param("jacobian", "beta1", beta1)
-    omega1 = _support.mp_param("jacobian", "omega1", omega1)
-    beta2 = _support.mp_param("jacobian", "beta2", beta2)
-    omega2 = _support.mp_param("jacobian", "omega2", omega2)
-    mu_s = _support.mp_param("jacobian", "mu_s", mu_s)
-    g = _support.mp_param("jacobian", "g", g)
-    Vb = _support.mp_param("jacobian", "Vb", Vb)
-    Vhat = _support.mp_param("jacobian", "Vhat", Vhat)
+def _jacobian__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = 2/mpmath.pi
     _x1 = omega2**2
     _x2 = ((mu_s*(-_x0*mpmath.acos(-Vb/Vhat) + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))
@@ -264,10 +204,10 @@ def _jacobian__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g
 
 
 _JACOBIAN = {
-    ('paper', 'hertz_damp'): _jacobian__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _jacobian__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _jacobian__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _jacobian__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_jacobian__paper__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_jacobian__paper__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_jacobian__consistent__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_jacobian__consistent__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
 }
 
 
@@ -316,25 +256,18 @@ def coefficients(*, convention='paper', contact='hertz_damp', vhat_model=None, *
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("coefficients", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("coefficients", _COEFFICIENTS, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("coefficients", _COEFFICIENTS, convention=convention, contact=contact)
+    _values = _support.mp_arguments("coefficients", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _coefficients__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("coefficients", params)
-    beta1 = _support.mp_param("coefficients", "beta1", beta1)
-    omega1 = _support.mp_param("coefficients", "omega1", omega1)
-    beta2 = _support.mp_param("coefficients", "beta2", beta2)
-    omega2 = _support.mp_param("coefficients", "omega2", omega2)
-    mu_s = _support.mp_param("coefficients", "mu_s", mu_s)
-    g = _support.mp_param("coefficients", "g", g)
-    Vb = _support.mp_param("coefficients", "Vb", Vb)
-    Vhat = _support.mp_param("coefficients", "Vhat", Vhat)
+def _coefficients__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = beta1*omega1
     _x1 = 1/omega2
     _x2 = 2*_x1*beta2
@@ -348,16 +281,7 @@ def _coefficients__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, V
     return (2*_x0 + _x3 - _x4*g, 4*_x0*_x1*beta2*g - _x2*_x4*g**2 + _x5 + _x9, 3*_x0*_x6*_x7 + _x3*_x5 - _x4*_x8*g**(mpmath.mpf(4)/mpmath.mpf(3)), _x5*_x9,)
 
 
-def _coefficients__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("coefficients", params)
-    beta1 = _support.mp_param("coefficients", "beta1", beta1)
-    omega1 = _support.mp_param("coefficients", "omega1", omega1)
-    beta2 = _support.mp_param("coefficients", "beta2", beta2)
-    omega2 = _support.mp_param("coefficients", "omega2", omega2)
-    mu_s = _support.mp_param("coefficients", "mu_s", mu_s)
-    g = _support.mp_param("coefficients", "g", g)
-    Vb = _support.mp_param("coefficients", "Vb", Vb)
-    Vhat = _support.mp_param("coefficients", "Vhat", Vhat)
+def _coefficients__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = beta1*omega1
     _x1 = 2*_x0
     _x2 = beta2*omega2
@@ -368,16 +292,7 @@ def _coefficients__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g,
     return (_x1 + _x3 - _x4, 4*_x0*_x2 - _x3*_x4 + _x5 + _x6, _x1*_x6 + _x3*_x5 - _x4*_x6, _x5*_x6,)
 
 
-def _coefficients__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("coefficients", params)
-    beta1 = _support.mp_param("coefficients", "beta1", beta1)
-    omega1 = _support.mp_param("coefficients", "omega1", omega1)
-    beta2 = _support.mp_param("coefficients", "beta2", beta2)
-    omega2 = _support.mp_param("coefficients", "omega2", omega2)
-    mu_s = _support.mp_param("coefficients", "mu_s", mu_s)
-    g = _support.mp_param("coefficients", "g", g)
-    Vb = _support.mp_param("coefficients", "Vb", Vb)
-    Vhat = _support.mp_param("coefficients", "Vhat", Vhat)
+def _coefficients__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = beta1*omega1
     _x1 = 1/omega2
     _x2 = 2*_x1*beta2
@@ -391,16 +306,7 @@ def _coefficients__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s,
     return (2*_x0 + _x3 + _x4*g, 4*_x0*_x1*beta2*g + _x2*_x4*g**2 + _x5 + _x9, 3*_x0*_x6*_x7 + _x3*_x5 + _x4*_x8*g**(mpmath.mpf(4)/mpmath.mpf(3)), _x5*_x9,)
 
 
-def _coefficients__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("coefficients", params)
-    beta1 = _support.mp_param("coefficients", "beta1", beta1)
-    omega1 = _support.mp_param("coefficients", "omega1", omega1)
-    beta2 = _support.mp_param("coefficients", "beta2", beta2)
-    omega2 = _support.mp_param("coefficients", "omega2", omega2)
-    mu_s = _support.mp_param("coefficients", "mu_s", mu_s)
-    g = _support.mp_param("coefficients", "g", g)
-    Vb = _support.mp_param("coefficients", "Vb", Vb)
-    Vhat = _support.mp_param("coefficients", "Vhat", Vhat)
+def _coefficients__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = beta1*omega1
     _x1 = 2*_x0
     _x2 = beta2*omega2
@@ -412,10 +318,10 @@ def _coefficients__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_
 
 
 _COEFFICIENTS = {
-    ('paper', 'hertz_damp'): _coefficients__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _coefficients__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _coefficients__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _coefficients__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_coefficients__paper__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_coefficients__paper__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_coefficients__consistent__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_coefficients__consistent__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
 }
 
 
@@ -469,25 +375,18 @@ def hurwitz(*, convention='paper', contact='hertz_damp', vhat_model=None, **para
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("hurwitz", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("hurwitz", _HURWITZ, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("hurwitz", _HURWITZ, convention=convention, contact=contact)
+    _values = _support.mp_arguments("hurwitz", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _hurwitz__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("hurwitz", params)
-    beta1 = _support.mp_param("hurwitz", "beta1", beta1)
-    omega1 = _support.mp_param("hurwitz", "omega1", omega1)
-    beta2 = _support.mp_param("hurwitz", "beta2", beta2)
-    omega2 = _support.mp_param("hurwitz", "omega2", omega2)
-    mu_s = _support.mp_param("hurwitz", "mu_s", mu_s)
-    g = _support.mp_param("hurwitz", "g", g)
-    Vb = _support.mp_param("hurwitz", "Vb", Vb)
-    Vhat = _support.mp_param("hurwitz", "Vhat", Vhat)
+def _hurwitz__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = 2*beta2*g/omega2
     _x1 = 2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x2 = _x0 + _x1
@@ -498,16 +397,7 @@ def _hurwitz__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vh
     return (_x2, _x1*(_x0*_x2 + _x4) + _x3, _x0*_x6, _x3*_x4*_x6,)
 
 
-def _hurwitz__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("hurwitz", params)
-    beta1 = _support.mp_param("hurwitz", "beta1", beta1)
-    omega1 = _support.mp_param("hurwitz", "omega1", omega1)
-    beta2 = _support.mp_param("hurwitz", "beta2", beta2)
-    omega2 = _support.mp_param("hurwitz", "omega2", omega2)
-    mu_s = _support.mp_param("hurwitz", "mu_s", mu_s)
-    g = _support.mp_param("hurwitz", "g", g)
-    Vb = _support.mp_param("hurwitz", "Vb", Vb)
-    Vhat = _support.mp_param("hurwitz", "Vhat", Vhat)
+def _hurwitz__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = 2*beta2
     _x1 = _x0*omega2
     _x2 = 2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
@@ -519,16 +409,7 @@ def _hurwitz__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, 
     return (_x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7,)
 
 
-def _hurwitz__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("hurwitz", params)
-    beta1 = _support.mp_param("hurwitz", "beta1", beta1)
-    omega1 = _support.mp_param("hurwitz", "omega1", omega1)
-    beta2 = _support.mp_param("hurwitz", "beta2", beta2)
-    omega2 = _support.mp_param("hurwitz", "omega2", omega2)
-    mu_s = _support.mp_param("hurwitz", "mu_s", mu_s)
-    g = _support.mp_param("hurwitz", "g", g)
-    Vb = _support.mp_param("hurwitz", "Vb", Vb)
-    Vhat = _support.mp_param("hurwitz", "Vhat", Vhat)
+def _hurwitz__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = 2*beta2*g/omega2
     _x1 = 2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x2 = _x0 + _x1
@@ -539,16 +420,7 @@ def _hurwitz__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, V
     return (_x2, _x1*(_x0*_x2 + _x4) + _x3, _x0*_x6, _x3*_x4*_x6,)
 
 
-def _hurwitz__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("hurwitz", params)
-    beta1 = _support.mp_param("hurwitz", "beta1", beta1)
-    omega1 = _support.mp_param("hurwitz", "omega1", omega1)
-    beta2 = _support.mp_param("hurwitz", "beta2", beta2)
-    omega2 = _support.mp_param("hurwitz", "omega2", omega2)
-    mu_s = _support.mp_param("hurwitz", "mu_s", mu_s)
-    g = _support.mp_param("hurwitz", "g", g)
-    Vb = _support.mp_param("hurwitz", "Vb", Vb)
-    Vhat = _support.mp_param("hurwitz", "Vhat", Vhat)
+def _hurwitz__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = 2*beta2
     _x1 = _x0*omega2
     _x2 = 2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
@@ -561,10 +433,10 @@ def _hurwitz__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g,
 
 
 _HURWITZ = {
-    ('paper', 'hertz_damp'): _hurwitz__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _hurwitz__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _hurwitz__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _hurwitz__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_hurwitz__paper__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_hurwitz__paper__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_hurwitz__consistent__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_hurwitz__consistent__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
 }
 
 
@@ -612,25 +484,18 @@ def eigenvalues(*, convention='paper', contact='hertz_damp', vhat_model=None, **
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("eigenvalues", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("eigenvalues", _EIGENVALUES, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("eigenvalues", _EIGENVALUES, convention=convention, contact=contact)
+    _values = _support.mp_arguments("eigenvalues", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _eigenvalues__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("eigenvalues", params)
-    beta1 = _support.mp_param("eigenvalues", "beta1", beta1)
-    omega1 = _support.mp_param("eigenvalues", "omega1", omega1)
-    beta2 = _support.mp_param("eigenvalues", "beta2", beta2)
-    omega2 = _support.mp_param("eigenvalues", "omega2", omega2)
-    mu_s = _support.mp_param("eigenvalues", "mu_s", mu_s)
-    g = _support.mp_param("eigenvalues", "g", g)
-    Vb = _support.mp_param("eigenvalues", "Vb", Vb)
-    Vhat = _support.mp_param("eigenvalues", "Vhat", Vhat)
+def _eigenvalues__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = g**(mpmath.mpf(1)/mpmath.mpf(3))
@@ -639,16 +504,7 @@ def _eigenvalues__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb
     return [*_r0, *_r1]
 
 
-def _eigenvalues__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("eigenvalues", params)
-    beta1 = _support.mp_param("eigenvalues", "beta1", beta1)
-    omega1 = _support.mp_param("eigenvalues", "omega1", omega1)
-    beta2 = _support.mp_param("eigenvalues", "beta2", beta2)
-    omega2 = _support.mp_param("eigenvalues", "omega2", omega2)
-    mu_s = _support.mp_param("eigenvalues", "mu_s", mu_s)
-    g = _support.mp_param("eigenvalues", "g", g)
-    Vb = _support.mp_param("eigenvalues", "Vb", Vb)
-    Vhat = _support.mp_param("eigenvalues", "Vhat", Vhat)
+def _eigenvalues__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = omega2**2
@@ -657,16 +513,7 @@ def _eigenvalues__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, 
     return [*_r0, *_r1]
 
 
-def _eigenvalues__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("eigenvalues", params)
-    beta1 = _support.mp_param("eigenvalues", "beta1", beta1)
-    omega1 = _support.mp_param("eigenvalues", "omega1", omega1)
-    beta2 = _support.mp_param("eigenvalues", "beta2", beta2)
-    omega2 = _support.mp_param("eigenvalues", "omega2", omega2)
-    mu_s = _support.mp_param("eigenvalues", "mu_s", mu_s)
-    g = _support.mp_param("eigenvalues", "g", g)
-    Vb = _support.mp_param("eigenvalues", "Vb", Vb)
-    Vhat = _support.mp_param("eigenvalues", "Vhat", Vhat)
+def _eigenvalues__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = g**(mpmath.mpf(1)/mpmath.mpf(3))
@@ -675,16 +522,7 @@ def _eigenvalues__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
     return [*_r0, *_r1]
 
 
-def _eigenvalues__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("eigenvalues", params)
-    beta1 = _support.mp_param("eigenvalues", "beta1", beta1)
-    omega1 = _support.mp_param("eigenvalues", "omega1", omega1)
-    beta2 = _support.mp_param("eigenvalues", "beta2", beta2)
-    omega2 = _support.mp_param("eigenvalues", "omega2", omega2)
-    mu_s = _support.mp_param("eigenvalues", "mu_s", mu_s)
-    g = _support.mp_param("eigenvalues", "g", g)
-    Vb = _support.mp_param("eigenvalues", "Vb", Vb)
-    Vhat = _support.mp_param("eigenvalues", "Vhat", Vhat)
+def _eigenvalues__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = omega2**2
@@ -694,10 +532,10 @@ def _eigenvalues__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s
 
 
 _EIGENVALUES = {
-    ('paper', 'hertz_damp'): _eigenvalues__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _eigenvalues__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _eigenvalues__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _eigenvalues__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_eigenvalues__paper__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_eigenvalues__paper__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_eigenvalues__consistent__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_eigenvalues__consistent__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
 }
 
 
@@ -746,84 +584,66 @@ def growth_rate(*, convention='paper', contact='hertz_damp', vhat_model=None, **
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("growth_rate", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("growth_rate", _GROWTH_RATE, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("growth_rate", _GROWTH_RATE, convention=convention, contact=contact)
+    _values = _support.mp_arguments("growth_rate", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _growth_rate__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("growth_rate", params)
-    beta1 = _support.mp_param("growth_rate", "beta1", beta1)
-    omega1 = _support.mp_param("growth_rate", "omega1", omega1)
-    beta2 = _support.mp_param("growth_rate", "beta2", beta2)
-    omega2 = _support.mp_param("growth_rate", "omega2", omega2)
-    mu_s = _support.mp_param("growth_rate", "mu_s", mu_s)
-    g = _support.mp_param("growth_rate", "g", g)
-    Vb = _support.mp_param("growth_rate", "Vb", Vb)
-    Vhat = _support.mp_param("growth_rate", "Vhat", Vhat)
+def _growth_rate__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = g**(mpmath.mpf(1)/mpmath.mpf(3))
-    return max(_support.mp_quadratic_growth(-mpmath.mpf(1)/mpmath.mpf(2)*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.mp_quadratic_growth(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x2*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x2*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2))
+    _h0, _q0, _d0 = -mpmath.mpf(1)/mpmath.mpf(2)*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
+    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+    _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x2*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x2*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+    return max(_g0, _g1)
 
 
-def _growth_rate__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("growth_rate", params)
-    beta1 = _support.mp_param("growth_rate", "beta1", beta1)
-    omega1 = _support.mp_param("growth_rate", "omega1", omega1)
-    beta2 = _support.mp_param("growth_rate", "beta2", beta2)
-    omega2 = _support.mp_param("growth_rate", "omega2", omega2)
-    mu_s = _support.mp_param("growth_rate", "mu_s", mu_s)
-    g = _support.mp_param("growth_rate", "g", g)
-    Vb = _support.mp_param("growth_rate", "Vb", Vb)
-    Vhat = _support.mp_param("growth_rate", "Vhat", Vhat)
+def _growth_rate__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = omega2**2
-    return max(_support.mp_quadratic_growth(-mpmath.mpf(1)/mpmath.mpf(2)*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))), _support.mp_quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)))
+    _h0, _q0, _d0 = -mpmath.mpf(1)/mpmath.mpf(2)*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
+    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+    _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
+    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+    return max(_g0, _g1)
 
 
-def _growth_rate__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("growth_rate", params)
-    beta1 = _support.mp_param("growth_rate", "beta1", beta1)
-    omega1 = _support.mp_param("growth_rate", "omega1", omega1)
-    beta2 = _support.mp_param("growth_rate", "beta2", beta2)
-    omega2 = _support.mp_param("growth_rate", "omega2", omega2)
-    mu_s = _support.mp_param("growth_rate", "mu_s", mu_s)
-    g = _support.mp_param("growth_rate", "g", g)
-    Vb = _support.mp_param("growth_rate", "Vb", Vb)
-    Vhat = _support.mp_param("growth_rate", "Vhat", Vhat)
+def _growth_rate__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = g**(mpmath.mpf(1)/mpmath.mpf(3))
-    return max(_support.mp_quadratic_growth((mpmath.mpf(1)/mpmath.mpf(2))*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.mp_quadratic_growth(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x2*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x2*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2))
+    _h0, _q0, _d0 = (mpmath.mpf(1)/mpmath.mpf(2))*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
+    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+    _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x2*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x2*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+    return max(_g0, _g1)
 
 
-def _growth_rate__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("growth_rate", params)
-    beta1 = _support.mp_param("growth_rate", "beta1", beta1)
-    omega1 = _support.mp_param("growth_rate", "omega1", omega1)
-    beta2 = _support.mp_param("growth_rate", "beta2", beta2)
-    omega2 = _support.mp_param("growth_rate", "omega2", omega2)
-    mu_s = _support.mp_param("growth_rate", "mu_s", mu_s)
-    g = _support.mp_param("growth_rate", "g", g)
-    Vb = _support.mp_param("growth_rate", "Vb", Vb)
-    Vhat = _support.mp_param("growth_rate", "Vhat", Vhat)
+def _growth_rate__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
     _x1 = 2*omega1
     _x2 = omega2**2
-    return max(_support.mp_quadratic_growth((mpmath.mpf(1)/mpmath.mpf(2))*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))), _support.mp_quadratic_growth(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)))
+    _h0, _q0, _d0 = (mpmath.mpf(1)/mpmath.mpf(2))*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
+    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+    _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
+    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+    return max(_g0, _g1)
 
 
 _GROWTH_RATE = {
-    ('paper', 'hertz_damp'): _growth_rate__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _growth_rate__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _growth_rate__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _growth_rate__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_growth_rate__paper__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_growth_rate__paper__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_growth_rate__consistent__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_growth_rate__consistent__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
 }
 
 
@@ -875,72 +695,38 @@ def is_stable(*, convention='paper', contact='hertz_damp', vhat_model=None, **pa
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("is_stable", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("is_stable", _IS_STABLE, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("is_stable", _IS_STABLE, convention=convention, contact=contact)
+    _values = _support.mp_arguments("is_stable", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _is_stable__paper__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("is_stable", params)
-    beta1 = _support.mp_param("is_stable", "beta1", beta1)
-    omega1 = _support.mp_param("is_stable", "omega1", omega1)
-    beta2 = _support.mp_param("is_stable", "beta2", beta2)
-    omega2 = _support.mp_param("is_stable", "omega2", omega2)
-    mu_s = _support.mp_param("is_stable", "mu_s", mu_s)
-    g = _support.mp_param("is_stable", "g", g)
-    Vb = _support.mp_param("is_stable", "Vb", Vb)
-    Vhat = _support.mp_param("is_stable", "Vhat", Vhat)
+def _is_stable__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     return bool((2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*g/omega2 > 0))
 
 
-def _is_stable__paper__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("is_stable", params)
-    beta1 = _support.mp_param("is_stable", "beta1", beta1)
-    omega1 = _support.mp_param("is_stable", "omega1", omega1)
-    beta2 = _support.mp_param("is_stable", "beta2", beta2)
-    omega2 = _support.mp_param("is_stable", "omega2", omega2)
-    mu_s = _support.mp_param("is_stable", "mu_s", mu_s)
-    g = _support.mp_param("is_stable", "g", g)
-    Vb = _support.mp_param("is_stable", "Vb", Vb)
-    Vhat = _support.mp_param("is_stable", "Vhat", Vhat)
+def _is_stable__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     return bool((2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*omega2 > 0))
 
 
-def _is_stable__consistent__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("is_stable", params)
-    beta1 = _support.mp_param("is_stable", "beta1", beta1)
-    omega1 = _support.mp_param("is_stable", "omega1", omega1)
-    beta2 = _support.mp_param("is_stable", "beta2", beta2)
-    omega2 = _support.mp_param("is_stable", "omega2", omega2)
-    mu_s = _support.mp_param("is_stable", "mu_s", mu_s)
-    g = _support.mp_param("is_stable", "g", g)
-    Vb = _support.mp_param("is_stable", "Vb", Vb)
-    Vhat = _support.mp_param("is_stable", "Vhat", Vhat)
+def _is_stable__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     return bool((2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*g/omega2 > 0))
 
 
-def _is_stable__consistent__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, **params):
-    _support.mp_extras("is_stable", params)
-    beta1 = _support.mp_param("is_stable", "beta1", beta1)
-    omega1 = _support.mp_param("is_stable", "omega1", omega1)
-    beta2 = _support.mp_param("is_stable", "beta2", beta2)
-    omega2 = _support.mp_param("is_stable", "omega2", omega2)
-    mu_s = _support.mp_param("is_stable", "mu_s", mu_s)
-    g = _support.mp_param("is_stable", "g", g)
-    Vb = _support.mp_param("is_stable", "Vb", Vb)
-    Vhat = _support.mp_param("is_stable", "Vhat", Vhat)
+def _is_stable__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
     return bool((2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*omega2 > 0))
 
 
 _IS_STABLE = {
-    ('paper', 'hertz_damp'): _is_stable__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _is_stable__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _is_stable__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _is_stable__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_is_stable__paper__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_is_stable__paper__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_is_stable__consistent__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_is_stable__consistent__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
 }
 
 
@@ -984,52 +770,40 @@ def critical_belt_speed(*, convention='paper', contact='hertz_damp', vhat_model=
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("critical_belt_speed", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("critical_belt_speed", _CRITICAL_BELT_SPEED, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("critical_belt_speed", _CRITICAL_BELT_SPEED, convention=convention, contact=contact)
+    _values = _support.mp_arguments("critical_belt_speed", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _critical_belt_speed__paper__hertz_damp(*, beta1, omega1, mu_s, g, Vhat, **params):
-    _support.mp_extras("critical_belt_speed", params)
-    beta1 = _support.mp_param("critical_belt_speed", "beta1", beta1)
-    omega1 = _support.mp_param("critical_belt_speed", "omega1", omega1)
-    mu_s = _support.mp_param("critical_belt_speed", "mu_s", mu_s)
-    g = _support.mp_param("critical_belt_speed", "g", g)
-    Vhat = _support.mp_param("critical_belt_speed", "Vhat", Vhat)
+def _critical_belt_speed__paper__hertz_damp(beta1, omega1, mu_s, g, Vhat):
     _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
     return ((mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))) if (Vhat > _x0) else (0))
 
 
-def _critical_belt_speed__paper__kelvin_voigt(*, beta1, omega1, mu_s, g, Vhat, **params):
-    _support.mp_extras("critical_belt_speed", params)
-    beta1 = _support.mp_param("critical_belt_speed", "beta1", beta1)
-    omega1 = _support.mp_param("critical_belt_speed", "omega1", omega1)
-    mu_s = _support.mp_param("critical_belt_speed", "mu_s", mu_s)
-    g = _support.mp_param("critical_belt_speed", "g", g)
-    Vhat = _support.mp_param("critical_belt_speed", "Vhat", Vhat)
+def _critical_belt_speed__paper__kelvin_voigt(beta1, omega1, mu_s, g, Vhat):
     _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
     return ((mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))) if (Vhat > _x0) else (0))
 
 
-def _critical_belt_speed__consistent__hertz_damp(**params):
-    _support.mp_extras("critical_belt_speed", params)
+def _critical_belt_speed__consistent__hertz_damp():
     return mpmath.nan
 
 
-def _critical_belt_speed__consistent__kelvin_voigt(**params):
-    _support.mp_extras("critical_belt_speed", params)
+def _critical_belt_speed__consistent__kelvin_voigt():
     return mpmath.nan
 
 
 _CRITICAL_BELT_SPEED = {
-    ('paper', 'hertz_damp'): _critical_belt_speed__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _critical_belt_speed__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _critical_belt_speed__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _critical_belt_speed__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_critical_belt_speed__paper__hertz_damp, ('beta1', 'omega1', 'mu_s', 'g', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_critical_belt_speed__paper__kelvin_voigt, ('beta1', 'omega1', 'mu_s', 'g', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_critical_belt_speed__consistent__hertz_damp, ()),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_critical_belt_speed__consistent__kelvin_voigt, ()),
 }
 
 
@@ -1072,50 +846,38 @@ def unstable_interval(*, convention='paper', contact='hertz_damp', vhat_model=No
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
     params = _support.resolve_vhat("unstable_interval", params, vhat_model, _friction.vhat, contact)
-    return _support.choose("unstable_interval", _UNSTABLE_INTERVAL, convention=convention, contact=contact)(**params)
+    _variant = _support.choose("unstable_interval", _UNSTABLE_INTERVAL, convention=convention, contact=contact)
+    _values = _support.mp_arguments("unstable_interval", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _unstable_interval__paper__hertz_damp(*, beta1, omega1, mu_s, g, Vhat, **params):
-    _support.mp_extras("unstable_interval", params)
-    beta1 = _support.mp_param("unstable_interval", "beta1", beta1)
-    omega1 = _support.mp_param("unstable_interval", "omega1", omega1)
-    mu_s = _support.mp_param("unstable_interval", "mu_s", mu_s)
-    g = _support.mp_param("unstable_interval", "g", g)
-    Vhat = _support.mp_param("unstable_interval", "Vhat", Vhat)
+def _unstable_interval__paper__hertz_damp(beta1, omega1, mu_s, g, Vhat):
     _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
     return (((mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))) if (Vhat > _x0) else (0)), Vhat,)
 
 
-def _unstable_interval__paper__kelvin_voigt(*, beta1, omega1, mu_s, g, Vhat, **params):
-    _support.mp_extras("unstable_interval", params)
-    beta1 = _support.mp_param("unstable_interval", "beta1", beta1)
-    omega1 = _support.mp_param("unstable_interval", "omega1", omega1)
-    mu_s = _support.mp_param("unstable_interval", "mu_s", mu_s)
-    g = _support.mp_param("unstable_interval", "g", g)
-    Vhat = _support.mp_param("unstable_interval", "Vhat", Vhat)
+def _unstable_interval__paper__kelvin_voigt(beta1, omega1, mu_s, g, Vhat):
     _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
     return (((mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))) if (Vhat > _x0) else (0)), Vhat,)
 
 
-def _unstable_interval__consistent__hertz_damp(**params):
-    _support.mp_extras("unstable_interval", params)
+def _unstable_interval__consistent__hertz_damp():
     return (mpmath.nan, mpmath.nan,)
 
 
-def _unstable_interval__consistent__kelvin_voigt(**params):
-    _support.mp_extras("unstable_interval", params)
+def _unstable_interval__consistent__kelvin_voigt():
     return (mpmath.nan, mpmath.nan,)
 
 
 _UNSTABLE_INTERVAL = {
-    ('paper', 'hertz_damp'): _unstable_interval__paper__hertz_damp,
-    ('paper', 'kelvin_voigt'): _unstable_interval__paper__kelvin_voigt,
-    ('consistent', 'hertz_damp'): _unstable_interval__consistent__hertz_damp,
-    ('consistent', 'kelvin_voigt'): _unstable_interval__consistent__kelvin_voigt,
+    ('paper', 'hertz_damp'): _support.Variant(_unstable_interval__paper__hertz_damp, ('beta1', 'omega1', 'mu_s', 'g', 'Vhat', )),
+    ('paper', 'kelvin_voigt'): _support.Variant(_unstable_interval__paper__kelvin_voigt, ('beta1', 'omega1', 'mu_s', 'g', 'Vhat', )),
+    ('consistent', 'hertz_damp'): _support.Variant(_unstable_interval__consistent__hertz_damp, ()),
+    ('consistent', 'kelvin_voigt'): _support.Variant(_unstable_interval__consistent__kelvin_voigt, ()),
 }

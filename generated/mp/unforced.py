@@ -46,35 +46,27 @@ def equilibrium(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("equilibrium", _EQUILIBRIUM, contact=contact)(**params)
+    _variant = _support.choose("equilibrium", _EQUILIBRIUM, contact=contact)
+    _values = _support.mp_arguments("equilibrium", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _equilibrium__hertz_damp(*, omega1, omega2, mu_s, g, **params):
-    _support.mp_extras("equilibrium", params)
-    omega1 = _support.mp_param("equilibrium", "omega1", omega1)
-    omega2 = _support.mp_param("equilibrium", "omega2", omega2)
-    mu_s = _support.mp_param("equilibrium", "mu_s", mu_s)
-    g = _support.mp_param("equilibrium", "g", g)
+def _equilibrium__hertz_damp(omega1, omega2, mu_s, g):
     return (g*mu_s/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
 
 
-def _equilibrium__kelvin_voigt(*, omega1, omega2, mu_s, g, **params):
-    _support.mp_extras("equilibrium", params)
-    omega1 = _support.mp_param("equilibrium", "omega1", omega1)
-    omega2 = _support.mp_param("equilibrium", "omega2", omega2)
-    mu_s = _support.mp_param("equilibrium", "mu_s", mu_s)
-    g = _support.mp_param("equilibrium", "g", g)
+def _equilibrium__kelvin_voigt(omega1, omega2, mu_s, g):
     return (g*mu_s/omega1**2, 0, g/omega2**2, 0,)
 
 
 _EQUILIBRIUM = {
-    ('hertz_damp',): _equilibrium__hertz_damp,
-    ('kelvin_voigt',): _equilibrium__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_equilibrium__hertz_damp, ('omega1', 'omega2', 'mu_s', 'g', )),
+    ('kelvin_voigt',): _support.Variant(_equilibrium__kelvin_voigt, ('omega1', 'omega2', 'mu_s', 'g', )),
 }
 
 
@@ -119,25 +111,21 @@ def jacobian(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("jacobian", _JACOBIAN, contact=contact)(X1, Y1, X2, Y2, **params)
-
-
-def _jacobian__hertz_damp(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.mp_extras("jacobian", params)
+    _variant = _support.choose("jacobian", _JACOBIAN, contact=contact)
+    _values = _support.mp_arguments("jacobian", _variant.names, params)
     X1 = _support.mp_param("jacobian", "X1", X1, "real")
     Y1 = _support.mp_param("jacobian", "Y1", Y1, "real")
     X2 = _support.mp_param("jacobian", "X2", X2, "positive", 'Eqs. (5)-(8) hold in contact only, X2 > 0')
     Y2 = _support.mp_param("jacobian", "Y2", Y2, "real")
-    beta1 = _support.mp_param("jacobian", "beta1", beta1)
-    omega1 = _support.mp_param("jacobian", "omega1", omega1)
-    beta2 = _support.mp_param("jacobian", "beta2", beta2)
-    omega2 = _support.mp_param("jacobian", "omega2", omega2)
-    mu_s = _support.mp_param("jacobian", "mu_s", mu_s)
+    return _variant.impl(X1, Y1, X2, Y2, *_values)
+
+
+def _jacobian__hertz_damp(X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s):
     _x0 = 2*beta2*omega2
     _x1 = (mpmath.mpf(3)/mpmath.mpf(2))*mpmath.sqrt(X2)*(Y2*_x0 + omega2**2)
     _x2 = X2**(mpmath.mpf(3)/mpmath.mpf(2))*_x0
@@ -149,17 +137,7 @@ def _jacobian__hertz_damp(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s,
         ])
 
 
-def _jacobian__kelvin_voigt(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.mp_extras("jacobian", params)
-    X1 = _support.mp_param("jacobian", "X1", X1, "real")
-    Y1 = _support.mp_param("jacobian", "Y1", Y1, "real")
-    X2 = _support.mp_param("jacobian", "X2", X2, "positive", 'Eqs. (5)-(8) hold in contact only, X2 > 0')
-    Y2 = _support.mp_param("jacobian", "Y2", Y2, "real")
-    beta1 = _support.mp_param("jacobian", "beta1", beta1)
-    omega1 = _support.mp_param("jacobian", "omega1", omega1)
-    beta2 = _support.mp_param("jacobian", "beta2", beta2)
-    omega2 = _support.mp_param("jacobian", "omega2", omega2)
-    mu_s = _support.mp_param("jacobian", "mu_s", mu_s)
+def _jacobian__kelvin_voigt(X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s):
     _x0 = omega2**2
     _x1 = 2*beta2*omega2
     return mpmath.matrix([
@@ -171,8 +149,8 @@ def _jacobian__kelvin_voigt(X1, Y1, X2, Y2, *, beta1, omega1, beta2, omega2, mu_
 
 
 _JACOBIAN = {
-    ('hertz_damp',): _jacobian__hertz_damp,
-    ('kelvin_voigt',): _jacobian__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_jacobian__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
+    ('kelvin_voigt',): _support.Variant(_jacobian__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
 }
 
 
@@ -210,22 +188,17 @@ def jacobian_at_equilibrium(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("jacobian_at_equilibrium", _JACOBIAN_AT_EQUILIBRIUM, contact=contact)(**params)
+    _variant = _support.choose("jacobian_at_equilibrium", _JACOBIAN_AT_EQUILIBRIUM, contact=contact)
+    _values = _support.mp_arguments("jacobian_at_equilibrium", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _jacobian_at_equilibrium__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, g, **params):
-    _support.mp_extras("jacobian_at_equilibrium", params)
-    beta1 = _support.mp_param("jacobian_at_equilibrium", "beta1", beta1)
-    omega1 = _support.mp_param("jacobian_at_equilibrium", "omega1", omega1)
-    beta2 = _support.mp_param("jacobian_at_equilibrium", "beta2", beta2)
-    omega2 = _support.mp_param("jacobian_at_equilibrium", "omega2", omega2)
-    mu_s = _support.mp_param("jacobian_at_equilibrium", "mu_s", mu_s)
-    g = _support.mp_param("jacobian_at_equilibrium", "g", g)
+def _jacobian_at_equilibrium__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g):
     _x0 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
     _x1 = 2*beta2*g/omega2
     return mpmath.matrix([
@@ -236,13 +209,7 @@ def _jacobian_at_equilibrium__hertz_damp(*, beta1, omega1, beta2, omega2, mu_s, 
         ])
 
 
-def _jacobian_at_equilibrium__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s, **params):
-    _support.mp_extras("jacobian_at_equilibrium", params)
-    beta1 = _support.mp_param("jacobian_at_equilibrium", "beta1", beta1)
-    omega1 = _support.mp_param("jacobian_at_equilibrium", "omega1", omega1)
-    beta2 = _support.mp_param("jacobian_at_equilibrium", "beta2", beta2)
-    omega2 = _support.mp_param("jacobian_at_equilibrium", "omega2", omega2)
-    mu_s = _support.mp_param("jacobian_at_equilibrium", "mu_s", mu_s)
+def _jacobian_at_equilibrium__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s):
     _x0 = omega2**2
     _x1 = 2*beta2*omega2
     return mpmath.matrix([
@@ -254,8 +221,8 @@ def _jacobian_at_equilibrium__kelvin_voigt(*, beta1, omega1, beta2, omega2, mu_s
 
 
 _JACOBIAN_AT_EQUILIBRIUM = {
-    ('hertz_damp',): _jacobian_at_equilibrium__hertz_damp,
-    ('kelvin_voigt',): _jacobian_at_equilibrium__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_jacobian_at_equilibrium__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', )),
+    ('kelvin_voigt',): _support.Variant(_jacobian_at_equilibrium__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
 }
 
 
@@ -294,21 +261,17 @@ def charpoly(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("charpoly", _CHARPOLY, contact=contact)(**params)
+    _variant = _support.choose("charpoly", _CHARPOLY, contact=contact)
+    _values = _support.mp_arguments("charpoly", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _charpoly__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
-    _support.mp_extras("charpoly", params)
-    beta1 = _support.mp_param("charpoly", "beta1", beta1)
-    omega1 = _support.mp_param("charpoly", "omega1", omega1)
-    beta2 = _support.mp_param("charpoly", "beta2", beta2)
-    omega2 = _support.mp_param("charpoly", "omega2", omega2)
-    g = _support.mp_param("charpoly", "g", g)
+def _charpoly__hertz_damp(beta1, omega1, beta2, omega2, g):
     _x0 = beta1*omega1
     _x1 = beta2*g/omega2
     _x2 = 2*_x1
@@ -318,12 +281,7 @@ def _charpoly__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
     return (2*_x0 + _x2, 4*_x0*_x1 + _x3 + _x5, 3*_x0*_x4 + _x2*_x3, _x3*_x5,)
 
 
-def _charpoly__kelvin_voigt(*, beta1, omega1, beta2, omega2, **params):
-    _support.mp_extras("charpoly", params)
-    beta1 = _support.mp_param("charpoly", "beta1", beta1)
-    omega1 = _support.mp_param("charpoly", "omega1", omega1)
-    beta2 = _support.mp_param("charpoly", "beta2", beta2)
-    omega2 = _support.mp_param("charpoly", "omega2", omega2)
+def _charpoly__kelvin_voigt(beta1, omega1, beta2, omega2):
     _x0 = beta1*omega1
     _x1 = 2*_x0
     _x2 = beta2*omega2
@@ -334,8 +292,8 @@ def _charpoly__kelvin_voigt(*, beta1, omega1, beta2, omega2, **params):
 
 
 _CHARPOLY = {
-    ('hertz_damp',): _charpoly__hertz_damp,
-    ('kelvin_voigt',): _charpoly__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_charpoly__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', )),
+    ('kelvin_voigt',): _support.Variant(_charpoly__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', )),
 }
 
 
@@ -377,21 +335,17 @@ def eigenvalues(*, contact='hertz_damp', **params):
     Raises
     ------
     ValueError
-        If an input is NaN or outside its domain (the message names it), or an
-        option value is unknown.
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
     TypeError
-        If a keyword is not a model parameter.
+        If a keyword is not a model parameter, or a parameter is missing.
     """
-    return _support.choose("eigenvalues", _EIGENVALUES, contact=contact)(**params)
+    _variant = _support.choose("eigenvalues", _EIGENVALUES, contact=contact)
+    _values = _support.mp_arguments("eigenvalues", _variant.names, params)
+    return _variant.impl(*_values)
 
 
-def _eigenvalues__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
-    _support.mp_extras("eigenvalues", params)
-    beta1 = _support.mp_param("eigenvalues", "beta1", beta1)
-    omega1 = _support.mp_param("eigenvalues", "omega1", omega1)
-    beta2 = _support.mp_param("eigenvalues", "beta2", beta2)
-    omega2 = _support.mp_param("eigenvalues", "omega2", omega2)
-    g = _support.mp_param("eigenvalues", "g", g)
+def _eigenvalues__hertz_damp(beta1, omega1, beta2, omega2, g):
     _x0 = omega1**2
     _x1 = g**(mpmath.mpf(1)/mpmath.mpf(3))
     _r0 = _support.mp_quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
@@ -399,12 +353,7 @@ def _eigenvalues__hertz_damp(*, beta1, omega1, beta2, omega2, g, **params):
     return [*_r0, *_r1]
 
 
-def _eigenvalues__kelvin_voigt(*, beta1, omega1, beta2, omega2, **params):
-    _support.mp_extras("eigenvalues", params)
-    beta1 = _support.mp_param("eigenvalues", "beta1", beta1)
-    omega1 = _support.mp_param("eigenvalues", "omega1", omega1)
-    beta2 = _support.mp_param("eigenvalues", "beta2", beta2)
-    omega2 = _support.mp_param("eigenvalues", "omega2", omega2)
+def _eigenvalues__kelvin_voigt(beta1, omega1, beta2, omega2):
     _x0 = omega1**2
     _x1 = omega2**2
     _r0 = _support.mp_quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
@@ -413,6 +362,6 @@ def _eigenvalues__kelvin_voigt(*, beta1, omega1, beta2, omega2, **params):
 
 
 _EIGENVALUES = {
-    ('hertz_damp',): _eigenvalues__hertz_damp,
-    ('kelvin_voigt',): _eigenvalues__kelvin_voigt,
+    ('hertz_damp',): _support.Variant(_eigenvalues__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', )),
+    ('kelvin_voigt',): _support.Variant(_eigenvalues__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', )),
 }
