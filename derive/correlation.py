@@ -1,9 +1,9 @@
 """A consistent first-order average: friction with the fast normal force (beyond the paper).
 
 The paper's slow equations keep ``mu_bar N(Z)`` and drop the correlation of the fast
-friction direction with the fast normal force (NOTES.md item 3; `derive.mdsm` labels
-it). For a harmonic fast motion, relative sliding velocity ``u + V sin(tau)`` and
-normal force ``N0 + N1 sin(tau + theta)``, the average of Coulomb friction over a fast
+friction direction with the fast normal force (docs/modelling.md#averaging;
+`derive.mdsm` labels it). For a harmonic fast motion, relative sliding velocity
+``u + V sin(tau)`` and normal force ``N0 + N1 sin(tau + theta)``, the average of Coulomb friction over a fast
 period is a closed form, derived here by integrating over the arcs where the sign of
 the sliding velocity is constant (``a = asin(u/V)``):
 

@@ -7,8 +7,8 @@ written in the factored form ``2 mu_s / (pi sqrt((V_hat - Vb)(V_hat + Vb)))``,
 which SymPy proves equal and which keeps full accuracy as ``Vb -> V_hat``.
 
 ``V_hat`` is "the amplitude of the velocity response obtained for linear contact
-properties" (below Eq. 23); the paper gives no formula (NOTES.md item 1). Both
-readings are derived from phasor solutions, never typed in:
+properties" (below Eq. 23); the paper gives no formula (docs/modelling.md#vhat).
+Both readings are derived from phasor solutions, never typed in:
 
 * ``"tangential"``: the tangential oscillator alone under its excitation;
 * ``"coupled"``: the two-degree-of-freedom system linearised at the unforced
@@ -120,7 +120,7 @@ def coupled_velocity(force_t, force_n, W, contact: str = "hertz_damp") -> sp.Exp
 
 
 def vhat(model: str = "tangential", contact: str = "hertz_damp") -> sp.Expr:
-    """Velocity amplitude ``V_hat`` of the linear response (NOTES.md item 1).
+    """Velocity amplitude ``V_hat`` of the linear response (docs/modelling.md#vhat).
 
     Parameters
     ----------

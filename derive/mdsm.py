@@ -17,9 +17,9 @@ The average over the fast period (Eq. 15), with ``<Phi> = 0``, is applied term b
   the effective friction of Eq. (23).
 
 Each term of the averaged equations is labelled with what the paper does with it
-(NOTES.md item 3): Eqs. (18)-(19) keep the slow terms and ``mu_bar N(Z)`` and drop
-the averages of powers of ``Phi2`` (from the cubic and from the damping) and the
-correlation ``cov(mu, N)`` of the fast friction direction with the fast normal force.
+(docs/modelling.md#averaging): Eqs. (18)-(19) keep the slow terms and
+``mu_bar N(Z)`` and drop the averages of powers of ``Phi2`` (from the cubic and from
+the damping) and the correlation ``cov(mu, N)`` of the fast friction direction with the fast normal force.
 `harmonic_averages` evaluates the dropped averages for a harmonic fast motion, so
 their size can be shown next to the kept terms.
 """
@@ -256,7 +256,7 @@ def dropped_at_equilibrium(values: dict) -> list[tuple[str, str, float, float]]:
     list of (equation, label, value, relative)
         ``relative`` is the value over ``g`` (the size of the normal force it corrects).
         The correlation ``cov(mu, N)`` is not included: it needs the fast tangential
-        motion as well (see NOTES.md item 3).
+        motion as well (see docs/modelling.md#averaging).
     """
     subs = {P[k]: v for k, v in values.items() if k in P}
     subs.update({k: sp.sympify(v).subs(subs) for k, v in equal_excitation().items()})

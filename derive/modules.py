@@ -177,7 +177,7 @@ def friction() -> ModuleSpec:
             "Vhat": "velocity amplitude of Eq. (23) [m/s]",
             "mu_s": "Coulomb friction coefficient"}
     vhat_opts = (("model", '{"tangential", "coupled"}', "tangential",
-                  "reading of V_hat (NOTES.md item 1): the tangential oscillator alone, "
+                  "reading of V_hat (docs/modelling.md#vhat): the tangential oscillator alone, "
                   "or the 2-DOF system linearised at equilibrium"),) + CONTACT_OPTION
     functions = (
         FunctionSpec("mu_bar", "Effective friction coefficient, with the sign of Vr.",
@@ -195,7 +195,7 @@ def friction() -> ModuleSpec:
                  notes="The same in both sign conventions: they differ in how the slope "
                        "enters the slow equations (generated.stability)."),
         FunctionSpec("vhat", "Velocity amplitude V_hat of the linear response.",
-                 "Eq. (23) (NOTES.md item 1)", "value", "Vhat : ndarray",
+                 "Eq. (23) (docs/modelling.md#vhat)", "value", "Vhat : ndarray",
                  {(m, c): fr.vhat(m, c) for m in fr.VHAT_MODELS for c in CONTACT_LAWS},
                  vhat_opts,
                  notes="tangential: alpha_t Omega_t^3 / |omega1^2 - Omega_t^2 + 2i beta1 "
@@ -216,7 +216,7 @@ def stability() -> ModuleSpec:
     """Sects. 4.2-4.3: forced Jacobian, quartic, Hurwitz, eigenvalues, boundary."""
     opts = (("convention", '{"paper", "consistent"}', "paper",
              "sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) "
-             "implies (NOTES.md item 2)"),) + CONTACT_OPTION
+             "implies (docs/modelling.md#friction-sign)"),) + CONTACT_OPTION
     keys = [(cv, c) for cv in st.CONVENTIONS for c in CONTACT_LAWS]
 
     def each(build):
@@ -313,7 +313,8 @@ def correlation() -> ModuleSpec:
         vre[contact], vim[contact] = cr.fast_tangential_velocity(contact)
     functions = (
         FunctionSpec("averaged_friction", "Average of sgn(u + V sin) (N0 + N1 sin(. + theta)) "
-                 "over a fast period.", "Eq. (23) generalised (NOTES.md item 3)", "value",
+                 "over a fast period.", "Eq. (23) generalised (docs/modelling.md#averaging)",
+                 "value",
                  "F : ndarray\n    (2/pi)(N0 asin(u/V) + N1 cos(theta) sqrt(1 - u^2/V^2)) for "
                  "|u| < V,\n    N0 sgn(u) otherwise. Times mu_s: the mean friction force.",
                  {(): cr.averaged_friction()}, (), args, docs,
@@ -344,7 +345,7 @@ def correlation() -> ModuleSpec:
     return ModuleSpec("correlation", """Beyond the paper: friction correlated with the fast normal force.
 
 The paper's slow equations drop the correlation between the fast friction direction
-and the fast normal force (NOTES.md item 3). These closed forms keep it, for a
+and the fast normal force (docs/modelling.md#averaging). These closed forms keep it, for a
 harmonic fast motion: the averaged friction and its slope (the consistent
 counterpart of Eqs. 23-25), the first harmonic for the harmonic balance of the
 fast tangential motion, and the fast normal force. ``runtime.predict`` builds the

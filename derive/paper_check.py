@@ -11,8 +11,8 @@ expression the package derives:
    reported from a numeric counterexample, never from a failed simplification.
 
 Where the paper admits more than one reading (the sign of the effective friction,
-NOTES.md item 2; the argument of ``mu_bar`` in Eq. 25) a row has one variant per
-reading, and its status is ``matches``, ``matches under convention X`` or
+docs/modelling.md#friction-sign; the argument of ``mu_bar`` in Eq. 25) a row has one
+variant per reading, and its status is ``matches``, ``matches under convention X`` or
 ``differs``. Every variant that differs carries a hand-written reason; the report
 marks a difference without one as unexplained, and a reason given for a variant
 that matches as stale, so the reasons cannot drift from the results.
@@ -769,7 +769,7 @@ def report(results, claim_results) -> str:
         "counterexample; examples use the base set of Fig. 2 with `Vb = 4` and the "
         "tangential `Vhat` (8.521) where it fixes every symbol. Conventions: `paper` = "
         "Eq. A4 as printed (`+mu_bar F_n`, `mu_bar` of Eq. 23), `consistent` = the sign "
-        "of Eq. 4 (`-mu_bar(Z1' - Vb) F_n`), NOTES.md item 2.",
+        "of Eq. 4 (`-mu_bar(Z1' - Vb) F_n`), docs/modelling.md#friction-sign.",
         "",
         f"**Summary:** {len(results)} equation rows: {counts['matches']} match, "
         f"{counts['matches under a convention']} match under one convention only, "

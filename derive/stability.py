@@ -1,7 +1,8 @@
 """Stability of the forced system: Eqs. (20)-(22), (26)-(28), (A3)-(A8).
 
 The slow equations (Eqs. 20-21, state-space form A3-A6) carry the effective friction
-``mu_bar(Z1' - Vb)`` of Eq. (23). Their sign is a choice (NOTES.md item 2):
+``mu_bar(Z1' - Vb)`` of Eq. (23). Their sign is a choice
+(docs/modelling.md#friction-sign):
 
 * ``convention="paper"``: Eq. (A4) as printed, ``+ mu_bar (...) Z2^(3/2)`` with
   ``mu_bar`` taken literally from Eq. (23) (negative for ``Vr < 0``). Linearised, this

@@ -3,7 +3,7 @@
 """Beyond the paper: friction correlated with the fast normal force.
 
 The paper's slow equations drop the correlation between the fast friction direction
-and the fast normal force (NOTES.md item 3). These closed forms keep it, for a
+and the fast normal force (docs/modelling.md#averaging). These closed forms keep it, for a
 harmonic fast motion: the averaged friction and its slope (the consistent
 counterpart of Eqs. 23-25), the first harmonic for the harmonic balance of the
 fast tangential motion, and the fast normal force. ``runtime.predict`` builds the
@@ -20,7 +20,7 @@ __all__ = ['averaged_friction', 'averaged_friction_slope', 'first_harmonic', 'fa
 def averaged_friction(u, V, N0, N1, theta, **params):
     """Average of sgn(u + V sin) (N0 + N1 sin(. + theta)) over a fast period.
 
-    Implements Eq. (23) generalised (NOTES.md item 3) of the paper.
+    Implements Eq. (23) generalised (docs/modelling.md#averaging) of the paper.
 
     With N1 = 0 and N0 = 1 this is Eq. (23) divided by mu_s.
 

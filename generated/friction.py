@@ -168,7 +168,7 @@ _MU_BAR_SLOPE = {
 def vhat(*, model='tangential', contact='hertz_damp', **params):
     """Velocity amplitude V_hat of the linear response.
 
-    Implements Eq. (23) (NOTES.md item 1) of the paper.
+    Implements Eq. (23) (docs/modelling.md#vhat) of the paper.
 
     tangential: alpha_t Omega_t^3 / |omega1^2 - Omega_t^2 + 2i beta1 omega1 Omega_t|.
     coupled: the normal response drives the tangential one through mu_s times the normal
@@ -205,7 +205,7 @@ def vhat(*, model='tangential', contact='hertz_damp', **params):
     phase_n : array_like
         normal excitation phase [rad], real, default 0.0.
     model : {"tangential", "coupled"}, default 'tangential'
-        reading of V_hat (NOTES.md item 1): the tangential oscillator alone, or the 2-DOF system linearised at equilibrium
+        reading of V_hat (docs/modelling.md#vhat): the tangential oscillator alone, or the 2-DOF system linearised at equilibrium
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     **params

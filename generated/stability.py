@@ -42,7 +42,7 @@ def equilibrium(*, convention='paper', contact='hertz_damp', vhat_model=None, **
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -127,7 +127,7 @@ def jacobian(*, convention='paper', contact='hertz_damp', vhat_model=None, **par
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -250,7 +250,7 @@ def coefficients(*, convention='paper', contact='hertz_damp', vhat_model=None, *
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -373,7 +373,7 @@ def hurwitz(*, convention='paper', contact='hertz_damp', vhat_model=None, **para
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -491,7 +491,7 @@ def eigenvalues(*, convention='paper', contact='hertz_damp', vhat_model=None, **
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -597,7 +597,7 @@ def growth_rate(*, convention='paper', contact='hertz_damp', vhat_model=None, ba
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -808,7 +808,7 @@ def is_stable(*, convention='paper', contact='hertz_damp', vhat_model=None, back
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -938,7 +938,7 @@ def critical_belt_speed(*, convention='paper', contact='hertz_damp', vhat_model=
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -1016,7 +1016,7 @@ def unstable_interval(*, convention='paper', contact='hertz_damp', vhat_model=No
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional

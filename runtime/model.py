@@ -3,7 +3,7 @@
 The generated functions in ``generated.dynamics`` are the reference implementation of
 Eqs. (1)-(4); they validate every argument on every call, which costs more than the
 arithmetic inside a solver loop. The closures here repeat the same arithmetic on
-scalars with the parameters bound once; ``tests/test_model.py`` checks them against
+scalars with the parameters bound once; ``tests/test_runtime_model.py`` checks them against
 the generated functions on random states to 1e-13.
 """
 from __future__ import annotations

@@ -121,7 +121,7 @@ def test_vhat_coupled_against_linear_algebra(rng, contact, extra):
 
 
 def test_vhat_readings_differ_at_the_base_set(base):
-    """NOTES.md item 1: the tangential reading is close to the paper's 'about 8'."""
+    """docs/modelling.md#vhat: the tangential reading is close to the paper's 'about 8'."""
     tangential = friction.vhat(**base)
     assert 8.0 < tangential < 9.0
     assert abs(friction.vhat(model="coupled", **base) - tangential) > 1.0

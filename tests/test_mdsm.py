@@ -78,7 +78,7 @@ def test_harmonic_averages_against_mpmath_quadrature(mp50):
 
 
 def test_dropped_cubic_averages_are_small_at_the_base_set():
-    """NOTES.md item 3, measured: the dropped normal averages are below 1 % of g."""
+    """Measured: the dropped normal averages are below 1 % of g (docs/modelling.md#averaging)."""
     rows = mdsm.dropped_at_equilibrium(BASE)
     assert rows and all(eq == "normal" for eq, *_ in rows)
     assert abs(sum(rel for *_, rel in rows)) < 1e-2

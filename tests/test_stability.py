@@ -135,7 +135,10 @@ def test_equilibrium_is_a7(rng, convention):
 
 
 def test_consistent_equilibrium_is_on_the_physical_side(base):
-    """NOTES.md item 2: the friction of a belt moving forward pulls the mass forward."""
+    """The friction of a belt moving forward pulls the mass forward.
+
+    docs/modelling.md#friction-sign
+    """
     Vb = np.linspace(0.1, 8.4, 20)
     Z1_paper = stability.equilibrium(**{**base, "Vb": Vb})[0]
     Z1_consistent = stability.equilibrium(**{**base, "Vb": Vb}, convention="consistent")[0]

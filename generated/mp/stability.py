@@ -45,7 +45,7 @@ def equilibrium(*, convention='paper', contact='hertz_damp', vhat_model=None, **
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -123,7 +123,7 @@ def jacobian(*, convention='paper', contact='hertz_damp', vhat_model=None, **par
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -239,7 +239,7 @@ def coefficients(*, convention='paper', contact='hertz_damp', vhat_model=None, *
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -355,7 +355,7 @@ def hurwitz(*, convention='paper', contact='hertz_damp', vhat_model=None, **para
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -466,7 +466,7 @@ def eigenvalues(*, convention='paper', contact='hertz_damp', vhat_model=None, **
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -565,7 +565,7 @@ def growth_rate(*, convention='paper', contact='hertz_damp', vhat_model=None, **
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -678,7 +678,7 @@ def is_stable(*, convention='paper', contact='hertz_damp', vhat_model=None, **pa
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -750,7 +750,7 @@ def critical_belt_speed(*, convention='paper', contact='hertz_damp', vhat_model=
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
@@ -827,7 +827,7 @@ def unstable_interval(*, convention='paper', contact='hertz_damp', vhat_model=No
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     convention : {"paper", "consistent"}, default 'paper'
-        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (NOTES.md item 2)
+        sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies (docs/modelling.md#friction-sign)
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
     vhat_model : {"tangential", "coupled"}, optional
