@@ -5,23 +5,30 @@ expressions as `codegen.FunctionSpec` specs. Nothing here writes files.
 """
 from __future__ import annotations
 
+import sympy as sp
+
 from . import correlation as cr
 from . import dynamics as dyn
 from . import fit as ft
 from . import friction as fr
+from . import hybrid as hy
 from . import mdsm
+from . import oscillator as osc
 from . import stability as st
 from . import statespace as ss
 from .codegen import FunctionSpec, ModuleSpec
-import sympy as sp
-
-from .model import CONTACT_LAWS, STATE, P, X1, Y1, Y2, t, normal_force
+from .model import CONTACT_LAWS, STATE, TENSION_LAWS, P, X1, Y1, Y2, t, contact_force
 
 __all__ = ["unforced", "dynamics", "fit", "friction", "stability", "correlation",
-           "all_modules"]
+           "hybrid", "oscillator", "all_modules"]
 
 CONTACT_OPTION = (("contact", '{"hertz_damp", "kelvin_voigt"}', "hertz_damp",
                    "contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)"),)
+TENSION_OPTION = (("tension", '{"allowed", "clipped"}', "allowed",
+                   "Eq. (1) as printed, tensile when its damping term outweighs its "
+                   "stiffness term, or max(F, 0), a contact that cannot pull "
+                   "(docs/modelling.md#tension)"),)
+CONTACT_TENSION = CONTACT_OPTION + TENSION_OPTION
 STATE_DOCS = {"X1": "tangential displacement [m]",
               "Y1": "tangential velocity X1' [m/s]",
               "X2": "normal penetration into the belt [m]",
@@ -34,6 +41,10 @@ IN_CONTACT = {"X2": ("positive", "Eqs. (5)-(8) hold in contact only, X2 > 0")}
 
 def _per_contact(build):
     return {(c,): build(c) for c in CONTACT_LAWS}
+
+
+def _per_contact_tension(build):
+    return {(c, tl): build(c, tl) for c in CONTACT_LAWS for tl in TENSION_LAWS}
 
 
 def unforced() -> ModuleSpec:
@@ -81,52 +92,177 @@ Fig. 16). Every function takes the parameters as keywords.
 def dynamics() -> ModuleSpec:
     """Eq. (4) for simulation: right-hand side, Jacobian, normal force, energy."""
     state_t = (t,) + dyn.STATE_R
+    normal = (t, dyn.X2r, Y2)
     fns = (
         FunctionSpec("rhs", "Right-hand side (X1', Y1', X2', Y2') of Eq. (4).",
-                 "Eqs. (1)-(4)", "vector", "dstate : ndarray, shape (..., 4)",
-                 _per_contact(lambda c: list(dyn.rhs(c))), CONTACT_OPTION, state_t,
-                 STATE_DOCS,
-                 notes="Friction direction sgn(X1' - Vb) as in Eq. (3); zero normal "
-                       "force when X2 <= 0 (loss of contact, Eq. 1)."),
+                     "Eqs. (1)-(4)", "vector", "dstate : ndarray, shape (..., 4)",
+                     _per_contact_tension(lambda c, tl: list(dyn.rhs(c, tension=tl))),
+                     CONTACT_TENSION, state_t, STATE_DOCS,
+                     notes="Friction direction sgn(X1' - Vb) as in Eq. (3); zero normal "
+                           "force when X2 <= 0 (loss of contact, Eq. 1)."),
         FunctionSpec("rhs_branch", "Right-hand side of Eq. (4) with a given friction direction.",
-                 "Eqs. (1)-(4)", "vector", "dstate : ndarray, shape (..., 4)",
-                 _per_contact(lambda c: list(dyn.rhs(c, dyn.sgn))), CONTACT_OPTION,
-                 state_t + (dyn.sgn,), STATE_DOCS,
-                 notes="For a simulator that tracks the sliding direction itself: "
-                       "with sgn = 0 the second entry is the tangential acceleration "
-                       "without friction, whose magnitude against mu_s F_n decides "
-                       "whether sticking holds."),
+                     "Eqs. (1)-(4)", "vector", "dstate : ndarray, shape (..., 4)",
+                     _per_contact_tension(lambda c, tl: list(dyn.rhs(c, dyn.sgn, tl))),
+                     CONTACT_TENSION, state_t + (dyn.sgn,), STATE_DOCS,
+                     notes="For a simulator that tracks the sliding direction itself: "
+                           "with sgn = 0 the second entry is the tangential acceleration "
+                           "without friction, whose magnitude against mu_s F_n decides "
+                           "whether sticking holds.", bind=True),
         FunctionSpec("jacobian_branch", "State Jacobian of `rhs_branch`.",
-                 "Eqs. (1)-(4)", "matrix", "J : ndarray, shape (..., 4, 4)",
-                 _per_contact(dyn.jacobian), CONTACT_OPTION, state_t + (dyn.sgn,),
-                 STATE_DOCS),
+                     "Eqs. (1)-(4)", "matrix", "J : ndarray, shape (..., 4, 4)",
+                     _per_contact_tension(lambda c, tl: dyn.jacobian(c, dyn.sgn, tl)),
+                     CONTACT_TENSION, state_t + (dyn.sgn,), STATE_DOCS),
         FunctionSpec("normal_force", "Normal force per unit mass, zero out of contact.",
-                 "Eq. (1)", "value", "Fn : ndarray",
-                 _per_contact(lambda c: dyn.in_contact(normal_force(c), 0)),
-                 CONTACT_OPTION, (dyn.X2r, Y2), STATE_DOCS),
+                     "Eq. (1)", "value", "Fn : ndarray",
+                     _per_contact_tension(lambda c, tl: dyn.in_contact(contact_force(c, tl),
+                                                                       0)),
+                     CONTACT_TENSION, (dyn.X2r, Y2), STATE_DOCS, bind=True),
+        FunctionSpec("normal_rhs", "Right-hand side (X2', Y2') of the normal equation alone.",
+                     "Eq. (4), second row", "vector", "dnormal : ndarray, shape (..., 2)",
+                     _per_contact_tension(lambda c, tl: list(dyn.normal_rhs(c, tl))),
+                     CONTACT_TENSION, normal, STATE_DOCS,
+                     notes="The normal equation contains neither X1, X1', Vb nor mu_s "
+                           "(the one-way coupling of Eq. 4).", bind=True),
+        FunctionSpec("normal_jacobian", "Jacobian of `normal_rhs` with respect to (X2, Y2).",
+                     "Eq. (4), second row", "matrix", "J : ndarray, shape (..., 2, 2)",
+                     _per_contact_tension(lambda c, tl: dyn.normal_jacobian(c, tl)),
+                     CONTACT_TENSION, normal, STATE_DOCS,
+                     notes="The variational equation of the normal motion, for the "
+                           "normal block of the monodromy matrix.", bind=True),
+        FunctionSpec("free_acceleration", "Tangential acceleration without friction.",
+                     "Eq. (4), first row", "value", "a_free : ndarray",
+                     {(): dyn.free_acceleration()}, (), (t, X1, Y1), STATE_DOCS,
+                     notes="f_t - 2 beta1 omega1 X1' - omega1^2 X1; sticking holds while "
+                           "|a_free| <= mu_s F_n.", bind=True),
         FunctionSpec("excitation", "Excitation forces per unit mass (tangential, normal).",
-                 "Eq. (4), right-hand side", "tuple", "f_t, f_n : ndarray",
-                 {(): list(dyn.excitation())}, (), (t,), STATE_DOCS,
-                 notes="alpha_t Omega_t^2 sin(Omega_t t + phase_t) and "
-                       "-alpha_n Omega_n^2 sin(Omega_n t + phase_n); by default "
-                       "both directions use alpha, Omega and zero phase, as in Eq. (4)."),
+                     "Eq. (4), right-hand side", "tuple", "f_t, f_n : ndarray",
+                     {(): list(dyn.excitation())}, (), (t,), STATE_DOCS,
+                     notes="alpha_t Omega_t^2 sin(Omega_t t + phase_t) and "
+                           "-alpha_n Omega_n^2 sin(Omega_n t + phase_n); by default "
+                           "both directions use alpha, Omega and zero phase, as in Eq. (4).",
+                     bind=True),
         FunctionSpec("energy", "Mechanical energy per unit mass.",
-                 "Eq. (4) (energy balance of Sect. 3)", "value", "E : ndarray",
-                 _per_contact(dyn.energy), CONTACT_OPTION, (X1, Y1, dyn.X2r, Y2),
-                 STATE_DOCS,
-                 notes="Kinetic + tangential spring + contact potential - g X2."),
+                     "Eq. (4) (energy balance of Sect. 3)", "value", "E : ndarray",
+                     _per_contact_tension(lambda c, tl: dyn.energy(c)), CONTACT_TENSION,
+                     (X1, Y1, dyn.X2r, Y2), STATE_DOCS,
+                     notes="Kinetic + tangential spring + contact potential - g X2. The same "
+                           "for both tension laws (the clip is booked in power_balance).",
+                     bind=True),
         FunctionSpec("power_balance", "Power terms with dE/dt = P_input - P_viscous - P_friction.",
-                 "Eq. (4) (energy balance of Sect. 3)", "tuple",
-                 "P_input, P_viscous, P_friction : ndarray",
-                 _per_contact(lambda c: list(dyn.power_balance(c))), CONTACT_OPTION,
-                 state_t + (dyn.sgn,), STATE_DOCS),
+                     "Eq. (4) (energy balance of Sect. 3)", "tuple",
+                     "P_input, P_viscous, P_friction : ndarray",
+                     _per_contact_tension(lambda c, tl: list(dyn.power_balance(c, tension=tl))),
+                     CONTACT_TENSION, state_t + (dyn.sgn,), STATE_DOCS, bind=True),
     )
     return ModuleSpec("dynamics", """The full equations of motion, Eq. (4), for simulation.
 
 Loss of contact follows Eq. (1): zero normal force for ``X2 <= 0``. ``rhs`` uses the
 sign function of Eq. (3); ``rhs_branch`` and ``jacobian_branch`` take the friction
 direction as an argument for an event-driven simulator. ``energy`` and
-``power_balance`` give the energy check of Sect. 3.
+``power_balance`` give the energy check of Sect. 3. ``tension=`` chooses Eq. (1) as
+printed or a contact that cannot pull (docs/modelling.md#tension). ``bind_<name>``
+returns a function's scalar kernel with the parameters checked once, for the
+runtime's inner loops.
+""", fns)
+
+
+def hybrid() -> ModuleSpec:
+    """Eq. (4) as a hybrid system: mode fields, switching surfaces, saltation matrices."""
+    state_t = (t,) + hy.STATE
+    mode_doc = {**STATE_DOCS, "mode": "mode code (MODE_CODES): -1 slip_back, 0 stick, "
+                                      "+1 slip_forward, 2 flight, 3 separated"}
+    surfaces_doc = ("h : tuple of ndarray\n    One value per switching surface, in the "
+                    "order of SURFACES.")
+    salt = {}
+    for before, after, surface in hy.transitions():
+        for c in CONTACT_LAWS:
+            salt[(before, after, surface, c)] = hy.saltation(before, after, surface, c)
+    names = sorted({k for k in hy.MODE_CODES})
+    salt_opts = (("before", "str", "slip_back", "mode before the switch"),
+                 ("after", "str", "slip_forward", "mode after the switch"),
+                 ("surface", "str", "relative_velocity", "the surface crossed (SURFACES)"),
+                 ) + CONTACT_OPTION
+    fns = (
+        FunctionSpec("vector_field", "Vector field (X1', Y1', X2', Y2') of one mode of Eq. (4).",
+                     "Eqs. (1)-(4)", "vector", "dstate : ndarray, shape (..., 4)",
+                     _per_contact(lambda c: list(hy.vector_field(c))), CONTACT_OPTION,
+                     state_t + (hy.mode,), mode_doc,
+                     notes="Each field is smooth on the whole state space: the contact modes "
+                           "use the unclipped force of Eq. (1) (with max(X2, 0)), stick holds "
+                           "X1' = Vb, flight and separated are free of contact.", bind=True),
+        FunctionSpec("surfaces", "Switching functions h(t, x) of the hybrid system.",
+                     "Eqs. (1)-(4)", "tuple", surfaces_doc,
+                     _per_contact(lambda c: [hy.surfaces(c)[n] for n in hy.SURFACES]),
+                     CONTACT_OPTION, state_t, STATE_DOCS,
+                     notes="relative_velocity Y1 - Vb; stick_forward, stick_back "
+                           "mu_s F -+ a_free; penetration X2; contact_force: the sign of F "
+                           "(F over its factors positive in contact).", bind=True),
+        FunctionSpec("surface_scales", "Rounding scale of each switching function.",
+                     "Eqs. (1)-(4)", "tuple", surfaces_doc,
+                     _per_contact(lambda c: [hy.surface_scales(c)[n] for n in hy.SURFACES]),
+                     CONTACT_OPTION, state_t, STATE_DOCS,
+                     notes="The sum of the absolute values of the terms of h: a computed h "
+                           "is within a few ulps of it, so a sign decision at a tie uses a "
+                           "tolerance proportional to it.", bind=True),
+        FunctionSpec("surface_rates", "Rates dh/dt of the switching functions along a mode.",
+                     "Eqs. (1)-(4)", "tuple", surfaces_doc,
+                     _per_contact(lambda c: [hy.surface_rates(c)[n] for n in hy.SURFACES]),
+                     CONTACT_OPTION, state_t + (hy.mode,), mode_doc,
+                     notes="dh/dt = partial h / partial t + grad h . f(mode): which side of a "
+                           "surface the field of a mode points to (Filippov's rule), and the "
+                           "denominator of the saltation matrix.", bind=True),
+        FunctionSpec("saltation", "Saltation matrix of a switch: the jump of the variational "
+                     "solution.", "Eqs. (1)-(4)", "matrix", "S : ndarray, shape (..., 4, 4)",
+                     salt, salt_opts, state_t, STATE_DOCS,
+                     notes="S = I + (f+ - f-) n^T / (dh/dt)-, n = grad h, evaluated at the "
+                           "state on the surface. It diverges as (dh/dt)- -> 0 (grazing). "
+                           "Valid (before, after, surface) triples: TRANSITIONS.", bind=True),
+    )
+    guards = {tl: {m: tuple(g) for m, g in sorted(gs.items())} for tl, gs in hy.GUARDS.items()}
+    constants = (
+        ("MODE_CODES", dict(sorted(hy.MODE_CODES.items(), key=lambda kv: kv[1])),
+         "Integer code of each mode; the slip codes are sgn(Vr) of Eq. (3)."),
+        ("FIELDS", {m: hy.FIELDS[m] for m in names}, "The vector field of each mode."),
+        ("SURFACES", hy.SURFACES, "The switching surfaces, in the order of `surfaces`."),
+        ("DECIDE_SLIP", hy.DECIDE_SLIP, "Guard target: Filippov's rule at Vr = 0."),
+        ("DECIDE_CONTACT", hy.DECIDE_CONTACT, "Guard target: entering contact."),
+        ("GUARDS", guards, "Per tension law: mode -> ((surface, crossing direction, target), "
+                           "...)."),
+        ("TRANSITIONS", hy.transitions(), "Every (before, after, surface) of `saltation`."),
+    )
+    return ModuleSpec("hybrid", """Eq. (4) as a hybrid system (derive/hybrid.py).
+
+Modes with smooth vector fields (`vector_field`, by mode code), the switching surfaces
+between them (`surfaces`, with rounding scales and rates along a mode), the guards of
+each tension law (`GUARDS`: which surface ends which mode, crossed in which direction,
+and what follows) and the saltation matrices of the switches (`saltation`), which the
+Floquet analysis of the periodic response needs.
+""", fns, constants)
+
+
+def oscillator() -> ModuleSpec:
+    """The tangential oscillator in closed form: state-transition matrix, forced response."""
+    docs = {"tau": "time since the switch [s], >= 0", **STATE_DOCS}
+    fns = (
+        FunctionSpec("state_transition", "State-transition matrix expm(A tau) of the "
+                     "tangential oscillator.", "Eq. (4), first row", "matrix",
+                     "Phi : ndarray, shape (..., 2, 2)\n    (X1, X1')(t0 + tau) = Phi (X1, "
+                     "X1')(t0) without forcing.", {(): osc.state_transition()}, (), (osc.tau,),
+                     docs, notes="Under-, over- and critically damped closed forms; exact at "
+                                 "beta1 = 1, no overflow for long tau (derive/oscillator.py).",
+                     bind=True),
+        FunctionSpec("excitation_response", "Response (X1, X1') to the tangential excitation "
+                     "from rest at t = 0.", "Eq. (4), first row", "tuple",
+                     "X1, Y1 : ndarray", {(): list(osc.excitation_response())}, (), (t,), docs,
+                     notes="The periodic response minus the free motion that cancels its "
+                           "initial value. Not finite at undamped resonance (beta1 = 0, "
+                           "Omega_t = omega1).", bind=True),
+    )
+    return ModuleSpec("oscillator", """The tangential oscillator of Eq. (4) in closed form.
+
+Between two switches the tangential motion is linear: the state-transition matrix
+carries the state at the switch, the excitation response and the response to the
+contact force (integrated by the runtime) add to it (derive/oscillator.py).
 """, fns)
 
 
@@ -354,5 +490,6 @@ stability prediction from them.
 
 
 def all_modules() -> tuple[ModuleSpec, ...]:
-    return unforced(), dynamics(), fit(), friction(), stability(), correlation()
+    return (unforced(), dynamics(), fit(), friction(), stability(), correlation(), hybrid(),
+            oscillator())
 

@@ -8,6 +8,8 @@
 * ``friction``: Effective friction of the MDSM (Eqs. 23-25) and V_hat.
 * ``stability``: Stability of the forced system (Sects. 4.2-4.3, Eqs. 22, 26-28, A7-A8).
 * ``correlation``: Beyond the paper: friction correlated with the fast normal force.
+* ``hybrid``: Eq. (4) as a hybrid system (derive/hybrid.py).
+* ``oscillator``: The tangential oscillator of Eq. (4) in closed form.
 
 Importing them never imports SymPy.
 """

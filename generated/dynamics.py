@@ -5,18 +5,22 @@
 Loss of contact follows Eq. (1): zero normal force for ``X2 <= 0``. ``rhs`` uses the
 sign function of Eq. (3); ``rhs_branch`` and ``jacobian_branch`` take the friction
 direction as an argument for an event-driven simulator. ``energy`` and
-``power_balance`` give the energy check of Sect. 3.
+``power_balance`` give the energy check of Sect. 3. ``tension=`` chooses Eq. (1) as
+printed or a contact that cannot pull (docs/modelling.md#tension). ``bind_<name>``
+returns a function's scalar kernel with the parameters checked once, for the
+runtime's inner loops.
 """
 
 import functools
+import math
 import numpy
 
 from . import _support
 
-__all__ = ['rhs', 'rhs_branch', 'jacobian_branch', 'normal_force', 'excitation', 'energy', 'power_balance']
+__all__ = ['rhs', 'rhs_branch', 'jacobian_branch', 'normal_force', 'normal_rhs', 'normal_jacobian', 'free_acceleration', 'excitation', 'energy', 'power_balance', 'bind_rhs_branch', 'bind_normal_force', 'bind_normal_rhs', 'bind_normal_jacobian', 'bind_free_acceleration', 'bind_excitation', 'bind_energy', 'bind_power_balance']
 
 
-def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
+def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
     """Right-hand side (X1', Y1', X2', Y2') of Eq. (4).
 
     Implements Eqs. (1)-(4) of the paper.
@@ -68,6 +72,8 @@ def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
         normal excitation phase [rad], real, default 0.0.
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -84,7 +90,7 @@ def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("rhs", _RHS, contact=contact)
+    _variant = _support.choose("rhs", _RHS, contact=contact, tension=tension)
     _values, _extra = _support.arguments("rhs", _variant.names, params)
     t = _support.param("rhs", "t", t, "real")
     X1 = _support.param("rhs", "X1", X1, "real")
@@ -95,7 +101,7 @@ def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     return _variant.impl(_shape, t, X1, Y1, X2, Y2, *_values)
 
 
-def _rhs__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+def _rhs__hertz_damp__allowed(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
@@ -104,7 +110,17 @@ def _rhs__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu
         return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_s*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
-def _rhs__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+def _rhs__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x1 = numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan)
+        _x2 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x3 = numpy.greater(X2, 0)
+        _x4 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x3,True], [-_x1*mu_s*numpy.sign(-Vb + Y1) - _x2,-_x2], default=numpy.nan), numpy.copy(Y2), numpy.select([_x3,True], [-_x1 - _x4,-_x4], default=numpy.nan)])
+
+
+def _rhs__kelvin_voigt__allowed(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
@@ -113,13 +129,25 @@ def _rhs__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, 
         return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_s*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
+def _rhs__kelvin_voigt__clipped(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        _x1 = numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan)
+        _x2 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x3 = numpy.greater(X2, 0)
+        _x4 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x3,True], [-_x1*mu_s*numpy.sign(-Vb + Y1) - _x2,-_x2], default=numpy.nan), numpy.copy(Y2), numpy.select([_x3,True], [-_x1 - _x4,-_x4], default=numpy.nan)])
+
+
 _RHS = {
-    ('hertz_damp',): _support.Variant(_rhs__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
-    ('kelvin_voigt',): _support.Variant(_rhs__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('hertz_damp', 'allowed'): _support.Variant(_rhs__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('hertz_damp', 'clipped'): _support.Variant(_rhs__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_rhs__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_rhs__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
 }
 
 
-def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
+def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', tension='allowed', **params):
     """Right-hand side of Eq. (4) with a given friction direction.
 
     Implements Eqs. (1)-(4) of the paper.
@@ -172,6 +200,8 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
         normal excitation phase [rad], real, default 0.0.
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -188,7 +218,7 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("rhs_branch", _RHS_BRANCH, contact=contact)
+    _variant = _support.choose("rhs_branch", _RHS_BRANCH, contact=contact, tension=tension)
     _values, _extra = _support.arguments("rhs_branch", _variant.names, params)
     t = _support.param("rhs_branch", "t", t, "real")
     X1 = _support.param("rhs_branch", "X1", X1, "real")
@@ -200,7 +230,74 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     return _variant.impl(_shape, t, X1, Y1, X2, Y2, sgn, *_values)
 
 
-def _rhs_branch__hertz_damp(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+def bind_rhs_branch(*, contact='hertz_damp', tension='allowed', backend=None, **params):
+    """`rhs_branch` as a scalar kernel with the parameters checked once and bound.
+
+    ``bind_rhs_branch(**params)(t, X1, Y1, X2, Y2, sgn)`` equals ``rhs_branch(t, X1, Y1, X2, Y2, sgn, **params)``
+    for scalar inputs and returns a tuple of floats. For the inner loops of an
+    integrator: the arguments are checked here, not on every call.
+
+    Parameters
+    ----------
+    beta1 : float
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : float
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    beta2 : float
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : float
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    alpha : float
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : float
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    mu_s : float
+        Coulomb friction coefficient, Eq. (3) [1], nonnegative.
+    g : float
+        gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
+    alpha_t : float
+        tangential excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_t : float
+        tangential excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_t : float
+        tangential excitation phase (Fig. 15: pi/2) [rad], real, default 0.0.
+    alpha_n : float
+        normal excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_n : float
+        normal excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_n : float
+        normal excitation phase [rad], real, default 0.0.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
+    backend : {"python", "numba"}, optional
+        The kernel as plain Python, or compiled by ``numba.njit`` (on first call;
+        cached on disk). Default: numba if it is installed, else python.
+    **params
+        Any other model parameter (accepted and ignored).
+
+    Returns
+    -------
+    _support.Bound
+        Call it as ``kernel(t, X1, Y1, X2, Y2, sgn)``; ``.kernel`` and ``.args`` are the raw kernel
+        and the bound values, for a caller that compiles its own loop.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    ImportError
+        For backend="numba" when numba is not installed.
+    """
+    _variant = _support.choose("bind_rhs_branch", _RHS_BRANCH, contact=contact, tension=tension)
+    return _support.bind("rhs_branch", _variant, params, backend)
+
+
+def _rhs_branch__hertz_damp__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
@@ -209,7 +306,42 @@ def _rhs_branch__hertz_damp(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2
         return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_s*sgn - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
-def _rhs_branch__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+def _rhs_branch__hertz_damp__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `rhs_branch` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x1 = -Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x2 = (X2 > 0)
+    _x3 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
+    return (Y1, ((-_x0*mu_s*sgn - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3)),)
+
+
+def _rhs_branch__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x1 = numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan)
+        _x2 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x3 = numpy.greater(X2, 0)
+        _x4 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x3,True], [-_x1*mu_s*sgn - _x2,-_x2], default=numpy.nan), numpy.copy(Y2), numpy.select([_x3,True], [-_x1 - _x4,-_x4], default=numpy.nan)])
+
+
+def _rhs_branch__hertz_damp__clipped__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `rhs_branch` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
+    return (Y1, ((-_x1*mu_s*sgn - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4)),)
+
+
+def _rhs_branch__kelvin_voigt__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
@@ -218,13 +350,50 @@ def _rhs_branch__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, bet
         return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_s*sgn - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
 
 
+def _rhs_branch__kelvin_voigt__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `rhs_branch` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    _x1 = -Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x2 = (X2 > 0)
+    _x3 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
+    return (Y1, ((-_x0*mu_s*sgn - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3)),)
+
+
+def _rhs_branch__kelvin_voigt__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        _x1 = numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan)
+        _x2 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x3 = numpy.greater(X2, 0)
+        _x4 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x3,True], [-_x1*mu_s*sgn - _x2,-_x2], default=numpy.nan), numpy.copy(Y2), numpy.select([_x3,True], [-_x1 - _x4,-_x4], default=numpy.nan)])
+
+
+def _rhs_branch__kelvin_voigt__clipped__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `rhs_branch` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
+    return (Y1, ((-_x1*mu_s*sgn - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4)),)
+
+
 _RHS_BRANCH = {
-    ('hertz_damp',): _support.Variant(_rhs_branch__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
-    ('kelvin_voigt',): _support.Variant(_rhs_branch__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('hertz_damp', 'allowed'): _support.Variant(_rhs_branch__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _rhs_branch__hertz_damp__allowed__scalar, None),
+    ('hertz_damp', 'clipped'): _support.Variant(_rhs_branch__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _rhs_branch__hertz_damp__clipped__scalar, None),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_rhs_branch__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _rhs_branch__kelvin_voigt__allowed__scalar, None),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_rhs_branch__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _rhs_branch__kelvin_voigt__clipped__scalar, None),
 }
 
 
-def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
+def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', tension='allowed', **params):
     """State Jacobian of `rhs_branch`.
 
     Implements Eqs. (1)-(4) of the paper.
@@ -255,6 +424,8 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
         Coulomb friction coefficient, Eq. (3) [1], nonnegative.
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -271,7 +442,7 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("jacobian_branch", _JACOBIAN_BRANCH, contact=contact)
+    _variant = _support.choose("jacobian_branch", _JACOBIAN_BRANCH, contact=contact, tension=tension)
     _values, _extra = _support.arguments("jacobian_branch", _variant.names, params)
     t = _support.param("jacobian_branch", "t", t, "real")
     X1 = _support.param("jacobian_branch", "X1", X1, "real")
@@ -283,7 +454,7 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     return _variant.impl(_shape, t, X1, Y1, X2, Y2, sgn, *_values)
 
 
-def _jacobian_branch__hertz_damp(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
+def _jacobian_branch__hertz_damp__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = functools.reduce(numpy.maximum, [0, X2])
         _x1 = 2*beta2*omega2
@@ -299,7 +470,26 @@ def _jacobian_branch__hertz_damp(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, 
             ])
 
 
-def _jacobian_branch__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
+def _jacobian_branch__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = functools.reduce(numpy.maximum, [0, X2])
+        _x1 = 2*beta2*omega2
+        _x2 = Y2*_x1 + omega2**2
+        _x3 = _x0**(3/2)
+        _x4 = numpy.greater(_x2*_x3, 0)
+        _x5 = numpy.select([_x4,True], [(3/2)*numpy.sqrt(_x0)*_x2,0], default=numpy.nan)
+        _x6 = mu_s*sgn
+        _x7 = numpy.greater(X2, 0)
+        _x8 = numpy.select([_x4,True], [_x1*_x3,0], default=numpy.nan)
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, numpy.select([_x7,True], [-_x5*_x6,0], default=numpy.nan), numpy.select([_x7,True], [-_x6*_x8,0], default=numpy.nan)],
+                [0, 0, 0, 1],
+                [0, 0, numpy.select([_x7,True], [-_x5,0], default=numpy.nan), numpy.select([_x7,True], [-_x8,0], default=numpy.nan)],
+            ])
+
+
+def _jacobian_branch__kelvin_voigt__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = omega2**2
         _x1 = mu_s*sgn
@@ -313,13 +503,32 @@ def _jacobian_branch__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1
             ])
 
 
+def _jacobian_branch__kelvin_voigt__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2
+        _x1 = 2*beta2*omega2
+        _x2 = numpy.greater(Y2*_x1 + _x0*functools.reduce(numpy.maximum, [0, X2]), 0)
+        _x3 = numpy.select([_x2,True], [_x0,0], default=numpy.nan)
+        _x4 = mu_s*sgn
+        _x5 = numpy.greater(X2, 0)
+        _x6 = numpy.select([_x2,True], [_x1,0], default=numpy.nan)
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, numpy.select([_x5,True], [-_x3*_x4,0], default=numpy.nan), numpy.select([_x5,True], [-_x4*_x6,0], default=numpy.nan)],
+                [0, 0, 0, 1],
+                [0, 0, numpy.select([_x5,True], [-_x3,0], default=numpy.nan), numpy.select([_x5,True], [-_x6,0], default=numpy.nan)],
+            ])
+
+
 _JACOBIAN_BRANCH = {
-    ('hertz_damp',): _support.Variant(_jacobian_branch__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
-    ('kelvin_voigt',): _support.Variant(_jacobian_branch__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
+    ('hertz_damp', 'allowed'): _support.Variant(_jacobian_branch__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
+    ('hertz_damp', 'clipped'): _support.Variant(_jacobian_branch__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_jacobian_branch__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_jacobian_branch__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
 }
 
 
-def normal_force(X2, Y2, *, contact='hertz_damp', **params):
+def normal_force(X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
     """Normal force per unit mass, zero out of contact.
 
     Implements Eq. (1) of the paper.
@@ -336,6 +545,8 @@ def normal_force(X2, Y2, *, contact='hertz_damp', **params):
         Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -352,7 +563,7 @@ def normal_force(X2, Y2, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("normal_force", _NORMAL_FORCE, contact=contact)
+    _variant = _support.choose("normal_force", _NORMAL_FORCE, contact=contact, tension=tension)
     _values, _extra = _support.arguments("normal_force", _variant.names, params)
     X2 = _support.param("normal_force", "X2", X2, "real")
     Y2 = _support.param("normal_force", "Y2", Y2, "real")
@@ -360,19 +571,610 @@ def normal_force(X2, Y2, *, contact='hertz_damp', **params):
     return _variant.impl(_shape, X2, Y2, *_values)
 
 
-def _normal_force__hertz_damp(_shape, X2, Y2, beta2, omega2):
+def bind_normal_force(*, contact='hertz_damp', tension='allowed', backend=None, **params):
+    """`normal_force` as a scalar kernel with the parameters checked once and bound.
+
+    ``bind_normal_force(**params)(X2, Y2)`` equals ``normal_force(X2, Y2, **params)``
+    for scalar inputs and returns a float. For the inner loops of an
+    integrator: the arguments are checked here, not on every call.
+
+    Parameters
+    ----------
+    beta2 : float
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : float
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
+    backend : {"python", "numba"}, optional
+        The kernel as plain Python, or compiled by ``numba.njit`` (on first call;
+        cached on disk). Default: numba if it is installed, else python.
+    **params
+        Any other model parameter (accepted and ignored).
+
+    Returns
+    -------
+    _support.Bound
+        Call it as ``kernel(X2, Y2)``; ``.kernel`` and ``.args`` are the raw kernel
+        and the bound values, for a caller that compiles its own loop.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    ImportError
+        For backend="numba" when numba is not installed.
+    """
+    _variant = _support.choose("bind_normal_force", _NORMAL_FORCE, contact=contact, tension=tension)
+    return _support.bind("normal_force", _variant, params, backend)
+
+
+def _normal_force__hertz_damp__allowed(_shape, X2, Y2, beta2, omega2):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2),0], default=numpy.nan))
 
 
-def _normal_force__kelvin_voigt(_shape, X2, Y2, beta2, omega2):
+def _normal_force__hertz_damp__allowed__scalar(X2, Y2, beta2, omega2):
+    """Scalar kernel of `normal_force` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    return (((2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)) if (X2 > 0) else (0))
+
+
+def _normal_force__hertz_damp__clipped(_shape, X2, Y2, beta2, omega2):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan),0], default=numpy.nan))
+
+
+def _normal_force__hertz_damp__clipped__scalar(X2, Y2, beta2, omega2):
+    """Scalar kernel of `normal_force` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    return ((((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (0))
+
+
+def _normal_force__kelvin_voigt__allowed(_shape, X2, Y2, beta2, omega2):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2]),0], default=numpy.nan))
 
 
+def _normal_force__kelvin_voigt__allowed__scalar(X2, Y2, beta2, omega2):
+    """Scalar kernel of `normal_force` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    return ((2*Y2*beta2*omega2 + omega2**2*max(0, X2)) if (X2 > 0) else (0))
+
+
+def _normal_force__kelvin_voigt__clipped(_shape, X2, Y2, beta2, omega2):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan),0], default=numpy.nan))
+
+
+def _normal_force__kelvin_voigt__clipped__scalar(X2, Y2, beta2, omega2):
+    """Scalar kernel of `normal_force` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    return ((((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (0))
+
+
 _NORMAL_FORCE = {
-    ('hertz_damp',): _support.Variant(_normal_force__hertz_damp, ('beta2', 'omega2', )),
-    ('kelvin_voigt',): _support.Variant(_normal_force__kelvin_voigt, ('beta2', 'omega2', )),
+    ('hertz_damp', 'allowed'): _support.Variant(_normal_force__hertz_damp__allowed, ('beta2', 'omega2', ), _normal_force__hertz_damp__allowed__scalar, None),
+    ('hertz_damp', 'clipped'): _support.Variant(_normal_force__hertz_damp__clipped, ('beta2', 'omega2', ), _normal_force__hertz_damp__clipped__scalar, None),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_normal_force__kelvin_voigt__allowed, ('beta2', 'omega2', ), _normal_force__kelvin_voigt__allowed__scalar, None),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_normal_force__kelvin_voigt__clipped, ('beta2', 'omega2', ), _normal_force__kelvin_voigt__clipped__scalar, None),
+}
+
+
+def normal_rhs(t, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
+    """Right-hand side (X2', Y2') of the normal equation alone.
+
+    Implements Eq. (4), second row of the paper.
+
+    The normal equation contains neither X1, X1', Vb nor mu_s (the one-way coupling of
+    Eq. 4).
+
+    Parameters
+    ----------
+    t : array_like
+        time [s]
+    X2 : array_like
+        normal penetration into the belt [m]
+    Y2 : array_like
+        normal velocity X2' [m/s]
+    beta2 : array_like
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : array_like
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    alpha : array_like
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : array_like
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    g : array_like
+        gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
+    alpha_n : array_like
+        normal excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_n : array_like
+        normal excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_n : array_like
+        normal excitation phase [rad], real, default 0.0.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    dnormal : ndarray, shape (..., 2)
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    """
+    _variant = _support.choose("normal_rhs", _NORMAL_RHS, contact=contact, tension=tension)
+    _values, _extra = _support.arguments("normal_rhs", _variant.names, params)
+    t = _support.param("normal_rhs", "t", t, "real")
+    X2 = _support.param("normal_rhs", "X2", X2, "real")
+    Y2 = _support.param("normal_rhs", "Y2", Y2, "real")
+    _shape = _support.shape_of(t, X2, Y2, *_values, *_extra)
+    return _variant.impl(_shape, t, X2, Y2, *_values)
+
+
+def bind_normal_rhs(*, contact='hertz_damp', tension='allowed', backend=None, **params):
+    """`normal_rhs` as a scalar kernel with the parameters checked once and bound.
+
+    ``bind_normal_rhs(**params)(t, X2, Y2)`` equals ``normal_rhs(t, X2, Y2, **params)``
+    for scalar inputs and returns a tuple of floats. For the inner loops of an
+    integrator: the arguments are checked here, not on every call.
+
+    Parameters
+    ----------
+    beta2 : float
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : float
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    alpha : float
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : float
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    g : float
+        gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
+    alpha_n : float
+        normal excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_n : float
+        normal excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_n : float
+        normal excitation phase [rad], real, default 0.0.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
+    backend : {"python", "numba"}, optional
+        The kernel as plain Python, or compiled by ``numba.njit`` (on first call;
+        cached on disk). Default: numba if it is installed, else python.
+    **params
+        Any other model parameter (accepted and ignored).
+
+    Returns
+    -------
+    _support.Bound
+        Call it as ``kernel(t, X2, Y2)``; ``.kernel`` and ``.args`` are the raw kernel
+        and the bound values, for a caller that compiles its own loop.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    ImportError
+        For backend="numba" when numba is not installed.
+    """
+    _variant = _support.choose("bind_normal_rhs", _NORMAL_RHS, contact=contact, tension=tension)
+    return _support.bind("normal_rhs", _variant, params, backend)
+
+
+def _normal_rhs__hertz_damp__allowed(_shape, t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y2), numpy.select([numpy.greater(X2, 0),True], [-_x0 - (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2),-_x0], default=numpy.nan)])
+
+
+def _normal_rhs__hertz_damp__allowed__scalar(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `normal_rhs` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
+    return (Y2, ((-_x0 - (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)) if (X2 > 0) else (-_x0)),)
+
+
+def _normal_rhs__hertz_damp__clipped(_shape, t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x1 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y2), numpy.select([numpy.greater(X2, 0),True], [-_x1 - numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan),-_x1], default=numpy.nan)])
+
+
+def _normal_rhs__hertz_damp__clipped__scalar(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `normal_rhs` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x1 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
+    return (Y2, ((-_x1 - ((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (-_x1)),)
+
+
+def _normal_rhs__kelvin_voigt__allowed(_shape, t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y2), numpy.select([numpy.greater(X2, 0),True], [-2*Y2*beta2*omega2 - _x0 - omega2**2*functools.reduce(numpy.maximum, [0, X2]),-_x0], default=numpy.nan)])
+
+
+def _normal_rhs__kelvin_voigt__allowed__scalar(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `normal_rhs` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
+    return (Y2, ((-2*Y2*beta2*omega2 - _x0 - omega2**2*max(0, X2)) if (X2 > 0) else (-_x0)),)
+
+
+def _normal_rhs__kelvin_voigt__clipped(_shape, t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        _x1 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y2), numpy.select([numpy.greater(X2, 0),True], [-_x1 - numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan),-_x1], default=numpy.nan)])
+
+
+def _normal_rhs__kelvin_voigt__clipped__scalar(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `normal_rhs` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    _x1 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
+    return (Y2, ((-_x1 - ((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (-_x1)),)
+
+
+_NORMAL_RHS = {
+    ('hertz_damp', 'allowed'): _support.Variant(_normal_rhs__hertz_damp__allowed, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', ), _normal_rhs__hertz_damp__allowed__scalar, None),
+    ('hertz_damp', 'clipped'): _support.Variant(_normal_rhs__hertz_damp__clipped, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', ), _normal_rhs__hertz_damp__clipped__scalar, None),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_normal_rhs__kelvin_voigt__allowed, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', ), _normal_rhs__kelvin_voigt__allowed__scalar, None),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_normal_rhs__kelvin_voigt__clipped, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', ), _normal_rhs__kelvin_voigt__clipped__scalar, None),
+}
+
+
+def normal_jacobian(t, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
+    """Jacobian of `normal_rhs` with respect to (X2, Y2).
+
+    Implements Eq. (4), second row of the paper.
+
+    The variational equation of the normal motion, for the normal block of the monodromy
+    matrix.
+
+    Parameters
+    ----------
+    t : array_like
+        time [s]
+    X2 : array_like
+        normal penetration into the belt [m]
+    Y2 : array_like
+        normal velocity X2' [m/s]
+    beta2 : array_like
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : array_like
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    J : ndarray, shape (..., 2, 2)
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    """
+    _variant = _support.choose("normal_jacobian", _NORMAL_JACOBIAN, contact=contact, tension=tension)
+    _values, _extra = _support.arguments("normal_jacobian", _variant.names, params)
+    t = _support.param("normal_jacobian", "t", t, "real")
+    X2 = _support.param("normal_jacobian", "X2", X2, "real")
+    Y2 = _support.param("normal_jacobian", "Y2", Y2, "real")
+    _shape = _support.shape_of(t, X2, Y2, *_values, *_extra)
+    return _variant.impl(_shape, t, X2, Y2, *_values)
+
+
+def bind_normal_jacobian(*, contact='hertz_damp', tension='allowed', backend=None, **params):
+    """`normal_jacobian` as a scalar kernel with the parameters checked once and bound.
+
+    ``bind_normal_jacobian(**params)(t, X2, Y2)`` equals ``normal_jacobian(t, X2, Y2, **params)``
+    for scalar inputs and returns the entries as a flat tuple, row by row. For the inner loops of an
+    integrator: the arguments are checked here, not on every call.
+
+    Parameters
+    ----------
+    beta2 : float
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : float
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
+    backend : {"python", "numba"}, optional
+        The kernel as plain Python, or compiled by ``numba.njit`` (on first call;
+        cached on disk). Default: numba if it is installed, else python.
+    **params
+        Any other model parameter (accepted and ignored).
+
+    Returns
+    -------
+    _support.Bound
+        Call it as ``kernel(t, X2, Y2)``; ``.kernel`` and ``.args`` are the raw kernel
+        and the bound values, for a caller that compiles its own loop.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    ImportError
+        For backend="numba" when numba is not installed.
+    """
+    _variant = _support.choose("bind_normal_jacobian", _NORMAL_JACOBIAN, contact=contact, tension=tension)
+    return _support.bind("normal_jacobian", _variant, params, backend)
+
+
+def _normal_jacobian__hertz_damp__allowed(_shape, t, X2, Y2, beta2, omega2):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = functools.reduce(numpy.maximum, [0, X2])
+        _x1 = 2*beta2*omega2
+        _x2 = numpy.greater(X2, 0)
+        return _support.matrix(_shape, [
+                [0, 1],
+                [numpy.select([_x2,True], [-3/2*numpy.sqrt(_x0)*(Y2*_x1 + omega2**2),0], default=numpy.nan), numpy.select([_x2,True], [-_x0**(3/2)*_x1,0], default=numpy.nan)],
+            ])
+
+
+def _normal_jacobian__hertz_damp__allowed__scalar(t, X2, Y2, beta2, omega2):
+    """Scalar kernel of `normal_jacobian` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = max(0, X2)
+    _x1 = 2*beta2*omega2
+    _x2 = (X2 > 0)
+    return (0, 1, ((-3/2*math.sqrt(_x0)*(Y2*_x1 + omega2**2)) if _x2 else (0)), ((-_x0**(3/2)*_x1) if _x2 else (0)),)
+
+
+def _normal_jacobian__hertz_damp__clipped(_shape, t, X2, Y2, beta2, omega2):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = functools.reduce(numpy.maximum, [0, X2])
+        _x1 = 2*beta2*omega2
+        _x2 = Y2*_x1 + omega2**2
+        _x3 = _x0**(3/2)
+        _x4 = numpy.greater(_x2*_x3, 0)
+        _x5 = numpy.greater(X2, 0)
+        return _support.matrix(_shape, [
+                [0, 1],
+                [numpy.select([_x5,True], [-numpy.select([_x4,True], [(3/2)*numpy.sqrt(_x0)*_x2,0], default=numpy.nan),0], default=numpy.nan), numpy.select([_x5,True], [-numpy.select([_x4,True], [_x1*_x3,0], default=numpy.nan),0], default=numpy.nan)],
+            ])
+
+
+def _normal_jacobian__hertz_damp__clipped__scalar(t, X2, Y2, beta2, omega2):
+    """Scalar kernel of `normal_jacobian` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = max(0, X2)
+    _x1 = 2*beta2*omega2
+    _x2 = Y2*_x1 + omega2**2
+    _x3 = _x0**(3/2)
+    _x4 = (_x2*_x3 > 0)
+    _x5 = (X2 > 0)
+    return (0, 1, ((-(((3/2)*math.sqrt(_x0)*_x2) if _x4 else (0))) if _x5 else (0)), ((-((_x1*_x3) if _x4 else (0))) if _x5 else (0)),)
+
+
+def _normal_jacobian__kelvin_voigt__allowed(_shape, t, X2, Y2, beta2, omega2):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = numpy.greater(X2, 0)
+        return _support.matrix(_shape, [
+                [0, 1],
+                [numpy.select([_x0,True], [-omega2**2,0], default=numpy.nan), numpy.select([_x0,True], [-2*beta2*omega2,0], default=numpy.nan)],
+            ])
+
+
+def _normal_jacobian__kelvin_voigt__allowed__scalar(t, X2, Y2, beta2, omega2):
+    """Scalar kernel of `normal_jacobian` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = (X2 > 0)
+    return (0, 1, ((-omega2**2) if _x0 else (0)), ((-2*beta2*omega2) if _x0 else (0)),)
+
+
+def _normal_jacobian__kelvin_voigt__clipped(_shape, t, X2, Y2, beta2, omega2):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2
+        _x1 = 2*beta2*omega2
+        _x2 = numpy.greater(Y2*_x1 + _x0*functools.reduce(numpy.maximum, [0, X2]), 0)
+        _x3 = numpy.greater(X2, 0)
+        return _support.matrix(_shape, [
+                [0, 1],
+                [numpy.select([_x3,True], [-numpy.select([_x2,True], [_x0,0], default=numpy.nan),0], default=numpy.nan), numpy.select([_x3,True], [-numpy.select([_x2,True], [_x1,0], default=numpy.nan),0], default=numpy.nan)],
+            ])
+
+
+def _normal_jacobian__kelvin_voigt__clipped__scalar(t, X2, Y2, beta2, omega2):
+    """Scalar kernel of `normal_jacobian` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = omega2**2
+    _x1 = 2*beta2*omega2
+    _x2 = (Y2*_x1 + _x0*max(0, X2) > 0)
+    _x3 = (X2 > 0)
+    return (0, 1, ((-((_x0) if _x2 else (0))) if _x3 else (0)), ((-((_x1) if _x2 else (0))) if _x3 else (0)),)
+
+
+_NORMAL_JACOBIAN = {
+    ('hertz_damp', 'allowed'): _support.Variant(_normal_jacobian__hertz_damp__allowed, ('beta2', 'omega2', ), _normal_jacobian__hertz_damp__allowed__scalar, None),
+    ('hertz_damp', 'clipped'): _support.Variant(_normal_jacobian__hertz_damp__clipped, ('beta2', 'omega2', ), _normal_jacobian__hertz_damp__clipped__scalar, None),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_normal_jacobian__kelvin_voigt__allowed, ('beta2', 'omega2', ), _normal_jacobian__kelvin_voigt__allowed__scalar, None),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_normal_jacobian__kelvin_voigt__clipped, ('beta2', 'omega2', ), _normal_jacobian__kelvin_voigt__clipped__scalar, None),
+}
+
+
+def free_acceleration(t, X1, Y1, **params):
+    """Tangential acceleration without friction.
+
+    Implements Eq. (4), first row of the paper.
+
+    f_t - 2 beta1 omega1 X1' - omega1^2 X1; sticking holds while |a_free| <= mu_s F_n.
+
+    Parameters
+    ----------
+    t : array_like
+        time [s]
+    X1 : array_like
+        tangential displacement [m]
+    Y1 : array_like
+        tangential velocity X1' [m/s]
+    beta1 : array_like
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : array_like
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    alpha : array_like
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : array_like
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    alpha_t : array_like
+        tangential excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_t : array_like
+        tangential excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_t : array_like
+        tangential excitation phase (Fig. 15: pi/2) [rad], real, default 0.0.
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    a_free : ndarray
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    """
+    _variant = _support.choose("free_acceleration", _FREE_ACCELERATION)
+    _values, _extra = _support.arguments("free_acceleration", _variant.names, params)
+    t = _support.param("free_acceleration", "t", t, "real")
+    X1 = _support.param("free_acceleration", "X1", X1, "real")
+    Y1 = _support.param("free_acceleration", "Y1", Y1, "real")
+    _shape = _support.shape_of(t, X1, Y1, *_values, *_extra)
+    return _variant.impl(_shape, t, X1, Y1, *_values)
+
+
+def bind_free_acceleration(*, backend=None, **params):
+    """`free_acceleration` as a scalar kernel with the parameters checked once and bound.
+
+    ``bind_free_acceleration(**params)(t, X1, Y1)`` equals ``free_acceleration(t, X1, Y1, **params)``
+    for scalar inputs and returns a float. For the inner loops of an
+    integrator: the arguments are checked here, not on every call.
+
+    Parameters
+    ----------
+    beta1 : float
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : float
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    alpha : float
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : float
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    alpha_t : float
+        tangential excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_t : float
+        tangential excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_t : float
+        tangential excitation phase (Fig. 15: pi/2) [rad], real, default 0.0.
+    backend : {"python", "numba"}, optional
+        The kernel as plain Python, or compiled by ``numba.njit`` (on first call;
+        cached on disk). Default: numba if it is installed, else python.
+    **params
+        Any other model parameter (accepted and ignored).
+
+    Returns
+    -------
+    _support.Bound
+        Call it as ``kernel(t, X1, Y1)``; ``.kernel`` and ``.args`` are the raw kernel
+        and the bound values, for a caller that compiles its own loop.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    ImportError
+        For backend="numba" when numba is not installed.
+    """
+    _variant = _support.choose("bind_free_acceleration", _FREE_ACCELERATION)
+    return _support.bind("free_acceleration", _variant, params, backend)
+
+
+def _free_acceleration__impl(_shape, t, X1, Y1, beta1, omega1, alpha_t, Omega_t, phase_t):
+    return _support.full(_shape, Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1)
+
+
+def _free_acceleration__impl__scalar(t, X1, Y1, beta1, omega1, alpha_t, Omega_t, phase_t):
+    """Scalar kernel of `free_acceleration` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    return Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1
+
+
+_FREE_ACCELERATION = {
+    (): _support.Variant(_free_acceleration__impl, ('beta1', 'omega1', 'alpha_t', 'Omega_t', 'phase_t', ), _free_acceleration__impl__scalar, None),
 }
 
 
@@ -427,21 +1229,81 @@ def excitation(t, **params):
     return _variant.impl(_shape, t, *_values)
 
 
+def bind_excitation(*, backend=None, **params):
+    """`excitation` as a scalar kernel with the parameters checked once and bound.
+
+    ``bind_excitation(**params)(t)`` equals ``excitation(t, **params)``
+    for scalar inputs and returns a tuple of floats. For the inner loops of an
+    integrator: the arguments are checked here, not on every call.
+
+    Parameters
+    ----------
+    alpha : float
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : float
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    alpha_t : float
+        tangential excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_t : float
+        tangential excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_t : float
+        tangential excitation phase (Fig. 15: pi/2) [rad], real, default 0.0.
+    alpha_n : float
+        normal excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_n : float
+        normal excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_n : float
+        normal excitation phase [rad], real, default 0.0.
+    backend : {"python", "numba"}, optional
+        The kernel as plain Python, or compiled by ``numba.njit`` (on first call;
+        cached on disk). Default: numba if it is installed, else python.
+    **params
+        Any other model parameter (accepted and ignored).
+
+    Returns
+    -------
+    _support.Bound
+        Call it as ``kernel(t)``; ``.kernel`` and ``.args`` are the raw kernel
+        and the bound values, for a caller that compiles its own loop.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    ImportError
+        For backend="numba" when numba is not installed.
+    """
+    _variant = _support.choose("bind_excitation", _EXCITATION)
+    return _support.bind("excitation", _variant, params, backend)
+
+
 def _excitation__impl(_shape, t, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     return _support.tuple_of(_shape, Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t), -Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n))
 
 
+def _excitation__impl__scalar(t, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `excitation` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    return (Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t), -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n),)
+
+
 _EXCITATION = {
-    (): _support.Variant(_excitation__impl, ('alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    (): _support.Variant(_excitation__impl, ('alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _excitation__impl__scalar, None),
 }
 
 
-def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
+def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
     """Mechanical energy per unit mass.
 
     Implements Eq. (4) (energy balance of Sect. 3) of the paper.
 
-    Kinetic + tangential spring + contact potential - g X2.
+    Kinetic + tangential spring + contact potential - g X2. The same for both tension
+    laws (the clip is booked in power_balance).
 
     Parameters
     ----------
@@ -461,6 +1323,8 @@ def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
         gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -477,7 +1341,7 @@ def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("energy", _ENERGY, contact=contact)
+    _variant = _support.choose("energy", _ENERGY, contact=contact, tension=tension)
     _values, _extra = _support.arguments("energy", _variant.names, params)
     X1 = _support.param("energy", "X1", X1, "real")
     Y1 = _support.param("energy", "Y1", Y1, "real")
@@ -487,23 +1351,112 @@ def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     return _variant.impl(_shape, X1, Y1, X2, Y2, *_values)
 
 
-def _energy__hertz_damp(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
+def bind_energy(*, contact='hertz_damp', tension='allowed', backend=None, **params):
+    """`energy` as a scalar kernel with the parameters checked once and bound.
+
+    ``bind_energy(**params)(X1, Y1, X2, Y2)`` equals ``energy(X1, Y1, X2, Y2, **params)``
+    for scalar inputs and returns a float. For the inner loops of an
+    integrator: the arguments are checked here, not on every call.
+
+    Parameters
+    ----------
+    omega1 : float
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    omega2 : float
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    g : float
+        gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
+    backend : {"python", "numba"}, optional
+        The kernel as plain Python, or compiled by ``numba.njit`` (on first call;
+        cached on disk). Default: numba if it is installed, else python.
+    **params
+        Any other model parameter (accepted and ignored).
+
+    Returns
+    -------
+    _support.Bound
+        Call it as ``kernel(X1, Y1, X2, Y2)``; ``.kernel`` and ``.args`` are the raw kernel
+        and the bound values, for a caller that compiles its own loop.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    ImportError
+        For backend="numba" when numba is not installed.
+    """
+    _variant = _support.choose("bind_energy", _ENERGY, contact=contact, tension=tension)
+    return _support.bind("energy", _variant, params, backend)
+
+
+def _energy__hertz_damp__allowed(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(2/5)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**(5/2),0], default=numpy.nan))
 
 
-def _energy__kelvin_voigt(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
+def _energy__hertz_damp__allowed__scalar(X1, Y1, X2, Y2, omega1, omega2, g):
+    """Scalar kernel of `energy` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (((2/5)*omega2**2*max(0, X2)**(5/2)) if (X2 > 0) else (0))
+
+
+def _energy__hertz_damp__clipped(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(2/5)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**(5/2),0], default=numpy.nan))
+
+
+def _energy__hertz_damp__clipped__scalar(X1, Y1, X2, Y2, omega1, omega2, g):
+    """Scalar kernel of `energy` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (((2/5)*omega2**2*max(0, X2)**(5/2)) if (X2 > 0) else (0))
+
+
+def _energy__kelvin_voigt__allowed(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(1/2)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**2,0], default=numpy.nan))
 
 
+def _energy__kelvin_voigt__allowed__scalar(X1, Y1, X2, Y2, omega1, omega2, g):
+    """Scalar kernel of `energy` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (((1/2)*omega2**2*max(0, X2)**2) if (X2 > 0) else (0))
+
+
+def _energy__kelvin_voigt__clipped(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(1/2)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**2,0], default=numpy.nan))
+
+
+def _energy__kelvin_voigt__clipped__scalar(X1, Y1, X2, Y2, omega1, omega2, g):
+    """Scalar kernel of `energy` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (((1/2)*omega2**2*max(0, X2)**2) if (X2 > 0) else (0))
+
+
 _ENERGY = {
-    ('hertz_damp',): _support.Variant(_energy__hertz_damp, ('omega1', 'omega2', 'g', )),
-    ('kelvin_voigt',): _support.Variant(_energy__kelvin_voigt, ('omega1', 'omega2', 'g', )),
+    ('hertz_damp', 'allowed'): _support.Variant(_energy__hertz_damp__allowed, ('omega1', 'omega2', 'g', ), _energy__hertz_damp__allowed__scalar, None),
+    ('hertz_damp', 'clipped'): _support.Variant(_energy__hertz_damp__clipped, ('omega1', 'omega2', 'g', ), _energy__hertz_damp__clipped__scalar, None),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_energy__kelvin_voigt__allowed, ('omega1', 'omega2', 'g', ), _energy__kelvin_voigt__allowed__scalar, None),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_energy__kelvin_voigt__clipped, ('omega1', 'omega2', 'g', ), _energy__kelvin_voigt__clipped__scalar, None),
 }
 
 
-def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
+def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', tension='allowed', **params):
     """Power terms with dE/dt = P_input - P_viscous - P_friction.
 
     Implements Eq. (4) (energy balance of Sect. 3) of the paper.
@@ -550,6 +1503,8 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
         normal excitation phase [rad], real, default 0.0.
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -566,7 +1521,7 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("power_balance", _POWER_BALANCE, contact=contact)
+    _variant = _support.choose("power_balance", _POWER_BALANCE, contact=contact, tension=tension)
     _values, _extra = _support.arguments("power_balance", _variant.names, params)
     t = _support.param("power_balance", "t", t, "real")
     X1 = _support.param("power_balance", "X1", X1, "real")
@@ -578,7 +1533,72 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     return _variant.impl(_shape, t, X1, Y1, X2, Y2, sgn, *_values)
 
 
-def _power_balance__hertz_damp(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+def bind_power_balance(*, contact='hertz_damp', tension='allowed', backend=None, **params):
+    """`power_balance` as a scalar kernel with the parameters checked once and bound.
+
+    ``bind_power_balance(**params)(t, X1, Y1, X2, Y2, sgn)`` equals ``power_balance(t, X1, Y1, X2, Y2, sgn, **params)``
+    for scalar inputs and returns a tuple of floats. For the inner loops of an
+    integrator: the arguments are checked here, not on every call.
+
+    Parameters
+    ----------
+    beta1 : float
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : float
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    beta2 : float
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : float
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    alpha : float
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : float
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    mu_s : float
+        Coulomb friction coefficient, Eq. (3) [1], nonnegative.
+    alpha_t : float
+        tangential excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_t : float
+        tangential excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_t : float
+        tangential excitation phase (Fig. 15: pi/2) [rad], real, default 0.0.
+    alpha_n : float
+        normal excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_n : float
+        normal excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_n : float
+        normal excitation phase [rad], real, default 0.0.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
+    backend : {"python", "numba"}, optional
+        The kernel as plain Python, or compiled by ``numba.njit`` (on first call;
+        cached on disk). Default: numba if it is installed, else python.
+    **params
+        Any other model parameter (accepted and ignored).
+
+    Returns
+    -------
+    _support.Bound
+        Call it as ``kernel(t, X1, Y1, X2, Y2, sgn)``; ``.kernel`` and ``.args`` are the raw kernel
+        and the bound values, for a caller that compiles its own loop.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    ImportError
+        For backend="numba" when numba is not installed.
+    """
+    _variant = _support.choose("bind_power_balance", _POWER_BALANCE, contact=contact, tension=tension)
+    return _support.bind("power_balance", _variant, params, backend)
+
+
+def _power_balance__hertz_damp__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = omega2**2
         _x1 = functools.reduce(numpy.maximum, [0, X2])**(3/2)
@@ -587,14 +1607,82 @@ def _power_balance__hertz_damp(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, be
         return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x3,True], [Y2*(-_x0*_x1 + _x1*_x2),0], default=numpy.nan), Y1*mu_s*sgn*numpy.select([_x3,True], [_x1*_x2,0], default=numpy.nan))
 
 
-def _power_balance__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+def _power_balance__hertz_damp__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `power_balance` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = omega2**2
+    _x1 = max(0, X2)**(3/2)
+    _x2 = 2*Y2*beta2*omega2 + _x0
+    _x3 = (X2 > 0)
+    return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x1*_x2)) if _x3 else (0)), Y1*mu_s*sgn*((_x1*_x2) if _x3 else (0)),)
+
+
+def _power_balance__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2
+        _x1 = functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x2 = _x1*(2*Y2*beta2*omega2 + _x0)
+        _x3 = numpy.select([numpy.greater(_x2, 0),True], [_x2,0], default=numpy.nan)
+        _x4 = numpy.greater(X2, 0)
+        return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x4,True], [Y2*(-_x0*_x1 + _x3),0], default=numpy.nan), Y1*mu_s*sgn*numpy.select([_x4,True], [_x3,0], default=numpy.nan))
+
+
+def _power_balance__hertz_damp__clipped__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `power_balance` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = omega2**2
+    _x1 = max(0, X2)**(3/2)
+    _x2 = _x1*(2*Y2*beta2*omega2 + _x0)
+    _x3 = ((_x2) if (_x2 > 0) else (0))
+    _x4 = (X2 > 0)
+    return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x3)) if _x4 else (0)), Y1*mu_s*sgn*((_x3) if _x4 else (0)),)
+
+
+def _power_balance__kelvin_voigt__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = 2*beta2*omega2
         _x1 = numpy.greater(X2, 0)
         return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x1,True], [Y2**2*_x0,0], default=numpy.nan), Y1*mu_s*sgn*numpy.select([_x1,True], [Y2*_x0 + omega2**2*functools.reduce(numpy.maximum, [0, X2]),0], default=numpy.nan))
 
 
+def _power_balance__kelvin_voigt__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `power_balance` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = 2*beta2*omega2
+    _x1 = (X2 > 0)
+    return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2**2*_x0) if _x1 else (0)), Y1*mu_s*sgn*((Y2*_x0 + omega2**2*max(0, X2)) if _x1 else (0)),)
+
+
+def _power_balance__kelvin_voigt__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        _x1 = 2*Y2*beta2*omega2 + _x0
+        _x2 = numpy.select([numpy.greater(_x1, 0),True], [_x1,0], default=numpy.nan)
+        _x3 = numpy.greater(X2, 0)
+        return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x3,True], [Y2*(-_x0 + _x2),0], default=numpy.nan), Y1*mu_s*sgn*numpy.select([_x3,True], [_x2,0], default=numpy.nan))
+
+
+def _power_balance__kelvin_voigt__clipped__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `power_balance` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = omega2**2*max(0, X2)
+    _x1 = 2*Y2*beta2*omega2 + _x0
+    _x2 = ((_x1) if (_x1 > 0) else (0))
+    _x3 = (X2 > 0)
+    return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0 + _x2)) if _x3 else (0)), Y1*mu_s*sgn*((_x2) if _x3 else (0)),)
+
+
 _POWER_BALANCE = {
-    ('hertz_damp',): _support.Variant(_power_balance__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
-    ('kelvin_voigt',): _support.Variant(_power_balance__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('hertz_damp', 'allowed'): _support.Variant(_power_balance__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _power_balance__hertz_damp__allowed__scalar, None),
+    ('hertz_damp', 'clipped'): _support.Variant(_power_balance__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _power_balance__hertz_damp__clipped__scalar, None),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_power_balance__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _power_balance__kelvin_voigt__allowed__scalar, None),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_power_balance__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _power_balance__kelvin_voigt__clipped__scalar, None),
 }

@@ -411,14 +411,19 @@ def choose(function, table, **options):
     Raises
     ------
     ValueError
-        Naming the option, if a value is not one of its choices.
+        Naming the option, if a value is not one of its choices, or naming the
+        combination, if the table has no variant for it (e.g. a switch no run takes).
     """
     for position, (option, value) in enumerate(options.items()):
         choices = list(dict.fromkeys(key[position] for key in table))
         if isinstance(value, bool) or value not in choices:
             raise ValueError(f"{function}(): {option} must be one of "
                              f"{', '.join(map(repr, choices))}; got {value!r}")
-    return table[tuple(options.values())]
+    key = tuple(options.values())
+    if key not in table:
+        given = ", ".join(f"{k}={v!r}" for k, v in options.items())
+        raise ValueError(f"{function}(): no variant for {given}")
+    return table[key]
 
 
 __all__ = ["arguments", "mp_arguments", "param", "mp_param",

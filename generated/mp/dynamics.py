@@ -7,17 +7,20 @@ The full equations of motion, Eq. (4), for simulation.
 Loss of contact follows Eq. (1): zero normal force for ``X2 <= 0``. ``rhs`` uses the
 sign function of Eq. (3); ``rhs_branch`` and ``jacobian_branch`` take the friction
 direction as an argument for an event-driven simulator. ``energy`` and
-``power_balance`` give the energy check of Sect. 3.
+``power_balance`` give the energy check of Sect. 3. ``tension=`` chooses Eq. (1) as
+printed or a contact that cannot pull (docs/modelling.md#tension). ``bind_<name>``
+returns a function's scalar kernel with the parameters checked once, for the
+runtime's inner loops.
 """
 
 import mpmath
 
 from .. import _support
 
-__all__ = ['rhs', 'rhs_branch', 'jacobian_branch', 'normal_force', 'excitation', 'energy', 'power_balance']
+__all__ = ['rhs', 'rhs_branch', 'jacobian_branch', 'normal_force', 'normal_rhs', 'normal_jacobian', 'free_acceleration', 'excitation', 'energy', 'power_balance']
 
 
-def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
+def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
     """Right-hand side (X1', Y1', X2', Y2') of Eq. (4).
 
     Implements Eqs. (1)-(4) of the paper.
@@ -71,6 +74,8 @@ def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
         normal excitation phase [rad], real, default 0.0.
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -87,7 +92,7 @@ def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("rhs", _RHS, contact=contact)
+    _variant = _support.choose("rhs", _RHS, contact=contact, tension=tension)
     _values = _support.mp_arguments("rhs", _variant.names, params)
     t = _support.mp_param("rhs", "t", t, "real")
     X1 = _support.mp_param("rhs", "X1", X1, "real")
@@ -97,7 +102,7 @@ def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     return _variant.impl(t, X1, Y1, X2, Y2, *_values)
 
 
-def _rhs__hertz_damp(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+def _rhs__hertz_damp__allowed(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x2 = (X2 > 0)
@@ -105,7 +110,16 @@ def _rhs__hertz_damp(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, V
     return [Y1, ((-_x0*mu_s*mpmath.sign(-Vb + Y1) - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3))]
 
 
-def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+def _rhs__hertz_damp__clipped(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y1, ((-_x1*mu_s*mpmath.sign(-Vb + Y1) - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4))]
+
+
+def _rhs__kelvin_voigt__allowed(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
     _x1 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x2 = (X2 > 0)
@@ -113,13 +127,24 @@ def _rhs__kelvin_voigt(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g,
     return [Y1, ((-_x0*mu_s*mpmath.sign(-Vb + Y1) - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3))]
 
 
+def _rhs__kelvin_voigt__clipped(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y1, ((-_x1*mu_s*mpmath.sign(-Vb + Y1) - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4))]
+
+
 _RHS = {
-    ('hertz_damp',): _support.Variant(_rhs__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
-    ('kelvin_voigt',): _support.Variant(_rhs__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('hertz_damp', 'allowed'): _support.Variant(_rhs__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('hertz_damp', 'clipped'): _support.Variant(_rhs__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_rhs__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_rhs__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
 }
 
 
-def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
+def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', tension='allowed', **params):
     """Right-hand side of Eq. (4) with a given friction direction.
 
     Implements Eqs. (1)-(4) of the paper.
@@ -174,6 +199,8 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
         normal excitation phase [rad], real, default 0.0.
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -190,7 +217,7 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("rhs_branch", _RHS_BRANCH, contact=contact)
+    _variant = _support.choose("rhs_branch", _RHS_BRANCH, contact=contact, tension=tension)
     _values = _support.mp_arguments("rhs_branch", _variant.names, params)
     t = _support.mp_param("rhs_branch", "t", t, "real")
     X1 = _support.mp_param("rhs_branch", "X1", X1, "real")
@@ -201,7 +228,7 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     return _variant.impl(t, X1, Y1, X2, Y2, sgn, *_values)
 
 
-def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+def _rhs_branch__hertz_damp__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
     _x1 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x2 = (X2 > 0)
@@ -209,7 +236,16 @@ def _rhs_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2
     return [Y1, ((-_x0*mu_s*sgn - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3))]
 
 
-def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+def _rhs_branch__hertz_damp__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y1, ((-_x1*mu_s*sgn - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4))]
+
+
+def _rhs_branch__kelvin_voigt__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
     _x1 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x2 = (X2 > 0)
@@ -217,13 +253,24 @@ def _rhs_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omeg
     return [Y1, ((-_x0*mu_s*sgn - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3))]
 
 
+def _rhs_branch__kelvin_voigt__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y1, ((-_x1*mu_s*sgn - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4))]
+
+
 _RHS_BRANCH = {
-    ('hertz_damp',): _support.Variant(_rhs_branch__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
-    ('kelvin_voigt',): _support.Variant(_rhs_branch__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('hertz_damp', 'allowed'): _support.Variant(_rhs_branch__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('hertz_damp', 'clipped'): _support.Variant(_rhs_branch__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_rhs_branch__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_rhs_branch__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
 }
 
 
-def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
+def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', tension='allowed', **params):
     """State Jacobian of `rhs_branch`.
 
     Implements Eqs. (1)-(4) of the paper.
@@ -256,6 +303,8 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
         Coulomb friction coefficient, Eq. (3) [1], nonnegative.
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -272,7 +321,7 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("jacobian_branch", _JACOBIAN_BRANCH, contact=contact)
+    _variant = _support.choose("jacobian_branch", _JACOBIAN_BRANCH, contact=contact, tension=tension)
     _values = _support.mp_arguments("jacobian_branch", _variant.names, params)
     t = _support.mp_param("jacobian_branch", "t", t, "real")
     X1 = _support.mp_param("jacobian_branch", "X1", X1, "real")
@@ -283,7 +332,7 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     return _variant.impl(t, X1, Y1, X2, Y2, sgn, *_values)
 
 
-def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
+def _jacobian_branch__hertz_damp__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
     _x0 = max(0, X2)
     _x1 = 2*beta2*omega2
     _x2 = (mpmath.mpf(3)/mpmath.mpf(2))*mpmath.sqrt(_x0)*(Y2*_x1 + omega2**2)
@@ -298,7 +347,25 @@ def _jacobian_branch__hertz_damp(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, o
         ])
 
 
-def _jacobian_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
+def _jacobian_branch__hertz_damp__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
+    _x0 = max(0, X2)
+    _x1 = 2*beta2*omega2
+    _x2 = Y2*_x1 + omega2**2
+    _x3 = _x0**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x4 = (_x2*_x3 > 0)
+    _x5 = (((mpmath.mpf(3)/mpmath.mpf(2))*mpmath.sqrt(_x0)*_x2) if _x4 else (0))
+    _x6 = mu_s*sgn
+    _x7 = (X2 > 0)
+    _x8 = ((_x1*_x3) if _x4 else (0))
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, ((-_x5*_x6) if _x7 else (0)), ((-_x6*_x8) if _x7 else (0))],
+            [0, 0, 0, 1],
+            [0, 0, ((-_x5) if _x7 else (0)), ((-_x8) if _x7 else (0))],
+        ])
+
+
+def _jacobian_branch__kelvin_voigt__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
     _x0 = omega2**2
     _x1 = mu_s*sgn
     _x2 = (X2 > 0)
@@ -311,13 +378,31 @@ def _jacobian_branch__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2,
         ])
 
 
+def _jacobian_branch__kelvin_voigt__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
+    _x0 = omega2**2
+    _x1 = 2*beta2*omega2
+    _x2 = (Y2*_x1 + _x0*max(0, X2) > 0)
+    _x3 = ((_x0) if _x2 else (0))
+    _x4 = mu_s*sgn
+    _x5 = (X2 > 0)
+    _x6 = ((_x1) if _x2 else (0))
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, ((-_x3*_x4) if _x5 else (0)), ((-_x4*_x6) if _x5 else (0))],
+            [0, 0, 0, 1],
+            [0, 0, ((-_x3) if _x5 else (0)), ((-_x6) if _x5 else (0))],
+        ])
+
+
 _JACOBIAN_BRANCH = {
-    ('hertz_damp',): _support.Variant(_jacobian_branch__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
-    ('kelvin_voigt',): _support.Variant(_jacobian_branch__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
+    ('hertz_damp', 'allowed'): _support.Variant(_jacobian_branch__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
+    ('hertz_damp', 'clipped'): _support.Variant(_jacobian_branch__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_jacobian_branch__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_jacobian_branch__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
 }
 
 
-def normal_force(X2, Y2, *, contact='hertz_damp', **params):
+def normal_force(X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
     """Normal force per unit mass, zero out of contact.
 
     Implements Eq. (1) of the paper.
@@ -336,6 +421,8 @@ def normal_force(X2, Y2, *, contact='hertz_damp', **params):
         Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -352,24 +439,292 @@ def normal_force(X2, Y2, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("normal_force", _NORMAL_FORCE, contact=contact)
+    _variant = _support.choose("normal_force", _NORMAL_FORCE, contact=contact, tension=tension)
     _values = _support.mp_arguments("normal_force", _variant.names, params)
     X2 = _support.mp_param("normal_force", "X2", X2, "real")
     Y2 = _support.mp_param("normal_force", "Y2", Y2, "real")
     return _variant.impl(X2, Y2, *_values)
 
 
-def _normal_force__hertz_damp(X2, Y2, beta2, omega2):
+def _normal_force__hertz_damp__allowed(X2, Y2, beta2, omega2):
     return (((2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))) if (X2 > 0) else (0))
 
 
-def _normal_force__kelvin_voigt(X2, Y2, beta2, omega2):
+def _normal_force__hertz_damp__clipped(X2, Y2, beta2, omega2):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    return ((((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (0))
+
+
+def _normal_force__kelvin_voigt__allowed(X2, Y2, beta2, omega2):
     return ((2*Y2*beta2*omega2 + omega2**2*max(0, X2)) if (X2 > 0) else (0))
 
 
+def _normal_force__kelvin_voigt__clipped(X2, Y2, beta2, omega2):
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    return ((((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (0))
+
+
 _NORMAL_FORCE = {
-    ('hertz_damp',): _support.Variant(_normal_force__hertz_damp, ('beta2', 'omega2', )),
-    ('kelvin_voigt',): _support.Variant(_normal_force__kelvin_voigt, ('beta2', 'omega2', )),
+    ('hertz_damp', 'allowed'): _support.Variant(_normal_force__hertz_damp__allowed, ('beta2', 'omega2', )),
+    ('hertz_damp', 'clipped'): _support.Variant(_normal_force__hertz_damp__clipped, ('beta2', 'omega2', )),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_normal_force__kelvin_voigt__allowed, ('beta2', 'omega2', )),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_normal_force__kelvin_voigt__clipped, ('beta2', 'omega2', )),
+}
+
+
+def normal_rhs(t, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
+    """Right-hand side (X2', Y2') of the normal equation alone.
+
+    Implements Eq. (4), second row of the paper.
+
+    The normal equation contains neither X1, X1', Vb nor mu_s (the one-way coupling of
+    Eq. 4).
+
+    mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits.
+
+    Parameters
+    ----------
+    t : mpmath number
+        time [s]
+    X2 : mpmath number
+        normal penetration into the belt [m]
+    Y2 : mpmath number
+        normal velocity X2' [m/s]
+    beta2 : mpmath number
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : mpmath number
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    alpha : mpmath number
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : mpmath number
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    g : mpmath number
+        gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
+    alpha_n : mpmath number
+        normal excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_n : mpmath number
+        normal excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_n : mpmath number
+        normal excitation phase [rad], real, default 0.0.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    dnormal : ndarray, shape (..., 2)
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    """
+    _variant = _support.choose("normal_rhs", _NORMAL_RHS, contact=contact, tension=tension)
+    _values = _support.mp_arguments("normal_rhs", _variant.names, params)
+    t = _support.mp_param("normal_rhs", "t", t, "real")
+    X2 = _support.mp_param("normal_rhs", "X2", X2, "real")
+    Y2 = _support.mp_param("normal_rhs", "Y2", Y2, "real")
+    return _variant.impl(t, X2, Y2, *_values)
+
+
+def _normal_rhs__hertz_damp__allowed(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    _x0 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y2, ((-_x0 - (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))) if (X2 > 0) else (-_x0))]
+
+
+def _normal_rhs__hertz_damp__clipped(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x1 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y2, ((-_x1 - ((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (-_x1))]
+
+
+def _normal_rhs__kelvin_voigt__allowed(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    _x0 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y2, ((-2*Y2*beta2*omega2 - _x0 - omega2**2*max(0, X2)) if (X2 > 0) else (-_x0))]
+
+
+def _normal_rhs__kelvin_voigt__clipped(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    _x1 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y2, ((-_x1 - ((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (-_x1))]
+
+
+_NORMAL_RHS = {
+    ('hertz_damp', 'allowed'): _support.Variant(_normal_rhs__hertz_damp__allowed, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('hertz_damp', 'clipped'): _support.Variant(_normal_rhs__hertz_damp__clipped, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_normal_rhs__kelvin_voigt__allowed, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_normal_rhs__kelvin_voigt__clipped, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', )),
+}
+
+
+def normal_jacobian(t, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
+    """Jacobian of `normal_rhs` with respect to (X2, Y2).
+
+    Implements Eq. (4), second row of the paper.
+
+    The variational equation of the normal motion, for the normal block of the monodromy
+    matrix.
+
+    mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits.
+
+    Parameters
+    ----------
+    t : mpmath number
+        time [s]
+    X2 : mpmath number
+        normal penetration into the belt [m]
+    Y2 : mpmath number
+        normal velocity X2' [m/s]
+    beta2 : mpmath number
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : mpmath number
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    J : ndarray, shape (..., 2, 2)
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    """
+    _variant = _support.choose("normal_jacobian", _NORMAL_JACOBIAN, contact=contact, tension=tension)
+    _values = _support.mp_arguments("normal_jacobian", _variant.names, params)
+    t = _support.mp_param("normal_jacobian", "t", t, "real")
+    X2 = _support.mp_param("normal_jacobian", "X2", X2, "real")
+    Y2 = _support.mp_param("normal_jacobian", "Y2", Y2, "real")
+    return _variant.impl(t, X2, Y2, *_values)
+
+
+def _normal_jacobian__hertz_damp__allowed(t, X2, Y2, beta2, omega2):
+    _x0 = max(0, X2)
+    _x1 = 2*beta2*omega2
+    _x2 = (X2 > 0)
+    return mpmath.matrix([
+            [0, 1],
+            [((-mpmath.mpf(3)/mpmath.mpf(2)*mpmath.sqrt(_x0)*(Y2*_x1 + omega2**2)) if _x2 else (0)), ((-_x0**(mpmath.mpf(3)/mpmath.mpf(2))*_x1) if _x2 else (0))],
+        ])
+
+
+def _normal_jacobian__hertz_damp__clipped(t, X2, Y2, beta2, omega2):
+    _x0 = max(0, X2)
+    _x1 = 2*beta2*omega2
+    _x2 = Y2*_x1 + omega2**2
+    _x3 = _x0**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x4 = (_x2*_x3 > 0)
+    _x5 = (X2 > 0)
+    return mpmath.matrix([
+            [0, 1],
+            [((-(((mpmath.mpf(3)/mpmath.mpf(2))*mpmath.sqrt(_x0)*_x2) if _x4 else (0))) if _x5 else (0)), ((-((_x1*_x3) if _x4 else (0))) if _x5 else (0))],
+        ])
+
+
+def _normal_jacobian__kelvin_voigt__allowed(t, X2, Y2, beta2, omega2):
+    _x0 = (X2 > 0)
+    return mpmath.matrix([
+            [0, 1],
+            [((-omega2**2) if _x0 else (0)), ((-2*beta2*omega2) if _x0 else (0))],
+        ])
+
+
+def _normal_jacobian__kelvin_voigt__clipped(t, X2, Y2, beta2, omega2):
+    _x0 = omega2**2
+    _x1 = 2*beta2*omega2
+    _x2 = (Y2*_x1 + _x0*max(0, X2) > 0)
+    _x3 = (X2 > 0)
+    return mpmath.matrix([
+            [0, 1],
+            [((-((_x0) if _x2 else (0))) if _x3 else (0)), ((-((_x1) if _x2 else (0))) if _x3 else (0))],
+        ])
+
+
+_NORMAL_JACOBIAN = {
+    ('hertz_damp', 'allowed'): _support.Variant(_normal_jacobian__hertz_damp__allowed, ('beta2', 'omega2', )),
+    ('hertz_damp', 'clipped'): _support.Variant(_normal_jacobian__hertz_damp__clipped, ('beta2', 'omega2', )),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_normal_jacobian__kelvin_voigt__allowed, ('beta2', 'omega2', )),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_normal_jacobian__kelvin_voigt__clipped, ('beta2', 'omega2', )),
+}
+
+
+def free_acceleration(t, X1, Y1, **params):
+    """Tangential acceleration without friction.
+
+    Implements Eq. (4), first row of the paper.
+
+    f_t - 2 beta1 omega1 X1' - omega1^2 X1; sticking holds while |a_free| <= mu_s F_n.
+
+    mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits.
+
+    Parameters
+    ----------
+    t : mpmath number
+        time [s]
+    X1 : mpmath number
+        tangential displacement [m]
+    Y1 : mpmath number
+        tangential velocity X1' [m/s]
+    beta1 : mpmath number
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : mpmath number
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    alpha : mpmath number
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : mpmath number
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    alpha_t : mpmath number
+        tangential excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_t : mpmath number
+        tangential excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_t : mpmath number
+        tangential excitation phase (Fig. 15: pi/2) [rad], real, default 0.0.
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    a_free : ndarray
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    """
+    _variant = _support.choose("free_acceleration", _FREE_ACCELERATION)
+    _values = _support.mp_arguments("free_acceleration", _variant.names, params)
+    t = _support.mp_param("free_acceleration", "t", t, "real")
+    X1 = _support.mp_param("free_acceleration", "X1", X1, "real")
+    Y1 = _support.mp_param("free_acceleration", "Y1", Y1, "real")
+    return _variant.impl(t, X1, Y1, *_values)
+
+
+def _free_acceleration__impl(t, X1, Y1, beta1, omega1, alpha_t, Omega_t, phase_t):
+    return Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1
+
+
+_FREE_ACCELERATION = {
+    (): _support.Variant(_free_acceleration__impl, ('beta1', 'omega1', 'alpha_t', 'Omega_t', 'phase_t', )),
 }
 
 
@@ -434,12 +789,13 @@ _EXCITATION = {
 }
 
 
-def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
+def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
     """Mechanical energy per unit mass.
 
     Implements Eq. (4) (energy balance of Sect. 3) of the paper.
 
-    Kinetic + tangential spring + contact potential - g X2.
+    Kinetic + tangential spring + contact potential - g X2. The same for both tension
+    laws (the clip is booked in power_balance).
 
     mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits.
 
@@ -461,6 +817,8 @@ def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
         gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -477,7 +835,7 @@ def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("energy", _ENERGY, contact=contact)
+    _variant = _support.choose("energy", _ENERGY, contact=contact, tension=tension)
     _values = _support.mp_arguments("energy", _variant.names, params)
     X1 = _support.mp_param("energy", "X1", X1, "real")
     Y1 = _support.mp_param("energy", "Y1", Y1, "real")
@@ -486,21 +844,31 @@ def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
     return _variant.impl(X1, Y1, X2, Y2, *_values)
 
 
-def _energy__hertz_damp(X1, Y1, X2, Y2, omega1, omega2, g):
+def _energy__hertz_damp__allowed(X1, Y1, X2, Y2, omega1, omega2, g):
     return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (((mpmath.mpf(2)/mpmath.mpf(5))*omega2**2*max(0, X2)**(mpmath.mpf(5)/mpmath.mpf(2))) if (X2 > 0) else (0))
 
 
-def _energy__kelvin_voigt(X1, Y1, X2, Y2, omega1, omega2, g):
+def _energy__hertz_damp__clipped(X1, Y1, X2, Y2, omega1, omega2, g):
+    return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (((mpmath.mpf(2)/mpmath.mpf(5))*omega2**2*max(0, X2)**(mpmath.mpf(5)/mpmath.mpf(2))) if (X2 > 0) else (0))
+
+
+def _energy__kelvin_voigt__allowed(X1, Y1, X2, Y2, omega1, omega2, g):
+    return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (((mpmath.mpf(1)/mpmath.mpf(2))*omega2**2*max(0, X2)**2) if (X2 > 0) else (0))
+
+
+def _energy__kelvin_voigt__clipped(X1, Y1, X2, Y2, omega1, omega2, g):
     return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (((mpmath.mpf(1)/mpmath.mpf(2))*omega2**2*max(0, X2)**2) if (X2 > 0) else (0))
 
 
 _ENERGY = {
-    ('hertz_damp',): _support.Variant(_energy__hertz_damp, ('omega1', 'omega2', 'g', )),
-    ('kelvin_voigt',): _support.Variant(_energy__kelvin_voigt, ('omega1', 'omega2', 'g', )),
+    ('hertz_damp', 'allowed'): _support.Variant(_energy__hertz_damp__allowed, ('omega1', 'omega2', 'g', )),
+    ('hertz_damp', 'clipped'): _support.Variant(_energy__hertz_damp__clipped, ('omega1', 'omega2', 'g', )),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_energy__kelvin_voigt__allowed, ('omega1', 'omega2', 'g', )),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_energy__kelvin_voigt__clipped, ('omega1', 'omega2', 'g', )),
 }
 
 
-def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
+def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', tension='allowed', **params):
     """Power terms with dE/dt = P_input - P_viscous - P_friction.
 
     Implements Eq. (4) (energy balance of Sect. 3) of the paper.
@@ -549,6 +917,8 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
         normal excitation phase [rad], real, default 0.0.
     contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
         contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -565,7 +935,7 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("power_balance", _POWER_BALANCE, contact=contact)
+    _variant = _support.choose("power_balance", _POWER_BALANCE, contact=contact, tension=tension)
     _values = _support.mp_arguments("power_balance", _variant.names, params)
     t = _support.mp_param("power_balance", "t", t, "real")
     X1 = _support.mp_param("power_balance", "X1", X1, "real")
@@ -576,7 +946,7 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', **params):
     return _variant.impl(t, X1, Y1, X2, Y2, sgn, *_values)
 
 
-def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+def _power_balance__hertz_damp__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = omega2**2
     _x1 = max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
     _x2 = 2*Y2*beta2*omega2 + _x0
@@ -584,13 +954,32 @@ def _power_balance__hertz_damp(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, ome
     return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x1*_x2)) if _x3 else (0)), Y1*mu_s*sgn*((_x1*_x2) if _x3 else (0)),)
 
 
-def _power_balance__kelvin_voigt(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+def _power_balance__hertz_damp__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    _x0 = omega2**2
+    _x1 = max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x2 = _x1*(2*Y2*beta2*omega2 + _x0)
+    _x3 = ((_x2) if (_x2 > 0) else (0))
+    _x4 = (X2 > 0)
+    return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x3)) if _x4 else (0)), Y1*mu_s*sgn*((_x3) if _x4 else (0)),)
+
+
+def _power_balance__kelvin_voigt__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     _x0 = 2*beta2*omega2
     _x1 = (X2 > 0)
     return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2**2*_x0) if _x1 else (0)), Y1*mu_s*sgn*((Y2*_x0 + omega2**2*max(0, X2)) if _x1 else (0)),)
 
 
+def _power_balance__kelvin_voigt__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
+    _x0 = omega2**2*max(0, X2)
+    _x1 = 2*Y2*beta2*omega2 + _x0
+    _x2 = ((_x1) if (_x1 > 0) else (0))
+    _x3 = (X2 > 0)
+    return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0 + _x2)) if _x3 else (0)), Y1*mu_s*sgn*((_x2) if _x3 else (0)),)
+
+
 _POWER_BALANCE = {
-    ('hertz_damp',): _support.Variant(_power_balance__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
-    ('kelvin_voigt',): _support.Variant(_power_balance__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('hertz_damp', 'allowed'): _support.Variant(_power_balance__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('hertz_damp', 'clipped'): _support.Variant(_power_balance__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_power_balance__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_power_balance__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
 }

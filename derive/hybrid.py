@@ -1,0 +1,203 @@
+"""Eq. (4) as a hybrid system: modes, switching surfaces, guards and saltation matrices.
+
+The sign function of Eq. (3) and the loss of contact of Eq. (1) make Eq. (4)
+piecewise smooth. An event-driven integrator, the superposition integrator and the
+Floquet analysis all work on the same description, derived here:
+
+* **modes**, each with a smooth vector field on the whole state space (so that a
+  root finder may look past a switch): ``slip_back`` and ``slip_forward`` (in
+  contact, friction ``-mu_s sgn F`` with ``sgn = -1, +1``, the unclipped contact
+  force ``F`` of Eq. (1)); ``stick`` (Filippov's sliding mode on ``Vr = 0``:
+  ``X1' = Vb``, ``Y1' = 0``, the friction holds the mass); ``flight`` (``X2 <= 0``,
+  no contact force, Eq. 1) and ``separated`` (``tension="clipped"`` only: ``X2 > 0``
+  where Eq. (1) would pull; docs/modelling.md#tension), both with the free field;
+* **switching surfaces** ``h(t, x) = 0``: ``relative_velocity`` ``Y1 - Vb``;
+  ``stick_forward`` and ``stick_back`` ``mu_s F -+ a_free`` (the friction limit,
+  ``a_free`` the tangential acceleration without friction); ``penetration`` ``X2``;
+  ``contact_force``, a function with the sign of ``F`` in contact (``F`` divided by
+  its factors that are positive there: for Hertz-Damp ``omega2 + 2 beta2 X2'``,
+  which, unlike ``F``, crosses zero transversally where ``X2 = 0`` does not);
+* **guards**: per tension law, which surfaces end which mode, crossed in which
+  direction, and what follows (a mode, or a rule: `DECIDE_SLIP` is Filippov's rule
+  at ``Vr = 0``, `DECIDE_CONTACT` the choice on entering contact);
+* **saltation matrices** ``S = I + (f+ - f-) n^T / (dh/dt)-``, ``n = grad h`` and
+  ``(dh/dt)- = dh/dt + n^T f-`` (Aizerman-Gantmakher; Leine and Nijmeijer 2004), the
+  jump of the variational solution across a switch: without them Floquet
+  multipliers are wrong. Where the two fields agree on the surface (the clipped
+  force, the friction limit, lift-off of the Hertz-Damp contact) ``S = I``.
+
+Modes are coded by integers (`MODE_CODES`) so that a compiled integrator can pass
+the mode to one kernel: the slip codes are the friction direction ``sgn(Vr)`` of
+Eq. (3).
+"""
+from __future__ import annotations
+
+from functools import lru_cache
+
+import sympy as sp
+
+from .dynamics import X2r, free_acceleration
+from .model import TENSION_LAWS, P, X1, X2, Y1, Y2, excitation, normal_force, t
+
+__all__ = ["MODE_CODES", "FIELDS", "SURFACES", "DECIDE_SLIP", "DECIDE_CONTACT", "GUARDS",
+           "STATE", "mode", "contact_force_in_contact", "vector_field", "field_of_mode",
+           "surfaces", "surface_scales", "surface_rates", "transitions", "saltation"]
+
+#: Integer code of each mode; the slip codes are the friction direction of Eq. (3).
+MODE_CODES = {"slip_back": -1, "stick": 0, "slip_forward": 1, "flight": 2, "separated": 3}
+#: The vector field of each mode (flight and separated are both free of contact).
+FIELDS = {"slip_back": "slip_back", "stick": "stick", "slip_forward": "slip_forward",
+          "flight": "free", "separated": "free"}
+SURFACES = ("relative_velocity", "stick_forward", "stick_back", "penetration",
+            "contact_force")
+#: Guard target: decide by Filippov's rule at Vr = 0 (stick, reversal or leaving).
+DECIDE_SLIP = "decide_slip"
+#: Guard target: entering contact (the sign of Vr, or DECIDE_SLIP at Vr = 0; with the
+#: clipped law, separated while the contact force would pull).
+DECIDE_CONTACT = "decide_contact"
+
+_CONTACT_GUARDS = {
+    "slip_back": (("relative_velocity", 1, DECIDE_SLIP), ("penetration", -1, "flight")),
+    "slip_forward": (("relative_velocity", -1, DECIDE_SLIP), ("penetration", -1, "flight")),
+    "stick": (("stick_forward", -1, "slip_forward"), ("stick_back", -1, "slip_back"),
+              ("penetration", -1, "flight")),
+    "flight": (("penetration", 1, DECIDE_CONTACT),),
+}
+#: Per tension law: mode -> ((surface, direction of the crossing, target), ...). A
+#: mode ends where one of its surfaces is crossed in the stated direction (+1: h
+#: rises through 0, -1: falls through 0).
+GUARDS = {
+    "allowed": _CONTACT_GUARDS,
+    "clipped": {
+        **{m: g + (("contact_force", -1, "separated"),)
+           for m, g in _CONTACT_GUARDS.items() if m != "flight"},
+        "flight": _CONTACT_GUARDS["flight"],
+        "separated": (("contact_force", 1, DECIDE_CONTACT), ("penetration", -1, "flight")),
+    },
+}
+
+#: The mode code, an argument of the generated kernels.
+mode = sp.Symbol("mode", real=True)
+#: The state with a real (signed) penetration.
+STATE = (X1, Y1, X2r, Y2)
+
+
+def contact_force_in_contact(contact: str) -> sp.Expr:
+    """The unclipped contact force of Eq. (1), extended smoothly past ``X2 = 0``."""
+    return normal_force(contact).subs(X2, sp.Max(X2r, 0))
+
+
+def _contact_sign(contact: str) -> sp.Expr:
+    """``F`` of Eq. (1) divided by its factors that SymPy proves positive in contact."""
+    F = sp.factor(normal_force(contact))
+    kept = [f for f in sp.Mul.make_args(F) if f.is_positive is not True]
+    return sp.Mul(*kept)
+
+
+@lru_cache(maxsize=None)
+def field_of_mode(name: str, contact: str) -> sp.Matrix:
+    """Vector field ``(X1', Y1', X2', Y2')`` of one mode (by name; see `FIELDS`)."""
+    F = contact_force_in_contact(contact)
+    f_n = excitation()[1]
+    a_free = free_acceleration()
+    normal = P["g"] + f_n - F
+    field = FIELDS[name]
+    if field == "free":
+        return sp.Matrix([Y1, a_free, Y2, P["g"] + f_n])
+    if field == "stick":
+        return sp.Matrix([P["Vb"], 0, Y2, normal])
+    sgn = MODE_CODES[field]
+    return sp.Matrix([Y1, a_free - P["mu_s"] * sgn * F, Y2, normal])
+
+
+def _by_mode(build):
+    """``(piece, condition)`` for each mode code with a field of its own, and the free
+    field (the codes of flight and separated)."""
+    pieces = [(build(name), sp.Eq(mode, code)) for name, code in MODE_CODES.items()
+              if FIELDS[name] == name]
+    free = build("flight")
+    return pieces, free
+
+
+def vector_field(contact: str) -> sp.Matrix:
+    """The field of the mode with code ``mode`` (`MODE_CODES`), entry by entry."""
+    pieces, free = _by_mode(lambda name: field_of_mode(name, contact))
+    return sp.Matrix(4, 1, lambda i, _: sp.Piecewise(
+        *[(f[i], cond) for f, cond in pieces], (free[i], True)))
+
+
+@lru_cache(maxsize=None)
+def surfaces(contact: str) -> dict[str, sp.Expr]:
+    """The switching functions ``h(t, x)`` of `SURFACES`, by name."""
+    F = contact_force_in_contact(contact)
+    a_free = free_acceleration()
+    mu = P["mu_s"]
+    return {"relative_velocity": Y1 - P["Vb"],
+            "stick_forward": mu * F - a_free,
+            "stick_back": mu * F + a_free,
+            "penetration": X2r,
+            "contact_force": _contact_sign(contact).subs(X2, sp.Max(X2r, 0))}
+
+
+def surface_scales(contact: str) -> dict[str, sp.Expr]:
+    """The sum of the absolute values of the terms of each switching function.
+
+    A rounding-error scale: a computed ``h`` is within a few ulps of this scale of
+    the exact one, so a decision on the sign of ``h`` (stick against slip at a tie)
+    is taken with a tolerance proportional to it.
+    """
+    return {name: sp.Add(*[sp.Abs(term) for term in sp.Add.make_args(sp.expand(h))])
+            for name, h in surfaces(contact).items()}
+
+
+def _rate(h, field):
+    return sp.diff(h, t) + sum(sp.diff(h, x) * f for x, f in zip(STATE, field))
+
+
+def surface_rates(contact: str) -> dict[str, sp.Expr]:
+    """``dh/dt`` of each switching function along the field of mode ``mode``."""
+    pieces, free = _by_mode(lambda name: field_of_mode(name, contact))
+    out = {}
+    for name, h in surfaces(contact).items():
+        out[name] = sp.Piecewise(*[(_rate(h, f), cond) for f, cond in pieces],
+                                 (_rate(h, free), True))
+    return out
+
+
+def transitions() -> tuple[tuple[str, str, str], ...]:
+    """Every ``(before, after, surface)`` a run can take, over both tension laws.
+
+    A guard's rule expands to the modes it can choose: `DECIDE_SLIP` to the other
+    slip direction (a reversal) and ``stick``; `DECIDE_CONTACT` to either slip
+    direction and ``stick`` (and ``separated`` under the clipped law).
+    """
+    found = set()
+    for tension in TENSION_LAWS:
+        for before, guards in GUARDS[tension].items():
+            for surface, _, target in guards:
+                if target == DECIDE_SLIP:
+                    after = ["stick", "slip_forward" if before == "slip_back" else "slip_back"]
+                elif target == DECIDE_CONTACT:
+                    after = ["slip_back", "slip_forward", "stick"]
+                    if tension == "clipped" and before != "separated":
+                        after.append("separated")
+                else:
+                    after = [target]
+                found.update((before, a, surface) for a in after)
+    return tuple(sorted(found))
+
+
+def saltation(before: str, after: str, surface: str, contact: str) -> sp.Matrix:
+    """Saltation matrix of a switch from ``before`` to ``after`` across ``surface``.
+
+    ``S = I + (f+ - f-) n^T / (dh/dt)-`` with ``n`` the state gradient of ``h`` and
+    ``(dh/dt)- = dh/dt + n^T f-`` the rate at which the run reaches the surface.
+    ``S`` maps a perturbation just before the switch to one just after it, for the
+    perturbed run that switches at a shifted time.
+    """
+    h = surfaces(contact)[surface]
+    f_minus, f_plus = field_of_mode(before, contact), field_of_mode(after, contact)
+    n = sp.Matrix([[sp.diff(h, x) for x in STATE]])
+    rate = sp.diff(h, t) + (n * f_minus)[0]
+    return sp.eye(4) + (f_plus - f_minus) * n / rate
+
