@@ -46,6 +46,9 @@ def test_rhs_with_sign_equals_branch_in_each_direction():
 def test_initial_state_is_the_unforced_equilibrium_eq9():
     p = resolve_parameters()
     X1, Y1, X2, Y2 = initial_state(p)
+    # X1: * and / only, 3 correctly rounded steps a side: <= 3 eps = 6.7e-16 on any CPU.
+    # X2: three cube roots at <= 4 ulp and 3 roundings (13.5 eps) against libm's pow
+    # (< 1 ulp) of a 2-rounding quotient to the rounded power 2/3 (~2.6 eps): <= 3.6e-15
     assert X1 == pytest.approx(p["mu_s"] * p["g"] / p["omega1"] ** 2, rel=1e-15)
     assert X2 == pytest.approx((p["g"] / p["omega2"] ** 2) ** (2 / 3), rel=1e-14)
     assert Y1 == Y2 == 0
