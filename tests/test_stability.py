@@ -537,7 +537,7 @@ def growth_rate_bound(p, lam, contact):
     Kelvin-Voigt normal mode: h = beta2 omega2, q = omega2^2: e_h = u h, e_q = u q;
     d = omega2^2 (beta2 - 1)(beta2 + 1): e_d = 2.5 eps |d| (5 roundings).
 
-    From (h, q, d) to the mode's growth rate g (`_support.quadratic_growth`, the
+    From (h, q, d) to the mode's growth rate g (`statespace.Quadratic.largest_real_part`, the
     same branches in the numba kernels): -h if d < 0, q / -(h + s) if h > 0, else
     s - h, with s = sqrt|d|. The square root is where the conditioning is:
     |s_computed - s| <= min(e_d / sqrt|d|, sqrt(e_d)) + u s, both exact inequalities;
