@@ -334,10 +334,15 @@ _JITTED = {}
 
 
 def jit(kernel):
-    """``numba.njit(cache=True)`` of a generated scalar kernel, compiled once per session."""
+    """``numba.njit`` of a generated scalar kernel, compiled once per session.
+
+    Cached on disk; floating-point errors follow numpy (a division by zero gives
+    inf or NaN, as in the numpy implementation, not an exception).
+    """
     fast = _JITTED.get(kernel)
     if fast is None:
-        fast = _JITTED[kernel] = _import_numba(True).njit(cache=True)(kernel)
+        fast = _JITTED[kernel] = _import_numba(True).njit(cache=True,
+                                                          error_model="numpy")(kernel)
     return fast
 
 
@@ -347,16 +352,23 @@ class Bound:
     ``bound(*state)`` is ``bound.kernel(*state, *bound.args)``. An integrator that
     compiles its own loop (numba) takes ``kernel`` and ``args`` and calls the kernel
     itself; ``params`` maps the parameter names to the bound values.
+    ``bound.array(*state)`` evaluates the unchecked numpy implementation on arrays
+    of states (the layout of the public function's result).
     """
 
-    __slots__ = ("name", "kernel", "args", "params", "backend")
+    __slots__ = ("name", "kernel", "args", "params", "backend", "_impl", "_values")
 
-    def __init__(self, name, kernel, args, params, backend):
+    def __init__(self, name, kernel, args, params, backend, impl, values):
         self.name, self.kernel, self.args = name, kernel, args
         self.params, self.backend = params, backend
+        self._impl, self._values = impl, values
 
     def __call__(self, *state):
         return self.kernel(*state, *self.args)
+
+    def array(self, *state):
+        state = [numpy.asarray(x, dtype=float) for x in state]
+        return self._impl(shape_of(*state), *state, *self._values)
 
     def __repr__(self):
         return f"<bound {self.name} ({self.backend})>"
@@ -388,8 +400,11 @@ def bind(function, variant, params, backend):
     roots = tuple(float(r) for r in variant.prep(*values)) if variant.prep is not None else ()
     use_numba = backend == "numba" or (backend is None and _import_numba(False) is not None)
     kernel = jit(variant.scalar) if use_numba else variant.scalar
+    # the array implementation keeps numpy's floating-point semantics (inf, not an
+    # exception, for a power of zero) with numpy scalars
     return Bound(function, kernel, values + roots, dict(zip(variant.names, values)),
-                 "numba" if use_numba else "python")
+                 "numba" if use_numba else "python", variant.impl,
+                 tuple(numpy.float64(v) for v in values))
 
 
 class Variant:
