@@ -124,10 +124,11 @@ def _simulate(argv):
 
 def validation_lines(table, param="Vb"):
     """The validation print-out: where the omega1 peak appears, beside the paper."""
-    from .sweep import omega1_peak_ranges
+    from .intervals import format_intervals
     from .simulate import PEAK_PRESENT_RATIO
+    from .sweep import omega1_peak_ranges
     ranges = omega1_peak_ranges(table, param)
-    found = ", ".join(f"[{a:g}, {b:g}]" for a, b in ranges) or "nowhere"
+    found = format_intervals(ranges, "g", "nowhere")
     x = np.asarray(table[param], float)
     return [f"omega1 peak (>= {100 * PEAK_PRESENT_RATIO:g}% of the Omega peak) present for "
             f"{param} in {found} m/s of the swept {x.min():g}..{x.max():g} m/s "

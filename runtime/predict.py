@@ -34,6 +34,7 @@ from scipy import optimize
 
 from generated import correlation, stability
 
+from . import intervals
 from .model import CONTACTS, resolve_parameters
 
 __all__ = ["FastMotion", "fast_motion", "consistent_mdsm_damping", "unstable_intervals",
@@ -120,12 +121,6 @@ def consistent_mdsm_damping(p, contact="hertz_damp", fast=None) -> float:
     return float(2 * p["beta1"] * p["omega1"] + p["mu_s"] * slope)
 
 
-def _edges(vb, damping):
-    """Indices ``i`` where the sign of the damping changes between ``vb[i]`` and ``vb[i+1]``."""
-    unstable = damping < 0
-    return np.flatnonzero(unstable[:-1] != unstable[1:])
-
-
 def unstable_intervals(params=None, *, contact="hertz_damp", vb=None, **overrides):
     """Unstable belt speeds of the consistent MDSM.
 
@@ -164,7 +159,7 @@ def unstable_intervals(params=None, *, contact="hertz_damp", vb=None, **override
         return consistent_mdsm_damping(q, contact, fast_motion(q, contact, guess))
 
     cuts = []
-    for i in _edges(grid, damping):
+    for i in intervals.sign_changes(damping):
         below, above = rows[i][2], rows[i + 1][2]
         if below.reverses != above.reverses:
             # Onset of reversal: at V = Vb the balance is the linear one, so the edge
@@ -174,14 +169,12 @@ def unstable_intervals(params=None, *, contact="hertz_damp", vb=None, **override
             continue
         cuts.append(optimize.brentq(damping_at, grid[i], grid[i + 1], args=(above,),
                                     xtol=1e-10))
-    bounds = ([grid[0]] if damping[0] < 0 else []) + cuts \
-        + ([grid[-1]] if damping[-1] < 0 else [])
-    intervals = [(float(a), float(b)) for a, b in zip(bounds[::2], bounds[1::2])]
+    unstable = intervals.from_crossings(grid, damping < 0, cuts)
     table = {"Vb": grid, "damping": damping,
              "V": np.array([r[2].V for r in rows]),
              "theta": np.array([r[2].theta for r in rows]),
              "reverses": np.array([r[2].reverses for r in rows])}
-    return intervals, table
+    return unstable, table
 
 
 def paper_intervals(params=None, *, contact="hertz_damp", **overrides):
@@ -228,9 +221,8 @@ def main(argv=None) -> int:
     if args.json:
         print(json.dumps(result))
         return 0
-    for name, intervals in result.items():
-        text = ", ".join(f"[{a:.3f}, {b:.3f}]" for a, b in intervals) or "none"
-        print(f"{name:>22}: unstable Vb in {text}")
+    for name, found in result.items():
+        print(f"{name:>22}: unstable Vb in {intervals.format_intervals(found, '.3f')}")
     return 0
 
 

@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import intervals
 from .model import resolve_parameters
 from .simulate import SolverSettings, simulate
 
@@ -156,17 +157,8 @@ def table_from_csv(path):
 
 
 def omega1_peak_ranges(table, param="Vb"):
-    """Contiguous ranges of ``param`` where the omega1 peak is present: [(lo, hi), ...]."""
-    present = np.asarray(table["omega1_peak_present"], dtype=bool)
-    x = np.asarray(table[param], dtype=float)
-    order = np.argsort(x)
-    x, present = x[order], present[order]
-    ranges, start = [], None
-    for i, flag in enumerate(present):
-        if flag and start is None:
-            start = i
-        if start is not None and (not flag or i == len(x) - 1):
-            end = i if flag else i - 1
-            ranges.append((float(x[start]), float(x[end])))
-            start = None
-    return ranges
+    """Contiguous ranges of ``param`` where the omega1 peak is present: [(lo, hi), ...].
+
+    `runtime.intervals.runs` of the table's ``omega1_peak_present`` column.
+    """
+    return intervals.runs(table[param], table["omega1_peak_present"])

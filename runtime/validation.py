@@ -36,6 +36,7 @@ import numpy as np
 
 from generated import stability
 
+from . import intervals
 from .model import resolve_parameters
 from .predict import unstable_intervals
 from .simulate import PEAK_PRESENT_RATIO, SolverSettings, omega1_band
@@ -187,16 +188,10 @@ def vb_grid(step, top, start=None):
 def regime_runs(vb, regime):
     """Runs of consecutive grid points with one label (a regime, or a flag as text).
 
-    Returns ``[(label, first Vb, last Vb), ...]``.
+    Returns ``[(label, first Vb, last Vb), ...]`` (`runtime.intervals.label_runs`).
     """
-    runs = []
-    for v, r in zip(vb, regime):
-        r = str(r)
-        if runs and runs[-1][0] == r:
-            runs[-1] = (r, runs[-1][1], float(v))
-        else:
-            runs.append((r, float(v), float(v)))
-    return runs
+    return [(label, float(vb[i]), float(vb[j]))
+            for label, i, j in intervals.label_runs([str(r) for r in regime])]
 
 
 def simulated_ranges(vb, present, regime, step):
@@ -231,20 +226,12 @@ def simulated_ranges(vb, present, regime, step):
         raise ValueError(f"vb must be the grid step, 2 step, ... with step = {step}")
     sliding = np.isin(regime, SLIDING)
     shows = present & sliding
-    ranges, i, n = [], 0, vb.size
-    while i < n:
-        if not shows[i]:
-            i += 1
-            continue
-        j = i
-        while j + 1 < n and shows[j + 1]:
-            j += 1
-        # Below the lowest grid point lies Vb = 0, not an excluded point.
-        ranges.append({"first": float(vb[i]), "last": float(vb[j]),
-                       "lower": float(vb[i] - step / 2), "upper": float(vb[j] + step / 2),
-                       "lower_censored": bool(i > 0 and not sliding[i - 1]),
-                       "upper_censored": bool(j == n - 1 or not sliding[j + 1])})
-        i = j + 1
+    # Below the lowest grid point lies Vb = 0, not an excluded point.
+    ranges = [{"first": float(vb[i]), "last": float(vb[j]),
+               "lower": float(vb[i] - step / 2), "upper": float(vb[j] + step / 2),
+               "lower_censored": bool(i > 0 and not sliding[i - 1]),
+               "upper_censored": bool(j == vb.size - 1 or not sliding[j + 1])}
+              for i, j in intervals.true_runs(shows)]
     excluded = [run for run in regime_runs(vb, regime) if run[0] not in SLIDING]
     return {"ranges": ranges, "excluded": excluded,
             "excluded_vb": [float(v) for v in vb[~sliding]], "top": float(vb[-1]),
@@ -323,8 +310,7 @@ def compare(predicted, simulated, step):
         out["status"] = "false_alarm"
     else:
         out["status"] = "paired"
-        lo = min(a for a, _ in predicted)
-        hi = max(b for _, b in predicted)
+        lo, hi = intervals.hull(predicted)
         out["lower"] = _edge(lo, ranges[0]["lower"], ranges[0]["lower_censored"], lo == 0.0)
         out["upper"] = _edge(hi, ranges[-1]["upper"], ranges[-1]["upper_censored"])
     return out
@@ -337,24 +323,12 @@ def disagreement_length(predicted, simulated, step):
     ``[Vb - step/2, Vb + step/2]`` of the excluded (stick-slip, contact-loss) points.
     """
     window_end = simulated["top"] + step / 2
-    cuts = {0.0, window_end}
-    for a, b in predicted:
-        cuts.update((min(max(a, 0.0), window_end), min(max(b, 0.0), window_end)))
-    for r in simulated["ranges"]:
-        cuts.update((r["lower"], r["upper"]))
-    for v in simulated["excluded_vb"]:
-        cuts.update((max(v - step / 2, 0.0), min(v + step / 2, window_end)))
-    cuts = sorted(cuts)
-    total = 0.0
-    # Membership is constant between consecutive cuts: test each piece at its middle.
-    for a, b in zip(cuts[:-1], cuts[1:]):
-        m = 0.5 * (a + b)
-        if any(abs(m - v) < step / 2 for v in simulated["excluded_vb"]):
-            continue
-        in_p = any(lo <= m <= hi for lo, hi in predicted)
-        in_s = any(r["lower"] <= m <= r["upper"] for r in simulated["ranges"])
-        total += (b - a) * (in_p != in_s)
-    return total
+    observed = intervals.clip(predicted, 0.0, window_end)
+    found = [(r["lower"], r["upper"]) for r in simulated["ranges"]]
+    excluded = [(max(v - step / 2, 0.0), min(v + step / 2, window_end))
+                for v in simulated["excluded_vb"]]
+    return intervals.length(intervals.difference(
+        intervals.symmetric_difference(observed, found), excluded))
 
 
 def summarize(cases):
@@ -480,7 +454,7 @@ def _num(x):
 
 
 def _ranges_text(ranges):
-    return ", ".join(f"[{_num(a)}, {_num(b)}]" for a, b in ranges) if ranges else "none"
+    return intervals.format_intervals(ranges, ".2f")
 
 
 def _simulated_text(sim):
