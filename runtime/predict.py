@@ -35,7 +35,7 @@ from scipy import optimize
 from generated import correlation, stability
 
 from . import intervals
-from .model import CONTACTS, resolve_parameters
+from .parameters import CONTACTS, resolve_parameters
 
 __all__ = ["FastMotion", "fast_motion", "consistent_mdsm_damping", "unstable_intervals",
            "paper_intervals", "predict", "main"]

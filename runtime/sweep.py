@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from . import intervals
-from .model import resolve_parameters
+from .parameters import resolve_parameters
 from .simulate import SolverSettings, simulate
 
 __all__ = ["sweep", "run_point", "cache_key", "default_cache_dir", "table_to_csv",

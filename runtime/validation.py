@@ -37,7 +37,7 @@ import numpy as np
 from generated import stability
 
 from . import intervals
-from .model import resolve_parameters
+from .parameters import resolve_parameters
 from .predict import unstable_intervals
 from .simulate import PEAK_PRESENT_RATIO, SolverSettings, omega1_band
 from .sweep import sweep
