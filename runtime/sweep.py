@@ -94,9 +94,8 @@ def linear_values(start, stop, step):
         raise ValueError(f"stop must be >= start; got start = {start!r}, stop = {stop!r}")
     count = math.floor((stop - start) / step + 1e-9) + 1
     if count > MAX_POINTS:
-        raise ValueError(f"start = {start!r} to stop = {stop!r} in steps of {step!r} is "
-                         f"{count:.3g} points, more than MAX_POINTS = {MAX_POINTS:.0e} "
-                         "(runtime/sweep.py)")
+        raise ValueError(f"from {start!r} to {stop!r} in steps of {step!r} is {count:.3g} "
+                         f"points, more than MAX_POINTS = {MAX_POINTS:.0e} (runtime/sweep.py)")
     return start + step * np.arange(count)
 
 

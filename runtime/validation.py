@@ -24,13 +24,10 @@ Runtime layer: imports ``generated``, ``runtime``, numpy and scipy, never SymPy.
 """
 from __future__ import annotations
 
-import argparse
 import concurrent.futures as cf
 import math
 import os
-import sys
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
@@ -611,42 +608,6 @@ def render_markdown(results, quick):
 
 
 def main(argv=None) -> int:
-    """``python -m derive validate [--quick] [--out PATH] [--jobs N] [--no-cache]``."""
-    argv = list(sys.argv[1:] if argv is None else argv)
-    if argv and argv[0] == "validate":
-        argv = argv[1:]
-    parser = argparse.ArgumentParser(
-        prog="python -m derive validate",
-        description="Write VALIDATION.md: the simulated omega1-peak ranges of Vb against "
-                    "the predicted unstable ranges (Figs. 2, 17-21).")
-    parser.add_argument("--quick", action="store_true",
-                        help="1 m/s grid and 300 s runs instead of 0.25 m/s and 1000 s")
-    parser.add_argument("--out", default=str(Path(__file__).resolve().parents[1]
-                                             / "VALIDATION.md"),
-                        help="output file (default: VALIDATION.md at the repository root)")
-    parser.add_argument("--jobs", type=int, default=None,
-                        help="worker processes (default: all cores; 1: in this process)")
-    parser.add_argument("--no-cache", action="store_true", help="do not use the sweep cache")
-    parser.add_argument("--no-progress", action="store_true")
-    args = parser.parse_args(argv)
-    if args.jobs is not None and args.jobs < 1:
-        parser.error("--jobs must be >= 1")
-    executor = "serial" if args.jobs == 1 else None
-    pool = None
-    if args.jobs is not None and args.jobs > 1:
-        executor = pool = cf.ProcessPoolExecutor(max_workers=args.jobs)
-    try:
-        results = validate(args.quick, executor=executor,
-                           cache_dir=None if args.no_cache else "default",
-                           progress=not args.no_progress)
-    finally:
-        if pool is not None:
-            pool.shutdown()
-    Path(args.out).write_text(render_markdown(results, args.quick))
-    for key, lab, _ in ANALYSES:
-        s = results["summary"][key]
-        mae = "—" if s["mae"] is None else f"{s['mae']:.2f} m/s"
-        print(f"{lab:>4}: MAE of edges {mae} (n = {s['n_edges']}), miss {s['miss']}, "
-              f"false alarm {s['false_alarm']}")
-    print(f"wrote {args.out}")
-    return 0
+    """``python -m derive validate [--quick] [--out PATH] [--jobs N] [--no-cache]`` (`runtime.cli`)."""
+    from .cli import run_command
+    return run_command("validate", argv)
