@@ -79,13 +79,13 @@ def _prog():
     return "beltmdsm" if os.path.basename(sys.argv[0]) == "beltmdsm" else "python -m derive"
 
 
-def build_parser(prog=None):
-    """The whole command-line tree (`Parser`), the runtime commands included when they load.
+def build_parser(prog=None, runtime=True):
+    """The command-line tree (`Parser`), with the runtime commands if ``runtime`` and they load.
 
     The runtime imports ``generated/``, which ``python -m derive`` may be about to
     regenerate, or which may be absent from a copy of ``derive/`` alone: if the
-    runtime fails to import, the derive commands still work and the reason is
-    kept in ``parser.unavailable`` (else None).
+    runtime fails to load, the derive commands still work and the reason is kept in
+    ``parser.unavailable`` (else None).
     """
     parser = Parser(prog=prog or _prog(),
                     description="Derive the model symbolically and regenerate generated/ "
@@ -100,14 +100,19 @@ def build_parser(prog=None):
                     "generated/PAPER_CHECK.md.")
     paper.set_defaults(run=_check_paper)
     parser.unavailable = None
-    try:
-        from runtime import cli as runtime_cli
-    except Exception as err:        # noqa: BLE001 (any failure of generated/ at import)
-        parser.unavailable = parser.epilog = (
-            f"the runtime commands cannot be loaded: {type(err).__name__}: {err}")
-    else:
-        runtime_cli.add_commands(commands)
+    if runtime:
+        try:
+            from runtime import cli as runtime_cli
+            runtime_cli.add_commands(commands)
+        except Exception as err:    # noqa: BLE001 (whatever a broken generated/ raises)
+            parser.unavailable = parser.epilog = (
+                f"the runtime commands cannot be loaded: {type(err).__name__}: {err}")
     return parser
+
+
+def _needs_runtime(argv):
+    """False for the regeneration and check-paper: they must not depend on generated/."""
+    return not (set(argv) <= {"--check"} or argv[:1] == ["check-paper"])
 
 
 def main(argv=None) -> int:
@@ -118,7 +123,7 @@ def main(argv=None) -> int:
     A simulation that did not reach its end returns 2 as well (``simulate``).
     """
     argv = sys.argv[1:] if argv is None else list(argv)
-    parser = build_parser()
+    parser = build_parser(runtime=_needs_runtime(argv))
     try:
         args = parser.parse_args(argv)
         if args.command is None:

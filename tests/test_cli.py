@@ -310,3 +310,14 @@ def test_vb_points_sets_the_default_grid_too():
         predict_module.predict(vb=[3.0])
     with pytest.raises(ValueError, match="finite belt speeds >= 0"):
         predict_module.unstable_intervals(vb=[-1.0, 2.0])
+
+
+def test_regeneration_and_check_paper_do_not_load_the_runtime(monkeypatch):
+    def refuse(*args, **kwargs):
+        raise AssertionError("the runtime was loaded")
+    monkeypatch.setattr(runtime_cli, "add_commands", refuse)
+    assert not derive_cli._needs_runtime([]) and not derive_cli._needs_runtime(["--check"])
+    assert not derive_cli._needs_runtime(["check-paper"])
+    assert derive_cli._needs_runtime(["--help"]) and derive_cli._needs_runtime(["simulate"])
+    parser = derive_cli.build_parser(runtime=False)
+    assert parser.parse_args(["--check"]).check
