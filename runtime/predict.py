@@ -2,7 +2,7 @@
 
 The paper (Sects. 4.2-4.3) linearises the slow equations with the slope ``mu_bar'`` of
 Eq. (25); `generated.stability` gives its unstable interval in closed form. The
-consistent analysis here keeps what the paper drops (NOTES.md item 3): the
+consistent analysis here keeps what the paper drops (labelled in `derive/mdsm.py`): the
 correlation between the fast friction direction and the fast normal force.
 
 For a belt speed ``Vb`` it
