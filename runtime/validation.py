@@ -37,7 +37,7 @@ from . import intervals
 from .parameters import resolve_parameters
 from .predict import unstable_intervals
 from .simulate import PEAK_PRESENT_RATIO, SolverSettings, omega1_band
-from .sweep import sweep
+from .sweep import MAX_POINTS, sweep
 
 __all__ = ["Case", "CASES", "ANALYSES", "Resolution", "FULL", "QUICK", "SLIDING",
            "DEFINITIONS", "vb_grid", "regime_runs", "simulated_ranges", "harmonic_in_band",
@@ -176,7 +176,21 @@ def vb_grid(step, top, start=None):
     ``start`` (a grid value) drops the points below it, so a grid can be extended
     with the new points only. Multiples of the step are computed as ``k * step`` so
     that a value is bit-identical in every sweep (it keys the sweep cache).
+
+    Raises
+    ------
+    ValueError
+        Naming ``step``, ``top`` or ``start``: not finite, ``step <= 0``, ``top < 0``,
+        or more than `runtime.sweep.MAX_POINTS` points.
     """
+    for name, value in (("step", step), ("top", top), ("start", start)):
+        if value is not None and not math.isfinite(value):
+            raise ValueError(f"{name} must be finite; got {value!r}")
+    if not step > 0 or not top >= 0:
+        raise ValueError(f"step must be > 0 and top >= 0; got step = {step!r}, top = {top!r}")
+    if top / step > MAX_POINTS:
+        raise ValueError(f"step = {step!r} up to top = {top!r} is more than MAX_POINTS = "
+                         f"{MAX_POINTS:.0e} points (runtime/sweep.py)")
     last = math.ceil(top / step - 1e-9)
     first = 1 if start is None else int(round(start / step))
     return step * np.arange(first, last + 1, dtype=float)
@@ -408,6 +422,10 @@ def validate(quick=False, *, executor=None, cache_dir="default", progress=True, 
     """
     resolution = QUICK if quick else FULL
     by_name = {c.name: c for c in CASES}
+    unknown = [c for c in cases or () if isinstance(c, str) and c not in by_name]
+    if unknown:
+        raise ValueError(f"unknown case(s) {', '.join(map(repr, unknown))}; known: "
+                         f"{', '.join(by_name)}")
     selected = CASES if cases is None else tuple(by_name[c] if isinstance(c, str) else c
                                                  for c in cases)
     own = executor is None

@@ -97,3 +97,4 @@ def test_the_notebook_helpers_are_the_interval_functions():
     scan = {"param": "Vb", "Vb": np.array([1.0, 2.0, 3.0]),
             "omega1_peak_present": np.array([True, False, True])}
     assert nb.peak_ranges(scan) == [(1.0, 1.0), (3.0, 3.0)]
+
