@@ -70,10 +70,12 @@ class SolverSettings:
     backend: str | None = None
 
     def __post_init__(self):
+        # The limits live in runtime.parameters, beside the checks of the model.
+        from .parameters import MAX_SAMPLES, METHODS, is_real
         if self.solver not in ("events", "superposition"):
             raise ValueError(f"solver must be 'events' or 'superposition'; got {self.solver!r}")
-        if self.method != "DOP853":
-            raise ValueError(f"method must be 'DOP853'; got {self.method!r}")
+        if self.method not in METHODS:
+            raise ValueError(f"method must be one of {', '.join(METHODS)}; got {self.method!r}")
         if self.on_contact_loss not in ("continue", "stop"):
             raise ValueError("on_contact_loss must be 'continue' or 'stop'; "
                              f"got {self.on_contact_loss!r}")
@@ -81,11 +83,15 @@ class SolverSettings:
             raise ValueError(f"backend must be 'numba', 'python' or None; got {self.backend!r}")
         for name in ("rtol", "atol", "t_end", "dt"):
             value = getattr(self, name)
-            if not (isinstance(value, (int, float)) and not isinstance(value, bool)
-                    and np.isfinite(value) and value > 0):
+            if not (is_real(value) and np.isfinite(value) and value > 0):
                 raise ValueError(f"{name} must be a finite number > 0; got {value!r}")
-        if self.t_discard is not None and not np.isfinite(self.t_discard):
-            raise ValueError(f"t_discard must be finite; got {self.t_discard!r}")
+        if self.t_discard is not None and not (is_real(self.t_discard)
+                                               and np.isfinite(self.t_discard)):
+            raise ValueError(f"t_discard must be None or a finite number; got {self.t_discard!r}")
+        if self.t_end / self.dt > MAX_SAMPLES:
+            raise ValueError(f"t_end / dt = {self.t_end / self.dt:.3g} samples is more than "
+                             f"MAX_SAMPLES = {MAX_SAMPLES:.0e} (runtime/parameters.py); "
+                             "shorten t_end or sample with a larger dt")
         if not 0 <= self.window_start < self.t_end - 20 * self.dt:
             raise ValueError(f"t_discard={self.t_discard!r} must be >= 0 and leave a steady "
                              f"window before t_end={self.t_end!r}")
