@@ -160,9 +160,22 @@ def _first_crossing(sk, sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old
             continue
         # a: the last time known inside (an unarmed surface starts on zero: not inside)
         a, fa = t_old, u_old[j] if armed[j] else 0.0
+        if not armed[j]:
+            # the mode's field points inside at the start: the first time inside may be
+            # far closer to it than a sample (a short excursion), so look there first
+            delta = h / _SAMPLES
+            for _ in range(60):
+                delta *= 0.5
+                fk = _surface_at(sk, sa, watch, dirs, j, F, y_old, t_old, h, t_old + delta,
+                                 tmp)
+                if fk > 0.0:
+                    a, fa = t_old + delta, fk
+                    break
         found = False
         for k in range(1, _SAMPLES + 1):
             tk = t_old + h * k / _SAMPLES if k < _SAMPLES else t_new
+            if tk <= a:
+                continue
             fk = u_new[j] if k == _SAMPLES else _surface_at(sk, sa, watch, dirs, j, F, y_old,
                                                             t_old, h, tk, tmp)
             if fa > 0.0 and fk <= 0.0:

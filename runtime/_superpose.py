@@ -151,10 +151,24 @@ def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, t
             if u_new[j] > 0.0 and not dip:
                 continue
             a, fa = t_prev, u_old[j] if armed[j] else 0.0
+            if not armed[j]:
+                # the mode's field points inside at the start: the first time inside may
+                # be far closer to it than a sample (a short excursion), so look there
+                delta = (t_new - t_prev) / _SAMPLES
+                for _ in range(60):
+                    delta *= 0.5
+                    fk = _inside_at(t_prev + delta, j, watch, dirs, mode, stick, ms, t0, d0,
+                                    d1, X1s, Vb, ts, hs, ys, Fs, stm_k, stm_a, exc_k, exc_a,
+                                    surf_k, surf_a, tmp)
+                    if fk > 0.0:
+                        a, fa = t_prev + delta, fk
+                        break
             found = False
             tcross = t_prev
             for s in range(1, _SAMPLES + 1):
                 tk = t_prev + (t_new - t_prev) * s / _SAMPLES if s < _SAMPLES else t_new
+                if tk <= a:
+                    continue
                 fk = u_new[j] if s == _SAMPLES else _inside_at(
                     tk, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys, Fs,
                     stm_k, stm_a, exc_k, exc_a, surf_k, surf_a, tmp)

@@ -111,6 +111,7 @@ def integrate_events(p, contact="hertz_damp", *, tension="allowed", t_end=1000.0
         t, y = float(t_stop), np.array(y_stop)
         if code == _dop853.STATUS_END:
             break
+        h_next = 0.0           # the field jumps at a switch: choose the next step afresh
         kind = sw.kind(mode, hit)
         y = sw.project(mode, hit, y)
         new = sw.target(mode, hit, t, y)

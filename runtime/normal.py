@@ -45,8 +45,9 @@ class NormalMotion:
     switch_mode : list of Mode
         The normal mode of each segment: ``Mode.SLIP_BACK`` stands for contact
         (the contact modes share the normal field), ``FLIGHT`` or ``SEPARATED``.
-    switch_kind : list of str
-        The event kind of each switch (`runtime.switching.EVENT_KINDS`).
+    switch_kind, switch_surface : list of str
+        The event kind of each switch (`runtime.switching.EVENT_KINDS`) and the
+        surface crossed.
     t_steps, h_steps, y_steps, F_steps : arrays
         The DOP853 steps of all segments (state ``(z, z', X2, X2')``).
     grid : float array (n,)
@@ -71,7 +72,7 @@ class NormalMotion:
                             np.array([r[1] for r in rows]), [r[2] for r in rows])
         t, y = 0.0, np.array([0.0, 0.0, *y0_normal], dtype=float)
         mode = self._normal_mode(sw, t, y, entering=y[2] > 0 or (y[2] == 0 and y[3] > 0))
-        switch_t, switch_mode, switch_kind, steps = [0.0], [mode], [], []
+        switch_t, switch_mode, switch_kind, switch_surface, steps = [0.0], [mode], [], [], []
         h_next = 0.0
         while t < self.t_end:
             watch, dirs, targets = guards[mode]
@@ -97,10 +98,12 @@ class NormalMotion:
             switch_t.append(t)
             switch_mode.append(mode)
             switch_kind.append(EVENT_KINDS[(surface, int(dirs[hit]))])
+            switch_surface.append(surface)
         switch_t.append(self.t_end)
         self.switch_t = np.array(switch_t)
         self.switch_mode = switch_mode
         self.switch_kind = switch_kind
+        self.switch_surface = switch_surface
         self.t_steps = np.concatenate([s[0] for s in steps])
         self.h_steps = np.concatenate([s[1] for s in steps])
         self.y_steps = np.concatenate([s[2] for s in steps])

@@ -35,7 +35,7 @@ from .normal import GRID_STEP, clear_cache, normal_motion
 from .switching import SURFACE_INDEX, Mode, Switching
 from .trajectory import Segment, Trajectory
 
-__all__ = ["integrate_superposed", "clear_cache", "GRID_STEP", "KNOT_STEP"]
+__all__ = ["Superposition", "integrate_superposed", "clear_cache", "GRID_STEP", "KNOT_STEP"]
 
 #: Grid points of the normal motion per quadrature piece of a segment, at most.
 KNOT_STEP = 10
@@ -83,7 +83,121 @@ class _SuperposedTrajectory(Trajectory):
         return self.closed_form(t, index)
 
 
-def integrate_superposed(p, contact, tension, settings, y0=None, grid_step=GRID_STEP):
+class Superposition:
+    """The tangential switching on one normal motion: closed forms between switches.
+
+    Parameters
+    ----------
+    p : dict
+    contact, tension : str
+    normal : runtime.normal.NormalMotion
+    backend : {"python", "numba", None}
+
+    Raises
+    ------
+    ValueError
+        At undamped resonance, where the excitation response has no closed form.
+    """
+
+    def __init__(self, p, contact, tension, normal, backend=None):
+        self.p, self.normal = p, normal
+        self.stm = oscillator.bind_state_transition(backend=backend, **p)
+        self.exc = oscillator.bind_excitation_response(backend=backend, **p)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            finite = np.all(np.isfinite(self.exc.array(np.array([1.0]))))
+        if not finite:
+            raise ValueError("no closed-form excitation response at undamped resonance "
+                             "(beta1 = 0, Omega_t = omega1)")
+        self.sw = sw = Switching(p, contact, tension, backend)
+        scan = _superpose.compiled() if backend != "python" else None
+        self.scan = scan or _superpose.scan
+        self.watch = {}
+        for mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD, Mode.STICK):
+            rows = [(i, SURFACE_INDEX[s], float(d)) for i, (s, d, _)
+                    in enumerate(sw.guards[mode][2]) if s in _TANGENTIAL]
+            self.watch[mode] = (np.array([r[1] for r in rows], dtype=np.int64),
+                                np.array([r[2] for r in rows]), [r[0] for r in rows])
+        self._none = (np.zeros(0, dtype=np.int64), np.zeros(0), [])
+        self._args = (normal.grid, normal.on_grid, normal.t_steps, normal.h_steps,
+                      normal.y_steps, normal.F_steps, self.stm.kernel, self.stm.args,
+                      self.exc.kernel, self.exc.args, sw.surfaces.kernel, sw.surfaces.args,
+                      sw.rates.kernel, sw.rates.args)
+
+    def run(self, t0, X1, Y1, t_end, on_contact_loss="continue"):
+        """The tangential motion from ``(X1, Y1)`` at ``t0`` to ``t_end``.
+
+        Returns
+        -------
+        dict
+            ``segments`` (`_Segments`, frozen), ``modes``, ``starts``, ``ends``,
+            ``events`` ((t, kind, new_mode)), ``switches`` ((t, before, after,
+            surface, state) with the surface's name and the state on it),
+            ``status``, ``message``, ``n_zeno``.
+        """
+        sw, normal, p = self.sw, self.normal, self.p
+        Vb, mu = p["Vb"], p["mu_s"]
+        segs = _Segments(normal, self.stm, self.exc, Vb)
+        modes, starts, ends, events, switches = [], [], [], [], []
+        recent = deque(maxlen=ZENO_SWITCHES)
+        t = float(t0)
+        mode = _mode_in(sw, normal, normal.segment_at(t), t, X1, Y1)
+        n_zeno = 0
+        status, message = "done", "reached t_end"
+        while t < t_end:
+            k = normal.segment_at(t)
+            tc = min(float(normal.switch_t[k + 1]), t_end)
+            stick = mode == Mode.STICK
+            ms = mu * int(mode) if mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD) else 0.0
+            z, v = normal.evaluate(np.array([t]))[:2, 0]
+            zf, vf = self.exc(t)
+            d = (X1 - zf + ms * z, Y1 - vf + ms * v)
+            w, dirs, rows = self.watch.get(mode, self._none)
+            hit, t_hit = self.scan(float(mode), stick, ms, w, dirs, t, tc, d[0], d[1], X1, Vb,
+                                   *self._args)
+            t_stop = float(t_hit) if hit >= 0 else tc
+            segs.add(t, stick, ms, d, X1)
+            modes.append(mode)
+            starts.append(t)
+            ends.append(t_stop)
+            state = segs_state(segs, t_stop, len(modes) - 1)
+            if t_stop >= t_end:
+                break
+            if hit >= 0:
+                guard = rows[hit]
+                surface = sw.guards[mode][2][guard][0]
+                kind = sw.kind(mode, guard)
+                state = sw.project(mode, guard, state)
+                new = sw.target(mode, guard, t_stop, state)
+                recent.append(t_stop)
+                if len(recent) == ZENO_SWITCHES and \
+                        t_stop - recent[0] <= ZENO_WINDOW * max(1.0, abs(t_stop)):
+                    if kind == "vr_zero" and _cone_holds(sw, t_stop, state):
+                        new, n_zeno = Mode.STICK, n_zeno + 1
+                        recent.clear()
+                    else:
+                        events.append((t_stop, kind, new))
+                        status = "zeno"
+                        message = f"switches accumulate at t = {t_stop:.9g} s; stopped"
+                        break
+            else:
+                surface = normal.switch_surface[k]
+                kind = normal.switch_kind[k]
+                new = _mode_in(sw, normal, k + 1, t_stop, state[0], state[1])
+            events.append((t_stop, kind, new))
+            switches.append((t_stop, mode, new, surface, state))
+            if kind == "lift_off" and on_contact_loss == "stop":
+                status = "contact_lost"
+                message = (f"contact lost (X2 = 0, Eq. 1) at t = {t_stop:.6g} s; stopped as "
+                           "requested (on_contact_loss='stop')")
+                break
+            t, X1, Y1, mode = t_stop, float(state[0]), float(state[1]), new
+        segs.freeze()
+        return {"segments": segs, "modes": modes, "starts": starts, "ends": ends,
+                "events": events, "switches": switches, "status": status,
+                "message": message, "n_zeno": n_zeno}
+
+
+def integrate_superposed(p, contact, tension, settings, y0=None):
     """Trajectory of Eq. (4) by superposition, or the reason it does not apply.
 
     Returns
@@ -91,92 +205,25 @@ def integrate_superposed(p, contact, tension, settings, y0=None, grid_step=GRID_
     (trajectory, events, status, message), or a str saying why the event-driven
     integrator must be used instead.
     """
-    backend = settings.backend
-    stm = oscillator.bind_state_transition(backend=backend, **p)
-    exc = oscillator.bind_excitation_response(backend=backend, **p)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        finite = np.all(np.isfinite(exc.array(np.array([1.0]))))
-    if not finite:
-        return ("no closed-form excitation response at undamped resonance "
-                "(beta1 = 0, Omega_t = omega1)")
     y = initial_state(p, contact) if y0 is None else np.array(y0, dtype=float)
     normal = normal_motion(p, contact, tension, settings.t_end, settings.rtol, settings.atol,
-                           y[2:], backend)
-    sw = Switching(p, contact, tension, backend)
-    scan = _superpose.compiled() if backend != "python" else None
-    scan = scan or _superpose.scan
-    watch = {}
-    for mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD, Mode.STICK):
-        rows = [(i, SURFACE_INDEX[s], float(d)) for i, (s, d, _)
-                in enumerate(sw.guards[mode][2]) if s in _TANGENTIAL]
-        watch[mode] = (np.array([r[1] for r in rows], dtype=np.int64),
-                       np.array([r[2] for r in rows]), [r[0] for r in rows])
-    none = (np.zeros(0, dtype=np.int64), np.zeros(0), [])
-    Vb, mu, t_end = p["Vb"], p["mu_s"], float(settings.t_end)
-    segs = _Segments(normal, stm, exc, Vb)
-    segments, events = [], []
-    recent = deque(maxlen=ZENO_SWITCHES)
+                           y[2:], settings.backend)
+    try:
+        engine = Superposition(p, contact, tension, normal, settings.backend)
+    except ValueError as err:
+        return str(err)
+    out = engine.run(0.0, float(y[0]), float(y[1]), float(settings.t_end),
+                     settings.on_contact_loss)
     # quadrature pieces (energy balance, cycle averages): the normal motion's own steps,
     # which shrink where it is not smooth (X2^(3/2) after a touchdown), with at least
     # one knot every KNOT_STEP grid points
     knots = np.union1d(normal.grid[::KNOT_STEP], normal.t_steps)
-    t, X1, Y1 = 0.0, float(y[0]), float(y[1])
-    k = normal.segment_at(t)
-    mode = _mode_in(sw, normal, k, t, X1, Y1)
-    n_zeno = 0
-    status, message = "done", "reached t_end"
-    args = (normal.grid, normal.on_grid, normal.t_steps, normal.h_steps, normal.y_steps,
-            normal.F_steps, stm.kernel, stm.args, exc.kernel, exc.args,
-            sw.surfaces.kernel, sw.surfaces.args, sw.rates.kernel, sw.rates.args)
-    while t < t_end:
-        k = normal.segment_at(t)
-        tc = float(normal.switch_t[k + 1])
-        stick = mode == Mode.STICK
-        ms = mu * int(mode) if mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD) else 0.0
-        z, v = normal.evaluate(np.array([t]))[:2, 0]
-        zf, vf = exc(t)
-        d = (X1 - zf + ms * z, Y1 - vf + ms * v)
-        w, dirs, rows = watch.get(mode, none)
-        hit, t_hit = scan(float(mode), stick, ms, w, dirs, t, tc, d[0], d[1], X1, Vb, *args)
-        t_stop = float(t_hit) if hit >= 0 else tc
-        segs.add(t, stick, ms, d, X1)
-        inside = knots[(knots > t) & (knots < t_stop)]
-        segments.append(Segment(t, t_stop, mode, None, inside))
-        state = segs_state(segs, t_stop, len(segments) - 1)
-        if t_stop >= t_end:
-            break
-        if hit >= 0:
-            guard = rows[hit]
-            kind = sw.kind(mode, guard)
-            state = sw.project(mode, guard, state)
-            new = sw.target(mode, guard, t_stop, state)
-            recent.append(t_stop)
-            if len(recent) == ZENO_SWITCHES and \
-                    t_stop - recent[0] <= ZENO_WINDOW * max(1.0, abs(t_stop)):
-                if kind == "vr_zero" and _cone_holds(sw, t_stop, state):
-                    new, n_zeno = Mode.STICK, n_zeno + 1
-                    recent.clear()
-                else:
-                    events.append((t_stop, kind, new))
-                    status = "zeno"
-                    message = f"switches accumulate at t = {t_stop:.9g} s; stopped"
-                    t = t_stop
-                    break
-        else:
-            kind = normal.switch_kind[k]
-            new = _mode_in(sw, normal, k + 1, t_stop, state[0], state[1])
-        events.append((t_stop, kind, new))
-        if kind == "lift_off" and settings.on_contact_loss == "stop":
-            status = "contact_lost"
-            message = (f"contact lost (X2 = 0, Eq. 1) at t = {t_stop:.6g} s; stopped as "
-                       "requested (on_contact_loss='stop')")
-            break
-        t, X1, Y1, mode = t_stop, float(state[0]), float(state[1]), new
-    segs.freeze()
+    segments = [Segment(a, b, m, None, knots[(knots > a) & (knots < b)])
+                for a, b, m in zip(out["starts"], out["ends"], out["modes"])]
     trajectory = _SuperposedTrajectory(segments, p, contact, tension)
-    trajectory.closed_form = segs
-    trajectory.n_zeno = n_zeno
-    return trajectory, events, status, message
+    trajectory.closed_form = out["segments"]
+    trajectory.n_zeno = out["n_zeno"]
+    return trajectory, out["events"], out["status"], out["message"]
 
 
 def segs_state(segs, t, index):
