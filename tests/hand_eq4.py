@@ -217,3 +217,71 @@ def energy(x, p, contact):
     X = max(X2, 0)
     V = 0.4 * w2**2 * X**2.5 if contact == "hertz_damp" else 0.5 * w2**2 * X**2
     return 0.5 * Y1**2 + 0.5 * Y2**2 + 0.5 * w1**2 * X1**2 + V - g * X2
+
+
+def rhs(t, x, sgn, p, contact, tension="allowed", m=math):
+    """Eq. (4) with friction direction ``sgn`` and Eq. (1)'s force under the tension
+    law, zero for ``X2 <= 0``: ``(Y1, a_free - mu sgn F, Y2, g + f_n - F)``."""
+    X1, Y1, X2, Y2 = x
+    F = force(X2, Y2, p, contact, tension)
+    f_n = excitation(t, p, m)[1]
+    return [Y1, a_free(t, X1, Y1, p, m) - p["mu_s"] * sgn * F, Y2, p["g"] + f_n - F]
+
+
+def rhs_scale(t, x, p, contact):
+    X1, Y1, X2, Y2 = x
+    Fs = force_scale(X2, Y2, p, contact) if X2 > 0 else 0.0
+    return [abs(Y1), a_free_scale(t, X1, Y1, p) + p["mu_s"] * Fs, abs(Y2),
+            p["g"] + excitation_scale(t, p)[1] + Fs]
+
+
+def jacobian(t, x, sgn, p, contact, tension="allowed", m=math):
+    """State Jacobian of `rhs` on its branch (contact with the force acting, contact
+    with the force clipped to 0, or flight), by hand."""
+    X1, Y1, X2, Y2 = x
+    b1, w1, mu = p["beta1"], p["omega1"], p["mu_s"]
+    FX = FY = 0 * X2
+    if X2 > 0 and force(X2, Y2, p, contact, tension) != 0:
+        FX, FY = force_gradient(X2, Y2, p, contact, m)
+    return [[0, 1, 0, 0],
+            [-w1**2, -2 * b1 * w1, -mu * sgn * FX, -mu * sgn * FY],
+            [0, 0, 0, 1],
+            [0, 0, -FX, -FY]]
+
+
+def jacobian_scale(t, x, p, contact):
+    X1, Y1, X2, Y2 = x
+    FX, FY = force_gradient(X2, abs(Y2), p, contact) if X2 > 0 else (0.0, 0.0)
+    mu = p["mu_s"]
+    return [[0, 1, 0, 0], [p["omega1"]**2, 2 * p["beta1"] * p["omega1"], mu * FX, mu * FY],
+            [0, 0, 0, 1], [0, 0, FX, FY]]
+
+
+def power_balance(t, x, sgn, p, contact, tension="allowed", m=math):
+    """``(P_input, P_viscous, P_friction)`` per unit mass: the excitation's work rate
+    ``f_t Y1 + f_n Y2``; the tangential dashpot ``2 b1 w1 Y1^2`` and the contact force
+    beyond its elastic part ``(F_c - F_elastic) Y2`` (in contact); friction
+    ``mu sgn F_c Y1``. ``F_c`` is the force under the tension law."""
+    X1, Y1, X2, Y2 = x
+    f_t, f_n = excitation(t, p, m)
+    Fc = force(X2, Y2, p, contact, tension)
+    elastic = force(X2, 0 * Y2, p, contact)
+    viscous = 2 * p["beta1"] * p["omega1"] * Y1**2 + (Fc - elastic) * Y2
+    return f_t * Y1 + f_n * Y2, viscous, p["mu_s"] * sgn * Fc * Y1
+
+
+def power_scale(t, x, p, contact):
+    X1, Y1, X2, Y2 = x
+    s_t, s_n = excitation_scale(t, p)
+    Fs = force_scale(X2, Y2, p, contact) if X2 > 0 else 0.0
+    return (s_t * abs(Y1) + s_n * abs(Y2),
+            2 * p["beta1"] * p["omega1"] * Y1**2 + 2 * Fs * abs(Y2),
+            p["mu_s"] * Fs * abs(Y1))
+
+
+def energy_scale(x, p, contact):
+    X1, Y1, X2, Y2 = x
+    w1, w2, g = p["omega1"], p["omega2"], p["g"]
+    X = max(X2, 0)
+    V = 0.4 * w2**2 * X**2.5 if contact == "hertz_damp" else 0.5 * w2**2 * X**2
+    return 0.5 * Y1**2 + 0.5 * Y2**2 + 0.5 * w1**2 * X1**2 + V + g * abs(X2)
