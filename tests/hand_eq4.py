@@ -285,3 +285,42 @@ def energy_scale(x, p, contact):
     X = max(X2, 0)
     V = 0.4 * w2**2 * X**2.5 if contact == "hertz_damp" else 0.5 * w2**2 * X**2
     return 0.5 * Y1**2 + 0.5 * Y2**2 + 0.5 * w1**2 * X1**2 + V + g * abs(X2)
+
+
+SURFACE_NAMES = ("relative_velocity", "stick_forward", "stick_back", "penetration",
+                 "contact_force")
+
+
+def rate_scale(mode, t, x, p, contact):
+    """Terms' scale of each dh/dt = h_t + n . f along ``mode``: |h_t| + sum |n_i| scale(f_i)."""
+    f = field_scale(mode, t, x, p, contact)
+    return np.array([abs(ht) + sum(abs(ni) * fi for ni, fi in zip(n, f))
+                     for ht, n in surface_gradients(t, x, p, contact, absolute=True)])
+
+
+def saltation_scale(before, after, surface, t, x, p, contact, S_ref=None, rate=None):
+    """Rounding scale of each entry of S = I + N n^T / r (N = f+ - f-), so that the
+    computed S is within a few ulps of it: N_i within ulps of the fields' scales Ns_i,
+    r within ulps of its terms' scale R, n_j to a few ulps, and the final addition:
+    Ns_i |n_j| / |r| + |N_i n_j| R / r^2 + |S_ij - d_ij| + |S_ij| / 8."""
+    if S_ref is None:
+        S_ref, rate = saltation(before, after, surface, t, x, p, contact)
+    ht, n = surface_gradients(t, x, p, contact, absolute=True)[SURFACE_NAMES.index(surface)]
+    Ns = np.add(field_scale(before, t, x, p, contact), field_scale(after, t, x, p, contact))
+    fm = field_scale(before, t, x, p, contact)
+    R = abs(ht) + sum(abs(ni) * fi for ni, fi in zip(n, fm))
+    r = abs(float(rate))
+    S = np.abs(np.array(S_ref, dtype=float))
+    jump = np.abs(np.array(S_ref, dtype=float) - np.eye(4))
+    n = np.abs(np.array(n, dtype=float))
+    return np.outer(Ns, n) / r + jump * R / r + jump + S / 8
+
+
+def response_scale(p, t):
+    """Terms' scale of the oscillator's response from rest, z(t) = x_p(t) - Phi(t) x_p(0):
+    |x_p| (amplitude alpha_t Omega_t^2 / sqrt(D), D = (w1^2 - W^2)^2 + (2 b1 w1 W)^2,
+    times (1, max(W, w1))) twice, times the argument growth (1 + (omega1 + Omega_t) t)."""
+    q = full(p) if "alpha" in p else p
+    b1, w1, a, W = (q[k] for k in ("beta1", "omega1", "alpha_t", "Omega_t"))
+    amp = a * W**2 / np.sqrt((w1**2 - W**2)**2 + (2 * b1 * w1 * W)**2)
+    return 2 * amp * np.array([1.0, max(W, w1)]) * (1 + (w1 + W) * np.max(t))

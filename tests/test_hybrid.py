@@ -300,13 +300,7 @@ def test_surface_scales_bound_the_rounding_of_h_at_late_times(rng, contact):
         worst = max(worst, float(np.max(err / (EPS * scale))))
     assert worst <= 8, f"h off by {worst:.0f} ulps of its scale"
 
-def rate_scale(name, t, x, p, contact):
-    """Terms' scale of dh/dt = h_t + n . f: |h_t| + sum |n_i| scale(f_i)."""
-    out = []
-    for ht, n in H.surface_gradients(t, x, p, contact, absolute=True):
-        f = H.field_scale(name, t, x, p, contact)
-        out.append(abs(ht) + sum(abs(ni) * fi for ni, fi in zip(n, f)))
-    return np.array(out)
+rate_scale = H.rate_scale
 
 
 @pytest.mark.parametrize("contact", H.CONTACTS)
@@ -365,19 +359,9 @@ def test_surface_rates_are_time_derivatives_along_the_integrated_field(rng, mode
 # Saltation matrices -----------------------------------------------------------------------
 
 def saltation_bound(before, after, surface, t, x, p, contact, S_ref, rate):
-    """Error model of S = I + N n^T / r: N_i = f+_i - f-_i within ULPS eps of the two
-    fields' scales, r within ULPS eps of its terms' scale R, n_j exact to a few ulps,
-    and the final rounding of d_ij + ...:
-    |dS_ij| <= ULPS eps (Ns_i |n_j| / |r| + |N_i n_j| R / r^2 + |S_ij - d_ij|) + 2 eps |S_ij|."""
-    ht, n = H.surface_gradients(t, x, p, contact, absolute=True)[SURFACES.index(surface)]
-    Ns = np.add(H.field_scale(before, t, x, p, contact), H.field_scale(after, t, x, p, contact))
-    fm = H.field_scale(before, t, x, p, contact)
-    R = abs(ht) + sum(abs(ni) * fi for ni, fi in zip(n, fm))
-    r = abs(float(rate))
-    jump = np.abs(np.array(S_ref, dtype=float) - np.eye(4))
-    n = np.abs(np.array(n, dtype=float))
-    S_ref = np.abs(np.array(S_ref, dtype=float))
-    return ULPS * EPS * (np.outer(Ns, n) / r + jump * R / r + jump) + 2 * EPS * S_ref + 1e-300
+    """ULPS ulps of each entry's rounding scale (hand_eq4.saltation_scale)."""
+    return ULPS * EPS * H.saltation_scale(before, after, surface, t, x, p, contact,
+                                          S_ref, rate) + 1e-300
 
 
 @pytest.mark.parametrize("contact", H.CONTACTS)

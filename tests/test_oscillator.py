@@ -17,6 +17,7 @@ import pytest
 import scipy.linalg
 from scipy.integrate import solve_ivp
 
+import hand_eq4 as H
 from generated import oscillator
 from generated.mp import oscillator as mp_oscillator
 
@@ -147,13 +148,7 @@ def forced(p):
     return lambda t, y: [y[1], a * W**2 * np.sin(W * t + ph) - 2 * b1 * w1 * y[1] - w1**2 * y[0]]
 
 
-def response_scale(p, t):
-    """Terms' scale of z(t) = x_p(t) - Phi(t) x_p(0): |x_p| (amplitude alpha_t Omega_t^2
-    / sqrt(D), D = (w1^2 - W^2)^2 + (2 b1 w1 W)^2, times (1, W)) twice, times the
-    argument growth (1 + (omega1 + Omega_t) t)."""
-    b1, w1, a, W = (p[k] for k in ("beta1", "omega1", "alpha_t", "Omega_t"))
-    amp = a * W**2 / np.sqrt((w1**2 - W**2)**2 + (2 * b1 * w1 * W)**2)
-    return 2 * amp * np.array([1.0, max(W, w1)]) * (1 + (w1 + W) * np.max(t))
+response_scale = H.response_scale
 
 
 RESPONSE_CASES = [dict(beta1=b, omega1=w, alpha_t=a, Omega_t=W, phase_t=ph)
