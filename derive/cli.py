@@ -1,20 +1,44 @@
-"""Command line: ``python -m derive [--check]``, ``python -m derive check-paper``,
-``python -m derive simulate|sweep ...``.
+"""The command line: ``python -m derive`` and the console script ``beltmdsm``.
 
-Thin: it calls the derivation pipeline (`derive.modules`), the code generator
-(`derive.codegen`) and prints what happened. The simulation commands belong to the
-runtime layer (`runtime.cli`, `runtime.predict`), which never imports SymPy; they are dispatched
-before anything symbolic is imported.
+One argparse tree::
+
+    python -m derive [--check]        derive everything, regenerate generated/ (or check it)
+    python -m derive check-paper      compare the paper with the derivation
+    python -m derive simulate|sweep|predict|validate ...   the runtime commands
+
+This module holds the top of the tree and the derive commands; the runtime
+commands and the flags they share live in `runtime.cli` (`runtime.cli.add_commands`
+hangs them on the tree). Nothing symbolic is imported until a derive command runs,
+so the runtime commands never load SymPy.
+
+Every error in a command line is one line on stderr and exit status 2 (`Parser`);
+`main` returns the exit status, which ``python -m derive`` and the console script
+pass to ``sys.exit``.
 """
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 
-__all__ = ["main"]
+__all__ = ["main", "build_parser", "Parser", "UsageError"]
 
-RUNTIME_COMMANDS = ("simulate", "sweep")
+
+class UsageError(Exception):
+    """A bad command line: one line for stderr (the program, ``error:`` and why)."""
+
+
+class Parser(argparse.ArgumentParser):
+    """An ``ArgumentParser`` whose errors are one line, raised as `UsageError`.
+
+    argparse prints the whole usage before its error, which for the runtime
+    commands is a screenful of flags; the message names the flag, and ``--help``
+    shows the usage. Raising (instead of exiting) lets `main` return the status.
+    """
+
+    def error(self, message):
+        raise UsageError(f"{self.prog}: error: {message} (--help for usage)")
 
 
 def _generate(args) -> int:
@@ -45,25 +69,75 @@ def _generate(args) -> int:
     return 0
 
 
-def main(argv=None) -> int:
-    argv = sys.argv[1:] if argv is None else list(argv)
-    if argv and argv[0] in RUNTIME_COMMANDS:
-        from runtime.cli import main as runtime_main
-        return runtime_main(argv)
-    if argv and argv[0] == "predict":
-        from runtime.predict import main as predict_main
-        return predict_main(argv)
-    if argv and argv[0] == "validate":
-        from runtime.validation import main as validate_main
-        return validate_main(argv)
-    if argv and argv[0] == "check-paper":
-        from .paper_check import main as check_paper
-        return check_paper(argv[1:])
-    parser = argparse.ArgumentParser(
-        prog="python -m derive",
-        description="Derive the model symbolically and regenerate generated/.")
+def _check_paper(args) -> int:
+    from .paper_check import main as check_paper
+    return check_paper([])
+
+
+def _prog():
+    """``beltmdsm`` when run as the console script, else ``python -m derive``."""
+    return "beltmdsm" if os.path.basename(sys.argv[0]) == "beltmdsm" else "python -m derive"
+
+
+def build_parser(prog=None, runtime=True):
+    """The command-line tree (`Parser`), with the runtime commands if ``runtime`` and they load.
+
+    The runtime imports ``generated/``, which ``python -m derive`` may be about to
+    regenerate, or which may be absent from a copy of ``derive/`` alone: if the
+    runtime fails to load, the derive commands still work and the reason is kept in
+    ``parser.unavailable`` (else None).
+    """
+    parser = Parser(prog=prog or _prog(),
+                    description="Derive the model symbolically and regenerate generated/ "
+                                "(no command), or run one of the commands.")
     parser.add_argument("--check", action="store_true",
                         help="do not write; exit 1 and name the stale files if "
                              "generated/ differs from the derivations")
-    args = parser.parse_args(argv)
-    return _generate(args)
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND", title="commands")
+    paper = commands.add_parser(
+        "check-paper", help="compare the paper's equations and claims with the derivation",
+        description="Compare the paper's equations and claims with the derivation; write "
+                    "generated/PAPER_CHECK.md.")
+    paper.set_defaults(run=_check_paper)
+    parser.unavailable = None
+    if runtime:
+        try:
+            from runtime import cli as runtime_cli
+            runtime_cli.add_commands(commands)
+        except Exception as err:    # noqa: BLE001 (whatever a broken generated/ raises)
+            parser.unavailable = parser.epilog = (
+                f"the runtime commands cannot be loaded: {type(err).__name__}: {err}")
+    return parser
+
+
+def _needs_runtime(argv):
+    """False for the regeneration and check-paper: they must not depend on generated/."""
+    return not (set(argv) <= {"--check"} or argv[:1] == ["check-paper"])
+
+
+def main(argv=None) -> int:
+    """Run the command line ``argv`` (default ``sys.argv[1:]``); return the exit status.
+
+    0: done; 1: a check failed (``--check``) or the system refused (a file, the
+    network); 2: a bad command line or parameter, reported in one line on stderr.
+    A simulation that did not reach its end returns 2 as well (``simulate``).
+    """
+    argv = sys.argv[1:] if argv is None else list(argv)
+    parser = build_parser(runtime=_needs_runtime(argv))
+    try:
+        args = parser.parse_args(argv)
+        if args.command is None:
+            return _generate(args)
+        if args.check:
+            parser.error("--check applies to the regeneration, not to a command")
+        return args.run(args)
+    except UsageError as err:
+        print(err, file=sys.stderr)
+        if parser.unavailable:
+            print(parser.unavailable, file=sys.stderr)
+        return 2
+    except SystemExit as done:      # --help, or a command that exits
+        if done.code is None or isinstance(done.code, int):
+            return done.code or 0
+        print(done.code, file=sys.stderr)
+        return 1

@@ -400,12 +400,52 @@ def _numpy_impl(v):
     return "\n".join([f"def {v.impl}({', '.join(sig)}):"] + _indent(_errstate(v.flat, body)))
 
 
+def _branches(flat):
+    """``[(condition, outputs), ...]`` where every Piecewise of ``flat`` has one condition list.
+
+    Then a scalar implementation evaluates only the branch it takes: common
+    subexpressions of the other branches (a square root of a negative number, a
+    division by zero at critical damping) are never computed, where Python and
+    mpmath would raise. None where the Piecewise terms differ in their conditions
+    (those implementations guard their branches themselves, e.g. ``max(X2, 0)``).
+    """
+    pieces = {p for e in flat for p in e.atoms(sp.Piecewise)}
+    conditions = {tuple(c for _, c in p.args) for p in pieces}
+    if len(conditions) != 1:
+        return None
+    (conds,) = conditions
+    out = []
+    for i, cond in enumerate(conds):
+        branch = list(flat)
+        while any(e.has(sp.Piecewise) for e in branch):
+            branch = [e.replace(lambda x: isinstance(x, sp.Piecewise),
+                                lambda x, i=i: x.args[i].expr) for e in branch]
+        out.append((cond, branch))
+    return out
+
+
+def _branched_body(flat, printer, finish):
+    """Source lines: CSE per branch of `_branches` (or over all), then ``finish(out)``."""
+    branches = _branches(flat)
+    if branches is None:
+        lines, reduced = _cse(flat, printer)
+        return lines + finish([printer.doprint(e) for e in reduced])
+    body = []
+    for k, (cond, outputs) in enumerate(branches):
+        lines, reduced = _cse(outputs, printer)
+        inner = _indent(lines + finish([printer.doprint(e) for e in reduced]))
+        if cond is sp.true:
+            body += (["else:"] if k else []) + (inner if k else [line[4:] for line in inner])
+        else:
+            body += [f"{'if' if k == 0 else 'elif'} {printer.doprint(cond)}:"] + inner
+    return body
+
+
 def _mp_impl(v):
     fn, args = v.fn, [a.name for a in v.fn.args]
     printer = _Mpmath()
-    lines, reduced = _cse(v.flat, printer)
-    out = [printer.doprint(e) for e in reduced]
-    body = lines + _assemble(fn.returns, out, v.shape, mp=True)
+    body = _branched_body(v.flat, printer,
+                          lambda out: _assemble(fn.returns, out, v.shape, mp=True))
     return "\n".join([f"def {v.impl}({', '.join(args + v.params)}):"] + _indent(body))
 
 
@@ -415,21 +455,20 @@ def _scalar_impl(v):
     roots = v.roots
     printer = _Scalar(roots)
     sig = args + v.params + [r for r, _, _ in roots]
-    lines, reduced = _cse(v.flat, printer)
-    out = [printer.doprint(e) for e in reduced]
-    if fn.returns == "growth":
-        more, names = _growth_lines(out, printer)
-        lines += more
-        result = _combine(fn.returns, names, "scalar")
-    elif fn.returns in _KERNEL_RESULT:
-        result = _combine(fn.returns, out, "scalar")
-    else:
-        result = out[0] if fn.returns == "value" else f"({', '.join(out)},)"
+
+    def finish(out):
+        if fn.returns == "growth":
+            more, names = _growth_lines(out, printer)
+            return more + [f"return {_combine(fn.returns, names, 'scalar')}"]
+        if fn.returns in _KERNEL_RESULT:
+            return [f"return {_combine(fn.returns, out, 'scalar')}"]
+        return [f"return {out[0] if fn.returns == 'value' else '(' + ', '.join(out) + ',)'}"]
+    body = _branched_body(v.flat, printer, finish)
     extra = ", ".join(f"{r} = {base}**(1/{d})" for r, base, d in roots) or "none"
     doc = [f'"""Scalar kernel of `{fn.name}` (``_support.compiled``, ``_support.Bound``).',
            "", f"Extra arguments: {extra}.", '"""']
     return "\n".join([f"def {v.impl}__scalar({', '.join(sig)}):"] + _indent(doc)
-                     + _indent(lines + [f"return {result}"]))
+                     + _indent(body))
 
 
 def _prep_impl(v):

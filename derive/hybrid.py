@@ -41,6 +41,7 @@ from .model import TENSION_LAWS, P, X1, X2, Y1, Y2, excitation, normal_force, t
 
 __all__ = ["MODE_CODES", "FIELDS", "SURFACES", "DECIDE_SLIP", "DECIDE_CONTACT", "GUARDS",
            "STATE", "mode", "contact_force_in_contact", "vector_field", "field_of_mode",
+           "response_field",
            "surfaces", "surface_scales", "surface_rates", "transitions", "saltation"]
 
 #: Integer code of each mode; the slip codes are the friction direction of Eq. (3).
@@ -108,6 +109,27 @@ def field_of_mode(name: str, contact: str) -> sp.Matrix:
         return sp.Matrix([P["Vb"], 0, Y2, normal])
     sgn = MODE_CODES[field]
     return sp.Matrix([Y1, a_free - P["mu_s"] * sgn * F, Y2, normal])
+
+
+def response_field(contact: str) -> sp.Matrix:
+    """The normal motion with the tangential oscillator's response to its force.
+
+    State ``(z, z', X2, X2')``: ``z`` is the response of the tangential oscillator,
+    from rest, to the contact force of the mode (``F`` of Eq. (1) in contact, 0 in
+    flight or separation). The normal equation does not contain the tangential
+    state, so this system is integrated once per normal motion; between switches a
+    slip mode's tangential motion is then the free motion plus the excitation
+    response minus ``mu_s sgn`` times ``z`` (derive/oscillator.py). The positions
+    of ``X2, X2'`` are those of the full state, so `surfaces` applies unchanged.
+    """
+    b1, w1 = P["beta1"], P["omega1"]
+    z, v = sp.symbols("z v", real=True)
+    F = contact_force_in_contact(contact)
+    f_n = excitation()[1]
+    contact_modes = sp.Or(*(sp.Eq(mode, MODE_CODES[m]) for m in ("slip_back", "stick",
+                                                                  "slip_forward")))
+    Fm = sp.Piecewise((F, contact_modes), (0, True))
+    return sp.Matrix([v, Fm - 2 * b1 * w1 * v - w1**2 * z, Y2, P["g"] + f_n - Fm]), (z, v)
 
 
 def _by_mode(build):

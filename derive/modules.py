@@ -190,6 +190,17 @@ def hybrid() -> ModuleSpec:
                      notes="Each field is smooth on the whole state space: the contact modes "
                            "use the unclipped force of Eq. (1) (with max(X2, 0)), stick holds "
                            "X1' = Vb, flight and separated are free of contact.", bind=True),
+        FunctionSpec("response_field", "Normal motion and the tangential response to its "
+                     "contact force.", "Eqs. (1)-(4)", "vector",
+                     "dstate : ndarray, shape (..., 4)\n    Derivative of (z, z', X2, X2').",
+                     _per_contact(lambda c: list(hy.response_field(c)[0])), CONTACT_OPTION,
+                     (t,) + hy.response_field("hertz_damp")[1] + hy.STATE[2:] + (hy.mode,),
+                     {**mode_doc, "z": "tangential response to the contact force [m]",
+                      "v": "its velocity [m/s]"},
+                     notes="z'' + 2 beta1 omega1 z' + omega1^2 z = F(mode) from rest, beside "
+                           "the normal equation: the normal motion does not depend on the "
+                           "tangential one, so the superposition integrator integrates this "
+                           "once.", bind=True),
         FunctionSpec("surfaces", "Switching functions h(t, x) of the hybrid system.",
                      "Eqs. (1)-(4)", "tuple", surfaces_doc,
                      _per_contact(lambda c: [hy.surfaces(c)[n] for n in hy.SURFACES]),

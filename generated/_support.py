@@ -13,10 +13,13 @@ import numpy
 
 from .parameters import DEFAULT_FROM, DEFAULTS, DOMAINS, KNOWN
 
+# Each domain is a test of the smallest value; together with ``largest < inf`` it
+# checks an array in two reductions and no temporary array, and NaN fails both
+# (comparisons with NaN are False).
 _DOMAIN_TEST = {
-    "positive": (lambda x: x > 0, "> 0"),
-    "nonnegative": (lambda x: x >= 0, ">= 0"),
-    "real": (lambda x: True, "real"),
+    "positive": (lambda lo: lo > 0, "> 0"),
+    "nonnegative": (lambda lo: lo >= 0, ">= 0"),
+    "real": (lambda lo: lo > -math.inf, "real"),
 }
 
 
@@ -103,17 +106,20 @@ def _fail(function, name, domain, why):
 def param(function, name, value, domain=None, why=None):
     """``value`` as a float array, checked against ``domain``.
 
+    Parameters and states are finite physical numbers: an infinite input is
+    refused like NaN (outputs may still be infinite, e.g. the slope of the
+    effective friction at ``Vb = Vhat``).
+
     Raises
     ------
     ValueError
-        Naming the parameter, if any element is NaN or outside the domain.
+        Naming the parameter, if any element is NaN, infinite or outside the domain.
     """
     domain = domain or DOMAINS[name]
     x = numpy.asarray(value, dtype=float)
     test, text = _DOMAIN_TEST[domain]
-    # One pass in the common case: isfinite is False for NaN and inf alike, so the
-    # two are told apart only when the test fails.
-    if not (numpy.all(numpy.isfinite(x)) and numpy.all(test(x))):
+    if x.size and not (test(x.min()) and x.max() < math.inf):
+        # Tell the reasons apart only on failure, so valid input costs two reductions.
         if numpy.isnan(x).any():
             raise _fail(function, name, None, "a number, not NaN")
         if numpy.isinf(x).any():
@@ -209,14 +215,23 @@ def resolve_vhat(function, params, vhat_model, vhat, contact):
     Raises
     ------
     ValueError
-        If both ``Vhat`` and ``vhat_model`` are given.
+        If both ``Vhat`` and ``vhat_model`` are given, or if the computed ``Vhat``
+        is not finite (an undamped resonance of the linear response, e.g.
+        ``beta1 = 0`` and ``Omega_t = omega1``).
     """
     if params.get("Vhat") is not None:
         if vhat_model is not None:
             raise ValueError(f"{function}(): give either Vhat or vhat_model, not both")
         return params
     model = "tangential" if vhat_model is None else vhat_model
-    return {**params, "Vhat": vhat(model=model, contact=contact, **params)}
+    value = vhat(model=model, contact=contact, **params)
+    # Without this the check of Vhat would blame a parameter the caller never gave
+    # (the mpmath variants pass an mpf, hence the conversion).
+    if not numpy.isfinite(numpy.asarray(value, dtype=float)).all():
+        raise ValueError(f"{function}(): Vhat of vhat_model={model!r} is not finite at "
+                         "these parameters (an undamped resonance of the linear "
+                         "response); give a finite Vhat")
+    return {**params, "Vhat": value}
 
 
 #: Points per block in `blockwise`: a chain of array operations on 2**15 float64
@@ -334,10 +349,15 @@ _JITTED = {}
 
 
 def jit(kernel):
-    """``numba.njit(cache=True)`` of a generated scalar kernel, compiled once per session."""
+    """``numba.njit`` of a generated scalar kernel, compiled once per session.
+
+    Cached on disk; floating-point errors follow numpy (a division by zero gives
+    inf or NaN, as in the numpy implementation, not an exception).
+    """
     fast = _JITTED.get(kernel)
     if fast is None:
-        fast = _JITTED[kernel] = _import_numba(True).njit(cache=True)(kernel)
+        fast = _JITTED[kernel] = _import_numba(True).njit(cache=True,
+                                                          error_model="numpy")(kernel)
     return fast
 
 
@@ -347,16 +367,23 @@ class Bound:
     ``bound(*state)`` is ``bound.kernel(*state, *bound.args)``. An integrator that
     compiles its own loop (numba) takes ``kernel`` and ``args`` and calls the kernel
     itself; ``params`` maps the parameter names to the bound values.
+    ``bound.array(*state)`` evaluates the unchecked numpy implementation on arrays
+    of states (the layout of the public function's result).
     """
 
-    __slots__ = ("name", "kernel", "args", "params", "backend")
+    __slots__ = ("name", "kernel", "args", "params", "backend", "_impl", "_values")
 
-    def __init__(self, name, kernel, args, params, backend):
+    def __init__(self, name, kernel, args, params, backend, impl, values):
         self.name, self.kernel, self.args = name, kernel, args
         self.params, self.backend = params, backend
+        self._impl, self._values = impl, values
 
     def __call__(self, *state):
         return self.kernel(*state, *self.args)
+
+    def array(self, *state):
+        state = [numpy.asarray(x, dtype=float) for x in state]
+        return self._impl(shape_of(*state), *state, *self._values)
 
     def __repr__(self):
         return f"<bound {self.name} ({self.backend})>"
@@ -388,8 +415,11 @@ def bind(function, variant, params, backend):
     roots = tuple(float(r) for r in variant.prep(*values)) if variant.prep is not None else ()
     use_numba = backend == "numba" or (backend is None and _import_numba(False) is not None)
     kernel = jit(variant.scalar) if use_numba else variant.scalar
+    # the array implementation keeps numpy's floating-point semantics (inf, not an
+    # exception, for a power of zero) with numpy scalars
     return Bound(function, kernel, values + roots, dict(zip(variant.names, values)),
-                 "numba" if use_numba else "python")
+                 "numba" if use_numba else "python", variant.impl,
+                 tuple(numpy.float64(v) for v in values))
 
 
 class Variant:

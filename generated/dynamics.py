@@ -311,11 +311,11 @@ def _rhs_branch__hertz_damp__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omeg
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
-    _x1 = -Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
-    _x2 = (X2 > 0)
-    _x3 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
-    return (Y1, ((-_x0*mu_s*sgn - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3)),)
+    if (X2 > 0):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+        return (Y1, Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_s*sgn, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x0 + g,)
+    else:
+        return (Y1, Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g,)
 
 
 def _rhs_branch__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
@@ -355,11 +355,11 @@ def _rhs_branch__kelvin_voigt__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, om
 
     Extra arguments: none.
     """
-    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
-    _x1 = -Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
-    _x2 = (X2 > 0)
-    _x3 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
-    return (Y1, ((-_x0*mu_s*sgn - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3)),)
+    if (X2 > 0):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+        return (Y1, Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_s*sgn, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x0 + g,)
+    else:
+        return (Y1, Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g,)
 
 
 def _rhs_branch__kelvin_voigt__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
@@ -624,7 +624,10 @@ def _normal_force__hertz_damp__allowed__scalar(X2, Y2, beta2, omega2):
 
     Extra arguments: none.
     """
-    return (((2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)) if (X2 > 0) else (0))
+    if (X2 > 0):
+        return (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    else:
+        return 0
 
 
 def _normal_force__hertz_damp__clipped(_shape, X2, Y2, beta2, omega2):
@@ -652,7 +655,10 @@ def _normal_force__kelvin_voigt__allowed__scalar(X2, Y2, beta2, omega2):
 
     Extra arguments: none.
     """
-    return ((2*Y2*beta2*omega2 + omega2**2*max(0, X2)) if (X2 > 0) else (0))
+    if (X2 > 0):
+        return 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    else:
+        return 0
 
 
 def _normal_force__kelvin_voigt__clipped(_shape, X2, Y2, beta2, omega2):
@@ -805,8 +811,10 @@ def _normal_rhs__hertz_damp__allowed__scalar(t, X2, Y2, beta2, omega2, g, alpha_
 
     Extra arguments: none.
     """
-    _x0 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
-    return (Y2, ((-_x0 - (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)) if (X2 > 0) else (-_x0)),)
+    if (X2 > 0):
+        return (Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g - (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2),)
+    else:
+        return (Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g,)
 
 
 def _normal_rhs__hertz_damp__clipped(_shape, t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
@@ -837,8 +845,10 @@ def _normal_rhs__kelvin_voigt__allowed__scalar(t, X2, Y2, beta2, omega2, g, alph
 
     Extra arguments: none.
     """
-    _x0 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
-    return (Y2, ((-2*Y2*beta2*omega2 - _x0 - omega2**2*max(0, X2)) if (X2 > 0) else (-_x0)),)
+    if (X2 > 0):
+        return (Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - 2*Y2*beta2*omega2 + g - omega2**2*max(0, X2),)
+    else:
+        return (Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g,)
 
 
 def _normal_rhs__kelvin_voigt__clipped(_shape, t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
@@ -974,10 +984,12 @@ def _normal_jacobian__hertz_damp__allowed__scalar(t, X2, Y2, beta2, omega2):
 
     Extra arguments: none.
     """
-    _x0 = max(0, X2)
-    _x1 = 2*beta2*omega2
-    _x2 = (X2 > 0)
-    return (0, 1, ((-3/2*math.sqrt(_x0)*(Y2*_x1 + omega2**2)) if _x2 else (0)), ((-_x0**(3/2)*_x1) if _x2 else (0)),)
+    if (X2 > 0):
+        _x0 = max(0, X2)
+        _x1 = 2*beta2*omega2
+        return (0, 1, -3/2*math.sqrt(_x0)*(Y2*_x1 + omega2**2), -_x0**(3/2)*_x1,)
+    else:
+        return (0, 1, 0, 0,)
 
 
 def _normal_jacobian__hertz_damp__clipped(_shape, t, X2, Y2, beta2, omega2):
@@ -1022,8 +1034,10 @@ def _normal_jacobian__kelvin_voigt__allowed__scalar(t, X2, Y2, beta2, omega2):
 
     Extra arguments: none.
     """
-    _x0 = (X2 > 0)
-    return (0, 1, ((-omega2**2) if _x0 else (0)), ((-2*beta2*omega2) if _x0 else (0)),)
+    if (X2 > 0):
+        return (0, 1, -omega2**2, -2*beta2*omega2,)
+    else:
+        return (0, 1, 0, 0,)
 
 
 def _normal_jacobian__kelvin_voigt__clipped(_shape, t, X2, Y2, beta2, omega2):
@@ -1406,7 +1420,10 @@ def _energy__hertz_damp__allowed__scalar(X1, Y1, X2, Y2, omega1, omega2, g):
 
     Extra arguments: none.
     """
-    return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (((2/5)*omega2**2*max(0, X2)**(5/2)) if (X2 > 0) else (0))
+    if (X2 > 0):
+        return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (2/5)*omega2**2*max(0, X2)**(5/2)
+    else:
+        return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2
 
 
 def _energy__hertz_damp__clipped(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
@@ -1419,7 +1436,10 @@ def _energy__hertz_damp__clipped__scalar(X1, Y1, X2, Y2, omega1, omega2, g):
 
     Extra arguments: none.
     """
-    return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (((2/5)*omega2**2*max(0, X2)**(5/2)) if (X2 > 0) else (0))
+    if (X2 > 0):
+        return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (2/5)*omega2**2*max(0, X2)**(5/2)
+    else:
+        return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2
 
 
 def _energy__kelvin_voigt__allowed(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
@@ -1432,7 +1452,10 @@ def _energy__kelvin_voigt__allowed__scalar(X1, Y1, X2, Y2, omega1, omega2, g):
 
     Extra arguments: none.
     """
-    return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (((1/2)*omega2**2*max(0, X2)**2) if (X2 > 0) else (0))
+    if (X2 > 0):
+        return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (1/2)*omega2**2*max(0, X2)**2
+    else:
+        return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2
 
 
 def _energy__kelvin_voigt__clipped(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
@@ -1445,7 +1468,10 @@ def _energy__kelvin_voigt__clipped__scalar(X1, Y1, X2, Y2, omega1, omega2, g):
 
     Extra arguments: none.
     """
-    return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (((1/2)*omega2**2*max(0, X2)**2) if (X2 > 0) else (0))
+    if (X2 > 0):
+        return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (1/2)*omega2**2*max(0, X2)**2
+    else:
+        return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2
 
 
 _ENERGY = {
@@ -1612,11 +1638,13 @@ def _power_balance__hertz_damp__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, o
 
     Extra arguments: none.
     """
-    _x0 = omega2**2
-    _x1 = max(0, X2)**(3/2)
-    _x2 = 2*Y2*beta2*omega2 + _x0
-    _x3 = (X2 > 0)
-    return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x1*_x2)) if _x3 else (0)), Y1*mu_s*sgn*((_x1*_x2) if _x3 else (0)),)
+    if (X2 > 0):
+        _x0 = omega2**2
+        _x1 = max(0, X2)**(3/2)
+        _x2 = 2*Y2*beta2*omega2 + _x0
+        return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + Y2*(-_x0*_x1 + _x1*_x2), Y1*_x1*_x2*mu_s*sgn,)
+    else:
+        return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1, 0,)
 
 
 def _power_balance__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
@@ -1654,9 +1682,11 @@ def _power_balance__kelvin_voigt__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1,
 
     Extra arguments: none.
     """
-    _x0 = 2*beta2*omega2
-    _x1 = (X2 > 0)
-    return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2**2*_x0) if _x1 else (0)), Y1*mu_s*sgn*((Y2*_x0 + omega2**2*max(0, X2)) if _x1 else (0)),)
+    if (X2 > 0):
+        _x0 = 2*beta2*omega2
+        return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + Y2**2*_x0, Y1*mu_s*sgn*(Y2*_x0 + omega2**2*max(0, X2)),)
+    else:
+        return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1, 0,)
 
 
 def _power_balance__kelvin_voigt__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):

@@ -15,7 +15,7 @@ import numpy
 
 from . import _support
 
-__all__ = ['vector_field', 'surfaces', 'surface_scales', 'surface_rates', 'saltation', 'bind_vector_field', 'bind_surfaces', 'bind_surface_scales', 'bind_surface_rates', 'bind_saltation', 'MODE_CODES', 'FIELDS', 'SURFACES', 'DECIDE_SLIP', 'DECIDE_CONTACT', 'GUARDS', 'TRANSITIONS']
+__all__ = ['vector_field', 'response_field', 'surfaces', 'surface_scales', 'surface_rates', 'saltation', 'bind_vector_field', 'bind_response_field', 'bind_surfaces', 'bind_surface_scales', 'bind_surface_rates', 'bind_saltation', 'MODE_CODES', 'FIELDS', 'SURFACES', 'DECIDE_SLIP', 'DECIDE_CONTACT', 'GUARDS', 'TRANSITIONS']
 
 #: Integer code of each mode; the slip codes are sgn(Vr) of Eq. (3).
 MODE_CODES = {'slip_back': -1, 'stick': 0, 'slip_forward': 1, 'flight': 2, 'separated': 3}
@@ -262,6 +262,179 @@ def _vector_field__kelvin_voigt__scalar(t, X1, Y1, X2, Y2, mode, beta1, omega1, 
 _VECTOR_FIELD = {
     ('hertz_damp',): _support.Variant(_vector_field__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _vector_field__hertz_damp__scalar, None),
     ('kelvin_voigt',): _support.Variant(_vector_field__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _vector_field__kelvin_voigt__scalar, None),
+}
+
+
+def response_field(t, z, v, X2, Y2, mode, *, contact='hertz_damp', **params):
+    """Normal motion and the tangential response to its contact force.
+
+    Implements Eqs. (1)-(4) of the paper.
+
+    z'' + 2 beta1 omega1 z' + omega1^2 z = F(mode) from rest, beside the normal
+    equation: the normal motion does not depend on the tangential one, so the
+    superposition integrator integrates this once.
+
+    Parameters
+    ----------
+    t : array_like
+        time [s]
+    z : array_like
+        tangential response to the contact force [m]
+    v : array_like
+        its velocity [m/s]
+    X2 : array_like
+        normal penetration into the belt [m]
+    Y2 : array_like
+        normal velocity X2' [m/s]
+    mode : array_like
+        mode code (MODE_CODES): -1 slip_back, 0 stick, +1 slip_forward, 2 flight, 3 separated
+    beta1 : array_like
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : array_like
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    beta2 : array_like
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : array_like
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    alpha : array_like
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : array_like
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    g : array_like
+        gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
+    alpha_n : array_like
+        normal excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_n : array_like
+        normal excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_n : array_like
+        normal excitation phase [rad], real, default 0.0.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    dstate : ndarray, shape (..., 4)
+        Derivative of (z, z', X2, X2').
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    """
+    _variant = _support.choose("response_field", _RESPONSE_FIELD, contact=contact)
+    _values, _extra = _support.arguments("response_field", _variant.names, params)
+    t = _support.param("response_field", "t", t, "real")
+    z = _support.param("response_field", "z", z, "real")
+    v = _support.param("response_field", "v", v, "real")
+    X2 = _support.param("response_field", "X2", X2, "real")
+    Y2 = _support.param("response_field", "Y2", Y2, "real")
+    mode = _support.param("response_field", "mode", mode, "real")
+    _shape = _support.shape_of(t, z, v, X2, Y2, mode, *_values, *_extra)
+    return _variant.impl(_shape, t, z, v, X2, Y2, mode, *_values)
+
+
+def bind_response_field(*, contact='hertz_damp', backend=None, **params):
+    """`response_field` as a scalar kernel with the parameters checked once and bound.
+
+    ``bind_response_field(**params)(t, z, v, X2, Y2, mode)`` equals ``response_field(t, z, v, X2, Y2, mode, **params)``
+    for scalar inputs and returns a tuple of floats. For the inner loops of an
+    integrator: the arguments are checked here, not on every call.
+
+    Parameters
+    ----------
+    beta1 : float
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : float
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    beta2 : float
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : float
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    alpha : float
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : float
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    g : float
+        gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
+    alpha_n : float
+        normal excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_n : float
+        normal excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_n : float
+        normal excitation phase [rad], real, default 0.0.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    backend : {"python", "numba"}, optional
+        The kernel as plain Python, or compiled by ``numba.njit`` (on first call;
+        cached on disk). Default: numba if it is installed, else python.
+    **params
+        Any other model parameter (accepted and ignored).
+
+    Returns
+    -------
+    _support.Bound
+        Call it as ``kernel(t, z, v, X2, Y2, mode)``; ``.kernel`` and ``.args`` are the raw kernel
+        and the bound values, for a caller that compiles its own loop.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    ImportError
+        For backend="numba" when numba is not installed.
+    """
+    _variant = _support.choose("bind_response_field", _RESPONSE_FIELD, contact=contact)
+    return _support.bind("response_field", _variant, params, backend)
+
+
+def _response_field__hertz_damp(_shape, t, z, v, X2, Y2, mode, beta1, omega1, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = numpy.select([numpy.logical_or(numpy.logical_or(numpy.equal(mode, -1), numpy.equal(mode, 0)), numpy.equal(mode, 1)),True], [(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2),0], default=numpy.nan)
+        return _support.vector(_shape, [numpy.copy(v), _x0 - 2*beta1*omega1*v - omega1**2*z, numpy.copy(Y2), -Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - _x0 + g])
+
+
+def _response_field__hertz_damp__scalar(t, z, v, X2, Y2, mode, beta1, omega1, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `response_field` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (mode == -1) or (mode == 0) or (mode == 1):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+        return (v, _x0 - 2*beta1*omega1*v - omega1**2*z, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x0 + g,)
+    else:
+        return (v, -2*beta1*omega1*v - omega1**2*z, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g,)
+
+
+def _response_field__kelvin_voigt(_shape, t, z, v, X2, Y2, mode, beta1, omega1, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = numpy.select([numpy.logical_or(numpy.logical_or(numpy.equal(mode, -1), numpy.equal(mode, 0)), numpy.equal(mode, 1)),True], [2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2]),0], default=numpy.nan)
+        return _support.vector(_shape, [numpy.copy(v), _x0 - 2*beta1*omega1*v - omega1**2*z, numpy.copy(Y2), -Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - _x0 + g])
+
+
+def _response_field__kelvin_voigt__scalar(t, z, v, X2, Y2, mode, beta1, omega1, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    """Scalar kernel of `response_field` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (mode == -1) or (mode == 0) or (mode == 1):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+        return (v, _x0 - 2*beta1*omega1*v - omega1**2*z, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x0 + g,)
+    else:
+        return (v, -2*beta1*omega1*v - omega1**2*z, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g,)
+
+
+_RESPONSE_FIELD = {
+    ('hertz_damp',): _support.Variant(_response_field__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', ), _response_field__hertz_damp__scalar, None),
+    ('kelvin_voigt',): _support.Variant(_response_field__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', ), _response_field__kelvin_voigt__scalar, None),
 }
 
 

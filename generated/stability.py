@@ -656,14 +656,31 @@ def _growth_rate__paper__hertz_damp__scalar(beta1, omega1, beta2, omega2, mu_s, 
 
     Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
     """
-    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x1 = 2*omega1
-    _x2 = _root0
-    _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
-    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
-    _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
-    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
-    return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    if (Vb < Vhat):
+        _x0 = g*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = _root0
+        _h0, _q0, _d0 = -_x0 + beta1*omega1, omega1**2, (1/4)*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x3*(omega2*_root1), (1/2)*(-3*_x3*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = _root0
+        _h0, _q0, _d0 = float('-inf'), omega1**2, math.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x0*(omega2*_root1), (1/2)*(-3*_x0*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = _root0
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x1*(omega2*_root1), (1/2)*(-3*_x1*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
 
 
 def _growth_rate__paper__hertz_damp__roots(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -693,14 +710,31 @@ def _growth_rate__paper__kelvin_voigt__scalar(beta1, omega1, beta2, omega2, mu_s
 
     Extra arguments: none.
     """
-    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x1 = 2*omega1
-    _x2 = omega2**2
-    _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
-    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
-    _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
-    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
-    return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    if (Vb < Vhat):
+        _x0 = g*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = omega2**2
+        _h0, _q0, _d0 = -_x0 + beta1*omega1, omega1**2, (1/4)*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x3, _x3*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = omega2**2
+        _h0, _q0, _d0 = float('-inf'), omega1**2, math.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x0, _x0*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = omega2**2
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x1, _x1*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
 
 
 def _growth_rate__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat, _root0, _root1):
@@ -724,14 +758,31 @@ def _growth_rate__consistent__hertz_damp__scalar(beta1, omega1, beta2, omega2, m
 
     Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
     """
-    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x1 = 2*omega1
-    _x2 = _root0
-    _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
-    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
-    _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
-    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
-    return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    if (Vb < Vhat):
+        _x0 = g*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = _root0
+        _h0, _q0, _d0 = _x0 + beta1*omega1, omega1**2, (1/4)*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x3*(omega2*_root1), (1/2)*(-3*_x3*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = _root0
+        _h0, _q0, _d0 = math.inf, omega1**2, math.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x0*(omega2*_root1), (1/2)*(-3*_x0*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = _root0
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x1*(omega2*_root1), (1/2)*(-3*_x1*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
 
 
 def _growth_rate__consistent__hertz_damp__roots(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -761,14 +812,31 @@ def _growth_rate__consistent__kelvin_voigt__scalar(beta1, omega1, beta2, omega2,
 
     Extra arguments: none.
     """
-    _x0 = g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x1 = 2*omega1
-    _x2 = omega2**2
-    _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
-    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
-    _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
-    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
-    return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    if (Vb < Vhat):
+        _x0 = g*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = omega2**2
+        _h0, _q0, _d0 = _x0 + beta1*omega1, omega1**2, (1/4)*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x3, _x3*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = omega2**2
+        _h0, _q0, _d0 = math.inf, omega1**2, math.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x0, _x0*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = omega2**2
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x1, _x1*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
 
 
 _GROWTH_RATE = {
@@ -858,7 +926,13 @@ def _is_stable__paper__hertz_damp__scalar(beta1, omega1, beta2, omega2, mu_s, g,
 
     Extra arguments: none.
     """
-    return (2*beta1*omega1 - g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*g/omega2 > 0)
+    if (Vb < Vhat):
+        _x0 = 2*g
+        return (-_x0*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat)) + 2*beta1*omega1 > 0) and (_x0*beta2/omega2 > 0)
+    elif (Vb == Vhat) and (mu_s > 0):
+        return (float('-inf') > 0) and (2*beta2*g/omega2 > 0)
+    else:
+        return (2*beta1*omega1 > 0) and (2*beta2*g/omega2 > 0)
 
 
 def _is_stable__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -875,7 +949,12 @@ def _is_stable__paper__kelvin_voigt__scalar(beta1, omega1, beta2, omega2, mu_s, 
 
     Extra arguments: none.
     """
-    return (2*beta1*omega1 - g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*omega2 > 0)
+    if (Vb < Vhat):
+        return (2*beta1*omega1 - 2*g*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat)) > 0) and (2*beta2*omega2 > 0)
+    elif (Vb == Vhat) and (mu_s > 0):
+        return (float('-inf') > 0) and (2*beta2*omega2 > 0)
+    else:
+        return (2*beta1*omega1 > 0) and (2*beta2*omega2 > 0)
 
 
 def _is_stable__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -892,7 +971,13 @@ def _is_stable__consistent__hertz_damp__scalar(beta1, omega1, beta2, omega2, mu_
 
     Extra arguments: none.
     """
-    return (2*beta1*omega1 + g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*g/omega2 > 0)
+    if (Vb < Vhat):
+        _x0 = 2*g
+        return (_x0*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat)) + 2*beta1*omega1 > 0) and (_x0*beta2/omega2 > 0)
+    elif (Vb == Vhat) and (mu_s > 0):
+        return (math.inf > 0) and (2*beta2*g/omega2 > 0)
+    else:
+        return (2*beta1*omega1 > 0) and (2*beta2*g/omega2 > 0)
 
 
 def _is_stable__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
@@ -909,7 +994,12 @@ def _is_stable__consistent__kelvin_voigt__scalar(beta1, omega1, beta2, omega2, m
 
     Extra arguments: none.
     """
-    return (2*beta1*omega1 + g*((2*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))) if (Vb < Vhat) else (math.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*omega2 > 0)
+    if (Vb < Vhat):
+        return (2*beta1*omega1 + 2*g*mu_s/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat)) > 0) and (2*beta2*omega2 > 0)
+    elif (Vb == Vhat) and (mu_s > 0):
+        return (math.inf > 0) and (2*beta2*omega2 > 0)
+    else:
+        return (2*beta1*omega1 > 0) and (2*beta2*omega2 > 0)
 
 
 _IS_STABLE = {

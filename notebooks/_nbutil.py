@@ -29,6 +29,7 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 from runtime import SolverSettings, simulate  # noqa: E402
+from runtime.intervals import format_intervals, jaccard  # noqa: E402
 from runtime.spectra import amplitude_spectrum  # noqa: E402
 from runtime.sweep import omega1_peak_ranges  # noqa: E402
 
@@ -161,22 +162,18 @@ def peak_ranges(scan):
 
 
 def fmt_ranges(ranges, digits=2):
-    """``[(a, b), ...]`` as text, ``"none"`` when empty."""
-    return ", ".join(f"[{a:.{digits}f}, {b:.{digits}f}]" for a, b in ranges) or "none"
+    """``[(a, b), ...]`` as text, ``"none"`` when empty (`runtime.intervals.format_intervals`)."""
+    return format_intervals(ranges, f".{digits}f")
 
 
 def overlap(a, b):
     """Jaccard overlap |A and B| / |A or B| of two unions of intervals (1 = identical).
 
-    Both empty gives 1. Points (zero-length intervals) count through the grid
-    resolution only, so callers pass ranges widened by half a grid step.
+    `runtime.intervals.jaccard`: both empty gives 1. Points (zero-length intervals)
+    count through the grid resolution only, so callers pass ranges widened by half a
+    grid step.
     """
-    def length(ranges):
-        return sum(hi - lo for lo, hi in ranges)
-
-    inter = sum(max(0.0, min(h1, h2) - max(l1, l2)) for l1, h1 in a for l2, h2 in b)
-    union = length(a) + length(b) - inter
-    return 1.0 if union == 0 else inter / union
+    return jaccard(a, b)
 
 
 def show(text):

@@ -1,63 +1,282 @@
-"""``python -m derive simulate ...`` and ``python -m derive sweep ...``.
+"""The runtime commands of ``python -m derive`` (and ``beltmdsm``): simulate, sweep, predict, validate.
+
+`derive.cli` builds the one argparse tree and calls `add_commands` to hang these
+commands on it. The flags they share are declared once, as parent parsers:
+
+* `model_parent`: every parameter of ``generated.parameters.PARAMETERS`` as a flag
+  (``--mu_s`` and ``--mu-s``), checked against its domain, and the model options of
+  `MODEL_OPTIONS` that the command takes (``--contact``);
+* `solver_parent`: the fields of `runtime.simulate.SolverSettings`;
+* `executor_parent` and `executor_from`: ``--jobs``/``--scheduler`` and the executor
+  they ask for (sweep, validate); `cache_parent`: the sweep cache.
+
+To add a model option, add one `ModelOption` line to `MODEL_OPTIONS` naming the
+commands that take it; `model_kwargs` passes its value on as the keyword of its
+name. A new command that takes every model flag of ``simulate`` uses
+``model_parent("simulate")`` and ``model_kwargs(args, "simulate")``.
+
+Every flag is checked when it is parsed (finite numbers, domains, ranges, existing
+output folders); a bad one is a one-line error naming it, exit status 2. A bad value
+found later (a ValueError from the generated checks) is reported the same way.
 
 simulate: one run of Eq. (4); ``--json`` prints one JSON object (the summary of
 `runtime.simulate.summarize` plus the parameters), otherwise a readable summary.
 sweep: one parameter over a range (`runtime.sweep.sweep`), with a progress bar;
 prints the table (or JSON with ``--json``), writes CSV with ``--out``; for a sweep
 over Vb it adds the validation line on the omega1 peak (Fig. 2b).
+predict: the predicted unstable belt speeds (`runtime.predict.predict`).
+validate: writes VALIDATION.md (`runtime.validation`).
 """
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
+import math
+import os
 import sys
+from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
-from generated.parameters import PARAMETERS
+from generated.parameters import DOMAINS, PARAMETERS
 
-from .model import CONTACTS
-from .simulate import DEFAULT_T_END, SolverSettings, simulate
+from .parameters import CONTACTS, METHODS
+from .simulate import DEFAULT_T_END
 
-__all__ = ["main"]
+__all__ = ["main", "run_command", "add_commands", "COMMANDS", "ModelOption", "MODEL_OPTIONS",
+           "model_parent", "model_kwargs", "solver_parent", "executor_parent", "cache_parent",
+           "executor_from", "validation_lines"]
 
+COMMANDS = ("simulate", "sweep", "predict", "validate")
 _MODEL_PARAMS = [p for p in PARAMETERS if p["name"] != "Vhat"]
 PAPER_STATEMENT = "the omega1 peak 'vanishes after Vb ~ 8 m/s' (Sect. 3, Fig. 2b)"
+_DOMAIN_TEXT = {"positive": (lambda x: x > 0, "> 0"), "nonnegative": (lambda x: x >= 0, ">= 0"),
+                "real": (lambda x: True, "a number")}
 
 
-def _common(parser):
-    g = parser.add_argument_group("model parameters (default: the base set, Fig. 2)")
-    for p in _MODEL_PARAMS:
-        flags = [f"--{p['name']}"]
-        if "_" in p["name"]:
-            flags.append(f"--{p['name'].replace('_', '-')}")
-        g.add_argument(*flags, dest=p["name"], type=float, default=None,
-                       help=f"{p['description']} [{p['unit']}]")
-    g.add_argument("--contact", choices=CONTACTS, default="hertz_damp")
-    s = parser.add_argument_group("solver")
-    s.add_argument("--solver", choices=("superposition", "events"), default="superposition",
-                   help="superposition (fast, falls back to events on loss of contact) or "
-                        "events (solve_ivp on Eq. 4)")
-    s.add_argument("--method", default="DOP853", help="solve_ivp method")
-    s.add_argument("--rtol", type=float, default=1e-10)
-    s.add_argument("--atol", type=float, default=1e-10)
-    s.add_argument("--t-end", type=float, default=DEFAULT_T_END, help="duration [s]")
-    s.add_argument("--t-discard", type=float, default=None,
-                   help="start of the steady window [s] (default 30%% of --t-end)")
-    s.add_argument("--dt", type=float, default=0.02, help="sampling step [s]")
-    s.add_argument("--on-contact-loss", choices=("continue", "stop"), default="continue")
-    parser.add_argument("--json", action="store_true", help="print JSON")
+@dataclass(frozen=True)
+class ModelOption:
+    """A model option beyond the parameters: one choice, on the commands that take it.
+
+    The flag is ``--<name>`` (``flag`` overrides it); its value reaches the run
+    functions as the keyword ``name`` (`model_kwargs`).
+    """
+    name: str
+    commands: tuple
+    choices: tuple
+    default: str
+    help: str
+    flag: str | None = None
 
 
-def _settings(args):
-    return SolverSettings(solver=args.solver, method=args.method, rtol=args.rtol, atol=args.atol,
-                          t_end=args.t_end, t_discard=args.t_discard, dt=args.dt,
-                          on_contact_loss=args.on_contact_loss)
+#: The model options, one line each.
+MODEL_OPTIONS = (
+    ModelOption("contact", ("simulate", "sweep", "predict"), CONTACTS, "hertz_damp",
+                "contact law: Hertz-Damp, Eq. (1), or the linear contact of Fig. 16"),
+)
+
+
+# ---------------------------------------------------------------- checked flag types
+
+def _number(check=None, text=""):
+    """An argparse type: a finite float, and ``check(x)`` if given ("must be <text>")."""
+    def parse(s):
+        try:
+            x = float(s)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be a number; got {s!r}") from None
+        if not math.isfinite(x):
+            raise argparse.ArgumentTypeError(f"must be finite; got {s}")
+        if check is not None and not check(x):
+            raise argparse.ArgumentTypeError(f"must be {text}; got {s}")
+        return x
+    return parse
+
+
+def _integer(minimum):
+    def parse(s):
+        try:
+            n = int(s)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be an integer; got {s!r}") from None
+        if n < minimum:
+            raise argparse.ArgumentTypeError(f"must be >= {minimum}; got {n}")
+        return n
+    return parse
+
+
+def _output_file(s):
+    """A file to write: its folder must exist, and it must not be a folder itself."""
+    path = Path(s)
+    folder = path.parent if str(path.parent) else Path(".")
+    if not folder.is_dir():
+        raise argparse.ArgumentTypeError(f"folder {folder} does not exist")
+    if path.is_dir():
+        raise argparse.ArgumentTypeError(f"{path} is a folder, not a file")
+    if not os.access(folder, os.W_OK):
+        raise argparse.ArgumentTypeError(f"folder {folder} is not writable")
+    return s
+
+
+def _cache_folder(s):
+    if s != "default" and Path(s).exists() and not Path(s).is_dir():
+        raise argparse.ArgumentTypeError(f"{s} exists and is not a folder")
+    return s
+
+
+_POSITIVE = _number(lambda x: x > 0, "> 0")
+_NONNEGATIVE = _number(lambda x: x >= 0, ">= 0")
+
+
+# ---------------------------------------------------------------- shared parents
+
+def model_parent(command, *, parameters=True, exclude=()):
+    """Parent parser: the model parameters as flags and the model options of ``command``.
+
+    Parameters
+    ----------
+    command : str
+        the command whose `MODEL_OPTIONS` are wanted (a new command that takes every
+        model flag of simulate passes "simulate")
+    parameters : bool
+        add a flag per parameter of ``generated.parameters.PARAMETERS`` (but ``Vhat``)
+    exclude : tuple of str
+        parameters without a flag (``predict`` scans ``Vb`` itself)
+    """
+    parent = argparse.ArgumentParser(add_help=False)
+    if parameters:
+        group = parent.add_argument_group("model parameters (default: the base set, Fig. 2)")
+        for p in _MODEL_PARAMS:
+            if p["name"] in exclude:
+                continue
+            flags = [f"--{p['name']}"]
+            if "_" in p["name"]:
+                flags.append(f"--{p['name'].replace('_', '-')}")
+            check, text = _DOMAIN_TEXT[DOMAINS[p["name"]]]
+            default = (f"default: {p['default_from']}" if p["default_from"] else
+                       f"default: {p['base']:g}" if p["base"] is not None else "")
+            group.add_argument(*flags, dest=p["name"], type=_number(check, text), default=None,
+                               metavar="X",
+                               help=f"{p['description']} [{p['unit']}]; {default}".rstrip("; "))
+    options = [o for o in MODEL_OPTIONS if command in o.commands]
+    if options:
+        group = parent.add_argument_group("model options")
+        for o in options:
+            group.add_argument(o.flag or f"--{o.name}", dest=o.name, choices=o.choices,
+                               default=o.default, help=f"{o.help} (default: {o.default})")
+    return parent
+
+
+def model_kwargs(args, command):
+    """The model options of ``command`` as keywords for the run functions."""
+    return {o.name: getattr(args, o.name) for o in MODEL_OPTIONS if command in o.commands}
 
 
 def _params(args, skip=()):
     return {p["name"]: getattr(args, p["name"]) for p in _MODEL_PARAMS
-            if getattr(args, p["name"]) is not None and p["name"] not in skip}
+            if getattr(args, p["name"], None) is not None and p["name"] not in skip}
+
+
+def solver_parent():
+    """Parent parser: the fields of `runtime.simulate.SolverSettings`."""
+    parent = argparse.ArgumentParser(add_help=False)
+    s = parent.add_argument_group("solver")
+    s.add_argument("--solver", choices=("superposition", "events"), default="superposition",
+                   help="superposition (fast, falls back to events on loss of contact) or "
+                        "events (solve_ivp on Eq. 4)")
+    s.add_argument("--method", choices=METHODS, default="DOP853",
+                   help="solve_ivp method (default: DOP853)")
+    s.add_argument("--rtol", type=_POSITIVE, default=1e-10, help="> 0 (default: 1e-10)")
+    s.add_argument("--atol", type=_POSITIVE, default=1e-10, help="> 0 (default: 1e-10)")
+    s.add_argument("--t-end", type=_POSITIVE, default=DEFAULT_T_END,
+                   help=f"duration [s], > 0 (default: {DEFAULT_T_END:g})")
+    s.add_argument("--t-discard", type=_NONNEGATIVE, default=None,
+                   help="start of the steady window [s] (default 30%% of --t-end)")
+    s.add_argument("--dt", type=_POSITIVE, default=0.02, help="sampling step [s], > 0 "
+                   "(default: 0.02)")
+    s.add_argument("--on-contact-loss", choices=("continue", "stop"), default="continue")
+    return parent
+
+
+def _settings(args):
+    from .simulate import SolverSettings
+    try:
+        return SolverSettings(solver=args.solver, method=args.method, rtol=args.rtol,
+                              atol=args.atol, t_end=args.t_end, t_discard=args.t_discard,
+                              dt=args.dt, on_contact_loss=args.on_contact_loss)
+    except ValueError as err:
+        # every field is checked alone when parsed: what is left is how they fit together
+        args.parser.error(f"argument --t-end/--t-discard/--dt: {err}")
+
+
+def executor_parent():
+    """Parent parser: where the runs go, ``--jobs`` and ``--scheduler`` (`executor_from`)."""
+    parent = argparse.ArgumentParser(add_help=False)
+    g = parent.add_argument_group("where the runs go")
+    g.add_argument("--jobs", type=_integer(1), default=None,
+                   help="worker processes (default: all cores; 1: in this process)")
+    g.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="a dask.distributed scheduler, e.g. tcp://host:8786 (needs the "
+                        "'dask' extra); overrides --jobs")
+    return parent
+
+
+@contextlib.contextmanager
+def executor_from(args):
+    """The executor that ``--scheduler``/``--jobs`` ask for, closed when the block ends.
+
+    Yields
+    ------
+    ``Client(ADDRESS).get_executor()`` of a dask.distributed cluster for
+    ``--scheduler``; ``"serial"`` for ``--jobs 1``; a process pool of ``--jobs N``
+    workers; None without either (the sweep opens a pool over the local cores).
+    """
+    if args.scheduler:
+        try:
+            from distributed import Client
+        except ImportError:
+            args.parser.error("argument --scheduler: needs dask.distributed "
+                              "(pip install 'beltmdsm[dask]')")
+        try:
+            client = Client(args.scheduler, timeout="10s")
+        except (OSError, ValueError, TypeError) as err:
+            args.parser.error(f"argument --scheduler: cannot connect to {args.scheduler}: {err}")
+        executor = client.get_executor()
+        try:
+            yield executor
+        finally:
+            executor.shutdown()
+            client.close()
+    elif args.jobs == 1:
+        yield "serial"
+    elif args.jobs:
+        import concurrent.futures as cf
+        with cf.ProcessPoolExecutor(max_workers=args.jobs) as pool:
+            yield pool
+    else:
+        yield None
+
+
+def cache_parent():
+    """Parent parser: the sweep cache (`runtime.sweep`)."""
+    parent = argparse.ArgumentParser(add_help=False)
+    g = parent.add_argument_group("cache")
+    g.add_argument("--cache-dir", type=_cache_folder, default="default",
+                   help="default: $BELTMDSM_CACHE or ~/.cache/beltmdsm/sweeps")
+    g.add_argument("--no-cache", action="store_true", help="do not use the sweep cache")
+    return parent
+
+
+def _cache_dir(args):
+    return None if args.no_cache else args.cache_dir
+
+
+def _json_parent():
+    parent = argparse.ArgumentParser(add_help=False)
+    parent.add_argument("--json", action="store_true", help="print JSON")
+    return parent
 
 
 def _jsonable(x):
@@ -70,15 +289,11 @@ def _jsonable(x):
     return x
 
 
-def _simulate(argv):
-    parser = argparse.ArgumentParser(prog="python -m derive simulate",
-                                     description="Simulate Eq. (4) and summarise the run.")
-    _common(parser)
-    parser.add_argument("--modulation", action="store_true",
-                        help="add friction modulation averages (Figs. 10-12)")
-    parser.add_argument("--save", metavar="NPZ", help="save t, X1, Y1, X2, Y2, Fn, friction")
-    args = parser.parse_args(argv)
-    sim = simulate(_params(args), contact=args.contact, settings=_settings(args))
+# ---------------------------------------------------------------- simulate
+
+def _simulate(args):
+    from .simulate import simulate
+    sim = simulate(_params(args), **model_kwargs(args, "simulate"), settings=_settings(args))
     out = dict(sim.summary)
     if args.modulation:
         from .modulation import modulation_scatter
@@ -104,7 +319,7 @@ def _simulate(argv):
         f"X1' spectrum: {out['peak_omega1']:.6g} m/s at {out['omega1_peak_at']:.6g} rad/s "
         f"(omega1 = {p['omega1']:g}), {out['peak_Omega']:.6g} m/s at Omega = {p['Omega_t']:g}; "
         f"omega1 peak {'PRESENT' if out['omega1_peak_present'] else 'absent'} "
-        "(friction-induced vibration)" ,
+        "(friction-induced vibration)",
         f"energy balance: residual {out['energy_residual']:.3g} (dE = {e['energy_change']:.6g}, "
         f"W_in = {e['work_input']:.6g}, W_visc = {e['work_viscous']:.6g}, "
         f"W_fric = {e['work_friction']:.6g})",
@@ -122,12 +337,15 @@ def _simulate(argv):
     return 0 if sim.status == "done" else 2
 
 
+# ---------------------------------------------------------------- sweep
+
 def validation_lines(table, param="Vb"):
     """The validation print-out: where the omega1 peak appears, beside the paper."""
-    from .sweep import omega1_peak_ranges
+    from .intervals import format_intervals
     from .simulate import PEAK_PRESENT_RATIO
+    from .sweep import omega1_peak_ranges
     ranges = omega1_peak_ranges(table, param)
-    found = ", ".join(f"[{a:g}, {b:g}]" for a, b in ranges) or "nowhere"
+    found = format_intervals(ranges, "g", "nowhere")
     x = np.asarray(table[param], float)
     return [f"omega1 peak (>= {100 * PEAK_PRESENT_RATIO:g}% of the Omega peak) present for "
             f"{param} in {found} m/s of the swept {x.min():g}..{x.max():g} m/s "
@@ -135,60 +353,28 @@ def validation_lines(table, param="Vb"):
             f"paper: {PAPER_STATEMENT}"]
 
 
-def _sweep(argv):
-    parser = argparse.ArgumentParser(prog="python -m derive sweep",
-                                     description="Sweep one parameter of Eq. (4).")
-    parser.add_argument("--param", required=True,
-                        choices=[p["name"] for p in _MODEL_PARAMS])
-    parser.add_argument("--from", dest="start", type=float)
-    parser.add_argument("--to", dest="stop", type=float)
-    parser.add_argument("--step", type=float)
-    parser.add_argument("--values", type=float, nargs="+", help="explicit values instead")
-    _common(parser)
-    parser.add_argument("--jobs", type=int, default=None,
-                        help="process pool size (default: all cores; 1: serial)")
-    parser.add_argument("--scheduler", default=None,
-                        help="dask.distributed scheduler address (needs the 'dask' extra)")
-    parser.add_argument("--cache-dir", default="default", help="default: $BELTMDSM_CACHE or "
-                        "~/.cache/beltmdsm/sweeps")
-    parser.add_argument("--no-cache", action="store_true")
-    parser.add_argument("--modulation", action="store_true",
-                        help="add friction modulation columns (Figs. 10-12)")
-    parser.add_argument("--out", metavar="CSV", help="write the table as CSV")
-    parser.add_argument("--no-progress", action="store_true")
-    args = parser.parse_args(argv)
+def _sweep_values(args):
+    from .sweep import linear_values
     if args.values:
-        values = np.asarray(args.values)
-    else:
-        if None in (args.start, args.stop, args.step):
-            parser.error("give --from, --to and --step, or --values")
-        if not args.step > 0 or args.stop < args.start:
-            parser.error("--step must be > 0 and --to >= --from")
-        values = args.start + args.step * np.arange(int(np.floor((args.stop - args.start) / args.step
-                                                                   + 1e-9)) + 1)
-    from .sweep import sweep, table_to_csv
-    import concurrent.futures as cf
-    client = None
-    if args.scheduler:
-        from distributed import Client
-        client = Client(args.scheduler)
-        executor = client.get_executor()
-    elif args.jobs is not None and args.jobs <= 1:
-        executor = "serial"
-    elif args.jobs is not None:
-        executor = cf.ProcessPoolExecutor(max_workers=args.jobs)
-    else:
-        executor = None
+        return np.asarray(args.values)
+    if None in (args.start, args.stop, args.step):
+        args.parser.error("give --from, --to and --step, or --values")
+    if args.stop < args.start:
+        args.parser.error(f"argument --to: must be >= --from ({args.start:g}); got {args.stop:g}")
     try:
-        table = sweep(args.param, values, _params(args, skip=(args.param,)), contact=args.contact,
-                      settings=_settings(args), executor=executor,
-                      cache_dir=None if args.no_cache else args.cache_dir,
+        return linear_values(args.start, args.stop, args.step)
+    except ValueError as err:
+        args.parser.error(f"argument --step: {err}")
+
+
+def _sweep(args):
+    from .sweep import sweep, table_to_csv
+    values = _sweep_values(args)
+    with executor_from(args) as executor:
+        table = sweep(args.param, values, _params(args, skip=(args.param,)),
+                      **model_kwargs(args, "sweep"), settings=_settings(args),
+                      executor=executor, cache_dir=_cache_dir(args),
                       progress=not args.no_progress, modulation=args.modulation)
-    finally:
-        if isinstance(executor, cf.Executor):
-            executor.shutdown()
-        if client is not None:
-            client.close()
     if args.out:
         table_to_csv(table, args.out)
     if args.json:
@@ -207,16 +393,138 @@ def _sweep(argv):
     return 0
 
 
-def main(argv=None):
-    """Entry point; ``argv[0]`` is the subcommand ("simulate" or "sweep")."""
+# ---------------------------------------------------------------- predict
+
+def _predict(args):
+    from .intervals import format_intervals
+    from .predict import predict
+    vb = None
+    if args.vb_max is not None:
+        vb = np.linspace(args.vb_max / args.vb_points, args.vb_max, args.vb_points)
+    result = predict(_params(args, skip=("Vb",)), **model_kwargs(args, "predict"), vb=vb,
+                     points=args.vb_points)
+    if args.json:
+        print(json.dumps(result))
+        return 0
+    reasons = result.get("reasons", {})
+    for name in ("paper_tangential_vhat", "paper_coupled_vhat", "consistent_mdsm"):
+        found = result[name]
+        if found is None:
+            print(f"no prediction for {name}: {reasons[name]}")
+            continue
+        note = f"; {reasons[name]}" if name in reasons else ""
+        print(f"{name:>22}: unstable Vb in {format_intervals(found, '.3f')}{note}")
+    return 0
+
+
+# ---------------------------------------------------------------- validate
+
+def _validate(args):
+    from . import validation
+    with executor_from(args) as executor:
+        results = validation.validate(args.quick, **model_kwargs(args, "validate"),
+                                      executor=executor, cache_dir=_cache_dir(args),
+                                      progress=not args.no_progress)
+    Path(args.out).write_text(validation.render_markdown(results, args.quick))
+    for key, lab, _ in validation.ANALYSES:
+        s = results["summary"][key]
+        mae = "—" if s["mae"] is None else f"{s['mae']:.2f} m/s"
+        print(f"{lab:>4}: MAE of edges {mae} (n = {s['n_edges']}), miss {s['miss']}, "
+              f"false alarm {s['false_alarm']}")
+    print(f"wrote {args.out}")
+    return 0
+
+
+# ---------------------------------------------------------------- the tree
+
+def _run(args):
+    """Run a parsed command; a bad value found on the way is a one-line error."""
+    try:
+        return args.handler(args)
+    except ValueError as err:
+        args.parser.error(str(err))
+    except OSError as err:
+        print(f"{args.parser.prog}: error: {err}", file=sys.stderr)
+        return 1
+
+
+def _add(commands, name, handler, parents, **kwargs):
+    sub = commands.add_parser(name, parents=parents, **kwargs)
+    sub.set_defaults(run=_run, handler=handler, parser=sub)
+    return sub
+
+
+def add_commands(commands):
+    """Add simulate, sweep, predict and validate to ``commands`` (an argparse subparsers)."""
+    sim = _add(commands, "simulate", _simulate,
+               [model_parent("simulate"), solver_parent(), _json_parent()],
+               help="simulate Eq. (4) and summarise the run",
+               description="Simulate Eq. (4) and summarise the run.")
+    sim.add_argument("--modulation", action="store_true",
+                     help="add friction modulation averages (Figs. 10-12)")
+    sim.add_argument("--save", metavar="NPZ", type=_output_file,
+                     help="save t, X1, Y1, X2, Y2, Fn, friction")
+
+    from .sweep import MAX_POINTS, SWEEPABLE
+    swp = _add(commands, "sweep", _sweep,
+               [model_parent("sweep"), solver_parent(), executor_parent(), cache_parent(),
+                _json_parent()],
+               help="sweep one parameter of Eq. (4)",
+               description="Sweep one parameter of Eq. (4) (runtime.sweep; at most "
+                           f"{MAX_POINTS:.0e} points).")
+    grid = swp.add_argument_group("the swept parameter")
+    grid.add_argument("--param", required=True, choices=SWEEPABLE)
+    grid.add_argument("--from", dest="start", type=_number(), metavar="X")
+    grid.add_argument("--to", dest="stop", type=_number(), metavar="X")
+    grid.add_argument("--step", type=_POSITIVE, metavar="H", help="> 0")
+    grid.add_argument("--values", type=_number(), nargs="+", metavar="X",
+                      help="explicit values instead")
+    swp.add_argument("--modulation", action="store_true",
+                     help="add friction modulation columns (Figs. 10-12)")
+    swp.add_argument("--out", metavar="CSV", type=_output_file, help="write the table as CSV")
+    swp.add_argument("--no-progress", action="store_true")
+
+    pre = _add(commands, "predict", _predict,
+               [model_parent("predict", exclude=("Vb",)), _json_parent()],
+               help="predicted unstable belt speeds",
+               description="Predicted unstable belt speeds: the paper's analysis and the "
+                           "consistent MDSM.")
+    pre.add_argument("--vb-max", type=_POSITIVE, default=None,
+                     help="top of the Vb grid, > 0 (default: 1.05 x the linear amplitude)")
+    pre.add_argument("--vb-points", type=_integer(2), default=400,
+                     help="points of the Vb grid, >= 2 (default: 400)")
+
+    val = _add(commands, "validate", _validate,
+               [model_parent("validate", parameters=False), executor_parent(), cache_parent()],
+               help="write VALIDATION.md",
+               description="Write VALIDATION.md: the simulated omega1-peak ranges of Vb "
+                           "against the predicted unstable ranges (Figs. 2, 17-21).")
+    val.add_argument("--quick", action="store_true",
+                     help="1 m/s grid and 300 s runs instead of 0.25 m/s and 1000 s")
+    val.add_argument("--out", type=_output_file,
+                     default=str(Path(__file__).resolve().parents[1] / "VALIDATION.md"),
+                     help="output file (default: VALIDATION.md at the repository root)")
+    val.add_argument("--no-progress", action="store_true")
+
+
+def main(argv=None) -> int:
+    """``python -m derive simulate|sweep|predict|validate ...``; returns the exit status.
+
+    The runtime commands of the one command line (`derive.cli.main`); ``argv[0]`` is
+    the command.
+    """
     argv = sys.argv[1:] if argv is None else list(argv)
-    if not argv or argv[0] not in ("simulate", "sweep"):
-        print("usage: python -m derive simulate|sweep [options]  (--help for each)",
+    if not argv or argv[0] not in COMMANDS:
+        print(f"usage: python -m derive {{{','.join(COMMANDS)}}} [options]  (--help for each)",
               file=sys.stderr)
         return 2
-    command, rest = argv[0], argv[1:]
-    try:
-        return _simulate(rest) if command == "simulate" else _sweep(rest)
-    except ValueError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 2
+    from derive.cli import main as cli_main
+    return cli_main(argv)
+
+
+def run_command(command, argv=None) -> int:
+    """`main` for one command, with or without the command's name in front of ``argv``."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv[:1] == [command]:
+        argv = argv[1:]
+    return main([command, *argv])

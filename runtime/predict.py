@@ -25,19 +25,19 @@ a single harmonic balance does not apply and `consistent_mdsm_damping` raises.
 """
 from __future__ import annotations
 
-import argparse
-import json
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from scipy import optimize
 
-from generated import correlation, stability
+from generated import correlation, friction, stability
 
-from .model import CONTACTS, resolve_parameters
+from . import intervals
+from .parameters import resolve_parameters
 
 __all__ = ["FastMotion", "fast_motion", "consistent_mdsm_damping", "unstable_intervals",
-           "paper_intervals", "predict", "main"]
+           "paper_intervals", "predict", "main", "NO_EXCITATION", "NO_VHAT"]
 
 
 @dataclass(frozen=True)
@@ -76,6 +76,21 @@ def _balance(z, p, W, N1, psi, D, Ft):
     return np.array([r.real, r.imag]) / abs(Ft)
 
 
+def _log_balance(z, *args):
+    """`_balance` in ``(log V, phi)``: every iterate keeps ``V > 0``."""
+    return _balance((np.exp(z[0]), z[1]), *args)
+
+
+def _hybr(fun, start, args):
+    """``scipy.optimize.root`` (hybr) from ``start``; None if an iterate had ``V <= 0``."""
+    try:
+        return optimize.root(fun, start, args=args, method="hybr", options={"xtol": 1e-13})
+    except ValueError:
+        # the generated first_harmonic refuses V <= 0 (checked before the Vb loop, the
+        # parameters themselves are valid here)
+        return None
+
+
 def fast_motion(p, contact="hertz_damp", guess=None) -> FastMotion:
     """The fast motion at ``p["Vb"]`` (parameters as `resolve_parameters` returns them).
 
@@ -100,15 +115,29 @@ def fast_motion(p, contact="hertz_damp", guess=None) -> FastMotion:
     if V_lin <= p["Vb"]:
         return FastMotion(V_lin, phi_lin, N1, psi, False, 0.0)
     start = (guess.V, guess.phi) if guess is not None and guess.reverses else (V_lin, phi_lin)
-    sol = optimize.root(_balance, start, args=(p, W, N1, psi, D, Ft), method="hybr",
-                        options={"xtol": 1e-13})
-    V, phi = sol.x
-    residual = float(np.max(np.abs(_balance(sol.x, p, W, N1, psi, D, Ft))))
+    args = (p, W, N1, psi, D, Ft)
+
+    def residual_of(sol, V):
+        return float(np.max(np.abs(_balance((V, sol.x[1]), *args)))) if V > 0 else np.inf
+
+    sol = _hybr(_balance, start, args)
+    V = sol.x[0] if sol is not None else 0.0
     # hybr may report "not making good progress" once at machine precision: the
     # residual itself is the criterion.
-    if residual > 1e-9 or V <= 0:
+    residual = residual_of(sol, V) if sol is not None else np.inf
+    if residual > 1e-9:
+        # Where V is small (Vb near 0, or an excitation at resonance) a Newton step can
+        # cross V = 0; in log V it cannot. Tried second, so that the cases the direct
+        # iteration solves keep their digits.
+        sol = _hybr(_log_balance, (np.log(start[0]), start[1]), args)
+        if sol is not None:
+            V = float(np.exp(sol.x[0]))
+            residual = residual_of(sol, V)
+    if residual > 1e-9:
+        why = sol.message if sol is not None else "an iterate reached V <= 0"
         raise RuntimeError(f"harmonic balance did not converge at Vb = {p['Vb']}: "
-                           f"{sol.message} (residual {residual:.1e})")
+                           f"{why} (residual {residual:.1e})")
+    phi = sol.x[1]
     return FastMotion(float(V), float(np.angle(np.exp(1j * phi))), N1, psi, V > p["Vb"],
                       residual)
 
@@ -116,17 +145,29 @@ def fast_motion(p, contact="hertz_damp", guess=None) -> FastMotion:
 def consistent_mdsm_damping(p, contact="hertz_damp", fast=None) -> float:
     """Tangential damping ``p = 2 beta1 omega1 + mu_s dF/du`` of the slow motion at ``-Vb``."""
     fast = fast or fast_motion(p, contact)
+    if fast.V == 0:
+        # No fast motion (no excitation): Coulomb friction of constant direction,
+        # whose average does not depend on the slow velocity.
+        return float(2 * p["beta1"] * p["omega1"])
     slope = correlation.averaged_friction_slope(-p["Vb"], fast.V, p["g"], fast.N1, fast.theta)
     return float(2 * p["beta1"] * p["omega1"] + p["mu_s"] * slope)
 
 
-def _edges(vb, damping):
-    """Indices ``i`` where the sign of the damping changes between ``vb[i]`` and ``vb[i+1]``."""
-    unstable = damping < 0
-    return np.flatnonzero(unstable[:-1] != unstable[1:])
+def _check_grid(vb):
+    vb = np.asarray(vb, dtype=float)
+    if vb.ndim != 1 or vb.size < 2:
+        raise ValueError(f"vb must be a 1-D grid of at least 2 belt speeds; got shape {vb.shape}")
+    if not np.all(np.isfinite(vb)) or np.any(vb < 0):
+        raise ValueError("vb must hold finite belt speeds >= 0")
+    return vb
 
 
-def unstable_intervals(params=None, *, contact="hertz_damp", vb=None, **overrides):
+def _check_points(points):
+    if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < 2:
+        raise ValueError(f"points must be an integer >= 2; got {points!r}")
+
+
+def unstable_intervals(params=None, *, contact="hertz_damp", vb=None, points=400, **overrides):
     """Unstable belt speeds of the consistent MDSM.
 
     The damping is evaluated on a grid (continuation from high ``Vb`` down, where the
@@ -135,20 +176,43 @@ def unstable_intervals(params=None, *, contact="hertz_damp", vb=None, **override
     reversal ``V = Vb``, where the slope jumps from an infinite value to zero, the
     edge is the linear amplitude in closed form.
 
+    Parameters
+    ----------
+    vb : array_like, optional
+        the grid of belt speeds (at least 2, finite, >= 0); default: ``points``
+        speeds up to 1.05 times the linear amplitude of the fast motion
+    points : int
+        size of the default grid (at least 2)
+
     Returns
     -------
     intervals : list of (lower, upper)
         Unstable ranges of ``Vb`` within the grid (an end of the grid bounds a range
-        that reaches it).
+        that reaches it). Without excitation (no fast motion) the list is empty
+        and so is the default grid.
     table : dict of arrays
         ``Vb``, ``damping``, ``V``, ``theta``, ``reverses`` on the grid.
+
+    Raises
+    ------
+    ValueError
+        For bad parameters or a bad grid (naming them), and for two excitation
+        frequencies (the harmonic balance needs one).
+    RuntimeError
+        If the harmonic balance does not converge at a belt speed.
     """
     p = resolve_parameters(params, contact=contact, **overrides)
+    _check_points(points)
+    _single_frequency(p)
     if vb is None:
         # Above the linear amplitude the friction never reverses and the slope is 0.
         top = 1.05 * float(correlation.fast_tangential_velocity(contact=contact, **p)[0])
-        vb = np.linspace(top / 400, top, 400)
-    vb = np.asarray(vb, float)
+        vb = np.linspace(top / points, top, points) if top > 0 else np.empty(0)
+    else:
+        vb = _check_grid(vb)
+    if vb.size == 0:
+        return [], {"Vb": vb, "damping": vb.copy(), "V": vb.copy(), "theta": vb.copy(),
+                    "reverses": np.zeros(0, bool)}
     rows, guess = [], None
     for v in sorted(vb, reverse=True):
         q = {**p, "Vb": float(v)}
@@ -164,7 +228,7 @@ def unstable_intervals(params=None, *, contact="hertz_damp", vb=None, **override
         return consistent_mdsm_damping(q, contact, fast_motion(q, contact, guess))
 
     cuts = []
-    for i in _edges(grid, damping):
+    for i in intervals.sign_changes(damping):
         below, above = rows[i][2], rows[i + 1][2]
         if below.reverses != above.reverses:
             # Onset of reversal: at V = Vb the balance is the linear one, so the edge
@@ -174,64 +238,90 @@ def unstable_intervals(params=None, *, contact="hertz_damp", vb=None, **override
             continue
         cuts.append(optimize.brentq(damping_at, grid[i], grid[i + 1], args=(above,),
                                     xtol=1e-10))
-    bounds = ([grid[0]] if damping[0] < 0 else []) + cuts \
-        + ([grid[-1]] if damping[-1] < 0 else [])
-    intervals = [(float(a), float(b)) for a, b in zip(bounds[::2], bounds[1::2])]
+    unstable = intervals.from_crossings(grid, damping < 0, cuts)
     table = {"Vb": grid, "damping": damping,
              "V": np.array([r[2].V for r in rows]),
              "theta": np.array([r[2].theta for r in rows]),
              "reverses": np.array([r[2].reverses for r in rows])}
-    return intervals, table
+    return unstable, table
 
 
 def paper_intervals(params=None, *, contact="hertz_damp", **overrides):
-    """The paper's unstable interval ``(Vb_c, Vhat]`` for each ``V_hat`` reading (Eq. 25, 28)."""
+    """The paper's unstable interval ``(Vb_c, Vhat]`` for each ``V_hat`` reading (Eq. 25, 28).
+
+    Returns
+    -------
+    dict
+        ``{"tangential": [(lower, upper)], "coupled": [...]}``; an empty interval
+        (NaN from `generated.stability.unstable_interval`) is ``[]``, and a reading
+        whose ``V_hat`` is 0 (no excitation, where Eqs. 23-25 have no meaning) is
+        ``None``.
+    """
     p = resolve_parameters(params, contact=contact, **overrides)
     out = {}
     for model in ("tangential", "coupled"):
-        lower, upper = stability.unstable_interval(contact=contact, vhat_model=model, **p)
-        out[model] = [(float(lower), float(upper))]
+        if not friction.vhat(model=model, contact=contact, **p) > 0:
+            out[model] = None
+            continue
+        lower, upper = (float(x) for x in stability.unstable_interval(
+            contact=contact, vhat_model=model, **p))
+        out[model] = [] if math.isnan(lower) else [(lower, upper)]
     return out
 
 
-def predict(params=None, *, contact="hertz_damp", vb=None, **overrides) -> dict:
-    """Both analyses' predicted unstable ``Vb`` intervals, as plain data."""
-    consistent, _ = unstable_intervals(params, contact=contact, vb=vb, **overrides)
-    paper = paper_intervals(params, contact=contact, **overrides)
-    return {"paper_tangential_vhat": paper["tangential"],
-            "paper_coupled_vhat": paper["coupled"],
-            "consistent_mdsm": consistent}
+#: Why an analysis gives no prediction, or none of its usual kind.
+NO_EXCITATION = ("no fast tangential motion: without tangential excitation, and none passed "
+                 "on by friction from the normal one, the averaged friction is Coulomb "
+                 "friction with slope 0, so no belt speed is unstable")
+NO_VHAT = "V_hat = 0 (no fast tangential motion): Eqs. (23)-(25) need V_hat > 0"
+
+
+def predict(params=None, *, contact="hertz_damp", vb=None, points=400, **overrides) -> dict:
+    """Both analyses' predicted unstable ``Vb`` intervals, as plain data.
+
+    Returns
+    -------
+    dict
+        ``paper_tangential_vhat``, ``paper_coupled_vhat``, ``consistent_mdsm``: lists
+        of ``(lower, upper)``, or ``None`` where the analysis has no answer; then,
+        and where a list is empty for a reason the analysis knows (no excitation),
+        ``reasons`` maps the analysis to a sentence saying why (absent otherwise).
+
+    Raises
+    ------
+    ValueError
+        For bad parameters or a bad grid (naming them).
+    """
+    p = resolve_parameters(params, contact=contact, **overrides)
+    _check_points(points)
+    if vb is not None:
+        vb = _check_grid(vb)
+    reasons = {}
+    try:
+        consistent, _ = unstable_intervals(p, contact=contact, vb=vb, points=points)
+    except RuntimeError as err:
+        consistent, reasons["consistent_mdsm"] = None, str(err)
+    except ValueError as err:
+        # the parameters and the grid are checked above: what is left is the
+        # analysis' own limit (one excitation frequency)
+        consistent, reasons["consistent_mdsm"] = None, str(err)
+    else:
+        linear = float(correlation.fast_tangential_velocity(contact=contact, **p)[0])
+        if linear == 0:
+            reasons["consistent_mdsm"] = NO_EXCITATION
+    paper = paper_intervals(p, contact=contact)
+    out = {"paper_tangential_vhat": paper["tangential"],
+           "paper_coupled_vhat": paper["coupled"],
+           "consistent_mdsm": consistent}
+    for key, model in (("paper_tangential_vhat", "tangential"), ("paper_coupled_vhat", "coupled")):
+        if paper[model] is None:
+            reasons[key] = NO_VHAT
+    if reasons:
+        out["reasons"] = reasons
+    return out
 
 
 def main(argv=None) -> int:
-    """``python -m derive predict [--param value ...] [--json]``."""
-    from generated.parameters import PARAMETERS
-
-    parser = argparse.ArgumentParser(prog="python -m derive predict",
-                                     description="Predicted unstable belt speeds: the "
-                                     "paper's analysis and the consistent MDSM.")
-    for q in PARAMETERS:
-        if q["name"] not in ("Vb", "Vhat"):
-            parser.add_argument(f"--{q['name']}", type=float, default=None,
-                                help=f"{q['description']} [{q['unit']}]")
-    parser.add_argument("--contact", choices=CONTACTS, default="hertz_damp")
-    parser.add_argument("--vb-max", type=float, default=None,
-                        help="top of the Vb grid (default: 1.05 x the linear amplitude)")
-    parser.add_argument("--vb-points", type=int, default=400)
-    parser.add_argument("--json", action="store_true")
-    args = parser.parse_args(argv[1:] if argv and argv[0] == "predict" else argv)
-    overrides = {q["name"]: getattr(args, q["name"]) for q in PARAMETERS
-                 if q["name"] not in ("Vb", "Vhat") and getattr(args, q["name"]) is not None}
-    vb = None if args.vb_max is None else np.linspace(args.vb_max / args.vb_points,
-                                                       args.vb_max, args.vb_points)
-    result = predict(overrides, contact=args.contact, vb=vb)
-    if args.json:
-        print(json.dumps(result))
-        return 0
-    for name, intervals in result.items():
-        text = ", ".join(f"[{a:.3f}, {b:.3f}]" for a, b in intervals) or "none"
-        print(f"{name:>22}: unstable Vb in {text}")
-    return 0
-
-
-
+    """``python -m derive predict [--param value ...] [--json]`` (see `runtime.cli`)."""
+    from .cli import run_command
+    return run_command("predict", argv)

@@ -14,7 +14,7 @@ import numpy as np
 
 from generated import dynamics
 
-from .model import FLIGHT, SLIP_BACK, SLIP_FORWARD, STICK
+from .switching import Mode
 
 __all__ = ["Segment", "Trajectory"]
 
@@ -40,10 +40,12 @@ class Segment:
 class Trajectory:
     """Segments in time order covering [segments[0].t0, segments[-1].t1]."""
 
-    def __init__(self, segments, params, contact):
+    def __init__(self, segments, params, contact, tension="allowed"):
         if not segments:
             raise ValueError("a trajectory needs at least one segment")
         self.segments, self.params, self.contact = segments, params, contact
+        self.tension = tension
+        self.n_zeno = 0
         self.starts = np.array([s.t0 for s in segments])
         self.modes_by_segment = np.array([s.mode for s in segments])
 
@@ -71,21 +73,23 @@ class Trajectory:
         return self.modes_by_segment[self._index(np.asarray(t, dtype=float))]
 
     def forces(self, t, y=None, mode=None):
-        """Normal force Fn (Eq. 1) and friction force on the mass, per unit mass.
+        """Normal force Fn (Eq. 1, under the run's tension law) and friction force on the
+        mass, per unit mass.
 
         The friction force is the tangential force of the belt on the mass,
         ``-mu_s sgn(Vr) Fn`` while sliding (Eqs. 2-3), the force that holds the mass
-        (``-a_free``) while sticking and zero in flight; positive = along the belt.
+        (``-a_free``) while sticking and zero in flight and separation; positive =
+        along the belt.
         """
         t = np.asarray(t, dtype=float)
         y = self.state(t) if y is None else y
         mode = self.mode(t) if mode is None else mode
         p, c = self.params, self.contact
-        Fn = dynamics.normal_force(y[2], y[3], contact=c, **p)
-        a_free = dynamics.rhs_branch(t, *y, 0.0, contact=c, **p)[..., 1]
-        slip = (mode == SLIP_BACK) | (mode == SLIP_FORWARD)
+        Fn = dynamics.normal_force(y[2], y[3], contact=c, tension=self.tension, **p)
+        a_free = dynamics.free_acceleration(t, y[0], y[1], **p)
+        slip = (mode == Mode.SLIP_BACK) | (mode == Mode.SLIP_FORWARD)
         friction = np.where(slip, -p["mu_s"] * np.where(slip, mode, 0) * Fn,
-                            np.where(mode == STICK, -a_free, 0.0))
+                            np.where(mode == Mode.STICK, -a_free, 0.0))
         return Fn, friction
 
     def pieces(self, edges=None):
@@ -140,15 +144,17 @@ class Trajectory:
         t1 = self.t_end if t1 is None else t1
 
         def powers(t, y, mode):
-            sgn = np.where((mode == SLIP_BACK) | (mode == SLIP_FORWARD), mode, 0).astype(float)
-            P_in, P_visc, P_fric = dynamics.power_balance(t, *y, sgn, contact=c, **p)
-            a_free = dynamics.rhs_branch(t, *y, 0.0, contact=c, **p)[..., 1]
-            P_fric = P_fric + np.where(mode == STICK, y[1] * a_free, 0.0)
+            slip = (mode == Mode.SLIP_BACK) | (mode == Mode.SLIP_FORWARD)
+            sgn = np.where(slip, mode, 0).astype(float)
+            P_in, P_visc, P_fric = dynamics.power_balance(t, *y, sgn, contact=c,
+                                                          tension=self.tension, **p)
+            a_free = dynamics.free_acceleration(t, y[0], y[1], **p)
+            P_fric = P_fric + np.where(mode == Mode.STICK, y[1] * a_free, 0.0)
             return np.stack([P_in, P_visc, P_fric, np.abs(P_in), np.abs(P_visc), np.abs(P_fric)])
 
         W = self.integrate(powers, [t0, t1])[:, 0]
         ends = self.state(np.array([t0, t1]))
-        E0, E1 = dynamics.energy(*ends, contact=c, **p)
+        E0, E1 = dynamics.energy(*ends, contact=c, tension=self.tension, **p)
         dE = float(E1 - E0)
         balance = dE - (W[0] - W[1] - W[2])
         scale = W[3] + W[4] + W[5]
@@ -158,7 +164,7 @@ class Trajectory:
 
     def time_in_modes(self, t0, t1):
         """Time spent in each mode within [t0, t1] (dict mode -> seconds)."""
-        out = {m: 0.0 for m in (SLIP_BACK, SLIP_FORWARD, STICK, FLIGHT)}
+        out = {m: 0.0 for m in Mode}
         for s in self.segments:
             out[s.mode] += max(0.0, min(s.t1, t1) - max(s.t0, t0))
         return out

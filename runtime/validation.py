@@ -24,22 +24,20 @@ Runtime layer: imports ``generated``, ``runtime``, numpy and scipy, never SymPy.
 """
 from __future__ import annotations
 
-import argparse
 import concurrent.futures as cf
 import math
 import os
-import sys
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
 from generated import stability
 
-from .model import resolve_parameters
+from . import intervals
+from .parameters import resolve_parameters
 from .predict import unstable_intervals
 from .simulate import PEAK_PRESENT_RATIO, SolverSettings, omega1_band
-from .sweep import sweep
+from .sweep import MAX_POINTS, sweep
 
 __all__ = ["Case", "CASES", "ANALYSES", "Resolution", "FULL", "QUICK", "SLIDING",
            "DEFINITIONS", "vb_grid", "regime_runs", "simulated_ranges", "harmonic_in_band",
@@ -178,7 +176,21 @@ def vb_grid(step, top, start=None):
     ``start`` (a grid value) drops the points below it, so a grid can be extended
     with the new points only. Multiples of the step are computed as ``k * step`` so
     that a value is bit-identical in every sweep (it keys the sweep cache).
+
+    Raises
+    ------
+    ValueError
+        Naming ``step``, ``top`` or ``start``: not finite, ``step <= 0``, ``top < 0``,
+        or more than `runtime.sweep.MAX_POINTS` points.
     """
+    for name, value in (("step", step), ("top", top), ("start", start)):
+        if value is not None and not math.isfinite(value):
+            raise ValueError(f"{name} must be finite; got {value!r}")
+    if not step > 0 or not top >= 0:
+        raise ValueError(f"step must be > 0 and top >= 0; got step = {step!r}, top = {top!r}")
+    if top / step > MAX_POINTS:
+        raise ValueError(f"step = {step!r} up to top = {top!r} is more than MAX_POINTS = "
+                         f"{MAX_POINTS:.0e} points (runtime/sweep.py)")
     last = math.ceil(top / step - 1e-9)
     first = 1 if start is None else int(round(start / step))
     return step * np.arange(first, last + 1, dtype=float)
@@ -187,16 +199,10 @@ def vb_grid(step, top, start=None):
 def regime_runs(vb, regime):
     """Runs of consecutive grid points with one label (a regime, or a flag as text).
 
-    Returns ``[(label, first Vb, last Vb), ...]``.
+    Returns ``[(label, first Vb, last Vb), ...]`` (`runtime.intervals.label_runs`).
     """
-    runs = []
-    for v, r in zip(vb, regime):
-        r = str(r)
-        if runs and runs[-1][0] == r:
-            runs[-1] = (r, runs[-1][1], float(v))
-        else:
-            runs.append((r, float(v), float(v)))
-    return runs
+    return [(label, float(vb[i]), float(vb[j]))
+            for label, i, j in intervals.label_runs([str(r) for r in regime])]
 
 
 def simulated_ranges(vb, present, regime, step):
@@ -231,20 +237,12 @@ def simulated_ranges(vb, present, regime, step):
         raise ValueError(f"vb must be the grid step, 2 step, ... with step = {step}")
     sliding = np.isin(regime, SLIDING)
     shows = present & sliding
-    ranges, i, n = [], 0, vb.size
-    while i < n:
-        if not shows[i]:
-            i += 1
-            continue
-        j = i
-        while j + 1 < n and shows[j + 1]:
-            j += 1
-        # Below the lowest grid point lies Vb = 0, not an excluded point.
-        ranges.append({"first": float(vb[i]), "last": float(vb[j]),
-                       "lower": float(vb[i] - step / 2), "upper": float(vb[j] + step / 2),
-                       "lower_censored": bool(i > 0 and not sliding[i - 1]),
-                       "upper_censored": bool(j == n - 1 or not sliding[j + 1])})
-        i = j + 1
+    # Below the lowest grid point lies Vb = 0, not an excluded point.
+    ranges = [{"first": float(vb[i]), "last": float(vb[j]),
+               "lower": float(vb[i] - step / 2), "upper": float(vb[j] + step / 2),
+               "lower_censored": bool(i > 0 and not sliding[i - 1]),
+               "upper_censored": bool(j == vb.size - 1 or not sliding[j + 1])}
+              for i, j in intervals.true_runs(shows)]
     excluded = [run for run in regime_runs(vb, regime) if run[0] not in SLIDING]
     return {"ranges": ranges, "excluded": excluded,
             "excluded_vb": [float(v) for v in vb[~sliding]], "top": float(vb[-1]),
@@ -323,8 +321,7 @@ def compare(predicted, simulated, step):
         out["status"] = "false_alarm"
     else:
         out["status"] = "paired"
-        lo = min(a for a, _ in predicted)
-        hi = max(b for _, b in predicted)
+        lo, hi = intervals.hull(predicted)
         out["lower"] = _edge(lo, ranges[0]["lower"], ranges[0]["lower_censored"], lo == 0.0)
         out["upper"] = _edge(hi, ranges[-1]["upper"], ranges[-1]["upper_censored"])
     return out
@@ -337,24 +334,12 @@ def disagreement_length(predicted, simulated, step):
     ``[Vb - step/2, Vb + step/2]`` of the excluded (stick-slip, contact-loss) points.
     """
     window_end = simulated["top"] + step / 2
-    cuts = {0.0, window_end}
-    for a, b in predicted:
-        cuts.update((min(max(a, 0.0), window_end), min(max(b, 0.0), window_end)))
-    for r in simulated["ranges"]:
-        cuts.update((r["lower"], r["upper"]))
-    for v in simulated["excluded_vb"]:
-        cuts.update((max(v - step / 2, 0.0), min(v + step / 2, window_end)))
-    cuts = sorted(cuts)
-    total = 0.0
-    # Membership is constant between consecutive cuts: test each piece at its middle.
-    for a, b in zip(cuts[:-1], cuts[1:]):
-        m = 0.5 * (a + b)
-        if any(abs(m - v) < step / 2 for v in simulated["excluded_vb"]):
-            continue
-        in_p = any(lo <= m <= hi for lo, hi in predicted)
-        in_s = any(r["lower"] <= m <= r["upper"] for r in simulated["ranges"])
-        total += (b - a) * (in_p != in_s)
-    return total
+    observed = intervals.clip(predicted, 0.0, window_end)
+    found = [(r["lower"], r["upper"]) for r in simulated["ranges"]]
+    excluded = [(max(v - step / 2, 0.0), min(v + step / 2, window_end))
+                for v in simulated["excluded_vb"]]
+    return intervals.length(intervals.difference(
+        intervals.symmetric_difference(observed, found), excluded))
 
 
 def summarize(cases):
@@ -437,6 +422,10 @@ def validate(quick=False, *, executor=None, cache_dir="default", progress=True, 
     """
     resolution = QUICK if quick else FULL
     by_name = {c.name: c for c in CASES}
+    unknown = [c for c in cases or () if isinstance(c, str) and c not in by_name]
+    if unknown:
+        raise ValueError(f"unknown case(s) {', '.join(map(repr, unknown))}; known: "
+                         f"{', '.join(by_name)}")
     selected = CASES if cases is None else tuple(by_name[c] if isinstance(c, str) else c
                                                  for c in cases)
     own = executor is None
@@ -480,7 +469,7 @@ def _num(x):
 
 
 def _ranges_text(ranges):
-    return ", ".join(f"[{_num(a)}, {_num(b)}]" for a, b in ranges) if ranges else "none"
+    return intervals.format_intervals(ranges, ".2f")
 
 
 def _simulated_text(sim):
@@ -637,42 +626,6 @@ def render_markdown(results, quick):
 
 
 def main(argv=None) -> int:
-    """``python -m derive validate [--quick] [--out PATH] [--jobs N] [--no-cache]``."""
-    argv = list(sys.argv[1:] if argv is None else argv)
-    if argv and argv[0] == "validate":
-        argv = argv[1:]
-    parser = argparse.ArgumentParser(
-        prog="python -m derive validate",
-        description="Write VALIDATION.md: the simulated omega1-peak ranges of Vb against "
-                    "the predicted unstable ranges (Figs. 2, 17-21).")
-    parser.add_argument("--quick", action="store_true",
-                        help="1 m/s grid and 300 s runs instead of 0.25 m/s and 1000 s")
-    parser.add_argument("--out", default=str(Path(__file__).resolve().parents[1]
-                                             / "VALIDATION.md"),
-                        help="output file (default: VALIDATION.md at the repository root)")
-    parser.add_argument("--jobs", type=int, default=None,
-                        help="worker processes (default: all cores; 1: in this process)")
-    parser.add_argument("--no-cache", action="store_true", help="do not use the sweep cache")
-    parser.add_argument("--no-progress", action="store_true")
-    args = parser.parse_args(argv)
-    if args.jobs is not None and args.jobs < 1:
-        parser.error("--jobs must be >= 1")
-    executor = "serial" if args.jobs == 1 else None
-    pool = None
-    if args.jobs is not None and args.jobs > 1:
-        executor = pool = cf.ProcessPoolExecutor(max_workers=args.jobs)
-    try:
-        results = validate(args.quick, executor=executor,
-                           cache_dir=None if args.no_cache else "default",
-                           progress=not args.no_progress)
-    finally:
-        if pool is not None:
-            pool.shutdown()
-    Path(args.out).write_text(render_markdown(results, args.quick))
-    for key, lab, _ in ANALYSES:
-        s = results["summary"][key]
-        mae = "—" if s["mae"] is None else f"{s['mae']:.2f} m/s"
-        print(f"{lab:>4}: MAE of edges {mae} (n = {s['n_edges']}), miss {s['miss']}, "
-              f"false alarm {s['false_alarm']}")
-    print(f"wrote {args.out}")
-    return 0
+    """``python -m derive validate [--quick] [--out PATH] [--jobs N] [--no-cache]`` (`runtime.cli`)."""
+    from .cli import run_command
+    return run_command("validate", argv)

@@ -101,6 +101,9 @@ def test_fractional_powers_print_through_hoisted_roots(exponent, printer):
                       for name, b, d in roots})
     exact = sp.N(expr.subs({g: sp.Float("9.81", 30), w: sp.Float("1.7", 30),
                             x: sp.Float("0.3", 30)}), 30)
+    # Python floats (libm's pow, < 1 ulp in glibc; numpy's and numba's loops are not
+    # involved), roots rounded once: the larger term of the worst case (14/3) takes five
+    # powers and about ten roundings, ~11 eps = 2.5e-15
     assert float(eval(text, namespace)) == pytest.approx(float(exact), rel=4e-15)
 
 

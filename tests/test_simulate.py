@@ -105,12 +105,14 @@ def test_sticking_holds_the_mass_within_the_friction_limit():
             assert mode == (SLIP_FORWARD if a > 0 else SLIP_BACK)
 
 
+@pytest.mark.parametrize("solver", ["events", "superposition"])
 @pytest.mark.parametrize("contact, extra", [("hertz_damp", {}), ("kelvin_voigt", {"beta2": 0.3})])
-def test_contact_loss_is_detected_and_the_run_continues_in_flight(contact, extra):
+def test_contact_loss_is_detected_and_the_run_continues_in_flight(contact, extra, solver):
     # a stiff contact (omega2 = 5): the normal excitation alpha Omega^2 = 32 m/s^2 > g lifts the mass
-    sim = simulate(omega2=5.0, contact=contact, t_end=60.0, t_discard=20.0, **extra)
+    sim = simulate(omega2=5.0, contact=contact, t_end=60.0, t_discard=20.0, solver=solver,
+                   **extra)
     s = sim.summary
-    assert sim.solver_used == "events"       # superposition hands over on loss of contact
+    assert sim.solver_used == solver         # flight is a mode of both integrators
     assert s["regime"] == "contact_loss" and s["n_contact_losses"] > 0
     assert sim.status == "done" and sim.trajectory.t_end == 60.0
     flights = [seg for seg in sim.trajectory.segments if seg.mode == FLIGHT]

@@ -1,42 +1,94 @@
-"""Pieces of the superposition integrator against independent references."""
+"""The superposition integrator and the two scans for switches, against independent references."""
 import numpy as np
 import pytest
-from scipy.linalg import expm
 
-from runtime import superposition
+from runtime import _dop853, _superpose, normal, superposition
 from runtime.simulate import simulate
-from runtime.superposition import _Member, fundamental_matrix
 
 
-@pytest.mark.parametrize("c1, k1", [(0.2, 1.0), (2.0, 1.0), (5.0, 1.0), (0.0, 4.0)])
-def test_fundamental_matrix_is_the_matrix_exponential(c1, k1):
-    A = np.array([[0.0, 1.0], [-k1, -c1]])
-    taus = np.array([0.0, 1e-3, 0.7, 5.0, 40.0])
-    Phi = fundamental_matrix(taus, c1, k1)
-    for i, tau in enumerate(taus):
-        np.testing.assert_allclose(Phi[:, :, i], expm(A * tau), rtol=1e-12, atol=1e-14)
+def _line_kernels(offset):
+    """X1 = t (a unit field); one surface h = (X1 - 1/2)^2 - offset, its rate 2 (X1 - 1/2)."""
+    def field(t, X1, Y1, X2, Y2, mode):
+        return (1.0, 0.0, 0.0, 0.0)
+
+    def surfaces(t, X1, Y1, X2, Y2):
+        return ((X1 - 0.5) ** 2 - offset,)
+
+    def rates(t, X1, Y1, X2, Y2, mode):
+        return (2.0 * (X1 - 0.5),)
+    return field, surfaces, rates
 
 
-def test_double_crossing_inside_one_grid_cell_is_bracketed():
-    # g = (t - 0.5)^2 - 1e-4 on the grid {0, 1}: positive at both nodes, negative between
-    t = np.array([0.0, 1.0])
-    g = (t - 0.5) ** 2 - 1e-4
-    dg = 2 * (t - 0.5)
-    a, b = _Member._first_crossing(t, g, dg)
-    assert 0 <= a < 0.5 - 0.01 < b <= 0.5
-    assert (b - 0.5) ** 2 - 1e-4 <= 0
+@pytest.mark.parametrize("offset", [1e-2, 1e-6])
+def test_dop853_finds_a_double_crossing_inside_one_step(offset):
+    """h > 0 at both ends of the (single, exact) step, negative between: found, not stepped over."""
+    field, surfaces, rates = _line_kernels(offset)
+    out = _dop853.advance(field, (), surfaces, (), rates, (), -1.0, np.array([0]),
+                          np.array([-1.0]), 0.0, np.zeros(4), 1.0, 1.0, 1e-10, 1e-10, np.inf)
+    status, n, *_, t_stop, y_stop, hit, _ = out
+    assert status == _dop853.STATUS_EVENT and hit == 0 and n == 1
+    assert t_stop == pytest.approx(0.5 - np.sqrt(offset), abs=1e-12)
 
 
-def test_sign_change_is_bracketed_and_no_crossing_is_none():
-    t = np.linspace(0, 1, 11)
-    assert _Member._first_crossing(t, 0.55 - t, -np.ones_like(t)) == (0.5, pytest.approx(0.6))
-    assert _Member._first_crossing(t, 1 + t, np.ones_like(t)) is None
+def test_dop853_starting_on_its_surface_waits_until_inside():
+    """A surface at zero at the start (the one just switched on) counts only once left."""
+    field, surfaces, rates = _line_kernels(0.25)          # h(0) = 0, then < 0, then 0 at 1
+    out = _dop853.advance(field, (), surfaces, (), rates, (), -1.0, np.array([0]),
+                          np.array([1.0]), 0.0, np.zeros(4), 2.0, 0.1, 1e-10, 1e-10, np.inf)
+    status, *_, t_stop, _, hit, _ = out
+    # direction +1: the event is h rising through 0 after being inside (h < 0): t = 1
+    assert status == _dop853.STATUS_EVENT and t_stop == pytest.approx(1.0, abs=1e-12)
 
 
-def test_clear_cache_forgets_the_shared_normal_motion_without_changing_results():
+def test_dop853_matches_solve_ivp_on_a_smooth_mode():
+    from scipy.integrate import solve_ivp
+
+    def field(t, X1, Y1, X2, Y2, mode):
+        return (Y1, -X1 - 0.1 * Y1 + np.sin(2 * t), Y2, -4 * X2)
+
+    def surfaces(t, X1, Y1, X2, Y2):
+        return (X1 - 10.0,)
+
+    def rates(t, X1, Y1, X2, Y2, mode):
+        return (Y1,)
+    y0 = np.array([1.0, 0.0, 1.0, 0.0])
+    out = _dop853.advance(field, (), surfaces, (), rates, (), 0.0, np.array([0]),
+                          np.array([1.0]), 0.0, y0, 20.0, 0.0, 1e-11, 1e-11, np.inf)
+    status, n, ts, hs, ys, Fs, t_stop, y_stop, hit, _ = out
+    assert status == _dop853.STATUS_END and t_stop == 20.0
+    ref = solve_ivp(lambda t, y: field(t, *y, 0), (0, 20), y0, method="DOP853", rtol=1e-13,
+                    atol=1e-13, dense_output=True)
+    t = np.linspace(0, 20, 301)
+    np.testing.assert_allclose(_dop853.evaluate(ts, hs, ys, Fs, t), ref.sol(t), atol=1e-9)
+
+
+def test_normal_motion_cache_is_reused_and_cleared_without_changing_results():
     first = simulate(Vb=4.0, solver="superposition", t_end=40.0)
-    assert superposition._shared_cached.cache_info().currsize >= 1
+    assert normal._cached.cache_info().currsize >= 1
+    again = simulate(Vb=6.0, solver="superposition", t_end=40.0)
+    assert normal._cached.cache_info().hits >= 1               # Vb does not enter it
     superposition.clear_cache()
-    assert superposition._shared_cached.cache_info().currsize == 0
-    again = simulate(Vb=4.0, solver="superposition", t_end=40.0)
-    np.testing.assert_array_equal(again.y, first.y)
+    assert normal._cached.cache_info().currsize == 0
+    np.testing.assert_array_equal(simulate(Vb=4.0, solver="superposition", t_end=40.0).y,
+                                  first.y)
+    assert again.solver_used == "superposition"
+
+
+def test_superposition_hands_over_at_undamped_resonance_with_a_reason():
+    sim = simulate(beta1=0.0, Omega=1.0, omega1=1.0, t_end=30.0, t_discard=10.0)
+    assert sim.solver_used == "events"
+    assert "undamped resonance" in sim.message
+
+
+@pytest.mark.parametrize("backend", ["python", "numba"])
+def test_compiled_and_python_scans_agree(backend):
+    if backend == "numba":
+        pytest.importorskip("numba")
+    ref = simulate(Vb=4.0, solver="superposition", t_end=30.0, backend="python",
+                   t_discard=10.0)
+    run = simulate(Vb=4.0, solver="superposition", t_end=30.0, backend=backend,
+                   t_discard=10.0)
+    assert [k for _, k, _ in run.events] == [k for _, k, _ in ref.events]
+    # the same arithmetic up to the math library's last bits (exp, sin, pow)
+    np.testing.assert_allclose(run.y, ref.y, rtol=0, atol=1e-10)
+    assert _superpose.compiled() is not None or backend == "python"

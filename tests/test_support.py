@@ -63,3 +63,62 @@ def test_compiled_numba_ufunc_broadcasts_and_is_cached():
     assert _support.compiled(k, "float64", None) is ufunc       # compiled once per session
     out = ufunc(np.arange(3.0)[:, None], np.arange(4.0)[None, :])
     np.testing.assert_array_equal(out, np.arange(3.0)[:, None] * np.arange(4.0) + 1.0)
+
+
+# ---------------------------------------------------------------- argument checks
+
+@pytest.mark.parametrize("value", [np.inf, -np.inf, [1.0, np.inf]])
+def test_infinite_parameters_are_refused_by_name(value):
+    """Parameters are finite physical numbers; infinity was once passed straight through."""
+    from generated import friction, stability, unforced
+    from generated.parameters import BASE
+
+    with pytest.raises(ValueError, match=r"equilibrium\(\): parameter 'mu_s' must be finite"):
+        unforced.equilibrium(**{**BASE, "mu_s": value})
+    with pytest.raises(ValueError, match="'Vb' must be finite"):
+        stability.is_stable(**{**BASE, "Vb": value}, backend="numpy")
+    with pytest.raises(ValueError, match="'phase_t' must be finite"):       # domain "real"
+        stability.is_stable(**{**BASE, "phase_t": value}, backend="numpy")
+    with pytest.raises(ValueError, match="'Vr' must be finite"):             # a state input
+        friction.mu_bar(value, 8.0, 0.4)
+
+
+def test_infinite_parameters_are_refused_by_the_mpmath_variants():
+    import mpmath
+
+    from generated import mp
+    from generated.parameters import BASE
+
+    with pytest.raises(ValueError, match="'mu_s' must be finite"):
+        mp.unforced.equilibrium(**{**BASE, "mu_s": mpmath.inf})
+    with pytest.raises(ValueError, match="'Vb' must be finite"):
+        mp.stability.is_stable(**{**BASE, "Vb": -mpmath.inf})
+
+
+def test_nan_and_domain_messages_are_unchanged_and_an_empty_array_passes():
+    from generated import unforced
+    from generated.parameters import BASE
+
+    with pytest.raises(ValueError, match="'omega1' must be a number, not NaN"):
+        unforced.equilibrium(**{**BASE, "omega1": [1.0, np.nan, np.inf]})
+    with pytest.raises(ValueError, match=r"'omega1' must be > 0"):
+        unforced.equilibrium(**{**BASE, "omega1": [1.0, 0.0]})
+    assert _support.param("f", "omega1", np.empty(0)).shape == (0,)
+
+
+def test_infinite_outputs_are_still_allowed():
+    from generated import friction
+
+    assert friction.mu_bar_slope(8.5, 8.5, 0.4) == np.inf
+
+
+def test_an_infinite_computed_vhat_is_reported_as_such():
+    from generated import stability
+    from generated.parameters import BASE
+
+    resonant = {**BASE, "beta1": 0.0, "Omega": BASE["omega1"]}
+    with pytest.raises(ValueError, match=r"is_stable\(\): Vhat of vhat_model='tangential' "
+                                         "is not finite"):
+        with np.errstate(divide="ignore"):
+            stability.is_stable(**resonant, backend="numpy")
+    assert not stability.is_stable(**resonant, Vhat=8.0, backend="numpy")

@@ -269,3 +269,17 @@ def test_harmonic_balance_error_is_second_order_in_the_excitation():
         _, fast, measured = _fast_amplitudes(alpha=alpha)
         errors.append(abs(measured - fast.V) / fast.V)
     assert errors[0] / errors[1] == pytest.approx(4.0, rel=0.05)
+
+
+def test_validation_grid_and_cases_refuse_bad_input_by_name():
+    """runtime.validation builds its own grids: the same limits as a sweep."""
+    for kwargs, text in (({"step": 0.0, "top": 10.0}, "step must be > 0"),
+                         ({"step": float("nan"), "top": 10.0}, "step must be finite"),
+                         ({"step": 0.5, "top": float("inf")}, "top must be finite"),
+                         ({"step": 1e-15, "top": 10.0}, "MAX_POINTS")):
+        with pytest.raises(ValueError, match=text):
+            validation.vb_grid(**kwargs)
+    np.testing.assert_array_equal(validation.vb_grid(0.5, 2.0), [0.5, 1.0, 1.5, 2.0])
+    with pytest.raises(ValueError, match="unknown case.*'beta1=9'"):
+        validation.validate(True, cases=["beta1=9"], executor="serial", cache_dir=None,
+                            progress=False)

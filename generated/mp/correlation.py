@@ -69,8 +69,11 @@ def averaged_friction(u, V, N0, N1, theta, **params):
 
 
 def _averaged_friction__impl(u, V, N0, N1, theta):
-    _x0 = 1/V
-    return ((2*_x0*(N0*V*mpmath.asin(_x0*u) + N1*mpmath.sqrt(V**2 - u**2)*mpmath.cos(theta))/mpmath.pi) if (V > abs(u)) else (N0*mpmath.sign(u)))
+    if (V > abs(u)):
+        _x0 = 1/V
+        return 2*_x0*(N0*V*mpmath.asin(_x0*u) + N1*mpmath.sqrt(V**2 - u**2)*mpmath.cos(theta))/mpmath.pi
+    else:
+        return N0*mpmath.sign(u)
 
 
 _AVERAGED_FRICTION = {
@@ -125,7 +128,10 @@ def averaged_friction_slope(u, V, N0, N1, theta, **params):
 
 
 def _averaged_friction_slope__impl(u, V, N0, N1, theta):
-    return (((2*N0*V - 2*N1*u*mpmath.cos(theta))/(mpmath.pi*V*mpmath.sqrt((V - u)*(V + u)))) if (V > abs(u)) else (0))
+    if (V > abs(u)):
+        return (2*N0*V - 2*N1*u*mpmath.cos(theta))/(mpmath.pi*V*mpmath.sqrt((V - u)*(V + u)))
+    else:
+        return 0
 
 
 _AVERAGED_FRICTION_SLOPE = {
@@ -180,18 +186,18 @@ def first_harmonic(u, V, N0, N1, theta, **params):
 
 
 def _first_harmonic__impl(u, V, N0, N1, theta):
-    _x0 = 1/mpmath.pi
-    _x1 = 1/V
-    _x2 = V**2
-    _x3 = mpmath.sqrt(_x2 - u**2)
-    _x4 = mpmath.cos(theta)
-    _x5 = mpmath.asin(_x1*u)
-    _x6 = _x3*u/_x2
-    _x7 = 2*N1
-    _x8 = (V > abs(u))
-    _x9 = N1*mpmath.sign(u)
-    _x10 = mpmath.sin(theta)
-    return (((_x0*_x1*(4*N0*_x3 + V*_x4*_x7*(_x5 - _x6))) if _x8 else (_x4*_x9)), ((_x0*_x10*_x7*(_x5 + _x6)) if _x8 else (_x10*_x9)),)
+    if (V > abs(u)):
+        _x0 = 1/mpmath.pi
+        _x1 = 1/V
+        _x2 = V**2
+        _x3 = mpmath.sqrt(_x2 - u**2)
+        _x4 = mpmath.asin(_x1*u)
+        _x5 = _x3*u/_x2
+        _x6 = 2*N1
+        return (_x0*_x1*(4*N0*_x3 + V*_x6*(_x4 - _x5)*mpmath.cos(theta)), _x0*_x6*(_x4 + _x5)*mpmath.sin(theta),)
+    else:
+        _x0 = N1*mpmath.sign(u)
+        return (_x0*mpmath.cos(theta), _x0*mpmath.sin(theta),)
 
 
 _FIRST_HARMONIC = {

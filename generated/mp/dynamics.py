@@ -103,11 +103,11 @@ def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', tension='allowed', **params)
 
 
 def _rhs__hertz_damp__allowed(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
-    _x1 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
-    _x2 = (X2 > 0)
-    _x3 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
-    return [Y1, ((-_x0*mu_s*mpmath.sign(-Vb + Y1) - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3))]
+    if (X2 > 0):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_s*mpmath.sign(-Vb + Y1), Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g]
+    else:
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
 
 
 def _rhs__hertz_damp__clipped(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
@@ -120,11 +120,11 @@ def _rhs__hertz_damp__clipped(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, m
 
 
 def _rhs__kelvin_voigt__allowed(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
-    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
-    _x1 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
-    _x2 = (X2 > 0)
-    _x3 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
-    return [Y1, ((-_x0*mu_s*mpmath.sign(-Vb + Y1) - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3))]
+    if (X2 > 0):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_s*mpmath.sign(-Vb + Y1), Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g]
+    else:
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
 
 
 def _rhs__kelvin_voigt__clipped(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
@@ -229,11 +229,11 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', tension='allowed
 
 
 def _rhs_branch__hertz_damp__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
-    _x1 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
-    _x2 = (X2 > 0)
-    _x3 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
-    return [Y1, ((-_x0*mu_s*sgn - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3))]
+    if (X2 > 0):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_s*sgn, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g]
+    else:
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
 
 
 def _rhs_branch__hertz_damp__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
@@ -246,11 +246,11 @@ def _rhs_branch__hertz_damp__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta
 
 
 def _rhs_branch__kelvin_voigt__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
-    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
-    _x1 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
-    _x2 = (X2 > 0)
-    _x3 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
-    return [Y1, ((-_x0*mu_s*sgn - _x1) if _x2 else (-_x1)), Y2, ((-_x0 - _x3) if _x2 else (-_x3))]
+    if (X2 > 0):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_s*sgn, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g]
+    else:
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
 
 
 def _rhs_branch__kelvin_voigt__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
@@ -333,18 +333,25 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', tension='al
 
 
 def _jacobian_branch__hertz_damp__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
-    _x0 = max(0, X2)
-    _x1 = 2*beta2*omega2
-    _x2 = (mpmath.mpf(3)/mpmath.mpf(2))*mpmath.sqrt(_x0)*(Y2*_x1 + omega2**2)
-    _x3 = mu_s*sgn
-    _x4 = (X2 > 0)
-    _x5 = _x0**(mpmath.mpf(3)/mpmath.mpf(2))*_x1
-    return mpmath.matrix([
-            [0, 1, 0, 0],
-            [-omega1**2, -2*beta1*omega1, ((-_x2*_x3) if _x4 else (0)), ((-_x3*_x5) if _x4 else (0))],
-            [0, 0, 0, 1],
-            [0, 0, ((-_x2) if _x4 else (0)), ((-_x5) if _x4 else (0))],
-        ])
+    if (X2 > 0):
+        _x0 = max(0, X2)
+        _x1 = 2*beta2*omega2
+        _x2 = (mpmath.mpf(3)/mpmath.mpf(2))*mpmath.sqrt(_x0)*(Y2*_x1 + omega2**2)
+        _x3 = mu_s*sgn
+        _x4 = _x0**(mpmath.mpf(3)/mpmath.mpf(2))*_x1
+        return mpmath.matrix([
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, -_x2*_x3, -_x3*_x4],
+                [0, 0, 0, 1],
+                [0, 0, -_x2, -_x4],
+            ])
+    else:
+        return mpmath.matrix([
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, 0, 0],
+                [0, 0, 0, 1],
+                [0, 0, 0, 0],
+            ])
 
 
 def _jacobian_branch__hertz_damp__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
@@ -366,16 +373,23 @@ def _jacobian_branch__hertz_damp__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1,
 
 
 def _jacobian_branch__kelvin_voigt__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
-    _x0 = omega2**2
-    _x1 = mu_s*sgn
-    _x2 = (X2 > 0)
-    _x3 = 2*beta2*omega2
-    return mpmath.matrix([
-            [0, 1, 0, 0],
-            [-omega1**2, -2*beta1*omega1, ((-_x0*_x1) if _x2 else (0)), ((-_x1*_x3) if _x2 else (0))],
-            [0, 0, 0, 1],
-            [0, 0, ((-_x0) if _x2 else (0)), ((-_x3) if _x2 else (0))],
-        ])
+    if (X2 > 0):
+        _x0 = omega2**2
+        _x1 = mu_s*sgn
+        _x2 = 2*beta2*omega2
+        return mpmath.matrix([
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, -_x0*_x1, -_x1*_x2],
+                [0, 0, 0, 1],
+                [0, 0, -_x0, -_x2],
+            ])
+    else:
+        return mpmath.matrix([
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, 0, 0],
+                [0, 0, 0, 1],
+                [0, 0, 0, 0],
+            ])
 
 
 def _jacobian_branch__kelvin_voigt__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s):
@@ -447,7 +461,10 @@ def normal_force(X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
 
 
 def _normal_force__hertz_damp__allowed(X2, Y2, beta2, omega2):
-    return (((2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))) if (X2 > 0) else (0))
+    if (X2 > 0):
+        return (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    else:
+        return 0
 
 
 def _normal_force__hertz_damp__clipped(X2, Y2, beta2, omega2):
@@ -456,7 +473,10 @@ def _normal_force__hertz_damp__clipped(X2, Y2, beta2, omega2):
 
 
 def _normal_force__kelvin_voigt__allowed(X2, Y2, beta2, omega2):
-    return ((2*Y2*beta2*omega2 + omega2**2*max(0, X2)) if (X2 > 0) else (0))
+    if (X2 > 0):
+        return 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    else:
+        return 0
 
 
 def _normal_force__kelvin_voigt__clipped(X2, Y2, beta2, omega2):
@@ -535,8 +555,10 @@ def normal_rhs(t, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
 
 
 def _normal_rhs__hertz_damp__allowed(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
-    _x0 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
-    return [Y2, ((-_x0 - (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))) if (X2 > 0) else (-_x0))]
+    if (X2 > 0):
+        return [Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g - (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))]
+    else:
+        return [Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
 
 
 def _normal_rhs__hertz_damp__clipped(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
@@ -546,8 +568,10 @@ def _normal_rhs__hertz_damp__clipped(t, X2, Y2, beta2, omega2, g, alpha_n, Omega
 
 
 def _normal_rhs__kelvin_voigt__allowed(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
-    _x0 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
-    return [Y2, ((-2*Y2*beta2*omega2 - _x0 - omega2**2*max(0, X2)) if (X2 > 0) else (-_x0))]
+    if (X2 > 0):
+        return [Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - 2*Y2*beta2*omega2 + g - omega2**2*max(0, X2)]
+    else:
+        return [Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
 
 
 def _normal_rhs__kelvin_voigt__clipped(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
@@ -615,13 +639,18 @@ def normal_jacobian(t, X2, Y2, *, contact='hertz_damp', tension='allowed', **par
 
 
 def _normal_jacobian__hertz_damp__allowed(t, X2, Y2, beta2, omega2):
-    _x0 = max(0, X2)
-    _x1 = 2*beta2*omega2
-    _x2 = (X2 > 0)
-    return mpmath.matrix([
-            [0, 1],
-            [((-mpmath.mpf(3)/mpmath.mpf(2)*mpmath.sqrt(_x0)*(Y2*_x1 + omega2**2)) if _x2 else (0)), ((-_x0**(mpmath.mpf(3)/mpmath.mpf(2))*_x1) if _x2 else (0))],
-        ])
+    if (X2 > 0):
+        _x0 = max(0, X2)
+        _x1 = 2*beta2*omega2
+        return mpmath.matrix([
+                [0, 1],
+                [-mpmath.mpf(3)/mpmath.mpf(2)*mpmath.sqrt(_x0)*(Y2*_x1 + omega2**2), -_x0**(mpmath.mpf(3)/mpmath.mpf(2))*_x1],
+            ])
+    else:
+        return mpmath.matrix([
+                [0, 1],
+                [0, 0],
+            ])
 
 
 def _normal_jacobian__hertz_damp__clipped(t, X2, Y2, beta2, omega2):
@@ -638,11 +667,16 @@ def _normal_jacobian__hertz_damp__clipped(t, X2, Y2, beta2, omega2):
 
 
 def _normal_jacobian__kelvin_voigt__allowed(t, X2, Y2, beta2, omega2):
-    _x0 = (X2 > 0)
-    return mpmath.matrix([
-            [0, 1],
-            [((-omega2**2) if _x0 else (0)), ((-2*beta2*omega2) if _x0 else (0))],
-        ])
+    if (X2 > 0):
+        return mpmath.matrix([
+                [0, 1],
+                [-omega2**2, -2*beta2*omega2],
+            ])
+    else:
+        return mpmath.matrix([
+                [0, 1],
+                [0, 0],
+            ])
 
 
 def _normal_jacobian__kelvin_voigt__clipped(t, X2, Y2, beta2, omega2):
@@ -845,19 +879,31 @@ def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', tension='allowed', **params)
 
 
 def _energy__hertz_damp__allowed(X1, Y1, X2, Y2, omega1, omega2, g):
-    return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (((mpmath.mpf(2)/mpmath.mpf(5))*omega2**2*max(0, X2)**(mpmath.mpf(5)/mpmath.mpf(2))) if (X2 > 0) else (0))
+    if (X2 > 0):
+        return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (mpmath.mpf(2)/mpmath.mpf(5))*omega2**2*max(0, X2)**(mpmath.mpf(5)/mpmath.mpf(2))
+    else:
+        return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2
 
 
 def _energy__hertz_damp__clipped(X1, Y1, X2, Y2, omega1, omega2, g):
-    return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (((mpmath.mpf(2)/mpmath.mpf(5))*omega2**2*max(0, X2)**(mpmath.mpf(5)/mpmath.mpf(2))) if (X2 > 0) else (0))
+    if (X2 > 0):
+        return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (mpmath.mpf(2)/mpmath.mpf(5))*omega2**2*max(0, X2)**(mpmath.mpf(5)/mpmath.mpf(2))
+    else:
+        return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2
 
 
 def _energy__kelvin_voigt__allowed(X1, Y1, X2, Y2, omega1, omega2, g):
-    return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (((mpmath.mpf(1)/mpmath.mpf(2))*omega2**2*max(0, X2)**2) if (X2 > 0) else (0))
+    if (X2 > 0):
+        return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (mpmath.mpf(1)/mpmath.mpf(2))*omega2**2*max(0, X2)**2
+    else:
+        return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2
 
 
 def _energy__kelvin_voigt__clipped(X1, Y1, X2, Y2, omega1, omega2, g):
-    return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (((mpmath.mpf(1)/mpmath.mpf(2))*omega2**2*max(0, X2)**2) if (X2 > 0) else (0))
+    if (X2 > 0):
+        return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2 + (mpmath.mpf(1)/mpmath.mpf(2))*omega2**2*max(0, X2)**2
+    else:
+        return (mpmath.mpf(1)/mpmath.mpf(2))*X1**2*omega1**2 - X2*g + (mpmath.mpf(1)/mpmath.mpf(2))*Y1**2 + (mpmath.mpf(1)/mpmath.mpf(2))*Y2**2
 
 
 _ENERGY = {
@@ -947,11 +993,13 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, contact='hertz_damp', tension='allo
 
 
 def _power_balance__hertz_damp__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
-    _x0 = omega2**2
-    _x1 = max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
-    _x2 = 2*Y2*beta2*omega2 + _x0
-    _x3 = (X2 > 0)
-    return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x1*_x2)) if _x3 else (0)), Y1*mu_s*sgn*((_x1*_x2) if _x3 else (0)),)
+    if (X2 > 0):
+        _x0 = omega2**2
+        _x1 = max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+        _x2 = 2*Y2*beta2*omega2 + _x0
+        return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + Y2*(-_x0*_x1 + _x1*_x2), Y1*_x1*_x2*mu_s*sgn,)
+    else:
+        return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1, 0,)
 
 
 def _power_balance__hertz_damp__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
@@ -964,9 +1012,11 @@ def _power_balance__hertz_damp__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, b
 
 
 def _power_balance__kelvin_voigt__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
-    _x0 = 2*beta2*omega2
-    _x1 = (X2 > 0)
-    return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2**2*_x0) if _x1 else (0)), Y1*mu_s*sgn*((Y2*_x0 + omega2**2*max(0, X2)) if _x1 else (0)),)
+    if (X2 > 0):
+        _x0 = 2*beta2*omega2
+        return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + Y2**2*_x0, Y1*mu_s*sgn*(Y2*_x0 + omega2**2*max(0, X2)),)
+    else:
+        return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1, 0,)
 
 
 def _power_balance__kelvin_voigt__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):

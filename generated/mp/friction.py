@@ -57,7 +57,10 @@ def mu_bar(Vr, Vhat, mu_s, **params):
 
 
 def _mu_bar__impl(Vr, Vhat, mu_s):
-    return ((mu_s*(-2*mpmath.acos(Vr/Vhat)/mpmath.pi + 1)) if (Vhat >= abs(Vr)) else (mu_s*mpmath.sign(Vr)))
+    if (Vhat >= abs(Vr)):
+        return mu_s*(-2*mpmath.acos(Vr/Vhat)/mpmath.pi + 1)
+    else:
+        return mu_s*mpmath.sign(Vr)
 
 
 _MU_BAR = {
@@ -106,7 +109,10 @@ def mu_bar0(Vb, Vhat, mu_s, **params):
 
 
 def _mu_bar0__impl(Vb, Vhat, mu_s):
-    return ((mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))
+    if (Vb <= Vhat):
+        return mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)
+    else:
+        return -mu_s*mpmath.sign(Vb)
 
 
 _MU_BAR0 = {
@@ -159,7 +165,12 @@ def mu_bar_slope(Vb, Vhat, mu_s, **params):
 
 
 def _mu_bar_slope__impl(Vb, Vhat, mu_s):
-    return ((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
+    if (Vb < Vhat):
+        return 2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+    elif (Vb == Vhat) and (mu_s > 0):
+        return mpmath.inf
+    else:
+        return 0
 
 
 _MU_BAR_SLOPE = {
@@ -242,47 +253,44 @@ def _vhat__tangential__kelvin_voigt(beta1, omega1, alpha_t, Omega_t):
 
 
 def _vhat__coupled__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
-    _x0 = 1j*Omega_t
-    _x1 = 2*_x0
-    _x2 = beta1*omega1
-    _x3 = -omega1
-    _x4 = 1/(_x1*_x2 - (Omega_t + _x3)*(Omega_t + omega1))
-    _x5 = Omega_t**2
-    _x6 = mpmath.exp(1j*phase_t)
-    _x7 = beta2*g/omega2
-    _x8 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
-    _x9 = -3*_x8
-    _x10 = alpha_n*mu_s*mpmath.exp(1j*phase_n)
-    _x11 = _x10/(_x1*_x7 - _x5 - mpmath.mpf(1)/mpmath.mpf(2)*_x9)
-    _x12 = (mpmath.mpf(3)/mpmath.mpf(2))*_x8
-    _x13 = 1j*Omega_t**3
-    _x14 = 2*_x7
-    _x15 = 1j*Omega_n
-    _x16 = 2*_x15
-    _x17 = Omega_n**2
-    _x18 = _x10/(_x16*_x7 - _x17 - mpmath.mpf(1)/mpmath.mpf(2)*_x9)
-    return ((abs(_x0*_x4*(_x11*_x12*_x5 + _x11*_x13*_x14 - _x5*_x6*alpha_t))) if (Omega_n == Omega_t) else (alpha_t*abs(_x13*_x4*_x6) + abs(_x15*(1j*Omega_n**3*_x14*_x18 + _x12*_x17*_x18)/(_x16*_x2 - (Omega_n + _x3)*(Omega_n + omega1)))))
+    if (Omega_n == Omega_t):
+        _x0 = 1j*Omega_t
+        _x1 = 2*_x0
+        _x2 = Omega_t**2
+        _x3 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x4 = beta2*g/omega2
+        _x5 = alpha_n*mu_s*mpmath.exp(1j*phase_n)/(_x1*_x4 - _x2 + (mpmath.mpf(3)/mpmath.mpf(2))*_x3)
+        return abs(_x0*(2*1j*Omega_t**3*_x4*_x5 + (mpmath.mpf(3)/mpmath.mpf(2))*_x2*_x3*_x5 - _x2*alpha_t*mpmath.exp(1j*phase_t))/(_x1*beta1*omega1 - (Omega_t - omega1)*(Omega_t + omega1)))
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*1j
+        _x2 = -omega1
+        _x3 = 1j*Omega_n
+        _x4 = 2*_x3
+        _x5 = Omega_n**2
+        _x6 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x7 = beta2*g/omega2
+        _x8 = alpha_n*mu_s*mpmath.exp(1j*phase_n)/(_x4*_x7 - _x5 + (mpmath.mpf(3)/mpmath.mpf(2))*_x6)
+        return Omega_t**3*alpha_t*abs(1/(Omega_t*_x0*_x1 - (Omega_t + _x2)*(Omega_t + omega1))) + abs(_x3*(Omega_n**3*_x1*_x7*_x8 + (mpmath.mpf(3)/mpmath.mpf(2))*_x5*_x6*_x8)/(_x0*_x4 - (Omega_n + _x2)*(Omega_n + omega1)))
 
 
 def _vhat__coupled__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
-    _x0 = 1j*Omega_t
-    _x1 = 2*_x0
-    _x2 = beta1*omega1
-    _x3 = -omega1
-    _x4 = 1/(_x1*_x2 - (Omega_t + _x3)*(Omega_t + omega1))
-    _x5 = Omega_t**2
-    _x6 = mpmath.exp(1j*phase_t)
-    _x7 = beta2*omega2
-    _x8 = -omega2
-    _x9 = 1/(_x1*_x7 - (Omega_t + _x8)*(Omega_t + omega2))
-    _x10 = alpha_n*mu_s*mpmath.exp(1j*phase_n)
-    _x11 = _x10*omega2**2
-    _x12 = 1j*Omega_t**3
-    _x13 = 2*_x10*_x7
-    _x14 = 1j*Omega_n
-    _x15 = 2*_x14
-    _x16 = 1/(_x15*_x7 - (Omega_n + _x8)*(Omega_n + omega2))
-    return ((abs(_x0*_x4*(_x11*_x5*_x9 + _x12*_x13*_x9 - _x5*_x6*alpha_t))) if (Omega_n == Omega_t) else (alpha_t*abs(_x12*_x4*_x6) + abs(_x14*(1j*Omega_n**3*_x13*_x16 + Omega_n**2*_x11*_x16)/(_x15*_x2 - (Omega_n + _x3)*(Omega_n + omega1)))))
+    if (Omega_n == Omega_t):
+        _x0 = 1j*Omega_t
+        _x1 = 2*_x0
+        _x2 = Omega_t**2
+        _x3 = beta2*omega2
+        _x4 = alpha_n*mu_s*mpmath.exp(1j*phase_n)/(_x1*_x3 - (Omega_t - omega2)*(Omega_t + omega2))
+        return abs(_x0*(2*1j*Omega_t**3*_x3*_x4 + _x2*_x4*omega2**2 - _x2*alpha_t*mpmath.exp(1j*phase_t))/(_x1*beta1*omega1 - (Omega_t - omega1)*(Omega_t + omega1)))
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*1j
+        _x2 = -omega1
+        _x3 = 1j*Omega_n
+        _x4 = 2*_x3
+        _x5 = beta2*omega2
+        _x6 = alpha_n*mu_s*mpmath.exp(1j*phase_n)/(_x4*_x5 - (Omega_n - omega2)*(Omega_n + omega2))
+        return Omega_t**3*alpha_t*abs(1/(Omega_t*_x0*_x1 - (Omega_t + _x2)*(Omega_t + omega1))) + abs(_x3*(Omega_n**3*_x1*_x5*_x6 + Omega_n**2*_x6*omega2**2)/(_x0*_x4 - (Omega_n + _x2)*(Omega_n + omega1)))
 
 
 _VHAT = {

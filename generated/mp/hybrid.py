@@ -15,7 +15,7 @@ import mpmath
 
 from .. import _support
 
-__all__ = ['vector_field', 'surfaces', 'surface_scales', 'surface_rates', 'saltation', 'MODE_CODES', 'FIELDS', 'SURFACES', 'DECIDE_SLIP', 'DECIDE_CONTACT', 'GUARDS', 'TRANSITIONS']
+__all__ = ['vector_field', 'response_field', 'surfaces', 'surface_scales', 'surface_rates', 'saltation', 'MODE_CODES', 'FIELDS', 'SURFACES', 'DECIDE_SLIP', 'DECIDE_CONTACT', 'GUARDS', 'TRANSITIONS']
 
 #: Integer code of each mode; the slip codes are sgn(Vr) of Eq. (3).
 MODE_CODES = {'slip_back': -1, 'stick': 0, 'slip_forward': 1, 'flight': 2, 'separated': 3}
@@ -156,6 +156,103 @@ def _vector_field__kelvin_voigt(t, X1, Y1, X2, Y2, mode, beta1, omega1, beta2, o
 _VECTOR_FIELD = {
     ('hertz_damp',): _support.Variant(_vector_field__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
     ('kelvin_voigt',): _support.Variant(_vector_field__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+}
+
+
+def response_field(t, z, v, X2, Y2, mode, *, contact='hertz_damp', **params):
+    """Normal motion and the tangential response to its contact force.
+
+    Implements Eqs. (1)-(4) of the paper.
+
+    z'' + 2 beta1 omega1 z' + omega1^2 z = F(mode) from rest, beside the normal
+    equation: the normal motion does not depend on the tangential one, so the
+    superposition integrator integrates this once.
+
+    mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits.
+
+    Parameters
+    ----------
+    t : mpmath number
+        time [s]
+    z : mpmath number
+        tangential response to the contact force [m]
+    v : mpmath number
+        its velocity [m/s]
+    X2 : mpmath number
+        normal penetration into the belt [m]
+    Y2 : mpmath number
+        normal velocity X2' [m/s]
+    mode : mpmath number
+        mode code (MODE_CODES): -1 slip_back, 0 stick, +1 slip_forward, 2 flight, 3 separated
+    beta1 : mpmath number
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : mpmath number
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    beta2 : mpmath number
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : mpmath number
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    alpha : mpmath number
+        excitation amplitude: force per mass alpha Omega^2, Eq. (4) [m], nonnegative.
+    Omega : mpmath number
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    g : mpmath number
+        gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
+    alpha_n : mpmath number
+        normal excitation amplitude (Figs. 14-15) [m], nonnegative, default: ``alpha``.
+    Omega_n : mpmath number
+        normal excitation frequency (Fig. 14b) [rad/s], nonnegative, default: ``Omega``.
+    phase_n : mpmath number
+        normal excitation phase [rad], real, default 0.0.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    dstate : ndarray, shape (..., 4)
+        Derivative of (z, z', X2, X2').
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    """
+    _variant = _support.choose("response_field", _RESPONSE_FIELD, contact=contact)
+    _values = _support.mp_arguments("response_field", _variant.names, params)
+    t = _support.mp_param("response_field", "t", t, "real")
+    z = _support.mp_param("response_field", "z", z, "real")
+    v = _support.mp_param("response_field", "v", v, "real")
+    X2 = _support.mp_param("response_field", "X2", X2, "real")
+    Y2 = _support.mp_param("response_field", "Y2", Y2, "real")
+    mode = _support.mp_param("response_field", "mode", mode, "real")
+    return _variant.impl(t, z, v, X2, Y2, mode, *_values)
+
+
+def _response_field__hertz_damp(t, z, v, X2, Y2, mode, beta1, omega1, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    if (mode == -1) or (mode == 0) or (mode == 1):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+        return [v, _x0 - 2*beta1*omega1*v - omega1**2*z, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g]
+    else:
+        return [v, -2*beta1*omega1*v - omega1**2*z, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
+
+
+def _response_field__kelvin_voigt(t, z, v, X2, Y2, mode, beta1, omega1, beta2, omega2, g, alpha_n, Omega_n, phase_n):
+    if (mode == -1) or (mode == 0) or (mode == 1):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+        return [v, _x0 - 2*beta1*omega1*v - omega1**2*z, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g]
+    else:
+        return [v, -2*beta1*omega1*v - omega1**2*z, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
+
+
+_RESPONSE_FIELD = {
+    ('hertz_damp',): _support.Variant(_response_field__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('kelvin_voigt',): _support.Variant(_response_field__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', )),
 }
 
 

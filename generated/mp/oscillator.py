@@ -58,35 +58,40 @@ def state_transition(tau, **params):
 
 
 def _state_transition__impl(tau, beta1, omega1):
-    _x0 = beta1*omega1
-    _x1 = mpmath.exp(-_x0*tau)
-    _x2 = beta1 - 1
-    _x3 = mpmath.sqrt(-_x2)
-    _x4 = mpmath.sqrt(beta1 + 1)
-    _x5 = _x4*omega1
-    _x6 = _x3*_x5*tau
-    _x7 = mpmath.cos(_x6)
-    _x8 = 1/_x4
-    _x9 = _x8*beta1
-    _x10 = _x1*mpmath.sin(_x6)/_x3
-    _x11 = _x10*_x9
-    _x12 = (beta1 < 1)
-    _x13 = mpmath.sqrt(_x2)
-    _x14 = (mpmath.mpf(1)/mpmath.mpf(2))*mpmath.expm1(-2*_x13*_x5*tau)
-    _x15 = _x14 + 1
-    _x16 = mpmath.exp(tau*(-_x0 + _x13*_x4*omega1))
-    _x17 = _x14*_x16/_x13
-    _x18 = _x17*_x9
-    _x19 = (beta1 > 1)
-    _x20 = _x1*tau
-    _x21 = _x0*_x20
-    _x22 = 1/omega1
-    _x23 = _x10*_x8
-    _x24 = _x17*_x8
-    return mpmath.matrix([
-            [((_x1*_x7 + _x11) if _x12 else (_x15*_x16 - _x18) if _x19 else (_x1 + _x21)), ((_x22*_x23) if _x12 else (-_x22*_x24) if _x19 else (_x20))],
-            [((-_x23*omega1) if _x12 else (_x24*omega1) if _x19 else (-_x20*omega1**2)), ((_x1*_x7 - _x11) if _x12 else (_x15*_x16 + _x18) if _x19 else (_x1 - _x21))],
-        ])
+    if (beta1 < 1):
+        _x0 = omega1*tau
+        _x1 = mpmath.exp(-_x0*beta1)
+        _x2 = mpmath.sqrt(beta1 + 1)
+        _x3 = mpmath.sqrt(1 - beta1)
+        _x4 = _x0*_x2*_x3
+        _x5 = mpmath.cos(_x4)
+        _x6 = _x1*mpmath.sin(_x4)/(_x2*_x3)
+        _x7 = _x6*beta1
+        return mpmath.matrix([
+                [_x1*_x5 + _x7, _x6/omega1],
+                [-_x6*omega1, _x1*_x5 - _x7],
+            ])
+    elif (beta1 > 1):
+        _x0 = mpmath.sqrt(beta1 - 1)
+        _x1 = mpmath.sqrt(beta1 + 1)
+        _x2 = (mpmath.mpf(1)/mpmath.mpf(2))*mpmath.expm1(-2*_x0*_x1*omega1*tau)
+        _x3 = _x2 + 1
+        _x4 = mpmath.exp(tau*(_x0*_x1*omega1 - beta1*omega1))
+        _x5 = _x2*_x4/(_x0*_x1)
+        _x6 = _x5*beta1
+        return mpmath.matrix([
+                [_x3*_x4 - _x6, -_x5/omega1],
+                [_x5*omega1, _x3*_x4 + _x6],
+            ])
+    else:
+        _x0 = beta1*omega1
+        _x1 = mpmath.exp(-_x0*tau)
+        _x2 = _x1*tau
+        _x3 = _x0*_x2
+        return mpmath.matrix([
+                [_x1 + _x3, _x2],
+                [-_x2*omega1**2, _x1 - _x3],
+            ])
 
 
 _STATE_TRANSITION = {
@@ -145,46 +150,77 @@ def excitation_response(t, **params):
 
 
 def _excitation_response__impl(t, beta1, omega1, alpha_t, Omega_t, phase_t):
-    _x0 = Omega_t**2
-    _x1 = omega1**2
-    _x2 = -_x0 + _x1
-    _x3 = 1/(4*_x0*_x1*beta1**2 + _x2**2)
-    _x4 = Omega_t*t + phase_t
-    _x5 = mpmath.cos(_x4)
-    _x6 = beta1*omega1
-    _x7 = 2*Omega_t*_x6
-    _x8 = mpmath.sin(_x4)
-    _x9 = 1/omega1
-    _x10 = mpmath.sqrt(beta1 + 1)
-    _x11 = 1/_x10
-    _x12 = mpmath.exp(-_x6*t)
-    _x13 = beta1 - 1
-    _x14 = mpmath.sqrt(-_x13)
-    _x15 = _x10*omega1
-    _x16 = _x14*_x15*t
-    _x17 = _x12*mpmath.sin(_x16)/_x14
-    _x18 = _x11*_x17
-    _x19 = (beta1 < 1)
-    _x20 = mpmath.sqrt(_x13)
-    _x21 = mpmath.exp(t*(_x10*_x20*omega1 - _x6))
-    _x22 = (mpmath.mpf(1)/mpmath.mpf(2))*mpmath.expm1(-2*_x15*_x20*t)
-    _x23 = _x21*_x22/_x20
-    _x24 = _x11*_x23
-    _x25 = (beta1 > 1)
-    _x26 = _x12*t
-    _x27 = mpmath.sin(phase_t)
-    _x28 = mpmath.cos(phase_t)
-    _x29 = Omega_t**3
-    _x30 = _x3*alpha_t
-    _x31 = _x29*_x30*(_x2*_x28 + _x27*_x7)
-    _x32 = mpmath.cos(_x16)
-    _x33 = _x11*beta1
-    _x34 = _x17*_x33
-    _x35 = _x22 + 1
-    _x36 = _x23*_x33
-    _x37 = _x26*_x6
-    _x38 = _x0*_x30*(_x2*_x27 - _x28*_x7)
-    return (_x0*_x3*alpha_t*(_x2*_x8 - _x5*_x7) - _x31*((_x18*_x9) if _x19 else (-_x24*_x9) if _x25 else (_x26)) - _x38*((_x12*_x32 + _x34) if _x19 else (_x21*_x35 - _x36) if _x25 else (_x12 + _x37)), _x29*_x3*alpha_t*(_x2*_x5 + _x7*_x8) - _x31*((_x12*_x32 - _x34) if _x19 else (_x21*_x35 + _x36) if _x25 else (_x12 - _x37)) - _x38*((-_x18*omega1) if _x19 else (_x24*omega1) if _x25 else (-_x1*_x26)),)
+    if (beta1 < 1):
+        _x0 = Omega_t**2
+        _x1 = omega1**2
+        _x2 = -_x0 + _x1
+        _x3 = 1/(4*_x0*_x1*beta1**2 + _x2**2)
+        _x4 = Omega_t*t + phase_t
+        _x5 = mpmath.cos(_x4)
+        _x6 = 2*Omega_t*beta1*omega1
+        _x7 = mpmath.sin(_x4)
+        _x8 = omega1*t
+        _x9 = mpmath.exp(-_x8*beta1)
+        _x10 = mpmath.sqrt(beta1 + 1)
+        _x11 = mpmath.sqrt(1 - beta1)
+        _x12 = _x10*_x11*_x8
+        _x13 = _x9*mpmath.sin(_x12)/(_x10*_x11)
+        _x14 = mpmath.sin(phase_t)
+        _x15 = mpmath.cos(phase_t)
+        _x16 = _x3*alpha_t
+        _x17 = Omega_t**3*_x16
+        _x18 = _x17*(_x14*_x6 + _x15*_x2)
+        _x19 = mpmath.cos(_x12)
+        _x20 = _x13*beta1
+        _x21 = _x0*_x16*(_x14*_x2 - _x15*_x6)
+        return (_x0*_x3*alpha_t*(_x2*_x7 - _x5*_x6) - _x13*_x18/omega1 - _x21*(_x19*_x9 + _x20), _x13*_x21*omega1 + _x17*(_x2*_x5 + _x6*_x7) - _x18*(_x19*_x9 - _x20),)
+    elif (beta1 > 1):
+        _x0 = Omega_t*t + phase_t
+        _x1 = mpmath.cos(_x0)
+        _x2 = beta1*omega1
+        _x3 = 2*Omega_t*_x2
+        _x4 = mpmath.sin(_x0)
+        _x5 = Omega_t**2
+        _x6 = omega1**2
+        _x7 = -_x5 + _x6
+        _x8 = 1/(4*_x5*_x6*beta1**2 + _x7**2)
+        _x9 = _x8*alpha_t
+        _x10 = _x5*_x9
+        _x11 = mpmath.sin(phase_t)
+        _x12 = mpmath.cos(phase_t)
+        _x13 = Omega_t**3
+        _x14 = _x13*_x9*(_x11*_x3 + _x12*_x7)
+        _x15 = mpmath.sqrt(beta1 - 1)
+        _x16 = mpmath.sqrt(beta1 + 1)
+        _x17 = mpmath.exp(t*(_x15*_x16*omega1 - _x2))
+        _x18 = (mpmath.mpf(1)/mpmath.mpf(2))*mpmath.expm1(-2*_x15*_x16*omega1*t)
+        _x19 = _x17*_x18/(_x15*_x16)
+        _x20 = _x18 + 1
+        _x21 = _x19*beta1
+        _x22 = _x10*(_x11*_x7 - _x12*_x3)
+        return (_x10*(-_x1*_x3 + _x4*_x7) + _x14*_x19/omega1 - _x22*(_x17*_x20 - _x21), _x13*_x8*alpha_t*(_x1*_x7 + _x3*_x4) - _x14*(_x17*_x20 + _x21) - _x19*_x22*omega1,)
+    else:
+        _x0 = mpmath.sin(phase_t)
+        _x1 = beta1*omega1
+        _x2 = 2*Omega_t*_x1
+        _x3 = mpmath.cos(phase_t)
+        _x4 = Omega_t**2
+        _x5 = omega1**2
+        _x6 = -_x4 + _x5
+        _x7 = _x4*_x5
+        _x8 = 1/(_x6**2 + 4*_x7*beta1**2)
+        _x9 = _x8*alpha_t
+        _x10 = Omega_t**3*_x9
+        _x11 = _x10*(_x0*_x2 + _x3*_x6)
+        _x12 = _x1*t
+        _x13 = mpmath.exp(-_x12)
+        _x14 = _x13*t
+        _x15 = Omega_t*t + phase_t
+        _x16 = mpmath.cos(_x15)
+        _x17 = mpmath.sin(_x15)
+        _x18 = _x0*_x6 - _x2*_x3
+        _x19 = _x12*_x13
+        return (-_x11*_x14 - _x18*_x4*_x9*(_x13 + _x19) + _x4*_x8*alpha_t*(-_x16*_x2 + _x17*_x6), _x10*(_x16*_x6 + _x17*_x2) - _x11*(_x13 - _x19) + _x14*_x18*_x7*_x9,)
 
 
 _EXCITATION_RESPONSE = {

@@ -74,19 +74,31 @@ def equilibrium(*, convention='paper', contact='hertz_damp', vhat_model=None, **
 
 
 def _equilibrium__paper__hertz_damp(omega1, omega2, mu_s, g, Vb, Vhat):
-    return (g*((mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
+    if (Vb <= Vhat):
+        return (g*mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
+    else:
+        return (-g*mu_s*mpmath.sign(Vb)/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
 
 
 def _equilibrium__paper__kelvin_voigt(omega1, omega2, mu_s, g, Vb, Vhat):
-    return (g*((mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))/omega1**2, 0, g/omega2**2, 0,)
+    if (Vb <= Vhat):
+        return (g*mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)/omega1**2, 0, g/omega2**2, 0,)
+    else:
+        return (-g*mu_s*mpmath.sign(Vb)/omega1**2, 0, g/omega2**2, 0,)
 
 
 def _equilibrium__consistent__hertz_damp(omega1, omega2, mu_s, g, Vb, Vhat):
-    return (-g*((mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
+    if (Vb <= Vhat):
+        return (-g*mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
+    else:
+        return (g*mu_s*mpmath.sign(Vb)/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
 
 
 def _equilibrium__consistent__kelvin_voigt(omega1, omega2, mu_s, g, Vb, Vhat):
-    return (-g*((mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)) if (Vb <= Vhat) else (-mu_s*mpmath.sign(Vb)))/omega1**2, 0, g/omega2**2, 0,)
+    if (Vb <= Vhat):
+        return (-g*mu_s*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)/omega1**2, 0, g/omega2**2, 0,)
+    else:
+        return (g*mu_s*mpmath.sign(Vb)/omega1**2, 0, g/omega2**2, 0,)
 
 
 _EQUILIBRIUM = {
@@ -268,53 +280,109 @@ def coefficients(*, convention='paper', contact='hertz_damp', vhat_model=None, *
 
 
 def _coefficients__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = beta1*omega1
-    _x1 = 1/omega2
-    _x2 = 2*_x1*beta2
-    _x3 = _x2*g
-    _x4 = ((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x5 = omega1**2
-    _x6 = g**(mpmath.mpf(1)/mpmath.mpf(3))
-    _x7 = omega2**(mpmath.mpf(4)/mpmath.mpf(3))
-    _x8 = (mpmath.mpf(3)/mpmath.mpf(2))*_x7
-    _x9 = _x6*_x8
-    return (2*_x0 + _x3 - _x4*g, 4*_x0*_x1*beta2*g - _x2*_x4*g**2 + _x5 + _x9, 3*_x0*_x6*_x7 + _x3*_x5 - _x4*_x8*g**(mpmath.mpf(4)/mpmath.mpf(3)), _x5*_x9,)
+    if (Vb < Vhat):
+        _x0 = beta1*omega1
+        _x1 = 2*g
+        _x2 = beta2/omega2
+        _x3 = _x1*_x2
+        _x4 = mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x5 = omega1**2
+        _x6 = omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x7 = _x6*g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _x8 = (mpmath.mpf(3)/mpmath.mpf(2))*_x7
+        _x9 = 4*_x2
+        return (2*_x0 - _x1*_x4 + _x3, _x0*_x9*g - _x4*_x9*g**2 + _x5 + _x8, 3*_x0*_x7 + _x3*_x5 - 3*_x4*_x6*g**(mpmath.mpf(4)/mpmath.mpf(3)), _x5*_x8,)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = omega1**2
+        _x1 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        return (mpmath.ninf, _x0 + _x1 + 4*beta1*beta2*g*omega1/omega2 - mpmath.inf*beta2, mpmath.ninf, _x0*_x1,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = beta2*g/omega2
+        _x2 = 2*_x1
+        _x3 = omega1**2
+        _x4 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x5 = (mpmath.mpf(3)/mpmath.mpf(2))*_x4
+        return (2*_x0 + _x2, 4*_x0*_x1 + _x3 + _x5, 3*_x0*_x4 + _x2*_x3, _x3*_x5,)
 
 
 def _coefficients__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = beta1*omega1
-    _x1 = 2*_x0
-    _x2 = beta2*omega2
-    _x3 = 2*_x2
-    _x4 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x5 = omega1**2
-    _x6 = omega2**2
-    return (_x1 + _x3 - _x4, 4*_x0*_x2 - _x3*_x4 + _x5 + _x6, _x1*_x6 + _x3*_x5 - _x4*_x6, _x5*_x6,)
+    if (Vb < Vhat):
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*omega2
+        _x3 = 2*_x2
+        _x4 = g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x5 = 2*_x4
+        _x6 = omega1**2
+        _x7 = omega2**2
+        _x8 = 4*_x2
+        return (_x1 + _x3 - _x5, _x0*_x8 - _x4*_x8 + _x6 + _x7, _x1*_x7 + _x3*_x6 - _x5*_x7, _x6*_x7,)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = omega1**2
+        _x1 = omega2**2
+        return (mpmath.ninf, _x0 + _x1 + 4*beta1*beta2*omega1*omega2 - mpmath.inf*beta2, mpmath.ninf, _x0*_x1,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*omega2
+        _x3 = 2*_x2
+        _x4 = omega1**2
+        _x5 = omega2**2
+        return (_x1 + _x3, 4*_x0*_x2 + _x4 + _x5, _x1*_x5 + _x3*_x4, _x4*_x5,)
 
 
 def _coefficients__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = beta1*omega1
-    _x1 = 1/omega2
-    _x2 = 2*_x1*beta2
-    _x3 = _x2*g
-    _x4 = ((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x5 = omega1**2
-    _x6 = g**(mpmath.mpf(1)/mpmath.mpf(3))
-    _x7 = omega2**(mpmath.mpf(4)/mpmath.mpf(3))
-    _x8 = (mpmath.mpf(3)/mpmath.mpf(2))*_x7
-    _x9 = _x6*_x8
-    return (2*_x0 + _x3 + _x4*g, 4*_x0*_x1*beta2*g + _x2*_x4*g**2 + _x5 + _x9, 3*_x0*_x6*_x7 + _x3*_x5 + _x4*_x8*g**(mpmath.mpf(4)/mpmath.mpf(3)), _x5*_x9,)
+    if (Vb < Vhat):
+        _x0 = beta1*omega1
+        _x1 = 2*g
+        _x2 = beta2/omega2
+        _x3 = _x1*_x2
+        _x4 = mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x5 = omega1**2
+        _x6 = omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x7 = _x6*g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _x8 = (mpmath.mpf(3)/mpmath.mpf(2))*_x7
+        _x9 = 4*_x2
+        return (2*_x0 + _x1*_x4 + _x3, _x0*_x9*g + _x4*_x9*g**2 + _x5 + _x8, 3*_x0*_x7 + _x3*_x5 + 3*_x4*_x6*g**(mpmath.mpf(4)/mpmath.mpf(3)), _x5*_x8,)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = omega1**2
+        _x1 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        return (mpmath.inf, _x0 + _x1 + 4*beta1*beta2*g*omega1/omega2 + mpmath.inf*beta2, mpmath.inf, _x0*_x1,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = beta2*g/omega2
+        _x2 = 2*_x1
+        _x3 = omega1**2
+        _x4 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x5 = (mpmath.mpf(3)/mpmath.mpf(2))*_x4
+        return (2*_x0 + _x2, 4*_x0*_x1 + _x3 + _x5, 3*_x0*_x4 + _x2*_x3, _x3*_x5,)
 
 
 def _coefficients__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = beta1*omega1
-    _x1 = 2*_x0
-    _x2 = beta2*omega2
-    _x3 = 2*_x2
-    _x4 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x5 = omega1**2
-    _x6 = omega2**2
-    return (_x1 + _x3 + _x4, 4*_x0*_x2 + _x3*_x4 + _x5 + _x6, _x1*_x6 + _x3*_x5 + _x4*_x6, _x5*_x6,)
+    if (Vb < Vhat):
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*omega2
+        _x3 = 2*_x2
+        _x4 = g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x5 = 2*_x4
+        _x6 = omega1**2
+        _x7 = omega2**2
+        _x8 = 4*_x2
+        return (_x1 + _x3 + _x5, _x0*_x8 + _x4*_x8 + _x6 + _x7, _x1*_x7 + _x3*_x6 + _x5*_x7, _x6*_x7,)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = omega1**2
+        _x1 = omega2**2
+        return (mpmath.inf, _x0 + _x1 + 4*beta1*beta2*omega1*omega2 + mpmath.inf*beta2, mpmath.inf, _x0*_x1,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*omega2
+        _x3 = 2*_x2
+        _x4 = omega1**2
+        _x5 = omega2**2
+        return (_x1 + _x3, 4*_x0*_x2 + _x4 + _x5, _x1*_x5 + _x3*_x4, _x4*_x5,)
 
 
 _COEFFICIENTS = {
@@ -387,49 +455,113 @@ def hurwitz(*, convention='paper', contact='hertz_damp', vhat_model=None, **para
 
 
 def _hurwitz__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = 2*beta2*g/omega2
-    _x1 = 2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x2 = _x0 + _x1
-    _x3 = 3*beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
-    _x4 = omega1**2
-    _x5 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
-    _x6 = _x1*(_x2*(_x0*_x4 + _x1*_x5) + (_x4 - _x5)**2)
-    return (_x2, _x1*(_x0*_x2 + _x4) + _x3, _x0*_x6, _x3*_x4*_x6,)
+    if (Vb < Vhat):
+        _x0 = 2*g
+        _x1 = _x0*beta2/omega2
+        _x2 = -_x0*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) + 2*beta1*omega1
+        _x3 = _x1 + _x2
+        _x4 = 3*beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
+        _x5 = omega1**2
+        _x6 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
+        return (_x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7,)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = mpmath.inf*beta2
+        _x1 = -_x0
+        return (mpmath.ninf, 3*beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3)) - mpmath.inf*(-_x0 + omega1**2), _x1, _x1,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*g/omega2
+        _x3 = 2*_x2
+        _x4 = _x1 + _x3
+        _x5 = beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
+        _x6 = omega1**2
+        _x7 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x8 = _x4*(3*_x0*_x7 + _x3*_x6) + (_x6 - mpmath.mpf(3)/mpmath.mpf(2)*_x7)**2
+        return (_x4, _x1*(_x3*_x4 + _x6) + 3*_x5, 4*_x0*_x2*_x8, 6*_x5*_x8*beta1*omega1**3,)
 
 
 def _hurwitz__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = 2*beta2
-    _x1 = _x0*omega2
-    _x2 = 2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x3 = _x1 + _x2
-    _x4 = _x0*omega2**3
-    _x5 = omega1**2
-    _x6 = omega2**2
-    _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
-    return (_x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7,)
+    if (Vb < Vhat):
+        _x0 = 2*beta2
+        _x1 = _x0*omega2
+        _x2 = 2*beta1*omega1 - 2*g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x3 = _x1 + _x2
+        _x4 = _x0*omega2**3
+        _x5 = omega1**2
+        _x6 = omega2**2
+        _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
+        return (_x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7,)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = mpmath.inf*beta2
+        _x1 = -_x0
+        return (mpmath.ninf, 2*beta2*omega2**3 - mpmath.inf*(-_x0 + omega1**2), _x1, _x1,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = 2*beta2
+        _x3 = _x2*omega2
+        _x4 = _x1 + _x3
+        _x5 = omega2**3
+        _x6 = omega1**2
+        _x7 = omega2**2
+        _x8 = 4*beta2*(_x4*(_x1*_x7 + _x3*_x6) + (_x6 - _x7)**2)
+        return (_x4, _x1*(_x3*_x4 + _x6) + _x2*_x5, _x0*_x8*omega2, _x5*_x8*beta1*omega1**3,)
 
 
 def _hurwitz__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = 2*beta2*g/omega2
-    _x1 = 2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x2 = _x0 + _x1
-    _x3 = 3*beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
-    _x4 = omega1**2
-    _x5 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
-    _x6 = _x1*(_x2*(_x0*_x4 + _x1*_x5) + (_x4 - _x5)**2)
-    return (_x2, _x1*(_x0*_x2 + _x4) + _x3, _x0*_x6, _x3*_x4*_x6,)
+    if (Vb < Vhat):
+        _x0 = 2*g
+        _x1 = _x0*beta2/omega2
+        _x2 = _x0*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) + 2*beta1*omega1
+        _x3 = _x1 + _x2
+        _x4 = 3*beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
+        _x5 = omega1**2
+        _x6 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
+        return (_x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7,)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = mpmath.inf*beta2
+        return (mpmath.inf, mpmath.inf, _x0, _x0,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*g/omega2
+        _x3 = 2*_x2
+        _x4 = _x1 + _x3
+        _x5 = beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
+        _x6 = omega1**2
+        _x7 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x8 = _x4*(3*_x0*_x7 + _x3*_x6) + (_x6 - mpmath.mpf(3)/mpmath.mpf(2)*_x7)**2
+        return (_x4, _x1*(_x3*_x4 + _x6) + 3*_x5, 4*_x0*_x2*_x8, 6*_x5*_x8*beta1*omega1**3,)
 
 
 def _hurwitz__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = 2*beta2
-    _x1 = _x0*omega2
-    _x2 = 2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x3 = _x1 + _x2
-    _x4 = _x0*omega2**3
-    _x5 = omega1**2
-    _x6 = omega2**2
-    _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
-    return (_x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7,)
+    if (Vb < Vhat):
+        _x0 = 2*beta2
+        _x1 = _x0*omega2
+        _x2 = 2*beta1*omega1 + 2*g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x3 = _x1 + _x2
+        _x4 = _x0*omega2**3
+        _x5 = omega1**2
+        _x6 = omega2**2
+        _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
+        return (_x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7,)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = mpmath.inf*beta2
+        return (mpmath.inf, mpmath.inf, _x0, _x0,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = 2*beta2
+        _x3 = _x2*omega2
+        _x4 = _x1 + _x3
+        _x5 = omega2**3
+        _x6 = omega1**2
+        _x7 = omega2**2
+        _x8 = 4*beta2*(_x4*(_x1*_x7 + _x3*_x6) + (_x6 - _x7)**2)
+        return (_x4, _x1*(_x3*_x4 + _x6) + _x2*_x5, _x0*_x8*omega2, _x5*_x8*beta1*omega1**3,)
 
 
 _HURWITZ = {
@@ -496,39 +628,91 @@ def eigenvalues(*, convention='paper', contact='hertz_damp', vhat_model=None, **
 
 
 def _eigenvalues__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x1 = 2*omega1
-    _x2 = g**(mpmath.mpf(1)/mpmath.mpf(3))
-    _r0 = _support.mp_quadratic_roots(-mpmath.mpf(1)/mpmath.mpf(2)*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1)))
-    _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x2*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x2*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
-    return [*_r0, *_r1]
+    if (Vb < Vhat):
+        _x0 = g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _r0 = _support.mp_quadratic_roots(-_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2))
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x3*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x3*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
+        return [*_r0, *_r1]
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _r0 = _support.mp_quadratic_roots(mpmath.ninf, omega1**2, mpmath.inf)
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x0*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x0*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
+        return [*_r0, *_r1]
+    else:
+        _x0 = omega1**2
+        _x1 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _r0 = _support.mp_quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x1*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x1*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
+        return [*_r0, *_r1]
 
 
 def _eigenvalues__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x1 = 2*omega1
-    _x2 = omega2**2
-    _r0 = _support.mp_quadratic_roots(-mpmath.mpf(1)/mpmath.mpf(2)*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1)))
-    _r1 = _support.mp_quadratic_roots(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1))
-    return [*_r0, *_r1]
+    if (Vb < Vhat):
+        _x0 = g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = omega2**2
+        _r0 = _support.mp_quadratic_roots(-_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2))
+        _r1 = _support.mp_quadratic_roots(beta2*omega2, _x3, _x3*(beta2 - 1)*(beta2 + 1))
+        return [*_r0, *_r1]
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = omega2**2
+        _r0 = _support.mp_quadratic_roots(mpmath.ninf, omega1**2, mpmath.inf)
+        _r1 = _support.mp_quadratic_roots(beta2*omega2, _x0, _x0*(beta2 - 1)*(beta2 + 1))
+        return [*_r0, *_r1]
+    else:
+        _x0 = omega1**2
+        _x1 = omega2**2
+        _r0 = _support.mp_quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
+        _r1 = _support.mp_quadratic_roots(beta2*omega2, _x1, _x1*(beta2 - 1)*(beta2 + 1))
+        return [*_r0, *_r1]
 
 
 def _eigenvalues__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x1 = 2*omega1
-    _x2 = g**(mpmath.mpf(1)/mpmath.mpf(3))
-    _r0 = _support.mp_quadratic_roots((mpmath.mpf(1)/mpmath.mpf(2))*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1)))
-    _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x2*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x2*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
-    return [*_r0, *_r1]
+    if (Vb < Vhat):
+        _x0 = g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _r0 = _support.mp_quadratic_roots(_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2))
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x3*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x3*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
+        return [*_r0, *_r1]
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _r0 = _support.mp_quadratic_roots(mpmath.inf, omega1**2, mpmath.inf)
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x0*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x0*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
+        return [*_r0, *_r1]
+    else:
+        _x0 = omega1**2
+        _x1 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _r0 = _support.mp_quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x1*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x1*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
+        return [*_r0, *_r1]
 
 
 def _eigenvalues__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x1 = 2*omega1
-    _x2 = omega2**2
-    _r0 = _support.mp_quadratic_roots((mpmath.mpf(1)/mpmath.mpf(2))*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1)))
-    _r1 = _support.mp_quadratic_roots(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1))
-    return [*_r0, *_r1]
+    if (Vb < Vhat):
+        _x0 = g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = omega2**2
+        _r0 = _support.mp_quadratic_roots(_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2))
+        _r1 = _support.mp_quadratic_roots(beta2*omega2, _x3, _x3*(beta2 - 1)*(beta2 + 1))
+        return [*_r0, *_r1]
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = omega2**2
+        _r0 = _support.mp_quadratic_roots(mpmath.inf, omega1**2, mpmath.inf)
+        _r1 = _support.mp_quadratic_roots(beta2*omega2, _x0, _x0*(beta2 - 1)*(beta2 + 1))
+        return [*_r0, *_r1]
+    else:
+        _x0 = omega1**2
+        _x1 = omega2**2
+        _r0 = _support.mp_quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
+        _r1 = _support.mp_quadratic_roots(beta2*omega2, _x1, _x1*(beta2 - 1)*(beta2 + 1))
+        return [*_r0, *_r1]
 
 
 _EIGENVALUES = {
@@ -596,47 +780,115 @@ def growth_rate(*, convention='paper', contact='hertz_damp', vhat_model=None, **
 
 
 def _growth_rate__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x1 = 2*omega1
-    _x2 = g**(mpmath.mpf(1)/mpmath.mpf(3))
-    _h0, _q0, _d0 = -mpmath.mpf(1)/mpmath.mpf(2)*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
-    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
-    _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x2*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x2*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
-    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
-    return max(_g0, _g1)
+    if (Vb < Vhat):
+        _x0 = g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _h0, _q0, _d0 = -_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x3*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x3*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _h0, _q0, _d0 = mpmath.ninf, omega1**2, mpmath.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x0*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x0*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x1*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x1*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
 
 
 def _growth_rate__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x1 = 2*omega1
-    _x2 = omega2**2
-    _h0, _q0, _d0 = -mpmath.mpf(1)/mpmath.mpf(2)*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
-    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
-    _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
-    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
-    return max(_g0, _g1)
+    if (Vb < Vhat):
+        _x0 = g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = omega2**2
+        _h0, _q0, _d0 = -_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x3, _x3*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = omega2**2
+        _h0, _q0, _d0 = mpmath.ninf, omega1**2, mpmath.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x0, _x0*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = omega2**2
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x1, _x1*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
 
 
 def _growth_rate__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x1 = 2*omega1
-    _x2 = g**(mpmath.mpf(1)/mpmath.mpf(3))
-    _h0, _q0, _d0 = (mpmath.mpf(1)/mpmath.mpf(2))*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
-    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
-    _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x2*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x2*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
-    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
-    return max(_g0, _g1)
+    if (Vb < Vhat):
+        _x0 = g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _h0, _q0, _d0 = _x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x3*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x3*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _h0, _q0, _d0 = mpmath.inf, omega1**2, mpmath.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x0*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x0*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x1*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x1*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
 
 
 def _growth_rate__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    _x0 = g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0))
-    _x1 = 2*omega1
-    _x2 = omega2**2
-    _h0, _q0, _d0 = (mpmath.mpf(1)/mpmath.mpf(2))*_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
-    _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
-    _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
-    _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
-    return max(_g0, _g1)
+    if (Vb < Vhat):
+        _x0 = g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = omega2**2
+        _h0, _q0, _d0 = _x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x3, _x3*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    elif (Vb == Vhat) and (mu_s > 0):
+        _x0 = omega2**2
+        _h0, _q0, _d0 = mpmath.inf, omega1**2, mpmath.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x0, _x0*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = omega2**2
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x1, _x1*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
 
 
 _GROWTH_RATE = {
@@ -707,19 +959,41 @@ def is_stable(*, convention='paper', contact='hertz_damp', vhat_model=None, **pa
 
 
 def _is_stable__paper__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    return bool((2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*g/omega2 > 0))
+    if (Vb < Vhat):
+        _x0 = 2*g
+        return bool((-_x0*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) + 2*beta1*omega1 > 0) and (_x0*beta2/omega2 > 0))
+    elif (Vb == Vhat) and (mu_s > 0):
+        return bool((mpmath.ninf > 0) and (2*beta2*g/omega2 > 0))
+    else:
+        return bool((2*beta1*omega1 > 0) and (2*beta2*g/omega2 > 0))
 
 
 def _is_stable__paper__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    return bool((2*beta1*omega1 - g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*omega2 > 0))
+    if (Vb < Vhat):
+        return bool((2*beta1*omega1 - 2*g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) > 0) and (2*beta2*omega2 > 0))
+    elif (Vb == Vhat) and (mu_s > 0):
+        return bool((mpmath.ninf > 0) and (2*beta2*omega2 > 0))
+    else:
+        return bool((2*beta1*omega1 > 0) and (2*beta2*omega2 > 0))
 
 
 def _is_stable__consistent__hertz_damp(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    return bool((2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*g/omega2 > 0))
+    if (Vb < Vhat):
+        _x0 = 2*g
+        return bool((_x0*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) + 2*beta1*omega1 > 0) and (_x0*beta2/omega2 > 0))
+    elif (Vb == Vhat) and (mu_s > 0):
+        return bool((mpmath.inf > 0) and (2*beta2*g/omega2 > 0))
+    else:
+        return bool((2*beta1*omega1 > 0) and (2*beta2*g/omega2 > 0))
 
 
 def _is_stable__consistent__kelvin_voigt(beta1, omega1, beta2, omega2, mu_s, g, Vb, Vhat):
-    return bool((2*beta1*omega1 + g*((2*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_s > 0) else (0)) > 0) and (2*beta2*omega2 > 0))
+    if (Vb < Vhat):
+        return bool((2*beta1*omega1 + 2*g*mu_s/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) > 0) and (2*beta2*omega2 > 0))
+    elif (Vb == Vhat) and (mu_s > 0):
+        return bool((mpmath.inf > 0) and (2*beta2*omega2 > 0))
+    else:
+        return bool((2*beta1*omega1 > 0) and (2*beta2*omega2 > 0))
 
 
 _IS_STABLE = {
@@ -782,13 +1056,19 @@ def critical_belt_speed(*, convention='paper', contact='hertz_damp', vhat_model=
 
 
 def _critical_belt_speed__paper__hertz_damp(beta1, omega1, mu_s, g, Vhat):
-    _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
-    return ((mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))) if (Vhat > _x0) else (0))
+    if (Vhat > g*mu_s/(mpmath.pi*beta1*omega1)):
+        _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
+        return mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))
+    else:
+        return 0
 
 
 def _critical_belt_speed__paper__kelvin_voigt(beta1, omega1, mu_s, g, Vhat):
-    _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
-    return ((mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))) if (Vhat > _x0) else (0))
+    if (Vhat > g*mu_s/(mpmath.pi*beta1*omega1)):
+        _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
+        return mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))
+    else:
+        return 0
 
 
 def _critical_belt_speed__consistent__hertz_damp():
@@ -858,13 +1138,19 @@ def unstable_interval(*, convention='paper', contact='hertz_damp', vhat_model=No
 
 
 def _unstable_interval__paper__hertz_damp(beta1, omega1, mu_s, g, Vhat):
-    _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
-    return (((mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))) if (Vhat > _x0) else (0)), Vhat,)
+    if (Vhat > g*mu_s/(mpmath.pi*beta1*omega1)):
+        _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
+        return (mpmath.sqrt((Vhat - _x0)*(Vhat + _x0)), Vhat,)
+    else:
+        return (0, Vhat,)
 
 
 def _unstable_interval__paper__kelvin_voigt(beta1, omega1, mu_s, g, Vhat):
-    _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
-    return (((mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))) if (Vhat > _x0) else (0)), Vhat,)
+    if (Vhat > g*mu_s/(mpmath.pi*beta1*omega1)):
+        _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
+        return (mpmath.sqrt((Vhat - _x0)*(Vhat + _x0)), Vhat,)
+    else:
+        return (0, Vhat,)
 
 
 def _unstable_interval__consistent__hertz_damp():

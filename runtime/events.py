@@ -1,0 +1,150 @@
+"""Event-driven integration of Eq. (4): one smooth mode at a time, every switch located.
+
+The general integrator of the package, and the fallback of `runtime.superposition`.
+It runs the compiled Dormand-Prince 8(5,3) integrator (`runtime._dop853`) on the
+generated field of the current mode (`generated.hybrid.vector_field`) until one of
+the mode's guard surfaces is crossed (`generated.hybrid.GUARDS`), then lets
+`runtime.switching` choose the next mode, and goes on. Nothing is stepped over: the
+run is a sequence of smooth segments joined at located switches.
+
+Accumulating switches (Zeno) are detected, never counted to a cap: when
+`ZENO_SWITCHES` switches fall within `ZENO_WINDOW` (relative to the time), the run
+is chattering on one surface. On ``Vr = 0`` with friction that can hold the mass,
+the limit of that chattering is Filippov's sliding motion, which is the stick mode:
+the run enters it (and counts it in ``n_zeno``). Anywhere else the run stops with
+status ``"zeno"`` and a message naming the surface and the time.
+"""
+from __future__ import annotations
+
+from collections import deque
+
+import numpy as np
+
+from . import _dop853
+from .switching import Mode, Switching
+from .trajectory import Segment, Trajectory
+
+__all__ = ["integrate_events", "ZENO_SWITCHES", "ZENO_WINDOW", "StepSegment"]
+
+ZENO_SWITCHES = 8
+ZENO_WINDOW = 1e-9
+
+
+class StepSegment:
+    """The dense output of a run of DOP853 steps: evaluate(t) -> (4, n)."""
+
+    __slots__ = ("t_steps", "h_steps", "y_steps", "F_steps")
+
+    def __init__(self, t_steps, h_steps, y_steps, F_steps):
+        self.t_steps, self.h_steps = t_steps, h_steps
+        self.y_steps, self.F_steps = y_steps, F_steps
+
+    def __call__(self, t):
+        return _dop853.evaluate(self.t_steps, self.h_steps, self.y_steps, self.F_steps, t)
+
+
+def _advance_function(backend):
+    if backend == "python":
+        return _dop853.advance
+    compiled = _dop853.compiled()
+    if compiled is None and backend == "numba":
+        raise ImportError("backend='numba' needs numba: pip install 'beltmdsm[fast]'")
+    return compiled or _dop853.advance
+
+
+def integrate_events(p, contact="hertz_damp", *, tension="allowed", t_end=1000.0, y0=None,
+                     t0=0.0, rtol=1e-10, atol=1e-10, on_contact_loss="continue",
+                     backend=None, method="DOP853"):
+    """Integrate Eq. (4) mode by mode with located switches (module docstring).
+
+    Parameters
+    ----------
+    p : dict
+        Complete parameters (`runtime.model.resolve_parameters`).
+    contact, tension : str
+    t_end : float
+    y0 : array_like, optional
+        Initial state at ``t0``; default the unforced equilibrium (Eq. 9) at rest.
+    t0 : float
+    rtol, atol : float
+    on_contact_loss : {"continue", "stop"}
+    backend : {"python", "numba", None}
+        The integrator and kernels compiled by numba, or plain Python; None: numba
+        if installed.
+    method : {"DOP853"}
+        The only method (kept as a setting so that a run records it).
+
+    Returns
+    -------
+    trajectory : Trajectory
+    events : list of (t, kind, new_mode)
+    status : "done", "contact_lost" or "zeno"
+    message : str
+    """
+    if method != "DOP853":
+        raise ValueError(f"method must be 'DOP853' for the events solver; got {method!r}")
+    from .model import initial_state
+    kernel_backend = None if backend is None else ("python" if backend == "python" else "numba")
+    sw = Switching(p, contact, tension, kernel_backend)
+    advance = _advance_function(backend)
+    y = initial_state(p, contact) if y0 is None else np.array(y0, dtype=float)
+    t = float(t0)
+    mode = sw.initial_mode(t, y)
+    segments, events = [], []
+    recent = deque(maxlen=ZENO_SWITCHES)
+    status, message = "done", "reached t_end"
+    h_next = 0.0
+    max_step = np.inf
+    field, surf, rates = sw.field, sw.surfaces, sw.rates
+    n_zeno = 0
+    while t < t_end:
+        watch, dirs, _ = sw.guards[mode]
+        (code, n, ts, hs, ys, Fs, t_stop, y_stop, hit, h_next) = advance(
+            field.kernel, field.args, surf.kernel, surf.args, rates.kernel, rates.args,
+            float(mode), watch, dirs, t, y, float(t_end), h_next, rtol, atol, max_step)
+        if code == _dop853.STATUS_STEP_TOO_SMALL:
+            raise RuntimeError(f"step size too small at t = {t_stop:.6g} s in mode "
+                               f"{mode.name} (the field is not smooth there)")
+        if n:
+            segments.append(Segment(t, float(t_stop), mode, StepSegment(ts, hs, ys, Fs),
+                                    ts.copy()))
+        t, y = float(t_stop), np.array(y_stop)
+        if code == _dop853.STATUS_END:
+            break
+        kind = sw.kind(mode, hit)
+        y = sw.project(mode, hit, y)
+        new = sw.target(mode, hit, t, y)
+        recent.append(t)
+        if len(recent) == ZENO_SWITCHES and t - recent[0] <= ZENO_WINDOW * max(1.0, abs(t)):
+            if kind == "vr_zero" and _cone_holds(sw, t, y):
+                new = Mode.STICK
+                n_zeno += 1
+                recent.clear()
+            else:
+                events.append((t, kind, new))
+                status = "zeno"
+                message = (f"switches accumulate on the {sw.guards[mode][2][hit][0]} surface "
+                           f"at t = {t:.9g} s ({ZENO_SWITCHES} within "
+                           f"{t - recent[0]:.2g} s); stopped")
+                break
+        events.append((t, kind, new))
+        if kind == "lift_off" and on_contact_loss == "stop":
+            status = "contact_lost"
+            message = (f"contact lost (X2 = 0, Eq. 1) at t = {t:.6g} s; stopped as "
+                       "requested (on_contact_loss='stop')")
+            break
+        mode = new
+    if not segments:
+        # the run stopped where it started: a segment of zero length keeps the state
+        y_at = y.copy()
+        segments.append(Segment(t, t, mode, lambda tt, y_at=y_at: np.repeat(
+            y_at[:, None], np.size(tt), axis=1), np.array([t])))
+    trajectory = Trajectory(segments, p, contact, tension)
+    trajectory.n_zeno = n_zeno
+    return trajectory, events, status, message
+
+
+def _cone_holds(sw, t, y):
+    """Whether friction can hold the mass at this state (``mu_s F > 0`` beyond rounding)."""
+    h, tol = sw._ties(t, y)
+    return h[1] + h[2] > tol[1] + tol[2]

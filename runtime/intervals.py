@@ -1,0 +1,216 @@
+"""Intervals of belt speed (or of any swept parameter): runs, edges, set algebra, text.
+
+Sweeps, predictions and the validation all turn values on a grid into sets of
+intervals and compare such sets. An interval is a pair ``(lo, hi)`` of floats with
+``lo <= hi``, closed; a set is a list of intervals. The functions here are pure
+and small; `runtime.sweep`, `runtime.predict`, `runtime.validation` and the
+notebooks' ``_nbutil`` call them.
+
+Runtime layer: numpy only.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["true_runs", "label_runs", "runs", "sign_changes", "from_crossings", "union",
+           "intersection", "difference", "symmetric_difference", "clip", "hull", "length",
+           "jaccard", "format_intervals"]
+
+
+def true_runs(flags):
+    """Maximal runs of consecutive true entries, in sequence order.
+
+    Parameters
+    ----------
+    flags : array_like of bool
+
+    Returns
+    -------
+    list of (int, int)
+        ``(first, last)`` indices of each run, both inclusive.
+    """
+    return [(i, j) for label, i, j in label_runs(np.asarray(flags, dtype=bool).tolist())
+            if label]
+
+
+def label_runs(labels):
+    """Maximal runs of consecutive equal labels, in sequence order.
+
+    Parameters
+    ----------
+    labels : sequence
+        any labels that compare with ``==`` (regime names, flags)
+
+    Returns
+    -------
+    list of (label, int, int)
+        the label and the ``(first, last)`` indices of its run, both inclusive.
+    """
+    out = []
+    for i, label in enumerate(labels):
+        if out and out[-1][0] == label:
+            out[-1] = (label, out[-1][1], i)
+        else:
+            out.append((label, i, i))
+    return out
+
+
+def runs(x, flags):
+    """Ranges of ``x`` over which ``flags`` holds at consecutive grid points.
+
+    Parameters
+    ----------
+    x : array_like of float
+        the grid (sorted here first, so any order will do)
+    flags : array_like of bool
+        one flag per grid point
+
+    Returns
+    -------
+    list of (float, float)
+        ``(first x, last x)`` of each maximal run of true flags, ascending; a run of
+        one point is ``(x, x)``.
+
+    Examples
+    --------
+    >>> runs([1, 2, 3, 4, 5], [False, True, True, False, True])
+    [(2.0, 3.0), (5.0, 5.0)]
+    """
+    x = np.asarray(x, dtype=float)
+    flags = np.asarray(flags, dtype=bool)
+    if x.shape != flags.shape or x.ndim != 1:
+        raise ValueError(f"x and flags must be 1-D of one length; got shapes {x.shape} "
+                         f"and {flags.shape}")
+    order = np.argsort(x)
+    x, flags = x[order], flags[order]
+    return [(float(x[i]), float(x[j])) for i, j in true_runs(flags)]
+
+
+def sign_changes(values):
+    """Indices ``i`` where ``values < 0`` differs between ``values[i]`` and ``values[i+1]``.
+
+    Each is a bracket ``[x[i], x[i+1]]`` of a crossing on the grid ``x`` of the values
+    (to be refined by a root finder, see `from_crossings`).
+
+    Returns
+    -------
+    ndarray of int
+    """
+    negative = np.asarray(values) < 0
+    return np.flatnonzero(negative[:-1] != negative[1:])
+
+
+def from_crossings(x, inside, crossings):
+    """The set over the grid ``x`` bounded by its refined crossing points.
+
+    Parameters
+    ----------
+    x : array_like of float
+        the grid, ascending
+    inside : array_like of bool
+        membership at each grid point
+    crossings : sequence of float
+        one point per change of membership along the grid (as bracketed by
+        `sign_changes`), ascending
+
+    Returns
+    -------
+    list of (float, float)
+        A set that holds at an end of the grid is bounded there by that end.
+    """
+    x = np.asarray(x, dtype=float)
+    inside = np.asarray(inside, dtype=bool)
+    bounds = ([x[0]] if inside[0] else []) + list(crossings) + ([x[-1]] if inside[-1] else [])
+    if len(bounds) % 2:
+        raise ValueError("crossings must have one point per change of membership")
+    return [(float(a), float(b)) for a, b in zip(bounds[::2], bounds[1::2])]
+
+
+def union(a):
+    """The set as sorted, disjoint intervals: overlapping or touching ones merged."""
+    out = []
+    for lo, hi in sorted((float(lo), float(hi)) for lo, hi in a):
+        if lo > hi:
+            raise ValueError(f"interval ({lo}, {hi}) has lo > hi")
+        if out and lo <= out[-1][1]:
+            out[-1] = (out[-1][0], max(out[-1][1], hi))
+        else:
+            out.append((lo, hi))
+    return out
+
+
+def intersection(a, b):
+    """``A and B``: sorted, disjoint intervals (a single shared point is kept)."""
+    out = []
+    for l1, h1 in union(a):
+        for l2, h2 in union(b):
+            lo, hi = max(l1, l2), min(h1, h2)
+            if lo <= hi:
+                out.append((lo, hi))
+    return out
+
+
+def difference(a, b):
+    """``A minus B`` up to the end points: sorted, disjoint intervals of positive length.
+
+    The pieces of A left between the intervals of B; end points shared with B are
+    kept (the sets are compared by their length), and pieces of zero length dropped.
+    """
+    out = []
+    cuts = union(b)
+    for lo, hi in union(a):
+        for l2, h2 in cuts:
+            if h2 <= lo or l2 >= hi:
+                continue
+            if l2 > lo:
+                out.append((lo, l2))
+            lo = max(lo, h2)
+            if lo >= hi:
+                break
+        if lo < hi:
+            out.append((lo, hi))
+    return out
+
+
+def symmetric_difference(a, b):
+    """``A xor B`` (up to the end points, as in `difference`)."""
+    return union(difference(a, b) + difference(b, a))
+
+
+def clip(a, lo, hi):
+    """``A`` within ``[lo, hi]``."""
+    return intersection(a, [(lo, hi)])
+
+
+def hull(a):
+    """``(lowest lo, highest hi)`` of a non-empty set."""
+    if not a:
+        raise ValueError("the hull of an empty set is undefined")
+    return min(lo for lo, _ in a), max(hi for _, hi in a)
+
+
+def length(a):
+    """Total length of the set (overlaps counted once)."""
+    return sum(hi - lo for lo, hi in union(a))
+
+
+def jaccard(a, b):
+    """Jaccard overlap ``|A and B| / |A or B|`` of two sets (1 = identical).
+
+    Two sets of zero length give 1. Points (zero-length intervals) count through
+    the grid resolution only, so callers pass ranges widened by half a grid step.
+    """
+    inter = length(intersection(a, b))
+    total = length(a) + length(b) - inter
+    return 1.0 if total == 0 else inter / total
+
+
+def format_intervals(a, spec=".2f", empty="none"):
+    """``[lo, hi], ...`` with each number formatted by ``spec``; ``empty`` for no interval.
+
+    Examples
+    --------
+    >>> format_intervals([(0.0, 8.5214)], ".3f")
+    '[0.000, 8.521]'
+    """
+    return ", ".join(f"[{lo:{spec}}, {hi:{spec}}]" for lo, hi in a) or empty

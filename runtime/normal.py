@@ -1,0 +1,151 @@
+"""The normal motion of Eq. (4), once, with the tangential response to its contact force.
+
+The normal equation of Eq. (4) contains neither ``X1``, ``X1'``, ``Vb`` nor
+``mu_s``: the normal motion is fixed by the excitation alone. `NormalMotion`
+integrates it once, together with ``z``, the response of the tangential oscillator
+(from rest) to the contact force (`generated.hybrid.response_field`), mode by mode
+with located switches (loss of contact and touchdown; separation and recontact
+under the clipped tension law), on the compiled DOP853 integrator of
+`runtime._dop853`. Every run of a sweep over ``Vb`` or ``mu_s`` reuses it
+(`normal_motion` caches the last few), and `runtime.superposition` builds the
+tangential motion on it in closed form.
+
+The motion is kept twice: as DOP853 dense output (exact to the integration
+tolerance at any time), and sampled on a uniform grid for the superposition's scan
+for switches.
+"""
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from generated import hybrid, oscillator
+
+from . import _dop853
+from .switching import EVENT_KINDS, SURFACE_INDEX, Mode, Switching
+
+__all__ = ["NormalMotion", "normal_motion", "clear_cache", "GRID_STEP", "NORMAL_NAMES"]
+
+#: Grid of the scan for switches [s].
+GRID_STEP = 0.005
+#: The parameters the normal motion and the response z depend on (not Vb, mu_s).
+NORMAL_NAMES = ("beta1", "omega1", "beta2", "omega2", "g", "alpha_t", "Omega_t", "phase_t",
+                "alpha_n", "Omega_n", "phase_n")
+_NORMAL_SURFACES = ("penetration", "contact_force")
+
+
+class NormalMotion:
+    """The normal motion, ``z`` and the excitation response, from ``t = 0`` to ``t_end``.
+
+    Attributes
+    ----------
+    switch_t : float array
+        Times of the normal switches (the segment boundaries), with 0 and t_end.
+    switch_mode : list of Mode
+        The normal mode of each segment: ``Mode.SLIP_BACK`` stands for contact
+        (the contact modes share the normal field), ``FLIGHT`` or ``SEPARATED``.
+    switch_kind : list of str
+        The event kind of each switch (`runtime.switching.EVENT_KINDS`).
+    t_steps, h_steps, y_steps, F_steps : arrays
+        The DOP853 steps of all segments (state ``(z, z', X2, X2')``).
+    grid : float array (n,)
+        Uniform times, ``GRID_STEP`` apart (the segment boundaries added).
+    on_grid : float array (6, n)
+        ``z, z', X2, X2'`` and the excitation response ``zf, zf'`` at ``grid``.
+    """
+
+    def __init__(self, p, contact, tension, t_end, rtol, atol, y0_normal, backend=None,
+                 grid_step=GRID_STEP):
+        self.p, self.contact, self.tension, self.t_end = p, contact, tension, float(t_end)
+        kw = dict(contact=contact, backend=backend, **p)
+        field = hybrid.bind_response_field(**kw)
+        sw = Switching(p, contact, tension, backend)
+        advance = _dop853.compiled() if backend != "python" else None
+        advance = advance or _dop853.advance
+        guards = {}
+        for mode in (Mode.SLIP_BACK, Mode.FLIGHT, Mode.SEPARATED):
+            rows = [(SURFACE_INDEX[s], float(d), target) for s, d, target
+                    in sw.guards.get(mode, ((), (), ()))[2] if s in _NORMAL_SURFACES]
+            guards[mode] = (np.array([r[0] for r in rows], dtype=np.int64),
+                            np.array([r[1] for r in rows]), [r[2] for r in rows])
+        t, y = 0.0, np.array([0.0, 0.0, *y0_normal], dtype=float)
+        mode = self._normal_mode(sw, t, y, entering=y[2] > 0 or (y[2] == 0 and y[3] > 0))
+        switch_t, switch_mode, switch_kind, steps = [0.0], [mode], [], []
+        h_next = 0.0
+        while t < self.t_end:
+            watch, dirs, targets = guards[mode]
+            (code, n, ts, hs, ys, Fs, t_stop, y_stop, hit, h_next) = advance(
+                field.kernel, field.args, sw.surfaces.kernel, sw.surfaces.args,
+                sw.rates.kernel, sw.rates.args, float(mode), watch, dirs, t, y, self.t_end,
+                h_next, rtol, atol, np.inf)
+            if code == _dop853.STATUS_STEP_TOO_SMALL:
+                raise RuntimeError(f"normal motion: step size too small at t = {t_stop:.6g} s")
+            if n:
+                steps.append((ts, hs, ys, Fs))
+            t, y = float(t_stop), np.array(y_stop)
+            if code == _dop853.STATUS_END:
+                break
+            target = targets[hit]
+            if target in (hybrid.DECIDE_CONTACT,):
+                mode = self._normal_mode(sw, t, y, entering=True)
+            else:
+                mode = Mode[target.upper()]
+            surface = hybrid.SURFACES[watch[hit]]
+            if surface == "penetration":
+                y[2] = 0.0
+            switch_t.append(t)
+            switch_mode.append(mode)
+            switch_kind.append(EVENT_KINDS[(surface, int(dirs[hit]))])
+        switch_t.append(self.t_end)
+        self.switch_t = np.array(switch_t)
+        self.switch_mode = switch_mode
+        self.switch_kind = switch_kind
+        self.t_steps = np.concatenate([s[0] for s in steps])
+        self.h_steps = np.concatenate([s[1] for s in steps])
+        self.y_steps = np.concatenate([s[2] for s in steps])
+        self.F_steps = np.concatenate([s[3] for s in steps])
+        n_grid = int(np.ceil(self.t_end / grid_step - 1e-9))
+        grid = np.union1d(np.linspace(0.0, self.t_end, n_grid + 1), self.switch_t)
+        self.grid = grid
+        zf, vf = oscillator.bind_excitation_response(backend="python", **p).array(grid)
+        self.on_grid = np.vstack([self.evaluate(grid), zf, vf])
+
+    def _normal_mode(self, sw, t, y, entering):
+        """Contact (coded SLIP_BACK) or the free mode of a normal state."""
+        if not entering:
+            return Mode.FLIGHT
+        if sw.tension == "clipped" and sw.pulls(t, y):
+            return Mode.SEPARATED
+        return Mode.SLIP_BACK
+
+    def evaluate(self, t):
+        """``(z, z', X2, X2')`` at the times ``t`` from the dense output, shape (4, n)."""
+        return _dop853.evaluate(self.t_steps, self.h_steps, self.y_steps, self.F_steps, t)
+
+    def segment_at(self, t):
+        """Index of the normal segment that holds ``t`` (the later one at a switch)."""
+        return min(int(np.searchsorted(self.switch_t, t, side="right")) - 1,
+                   len(self.switch_mode) - 1)
+
+
+@functools.lru_cache(maxsize=4)
+def _cached(key, contact, tension, t_end, rtol, atol, y0_normal, backend):
+    return NormalMotion(dict(key, mu_s=0.0, Vb=0.0), contact, tension, t_end, rtol, atol,
+                        y0_normal, backend)
+
+
+def normal_motion(p, contact, tension, t_end, rtol, atol, y0_normal, backend=None):
+    """The `NormalMotion` of ``p`` (cached: the last few are kept).
+
+    ``mu_s`` and ``Vb`` do not enter the normal motion or ``z``: a sweep over either
+    reuses one.
+    """
+    key = tuple((k, float(p[k])) for k in NORMAL_NAMES)
+    return _cached(key, contact, tension, float(t_end), float(rtol), float(atol),
+                   tuple(float(v) for v in y0_normal), backend)
+
+
+def clear_cache():
+    """Forget the normal motions kept for the last parameter sets."""
+    _cached.cache_clear()
