@@ -324,3 +324,25 @@ def response_scale(p, t):
     b1, w1, a, W = (q[k] for k in ("beta1", "omega1", "alpha_t", "Omega_t"))
     amp = a * W**2 / np.sqrt((w1**2 - W**2)**2 + (2 * b1 * w1 * W)**2)
     return 2 * amp * np.array([1.0, max(W, w1)]) * (1 + (w1 + W) * np.max(t))
+
+
+def response_field(mode, t, y, p, contact, m=math):
+    """``(z', z'', X2', Y2')`` of the tangential response ``z`` to the mode's contact
+    force beside the normal equation: ``z'' = F_m - 2 b1 w1 z' - w1^2 z``,
+    ``Y2' = g + f_n - F_m``, with ``F_m`` the extended Eq. (1) in the contact modes
+    (slip_back, stick, slip_forward) and 0 in flight and separation."""
+    z, v, X2, Y2 = y
+    code = MODES.get(mode, mode)
+    Fm = force(X2, Y2, p, contact, extend=True) if code in (-1, 0, 1) else 0 * X2
+    f_n = excitation(t, p, m)[1]
+    b1, w1 = p["beta1"], p["omega1"]
+    return [v, Fm - 2 * b1 * w1 * v - w1**2 * z, Y2, p["g"] + f_n - Fm]
+
+
+def response_field_scale(mode, t, y, p, contact):
+    z, v, X2, Y2 = y
+    code = MODES.get(mode, mode)
+    Fs = force_scale(X2, Y2, p, contact) if code in (-1, 0, 1) else 0.0
+    b1, w1 = p["beta1"], p["omega1"]
+    return [abs(v), Fs + 2 * b1 * w1 * abs(v) + w1**2 * abs(z), abs(Y2),
+            p["g"] + excitation_scale(t, p)[1] + Fs]

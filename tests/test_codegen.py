@@ -123,7 +123,8 @@ STATE_DRAW = {"t": lambda r: r.uniform(-5, 5), "X1": lambda r: r.normal() * 2,
               "Y1": lambda r: r.normal() * 3, "X2": lambda r: r.uniform(-1, 3),
               "Y2": lambda r: r.normal() * 2, "sgn": lambda r: float(r.choice([-1, 0, 1])),
               "mode": lambda r: float(r.choice([-1, 0, 1, 2, 3])),
-              "tau": lambda r: r.uniform(0, 30)}
+              "tau": lambda r: r.uniform(0, 30), "z": lambda r: r.normal() * 2,
+              "v": lambda r: r.normal() * 3}
 
 
 def test_every_bind_function_is_public_with_a_public_twin():
@@ -188,6 +189,8 @@ def entry_scale(name, state, options, p, ref):
         return H.surface_scales(t, x, p, contact)
     if name == "surface_rates":
         return H.rate_scale(s["mode"], t, x, p, contact)
+    if name == "response_field":
+        return H.response_field_scale(s["mode"], t, (s["z"], s["v"], x[2], x[3]), p, contact)
     if name == "saltation":
         return H.saltation_scale(options["before"], options["after"], options["surface"],
                                  t, x, p, contact)
@@ -231,19 +234,7 @@ def compare_bound(module, name, backend, rng, draws):
     return worst
 
 
-PYTHON_BROKEN = {"oscillator.bind_state_transition", "oscillator.bind_excitation_response"}
-
-
-@pytest.mark.parametrize("module,name", [
-    pytest.param(m, n, marks=pytest.mark.xfail(
-        strict=True, raises=(ValueError, ZeroDivisionError),
-        reason="the python scalar kernel evaluates every branch of the damping Piecewise: "
-               "math.sqrt(beta1 - 1) raises ValueError for beta1 < 1, math.sqrt(1 - beta1) "
-               "for beta1 > 1, and 1/sqrt(...) ZeroDivisionError at beta1 = 1 "
-               "(generated/oscillator.py _state_transition__impl__scalar, "
-               "_excitation_response__impl__scalar)")
-                 if i in PYTHON_BROKEN else ())
-    for (m, n), i in zip(BIND, BIND_IDS)], ids=BIND_IDS)
+@pytest.mark.parametrize("module,name", BIND, ids=BIND_IDS)
 def test_bound_python_kernel_equals_the_public_function(rng, module, name):
     compare_bound(module, name, "python", rng, draws=3 if name == "bind_saltation" else 15)
 
@@ -254,35 +245,50 @@ def test_bound_numba_kernel_equals_the_public_function(rng, module, name):
     compare_bound(module, name, "numba", rng, draws=2 if name == "bind_saltation" else 10)
 
 
-@pytest.mark.xfail(strict=True, raises=ZeroDivisionError,
-                   reason="at beta1 = 1 the under- and over-damped branches, evaluated "
-                          "eagerly by the scalar kernel, divide by sqrt(1 - beta1) = 0; "
-                          "numba's njit raises ZeroDivisionError like Python")
+@pytest.mark.parametrize("backend", ["python", "numba"])
 @pytest.mark.parametrize("name", ["bind_state_transition", "bind_excitation_response"])
-def test_bound_oscillator_kernels_at_critical_damping(name):
-    pytest.importorskip("numba")
+def test_bound_oscillator_kernels_at_critical_damping(name, backend):
+    """beta1 = 1 exactly: the critically damped branch (the other two divide by
+    sqrt(1 - beta1) = 0 and must not be evaluated). Same expressions: 16 ulps of the
+    entries' scale, (1 + omega1 tau) |Phi| and the response's terms."""
+    if backend == "numba":
+        pytest.importorskip("numba")
     p = dict(BASE, beta1=1.0)
-    bound = getattr(_osc, name)(backend="numba", **p)
+    bound = getattr(_osc, name)(backend=backend, **p)
     ref = np.ravel(getattr(_osc, name[5:])(0.7, **p))
-    assert np.allclose(bound(0.7), ref, rtol=16 * EPS, atol=0)
+    scale = entry_scale(name[5:], {"tau": 0.7, "t": 0.7}.items(), {}, H.full(p), ref)
+    assert np.all(np.abs(np.ravel(bound(0.7)) - ref) <= 16 * EPS * np.asarray(scale))
 
 
-@pytest.mark.xfail(strict=True, raises=ZeroDivisionError,
-                   reason="where the public function returns NaN/inf (undamped resonance; "
-                          "grazing, rate 0) the python and numba kernels raise "
-                          "ZeroDivisionError instead of returning the same value")
-@pytest.mark.parametrize("case", ["resonance", "grazing"])
-def test_bound_kernel_equals_the_public_function_at_singular_points(case):
-    pytest.importorskip("numba")
-    if case == "resonance":
+def singular_point(case, backend):
+    """(bound value, public value) where the public function divides by zero."""
+    if case == "resonance":             # undamped resonance: NaN (test_oscillator)
         p = dict(BASE, beta1=0.0, Omega=BASE["omega1"])
         ref = np.ravel(_osc.excitation_response(0.7, **p))
-        got = _osc.bind_excitation_response(backend="numba", **p)(0.7)
-    else:
-        kw = dict(before="flight", after="slip_back", surface="penetration", **BASE)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ref = np.ravel(_hybrid.saltation(0.0, 0.0, 1.0, 0.0, 0.0, **kw))
-        got = _hybrid.bind_saltation(backend="python", **kw)(0.0, 0.0, 1.0, 0.0, 0.0)
+        return _osc.bind_excitation_response(backend=backend, **p)(0.7), ref
+    # grazing: the rate dh/dt = Y2 = 0 on entering contact
+    kw = dict(before="flight", after="slip_back", surface="penetration", **BASE)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ref = np.ravel(_hybrid.saltation(0.0, 0.0, 1.0, 0.0, 0.0, **kw))
+    return _hybrid.bind_saltation(backend=backend, **kw)(0.0, 0.0, 1.0, 0.0, 0.0), ref
+
+
+@pytest.mark.parametrize("case", ["resonance", "grazing"])
+def test_bound_numba_kernel_at_singular_points_gives_the_public_nan_or_inf(case):
+    pytest.importorskip("numba")
+    got, ref = singular_point(case, "numba")
+    assert not np.all(np.isfinite(ref))
+    np.testing.assert_array_equal(np.ravel(got), ref)
+
+
+@pytest.mark.xfail(strict=True, raises=ZeroDivisionError,
+                   reason="the python kernel raises ZeroDivisionError where the public "
+                          "function (and the numba kernel, error_model='numpy') returns "
+                          "NaN/inf: undamped resonance of excitation_response, grazing "
+                          "(rate 0) of saltation")
+@pytest.mark.parametrize("case", ["resonance", "grazing"])
+def test_bound_python_kernel_at_singular_points_gives_the_public_nan_or_inf(case):
+    got, ref = singular_point(case, "python")
     np.testing.assert_array_equal(np.ravel(got), ref)
 
 
@@ -297,17 +303,13 @@ def test_bound_kernel_exposes_its_raw_kernel_and_checked_parameters(module, name
     assert bound.params == {k: full[k] for k in bound.params}
     assert all(type(v) is float for v in bound.args)
     state = [0.3, 0.1, 2.0, 1.3, -0.2, -1.0][:len(state_names(getattr(module, name[5:])))]
-    if name == "bind_vector_field" or name == "bind_surface_rates":
+    if name in ("bind_vector_field", "bind_surface_rates", "bind_response_field"):
         state[-1] = 1.0
-    if module is _osc:
-        return      # the python kernel fails (test_bound_python_kernel_equals_...)
     assert bound.kernel(*state, *bound.args) == bound(*state)
 
 
 def used_parameters(module, name):
-    return list(getattr(module, name)(backend="python", **BASE).params) if module is not _osc \
-        else ["beta1", "omega1"] + (["alpha_t", "Omega_t", "phase_t"]
-                                    if name == "bind_excitation_response" else [])
+    return list(getattr(module, name)(backend="python", **BASE).params)
 
 
 @pytest.mark.parametrize("module,name", BIND, ids=BIND_IDS)

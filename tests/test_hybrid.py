@@ -214,6 +214,29 @@ def test_vector_field_broadcasts_over_mode_codes_and_flight_equals_separated(rng
 
 
 @pytest.mark.parametrize("contact", H.CONTACTS)
+def test_response_field_is_the_hand_field_and_its_twin_agrees(rng, contact):
+    """(z', z'', X2', Y2') with z'' = F_m - 2 b1 w1 z' - w1^2 z and the normal equation,
+    F_m the extended Eq. (1) in the contact modes and 0 in flight and separation; its
+    normal rows are vector_field's. References: hand (30 digits) and the mpmath twin."""
+    for _ in range(20):
+        p = hybrid_params(rng)
+        t, x = random_state(rng, contact=rng.uniform() < 0.7)
+        y = np.array([rng.normal() * 2, rng.normal() * 3, x[2], x[3]])
+        for name, code in H.MODES.items():
+            got = hybrid.response_field(t, *y, code, contact=contact, **p)
+            with mpmath.workdps(30):
+                tm, ym, pm = mp_args(t, y, p)
+                ref = H.response_field(name, tm, ym, pm, contact, m=mpmath)
+            scale = ULPS * EPS * np.array(H.response_field_scale(name, t, y, p, contact))
+            assert_within(got, ref, scale, f"{name} {contact}")
+            with mpmath.workdps(50):
+                twin = mp_hybrid.response_field(t, *y, code, contact=contact, **p)
+            assert_within(got, twin, scale, f"twin {name} {contact}")
+            field = hybrid.vector_field(t, *x, code, contact=contact, **p)
+            assert_within(got[2:], list(field[2:]), scale[2:], "normal rows")
+
+
+@pytest.mark.parametrize("contact", H.CONTACTS)
 def test_surfaces_are_the_hand_switching_functions(rng, contact):
     for _ in range(40):
         p = hybrid_params(rng)
