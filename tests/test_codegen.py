@@ -1,4 +1,5 @@
 """The code generator: up to date, deterministic, detects hand edits, SymPy-free imports."""
+import inspect
 import math
 import os
 import re
@@ -104,3 +105,242 @@ def test_fractional_powers_print_through_hoisted_roots(exponent, printer):
     # involved), roots rounded once: the larger term of the worst case (14/3) takes five
     # powers and about ten roundings, ~11 eps = 2.5e-15
     assert float(eval(text, namespace)) == pytest.approx(float(exact), rel=4e-15)
+
+
+# Bound scalar kernels (bind_<name>) ------------------------------------------------------
+
+import hand_eq4 as H
+from generated import _support, dynamics as _dynamics, hybrid as _hybrid, oscillator as _osc
+from generated.parameters import BASE, DOMAINS
+
+BIND_MODULES = (_dynamics, _hybrid, _osc)
+BIND = [(module, name) for module in BIND_MODULES for name in module.__all__
+        if name.startswith("bind_")]
+BIND_IDS = [f"{module.__name__.split('.')[-1]}.{name}" for module, name in BIND]
+EPS = np.finfo(float).eps
+#: State arguments of the public functions, drawn at random (X2 on both sides of 0).
+STATE_DRAW = {"t": lambda r: r.uniform(-5, 5), "X1": lambda r: r.normal() * 2,
+              "Y1": lambda r: r.normal() * 3, "X2": lambda r: r.uniform(-1, 3),
+              "Y2": lambda r: r.normal() * 2, "sgn": lambda r: float(r.choice([-1, 0, 1])),
+              "mode": lambda r: float(r.choice([-1, 0, 1, 2, 3])),
+              "tau": lambda r: r.uniform(0, 30), "z": lambda r: r.normal() * 2,
+              "v": lambda r: r.normal() * 3}
+
+
+def test_every_bind_function_is_public_with_a_public_twin():
+    assert len(BIND) >= 15
+    for module, name in BIND:
+        assert name[5:] in module.__all__, name
+        assert callable(getattr(module, name[5:]))
+
+
+def state_names(public):
+    return [k for k, v in inspect.signature(public).parameters.items()
+            if v.kind == v.POSITIONAL_OR_KEYWORD]
+
+
+def option_sets(public):
+    """Every option combination a function takes (saltation: each switch of TRANSITIONS)."""
+    kw = {k for k, v in inspect.signature(public).parameters.items() if v.kind == v.KEYWORD_ONLY}
+    contacts = [{"contact": c} for c in ("hertz_damp", "kelvin_voigt")] if "contact" in kw else [{}]
+    if "before" in kw:
+        return [dict(c, before=b, after=a, surface=s) for c in contacts
+                for b, a, s in _hybrid.TRANSITIONS]
+    if "tension" in kw:
+        return [dict(c, tension=t) for c in contacts for t in ("allowed", "clipped")]
+    return contacts
+
+
+def bind_params(rng):
+    p = {k: BASE[k] * float(np.exp(rng.uniform(-np.log(3), np.log(3)))) for k in BASE}
+    p.update(alpha_n=p["alpha"] * rng.uniform(0.3, 2), Omega_n=p["Omega"] * rng.uniform(0.5, 2),
+             phase_t=rng.uniform(-3, 3), phase_n=rng.uniform(-3, 3))
+    # the oscillator's damping on both sides of critical (beta1 = 1 exactly: see
+    # test_bound_oscillator_kernels_at_critical_damping)
+    p["beta1"] = float(rng.choice([rng.uniform(0, 0.99), rng.uniform(1.01, 4)]))
+    return p
+
+
+def entry_scale(name, state, options, p, ref):
+    """The rounding scale of each output entry (tests/hand_eq4.py): the sum of the
+    absolute values of its terms, with the rounding of the excitation's argument."""
+    s = dict(state)
+    x = [s.get(k, 0.0) for k in ("X1", "Y1", "X2", "Y2")]
+    t, contact = s.get("t", 0.0), options.get("contact", "hertz_damp")
+    if name == "rhs_branch":
+        return H.rhs_scale(t, x, p, contact)
+    if name == "normal_force":
+        return H.force_scale(x[2], x[3], p, contact) if x[2] > 0 else 0.0
+    if name == "normal_rhs":
+        return H.rhs_scale(t, x, p, contact)[2:]
+    if name == "normal_jacobian":
+        return np.array(H.jacobian_scale(t, x, p, contact))[2:, 2:]
+    if name == "free_acceleration":
+        return H.a_free_scale(t, x[0], x[1], p)
+    if name == "excitation":
+        return H.excitation_scale(t, p)
+    if name == "energy":
+        return H.energy_scale(x, p, contact)
+    if name == "power_balance":
+        return H.power_scale(t, x, p, contact)
+    if name == "vector_field":
+        return H.field_scale(s["mode"], t, x, p, contact)
+    if name in ("surfaces", "surface_scales"):
+        return H.surface_scales(t, x, p, contact)
+    if name == "surface_rates":
+        return H.rate_scale(s["mode"], t, x, p, contact)
+    if name == "response_field":
+        return H.response_field_scale(s["mode"], t, (s["z"], s["v"], x[2], x[3]), p, contact)
+    if name == "saltation":
+        return H.saltation_scale(options["before"], options["after"], options["surface"],
+                                 t, x, p, contact)
+    if name == "state_transition":          # (1 + omega1 tau) |Phi| (test_oscillator)
+        return (1 + p["omega1"] * s["tau"]) * np.abs(ref).max()
+    if name == "excitation_response":
+        return H.response_scale(p, t)
+    raise KeyError(name)
+
+
+def compare_bound(module, name, backend, rng, draws):
+    """The bound kernel against the public function at random scalar states.
+
+    Error model: both evaluate the same expressions in the same order and are each
+    within a few ulps of the entry's rounding scale (the sum of its terms' absolute
+    values, hand_eq4) of the exact value (test_hybrid, test_tension, test_oscillator);
+    they differ only where numpy's, Python's math (libm) and numba's (LLVM) elementary
+    functions round differently, so by at most 16 ulps of that scale. Returns the
+    largest difference in ulps of the scale."""
+    public = getattr(module, name[5:])
+    names = state_names(public)
+    worst = 0.0
+    for options in option_sets(public):
+        for _ in range(draws):
+            p = bind_params(rng)
+            state = [STATE_DRAW[n](rng) for n in names]
+            if module is _osc:
+                state = [abs(v) * 6 for v in state]         # the response from rest: t >= 0
+            bound = getattr(module, name)(**options, backend=backend, **p)
+            assert bound.backend == backend
+            got = np.ravel(np.asarray(bound(*state), dtype=float))
+            with np.errstate(divide="ignore", invalid="ignore"):
+                ref = np.ravel(np.asarray(public(*state, **options, **p), dtype=float))
+            assert got.shape == ref.shape, (name, options)
+            scale = np.ravel(np.asarray(entry_scale(name[5:], zip(names, state), options,
+                                                    H.full(p), ref), dtype=float))
+            err = np.abs(got - ref)
+            assert np.all(err <= 16 * EPS * scale), (name, options, state, got, ref)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                worst = max(worst, float(np.max(np.where(err > 0, err / (EPS * scale), 0))))
+    return worst
+
+
+@pytest.mark.parametrize("module,name", BIND, ids=BIND_IDS)
+def test_bound_python_kernel_equals_the_public_function(rng, module, name):
+    compare_bound(module, name, "python", rng, draws=3 if name == "bind_saltation" else 15)
+
+
+@pytest.mark.parametrize("module,name", BIND, ids=BIND_IDS)
+def test_bound_numba_kernel_equals_the_public_function(rng, module, name):
+    pytest.importorskip("numba")
+    compare_bound(module, name, "numba", rng, draws=2 if name == "bind_saltation" else 10)
+
+
+@pytest.mark.parametrize("backend", ["python", "numba"])
+@pytest.mark.parametrize("name", ["bind_state_transition", "bind_excitation_response"])
+def test_bound_oscillator_kernels_at_critical_damping(name, backend):
+    """beta1 = 1 exactly: the critically damped branch (the other two divide by
+    sqrt(1 - beta1) = 0 and must not be evaluated). Same expressions: 16 ulps of the
+    entries' scale, (1 + omega1 tau) |Phi| and the response's terms."""
+    if backend == "numba":
+        pytest.importorskip("numba")
+    p = dict(BASE, beta1=1.0)
+    bound = getattr(_osc, name)(backend=backend, **p)
+    ref = np.ravel(getattr(_osc, name[5:])(0.7, **p))
+    scale = entry_scale(name[5:], {"tau": 0.7, "t": 0.7}.items(), {}, H.full(p), ref)
+    assert np.all(np.abs(np.ravel(bound(0.7)) - ref) <= 16 * EPS * np.asarray(scale))
+
+
+def singular_point(case, backend):
+    """(bound value, public value) where the public function divides by zero."""
+    if case == "resonance":             # undamped resonance: NaN (test_oscillator)
+        p = dict(BASE, beta1=0.0, Omega=BASE["omega1"])
+        ref = np.ravel(_osc.excitation_response(0.7, **p))
+        return _osc.bind_excitation_response(backend=backend, **p)(0.7), ref
+    # grazing: the rate dh/dt = Y2 = 0 on entering contact
+    kw = dict(before="flight", after="slip_back", surface="penetration", **BASE)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ref = np.ravel(_hybrid.saltation(0.0, 0.0, 1.0, 0.0, 0.0, **kw))
+    return _hybrid.bind_saltation(backend=backend, **kw)(0.0, 0.0, 1.0, 0.0, 0.0), ref
+
+
+@pytest.mark.parametrize("case", ["resonance", "grazing"])
+def test_bound_numba_kernel_at_singular_points_gives_the_public_nan_or_inf(case):
+    pytest.importorskip("numba")
+    got, ref = singular_point(case, "numba")
+    assert not np.all(np.isfinite(ref))
+    np.testing.assert_array_equal(np.ravel(got), ref)
+
+
+@pytest.mark.xfail(strict=True, raises=ZeroDivisionError,
+                   reason="the python kernel raises ZeroDivisionError where the public "
+                          "function (and the numba kernel, error_model='numpy') returns "
+                          "NaN/inf: undamped resonance of excitation_response, grazing "
+                          "(rate 0) of saltation")
+@pytest.mark.parametrize("case", ["resonance", "grazing"])
+def test_bound_python_kernel_at_singular_points_gives_the_public_nan_or_inf(case):
+    got, ref = singular_point(case, "python")
+    np.testing.assert_array_equal(np.ravel(got), ref)
+
+
+@pytest.mark.parametrize("module,name", BIND, ids=BIND_IDS)
+def test_bound_kernel_exposes_its_raw_kernel_and_checked_parameters(module, name):
+    p = dict(BASE, beta1=0.5, phase_t=0.25)
+    bound = getattr(module, name)(backend="python", **p)
+    assert isinstance(bound, _support.Bound) and bound.name == name[5:]
+    assert repr(bound) == f"<bound {name[5:]} (python)>"
+    full = {**p, "alpha_t": p["alpha"], "Omega_t": p["Omega"], "alpha_n": p["alpha"],
+            "Omega_n": p["Omega"], "phase_n": 0.0}
+    assert bound.params == {k: full[k] for k in bound.params}
+    assert all(type(v) is float for v in bound.args)
+    state = [0.3, 0.1, 2.0, 1.3, -0.2, -1.0][:len(state_names(getattr(module, name[5:])))]
+    if name in ("bind_vector_field", "bind_surface_rates", "bind_response_field"):
+        state[-1] = 1.0
+    assert bound.kernel(*state, *bound.args) == bound(*state)
+
+
+def used_parameters(module, name):
+    return list(getattr(module, name)(backend="python", **BASE).params)
+
+
+@pytest.mark.parametrize("module,name", BIND, ids=BIND_IDS)
+def test_bind_rejects_bad_parameters_by_name(module, name):
+    bind = getattr(module, name)
+    used = used_parameters(module, name)
+    assert used
+    for param in used:
+        bad_values = [float("nan"), float("inf"), np.array([1.0, 2.0])]
+        if DOMAINS[param] != "real":
+            bad_values.append(-1.0)
+        for bad in bad_values:
+            with pytest.raises(ValueError, match=f"'{param}'"):
+                bind(backend="python", **{**BASE, param: bad})
+    with pytest.raises(TypeError, match="'omega3'"):
+        bind(backend="python", omega3=1.0, **BASE)
+    with pytest.raises(ValueError, match="backend"):
+        bind(backend="gpu", **BASE)
+    options = [k for k, v in inspect.signature(bind).parameters.items()
+               if v.kind == v.KEYWORD_ONLY and k != "backend"]
+    for option in options:
+        with pytest.raises(ValueError, match=option):
+            bind(backend="python", **{option: "nonsense"}, **BASE)
+    missing = dict(BASE)
+    del missing[used[0] if used[0] in missing else "alpha"]
+    with pytest.raises(TypeError, match="missing"):
+        bind(backend="python", **missing)
+
+
+def test_bind_default_backend_is_numba_when_installed():
+    numba = pytest.importorskip("numba")
+    assert numba
+    assert _dynamics.bind_energy(**BASE).backend == "numba"
+    assert _dynamics.bind_energy(backend="python", **BASE).backend == "python"

@@ -98,3 +98,105 @@ def test_numpy_matches_mpmath_variant(rng, mp50, name, args):
 def test_state_nan_raises(base):
     with pytest.raises(ValueError, match="'Y2'"):
         dynamics.rhs(0.0, 0.0, 0.0, 1.0, float("nan"), **base)
+
+
+# The functions added with the tension law and the hybrid system ------------------------
+
+import hand_eq4 as H
+
+EPS = np.finfo(float).eps
+
+
+def test_free_acceleration_is_the_tangential_acceleration_without_friction(rng):
+    """f_t - 2 beta1 omega1 X1' - omega1^2 X1 (hand), within 16 ulps of its terms'
+    scale; it is rhs_branch's Y1' with sgn = 0 in contact and in flight."""
+    for _ in range(30):
+        p = random_params(rng)
+        p.update(alpha_t=p["alpha"] * 0.7, Omega_t=p["Omega"] * 1.3, phase_t=0.4)
+        t, X1, Y1 = rng.uniform(-5, 5), rng.normal() * 2, rng.normal() * 3
+        got = dynamics.free_acceleration(t, X1, Y1, **p)
+        with mpmath.workdps(30):
+            ref = H.a_free(mpmath.mpf(t), mpmath.mpf(X1), mpmath.mpf(Y1),
+                           {k: mpmath.mpf(v) for k, v in p.items()}, m=mpmath)
+        assert abs(got - float(ref)) <= 16 * EPS * H.a_free_scale(t, X1, Y1, p)
+        for X2, tension in [(1.5, "allowed"), (1.5, "clipped"), (-0.5, "allowed")]:
+            branch = dynamics.rhs_branch(t, X1, Y1, X2, 0.3, 0, tension=tension, **p)[1]
+            assert abs(branch - got) <= 16 * EPS * H.a_free_scale(t, X1, Y1, p)
+
+
+def tension_state(rng, p, contact, i):
+    """Cycle through: in contact pushing, in contact pulling (F < 0), in flight."""
+    t, X1, Y1 = rng.uniform(-5, 5), rng.normal() * 2, rng.normal() * 3
+    X2 = rng.uniform(0.3, 3) if i % 3 != 2 else -rng.uniform(0.3, 2)
+    edge = -p["omega2"] * (1.0 if contact == "hertz_damp" else max(X2, 0)) / (2 * p["beta2"])
+    Y2 = edge - rng.uniform(0.1, 2) if i % 3 == 1 else edge + rng.uniform(0.1, 2)
+    return t, np.array([X1, Y1, X2, Y2])
+
+
+def hand_scale(name, t, x, sgn, p, contact):
+    if name in ("rhs", "rhs_branch"):
+        return H.rhs_scale(t, x, p, contact)
+    if name == "jacobian_branch":
+        return np.array(H.jacobian_scale(t, x, p, contact))
+    if name == "normal_force":
+        return H.force_scale(x[2], x[3], p, contact) if x[2] > 0 else 0.0
+    if name == "normal_rhs":
+        return H.rhs_scale(t, x, p, contact)[2:]
+    if name == "normal_jacobian":
+        return np.array(H.jacobian_scale(t, x, p, contact))[2:, 2:]
+    if name == "energy":
+        return H.energy_scale(x, p, contact)
+    if name == "power_balance":
+        return H.power_scale(t, x, p, contact)
+    raise KeyError(name)
+
+
+def call_args(name, t, x, sgn):
+    return {"rhs": (t, *x), "rhs_branch": (t, *x, sgn), "jacobian_branch": (t, *x, sgn),
+            "normal_force": tuple(x[2:]), "normal_rhs": (t, *x[2:]),
+            "normal_jacobian": (t, *x[2:]), "energy": tuple(x),
+            "power_balance": (t, *x, sgn)}[name]
+
+
+@pytest.mark.parametrize("tension", ["allowed", "clipped"])
+@pytest.mark.parametrize("name", ["rhs", "rhs_branch", "jacobian_branch", "normal_force",
+                                  "normal_rhs", "normal_jacobian", "energy", "power_balance"])
+def test_numpy_matches_mpmath_variant_under_both_tension_laws(rng, mp50, name, tension):
+    """The mpmath twin at 50 digits as the reference, at states where Eq. (1) pushes,
+    pulls and in flight; numpy within 16 ulps of each entry's terms' scale (hand_eq4)."""
+    for contact in ("hertz_damp", "kelvin_voigt"):
+        for i in range(6):
+            p = random_params(rng)
+            t, x = tension_state(rng, p, contact, i)
+            sgn = float(rng.choice([-1, 0, 1]))
+            args = call_args(name, t, x, sgn)
+            fast = getattr(dynamics, name)(*args, contact=contact, tension=tension, **p)
+            ref = getattr(mp_dynamics, name)(*args, contact=contact, tension=tension, **p)
+            ref = ref.tolist() if isinstance(ref, mpmath.matrix) else ref
+            ref = np.array([float(v) for v in np.ravel(np.array(ref, dtype=object))])
+            scale = np.ravel(np.asarray(hand_scale(name, t, x, sgn, H.full(p), contact), float))
+            err = np.abs(np.ravel(np.asarray(fast, dtype=float)) - ref)
+            assert np.all(err <= 16 * EPS * scale), (contact, i, fast, ref)
+
+
+@pytest.mark.parametrize("name,args", [("free_acceleration", (0.4, 0.1, 2.0)),
+                                       ("excitation", (0.4,))])
+def test_numpy_matches_mpmath_variant_of_the_excitation_terms(rng, mp50, name, args):
+    for _ in range(10):
+        p = random_params(rng)
+        p.update(phase_t=rng.uniform(-3, 3), phase_n=rng.uniform(-3, 3),
+                 Omega_n=p["Omega"] * rng.uniform(0.5, 2))
+        fast = np.ravel(getattr(dynamics, name)(*args, **p))
+        ref = np.array([float(v) for v in np.ravel(getattr(mp_dynamics, name)(*args, **p))])
+        scale = (H.a_free_scale(args[0], args[1], args[2], p) if name == "free_acceleration"
+                 else np.array(H.excitation_scale(args[0], p)))
+        assert np.all(np.abs(fast - ref) <= 16 * EPS * scale)
+
+
+def test_tension_option_is_checked_by_name(base):
+    for fn, args in [(dynamics.rhs, (0.0, 0.0, 0.0, 1.0, 0.0)), (dynamics.normal_force, (1.0, 0.0)),
+                     (dynamics.normal_rhs, (0.0, 1.0, 0.0)), (mp_dynamics.normal_jacobian, (0.0, 1.0, 0.0))]:
+        with pytest.raises(ValueError, match="tension"):
+            fn(*args, tension="elastic", **base)
+    with pytest.raises(ValueError, match="tension"):
+        dynamics.bind_normal_rhs(tension="none", **base)
