@@ -42,7 +42,7 @@ from .model import TENSION_LAWS, P, X1, X2, Y1, Y2, excitation, normal_force, t
 __all__ = ["MODE_CODES", "FIELDS", "SURFACES", "DECIDE_SLIP", "DECIDE_CONTACT", "GUARDS",
            "STATE", "mode", "contact_force_in_contact", "vector_field", "field_of_mode",
            "response_field",
-           "surfaces", "surface_scales", "surface_rates", "transitions", "saltation"]
+           "surfaces", "rounding_scale", "surface_scales", "surface_rates", "transitions", "saltation"]
 
 #: Integer code of each mode; the slip codes are the friction direction of Eq. (3).
 MODE_CODES = {"slip_back": -1, "stick": 0, "slip_forward": 1, "flight": 2, "separated": 3}
@@ -161,15 +161,35 @@ def surfaces(contact: str) -> dict[str, sp.Expr]:
             "contact_force": _contact_sign(contact).subs(X2, sp.Max(X2r, 0))}
 
 
-def surface_scales(contact: str) -> dict[str, sp.Expr]:
-    """The sum of the absolute values of the terms of each switching function.
+def _term_scale(expr) -> sp.Expr:
+    return sp.Add(*[sp.Abs(term) for term in sp.Add.make_args(sp.expand(expr))])
 
-    A rounding-error scale: a computed ``h`` is within a few ulps of this scale of
-    the exact one, so a decision on the sign of ``h`` (stick against slip at a tie)
-    is taken with a tolerance proportional to it.
+
+def rounding_scale(h) -> sp.Expr:
+    """A scale of the rounding error of a computed ``h``.
+
+    The sum of the absolute values of its terms, plus, for every sine or cosine in
+    it, ``|dh/du|`` times the scale of its argument ``u``: ``Omega t + phase`` is
+    rounded before the sine, by about an ulp of ``Omega t``, which late in a run is
+    far more than an ulp of the sine.
     """
-    return {name: sp.Add(*[sp.Abs(term) for term in sp.Add.make_args(sp.expand(h))])
-            for name, h in surfaces(contact).items()}
+    scale = _term_scale(h)
+    for trig in sorted(h.atoms(sp.sin, sp.cos), key=sp.default_sort_key):
+        u = trig.args[0]
+        w = sp.Dummy("w")
+        slope = sp.diff(h.xreplace({trig: trig.func(w)}), w).subs(w, u)
+        scale += sp.Abs(slope) * _term_scale(u)
+    return scale
+
+
+def surface_scales(contact: str) -> dict[str, sp.Expr]:
+    """A rounding-error scale of each switching function (`rounding_scale`).
+
+    A computed ``h`` is within a few ulps of this scale of the exact one, so a
+    decision on the sign of ``h`` (stick against slip at a tie) is taken with a
+    tolerance proportional to it.
+    """
+    return {name: rounding_scale(h) for name, h in surfaces(contact).items()}
 
 
 def _rate(h, field):

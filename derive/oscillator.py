@@ -47,8 +47,10 @@ def state_transition_branches() -> dict[str, sp.Matrix]:
     under_b = w1 * sp.sqrt((1 - b1) * (1 + b1))
     over_b = w1 * sp.sqrt((b1 - 1) * (b1 + 1))
     # e^(a tau) cosh(b tau) and e^(a tau) sinh(b tau)/b through e^((a + b) tau) <= 1
-    # and expm1(-2 b tau): bounded for long tau, accurate as b tau -> 0.
-    slow = sp.exp((a + over_b) * tau)
+    # and expm1(-2 b tau): bounded for long tau, accurate as b tau -> 0. The slow rate
+    # a + b = -omega1 (beta1 - sqrt(beta1^2 - 1)) is written without the cancellation
+    # of its two terms (they agree to 1/(2 beta1^2) for strong damping).
+    slow = sp.exp(-w1 / (b1 + sp.sqrt((b1 - 1) * (b1 + 1))) * tau)
     decay = -expm1(-2 * over_b * tau)
     forms = {
         "under": (sp.exp(a * tau) * sp.cos(under_b * tau),

@@ -379,7 +379,14 @@ class Bound:
         self._impl, self._values = impl, values
 
     def __call__(self, *state):
-        return self.kernel(*state, *self.args)
+        try:
+            return self.kernel(*state, *self.args)
+        except (ZeroDivisionError, ValueError, OverflowError):
+            # plain Python raises where numpy (and the numba kernel, compiled with
+            # numpy's error model) gives inf or NaN: at a singular point (undamped
+            # resonance, a grazing switch) answer as the public function does
+            out = numpy.asarray(self.array(*state), dtype=float).ravel()
+            return float(out[0]) if out.size == 1 else tuple(float(v) for v in out)
 
     def array(self, *state):
         state = [numpy.asarray(x, dtype=float) for x in state]

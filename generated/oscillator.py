@@ -96,34 +96,34 @@ def bind_state_transition(*, backend=None, **params):
 
 def _state_transition__impl(_shape, tau, beta1, omega1):
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = beta1*omega1
-        _x1 = numpy.exp(-_x0*tau)
-        _x2 = beta1 - 1
-        _x3 = numpy.sqrt(-_x2)
-        _x4 = numpy.sqrt(beta1 + 1)
-        _x5 = _x4*omega1
-        _x6 = _x3*_x5*tau
-        _x7 = numpy.cos(_x6)
-        _x8 = _x4**(-1.0)
-        _x9 = _x8*beta1
-        _x10 = _x1*numpy.sin(_x6)/_x3
-        _x11 = _x10*_x9
-        _x12 = numpy.less(beta1, 1)
-        _x13 = numpy.sqrt(_x2)
-        _x14 = (1/2)*numpy.expm1(-2*_x13*_x5*tau)
+        _x0 = omega1*tau
+        _x1 = numpy.exp(-_x0*beta1)
+        _x2 = numpy.sqrt(beta1 + 1)
+        _x3 = beta1 - 1
+        _x4 = numpy.sqrt(-_x3)
+        _x5 = _x0*_x2*_x4
+        _x6 = numpy.cos(_x5)
+        _x7 = _x2**(-1.0)
+        _x8 = _x7*beta1
+        _x9 = _x1*numpy.sin(_x5)/_x4
+        _x10 = _x8*_x9
+        _x11 = numpy.less(beta1, 1)
+        _x12 = numpy.sqrt(_x3)
+        _x13 = _x12*_x2
+        _x14 = (1/2)*numpy.expm1(-2*_x0*_x13)
         _x15 = _x14 + 1
-        _x16 = numpy.exp(tau*(-_x0 + _x13*_x4*omega1))
-        _x17 = _x14*_x16/_x13
-        _x18 = _x17*_x9
+        _x16 = numpy.exp(-_x0/(_x13 + beta1))
+        _x17 = _x14*_x16/_x12
+        _x18 = _x17*_x8
         _x19 = numpy.greater(beta1, 1)
         _x20 = _x1*tau
-        _x21 = _x0*_x20
+        _x21 = _x20*beta1*omega1
         _x22 = omega1**(-1.0)
-        _x23 = _x10*_x8
-        _x24 = _x17*_x8
+        _x23 = _x7*_x9
+        _x24 = _x17*_x7
         return _support.matrix(_shape, [
-                [numpy.select([_x12,_x19,True], [_x1*_x7 + _x11,_x15*_x16 - _x18,_x1 + _x21], default=numpy.nan), numpy.select([_x12,_x19,True], [_x22*_x23,-_x22*_x24,_x20], default=numpy.nan)],
-                [numpy.select([_x12,_x19,True], [-_x23*omega1,_x24*omega1,-_x20*omega1**2], default=numpy.nan), numpy.select([_x12,_x19,True], [_x1*_x7 - _x11,_x15*_x16 + _x18,_x1 - _x21], default=numpy.nan)],
+                [numpy.select([_x11,_x19,True], [_x1*_x6 + _x10,_x15*_x16 - _x18,_x1 + _x21], default=numpy.nan), numpy.select([_x11,_x19,True], [_x22*_x23,-_x22*_x24,_x20], default=numpy.nan)],
+                [numpy.select([_x11,_x19,True], [-_x23*omega1,_x24*omega1,-_x20*omega1**2], default=numpy.nan), numpy.select([_x11,_x19,True], [_x1*_x6 - _x10,_x15*_x16 + _x18,_x1 - _x21], default=numpy.nan)],
             ])
 
 
@@ -145,12 +145,14 @@ def _state_transition__impl__scalar(tau, beta1, omega1):
     elif (beta1 > 1):
         _x0 = math.sqrt(beta1 - 1)
         _x1 = math.sqrt(beta1 + 1)
-        _x2 = (1/2)*math.expm1(-2*_x0*_x1*omega1*tau)
-        _x3 = _x2 + 1
-        _x4 = math.exp(tau*(_x0*_x1*omega1 - beta1*omega1))
-        _x5 = _x2*_x4/(_x0*_x1)
-        _x6 = _x5*beta1
-        return (_x3*_x4 - _x6, -_x5/omega1, _x5*omega1, _x3*_x4 + _x6,)
+        _x2 = _x0*_x1
+        _x3 = omega1*tau
+        _x4 = (1/2)*math.expm1(-2*_x2*_x3)
+        _x5 = _x4 + 1
+        _x6 = math.exp(-_x3/(_x2 + beta1))
+        _x7 = _x4*_x6/(_x0*_x1)
+        _x8 = _x7*beta1
+        return (_x5*_x6 - _x8, -_x7/omega1, _x7*omega1, _x5*_x6 + _x8,)
     else:
         _x0 = beta1*omega1
         _x1 = math.exp(-_x0*tau)
@@ -276,34 +278,35 @@ def _excitation_response__impl(_shape, t, beta1, omega1, alpha_t, Omega_t, phase
         _x9 = omega1**(-1.0)
         _x10 = numpy.sqrt(beta1 + 1)
         _x11 = _x10**(-1.0)
-        _x12 = numpy.exp(-_x6*t)
-        _x13 = beta1 - 1
-        _x14 = numpy.sqrt(-_x13)
-        _x15 = _x10*omega1
-        _x16 = _x14*_x15*t
-        _x17 = _x12*numpy.sin(_x16)/_x14
+        _x12 = omega1*t
+        _x13 = numpy.exp(-_x12*beta1)
+        _x14 = beta1 - 1
+        _x15 = numpy.sqrt(-_x14)
+        _x16 = _x10*_x12*_x15
+        _x17 = _x13*numpy.sin(_x16)/_x15
         _x18 = _x11*_x17
         _x19 = numpy.less(beta1, 1)
-        _x20 = numpy.sqrt(_x13)
-        _x21 = numpy.exp(t*(_x10*_x20*omega1 - _x6))
-        _x22 = (1/2)*numpy.expm1(-2*_x15*_x20*t)
-        _x23 = _x21*_x22/_x20
-        _x24 = _x11*_x23
-        _x25 = numpy.greater(beta1, 1)
-        _x26 = _x12*t
-        _x27 = numpy.sin(phase_t)
-        _x28 = numpy.cos(phase_t)
-        _x29 = Omega_t**3
-        _x30 = _x3*alpha_t
-        _x31 = _x29*_x30*(_x2*_x28 + _x27*_x7)
-        _x32 = numpy.cos(_x16)
-        _x33 = _x11*beta1
-        _x34 = _x17*_x33
-        _x35 = _x22 + 1
-        _x36 = _x23*_x33
-        _x37 = _x26*_x6
-        _x38 = _x0*_x30*(_x2*_x27 - _x28*_x7)
-        return _support.tuple_of(_shape, _x0*_x3*alpha_t*(_x2*_x8 - _x5*_x7) - _x31*numpy.select([_x19,_x25,True], [_x18*_x9,-_x24*_x9,_x26], default=numpy.nan) - _x38*numpy.select([_x19,_x25,True], [_x12*_x32 + _x34,_x21*_x35 - _x36,_x12 + _x37], default=numpy.nan), _x29*_x3*alpha_t*(_x2*_x5 + _x7*_x8) - _x31*numpy.select([_x19,_x25,True], [_x12*_x32 - _x34,_x21*_x35 + _x36,_x12 - _x37], default=numpy.nan) - _x38*numpy.select([_x19,_x25,True], [-_x18*omega1,_x24*omega1,-_x1*_x26], default=numpy.nan))
+        _x20 = numpy.sqrt(_x14)
+        _x21 = _x10*_x20
+        _x22 = numpy.exp(-_x12/(_x21 + beta1))
+        _x23 = (1/2)*numpy.expm1(-2*_x12*_x21)
+        _x24 = _x22*_x23/_x20
+        _x25 = _x11*_x24
+        _x26 = numpy.greater(beta1, 1)
+        _x27 = _x13*t
+        _x28 = numpy.sin(phase_t)
+        _x29 = numpy.cos(phase_t)
+        _x30 = Omega_t**3
+        _x31 = _x3*alpha_t
+        _x32 = _x30*_x31*(_x2*_x29 + _x28*_x7)
+        _x33 = numpy.cos(_x16)
+        _x34 = _x11*beta1
+        _x35 = _x17*_x34
+        _x36 = _x23 + 1
+        _x37 = _x24*_x34
+        _x38 = _x27*_x6
+        _x39 = _x0*_x31*(_x2*_x28 - _x29*_x7)
+        return _support.tuple_of(_shape, _x0*_x3*alpha_t*(_x2*_x8 - _x5*_x7) - _x32*numpy.select([_x19,_x26,True], [_x18*_x9,-_x25*_x9,_x27], default=numpy.nan) - _x39*numpy.select([_x19,_x26,True], [_x13*_x33 + _x35,_x22*_x36 - _x37,_x13 + _x38], default=numpy.nan), _x3*_x30*alpha_t*(_x2*_x5 + _x7*_x8) - _x32*numpy.select([_x19,_x26,True], [_x13*_x33 - _x35,_x22*_x36 + _x37,_x13 - _x38], default=numpy.nan) - _x39*numpy.select([_x19,_x26,True], [-_x18*omega1,_x25*omega1,-_x1*_x27], default=numpy.nan))
 
 
 def _excitation_response__impl__scalar(t, beta1, omega1, alpha_t, Omega_t, phase_t):
@@ -338,28 +341,29 @@ def _excitation_response__impl__scalar(t, beta1, omega1, alpha_t, Omega_t, phase
     elif (beta1 > 1):
         _x0 = Omega_t*t + phase_t
         _x1 = math.cos(_x0)
-        _x2 = beta1*omega1
-        _x3 = 2*Omega_t*_x2
-        _x4 = math.sin(_x0)
-        _x5 = Omega_t**2
-        _x6 = omega1**2
-        _x7 = -_x5 + _x6
-        _x8 = 1/(4*_x5*_x6*beta1**2 + _x7**2)
-        _x9 = _x8*alpha_t
-        _x10 = _x5*_x9
-        _x11 = math.sin(phase_t)
-        _x12 = math.cos(phase_t)
-        _x13 = Omega_t**3
-        _x14 = _x13*_x9*(_x11*_x3 + _x12*_x7)
-        _x15 = math.sqrt(beta1 - 1)
-        _x16 = math.sqrt(beta1 + 1)
-        _x17 = math.exp(t*(_x15*_x16*omega1 - _x2))
-        _x18 = (1/2)*math.expm1(-2*_x15*_x16*omega1*t)
-        _x19 = _x17*_x18/(_x15*_x16)
-        _x20 = _x18 + 1
-        _x21 = _x19*beta1
-        _x22 = _x10*(_x11*_x7 - _x12*_x3)
-        return (_x10*(-_x1*_x3 + _x4*_x7) + _x14*_x19/omega1 - _x22*(_x17*_x20 - _x21), _x13*_x8*alpha_t*(_x1*_x7 + _x3*_x4) - _x14*(_x17*_x20 + _x21) - _x19*_x22*omega1,)
+        _x2 = 2*Omega_t*beta1*omega1
+        _x3 = math.sin(_x0)
+        _x4 = Omega_t**2
+        _x5 = omega1**2
+        _x6 = -_x4 + _x5
+        _x7 = 1/(4*_x4*_x5*beta1**2 + _x6**2)
+        _x8 = _x7*alpha_t
+        _x9 = _x4*_x8
+        _x10 = math.sin(phase_t)
+        _x11 = math.cos(phase_t)
+        _x12 = Omega_t**3
+        _x13 = _x12*_x8*(_x10*_x2 + _x11*_x6)
+        _x14 = math.sqrt(beta1 - 1)
+        _x15 = math.sqrt(beta1 + 1)
+        _x16 = _x14*_x15
+        _x17 = omega1*t
+        _x18 = math.exp(-_x17/(_x16 + beta1))
+        _x19 = (1/2)*math.expm1(-2*_x16*_x17)
+        _x20 = _x18*_x19/(_x14*_x15)
+        _x21 = _x19 + 1
+        _x22 = _x20*beta1
+        _x23 = _x9*(_x10*_x6 - _x11*_x2)
+        return (_x13*_x20/omega1 - _x23*(_x18*_x21 - _x22) + _x9*(-_x1*_x2 + _x3*_x6), _x12*_x7*alpha_t*(_x1*_x6 + _x2*_x3) - _x13*(_x18*_x21 + _x22) - _x20*_x23*omega1,)
     else:
         _x0 = math.sin(phase_t)
         _x1 = beta1*omega1

@@ -281,11 +281,6 @@ def test_bound_numba_kernel_at_singular_points_gives_the_public_nan_or_inf(case)
     np.testing.assert_array_equal(np.ravel(got), ref)
 
 
-@pytest.mark.xfail(strict=True, raises=ZeroDivisionError,
-                   reason="the python kernel raises ZeroDivisionError where the public "
-                          "function (and the numba kernel, error_model='numpy') returns "
-                          "NaN/inf: undamped resonance of excitation_response, grazing "
-                          "(rate 0) of saltation")
 @pytest.mark.parametrize("case", ["resonance", "grazing"])
 def test_bound_python_kernel_at_singular_points_gives_the_public_nan_or_inf(case):
     got, ref = singular_point(case, "python")

@@ -8,8 +8,8 @@ DOP853 at rtol 1e-12 and by mpmath's Taylor integrator (odefun) at 30 digits.
 Error model of the closed form: exp, cos and sin are evaluated at arguments lambda tau
 that are rounded to eps |lambda| tau, with |lambda| <= omega1 for beta1 <= 1 (|lambda| =
 omega1 for the complex pair) and the slow exponent ~omega1 / (2 beta1) for beta1 > 1;
-so a few ulps times (1 + omega1 tau) of the matrix norm. Over-damped with large beta1
-the slow exponent is computed with cancellation (see the xfail test).
+so a few ulps times (1 + omega1 tau) of the matrix norm. Over-damped, the slow exponent
+is -omega1 / (beta1 + sqrt(beta1^2 - 1)), free of cancellation for any beta1.
 """
 import mpmath
 import numpy as np
@@ -100,12 +100,6 @@ def test_state_transition_long_times_stay_finite():
     assert abs(np.linalg.det(Phi) - 1) < 1e-9
 
 
-@pytest.mark.xfail(strict=True, reason="over-damped form: the slow exponent a + b = "
-                   "omega1 (sqrt(beta1^2 - 1) - beta1) is computed as a difference of two "
-                   "terms of size beta1 omega1 that cancel to ~omega1 / (2 beta1), so the "
-                   "error grows as eps beta1 omega1 tau (derive/oscillator.py, "
-                   "state_transition_branches); fix: a + b = -omega1 / (beta1 + "
-                   "sqrt(beta1^2 - 1))")
 @pytest.mark.parametrize("beta1", [341.0, 1000.0])
 def test_state_transition_strongly_overdamped_keeps_its_accuracy(beta1):
     """The same model, 8 ulps (1 + omega1 tau), for beta1 >> 1 (it is generous there:

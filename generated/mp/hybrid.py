@@ -430,17 +430,21 @@ def surface_scales(t, X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
 def _surface_scales__hertz_damp(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, Vb, alpha_t, Omega_t, phase_t):
     _x0 = abs(Y1)
     _x1 = mu_s*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
-    _x2 = 2*beta2*abs(Y2)
-    _x3 = Omega_t**2*alpha_t*abs(mpmath.sin(Omega_t*t + phase_t)) + 2*_x0*beta1*omega1 + _x1*_x2*omega2 + _x1*omega2**2 + omega1**2*abs(X1)
-    return (Vb + _x0, _x3, _x3, abs(X2), _x2 + omega2,)
+    _x2 = Omega_t*t + phase_t
+    _x3 = Omega_t**2*alpha_t
+    _x4 = 2*beta2*abs(Y2)
+    _x5 = 2*_x0*beta1*omega1 + _x1*_x4*omega2 + _x1*omega2**2 + _x3*(Omega_t*abs(t) + abs(phase_t))*abs(mpmath.cos(_x2)) + _x3*abs(mpmath.sin(_x2)) + omega1**2*abs(X1)
+    return (Vb + _x0, _x5, _x5, abs(X2), _x4 + omega2,)
 
 
 def _surface_scales__kelvin_voigt(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, Vb, alpha_t, Omega_t, phase_t):
     _x0 = abs(Y1)
     _x1 = 2*beta2*abs(Y2)
     _x2 = max(0, X2)
-    _x3 = Omega_t**2*alpha_t*abs(mpmath.sin(Omega_t*t + phase_t)) + 2*_x0*beta1*omega1 + _x1*mu_s*omega2 + _x2*mu_s*omega2**2 + omega1**2*abs(X1)
-    return (Vb + _x0, _x3, _x3, abs(X2), _x1 + _x2*omega2,)
+    _x3 = Omega_t*t + phase_t
+    _x4 = Omega_t**2*alpha_t
+    _x5 = 2*_x0*beta1*omega1 + _x1*mu_s*omega2 + _x2*mu_s*omega2**2 + _x4*(Omega_t*abs(t) + abs(phase_t))*abs(mpmath.cos(_x3)) + _x4*abs(mpmath.sin(_x3)) + omega1**2*abs(X1)
+    return (Vb + _x0, _x5, _x5, abs(X2), _x1 + _x2*omega2,)
 
 
 _SURFACE_SCALES = {

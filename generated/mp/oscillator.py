@@ -74,14 +74,16 @@ def _state_transition__impl(tau, beta1, omega1):
     elif (beta1 > 1):
         _x0 = mpmath.sqrt(beta1 - 1)
         _x1 = mpmath.sqrt(beta1 + 1)
-        _x2 = (mpmath.mpf(1)/mpmath.mpf(2))*mpmath.expm1(-2*_x0*_x1*omega1*tau)
-        _x3 = _x2 + 1
-        _x4 = mpmath.exp(tau*(_x0*_x1*omega1 - beta1*omega1))
-        _x5 = _x2*_x4/(_x0*_x1)
-        _x6 = _x5*beta1
+        _x2 = _x0*_x1
+        _x3 = omega1*tau
+        _x4 = (mpmath.mpf(1)/mpmath.mpf(2))*mpmath.expm1(-2*_x2*_x3)
+        _x5 = _x4 + 1
+        _x6 = mpmath.exp(-_x3/(_x2 + beta1))
+        _x7 = _x4*_x6/(_x0*_x1)
+        _x8 = _x7*beta1
         return mpmath.matrix([
-                [_x3*_x4 - _x6, -_x5/omega1],
-                [_x5*omega1, _x3*_x4 + _x6],
+                [_x5*_x6 - _x8, -_x7/omega1],
+                [_x7*omega1, _x5*_x6 + _x8],
             ])
     else:
         _x0 = beta1*omega1
@@ -177,28 +179,29 @@ def _excitation_response__impl(t, beta1, omega1, alpha_t, Omega_t, phase_t):
     elif (beta1 > 1):
         _x0 = Omega_t*t + phase_t
         _x1 = mpmath.cos(_x0)
-        _x2 = beta1*omega1
-        _x3 = 2*Omega_t*_x2
-        _x4 = mpmath.sin(_x0)
-        _x5 = Omega_t**2
-        _x6 = omega1**2
-        _x7 = -_x5 + _x6
-        _x8 = 1/(4*_x5*_x6*beta1**2 + _x7**2)
-        _x9 = _x8*alpha_t
-        _x10 = _x5*_x9
-        _x11 = mpmath.sin(phase_t)
-        _x12 = mpmath.cos(phase_t)
-        _x13 = Omega_t**3
-        _x14 = _x13*_x9*(_x11*_x3 + _x12*_x7)
-        _x15 = mpmath.sqrt(beta1 - 1)
-        _x16 = mpmath.sqrt(beta1 + 1)
-        _x17 = mpmath.exp(t*(_x15*_x16*omega1 - _x2))
-        _x18 = (mpmath.mpf(1)/mpmath.mpf(2))*mpmath.expm1(-2*_x15*_x16*omega1*t)
-        _x19 = _x17*_x18/(_x15*_x16)
-        _x20 = _x18 + 1
-        _x21 = _x19*beta1
-        _x22 = _x10*(_x11*_x7 - _x12*_x3)
-        return (_x10*(-_x1*_x3 + _x4*_x7) + _x14*_x19/omega1 - _x22*(_x17*_x20 - _x21), _x13*_x8*alpha_t*(_x1*_x7 + _x3*_x4) - _x14*(_x17*_x20 + _x21) - _x19*_x22*omega1,)
+        _x2 = 2*Omega_t*beta1*omega1
+        _x3 = mpmath.sin(_x0)
+        _x4 = Omega_t**2
+        _x5 = omega1**2
+        _x6 = -_x4 + _x5
+        _x7 = 1/(4*_x4*_x5*beta1**2 + _x6**2)
+        _x8 = _x7*alpha_t
+        _x9 = _x4*_x8
+        _x10 = mpmath.sin(phase_t)
+        _x11 = mpmath.cos(phase_t)
+        _x12 = Omega_t**3
+        _x13 = _x12*_x8*(_x10*_x2 + _x11*_x6)
+        _x14 = mpmath.sqrt(beta1 - 1)
+        _x15 = mpmath.sqrt(beta1 + 1)
+        _x16 = _x14*_x15
+        _x17 = omega1*t
+        _x18 = mpmath.exp(-_x17/(_x16 + beta1))
+        _x19 = (mpmath.mpf(1)/mpmath.mpf(2))*mpmath.expm1(-2*_x16*_x17)
+        _x20 = _x18*_x19/(_x14*_x15)
+        _x21 = _x19 + 1
+        _x22 = _x20*beta1
+        _x23 = _x9*(_x10*_x6 - _x11*_x2)
+        return (_x13*_x20/omega1 - _x23*(_x18*_x21 - _x22) + _x9*(-_x1*_x2 + _x3*_x6), _x12*_x7*alpha_t*(_x1*_x6 + _x2*_x3) - _x13*(_x18*_x21 + _x22) - _x20*_x23*omega1,)
     else:
         _x0 = mpmath.sin(phase_t)
         _x1 = beta1*omega1
