@@ -61,13 +61,17 @@ __all__ = ["excitation_period", "NormalOrbit", "normal_orbit", "PeriodicResponse
            "periodic_response", "Floquet", "floquet", "floquet_band", "GRAZING_RATIO",
            "NEWTON_TOL"]
 
-#: A switch whose rate is below this fraction of its scale is grazing.
-GRAZING_RATIO = 1e-6
+#: A switch whose rate is below this fraction of its scale is grazing: the saltation
+#: entry a_after / a_before then carries a relative rounding error of about
+#: ulps / ratio, so below it a multiplier would keep fewer than 8 correct digits.
+GRAZING_RATIO = 1e-8
 #: Newton's method stops when the period map moves the state by less than this
 #: (relative to the state's scale).
 NEWTON_TOL = 1e-11
 #: Integration tolerance of the periodic orbits.
 _RTOL = 1e-12
+#: Halvings of a Newton step before the method counts as stalled.
+_LINE_SEARCH = 12
 _MAX_DENOMINATOR = 64
 
 
@@ -342,7 +346,7 @@ def _sliding_guess(pmap):
 
 
 def periodic_response(params=None, *, contact="hertz_damp", tension="allowed", guess=None,
-                      max_iter=40, backend=None, **overrides):
+                      max_iter=30, backend=None, **overrides):
     """The periodic response of Eq. (4) by shooting (module docstring).
 
     Parameters
@@ -389,13 +393,17 @@ def periodic_response(params=None, *, contact="hertz_damp", tension="allowed", g
         except np.linalg.LinAlgError:
             step = -np.linalg.lstsq(A, r, rcond=None)[0]
         lam = 1.0
-        for _ in range(30):
+        for _ in range(_LINE_SEARCH):
             x_new = x + lam * step
             xT_new, M_new, run_new, grazing_new = pmap(x_new)
             r_new = xT_new - x_new
             if np.max(np.abs(r_new)) < np.max(np.abs(r)):
                 break
             lam *= 0.5
+        else:
+            raise RuntimeError(f"no periodic response found: Newton's method stalled at a "
+                               f"residual {np.max(np.abs(r)):.2e} (no step of {_LINE_SEARCH} "
+                               "halvings reduces it)")
         x, xT, M, run, grazing, r = x_new, xT_new, M_new, run_new, grazing_new, r_new
         scale = 1.0 + np.max(np.abs(x))
     else:
@@ -491,7 +499,10 @@ def floquet_band(param, lo, hi, params=None, *, contact="hertz_damp", tension="a
         ``kind``, ``bracket``, ``unstable_above``); ``grazing_points``: the located
         grazing points; ``grid``: the walked values with ``max_abs_multiplier``,
         ``stable``, ``growth_rate``, ``n_reversals``, ``n_sticks``, ``grazing``;
-        ``failed``: values where no periodic response was found, with the reason.
+        ``no_periodic_response``: ranges where no periodic response exists next to a
+        grazing point (the far side's orbit ends at a fold before it; they are part
+        of ``unstable``: there is no stable periodic response to be on);
+        ``failed``: grid values where no periodic response was found, with the reason.
 
     Raises
     ------
@@ -526,7 +537,7 @@ def floquet_band(param, lo, hi, params=None, *, contact="hertz_damp", tension="a
             guess = f.response
             rows.append((float(v), f))
     rows.sort(key=lambda r: r[0])
-    edges, grazing_points = [], []
+    edges, grazing_points, gaps = [], [], []
     for (a, fa), (b, fb) in zip(rows[:-1], rows[1:]):
         if _structure(fa) == _structure(fb):
             if _verdict(fa) != _verdict(fb):
@@ -538,10 +549,20 @@ def floquet_band(param, lo, hi, params=None, *, contact="hertz_damp", tension="a
         if _verdict(fa2) != _verdict(fb2):
             edges.append({"value": g, "kind": "grazing", "bracket": [a2, b2],
                           "unstable_above": _verdict(fb2) == "unstable"})
+        # the far side's orbit, continued towards the grazing point, may end before it
+        # (a fold of its own): between the two no periodic response exists
+        far = (b, fb) if simple_low else (a, fa)
+        end = _bisect_existence(evaluate, far, g, tol)
+        if end is not None:
+            gaps.append(sorted([end[0], g]))
+            far_end = end
+        else:
+            far_end = (b2, fb2) if simple_low else (a2, fa2)
         # a |mu| = 1 crossing between the grazing point and the far grid point
-        near, far = ((b2, fb2), (b, fb)) if simple_low else ((a, fa), (a2, fa2))
-        if _verdict(near[1]) != _verdict(far[1]) and far[0] - near[0] > tol:
-            edges.append(_bisect_verdict(evaluate, *near, *far, tol))
+        ends = sorted([far_end, far], key=lambda r: r[0])
+        if _verdict(ends[0][1]) != _verdict(ends[1][1]) and ends[1][0] - ends[0][0] > tol \
+                and _structure(ends[0][1]) == _structure(ends[1][1]):
+            edges.append(_bisect_verdict(evaluate, *ends[0], *ends[1], tol))
     edges.sort(key=lambda e: e["value"])
     unstable = []
     start = rows[0][0] if rows and _verdict(rows[0][1]) == "unstable" else None
@@ -557,8 +578,8 @@ def floquet_band(param, lo, hi, params=None, *, contact="hertz_damp", tension="a
              "growth_rate": f.growth_rate, "n_reversals": f.n_reversals,
              "n_sticks": f.n_sticks, "grazing": f.grazing is not None} for v, f in rows]
     return {"param": param, "unstable": unstable, "edges": edges,
-            "grazing_points": grazing_points, "grid": grid, "failed": failed,
-            "tension": tension, "contact": contact}
+            "grazing_points": grazing_points, "no_periodic_response": gaps, "grid": grid,
+            "failed": failed, "tension": tension, "contact": contact}
 
 
 def _structure(f):
@@ -585,6 +606,28 @@ def _bisect_verdict(evaluate, a, fa, b, fb, tol):
             b, fb = m, fm
     return {"value": 0.5 * (a + b), "kind": "multiplier", "bracket": [a, b],
             "unstable_above": _verdict(fb) == "unstable"}
+
+
+def _bisect_existence(evaluate, start, target, tol):
+    """Where the orbit of ``start = (value, Floquet)``, continued towards ``target``, ends.
+
+    None if it reaches within ``tol`` of ``target`` with its structure; else the last
+    value where it exists, and its evaluation (to ``tol``).
+    """
+    a, fa = start
+    structure = _structure(fa)
+    b = target
+    while abs(b - a) > tol:
+        m = 0.5 * (a + b)
+        fm = evaluate(m, fa.response, record=False)
+        if fm is not None and fm.grazing is None and _structure(fm) == structure:
+            a, fa = m, fm
+        else:
+            b = m
+    near = target - tol if target > start[0] else target + tol
+    if abs(a - near) <= tol:
+        return None
+    return a, fa
 
 
 def _bisect_structure(evaluate, a, fa, b, fb, tol, simple_low):
