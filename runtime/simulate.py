@@ -38,6 +38,7 @@ from .trajectory import Trajectory
 
 __all__ = ["SolverSettings", "Simulation", "simulate", "integrate_events", "classify_regime",
            "omega1_band", "summarize", "REGIMES", "DEFAULT_T_END", "PEAK_PRESENT_RATIO",
+           "PERTURBATION", "STARTS",
            "TRANSIENT_DECAYED", "STATIONARY_RATIO"]
 
 REGIMES = ("continuous_sliding", "sliding_with_reversals", "stick_slip", "contact_loss")
@@ -272,8 +273,13 @@ def summarize(sim):
     return out
 
 
+#: ``start="periodic"``: the run starts on the periodic response with X1 moved by this [m].
+PERTURBATION = 1e-2
+STARTS = ("rest", "periodic")
+
+
 def simulate(params=None, *, contact="hertz_damp", tension="allowed", settings=None, y0=None,
-             **overrides):
+             start="rest", perturbation=PERTURBATION, **overrides):
     """Simulate Eq. (4) and summarise the run.
 
     Parameters
@@ -286,6 +292,11 @@ def simulate(params=None, *, contact="hertz_damp", tension="allowed", settings=N
     settings : SolverSettings, optional
     y0 : array_like, optional
         initial state (X1, Y1, X2, Y2) at t = 0; default the unforced equilibrium, Eq. (9)
+    start : {"rest", "periodic"}
+        where the run starts when ``y0`` is not given: the unforced equilibrium at rest,
+        or the periodic response (`runtime.floquet.periodic_response`) with ``X1`` moved
+        by ``perturbation`` [m], so that an unstable response shows its instability
+    perturbation : float
     **overrides
         parameters (``Vb=4``) or solver settings (``t_end=500``, ``solver="events"``)
 
@@ -297,8 +308,14 @@ def simulate(params=None, *, contact="hertz_damp", tension="allowed", settings=N
     ------
     ValueError
         Naming the parameter, setting or option, for a bad value.
+    RuntimeError
+        For ``start="periodic"`` where no periodic response is found.
     """
-    start = time.perf_counter()
+    clock = time.perf_counter()
+    if start not in STARTS:
+        raise ValueError(f"start must be one of {', '.join(map(repr, STARTS))}; got {start!r}")
+    if not (isinstance(perturbation, (int, float)) and np.isfinite(perturbation)):
+        raise ValueError(f"perturbation must be a finite number; got {perturbation!r}")
     if tension not in TENSIONS:
         raise ValueError(f"tension must be one of {', '.join(map(repr, TENSIONS))}; "
                          f"got {tension!r}")
@@ -309,9 +326,15 @@ def simulate(params=None, *, contact="hertz_damp", tension="allowed", settings=N
         settings = SolverSettings(**{**settings.__dict__, **setting_overrides})
     p = resolve_parameters(params, contact=contact, **overrides)
     if y0 is not None:
+        if start != "rest":
+            raise ValueError("give y0 or start='periodic', not both")
         y0 = np.asarray(y0, dtype=float)
         if y0.shape != (4,) or not np.all(np.isfinite(y0)):
             raise ValueError(f"y0 must be 4 finite numbers (X1, Y1, X2, Y2); got {y0!r}")
+    elif start == "periodic":
+        from .floquet import periodic_response
+        y0 = periodic_response(p, contact=contact, tension=tension).state0 \
+            + np.array([perturbation, 0.0, 0.0, 0.0])
     trajectory = events = None
     solver_used, fallback = "events", ""
     if settings.solver == "superposition":
@@ -335,7 +358,10 @@ def simulate(params=None, *, contact="hertz_damp", tension="allowed", settings=N
     Fn, friction = trajectory.forces(t, y)
     sim = Simulation(p, contact, settings, trajectory, t, y, Fn, friction, events, status,
                      message, solver_used, tension=tension)
-    sim.wall_s = time.perf_counter() - start
+    sim.wall_s = time.perf_counter() - clock
     sim.summary = summarize(sim)
-    sim.wall_s = sim.summary["wall_s"] = time.perf_counter() - start
+    sim.summary["start"] = start
+    if start == "periodic":
+        sim.summary["perturbation"] = float(perturbation)
+    sim.wall_s = sim.summary["wall_s"] = time.perf_counter() - clock
     return sim
