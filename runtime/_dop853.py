@@ -19,8 +19,8 @@ dense output and refined by bisection-secant (Illinois) on the dense output. A
 function that starts at zero (the surface the run has just switched on) counts
 only once it has been strictly inside the mode.
 
-The same source runs as plain Python or compiled by ``numba.njit`` (`compiled`);
-`advance_python` and `advance_compiled` pick one.
+The same source runs as plain Python or compiled by numba, with its kernels, in the
+entry points of `runtime._compiled`.
 """
 from __future__ import annotations
 
@@ -29,18 +29,25 @@ import math
 import numpy as np
 from scipy.integrate._ivp import dop853_coefficients as _coef
 
-__all__ = ["advance", "evaluate", "compiled", "N_DENSE", "STATUS_END", "STATUS_EVENT",
+__all__ = ["advance", "evaluate", "N_DENSE", "STATUS_END", "STATUS_EVENT",
            "STATUS_STEP_TOO_SMALL"]
 
+def _table(a):
+    """A coefficient array as nested tuples: constants numba can cache with the code
+    (a global array would be a dynamic global, which its disk cache refuses)."""
+    a = np.asarray(a, dtype=float)
+    return tuple(map(float, a)) if a.ndim == 1 else tuple(_table(row) for row in a)
+
+
 _N_STAGES = _coef.N_STAGES
-_A = np.ascontiguousarray(_coef.A[:_N_STAGES, :_N_STAGES])
-_B = np.ascontiguousarray(_coef.B)
-_C = np.ascontiguousarray(_coef.C[:_N_STAGES])
-_E3 = np.ascontiguousarray(_coef.E3)
-_E5 = np.ascontiguousarray(_coef.E5)
-_D = np.ascontiguousarray(_coef.D)
-_A_EXTRA = np.ascontiguousarray(_coef.A[_N_STAGES + 1:])
-_C_EXTRA = np.ascontiguousarray(_coef.C[_N_STAGES + 1:])
+_A = _table(_coef.A[:_N_STAGES, :_N_STAGES])
+_B = _table(_coef.B)
+_C = _table(_coef.C[:_N_STAGES])
+_E3 = _table(_coef.E3)
+_E5 = _table(_coef.E5)
+_D = _table(_coef.D)
+_A_EXTRA = _table(_coef.A[_N_STAGES + 1:])
+_C_EXTRA = _table(_coef.C[_N_STAGES + 1:])
 _N_EXTENDED = _coef.N_STAGES_EXTENDED
 #: Rows of the dense-output coefficients of a step.
 N_DENSE = _coef.INTERPOLATOR_POWER
@@ -52,9 +59,14 @@ _SAMPLES = 16
 
 STATUS_END, STATUS_EVENT, STATUS_STEP_TOO_SMALL = 0, 1, 2
 
+# The kernels are globals of the functions below, not arguments: `runtime._compiled`
+# binds them (copies of the functions with these globals set, or a module numba
+# compiles with them), so that a compiled integrator's signature holds numbers only.
+_field_kernel = _surface_kernel = _rate_kernel = None
 
-def _rhs(fk, fa, t, y, mode, out):
-    r = fk(t, y[0], y[1], y[2], y[3], mode, *fa)
+
+def _rhs(fa, t, y, mode, out):
+    r = _field_kernel(t, y[0], y[1], y[2], y[3], mode, *fa)
     for i in range(4):
         out[i] = r[i]
 
@@ -75,7 +87,7 @@ def _dense(F, y_old, x, out):
         out[i] += y_old[i]
 
 
-def _initial_step(fk, fa, t, y, f, mode, t_end, rtol, atol, max_step, y1, f1):
+def _initial_step(fa, t, y, f, mode, t_end, rtol, atol, max_step, y1, f1):
     """SciPy's ``select_initial_step`` (Hairer, Norsett and Wanner, Sect. II.4)."""
     d0 = 0.0
     d1 = 0.0
@@ -88,7 +100,7 @@ def _initial_step(fk, fa, t, y, f, mode, t_end, rtol, atol, max_step, y1, f1):
     h0 = min(h0, t_end - t)
     for i in range(4):
         y1[i] = y[i] + h0 * f[i]
-    _rhs(fk, fa, t + h0, y1, mode, f1)
+    _rhs(fa, t + h0, y1, mode, f1)
     d2 = 0.0
     for i in range(4):
         sc = atol + abs(y[i]) * rtol
@@ -101,26 +113,26 @@ def _initial_step(fk, fa, t, y, f, mode, t_end, rtol, atol, max_step, y1, f1):
     return min(100.0 * h0, h1, max_step, t_end - t)
 
 
-def _inside(sk, sa, watch, dirs, t, y, values):
+def _inside(sa, watch, dirs, t, y, values):
     """``-direction * h`` of each watched surface: positive inside the mode."""
-    h = sk(t, y[0], y[1], y[2], y[3], *sa)
+    h = _surface_kernel(t, y[0], y[1], y[2], y[3], *sa)
     for j in range(watch.shape[0]):
         values[j] = -dirs[j] * h[watch[j]]
 
 
-def _rates(rk, ra, watch, dirs, t, y, mode, values):
-    r = rk(t, y[0], y[1], y[2], y[3], mode, *ra)
+def _rates(ra, watch, dirs, t, y, mode, values):
+    r = _rate_kernel(t, y[0], y[1], y[2], y[3], mode, *ra)
     for j in range(watch.shape[0]):
         values[j] = -dirs[j] * r[watch[j]]
 
 
-def _surface_at(sk, sa, watch, dirs, j, F, y_old, t_old, h, t, tmp):
+def _surface_at(sa, watch, dirs, j, F, y_old, t_old, h, t, tmp):
     _dense(F, y_old, (t - t_old) / h, tmp)
-    hv = sk(t, tmp[0], tmp[1], tmp[2], tmp[3], *sa)
+    hv = _surface_kernel(t, tmp[0], tmp[1], tmp[2], tmp[3], *sa)
     return -dirs[j] * hv[watch[j]]
 
 
-def _refine(sk, sa, watch, dirs, j, F, y_old, t_old, h, a, fa, b, fb, tmp):
+def _refine(sa, watch, dirs, j, F, y_old, t_old, h, a, fa, b, fb, tmp):
     """Root of surface ``j`` in ``[a, b]`` (``fa > 0 >= fb``) by the Illinois method."""
     side = 0
     for _ in range(200):
@@ -129,7 +141,7 @@ def _refine(sk, sa, watch, dirs, j, F, y_old, t_old, h, a, fa, b, fb, tmp):
         c = b - fb * (b - a) / (fb - fa)
         if not (a < c < b):
             c = 0.5 * (a + b)
-        fc = _surface_at(sk, sa, watch, dirs, j, F, y_old, t_old, h, c, tmp)
+        fc = _surface_at(sa, watch, dirs, j, F, y_old, t_old, h, c, tmp)
         if fc > 0.0:
             a, fa = c, fc
             if side == -1:
@@ -143,7 +155,7 @@ def _refine(sk, sa, watch, dirs, j, F, y_old, t_old, h, a, fa, b, fb, tmp):
     return b
 
 
-def _first_crossing(sk, sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old, r_new,
+def _first_crossing(sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old, r_new,
                     armed, tmp):
     """Earliest crossing inside the step ``[t_old, t_old + h]``: ``(j, t)`` or ``(-1, 0)``.
 
@@ -166,7 +178,7 @@ def _first_crossing(sk, sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old
             delta = h / _SAMPLES
             for _ in range(60):
                 delta *= 0.5
-                fk = _surface_at(sk, sa, watch, dirs, j, F, y_old, t_old, h, t_old + delta,
+                fk = _surface_at(sa, watch, dirs, j, F, y_old, t_old, h, t_old + delta,
                                  tmp)
                 if fk > 0.0:
                     a, fa = t_old + delta, fk
@@ -176,10 +188,10 @@ def _first_crossing(sk, sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old
             tk = t_old + h * k / _SAMPLES if k < _SAMPLES else t_new
             if tk <= a:
                 continue
-            fk = u_new[j] if k == _SAMPLES else _surface_at(sk, sa, watch, dirs, j, F, y_old,
+            fk = u_new[j] if k == _SAMPLES else _surface_at(sa, watch, dirs, j, F, y_old,
                                                             t_old, h, tk, tmp)
             if fa > 0.0 and fk <= 0.0:
-                tc = _refine(sk, sa, watch, dirs, j, F, y_old, t_old, h, a, fa, tk, fk, tmp)
+                tc = _refine(sa, watch, dirs, j, F, y_old, t_old, h, a, fa, tk, fk, tmp)
                 found = True
                 break
             if fk > 0.0:
@@ -192,18 +204,16 @@ def _first_crossing(sk, sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old
     return best_j, best_t
 
 
-def advance(fk, fa, sk, sa, rk, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol,
-            max_step):
+def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_step):
     """Integrate one mode from ``t0`` until ``t_end`` or the first watched crossing.
 
     Parameters
     ----------
-    fk, fa : kernel, tuple
-        Vector field kernel ``fk(t, X1, Y1, X2, Y2, mode, *fa)`` (4-tuple).
-    sk, sa : kernel, tuple
-        Switching functions ``sk(t, X1, Y1, X2, Y2, *sa)`` (one value per surface).
-    rk, ra : kernel, tuple
-        Their rates along a mode, ``rk(t, X1, Y1, X2, Y2, mode, *ra)``.
+    fa, sa, ra : tuple
+        The bound arguments of the kernels: the vector field
+        ``_field_kernel(t, X1, Y1, X2, Y2, mode, *fa)`` (a 4-tuple), the switching
+        functions ``_surface_kernel(t, X1, Y1, X2, Y2, *sa)`` (one value per surface)
+        and their rates along a mode ``_rate_kernel(t, X1, Y1, X2, Y2, mode, *ra)``.
     mode : float
         The mode code passed to ``fk`` and ``rk``.
     watch, dirs : int64 array, float64 array
@@ -250,14 +260,14 @@ def advance(fk, fa, sk, sa, rk, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, 
     r_new = np.empty(n_watch)
     armed = np.empty(n_watch, dtype=np.bool_)
     t = t0
-    _rhs(fk, fa, t, y, mode, f)
-    _inside(sk, sa, watch, dirs, t, y, u_old)
-    _rates(rk, ra, watch, dirs, t, y, mode, r_old)
+    _rhs(fa, t, y, mode, f)
+    _inside(sa, watch, dirs, t, y, u_old)
+    _rates(ra, watch, dirs, t, y, mode, r_old)
     for j in range(n_watch):
         armed[j] = u_old[j] > 0.0
     h_abs = h0
     if h_abs <= 0.0:
-        h_abs = _initial_step(fk, fa, t, y, f, mode, t_end, rtol, atol, max_step, tmp,
+        h_abs = _initial_step(fa, t, y, f, mode, t_end, rtol, atol, max_step, tmp,
                               y_new)
     n = 0
     status = STATUS_END
@@ -281,15 +291,15 @@ def advance(fk, fa, sk, sa, rk, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, 
                 for i in range(4):
                     acc = 0.0
                     for r in range(s):
-                        acc += _A[s, r] * K[r, i]
+                        acc += _A[s][r] * K[r, i]
                     tmp[i] = y[i] + h * acc
-                _rhs(fk, fa, t + _C[s] * h, tmp, mode, K[s])
+                _rhs(fa, t + _C[s] * h, tmp, mode, K[s])
             for i in range(4):
                 acc = 0.0
                 for r in range(_N_STAGES):
                     acc += _B[r] * K[r, i]
                 y_new[i] = y[i] + h * acc
-            _rhs(fk, fa, t_new, y_new, mode, K[_N_STAGES])
+            _rhs(fa, t_new, y_new, mode, K[_N_STAGES])
             err5 = 0.0
             err3 = 0.0
             for i in range(4):
@@ -322,9 +332,9 @@ def advance(fk, fa, sk, sa, rk, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, 
             for i in range(4):
                 acc = 0.0
                 for r in range(s):
-                    acc += _A_EXTRA[row, r] * K[r, i]
+                    acc += _A_EXTRA[row][r] * K[r, i]
                 tmp[i] = y[i] + h * acc
-            _rhs(fk, fa, t + _C_EXTRA[row] * h, tmp, mode, K[s])
+            _rhs(fa, t + _C_EXTRA[row] * h, tmp, mode, K[s])
         if n == cap:
             cap *= 2
             t_steps = np.concatenate((t_steps, np.empty(cap - n)))
@@ -340,16 +350,16 @@ def advance(fk, fa, sk, sa, rk, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, 
             for row in range(N_DENSE - 3):
                 acc = 0.0
                 for r in range(_N_EXTENDED):
-                    acc += _D[row, r] * K[r, i]
+                    acc += _D[row][r] * K[r, i]
                 Fs[3 + row, i] = h * acc
         t_steps[n] = t
         h_steps[n] = h
         for i in range(4):
             y_steps[n, i] = y[i]
         n += 1
-        _inside(sk, sa, watch, dirs, t_new, y_new, u_new)
-        _rates(rk, ra, watch, dirs, t_new, y_new, mode, r_new)
-        j, tc = _first_crossing(sk, sa, watch, dirs, Fs, y, t, h, u_old, u_new, r_old, r_new,
+        _inside(sa, watch, dirs, t_new, y_new, u_new)
+        _rates(ra, watch, dirs, t_new, y_new, mode, r_new)
+        j, tc = _first_crossing(sa, watch, dirs, Fs, y, t, h, u_old, u_new, r_old, r_new,
                                 armed, tmp)
         if j >= 0:
             hit = j
@@ -385,26 +395,3 @@ def evaluate(t_steps, h_steps, y_steps, F_steps, t):
         y *= (x if j % 2 == 0 else 1.0 - x)[:, None]
     y += y_steps[k]
     return y.T
-
-
-_COMPILED = None
-
-
-def compiled():
-    """`advance` compiled by ``numba.njit`` (cached on disk), or None without numba."""
-    global _COMPILED
-    if _COMPILED is None:
-        try:
-            import numba
-        except ImportError:
-            _COMPILED = False
-        else:
-            from numba.extending import register_jitable
-
-            # The helpers stay plain Python functions for the Python path; registered,
-            # the compiled `advance` compiles them too.
-            for helper in (_rhs, _dense, _initial_step, _inside, _rates, _surface_at,
-                           _refine, _first_crossing):
-                register_jitable(helper)
-            _COMPILED = numba.njit(cache=True, error_model="numpy")(advance)
-    return _COMPILED or None

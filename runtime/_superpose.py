@@ -15,7 +15,7 @@ rates show a minimum inside a cell, samples the cell and refines the crossing on
 exact motion (the normal motion's dense output, the closed forms), as
 `runtime._dop853` does between its steps. No formula of the model is here.
 
-Plain Python, or compiled by ``numba.njit`` (`compiled`).
+Plain Python, or compiled by numba with its kernels (`runtime._compiled`).
 """
 from __future__ import annotations
 
@@ -23,16 +23,19 @@ import numpy as np
 
 from ._dop853 import _dense
 
-__all__ = ["scan", "tangential_state", "compiled"]
+__all__ = ["scan", "tangential_state"]
 
 _SAMPLES = 16
 
+# The kernels are globals, bound by `runtime._compiled` (see `runtime._dop853`).
+_stm_kernel = _exc_kernel = _surface_kernel = _rate_kernel = None
 
-def tangential_state(stick, ms, t, t0, d0, d1, X1s, Vb, z, v, zf, vf, stm_k, stm_a):
+
+def tangential_state(stick, ms, t, t0, d0, d1, X1s, Vb, z, v, zf, vf, stm_a):
     """``(X1, X1')`` at ``t`` of the mode started at ``t0`` (module docstring)."""
     if stick:
         return X1s + Vb * (t - t0), Vb
-    P = stm_k(t - t0, *stm_a)
+    P = _stm_kernel(t - t0, *stm_a)
     return (P[0] * d0 + P[1] * d1 + zf - ms * z, P[2] * d0 + P[3] * d1 + vf - ms * v)
 
 
@@ -44,17 +47,17 @@ def _normal_at(ts, hs, ys, Fs, t, out):
 
 
 def _inside_at(t, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys, Fs,
-               stm_k, stm_a, exc_k, exc_a, surf_k, surf_a, tmp):
+               stm_a, exc_a, surf_a, tmp):
     _normal_at(ts, hs, ys, Fs, t, tmp)
-    zf, vf = exc_k(t, *exc_a)
+    zf, vf = _exc_kernel(t, *exc_a)
     X1, Y1 = tangential_state(stick, ms, t, t0, d0, d1, X1s, Vb, tmp[0], tmp[1], zf, vf,
-                              stm_k, stm_a)
-    h = surf_k(t, X1, Y1, tmp[2], tmp[3], *surf_a)
+                              stm_a)
+    h = _surface_kernel(t, X1, Y1, tmp[2], tmp[3], *surf_a)
     return -dirs[j] * h[watch[j]]
 
 
 def _refine(a, fa, b, fb, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys,
-            Fs, stm_k, stm_a, exc_k, exc_a, surf_k, surf_a, tmp):
+            Fs, stm_a, exc_a, surf_a, tmp):
     side = 0
     for _ in range(200):
         if b - a <= 4e-16 * max(1.0, abs(b)):
@@ -63,7 +66,7 @@ def _refine(a, fa, b, fb, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, 
         if not (a < c < b):
             c = 0.5 * (a + b)
         fc = _inside_at(c, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys,
-                        Fs, stm_k, stm_a, exc_k, exc_a, surf_k, surf_a, tmp)
+                        Fs, stm_a, exc_a, surf_a, tmp)
         if fc > 0.0:
             a, fa = c, fc
             if side == -1:
@@ -78,7 +81,7 @@ def _refine(a, fa, b, fb, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, 
 
 
 def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, ts, hs, ys,
-         Fs, stm_k, stm_a, exc_k, exc_a, surf_k, surf_a, rate_k, rate_a):
+         Fs, stm_a, exc_a, surf_a, rate_a):
     """The first crossing of a watched surface in ``(t0, tc]``.
 
     Parameters
@@ -100,7 +103,9 @@ def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, t
         `runtime.normal.NormalMotion` grid and its ``z, z', X2, X2', zf, zf'``.
     ts, hs, ys, Fs : arrays
         The normal motion's DOP853 steps.
-    stm_k, exc_k, surf_k, rate_k : kernels, with their bound arguments
+    stm_a, exc_a, surf_a, rate_a : tuple
+        The bound arguments of the kernels ``_stm_kernel`` (state transition),
+        ``_exc_kernel`` (excitation response), ``_surface_kernel``, ``_rate_kernel``.
 
     Returns
     -------
@@ -116,11 +121,11 @@ def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, t
     r_new = np.empty(n_watch)
     armed = np.empty(n_watch, dtype=np.bool_)
     _normal_at(ts, hs, ys, Fs, t0, tmp)
-    zf, vf = exc_k(t0, *exc_a)
+    zf, vf = _exc_kernel(t0, *exc_a)
     X1, Y1 = tangential_state(stick, ms, t0, t0, d0, d1, X1s, Vb, tmp[0], tmp[1], zf, vf,
-                              stm_k, stm_a)
-    h = surf_k(t0, X1, Y1, tmp[2], tmp[3], *surf_a)
-    r = rate_k(t0, X1, Y1, tmp[2], tmp[3], mode, *rate_a)
+                              stm_a)
+    h = _surface_kernel(t0, X1, Y1, tmp[2], tmp[3], *surf_a)
+    r = _rate_kernel(t0, X1, Y1, tmp[2], tmp[3], mode, *rate_a)
     for j in range(n_watch):
         u_old[j] = -dirs[j] * h[watch[j]]
         r_old[j] = -dirs[j] * r[watch[j]]
@@ -134,15 +139,15 @@ def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, t
         if t_new > tc:
             t_new = tc
             _normal_at(ts, hs, ys, Fs, t_new, tmp)
-            zf, vf = exc_k(t_new, *exc_a)
+            zf, vf = _exc_kernel(t_new, *exc_a)
             z, v, X2, Y2 = tmp[0], tmp[1], tmp[2], tmp[3]
         else:
             z, v, X2, Y2 = on_grid[0, k], on_grid[1, k], on_grid[2, k], on_grid[3, k]
             zf, vf = on_grid[4, k], on_grid[5, k]
         X1, Y1 = tangential_state(stick, ms, t_new, t0, d0, d1, X1s, Vb, z, v, zf, vf,
-                                  stm_k, stm_a)
-        h = surf_k(t_new, X1, Y1, X2, Y2, *surf_a)
-        r = rate_k(t_new, X1, Y1, X2, Y2, mode, *rate_a)
+                                  stm_a)
+        h = _surface_kernel(t_new, X1, Y1, X2, Y2, *surf_a)
+        r = _rate_kernel(t_new, X1, Y1, X2, Y2, mode, *rate_a)
         best_j, best_t = -1, 0.0
         for j in range(n_watch):
             u_new[j] = -dirs[j] * h[watch[j]]
@@ -158,8 +163,8 @@ def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, t
                 for _ in range(60):
                     delta *= 0.5
                     fk = _inside_at(t_prev + delta, j, watch, dirs, mode, stick, ms, t0, d0,
-                                    d1, X1s, Vb, ts, hs, ys, Fs, stm_k, stm_a, exc_k, exc_a,
-                                    surf_k, surf_a, tmp)
+                                    d1, X1s, Vb, ts, hs, ys, Fs, stm_a, exc_a,
+                                    surf_a, tmp)
                     if fk > 0.0:
                         a, fa = t_prev + delta, fk
                         break
@@ -171,11 +176,11 @@ def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, t
                     continue
                 fk = u_new[j] if s == _SAMPLES else _inside_at(
                     tk, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys, Fs,
-                    stm_k, stm_a, exc_k, exc_a, surf_k, surf_a, tmp)
+                    stm_a, exc_a, surf_a, tmp)
                 if fa > 0.0 and fk <= 0.0:
                     tcross = _refine(a, fa, tk, fk, j, watch, dirs, mode, stick, ms, t0, d0,
-                                     d1, X1s, Vb, ts, hs, ys, Fs, stm_k, stm_a, exc_k, exc_a,
-                                     surf_k, surf_a, tmp)
+                                     d1, X1s, Vb, ts, hs, ys, Fs, stm_a, exc_a,
+                                     surf_a, tmp)
                     found = True
                     break
                 if fk > 0.0:
@@ -194,25 +199,3 @@ def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, t
         t_prev = t_new
         k += 1
     return -1, tc
-
-
-_COMPILED = None
-
-
-def compiled():
-    """`scan` compiled by ``numba.njit`` (cached on disk), or None without numba."""
-    global _COMPILED
-    if _COMPILED is None:
-        try:
-            import numba
-        except ImportError:
-            _COMPILED = False
-        else:
-            from numba.extending import register_jitable
-
-            from . import _dop853
-            _dop853.compiled()          # registers _dense
-            for helper in (tangential_state, _normal_at, _inside_at, _refine):
-                register_jitable(helper)
-            _COMPILED = numba.njit(cache=True, error_model="numpy")(scan)
-    return _COMPILED or None

@@ -20,7 +20,7 @@ from collections import deque
 
 import numpy as np
 
-from . import _dop853
+from . import _compiled, _dop853
 from .switching import Mode, Switching
 from .trajectory import Segment, Trajectory
 
@@ -31,7 +31,11 @@ ZENO_WINDOW = 1e-9
 
 
 class StepSegment:
-    """The dense output of a run of DOP853 steps: evaluate(t) -> (4, n)."""
+    """The dense output of a run of DOP853 steps: ``evaluate(t[, index]) -> (4, n)``.
+
+    Built over the steps of all segments of a run (they follow each other in time,
+    each switch starting a new step), it evaluates the whole trajectory at once.
+    """
 
     __slots__ = ("t_steps", "h_steps", "y_steps", "F_steps")
 
@@ -39,17 +43,8 @@ class StepSegment:
         self.t_steps, self.h_steps = t_steps, h_steps
         self.y_steps, self.F_steps = y_steps, F_steps
 
-    def __call__(self, t):
+    def __call__(self, t, index=None):
         return _dop853.evaluate(self.t_steps, self.h_steps, self.y_steps, self.F_steps, t)
-
-
-def _advance_function(backend):
-    if backend == "python":
-        return _dop853.advance
-    compiled = _dop853.compiled()
-    if compiled is None and backend == "numba":
-        raise ImportError("backend='numba' needs numba: pip install 'beltmdsm[fast]'")
-    return compiled or _dop853.advance
 
 
 def integrate_events(p, contact="hertz_damp", *, tension="allowed", t_end=1000.0, y0=None,
@@ -84,13 +79,12 @@ def integrate_events(p, contact="hertz_damp", *, tension="allowed", t_end=1000.0
     if method != "DOP853":
         raise ValueError(f"method must be 'DOP853' for the events solver; got {method!r}")
     from .model import initial_state
-    kernel_backend = None if backend is None else ("python" if backend == "python" else "numba")
-    sw = Switching(p, contact, tension, kernel_backend)
-    advance = _advance_function(backend)
+    sw = Switching(p, contact, tension, backend)
+    advance = _compiled.advance("vector_field", contact, backend)
     y = initial_state(p, contact) if y0 is None else np.array(y0, dtype=float)
     t = float(t0)
     mode = sw.initial_mode(t, y)
-    segments, events = [], []
+    segments, events, steps = [], [], []
     recent = deque(maxlen=ZENO_SWITCHES)
     status, message = "done", "reached t_end"
     h_next = 0.0
@@ -100,12 +94,13 @@ def integrate_events(p, contact="hertz_damp", *, tension="allowed", t_end=1000.0
     while t < t_end:
         watch, dirs, _ = sw.guards[mode]
         (code, n, ts, hs, ys, Fs, t_stop, y_stop, hit, h_next) = advance(
-            field.kernel, field.args, surf.kernel, surf.args, rates.kernel, rates.args,
-            float(mode), watch, dirs, t, y, float(t_end), h_next, rtol, atol, max_step)
+            field.args, surf.args, rates.args, float(mode), watch, dirs, t, y, float(t_end),
+            h_next, rtol, atol, max_step)
         if code == _dop853.STATUS_STEP_TOO_SMALL:
             raise RuntimeError(f"step size too small at t = {t_stop:.6g} s in mode "
                                f"{mode.name} (the field is not smooth there)")
         if n:
+            steps.append((ts, hs, ys, Fs))
             segments.append(Segment(t, float(t_stop), mode, StepSegment(ts, hs, ys, Fs),
                                     ts.copy()))
         t, y = float(t_stop), np.array(y_stop)
@@ -140,7 +135,10 @@ def integrate_events(p, contact="hertz_damp", *, tension="allowed", t_end=1000.0
         y_at = y.copy()
         segments.append(Segment(t, t, mode, lambda tt, y_at=y_at: np.repeat(
             y_at[:, None], np.size(tt), axis=1), np.array([t])))
-    trajectory = Trajectory(segments, p, contact, tension)
+        evaluator = None
+    else:
+        evaluator = StepSegment(*(np.concatenate(part) for part in zip(*steps)))
+    trajectory = Trajectory(segments, p, contact, tension, evaluator)
     trajectory.n_zeno = n_zeno
     return trajectory, events, status, message
 

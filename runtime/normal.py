@@ -22,7 +22,7 @@ import numpy as np
 
 from generated import hybrid, oscillator
 
-from . import _dop853
+from . import _compiled, _dop853
 from .switching import EVENT_KINDS, SURFACE_INDEX, Mode, Switching
 
 __all__ = ["NormalMotion", "normal_motion", "clear_cache", "GRID_STEP", "NORMAL_NAMES"]
@@ -62,8 +62,7 @@ class NormalMotion:
         kw = dict(contact=contact, backend=backend, **p)
         field = hybrid.bind_response_field(**kw)
         sw = Switching(p, contact, tension, backend)
-        advance = _dop853.compiled() if backend != "python" else None
-        advance = advance or _dop853.advance
+        advance = _compiled.advance("response_field", contact, backend)
         guards = {}
         for mode in (Mode.SLIP_BACK, Mode.FLIGHT, Mode.SEPARATED):
             rows = [(SURFACE_INDEX[s], float(d), target) for s, d, target
@@ -77,9 +76,8 @@ class NormalMotion:
         while t < self.t_end:
             watch, dirs, targets = guards[mode]
             (code, n, ts, hs, ys, Fs, t_stop, y_stop, hit, h_next) = advance(
-                field.kernel, field.args, sw.surfaces.kernel, sw.surfaces.args,
-                sw.rates.kernel, sw.rates.args, float(mode), watch, dirs, t, y, self.t_end,
-                h_next, rtol, atol, np.inf)
+                field.args, sw.surfaces.args, sw.rates.args, float(mode), watch, dirs, t, y,
+                self.t_end, h_next, rtol, atol, np.inf)
             if code == _dop853.STATUS_STEP_TOO_SMALL:
                 raise RuntimeError(f"normal motion: step size too small at t = {t_stop:.6g} s")
             if n:
@@ -125,6 +123,18 @@ class NormalMotion:
     def evaluate(self, t):
         """``(z, z', X2, X2')`` at the times ``t`` from the dense output, shape (4, n)."""
         return _dop853.evaluate(self.t_steps, self.h_steps, self.y_steps, self.F_steps, t)
+
+    def at(self, t):
+        """``(z, z', X2, X2')`` at one time: the dense output of the step holding ``t``."""
+        k = max(int(np.searchsorted(self.t_steps, t, side="right")) - 1, 0)
+        F = self.F_steps[k]
+        x = (t - self.t_steps[k]) / self.h_steps[k]
+        y = F[-1].copy()
+        for j in range(1, F.shape[0]):
+            y *= x if j % 2 else 1.0 - x
+            y += F[-1 - j]
+        y *= x if F.shape[0] % 2 else 1.0 - x
+        return y + self.y_steps[k]
 
     def segment_at(self, t):
         """Index of the normal segment that holds ``t`` (the later one at a switch)."""

@@ -28,7 +28,7 @@ import numpy as np
 
 from generated import oscillator
 
-from . import _superpose
+from . import _compiled
 from .events import ZENO_SWITCHES, ZENO_WINDOW, _cone_holds
 from .model import initial_state
 from .normal import GRID_STEP, clear_cache, normal_motion
@@ -76,13 +76,6 @@ class _Segments:
         return np.array([X1, Y1, X2, Y2])
 
 
-class _SuperposedTrajectory(Trajectory):
-    def state(self, t, index=None):
-        t = np.asarray(t, dtype=float)
-        index = self._index(t) if index is None else index
-        return self.closed_form(t, index)
-
-
 class Superposition:
     """The tangential switching on one normal motion: closed forms between switches.
 
@@ -109,8 +102,7 @@ class Superposition:
             raise ValueError("no closed-form excitation response at undamped resonance "
                              "(beta1 = 0, Omega_t = omega1)")
         self.sw = sw = Switching(p, contact, tension, backend)
-        scan = _superpose.compiled() if backend != "python" else None
-        self.scan = scan or _superpose.scan
+        self.scan = _compiled.scan(contact, backend)
         self.watch = {}
         for mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD, Mode.STICK):
             rows = [(i, SURFACE_INDEX[s], float(d)) for i, (s, d, _)
@@ -119,9 +111,8 @@ class Superposition:
                                 np.array([r[2] for r in rows]), [r[0] for r in rows])
         self._none = (np.zeros(0, dtype=np.int64), np.zeros(0), [])
         self._args = (normal.grid, normal.on_grid, normal.t_steps, normal.h_steps,
-                      normal.y_steps, normal.F_steps, self.stm.kernel, self.stm.args,
-                      self.exc.kernel, self.exc.args, sw.surfaces.kernel, sw.surfaces.args,
-                      sw.rates.kernel, sw.rates.args)
+                      normal.y_steps, normal.F_steps, self.stm.args, self.exc.args,
+                      sw.surfaces.args, sw.rates.args)
 
     def run(self, t0, X1, Y1, t_end, on_contact_loss="continue"):
         """The tangential motion from ``(X1, Y1)`` at ``t0`` to ``t_end``.
@@ -148,7 +139,7 @@ class Superposition:
             tc = min(float(normal.switch_t[k + 1]), t_end)
             stick = mode == Mode.STICK
             ms = mu * int(mode) if mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD) else 0.0
-            z, v = normal.evaluate(np.array([t]))[:2, 0]
+            z, v = normal.at(t)[:2]
             zf, vf = self.exc(t)
             d = (X1 - zf + ms * z, Y1 - vf + ms * v)
             w, dirs, rows = self.watch.get(mode, self._none)
@@ -214,21 +205,23 @@ def integrate_superposed(p, contact, tension, settings, y0=None):
         return str(err)
     out = engine.run(0.0, float(y[0]), float(y[1]), float(settings.t_end),
                      settings.on_contact_loss)
-    # quadrature pieces (energy balance, cycle averages): the normal motion's own steps,
-    # which shrink where it is not smooth (X2^(3/2) after a touchdown), with at least
-    # one knot every KNOT_STEP grid points
-    knots = np.union1d(normal.grid[::KNOT_STEP], normal.t_steps)
+    # quadrature pieces (energy balance, cycle averages): a knot every KNOT_STEP grid
+    # points, and the normal motion's own steps within 0.2 s of its switches, where
+    # they shrink because it is not smooth there (X2^(3/2) about a touchdown)
+    near = np.zeros(normal.t_steps.size, dtype=bool)
+    for ts in normal.switch_t[1:-1]:
+        near |= np.abs(normal.t_steps - ts) <= 4 * KNOT_STEP * GRID_STEP
+    knots = np.union1d(normal.grid[::KNOT_STEP], normal.t_steps[near])
     segments = [Segment(a, b, m, None, knots[(knots > a) & (knots < b)])
                 for a, b, m in zip(out["starts"], out["ends"], out["modes"])]
-    trajectory = _SuperposedTrajectory(segments, p, contact, tension)
-    trajectory.closed_form = out["segments"]
+    trajectory = Trajectory(segments, p, contact, tension, out["segments"])
     trajectory.n_zeno = out["n_zeno"]
     return trajectory, out["events"], out["status"], out["message"]
 
 
 def segs_state(segs, t, index):
     """The state at ``t`` in segment ``index`` (before `_Segments.freeze`)."""
-    z, v, X2, Y2 = segs.normal.evaluate(np.array([t]))[:, 0]
+    z, v, X2, Y2 = segs.normal.at(t)
     if segs.stick[index]:
         return np.array([segs.X1s[index] + segs.Vb * (t - segs.t0[index]), segs.Vb, X2, Y2])
     P = segs.stm(t - segs.t0[index])
@@ -243,5 +236,5 @@ def _mode_in(sw, normal, k, t, X1, Y1):
     normal_mode = normal.switch_mode[k]
     if normal_mode != Mode.SLIP_BACK:
         return normal_mode
-    _, _, X2, Y2 = normal.evaluate(np.array([t]))[:, 0]
+    _, _, X2, Y2 = normal.at(t)
     return sw.by_relative_velocity(t, np.array([X1, Y1, X2, Y2]))

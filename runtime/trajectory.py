@@ -38,13 +38,19 @@ class Segment:
 
 
 class Trajectory:
-    """Segments in time order covering [segments[0].t0, segments[-1].t1]."""
+    """Segments in time order covering [segments[0].t0, segments[-1].t1].
 
-    def __init__(self, segments, params, contact, tension="allowed"):
+    ``evaluator(t, index) -> (4, n)``, if given, evaluates the state at times ``t`` in
+    the segments ``index`` all at once (an integrator's dense output of the whole run);
+    otherwise each segment's ``evaluate`` is called on its own times.
+    """
+
+    def __init__(self, segments, params, contact, tension="allowed", evaluator=None):
         if not segments:
             raise ValueError("a trajectory needs at least one segment")
         self.segments, self.params, self.contact = segments, params, contact
         self.tension = tension
+        self.evaluator = evaluator
         self.n_zeno = 0
         self.starts = np.array([s.t0 for s in segments])
         self.modes_by_segment = np.array([s.mode for s in segments])
@@ -61,6 +67,8 @@ class Trajectory:
         """State (X1, Y1, X2, Y2) at the times ``t``, shape (4, n)."""
         t = np.asarray(t, dtype=float)
         index = self._index(t) if index is None else index
+        if self.evaluator is not None:
+            return self.evaluator(t, index)
         out = np.empty((4, t.size))
         order = np.argsort(index, kind="stable")
         bounds = np.flatnonzero(np.diff(index[order])) + 1

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from runtime import _dop853, _superpose, normal, superposition
+from runtime import _compiled, _dop853, normal, superposition
 from runtime.simulate import simulate
 
 
@@ -23,8 +23,9 @@ def _line_kernels(offset):
 def test_dop853_finds_a_double_crossing_inside_one_step(offset):
     """h > 0 at both ends of the (single, exact) step, negative between: found, not stepped over."""
     field, surfaces, rates = _line_kernels(offset)
-    out = _dop853.advance(field, (), surfaces, (), rates, (), -1.0, np.array([0]),
-                          np.array([-1.0]), 0.0, np.zeros(4), 1.0, 1.0, 1e-10, 1e-10, np.inf)
+    advance = _compiled._python(_compiled._ADVANCE, (field, surfaces, rates))
+    out = advance((), (), (), -1.0, np.array([0]), np.array([-1.0]), 0.0, np.zeros(4), 1.0,
+                  1.0, 1e-10, 1e-10, np.inf)
     status, n, *_, t_stop, y_stop, hit, _ = out
     assert status == _dop853.STATUS_EVENT and hit == 0 and n == 1
     assert t_stop == pytest.approx(0.5 - np.sqrt(offset), abs=1e-12)
@@ -33,8 +34,9 @@ def test_dop853_finds_a_double_crossing_inside_one_step(offset):
 def test_dop853_starting_on_its_surface_waits_until_inside():
     """A surface at zero at the start (the one just switched on) counts only once left."""
     field, surfaces, rates = _line_kernels(0.25)          # h(0) = 0, then < 0, then 0 at 1
-    out = _dop853.advance(field, (), surfaces, (), rates, (), -1.0, np.array([0]),
-                          np.array([1.0]), 0.0, np.zeros(4), 2.0, 0.1, 1e-10, 1e-10, np.inf)
+    advance = _compiled._python(_compiled._ADVANCE, (field, surfaces, rates))
+    out = advance((), (), (), -1.0, np.array([0]), np.array([1.0]), 0.0, np.zeros(4), 2.0,
+                  0.1, 1e-10, 1e-10, np.inf)
     status, *_, t_stop, _, hit, _ = out
     # direction +1: the event is h rising through 0 after being inside (h < 0): t = 1
     assert status == _dop853.STATUS_EVENT and t_stop == pytest.approx(1.0, abs=1e-12)
@@ -52,8 +54,9 @@ def test_dop853_matches_solve_ivp_on_a_smooth_mode():
     def rates(t, X1, Y1, X2, Y2, mode):
         return (Y1,)
     y0 = np.array([1.0, 0.0, 1.0, 0.0])
-    out = _dop853.advance(field, (), surfaces, (), rates, (), 0.0, np.array([0]),
-                          np.array([1.0]), 0.0, y0, 20.0, 0.0, 1e-11, 1e-11, np.inf)
+    advance = _compiled._python(_compiled._ADVANCE, (field, surfaces, rates))
+    out = advance((), (), (), 0.0, np.array([0]), np.array([1.0]), 0.0, y0, 20.0, 0.0, 1e-11,
+                  1e-11, np.inf)
     status, n, ts, hs, ys, Fs, t_stop, y_stop, hit, _ = out
     assert status == _dop853.STATUS_END and t_stop == 20.0
     ref = solve_ivp(lambda t, y: field(t, *y, 0), (0, 20), y0, method="DOP853", rtol=1e-13,
@@ -91,4 +94,17 @@ def test_compiled_and_python_scans_agree(backend):
     assert [k for _, k, _ in run.events] == [k for _, k, _ in ref.events]
     # the same arithmetic up to the math library's last bits (exp, sin, pow)
     np.testing.assert_allclose(run.y, ref.y, rtol=0, atol=1e-10)
-    assert _superpose.compiled() is not None or backend == "python"
+
+
+def test_compiled_integrators_take_numbers_only_and_live_in_a_module_named_by_their_sources():
+    """numba's disk cache: no dispatcher in a signature (it cannot be saved across
+    processes), and a file name that changes with any source the code depends on."""
+    pytest.importorskip("numba")
+    f = _compiled.advance("vector_field", "hertz_damp", backend="numba")
+    assert f.__module__.startswith("beltmdsm_advance__vector_field__hertz_damp_")
+    assert _compiled._digest.cache_info().currsize >= 1
+    digest = _compiled._digest.__wrapped__("0")
+    assert digest != _compiled._digest.__wrapped__("1")          # numba's version counts
+    simulate(Vb=4.0, solver="events", t_end=20.0, t_discard=5.0, backend="numba")
+    for signature in f.signatures:
+        assert all("Dispatcher" not in str(arg) for arg in signature)
