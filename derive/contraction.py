@@ -468,3 +468,152 @@ def claim() -> ContractionClaim:
         converse=("with tension allowed, dE_d/dt <= -c1 e'^2 while F >= 0; energy enters "
                   "the difference only through friction while F < 0"),
         steps=steps, breaks=breaks)
+
+
+# Numerical evidence (the runtime) ---------------------------------------------------------
+
+@dataclass
+class DifferenceRun:
+    """Two runs with one normal motion and different tangential initial states.
+
+    ``a`` starts at the default state (Eq. 9 at rest), ``b`` at the same normal state
+    with ``(X1, X1')`` shifted by ``shift``; ``energy`` is `difference_energy` at the
+    samples ``t`` of both runs.
+    """
+
+    a: object
+    b: object
+    shift: tuple
+    t: object
+    energy: object
+
+
+def _numeric(expr, names):
+    """``expr`` as a numpy function of the symbols ``names`` (from the derivation)."""
+    return sp.lambdify(names, expr, "numpy")
+
+
+def difference_runs(shift=(5.0, -3.0), *, tension="clipped", contact="hertz_damp",
+                    t_end=1000.0, **overrides) -> DifferenceRun:
+    """Simulate Eq. (4) twice under one normal motion (`runtime.simulate.simulate`).
+
+    Parameters
+    ----------
+    shift : (dX1, dX1')
+        Tangential offset of run ``b``'s initial state from run ``a``'s.
+    tension, contact : str
+    t_end : float
+    **overrides
+        Parameters and solver settings for both runs (``Vb=4``, ``rtol=1e-10``).
+    """
+    import numpy as np
+
+    from runtime.model import initial_state, resolve_parameters
+    from runtime.simulate import SolverSettings, simulate
+
+    settings = {k: overrides.pop(k) for k in list(overrides)
+                if k in SolverSettings.__dataclass_fields__}
+    p = resolve_parameters(None, contact=contact, **overrides)
+    y0 = initial_state(p, contact)
+    y0b = [y0[0] + shift[0], y0[1] + shift[1], y0[2], y0[3]]
+    a = simulate(p, contact=contact, tension=tension, t_end=t_end, **settings)
+    b = simulate(p, contact=contact, tension=tension, t_end=t_end, y0=y0b, **settings)
+    Ed = _numeric(difference_energy(), (e, ep, P["omega1"]))
+    energy = Ed(a.y[0] - b.y[0], a.y[1] - b.y[1], p["omega1"])
+    return DifferenceRun(a, b, tuple(shift), a.t, np.asarray(energy, dtype=float))
+
+
+def _force_zeros(sim, t0, t1):
+    """Times in (t0, t1) where the run's normal force changes sign, to 1e-13 s."""
+    import numpy as np
+
+    t, F = sim.t, sim.normal_force
+    keep = (t >= t0) & (t <= t1)
+    t, F = t[keep], F[keep]
+    k = np.flatnonzero(np.sign(F[:-1]) * np.sign(F[1:]) < 0)
+    lo, hi = t[k].copy(), t[k + 1].copy()
+    s_lo = np.sign(F[k])
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        same = np.sign(sim.trajectory.forces(mid)[0]) == s_lo
+        lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
+    return 0.5 * (lo + hi)
+
+
+def difference_works(run: DifferenceRun, t0=None, t1=None) -> dict:
+    """The energy balance of the difference over ``[t0, t1]`` by quadrature.
+
+    ``dE_d/dt = -c1 e'^2 + (f_a - f_b) e'`` (`power_split`; ``f`` the friction force of
+    each run, `runtime.trajectory.Trajectory.forces`, which is ``-mu_s s F`` with
+    ``s`` in Sgn, the holding force in stick and 0 without contact). Integrated with
+    `Trajectory.integrate` (Gauss-Legendre on the pieces of run ``a``, split at run
+    ``b``'s switches and knots and at the sign changes of ``F``).
+
+    Returns
+    -------
+    dict
+        ``energy_change`` (``E_d(t1) - E_d(t0)`` from the states), ``work_viscous``
+        (``-int c1 e'^2``), ``work_friction_push`` and ``work_friction_pull`` (the
+        friction part while ``F >= 0`` and while ``F < 0``), ``imbalance``
+        (change minus the three works) and ``scale`` (the integral of the absolute
+        values of both parts, for tolerances).
+    """
+    import numpy as np
+
+    a, b = run.a.trajectory, run.b.trajectory
+    t0 = a.segments[0].t0 if t0 is None else t0
+    t1 = min(a.t_end, b.t_end) if t1 is None else t1
+    p = run.a.params
+    c1 = float(power_split().c1.subs({P["beta1"]: p["beta1"], P["omega1"]: p["omega1"]}))
+    cuts = [np.array([t0, t1]), _force_zeros(run.a, t0, t1)]
+    for s in b.segments:
+        cuts.append(np.concatenate([[s.t0, s.t1], s.knots]))
+    edges = np.unique(np.concatenate(cuts))
+    edges = edges[(edges >= t0) & (edges <= t1)]
+
+    def powers(t, y, mode):
+        F, fa = a.forces(t, y, mode)
+        yb = b.state(t)
+        _, fb = b.forces(t, yb, b.mode(t))
+        de = y[1] - yb[1]
+        visc = -c1 * de**2
+        fric = (fa - fb) * de
+        push = np.where(F >= 0, fric, 0.0)
+        pull = np.where(F < 0, fric, 0.0)
+        return np.stack([visc, push, pull, np.abs(visc) + np.abs(fric)])
+
+    W = a.integrate(powers, edges).sum(axis=1)
+    ends = [np.array([t0]), np.array([t1])]
+    ya, yb = (a.state(ends[0]), a.state(ends[1])), (b.state(ends[0]), b.state(ends[1]))
+    Ed = _numeric(difference_energy(), (e, ep, P["omega1"]))
+    E0 = float(Ed(ya[0][0] - yb[0][0], ya[0][1] - yb[0][1], p["omega1"])[0])
+    E1 = float(Ed(ya[1][0] - yb[1][0], ya[1][1] - yb[1][1], p["omega1"])[0])
+    change = E1 - E0
+    return {"energy_change": change, "work_viscous": float(W[0]),
+            "work_friction_push": float(W[1]), "work_friction_pull": float(W[2]),
+            "imbalance": change - float(W[0] + W[1] + W[2]), "scale": float(W[3])}
+
+
+def reversals_by_force_sign(sim, t0=0.0) -> dict:
+    """Reversals of the friction after ``t0`` by their new direction and the sign of ``F``.
+
+    A reversal is a ``"vr_zero"`` event of ``sim.events`` whose new mode is a slip mode
+    (`runtime.simulate.summarize` counts them the same way); ``F`` is the normal force
+    at its time (``sim.trajectory.forces``).
+
+    Returns
+    -------
+    dict
+        ``{"slip_forward": (n with F < 0, n with F >= 0), "slip_back": (...)}``.
+    """
+    import numpy as np
+
+    from runtime.switching import Mode
+
+    out = {}
+    for name, mode in (("slip_forward", Mode.SLIP_FORWARD), ("slip_back", Mode.SLIP_BACK)):
+        times = np.array([t for t, kind, new in sim.events
+                          if kind == "vr_zero" and new == mode and t >= t0])
+        F = sim.trajectory.forces(times)[0] if times.size else np.array([])
+        out[name] = (int(np.sum(F < 0)), int(np.sum(F >= 0)))
+    return out
