@@ -382,9 +382,10 @@ def breaking_conditions() -> dict[str, tuple[bool, str]]:
     mu_pos = sp.Symbol("mu_pos", positive=True)
     coupled = -(friction_coefficient(-1) * (F + dF) - friction_coefficient(-1) * F) * de
     coupled = sp.factor(coupled.xreplace({Ya: Yb + d, P["mu_s"]: mu_pos}))
-    out["two-way coupling"] = (bool(coupled.is_positive),
-                               (f"friction part {sp.sstr(coupled)} for s_a = s_b = -1, "
-                                "F_a = F_b + dF, e' = d > 0"))
+    ok = coupled.is_positive and sp.expand(coupled - mu_pos * dF * d) == 0
+    out["two-way coupling"] = (bool(ok), ("a force per run, F_a = F_b + dF, makes the "
+                                          "friction part mu_s dF e' for s_a = s_b = -1: "
+                                          "positive for dF, e' > 0"))
     return out
 
 
