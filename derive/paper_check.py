@@ -20,6 +20,12 @@ that matches as stale, so the reasons cannot drift from the results.
 The paper's claims in words are re-derived as rows with the status ``holds``,
 ``holds under reading X`` or ``does not hold``. The report is deterministic
 (seeded points, rows in paper order) and is written through `derive.codegen.write`.
+
+Two claim rows, "omega1 peak (Fig. 2b)" and "contraction (clipped)", also run the
+simulation of Eq. (4) (`derive.contraction`, on `runtime/` and `generated/`), so
+check-paper runs after ``python -m derive``. Their numbers are rounded (two or
+three digits, counts, ``< 1e-4``) so that the report is the same on every code path
+of the CI.
 """
 from __future__ import annotations
 
