@@ -205,3 +205,41 @@ def test_reversals_by_force_sign(allowed, clipped):
     assert rev["slip_back"][0] == 0 and rev["slip_back"][1] > 50
     quiet = C.reversals_by_force_sign(clipped.a, t0=50.0)
     assert quiet == {"slip_forward": (0, 0), "slip_back": (0, 0)}
+
+
+# Every figure case (slow) ------------------------------------------------------------------
+
+def _figure_cases():
+    from runtime.validation import CASES
+    cases = [(f"{c.figure} {c.name}", dict(c.overrides), "hertz_damp") for c in CASES]
+    return cases + [("Fig. 14a Omega=4.5", {"Omega": 4.5}, "hertz_damp"),
+                    ("Fig. 14b Omega_t=6, Omega_n=4", {"Omega_t": 6.0, "Omega_n": 4.0},
+                     "hertz_damp"),
+                    ("Fig. 15 phase_t=pi/2", {"phase_t": np.pi / 2}, "hertz_damp"),
+                    ("Fig. 16b linear contact", {"omega2": 0.5, "beta2": 3.0}, "kelvin_voigt")]
+
+
+def _forced_line_in_band(p, band):
+    """Whether a combination m Omega_t + n Omega_n (|m|, |n| <= 6) lies in the omega1 band.
+
+    There the periodic (forced) response itself has a line that the peak reader counts.
+    """
+    lines = {abs(m * p["Omega_t"] + n * p["Omega_n"]) for m in range(-6, 7) for n in range(-6, 7)}
+    return any(band[0] <= w <= band[1] for w in lines)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name, overrides, contact", _figure_cases(),
+                         ids=[c[0] for c in _figure_cases()])
+def test_clipped_motions_converge_in_every_figure_case(name, overrides, contact):
+    """Fig. 2b and Figs. 14-21 with tension clipped, Vb from 1 to 16 m/s (400 s runs)."""
+    from runtime.simulate import PEAK_PRESENT_RATIO, omega1_band
+    for Vb in np.arange(1.0, 16.1, 1.5):
+        run = C.difference_runs(SHIFT, tension="clipped", contact=contact, t_end=400.0,
+                                Vb=float(Vb), rtol=TOL, atol=TOL, **overrides)
+        E, err = run.energy, _sample_error(run)
+        assert np.all(np.diff(E) <= err[:-1] + err[1:]), (name, Vb)
+        assert E[-1] <= 1e-6 * E[0], (name, Vb)
+        s, p = run.a.summary, run.a.params
+        if not _forced_line_in_band(p, omega1_band(p)):
+            assert s["peak_omega1"] < PEAK_PRESENT_RATIO * s["peak_Omega"], (name, Vb)
