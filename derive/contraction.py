@@ -34,7 +34,7 @@ What this module proves with SymPy (each a function returning the result):
    stick guard ``|a_free| <= mu_s F`` holds.
 4. `friction_power_sign_cases`: ``(s_a - s_b)(v_a - v_b) >= 0`` in each of the nine
    pairs of friction states (slip back, stick, slip forward for each run; stick
-   with ``s`` at either end of ``[-1, 1]`` and inside it), by substitution of the
+   with ``s`` at either end of ``[-1, 1]`` and inside it: 25 cases), by substitution of the
    state's ``Vr`` and ``s`` and SymPy's sign decision under the symbols'
    assumptions: the monotonicity of the set-valued ``Sgn``. ``v_a - v_b = Vr_a -
    Vr_b`` because both runs see the same ``Vb``.
@@ -63,9 +63,15 @@ excitation makes the mass slip in every period. Hence all tangential motions
 under one normal motion converge to one. When the normal motion is periodic with
 period ``T``, the shift of a tangential motion by ``T`` is again one under the same
 normal motion, so the common limit is ``T``-periodic: it has spectral lines only
-at multiples of ``2 pi / T``. No self-excited vibration (a free oscillation near
-``omega1``, with a free phase) and no coexistence of tangential responses are
-possible, for every parameter set with ``beta1 > 0``.
+at multiples of ``2 pi / T`` (a line at ``omega1`` only where ``omega1`` is one of
+them, as ``omega1 = 12 = 3 Omega`` of Fig. 20c). No self-excited vibration (a free
+oscillation near ``omega1``, with a free phase) and no coexistence of tangential
+responses are possible, for every parameter set with ``beta1 > 0`` and ``Vb > 0``.
+
+`difference_runs`, `difference_works` and `reversals_by_force_sign` check this with
+the simulation (`runtime.simulate`): two runs with one normal motion, the energy
+balance of their difference split by the sign of ``F``, and the sign of ``F`` at the
+reversals of the friction.
 
 Conditions, each shown by `breaking_conditions` to be needed:
 
