@@ -20,6 +20,12 @@ that matches as stale, so the reasons cannot drift from the results.
 The paper's claims in words are re-derived as rows with the status ``holds``,
 ``holds under reading X`` or ``does not hold``. The report is deterministic
 (seeded points, rows in paper order) and is written through `derive.codegen.write`.
+
+Two claim rows, "omega1 peak (Fig. 2b)" and "contraction (clipped)", also run the
+simulation of Eq. (4) (`derive.contraction`, on `runtime/` and `generated/`), so
+check-paper runs after ``python -m derive``. Their numbers are rounded (two or
+three digits, counts, ``< 1e-4``) so that the report is the same on every code path
+of the CI.
 """
 from __future__ import annotations
 
@@ -688,9 +694,121 @@ def _claim_state_space():
                                  " (the sign resolved for `V_r < 0`, as `+mu_s` in Eq. 6)."))
 
 
+#: The simulated claims: the base set at the Fig. 3 belt speed, 1000 s runs, and the
+#: tangential offset of the second run of each pair (derive/contraction.py).
+SIM_VB = 4.0
+SIM_T_END = 1000.0
+SIM_SHIFT = (5.0, -3.0)
+#: A sampled E_d "never rises" when no step between samples exceeds this fraction of
+#: E_d(0) (the runs' tolerance is 1e-10; derive/contraction.py's tests bound it finer).
+RISE_TOLERANCE = 1e-9
+#: E_d has "decayed" below this fraction of E_d(0) at the end of a run.
+DECAYED = 1e-12
+
+
+@lru_cache(maxsize=None)
+def _difference_runs():
+    """Per tension law: two runs under one normal motion and their difference's balance.
+
+    Runs the simulation (`runtime.simulate`, on `generated/`): check-paper must run
+    after ``python -m derive``.
+    """
+    from . import contraction
+    out = {}
+    for tension in ("allowed", "clipped"):
+        run = contraction.difference_runs(SIM_SHIFT, tension=tension, t_end=SIM_T_END,
+                                          Vb=SIM_VB)
+        out[tension] = (run, contraction.difference_works(run))
+    return out
+
+
+def _shift_text() -> str:
+    return "(" + ", ".join(f"{x:g}" for x in SIM_SHIFT) + ")"
+
+
+def _ratio_text(sim) -> str:
+    s = sim.summary
+    r = s["peak_omega1"] / s["peak_Omega"]
+    return f"= {r:.2f}" if r >= 1e-2 else ("< 1e-4" if r < 1e-4 else f"= {r:.1g}")
+
+
+def _claim_omega1_peak():
+    from runtime.simulate import PEAK_PRESENT_RATIO
+
+    from . import contraction
+    runs = _difference_runs()
+    holds, parts = [], []
+    for tension in ("allowed", "clipped"):
+        run, works = runs[tension]
+        sim = run.a
+        present = bool(sim.summary["omega1_peak_present"])
+        free_phase = run.energy[-1] > DECAYED * run.energy[0]
+        rev = contraction.reversals_by_force_sign(sim, sim.settings.window_start)
+        if present and free_phase:
+            holds.append(f"tension {tension}")
+        parts.append(
+            f"tension {tension}: peak_omega1/peak_Omega {_ratio_text(sim)} "
+            f"({'present' if present else 'absent'}, threshold {PEAK_PRESENT_RATIO}); a run "
+            f"started {_shift_text()} away in (X1, X1') "
+            + ("keeps its distance (E_d " f"{run.energy[0]:.3g} -> {run.energy[-1]:.3g}): a "
+               "free phase, i.e. a self-excited oscillation" if free_phase else
+               "converges to it (E_d < 1e-12 of its start): a forced response")
+            + f"; reversals in the steady window: {rev['slip_forward'][0]} to forward "
+            f"sliding with F < 0 and {rev['slip_forward'][1]} with F >= 0, "
+            f"{rev['slip_back'][0]} to backward sliding with F < 0 and "
+            f"{rev['slip_back'][1]} with F >= 0")
+    return holds, (
+        f"base set, Vb = {SIM_VB:g} (Fig. 3), {SIM_T_END:g} s runs, steady window after "
+        "30 %. " + "; ".join(parts) + ". Mechanism: friction `-mu_s sgn(Vr) F` with "
+        "`F < 0` is `mu_s |F| sgn(Vr)`, along the relative velocity; every reversal "
+        "from backward to forward sliding happens while Eq. (1) pulls, so the "
+        "friction flips from pushing the mass backward to pushing it forward, away from "
+        "the belt speed on both sides (negative damping), while the reversals back "
+        "happen under a pushing contact. With the clipped law that force is 0 and "
+        "derive/contraction.py proves that no self-excited vibration is possible.")
+
+
+def _claim_contraction():
+    from . import contraction
+    cl = contraction.claim()
+    runs = _difference_runs()
+    holds, numbers = [], []
+    for tension in ("clipped", "allowed"):
+        run, w = runs[tension]
+        E = run.energy
+        rise = float((E[1:] - E[:-1]).max())
+        monotone = rise <= RISE_TOLERANCE * E[0]
+        decays = E[-1] <= DECAYED * E[0]
+        if decays and monotone and (tension == "allowed" or cl.proved_by_sympy):
+            holds.append(f"tension {tension}")
+        numbers.append(
+            f"tension {tension}: E_d {E[0]:.3g} -> "
+            + (f"< {DECAYED:.0e} of that" if decays else f"{E[-1]:.3g}")
+            + (", never rising" if monotone else f" (largest rise between samples "
+               f"{rise:.2g})")
+            + f"; friction work on the difference {w['work_friction_push']:+.3g} while "
+            "F >= 0 and " + (f"{w['work_friction_pull']:+.3g} while F < 0" if
+                              w["work_friction_pull"] else "none while F < 0 (F never is)")
+            + f", dashpot {w['work_viscous']:+.3g}")
+    sympy_steps = "; ".join(f"{s.name} ({'proved' if s.proved else 'NOT proved'})"
+                            for s in cl.steps if s.how == "SymPy")
+    words = "; ".join(s.detail for s in cl.steps if s.how == "words")
+    breaks = "; ".join(f"{k}: {d}" for k, (ok, d) in cl.breaks.items() if ok)
+    return holds, (
+        f"SymPy (derive/contraction.py): {sympy_steps}. So `dE_d/dt = -c1 e'^2 - mu_s F "
+        "(s_a - s_b)(Vr_a - Vr_b) <= -c1 e'^2` while `F >= 0` (always, clipped); "
+        f"converse: {cl.converse}. In words: {words}. Conditions: "
+        + "; ".join(cl.conditions) + f". Without them (SymPy): {breaks}. Numerically "
+        f"(base set, Vb = {SIM_VB:g}, {SIM_T_END:g} s, second run offset {_shift_text()} in "
+        "(X1, X1')): " + "; ".join(numbers) + ".")
+
+
 def claims() -> tuple[Claim, ...]:
     """The paper's claims in words, each with its check."""
     return (
+        Claim("omega1 peak (Fig. 2b)", "Sect. 3, Fig. 2b",
+              "the omega1 peak of Fig. 2b is friction-induced vibration of the model",
+              ("tension allowed", "tension clipped"), _claim_omega1_peak),
         Claim("mu_s absent", "Sect. 4.1 below Eq. 12",
               "`mu_s` appears in `J^0` but not in the characteristic equation", (),
               _claim_mu_s),
@@ -715,6 +833,10 @@ def claims() -> tuple[Claim, ...]:
         Claim("A3-A6 = Eqs. 18-21", "Appendix A.2",
               "Eqs. A3-A6 are the slow equations (18)-(21) in state-space form", (),
               _claim_state_space),
+        Claim("contraction (clipped)", "beyond the paper (docs/modelling.md#tension)",
+              "two tangential motions under one normal motion converge when the contact "
+              "cannot pull: no self-excited vibration, no coexistence",
+              ("tension clipped", "tension allowed"), _claim_contraction),
     )
 
 

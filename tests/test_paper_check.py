@@ -1,4 +1,7 @@
 """The paper check (derive.paper, derive.paper_check): engine, transcriptions, findings."""
+import re
+
+import numpy as np
 import pytest
 import sympy as sp
 from sympy.parsing.sympy_parser import TokenError
@@ -174,3 +177,53 @@ def test_the_report_in_the_tree_is_up_to_date(checked):
     path = codegen.GENERATED / paper_check.REPORT
     assert path.read_text() == text, "run `python -m derive check-paper`"
     assert text.count("\n| Eq. ") == len(checked[0])
+
+
+# The simulated claims (derive/contraction.py) ---------------------------------------------
+
+def _counts(evidence, tension):
+    part = evidence.split(f"tension {tension}:")[1]
+    m = re.search(r"(\d+) to forward sliding with F < 0 and (\d+) with F >= 0, (\d+) to "
+                  r"backward sliding with F < 0 and (\d+) with F >= 0", part)
+    return tuple(int(x) for x in m.groups())
+
+
+def test_the_omega1_peak_is_self_excited_only_with_tension(checked):
+    _, claims, _ = checked
+    peak = claims["omega1 peak (Fig. 2b)"]
+    assert peak.status == "holds under reading `tension allowed`"
+    assert "peak_omega1/peak_Omega = 0.70 (present" in peak.evidence
+    assert "peak_omega1/peak_Omega < 1e-4 (absent" in peak.evidence
+    fwd_pull, fwd_push, back_pull, back_push = _counts(peak.evidence, "allowed")
+    assert fwd_pull > 100 and fwd_push == 0 and back_pull == 0 and back_push > 100
+    assert _counts(peak.evidence, "clipped") == (0, 0, 0, 0)
+
+
+def test_the_reversal_counts_against_the_samples(checked):
+    """Independent count: upward zero crossings of Vr = X1' - Vb on the 0.02 s samples."""
+    _, claims, _ = checked
+    run, _ = paper_check._difference_runs()["allowed"]
+    sim = run.a
+    w = sim.t >= sim.settings.window_start
+    vr, F = sim.y[1, w] - sim.params["Vb"], sim.normal_force[w]
+    up = np.flatnonzero((vr[:-1] < 0) & (vr[1:] >= 0))
+    down = np.flatnonzero((vr[:-1] > 0) & (vr[1:] <= 0))
+    fwd_pull, fwd_push, back_pull, back_push = _counts(
+        claims["omega1 peak (Fig. 2b)"].evidence, "allowed")
+    assert up.size == fwd_pull + fwd_push and down.size == back_pull + back_push
+    # the force at the sample next to each crossing (F moves little in 0.02 s)
+    assert np.all(np.minimum(F[up], F[up + 1]) < 0)
+    assert np.all(np.maximum(F[down], F[down + 1]) >= 0)
+
+
+def test_the_contraction_claim(checked):
+    _, claims, _ = checked
+    c = claims["contraction (clipped)"]
+    assert c.status == "holds under reading `tension clipped`"
+    assert "NOT proved" not in c.evidence and c.evidence.count("(proved)") == 7
+    clipped = c.evidence.split("tension clipped:")[1].split("tension allowed:")[0]
+    assert "never rising" in clipped and "none while F < 0" in clipped
+    allowed = c.evidence.split("tension allowed:")[1]
+    assert "largest rise between samples" in allowed
+    run, works = paper_check._difference_runs()["allowed"]
+    assert works["work_friction_pull"] > 0 >= works["work_friction_push"]
