@@ -303,7 +303,7 @@ def fit() -> ModuleSpec:
         FunctionSpec("rms_error", "Root-mean-square error of the fit on [0, X2max], exact.",
                  "Eq. (17)", "value", "rms : ndarray",
                  per_degree(lambda n: ft.fit_error(n).rms), degree, arg, docs),
-        FunctionSpec("x2max_mdsm", "The fitted range for the MDSM: X2^0 plus the fast normal "
+        FunctionSpec("mdsm_fit_range", "The fitted range for the MDSM: X2^0 plus the fast normal "
                  "amplitude.", "Eqs. (9), (14), (16)", "value", "X2max : ndarray",
                  _per_contact(mdsm.x2max), CONTACT_OPTION,
                  notes="The fast normal motion is the linear response of the normal block "

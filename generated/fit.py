@@ -10,7 +10,7 @@ import numpy
 
 from . import _support
 
-__all__ = ['coefficients', 'max_error', 'max_error_location', 'rms_error', 'x2max_mdsm']
+__all__ = ['coefficients', 'max_error', 'max_error_location', 'rms_error', 'mdsm_fit_range']
 
 
 def coefficients(X2max, *, degree=3, **params):
@@ -343,7 +343,7 @@ _RMS_ERROR = {
 }
 
 
-def x2max_mdsm(*, contact='hertz_damp', **params):
+def mdsm_fit_range(*, contact='hertz_damp', **params):
     """The fitted range for the MDSM: X2^0 plus the fast normal amplitude.
 
     Implements Eqs. (9), (14), (16) of the paper.
@@ -385,13 +385,13 @@ def x2max_mdsm(*, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("x2max_mdsm", _X2MAX_MDSM, contact=contact)
-    _values, _extra = _support.arguments("x2max_mdsm", _variant.names, params)
+    _variant = _support.choose("mdsm_fit_range", _MDSM_FIT_RANGE, contact=contact)
+    _values, _extra = _support.arguments("mdsm_fit_range", _variant.names, params)
     _shape = _support.shape_of(*_values, *_extra)
     return _variant.impl(_shape, *_values)
 
 
-def _x2max_mdsm__hertz_damp(_shape, beta2, omega2, g, alpha_n, Omega_n):
+def _mdsm_fit_range__hertz_damp(_shape, beta2, omega2, g, alpha_n, Omega_n):
     _root0 = numpy.cbrt(g)
     _root1 = numpy.cbrt(omega2)
     _x0 = (omega2*_root1)
@@ -399,13 +399,13 @@ def _x2max_mdsm__hertz_damp(_shape, beta2, omega2, g, alpha_n, Omega_n):
     return _support.full(_shape, _x1*alpha_n/numpy.sqrt(4*_x1*beta2**2*g**2/omega2**2 + (1/4)*(-3*_x0*_root0 + 2*_x1)**2) + _root0**2/_x0)
 
 
-def _x2max_mdsm__kelvin_voigt(_shape, beta2, omega2, g, alpha_n, Omega_n):
+def _mdsm_fit_range__kelvin_voigt(_shape, beta2, omega2, g, alpha_n, Omega_n):
     _x0 = omega2**2
     _x1 = Omega_n**2
     return _support.full(_shape, _x1*alpha_n/numpy.sqrt(4*_x0*_x1*beta2**2 + (Omega_n - omega2)**2*(Omega_n + omega2)**2) + g/_x0)
 
 
-_X2MAX_MDSM = {
-    ('hertz_damp',): _support.Variant(_x2max_mdsm__hertz_damp, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', )),
-    ('kelvin_voigt',): _support.Variant(_x2max_mdsm__kelvin_voigt, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', )),
+_MDSM_FIT_RANGE = {
+    ('hertz_damp',): _support.Variant(_mdsm_fit_range__hertz_damp, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', )),
+    ('kelvin_voigt',): _support.Variant(_mdsm_fit_range__kelvin_voigt, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', )),
 }

@@ -98,4 +98,4 @@ def test_x2max_of_the_mdsm_scene_is_equilibrium_plus_fast_amplitude(rng):
         W = p["Omega"]
         x = np.linalg.solve(1j * W * np.eye(2) - J, [0, -p["alpha"] * W**2])[0]
         expected = unforced.equilibrium(contact=contact, **p)[2] + abs(x)
-        assert fit.x2max_mdsm(contact=contact, **p) == pytest.approx(expected, rel=1e-12)
+        assert fit.mdsm_fit_range(contact=contact, **p) == pytest.approx(expected, rel=1e-12)

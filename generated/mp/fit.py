@@ -12,7 +12,7 @@ import mpmath
 
 from .. import _support
 
-__all__ = ['coefficients', 'max_error', 'max_error_location', 'rms_error', 'x2max_mdsm']
+__all__ = ['coefficients', 'max_error', 'max_error_location', 'rms_error', 'mdsm_fit_range']
 
 
 def coefficients(X2max, *, degree=3, **params):
@@ -349,7 +349,7 @@ _RMS_ERROR = {
 }
 
 
-def x2max_mdsm(*, contact='hertz_damp', **params):
+def mdsm_fit_range(*, contact='hertz_damp', **params):
     """The fitted range for the MDSM: X2^0 plus the fast normal amplitude.
 
     Implements Eqs. (9), (14), (16) of the paper.
@@ -393,24 +393,24 @@ def x2max_mdsm(*, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing.
     """
-    _variant = _support.choose("x2max_mdsm", _X2MAX_MDSM, contact=contact)
-    _values = _support.mp_arguments("x2max_mdsm", _variant.names, params)
+    _variant = _support.choose("mdsm_fit_range", _MDSM_FIT_RANGE, contact=contact)
+    _values = _support.mp_arguments("mdsm_fit_range", _variant.names, params)
     return _variant.impl(*_values)
 
 
-def _x2max_mdsm__hertz_damp(beta2, omega2, g, alpha_n, Omega_n):
+def _mdsm_fit_range__hertz_damp(beta2, omega2, g, alpha_n, Omega_n):
     _x0 = omega2**(mpmath.mpf(4)/mpmath.mpf(3))
     _x1 = Omega_n**2
     return _x1*alpha_n/mpmath.sqrt(4*_x1*beta2**2*g**2/omega2**2 + (mpmath.mpf(1)/mpmath.mpf(4))*(-3*_x0*g**(mpmath.mpf(1)/mpmath.mpf(3)) + 2*_x1)**2) + g**(mpmath.mpf(2)/mpmath.mpf(3))/_x0
 
 
-def _x2max_mdsm__kelvin_voigt(beta2, omega2, g, alpha_n, Omega_n):
+def _mdsm_fit_range__kelvin_voigt(beta2, omega2, g, alpha_n, Omega_n):
     _x0 = omega2**2
     _x1 = Omega_n**2
     return _x1*alpha_n/mpmath.sqrt(4*_x0*_x1*beta2**2 + (Omega_n - omega2)**2*(Omega_n + omega2)**2) + g/_x0
 
 
-_X2MAX_MDSM = {
-    ('hertz_damp',): _support.Variant(_x2max_mdsm__hertz_damp, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', )),
-    ('kelvin_voigt',): _support.Variant(_x2max_mdsm__kelvin_voigt, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', )),
+_MDSM_FIT_RANGE = {
+    ('hertz_damp',): _support.Variant(_mdsm_fit_range__hertz_damp, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', )),
+    ('kelvin_voigt',): _support.Variant(_mdsm_fit_range__kelvin_voigt, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', )),
 }
