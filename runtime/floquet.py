@@ -294,10 +294,7 @@ class _PeriodMap:
             ratio = self._rate_ratio(t, state, before, surface)
             if ratio is not None and ratio < GRAZING_RATIO and grazing is None:
                 grazing = {"t": float(t), "surface": surface, "ratio": float(ratio)}
-        end = run["segments"]
-        last = len(run["modes"]) - 1
-        xT = _state_at_end(end, self.T, last)
-        return xT, M, run, grazing
+        return run["final"][:2], M, run, grazing
 
     def _rate_ratio(self, t, state, before, surface):
         """``|dh/dt|`` at the switch over its scale (None where S = I regardless)."""
@@ -306,11 +303,6 @@ class _PeriodMap:
         rate = self.sw.rates(t, *state, float(before))[SURFACE_INDEX[surface]]
         scale = self.sw.scales(t, *state)[SURFACE_INDEX["stick_forward"]]
         return abs(rate) / scale if scale > 0 else 0.0
-
-
-def _state_at_end(segs, T, last):
-    y = segs(np.array([T]), np.array([last]))
-    return y[:2, 0]
 
 
 def _coupling_block(resp):
@@ -327,7 +319,7 @@ def _coupling_block(resp):
             normal = normal_motion(p, contact, tension, resp.period, _RTOL, _RTOL, xn)
             engine = Superposition(p, contact, tension, normal)
             run = engine.run(0.0, float(x_t[0]), float(x_t[1]), resp.period)
-            ends.append(_state_at_end(run["segments"], resp.period, len(run["modes"]) - 1))
+            ends.append(run["final"][:2])
         out[:, j] = (ends[0] - ends[1]) / (2 * h)
     return out
 
@@ -479,7 +471,7 @@ def _multipliers(resp):
 
 
 def floquet_band(param, lo, hi, params=None, *, contact="hertz_damp", tension="allowed",
-                 points=33, tol=1e-3, backend=None, **overrides):
+                 points=17, tol=1e-3, backend=None, **overrides):
     """Ranges of ``param`` in ``[lo, hi]`` where the periodic response is unstable.
 
     A grid of ``points`` values is walked from ``hi`` down to ``lo``, each periodic

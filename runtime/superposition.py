@@ -185,7 +185,7 @@ class Superposition:
         segs.freeze()
         return {"segments": segs, "modes": modes, "starts": starts, "ends": ends,
                 "events": events, "switches": switches, "status": status,
-                "message": message, "n_zeno": n_zeno}
+                "message": message, "n_zeno": n_zeno, "final": state}
 
 
 def integrate_superposed(p, contact, tension, settings, y0=None):
