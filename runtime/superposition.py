@@ -212,8 +212,10 @@ def integrate_superposed(p, contact, tension, settings, y0=None):
     for ts in normal.switch_t[1:-1]:
         near |= np.abs(normal.t_steps - ts) <= 4 * KNOT_STEP * GRID_STEP
     knots = np.union1d(normal.grid[::KNOT_STEP], normal.t_steps[near])
-    segments = [Segment(a, b, m, None, knots[(knots > a) & (knots < b)])
-                for a, b, m in zip(out["starts"], out["ends"], out["modes"])]
+    lo = np.searchsorted(knots, out["starts"], side="right")
+    hi = np.searchsorted(knots, out["ends"], side="left")
+    segments = [Segment(a, b, m, None, knots[i:j])
+                for a, b, m, i, j in zip(out["starts"], out["ends"], out["modes"], lo, hi)]
     trajectory = Trajectory(segments, p, contact, tension, out["segments"])
     trajectory.n_zeno = out["n_zeno"]
     return trajectory, out["events"], out["status"], out["message"]
