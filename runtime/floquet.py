@@ -72,6 +72,8 @@ NEWTON_TOL = 1e-11
 _RTOL = 1e-12
 #: Halvings of a Newton step before the method counts as stalled.
 _LINE_SEARCH = 12
+#: Periods the normal motion is followed before Newton's method polishes its orbit.
+_NORMAL_PERIODS = 200
 _MAX_DENOMINATOR = 64
 
 
@@ -186,16 +188,25 @@ def _normal_orbit_cached(key, contact, tension):
     p = dict(key, mu_s=0.0, Vb=0.0)
     T = excitation_period(p)
     from .model import initial_state
+    # The normal motion is overdamped: follow it from the equilibrium until it repeats
+    # itself to 1e-4 (a few periods; more where it loses contact), then Newton.
     x = initial_state(p, contact)[2:]
+    for _ in range(_NORMAL_PERIODS):
+        xT, M, switches = _normal_flow(p, contact, tension, x, T)
+        close = np.max(np.abs(xT - x)) <= 1e-4 * (1 + np.max(np.abs(x)))
+        x = xT
+        if close:
+            break
     for iteration in range(1, 31):
         xT, M, switches = _normal_flow(p, contact, tension, x, T)
         r = xT - x
         if np.max(np.abs(r)) <= NEWTON_TOL * (1 + np.max(np.abs(x))):
             break
-        x = x + np.linalg.solve(np.eye(2) - M, r)
+        x = x + np.linalg.lstsq(np.eye(2) - M, r, rcond=None)[0]
     else:
-        raise RuntimeError("the normal motion has no periodic orbit near the equilibrium "
-                           "(Newton's method did not converge in 30 iterations)")
+        raise RuntimeError("the normal motion has no periodic orbit: followed from the "
+                           f"equilibrium for {_NORMAL_PERIODS} periods and then by Newton's "
+                           "method it does not repeat itself (it loses contact irregularly)")
     xT, M, switches = _normal_flow(p, contact, tension, x, T)
     return NormalOrbit(x, T, M, np.linalg.eigvals(M), switches, iteration)
 
@@ -487,7 +498,9 @@ def floquet_band(param, lo, hi, params=None, *, contact="hertz_damp", tension="a
     Returns
     -------
     dict
-        ``unstable``: list of ``[lo, hi]``; ``edges``: list of dicts (``value``,
+        ``unstable``: list of ``[lo, hi]`` where no stable periodic response exists
+        (unstable, or none at all: the ``no_periodic_response`` ranges are included);
+        ``edges``: list of dicts (``value``,
         ``kind``, ``bracket``, ``unstable_above``); ``grazing_points``: the located
         grazing points; ``grid``: the walked values with ``max_abs_multiplier``,
         ``stable``, ``growth_rate``, ``n_reversals``, ``n_sticks``, ``grazing``;
@@ -566,12 +579,24 @@ def floquet_band(param, lo, hi, params=None, *, contact="hertz_damp", tension="a
             start = None
     if start is not None:
         unstable.append([start, rows[-1][0]])
+    unstable = _union(unstable + gaps)
     grid = [{"value": v, "max_abs_multiplier": f.max_abs_multiplier, "stable": f.stable,
              "growth_rate": f.growth_rate, "n_reversals": f.n_reversals,
              "n_sticks": f.n_sticks, "grazing": f.grazing is not None} for v, f in rows]
     return {"param": param, "unstable": unstable, "edges": edges,
             "grazing_points": grazing_points, "no_periodic_response": gaps, "grid": grid,
             "failed": failed, "tension": tension, "contact": contact}
+
+
+def _union(ranges):
+    """The union of closed ranges, as sorted disjoint ``[lo, hi]``."""
+    out = []
+    for lo, hi in sorted(ranges):
+        if out and lo <= out[-1][1]:
+            out[-1][1] = max(out[-1][1], hi)
+        else:
+            out.append([lo, hi])
+    return out
 
 
 def _structure(f):
