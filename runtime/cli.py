@@ -42,6 +42,7 @@ import numpy as np
 
 from generated.parameters import DOMAINS, PARAMETERS
 
+from .model import TENSIONS
 from .parameters import CONTACTS, METHODS
 from .simulate import DEFAULT_T_END
 
@@ -75,6 +76,9 @@ class ModelOption:
 MODEL_OPTIONS = (
     ModelOption("contact", ("simulate", "sweep", "predict"), CONTACTS, "hertz_damp",
                 "contact law: Hertz-Damp, Eq. (1), or the linear contact of Fig. 16"),
+    ModelOption("tension", ("simulate", "sweep", "predict", "validate"), TENSIONS, "allowed",
+                "tension law (docs/modelling.md#tension): Eq. (1) as printed, which can pull, "
+                "or a contact that cannot pull (max(F, 0): the surfaces separate)"),
 )
 
 
@@ -300,6 +304,7 @@ def _simulate(args):
         out.update(modulation_scatter(sim))
     out["params"] = sim.params
     out["contact"] = sim.contact
+    out["tension"] = sim.tension
     if args.save:
         np.savez(args.save, t=sim.t, X1=sim.y[0], Y1=sim.y[1], X2=sim.y[2], Y2=sim.y[3],
                  Fn=sim.normal_force, friction=sim.friction)
@@ -308,23 +313,31 @@ def _simulate(args):
         return 0 if sim.status == "done" else 2
     p = sim.params
     e = out["energy"]
+    fractions = out["time_fraction"]
+    if sim.tension == "clipped":
+        force = (f"normal force: min {out['min_normal_force']:.4g} m/s^2 (clipped: the contact "
+                 f"cannot pull; separated {100 * fractions.get('separated', 0.0):.1f}% of the "
+                 f"steady window, {out['n_separations']} separations)")
+    else:
+        force = (f"normal force: min {out['min_normal_force']:.4g} m/s^2, negative (tensile, "
+                 f"Eq. 1 as printed) {100 * out['tension_fraction']:.1f}% of the steady window")
     lines = [
-        f"Eq. (4), {sim.contact}, Vb = {p['Vb']:g} m/s, t = 0..{out['t_end']:g} s "
-        f"(steady window from {out['t_discard']:g} s), solver: {out['solver']}",
+        f"Eq. (4), {sim.contact}, tension {sim.tension}, Vb = {p['Vb']:g} m/s, "
+        f"t = 0..{out['t_end']:g} s (steady window from {out['t_discard']:g} s), "
+        f"solver: {out['solver']}",
         f"status: {sim.status} ({sim.message})",
-        f"regime: {out['regime']}  (time in slip-/slip+/stick/flight: "
-        + "/".join(f"{100 * v:.1f}%" for v in out["time_fraction"].values()) + ")",
+        f"regime: {out['regime']}  (time in " + "/".join(fractions) + ": "
+        + "/".join(f"{100 * v:.1f}%" for v in fractions.values()) + ")",
         f"switches: {out['n_switches']} (reversals {out['n_reversals']}, sticks {out['n_sticks']}, "
-        f"contact losses {out['n_contact_losses']})",
+        f"contact losses {out['n_contact_losses']}, separations {out['n_separations']}, "
+        f"Zeno limits {out['n_zeno']})",
         f"X1' spectrum: {out['peak_omega1']:.6g} m/s at {out['omega1_peak_at']:.6g} rad/s "
         f"(omega1 = {p['omega1']:g}), {out['peak_Omega']:.6g} m/s at Omega = {p['Omega_t']:g}; "
-        f"omega1 peak {'PRESENT' if out['omega1_peak_present'] else 'absent'} "
-        "(friction-induced vibration)",
+        f"omega1 peak {_peak_text(out)}",
         f"energy balance: residual {out['energy_residual']:.3g} (dE = {e['energy_change']:.6g}, "
         f"W_in = {e['work_input']:.6g}, W_visc = {e['work_viscous']:.6g}, "
         f"W_fric = {e['work_friction']:.6g})",
-        f"normal force: min {out['min_normal_force']:.4g} m/s^2, negative (tensile, Eq. 1 as "
-        f"printed) {100 * out['tension_fraction']:.1f}% of the steady window",
+        force,
         f"Vr range in the window: {out['vr_min']:.4g} .. {out['vr_max']:.4g} m/s; "
         f"mean friction {out['mean_friction']:.6g} m/s^2",
     ]
@@ -337,20 +350,36 @@ def _simulate(args):
     return 0 if sim.status == "done" else 2
 
 
+def _peak_text(out):
+    """The verdict on the omega1 peak: unresolved (and why), PRESENT or absent."""
+    if not out["resolved"]:
+        return f"unresolved ({out['unresolved_reason']})"
+    if out["omega1_peak_present"]:
+        return "PRESENT (friction-induced vibration)"
+    return "absent"
+
+
 # ---------------------------------------------------------------- sweep
 
 def validation_lines(table, param="Vb"):
     """The validation print-out: where the omega1 peak appears, beside the paper."""
     from .intervals import format_intervals
     from .simulate import PEAK_PRESENT_RATIO
-    from .sweep import omega1_peak_ranges
+    from .sweep import omega1_peak_ranges, resolved_mask, unresolved_values
     ranges = omega1_peak_ranges(table, param)
     found = format_intervals(ranges, "g", "nowhere")
     x = np.asarray(table[param], float)
-    return [f"omega1 peak (>= {100 * PEAK_PRESENT_RATIO:g}% of the Omega peak) present for "
-            f"{param} in {found} m/s of the swept {x.min():g}..{x.max():g} m/s "
-            f"({int(np.sum(table['omega1_peak_present']))} of {x.size} points)",
-            f"paper: {PAPER_STATEMENT}"]
+    resolved = resolved_mask(table)
+    present = np.asarray(table["omega1_peak_present"], bool) & resolved
+    lines = [f"omega1 peak (>= {100 * PEAK_PRESENT_RATIO:g}% of the Omega peak) present for "
+             f"{param} in {found} m/s of the swept {x.min():g}..{x.max():g} m/s "
+             f"({int(present.sum())} of {int(resolved.sum())} resolved points)"]
+    unresolved = unresolved_values(table, param)
+    if unresolved:
+        lines.append(f"unresolved (the run cannot tell; neither present nor absent) at {param} = "
+                     + ", ".join(f"{v:g}" for v in unresolved)
+                     + " m/s; lengthen --t-end")
+    return lines + [f"paper: {PAPER_STATEMENT}"]
 
 
 def _sweep_values(args):
@@ -370,22 +399,33 @@ def _sweep_values(args):
 def _sweep(args):
     from .sweep import sweep, table_to_csv
     values = _sweep_values(args)
-    with executor_from(args) as executor:
+    if args.continuation and (args.scheduler or (args.jobs or 1) > 1):
+        args.parser.error("argument --continue: a continued sweep runs its points one after "
+                          "another in this process (each starts from the previous point's "
+                          "state); drop --jobs/--scheduler")
+    with (contextlib.nullcontext("serial") if args.continuation else
+          executor_from(args)) as executor:
         table = sweep(args.param, values, _params(args, skip=(args.param,)),
                       **model_kwargs(args, "sweep"), settings=_settings(args),
                       executor=executor, cache_dir=_cache_dir(args),
-                      progress=not args.no_progress, modulation=args.modulation)
+                      progress=not args.no_progress, modulation=args.modulation,
+                      continuation=args.continuation)
     if args.out:
         table_to_csv(table, args.out)
     if args.json:
         print(json.dumps([_jsonable(dict(zip(table.dtype.names, r.tolist()))) for r in table]))
         return 0
-    names = [args.param, "regime", "peak_omega1", "peak_Omega", "energy_residual", "n_switches",
-             "wall_s"]
-    print("  ".join(f"{n:>22}" if n == "regime" else f"{n:>15}" for n in names))
+    names = [args.param, "regime", "peak_omega1", "peak_Omega", "resolved", "energy_residual",
+             "n_switches", "wall_s"]
+    text = {"regime": 22, "resolved": 8}
+    print("  ".join(f"{n:>{text.get(n, 15)}}" for n in names))
     for r in table:
-        print("  ".join(f"{r[n]:>22}" if n == "regime" else
+        print("  ".join(f"{str(r[n]):>{text[n]}}" if n in text else
                         (f"{r[n]:>15d}" if n == "n_switches" else f"{r[n]:>15.6g}") for n in names))
+    how = (f"continued {args.continuation} from rest at {args.param} = "
+           f"{(table[args.param].min() if args.continuation == 'up' else table[args.param].max()):g}"
+           if args.continuation else "each point from rest")
+    print(f"tension {args.tension}; {how}")
     if args.param == "Vb":
         print("\n".join(validation_lines(table)))
     if args.out:
@@ -429,8 +469,10 @@ def _validate(args):
     for key, lab, _ in validation.ANALYSES:
         s = results["summary"][key]
         mae = "—" if s["mae"] is None else f"{s['mae']:.2f} m/s"
+        na = f", no prediction {s['no_prediction']}" if s.get("no_prediction") else ""
         print(f"{lab:>4}: MAE of edges {mae} (n = {s['n_edges']}), miss {s['miss']}, "
-              f"false alarm {s['false_alarm']}")
+              f"false alarm {s['false_alarm']}{na}")
+    print(f"tension law: {results['tension']}")
     print(f"wrote {args.out}")
     return 0
 
@@ -479,6 +521,12 @@ def add_commands(commands):
     grid.add_argument("--step", type=_POSITIVE, metavar="H", help="> 0")
     grid.add_argument("--values", type=_number(), nargs="+", metavar="X",
                       help="explicit values instead")
+    swp.add_argument("--continue", dest="continuation", choices=("up", "down"), default=None,
+                     help="follow an attractor: run the points in ascending (up) or "
+                          "descending (down) order, each from the previous point's state "
+                          "at its last whole excitation period (excitation phase 0), the "
+                          "first from rest; sequential, in this process (no --jobs N > 1 "
+                          "or --scheduler)")
     swp.add_argument("--modulation", action="store_true",
                      help="add friction modulation columns (Figs. 10-12)")
     swp.add_argument("--out", metavar="CSV", type=_output_file, help="write the table as CSV")

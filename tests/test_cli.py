@@ -199,17 +199,34 @@ def test_every_runtime_command_takes_the_model_flags_it_should():
 
 
 def test_a_new_model_option_is_one_line(monkeypatch):
-    option = runtime_cli.ModelOption("tension", ("simulate", "validate"), ("allowed", "clipped"),
-                                     "allowed", "tensile normal force")
+    # a hypothetical option (tension is a real one now)
+    option = runtime_cli.ModelOption("friction_law", ("simulate", "validate"),
+                                     ("coulomb", "stribeck"), "coulomb", "friction law",
+                                     flag="--friction-law")
     monkeypatch.setattr(runtime_cli, "MODEL_OPTIONS", runtime_cli.MODEL_OPTIONS + (option,))
     parser = derive_cli.build_parser()
-    args = parser.parse_args(["simulate", "--tension", "clipped"])
+    args = parser.parse_args(["simulate", "--friction-law", "stribeck"])
     assert runtime_cli.model_kwargs(args, "simulate") == {"contact": "hertz_damp",
-                                                          "tension": "clipped"}
+                                                          "tension": "allowed",
+                                                          "friction_law": "stribeck"}
     args = parser.parse_args(["validate"])
-    assert runtime_cli.model_kwargs(args, "validate") == {"tension": "allowed"}
-    with pytest.raises(derive_cli.UsageError, match="--tension"):
-        parser.parse_args(["predict", "--tension", "clipped"])
+    assert runtime_cli.model_kwargs(args, "validate") == {"tension": "allowed",
+                                                          "friction_law": "coulomb"}
+    with pytest.raises(derive_cli.UsageError, match="--friction-law"):
+        parser.parse_args(["predict", "--friction-law", "stribeck"])
+
+
+def test_tension_is_a_flag_of_every_runtime_command():
+    parser = derive_cli.build_parser()
+    for command in ("simulate", "sweep", "predict", "validate"):
+        args = parser.parse_args([command, "--tension", "clipped"]
+                                 + (["--param", "Vb"] if command == "sweep" else []))
+        assert runtime_cli.model_kwargs(args, command)["tension"] == "clipped"
+        assert runtime_cli.model_kwargs(parser.parse_args(
+            [command] + (["--param", "Vb"] if command == "sweep" else [])),
+            command)["tension"] == "allowed"
+        with pytest.raises(derive_cli.UsageError, match="--tension"):
+            parser.parse_args([command, "--tension", "pulling"])
 
 
 # ---------------------------------------------------------------- the executor factory
