@@ -5,10 +5,16 @@ by default a process pool over the local cores; any object with the
 ``concurrent.futures.Executor`` interface works, e.g. ``dask.distributed``'s
 ``Client(...).get_executor()`` for a cluster. Each point's summary is cached on
 disk as a small JSON file named by its `cache_key`, a SHA-256 of the full parameter
-set, the contact law, the solver settings, the cache format, the package version
-and the code that computes it (`code_hash`), so rerunning a figure recomputes
-nothing and a change of the integrator never serves a stale result. The result is
-a numpy structured array (`table_to_csv` writes CSV); no pickles are stored.
+set, the contact and tension laws, the solver settings, the start state of a
+continued point, the cache format, the package version and the code that computes
+it (`code_hash`), so rerunning a figure recomputes nothing and a change of the
+integrator never serves a stale result. The result is a numpy structured array
+(`table_to_csv` writes CSV); no pickles are stored.
+
+A sweep with ``continuation="up"`` or ``"down"`` follows an attractor: the points run
+one after another in ascending (descending) order of the swept value, each from the
+previous point's state at its last whole excitation period (`excitation_period`),
+the first from rest. Such a sweep is sequential by nature and runs in this process.
 
 The cache is safe to share between processes and hosts (dask workers on several
 machines): a file is written under a unique temporary name and renamed into place,
@@ -42,15 +48,26 @@ from .simulate import SolverSettings, simulate
 __all__ = ["sweep", "run_point", "cache_key", "default_cache_dir", "table_to_csv",
            "table_from_csv", "COLUMNS", "omega1_peak_ranges", "MAX_POINTS", "SWEEPABLE",
            "linear_values", "code_files", "code_hash", "package_version", "read_cached",
-           "CacheWarning"]
+           "CacheWarning", "excitation_period", "CONTINUATIONS", "resolved_mask",
+           "unresolved_values"]
 
-CACHE_FORMAT = "runtime-sweep-2"
+CACHE_FORMAT = "runtime-sweep-3"
+#: The table's columns after the swept parameter. ``omega1_peak_present`` is False
+#: where ``resolved`` is False (the run could not tell, `runtime.simulate.summarize`):
+#: read it together with ``resolved``, never alone as "no peak".
 COLUMNS = (("regime", "U24"), ("peak_omega1", "f8"), ("omega1_peak_at", "f8"),
-           ("peak_Omega", "f8"), ("omega1_peak_present", "?"), ("energy_residual", "f8"),
+           ("peak_Omega", "f8"), ("omega1_peak_present", "?"), ("resolved", "?"),
+           ("energy_residual", "f8"),
            ("n_switches", "i8"), ("n_reversals", "i8"), ("n_sticks", "i8"),
            ("n_contact_losses", "i8"), ("min_normal_force", "f8"), ("tension_fraction", "f8"),
-           ("mean_friction", "f8"), ("vr_min", "f8"), ("vr_max", "f8"), ("solver", "U16"),
-           ("status", "U16"), ("wall_s", "f8"))
+           ("mean_friction", "f8"), ("vr_min", "f8"), ("vr_max", "f8"), ("tension", "U8"),
+           ("solver", "U16"), ("status", "U16"), ("wall_s", "f8"))
+#: Directions of a continued sweep (`sweep`'s ``continuation``).
+CONTINUATIONS = ("up", "down")
+#: Largest denominator tried when writing Omega_t / Omega_n as a fraction
+#: (`excitation_period`): a common period of more than 1000 periods of the faster
+#: excitation is longer than any run of the paper.
+_MAX_DENOMINATOR = 1000
 MODULATION_COLUMNS = tuple((f"mu_eff_{tag}_{stat}", "f8") for tag in ("Omega", "omega1")
                            for stat in ("mean", "std", "range"))
 #: Most points of one sweep. A sweep of 10^6 runs of a second each is eleven days on
@@ -143,27 +160,114 @@ def package_version():
         return tomllib.load(fh)["project"]["version"]
 
 
-def cache_key(params, contact, settings, modulation=False):
+def excitation_period(p):
+    """The common period ``T`` [s] of the excitation of Eq. (4): ``2 pi / gcd``.
+
+    The tangential force ``alpha_t Omega_t^2 sin(Omega_t t + phase_t)`` and the normal
+    one (``_n``) repeat together after ``T = 2 pi a / Omega_t = 2 pi b / Omega_n``
+    where ``Omega_t / Omega_n = a / b`` in lowest terms. A direction whose force is
+    zero (``alpha = 0`` or ``Omega = 0``) is absent and does not enter.
+
+    Parameters
+    ----------
+    p : dict
+        complete parameters (`runtime.parameters.resolve_parameters`)
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ValueError
+        Without excitation (no force in either direction: no phase to take), or for
+        frequencies ``Omega_t``, ``Omega_n`` whose ratio is not a fraction with a
+        denominator up to 1000 within 1e-12 (incommensurate: no common period).
+
+    Examples
+    --------
+    >>> round(excitation_period({"alpha_t": 2, "Omega_t": 6, "alpha_n": 2, "Omega_n": 4}), 12)
+    3.141592653590
+    """
+    from fractions import Fraction
+    active = [p[f"Omega_{d}"] for d in ("t", "n")
+              if p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0]
+    if not active:
+        raise ValueError("no excitation (alpha_t Omega_t = alpha_n Omega_n = 0): there is no "
+                         "excitation period to take the phase from; continuation needs "
+                         "Omega > 0 and alpha > 0")
+    if len(active) == 1 or active[0] == active[1]:
+        return 2 * math.pi / active[0]
+    w_t, w_n = active
+    ratio = Fraction(w_t / w_n).limit_denominator(_MAX_DENOMINATOR)
+    # rounding of the given frequencies only: their ratio must be the fraction
+    if abs(ratio.numerator / ratio.denominator - w_t / w_n) > 1e-12 * (w_t / w_n):
+        raise ValueError(f"Omega_t = {w_t!r} and Omega_n = {w_n!r} are incommensurate (their "
+                         f"ratio is no fraction a/b with b <= {_MAX_DENOMINATOR}): the "
+                         "excitation has no common period")
+    return 2 * math.pi * ratio.numerator / w_t
+
+
+def _identity(params, contact, tension, settings, modulation, continuation=None, y0=None):
+    """What a point's result depends on, besides the code: keys and checks the cache.
+
+    A continued point (``continuation`` "up" or "down") is another run than the
+    point from rest: its direction and its start state ``y0`` (None: from rest)
+    belong to it.
+    """
+    ident = {"params": params, "contact": contact, "tension": tension,
+             "settings": asdict(settings), "modulation": bool(modulation)}
+    if continuation is not None:
+        ident["continuation"] = continuation
+        ident["y0"] = None if y0 is None else [float(x) for x in y0]
+    return ident
+
+
+def cache_key(params, contact, settings, modulation=False, *, tension="allowed",
+              continuation=None, y0=None):
     """SHA-256 of everything a point's result depends on.
 
-    The parameters, the contact law, the solver settings, whether the modulation
-    columns are wanted, the cache format, the package version (`package_version`)
-    and the code (`code_hash`).
+    The parameters, the contact and tension laws, the solver settings, whether the
+    modulation columns are wanted, for a continued point its direction and start
+    state, the cache format, the package version (`package_version`) and the code
+    (`code_hash`).
     """
-    blob = json.dumps({"format": CACHE_FORMAT, "params": params, "contact": contact,
-                       "settings": asdict(settings), "modulation": bool(modulation),
+    blob = json.dumps({"format": CACHE_FORMAT,
+                       **_identity(params, contact, tension, settings, modulation,
+                                   continuation, y0),
                        "version": package_version(), "code": code_hash()},
                       sort_keys=True)
     return hashlib.sha256(blob.encode()).hexdigest()
 
 
-def run_point(params, contact, settings, modulation=False):
-    """One sweep point: the summary row (a plain dict of numbers and strings)."""
-    sim = simulate(params, contact=contact, settings=settings)
+def run_point(params, contact, settings, modulation=False, *, tension="allowed", y0=None,
+              restart_period=None):
+    """One sweep point: the summary row (a plain dict of numbers and strings).
+
+    Parameters
+    ----------
+    tension : {"allowed", "clipped"}
+    y0 : sequence of 4 floats, optional
+        start state (default: from rest, `runtime.parameters.initial_state`)
+    restart_period : float, optional
+        the excitation period ``T`` (`excitation_period`); the row then also holds
+        ``restart_t``, the last multiple of ``T`` within the run, and
+        ``restart_state``, the state there (where a continued sweep starts its next
+        point; not table columns).
+    """
+    sim = simulate(params, contact=contact, tension=tension, settings=settings, y0=y0)
     row = {name: sim.summary[name] for name, _ in COLUMNS}
+    # None (unresolved) is stored as False beside resolved = False: a bool column
+    row["omega1_peak_present"] = bool(row["resolved"] and row["omega1_peak_present"])
     if modulation:
         from .modulation import modulation_scatter
         row.update(modulation_scatter(sim))
+    if restart_period is not None:
+        t_end = sim.trajectory.t_end
+        # the last whole period; 1e-9 forgives the rounding of t_end / T at a multiple
+        t_k = min(math.floor(t_end / restart_period + 1e-9) * restart_period, t_end)
+        row["restart_t"] = float(t_k)
+        row["restart_state"] = [float(x) for x in sim.trajectory.state(np.array([t_k]))[:, 0]]
     return row
 
 
@@ -175,7 +279,8 @@ def _columns(modulation):
     return [name for name, _ in COLUMNS + (MODULATION_COLUMNS if modulation else ())]
 
 
-def read_cached(path, params, contact, settings, modulation=False):
+def read_cached(path, params, contact, settings, modulation=False, *, tension="allowed",
+                continuation=None, y0=None):
     """The row stored at ``path`` for this point, after checking the file.
 
     Returns
@@ -195,20 +300,22 @@ def read_cached(path, params, contact, settings, modulation=False):
         data = json.loads(text)
     except ValueError as err:
         return None, f"not valid JSON ({err})"
-    missing = [k for k in ("key", "params", "contact", "settings", "modulation", "row",
-                           "checksum") if not isinstance(data, dict) or k not in data]
+    ident = _identity(params, contact, tension, settings, modulation, continuation, y0)
+    missing = [k for k in ("key", *ident, "row", "checksum")
+               if not isinstance(data, dict) or k not in data]
     if missing:
         return None, f"missing {', '.join(missing)}"
     key = path.stem
     if data["key"] != key:
         return None, f"holds the key {str(data['key'])[:12]}..., not its name's"
-    stored = (data["params"], data["contact"], data["settings"], data["modulation"])
-    if stored != (params, contact, asdict(settings), bool(modulation)):
+    stored = {k: v for k, v in data.items() if k not in ("key", "row", "checksum")}
+    if stored != ident:
         return None, "holds another point's parameters or settings"
     row = data["row"]
     if not isinstance(row, dict) or data["checksum"] != _checksum(row):
         return None, "its row does not match its checksum"
-    absent = [name for name in _columns(modulation) if name not in row]
+    needed = _columns(modulation) + (["restart_t", "restart_state"] if continuation else [])
+    absent = [name for name in needed if name not in row]
     if absent:
         return None, f"its row lacks {', '.join(absent)}"
     return row, None
@@ -233,30 +340,38 @@ def _write_atomically(path, text):
             tmp.unlink()
 
 
-def _cached_run(params, contact, settings, modulation, cache_dir):
+def _cached_run(params, contact, settings, modulation, cache_dir, tension="allowed",
+                continuation=None, y0=None, period=None):
     """One point through the cache: ``(row, cached, problem)``.
 
     ``problem`` says what was wrong with a cache file that was recomputed (the
     caller reports it: a warning in a worker process would be lost).
+    ``continuation``, ``y0`` and ``period``: a point of a continued sweep, started
+    at ``y0`` (None: from rest), its row with the state after its last whole
+    excitation period ``period``.
     """
     problem = None
+    extra = dict(tension=tension, continuation=continuation, y0=y0)
     if cache_dir is not None:
-        key = cache_key(params, contact, settings, modulation)
+        key = cache_key(params, contact, settings, modulation, **extra)
         path = Path(cache_dir) / f"{key}.json"
-        row, problem = read_cached(path, params, contact, settings, modulation)
+        row, problem = read_cached(path, params, contact, settings, modulation, **extra)
         if row is not None:
             return row, True, None
-    row = run_point(params, contact, settings, modulation)
+    row = run_point(params, contact, settings, modulation, tension=tension, y0=y0,
+                    restart_period=period)
     if cache_dir is not None:
         path.parent.mkdir(parents=True, exist_ok=True)
         _write_atomically(path, json.dumps({
-            "key": key, "params": params, "contact": contact, "settings": asdict(settings),
-            "modulation": bool(modulation), "row": row, "checksum": _checksum(row)}))
+            "key": key, **_identity(params, contact, tension, settings, modulation, **{
+                k: extra[k] for k in ("continuation", "y0")}),
+            "row": row, "checksum": _checksum(row)}))
     return row, False, None if problem is None else (str(path), problem)
 
 
-def sweep(param, values, params=None, *, contact="hertz_damp", settings=None, executor=None,
-          cache_dir="default", progress=True, modulation=False):
+def sweep(param, values, params=None, *, contact="hertz_damp", tension="allowed", settings=None,
+          executor=None, cache_dir="default", progress=True, modulation=False,
+          continuation=None):
     """Run `simulate` for each value of one parameter.
 
     Parameters
@@ -267,6 +382,9 @@ def sweep(param, values, params=None, *, contact="hertz_damp", settings=None, ex
         at most `MAX_POINTS` finite values (`linear_values` makes a range)
     params : dict, optional
         the other parameters (default: the base set)
+    contact : {"hertz_damp", "kelvin_voigt"}
+    tension : {"allowed", "clipped"}
+        the tension law of every run (docs/modelling.md#tension)
     settings : SolverSettings, optional
     executor : concurrent.futures.Executor, "serial" or None
         None: a process pool over the local cores (closed afterwards); "serial":
@@ -278,16 +396,30 @@ def sweep(param, values, params=None, *, contact="hertz_damp", settings=None, ex
         show a tqdm progress bar on stderr
     modulation : bool
         add the friction modulation columns (`runtime.modulation.modulation_scatter`)
+    continuation : {None, "up", "down"}
+        None: every point from rest (the unforced equilibrium), independently.
+        "up"/"down": follow an attractor. The points run in ascending ("up") or
+        descending ("down") order of the value; the first starts from rest, each
+        next one from the previous run's state at its last time ``k T <= t_end``
+        (``T``: `excitation_period` of the previous point, so the excitation phase
+        is 0 there as at the start of a run). Each point needs its predecessor's end,
+        so the runs are sequential, in this process: ``executor`` must be None or
+        "serial". Needs a periodic excitation (`excitation_period`) with
+        ``T <= t_end``.
 
     Returns
     -------
-    table : numpy structured array, one row per value, with the swept parameter first
+    table : numpy structured array, one row per value, with the swept parameter first;
+        in the order of ``values``, or ascending for a continued sweep (whatever its
+        direction).
 
     Raises
     ------
     ValueError
         Naming what is wrong, before any run: an unknown ``param``, empty or too
-        many ``values``, a bad parameter value, a bad executor.
+        many ``values``, a bad parameter value, a bad executor or tension law, a bad
+        ``continuation`` or one that cannot be done (an executor given, no periodic
+        excitation, a period longer than ``t_end``).
 
     Warns
     -----
@@ -295,10 +427,13 @@ def sweep(param, values, params=None, *, contact="hertz_damp", settings=None, ex
         For each cache file that failed its checks (`read_cached`), naming the file;
         the point is recomputed and the file rewritten.
     """
-    from tqdm import tqdm
+    from .model import TENSIONS
 
     if param not in SWEEPABLE:
         raise ValueError(f"cannot sweep {param!r}: param must be one of {', '.join(SWEEPABLE)}")
+    if tension not in TENSIONS:
+        raise ValueError(f"tension must be one of {', '.join(map(repr, TENSIONS))}; "
+                         f"got {tension!r}")
     values = np.atleast_1d(np.asarray(values, dtype=float))
     if values.ndim != 1 or values.size == 0:
         raise ValueError("values must be a non-empty 1-D sequence")
@@ -309,34 +444,91 @@ def sweep(param, values, params=None, *, contact="hertz_damp", settings=None, ex
                                                                          None))):
         raise ValueError(f"executor must be None, 'serial' or a concurrent.futures.Executor; "
                          f"got {executor!r}")
+    if continuation is not None:
+        if continuation not in CONTINUATIONS:
+            raise ValueError(f"continuation must be None, 'up' or 'down'; got {continuation!r}")
+        if not (executor is None or executor == "serial"):
+            raise ValueError("continuation runs the points one after another (each starts "
+                             "from the previous point's state), in this process: executor "
+                             f"must be None or 'serial'; got {executor!r}")
     settings = settings or SolverSettings()
     points = [resolve_parameters(params, contact=contact, **{param: v}) for v in values]
     cache_dir = default_cache_dir() if cache_dir == "default" else cache_dir
     rows = [None] * len(points)
+    columns = ((param, "f8"),) + COLUMNS + (MODULATION_COLUMNS if modulation else ())
+    if continuation is not None:
+        periods = [_continuation_period(p, settings, param) for p in points]
+        order = np.argsort(values, kind="stable")
+        if continuation == "down":
+            order = order[::-1]
+        results = _continued(points, periods, order, contact, tension, settings, modulation,
+                             cache_dir, continuation)
+        rows = _collect(results, rows, len(points), f"sweep {param} ({continuation})",
+                        progress)
+        order = np.argsort(values, kind="stable")
+        return _table(columns, param, values[order], [rows[i] for i in order])
     own = executor is None
     if own:
         executor = cf.ProcessPoolExecutor(max_workers=os.cpu_count())
-    bar = tqdm(total=len(points), desc=f"sweep {param}", disable=not progress, file=sys.stderr)
     try:
         if executor == "serial":
-            results = ((i, _cached_run(p, contact, settings, modulation, cache_dir))
+            results = ((i, _cached_run(p, contact, settings, modulation, cache_dir, tension))
                        for i, p in enumerate(points))
         else:
-            futures = {executor.submit(_cached_run, p, contact, settings, modulation, cache_dir): i
+            futures = {executor.submit(_cached_run, p, contact, settings, modulation, cache_dir,
+                                       tension): i
                        for i, p in enumerate(points)}
             results = ((futures[fut], fut.result()) for fut in cf.as_completed(futures))
+        rows = _collect(results, rows, len(points), f"sweep {param}", progress)
+    finally:
+        if own:
+            executor.shutdown()
+    return _table(columns, param, values, rows)
+
+
+def _continuation_period(p, settings, param):
+    """`excitation_period` of a point of a continued sweep, checked against ``t_end``."""
+    try:
+        period = excitation_period(p)
+    except ValueError as err:
+        raise ValueError(f"continuation at {param} = {p[param]:g}: {err}") from None
+    if period > settings.t_end:
+        raise ValueError(f"continuation at {param} = {p[param]:g}: the excitation period "
+                         f"{period:.6g} s is longer than t_end = {settings.t_end:g} s, so a "
+                         "run holds no whole period to continue from")
+    return period
+
+
+def _continued(points, periods, order, contact, tension, settings, modulation, cache_dir,
+               continuation):
+    """The runs of a continued sweep in ``order``: yields ``(index, result)``."""
+    y0 = None
+    for i in order:
+        result = _cached_run(points[i], contact, settings, modulation, cache_dir, tension,
+                             continuation, y0, periods[i])
+        yield i, result
+        y0 = result[0]["restart_state"]
+
+
+def _collect(results, rows, n, desc, progress):
+    """Put ``(index, (row, cached, problem))`` results into ``rows``, with a progress bar."""
+    from tqdm import tqdm
+    bar = tqdm(total=n, desc=desc, disable=not progress, file=sys.stderr)
+    try:
         for i, (row, _, problem) in results:
             rows[i] = row
             if problem is not None:
+                # stacklevel 3: the caller of sweep (sweep -> _collect -> warn)
                 warnings.warn(f"sweep cache file {problem[0]}: {problem[1]}; recomputed and "
-                              "rewritten", CacheWarning, stacklevel=2)
+                              "rewritten", CacheWarning, stacklevel=3)
             bar.update()
     finally:
         bar.close()
-        if own:
-            executor.shutdown()
-    columns = ((param, "f8"),) + COLUMNS + (MODULATION_COLUMNS if modulation else ())
-    table = np.zeros(len(points), dtype=list(columns))
+    return rows
+
+
+def _table(columns, param, values, rows):
+    table = np.zeros(len(rows), dtype=list(columns))
     for i, (v, row) in enumerate(zip(values, rows)):
         table[i][param] = v
         for name, _ in columns[1:]:
@@ -358,9 +550,26 @@ def table_from_csv(path):
     return np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")
 
 
+def resolved_mask(table):
+    """The ``resolved`` column of a sweep table; all True for a table without one."""
+    if "resolved" in (table.dtype.names or ()):
+        return np.asarray(table["resolved"], dtype=bool)
+    return np.ones(len(table), dtype=bool)
+
+
 def omega1_peak_ranges(table, param="Vb"):
     """Contiguous ranges of ``param`` where the omega1 peak is present: [(lo, hi), ...].
 
-    `runtime.intervals.runs` of the table's ``omega1_peak_present`` column.
+    `runtime.intervals.runs` of ``omega1_peak_present`` at resolved points. An
+    unresolved point (``resolved`` False: the run could not tell) is treated like
+    an excluded point of the validation: it is not a point with the peak, so it
+    ends a range, and it is not a point without it either; `unresolved_values`
+    lists them, so that a reader never takes the gap for "no peak".
     """
-    return intervals.runs(table[param], table["omega1_peak_present"])
+    present = np.asarray(table["omega1_peak_present"], dtype=bool) & resolved_mask(table)
+    return intervals.runs(table[param], present)
+
+
+def unresolved_values(table, param="Vb"):
+    """Values of ``param`` whose run could not tell the omega1 peak (ascending)."""
+    return sorted(float(v) for v in np.asarray(table[param])[~resolved_mask(table)])
