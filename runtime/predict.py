@@ -22,6 +22,13 @@ For a belt speed ``Vb`` it
 
 Only one excitation frequency is covered (``Omega_t == Omega_n``): with two frequencies
 a single harmonic balance does not apply and `consistent_mdsm_damping` raises.
+
+The tension law (`predict`'s ``tension=``, docs/modelling.md#tension): the paper's
+analyses linearise at the equilibrium, where the contact force is ``g > 0``, so
+their closed forms are the same under both laws. The consistent MDSM takes a
+harmonic fast normal force ``g + N1 sin``; with ``tension="clipped"`` and
+``N1 >= g`` the clip ``max(F, 0)`` cuts it off and it is no longer harmonic, so that
+analysis gives no prediction (`CLIPPED_MDSM`) rather than the allowed law's.
 """
 from __future__ import annotations
 
@@ -37,7 +44,8 @@ from . import intervals
 from .parameters import resolve_parameters
 
 __all__ = ["FastMotion", "fast_motion", "consistent_mdsm_damping", "unstable_intervals",
-           "paper_intervals", "predict", "main", "NO_EXCITATION", "NO_VHAT"]
+           "paper_intervals", "predict", "main", "NO_EXCITATION", "NO_VHAT", "CLIPPED_MDSM",
+           "CLIPPED_PAPER", "clip_acts"]
 
 
 @dataclass(frozen=True)
@@ -274,10 +282,50 @@ NO_EXCITATION = ("no fast tangential motion: without tangential excitation, and 
                  "on by friction from the normal one, the averaged friction is Coulomb "
                  "friction with slope 0, so no belt speed is unstable")
 NO_VHAT = "V_hat = 0 (no fast tangential motion): Eqs. (23)-(25) need V_hat > 0"
+#: Why the consistent MDSM gives no prediction under the clipped tension law
+#: (formatted with the amplitude ``N1`` of the fast normal force and ``g``).
+CLIPPED_MDSM = ("tension='clipped': the harmonic balance of the consistent MDSM assumes a "
+                "harmonic fast normal force g + N1 sin(Omega t + psi), and with N1 = {N1:.4g} "
+                ">= g = {g:.4g} the clip max(F, 0) cuts it off wherever it would pull, which "
+                "makes it non-harmonic; no prediction (the allowed law's would be silently "
+                "wrong)")
+#: The note on the consistent MDSM where the clip does not act on its fast normal force.
+CLIPPED_MDSM_INACTIVE = ("tension='clipped': the linear fast normal force g + N1 sin stays "
+                         "positive (N1 = {N1:.4g} < g = {g:.4g}), so the clip does not act on "
+                         "it and the harmonic balance is the same as under 'allowed'")
+#: The note on the paper's closed forms under the clipped tension law.
+CLIPPED_PAPER = ("tension='clipped': the same as under 'allowed', since the analysis "
+                 "linearises at the equilibrium, where the contact force g > 0 does not pull")
 
 
-def predict(params=None, *, contact="hertz_damp", vb=None, points=400, **overrides) -> dict:
+class _Refused(Exception):
+    """An analysis that gives no prediction, with the reason."""
+
+
+def clip_acts(p, contact="hertz_damp"):
+    """``(acts, N1)``: whether the clip cuts the linear fast normal force ``g + N1 sin``.
+
+    True when ``N1 >= g`` (the force would reach zero within a fast cycle), with
+    ``N1`` from `generated.correlation.fast_normal_force`.
+    """
+    N1 = float(correlation.fast_normal_force(contact=contact, **p)[0])
+    return N1 >= p["g"], N1
+
+
+def predict(params=None, *, contact="hertz_damp", tension="allowed", vb=None, points=400,
+            **overrides) -> dict:
     """Both analyses' predicted unstable ``Vb`` intervals, as plain data.
+
+    Parameters
+    ----------
+    contact : {"hertz_damp", "kelvin_voigt"}
+    tension : {"allowed", "clipped"}
+        The tension law (docs/modelling.md#tension). The paper's closed forms do not
+        change with it (a note in ``reasons`` says why); the consistent MDSM under
+        ``"clipped"`` has no prediction where the clip cuts its fast normal force
+        (`clip_acts`, `CLIPPED_MDSM`) and a note where it does not.
+    vb, points
+        the ``Vb`` grid of the consistent MDSM (`unstable_intervals`)
 
     Returns
     -------
@@ -285,20 +333,34 @@ def predict(params=None, *, contact="hertz_damp", vb=None, points=400, **overrid
         ``paper_tangential_vhat``, ``paper_coupled_vhat``, ``consistent_mdsm``: lists
         of ``(lower, upper)``, or ``None`` where the analysis has no answer; then,
         and where a list is empty for a reason the analysis knows (no excitation),
-        ``reasons`` maps the analysis to a sentence saying why (absent otherwise).
+        and for every analysis under ``tension="clipped"``, ``reasons`` maps the
+        analysis to a sentence saying why (absent otherwise); ``tension``: the law.
 
     Raises
     ------
     ValueError
-        For bad parameters or a bad grid (naming them).
+        For bad parameters, a bad tension law or a bad grid (naming them).
     """
+    from .model import TENSIONS
+    if tension not in TENSIONS:
+        raise ValueError(f"tension must be one of {', '.join(map(repr, TENSIONS))}; "
+                         f"got {tension!r}")
     p = resolve_parameters(params, contact=contact, **overrides)
     _check_points(points)
     if vb is not None:
         vb = _check_grid(vb)
     reasons = {}
+    clipped = False
+    if tension == "clipped" and p["Omega_t"] == p["Omega_n"]:
+        # (with two frequencies the harmonic balance is refused for that reason below)
+        clipped, N1 = clip_acts(p, contact)
+        note = (CLIPPED_MDSM if clipped else CLIPPED_MDSM_INACTIVE).format(N1=N1, g=p["g"])
     try:
+        if clipped:
+            raise _Refused(note)
         consistent, _ = unstable_intervals(p, contact=contact, vb=vb, points=points)
+    except _Refused as err:
+        consistent, reasons["consistent_mdsm"] = None, str(err)
     except RuntimeError as err:
         consistent, reasons["consistent_mdsm"] = None, str(err)
     except ValueError as err:
@@ -309,6 +371,9 @@ def predict(params=None, *, contact="hertz_damp", vb=None, points=400, **overrid
         linear = float(correlation.fast_tangential_velocity(contact=contact, **p)[0])
         if linear == 0:
             reasons["consistent_mdsm"] = NO_EXCITATION
+        if tension == "clipped":
+            reasons["consistent_mdsm"] = "; ".join(
+                r for r in (reasons.get("consistent_mdsm"), note) if r)
     paper = paper_intervals(p, contact=contact)
     out = {"paper_tangential_vhat": paper["tangential"],
            "paper_coupled_vhat": paper["coupled"],
@@ -316,9 +381,13 @@ def predict(params=None, *, contact="hertz_damp", vb=None, points=400, **overrid
     for key, model in (("paper_tangential_vhat", "tangential"), ("paper_coupled_vhat", "coupled")):
         if paper[model] is None:
             reasons[key] = NO_VHAT
+        elif tension == "clipped":
+            reasons[key] = CLIPPED_PAPER
     if reasons:
         out["reasons"] = reasons
+    out["tension"] = tension
     return out
+
 
 
 def main(argv=None) -> int:
