@@ -9,12 +9,19 @@ case of Figs. 17-21:
 * the simulated range: the belt speeds ``Vb`` of a sweep (`runtime.sweep.sweep`)
   where the omega1 peak is present (`runtime.simulate.PEAK_PRESENT_RATIO`, fixed
   before any sweep) and the mass slides (stick-slip and contact loss are marked
-  and left out, as the paper leaves stick-slip out of Figs. 19b, c);
+  and left out, as the paper leaves stick-slip out of Figs. 19b, c; so are the
+  runs that cannot tell the peak, ``resolved`` False, which are never "no peak");
 * the predicted ranges: the paper's analysis (Eqs. 22-28, closed form in
   `generated.stability.unstable_interval`) for each ``V_hat`` reading and each sign
   convention, and the consistent MDSM (`runtime.predict.unstable_intervals`);
 * the differences of the edges, their mean absolute error per analysis and the
   length of the belt-speed set where prediction and simulation disagree.
+
+The simulations use one tension law (``tension=``, docs/modelling.md#tension), named
+in the file. The paper's closed forms linearise at the equilibrium and are the same
+under both; under ``"clipped"`` the consistent MDSM has no prediction where the clip
+cuts its harmonic fast normal force (`runtime.predict.CLIPPED_MDSM`), and its column
+says so instead of counting as "predicts nothing".
 
 `render_markdown` writes ``VALIDATION.md``; ``python -m derive validate`` runs it.
 The edge rules are stated in `DEFINITIONS` (and in the file): they were fixed
@@ -35,11 +42,11 @@ from generated import stability
 
 from . import intervals
 from .parameters import resolve_parameters
-from .predict import unstable_intervals
+from .predict import CLIPPED_MDSM, clip_acts, unstable_intervals
 from .simulate import PEAK_PRESENT_RATIO, SolverSettings, omega1_band
 from .sweep import MAX_POINTS, sweep
 
-__all__ = ["Case", "CASES", "ANALYSES", "Resolution", "FULL", "QUICK", "SLIDING",
+__all__ = ["Case", "CASES", "ANALYSES", "Resolution", "FULL", "QUICK", "SLIDING", "UNRESOLVED",
            "DEFINITIONS", "vb_grid", "regime_runs", "simulated_ranges", "harmonic_in_band",
            "predicted_intervals", "compare", "disagreement_length", "summarize",
            "validate", "render_markdown", "main"]
@@ -100,6 +107,9 @@ ANALYSES = (
 
 #: Regimes in which the mass slides; the others are marked and left out.
 SLIDING = ("continuous_sliding", "sliding_with_reversals")
+#: The label of a point whose run cannot tell the omega1 peak (``resolved`` False):
+#: excluded like stick-slip, never counted as a point without the peak.
+UNRESOLVED = "unresolved"
 
 
 @dataclass(frozen=True)
@@ -137,7 +147,10 @@ DEFINITIONS = """\
 * **Simulated range.** A grid point *shows the peak* when the omega1 peak of X1' is at
   least {ratio:g} of the peak at Omega (`runtime.simulate.PEAK_PRESENT_RATIO`, fixed
   before any sweep). Points in stick-slip or contact loss are *excluded* (the stability
-  analyses describe steady sliding; the paper leaves stick-slip out of Figs. 19b, c).
+  analyses describe steady sliding; the paper leaves stick-slip out of Figs. 19b, c),
+  and so are *unresolved* points, whose run cannot tell the peak (a steady window too
+  short for the omega1 band, or a transient not yet decayed: `resolved` False in
+  `runtime.simulate.summarize`); an unresolved point is never a point without the peak.
   A simulated range is a maximal run of consecutive sliding points that show the peak.
   Its lower edge is taken at the first such point minus h/2 and its upper edge at the
   last plus h/2 (h: the grid step); each lies within ± h/2 of that value, between a
@@ -157,6 +170,10 @@ DEFINITIONS = """\
   ranges: lower with lower, upper with upper; Δ = predicted − simulated. A predicted
   lower edge of 0 (unstable from Vb = 0) is paired like any other edge, with the
   simulated lower edge (at or above the lowest simulated Vb = h).
+* **No prediction.** Where an analysis gives no prediction (the consistent MDSM under
+  the clipped tension law when the clip cuts its harmonic fast normal force:
+  `runtime.predict.CLIPPED_MDSM`), its cells read *n/a* and the case counts in none of
+  its columns.
 * **Mean absolute error (MAE)** of an analysis: the mean of |Δ| over every paired edge
   whose simulated edge is not censored, over all comparable cases (0, 1 or 2 edges per
   case; *n* is their number). A case where the analysis predicts no unstable range
@@ -205,7 +222,7 @@ def regime_runs(vb, regime):
             for label, i, j in intervals.label_runs([str(r) for r in regime])]
 
 
-def simulated_ranges(vb, present, regime, step):
+def simulated_ranges(vb, present, regime, step, resolved=None):
     """Simulated omega1-peak ranges of a sweep, with their edges (see `DEFINITIONS`).
 
     Parameters
@@ -217,19 +234,29 @@ def simulated_ranges(vb, present, regime, step):
     regime : array_like of str
         the regime of each point (`runtime.simulate.REGIMES`)
     step : float
+    resolved : array_like of bool, optional
+        ``resolved`` of each point (default: all True); an unresolved point is
+        excluded like a stick-slip point, with the label `UNRESOLVED`
 
     Returns
     -------
     dict
         ``ranges``: list of dicts ``first``, ``last`` (grid points showing the peak),
         ``lower``, ``upper`` (edge estimates, each within ± step/2),
-        ``lower_censored``, ``upper_censored``; ``excluded``: the regime runs of the
-        excluded points; ``excluded_vb``: their belt speeds; ``top``: the last grid
-        point; ``sliding_points``: how many points slide.
+        ``lower_censored``, ``upper_censored``; ``excluded``: the runs of the
+        excluded points (regime or `UNRESOLVED`); ``excluded_vb``: their belt
+        speeds; ``top``: the last grid point; ``sliding_points``: how many resolved
+        points slide.
     """
     vb = np.asarray(vb, float)
     present = np.asarray(present, bool)
     regime = np.asarray(regime).astype(str)
+    if resolved is not None:
+        resolved = np.asarray(resolved, bool)
+        if resolved.shape != vb.shape:
+            raise ValueError(f"resolved must hold one flag per grid point; got shape "
+                             f"{resolved.shape} for {vb.size} points")
+        regime = np.where(resolved, regime, UNRESOLVED)
     if vb.ndim != 1 or vb.size == 0 or np.any(np.diff(vb) <= 0):
         raise ValueError("vb must be a non-empty ascending 1-D grid")
     if not np.allclose(np.diff(vb), step, rtol=0, atol=1e-9 * step) \
@@ -269,12 +296,16 @@ def harmonic_in_band(p):
     return found
 
 
-def predicted_intervals(p, contact="hertz_damp"):
-    """Every analysis' unstable ``Vb`` ranges: ``{key: [(lower, upper), ...]}``.
+def predicted_intervals(p, contact="hertz_damp", tension="allowed"):
+    """Every analysis' unstable ``Vb`` ranges: ``{key: [(lower, upper), ...] or None}``.
 
     The paper's analysis is the closed form of Eqs. (25), (28)
     (`generated.stability.unstable_interval`; an empty interval, NaN, becomes
-    ``[]``); the consistent MDSM is `runtime.predict.unstable_intervals`.
+    ``[]``), the same under both tension laws (a linearisation at the equilibrium,
+    where the contact force is positive); the consistent MDSM is
+    `runtime.predict.unstable_intervals`, and None (no prediction) under
+    ``tension="clipped"`` where the clip cuts its fast normal force
+    (`runtime.predict.clip_acts`).
     """
     out = {}
     for model in ("tangential", "coupled"):
@@ -282,8 +313,11 @@ def predicted_intervals(p, contact="hertz_damp"):
             lower, upper = (float(x) for x in stability.unstable_interval(
                 vhat_model=model, convention=convention, contact=contact, **p))
             out[f"paper_{model}_{convention}"] = [] if math.isnan(lower) else [(lower, upper)]
-    out["consistent_mdsm"] = [(float(a), float(b)) for a, b in
-                              unstable_intervals(p, contact=contact)[0]]
+    if tension == "clipped" and clip_acts(p, contact)[0]:
+        out["consistent_mdsm"] = None
+    else:
+        out["consistent_mdsm"] = [(float(a), float(b)) for a, b in
+                                  unstable_intervals(p, contact=contact)[0]]
     return out
 
 
@@ -297,20 +331,26 @@ def compare(predicted, simulated, step):
 
     Parameters
     ----------
-    predicted : list of (lower, upper)
+    predicted : list of (lower, upper), or None
+        None: the analysis gives no prediction (status "no_prediction")
     simulated : dict from `simulated_ranges`
     step : float
 
     Returns
     -------
     dict
-        ``status``: "paired", "miss" (no prediction, a simulated range),
-        "false_alarm" (a prediction, no simulated range) or "both_empty";
+        ``status``: "paired", "miss" (no unstable range predicted, a simulated
+        range), "false_alarm" (a prediction, no simulated range), "both_empty" or
+        "no_prediction" (``predicted`` None: nothing is compared, ``disagreement``
+        is None);
         ``lower``, ``upper``: None or dicts ``predicted``, ``simulated``, ``delta``
         (predicted − simulated, known to ± step/2), ``censored``, ``from_zero``;
         ``disagreement``: |P Δ S| (`disagreement_length`).
     """
     ranges = simulated["ranges"]
+    if predicted is None:
+        return {"status": "no_prediction", "lower": None, "upper": None,
+                "disagreement": None}
     out = {"status": None, "lower": None, "upper": None,
            "disagreement": disagreement_length(predicted, simulated, step)}
     if not predicted and not ranges:
@@ -352,10 +392,12 @@ def summarize(cases):
     comparable = [c for c in cases if c["comparable"]]
     for key, _, _ in ANALYSES:
         deltas, counts, lengths = [], {"paired": 0, "miss": 0, "false_alarm": 0,
-                                       "both_empty": 0}, []
+                                       "both_empty": 0, "no_prediction": 0}, []
         for c in comparable:
             comp = c["comparison"][key]
             counts[comp["status"]] += 1
+            if comp["status"] == "no_prediction":
+                continue
             lengths.append(comp["disagreement"])
             for side in ("lower", "upper"):
                 edge = comp[side]
@@ -364,27 +406,30 @@ def summarize(cases):
         summary[key] = {"mae": float(np.mean(deltas)) if deltas else None,
                         "n_edges": len(deltas), **counts,
                         "mean_disagreement": float(np.mean(lengths)) if lengths else None,
-                        "n_cases": len(comparable)}
+                        "n_cases": len(comparable) - counts["no_prediction"]}
     return summary
 
 
-def _case_sweep(case, resolution, predicted, executor, cache_dir, progress, extend=True):
+def _case_sweep(case, resolution, predicted, executor, cache_dir, progress, extend=True,
+                tension="allowed"):
     """Sweep ``Vb`` for one case on the grid rule of `Resolution`.
 
     ``extend=False`` keeps the first grid: where a forced harmonic sits in the omega1
     band the peak never closes, and extending to the cap would measure nothing.
     """
     step = resolution.step
-    edges = [x for ranges in predicted.values() for pair in ranges for x in pair]
+    edges = [x for ranges in predicted.values() for pair in ranges or () for x in pair]
     top = max(resolution.min_top, resolution.top_factor * max(edges, default=0.0), step)
     top = min(top, resolution.vb_cap)
     grid = vb_grid(step, top)
     kwargs = dict(settings=resolution.settings, executor=executor, cache_dir=cache_dir,
-                  progress=progress)
+                  progress=progress, tension=tension)
     table = sweep("Vb", grid, case.overrides, **kwargs)
     while True:
         last = table[-1]
-        closed = str(last["regime"]) in SLIDING and not last["omega1_peak_present"]
+        # an unresolved top point does not close the range: it cannot tell
+        closed = (str(last["regime"]) in SLIDING and bool(last["resolved"])
+                  and not last["omega1_peak_present"])
         if not extend or closed or last["Vb"] >= resolution.vb_cap - 1e-9:
             return table
         top = min(resolution.vb_cap, resolution.extend_factor * last["Vb"])
@@ -392,7 +437,8 @@ def _case_sweep(case, resolution, predicted, executor, cache_dir, progress, exte
         table = np.concatenate([table, sweep("Vb", new, case.overrides, **kwargs)])
 
 
-def validate(quick=False, *, executor=None, cache_dir="default", progress=True, cases=None):
+def validate(quick=False, *, tension="allowed", executor=None, cache_dir="default",
+             progress=True, cases=None):
     """Simulated omega1-peak ranges against every analysis' prediction (Figs. 2, 17-21).
 
     Parameters
@@ -400,6 +446,9 @@ def validate(quick=False, *, executor=None, cache_dir="default", progress=True, 
     quick : bool
         `QUICK` resolution (1 m/s grid, 300 s runs) instead of `FULL`
         (0.25 m/s, 1000 s)
+    tension : {"allowed", "clipped"}
+        the tension law of the simulations (docs/modelling.md#tension); see
+        `predicted_intervals` for the predictions
     executor : concurrent.futures.Executor, "serial" or None
         where the runs go (`runtime.sweep.sweep`); None: one process pool over the
         local cores for all cases
@@ -413,13 +462,18 @@ def validate(quick=False, *, executor=None, cache_dir="default", progress=True, 
     Returns
     -------
     dict
-        ``quick``, ``resolution`` (`Resolution`), ``cases`` (one dict per case:
-        ``name``, ``figure``, ``overrides``, ``paper``, ``grid`` (``step``,
-        ``start``, ``stop``, ``n``), ``Vb``, ``present``, ``regime``, ``peak_ratio``,
+        ``quick``, ``tension``, ``resolution`` (`Resolution`), ``cases`` (one dict
+        per case: ``name``, ``figure``, ``overrides``, ``paper``, ``grid`` (``step``,
+        ``start``, ``stop``, ``n``), ``Vb``, ``present``, ``resolved``, ``regime``,
+        ``peak_ratio``,
         ``simulated`` (`simulated_ranges`), ``harmonics`` (`harmonic_in_band`),
         ``comparable``, ``predicted`` (`predicted_intervals`), ``comparison``
         (per analysis, `compare`)), ``summary`` (`summarize`).
     """
+    from .model import TENSIONS
+    if tension not in TENSIONS:
+        raise ValueError(f"tension must be one of {', '.join(map(repr, TENSIONS))}; "
+                         f"got {tension!r}")
     resolution = QUICK if quick else FULL
     by_name = {c.name: c for c in CASES}
     unknown = [c for c in cases or () if isinstance(c, str) and c not in by_name]
@@ -435,19 +489,20 @@ def validate(quick=False, *, executor=None, cache_dir="default", progress=True, 
     try:
         for case in selected:
             p = resolve_parameters(case.overrides)
-            predicted = predicted_intervals(p)
+            predicted = predicted_intervals(p, tension=tension)
             harmonics = harmonic_in_band(p)
             table = _case_sweep(case, resolution, predicted, executor, cache_dir, progress,
-                                extend=not harmonics)
+                                extend=not harmonics, tension=tension)
             vb = np.asarray(table["Vb"], float)
             simulated = simulated_ranges(vb, table["omega1_peak_present"], table["regime"],
-                                         resolution.step)
+                                         resolution.step, table["resolved"])
             results.append({
                 "name": case.name, "figure": case.figure, "overrides": dict(case.overrides),
                 "paper": case.paper,
                 "grid": {"step": resolution.step, "start": float(vb[0]),
                          "stop": float(vb[-1]), "n": int(vb.size)},
                 "Vb": vb.tolist(), "present": table["omega1_peak_present"].tolist(),
+                "resolved": table["resolved"].tolist(),
                 "regime": [str(r) for r in table["regime"]],
                 "peak_ratio": (table["peak_omega1"] / table["peak_Omega"]).tolist(),
                 "simulated": simulated, "harmonics": harmonics,
@@ -458,8 +513,8 @@ def validate(quick=False, *, executor=None, cache_dir="default", progress=True, 
     finally:
         if own:
             executor.shutdown()
-    return {"quick": bool(quick), "resolution": resolution, "cases": results,
-            "summary": summarize(results)}
+    return {"quick": bool(quick), "tension": tension, "resolution": resolution,
+            "cases": results, "summary": summarize(results)}
 
 
 # ---------------------------------------------------------------- rendering
@@ -469,7 +524,7 @@ def _num(x):
 
 
 def _ranges_text(ranges):
-    return intervals.format_intervals(ranges, ".2f")
+    return "n/a" if ranges is None else intervals.format_intervals(ranges, ".2f")
 
 
 def _simulated_text(sim):
@@ -485,8 +540,8 @@ def _simulated_text(sim):
 
 def _delta_text(comp):
     if comp["status"] != "paired":
-        return {"miss": "miss", "false_alarm": "false alarm", "both_empty": "both none"}[
-            comp["status"]]
+        return {"miss": "miss", "false_alarm": "false alarm", "both_empty": "both none",
+                "no_prediction": "n/a"}[comp["status"]]
     texts = []
     for side in ("lower", "upper"):
         e = comp[side]
@@ -505,29 +560,39 @@ def _points_text(runs):
 
 def _runs_text(runs):
     names = {"continuous_sliding": "sliding", "sliding_with_reversals": "reversals",
-             "stick_slip": "**stick-slip**", "contact_loss": "**contact loss**"}
+             "stick_slip": "**stick-slip**", "contact_loss": "**contact loss**",
+             UNRESOLVED: "**unresolved**"}
     return "; ".join(f"{names[r]} {_num(a)}–{_num(b)}" if a != b else f"{names[r]} {_num(a)}"
                      for r, a, b in runs)
 
 
 def _verdict(cases, key, reference, step):
     """One generated sentence: where ``key`` is closer to the simulation than ``reference``."""
-    better, worse, tie = [], [], []
+    better, worse, tie, none = [], [], [], []
     for c in cases:
         if not c["comparable"]:
             continue
-        d = c["comparison"][key]["disagreement"] - c["comparison"][reference]["disagreement"]
+        ours, theirs = c["comparison"][key]["disagreement"], \
+            c["comparison"][reference]["disagreement"]
+        if ours is None or theirs is None:
+            none.append(c["name"])
+            continue
+        d = ours - theirs
         # Differences within one grid step are below the resolution of the sweep.
         (better if d < -step else worse if d > step else tie).append(c["name"])
     label = {k: lab for k, lab, _ in ANALYSES}
 
     def names(xs):
         return ", ".join(xs) if xs else "none"
+    if none and not (better or worse or tie):
+        return (f"{label[key]} and {label[reference]} are not compared: one of them gives no "
+                f"prediction in every comparable case ({names(none)}).")
+    skipped = (f" Not compared where one gives no prediction: {names(none)}." if none else "")
     return (f"By the disagreement length, {label[key]} is closer to the simulation than "
             f"{label[reference]} by more than one grid step ({step:g} m/s) in {len(better)} "
             f"of {len(better) + len(worse) + len(tie)} comparable cases ({names(better)}), "
             f"farther in {len(worse)} ({names(worse)}) and within one step in "
-            f"{len(tie)} ({names(tie)}).")
+            f"{len(tie)} ({names(tie)})." + skipped)
 
 
 def render_markdown(results, quick):
@@ -535,7 +600,12 @@ def render_markdown(results, quick):
     res = results["resolution"]
     cases = results["cases"]
     step = res.step
-    command = "python -m derive validate" + (" --quick" if quick else "")
+    tension = results.get("tension", "allowed")
+    command = ("python -m derive validate" + (" --quick" if quick else "")
+               + (f" --tension {tension}" if tension != "allowed" else ""))
+    law = {"allowed": "`allowed` (Eq. 1 as printed: the contact force can pull)",
+           "clipped": "`clipped` (a contact that cannot pull: max(F, 0), the surfaces "
+                      "separate where Eq. 1 would pull)"}[tension]
     lines = [
         "# Validation: predicted unstable belt speeds against the simulated omega1 peak",
         "",
@@ -553,6 +623,11 @@ def render_markdown(results, quick):
         f"m/s), up to max({res.min_top:g}, {res.top_factor:g} × the largest predicted "
         f"edge), extended by × {res.extend_factor:g} while the top point is not a sliding "
         f"point without the peak (cap {res.vb_cap:g} m/s; not for the cases marked †).",
+        f"* Tension law (docs/modelling.md#tension): {law}. The paper's analyses (A1-A4) "
+        "linearise at the equilibrium, where the contact force is positive: the same under "
+        "both laws." + (" The consistent MDSM assumes a harmonic fast normal force, which the "
+                        "clip makes non-harmonic where it cuts it: n/a there "
+                        "(`runtime.predict.CLIPPED_MDSM`)." if tension == "clipped" else ""),
         f"* Runs: {res.t_end:g} s from the unforced equilibrium, steady window after "
         f"{0.3 * res.t_end:g} s, solver `{res.settings.solver}` ({res.settings.method}, "
         f"rtol = atol = {res.rtol:g}), sampling {res.settings.dt:g} s.",
@@ -600,6 +675,11 @@ def render_markdown(results, quick):
         lines.append(f"| {lab} | {mae} | {s['n_edges']} | {s['paired']} | {s['miss']} | "
                      f"{s['false_alarm']} | {s['both_empty']} | {dis} |")
     n_comp = sum(c["comparable"] for c in cases)
+    for key, lab, _ in ANALYSES:
+        if summary[key].get("no_prediction"):
+            lines.append(f"\n{lab} gives no prediction in {summary[key]['no_prediction']} "
+                         f"comparable case(s) (n/a); its columns count the other "
+                         f"{summary[key]['n_cases']}.")
     lines += ["", f"Over {n_comp} comparable cases of {len(cases)}.",
               _verdict(cases, "consistent_mdsm", "paper_tangential_paper", step),
               _verdict(cases, "consistent_mdsm", "paper_coupled_paper", step), ""]
