@@ -318,6 +318,35 @@ def test_predict_reports_a_harmonic_balance_that_does_not_converge(capsys, monke
         capsys.readouterr().out
 
 
+def test_predict_clipped_keeps_the_closed_forms_and_refuses_the_harmonic_balance(capsys):
+    assert derive_cli.main(["predict", "--json"]) == 0
+    allowed = json.loads(capsys.readouterr().out)
+    assert derive_cli.main(["predict", "--tension", "clipped", "--json"]) == 0
+    clipped = json.loads(capsys.readouterr().out)
+    assert allowed["tension"] == "allowed" and clipped["tension"] == "clipped"
+    # the linearisation at the equilibrium (force g > 0) does not see the law
+    for key in ("paper_tangential_vhat", "paper_coupled_vhat"):
+        assert clipped[key] == allowed[key]
+        assert clipped["reasons"][key] == predict_module.CLIPPED_PAPER
+    # the base set's fast normal force g + N1 sin has N1 = 27.2 > g: the clip cuts it
+    assert allowed["consistent_mdsm"] and clipped["consistent_mdsm"] is None
+    assert "non-harmonic" in clipped["reasons"]["consistent_mdsm"]
+    assert "N1 = 27.17 >= g = 9.81" in clipped["reasons"]["consistent_mdsm"]
+    assert derive_cli.main(["predict", "--tension", "clipped"]) == 0
+    assert "no prediction for consistent_mdsm: tension='clipped': the harmonic balance" in \
+        capsys.readouterr().out
+
+
+def test_predict_clipped_where_the_clip_does_not_act_keeps_the_mdsm_with_a_note():
+    # alpha = 0.3: N1 = 4.08 < g, so the linear fast normal force never reaches zero
+    allowed = predict_module.predict(alpha=0.3)
+    clipped = predict_module.predict(alpha=0.3, tension="clipped")
+    assert clipped["consistent_mdsm"] == allowed["consistent_mdsm"]
+    assert "the clip does not act on it" in clipped["reasons"]["consistent_mdsm"]
+    with pytest.raises(ValueError, match="tension must be one of"):
+        predict_module.predict(tension="pulling")
+
+
 def test_vb_points_sets_the_default_grid_too():
     _, table = predict_module.unstable_intervals(points=50)
     assert table["Vb"].size == 50

@@ -40,3 +40,50 @@ def test_module_entry_point_dispatches_simulate():
     r = subprocess.run([sys.executable, "-m", "derive", "simulate", "--Vb", "12", "--t-end", "50",
                         "--json"], capture_output=True, text=True, check=True)
     assert json.loads(r.stdout)["regime"] == "continuous_sliding"
+
+
+def test_simulate_json_names_the_tension_law(capsys):
+    assert main(["simulate", "--Vb", "12", "--t-end", "60", "--tension", "clipped",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["tension"] == "clipped"
+    # Eq. (1) pulls at the base set in every excitation cycle: clipped, it separates
+    assert out["n_separations"] > 0 and out["time_fraction"]["separated"] > 0
+    assert out["min_normal_force"] >= 0
+
+
+def test_an_unresolved_peak_is_never_called_absent_or_present(capsys):
+    # too short a window for the omega1 band
+    assert main(["simulate", "--t-end", "30"]) == 0
+    text = capsys.readouterr().out
+    assert "omega1 peak unresolved (the steady window" in text and "absent" not in text
+    # without friction the free transient at omega1 has not decayed by 40 s
+    assert main(["simulate", "--mu_s", "0", "--t-end", "40"]) == 0
+    text = capsys.readouterr().out
+    assert "omega1 peak unresolved (the tangential transient has not decayed" in text
+    assert "PRESENT" not in text and "friction-induced" not in text
+
+
+def test_readable_summary_names_the_modes_in_the_order_of_the_fractions(capsys):
+    from runtime.simulate import simulate
+    assert main(["simulate", "--Vb", "4", "--t-end", "300"]) == 0
+    text = capsys.readouterr().out
+    frac = simulate(Vb=4.0, t_end=300.0).summary["time_fraction"]
+    line = next(s for s in text.splitlines() if s.startswith("regime:"))
+    assert f"(time in {'/'.join(frac)}: " in line
+    assert "/".join(f"{100 * v:.1f}%" for v in frac.values()) in line
+    # a resolved peak, the only place for the words on friction-induced vibration
+    assert "omega1 peak PRESENT (friction-induced vibration)" in text
+
+
+def test_sweep_continue_runs_serially_and_says_so(capsys):
+    args = ["sweep", "--param", "Vb", "--values", "14", "12", "--Omega", "6", "--t-end", "300",
+            "--no-cache", "--no-progress", "--continue", "down"]
+    assert main(args) == 0
+    text = capsys.readouterr().out
+    assert "tension allowed; continued down from rest at Vb = 14" in text
+    assert main(args + ["--jobs", "2"]) == 2
+    assert "argument --continue: a continued sweep runs its points one after another" in \
+        capsys.readouterr().err
+    assert main(args[:-1] + ["sideways"]) == 2
+    assert "--continue" in capsys.readouterr().err

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from runtime import sweep as sweep_module
-from runtime.simulate import SolverSettings
+from runtime.simulate import PEAK_PRESENT_RATIO, SolverSettings
 from runtime.sweep import (cache_key, omega1_peak_ranges, sweep, table_from_csv,
                            table_to_csv)
 
@@ -258,3 +258,164 @@ def test_sweep_refuses_what_it_cannot_run_before_running():
         sweep("Vb", [1.0], executor="threads", cache_dir=None, progress=False)
     with pytest.raises(ValueError, match="'Vb' must be finite"):
         sweep("Vb", [1.0, float("inf")], executor="serial", cache_dir=None, progress=False)
+
+
+# ------------------------------------------------------- tension law and resolution
+
+def test_a_clipped_run_is_never_served_for_an_allowed_one(tmp_path, serial, monkeypatch):
+    from runtime.model import resolve_parameters
+    p = resolve_parameters(Vb=4.0)
+    assert cache_key(p, "hertz_damp", SHORT) == cache_key(p, "hertz_damp", SHORT,
+                                                          tension="allowed")
+    assert cache_key(p, "hertz_damp", SHORT) != cache_key(p, "hertz_damp", SHORT,
+                                                          tension="clipped")
+    allowed = sweep("Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path,
+                    progress=False)
+    calls = []
+    real = sweep_module.run_point
+
+    def counting(*args, **kwargs):
+        calls.append(kwargs["tension"])
+        return real(*args, **kwargs)
+    monkeypatch.setattr(sweep_module, "run_point", counting)
+    clipped = sweep("Vb", [4.0], settings=SHORT, tension="clipped", executor="serial",
+                    cache_dir=tmp_path, progress=False)
+    assert calls == ["clipped"]
+    assert allowed["tension"][0] == "allowed" and clipped["tension"][0] == "clipped"
+    # the laws differ at Vb = 4 (Eq. 1 pulls there 39 % of the time), so a mix-up shows
+    assert clipped["n_switches"][0] != allowed["n_switches"][0]
+    with pytest.raises(ValueError, match="tension must be one of 'allowed', 'clipped'"):
+        sweep("Vb", [4.0], tension="pulling", executor="serial", cache_dir=None,
+              progress=False)
+
+
+def test_unresolved_points_are_false_and_flagged_and_break_the_peak_ranges(serial):
+    # t_end = 40 s: the steady window 10-40 s holds fewer than two bins of the omega1
+    # band at Vb = 2 and 4, so those runs cannot tell; at 12 the transient test decides
+    assert serial["resolved"].dtype == bool and serial["tension"].dtype.kind == "U"
+    unresolved = ~serial["resolved"]
+    assert unresolved.any()
+    assert not serial["omega1_peak_present"][unresolved].any()
+    t = np.zeros(6, dtype=[("Vb", "f8"), ("omega1_peak_present", "?"), ("resolved", "?")])
+    t["Vb"] = [1, 2, 3, 4, 5, 6]
+    t["omega1_peak_present"] = [True, True, False, True, True, False]
+    t["resolved"] = [True, False, True, True, True, False]
+    assert omega1_peak_ranges(t) == [(1.0, 1.0), (4.0, 5.0)]
+    assert sweep_module.unresolved_values(t) == [2.0, 6.0]
+
+
+# ------------------------------------------------------- continuation (issue 13 item 3)
+
+def test_excitation_period_is_the_common_period_of_the_active_excitations():
+    from runtime.model import resolve_parameters
+    period = sweep_module.excitation_period
+    assert period(resolve_parameters()) == pytest.approx(2 * np.pi / 4, rel=1e-15)
+    # Fig. 14b: 6 and 4 rad/s share 2 rad/s, T = pi
+    assert period(resolve_parameters(alpha_t=2, Omega_t=6, alpha_n=2, Omega_n=4)) == \
+        pytest.approx(np.pi, rel=1e-15)
+    # a direction without force does not enter
+    assert period(resolve_parameters(alpha_n=0, Omega_t=6, Omega_n=np.sqrt(2))) == \
+        pytest.approx(2 * np.pi / 6, rel=1e-15)
+    with pytest.raises(ValueError, match="no excitation"):
+        period(resolve_parameters(Omega=0))
+    with pytest.raises(ValueError, match="incommensurate"):
+        period(resolve_parameters(Omega_t=4, Omega_n=4 * np.sqrt(2)))
+
+
+HYSTERESIS = dict(params={"Omega": 6.0}, settings=SolverSettings(t_end=300.0),
+                  executor="serial", progress=False)
+HYSTERESIS_VB = [12.0, 14.0, 16.0]
+
+
+@pytest.fixture(scope="module")
+def hysteresis():
+    return {d: sweep("Vb", HYSTERESIS_VB, cache_dir=None, continuation=d, **HYSTERESIS)
+            for d in (None, "up", "down")}
+
+
+def test_continued_sweeps_up_and_down_follow_different_attractors(hysteresis):
+    """Fig. 19a's Omega = 6: the omega1 oscillation (amplitude ~19 m/s) and the periodic
+    sliding response coexist at Vb = 12-16 m/s; a sweep keeps the one it is on.
+
+    t_end = 300 s: the transient's envelope exp(-beta1 omega1 t) is e^-9 < 1e-3 at the
+    window start, so every run is resolved a priori. The peaks read either ~19 m/s or
+    below 1e-4 m/s against the threshold 0.01 x the Omega peak (~0.2 m/s), so no
+    tolerance of the integration can move a point across it.
+    """
+    for table in hysteresis.values():
+        assert table["resolved"].all() and (table["status"] == "done").all()
+        np.testing.assert_array_equal(table["Vb"], HYSTERESIS_VB)   # ascending either way
+        ratio = table["peak_omega1"] / table["peak_Omega"]
+        assert np.all((ratio > 10 * PEAK_PRESENT_RATIO)
+                      | (ratio < 1e-2 * PEAK_PRESENT_RATIO))
+    present = {d: set(t["Vb"][t["omega1_peak_present"]]) for d, t in hysteresis.items()}
+    # from rest: the oscillation at 12 and 14, sliding at 16
+    assert present[None] == {12.0, 14.0}
+    # up from the oscillation at 12: it persists at 16; down from sliding at 16: it
+    # persists at 12 and 14 (hysteresis)
+    assert present["up"] == {12.0, 14.0, 16.0}
+    assert present["down"] == set()
+    assert (hysteresis["up"]["peak_omega1"] > 15).all()
+
+
+def test_a_continued_point_starts_at_its_predecessors_state_at_phase_zero(hysteresis,
+                                                                          monkeypatch):
+    from runtime.simulate import simulate
+    seen = []
+    real = sweep_module.simulate
+
+    def recording(params, **kwargs):
+        seen.append((params["Vb"], kwargs["y0"]))
+        return real(params, **kwargs)
+    monkeypatch.setattr(sweep_module, "simulate", recording)
+    sweep("Vb", HYSTERESIS_VB, cache_dir=None, continuation="down", **HYSTERESIS)
+    assert [vb for vb, _ in seen] == [16.0, 14.0, 12.0]          # descending
+    assert seen[0][1] is None                                     # the first from rest
+    first = real(dict(Vb=16.0, Omega=6.0), settings=HYSTERESIS["settings"])
+    T = np.pi / 3
+    t_k = np.floor(300.0 / T) * T
+    assert 300.0 - T < t_k <= 300.0
+    np.testing.assert_array_equal(seen[1][1], first.trajectory.state(np.array([t_k]))[:, 0])
+    # and the continued point is that run: the same row as a run from that state
+    again = simulate(dict(Vb=14.0, Omega=6.0), settings=HYSTERESIS["settings"],
+                     y0=seen[1][1]).summary
+    row = hysteresis["down"][1]
+    assert row["peak_omega1"] == again["peak_omega1"]
+    assert row["n_switches"] == again["n_switches"]
+
+
+def test_a_continued_sweep_is_cached_by_direction_and_start_state(tmp_path, hysteresis,
+                                                                  monkeypatch):
+    from runtime.model import resolve_parameters
+    up = sweep("Vb", HYSTERESIS_VB, cache_dir=tmp_path, continuation="up", **HYSTERESIS)
+    assert len(list(tmp_path.glob("*.json"))) == 3
+    p = resolve_parameters(Vb=12.0, Omega=6.0)
+    s = HYSTERESIS["settings"]
+    keys = {cache_key(p, "hertz_damp", s), cache_key(p, "hertz_damp", s, continuation="up"),
+            cache_key(p, "hertz_damp", s, continuation="down"),
+            cache_key(p, "hertz_damp", s, continuation="up", y0=[1.0, 0.0, 1.0, 0.0])}
+    assert len(keys) == 4
+
+    def fail(*args, **kwargs):
+        raise AssertionError("recomputed a cached point")
+    monkeypatch.setattr(sweep_module, "run_point", fail)
+    again = sweep("Vb", HYSTERESIS_VB, cache_dir=tmp_path, continuation="up", **HYSTERESIS)
+    _same(again, up)
+    _same(up, hysteresis["up"])
+    # the other direction starts elsewhere: nothing of it is in the cache
+    with pytest.raises(AssertionError, match="recomputed"):
+        sweep("Vb", HYSTERESIS_VB, cache_dir=tmp_path, continuation="down", **HYSTERESIS)
+
+
+def test_continuation_refuses_what_it_cannot_do():
+    kw = dict(cache_dir=None, progress=False)
+    with pytest.raises(ValueError, match="continuation must be None, 'up' or 'down'"):
+        sweep("Vb", [1.0], executor="serial", continuation="sideways", **kw)
+    with cf.ThreadPoolExecutor(1) as pool, \
+            pytest.raises(ValueError, match="one after another.*executor must be None"):
+        sweep("Vb", [1.0], executor=pool, continuation="up", **kw)
+    with pytest.raises(ValueError, match="continuation at Vb = 1: no excitation"):
+        sweep("Vb", [1.0], {"Omega": 0.0}, executor="serial", continuation="up", **kw)
+    with pytest.raises(ValueError, match="period 1.5708 s is longer than t_end = 1 s"):
+        sweep("Vb", [1.0], settings=SolverSettings(t_end=1.0, dt=0.01), executor="serial",
+              continuation="up", **kw)

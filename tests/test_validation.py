@@ -121,6 +121,48 @@ def test_disagreement_length_skips_the_cells_of_excluded_points():
     assert disagreement_length([(0.0, 3.0)], sim, H) == pytest.approx(1.0)
 
 
+def test_unresolved_points_are_excluded_not_taken_for_points_without_the_peak():
+    # a run that cannot tell (resolved False) ends a range with a censored edge, like
+    # stick-slip, and its cell is left out of the disagreement length
+    present = [False, True, True, False, True, True, False, False]
+    resolved = [True, True, True, False, True, True, True, True]
+    sim = simulated_ranges(H * np.arange(1, 9), present, ["continuous_sliding"] * 8, H,
+                           resolved)
+    assert [(r["lower"], r["upper"]) for r in sim["ranges"]] == [(0.75, 1.75), (2.25, 3.25)]
+    assert sim["ranges"][0]["upper_censored"] and sim["ranges"][1]["lower_censored"]
+    assert sim["excluded"] == [(validation.UNRESOLVED, 2.0, 2.0)]
+    assert sim["sliding_points"] == 7
+    # predicted [0.75, 3.25]: agrees everywhere but the cell of the unresolved point
+    assert disagreement_length([(0.75, 3.25)], sim, H) == pytest.approx(0.0)
+    with pytest.raises(ValueError, match="resolved must hold one flag per grid point"):
+        simulated_ranges(H * np.arange(1, 9), present, ["continuous_sliding"] * 8, H, [True])
+
+
+def test_an_analysis_without_a_prediction_is_counted_nowhere():
+    sim = _sim([False, True, True, False])
+    comp = compare(None, sim, H)
+    assert comp == {"status": "no_prediction", "lower": None, "upper": None,
+                    "disagreement": None}
+    cases = [_case({key: (comp if key == "consistent_mdsm" else compare([(0.5, 1.5)], sim, H))
+                    for key, _, _ in ANALYSES})]
+    s = summarize(cases)["consistent_mdsm"]
+    assert s["no_prediction"] == 1 and s["n_cases"] == 0 and s["mae"] is None
+    assert s["mean_disagreement"] is None and s["paired"] + s["miss"] == 0
+    assert summarize(cases)["paper_tangential_paper"]["paired"] == 1
+
+
+def test_predictions_under_the_clipped_law():
+    p = resolve_parameters()
+    allowed, clipped = (validation.predicted_intervals(p, tension=t)
+                        for t in ("allowed", "clipped"))
+    assert clipped["consistent_mdsm"] is None and allowed["consistent_mdsm"]
+    assert {k: v for k, v in clipped.items() if k != "consistent_mdsm"} == \
+        {k: v for k, v in allowed.items() if k != "consistent_mdsm"}
+    with pytest.raises(ValueError, match="tension must be one of"):
+        validate(True, tension="pulling", executor="serial", cache_dir=None, progress=False,
+                 cases=["base"])
+
+
 def _case(comparison, comparable=True):
     return {"name": "x", "comparable": comparable, "comparison": comparison}
 
@@ -199,6 +241,11 @@ def test_quick_base_set_shows_the_peak_where_the_consistent_mdsm_predicts_it(qui
 
 def test_render_markdown_says_how_it_was_made_and_lists_every_analysis(quick_base):
     text = render_markdown(quick_base, True)
+    assert quick_base["tension"] == "allowed"
+    assert "Tension law (docs/modelling.md#tension): `allowed`" in text
+    clipped = render_markdown({**quick_base, "tension": "clipped"}, True)
+    assert "python -m derive validate --quick --tension clipped" in clipped
+    assert "Tension law (docs/modelling.md#tension): `clipped`" in clipped
     assert text.startswith("# Validation")
     assert "python -m derive validate --quick" in text and "do not edit by hand" in text
     for _, label, _ in ANALYSES:
@@ -218,6 +265,7 @@ def test_main_writes_the_file_named_by_out(quick_base, tmp_path, monkeypatch, ca
     assert validation.main(["validate", "--quick", "--out", str(out), "--jobs", "1",
                             "--no-cache", "--no-progress"]) == 0
     assert seen["quick"] and seen["executor"] == "serial" and seen["cache_dir"] is None
+    assert seen["tension"] == "allowed"
     assert out.read_text() == render_markdown(quick_base, True)
     assert "MDSM: MAE of edges" in capsys.readouterr().out
 
@@ -283,3 +331,23 @@ def test_validation_grid_and_cases_refuse_bad_input_by_name():
     with pytest.raises(ValueError, match="unknown case.*'beta1=9'"):
         validation.validate(True, cases=["beta1=9"], executor="serial", cache_dir=None,
                             progress=False)
+
+
+def test_quick_validation_runs_every_sweep_under_the_law_it_names(monkeypatch):
+    laws = []
+    real = validation.sweep
+
+    def recording(*args, **kwargs):
+        laws.append(kwargs["tension"])
+        table = real(*args, **kwargs)
+        assert set(table["tension"]) == {kwargs["tension"]}
+        return table
+    monkeypatch.setattr(validation, "sweep", recording)
+    results = validate(True, tension="clipped", executor="serial", cache_dir=None,
+                       progress=False, cases=["base"])
+    assert laws and set(laws) == {"clipped"} and results["tension"] == "clipped"
+    (case,) = results["cases"]
+    assert case["comparison"]["consistent_mdsm"]["status"] == "no_prediction"
+    text = render_markdown(results, True)
+    assert "| base | Fig. 2b |" in text and "| n/a |" in text
+    assert "MDSM gives no prediction in 1 comparable case(s)" in text
