@@ -369,7 +369,7 @@ def validation_lines(table, param="Vb"):
     ranges = omega1_peak_ranges(table, param)
     found = format_intervals(ranges, "g", "nowhere")
     x = np.asarray(table[param], float)
-    resolved = resolved_mask(table)
+    resolved = resolved_mask(table, param)
     present = np.asarray(table["omega1_peak_present"], bool) & resolved
     lines = [f"omega1 peak (>= {100 * PEAK_PRESENT_RATIO:g}% of the Omega peak) present for "
              f"{param} in {found} m/s of the swept {x.min():g}..{x.max():g} m/s "

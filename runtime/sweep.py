@@ -550,11 +550,18 @@ def table_from_csv(path):
     return np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")
 
 
-def resolved_mask(table):
-    """The ``resolved`` column of a sweep table; all True for a table without one."""
-    if "resolved" in (table.dtype.names or ()):
+def resolved_mask(table, param=None):
+    """The ``resolved`` column of a sweep table; all True for a table without one.
+
+    ``table``: a structured array (`sweep`) or a dict of columns (the notebooks'
+    scans); ``param`` names a column whose length counts the points of a dict.
+    """
+    names = (table.keys() if isinstance(table, dict)
+             else getattr(getattr(table, "dtype", None), "names", None) or ())
+    if "resolved" in names:
         return np.asarray(table["resolved"], dtype=bool)
-    return np.ones(len(table), dtype=bool)
+    n = len(table[param]) if isinstance(table, dict) else len(table)
+    return np.ones(n, dtype=bool)
 
 
 def omega1_peak_ranges(table, param="Vb"):
@@ -566,10 +573,10 @@ def omega1_peak_ranges(table, param="Vb"):
     ends a range, and it is not a point without it either; `unresolved_values`
     lists them, so that a reader never takes the gap for "no peak".
     """
-    present = np.asarray(table["omega1_peak_present"], dtype=bool) & resolved_mask(table)
+    present = np.asarray(table["omega1_peak_present"], dtype=bool) & resolved_mask(table, param)
     return intervals.runs(table[param], present)
 
 
 def unresolved_values(table, param="Vb"):
     """Values of ``param`` whose run could not tell the omega1 peak (ascending)."""
-    return sorted(float(v) for v in np.asarray(table[param])[~resolved_mask(table)])
+    return sorted(float(v) for v in np.asarray(table[param])[~resolved_mask(table, param)])

@@ -302,6 +302,11 @@ def test_unresolved_points_are_false_and_flagged_and_break_the_peak_ranges(seria
     t["resolved"] = [True, False, True, True, True, False]
     assert omega1_peak_ranges(t) == [(1.0, 1.0), (4.0, 5.0)]
     assert sweep_module.unresolved_values(t) == [2.0, 6.0]
+    # a dict of columns (the notebooks' scans), with and without the resolved column
+    scan = {name: t[name] for name in t.dtype.names}
+    assert omega1_peak_ranges(scan) == [(1.0, 1.0), (4.0, 5.0)]
+    del scan["resolved"]
+    assert omega1_peak_ranges(scan) == [(1.0, 2.0), (4.0, 5.0)]
 
 
 # ------------------------------------------------------- continuation (issue 13 item 3)
