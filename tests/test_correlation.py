@@ -120,7 +120,9 @@ def test_predict_cli_json(capsys):
     assert predict.main(["predict", "--beta1", "0.4", "--json"]) == 0
     import json
     out = json.loads(capsys.readouterr().out)
-    assert set(out) == {"paper_tangential_vhat", "paper_coupled_vhat", "consistent_mdsm"}
+    assert set(out) == {"paper_tangential_vhat", "paper_coupled_vhat", "consistent_mdsm",
+                        "tension"}
+    assert out["tension"] == "allowed"
     assert out["consistent_mdsm"][0][0] > out["paper_coupled_vhat"][0][0]
 
 
