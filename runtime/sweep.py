@@ -186,8 +186,8 @@ def excitation_period(p):
 
     Examples
     --------
-    >>> round(excitation_period({"alpha_t": 2, "Omega_t": 6, "alpha_n": 2, "Omega_n": 4}), 12)
-    3.141592653590
+    >>> round(excitation_period({"alpha_t": 2, "Omega_t": 6, "alpha_n": 2, "Omega_n": 4}), 6)
+    3.141593
     """
     from fractions import Fraction
     active = [p[f"Omega_{d}"] for d in ("t", "n")
