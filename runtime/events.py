@@ -9,10 +9,11 @@ run is a sequence of smooth segments joined at located switches.
 
 Accumulating switches (Zeno) are detected, never counted to a cap: when
 `ZENO_SWITCHES` switches fall within `ZENO_WINDOW` (relative to the time), the run
-is chattering on one surface. On ``Vr = 0`` with friction that can hold the mass,
-the limit of that chattering is Filippov's sliding motion, which is the stick mode:
-the run enters it (and counts it in ``n_zeno``). Anywhere else the run stops with
-status ``"zeno"`` and a message naming the surface and the time.
+is chattering on one surface. On ``Vr = 0`` with friction that holds the mass
+(``|a_free| <= mu_s F``), the limit of that chattering is Filippov's sliding motion,
+which is the stick mode: the run enters it (and counts it in ``n_zeno``). Anywhere
+else the run stops with status ``"zeno"`` and a message naming the surface and the
+time.
 """
 from __future__ import annotations
 
@@ -144,6 +145,11 @@ def integrate_events(p, contact="hertz_damp", *, tension="allowed", t_end=1000.0
 
 
 def _cone_holds(sw, t, y):
-    """Whether friction can hold the mass at this state (``mu_s F > 0`` beyond rounding)."""
+    """Whether friction holds the mass at this state: ``mu_s F > 0`` beyond rounding and
+    ``|a_free| <= mu_s F`` within it (both stick limits non-negative).
+
+    Chattering on ``Vr = 0`` converges to Filippov's sliding motion only there; a run
+    that chatters outside the cone is not chattering in exact arithmetic, and stops.
+    """
     h, tol = sw._ties(t, y)
-    return h[1] + h[2] > tol[1] + tol[2]
+    return h[1] + h[2] > tol[1] + tol[2] and h[1] >= -tol[1] and h[2] >= -tol[2]

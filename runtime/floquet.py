@@ -45,7 +45,6 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass, field
-from fractions import Fraction
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -53,6 +52,7 @@ from scipy.integrate import solve_ivp
 from generated import dynamics, hybrid, oscillator
 
 from .model import TENSIONS, resolve_parameters
+from .parameters import excitation_period
 from .normal import NORMAL_NAMES, normal_motion
 from .superposition import Superposition
 from .switching import SURFACE_INDEX, Mode, Switching
@@ -74,31 +74,6 @@ _RTOL = 1e-12
 _LINE_SEARCH = 12
 #: Periods the normal motion is followed before Newton's method polishes its orbit.
 _NORMAL_PERIODS = 200
-_MAX_DENOMINATOR = 64
-
-
-def excitation_period(p):
-    """The period of the excitation: ``2 pi / Omega``, or the common period of two.
-
-    Raises
-    ------
-    ValueError
-        If a frequency is zero or the two are incommensurate (their ratio is not a
-        fraction with a denominator of at most 64, to 1e-12).
-    """
-    w_t, w_n = p["Omega_t"], p["Omega_n"]
-    active = [w for w, a in ((w_t, p["alpha_t"]), (w_n, p["alpha_n"])) if a > 0]
-    if not active or min(active) <= 0:
-        raise ValueError("the excitation has no period: an excitation frequency is zero "
-                         f"(Omega_t = {w_t}, Omega_n = {w_n})")
-    if len(active) == 1 or active[0] == active[1]:
-        return 2 * math.pi / active[0]
-    ratio = Fraction(active[0] / active[1]).limit_denominator(_MAX_DENOMINATOR)
-    if abs(float(ratio) - active[0] / active[1]) > 1e-12 * active[0] / active[1]:
-        raise ValueError(f"Omega_t = {w_t} and Omega_n = {w_n} are incommensurate: the "
-                         "response has no period")
-    # Omega_t = p w, Omega_n = q w with w = Omega_n / q: the common period is 2 pi / w
-    return 2 * math.pi * ratio.denominator / active[1]
 
 
 @dataclass

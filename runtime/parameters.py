@@ -17,7 +17,7 @@ from generated import dynamics, unforced
 from generated.parameters import BASE, KNOWN
 
 __all__ = ["CONTACTS", "METHODS", "MAX_SAMPLES", "resolve_parameters",
-           "initial_state", "is_real"]
+           "initial_state", "is_real", "excitation_period"]
 
 CONTACTS = ("hertz_damp", "kelvin_voigt")
 #: The integration methods of the integrators (`runtime._dop853`), by name (the name
@@ -91,3 +91,56 @@ def initial_state(p, contact="hertz_damp"):
     t = 0. For ``Vb > 0`` the mass starts sliding backwards relative to the belt.
     """
     return np.array([float(v) for v in unforced.equilibrium(contact=contact, **p)])
+
+
+#: (`excitation_period`): a common period of more than 1000 periods of the faster
+#: excitation is longer than any run of the paper.
+_MAX_DENOMINATOR = 1000
+
+
+def excitation_period(p):
+    """The common period ``T`` [s] of the excitation of Eq. (4): ``2 pi / gcd``.
+
+    The tangential force ``alpha_t Omega_t^2 sin(Omega_t t + phase_t)`` and the normal
+    one (``_n``) repeat together after ``T = 2 pi a / Omega_t = 2 pi b / Omega_n``
+    where ``Omega_t / Omega_n = a / b`` in lowest terms. A direction whose force is
+    zero (``alpha = 0`` or ``Omega = 0``) is absent and does not enter.
+
+    Parameters
+    ----------
+    p : dict
+        complete parameters (`runtime.parameters.resolve_parameters`)
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ValueError
+        Without excitation (no force in either direction: no phase to take), or for
+        frequencies ``Omega_t``, ``Omega_n`` whose ratio is not a fraction with a
+        denominator up to 1000 within 1e-12 (incommensurate: no common period).
+
+    Examples
+    --------
+    >>> round(excitation_period({"alpha_t": 2, "Omega_t": 6, "alpha_n": 2, "Omega_n": 4}), 6)
+    3.141593
+    """
+    from fractions import Fraction
+    active = [p[f"Omega_{d}"] for d in ("t", "n")
+              if p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0]
+    if not active:
+        raise ValueError("no excitation (alpha_t Omega_t = alpha_n Omega_n = 0): there is no "
+                         "excitation period to take the phase from; continuation needs "
+                         "Omega > 0 and alpha > 0")
+    if len(active) == 1 or active[0] == active[1]:
+        return 2 * math.pi / active[0]
+    w_t, w_n = active
+    ratio = Fraction(w_t / w_n).limit_denominator(_MAX_DENOMINATOR)
+    # rounding of the given frequencies only: their ratio must be the fraction
+    if abs(ratio.numerator / ratio.denominator - w_t / w_n) > 1e-12 * (w_t / w_n):
+        raise ValueError(f"Omega_t = {w_t!r} and Omega_n = {w_n!r} are incommensurate (their "
+                         f"ratio is no fraction a/b with b <= {_MAX_DENOMINATOR}): the "
+                         "excitation has no common period")
+    return 2 * math.pi * ratio.numerator / w_t

@@ -42,7 +42,7 @@ import numpy as np
 from generated.parameters import PARAMETERS
 
 from . import intervals
-from .parameters import resolve_parameters
+from .parameters import excitation_period, resolve_parameters
 from .simulate import SolverSettings, simulate
 
 __all__ = ["sweep", "run_point", "cache_key", "default_cache_dir", "table_to_csv",
@@ -65,9 +65,6 @@ COLUMNS = (("regime", "U24"), ("peak_omega1", "f8"), ("omega1_peak_at", "f8"),
 #: Directions of a continued sweep (`sweep`'s ``continuation``).
 CONTINUATIONS = ("up", "down")
 #: Largest denominator tried when writing Omega_t / Omega_n as a fraction
-#: (`excitation_period`): a common period of more than 1000 periods of the faster
-#: excitation is longer than any run of the paper.
-_MAX_DENOMINATOR = 1000
 MODULATION_COLUMNS = tuple((f"mu_eff_{tag}_{stat}", "f8") for tag in ("Omega", "omega1")
                            for stat in ("mean", "std", "range"))
 #: Most points of one sweep. A sweep of 10^6 runs of a second each is eleven days on
@@ -158,54 +155,6 @@ def package_version():
         return re.search(r'^version\s*=\s*"([^"]+)"', text, re.M).group(1)
     with open(_ROOT / "pyproject.toml", "rb") as fh:
         return tomllib.load(fh)["project"]["version"]
-
-
-def excitation_period(p):
-    """The common period ``T`` [s] of the excitation of Eq. (4): ``2 pi / gcd``.
-
-    The tangential force ``alpha_t Omega_t^2 sin(Omega_t t + phase_t)`` and the normal
-    one (``_n``) repeat together after ``T = 2 pi a / Omega_t = 2 pi b / Omega_n``
-    where ``Omega_t / Omega_n = a / b`` in lowest terms. A direction whose force is
-    zero (``alpha = 0`` or ``Omega = 0``) is absent and does not enter.
-
-    Parameters
-    ----------
-    p : dict
-        complete parameters (`runtime.parameters.resolve_parameters`)
-
-    Returns
-    -------
-    float
-
-    Raises
-    ------
-    ValueError
-        Without excitation (no force in either direction: no phase to take), or for
-        frequencies ``Omega_t``, ``Omega_n`` whose ratio is not a fraction with a
-        denominator up to 1000 within 1e-12 (incommensurate: no common period).
-
-    Examples
-    --------
-    >>> round(excitation_period({"alpha_t": 2, "Omega_t": 6, "alpha_n": 2, "Omega_n": 4}), 6)
-    3.141593
-    """
-    from fractions import Fraction
-    active = [p[f"Omega_{d}"] for d in ("t", "n")
-              if p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0]
-    if not active:
-        raise ValueError("no excitation (alpha_t Omega_t = alpha_n Omega_n = 0): there is no "
-                         "excitation period to take the phase from; continuation needs "
-                         "Omega > 0 and alpha > 0")
-    if len(active) == 1 or active[0] == active[1]:
-        return 2 * math.pi / active[0]
-    w_t, w_n = active
-    ratio = Fraction(w_t / w_n).limit_denominator(_MAX_DENOMINATOR)
-    # rounding of the given frequencies only: their ratio must be the fraction
-    if abs(ratio.numerator / ratio.denominator - w_t / w_n) > 1e-12 * (w_t / w_n):
-        raise ValueError(f"Omega_t = {w_t!r} and Omega_n = {w_n!r} are incommensurate (their "
-                         f"ratio is no fraction a/b with b <= {_MAX_DENOMINATOR}): the "
-                         "excitation has no common period")
-    return 2 * math.pi * ratio.numerator / w_t
 
 
 def _identity(params, contact, tension, settings, modulation, continuation=None, y0=None):

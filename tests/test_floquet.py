@@ -29,7 +29,7 @@ def test_excitation_period_is_the_common_period():
     assert F.excitation_period(p) == pytest.approx(np.pi, rel=1e-15)
     with pytest.raises(ValueError, match="incommensurate"):
         F.excitation_period(resolve_parameters(Omega_t=4.0 * math.sqrt(2), Omega_n=4.0))
-    with pytest.raises(ValueError, match="no period"):
+    with pytest.raises(ValueError, match="no excitation"):
         F.excitation_period(resolve_parameters(Omega=0.0))
 
 
