@@ -222,6 +222,12 @@ def _is_root(e):
             and e.base.is_nonnegative is True)
 
 
+def _is_half_power(e):
+    """``b**(n/2)``, ``|n| >= 3`` odd, with ``b`` proved nonnegative (printed through sqrt)."""
+    return (e.is_Pow and e.exp.is_Rational and e.exp.q == 2 and abs(e.exp.p) >= 3
+            and e.base.is_nonnegative is True)
+
+
 def _hoisted_roots(flat, args=()):
     """The roots ``b**(1/d)``, ``d >= 3``, that a function computes once, up front.
 
@@ -254,6 +260,16 @@ class _RootPrinting:
         self.roots = {(base, d): name for name, base, d in roots}
 
     def _print_Pow(self, expr, rational=False):
+        if _is_half_power(expr):
+            # b**(n/2) as b**(n//2) * sqrt(b): a square root and a product cost a
+            # fraction of a power (in a kernel's inner loop, X2**(3/2) of Eq. 1)
+            n = abs(int(expr.exp.p))
+            base = self.parenthesize(expr.base, PRECEDENCE["Pow"], strict=False)
+            root = self._print(sp.sqrt(expr.base, evaluate=False))
+            whole = n // 2
+            product = root if not whole else \
+                f"({base if whole == 1 else f'{base}**{whole}'}*{root})"
+            return product if expr.exp > 0 else f"(1/{product})"
         name = self.roots.get((expr.base, int(expr.exp.q))) if _is_root(expr) else None
         if name is None:
             return super()._print_Pow(expr, rational=rational)

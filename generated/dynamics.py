@@ -103,7 +103,7 @@ def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', tension='allowed', **params)
 
 def _rhs__hertz_damp__allowed(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
         _x2 = numpy.greater(X2, 0)
         _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
@@ -112,7 +112,7 @@ def _rhs__hertz_damp__allowed(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, o
 
 def _rhs__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
         _x1 = numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan)
         _x2 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
         _x3 = numpy.greater(X2, 0)
@@ -299,7 +299,7 @@ def bind_rhs_branch(*, contact='hertz_damp', tension='allowed', backend=None, **
 
 def _rhs_branch__hertz_damp__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
         _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
         _x2 = numpy.greater(X2, 0)
         _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
@@ -312,7 +312,7 @@ def _rhs_branch__hertz_damp__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omeg
     Extra arguments: none.
     """
     if (X2 > 0):
-        _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
         return (Y1, Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_s*sgn, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x0 + g,)
     else:
         return (Y1, Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g,)
@@ -320,7 +320,7 @@ def _rhs_branch__hertz_damp__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omeg
 
 def _rhs_branch__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
         _x1 = numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan)
         _x2 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
         _x3 = numpy.greater(X2, 0)
@@ -333,7 +333,7 @@ def _rhs_branch__hertz_damp__clipped__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omeg
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     _x1 = ((_x0) if (_x0 > 0) else (0))
     _x2 = -Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
     _x3 = (X2 > 0)
@@ -616,7 +616,7 @@ def bind_normal_force(*, contact='hertz_damp', tension='allowed', backend=None, 
 
 def _normal_force__hertz_damp__allowed(_shape, X2, Y2, beta2, omega2):
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2),0], default=numpy.nan))
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [(2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2]))),0], default=numpy.nan))
 
 
 def _normal_force__hertz_damp__allowed__scalar(X2, Y2, beta2, omega2):
@@ -625,14 +625,14 @@ def _normal_force__hertz_damp__allowed__scalar(X2, Y2, beta2, omega2):
     Extra arguments: none.
     """
     if (X2 > 0):
-        return (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+        return (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     else:
         return 0
 
 
 def _normal_force__hertz_damp__clipped(_shape, X2, Y2, beta2, omega2):
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
         return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan),0], default=numpy.nan))
 
 
@@ -641,7 +641,7 @@ def _normal_force__hertz_damp__clipped__scalar(X2, Y2, beta2, omega2):
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     return ((((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (0))
 
 
@@ -803,7 +803,7 @@ def bind_normal_rhs(*, contact='hertz_damp', tension='allowed', backend=None, **
 def _normal_rhs__hertz_damp__allowed(_shape, t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
-        return _support.vector(_shape, [numpy.copy(Y2), numpy.select([numpy.greater(X2, 0),True], [-_x0 - (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2),-_x0], default=numpy.nan)])
+        return _support.vector(_shape, [numpy.copy(Y2), numpy.select([numpy.greater(X2, 0),True], [-_x0 - (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2]))),-_x0], default=numpy.nan)])
 
 
 def _normal_rhs__hertz_damp__allowed__scalar(t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
@@ -812,14 +812,14 @@ def _normal_rhs__hertz_damp__allowed__scalar(t, X2, Y2, beta2, omega2, g, alpha_
     Extra arguments: none.
     """
     if (X2 > 0):
-        return (Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g - (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2),)
+        return (Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g - (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2))),)
     else:
         return (Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g,)
 
 
 def _normal_rhs__hertz_damp__clipped(_shape, t, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
         _x1 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
         return _support.vector(_shape, [numpy.copy(Y2), numpy.select([numpy.greater(X2, 0),True], [-_x1 - numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan),-_x1], default=numpy.nan)])
 
@@ -829,7 +829,7 @@ def _normal_rhs__hertz_damp__clipped__scalar(t, X2, Y2, beta2, omega2, g, alpha_
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     _x1 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
     return (Y2, ((-_x1 - ((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (-_x1)),)
 
@@ -1412,7 +1412,7 @@ def bind_energy(*, contact='hertz_damp', tension='allowed', backend=None, **para
 
 def _energy__hertz_damp__allowed(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(2/5)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**(5/2),0], default=numpy.nan))
+        return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(2/5)*omega2**2*(functools.reduce(numpy.maximum, [0, X2])**2*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2]))),0], default=numpy.nan))
 
 
 def _energy__hertz_damp__allowed__scalar(X1, Y1, X2, Y2, omega1, omega2, g):
@@ -1421,14 +1421,14 @@ def _energy__hertz_damp__allowed__scalar(X1, Y1, X2, Y2, omega1, omega2, g):
     Extra arguments: none.
     """
     if (X2 > 0):
-        return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (2/5)*omega2**2*max(0, X2)**(5/2)
+        return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (2/5)*omega2**2*(max(0, X2)**2*math.sqrt(max(0, X2)))
     else:
         return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2
 
 
 def _energy__hertz_damp__clipped(_shape, X1, Y1, X2, Y2, omega1, omega2, g):
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(2/5)*omega2**2*functools.reduce(numpy.maximum, [0, X2])**(5/2),0], default=numpy.nan))
+        return _support.full(_shape, (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + numpy.select([numpy.greater(X2, 0),True], [(2/5)*omega2**2*(functools.reduce(numpy.maximum, [0, X2])**2*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2]))),0], default=numpy.nan))
 
 
 def _energy__hertz_damp__clipped__scalar(X1, Y1, X2, Y2, omega1, omega2, g):
@@ -1437,7 +1437,7 @@ def _energy__hertz_damp__clipped__scalar(X1, Y1, X2, Y2, omega1, omega2, g):
     Extra arguments: none.
     """
     if (X2 > 0):
-        return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (2/5)*omega2**2*max(0, X2)**(5/2)
+        return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2 + (2/5)*omega2**2*(max(0, X2)**2*math.sqrt(max(0, X2)))
     else:
         return (1/2)*X1**2*omega1**2 - X2*g + (1/2)*Y1**2 + (1/2)*Y2**2
 
@@ -1627,7 +1627,7 @@ def bind_power_balance(*, contact='hertz_damp', tension='allowed', backend=None,
 def _power_balance__hertz_damp__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = omega2**2
-        _x1 = functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x1 = (functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
         _x2 = 2*Y2*beta2*omega2 + _x0
         _x3 = numpy.greater(X2, 0)
         return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x3,True], [Y2*(-_x0*_x1 + _x1*_x2),0], default=numpy.nan), Y1*mu_s*sgn*numpy.select([_x3,True], [_x1*_x2,0], default=numpy.nan))
@@ -1640,7 +1640,7 @@ def _power_balance__hertz_damp__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, o
     """
     if (X2 > 0):
         _x0 = omega2**2
-        _x1 = max(0, X2)**(3/2)
+        _x1 = (max(0, X2)*math.sqrt(max(0, X2)))
         _x2 = 2*Y2*beta2*omega2 + _x0
         return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + Y2*(-_x0*_x1 + _x1*_x2), Y1*_x1*_x2*mu_s*sgn,)
     else:
@@ -1650,7 +1650,7 @@ def _power_balance__hertz_damp__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, o
 def _power_balance__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = omega2**2
-        _x1 = functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x1 = (functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
         _x2 = _x1*(2*Y2*beta2*omega2 + _x0)
         _x3 = numpy.select([numpy.greater(_x2, 0),True], [_x2,0], default=numpy.nan)
         _x4 = numpy.greater(X2, 0)
@@ -1663,7 +1663,7 @@ def _power_balance__hertz_damp__clipped__scalar(t, X1, Y1, X2, Y2, sgn, beta1, o
     Extra arguments: none.
     """
     _x0 = omega2**2
-    _x1 = max(0, X2)**(3/2)
+    _x1 = (max(0, X2)*math.sqrt(max(0, X2)))
     _x2 = _x1*(2*Y2*beta2*omega2 + _x0)
     _x3 = ((_x2) if (_x2 > 0) else (0))
     _x4 = (X2 > 0)

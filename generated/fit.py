@@ -52,48 +52,48 @@ def coefficients(X2max, *, degree=3, **params):
 
 
 def _coefficients__1(_shape, X2max):
-    return _support.tuple_of(_shape, -4/35*X2max**(3/2), (36/35)*numpy.sqrt(X2max))
+    return _support.tuple_of(_shape, -4/35*(X2max*numpy.sqrt(X2max)), (36/35)*numpy.sqrt(X2max))
 
 
 def _coefficients__2(_shape, X2max):
     _x0 = numpy.sqrt(X2max)
-    return _support.tuple_of(_shape, -2/105*X2max**(3/2), (16/35)*_x0, (4/7)/_x0)
+    return _support.tuple_of(_shape, -2/105*(X2max*numpy.sqrt(X2max)), (16/35)*_x0, (4/7)/_x0)
 
 
 def _coefficients__3(_shape, X2max):
-    _x0 = X2max**(3/2)
+    _x0 = (X2max*numpy.sqrt(X2max))
     _x1 = numpy.sqrt(X2max)
     return _support.tuple_of(_shape, -8/1155*_x0, (24/77)*_x1, (72/77)/_x1, -(8/33)/_x0)
 
 
 def _coefficients__4(_shape, X2max):
-    _x0 = X2max**(3/2)
+    _x0 = (X2max*numpy.sqrt(X2max))
     _x1 = numpy.sqrt(X2max)
-    return _support.tuple_of(_shape, -10/3003*_x0, (240/1001)*_x1, (180/143)/_x1, -(320/429)/_x0, (36/143)/X2max**(5/2))
+    return _support.tuple_of(_shape, -10/3003*_x0, (240/1001)*_x1, (180/143)/_x1, -(320/429)/_x0, (36/143)/(X2max**2*numpy.sqrt(X2max)))
 
 
 def _coefficients__5(_shape, X2max):
-    _x0 = X2max**(3/2)
+    _x0 = (X2max*numpy.sqrt(X2max))
     _x1 = numpy.sqrt(X2max)
-    return _support.tuple_of(_shape, -4/2145*_x0, (28/143)*_x1, (224/143)/_x1, -(224/143)/_x0, (168/143)/X2max**(5/2), -(24/65)/X2max**(7/2))
+    return _support.tuple_of(_shape, -4/2145*_x0, (28/143)*_x1, (224/143)/_x1, -(224/143)/_x0, (168/143)/(X2max**2*numpy.sqrt(X2max)), -(24/65)/(X2max**3*numpy.sqrt(X2max)))
 
 
 def _coefficients__6(_shape, X2max):
-    _x0 = X2max**(3/2)
+    _x0 = (X2max*numpy.sqrt(X2max))
     _x1 = numpy.sqrt(X2max)
-    return _support.tuple_of(_shape, -14/12155*_x0, (2016/12155)*_x1, (4536/2431)/_x1, -(6720/2431)/_x0, (756/221)/X2max**(5/2), -(2592/1105)/X2max**(7/2), (56/85)/X2max**(9/2))
+    return _support.tuple_of(_shape, -14/12155*_x0, (2016/12155)*_x1, (4536/2431)/_x1, -(6720/2431)/_x0, (756/221)/(X2max**2*numpy.sqrt(X2max)), -(2592/1105)/(X2max**3*numpy.sqrt(X2max)), (56/85)/(X2max**4*numpy.sqrt(X2max)))
 
 
 def _coefficients__7(_shape, X2max):
-    _x0 = X2max**(3/2)
+    _x0 = (X2max*numpy.sqrt(X2max))
     _x1 = numpy.sqrt(X2max)
-    return _support.tuple_of(_shape, -16/20995*_x0, (3024/20995)*_x1, (9072/4199)/_x1, -(18480/4199)/_x0, (33264/4199)/X2max**(5/2), -(14256/1615)/X2max**(7/2), (8624/1615)/X2max**(9/2), -(432/323)/X2max**(11/2))
+    return _support.tuple_of(_shape, -16/20995*_x0, (3024/20995)*_x1, (9072/4199)/_x1, -(18480/4199)/_x0, (33264/4199)/(X2max**2*numpy.sqrt(X2max)), -(14256/1615)/(X2max**3*numpy.sqrt(X2max)), (8624/1615)/(X2max**4*numpy.sqrt(X2max)), -(432/323)/(X2max**5*numpy.sqrt(X2max)))
 
 
 def _coefficients__8(_shape, X2max):
-    _x0 = X2max**(3/2)
+    _x0 = (X2max*numpy.sqrt(X2max))
     _x1 = numpy.sqrt(X2max)
-    return _support.tuple_of(_shape, -6/11305*_x0, (288/2261)*_x1, (792/323)/_x1, -(2112/323)/_x0, (5148/323)/X2max**(5/2), -(41184/1615)/X2max**(7/2), (8008/323)/X2max**(9/2), -(29952/2261)/X2max**(11/2), (396/133)/X2max**(13/2))
+    return _support.tuple_of(_shape, -6/11305*_x0, (288/2261)*_x1, (792/323)/_x1, -(2112/323)/_x0, (5148/323)/(X2max**2*numpy.sqrt(X2max)), -(41184/1615)/(X2max**3*numpy.sqrt(X2max)), (8008/323)/(X2max**4*numpy.sqrt(X2max)), -(29952/2261)/(X2max**5*numpy.sqrt(X2max)), (396/133)/(X2max**6*numpy.sqrt(X2max)))
 
 
 _COEFFICIENTS = {
@@ -144,35 +144,35 @@ def max_error(X2max, *, degree=3, **params):
 
 
 def _max_error__1(_shape, X2max):
-    return _support.full(_shape, (4/35)*X2max**(3/2))
+    return _support.full(_shape, (4/35)*(X2max*numpy.sqrt(X2max)))
 
 
 def _max_error__2(_shape, X2max):
-    return _support.full(_shape, (2/105)*X2max**(3/2))
+    return _support.full(_shape, (2/105)*(X2max*numpy.sqrt(X2max)))
 
 
 def _max_error__3(_shape, X2max):
-    return _support.full(_shape, (8/1155)*X2max**(3/2))
+    return _support.full(_shape, (8/1155)*(X2max*numpy.sqrt(X2max)))
 
 
 def _max_error__4(_shape, X2max):
-    return _support.full(_shape, (10/3003)*X2max**(3/2))
+    return _support.full(_shape, (10/3003)*(X2max*numpy.sqrt(X2max)))
 
 
 def _max_error__5(_shape, X2max):
-    return _support.full(_shape, (4/2145)*X2max**(3/2))
+    return _support.full(_shape, (4/2145)*(X2max*numpy.sqrt(X2max)))
 
 
 def _max_error__6(_shape, X2max):
-    return _support.full(_shape, (14/12155)*X2max**(3/2))
+    return _support.full(_shape, (14/12155)*(X2max*numpy.sqrt(X2max)))
 
 
 def _max_error__7(_shape, X2max):
-    return _support.full(_shape, (16/20995)*X2max**(3/2))
+    return _support.full(_shape, (16/20995)*(X2max*numpy.sqrt(X2max)))
 
 
 def _max_error__8(_shape, X2max):
-    return _support.full(_shape, (6/11305)*X2max**(3/2))
+    return _support.full(_shape, (6/11305)*(X2max*numpy.sqrt(X2max)))
 
 
 _MAX_ERROR = {
@@ -300,35 +300,35 @@ def rms_error(X2max, *, degree=3, **params):
 
 
 def _rms_error__1(_shape, X2max):
-    return _support.full(_shape, (3/70)*X2max**(3/2))
+    return _support.full(_shape, (3/70)*(X2max*numpy.sqrt(X2max)))
 
 
 def _rms_error__2(_shape, X2max):
-    return _support.full(_shape, (1/210)*X2max**(3/2))
+    return _support.full(_shape, (1/210)*(X2max*numpy.sqrt(X2max)))
 
 
 def _rms_error__3(_shape, X2max):
-    return _support.full(_shape, (1/770)*X2max**(3/2))
+    return _support.full(_shape, (1/770)*(X2max*numpy.sqrt(X2max)))
 
 
 def _rms_error__4(_shape, X2max):
-    return _support.full(_shape, (1/2002)*X2max**(3/2))
+    return _support.full(_shape, (1/2002)*(X2max*numpy.sqrt(X2max)))
 
 
 def _rms_error__5(_shape, X2max):
-    return _support.full(_shape, (1/4290)*X2max**(3/2))
+    return _support.full(_shape, (1/4290)*(X2max*numpy.sqrt(X2max)))
 
 
 def _rms_error__6(_shape, X2max):
-    return _support.full(_shape, (3/24310)*X2max**(3/2))
+    return _support.full(_shape, (3/24310)*(X2max*numpy.sqrt(X2max)))
 
 
 def _rms_error__7(_shape, X2max):
-    return _support.full(_shape, (3/41990)*X2max**(3/2))
+    return _support.full(_shape, (3/41990)*(X2max*numpy.sqrt(X2max)))
 
 
 def _rms_error__8(_shape, X2max):
-    return _support.full(_shape, (1/22610)*X2max**(3/2))
+    return _support.full(_shape, (1/22610)*(X2max*numpy.sqrt(X2max)))
 
 
 _RMS_ERROR = {

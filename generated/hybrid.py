@@ -197,7 +197,7 @@ def _vector_field__hertz_damp(_shape, t, X1, Y1, X2, Y2, mode, beta1, omega1, be
         _x3 = X1*omega1**2
         _x4 = Omega_t**2
         _x5 = numpy.sin(Omega_t*t + phase_t)
-        _x6 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+        _x6 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
         _x7 = _x6*mu_s
         _x8 = _x2 + _x3 - _x4*_x5*alpha_t
         _x9 = numpy.equal(mode, 1)
@@ -216,7 +216,7 @@ def _vector_field__hertz_damp__scalar(t, X1, Y1, X2, Y2, mode, beta1, omega1, be
     _x3 = X1*omega1**2
     _x4 = Omega_t**2
     _x5 = math.sin(Omega_t*t + phase_t)
-    _x6 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x6 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     _x7 = _x6*mu_s
     _x8 = _x2 + _x3 - _x4*_x5*alpha_t
     _x9 = (mode == 1)
@@ -398,7 +398,7 @@ def bind_response_field(*, contact='hertz_damp', backend=None, **params):
 
 def _response_field__hertz_damp(_shape, t, z, v, X2, Y2, mode, beta1, omega1, beta2, omega2, g, alpha_n, Omega_n, phase_n):
     with numpy.errstate(divide="ignore", invalid="ignore"):
-        _x0 = numpy.select([numpy.logical_or(numpy.logical_or(numpy.equal(mode, -1), numpy.equal(mode, 0)), numpy.equal(mode, 1)),True], [(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2),0], default=numpy.nan)
+        _x0 = numpy.select([numpy.logical_or(numpy.logical_or(numpy.equal(mode, -1), numpy.equal(mode, 0)), numpy.equal(mode, 1)),True], [(2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2]))),0], default=numpy.nan)
         return _support.vector(_shape, [numpy.copy(v), _x0 - 2*beta1*omega1*v - omega1**2*z, numpy.copy(Y2), -Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - _x0 + g])
 
 
@@ -408,7 +408,7 @@ def _response_field__hertz_damp__scalar(t, z, v, X2, Y2, mode, beta1, omega1, be
     Extra arguments: none.
     """
     if (mode == -1) or (mode == 0) or (mode == 1):
-        _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
         return (v, _x0 - 2*beta1*omega1*v - omega1**2*z, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x0 + g,)
     else:
         return (v, -2*beta1*omega1*v - omega1**2*z, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g,)
@@ -574,7 +574,7 @@ def _surfaces__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega
     _x1 = 2*Y1*beta1*omega1
     _x2 = Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t)
     _x3 = 2*Y2*beta2
-    _x4 = mu_s*(_x3*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+    _x4 = mu_s*(_x3*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
     return _support.tuple_of(_shape, -Vb + Y1, _x0 + _x1 - _x2 + _x4, -_x0 - _x1 + _x2 + _x4, numpy.copy(X2), _x3 + omega2)
 
 
@@ -587,7 +587,7 @@ def _surfaces__hertz_damp__scalar(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega
     _x1 = 2*Y1*beta1*omega1
     _x2 = Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t)
     _x3 = 2*Y2*beta2
-    _x4 = mu_s*(_x3*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x4 = mu_s*(_x3*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     return (-Vb + Y1, _x0 + _x1 - _x2 + _x4, -_x0 - _x1 + _x2 + _x4, X2, _x3 + omega2,)
 
 
@@ -754,7 +754,7 @@ def bind_surface_scales(*, contact='hertz_damp', backend=None, **params):
 
 def _surface_scales__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, Vb, alpha_t, Omega_t, phase_t):
     _x0 = abs(Y1)
-    _x1 = mu_s*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+    _x1 = mu_s*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
     _x2 = Omega_t*t + phase_t
     _x3 = Omega_t**2*alpha_t
     _x4 = 2*beta2*abs(Y2)
@@ -768,7 +768,7 @@ def _surface_scales__hertz_damp__scalar(t, X1, Y1, X2, Y2, beta1, omega1, beta2,
     Extra arguments: none.
     """
     _x0 = abs(Y1)
-    _x1 = mu_s*max(0, X2)**(3/2)
+    _x1 = mu_s*(max(0, X2)*math.sqrt(max(0, X2)))
     _x2 = Omega_t*t + phase_t
     _x3 = Omega_t**2*alpha_t
     _x4 = 2*beta2*abs(Y2)
@@ -1340,7 +1340,7 @@ def _saltation__flight__separated__penetration__kelvin_voigt__scalar(t, X1, Y1, 
 
 
 def _saltation__flight__slip_back__penetration__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta2, omega2, mu_s):
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)/Y2
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))/Y2
     return _support.matrix(_shape, [
             [1, 0, 0, 0],
             [0, 1, _x0*mu_s, 0],
@@ -1354,7 +1354,7 @@ def _saltation__flight__slip_back__penetration__hertz_damp__scalar(t, X1, Y1, X2
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)/Y2
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))/Y2
     return (1, 0, 0, 0, 0, 1, _x0*mu_s, 0, 0, 0, 1, 0, 0, 0, -_x0, 1,)
 
 
@@ -1380,7 +1380,7 @@ def _saltation__flight__slip_back__penetration__kelvin_voigt__scalar(t, X1, Y1, 
 
 
 def _saltation__flight__slip_forward__penetration__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta2, omega2, mu_s):
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)/Y2
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))/Y2
     return _support.matrix(_shape, [
             [1, 0, 0, 0],
             [0, 1, -_x0*mu_s, 0],
@@ -1394,7 +1394,7 @@ def _saltation__flight__slip_forward__penetration__hertz_damp__scalar(t, X1, Y1,
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)/Y2
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))/Y2
     return (1, 0, 0, 0, 0, 1, -_x0*mu_s, 0, 0, 0, 1, 0, 0, 0, -_x0, 1,)
 
 
@@ -1425,7 +1425,7 @@ def _saltation__flight__stick__penetration__hertz_damp(_shape, t, X1, Y1, X2, Y2
             [1, 0, _x0*(Vb - Y1), 0],
             [0, 1, _x0*(-Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1), 0],
             [0, 0, 1, 0],
-            [0, 0, -_x0*(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2), 1],
+            [0, 0, -_x0*(2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2]))), 1],
         ])
 
 
@@ -1435,7 +1435,7 @@ def _saltation__flight__stick__penetration__hertz_damp__scalar(t, X1, Y1, X2, Y2
     Extra arguments: none.
     """
     _x0 = 1/Y2
-    return (1, 0, _x0*(Vb - Y1), 0, 0, 1, _x0*(-Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1), 0, 0, 0, 1, 0, 0, 0, -_x0*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2), 1,)
+    return (1, 0, _x0*(Vb - Y1), 0, 0, 1, _x0*(-Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1), 0, 0, 0, 1, 0, 0, 0, -_x0*(2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2))), 1,)
 
 
 def _saltation__flight__stick__penetration__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, Vb, alpha_t, Omega_t, phase_t):
@@ -1492,7 +1492,7 @@ def _saltation__separated__flight__penetration__kelvin_voigt__scalar(t, X1, Y1, 
 
 
 def _saltation__separated__slip_back__contact_force__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta2, omega2, mu_s, g, alpha_n, Omega_n, phase_n):
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)/(-Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) + g)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))/(-Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) + g)
     return _support.matrix(_shape, [
             [1, 0, 0, 0],
             [0, 1, 0, _x0*mu_s],
@@ -1506,7 +1506,7 @@ def _saltation__separated__slip_back__contact_force__hertz_damp__scalar(t, X1, Y
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)/(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))/(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g)
     return (1, 0, 0, 0, 0, 1, 0, _x0*mu_s, 0, 0, 1, 0, 0, 0, 0, 1 - _x0,)
 
 
@@ -1544,7 +1544,7 @@ def _saltation__separated__slip_back__contact_force__kelvin_voigt__scalar(t, X1,
 
 
 def _saltation__separated__slip_forward__contact_force__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta2, omega2, mu_s, g, alpha_n, Omega_n, phase_n):
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)/(-Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) + g)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))/(-Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) + g)
     return _support.matrix(_shape, [
             [1, 0, 0, 0],
             [0, 1, 0, -_x0*mu_s],
@@ -1558,7 +1558,7 @@ def _saltation__separated__slip_forward__contact_force__hertz_damp__scalar(t, X1
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)/(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))/(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g)
     return (1, 0, 0, 0, 0, 1, 0, -_x0*mu_s, 0, 0, 1, 0, 0, 0, 0, 1 - _x0,)
 
 
@@ -1601,7 +1601,7 @@ def _saltation__separated__stick__contact_force__hertz_damp(_shape, t, X1, Y1, X
             [1, 0, 0, _x0*(Vb - Y1)],
             [0, 1, 0, _x0*(-Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1)],
             [0, 0, 1, 0],
-            [0, 0, 0, -_x0*(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2) + 1],
+            [0, 0, 0, -_x0*(2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2]))) + 1],
         ])
 
 
@@ -1611,7 +1611,7 @@ def _saltation__separated__stick__contact_force__hertz_damp__scalar(t, X1, Y1, X
     Extra arguments: none.
     """
     _x0 = 1/(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g)
-    return (1, 0, 0, _x0*(Vb - Y1), 0, 1, 0, _x0*(-Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1), 0, 0, 1, 0, 0, 0, 0, -_x0*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2) + 1,)
+    return (1, 0, 0, _x0*(Vb - Y1), 0, 1, 0, _x0*(-Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1), 0, 0, 1, 0, 0, 0, 0, -_x0*(2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2))) + 1,)
 
 
 def _saltation__separated__stick__contact_force__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
@@ -1644,7 +1644,7 @@ def _saltation__separated__stick__contact_force__kelvin_voigt__scalar(t, X1, Y1,
 
 
 def _saltation__slip_back__flight__penetration__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta2, omega2, mu_s):
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)/Y2
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))/Y2
     return _support.matrix(_shape, [
             [1, 0, 0, 0],
             [0, 1, -_x0*mu_s, 0],
@@ -1658,7 +1658,7 @@ def _saltation__slip_back__flight__penetration__hertz_damp__scalar(t, X1, Y1, X2
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)/Y2
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))/Y2
     return (1, 0, 0, 0, 0, 1, -_x0*mu_s, 0, 0, 0, 1, 0, 0, 0, _x0, 1,)
 
 
@@ -1682,7 +1682,7 @@ def _saltation__slip_back__flight__penetration__kelvin_voigt__scalar(t, X1, Y1, 
 
 
 def _saltation__slip_back__separated__contact_force__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta2, omega2, mu_s, g, alpha_n, Omega_n, phase_n):
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
     _x1 = _x0/(-Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - _x0 + g)
     return _support.matrix(_shape, [
             [1, 0, 0, 0],
@@ -1697,7 +1697,7 @@ def _saltation__slip_back__separated__contact_force__hertz_damp__scalar(t, X1, Y
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     _x1 = _x0/(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x0 + g)
     return (1, 0, 0, 0, 0, 1, 0, -_x1*mu_s, 0, 0, 1, 0, 0, 0, 0, _x1 + 1,)
 
@@ -1734,7 +1734,7 @@ def _saltation__slip_back__separated__contact_force__kelvin_voigt__scalar(t, X1,
 
 
 def _saltation__slip_back__slip_forward__relative_velocity__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t):
-    _x0 = mu_s*(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+    _x0 = mu_s*(2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
     return _support.matrix(_shape, [
             [1, 0, 0, 0],
             [0, -2*_x0/(Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 + _x0) + 1, 0, 0],
@@ -1748,7 +1748,7 @@ def _saltation__slip_back__slip_forward__relative_velocity__hertz_damp__scalar(t
 
     Extra arguments: none.
     """
-    _x0 = mu_s*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x0 = mu_s*(2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     return (1, 0, 0, 0, 0, -2*_x0/(Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 + _x0) + 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,)
 
 
@@ -1772,7 +1772,7 @@ def _saltation__slip_back__slip_forward__relative_velocity__kelvin_voigt__scalar
 
 
 def _saltation__slip_back__stick__relative_velocity__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, Vb, alpha_t, Omega_t, phase_t):
-    _x0 = Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 + mu_s*(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+    _x0 = Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 + mu_s*(2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
     _x1 = _x0**(-1.0)
     return _support.matrix(_shape, [
             [1, _x1*(Vb - Y1), 0, 0],
@@ -1787,7 +1787,7 @@ def _saltation__slip_back__stick__relative_velocity__hertz_damp__scalar(t, X1, Y
 
     Extra arguments: none.
     """
-    _x0 = Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 + mu_s*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x0 = Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 + mu_s*(2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     _x1 = 1/_x0
     return (1, _x1*(Vb - Y1), 0, 0, 0, -_x0*_x1 + 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,)
 
@@ -1814,7 +1814,7 @@ def _saltation__slip_back__stick__relative_velocity__kelvin_voigt__scalar(t, X1,
 
 
 def _saltation__slip_forward__flight__penetration__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta2, omega2, mu_s):
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)/Y2
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))/Y2
     return _support.matrix(_shape, [
             [1, 0, 0, 0],
             [0, 1, _x0*mu_s, 0],
@@ -1828,7 +1828,7 @@ def _saltation__slip_forward__flight__penetration__hertz_damp__scalar(t, X1, Y1,
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)/Y2
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))/Y2
     return (1, 0, 0, 0, 0, 1, _x0*mu_s, 0, 0, 0, 1, 0, 0, 0, _x0, 1,)
 
 
@@ -1852,7 +1852,7 @@ def _saltation__slip_forward__flight__penetration__kelvin_voigt__scalar(t, X1, Y
 
 
 def _saltation__slip_forward__separated__contact_force__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta2, omega2, mu_s, g, alpha_n, Omega_n, phase_n):
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
     _x1 = _x0/(-Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - _x0 + g)
     return _support.matrix(_shape, [
             [1, 0, 0, 0],
@@ -1867,7 +1867,7 @@ def _saltation__slip_forward__separated__contact_force__hertz_damp__scalar(t, X1
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     _x1 = _x0/(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x0 + g)
     return (1, 0, 0, 0, 0, 1, 0, _x1*mu_s, 0, 0, 1, 0, 0, 0, 0, _x1 + 1,)
 
@@ -1904,7 +1904,7 @@ def _saltation__slip_forward__separated__contact_force__kelvin_voigt__scalar(t, 
 
 
 def _saltation__slip_forward__slip_back__relative_velocity__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, alpha_t, Omega_t, phase_t):
-    _x0 = mu_s*(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+    _x0 = mu_s*(2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
     return _support.matrix(_shape, [
             [1, 0, 0, 0],
             [0, 2*_x0/(Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0) + 1, 0, 0],
@@ -1918,7 +1918,7 @@ def _saltation__slip_forward__slip_back__relative_velocity__hertz_damp__scalar(t
 
     Extra arguments: none.
     """
-    _x0 = mu_s*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x0 = mu_s*(2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     return (1, 0, 0, 0, 0, 2*_x0/(Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0) + 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,)
 
 
@@ -1942,7 +1942,7 @@ def _saltation__slip_forward__slip_back__relative_velocity__kelvin_voigt__scalar
 
 
 def _saltation__slip_forward__stick__relative_velocity__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, Vb, alpha_t, Omega_t, phase_t):
-    _x0 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1 + mu_s*(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+    _x0 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1 + mu_s*(2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
     _x1 = -1/_x0
     return _support.matrix(_shape, [
             [1, _x1*(Vb - Y1), 0, 0],
@@ -1957,7 +1957,7 @@ def _saltation__slip_forward__stick__relative_velocity__hertz_damp__scalar(t, X1
 
     Extra arguments: none.
     """
-    _x0 = -Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1 + mu_s*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x0 = -Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1 + mu_s*(2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     _x1 = -1/_x0
     return (1, _x1*(Vb - Y1), 0, 0, 0, _x0*_x1 + 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,)
 
@@ -1989,7 +1989,7 @@ def _saltation__stick__flight__penetration__hertz_damp(_shape, t, X1, Y1, X2, Y2
             [1, 0, _x0*(-Vb + Y1), 0],
             [0, 1, _x0*(Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1), 0],
             [0, 0, 1, 0],
-            [0, 0, _x0*(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2), 1],
+            [0, 0, _x0*(2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2]))), 1],
         ])
 
 
@@ -1999,7 +1999,7 @@ def _saltation__stick__flight__penetration__hertz_damp__scalar(t, X1, Y1, X2, Y2
     Extra arguments: none.
     """
     _x0 = 1/Y2
-    return (1, 0, _x0*(-Vb + Y1), 0, 0, 1, _x0*(Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1), 0, 0, 0, 1, 0, 0, 0, _x0*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2), 1,)
+    return (1, 0, _x0*(-Vb + Y1), 0, 0, 1, _x0*(Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1), 0, 0, 0, 1, 0, 0, 0, _x0*(2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2))), 1,)
 
 
 def _saltation__stick__flight__penetration__kelvin_voigt(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, Vb, alpha_t, Omega_t, phase_t):
@@ -2022,7 +2022,7 @@ def _saltation__stick__flight__penetration__kelvin_voigt__scalar(t, X1, Y1, X2, 
 
 
 def _saltation__stick__separated__contact_force__hertz_damp(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n):
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**(3/2)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
     _x1 = (-Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - _x0 + g)**(-1.0)
     return _support.matrix(_shape, [
             [1, 0, 0, _x1*(-Vb + Y1)],
@@ -2037,7 +2037,7 @@ def _saltation__stick__separated__contact_force__hertz_damp__scalar(t, X1, Y1, X
 
     Extra arguments: none.
     """
-    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(3/2)
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     _x1 = 1/(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x0 + g)
     return (1, 0, 0, _x1*(-Vb + Y1), 0, 1, 0, _x1*(Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1), 0, 0, 1, 0, 0, 0, 0, _x0*_x1 + 1,)
 

@@ -126,7 +126,7 @@ def jacobian(X1, Y1, X2, Y2, *, contact='hertz_damp', **params):
 def _jacobian__hertz_damp(_shape, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s):
     _x0 = 2*beta2*omega2
     _x1 = (3/2)*numpy.sqrt(X2)*(Y2*_x0 + omega2**2)
-    _x2 = X2**(3/2)*_x0
+    _x2 = (X2*numpy.sqrt(X2))*_x0
     return _support.matrix(_shape, [
             [0, 1, 0, 0],
             [-omega1**2, -2*beta1*omega1, _x1*mu_s, _x2*mu_s],

@@ -65,7 +65,7 @@ def settings(t_end_quick=300.0, t_end_full=1000.0, **kw):
     **kw
         further `runtime.simulate.SolverSettings` fields
     """
-    base = dict(solver="superposition", method="DOP853", rtol=1e-7, atol=1e-7)
+    base = dict(solver="events", method="DOP853", rtol=1e-7, atol=1e-7)
     return SolverSettings(t_end=pick(t_end_quick, t_end_full), **{**base, **kw})
 
 

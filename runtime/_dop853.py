@@ -25,6 +25,7 @@ entry points of `runtime._compiled`.
 from __future__ import annotations
 
 import math
+import types
 
 import numpy as np
 from scipy.integrate._ivp import dop853_coefficients as _coef
@@ -384,8 +385,17 @@ def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_st
 
 
 def evaluate(t_steps, h_steps, y_steps, F_steps, t):
-    """The dense output of a run of steps at the times ``t`` (sorted or not): (4, m)."""
-    t = np.asarray(t, dtype=float)
+    """The dense output of a run of steps at the times ``t`` (sorted or not): (4, m).
+
+    Compiled by numba where it is installed (no kernels in it: cached on disk as it
+    is), else numpy on all times at once.
+    """
+    t = np.asarray(t, dtype=float).ravel()
+    fast = _evaluate_compiled()
+    if fast is not None:
+        out = np.empty((4, t.size))
+        fast(t_steps, h_steps, y_steps, F_steps, t, out)
+        return out
     k = np.clip(np.searchsorted(t_steps, t, side="right") - 1, 0, len(t_steps) - 1)
     x = (t - t_steps[k]) / h_steps[k]
     F = F_steps[k]
@@ -395,3 +405,32 @@ def evaluate(t_steps, h_steps, y_steps, F_steps, t):
         y *= (x if j % 2 == 0 else 1.0 - x)[:, None]
     y += y_steps[k]
     return y.T
+
+
+def _evaluate_loop(t_steps, h_steps, y_steps, F_steps, t, out):
+    """`evaluate` point by point (the compiled form)."""
+    n = t_steps.shape[0]
+    tmp = np.empty(4)
+    for m in range(t.shape[0]):
+        k = np.searchsorted(t_steps, t[m], side="right") - 1
+        k = min(max(k, 0), n - 1)
+        _dense(F_steps[k], y_steps[k], (t[m] - t_steps[k]) / h_steps[k], tmp)
+        for i in range(4):
+            out[i, m] = tmp[i]
+
+
+_COMPILED_EVALUATE = []
+
+
+def _evaluate_compiled():
+    if not _COMPILED_EVALUATE:
+        try:
+            import numba
+        except ImportError:
+            _COMPILED_EVALUATE.append(None)
+        else:
+            dense = numba.njit(cache=True)(_dense)
+            loop = types.FunctionType(_evaluate_loop.__code__,
+                                      {**globals(), "_dense": dense}, "_evaluate_loop")
+            _COMPILED_EVALUATE.append(numba.njit(cache=True)(loop))
+    return _COMPILED_EVALUATE[0]

@@ -187,7 +187,7 @@ def solver_parent():
     """Parent parser: the fields of `runtime.simulate.SolverSettings`."""
     parent = argparse.ArgumentParser(add_help=False)
     s = parent.add_argument_group("solver")
-    s.add_argument("--solver", choices=("superposition", "events"), default="superposition",
+    s.add_argument("--solver", choices=("events", "superposition"), default="events",
                    help="superposition (fast, falls back to events on loss of contact) or "
                         "events (solve_ivp on Eq. 4)")
     s.add_argument("--method", choices=METHODS, default="DOP853",

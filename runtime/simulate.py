@@ -5,8 +5,9 @@ stick, flight and, under the clipped tension law, separation) joined at located
 switches, with Filippov's rules where the friction is set-valued
 (`runtime.switching`). Two integrators produce the same `Trajectory`:
 
-* ``solver="events"`` (`runtime.events`): the compiled DOP853 integrator on the
-  generated field of each mode, the general one;
+* ``solver="events"`` (`runtime.events`, the default): the compiled DOP853
+  integrator on the generated field of each mode, the general one and, compiled,
+  the faster;
 * ``solver="superposition"`` (`runtime.superposition`): the normal motion is
   integrated once and the tangential motion is a closed-form superposition between
   switches (Eq. 4 is one-way coupled); it falls back to ``events`` with a stated
@@ -52,15 +53,15 @@ PEAK_PRESENT_RATIO = 0.01
 class SolverSettings:
     """How a run is computed; part of the cache key of a sweep.
 
-    ``solver``: "events" (`runtime.events`, the compiled DOP853 integrator on each
-    mode) or "superposition" (`runtime.superposition`: the normal equation once,
-    the tangential one by superposition; it falls back to "events" where it does
-    not apply). ``method``: the Runge-Kutta method ("DOP853", the only one).
+    ``solver``: "events" (the default; `runtime.events`, the compiled DOP853
+    integrator on each mode: the general one, and the faster) or "superposition"
+    (`runtime.superposition`: the normal equation once, the tangential one by
+    superposition; it falls back to "events" where it does not apply). ``method``: the Runge-Kutta method ("DOP853", the only one).
     ``dt``: sampling step of the returned time series [s]. ``t_discard``: start of
     the steady window [s]; ``None`` means 30 % of ``t_end``. ``backend``: "numba"
     (compiled), "python" or None (numba if installed).
     """
-    solver: str = "superposition"
+    solver: str = "events"
     method: str = "DOP853"
     rtol: float = 1e-10
     atol: float = 1e-10

@@ -9,7 +9,7 @@ itself, found by maximising it in a band.
 from __future__ import annotations
 
 import numpy as np
-from scipy import signal
+from scipy import fft, signal
 
 __all__ = ["amplitude_spectrum", "peak_amplitude", "peak_amplitudes", "spectrogram"]
 
@@ -80,9 +80,15 @@ def peak_amplitudes(x, dt, bands, window="hann"):
     list of (omega_peak, amplitude), one per band
     """
     x = np.asarray(x, dtype=float)
-    omega, spec = amplitude_spectrum(x, dt, window, pad=2)
+    if x.ndim != 1 or x.size < 8:
+        raise ValueError("x must be a 1-D signal with at least 8 samples")
     w = _window(window, x.size)
     xw, wsum = (x - x.mean()) * w, w.sum()
+    # the coarse search: at least twofold zero padding, to a length the FFT factors
+    # into small primes (the peak is refined off the grid anyway)
+    n = fft.next_fast_len(2 * x.size, real=True)
+    spec = 2 * np.abs(np.fft.rfft(xw, n)) / wsum
+    omega = 2 * np.pi * np.fft.rfftfreq(n, dt)
     step = omega[1] - omega[0]
     out = []
     for band in bands:

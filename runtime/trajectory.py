@@ -101,19 +101,20 @@ class Trajectory:
         return Fn, friction
 
     def pieces(self, edges=None):
-        """Smooth pieces (a, b, segment index) split at knots and at ``edges``."""
-        a_all, b_all, i_all = [], [], []
-        for i, s in enumerate(self.segments):
-            cuts = [s.knots]
-            if edges is not None:
-                e = np.asarray(edges, dtype=float)
-                cuts.append(e[(e > s.t0) & (e < s.t1)])
-            pts = np.unique(np.concatenate(cuts + [[s.t0, s.t1]]))
-            pts = pts[(pts >= s.t0) & (pts <= s.t1)]
-            a_all.append(pts[:-1])
-            b_all.append(pts[1:])
-            i_all.append(np.full(pts.size - 1, i))
-        a, b, i = (np.concatenate(v) for v in (a_all, b_all, i_all))
+        """Smooth pieces (a, b, segment index) split at knots and at ``edges``.
+
+        The segments follow each other in time, so the cuts of all of them are one
+        sorted set: the knots, the segment boundaries and the edges inside the run.
+        """
+        t0, t1 = self.segments[0].t0, self.t_end
+        cuts = [s.knots for s in self.segments] + [self.starts, [t1]]
+        if edges is not None:
+            e = np.asarray(edges, dtype=float)
+            cuts.append(e[(e > t0) & (e < t1)])
+        pts = np.unique(np.concatenate(cuts))
+        pts = pts[(pts >= t0) & (pts <= t1)]
+        a, b = pts[:-1], pts[1:]
+        i = self._index(0.5 * (a + b))
         keep = b > a
         return a[keep], b[keep], i[keep]
 

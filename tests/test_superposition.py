@@ -78,7 +78,8 @@ def test_normal_motion_cache_is_reused_and_cleared_without_changing_results():
 
 
 def test_superposition_hands_over_at_undamped_resonance_with_a_reason():
-    sim = simulate(beta1=0.0, Omega=1.0, omega1=1.0, t_end=30.0, t_discard=10.0)
+    sim = simulate(beta1=0.0, Omega=1.0, omega1=1.0, t_end=30.0, t_discard=10.0,
+                   solver="superposition")
     assert sim.solver_used == "events"
     assert "undamped resonance" in sim.message
 
