@@ -88,6 +88,36 @@ def arguments(function, names, params):
     return values, extra
 
 
+_SCALAR_TEST = {"positive": lambda x: x > 0, "nonnegative": lambda x: x >= 0,
+                "real": lambda x: True}
+
+
+def _scalar_arguments(function, names, params):
+    """`arguments` for scalar parameters (a kernel's): floats, checked without arrays.
+
+    Binding happens in inner loops of parameter studies (a Floquet band binds at
+    every value): Python floats pass a test of their domain; anything else takes
+    the checks of `arguments`, which name what is wrong.
+    """
+    _reject_unknown(function, params)
+    values = []
+    for n in names:
+        v = _lookup(function, n, params)
+        if type(v) is float and math.isfinite(v) and _SCALAR_TEST[DOMAINS[n]](v):
+            values.append(v)
+            continue
+        x = param(function, n, v)
+        if x.ndim:
+            raise ValueError(f"{function}(): parameter {n!r} must be a scalar; got shape "
+                             f"{x.shape}")
+        values.append(float(x))
+    for k, v in params.items():
+        if k not in names and v is not None and not (type(v) is float and math.isfinite(v)
+                                                     and _SCALAR_TEST[DOMAINS[k]](v)):
+            param(function, k, v)
+    return tuple(values)
+
+
 def mp_arguments(function, names, params):
     """`arguments` for the mpmath variants: the checked values as ``mpf``."""
     _reject_unknown(function, params)
@@ -414,11 +444,7 @@ def bind(function, variant, params, backend):
     """
     _check_backend(backend, _BIND_BACKENDS)
     name = f"bind_{function}"
-    values, _ = arguments(name, variant.names, params)
-    for n, v in zip(variant.names, values):
-        if v.ndim:
-            raise ValueError(f"{name}(): parameter {n!r} must be a scalar; got shape {v.shape}")
-    values = tuple(float(v) for v in values)
+    values = _scalar_arguments(name, variant.names, params)
     roots = tuple(float(r) for r in variant.prep(*values)) if variant.prep is not None else ()
     use_numba = backend == "numba" or (backend is None and _import_numba(False) is not None)
     kernel = jit(variant.scalar) if use_numba else variant.scalar

@@ -50,7 +50,7 @@ __all__ = ["main", "run_command", "add_commands", "COMMANDS", "ModelOption", "MO
            "model_parent", "model_kwargs", "solver_parent", "executor_parent", "cache_parent",
            "executor_from", "validation_lines"]
 
-COMMANDS = ("simulate", "sweep", "predict", "validate")
+COMMANDS = ("simulate", "sweep", "predict", "validate", "floquet", "floquet-band")
 _MODEL_PARAMS = [p for p in PARAMETERS if p["name"] != "Vhat"]
 PAPER_STATEMENT = "the omega1 peak 'vanishes after Vb ~ 8 m/s' (Sect. 3, Fig. 2b)"
 _DOMAIN_TEXT = {"positive": (lambda x: x > 0, "> 0"), "nonnegative": (lambda x: x >= 0, ">= 0"),
@@ -74,9 +74,11 @@ class ModelOption:
 
 #: The model options, one line each.
 MODEL_OPTIONS = (
-    ModelOption("contact", ("simulate", "sweep", "predict"), CONTACTS, "hertz_damp",
+    ModelOption("contact", ("simulate", "sweep", "predict", "floquet", "floquet-band"),
+                CONTACTS, "hertz_damp",
                 "contact law: Hertz-Damp, Eq. (1), or the linear contact of Fig. 16"),
-    ModelOption("tension", ("simulate", "sweep", "predict", "validate"), TENSIONS, "allowed",
+    ModelOption("tension", ("simulate", "sweep", "predict", "validate", "floquet",
+                            "floquet-band"), TENSIONS, "allowed",
                 "tension law (docs/modelling.md#tension): Eq. (1) as printed, which can pull, "
                 "or a contact that cannot pull (max(F, 0): the surfaces separate)"),
 )
@@ -297,7 +299,8 @@ def _jsonable(x):
 
 def _simulate(args):
     from .simulate import simulate
-    sim = simulate(_params(args), **model_kwargs(args, "simulate"), settings=_settings(args))
+    sim = simulate(_params(args), **model_kwargs(args, "simulate"), settings=_settings(args),
+                   start=args.start, perturbation=args.perturbation)
     out = dict(sim.summary)
     if args.modulation:
         from .modulation import modulation_scatter
@@ -348,6 +351,60 @@ def _simulate(args):
     lines.append(f"wall time {out['wall_s']:.2f} s")
     print("\n".join(lines))
     return 0 if sim.status == "done" else 2
+
+
+def _floquet(args):
+    from .floquet import floquet
+    f = floquet(_params(args), **model_kwargs(args, "floquet"))
+    out = f.as_dict()
+    out["params"] = f.response.params
+    out["contact"], out["tension"] = f.response.contact, f.response.tension
+    out["switches"] = [{"t": t, "before": b.name.lower(), "after": a.name.lower(),
+                        "surface": s} for t, b, a, s in f.response.switches]
+    if args.json:
+        print(json.dumps(_jsonable(out)))
+        return 0
+    p = f.response.params
+    mus = ", ".join(f"{z.real:.6g}{z.imag:+.6g}j" for z in f.multipliers)
+    lines = [f"periodic response of Eq. (4), {f.response.contact}, tension "
+             f"{f.response.tension}, Vb = {p['Vb']:g} m/s: period {f.period:.6g} s, "
+             f"{f.n_reversals} reversals and {f.n_sticks} sticks per period, Newton "
+             f"{f.response.iterations} iterations (residual {f.response.residual:.1e})"]
+    if f.grazing is not None:
+        lines.append(f"GRAZING: a reversal at t = {f.grazing['t']:.6g} s is reached with a "
+                     f"vanishing acceleration (ratio {f.grazing['ratio']:.1e}); no multiplier "
+                     "is reported")
+    else:
+        lines += [f"Floquet multipliers: {mus}",
+                  f"largest |mu| = {f.max_abs_multiplier:.6g}: "
+                  f"{'stable' if f.stable else 'UNSTABLE'}; growth rate "
+                  f"{f.growth_rate:.6g} 1/s, critical pair at {f.frequency:.6g} rad/s "
+                  f"(omega1 = {p['omega1']:g}; modulo {2 * math.pi / f.period:.6g})"]
+    print("\n".join(lines))
+    return 0
+
+
+def _floquet_band(args):
+    from .floquet import floquet_band
+    if not args.stop > args.start:
+        args.parser.error(f"argument --to: must be > --from ({args.start:g}); got {args.stop:g}")
+    band = floquet_band(args.param, args.start, args.stop, _params(args, skip=(args.param,)),
+                        **model_kwargs(args, "floquet-band"), points=args.points, tol=args.tol)
+    if args.json:
+        print(json.dumps(_jsonable(band)))
+        return 0
+    from .intervals import fmt_ranges
+    lines = [f"periodic response unstable (or absent) for {args.param} in "
+             f"{fmt_ranges(band['unstable'], 4)} of {args.start:g}..{args.stop:g}"]
+    for e in band["edges"]:
+        lines.append(f"  edge at {e['value']:.4f} ({e['kind']}; unstable "
+                     f"{'above' if e['unstable_above'] else 'below'})")
+    if band["no_periodic_response"]:
+        lines.append(f"  no periodic response in {fmt_ranges(band['no_periodic_response'], 4)}")
+    for f in band["failed"]:
+        lines.append(f"  no periodic response found at {f['value']:g}: {f['reason']}")
+    print("\n".join(lines))
+    return 0
 
 
 def _peak_text(out):
@@ -502,6 +559,11 @@ def add_commands(commands):
                [model_parent("simulate"), solver_parent(), _json_parent()],
                help="simulate Eq. (4) and summarise the run",
                description="Simulate Eq. (4) and summarise the run.")
+    sim.add_argument("--start", choices=("rest", "periodic"), default="rest",
+                     help="start from the equilibrium at rest (default), or on the periodic "
+                          "response (runtime.floquet) with X1 moved by --perturbation")
+    sim.add_argument("--perturbation", type=_number(), default=1e-2, metavar="DX1",
+                     help="the move of X1 from the periodic response [m] (default 1e-2)")
     sim.add_argument("--modulation", action="store_true",
                      help="add friction modulation averages (Figs. 10-12)")
     sim.add_argument("--save", metavar="NPZ", type=_output_file,
@@ -541,6 +603,25 @@ def add_commands(commands):
                      help="top of the Vb grid, > 0 (default: 1.05 x the linear amplitude)")
     pre.add_argument("--vb-points", type=_integer(2), default=400,
                      help="points of the Vb grid, >= 2 (default: 400)")
+
+    flo = _add(commands, "floquet", _floquet, [model_parent("floquet"), _json_parent()],
+               help="Floquet multipliers of the periodic response",
+               description="The periodic response of Eq. (4) by shooting and its Floquet "
+                           "multipliers, with saltation matrices at the switches "
+                           "(runtime.floquet).")
+    del flo
+    band = _add(commands, "floquet-band", _floquet_band,
+                [model_parent("floquet-band"), _json_parent()],
+                help="ranges of a parameter where the periodic response is unstable",
+                description="Ranges of one parameter where the periodic response is "
+                            "unstable, edges located by bisection (runtime.floquet).")
+    band.add_argument("--param", required=True, choices=SWEEPABLE)
+    band.add_argument("--from", dest="start", type=_number(), required=True, metavar="X")
+    band.add_argument("--to", dest="stop", type=_number(), required=True, metavar="X")
+    band.add_argument("--points", type=_integer(2), default=17,
+                      help="grid points walked before the bisection (default 17)")
+    band.add_argument("--tol", type=_POSITIVE, default=1e-3,
+                      help="the edges' tolerance, > 0 (default 1e-3)")
 
     val = _add(commands, "validate", _validate,
                [model_parent("validate", parameters=False), executor_parent(), cache_parent()],

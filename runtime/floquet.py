@@ -47,6 +47,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy import optimize
 from scipy.integrate import solve_ivp
 
 from generated import dynamics, hybrid, oscillator
@@ -71,9 +72,14 @@ NEWTON_TOL = 1e-11
 #: Integration tolerance of the periodic orbits.
 _RTOL = 1e-12
 #: Halvings of a Newton step before the method counts as stalled.
-_LINE_SEARCH = 12
+_LINE_SEARCH = 8
+#: Iterations over which Newton's residual must halve (converging, it squares).
+_STAGNATION = 4
 #: Periods the normal motion is followed before Newton's method polishes its orbit.
 _NORMAL_PERIODS = 200
+#: Periods of forward iteration of the tangential period map where Newton's method
+#: fails (a stable response next to a grazing point).
+FORWARD_PERIODS = 200
 
 
 @dataclass
@@ -324,8 +330,13 @@ def _sliding_guess(pmap):
 
 
 def periodic_response(params=None, *, contact="hertz_damp", tension="allowed", guess=None,
-                      max_iter=30, backend=None, **overrides):
+                      max_iter=20, forward=FORWARD_PERIODS, backend=None, **overrides):
     """The periodic response of Eq. (4) by shooting (module docstring).
+
+    Newton's method from ``guess`` (or the backward-sliding orbit); where it fails,
+    the period map is iterated forward from the sliding orbit for up to ``forward``
+    periods (it converges to a stable periodic response, where Newton's method may
+    not, next to a grazing point) and Newton's method polishes the result.
 
     Parameters
     ----------
@@ -336,6 +347,8 @@ def periodic_response(params=None, *, contact="hertz_damp", tension="allowed", g
         Tangential state ``(X1, X1')`` at phase 0 to start Newton's method from (a
         continuation's predictor); default the backward-sliding orbit.
     max_iter : int
+    forward : int
+        Periods of forward iteration after Newton's method fails (0: none).
     backend : {"python", "numba", None}
 
     Returns
@@ -348,7 +361,7 @@ def periodic_response(params=None, *, contact="hertz_damp", tension="allowed", g
         For bad parameters, a tension law that does not exist, or an excitation without
         a period (zero or incommensurate frequencies).
     RuntimeError
-        If Newton's method does not converge.
+        If no periodic response is found.
     """
     if tension not in TENSIONS:
         raise ValueError(f"tension must be one of {', '.join(map(repr, TENSIONS))}; "
@@ -358,13 +371,46 @@ def periodic_response(params=None, *, contact="hertz_damp", tension="allowed", g
     pmap = _PeriodMap(p, contact, tension, backend)
     if isinstance(guess, PeriodicResponse):
         guess = guess.state0[:2]
-    x = _sliding_guess(pmap) if guess is None else np.array(guess, dtype=float)
+    sliding = _sliding_guess(pmap)
+    start = sliding if guess is None else np.array(guess, dtype=float)
+    try:
+        found = _newton(pmap, start, max_iter)
+    except RuntimeError as newton_failed:
+        if not forward:
+            raise
+        x = sliding
+        for _ in range(int(forward)):
+            xT = pmap(x)[0]
+            if np.max(np.abs(xT - x)) <= 1e-7 * (1 + np.max(np.abs(x))):
+                break
+            x = xT
+        else:
+            raise RuntimeError(f"{newton_failed}; nor does the period map, iterated "
+                               f"{forward} periods from the sliding orbit, settle") from None
+        found = _newton(pmap, x, max_iter)
+    x, M, run, grazing, residual, iteration = found
+    switches = [(t, b, a, s) for t, b, a, s, _ in run["switches"]]
+    segments = list(zip(run["starts"], run["ends"], run["modes"]))
+    return PeriodicResponse(p, contact, tension, pmap.T,
+                            np.concatenate([x, pmap.orbit.state0]), switches, segments, M,
+                            pmap.orbit.monodromy, grazing, residual, iteration, pmap)
+
+
+def _newton(pmap, x, max_iter):
+    """Newton's method with damped steps on ``P(x) - x``, ``M_t - I`` its Jacobian."""
     scale = 1.0 + np.max(np.abs(x))
     xT, M, run, grazing = pmap(x)
     r = xT - x
+    history = []
     for iteration in range(1, max_iter + 1):
-        if np.max(np.abs(r)) <= NEWTON_TOL * scale:
-            break
+        residual = float(np.max(np.abs(r)))
+        if residual <= NEWTON_TOL * scale:
+            return x, M, run, grazing, residual, iteration
+        history.append(residual)
+        if len(history) > _STAGNATION and history[-1] > 0.5 * history[-1 - _STAGNATION]:
+            raise RuntimeError(f"no periodic response found: Newton's method stagnates at a "
+                               f"residual {residual:.2e} (not halved in {_STAGNATION} "
+                               "iterations)")
         A = M - np.eye(2)
         try:
             step = -np.linalg.solve(A, r)
@@ -384,15 +430,8 @@ def periodic_response(params=None, *, contact="hertz_damp", tension="allowed", g
                                "halvings reduces it)")
         x, xT, M, run, grazing, r = x_new, xT_new, M_new, run_new, grazing_new, r_new
         scale = 1.0 + np.max(np.abs(x))
-    else:
-        raise RuntimeError(f"no periodic response found: Newton's method left a residual "
-                           f"{np.max(np.abs(r)):.2e} after {max_iter} iterations")
-    switches = [(t, b, a, s) for t, b, a, s, _ in run["switches"]]
-    segments = list(zip(run["starts"], run["ends"], run["modes"]))
-    return PeriodicResponse(p, contact, tension, pmap.T,
-                            np.concatenate([x, pmap.orbit.state0]), switches, segments, M,
-                            pmap.orbit.monodromy, grazing, float(np.max(np.abs(r))),
-                            iteration, pmap)
+    raise RuntimeError(f"no periodic response found: Newton's method left a residual "
+                       f"{np.max(np.abs(r)):.2e} after {max_iter} iterations")
 
 
 @dataclass
@@ -426,7 +465,7 @@ class Floquet:
 
 
 def floquet(params=None, *, contact="hertz_damp", tension="allowed", guess=None,
-            backend=None, **overrides):
+            forward=FORWARD_PERIODS, backend=None, **overrides):
     """Floquet multipliers of the periodic response (module docstring).
 
     Returns
@@ -434,7 +473,7 @@ def floquet(params=None, *, contact="hertz_damp", tension="allowed", guess=None,
     Floquet
     """
     resp = periodic_response(params, contact=contact, tension=tension, guess=guess,
-                             backend=backend, **overrides)
+                             forward=forward, backend=backend, **overrides)
     return _multipliers(resp)
 
 
@@ -461,28 +500,30 @@ def floquet_band(param, lo, hi, params=None, *, contact="hertz_damp", tension="a
     """Ranges of ``param`` in ``[lo, hi]`` where the periodic response is unstable.
 
     A grid of ``points`` values is walked from ``hi`` down to ``lo``, each periodic
-    response continued from the previous one (the backward-sliding orbit where that
-    fails). Between neighbours with the same switch structure (numbers of reversals
-    and sticks per period) a change of the verdict is bisected on ``|mu| = 1``
-    (``"multiplier"`` edge). Where the structure changes, the grazing point (a
-    reversal appears with a vanishing acceleration) is bisected on whether the
-    simpler orbit, continued, keeps its structure (``"grazing"`` point); the verdict
-    may jump there, and a ``|mu| = 1`` crossing on the far side is bisected too.
-    Every edge is located to ``tol``.
+    response continued from the previous one. Between neighbours whose state differs
+    (found or not, the switch structure: reversals and sticks per period, the
+    verdict) the interval is bisected, each midpoint continued from a neighbour,
+    until it is below ``tol``: every change is located to ``tol``, and several
+    changes between two grid points are all found. A change is an edge of kind
+    ``"multiplier"`` (``|mu| = 1`` within one structure), ``"grazing"`` (the
+    structure changes: a reversal appears or disappears with a vanishing
+    acceleration; the verdict may jump there) or ``"existence"`` (no periodic
+    response is found on one side). For ``param = "Vb"`` the grazing point of the
+    backward-sliding response is computed exactly: it is that response's largest
+    velocity in contact, which does not depend on ``Vb``.
 
     Returns
     -------
     dict
-        ``unstable``: list of ``[lo, hi]`` where no stable periodic response exists
-        (unstable, or none at all: the ``no_periodic_response`` ranges are included);
-        ``edges``: list of dicts (``value``,
-        ``kind``, ``bracket``, ``unstable_above``); ``grazing_points``: the located
-        grazing points; ``grid``: the walked values with ``max_abs_multiplier``,
-        ``stable``, ``growth_rate``, ``n_reversals``, ``n_sticks``, ``grazing``;
-        ``no_periodic_response``: ranges where no periodic response exists next to a
-        grazing point (the far side's orbit ends at a fold before it; they are part
-        of ``unstable``: there is no stable periodic response to be on);
-        ``failed``: grid values where no periodic response was found, with the reason.
+        ``unstable``: list of ``[lo, hi]`` where no stable periodic response is found
+        (unstable, or none found: the ``no_periodic_response`` ranges are included);
+        ``edges``: list of dicts (``value``, ``kind``, ``bracket``,
+        ``unstable_above``); ``grazing_points``; ``no_periodic_response``: ranges
+        where no periodic response is found (from the continued neighbours by
+        Newton's method, or, next to a stable one, by iterating the period map);
+        ``grid``: every evaluated value with ``max_abs_multiplier``, ``stable``,
+        ``growth_rate``, ``n_reversals``, ``n_sticks``, ``grazing``; ``failed``: the
+        grid values where no periodic response was found, with the reason.
 
     Raises
     ------
@@ -497,85 +538,92 @@ def floquet_band(param, lo, hi, params=None, *, contact="hertz_damp", tension="a
     if int(points) < 2 or not tol > 0:
         raise ValueError(f"points must be >= 2 and tol > 0; got {points}, {tol}")
     base = {**(params or {}), **overrides}
-    failed = []
+    failed, seen = [], {}
 
-    def evaluate(v, guess, record=True):
-        for start in ((guess, None) if guess is not None else (None,)):
-            try:
-                return floquet({**base, param: float(v)}, contact=contact, tension=tension,
-                               guess=start, backend=backend)
-            except RuntimeError as err:
-                reason = str(err)
-        if record:
-            failed.append({"value": float(v), "reason": reason})
-        return None
+    def evaluate(v, neighbours, record=False):
+        """The Floquet analysis at ``v``, continued from the nearest neighbour found."""
+        near = [f for f in neighbours if f is not None]
+        guess = near[0].response if near else None
+        # forward iteration finds only a stable response: tried next to a stable one
+        forward = FORWARD_PERIODS if not near or near[0].stable is not False else 0
+        try:
+            f = floquet({**base, param: float(v)}, contact=contact, tension=tension,
+                        guess=guess, forward=forward, backend=backend)
+        except RuntimeError as err:
+            if record:
+                failed.append({"value": float(v), "reason": str(err)})
+            f = None
+        seen[float(v)] = f
+        return f
 
-    rows, guess = [], None
+    grid, last = [], None
     for v in np.linspace(hi, lo, int(points)):
-        f = evaluate(v, guess)
-        if f is not None:
-            guess = f.response
-            rows.append((float(v), f))
-    rows.sort(key=lambda r: r[0])
-    edges, grazing_points, gaps = [], [], []
-    for (a, fa), (b, fb) in zip(rows[:-1], rows[1:]):
-        if _structure(fa) == _structure(fb):
-            if _verdict(fa) != _verdict(fb):
-                edges.append(_bisect_verdict(evaluate, a, fa, b, fb, tol))
-            continue
-        simple_low = sum(_structure(fa)) <= sum(_structure(fb))
-        g, (a2, fa2), (b2, fb2) = _bisect_structure(evaluate, a, fa, b, fb, tol, simple_low)
-        grazing_points.append(g)
-        if _verdict(fa2) != _verdict(fb2):
-            edges.append({"value": g, "kind": "grazing", "bracket": [a2, b2],
-                          "unstable_above": _verdict(fb2) == "unstable"})
-        # the far side's orbit, continued towards the grazing point, may end before it
-        # (a fold of its own): between the two no periodic response exists
-        far = (b, fb) if simple_low else (a, fa)
-        end = _bisect_existence(evaluate, far, g, tol)
-        if end is not None:
-            gaps.append(sorted([end[0], g]))
-            far_end = end
-        else:
-            far_end = (b2, fb2) if simple_low else (a2, fa2)
-        # a |mu| = 1 crossing between the grazing point and the far grid point
-        ends = sorted([far_end, far], key=lambda r: r[0])
-        if _verdict(ends[0][1]) != _verdict(ends[1][1]) and ends[1][0] - ends[0][0] > tol \
-                and _structure(ends[0][1]) == _structure(ends[1][1]):
-            edges.append(_bisect_verdict(evaluate, *ends[0], *ends[1], tol))
-    edges.sort(key=lambda e: e["value"])
-    unstable = []
-    start = rows[0][0] if rows and _verdict(rows[0][1]) == "unstable" else None
-    for e in edges:
-        if e["unstable_above"] and start is None:
-            start = e["value"]
-        elif not e["unstable_above"] and start is not None:
-            unstable.append([start, e["value"]])
-            start = None
-    if start is not None:
-        unstable.append([start, rows[-1][0]])
-    unstable = _union(unstable + gaps)
-    grid = [{"value": v, "max_abs_multiplier": f.max_abs_multiplier, "stable": f.stable,
-             "growth_rate": f.growth_rate, "n_reversals": f.n_reversals,
-             "n_sticks": f.n_sticks, "grazing": f.grazing is not None} for v, f in rows]
+        f = evaluate(v, [last], record=True)
+        last = f if f is not None else last
+        grid.append((float(v), f))
+    grid.sort(key=lambda r: r[0])
+    edges, grazing_points = [], []
+
+    def refine(a, fa, b, fb):
+        if _state(fa) == _state(fb):
+            return
+        if b - a <= tol:
+            edges.append(_edge(a, fa, b, fb))
+            return
+        g = _sliding_grazing(param, a, fa, b, fb, base, contact, tension, backend)
+        if g is not None and a + tol / 4 < g < b - tol / 4:
+            below = evaluate(g - tol / 4, [fa, fb])
+            above = evaluate(g + tol / 4, [fb, fa])
+            grazing_points.append(g)
+            refine(a, fa, g - tol / 4, below)
+            edges.append(_edge(g - tol / 4, below, g + tol / 4, above, kind="grazing"))
+            refine(g + tol / 4, above, b, fb)
+            return
+        m = _multiplier_step(a, fa, b, fb, tol) if _same_structure(fa, fb) else None
+        m = 0.5 * (a + b) if m is None else m
+        fm = evaluate(m, [fa, fb] if abs(m - a) <= abs(b - m) else [fb, fa])
+        refine(a, fa, m, fm)
+        refine(m, fm, b, fb)
+
+    for (a, fa), (b, fb) in zip(grid[:-1], grid[1:]):
+        refine(a, fa, b, fb)
+    edges = [e for e in sorted(edges, key=lambda e: e["value"]) if e is not None]
+    grazing_points += [e["value"] for e in edges
+                       if e["kind"] == "grazing" and e["value"] not in grazing_points]
+    points_seen = sorted(seen.items())
+    unstable = _runs(points_seen, edges, lambda f: f is None or f.stable is not True, lo, hi)
+    gaps = _runs(points_seen, edges, lambda f: f is None, lo, hi)
+    table = [{"value": v, "max_abs_multiplier": f.max_abs_multiplier, "stable": f.stable,
+              "growth_rate": f.growth_rate, "n_reversals": f.n_reversals,
+              "n_sticks": f.n_sticks, "grazing": f.grazing is not None}
+             for v, f in points_seen if f is not None]
     return {"param": param, "unstable": unstable, "edges": edges,
-            "grazing_points": grazing_points, "no_periodic_response": gaps, "grid": grid,
-            "failed": failed, "tension": tension, "contact": contact}
+            "grazing_points": sorted(grazing_points), "no_periodic_response": gaps,
+            "grid": table, "failed": failed, "tension": tension, "contact": contact}
 
 
-def _union(ranges):
-    """The union of closed ranges, as sorted disjoint ``[lo, hi]``."""
-    out = []
-    for lo, hi in sorted(ranges):
-        if out and lo <= out[-1][1]:
-            out[-1][1] = max(out[-1][1], hi)
-        else:
-            out.append([lo, hi])
-    return out
+def _same_structure(fa, fb):
+    return fa is not None and fb is not None and fa.stable is not None and \
+        fb.stable is not None and (fa.n_reversals, fa.n_sticks) == (fb.n_reversals, fb.n_sticks)
 
 
-def _structure(f):
-    return (f.n_reversals, f.n_sticks)
+def _multiplier_step(a, fa, b, fb, tol):
+    """The next value for ``|mu| = 1`` within one structure: the secant of ``log|mu|``.
+
+    ``log|mu|`` is smooth there (it is ``T`` times the growth rate), so the secant
+    converges in a few steps; kept inside the bracket, a tolerance away from its ends
+    so that the bracket shrinks.
+    """
+    ga, gb = math.log(fa.max_abs_multiplier), math.log(fb.max_abs_multiplier)
+    if ga == gb:
+        return None
+    m = a - ga * (b - a) / (gb - ga)
+    return min(max(m, a + tol / 3), b - tol / 3)
+
+
+def _state(f):
+    """What a value's evaluation says: not found, or (structure, verdict)."""
+    return None if f is None else (f.n_reversals, f.n_sticks, _verdict(f))
 
 
 def _verdict(f):
@@ -585,59 +633,78 @@ def _verdict(f):
     return "stable" if f.stable else "unstable"
 
 
-def _bisect_verdict(evaluate, a, fa, b, fb, tol):
-    """The ``|mu| = 1`` edge between ``a`` and ``b`` (same structure), to ``tol``."""
-    while b - a > tol:
-        m = 0.5 * (a + b)
-        fm = evaluate(m, fa.response, record=False) or evaluate(m, fb.response)
-        if fm is None:
-            break
-        if _verdict(fm) == _verdict(fa):
-            a, fa = m, fm
+def _edge(a, fa, b, fb, kind=None):
+    """The change between two values closer than the tolerance, classified."""
+    if kind is None:
+        if fa is None or fb is None:
+            kind = "existence"
+        elif (fa.n_reversals, fa.n_sticks) != (fb.n_reversals, fb.n_sticks):
+            kind = "grazing"
         else:
-            b, fb = m, fm
-    return {"value": 0.5 * (a + b), "kind": "multiplier", "bracket": [a, b],
-            "unstable_above": _verdict(fb) == "unstable"}
+            kind = "multiplier"
+    return {"value": 0.5 * (a + b), "kind": kind, "bracket": [a, b],
+            "unstable_above": fb is None or fb.stable is not True}
 
 
-def _bisect_existence(evaluate, start, target, tol):
-    """Where the orbit of ``start = (value, Floquet)``, continued towards ``target``, ends.
+def _runs(points, edges, flag, lo, hi):
+    """Maximal ranges of the evaluated values where ``flag`` holds, cut at the edges."""
+    out, start, previous = [], None, None
+    cuts = sorted(e["value"] for e in edges)
+    for v, f in points:
+        if flag(f) and start is None:
+            inside = [c for c in cuts if previous is not None and previous < c < v]
+            start = inside[-1] if inside else (lo if previous is None else v)
+        elif not flag(f) and start is not None:
+            inside = [c for c in cuts if previous < c < v]
+            out.append([start, inside[0] if inside else previous])
+            start = None
+        previous = v
+    if start is not None:
+        out.append([start, hi])
+    return out
 
-    None if it reaches within ``tol`` of ``target`` with its structure; else the last
-    value where it exists, and its evaluation (to ``tol``).
+
+def _sliding_grazing(param, a, fa, b, fb, base, contact, tension, backend):
+    """The grazing point of the backward-sliding response between ``a`` and ``b``, or None.
+
+    Where the side above slides backwards throughout (no switch in contact) and the
+    side below does not, the sliding response stops at the belt speed equal to its
+    largest velocity in contact; it does not depend on ``Vb``. Only for ``param =
+    "Vb"``; other parameters are bisected.
     """
-    a, fa = start
-    structure = _structure(fa)
-    b = target
-    while abs(b - a) > tol:
-        m = 0.5 * (a + b)
-        fm = evaluate(m, fa.response, record=False)
-        if fm is not None and fm.grazing is None and _structure(fm) == structure:
-            a, fa = m, fm
-        else:
-            b = m
-    near = target - tol if target > start[0] else target + tol
-    if abs(a - near) <= tol:
+    if param != "Vb" or fb is None or (fb.n_reversals, fb.n_sticks) != (0, 0) or \
+            (fa is not None and (fa.n_reversals, fa.n_sticks) == (0, 0)):
         return None
-    return a, fa
+    pmap = fb.response._engine
+    return _largest_sliding_velocity(pmap)
 
 
-def _bisect_structure(evaluate, a, fa, b, fb, tol, simple_low):
-    """The grazing point between ``a`` and ``b``: where the simpler orbit stops existing.
+def _largest_sliding_velocity(pmap):
+    """The largest ``X1'`` over one period of the backward-sliding orbit, in contact.
 
-    The simpler side's orbit is continued towards the other side; a midpoint where it
-    converges to the same switch structure, without grazing, is on the simpler side.
-    Returns the point and the last evaluations on either side.
+    Out of contact (flight, separation) there is no friction to reverse, so only the
+    times in contact count.
     """
-    simple = fa if simple_low else fb
-    while b - a > tol:
-        m = 0.5 * (a + b)
-        guess = (fa if simple_low else fb).response
-        fm = evaluate(m, guess, record=False)
-        keeps = fm is not None and fm.grazing is None and \
-            _structure(fm) == _structure(simple)
-        if keeps == simple_low:
-            a, fa = (m, fm) if fm is not None else (m, fa)
-        else:
-            b, fb = (m, fm) if fm is not None else (m, fb)
-    return 0.5 * (a + b), (a, fa), (b, fb)
+    x0 = _sliding_guess(pmap)
+    normal = pmap.engine.normal
+    grid = normal.grid[normal.grid <= pmap.T]
+    segment = np.clip(np.searchsorted(normal.switch_t, grid, side="right") - 1, 0,
+                      len(normal.switch_mode) - 1)
+    contact = np.array([normal.switch_mode[k] == Mode.SLIP_BACK for k in segment])
+    P = pmap.stm.array(grid)
+    mu = pmap.p["mu_s"]
+    v = P[:, 1, 0] * x0[0] + P[:, 1, 1] * x0[1] + normal.on_grid[5, :grid.size] \
+        + mu * normal.on_grid[1, :grid.size]
+    v = np.where(contact, v, -np.inf)
+    k = int(np.argmax(v))
+
+    def minus_velocity(t):
+        P = np.array(pmap.stm(t)).reshape(2, 2)
+        z = normal.at(t)
+        return -(P[1] @ x0 + pmap.engine.exc(t)[1] + mu * z[1])
+    # refine within the contact segment that holds the largest grid value
+    lo = max(grid[max(k - 1, 0)], normal.switch_t[segment[k]])
+    hi = min(grid[min(k + 1, grid.size - 1)], normal.switch_t[segment[k] + 1])
+    best = optimize.minimize_scalar(minus_velocity, bounds=(lo, hi), method="bounded",
+                                    options={"xatol": 1e-12})
+    return float(max(-best.fun, v[k]))

@@ -13,8 +13,8 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from generated import dynamics, unforced
-from generated.parameters import BASE, KNOWN
+from generated import unforced
+from generated.parameters import BASE, DOMAINS, KNOWN
 
 __all__ = ["CONTACTS", "METHODS", "MAX_SAMPLES", "resolve_parameters",
            "initial_state", "is_real", "excitation_period"]
@@ -27,6 +27,11 @@ METHODS = ("DOP853",)
 #: costs 7 floats in the returned arrays, so this caps them near 0.6 GB, and an
 #: absurd request fails before anything is allocated.
 MAX_SAMPLES = 10**7
+
+#: The domains of the parameter table (``generated.parameters.DOMAINS``) as tests.
+_DOMAIN_TESTS = {"positive": (lambda x: x > 0, "> 0"),
+                 "nonnegative": (lambda x: x >= 0, ">= 0"),
+                 "real": (lambda x: True, "real")}
 
 _EXCITATION_DEFAULTS = {"alpha_t": "alpha", "Omega_t": "Omega", "alpha_n": "alpha",
                         "Omega_n": "Omega"}
@@ -78,8 +83,10 @@ def resolve_parameters(params=None, *, contact="hertz_damp", **overrides):
     merged.setdefault("phase_t", 0.0)
     merged.setdefault("phase_n", 0.0)
     merged.pop("Vhat", None)  # Eq. (23) only; the simulation does not use it
-    # The generated code checks every domain and names the offending parameter.
-    dynamics.rhs(0.0, 0.0, 0.0, 1.0, 0.0, contact=contact, **merged)
+    for name, value in merged.items():
+        test, text = _DOMAIN_TESTS[DOMAINS[name]]
+        if not test(value):
+            raise ValueError(f"parameter {name!r} must be {text}; got {value!r}")
     return merged
 
 
