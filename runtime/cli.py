@@ -393,14 +393,14 @@ def _floquet_band(args):
     if args.json:
         print(json.dumps(_jsonable(band)))
         return 0
-    from .intervals import fmt_ranges
+    from .intervals import format_intervals
     lines = [f"periodic response unstable (or absent) for {args.param} in "
-             f"{fmt_ranges(band['unstable'], 4)} of {args.start:g}..{args.stop:g}"]
+             f"{format_intervals(band['unstable'], '.4f')} of {args.start:g}..{args.stop:g}"]
     for e in band["edges"]:
         lines.append(f"  edge at {e['value']:.4f} ({e['kind']}; unstable "
                      f"{'above' if e['unstable_above'] else 'below'})")
     if band["no_periodic_response"]:
-        lines.append(f"  no periodic response in {fmt_ranges(band['no_periodic_response'], 4)}")
+        lines.append(f"  no periodic response in {format_intervals(band['no_periodic_response'], '.4f')}")
     for f in band["failed"]:
         lines.append(f"  no periodic response found at {f['value']:g}: {f['reason']}")
     print("\n".join(lines))

@@ -1,5 +1,6 @@
 """``python -m derive simulate|sweep`` (dispatched to runtime.cli.main)."""
 import json
+import math
 import subprocess
 import sys
 
@@ -87,3 +88,53 @@ def test_sweep_continue_runs_serially_and_says_so(capsys):
         capsys.readouterr().err
     assert main(args[:-1] + ["sideways"]) == 2
     assert "--continue" in capsys.readouterr().err
+
+
+def test_floquet_json_keys_and_verdict_match_the_api(capsys):
+    from runtime.floquet import floquet
+    assert main(["floquet", "--Vb", "5", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    for key in ("multipliers", "max_abs_multiplier", "growth_rate", "frequency", "stable",
+                "n_reversals", "n_sticks", "grazing", "period", "state0", "residual"):
+        assert key in out
+    f = floquet(Vb=5.0)
+    assert out["stable"] is False and out["stable"] == f.stable
+    assert abs(out["max_abs_multiplier"] - f.max_abs_multiplier) <= 1e-9
+    # the growth rate is log|mu|max over the period, by definition
+    assert abs(out["growth_rate"] - math.log(out["max_abs_multiplier"]) / out["period"]) < 1e-12
+
+
+def test_floquet_readable_summary(capsys):
+    assert main(["floquet", "--Vb", "4"]) == 0
+    text = capsys.readouterr().out
+    assert "Floquet multipliers:" in text and "stable" in text and "UNSTABLE" not in text
+
+
+def test_floquet_band_text_and_json_agree(capsys):
+    args = ["floquet-band", "--param", "Vb", "--from", "3", "--to", "7", "--points", "9"]
+    assert main(args) == 0
+    text = capsys.readouterr().out
+    assert main(args + ["--json"]) == 0
+    band = json.loads(capsys.readouterr().out)
+    (lo, hi), = band["unstable"]
+    assert 3 < lo < 5 < hi < 7
+    assert f"[{lo:.4f}, {hi:.4f}]" in text
+    assert {e["kind"] for e in band["edges"]} <= {"multiplier", "grazing", "existence"}
+
+
+def test_floquet_band_rejects_an_empty_range(capsys):
+    assert main(["floquet-band", "--param", "Vb", "--from", "5", "--to", "5"]) == 2
+    assert "--to" in capsys.readouterr().err
+
+
+def test_simulate_from_the_periodic_response(capsys):
+    assert main(["simulate", "--Vb", "5", "--t-end", "400", "--start", "periodic",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["start"] == "periodic"
+    # Floquet says unstable at Vb = 5: the perturbation grows into the omega1 vibration
+    assert out["omega1_peak_present"] is True
+    # and at Vb = 3, where it is stable, the perturbation decays
+    assert main(["simulate", "--Vb", "3", "--t-end", "400", "--start", "periodic",
+                 "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["omega1_peak_present"] is False
