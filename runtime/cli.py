@@ -529,6 +529,13 @@ def _validate(args):
         na = f", no prediction {s['no_prediction']}" if s.get("no_prediction") else ""
         print(f"{lab:>4}: MAE of edges {mae} (n = {s['n_edges']}), miss {s['miss']}, "
               f"false alarm {s['false_alarm']}{na}")
+    for key, lab, _ in validation.ANALYSES:
+        s = results["floquet_summary"][key]
+        mae = "—" if s["mae"] is None else f"{s['mae']:.3f} m/s"
+        print(f"{lab:>4}: against Floquet, MAE of edges {mae} (n = {s['n_edges']})")
+    ms = results["mismatch_summary"]
+    print(f"periodic start against Floquet: {len(ms['mismatches'])} mismatches in "
+          f"{ms['checked']} points")
     print(f"tension law: {results['tension']}")
     print(f"wrote {args.out}")
     return 0

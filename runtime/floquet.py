@@ -58,7 +58,7 @@ from .normal import NORMAL_NAMES, normal_motion
 from .superposition import Superposition
 from .switching import SURFACE_INDEX, Mode, Switching
 
-__all__ = ["excitation_period", "NormalOrbit", "normal_orbit", "PeriodicResponse",
+__all__ = ["excitation_period", "NoPeriodicResponse", "NormalOrbit", "normal_orbit", "PeriodicResponse",
            "periodic_response", "Floquet", "floquet", "floquet_band", "GRAZING_RATIO",
            "NEWTON_TOL"]
 
@@ -80,6 +80,10 @@ _NORMAL_PERIODS = 200
 #: Periods of forward iteration of the tangential period map where Newton's method
 #: fails (a stable response next to a grazing point).
 FORWARD_PERIODS = 200
+
+
+class NoPeriodicResponse(RuntimeError):
+    """No periodic response is found (Newton's method and forward iteration fail)."""
 
 
 @dataclass
@@ -129,7 +133,7 @@ def _normal_flow(p, contact, tension, x0, T):
         sol = solve_ivp(fun, (t, T), y, method="DOP853", rtol=_RTOL, atol=_RTOL,
                         events=[h for h, _, _ in watched] or None)
         if sol.status < 0:
-            raise RuntimeError(f"normal orbit: {sol.message}")
+            raise NoPeriodicResponse(f"normal orbit: {sol.message}")
         t, y = float(sol.t[-1]), sol.y[:, -1].copy()
         if sol.status == 0:
             break
@@ -185,7 +189,7 @@ def _normal_orbit_cached(key, contact, tension):
             break
         x = x + np.linalg.lstsq(np.eye(2) - M, r, rcond=None)[0]
     else:
-        raise RuntimeError("the normal motion has no periodic orbit: followed from the "
+        raise NoPeriodicResponse("the normal motion has no periodic orbit: followed from the "
                            f"equilibrium for {_NORMAL_PERIODS} periods and then by Newton's "
                            "method it does not repeat itself (it loses contact irregularly)")
     xT, M, switches = _normal_flow(p, contact, tension, x, T)
@@ -271,7 +275,7 @@ class _PeriodMap:
         """``(P(x), M_t, run, grazing)`` for the tangential state ``x`` at phase 0."""
         run = self.engine.run(0.0, float(x[0]), float(x[1]), self.T)
         if run["status"] != "done":
-            raise RuntimeError(f"period map: {run['message']}")
+            raise NoPeriodicResponse(f"period map: {run['message']}")
         M = np.eye(2)
         grazing = None
         for (t0, t1, mode), switch in zip(zip(run["starts"], run["ends"], run["modes"]),
@@ -360,8 +364,8 @@ def periodic_response(params=None, *, contact="hertz_damp", tension="allowed", g
     ValueError
         For bad parameters, a tension law that does not exist, or an excitation without
         a period (zero or incommensurate frequencies).
-    RuntimeError
-        If no periodic response is found.
+    NoPeriodicResponse
+        (a RuntimeError) If no periodic response is found.
     """
     if tension not in TENSIONS:
         raise ValueError(f"tension must be one of {', '.join(map(repr, TENSIONS))}; "
@@ -375,7 +379,7 @@ def periodic_response(params=None, *, contact="hertz_damp", tension="allowed", g
     start = sliding if guess is None else np.array(guess, dtype=float)
     try:
         found = _newton(pmap, start, max_iter)
-    except RuntimeError as newton_failed:
+    except NoPeriodicResponse as newton_failed:
         if not forward:
             raise
         x = sliding
@@ -385,7 +389,7 @@ def periodic_response(params=None, *, contact="hertz_damp", tension="allowed", g
                 break
             x = xT
         else:
-            raise RuntimeError(f"{newton_failed}; nor does the period map, iterated "
+            raise NoPeriodicResponse(f"{newton_failed}; nor does the period map, iterated "
                                f"{forward} periods from the sliding orbit, settle") from None
         found = _newton(pmap, x, max_iter)
     x, M, run, grazing, residual, iteration = found
@@ -408,7 +412,7 @@ def _newton(pmap, x, max_iter):
             return x, M, run, grazing, residual, iteration
         history.append(residual)
         if len(history) > _STAGNATION and history[-1] > 0.5 * history[-1 - _STAGNATION]:
-            raise RuntimeError(f"no periodic response found: Newton's method stagnates at a "
+            raise NoPeriodicResponse(f"no periodic response found: Newton's method stagnates at a "
                                f"residual {residual:.2e} (not halved in {_STAGNATION} "
                                "iterations)")
         A = M - np.eye(2)
@@ -425,12 +429,12 @@ def _newton(pmap, x, max_iter):
                 break
             lam *= 0.5
         else:
-            raise RuntimeError(f"no periodic response found: Newton's method stalled at a "
+            raise NoPeriodicResponse(f"no periodic response found: Newton's method stalled at a "
                                f"residual {np.max(np.abs(r)):.2e} (no step of {_LINE_SEARCH} "
                                "halvings reduces it)")
         x, xT, M, run, grazing, r = x_new, xT_new, M_new, run_new, grazing_new, r_new
         scale = 1.0 + np.max(np.abs(x))
-    raise RuntimeError(f"no periodic response found: Newton's method left a residual "
+    raise NoPeriodicResponse(f"no periodic response found: Newton's method left a residual "
                        f"{np.max(np.abs(r)):.2e} after {max_iter} iterations")
 
 
@@ -549,7 +553,7 @@ def floquet_band(param, lo, hi, params=None, *, contact="hertz_damp", tension="a
         try:
             f = floquet({**base, param: float(v)}, contact=contact, tension=tension,
                         guess=guess, forward=forward, backend=backend)
-        except RuntimeError as err:
+        except NoPeriodicResponse as err:
             if record:
                 failed.append({"value": float(v), "reason": str(err)})
             f = None

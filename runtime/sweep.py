@@ -43,12 +43,13 @@ from generated.parameters import PARAMETERS
 
 from . import intervals
 from .parameters import excitation_period, resolve_parameters
-from .simulate import SolverSettings, simulate
+from .simulate import STARTS, SolverSettings, simulate
 
 __all__ = ["sweep", "run_point", "cache_key", "default_cache_dir", "table_to_csv",
            "table_from_csv", "COLUMNS", "omega1_peak_ranges", "MAX_POINTS", "SWEEPABLE",
            "linear_values", "code_files", "code_hash", "package_version", "read_cached",
-           "CacheWarning", "excitation_period", "CONTINUATIONS", "resolved_mask",
+           "CacheWarning", "excitation_period", "CONTINUATIONS", "STARTS", "NO_PERIODIC_RESPONSE",
+           "resolved_mask",
            "unresolved_values"]
 
 CACHE_FORMAT = "runtime-sweep-3"
@@ -62,6 +63,8 @@ COLUMNS = (("regime", "U24"), ("peak_omega1", "f8"), ("omega1_peak_at", "f8"),
            ("n_contact_losses", "i8"), ("min_normal_force", "f8"), ("tension_fraction", "f8"),
            ("mean_friction", "f8"), ("vr_min", "f8"), ("vr_max", "f8"), ("tension", "U8"),
            ("solver", "U16"), ("status", "U16"), ("wall_s", "f8"))
+#: The regime of a point started on the periodic response where none is found.
+NO_PERIODIC_RESPONSE = "no_periodic_response"
 #: Directions of a continued sweep (`sweep`'s ``continuation``).
 CONTINUATIONS = ("up", "down")
 #: Largest denominator tried when writing Omega_t / Omega_n as a fraction
@@ -157,15 +160,18 @@ def package_version():
         return tomllib.load(fh)["project"]["version"]
 
 
-def _identity(params, contact, tension, settings, modulation, continuation=None, y0=None):
+def _identity(params, contact, tension, settings, modulation, continuation=None, y0=None,
+              start="rest"):
     """What a point's result depends on, besides the code: keys and checks the cache.
 
     A continued point (``continuation`` "up" or "down") is another run than the
     point from rest: its direction and its start state ``y0`` (None: from rest)
-    belong to it.
+    belong to it; so does the start on the periodic response (``start``).
     """
     ident = {"params": params, "contact": contact, "tension": tension,
              "settings": asdict(settings), "modulation": bool(modulation)}
+    if start != "rest":
+        ident["start"] = start
     if continuation is not None:
         ident["continuation"] = continuation
         ident["y0"] = None if y0 is None else [float(x) for x in y0]
@@ -173,24 +179,24 @@ def _identity(params, contact, tension, settings, modulation, continuation=None,
 
 
 def cache_key(params, contact, settings, modulation=False, *, tension="allowed",
-              continuation=None, y0=None):
+              continuation=None, y0=None, start="rest"):
     """SHA-256 of everything a point's result depends on.
 
     The parameters, the contact and tension laws, the solver settings, whether the
     modulation columns are wanted, for a continued point its direction and start
-    state, the cache format, the package version (`package_version`) and the code
+    state, a start on the periodic response, the cache format, the package version (`package_version`) and the code
     (`code_hash`).
     """
     blob = json.dumps({"format": CACHE_FORMAT,
                        **_identity(params, contact, tension, settings, modulation,
-                                   continuation, y0),
+                                   continuation, y0, start),
                        "version": package_version(), "code": code_hash()},
                       sort_keys=True)
     return hashlib.sha256(blob.encode()).hexdigest()
 
 
 def run_point(params, contact, settings, modulation=False, *, tension="allowed", y0=None,
-              restart_period=None):
+              restart_period=None, start="rest"):
     """One sweep point: the summary row (a plain dict of numbers and strings).
 
     Parameters
@@ -203,8 +209,26 @@ def run_point(params, contact, settings, modulation=False, *, tension="allowed",
         ``restart_t``, the last multiple of ``T`` within the run, and
         ``restart_state``, the state there (where a continued sweep starts its next
         point; not table columns).
+    start : {"rest", "periodic"}
+        `runtime.simulate.simulate`'s; where no periodic response is found the row
+        has the regime `NO_PERIODIC_RESPONSE`, ``resolved`` False, ``status`` "no_periodic"
+        and NaN (or 0) in the numeric columns: the point cannot be run, and never
+        counts as a point without the peak.
     """
-    sim = simulate(params, contact=contact, tension=tension, settings=settings, y0=y0)
+    if start == "periodic":
+        from .floquet import NoPeriodicResponse
+        try:
+            sim = simulate(params, contact=contact, tension=tension, settings=settings,
+                           start=start)
+        except NoPeriodicResponse:
+            row = {name: 0 if kind == "i8" else float("nan")
+                   for name, kind in COLUMNS + (MODULATION_COLUMNS if modulation else ())}
+            row.update(regime=NO_PERIODIC_RESPONSE, omega1_peak_present=False,
+                       resolved=False, tension=tension, solver=settings.solver,
+                       status="no_periodic")
+            return row
+    else:
+        sim = simulate(params, contact=contact, tension=tension, settings=settings, y0=y0)
     row = {name: sim.summary[name] for name, _ in COLUMNS}
     # None (unresolved) is stored as False beside resolved = False: a bool column
     row["omega1_peak_present"] = bool(row["resolved"] and row["omega1_peak_present"])
@@ -229,7 +253,7 @@ def _columns(modulation):
 
 
 def read_cached(path, params, contact, settings, modulation=False, *, tension="allowed",
-                continuation=None, y0=None):
+                continuation=None, y0=None, start="rest"):
     """The row stored at ``path`` for this point, after checking the file.
 
     Returns
@@ -249,7 +273,7 @@ def read_cached(path, params, contact, settings, modulation=False, *, tension="a
         data = json.loads(text)
     except ValueError as err:
         return None, f"not valid JSON ({err})"
-    ident = _identity(params, contact, tension, settings, modulation, continuation, y0)
+    ident = _identity(params, contact, tension, settings, modulation, continuation, y0, start)
     missing = [k for k in ("key", *ident, "row", "checksum")
                if not isinstance(data, dict) or k not in data]
     if missing:
@@ -290,17 +314,17 @@ def _write_atomically(path, text):
 
 
 def _cached_run(params, contact, settings, modulation, cache_dir, tension="allowed",
-                continuation=None, y0=None, period=None):
+                continuation=None, y0=None, period=None, start="rest"):
     """One point through the cache: ``(row, cached, problem)``.
 
     ``problem`` says what was wrong with a cache file that was recomputed (the
     caller reports it: a warning in a worker process would be lost).
     ``continuation``, ``y0`` and ``period``: a point of a continued sweep, started
     at ``y0`` (None: from rest), its row with the state after its last whole
-    excitation period ``period``.
+    excitation period ``period``; ``start``: `run_point`'s.
     """
     problem = None
-    extra = dict(tension=tension, continuation=continuation, y0=y0)
+    extra = dict(tension=tension, continuation=continuation, y0=y0, start=start)
     if cache_dir is not None:
         key = cache_key(params, contact, settings, modulation, **extra)
         path = Path(cache_dir) / f"{key}.json"
@@ -308,19 +332,19 @@ def _cached_run(params, contact, settings, modulation, cache_dir, tension="allow
         if row is not None:
             return row, True, None
     row = run_point(params, contact, settings, modulation, tension=tension, y0=y0,
-                    restart_period=period)
+                    restart_period=period, start=start)
     if cache_dir is not None:
         path.parent.mkdir(parents=True, exist_ok=True)
         _write_atomically(path, json.dumps({
             "key": key, **_identity(params, contact, tension, settings, modulation, **{
-                k: extra[k] for k in ("continuation", "y0")}),
+                k: extra[k] for k in ("continuation", "y0", "start")}),
             "row": row, "checksum": _checksum(row)}))
     return row, False, None if problem is None else (str(path), problem)
 
 
 def sweep(param, values, params=None, *, contact="hertz_damp", tension="allowed", settings=None,
           executor=None, cache_dir="default", progress=True, modulation=False,
-          continuation=None):
+          continuation=None, start="rest"):
     """Run `simulate` for each value of one parameter.
 
     Parameters
@@ -355,6 +379,11 @@ def sweep(param, values, params=None, *, contact="hertz_damp", tension="allowed"
         so the runs are sequential, in this process: ``executor`` must be None or
         "serial". Needs a periodic excitation (`excitation_period`) with
         ``T <= t_end``.
+    start : {"rest", "periodic"}
+        where each (not continued) run starts: the unforced equilibrium, or the
+        periodic response plus `runtime.simulate.PERTURBATION` in ``X1``
+        (`runtime.simulate.simulate`); a point without a periodic response gets the
+        regime `NO_PERIODIC_RESPONSE` and ``resolved`` False (`run_point`).
 
     Returns
     -------
@@ -393,9 +422,14 @@ def sweep(param, values, params=None, *, contact="hertz_damp", tension="allowed"
                                                                          None))):
         raise ValueError(f"executor must be None, 'serial' or a concurrent.futures.Executor; "
                          f"got {executor!r}")
+    if start not in STARTS:
+        raise ValueError(f"start must be one of {', '.join(map(repr, STARTS))}; got {start!r}")
     if continuation is not None:
         if continuation not in CONTINUATIONS:
             raise ValueError(f"continuation must be None, 'up' or 'down'; got {continuation!r}")
+        if start != "rest":
+            raise ValueError(f"a continued sweep starts from rest and then from each "
+                             f"previous point's end: start must be 'rest'; got {start!r}")
         if not (executor is None or executor == "serial"):
             raise ValueError("continuation runs the points one after another (each starts "
                              "from the previous point's state), in this process: executor "
@@ -421,11 +455,12 @@ def sweep(param, values, params=None, *, contact="hertz_damp", tension="allowed"
         executor = cf.ProcessPoolExecutor(max_workers=os.cpu_count())
     try:
         if executor == "serial":
-            results = ((i, _cached_run(p, contact, settings, modulation, cache_dir, tension))
+            results = ((i, _cached_run(p, contact, settings, modulation, cache_dir, tension,
+                                       start=start))
                        for i, p in enumerate(points))
         else:
             futures = {executor.submit(_cached_run, p, contact, settings, modulation, cache_dir,
-                                       tension): i
+                                       tension, start=start): i
                        for i, p in enumerate(points)}
             results = ((futures[fut], fut.result()) for fut in cf.as_completed(futures))
         rows = _collect(results, rows, len(points), f"sweep {param}", progress)

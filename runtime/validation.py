@@ -43,7 +43,8 @@ from generated import stability
 from . import intervals
 from .parameters import resolve_parameters
 from .predict import CLIPPED_MDSM, clip_acts, unstable_intervals
-from .simulate import PEAK_PRESENT_RATIO, SolverSettings, omega1_band
+from .simulate import (PEAK_PRESENT_RATIO, PERTURBATION, TRANSIENT_DECAYED, SolverSettings,
+                       omega1_band)
 from .sweep import MAX_POINTS, sweep
 
 __all__ = ["Case", "CASES", "ANALYSES", "Resolution", "FULL", "QUICK", "SLIDING", "UNRESOLVED",
@@ -410,15 +411,291 @@ def summarize(cases):
     return summary
 
 
-def _case_sweep(case, resolution, predicted, executor, cache_dir, progress, extend=True,
-                tension="allowed"):
-    """Sweep ``Vb`` for one case on the grid rule of `Resolution`.
+# ---------------------------------------------------------------- Floquet and hysteresis
 
+#: The runs of each case (all on the validation grid), in table order: (key, label, how
+#: it starts). "rest" uses the file's tension law, "rest_other" the other law.
+RUNS = (
+    ("rest", "from rest", "from the unforced equilibrium at rest (the file's tension law)"),
+    ("periodic", "periodic start",
+     "on the periodic response plus `runtime.simulate.PERTURBATION` in X1"),
+    ("up", "up sweep", "continued upwards in Vb, from rest at the lowest point"),
+    ("down", "down sweep", "continued downwards in Vb, from rest at the highest point"),
+    ("rest_other", "from rest, other law", "from rest under the other tension law"),
+)
+#: Largest spacing [m/s] of the first grid of `runtime.floquet.floquet_band`: an unstable
+#: range narrower than this inside one switch structure could fall between its points.
+FLOQUET_SPACING = 0.5
+#: Tolerance [m/s] of the Floquet band's edges (issue 13: 1e-3).
+FLOQUET_TOL = 1e-3
+
+
+def floquet_verdicts(vb, overrides=None, *, contact="hertz_damp", tension="allowed"):
+    """The Floquet verdict on the periodic response at each grid point.
+
+    Each point is computed as the run started on the periodic response finds it
+    (`runtime.floquet.periodic_response` without a guess), so the verdict belongs to
+    the orbit that run starts on.
+
+    Returns
+    -------
+    list of dict
+        per point ``Vb``, ``verdict`` ("stable", "unstable", "grazing" or "absent":
+        no periodic response found), ``max_abs_multiplier`` and ``growth_rate``
+        (NaN where there is no multiplier).
+    """
+    from .floquet import NoPeriodicResponse, floquet
+    out = []
+    for v in np.asarray(vb, float):
+        try:
+            f = floquet({**(overrides or {}), "Vb": float(v)}, contact=contact, tension=tension)
+        except NoPeriodicResponse:
+            out.append({"Vb": float(v), "verdict": "absent", "max_abs_multiplier": math.nan,
+                        "growth_rate": math.nan})
+            continue
+        verdict = "grazing" if f.stable is None else "stable" if f.stable else "unstable"
+        out.append({"Vb": float(v), "verdict": verdict,
+                    "max_abs_multiplier": float(f.max_abs_multiplier),
+                    "growth_rate": float(f.growth_rate)})
+    return out
+
+
+def peak_ranges(vb, present, resolved, step):
+    """Ranges where a run shows the omega1 peak, whatever its regime, each point ± h/2.
+
+    ``present`` and ``resolved`` are the sweep's columns; an unresolved point is not
+    a point with the peak (and is listed by the caller, never read as "no peak").
+    """
+    shows = np.asarray(present, bool) & np.asarray(resolved, bool)
+    vb = np.asarray(vb, float)
+    return [(float(vb[i] - step / 2), float(vb[j] + step / 2))
+            for i, j in intervals.true_runs(shows)]
+
+
+def periodic_mismatches(vb, verdicts, periodic, edges, step):
+    """Where the run started on the periodic response disagrees with Floquet.
+
+    Floquet's verdict at a grid point is a prediction of that run: the perturbation
+    grows into the self-excited oscillation (the omega1 peak) exactly where the
+    periodic response is unstable. Points within one grid step of a band edge
+    (``edges``: values) are excluded, and so are points without a verdict to test
+    (no periodic response, grazing) and runs that cannot tell the peak.
+
+    Parameters
+    ----------
+    vb : array_like
+    verdicts : list of dict (`floquet_verdicts`)
+    periodic : dict with ``present`` and ``resolved`` (the periodic-start sweep)
+    edges : sequence of float
+    step : float
+
+    Returns
+    -------
+    dict
+        ``checked``: how many points were compared; ``mismatches``: list of dicts
+        ``Vb``, ``floquet`` (verdict), ``peak`` (bool); ``near_edge``, ``no_verdict``
+        (absent or grazing), ``unresolved``: the excluded belt speeds.
+    """
+    edges = np.asarray(sorted(edges), float)
+    out = {"checked": 0, "mismatches": [], "near_edge": [], "no_verdict": [], "unresolved": []}
+    for v, verdict, peak, ok in zip(np.asarray(vb, float), verdicts, periodic["present"],
+                                    periodic["resolved"]):
+        v = float(v)
+        if edges.size and np.min(np.abs(edges - v)) <= step * (1 + 1e-9):
+            out["near_edge"].append(v)
+        elif verdict["verdict"] not in ("stable", "unstable"):
+            out["no_verdict"].append(v)
+        elif not ok:
+            out["unresolved"].append(v)
+        else:
+            out["checked"] += 1
+            if bool(peak) != (verdict["verdict"] == "unstable"):
+                out["mismatches"].append({"Vb": v, "floquet": verdict["verdict"],
+                                          "peak": bool(peak)})
+    return out
+
+
+def coexistence(vb, verdicts, runs, step, window_start):
+    """Grid points where two attractors are seen: a stable periodic response beside
+    a self-excited oscillation.
+
+    A point counts when Floquet says the periodic response is stable, the run started
+    on it stays there (resolved, no omega1 peak), and a run from rest or a continued
+    sweep (up or down) under the same law shows the omega1 peak (resolved), while
+    the periodic response attracts fast enough that a run converging to it would have
+    settled by the steady window: ``exp(growth_rate * window_start)`` at most
+    `runtime.simulate.TRANSIENT_DECAYED`, the rule the runs apply to the free
+    transient. Near a Floquet edge the response attracts too slowly for a run to
+    tell a second attractor from a slow approach; those points are listed as
+    ``unsettled``.
+
+    Returns
+    -------
+    dict
+        ``points``: the belt speeds; ``ranges``: their runs, each point ± h/2;
+        ``found_by``: for each point, the runs that show the peak there;
+        ``unsettled``: the points that would count but for the slow attraction.
+    """
+    vb = np.asarray(vb, float)
+    flags, found_by, unsettled = np.zeros(vb.size, bool), {}, []
+    for i, v in enumerate(vb):
+        stays = runs["periodic"]["resolved"][i] and not runs["periodic"]["present"][i]
+        if verdicts[i]["verdict"] != "stable" or not stays:
+            continue
+        by = [key for key in ("rest", "up", "down")
+              if runs[key]["resolved"][i] and runs[key]["present"][i]]
+        if not by:
+            continue
+        if math.exp(verdicts[i]["growth_rate"] * window_start) > TRANSIENT_DECAYED:
+            unsettled.append(float(v))
+            continue
+        flags[i] = True
+        found_by[float(v)] = by
+    return {"points": [float(v) for v in vb[flags]],
+            "ranges": [(float(vb[i] - step / 2), float(vb[j] + step / 2))
+                       for i, j in intervals.true_runs(flags)],
+            "found_by": found_by, "unsettled": unsettled}
+
+
+def band_grid_disagreements(vb, verdicts, band, step):
+    """Grid points whose own Floquet verdict contradicts the band, away from its edges.
+
+    The band (`runtime.floquet.floquet_band`) is found on its own, coarser grid and
+    refined at each change; a point more than one grid step from every edge whose
+    verdict differs (unstable or absent inside the band, stable outside) means the
+    band missed a change. Grazing points have no verdict and are skipped.
+    """
+    edges = np.asarray([e["value"] for e in band["edges"]], float)
+    out = []
+    for v, verdict in zip(np.asarray(vb, float), verdicts):
+        if verdict["verdict"] == "grazing" or (
+                edges.size and np.min(np.abs(edges - v)) <= step * (1 + 1e-9)):
+            continue
+        inside = any(lo <= v <= hi for lo, hi in band["unstable"])
+        if inside != (verdict["verdict"] in ("unstable", "absent")):
+            out.append(float(v))
+    return out
+
+
+def compare_floquet(predicted, band, lo, hi):
+    """Pair an analysis' unstable ranges with the Floquet band (hull rule, exact edges).
+
+    The Floquet band is computed on ``[lo, hi]``: an edge of it at ``lo`` or ``hi``
+    (unstable up to the end of the range) is not observed and is *censored*. The
+    predicted ranges are clipped to ``[lo, hi]`` for the disagreement length.
+
+    Returns
+    -------
+    dict
+        ``status`` ("paired", "miss", "false_alarm", "both_empty", "no_prediction");
+        ``lower``, ``upper``: None or dicts ``predicted``, ``floquet``, ``delta``
+        (predicted − Floquet), ``censored``; ``disagreement``: the length of the
+        belt speeds in ``[lo, hi]`` where exactly one of them is unstable.
+    """
+    if predicted is None:
+        return {"status": "no_prediction", "lower": None, "upper": None,
+                "disagreement": None}
+    unstable = [tuple(r) for r in band["unstable"]]
+    clipped = intervals.clip(predicted, lo, hi)
+    out = {"status": None, "lower": None, "upper": None,
+           "disagreement": intervals.length(intervals.symmetric_difference(clipped, unstable))}
+    if not predicted and not unstable:
+        out["status"] = "both_empty"
+    elif not predicted:
+        out["status"] = "miss"
+    elif not unstable:
+        out["status"] = "false_alarm"
+    else:
+        out["status"] = "paired"
+        p_lo, p_hi = intervals.hull(predicted)
+        f_lo, f_hi = intervals.hull(unstable)
+        out["lower"] = {"predicted": p_lo, "floquet": f_lo, "delta": p_lo - f_lo,
+                        "censored": math.isclose(f_lo, lo)}
+        out["upper"] = {"predicted": p_hi, "floquet": f_hi, "delta": p_hi - f_hi,
+                        "censored": math.isclose(f_hi, hi)}
+    return out
+
+
+def summarize_floquet(cases):
+    """Per analysis, against Floquet: MAE of the uncensored edges, status counts, mean
+    disagreement length; over every case (Floquet needs no comparability rule)."""
+    summary = {}
+    for key, _, _ in ANALYSES:
+        deltas, lengths = [], []
+        counts = {"paired": 0, "miss": 0, "false_alarm": 0, "both_empty": 0,
+                  "no_prediction": 0}
+        for c in cases:
+            comp = c["floquet_comparison"][key]
+            counts[comp["status"]] += 1
+            if comp["status"] == "no_prediction":
+                continue
+            lengths.append(comp["disagreement"])
+            deltas += [abs(comp[side]["delta"]) for side in ("lower", "upper")
+                       if comp[side] is not None and not comp[side]["censored"]]
+        summary[key] = {"mae": float(np.mean(deltas)) if deltas else None,
+                        "max": float(np.max(deltas)) if deltas else None,
+                        "n_edges": len(deltas), **counts,
+                        "mean_disagreement": float(np.mean(lengths)) if lengths else None,
+                        "n_cases": len(cases) - counts["no_prediction"]}
+    return summary
+
+
+FLOQUET_DEFINITIONS = """\
+* **Floquet band.** `runtime.floquet.floquet_band` in `Vb` over [h/2, {cap:g}] m/s: the
+  belt speeds where the periodic response of period 2 pi / Omega is unstable (largest
+  Floquet multiplier |mu| > 1) or absent (no periodic response found), with every edge
+  located to {tol:g} m/s and named by its kind: *multiplier* (|mu| = 1), *grazing* (a
+  reversal appears or disappears with a vanishing acceleration), *existence* (the
+  periodic response stops existing). This is the quantity the linear analyses
+  approximate (docs/modelling.md#what-unstable-means).
+* **Verdict at a grid point.** `runtime.floquet.floquet` at that point, on the periodic
+  response found without a guess: the orbit the periodic-start run starts on.
+* **Runs.** On the validation grid, each case is run five ways: from rest (the file's
+  tension law); on the periodic response plus {perturbation:g} m in X1 (*periodic
+  start*); continued upwards and downwards in `Vb` (`runtime.sweep.sweep`,
+  ``continuation``: each point starts from the previous point's state at excitation
+  phase 0); and from rest under the other tension law. A run's range is every point
+  that shows the omega1 peak (resolved, any regime), each ± h/2.
+* **Mismatch.** A grid point where the periodic-start run shows the omega1 peak and
+  Floquet says stable, or the reverse. Not compared: points within one grid step of a
+  band edge (of any kind), points without a verdict (no periodic response, or a
+  grazing orbit), unresolved runs, and the cases with an excitation harmonic in the
+  omega1 band (the forced harmonic reads as the peak whatever the stability).
+* **Coexistence.** A grid point where Floquet says stable, the periodic-start run
+  stays on the periodic response (resolved, no peak), and the run from rest or a
+  continued sweep shows the omega1 peak: two attractors. A point counts only where
+  the periodic response attracts fast enough that a run converging to it would have
+  settled before the steady window, exp(growth rate × {window:g} s) ≤ {decayed:g} (the
+  rule the runs apply to the free transient, `runtime.simulate.TRANSIENT_DECAYED`);
+  the other candidates are listed as *unsettled*.
+* **Edges against Floquet.** The hull of each analysis' unstable ranges against the
+  hull of the Floquet band, lower with lower and upper with upper; Δ = predicted −
+  Floquet, exact on both sides (no grid). A Floquet edge at an end of [h/2, {cap:g}] is
+  censored (`*`) and not in the MAE. Every case counts: Floquet needs no peak
+  criterion. |P Δ F|: the length of the belt speeds in [h/2, {cap:g}] where exactly one
+  of the prediction and the band is unstable.
+"""
+
+
+def summarize_mismatches(cases):
+    """Totals of `periodic_mismatches` over the cases without a harmonic in the band."""
+    counted = [c for c in cases if not c["harmonics"]]
+    return {"checked": sum(c["mismatches"]["checked"] for c in counted),
+            "mismatches": [{"case": c["name"], **m} for c in counted
+                           for m in c["mismatches"]["mismatches"]],
+            "cases": len(counted),
+            "not_counted": [c["name"] for c in cases if c["harmonics"]]}
+
+
+def _case_sweep(case, resolution, edges, executor, cache_dir, progress, extend=True,
+                tension="allowed"):
+    """Sweep ``Vb`` from rest for one case on the grid rule of `Resolution`.
+
+    ``edges``: the predicted and Floquet edges the grid must contain.
     ``extend=False`` keeps the first grid: where a forced harmonic sits in the omega1
     band the peak never closes, and extending to the cap would measure nothing.
     """
     step = resolution.step
-    edges = [x for ranges in predicted.values() for pair in ranges or () for x in pair]
     top = max(resolution.min_top, resolution.top_factor * max(edges, default=0.0), step)
     top = min(top, resolution.vb_cap)
     grid = vb_grid(step, top)
@@ -491,11 +768,19 @@ def validate(quick=False, *, tension="allowed", executor=None, cache_dir="defaul
             p = resolve_parameters(case.overrides)
             predicted = predicted_intervals(p, tension=tension)
             harmonics = harmonic_in_band(p)
-            table = _case_sweep(case, resolution, predicted, executor, cache_dir, progress,
+            band = _floquet_band(case, resolution, tension)
+            edges = [x for ranges in predicted.values() for pair in ranges or () for x in pair]
+            edges += [e["value"] for e in band["edges"]]
+            table = _case_sweep(case, resolution, edges, executor, cache_dir, progress,
                                 extend=not harmonics, tension=tension)
             vb = np.asarray(table["Vb"], float)
             simulated = simulated_ranges(vb, table["omega1_peak_present"], table["regime"],
                                          resolution.step, table["resolved"])
+            runs = _other_runs(case, vb, resolution, executor, cache_dir, progress, tension)
+            runs["rest"] = table
+            runs = {key: _run_columns(runs[key], resolution.step) for key, _, _ in RUNS}
+            verdicts = floquet_verdicts(vb, case.overrides, tension=tension)
+            edge_values = [e["value"] for e in band["edges"]]
             results.append({
                 "name": case.name, "figure": case.figure, "overrides": dict(case.overrides),
                 "paper": case.paper,
@@ -509,12 +794,74 @@ def validate(quick=False, *, tension="allowed", executor=None, cache_dir="defaul
                 "comparable": not harmonics and simulated["sliding_points"] > 0,
                 "predicted": predicted,
                 "comparison": {key: compare(predicted[key], simulated, resolution.step)
-                               for key, _, _ in ANALYSES}})
+                               for key, _, _ in ANALYSES},
+                "floquet": {**{k: band[k] for k in ("unstable", "edges", "grazing_points",
+                                                    "no_periodic_response", "failed")},
+                            "lo": resolution.step / 2, "hi": resolution.vb_cap,
+                            "verdicts": verdicts},
+                "runs": runs,
+                "mismatches": periodic_mismatches(vb, verdicts, runs["periodic"],
+                                                  edge_values, resolution.step),
+                "coexistence": coexistence(vb, verdicts, runs, resolution.step,
+                                           resolution.settings.window_start),
+                "band_disagreements": band_grid_disagreements(vb, verdicts, band,
+                                                              resolution.step),
+                "floquet_comparison": {key: compare_floquet(predicted[key], band,
+                                                            resolution.step / 2,
+                                                            resolution.vb_cap)
+                                       for key, _, _ in ANALYSES}})
     finally:
         if own:
             executor.shutdown()
     return {"quick": bool(quick), "tension": tension, "resolution": resolution,
-            "cases": results, "summary": summarize(results)}
+            "cases": results, "summary": summarize(results),
+            "floquet_summary": summarize_floquet(results),
+            "mismatch_summary": summarize_mismatches(results)}
+
+
+def _floquet_band(case, resolution, tension):
+    """`runtime.floquet.floquet_band` in ``Vb`` over ``[h/2, vb_cap]`` for one case.
+
+    From ``h/2``, the lower end of the lowest grid point's cell, so that an edge
+    just below the lowest grid point is found, not taken for the end of the range.
+    """
+    from .floquet import floquet_band
+    lo, hi = resolution.step / 2, resolution.vb_cap
+    points = math.ceil((hi - lo) / FLOQUET_SPACING) + 1
+    return floquet_band("Vb", lo, hi, case.overrides, tension=tension, points=points,
+                        tol=FLOQUET_TOL)
+
+
+def _other_runs(case, vb, resolution, executor, cache_dir, progress, tension):
+    """The periodic-start, up, down and other-law sweeps of one case on the grid ``vb``.
+
+    The continued sweeps are sequential within themselves; each is one task for the
+    executor, so the two directions run side by side.
+    """
+    other = {"allowed": "clipped", "clipped": "allowed"}[tension]
+    common = dict(settings=resolution.settings, cache_dir=cache_dir)
+    plans = {"periodic": dict(start="periodic", tension=tension),
+             "up": dict(continuation="up", tension=tension),
+             "down": dict(continuation="down", tension=tension),
+             "rest_other": dict(tension=other)}
+    if executor == "serial":
+        return {key: sweep("Vb", vb, case.overrides, executor="serial", progress=progress,
+                           **common, **kw) for key, kw in plans.items()}
+    futures = {key: executor.submit(sweep, "Vb", vb, case.overrides, executor="serial",
+                                    progress=False, **common, **kw)
+               for key, kw in plans.items()}
+    return {key: fut.result() for key, fut in futures.items()}
+
+
+def _run_columns(table, step):
+    """What the Floquet tables need of one sweep: its flags, regimes and peak ranges."""
+    present = np.asarray(table["omega1_peak_present"], bool)
+    resolved = np.asarray(table["resolved"], bool)
+    vb = np.asarray(table["Vb"], float)
+    return {"present": present.tolist(), "resolved": resolved.tolist(),
+            "regime": [str(r) for r in table["regime"]],
+            "ranges": peak_ranges(vb, present, resolved, step),
+            "unresolved": [float(v) for v in vb[~resolved]]}
 
 
 # ---------------------------------------------------------------- rendering
@@ -566,6 +913,109 @@ def _runs_text(runs):
                      for r, a, b in runs)
 
 
+def _band_text(band):
+    if not band["unstable"]:
+        return "none"
+    text = intervals.format_intervals(band["unstable"], ".3f")
+    if band["no_periodic_response"]:
+        text += " (none found in " + intervals.format_intervals(
+            band["no_periodic_response"], ".3f") + ")"
+    return text
+
+
+def _edges_text(band):
+    short = {"multiplier": "mu", "grazing": "graz", "existence": "exist"}
+    return ", ".join(f"{e['value']:.3f} {short[e['kind']]}" for e in band["edges"]) or "—"
+
+
+def _run_text(run):
+    text = intervals.format_intervals(run["ranges"], ".2f")
+    if run["unresolved"]:
+        text += f" ({len(run['unresolved'])} unresolved)"
+    return text
+
+
+def _floquet_delta_text(comp):
+    if comp["status"] != "paired":
+        return {"miss": "miss", "false_alarm": "false alarm", "both_empty": "both none",
+                "no_prediction": "n/a"}[comp["status"]]
+    return " / ".join(f"({comp[s]['delta']:+.3f})*" if comp[s]["censored"]
+                      else f"{comp[s]['delta']:+.3f}" for s in ("lower", "upper"))
+
+
+def _floquet_sections(results):
+    """The Floquet tables of `render_markdown`: the runs, mismatches, coexistence, edges."""
+    cases, step = results["cases"], results["resolution"].step
+    other = {"allowed": "clipped", "clipped": "allowed"}[results.get("tension", "allowed")]
+    lines = ["## Floquet: where the periodic response is unstable, and what the runs find", "",
+             "The Floquet band is exact (edges to "
+             f"{FLOQUET_TOL:g} m/s, kinds: mu = multiplier, graz = grazing, exist = "
+             "existence). The runs' ranges hold the grid points that show the omega1 peak "
+             f"(resolved, any regime), each ± {step / 2:g} m/s. Coexistence: a stable "
+             "periodic response beside a self-excited oscillation (definitions below).", "",
+             "| case | Floquet unstable [m/s] | edges | periodic start | from rest | up sweep "
+             f"| down sweep | coexistence | from rest, {other} |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for c in cases:
+        band, runs = c["floquet"], c["runs"]
+        lines.append(
+            f"| {c['name']} | {_band_text(band)} | {_edges_text(band)} | "
+            + " | ".join(_run_text(runs[k]) for k in ("periodic", "rest", "up", "down"))
+            + f" | {intervals.format_intervals(c['coexistence']['ranges'], '.2f')} | "
+            f"{_run_text(runs['rest_other'])} |")
+    ms = results["mismatch_summary"]
+    lines += ["", "## The periodic start against Floquet", "",
+              f"**{len(ms['mismatches'])} mismatches** in {ms['checked']} compared grid points "
+              f"of {ms['cases']} cases: the run started on the perturbed periodic response "
+              "shows the omega1 peak exactly where Floquet says unstable"
+              + (" everywhere it is compared." if not ms["mismatches"] else ", except at:")]
+    lines += [f"* {m['case']}, Vb = {m['Vb']:g} m/s: Floquet {m['floquet']}, peak "
+              f"{'present' if m['peak'] else 'absent'}." for m in ms["mismatches"]]
+    if ms["not_counted"]:
+        lines.append("")
+        lines.append("Not counted (an excitation harmonic in the omega1 band): "
+                     + "; ".join(
+                         f"{c['name']} ({len(c['mismatches']['mismatches'])} of "
+                         f"{c['mismatches']['checked']} points differ)"
+                         for c in cases if c["name"] in ms["not_counted"]) + ".")
+    lines += ["", "| case | compared | near an edge | no verdict | unresolved | "
+              "band and grid disagree |", "|---|---|---|---|---|---|"]
+    for c in cases:
+        m = c["mismatches"]
+        lines.append(f"| {c['name']} | {m['checked']} | {len(m['near_edge'])} | "
+                     f"{len(m['no_verdict'])} | {len(m['unresolved'])} | "
+                     f"{_points_text([(v, v) for v in c['band_disagreements']])} |")
+    lines += ["", "## Coexistence", "",
+              "| case | coexistence [m/s] | shown by | unsettled (slow attraction) |",
+              "|---|---|---|---|"]
+    for c in cases:
+        co = c["coexistence"]
+        by = sorted({k for ks in co["found_by"].values() for k in ks})
+        lines.append(f"| {c['name']} | {intervals.format_intervals(co['ranges'], '.2f')} | "
+                     f"{', '.join(by) or '—'} | "
+                     f"{_points_text([(v, v) for v in co['unsettled']])} |")
+    lines += ["", "## The analyses against Floquet", "",
+              "Δ = predicted − Floquet [m/s], lower / upper, exact on both sides; `( )*`: "
+              "censored.", "",
+              "| case | Floquet | " + " | ".join(lab for _, lab, _ in ANALYSES) + " |",
+              "|" + "---|" * (2 + len(ANALYSES))]
+    for c in cases:
+        lines.append(f"| {c['name']} | {_band_text(c['floquet'])} | " + " | ".join(
+            _floquet_delta_text(c["floquet_comparison"][k]) for k, _, _ in ANALYSES) + " |")
+    fs = results["floquet_summary"]
+    lines += ["", "| analysis | MAE of edges [m/s] | largest \\|Δ\\| | edges *n* | paired | miss "
+              "| false alarm | both none | mean \\|P Δ F\\| [m/s] |",
+              "|---|---|---|---|---|---|---|---|---|"]
+    for key, lab, _ in ANALYSES:
+        s = fs[key]
+        cell = ["—" if s[k] is None else f"{s[k]:.3f}" for k in ("mae", "max",
+                                                                    "mean_disagreement")]
+        lines.append(f"| {lab} | {cell[0]} | {cell[1]} | {s['n_edges']} | {s['paired']} | "
+                     f"{s['miss']} | {s['false_alarm']} | {s['both_empty']} | {cell[2]} |")
+    lines += ["", f"Over all {len(cases)} cases.", ""]
+    return lines
+
+
 def _verdict(cases, key, reference, step):
     """One generated sentence: where ``key`` is closer to the simulation than ``reference``."""
     better, worse, tie, none = [], [], [], []
@@ -607,14 +1057,17 @@ def render_markdown(results, quick):
            "clipped": "`clipped` (a contact that cannot pull: max(F, 0), the surfaces "
                       "separate where Eq. 1 would pull)"}[tension]
     lines = [
-        "# Validation: predicted unstable belt speeds against the simulated omega1 peak",
+        "# Validation: Floquet stability, the simulated omega1 peak and the analyses",
         "",
         f"Generated by `{command}` (`runtime/validation.py`); do not edit by hand, rerun "
         "the command.",
         "",
-        "For the base set (Fig. 2b) and every case of Appendix A.5 (Figs. 17-21), the range "
-        "of belt speeds `Vb` where the simulation of Eq. (4) shows the omega1 peak in the "
-        "spectrum of X1' is set beside the unstable range predicted by each analysis.",
+        "For the base set (Fig. 2b) and every case of Appendix A.5 (Figs. 17-21): where the "
+        "periodic response of Eq. (4) is unstable (Floquet multipliers, exact; "
+        "`runtime.floquet`), where runs started on it, from rest and along continued "
+        "sweeps show the omega1 peak in the spectrum of X1', where two attractors coexist, "
+        "and how far each analysis' unstable range lies from the Floquet band (the "
+        "quantity it approximates) and from the runs from rest.",
         "",
         "## Resolution",
         "",
@@ -641,6 +1094,10 @@ def render_markdown(results, quick):
         "",
     ]
     lines += [f"* **{lab}**: {desc}." for _, lab, desc in ANALYSES]
+    lines += [""] + _floquet_sections(results)
+    lines += ["# Against the runs from rest", "",
+              "The tables the package has kept since before Floquet: each analysis against "
+              "the run from rest, which finds whichever attractor its start leads to.", ""]
     header = "| case | figure | simulated | " + " | ".join(lab for _, lab, _ in ANALYSES) + " |"
     rule = "|" + "---|" * (3 + len(ANALYSES))
     lines += ["", "## Unstable ranges [m/s]", "",
@@ -701,6 +1158,10 @@ def render_markdown(results, quick):
         lines.append(f"| {c['name']} | {note} | {_points_text(anywhere)} | "
                      f"{c['figure']}: {c['paper']} |")
     lines += ["", "## Definitions (fixed before the numbers were looked at)", "",
+              FLOQUET_DEFINITIONS.format(cap=res.vb_cap, tol=FLOQUET_TOL,
+                                         perturbation=PERTURBATION,
+                                         window=res.settings.window_start,
+                                         decayed=TRANSIENT_DECAYED),
               DEFINITIONS.format(ratio=PEAK_PRESENT_RATIO, cap=res.vb_cap)]
     return "\n".join(lines)
 

@@ -424,3 +424,32 @@ def test_continuation_refuses_what_it_cannot_do():
     with pytest.raises(ValueError, match="period 1.5708 s is longer than t_end = 1 s"):
         sweep("Vb", [1.0], settings=SolverSettings(t_end=1.0, dt=0.01), executor="serial",
               continuation="up", **kw)
+
+
+def test_a_sweep_started_on_the_periodic_response(tmp_path):
+    from runtime.floquet import floquet
+    settings = SolverSettings(t_end=300.0)
+    kw = dict(settings=settings, executor="serial", progress=False)
+    # 3: stable, 5: unstable (Floquet); 6.3: no periodic response (runtime/floquet.py)
+    table = sweep("Vb", [3.0, 5.0, 6.3], start="periodic", cache_dir=tmp_path, **kw)
+    assert floquet(Vb=3.0).stable is True and floquet(Vb=5.0).stable is False
+    assert list(table["omega1_peak_present"]) == [False, True, False]
+    assert list(table["resolved"]) == [True, True, False]
+    assert table["regime"][2] == sweep_module.NO_PERIODIC_RESPONSE
+    assert table["status"][2] == "no_periodic" and np.isnan(table["peak_omega1"][2])
+    # the start is part of the point: the cache never serves a run from rest for it
+    rest = sweep("Vb", [3.0, 5.0, 6.3], cache_dir=tmp_path, **kw)
+    assert list(rest["regime"]).count(sweep_module.NO_PERIODIC_RESPONSE) == 0
+    again = sweep("Vb", [3.0, 5.0, 6.3], start="periodic", cache_dir=tmp_path, **kw)
+    np.testing.assert_array_equal(again["peak_Omega"], table["peak_Omega"])
+    p = {"Vb": 3.0}
+    assert cache_key(p, "hertz_damp", settings) != cache_key(p, "hertz_damp", settings,
+                                                              start="periodic")
+
+
+def test_a_periodic_start_is_refused_where_it_means_nothing():
+    kw = dict(cache_dir=None, progress=False, executor="serial")
+    with pytest.raises(ValueError, match="start must be one of 'rest', 'periodic'"):
+        sweep("Vb", [1.0], start="equilibrium", **kw)
+    with pytest.raises(ValueError, match="continued sweep.*start must be 'rest'"):
+        sweep("Vb", [1.0], start="periodic", continuation="up", **kw)

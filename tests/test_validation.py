@@ -338,16 +338,111 @@ def test_quick_validation_runs_every_sweep_under_the_law_it_names(monkeypatch):
     real = validation.sweep
 
     def recording(*args, **kwargs):
-        laws.append(kwargs["tension"])
+        kind = ("periodic" if kwargs.get("start") == "periodic"
+                else kwargs.get("continuation") or "rest")
+        laws.append((kind, kwargs["tension"]))
         table = real(*args, **kwargs)
         assert set(table["tension"]) == {kwargs["tension"]}
         return table
     monkeypatch.setattr(validation, "sweep", recording)
     results = validate(True, tension="clipped", executor="serial", cache_dir=None,
                        progress=False, cases=["base"])
-    assert laws and set(laws) == {"clipped"} and results["tension"] == "clipped"
+    # every run under the file's law, but the one from rest under the other law
+    assert sorted(set(laws)) == [("down", "clipped"), ("periodic", "clipped"),
+                                 ("rest", "allowed"), ("rest", "clipped"), ("up", "clipped")]
+    assert results["tension"] == "clipped"
     (case,) = results["cases"]
     assert case["comparison"]["consistent_mdsm"]["status"] == "no_prediction"
     text = render_markdown(results, True)
     assert "| base | Fig. 2b |" in text and "| n/a |" in text
     assert "MDSM gives no prediction in 1 comparable case(s)" in text
+
+
+# ------------------------------------------------------------------ Floquet (issue 13)
+
+def _verdicts(*names):
+    rate = {"stable": -0.1, "unstable": 0.05}
+    return [{"verdict": v, "growth_rate": rate.get(v, math.nan)} for v in names]
+
+
+def test_periodic_mismatches_compare_away_from_edges_and_count_each_exclusion():
+    vb = H * np.arange(1, 9)                                 # 0.5 .. 4.0
+    verdicts = _verdicts("stable", "stable", "unstable", "unstable", "unstable", "absent",
+                         "stable", "stable")
+    periodic = {"present": [False, True, True, True, False, False, False, False],
+                "resolved": [True, True, True, True, True, False, True, False]}
+    out = validation.periodic_mismatches(vb, verdicts, periodic, [1.3], H)
+    # 1.3 +- 0.5: the points 1.0 and 1.5 are near the edge, whatever they show
+    assert out["near_edge"] == [1.0, 1.5]
+    assert out["no_verdict"] == [3.0] and out["unresolved"] == [4.0]
+    assert out["checked"] == 4
+    assert out["mismatches"] == [{"Vb": 2.5, "floquet": "unstable", "peak": False}]
+    # a point exactly one step from an edge is near it (rounding forgiven)
+    assert validation.periodic_mismatches([1.0], _verdicts("stable"),
+                                          {"present": [True], "resolved": [True]},
+                                          [1.5], H)["near_edge"] == [1.0]
+
+
+def test_coexistence_needs_a_stable_response_that_the_periodic_start_keeps_and_attracts():
+    vb = H * np.arange(1, 6)
+    verdicts = _verdicts("stable", "stable", "unstable", "stable", "stable")
+    verdicts[4]["growth_rate"] = -0.001        # slow: exp(-0.001 * 90) > 1e-3
+    no, yes = False, True
+    runs = {"periodic": {"present": [no, yes, yes, no, no], "resolved": [yes] * 5},
+            "rest": {"present": [yes, yes, yes, no, yes], "resolved": [yes] * 5},
+            "up": {"present": [no, no, yes, yes, yes], "resolved": [yes, yes, yes, no, yes]},
+            "down": {"present": [no] * 5, "resolved": [yes] * 5}}
+    out = validation.coexistence(vb, verdicts, runs, H, window_start=90.0)
+    # 0.5: stable, kept, shown from rest; 1.0: the periodic start leaves it; 1.5:
+    # unstable; 2.0: the up sweep shows it but is unresolved; 2.5: too slow to tell
+    assert out["points"] == [0.5] and out["found_by"] == {0.5: ["rest"]}
+    assert out["ranges"] == [(0.25, 0.75)] and out["unsettled"] == [2.5]
+
+
+def test_compare_floquet_pairs_exact_edges_and_censors_the_ends_of_the_range():
+    band = {"unstable": [[4.0, 6.5]]}
+    comp = validation.compare_floquet([(0.0, 6.4)], band, 0.125, 40.0)
+    assert comp["status"] == "paired"
+    assert comp["lower"]["delta"] == pytest.approx(0.0 - 4.0)
+    assert comp["upper"]["delta"] == pytest.approx(6.4 - 6.5)
+    assert not comp["lower"]["censored"] and not comp["upper"]["censored"]
+    # predicted [0, 6.4] clipped to [0.125, 40]: disagrees on [0.125, 4] and [6.4, 6.5]
+    assert comp["disagreement"] == pytest.approx(3.875 + 0.1)
+    at_end = validation.compare_floquet([(1.0, 2.0)], {"unstable": [[0.125, 3.0]]}, 0.125, 40)
+    assert at_end["lower"]["censored"] and not at_end["upper"]["censored"]
+    assert validation.compare_floquet([], band, 0.125, 40)["status"] == "miss"
+    assert validation.compare_floquet([(1, 2)], {"unstable": []}, 0.125, 40)["status"] \
+        == "false_alarm"
+    assert validation.compare_floquet(None, band, 0.125, 40)["status"] == "no_prediction"
+
+
+def test_band_grid_disagreements_flag_a_change_the_band_missed():
+    band = {"unstable": [[2.0, 3.0]], "edges": [{"value": 2.0}, {"value": 3.0}]}
+    vb = H * np.arange(1, 11)                                # 0.5 .. 5.0
+    verdicts = _verdicts(*["stable"] * 10)
+    assert validation.band_grid_disagreements(vb, verdicts, band, H) == []
+    verdicts[8] = _verdicts("unstable")[0]                   # 4.5: unstable, outside
+    verdicts[4] = _verdicts("grazing")[0]                    # 2.5: no verdict, skipped
+    assert validation.band_grid_disagreements(vb, verdicts, band, H) == [4.5]
+
+
+def test_quick_base_periodic_start_agrees_with_floquet_and_the_band_with_its_grid(quick_base):
+    (case,) = quick_base["cases"]
+    band = case["floquet"]
+    (lo, hi), = band["unstable"]
+    # an independent Floquet evaluation at the band's middle and outside it
+    from runtime.floquet import floquet
+    assert floquet(Vb=0.5 * (lo + hi) - 0.5).stable is False
+    assert floquet(Vb=lo - 0.5).stable and floquet(Vb=hi + 0.5).stable
+    assert case["mismatches"]["checked"] >= 4 and case["mismatches"]["mismatches"] == []
+    assert case["band_disagreements"] == []
+    # the analyses are measured against the band's exact edges
+    mdsm = case["floquet_comparison"]["consistent_mdsm"]
+    (p_lo, p_hi), = case["predicted"]["consistent_mdsm"]
+    assert mdsm["upper"]["delta"] == pytest.approx(p_hi - hi)
+    assert mdsm["lower"]["delta"] == pytest.approx(p_lo - lo)
+    # tension clipped: no omega1 peak from rest (docs/modelling.md#tension)
+    assert case["runs"]["rest_other"]["ranges"] == []
+    text = render_markdown(quick_base, True)
+    assert "**0 mismatches**" in text and "## Coexistence" in text
+    assert "| base | [4.058, 6.415]" in text
