@@ -73,13 +73,22 @@ NEWTON_TOL = 1e-11
 _RTOL = 1e-12
 #: Halvings of a Newton step before the method counts as stalled.
 _LINE_SEARCH = 8
-#: Iterations over which Newton's residual must halve (converging, it squares).
-_STAGNATION = 4
+#: Iterations over which Newton's residual must halve (converging, it squares; where
+#: the orbit has stopped existing, the damped steps creep towards a switch-structure
+#: change and the residual shrinks by a few per cent per iteration). 2 finds the same
+#: periodic responses as 4 at all 262 points of the quick validation grids and every
+#: band of its 16 cases, with a third fewer period maps in a band.
+_STAGNATION = 2
 #: Periods the normal motion is followed before Newton's method polishes its orbit.
 _NORMAL_PERIODS = 200
 #: Periods of forward iteration of the tangential period map where Newton's method
 #: fails (a stable response next to a grazing point).
 FORWARD_PERIODS = 200
+#: Forward iteration gives up when its step has not shrunk below this fraction over
+#: this many periods: converging to a response with |mu| <= 0.995 it shrinks by 0.88
+#: or more, while next to no stable response (another attractor, a drift) it does not.
+_FORWARD_WINDOW = 25
+_FORWARD_PROGRESS = 0.9
 
 
 class NoPeriodicResponse(RuntimeError):
@@ -382,15 +391,22 @@ def periodic_response(params=None, *, contact="hertz_damp", tension="allowed", g
     except NoPeriodicResponse as newton_failed:
         if not forward:
             raise
-        x = sliding
-        for _ in range(int(forward)):
+        x, steps = sliding, []
+        for k in range(int(forward)):
             xT = pmap(x)[0]
-            if np.max(np.abs(xT - x)) <= 1e-7 * (1 + np.max(np.abs(x))):
+            steps.append(float(np.max(np.abs(xT - x))))
+            if steps[-1] <= 1e-7 * (1 + np.max(np.abs(x))):
                 break
+            if k >= _FORWARD_WINDOW and steps[-1] > _FORWARD_PROGRESS * steps[-1 - _FORWARD_WINDOW]:
+                raise NoPeriodicResponse(
+                    f"{newton_failed}; nor does the period map, iterated from the sliding "
+                    f"orbit: its step does not shrink over {_FORWARD_WINDOW} periods "
+                    f"({steps[-1 - _FORWARD_WINDOW]:.2e} to {steps[-1]:.2e})") from None
             x = xT
         else:
             raise NoPeriodicResponse(f"{newton_failed}; nor does the period map, iterated "
-                               f"{forward} periods from the sliding orbit, settle") from None
+                                     f"{forward} periods from the sliding orbit, settle") \
+                from None
         found = _newton(pmap, x, max_iter)
     x, M, run, grazing, residual, iteration = found
     switches = [(t, b, a, s) for t, b, a, s, _ in run["switches"]]
