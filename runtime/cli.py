@@ -396,9 +396,11 @@ def _floquet_band(args):
     from .intervals import format_intervals
     lines = [f"periodic response unstable (or absent) for {args.param} in "
              f"{format_intervals(band['unstable'], '.4f')} of {args.start:g}..{args.stop:g}"]
+    sides = {(False, True): "unstable above", (True, False): "unstable below",
+             (False, False): "stable on both sides", (True, True): "unstable on both sides"}
     for e in band["edges"]:
-        lines.append(f"  edge at {e['value']:.4f} ({e['kind']}; unstable "
-                     f"{'above' if e['unstable_above'] else 'below'})")
+        lines.append(f"  edge at {e['value']:.4f} ({e['kind']}; "
+                     f"{sides[e['unstable_below'], e['unstable_above']]})")
     if band["no_periodic_response"]:
         lines.append(f"  no periodic response in {format_intervals(band['no_periodic_response'], '.4f')}")
     for f in band["failed"]:

@@ -44,7 +44,9 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import Literal
 
 import numpy as np
 from scipy import optimize
@@ -57,6 +59,10 @@ from .parameters import excitation_period
 from .normal import NORMAL_NAMES, normal_motion
 from .superposition import Superposition
 from .switching import SURFACE_INDEX, Mode, Switching
+
+Contact = Literal["hertz_damp", "kelvin_voigt"]
+Tension = Literal["allowed", "clipped"]
+Backend = Literal["python", "numba"] | None
 
 __all__ = ["excitation_period", "NoPeriodicResponse", "NormalOrbit", "normal_orbit", "PeriodicResponse",
            "periodic_response", "Floquet", "floquet", "floquet_band", "GRAZING_RATIO",
@@ -205,7 +211,8 @@ def _normal_orbit_cached(key, contact, tension):
     return NormalOrbit(x, T, M, np.linalg.eigvals(M), switches, iteration)
 
 
-def normal_orbit(p, contact="hertz_damp", tension="allowed"):
+def normal_orbit(p: Mapping[str, float], contact: Contact = "hertz_damp",
+                 tension: Tension = "allowed") -> NormalOrbit:
     """The periodic orbit of the normal motion (cached per normal parameter set)."""
     key = tuple((k, float(p[k])) for k in NORMAL_NAMES + ("alpha", "Omega"))
     return _normal_orbit_cached(key, contact, tension)
@@ -249,7 +256,8 @@ class PeriodicResponse:
     _engine: object = field(default=None, repr=False)
 
     @property
-    def monodromy(self):
+    def monodromy(self) -> np.ndarray:
+        """The 4 x 4 monodromy matrix (see the class docstring)."""
         M = np.zeros((4, 4))
         M[:2, :2] = self.monodromy_tangential
         M[2:, 2:] = self.monodromy_normal
@@ -342,8 +350,11 @@ def _sliding_guess(pmap):
     return np.linalg.solve(np.eye(2) - Phi, zf + pmap.p["mu_s"] * z)
 
 
-def periodic_response(params=None, *, contact="hertz_damp", tension="allowed", guess=None,
-                      max_iter=20, forward=FORWARD_PERIODS, backend=None, **overrides):
+def periodic_response(params: Mapping[str, float] | None = None, *, contact: Contact = "hertz_damp",
+                      tension: Tension = "allowed",
+                      guess: Sequence[float] | PeriodicResponse | None = None,
+                      max_iter: int = 20, forward: int = FORWARD_PERIODS,
+                      backend: Backend = None, **overrides: float) -> PeriodicResponse:
     """The periodic response of Eq. (4) by shooting (module docstring).
 
     Newton's method from ``guess`` (or the backward-sliding orbit); where it fails,
@@ -472,7 +483,7 @@ class Floquet:
     period: float
     response: PeriodicResponse = field(repr=False)
 
-    def as_dict(self):
+    def as_dict(self) -> dict:
         """The JSON-able summary (the keys of ``python -m derive floquet --json``)."""
         return {"multipliers": [[float(z.real), float(z.imag)] for z in self.multipliers],
                 "max_abs_multiplier": self.max_abs_multiplier,
@@ -484,8 +495,11 @@ class Floquet:
                 "residual": self.response.residual}
 
 
-def floquet(params=None, *, contact="hertz_damp", tension="allowed", guess=None,
-            forward=FORWARD_PERIODS, backend=None, **overrides):
+def floquet(params: Mapping[str, float] | None = None, *, contact: Contact = "hertz_damp",
+            tension: Tension = "allowed",
+            guess: Sequence[float] | PeriodicResponse | None = None,
+            forward: int = FORWARD_PERIODS, backend: Backend = None,
+            **overrides: float) -> Floquet:
     """Floquet multipliers of the periodic response (module docstring).
 
     Returns
@@ -515,8 +529,10 @@ def _multipliers(resp):
                    bool(biggest < 1.0), n_rev, n_stick, None, resp.period, resp)
 
 
-def floquet_band(param, lo, hi, params=None, *, contact="hertz_damp", tension="allowed",
-                 points=17, tol=1e-3, backend=None, **overrides):
+def floquet_band(param: str, lo: float, hi: float, params: Mapping[str, float] | None = None,
+                 *, contact: Contact = "hertz_damp", tension: Tension = "allowed",
+                 points: int = 17, tol: float = 1e-3, backend: Backend = None,
+                 **overrides: float) -> dict:
     """Ranges of ``param`` in ``[lo, hi]`` where the periodic response is unstable.
 
     A grid of ``points`` values is walked from ``hi`` down to ``lo``, each periodic
@@ -538,7 +554,8 @@ def floquet_band(param, lo, hi, params=None, *, contact="hertz_damp", tension="a
         ``unstable``: list of ``[lo, hi]`` where no stable periodic response is found
         (unstable, or none found: the ``no_periodic_response`` ranges are included);
         ``edges``: list of dicts (``value``, ``kind``, ``bracket``,
-        ``unstable_above``); ``grazing_points``; ``no_periodic_response``: ranges
+        ``unstable_below``, ``unstable_above``: whether no stable response is found
+        just below and just above); ``grazing_points``; ``no_periodic_response``: ranges
         where no periodic response is found (from the continued neighbours by
         Newton's method, or, next to a stable one, by iterating the period map);
         ``grid``: every evaluated value with ``max_abs_multiplier``, ``stable``,
@@ -663,6 +680,7 @@ def _edge(a, fa, b, fb, kind=None):
         else:
             kind = "multiplier"
     return {"value": 0.5 * (a + b), "kind": kind, "bracket": [a, b],
+            "unstable_below": fa is None or fa.stable is not True,
             "unstable_above": fb is None or fb.stable is not True}
 
 

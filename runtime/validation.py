@@ -1,10 +1,23 @@
-"""Validation table: predicted unstable belt speeds against the simulated omega1 peak.
+"""Validation: Floquet stability, the simulated omega1 peak and the analyses' predictions.
 
 The paper validates its stability maps (Figs. 6-8) with amplitude spectra of X1'
 over a range of belt speeds (Appendix A.5, Figs. 17-21; Fig. 2b for the base set):
 where the steady sliding state is unstable, friction-induced vibration shows as a
-peak at omega1. This module puts the two side by side for the base set and every
-case of Figs. 17-21:
+peak at omega1. The analyses approximate the linear stability of the periodic
+response; `runtime.floquet` computes it exactly. For the base set and every case of
+Figs. 17-21 this module sets side by side:
+
+* the Floquet band (`runtime.floquet.floquet_band`) and the verdict at each grid
+  point (`floquet_verdicts`);
+* five runs per grid point (`RUNS`): from rest under each tension law, on the
+  periodic response plus a small perturbation, and continued up and down in ``Vb``;
+  where the periodic start disagrees with Floquet (`periodic_mismatches`), and where
+  a stable periodic response coexists with a self-excited oscillation
+  (`coexistence`);
+* each analysis' edges against the Floquet band (`compare_floquet`), exact on both
+  sides;
+
+and, as before Floquet, against the run from rest:
 
 * the simulated range: the belt speeds ``Vb`` of a sweep (`runtime.sweep.sweep`)
   where the omega1 peak is present (`runtime.simulate.PEAK_PRESENT_RATIO`, fixed
@@ -34,7 +47,11 @@ from __future__ import annotations
 import concurrent.futures as cf
 import math
 import os
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import Literal
+
+from numpy.typing import ArrayLike
 
 import numpy as np
 
@@ -50,6 +67,9 @@ from .sweep import MAX_POINTS, sweep
 __all__ = ["Case", "CASES", "ANALYSES", "Resolution", "FULL", "QUICK", "SLIDING", "UNRESOLVED",
            "DEFINITIONS", "vb_grid", "regime_runs", "simulated_ranges", "harmonic_in_band",
            "predicted_intervals", "compare", "disagreement_length", "summarize",
+           "RUNS", "FLOQUET_SPACING", "FLOQUET_TOL", "FLOQUET_DEFINITIONS", "floquet_verdicts",
+           "peak_ranges", "periodic_mismatches", "coexistence", "band_grid_disagreements",
+           "compare_floquet", "summarize_floquet", "summarize_mismatches",
            "validate", "render_markdown", "main"]
 
 
@@ -132,7 +152,7 @@ class Resolution:
     rtol: float = 1e-7
 
     @property
-    def settings(self):
+    def settings(self) -> SolverSettings:
         """Solver settings of every run (superposition, DOP853; the cache key)."""
         return SolverSettings(rtol=self.rtol, atol=self.rtol, t_end=self.t_end)
 
@@ -188,7 +208,7 @@ DEFINITIONS = """\
 """
 
 
-def vb_grid(step, top, start=None):
+def vb_grid(step: float, top: float, start: float | None = None) -> np.ndarray:
     """Belt speeds ``k step`` for ``k = 1, 2, ...`` up to ``top`` rounded up to the grid.
 
     ``start`` (a grid value) drops the points below it, so a grid can be extended
@@ -214,7 +234,7 @@ def vb_grid(step, top, start=None):
     return step * np.arange(first, last + 1, dtype=float)
 
 
-def regime_runs(vb, regime):
+def regime_runs(vb: ArrayLike, regime: ArrayLike) -> list[tuple[str, float, float]]:
     """Runs of consecutive grid points with one label (a regime, or a flag as text).
 
     Returns ``[(label, first Vb, last Vb), ...]`` (`runtime.intervals.label_runs`).
@@ -223,7 +243,8 @@ def regime_runs(vb, regime):
             for label, i, j in intervals.label_runs([str(r) for r in regime])]
 
 
-def simulated_ranges(vb, present, regime, step, resolved=None):
+def simulated_ranges(vb: ArrayLike, present: ArrayLike, regime: ArrayLike, step: float,
+                     resolved: ArrayLike | None = None) -> dict:
     """Simulated omega1-peak ranges of a sweep, with their edges (see `DEFINITIONS`).
 
     Parameters
@@ -277,7 +298,7 @@ def simulated_ranges(vb, present, regime, step, resolved=None):
             "sliding_points": int(sliding.sum())}
 
 
-def harmonic_in_band(p):
+def harmonic_in_band(p: Mapping[str, float]) -> list[tuple[int, float]]:
     """Harmonics ``k Omega`` (``k >= 2``) of the excitation inside the omega1 band.
 
     The normal force of Eq. (1) is nonlinear, so the sliding response contains every
@@ -297,7 +318,9 @@ def harmonic_in_band(p):
     return found
 
 
-def predicted_intervals(p, contact="hertz_damp", tension="allowed"):
+def predicted_intervals(p: Mapping[str, float], contact: str = "hertz_damp",
+                        tension: Literal["allowed", "clipped"] = "allowed",
+                        ) -> dict[str, list[tuple[float, float]] | None]:
     """Every analysis' unstable ``Vb`` ranges: ``{key: [(lower, upper), ...] or None}``.
 
     The paper's analysis is the closed form of Eqs. (25), (28)
@@ -327,7 +350,8 @@ def _edge(predicted, simulated, censored, from_zero=False):
             "censored": censored, "from_zero": from_zero}
 
 
-def compare(predicted, simulated, step):
+def compare(predicted: Sequence[tuple[float, float]] | None, simulated: dict,
+            step: float) -> dict:
     """Pair the edges of one analysis with the simulation's for one case (hull rule).
 
     Parameters
@@ -368,7 +392,8 @@ def compare(predicted, simulated, step):
     return out
 
 
-def disagreement_length(predicted, simulated, step):
+def disagreement_length(predicted: Sequence[tuple[float, float]], simulated: dict,
+                        step: float) -> float:
     """Length of the belt speeds where prediction and simulation disagree (`DEFINITIONS`).
 
     Measured within the observed window ``[0, top + step/2]`` minus the cells
@@ -383,7 +408,7 @@ def disagreement_length(predicted, simulated, step):
         intervals.symmetric_difference(observed, found), excluded))
 
 
-def summarize(cases):
+def summarize(cases: Sequence[dict]) -> dict:
     """Per analysis: the MAE of the edges, counts of the statuses, the mean |P Δ S|.
 
     ``cases`` are the case results of `validate`; the cases that are not
@@ -430,7 +455,9 @@ FLOQUET_SPACING = 0.5
 FLOQUET_TOL = 1e-3
 
 
-def floquet_verdicts(vb, overrides=None, *, contact="hertz_damp", tension="allowed"):
+def floquet_verdicts(vb: ArrayLike, overrides: Mapping[str, float] | None = None, *,
+                     contact: str = "hertz_damp",
+                     tension: Literal["allowed", "clipped"] = "allowed") -> list[dict]:
     """The Floquet verdict on the periodic response at each grid point.
 
     Each point is computed as the run started on the periodic response finds it
@@ -460,7 +487,8 @@ def floquet_verdicts(vb, overrides=None, *, contact="hertz_damp", tension="allow
     return out
 
 
-def peak_ranges(vb, present, resolved, step):
+def peak_ranges(vb: ArrayLike, present: ArrayLike, resolved: ArrayLike,
+                step: float) -> list[tuple[float, float]]:
     """Ranges where a run shows the omega1 peak, whatever its regime, each point ± h/2.
 
     ``present`` and ``resolved`` are the sweep's columns; an unresolved point is not
@@ -472,7 +500,8 @@ def peak_ranges(vb, present, resolved, step):
             for i, j in intervals.true_runs(shows)]
 
 
-def periodic_mismatches(vb, verdicts, periodic, edges, step):
+def periodic_mismatches(vb: ArrayLike, verdicts: Sequence[dict], periodic: Mapping,
+                        edges: Sequence[float], step: float) -> dict:
     """Where the run started on the periodic response disagrees with Floquet.
 
     Floquet's verdict at a grid point is a prediction of that run: the perturbation
@@ -515,7 +544,8 @@ def periodic_mismatches(vb, verdicts, periodic, edges, step):
     return out
 
 
-def coexistence(vb, verdicts, runs, step, window_start):
+def coexistence(vb: ArrayLike, verdicts: Sequence[dict], runs: Mapping[str, Mapping],
+                step: float, window_start: float) -> dict:
     """Grid points where two attractors are seen: a stable periodic response beside
     a self-excited oscillation.
 
@@ -557,7 +587,8 @@ def coexistence(vb, verdicts, runs, step, window_start):
             "found_by": found_by, "unsettled": unsettled}
 
 
-def band_grid_disagreements(vb, verdicts, band, step):
+def band_grid_disagreements(vb: ArrayLike, verdicts: Sequence[dict], band: Mapping,
+                            step: float) -> list[float]:
     """Grid points whose own Floquet verdict contradicts the band, away from its edges.
 
     The band (`runtime.floquet.floquet_band`) is found on its own, coarser grid and
@@ -577,7 +608,8 @@ def band_grid_disagreements(vb, verdicts, band, step):
     return out
 
 
-def compare_floquet(predicted, band, lo, hi):
+def compare_floquet(predicted: Sequence[tuple[float, float]] | None, band: Mapping,
+                    lo: float, hi: float) -> dict:
     """Pair an analysis' unstable ranges with the Floquet band (hull rule, exact edges).
 
     The Floquet band is computed on ``[lo, hi]``: an edge of it at ``lo`` or ``hi``
@@ -616,7 +648,7 @@ def compare_floquet(predicted, band, lo, hi):
     return out
 
 
-def summarize_floquet(cases):
+def summarize_floquet(cases: Sequence[dict]) -> dict:
     """Per analysis, against Floquet: MAE of the uncensored edges, status counts, mean
     disagreement length; over every case (Floquet needs no comparability rule)."""
     summary = {}
@@ -677,7 +709,7 @@ FLOQUET_DEFINITIONS = """\
 """
 
 
-def summarize_mismatches(cases):
+def summarize_mismatches(cases: Sequence[dict]) -> dict:
     """Totals of `periodic_mismatches` over the cases without a harmonic in the band."""
     counted = [c for c in cases if not c["harmonics"]]
     return {"checked": sum(c["mismatches"]["checked"] for c in counted),
@@ -714,8 +746,10 @@ def _case_sweep(case, resolution, edges, executor, cache_dir, progress, extend=T
         table = np.concatenate([table, sweep("Vb", new, case.overrides, **kwargs)])
 
 
-def validate(quick=False, *, tension="allowed", executor=None, cache_dir="default",
-             progress=True, cases=None):
+def validate(quick: bool = False, *, tension: Literal["allowed", "clipped"] = "allowed",
+             executor: cf.Executor | Literal["serial"] | None = None,
+             cache_dir: os.PathLike | str | None = "default", progress: bool = True,
+             cases: Sequence[Case | str] | None = None) -> dict:
     """Simulated omega1-peak ranges against every analysis' prediction (Figs. 2, 17-21).
 
     Parameters
@@ -1045,7 +1079,7 @@ def _verdict(cases, key, reference, step):
             f"{len(tie)} ({names(tie)})." + skipped)
 
 
-def render_markdown(results, quick):
+def render_markdown(results: dict, quick: bool) -> str:
     """``VALIDATION.md``: tables of ranges, edge differences, the summary and definitions."""
     res = results["resolution"]
     cases = results["cases"]
@@ -1097,7 +1131,7 @@ def render_markdown(results, quick):
     lines += [""] + _floquet_sections(results)
     lines += ["# Against the runs from rest", "",
               "The tables the package has kept since before Floquet: each analysis against "
-              "the run from rest, which finds whichever attractor its start leads to.", ""]
+              "the run from rest, which finds whichever attractor its start leads to."]
     header = "| case | figure | simulated | " + " | ".join(lab for _, lab, _ in ANALYSES) + " |"
     rule = "|" + "---|" * (3 + len(ANALYSES))
     lines += ["", "## Unstable ranges [m/s]", "",
@@ -1166,7 +1200,7 @@ def render_markdown(results, quick):
     return "\n".join(lines)
 
 
-def main(argv=None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     """``python -m derive validate [--quick] [--out PATH] [--jobs N] [--no-cache]`` (`runtime.cli`)."""
     from .cli import run_command
     return run_command("validate", argv)
