@@ -102,7 +102,10 @@ def spectrum_scan(values, param="Vb", params=None, *, contact="hertz_damp", solv
     dict with ``param``, ``values``, ``omega`` (n_omega,), ``amplitude``
     (n_values, n_omega; NaN for runs that stopped early), ``stopped`` (the values whose
     run did not reach t_end), ``summaries`` (list of the runs' summary dicts) and, as arrays,
-    ``omega1_peak_present``, ``peak_omega1``, ``regime``.
+    ``omega1_peak_present``, ``resolved``, ``peak_omega1``, ``regime``. ``resolved``
+    (bool) is False where the run could not tell the omega1 peak
+    (`runtime.simulate.summarize`); ``omega1_peak_present`` is False there too, as in a
+    sweep table, so read it together with ``resolved`` (`peak_ranges` does).
     """
     values = np.asarray(values, dtype=float)
     solver = solver or settings()
@@ -124,7 +127,11 @@ def spectrum_scan(values, param="Vb", params=None, *, contact="hertz_damp", solv
             "stopped": values[[s["status"] != "done" for s in summaries]],
             "summaries": summaries,
             param: values,
-            "omega1_peak_present": np.array([s["omega1_peak_present"] for s in summaries]),
+            # a summary's None (unresolved) would make an object array: False beside
+            # resolved = False, as runtime.sweep stores it
+            "omega1_peak_present": np.array([bool(s["resolved"] and s["omega1_peak_present"])
+                                             for s in summaries]),
+            "resolved": np.array([bool(s["resolved"]) for s in summaries]),
             "peak_omega1": np.array([s["peak_omega1"] for s in summaries]),
             "regime": np.array([s["regime"] for s in summaries])}
 
