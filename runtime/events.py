@@ -18,10 +18,14 @@ time.
 from __future__ import annotations
 
 from collections import deque
+from collections.abc import Mapping
+from typing import Literal
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from . import _compiled, _dop853
+from .parameters import Backend, Contact, Tension
 from .switching import Mode, Switching
 from .trajectory import Segment, Trajectory
 
@@ -40,17 +44,22 @@ class StepSegment:
 
     __slots__ = ("t_steps", "h_steps", "y_steps", "F_steps")
 
-    def __init__(self, t_steps, h_steps, y_steps, F_steps):
+    def __init__(self, t_steps: NDArray[np.float64], h_steps: NDArray[np.float64],
+                 y_steps: NDArray[np.float64], F_steps: NDArray[np.float64]) -> None:
         self.t_steps, self.h_steps = t_steps, h_steps
         self.y_steps, self.F_steps = y_steps, F_steps
 
-    def __call__(self, t, index=None):
+    def __call__(self, t: ArrayLike, index: ArrayLike | None = None) -> NDArray[np.float64]:
         return _dop853.evaluate(self.t_steps, self.h_steps, self.y_steps, self.F_steps, t)
 
 
-def integrate_events(p, contact="hertz_damp", *, tension="allowed", t_end=1000.0, y0=None,
-                     t0=0.0, rtol=1e-10, atol=1e-10, on_contact_loss="continue",
-                     backend=None, method="DOP853"):
+def integrate_events(p: Mapping[str, float], contact: Contact = "hertz_damp", *,
+                     tension: Tension = "allowed", t_end: float = 1000.0,
+                     y0: ArrayLike | None = None, t0: float = 0.0, rtol: float = 1e-10,
+                     atol: float = 1e-10,
+                     on_contact_loss: Literal["continue", "stop"] = "continue",
+                     backend: Backend | None = None, method: Literal["DOP853"] = "DOP853"
+                     ) -> tuple[Trajectory, list[tuple[float, str, Mode]], str, str]:
     """Integrate Eq. (4) mode by mode with located switches (module docstring).
 
     Parameters

@@ -10,14 +10,21 @@ Runtime layer: numpy only.
 """
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
+from typing import TypeVar
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["true_runs", "label_runs", "runs", "sign_changes", "from_crossings", "union",
            "intersection", "difference", "symmetric_difference", "clip", "hull", "length",
            "jaccard", "format_intervals"]
 
+#: Any label of `label_runs`: what it is given comes back.
+_Label = TypeVar("_Label")
 
-def true_runs(flags):
+
+def true_runs(flags: ArrayLike) -> list[tuple[int, int]]:
     """Maximal runs of consecutive true entries, in sequence order.
 
     Parameters
@@ -33,7 +40,7 @@ def true_runs(flags):
             if label]
 
 
-def label_runs(labels):
+def label_runs(labels: Iterable[_Label]) -> list[tuple[_Label, int, int]]:
     """Maximal runs of consecutive equal labels, in sequence order.
 
     Parameters
@@ -55,7 +62,7 @@ def label_runs(labels):
     return out
 
 
-def runs(x, flags):
+def runs(x: ArrayLike, flags: ArrayLike) -> list[tuple[float, float]]:
     """Ranges of ``x`` over which ``flags`` holds at consecutive grid points.
 
     Parameters
@@ -86,7 +93,7 @@ def runs(x, flags):
     return [(float(x[i]), float(x[j])) for i, j in true_runs(flags)]
 
 
-def sign_changes(values):
+def sign_changes(values: ArrayLike) -> NDArray[np.intp]:
     """Indices ``i`` where ``values < 0`` differs between ``values[i]`` and ``values[i+1]``.
 
     Each is a bracket ``[x[i], x[i+1]]`` of a crossing on the grid ``x`` of the values
@@ -100,7 +107,8 @@ def sign_changes(values):
     return np.flatnonzero(negative[:-1] != negative[1:])
 
 
-def from_crossings(x, inside, crossings):
+def from_crossings(x: ArrayLike, inside: ArrayLike,
+                   crossings: Iterable[float]) -> list[tuple[float, float]]:
     """The set over the grid ``x`` bounded by its refined crossing points.
 
     Parameters
@@ -126,7 +134,7 @@ def from_crossings(x, inside, crossings):
     return [(float(a), float(b)) for a, b in zip(bounds[::2], bounds[1::2])]
 
 
-def union(a):
+def union(a: Iterable[tuple[float, float]]) -> list[tuple[float, float]]:
     """The set as sorted, disjoint intervals: overlapping or touching ones merged."""
     out = []
     for lo, hi in sorted((float(lo), float(hi)) for lo, hi in a):
@@ -139,7 +147,8 @@ def union(a):
     return out
 
 
-def intersection(a, b):
+def intersection(a: Iterable[tuple[float, float]],
+                 b: Sequence[tuple[float, float]]) -> list[tuple[float, float]]:
     """``A and B``: sorted, disjoint intervals (a single shared point is kept)."""
     out = []
     for l1, h1 in union(a):
@@ -150,7 +159,8 @@ def intersection(a, b):
     return out
 
 
-def difference(a, b):
+def difference(a: Iterable[tuple[float, float]],
+               b: Iterable[tuple[float, float]]) -> list[tuple[float, float]]:
     """``A minus B`` up to the end points: sorted, disjoint intervals of positive length.
 
     The pieces of A left between the intervals of B; end points shared with B are
@@ -172,29 +182,30 @@ def difference(a, b):
     return out
 
 
-def symmetric_difference(a, b):
+def symmetric_difference(a: Sequence[tuple[float, float]],
+                         b: Sequence[tuple[float, float]]) -> list[tuple[float, float]]:
     """``A xor B`` (up to the end points, as in `difference`)."""
     return union(difference(a, b) + difference(b, a))
 
 
-def clip(a, lo, hi):
+def clip(a: Iterable[tuple[float, float]], lo: float, hi: float) -> list[tuple[float, float]]:
     """``A`` within ``[lo, hi]``."""
     return intersection(a, [(lo, hi)])
 
 
-def hull(a):
+def hull(a: Sequence[tuple[float, float]]) -> tuple[float, float]:
     """``(lowest lo, highest hi)`` of a non-empty set."""
     if not a:
         raise ValueError("the hull of an empty set is undefined")
     return min(lo for lo, _ in a), max(hi for _, hi in a)
 
 
-def length(a):
+def length(a: Iterable[tuple[float, float]]) -> float:
     """Total length of the set (overlaps counted once)."""
     return sum(hi - lo for lo, hi in union(a))
 
 
-def jaccard(a, b):
+def jaccard(a: Sequence[tuple[float, float]], b: Sequence[tuple[float, float]]) -> float:
     """Jaccard overlap ``|A and B| / |A or B|`` of two sets (1 = identical).
 
     Two sets of zero length give 1. Points (zero-length intervals) count through
@@ -205,7 +216,8 @@ def jaccard(a, b):
     return 1.0 if total == 0 else inter / total
 
 
-def format_intervals(a, spec=".2f", empty="none"):
+def format_intervals(a: Iterable[tuple[float, float]], spec: str = ".2f",
+                     empty: str = "none") -> str:
     """``[lo, hi], ...`` with each number formatted by ``spec``; ``empty`` for no interval.
 
     Examples

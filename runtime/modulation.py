@@ -12,11 +12,16 @@ samples.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import NDArray
+
+from .simulate import Simulation
 
 __all__ = ["friction_loop", "cycle_averages", "modulation_scatter"]
 
 
-def friction_loop(sim, period=None, t_stop=None, n=2000):
+def friction_loop(sim: Simulation, period: float | None = None, t_stop: float | None = None,
+                  n: int = 2000
+                  ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Friction force against relative velocity over one period (Fig. 3b).
 
     Parameters
@@ -41,7 +46,8 @@ def friction_loop(sim, period=None, t_stop=None, n=2000):
     return t, y[1] - sim.params["Vb"], friction
 
 
-def cycle_averages(sim, period, t_start=None):
+def cycle_averages(sim: Simulation, period: float,
+                   t_start: float | None = None) -> dict[str, NDArray[np.float64]]:
     """Mean friction and normal force over consecutive cycles of ``period``.
 
     Cycles start at the first multiple of ``period`` after ``t_start`` (default the
@@ -69,7 +75,7 @@ def cycle_averages(sim, period, t_start=None):
     return {"t0": edges[:-1], "friction": F, "normal_force": N, "mu_eff": F / N}
 
 
-def modulation_scatter(sim):
+def modulation_scatter(sim: Simulation) -> dict[str, float]:
     """Effective friction averaged over 2 pi/Omega_t and over 2 pi/omega1 (Figs. 10-12).
 
     Returns a dict with, for each averaging period, the mean of ``mu_eff`` over the

@@ -17,12 +17,15 @@ for switches.
 from __future__ import annotations
 
 import functools
+from collections.abc import Iterable, Mapping
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from generated import hybrid, oscillator
 
 from . import _compiled, _dop853
+from .parameters import Backend, Contact, Tension
 from .switching import EVENT_KINDS, SURFACE_INDEX, Mode, Switching
 
 __all__ = ["NormalMotion", "normal_motion", "clear_cache", "GRID_STEP", "NORMAL_NAMES"]
@@ -56,8 +59,9 @@ class NormalMotion:
         ``z, z', X2, X2'`` and the excitation response ``zf, zf'`` at ``grid``.
     """
 
-    def __init__(self, p, contact, tension, t_end, rtol, atol, y0_normal, backend=None,
-                 grid_step=GRID_STEP):
+    def __init__(self, p: Mapping[str, float], contact: Contact, tension: Tension,
+                 t_end: float, rtol: float, atol: float, y0_normal: Iterable[float],
+                 backend: Backend | None = None, grid_step: float = GRID_STEP) -> None:
         self.p, self.contact, self.tension, self.t_end = p, contact, tension, float(t_end)
         kw = dict(contact=contact, backend=backend, **p)
         field = hybrid.bind_response_field(**kw)
@@ -120,11 +124,11 @@ class NormalMotion:
             return Mode.SEPARATED
         return Mode.SLIP_BACK
 
-    def evaluate(self, t):
+    def evaluate(self, t: ArrayLike) -> NDArray[np.float64]:
         """``(z, z', X2, X2')`` at the times ``t`` from the dense output, shape (4, n)."""
         return _dop853.evaluate(self.t_steps, self.h_steps, self.y_steps, self.F_steps, t)
 
-    def at(self, t):
+    def at(self, t: float) -> NDArray[np.float64]:
         """``(z, z', X2, X2')`` at one time: the dense output of the step holding ``t``."""
         k = max(int(np.searchsorted(self.t_steps, t, side="right")) - 1, 0)
         F = self.F_steps[k]
@@ -136,7 +140,7 @@ class NormalMotion:
         y *= x if F.shape[0] % 2 else 1.0 - x
         return y + self.y_steps[k]
 
-    def segment_at(self, t):
+    def segment_at(self, t: float) -> int:
         """Index of the normal segment that holds ``t`` (the later one at a switch)."""
         return min(int(np.searchsorted(self.switch_t, t, side="right")) - 1,
                    len(self.switch_mode) - 1)
@@ -148,7 +152,9 @@ def _cached(key, contact, tension, t_end, rtol, atol, y0_normal, backend):
                         y0_normal, backend)
 
 
-def normal_motion(p, contact, tension, t_end, rtol, atol, y0_normal, backend=None):
+def normal_motion(p: Mapping[str, float], contact: Contact, tension: Tension, t_end: float,
+                  rtol: float, atol: float, y0_normal: Iterable[float],
+                  backend: Backend | None = None) -> NormalMotion:
     """The `NormalMotion` of ``p`` (cached: the last few are kept).
 
     ``mu_s`` and ``Vb`` do not enter the normal motion or ``z``: a sweep over either
@@ -159,6 +165,6 @@ def normal_motion(p, contact, tension, t_end, rtol, atol, y0_normal, backend=Non
                    tuple(float(v) for v in y0_normal), backend)
 
 
-def clear_cache():
+def clear_cache() -> None:
     """Forget the normal motions kept for the last parameter sets."""
     _cached.cache_clear()

@@ -10,8 +10,10 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Mapping
+from typing import Literal
 
 import numpy as np
+from numpy.typing import NDArray
 
 from generated import unforced
 from generated.parameters import BASE, DOMAINS, KNOWN
@@ -20,6 +22,12 @@ __all__ = ["CONTACTS", "METHODS", "MAX_SAMPLES", "resolve_parameters",
            "initial_state", "is_real", "excitation_period"]
 
 CONTACTS = ("hertz_damp", "kelvin_voigt")
+#: Annotation types of a run's options: the contact laws (`CONTACTS`), the tension
+#: laws (`runtime.model.TENSIONS`; tests/test_typing.py keeps both equal to these) and
+#: the backends of the bound kernels (where None is accepted, it means numba if installed).
+Contact = Literal["hertz_damp", "kelvin_voigt"]
+Tension = Literal["allowed", "clipped"]
+Backend = Literal["python", "numba"]
 #: The integration methods of the integrators (`runtime._dop853`), by name (the name
 #: keys the sweep cache); `runtime.simulate.SolverSettings` accepts these.
 METHODS = ("DOP853",)
@@ -37,12 +45,14 @@ _EXCITATION_DEFAULTS = {"alpha_t": "alpha", "Omega_t": "Omega", "alpha_n": "alph
                         "Omega_n": "Omega"}
 
 
-def is_real(value):
+def is_real(value: object) -> bool:
     """True for a real number (int, float, numpy scalar), False for a bool or anything else."""
     return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
 
 
-def resolve_parameters(params=None, *, contact="hertz_damp", **overrides):
+def resolve_parameters(params: Mapping[str, float | None] | None = None, *,
+                       contact: Contact = "hertz_damp",
+                       **overrides: float | None) -> dict[str, float]:
     """The paper's base set (``generated.parameters.BASE``) updated by the arguments.
 
     The per-direction excitation keywords (``alpha_t``, ``Omega_t``, ``phase_t``,
@@ -90,7 +100,8 @@ def resolve_parameters(params=None, *, contact="hertz_damp", **overrides):
     return merged
 
 
-def initial_state(p, contact="hertz_damp"):
+def initial_state(p: Mapping[str, float],
+                  contact: Contact = "hertz_damp") -> NDArray[np.float64]:
     """Default initial state: the unforced equilibrium of Eq. (9), at rest.
 
     ``X1 = mu_s g / omega1^2``, ``X2 = (g / omega2*^2)^(2/3)`` (Hertz-Damp) or
@@ -105,7 +116,7 @@ def initial_state(p, contact="hertz_damp"):
 _MAX_DENOMINATOR = 1000
 
 
-def excitation_period(p):
+def excitation_period(p: Mapping[str, float]) -> float:
     """The common period ``T`` [s] of the excitation of Eq. (4): ``2 pi / gcd``.
 
     The tangential force ``alpha_t Omega_t^2 sin(Omega_t t + phase_t)`` and the normal

@@ -33,15 +33,18 @@ analysis gives no prediction (`CLIPPED_MDSM`) rather than the allowed law's.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from scipy import optimize
 
 from generated import correlation, friction, stability
 
 from . import intervals
-from .parameters import resolve_parameters
+from .parameters import Contact, Tension, resolve_parameters
 
 __all__ = ["FastMotion", "fast_motion", "consistent_mdsm_damping", "unstable_intervals",
            "paper_intervals", "predict", "main", "NO_EXCITATION", "NO_VHAT", "CLIPPED_MDSM",
@@ -99,7 +102,8 @@ def _hybr(fun, start, args):
         return None
 
 
-def fast_motion(p, contact="hertz_damp", guess=None) -> FastMotion:
+def fast_motion(p: Mapping[str, float], contact: Contact = "hertz_damp",
+                guess: FastMotion | None = None) -> FastMotion:
     """The fast motion at ``p["Vb"]`` (parameters as `resolve_parameters` returns them).
 
     Parameters
@@ -150,7 +154,8 @@ def fast_motion(p, contact="hertz_damp", guess=None) -> FastMotion:
                       residual)
 
 
-def consistent_mdsm_damping(p, contact="hertz_damp", fast=None) -> float:
+def consistent_mdsm_damping(p: Mapping[str, float], contact: Contact = "hertz_damp",
+                            fast: FastMotion | None = None) -> float:
     """Tangential damping ``p = 2 beta1 omega1 + mu_s dF/du`` of the slow motion at ``-Vb``."""
     fast = fast or fast_motion(p, contact)
     if fast.V == 0:
@@ -175,7 +180,10 @@ def _check_points(points):
         raise ValueError(f"points must be an integer >= 2; got {points!r}")
 
 
-def unstable_intervals(params=None, *, contact="hertz_damp", vb=None, points=400, **overrides):
+def unstable_intervals(params: Mapping[str, float | None] | None = None, *,
+                       contact: Contact = "hertz_damp", vb: ArrayLike | None = None,
+                       points: int | np.integer = 400, **overrides: float | None
+                       ) -> tuple[list[tuple[float, float]], dict[str, NDArray[Any]]]:
     """Unstable belt speeds of the consistent MDSM.
 
     The damping is evaluated on a grid (continuation from high ``Vb`` down, where the
@@ -254,7 +262,9 @@ def unstable_intervals(params=None, *, contact="hertz_damp", vb=None, points=400
     return unstable, table
 
 
-def paper_intervals(params=None, *, contact="hertz_damp", **overrides):
+def paper_intervals(params: Mapping[str, float | None] | None = None, *,
+                    contact: Contact = "hertz_damp", **overrides: float | None
+                    ) -> dict[str, list[tuple[float, float]] | None]:
     """The paper's unstable interval ``(Vb_c, Vhat]`` for each ``V_hat`` reading (Eq. 25, 28).
 
     Returns
@@ -302,7 +312,7 @@ class _Refused(Exception):
     """An analysis that gives no prediction, with the reason."""
 
 
-def clip_acts(p, contact="hertz_damp"):
+def clip_acts(p: Mapping[str, float], contact: Contact = "hertz_damp") -> tuple[bool, float]:
     """``(acts, N1)``: whether the clip cuts the linear fast normal force ``g + N1 sin``.
 
     True when ``N1 >= g`` (the force would reach zero within a fast cycle), with
@@ -312,8 +322,10 @@ def clip_acts(p, contact="hertz_damp"):
     return N1 >= p["g"], N1
 
 
-def predict(params=None, *, contact="hertz_damp", tension="allowed", vb=None, points=400,
-            **overrides) -> dict:
+def predict(params: Mapping[str, float | None] | None = None, *,
+            contact: Contact = "hertz_damp", tension: Tension = "allowed",
+            vb: ArrayLike | None = None, points: int | np.integer = 400,
+            **overrides: float | None) -> dict:
     """Both analyses' predicted unstable ``Vb`` intervals, as plain data.
 
     Parameters
@@ -390,7 +402,7 @@ def predict(params=None, *, contact="hertz_damp", tension="allowed", vb=None, po
 
 
 
-def main(argv=None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     """``python -m derive predict [--param value ...] [--json]`` (see `runtime.cli`)."""
     from .cli import run_command
     return run_command("predict", argv)

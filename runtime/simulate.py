@@ -28,13 +28,17 @@ from __future__ import annotations
 
 import time
 import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any, Literal
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from . import spectra
 from .events import integrate_events
 from .model import MODE_NAMES, TENSIONS, Mode, resolve_parameters
+from .parameters import Backend, Contact, Tension
 from .trajectory import Trajectory
 
 __all__ = ["SolverSettings", "Simulation", "simulate", "integrate_events", "classify_regime",
@@ -61,15 +65,15 @@ class SolverSettings:
     the steady window [s]; ``None`` means 30 % of ``t_end``. ``backend``: "numba"
     (compiled), "python" or None (numba if installed).
     """
-    solver: str = "events"
-    method: str = "DOP853"
+    solver: Literal["events", "superposition"] = "events"
+    method: Literal["DOP853"] = "DOP853"
     rtol: float = 1e-10
     atol: float = 1e-10
     t_end: float = DEFAULT_T_END
     t_discard: float | None = None
     dt: float = 0.02
-    on_contact_loss: str = "continue"
-    backend: str | None = None
+    on_contact_loss: Literal["continue", "stop"] = "continue"
+    backend: Backend | None = None
 
     def __post_init__(self):
         # The limits live in runtime.parameters, beside the checks of the model.
@@ -99,7 +103,7 @@ class SolverSettings:
                              f"window before t_end={self.t_end!r}")
 
     @property
-    def window_start(self):
+    def window_start(self) -> float:
         return 0.3 * self.t_end if self.t_discard is None else float(self.t_discard)
 
 
@@ -123,12 +127,12 @@ class Simulation:
     tension: str = "allowed"
 
     @property
-    def window(self):
+    def window(self) -> NDArray[np.bool_]:
         """Boolean mask of the samples in the steady window."""
         return self.t >= self.settings.window_start
 
 
-def classify_regime(trajectory, t0, t1):
+def classify_regime(trajectory: Trajectory, t0: float, t1: float) -> str:
     """Regime in the window [t0, t1] from the time spent in each mode.
 
     contact_loss (any flight) > stick_slip (any stick) > sliding_with_reversals
@@ -146,7 +150,7 @@ def classify_regime(trajectory, t0, t1):
     return "continuous_sliding"
 
 
-def omega1_band(p):
+def omega1_band(p: Mapping[str, float]) -> tuple[float, float] | None:
     """Band ``(low, high)`` [rad/s] around omega1 in which the omega1 peak is read.
 
     Half-width 0.25 omega1, narrowed to keep clear of the excitation lines
@@ -199,7 +203,7 @@ def _resolution(sim, v, out):
                    f"half of the window and {second:.3g} in the second); lengthen --t-end")
 
 
-def summarize(sim):
+def summarize(sim: Simulation) -> dict[str, Any]:
     """Regime, spectral peaks, energy balance and counts of a run (``sim.summary``).
 
     ``omega1_peak_present`` is None (not False) where ``resolved`` is False: the
@@ -277,10 +281,15 @@ def summarize(sim):
 #: ``start="periodic"``: the run starts on the periodic response with X1 moved by this [m].
 PERTURBATION = 1e-2
 STARTS = ("rest", "periodic")
+#: `STARTS` as an annotation.
+Start = Literal["rest", "periodic"]
 
 
-def simulate(params=None, *, contact="hertz_damp", tension="allowed", settings=None, y0=None,
-             start="rest", perturbation=PERTURBATION, **overrides):
+def simulate(params: Mapping[str, float | None] | None = None, *,
+             contact: Contact = "hertz_damp", tension: Tension = "allowed",
+             settings: SolverSettings | None = None, y0: ArrayLike | None = None,
+             start: Start = "rest", perturbation: float = PERTURBATION,
+             **overrides: float | str | None) -> Simulation:
     """Simulate Eq. (4) and summarise the run.
 
     Parameters

@@ -8,7 +8,10 @@ itself, found by maximising it in a band.
 """
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from scipy import fft, signal
 
 __all__ = ["amplitude_spectrum", "peak_amplitude", "peak_amplitudes", "spectrogram"]
@@ -18,7 +21,8 @@ def _window(name, n):
     return signal.get_window(name, n, fftbins=False)
 
 
-def amplitude_spectrum(x, dt, window="hann", pad=4):
+def amplitude_spectrum(x: ArrayLike, dt: float, window: str = "hann", pad: int = 4
+                       ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """One-sided amplitude spectrum of a uniformly sampled signal (mean removed).
 
     Parameters
@@ -67,7 +71,8 @@ def _dtft_amplitudes(xw, wsum, dt, omegas):
     return np.array(out)
 
 
-def peak_amplitudes(x, dt, bands, window="hann"):
+def peak_amplitudes(x: ArrayLike, dt: float, bands: Iterable[tuple[float, float]],
+                    window: str = "hann") -> list[tuple[float, float]]:
     """Largest spectral peak of ``x`` in each band ``(lo, hi)`` [rad/s].
 
     Each peak is located on a zero-padded FFT and refined by maximising the windowed
@@ -133,12 +138,15 @@ def _refine_peak(xw, wsum, dt, centre, step, lo, hi):
     return best, float(_dtft_amplitudes(xw, wsum, dt, [best])[0])
 
 
-def peak_amplitude(x, dt, band, window="hann"):
+def peak_amplitude(x: ArrayLike, dt: float, band: tuple[float, float],
+                   window: str = "hann") -> tuple[float, float]:
     """`peak_amplitudes` for one band: (omega_peak, amplitude)."""
     return peak_amplitudes(x, dt, [band], window)[0]
 
 
-def spectrogram(x, dt, segment_s=100.0, overlap=0.5, window="hann"):
+def spectrogram(x: ArrayLike, dt: float, segment_s: float = 100.0, overlap: float = 0.5,
+                window: str = "hann"
+                ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Spectrogram of ``x`` (Fig. 2c): amplitude against time and frequency.
 
     Returns

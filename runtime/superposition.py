@@ -23,15 +23,20 @@ response grows without bound.
 from __future__ import annotations
 
 from collections import deque
+from collections.abc import Mapping
+from typing import Any, Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from generated import oscillator
 
 from . import _compiled
 from .events import ZENO_SWITCHES, ZENO_WINDOW, _cone_holds
 from .model import initial_state
-from .normal import GRID_STEP, clear_cache, normal_motion
+from .normal import GRID_STEP, NormalMotion, clear_cache, normal_motion
+from .parameters import Backend, Contact, Tension
+from .simulate import SolverSettings
 from .switching import SURFACE_INDEX, Mode, Switching
 from .trajectory import Segment, Trajectory
 
@@ -92,7 +97,8 @@ class Superposition:
         At undamped resonance, where the excitation response has no closed form.
     """
 
-    def __init__(self, p, contact, tension, normal, backend=None):
+    def __init__(self, p: Mapping[str, float], contact: Contact, tension: Tension,
+                 normal: NormalMotion, backend: Backend | None = None) -> None:
         self.p, self.normal = p, normal
         self.stm = oscillator.bind_state_transition(backend=backend, **p)
         self.exc = oscillator.bind_excitation_response(backend=backend, **p)
@@ -114,7 +120,8 @@ class Superposition:
                       normal.y_steps, normal.F_steps, self.stm.args, self.exc.args,
                       sw.surfaces.args, sw.rates.args)
 
-    def run(self, t0, X1, Y1, t_end, on_contact_loss="continue"):
+    def run(self, t0: float, X1: float, Y1: float, t_end: float,
+            on_contact_loss: Literal["continue", "stop"] = "continue") -> dict[str, Any]:
         """The tangential motion from ``(X1, Y1)`` at ``t0`` to ``t_end``.
 
         Returns
@@ -123,7 +130,7 @@ class Superposition:
             ``segments`` (`_Segments`, frozen), ``modes``, ``starts``, ``ends``,
             ``events`` ((t, kind, new_mode)), ``switches`` ((t, before, after,
             surface, state) with the surface's name and the state on it),
-            ``status``, ``message``, ``n_zeno``.
+            ``status``, ``message``, ``n_zeno``, ``final`` (the state where it stopped).
         """
         sw, normal, p = self.sw, self.normal, self.p
         Vb, mu = p["Vb"], p["mu_s"]
@@ -188,7 +195,9 @@ class Superposition:
                 "message": message, "n_zeno": n_zeno, "final": state}
 
 
-def integrate_superposed(p, contact, tension, settings, y0=None):
+def integrate_superposed(p: Mapping[str, float], contact: Contact, tension: Tension,
+                         settings: SolverSettings, y0: ArrayLike | None = None
+                         ) -> tuple[Trajectory, list[tuple[float, str, Mode]], str, str] | str:
     """Trajectory of Eq. (4) by superposition, or the reason it does not apply.
 
     Returns

@@ -34,16 +34,19 @@ import os
 import sys
 import uuid
 import warnings
+from collections.abc import Iterable, Mapping
 from dataclasses import asdict
 from pathlib import Path
+from typing import Any, Literal
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from generated.parameters import PARAMETERS
 
 from . import intervals
-from .parameters import excitation_period, resolve_parameters
-from .simulate import STARTS, SolverSettings, simulate
+from .parameters import Contact, Tension, excitation_period, resolve_parameters
+from .simulate import STARTS, SolverSettings, Start, simulate
 
 __all__ = ["sweep", "run_point", "cache_key", "default_cache_dir", "table_to_csv",
            "table_from_csv", "COLUMNS", "omega1_peak_ranges", "MAX_POINTS", "SWEEPABLE",
@@ -67,6 +70,8 @@ COLUMNS = (("regime", "U24"), ("peak_omega1", "f8"), ("omega1_peak_at", "f8"),
 NO_PERIODIC_RESPONSE = "no_periodic_response"
 #: Directions of a continued sweep (`sweep`'s ``continuation``).
 CONTINUATIONS = ("up", "down")
+#: `CONTINUATIONS` as an annotation.
+Continuation = Literal["up", "down"]
 #: Largest denominator tried when writing Omega_t / Omega_n as a fraction
 MODULATION_COLUMNS = tuple((f"mu_eff_{tag}_{stat}", "f8") for tag in ("Omega", "omega1")
                            for stat in ("mean", "std", "range"))
@@ -84,12 +89,12 @@ class CacheWarning(UserWarning):
     """A sweep cache file failed its checks; it was recomputed and rewritten."""
 
 
-def default_cache_dir():
+def default_cache_dir() -> Path:
     """``$BELTMDSM_CACHE`` or ``~/.cache/beltmdsm/sweeps``."""
     return Path(os.environ.get("BELTMDSM_CACHE", Path.home() / ".cache" / "beltmdsm" / "sweeps"))
 
 
-def linear_values(start, stop, step):
+def linear_values(start: float, stop: float, step: float) -> NDArray[np.float64]:
     """``start, start + step, ...`` up to ``stop`` (within 1e-9 steps), checked first.
 
     The values are ``start + step * k``, as the command line has always computed
@@ -116,7 +121,7 @@ def linear_values(start, stop, step):
     return start + step * np.arange(count)
 
 
-def code_files():
+def code_files() -> list[Path]:
     """The source files a cached row depends on: ``generated/**/*.py``, ``runtime/*.py``.
 
     Sorted, so that their hash does not depend on the order of the file system.
@@ -126,7 +131,7 @@ def code_files():
 
 
 @functools.lru_cache(maxsize=None)
-def code_hash():
+def code_hash() -> str:
     """SHA-256 over the path and bytes of every file of `code_files` (once per process).
 
     Part of `cache_key`: a change of the generated model or of the integrator gives
@@ -143,7 +148,7 @@ def code_hash():
 
 
 @functools.lru_cache(maxsize=None)
-def package_version():
+def package_version() -> str:
     """The installed version of beltmdsm, else the version in ``pyproject.toml``."""
     from importlib import metadata
     try:
@@ -178,8 +183,10 @@ def _identity(params, contact, tension, settings, modulation, continuation=None,
     return ident
 
 
-def cache_key(params, contact, settings, modulation=False, *, tension="allowed",
-              continuation=None, y0=None, start="rest"):
+def cache_key(params: dict[str, float], contact: Contact, settings: SolverSettings,
+              modulation: bool = False, *, tension: Tension = "allowed",
+              continuation: Continuation | None = None, y0: Iterable[float] | None = None,
+              start: Start = "rest") -> str:
     """SHA-256 of everything a point's result depends on.
 
     The parameters, the contact and tension laws, the solver settings, whether the
@@ -195,8 +202,10 @@ def cache_key(params, contact, settings, modulation=False, *, tension="allowed",
     return hashlib.sha256(blob.encode()).hexdigest()
 
 
-def run_point(params, contact, settings, modulation=False, *, tension="allowed", y0=None,
-              restart_period=None, start="rest"):
+def run_point(params: Mapping[str, float | None] | None, contact: Contact,
+              settings: SolverSettings, modulation: bool = False, *,
+              tension: Tension = "allowed", y0: ArrayLike | None = None,
+              restart_period: float | None = None, start: Start = "rest") -> dict[str, Any]:
     """One sweep point: the summary row (a plain dict of numbers and strings).
 
     Parameters
@@ -252,8 +261,11 @@ def _columns(modulation):
     return [name for name, _ in COLUMNS + (MODULATION_COLUMNS if modulation else ())]
 
 
-def read_cached(path, params, contact, settings, modulation=False, *, tension="allowed",
-                continuation=None, y0=None, start="rest"):
+def read_cached(path: os.PathLike | str, params: dict[str, float], contact: Contact,
+                settings: SolverSettings, modulation: bool = False, *,
+                tension: Tension = "allowed", continuation: Continuation | None = None,
+                y0: Iterable[float] | None = None, start: Start = "rest"
+                ) -> tuple[dict[str, Any] | None, str | None]:
     """The row stored at ``path`` for this point, after checking the file.
 
     Returns
@@ -342,9 +354,13 @@ def _cached_run(params, contact, settings, modulation, cache_dir, tension="allow
     return row, False, None if problem is None else (str(path), problem)
 
 
-def sweep(param, values, params=None, *, contact="hertz_damp", tension="allowed", settings=None,
-          executor=None, cache_dir="default", progress=True, modulation=False,
-          continuation=None, start="rest"):
+def sweep(param: str, values: ArrayLike, params: Mapping[str, float | None] | None = None, *,
+          contact: Contact = "hertz_damp", tension: Tension = "allowed",
+          settings: SolverSettings | None = None,
+          executor: cf.Executor | Literal["serial"] | None = None,
+          cache_dir: os.PathLike | str | None = "default", progress: bool = True,
+          modulation: bool = False, continuation: Continuation | None = None,
+          start: Start = "rest") -> NDArray[np.void]:
     """Run `simulate` for each value of one parameter.
 
     Parameters
@@ -520,7 +536,7 @@ def _table(columns, param, values, rows):
     return table
 
 
-def table_to_csv(table, path):
+def table_to_csv(table: NDArray[np.void], path: os.PathLike | str) -> None:
     """Write a sweep table as CSV with a header line."""
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh)
@@ -529,12 +545,13 @@ def table_to_csv(table, path):
             w.writerow([repr(float(x)) if isinstance(x, np.floating) else x for x in row.tolist()])
 
 
-def table_from_csv(path):
+def table_from_csv(path: os.PathLike | str) -> NDArray[np.void]:
     """Read a table written by `table_to_csv` back into a structured array."""
     return np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")
 
 
-def resolved_mask(table, param=None):
+def resolved_mask(table: NDArray[np.void] | dict[str, Any],
+                  param: str | None = None) -> NDArray[np.bool_]:
     """The ``resolved`` column of a sweep table; all True for a table without one.
 
     ``table``: a structured array (`sweep`) or a dict of columns (the notebooks'
@@ -548,7 +565,8 @@ def resolved_mask(table, param=None):
     return np.ones(n, dtype=bool)
 
 
-def omega1_peak_ranges(table, param="Vb"):
+def omega1_peak_ranges(table: NDArray[np.void] | dict[str, Any],
+                       param: str = "Vb") -> list[tuple[float, float]]:
     """Contiguous ranges of ``param`` where the omega1 peak is present: [(lo, hi), ...].
 
     `runtime.intervals.runs` of ``omega1_peak_present`` at resolved points. An
@@ -561,6 +579,7 @@ def omega1_peak_ranges(table, param="Vb"):
     return intervals.runs(table[param], present)
 
 
-def unresolved_values(table, param="Vb"):
+def unresolved_values(table: NDArray[np.void] | dict[str, Any],
+                      param: str = "Vb") -> list[float]:
     """Values of ``param`` whose run could not tell the omega1 peak (ascending)."""
     return sorted(float(v) for v in np.asarray(table[param])[~resolved_mask(table, param)])

@@ -30,11 +30,15 @@ and ``mu_s F`` (the paper's ``Vb = 0`` from rest) stick instead of chattering.
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from enum import IntEnum
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from generated import hybrid
+
+from .parameters import Backend, Contact, Tension
 
 __all__ = ["Mode", "MODE_NAMES", "SURFACE_INDEX", "TIE_ULPS", "EVENT_KINDS", "Switching"]
 
@@ -76,7 +80,8 @@ class Switching:
         targets (mode names or rule names) of `generated.hybrid.GUARDS`.
     """
 
-    def __init__(self, p, contact="hertz_damp", tension="allowed", backend=None):
+    def __init__(self, p: Mapping[str, float], contact: Contact = "hertz_damp",
+                 tension: Tension = "allowed", backend: Backend | None = None) -> None:
         if tension not in hybrid.GUARDS:
             raise ValueError(f"tension must be one of {', '.join(map(repr, hybrid.GUARDS))}; "
                              f"got {tension!r}")
@@ -99,7 +104,7 @@ class Switching:
         tol = [TIE_ULPS * _EPS * s for s in self.scales(t, *y)]
         return h, tol
 
-    def decide_slip(self, t, y):
+    def decide_slip(self, t: float, y: ArrayLike) -> Mode:
         """The mode at ``Vr = 0`` in contact (module docstring)."""
         h, tol = self._ties(t, y)
         sf, sb = h[1], h[2]
@@ -122,7 +127,7 @@ class Switching:
             a_free = 0.5 * (r[2] - r[1])
         return Mode.SLIP_FORWARD if a_free > 0 else Mode.SLIP_BACK
 
-    def pulls(self, t, y):
+    def pulls(self, t: float, y: ArrayLike) -> bool | np.bool_:
         """Whether Eq. (1) would pull at this state in contact (the clipped law separates).
 
         At a tie, whether the force is falling through zero along the contact field.
@@ -132,13 +137,13 @@ class Switching:
             return self.rates(t, *y, float(Mode.SLIP_BACK))[4] < 0
         return h[4] < 0
 
-    def decide_contact(self, t, y):
+    def decide_contact(self, t: float, y: ArrayLike) -> Mode:
         """The mode on entering contact (module docstring)."""
         if self.tension == "clipped" and self.pulls(t, y):
             return Mode.SEPARATED
         return self.by_relative_velocity(t, y)
 
-    def by_relative_velocity(self, t, y):
+    def by_relative_velocity(self, t: float, y: ArrayLike) -> Mode:
         """The mode in contact: slip along the sign of ``Vr``, `decide_slip` at ``Vr = 0``."""
         h, tol = self._ties(t, y)
         if h[0] > tol[0]:
@@ -147,13 +152,13 @@ class Switching:
             return Mode.SLIP_BACK
         return self.decide_slip(t, y)
 
-    def initial_mode(self, t, y):
+    def initial_mode(self, t: float, y: ArrayLike) -> Mode:
         """The mode of a state at the start of a run."""
         if y[2] < 0 or (y[2] == 0 and y[3] <= 0):
             return Mode.FLIGHT
         return self.decide_contact(t, y)
 
-    def target(self, mode, guard, t, y):
+    def target(self, mode: Mode, guard: int, t: float, y: ArrayLike) -> Mode:
         """The mode after crossing guard number ``guard`` of ``mode``."""
         target = self.guards[mode][2][guard][2]
         if target == hybrid.DECIDE_SLIP:
@@ -162,7 +167,7 @@ class Switching:
             return self.decide_contact(t, y)
         return Mode[target.upper()]
 
-    def project(self, mode, guard, y):
+    def project(self, mode: Mode, guard: int, y: ArrayLike) -> NDArray[np.float64]:
         """``y`` put exactly on the surface it has crossed, where that is a coordinate.
 
         ``Vr = 0`` and ``X2 = 0`` hold exactly at their switches; the located time
@@ -177,11 +182,11 @@ class Switching:
             y[2] = 0.0
         return y
 
-    def kind(self, mode, guard):
+    def kind(self, mode: Mode, guard: int) -> str:
         """The event kind of a crossing (`EVENT_KINDS`)."""
         surface, direction, _ = self.guards[mode][2][guard]
         return EVENT_KINDS[(surface, direction)]
 
     @staticmethod
-    def in_contact(mode):
+    def in_contact(mode: Mode) -> bool:
         return mode in _IN_CONTACT

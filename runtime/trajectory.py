@@ -1,19 +1,22 @@
 """A piecewise-smooth trajectory of Eq. (4): smooth segments between located events.
 
-Both integrators (`runtime.simulate` with solve_ivp, `runtime.superposition` with the
-one-way coupling) produce a `Trajectory`; everything computed from a run (samples,
+Both integrators (`runtime.events` with the compiled DOP853, `runtime.superposition` with
+the one-way coupling) produce a `Trajectory`; everything computed from a run (samples,
 friction force, energy balance of Sect. 3, cycle averages of Sect. 5) integrates or
 evaluates segment by segment, never across a switch, and uses the generated
 functions of ``generated.dynamics`` for the physics so that they stay the reference.
 """
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from generated import dynamics
 
+from .parameters import Contact, Tension
 from .switching import Mode
 
 __all__ = ["Segment", "Trajectory"]
@@ -45,7 +48,10 @@ class Trajectory:
     otherwise each segment's ``evaluate`` is called on its own times.
     """
 
-    def __init__(self, segments, params, contact, tension="allowed", evaluator=None):
+    def __init__(self, segments: Sequence[Segment], params: Mapping[str, float],
+                 contact: Contact, tension: Tension = "allowed",
+                 evaluator: Callable[[NDArray[np.float64], NDArray[np.intp]],
+                                     NDArray[np.float64]] | None = None) -> None:
         if not segments:
             raise ValueError("a trajectory needs at least one segment")
         self.segments, self.params, self.contact = segments, params, contact
@@ -56,14 +62,14 @@ class Trajectory:
         self.modes_by_segment = np.array([s.mode for s in segments])
 
     @property
-    def t_end(self):
+    def t_end(self) -> float:
         return self.segments[-1].t1
 
     def _index(self, t):
         return np.clip(np.searchsorted(self.starts, t, side="right") - 1, 0,
                        len(self.segments) - 1)
 
-    def state(self, t, index=None):
+    def state(self, t: ArrayLike, index: NDArray[np.intp] | None = None) -> NDArray[np.float64]:
         """State (X1, Y1, X2, Y2) at the times ``t``, shape (4, n)."""
         t = np.asarray(t, dtype=float)
         index = self._index(t) if index is None else index
@@ -77,10 +83,11 @@ class Trajectory:
                 out[:, chunk] = self.segments[index[chunk[0]]].evaluate(t[chunk])
         return out
 
-    def mode(self, t):
+    def mode(self, t: ArrayLike) -> NDArray[np.int_]:
         return self.modes_by_segment[self._index(np.asarray(t, dtype=float))]
 
-    def forces(self, t, y=None, mode=None):
+    def forces(self, t: ArrayLike, y: NDArray[np.float64] | None = None,
+               mode: ArrayLike | None = None) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Normal force Fn (Eq. 1, under the run's tension law) and friction force on the
         mass, per unit mass.
 
@@ -100,7 +107,8 @@ class Trajectory:
                             np.where(mode == Mode.STICK, -a_free, 0.0))
         return Fn, friction
 
-    def pieces(self, edges=None):
+    def pieces(self, edges: ArrayLike | None = None
+               ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.intp]]:
         """Smooth pieces (a, b, segment index) split at knots and at ``edges``.
 
         The segments follow each other in time, so the cuts of all of them are one
@@ -118,7 +126,9 @@ class Trajectory:
         keep = b > a
         return a[keep], b[keep], i[keep]
 
-    def integrate(self, integrand, edges):
+    def integrate(self, integrand: Callable[[NDArray[np.float64], NDArray[np.float64],
+                                            NDArray[np.int_]], ArrayLike],
+                  edges: ArrayLike) -> NDArray[np.float64]:
         """Integrals of ``integrand(t, y, mode) -> (k, n)`` over [edges[j], edges[j+1]].
 
         Gauss-Legendre on every smooth piece, so no switch is integrated across.
@@ -139,14 +149,17 @@ class Trajectory:
             out[k] = np.bincount(bins[ok], weights=values[k, ok], minlength=edges.size - 1)
         return out
 
-    def energy_balance(self, t0=None, t1=None):
+    def energy_balance(self, t0: float | None = None, t1: float | None = None
+                       ) -> dict[str, float]:
         """Energy balance of Sect. 3 over [t0, t1] from the generated power terms.
 
         dE/dt = P_input - P_viscous - P_friction (``generated.dynamics.power_balance``);
         while sticking the friction power is ``Vb a_free`` (the holding force times
-        the velocity Vb). Returns a dict with the change of E (``energy``: kinetic,
-        spring, Hertz and gravity), the three works and ``residual`` =
-        |Delta E - W_in + W_visc + W_fric| / (int |P_in| + int |P_visc| + int |P_fric|).
+        the velocity Vb). Returns a dict with the change of E (``energy_change``:
+        kinetic, spring, Hertz and gravity), the three works (``work_input``,
+        ``work_viscous``, ``work_friction``), ``imbalance`` =
+        Delta E - W_in + W_visc + W_fric and ``residual`` =
+        |imbalance| / (int |P_in| + int |P_visc| + int |P_fric|).
         """
         p, c = self.params, self.contact
         t0 = self.segments[0].t0 if t0 is None else t0
@@ -171,7 +184,7 @@ class Trajectory:
                 "work_friction": float(W[2]), "imbalance": float(balance),
                 "residual": float(abs(balance) / scale) if scale > 0 else 0.0}
 
-    def time_in_modes(self, t0, t1):
+    def time_in_modes(self, t0: float, t1: float) -> dict[Mode, float]:
         """Time spent in each mode within [t0, t1] (dict mode -> seconds)."""
         out = {m: 0.0 for m in Mode}
         for s in self.segments:
