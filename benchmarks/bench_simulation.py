@@ -28,6 +28,7 @@ its timed sweep, so the sweep pays for it once, as a user's sweep does.
 
 Usage: python -m benchmarks.bench_simulation [--quick] [--points N] [--t-end T] [--python]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -44,8 +45,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from runtime import floquet, superposition  # noqa: E402
 from runtime.model import initial_state, resolve_parameters  # noqa: E402
-from runtime.simulate import (PEAK_PRESENT_RATIO, SolverSettings, omega1_band,  # noqa: E402
-                              simulate)
+from runtime.simulate import (
+    PEAK_PRESENT_RATIO,
+    SolverSettings,
+    omega1_band,  # noqa: E402
+    simulate,
+)
 from runtime.spectra import peak_amplitudes  # noqa: E402
 
 #: The fast configuration: the event-driven integrator (the default solver), at the
@@ -70,10 +75,11 @@ def baseline(Vb, t_end, dt, t_discard):
 
     def rhs(t, y):
         X1, Y1, X2, Y2 = y
-        Fn = (2 * b2 * w2 * Y2 + w2 ** 2) * X2 ** 1.5 if X2 > 0 else 0.0
-        f = al * Om ** 2 * np.sin(Om * t)
-        return np.array([Y1, f - 2 * b1 * w1 * Y1 - w1 ** 2 * X1 - mu * np.sign(Y1 - Vb) * Fn,
-                         Y2, -f + g - Fn])
+        Fn = (2 * b2 * w2 * Y2 + w2**2) * X2**1.5 if X2 > 0 else 0.0
+        f = al * Om**2 * np.sin(Om * t)
+        return np.array(
+            [Y1, f - 2 * b1 * w1 * Y1 - w1**2 * X1 - mu * np.sign(Y1 - Vb) * Fn, Y2, -f + g - Fn]
+        )
 
     n = int(math.floor(t_end / dt + 1e-9)) + 1
     grid = dt * np.arange(n)
@@ -82,25 +88,38 @@ def baseline(Vb, t_end, dt, t_discard):
     win = grid >= t_discard
     res = 2 * np.pi / (win.sum() * dt)
     (_, peak1), (_, peakO) = peak_amplitudes(y[1, win], dt, [omega1_band(p), (Om - res, Om + res)])
-    Fn = np.where(y[2] > 0, (2 * b2 * w2 * y[3] + w2 ** 2) * np.maximum(y[2], 0) ** 1.5, 0.0)
+    Fn = np.where(y[2] > 0, (2 * b2 * w2 * y[3] + w2**2) * np.maximum(y[2], 0) ** 1.5, 0.0)
     friction = -mu * np.sign(y[1] - Vb) * Fn
-    return {"peak_omega1": peak1, "peak_Omega": peakO, "mean_friction": friction[win].mean(),
-            "final_state": y[:, -1], "wall_s": time.perf_counter() - start}
+    return {
+        "peak_omega1": peak1,
+        "peak_Omega": peakO,
+        "mean_friction": friction[win].mean(),
+        "final_state": y[:, -1],
+        "wall_s": time.perf_counter() - start,
+    }
 
 
 def run(Vb, t_end, dt, config):
     s = simulate(Vb=Vb, settings=SolverSettings(t_end=t_end, dt=dt, **config)).summary
-    return {"peak_omega1": s["peak_omega1"], "peak_Omega": s["peak_Omega"],
-            "mean_friction": s["mean_friction"], "final_state": np.array(s["final_state"]),
-            "wall_s": s["wall_s"], "energy_residual": s["energy_residual"]}
+    return {
+        "peak_omega1": s["peak_omega1"],
+        "peak_Omega": s["peak_Omega"],
+        "mean_friction": s["mean_friction"],
+        "final_state": np.array(s["final_state"]),
+        "wall_s": s["wall_s"],
+        "energy_residual": s["energy_residual"],
+    }
 
 
 def errors(r, ref):
     present = ref["peak_omega1"] >= PEAK_PRESENT_RATIO * ref["peak_Omega"]
     scale = ref["peak_omega1"] if present else ref["peak_Omega"]
-    return {"peak": abs(r["peak_omega1"] - ref["peak_omega1"]) / scale, "present": present,
-            "friction": abs(r["mean_friction"] / ref["mean_friction"] - 1),
-            "state": float(np.max(np.abs(r["final_state"] - ref["final_state"])))}
+    return {
+        "peak": abs(r["peak_omega1"] - ref["peak_omega1"]) / scale,
+        "present": present,
+        "friction": abs(r["mean_friction"] / ref["mean_friction"] - 1),
+        "state": float(np.max(np.abs(r["final_state"] - ref["final_state"]))),
+    }
 
 
 def sweep_time(values, t_end, dt, config):
@@ -115,26 +134,32 @@ def summary_row(name, wall, results, ref, values, base_wall):
     e = [errors(results[Vb], ref[Vb]) for Vb in values]
     present = [x["peak"] for x in e if x["present"]]
     absent = [x["peak"] for x in e if not x["present"]]
-    return {"name": name, "wall_s": wall, "ratio": base_wall / wall,
-            "peak_present": max(present, default=float("nan")),
-            "peak_absent": max(absent, default=float("nan")),
-            "friction": max(x["friction"] for x in e), "state": max(x["state"] for x in e)}
+    return {
+        "name": name,
+        "wall_s": wall,
+        "ratio": base_wall / wall,
+        "peak_present": max(present, default=float("nan")),
+        "peak_absent": max(absent, default=float("nan")),
+        "friction": max(x["friction"] for x in e),
+        "state": max(x["state"] for x in e),
+    }
 
 
 def measure(points=64, t_end=1000.0, dt=0.02, python=False, progress=print):
     """Every number the benchmark prints, as rows (for the notebook speed_vs_error)."""
-    warnings.simplefilter("ignore", RuntimeWarning)     # unresolved short warm-up runs
+    warnings.simplefilter("ignore", RuntimeWarning)  # unresolved short warm-up runs
     t_discard = 0.3 * t_end
     values = np.linspace(0.5, 32.0, points)
     configs = [("fast: events", FAST), ("superposition", SUPERPOSITION)]
     if python:
-        configs += [("events, backend python", dict(FAST, backend="python")),
-                    ("superposition, python", dict(SUPERPOSITION, backend="python"))]
+        configs += [
+            ("events, backend python", dict(FAST, backend="python")),
+            ("superposition, python", dict(SUPERPOSITION, backend="python")),
+        ]
     for _, cfg in configs + [("reference", REFERENCE)]:
-        run(4.0, 20.0, dt, cfg)                         # compile before timing
+        run(4.0, 20.0, dt, cfg)  # compile before timing
     floquet.floquet(Vb=4.0)
-    progress(f"[1] reference: events at rtol = atol = 1e-12 on {points} points of "
-             f"{t_end:g} s ...")
+    progress(f"[1] reference: events at rtol = atol = 1e-12 on {points} points of {t_end:g} s ...")
     ref = {Vb: run(Vb, t_end, dt, REFERENCE) for Vb in values}
     progress(f"    max energy residual {max(r['energy_residual'] for r in ref.values()):.2e}")
 
@@ -144,8 +169,9 @@ def measure(points=64, t_end=1000.0, dt=0.02, python=False, progress=print):
     for tol in (1e-7, 1e-8, 1e-9, 1e-10):
         probes.append((f"events tol={tol:g}", dict(solver="events", rtol=tol, atol=tol)))
     for tol in (1e-7, 1e-8, 1e-10):
-        probes.append((f"superposition tol={tol:g}",
-                       dict(solver="superposition", rtol=tol, atol=tol)))
+        probes.append(
+            (f"superposition tol={tol:g}", dict(solver="superposition", rtol=tol, atol=tol))
+        )
     method_rows = []
     for name, cfg in probes:
         walls, errs = [], []
@@ -155,10 +181,15 @@ def measure(points=64, t_end=1000.0, dt=0.02, python=False, progress=print):
             r = baseline(Vb, t_end, dt, t_discard) if cfg is None else run(Vb, t_end, dt, cfg)
             walls.append(r["wall_s"])
             errs.append(errors(r, ref[Vb]))
-        method_rows.append({"name": name, "wall_s": float(np.mean(walls)),
-                            "peak": max(e["peak"] for e in errs),
-                            "friction": max(e["friction"] for e in errs),
-                            "state": max(e["state"] for e in errs)})
+        method_rows.append(
+            {
+                "name": name,
+                "wall_s": float(np.mean(walls)),
+                "peak": max(e["peak"] for e in errs),
+                "friction": max(e["friction"] for e in errs),
+                "state": max(e["state"] for e in errs),
+            }
+        )
 
     progress(f"[3] targets: the {points}-point sweep, serial")
     t0 = time.perf_counter()
@@ -171,9 +202,17 @@ def measure(points=64, t_end=1000.0, dt=0.02, python=False, progress=print):
     t0 = time.perf_counter()
     band = floquet.floquet_band("Vb", float(values[0]), float(values[-1]))
     band_wall = time.perf_counter() - t0
-    return {"points": points, "t_end": t_end, "methods": method_rows, "sweeps": rows,
-            "floquet_band": {"wall_s": band_wall, "unstable": band["unstable"],
-                             "sweep_over_band": rows[1]["wall_s"] / band_wall}}
+    return {
+        "points": points,
+        "t_end": t_end,
+        "methods": method_rows,
+        "sweeps": rows,
+        "floquet_band": {
+            "wall_s": band_wall,
+            "unstable": band["unstable"],
+            "sweep_over_band": rows[1]["wall_s"] / band_wall,
+        },
+    }
 
 
 def main(argv=None):
@@ -182,31 +221,46 @@ def main(argv=None):
     ap.add_argument("--points", type=int, default=None)
     ap.add_argument("--t-end", type=float, default=None)
     ap.add_argument("--dt", type=float, default=0.02)
-    ap.add_argument("--python", action="store_true",
-                    help="also time the sweeps with backend='python' (no numba; slow)")
+    ap.add_argument(
+        "--python",
+        action="store_true",
+        help="also time the sweeps with backend='python' (no numba; slow)",
+    )
     args = ap.parse_args(argv)
     points = args.points or (8 if args.quick else 64)
     t_end = args.t_end or (300.0 if args.quick else 1000.0)
     out = measure(points, t_end, args.dt, args.python, progress=lambda s: print(s, flush=True))
-    print(f"\n    {'configuration':34s} {'wall/point s':>12s} {'peak_omega1':>12s} "
-          f"{'mean friction':>13s} {'final state':>12s}")
+    print(
+        f"\n    {'configuration':34s} {'wall/point s':>12s} {'peak_omega1':>12s} "
+        f"{'mean friction':>13s} {'final state':>12s}"
+    )
     for r in out["methods"]:
-        print(f"    {r['name']:34s} {r['wall_s']:12.3f} {r['peak']:12.2e} {r['friction']:13.2e} "
-              f"{r['state']:12.2e}")
-    print(f"\n    {'sweep':26s} {'wall s':>8s} {'ratio':>7s} {'peak_omega1 rel':>16s} "
-          f"{'(absent, /Omega)':>17s} {'mean friction':>13s} {'final state':>12s}")
+        print(
+            f"    {r['name']:34s} {r['wall_s']:12.3f} {r['peak']:12.2e} {r['friction']:13.2e} "
+            f"{r['state']:12.2e}"
+        )
+    print(
+        f"\n    {'sweep':26s} {'wall s':>8s} {'ratio':>7s} {'peak_omega1 rel':>16s} "
+        f"{'(absent, /Omega)':>17s} {'mean friction':>13s} {'final state':>12s}"
+    )
     for r in out["sweeps"]:
-        print(f"    {r['name']:26s} {r['wall_s']:8.2f} {r['ratio']:7.1f} {r['peak_present']:16.2e} "
-              f"{r['peak_absent']:17.2e} {r['friction']:13.2e} {r['state']:12.2e}")
+        print(
+            f"    {r['name']:26s} {r['wall_s']:8.2f} {r['ratio']:7.1f} {r['peak_present']:16.2e} "
+            f"{r['peak_absent']:17.2e} {r['friction']:13.2e} {r['state']:12.2e}"
+        )
     fb = out["floquet_band"]
-    print(f"\n    Floquet band over the same Vb range: {fb['wall_s']:.3f} s, unstable "
-          f"{[[round(a, 3), round(b, 3)] for a, b in fb['unstable']]}; the fast sweep takes "
-          f"{fb['sweep_over_band']:.0f}x as long (target >= 50)")
+    print(
+        f"\n    Floquet band over the same Vb range: {fb['wall_s']:.3f} s, unstable "
+        f"{[[round(a, 3), round(b, 3)] for a, b in fb['unstable']]}; the fast sweep takes "
+        f"{fb['sweep_over_band']:.0f}x as long (target >= 50)"
+    )
     print(f"    fast configuration (events alone) {FAST}; superposition {SUPERPOSITION}")
     fast, sup = out["sweeps"][1], out["sweeps"][2]
-    print(f"    targets: sweep >= 25x and events alone >= 10x: {fast['ratio']:.1f}x "
-          f"(superposition {sup['ratio']:.1f}x); peak_omega1 within 1e-6 where present: "
-          f"{fast['peak_present']:.1e} (superposition {sup['peak_present']:.1e})")
+    print(
+        f"    targets: sweep >= 25x and events alone >= 10x: {fast['ratio']:.1f}x "
+        f"(superposition {sup['ratio']:.1f}x); peak_omega1 within 1e-6 where present: "
+        f"{fast['peak_present']:.1e} (superposition {sup['peak_present']:.1e})"
+    )
     return 0
 
 

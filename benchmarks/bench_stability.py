@@ -20,6 +20,7 @@ stability boundary, and 1e-14 from it for stiff tangential modes. `measure` retu
 the rows (the notebook ``speed_vs_error`` plots them). Run from the repository root:
 ``python -m benchmarks.bench_stability [--n N] [--quick]``.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -64,7 +65,7 @@ def stiff_sample(n, rng):
     """A stiff, lightly damped tangential mode next to a heavily damped normal one:
     where the expanded H3 cancels most (see tests/test_stability.py)."""
     p = sample(n, rng)
-    p["omega1"] = 10**rng.uniform(1.5, 2.5, n)
+    p["omega1"] = 10 ** rng.uniform(1.5, 2.5, n)
     p["beta1"] = 0.1 / p["omega1"]
     p["beta2"] = rng.uniform(2, 10, n)
     p["omega2"] = rng.uniform(0.5, 2, n)
@@ -109,8 +110,9 @@ def mp_reference(p, idx):
 
 
 def rel_error(values, reference, scale):
-    return max(float(abs(mpmath.mpf(float(v)) - r) / s)
-               for v, r, s in zip(values, reference, scale))
+    return max(
+        float(abs(mpmath.mpf(float(v)) - r) / s) for v, r, s in zip(values, reference, scale)
+    )
 
 
 BASELINE = "numpy.linalg.eigvals (baseline)"
@@ -124,18 +126,24 @@ def backends():
 
 def methods():
     """Name -> (function of a parameter dict returning growth rates or verdicts, kind)."""
+
     def expanded(q):
         a1, a2, a3, a4 = stability.coefficients(**q)
         H3 = a1 * a2 * a3 - a3**2 - a4 * a1**2
         return (a1 > 0) & (a1 * a2 - a3 > 0) & (H3 > 0) & (a4 * H3 > 0)
 
-    out = {BASELINE: (lambda q: np.linalg.eigvals(stability.jacobian(**q)).real.max(axis=-1),
-                      "growth")}
+    out = {
+        BASELINE: (lambda q: np.linalg.eigvals(stability.jacobian(**q)).real.max(axis=-1), "growth")
+    }
     for b in backends():
         out[f"stability.growth_rate, {b}"] = (
-            lambda q, b=b: stability.growth_rate(**q, backend=b), "growth")
+            lambda q, b=b: stability.growth_rate(**q, backend=b),
+            "growth",
+        )
         out[f"stability.is_stable, {b}"] = (
-            lambda q, b=b: stability.is_stable(**q, backend=b), "verdict")
+            lambda q, b=b: stability.is_stable(**q, backend=b),
+            "verdict",
+        )
     out[EXPANDED] = (expanded, "verdict")
     return out
 
@@ -147,10 +155,10 @@ class Row:
     name: str
     seconds: float
     speedup: float
-    growth_error: float          # max relative error of the growth rate (NaN for a sign)
-    wrong_random: int            # wrong verdicts on the subsample
-    wrong_near: int              # ... 1e-12 (relative) from the boundary
-    wrong_stiff: int             # ... stiff tangential modes, 1e-14 from the boundary
+    growth_error: float  # max relative error of the growth rate (NaN for a sign)
+    wrong_random: int  # wrong verdicts on the subsample
+    wrong_near: int  # ... 1e-12 (relative) from the boundary
+    wrong_stiff: int  # ... stiff tangential modes, 1e-14 from the boundary
 
 
 def measure(n=10**6, subsample=200, repeat=3, seed=2026, scenario="random"):
@@ -179,8 +187,15 @@ def measure(n=10**6, subsample=200, repeat=3, seed=2026, scenario="random"):
 
     idx = rng.choice(n, subsample, replace=False)
     ref_growth, ref_stable = mp_reference(p, idx)
-    scale = [max(abs(z) for z in mpmath.eig(mpmath.matrix(mp_stability.jacobian(**point(p, i))),
-                                            left=False, right=False)) for i in idx]
+    scale = [
+        max(
+            abs(z)
+            for z in mpmath.eig(
+                mpmath.matrix(mp_stability.jacobian(**point(p, i))), left=False, right=False
+            )
+        )
+        for i in idx
+    ]
     m = max(subsample, 20)
     hard = {"near": near_boundary(m, rng), "stiff": near_boundary(m, rng, 1e-14, stiff_sample)}
     exact = {k: mp_reference(b, range(len(b["Vb"])))[1] for k, b in hard.items()}
@@ -193,9 +208,16 @@ def measure(n=10**6, subsample=200, repeat=3, seed=2026, scenario="random"):
     for name, (fn, kind) in table.items():
         seconds, values = timed[name]
         err = rel_error(values[idx], ref_growth, scale) if kind == "growth" else float("nan")
-        rows.append(Row(name, seconds, timed[BASELINE][0] / seconds, err,
-                        wrong(values[idx], kind, ref_stable),
-                        *(wrong(fn(hard[k]), kind, exact[k]) for k in ("near", "stiff"))))
+        rows.append(
+            Row(
+                name,
+                seconds,
+                timed[BASELINE][0] / seconds,
+                err,
+                wrong(values[idx], kind, ref_stable),
+                *(wrong(fn(hard[k]), kind, exact[k]) for k in ("near", "stiff")),
+            )
+        )
     return rows
 
 
@@ -212,16 +234,22 @@ def main(argv=None):
     m = max(args.subsample, 20)
     for scenario in SCENARIOS if args.scenario == "both" else [args.scenario]:
         rows = measure(args.n, args.subsample, args.repeat, scenario=scenario)
-        print(f"\n{scenario}: {args.n} points; errors against mpmath (50 digits) on "
-              f"{args.subsample}; {m} points at 1e-12 from the boundary; {m} stiff points "
-              "at 1e-14\n")
-        print("| method | time [s] | speed-up vs eigvals | max rel. error of growth rate "
-              "| wrong verdicts: random | 1e-12 from boundary | stiff, 1e-14 |")
+        print(
+            f"\n{scenario}: {args.n} points; errors against mpmath (50 digits) on "
+            f"{args.subsample}; {m} points at 1e-12 from the boundary; {m} stiff points "
+            "at 1e-14\n"
+        )
+        print(
+            "| method | time [s] | speed-up vs eigvals | max rel. error of growth rate "
+            "| wrong verdicts: random | 1e-12 from boundary | stiff, 1e-14 |"
+        )
         print("|---|---|---|---|---|---|---|")
         for r in rows:
             err = "-" if np.isnan(r.growth_error) else f"{r.growth_error:.1e}"
-            print(f"| {r.name} | {r.seconds:.3f} | {r.speedup:.1f}x | {err} | {r.wrong_random} "
-                  f"| {r.wrong_near} | {r.wrong_stiff} |")
+            print(
+                f"| {r.name} | {r.seconds:.3f} | {r.speedup:.1f}x | {err} | {r.wrong_random} "
+                f"| {r.wrong_near} | {r.wrong_stiff} |"
+            )
 
 
 if __name__ == "__main__":

@@ -15,6 +15,7 @@ Every error in a command line is one line on stderr and exit status 2 (`Parser`)
 `main` returns the exit status, which ``python -m derive`` and the console script
 pass to ``sys.exit``.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -55,8 +56,11 @@ def _generate(args) -> int:
                 print(f"STALE generated/{rel}: {diff if len(diff) < 80 else ''}".rstrip())
                 if len(diff) >= 80:
                     print(diff)
-            print(f"{len(stale)} generated file(s) differ from the derivations; "
-                  "run `python -m derive` to regenerate.", file=sys.stderr)
+            print(
+                f"{len(stale)} generated file(s) differ from the derivations; "
+                "run `python -m derive` to regenerate.",
+                file=sys.stderr,
+            )
             return 1
         print(f"generated/ is up to date ({len(files)} files, derived in {elapsed:.1f} s).")
         return 0
@@ -64,13 +68,16 @@ def _generate(args) -> int:
     for m in mods:
         names = ", ".join(f.name for f in m.functions)
         print(f"generated/{m.name}.py (+ mp/{m.name}.py): {names}")
-    print(f"derived {sum(len(m.functions) for m in mods)} functions in {len(mods)} modules "
-          f"in {elapsed:.1f} s; wrote {len(changed)} changed file(s) of {len(files)}.")
+    print(
+        f"derived {sum(len(m.functions) for m in mods)} functions in {len(mods)} modules "
+        f"in {elapsed:.1f} s; wrote {len(changed)} changed file(s) of {len(files)}."
+    )
     return 0
 
 
 def _check_paper(args) -> int:
     from .paper_check import main as check_paper
+
     return check_paper([])
 
 
@@ -87,26 +94,35 @@ def build_parser(prog=None, runtime=True):
     runtime fails to load, the derive commands still work and the reason is kept in
     ``parser.unavailable`` (else None).
     """
-    parser = Parser(prog=prog or _prog(),
-                    description="Derive the model symbolically and regenerate generated/ "
-                                "(no command), or run one of the commands.")
-    parser.add_argument("--check", action="store_true",
-                        help="do not write; exit 1 and name the stale files if "
-                             "generated/ differs from the derivations")
+    parser = Parser(
+        prog=prog or _prog(),
+        description="Derive the model symbolically and regenerate generated/ "
+        "(no command), or run one of the commands.",
+    )
+    parser.add_argument(
+        "--check",
+        action="store_true",
+        help="do not write; exit 1 and name the stale files if "
+        "generated/ differs from the derivations",
+    )
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", title="commands")
     paper = commands.add_parser(
-        "check-paper", help="compare the paper's equations and claims with the derivation",
+        "check-paper",
+        help="compare the paper's equations and claims with the derivation",
         description="Compare the paper's equations and claims with the derivation; write "
-                    "generated/PAPER_CHECK.md.")
+        "generated/PAPER_CHECK.md.",
+    )
     paper.set_defaults(run=_check_paper)
     parser.unavailable = None
     if runtime:
         try:
             from runtime import cli as runtime_cli
+
             runtime_cli.add_commands(commands)
-        except Exception as err:    # noqa: BLE001 (whatever a broken generated/ raises)
+        except Exception as err:  # noqa: BLE001 (whatever a broken generated/ raises)
             parser.unavailable = parser.epilog = (
-                f"the runtime commands cannot be loaded: {type(err).__name__}: {err}")
+                f"the runtime commands cannot be loaded: {type(err).__name__}: {err}"
+            )
     return parser
 
 
@@ -137,7 +153,7 @@ def main(argv=None) -> int:
         if parser.unavailable:
             print(parser.unavailable, file=sys.stderr)
         return 2
-    except SystemExit as done:      # --help, or a command that exits
+    except SystemExit as done:  # --help, or a command that exits
         if done.code is None or isinstance(done.code, int):
             return done.code or 0
         print(done.code, file=sys.stderr)

@@ -94,22 +94,54 @@ The argument covers tangential motions under one normal motion. Different normal
 initial states may give different normal motions (the normal equation is
 nonlinear); the argument says nothing about their coexistence.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 
 from . import dynamics, hybrid
-from .model import (CONTACT_LAWS, P, TENSION_LAWS, X1, X2, Y1, Y2, contact_force,
-                    friction_coefficient, normal_force)
+from .model import (
+    CONTACT_LAWS,
+    TENSION_LAWS,
+    X1,
+    X2,
+    Y1,
+    Y2,
+    P,
+    contact_force,
+    friction_coefficient,
+    normal_force,
+)
 
-__all__ = ["Xa", "Ya", "Xb", "Yb", "sa", "sb", "e", "ep", "STATES", "SignCase", "PowerSplit",
-           "Step", "ContractionClaim", "one_way_coupling", "difference_energy",
-           "tangential_acceleration", "difference_power", "power_split",
-           "stick_is_set_valued", "friction_power_sign_cases", "clipped_force_nonnegative",
-           "sign_of_friction_power", "breaking_conditions", "claim"]
+__all__ = [
+    "Xa",
+    "Ya",
+    "Xb",
+    "Yb",
+    "sa",
+    "sb",
+    "e",
+    "ep",
+    "STATES",
+    "SignCase",
+    "PowerSplit",
+    "Step",
+    "ContractionClaim",
+    "one_way_coupling",
+    "difference_energy",
+    "tangential_acceleration",
+    "difference_power",
+    "power_split",
+    "stick_is_set_valued",
+    "friction_power_sign_cases",
+    "clipped_force_nonnegative",
+    "sign_of_friction_power",
+    "breaking_conditions",
+    "claim",
+]
 
 #: The tangential states of the two runs and their friction directions (elements of Sgn).
 Xa, Ya, Xb, Yb = sp.symbols("X1_a Y1_a X1_b Y1_b", real=True)
@@ -130,11 +162,14 @@ def one_way_coupling() -> dict[tuple[str, str], bool]:
     `derive.dynamics.normal_rhs` is ``(X2', Y2')`` of Eq. (4) with loss of contact; a
     True means SymPy finds neither ``X1`` nor ``Y1`` among its free symbols.
     """
-    return {(c, tn): dynamics.normal_rhs(c, tn).free_symbols.isdisjoint({X1, Y1})
-            for c in CONTACT_LAWS for tn in TENSION_LAWS}
+    return {
+        (c, tn): dynamics.normal_rhs(c, tn).free_symbols.isdisjoint({X1, Y1})
+        for c in CONTACT_LAWS
+        for tn in TENSION_LAWS
+    }
 
 
-@lru_cache(maxsize=None)
+@cache
 def difference_energy() -> sp.Expr:
     """``E_d(e, e')``: the tangential part of the mechanical energy at the difference.
 
@@ -154,8 +189,9 @@ def difference_energy() -> sp.Expr:
     return tangential.xreplace({X1: e, Y1: ep})
 
 
-def tangential_acceleration(contact: str = "hertz_damp", tension: str = "allowed",
-                            X=X1, Y=Y1, s=sa) -> sp.Expr:
+def tangential_acceleration(
+    contact: str = "hertz_damp", tension: str = "allowed", X=X1, Y=Y1, s=sa
+) -> sp.Expr:
     """``X1''`` of Eq. (4) in contact for the tangential state ``(X, Y)`` and direction ``s``.
 
     `derive.dynamics.accelerations` with ``direction=s``; ``s`` is any element of
@@ -164,7 +200,7 @@ def tangential_acceleration(contact: str = "hertz_damp", tension: str = "allowed
     return _run(dynamics.accelerations(contact, direction=s, tension=tension)[0], X, Y)
 
 
-@lru_cache(maxsize=None)
+@cache
 def difference_power(contact: str = "hertz_damp", tension: str = "allowed") -> sp.Expr:
     """``dE_d/dt`` along two motions under one normal motion, by the chain rule.
 
@@ -175,8 +211,9 @@ def difference_power(contact: str = "hertz_damp", tension: str = "allowed") -> s
     """
     Ed = difference_energy()
     de = Ya - Yb
-    dde = (tangential_acceleration(contact, tension, Xa, Ya, sa)
-           - tangential_acceleration(contact, tension, Xb, Yb, sb))
+    dde = tangential_acceleration(contact, tension, Xa, Ya, sa) - tangential_acceleration(
+        contact, tension, Xb, Yb, sb
+    )
     rate = sp.diff(Ed, e) * de + sp.diff(Ed, ep) * dde
     return rate.xreplace({e: Xa - Xb, ep: de})
 
@@ -199,7 +236,7 @@ class PowerSplit:
     exact: bool
 
 
-@lru_cache(maxsize=None)
+@cache
 def power_split(contact: str = "hertz_damp", tension: str = "allowed") -> PowerSplit:
     """Split `difference_power` into the dashpot's and the friction's part.
 
@@ -231,7 +268,7 @@ def stick_is_set_valued(contact: str = "hertz_damp") -> bool:
     F = hybrid.contact_force_in_contact(contact)
     a_free = dynamics.free_acceleration()
     mu = P["mu_s"]
-    with_s = slip + mu * F - mu * sa * F           # direction +1 replaced by s
+    with_s = slip + mu * F - mu * sa * F  # direction +1 replaced by s
     return bool(sp.simplify(with_s.xreplace({sa: a_free / (mu * F)}) - stick) == 0)
 
 
@@ -255,14 +292,17 @@ class SignCase:
 
 def _state(name: str, tag: str):
     """``[(Vr, s), ...]`` covering one friction state (stick: both ends and the inside)."""
-    u = sp.Symbol(f"u_{tag}", positive=True)          # |Vr| while slipping
+    u = sp.Symbol(f"u_{tag}", positive=True)  # |Vr| while slipping
     if name == "slip_back":
         return [(-u, sp.Integer(-1))]
     if name == "slip_forward":
         return [(u, sp.Integer(1))]
     p, q = sp.symbols(f"p_{tag} q_{tag}", positive=True)
-    return [(sp.Integer(0), sp.Integer(-1)), (sp.Integer(0), (p - q) / (p + q)),
-            (sp.Integer(0), sp.Integer(1))]             # s in [-1, 1]
+    return [
+        (sp.Integer(0), sp.Integer(-1)),
+        (sp.Integer(0), (p - q) / (p + q)),
+        (sp.Integer(0), sp.Integer(1)),
+    ]  # s in [-1, 1]
 
 
 def _decide(expr):
@@ -276,7 +316,7 @@ def _decide(expr):
     return "undecided", False
 
 
-@lru_cache(maxsize=None)
+@cache
 def friction_power_sign_cases() -> tuple[SignCase, ...]:
     """``(s_a - s_b)(Vr_a - Vr_b) >= 0`` for every pair of friction states (Sgn is monotone).
 
@@ -315,11 +355,12 @@ def sign_of_friction_power() -> dict[str, bool]:
     """The sign of ``-mu_s F M`` with ``M = (s_a - s_b)(Vr_a - Vr_b) >= 0`` (step 4).
 
     Keys: ``"friction part = -mu_s F (s_a - s_b)(Vr_a - Vr_b)"`` (the factor of
-    `power_split` is ``-mu_s`` times the product of step 4), ``"F >= 0 -> <= 0"`` (the friction part of `power_split` never adds energy
-    while the contact pushes), ``"F < 0 -> >= 0"`` (it never removes energy while
-    the contact pulls), ``"F < 0, opposite sides -> > 0"`` (it adds energy when the
-    runs slip in opposite directions, ``mu_s > 0``), ``"c1 e'^2 >= 0"`` and
-    ``"beta1 > 0 -> c1 > 0"`` (the dashpot dissipates, strictly with damping).
+    `power_split` is ``-mu_s`` times the product of step 4), ``"F >= 0 -> <= 0"`` (the
+    friction part of `power_split` never adds energy while the contact pushes),
+    ``"F < 0 -> >= 0"`` (it never removes energy while the contact pulls),
+    ``"F < 0, opposite sides -> > 0"`` (it adds energy when the runs slip in opposite
+    directions, ``mu_s > 0``), ``"c1 e'^2 >= 0"`` and ``"beta1 > 0 -> c1 > 0"`` (the
+    dashpot dissipates, strictly with damping).
     """
     M = sp.Symbol("M", nonnegative=True)
     Fp, Fm = sp.Symbol("F_p", nonnegative=True), sp.Symbol("F_m", negative=True)
@@ -328,12 +369,15 @@ def sign_of_friction_power() -> dict[str, bool]:
     ua, ub = sp.symbols("u_a u_b", positive=True)
     mu_pos = sp.Symbol("mu_pos", positive=True)
     opposite = (split.friction_factor * Fm).xreplace(
-        {sa: 1, sb: -1, Ya: P["Vb"] + ua, Yb: P["Vb"] - ub, P["mu_s"]: mu_pos})
+        {sa: 1, sb: -1, Ya: P["Vb"] + ua, Yb: P["Vb"] - ub, P["mu_s"]: mu_pos}
+    )
     b1 = sp.Symbol("beta1_pos", positive=True)
     Vr_diff = (Ya - P["Vb"]) - (Yb - P["Vb"])
     return {
         "friction part = -mu_s F (s_a - s_b)(Vr_a - Vr_b)": sp.expand(
-            split.friction_factor + mu * (sa - sb) * Vr_diff) == 0,
+            split.friction_factor + mu * (sa - sb) * Vr_diff
+        )
+        == 0,
         "F >= 0 -> <= 0": bool((-mu * Fp * M).is_nonpositive),
         "F < 0 -> >= 0": bool((-mu * Fm * M).is_nonnegative),
         "F < 0, opposite sides -> > 0": bool(sp.factor(opposite).is_positive),
@@ -372,26 +416,38 @@ def breaking_conditions() -> dict[str, tuple[bool, str]]:
     rate = -c1 * de**2 - linear * F
     closed = sp.expand(rate - (-(c1 - kappa * F) * de**2)) == 0
     Fbig = sp.Symbol("F_big", positive=True)
-    grows = sp.factor((-(c1 - kappa * F) * de**2).xreplace(
-        {F: (c1 + Fbig) / kappa, Ya: Yb + d})).is_positive
-    out["falling friction"] = (bool(generic and falls and closed and grows),
-                               ("(mu(Vr_a) - mu(Vr_b))(Vr_a - Vr_b) = (m(Vr_a) - m(Vr_b))"
-                                "(Vr_a - Vr_b) on one branch; with m = -kappa Vr it is "
-                                "-kappa e'^2 < 0 and dE_d/dt = -(c1 - kappa F) e'^2 > 0 "
-                                "once kappa F > c1"))
+    grows = sp.factor(
+        (-(c1 - kappa * F) * de**2).xreplace({F: (c1 + Fbig) / kappa, Ya: Yb + d})
+    ).is_positive
+    out["falling friction"] = (
+        bool(generic and falls and closed and grows),
+        (
+            "(mu(Vr_a) - mu(Vr_b))(Vr_a - Vr_b) = (m(Vr_a) - m(Vr_b))"
+            "(Vr_a - Vr_b) on one branch; with m = -kappa Vr it is "
+            "-kappa e'^2 < 0 and dE_d/dt = -(c1 - kappa F) e'^2 > 0 "
+            "once kappa F > c1"
+        ),
+    )
     # beta1 = 0
     zero = sp.expand(split.total.xreplace({P["beta1"]: 0, sa: s, sb: s})) == 0
-    out["beta1 = 0"] = (bool(zero), ("dE_d/dt = 0 identically on one slip branch: the "
-                                     "difference is an undamped oscillation"))
+    out["beta1 = 0"] = (
+        bool(zero),
+        ("dE_d/dt = 0 identically on one slip branch: the difference is an undamped oscillation"),
+    )
     # two-way coupling: a force per run
     dF = sp.Symbol("dF", positive=True)
     mu_pos = sp.Symbol("mu_pos", positive=True)
     coupled = -(friction_coefficient(-1) * (F + dF) - friction_coefficient(-1) * F) * de
     coupled = sp.factor(coupled.xreplace({Ya: Yb + d, P["mu_s"]: mu_pos}))
     ok = coupled.is_positive and sp.expand(coupled - mu_pos * dF * d) == 0
-    out["two-way coupling"] = (bool(ok), ("a force per run, F_a = F_b + dF, makes the "
-                                          "friction part mu_s dF e' for s_a = s_b = -1: "
-                                          "positive for dF, e' > 0"))
+    out["two-way coupling"] = (
+        bool(ok),
+        (
+            "a force per run, F_a = F_b + dF, makes the "
+            "friction part mu_s dF e' for s_a = s_b = -1: "
+            "positive for dF, e' > 0"
+        ),
+    )
     return out
 
 
@@ -400,7 +456,7 @@ class Step:
     """One step of the argument: how it is established and whether that succeeded."""
 
     name: str
-    how: str          # "SymPy" or "words"
+    how: str  # "SymPy" or "words"
     proved: bool
     detail: str
 
@@ -421,7 +477,7 @@ class ContractionClaim:
         return all(s.proved for s in self.steps if s.how == "SymPy")
 
 
-@lru_cache(maxsize=None)
+@cache
 def claim() -> ContractionClaim:
     """Run every SymPy step (module docstring) and state the result."""
     coupling = one_way_coupling()
@@ -433,51 +489,90 @@ def claim() -> ContractionClaim:
     breaks = breaking_conditions()
     n_pairs = len({(c.state_a, c.state_b) for c in cases})
     steps = (
-        Step("one-way coupling", "SymPy", all(coupling.values()),
-             "the normal equation (derive.dynamics.normal_rhs) is free of X1, X1' for "
-             f"{len(coupling)} (contact, tension) combinations"),
-        Step("difference energy and power", "SymPy", all(s.exact for s in splits.values()),
-             "dE_d/dt = -c1 e'^2 - mu_s F (s_a - s_b) e' (expand to zero), both contact "
-             "and both tension laws"),
-        Step("stick is Sgn at Vr = 0", "SymPy", all(stick.values()),
-             "the stick field is the slip field with s = a_free/(mu_s F), in [-1, 1] "
-             "exactly while the stick guard holds"),
-        Step("Sgn is monotone", "SymPy", all(c.proved for c in cases),
-             f"(s_a - s_b)(Vr_a - Vr_b) >= 0 in all {len(cases)} cases ({n_pairs} pairs "
-             "of slip back / stick / slip forward, stick with s = -1, inside, +1)"),
-        Step("clipped force >= 0", "SymPy", all(clipped.values()),
-             "max(F, 0) of derive.model.contact_force is >= 0 on each branch"),
-        Step("sign of the friction power", "SymPy",
-             signs["friction part = -mu_s F (s_a - s_b)(Vr_a - Vr_b)"]
-             and signs["F >= 0 -> <= 0"] and signs["c1 e'^2 >= 0"],
-             "F >= 0: friction part <= 0, so dE_d/dt <= -c1 e'^2 <= 0"),
-        Step("converse (tension allowed)", "SymPy",
-             signs["F < 0 -> >= 0"] and signs["F < 0, opposite sides -> > 0"],
-             "F < 0: friction part >= 0, and > 0 while the runs slip in opposite "
-             "directions"),
-        Step("convergence", "words", True,
-             "E_d non-increasing, strictly while e' != 0 (beta1 > 0); Barbalat gives "
-             "e' -> 0; a persistent e needs both masses stuck e apart for all later "
-             "time, impossible for Vb > 0 (a stuck mass moves with the belt and the "
-             "spring force leaves the bounded cone) or when the excitation makes the "
-             "mass slip; the limit of a T-periodic normal motion is T-periodic"),
+        Step(
+            "one-way coupling",
+            "SymPy",
+            all(coupling.values()),
+            "the normal equation (derive.dynamics.normal_rhs) is free of X1, X1' for "
+            f"{len(coupling)} (contact, tension) combinations",
+        ),
+        Step(
+            "difference energy and power",
+            "SymPy",
+            all(s.exact for s in splits.values()),
+            "dE_d/dt = -c1 e'^2 - mu_s F (s_a - s_b) e' (expand to zero), both contact "
+            "and both tension laws",
+        ),
+        Step(
+            "stick is Sgn at Vr = 0",
+            "SymPy",
+            all(stick.values()),
+            "the stick field is the slip field with s = a_free/(mu_s F), in [-1, 1] "
+            "exactly while the stick guard holds",
+        ),
+        Step(
+            "Sgn is monotone",
+            "SymPy",
+            all(c.proved for c in cases),
+            f"(s_a - s_b)(Vr_a - Vr_b) >= 0 in all {len(cases)} cases ({n_pairs} pairs "
+            "of slip back / stick / slip forward, stick with s = -1, inside, +1)",
+        ),
+        Step(
+            "clipped force >= 0",
+            "SymPy",
+            all(clipped.values()),
+            "max(F, 0) of derive.model.contact_force is >= 0 on each branch",
+        ),
+        Step(
+            "sign of the friction power",
+            "SymPy",
+            signs["friction part = -mu_s F (s_a - s_b)(Vr_a - Vr_b)"]
+            and signs["F >= 0 -> <= 0"]
+            and signs["c1 e'^2 >= 0"],
+            "F >= 0: friction part <= 0, so dE_d/dt <= -c1 e'^2 <= 0",
+        ),
+        Step(
+            "converse (tension allowed)",
+            "SymPy",
+            signs["F < 0 -> >= 0"] and signs["F < 0, opposite sides -> > 0"],
+            "F < 0: friction part >= 0, and > 0 while the runs slip in opposite directions",
+        ),
+        Step(
+            "convergence",
+            "words",
+            True,
+            "E_d non-increasing, strictly while e' != 0 (beta1 > 0); Barbalat gives "
+            "e' -> 0; a persistent e needs both masses stuck e apart for all later "
+            "time, impossible for Vb > 0 (a stuck mass moves with the belt and the "
+            "spring force leaves the bounded cone) or when the excitation makes the "
+            "mass slip; the limit of a T-periodic normal motion is T-periodic",
+        ),
     )
     return ContractionClaim(
-        statement=("with tension clipped, all tangential motions under one normal motion "
-                   "converge to one (the periodic response when the normal motion is "
-                   "periodic): no self-excited vibration and no coexistence of "
-                   "tangential responses, for every parameter set"),
-        conditions=("Coulomb friction mu_s Sgn(Vr), non-decreasing in Vr (static = kinetic)",
-                    "beta1 > 0 (strict decay of E_d)",
-                    "one-way coupling: the normal equation is free of the tangential state",
-                    "F >= 0 (tension clipped)",
-                    "Vb > 0, or an excitation that makes the mass slip (no permanent stick)"),
-        converse=("with tension allowed, dE_d/dt <= -c1 e'^2 while F >= 0; energy enters "
-                  "the difference only through friction while F < 0"),
-        steps=steps, breaks=breaks)
+        statement=(
+            "with tension clipped, all tangential motions under one normal motion "
+            "converge to one (the periodic response when the normal motion is "
+            "periodic): no self-excited vibration and no coexistence of "
+            "tangential responses, for every parameter set"
+        ),
+        conditions=(
+            "Coulomb friction mu_s Sgn(Vr), non-decreasing in Vr (static = kinetic)",
+            "beta1 > 0 (strict decay of E_d)",
+            "one-way coupling: the normal equation is free of the tangential state",
+            "F >= 0 (tension clipped)",
+            "Vb > 0, or an excitation that makes the mass slip (no permanent stick)",
+        ),
+        converse=(
+            "with tension allowed, dE_d/dt <= -c1 e'^2 while F >= 0; energy enters "
+            "the difference only through friction while F < 0"
+        ),
+        steps=steps,
+        breaks=breaks,
+    )
 
 
 # Numerical evidence (the runtime) ---------------------------------------------------------
+
 
 @dataclass
 class DifferenceRun:
@@ -500,8 +595,9 @@ def _numeric(expr, names):
     return sp.lambdify(names, expr, "numpy")
 
 
-def difference_runs(shift=(5.0, -3.0), *, tension="clipped", contact="hertz_damp",
-                    t_end=1000.0, **overrides) -> DifferenceRun:
+def difference_runs(
+    shift=(5.0, -3.0), *, tension="clipped", contact="hertz_damp", t_end=1000.0, **overrides
+) -> DifferenceRun:
     """Simulate Eq. (4) twice under one normal motion (`runtime.simulate.simulate`).
 
     Parameters
@@ -518,8 +614,9 @@ def difference_runs(shift=(5.0, -3.0), *, tension="clipped", contact="hertz_damp
     from runtime.model import initial_state, resolve_parameters
     from runtime.simulate import SolverSettings, simulate
 
-    settings = {k: overrides.pop(k) for k in list(overrides)
-                if k in SolverSettings.__dataclass_fields__}
+    settings = {
+        k: overrides.pop(k) for k in list(overrides) if k in SolverSettings.__dataclass_fields__
+    }
     # the superposition integrates the normal motion once: both runs see the same
     # F(t), bit for bit, as the argument has it
     settings.setdefault("solver", "superposition")
@@ -599,9 +696,14 @@ def difference_works(run: DifferenceRun, t0=None, t1=None) -> dict:
     E0 = float(Ed(ya[0][0] - yb[0][0], ya[0][1] - yb[0][1], p["omega1"])[0])
     E1 = float(Ed(ya[1][0] - yb[1][0], ya[1][1] - yb[1][1], p["omega1"])[0])
     change = E1 - E0
-    return {"energy_change": change, "work_viscous": float(W[0]),
-            "work_friction_push": float(W[1]), "work_friction_pull": float(W[2]),
-            "imbalance": change - float(W[0] + W[1] + W[2]), "scale": float(W[3])}
+    return {
+        "energy_change": change,
+        "work_viscous": float(W[0]),
+        "work_friction_push": float(W[1]),
+        "work_friction_pull": float(W[2]),
+        "imbalance": change - float(W[0] + W[1] + W[2]),
+        "scale": float(W[3]),
+    }
 
 
 def reversals_by_force_sign(sim, t0=0.0) -> dict:
@@ -622,8 +724,9 @@ def reversals_by_force_sign(sim, t0=0.0) -> dict:
 
     out = {}
     for name, mode in (("slip_forward", Mode.SLIP_FORWARD), ("slip_back", Mode.SLIP_BACK)):
-        times = np.array([t for t, kind, new in sim.events
-                          if kind == "vr_zero" and new == mode and t >= t0])
+        times = np.array(
+            [t for t, kind, new in sim.events if kind == "vr_zero" and new == mode and t >= t0]
+        )
         F = sim.trajectory.forces(times)[0] if times.size else np.array([])
         out[name] = (int(np.sum(F < 0)), int(np.sum(F >= 0)))
     return out

@@ -3,11 +3,12 @@
 The paper's slow equations keep ``mu_bar N(Z)`` and drop the correlation of the fast
 friction direction with the fast normal force (docs/modelling.md#averaging;
 `derive.mdsm` labels it). For a harmonic fast motion, relative sliding velocity
-``u + V sin(tau)`` and normal force ``N0 + N1 sin(tau + theta)``, the average of Coulomb friction over a fast
-period is a closed form, derived here by integrating over the arcs where the sign of
-the sliding velocity is constant (``a = asin(u/V)``):
+``u + V sin(tau)`` and normal force ``N0 + N1 sin(tau + theta)``, the average of
+Coulomb friction over a fast period is a closed form, derived here by integrating over
+the arcs where the sign of the sliding velocity is constant (``a = asin(u/V)``):
 
-    <sgn(u + V sin) (N0 + N1 sin(. + theta))> = (2/pi) (N0 asin(u/V) + N1 cos(theta) sqrt(1 - u^2/V^2))
+    <sgn(u + V sin) (N0 + N1 sin(. + theta))>
+        = (2/pi) (N0 asin(u/V) + N1 cos(theta) sqrt(1 - u^2/V^2))
 
 for ``|u| < V`` and ``N0 sgn(u)`` outside. Its slope in ``u`` carries the correlation:
 
@@ -22,24 +23,35 @@ The first harmonic of the same product (``sin`` and ``cos`` coefficients) closes
 harmonic balance of the fast tangential motion when the friction reverses within a
 fast cycle (``Vb < V``); with ``|u| >= V`` it is the friction times the fast normal force.
 """
+
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 
 from .friction import coupled_velocity, normal_response
 from .model import P
 
-__all__ = ["u", "V", "N0", "N1", "theta", "averaged_friction", "averaged_friction_slope",
-           "first_harmonic", "fast_normal_force", "fast_tangential_velocity"]
+__all__ = [
+    "u",
+    "V",
+    "N0",
+    "N1",
+    "theta",
+    "averaged_friction",
+    "averaged_friction_slope",
+    "first_harmonic",
+    "fast_normal_force",
+    "fast_tangential_velocity",
+]
 
 u = sp.Symbol("u", real=True)
 V = sp.Symbol("V", positive=True)
 N0, N1 = sp.symbols("N0 N1", real=True)
 theta = sp.Symbol("theta", real=True)
 _t = sp.Symbol("t", real=True)
-_a = sp.Symbol("a", real=True)     # asin(u/V): sgn(u + V sin t) > 0 on (-a, pi + a)
+_a = sp.Symbol("a", real=True)  # asin(u/V): sgn(u + V sin t) > 0 on (-a, pi + a)
 
 
 def _signed_average(f, weight=1, scale=1 / (2 * sp.pi)):
@@ -54,14 +66,14 @@ def _normal():
     return N0 + N1 * sp.sin(_t + theta)
 
 
-@lru_cache(maxsize=None)
+@cache
 def averaged_friction() -> sp.Expr:
     """``<sgn(u + V sin) (N0 + N1 sin(. + theta))>``, piecewise in ``|u| < V``."""
     inside = _signed_average(_normal()).subs(_a, sp.asin(u / V))
     return sp.Piecewise((sp.simplify(inside), sp.Abs(u) < V), (N0 * sp.sign(u), True))
 
 
-@lru_cache(maxsize=None)
+@cache
 def averaged_friction_slope() -> sp.Expr:
     """``d/du`` of `averaged_friction` (0 for ``|u| > V``), in cancellation-free form.
 
@@ -75,7 +87,7 @@ def averaged_friction_slope() -> sp.Expr:
     return sp.Piecewise((factored, sp.Abs(u) < V), (0, True))
 
 
-@lru_cache(maxsize=None)
+@cache
 def first_harmonic() -> tuple[sp.Expr, sp.Expr]:
     """``(s1, c1)``: ``sgn(u + V sin t)(N0 + N1 sin(t + theta)) ~ s1 sin t + c1 cos t + ...``.
 
@@ -86,8 +98,10 @@ def first_harmonic() -> tuple[sp.Expr, sp.Expr]:
     s1 = _signed_average(_normal(), sp.sin(_t), 1 / sp.pi).subs(_a, sp.asin(u / V))
     c1 = _signed_average(_normal(), sp.cos(_t), 1 / sp.pi).subs(_a, sp.asin(u / V))
     inside = sp.Abs(u) < V
-    return (sp.Piecewise((sp.simplify(s1), inside), (sp.sign(u) * N1 * sp.cos(theta), True)),
-            sp.Piecewise((sp.simplify(c1), inside), (sp.sign(u) * N1 * sp.sin(theta), True)))
+    return (
+        sp.Piecewise((sp.simplify(s1), inside), (sp.sign(u) * N1 * sp.cos(theta), True)),
+        sp.Piecewise((sp.simplify(c1), inside), (sp.sign(u) * N1 * sp.sin(theta), True)),
+    )
 
 
 def fast_normal_force(contact: str = "hertz_damp") -> tuple[sp.Expr, sp.Expr]:

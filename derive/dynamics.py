@@ -16,15 +16,37 @@ The one-way coupling of Eq. (4) is kept visible: `normal_rhs` and `normal_jacobi
 are the normal equation alone (it does not contain the tangential state), and
 `free_acceleration` is the tangential acceleration without friction.
 """
+
 from __future__ import annotations
 
 import sympy as sp
 
-from .model import (P, X1, X2, Y1, Y2, contact_force, contact_potential, excitation,
-                    friction_coefficient, normal_force)
+from .model import (
+    X1,
+    X2,
+    Y1,
+    Y2,
+    P,
+    contact_force,
+    contact_potential,
+    excitation,
+    friction_coefficient,
+    normal_force,
+)
 
-__all__ = ["X2r", "sgn", "in_contact", "accelerations", "rhs", "jacobian",
-           "free_acceleration", "normal_rhs", "normal_jacobian", "energy", "power_balance"]
+__all__ = [
+    "X2r",
+    "sgn",
+    "in_contact",
+    "accelerations",
+    "rhs",
+    "jacobian",
+    "free_acceleration",
+    "normal_rhs",
+    "normal_jacobian",
+    "energy",
+    "power_balance",
+]
 
 #: Penetration as a real number: negative in flight.
 X2r = sp.Symbol("X2", real=True)
@@ -53,8 +75,9 @@ def free_acceleration() -> sp.Expr:
     return -2 * b1 * w1 * Y1 - w1**2 * X1 + excitation()[0]
 
 
-def accelerations(contact: str = "hertz_damp", direction=None, flight: bool = False,
-                  tension: str = "allowed"):
+def accelerations(
+    contact: str = "hertz_damp", direction=None, flight: bool = False, tension: str = "allowed"
+):
     """``(X1'', X2'')`` of Eq. (4) in contact (positive ``X2``) or in flight."""
     Fn = 0 if flight else contact_force(contact, tension)
     f_n = excitation()[1]
@@ -71,9 +94,11 @@ def rhs(contact: str = "hertz_damp", direction=None, tension: str = "allowed") -
 
 def jacobian(contact: str = "hertz_damp", direction=sgn, tension: str = "allowed") -> sp.Matrix:
     """State Jacobian of `rhs` on a fixed friction branch, branch by branch."""
+
     def branch(flight):
         a = accelerations(contact, direction, flight, tension)
         return sp.Matrix([Y1, a[0], Y2, a[1]]).jacobian((X1, Y1, X2, Y2))
+
     c, f = branch(False), branch(True)
     return sp.Matrix(4, 4, lambda i, j: in_contact(c[i, j], f[i, j]))
 
@@ -96,8 +121,13 @@ def energy(contact: str = "hertz_damp") -> sp.Expr:
     `power_balance` books that part with the contact damping.
     """
     w1, g = P["omega1"], P["g"]
-    return (Y1**2 / 2 + Y2**2 / 2 + w1**2 * X1**2 / 2
-            + in_contact(contact_potential(contact), 0) - g * X2r)
+    return (
+        Y1**2 / 2
+        + Y2**2 / 2
+        + w1**2 * X1**2 / 2
+        + in_contact(contact_potential(contact), 0)
+        - g * X2r
+    )
 
 
 def power_balance(contact: str = "hertz_damp", direction=sgn, tension: str = "allowed"):

@@ -6,15 +6,25 @@ the normal equations have the Hilbert matrix ``1/(j+k+1)`` and the right-hand si
 fit of any degree, its largest error, where it sits, and its RMS error are exact
 closed forms in ``X2max``. Degree 3 reproduces Eq. (17).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 
-__all__ = ["X2max", "s", "FitError", "scaled_coefficients", "coefficients_eq_17",
-           "polynomial_eq_16", "scaled_error", "fit_error", "DEGREES"]
+__all__ = [
+    "X2max",
+    "s",
+    "FitError",
+    "scaled_coefficients",
+    "coefficients_eq_17",
+    "polynomial_eq_16",
+    "scaled_error",
+    "fit_error",
+    "DEGREES",
+]
 
 X2max = sp.Symbol("X2max", positive=True)
 #: Scaled penetration X2/X2max in [0, 1].
@@ -22,7 +32,7 @@ s = sp.Symbol("s", nonnegative=True)
 DEGREES = tuple(range(1, 9))
 
 
-@lru_cache(maxsize=None)
+@cache
 def scaled_coefficients(degree: int) -> tuple[sp.Rational, ...]:
     """Exact ``d_k`` of the best ``sum d_k s^k`` to ``s^(3/2)`` on ``[0, 1]`` in L2."""
     n = degree + 1
@@ -33,8 +43,9 @@ def scaled_coefficients(degree: int) -> tuple[sp.Rational, ...]:
 
 def coefficients_eq_17(degree: int = 3) -> tuple[sp.Expr, ...]:
     """``(c0, ..., c_degree)`` with ``X2^(3/2) ~ sum c_k X2^k``, Eq. (17) for degree 3."""
-    return tuple(d * X2max**(sp.Rational(3, 2) - k)
-                 for k, d in enumerate(scaled_coefficients(degree)))
+    return tuple(
+        d * X2max ** (sp.Rational(3, 2) - k) for k, d in enumerate(scaled_coefficients(degree))
+    )
 
 
 def polynomial_eq_16(X2, degree: int = 3) -> sp.Expr:
@@ -56,7 +67,7 @@ class FitError:
     rms: sp.Expr
 
 
-@lru_cache(maxsize=None)
+@cache
 def scaled_error(degree: int = 3) -> FitError:
     """Largest absolute error, its location and the RMS error on ``[0, 1]``, exactly.
 
@@ -65,7 +76,7 @@ def scaled_error(degree: int = 3) -> FitError:
     """
     d = scaled_coefficients(degree)
     p = sum(c * s**k for k, c in enumerate(d))
-    err = s**sp.Rational(3, 2) - p
+    err = s ** sp.Rational(3, 2) - p
     u = sp.Symbol("u", nonnegative=True)
     stationary = sp.Poly(sp.Rational(3, 2) * u - sp.diff(p, s).subs(s, u**2), u)
     candidates = [sp.Integer(0), sp.Integer(1)]
@@ -79,5 +90,5 @@ def scaled_error(degree: int = 3) -> FitError:
 def fit_error(degree: int = 3) -> FitError:
     """`scaled_error` in ``X2``: largest error, where it sits, and RMS, in ``X2max``."""
     e = scaled_error(degree)
-    scale = X2max**sp.Rational(3, 2)
+    scale = X2max ** sp.Rational(3, 2)
     return FitError(e.max_abs * scale, e.argmax * X2max, e.rms * scale)

@@ -17,6 +17,7 @@ Both readings are derived from phasor solutions, never typed in:
   tangential and normal frequencies the two responses are superposed and
   ``V_hat`` is the sum of their amplitudes (the largest velocity they reach).
 """
+
 from __future__ import annotations
 
 import sympy as sp
@@ -24,9 +25,19 @@ import sympy as sp
 from .model import P
 from .statespace import Quadratic, block_quadratics, jacobian_at_equilibrium_eq_11
 
-__all__ = ["Vr", "VHAT_MODELS", "mu_bar_eq_23", "mu_bar0_eq_25", "mu_bar_slope_eq_25",
-           "mu_bar_slope_derived", "frequency_response", "normal_block", "normal_response", "coupled_velocity",
-           "vhat"]
+__all__ = [
+    "Vr",
+    "VHAT_MODELS",
+    "mu_bar_eq_23",
+    "mu_bar0_eq_25",
+    "mu_bar_slope_eq_25",
+    "mu_bar_slope_derived",
+    "frequency_response",
+    "normal_block",
+    "normal_response",
+    "coupled_velocity",
+    "vhat",
+]
 
 Vr = sp.Symbol("Vr", real=True)
 VHAT_MODELS = ("tangential", "coupled")
@@ -35,8 +46,9 @@ VHAT_MODELS = ("tangential", "coupled")
 def mu_bar_eq_23(Vr=Vr) -> sp.Expr:
     """Effective friction coefficient, Eq. (23), with the sign of ``Vr``."""
     mu, Vh = P["mu_s"], P["Vhat"]
-    return sp.Piecewise((mu * (1 - 2 / sp.pi * sp.acos(Vr / Vh)), sp.Abs(Vr) <= Vh),
-                        (mu * sp.sign(Vr), True))
+    return sp.Piecewise(
+        (mu * (1 - 2 / sp.pi * sp.acos(Vr / Vh)), sp.Abs(Vr) <= Vh), (mu * sp.sign(Vr), True)
+    )
 
 
 def mu_bar0_eq_25() -> sp.Expr:
@@ -61,7 +73,7 @@ def mu_bar_slope_eq_25() -> sp.Expr:
     """
     mu, Vh, Vb = P["mu_s"], P["Vhat"], P["Vb"]
     factored = 2 * mu / (sp.pi * sp.sqrt((Vh - Vb) * (Vh + Vb)))
-    below = sp.Symbol("below", positive=True)   # Vh - Vb > 0 on this branch
+    below = sp.Symbol("below", positive=True)  # Vh - Vb > 0 on this branch
     check = (mu_bar_slope_derived() - factored).subs(Vh, Vb + below)
     if sp.simplify(check) != 0:
         raise AssertionError("factored slope differs from the derivative of Eq. (23)")
@@ -147,6 +159,7 @@ def vhat(model: str = "tangential", contact: str = "hertz_damp") -> sp.Expr:
     Ft = at * Wt**2 * sp.exp(sp.I * pt)
     Fn = -an * Wn**2 * sp.exp(sp.I * pn)
     same = coupled_velocity(Ft, Fn.subs(Wn, Wt), Wt, contact)
-    apart = (sp.Abs(coupled_velocity(Ft, 0, Wt, contact), evaluate=False)
-             + sp.Abs(coupled_velocity(0, Fn, Wn, contact), evaluate=False))
+    apart = sp.Abs(coupled_velocity(Ft, 0, Wt, contact), evaluate=False) + sp.Abs(
+        coupled_velocity(0, Fn, Wn, contact), evaluate=False
+    )
     return sp.Piecewise((sp.Abs(same, evaluate=False), sp.Eq(Wt, Wn)), (apart, True))

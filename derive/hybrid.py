@@ -30,27 +30,48 @@ Modes are coded by integers (`MODE_CODES`) so that a compiled integrator can pas
 the mode to one kernel: the slip codes are the friction direction ``sgn(Vr)`` of
 Eq. (3).
 """
+
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 
 from .dynamics import X2r, free_acceleration
-from .model import TENSION_LAWS, P, X1, X2, Y1, Y2, excitation, normal_force, t
+from .model import TENSION_LAWS, X1, X2, Y1, Y2, P, excitation, normal_force, t
 
-__all__ = ["MODE_CODES", "FIELDS", "SURFACES", "DECIDE_SLIP", "DECIDE_CONTACT", "GUARDS",
-           "STATE", "mode", "contact_force_in_contact", "vector_field", "field_of_mode",
-           "response_field",
-           "surfaces", "rounding_scale", "surface_scales", "surface_rates", "transitions", "saltation"]
+__all__ = [
+    "MODE_CODES",
+    "FIELDS",
+    "SURFACES",
+    "DECIDE_SLIP",
+    "DECIDE_CONTACT",
+    "GUARDS",
+    "STATE",
+    "mode",
+    "contact_force_in_contact",
+    "vector_field",
+    "field_of_mode",
+    "response_field",
+    "surfaces",
+    "rounding_scale",
+    "surface_scales",
+    "surface_rates",
+    "transitions",
+    "saltation",
+]
 
 #: Integer code of each mode; the slip codes are the friction direction of Eq. (3).
 MODE_CODES = {"slip_back": -1, "stick": 0, "slip_forward": 1, "flight": 2, "separated": 3}
 #: The vector field of each mode (flight and separated are both free of contact).
-FIELDS = {"slip_back": "slip_back", "stick": "stick", "slip_forward": "slip_forward",
-          "flight": "free", "separated": "free"}
-SURFACES = ("relative_velocity", "stick_forward", "stick_back", "penetration",
-            "contact_force")
+FIELDS = {
+    "slip_back": "slip_back",
+    "stick": "stick",
+    "slip_forward": "slip_forward",
+    "flight": "free",
+    "separated": "free",
+}
+SURFACES = ("relative_velocity", "stick_forward", "stick_back", "penetration", "contact_force")
 #: Guard target: decide by Filippov's rule at Vr = 0 (stick, reversal or leaving).
 DECIDE_SLIP = "decide_slip"
 #: Guard target: entering contact (the sign of Vr, or DECIDE_SLIP at Vr = 0; with the
@@ -60,8 +81,11 @@ DECIDE_CONTACT = "decide_contact"
 _CONTACT_GUARDS = {
     "slip_back": (("relative_velocity", 1, DECIDE_SLIP), ("penetration", -1, "flight")),
     "slip_forward": (("relative_velocity", -1, DECIDE_SLIP), ("penetration", -1, "flight")),
-    "stick": (("stick_forward", -1, "slip_forward"), ("stick_back", -1, "slip_back"),
-              ("penetration", -1, "flight")),
+    "stick": (
+        ("stick_forward", -1, "slip_forward"),
+        ("stick_back", -1, "slip_back"),
+        ("penetration", -1, "flight"),
+    ),
     "flight": (("penetration", 1, DECIDE_CONTACT),),
 }
 #: Per tension law: mode -> ((surface, direction of the crossing, target), ...). A
@@ -70,8 +94,11 @@ _CONTACT_GUARDS = {
 GUARDS = {
     "allowed": _CONTACT_GUARDS,
     "clipped": {
-        **{m: g + (("contact_force", -1, "separated"),)
-           for m, g in _CONTACT_GUARDS.items() if m != "flight"},
+        **{
+            m: g + (("contact_force", -1, "separated"),)
+            for m, g in _CONTACT_GUARDS.items()
+            if m != "flight"
+        },
         "flight": _CONTACT_GUARDS["flight"],
         "separated": (("contact_force", 1, DECIDE_CONTACT), ("penetration", -1, "flight")),
     },
@@ -95,7 +122,7 @@ def _contact_sign(contact: str) -> sp.Expr:
     return sp.Mul(*kept)
 
 
-@lru_cache(maxsize=None)
+@cache
 def field_of_mode(name: str, contact: str) -> sp.Matrix:
     """Vector field ``(X1', Y1', X2', Y2')`` of one mode (by name; see `FIELDS`)."""
     F = contact_force_in_contact(contact)
@@ -126,8 +153,9 @@ def response_field(contact: str) -> sp.Matrix:
     z, v = sp.symbols("z v", real=True)
     F = contact_force_in_contact(contact)
     f_n = excitation()[1]
-    contact_modes = sp.Or(*(sp.Eq(mode, MODE_CODES[m]) for m in ("slip_back", "stick",
-                                                                  "slip_forward")))
+    contact_modes = sp.Or(
+        *(sp.Eq(mode, MODE_CODES[m]) for m in ("slip_back", "stick", "slip_forward"))
+    )
     Fm = sp.Piecewise((F, contact_modes), (0, True))
     return sp.Matrix([v, Fm - 2 * b1 * w1 * v - w1**2 * z, Y2, P["g"] + f_n - Fm]), (z, v)
 
@@ -135,8 +163,11 @@ def response_field(contact: str) -> sp.Matrix:
 def _by_mode(build):
     """``(piece, condition)`` for each mode code with a field of its own, and the free
     field (the codes of flight and separated)."""
-    pieces = [(build(name), sp.Eq(mode, code)) for name, code in MODE_CODES.items()
-              if FIELDS[name] == name]
+    pieces = [
+        (build(name), sp.Eq(mode, code))
+        for name, code in MODE_CODES.items()
+        if FIELDS[name] == name
+    ]
     free = build("flight")
     return pieces, free
 
@@ -144,21 +175,24 @@ def _by_mode(build):
 def vector_field(contact: str) -> sp.Matrix:
     """The field of the mode with code ``mode`` (`MODE_CODES`), entry by entry."""
     pieces, free = _by_mode(lambda name: field_of_mode(name, contact))
-    return sp.Matrix(4, 1, lambda i, _: sp.Piecewise(
-        *[(f[i], cond) for f, cond in pieces], (free[i], True)))
+    return sp.Matrix(
+        4, 1, lambda i, _: sp.Piecewise(*[(f[i], cond) for f, cond in pieces], (free[i], True))
+    )
 
 
-@lru_cache(maxsize=None)
+@cache
 def surfaces(contact: str) -> dict[str, sp.Expr]:
     """The switching functions ``h(t, x)`` of `SURFACES`, by name."""
     F = contact_force_in_contact(contact)
     a_free = free_acceleration()
     mu = P["mu_s"]
-    return {"relative_velocity": Y1 - P["Vb"],
-            "stick_forward": mu * F - a_free,
-            "stick_back": mu * F + a_free,
-            "penetration": X2r,
-            "contact_force": _contact_sign(contact).subs(X2, sp.Max(X2r, 0))}
+    return {
+        "relative_velocity": Y1 - P["Vb"],
+        "stick_forward": mu * F - a_free,
+        "stick_back": mu * F + a_free,
+        "penetration": X2r,
+        "contact_force": _contact_sign(contact).subs(X2, sp.Max(X2r, 0)),
+    }
 
 
 def _term_scale(expr) -> sp.Expr:
@@ -201,8 +235,9 @@ def surface_rates(contact: str) -> dict[str, sp.Expr]:
     pieces, free = _by_mode(lambda name: field_of_mode(name, contact))
     out = {}
     for name, h in surfaces(contact).items():
-        out[name] = sp.Piecewise(*[(_rate(h, f), cond) for f, cond in pieces],
-                                 (_rate(h, free), True))
+        out[name] = sp.Piecewise(
+            *[(_rate(h, f), cond) for f, cond in pieces], (_rate(h, free), True)
+        )
     return out
 
 
@@ -242,4 +277,3 @@ def saltation(before: str, after: str, surface: str, contact: str) -> sp.Matrix:
     n = sp.Matrix([[sp.diff(h, x) for x in STATE]])
     rate = sp.diff(h, t) + (n * f_minus)[0]
     return sp.eye(4) + (f_plus - f_minus) * n / rate
-

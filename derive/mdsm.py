@@ -19,14 +19,16 @@ The average over the fast period (Eq. 15), with ``<Phi> = 0``, is applied term b
 Each term of the averaged equations is labelled with what the paper does with it
 (docs/modelling.md#averaging): Eqs. (18)-(19) keep the slow terms and
 ``mu_bar N(Z)`` and drop the averages of powers of ``Phi2`` (from the cubic and from
-the damping) and the correlation ``cov(mu, N)`` of the fast friction direction with the fast normal force.
+the damping) and the correlation ``cov(mu, N)`` of the fast friction direction with
+the fast normal force.
 `harmonic_averages` evaluates the dropped averages for a harmonic fast motion, so
 their size can be shown next to the kept terms.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 
@@ -35,10 +37,31 @@ from .friction import frequency_response, normal_block
 from .model import X2, P, equal_excitation, normal_force
 from .statespace import equilibrium_eq_9
 
-__all__ = ["fast_normal_amplitude", "x2max", "dropped_at_equilibrium", "tau", "theta", "Z1", "Z2", "Phi1", "Phi2", "c", "mu", "mu_bar", "avg", "cov",
-           "split_eqs_13_14", "polynomial_eq_16", "equations_of_motion_split",
-           "Term", "averaged_terms", "slow_equations_18_19", "slow_equations_20_21",
-           "fast_equations_A1_A2", "harmonic_averages"]
+__all__ = [
+    "fast_normal_amplitude",
+    "x2max",
+    "dropped_at_equilibrium",
+    "tau",
+    "theta",
+    "Z1",
+    "Z2",
+    "Phi1",
+    "Phi2",
+    "c",
+    "mu",
+    "mu_bar",
+    "avg",
+    "cov",
+    "split_eqs_13_14",
+    "polynomial_eq_16",
+    "equations_of_motion_split",
+    "Term",
+    "averaged_terms",
+    "slow_equations_18_19",
+    "slow_equations_20_21",
+    "fast_equations_A1_A2",
+    "harmonic_averages",
+]
 
 tau, theta = sp.symbols("tau theta", real=True)
 Z1, Z2 = sp.Function("Z1", real=True)(tau), sp.Function("Z2", real=True)(tau)
@@ -114,10 +137,13 @@ def _average_monomial(term):
         return sp.Integer(0)
     derivs = [b for b, e in powers if isinstance(b, sp.Derivative)]
     plain = [(b, e) for b, e in powers if not isinstance(b, sp.Derivative)]
-    if (len(derivs) == 1 and derivs[0].variables == (theta,)
-            and all(b == derivs[0].expr for b, _ in plain)
-            and dict(powers)[derivs[0]] == 1):
-        return sp.Integer(0)          # Phi^k Phi_theta = d/dtheta Phi^(k+1)/(k+1)
+    if (
+        len(derivs) == 1
+        and derivs[0].variables == (theta,)
+        and all(b == derivs[0].expr for b, _ in plain)
+        and dict(powers)[derivs[0]] == 1
+    ):
+        return sp.Integer(0)  # Phi^k Phi_theta = d/dtheta Phi^(k+1)/(k+1)
     return sp.Mul(*slow) * avg(product)
 
 
@@ -146,7 +172,7 @@ def _label(term):
     return False, "average of powers of Phi2 (from the cubic)"
 
 
-@lru_cache(maxsize=None)
+@cache
 def averaged_terms() -> tuple[Term, ...]:
     """Every term of the averaged equations of slow motion, labelled (kept or dropped)."""
     tangential, _, normal = equations_of_motion_split()
@@ -157,8 +183,14 @@ def averaged_terms() -> tuple[Term, ...]:
     out = []
     for t in sp.Add.make_args(_average(tangential)):
         out.append(Term("tangential", t, *_label(t)))
-    out.append(Term("tangential", mu_bar * sp.expand(N_slow), True,
-                    "effective friction times the slow normal force (mu_bar N(Z))"))
+    out.append(
+        Term(
+            "tangential",
+            mu_bar * sp.expand(N_slow),
+            True,
+            "effective friction times the slow normal force (mu_bar N(Z))",
+        )
+    )
     for t in sp.Add.make_args(sp.expand(mu_bar * (N_avg - N_slow))):
         kept, label = _label(t)
         out.append(Term("tangential", t, kept, "effective friction times " + label))
@@ -171,9 +203,12 @@ def averaged_terms() -> tuple[Term, ...]:
 
 def _slow(kept_only: bool):
     terms = averaged_terms()
-    return sp.Matrix([sp.Add(*(t.expr for t in terms if t.equation == eq
-                               and (t.kept or not kept_only)))
-                      for eq in ("tangential", "normal")])
+    return sp.Matrix(
+        [
+            sp.Add(*(t.expr for t in terms if t.equation == eq and (t.kept or not kept_only)))
+            for eq in ("tangential", "normal")
+        ]
+    )
 
 
 def slow_equations_18_19() -> sp.Matrix:
@@ -190,9 +225,13 @@ def slow_equations_20_21() -> sp.Matrix:
     b1, w1, g = P["beta1"], P["omega1"], P["g"]
     Z2d = sp.diff(Z2, tau)
     N = normal_force("hertz_damp", Z2, Z2d)
-    eqs = sp.Matrix([sp.diff(Z1, tau, 2) + 2 * b1 * w1 * sp.diff(Z1, tau) + w1**2 * Z1
-                     + mu_bar * N, sp.diff(Z2, tau, 2) + N - g])
-    back = eqs.subs(Z2**sp.Rational(3, 2), polynomial_eq_16(Z2))
+    eqs = sp.Matrix(
+        [
+            sp.diff(Z1, tau, 2) + 2 * b1 * w1 * sp.diff(Z1, tau) + w1**2 * Z1 + mu_bar * N,
+            sp.diff(Z2, tau, 2) + N - g,
+        ]
+    )
+    back = eqs.subs(Z2 ** sp.Rational(3, 2), polynomial_eq_16(Z2))
     if (back - slow_equations_18_19()).applyfunc(sp.expand) != sp.zeros(2, 1):
         raise AssertionError("Eqs. (20)-(21) do not reduce to Eqs. (18)-(19)")
     return eqs
@@ -216,14 +255,21 @@ def harmonic_averages(expr, A1, A2, phase1=0, phase2=0):
     ``Phi``, i.e. ``Omega`` times the displacement amplitudes).
     """
     u = sp.Dummy("u", real=True)
-    shapes = {Phi1.subs(theta, u): A1 * sp.sin(u + phase1),
-              Phi2.subs(theta, u): A2 * sp.sin(u + phase2)}
+    shapes = {
+        Phi1.subs(theta, u): A1 * sp.sin(u + phase1),
+        Phi2.subs(theta, u): A2 * sp.sin(u + phase2),
+    }
 
     def evaluate(a):
         f = a.args[0].subs(theta, u)
-        f = f.replace(lambda e: isinstance(e, sp.Derivative),
-                      lambda e: sp.diff(e.expr.subs(theta, u).subs(shapes), u)
-                      if e.variables == (theta,) else sp.Integer(0)).subs(shapes)
+        f = f.replace(
+            lambda e: isinstance(e, sp.Derivative),
+            lambda e: (
+                sp.diff(e.expr.subs(theta, u).subs(shapes), u)
+                if e.variables == (theta,)
+                else sp.Integer(0)
+            ),
+        ).subs(shapes)
         return sp.integrate(sp.expand(f), (u, 0, 2 * sp.pi)) / (2 * sp.pi)
 
     return sp.sympify(expr).replace(lambda e: isinstance(e, avg), evaluate)
@@ -236,7 +282,7 @@ def fast_normal_amplitude(contact: str = "hertz_damp") -> sp.Expr:
     (`derive.friction.normal_block`): ``alpha_n Omega_n^2 / |s - Omega_n^2 + i r Omega_n|``.
     """
     a, b = frequency_response(normal_block(contact), P["Omega_n"])
-    return P["alpha_n"] * P["Omega_n"]**2 / sp.sqrt(a**2 + b**2)
+    return P["alpha_n"] * P["Omega_n"] ** 2 / sp.sqrt(a**2 + b**2)
 
 
 def x2max(contact: str = "hertz_damp") -> sp.Expr:
@@ -263,7 +309,7 @@ def dropped_at_equilibrium(values: dict) -> list[tuple[str, str, float, float]]:
     amp = fast_normal_amplitude().subs(subs)
     top = x2max().subs(subs)
     coeffs = {ck: v.subs(X2max, top) for ck, v in zip(c, coefficients_eq_17(3))}
-    z2 = (P["g"] / P["omega2"]**2)**sp.Rational(2, 3)
+    z2 = (P["g"] / P["omega2"] ** 2) ** sp.Rational(2, 3)
     A = sp.Symbol("A", positive=True)
     out = []
     for term in averaged_terms():

@@ -15,6 +15,7 @@ parts so that each part is a choice:
 
 Everything here is a pure function returning SymPy objects.
 """
+
 from __future__ import annotations
 
 import sympy as sp
@@ -22,21 +23,36 @@ import sympy as sp
 from .parameters import PARAMETERS
 
 __all__ = [
-    "CONTACT_LAWS", "TENSION_LAWS", "P", "t", "X1", "Y1", "X2", "Y2", "STATE", "lam",
-    "normal_force", "contact_force", "contact_potential", "friction_coefficient",
-    "excitation", "equal_excitation", "equations_of_motion",
+    "CONTACT_LAWS",
+    "TENSION_LAWS",
+    "P",
+    "t",
+    "X1",
+    "Y1",
+    "X2",
+    "Y2",
+    "STATE",
+    "lam",
+    "normal_force",
+    "contact_force",
+    "contact_potential",
+    "friction_coefficient",
+    "excitation",
+    "equal_excitation",
+    "equations_of_motion",
 ]
 
 CONTACT_LAWS = ("hertz_damp", "kelvin_voigt")
 TENSION_LAWS = ("allowed", "clipped")
 
-_ASSUMPTIONS = {"positive": {"positive": True},
-                "nonnegative": {"nonnegative": True},
-                "real": {"real": True}}
+_ASSUMPTIONS = {
+    "positive": {"positive": True},
+    "nonnegative": {"nonnegative": True},
+    "real": {"real": True},
+}
 
 #: Parameter symbols by name, with the assumptions of the parameter table.
-P: dict[str, sp.Symbol] = {p.name: sp.Symbol(p.name, **_ASSUMPTIONS[p.domain])
-                           for p in PARAMETERS}
+P: dict[str, sp.Symbol] = {p.name: sp.Symbol(p.name, **_ASSUMPTIONS[p.domain]) for p in PARAMETERS}
 
 t = sp.Symbol("t", real=True)
 X1, Y1, Y2 = sp.symbols("X1 Y1 Y2", real=True)
@@ -55,14 +71,13 @@ def normal_force(contact: str = "hertz_damp", X2=X2, Y2=Y2) -> sp.Expr:
     """
     b2, w2 = P["beta2"], P["omega2"]
     if contact == "hertz_damp":
-        return (w2**2 + 2 * b2 * w2 * Y2) * X2**sp.Rational(3, 2)
+        return (w2**2 + 2 * b2 * w2 * Y2) * X2 ** sp.Rational(3, 2)
     if contact == "kelvin_voigt":
         return w2**2 * X2 + 2 * b2 * w2 * Y2
     raise ValueError(f"contact must be one of {CONTACT_LAWS}, got {contact!r}")
 
 
-def contact_force(contact: str = "hertz_damp", tension: str = "allowed", X2=X2,
-                  Y2=Y2) -> sp.Expr:
+def contact_force(contact: str = "hertz_damp", tension: str = "allowed", X2=X2, Y2=Y2) -> sp.Expr:
     """The normal force in contact under a tension law.
 
     ``allowed``: Eq. (1) as printed (`normal_force`), negative when the damping term
@@ -110,18 +125,24 @@ def excitation(general: bool = True) -> tuple[sp.Expr, sp.Expr]:
         return a * W**2 * sp.sin(W * t), -a * W**2 * sp.sin(W * t)
     at, Wt, pt = P["alpha_t"], P["Omega_t"], P["phase_t"]
     an, Wn, pn = P["alpha_n"], P["Omega_n"], P["phase_n"]
-    return (at * Wt**2 * sp.sin(Wt * t + pt),
-            -an * Wn**2 * sp.sin(Wn * t + pn))
+    return (at * Wt**2 * sp.sin(Wt * t + pt), -an * Wn**2 * sp.sin(Wn * t + pn))
 
 
 def equal_excitation() -> dict[sp.Symbol, sp.Expr]:
     """The substitution under which the general excitation is that of Eq. (4)."""
-    return {P["alpha_t"]: P["alpha"], P["Omega_t"]: P["Omega"], P["phase_t"]: 0,
-            P["alpha_n"]: P["alpha"], P["Omega_n"]: P["Omega"], P["phase_n"]: 0}
+    return {
+        P["alpha_t"]: P["alpha"],
+        P["Omega_t"]: P["Omega"],
+        P["phase_t"]: 0,
+        P["alpha_n"]: P["alpha"],
+        P["Omega_n"]: P["Omega"],
+        P["phase_n"]: 0,
+    }
 
 
-def equations_of_motion(contact: str = "hertz_damp", direction=None,
-                        forced: bool = True, general: bool = True) -> sp.Matrix:
+def equations_of_motion(
+    contact: str = "hertz_damp", direction=None, forced: bool = True, general: bool = True
+) -> sp.Matrix:
     """Accelerations ``(X1'', X2'')`` of Eq. (4), solved for (the mass matrix is I).
 
     Parameters

@@ -19,6 +19,7 @@ cancellation as ``b -> 0``); critically damped (``beta1 = 1`` exactly) ``C = 1``
 ``S = tau``. `verify_state_transition` proves with SymPy that each form solves
 ``Phi' = A Phi``, ``Phi(0) = I``.
 """
+
 from __future__ import annotations
 
 import sympy as sp
@@ -26,8 +27,15 @@ from sympy.codegen.cfunctions import expm1
 
 from .model import P, excitation, t
 
-__all__ = ["tau", "system_matrix", "state_transition", "state_transition_branches",
-           "verify_state_transition", "harmonic_steady_state", "excitation_response"]
+__all__ = [
+    "tau",
+    "system_matrix",
+    "state_transition",
+    "state_transition_branches",
+    "verify_state_transition",
+    "harmonic_steady_state",
+    "excitation_response",
+]
 
 #: Time elapsed since the switch.
 tau = sp.Symbol("tau", nonnegative=True)
@@ -35,7 +43,7 @@ tau = sp.Symbol("tau", nonnegative=True)
 
 def system_matrix() -> sp.Matrix:
     """``A`` of the first-order tangential oscillator ``(X1, X1')' = A (X1, X1')``."""
-    return sp.Matrix([[0, 1], [-P["omega1"]**2, -2 * P["beta1"] * P["omega1"]]])
+    return sp.Matrix([[0, 1], [-(P["omega1"] ** 2), -2 * P["beta1"] * P["omega1"]]])
 
 
 def state_transition_branches() -> dict[str, sp.Matrix]:
@@ -53,8 +61,10 @@ def state_transition_branches() -> dict[str, sp.Matrix]:
     slow = sp.exp(-w1 / (b1 + sp.sqrt((b1 - 1) * (b1 + 1))) * tau)
     decay = -expm1(-2 * over_b * tau)
     forms = {
-        "under": (sp.exp(a * tau) * sp.cos(under_b * tau),
-                  sp.exp(a * tau) * sp.sin(under_b * tau) / under_b),
+        "under": (
+            sp.exp(a * tau) * sp.cos(under_b * tau),
+            sp.exp(a * tau) * sp.sin(under_b * tau) / under_b,
+        ),
         "over": (slow * (1 - decay / 2), slow * decay / (2 * over_b)),
         "critical": (sp.exp(a * tau), tau * sp.exp(a * tau)),
     }
@@ -65,9 +75,15 @@ def state_transition() -> sp.Matrix:
     """``Phi(tau) = expm(A tau)``, one Piecewise over the damping regime per entry."""
     b1 = P["beta1"]
     forms = state_transition_branches()
-    return sp.Matrix(2, 2, lambda i, j: sp.Piecewise(
-        (forms["under"][i, j], b1 < 1), (forms["over"][i, j], b1 > 1),
-        (forms["critical"][i, j], True)))
+    return sp.Matrix(
+        2,
+        2,
+        lambda i, j: sp.Piecewise(
+            (forms["under"][i, j], b1 < 1),
+            (forms["over"][i, j], b1 > 1),
+            (forms["critical"][i, j], True),
+        ),
+    )
 
 
 def verify_state_transition() -> None:
@@ -89,11 +105,14 @@ def verify_state_transition() -> None:
         else:
             A_r = A
         residual = (sp.diff(Phi, tau) - A_r * Phi).applyfunc(
-            lambda e: sp.simplify(sp.expand(e.rewrite(sp.exp))))
+            lambda e: sp.simplify(sp.expand(e.rewrite(sp.exp)))
+        )
         start = Phi.subs(tau, 0).applyfunc(sp.simplify)
         if not residual.is_zero_matrix or start != sp.eye(2):
-            raise AssertionError(f"{name}-damped state-transition matrix fails: "
-                                 f"residual {residual}, Phi(0) = {start}")
+            raise AssertionError(
+                f"{name}-damped state-transition matrix fails: "
+                f"residual {residual}, Phi(0) = {start}"
+            )
 
 
 def harmonic_steady_state() -> sp.Matrix:
@@ -108,16 +127,18 @@ def harmonic_steady_state() -> sp.Matrix:
     W, ph = P["Omega_t"], P["phase_t"]
     As, Ac = sp.symbols("A_s A_c")
     x = As * sp.sin(W * t + ph) + Ac * sp.cos(W * t + ph)
-    residual = sp.expand(sp.diff(x, t, 2) + 2 * b1 * w1 * sp.diff(x, t) + w1**2 * x
-                         - excitation()[0])
+    residual = sp.expand(
+        sp.diff(x, t, 2) + 2 * b1 * w1 * sp.diff(x, t) + w1**2 * x - excitation()[0]
+    )
     eqs = [residual.coeff(sp.sin(W * t + ph)), residual.coeff(sp.cos(W * t + ph))]
     sol = sp.solve(eqs, [As, Ac], dict=True)[0]
     # |omega1^2 - Omega_t^2 + 2i beta1 omega1 Omega_t|^2 as a sum of squares: expanded,
     # it cancels next to resonance
-    D = (w1**2 - W**2)**2 + (2 * b1 * w1 * W)**2
+    D = (w1**2 - W**2) ** 2 + (2 * b1 * w1 * W) ** 2
     sol = {k: sp.factor_terms(v.subs(sp.expand(D), D)) for k, v in sol.items()}
-    assert all(sp.expand(sp.denom(v) - D) == 0 or sp.expand(sp.denom(v) + D) == 0
-               for v in sol.values()), sol
+    assert all(
+        sp.expand(sp.denom(v) - D) == 0 or sp.expand(sp.denom(v) + D) == 0 for v in sol.values()
+    ), sol
     x = x.subs(sol)
     return sp.Matrix([sp.factor_terms(x), sp.factor_terms(sp.diff(x, t))])
 

@@ -19,6 +19,7 @@ The texts use the paper's notation in ASCII:
 ``omgea1``) raises ``NameError`` instead of becoming a new symbol, and a syntax
 error raises. Number literals are exact (``3/2`` is a rational).
 """
+
 from __future__ import annotations
 
 import sympy as sp
@@ -27,50 +28,127 @@ from sympy.parsing.sympy_parser import auto_number, parse_expr
 from . import mdsm
 from .fit import X2max
 from .friction import Vr
-from .model import P, X1, X2, Y1, Y2, lam, t
+from .model import X1, X2, Y1, Y2, P, lam, t
 from .stability import S1, S2, Z1, Z2, mu0, mu1, mu_bar
 
-__all__ = ["parse", "a_symbols", "X1ddot", "X2ddot", "NOTATION", "TRANSCRIPTIONS",
-           "eq_4", "eq_5", "eq_6", "eq_7", "eq_8", "eq_9", "eq_10", "eq_11", "eq_12",
-           "eq_13", "eq_14", "eq_15", "eq_16", "eq_17", "eq_18", "eq_19", "eq_20",
-           "eq_21", "eq_22", "eq_23", "eq_24", "eq_25_mu0", "eq_25_slope", "eq_26",
-           "eq_27", "eq_28", "eq_A1", "eq_A2", "eq_A3", "eq_A4", "eq_A5", "eq_A6",
-           "eq_A7", "eq_A8"]
+__all__ = [
+    "parse",
+    "a_symbols",
+    "X1ddot",
+    "X2ddot",
+    "NOTATION",
+    "TRANSCRIPTIONS",
+    "eq_4",
+    "eq_5",
+    "eq_6",
+    "eq_7",
+    "eq_8",
+    "eq_9",
+    "eq_10",
+    "eq_11",
+    "eq_12",
+    "eq_13",
+    "eq_14",
+    "eq_15",
+    "eq_16",
+    "eq_17",
+    "eq_18",
+    "eq_19",
+    "eq_20",
+    "eq_21",
+    "eq_22",
+    "eq_23",
+    "eq_24",
+    "eq_25_mu0",
+    "eq_25_slope",
+    "eq_26",
+    "eq_27",
+    "eq_28",
+    "eq_A1",
+    "eq_A2",
+    "eq_A3",
+    "eq_A4",
+    "eq_A5",
+    "eq_A6",
+    "eq_A7",
+    "eq_A8",
+]
 
 X1ddot, X2ddot = sp.symbols("X1ddot X2ddot", real=True)
 #: The coefficients of the quartic (27) as free symbols (Eq. 28 is generic in them).
 a_symbols = sp.symbols("a1:5", real=True)
 
-_PARAMETERS = {name: P[name] for name in
-               ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g",
-                "Vb", "Vhat")}
-_FUNCTIONS = {"sgn": sp.sign, "arccos": sp.acos, "sqrt": sp.sqrt, "sin": sp.sin,
-              "Abs": sp.Abs, "pi": sp.pi, "Piecewise": sp.Piecewise,
-              "Matrix": sp.Matrix, "eye": sp.eye, "Integral": sp.Integral,
-              "Derivative": sp.Derivative, "Subs": sp.Subs, "D": sp.Derivative,
-              "det": lambda M: M.det(method="berkowitz")}
+_PARAMETERS = {
+    name: P[name]
+    for name in ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g", "Vb", "Vhat")
+}
+_FUNCTIONS = {
+    "sgn": sp.sign,
+    "arccos": sp.acos,
+    "sqrt": sp.sqrt,
+    "sin": sp.sin,
+    "Abs": sp.Abs,
+    "pi": sp.pi,
+    "Piecewise": sp.Piecewise,
+    "Matrix": sp.Matrix,
+    "eye": sp.eye,
+    "Integral": sp.Integral,
+    "Derivative": sp.Derivative,
+    "Subs": sp.Subs,
+    "D": sp.Derivative,
+    "det": lambda M: M.det(method="berkowitz"),
+}
 
 #: Names a transcription may use, per notation: the total motion and slow state
 #: space (Sect. 4.1, A.2), and the MDSM split (Eqs. 13-21, A1-A2) whose slow
 #: variables are functions of the slow time ``tau``.
 NOTATION: dict[str, dict[str, object]] = {
-    "state": {**_PARAMETERS, **_FUNCTIONS, "t": t, "lam": lam, "Vr": Vr,
-              "X1": X1, "X2": X2, "Y1": Y1, "Y2": Y2, "X1dot": Y1, "X2dot": Y2,
-              "X1ddot": X1ddot, "X2ddot": X2ddot,
-              "Z1": Z1, "Z2": Z2, "S1": S1, "S2": S2, "Z1dot": S1, "Z2dot": S2,
-              "mu_bar": mu_bar, "mu_bar_0": mu0, "mu_bar_p": mu1, "X2max": X2max,
-              **dict(zip(("a1", "a2", "a3", "a4"), a_symbols))},
-    "mdsm": {**_PARAMETERS, **_FUNCTIONS, "tau": mdsm.tau, "theta": mdsm.theta,
-             "Z1": mdsm.Z1, "Z2": mdsm.Z2, "Phi1": mdsm.Phi1, "Phi2": mdsm.Phi2,
-             "Z1dot": sp.diff(mdsm.Z1, mdsm.tau), "Z2dot": sp.diff(mdsm.Z2, mdsm.tau),
-             "Z1ddot": sp.diff(mdsm.Z1, mdsm.tau, 2),
-             "Z2ddot": sp.diff(mdsm.Z2, mdsm.tau, 2),
-             "mu": mdsm.mu, "mu_bar": mdsm.mu_bar,
-             **{f"c{k}": ck for k, ck in enumerate(mdsm.c)}},
+    "state": {
+        **_PARAMETERS,
+        **_FUNCTIONS,
+        "t": t,
+        "lam": lam,
+        "Vr": Vr,
+        "X1": X1,
+        "X2": X2,
+        "Y1": Y1,
+        "Y2": Y2,
+        "X1dot": Y1,
+        "X2dot": Y2,
+        "X1ddot": X1ddot,
+        "X2ddot": X2ddot,
+        "Z1": Z1,
+        "Z2": Z2,
+        "S1": S1,
+        "S2": S2,
+        "Z1dot": S1,
+        "Z2dot": S2,
+        "mu_bar": mu_bar,
+        "mu_bar_0": mu0,
+        "mu_bar_p": mu1,
+        "X2max": X2max,
+        **dict(zip(("a1", "a2", "a3", "a4"), a_symbols)),
+    },
+    "mdsm": {
+        **_PARAMETERS,
+        **_FUNCTIONS,
+        "tau": mdsm.tau,
+        "theta": mdsm.theta,
+        "Z1": mdsm.Z1,
+        "Z2": mdsm.Z2,
+        "Phi1": mdsm.Phi1,
+        "Phi2": mdsm.Phi2,
+        "Z1dot": sp.diff(mdsm.Z1, mdsm.tau),
+        "Z2dot": sp.diff(mdsm.Z2, mdsm.tau),
+        "Z1ddot": sp.diff(mdsm.Z1, mdsm.tau, 2),
+        "Z2ddot": sp.diff(mdsm.Z2, mdsm.tau, 2),
+        "mu": mdsm.mu,
+        "mu_bar": mdsm.mu_bar,
+        **{f"c{k}": ck for k, ck in enumerate(mdsm.c)},
+    },
 }
 
-_GLOBALS = {"Integer": sp.Integer, "Float": sp.Float, "Rational": sp.Rational,
-            "__builtins__": {}}
+_GLOBALS = {"Integer": sp.Integer, "Float": sp.Float, "Rational": sp.Rational, "__builtins__": {}}
 
 
 def parse(text: str, notation: str = "state", **bound):
@@ -92,8 +170,9 @@ def parse(text: str, notation: str = "state", **bound):
     """
     names = {**NOTATION[notation], **bound}
     # Parenthesised so that a multi-line text continues across its line breaks.
-    return parse_expr(f"({text})", local_dict=names, global_dict=dict(_GLOBALS),
-                      transformations=(auto_number,))
+    return parse_expr(
+        f"({text})", local_dict=names, global_dict=dict(_GLOBALS), transformations=(auto_number,)
+    )
 
 
 # Sect. 2 -------------------------------------------------------------------------
@@ -118,8 +197,9 @@ def eq_4() -> sp.Matrix:
 # (Eq. 5 "Y1 = X1'" is the equation X1' = Y1).
 
 EQ_5 = "Y1"
-EQ_6 = ("-2*beta1*omega1*Y1 - omega1**2*X1"
-        " + mu_s*(2*beta2*omega2*X2**(3/2)*Y2 + omega2**2*X2**(3/2))")
+EQ_6 = (
+    "-2*beta1*omega1*Y1 - omega1**2*X1 + mu_s*(2*beta2*omega2*X2**(3/2)*Y2 + omega2**2*X2**(3/2))"
+)
 EQ_7 = "Y2"
 EQ_8 = "-2*beta2*omega2*X2**(3/2)*Y2 - omega2**2*X2**(3/2) + g"
 
@@ -231,11 +311,15 @@ def eq_16():
 
 # Eqs. (18)-(21): slow motion, residuals "= 0" ---------------------------------------
 
-EQ_18 = ("Z1ddot + 2*beta1*omega1*Z1dot + omega1**2*Z1"
-         " + mu_bar*(2*beta2*omega2*Z2dot + omega2**2)*(c3*Z2**3 + c2*Z2**2 + c1*Z2 + c0)")
+EQ_18 = (
+    "Z1ddot + 2*beta1*omega1*Z1dot + omega1**2*Z1"
+    " + mu_bar*(2*beta2*omega2*Z2dot + omega2**2)*(c3*Z2**3 + c2*Z2**2 + c1*Z2 + c0)"
+)
 EQ_19 = "Z2ddot + (2*beta2*omega2*Z2dot + omega2**2)*(c3*Z2**3 + c2*Z2**2 + c1*Z2 + c0) - g"
-EQ_20 = ("Z1ddot + 2*beta1*omega1*Z1dot + omega1**2*Z1"
-         " + mu_bar*(2*beta2*omega2*Z2dot + omega2**2)*Z2**(3/2)")
+EQ_20 = (
+    "Z1ddot + 2*beta1*omega1*Z1dot + omega1**2*Z1"
+    " + mu_bar*(2*beta2*omega2*Z2dot + omega2**2)*Z2**(3/2)"
+)
 EQ_21 = "Z2ddot + (2*beta2*omega2*Z2dot + omega2**2)*Z2**(3/2) - g"
 
 
@@ -338,7 +422,10 @@ def eq_28() -> sp.Matrix:
 
 # Appendix A.2 ----------------------------------------------------------------------
 
-_CUBIC = "(c3*(Z2 + Omega**(-1)*Phi2)**3 + c2*(Z2 + Omega**(-1)*Phi2)**2 + c1*(Z2 + Omega**(-1)*Phi2) + c0)"
+_CUBIC = (
+    "(c3*(Z2 + Omega**(-1)*Phi2)**3 + c2*(Z2 + Omega**(-1)*Phi2)**2"
+    " + c1*(Z2 + Omega**(-1)*Phi2) + c0)"
+)
 _SLOW_CUBIC = "(c3*Z2**3 + c2*Z2**2 + c1*Z2 + c0)"
 
 #: Eq. (A1), left side minus right side.
@@ -350,7 +437,8 @@ EQ_A1 = (
     " * (2*beta2*omega2*(Z2dot + D(Phi2, theta) + Omega**(-1)*D(Phi2, tau)) + omega2**2)"
     f" * {_CUBIC}"
     f" - mu_bar*(2*beta2*omega2*Z2dot + omega2**2)*{_SLOW_CUBIC}"
-    " - alpha*Omega**2*sin(Omega*tau)")
+    " - alpha*Omega**2*sin(Omega*tau)"
+)
 
 #: Eq. (A2), left side minus right side.
 EQ_A2 = (
@@ -358,7 +446,8 @@ EQ_A2 = (
     " + (2*beta2*omega2*(Z2dot + D(Phi2, theta) + Omega**(-1)*D(Phi2, tau)) + omega2**2)"
     f" * {_CUBIC}"
     f" - (2*beta2*omega2*Z2dot + omega2**2)*{_SLOW_CUBIC}"
-    " + alpha*Omega**2*sin(Omega*tau)")
+    " + alpha*Omega**2*sin(Omega*tau)"
+)
 
 
 def _fast_time(expr):
@@ -379,8 +468,10 @@ def eq_A2():
 # Eqs. (A3)-(A6): right-hand sides of the slow state equations; mu_bar printed
 # without argument is that of Eq. (23), mu_bar(Z1' - Vb).
 EQ_A3 = "S1"
-EQ_A4 = ("-2*beta1*omega1*S1 - omega1**2*Z1"
-         " + mu_bar(Z1dot - Vb)*(2*beta2*omega2*S2 + omega2**2)*Z2**(3/2)")
+EQ_A4 = (
+    "-2*beta1*omega1*S1 - omega1**2*Z1"
+    " + mu_bar(Z1dot - Vb)*(2*beta2*omega2*S2 + omega2**2)*Z2**(3/2)"
+)
 EQ_A5 = "S2"
 EQ_A6 = "-(2*beta2*omega2*S2 + omega2**2)*Z2**(3/2) + g"
 #: Eq. (A7): (Z1^0, S1^0, Z2^0, S2^0).
@@ -431,5 +522,8 @@ def eq_27():
 
 
 #: Every transcription text by the name of its constant (for tests and the report).
-TRANSCRIPTIONS = {name: value for name, value in sorted(globals().items())
-                  if name.startswith("EQ_") and isinstance(value, str)}
+TRANSCRIPTIONS = {
+    name: value
+    for name, value in sorted(globals().items())
+    if name.startswith("EQ_") and isinstance(value, str)
+}

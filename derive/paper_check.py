@@ -27,6 +27,7 @@ check-paper runs after ``python -m derive``. Their numbers are rounded (two or
 three digits, counts, ``< 1e-4``) so that the report is the same on every code path
 of the CI.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -34,21 +35,36 @@ import random
 import re
 import time
 import zlib
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import lru_cache
-from typing import Callable
+from functools import cache
 
 import mpmath
 import sympy as sp
 
 from . import codegen, friction, mdsm, paper, stability, statespace
 from .fit import X2max, coefficients_eq_17, fit_error, polynomial_eq_16
-from .model import P, STATE, X2, equal_excitation, equations_of_motion, lam, t
+from .model import STATE, X2, P, equal_excitation, equations_of_motion, lam, t
 from .parameters import BASE
 
-__all__ = ["Variant", "Row", "Outcome", "RowResult", "Claim", "ClaimResult", "compare",
-           "check_row", "rows", "claims", "run", "report", "main", "REPORT",
-           "DIGITS", "POINTS"]
+__all__ = [
+    "Variant",
+    "Row",
+    "Outcome",
+    "RowResult",
+    "Claim",
+    "ClaimResult",
+    "compare",
+    "check_row",
+    "rows",
+    "claims",
+    "run",
+    "report",
+    "main",
+    "REPORT",
+    "DIGITS",
+    "POINTS",
+]
 
 REPORT = "PAPER_CHECK.md"
 #: Working precision of the numeric comparison, and the agreement it requires.
@@ -62,10 +78,11 @@ SIMPLIFY_OPS = 150
 SHOW_OPS = 40
 
 CONVENTIONS = stability.CONVENTIONS
-d = sp.Symbol("d", positive=True)   # Vhat - Vb on the branch Vhat > Vb
+d = sp.Symbol("d", positive=True)  # Vhat - Vb on the branch Vhat > Vb
 
 
 # The engine ---------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Variant:
@@ -129,8 +146,7 @@ def _components(obj, names=()):
         elif 1 in obj.shape:
             labels = [f"component {i + 1}" for i in range(len(items))]
         else:
-            labels = [f"entry ({i + 1},{j + 1})" for i in range(obj.rows)
-                      for j in range(obj.cols)]
+            labels = [f"entry ({i + 1},{j + 1})" for i in range(obj.rows) for j in range(obj.cols)]
     else:
         items, labels = [sp.sympify(obj)], list(names) or [""]
     if len(labels) != len(items):
@@ -159,14 +175,18 @@ def _frozen(exprs):
     atoms = set()
     for e in exprs:
         atoms |= e.atoms(sp.Derivative)
-    mapping = {a: sp.Symbol(f"_f{i}", real=True)
-               for i, a in enumerate(sorted(atoms, key=sp.default_sort_key))}
+    mapping = {
+        a: sp.Symbol(f"_f{i}", real=True)
+        for i, a in enumerate(sorted(atoms, key=sp.default_sort_key))
+    }
     exprs = [e.xreplace(mapping) for e in exprs]
     applied = set()
     for e in exprs:
         applied |= e.atoms(sp.core.function.AppliedUndef)
-    more = {a: sp.Symbol(f"_g{i}", real=True)
-            for i, a in enumerate(sorted(applied, key=sp.default_sort_key))}
+    more = {
+        a: sp.Symbol(f"_g{i}", real=True)
+        for i, a in enumerate(sorted(applied, key=sp.default_sort_key))
+    }
     return [e.xreplace(more) for e in exprs], {**mapping, **more}
 
 
@@ -184,8 +204,9 @@ def _sample(sym: sp.Symbol, rng: random.Random):
     elif sym.is_real:
         v = rng.uniform(-3, 3)
     else:
-        return (sp.Rational(round(rng.uniform(-3, 3) * 10**6), 10**6)
-                + sp.I * sp.Rational(round(rng.uniform(-3, 3) * 10**6), 10**6))
+        return sp.Rational(round(rng.uniform(-3, 3) * 10**6), 10**6) + sp.I * sp.Rational(
+            round(rng.uniform(-3, 3) * 10**6), 10**6
+        )
     return sp.Rational(round(v * 10**6), 10**6)
 
 
@@ -194,8 +215,9 @@ def _value(expr, point) -> mpmath.mpc:
     if not v.is_number or v.has(sp.nan, sp.zoo, sp.oo):
         raise ArithmeticError(f"could not evaluate {expr} at {point}: {v}")
     re, im = v.as_real_imag()
-    return mpmath.mpc(mpmath.mpf(sp.Float(re, DIGITS)._mpf_),
-                      mpmath.mpf(sp.Float(im, DIGITS)._mpf_))
+    return mpmath.mpc(
+        mpmath.mpf(sp.Float(re, DIGITS)._mpf_), mpmath.mpf(sp.Float(im, DIGITS)._mpf_)
+    )
 
 
 def _close(a, b) -> bool:
@@ -209,7 +231,7 @@ def _fmt(v) -> str:
     return f"{v.real:.6g}{v.imag:+.6g}i"
 
 
-@lru_cache(maxsize=None)
+@cache
 def base_point() -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
     """The paper's base set (Fig. 2, ``Vb = 4``) for the numeric examples of the report.
 
@@ -221,11 +243,20 @@ def base_point() -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
     num.update({k: sp.sympify(v).subs(num) for k, v in equal_excitation().items()})
     vh = sp.N(friction.vhat("tangential").subs(num), DIGITS + 10)
     num[P["Vhat"]] = vh
-    x20 = sp.N(((P["g"] / P["omega2"]**2)**sp.Rational(2, 3)).subs(num), DIGITS + 10)
+    x20 = sp.N(((P["g"] / P["omega2"] ** 2) ** sp.Rational(2, 3)).subs(num), DIGITS + 10)
     mu0 = sp.N(friction.mu_bar0_eq_25().subs(num), DIGITS + 10)
     mu1 = sp.N(friction.mu_bar_slope_eq_25().subs(num), DIGITS + 10)
-    num.update({stability.mu0: mu0, stability.mu1: mu1, X2max: x20, X2: x20,
-                stability.Z2: x20, d: vh - num[P["Vb"]], friction.Vr: -num[P["Vb"]]})
+    num.update(
+        {
+            stability.mu0: mu0,
+            stability.mu1: mu1,
+            X2max: x20,
+            X2: x20,
+            stability.Z2: x20,
+            d: vh - num[P["Vb"]],
+            friction.Vr: -num[P["Vb"]],
+        }
+    )
     for s in (*STATE, *stability.SLOW):
         num.setdefault(s, sp.Integer(0))
     num[t] = sp.Integer(1)
@@ -238,8 +269,9 @@ def base_point() -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
 def _at_base(expr):
     """``expr`` at `base_point`, or None if it has symbols the base set does not fix."""
     point = dict(base_point())
-    expr = expr.replace(lambda e: isinstance(e, stability.mu_bar),
-                        lambda e: friction.mu_bar_eq_23(e.args[0]))
+    expr = expr.replace(
+        lambda e: isinstance(e, stability.mu_bar), lambda e: friction.mu_bar_eq_23(e.args[0])
+    )
     expr = expr.xreplace(point)
     if expr.free_symbols or expr.atoms(sp.core.function.AppliedUndef):
         return None
@@ -268,9 +300,11 @@ def compare(printed, derived, *, seed: int, assume=None, names=()) -> Outcome:
     a_items, labels = _components(printed, names)
     b_items, _ = _components(derived, names)
     if len(a_items) != len(b_items) or (
-            getattr(printed, "shape", None) != getattr(derived, "shape", None)):
-        raise ValueError(f"shapes differ: {getattr(printed, 'shape', 1)} "
-                         f"vs {getattr(derived, 'shape', 1)}")
+        getattr(printed, "shape", None) != getattr(derived, "shape", None)
+    ):
+        raise ValueError(
+            f"shapes differ: {getattr(printed, 'shape', 1)} vs {getattr(derived, 'shape', 1)}"
+        )
     a_items = [sp.sympify(x).subs(assume) for x in a_items]
     b_items = [sp.sympify(x).subs(assume) for x in b_items]
     methods, pending = [], []
@@ -286,7 +320,7 @@ def compare(printed, derived, *, seed: int, assume=None, names=()) -> Outcome:
 
     rng = random.Random(seed)
     frozen, _ = _frozen([a_items[i] for i in pending] + [b_items[i] for i in pending])
-    fa, fb = frozen[:len(pending)], frozen[len(pending):]
+    fa, fb = frozen[: len(pending)], frozen[len(pending) :]
     symbols = sorted(set().union(*(e.free_symbols for e in frozen)), key=lambda s: s.name)
     bad = []
     with mpmath.workdps(DIGITS):
@@ -311,8 +345,9 @@ def compare(printed, derived, *, seed: int, assume=None, names=()) -> Outcome:
         parts.append(f"at the base set: printed {_fmt(ea)}, derived {_fmt(eb)}")
     else:
         parts.append(f"at seeded point {k + 1}: printed {_fmt(va)}, derived {_fmt(vb)}")
-    return Outcome(False, f"{method}; differs at {len({b[0] for b in bad})} of {POINTS}",
-                   "".join(parts))
+    return Outcome(
+        False, f"{method}; differs at {len({b[0] for b in bad})} of {POINTS}", "".join(parts)
+    )
 
 
 def _seed(*parts: str) -> int:
@@ -321,8 +356,12 @@ def _seed(*parts: str) -> int:
 
 def check_row(row: Row) -> RowResult:
     """Compare every variant of ``row`` and derive its status and explanation."""
-    outcomes = tuple(compare(v.printed(), v.derived(), seed=_seed(row.key, v.label),
-                             assume=v.assume, names=v.names) for v in row.variants)
+    outcomes = tuple(
+        compare(
+            v.printed(), v.derived(), seed=_seed(row.key, v.label), assume=v.assume, names=v.names
+        )
+        for v in row.variants
+    )
     matching = [v.label for v, o in zip(row.variants, outcomes) if o.equal]
     if len(matching) == len(outcomes):
         status = "matches"
@@ -345,6 +384,7 @@ def check_row(row: Row) -> RowResult:
 
 # The rows, in paper order ----------------------------------------------------------------
 
+
 def _matrix(values):
     return sp.Matrix(list(values))
 
@@ -365,20 +405,28 @@ def _slow(i, convention):
 
 
 def _forced_charpoly(convention):
-    return lambda: statespace.charpoly_eq_12(
-        stability.forced_jacobian_eq_22(convention)).as_expr()
+    return lambda: statespace.charpoly_eq_12(stability.forced_jacobian_eq_22(convention)).as_expr()
 
 
 _A1, _A2, _PH1, _PH2 = sp.symbols("A1 A2", positive=True) + sp.symbols("phi1 phi2", real=True)
 #: Fast monomials whose average the MDSM uses (Eq. 15 must agree with them).
-_FAST = (mdsm.Phi1, mdsm.Phi2, sp.diff(mdsm.Phi1, mdsm.theta), mdsm.Phi2**2, mdsm.Phi2**3,
-         mdsm.Phi1 * mdsm.Phi2, mdsm.Phi2**2 * sp.diff(mdsm.Phi2, mdsm.theta),
-         mdsm.Phi2 * sp.diff(mdsm.Phi2, mdsm.theta)**2)
+_FAST = (
+    mdsm.Phi1,
+    mdsm.Phi2,
+    sp.diff(mdsm.Phi1, mdsm.theta),
+    mdsm.Phi2**2,
+    mdsm.Phi2**3,
+    mdsm.Phi1 * mdsm.Phi2,
+    mdsm.Phi2**2 * sp.diff(mdsm.Phi2, mdsm.theta),
+    mdsm.Phi2 * sp.diff(mdsm.Phi2, mdsm.theta) ** 2,
+)
 
 
 def _harmonic(f):
-    shapes = {mdsm.Phi1: _A1 * sp.sin(mdsm.theta + _PH1),
-              mdsm.Phi2: _A2 * sp.sin(mdsm.theta + _PH2)}
+    shapes = {
+        mdsm.Phi1: _A1 * sp.sin(mdsm.theta + _PH1),
+        mdsm.Phi2: _A2 * sp.sin(mdsm.theta + _PH2),
+    }
     return f.subs(shapes).doit()
 
 
@@ -387,117 +435,238 @@ def _eq15_printed():
 
 
 def _eq15_derived():
-    return sp.Matrix([sp.simplify(mdsm.harmonic_averages(mdsm.avg(f), _A1, _A2, _PH1, _PH2))
-                      for f in _FAST])
+    return sp.Matrix(
+        [sp.simplify(mdsm.harmonic_averages(mdsm.avg(f), _A1, _A2, _PH1, _PH2)) for f in _FAST]
+    )
 
 
-_WHY_CONSISTENT = ("with the sign of Eq. (4), `-mu_bar(Z1'-Vb) F_n` (as Eq. 20 prints it), "
-                   "every friction term changes sign;")
-_WHY_PAPER_SIGN = ("Eq. (A4) carries `+mu_bar F_n` with `mu_bar` of Eq. (23) negative for "
-                   "`V_r < 0`, i.e. friction pushing against the belt; Eq. (20) and the MDSM "
-                   "derivation give `-mu_bar F_n`;")
+_WHY_CONSISTENT = (
+    "with the sign of Eq. (4), `-mu_bar(Z1'-Vb) F_n` (as Eq. 20 prints it), "
+    "every friction term changes sign;"
+)
+_WHY_PAPER_SIGN = (
+    "Eq. (A4) carries `+mu_bar F_n` with `mu_bar` of Eq. (23) negative for "
+    "`V_r < 0`, i.e. friction pushing against the belt; Eq. (20) and the MDSM "
+    "derivation give `-mu_bar F_n`;"
+)
 
 
 def rows() -> tuple[Row, ...]:
     """Every numbered equation of the paper with its derivation."""
+
     def conv(printed, derived_of, whys, names=()):
-        return tuple(Variant(printed, derived_of(c), c, whys.get(c, ""), names)
-                     for c in CONVENTIONS)
+        return tuple(
+            Variant(printed, derived_of(c), c, whys.get(c, ""), names) for c in CONVENTIONS
+        )
 
     J11 = statespace.jacobian_at_equilibrium_eq_11
     eq9 = lambda: _matrix(statespace.equilibrium_eq_9()[s] for s in STATE)  # noqa: E731
     return (
-        Row("Eq. 4", "equations of motion, solved for the accelerations",
-            (Variant(_eq4_printed, lambda: equations_of_motion(general=False)),)),
+        Row(
+            "Eq. 4",
+            "equations of motion, solved for the accelerations",
+            (Variant(_eq4_printed, lambda: equations_of_motion(general=False)),),
+        ),
         Row("Eq. 5", "state equation `X1' = Y1`", (Variant(paper.eq_5, _state(0)),)),
-        Row("Eq. 6", "state equation `Y1'` (branch `X1' < Vb`)",
-            (Variant(paper.eq_6, _state(1)),)),
+        Row("Eq. 6", "state equation `Y1'` (branch `X1' < Vb`)", (Variant(paper.eq_6, _state(1)),)),
         Row("Eq. 7", "state equation `X2' = Y2`", (Variant(paper.eq_7, _state(2)),)),
         Row("Eq. 8", "state equation `Y2'`", (Variant(paper.eq_8, _state(3)),)),
         Row("Eq. 9", "unforced equilibrium", (Variant(paper.eq_9, eq9),)),
-        Row("Eq. 10", "Jacobian of Eqs. 5-8",
-            (Variant(paper.eq_10, statespace.jacobian_eq_10),)),
+        Row("Eq. 10", "Jacobian of Eqs. 5-8", (Variant(paper.eq_10, statespace.jacobian_eq_10),)),
         Row("Eq. 11", "Jacobian at equilibrium `J^0`", (Variant(paper.eq_11, J11),)),
-        Row("Eq. 12", "characteristic polynomial of the printed `J^0`",
-            (Variant(paper.eq_12, lambda: statespace.charpoly_eq_12(J11()).as_expr()),)),
-        Row("Eq. 13", "MDSM split of `X1`",
-            (Variant(paper.eq_13, lambda: mdsm.split_eqs_13_14()[0][0]),)),
-        Row("Eq. 14", "MDSM split of `X2`",
-            (Variant(paper.eq_14, lambda: mdsm.split_eqs_13_14()[0][1]),)),
-        Row("Eq. 15", "fast average (printed integral) against the MDSM averages, "
-                      "harmonic `Phi`, for " + ", ".join(f"`{sp.sstr(f)}`" for f in _FAST[:2])
+        Row(
+            "Eq. 12",
+            "characteristic polynomial of the printed `J^0`",
+            (Variant(paper.eq_12, lambda: statespace.charpoly_eq_12(J11()).as_expr()),),
+        ),
+        Row(
+            "Eq. 13",
+            "MDSM split of `X1`",
+            (Variant(paper.eq_13, lambda: mdsm.split_eqs_13_14()[0][0]),),
+        ),
+        Row(
+            "Eq. 14",
+            "MDSM split of `X2`",
+            (Variant(paper.eq_14, lambda: mdsm.split_eqs_13_14()[0][1]),),
+        ),
+        Row(
+            "Eq. 15",
+            "fast average (printed integral) against the MDSM averages, "
+            "harmonic `Phi`, for "
+            + ", ".join(f"`{sp.sstr(f)}`" for f in _FAST[:2])
             + " and six products",
-            (Variant(_eq15_printed, _eq15_derived),)),
-        Row("Eq. 16", "cubic in `X2` with the printed coefficients",
-            (Variant(paper.eq_16, lambda: polynomial_eq_16(X2, 3)),)),
-        Row("Eq. 17", "least-squares coefficients `c3, c2, c1, c0`",
-            (Variant(paper.eq_17, lambda: _matrix(reversed(coefficients_eq_17(3))),
-                     names=("c3", "c2", "c1", "c0")),)),
-        Row("Eq. 18", "slow tangential equation with the cubic",
-            (Variant(paper.eq_18, lambda: mdsm.slow_equations_18_19()[0]),)),
-        Row("Eq. 19", "slow normal equation with the cubic",
-            (Variant(paper.eq_19, lambda: mdsm.slow_equations_18_19()[1]),)),
-        Row("Eq. 20", "slow tangential equation with `Z2^(3/2)`",
-            (Variant(paper.eq_20, lambda: mdsm.slow_equations_20_21()[0]),)),
-        Row("Eq. 21", "slow normal equation with `Z2^(3/2)`",
-            (Variant(paper.eq_21, lambda: mdsm.slow_equations_20_21()[1]),)),
-        Row("Eq. 22", "forced Jacobian `J_f^0`",
-            conv(paper.eq_22, lambda c: lambda: stability.forced_jacobian_eq_22(c),
-                 {"consistent": _WHY_CONSISTENT})),
-        Row("Eq. 23", "effective friction (arc-cosine form)",
-            (Variant(paper.eq_23,
-                     lambda: friction.mu_bar_eq_23(stability.S1 - P["Vb"])),)),
-        Row("Eq. 24", "first-order expansion of the printed Eq. 23 at `Z1' = 0`",
-            (Variant(paper.eq_24, lambda: stability.with_friction(
-                stability.mu0 + stability.mu1 * stability.S1)),)),
-        Row("Eq. 25 (mu_bar^0)", "`mu_bar^0 = mu_bar(Z1'^0)` with Eq. 23",
-            (Variant(lambda: paper.eq_25_mu0("Z1dot"), friction.mu_bar0_eq_25, "argument Z1'"),
-             Variant(lambda: paper.eq_25_mu0("Vr"), friction.mu_bar0_eq_25, "argument V_r",
-                     "read as Eq. (23)'s `mu_bar(V_r)` at `V_r = Z1'^0 = 0` the value is "
-                     "`mu_bar(0) = 0`; the expansion point of Eq. (24) is `Z1' = 0`, "
-                     "i.e. `V_r = -Vb`;"))),
-        Row("Eq. 25 (mu_bar')", "slope of the effective friction, for `Vhat > Vb`",
-            (Variant(paper.eq_25_slope, friction.mu_bar_slope_eq_25,
-                     assume={P["Vhat"]: P["Vb"] + d}),)),
-        Row("Eq. 26", "characteristic polynomial of the printed `J_f^0`",
-            conv(paper.eq_26, _forced_charpoly,
-                 {"consistent": "inherits Eq. (22): the `mu_bar' g` term changes sign "
-                                "(`mu_bar^0` drops out of the determinant);"})),
-        Row("Eq. 27", "quartic with the printed `a1..a4` of Eq. A8",
-            conv(paper.eq_27, _forced_charpoly,
-                 {"consistent": "inherits Eq. (22): every `mu_bar'` term changes sign;"})),
-        Row("Eq. 28", "Hurwitz determinants `H1..H4` (generic `a1..a4`)",
-            (Variant(paper.eq_28,
-                     lambda: _matrix(stability.hurwitz_determinants(*paper.a_symbols)),
-                     why="the printed `H4` has `a1 a4^2` where the 4th leading minor of the "
-                         "Hurwitz matrix (= `a4 H3`) has `a1^2 a4^2`; the printed term is "
-                         "dimensionally inconsistent (`a_k` ~ 1/s^k: s^-9 among s^-10);",
-                     names=("H1", "H2", "H3", "H4")),)),
-        Row("Eq. A1", "fast tangential equation (residual)",
-            (Variant(paper.eq_A1, lambda: mdsm.fast_equations_A1_A2()[0]),)),
-        Row("Eq. A2", "fast normal equation (residual)",
-            (Variant(paper.eq_A2, lambda: mdsm.fast_equations_A1_A2()[1]),)),
-        Row("Eq. A3", "slow state equation `Z1' = S1`",
-            conv(paper.eq_A3, lambda c: _slow(0, c), {})),
-        Row("Eq. A4", "slow state equation `S1'`",
-            conv(paper.eq_A4, lambda c: _slow(1, c), {"consistent": _WHY_PAPER_SIGN})),
-        Row("Eq. A5", "slow state equation `Z2' = S2`",
-            conv(paper.eq_A5, lambda c: _slow(2, c), {})),
-        Row("Eq. A6", "slow state equation `S2'`",
-            conv(paper.eq_A6, lambda c: _slow(3, c), {})),
-        Row("Eq. A7", "slow equilibrium",
-            conv(paper.eq_A7, lambda c: lambda: _matrix(
-                stability.slow_equilibrium_A7(c)[s] for s in stability.SLOW),
-                {"consistent": "with the sign of Eq. (4), `Z1^0 = -mu_bar^0 g/omega1^2 > 0` "
-                               "(like `X1^0` of Eq. 9); the printed `Z1^0` is negative;"})),
-        Row("Eq. A8", "coefficients `a1..a4` of the quartic",
-            conv(paper.eq_A8, lambda c: lambda: _matrix(stability.coefficients_A8(c)),
-                 {"consistent": "inherits Eq. (22): every `mu_bar'` term changes sign;"},
-                 names=("a1", "a2", "a3", "a4"))),
+            (Variant(_eq15_printed, _eq15_derived),),
+        ),
+        Row(
+            "Eq. 16",
+            "cubic in `X2` with the printed coefficients",
+            (Variant(paper.eq_16, lambda: polynomial_eq_16(X2, 3)),),
+        ),
+        Row(
+            "Eq. 17",
+            "least-squares coefficients `c3, c2, c1, c0`",
+            (
+                Variant(
+                    paper.eq_17,
+                    lambda: _matrix(reversed(coefficients_eq_17(3))),
+                    names=("c3", "c2", "c1", "c0"),
+                ),
+            ),
+        ),
+        Row(
+            "Eq. 18",
+            "slow tangential equation with the cubic",
+            (Variant(paper.eq_18, lambda: mdsm.slow_equations_18_19()[0]),),
+        ),
+        Row(
+            "Eq. 19",
+            "slow normal equation with the cubic",
+            (Variant(paper.eq_19, lambda: mdsm.slow_equations_18_19()[1]),),
+        ),
+        Row(
+            "Eq. 20",
+            "slow tangential equation with `Z2^(3/2)`",
+            (Variant(paper.eq_20, lambda: mdsm.slow_equations_20_21()[0]),),
+        ),
+        Row(
+            "Eq. 21",
+            "slow normal equation with `Z2^(3/2)`",
+            (Variant(paper.eq_21, lambda: mdsm.slow_equations_20_21()[1]),),
+        ),
+        Row(
+            "Eq. 22",
+            "forced Jacobian `J_f^0`",
+            conv(
+                paper.eq_22,
+                lambda c: lambda: stability.forced_jacobian_eq_22(c),
+                {"consistent": _WHY_CONSISTENT},
+            ),
+        ),
+        Row(
+            "Eq. 23",
+            "effective friction (arc-cosine form)",
+            (Variant(paper.eq_23, lambda: friction.mu_bar_eq_23(stability.S1 - P["Vb"])),),
+        ),
+        Row(
+            "Eq. 24",
+            "first-order expansion of the printed Eq. 23 at `Z1' = 0`",
+            (
+                Variant(
+                    paper.eq_24,
+                    lambda: stability.with_friction(stability.mu0 + stability.mu1 * stability.S1),
+                ),
+            ),
+        ),
+        Row(
+            "Eq. 25 (mu_bar^0)",
+            "`mu_bar^0 = mu_bar(Z1'^0)` with Eq. 23",
+            (
+                Variant(lambda: paper.eq_25_mu0("Z1dot"), friction.mu_bar0_eq_25, "argument Z1'"),
+                Variant(
+                    lambda: paper.eq_25_mu0("Vr"),
+                    friction.mu_bar0_eq_25,
+                    "argument V_r",
+                    "read as Eq. (23)'s `mu_bar(V_r)` at `V_r = Z1'^0 = 0` the value is "
+                    "`mu_bar(0) = 0`; the expansion point of Eq. (24) is `Z1' = 0`, "
+                    "i.e. `V_r = -Vb`;",
+                ),
+            ),
+        ),
+        Row(
+            "Eq. 25 (mu_bar')",
+            "slope of the effective friction, for `Vhat > Vb`",
+            (
+                Variant(
+                    paper.eq_25_slope, friction.mu_bar_slope_eq_25, assume={P["Vhat"]: P["Vb"] + d}
+                ),
+            ),
+        ),
+        Row(
+            "Eq. 26",
+            "characteristic polynomial of the printed `J_f^0`",
+            conv(
+                paper.eq_26,
+                _forced_charpoly,
+                {
+                    "consistent": "inherits Eq. (22): the `mu_bar' g` term changes sign "
+                    "(`mu_bar^0` drops out of the determinant);"
+                },
+            ),
+        ),
+        Row(
+            "Eq. 27",
+            "quartic with the printed `a1..a4` of Eq. A8",
+            conv(
+                paper.eq_27,
+                _forced_charpoly,
+                {"consistent": "inherits Eq. (22): every `mu_bar'` term changes sign;"},
+            ),
+        ),
+        Row(
+            "Eq. 28",
+            "Hurwitz determinants `H1..H4` (generic `a1..a4`)",
+            (
+                Variant(
+                    paper.eq_28,
+                    lambda: _matrix(stability.hurwitz_determinants(*paper.a_symbols)),
+                    why="the printed `H4` has `a1 a4^2` where the 4th leading minor of the "
+                    "Hurwitz matrix (= `a4 H3`) has `a1^2 a4^2`; the printed term is "
+                    "dimensionally inconsistent (`a_k` ~ 1/s^k: s^-9 among s^-10);",
+                    names=("H1", "H2", "H3", "H4"),
+                ),
+            ),
+        ),
+        Row(
+            "Eq. A1",
+            "fast tangential equation (residual)",
+            (Variant(paper.eq_A1, lambda: mdsm.fast_equations_A1_A2()[0]),),
+        ),
+        Row(
+            "Eq. A2",
+            "fast normal equation (residual)",
+            (Variant(paper.eq_A2, lambda: mdsm.fast_equations_A1_A2()[1]),),
+        ),
+        Row(
+            "Eq. A3", "slow state equation `Z1' = S1`", conv(paper.eq_A3, lambda c: _slow(0, c), {})
+        ),
+        Row(
+            "Eq. A4",
+            "slow state equation `S1'`",
+            conv(paper.eq_A4, lambda c: _slow(1, c), {"consistent": _WHY_PAPER_SIGN}),
+        ),
+        Row(
+            "Eq. A5", "slow state equation `Z2' = S2`", conv(paper.eq_A5, lambda c: _slow(2, c), {})
+        ),
+        Row("Eq. A6", "slow state equation `S2'`", conv(paper.eq_A6, lambda c: _slow(3, c), {})),
+        Row(
+            "Eq. A7",
+            "slow equilibrium",
+            conv(
+                paper.eq_A7,
+                lambda c: (
+                    lambda: _matrix(stability.slow_equilibrium_A7(c)[s] for s in stability.SLOW)
+                ),
+                {
+                    "consistent": "with the sign of Eq. (4), `Z1^0 = -mu_bar^0 g/omega1^2 > 0` "
+                    "(like `X1^0` of Eq. 9); the printed `Z1^0` is negative;"
+                },
+            ),
+        ),
+        Row(
+            "Eq. A8",
+            "coefficients `a1..a4` of the quartic",
+            conv(
+                paper.eq_A8,
+                lambda c: lambda: _matrix(stability.coefficients_A8(c)),
+                {"consistent": "inherits Eq. (22): every `mu_bar'` term changes sign;"},
+                names=("a1", "a2", "a3", "a4"),
+            ),
+        ),
     )
 
 
 # Claims in words -------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Claim:
@@ -536,35 +705,39 @@ def _claim_mu_s():
     J0 = statespace.jacobian_at_equilibrium_eq_11()
     poly = statespace.charpoly_eq_12(J0).as_expr()
     in_J = not statespace.free_of(J0, P["mu_s"])
-    absent = statespace.free_of(poly, P["mu_s"]) and statespace.free_of(paper.eq_12(),
-                                                                        P["mu_s"])
+    absent = statespace.free_of(poly, P["mu_s"]) and statespace.free_of(paper.eq_12(), P["mu_s"])
     ok = in_J and absent
     return ([""] if ok else []), (
         f"`mu_s` {'appears' if in_J else 'does not appear'} in `J^0` (Eq. 11) and "
         f"{'is absent from' if absent else 'appears in'} `det(lambda I - J^0)` "
         "(derived and printed): the friction column only couples the tangential block "
-        "to the normal one, so the determinant is the product of the two diagonal blocks.")
+        "to the normal one, so the determinant is the product of the two diagonal blocks."
+    )
 
 
 def _claim_only_slope():
     found = []
     for c in CONVENTIONS:
         a = stability.coefficients_A8(c)
-        found.append(all(statespace.free_of(x, stability.mu0) for x in a)
-                     and any(not statespace.free_of(x, stability.mu1) for x in a))
+        found.append(
+            all(statespace.free_of(x, stability.mu0) for x in a)
+            and any(not statespace.free_of(x, stability.mu1) for x in a)
+        )
     printed = paper.eq_A8()
-    found.append(printed.free_symbols.isdisjoint({stability.mu0})
-                 and stability.mu1 in printed.free_symbols)
+    found.append(
+        printed.free_symbols.isdisjoint({stability.mu0}) and stability.mu1 in printed.free_symbols
+    )
     ok = all(found)
     return ([""] if ok else []), (
         "`a1..a4` contain `mu_bar'` and not `mu_bar^0` in both conventions and in the "
         "printed Eq. A8: `mu_bar^0` sits only in the upper-right block of `J_f^0`, "
-        "which a block-triangular determinant never uses.")
+        "which a block-triangular determinant never uses."
+    )
 
 
 def _claim_fit():
     err = fit_error(3)
-    rel = err.max_abs / X2max**sp.Rational(3, 2)
+    rel = err.max_abs / X2max ** sp.Rational(3, 2)
     num = _base_numbers()
     top = mdsm.x2max().subs(num)
     absolute = err.max_abs.subs(X2max, top)
@@ -577,27 +750,35 @@ def _claim_fit():
     return holds, (
         f"largest error exactly `{sp.sstr(err.max_abs)}` at `X2 = {sp.sstr(err.argmax)}` "
         f"(RMS `{sp.sstr(err.rms)}`): {_n(rel, 3)} of `X2max^(3/2)`, which rounds to "
-        f"1e{order(rel)} (\"about 1e-2\" read as the nearest power of ten); in absolute "
+        f'1e{order(rel)} ("about 1e-2" read as the nearest power of ten); in absolute '
         f"terms at the base set's fitted range `X2max = {_n(top, 4)}` m "
-        f"(`derive.mdsm.x2max`) it is {_n(absolute, 3)} m^(3/2).")
+        f"(`derive.mdsm.x2max`) it is {_n(absolute, 3)} m^(3/2)."
+    )
 
 
 def _claim_overdamped():
     num = _base_numbers()
     normal = statespace.block_quadratics(statespace.jacobian_at_equilibrium_eq_11())[1]
     disc = normal.disc.subs(num)
-    same = all(stability.forced_jacobian_eq_22(c)[2:, 2:]
-               == statespace.jacobian_at_equilibrium_eq_11()[2:, 2:] for c in CONVENTIONS)
+    same = all(
+        stability.forced_jacobian_eq_22(c)[2:, 2:]
+        == statespace.jacobian_at_equilibrium_eq_11()[2:, 2:]
+        for c in CONVENTIONS
+    )
     b2 = P["beta2"]
-    crit = [r for r in sp.solve(normal.disc.subs({k: v for k, v in num.items() if k != b2}),
-                                b2) if r.is_positive]
+    crit = [
+        r
+        for r in sp.solve(normal.disc.subs({k: v for k, v in num.items() if k != b2}), b2)
+        if r.is_positive
+    ]
     ok = disc > 0 and normal.p.subs(num) > 0 and normal.q.subs(num) > 0 and same
     return ([""] if ok else []), (
         f"normal block of `J^0`: `lambda^2 + {_n(normal.p.subs(num), 4)} lambda + "
         f"{_n(normal.q.subs(num), 4)}`, quarter discriminant {_n(disc, 4)} > 0 (two real "
         f"negative eigenvalues); the forced `J_f^0` has the same normal block "
         f"({'both conventions' if same else 'NOT in every convention'}); critical damping "
-        f"at `beta2* = {', '.join(str(_n(r, 4)) for r in crit)}`.")
+        f"at `beta2* = {', '.join(str(_n(r, 4)) for r in crit)}`."
+    )
 
 
 def _unstable_ranges(convention: str, vhat_value, num) -> list[tuple[float, float]]:
@@ -605,8 +786,10 @@ def _unstable_ranges(convention: str, vhat_value, num) -> list[tuple[float, floa
 
     Scanned on a 0.05 m/s grid, each edge then bisected to 1e-15.
     """
-    a = [stability.with_friction(x).subs(num).subs(P["Vhat"], vhat_value)
-         for x in stability.coefficients_A8(convention)]
+    a = [
+        stability.with_friction(x).subs(num).subs(P["Vhat"], vhat_value)
+        for x in stability.coefficients_A8(convention)
+    ]
     H = [sp.lambdify(P["Vb"], h, "mpmath") for h in stability.hurwitz_determinants(*a)]
 
     def unstable(v):
@@ -635,13 +818,14 @@ def _claim_bifurcation():
         vh = sp.re(vh) if abs(sp.im(vh)) < 1e-20 else vh
         for c in CONVENTIONS:
             ranges = _unstable_ranges(c, vh, num)
-            text = (", ".join(f"[{lo:.4g}, {hi:.4g})" for lo, hi in ranges)
-                    if ranges else "none")
+            text = ", ".join(f"[{lo:.4g}, {hi:.4g})" for lo, hi in ranges) if ranges else "none"
             parts.append(f"V_hat {model} ({_n(vh, 4)}), {c}: unstable {text}")
             if ranges and abs(ranges[-1][1] - 8) <= 0.8:
                 holds.append(f"V_hat {model}, convention {c}")
-    return holds, ("; ".join(parts) + ". \"About 8\" read as within 10 %: the upper end "
-                   "of the unstable range (stable above it) must lie in [7.2, 8.8].")
+    return holds, (
+        "; ".join(parts) + '. "About 8" read as within 10 %: the upper end '
+        "of the unstable range (stable above it) must lie in [7.2, 8.8]."
+    )
 
 
 def _claim_slope():
@@ -663,24 +847,39 @@ def _claim_slope():
         f"(derivative >= 0), {'tends to +oo' if to_inf else 'stays finite'} as "
         f"`Vb -> Vhat-`, and is {'0' if above else 'not 0'} for `Vb > Vhat`; its smallest "
         f"value is `{sp.sstr(start)}` at `Vb = 0`, {_n(start.subs(num).subs(Vh, vh), 3)} at "
-        "the base set (tangential `Vhat`): \"nearly zero\" only for large `Vhat`.")
+        'the base set (tangential `Vhat`): "nearly zero" only for large `Vhat`.'
+    )
 
 
 def _claim_unforced_limit():
     poly = statespace.charpoly_eq_12(statespace.jacobian_at_equilibrium_eq_11())
-    ok = all(sp.expand(sp.Poly(statespace.charpoly_eq_12(
-        stability.forced_jacobian_eq_22(c)).as_expr().subs(stability.mu1, 0), lam).as_expr()
-        - poly.as_expr()) == 0 for c in CONVENTIONS)
+    ok = all(
+        sp.expand(
+            sp.Poly(
+                statespace.charpoly_eq_12(stability.forced_jacobian_eq_22(c))
+                .as_expr()
+                .subs(stability.mu1, 0),
+                lam,
+            ).as_expr()
+            - poly.as_expr()
+        )
+        == 0
+        for c in CONVENTIONS
+    )
     return ([""] if ok else []), (
         "with `mu_bar' = 0` the derived quartic of `J_f^0` equals `det(lambda I - J^0)` "
-        f"in both conventions: {'yes' if ok else 'NO'}.")
+        f"in both conventions: {'yes' if ok else 'NO'}."
+    )
 
 
 def _claim_state_space():
     """Eq. (A4) against the printed Eq. (20) moved to state-space form."""
     z = mdsm
-    to_state = {sp.diff(z.Z1, z.tau, 2): sp.Symbol("S1dot"), sp.diff(z.Z1, z.tau): stability.S1,
-                sp.diff(z.Z2, z.tau): stability.S2}
+    to_state = {
+        sp.diff(z.Z1, z.tau, 2): sp.Symbol("S1dot"),
+        sp.diff(z.Z1, z.tau): stability.S1,
+        sp.diff(z.Z2, z.tau): stability.S2,
+    }
     eq20 = paper.eq_20().subs(to_state).subs({z.Z1: stability.Z1, z.Z2: stability.Z2})
     eq20 = eq20.subs(z.mu_bar, stability.mu_bar(stability.S1 - P["Vb"]))
     s1dot = sp.solve(eq20, sp.Symbol("S1dot"))[0]
@@ -688,10 +887,15 @@ def _claim_state_space():
     ok = diff == 0
     return ([""] if ok else []), (
         "Eq. (20) as printed, solved for `S1'`, minus Eq. (A4) as printed: "
-        f"`{sp.sstr(-diff)}`" + ("" if ok else
-                                 " - the friction term has opposite signs; A4 agrees "
-                                 "with Eq. 20 only if its `mu_bar` is read as `-mu_bar`"
-                                 " (the sign resolved for `V_r < 0`, as `+mu_s` in Eq. 6)."))
+        f"`{sp.sstr(-diff)}`"
+        + (
+            ""
+            if ok
+            else " - the friction term has opposite signs; A4 agrees "
+            "with Eq. 20 only if its `mu_bar` is read as `-mu_bar`"
+            " (the sign resolved for `V_r < 0`, as `+mu_s` in Eq. 6)."
+        )
+    )
 
 
 #: The simulated claims: the base set at the Fig. 3 belt speed, 1000 s runs, and the
@@ -706,7 +910,7 @@ RISE_TOLERANCE = 1e-9
 DECAYED = 1e-12
 
 
-@lru_cache(maxsize=None)
+@cache
 def _difference_runs():
     """Per tension law: two runs under one normal motion and their difference's balance.
 
@@ -714,10 +918,10 @@ def _difference_runs():
     after ``python -m derive``.
     """
     from . import contraction
+
     out = {}
     for tension in ("allowed", "clipped"):
-        run = contraction.difference_runs(SIM_SHIFT, tension=tension, t_end=SIM_T_END,
-                                          Vb=SIM_VB)
+        run = contraction.difference_runs(SIM_SHIFT, tension=tension, t_end=SIM_T_END, Vb=SIM_VB)
         out[tension] = (run, contraction.difference_works(run))
     return out
 
@@ -736,6 +940,7 @@ def _claim_omega1_peak():
     from runtime.simulate import PEAK_PRESENT_RATIO
 
     from . import contraction
+
     runs = _difference_runs()
     holds, parts = [], []
     for tension in ("allowed", "clipped"):
@@ -750,13 +955,18 @@ def _claim_omega1_peak():
             f"tension {tension}: peak_omega1/peak_Omega {_ratio_text(sim)} "
             f"({'present' if present else 'absent'}, threshold {PEAK_PRESENT_RATIO}); a run "
             f"started {_shift_text()} away in (X1, X1') "
-            + ("keeps its distance (E_d " f"{run.energy[0]:.3g} -> {run.energy[-1]:.3g}): a "
-               "free phase, i.e. a self-excited oscillation" if free_phase else
-               "converges to it (E_d < 1e-12 of its start): a forced response")
+            + (
+                "keeps its distance (E_d "
+                f"{run.energy[0]:.3g} -> {run.energy[-1]:.3g}): a "
+                "free phase, i.e. a self-excited oscillation"
+                if free_phase
+                else "converges to it (E_d < 1e-12 of its start): a forced response"
+            )
             + f"; reversals in the steady window: {rev['slip_forward'][0]} to forward "
             f"sliding with F < 0 and {rev['slip_forward'][1]} with F >= 0, "
             f"{rev['slip_back'][0]} to backward sliding with F < 0 and "
-            f"{rev['slip_back'][1]} with F >= 0")
+            f"{rev['slip_back'][1]} with F >= 0"
+        )
     return holds, (
         f"base set, Vb = {SIM_VB:g} (Fig. 3), {SIM_T_END:g} s runs, steady window after "
         "30 %. " + "; ".join(parts) + ". Mechanism: friction `-mu_s sgn(Vr) F` with "
@@ -765,11 +975,13 @@ def _claim_omega1_peak():
         "friction flips from pushing the mass backward to pushing it forward, away from "
         "the belt speed on both sides (negative damping), while the reversals back "
         "happen under a pushing contact. With the clipped law that force is 0 and "
-        "derive/contraction.py proves that no self-excited vibration is possible.")
+        "derive/contraction.py proves that no self-excited vibration is possible."
+    )
 
 
 def _claim_contraction():
     from . import contraction
+
     cl = contraction.claim()
     runs = _difference_runs()
     holds, numbers = [], []
@@ -784,59 +996,107 @@ def _claim_contraction():
         numbers.append(
             f"tension {tension}: E_d {E[0]:.3g} -> "
             + (f"< {DECAYED:.0e} of that" if decays else f"{E[-1]:.3g}")
-            + (", never rising" if monotone else f" (largest rise between samples "
-               f"{rise:.2g})")
+            + (", never rising" if monotone else f" (largest rise between samples {rise:.2g})")
             + f"; friction work on the difference {w['work_friction_push']:+.3g} while "
-            "F >= 0 and " + (f"{w['work_friction_pull']:+.3g} while F < 0" if
-                              w["work_friction_pull"] else "none while F < 0 (F never is)")
-            + f", dashpot {w['work_viscous']:+.3g}")
-    sympy_steps = "; ".join(f"{s.name} ({'proved' if s.proved else 'NOT proved'})"
-                            for s in cl.steps if s.how == "SymPy")
+            "F >= 0 and "
+            + (
+                f"{w['work_friction_pull']:+.3g} while F < 0"
+                if w["work_friction_pull"]
+                else "none while F < 0 (F never is)"
+            )
+            + f", dashpot {w['work_viscous']:+.3g}"
+        )
+    sympy_steps = "; ".join(
+        f"{s.name} ({'proved' if s.proved else 'NOT proved'})" for s in cl.steps if s.how == "SymPy"
+    )
     words = "; ".join(s.detail for s in cl.steps if s.how == "words")
     breaks = "; ".join(f"{k}: {d}" for k, (ok, d) in cl.breaks.items() if ok)
     return holds, (
         f"SymPy (derive/contraction.py): {sympy_steps}. So `dE_d/dt = -c1 e'^2 - mu_s F "
         "(s_a - s_b)(Vr_a - Vr_b) <= -c1 e'^2` while `F >= 0` (always, clipped); "
         f"converse: {cl.converse}. In words: {words}. Conditions: "
-        + "; ".join(cl.conditions) + f". Without them (SymPy): {breaks}. Numerically "
+        + "; ".join(cl.conditions)
+        + f". Without them (SymPy): {breaks}. Numerically "
         f"(base set, Vb = {SIM_VB:g}, {SIM_T_END:g} s, second run offset {_shift_text()} in "
-        "(X1, X1')): " + "; ".join(numbers) + ".")
+        "(X1, X1')): " + "; ".join(numbers) + "."
+    )
 
 
 def claims() -> tuple[Claim, ...]:
     """The paper's claims in words, each with its check."""
     return (
-        Claim("omega1 peak (Fig. 2b)", "Sect. 3, Fig. 2b",
-              "the omega1 peak of Fig. 2b is friction-induced vibration of the model",
-              ("tension allowed", "tension clipped"), _claim_omega1_peak),
-        Claim("mu_s absent", "Sect. 4.1 below Eq. 12",
-              "`mu_s` appears in `J^0` but not in the characteristic equation", (),
-              _claim_mu_s),
-        Claim("only mu_bar'", "Sect. 4.3 (Fig. 9 text)",
-              "only `mu_bar'`, not `mu_bar^0`, remains in `a1..a4`", (), _claim_only_slope),
-        Claim("fit error", "below Eq. 17",
-              "the cubic fit has a maximum error of about 1e-2",
-              ("relative to X2max^(3/2)", "absolute, base set"), _claim_fit),
-        Claim("overdamped normal", "Sect. 4.2 end",
-              "with `beta2* = 0.15` the normal direction is overdamped (unforced and forced)",
-              (), _claim_overdamped),
-        Claim("bifurcation ~ 8", "Sect. 4.2, Fig. 5; Sect. 4.3, Fig. 7",
-              "base set: positive growth rate for `Vb` below about 8 m/s, stable above",
-              tuple(f"V_hat {m}, convention {c}" for m in friction.VHAT_MODELS
-                    for c in CONVENTIONS), _claim_bifurcation),
-        Claim("slope (Fig. 9)", "Sect. 4.3, Fig. 9",
-              "`mu_bar'` rises with `Vb`, goes to infinity as `Vb -> Vhat`, is zero above "
-              "`Vhat`, and spans from nearly zero to infinity", (), _claim_slope),
-        Claim("unforced limit", "Sects. 4.2-4.3",
-              "when `mu_bar' = 0` the forced characteristic equation is the unforced one",
-              (), _claim_unforced_limit),
-        Claim("A3-A6 = Eqs. 18-21", "Appendix A.2",
-              "Eqs. A3-A6 are the slow equations (18)-(21) in state-space form", (),
-              _claim_state_space),
-        Claim("contraction (clipped)", "beyond the paper (docs/modelling.md#tension)",
-              "two tangential motions under one normal motion converge when the contact "
-              "cannot pull: no self-excited vibration, no coexistence",
-              ("tension clipped", "tension allowed"), _claim_contraction),
+        Claim(
+            "omega1 peak (Fig. 2b)",
+            "Sect. 3, Fig. 2b",
+            "the omega1 peak of Fig. 2b is friction-induced vibration of the model",
+            ("tension allowed", "tension clipped"),
+            _claim_omega1_peak,
+        ),
+        Claim(
+            "mu_s absent",
+            "Sect. 4.1 below Eq. 12",
+            "`mu_s` appears in `J^0` but not in the characteristic equation",
+            (),
+            _claim_mu_s,
+        ),
+        Claim(
+            "only mu_bar'",
+            "Sect. 4.3 (Fig. 9 text)",
+            "only `mu_bar'`, not `mu_bar^0`, remains in `a1..a4`",
+            (),
+            _claim_only_slope,
+        ),
+        Claim(
+            "fit error",
+            "below Eq. 17",
+            "the cubic fit has a maximum error of about 1e-2",
+            ("relative to X2max^(3/2)", "absolute, base set"),
+            _claim_fit,
+        ),
+        Claim(
+            "overdamped normal",
+            "Sect. 4.2 end",
+            "with `beta2* = 0.15` the normal direction is overdamped (unforced and forced)",
+            (),
+            _claim_overdamped,
+        ),
+        Claim(
+            "bifurcation ~ 8",
+            "Sect. 4.2, Fig. 5; Sect. 4.3, Fig. 7",
+            "base set: positive growth rate for `Vb` below about 8 m/s, stable above",
+            tuple(f"V_hat {m}, convention {c}" for m in friction.VHAT_MODELS for c in CONVENTIONS),
+            _claim_bifurcation,
+        ),
+        Claim(
+            "slope (Fig. 9)",
+            "Sect. 4.3, Fig. 9",
+            "`mu_bar'` rises with `Vb`, goes to infinity as `Vb -> Vhat`, is zero above "
+            "`Vhat`, and spans from nearly zero to infinity",
+            (),
+            _claim_slope,
+        ),
+        Claim(
+            "unforced limit",
+            "Sects. 4.2-4.3",
+            "when `mu_bar' = 0` the forced characteristic equation is the unforced one",
+            (),
+            _claim_unforced_limit,
+        ),
+        Claim(
+            "A3-A6 = Eqs. 18-21",
+            "Appendix A.2",
+            "Eqs. A3-A6 are the slow equations (18)-(21) in state-space form",
+            (),
+            _claim_state_space,
+        ),
+        Claim(
+            "contraction (clipped)",
+            "beyond the paper (docs/modelling.md#tension)",
+            "two tangential motions under one normal motion converge when the contact "
+            "cannot pull: no self-excited vibration, no coexistence",
+            ("tension clipped", "tension allowed"),
+            _claim_contraction,
+        ),
     )
 
 
@@ -858,6 +1118,7 @@ def check_claim(claim: Claim) -> ClaimResult:
 
 # Report ----------------------------------------------------------------------------------
 
+
 def run(selected: tuple[str, ...] | None = None):
     """Check the rows (all, or those whose key is in ``selected``) and every claim."""
     results = tuple(check_row(r) for r in rows() if selected is None or r.key in selected)
@@ -873,8 +1134,7 @@ def report(results, claim_results) -> str:
     """The Markdown report (deterministic: no timings, rows in paper order)."""
     counts = {"matches": 0, "matches under a convention": 0, "differs": 0}
     for r in results:
-        key = ("matches under a convention" if r.status.startswith("matches under")
-               else r.status)
+        key = "matches under a convention" if r.status.startswith("matches under") else r.status
         counts[key] += 1
     problems = [p for r in results for p in r.problems]
     lines = [
@@ -903,23 +1163,37 @@ def report(results, claim_results) -> str:
     ]
     if problems:
         lines += ["**Check the explanations:** " + "; ".join(problems), ""]
-    lines += ["## Equations", "",
-              "| equation | content | status | decided by | difference |",
-              "|---|---|---|---|---|"]
+    lines += [
+        "## Equations",
+        "",
+        "| equation | content | status | decided by | difference |",
+        "|---|---|---|---|---|",
+    ]
     for r in results:
         methods = "; ".join(
             (f"`{v.label}`: " if v.label and len(r.row.variants) > 1 else "") + o.method
-            for v, o in zip(r.row.variants, r.outcomes))
-        lines.append(f"| {r.row.key} | {_cell(r.row.content)} | {r.status} | "
-                     f"{_cell(methods)} | {_cell(r.explanation)} |")
-    lines += ["", "## Claims in words", "",
-              "| claim | where | the paper says | status | evidence |",
-              "|---|---|---|---|---|"]
-    for c in claim_results:
-        lines.append(f"| {c.claim.key} | {c.claim.where} | {_cell(c.claim.text)} | "
-                     f"{c.status} | {_cell(c.evidence)} |")
+            for v, o in zip(r.row.variants, r.outcomes)
+        )
+        lines.append(
+            f"| {r.row.key} | {_cell(r.row.content)} | {r.status} | "
+            f"{_cell(methods)} | {_cell(r.explanation)} |"
+        )
     lines += [
-        "", "## Transcription choices", "",
+        "",
+        "## Claims in words",
+        "",
+        "| claim | where | the paper says | status | evidence |",
+        "|---|---|---|---|---|",
+    ]
+    for c in claim_results:
+        lines.append(
+            f"| {c.claim.key} | {c.claim.where} | {_cell(c.claim.text)} | "
+            f"{c.status} | {_cell(c.evidence)} |"
+        )
+    lines += [
+        "",
+        "## Transcription choices",
+        "",
         "- Eqs. 5-8 and A3-A6 are transcribed as the right-hand sides of the state "
         "equations they define (Eq. 5 `Y1 = X1'` is `X1' = Y1`).",
         "- Eq. 4 is solved for the accelerations before the comparison (the mass "
@@ -933,7 +1207,7 @@ def report(results, claim_results) -> str:
         "`<Phi> = 0`) and comparing with the averages the MDSM derivation uses.",
         "- In Eqs. A1-A2 a prime is `d/dtheta`, a dot `d/dtau`, and `sin(Omega_e tau)` is "
         "the fast phase `sin(theta)`; Eqs. 13-14 write `Omega` for `Omega_e`.",
-        "- Eq. 25's slope is stated \"for `Vhat > Vb`\" and is compared there "
+        '- Eq. 25\'s slope is stated "for `Vhat > Vb`" and is compared there '
         "(`Vhat = Vb + d`, `d > 0`).",
         "",
     ]
@@ -948,21 +1222,26 @@ def main(argv=None) -> int:
     argparse.ArgumentParser(
         prog="python -m derive check-paper",
         description=f"Compare the paper's equations and claims with the derivation; "
-                    f"write generated/{REPORT}.").parse_args(argv)
+        f"write generated/{REPORT}.",
+    ).parse_args(argv)
     start = time.perf_counter()
     results, claim_results = run()
     text = report(results, claim_results)
     changed = codegen.write({REPORT: text})
     statuses = [r.status for r in results]
-    print(f"{len(results)} equation rows: {statuses.count('matches')} match, "
-          f"{sum(s.startswith('matches under') for s in statuses)} match under one "
-          f"convention, {statuses.count('differs')} differ; {len(claim_results)} claims: "
-          f"{sum(c.status == 'holds' for c in claim_results)} hold, "
-          f"{sum(c.status.startswith('holds under') for c in claim_results)} hold under "
-          f"one reading, {sum(c.status == 'does not hold' for c in claim_results)} do not.")
+    print(
+        f"{len(results)} equation rows: {statuses.count('matches')} match, "
+        f"{sum(s.startswith('matches under') for s in statuses)} match under one "
+        f"convention, {statuses.count('differs')} differ; {len(claim_results)} claims: "
+        f"{sum(c.status == 'holds' for c in claim_results)} hold, "
+        f"{sum(c.status.startswith('holds under') for c in claim_results)} hold under "
+        f"one reading, {sum(c.status == 'does not hold' for c in claim_results)} do not."
+    )
     for r in results:
         for p in r.problems:
             print(f"WARNING: {p}")
-    print(f"generated/{REPORT} ({'updated' if changed else 'unchanged'}) "
-          f"in {time.perf_counter() - start:.1f} s")
+    print(
+        f"generated/{REPORT} ({'updated' if changed else 'unchanged'}) "
+        f"in {time.perf_counter() - start:.1f} s"
+    )
     return 0

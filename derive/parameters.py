@@ -15,6 +15,7 @@ exactly.
 This module is plain Python (no SymPy): the code generator copies the table into
 ``generated/parameters.py`` so the runtime layer can read it without SymPy.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -53,43 +54,71 @@ class Parameter:
 
 
 PARAMETERS: tuple[Parameter, ...] = (
-    Parameter("beta1", "1", 0.1, "nonnegative",
-              "tangential damping ratio C1/(2 M omega1), Eq. (4)"),
-    Parameter("omega1", "rad/s", 1.0, "positive",
-              "tangential natural frequency sqrt(K1/M), Eq. (4)"),
-    Parameter("beta2", "1/m^(5/4)", 0.15, "nonnegative",
-              "Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4)"),
-    Parameter("omega2", "rad/(m^(1/4) s)", 0.5, "positive",
-              "Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4)"),
-    Parameter("alpha", "m", 2.0, "nonnegative",
-              "excitation amplitude: force per mass alpha Omega^2, Eq. (4)"),
-    Parameter("Omega", "rad/s", 4.0, "nonnegative",
-              "excitation frequency Omega_e, Eq. (4)"),
-    Parameter("mu_s", "1", 0.4, "nonnegative",
-              "Coulomb friction coefficient, Eq. (3)"),
-    Parameter("g", "m/s^2", 9.81, "positive",
-              "gravity pressing the mass on the belt, Eq. (4)"),
-    Parameter("Vb", "m/s", 4.0, "nonnegative",
-              "belt speed (base value: Fig. 3)"),
-    Parameter("alpha_t", "m", None, "nonnegative",
-              "tangential excitation amplitude (Figs. 14-15)", "alpha"),
-    Parameter("Omega_t", "rad/s", None, "nonnegative",
-              "tangential excitation frequency (Fig. 14b)", "Omega"),
-    Parameter("phase_t", "rad", 0.0, "real",
-              "tangential excitation phase (Fig. 15: pi/2)"),
-    Parameter("alpha_n", "m", None, "nonnegative",
-              "normal excitation amplitude (Figs. 14-15)", "alpha"),
-    Parameter("Omega_n", "rad/s", None, "nonnegative",
-              "normal excitation frequency (Fig. 14b)", "Omega"),
-    Parameter("phase_n", "rad", 0.0, "real",
-              "normal excitation phase"),
-    Parameter("Vhat", "m/s", None, "positive",
-              "velocity amplitude in the effective friction, Eq. (23)"),
+    Parameter(
+        "beta1", "1", 0.1, "nonnegative", "tangential damping ratio C1/(2 M omega1), Eq. (4)"
+    ),
+    Parameter(
+        "omega1", "rad/s", 1.0, "positive", "tangential natural frequency sqrt(K1/M), Eq. (4)"
+    ),
+    Parameter(
+        "beta2",
+        "1/m^(5/4)",
+        0.15,
+        "nonnegative",
+        "Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4)",
+    ),
+    Parameter(
+        "omega2",
+        "rad/(m^(1/4) s)",
+        0.5,
+        "positive",
+        "Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4)",
+    ),
+    Parameter(
+        "alpha",
+        "m",
+        2.0,
+        "nonnegative",
+        "excitation amplitude: force per mass alpha Omega^2, Eq. (4)",
+    ),
+    Parameter("Omega", "rad/s", 4.0, "nonnegative", "excitation frequency Omega_e, Eq. (4)"),
+    Parameter("mu_s", "1", 0.4, "nonnegative", "Coulomb friction coefficient, Eq. (3)"),
+    Parameter("g", "m/s^2", 9.81, "positive", "gravity pressing the mass on the belt, Eq. (4)"),
+    Parameter("Vb", "m/s", 4.0, "nonnegative", "belt speed (base value: Fig. 3)"),
+    Parameter(
+        "alpha_t",
+        "m",
+        None,
+        "nonnegative",
+        "tangential excitation amplitude (Figs. 14-15)",
+        "alpha",
+    ),
+    Parameter(
+        "Omega_t",
+        "rad/s",
+        None,
+        "nonnegative",
+        "tangential excitation frequency (Fig. 14b)",
+        "Omega",
+    ),
+    Parameter("phase_t", "rad", 0.0, "real", "tangential excitation phase (Fig. 15: pi/2)"),
+    Parameter(
+        "alpha_n", "m", None, "nonnegative", "normal excitation amplitude (Figs. 14-15)", "alpha"
+    ),
+    Parameter(
+        "Omega_n", "rad/s", None, "nonnegative", "normal excitation frequency (Fig. 14b)", "Omega"
+    ),
+    Parameter("phase_n", "rad", 0.0, "real", "normal excitation phase"),
+    Parameter(
+        "Vhat", "m/s", None, "positive", "velocity amplitude in the effective friction, Eq. (23)"
+    ),
 )
 
-BASE: dict[str, float] = {p.name: p.base for p in PARAMETERS
-                          if p.base is not None and p.default_from is None
-                          and not p.name.startswith("phase")}
+BASE: dict[str, float] = {
+    p.name: p.base
+    for p in PARAMETERS
+    if p.base is not None and p.default_from is None and not p.name.startswith("phase")
+}
 
 
 def names() -> tuple[str, ...]:

@@ -33,10 +33,11 @@ the quartic's roots are those of the two quadratics, and a real quadratic
 exactly when ``p > 0`` (their product ``q`` is positive and their sum is ``-p``).
 Two sign tests replace four determinants, and no root or power is needed for them.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 
@@ -44,11 +45,29 @@ from .friction import mu_bar0_eq_25, mu_bar_slope_eq_25
 from .model import P, normal_force
 from .statespace import Quadratic, block_quadratics, charpoly_eq_12
 
-__all__ = ["CONVENTIONS", "Z1", "S1", "Z2", "S2", "SLOW", "mu_bar", "mu0", "mu1",
-           "slow_state_space_A3_A6", "slow_equilibrium_A7", "forced_jacobian_eq_22",
-           "Factored", "factored", "coefficients_A8", "hurwitz_eq_28", "hurwitz_determinants",
-           "hurwitz_factored", "stability_conditions", "critical_belt_speed",
-           "with_friction"]
+__all__ = [
+    "CONVENTIONS",
+    "Z1",
+    "S1",
+    "Z2",
+    "S2",
+    "SLOW",
+    "mu_bar",
+    "mu0",
+    "mu1",
+    "slow_state_space_A3_A6",
+    "slow_equilibrium_A7",
+    "forced_jacobian_eq_22",
+    "Factored",
+    "factored",
+    "coefficients_A8",
+    "hurwitz_eq_28",
+    "hurwitz_determinants",
+    "hurwitz_factored",
+    "stability_conditions",
+    "critical_belt_speed",
+    "with_friction",
+]
 
 CONVENTIONS = ("paper", "consistent")
 Z1, S1, S2 = sp.symbols("Z1 S1 S2", real=True)
@@ -76,8 +95,9 @@ def _linearise(expr):
     """Replace ``mu_bar`` and its derivative at the equilibrium by ``mu0`` and ``mu1``."""
     at = mu_bar(-P["Vb"])
     expr = expr.subs(S1, 0).doit()
-    expr = expr.replace(lambda e: isinstance(e, sp.Subs) or isinstance(e, sp.Derivative),
-                        lambda e: mu1)
+    expr = expr.replace(
+        lambda e: isinstance(e, sp.Subs) or isinstance(e, sp.Derivative), lambda e: mu1
+    )
     return expr.subs(at, mu0)
 
 
@@ -90,7 +110,7 @@ def slow_equilibrium_A7(convention: str = "paper", contact: str = "hertz_damp") 
     return {Z1: sol[0][Z1], S1: sp.Integer(0), Z2: sol[0][Z2], S2: sol[0][S2]}
 
 
-@lru_cache(maxsize=None)
+@cache
 def forced_jacobian_eq_22(convention: str = "paper", contact: str = "hertz_damp") -> sp.Matrix:
     """Jacobian of Eqs. (A3)-(A6) at Eq. (A7), ``J_f^0`` of Eq. (22), in ``mu0, mu1``."""
     J = slow_state_space_A3_A6(convention, contact).jacobian(SLOW)
@@ -110,13 +130,13 @@ class Factored:
         return self.tangential.p, self.tangential.q, self.normal.p, self.normal.q
 
 
-@lru_cache(maxsize=None)
+@cache
 def factored(convention: str = "paper", contact: str = "hertz_damp") -> Factored:
     """Exact factorisation of Eq. (26) found from the block structure of Eq. (22)."""
     return Factored(*block_quadratics(forced_jacobian_eq_22(convention, contact)))
 
 
-@lru_cache(maxsize=None)
+@cache
 def coefficients_A8(convention: str = "paper", contact: str = "hertz_damp") -> tuple[sp.Expr, ...]:
     """``a1..a4`` of the monic quartic, Eqs. (26)-(27) and (A8)."""
     J = forced_jacobian_eq_22(convention, contact)
@@ -129,8 +149,12 @@ def hurwitz_eq_28(a1, a2, a3, a4) -> list[sp.Expr]:
     The printed ``H4`` has ``- a1 a4^2`` where the determinant has ``- a1^2 a4^2``
     (see `hurwitz_determinants`); kept here as printed for the paper check.
     """
-    return [a1, a1 * a2 - a3, a1 * a2 * a3 - a3**2 - a4 * a1**2,
-            a1 * a2 * a3 * a4 - a1 * a4**2 - a4 * a3**2]
+    return [
+        a1,
+        a1 * a2 - a3,
+        a1 * a2 * a3 - a3**2 - a4 * a1**2,
+        a1 * a2 * a3 * a4 - a1 * a4**2 - a4 * a3**2,
+    ]
 
 
 def hurwitz_determinants(a1, a2, a3, a4) -> list[sp.Expr]:
@@ -141,11 +165,11 @@ def hurwitz_determinants(a1, a2, a3, a4) -> list[sp.Expr]:
 
 def hurwitz_factored(p, q, r, s) -> list[sp.Expr]:
     """Eq. (28) in the factored form of the module docstring (proved by the tests)."""
-    H3 = p * r * ((q - s)**2 + (p + r) * (p * s + q * r))
+    H3 = p * r * ((q - s) ** 2 + (p + r) * (p * s + q * r))
     return [p + r, p * (q + r * (p + r)) + r * s, H3, q * s * H3]
 
 
-@lru_cache(maxsize=None)
+@cache
 def stability_conditions(convention: str = "paper", contact: str = "hertz_damp") -> tuple:
     """``(p, r)``: ``is_stable`` is ``p > 0 and r > 0``, equivalent to Eq. (28)'s ``H_k > 0``.
 
@@ -159,12 +183,14 @@ def stability_conditions(convention: str = "paper", contact: str = "hertz_damp")
     p, q, r, s = factored(convention, contact).pqrs
     for name, value in (("q", q), ("s", s)):
         if value.is_positive is not True:
-            raise AssertionError(f"{name} = {value} is not provably positive: "
-                                 "the Hurwitz test does not reduce to p > 0, r > 0")
+            raise AssertionError(
+                f"{name} = {value} is not provably positive: "
+                "the Hurwitz test does not reduce to p > 0, r > 0"
+            )
     return p, r
 
 
-@lru_cache(maxsize=None)
+@cache
 def critical_belt_speed(convention: str = "paper", contact: str = "hertz_damp") -> sp.Expr:
     """Lower edge of the unstable belt speeds: the root of ``p(Vb) = 0`` below ``V_hat``.
 
@@ -183,11 +209,15 @@ def critical_belt_speed(convention: str = "paper", contact: str = "hertz_damp") 
     # solve() squares the square root away, so each candidate is substituted back
     # on the branch where it is real (Vhat = m + d, d > 0).
     d = sp.Symbol("d", positive=True)
-    roots = [r for r in sp.solve(p_of_vb, Vb) if not r.could_extract_minus_sign()
-             and sp.simplify(sp.expand(p_of_vb.subs(Vb, r).subs(Vh, m + d))) == 0]
+    roots = [
+        r
+        for r in sp.solve(p_of_vb, Vb)
+        if not r.could_extract_minus_sign()
+        and sp.simplify(sp.expand(p_of_vb.subs(Vb, r).subs(Vh, m + d))) == 0
+    ]
     if not roots:
         return sp.nan
-    if len(roots) != 1 or sp.simplify((roots[0]**2 - closed**2).subs(Vh, m + d)) != 0:
+    if len(roots) != 1 or sp.simplify((roots[0] ** 2 - closed**2).subs(Vh, m + d)) != 0:
         raise AssertionError(f"unexpected roots of p(Vb) = 0: {roots}")
     return sp.Piecewise((closed, m < Vh), (0, True))
 
@@ -195,4 +225,3 @@ def critical_belt_speed(convention: str = "paper", contact: str = "hertz_damp") 
 def with_friction(expr) -> sp.Expr:
     """``expr`` with ``mu0``, ``mu1`` replaced by Eq. (25) (``Vhat`` stays a parameter)."""
     return sp.sympify(expr).subs({mu0: mu_bar0_eq_25(), mu1: mu_bar_slope_eq_25()})
-

@@ -6,27 +6,35 @@ solved by SymPy (Eq. 9), the Jacobian (Eq. 10) and its value at equilibrium
 (Eq. 11), the characteristic polynomial (Eq. 12) and its exact factorisation into
 the tangential and normal quadratics.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 
 from .model import STATE, Y1, Y2, equations_of_motion, lam
 
 __all__ = [
-    "SLIDING", "state_space_eqs_5_8", "equilibrium_eq_9", "jacobian_eq_10",
-    "jacobian_at_equilibrium_eq_11", "charpoly_eq_12", "Quadratic",
-    "block_quadratics", "free_of",
+    "SLIDING",
+    "state_space_eqs_5_8",
+    "equilibrium_eq_9",
+    "jacobian_eq_10",
+    "jacobian_at_equilibrium_eq_11",
+    "charpoly_eq_12",
+    "Quadratic",
+    "block_quadratics",
+    "free_of",
 ]
 
 #: Friction direction on the branch of Eqs. (5)-(8): the mass is slower than the belt.
 SLIDING = -1
 
 
-def state_space_eqs_5_8(contact: str = "hertz_damp", forced: bool = False,
-                        direction=SLIDING) -> sp.Matrix:
+def state_space_eqs_5_8(
+    contact: str = "hertz_damp", forced: bool = False, direction=SLIDING
+) -> sp.Matrix:
     """Right-hand side ``(X1', Y1', X2', Y2')`` of Eqs. (5)-(8)."""
     acc = equations_of_motion(contact, direction=direction, forced=forced)
     return sp.Matrix([Y1, acc[0], Y2, acc[1]])
@@ -51,7 +59,7 @@ def jacobian_eq_10(contact: str = "hertz_damp", forced: bool = False) -> sp.Matr
     return state_space_eqs_5_8(contact, forced).jacobian(STATE)
 
 
-@lru_cache(maxsize=None)
+@cache
 def jacobian_at_equilibrium_eq_11(contact: str = "hertz_damp") -> sp.Matrix:
     """Eq. (10) evaluated at Eq. (9): the matrix ``J^0`` of Eq. (11)."""
     return jacobian_eq_10(contact).subs(equilibrium_eq_9(contact)).applyfunc(sp.simplify)
@@ -83,7 +91,7 @@ class Quadratic:
     disc: sp.Expr
 
     @classmethod
-    def from_block(cls, block: sp.Matrix) -> "Quadratic":
+    def from_block(cls, block: sp.Matrix) -> Quadratic:
         """The characteristic polynomial of a 2x2 block."""
         p = sp.simplify(-block.trace())
         q = sp.simplify(block.det())
@@ -121,8 +129,9 @@ def _grouped(factor: sp.Expr) -> sp.Expr:
     """
     if not factor.is_Add:
         return factor
-    options = [sp.collect(factor, x, sp.factor)
-               for x in sorted(factor.free_symbols, key=lambda x: x.name)]
+    options = [
+        sp.collect(factor, x, sp.factor) for x in sorted(factor.free_symbols, key=lambda x: x.name)
+    ]
     return min([factor] + options, key=lambda e: len(sp.Add.make_args(e)))
 
 
@@ -144,8 +153,9 @@ def block_quadratics(J: sp.Matrix) -> tuple[Quadratic, Quadratic]:
         factors is not the characteristic polynomial.
     """
     if not J[2:, :2].is_zero_matrix:
-        raise ValueError("Jacobian is not block triangular: lower-left block "
-                         f"{J[2:, :2]} is not zero")
+        raise ValueError(
+            f"Jacobian is not block triangular: lower-left block {J[2:, :2]} is not zero"
+        )
     factors = Quadratic.from_block(J[:2, :2]), Quadratic.from_block(J[2:, 2:])
     product = sp.expand(factors[0].expr() * factors[1].expr())
     if sp.simplify(product - charpoly_eq_12(J).as_expr()) != 0:

@@ -15,6 +15,7 @@ notebook with its own folder as working directory, where ``generated``, ``runtim
 and ``benchmarks`` are importable only through an editable install (and
 ``benchmarks`` never is, since it is not a package of the distribution).
 """
+
 from __future__ import annotations
 
 import os
@@ -33,17 +34,34 @@ from runtime.intervals import format_intervals, jaccard  # noqa: E402
 from runtime.spectra import amplitude_spectrum  # noqa: E402
 from runtime.sweep import omega1_peak_ranges  # noqa: E402
 
-__all__ = ["FULL", "MODE", "FIGURES", "pick", "settings", "save", "spectrum_scan",
-           "plot_spectrum_map", "peak_ranges", "fmt_ranges", "overlap", "show"]
+__all__ = [
+    "FULL",
+    "MODE",
+    "FIGURES",
+    "pick",
+    "settings",
+    "save",
+    "spectrum_scan",
+    "plot_spectrum_map",
+    "peak_ranges",
+    "fmt_ranges",
+    "overlap",
+    "show",
+]
 
 FULL = os.environ.get("BELTMDSM_FULL", "").strip() not in ("", "0")
 MODE = "full" if FULL else "quick"
 # Full mode writes the committed PNGs (notebooks/figures/); quick mode (the test run)
 # writes to a temporary folder so that `python -m pytest` leaves the repository as it
 # was. BELTMDSM_FIGURES overrides both.
-FIGURES = Path(os.environ.get("BELTMDSM_FIGURES") or (
-    Path(__file__).resolve().parent / "figures" if FULL
-    else Path(tempfile.gettempdir()) / "beltmdsm-figures-quick"))
+FIGURES = Path(
+    os.environ.get("BELTMDSM_FIGURES")
+    or (
+        Path(__file__).resolve().parent / "figures"
+        if FULL
+        else Path(tempfile.gettempdir()) / "beltmdsm-figures-quick"
+    )
+)
 
 
 def pick(quick, full):
@@ -79,8 +97,9 @@ def save(fig, name):
     fig.savefig(path, dpi=110, bbox_inches="tight")
 
 
-def spectrum_scan(values, param="Vb", params=None, *, contact="hertz_damp", solver=None,
-                  omega_max=10.0):
+def spectrum_scan(
+    values, param="Vb", params=None, *, contact="hertz_damp", solver=None, omega_max=10.0
+):
     """Amplitude spectra of X1' over the steady window for each value of one parameter.
 
     Runs `runtime.simulate` serially (the machines that run the notebooks are shared;
@@ -111,8 +130,11 @@ def spectrum_scan(values, param="Vb", params=None, *, contact="hertz_damp", solv
     solver = solver or settings()
     # the spectrum of a full steady window fixes the frequency grid; a run that stops
     # early (status "too_many_events", "contact_lost") gets a NaN row and keeps its status
-    n_window = int(np.sum(solver.dt * np.arange(int(solver.t_end / solver.dt + 1e-9) + 1)
-                          >= solver.window_start))
+    n_window = int(
+        np.sum(
+            solver.dt * np.arange(int(solver.t_end / solver.dt + 1e-9) + 1) >= solver.window_start
+        )
+    )
     omega = np.fft.rfftfreq(n_window, solver.dt) * 2 * np.pi
     keep = omega <= omega_max
     spectra, summaries = [], []
@@ -123,17 +145,23 @@ def spectrum_scan(values, param="Vb", params=None, *, contact="hertz_damp", solv
         else:
             spectra.append(np.full(keep.sum(), np.nan))
         summaries.append(sim.summary)
-    return {"param": param, "values": values, "omega": omega[keep], "amplitude": np.array(spectra),
-            "stopped": values[[s["status"] != "done" for s in summaries]],
-            "summaries": summaries,
-            param: values,
-            # a summary's None (unresolved) would make an object array: False beside
-            # resolved = False, as runtime.sweep stores it
-            "omega1_peak_present": np.array([bool(s["resolved"] and s["omega1_peak_present"])
-                                             for s in summaries]),
-            "resolved": np.array([bool(s["resolved"]) for s in summaries]),
-            "peak_omega1": np.array([s["peak_omega1"] for s in summaries]),
-            "regime": np.array([s["regime"] for s in summaries])}
+    return {
+        "param": param,
+        "values": values,
+        "omega": omega[keep],
+        "amplitude": np.array(spectra),
+        "stopped": values[[s["status"] != "done" for s in summaries]],
+        "summaries": summaries,
+        param: values,
+        # a summary's None (unresolved) would make an object array: False beside
+        # resolved = False, as runtime.sweep stores it
+        "omega1_peak_present": np.array(
+            [bool(s["resolved"] and s["omega1_peak_present"]) for s in summaries]
+        ),
+        "resolved": np.array([bool(s["resolved"]) for s in summaries]),
+        "peak_omega1": np.array([s["peak_omega1"] for s in summaries]),
+        "regime": np.array([s["regime"] for s in summaries]),
+    }
 
 
 def plot_spectrum_map(ax, scan, intervals=(), title=None):
@@ -144,17 +172,25 @@ def plot_spectrum_map(ax, scan, intervals=(), title=None):
     drawn as a bar under the map (a predicted unstable range).
     """
     x, w = scan["values"], scan["omega"]
-    amp = np.log10(np.maximum(scan["amplitude"], 1e-6))   # NaN rows (stopped runs) stay blank
-    mesh = ax.pcolormesh(x, w, amp.T, shading="nearest", cmap="viridis", vmin=-4,
-                         vmax=max(1.0, np.nanmax(amp)))
+    amp = np.log10(np.maximum(scan["amplitude"], 1e-6))  # NaN rows (stopped runs) stay blank
+    mesh = ax.pcolormesh(
+        x, w, amp.T, shading="nearest", cmap="viridis", vmin=-4, vmax=max(1.0, np.nanmax(amp))
+    )
     present = scan["omega1_peak_present"]
     at = np.array([s["omega1_peak_at"] for s in scan["summaries"]])
     ax.plot(x[present], at[present], "o", mfc="w", mec="k", ms=4, label=r"$\omega_1$ peak")
     for k, (label, ranges, colour) in enumerate(intervals):
         y = -0.35 - 0.3 * k
         for n, (lo, hi) in enumerate(ranges):
-            ax.plot([lo, hi], [y, y], color=colour, lw=4, solid_capstyle="butt",
-                    label=label if n == 0 else None, clip_on=False)
+            ax.plot(
+                [lo, hi],
+                [y, y],
+                color=colour,
+                lw=4,
+                solid_capstyle="butt",
+                label=label if n == 0 else None,
+                clip_on=False,
+            )
     ax.set_ylim(-0.35 - 0.3 * len(intervals), w[-1])
     ax.set_xlabel(f"{scan['param']} [m/s]" if scan["param"] == "Vb" else scan["param"])
     ax.set_ylabel(r"$\omega$ [rad/s]")

@@ -33,6 +33,7 @@ back to ``"events"`` where it does not apply).
 * `runtime.cli`: the runtime commands of ``python -m derive`` (simulate, sweep,
   predict, validate, floquet, floquet-band).
 """
+
 from .simulate import REGIMES, Simulation, SolverSettings, simulate
 
 __all__ = ["simulate", "Simulation", "SolverSettings", "REGIMES"]

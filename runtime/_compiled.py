@@ -20,6 +20,7 @@ holds a hash of every source it depends on (the generated kernels, the integrato
 this file, numba's version): regenerating a kernel or changing an integrator compiles
 afresh, and nothing stale is served.
 """
+
 from __future__ import annotations
 
 import functools
@@ -39,15 +40,36 @@ from . import _dop853, _superpose
 __all__ = ["advance", "scan", "cache_folder"]
 
 _ROOT = Path(__file__).resolve().parents[1]
-_SOURCES = ("generated/hybrid.py", "generated/oscillator.py", "generated/_support.py",
-            "runtime/_dop853.py", "runtime/_superpose.py", "runtime/_compiled.py")
+_SOURCES = (
+    "generated/hybrid.py",
+    "generated/oscillator.py",
+    "generated/_support.py",
+    "runtime/_dop853.py",
+    "runtime/_superpose.py",
+    "runtime/_compiled.py",
+)
 _FIELDS = {"vector_field": hybrid._VECTOR_FIELD, "response_field": hybrid._RESPONSE_FIELD}
 #: The integrators: their module, their functions (the entry point last) and kernels.
-_ADVANCE = (_dop853, ("_rhs", "_dense", "_initial_step", "_inside", "_rates", "_surface_at",
-                      "_refine", "_first_crossing", "advance"),
-            ("_field_kernel", "_surface_kernel", "_rate_kernel"))
-_SCAN = (_superpose, ("tangential_state", "_normal_at", "_inside_at", "_refine", "scan"),
-         ("_stm_kernel", "_exc_kernel", "_surface_kernel", "_rate_kernel"))
+_ADVANCE = (
+    _dop853,
+    (
+        "_rhs",
+        "_dense",
+        "_initial_step",
+        "_inside",
+        "_rates",
+        "_surface_at",
+        "_refine",
+        "_first_crossing",
+        "advance",
+    ),
+    ("_field_kernel", "_surface_kernel", "_rate_kernel"),
+)
+_SCAN = (
+    _superpose,
+    ("tangential_state", "_normal_at", "_inside_at", "_refine", "scan"),
+    ("_stm_kernel", "_exc_kernel", "_surface_kernel", "_rate_kernel"),
+)
 
 
 def _scalar(table, contact=None):
@@ -61,16 +83,23 @@ def advance(field, contact, backend=None):
 
     ``backend``: "python", "numba" or None (numba if installed).
     """
-    kernels = (_scalar(_FIELDS[field], contact), _scalar(hybrid._SURFACES, contact),
-               _scalar(hybrid._SURFACE_RATES, contact))
+    kernels = (
+        _scalar(_FIELDS[field], contact),
+        _scalar(hybrid._SURFACES, contact),
+        _scalar(hybrid._SURFACE_RATES, contact),
+    )
     return _bound(_ADVANCE, kernels, f"advance__{field}__{contact}", backend)
 
 
 def scan(contact, backend=None):
     """`runtime._superpose.scan` for ``contact``: ``f(mode, stick, ms, watch, dirs, t0,
     tc, d0, d1, X1s, Vb, grid, on_grid, ts, hs, ys, Fs, stm_a, exc_a, surf_a, rate_a)``."""
-    kernels = (_scalar(oscillator._STATE_TRANSITION), _scalar(oscillator._EXCITATION_RESPONSE),
-               _scalar(hybrid._SURFACES, contact), _scalar(hybrid._SURFACE_RATES, contact))
+    kernels = (
+        _scalar(oscillator._STATE_TRANSITION),
+        _scalar(oscillator._EXCITATION_RESPONSE),
+        _scalar(hybrid._SURFACES, contact),
+        _scalar(hybrid._SURFACE_RATES, contact),
+    )
     return _bound(_SCAN, kernels, f"scan__{contact}", backend)
 
 
@@ -80,14 +109,15 @@ def _bound(integrator, kernels, name, backend):
             import numba
         except ImportError:
             if backend == "numba":
-                raise ImportError("backend='numba' needs numba: "
-                                  "pip install 'beltmdsm[fast]'") from None
+                raise ImportError(
+                    "backend='numba' needs numba: pip install 'beltmdsm[fast]'"
+                ) from None
         else:
             return _compiled(integrator, kernels, name, numba.__version__)
     return _python(integrator, kernels)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _python(integrator, kernels):
     """Copies of the integrator's functions, with the kernels as their globals."""
     module, functions, globals_ = integrator
@@ -95,12 +125,11 @@ def _python(integrator, kernels):
     namespace.update(zip(globals_, kernels))
     for fn in functions:
         original = getattr(module, fn)
-        namespace[fn] = types.FunctionType(original.__code__, namespace, fn,
-                                           original.__defaults__)
+        namespace[fn] = types.FunctionType(original.__code__, namespace, fn, original.__defaults__)
     return namespace[functions[-1]]
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _digest(numba_version):
     digest = hashlib.sha256(numba_version.encode())
     for rel in _SOURCES:
@@ -108,25 +137,42 @@ def _digest(numba_version):
     return digest.hexdigest()[:20]
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _compiled(integrator, kernels, name, numba_version):
     """The compiled entry point: a module written from the integrator's source."""
     module, functions, globals_ = integrator
-    constants = [n for n, v in vars(module).items()
-                 if not n.startswith("__") and n not in functions and n not in globals_
-                 and not callable(v) and not isinstance(v, types.ModuleType)]
-    lines = [f"# Written by runtime/_compiled.py (numba {numba_version}); do not edit.",
-             "import math", "import numba", "import numpy as np",
-             f"from {module.__name__} import {', '.join(constants)}"]
+    constants = [
+        n
+        for n, v in vars(module).items()
+        if not n.startswith("__")
+        and n not in functions
+        and n not in globals_
+        and not callable(v)
+        and not isinstance(v, types.ModuleType)
+    ]
+    lines = [
+        f"# Written by runtime/_compiled.py (numba {numba_version}); do not edit.",
+        "import math",
+        "import numba",
+        "import numpy as np",
+        f"from {module.__name__} import {', '.join(constants)}",
+    ]
     if module is not _dop853:
-        lines += ["from runtime._dop853 import _dense as _dense_python",
-                  '_dense = numba.njit(error_model="numpy")(_dense_python)']
+        lines += [
+            "from runtime._dop853 import _dense as _dense_python",
+            '_dense = numba.njit(error_model="numpy")(_dense_python)',
+        ]
     for glob, kernel in zip(globals_, kernels):
-        lines += [f"from {kernel.__module__} import {kernel.__name__}",
-                  f'{glob} = numba.njit(error_model="numpy")({kernel.__name__})']
+        lines += [
+            f"from {kernel.__module__} import {kernel.__name__}",
+            f'{glob} = numba.njit(error_model="numpy")({kernel.__name__})',
+        ]
     for fn in functions:
-        decorator = ('@numba.njit(cache=True, error_model="numpy")' if fn == functions[-1]
-                     else '@numba.njit(error_model="numpy")')
+        decorator = (
+            '@numba.njit(cache=True, error_model="numpy")'
+            if fn == functions[-1]
+            else '@numba.njit(error_model="numpy")'
+        )
         lines += ["", "", decorator, inspect.getsource(getattr(module, fn)).rstrip()]
     text = "\n".join(lines) + "\n"
     folder = cache_folder()
@@ -149,9 +195,11 @@ def cache_folder():
     ``$BELTMDSM_COMPILED``, else ``~/.cache/beltmdsm/compiled``, else (not writable) a
     folder in the temporary directory.
     """
-    for folder in (os.environ.get("BELTMDSM_COMPILED"),
-                   Path.home() / ".cache" / "beltmdsm" / "compiled",
-                   Path(tempfile.gettempdir()) / "beltmdsm-compiled"):
+    for folder in (
+        os.environ.get("BELTMDSM_COMPILED"),
+        Path.home() / ".cache" / "beltmdsm" / "compiled",
+        Path(tempfile.gettempdir()) / "beltmdsm-compiled",
+    ):
         if folder is None:
             continue
         folder = Path(folder)

@@ -22,6 +22,7 @@ only once it has been strictly inside the mode.
 The same source runs as plain Python or compiled by numba, with its kernels, in the
 entry points of `runtime._compiled`.
 """
+
 from __future__ import annotations
 
 import math
@@ -30,8 +31,8 @@ import types
 import numpy as np
 from scipy.integrate._ivp import dop853_coefficients as _coef
 
-__all__ = ["advance", "evaluate", "N_DENSE", "STATUS_END", "STATUS_EVENT",
-           "STATUS_STEP_TOO_SMALL"]
+__all__ = ["advance", "evaluate", "N_DENSE", "STATUS_END", "STATUS_EVENT", "STATUS_STEP_TOO_SMALL"]
+
 
 def _table(a):
     """A coefficient array as nested tuples: constants numba can cache with the code
@@ -47,8 +48,8 @@ _C = _table(_coef.C[:_N_STAGES])
 _E3 = _table(_coef.E3)
 _E5 = _table(_coef.E5)
 _D = _table(_coef.D)
-_A_EXTRA = _table(_coef.A[_N_STAGES + 1:])
-_C_EXTRA = _table(_coef.C[_N_STAGES + 1:])
+_A_EXTRA = _table(_coef.A[_N_STAGES + 1 :])
+_C_EXTRA = _table(_coef.C[_N_STAGES + 1 :])
 _N_EXTENDED = _coef.N_STAGES_EXTENDED
 #: Rows of the dense-output coefficients of a step.
 N_DENSE = _coef.INTERPOLATOR_POWER
@@ -156,8 +157,7 @@ def _refine(sa, watch, dirs, j, F, y_old, t_old, h, a, fa, b, fb, tmp):
     return b
 
 
-def _first_crossing(sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old, r_new,
-                    armed, tmp):
+def _first_crossing(sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old, r_new, armed, tmp):
     """Earliest crossing inside the step ``[t_old, t_old + h]``: ``(j, t)`` or ``(-1, 0)``.
 
     A surface crosses where its inside value falls to <= 0 after being > 0. Within
@@ -179,8 +179,7 @@ def _first_crossing(sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old, r_
             delta = h / _SAMPLES
             for _ in range(60):
                 delta *= 0.5
-                fk = _surface_at(sa, watch, dirs, j, F, y_old, t_old, h, t_old + delta,
-                                 tmp)
+                fk = _surface_at(sa, watch, dirs, j, F, y_old, t_old, h, t_old + delta, tmp)
                 if fk > 0.0:
                     a, fa = t_old + delta, fk
                     break
@@ -189,8 +188,11 @@ def _first_crossing(sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old, r_
             tk = t_old + h * k / _SAMPLES if k < _SAMPLES else t_new
             if tk <= a:
                 continue
-            fk = u_new[j] if k == _SAMPLES else _surface_at(sa, watch, dirs, j, F, y_old,
-                                                            t_old, h, tk, tmp)
+            fk = (
+                u_new[j]
+                if k == _SAMPLES
+                else _surface_at(sa, watch, dirs, j, F, y_old, t_old, h, tk, tmp)
+            )
             if fa > 0.0 and fk <= 0.0:
                 tc = _refine(sa, watch, dirs, j, F, y_old, t_old, h, a, fa, tk, fk, tmp)
                 found = True
@@ -268,8 +270,7 @@ def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_st
         armed[j] = u_old[j] > 0.0
     h_abs = h0
     if h_abs <= 0.0:
-        h_abs = _initial_step(fa, t, y, f, mode, t_end, rtol, atol, max_step, tmp,
-                              y_new)
+        h_abs = _initial_step(fa, t, y, f, mode, t_end, rtol, atol, max_step, tmp, y_new)
     n = 0
     status = STATUS_END
     hit = -1
@@ -317,13 +318,12 @@ def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_st
             else:
                 norm = h * err5 / math.sqrt((err5 + 0.01 * err3) * 4)
             if norm < 1.0:
-                factor = _MAX_FACTOR if norm == 0.0 else min(_MAX_FACTOR,
-                                                              _SAFETY * norm ** _EXPONENT)
+                factor = _MAX_FACTOR if norm == 0.0 else min(_MAX_FACTOR, _SAFETY * norm**_EXPONENT)
                 if rejected:
                     factor = min(1.0, factor)
                 h_abs *= factor
                 break
-            h_abs *= max(_MIN_FACTOR, _SAFETY * norm ** _EXPONENT)
+            h_abs *= max(_MIN_FACTOR, _SAFETY * norm**_EXPONENT)
             rejected = True
         if status == STATUS_STEP_TOO_SMALL:
             break
@@ -360,12 +360,13 @@ def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_st
         n += 1
         _inside(sa, watch, dirs, t_new, y_new, u_new)
         _rates(ra, watch, dirs, t_new, y_new, mode, r_new)
-        j, tc = _first_crossing(sa, watch, dirs, Fs, y, t, h, u_old, u_new, r_old, r_new,
-                                armed, tmp)
+        j, tc = _first_crossing(
+            sa, watch, dirs, Fs, y, t, h, u_old, u_new, r_old, r_new, armed, tmp
+        )
         if j >= 0:
             hit = j
             if tc <= t:
-                n -= 1          # the run leaves at the start of the step: drop it
+                n -= 1  # the run leaves at the start of the step: drop it
             _dense(Fs, y, (tc - t) / h, y_new)
             t = tc
             for i in range(4):
@@ -430,7 +431,8 @@ def _evaluate_compiled():
             _COMPILED_EVALUATE.append(None)
         else:
             dense = numba.njit(cache=True)(_dense)
-            loop = types.FunctionType(_evaluate_loop.__code__,
-                                      {**globals(), "_dense": dense}, "_evaluate_loop")
+            loop = types.FunctionType(
+                _evaluate_loop.__code__, {**globals(), "_dense": dense}, "_evaluate_loop"
+            )
             _COMPILED_EVALUATE.append(numba.njit(cache=True)(loop))
     return _COMPILED_EVALUATE[0]

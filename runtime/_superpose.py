@@ -17,6 +17,7 @@ exact motion (the normal motion's dense output, the closed forms), as
 
 Plain Python, or compiled by numba with its kernels (`runtime._compiled`).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -46,18 +47,60 @@ def _normal_at(ts, hs, ys, Fs, t, out):
     _dense(Fs[k], ys[k], (t - ts[k]) / hs[k], out)
 
 
-def _inside_at(t, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys, Fs,
-               stm_a, exc_a, surf_a, tmp):
+def _inside_at(
+    t,
+    j,
+    watch,
+    dirs,
+    mode,
+    stick,
+    ms,
+    t0,
+    d0,
+    d1,
+    X1s,
+    Vb,
+    ts,
+    hs,
+    ys,
+    Fs,
+    stm_a,
+    exc_a,
+    surf_a,
+    tmp,
+):
     _normal_at(ts, hs, ys, Fs, t, tmp)
     zf, vf = _exc_kernel(t, *exc_a)
-    X1, Y1 = tangential_state(stick, ms, t, t0, d0, d1, X1s, Vb, tmp[0], tmp[1], zf, vf,
-                              stm_a)
+    X1, Y1 = tangential_state(stick, ms, t, t0, d0, d1, X1s, Vb, tmp[0], tmp[1], zf, vf, stm_a)
     h = _surface_kernel(t, X1, Y1, tmp[2], tmp[3], *surf_a)
     return -dirs[j] * h[watch[j]]
 
 
-def _refine(a, fa, b, fb, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys,
-            Fs, stm_a, exc_a, surf_a, tmp):
+def _refine(
+    a,
+    fa,
+    b,
+    fb,
+    j,
+    watch,
+    dirs,
+    mode,
+    stick,
+    ms,
+    t0,
+    d0,
+    d1,
+    X1s,
+    Vb,
+    ts,
+    hs,
+    ys,
+    Fs,
+    stm_a,
+    exc_a,
+    surf_a,
+    tmp,
+):
     side = 0
     for _ in range(200):
         if b - a <= 4e-16 * max(1.0, abs(b)):
@@ -65,8 +108,28 @@ def _refine(a, fa, b, fb, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, 
         c = b - fb * (b - a) / (fb - fa)
         if not (a < c < b):
             c = 0.5 * (a + b)
-        fc = _inside_at(c, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys,
-                        Fs, stm_a, exc_a, surf_a, tmp)
+        fc = _inside_at(
+            c,
+            j,
+            watch,
+            dirs,
+            mode,
+            stick,
+            ms,
+            t0,
+            d0,
+            d1,
+            X1s,
+            Vb,
+            ts,
+            hs,
+            ys,
+            Fs,
+            stm_a,
+            exc_a,
+            surf_a,
+            tmp,
+        )
         if fc > 0.0:
             a, fa = c, fc
             if side == -1:
@@ -80,8 +143,29 @@ def _refine(a, fa, b, fb, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, 
     return b
 
 
-def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, ts, hs, ys,
-         Fs, stm_a, exc_a, surf_a, rate_a):
+def scan(
+    mode,
+    stick,
+    ms,
+    watch,
+    dirs,
+    t0,
+    tc,
+    d0,
+    d1,
+    X1s,
+    Vb,
+    grid,
+    on_grid,
+    ts,
+    hs,
+    ys,
+    Fs,
+    stm_a,
+    exc_a,
+    surf_a,
+    rate_a,
+):
     """The first crossing of a watched surface in ``(t0, tc]``.
 
     Parameters
@@ -122,8 +206,7 @@ def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, t
     armed = np.empty(n_watch, dtype=np.bool_)
     _normal_at(ts, hs, ys, Fs, t0, tmp)
     zf, vf = _exc_kernel(t0, *exc_a)
-    X1, Y1 = tangential_state(stick, ms, t0, t0, d0, d1, X1s, Vb, tmp[0], tmp[1], zf, vf,
-                              stm_a)
+    X1, Y1 = tangential_state(stick, ms, t0, t0, d0, d1, X1s, Vb, tmp[0], tmp[1], zf, vf, stm_a)
     h = _surface_kernel(t0, X1, Y1, tmp[2], tmp[3], *surf_a)
     r = _rate_kernel(t0, X1, Y1, tmp[2], tmp[3], mode, *rate_a)
     for j in range(n_watch):
@@ -144,8 +227,7 @@ def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, t
         else:
             z, v, X2, Y2 = on_grid[0, k], on_grid[1, k], on_grid[2, k], on_grid[3, k]
             zf, vf = on_grid[4, k], on_grid[5, k]
-        X1, Y1 = tangential_state(stick, ms, t_new, t0, d0, d1, X1s, Vb, z, v, zf, vf,
-                                  stm_a)
+        X1, Y1 = tangential_state(stick, ms, t_new, t0, d0, d1, X1s, Vb, z, v, zf, vf, stm_a)
         h = _surface_kernel(t_new, X1, Y1, X2, Y2, *surf_a)
         r = _rate_kernel(t_new, X1, Y1, X2, Y2, mode, *rate_a)
         best_j, best_t = -1, 0.0
@@ -162,9 +244,28 @@ def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, t
                 delta = (t_new - t_prev) / _SAMPLES
                 for _ in range(60):
                     delta *= 0.5
-                    fk = _inside_at(t_prev + delta, j, watch, dirs, mode, stick, ms, t0, d0,
-                                    d1, X1s, Vb, ts, hs, ys, Fs, stm_a, exc_a,
-                                    surf_a, tmp)
+                    fk = _inside_at(
+                        t_prev + delta,
+                        j,
+                        watch,
+                        dirs,
+                        mode,
+                        stick,
+                        ms,
+                        t0,
+                        d0,
+                        d1,
+                        X1s,
+                        Vb,
+                        ts,
+                        hs,
+                        ys,
+                        Fs,
+                        stm_a,
+                        exc_a,
+                        surf_a,
+                        tmp,
+                    )
                     if fk > 0.0:
                         a, fa = t_prev + delta, fk
                         break
@@ -174,13 +275,58 @@ def scan(mode, stick, ms, watch, dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, t
                 tk = t_prev + (t_new - t_prev) * s / _SAMPLES if s < _SAMPLES else t_new
                 if tk <= a:
                     continue
-                fk = u_new[j] if s == _SAMPLES else _inside_at(
-                    tk, j, watch, dirs, mode, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys, Fs,
-                    stm_a, exc_a, surf_a, tmp)
+                fk = (
+                    u_new[j]
+                    if s == _SAMPLES
+                    else _inside_at(
+                        tk,
+                        j,
+                        watch,
+                        dirs,
+                        mode,
+                        stick,
+                        ms,
+                        t0,
+                        d0,
+                        d1,
+                        X1s,
+                        Vb,
+                        ts,
+                        hs,
+                        ys,
+                        Fs,
+                        stm_a,
+                        exc_a,
+                        surf_a,
+                        tmp,
+                    )
+                )
                 if fa > 0.0 and fk <= 0.0:
-                    tcross = _refine(a, fa, tk, fk, j, watch, dirs, mode, stick, ms, t0, d0,
-                                     d1, X1s, Vb, ts, hs, ys, Fs, stm_a, exc_a,
-                                     surf_a, tmp)
+                    tcross = _refine(
+                        a,
+                        fa,
+                        tk,
+                        fk,
+                        j,
+                        watch,
+                        dirs,
+                        mode,
+                        stick,
+                        ms,
+                        t0,
+                        d0,
+                        d1,
+                        X1s,
+                        Vb,
+                        ts,
+                        hs,
+                        ys,
+                        Fs,
+                        stm_a,
+                        exc_a,
+                        surf_a,
+                        tmp,
+                    )
                     found = True
                     break
                 if fk > 0.0:

@@ -15,6 +15,7 @@ which is the stick mode: the run enters it (and counts it in ``n_zeno``). Anywhe
 else the run stops with status ``"zeno"`` and a message naming the surface and the
 time.
 """
+
 from __future__ import annotations
 
 from collections import deque
@@ -44,8 +45,13 @@ class StepSegment:
 
     __slots__ = ("t_steps", "h_steps", "y_steps", "F_steps")
 
-    def __init__(self, t_steps: NDArray[np.float64], h_steps: NDArray[np.float64],
-                 y_steps: NDArray[np.float64], F_steps: NDArray[np.float64]) -> None:
+    def __init__(
+        self,
+        t_steps: NDArray[np.float64],
+        h_steps: NDArray[np.float64],
+        y_steps: NDArray[np.float64],
+        F_steps: NDArray[np.float64],
+    ) -> None:
         self.t_steps, self.h_steps = t_steps, h_steps
         self.y_steps, self.F_steps = y_steps, F_steps
 
@@ -53,13 +59,20 @@ class StepSegment:
         return _dop853.evaluate(self.t_steps, self.h_steps, self.y_steps, self.F_steps, t)
 
 
-def integrate_events(p: Mapping[str, float], contact: Contact = "hertz_damp", *,
-                     tension: Tension = "allowed", t_end: float = 1000.0,
-                     y0: ArrayLike | None = None, t0: float = 0.0, rtol: float = 1e-10,
-                     atol: float = 1e-10,
-                     on_contact_loss: Literal["continue", "stop"] = "continue",
-                     backend: Backend | None = None, method: Literal["DOP853"] = "DOP853"
-                     ) -> tuple[Trajectory, list[tuple[float, str, Mode]], str, str]:
+def integrate_events(
+    p: Mapping[str, float],
+    contact: Contact = "hertz_damp",
+    *,
+    tension: Tension = "allowed",
+    t_end: float = 1000.0,
+    y0: ArrayLike | None = None,
+    t0: float = 0.0,
+    rtol: float = 1e-10,
+    atol: float = 1e-10,
+    on_contact_loss: Literal["continue", "stop"] = "continue",
+    backend: Backend | None = None,
+    method: Literal["DOP853"] = "DOP853",
+) -> tuple[Trajectory, list[tuple[float, str, Mode]], str, str]:
     """Integrate Eq. (4) mode by mode with located switches (module docstring).
 
     Parameters
@@ -89,6 +102,7 @@ def integrate_events(p: Mapping[str, float], contact: Contact = "hertz_damp", *,
     if method != "DOP853":
         raise ValueError(f"method must be 'DOP853' for the events solver; got {method!r}")
     from .model import initial_state
+
     sw = Switching(p, contact, tension, backend)
     advance = _compiled.advance("vector_field", contact, backend)
     y = initial_state(p, contact) if y0 is None else np.array(y0, dtype=float)
@@ -104,19 +118,32 @@ def integrate_events(p: Mapping[str, float], contact: Contact = "hertz_damp", *,
     while t < t_end:
         watch, dirs, _ = sw.guards[mode]
         (code, n, ts, hs, ys, Fs, t_stop, y_stop, hit, h_next) = advance(
-            field.args, surf.args, rates.args, float(mode), watch, dirs, t, y, float(t_end),
-            h_next, rtol, atol, max_step)
+            field.args,
+            surf.args,
+            rates.args,
+            float(mode),
+            watch,
+            dirs,
+            t,
+            y,
+            float(t_end),
+            h_next,
+            rtol,
+            atol,
+            max_step,
+        )
         if code == _dop853.STATUS_STEP_TOO_SMALL:
-            raise RuntimeError(f"step size too small at t = {t_stop:.6g} s in mode "
-                               f"{mode.name} (the field is not smooth there)")
+            raise RuntimeError(
+                f"step size too small at t = {t_stop:.6g} s in mode "
+                f"{mode.name} (the field is not smooth there)"
+            )
         if n:
             steps.append((ts, hs, ys, Fs))
-            segments.append(Segment(t, float(t_stop), mode, StepSegment(ts, hs, ys, Fs),
-                                    ts.copy()))
+            segments.append(Segment(t, float(t_stop), mode, StepSegment(ts, hs, ys, Fs), ts.copy()))
         t, y = float(t_stop), np.array(y_stop)
         if code == _dop853.STATUS_END:
             break
-        h_next = 0.0           # the field jumps at a switch: choose the next step afresh
+        h_next = 0.0  # the field jumps at a switch: choose the next step afresh
         kind = sw.kind(mode, hit)
         y = sw.project(mode, hit, y)
         new = sw.target(mode, hit, t, y)
@@ -129,22 +156,33 @@ def integrate_events(p: Mapping[str, float], contact: Contact = "hertz_damp", *,
             else:
                 events.append((t, kind, new))
                 status = "zeno"
-                message = (f"switches accumulate on the {sw.guards[mode][2][hit][0]} surface "
-                           f"at t = {t:.9g} s ({ZENO_SWITCHES} within "
-                           f"{t - recent[0]:.2g} s); stopped")
+                message = (
+                    f"switches accumulate on the {sw.guards[mode][2][hit][0]} surface "
+                    f"at t = {t:.9g} s ({ZENO_SWITCHES} within "
+                    f"{t - recent[0]:.2g} s); stopped"
+                )
                 break
         events.append((t, kind, new))
         if kind == "lift_off" and on_contact_loss == "stop":
             status = "contact_lost"
-            message = (f"contact lost (X2 = 0, Eq. 1) at t = {t:.6g} s; stopped as "
-                       "requested (on_contact_loss='stop')")
+            message = (
+                f"contact lost (X2 = 0, Eq. 1) at t = {t:.6g} s; stopped as "
+                "requested (on_contact_loss='stop')"
+            )
             break
         mode = new
     if not segments:
         # the run stopped where it started: a segment of zero length keeps the state
         y_at = y.copy()
-        segments.append(Segment(t, t, mode, lambda tt, y_at=y_at: np.repeat(
-            y_at[:, None], np.size(tt), axis=1), np.array([t])))
+        segments.append(
+            Segment(
+                t,
+                t,
+                mode,
+                lambda tt, y_at=y_at: np.repeat(y_at[:, None], np.size(tt), axis=1),
+                np.array([t]),
+            )
+        )
         evaluator = None
     else:
         evaluator = StepSegment(*(np.concatenate(part) for part in zip(*steps)))

@@ -40,6 +40,7 @@ of one parameter where the periodic response is unstable, with edges located to 
 tolerance by bisection (on ``|mu| = 1`` or on a change of the switch structure at a
 grazing point).
 """
+
 from __future__ import annotations
 
 import functools
@@ -55,8 +56,8 @@ from scipy.integrate import solve_ivp
 from generated import dynamics, hybrid, oscillator
 
 from .model import TENSIONS, resolve_parameters
-from .parameters import excitation_period
 from .normal import NORMAL_NAMES, normal_motion
+from .parameters import excitation_period
 from .superposition import Superposition
 from .switching import SURFACE_INDEX, Mode, Switching
 
@@ -64,9 +65,19 @@ Contact = Literal["hertz_damp", "kelvin_voigt"]
 Tension = Literal["allowed", "clipped"]
 Backend = Literal["python", "numba"] | None
 
-__all__ = ["excitation_period", "NoPeriodicResponse", "NormalOrbit", "normal_orbit", "PeriodicResponse",
-           "periodic_response", "Floquet", "floquet", "floquet_band", "GRAZING_RATIO",
-           "NEWTON_TOL"]
+__all__ = [
+    "excitation_period",
+    "NoPeriodicResponse",
+    "NormalOrbit",
+    "normal_orbit",
+    "PeriodicResponse",
+    "periodic_response",
+    "Floquet",
+    "floquet",
+    "floquet_band",
+    "GRAZING_RATIO",
+    "NEWTON_TOL",
+]
 
 #: A switch whose rate is below this fraction of its scale is grazing: the saltation
 #: entry a_after / a_before then carries a relative rounding error of about
@@ -104,6 +115,7 @@ class NoPeriodicResponse(RuntimeError):
 @dataclass
 class NormalOrbit:
     """The periodic normal motion: ``(X2, X2')`` at phase 0, its monodromy, its switches."""
+
     state0: np.ndarray
     period: float
     monodromy: np.ndarray
@@ -136,6 +148,7 @@ def _normal_flow(p, contact, tension, x0, T):
 
             def h(t, y, index=index):
                 return sw.surfaces(t, 0.0, 0.0, y[0], y[1])[index]
+
             h.terminal, h.direction = True, float(direction)
             out.append((h, surface, target))
         return out
@@ -145,8 +158,15 @@ def _normal_flow(p, contact, tension, x0, T):
     switches = []
     while t < T:
         watched = events_of(mode)
-        sol = solve_ivp(fun, (t, T), y, method="DOP853", rtol=_RTOL, atol=_RTOL,
-                        events=[h for h, _, _ in watched] or None)
+        sol = solve_ivp(
+            fun,
+            (t, T),
+            y,
+            method="DOP853",
+            rtol=_RTOL,
+            atol=_RTOL,
+            events=[h for h, _, _ in watched] or None,
+        )
         if sol.status < 0:
             raise NoPeriodicResponse(f"normal orbit: {sol.message}")
         t, y = float(sol.t[-1]), sol.y[:, -1].copy()
@@ -161,9 +181,16 @@ def _normal_flow(p, contact, tension, x0, T):
             new = _normal_mode(sw, t, y[:2], entering=True)
         else:
             new = Mode[target.upper()]
-        S = np.array(hybrid.bind_saltation(
-            before=mode.name.lower(), after=new.name.lower(), surface=surface,
-            contact=contact, backend="python", **p)(t, *state)).reshape(4, 4)[2:, 2:]
+        S = np.array(
+            hybrid.bind_saltation(
+                before=mode.name.lower(),
+                after=new.name.lower(),
+                surface=surface,
+                contact=contact,
+                backend="python",
+                **p,
+            )(t, *state)
+        ).reshape(4, 4)[2:, 2:]
         y[2:] = (S @ y[2:].reshape(2, 2)).ravel()
         switches.append((t, mode, new, surface))
         mode = new
@@ -188,6 +215,7 @@ def _normal_orbit_cached(key, contact, tension):
     p = dict(key, mu_s=0.0, Vb=0.0)
     T = excitation_period(p)
     from .model import initial_state
+
     # The normal motion is overdamped: follow it from the equilibrium until it repeats
     # itself to 1e-4 (a few periods; more where it loses contact), then Newton.
     x = initial_state(p, contact)[2:]
@@ -197,22 +225,25 @@ def _normal_orbit_cached(key, contact, tension):
         x = xT
         if close:
             break
-    for iteration in range(1, 31):
+    for iteration in range(1, 31):  # noqa: B007 (the count is reported after the loop)
         xT, M, switches = _normal_flow(p, contact, tension, x, T)
         r = xT - x
         if np.max(np.abs(r)) <= NEWTON_TOL * (1 + np.max(np.abs(x))):
             break
         x = x + np.linalg.lstsq(np.eye(2) - M, r, rcond=None)[0]
     else:
-        raise NoPeriodicResponse("the normal motion has no periodic orbit: followed from the "
-                           f"equilibrium for {_NORMAL_PERIODS} periods and then by Newton's "
-                           "method it does not repeat itself (it loses contact irregularly)")
+        raise NoPeriodicResponse(
+            "the normal motion has no periodic orbit: followed from the "
+            f"equilibrium for {_NORMAL_PERIODS} periods and then by Newton's "
+            "method it does not repeat itself (it loses contact irregularly)"
+        )
     xT, M, switches = _normal_flow(p, contact, tension, x, T)
     return NormalOrbit(x, T, M, np.linalg.eigvals(M), switches, iteration)
 
 
-def normal_orbit(p: Mapping[str, float], contact: Contact = "hertz_damp",
-                 tension: Tension = "allowed") -> NormalOrbit:
+def normal_orbit(
+    p: Mapping[str, float], contact: Contact = "hertz_damp", tension: Tension = "allowed"
+) -> NormalOrbit:
     """The periodic orbit of the normal motion (cached per normal parameter set)."""
     key = tuple((k, float(p[k])) for k in NORMAL_NAMES + ("alpha", "Omega"))
     return _normal_orbit_cached(key, contact, tension)
@@ -241,6 +272,7 @@ class PeriodicResponse:
         ``|P(x) - x|`` at the returned state.
     iterations : int
     """
+
     params: dict
     contact: str
     tension: str
@@ -272,8 +304,9 @@ class _PeriodMap:
         self.p, self.contact, self.tension = p, contact, tension
         self.orbit = normal_orbit(p, contact, tension)
         self.T = self.orbit.period
-        normal = normal_motion(p, contact, tension, self.T, _RTOL, _RTOL,
-                               self.orbit.state0, backend)
+        normal = normal_motion(
+            p, contact, tension, self.T, _RTOL, _RTOL, self.orbit.state0, backend
+        )
         self.engine = Superposition(p, contact, tension, normal, backend)
         self.stm = oscillator.bind_state_transition(backend=backend, **p)
         self.sw = self.engine.sw
@@ -284,8 +317,13 @@ class _PeriodMap:
         key = (before, after, surface)
         if key not in self._saltation:
             self._saltation[key] = hybrid.bind_saltation(
-                before=before.name.lower(), after=after.name.lower(), surface=surface,
-                contact=self.contact, backend=self.backend, **self.p)
+                before=before.name.lower(),
+                after=after.name.lower(),
+                surface=surface,
+                contact=self.contact,
+                backend=self.backend,
+                **self.p,
+            )
         return self._saltation[key]
 
     def __call__(self, x):
@@ -295,8 +333,9 @@ class _PeriodMap:
             raise NoPeriodicResponse(f"period map: {run['message']}")
         M = np.eye(2)
         grazing = None
-        for (t0, t1, mode), switch in zip(zip(run["starts"], run["ends"], run["modes"]),
-                                          run["switches"] + [None]):
+        for (t0, t1, mode), switch in zip(
+            zip(run["starts"], run["ends"], run["modes"]), run["switches"] + [None]
+        ):
             if mode != Mode.STICK:
                 M = np.array(self.stm(t1 - t0)).reshape(2, 2) @ M
             if switch is None:
@@ -350,11 +389,17 @@ def _sliding_guess(pmap):
     return np.linalg.solve(np.eye(2) - Phi, zf + pmap.p["mu_s"] * z)
 
 
-def periodic_response(params: Mapping[str, float] | None = None, *, contact: Contact = "hertz_damp",
-                      tension: Tension = "allowed",
-                      guess: Sequence[float] | PeriodicResponse | None = None,
-                      max_iter: int = 20, forward: int = FORWARD_PERIODS,
-                      backend: Backend = None, **overrides: float) -> PeriodicResponse:
+def periodic_response(
+    params: Mapping[str, float] | None = None,
+    *,
+    contact: Contact = "hertz_damp",
+    tension: Tension = "allowed",
+    guess: Sequence[float] | PeriodicResponse | None = None,
+    max_iter: int = 20,
+    forward: int = FORWARD_PERIODS,
+    backend: Backend = None,
+    **overrides: float,
+) -> PeriodicResponse:
     """The periodic response of Eq. (4) by shooting (module docstring).
 
     Newton's method from ``guess`` (or the backward-sliding orbit); where it fails,
@@ -388,8 +433,9 @@ def periodic_response(params: Mapping[str, float] | None = None, *, contact: Con
         (a RuntimeError) If no periodic response is found.
     """
     if tension not in TENSIONS:
-        raise ValueError(f"tension must be one of {', '.join(map(repr, TENSIONS))}; "
-                         f"got {tension!r}")
+        raise ValueError(
+            f"tension must be one of {', '.join(map(repr, TENSIONS))}; got {tension!r}"
+        )
     p = resolve_parameters(params, contact=contact, **overrides)
     excitation_period(p)
     pmap = _PeriodMap(p, contact, tension, backend)
@@ -412,19 +458,33 @@ def periodic_response(params: Mapping[str, float] | None = None, *, contact: Con
                 raise NoPeriodicResponse(
                     f"{newton_failed}; nor does the period map, iterated from the sliding "
                     f"orbit: its step does not shrink over {_FORWARD_WINDOW} periods "
-                    f"({steps[-1 - _FORWARD_WINDOW]:.2e} to {steps[-1]:.2e})") from None
+                    f"({steps[-1 - _FORWARD_WINDOW]:.2e} to {steps[-1]:.2e})"
+                ) from None
             x = xT
         else:
-            raise NoPeriodicResponse(f"{newton_failed}; nor does the period map, iterated "
-                                     f"{forward} periods from the sliding orbit, settle") \
-                from None
+            raise NoPeriodicResponse(
+                f"{newton_failed}; nor does the period map, iterated "
+                f"{forward} periods from the sliding orbit, settle"
+            ) from None
         found = _newton(pmap, x, max_iter)
     x, M, run, grazing, residual, iteration = found
     switches = [(t, b, a, s) for t, b, a, s, _ in run["switches"]]
     segments = list(zip(run["starts"], run["ends"], run["modes"]))
-    return PeriodicResponse(p, contact, tension, pmap.T,
-                            np.concatenate([x, pmap.orbit.state0]), switches, segments, M,
-                            pmap.orbit.monodromy, grazing, residual, iteration, pmap)
+    return PeriodicResponse(
+        p,
+        contact,
+        tension,
+        pmap.T,
+        np.concatenate([x, pmap.orbit.state0]),
+        switches,
+        segments,
+        M,
+        pmap.orbit.monodromy,
+        grazing,
+        residual,
+        iteration,
+        pmap,
+    )
 
 
 def _newton(pmap, x, max_iter):
@@ -439,9 +499,11 @@ def _newton(pmap, x, max_iter):
             return x, M, run, grazing, residual, iteration
         history.append(residual)
         if len(history) > _STAGNATION and history[-1] > 0.5 * history[-1 - _STAGNATION]:
-            raise NoPeriodicResponse(f"no periodic response found: Newton's method stagnates at a "
-                               f"residual {residual:.2e} (not halved in {_STAGNATION} "
-                               "iterations)")
+            raise NoPeriodicResponse(
+                f"no periodic response found: Newton's method stagnates at a "
+                f"residual {residual:.2e} (not halved in {_STAGNATION} "
+                "iterations)"
+            )
         A = M - np.eye(2)
         try:
             step = -np.linalg.solve(A, r)
@@ -456,13 +518,17 @@ def _newton(pmap, x, max_iter):
                 break
             lam *= 0.5
         else:
-            raise NoPeriodicResponse(f"no periodic response found: Newton's method stalled at a "
-                               f"residual {np.max(np.abs(r)):.2e} (no step of {_LINE_SEARCH} "
-                               "halvings reduces it)")
+            raise NoPeriodicResponse(
+                f"no periodic response found: Newton's method stalled at a "
+                f"residual {np.max(np.abs(r)):.2e} (no step of {_LINE_SEARCH} "
+                "halvings reduces it)"
+            )
         x, xT, M, run, grazing, r = x_new, xT_new, M_new, run_new, grazing_new, r_new
         scale = 1.0 + np.max(np.abs(x))
-    raise NoPeriodicResponse(f"no periodic response found: Newton's method left a residual "
-                       f"{np.max(np.abs(r)):.2e} after {max_iter} iterations")
+    raise NoPeriodicResponse(
+        f"no periodic response found: Newton's method left a residual "
+        f"{np.max(np.abs(r)):.2e} after {max_iter} iterations"
+    )
 
 
 @dataclass
@@ -472,6 +538,7 @@ class Floquet:
     ``multipliers`` are the tangential pair, then the normal pair; NaN where the
     response grazes (``grazing`` is then set and ``stable`` is None).
     """
+
     multipliers: np.ndarray
     max_abs_multiplier: float
     growth_rate: float
@@ -485,54 +552,104 @@ class Floquet:
 
     def as_dict(self) -> dict:
         """The JSON-able summary (the keys of ``python -m derive floquet --json``)."""
-        return {"multipliers": [[float(z.real), float(z.imag)] for z in self.multipliers],
-                "max_abs_multiplier": self.max_abs_multiplier,
-                "growth_rate": self.growth_rate, "frequency": self.frequency,
-                "stable": self.stable, "n_reversals": self.n_reversals,
-                "n_sticks": self.n_sticks, "grazing": self.grazing, "period": self.period,
-                "state0": [float(v) for v in self.response.state0],
-                "newton_iterations": self.response.iterations,
-                "residual": self.response.residual}
+        return {
+            "multipliers": [[float(z.real), float(z.imag)] for z in self.multipliers],
+            "max_abs_multiplier": self.max_abs_multiplier,
+            "growth_rate": self.growth_rate,
+            "frequency": self.frequency,
+            "stable": self.stable,
+            "n_reversals": self.n_reversals,
+            "n_sticks": self.n_sticks,
+            "grazing": self.grazing,
+            "period": self.period,
+            "state0": [float(v) for v in self.response.state0],
+            "newton_iterations": self.response.iterations,
+            "residual": self.response.residual,
+        }
 
 
-def floquet(params: Mapping[str, float] | None = None, *, contact: Contact = "hertz_damp",
-            tension: Tension = "allowed",
-            guess: Sequence[float] | PeriodicResponse | None = None,
-            forward: int = FORWARD_PERIODS, backend: Backend = None,
-            **overrides: float) -> Floquet:
+def floquet(
+    params: Mapping[str, float] | None = None,
+    *,
+    contact: Contact = "hertz_damp",
+    tension: Tension = "allowed",
+    guess: Sequence[float] | PeriodicResponse | None = None,
+    forward: int = FORWARD_PERIODS,
+    backend: Backend = None,
+    **overrides: float,
+) -> Floquet:
     """Floquet multipliers of the periodic response (module docstring).
 
     Returns
     -------
     Floquet
     """
-    resp = periodic_response(params, contact=contact, tension=tension, guess=guess,
-                             forward=forward, backend=backend, **overrides)
+    resp = periodic_response(
+        params,
+        contact=contact,
+        tension=tension,
+        guess=guess,
+        forward=forward,
+        backend=backend,
+        **overrides,
+    )
     return _multipliers(resp)
 
 
 def _multipliers(resp):
-    n_rev = sum(1 for _, b, a, s in resp.switches if s == "relative_velocity"
-                and {b, a} == {Mode.SLIP_BACK, Mode.SLIP_FORWARD})
+    n_rev = sum(
+        1
+        for _, b, a, s in resp.switches
+        if s == "relative_velocity" and {b, a} == {Mode.SLIP_BACK, Mode.SLIP_FORWARD}
+    )
     n_stick = sum(1 for _, _, a, _ in resp.switches if a == Mode.STICK)
     if resp.grazing is not None:
         nan = float("nan")
-        return Floquet(np.full(4, complex(nan, nan)), nan, nan, nan, None, n_rev, n_stick,
-                       resp.grazing, resp.period, resp)
+        return Floquet(
+            np.full(4, complex(nan, nan)),
+            nan,
+            nan,
+            nan,
+            None,
+            n_rev,
+            n_stick,
+            resp.grazing,
+            resp.period,
+            resp,
+        )
     mt = np.linalg.eigvals(resp.monodromy_tangential)
     mn = np.linalg.eigvals(resp.monodromy_normal)
     mu = np.concatenate([mt, mn])
     k = int(np.argmax(np.abs(mu)))
     biggest = float(abs(mu[k]))
     growth = math.log(biggest) / resp.period if biggest > 0 else -math.inf
-    return Floquet(mu, biggest, growth, abs(float(np.angle(mu[k]))) / resp.period,
-                   bool(biggest < 1.0), n_rev, n_stick, None, resp.period, resp)
+    return Floquet(
+        mu,
+        biggest,
+        growth,
+        abs(float(np.angle(mu[k]))) / resp.period,
+        bool(biggest < 1.0),
+        n_rev,
+        n_stick,
+        None,
+        resp.period,
+        resp,
+    )
 
 
-def floquet_band(param: str, lo: float, hi: float, params: Mapping[str, float] | None = None,
-                 *, contact: Contact = "hertz_damp", tension: Tension = "allowed",
-                 points: int = 17, tol: float = 1e-3, backend: Backend = None,
-                 **overrides: float) -> dict:
+def floquet_band(
+    param: str,
+    lo: float,
+    hi: float,
+    params: Mapping[str, float] | None = None,
+    *,
+    contact: Contact = "hertz_damp",
+    tension: Tension = "allowed",
+    points: int = 17,
+    tol: float = 1e-3,
+    backend: Backend = None,
+    **overrides: float,
+) -> dict:
     """Ranges of ``param`` in ``[lo, hi]`` where the periodic response is unstable.
 
     A grid of ``points`` values is walked from ``hi`` down to ``lo``, each periodic
@@ -568,6 +685,7 @@ def floquet_band(param: str, lo: float, hi: float, params: Mapping[str, float] |
         For an unknown parameter, a bad range, ``points < 2`` or ``tol <= 0``.
     """
     from generated.parameters import KNOWN
+
     if param not in KNOWN or param == "Vhat":
         raise ValueError(f"param must be a model parameter; got {param!r}")
     if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
@@ -584,8 +702,14 @@ def floquet_band(param: str, lo: float, hi: float, params: Mapping[str, float] |
         # forward iteration finds only a stable response: tried next to a stable one
         forward = FORWARD_PERIODS if not near or near[0].stable is not False else 0
         try:
-            f = floquet({**base, param: float(v)}, contact=contact, tension=tension,
-                        guess=guess, forward=forward, backend=backend)
+            f = floquet(
+                {**base, param: float(v)},
+                contact=contact,
+                tension=tension,
+                guess=guess,
+                forward=forward,
+                backend=backend,
+            )
         except NoPeriodicResponse as err:
             if record:
                 failed.append({"value": float(v), "reason": str(err)})
@@ -625,23 +749,46 @@ def floquet_band(param: str, lo: float, hi: float, params: Mapping[str, float] |
     for (a, fa), (b, fb) in zip(grid[:-1], grid[1:]):
         refine(a, fa, b, fb)
     edges = [e for e in sorted(edges, key=lambda e: e["value"]) if e is not None]
-    grazing_points += [e["value"] for e in edges
-                       if e["kind"] == "grazing" and e["value"] not in grazing_points]
+    grazing_points += [
+        e["value"] for e in edges if e["kind"] == "grazing" and e["value"] not in grazing_points
+    ]
     points_seen = sorted(seen.items())
     unstable = _runs(points_seen, edges, lambda f: f is None or f.stable is not True, lo, hi)
     gaps = _runs(points_seen, edges, lambda f: f is None, lo, hi)
-    table = [{"value": v, "max_abs_multiplier": f.max_abs_multiplier, "stable": f.stable,
-              "growth_rate": f.growth_rate, "n_reversals": f.n_reversals,
-              "n_sticks": f.n_sticks, "grazing": f.grazing is not None}
-             for v, f in points_seen if f is not None]
-    return {"param": param, "unstable": unstable, "edges": edges,
-            "grazing_points": sorted(grazing_points), "no_periodic_response": gaps,
-            "grid": table, "failed": failed, "tension": tension, "contact": contact}
+    table = [
+        {
+            "value": v,
+            "max_abs_multiplier": f.max_abs_multiplier,
+            "stable": f.stable,
+            "growth_rate": f.growth_rate,
+            "n_reversals": f.n_reversals,
+            "n_sticks": f.n_sticks,
+            "grazing": f.grazing is not None,
+        }
+        for v, f in points_seen
+        if f is not None
+    ]
+    return {
+        "param": param,
+        "unstable": unstable,
+        "edges": edges,
+        "grazing_points": sorted(grazing_points),
+        "no_periodic_response": gaps,
+        "grid": table,
+        "failed": failed,
+        "tension": tension,
+        "contact": contact,
+    }
 
 
 def _same_structure(fa, fb):
-    return fa is not None and fb is not None and fa.stable is not None and \
-        fb.stable is not None and (fa.n_reversals, fa.n_sticks) == (fb.n_reversals, fb.n_sticks)
+    return (
+        fa is not None
+        and fb is not None
+        and fa.stable is not None
+        and fb.stable is not None
+        and (fa.n_reversals, fa.n_sticks) == (fb.n_reversals, fb.n_sticks)
+    )
 
 
 def _multiplier_step(a, fa, b, fb, tol):
@@ -679,9 +826,13 @@ def _edge(a, fa, b, fb, kind=None):
             kind = "grazing"
         else:
             kind = "multiplier"
-    return {"value": 0.5 * (a + b), "kind": kind, "bracket": [a, b],
-            "unstable_below": fa is None or fa.stable is not True,
-            "unstable_above": fb is None or fb.stable is not True}
+    return {
+        "value": 0.5 * (a + b),
+        "kind": kind,
+        "bracket": [a, b],
+        "unstable_below": fa is None or fa.stable is not True,
+        "unstable_above": fb is None or fb.stable is not True,
+    }
 
 
 def _runs(points, edges, flag, lo, hi):
@@ -710,8 +861,12 @@ def _sliding_grazing(param, a, fa, b, fb, base, contact, tension, backend):
     largest velocity in contact; it does not depend on ``Vb``. Only for ``param =
     "Vb"``; other parameters are bisected.
     """
-    if param != "Vb" or fb is None or (fb.n_reversals, fb.n_sticks) != (0, 0) or \
-            (fa is not None and (fa.n_reversals, fa.n_sticks) == (0, 0)):
+    if (
+        param != "Vb"
+        or fb is None
+        or (fb.n_reversals, fb.n_sticks) != (0, 0)
+        or (fa is not None and (fa.n_reversals, fa.n_sticks) == (0, 0))
+    ):
         return None
     pmap = fb.response._engine
     return _largest_sliding_velocity(pmap)
@@ -726,13 +881,18 @@ def _largest_sliding_velocity(pmap):
     x0 = _sliding_guess(pmap)
     normal = pmap.engine.normal
     grid = normal.grid[normal.grid <= pmap.T]
-    segment = np.clip(np.searchsorted(normal.switch_t, grid, side="right") - 1, 0,
-                      len(normal.switch_mode) - 1)
+    segment = np.clip(
+        np.searchsorted(normal.switch_t, grid, side="right") - 1, 0, len(normal.switch_mode) - 1
+    )
     contact = np.array([normal.switch_mode[k] == Mode.SLIP_BACK for k in segment])
     P = pmap.stm.array(grid)
     mu = pmap.p["mu_s"]
-    v = P[:, 1, 0] * x0[0] + P[:, 1, 1] * x0[1] + normal.on_grid[5, :grid.size] \
-        + mu * normal.on_grid[1, :grid.size]
+    v = (
+        P[:, 1, 0] * x0[0]
+        + P[:, 1, 1] * x0[1]
+        + normal.on_grid[5, : grid.size]
+        + mu * normal.on_grid[1, : grid.size]
+    )
     v = np.where(contact, v, -np.inf)
     k = int(np.argmax(v))
 
@@ -740,9 +900,11 @@ def _largest_sliding_velocity(pmap):
         P = np.array(pmap.stm(t)).reshape(2, 2)
         z = normal.at(t)
         return -(P[1] @ x0 + pmap.engine.exc(t)[1] + mu * z[1])
+
     # refine within the contact segment that holds the largest grid value
     lo = max(grid[max(k - 1, 0)], normal.switch_t[segment[k]])
     hi = min(grid[min(k + 1, grid.size - 1)], normal.switch_t[segment[k] + 1])
-    best = optimize.minimize_scalar(minus_velocity, bounds=(lo, hi), method="bounded",
-                                    options={"xatol": 1e-12})
+    best = optimize.minimize_scalar(
+        minus_velocity, bounds=(lo, hi), method="bounded", options={"xatol": 1e-12}
+    )
     return float(max(-best.fun, v[k]))

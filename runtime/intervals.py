@@ -8,6 +8,7 @@ notebooks' ``_nbutil`` call them.
 
 Runtime layer: numpy only.
 """
+
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
@@ -16,9 +17,22 @@ from typing import TypeVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["true_runs", "label_runs", "runs", "sign_changes", "from_crossings", "union",
-           "intersection", "difference", "symmetric_difference", "clip", "hull", "length",
-           "jaccard", "format_intervals"]
+__all__ = [
+    "true_runs",
+    "label_runs",
+    "runs",
+    "sign_changes",
+    "from_crossings",
+    "union",
+    "intersection",
+    "difference",
+    "symmetric_difference",
+    "clip",
+    "hull",
+    "length",
+    "jaccard",
+    "format_intervals",
+]
 
 #: Any label of `label_runs`: what it is given comes back.
 _Label = TypeVar("_Label")
@@ -36,8 +50,7 @@ def true_runs(flags: ArrayLike) -> list[tuple[int, int]]:
     list of (int, int)
         ``(first, last)`` indices of each run, both inclusive.
     """
-    return [(i, j) for label, i, j in label_runs(np.asarray(flags, dtype=bool).tolist())
-            if label]
+    return [(i, j) for label, i, j in label_runs(np.asarray(flags, dtype=bool).tolist()) if label]
 
 
 def label_runs(labels: Iterable[_Label]) -> list[tuple[_Label, int, int]]:
@@ -86,8 +99,9 @@ def runs(x: ArrayLike, flags: ArrayLike) -> list[tuple[float, float]]:
     x = np.asarray(x, dtype=float)
     flags = np.asarray(flags, dtype=bool)
     if x.shape != flags.shape or x.ndim != 1:
-        raise ValueError(f"x and flags must be 1-D of one length; got shapes {x.shape} "
-                         f"and {flags.shape}")
+        raise ValueError(
+            f"x and flags must be 1-D of one length; got shapes {x.shape} and {flags.shape}"
+        )
     order = np.argsort(x)
     x, flags = x[order], flags[order]
     return [(float(x[i]), float(x[j])) for i, j in true_runs(flags)]
@@ -107,8 +121,9 @@ def sign_changes(values: ArrayLike) -> NDArray[np.intp]:
     return np.flatnonzero(negative[:-1] != negative[1:])
 
 
-def from_crossings(x: ArrayLike, inside: ArrayLike,
-                   crossings: Iterable[float]) -> list[tuple[float, float]]:
+def from_crossings(
+    x: ArrayLike, inside: ArrayLike, crossings: Iterable[float]
+) -> list[tuple[float, float]]:
     """The set over the grid ``x`` bounded by its refined crossing points.
 
     Parameters
@@ -147,8 +162,9 @@ def union(a: Iterable[tuple[float, float]]) -> list[tuple[float, float]]:
     return out
 
 
-def intersection(a: Iterable[tuple[float, float]],
-                 b: Sequence[tuple[float, float]]) -> list[tuple[float, float]]:
+def intersection(
+    a: Iterable[tuple[float, float]], b: Sequence[tuple[float, float]]
+) -> list[tuple[float, float]]:
     """``A and B``: sorted, disjoint intervals (a single shared point is kept)."""
     out = []
     for l1, h1 in union(a):
@@ -159,8 +175,9 @@ def intersection(a: Iterable[tuple[float, float]],
     return out
 
 
-def difference(a: Iterable[tuple[float, float]],
-               b: Iterable[tuple[float, float]]) -> list[tuple[float, float]]:
+def difference(
+    a: Iterable[tuple[float, float]], b: Iterable[tuple[float, float]]
+) -> list[tuple[float, float]]:
     """``A minus B`` up to the end points: sorted, disjoint intervals of positive length.
 
     The pieces of A left between the intervals of B; end points shared with B are
@@ -182,8 +199,9 @@ def difference(a: Iterable[tuple[float, float]],
     return out
 
 
-def symmetric_difference(a: Sequence[tuple[float, float]],
-                         b: Sequence[tuple[float, float]]) -> list[tuple[float, float]]:
+def symmetric_difference(
+    a: Sequence[tuple[float, float]], b: Sequence[tuple[float, float]]
+) -> list[tuple[float, float]]:
     """``A xor B`` (up to the end points, as in `difference`)."""
     return union(difference(a, b) + difference(b, a))
 
@@ -216,8 +234,9 @@ def jaccard(a: Sequence[tuple[float, float]], b: Sequence[tuple[float, float]]) 
     return 1.0 if total == 0 else inter / total
 
 
-def format_intervals(a: Iterable[tuple[float, float]], spec: str = ".2f",
-                     empty: str = "none") -> str:
+def format_intervals(
+    a: Iterable[tuple[float, float]], spec: str = ".2f", empty: str = "none"
+) -> str:
     """``[lo, hi], ...`` with each number formatted by ``spec``; ``empty`` for no interval.
 
     Examples

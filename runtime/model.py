@@ -5,6 +5,7 @@ is the unforced equilibrium of Eq. (9) (both in `runtime.parameters`). The modes
 the hybrid system come from `generated.hybrid` (`runtime.switching.Mode`); the
 names below are kept for the code that uses them.
 """
+
 from __future__ import annotations
 
 from generated import hybrid
@@ -12,8 +13,19 @@ from generated import hybrid
 from .parameters import CONTACTS, initial_state, resolve_parameters
 from .switching import MODE_NAMES, Mode
 
-__all__ = ["CONTACTS", "TENSIONS", "resolve_parameters", "initial_state", "Mode",
-           "MODE_NAMES", "SLIP_BACK", "SLIP_FORWARD", "STICK", "FLIGHT", "SEPARATED"]
+__all__ = [
+    "CONTACTS",
+    "TENSIONS",
+    "resolve_parameters",
+    "initial_state",
+    "Mode",
+    "MODE_NAMES",
+    "SLIP_BACK",
+    "SLIP_FORWARD",
+    "STICK",
+    "FLIGHT",
+    "SEPARATED",
+]
 
 TENSIONS = tuple(hybrid.GUARDS)
 

@@ -9,6 +9,7 @@ that cycle (the steady sliding value is mu_s); with Eq. (23)'s sign convention
 Cycle averages are integrals of the trajectory, split at every switch, not sums of
 samples.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -19,9 +20,9 @@ from .simulate import Simulation
 __all__ = ["friction_loop", "cycle_averages", "modulation_scatter"]
 
 
-def friction_loop(sim: Simulation, period: float | None = None, t_stop: float | None = None,
-                  n: int = 2000
-                  ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+def friction_loop(
+    sim: Simulation, period: float | None = None, t_stop: float | None = None, n: int = 2000
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Friction force against relative velocity over one period (Fig. 3b).
 
     Parameters
@@ -39,15 +40,18 @@ def friction_loop(sim: Simulation, period: float | None = None, t_stop: float | 
     period = 2 * np.pi / sim.params["omega1"] if period is None else float(period)
     t_stop = sim.trajectory.t_end if t_stop is None else float(t_stop)
     if not (period > 0 and t_stop - period >= sim.trajectory.segments[0].t0):
-        raise ValueError(f"period={period!r} must be > 0 and fit in the run before t_stop={t_stop!r}")
+        raise ValueError(
+            f"period={period!r} must be > 0 and fit in the run before t_stop={t_stop!r}"
+        )
     t = np.linspace(t_stop - period, t_stop, n)
     y = sim.trajectory.state(t)
     _, friction = sim.trajectory.forces(t, y)
     return t, y[1] - sim.params["Vb"], friction
 
 
-def cycle_averages(sim: Simulation, period: float,
-                   t_start: float | None = None) -> dict[str, NDArray[np.float64]]:
+def cycle_averages(
+    sim: Simulation, period: float, t_start: float | None = None
+) -> dict[str, NDArray[np.float64]]:
     """Mean friction and normal force over consecutive cycles of ``period``.
 
     Cycles start at the first multiple of ``period`` after ``t_start`` (default the

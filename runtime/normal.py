@@ -14,6 +14,7 @@ The motion is kept twice: as DOP853 dense output (exact to the integration
 tolerance at any time), and sampled on a uniform grid for the superposition's scan
 for switches.
 """
+
 from __future__ import annotations
 
 import functools
@@ -33,8 +34,19 @@ __all__ = ["NormalMotion", "normal_motion", "clear_cache", "GRID_STEP", "NORMAL_
 #: Grid of the scan for switches [s].
 GRID_STEP = 0.005
 #: The parameters the normal motion and the response z depend on (not Vb, mu_s).
-NORMAL_NAMES = ("beta1", "omega1", "beta2", "omega2", "g", "alpha_t", "Omega_t", "phase_t",
-                "alpha_n", "Omega_n", "phase_n")
+NORMAL_NAMES = (
+    "beta1",
+    "omega1",
+    "beta2",
+    "omega2",
+    "g",
+    "alpha_t",
+    "Omega_t",
+    "phase_t",
+    "alpha_n",
+    "Omega_n",
+    "phase_n",
+)
 _NORMAL_SURFACES = ("penetration", "contact_force")
 
 
@@ -59,9 +71,18 @@ class NormalMotion:
         ``z, z', X2, X2'`` and the excitation response ``zf, zf'`` at ``grid``.
     """
 
-    def __init__(self, p: Mapping[str, float], contact: Contact, tension: Tension,
-                 t_end: float, rtol: float, atol: float, y0_normal: Iterable[float],
-                 backend: Backend | None = None, grid_step: float = GRID_STEP) -> None:
+    def __init__(
+        self,
+        p: Mapping[str, float],
+        contact: Contact,
+        tension: Tension,
+        t_end: float,
+        rtol: float,
+        atol: float,
+        y0_normal: Iterable[float],
+        backend: Backend | None = None,
+        grid_step: float = GRID_STEP,
+    ) -> None:
         self.p, self.contact, self.tension, self.t_end = p, contact, tension, float(t_end)
         kw = dict(contact=contact, backend=backend, **p)
         field = hybrid.bind_response_field(**kw)
@@ -69,10 +90,16 @@ class NormalMotion:
         advance = _compiled.advance("response_field", contact, backend)
         guards = {}
         for mode in (Mode.SLIP_BACK, Mode.FLIGHT, Mode.SEPARATED):
-            rows = [(SURFACE_INDEX[s], float(d), target) for s, d, target
-                    in sw.guards.get(mode, ((), (), ()))[2] if s in _NORMAL_SURFACES]
-            guards[mode] = (np.array([r[0] for r in rows], dtype=np.int64),
-                            np.array([r[1] for r in rows]), [r[2] for r in rows])
+            rows = [
+                (SURFACE_INDEX[s], float(d), target)
+                for s, d, target in sw.guards.get(mode, ((), (), ()))[2]
+                if s in _NORMAL_SURFACES
+            ]
+            guards[mode] = (
+                np.array([r[0] for r in rows], dtype=np.int64),
+                np.array([r[1] for r in rows]),
+                [r[2] for r in rows],
+            )
         t, y = 0.0, np.array([0.0, 0.0, *y0_normal], dtype=float)
         mode = self._normal_mode(sw, t, y, entering=y[2] > 0 or (y[2] == 0 and y[3] > 0))
         switch_t, switch_mode, switch_kind, switch_surface, steps = [0.0], [mode], [], [], []
@@ -80,8 +107,20 @@ class NormalMotion:
         while t < self.t_end:
             watch, dirs, targets = guards[mode]
             (code, n, ts, hs, ys, Fs, t_stop, y_stop, hit, h_next) = advance(
-                field.args, sw.surfaces.args, sw.rates.args, float(mode), watch, dirs, t, y,
-                self.t_end, h_next, rtol, atol, np.inf)
+                field.args,
+                sw.surfaces.args,
+                sw.rates.args,
+                float(mode),
+                watch,
+                dirs,
+                t,
+                y,
+                self.t_end,
+                h_next,
+                rtol,
+                atol,
+                np.inf,
+            )
             if code == _dop853.STATUS_STEP_TOO_SMALL:
                 raise RuntimeError(f"normal motion: step size too small at t = {t_stop:.6g} s")
             if n:
@@ -142,27 +181,44 @@ class NormalMotion:
 
     def segment_at(self, t: float) -> int:
         """Index of the normal segment that holds ``t`` (the later one at a switch)."""
-        return min(int(np.searchsorted(self.switch_t, t, side="right")) - 1,
-                   len(self.switch_mode) - 1)
+        return min(
+            int(np.searchsorted(self.switch_t, t, side="right")) - 1, len(self.switch_mode) - 1
+        )
 
 
 @functools.lru_cache(maxsize=4)
 def _cached(key, contact, tension, t_end, rtol, atol, y0_normal, backend):
-    return NormalMotion(dict(key, mu_s=0.0, Vb=0.0), contact, tension, t_end, rtol, atol,
-                        y0_normal, backend)
+    return NormalMotion(
+        dict(key, mu_s=0.0, Vb=0.0), contact, tension, t_end, rtol, atol, y0_normal, backend
+    )
 
 
-def normal_motion(p: Mapping[str, float], contact: Contact, tension: Tension, t_end: float,
-                  rtol: float, atol: float, y0_normal: Iterable[float],
-                  backend: Backend | None = None) -> NormalMotion:
+def normal_motion(
+    p: Mapping[str, float],
+    contact: Contact,
+    tension: Tension,
+    t_end: float,
+    rtol: float,
+    atol: float,
+    y0_normal: Iterable[float],
+    backend: Backend | None = None,
+) -> NormalMotion:
     """The `NormalMotion` of ``p`` (cached: the last few are kept).
 
     ``mu_s`` and ``Vb`` do not enter the normal motion or ``z``: a sweep over either
     reuses one.
     """
     key = tuple((k, float(p[k])) for k in NORMAL_NAMES)
-    return _cached(key, contact, tension, float(t_end), float(rtol), float(atol),
-                   tuple(float(v) for v in y0_normal), backend)
+    return _cached(
+        key,
+        contact,
+        tension,
+        float(t_end),
+        float(rtol),
+        float(atol),
+        tuple(float(v) for v in y0_normal),
+        backend,
+    )
 
 
 def clear_cache() -> None:

@@ -5,6 +5,7 @@ flags) into the complete, checked parameter dict that every run and every cache 
 uses; `initial_state` is the default start of a run. Both are re-exported by
 `runtime.model`, where they used to live.
 """
+
 from __future__ import annotations
 
 import math
@@ -18,8 +19,15 @@ from numpy.typing import NDArray
 from generated import unforced
 from generated.parameters import BASE, DOMAINS, KNOWN
 
-__all__ = ["CONTACTS", "METHODS", "MAX_SAMPLES", "resolve_parameters",
-           "initial_state", "is_real", "excitation_period"]
+__all__ = [
+    "CONTACTS",
+    "METHODS",
+    "MAX_SAMPLES",
+    "resolve_parameters",
+    "initial_state",
+    "is_real",
+    "excitation_period",
+]
 
 CONTACTS = ("hertz_damp", "kelvin_voigt")
 #: Annotation types of a run's options: the contact laws (`CONTACTS`), the tension
@@ -37,12 +45,18 @@ METHODS = ("DOP853",)
 MAX_SAMPLES = 10**7
 
 #: The domains of the parameter table (``generated.parameters.DOMAINS``) as tests.
-_DOMAIN_TESTS = {"positive": (lambda x: x > 0, "> 0"),
-                 "nonnegative": (lambda x: x >= 0, ">= 0"),
-                 "real": (lambda x: True, "real")}
+_DOMAIN_TESTS = {
+    "positive": (lambda x: x > 0, "> 0"),
+    "nonnegative": (lambda x: x >= 0, ">= 0"),
+    "real": (lambda x: True, "real"),
+}
 
-_EXCITATION_DEFAULTS = {"alpha_t": "alpha", "Omega_t": "Omega", "alpha_n": "alpha",
-                        "Omega_n": "Omega"}
+_EXCITATION_DEFAULTS = {
+    "alpha_t": "alpha",
+    "Omega_t": "Omega",
+    "alpha_n": "alpha",
+    "Omega_n": "Omega",
+}
 
 
 def is_real(value: object) -> bool:
@@ -50,9 +64,12 @@ def is_real(value: object) -> bool:
     return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
 
 
-def resolve_parameters(params: Mapping[str, float | None] | None = None, *,
-                       contact: Contact = "hertz_damp",
-                       **overrides: float | None) -> dict[str, float]:
+def resolve_parameters(
+    params: Mapping[str, float | None] | None = None,
+    *,
+    contact: Contact = "hertz_damp",
+    **overrides: float | None,
+) -> dict[str, float]:
     """The paper's base set (``generated.parameters.BASE``) updated by the arguments.
 
     The per-direction excitation keywords (``alpha_t``, ``Omega_t``, ``phase_t``,
@@ -100,8 +117,7 @@ def resolve_parameters(params: Mapping[str, float | None] | None = None, *,
     return merged
 
 
-def initial_state(p: Mapping[str, float],
-                  contact: Contact = "hertz_damp") -> NDArray[np.float64]:
+def initial_state(p: Mapping[str, float], contact: Contact = "hertz_damp") -> NDArray[np.float64]:
     """Default initial state: the unforced equilibrium of Eq. (9), at rest.
 
     ``X1 = mu_s g / omega1^2``, ``X2 = (g / omega2*^2)^(2/3)`` (Hertz-Damp) or
@@ -146,19 +162,23 @@ def excitation_period(p: Mapping[str, float]) -> float:
     3.141593
     """
     from fractions import Fraction
-    active = [p[f"Omega_{d}"] for d in ("t", "n")
-              if p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0]
+
+    active = [p[f"Omega_{d}"] for d in ("t", "n") if p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0]
     if not active:
-        raise ValueError("no excitation (alpha_t Omega_t = alpha_n Omega_n = 0): there is no "
-                         "excitation period to take the phase from; continuation needs "
-                         "Omega > 0 and alpha > 0")
+        raise ValueError(
+            "no excitation (alpha_t Omega_t = alpha_n Omega_n = 0): there is no "
+            "excitation period to take the phase from; continuation needs "
+            "Omega > 0 and alpha > 0"
+        )
     if len(active) == 1 or active[0] == active[1]:
         return 2 * math.pi / active[0]
     w_t, w_n = active
     ratio = Fraction(w_t / w_n).limit_denominator(_MAX_DENOMINATOR)
     # rounding of the given frequencies only: their ratio must be the fraction
     if abs(ratio.numerator / ratio.denominator - w_t / w_n) > 1e-12 * (w_t / w_n):
-        raise ValueError(f"Omega_t = {w_t!r} and Omega_n = {w_n!r} are incommensurate (their "
-                         f"ratio is no fraction a/b with b <= {_MAX_DENOMINATOR}): the "
-                         "excitation has no common period")
+        raise ValueError(
+            f"Omega_t = {w_t!r} and Omega_n = {w_n!r} are incommensurate (their "
+            f"ratio is no fraction a/b with b <= {_MAX_DENOMINATOR}): the "
+            "excitation has no common period"
+        )
     return 2 * math.pi * ratio.numerator / w_t

@@ -30,6 +30,7 @@ harmonic fast normal force ``g + N1 sin``; with ``tension="clipped"`` and
 ``N1 >= g`` the clip ``max(F, 0)`` cuts it off and it is no longer harmonic, so that
 analysis gives no prediction (`CLIPPED_MDSM`) rather than the allowed law's.
 """
+
 from __future__ import annotations
 
 import math
@@ -46,14 +47,27 @@ from generated import correlation, friction, stability
 from . import intervals
 from .parameters import Contact, Tension, resolve_parameters
 
-__all__ = ["FastMotion", "fast_motion", "consistent_mdsm_damping", "unstable_intervals",
-           "paper_intervals", "predict", "main", "NO_EXCITATION", "NO_VHAT", "CLIPPED_MDSM",
-           "CLIPPED_PAPER", "clip_acts"]
+__all__ = [
+    "FastMotion",
+    "fast_motion",
+    "consistent_mdsm_damping",
+    "unstable_intervals",
+    "paper_intervals",
+    "predict",
+    "main",
+    "NO_EXCITATION",
+    "NO_VHAT",
+    "CLIPPED_MDSM",
+    "CLIPPED_PAPER",
+    "clip_acts",
+]
 
 
 @dataclass(frozen=True)
 class FastMotion:
-    """Fast motion at one belt speed: ``v = V sin(Omega t + phi)``, ``N = g + N1 sin(Omega t + psi)``.
+    """Fast motion at one belt speed.
+
+    ``v = V sin(Omega t + phi)``, ``N = g + N1 sin(Omega t + psi)``.
 
     ``reverses`` is True when the friction changes direction within a fast cycle
     (``V > Vb``); ``theta = psi - phi`` is the phase of the normal force ahead of the
@@ -74,8 +88,10 @@ class FastMotion:
 
 def _single_frequency(p):
     if p["Omega_t"] != p["Omega_n"]:
-        raise ValueError("the harmonic balance needs one excitation frequency: "
-                         f"Omega_t = {p['Omega_t']} != Omega_n = {p['Omega_n']}")
+        raise ValueError(
+            "the harmonic balance needs one excitation frequency: "
+            f"Omega_t = {p['Omega_t']} != Omega_n = {p['Omega_n']}"
+        )
     return p["Omega_t"]
 
 
@@ -102,8 +118,9 @@ def _hybr(fun, start, args):
         return None
 
 
-def fast_motion(p: Mapping[str, float], contact: Contact = "hertz_damp",
-                guess: FastMotion | None = None) -> FastMotion:
+def fast_motion(
+    p: Mapping[str, float], contact: Contact = "hertz_damp", guess: FastMotion | None = None
+) -> FastMotion:
     """The fast motion at ``p["Vb"]`` (parameters as `resolve_parameters` returns them).
 
     Parameters
@@ -119,11 +136,10 @@ def fast_motion(p: Mapping[str, float], contact: Contact = "hertz_damp",
     """
     W = _single_frequency(p)
     N1, psi = (float(x) for x in correlation.fast_normal_force(contact=contact, **p))
-    D = p["omega1"]**2 - W**2 + 2j * p["beta1"] * p["omega1"] * W
+    D = p["omega1"] ** 2 - W**2 + 2j * p["beta1"] * p["omega1"] * W
     Ft = p["alpha_t"] * W**2 * np.exp(1j * p["phase_t"])
     # Friction of constant direction (Vr < 0 throughout): the linear, coupled response.
-    V_lin, phi_lin = (float(x) for x in correlation.fast_tangential_velocity(contact=contact,
-                                                                            **p))
+    V_lin, phi_lin = (float(x) for x in correlation.fast_tangential_velocity(contact=contact, **p))
     if V_lin <= p["Vb"]:
         return FastMotion(V_lin, phi_lin, N1, psi, False, 0.0)
     start = (guess.V, guess.phi) if guess is not None and guess.reverses else (V_lin, phi_lin)
@@ -147,15 +163,16 @@ def fast_motion(p: Mapping[str, float], contact: Contact = "hertz_damp",
             residual = residual_of(sol, V)
     if residual > 1e-9:
         why = sol.message if sol is not None else "an iterate reached V <= 0"
-        raise RuntimeError(f"harmonic balance did not converge at Vb = {p['Vb']}: "
-                           f"{why} (residual {residual:.1e})")
+        raise RuntimeError(
+            f"harmonic balance did not converge at Vb = {p['Vb']}: {why} (residual {residual:.1e})"
+        )
     phi = sol.x[1]
-    return FastMotion(float(V), float(np.angle(np.exp(1j * phi))), N1, psi, V > p["Vb"],
-                      residual)
+    return FastMotion(float(V), float(np.angle(np.exp(1j * phi))), N1, psi, V > p["Vb"], residual)
 
 
-def consistent_mdsm_damping(p: Mapping[str, float], contact: Contact = "hertz_damp",
-                            fast: FastMotion | None = None) -> float:
+def consistent_mdsm_damping(
+    p: Mapping[str, float], contact: Contact = "hertz_damp", fast: FastMotion | None = None
+) -> float:
     """Tangential damping ``p = 2 beta1 omega1 + mu_s dF/du`` of the slow motion at ``-Vb``."""
     fast = fast or fast_motion(p, contact)
     if fast.V == 0:
@@ -180,10 +197,14 @@ def _check_points(points):
         raise ValueError(f"points must be an integer >= 2; got {points!r}")
 
 
-def unstable_intervals(params: Mapping[str, float | None] | None = None, *,
-                       contact: Contact = "hertz_damp", vb: ArrayLike | None = None,
-                       points: int | np.integer = 400, **overrides: float | None
-                       ) -> tuple[list[tuple[float, float]], dict[str, NDArray[Any]]]:
+def unstable_intervals(
+    params: Mapping[str, float | None] | None = None,
+    *,
+    contact: Contact = "hertz_damp",
+    vb: ArrayLike | None = None,
+    points: int | np.integer = 400,
+    **overrides: float | None,
+) -> tuple[list[tuple[float, float]], dict[str, NDArray[Any]]]:
     """Unstable belt speeds of the consistent MDSM.
 
     The damping is evaluated on a grid (continuation from high ``Vb`` down, where the
@@ -227,14 +248,25 @@ def unstable_intervals(params: Mapping[str, float | None] | None = None, *,
     else:
         vb = _check_grid(vb)
     if vb.size == 0:
-        return [], {"Vb": vb, "damping": vb.copy(), "V": vb.copy(), "theta": vb.copy(),
-                    "reverses": np.zeros(0, bool)}
+        return [], {
+            "Vb": vb,
+            "damping": vb.copy(),
+            "V": vb.copy(),
+            "theta": vb.copy(),
+            "reverses": np.zeros(0, bool),
+        }
     rows, guess = [], None
     for v in sorted(vb, reverse=True):
         q = {**p, "Vb": float(v)}
         fast = fast_motion(q, contact, guess)
         guess = fast
-        rows.append((v, consistent_mdsm_damping(q, contact, fast), fast, ))
+        rows.append(
+            (
+                v,
+                consistent_mdsm_damping(q, contact, fast),
+                fast,
+            )
+        )
     rows.sort(key=lambda r: r[0])
     grid = np.array([r[0] for r in rows])
     damping = np.array([r[1] for r in rows])
@@ -252,19 +284,24 @@ def unstable_intervals(params: Mapping[str, float | None] | None = None, *,
             # is singular there and no root-finder is needed.
             cuts.append(above.V if not above.reverses else below.V)
             continue
-        cuts.append(optimize.brentq(damping_at, grid[i], grid[i + 1], args=(above,),
-                                    xtol=1e-10))
+        cuts.append(optimize.brentq(damping_at, grid[i], grid[i + 1], args=(above,), xtol=1e-10))
     unstable = intervals.from_crossings(grid, damping < 0, cuts)
-    table = {"Vb": grid, "damping": damping,
-             "V": np.array([r[2].V for r in rows]),
-             "theta": np.array([r[2].theta for r in rows]),
-             "reverses": np.array([r[2].reverses for r in rows])}
+    table = {
+        "Vb": grid,
+        "damping": damping,
+        "V": np.array([r[2].V for r in rows]),
+        "theta": np.array([r[2].theta for r in rows]),
+        "reverses": np.array([r[2].reverses for r in rows]),
+    }
     return unstable, table
 
 
-def paper_intervals(params: Mapping[str, float | None] | None = None, *,
-                    contact: Contact = "hertz_damp", **overrides: float | None
-                    ) -> dict[str, list[tuple[float, float]] | None]:
+def paper_intervals(
+    params: Mapping[str, float | None] | None = None,
+    *,
+    contact: Contact = "hertz_damp",
+    **overrides: float | None,
+) -> dict[str, list[tuple[float, float]] | None]:
     """The paper's unstable interval ``(Vb_c, Vhat]`` for each ``V_hat`` reading (Eq. 25, 28).
 
     Returns
@@ -281,31 +318,40 @@ def paper_intervals(params: Mapping[str, float | None] | None = None, *,
         if not friction.vhat(model=model, contact=contact, **p) > 0:
             out[model] = None
             continue
-        lower, upper = (float(x) for x in stability.unstable_interval(
-            contact=contact, vhat_model=model, **p))
+        lower, upper = (
+            float(x) for x in stability.unstable_interval(contact=contact, vhat_model=model, **p)
+        )
         out[model] = [] if math.isnan(lower) else [(lower, upper)]
     return out
 
 
 #: Why an analysis gives no prediction, or none of its usual kind.
-NO_EXCITATION = ("no fast tangential motion: without tangential excitation, and none passed "
-                 "on by friction from the normal one, the averaged friction is Coulomb "
-                 "friction with slope 0, so no belt speed is unstable")
+NO_EXCITATION = (
+    "no fast tangential motion: without tangential excitation, and none passed "
+    "on by friction from the normal one, the averaged friction is Coulomb "
+    "friction with slope 0, so no belt speed is unstable"
+)
 NO_VHAT = "V_hat = 0 (no fast tangential motion): Eqs. (23)-(25) need V_hat > 0"
 #: Why the consistent MDSM gives no prediction under the clipped tension law
 #: (formatted with the amplitude ``N1`` of the fast normal force and ``g``).
-CLIPPED_MDSM = ("tension='clipped': the harmonic balance of the consistent MDSM assumes a "
-                "harmonic fast normal force g + N1 sin(Omega t + psi), and with N1 = {N1:.4g} "
-                ">= g = {g:.4g} the clip max(F, 0) cuts it off wherever it would pull, which "
-                "makes it non-harmonic; no prediction (the allowed law's would be silently "
-                "wrong)")
+CLIPPED_MDSM = (
+    "tension='clipped': the harmonic balance of the consistent MDSM assumes a "
+    "harmonic fast normal force g + N1 sin(Omega t + psi), and with N1 = {N1:.4g} "
+    ">= g = {g:.4g} the clip max(F, 0) cuts it off wherever it would pull, which "
+    "makes it non-harmonic; no prediction (the allowed law's would be silently "
+    "wrong)"
+)
 #: The note on the consistent MDSM where the clip does not act on its fast normal force.
-CLIPPED_MDSM_INACTIVE = ("tension='clipped': the linear fast normal force g + N1 sin stays "
-                         "positive (N1 = {N1:.4g} < g = {g:.4g}), so the clip does not act on "
-                         "it and the harmonic balance is the same as under 'allowed'")
+CLIPPED_MDSM_INACTIVE = (
+    "tension='clipped': the linear fast normal force g + N1 sin stays "
+    "positive (N1 = {N1:.4g} < g = {g:.4g}), so the clip does not act on "
+    "it and the harmonic balance is the same as under 'allowed'"
+)
 #: The note on the paper's closed forms under the clipped tension law.
-CLIPPED_PAPER = ("tension='clipped': the same as under 'allowed', since the analysis "
-                 "linearises at the equilibrium, where the contact force g > 0 does not pull")
+CLIPPED_PAPER = (
+    "tension='clipped': the same as under 'allowed', since the analysis "
+    "linearises at the equilibrium, where the contact force g > 0 does not pull"
+)
 
 
 class _Refused(Exception):
@@ -322,10 +368,15 @@ def clip_acts(p: Mapping[str, float], contact: Contact = "hertz_damp") -> tuple[
     return N1 >= p["g"], N1
 
 
-def predict(params: Mapping[str, float | None] | None = None, *,
-            contact: Contact = "hertz_damp", tension: Tension = "allowed",
-            vb: ArrayLike | None = None, points: int | np.integer = 400,
-            **overrides: float | None) -> dict:
+def predict(
+    params: Mapping[str, float | None] | None = None,
+    *,
+    contact: Contact = "hertz_damp",
+    tension: Tension = "allowed",
+    vb: ArrayLike | None = None,
+    points: int | np.integer = 400,
+    **overrides: float | None,
+) -> dict:
     """Both analyses' predicted unstable ``Vb`` intervals, as plain data.
 
     Parameters
@@ -354,9 +405,11 @@ def predict(params: Mapping[str, float | None] | None = None, *,
         For bad parameters, a bad tension law or a bad grid (naming them).
     """
     from .model import TENSIONS
+
     if tension not in TENSIONS:
-        raise ValueError(f"tension must be one of {', '.join(map(repr, TENSIONS))}; "
-                         f"got {tension!r}")
+        raise ValueError(
+            f"tension must be one of {', '.join(map(repr, TENSIONS))}; got {tension!r}"
+        )
     p = resolve_parameters(params, contact=contact, **overrides)
     _check_points(points)
     if vb is not None:
@@ -385,11 +438,14 @@ def predict(params: Mapping[str, float | None] | None = None, *,
             reasons["consistent_mdsm"] = NO_EXCITATION
         if tension == "clipped":
             reasons["consistent_mdsm"] = "; ".join(
-                r for r in (reasons.get("consistent_mdsm"), note) if r)
+                r for r in (reasons.get("consistent_mdsm"), note) if r
+            )
     paper = paper_intervals(p, contact=contact)
-    out = {"paper_tangential_vhat": paper["tangential"],
-           "paper_coupled_vhat": paper["coupled"],
-           "consistent_mdsm": consistent}
+    out = {
+        "paper_tangential_vhat": paper["tangential"],
+        "paper_coupled_vhat": paper["coupled"],
+        "consistent_mdsm": consistent,
+    }
     for key, model in (("paper_tangential_vhat", "tangential"), ("paper_coupled_vhat", "coupled")):
         if paper[model] is None:
             reasons[key] = NO_VHAT
@@ -401,8 +457,8 @@ def predict(params: Mapping[str, float | None] | None = None, *,
     return out
 
 
-
 def main(argv: Sequence[str] | None = None) -> int:
     """``python -m derive predict [--param value ...] [--json]`` (see `runtime.cli`)."""
     from .cli import run_command
+
     return run_command("predict", argv)

@@ -24,6 +24,7 @@ energy balance (Sect. 3), counts, and whether the window resolves the omega1 ban
 and is free of the transient (``resolved``); a run that cannot tell says so instead
 of reporting a peak as absent.
 """
+
 from __future__ import annotations
 
 import time
@@ -41,10 +42,22 @@ from .model import MODE_NAMES, TENSIONS, Mode, resolve_parameters
 from .parameters import Backend, Contact, Tension
 from .trajectory import Trajectory
 
-__all__ = ["SolverSettings", "Simulation", "simulate", "integrate_events", "classify_regime",
-           "omega1_band", "summarize", "REGIMES", "DEFAULT_T_END", "PEAK_PRESENT_RATIO",
-           "PERTURBATION", "STARTS",
-           "TRANSIENT_DECAYED", "STATIONARY_RATIO"]
+__all__ = [
+    "SolverSettings",
+    "Simulation",
+    "simulate",
+    "integrate_events",
+    "classify_regime",
+    "omega1_band",
+    "summarize",
+    "REGIMES",
+    "DEFAULT_T_END",
+    "PEAK_PRESENT_RATIO",
+    "PERTURBATION",
+    "STARTS",
+    "TRANSIENT_DECAYED",
+    "STATIONARY_RATIO",
+]
 
 REGIMES = ("continuous_sliding", "sliding_with_reversals", "stick_slip", "contact_loss")
 DEFAULT_T_END = 1000.0
@@ -60,11 +73,13 @@ class SolverSettings:
     ``solver``: "events" (the default; `runtime.events`, the compiled DOP853
     integrator on each mode: the general one, and the faster) or "superposition"
     (`runtime.superposition`: the normal equation once, the tangential one by
-    superposition; it falls back to "events" where it does not apply). ``method``: the Runge-Kutta method ("DOP853", the only one).
+    superposition; it falls back to "events" where it does not apply). ``method``: the
+    Runge-Kutta method ("DOP853", the only one).
     ``dt``: sampling step of the returned time series [s]. ``t_discard``: start of
     the steady window [s]; ``None`` means 30 % of ``t_end``. ``backend``: "numba"
     (compiled), "python" or None (numba if installed).
     """
+
     solver: Literal["events", "superposition"] = "events"
     method: Literal["DOP853"] = "DOP853"
     rtol: float = 1e-10
@@ -78,29 +93,36 @@ class SolverSettings:
     def __post_init__(self):
         # The limits live in runtime.parameters, beside the checks of the model.
         from .parameters import MAX_SAMPLES, METHODS, is_real
+
         if self.solver not in ("events", "superposition"):
             raise ValueError(f"solver must be 'events' or 'superposition'; got {self.solver!r}")
         if self.method not in METHODS:
             raise ValueError(f"method must be one of {', '.join(METHODS)}; got {self.method!r}")
         if self.on_contact_loss not in ("continue", "stop"):
-            raise ValueError("on_contact_loss must be 'continue' or 'stop'; "
-                             f"got {self.on_contact_loss!r}")
+            raise ValueError(
+                f"on_contact_loss must be 'continue' or 'stop'; got {self.on_contact_loss!r}"
+            )
         if self.backend not in (None, "numba", "python"):
             raise ValueError(f"backend must be 'numba', 'python' or None; got {self.backend!r}")
         for name in ("rtol", "atol", "t_end", "dt"):
             value = getattr(self, name)
             if not (is_real(value) and np.isfinite(value) and value > 0):
                 raise ValueError(f"{name} must be a finite number > 0; got {value!r}")
-        if self.t_discard is not None and not (is_real(self.t_discard)
-                                               and np.isfinite(self.t_discard)):
+        if self.t_discard is not None and not (
+            is_real(self.t_discard) and np.isfinite(self.t_discard)
+        ):
             raise ValueError(f"t_discard must be None or a finite number; got {self.t_discard!r}")
         if self.t_end / self.dt > MAX_SAMPLES:
-            raise ValueError(f"t_end / dt = {self.t_end / self.dt:.3g} samples is more than "
-                             f"MAX_SAMPLES = {MAX_SAMPLES:.0e} (runtime/parameters.py); "
-                             "shorten t_end or sample with a larger dt")
+            raise ValueError(
+                f"t_end / dt = {self.t_end / self.dt:.3g} samples is more than "
+                f"MAX_SAMPLES = {MAX_SAMPLES:.0e} (runtime/parameters.py); "
+                "shorten t_end or sample with a larger dt"
+            )
         if not 0 <= self.window_start < self.t_end - 20 * self.dt:
-            raise ValueError(f"t_discard={self.t_discard!r} must be >= 0 and leave a steady "
-                             f"window before t_end={self.t_end!r}")
+            raise ValueError(
+                f"t_discard={self.t_discard!r} must be >= 0 and leave a steady "
+                f"window before t_end={self.t_end!r}"
+            )
 
     @property
     def window_start(self) -> float:
@@ -110,6 +132,7 @@ class SolverSettings:
 @dataclass
 class Simulation:
     """A run: the trajectory, samples on a uniform grid and the summary."""
+
     params: dict
     contact: str
     settings: SolverSettings
@@ -184,23 +207,27 @@ def _resolution(sim, v, out):
     if out["omega1_band"] is None:
         return False, "an excitation line sits at omega1: no band to read the peak in"
     if not np.isfinite(out["peak_omega1"]):
-        return False, (f"the steady window ({s.window_start:g}-{out['t_end']:g} s) is too "
-                       "short to resolve the omega1 band; lengthen --t-end")
+        return False, (
+            f"the steady window ({s.window_start:g}-{out['t_end']:g} s) is too "
+            "short to resolve the omega1 band; lengthen --t-end"
+        )
     envelope = np.exp(-p["beta1"] * p["omega1"] * out["t_discard"])
     if envelope <= TRANSIENT_DECAYED:
         return True, ""
     half = v.size // 2
     band = [out["omega1_band"]]
-    first, second = (spectra.peak_amplitudes(part, s.dt, band)[0][1]
-                     for part in (v[:half], v[half:]))
+    first, second = (
+        spectra.peak_amplitudes(part, s.dt, band)[0][1] for part in (v[:half], v[half:])
+    )
     floor = PEAK_PRESENT_RATIO * out["peak_Omega"]
-    if max(first, second) <= floor or min(first, second) >= STATIONARY_RATIO * max(first,
-                                                                                     second):
+    if max(first, second) <= floor or min(first, second) >= STATIONARY_RATIO * max(first, second):
         return True, ""
-    return False, (f"the tangential transient has not decayed in the steady window (its "
-                   f"envelope exp(-beta1 omega1 t) is {envelope:.2g} at t = "
-                   f"{out['t_discard']:g} s; the omega1 band holds {first:.3g} in the first "
-                   f"half of the window and {second:.3g} in the second); lengthen --t-end")
+    return False, (
+        f"the tangential transient has not decayed in the steady window (its "
+        f"envelope exp(-beta1 omega1 t) is {envelope:.2g} at t = "
+        f"{out['t_discard']:g} s; the omega1 band holds {first:.3g} in the first "
+        f"half of the window and {second:.3g} in the second); lengthen --t-end"
+    )
 
 
 def summarize(sim: Simulation) -> dict[str, Any]:
@@ -217,11 +244,19 @@ def summarize(sim: Simulation) -> dict[str, Any]:
         # regime cover the whole run, there is no spectrum
         t0, win = 0.0, np.ones_like(win)
     v = sim.y[1, win]
-    out = {"status": sim.status, "message": sim.message, "solver": sim.solver_used,
-           "tension": sim.tension,
-           "regime": ("contact_loss" if sim.status == "contact_lost"
-                      else classify_regime(sim.trajectory, t0, t1)),
-           "t_end": float(t1), "t_discard": float(t0)}
+    out = {
+        "status": sim.status,
+        "message": sim.message,
+        "solver": sim.solver_used,
+        "tension": sim.tension,
+        "regime": (
+            "contact_loss"
+            if sim.status == "contact_lost"
+            else classify_regime(sim.trajectory, t0, t1)
+        ),
+        "t_end": float(t1),
+        "t_discard": float(t0),
+    }
     resolution = 2 * np.pi / (max(v.size, 1) * s.dt)
     bands, keys = [], []
     band = omega1_band(p)
@@ -239,16 +274,16 @@ def summarize(sim: Simulation) -> dict[str, Any]:
             keys.append(key)
     out["omega1_peak_at"], out["peak_omega1"] = float("nan"), float("nan")
     if v.size >= 16:
-        for key, (at, amp) in zip(keys, spectra.peak_amplitudes(v, s.dt, bands)
-                                  if bands else []):
+        for key, (at, amp) in zip(keys, spectra.peak_amplitudes(v, s.dt, bands) if bands else []):
             if key == "omega1":
                 out["omega1_peak_at"], out["peak_omega1"] = at, amp
             else:
                 out[key] = amp
     out["resolved"], why = _resolution(sim, v, out)
     if out["resolved"]:
-        out["omega1_peak_present"] = bool(out["peak_omega1"]
-                                          > PEAK_PRESENT_RATIO * out["peak_Omega"])
+        out["omega1_peak_present"] = bool(
+            out["peak_omega1"] > PEAK_PRESENT_RATIO * out["peak_Omega"]
+        )
     else:
         out["omega1_peak_present"] = None
         out["unresolved_reason"] = why
@@ -258,16 +293,18 @@ def summarize(sim: Simulation) -> dict[str, Any]:
     out["energy"] = balance
     kinds = [k for _, k, _ in sim.events]
     out["n_switches"] = len(sim.events)
-    out["n_reversals"] = sum(1 for _, k, m in sim.events
-                             if k == "vr_zero" and m in (Mode.SLIP_BACK, Mode.SLIP_FORWARD))
+    out["n_reversals"] = sum(
+        1 for _, k, m in sim.events if k == "vr_zero" and m in (Mode.SLIP_BACK, Mode.SLIP_FORWARD)
+    )
     out["n_sticks"] = sum(1 for _, _, m in sim.events if m == Mode.STICK)
     out["n_contact_losses"] = kinds.count("lift_off")
     out["n_separations"] = kinds.count("separation")
     out["n_zeno"] = sim.trajectory.n_zeno
     spent = sim.trajectory.time_in_modes(t0, t1)
     duration = t1 - t0
-    out["time_fraction"] = {MODE_NAMES[m]: (spent[m] / duration if duration > 0 else 0.0)
-                            for m in spent}
+    out["time_fraction"] = {
+        MODE_NAMES[m]: (spent[m] / duration if duration > 0 else 0.0) for m in spent
+    }
     out["min_normal_force"] = float(sim.normal_force.min())
     out["tension_fraction"] = float(np.mean(sim.normal_force[win] < 0))
     out["mean_friction"] = float(np.mean(sim.friction[win]))
@@ -285,11 +322,17 @@ STARTS = ("rest", "periodic")
 Start = Literal["rest", "periodic"]
 
 
-def simulate(params: Mapping[str, float | None] | None = None, *,
-             contact: Contact = "hertz_damp", tension: Tension = "allowed",
-             settings: SolverSettings | None = None, y0: ArrayLike | None = None,
-             start: Start = "rest", perturbation: float = PERTURBATION,
-             **overrides: float | str | None) -> Simulation:
+def simulate(
+    params: Mapping[str, float | None] | None = None,
+    *,
+    contact: Contact = "hertz_damp",
+    tension: Tension = "allowed",
+    settings: SolverSettings | None = None,
+    y0: ArrayLike | None = None,
+    start: Start = "rest",
+    perturbation: float = PERTURBATION,
+    **overrides: float | str | None,
+) -> Simulation:
     """Simulate Eq. (4) and summarise the run.
 
     Parameters
@@ -327,8 +370,9 @@ def simulate(params: Mapping[str, float | None] | None = None, *,
     if not (isinstance(perturbation, (int, float)) and np.isfinite(perturbation)):
         raise ValueError(f"perturbation must be a finite number; got {perturbation!r}")
     if tension not in TENSIONS:
-        raise ValueError(f"tension must be one of {', '.join(map(repr, TENSIONS))}; "
-                         f"got {tension!r}")
+        raise ValueError(
+            f"tension must be one of {', '.join(map(repr, TENSIONS))}; got {tension!r}"
+        )
     names = set(SolverSettings.__dataclass_fields__)
     setting_overrides = {k: overrides.pop(k) for k in list(overrides) if k in names}
     settings = settings or SolverSettings()
@@ -343,12 +387,15 @@ def simulate(params: Mapping[str, float | None] | None = None, *,
             raise ValueError(f"y0 must be 4 finite numbers (X1, Y1, X2, Y2); got {y0!r}")
     elif start == "periodic":
         from .floquet import periodic_response
-        y0 = periodic_response(p, contact=contact, tension=tension).state0 \
-            + np.array([perturbation, 0.0, 0.0, 0.0])
+
+        y0 = periodic_response(p, contact=contact, tension=tension).state0 + np.array(
+            [perturbation, 0.0, 0.0, 0.0]
+        )
     trajectory = events = None
     solver_used, fallback = "events", ""
     if settings.solver == "superposition":
         from .superposition import integrate_superposed
+
         result = integrate_superposed(p, contact, tension, settings, y0=y0)
         if isinstance(result, str):
             fallback = result
@@ -357,17 +404,38 @@ def simulate(params: Mapping[str, float | None] | None = None, *,
             solver_used = "superposition"
     if trajectory is None:
         trajectory, events, status, message = integrate_events(
-            p, contact, tension=tension, t_end=settings.t_end, y0=y0, method=settings.method,
-            rtol=settings.rtol, atol=settings.atol, on_contact_loss=settings.on_contact_loss,
-            backend=settings.backend)
+            p,
+            contact,
+            tension=tension,
+            t_end=settings.t_end,
+            y0=y0,
+            method=settings.method,
+            rtol=settings.rtol,
+            atol=settings.atol,
+            on_contact_loss=settings.on_contact_loss,
+            backend=settings.backend,
+        )
         if fallback:
             message = f"{message} (events solver: {fallback})"
     n = int(np.floor(trajectory.t_end / settings.dt + 1e-9)) + 1
     t = settings.dt * np.arange(n)
     y = trajectory.state(t)
     Fn, friction = trajectory.forces(t, y)
-    sim = Simulation(p, contact, settings, trajectory, t, y, Fn, friction, events, status,
-                     message, solver_used, tension=tension)
+    sim = Simulation(
+        p,
+        contact,
+        settings,
+        trajectory,
+        t,
+        y,
+        Fn,
+        friction,
+        events,
+        status,
+        message,
+        solver_used,
+        tension=tension,
+    )
     sim.wall_s = time.perf_counter() - clock
     sim.summary = summarize(sim)
     sim.summary["start"] = start

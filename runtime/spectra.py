@@ -6,6 +6,7 @@ A peak's amplitude is not read off the FFT grid, where the window's scalloping l
 would bias it, but from the windowed transform evaluated at the peak frequency
 itself, found by maximising it in a band.
 """
+
 from __future__ import annotations
 
 from collections.abc import Iterable
@@ -21,8 +22,9 @@ def _window(name, n):
     return signal.get_window(name, n, fftbins=False)
 
 
-def amplitude_spectrum(x: ArrayLike, dt: float, window: str = "hann", pad: int = 4
-                       ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def amplitude_spectrum(
+    x: ArrayLike, dt: float, window: str = "hann", pad: int = 4
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """One-sided amplitude spectrum of a uniformly sampled signal (mean removed).
 
     Parameters
@@ -66,13 +68,14 @@ def _dtft_amplitudes(xw, wsum, dt, omegas):
     blocks = np.arange(m) * (_BLOCK * dt)
     out = []
     for omega in omegas:
-        phasor = (np.exp(1j * omega * blocks)[:, None] * np.exp(1j * omega * j)[None, :])
+        phasor = np.exp(1j * omega * blocks)[:, None] * np.exp(1j * omega * j)[None, :]
         out.append(2 * abs(np.einsum("i,i->", xw, phasor.ravel()[:n])) / wsum)
     return np.array(out)
 
 
-def peak_amplitudes(x: ArrayLike, dt: float, bands: Iterable[tuple[float, float]],
-                    window: str = "hann") -> list[tuple[float, float]]:
+def peak_amplitudes(
+    x: ArrayLike, dt: float, bands: Iterable[tuple[float, float]], window: str = "hann"
+) -> list[tuple[float, float]]:
     """Largest spectral peak of ``x`` in each band ``(lo, hi)`` [rad/s].
 
     Each peak is located on a zero-padded FFT and refined by maximising the windowed
@@ -102,11 +105,14 @@ def peak_amplitudes(x: ArrayLike, dt: float, bands: Iterable[tuple[float, float]
             raise ValueError(f"band must satisfy 0 <= lo < hi; got {band!r}")
         inside = np.flatnonzero((omega >= lo) & (omega <= hi))
         if inside.size == 0:
-            raise ValueError(f"band {band!r} holds no frequency of the spectrum (resolution "
-                             f"{step:.3g} rad/s, Nyquist {omega[-1]:.3g} rad/s)")
+            raise ValueError(
+                f"band {band!r} holds no frequency of the spectrum (resolution "
+                f"{step:.3g} rad/s, Nyquist {omega[-1]:.3g} rad/s)"
+            )
         k = inside[np.argmax(spec[inside])]
-        at, amp = _refine_peak(xw, wsum, dt, omega[k], step, max(lo, omega[k] - step),
-                               min(hi, omega[k] + step))
+        at, amp = _refine_peak(
+            xw, wsum, dt, omega[k], step, max(lo, omega[k] - step), min(hi, omega[k] + step)
+        )
         out.append((at, amp) if amp >= spec[k] else (float(omega[k]), float(spec[k])))
     return out
 
@@ -130,23 +136,27 @@ def _refine_peak(xw, wsum, dt, centre, step, lo, hi):
             continue
         curvature = a[0] - 2 * a[1] + a[2]
         if curvature < 0:
-            best = float(np.clip(grid[1] + h * (a[0] - a[2]) / (2 * curvature),
-                                 grid[1] - h / 2, grid[1] + h / 2))
+            best = float(
+                np.clip(
+                    grid[1] + h * (a[0] - a[2]) / (2 * curvature), grid[1] - h / 2, grid[1] + h / 2
+                )
+            )
         if h <= 1e-3 * step:
             break
         h /= 8
     return best, float(_dtft_amplitudes(xw, wsum, dt, [best])[0])
 
 
-def peak_amplitude(x: ArrayLike, dt: float, band: tuple[float, float],
-                   window: str = "hann") -> tuple[float, float]:
+def peak_amplitude(
+    x: ArrayLike, dt: float, band: tuple[float, float], window: str = "hann"
+) -> tuple[float, float]:
     """`peak_amplitudes` for one band: (omega_peak, amplitude)."""
     return peak_amplitudes(x, dt, [band], window)[0]
 
 
-def spectrogram(x: ArrayLike, dt: float, segment_s: float = 100.0, overlap: float = 0.5,
-                window: str = "hann"
-                ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+def spectrogram(
+    x: ArrayLike, dt: float, segment_s: float = 100.0, overlap: float = 0.5, window: str = "hann"
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Spectrogram of ``x`` (Fig. 2c): amplitude against time and frequency.
 
     Returns
@@ -159,11 +169,20 @@ def spectrogram(x: ArrayLike, dt: float, segment_s: float = 100.0, overlap: floa
     x = np.asarray(x, dtype=float)
     nper = int(round(segment_s / dt))
     if nper < 8 or nper > x.size:
-        raise ValueError(f"segment_s={segment_s!r} must span 8 samples and at most the signal "
-                         f"({x.size * dt:.6g} s)")
+        raise ValueError(
+            f"segment_s={segment_s!r} must span 8 samples and at most the signal "
+            f"({x.size * dt:.6g} s)"
+        )
     if not 0 <= overlap < 1:
         raise ValueError(f"overlap must be in [0, 1); got {overlap!r}")
-    f, t, Z = signal.stft(x - x.mean(), fs=1 / dt, window=window, nperseg=nper,
-                          noverlap=int(overlap * nper), boundary=None, padded=False,
-                          scaling="spectrum")
+    f, t, Z = signal.stft(
+        x - x.mean(),
+        fs=1 / dt,
+        window=window,
+        nperseg=nper,
+        noverlap=int(overlap * nper),
+        boundary=None,
+        padded=False,
+        scaling="spectrum",
+    )
     return t, 2 * np.pi * f, 2 * np.abs(Z)

@@ -20,6 +20,7 @@ message) where its closed forms do not exist: at undamped resonance of the
 tangential oscillator (``beta1 = 0``, ``Omega_t = omega1``), where the excitation
 response grows without bound.
 """
+
 from __future__ import annotations
 
 from collections import deque
@@ -62,8 +63,10 @@ class _Segments:
         self.X1s.append(X1s)
 
     def freeze(self):
-        self.t0, self.stick, self.ms = (np.array(a, dtype=dt) for a, dt in
-                                        ((self.t0, float), (self.stick, bool), (self.ms, float)))
+        self.t0, self.stick, self.ms = (
+            np.array(a, dtype=dt)
+            for a, dt in ((self.t0, float), (self.stick, bool), (self.ms, float))
+        )
         self.d, self.X1s = np.array(self.d, dtype=float).reshape(-1, 2), np.array(self.X1s)
 
     def __call__(self, t, index):
@@ -97,31 +100,60 @@ class Superposition:
         At undamped resonance, where the excitation response has no closed form.
     """
 
-    def __init__(self, p: Mapping[str, float], contact: Contact, tension: Tension,
-                 normal: NormalMotion, backend: Backend | None = None) -> None:
+    def __init__(
+        self,
+        p: Mapping[str, float],
+        contact: Contact,
+        tension: Tension,
+        normal: NormalMotion,
+        backend: Backend | None = None,
+    ) -> None:
         self.p, self.normal = p, normal
         self.stm = oscillator.bind_state_transition(backend=backend, **p)
         self.exc = oscillator.bind_excitation_response(backend=backend, **p)
         with np.errstate(divide="ignore", invalid="ignore"):
             finite = np.all(np.isfinite(self.exc.array(np.array([1.0]))))
         if not finite:
-            raise ValueError("no closed-form excitation response at undamped resonance "
-                             "(beta1 = 0, Omega_t = omega1)")
+            raise ValueError(
+                "no closed-form excitation response at undamped resonance "
+                "(beta1 = 0, Omega_t = omega1)"
+            )
         self.sw = sw = Switching(p, contact, tension, backend)
         self.scan = _compiled.scan(contact, backend)
         self.watch = {}
         for mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD, Mode.STICK):
-            rows = [(i, SURFACE_INDEX[s], float(d)) for i, (s, d, _)
-                    in enumerate(sw.guards[mode][2]) if s in _TANGENTIAL]
-            self.watch[mode] = (np.array([r[1] for r in rows], dtype=np.int64),
-                                np.array([r[2] for r in rows]), [r[0] for r in rows])
+            rows = [
+                (i, SURFACE_INDEX[s], float(d))
+                for i, (s, d, _) in enumerate(sw.guards[mode][2])
+                if s in _TANGENTIAL
+            ]
+            self.watch[mode] = (
+                np.array([r[1] for r in rows], dtype=np.int64),
+                np.array([r[2] for r in rows]),
+                [r[0] for r in rows],
+            )
         self._none = (np.zeros(0, dtype=np.int64), np.zeros(0), [])
-        self._args = (normal.grid, normal.on_grid, normal.t_steps, normal.h_steps,
-                      normal.y_steps, normal.F_steps, self.stm.args, self.exc.args,
-                      sw.surfaces.args, sw.rates.args)
+        self._args = (
+            normal.grid,
+            normal.on_grid,
+            normal.t_steps,
+            normal.h_steps,
+            normal.y_steps,
+            normal.F_steps,
+            self.stm.args,
+            self.exc.args,
+            sw.surfaces.args,
+            sw.rates.args,
+        )
 
-    def run(self, t0: float, X1: float, Y1: float, t_end: float,
-            on_contact_loss: Literal["continue", "stop"] = "continue") -> dict[str, Any]:
+    def run(
+        self,
+        t0: float,
+        X1: float,
+        Y1: float,
+        t_end: float,
+        on_contact_loss: Literal["continue", "stop"] = "continue",
+    ) -> dict[str, Any]:
         """The tangential motion from ``(X1, Y1)`` at ``t0`` to ``t_end``.
 
         Returns
@@ -150,8 +182,9 @@ class Superposition:
             zf, vf = self.exc(t)
             d = (X1 - zf + ms * z, Y1 - vf + ms * v)
             w, dirs, rows = self.watch.get(mode, self._none)
-            hit, t_hit = self.scan(float(mode), stick, ms, w, dirs, t, tc, d[0], d[1], X1, Vb,
-                                   *self._args)
+            hit, t_hit = self.scan(
+                float(mode), stick, ms, w, dirs, t, tc, d[0], d[1], X1, Vb, *self._args
+            )
             t_stop = float(t_hit) if hit >= 0 else tc
             segs.add(t, stick, ms, d, X1)
             modes.append(mode)
@@ -167,8 +200,9 @@ class Superposition:
                 state = sw.project(mode, guard, state)
                 new = sw.target(mode, guard, t_stop, state)
                 recent.append(t_stop)
-                if len(recent) == ZENO_SWITCHES and \
-                        t_stop - recent[0] <= ZENO_WINDOW * max(1.0, abs(t_stop)):
+                if len(recent) == ZENO_SWITCHES and t_stop - recent[0] <= ZENO_WINDOW * max(
+                    1.0, abs(t_stop)
+                ):
                     if kind == "vr_zero" and _cone_holds(sw, t_stop, state):
                         new, n_zeno = Mode.STICK, n_zeno + 1
                         recent.clear()
@@ -185,19 +219,34 @@ class Superposition:
             switches.append((t_stop, mode, new, surface, state))
             if kind == "lift_off" and on_contact_loss == "stop":
                 status = "contact_lost"
-                message = (f"contact lost (X2 = 0, Eq. 1) at t = {t_stop:.6g} s; stopped as "
-                           "requested (on_contact_loss='stop')")
+                message = (
+                    f"contact lost (X2 = 0, Eq. 1) at t = {t_stop:.6g} s; stopped as "
+                    "requested (on_contact_loss='stop')"
+                )
                 break
             t, X1, Y1, mode = t_stop, float(state[0]), float(state[1]), new
         segs.freeze()
-        return {"segments": segs, "modes": modes, "starts": starts, "ends": ends,
-                "events": events, "switches": switches, "status": status,
-                "message": message, "n_zeno": n_zeno, "final": state}
+        return {
+            "segments": segs,
+            "modes": modes,
+            "starts": starts,
+            "ends": ends,
+            "events": events,
+            "switches": switches,
+            "status": status,
+            "message": message,
+            "n_zeno": n_zeno,
+            "final": state,
+        }
 
 
-def integrate_superposed(p: Mapping[str, float], contact: Contact, tension: Tension,
-                         settings: SolverSettings, y0: ArrayLike | None = None
-                         ) -> tuple[Trajectory, list[tuple[float, str, Mode]], str, str] | str:
+def integrate_superposed(
+    p: Mapping[str, float],
+    contact: Contact,
+    tension: Tension,
+    settings: SolverSettings,
+    y0: ArrayLike | None = None,
+) -> tuple[Trajectory, list[tuple[float, str, Mode]], str, str] | str:
     """Trajectory of Eq. (4) by superposition, or the reason it does not apply.
 
     Returns
@@ -206,14 +255,14 @@ def integrate_superposed(p: Mapping[str, float], contact: Contact, tension: Tens
     integrator must be used instead.
     """
     y = initial_state(p, contact) if y0 is None else np.array(y0, dtype=float)
-    normal = normal_motion(p, contact, tension, settings.t_end, settings.rtol, settings.atol,
-                           y[2:], settings.backend)
+    normal = normal_motion(
+        p, contact, tension, settings.t_end, settings.rtol, settings.atol, y[2:], settings.backend
+    )
     try:
         engine = Superposition(p, contact, tension, normal, settings.backend)
     except ValueError as err:
         return str(err)
-    out = engine.run(0.0, float(y[0]), float(y[1]), float(settings.t_end),
-                     settings.on_contact_loss)
+    out = engine.run(0.0, float(y[0]), float(y[1]), float(settings.t_end), settings.on_contact_loss)
     # quadrature pieces (energy balance, cycle averages): a knot every KNOT_STEP grid
     # points, and the normal motion's own steps within 0.2 s of its switches, where
     # they shrink because it is not smooth there (X2^(3/2) about a touchdown)
@@ -223,8 +272,10 @@ def integrate_superposed(p: Mapping[str, float], contact: Contact, tension: Tens
     knots = np.union1d(normal.grid[::KNOT_STEP], normal.t_steps[near])
     lo = np.searchsorted(knots, out["starts"], side="right")
     hi = np.searchsorted(knots, out["ends"], side="left")
-    segments = [Segment(a, b, m, None, knots[i:j])
-                for a, b, m, i, j in zip(out["starts"], out["ends"], out["modes"], lo, hi)]
+    segments = [
+        Segment(a, b, m, None, knots[i:j])
+        for a, b, m, i, j in zip(out["starts"], out["ends"], out["modes"], lo, hi)
+    ]
     trajectory = Trajectory(segments, p, contact, tension, out["segments"])
     trajectory.n_zeno = out["n_zeno"]
     return trajectory, out["events"], out["status"], out["message"]
@@ -238,8 +289,9 @@ def segs_state(segs, t, index):
     P = segs.stm(t - segs.t0[index])
     zf, vf = segs.exc(t)
     d, ms = segs.d[index], segs.ms[index]
-    return np.array([P[0] * d[0] + P[1] * d[1] + zf - ms * z,
-                     P[2] * d[0] + P[3] * d[1] + vf - ms * v, X2, Y2])
+    return np.array(
+        [P[0] * d[0] + P[1] * d[1] + zf - ms * z, P[2] * d[0] + P[3] * d[1] + vf - ms * v, X2, Y2]
+    )
 
 
 def _mode_in(sw, normal, k, t, X1, Y1):

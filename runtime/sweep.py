@@ -22,6 +22,7 @@ so a reader sees a whole file or none, and a file that fails its checks (not JSO
 keys missing, another point's key or parameters, a row that does not match its
 checksum) is reported with a `CacheWarning`, recomputed and rewritten, never served.
 """
+
 from __future__ import annotations
 
 import concurrent.futures as cf
@@ -48,24 +49,57 @@ from . import intervals
 from .parameters import Contact, Tension, excitation_period, resolve_parameters
 from .simulate import STARTS, SolverSettings, Start, simulate
 
-__all__ = ["sweep", "run_point", "cache_key", "default_cache_dir", "table_to_csv",
-           "table_from_csv", "COLUMNS", "omega1_peak_ranges", "MAX_POINTS", "SWEEPABLE",
-           "linear_values", "code_files", "code_hash", "package_version", "read_cached",
-           "CacheWarning", "excitation_period", "CONTINUATIONS", "STARTS", "NO_PERIODIC_RESPONSE",
-           "resolved_mask",
-           "unresolved_values"]
+__all__ = [
+    "sweep",
+    "run_point",
+    "cache_key",
+    "default_cache_dir",
+    "table_to_csv",
+    "table_from_csv",
+    "COLUMNS",
+    "omega1_peak_ranges",
+    "MAX_POINTS",
+    "SWEEPABLE",
+    "linear_values",
+    "code_files",
+    "code_hash",
+    "package_version",
+    "read_cached",
+    "CacheWarning",
+    "excitation_period",
+    "CONTINUATIONS",
+    "STARTS",
+    "NO_PERIODIC_RESPONSE",
+    "resolved_mask",
+    "unresolved_values",
+]
 
 CACHE_FORMAT = "runtime-sweep-3"
 #: The table's columns after the swept parameter. ``omega1_peak_present`` is False
 #: where ``resolved`` is False (the run could not tell, `runtime.simulate.summarize`):
 #: read it together with ``resolved``, never alone as "no peak".
-COLUMNS = (("regime", "U24"), ("peak_omega1", "f8"), ("omega1_peak_at", "f8"),
-           ("peak_Omega", "f8"), ("omega1_peak_present", "?"), ("resolved", "?"),
-           ("energy_residual", "f8"),
-           ("n_switches", "i8"), ("n_reversals", "i8"), ("n_sticks", "i8"),
-           ("n_contact_losses", "i8"), ("min_normal_force", "f8"), ("tension_fraction", "f8"),
-           ("mean_friction", "f8"), ("vr_min", "f8"), ("vr_max", "f8"), ("tension", "U8"),
-           ("solver", "U16"), ("status", "U16"), ("wall_s", "f8"))
+COLUMNS = (
+    ("regime", "U24"),
+    ("peak_omega1", "f8"),
+    ("omega1_peak_at", "f8"),
+    ("peak_Omega", "f8"),
+    ("omega1_peak_present", "?"),
+    ("resolved", "?"),
+    ("energy_residual", "f8"),
+    ("n_switches", "i8"),
+    ("n_reversals", "i8"),
+    ("n_sticks", "i8"),
+    ("n_contact_losses", "i8"),
+    ("min_normal_force", "f8"),
+    ("tension_fraction", "f8"),
+    ("mean_friction", "f8"),
+    ("vr_min", "f8"),
+    ("vr_max", "f8"),
+    ("tension", "U8"),
+    ("solver", "U16"),
+    ("status", "U16"),
+    ("wall_s", "f8"),
+)
 #: The regime of a point started on the periodic response where none is found.
 NO_PERIODIC_RESPONSE = "no_periodic_response"
 #: Directions of a continued sweep (`sweep`'s ``continuation``).
@@ -73,8 +107,11 @@ CONTINUATIONS = ("up", "down")
 #: `CONTINUATIONS` as an annotation.
 Continuation = Literal["up", "down"]
 #: Largest denominator tried when writing Omega_t / Omega_n as a fraction
-MODULATION_COLUMNS = tuple((f"mu_eff_{tag}_{stat}", "f8") for tag in ("Omega", "omega1")
-                           for stat in ("mean", "std", "range"))
+MODULATION_COLUMNS = tuple(
+    (f"mu_eff_{tag}_{stat}", "f8")
+    for tag in ("Omega", "omega1")
+    for stat in ("mean", "std", "range")
+)
 #: Most points of one sweep. A sweep of 10^6 runs of a second each is eleven days on
 #: one core; a larger one is a mistake (a step of 1e-15), refused before anything is
 #: allocated.
@@ -107,8 +144,7 @@ def linear_values(start: float, stop: float, step: float) -> NDArray[np.float64]
         ``stop < start``, or more than `MAX_POINTS` values.
     """
     for name, value in (("start", start), ("stop", stop), ("step", step)):
-        if not (isinstance(value, (int, float, np.integer, np.floating))
-                and math.isfinite(value)):
+        if not (isinstance(value, (int, float, np.integer, np.floating)) and math.isfinite(value)):
             raise ValueError(f"{name} must be a finite number; got {value!r}")
     if not step > 0:
         raise ValueError(f"step must be > 0; got {step!r}")
@@ -116,8 +152,10 @@ def linear_values(start: float, stop: float, step: float) -> NDArray[np.float64]
         raise ValueError(f"stop must be >= start; got start = {start!r}, stop = {stop!r}")
     count = math.floor((stop - start) / step + 1e-9) + 1
     if count > MAX_POINTS:
-        raise ValueError(f"from {start!r} to {stop!r} in steps of {step!r} is {count:.3g} "
-                         f"points, more than MAX_POINTS = {MAX_POINTS:.0e} (runtime/sweep.py)")
+        raise ValueError(
+            f"from {start!r} to {stop!r} in steps of {step!r} is {count:.3g} "
+            f"points, more than MAX_POINTS = {MAX_POINTS:.0e} (runtime/sweep.py)"
+        )
     return start + step * np.arange(count)
 
 
@@ -126,11 +164,10 @@ def code_files() -> list[Path]:
 
     Sorted, so that their hash does not depend on the order of the file system.
     """
-    return (sorted((_ROOT / "generated").rglob("*.py"))
-            + sorted((_ROOT / "runtime").glob("*.py")))
+    return sorted((_ROOT / "generated").rglob("*.py")) + sorted((_ROOT / "runtime").glob("*.py"))
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def code_hash() -> str:
     """SHA-256 over the path and bytes of every file of `code_files` (once per process).
 
@@ -147,34 +184,42 @@ def code_hash() -> str:
     return digest.hexdigest()
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def package_version() -> str:
     """The installed version of beltmdsm, else the version in ``pyproject.toml``."""
     from importlib import metadata
+
     try:
         return metadata.version("beltmdsm")
     except metadata.PackageNotFoundError:
         pass
     try:
         import tomllib
-    except ImportError:           # Python 3.10: read the one line
+    except ImportError:  # Python 3.10: read the one line
         import re
+
         text = (_ROOT / "pyproject.toml").read_text()
         return re.search(r'^version\s*=\s*"([^"]+)"', text, re.M).group(1)
     with open(_ROOT / "pyproject.toml", "rb") as fh:
         return tomllib.load(fh)["project"]["version"]
 
 
-def _identity(params, contact, tension, settings, modulation, continuation=None, y0=None,
-              start="rest"):
+def _identity(
+    params, contact, tension, settings, modulation, continuation=None, y0=None, start="rest"
+):
     """What a point's result depends on, besides the code: keys and checks the cache.
 
     A continued point (``continuation`` "up" or "down") is another run than the
     point from rest: its direction and its start state ``y0`` (None: from rest)
     belong to it; so does the start on the periodic response (``start``).
     """
-    ident = {"params": params, "contact": contact, "tension": tension,
-             "settings": asdict(settings), "modulation": bool(modulation)}
+    ident = {
+        "params": params,
+        "contact": contact,
+        "tension": tension,
+        "settings": asdict(settings),
+        "modulation": bool(modulation),
+    }
     if start != "rest":
         ident["start"] = start
     if continuation is not None:
@@ -183,29 +228,47 @@ def _identity(params, contact, tension, settings, modulation, continuation=None,
     return ident
 
 
-def cache_key(params: dict[str, float], contact: Contact, settings: SolverSettings,
-              modulation: bool = False, *, tension: Tension = "allowed",
-              continuation: Continuation | None = None, y0: Iterable[float] | None = None,
-              start: Start = "rest") -> str:
+def cache_key(
+    params: dict[str, float],
+    contact: Contact,
+    settings: SolverSettings,
+    modulation: bool = False,
+    *,
+    tension: Tension = "allowed",
+    continuation: Continuation | None = None,
+    y0: Iterable[float] | None = None,
+    start: Start = "rest",
+) -> str:
     """SHA-256 of everything a point's result depends on.
 
     The parameters, the contact and tension laws, the solver settings, whether the
     modulation columns are wanted, for a continued point its direction and start
-    state, a start on the periodic response, the cache format, the package version (`package_version`) and the code
-    (`code_hash`).
+    state, a start on the periodic response, the cache format, the package version
+    (`package_version`) and the code (`code_hash`).
     """
-    blob = json.dumps({"format": CACHE_FORMAT,
-                       **_identity(params, contact, tension, settings, modulation,
-                                   continuation, y0, start),
-                       "version": package_version(), "code": code_hash()},
-                      sort_keys=True)
+    blob = json.dumps(
+        {
+            "format": CACHE_FORMAT,
+            **_identity(params, contact, tension, settings, modulation, continuation, y0, start),
+            "version": package_version(),
+            "code": code_hash(),
+        },
+        sort_keys=True,
+    )
     return hashlib.sha256(blob.encode()).hexdigest()
 
 
-def run_point(params: Mapping[str, float | None] | None, contact: Contact,
-              settings: SolverSettings, modulation: bool = False, *,
-              tension: Tension = "allowed", y0: ArrayLike | None = None,
-              restart_period: float | None = None, start: Start = "rest") -> dict[str, Any]:
+def run_point(
+    params: Mapping[str, float | None] | None,
+    contact: Contact,
+    settings: SolverSettings,
+    modulation: bool = False,
+    *,
+    tension: Tension = "allowed",
+    y0: ArrayLike | None = None,
+    restart_period: float | None = None,
+    start: Start = "rest",
+) -> dict[str, Any]:
     """One sweep point: the summary row (a plain dict of numbers and strings).
 
     Parameters
@@ -226,15 +289,22 @@ def run_point(params: Mapping[str, float | None] | None, contact: Contact,
     """
     if start == "periodic":
         from .floquet import NoPeriodicResponse
+
         try:
-            sim = simulate(params, contact=contact, tension=tension, settings=settings,
-                           start=start)
+            sim = simulate(params, contact=contact, tension=tension, settings=settings, start=start)
         except NoPeriodicResponse:
-            row = {name: 0 if kind == "i8" else float("nan")
-                   for name, kind in COLUMNS + (MODULATION_COLUMNS if modulation else ())}
-            row.update(regime=NO_PERIODIC_RESPONSE, omega1_peak_present=False,
-                       resolved=False, tension=tension, solver=settings.solver,
-                       status="no_periodic")
+            row = {
+                name: 0 if kind == "i8" else float("nan")
+                for name, kind in COLUMNS + (MODULATION_COLUMNS if modulation else ())
+            }
+            row.update(
+                regime=NO_PERIODIC_RESPONSE,
+                omega1_peak_present=False,
+                resolved=False,
+                tension=tension,
+                solver=settings.solver,
+                status="no_periodic",
+            )
             return row
     else:
         sim = simulate(params, contact=contact, tension=tension, settings=settings, y0=y0)
@@ -243,6 +313,7 @@ def run_point(params: Mapping[str, float | None] | None, contact: Contact,
     row["omega1_peak_present"] = bool(row["resolved"] and row["omega1_peak_present"])
     if modulation:
         from .modulation import modulation_scatter
+
         row.update(modulation_scatter(sim))
     if restart_period is not None:
         t_end = sim.trajectory.t_end
@@ -261,11 +332,18 @@ def _columns(modulation):
     return [name for name, _ in COLUMNS + (MODULATION_COLUMNS if modulation else ())]
 
 
-def read_cached(path: os.PathLike | str, params: dict[str, float], contact: Contact,
-                settings: SolverSettings, modulation: bool = False, *,
-                tension: Tension = "allowed", continuation: Continuation | None = None,
-                y0: Iterable[float] | None = None, start: Start = "rest"
-                ) -> tuple[dict[str, Any] | None, str | None]:
+def read_cached(
+    path: os.PathLike | str,
+    params: dict[str, float],
+    contact: Contact,
+    settings: SolverSettings,
+    modulation: bool = False,
+    *,
+    tension: Tension = "allowed",
+    continuation: Continuation | None = None,
+    y0: Iterable[float] | None = None,
+    start: Start = "rest",
+) -> tuple[dict[str, Any] | None, str | None]:
     """The row stored at ``path`` for this point, after checking the file.
 
     Returns
@@ -286,8 +364,9 @@ def read_cached(path: os.PathLike | str, params: dict[str, float], contact: Cont
     except ValueError as err:
         return None, f"not valid JSON ({err})"
     ident = _identity(params, contact, tension, settings, modulation, continuation, y0, start)
-    missing = [k for k in ("key", *ident, "row", "checksum")
-               if not isinstance(data, dict) or k not in data]
+    missing = [
+        k for k in ("key", *ident, "row", "checksum") if not isinstance(data, dict) or k not in data
+    ]
     if missing:
         return None, f"missing {', '.join(missing)}"
     key = path.stem
@@ -325,8 +404,18 @@ def _write_atomically(path, text):
             tmp.unlink()
 
 
-def _cached_run(params, contact, settings, modulation, cache_dir, tension="allowed",
-                continuation=None, y0=None, period=None, start="rest"):
+def _cached_run(
+    params,
+    contact,
+    settings,
+    modulation,
+    cache_dir,
+    tension="allowed",
+    continuation=None,
+    y0=None,
+    period=None,
+    start="rest",
+):
     """One point through the cache: ``(row, cached, problem)``.
 
     ``problem`` says what was wrong with a cache file that was recomputed (the
@@ -343,24 +432,54 @@ def _cached_run(params, contact, settings, modulation, cache_dir, tension="allow
         row, problem = read_cached(path, params, contact, settings, modulation, **extra)
         if row is not None:
             return row, True, None
-    row = run_point(params, contact, settings, modulation, tension=tension, y0=y0,
-                    restart_period=period, start=start)
+    row = run_point(
+        params,
+        contact,
+        settings,
+        modulation,
+        tension=tension,
+        y0=y0,
+        restart_period=period,
+        start=start,
+    )
     if cache_dir is not None:
         path.parent.mkdir(parents=True, exist_ok=True)
-        _write_atomically(path, json.dumps({
-            "key": key, **_identity(params, contact, tension, settings, modulation, **{
-                k: extra[k] for k in ("continuation", "y0", "start")}),
-            "row": row, "checksum": _checksum(row)}))
+        _write_atomically(
+            path,
+            json.dumps(
+                {
+                    "key": key,
+                    **_identity(
+                        params,
+                        contact,
+                        tension,
+                        settings,
+                        modulation,
+                        **{k: extra[k] for k in ("continuation", "y0", "start")},
+                    ),
+                    "row": row,
+                    "checksum": _checksum(row),
+                }
+            ),
+        )
     return row, False, None if problem is None else (str(path), problem)
 
 
-def sweep(param: str, values: ArrayLike, params: Mapping[str, float | None] | None = None, *,
-          contact: Contact = "hertz_damp", tension: Tension = "allowed",
-          settings: SolverSettings | None = None,
-          executor: cf.Executor | Literal["serial"] | None = None,
-          cache_dir: os.PathLike | str | None = "default", progress: bool = True,
-          modulation: bool = False, continuation: Continuation | None = None,
-          start: Start = "rest") -> NDArray[np.void]:
+def sweep(
+    param: str,
+    values: ArrayLike,
+    params: Mapping[str, float | None] | None = None,
+    *,
+    contact: Contact = "hertz_damp",
+    tension: Tension = "allowed",
+    settings: SolverSettings | None = None,
+    executor: cf.Executor | Literal["serial"] | None = None,
+    cache_dir: os.PathLike | str | None = "default",
+    progress: bool = True,
+    modulation: bool = False,
+    continuation: Continuation | None = None,
+    start: Start = "rest",
+) -> NDArray[np.void]:
     """Run `simulate` for each value of one parameter.
 
     Parameters
@@ -426,30 +545,38 @@ def sweep(param: str, values: ArrayLike, params: Mapping[str, float | None] | No
     if param not in SWEEPABLE:
         raise ValueError(f"cannot sweep {param!r}: param must be one of {', '.join(SWEEPABLE)}")
     if tension not in TENSIONS:
-        raise ValueError(f"tension must be one of {', '.join(map(repr, TENSIONS))}; "
-                         f"got {tension!r}")
+        raise ValueError(
+            f"tension must be one of {', '.join(map(repr, TENSIONS))}; got {tension!r}"
+        )
     values = np.atleast_1d(np.asarray(values, dtype=float))
     if values.ndim != 1 or values.size == 0:
         raise ValueError("values must be a non-empty 1-D sequence")
     if values.size > MAX_POINTS:
-        raise ValueError(f"{values.size} values are more than MAX_POINTS = {MAX_POINTS:.0e} "
-                         "(runtime/sweep.py)")
-    if not (executor is None or executor == "serial" or callable(getattr(executor, "submit",
-                                                                         None))):
-        raise ValueError(f"executor must be None, 'serial' or a concurrent.futures.Executor; "
-                         f"got {executor!r}")
+        raise ValueError(
+            f"{values.size} values are more than MAX_POINTS = {MAX_POINTS:.0e} (runtime/sweep.py)"
+        )
+    if not (
+        executor is None or executor == "serial" or callable(getattr(executor, "submit", None))
+    ):
+        raise ValueError(
+            f"executor must be None, 'serial' or a concurrent.futures.Executor; got {executor!r}"
+        )
     if start not in STARTS:
         raise ValueError(f"start must be one of {', '.join(map(repr, STARTS))}; got {start!r}")
     if continuation is not None:
         if continuation not in CONTINUATIONS:
             raise ValueError(f"continuation must be None, 'up' or 'down'; got {continuation!r}")
         if start != "rest":
-            raise ValueError(f"a continued sweep starts from rest and then from each "
-                             f"previous point's end: start must be 'rest'; got {start!r}")
+            raise ValueError(
+                f"a continued sweep starts from rest and then from each "
+                f"previous point's end: start must be 'rest'; got {start!r}"
+            )
         if not (executor is None or executor == "serial"):
-            raise ValueError("continuation runs the points one after another (each starts "
-                             "from the previous point's state), in this process: executor "
-                             f"must be None or 'serial'; got {executor!r}")
+            raise ValueError(
+                "continuation runs the points one after another (each starts "
+                "from the previous point's state), in this process: executor "
+                f"must be None or 'serial'; got {executor!r}"
+            )
     settings = settings or SolverSettings()
     points = [resolve_parameters(params, contact=contact, **{param: v}) for v in values]
     cache_dir = default_cache_dir() if cache_dir == "default" else cache_dir
@@ -460,10 +587,10 @@ def sweep(param: str, values: ArrayLike, params: Mapping[str, float | None] | No
         order = np.argsort(values, kind="stable")
         if continuation == "down":
             order = order[::-1]
-        results = _continued(points, periods, order, contact, tension, settings, modulation,
-                             cache_dir, continuation)
-        rows = _collect(results, rows, len(points), f"sweep {param} ({continuation})",
-                        progress)
+        results = _continued(
+            points, periods, order, contact, tension, settings, modulation, cache_dir, continuation
+        )
+        rows = _collect(results, rows, len(points), f"sweep {param} ({continuation})", progress)
         order = np.argsort(values, kind="stable")
         return _table(columns, param, values[order], [rows[i] for i in order])
     own = executor is None
@@ -471,13 +598,17 @@ def sweep(param: str, values: ArrayLike, params: Mapping[str, float | None] | No
         executor = cf.ProcessPoolExecutor(max_workers=os.cpu_count())
     try:
         if executor == "serial":
-            results = ((i, _cached_run(p, contact, settings, modulation, cache_dir, tension,
-                                       start=start))
-                       for i, p in enumerate(points))
+            results = (
+                (i, _cached_run(p, contact, settings, modulation, cache_dir, tension, start=start))
+                for i, p in enumerate(points)
+            )
         else:
-            futures = {executor.submit(_cached_run, p, contact, settings, modulation, cache_dir,
-                                       tension, start=start): i
-                       for i, p in enumerate(points)}
+            futures = {
+                executor.submit(
+                    _cached_run, p, contact, settings, modulation, cache_dir, tension, start=start
+                ): i
+                for i, p in enumerate(points)
+            }
             results = ((futures[fut], fut.result()) for fut in cf.as_completed(futures))
         rows = _collect(results, rows, len(points), f"sweep {param}", progress)
     finally:
@@ -493,19 +624,31 @@ def _continuation_period(p, settings, param):
     except ValueError as err:
         raise ValueError(f"continuation at {param} = {p[param]:g}: {err}") from None
     if period > settings.t_end:
-        raise ValueError(f"continuation at {param} = {p[param]:g}: the excitation period "
-                         f"{period:.6g} s is longer than t_end = {settings.t_end:g} s, so a "
-                         "run holds no whole period to continue from")
+        raise ValueError(
+            f"continuation at {param} = {p[param]:g}: the excitation period "
+            f"{period:.6g} s is longer than t_end = {settings.t_end:g} s, so a "
+            "run holds no whole period to continue from"
+        )
     return period
 
 
-def _continued(points, periods, order, contact, tension, settings, modulation, cache_dir,
-               continuation):
+def _continued(
+    points, periods, order, contact, tension, settings, modulation, cache_dir, continuation
+):
     """The runs of a continued sweep in ``order``: yields ``(index, result)``."""
     y0 = None
     for i in order:
-        result = _cached_run(points[i], contact, settings, modulation, cache_dir, tension,
-                             continuation, y0, periods[i])
+        result = _cached_run(
+            points[i],
+            contact,
+            settings,
+            modulation,
+            cache_dir,
+            tension,
+            continuation,
+            y0,
+            periods[i],
+        )
         yield i, result
         y0 = result[0]["restart_state"]
 
@@ -513,14 +656,18 @@ def _continued(points, periods, order, contact, tension, settings, modulation, c
 def _collect(results, rows, n, desc, progress):
     """Put ``(index, (row, cached, problem))`` results into ``rows``, with a progress bar."""
     from tqdm import tqdm
+
     bar = tqdm(total=n, desc=desc, disable=not progress, file=sys.stderr)
     try:
         for i, (row, _, problem) in results:
             rows[i] = row
             if problem is not None:
                 # stacklevel 3: the caller of sweep (sweep -> _collect -> warn)
-                warnings.warn(f"sweep cache file {problem[0]}: {problem[1]}; recomputed and "
-                              "rewritten", CacheWarning, stacklevel=3)
+                warnings.warn(
+                    f"sweep cache file {problem[0]}: {problem[1]}; recomputed and rewritten",
+                    CacheWarning,
+                    stacklevel=3,
+                )
             bar.update()
     finally:
         bar.close()
@@ -550,23 +697,28 @@ def table_from_csv(path: os.PathLike | str) -> NDArray[np.void]:
     return np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")
 
 
-def resolved_mask(table: NDArray[np.void] | dict[str, Any],
-                  param: str | None = None) -> NDArray[np.bool_]:
+def resolved_mask(
+    table: NDArray[np.void] | dict[str, Any], param: str | None = None
+) -> NDArray[np.bool_]:
     """The ``resolved`` column of a sweep table; all True for a table without one.
 
     ``table``: a structured array (`sweep`) or a dict of columns (the notebooks'
     scans); ``param`` names a column whose length counts the points of a dict.
     """
-    names = (table.keys() if isinstance(table, dict)
-             else getattr(getattr(table, "dtype", None), "names", None) or ())
+    names = (
+        table.keys()
+        if isinstance(table, dict)
+        else getattr(getattr(table, "dtype", None), "names", None) or ()
+    )
     if "resolved" in names:
         return np.asarray(table["resolved"], dtype=bool)
     n = len(table[param]) if isinstance(table, dict) else len(table)
     return np.ones(n, dtype=bool)
 
 
-def omega1_peak_ranges(table: NDArray[np.void] | dict[str, Any],
-                       param: str = "Vb") -> list[tuple[float, float]]:
+def omega1_peak_ranges(
+    table: NDArray[np.void] | dict[str, Any], param: str = "Vb"
+) -> list[tuple[float, float]]:
     """Contiguous ranges of ``param`` where the omega1 peak is present: [(lo, hi), ...].
 
     `runtime.intervals.runs` of ``omega1_peak_present`` at resolved points. An
@@ -579,7 +731,6 @@ def omega1_peak_ranges(table: NDArray[np.void] | dict[str, Any],
     return intervals.runs(table[param], present)
 
 
-def unresolved_values(table: NDArray[np.void] | dict[str, Any],
-                      param: str = "Vb") -> list[float]:
+def unresolved_values(table: NDArray[np.void] | dict[str, Any], param: str = "Vb") -> list[float]:
     """Values of ``param`` whose run could not tell the omega1 peak (ascending)."""
     return sorted(float(v) for v in np.asarray(table[param])[~resolved_mask(table, param)])

@@ -28,6 +28,7 @@ candidate mode decides: a mass at the friction limit sticks if the margin grows 
 slips if it shrinks. This is what makes a one-ulp difference between ``|a_free|``
 and ``mu_s F`` (the paper's ``Vb = 0`` from rest) stick instead of chattering.
 """
+
 from __future__ import annotations
 
 from collections.abc import Mapping
@@ -43,20 +44,33 @@ from .parameters import Backend, Contact, Tension
 __all__ = ["Mode", "MODE_NAMES", "SURFACE_INDEX", "TIE_ULPS", "EVENT_KINDS", "Switching"]
 
 Mode = IntEnum("Mode", {name.upper(): code for name, code in hybrid.MODE_CODES.items()})
-Mode.__doc__ = ("Modes of Eq. (4) as a hybrid system (`generated.hybrid.MODE_CODES`); the "
-                "slip codes are the friction direction sgn(Vr) of Eq. (3).")
+Mode.__doc__ = (
+    "Modes of Eq. (4) as a hybrid system (`generated.hybrid.MODE_CODES`); the "
+    "slip codes are the friction direction sgn(Vr) of Eq. (3)."
+)
 #: Short names used in summaries and tables.
-MODE_NAMES = {Mode.SLIP_BACK: "slip-", Mode.SLIP_FORWARD: "slip+", Mode.STICK: "stick",
-              Mode.FLIGHT: "flight", Mode.SEPARATED: "separated"}
+MODE_NAMES = {
+    Mode.SLIP_BACK: "slip-",
+    Mode.SLIP_FORWARD: "slip+",
+    Mode.STICK: "stick",
+    Mode.FLIGHT: "flight",
+    Mode.SEPARATED: "separated",
+}
 SURFACE_INDEX = {name: i for i, name in enumerate(hybrid.SURFACES)}
 #: A switching function within this many ulps of its rounding scale counts as zero.
 TIE_ULPS = 32
 _EPS = np.finfo(float).eps
 #: What a crossing is called in the event list: (surface, direction) -> kind.
-EVENT_KINDS = {("relative_velocity", 1): "vr_zero", ("relative_velocity", -1): "vr_zero",
-               ("stick_forward", -1): "unstick", ("stick_back", -1): "unstick",
-               ("penetration", -1): "lift_off", ("penetration", 1): "touch_down",
-               ("contact_force", -1): "separation", ("contact_force", 1): "recontact"}
+EVENT_KINDS = {
+    ("relative_velocity", 1): "vr_zero",
+    ("relative_velocity", -1): "vr_zero",
+    ("stick_forward", -1): "unstick",
+    ("stick_back", -1): "unstick",
+    ("penetration", -1): "lift_off",
+    ("penetration", 1): "touch_down",
+    ("contact_force", -1): "separation",
+    ("contact_force", 1): "recontact",
+}
 _IN_CONTACT = (Mode.SLIP_BACK, Mode.STICK, Mode.SLIP_FORWARD)
 
 
@@ -80,11 +94,17 @@ class Switching:
         targets (mode names or rule names) of `generated.hybrid.GUARDS`.
     """
 
-    def __init__(self, p: Mapping[str, float], contact: Contact = "hertz_damp",
-                 tension: Tension = "allowed", backend: Backend | None = None) -> None:
+    def __init__(
+        self,
+        p: Mapping[str, float],
+        contact: Contact = "hertz_damp",
+        tension: Tension = "allowed",
+        backend: Backend | None = None,
+    ) -> None:
         if tension not in hybrid.GUARDS:
-            raise ValueError(f"tension must be one of {', '.join(map(repr, hybrid.GUARDS))}; "
-                             f"got {tension!r}")
+            raise ValueError(
+                f"tension must be one of {', '.join(map(repr, hybrid.GUARDS))}; got {tension!r}"
+            )
         self.p, self.contact, self.tension = p, contact, tension
         kw = dict(contact=contact, backend=backend, **p)
         self.field = hybrid.bind_vector_field(**kw)
@@ -97,7 +117,8 @@ class Switching:
             self.guards[Mode[name.upper()]] = (
                 np.array([SURFACE_INDEX[s] for s, _, _ in guards], dtype=np.int64),
                 np.array([float(d) for _, d, _ in guards]),
-                tuple((s, d, target) for s, d, target in guards))
+                tuple((s, d, target) for s, d, target in guards),
+            )
 
     def _ties(self, t, y):
         h = self.surfaces(t, *y)
@@ -109,12 +130,12 @@ class Switching:
         h, tol = self._ties(t, y)
         sf, sb = h[1], h[2]
         tf, tb = tol[1], tol[2]
-        if sf + sb > tf + tb:                       # the friction can hold the mass
+        if sf + sb > tf + tb:  # the friction can hold the mass
             if sf < -tf:
                 return Mode.SLIP_FORWARD
             if sb < -tb:
                 return Mode.SLIP_BACK
-            if sf <= tf or sb <= tb:                # at a limit: does the margin shrink?
+            if sf <= tf or sb <= tb:  # at a limit: does the margin shrink?
                 r = self.rates(t, *y, float(Mode.STICK))
                 if sf <= tf and r[1] < 0:
                     return Mode.SLIP_FORWARD

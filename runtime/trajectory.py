@@ -6,6 +6,7 @@ friction force, energy balance of Sect. 3, cycle averages of Sect. 5) integrates
 evaluates segment by segment, never across a switch, and uses the generated
 functions of ``generated.dynamics`` for the physics so that they stay the reference.
 """
+
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
@@ -33,6 +34,7 @@ class Segment:
     ``evaluate(t) -> (4, n)`` gives the state inside; ``knots`` are the solver's own
     step points (the pieces on which ``evaluate`` is one polynomial or closed form).
     """
+
     t0: float
     t1: float
     mode: int
@@ -48,10 +50,15 @@ class Trajectory:
     otherwise each segment's ``evaluate`` is called on its own times.
     """
 
-    def __init__(self, segments: Sequence[Segment], params: Mapping[str, float],
-                 contact: Contact, tension: Tension = "allowed",
-                 evaluator: Callable[[NDArray[np.float64], NDArray[np.intp]],
-                                     NDArray[np.float64]] | None = None) -> None:
+    def __init__(
+        self,
+        segments: Sequence[Segment],
+        params: Mapping[str, float],
+        contact: Contact,
+        tension: Tension = "allowed",
+        evaluator: Callable[[NDArray[np.float64], NDArray[np.intp]], NDArray[np.float64]]
+        | None = None,
+    ) -> None:
         if not segments:
             raise ValueError("a trajectory needs at least one segment")
         self.segments, self.params, self.contact = segments, params, contact
@@ -66,8 +73,7 @@ class Trajectory:
         return self.segments[-1].t1
 
     def _index(self, t):
-        return np.clip(np.searchsorted(self.starts, t, side="right") - 1, 0,
-                       len(self.segments) - 1)
+        return np.clip(np.searchsorted(self.starts, t, side="right") - 1, 0, len(self.segments) - 1)
 
     def state(self, t: ArrayLike, index: NDArray[np.intp] | None = None) -> NDArray[np.float64]:
         """State (X1, Y1, X2, Y2) at the times ``t``, shape (4, n)."""
@@ -86,8 +92,9 @@ class Trajectory:
     def mode(self, t: ArrayLike) -> NDArray[np.int_]:
         return self.modes_by_segment[self._index(np.asarray(t, dtype=float))]
 
-    def forces(self, t: ArrayLike, y: NDArray[np.float64] | None = None,
-               mode: ArrayLike | None = None) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    def forces(
+        self, t: ArrayLike, y: NDArray[np.float64] | None = None, mode: ArrayLike | None = None
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Normal force Fn (Eq. 1, under the run's tension law) and friction force on the
         mass, per unit mass.
 
@@ -103,12 +110,16 @@ class Trajectory:
         Fn = dynamics.normal_force(y[2], y[3], contact=c, tension=self.tension, **p)
         a_free = dynamics.free_acceleration(t, y[0], y[1], **p)
         slip = (mode == Mode.SLIP_BACK) | (mode == Mode.SLIP_FORWARD)
-        friction = np.where(slip, -p["mu_s"] * np.where(slip, mode, 0) * Fn,
-                            np.where(mode == Mode.STICK, -a_free, 0.0))
+        friction = np.where(
+            slip,
+            -p["mu_s"] * np.where(slip, mode, 0) * Fn,
+            np.where(mode == Mode.STICK, -a_free, 0.0),
+        )
         return Fn, friction
 
-    def pieces(self, edges: ArrayLike | None = None
-               ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.intp]]:
+    def pieces(
+        self, edges: ArrayLike | None = None
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.intp]]:
         """Smooth pieces (a, b, segment index) split at knots and at ``edges``.
 
         The segments follow each other in time, so the cuts of all of them are one
@@ -126,9 +137,13 @@ class Trajectory:
         keep = b > a
         return a[keep], b[keep], i[keep]
 
-    def integrate(self, integrand: Callable[[NDArray[np.float64], NDArray[np.float64],
-                                            NDArray[np.int_]], ArrayLike],
-                  edges: ArrayLike) -> NDArray[np.float64]:
+    def integrate(
+        self,
+        integrand: Callable[
+            [NDArray[np.float64], NDArray[np.float64], NDArray[np.int_]], ArrayLike
+        ],
+        edges: ArrayLike,
+    ) -> NDArray[np.float64]:
         """Integrals of ``integrand(t, y, mode) -> (k, n)`` over [edges[j], edges[j+1]].
 
         Gauss-Legendre on every smooth piece, so no switch is integrated across.
@@ -149,8 +164,7 @@ class Trajectory:
             out[k] = np.bincount(bins[ok], weights=values[k, ok], minlength=edges.size - 1)
         return out
 
-    def energy_balance(self, t0: float | None = None, t1: float | None = None
-                       ) -> dict[str, float]:
+    def energy_balance(self, t0: float | None = None, t1: float | None = None) -> dict[str, float]:
         """Energy balance of Sect. 3 over [t0, t1] from the generated power terms.
 
         dE/dt = P_input - P_viscous - P_friction (``generated.dynamics.power_balance``);
@@ -168,8 +182,9 @@ class Trajectory:
         def powers(t, y, mode):
             slip = (mode == Mode.SLIP_BACK) | (mode == Mode.SLIP_FORWARD)
             sgn = np.where(slip, mode, 0).astype(float)
-            P_in, P_visc, P_fric = dynamics.power_balance(t, *y, sgn, contact=c,
-                                                          tension=self.tension, **p)
+            P_in, P_visc, P_fric = dynamics.power_balance(
+                t, *y, sgn, contact=c, tension=self.tension, **p
+            )
             a_free = dynamics.free_acceleration(t, y[0], y[1], **p)
             P_fric = P_fric + np.where(mode == Mode.STICK, y[1] * a_free, 0.0)
             return np.stack([P_in, P_visc, P_fric, np.abs(P_in), np.abs(P_visc), np.abs(P_fric)])
@@ -180,9 +195,14 @@ class Trajectory:
         dE = float(E1 - E0)
         balance = dE - (W[0] - W[1] - W[2])
         scale = W[3] + W[4] + W[5]
-        return {"energy_change": dE, "work_input": float(W[0]), "work_viscous": float(W[1]),
-                "work_friction": float(W[2]), "imbalance": float(balance),
-                "residual": float(abs(balance) / scale) if scale > 0 else 0.0}
+        return {
+            "energy_change": dE,
+            "work_input": float(W[0]),
+            "work_viscous": float(W[1]),
+            "work_friction": float(W[2]),
+            "imbalance": float(balance),
+            "residual": float(abs(balance) / scale) if scale > 0 else 0.0,
+        }
 
     def time_in_modes(self, t0: float, t1: float) -> dict[Mode, float]:
         """Time spent in each mode within [t0, t1] (dict mode -> seconds)."""

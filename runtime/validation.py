@@ -42,6 +42,7 @@ before the numbers were looked at.
 
 Runtime layer: imports ``generated``, ``runtime``, numpy and scipy, never SymPy.
 """
+
 from __future__ import annotations
 
 import concurrent.futures as cf
@@ -51,26 +52,57 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
-from numpy.typing import ArrayLike
-
 import numpy as np
+from numpy.typing import ArrayLike
 
 from generated import stability
 
 from . import intervals
 from .parameters import resolve_parameters
-from .predict import CLIPPED_MDSM, clip_acts, unstable_intervals
-from .simulate import (PEAK_PRESENT_RATIO, PERTURBATION, TRANSIENT_DECAYED, SolverSettings,
-                       omega1_band)
+from .predict import clip_acts, unstable_intervals
+from .simulate import (
+    PEAK_PRESENT_RATIO,
+    PERTURBATION,
+    TRANSIENT_DECAYED,
+    SolverSettings,
+    omega1_band,
+)
 from .sweep import MAX_POINTS, sweep
 
-__all__ = ["Case", "CASES", "ANALYSES", "Resolution", "FULL", "QUICK", "SLIDING", "UNRESOLVED",
-           "DEFINITIONS", "vb_grid", "regime_runs", "simulated_ranges", "harmonic_in_band",
-           "predicted_intervals", "compare", "disagreement_length", "summarize",
-           "RUNS", "FLOQUET_SPACING", "FLOQUET_TOL", "FLOQUET_DEFINITIONS", "floquet_verdicts",
-           "peak_ranges", "periodic_mismatches", "coexistence", "band_grid_disagreements",
-           "compare_floquet", "summarize_floquet", "summarize_mismatches",
-           "validate", "render_markdown", "main"]
+__all__ = [
+    "Case",
+    "CASES",
+    "ANALYSES",
+    "Resolution",
+    "FULL",
+    "QUICK",
+    "SLIDING",
+    "UNRESOLVED",
+    "DEFINITIONS",
+    "vb_grid",
+    "regime_runs",
+    "simulated_ranges",
+    "harmonic_in_band",
+    "predicted_intervals",
+    "compare",
+    "disagreement_length",
+    "summarize",
+    "RUNS",
+    "FLOQUET_SPACING",
+    "FLOQUET_TOL",
+    "FLOQUET_DEFINITIONS",
+    "floquet_verdicts",
+    "peak_ranges",
+    "periodic_mismatches",
+    "coexistence",
+    "band_grid_disagreements",
+    "compare_floquet",
+    "summarize_floquet",
+    "summarize_mismatches",
+    "validate",
+    "render_markdown",
+    "main",
+]
 
 
 @dataclass(frozen=True)
@@ -80,6 +112,7 @@ class Case:
     ``overrides`` changes the base set (Fig. 2, ``generated.parameters.BASE``);
     ``paper`` is what the paper reports for it (Appendix A.5 or Sect. 4.1).
     """
+
     name: str
     figure: str
     overrides: dict = field(default_factory=dict)
@@ -92,38 +125,71 @@ CASES = (
     Case("beta1=0.2", "Fig. 17b", {"beta1": 0.2}, "range decreases as beta1 increases"),
     Case("beta1=0.4", "Fig. 17c", {"beta1": 0.4}, "range decreases as beta1 increases"),
     Case("beta2=0.1", "Fig. 18a", {"beta2": 0.1}, "no peak for Vb > 8 m/s"),
-    Case("beta2=0.2", "Fig. 18b", {"beta2": 0.2},
-         "no peak for Vb > 8 m/s; range shrinks at small Vb"),
-    Case("beta2=0.3", "Fig. 18c", {"beta2": 0.3},
-         "no peak for Vb > 8 m/s; range shrinks at small Vb"),
+    Case(
+        "beta2=0.2", "Fig. 18b", {"beta2": 0.2}, "no peak for Vb > 8 m/s; range shrinks at small Vb"
+    ),
+    Case(
+        "beta2=0.3", "Fig. 18c", {"beta2": 0.3}, "no peak for Vb > 8 m/s; range shrinks at small Vb"
+    ),
     Case("Omega=6", "Fig. 19a", {"Omega": 6.0}, "good match with the map (Fig. 7)"),
-    Case("Omega=8", "Fig. 19b", {"Omega": 8.0},
-         "stick-slip below Vb = 10 m/s; the map underestimates the range"),
-    Case("Omega=10", "Fig. 19c", {"Omega": 10.0},
-         "stick-slip below Vb = 15 m/s; the map underestimates the range"),
+    Case(
+        "Omega=8",
+        "Fig. 19b",
+        {"Omega": 8.0},
+        "stick-slip below Vb = 10 m/s; the map underestimates the range",
+    ),
+    Case(
+        "Omega=10",
+        "Fig. 19c",
+        {"Omega": 10.0},
+        "stick-slip below Vb = 15 m/s; the map underestimates the range",
+    ),
     Case("omega1=0.3", "Fig. 20a", {"omega1": 0.3}, "wider range than at omega1 = 3"),
     Case("omega1=3", "Fig. 20b", {"omega1": 3.0}, "range narrows"),
     Case("omega1=12", "Fig. 20c", {"omega1": 12.0}, "no peak"),
     Case("omega2=0.4", "Fig. 21a", {"omega2": 0.4}, "good match for Vb > 8 m/s"),
-    Case("omega2=0.9", "Fig. 21b", {"omega2": 0.9},
-         "good match for Vb > 8 m/s; smaller range than the map at low Vb"),
-    Case("omega2=1.5", "Fig. 21c", {"omega2": 1.5},
-         "good match for Vb > 8 m/s; smaller range than the map at low Vb"),
+    Case(
+        "omega2=0.9",
+        "Fig. 21b",
+        {"omega2": 0.9},
+        "good match for Vb > 8 m/s; smaller range than the map at low Vb",
+    ),
+    Case(
+        "omega2=1.5",
+        "Fig. 21c",
+        {"omega2": 1.5},
+        "good match for Vb > 8 m/s; smaller range than the map at low Vb",
+    ),
 )
 
 #: (key, short label, description) of each analysis, in table order.
 ANALYSES = (
-    ("paper_tangential_paper", "A1",
-     "paper's analysis (Eqs. 22-28), V_hat of the tangential oscillator, sign of Eq. (A4) "
-     "as printed"),
-    ("paper_coupled_paper", "A2",
-     "paper's analysis, V_hat of the coupled linear 2-DOF response, sign as printed"),
-    ("paper_tangential_consistent", "A3",
-     "paper's analysis, tangential V_hat, sign consistent with Eq. (4)"),
-    ("paper_coupled_consistent", "A4",
-     "paper's analysis, coupled V_hat, sign consistent with Eq. (4)"),
-    ("consistent_mdsm", "MDSM",
-     "consistent MDSM with the friction-normal-force correlation (runtime.predict)"),
+    (
+        "paper_tangential_paper",
+        "A1",
+        "paper's analysis (Eqs. 22-28), V_hat of the tangential oscillator, sign of Eq. (A4) "
+        "as printed",
+    ),
+    (
+        "paper_coupled_paper",
+        "A2",
+        "paper's analysis, V_hat of the coupled linear 2-DOF response, sign as printed",
+    ),
+    (
+        "paper_tangential_consistent",
+        "A3",
+        "paper's analysis, tangential V_hat, sign consistent with Eq. (4)",
+    ),
+    (
+        "paper_coupled_consistent",
+        "A4",
+        "paper's analysis, coupled V_hat, sign consistent with Eq. (4)",
+    ),
+    (
+        "consistent_mdsm",
+        "MDSM",
+        "consistent MDSM with the friction-normal-force correlation (runtime.predict)",
+    ),
 )
 
 #: Regimes in which the mass slides; the others are marked and left out.
@@ -143,6 +209,7 @@ class Resolution:
     point is not a sliding point without the omega1 peak (so the simulated range
     closes inside), up to ``vb_cap``.
     """
+
     step: float
     t_end: float
     min_top: float
@@ -227,8 +294,10 @@ def vb_grid(step: float, top: float, start: float | None = None) -> np.ndarray:
     if not step > 0 or not top >= 0:
         raise ValueError(f"step must be > 0 and top >= 0; got step = {step!r}, top = {top!r}")
     if top / step > MAX_POINTS:
-        raise ValueError(f"step = {step!r} up to top = {top!r} is more than MAX_POINTS = "
-                         f"{MAX_POINTS:.0e} points (runtime/sweep.py)")
+        raise ValueError(
+            f"step = {step!r} up to top = {top!r} is more than MAX_POINTS = "
+            f"{MAX_POINTS:.0e} points (runtime/sweep.py)"
+        )
     last = math.ceil(top / step - 1e-9)
     first = 1 if start is None else int(round(start / step))
     return step * np.arange(first, last + 1, dtype=float)
@@ -239,12 +308,19 @@ def regime_runs(vb: ArrayLike, regime: ArrayLike) -> list[tuple[str, float, floa
 
     Returns ``[(label, first Vb, last Vb), ...]`` (`runtime.intervals.label_runs`).
     """
-    return [(label, float(vb[i]), float(vb[j]))
-            for label, i, j in intervals.label_runs([str(r) for r in regime])]
+    return [
+        (label, float(vb[i]), float(vb[j]))
+        for label, i, j in intervals.label_runs([str(r) for r in regime])
+    ]
 
 
-def simulated_ranges(vb: ArrayLike, present: ArrayLike, regime: ArrayLike, step: float,
-                     resolved: ArrayLike | None = None) -> dict:
+def simulated_ranges(
+    vb: ArrayLike,
+    present: ArrayLike,
+    regime: ArrayLike,
+    step: float,
+    resolved: ArrayLike | None = None,
+) -> dict:
     """Simulated omega1-peak ranges of a sweep, with their edges (see `DEFINITIONS`).
 
     Parameters
@@ -276,26 +352,39 @@ def simulated_ranges(vb: ArrayLike, present: ArrayLike, regime: ArrayLike, step:
     if resolved is not None:
         resolved = np.asarray(resolved, bool)
         if resolved.shape != vb.shape:
-            raise ValueError(f"resolved must hold one flag per grid point; got shape "
-                             f"{resolved.shape} for {vb.size} points")
+            raise ValueError(
+                f"resolved must hold one flag per grid point; got shape "
+                f"{resolved.shape} for {vb.size} points"
+            )
         regime = np.where(resolved, regime, UNRESOLVED)
     if vb.ndim != 1 or vb.size == 0 or np.any(np.diff(vb) <= 0):
         raise ValueError("vb must be a non-empty ascending 1-D grid")
-    if not np.allclose(np.diff(vb), step, rtol=0, atol=1e-9 * step) \
-            or not math.isclose(vb[0], step, rel_tol=1e-9):
+    if not np.allclose(np.diff(vb), step, rtol=0, atol=1e-9 * step) or not math.isclose(
+        vb[0], step, rel_tol=1e-9
+    ):
         raise ValueError(f"vb must be the grid step, 2 step, ... with step = {step}")
     sliding = np.isin(regime, SLIDING)
     shows = present & sliding
     # Below the lowest grid point lies Vb = 0, not an excluded point.
-    ranges = [{"first": float(vb[i]), "last": float(vb[j]),
-               "lower": float(vb[i] - step / 2), "upper": float(vb[j] + step / 2),
-               "lower_censored": bool(i > 0 and not sliding[i - 1]),
-               "upper_censored": bool(j == vb.size - 1 or not sliding[j + 1])}
-              for i, j in intervals.true_runs(shows)]
+    ranges = [
+        {
+            "first": float(vb[i]),
+            "last": float(vb[j]),
+            "lower": float(vb[i] - step / 2),
+            "upper": float(vb[j] + step / 2),
+            "lower_censored": bool(i > 0 and not sliding[i - 1]),
+            "upper_censored": bool(j == vb.size - 1 or not sliding[j + 1]),
+        }
+        for i, j in intervals.true_runs(shows)
+    ]
     excluded = [run for run in regime_runs(vb, regime) if run[0] not in SLIDING]
-    return {"ranges": ranges, "excluded": excluded,
-            "excluded_vb": [float(v) for v in vb[~sliding]], "top": float(vb[-1]),
-            "sliding_points": int(sliding.sum())}
+    return {
+        "ranges": ranges,
+        "excluded": excluded,
+        "excluded_vb": [float(v) for v in vb[~sliding]],
+        "top": float(vb[-1]),
+        "sliding_points": int(sliding.sum()),
+    }
 
 
 def harmonic_in_band(p: Mapping[str, float]) -> list[tuple[int, float]]:
@@ -318,9 +407,11 @@ def harmonic_in_band(p: Mapping[str, float]) -> list[tuple[int, float]]:
     return found
 
 
-def predicted_intervals(p: Mapping[str, float], contact: str = "hertz_damp",
-                        tension: Literal["allowed", "clipped"] = "allowed",
-                        ) -> dict[str, list[tuple[float, float]] | None]:
+def predicted_intervals(
+    p: Mapping[str, float],
+    contact: str = "hertz_damp",
+    tension: Literal["allowed", "clipped"] = "allowed",
+) -> dict[str, list[tuple[float, float]] | None]:
     """Every analysis' unstable ``Vb`` ranges: ``{key: [(lower, upper), ...] or None}``.
 
     The paper's analysis is the closed form of Eqs. (25), (28)
@@ -334,24 +425,33 @@ def predicted_intervals(p: Mapping[str, float], contact: str = "hertz_damp",
     out = {}
     for model in ("tangential", "coupled"):
         for convention in ("paper", "consistent"):
-            lower, upper = (float(x) for x in stability.unstable_interval(
-                vhat_model=model, convention=convention, contact=contact, **p))
+            lower, upper = (
+                float(x)
+                for x in stability.unstable_interval(
+                    vhat_model=model, convention=convention, contact=contact, **p
+                )
+            )
             out[f"paper_{model}_{convention}"] = [] if math.isnan(lower) else [(lower, upper)]
     if tension == "clipped" and clip_acts(p, contact)[0]:
         out["consistent_mdsm"] = None
     else:
-        out["consistent_mdsm"] = [(float(a), float(b)) for a, b in
-                                  unstable_intervals(p, contact=contact)[0]]
+        out["consistent_mdsm"] = [
+            (float(a), float(b)) for a, b in unstable_intervals(p, contact=contact)[0]
+        ]
     return out
 
 
 def _edge(predicted, simulated, censored, from_zero=False):
-    return {"predicted": predicted, "simulated": simulated, "delta": predicted - simulated,
-            "censored": censored, "from_zero": from_zero}
+    return {
+        "predicted": predicted,
+        "simulated": simulated,
+        "delta": predicted - simulated,
+        "censored": censored,
+        "from_zero": from_zero,
+    }
 
 
-def compare(predicted: Sequence[tuple[float, float]] | None, simulated: dict,
-            step: float) -> dict:
+def compare(predicted: Sequence[tuple[float, float]] | None, simulated: dict, step: float) -> dict:
     """Pair the edges of one analysis with the simulation's for one case (hull rule).
 
     Parameters
@@ -374,10 +474,13 @@ def compare(predicted: Sequence[tuple[float, float]] | None, simulated: dict,
     """
     ranges = simulated["ranges"]
     if predicted is None:
-        return {"status": "no_prediction", "lower": None, "upper": None,
-                "disagreement": None}
-    out = {"status": None, "lower": None, "upper": None,
-           "disagreement": disagreement_length(predicted, simulated, step)}
+        return {"status": "no_prediction", "lower": None, "upper": None, "disagreement": None}
+    out = {
+        "status": None,
+        "lower": None,
+        "upper": None,
+        "disagreement": disagreement_length(predicted, simulated, step),
+    }
     if not predicted and not ranges:
         out["status"] = "both_empty"
     elif not predicted:
@@ -392,8 +495,9 @@ def compare(predicted: Sequence[tuple[float, float]] | None, simulated: dict,
     return out
 
 
-def disagreement_length(predicted: Sequence[tuple[float, float]], simulated: dict,
-                        step: float) -> float:
+def disagreement_length(
+    predicted: Sequence[tuple[float, float]], simulated: dict, step: float
+) -> float:
     """Length of the belt speeds where prediction and simulation disagree (`DEFINITIONS`).
 
     Measured within the observed window ``[0, top + step/2]`` minus the cells
@@ -402,10 +506,12 @@ def disagreement_length(predicted: Sequence[tuple[float, float]], simulated: dic
     window_end = simulated["top"] + step / 2
     observed = intervals.clip(predicted, 0.0, window_end)
     found = [(r["lower"], r["upper"]) for r in simulated["ranges"]]
-    excluded = [(max(v - step / 2, 0.0), min(v + step / 2, window_end))
-                for v in simulated["excluded_vb"]]
-    return intervals.length(intervals.difference(
-        intervals.symmetric_difference(observed, found), excluded))
+    excluded = [
+        (max(v - step / 2, 0.0), min(v + step / 2, window_end)) for v in simulated["excluded_vb"]
+    ]
+    return intervals.length(
+        intervals.difference(intervals.symmetric_difference(observed, found), excluded)
+    )
 
 
 def summarize(cases: Sequence[dict]) -> dict:
@@ -417,8 +523,11 @@ def summarize(cases: Sequence[dict]) -> dict:
     summary = {}
     comparable = [c for c in cases if c["comparable"]]
     for key, _, _ in ANALYSES:
-        deltas, counts, lengths = [], {"paired": 0, "miss": 0, "false_alarm": 0,
-                                       "both_empty": 0, "no_prediction": 0}, []
+        deltas, counts, lengths = (
+            [],
+            {"paired": 0, "miss": 0, "false_alarm": 0, "both_empty": 0, "no_prediction": 0},
+            [],
+        )
         for c in comparable:
             comp = c["comparison"][key]
             counts[comp["status"]] += 1
@@ -429,10 +538,13 @@ def summarize(cases: Sequence[dict]) -> dict:
                 edge = comp[side]
                 if edge is not None and not edge["censored"]:
                     deltas.append(abs(edge["delta"]))
-        summary[key] = {"mae": float(np.mean(deltas)) if deltas else None,
-                        "n_edges": len(deltas), **counts,
-                        "mean_disagreement": float(np.mean(lengths)) if lengths else None,
-                        "n_cases": len(comparable) - counts["no_prediction"]}
+        summary[key] = {
+            "mae": float(np.mean(deltas)) if deltas else None,
+            "n_edges": len(deltas),
+            **counts,
+            "mean_disagreement": float(np.mean(lengths)) if lengths else None,
+            "n_cases": len(comparable) - counts["no_prediction"],
+        }
     return summary
 
 
@@ -442,8 +554,11 @@ def summarize(cases: Sequence[dict]) -> dict:
 #: it starts). "rest" uses the file's tension law, "rest_other" the other law.
 RUNS = (
     ("rest", "from rest", "from the unforced equilibrium at rest (the file's tension law)"),
-    ("periodic", "periodic start",
-     "on the periodic response plus `runtime.simulate.PERTURBATION` in X1"),
+    (
+        "periodic",
+        "periodic start",
+        "on the periodic response plus `runtime.simulate.PERTURBATION` in X1",
+    ),
     ("up", "up sweep", "continued upwards in Vb, from rest at the lowest point"),
     ("down", "down sweep", "continued downwards in Vb, from rest at the highest point"),
     ("rest_other", "from rest, other law", "from rest under the other tension law"),
@@ -455,9 +570,13 @@ FLOQUET_SPACING = 0.5
 FLOQUET_TOL = 1e-3
 
 
-def floquet_verdicts(vb: ArrayLike, overrides: Mapping[str, float] | None = None, *,
-                     contact: str = "hertz_damp",
-                     tension: Literal["allowed", "clipped"] = "allowed") -> list[dict]:
+def floquet_verdicts(
+    vb: ArrayLike,
+    overrides: Mapping[str, float] | None = None,
+    *,
+    contact: str = "hertz_damp",
+    tension: Literal["allowed", "clipped"] = "allowed",
+) -> list[dict]:
     """The Floquet verdict on the periodic response at each grid point.
 
     Each point is computed as the run started on the periodic response finds it
@@ -472,23 +591,36 @@ def floquet_verdicts(vb: ArrayLike, overrides: Mapping[str, float] | None = None
         (NaN where there is no multiplier).
     """
     from .floquet import NoPeriodicResponse, floquet
+
     out = []
     for v in np.asarray(vb, float):
         try:
             f = floquet({**(overrides or {}), "Vb": float(v)}, contact=contact, tension=tension)
         except NoPeriodicResponse:
-            out.append({"Vb": float(v), "verdict": "absent", "max_abs_multiplier": math.nan,
-                        "growth_rate": math.nan})
+            out.append(
+                {
+                    "Vb": float(v),
+                    "verdict": "absent",
+                    "max_abs_multiplier": math.nan,
+                    "growth_rate": math.nan,
+                }
+            )
             continue
         verdict = "grazing" if f.stable is None else "stable" if f.stable else "unstable"
-        out.append({"Vb": float(v), "verdict": verdict,
-                    "max_abs_multiplier": float(f.max_abs_multiplier),
-                    "growth_rate": float(f.growth_rate)})
+        out.append(
+            {
+                "Vb": float(v),
+                "verdict": verdict,
+                "max_abs_multiplier": float(f.max_abs_multiplier),
+                "growth_rate": float(f.growth_rate),
+            }
+        )
     return out
 
 
-def peak_ranges(vb: ArrayLike, present: ArrayLike, resolved: ArrayLike,
-                step: float) -> list[tuple[float, float]]:
+def peak_ranges(
+    vb: ArrayLike, present: ArrayLike, resolved: ArrayLike, step: float
+) -> list[tuple[float, float]]:
     """Ranges where a run shows the omega1 peak, whatever its regime, each point ± h/2.
 
     ``present`` and ``resolved`` are the sweep's columns; an unresolved point is not
@@ -496,12 +628,14 @@ def peak_ranges(vb: ArrayLike, present: ArrayLike, resolved: ArrayLike,
     """
     shows = np.asarray(present, bool) & np.asarray(resolved, bool)
     vb = np.asarray(vb, float)
-    return [(float(vb[i] - step / 2), float(vb[j] + step / 2))
-            for i, j in intervals.true_runs(shows)]
+    return [
+        (float(vb[i] - step / 2), float(vb[j] + step / 2)) for i, j in intervals.true_runs(shows)
+    ]
 
 
-def periodic_mismatches(vb: ArrayLike, verdicts: Sequence[dict], periodic: Mapping,
-                        edges: Sequence[float], step: float) -> dict:
+def periodic_mismatches(
+    vb: ArrayLike, verdicts: Sequence[dict], periodic: Mapping, edges: Sequence[float], step: float
+) -> dict:
     """Where the run started on the periodic response disagrees with Floquet.
 
     Floquet's verdict at a grid point is a prediction of that run: the perturbation
@@ -527,8 +661,9 @@ def periodic_mismatches(vb: ArrayLike, verdicts: Sequence[dict], periodic: Mappi
     """
     edges = np.asarray(sorted(edges), float)
     out = {"checked": 0, "mismatches": [], "near_edge": [], "no_verdict": [], "unresolved": []}
-    for v, verdict, peak, ok in zip(np.asarray(vb, float), verdicts, periodic["present"],
-                                    periodic["resolved"]):
+    for v, verdict, peak, ok in zip(
+        np.asarray(vb, float), verdicts, periodic["present"], periodic["resolved"]
+    ):
         v = float(v)
         if edges.size and np.min(np.abs(edges - v)) <= step * (1 + 1e-9):
             out["near_edge"].append(v)
@@ -539,13 +674,19 @@ def periodic_mismatches(vb: ArrayLike, verdicts: Sequence[dict], periodic: Mappi
         else:
             out["checked"] += 1
             if bool(peak) != (verdict["verdict"] == "unstable"):
-                out["mismatches"].append({"Vb": v, "floquet": verdict["verdict"],
-                                          "peak": bool(peak)})
+                out["mismatches"].append(
+                    {"Vb": v, "floquet": verdict["verdict"], "peak": bool(peak)}
+                )
     return out
 
 
-def coexistence(vb: ArrayLike, verdicts: Sequence[dict], runs: Mapping[str, Mapping],
-                step: float, window_start: float) -> dict:
+def coexistence(
+    vb: ArrayLike,
+    verdicts: Sequence[dict],
+    runs: Mapping[str, Mapping],
+    step: float,
+    window_start: float,
+) -> dict:
     """Grid points where two attractors are seen: a stable periodic response beside
     a self-excited oscillation.
 
@@ -572,8 +713,11 @@ def coexistence(vb: ArrayLike, verdicts: Sequence[dict], runs: Mapping[str, Mapp
         stays = runs["periodic"]["resolved"][i] and not runs["periodic"]["present"][i]
         if verdicts[i]["verdict"] != "stable" or not stays:
             continue
-        by = [key for key in ("rest", "up", "down")
-              if runs[key]["resolved"][i] and runs[key]["present"][i]]
+        by = [
+            key
+            for key in ("rest", "up", "down")
+            if runs[key]["resolved"][i] and runs[key]["present"][i]
+        ]
         if not by:
             continue
         if math.exp(verdicts[i]["growth_rate"] * window_start) > TRANSIENT_DECAYED:
@@ -581,14 +725,20 @@ def coexistence(vb: ArrayLike, verdicts: Sequence[dict], runs: Mapping[str, Mapp
             continue
         flags[i] = True
         found_by[float(v)] = by
-    return {"points": [float(v) for v in vb[flags]],
-            "ranges": [(float(vb[i] - step / 2), float(vb[j] + step / 2))
-                       for i, j in intervals.true_runs(flags)],
-            "found_by": found_by, "unsettled": unsettled}
+    return {
+        "points": [float(v) for v in vb[flags]],
+        "ranges": [
+            (float(vb[i] - step / 2), float(vb[j] + step / 2))
+            for i, j in intervals.true_runs(flags)
+        ],
+        "found_by": found_by,
+        "unsettled": unsettled,
+    }
 
 
-def band_grid_disagreements(vb: ArrayLike, verdicts: Sequence[dict], band: Mapping,
-                            step: float) -> list[float]:
+def band_grid_disagreements(
+    vb: ArrayLike, verdicts: Sequence[dict], band: Mapping, step: float
+) -> list[float]:
     """Grid points whose own Floquet verdict contradicts the band, away from its edges.
 
     The band (`runtime.floquet.floquet_band`) is found on its own, coarser grid and
@@ -600,7 +750,8 @@ def band_grid_disagreements(vb: ArrayLike, verdicts: Sequence[dict], band: Mappi
     out = []
     for v, verdict in zip(np.asarray(vb, float), verdicts):
         if verdict["verdict"] == "grazing" or (
-                edges.size and np.min(np.abs(edges - v)) <= step * (1 + 1e-9)):
+            edges.size and np.min(np.abs(edges - v)) <= step * (1 + 1e-9)
+        ):
             continue
         inside = any(lo <= v <= hi for lo, hi in band["unstable"])
         if inside != (verdict["verdict"] in ("unstable", "absent")):
@@ -608,8 +759,9 @@ def band_grid_disagreements(vb: ArrayLike, verdicts: Sequence[dict], band: Mappi
     return out
 
 
-def compare_floquet(predicted: Sequence[tuple[float, float]] | None, band: Mapping,
-                    lo: float, hi: float) -> dict:
+def compare_floquet(
+    predicted: Sequence[tuple[float, float]] | None, band: Mapping, lo: float, hi: float
+) -> dict:
     """Pair an analysis' unstable ranges with the Floquet band (hull rule, exact edges).
 
     The Floquet band is computed on ``[lo, hi]``: an edge of it at ``lo`` or ``hi``
@@ -625,12 +777,15 @@ def compare_floquet(predicted: Sequence[tuple[float, float]] | None, band: Mappi
         belt speeds in ``[lo, hi]`` where exactly one of them is unstable.
     """
     if predicted is None:
-        return {"status": "no_prediction", "lower": None, "upper": None,
-                "disagreement": None}
+        return {"status": "no_prediction", "lower": None, "upper": None, "disagreement": None}
     unstable = [tuple(r) for r in band["unstable"]]
     clipped = intervals.clip(predicted, lo, hi)
-    out = {"status": None, "lower": None, "upper": None,
-           "disagreement": intervals.length(intervals.symmetric_difference(clipped, unstable))}
+    out = {
+        "status": None,
+        "lower": None,
+        "upper": None,
+        "disagreement": intervals.length(intervals.symmetric_difference(clipped, unstable)),
+    }
     if not predicted and not unstable:
         out["status"] = "both_empty"
     elif not predicted:
@@ -641,10 +796,18 @@ def compare_floquet(predicted: Sequence[tuple[float, float]] | None, band: Mappi
         out["status"] = "paired"
         p_lo, p_hi = intervals.hull(predicted)
         f_lo, f_hi = intervals.hull(unstable)
-        out["lower"] = {"predicted": p_lo, "floquet": f_lo, "delta": p_lo - f_lo,
-                        "censored": math.isclose(f_lo, lo)}
-        out["upper"] = {"predicted": p_hi, "floquet": f_hi, "delta": p_hi - f_hi,
-                        "censored": math.isclose(f_hi, hi)}
+        out["lower"] = {
+            "predicted": p_lo,
+            "floquet": f_lo,
+            "delta": p_lo - f_lo,
+            "censored": math.isclose(f_lo, lo),
+        }
+        out["upper"] = {
+            "predicted": p_hi,
+            "floquet": f_hi,
+            "delta": p_hi - f_hi,
+            "censored": math.isclose(f_hi, hi),
+        }
     return out
 
 
@@ -654,21 +817,26 @@ def summarize_floquet(cases: Sequence[dict]) -> dict:
     summary = {}
     for key, _, _ in ANALYSES:
         deltas, lengths = [], []
-        counts = {"paired": 0, "miss": 0, "false_alarm": 0, "both_empty": 0,
-                  "no_prediction": 0}
+        counts = {"paired": 0, "miss": 0, "false_alarm": 0, "both_empty": 0, "no_prediction": 0}
         for c in cases:
             comp = c["floquet_comparison"][key]
             counts[comp["status"]] += 1
             if comp["status"] == "no_prediction":
                 continue
             lengths.append(comp["disagreement"])
-            deltas += [abs(comp[side]["delta"]) for side in ("lower", "upper")
-                       if comp[side] is not None and not comp[side]["censored"]]
-        summary[key] = {"mae": float(np.mean(deltas)) if deltas else None,
-                        "max": float(np.max(deltas)) if deltas else None,
-                        "n_edges": len(deltas), **counts,
-                        "mean_disagreement": float(np.mean(lengths)) if lengths else None,
-                        "n_cases": len(cases) - counts["no_prediction"]}
+            deltas += [
+                abs(comp[side]["delta"])
+                for side in ("lower", "upper")
+                if comp[side] is not None and not comp[side]["censored"]
+            ]
+        summary[key] = {
+            "mae": float(np.mean(deltas)) if deltas else None,
+            "max": float(np.max(deltas)) if deltas else None,
+            "n_edges": len(deltas),
+            **counts,
+            "mean_disagreement": float(np.mean(lengths)) if lengths else None,
+            "n_cases": len(cases) - counts["no_prediction"],
+        }
     return summary
 
 
@@ -712,15 +880,19 @@ FLOQUET_DEFINITIONS = """\
 def summarize_mismatches(cases: Sequence[dict]) -> dict:
     """Totals of `periodic_mismatches` over the cases without a harmonic in the band."""
     counted = [c for c in cases if not c["harmonics"]]
-    return {"checked": sum(c["mismatches"]["checked"] for c in counted),
-            "mismatches": [{"case": c["name"], **m} for c in counted
-                           for m in c["mismatches"]["mismatches"]],
-            "cases": len(counted),
-            "not_counted": [c["name"] for c in cases if c["harmonics"]]}
+    return {
+        "checked": sum(c["mismatches"]["checked"] for c in counted),
+        "mismatches": [
+            {"case": c["name"], **m} for c in counted for m in c["mismatches"]["mismatches"]
+        ],
+        "cases": len(counted),
+        "not_counted": [c["name"] for c in cases if c["harmonics"]],
+    }
 
 
-def _case_sweep(case, resolution, edges, executor, cache_dir, progress, extend=True,
-                tension="allowed"):
+def _case_sweep(
+    case, resolution, edges, executor, cache_dir, progress, extend=True, tension="allowed"
+):
     """Sweep ``Vb`` from rest for one case on the grid rule of `Resolution`.
 
     ``edges``: the predicted and Floquet edges the grid must contain.
@@ -731,14 +903,22 @@ def _case_sweep(case, resolution, edges, executor, cache_dir, progress, extend=T
     top = max(resolution.min_top, resolution.top_factor * max(edges, default=0.0), step)
     top = min(top, resolution.vb_cap)
     grid = vb_grid(step, top)
-    kwargs = dict(settings=resolution.settings, executor=executor, cache_dir=cache_dir,
-                  progress=progress, tension=tension)
+    kwargs = dict(
+        settings=resolution.settings,
+        executor=executor,
+        cache_dir=cache_dir,
+        progress=progress,
+        tension=tension,
+    )
     table = sweep("Vb", grid, case.overrides, **kwargs)
     while True:
         last = table[-1]
         # an unresolved top point does not close the range: it cannot tell
-        closed = (str(last["regime"]) in SLIDING and bool(last["resolved"])
-                  and not last["omega1_peak_present"])
+        closed = (
+            str(last["regime"]) in SLIDING
+            and bool(last["resolved"])
+            and not last["omega1_peak_present"]
+        )
         if not extend or closed or last["Vb"] >= resolution.vb_cap - 1e-9:
             return table
         top = min(resolution.vb_cap, resolution.extend_factor * last["Vb"])
@@ -746,10 +926,15 @@ def _case_sweep(case, resolution, edges, executor, cache_dir, progress, extend=T
         table = np.concatenate([table, sweep("Vb", new, case.overrides, **kwargs)])
 
 
-def validate(quick: bool = False, *, tension: Literal["allowed", "clipped"] = "allowed",
-             executor: cf.Executor | Literal["serial"] | None = None,
-             cache_dir: os.PathLike | str | None = "default", progress: bool = True,
-             cases: Sequence[Case | str] | None = None) -> dict:
+def validate(
+    quick: bool = False,
+    *,
+    tension: Literal["allowed", "clipped"] = "allowed",
+    executor: cf.Executor | Literal["serial"] | None = None,
+    cache_dir: os.PathLike | str | None = "default",
+    progress: bool = True,
+    cases: Sequence[Case | str] | None = None,
+) -> dict:
     """Simulated omega1-peak ranges against every analysis' prediction (Figs. 2, 17-21).
 
     Parameters
@@ -782,17 +967,21 @@ def validate(quick: bool = False, *, tension: Literal["allowed", "clipped"] = "a
         (per analysis, `compare`)), ``summary`` (`summarize`).
     """
     from .model import TENSIONS
+
     if tension not in TENSIONS:
-        raise ValueError(f"tension must be one of {', '.join(map(repr, TENSIONS))}; "
-                         f"got {tension!r}")
+        raise ValueError(
+            f"tension must be one of {', '.join(map(repr, TENSIONS))}; got {tension!r}"
+        )
     resolution = QUICK if quick else FULL
     by_name = {c.name: c for c in CASES}
     unknown = [c for c in cases or () if isinstance(c, str) and c not in by_name]
     if unknown:
-        raise ValueError(f"unknown case(s) {', '.join(map(repr, unknown))}; known: "
-                         f"{', '.join(by_name)}")
-    selected = CASES if cases is None else tuple(by_name[c] if isinstance(c, str) else c
-                                                 for c in cases)
+        raise ValueError(
+            f"unknown case(s) {', '.join(map(repr, unknown))}; known: {', '.join(by_name)}"
+        )
+    selected = (
+        CASES if cases is None else tuple(by_name[c] if isinstance(c, str) else c for c in cases)
+    )
     own = executor is None
     if own:
         executor = cf.ProcessPoolExecutor(max_workers=os.cpu_count())
@@ -805,52 +994,99 @@ def validate(quick: bool = False, *, tension: Literal["allowed", "clipped"] = "a
             band = _floquet_band(case, resolution, tension)
             edges = [x for ranges in predicted.values() for pair in ranges or () for x in pair]
             edges += [e["value"] for e in band["edges"]]
-            table = _case_sweep(case, resolution, edges, executor, cache_dir, progress,
-                                extend=not harmonics, tension=tension)
+            table = _case_sweep(
+                case,
+                resolution,
+                edges,
+                executor,
+                cache_dir,
+                progress,
+                extend=not harmonics,
+                tension=tension,
+            )
             vb = np.asarray(table["Vb"], float)
-            simulated = simulated_ranges(vb, table["omega1_peak_present"], table["regime"],
-                                         resolution.step, table["resolved"])
+            simulated = simulated_ranges(
+                vb,
+                table["omega1_peak_present"],
+                table["regime"],
+                resolution.step,
+                table["resolved"],
+            )
             runs = _other_runs(case, vb, resolution, executor, cache_dir, progress, tension)
             runs["rest"] = table
             runs = {key: _run_columns(runs[key], resolution.step) for key, _, _ in RUNS}
             verdicts = floquet_verdicts(vb, case.overrides, tension=tension)
             edge_values = [e["value"] for e in band["edges"]]
-            results.append({
-                "name": case.name, "figure": case.figure, "overrides": dict(case.overrides),
-                "paper": case.paper,
-                "grid": {"step": resolution.step, "start": float(vb[0]),
-                         "stop": float(vb[-1]), "n": int(vb.size)},
-                "Vb": vb.tolist(), "present": table["omega1_peak_present"].tolist(),
-                "resolved": table["resolved"].tolist(),
-                "regime": [str(r) for r in table["regime"]],
-                "peak_ratio": (table["peak_omega1"] / table["peak_Omega"]).tolist(),
-                "simulated": simulated, "harmonics": harmonics,
-                "comparable": not harmonics and simulated["sliding_points"] > 0,
-                "predicted": predicted,
-                "comparison": {key: compare(predicted[key], simulated, resolution.step)
-                               for key, _, _ in ANALYSES},
-                "floquet": {**{k: band[k] for k in ("unstable", "edges", "grazing_points",
-                                                    "no_periodic_response", "failed")},
-                            "lo": resolution.step / 2, "hi": resolution.vb_cap,
-                            "verdicts": verdicts},
-                "runs": runs,
-                "mismatches": periodic_mismatches(vb, verdicts, runs["periodic"],
-                                                  edge_values, resolution.step),
-                "coexistence": coexistence(vb, verdicts, runs, resolution.step,
-                                           resolution.settings.window_start),
-                "band_disagreements": band_grid_disagreements(vb, verdicts, band,
-                                                              resolution.step),
-                "floquet_comparison": {key: compare_floquet(predicted[key], band,
-                                                            resolution.step / 2,
-                                                            resolution.vb_cap)
-                                       for key, _, _ in ANALYSES}})
+            results.append(
+                {
+                    "name": case.name,
+                    "figure": case.figure,
+                    "overrides": dict(case.overrides),
+                    "paper": case.paper,
+                    "grid": {
+                        "step": resolution.step,
+                        "start": float(vb[0]),
+                        "stop": float(vb[-1]),
+                        "n": int(vb.size),
+                    },
+                    "Vb": vb.tolist(),
+                    "present": table["omega1_peak_present"].tolist(),
+                    "resolved": table["resolved"].tolist(),
+                    "regime": [str(r) for r in table["regime"]],
+                    "peak_ratio": (table["peak_omega1"] / table["peak_Omega"]).tolist(),
+                    "simulated": simulated,
+                    "harmonics": harmonics,
+                    "comparable": not harmonics and simulated["sliding_points"] > 0,
+                    "predicted": predicted,
+                    "comparison": {
+                        key: compare(predicted[key], simulated, resolution.step)
+                        for key, _, _ in ANALYSES
+                    },
+                    "floquet": {
+                        **{
+                            k: band[k]
+                            for k in (
+                                "unstable",
+                                "edges",
+                                "grazing_points",
+                                "no_periodic_response",
+                                "failed",
+                            )
+                        },
+                        "lo": resolution.step / 2,
+                        "hi": resolution.vb_cap,
+                        "verdicts": verdicts,
+                    },
+                    "runs": runs,
+                    "mismatches": periodic_mismatches(
+                        vb, verdicts, runs["periodic"], edge_values, resolution.step
+                    ),
+                    "coexistence": coexistence(
+                        vb, verdicts, runs, resolution.step, resolution.settings.window_start
+                    ),
+                    "band_disagreements": band_grid_disagreements(
+                        vb, verdicts, band, resolution.step
+                    ),
+                    "floquet_comparison": {
+                        key: compare_floquet(
+                            predicted[key], band, resolution.step / 2, resolution.vb_cap
+                        )
+                        for key, _, _ in ANALYSES
+                    },
+                }
+            )
     finally:
         if own:
             executor.shutdown()
-    return {"quick": bool(quick), "tension": tension, "resolution": resolution,
-            "cases": results, "summary": summarize(results),
-            "floquet_summary": summarize_floquet(results),
-            "mismatch_summary": summarize_mismatches(results)}
+    return {
+        "quick": bool(quick),
+        "tension": tension,
+        "resolution": resolution,
+        "cases": results,
+        "summary": summarize(results),
+        "floquet_summary": summarize_floquet(results),
+        "mismatch_summary": summarize_mismatches(results),
+    }
 
 
 def _floquet_band(case, resolution, tension):
@@ -860,10 +1096,12 @@ def _floquet_band(case, resolution, tension):
     just below the lowest grid point is found, not taken for the end of the range.
     """
     from .floquet import floquet_band
+
     lo, hi = resolution.step / 2, resolution.vb_cap
     points = math.ceil((hi - lo) / FLOQUET_SPACING) + 1
-    return floquet_band("Vb", lo, hi, case.overrides, tension=tension, points=points,
-                        tol=FLOQUET_TOL)
+    return floquet_band(
+        "Vb", lo, hi, case.overrides, tension=tension, points=points, tol=FLOQUET_TOL
+    )
 
 
 def _other_runs(case, vb, resolution, executor, cache_dir, progress, tension):
@@ -874,16 +1112,25 @@ def _other_runs(case, vb, resolution, executor, cache_dir, progress, tension):
     """
     other = {"allowed": "clipped", "clipped": "allowed"}[tension]
     common = dict(settings=resolution.settings, cache_dir=cache_dir)
-    plans = {"periodic": dict(start="periodic", tension=tension),
-             "up": dict(continuation="up", tension=tension),
-             "down": dict(continuation="down", tension=tension),
-             "rest_other": dict(tension=other)}
+    plans = {
+        "periodic": dict(start="periodic", tension=tension),
+        "up": dict(continuation="up", tension=tension),
+        "down": dict(continuation="down", tension=tension),
+        "rest_other": dict(tension=other),
+    }
     if executor == "serial":
-        return {key: sweep("Vb", vb, case.overrides, executor="serial", progress=progress,
-                           **common, **kw) for key, kw in plans.items()}
-    futures = {key: executor.submit(sweep, "Vb", vb, case.overrides, executor="serial",
-                                    progress=False, **common, **kw)
-               for key, kw in plans.items()}
+        return {
+            key: sweep(
+                "Vb", vb, case.overrides, executor="serial", progress=progress, **common, **kw
+            )
+            for key, kw in plans.items()
+        }
+    futures = {
+        key: executor.submit(
+            sweep, "Vb", vb, case.overrides, executor="serial", progress=False, **common, **kw
+        )
+        for key, kw in plans.items()
+    }
     return {key: fut.result() for key, fut in futures.items()}
 
 
@@ -892,13 +1139,17 @@ def _run_columns(table, step):
     present = np.asarray(table["omega1_peak_present"], bool)
     resolved = np.asarray(table["resolved"], bool)
     vb = np.asarray(table["Vb"], float)
-    return {"present": present.tolist(), "resolved": resolved.tolist(),
-            "regime": [str(r) for r in table["regime"]],
-            "ranges": peak_ranges(vb, present, resolved, step),
-            "unresolved": [float(v) for v in vb[~resolved]]}
+    return {
+        "present": present.tolist(),
+        "resolved": resolved.tolist(),
+        "regime": [str(r) for r in table["regime"]],
+        "ranges": peak_ranges(vb, present, resolved, step),
+        "unresolved": [float(v) for v in vb[~resolved]],
+    }
 
 
 # ---------------------------------------------------------------- rendering
+
 
 def _num(x):
     return f"{x:.2f}"
@@ -921,8 +1172,12 @@ def _simulated_text(sim):
 
 def _delta_text(comp):
     if comp["status"] != "paired":
-        return {"miss": "miss", "false_alarm": "false alarm", "both_empty": "both none",
-                "no_prediction": "n/a"}[comp["status"]]
+        return {
+            "miss": "miss",
+            "false_alarm": "false alarm",
+            "both_empty": "both none",
+            "no_prediction": "n/a",
+        }[comp["status"]]
     texts = []
     for side in ("lower", "upper"):
         e = comp[side]
@@ -940,11 +1195,16 @@ def _points_text(runs):
 
 
 def _runs_text(runs):
-    names = {"continuous_sliding": "sliding", "sliding_with_reversals": "reversals",
-             "stick_slip": "**stick-slip**", "contact_loss": "**contact loss**",
-             UNRESOLVED: "**unresolved**"}
-    return "; ".join(f"{names[r]} {_num(a)}–{_num(b)}" if a != b else f"{names[r]} {_num(a)}"
-                     for r, a, b in runs)
+    names = {
+        "continuous_sliding": "sliding",
+        "sliding_with_reversals": "reversals",
+        "stick_slip": "**stick-slip**",
+        "contact_loss": "**contact loss**",
+        UNRESOLVED: "**unresolved**",
+    }
+    return "; ".join(
+        f"{names[r]} {_num(a)}–{_num(b)}" if a != b else f"{names[r]} {_num(a)}" for r, a, b in runs
+    )
 
 
 def _band_text(band):
@@ -952,8 +1212,11 @@ def _band_text(band):
         return "none"
     text = intervals.format_intervals(band["unstable"], ".3f")
     if band["no_periodic_response"]:
-        text += " (none found in " + intervals.format_intervals(
-            band["no_periodic_response"], ".3f") + ")"
+        text += (
+            " (none found in "
+            + intervals.format_intervals(band["no_periodic_response"], ".3f")
+            + ")"
+        )
     return text
 
 
@@ -971,81 +1234,126 @@ def _run_text(run):
 
 def _floquet_delta_text(comp):
     if comp["status"] != "paired":
-        return {"miss": "miss", "false_alarm": "false alarm", "both_empty": "both none",
-                "no_prediction": "n/a"}[comp["status"]]
-    return " / ".join(f"({comp[s]['delta']:+.3f})*" if comp[s]["censored"]
-                      else f"{comp[s]['delta']:+.3f}" for s in ("lower", "upper"))
+        return {
+            "miss": "miss",
+            "false_alarm": "false alarm",
+            "both_empty": "both none",
+            "no_prediction": "n/a",
+        }[comp["status"]]
+    return " / ".join(
+        f"({comp[s]['delta']:+.3f})*" if comp[s]["censored"] else f"{comp[s]['delta']:+.3f}"
+        for s in ("lower", "upper")
+    )
 
 
 def _floquet_sections(results):
     """The Floquet tables of `render_markdown`: the runs, mismatches, coexistence, edges."""
     cases, step = results["cases"], results["resolution"].step
     other = {"allowed": "clipped", "clipped": "allowed"}[results.get("tension", "allowed")]
-    lines = ["## Floquet: where the periodic response is unstable, and what the runs find", "",
-             "The Floquet band is exact (edges to "
-             f"{FLOQUET_TOL:g} m/s, kinds: mu = multiplier, graz = grazing, exist = "
-             "existence). The runs' ranges hold the grid points that show the omega1 peak "
-             f"(resolved, any regime), each ± {step / 2:g} m/s. Coexistence: a stable "
-             "periodic response beside a self-excited oscillation (definitions below).", "",
-             "| case | Floquet unstable [m/s] | edges | periodic start | from rest | up sweep "
-             f"| down sweep | coexistence | from rest, {other} |",
-             "|---|---|---|---|---|---|---|---|---|"]
+    lines = [
+        "## Floquet: where the periodic response is unstable, and what the runs find",
+        "",
+        "The Floquet band is exact (edges to "
+        f"{FLOQUET_TOL:g} m/s, kinds: mu = multiplier, graz = grazing, exist = "
+        "existence). The runs' ranges hold the grid points that show the omega1 peak "
+        f"(resolved, any regime), each ± {step / 2:g} m/s. Coexistence: a stable "
+        "periodic response beside a self-excited oscillation (definitions below).",
+        "",
+        "| case | Floquet unstable [m/s] | edges | periodic start | from rest | up sweep "
+        f"| down sweep | coexistence | from rest, {other} |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
     for c in cases:
         band, runs = c["floquet"], c["runs"]
         lines.append(
             f"| {c['name']} | {_band_text(band)} | {_edges_text(band)} | "
             + " | ".join(_run_text(runs[k]) for k in ("periodic", "rest", "up", "down"))
             + f" | {intervals.format_intervals(c['coexistence']['ranges'], '.2f')} | "
-            f"{_run_text(runs['rest_other'])} |")
+            f"{_run_text(runs['rest_other'])} |"
+        )
     ms = results["mismatch_summary"]
-    lines += ["", "## The periodic start against Floquet", "",
-              f"**{len(ms['mismatches'])} mismatches** in {ms['checked']} compared grid points "
-              f"of {ms['cases']} cases: the run started on the perturbed periodic response "
-              "shows the omega1 peak exactly where Floquet says unstable"
-              + (" everywhere it is compared." if not ms["mismatches"] else ", except at:")]
-    lines += [f"* {m['case']}, Vb = {m['Vb']:g} m/s: Floquet {m['floquet']}, peak "
-              f"{'present' if m['peak'] else 'absent'}." for m in ms["mismatches"]]
+    lines += [
+        "",
+        "## The periodic start against Floquet",
+        "",
+        f"**{len(ms['mismatches'])} mismatches** in {ms['checked']} compared grid points "
+        f"of {ms['cases']} cases: the run started on the perturbed periodic response "
+        "shows the omega1 peak exactly where Floquet says unstable"
+        + (" everywhere it is compared." if not ms["mismatches"] else ", except at:"),
+    ]
+    lines += [
+        f"* {m['case']}, Vb = {m['Vb']:g} m/s: Floquet {m['floquet']}, peak "
+        f"{'present' if m['peak'] else 'absent'}."
+        for m in ms["mismatches"]
+    ]
     if ms["not_counted"]:
         lines.append("")
-        lines.append("Not counted (an excitation harmonic in the omega1 band): "
-                     + "; ".join(
-                         f"{c['name']} ({len(c['mismatches']['mismatches'])} of "
-                         f"{c['mismatches']['checked']} points differ)"
-                         for c in cases if c["name"] in ms["not_counted"]) + ".")
-    lines += ["", "| case | compared | near an edge | no verdict | unresolved | "
-              "band and grid disagree |", "|---|---|---|---|---|---|"]
+        lines.append(
+            "Not counted (an excitation harmonic in the omega1 band): "
+            + "; ".join(
+                f"{c['name']} ({len(c['mismatches']['mismatches'])} of "
+                f"{c['mismatches']['checked']} points differ)"
+                for c in cases
+                if c["name"] in ms["not_counted"]
+            )
+            + "."
+        )
+    lines += [
+        "",
+        "| case | compared | near an edge | no verdict | unresolved | band and grid disagree |",
+        "|---|---|---|---|---|---|",
+    ]
     for c in cases:
         m = c["mismatches"]
-        lines.append(f"| {c['name']} | {m['checked']} | {len(m['near_edge'])} | "
-                     f"{len(m['no_verdict'])} | {len(m['unresolved'])} | "
-                     f"{_points_text([(v, v) for v in c['band_disagreements']])} |")
-    lines += ["", "## Coexistence", "",
-              "| case | coexistence [m/s] | shown by | unsettled (slow attraction) |",
-              "|---|---|---|---|"]
+        lines.append(
+            f"| {c['name']} | {m['checked']} | {len(m['near_edge'])} | "
+            f"{len(m['no_verdict'])} | {len(m['unresolved'])} | "
+            f"{_points_text([(v, v) for v in c['band_disagreements']])} |"
+        )
+    lines += [
+        "",
+        "## Coexistence",
+        "",
+        "| case | coexistence [m/s] | shown by | unsettled (slow attraction) |",
+        "|---|---|---|---|",
+    ]
     for c in cases:
         co = c["coexistence"]
         by = sorted({k for ks in co["found_by"].values() for k in ks})
-        lines.append(f"| {c['name']} | {intervals.format_intervals(co['ranges'], '.2f')} | "
-                     f"{', '.join(by) or '—'} | "
-                     f"{_points_text([(v, v) for v in co['unsettled']])} |")
-    lines += ["", "## The analyses against Floquet", "",
-              "Δ = predicted − Floquet [m/s], lower / upper, exact on both sides; `( )*`: "
-              "censored.", "",
-              "| case | Floquet | " + " | ".join(lab for _, lab, _ in ANALYSES) + " |",
-              "|" + "---|" * (2 + len(ANALYSES))]
+        lines.append(
+            f"| {c['name']} | {intervals.format_intervals(co['ranges'], '.2f')} | "
+            f"{', '.join(by) or '—'} | "
+            f"{_points_text([(v, v) for v in co['unsettled']])} |"
+        )
+    lines += [
+        "",
+        "## The analyses against Floquet",
+        "",
+        "Δ = predicted − Floquet [m/s], lower / upper, exact on both sides; `( )*`: censored.",
+        "",
+        "| case | Floquet | " + " | ".join(lab for _, lab, _ in ANALYSES) + " |",
+        "|" + "---|" * (2 + len(ANALYSES)),
+    ]
     for c in cases:
-        lines.append(f"| {c['name']} | {_band_text(c['floquet'])} | " + " | ".join(
-            _floquet_delta_text(c["floquet_comparison"][k]) for k, _, _ in ANALYSES) + " |")
+        lines.append(
+            f"| {c['name']} | {_band_text(c['floquet'])} | "
+            + " | ".join(_floquet_delta_text(c["floquet_comparison"][k]) for k, _, _ in ANALYSES)
+            + " |"
+        )
     fs = results["floquet_summary"]
-    lines += ["", "| analysis | MAE of edges [m/s] | largest \\|Δ\\| | edges *n* | paired | miss "
-              "| false alarm | both none | mean \\|P Δ F\\| [m/s] |",
-              "|---|---|---|---|---|---|---|---|---|"]
+    lines += [
+        "",
+        "| analysis | MAE of edges [m/s] | largest \\|Δ\\| | edges *n* | paired | miss "
+        "| false alarm | both none | mean \\|P Δ F\\| [m/s] |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
     for key, lab, _ in ANALYSES:
         s = fs[key]
-        cell = ["—" if s[k] is None else f"{s[k]:.3f}" for k in ("mae", "max",
-                                                                    "mean_disagreement")]
-        lines.append(f"| {lab} | {cell[0]} | {cell[1]} | {s['n_edges']} | {s['paired']} | "
-                     f"{s['miss']} | {s['false_alarm']} | {s['both_empty']} | {cell[2]} |")
+        cell = ["—" if s[k] is None else f"{s[k]:.3f}" for k in ("mae", "max", "mean_disagreement")]
+        lines.append(
+            f"| {lab} | {cell[0]} | {cell[1]} | {s['n_edges']} | {s['paired']} | "
+            f"{s['miss']} | {s['false_alarm']} | {s['both_empty']} | {cell[2]} |"
+        )
     lines += ["", f"Over all {len(cases)} cases.", ""]
     return lines
 
@@ -1056,8 +1364,10 @@ def _verdict(cases, key, reference, step):
     for c in cases:
         if not c["comparable"]:
             continue
-        ours, theirs = c["comparison"][key]["disagreement"], \
-            c["comparison"][reference]["disagreement"]
+        ours, theirs = (
+            c["comparison"][key]["disagreement"],
+            c["comparison"][reference]["disagreement"],
+        )
         if ours is None or theirs is None:
             none.append(c["name"])
             continue
@@ -1068,15 +1378,20 @@ def _verdict(cases, key, reference, step):
 
     def names(xs):
         return ", ".join(xs) if xs else "none"
+
     if none and not (better or worse or tie):
-        return (f"{label[key]} and {label[reference]} are not compared: one of them gives no "
-                f"prediction in every comparable case ({names(none)}).")
-    skipped = (f" Not compared where one gives no prediction: {names(none)}." if none else "")
-    return (f"By the disagreement length, {label[key]} is closer to the simulation than "
-            f"{label[reference]} by more than one grid step ({step:g} m/s) in {len(better)} "
-            f"of {len(better) + len(worse) + len(tie)} comparable cases ({names(better)}), "
-            f"farther in {len(worse)} ({names(worse)}) and within one step in "
-            f"{len(tie)} ({names(tie)})." + skipped)
+        return (
+            f"{label[key]} and {label[reference]} are not compared: one of them gives no "
+            f"prediction in every comparable case ({names(none)})."
+        )
+    skipped = f" Not compared where one gives no prediction: {names(none)}." if none else ""
+    return (
+        f"By the disagreement length, {label[key]} is closer to the simulation than "
+        f"{label[reference]} by more than one grid step ({step:g} m/s) in {len(better)} "
+        f"of {len(better) + len(worse) + len(tie)} comparable cases ({names(better)}), "
+        f"farther in {len(worse)} ({names(worse)}) and within one step in "
+        f"{len(tie)} ({names(tie)})." + skipped
+    )
 
 
 def render_markdown(results: dict, quick: bool) -> str:
@@ -1085,11 +1400,16 @@ def render_markdown(results: dict, quick: bool) -> str:
     cases = results["cases"]
     step = res.step
     tension = results.get("tension", "allowed")
-    command = ("python -m derive validate" + (" --quick" if quick else "")
-               + (f" --tension {tension}" if tension != "allowed" else ""))
-    law = {"allowed": "`allowed` (Eq. 1 as printed: the contact force can pull)",
-           "clipped": "`clipped` (a contact that cannot pull: max(F, 0), the surfaces "
-                      "separate where Eq. 1 would pull)"}[tension]
+    command = (
+        "python -m derive validate"
+        + (" --quick" if quick else "")
+        + (f" --tension {tension}" if tension != "allowed" else "")
+    )
+    law = {
+        "allowed": "`allowed` (Eq. 1 as printed: the contact force can pull)",
+        "clipped": "`clipped` (a contact that cannot pull: max(F, 0), the surfaces "
+        "separate where Eq. 1 would pull)",
+    }[tension]
     lines = [
         "# Validation: Floquet stability, the simulated omega1 peak and the analyses",
         "",
@@ -1112,95 +1432,155 @@ def render_markdown(results: dict, quick: bool) -> str:
         f"point without the peak (cap {res.vb_cap:g} m/s; not for the cases marked †).",
         f"* Tension law (docs/modelling.md#tension): {law}. The paper's analyses (A1-A4) "
         "linearise at the equilibrium, where the contact force is positive: the same under "
-        "both laws." + (" The consistent MDSM assumes a harmonic fast normal force, which the "
-                        "clip makes non-harmonic where it cuts it: n/a there "
-                        "(`runtime.predict.CLIPPED_MDSM`)." if tension == "clipped" else ""),
+        "both laws."
+        + (
+            " The consistent MDSM assumes a harmonic fast normal force, which the "
+            "clip makes non-harmonic where it cuts it: n/a there "
+            "(`runtime.predict.CLIPPED_MDSM`)."
+            if tension == "clipped"
+            else ""
+        ),
         f"* Runs: {res.t_end:g} s from the unforced equilibrium, steady window after "
         f"{0.3 * res.t_end:g} s, solver `{res.settings.solver}` ({res.settings.method}, "
         f"rtol = atol = {res.rtol:g}), sampling {res.settings.dt:g} s.",
         f"* Peak criterion: omega1 peak ≥ {PEAK_PRESENT_RATIO:g} × the peak at Omega "
         "(`runtime.simulate.PEAK_PRESENT_RATIO`).",
-        "* Grid per case: " + "; ".join(
+        "* Grid per case: "
+        + "; ".join(
             f"{c['name']} {_num(c['grid']['start'])}–{_num(c['grid']['stop'])} "
-            f"({c['grid']['n']} points)" for c in cases) + ".",
+            f"({c['grid']['n']} points)"
+            for c in cases
+        )
+        + ".",
         "",
         "Analyses:",
         "",
     ]
     lines += [f"* **{lab}**: {desc}." for _, lab, desc in ANALYSES]
     lines += [""] + _floquet_sections(results)
-    lines += ["# Against the runs from rest", "",
-              "The tables the package has kept since before Floquet: each analysis against "
-              "the run from rest, which finds whichever attractor its start leads to."]
+    lines += [
+        "# Against the runs from rest",
+        "",
+        "The tables the package has kept since before Floquet: each analysis against "
+        "the run from rest, which finds whichever attractor its start leads to.",
+    ]
     header = "| case | figure | simulated | " + " | ".join(lab for _, lab, _ in ANALYSES) + " |"
     rule = "|" + "---|" * (3 + len(ANALYSES))
-    lines += ["", "## Unstable ranges [m/s]", "",
-              "Simulated: the omega1-peak ranges (edges ± h/2; `*` censored). Predicted: "
-              "the unstable ranges; `none`: no unstable belt speed.", "", header, rule]
+    lines += [
+        "",
+        "## Unstable ranges [m/s]",
+        "",
+        "Simulated: the omega1-peak ranges (edges ± h/2; `*` censored). Predicted: "
+        "the unstable ranges; `none`: no unstable belt speed.",
+        "",
+        header,
+        rule,
+    ]
     for c in cases:
         name = c["name"] + ("" if c["comparable"] else " †")
-        lines.append(f"| {name} | {c['figure']} | {_simulated_text(c['simulated'])} | "
-                     + " | ".join(_ranges_text(c["predicted"][k]) for k, _, _ in ANALYSES)
-                     + " |")
-    lines += ["", "## Edge differences Δ = predicted − simulated [m/s], lower / upper", "",
-              f"Each Δ is known to ± {step / 2:g} m/s. `⁰`: the predicted lower edge is "
-              f"Vb = 0 (unstable from rest), compared with the simulated lower edge "
-              f"(the lowest simulated Vb is {step:g} m/s). `( )*`: censored, not in the "
-              "MAE. miss: no predicted range, a simulated one; false alarm: the reverse.",
-              "", "| case | " + " | ".join(lab for _, lab, _ in ANALYSES) + " |",
-              "|" + "---|" * (1 + len(ANALYSES))]
+        lines.append(
+            f"| {name} | {c['figure']} | {_simulated_text(c['simulated'])} | "
+            + " | ".join(_ranges_text(c["predicted"][k]) for k, _, _ in ANALYSES)
+            + " |"
+        )
+    lines += [
+        "",
+        "## Edge differences Δ = predicted − simulated [m/s], lower / upper",
+        "",
+        f"Each Δ is known to ± {step / 2:g} m/s. `⁰`: the predicted lower edge is "
+        f"Vb = 0 (unstable from rest), compared with the simulated lower edge "
+        f"(the lowest simulated Vb is {step:g} m/s). `( )*`: censored, not in the "
+        "MAE. miss: no predicted range, a simulated one; false alarm: the reverse.",
+        "",
+        "| case | " + " | ".join(lab for _, lab, _ in ANALYSES) + " |",
+        "|" + "---|" * (1 + len(ANALYSES)),
+    ]
     for c in cases:
         if not c["comparable"]:
             lines.append(f"| {c['name']} † | " + " | ".join("—" for _ in ANALYSES) + " |")
             continue
-        lines.append(f"| {c['name']} | " + " | ".join(
-            _delta_text(c["comparison"][k]) for k, _, _ in ANALYSES) + " |")
+        lines.append(
+            f"| {c['name']} | "
+            + " | ".join(_delta_text(c["comparison"][k]) for k, _, _ in ANALYSES)
+            + " |"
+        )
     summary = results["summary"]
-    lines += ["", "## Summary per analysis", "",
-              "| analysis | MAE of edges [m/s] | edges *n* | paired | miss | false alarm | "
-              "both none | mean \\|P Δ S\\| [m/s] |", "|---|---|---|---|---|---|---|---|"]
+    lines += [
+        "",
+        "## Summary per analysis",
+        "",
+        "| analysis | MAE of edges [m/s] | edges *n* | paired | miss | false alarm | "
+        "both none | mean \\|P Δ S\\| [m/s] |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
     for key, lab, _ in ANALYSES:
         s = summary[key]
         mae = "—" if s["mae"] is None else _num(s["mae"])
         dis = "—" if s["mean_disagreement"] is None else _num(s["mean_disagreement"])
-        lines.append(f"| {lab} | {mae} | {s['n_edges']} | {s['paired']} | {s['miss']} | "
-                     f"{s['false_alarm']} | {s['both_empty']} | {dis} |")
+        lines.append(
+            f"| {lab} | {mae} | {s['n_edges']} | {s['paired']} | {s['miss']} | "
+            f"{s['false_alarm']} | {s['both_empty']} | {dis} |"
+        )
     n_comp = sum(c["comparable"] for c in cases)
     for key, lab, _ in ANALYSES:
         if summary[key].get("no_prediction"):
-            lines.append(f"\n{lab} gives no prediction in {summary[key]['no_prediction']} "
-                         f"comparable case(s) (n/a); its columns count the other "
-                         f"{summary[key]['n_cases']}.")
-    lines += ["", f"Over {n_comp} comparable cases of {len(cases)}.",
-              _verdict(cases, "consistent_mdsm", "paper_tangential_paper", step),
-              _verdict(cases, "consistent_mdsm", "paper_coupled_paper", step), ""]
-    lines += ["## Regimes and the paper's statements", "",
-              "The third column counts every point that shows the peak, whatever its regime "
-              "(not used in the comparison).", "",
-              "| case | regimes over the grid (Vb in m/s) | peak, any regime | "
-              "paper (Appendix A.5) |", "|---|---|---|---|"]
+            lines.append(
+                f"\n{lab} gives no prediction in {summary[key]['no_prediction']} "
+                f"comparable case(s) (n/a); its columns count the other "
+                f"{summary[key]['n_cases']}."
+            )
+    lines += [
+        "",
+        f"Over {n_comp} comparable cases of {len(cases)}.",
+        _verdict(cases, "consistent_mdsm", "paper_tangential_paper", step),
+        _verdict(cases, "consistent_mdsm", "paper_coupled_paper", step),
+        "",
+    ]
+    lines += [
+        "## Regimes and the paper's statements",
+        "",
+        "The third column counts every point that shows the peak, whatever its regime "
+        "(not used in the comparison).",
+        "",
+        "| case | regimes over the grid (Vb in m/s) | peak, any regime | paper (Appendix A.5) |",
+        "|---|---|---|---|",
+    ]
     for c in cases:
         runs = regime_runs(c["Vb"], c["regime"])
         note = _runs_text(runs)
         anywhere = [(a, b) for r, a, b in regime_runs(c["Vb"], c["present"]) if r == "True"]
         if c["harmonics"]:
-            note += "; † not comparable: " + ", ".join(
-                f"{k} Omega = {_num(w)} rad/s" for k, w in c["harmonics"]) \
+            note += (
+                "; † not comparable: "
+                + ", ".join(f"{k} Omega = {_num(w)} rad/s" for k, w in c["harmonics"])
                 + " lies in the omega1 band"
+            )
         elif not c["comparable"]:
             note += "; † not comparable: no sliding point"
-        lines.append(f"| {c['name']} | {note} | {_points_text(anywhere)} | "
-                     f"{c['figure']}: {c['paper']} |")
-    lines += ["", "## Definitions (fixed before the numbers were looked at)", "",
-              FLOQUET_DEFINITIONS.format(cap=res.vb_cap, tol=FLOQUET_TOL,
-                                         perturbation=PERTURBATION,
-                                         window=res.settings.window_start,
-                                         decayed=TRANSIENT_DECAYED),
-              DEFINITIONS.format(ratio=PEAK_PRESENT_RATIO, cap=res.vb_cap)]
+        lines.append(
+            f"| {c['name']} | {note} | {_points_text(anywhere)} | {c['figure']}: {c['paper']} |"
+        )
+    lines += [
+        "",
+        "## Definitions (fixed before the numbers were looked at)",
+        "",
+        FLOQUET_DEFINITIONS.format(
+            cap=res.vb_cap,
+            tol=FLOQUET_TOL,
+            perturbation=PERTURBATION,
+            window=res.settings.window_start,
+            decayed=TRANSIENT_DECAYED,
+        ),
+        DEFINITIONS.format(ratio=PEAK_PRESENT_RATIO, cap=res.vb_cap),
+    ]
     return "\n".join(lines)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m derive validate [--quick] [--out PATH] [--jobs N] [--no-cache]`` (`runtime.cli`)."""
+    """``python -m derive validate [--quick] [--out PATH] [--jobs N] [--no-cache]``.
+
+    The command line of `runtime.cli`; returns the exit status.
+    """
     from .cli import run_command
+
     return run_command("validate", argv)

@@ -1,4 +1,5 @@
 """Shared fixtures: parameter sets drawn at random around the paper's base set."""
+
 import mpmath
 import numpy as np
 import pytest
@@ -11,8 +12,7 @@ MODEL = ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g", "V
 
 def random_params(rng, spread=3.0):
     """One parameter set: each base value times a log-uniform factor in [1/spread, spread]."""
-    return {k: BASE[k] * float(np.exp(rng.uniform(-np.log(spread), np.log(spread))))
-            for k in MODEL}
+    return {k: BASE[k] * float(np.exp(rng.uniform(-np.log(spread), np.log(spread)))) for k in MODEL}
 
 
 @pytest.fixture

@@ -7,6 +7,7 @@ functions: ``math`` for floats, ``mpmath`` for a high-precision reference (input
 ``mpf``). Each value comes with a *scale*, the sum of the absolute values of its terms,
 for error models of the form "a few ulps of the terms' scale".
 """
+
 import math
 
 import numpy as np
@@ -30,16 +31,18 @@ def full(p):
 def excitation(t, p, m=math):
     """``(f_t, f_n)``: ``alpha_t Omega_t^2 sin(Omega_t t + phase_t)``, ``-alpha_n ...``."""
     q = full(p)
-    f_t = q["alpha_t"] * q["Omega_t"]**2 * m.sin(q["Omega_t"] * t + q["phase_t"])
-    f_n = -q["alpha_n"] * q["Omega_n"]**2 * m.sin(q["Omega_n"] * t + q["phase_n"])
+    f_t = q["alpha_t"] * q["Omega_t"] ** 2 * m.sin(q["Omega_t"] * t + q["phase_t"])
+    f_n = -q["alpha_n"] * q["Omega_n"] ** 2 * m.sin(q["Omega_n"] * t + q["phase_n"])
     return f_t, f_n
 
 
 def excitation_rate(t, p, m=math):
     """``(f_t', f_n')``."""
     q = full(p)
-    return (q["alpha_t"] * q["Omega_t"]**3 * m.cos(q["Omega_t"] * t + q["phase_t"]),
-            -q["alpha_n"] * q["Omega_n"]**3 * m.cos(q["Omega_n"] * t + q["phase_n"]))
+    return (
+        q["alpha_t"] * q["Omega_t"] ** 3 * m.cos(q["Omega_t"] * t + q["phase_t"]),
+        -q["alpha_n"] * q["Omega_n"] ** 3 * m.cos(q["Omega_n"] * t + q["phase_n"]),
+    )
 
 
 def excitation_scale(t, p, derivative=0, argument=True):
@@ -57,7 +60,7 @@ def excitation_scale(t, p, derivative=0, argument=True):
             s, c = c, s
         if not argument:
             c = 0.0
-        out.append(q[f"alpha_{d}"] * W**(2 + derivative) * (s + (abs(W * t) + abs(ph)) * c))
+        out.append(q[f"alpha_{d}"] * W ** (2 + derivative) * (s + (abs(W * t) + abs(ph)) * c))
     return tuple(out)
 
 
@@ -175,22 +178,28 @@ def surface_gradients(t, x, p, contact, m=math, absolute=False):
     if absolute:
         values = surface_gradients(t, (X1, Y1, X2, abs(Y2)), p, contact, m)
         dft = excitation_scale(t, p, derivative=1)[0]
-        return [(abs(ht) if k not in (1, 2) else dft, [abs(v) for v in n])
-                for k, (ht, n) in enumerate(values)]
+        return [
+            (abs(ht) if k not in (1, 2) else dft, [abs(v) for v in n])
+            for k, (ht, n) in enumerate(values)
+        ]
     b1, w1, b2, w2, mu = (p[k] for k in ("beta1", "omega1", "beta2", "omega2", "mu_s"))
     dft = excitation_rate(t, p, m)[0]
     zero = 0 * X2
     if X2 > 0:
         FX, FY = force_gradient(X2, Y2, p, contact, m)
-    else:   # the extension max(X2, 0): Kelvin-Voigt keeps its damping term
+    else:  # the extension max(X2, 0): Kelvin-Voigt keeps its damping term
         FX, FY = zero, (2 * b2 * w2 if contact == "kelvin_voigt" else zero)
     return [
         (zero, [zero, 1 + zero, zero, zero]),
         (-dft, [w1**2 + zero, 2 * b1 * w1 + zero, mu * FX, mu * FY]),
-        (dft, [-w1**2 + zero, -2 * b1 * w1 + zero, mu * FX, mu * FY]),
+        (dft, [-(w1**2) + zero, -2 * b1 * w1 + zero, mu * FX, mu * FY]),
         (zero, [zero, zero, 1 + zero, zero]),
-        (zero, [zero, zero, zero, 2 * b2 + zero] if contact == "hertz_damp"
-         else [zero, zero, (w2 if X2 > 0 else 0) + zero, 2 * b2 + zero]),
+        (
+            zero,
+            [zero, zero, zero, 2 * b2 + zero]
+            if contact == "hertz_damp"
+            else [zero, zero, (w2 if X2 > 0 else 0) + zero, 2 * b2 + zero],
+        ),
     ]
 
 
@@ -199,13 +208,11 @@ def saltation(before, after, surface, t, x, p, contact, m=math):
 
     Returns the matrix as nested lists and the rate ``dh/dt + n^T f-``.
     """
-    names = ("relative_velocity", "stick_forward", "stick_back", "penetration",
-             "contact_force")
+    names = ("relative_velocity", "stick_forward", "stick_back", "penetration", "contact_force")
     ht, n = surface_gradients(t, x, p, contact, m)[names.index(surface)]
     fm, fp = field(before, t, x, p, contact, m), field(after, t, x, p, contact, m)
     rate = ht + sum(ni * fi for ni, fi in zip(n, fm))
-    S = [[(1 if i == j else 0) + (fp[i] - fm[i]) * n[j] / rate for j in range(4)]
-         for i in range(4)]
+    S = [[(1 if i == j else 0) + (fp[i] - fm[i]) * n[j] / rate for j in range(4)] for i in range(4)]
     return S, rate
 
 
@@ -231,8 +238,12 @@ def rhs(t, x, sgn, p, contact, tension="allowed", m=math):
 def rhs_scale(t, x, p, contact):
     X1, Y1, X2, Y2 = x
     Fs = force_scale(X2, Y2, p, contact) if X2 > 0 else 0.0
-    return [abs(Y1), a_free_scale(t, X1, Y1, p) + p["mu_s"] * Fs, abs(Y2),
-            p["g"] + excitation_scale(t, p)[1] + Fs]
+    return [
+        abs(Y1),
+        a_free_scale(t, X1, Y1, p) + p["mu_s"] * Fs,
+        abs(Y2),
+        p["g"] + excitation_scale(t, p)[1] + Fs,
+    ]
 
 
 def jacobian(t, x, sgn, p, contact, tension="allowed", m=math):
@@ -243,18 +254,24 @@ def jacobian(t, x, sgn, p, contact, tension="allowed", m=math):
     FX = FY = 0 * X2
     if X2 > 0 and force(X2, Y2, p, contact, tension) != 0:
         FX, FY = force_gradient(X2, Y2, p, contact, m)
-    return [[0, 1, 0, 0],
-            [-w1**2, -2 * b1 * w1, -mu * sgn * FX, -mu * sgn * FY],
-            [0, 0, 0, 1],
-            [0, 0, -FX, -FY]]
+    return [
+        [0, 1, 0, 0],
+        [-(w1**2), -2 * b1 * w1, -mu * sgn * FX, -mu * sgn * FY],
+        [0, 0, 0, 1],
+        [0, 0, -FX, -FY],
+    ]
 
 
 def jacobian_scale(t, x, p, contact):
     X1, Y1, X2, Y2 = x
     FX, FY = force_gradient(X2, abs(Y2), p, contact) if X2 > 0 else (0.0, 0.0)
     mu = p["mu_s"]
-    return [[0, 1, 0, 0], [p["omega1"]**2, 2 * p["beta1"] * p["omega1"], mu * FX, mu * FY],
-            [0, 0, 0, 1], [0, 0, FX, FY]]
+    return [
+        [0, 1, 0, 0],
+        [p["omega1"] ** 2, 2 * p["beta1"] * p["omega1"], mu * FX, mu * FY],
+        [0, 0, 0, 1],
+        [0, 0, FX, FY],
+    ]
 
 
 def power_balance(t, x, sgn, p, contact, tension="allowed", m=math):
@@ -274,9 +291,11 @@ def power_scale(t, x, p, contact):
     X1, Y1, X2, Y2 = x
     s_t, s_n = excitation_scale(t, p)
     Fs = force_scale(X2, Y2, p, contact) if X2 > 0 else 0.0
-    return (s_t * abs(Y1) + s_n * abs(Y2),
-            2 * p["beta1"] * p["omega1"] * Y1**2 + 2 * Fs * abs(Y2),
-            p["mu_s"] * Fs * abs(Y1))
+    return (
+        s_t * abs(Y1) + s_n * abs(Y2),
+        2 * p["beta1"] * p["omega1"] * Y1**2 + 2 * Fs * abs(Y2),
+        p["mu_s"] * Fs * abs(Y1),
+    )
 
 
 def energy_scale(x, p, contact):
@@ -287,15 +306,18 @@ def energy_scale(x, p, contact):
     return 0.5 * Y1**2 + 0.5 * Y2**2 + 0.5 * w1**2 * X1**2 + V + g * abs(X2)
 
 
-SURFACE_NAMES = ("relative_velocity", "stick_forward", "stick_back", "penetration",
-                 "contact_force")
+SURFACE_NAMES = ("relative_velocity", "stick_forward", "stick_back", "penetration", "contact_force")
 
 
 def rate_scale(mode, t, x, p, contact):
     """Terms' scale of each dh/dt = h_t + n . f along ``mode``: |h_t| + sum |n_i| scale(f_i)."""
     f = field_scale(mode, t, x, p, contact)
-    return np.array([abs(ht) + sum(abs(ni) * fi for ni, fi in zip(n, f))
-                     for ht, n in surface_gradients(t, x, p, contact, absolute=True)])
+    return np.array(
+        [
+            abs(ht) + sum(abs(ni) * fi for ni, fi in zip(n, f))
+            for ht, n in surface_gradients(t, x, p, contact, absolute=True)
+        ]
+    )
 
 
 def saltation_scale(before, after, surface, t, x, p, contact, S_ref=None, rate=None):
@@ -322,7 +344,7 @@ def response_scale(p, t):
     times (1, max(W, w1))) twice, times the argument growth (1 + (omega1 + Omega_t) t)."""
     q = full(p) if "alpha" in p else p
     b1, w1, a, W = (q[k] for k in ("beta1", "omega1", "alpha_t", "Omega_t"))
-    amp = a * W**2 / np.sqrt((w1**2 - W**2)**2 + (2 * b1 * w1 * W)**2)
+    amp = a * W**2 / np.sqrt((w1**2 - W**2) ** 2 + (2 * b1 * w1 * W) ** 2)
     return 2 * amp * np.array([1.0, max(W, w1)]) * (1 + (w1 + W) * np.max(t))
 
 
@@ -344,5 +366,9 @@ def response_field_scale(mode, t, y, p, contact):
     code = MODES.get(mode, mode)
     Fs = force_scale(X2, Y2, p, contact) if code in (-1, 0, 1) else 0.0
     b1, w1 = p["beta1"], p["omega1"]
-    return [abs(v), Fs + 2 * b1 * w1 * abs(v) + w1**2 * abs(z), abs(Y2),
-            p["g"] + excitation_scale(t, p)[1] + Fs]
+    return [
+        abs(v),
+        Fs + 2 * b1 * w1 * abs(v) + w1**2 * abs(z),
+        abs(Y2),
+        p["g"] + excitation_scale(t, p)[1] + Fs,
+    ]

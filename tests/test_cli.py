@@ -1,5 +1,6 @@
 """The one command line (derive/cli.py, runtime/cli.py): flags checked, one-line errors,
 the shared parents, the executor factory, the console script, predict's edge cases."""
+
 import concurrent.futures as cf
 import json
 import os
@@ -31,51 +32,67 @@ def _fails(capsys, argv, *names):
     return lines[0]
 
 
-@pytest.mark.parametrize("argv, names", [
-    (["simulate", "--mu_s", "-1"], ["--mu_s", ">= 0"]),
-    (["simulate", "--mu-s", "nan"], ["--mu_s/--mu-s", "finite"]),
-    (["simulate", "--Vb", "inf"], ["--Vb", "finite"]),
-    (["simulate", "--omega1", "0"], ["--omega1", "> 0"]),
-    (["simulate", "--beta2", "-0.1"], ["--beta2", ">= 0"]),
-    (["simulate", "--Omega", "-4"], ["--Omega", ">= 0"]),
-    (["simulate", "--phase-t", "x"], ["--phase_t", "must be a number"]),
-    (["simulate", "--t-end", "0"], ["--t-end", "> 0"]),
-    (["simulate", "--t-end", "-5"], ["--t-end", "> 0"]),
-    (["simulate", "--dt", "0"], ["--dt", "> 0"]),
-    (["simulate", "--rtol", "0"], ["--rtol", "> 0"]),
-    (["simulate", "--atol=-1e-9"], ["--atol", "> 0"]),
-    (["simulate", "--t-discard", "-1"], ["--t-discard", ">= 0"]),
-    (["simulate", "--t-end", "100", "--t-discard", "99.8"], ["--t-discard", "steady window"]),
-    (["simulate", "--t-end", "1e9"], ["--t-end", "MAX_SAMPLES"]),
-    (["simulate", "--method", "Euler"], ["--method", "invalid choice"]),
-    (["simulate", "--contact", "coulomb"], ["--contact", "invalid choice"]),
-    (["simulate", "--solver", "rk4"], ["--solver", "invalid choice"]),
-    (["simulate", "--bogus", "1"], ["unrecognized arguments: --bogus"]),
-    (["simulate", "--save", "/nonexistent/run.npz"], ["--save", "/nonexistent", "does not exist"]),
-    (["frobnicate"], ["COMMAND", "frobnicate"]),
-    (["--check", "simulate"], ["--check"]),
-    (["sweep", "--param", "Vb", "--from", "1", "--to", "2", "--step", "1e-15"],
-     ["--step", "MAX_POINTS"]),
-    (["sweep", "--param", "Vb", "--from", "2", "--to", "1", "--step", "0.5"], ["--to", "--from"]),
-    (["sweep", "--param", "Vb", "--from", "1", "--to", "2", "--step", "0"], ["--step", "> 0"]),
-    (["sweep", "--param", "Vb", "--from", "1", "--to", "2", "--step", "-1"], ["--step", "> 0"]),
-    (["sweep", "--param", "Vb", "--from", "nan", "--to", "2", "--step", "1"], ["--from", "finite"]),
-    (["sweep", "--param", "Vb", "--from", "1", "--to", "2"], ["--from, --to and --step"]),
-    (["sweep", "--param", "Vhat", "--values", "1"], ["--param", "invalid choice"]),
-    (["sweep", "--param", "Vb", "--values", "1", "inf"], ["--values", "finite"]),
-    (["sweep", "--param", "Vb", "--values", "-1"], ["'Vb'", ">= 0"]),      # found deeper
-    (["sweep", "--param", "Vb", "--values", "1", "--jobs", "0"], ["--jobs", ">= 1"]),
-    (["sweep", "--param", "Vb", "--values", "1", "--out", "/nonexistent/x.csv"],
-     ["--out", "/nonexistent", "does not exist"]),
-    (["predict", "--mu_s", "-1"], ["--mu_s", ">= 0"]),
-    (["predict", "--vb-points", "0"], ["--vb-points", ">= 2"]),
-    (["predict", "--vb-points", "1.5"], ["--vb-points", "integer"]),
-    (["predict", "--vb-max", "0"], ["--vb-max", "> 0"]),
-    (["predict", "--vb-max", "-3"], ["--vb-max", "> 0"]),
-    (["predict", "--Vb", "3"], ["--Vb"]),                     # predict scans Vb itself
-    (["validate", "--jobs", "0"], ["--jobs", ">= 1"]),
-    (["validate", "--out", "/nonexistent/V.md"], ["--out", "does not exist"]),
-])
+@pytest.mark.parametrize(
+    "argv, names",
+    [
+        (["simulate", "--mu_s", "-1"], ["--mu_s", ">= 0"]),
+        (["simulate", "--mu-s", "nan"], ["--mu_s/--mu-s", "finite"]),
+        (["simulate", "--Vb", "inf"], ["--Vb", "finite"]),
+        (["simulate", "--omega1", "0"], ["--omega1", "> 0"]),
+        (["simulate", "--beta2", "-0.1"], ["--beta2", ">= 0"]),
+        (["simulate", "--Omega", "-4"], ["--Omega", ">= 0"]),
+        (["simulate", "--phase-t", "x"], ["--phase_t", "must be a number"]),
+        (["simulate", "--t-end", "0"], ["--t-end", "> 0"]),
+        (["simulate", "--t-end", "-5"], ["--t-end", "> 0"]),
+        (["simulate", "--dt", "0"], ["--dt", "> 0"]),
+        (["simulate", "--rtol", "0"], ["--rtol", "> 0"]),
+        (["simulate", "--atol=-1e-9"], ["--atol", "> 0"]),
+        (["simulate", "--t-discard", "-1"], ["--t-discard", ">= 0"]),
+        (["simulate", "--t-end", "100", "--t-discard", "99.8"], ["--t-discard", "steady window"]),
+        (["simulate", "--t-end", "1e9"], ["--t-end", "MAX_SAMPLES"]),
+        (["simulate", "--method", "Euler"], ["--method", "invalid choice"]),
+        (["simulate", "--contact", "coulomb"], ["--contact", "invalid choice"]),
+        (["simulate", "--solver", "rk4"], ["--solver", "invalid choice"]),
+        (["simulate", "--bogus", "1"], ["unrecognized arguments: --bogus"]),
+        (
+            ["simulate", "--save", "/nonexistent/run.npz"],
+            ["--save", "/nonexistent", "does not exist"],
+        ),
+        (["frobnicate"], ["COMMAND", "frobnicate"]),
+        (["--check", "simulate"], ["--check"]),
+        (
+            ["sweep", "--param", "Vb", "--from", "1", "--to", "2", "--step", "1e-15"],
+            ["--step", "MAX_POINTS"],
+        ),
+        (
+            ["sweep", "--param", "Vb", "--from", "2", "--to", "1", "--step", "0.5"],
+            ["--to", "--from"],
+        ),
+        (["sweep", "--param", "Vb", "--from", "1", "--to", "2", "--step", "0"], ["--step", "> 0"]),
+        (["sweep", "--param", "Vb", "--from", "1", "--to", "2", "--step", "-1"], ["--step", "> 0"]),
+        (
+            ["sweep", "--param", "Vb", "--from", "nan", "--to", "2", "--step", "1"],
+            ["--from", "finite"],
+        ),
+        (["sweep", "--param", "Vb", "--from", "1", "--to", "2"], ["--from, --to and --step"]),
+        (["sweep", "--param", "Vhat", "--values", "1"], ["--param", "invalid choice"]),
+        (["sweep", "--param", "Vb", "--values", "1", "inf"], ["--values", "finite"]),
+        (["sweep", "--param", "Vb", "--values", "-1"], ["'Vb'", ">= 0"]),  # found deeper
+        (["sweep", "--param", "Vb", "--values", "1", "--jobs", "0"], ["--jobs", ">= 1"]),
+        (
+            ["sweep", "--param", "Vb", "--values", "1", "--out", "/nonexistent/x.csv"],
+            ["--out", "/nonexistent", "does not exist"],
+        ),
+        (["predict", "--mu_s", "-1"], ["--mu_s", ">= 0"]),
+        (["predict", "--vb-points", "0"], ["--vb-points", ">= 2"]),
+        (["predict", "--vb-points", "1.5"], ["--vb-points", "integer"]),
+        (["predict", "--vb-max", "0"], ["--vb-max", "> 0"]),
+        (["predict", "--vb-max", "-3"], ["--vb-max", "> 0"]),
+        (["predict", "--Vb", "3"], ["--Vb"]),  # predict scans Vb itself
+        (["validate", "--jobs", "0"], ["--jobs", ">= 1"]),
+        (["validate", "--out", "/nonexistent/V.md"], ["--out", "does not exist"]),
+    ],
+)
 def test_a_bad_flag_is_one_line_naming_it_and_exit_2(capsys, argv, names):
     _fails(capsys, argv, *names)
 
@@ -85,30 +102,56 @@ def test_the_sweep_checks_its_output_before_it_computes(capsys, monkeypatch, tmp
 
     def never(*args, **kwargs):
         raise AssertionError("computed before checking --out")
+
     monkeypatch.setattr(sweep, "sweep", never)
-    _fails(capsys, ["sweep", "--param", "Vb", "--from", "1", "--to", "2", "--step", "1",
-                    "--out", str(tmp_path / "missing" / "x.csv")], "--out", "does not exist")
-    _fails(capsys, ["sweep", "--param", "Vb", "--values", "1", "--out", str(tmp_path)],
-           "--out", "is a folder")
+    _fails(
+        capsys,
+        [
+            "sweep",
+            "--param",
+            "Vb",
+            "--from",
+            "1",
+            "--to",
+            "2",
+            "--step",
+            "1",
+            "--out",
+            str(tmp_path / "missing" / "x.csv"),
+        ],
+        "--out",
+        "does not exist",
+    )
+    _fails(
+        capsys,
+        ["sweep", "--param", "Vb", "--values", "1", "--out", str(tmp_path)],
+        "--out",
+        "is a folder",
+    )
 
 
 def test_a_file_where_the_cache_folder_should_be_is_refused(capsys, tmp_path):
     (tmp_path / "f").write_text("")
-    _fails(capsys, ["sweep", "--param", "Vb", "--values", "1", "--cache-dir",
-                    str(tmp_path / "f")], "--cache-dir", "not a folder")
+    _fails(
+        capsys,
+        ["sweep", "--param", "Vb", "--values", "1", "--cache-dir", str(tmp_path / "f")],
+        "--cache-dir",
+        "not a folder",
+    )
 
 
 def test_both_spellings_of_a_parameter_flag_work(capsys):
     for flag in ("--mu_s", "--mu-s"):
-        assert derive_cli.main(["simulate", flag, "0.3", "--Vb", "12", "--t-end", "30",
-                                "--json"]) == 0
+        assert (
+            derive_cli.main(["simulate", flag, "0.3", "--Vb", "12", "--t-end", "30", "--json"]) == 0
+        )
         assert json.loads(capsys.readouterr().out)["params"]["mu_s"] == 0.3
 
 
 def test_runtime_cli_main_is_the_same_tree(capsys):
     assert runtime_cli.main(["simulate", "--Vb", "-3"]) == 2
     assert "--Vb" in capsys.readouterr().err
-    assert runtime_cli.main(["check-paper"]) == 2         # not a runtime command
+    assert runtime_cli.main(["check-paper"]) == 2  # not a runtime command
     assert "usage" in capsys.readouterr().err
 
 
@@ -119,22 +162,26 @@ def test_help_returns_0(capsys):
 
 
 def test_a_real_subprocess_prints_one_line_and_no_traceback():
-    for argv, flag in ((["simulate", "--mu_s", "-1"], "--mu_s"),
-                       (["predict", "--vb-points", "0"], "--vb-points"),
-                       (["sweep", "--param", "Vb", "--from", "0", "--to", "1", "--step", "1e-15"],
-                        "--step")):
-        r = subprocess.run([sys.executable, "-m", "derive", *argv], capture_output=True,
-                           text=True, cwd=ROOT)
+    for argv, flag in (
+        (["simulate", "--mu_s", "-1"], "--mu_s"),
+        (["predict", "--vb-points", "0"], "--vb-points"),
+        (["sweep", "--param", "Vb", "--from", "0", "--to", "1", "--step", "1e-15"], "--step"),
+    ):
+        r = subprocess.run(
+            [sys.executable, "-m", "derive", *argv], capture_output=True, text=True, cwd=ROOT
+        )
         assert r.returncode == 2
         assert r.stdout == "" and "Traceback" not in r.stderr
         assert len(r.stderr.strip().splitlines()) == 1 and flag in r.stderr
 
 
 def test_the_cli_path_of_a_runtime_command_does_not_import_sympy():
-    code = ("import sys\nfrom derive.cli import main\n"
-            "rc = main(['simulate', '--Vb', '12', '--t-end', '30', '--json'])\n"
-            "sys.exit(3 if any(m == 'sympy' or m.startswith('sympy.') for m in sys.modules) "
-            "else rc)")
+    code = (
+        "import sys\nfrom derive.cli import main\n"
+        "rc = main(['simulate', '--Vb', '12', '--t-end', '30', '--json'])\n"
+        "sys.exit(3 if any(m == 'sympy' or m.startswith('sympy.') for m in sys.modules) "
+        "else rc)"
+    )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
     assert r.returncode == 0, r.stderr
     assert json.loads(r.stdout)["params"]["Vb"] == 12.0
@@ -146,17 +193,28 @@ def test_regeneration_works_when_the_runtime_cannot_be_loaded(tmp_path):
         shutil.copytree(ROOT / part, tmp_path / part, ignore=shutil.ignore_patterns("__pycache__"))
     (tmp_path / "generated" / "dynamics.py").write_text("def (:\n")
     env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
-    r = subprocess.run([sys.executable, "-m", "derive", "--help"], capture_output=True, text=True,
-                       cwd=tmp_path, env=env)
+    r = subprocess.run(
+        [sys.executable, "-m", "derive", "--help"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        env=env,
+    )
     assert r.returncode == 0 and "--check" in r.stdout
     assert "runtime commands cannot be loaded: SyntaxError" in r.stdout
-    r = subprocess.run([sys.executable, "-m", "derive", "simulate"], capture_output=True,
-                       text=True, cwd=tmp_path, env=env)
+    r = subprocess.run(
+        [sys.executable, "-m", "derive", "simulate"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        env=env,
+    )
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert "cannot be loaded" in r.stderr
 
 
 # ---------------------------------------------------------------- the console script
+
 
 def test_the_console_script_is_declared_and_resolves_to_main():
     tomllib = pytest.importorskip("tomllib")
@@ -164,6 +222,7 @@ def test_the_console_script_is_declared_and_resolves_to_main():
         scripts = tomllib.load(fh)["project"]["scripts"]
     module, _, name = scripts["beltmdsm"].partition(":")
     import importlib
+
     target = getattr(importlib.import_module(module), name)
     assert target is derive_cli.main
     # the script wrapper passes the return value to sys.exit: it must be the status
@@ -179,6 +238,7 @@ def test_the_program_name_follows_the_console_script(monkeypatch):
 
 # ---------------------------------------------------------------- shared parents
 
+
 def _subparser(parser, name):
     action = next(a for a in parser._actions if a.dest == "command")
     return action.choices[name]
@@ -191,8 +251,9 @@ def test_every_runtime_command_takes_the_model_flags_it_should():
         flags = {s for a in _subparser(parser, command)._actions for s in a.option_strings}
         expected = {f"--{n}" for n in params if not (command == "predict" and n == "Vb")}
         assert expected <= flags and "--contact" in flags and "--mu-s" in flags
-    assert "--Vb" not in {s for a in _subparser(parser, "predict")._actions
-                          for s in a.option_strings}
+    assert "--Vb" not in {
+        s for a in _subparser(parser, "predict")._actions for s in a.option_strings
+    }
     for command in ("sweep", "validate"):
         flags = {s for a in _subparser(parser, command)._actions for s in a.option_strings}
         assert {"--jobs", "--scheduler", "--no-cache", "--cache-dir"} <= flags
@@ -200,18 +261,27 @@ def test_every_runtime_command_takes_the_model_flags_it_should():
 
 def test_a_new_model_option_is_one_line(monkeypatch):
     # a hypothetical option (tension is a real one now)
-    option = runtime_cli.ModelOption("friction_law", ("simulate", "validate"),
-                                     ("coulomb", "stribeck"), "coulomb", "friction law",
-                                     flag="--friction-law")
+    option = runtime_cli.ModelOption(
+        "friction_law",
+        ("simulate", "validate"),
+        ("coulomb", "stribeck"),
+        "coulomb",
+        "friction law",
+        flag="--friction-law",
+    )
     monkeypatch.setattr(runtime_cli, "MODEL_OPTIONS", runtime_cli.MODEL_OPTIONS + (option,))
     parser = derive_cli.build_parser()
     args = parser.parse_args(["simulate", "--friction-law", "stribeck"])
-    assert runtime_cli.model_kwargs(args, "simulate") == {"contact": "hertz_damp",
-                                                          "tension": "allowed",
-                                                          "friction_law": "stribeck"}
+    assert runtime_cli.model_kwargs(args, "simulate") == {
+        "contact": "hertz_damp",
+        "tension": "allowed",
+        "friction_law": "stribeck",
+    }
     args = parser.parse_args(["validate"])
-    assert runtime_cli.model_kwargs(args, "validate") == {"tension": "allowed",
-                                                          "friction_law": "coulomb"}
+    assert runtime_cli.model_kwargs(args, "validate") == {
+        "tension": "allowed",
+        "friction_law": "coulomb",
+    }
     with pytest.raises(derive_cli.UsageError, match="--friction-law"):
         parser.parse_args(["predict", "--friction-law", "stribeck"])
 
@@ -219,17 +289,23 @@ def test_a_new_model_option_is_one_line(monkeypatch):
 def test_tension_is_a_flag_of_every_runtime_command():
     parser = derive_cli.build_parser()
     for command in ("simulate", "sweep", "predict", "validate"):
-        args = parser.parse_args([command, "--tension", "clipped"]
-                                 + (["--param", "Vb"] if command == "sweep" else []))
+        args = parser.parse_args(
+            [command, "--tension", "clipped"] + (["--param", "Vb"] if command == "sweep" else [])
+        )
         assert runtime_cli.model_kwargs(args, command)["tension"] == "clipped"
-        assert runtime_cli.model_kwargs(parser.parse_args(
-            [command] + (["--param", "Vb"] if command == "sweep" else [])),
-            command)["tension"] == "allowed"
+        assert (
+            runtime_cli.model_kwargs(
+                parser.parse_args([command] + (["--param", "Vb"] if command == "sweep" else [])),
+                command,
+            )["tension"]
+            == "allowed"
+        )
         with pytest.raises(derive_cli.UsageError, match="--tension"):
             parser.parse_args([command, "--tension", "pulling"])
 
 
 # ---------------------------------------------------------------- the executor factory
+
 
 def _executor_args(jobs=None, scheduler=None):
     return Namespace(jobs=jobs, scheduler=scheduler, parser=derive_cli.Parser(prog="test"))
@@ -243,7 +319,7 @@ def test_executor_factory_serial_pool_default():
     with runtime_cli.executor_from(_executor_args(jobs=2)) as ex:
         assert isinstance(ex, cf.ProcessPoolExecutor)
         assert ex.submit(abs, -3).result() == 3
-    with pytest.raises(RuntimeError):           # closed afterwards
+    with pytest.raises(RuntimeError):  # closed afterwards
         ex.submit(abs, -3)
 
 
@@ -266,6 +342,7 @@ def test_executor_factory_dask_client_is_closed_and_failures_name_the_flag(monke
 
         def close(self):
             events.append("close")
+
     monkeypatch.setattr(distributed, "Client", FakeClient)
     with runtime_cli.executor_from(_executor_args(jobs=4, scheduler="tcp://h:8786")) as ex:
         assert isinstance(ex, FakeExecutor)
@@ -276,6 +353,7 @@ def test_executor_factory_dask_client_is_closed_and_failures_name_the_flag(monke
 
 
 # ---------------------------------------------------------------- predict
+
 
 def test_predict_at_resonance_of_the_tangential_oscillator(capsys):
     """Omega = omega1 = 1: the harmonic balance once stepped to V < 0 near Vb = 0."""
@@ -300,8 +378,10 @@ def test_predict_without_excitation_says_so(capsys):
 def test_predict_with_two_excitation_frequencies_keeps_the_closed_forms(capsys):
     assert derive_cli.main(["predict", "--Omega_t", "6", "--Omega_n", "4"]) == 0
     text = capsys.readouterr().out
-    assert "no prediction for consistent_mdsm: the harmonic balance needs one excitation " \
-           "frequency" in text
+    assert (
+        "no prediction for consistent_mdsm: the harmonic balance needs one excitation "
+        "frequency" in text
+    )
     assert "paper_tangential_vhat: unstable Vb in [" in text
     assert derive_cli.main(["predict", "--Omega_t", "6", "--Omega_n", "4", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -312,10 +392,13 @@ def test_predict_with_two_excitation_frequencies_keeps_the_closed_forms(capsys):
 def test_predict_reports_a_harmonic_balance_that_does_not_converge(capsys, monkeypatch):
     def diverge(p, contact="hertz_damp", guess=None):
         raise RuntimeError(f"harmonic balance did not converge at Vb = {p['Vb']}")
+
     monkeypatch.setattr(predict_module, "fast_motion", diverge)
     assert derive_cli.main(["predict"]) == 0
-    assert "no prediction for consistent_mdsm: harmonic balance did not converge" in \
-        capsys.readouterr().out
+    assert (
+        "no prediction for consistent_mdsm: harmonic balance did not converge"
+        in capsys.readouterr().out
+    )
 
 
 def test_predict_clipped_keeps_the_closed_forms_and_refuses_the_harmonic_balance(capsys):
@@ -333,8 +416,10 @@ def test_predict_clipped_keeps_the_closed_forms_and_refuses_the_harmonic_balance
     assert "non-harmonic" in clipped["reasons"]["consistent_mdsm"]
     assert "N1 = 27.17 >= g = 9.81" in clipped["reasons"]["consistent_mdsm"]
     assert derive_cli.main(["predict", "--tension", "clipped"]) == 0
-    assert "no prediction for consistent_mdsm: tension='clipped': the harmonic balance" in \
-        capsys.readouterr().out
+    assert (
+        "no prediction for consistent_mdsm: tension='clipped': the harmonic balance"
+        in capsys.readouterr().out
+    )
 
 
 def test_predict_clipped_where_the_clip_does_not_act_keeps_the_mdsm_with_a_note():
@@ -361,6 +446,7 @@ def test_vb_points_sets_the_default_grid_too():
 def test_regeneration_and_check_paper_do_not_load_the_runtime(monkeypatch):
     def refuse(*args, **kwargs):
         raise AssertionError("the runtime was loaded")
+
     monkeypatch.setattr(runtime_cli, "add_commands", refuse)
     assert not derive_cli._needs_runtime([]) and not derive_cli._needs_runtime(["--check"])
     assert not derive_cli._needs_runtime(["check-paper"])

@@ -1,4 +1,5 @@
 """The code generator: up to date, deterministic, detects hand edits, SymPy-free imports."""
+
 import inspect
 import math
 import os
@@ -8,26 +9,35 @@ import subprocess
 import sys
 from pathlib import Path
 
+import hand_eq4 as H
 import mpmath
 import numpy as np
 import pytest
 import sympy as sp
 
 from derive import codegen
+from generated import _support
+from generated import dynamics as _dynamics
+from generated import hybrid as _hybrid
+from generated import oscillator as _osc
+from generated.parameters import BASE, DOMAINS
 
 ROOT = Path(__file__).resolve().parent.parent
 
-DIGEST = ("import hashlib, sys; from derive import codegen, modules; "
-          "files = codegen.render_all(modules.all_modules()); "
-          "h = hashlib.sha256(); "
-          "[h.update(k.encode() + v.encode()) for k, v in sorted(files.items())]; "
-          "print(h.hexdigest())")
+DIGEST = (
+    "import hashlib, sys; from derive import codegen, modules; "
+    "files = codegen.render_all(modules.all_modules()); "
+    "h = hashlib.sha256(); "
+    "[h.update(k.encode() + v.encode()) for k, v in sorted(files.items())]; "
+    "print(h.hexdigest())"
+)
 
 
 def _run(args, cwd=ROOT, seed="0", **kw):
     env = {**os.environ, "PYTHONHASHSEED": seed, "PYTHONDONTWRITEBYTECODE": "1"}
-    return subprocess.run([sys.executable, *args], cwd=cwd, env=env, capture_output=True,
-                          text=True, **kw)
+    return subprocess.run(
+        [sys.executable, *args], cwd=cwd, env=env, capture_output=True, text=True, **kw
+    )
 
 
 def test_generated_is_up_to_date():
@@ -44,8 +54,7 @@ def test_output_is_identical_across_hash_seeds():
 
 def test_check_names_a_hand_edited_file(tmp_path):
     for part in ("derive", "generated"):
-        shutil.copytree(ROOT / part, tmp_path / part,
-                        ignore=shutil.ignore_patterns("__pycache__"))
+        shutil.copytree(ROOT / part, tmp_path / part, ignore=shutil.ignore_patterns("__pycache__"))
     target = tmp_path / "generated" / "unforced.py"
     text = target.read_text()
     target.write_text(text.replace("g*mu_s/omega1**2", "g*mu_s/omega1**3", 1))
@@ -53,7 +62,7 @@ def test_check_names_a_hand_edited_file(tmp_path):
     result = _run(["-m", "derive", "--check"], cwd=tmp_path)
     assert result.returncode == 1
     assert "STALE generated/unforced.py" in result.stdout
-    assert "omega1**3" in result.stdout          # the diff is shown
+    assert "omega1**3" in result.stdout  # the diff is shown
     assert "generated/leftover.py" in result.stdout
 
 
@@ -64,12 +73,13 @@ def test_every_generated_file_has_the_do_not_edit_header():
         assert "DO NOT EDIT" in head[1], path
 
 
-@pytest.mark.parametrize("module", ["generated.unforced", "generated.dynamics",
-                                    "generated.mp.unforced", "generated.mp.dynamics"])
+@pytest.mark.parametrize(
+    "module",
+    ["generated.unforced", "generated.dynamics", "generated.mp.unforced", "generated.mp.dynamics"],
+)
 def test_importing_generated_code_does_not_import_sympy(module):
     code = f"import sys, {module}; print('sympy' in sys.modules)"
     assert _run(["-c", code]).stdout.strip() == "False"
-
 
 
 @pytest.mark.parametrize("module", ["generated.stability", "generated.mp.stability"])
@@ -79,28 +89,31 @@ def test_importing_generated_code_does_not_import_numba(module):
     assert _run(["-c", code]).stdout.strip() == "False"
 
 
-@pytest.mark.parametrize("exponent", ["1/3", "2/3", "4/3", "10/3", "14/3", "-1/3", "-4/3",
-                                      "-2/3", "1/6", "7/4"])
+@pytest.mark.parametrize(
+    "exponent", ["1/3", "2/3", "4/3", "10/3", "14/3", "-1/3", "-4/3", "-2/3", "1/6", "7/4"]
+)
 @pytest.mark.parametrize("printer", ["_NumPy", "_Scalar"])
 def test_fractional_powers_print_through_hoisted_roots(exponent, printer):
     """b**(n/d) (d >= 3) prints as powers of one root per base, with the value of the power."""
     g, w = sp.symbols("g omega2", positive=True)
     x = sp.Symbol("x", real=True)
     e = sp.Rational(exponent)
-    expr = 3 * g**e * w**(2 * e) / (1 + w**e) + x**e
+    expr = 3 * g**e * w ** (2 * e) / (1 + w**e) + x**e
     roots = codegen._hoisted_roots([expr])
     expected = {(g, e.q), (w, e.q), (w, (2 * e).q)} if e.q >= 3 else set()
     assert {(b, d) for _, b, d in roots} == {bd for bd in expected if bd[1] >= 3}
-    assert all(b != x for _, b, _ in roots)                   # x is not provably >= 0
+    assert all(b != x for _, b, _ in roots)  # x is not provably >= 0
     text = getattr(codegen, printer)(roots).doprint(expr)
-    left = re.findall(r"(\w+)\*\*\(-?\d+/(\d+)\)", text)     # powers printed as such
+    left = re.findall(r"(\w+)\*\*\(-?\d+/(\d+)\)", text)  # powers printed as such
     assert all(base == "x" or int(d) == 2 for base, d in left), text
     values = {"g": 9.81, "omega2": 1.7, "x": 0.3}
     namespace = {**values, "numpy": np, "math": math}
-    namespace.update({name: float(mpmath.mpf(values[str(b)]) ** (mpmath.mpf(1) / d))
-                      for name, b, d in roots})
-    exact = sp.N(expr.subs({g: sp.Float("9.81", 30), w: sp.Float("1.7", 30),
-                            x: sp.Float("0.3", 30)}), 30)
+    namespace.update(
+        {name: float(mpmath.mpf(values[str(b)]) ** (mpmath.mpf(1) / d)) for name, b, d in roots}
+    )
+    exact = sp.N(
+        expr.subs({g: sp.Float("9.81", 30), w: sp.Float("1.7", 30), x: sp.Float("0.3", 30)}), 30
+    )
     # Python floats (libm's pow, < 1 ulp in glibc; numpy's and numba's loops are not
     # involved), roots rounded once: the larger term of the worst case (14/3) takes five
     # powers and about ten roundings, ~11 eps = 2.5e-15
@@ -109,22 +122,25 @@ def test_fractional_powers_print_through_hoisted_roots(exponent, printer):
 
 # Bound scalar kernels (bind_<name>) ------------------------------------------------------
 
-import hand_eq4 as H
-from generated import _support, dynamics as _dynamics, hybrid as _hybrid, oscillator as _osc
-from generated.parameters import BASE, DOMAINS
-
 BIND_MODULES = (_dynamics, _hybrid, _osc)
-BIND = [(module, name) for module in BIND_MODULES for name in module.__all__
-        if name.startswith("bind_")]
+BIND = [
+    (module, name) for module in BIND_MODULES for name in module.__all__ if name.startswith("bind_")
+]
 BIND_IDS = [f"{module.__name__.split('.')[-1]}.{name}" for module, name in BIND]
 EPS = np.finfo(float).eps
 #: State arguments of the public functions, drawn at random (X2 on both sides of 0).
-STATE_DRAW = {"t": lambda r: r.uniform(-5, 5), "X1": lambda r: r.normal() * 2,
-              "Y1": lambda r: r.normal() * 3, "X2": lambda r: r.uniform(-1, 3),
-              "Y2": lambda r: r.normal() * 2, "sgn": lambda r: float(r.choice([-1, 0, 1])),
-              "mode": lambda r: float(r.choice([-1, 0, 1, 2, 3])),
-              "tau": lambda r: r.uniform(0, 30), "z": lambda r: r.normal() * 2,
-              "v": lambda r: r.normal() * 3}
+STATE_DRAW = {
+    "t": lambda r: r.uniform(-5, 5),
+    "X1": lambda r: r.normal() * 2,
+    "Y1": lambda r: r.normal() * 3,
+    "X2": lambda r: r.uniform(-1, 3),
+    "Y2": lambda r: r.normal() * 2,
+    "sgn": lambda r: float(r.choice([-1, 0, 1])),
+    "mode": lambda r: float(r.choice([-1, 0, 1, 2, 3])),
+    "tau": lambda r: r.uniform(0, 30),
+    "z": lambda r: r.normal() * 2,
+    "v": lambda r: r.normal() * 3,
+}
 
 
 def test_every_bind_function_is_public_with_a_public_twin():
@@ -135,8 +151,11 @@ def test_every_bind_function_is_public_with_a_public_twin():
 
 
 def state_names(public):
-    return [k for k, v in inspect.signature(public).parameters.items()
-            if v.kind == v.POSITIONAL_OR_KEYWORD]
+    return [
+        k
+        for k, v in inspect.signature(public).parameters.items()
+        if v.kind == v.POSITIONAL_OR_KEYWORD
+    ]
 
 
 def option_sets(public):
@@ -144,8 +163,11 @@ def option_sets(public):
     kw = {k for k, v in inspect.signature(public).parameters.items() if v.kind == v.KEYWORD_ONLY}
     contacts = [{"contact": c} for c in ("hertz_damp", "kelvin_voigt")] if "contact" in kw else [{}]
     if "before" in kw:
-        return [dict(c, before=b, after=a, surface=s) for c in contacts
-                for b, a, s in _hybrid.TRANSITIONS]
+        return [
+            dict(c, before=b, after=a, surface=s)
+            for c in contacts
+            for b, a, s in _hybrid.TRANSITIONS
+        ]
     if "tension" in kw:
         return [dict(c, tension=t) for c in contacts for t in ("allowed", "clipped")]
     return contacts
@@ -153,8 +175,12 @@ def option_sets(public):
 
 def bind_params(rng):
     p = {k: BASE[k] * float(np.exp(rng.uniform(-np.log(3), np.log(3)))) for k in BASE}
-    p.update(alpha_n=p["alpha"] * rng.uniform(0.3, 2), Omega_n=p["Omega"] * rng.uniform(0.5, 2),
-             phase_t=rng.uniform(-3, 3), phase_n=rng.uniform(-3, 3))
+    p.update(
+        alpha_n=p["alpha"] * rng.uniform(0.3, 2),
+        Omega_n=p["Omega"] * rng.uniform(0.5, 2),
+        phase_t=rng.uniform(-3, 3),
+        phase_n=rng.uniform(-3, 3),
+    )
     # the oscillator's damping on both sides of critical (beta1 = 1 exactly: see
     # test_bound_oscillator_kernels_at_critical_damping)
     p["beta1"] = float(rng.choice([rng.uniform(0, 0.99), rng.uniform(1.01, 4)]))
@@ -192,9 +218,10 @@ def entry_scale(name, state, options, p, ref):
     if name == "response_field":
         return H.response_field_scale(s["mode"], t, (s["z"], s["v"], x[2], x[3]), p, contact)
     if name == "saltation":
-        return H.saltation_scale(options["before"], options["after"], options["surface"],
-                                 t, x, p, contact)
-    if name == "state_transition":          # (1 + omega1 tau) |Phi| (test_oscillator)
+        return H.saltation_scale(
+            options["before"], options["after"], options["surface"], t, x, p, contact
+        )
+    if name == "state_transition":  # (1 + omega1 tau) |Phi| (test_oscillator)
         return (1 + p["omega1"] * s["tau"]) * np.abs(ref).max()
     if name == "excitation_response":
         return H.response_scale(p, t)
@@ -218,15 +245,18 @@ def compare_bound(module, name, backend, rng, draws):
             p = bind_params(rng)
             state = [STATE_DRAW[n](rng) for n in names]
             if module is _osc:
-                state = [abs(v) * 6 for v in state]         # the response from rest: t >= 0
+                state = [abs(v) * 6 for v in state]  # the response from rest: t >= 0
             bound = getattr(module, name)(**options, backend=backend, **p)
             assert bound.backend == backend
             got = np.ravel(np.asarray(bound(*state), dtype=float))
             with np.errstate(divide="ignore", invalid="ignore"):
                 ref = np.ravel(np.asarray(public(*state, **options, **p), dtype=float))
             assert got.shape == ref.shape, (name, options)
-            scale = np.ravel(np.asarray(entry_scale(name[5:], zip(names, state), options,
-                                                    H.full(p), ref), dtype=float))
+            scale = np.ravel(
+                np.asarray(
+                    entry_scale(name[5:], zip(names, state), options, H.full(p), ref), dtype=float
+                )
+            )
             err = np.abs(got - ref)
             assert np.all(err <= 16 * EPS * scale), (name, options, state, got, ref)
             with np.errstate(divide="ignore", invalid="ignore"):
@@ -262,7 +292,7 @@ def test_bound_oscillator_kernels_at_critical_damping(name, backend):
 
 def singular_point(case, backend):
     """(bound value, public value) where the public function divides by zero."""
-    if case == "resonance":             # undamped resonance: NaN (test_oscillator)
+    if case == "resonance":  # undamped resonance: NaN (test_oscillator)
         p = dict(BASE, beta1=0.0, Omega=BASE["omega1"])
         ref = np.ravel(_osc.excitation_response(0.7, **p))
         return _osc.bind_excitation_response(backend=backend, **p)(0.7), ref
@@ -293,11 +323,17 @@ def test_bound_kernel_exposes_its_raw_kernel_and_checked_parameters(module, name
     bound = getattr(module, name)(backend="python", **p)
     assert isinstance(bound, _support.Bound) and bound.name == name[5:]
     assert repr(bound) == f"<bound {name[5:]} (python)>"
-    full = {**p, "alpha_t": p["alpha"], "Omega_t": p["Omega"], "alpha_n": p["alpha"],
-            "Omega_n": p["Omega"], "phase_n": 0.0}
+    full = {
+        **p,
+        "alpha_t": p["alpha"],
+        "Omega_t": p["Omega"],
+        "alpha_n": p["alpha"],
+        "Omega_n": p["Omega"],
+        "phase_n": 0.0,
+    }
     assert bound.params == {k: full[k] for k in bound.params}
     assert all(type(v) is float for v in bound.args)
-    state = [0.3, 0.1, 2.0, 1.3, -0.2, -1.0][:len(state_names(getattr(module, name[5:])))]
+    state = [0.3, 0.1, 2.0, 1.3, -0.2, -1.0][: len(state_names(getattr(module, name[5:])))]
     if name in ("bind_vector_field", "bind_surface_rates", "bind_response_field"):
         state[-1] = 1.0
     assert bound.kernel(*state, *bound.args) == bound(*state)
@@ -323,8 +359,11 @@ def test_bind_rejects_bad_parameters_by_name(module, name):
         bind(backend="python", omega3=1.0, **BASE)
     with pytest.raises(ValueError, match="backend"):
         bind(backend="gpu", **BASE)
-    options = [k for k, v in inspect.signature(bind).parameters.items()
-               if v.kind == v.KEYWORD_ONLY and k != "backend"]
+    options = [
+        k
+        for k, v in inspect.signature(bind).parameters.items()
+        if v.kind == v.KEYWORD_ONLY and k != "backend"
+    ]
     for option in options:
         with pytest.raises(ValueError, match=option):
             bind(backend="python", **{option: "nonsense"}, **BASE)

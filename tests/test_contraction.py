@@ -14,12 +14,13 @@ within ``|e'| (dv_a + dv_b) + k1 |e| (dx_a + dx_b) + (dv_a + dv_b)^2/2 + k1 (dx_
 dx_b)^2/2`` of the exact value, and an integrated work within ``K TOL`` times the
 integral of the absolute powers.
 """
+
 import numpy as np
 import pytest
 import sympy as sp
 
 from derive import contraction as C
-from derive.model import P, X2, Y2, normal_force
+from derive.model import X2, Y2, P, normal_force
 
 TOL = 1e-10
 K = 10.0
@@ -30,13 +31,18 @@ b1, w1, b2, w2, mu = (P[k] for k in ("beta1", "omega1", "beta2", "omega2", "mu_s
 
 # Symbolic ------------------------------------------------------------------------------
 
+
 def test_difference_energy_is_the_tangential_oscillator_energy():
     assert sp.expand(C.difference_energy() - (C.ep**2 / 2 + w1**2 * C.e**2 / 2)) == 0
 
 
-@pytest.mark.parametrize("contact, F", [
-    ("hertz_damp", (w2**2 + 2 * b2 * w2 * Y2) * X2**sp.Rational(3, 2)),
-    ("kelvin_voigt", w2**2 * X2 + 2 * b2 * w2 * Y2)])
+@pytest.mark.parametrize(
+    "contact, F",
+    [
+        ("hertz_damp", (w2**2 + 2 * b2 * w2 * Y2) * X2 ** sp.Rational(3, 2)),
+        ("kelvin_voigt", w2**2 * X2 + 2 * b2 * w2 * Y2),
+    ],
+)
 def test_difference_power_against_the_hand_typed_formula(contact, F):
     de = C.Ya - C.Yb
     hand = -2 * b1 * w1 * de**2 - mu * (C.sa - C.sb) * F * de
@@ -48,13 +54,23 @@ def test_difference_power_against_the_hand_typed_formula(contact, F):
 
 def test_clipped_difference_power_has_the_clipped_force():
     """max(F, 0) of Eq. (1): equal to the hand-typed form where F > 0 and where F < 0."""
-    F = (w2**2 + 2 * b2 * w2 * Y2) * X2**sp.Rational(3, 2)
+    F = (w2**2 + 2 * b2 * w2 * Y2) * X2 ** sp.Rational(3, 2)
     de = C.Ya - C.Yb
     split = C.power_split("hertz_damp", "clipped")
     assert split.exact
-    base = {b1: sp.Rational(1, 10), w1: 1, b2: sp.Rational(3, 20), w2: sp.Rational(1, 2),
-            mu: sp.Rational(2, 5), X2: 2, C.Ya: 3, C.Yb: -1, C.sa: 1, C.sb: -1}
-    for y2, clipped in ((sp.Integer(1), F), (sp.Integer(-5), 0)):   # F > 0, F < 0
+    base = {
+        b1: sp.Rational(1, 10),
+        w1: 1,
+        b2: sp.Rational(3, 20),
+        w2: sp.Rational(1, 2),
+        mu: sp.Rational(2, 5),
+        X2: 2,
+        C.Ya: 3,
+        C.Yb: -1,
+        C.sa: 1,
+        C.sb: -1,
+    }
+    for y2, clipped in ((sp.Integer(1), F), (sp.Integer(-5), 0)):  # F > 0, F < 0
         point = {**base, Y2: y2}
         assert (F.subs(point) > 0) == (clipped != 0)
         hand = (-2 * b1 * w1 * de**2 - mu * (C.sa - C.sb) * clipped * de).subs(point)
@@ -63,9 +79,8 @@ def test_clipped_difference_power_has_the_clipped_force():
 
 def test_every_sign_case_is_proved_and_covers_the_graph_of_sgn():
     cases = C.friction_power_sign_cases()
-    assert len(cases) == 25                        # (1 + 3 + 1)^2: stick at -1, inside, +1
-    assert {(c.state_a, c.state_b) for c in cases} == {(a, b) for a in C.STATES
-                                                        for b in C.STATES}
+    assert len(cases) == 25  # (1 + 3 + 1)^2: stick at -1, inside, +1
+    assert {(c.state_a, c.state_b) for c in cases} == {(a, b) for a in C.STATES for b in C.STATES}
     assert all(c.proved and c.sign in ("= 0", "> 0", ">= 0") for c in cases)
     by = {(c.state_a, c.state_b, str(c.s_a), str(c.s_b)): c for c in cases}
     opposite = by[("slip_forward", "slip_back", "1", "-1")]
@@ -116,6 +131,7 @@ def test_the_claim_says_which_steps_sympy_proved():
 
 # Numerical -----------------------------------------------------------------------------
 
+
 def _sample_error(run):
     """Bound on |E_d(sampled) - E_d(exact)| at each sample (module docstring)."""
     k1 = run.a.params["omega1"] ** 2
@@ -155,7 +171,7 @@ def test_clipped_difference_energy_never_increases_and_decays(clipped):
     E = clipped.energy
     err = _sample_error(clipped)
     assert np.all(np.diff(E) <= err[:-1] + err[1:])
-    assert E[0] == pytest.approx(0.5 * SHIFT[1] ** 2 + 0.5 * SHIFT[0] ** 2)   # omega1 = 1
+    assert E[0] == pytest.approx(0.5 * SHIFT[1] ** 2 + 0.5 * SHIFT[0] ** 2)  # omega1 = 1
     assert E[-1] <= 1e-12 * E[0]
     # after the transient both runs slide backward without reversal: no friction term,
     # and E_d decays at the dashpot's mean rate c1 = 2 beta1 omega1 (ripple ~ beta1)
@@ -172,7 +188,7 @@ def test_clipped_friction_never_adds_energy(clipped):
     w = C.difference_works(clipped)
     assert w["work_friction_pull"] == 0.0
     assert w["work_friction_push"] <= K * TOL * w["scale"]
-    assert w["work_friction_push"] < -0.1          # the transient's reversals: not vacuous
+    assert w["work_friction_push"] < -0.1  # the transient's reversals: not vacuous
     assert abs(w["imbalance"]) <= K * TOL * w["scale"]
     assert w["energy_change"] == pytest.approx(-clipped.energy[0], rel=1e-9)
 
@@ -195,7 +211,7 @@ def test_allowed_energy_balance_of_the_difference(allowed):
     assert abs(w["imbalance"]) <= K * TOL * w["scale"]
     assert w["work_friction_push"] <= K * TOL * w["scale"]
     assert w["work_friction_pull"] > 0.4 * w["scale"]
-    assert w["energy_change"] > 0          # the runs do not converge (E_d: 17 -> 24)
+    assert w["energy_change"] > 0  # the runs do not converge (E_d: 17 -> 24)
 
 
 def test_reversals_by_force_sign(allowed, clipped):
@@ -209,14 +225,17 @@ def test_reversals_by_force_sign(allowed, clipped):
 
 # Every figure case (slow) ------------------------------------------------------------------
 
+
 def _figure_cases():
     from runtime.validation import CASES
+
     cases = [(f"{c.figure} {c.name}", dict(c.overrides), "hertz_damp") for c in CASES]
-    return cases + [("Fig. 14a Omega=4.5", {"Omega": 4.5}, "hertz_damp"),
-                    ("Fig. 14b Omega_t=6, Omega_n=4", {"Omega_t": 6.0, "Omega_n": 4.0},
-                     "hertz_damp"),
-                    ("Fig. 15 phase_t=pi/2", {"phase_t": np.pi / 2}, "hertz_damp"),
-                    ("Fig. 16b linear contact", {"omega2": 0.5, "beta2": 3.0}, "kelvin_voigt")]
+    return cases + [
+        ("Fig. 14a Omega=4.5", {"Omega": 4.5}, "hertz_damp"),
+        ("Fig. 14b Omega_t=6, Omega_n=4", {"Omega_t": 6.0, "Omega_n": 4.0}, "hertz_damp"),
+        ("Fig. 15 phase_t=pi/2", {"phase_t": np.pi / 2}, "hertz_damp"),
+        ("Fig. 16b linear contact", {"omega2": 0.5, "beta2": 3.0}, "kelvin_voigt"),
+    ]
 
 
 def _forced_line_in_band(p, band):
@@ -229,14 +248,24 @@ def _forced_line_in_band(p, band):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name, overrides, contact", _figure_cases(),
-                         ids=[c[0] for c in _figure_cases()])
+@pytest.mark.parametrize(
+    "name, overrides, contact", _figure_cases(), ids=[c[0] for c in _figure_cases()]
+)
 def test_clipped_motions_converge_in_every_figure_case(name, overrides, contact):
     """Fig. 2b and Figs. 14-21 with tension clipped, Vb from 1 to 16 m/s (400 s runs)."""
     from runtime.simulate import PEAK_PRESENT_RATIO, omega1_band
+
     for Vb in np.arange(1.0, 16.1, 1.5):
-        run = C.difference_runs(SHIFT, tension="clipped", contact=contact, t_end=400.0,
-                                Vb=float(Vb), rtol=TOL, atol=TOL, **overrides)
+        run = C.difference_runs(
+            SHIFT,
+            tension="clipped",
+            contact=contact,
+            t_end=400.0,
+            Vb=float(Vb),
+            rtol=TOL,
+            atol=TOL,
+            **overrides,
+        )
         E, err = run.energy, _sample_error(run)
         assert np.all(np.diff(E) <= err[:-1] + err[1:]), (name, Vb)
         assert E[-1] <= 1e-6 * E[0], (name, Vb)

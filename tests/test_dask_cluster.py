@@ -7,6 +7,7 @@ cluster, once undisturbed and once with a worker killed (SIGKILL) in the middle.
 Marked slow (starting the processes takes seconds): ``python -m pytest -m slow
 tests/test_dask_cluster.py``.
 """
+
 import json
 import os
 import shutil
@@ -29,8 +30,18 @@ from runtime.sweep import read_cached, sweep  # noqa: E402
 pytestmark = pytest.mark.slow
 
 ROOT = Path(__file__).resolve().parents[1]
-NUMERIC = ("peak_omega1", "omega1_peak_at", "peak_Omega", "energy_residual", "n_switches",
-           "n_reversals", "mean_friction", "min_normal_force", "vr_min", "vr_max")
+NUMERIC = (
+    "peak_omega1",
+    "omega1_peak_at",
+    "peak_Omega",
+    "energy_residual",
+    "n_switches",
+    "n_reversals",
+    "mean_friction",
+    "min_normal_force",
+    "vr_min",
+    "vr_max",
+)
 
 
 def _dask():
@@ -49,8 +60,11 @@ def _free_port():
 def _env():
     # the workers unpickle runtime.sweep._cached_run: they must import this checkout
     path = os.environ.get("PYTHONPATH")
-    return {**os.environ, "PYTHONPATH": str(ROOT) + (os.pathsep + path if path else ""),
-            "PYTHONDONTWRITEBYTECODE": "1"}
+    return {
+        **os.environ,
+        "PYTHONPATH": str(ROOT) + (os.pathsep + path if path else ""),
+        "PYTHONDONTWRITEBYTECODE": "1",
+    }
 
 
 @pytest.fixture
@@ -61,17 +75,43 @@ def cluster():
     procs = []
 
     def start(*args):
-        procs.append(subprocess.Popen([dask, *args], cwd=ROOT, env=_env(),
-                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        procs.append(
+            subprocess.Popen(
+                [dask, *args],
+                cwd=ROOT,
+                env=_env(),
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
+        )
         return procs[-1]
+
     try:
-        start("scheduler", "--host", "127.0.0.1", "--port", address.rsplit(":", 1)[1],
-              "--no-dashboard")
+        start(
+            "scheduler",
+            "--host",
+            "127.0.0.1",
+            "--port",
+            address.rsplit(":", 1)[1],
+            "--no-dashboard",
+        )
         # --no-nanny: the worker is the process itself, so killing it kills the worker
         # (a nanny would restart it)
-        workers = [start("worker", address, "--nworkers", "1", "--nthreads", "1",
-                         "--no-dashboard", "--no-nanny", "--host", "127.0.0.1")
-                   for _ in range(2)]
+        workers = [
+            start(
+                "worker",
+                address,
+                "--nworkers",
+                "1",
+                "--nthreads",
+                "1",
+                "--no-dashboard",
+                "--no-nanny",
+                "--host",
+                "127.0.0.1",
+            )
+            for _ in range(2)
+        ]
         with distributed.Client(address, timeout="60s") as client:
             client.wait_for_workers(2, timeout=120)
         yield address, workers
@@ -88,17 +128,37 @@ def cluster():
 
 
 def _cli_sweep(address, values, t_end, cache_dir=None):
-    argv = [sys.executable, "-m", "derive", "sweep", "--param", "Vb",
-            "--values", *map(str, values), "--t-end", str(t_end), "--scheduler", address,
-            "--json", "--no-progress"]
+    argv = [
+        sys.executable,
+        "-m",
+        "derive",
+        "sweep",
+        "--param",
+        "Vb",
+        "--values",
+        *map(str, values),
+        "--t-end",
+        str(t_end),
+        "--scheduler",
+        address,
+        "--json",
+        "--no-progress",
+    ]
     argv += ["--cache-dir", str(cache_dir)] if cache_dir else ["--no-cache"]
-    return subprocess.Popen(argv, cwd=ROOT, env=_env(), stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+    return subprocess.Popen(
+        argv, cwd=ROOT, env=_env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
 
 
 def _assert_same_as_serial(rows, values, t_end):
-    serial = sweep("Vb", values, settings=SolverSettings(t_end=t_end), executor="serial",
-                   cache_dir=None, progress=False)
+    serial = sweep(
+        "Vb",
+        values,
+        settings=SolverSettings(t_end=t_end),
+        executor="serial",
+        cache_dir=None,
+        progress=False,
+    )
     assert [r["Vb"] for r in rows] == list(values)
     assert [r["regime"] for r in rows] == list(serial["regime"])
     for name in NUMERIC:
@@ -126,7 +186,7 @@ def test_a_worker_killed_mid_sweep_loses_no_point_and_no_cache_file(cluster, tmp
     done_at_kill = len(list(tmp_path.glob("*.json")))
     workers[0].send_signal(signal.SIGKILL)
     workers[0].wait(timeout=30)
-    assert done_at_kill < len(values)            # the kill came in the middle
+    assert done_at_kill < len(values)  # the kill came in the middle
     out, err = proc.communicate(timeout=300)
     assert proc.returncode == 0, err
     _assert_same_as_serial(json.loads(out), values, t_end)

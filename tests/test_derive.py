@@ -1,11 +1,12 @@
 """Symbolic facts of the derivation, proved by SymPy (not sampled)."""
+
 import pytest
 import sympy as sp
 
 from derive import dynamics as dyn
 from derive import stability as st
 from derive import statespace as ss
-from derive.model import CONTACT_LAWS, P, STATE, X2, equal_excitation, equations_of_motion, t
+from derive.model import CONTACT_LAWS, STATE, X2, P, equal_excitation, equations_of_motion, t
 
 
 @pytest.mark.parametrize("contact", CONTACT_LAWS)
@@ -26,7 +27,7 @@ def test_equilibrium_is_eq9_as_printed():
 @pytest.mark.parametrize("contact", CONTACT_LAWS)
 def test_mu_s_absent_from_characteristic_polynomial(contact):
     J0 = ss.jacobian_at_equilibrium_eq_11(contact)
-    assert P["mu_s"] in J0.free_symbols          # present in J^0 (Eq. 11) ...
+    assert P["mu_s"] in J0.free_symbols  # present in J^0 (Eq. 11) ...
     assert ss.free_of(ss.charpoly_eq_12(J0).as_expr(), P["mu_s"])  # ... not in Eq. (12)
 
 
@@ -37,7 +38,7 @@ def test_block_factorisation_is_exact(contact):
     product = sp.expand(tangential.expr() * normal.expr())
     assert sp.simplify(product - ss.charpoly_eq_12(J0).as_expr()) == 0
     assert sp.simplify(tangential.disc - (tangential.p**2 / 4 - tangential.q)) == 0
-    assert tangential.disc == P["omega1"]**2 * (P["beta1"] - 1) * (P["beta1"] + 1)
+    assert tangential.disc == P["omega1"] ** 2 * (P["beta1"] - 1) * (P["beta1"] + 1)
 
 
 def test_block_quadratics_rejects_a_coupled_matrix():
@@ -98,5 +99,8 @@ def test_stability_conditions_are_p_and_r_with_q_and_s_positive(convention, cont
     p, q, r, s = st.factored(convention, contact).pqrs
     assert q.is_positive and s.is_positive
     assert st.stability_conditions(convention, contact) == (p, r)
-    assert p == 2 * P["beta1"] * P["omega1"] + (1 if convention == "consistent" else -1) \
-        * P["g"] * st.mu1
+    assert (
+        p
+        == 2 * P["beta1"] * P["omega1"]
+        + (1 if convention == "consistent" else -1) * P["g"] * st.mu1
+    )

@@ -14,6 +14,7 @@ comments; other strings are data, e.g. a path a test creates), ``.md`` file and
   GitHub's rule (lowercase; punctuation other than ``-`` and ``_`` dropped; spaces
   become ``-``; repeated headings get ``-1``, ``-2``, ...).
 """
+
 import ast
 import io
 import json
@@ -30,7 +31,7 @@ SUFFIXES = {".py", ".md", ".ipynb"}
 FOLDERS = ("docs", "derive", "runtime", "generated", "tests", "benchmarks", "notebooks")
 
 #: A path under one of the package's folders, not itself part of a longer path or URL.
-PATH = re.compile(r"(?<![\w./~$-])((?:%s)/[\w./-]*[\w/])" % "|".join(FOLDERS))
+PATH = re.compile(r"(?<![\w./~$-])((?:" + "|".join(FOLDERS) + r")/[\w./-]*[\w/])")
 #: A Markdown file name, with an optional path and anchor.
 MD = re.compile(r"(?<![\w./~$-])((?:\.\./|[\w-]+/)*[\w-]+\.md)(?:#([\w-]+))?(?![\w-])")
 
@@ -38,8 +39,9 @@ MD = re.compile(r"(?<![\w./~$-])((?:\.\./|[\w-]+/)*[\w-]+\.md)(?:#([\w-]+))?(?![
 def repository_files():
     """The repository's text files (hidden folders, caches and build output skipped)."""
     for folder, dirs, files in os.walk(ROOT):
-        dirs[:] = sorted(d for d in dirs if not (d.startswith(".") or d in SKIP_DIRS
-                                                 or d.endswith(".egg-info")))
+        dirs[:] = sorted(
+            d for d in dirs if not (d.startswith(".") or d in SKIP_DIRS or d.endswith(".egg-info"))
+        )
         for name in sorted(files):
             path = Path(folder) / name
             if not name.startswith(".") and path.suffix in SUFFIXES:
@@ -60,7 +62,7 @@ def github_anchors(markdown: str) -> set[str]:
         m = None if fenced else re.match(r"#{1,6}\s+(.*?)\s*#*\s*$", line)
         if not m:
             continue
-        text = re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", m.group(1))   # link text only
+        text = re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", m.group(1))  # link text only
         slug = re.sub(r"[^\w\- ]", "", text.lower()).replace(" ", "-")
         n = seen.get(slug, 0)
         seen[slug] = n + 1
@@ -70,8 +72,12 @@ def github_anchors(markdown: str) -> set[str]:
 
 def test_github_anchor_rule():
     text = "# Two readings of V_hat\n## The sign: paper or Eq. (4)?\n## Stick\n## Stick\n"
-    assert github_anchors(text) == {"two-readings-of-v_hat", "the-sign-paper-or-eq-4",
-                                    "stick", "stick-1"}
+    assert github_anchors(text) == {
+        "two-readings-of-v_hat",
+        "the-sign-paper-or-eq-4",
+        "stick",
+        "stick-1",
+    }
 
 
 def resolve(cited: str, source: Path) -> Path | None:
@@ -88,12 +94,11 @@ def python_prose(source: str) -> str:
     parts = []
     try:
         tree = ast.parse(source)
-    except SyntaxError:                     # a notebook cell with IPython magics
+    except SyntaxError:  # a notebook cell with IPython magics
         tree = None
     if tree is not None:
         for node in ast.walk(tree):
-            if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef,
-                                 ast.AsyncFunctionDef)):
+            if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
                 parts.append(ast.get_docstring(node, clean=False) or "")
     try:
         tokens = tokenize.generate_tokens(io.StringIO(source).readline)
@@ -110,8 +115,12 @@ def prose(path: Path) -> str:
         return python_prose(text)
     if path.suffix == ".ipynb":
         cells = json.loads(text)["cells"]
-        return "\n".join("".join(c["source"]) if c["cell_type"] == "markdown"
-                         else python_prose("".join(c["source"])) for c in cells)
+        return "\n".join(
+            "".join(c["source"])
+            if c["cell_type"] == "markdown"
+            else python_prose("".join(c["source"]))
+            for c in cells
+        )
     return text
 
 
@@ -120,11 +129,11 @@ def citations(path: Path):
     text = prose(path)
     for m in PATH.finditer(text):
         cited = m.group(1).rstrip(".")
-        if not cited.endswith(".md"):          # Markdown files: the second pattern
+        if not cited.endswith(".md"):  # Markdown files: the second pattern
             yield cited, None
     for m in MD.finditer(text):
         yield m.group(1), m.group(2)
-    if path.suffix == ".md":                   # links to a heading of the same file
+    if path.suffix == ".md":  # links to a heading of the same file
         for m in re.finditer(r"\]\(#([\w-]+)\)", text):
             yield str(path), m.group(1)
 
@@ -138,8 +147,7 @@ def problems(path: Path) -> list[str]:
         elif "/" not in cited and cited.endswith(".md"):
             if cited not in NAMES:
                 missing.append(cited)
-            target = next((p for p in (ROOT / cited, path.parent / cited) if p.exists()),
-                          None)
+            target = next((p for p in (ROOT / cited, path.parent / cited) if p.exists()), None)
         else:
             target = resolve(cited, path)
             if target is None:
@@ -154,17 +162,23 @@ def problems(path: Path) -> list[str]:
 @pytest.mark.parametrize("path", FILES, ids=lambda p: str(p.relative_to(ROOT)))
 def test_cited_files_exist(path):
     missing = problems(path)
-    assert not missing, (f"{path.relative_to(ROOT)} cites what the repository does not "
-                         f"have: {missing}")
+    assert not missing, (
+        f"{path.relative_to(ROOT)} cites what the repository does not have: {missing}"
+    )
 
 
 def test_missing_files_and_anchors_are_found(tmp_path):
     doc = tmp_path / "doc.md"
-    doc.write_text("# Title\n\nSee [below](#nowhere), `derive/nothing.py`, `OTHER.md`,\n"
-                   "`docs/modelling.md#no-such-heading` and `docs/modelling.md#vhat`.\n")
-    assert problems(doc) == ["OTHER.md", "derive/nothing.py",
-                             "doc.md#nowhere (no such heading)",
-                             "docs/modelling.md#no-such-heading (no such heading)"]
+    doc.write_text(
+        "# Title\n\nSee [below](#nowhere), `derive/nothing.py`, `OTHER.md`,\n"
+        "`docs/modelling.md#no-such-heading` and `docs/modelling.md#vhat`.\n"
+    )
+    assert problems(doc) == [
+        "OTHER.md",
+        "derive/nothing.py",
+        "doc.md#nowhere (no such heading)",
+        "docs/modelling.md#no-such-heading (no such heading)",
+    ]
 
 
 def test_modelling_notes_are_cited():

@@ -1,18 +1,20 @@
 """generated.dynamics against Eq. (4) typed by hand and against the mpmath variant."""
+
+import hand_eq4 as H
 import mpmath
 import numpy as np
 import pytest
+from conftest import random_params, rel_err
 
 from generated import dynamics, unforced
 from generated.mp import dynamics as mp_dynamics
-from conftest import random_params, rel_err
 
 
 def eq4_rhs(t, X1, Y1, X2, Y2, p, contact="hertz_damp"):
     """Eq. (4) typed by hand, with Eq. (1)'s zero force out of contact."""
-    b1, w1, b2, w2, a, W, mu, g, Vb = (p[k] for k in
-                                       ("beta1", "omega1", "beta2", "omega2", "alpha",
-                                        "Omega", "mu_s", "g", "Vb"))
+    b1, w1, b2, w2, a, W, mu, g, Vb = (
+        p[k] for k in ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g", "Vb")
+    )
     if X2 <= 0:
         Fn = 0.0
     elif contact == "hertz_damp":
@@ -30,16 +32,20 @@ def test_rhs_is_eq4(rng, contact):
     for _ in range(50):
         p = random_params(rng)
         t, X1, Y1, X2, Y2 = rng.normal(size=5) * [10, 1, 5, 1, 1]
-        np.testing.assert_allclose(dynamics.rhs(t, X1, Y1, X2, Y2, contact=contact, **p),
-                                   eq4_rhs(t, X1, Y1, X2, Y2, p, contact), rtol=1e-12,
-                                   atol=1e-12)
+        np.testing.assert_allclose(
+            dynamics.rhs(t, X1, Y1, X2, Y2, contact=contact, **p),
+            eq4_rhs(t, X1, Y1, X2, Y2, p, contact),
+            rtol=1e-12,
+            atol=1e-12,
+        )
 
 
 def test_rhs_branch_agrees_with_sign_and_sgn_zero_removes_friction(rng):
     p = random_params(rng)
     t, X1, Y1, X2, Y2 = 0.3, 0.1, p["Vb"] - 1.0, 2.0, 0.2
-    np.testing.assert_array_equal(dynamics.rhs_branch(t, X1, Y1, X2, Y2, -1, **p),
-                                  dynamics.rhs(t, X1, Y1, X2, Y2, **p))
+    np.testing.assert_array_equal(
+        dynamics.rhs_branch(t, X1, Y1, X2, Y2, -1, **p), dynamics.rhs(t, X1, Y1, X2, Y2, **p)
+    )
     free = dynamics.rhs_branch(t, X1, Y1, X2, Y2, 0, **p)[1]
     with_friction = dynamics.rhs_branch(t, X1, Y1, X2, Y2, 1, **p)[1]
     Fn = dynamics.normal_force(X2, Y2, **p)
@@ -61,8 +67,10 @@ def test_jacobian_branch_matches_finite_differences(rng):
         for j in range(4):
             e = np.zeros(4)
             e[j] = h
-            fd = (dynamics.rhs_branch(0.7, *(x + e), -1, contact=contact, **p)
-                  - dynamics.rhs_branch(0.7, *(x - e), -1, contact=contact, **p)) / (2 * h)
+            fd = (
+                dynamics.rhs_branch(0.7, *(x + e), -1, contact=contact, **p)
+                - dynamics.rhs_branch(0.7, *(x - e), -1, contact=contact, **p)
+            ) / (2 * h)
             np.testing.assert_allclose(J[:, j], fd, rtol=1e-7, atol=1e-7)
 
 
@@ -79,12 +87,19 @@ def test_general_excitation_phase_and_frequencies(base):
     np.testing.assert_allclose(f_n, -1.0 * 36 * np.sin(6 * 0.25), rtol=1e-14)
 
 
-@pytest.mark.parametrize("name,args", [
-    ("rhs", (0.4, 0.1, 2.0, 1.3, -0.2)), ("rhs_branch", (0.4, 0.1, 2.0, 1.3, -0.2, -1)),
-    ("jacobian_branch", (0.4, 0.1, 2.0, 1.3, -0.2, 1)), ("normal_force", (1.3, -0.2)),
-    ("excitation", (0.4,)), ("energy", (0.1, 2.0, 1.3, -0.2)),
-    ("power_balance", (0.4, 0.1, 2.0, 1.3, -0.2, -1)), ("rhs", (0.4, 0.1, 2.0, -0.5, -0.2)),
-])
+@pytest.mark.parametrize(
+    "name,args",
+    [
+        ("rhs", (0.4, 0.1, 2.0, 1.3, -0.2)),
+        ("rhs_branch", (0.4, 0.1, 2.0, 1.3, -0.2, -1)),
+        ("jacobian_branch", (0.4, 0.1, 2.0, 1.3, -0.2, 1)),
+        ("normal_force", (1.3, -0.2)),
+        ("excitation", (0.4,)),
+        ("energy", (0.1, 2.0, 1.3, -0.2)),
+        ("power_balance", (0.4, 0.1, 2.0, 1.3, -0.2, -1)),
+        ("rhs", (0.4, 0.1, 2.0, -0.5, -0.2)),
+    ],
+)
 def test_numpy_matches_mpmath_variant(rng, mp50, name, args):
     for contact in ("hertz_damp", "kelvin_voigt"):
         kw = {} if name == "excitation" else {"contact": contact}
@@ -102,8 +117,6 @@ def test_state_nan_raises(base):
 
 # The functions added with the tension law and the hybrid system ------------------------
 
-import hand_eq4 as H
-
 EPS = np.finfo(float).eps
 
 
@@ -116,8 +129,13 @@ def test_free_acceleration_is_the_tangential_acceleration_without_friction(rng):
         t, X1, Y1 = rng.uniform(-5, 5), rng.normal() * 2, rng.normal() * 3
         got = dynamics.free_acceleration(t, X1, Y1, **p)
         with mpmath.workdps(30):
-            ref = H.a_free(mpmath.mpf(t), mpmath.mpf(X1), mpmath.mpf(Y1),
-                           {k: mpmath.mpf(v) for k, v in p.items()}, m=mpmath)
+            ref = H.a_free(
+                mpmath.mpf(t),
+                mpmath.mpf(X1),
+                mpmath.mpf(Y1),
+                {k: mpmath.mpf(v) for k, v in p.items()},
+                m=mpmath,
+            )
         assert abs(got - float(ref)) <= 16 * EPS * H.a_free_scale(t, X1, Y1, p)
         for X2, tension in [(1.5, "allowed"), (1.5, "clipped"), (-0.5, "allowed")]:
             branch = dynamics.rhs_branch(t, X1, Y1, X2, 0.3, 0, tension=tension, **p)[1]
@@ -152,15 +170,32 @@ def hand_scale(name, t, x, sgn, p, contact):
 
 
 def call_args(name, t, x, sgn):
-    return {"rhs": (t, *x), "rhs_branch": (t, *x, sgn), "jacobian_branch": (t, *x, sgn),
-            "normal_force": tuple(x[2:]), "normal_rhs": (t, *x[2:]),
-            "normal_jacobian": (t, *x[2:]), "energy": tuple(x),
-            "power_balance": (t, *x, sgn)}[name]
+    return {
+        "rhs": (t, *x),
+        "rhs_branch": (t, *x, sgn),
+        "jacobian_branch": (t, *x, sgn),
+        "normal_force": tuple(x[2:]),
+        "normal_rhs": (t, *x[2:]),
+        "normal_jacobian": (t, *x[2:]),
+        "energy": tuple(x),
+        "power_balance": (t, *x, sgn),
+    }[name]
 
 
 @pytest.mark.parametrize("tension", ["allowed", "clipped"])
-@pytest.mark.parametrize("name", ["rhs", "rhs_branch", "jacobian_branch", "normal_force",
-                                  "normal_rhs", "normal_jacobian", "energy", "power_balance"])
+@pytest.mark.parametrize(
+    "name",
+    [
+        "rhs",
+        "rhs_branch",
+        "jacobian_branch",
+        "normal_force",
+        "normal_rhs",
+        "normal_jacobian",
+        "energy",
+        "power_balance",
+    ],
+)
 def test_numpy_matches_mpmath_variant_under_both_tension_laws(rng, mp50, name, tension):
     """The mpmath twin at 50 digits as the reference, at states where Eq. (1) pushes,
     pulls and in flight; numpy within 16 ulps of each entry's terms' scale (hand_eq4)."""
@@ -179,23 +214,34 @@ def test_numpy_matches_mpmath_variant_under_both_tension_laws(rng, mp50, name, t
             assert np.all(err <= 16 * EPS * scale), (contact, i, fast, ref)
 
 
-@pytest.mark.parametrize("name,args", [("free_acceleration", (0.4, 0.1, 2.0)),
-                                       ("excitation", (0.4,))])
+@pytest.mark.parametrize(
+    "name,args", [("free_acceleration", (0.4, 0.1, 2.0)), ("excitation", (0.4,))]
+)
 def test_numpy_matches_mpmath_variant_of_the_excitation_terms(rng, mp50, name, args):
     for _ in range(10):
         p = random_params(rng)
-        p.update(phase_t=rng.uniform(-3, 3), phase_n=rng.uniform(-3, 3),
-                 Omega_n=p["Omega"] * rng.uniform(0.5, 2))
+        p.update(
+            phase_t=rng.uniform(-3, 3),
+            phase_n=rng.uniform(-3, 3),
+            Omega_n=p["Omega"] * rng.uniform(0.5, 2),
+        )
         fast = np.ravel(getattr(dynamics, name)(*args, **p))
         ref = np.array([float(v) for v in np.ravel(getattr(mp_dynamics, name)(*args, **p))])
-        scale = (H.a_free_scale(args[0], args[1], args[2], p) if name == "free_acceleration"
-                 else np.array(H.excitation_scale(args[0], p)))
+        scale = (
+            H.a_free_scale(args[0], args[1], args[2], p)
+            if name == "free_acceleration"
+            else np.array(H.excitation_scale(args[0], p))
+        )
         assert np.all(np.abs(fast - ref) <= 16 * EPS * scale)
 
 
 def test_tension_option_is_checked_by_name(base):
-    for fn, args in [(dynamics.rhs, (0.0, 0.0, 0.0, 1.0, 0.0)), (dynamics.normal_force, (1.0, 0.0)),
-                     (dynamics.normal_rhs, (0.0, 1.0, 0.0)), (mp_dynamics.normal_jacobian, (0.0, 1.0, 0.0))]:
+    for fn, args in [
+        (dynamics.rhs, (0.0, 0.0, 0.0, 1.0, 0.0)),
+        (dynamics.normal_force, (1.0, 0.0)),
+        (dynamics.normal_rhs, (0.0, 1.0, 0.0)),
+        (mp_dynamics.normal_jacobian, (0.0, 1.0, 0.0)),
+    ]:
         with pytest.raises(ValueError, match="tension"):
             fn(*args, tension="elastic", **base)
     with pytest.raises(ValueError, match="tension"):

@@ -1,4 +1,5 @@
 """generated.fit against Eq. (17) typed by hand and against mpmath quadrature."""
+
 import mpmath
 import numpy as np
 import pytest
@@ -18,9 +19,9 @@ def mp_least_squares(X, degree):
     gram = mpmath.matrix(n, n)
     rhs = mpmath.matrix(n, 1)
     for j in range(n):
-        rhs[j] = mpmath.quad(lambda x: x**mpmath.mpf(1.5) * x**j, [0, X])
+        rhs[j] = mpmath.quad(lambda x: x ** mpmath.mpf(1.5) * x**j, [0, X])
         for k in range(n):
-            gram[j, k] = mpmath.quad(lambda x: x**(j + k), [0, X])
+            gram[j, k] = mpmath.quad(lambda x: x ** (j + k), [0, X])
     return list(mpmath.lu_solve(gram, rhs))
 
 
@@ -34,7 +35,7 @@ def test_coefficients_solve_the_continuous_least_squares_problem(mp50, degree):
     X = mpmath.mpf(3)
     ref = mp_least_squares(X, degree)
     got = mp_fit.coefficients(X, degree=degree)
-    assert max(abs(a - b) / abs(b) for a, b in zip(got, ref)) < mpmath.mpf(10)**-35
+    assert max(abs(a - b) / abs(b) for a, b in zip(got, ref)) < mpmath.mpf(10) ** -35
     fast = fit.coefficients(3.0, degree=degree)
     assert max(abs(float(a) - float(b)) / abs(float(b)) for a, b in zip(fast, ref)) < 1e-12
 
@@ -53,9 +54,13 @@ def test_max_error_and_location_against_a_dense_scan(degree):
 def test_rms_error_against_mpmath_quadrature(mp50, degree):
     X = mpmath.mpf(5)
     c = mp_fit.coefficients(X, degree=degree)
-    mean_sq = mpmath.quad(lambda x: (x**mpmath.mpf(1.5) - sum(ck * x**k for k, ck in
-                                                               enumerate(c)))**2, [0, X]) / X
-    assert abs(mp_fit.rms_error(X, degree=degree) - mpmath.sqrt(mean_sq)) < mpmath.mpf(10)**-30
+    mean_sq = (
+        mpmath.quad(
+            lambda x: (x ** mpmath.mpf(1.5) - sum(ck * x**k for k, ck in enumerate(c))) ** 2, [0, X]
+        )
+        / X
+    )
+    assert abs(mp_fit.rms_error(X, degree=degree) - mpmath.sqrt(mean_sq)) < mpmath.mpf(10) ** -30
 
 
 def test_degree_3_largest_error_is_at_zero_and_exact():
@@ -90,8 +95,10 @@ def test_bad_degree_raises(degree):
 
 def test_x2max_of_the_mdsm_scene_is_equilibrium_plus_fast_amplitude(rng):
     """X2max = X2^0 (Eq. 9) + |linear normal response| (normal block of Eq. 11)."""
-    from generated import unforced
     from conftest import random_params
+
+    from generated import unforced
+
     for contact in ("hertz_damp", "kelvin_voigt"):
         p = random_params(rng)
         J = unforced.jacobian_at_equilibrium(contact=contact, **p)[2:, 2:]

@@ -5,6 +5,7 @@ the superposition the period map uses) for periodicity and for finite difference
 the flow; the damped oscillator's own multipliers typed by hand where the friction
 never reverses; scipy's solve_ivp on the normal equation for the normal orbit.
 """
+
 import math
 
 import numpy as np
@@ -25,7 +26,7 @@ PERIODIC = 1e-9
 def test_excitation_period_is_the_common_period():
     p = resolve_parameters()
     assert F.excitation_period(p) == pytest.approx(2 * np.pi / 4.0, rel=1e-15)
-    p = resolve_parameters(Omega_t=6.0, Omega_n=4.0)          # ratio 3/2: period 2 pi / 2
+    p = resolve_parameters(Omega_t=6.0, Omega_n=4.0)  # ratio 3/2: period 2 pi / 2
     assert F.excitation_period(p) == pytest.approx(np.pi, rel=1e-15)
     with pytest.raises(ValueError, match="incommensurate"):
         F.excitation_period(resolve_parameters(Omega_t=4.0 * math.sqrt(2), Omega_n=4.0))
@@ -40,9 +41,9 @@ def test_normal_orbit_is_periodic_and_its_monodromy_is_the_flow_jacobian():
     rhs = dynamics.bind_normal_rhs(backend="python", **p)
 
     def flow(x):
-        sol = solve_ivp(lambda t, y: rhs(t, *y), (0, T), x, method="DOP853", rtol=1e-13,
-                        atol=1e-13)
+        sol = solve_ivp(lambda t, y: rhs(t, *y), (0, T), x, method="DOP853", rtol=1e-13, atol=1e-13)
         return sol.y[:, -1]
+
     x0 = orbit.state0
     np.testing.assert_allclose(flow(x0), x0, rtol=0, atol=1e-10)
     J = np.zeros((2, 2))
@@ -56,10 +57,20 @@ def test_normal_orbit_is_periodic_and_its_monodromy_is_the_flow_jacobian():
     assert np.all(np.abs(orbit.multipliers) < 0.9)
 
 
-@pytest.mark.parametrize("case", [dict(Vb=4.0), dict(Vb=6.0), dict(Vb=2.0),
-                                  dict(Vb=5.0, Omega=10.0), dict(Vb=4.0, tension="clipped"),
-                                  dict(Vb=3.0, contact="kelvin_voigt", omega2=0.5, beta2=3.0)])
-def test_periodic_response_closes_under_the_other_integrator_and_its_monodromy_is_the_flow_jacobian(case):
+@pytest.mark.parametrize(
+    "case",
+    [
+        dict(Vb=4.0),
+        dict(Vb=6.0),
+        dict(Vb=2.0),
+        dict(Vb=5.0, Omega=10.0),
+        dict(Vb=4.0, tension="clipped"),
+        dict(Vb=3.0, contact="kelvin_voigt", omega2=0.5, beta2=3.0),
+    ],
+)
+def test_periodic_response_closes_under_the_other_integrator_and_its_monodromy_is_the_flow_jacobian(
+    case,
+):
     case = dict(case)
     contact = case.pop("contact", "hertz_damp")
     tension = case.pop("tension", "allowed")
@@ -67,10 +78,12 @@ def test_periodic_response_closes_under_the_other_integrator_and_its_monodromy_i
     p, T, x0 = resp.params, resp.period, resp.state0
 
     def flow(y0):
-        tr, _, status, _ = integrate_events(p, contact, tension=tension, y0=y0, t_end=T,
-                                            rtol=1e-13, atol=1e-13)
+        tr, _, status, _ = integrate_events(
+            p, contact, tension=tension, y0=y0, t_end=T, rtol=1e-13, atol=1e-13
+        )
         assert status == "done"
         return tr.state(np.array([T]))[:, 0]
+
     np.testing.assert_allclose(flow(x0), x0, rtol=0, atol=PERIODIC * (1 + np.abs(x0).max()))
     J = np.zeros((4, 4))
     for j in range(4):
@@ -93,14 +106,18 @@ def test_without_reversals_the_multipliers_are_the_damped_oscillators():
     """Sliding throughout, the tangential motion is the linear oscillator: its
     multipliers over one period are exp(lambda T), lambda = -beta1 omega1 +- i omega1
     sqrt(1 - beta1^2)."""
-    for case in (dict(Vb=12.0), dict(Vb=12.0, beta1=0.3, omega1=1.7), dict(Vb=4.0,
-                                                                           tension="clipped")):
+    for case in (
+        dict(Vb=12.0),
+        dict(Vb=12.0, beta1=0.3, omega1=1.7),
+        dict(Vb=4.0, tension="clipped"),
+    ):
         f = F.floquet(**case)
         p = f.response.params
         assert f.n_reversals == 0 and f.n_sticks == 0
-        lam = complex(-p["beta1"] * p["omega1"], p["omega1"] * math.sqrt(1 - p["beta1"]**2))
-        expected = sorted([np.exp(lam * f.period), np.exp(lam.conjugate() * f.period)],
-                          key=lambda z: z.imag)
+        lam = complex(-p["beta1"] * p["omega1"], p["omega1"] * math.sqrt(1 - p["beta1"] ** 2))
+        expected = sorted(
+            [np.exp(lam * f.period), np.exp(lam.conjugate() * f.period)], key=lambda z: z.imag
+        )
         got = sorted(f.multipliers[:2], key=lambda z: z.imag)
         np.testing.assert_allclose(got, expected, rtol=1e-12)
         normal = np.log(np.abs(f.multipliers[2:]).max()) / f.period
@@ -160,8 +177,9 @@ def test_band_edges_are_located_and_match_pointwise_verdicts():
     run = sliding._engine.engine.run(0.0, *sliding.state0[:2], sliding.period)
     vmax = run["segments"](t, np.zeros(t.size, dtype=int))[1].max()
     assert hi == pytest.approx(vmax, abs=2e-3)
-    assert band["no_periodic_response"] and band["no_periodic_response"][0][1] == \
-        pytest.approx(hi, abs=1e-9)
+    assert band["no_periodic_response"] and band["no_periodic_response"][0][1] == pytest.approx(
+        hi, abs=1e-9
+    )
 
 
 def test_bad_input_is_refused_by_name():

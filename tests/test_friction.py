@@ -1,11 +1,12 @@
 """generated.friction against Eqs. (23)-(25) typed by hand, their definition, and mpmath."""
+
 import mpmath
 import numpy as np
 import pytest
+from conftest import random_params
 
 from generated import friction, unforced
 from generated.mp import friction as mp_friction
-from conftest import random_params
 
 
 def eq23(Vr, Vhat, mu_s):
@@ -17,13 +18,14 @@ def eq23(Vr, Vhat, mu_s):
 
 def eq25(Vb, Vhat, mu_s):
     """Eq. (25) as printed (valid for Vb < Vhat)."""
-    return 2 * mu_s / (np.pi * Vhat * np.sqrt(1 - (Vb / Vhat)**2))
+    return 2 * mu_s / (np.pi * Vhat * np.sqrt(1 - (Vb / Vhat) ** 2))
 
 
 def test_mu_bar_is_eq23():
     Vr = np.linspace(-12, 12, 241)
-    np.testing.assert_allclose(friction.mu_bar(Vr, 8.5, 0.4), eq23(Vr, 8.5, 0.4),
-                               rtol=1e-13, atol=1e-15)
+    np.testing.assert_allclose(
+        friction.mu_bar(Vr, 8.5, 0.4), eq23(Vr, 8.5, 0.4), rtol=1e-13, atol=1e-15
+    )
 
 
 @pytest.mark.parametrize("Vr", [-9.0, -7.99, -4.0, -0.3, 0.0, 2.5, 7.9, 11.0])
@@ -32,13 +34,14 @@ def test_mu_bar_is_the_average_of_coulomb_friction_over_a_harmonic_cycle(mp50, V
     Vhat, mu_s = mpmath.mpf(8), mpmath.mpf("0.4")
     Vr = mpmath.mpf(Vr)
     if abs(Vr) < Vhat:
-        cut = mpmath.asin(-Vr / Vhat)      # where the sign changes
+        cut = mpmath.asin(-Vr / Vhat)  # where the sign changes
         points = [-mpmath.pi / 2, cut, mpmath.pi - cut, 3 * mpmath.pi / 2]
     else:
         points = [-mpmath.pi / 2, 3 * mpmath.pi / 2]
-    avg = mpmath.quad(lambda th: mu_s * mpmath.sign(Vr + Vhat * mpmath.sin(th)),
-                      points) / (2 * mpmath.pi)
-    assert abs(mp_friction.mu_bar(Vr, Vhat, mu_s) - avg) < mpmath.mpf(10)**-40
+    avg = mpmath.quad(lambda th: mu_s * mpmath.sign(Vr + Vhat * mpmath.sin(th)), points) / (
+        2 * mpmath.pi
+    )
+    assert abs(mp_friction.mu_bar(Vr, Vhat, mu_s) - avg) < mpmath.mpf(10) ** -40
     # numpy's arccos at <= 4 ulp (<= 8 eps near pi; Vr / 8 is exact), then / pi (and the
     # double pi), 1 + and mu_s *: |error| <= 8.1 eps mu_s = 7.2e-16 on any CPU
     assert friction.mu_bar(float(Vr), 8.0, 0.4) == pytest.approx(float(avg), abs=1e-15)
@@ -58,11 +61,10 @@ def test_mu_bar0_is_mu_bar_at_minus_vb():
 
 def test_slope_is_eq25_and_the_derivative_of_eq23(mp50):
     Vb = np.linspace(0, 8, 17)
-    np.testing.assert_allclose(friction.mu_bar_slope(Vb, 8.5, 0.4), eq25(Vb, 8.5, 0.4),
-                               rtol=1e-14)
+    np.testing.assert_allclose(friction.mu_bar_slope(Vb, 8.5, 0.4), eq25(Vb, 8.5, 0.4), rtol=1e-14)
     for v in (0.5, 4.0, 8.4):
         d = mpmath.diff(lambda x: mp_friction.mu_bar(x, 8.5, "0.4"), -mpmath.mpf(v))
-        assert abs(mp_friction.mu_bar_slope(v, 8.5, "0.4") - d) < mpmath.mpf(10)**-30
+        assert abs(mp_friction.mu_bar_slope(v, 8.5, "0.4") - d) < mpmath.mpf(10) ** -30
 
 
 def test_slope_as_vb_approaches_vhat_from_below(mp50):
@@ -70,7 +72,7 @@ def test_slope_as_vb_approaches_vhat_from_below(mp50):
     Vhat = 8.5
     for k in range(2, 16):
         Vb = Vhat * (1 - 10.0**-k)
-        exact = mp_friction.mu_bar_slope(Vb, Vhat, "0.4")   # exact input, 50 digits
+        exact = mp_friction.mu_bar_slope(Vb, Vhat, "0.4")  # exact input, 50 digits
         got = friction.mu_bar_slope(Vb, Vhat, 0.4)
         assert np.isfinite(got)
         assert abs(got - float(exact)) / float(exact) < 1e-13
@@ -119,7 +121,8 @@ def test_vhat_coupled_against_linear_algebra(rng, contact, extra):
     for _ in range(10):
         p = {**random_params(rng), **extra}
         assert friction.vhat(model="coupled", contact=contact, **p) == pytest.approx(
-            coupled_by_linear_algebra(p, contact), rel=1e-11)
+            coupled_by_linear_algebra(p, contact), rel=1e-11
+        )
 
 
 def test_vhat_readings_differ_at_the_base_set(base):
@@ -129,10 +132,16 @@ def test_vhat_readings_differ_at_the_base_set(base):
     assert abs(friction.vhat(model="coupled", **base) - tangential) > 1.0
 
 
-@pytest.mark.parametrize("fn,args", [
-    ("mu_bar", (-3.0, 8.5, 0.4)), ("mu_bar", (12.0, 8.5, 0.4)), ("mu_bar0", (3.0, 8.5, 0.4)),
-    ("mu_bar_slope", (3.0, 8.5, 0.4)), ("mu_bar_slope", (9.0, 8.5, 0.4)),
-])
+@pytest.mark.parametrize(
+    "fn,args",
+    [
+        ("mu_bar", (-3.0, 8.5, 0.4)),
+        ("mu_bar", (12.0, 8.5, 0.4)),
+        ("mu_bar0", (3.0, 8.5, 0.4)),
+        ("mu_bar_slope", (3.0, 8.5, 0.4)),
+        ("mu_bar_slope", (9.0, 8.5, 0.4)),
+    ],
+)
 def test_numpy_matches_mpmath_variant(mp50, fn, args):
     fast = getattr(friction, fn)(*args)
     ref = getattr(mp_friction, fn)(*args)
@@ -144,11 +153,19 @@ def test_vhat_matches_mpmath_variant(mp50, rng, model):
     for _ in range(10):
         p = random_params(rng)
         assert friction.vhat(model=model, **p) == pytest.approx(
-            float(mp_friction.vhat(model=model, **p)), rel=1e-12)
+            float(mp_friction.vhat(model=model, **p)), rel=1e-12
+        )
 
 
-@pytest.mark.parametrize("args,name", [((1.0, -8.5, 0.4), "'Vhat'"), ((1.0, 8.5, -0.4), "'mu_s'"),
-                                       ((-1.0, 8.5, 0.4), "'Vb'"), ((np.nan, 8.5, 0.4), "'Vb'")])
+@pytest.mark.parametrize(
+    "args,name",
+    [
+        ((1.0, -8.5, 0.4), "'Vhat'"),
+        ((1.0, 8.5, -0.4), "'mu_s'"),
+        ((-1.0, 8.5, 0.4), "'Vb'"),
+        ((np.nan, 8.5, 0.4), "'Vb'"),
+    ],
+)
 def test_bad_input_raises_naming_the_parameter(args, name):
     with pytest.raises(ValueError, match=name):
         friction.mu_bar_slope(*args)

@@ -12,38 +12,41 @@ the sum of the absolute values of its terms (its *scale*), which hand_eq4 comput
 alongside each value. A quotient adds the relative error of its denominator, scaled by
 the quotient.
 """
+
 import itertools
 
+import hand_eq4 as H
 import mpmath
 import numpy as np
 import pytest
+from conftest import random_params
 from scipy.integrate import solve_ivp
 
-import hand_eq4 as H
-from conftest import random_params
 from generated import dynamics, hybrid
 from generated.mp import hybrid as mp_hybrid
 from generated.parameters import BASE
 
 EPS = H.EPS
 ULPS = 16
-SURFACES = ("relative_velocity", "stick_forward", "stick_back", "penetration",
-            "contact_force")
+SURFACES = ("relative_velocity", "stick_forward", "stick_back", "penetration", "contact_force")
 MODE_NAMES = tuple(H.MODES)
 
 
 def hybrid_params(rng):
     """Random parameters with a per-direction excitation (each direction its own)."""
     p = random_params(rng)
-    p.update(alpha_n=p["alpha"] * rng.uniform(0.3, 2), Omega_n=p["Omega"] * rng.uniform(0.5, 2),
-             phase_t=rng.uniform(-3, 3), phase_n=rng.uniform(-3, 3))
+    p.update(
+        alpha_n=p["alpha"] * rng.uniform(0.3, 2),
+        Omega_n=p["Omega"] * rng.uniform(0.5, 2),
+        phase_t=rng.uniform(-3, 3),
+        phase_n=rng.uniform(-3, 3),
+    )
     return p
 
 
 def random_state(rng, contact=True):
     X2 = rng.uniform(0.05, 3.0) if contact else -rng.uniform(0.05, 2.0)
-    return rng.uniform(-5, 5), np.array([rng.normal() * 2, rng.normal() * 3, X2,
-                                         rng.normal() * 2])
+    return rng.uniform(-5, 5), np.array([rng.normal() * 2, rng.normal() * 3, X2, rng.normal() * 2])
 
 
 def mp_args(t, x, p):
@@ -70,15 +73,32 @@ def assert_within(got, ref, bound, what=""):
 
 # Constants and guards ------------------------------------------------------------------
 
+
 def test_mode_codes_fields_and_surface_order():
-    assert hybrid.MODE_CODES == {"slip_back": -1, "stick": 0, "slip_forward": 1,
-                                 "flight": 2, "separated": 3}
-    assert hybrid.FIELDS == {"slip_back": "slip_back", "stick": "stick",
-                             "slip_forward": "slip_forward", "flight": "free",
-                             "separated": "free"}
+    assert hybrid.MODE_CODES == {
+        "slip_back": -1,
+        "stick": 0,
+        "slip_forward": 1,
+        "flight": 2,
+        "separated": 3,
+    }
+    assert hybrid.FIELDS == {
+        "slip_back": "slip_back",
+        "stick": "stick",
+        "slip_forward": "slip_forward",
+        "flight": "free",
+        "separated": "free",
+    }
     assert hybrid.SURFACES == SURFACES
-    for name in ("MODE_CODES", "FIELDS", "SURFACES", "DECIDE_SLIP", "DECIDE_CONTACT",
-                 "GUARDS", "TRANSITIONS"):
+    for name in (
+        "MODE_CODES",
+        "FIELDS",
+        "SURFACES",
+        "DECIDE_SLIP",
+        "DECIDE_CONTACT",
+        "GUARDS",
+        "TRANSITIONS",
+    ):
         assert getattr(mp_hybrid, name) == getattr(hybrid, name), name
 
 
@@ -116,32 +136,49 @@ def expand(tension, before, target):
 
 
 def test_transitions_are_exactly_the_switches_the_guards_reach_and_all_have_saltation():
-    reached = {(before, after, surface)
-               for tension, table in hybrid.GUARDS.items()
-               for before, guards in table.items()
-               for surface, _, target in guards
-               for after in expand(tension, before, target)}
+    reached = {
+        (before, after, surface)
+        for tension, table in hybrid.GUARDS.items()
+        for before, guards in table.items()
+        for surface, _, target in guards
+        for after in expand(tension, before, target)
+    }
     assert reached == set(hybrid.TRANSITIONS)
     t, x = 0.3, (0.1, 2.0, 1.3, 0.4)
     for (before, after, surface), contact in itertools.product(reached, H.CONTACTS):
-        S = hybrid.saltation(t, *x, before=before, after=after, surface=surface,
-                             contact=contact, **BASE)
+        S = hybrid.saltation(
+            t, *x, before=before, after=after, surface=surface, contact=contact, **BASE
+        )
         assert S.shape == (4, 4) and np.all(np.isfinite(S)), (before, after, surface)
-        hybrid.bind_saltation(before=before, after=after, surface=surface,
-                              contact=contact, backend="python", **BASE)
+        hybrid.bind_saltation(
+            before=before, after=after, surface=surface, contact=contact, backend="python", **BASE
+        )
 
 
 def test_a_switch_no_run_takes_is_rejected_by_name():
-    with pytest.raises(ValueError, match="no variant for before='flight', "
-                                         "after='stick', surface='relative_velocity'"):
-        hybrid.saltation(0.0, 0.0, 0.0, 1.0, 0.0, before="flight", after="stick",
-                         surface="relative_velocity", **BASE)
+    with pytest.raises(
+        ValueError,
+        match="no variant for before='flight', after='stick', surface='relative_velocity'",
+    ):
+        hybrid.saltation(
+            0.0,
+            0.0,
+            0.0,
+            1.0,
+            0.0,
+            before="flight",
+            after="stick",
+            surface="relative_velocity",
+            **BASE,
+        )
     with pytest.raises(ValueError, match="no variant"):
-        hybrid.bind_saltation(before="slip_back", after="slip_forward",
-                              surface="penetration", **BASE)
+        hybrid.bind_saltation(
+            before="slip_back", after="slip_forward", surface="penetration", **BASE
+        )
     with pytest.raises(ValueError, match="no variant"):
-        mp_hybrid.saltation(0.0, 0.0, 0.0, 1.0, 0.0, before="stick", after="stick",
-                            surface="stick_back", **BASE)
+        mp_hybrid.saltation(
+            0.0, 0.0, 0.0, 1.0, 0.0, before="stick", after="stick", surface="stick_back", **BASE
+        )
     with pytest.raises(ValueError, match="before"):
         hybrid.saltation(0.0, 0.0, 0.0, 1.0, 0.0, before="hover", **BASE)
     with pytest.raises(ValueError, match="contact"):
@@ -161,11 +198,12 @@ def state_in_mode(mode, rng, p, contact):
         elif mode == "stick":
             x[1] = p["Vb"]
             F = H.force(x[2], x[3], p, contact)
-            target = rng.uniform(-0.9, 0.9) * p["mu_s"] * F      # a_free inside the cone
-            x[0] = (H.a_free(t, 0.0, x[1], p) - target) / p["omega1"]**2
+            target = rng.uniform(-0.9, 0.9) * p["mu_s"] * F  # a_free inside the cone
+            x[0] = (H.a_free(t, 0.0, x[1], p) - target) / p["omega1"] ** 2
         elif mode == "separated":
-            x[3] = -abs(x[3]) - p["omega2"] * (1 if contact == "hertz_damp" else x[2]) \
-                / (2 * p["beta2"])
+            x[3] = -abs(x[3]) - p["omega2"] * (1 if contact == "hertz_damp" else x[2]) / (
+                2 * p["beta2"]
+            )
         F = H.force(x[2], x[3], p, contact)
         if mode == "separated" and F < 0 or mode == "flight" or F > 0:
             return t, x
@@ -188,6 +226,7 @@ def test_guard_directions_leave_the_mode(rng, tension, contact):
 
 # Vector fields, surfaces, scales, rates -------------------------------------------------
 
+
 @pytest.mark.parametrize("contact", H.CONTACTS)
 def test_vector_field_of_each_mode_is_the_hand_field(rng, contact):
     for _ in range(20):
@@ -196,8 +235,7 @@ def test_vector_field_of_each_mode_is_the_hand_field(rng, contact):
         for name, code in H.MODES.items():
             got = hybrid.vector_field(t, *x, code, contact=contact, **p)
             with mpmath.workdps(30):
-                ref = H.field(name, *mp_args(t, x, p)[:2], mp_args(t, x, p)[2], contact,
-                              m=mpmath)
+                ref = H.field(name, *mp_args(t, x, p)[:2], mp_args(t, x, p)[2], contact, m=mpmath)
             scale = H.field_scale(name, t, x, p, contact)
             assert_within(got, ref, ULPS * EPS * np.array(scale), f"{name} {contact}")
 
@@ -260,7 +298,7 @@ def test_contact_force_surface_has_the_sign_of_the_force(rng, contact):
         x[3] = rng.uniform(-3, 1) * p["omega2"] / (2 * p["beta2"])
         h = hybrid.surfaces(t, *x, contact=contact, **p)[4]
         F = H.force(x[2], x[3], p, contact)
-        factor = p["omega2"] * (x[2]**1.5 if contact == "hertz_damp" else 1.0)
+        factor = p["omega2"] * (x[2] ** 1.5 if contact == "hertz_damp" else 1.0)
         # F and h factor: each a few ulps of the force's terms' scale
         assert abs(h * factor - F) <= ULPS * EPS * H.force_scale(x[2], x[3], p, contact)
         if abs(F) > 1e-8 * H.force_scale(x[2], x[3], p, contact):
@@ -286,19 +324,33 @@ def test_surface_scales_are_the_sums_of_absolute_terms(rng, contact):
         np.testing.assert_allclose(scale, H.surface_scales(t, x, p, contact), rtol=8 * EPS)
         with mpmath.workdps(30):
             exact = H.surfaces(*mp_args(t, x, p)[:2], mp_args(t, x, p)[2], contact, m=mpmath)
-        assert_within(h, exact, 4 * EPS * np.array(H.surface_scales(t, x, p, contact)),
-                      "h against its scale with the argument's rounding")
+        assert_within(
+            h,
+            exact,
+            4 * EPS * np.array(H.surface_scales(t, x, p, contact)),
+            "h against its scale with the argument's rounding",
+        )
     # one case by hand: Hertz-Damp or Kelvin-Voigt at a state in contact
     p = dict(BASE, phase_t=0.5)
     t, X1, Y1, X2, Y2 = 0.2, -1.5, 2.5, 4.0, -0.5
     b1, w1, b2, w2, mu, a, W = 0.1, 1.0, 0.15, 0.5, 0.4, 2.0, 4.0
-    F_terms = (w2**2 * 8 + 2 * b2 * w2 * 0.5 * 8 if contact == "hertz_damp"
-               else w2**2 * 4 + 2 * b2 * w2 * 0.5)
-    stick = (a * W**2 * (abs(np.sin(W * t + 0.5)) + (W * t + 0.5) * abs(np.cos(W * t + 0.5)))
-             + 2 * b1 * w1 * 2.5 + w1**2 * 1.5 + mu * F_terms)
+    F_terms = (
+        w2**2 * 8 + 2 * b2 * w2 * 0.5 * 8
+        if contact == "hertz_damp"
+        else w2**2 * 4 + 2 * b2 * w2 * 0.5
+    )
+    stick = (
+        a * W**2 * (abs(np.sin(W * t + 0.5)) + (W * t + 0.5) * abs(np.cos(W * t + 0.5)))
+        + 2 * b1 * w1 * 2.5
+        + w1**2 * 1.5
+        + mu * F_terms
+    )
     sign_F = w2 + 2 * b2 * 0.5 if contact == "hertz_damp" else w2 * 4 + 2 * b2 * 0.5
-    np.testing.assert_allclose(hybrid.surface_scales(t, X1, Y1, X2, Y2, contact=contact, **p),
-                               (2.5 + 4.0, stick, stick, 4.0, sign_F), rtol=8 * EPS)
+    np.testing.assert_allclose(
+        hybrid.surface_scales(t, X1, Y1, X2, Y2, contact=contact, **p),
+        (2.5 + 4.0, stick, stick, 4.0, sign_F),
+        rtol=8 * EPS,
+    )
 
 
 @pytest.mark.parametrize("contact", H.CONTACTS)
@@ -320,6 +372,7 @@ def test_surface_scales_bound_the_rounding_of_h_at_late_times(rng, contact):
         worst = max(worst, float(np.max(err / (EPS * scale))))
     assert worst <= 8, f"h off by {worst:.0f} ulps of its scale"
 
+
 rate_scale = H.rate_scale
 
 
@@ -333,12 +386,15 @@ def test_surface_rates_are_the_chain_rule_with_hand_derivatives(rng, contact):
             with mpmath.workdps(30):
                 tm, xm, pm = mp_args(t, x, p)
                 f = H.field(name, tm, xm, pm, contact, m=mpmath)
-                ref = [ht + sum(ni * fi for ni, fi in zip(n, f))
-                       for ht, n in H.surface_gradients(tm, xm, pm, contact, m=mpmath)]
+                ref = [
+                    ht + sum(ni * fi for ni, fi in zip(n, f))
+                    for ht, n in H.surface_gradients(tm, xm, pm, contact, m=mpmath)
+                ]
             # the rate multiplies entries of the field by entries of the gradient,
             # each a few ulps of its scale: 2 x ULPS
-            assert_within(got, ref, 2 * ULPS * EPS * rate_scale(name, t, x, p, contact),
-                          f"{name} {contact}")
+            assert_within(
+                got, ref, 2 * ULPS * EPS * rate_scale(name, t, x, p, contact), f"{name} {contact}"
+            )
 
 
 @pytest.mark.parametrize("contact", H.CONTACTS)
@@ -362,12 +418,19 @@ def test_surface_rates_are_time_derivatives_along_the_integrated_field(rng, mode
         def derivative(d):
             hs = {}
             for sign in (1, -1):
-                sol = solve_ivp(lambda t, x: H.field(mode, t, x, p, contact),
-                                (t0, t0 + sign * 2 * d), x0, method="DOP853", rtol=1e-13,
-                                atol=1e-13, t_eval=[t0 + sign * d, t0 + sign * 2 * d])
+                sol = solve_ivp(
+                    lambda t, x: H.field(mode, t, x, p, contact),
+                    (t0, t0 + sign * 2 * d),
+                    x0,
+                    method="DOP853",
+                    rtol=1e-13,
+                    atol=1e-13,
+                    t_eval=[t0 + sign * d, t0 + sign * 2 * d],
+                )
                 for k, (tk, xk) in enumerate(zip(sol.t, sol.y.T), start=1):
                     hs[sign * k] = np.array(H.surfaces(tk, xk, p, contact))
             return (8 * (hs[1] - hs[-1]) - (hs[2] - hs[-2])) / (12 * d)
+
         coarse, fine = derivative(d), derivative(d / 2)
         got = np.array(hybrid.surface_rates(t0, *x0, H.MODES[mode], contact=contact, **p))
         scale = rate_scale(mode, t0, x0, p, contact)
@@ -378,10 +441,13 @@ def test_surface_rates_are_time_derivatives_along_the_integrated_field(rng, mode
 
 # Saltation matrices -----------------------------------------------------------------------
 
+
 def saltation_bound(before, after, surface, t, x, p, contact, S_ref, rate):
     """ULPS ulps of each entry's rounding scale (hand_eq4.saltation_scale)."""
-    return ULPS * EPS * H.saltation_scale(before, after, surface, t, x, p, contact,
-                                          S_ref, rate) + 1e-300
+    return (
+        ULPS * EPS * H.saltation_scale(before, after, surface, t, x, p, contact, S_ref, rate)
+        + 1e-300
+    )
 
 
 @pytest.mark.parametrize("contact", H.CONTACTS)
@@ -394,9 +460,10 @@ def test_saltation_is_the_hand_formula_for_every_transition(rng, contact):
                 tm, xm, pm = mp_args(t, x, p)
                 S_ref, rate = H.saltation(before, after, surface, tm, xm, pm, contact, m=mpmath)
             if abs(rate) < 1e-3 * rate_scale(before, t, x, p, contact)[SURFACES.index(surface)]:
-                continue        # next to grazing: S is ill-conditioned
-            got = hybrid.saltation(t, *x, before=before, after=after, surface=surface,
-                                   contact=contact, **p)
+                continue  # next to grazing: S is ill-conditioned
+            got = hybrid.saltation(
+                t, *x, before=before, after=after, surface=surface, contact=contact, **p
+            )
             bound = saltation_bound(before, after, surface, t, x, p, contact, S_ref, rate)
             assert_within(got, S_ref, bound, f"{before}->{after} at {surface}, {contact}")
 
@@ -415,8 +482,9 @@ def test_saltation_of_a_reversal_scales_the_velocity_perturbation(rng, contact):
                 a = H.a_free(tm, xm[0], xm[1], pm, m=mpmath)
                 F = H.force(xm[2], xm[3], pm, contact)
                 a_b, a_a = a - pm["mu_s"] * s_b * F, a - pm["mu_s"] * s_a * F
-            S = hybrid.saltation(t, *x, before=before, after=after,
-                                 surface="relative_velocity", contact=contact, **p)
+            S = hybrid.saltation(
+                t, *x, before=before, after=after, surface="relative_velocity", contact=contact, **p
+            )
             expected = np.eye(4)
             expected[1, 1] = float(a_a / a_b)
             scale = H.a_free_scale(t, *x[:2], p) + p["mu_s"] * H.force_scale(x[2], x[3], p, contact)
@@ -438,18 +506,32 @@ def test_saltation_of_stick_onset_removes_the_velocity_perturbation(rng, contact
             t, x = random_state(rng)
             s = H.MODES[before]
             a_b = H.a_free(t, x[0], x[1], p) - p["mu_s"] * s * H.force(x[2], x[3], p, contact)
-            S = hybrid.saltation(t, *x, before=before, after="stick",
-                                 surface="relative_velocity", contact=contact, **p)
+            S = hybrid.saltation(
+                t,
+                *x,
+                before=before,
+                after="stick",
+                surface="relative_velocity",
+                contact=contact,
+                **p,
+            )
             scale = H.a_free_scale(t, *x[:2], p) + p["mu_s"] * H.force_scale(x[2], x[3], p, contact)
-            rel = ULPS * EPS * scale / abs(a_b)     # relative error of a_before
+            rel = ULPS * EPS * scale / abs(a_b)  # relative error of a_before
             expected = np.eye(4)
             expected[1, 1] = 0.0
             expected[0, 1] = (p["Vb"] - x[1]) / a_b
             assert np.all(np.abs(S - expected) <= rel * (np.abs(expected) + np.eye(4)))
             x_on = x.copy()
             x_on[1] = p["Vb"]
-            S_on = hybrid.saltation(t, *x_on, before=before, after="stick",
-                                    surface="relative_velocity", contact=contact, **p)
+            S_on = hybrid.saltation(
+                t,
+                *x_on,
+                before=before,
+                after="stick",
+                surface="relative_velocity",
+                contact=contact,
+                **p,
+            )
             assert S_on[0, 1] == 0 and np.all(np.abs(S_on[1]) <= rel)
 
 
@@ -464,8 +546,15 @@ def test_saltation_of_kelvin_voigt_lift_off(rng):
         for s in (-1, 1):
             mode = "slip_back" if s < 0 else "slip_forward"
             for before, after, sign in ((mode, "flight", 1), ("flight", mode, -1)):
-                S = hybrid.saltation(t, *x, before=before, after=after, surface="penetration",
-                                     contact="kelvin_voigt", **p)
+                S = hybrid.saltation(
+                    t,
+                    *x,
+                    before=before,
+                    after=after,
+                    surface="penetration",
+                    contact="kelvin_voigt",
+                    **p,
+                )
                 expected = np.eye(4)
                 expected[1, 2] = sign * 2 * p["mu_s"] * s * p["beta2"] * p["omega2"]
                 expected[3, 2] = sign * 2 * p["beta2"] * p["omega2"]
@@ -480,7 +569,7 @@ def on_surface(kind, rng, p, contact):
         x[1] = p["Vb"]
         muF = p["mu_s"] * H.force(x[2], x[3], p, contact)
         a_target = muF if kind == "stick_forward" else -muF
-        x[0] = (H.a_free(t, 0.0, x[1], p) - a_target) / p["omega1"]**2
+        x[0] = (H.a_free(t, 0.0, x[1], p) - a_target) / p["omega1"] ** 2
     elif kind == "contact_force":
         x[3] = -p["omega2"] * (1 if contact == "hertz_damp" else x[2]) / (2 * p["beta2"])
     elif kind == "penetration":
@@ -505,22 +594,25 @@ IDENTITY_SWITCHES = [
 
 
 @pytest.mark.parametrize("before,after,surface,contacts", IDENTITY_SWITCHES)
-def test_saltation_is_identity_where_the_fields_agree_on_the_surface(rng, before, after,
-                                                                     surface, contacts):
+def test_saltation_is_identity_where_the_fields_agree_on_the_surface(
+    rng, before, after, surface, contacts
+):
     """On the surface f+ = f-, so S = I: up to the rounding of the constructed state's
     h (a few ulps of its scale), which enters f+ - f- and is divided by the rate."""
     for contact in contacts:
         for _ in range(10):
             p = hybrid_params(rng)
             t, x = on_surface(surface, rng, p, contact)
-            S = hybrid.saltation(t, *x, before=before, after=after, surface=surface,
-                                 contact=contact, **p)
+            S = hybrid.saltation(
+                t, *x, before=before, after=after, surface=surface, contact=contact, **p
+            )
             S_ref, rate = H.saltation(before, after, surface, t, x, p, contact)
             h_scale = H.surface_scales(t, x, p, contact)[SURFACES.index(surface)]
-            n = np.array(H.surface_gradients(t, x, p, contact, absolute=True)
-                         [SURFACES.index(surface)][1])
+            n = np.array(
+                H.surface_gradients(t, x, p, contact, absolute=True)[SURFACES.index(surface)][1]
+            )
             Fs = p["mu_s"] * H.force_scale(x[2], x[3], p, contact)
-            jump_scale = (h_scale + Fs) * (1 + p["mu_s"])      # |f+ - f-| on the surface
+            jump_scale = (h_scale + Fs) * (1 + p["mu_s"])  # |f+ - f-| on the surface
             tol = ULPS * EPS * jump_scale * n / abs(rate)
             assert np.all(np.abs(S - np.eye(4)) <= tol[None, :]), (contact, S)
 
@@ -554,17 +646,22 @@ def test_mpmath_twins_of_fields_surfaces_scales_and_rates_agree(rng, mp50, conta
             ref = mp_hybrid.surface_rates(t, *x, code, contact=contact, **p)
             assert_within(got, ref, 2 * ULPS * EPS * rate_scale(name, t, x, p, contact))
         scale = np.array(H.surface_scales(t, x, p, contact))
-        assert_within(hybrid.surfaces(t, *x, contact=contact, **p),
-                      mp_hybrid.surfaces(t, *x, contact=contact, **p), ULPS * EPS * scale)
+        assert_within(
+            hybrid.surfaces(t, *x, contact=contact, **p),
+            mp_hybrid.surfaces(t, *x, contact=contact, **p),
+            ULPS * EPS * scale,
+        )
         # the scale holds |cos| of the rounded argument theta = Omega_t t + phase_t times
         # the argument's own scale: its rounding moves it by eps theta_scale^2 times the
         # amplitude (stick surfaces only)
         q = H.full(p)
         theta = abs(q["Omega_t"] * t) + abs(q["phase_t"])
-        argument = EPS * q["alpha_t"] * q["Omega_t"]**2 * theta**2 * np.array([0, 1, 1, 0, 0])
-        assert_within(hybrid.surface_scales(t, *x, contact=contact, **p),
-                      mp_hybrid.surface_scales(t, *x, contact=contact, **p),
-                      8 * EPS * scale + argument)
+        argument = EPS * q["alpha_t"] * q["Omega_t"] ** 2 * theta**2 * np.array([0, 1, 1, 0, 0])
+        assert_within(
+            hybrid.surface_scales(t, *x, contact=contact, **p),
+            mp_hybrid.surface_scales(t, *x, contact=contact, **p),
+            8 * EPS * scale + argument,
+        )
 
 
 # Saltation against the simulated flow ----------------------------------------------------
@@ -575,14 +672,17 @@ ODE = dict(method="DOP853", rtol=1e-13, atol=1e-13)
 def run_mode(mode, contact, p, t0, t1, x0, stop=None):
     """Integrate the hand-typed field of ``mode``; with ``stop = (surface, direction)``
     until that surface is crossed, returning the crossing (t_s, x_s)."""
+
     def f(t, x):
         return H.field(mode, t, x, p, contact)
+
     if stop is None:
         return solve_ivp(f, (t0, t1), x0, **ODE).y[:, -1]
     k, direction = SURFACES.index(stop[0]), stop[1]
 
     def event(t, x):
         return H.surfaces(t, x, p, contact)[k]
+
     event.terminal, event.direction = True, direction
     sol = solve_ivp(f, (t0, t1), x0, events=event, **ODE)
     assert sol.status == 1, "the run does not reach the surface"
@@ -606,10 +706,13 @@ def mode_jacobian(mode, t, x, p, contact):
 
 def variational(mode, contact, p, t0, t1, x0):
     """Phi(t1, t0) of the mode's field, from the variational equation."""
+
     def f(t, z):
         x, Phi = z[:4], z[4:].reshape(4, 4)
-        return np.concatenate([H.field(mode, t, x, p, contact),
-                               (mode_jacobian(mode, t, x, p, contact) @ Phi).ravel()])
+        return np.concatenate(
+            [H.field(mode, t, x, p, contact), (mode_jacobian(mode, t, x, p, contact) @ Phi).ravel()]
+        )
+
     z = solve_ivp(f, (t0, t1), np.concatenate([x0, np.eye(4).ravel()]), **ODE).y[:, -1]
     return z[4:].reshape(4, 4)
 
@@ -619,11 +722,12 @@ def switch_case(name):
     that the run from x0 crosses transversally between t0 and t1."""
     t0 = 0.2
     p = dict(BASE, alpha=0.1)
-    X2e = (p["g"] / p["omega2"]**2)**(2 / 3)                   # Eq. (9)
+    X2e = (p["g"] / p["omega2"] ** 2) ** (2 / 3)  # Eq. (9)
     Vb = p["Vb"]
 
-    def X1_for(a_free, Y1):                                     # X1 with that a_free at t0
-        return (H.a_free(t0, 0.0, Y1, p) - a_free) / p["omega1"]**2
+    def X1_for(a_free, Y1):  # X1 with that a_free at t0
+        return (H.a_free(t0, 0.0, Y1, p) - a_free) / p["omega1"] ** 2
+
     if name.startswith("reversal"):
         # a_free ~ 10 > mu F ~ 4.6: both slip accelerations positive, so slip_back
         # reaches Vr = 0 and slip_forward leaves it (transversal reversal)
@@ -643,15 +747,33 @@ def switch_case(name):
         return "stick", "slip_back", "stick_back", -1, "hertz_damp", p, t0, t0 + 0.3, x0
     if name.startswith("lift_off"):
         contact = name.split("-")[1]
-        q = dict(p, beta2=1.0)      # Kelvin-Voigt: F = 2 b2 w2 Y2 = -2 at X2 = 0
-        return ("slip_back", "flight", "penetration", -1, contact, q, t0, t0 + 0.2,
-                [0.5, 0.0, 0.02, -2.0])
+        q = dict(p, beta2=1.0)  # Kelvin-Voigt: F = 2 b2 w2 Y2 = -2 at X2 = 0
+        return (
+            "slip_back",
+            "flight",
+            "penetration",
+            -1,
+            contact,
+            q,
+            t0,
+            t0 + 0.2,
+            [0.5, 0.0, 0.02, -2.0],
+        )
     if name == "separation":
         # Hertz-Damp, clipped law: F = 0 where Y2 = -omega2 / (2 beta2) = -5/3; a strong
         # normal excitation (f_n ~ -31 at t0) drives Y2 down through it
         q = dict(BASE)
-        return ("slip_back", "separated", "contact_force", -1, "hertz_damp", q, 0.35, 0.45,
-                [0.0, 0.0, 1.0, -1.5])
+        return (
+            "slip_back",
+            "separated",
+            "contact_force",
+            -1,
+            "hertz_damp",
+            q,
+            0.35,
+            0.45,
+            [0.0, 0.0, 1.0, -1.5],
+        )
     raise KeyError(name)
 
 
@@ -661,8 +783,15 @@ def composite_flow(x0, case):
     return run_mode(after, contact, p, t_s, t1, x_s), t_s, x_s
 
 
-SWITCHES = ["reversal-hertz_damp", "reversal-kelvin_voigt", "stick_onset", "stick_end",
-            "lift_off-kelvin_voigt", "lift_off-hertz_damp", "separation"]
+SWITCHES = [
+    "reversal-hertz_damp",
+    "reversal-kelvin_voigt",
+    "stick_onset",
+    "stick_end",
+    "lift_off-kelvin_voigt",
+    "lift_off-hertz_damp",
+    "separation",
+]
 
 
 @pytest.mark.parametrize("name", SWITCHES)
@@ -692,8 +821,9 @@ def test_saltation_matches_finite_differences_of_the_simulated_flow(name):
         J[:, k] = (composite_flow(x0 + e, case)[0] - composite_flow(x0 - e, case)[0]) / (2 * h)
     Phi_before = variational(before, contact, p, t0, t_s, x0)
     Phi_after = variational(after, contact, p, t_s, t1, x_s)
-    S = hybrid.saltation(t_s, *x_s, before=before, after=after, surface=surface,
-                         contact=contact, **p)
+    S = hybrid.saltation(
+        t_s, *x_s, before=before, after=after, surface=surface, contact=contact, **p
+    )
     tol = 1e-7 * max(1.0, np.abs(J).max())
     predicted = Phi_after @ S @ Phi_before
     assert np.abs(J - predicted).max() <= tol, (J, predicted)

@@ -1,4 +1,5 @@
 """runtime.intervals: runs over a grid, crossings, set algebra, formatting."""
+
 import numpy as np
 import pytest
 
@@ -94,7 +95,9 @@ def test_the_notebook_helpers_are_the_interval_functions():
     a, b = [(0.0, 2.0), (4.0, 5.0)], [(1.0, 4.5)]
     assert nb.overlap(a, b) == iv.jaccard(a, b) == pytest.approx(1.5 / 5.0)
     assert nb.fmt_ranges(a, 1) == "[0.0, 2.0], [4.0, 5.0]" and nb.fmt_ranges([]) == "none"
-    scan = {"param": "Vb", "Vb": np.array([1.0, 2.0, 3.0]),
-            "omega1_peak_present": np.array([True, False, True])}
+    scan = {
+        "param": "Vb",
+        "Vb": np.array([1.0, 2.0, 3.0]),
+        "omega1_peak_present": np.array([True, False, True]),
+    }
     assert nb.peak_ranges(scan) == [(1.0, 1.0), (3.0, 3.0)]
-

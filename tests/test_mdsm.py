@@ -1,4 +1,5 @@
 """The MDSM split (Eqs. 13-21, A1-A2): averaging rules, bookkeeping, sizes."""
+
 import mpmath
 import pytest
 import sympy as sp
@@ -15,8 +16,12 @@ Z1, Z2, tau = mdsm.Z1, mdsm.Z2, mdsm.tau
 def test_slow_equations_are_eqs_18_19_as_printed():
     cubic = sum(ck * Z2**k for k, ck in enumerate(mdsm.c))
     Z1d, Z2d = sp.diff(Z1, tau), sp.diff(Z2, tau)
-    eq18 = (sp.diff(Z1, tau, 2) + 2 * b1 * w1 * Z1d + w1**2 * Z1
-            + mdsm.mu_bar * (2 * b2 * w2 * Z2d + w2**2) * cubic)
+    eq18 = (
+        sp.diff(Z1, tau, 2)
+        + 2 * b1 * w1 * Z1d
+        + w1**2 * Z1
+        + mdsm.mu_bar * (2 * b2 * w2 * Z2d + w2**2) * cubic
+    )
     eq19 = sp.diff(Z2, tau, 2) + (2 * b2 * w2 * Z2d + w2**2) * cubic - g
     got = mdsm.slow_equations_18_19()
     assert sp.expand(got[0] - eq18) == 0 and sp.expand(got[1] - eq19) == 0
@@ -24,14 +29,20 @@ def test_slow_equations_are_eqs_18_19_as_printed():
 
 def test_slow_equations_20_21_put_the_power_back():
     eqs = mdsm.slow_equations_20_21()
-    assert eqs.has(Z2**sp.Rational(3, 2)) and not eqs.has(mdsm.c[3])
+    assert eqs.has(Z2 ** sp.Rational(3, 2)) and not eqs.has(mdsm.c[3])
 
 
-@pytest.mark.parametrize("term,expected", [
-    (mdsm.Phi2, 0), (sp.diff(mdsm.Phi1, mdsm.theta), 0), (sp.sin(mdsm.theta), 0),
-    (sp.diff(mdsm.Phi2, tau), 0), (mdsm.Phi2**2 * sp.diff(mdsm.Phi2, mdsm.theta), 0),
-    (3 * Z2 * mdsm.Phi2**2, 3 * Z2 * mdsm.avg(mdsm.Phi2**2)),
-])
+@pytest.mark.parametrize(
+    "term,expected",
+    [
+        (mdsm.Phi2, 0),
+        (sp.diff(mdsm.Phi1, mdsm.theta), 0),
+        (sp.sin(mdsm.theta), 0),
+        (sp.diff(mdsm.Phi2, tau), 0),
+        (mdsm.Phi2**2 * sp.diff(mdsm.Phi2, mdsm.theta), 0),
+        (3 * Z2 * mdsm.Phi2**2, 3 * Z2 * mdsm.avg(mdsm.Phi2**2)),
+    ],
+)
 def test_averaging_rules(term, expected):
     assert mdsm._average(term) == expected
 
@@ -50,8 +61,7 @@ def test_every_dropped_term_is_an_average_and_every_kept_one_is_slow():
 def test_fast_equations_average_to_the_dropped_terms():
     """A1-A2 subtract only what the paper keeps: their average is what it drops."""
     fast = mdsm.fast_equations_A1_A2()
-    dropped = sum(t.expr for t in mdsm.averaged_terms() if t.equation == "normal"
-                  and not t.kept)
+    dropped = sum(t.expr for t in mdsm.averaged_terms() if t.equation == "normal" and not t.kept)
     assert sp.expand(mdsm._average(fast[1]) - dropped) == 0
 
 
@@ -64,16 +74,24 @@ def test_harmonic_averages_against_mpmath_quadrature(mp50):
     def cubic(v):
         return sum(ck * v**k for k, ck in enumerate(c))
 
-    quad = om2**2 * (mpmath.quad(lambda th: cubic(z2 + x * mpmath.sin(th)),
-                                 [0, 2 * mpmath.pi]) / (2 * mpmath.pi) - cubic(z2))
+    quad = om2**2 * (
+        mpmath.quad(lambda th: cubic(z2 + x * mpmath.sin(th)), [0, 2 * mpmath.pi]) / (2 * mpmath.pi)
+        - cubic(z2)
+    )
     W = 4
     A = sp.Symbol("A", positive=True)
-    total = sum(mdsm.harmonic_averages(t.expr, 0, A) for t in mdsm.averaged_terms()
-                if t.equation == "normal" and not t.kept)
-    total = total.subs(sp.diff(Z2, tau), 0).subs(Z2, 10).subs(
-        dict(zip(mdsm.c, [sp.Float(str(ck), 50) for ck in c]))).subs(
-        {A: W * sp.Rational(3, 2), P["Omega"]: W, P["omega2"]: sp.Rational(1, 2)})
-    assert abs(mpmath.mpf(sp.N(total, 50)) - quad) < mpmath.mpf(10)**-40
+    total = sum(
+        mdsm.harmonic_averages(t.expr, 0, A)
+        for t in mdsm.averaged_terms()
+        if t.equation == "normal" and not t.kept
+    )
+    total = (
+        total.subs(sp.diff(Z2, tau), 0)
+        .subs(Z2, 10)
+        .subs(dict(zip(mdsm.c, [sp.Float(str(ck), 50) for ck in c])))
+        .subs({A: W * sp.Rational(3, 2), P["Omega"]: W, P["omega2"]: sp.Rational(1, 2)})
+    )
+    assert abs(mpmath.mpf(sp.N(total, 50)) - quad) < mpmath.mpf(10) ** -40
     assert X > z2 + x
 
 

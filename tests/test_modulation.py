@@ -1,4 +1,5 @@
 """Friction against relative velocity (Fig. 3b) and cycle averages (Figs. 10-12)."""
+
 import numpy as np
 import pytest
 
@@ -45,6 +46,7 @@ def test_cycle_mean_of_the_friction_balances_the_tangential_motion(reversing):
 
     def x1(t, y, mode):
         return y[0:1]
+
     mean_x1 = np.array([tr.integrate(x1, [a, a + T])[0, 0] / T for a in t0[:5]])
     c1, k1 = 2 * p["beta1"] * p["omega1"], p["omega1"] ** 2
     # <Y1'> = <f_t> - c1 <Y1> - k1 <X1> + <friction>, <f_t> = 0 over a full period
@@ -67,7 +69,9 @@ def test_friction_loop_over_one_period(reversing):
     Fn = reversing.trajectory.forces(t, y)[0]
     # Eqs. (2)-(3) with the friction on the mass: -mu_s sgn(Vr) Fn
     slipping = vr != 0
-    np.testing.assert_allclose(friction[slipping], -p["mu_s"] * np.sign(vr[slipping]) * Fn[slipping])
+    np.testing.assert_allclose(
+        friction[slipping], -p["mu_s"] * np.sign(vr[slipping]) * Fn[slipping]
+    )
     assert vr.max() > 0 > vr.min()
 
 

@@ -1,4 +1,5 @@
 """The paper check (derive.paper, derive.paper_check): engine, transcriptions, findings."""
+
 import re
 
 import numpy as np
@@ -11,9 +12,11 @@ from derive.model import P
 from derive.statespace import jacobian_at_equilibrium_eq_11
 
 #: Every numbered equation the report must cover (issue 4).
-REQUIRED = ([f"Eq. {n}" for n in (*range(4, 13), *range(13, 25), 26, 27, 28)]
-            + ["Eq. 25 (mu_bar^0)", "Eq. 25 (mu_bar')"]
-            + [f"Eq. A{n}" for n in range(1, 9)])
+REQUIRED = (
+    [f"Eq. {n}" for n in (*range(4, 13), *range(13, 25), 26, 27, 28)]
+    + ["Eq. 25 (mu_bar^0)", "Eq. 25 (mu_bar')"]
+    + [f"Eq. A{n}" for n in range(1, 9)]
+)
 PARSE_ERRORS = (SyntaxError, NameError, TypeError, TokenError)
 
 
@@ -21,14 +24,18 @@ PARSE_ERRORS = (SyntaxError, NameError, TypeError, TokenError)
 def checked():
     """One full run of the check (rows and claims), shared by the tests below."""
     results, claims = paper_check.run()
-    return {r.row.key: r for r in results}, {c.claim.key: c for c in claims}, \
-        paper_check.report(results, claims)
+    return (
+        {r.row.key: r for r in results},
+        {c.claim.key: c for c in claims},
+        paper_check.report(results, claims),
+    )
 
 
 def _row(key, printed, derived_of_convention=None, derived=None):
     if derived_of_convention is not None:
-        variants = tuple(paper_check.Variant(printed, derived_of_convention(c), c)
-                         for c in stability.CONVENTIONS)
+        variants = tuple(
+            paper_check.Variant(printed, derived_of_convention(c), c) for c in stability.CONVENTIONS
+        )
     else:
         variants = (paper_check.Variant(printed, derived),)
     return paper_check.Row(key, "test", variants)
@@ -36,46 +43,65 @@ def _row(key, printed, derived_of_convention=None, derived=None):
 
 # The engine with deliberately wrong transcriptions --------------------------------------
 
+
 def test_flipped_sign_is_reported_as_differs():
     wrong = paper.EQ_11.replace("-omega1**2", "omega1**2")
     assert wrong != paper.EQ_11
-    result = paper_check.check_row(_row("Eq. 11", lambda: paper.parse(wrong),
-                                        derived=jacobian_at_equilibrium_eq_11))
+    result = paper_check.check_row(
+        _row("Eq. 11", lambda: paper.parse(wrong), derived=jacobian_at_equilibrium_eq_11)
+    )
     assert result.status == "differs"
     assert "entry (2,1)" in result.explanation and "2*omega1**2" in result.explanation
-    assert result.problems   # a difference without a reason is flagged
+    assert result.problems  # a difference without a reason is flagged
 
 
 def test_wrong_exponent_is_reported_as_differs():
     wrong = paper.EQ_9.replace("**(2/3)", "**(1/3)")
     assert wrong != paper.EQ_9
-    result = paper_check.check_row(_row(
-        "Eq. 9", lambda: paper.parse(wrong),
-        derived=lambda: sp.Matrix([paper.eq_9()[i] for i in range(4)])))
+    result = paper_check.check_row(
+        _row(
+            "Eq. 9",
+            lambda: paper.parse(wrong),
+            derived=lambda: sp.Matrix([paper.eq_9()[i] for i in range(4)]),
+        )
+    )
     assert result.status == "differs" and "component 3" in result.explanation
 
 
 def test_numeric_path_reports_a_wrong_piecewise_transcription():
     """Eq. 23 with arccos replaced by arcsin: only the numeric comparison can decide."""
     from derive.friction import mu_bar_eq_23
+
     wrong = paper.EQ_23.replace("arccos", "arcsin")
-    result = paper_check.check_row(_row(
-        "Eq. 23", lambda: paper.parse(wrong, arcsin=sp.asin),
-        derived=lambda: mu_bar_eq_23(stability.S1 - P["Vb"])))
+    result = paper_check.check_row(
+        _row(
+            "Eq. 23",
+            lambda: paper.parse(wrong, arcsin=sp.asin),
+            derived=lambda: mu_bar_eq_23(stability.S1 - P["Vb"]),
+        )
+    )
     assert result.status == "differs"
     assert "numeric" in result.outcomes[0].method
 
 
 def test_a_right_transcription_matches_and_the_method_is_named():
-    result = paper_check.check_row(_row("Eq. 11", paper.eq_11,
-                                        derived=jacobian_at_equilibrium_eq_11))
+    result = paper_check.check_row(
+        _row("Eq. 11", paper.eq_11, derived=jacobian_at_equilibrium_eq_11)
+    )
     assert result.status == "matches" and result.outcomes[0].method.startswith("symbolic")
     assert result.problems == ()
 
 
 def test_an_explanation_for_a_matching_variant_is_flagged_stale():
-    row = paper_check.Row("Eq. 11", "test", (paper_check.Variant(
-        paper.eq_11, jacobian_at_equilibrium_eq_11, why="a reason that no longer applies"),))
+    row = paper_check.Row(
+        "Eq. 11",
+        "test",
+        (
+            paper_check.Variant(
+                paper.eq_11, jacobian_at_equilibrium_eq_11, why="a reason that no longer applies"
+            ),
+        ),
+    )
     result = paper_check.check_row(row)
     assert result.status == "matches" and "STALE" in result.explanation and result.problems
 
@@ -87,26 +113,32 @@ def test_shape_mismatch_breaks_the_check():
 
 # Typos fail, they are never skipped --------------------------------------------------------
 
-@pytest.mark.parametrize("text", [
-    "3/2*omega1**",                 # syntax error
-    "Matrix([[0, 1], [omega1, 0]",  # unbalanced bracket
-    "omgea1**2",                    # misspelt name: not silently a new symbol
-    "2*beta2*omega2*X2**(3/2)*Y3",  # unknown state
-])
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "3/2*omega1**",  # syntax error
+        "Matrix([[0, 1], [omega1, 0]",  # unbalanced bracket
+        "omgea1**2",  # misspelt name: not silently a new symbol
+        "2*beta2*omega2*X2**(3/2)*Y3",  # unknown state
+    ],
+)
 def test_a_transcription_that_fails_to_parse_raises(text):
     with pytest.raises(PARSE_ERRORS):
         paper.parse(text)
 
 
 def test_a_typo_in_a_row_fails_the_check_run():
-    row = _row("Eq. 11", lambda: paper.parse(paper.EQ_11.replace("omega1", "omgea1", 1)),
-               derived=jacobian_at_equilibrium_eq_11)
+    row = _row(
+        "Eq. 11",
+        lambda: paper.parse(paper.EQ_11.replace("omega1", "omgea1", 1)),
+        derived=jacobian_at_equilibrium_eq_11,
+    )
     with pytest.raises(NameError):
         paper_check.check_row(row)
 
 
-@pytest.mark.parametrize("name", [n for n in paper.__all__ if n.startswith("eq_")
-                                  and n != "eq_15"])
+@pytest.mark.parametrize("name", [n for n in paper.__all__ if n.startswith("eq_") and n != "eq_15"])
 def test_every_transcription_parses_with_exact_numbers(name):
     expr = sp.sympify(getattr(paper, name)())
     assert expr.free_symbols and not expr.atoms(sp.Float)
@@ -121,12 +153,14 @@ def test_eq_28_transcription_agrees_with_the_one_in_stability():
 
 # The findings --------------------------------------------------------------------------------
 
+
 def test_the_report_covers_every_numbered_equation(checked):
     rows, _, _ = checked
     assert set(REQUIRED) <= set(rows)
     for key, r in rows.items():
         assert r.status in ("matches", "differs") or r.status.startswith(
-            "matches under convention"), key
+            "matches under convention"
+        ), key
 
 
 def test_every_difference_is_explained_and_no_reason_is_stale(checked):
@@ -150,9 +184,25 @@ def test_sign_dependent_equations_match_under_convention_paper_only(checked, key
     assert rows[key].status == "matches under convention `paper`"
 
 
-@pytest.mark.parametrize("key", ["Eq. 4", "Eq. 9", "Eq. 10", "Eq. 11", "Eq. 12", "Eq. 17",
-                                 "Eq. 18", "Eq. 19", "Eq. 20", "Eq. 21", "Eq. 23",
-                                 "Eq. 25 (mu_bar')", "Eq. A1", "Eq. A2"])
+@pytest.mark.parametrize(
+    "key",
+    [
+        "Eq. 4",
+        "Eq. 9",
+        "Eq. 10",
+        "Eq. 11",
+        "Eq. 12",
+        "Eq. 17",
+        "Eq. 18",
+        "Eq. 19",
+        "Eq. 20",
+        "Eq. 21",
+        "Eq. 23",
+        "Eq. 25 (mu_bar')",
+        "Eq. A1",
+        "Eq. A2",
+    ],
+)
 def test_equations_that_match(checked, key):
     rows, _, _ = checked
     assert rows[key].status == "matches"
@@ -181,10 +231,14 @@ def test_the_report_in_the_tree_is_up_to_date(checked):
 
 # The simulated claims (derive/contraction.py) ---------------------------------------------
 
+
 def _counts(evidence, tension):
     part = evidence.split(f"tension {tension}:")[1]
-    m = re.search(r"(\d+) to forward sliding with F < 0 and (\d+) with F >= 0, (\d+) to "
-                  r"backward sliding with F < 0 and (\d+) with F >= 0", part)
+    m = re.search(
+        r"(\d+) to forward sliding with F < 0 and (\d+) with F >= 0, (\d+) to "
+        r"backward sliding with F < 0 and (\d+) with F >= 0",
+        part,
+    )
     return tuple(int(x) for x in m.groups())
 
 
@@ -209,7 +263,8 @@ def test_the_reversal_counts_against_the_samples(checked):
     up = np.flatnonzero((vr[:-1] < 0) & (vr[1:] >= 0))
     down = np.flatnonzero((vr[:-1] > 0) & (vr[1:] <= 0))
     fwd_pull, fwd_push, back_pull, back_push = _counts(
-        claims["omega1 peak (Fig. 2b)"].evidence, "allowed")
+        claims["omega1 peak (Fig. 2b)"].evidence, "allowed"
+    )
     assert up.size == fwd_pull + fwd_push and down.size == back_pull + back_push
     # the force at the sample next to each crossing (F moves little in 0.02 s)
     assert np.all(np.minimum(F[up], F[up + 1]) < 0)

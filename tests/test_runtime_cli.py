@@ -1,4 +1,5 @@
 """``python -m derive simulate|sweep`` (dispatched to runtime.cli.main)."""
+
 import json
 import math
 import subprocess
@@ -24,9 +25,30 @@ def test_simulate_readable_summary(capsys):
 
 def test_sweep_prints_table_and_validation_line(capsys, tmp_path):
     csv = tmp_path / "s.csv"
-    assert main(["sweep", "--param", "Vb", "--from", "4", "--to", "12", "--step", "8",
-                 "--t-end", "60", "--jobs", "1", "--no-cache", "--no-progress",
-                 "--out", str(csv)]) == 0
+    assert (
+        main(
+            [
+                "sweep",
+                "--param",
+                "Vb",
+                "--from",
+                "4",
+                "--to",
+                "12",
+                "--step",
+                "8",
+                "--t-end",
+                "60",
+                "--jobs",
+                "1",
+                "--no-cache",
+                "--no-progress",
+                "--out",
+                str(csv),
+            ]
+        )
+        == 0
+    )
     text = capsys.readouterr().out
     assert "omega1 peak" in text and "paper:" in text
     assert csv.read_text().startswith("Vb,regime,")
@@ -38,14 +60,17 @@ def test_bad_parameter_gives_a_clear_error(capsys):
 
 
 def test_module_entry_point_dispatches_simulate():
-    r = subprocess.run([sys.executable, "-m", "derive", "simulate", "--Vb", "12", "--t-end", "50",
-                        "--json"], capture_output=True, text=True, check=True)
+    r = subprocess.run(
+        [sys.executable, "-m", "derive", "simulate", "--Vb", "12", "--t-end", "50", "--json"],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     assert json.loads(r.stdout)["regime"] == "continuous_sliding"
 
 
 def test_simulate_json_names_the_tension_law(capsys):
-    assert main(["simulate", "--Vb", "12", "--t-end", "60", "--tension", "clipped",
-                 "--json"]) == 0
+    assert main(["simulate", "--Vb", "12", "--t-end", "60", "--tension", "clipped", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["tension"] == "clipped"
     # Eq. (1) pulls at the base set in every excitation cycle: clipped, it separates
@@ -67,6 +92,7 @@ def test_an_unresolved_peak_is_never_called_absent_or_present(capsys):
 
 def test_readable_summary_names_the_modes_in_the_order_of_the_fractions(capsys):
     from runtime.simulate import simulate
+
     assert main(["simulate", "--Vb", "4", "--t-end", "300"]) == 0
     text = capsys.readouterr().out
     frac = simulate(Vb=4.0, t_end=300.0).summary["time_fraction"]
@@ -78,24 +104,52 @@ def test_readable_summary_names_the_modes_in_the_order_of_the_fractions(capsys):
 
 
 def test_sweep_continue_runs_serially_and_says_so(capsys):
-    args = ["sweep", "--param", "Vb", "--values", "14", "12", "--Omega", "6", "--t-end", "300",
-            "--no-cache", "--no-progress", "--continue", "down"]
+    args = [
+        "sweep",
+        "--param",
+        "Vb",
+        "--values",
+        "14",
+        "12",
+        "--Omega",
+        "6",
+        "--t-end",
+        "300",
+        "--no-cache",
+        "--no-progress",
+        "--continue",
+        "down",
+    ]
     assert main(args) == 0
     text = capsys.readouterr().out
     assert "tension allowed; continued down from rest at Vb = 14" in text
     assert main(args + ["--jobs", "2"]) == 2
-    assert "argument --continue: a continued sweep runs its points one after another" in \
-        capsys.readouterr().err
+    assert (
+        "argument --continue: a continued sweep runs its points one after another"
+        in capsys.readouterr().err
+    )
     assert main(args[:-1] + ["sideways"]) == 2
     assert "--continue" in capsys.readouterr().err
 
 
 def test_floquet_json_keys_and_verdict_match_the_api(capsys):
     from runtime.floquet import floquet
+
     assert main(["floquet", "--Vb", "5", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    for key in ("multipliers", "max_abs_multiplier", "growth_rate", "frequency", "stable",
-                "n_reversals", "n_sticks", "grazing", "period", "state0", "residual"):
+    for key in (
+        "multipliers",
+        "max_abs_multiplier",
+        "growth_rate",
+        "frequency",
+        "stable",
+        "n_reversals",
+        "n_sticks",
+        "grazing",
+        "period",
+        "state0",
+        "residual",
+    ):
         assert key in out
     f = floquet(Vb=5.0)
     assert out["stable"] is False and out["stable"] == f.stable
@@ -116,7 +170,7 @@ def test_floquet_band_text_and_json_agree(capsys):
     text = capsys.readouterr().out
     assert main(args + ["--json"]) == 0
     band = json.loads(capsys.readouterr().out)
-    (lo, hi), = band["unstable"]
+    ((lo, hi),) = band["unstable"]
     assert 3 < lo < 5 < hi < 7
     assert f"[{lo:.4f}, {hi:.4f}]" in text
     assert {e["kind"] for e in band["edges"]} <= {"multiplier", "grazing", "existence"}
@@ -128,13 +182,11 @@ def test_floquet_band_rejects_an_empty_range(capsys):
 
 
 def test_simulate_from_the_periodic_response(capsys):
-    assert main(["simulate", "--Vb", "5", "--t-end", "400", "--start", "periodic",
-                 "--json"]) == 0
+    assert main(["simulate", "--Vb", "5", "--t-end", "400", "--start", "periodic", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["start"] == "periodic"
     # Floquet says unstable at Vb = 5: the perturbation grows into the omega1 vibration
     assert out["omega1_peak_present"] is True
     # and at Vb = 3, where it is stable, the perturbation decays
-    assert main(["simulate", "--Vb", "3", "--t-end", "400", "--start", "periodic",
-                 "--json"]) == 0
+    assert main(["simulate", "--Vb", "3", "--t-end", "400", "--start", "periodic", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["omega1_peak_present"] is False

@@ -1,4 +1,5 @@
 """runtime.model: parameters, initial state; the runtime imports no SymPy and types no physics."""
+
 import subprocess
 import sys
 
@@ -14,8 +15,9 @@ def test_rhs_with_sign_equals_branch_in_each_direction():
     y = initial_state(p)
     for vr, sgn in ((-1.0, -1.0), (1.0, 1.0)):
         state = y + np.array([0, p["Vb"] + vr, 0, 0])
-        np.testing.assert_array_equal(dynamics.rhs(0.7, *state, **p),
-                                      dynamics.rhs_branch(0.7, *state, sgn, **p))
+        np.testing.assert_array_equal(
+            dynamics.rhs(0.7, *state, **p), dynamics.rhs_branch(0.7, *state, sgn, **p)
+        )
 
 
 def test_initial_state_is_the_unforced_equilibrium_eq9():
@@ -38,10 +40,17 @@ def test_resolve_parameters_fills_the_excitation_of_eq4():
     assert p["phase_t"] == p["phase_n"] == 0.0
 
 
-@pytest.mark.parametrize("kwargs, name", [({"Vb": -1.0}, "Vb"), ({"omega1": 0.0}, "omega1"),
-                                          ({"beta1": float("nan")}, "beta1"),
-                                          ({"mu_s": float("inf")}, "mu_s"),
-                                          ({"Vbelt": 1.0}, "Vbelt"), ({"g": "x"}, "g")])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"Vb": -1.0}, "Vb"),
+        ({"omega1": 0.0}, "omega1"),
+        ({"beta1": float("nan")}, "beta1"),
+        ({"mu_s": float("inf")}, "mu_s"),
+        ({"Vbelt": 1.0}, "Vbelt"),
+        ({"g": "x"}, "g"),
+    ],
+)
 def test_bad_parameters_raise_valueerror_naming_them(kwargs, name):
     with pytest.raises(ValueError, match=name):
         resolve_parameters(**kwargs)
@@ -53,7 +62,9 @@ def test_bad_contact_law_is_named():
 
 
 def test_importing_runtime_does_not_import_sympy():
-    code = ("import sys, runtime, runtime.simulate, runtime.superposition, runtime.spectra, "
-            "runtime.modulation, runtime.sweep, runtime.cli; "
-            "sys.exit(1 if any(m == 'sympy' or m.startswith('sympy.') for m in sys.modules) else 0)")
+    code = (
+        "import sys, runtime, runtime.simulate, runtime.superposition, runtime.spectra, "
+        "runtime.modulation, runtime.sweep, runtime.cli; "
+        "sys.exit(1 if any(m == 'sympy' or m.startswith('sympy.') for m in sys.modules) else 0)"
+    )
     assert subprocess.run([sys.executable, "-c", code]).returncode == 0

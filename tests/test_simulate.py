@@ -1,4 +1,5 @@
 """The event-driven simulation of Eq. (4): accuracy, regimes, energy balance, stick, flight."""
+
 import numpy as np
 import pytest
 
@@ -41,8 +42,9 @@ def test_superposition_agrees_with_the_event_located_reference(reversing_tight):
     assert [k for _, k, _ in fast.events] == [k for _, k, _ in reversing_tight.events]
     # spline grid 0.005 s: (omega h)^4 / 384 of the signal, about 1e-8
     assert _state_error(fast, reversing_tight) < 1e-6
-    assert fast.summary["peak_omega1"] == pytest.approx(reversing_tight.summary["peak_omega1"],
-                                                        rel=1e-6)
+    assert fast.summary["peak_omega1"] == pytest.approx(
+        reversing_tight.summary["peak_omega1"], rel=1e-6
+    )
 
 
 @pytest.mark.parametrize("solver", ["events", "superposition"])
@@ -50,20 +52,26 @@ def test_frictionless_run_matches_the_forced_linear_oscillator(solver):
     """mu_s = 0: X1'' + 2 beta1 omega1 X1' + omega1^2 X1 = alpha Omega^2 sin(Omega t)."""
     sim = simulate(mu_s=0.0, solver=solver, t_end=400.0)
     p = sim.params
-    amp = p["alpha"] * p["Omega"] ** 3 / abs(p["omega1"] ** 2 - p["Omega"] ** 2
-                                             + 2j * p["beta1"] * p["omega1"] * p["Omega"])
+    amp = (
+        p["alpha"]
+        * p["Omega"] ** 3
+        / abs(p["omega1"] ** 2 - p["Omega"] ** 2 + 2j * p["beta1"] * p["omega1"] * p["Omega"])
+    )
     assert sim.summary["peak_Omega"] == pytest.approx(amp, rel=1e-6)
     assert sim.summary["peak_omega1"] < 1e-6 * amp
 
 
 @pytest.mark.parametrize("solver", ["events", "superposition"])
-@pytest.mark.parametrize("case, regime", [
-    (dict(Vb=12.0), "continuous_sliding"),
-    (dict(Vb=4.0), "sliding_with_reversals"),
-    # small excitation at a low belt speed: the excitation cannot break the friction
-    # limit on its own, the mass rides with the belt and slips back
-    (dict(Vb=0.1, alpha=0.05), "stick_slip"),
-])
+@pytest.mark.parametrize(
+    "case, regime",
+    [
+        (dict(Vb=12.0), "continuous_sliding"),
+        (dict(Vb=4.0), "sliding_with_reversals"),
+        # small excitation at a low belt speed: the excitation cannot break the friction
+        # limit on its own, the mass rides with the belt and slips back
+        (dict(Vb=0.1, alpha=0.05), "stick_slip"),
+    ],
+)
 def test_regimes_and_energy_balance(solver, case, regime):
     sim = simulate(solver=solver, t_end=T_SHORT, **case)
     s = sim.summary
@@ -90,13 +98,13 @@ def test_sticking_holds_the_mass_within_the_friction_limit():
     for seg in sticks:
         t = np.linspace(seg.t0, seg.t1, 50)
         y = tr.state(t)
-        assert np.all(y[1] == p["Vb"])            # no chatter: Vr is exactly 0
+        assert np.all(y[1] == p["Vb"])  # no chatter: Vr is exactly 0
         Fn, friction = tr.forces(t, y)
         a_free = dynamics.rhs_branch(t, *y, 0.0, **p)[..., 1]
         assert np.all(np.abs(a_free) <= p["mu_s"] * Fn * (1 + 1e-9) + 1e-12)
         np.testing.assert_allclose(friction, -a_free)
     # each stick ends where the limit is reached, and the mass slips along a_free
-    for (t, kind, mode) in sim.events:
+    for t, kind, mode in sim.events:
         if kind == "unstick":
             y = tr.state(np.array([t]))
             Fn = dynamics.normal_force(y[2], y[3], **p)[0]
@@ -108,11 +116,11 @@ def test_sticking_holds_the_mass_within_the_friction_limit():
 @pytest.mark.parametrize("solver", ["events", "superposition"])
 @pytest.mark.parametrize("contact, extra", [("hertz_damp", {}), ("kelvin_voigt", {"beta2": 0.3})])
 def test_contact_loss_is_detected_and_the_run_continues_in_flight(contact, extra, solver):
-    # a stiff contact (omega2 = 5): the normal excitation alpha Omega^2 = 32 m/s^2 > g lifts the mass
-    sim = simulate(omega2=5.0, contact=contact, t_end=60.0, t_discard=20.0, solver=solver,
-                   **extra)
+    # a stiff contact (omega2 = 5): the normal excitation alpha Omega^2 = 32 m/s^2 > g
+    # lifts the mass
+    sim = simulate(omega2=5.0, contact=contact, t_end=60.0, t_discard=20.0, solver=solver, **extra)
     s = sim.summary
-    assert sim.solver_used == solver         # flight is a mode of both integrators
+    assert sim.solver_used == solver  # flight is a mode of both integrators
     assert s["regime"] == "contact_loss" and s["n_contact_losses"] > 0
     assert sim.status == "done" and sim.trajectory.t_end == 60.0
     flights = [seg for seg in sim.trajectory.segments if seg.mode == FLIGHT]
@@ -131,7 +139,9 @@ def test_contact_loss_can_stop_the_run_with_a_message():
     assert "contact lost" in sim.message and "t =" in sim.message
     assert sim.trajectory.t_end < 60.0
     assert sim.summary["regime"] == "contact_loss"
-    assert sim.trajectory.state(np.array([sim.trajectory.t_end]))[2, 0] == pytest.approx(0, abs=1e-12)
+    assert sim.trajectory.state(np.array([sim.trajectory.t_end]))[2, 0] == pytest.approx(
+        0, abs=1e-12
+    )
 
 
 def test_negative_normal_force_is_reported_not_clipped():
@@ -151,10 +161,16 @@ def test_summary_keys_and_regime_names():
     assert s["regime"] in REGIMES
 
 
-@pytest.mark.parametrize("kwargs, name", [({"rtol": 0}, "rtol"), ({"solver": "rk4"}, "solver"),
-                                          ({"t_end": 10.0, "t_discard": 20.0}, "t_discard"),
-                                          ({"on_contact_loss": "ignore"}, "on_contact_loss"),
-                                          ({"Vb": -2.0}, "Vb")])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"rtol": 0}, "rtol"),
+        ({"solver": "rk4"}, "solver"),
+        ({"t_end": 10.0, "t_discard": 20.0}, "t_discard"),
+        ({"on_contact_loss": "ignore"}, "on_contact_loss"),
+        ({"Vb": -2.0}, "Vb"),
+    ],
+)
 def test_bad_settings_raise_valueerror_naming_them(kwargs, name):
     with pytest.raises(ValueError, match=name):
         simulate(**kwargs)
@@ -175,8 +191,13 @@ def test_omega1_peak_at_vb4_and_not_at_vb12_as_in_fig2b():
     assert max(on["energy_residual"], off["energy_residual"]) < 1e-8
 
 
-@pytest.mark.parametrize("excitation", [dict(Omega_t=6.0, Omega_n=4.0),     # Fig. 14b
-                                        dict(phase_t=np.pi / 2)])           # Fig. 15
+@pytest.mark.parametrize(
+    "excitation",
+    [
+        dict(Omega_t=6.0, Omega_n=4.0),  # Fig. 14b
+        dict(phase_t=np.pi / 2),
+    ],
+)  # Fig. 15
 def test_general_excitation_agrees_between_integrators(excitation):
     ref = simulate(Vb=3.0, solver="events", rtol=1e-12, atol=1e-12, t_end=100.0, **excitation)
     fast = simulate(Vb=3.0, solver="superposition", t_end=100.0, **excitation)

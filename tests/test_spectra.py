@@ -1,4 +1,5 @@
 """Spectrum normalisation: a sine of amplitude A reads A."""
+
 import numpy as np
 import pytest
 

@@ -3,16 +3,17 @@
 Includes the hard cases: next to the stability boundary, double roots, Vb -> Vhat, and
 parameters from 1e-6 to 1e6.
 """
+
 import functools
 
 import mpmath
 import numpy as np
 import pytest
+from conftest import random_params, rel_err
 
 from generated import _support, friction, stability, unforced
-from generated.parameters import BASE
 from generated.mp import stability as mp_stability
-from conftest import random_params, rel_err
+from generated.parameters import BASE
 
 CONVENTIONS = ("paper", "consistent")
 CONTACTS = ("hertz_damp", "kelvin_voigt")
@@ -21,9 +22,10 @@ BASE_ARRAY = {k: v for k, v in BASE.items() if k != "Vb"}
 
 # Closed forms typed by hand from the paper -------------------------------------------
 
+
 def slope_eq25(p):
     Vb, Vh, mu = p["Vb"], p["Vhat"], p["mu_s"]
-    return 2 * mu / (np.pi * Vh * np.sqrt(1 - (Vb / Vh)**2)) if Vb < Vh else 0.0
+    return 2 * mu / (np.pi * Vh * np.sqrt(1 - (Vb / Vh) ** 2)) if Vb < Vh else 0.0
 
 
 def mu0_eq25(p):
@@ -38,28 +40,38 @@ def eq22(p, convention="paper"):
     b1, w1, b2, w2, g = (p[k] for k in ("beta1", "omega1", "beta2", "omega2", "g"))
     s = 1 if convention == "paper" else -1
     m0, m1 = mu0_eq25(p), slope_eq25(p)
-    k = 1.5 * w2**2 * (g / w2**2)**(1 / 3)
-    return np.array([[0, 1, 0, 0],
-                     [-w1**2, -2 * b1 * w1 + s * m1 * g, s * m0 * k, s * 2 * m0 * b2 * g / w2],
-                     [0, 0, 0, 1],
-                     [0, 0, -k, -2 * b2 * g / w2]])
+    k = 1.5 * w2**2 * (g / w2**2) ** (1 / 3)
+    return np.array(
+        [
+            [0, 1, 0, 0],
+            [-(w1**2), -2 * b1 * w1 + s * m1 * g, s * m0 * k, s * 2 * m0 * b2 * g / w2],
+            [0, 0, 0, 1],
+            [0, 0, -k, -2 * b2 * g / w2],
+        ]
+    )
 
 
 def a8(p):
     """Eq. (A8) as printed (paper convention)."""
     b1, w1, b2, w2, g = (p[k] for k in ("beta1", "omega1", "beta2", "omega2", "g"))
     m1 = slope_eq25(p)
-    k = 1.5 * w2**2 * (g / w2**2)**(1 / 3)
-    return (2 * b1 * w1 - m1 * g + 2 * b2 * g / w2,
-            w1**2 + (-2 * b1 * w1 + m1 * g) * (-2 * b2 * g / w2) + k,
-            2 * b2 * g * w1**2 / w2 + (-2 * b1 * w1 + m1 * g) * (-k),
-            w1**2 * k)
+    k = 1.5 * w2**2 * (g / w2**2) ** (1 / 3)
+    return (
+        2 * b1 * w1 - m1 * g + 2 * b2 * g / w2,
+        w1**2 + (-2 * b1 * w1 + m1 * g) * (-2 * b2 * g / w2) + k,
+        2 * b2 * g * w1**2 / w2 + (-2 * b1 * w1 + m1 * g) * (-k),
+        w1**2 * k,
+    )
 
 
 def eq28(a1, a2, a3, a4):
     """Eq. (28) exactly as printed (its H4 has a1 a4^2, see test_printed_h4_differs)."""
-    return (a1, a1 * a2 - a3, a1 * a2 * a3 - a3**2 - a4 * a1**2,
-            a1 * a2 * a3 * a4 - a1 * a4**2 - a4 * a3**2)
+    return (
+        a1,
+        a1 * a2 - a3,
+        a1 * a2 * a3 - a3**2 - a4 * a1**2,
+        a1 * a2 * a3 * a4 - a1 * a4**2 - a4 * a3**2,
+    )
 
 
 def forced_params(rng, **over):
@@ -71,12 +83,17 @@ def forced_params(rng, **over):
 
 # Closed forms ------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("convention", CONVENTIONS)
 def test_jacobian_is_eq22(rng, convention):
     for _ in range(30):
         p = forced_params(rng)
-        np.testing.assert_allclose(stability.jacobian(convention=convention, **p),
-                                   eq22(p, convention), rtol=1e-12, atol=1e-14)
+        np.testing.assert_allclose(
+            stability.jacobian(convention=convention, **p),
+            eq22(p, convention),
+            rtol=1e-12,
+            atol=1e-14,
+        )
 
 
 def test_coefficients_are_a8_and_the_charpoly_of_eq22(rng):
@@ -96,10 +113,10 @@ def test_coefficients_depend_on_the_slope_not_on_mu_bar0(base):
     p = {**base, "Vhat": 8.0, "Vb": 4.0, "mu_s": 0.4}
     q = {**base, "Vhat": 8.0, "Vb": np.sqrt(37.0), "mu_s": 0.3}
     assert friction.mu_bar_slope(q["Vb"], 8.0, 0.3) == pytest.approx(
-        friction.mu_bar_slope(4.0, 8.0, 0.4), rel=1e-14)
+        friction.mu_bar_slope(4.0, 8.0, 0.4), rel=1e-14
+    )
     assert abs(friction.mu_bar0(q["Vb"], 8.0, 0.3) - friction.mu_bar0(4.0, 8.0, 0.4)) > 0.02
-    np.testing.assert_allclose(stability.coefficients(**q), stability.coefficients(**p),
-                               rtol=1e-13)
+    np.testing.assert_allclose(stability.coefficients(**q), stability.coefficients(**p), rtol=1e-13)
     assert not np.allclose(stability.jacobian(**q)[1, 2:], stability.jacobian(**p)[1, 2:])
 
 
@@ -109,8 +126,11 @@ def test_hurwitz_is_eq28_and_h4_is_a4_h3(rng):
         a = stability.coefficients(**p)
         H = stability.hurwitz(**p)
         printed = eq28(*a)
-        scale = [abs(a[0]), abs(a[0] * a[1]) + abs(a[2]),
-                 abs(a[0] * a[1] * a[2]) + a[2]**2 + abs(a[3]) * a[0]**2]
+        scale = [
+            abs(a[0]),
+            abs(a[0] * a[1]) + abs(a[2]),
+            abs(a[0] * a[1] * a[2]) + a[2] ** 2 + abs(a[3]) * a[0] ** 2,
+        ]
         for k in range(3):
             assert abs(H[k] - printed[k]) <= 1e-12 * scale[k]
         assert H[3] == pytest.approx(a[3] * H[2], rel=1e-12)
@@ -132,8 +152,8 @@ def test_equilibrium_is_a7(rng, convention):
         p = forced_params(rng)
         s = 1 if convention == "paper" else -1
         Z1, S1, Z2, S2 = stability.equilibrium(convention=convention, **p)
-        assert Z1 == pytest.approx(s * mu0_eq25(p) * p["g"] / p["omega1"]**2, rel=1e-12)
-        assert Z2 == pytest.approx((p["g"] / p["omega2"]**2)**(2 / 3), rel=1e-13)
+        assert Z1 == pytest.approx(s * mu0_eq25(p) * p["g"] / p["omega1"] ** 2, rel=1e-12)
+        assert Z2 == pytest.approx((p["g"] / p["omega2"] ** 2) ** (2 / 3), rel=1e-13)
         assert S1 == 0 and S2 == 0
 
 
@@ -150,6 +170,7 @@ def test_consistent_equilibrium_is_on_the_physical_side(base):
 
 # Eigenvalues, growth rate, verdict against mpmath -----------------------------------
 
+
 def mp_eigenvalues(p, convention):
     J = mpmath.matrix(mp_stability.jacobian(convention=convention, **p))
     ev = mpmath.eig(J, left=False, right=False)
@@ -164,8 +185,9 @@ def test_eigenvalues_and_growth_rate_against_mpmath(rng, mp50, convention, backe
         exact = mp_eigenvalues(p, convention)
         assert rel_err(sorted(lam, key=lambda z: (z.real, z.imag)), exact) < 1e-11
         top = max(z.real for z in exact)
-        assert abs(stability.growth_rate(convention=convention, backend=backend, **p)
-                   - float(top)) <= 1e-12 * max(abs(z) for z in exact)
+        assert abs(
+            stability.growth_rate(convention=convention, backend=backend, **p) - float(top)
+        ) <= 1e-12 * max(abs(z) for z in exact)
 
 
 @pytest.mark.parametrize("convention", CONVENTIONS)
@@ -176,10 +198,11 @@ def test_is_stable_against_mpmath_hurwitz_signs(rng, mp50, convention, contact, 
     for _ in range(40):
         p = forced_params(rng)
         if rng.uniform() < 0.2:
-            p["beta2"] = 0.0                      # r = 0: marginal normal mode, not stable
+            p["beta2"] = 0.0  # r = 0: marginal normal mode, not stable
         H = mp_stability.hurwitz(convention=convention, contact=contact, **p)
-        verdict = bool(stability.is_stable(convention=convention, contact=contact,
-                                           backend=backend, **p))
+        verdict = bool(
+            stability.is_stable(convention=convention, contact=contact, backend=backend, **p)
+        )
         assert verdict == all(h > 0 for h in H)
         seen.add(verdict)
     assert seen == {True, False}
@@ -203,6 +226,7 @@ def test_paper_base_set_is_unstable_below_vhat_only(base, backend):
 
 # Critical belt speed -----------------------------------------------------------------
 
+
 def test_critical_belt_speed_is_the_root_of_p(rng, mp50):
     n = 0
     for _ in range(60):
@@ -217,8 +241,11 @@ def test_critical_belt_speed_is_the_root_of_p(rng, mp50):
             continue
         n += 1
         # p(Vc) = 0: the tangential damping 2 beta1 omega1 - g mu_bar'(Vc) vanishes (mpmath).
-        slope = 2 * mpmath.mpf(p["mu_s"]) / (mpmath.pi * mpmath.sqrt(
-            (mpmath.mpf(p["Vhat"]) - Vc) * (mpmath.mpf(p["Vhat"]) + Vc)))
+        slope = (
+            2
+            * mpmath.mpf(p["mu_s"])
+            / (mpmath.pi * mpmath.sqrt((mpmath.mpf(p["Vhat"]) - Vc) * (mpmath.mpf(p["Vhat"]) + Vc)))
+        )
         damping = 2 * mpmath.mpf(p["beta1"]) * p["omega1"] - mpmath.mpf(p["g"]) * slope
         assert abs(damping) < 1e-12 * 2 * p["beta1"] * p["omega1"]
         assert stability.is_stable(**{**p, "Vb": Vc * (1 - 1e-9)})
@@ -227,7 +254,7 @@ def test_critical_belt_speed_is_the_root_of_p(rng, mp50):
 
 
 def test_critical_belt_speed_documented_values(base):
-    assert stability.critical_belt_speed(**base) == 0.0           # m > Vhat: all unstable
+    assert stability.critical_belt_speed(**base) == 0.0  # m > Vhat: all unstable
     assert stability.critical_belt_speed(**{**base, "beta1": 0.0}) == 0.0
     assert np.isnan(stability.critical_belt_speed(**base, convention="consistent"))
     assert np.all(np.isnan(stability.unstable_interval(**base, convention="consistent")))
@@ -255,7 +282,7 @@ def test_verdict_next_to_the_boundary_where_expanded_h3_loses_its_sign(base, mp5
     for d in (1e-6, 1e-8, 1e-10, 1e-12, 1e-13, 1e-14):
         for side in (-1, 1):
             q = {**p, "Vb": Vc * (1 + side * d)}
-            exact = mp_stability.hurwitz(**q)[2]                    # 50 digits, same input
+            exact = mp_stability.hurwitz(**q)[2]  # 50 digits, same input
             assert bool(stability.is_stable(**q, backend=backend)) == (exact > 0)
             assert np.sign(stability.growth_rate(**q, backend=backend)) == -mpmath.sign(exact)
             assert np.sign(stability.hurwitz(**q)[2]) == mpmath.sign(exact)
@@ -288,7 +315,7 @@ def test_double_root_eigenvalues_to_1e12(base, mp50, beta1, backend):
     got = sorted(stability.eigenvalues(**p), key=lambda z: (z.real, z.imag))
     assert rel_err(got, exact) < 1e-12
     top = max(z.real for z in exact)
-    assert abs(top + beta1 * p["omega1"]) < 1e-3 * p["omega1"]   # the tangential mode leads
+    assert abs(top + beta1 * p["omega1"]) < 1e-3 * p["omega1"]  # the tangential mode leads
     assert rel_err([stability.growth_rate(**p, backend=backend)], [top]) < 1e-12
     got0 = sorted(unforced.eigenvalues(**p), key=lambda z: (z.real, z.imag))
     assert rel_err(got0, exact) < 1e-12
@@ -314,8 +341,9 @@ def test_vb_to_vhat_from_below_at_and_beyond(base, mp50, backend):
     # no friction: nothing to destabilise, at Vb = Vhat as anywhere (J_f^0 is J^0)
     frictionless = {**at, "mu_s": 0.0}
     assert stability.is_stable(**frictionless, backend=backend)
-    assert stability.growth_rate(**frictionless, backend=backend) \
-        == max(unforced.eigenvalues(**frictionless).real)
+    assert stability.growth_rate(**frictionless, backend=backend) == max(
+        unforced.eigenvalues(**frictionless).real
+    )
     beyond = {**p, "Vb": np.nextafter(Vhat, 20)}
     np.testing.assert_array_equal(stability.eigenvalues(**beyond), unforced.eigenvalues(**beyond))
     assert stability.is_stable(**beyond, backend=backend)
@@ -326,32 +354,54 @@ def test_extreme_parameter_scales(mp50, backend):
     rng = np.random.default_rng(7)
     names = ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g")
     for _ in range(100):
-        p = {k: float(10**rng.uniform(-6, 6)) for k in names}
-        p["Vhat"] = float(10**rng.uniform(-6, 6))
+        p = {k: float(10 ** rng.uniform(-6, 6)) for k in names}
+        p["Vhat"] = float(10 ** rng.uniform(-6, 6))
         p["Vb"] = p["Vhat"] * float(rng.choice([0.3, 0.999, 1.5]))
         for conv in CONVENTIONS:
             lam = stability.eigenvalues(convention=conv, **p)
             assert np.all(np.isfinite(lam))
             assert rel_err(lam, mp_stability.eigenvalues(convention=conv, **p)) < 1e-9
             H = mp_stability.hurwitz(convention=conv, **p)
-            assert bool(stability.is_stable(convention=conv, backend=backend, **p)) \
-                == all(h > 0 for h in H)
+            assert bool(stability.is_stable(convention=conv, backend=backend, **p)) == all(
+                h > 0 for h in H
+            )
             sigma = stability.growth_rate(convention=conv, backend=backend, **p)
             exact = mp_stability.eigenvalues(convention=conv, **p)
-            assert abs(sigma - float(max(z.real for z in exact))) \
-                <= 1e-12 * float(max(abs(z) for z in exact))
+            assert abs(sigma - float(max(z.real for z in exact))) <= 1e-12 * float(
+                max(abs(z) for z in exact)
+            )
         assert np.isfinite(friction.vhat(**p)) and friction.vhat(**p) > 0
-        assert friction.vhat(**p) == pytest.approx(float(
-            mpmath.mpf(p["alpha"]) * mpmath.mpf(p["Omega"])**3 / abs(
-                mpmath.mpf(p["omega1"])**2 - mpmath.mpf(p["Omega"])**2
-                + 2j * mpmath.mpf(p["beta1"]) * p["omega1"] * p["Omega"])), rel=1e-12)
+        assert friction.vhat(**p) == pytest.approx(
+            float(
+                mpmath.mpf(p["alpha"])
+                * mpmath.mpf(p["Omega"]) ** 3
+                / abs(
+                    mpmath.mpf(p["omega1"]) ** 2
+                    - mpmath.mpf(p["Omega"]) ** 2
+                    + 2j * mpmath.mpf(p["beta1"]) * p["omega1"] * p["Omega"]
+                )
+            ),
+            rel=1e-12,
+        )
 
 
 # API ---------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("name", ["coefficients", "hurwitz", "eigenvalues", "growth_rate",
-                                  "is_stable", "critical_belt_speed", "unstable_interval",
-                                  "equilibrium", "jacobian"])
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        "coefficients",
+        "hurwitz",
+        "eigenvalues",
+        "growth_rate",
+        "is_stable",
+        "critical_belt_speed",
+        "unstable_interval",
+        "equilibrium",
+        "jacobian",
+    ],
+)
 @pytest.mark.parametrize("convention", CONVENTIONS)
 def test_numpy_matches_mpmath_variant(rng, mp50, name, convention):
     for _ in range(5):
@@ -371,8 +421,9 @@ def test_vhat_model_and_explicit_vhat(base):
     tangential = friction.vhat(**base)
     coupled = friction.vhat(model="coupled", **base)
     assert stability.growth_rate(**base) == stability.growth_rate(**base, Vhat=tangential)
-    assert stability.growth_rate(**base, vhat_model="coupled") == \
-        stability.growth_rate(**base, Vhat=coupled)
+    assert stability.growth_rate(**base, vhat_model="coupled") == stability.growth_rate(
+        **base, Vhat=coupled
+    )
     with pytest.raises(ValueError, match="not both"):
         stability.is_stable(**base, Vhat=3.0, vhat_model="tangential")
     with pytest.raises(ValueError, match="model"):
@@ -386,15 +437,23 @@ def test_grids_broadcast_for_a_stability_map(base, backend):
     stable = stability.is_stable(**{**base, "Vb": Vb, "beta1": beta1}, backend=backend)
     assert stable.shape == (30, 50) and stable.dtype == bool
     assert stable.any() and not stable.all()
-    alpha = np.array([0.5, 1.0, 2.0])[:, None, None]          # used by Vhat only: broadcasts
-    sigma = stability.growth_rate(**{**base, "Vb": Vb, "beta1": beta1, "alpha": alpha},
-                                  backend=backend)
+    alpha = np.array([0.5, 1.0, 2.0])[:, None, None]  # used by Vhat only: broadcasts
+    sigma = stability.growth_rate(
+        **{**base, "Vb": Vb, "beta1": beta1, "alpha": alpha}, backend=backend
+    )
     assert sigma.shape == (3, 30, 50) and sigma.dtype == float
     assert np.isscalar(stability.growth_rate(**base, backend=backend))
 
 
-@pytest.mark.parametrize("bad,name", [({"Vb": -1.0}, "'Vb'"), ({"Vhat": 0.0}, "'Vhat'"),
-                                      ({"beta2": -0.1}, "'beta2'"), ({"Vb": np.nan}, "'Vb'")])
+@pytest.mark.parametrize(
+    "bad,name",
+    [
+        ({"Vb": -1.0}, "'Vb'"),
+        ({"Vhat": 0.0}, "'Vhat'"),
+        ({"beta2": -0.1}, "'beta2'"),
+        ({"Vb": np.nan}, "'Vb'"),
+    ],
+)
 def test_bad_input_raises_naming_the_parameter(base, bad, name, backend):
     with pytest.raises(ValueError, match=name):
         stability.is_stable(**{**base, **bad}, backend=backend)
@@ -413,7 +472,7 @@ def test_bad_input_raises_naming_the_parameter(base, bad, name, backend):
 
 EPS = np.finfo(float).eps
 #: Relative distances from a double root: 0 and +-1e-2 ... +-1e-15.
-OFFSETS = np.concatenate([[0.0], 10.0 ** -np.arange(2, 16), -10.0 ** -np.arange(2, 16)])
+OFFSETS = np.concatenate([[0.0], 10.0 ** -np.arange(2, 16), -(10.0 ** -np.arange(2, 16))])
 
 
 def around_base(rng, n):
@@ -423,7 +482,7 @@ def around_base(rng, n):
 
 def hertz_stiffness(p):
     """q of the Hertz-Damp normal mode: 1.5 omega2^2 (g / omega2^2)^(1/3), Eq. (22)."""
-    return 1.5 * np.cbrt(p["g"]) * p["omega2"]**(4 / 3)
+    return 1.5 * np.cbrt(p["g"]) * p["omega2"] ** (4 / 3)
 
 
 def backend_points(convention, contact, n_random=2000, n_base=8):
@@ -456,8 +515,11 @@ def backend_points(convention, contact, n_random=2000, n_base=8):
         # omega2 = 10 (times the random factor) and underdamped at real part -0.9 sqrt(q):
         # far left of the tangential double root at -+omega1 (omega1 <= 3)
         p["omega2"] = p["omega2"] * (10 / BASE["omega2"])
-        p["beta2"] = 0.9 * (p["omega2"] * np.sqrt(hertz_stiffness(p)) / p["g"]
-                            if contact == "hertz_damp" else np.ones_like(p["g"]))
+        p["beta2"] = 0.9 * (
+            p["omega2"] * np.sqrt(hertz_stiffness(p)) / p["g"]
+            if contact == "hertz_damp"
+            else np.ones_like(p["g"])
+        )
 
     p = repeated()
     fast_normal_mode(p)
@@ -469,16 +531,17 @@ def backend_points(convention, contact, n_random=2000, n_base=8):
     p = repeated()
     fast_normal_mode(p)
     c = 1 + p["beta1"] if convention == "paper" else 1 - p["beta1"]
-    m = p["mu_s"] * p["g"] / (np.pi * p["omega1"] * c)     # sqrt(Vhat^2 - Vb^2) there
+    m = p["mu_s"] * p["g"] / (np.pi * p["omega1"] * c)  # sqrt(Vhat^2 - Vb^2) there
     p["Vhat"] = m * np.repeat(rng.uniform(2, 4, n_base), len(OFFSETS))
-    p["Vb"] = np.sqrt(p["Vhat"]**2 - m**2) * (1 + offset)
+    p["Vb"] = np.sqrt(p["Vhat"] ** 2 - m**2) * (1 + offset)
     families["tangential_forced"] = p
 
     p = repeated()
     p["omega1"] = np.full_like(p["g"], 30.0)
     p["beta1"] = np.full_like(p["g"], 0.7)
-    critical = (p["omega2"] * np.sqrt(hertz_stiffness(p)) / p["g"]
-                if contact == "hertz_damp" else 1.0)
+    critical = (
+        p["omega2"] * np.sqrt(hertz_stiffness(p)) / p["g"] if contact == "hertz_damp" else 1.0
+    )
     p["beta2"] = critical * (1 + offset)
     p["Vhat"] = friction.vhat(**p)
     p["Vb"] = p["Vhat"] * beyond_vhat
@@ -555,14 +618,18 @@ def growth_rate_bound(p, lam, contact):
     for mode, (la, lb) in enumerate((lam[:2], lam[2:])):
         h_exact = -(la + lb).real / 2
         h, q = float(h_exact), float((la * lb).real)
-        d = float((((la - lb) / 2)**2).real)
+        d = float((((la - lb) / 2) ** 2).real)
         g = float(max(la.real, lb.real))
         if mode == 0:
             a = p["beta1"] * p["omega1"]
             x0 = 2 * abs(float(h_exact - mpmath.mpf(p["beta1"]) * p["omega1"]))
             e_h = EPS * (2.25 * x0 + a)
-            e_d = 2.5 * EPS * (x0 + 2 * p["omega1"] * abs(p["beta1"] - 1)) \
+            e_d = (
+                2.5
+                * EPS
+                * (x0 + 2 * p["omega1"] * abs(p["beta1"] - 1))
                 * (x0 + 2 * p["omega1"] * (p["beta1"] + 1))
+            )
             rel_q = EPS / 2
         elif contact == "hertz_damp":
             e_h, e_d, rel_q = EPS * abs(h), 15 * EPS * (h * h + q), 9.5 * EPS
@@ -574,7 +641,7 @@ def growth_rate_bound(p, lam, contact):
     return max(bounds), int(rates[1] > rates[0])
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def mp_reference(convention, contact):
     """Per family of `backend_points`: exact sigma (mpmath, 30 digits), bound, scale, leader."""
     opts = dict(convention=convention, contact=contact)
@@ -590,11 +657,14 @@ def mp_reference(convention, contact):
                 # the twin's growth rate is its top eigenvalue, and its eigenvalues come
                 # as the tangential pair (product omega1^2), then the normal pair
                 assert abs(exact - max(z.real for z in lam)) <= 1e-20 * scale
-                assert abs(lam[0] * lam[1] - mpmath.mpf(point["omega1"])**2) \
-                    <= 1e-20 * point["omega1"]**2
+                assert (
+                    abs(lam[0] * lam[1] - mpmath.mpf(point["omega1"]) ** 2)
+                    <= 1e-20 * point["omega1"] ** 2
+                )
                 bound, leader = growth_rate_bound(point, lam, contact)
-                for key, value in zip(("exact", "bound", "scale", "leader"),
-                                      (exact, bound, float(scale), leader)):
+                for key, value in zip(
+                    ("exact", "bound", "scale", "leader"), (exact, bound, float(scale), leader)
+                ):
                     ref[key].append(value)
             out[family] = {k: v if k in ("p", "exact") else np.array(v) for k, v in ref.items()}
     return out
@@ -608,13 +678,15 @@ def test_growth_rate_within_its_rounding_bound_of_mpmath(convention, contact, ba
     2000 random sets and 3 x 232 next to double roots, where the bound widens.
     """
     for family, ref in mp_reference(convention, contact).items():
-        sigma = stability.growth_rate(convention=convention, contact=contact,
-                                      backend=backend, **ref["p"])
+        sigma = stability.growth_rate(
+            convention=convention, contact=contact, backend=backend, **ref["p"]
+        )
         error = np.array([float(abs(mpmath.mpf(s) - e)) for s, e in zip(sigma, ref["exact"])])
         worst = np.argmax(error / ref["bound"])
         assert np.all(error <= ref["bound"]), (
             f"{family}: |error| {error[worst]:.3g} > bound {ref['bound'][worst]:.3g} at "
-            f"{ {k: float(v[worst]) for k, v in ref['p'].items()} }")
+            f"{ {k: float(v[worst]) for k, v in ref['p'].items()} }"
+        )
 
 
 @pytest.mark.parametrize("convention", CONVENTIONS)
@@ -668,25 +740,29 @@ def test_numba_verdicts_and_the_limit_at_vhat_equal_numpy_bit_for_bit(convention
     np.testing.assert_array_equal(stable["numba"], stable["numpy"])
     assert stable["numpy"].any() and (convention == "consistent" or not stable["numpy"].all())
     for family in backend_points(convention, contact).values():
-        np.testing.assert_array_equal(stability.is_stable(**opts, backend="numba", **family),
-                                      stability.is_stable(**opts, backend="numpy", **family))
+        np.testing.assert_array_equal(
+            stability.is_stable(**opts, backend="numba", **family),
+            stability.is_stable(**opts, backend="numpy", **family),
+        )
     at = {k: v[:50] for k, v in p.items()}
     sigma = {b: stability.growth_rate(**opts, backend=b, **at) for b in ("numpy", "numba")}
     np.testing.assert_array_equal(sigma["numba"].view(np.uint64), sigma["numpy"].view(np.uint64))
     limit = np.inf if convention == "paper" else -0.0
-    np.testing.assert_array_equal(sigma["numpy"].view(np.uint64),
-                                  np.full(50, limit).view(np.uint64))
+    np.testing.assert_array_equal(
+        sigma["numpy"].view(np.uint64), np.full(50, limit).view(np.uint64)
+    )
 
 
 def test_backend_choice(base, monkeypatch):
     with pytest.raises(ValueError, match="backend"):
         stability.growth_rate(**base, backend="cuda")
-    monkeypatch.setattr(_support, "_numba", False)              # as if numba were missing
+    monkeypatch.setattr(_support, "_numba", False)  # as if numba were missing
     with pytest.raises(ImportError, match="numba"):
         stability.is_stable(**base, backend="numba")
     assert stability.is_stable(**base) == stability.is_stable(**base, backend="numpy")
-    assert _support.compiled(stability._is_stable__paper__hertz_damp__scalar, "boolean",
-                             None) is None
+    assert (
+        _support.compiled(stability._is_stable__paper__hertz_damp__scalar, "boolean", None) is None
+    )
 
 
 def test_unknown_convention_raises(base):

@@ -1,4 +1,5 @@
 """generated._support: blockwise evaluation and the numba backend switch."""
+
 import numpy as np
 import pytest
 
@@ -10,13 +11,19 @@ def kernel(a, b, c):
     return np.where(a < b, np.sqrt(np.abs(a - b)) * c, a * b - c)
 
 
-@pytest.mark.parametrize("shapes", [[(700, 1), (1, 300), ()], [(5000 * 40,), (1,), (5000 * 40,)],
-                                    [(3, 1, 40000), (20, 1), (1, 40000)]])
+@pytest.mark.parametrize(
+    "shapes",
+    [
+        [(700, 1), (1, 300), ()],
+        [(5000 * 40,), (1,), (5000 * 40,)],
+        [(3, 1, 40000), (20, 1), (1, 40000)],
+    ],
+)
 def test_blockwise_equals_one_call_for_broadcast_inputs(shapes):
     rng = np.random.default_rng(1)
     args = [rng.uniform(0, 2, s) for s in shapes]
     expected = kernel(*args)
-    assert np.prod(expected.shape) > 2 * 1000                   # several blocks
+    assert np.prod(expected.shape) > 2 * 1000  # several blocks
     got = _support.blockwise(kernel, *args, block=1000)
     assert got.shape == expected.shape and got.dtype == expected.dtype
     np.testing.assert_array_equal(got, expected)
@@ -60,12 +67,13 @@ def test_compiled_numba_ufunc_broadcasts_and_is_cached():
         return x * y + 1.0
 
     ufunc = _support.compiled(k, "float64", "numba")
-    assert _support.compiled(k, "float64", None) is ufunc       # compiled once per session
+    assert _support.compiled(k, "float64", None) is ufunc  # compiled once per session
     out = ufunc(np.arange(3.0)[:, None], np.arange(4.0)[None, :])
     np.testing.assert_array_equal(out, np.arange(3.0)[:, None] * np.arange(4.0) + 1.0)
 
 
 # ---------------------------------------------------------------- argument checks
+
 
 @pytest.mark.parametrize("value", [np.inf, -np.inf, [1.0, np.inf]])
 def test_infinite_parameters_are_refused_by_name(value):
@@ -77,9 +85,9 @@ def test_infinite_parameters_are_refused_by_name(value):
         unforced.equilibrium(**{**BASE, "mu_s": value})
     with pytest.raises(ValueError, match="'Vb' must be finite"):
         stability.is_stable(**{**BASE, "Vb": value}, backend="numpy")
-    with pytest.raises(ValueError, match="'phase_t' must be finite"):       # domain "real"
+    with pytest.raises(ValueError, match="'phase_t' must be finite"):  # domain "real"
         stability.is_stable(**{**BASE, "phase_t": value}, backend="numpy")
-    with pytest.raises(ValueError, match="'Vr' must be finite"):             # a state input
+    with pytest.raises(ValueError, match="'Vr' must be finite"):  # a state input
         friction.mu_bar(value, 8.0, 0.4)
 
 
@@ -117,8 +125,11 @@ def test_an_infinite_computed_vhat_is_reported_as_such():
     from generated.parameters import BASE
 
     resonant = {**BASE, "beta1": 0.0, "Omega": BASE["omega1"]}
-    with pytest.raises(ValueError, match=r"is_stable\(\): Vhat of vhat_model='tangential' "
-                                         "is not finite"):
+    with pytest.raises(
+        ValueError,
+        match=r"is_stable\(\): Vhat of vhat_model='tangential' "
+        "is not finite",
+    ):
         with np.errstate(divide="ignore"):
             stability.is_stable(**resonant, backend="numpy")
     assert not stability.is_stable(**resonant, Vhat=8.0, backend="numpy")

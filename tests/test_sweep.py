@@ -1,4 +1,5 @@
 """Sweeps: executors, the disk cache, the table."""
+
 import concurrent.futures as cf
 import json
 
@@ -7,13 +8,18 @@ import pytest
 
 from runtime import sweep as sweep_module
 from runtime.simulate import PEAK_PRESENT_RATIO, SolverSettings
-from runtime.sweep import (cache_key, omega1_peak_ranges, sweep, table_from_csv,
-                           table_to_csv)
+from runtime.sweep import cache_key, omega1_peak_ranges, sweep, table_from_csv, table_to_csv
 
 SHORT = SolverSettings(t_end=40.0, t_discard=10.0)
 VALUES = [2.0, 4.0, 12.0]
-NUMERIC = ("peak_omega1", "peak_Omega", "energy_residual", "n_switches", "mean_friction",
-           "min_normal_force")
+NUMERIC = (
+    "peak_omega1",
+    "peak_Omega",
+    "energy_residual",
+    "n_switches",
+    "mean_friction",
+    "min_normal_force",
+)
 
 
 def _same(a, b):
@@ -36,16 +42,24 @@ def test_sweep_on_a_process_pool_equals_the_serial_sweep(serial):
 
 def test_sweep_on_a_dask_local_cluster_equals_the_serial_sweep(serial):
     distributed = pytest.importorskip("distributed")
-    with distributed.Client(processes=False, n_workers=1, threads_per_worker=2,
-                            dashboard_address=None) as client:
-        table = sweep("Vb", VALUES, settings=SHORT, executor=client.get_executor(),
-                      cache_dir=None, progress=False)
+    with distributed.Client(
+        processes=False, n_workers=1, threads_per_worker=2, dashboard_address=None
+    ) as client:
+        table = sweep(
+            "Vb",
+            VALUES,
+            settings=SHORT,
+            executor=client.get_executor(),
+            cache_dir=None,
+            progress=False,
+        )
     _same(table, serial)
 
 
 def test_cache_returns_stored_rows_without_recomputing(tmp_path, serial, monkeypatch):
-    first = sweep("Vb", VALUES, settings=SHORT, executor="serial", cache_dir=tmp_path,
-                  progress=False)
+    first = sweep(
+        "Vb", VALUES, settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False
+    )
     files = sorted(tmp_path.glob("*.json"))
     assert len(files) == len(VALUES)
     stored = json.loads(files[0].read_text())
@@ -53,15 +67,18 @@ def test_cache_returns_stored_rows_without_recomputing(tmp_path, serial, monkeyp
 
     def fail(*args, **kwargs):
         raise AssertionError("recomputed a cached point")
+
     monkeypatch.setattr(sweep_module, "run_point", fail)
-    again = sweep("Vb", VALUES, settings=SHORT, executor="serial", cache_dir=tmp_path,
-                  progress=False)
+    again = sweep(
+        "Vb", VALUES, settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False
+    )
     _same(again, first)
     _same(first, serial)
 
 
 def test_cache_key_depends_on_parameters_settings_and_contact():
     from runtime.model import resolve_parameters
+
     p = resolve_parameters(Vb=4.0)
     k = cache_key(p, "hertz_damp", SHORT)
     assert k == cache_key(dict(p), "hertz_damp", SolverSettings(t_end=40.0, t_discard=10.0))
@@ -97,14 +114,17 @@ def test_bad_sweep_inputs_are_named():
 
 # ------------------------------------------------------- the cache under corruption and load
 
+
 def _cache_file(tmp_path, vb=4.0):
     from runtime.model import resolve_parameters
+
     p = resolve_parameters(Vb=vb)
     return tmp_path / f"{cache_key(p, 'hertz_damp', SHORT)}.json"
 
 
 def _stored_is_valid(path):
     from runtime.model import resolve_parameters
+
     data = json.loads(path.read_text())
     p = resolve_parameters(Vb=data["params"]["Vb"])
     row, problem = sweep_module.read_cached(path, p, "hertz_damp", SHORT)
@@ -113,10 +133,10 @@ def _stored_is_valid(path):
 
 CORRUPTIONS = {
     "not valid JSON": lambda text: text[: len(text) // 2],
-    "missing checksum": lambda text: json.dumps({k: v for k, v in json.loads(text).items()
-                                                 if k != "checksum"}),
-    "does not match its checksum": lambda text: text.replace('"n_switches": ',
-                                                             '"n_switches": 1'),
+    "missing checksum": lambda text: json.dumps(
+        {k: v for k, v in json.loads(text).items() if k != "checksum"}
+    ),
+    "does not match its checksum": lambda text: text.replace('"n_switches": ', '"n_switches": 1'),
     "another point's parameters": lambda text: text.replace('"Vb": 4.0', '"Vb": 4.5'),
     "not its name's": lambda text: json.dumps({**json.loads(text), "key": "0" * 64}),
     "lacks": lambda text: json.dumps(_drop_column(json.loads(text), "peak_omega1")),
@@ -136,9 +156,10 @@ def test_a_corrupted_cache_file_is_reported_recomputed_and_rewritten(tmp_path, s
     good = path.read_text()
     path.write_text(CORRUPTIONS[what](good))
     with pytest.warns(sweep_module.CacheWarning, match=f"{path.name}.*{what}"):
-        table = sweep("Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path,
-                      progress=False)
-    _same(table, serial[1:2])                  # the recomputed row, not the corrupted one
+        table = sweep(
+            "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False
+        )
+    _same(table, serial[1:2])  # the recomputed row, not the corrupted one
     assert json.loads(path.read_text())["row"]["n_switches"] == int(serial["n_switches"][1])
     assert _stored_is_valid(path)
 
@@ -146,13 +167,16 @@ def test_a_corrupted_cache_file_is_reported_recomputed_and_rewritten(tmp_path, s
 def test_a_valid_cache_file_passes_its_checks(tmp_path):
     sweep("Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False)
     assert _stored_is_valid(_cache_file(tmp_path))
-    assert sweep_module.read_cached(tmp_path / "absent.json", {}, "hertz_damp", SHORT) == \
-        (None, None)
+    assert sweep_module.read_cached(tmp_path / "absent.json", {}, "hertz_damp", SHORT) == (
+        None,
+        None,
+    )
 
 
 def _sweep_into(cache_dir, values):
-    return sweep("Vb", values, settings=SHORT, executor="serial", cache_dir=cache_dir,
-                 progress=False)
+    return sweep(
+        "Vb", values, settings=SHORT, executor="serial", cache_dir=cache_dir, progress=False
+    )
 
 
 def test_concurrent_writers_into_one_cache_leave_valid_files(tmp_path, serial):
@@ -170,7 +194,7 @@ def test_concurrent_writers_into_one_cache_leave_valid_files(tmp_path, serial):
     files = sorted(tmp_path.glob("*.json"))
     assert len(files) == len(VALUES)
     assert all(_stored_is_valid(f) for f in files)
-    assert not list(tmp_path.glob(".*.tmp"))   # every temporary file was renamed
+    assert not list(tmp_path.glob(".*.tmp"))  # every temporary file was renamed
     for table in tables:
         _same(table[: len(VALUES)], serial)
 
@@ -183,6 +207,7 @@ def test_temporary_names_are_unique_per_write(tmp_path, monkeypatch):
     def spy(src, dst):
         seen.append(str(src))
         real(src, dst)
+
     monkeypatch.setattr(sweep_module.os, "replace", spy)
     for _ in range(2):
         sweep_module._write_atomically(tmp_path / "x.json", "{}")
@@ -191,6 +216,7 @@ def test_temporary_names_are_unique_per_write(tmp_path, monkeypatch):
 
 def test_cache_key_changes_with_the_code_and_the_version(tmp_path, monkeypatch):
     from runtime.model import resolve_parameters
+
     p = resolve_parameters(Vb=4.0)
     source = tmp_path / "integrator.py"
     source.write_text("x = 1\n")
@@ -213,17 +239,24 @@ def test_cache_key_changes_with_the_code_and_the_version(tmp_path, monkeypatch):
 
 def test_the_code_hash_covers_generated_and_runtime_sources():
     names = {f.relative_to(sweep_module._ROOT).as_posix() for f in sweep_module.code_files()}
-    assert {"generated/stability.py", "generated/mp/stability.py", "generated/_support.py",
-            "runtime/simulate.py", "runtime/superposition.py"} <= names
+    assert {
+        "generated/stability.py",
+        "generated/mp/stability.py",
+        "generated/_support.py",
+        "runtime/simulate.py",
+        "runtime/superposition.py",
+    } <= names
     assert len(sweep_module.code_hash()) == 64
 
 
 def test_package_version_falls_back_to_pyproject(monkeypatch):
     from importlib import metadata
+
     tomllib = pytest.importorskip("tomllib")
 
     def missing(name):
         raise metadata.PackageNotFoundError(name)
+
     monkeypatch.setattr(metadata, "version", missing)
     sweep_module.package_version.cache_clear()
     try:
@@ -236,8 +269,9 @@ def test_package_version_falls_back_to_pyproject(monkeypatch):
 
 
 def test_linear_values_are_the_cli_grid_and_refuse_absurd_ranges():
-    np.testing.assert_array_equal(sweep_module.linear_values(0.5, 16.0, 0.5),
-                                  0.5 + 0.5 * np.arange(32))
+    np.testing.assert_array_equal(
+        sweep_module.linear_values(0.5, 16.0, 0.5), 0.5 + 0.5 * np.arange(32)
+    )
     with pytest.raises(ValueError, match="MAX_POINTS"):
         sweep_module.linear_values(0.0, 1.0, 1e-15)
     with pytest.raises(ValueError, match="step must be > 0"):
@@ -252,8 +286,13 @@ def test_sweep_refuses_what_it_cannot_run_before_running():
     with pytest.raises(ValueError, match="cannot sweep 'Vhat'"):
         sweep("Vhat", [1.0], executor="serial", cache_dir=None, progress=False)
     with pytest.raises(ValueError, match="MAX_POINTS"):
-        sweep("Vb", np.zeros(sweep_module.MAX_POINTS + 1), executor="serial", cache_dir=None,
-              progress=False)
+        sweep(
+            "Vb",
+            np.zeros(sweep_module.MAX_POINTS + 1),
+            executor="serial",
+            cache_dir=None,
+            progress=False,
+        )
     with pytest.raises(ValueError, match="executor must be"):
         sweep("Vb", [1.0], executor="threads", cache_dir=None, progress=False)
     with pytest.raises(ValueError, match="'Vb' must be finite"):
@@ -262,31 +301,39 @@ def test_sweep_refuses_what_it_cannot_run_before_running():
 
 # ------------------------------------------------------- tension law and resolution
 
+
 def test_a_clipped_run_is_never_served_for_an_allowed_one(tmp_path, serial, monkeypatch):
     from runtime.model import resolve_parameters
+
     p = resolve_parameters(Vb=4.0)
-    assert cache_key(p, "hertz_damp", SHORT) == cache_key(p, "hertz_damp", SHORT,
-                                                          tension="allowed")
-    assert cache_key(p, "hertz_damp", SHORT) != cache_key(p, "hertz_damp", SHORT,
-                                                          tension="clipped")
-    allowed = sweep("Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path,
-                    progress=False)
+    assert cache_key(p, "hertz_damp", SHORT) == cache_key(p, "hertz_damp", SHORT, tension="allowed")
+    assert cache_key(p, "hertz_damp", SHORT) != cache_key(p, "hertz_damp", SHORT, tension="clipped")
+    allowed = sweep(
+        "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False
+    )
     calls = []
     real = sweep_module.run_point
 
     def counting(*args, **kwargs):
         calls.append(kwargs["tension"])
         return real(*args, **kwargs)
+
     monkeypatch.setattr(sweep_module, "run_point", counting)
-    clipped = sweep("Vb", [4.0], settings=SHORT, tension="clipped", executor="serial",
-                    cache_dir=tmp_path, progress=False)
+    clipped = sweep(
+        "Vb",
+        [4.0],
+        settings=SHORT,
+        tension="clipped",
+        executor="serial",
+        cache_dir=tmp_path,
+        progress=False,
+    )
     assert calls == ["clipped"]
     assert allowed["tension"][0] == "allowed" and clipped["tension"][0] == "clipped"
     # the laws differ at Vb = 4 (Eq. 1 pulls there 39 % of the time), so a mix-up shows
     assert clipped["n_switches"][0] != allowed["n_switches"][0]
     with pytest.raises(ValueError, match="tension must be one of 'allowed', 'clipped'"):
-        sweep("Vb", [4.0], tension="pulling", executor="serial", cache_dir=None,
-              progress=False)
+        sweep("Vb", [4.0], tension="pulling", executor="serial", cache_dir=None, progress=False)
 
 
 def test_unresolved_points_are_false_and_flagged_and_break_the_peak_ranges(serial):
@@ -311,31 +358,38 @@ def test_unresolved_points_are_false_and_flagged_and_break_the_peak_ranges(seria
 
 # ------------------------------------------------------- continuation (issue 13 item 3)
 
+
 def test_excitation_period_is_the_common_period_of_the_active_excitations():
     from runtime.model import resolve_parameters
+
     period = sweep_module.excitation_period
     assert period(resolve_parameters()) == pytest.approx(2 * np.pi / 4, rel=1e-15)
     # Fig. 14b: 6 and 4 rad/s share 2 rad/s, T = pi
-    assert period(resolve_parameters(alpha_t=2, Omega_t=6, alpha_n=2, Omega_n=4)) == \
-        pytest.approx(np.pi, rel=1e-15)
+    assert period(resolve_parameters(alpha_t=2, Omega_t=6, alpha_n=2, Omega_n=4)) == pytest.approx(
+        np.pi, rel=1e-15
+    )
     # a direction without force does not enter
-    assert period(resolve_parameters(alpha_n=0, Omega_t=6, Omega_n=np.sqrt(2))) == \
-        pytest.approx(2 * np.pi / 6, rel=1e-15)
+    assert period(resolve_parameters(alpha_n=0, Omega_t=6, Omega_n=np.sqrt(2))) == pytest.approx(
+        2 * np.pi / 6, rel=1e-15
+    )
     with pytest.raises(ValueError, match="no excitation"):
         period(resolve_parameters(Omega=0))
     with pytest.raises(ValueError, match="incommensurate"):
         period(resolve_parameters(Omega_t=4, Omega_n=4 * np.sqrt(2)))
 
 
-HYSTERESIS = dict(params={"Omega": 6.0}, settings=SolverSettings(t_end=300.0),
-                  executor="serial", progress=False)
+HYSTERESIS = dict(
+    params={"Omega": 6.0}, settings=SolverSettings(t_end=300.0), executor="serial", progress=False
+)
 HYSTERESIS_VB = [12.0, 14.0, 16.0]
 
 
 @pytest.fixture(scope="module")
 def hysteresis():
-    return {d: sweep("Vb", HYSTERESIS_VB, cache_dir=None, continuation=d, **HYSTERESIS)
-            for d in (None, "up", "down")}
+    return {
+        d: sweep("Vb", HYSTERESIS_VB, cache_dir=None, continuation=d, **HYSTERESIS)
+        for d in (None, "up", "down")
+    }
 
 
 def test_continued_sweeps_up_and_down_follow_different_attractors(hysteresis):
@@ -349,10 +403,9 @@ def test_continued_sweeps_up_and_down_follow_different_attractors(hysteresis):
     """
     for table in hysteresis.values():
         assert table["resolved"].all() and (table["status"] == "done").all()
-        np.testing.assert_array_equal(table["Vb"], HYSTERESIS_VB)   # ascending either way
+        np.testing.assert_array_equal(table["Vb"], HYSTERESIS_VB)  # ascending either way
         ratio = table["peak_omega1"] / table["peak_Omega"]
-        assert np.all((ratio > 10 * PEAK_PRESENT_RATIO)
-                      | (ratio < 1e-2 * PEAK_PRESENT_RATIO))
+        assert np.all((ratio > 10 * PEAK_PRESENT_RATIO) | (ratio < 1e-2 * PEAK_PRESENT_RATIO))
     present = {d: set(t["Vb"][t["omega1_peak_present"]]) for d, t in hysteresis.items()}
     # from rest: the oscillation at 12 and 14, sliding at 16
     assert present[None] == {12.0, 14.0}
@@ -363,46 +416,54 @@ def test_continued_sweeps_up_and_down_follow_different_attractors(hysteresis):
     assert (hysteresis["up"]["peak_omega1"] > 15).all()
 
 
-def test_a_continued_point_starts_at_its_predecessors_state_at_phase_zero(hysteresis,
-                                                                          monkeypatch):
+def test_a_continued_point_starts_at_its_predecessors_state_at_phase_zero(hysteresis, monkeypatch):
     from runtime.simulate import simulate
+
     seen = []
     real = sweep_module.simulate
 
     def recording(params, **kwargs):
         seen.append((params["Vb"], kwargs["y0"]))
         return real(params, **kwargs)
+
     monkeypatch.setattr(sweep_module, "simulate", recording)
     sweep("Vb", HYSTERESIS_VB, cache_dir=None, continuation="down", **HYSTERESIS)
-    assert [vb for vb, _ in seen] == [16.0, 14.0, 12.0]          # descending
-    assert seen[0][1] is None                                     # the first from rest
+    assert [vb for vb, _ in seen] == [16.0, 14.0, 12.0]  # descending
+    assert seen[0][1] is None  # the first from rest
     first = real(dict(Vb=16.0, Omega=6.0), settings=HYSTERESIS["settings"])
     T = np.pi / 3
     t_k = np.floor(300.0 / T) * T
     assert 300.0 - T < t_k <= 300.0
     np.testing.assert_array_equal(seen[1][1], first.trajectory.state(np.array([t_k]))[:, 0])
     # and the continued point is that run: the same row as a run from that state
-    again = simulate(dict(Vb=14.0, Omega=6.0), settings=HYSTERESIS["settings"],
-                     y0=seen[1][1]).summary
+    again = simulate(
+        dict(Vb=14.0, Omega=6.0), settings=HYSTERESIS["settings"], y0=seen[1][1]
+    ).summary
     row = hysteresis["down"][1]
     assert row["peak_omega1"] == again["peak_omega1"]
     assert row["n_switches"] == again["n_switches"]
 
 
-def test_a_continued_sweep_is_cached_by_direction_and_start_state(tmp_path, hysteresis,
-                                                                  monkeypatch):
+def test_a_continued_sweep_is_cached_by_direction_and_start_state(
+    tmp_path, hysteresis, monkeypatch
+):
     from runtime.model import resolve_parameters
+
     up = sweep("Vb", HYSTERESIS_VB, cache_dir=tmp_path, continuation="up", **HYSTERESIS)
     assert len(list(tmp_path.glob("*.json"))) == 3
     p = resolve_parameters(Vb=12.0, Omega=6.0)
     s = HYSTERESIS["settings"]
-    keys = {cache_key(p, "hertz_damp", s), cache_key(p, "hertz_damp", s, continuation="up"),
-            cache_key(p, "hertz_damp", s, continuation="down"),
-            cache_key(p, "hertz_damp", s, continuation="up", y0=[1.0, 0.0, 1.0, 0.0])}
+    keys = {
+        cache_key(p, "hertz_damp", s),
+        cache_key(p, "hertz_damp", s, continuation="up"),
+        cache_key(p, "hertz_damp", s, continuation="down"),
+        cache_key(p, "hertz_damp", s, continuation="up", y0=[1.0, 0.0, 1.0, 0.0]),
+    }
     assert len(keys) == 4
 
     def fail(*args, **kwargs):
         raise AssertionError("recomputed a cached point")
+
     monkeypatch.setattr(sweep_module, "run_point", fail)
     again = sweep("Vb", HYSTERESIS_VB, cache_dir=tmp_path, continuation="up", **HYSTERESIS)
     _same(again, up)
@@ -416,18 +477,27 @@ def test_continuation_refuses_what_it_cannot_do():
     kw = dict(cache_dir=None, progress=False)
     with pytest.raises(ValueError, match="continuation must be None, 'up' or 'down'"):
         sweep("Vb", [1.0], executor="serial", continuation="sideways", **kw)
-    with cf.ThreadPoolExecutor(1) as pool, \
-            pytest.raises(ValueError, match="one after another.*executor must be None"):
+    with (
+        cf.ThreadPoolExecutor(1) as pool,
+        pytest.raises(ValueError, match="one after another.*executor must be None"),
+    ):
         sweep("Vb", [1.0], executor=pool, continuation="up", **kw)
     with pytest.raises(ValueError, match="continuation at Vb = 1: no excitation"):
         sweep("Vb", [1.0], {"Omega": 0.0}, executor="serial", continuation="up", **kw)
     with pytest.raises(ValueError, match="period 1.5708 s is longer than t_end = 1 s"):
-        sweep("Vb", [1.0], settings=SolverSettings(t_end=1.0, dt=0.01), executor="serial",
-              continuation="up", **kw)
+        sweep(
+            "Vb",
+            [1.0],
+            settings=SolverSettings(t_end=1.0, dt=0.01),
+            executor="serial",
+            continuation="up",
+            **kw,
+        )
 
 
 def test_a_sweep_started_on_the_periodic_response(tmp_path):
     from runtime.floquet import floquet
+
     settings = SolverSettings(t_end=300.0)
     kw = dict(settings=settings, executor="serial", progress=False)
     # 3: stable, 5: unstable (Floquet); 6.3: no periodic response (runtime/floquet.py)
@@ -443,8 +513,9 @@ def test_a_sweep_started_on_the_periodic_response(tmp_path):
     again = sweep("Vb", [3.0, 5.0, 6.3], start="periodic", cache_dir=tmp_path, **kw)
     np.testing.assert_array_equal(again["peak_Omega"], table["peak_Omega"])
     p = {"Vb": 3.0}
-    assert cache_key(p, "hertz_damp", settings) != cache_key(p, "hertz_damp", settings,
-                                                              start="periodic")
+    assert cache_key(p, "hertz_damp", settings) != cache_key(
+        p, "hertz_damp", settings, start="periodic"
+    )
 
 
 def test_a_periodic_start_is_refused_where_it_means_nothing():

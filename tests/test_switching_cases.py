@@ -17,6 +17,7 @@ crosses zero; the slowest crossing in these runs is 0.22 m/s^2 (the Fig. 15 poin
 so 1e-6 x (1 + |y| ~ 2 near Vr = 0) / 0.22 < 1e-5 s (`TIME_TOL`). Measured: states
 within 3.3e-8, switch times within 1.1e-9 s.
 """
+
 import warnings
 
 import numpy as np
@@ -57,8 +58,9 @@ def runs():
         for name, params in CASES.items():
             for tension in TENSIONS:
                 for solver in SOLVERS:
-                    out[name, tension, solver] = simulate(params, tension=tension,
-                                                          solver=solver, t_end=T_END)
+                    out[name, tension, solver] = simulate(
+                        params, tension=tension, solver=solver, t_end=T_END
+                    )
     return out
 
 
@@ -69,7 +71,7 @@ def test_every_case_is_done_closes_its_energy_and_stops_no_zeno(runs, name, tens
         sim = runs[name, tension, solver]
         assert sim.status == "done", (solver, sim.message)
         assert sim.trajectory.t_end == T_END
-        assert sim.solver_used == solver      # superposition never fell back
+        assert sim.solver_used == solver  # superposition never fell back
         assert sim.summary["energy_residual"] < RESIDUAL, solver
 
 
@@ -78,8 +80,9 @@ def test_every_case_is_done_closes_its_energy_and_stops_no_zeno(runs, name, tens
 def test_both_solvers_give_the_same_run(runs, name, tension):
     a, b = (runs[name, tension, s] for s in SOLVERS)
     assert [(k, int(m)) for _, k, m in a.events] == [(k, int(m)) for _, k, m in b.events]
-    np.testing.assert_allclose([t for t, _, _ in a.events], [t for t, _, _ in b.events],
-                               rtol=0, atol=TIME_TOL)
+    np.testing.assert_allclose(
+        [t for t, _, _ in a.events], [t for t, _, _ in b.events], rtol=0, atol=TIME_TOL
+    )
     scale = 1 + np.abs(b.y).max(axis=1, keepdims=True)
     assert np.all(np.abs(a.y - b.y) <= STATE_TOL * scale)
     assert a.summary["n_zeno"] == b.summary["n_zeno"]

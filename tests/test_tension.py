@@ -10,12 +10,13 @@ of products with at most one elementary function, so it is within ~16 ulps of th
 of the absolute values of its terms (the *scale* that hand_eq4 computes), including the
 rounding of the excitation's argument.
 """
+
+import hand_eq4 as H
 import mpmath
 import numpy as np
 import pytest
-
-import hand_eq4 as H
 from conftest import random_params
+
 from generated import dynamics
 from generated.mp import dynamics as mp_dynamics
 
@@ -25,8 +26,12 @@ ULPS = 16
 
 def tension_params(rng):
     p = random_params(rng)
-    p.update(alpha_n=p["alpha"] * rng.uniform(0.3, 2), Omega_n=p["Omega"] * rng.uniform(0.5, 2),
-             phase_t=rng.uniform(-3, 3), phase_n=rng.uniform(-3, 3))
+    p.update(
+        alpha_n=p["alpha"] * rng.uniform(0.3, 2),
+        Omega_n=p["Omega"] * rng.uniform(0.5, 2),
+        phase_t=rng.uniform(-3, 3),
+        phase_n=rng.uniform(-3, 3),
+    )
     return p
 
 
@@ -86,10 +91,16 @@ def test_normal_force_broadcasts_and_its_mpmath_twin_agrees(rng, mp50, contact):
         assert grid.shape == (9, 11)
         assert (grid < 0).any() == (tension == "allowed")
         for i, j in [(0, 0), (8, 0), (8, 10), (5, 3), (6, 1)]:
-            ref = H.force(mpmath.mpf(X2[i, 0]), mpmath.mpf(Y2[0, j]),
-                          {k: mpmath.mpf(v) for k, v in p.items()}, contact, tension)
-            twin = mp_dynamics.normal_force(X2[i, 0], Y2[0, j], contact=contact,
-                                            tension=tension, **p)
+            ref = H.force(
+                mpmath.mpf(X2[i, 0]),
+                mpmath.mpf(Y2[0, j]),
+                {k: mpmath.mpf(v) for k, v in p.items()},
+                contact,
+                tension,
+            )
+            twin = mp_dynamics.normal_force(
+                X2[i, 0], Y2[0, j], contact=contact, tension=tension, **p
+            )
             scale = H.force_scale(X2[i, 0], Y2[0, j], p, contact)
             assert abs(grid[i, j] - float(ref)) <= ULPS * EPS * scale
             assert abs(grid[i, j] - float(twin)) <= ULPS * EPS * scale
@@ -105,12 +116,16 @@ def test_clipped_law_has_no_friction_and_no_normal_force_where_eq1_would_pull(rn
         free = H.rhs(t, x, 0, p, contact, "clipped")
         scale = H.rhs_scale(t, x, p, contact)
         assert H.force(x[2], x[3], p, contact, "clipped") == 0
-        ok, err, _ = within(dynamics.rhs(t, *x, contact=contact, tension="clipped", **p),
-                            free, scale)
+        ok, err, _ = within(
+            dynamics.rhs(t, *x, contact=contact, tension="clipped", **p), free, scale
+        )
         assert ok, err
         for sgn in (-1, 0, 1):
-            ok, err, _ = within(dynamics.rhs_branch(t, *x, sgn, contact=contact,
-                                                    tension="clipped", **p), free, scale)
+            ok, err, _ = within(
+                dynamics.rhs_branch(t, *x, sgn, contact=contact, tension="clipped", **p),
+                free,
+                scale,
+            )
             assert ok, err
         # the allowed law does pull there: its normal acceleration exceeds g + f_n
         allowed = dynamics.rhs(t, *x, contact=contact, **p)
@@ -119,8 +134,11 @@ def test_clipped_law_has_no_friction_and_no_normal_force_where_eq1_would_pull(rn
         for sgn in (-1, 1):
             clipped = dynamics.rhs_branch(t, *x, sgn, contact=contact, tension="clipped", **p)
             np.testing.assert_array_equal(
-                clipped, dynamics.rhs_branch(t, *x, sgn, contact=contact, **p))
-            ok, err, _ = within(clipped, H.rhs(t, x, sgn, p, contact), H.rhs_scale(t, x, p, contact))
+                clipped, dynamics.rhs_branch(t, *x, sgn, contact=contact, **p)
+            )
+            ok, err, _ = within(
+                clipped, H.rhs(t, x, sgn, p, contact), H.rhs_scale(t, x, p, contact)
+            )
             assert ok, err
 
 
@@ -149,7 +167,7 @@ def energy_gradient(x, p, contact, tension):
             y[k] += j * h
             E[j] = dynamics.energy(*y, contact=contact, tension=tension, **p)
         grad[k] = (8 * (E[1] - E[-1]) - (E[2] - E[-2])) / (12 * h)
-        err[k] = 1.5 * 8 * EPS * scale / h + 1e-11 * (1 + p["omega2"]**2)
+        err[k] = 1.5 * 8 * EPS * scale / h + 1e-11 * (1 + p["omega2"] ** 2)
     return grad, err
 
 
@@ -165,7 +183,7 @@ def test_power_balance_closes_the_energy_balance_along_rhs(rng, contact, tension
         pulling = [True, False, None, None][i % 4]
         t, x = state(rng, p, contact, pulling=pulling)
         if i % 8 == 7:
-            x[2] = -rng.uniform(0.3, 2)           # flight
+            x[2] = -rng.uniform(0.3, 2)  # flight
         sgn = float(np.sign(x[1] - p["Vb"]))
         f = dynamics.rhs(t, *x, contact=contact, tension=tension, **p)
         grad, grad_err = energy_gradient(x, p, contact, tension)
@@ -181,7 +199,7 @@ def test_power_balance_closes_the_energy_balance_along_rhs(rng, contact, tension
         if tension == "clipped" and x[2] > 0 and H.force(x[2], x[3], p, contact) < 0:
             clipped_states += 1
             elastic = H.force(x[2], 0.0, p, contact)
-            dashpot = 2 * p["beta1"] * p["omega1"] * x[1]**2
+            dashpot = 2 * p["beta1"] * p["omega1"] * x[1] ** 2
             assert abs(P[1] - (dashpot - elastic * x[3])) <= ULPS * EPS * scales[1]
             assert P[1] >= dashpot and P[2] == 0
     assert clipped_states >= 5 or tension == "allowed"
@@ -215,21 +233,28 @@ def test_jacobians_match_finite_differences_away_from_the_kink(rng, contact, ten
             x[2] = -rng.uniform(0.3, 2)
         F, Fs = H.force(x[2], x[3], p, contact), H.force_scale(x[2], x[3], p, contact)
         if 0 < x[2] and abs(F) < 1e-2 * Fs:
-            continue                              # next to the kink F = 0
+            continue  # next to the kink F = 0
         steps = 1e-6 * np.maximum(1.0, np.abs(x))
         scale = np.array(H.rhs_scale(t, x, p, contact))
-        tol = (4 * EPS * scale[:, None] / steps[None, :] + 1e-10 * scale[:, None])
+        tol = 4 * EPS * scale[:, None] / steps[None, :] + 1e-10 * scale[:, None]
         for sgn in (-1, 0, 1):
             J = dynamics.jacobian_branch(t, *x, sgn, contact=contact, tension=tension, **p)
-            fd = fd_jacobian(lambda y: dynamics.rhs_branch(t, *y, sgn, contact=contact,
-                                                           tension=tension, **p), x, steps)
+            fd = fd_jacobian(
+                lambda y: dynamics.rhs_branch(t, *y, sgn, contact=contact, tension=tension, **p),
+                x,
+                steps,
+            )
             assert np.all(np.abs(J - fd) <= tol), (J, fd)
             hand = np.array(H.jacobian(t, x, sgn, p, contact, tension))
-            assert np.all(np.abs(J - hand) <= ULPS * EPS * np.array(
-                H.jacobian_scale(t, x, p, contact)))
+            assert np.all(
+                np.abs(J - hand) <= ULPS * EPS * np.array(H.jacobian_scale(t, x, p, contact))
+            )
         N = dynamics.normal_jacobian(t, x[2], x[3], contact=contact, tension=tension, **p)
-        fd = fd_jacobian(lambda y: dynamics.normal_rhs(t, *y, contact=contact,
-                                                       tension=tension, **p), x[2:], steps[2:])
+        fd = fd_jacobian(
+            lambda y: dynamics.normal_rhs(t, *y, contact=contact, tension=tension, **p),
+            x[2:],
+            steps[2:],
+        )
         assert np.all(np.abs(N - fd) <= tol[2:, 2:]), (N, fd)
         np.testing.assert_array_equal(N, J[2:, 2:])
         if tension == "clipped" and x[2] > 0 and F < 0:
@@ -251,7 +276,10 @@ def test_normal_rhs_is_the_normal_equation_alone(rng, contact, tension):
         assert ok, err
         # Eq. (4)'s normal rows, which do not contain the tangential state (same
         # expression, summed in another order: a few ulps of its scale)
-        ok, err, _ = within(got, dynamics.rhs_branch(t, *x, -1, contact=contact,
-                                                     tension=tension, **p)[2:],
-                            H.rhs_scale(t, x, p, contact)[2:], ulps=4)
+        ok, err, _ = within(
+            got,
+            dynamics.rhs_branch(t, *x, -1, contact=contact, tension=tension, **p)[2:],
+            H.rhs_scale(t, x, p, contact)[2:],
+            ulps=4,
+        )
         assert ok, err

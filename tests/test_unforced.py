@@ -1,63 +1,84 @@
 """generated.unforced against Eqs. (9)-(12) typed by hand and against mpmath at 50 digits."""
+
 import mpmath
 import numpy as np
 import pytest
+from conftest import random_params, rel_err
 
 from generated import unforced
 from generated.mp import unforced as mp_unforced
-from conftest import random_params, rel_err
 
 CONTACTS = ("hertz_damp", "kelvin_voigt")
 
 
 # Closed forms typed by hand from the paper -------------------------------------------
 
+
 def eq9(p, contact="hertz_damp"):
     """Eq. (9); for Kelvin-Voigt contact the spring is linear: X2 = g/omega2^2."""
-    X2 = (p["g"] / p["omega2"]**2) ** (2 / 3) if contact == "hertz_damp" \
-        else p["g"] / p["omega2"]**2
-    return p["mu_s"] * p["g"] / p["omega1"]**2, 0.0, X2, 0.0
+    X2 = (
+        (p["g"] / p["omega2"] ** 2) ** (2 / 3)
+        if contact == "hertz_damp"
+        else p["g"] / p["omega2"] ** 2
+    )
+    return p["mu_s"] * p["g"] / p["omega1"] ** 2, 0.0, X2, 0.0
 
 
 def eq10(X1, Y1, X2, Y2, p):
     """Eq. (10) as printed."""
     b1, w1, b2, w2, mu = p["beta1"], p["omega1"], p["beta2"], p["omega2"], p["mu_s"]
-    return np.array([
-        [0, 1, 0, 0],
-        [-w1**2, -2 * b1 * w1, mu * (3 * b2 * w2 * X2**0.5 * Y2 + 1.5 * w2**2 * X2**0.5),
-         2 * mu * b2 * w2 * X2**1.5],
-        [0, 0, 0, 1],
-        [0, 0, -3 * b2 * w2 * X2**0.5 * Y2 - 1.5 * w2**2 * X2**0.5, -2 * b2 * w2 * X2**1.5],
-    ])
+    return np.array(
+        [
+            [0, 1, 0, 0],
+            [
+                -(w1**2),
+                -2 * b1 * w1,
+                mu * (3 * b2 * w2 * X2**0.5 * Y2 + 1.5 * w2**2 * X2**0.5),
+                2 * mu * b2 * w2 * X2**1.5,
+            ],
+            [0, 0, 0, 1],
+            [0, 0, -3 * b2 * w2 * X2**0.5 * Y2 - 1.5 * w2**2 * X2**0.5, -2 * b2 * w2 * X2**1.5],
+        ]
+    )
 
 
 def eq11(p):
     """Eq. (11) as printed."""
     b1, w1, b2, w2, mu, g = (p[k] for k in ("beta1", "omega1", "beta2", "omega2", "mu_s", "g"))
     k = 1.5 * w2**2 * (g / w2**2) ** (1 / 3)
-    return np.array([
-        [0, 1, 0, 0],
-        [-w1**2, -2 * b1 * w1, mu * k, 2 * mu * b2 * g / w2],
-        [0, 0, 0, 1],
-        [0, 0, -k, -2 * b2 * g / w2],
-    ])
+    return np.array(
+        [
+            [0, 1, 0, 0],
+            [-(w1**2), -2 * b1 * w1, mu * k, 2 * mu * b2 * g / w2],
+            [0, 0, 0, 1],
+            [0, 0, -k, -2 * b2 * g / w2],
+        ]
+    )
 
 
 def kv_j0(p):
     """J^0 for the linear contact of Fig. 16 (the normal block of a linear oscillator)."""
     b1, w1, b2, w2, mu = (p[k] for k in ("beta1", "omega1", "beta2", "omega2", "mu_s"))
-    return np.array([[0, 1, 0, 0], [-w1**2, -2 * b1 * w1, mu * w2**2, 2 * mu * b2 * w2],
-                     [0, 0, 0, 1], [0, 0, -w2**2, -2 * b2 * w2]])
+    return np.array(
+        [
+            [0, 1, 0, 0],
+            [-(w1**2), -2 * b1 * w1, mu * w2**2, 2 * mu * b2 * w2],
+            [0, 0, 0, 1],
+            [0, 0, -(w2**2), -2 * b2 * w2],
+        ]
+    )
 
 
 # Against the hand-typed closed forms -----------------------------------------------
+
 
 @pytest.mark.parametrize("contact", CONTACTS)
 def test_equilibrium_is_eq9(rng, contact):
     for _ in range(20):
         p = random_params(rng)
-        np.testing.assert_allclose(unforced.equilibrium(contact=contact, **p),
-                                   eq9(p, contact), rtol=1e-14, atol=0)
+        np.testing.assert_allclose(
+            unforced.equilibrium(contact=contact, **p), eq9(p, contact), rtol=1e-14, atol=0
+        )
 
 
 def test_jacobian_is_eq10(rng):
@@ -65,8 +86,9 @@ def test_jacobian_is_eq10(rng):
         p = random_params(rng)
         state = rng.normal(size=4)
         state[2] = abs(state[2]) + 0.01
-        np.testing.assert_allclose(unforced.jacobian(*state, **p), eq10(*state, p),
-                                   rtol=1e-13, atol=1e-300)
+        np.testing.assert_allclose(
+            unforced.jacobian(*state, **p), eq10(*state, p), rtol=1e-13, atol=1e-300
+        )
 
 
 def test_jacobian_at_equilibrium_is_eq11_and_eq10_at_eq9(rng):
@@ -82,8 +104,9 @@ def test_charpoly_is_det_of_eq11(rng, contact):
     for _ in range(20):
         p = random_params(rng)
         J0 = eq11(p) if contact == "hertz_damp" else kv_j0(p)
-        np.testing.assert_allclose(unforced.charpoly(contact=contact, **p),
-                                   np.poly(J0)[1:], rtol=1e-12)
+        np.testing.assert_allclose(
+            unforced.charpoly(contact=contact, **p), np.poly(J0)[1:], rtol=1e-12
+        )
 
 
 def test_charpoly_does_not_depend_on_mu_s(base):
@@ -97,10 +120,14 @@ def test_charpoly_does_not_depend_on_mu_s(base):
 def test_eigenvalues_against_mpmath_eig(rng, mp50, contact):
     for _ in range(10):
         p = random_params(rng)
-        J0 = mpmath.matrix((eq11 if contact == "hertz_damp" else kv_j0)(
-            {k: mpmath.mpf(v) for k, v in p.items()}).tolist())
-        exact = sorted(mpmath.eig(J0, left=False, right=False),
-                       key=lambda z: (float(z.real), float(z.imag)))
+        J0 = mpmath.matrix(
+            (eq11 if contact == "hertz_damp" else kv_j0)(
+                {k: mpmath.mpf(v) for k, v in p.items()}
+            ).tolist()
+        )
+        exact = sorted(
+            mpmath.eig(J0, left=False, right=False), key=lambda z: (float(z.real), float(z.imag))
+        )
         got = sorted(unforced.eigenvalues(contact=contact, **p), key=lambda z: (z.real, z.imag))
         assert rel_err(got, exact) < 1e-12
 
@@ -120,8 +147,11 @@ def test_eigenvalues_paper_fig4_regime(base):
 # Against the mpmath variants at 50 digits -----------------------------------------
 
 MP_CASES = [
-    ("equilibrium", ()), ("jacobian_at_equilibrium", ()), ("charpoly", ()),
-    ("eigenvalues", ()), ("jacobian", ("state",)),
+    ("equilibrium", ()),
+    ("jacobian_at_equilibrium", ()),
+    ("charpoly", ()),
+    ("eigenvalues", ()),
+    ("jacobian", ("state",)),
 ]
 
 
@@ -149,17 +179,26 @@ def test_broadcasting_over_parameter_grids(base):
     assert all(a.shape == (5, 3) for a in unforced.charpoly(**p))
     assert all(a.shape == (5, 3) for a in unforced.equilibrium(**p))
     J = unforced.jacobian_at_equilibrium(**p)
-    np.testing.assert_allclose(J[2, 1], eq11({**base, "beta1": b1[2, 0], "omega2": w2[0, 1]}),
-                               rtol=1e-14)
+    np.testing.assert_allclose(
+        J[2, 1], eq11({**base, "beta1": b1[2, 0], "omega2": w2[0, 1]}), rtol=1e-14
+    )
 
 
 # Bad input -------------------------------------------------------------------------
 
-@pytest.mark.parametrize("name,value,fn", [
-    ("omega1", -1.0, "charpoly"), ("omega2", 0.0, "equilibrium"), ("beta1", -0.1, "charpoly"),
-    ("beta2", -1e-9, "eigenvalues"), ("mu_s", -0.4, "equilibrium"), ("g", -9.81, "charpoly"),
-    ("mu_s", float("nan"), "jacobian_at_equilibrium"),
-])
+
+@pytest.mark.parametrize(
+    "name,value,fn",
+    [
+        ("omega1", -1.0, "charpoly"),
+        ("omega2", 0.0, "equilibrium"),
+        ("beta1", -0.1, "charpoly"),
+        ("beta2", -1e-9, "eigenvalues"),
+        ("mu_s", -0.4, "equilibrium"),
+        ("g", -9.81, "charpoly"),
+        ("mu_s", float("nan"), "jacobian_at_equilibrium"),
+    ],
+)
 def test_non_physical_parameter_raises_naming_it(base, name, value, fn):
     with pytest.raises(ValueError, match=repr(name)):
         getattr(unforced, fn)(**{**base, name: value})

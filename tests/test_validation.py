@@ -1,4 +1,5 @@
 """The validation table (runtime.validation) and the harmonic balance against the simulation."""
+
 import math
 
 import numpy as np
@@ -9,9 +10,18 @@ from runtime import validation
 from runtime.model import resolve_parameters
 from runtime.predict import fast_motion, unstable_intervals
 from runtime.simulate import simulate
-from runtime.validation import (ANALYSES, CASES, compare, disagreement_length,
-                                harmonic_in_band, render_markdown, simulated_ranges,
-                                summarize, validate, vb_grid)
+from runtime.validation import (
+    ANALYSES,
+    CASES,
+    compare,
+    disagreement_length,
+    harmonic_in_band,
+    render_markdown,
+    simulated_ranges,
+    summarize,
+    validate,
+    vb_grid,
+)
 
 H = 0.5  # grid step of the constructed sweeps
 
@@ -25,15 +35,20 @@ def _sim(present, regime=None):
 
 # ------------------------------------------------------------------ cases and grid
 
+
 def test_cases_are_the_base_set_and_every_case_of_figs_17_to_21():
-    expected = {"beta1": {0.05, 0.2, 0.4}, "beta2": {0.1, 0.2, 0.3},
-                "Omega": {6.0, 8.0, 10.0}, "omega1": {0.3, 3.0, 12.0},
-                "omega2": {0.4, 0.9, 1.5}}
+    expected = {
+        "beta1": {0.05, 0.2, 0.4},
+        "beta2": {0.1, 0.2, 0.3},
+        "Omega": {6.0, 8.0, 10.0},
+        "omega1": {0.3, 3.0, 12.0},
+        "omega2": {0.4, 0.9, 1.5},
+    }
     assert len(CASES) == 16 and len({c.name for c in CASES}) == 16
     assert CASES[0].overrides == {} and CASES[0].figure == "Fig. 2b"
     found = {}
     for case in CASES[1:]:
-        (name, value), = case.overrides.items()
+        ((name, value),) = case.overrides.items()
         found.setdefault(name, set()).add(value)
         assert case.figure[:7] in ("Fig. 17", "Fig. 18", "Fig. 19", "Fig. 20", "Fig. 21")
     assert found == expected
@@ -55,6 +70,7 @@ def test_harmonic_of_the_excitation_in_the_omega1_band_is_found():
 
 
 # ------------------------------------------------------------------ edge arithmetic
+
 
 def test_simulated_edges_lie_half_a_step_outside_the_points_with_the_peak():
     sim = _sim([False, False, True, True, True, False, False, True, False])
@@ -107,7 +123,7 @@ def test_compare_pairs_the_hulls_and_names_the_empty_cases():
 
 
 def test_disagreement_length_by_hand():
-    sim = _sim([False] * 6 + [True] * 9 + [False] * 5)   # range [3.25, 7.75], top 10
+    sim = _sim([False] * 6 + [True] * 9 + [False] * 5)  # range [3.25, 7.75], top 10
     assert disagreement_length([(0.0, 8.52)], sim, H) == pytest.approx(3.25 + 0.77)
     assert disagreement_length([], sim, H) == pytest.approx(4.5)
     # a prediction beyond the window counts only up to the top + h/2
@@ -115,7 +131,7 @@ def test_disagreement_length_by_hand():
 
 
 def test_disagreement_length_skips_the_cells_of_excluded_points():
-    regime = ["stick_slip"] * 4 + ["continuous_sliding"] * 4            # grid 0.5 .. 4
+    regime = ["stick_slip"] * 4 + ["continuous_sliding"] * 4  # grid 0.5 .. 4
     sim = _sim([False] * 8, regime)
     # the cells of 0.5 .. 2.0 cover [0.25, 2.25]; what remains of [0, 3] is 0.25 + 0.75
     assert disagreement_length([(0.0, 3.0)], sim, H) == pytest.approx(1.0)
@@ -126,8 +142,7 @@ def test_unresolved_points_are_excluded_not_taken_for_points_without_the_peak():
     # stick-slip, and its cell is left out of the disagreement length
     present = [False, True, True, False, True, True, False, False]
     resolved = [True, True, True, False, True, True, True, True]
-    sim = simulated_ranges(H * np.arange(1, 9), present, ["continuous_sliding"] * 8, H,
-                           resolved)
+    sim = simulated_ranges(H * np.arange(1, 9), present, ["continuous_sliding"] * 8, H, resolved)
     assert [(r["lower"], r["upper"]) for r in sim["ranges"]] == [(0.75, 1.75), (2.25, 3.25)]
     assert sim["ranges"][0]["upper_censored"] and sim["ranges"][1]["lower_censored"]
     assert sim["excluded"] == [(validation.UNRESOLVED, 2.0, 2.0)]
@@ -141,10 +156,15 @@ def test_unresolved_points_are_excluded_not_taken_for_points_without_the_peak():
 def test_an_analysis_without_a_prediction_is_counted_nowhere():
     sim = _sim([False, True, True, False])
     comp = compare(None, sim, H)
-    assert comp == {"status": "no_prediction", "lower": None, "upper": None,
-                    "disagreement": None}
-    cases = [_case({key: (comp if key == "consistent_mdsm" else compare([(0.5, 1.5)], sim, H))
-                    for key, _, _ in ANALYSES})]
+    assert comp == {"status": "no_prediction", "lower": None, "upper": None, "disagreement": None}
+    cases = [
+        _case(
+            {
+                key: (comp if key == "consistent_mdsm" else compare([(0.5, 1.5)], sim, H))
+                for key, _, _ in ANALYSES
+            }
+        )
+    ]
     s = summarize(cases)["consistent_mdsm"]
     assert s["no_prediction"] == 1 and s["n_cases"] == 0 and s["mae"] is None
     assert s["mean_disagreement"] is None and s["paired"] + s["miss"] == 0
@@ -153,14 +173,22 @@ def test_an_analysis_without_a_prediction_is_counted_nowhere():
 
 def test_predictions_under_the_clipped_law():
     p = resolve_parameters()
-    allowed, clipped = (validation.predicted_intervals(p, tension=t)
-                        for t in ("allowed", "clipped"))
+    allowed, clipped = (
+        validation.predicted_intervals(p, tension=t) for t in ("allowed", "clipped")
+    )
     assert clipped["consistent_mdsm"] is None and allowed["consistent_mdsm"]
-    assert {k: v for k, v in clipped.items() if k != "consistent_mdsm"} == \
-        {k: v for k, v in allowed.items() if k != "consistent_mdsm"}
+    assert {k: v for k, v in clipped.items() if k != "consistent_mdsm"} == {
+        k: v for k, v in allowed.items() if k != "consistent_mdsm"
+    }
     with pytest.raises(ValueError, match="tension must be one of"):
-        validate(True, tension="pulling", executor="serial", cache_dir=None, progress=False,
-                 cases=["base"])
+        validate(
+            True,
+            tension="pulling",
+            executor="serial",
+            cache_dir=None,
+            progress=False,
+            cases=["base"],
+        )
 
 
 def _case(comparison, comparable=True):
@@ -168,18 +196,28 @@ def _case(comparison, comparable=True):
 
 
 def test_summary_is_the_mean_over_uncensored_paired_edges_of_comparable_cases():
-    sim = _sim([False, True, True, True, False, False])            # [0.75, 2.25]
-    sim_censored = _sim([True, True, False],
-                        ["stick_slip", "sliding_with_reversals", "continuous_sliding"])
+    sim = _sim([False, True, True, True, False, False])  # [0.75, 2.25]
+    sim_censored = _sim(
+        [True, True, False], ["stick_slip", "sliding_with_reversals", "continuous_sliding"]
+    )
     empty = _sim([False] * 4)
-    predicted = {"paper_tangential_paper": [(0.0, 3.0)], "paper_coupled_paper": [],
-                 "paper_tangential_consistent": [], "paper_coupled_consistent": [],
-                 "consistent_mdsm": [(1.0, 2.0)]}
+    predicted = {
+        "paper_tangential_paper": [(0.0, 3.0)],
+        "paper_coupled_paper": [],
+        "paper_tangential_consistent": [],
+        "paper_coupled_consistent": [],
+        "consistent_mdsm": [(1.0, 2.0)],
+    }
 
     def comparison(s):
         return {key: compare(predicted[key], s, H) for key, _, _ in ANALYSES}
-    cases = [_case(comparison(sim)), _case(comparison(sim_censored)),
-             _case(comparison(empty)), _case(comparison(sim), comparable=False)]
+
+    cases = [
+        _case(comparison(sim)),
+        _case(comparison(sim_censored)),
+        _case(comparison(empty)),
+        _case(comparison(sim), comparable=False),
+    ]
     s = summarize(cases)
     a1 = s["paper_tangential_paper"]
     # case 1: |0 - 0.75| and |3 - 2.25|; case 2: the lower edge (next to stick-slip)
@@ -196,6 +234,7 @@ def test_summary_is_the_mean_over_uncensored_paired_edges_of_comparable_cases():
 
 # ------------------------------------------------------------------ quick mode, base set
 
+
 @pytest.fixture(scope="module")
 def quick_base():
     return validate(True, executor="serial", cache_dir=None, progress=False, cases=["base"])
@@ -206,8 +245,7 @@ def test_quick_validation_wires_the_predictions_of_every_analysis(quick_base):
     p = resolve_parameters()
     for model in ("tangential", "coupled"):
         for convention in ("paper", "consistent"):
-            lower, upper = stability.unstable_interval(vhat_model=model,
-                                                       convention=convention, **p)
+            lower, upper = stability.unstable_interval(vhat_model=model, convention=convention, **p)
             got = case["predicted"][f"paper_{model}_{convention}"]
             assert got == ([] if math.isnan(lower) else [(float(lower), float(upper))])
     assert case["predicted"]["consistent_mdsm"] == unstable_intervals(p)[0]
@@ -231,7 +269,7 @@ def test_quick_base_set_shows_the_peak_where_the_consistent_mdsm_predicts_it(qui
     # Fig. 2b: the omega1 peak at the base set; the consistent MDSM interval
     # (runtime.predict) must meet the simulated range.
     (case,) = quick_base["cases"]
-    (lo, hi), = case["predicted"]["consistent_mdsm"]
+    ((lo, hi),) = case["predicted"]["consistent_mdsm"]
     ranges = case["simulated"]["ranges"]
     assert ranges and any(r["lower"] < hi and lo < r["upper"] for r in ranges)
     assert case["comparable"]
@@ -260,10 +298,15 @@ def test_main_writes_the_file_named_by_out(quick_base, tmp_path, monkeypatch, ca
     def fake(quick, **kwargs):
         seen.update(quick=quick, **kwargs)
         return quick_base
+
     monkeypatch.setattr(validation, "validate", fake)
     out = tmp_path / "V.md"
-    assert validation.main(["validate", "--quick", "--out", str(out), "--jobs", "1",
-                            "--no-cache", "--no-progress"]) == 0
+    assert (
+        validation.main(
+            ["validate", "--quick", "--out", str(out), "--jobs", "1", "--no-cache", "--no-progress"]
+        )
+        == 0
+    )
     assert seen["quick"] and seen["executor"] == "serial" and seen["cache_dir"] is None
     assert seen["tension"] == "allowed"
     assert out.read_text() == render_markdown(quick_base, True)
@@ -271,6 +314,7 @@ def test_main_writes_the_file_named_by_out(quick_base, tmp_path, monkeypatch, ca
 
 
 # ------------------------------------------------------------------ issue 7, item 5
+
 
 def _fast_amplitudes(**overrides):
     """Harmonic balance V and the simulated amplitude of X1' at Omega, Vb above V_hat."""
@@ -297,7 +341,7 @@ def test_harmonic_balance_amplitude_matches_the_simulated_fast_amplitude_above_v
     # Normal equation, fast part: x'' = -alpha_n W^2 sin(W t) - N1 sin(W t + psi).
     x2 = abs(p["alpha_n"] * W**2 + fast.N1 * np.exp(1j * fast.psi)) / W**2
     eps = x2 / float(unforced.equilibrium(**p)[2])
-    D = p["omega1"]**2 - W**2 + 2j * p["beta1"] * p["omega1"] * W
+    D = p["omega1"] ** 2 - W**2 + 2j * p["beta1"] * p["omega1"] * W
     bound = eps**2 * p["mu_s"] * fast.N1 * W / (abs(D) * fast.V)
     assert abs(measured - fast.V) / fast.V < bound
     # Without the normal force fluctuation the amplitude would be far off: the test
@@ -321,16 +365,19 @@ def test_harmonic_balance_error_is_second_order_in_the_excitation():
 
 def test_validation_grid_and_cases_refuse_bad_input_by_name():
     """runtime.validation builds its own grids: the same limits as a sweep."""
-    for kwargs, text in (({"step": 0.0, "top": 10.0}, "step must be > 0"),
-                         ({"step": float("nan"), "top": 10.0}, "step must be finite"),
-                         ({"step": 0.5, "top": float("inf")}, "top must be finite"),
-                         ({"step": 1e-15, "top": 10.0}, "MAX_POINTS")):
+    for kwargs, text in (
+        ({"step": 0.0, "top": 10.0}, "step must be > 0"),
+        ({"step": float("nan"), "top": 10.0}, "step must be finite"),
+        ({"step": 0.5, "top": float("inf")}, "top must be finite"),
+        ({"step": 1e-15, "top": 10.0}, "MAX_POINTS"),
+    ):
         with pytest.raises(ValueError, match=text):
             validation.vb_grid(**kwargs)
     np.testing.assert_array_equal(validation.vb_grid(0.5, 2.0), [0.5, 1.0, 1.5, 2.0])
     with pytest.raises(ValueError, match="unknown case.*'beta1=9'"):
-        validation.validate(True, cases=["beta1=9"], executor="serial", cache_dir=None,
-                            progress=False)
+        validation.validate(
+            True, cases=["beta1=9"], executor="serial", cache_dir=None, progress=False
+        )
 
 
 def test_quick_validation_runs_every_sweep_under_the_law_it_names(monkeypatch):
@@ -338,18 +385,28 @@ def test_quick_validation_runs_every_sweep_under_the_law_it_names(monkeypatch):
     real = validation.sweep
 
     def recording(*args, **kwargs):
-        kind = ("periodic" if kwargs.get("start") == "periodic"
-                else kwargs.get("continuation") or "rest")
+        kind = (
+            "periodic"
+            if kwargs.get("start") == "periodic"
+            else kwargs.get("continuation") or "rest"
+        )
         laws.append((kind, kwargs["tension"]))
         table = real(*args, **kwargs)
         assert set(table["tension"]) == {kwargs["tension"]}
         return table
+
     monkeypatch.setattr(validation, "sweep", recording)
-    results = validate(True, tension="clipped", executor="serial", cache_dir=None,
-                       progress=False, cases=["base"])
+    results = validate(
+        True, tension="clipped", executor="serial", cache_dir=None, progress=False, cases=["base"]
+    )
     # every run under the file's law, but the one from rest under the other law
-    assert sorted(set(laws)) == [("down", "clipped"), ("periodic", "clipped"),
-                                 ("rest", "allowed"), ("rest", "clipped"), ("up", "clipped")]
+    assert sorted(set(laws)) == [
+        ("down", "clipped"),
+        ("periodic", "clipped"),
+        ("rest", "allowed"),
+        ("rest", "clipped"),
+        ("up", "clipped"),
+    ]
     assert results["tension"] == "clipped"
     (case,) = results["cases"]
     assert case["comparison"]["consistent_mdsm"]["status"] == "no_prediction"
@@ -360,17 +417,21 @@ def test_quick_validation_runs_every_sweep_under_the_law_it_names(monkeypatch):
 
 # ------------------------------------------------------------------ Floquet (issue 13)
 
+
 def _verdicts(*names):
     rate = {"stable": -0.1, "unstable": 0.05}
     return [{"verdict": v, "growth_rate": rate.get(v, math.nan)} for v in names]
 
 
 def test_periodic_mismatches_compare_away_from_edges_and_count_each_exclusion():
-    vb = H * np.arange(1, 9)                                 # 0.5 .. 4.0
-    verdicts = _verdicts("stable", "stable", "unstable", "unstable", "unstable", "absent",
-                         "stable", "stable")
-    periodic = {"present": [False, True, True, True, False, False, False, False],
-                "resolved": [True, True, True, True, True, False, True, False]}
+    vb = H * np.arange(1, 9)  # 0.5 .. 4.0
+    verdicts = _verdicts(
+        "stable", "stable", "unstable", "unstable", "unstable", "absent", "stable", "stable"
+    )
+    periodic = {
+        "present": [False, True, True, True, False, False, False, False],
+        "resolved": [True, True, True, True, True, False, True, False],
+    }
     out = validation.periodic_mismatches(vb, verdicts, periodic, [1.3], H)
     # 1.3 +- 0.5: the points 1.0 and 1.5 are near the edge, whatever they show
     assert out["near_edge"] == [1.0, 1.5]
@@ -378,20 +439,22 @@ def test_periodic_mismatches_compare_away_from_edges_and_count_each_exclusion():
     assert out["checked"] == 4
     assert out["mismatches"] == [{"Vb": 2.5, "floquet": "unstable", "peak": False}]
     # a point exactly one step from an edge is near it (rounding forgiven)
-    assert validation.periodic_mismatches([1.0], _verdicts("stable"),
-                                          {"present": [True], "resolved": [True]},
-                                          [1.5], H)["near_edge"] == [1.0]
+    assert validation.periodic_mismatches(
+        [1.0], _verdicts("stable"), {"present": [True], "resolved": [True]}, [1.5], H
+    )["near_edge"] == [1.0]
 
 
 def test_coexistence_needs_a_stable_response_that_the_periodic_start_keeps_and_attracts():
     vb = H * np.arange(1, 6)
     verdicts = _verdicts("stable", "stable", "unstable", "stable", "stable")
-    verdicts[4]["growth_rate"] = -0.001        # slow: exp(-0.001 * 90) > 1e-3
+    verdicts[4]["growth_rate"] = -0.001  # slow: exp(-0.001 * 90) > 1e-3
     no, yes = False, True
-    runs = {"periodic": {"present": [no, yes, yes, no, no], "resolved": [yes] * 5},
-            "rest": {"present": [yes, yes, yes, no, yes], "resolved": [yes] * 5},
-            "up": {"present": [no, no, yes, yes, yes], "resolved": [yes, yes, yes, no, yes]},
-            "down": {"present": [no] * 5, "resolved": [yes] * 5}}
+    runs = {
+        "periodic": {"present": [no, yes, yes, no, no], "resolved": [yes] * 5},
+        "rest": {"present": [yes, yes, yes, no, yes], "resolved": [yes] * 5},
+        "up": {"present": [no, no, yes, yes, yes], "resolved": [yes, yes, yes, no, yes]},
+        "down": {"present": [no] * 5, "resolved": [yes] * 5},
+    }
     out = validation.coexistence(vb, verdicts, runs, H, window_start=90.0)
     # 0.5: stable, kept, shown from rest; 1.0: the periodic start leaves it; 1.5:
     # unstable; 2.0: the up sweep shows it but is unresolved; 2.5: too slow to tell
@@ -411,34 +474,36 @@ def test_compare_floquet_pairs_exact_edges_and_censors_the_ends_of_the_range():
     at_end = validation.compare_floquet([(1.0, 2.0)], {"unstable": [[0.125, 3.0]]}, 0.125, 40)
     assert at_end["lower"]["censored"] and not at_end["upper"]["censored"]
     assert validation.compare_floquet([], band, 0.125, 40)["status"] == "miss"
-    assert validation.compare_floquet([(1, 2)], {"unstable": []}, 0.125, 40)["status"] \
-        == "false_alarm"
+    assert (
+        validation.compare_floquet([(1, 2)], {"unstable": []}, 0.125, 40)["status"] == "false_alarm"
+    )
     assert validation.compare_floquet(None, band, 0.125, 40)["status"] == "no_prediction"
 
 
 def test_band_grid_disagreements_flag_a_change_the_band_missed():
     band = {"unstable": [[2.0, 3.0]], "edges": [{"value": 2.0}, {"value": 3.0}]}
-    vb = H * np.arange(1, 11)                                # 0.5 .. 5.0
+    vb = H * np.arange(1, 11)  # 0.5 .. 5.0
     verdicts = _verdicts(*["stable"] * 10)
     assert validation.band_grid_disagreements(vb, verdicts, band, H) == []
-    verdicts[8] = _verdicts("unstable")[0]                   # 4.5: unstable, outside
-    verdicts[4] = _verdicts("grazing")[0]                    # 2.5: no verdict, skipped
+    verdicts[8] = _verdicts("unstable")[0]  # 4.5: unstable, outside
+    verdicts[4] = _verdicts("grazing")[0]  # 2.5: no verdict, skipped
     assert validation.band_grid_disagreements(vb, verdicts, band, H) == [4.5]
 
 
 def test_quick_base_periodic_start_agrees_with_floquet_and_the_band_with_its_grid(quick_base):
     (case,) = quick_base["cases"]
     band = case["floquet"]
-    (lo, hi), = band["unstable"]
+    ((lo, hi),) = band["unstable"]
     # an independent Floquet evaluation at the band's middle and outside it
     from runtime.floquet import floquet
+
     assert floquet(Vb=0.5 * (lo + hi) - 0.5).stable is False
     assert floquet(Vb=lo - 0.5).stable and floquet(Vb=hi + 0.5).stable
     assert case["mismatches"]["checked"] >= 4 and case["mismatches"]["mismatches"] == []
     assert case["band_disagreements"] == []
     # the analyses are measured against the band's exact edges
     mdsm = case["floquet_comparison"]["consistent_mdsm"]
-    (p_lo, p_hi), = case["predicted"]["consistent_mdsm"]
+    ((p_lo, p_hi),) = case["predicted"]["consistent_mdsm"]
     assert mdsm["upper"]["delta"] == pytest.approx(p_hi - hi)
     assert mdsm["lower"]["delta"] == pytest.approx(p_lo - lo)
     # tension clipped: no omega1 peak from rest (docs/modelling.md#tension)

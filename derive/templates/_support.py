@@ -4,6 +4,7 @@ Copied verbatim into ``generated/_support.py`` by ``python -m derive``; edit the
 template in ``derive/templates/`` and regenerate. Plain numpy and mpmath: importing
 it never imports SymPy.
 """
+
 import math
 
 import mpmath
@@ -24,9 +25,11 @@ _DOMAIN_TEST = {
 def _reject_unknown(function, extra):
     unknown = sorted(set(extra) - KNOWN)
     if unknown:
-        raise TypeError(f"{function}() got unexpected keyword argument(s) "
-                        f"{', '.join(map(repr, unknown))}; known parameters: "
-                        f"{', '.join(sorted(KNOWN))}")
+        raise TypeError(
+            f"{function}() got unexpected keyword argument(s) "
+            f"{', '.join(map(repr, unknown))}; known parameters: "
+            f"{', '.join(sorted(KNOWN))}"
+        )
 
 
 def _missing(function, name):
@@ -81,13 +84,15 @@ def arguments(function, names, params):
     """
     _reject_unknown(function, params)
     values = [param(function, n, _lookup(function, n, params)) for n in names]
-    extra = [param(function, k, v) for k, v in params.items()
-             if k not in names and v is not None]
+    extra = [param(function, k, v) for k, v in params.items() if k not in names and v is not None]
     return values, extra
 
 
-_SCALAR_TEST = {"positive": lambda x: x > 0, "nonnegative": lambda x: x >= 0,
-                "real": lambda x: True}
+_SCALAR_TEST = {
+    "positive": lambda x: x > 0,
+    "nonnegative": lambda x: x >= 0,
+    "real": lambda x: True,
+}
 
 
 def _scalar_arguments(function, names, params):
@@ -106,12 +111,14 @@ def _scalar_arguments(function, names, params):
             continue
         x = param(function, n, v)
         if x.ndim:
-            raise ValueError(f"{function}(): parameter {n!r} must be a scalar; got shape "
-                             f"{x.shape}")
+            raise ValueError(f"{function}(): parameter {n!r} must be a scalar; got shape {x.shape}")
         values.append(float(x))
     for k, v in params.items():
-        if k not in names and v is not None and not (type(v) is float and math.isfinite(v)
-                                                     and _SCALAR_TEST[DOMAINS[k]](v)):
+        if (
+            k not in names
+            and v is not None
+            and not (type(v) is float and math.isfinite(v) and _SCALAR_TEST[DOMAINS[k]](v))
+        ):
             param(function, k, v)
     return tuple(values)
 
@@ -127,8 +134,9 @@ def mp_arguments(function, names, params):
 
 
 def _fail(function, name, domain, why):
-    return ValueError(f"{function}(): parameter {name!r} must be {why}"
-                      + (f" ({domain})" if domain else ""))
+    return ValueError(
+        f"{function}(): parameter {name!r} must be {why}" + (f" ({domain})" if domain else "")
+    )
 
 
 def param(function, name, value, domain=None, why=None):
@@ -196,8 +204,9 @@ def tuple_of(shape, *values):
 
 def matrix(shape, rows):
     """Stack a nested list of entries into an array of shape ``shape + (n, m)``."""
-    return numpy.stack([numpy.stack([full(shape, v) for v in row], axis=-1)
-                        for row in rows], axis=-2)
+    return numpy.stack(
+        [numpy.stack([full(shape, v) for v in row], axis=-1) for row in rows], axis=-2
+    )
 
 
 def vector(shape, values):
@@ -216,8 +225,7 @@ def quadratic_roots(half_p, q, disc):
     -------
     (r1, r2) : complex arrays; for complex roots ``r1`` has the positive imaginary part.
     """
-    half_p, q, disc = numpy.broadcast_arrays(*(numpy.asarray(a, float)
-                                               for a in (half_p, q, disc)))
+    half_p, q, disc = numpy.broadcast_arrays(*(numpy.asarray(a, float) for a in (half_p, q, disc)))
     root = numpy.sqrt(numpy.abs(disc))
     real = disc >= 0
     big = -(half_p + numpy.copysign(root, half_p))
@@ -256,9 +264,11 @@ def resolve_vhat(function, params, vhat_model, vhat, contact):
     # Without this the check of Vhat would blame a parameter the caller never gave
     # (the mpmath variants pass an mpf, hence the conversion).
     if not numpy.isfinite(numpy.asarray(value, dtype=float)).all():
-        raise ValueError(f"{function}(): Vhat of vhat_model={model!r} is not finite at "
-                         "these parameters (an undamped resonance of the linear "
-                         "response); give a finite Vhat")
+        raise ValueError(
+            f"{function}(): Vhat of vhat_model={model!r} is not finite at "
+            "these parameters (an undamped resonance of the linear "
+            "response); give a finite Vhat"
+        )
     return {**params, "Vhat": value}
 
 
@@ -286,16 +296,18 @@ def blockwise(kernel, *args, block=BLOCK):
     size = math.prod(shape)
     if size <= 2 * block:
         return kernel(*arrays)
-    flat = [a.reshape(()) if a.size == 1 else numpy.broadcast_to(a, shape).reshape(-1)
-            for a in arrays]
+    flat = [
+        a.reshape(()) if a.size == 1 else numpy.broadcast_to(a, shape).reshape(-1) for a in arrays
+    ]
     out = None
     for start in range(0, size, block):
-        part = numpy.asarray(kernel(*(a if a.ndim == 0 else a[start:start + block]
-                                      for a in flat)))
+        part = numpy.asarray(
+            kernel(*(a if a.ndim == 0 else a[start : start + block] for a in flat))
+        )
         if out is None:
             dtype = bool if part.dtype == bool else numpy.result_type(part.dtype, float)
             out = numpy.empty(size, dtype)
-        out[start:start + block] = part
+        out[start : start + block] = part
     return out.reshape(shape)
 
 
@@ -313,15 +325,17 @@ def _import_numba(required):
             numba = False
         _numba = numba
     if _numba is False and required:
-        raise ImportError("backend='numba' needs numba: pip install 'beltmdsm[fast]' "
-                          "(or pip install numba)")
+        raise ImportError(
+            "backend='numba' needs numba: pip install 'beltmdsm[fast]' (or pip install numba)"
+        )
     return _numba or None
 
 
 def _check_backend(backend, choices):
     if backend is not None and backend not in choices:
-        raise ValueError(f"backend must be one of {', '.join(map(repr, choices))} "
-                         f"or None; got {backend!r}")
+        raise ValueError(
+            f"backend must be one of {', '.join(map(repr, choices))} or None; got {backend!r}"
+        )
 
 
 def compiled(kernel, result, backend):
@@ -384,8 +398,7 @@ def jit(kernel):
     """
     fast = _JITTED.get(kernel)
     if fast is None:
-        fast = _JITTED[kernel] = _import_numba(True).njit(cache=True,
-                                                          error_model="numpy")(kernel)
+        fast = _JITTED[kernel] = _import_numba(True).njit(cache=True, error_model="numpy")(kernel)
     return fast
 
 
@@ -448,9 +461,15 @@ def bind(function, variant, params, backend):
     kernel = jit(variant.scalar) if use_numba else variant.scalar
     # the array implementation keeps numpy's floating-point semantics (inf, not an
     # exception, for a power of zero) with numpy scalars
-    return Bound(function, kernel, values + roots, dict(zip(variant.names, values)),
-                 "numba" if use_numba else "python", variant.impl,
-                 tuple(numpy.float64(v) for v in values))
+    return Bound(
+        function,
+        kernel,
+        values + roots,
+        dict(zip(variant.names, values)),
+        "numba" if use_numba else "python",
+        variant.impl,
+        tuple(numpy.float64(v) for v in values),
+    )
 
 
 class Variant:
@@ -480,8 +499,10 @@ def choose(function, table, **options):
     for position, (option, value) in enumerate(options.items()):
         choices = list(dict.fromkeys(key[position] for key in table))
         if isinstance(value, bool) or value not in choices:
-            raise ValueError(f"{function}(): {option} must be one of "
-                             f"{', '.join(map(repr, choices))}; got {value!r}")
+            raise ValueError(
+                f"{function}(): {option} must be one of "
+                f"{', '.join(map(repr, choices))}; got {value!r}"
+            )
     key = tuple(options.values())
     if key not in table:
         given = ", ".join(f"{k}={v!r}" for k, v in options.items())
@@ -489,7 +510,25 @@ def choose(function, table, **options):
     return table[key]
 
 
-__all__ = ["arguments", "mp_arguments", "param", "mp_param",
-           "shape_of", "full", "tuple_of", "matrix", "vector", "quadratic_roots",
-           "mp_quadratic_roots", "blockwise", "compiled", "evaluate", "jit", "bind", "Bound",
-           "Variant", "resolve_vhat", "choose"]
+__all__ = [
+    "arguments",
+    "mp_arguments",
+    "param",
+    "mp_param",
+    "shape_of",
+    "full",
+    "tuple_of",
+    "matrix",
+    "vector",
+    "quadratic_roots",
+    "mp_quadratic_roots",
+    "blockwise",
+    "compiled",
+    "evaluate",
+    "jit",
+    "bind",
+    "Bound",
+    "Variant",
+    "resolve_vhat",
+    "choose",
+]
