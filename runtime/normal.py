@@ -169,6 +169,13 @@ class NormalMotion:
 
     def at(self, t: float) -> NDArray[np.float64]:
         """``(z, z', X2, X2')`` at one time: the dense output of the step holding ``t``."""
+        # the period maps of a Floquet band call this thousands of times: the compiled
+        # loop of `evaluate` (bit-identical) costs a seventh of the Python one
+        fast = _dop853._evaluate_compiled()
+        if fast is not None:
+            out = np.empty((4, 1))
+            fast(self.t_steps, self.h_steps, self.y_steps, self.F_steps, np.array([t]), out)
+            return out[:, 0]
         k = max(int(np.searchsorted(self.t_steps, t, side="right")) - 1, 0)
         F = self.F_steps[k]
         x = (t - self.t_steps[k]) / self.h_steps[k]

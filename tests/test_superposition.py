@@ -145,3 +145,18 @@ def test_compiled_integrators_take_numbers_only_and_live_in_a_module_named_by_th
     simulate(Vb=4.0, solver="events", t_end=20.0, t_discard=5.0, backend="numba")
     for signature in f.signatures:
         assert all("Dispatcher" not in str(arg) for arg in signature)
+
+
+@pytest.mark.parametrize("compiled", [True, False], ids=["compiled", "python"])
+def test_normal_motion_at_one_time_is_its_dense_output(compiled, monkeypatch):
+    from runtime import _dop853
+    from runtime.normal import normal_motion
+    from runtime.parameters import resolve_parameters
+
+    p = resolve_parameters()
+    nm = normal_motion(p, "hertz_damp", "allowed", 20.0, 1e-10, 1e-10, (p["g"] / 1.0, 0.0))
+    if not compiled:
+        monkeypatch.setattr(_dop853, "_evaluate_compiled", lambda: None)
+    t = np.linspace(0.0, 20.0, 37)
+    # the same polynomial of the same step, so the same bits whichever path runs
+    np.testing.assert_array_equal(np.stack([nm.at(x) for x in t], axis=1), nm.evaluate(t))
