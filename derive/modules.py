@@ -202,6 +202,24 @@ def dynamics() -> ModuleSpec:
             bind=True,
         ),
         FunctionSpec(
+            "friction_force",
+            "Friction force of the belt on the mass per unit mass while sliding.",
+            "Eqs. (2)-(3)",
+            "value",
+            "Ff : ndarray",
+            _per_contact_tension(
+                lambda c, tl: dyn.in_contact(
+                    -dyn.friction_coefficient(dyn.sgn) * contact_force(c, tl), 0
+                )
+            ),
+            CONTACT_TENSION,
+            (dyn.X2r, Y2, dyn.sgn),
+            STATE_DOCS,
+            notes="-mu_s sgn F_n, zero out of contact: the friction term of Eq. (4) on a "
+            "slip branch (positive along the belt). While sticking the force that holds "
+            "the mass is -a_free (`free_acceleration`).",
+        ),
+        FunctionSpec(
             "normal_rhs",
             "Right-hand side (X2', Y2') of the normal equation alone.",
             "Eq. (4), second row",

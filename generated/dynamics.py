@@ -17,7 +17,7 @@ import numpy
 
 from . import _support
 
-__all__ = ['rhs', 'rhs_branch', 'jacobian_branch', 'normal_force', 'normal_rhs', 'normal_jacobian', 'free_acceleration', 'excitation', 'energy', 'power_balance', 'bind_rhs_branch', 'bind_normal_force', 'bind_normal_rhs', 'bind_normal_jacobian', 'bind_free_acceleration', 'bind_excitation', 'bind_energy', 'bind_power_balance']
+__all__ = ['rhs', 'rhs_branch', 'jacobian_branch', 'normal_force', 'friction_force', 'normal_rhs', 'normal_jacobian', 'free_acceleration', 'excitation', 'energy', 'power_balance', 'bind_rhs_branch', 'bind_normal_force', 'bind_normal_rhs', 'bind_normal_jacobian', 'bind_free_acceleration', 'bind_excitation', 'bind_energy', 'bind_power_balance']
 
 
 def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
@@ -681,6 +681,88 @@ _NORMAL_FORCE = {
     ('hertz_damp', 'clipped'): _support.Variant(_normal_force__hertz_damp__clipped, ('beta2', 'omega2', ), _normal_force__hertz_damp__clipped__scalar, None),
     ('kelvin_voigt', 'allowed'): _support.Variant(_normal_force__kelvin_voigt__allowed, ('beta2', 'omega2', ), _normal_force__kelvin_voigt__allowed__scalar, None),
     ('kelvin_voigt', 'clipped'): _support.Variant(_normal_force__kelvin_voigt__clipped, ('beta2', 'omega2', ), _normal_force__kelvin_voigt__clipped__scalar, None),
+}
+
+
+def friction_force(X2, Y2, sgn, *, contact='hertz_damp', tension='allowed', **params):
+    """Friction force of the belt on the mass per unit mass while sliding.
+
+    Implements Eqs. (2)-(3) of the paper.
+
+    -mu_s sgn F_n, zero out of contact: the friction term of Eq. (4) on a slip branch
+    (positive along the belt). While sticking the force that holds the mass is -a_free
+    (`free_acceleration`).
+
+    Parameters
+    ----------
+    X2 : array_like
+        normal penetration into the belt [m]
+    Y2 : array_like
+        normal velocity X2' [m/s]
+    sgn : array_like
+        friction direction: -1 (mass slower than the belt), +1, or 0 (no friction: the force sticking must supply)
+    beta2 : array_like
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : array_like
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    mu_s : array_like
+        Coulomb friction coefficient, Eq. (3) [1], nonnegative.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    Ff : ndarray
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    """
+    _variant = _support.choose("friction_force", _FRICTION_FORCE, contact=contact, tension=tension)
+    _values, _extra = _support.arguments("friction_force", _variant.names, params)
+    X2 = _support.param("friction_force", "X2", X2, "real")
+    Y2 = _support.param("friction_force", "Y2", Y2, "real")
+    sgn = _support.param("friction_force", "sgn", sgn, "real")
+    _shape = _support.shape_of(X2, Y2, sgn, *_values, *_extra)
+    return _variant.impl(_shape, X2, Y2, sgn, *_values)
+
+
+def _friction_force__hertz_damp__allowed(_shape, X2, Y2, sgn, beta2, omega2, mu_s):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [-mu_s*sgn*(2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2]))),0], default=numpy.nan))
+
+
+def _friction_force__hertz_damp__clipped(_shape, X2, Y2, sgn, beta2, omega2, mu_s):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [-mu_s*sgn*numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan),0], default=numpy.nan))
+
+
+def _friction_force__kelvin_voigt__allowed(_shape, X2, Y2, sgn, beta2, omega2, mu_s):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [-mu_s*sgn*(2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])),0], default=numpy.nan))
+
+
+def _friction_force__kelvin_voigt__clipped(_shape, X2, Y2, sgn, beta2, omega2, mu_s):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [-mu_s*sgn*numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan),0], default=numpy.nan))
+
+
+_FRICTION_FORCE = {
+    ('hertz_damp', 'allowed'): _support.Variant(_friction_force__hertz_damp__allowed, ('beta2', 'omega2', 'mu_s', )),
+    ('hertz_damp', 'clipped'): _support.Variant(_friction_force__hertz_damp__clipped, ('beta2', 'omega2', 'mu_s', )),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_friction_force__kelvin_voigt__allowed, ('beta2', 'omega2', 'mu_s', )),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_friction_force__kelvin_voigt__clipped, ('beta2', 'omega2', 'mu_s', )),
 }
 
 

@@ -110,12 +110,10 @@ class Trajectory:
         Fn = dynamics.normal_force(y[2], y[3], contact=c, tension=self.tension, **p)
         a_free = dynamics.free_acceleration(t, y[0], y[1], **p)
         slip = (mode == Mode.SLIP_BACK) | (mode == Mode.SLIP_FORWARD)
-        # the friction law is the generated one: the tangential acceleration of the
-        # slip branch less the acceleration without friction
-        tangential = dynamics.rhs_branch(
-            t, *y, sgn=np.where(slip, mode, 0), contact=c, tension=self.tension, **p
-        )[..., 1]
-        friction = np.where(slip, tangential - a_free, np.where(mode == Mode.STICK, -a_free, 0.0))
+        sliding = dynamics.friction_force(
+            y[2], y[3], np.where(slip, mode, 0), contact=c, tension=self.tension, **p
+        )
+        friction = np.where(slip, sliding, np.where(mode == Mode.STICK, -a_free, 0.0))
         return Fn, friction
 
     def pieces(

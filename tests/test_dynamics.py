@@ -158,6 +158,8 @@ def hand_scale(name, t, x, sgn, p, contact):
         return np.array(H.jacobian_scale(t, x, p, contact))
     if name == "normal_force":
         return H.force_scale(x[2], x[3], p, contact) if x[2] > 0 else 0.0
+    if name == "friction_force":
+        return p["mu_s"] * H.force_scale(x[2], x[3], p, contact) if x[2] > 0 else 0.0
     if name == "normal_rhs":
         return H.rhs_scale(t, x, p, contact)[2:]
     if name == "normal_jacobian":
@@ -175,6 +177,7 @@ def call_args(name, t, x, sgn):
         "rhs_branch": (t, *x, sgn),
         "jacobian_branch": (t, *x, sgn),
         "normal_force": tuple(x[2:]),
+        "friction_force": (*x[2:], sgn),
         "normal_rhs": (t, *x[2:]),
         "normal_jacobian": (t, *x[2:]),
         "energy": tuple(x),
@@ -190,6 +193,7 @@ def call_args(name, t, x, sgn):
         "rhs_branch",
         "jacobian_branch",
         "normal_force",
+        "friction_force",
         "normal_rhs",
         "normal_jacobian",
         "energy",
@@ -246,3 +250,19 @@ def test_tension_option_is_checked_by_name(base):
             fn(*args, tension="elastic", **base)
     with pytest.raises(ValueError, match="tension"):
         dynamics.bind_normal_rhs(tension="none", **base)
+
+
+@pytest.mark.parametrize("tension", ["allowed", "clipped"])
+def test_friction_force_is_coulomb_with_the_normal_force_of_eq1(rng, tension):
+    """Eqs. (2)-(3): -mu_s sgn F_n with F_n typed by hand (hand_eq4), zero in flight."""
+    for contact in ("hertz_damp", "kelvin_voigt"):
+        for i in range(6):
+            p = random_params(rng)
+            _, x = tension_state(rng, p, contact, i)
+            for sgn in (-1.0, 0.0, 1.0):
+                got = dynamics.friction_force(
+                    x[2], x[3], sgn, contact=contact, tension=tension, **p
+                )
+                Fn = H.force(x[2], x[3], H.full(p), contact, tension) if x[2] > 0 else 0.0
+                scale = p["mu_s"] * H.force_scale(x[2], x[3], H.full(p), contact) if x[2] > 0 else 0
+                assert abs(got - (-p["mu_s"] * sgn * Fn)) <= 16 * EPS * scale, (contact, i, sgn)

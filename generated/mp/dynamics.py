@@ -17,7 +17,7 @@ import mpmath
 
 from .. import _support
 
-__all__ = ['rhs', 'rhs_branch', 'jacobian_branch', 'normal_force', 'normal_rhs', 'normal_jacobian', 'free_acceleration', 'excitation', 'energy', 'power_balance']
+__all__ = ['rhs', 'rhs_branch', 'jacobian_branch', 'normal_force', 'friction_force', 'normal_rhs', 'normal_jacobian', 'free_acceleration', 'excitation', 'energy', 'power_balance']
 
 
 def rhs(t, X1, Y1, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
@@ -489,6 +489,91 @@ _NORMAL_FORCE = {
     ('hertz_damp', 'clipped'): _support.Variant(_normal_force__hertz_damp__clipped, ('beta2', 'omega2', )),
     ('kelvin_voigt', 'allowed'): _support.Variant(_normal_force__kelvin_voigt__allowed, ('beta2', 'omega2', )),
     ('kelvin_voigt', 'clipped'): _support.Variant(_normal_force__kelvin_voigt__clipped, ('beta2', 'omega2', )),
+}
+
+
+def friction_force(X2, Y2, sgn, *, contact='hertz_damp', tension='allowed', **params):
+    """Friction force of the belt on the mass per unit mass while sliding.
+
+    Implements Eqs. (2)-(3) of the paper.
+
+    -mu_s sgn F_n, zero out of contact: the friction term of Eq. (4) on a slip branch
+    (positive along the belt). While sticking the force that holds the mass is -a_free
+    (`free_acceleration`).
+
+    mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits.
+
+    Parameters
+    ----------
+    X2 : mpmath number
+        normal penetration into the belt [m]
+    Y2 : mpmath number
+        normal velocity X2' [m/s]
+    sgn : mpmath number
+        friction direction: -1 (mass slower than the belt), +1, or 0 (no friction: the force sticking must supply)
+    beta2 : mpmath number
+        Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4) [1/m^(5/4)], nonnegative.
+    omega2 : mpmath number
+        Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4) [rad/(m^(1/4) s)], positive.
+    mu_s : mpmath number
+        Coulomb friction coefficient, Eq. (3) [1], nonnegative.
+    contact : {"hertz_damp", "kelvin_voigt"}, default 'hertz_damp'
+        contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)
+    tension : {"allowed", "clipped"}, default 'allowed'
+        Eq. (1) as printed, tensile when its damping term outweighs its stiffness term, or max(F, 0), a contact that cannot pull (docs/modelling.md#tension)
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    Ff : ndarray
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing.
+    """
+    _variant = _support.choose("friction_force", _FRICTION_FORCE, contact=contact, tension=tension)
+    _values = _support.mp_arguments("friction_force", _variant.names, params)
+    X2 = _support.mp_param("friction_force", "X2", X2, "real")
+    Y2 = _support.mp_param("friction_force", "Y2", Y2, "real")
+    sgn = _support.mp_param("friction_force", "sgn", sgn, "real")
+    return _variant.impl(X2, Y2, sgn, *_values)
+
+
+def _friction_force__hertz_damp__allowed(X2, Y2, sgn, beta2, omega2, mu_s):
+    if (X2 > 0):
+        return -mu_s*sgn*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    else:
+        return 0
+
+
+def _friction_force__hertz_damp__clipped(X2, Y2, sgn, beta2, omega2, mu_s):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    return ((-mu_s*sgn*((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (0))
+
+
+def _friction_force__kelvin_voigt__allowed(X2, Y2, sgn, beta2, omega2, mu_s):
+    if (X2 > 0):
+        return -mu_s*sgn*(2*Y2*beta2*omega2 + omega2**2*max(0, X2))
+    else:
+        return 0
+
+
+def _friction_force__kelvin_voigt__clipped(X2, Y2, sgn, beta2, omega2, mu_s):
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    return ((-mu_s*sgn*((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (0))
+
+
+_FRICTION_FORCE = {
+    ('hertz_damp', 'allowed'): _support.Variant(_friction_force__hertz_damp__allowed, ('beta2', 'omega2', 'mu_s', )),
+    ('hertz_damp', 'clipped'): _support.Variant(_friction_force__hertz_damp__clipped, ('beta2', 'omega2', 'mu_s', )),
+    ('kelvin_voigt', 'allowed'): _support.Variant(_friction_force__kelvin_voigt__allowed, ('beta2', 'omega2', 'mu_s', )),
+    ('kelvin_voigt', 'clipped'): _support.Variant(_friction_force__kelvin_voigt__clipped, ('beta2', 'omega2', 'mu_s', )),
 }
 
 
