@@ -839,7 +839,7 @@ def add_commands(commands: argparse._SubParsersAction) -> None:
         help="points of the Vb grid, >= 2 (default: 400)",
     )
 
-    flo = _add(
+    _add(
         commands,
         "floquet",
         _floquet,
@@ -849,7 +849,6 @@ def add_commands(commands: argparse._SubParsersAction) -> None:
         "multipliers, with saltation matrices at the switches "
         "(runtime.floquet).",
     )
-    del flo
     band = _add(
         commands,
         "floquet-band",

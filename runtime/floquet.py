@@ -47,7 +47,6 @@ import functools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Literal
 
 import numpy as np
 from scipy import optimize
@@ -57,13 +56,9 @@ from generated import dynamics, hybrid, oscillator
 
 from .model import TENSIONS, resolve_parameters
 from .normal import NORMAL_NAMES, normal_motion
-from .parameters import excitation_period
+from .parameters import Backend, Contact, Tension, excitation_period
 from .superposition import Superposition
 from .switching import SURFACE_INDEX, Mode, Switching
-
-Contact = Literal["hertz_damp", "kelvin_voigt"]
-Tension = Literal["allowed", "clipped"]
-Backend = Literal["python", "numba"] | None
 
 __all__ = [
     "excitation_period",
@@ -397,7 +392,7 @@ def periodic_response(
     guess: Sequence[float] | PeriodicResponse | None = None,
     max_iter: int = 20,
     forward: int = FORWARD_PERIODS,
-    backend: Backend = None,
+    backend: Backend | None = None,
     **overrides: float,
 ) -> PeriodicResponse:
     """The periodic response of Eq. (4) by shooting (module docstring).
@@ -575,7 +570,7 @@ def floquet(
     tension: Tension = "allowed",
     guess: Sequence[float] | PeriodicResponse | None = None,
     forward: int = FORWARD_PERIODS,
-    backend: Backend = None,
+    backend: Backend | None = None,
     **overrides: float,
 ) -> Floquet:
     """Floquet multipliers of the periodic response (module docstring).
@@ -647,7 +642,7 @@ def floquet_band(
     tension: Tension = "allowed",
     points: int = 17,
     tol: float = 1e-3,
-    backend: Backend = None,
+    backend: Backend | None = None,
     **overrides: float,
 ) -> dict:
     """Ranges of ``param`` in ``[lo, hi]`` where the periodic response is unstable.

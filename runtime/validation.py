@@ -58,7 +58,7 @@ from numpy.typing import ArrayLike
 from generated import stability
 
 from . import intervals
-from .parameters import resolve_parameters
+from .parameters import Tension, resolve_parameters
 from .predict import clip_acts, unstable_intervals
 from .simulate import (
     PEAK_PRESENT_RATIO,
@@ -410,7 +410,7 @@ def harmonic_in_band(p: Mapping[str, float]) -> list[tuple[int, float]]:
 def predicted_intervals(
     p: Mapping[str, float],
     contact: str = "hertz_damp",
-    tension: Literal["allowed", "clipped"] = "allowed",
+    tension: Tension = "allowed",
 ) -> dict[str, list[tuple[float, float]] | None]:
     """Every analysis' unstable ``Vb`` ranges: ``{key: [(lower, upper), ...] or None}``.
 
@@ -514,38 +514,39 @@ def disagreement_length(
     )
 
 
+def _summary(comparisons: Sequence[dict]) -> dict:
+    """MAE and largest |Δ| of the uncensored edges, status counts, mean disagreement
+    length of one analysis' comparisons (from `compare` or `compare_floquet`)."""
+    deltas, lengths = [], []
+    counts = {"paired": 0, "miss": 0, "false_alarm": 0, "both_empty": 0, "no_prediction": 0}
+    for comp in comparisons:
+        counts[comp["status"]] += 1
+        if comp["status"] == "no_prediction":
+            continue
+        lengths.append(comp["disagreement"])
+        deltas += [
+            abs(comp[side]["delta"])
+            for side in ("lower", "upper")
+            if comp[side] is not None and not comp[side]["censored"]
+        ]
+    return {
+        "mae": float(np.mean(deltas)) if deltas else None,
+        "max": float(np.max(deltas)) if deltas else None,
+        "n_edges": len(deltas),
+        **counts,
+        "mean_disagreement": float(np.mean(lengths)) if lengths else None,
+        "n_cases": len(comparisons) - counts["no_prediction"],
+    }
+
+
 def summarize(cases: Sequence[dict]) -> dict:
     """Per analysis: the MAE of the edges, counts of the statuses, the mean |P Δ S|.
 
     ``cases`` are the case results of `validate`; the cases that are not
     comparable are left out (see `DEFINITIONS`).
     """
-    summary = {}
     comparable = [c for c in cases if c["comparable"]]
-    for key, _, _ in ANALYSES:
-        deltas, counts, lengths = (
-            [],
-            {"paired": 0, "miss": 0, "false_alarm": 0, "both_empty": 0, "no_prediction": 0},
-            [],
-        )
-        for c in comparable:
-            comp = c["comparison"][key]
-            counts[comp["status"]] += 1
-            if comp["status"] == "no_prediction":
-                continue
-            lengths.append(comp["disagreement"])
-            for side in ("lower", "upper"):
-                edge = comp[side]
-                if edge is not None and not edge["censored"]:
-                    deltas.append(abs(edge["delta"]))
-        summary[key] = {
-            "mae": float(np.mean(deltas)) if deltas else None,
-            "n_edges": len(deltas),
-            **counts,
-            "mean_disagreement": float(np.mean(lengths)) if lengths else None,
-            "n_cases": len(comparable) - counts["no_prediction"],
-        }
-    return summary
+    return {key: _summary([c["comparison"][key] for c in comparable]) for key, _, _ in ANALYSES}
 
 
 # ---------------------------------------------------------------- Floquet and hysteresis
@@ -575,7 +576,7 @@ def floquet_verdicts(
     overrides: Mapping[str, float] | None = None,
     *,
     contact: str = "hertz_damp",
-    tension: Literal["allowed", "clipped"] = "allowed",
+    tension: Tension = "allowed",
 ) -> list[dict]:
     """The Floquet verdict on the periodic response at each grid point.
 
@@ -814,30 +815,7 @@ def compare_floquet(
 def summarize_floquet(cases: Sequence[dict]) -> dict:
     """Per analysis, against Floquet: MAE of the uncensored edges, status counts, mean
     disagreement length; over every case (Floquet needs no comparability rule)."""
-    summary = {}
-    for key, _, _ in ANALYSES:
-        deltas, lengths = [], []
-        counts = {"paired": 0, "miss": 0, "false_alarm": 0, "both_empty": 0, "no_prediction": 0}
-        for c in cases:
-            comp = c["floquet_comparison"][key]
-            counts[comp["status"]] += 1
-            if comp["status"] == "no_prediction":
-                continue
-            lengths.append(comp["disagreement"])
-            deltas += [
-                abs(comp[side]["delta"])
-                for side in ("lower", "upper")
-                if comp[side] is not None and not comp[side]["censored"]
-            ]
-        summary[key] = {
-            "mae": float(np.mean(deltas)) if deltas else None,
-            "max": float(np.max(deltas)) if deltas else None,
-            "n_edges": len(deltas),
-            **counts,
-            "mean_disagreement": float(np.mean(lengths)) if lengths else None,
-            "n_cases": len(cases) - counts["no_prediction"],
-        }
-    return summary
+    return {key: _summary([c["floquet_comparison"][key] for c in cases]) for key, _, _ in ANALYSES}
 
 
 FLOQUET_DEFINITIONS = """\
@@ -929,7 +907,7 @@ def _case_sweep(
 def validate(
     quick: bool = False,
     *,
-    tension: Literal["allowed", "clipped"] = "allowed",
+    tension: Tension = "allowed",
     executor: cf.Executor | Literal["serial"] | None = None,
     cache_dir: os.PathLike | str | None = "default",
     progress: bool = True,

@@ -190,3 +190,14 @@ def test_simulate_from_the_periodic_response(capsys):
     # and at Vb = 3, where it is stable, the perturbation decays
     assert main(["simulate", "--Vb", "3", "--t-end", "400", "--start", "periodic", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["omega1_peak_present"] is False
+
+
+def test_floquet_band_names_the_sides_of_an_edge_between_two_stable_ranges(capsys):
+    # clipped: the sliding response grazes at a Vb where both sides are stable
+    args = ["floquet-band", "--param", "Vb", "--from", "0.5", "--to", "16", "--tension", "clipped"]
+    assert main(args + ["--json"]) == 0
+    band = json.loads(capsys.readouterr().out)
+    assert band["unstable"] == [] and band["edges"]
+    assert all(not e["unstable_below"] and not e["unstable_above"] for e in band["edges"])
+    assert main(args) == 0
+    assert "stable on both sides" in capsys.readouterr().out
