@@ -2,7 +2,7 @@
 
 All in one run on this machine, serially (one core):
 
-1. A reference: the event-driven integrator (`runtime.events`, compiled DOP853) at
+1. A reference: the event-driven integrator (`beltmdsm.integrate.events`, compiled DOP853) at
    rtol = atol = 1e-12, for every belt speed of the sweep.
 2. Methods and tolerances on three belt speeds: wall time against the error of
    peak_omega1, of the mean friction and of the final state.
@@ -15,7 +15,7 @@ All in one run on this machine, serially (one core):
      events solver alone, peak_omega1 within 1e-6 of the reference);
    * the superposition integrator at the same tolerance;
    * each with ``backend="python"`` (no numba) too, where ``--python`` is given;
-   * the Floquet band of the same case (`runtime.floquet.floquet_band`, edges to
+   * the Floquet band of the same case (`beltmdsm.analysis.floquet.floquet_band`, edges to
      1e-3) against the from-rest sweep (target: at most 1/50 of its time).
    Printed: the wall times, their ratios and each configuration's largest relative
    error of peak_omega1 where the peak is present (>= 1 % of the Omega peak of the
@@ -43,15 +43,13 @@ from scipy.integrate import solve_ivp
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from runtime import floquet, superposition  # noqa: E402
-from runtime.model import initial_state, resolve_parameters  # noqa: E402
-from runtime.simulate import (
-    PEAK_PRESENT_RATIO,
-    SolverSettings,
-    omega1_band,  # noqa: E402
-    simulate,
-)
-from runtime.spectra import peak_amplitudes  # noqa: E402
+from beltmdsm.analysis import floquet  # noqa: E402
+from beltmdsm.analysis.spectra import peak_amplitudes  # noqa: E402
+from beltmdsm.analysis.summary import PEAK_PRESENT_RATIO, omega1_band  # noqa: E402
+from beltmdsm.integrate import superposition  # noqa: E402
+from beltmdsm.model import Model, initial_state  # noqa: E402
+from beltmdsm.settings import SolverSettings  # noqa: E402
+from beltmdsm.simulate import simulate  # noqa: E402
 
 #: The fast configuration: the event-driven integrator (the default solver), at the
 #: tolerance that keeps peak_omega1 within 1e-6 of the reference with a margin.
@@ -69,7 +67,8 @@ def baseline(Vb, t_end, dt, t_discard):
     package is measured against, not part of the package.
     """
     start = time.perf_counter()
-    p = resolve_parameters(Vb=Vb)
+    model = Model(Vb=Vb)
+    p = model.params
     b1, w1, b2, w2 = p["beta1"], p["omega1"], p["beta2"], p["omega2"]
     al, Om, mu, g = p["alpha"], p["Omega"], p["mu_s"], p["g"]
 
@@ -83,7 +82,7 @@ def baseline(Vb, t_end, dt, t_discard):
 
     n = int(math.floor(t_end / dt + 1e-9)) + 1
     grid = dt * np.arange(n)
-    sol = solve_ivp(rhs, (0, t_end), initial_state(p), method="RK45", rtol=1e-9, t_eval=grid)
+    sol = solve_ivp(rhs, (0, t_end), initial_state(model), method="RK45", rtol=1e-9, t_eval=grid)
     y = sol.y
     win = grid >= t_discard
     res = 2 * np.pi / (win.sum() * dt)
@@ -102,12 +101,12 @@ def baseline(Vb, t_end, dt, t_discard):
 def run(Vb, t_end, dt, config):
     s = simulate(Vb=Vb, settings=SolverSettings(t_end=t_end, dt=dt, **config)).summary
     return {
-        "peak_omega1": s["peak_omega1"],
-        "peak_Omega": s["peak_Omega"],
-        "mean_friction": s["mean_friction"],
-        "final_state": np.array(s["final_state"]),
-        "wall_s": s["wall_s"],
-        "energy_residual": s["energy_residual"],
+        "peak_omega1": s.peak_omega1,
+        "peak_Omega": s.peak_Omega,
+        "mean_friction": s.mean_friction,
+        "final_state": np.array(s.final_state),
+        "wall_s": s.wall_s,
+        "energy_residual": s.energy_residual,
     }
 
 

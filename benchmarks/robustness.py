@@ -5,13 +5,13 @@ laws, completes 1000 s with status `done` in under 10 s on one core."
 
 The cases (`CASES` below):
 
-* `runtime.validation.CASES`: the base set (Fig. 2) and the 15 cases of Figs. 17-21;
+* `beltmdsm.studies.validation.CASES`: the base set (Fig. 2) and the 15 cases of Figs. 17-21;
 * the excitations of Figs. 14-15: ``Omega = 4.5``; ``alpha_t = 2, Omega_t = 6,
   alpha_n = 2, Omega_n = 4``; ``phase_t = pi/2``;
 * the linear contact of Fig. 16: ``contact="kelvin_voigt", omega2 = 0.5, beta2 = 3``.
 
 Every case runs at ``Vb = 0, step, 2 step, ..., 40`` (default step 0.5 m/s) in both
-tension laws with the default settings (`runtime.simulate.SolverSettings`: solver
+tension laws with the default settings (`beltmdsm.settings.SolverSettings`: solver
 superposition, DOP853, rtol = atol = 1e-10, t_end = 1000 s), and with
 ``solver="events"`` on a coarser grid (default 2 m/s). Each run records its status,
 wall time (around `simulate`, after the numba kernels are compiled), switches, Zeno
@@ -47,14 +47,14 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 #: Wall time a run may take on one core, and the largest energy residual (the issue's
-#: numbers; the residual is the tolerance of tests/test_simulate.py).
+#: numbers; the residual is the tolerance of tests/beltmdsm/integrate/test_simulate.py).
 TIME_LIMIT = 10.0
 RESIDUAL_LIMIT = 1e-8
 
 
 def cases():
     """``[(name, overrides, contact), ...]``: the paper's figures (module docstring)."""
-    from runtime.validation import CASES
+    from beltmdsm.studies.validation import CASES
 
     out = [(c.name, dict(c.overrides), "hertz_damp") for c in CASES]
     out += [
@@ -82,7 +82,7 @@ def command(task):
 
 def run(task):
     """One run: the record of `module docstring` (never raises)."""
-    from runtime.simulate import simulate
+    from beltmdsm.simulate import simulate
 
     record = dict(task)
     start = time.perf_counter()
@@ -105,24 +105,24 @@ def run(task):
         return record
     s = sim.summary
     record.update(
-        status=s["status"],
-        message=s["message"],
+        status=s.status,
+        message=s.message,
         wall_s=time.perf_counter() - start,
-        solver_used=s["solver"],
-        n_switches=s["n_switches"],
-        n_zeno=s["n_zeno"],
-        n_separations=s["n_separations"],
-        energy_residual=s["energy_residual"],
-        regime=s["regime"],
-        resolved=s["resolved"],
-        t_reached=s["t_end"],
+        solver_used=s.solver,
+        n_switches=s.n_switches,
+        n_zeno=s.n_zeno,
+        n_separations=s.n_separations,
+        energy_residual=s.energy_residual,
+        regime=s.regime,
+        resolved=s.resolved,
+        t_reached=s.t_end,
     )
     return record
 
 
 def _warm_up():
     """Compile the numba kernels of every combination before anything is timed."""
-    from runtime.simulate import simulate
+    from beltmdsm.simulate import simulate
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

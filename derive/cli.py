@@ -1,15 +1,17 @@
-"""The command line: ``python -m derive`` and the console script ``beltmdsm``.
+"""The top of the command line and the derive commands.
 
 One argparse tree::
 
     python -m derive [--check]        derive everything, regenerate generated/ (or check it)
     python -m derive check-paper      compare the paper with the derivation
-    python -m derive simulate|sweep|predict|validate ...   the runtime commands
+    python -m derive simulate|sweep|...   the runtime commands (beltmdsm.cli)
 
-This module holds the top of the tree and the derive commands; the runtime
-commands and the flags they share live in `runtime.cli` (`runtime.cli.add_commands`
-hangs them on the tree). Nothing symbolic is imported until a derive command runs,
-so the runtime commands never load SymPy.
+This module holds the top of the tree and the derive commands; `main` takes an
+``extend`` hook that hangs more commands on it (the runtime's, `beltmdsm.cli`, whose
+``main`` calls this one). derive/ itself never imports the runtime: ``python -m
+derive`` (derive/__main__.py) is the one place that hands the command line to it.
+Nothing symbolic is imported until a derive command runs, so the runtime commands
+never load SymPy.
 
 Every error in a command line is one line on stderr and exit status 2 (`Parser`);
 `main` returns the exit status, which ``python -m derive`` and the console script
@@ -82,16 +84,20 @@ def _check_paper(args) -> int:
 
 
 def _prog():
-    """``beltmdsm`` when run as the console script, else ``python -m derive``."""
-    return "beltmdsm" if os.path.basename(sys.argv[0]) == "beltmdsm" else "python -m derive"
+    """How the user called the command line: ``beltmdsm``, ``python -m beltmdsm`` or
+    ``python -m derive``."""
+    path = sys.argv[0] if sys.argv else ""
+    if os.path.basename(path) == "__main__.py":
+        return f"python -m {os.path.basename(os.path.dirname(path))}"
+    return "beltmdsm" if os.path.basename(path) == "beltmdsm" else "python -m derive"
 
 
-def build_parser(prog=None, runtime=True):
-    """The command-line tree (`Parser`), with the runtime commands if ``runtime`` and they load.
+def build_parser(prog=None, extend=None):
+    """The command-line tree (`Parser`); ``extend(commands)`` adds more commands.
 
-    The runtime imports ``generated/``, which ``python -m derive`` may be about to
-    regenerate, or which may be absent from a copy of ``derive/`` alone: if the
-    runtime fails to load, the derive commands still work and the reason is kept in
+    The runtime's commands import ``generated/``, which ``python -m derive`` may be
+    about to regenerate, or which may be absent from a copy of ``derive/`` alone: if
+    ``extend`` fails, the derive commands still work and the reason is kept in
     ``parser.unavailable`` (else None).
     """
     parser = Parser(
@@ -114,11 +120,9 @@ def build_parser(prog=None, runtime=True):
     )
     paper.set_defaults(run=_check_paper)
     parser.unavailable = None
-    if runtime:
+    if extend is not None:
         try:
-            from runtime import cli as runtime_cli
-
-            runtime_cli.add_commands(commands)
+            extend(commands)
         except Exception as err:  # noqa: BLE001 (whatever a broken generated/ raises)
             parser.unavailable = parser.epilog = (
                 f"the runtime commands cannot be loaded: {type(err).__name__}: {err}"
@@ -132,15 +136,18 @@ def _needs_runtime(argv):
     return not (set(argv) <= {"--check"} or argv[:1] == ["check-paper"])
 
 
-def main(argv=None) -> int:
+def main(argv=None, *, extend=None) -> int:
     """Run the command line ``argv`` (default ``sys.argv[1:]``); return the exit status.
+
+    ``extend(commands)`` hangs more commands on the tree (not called for the
+    regeneration and check-paper, which must not need ``generated/``).
 
     0: done; 1: a check failed (``--check``) or the system refused (a file, the
     network); 2: a bad command line or parameter, reported in one line on stderr.
     A simulation that did not reach its end returns 2 as well (``simulate``).
     """
     argv = sys.argv[1:] if argv is None else list(argv)
-    parser = build_parser(runtime=_needs_runtime(argv))
+    parser = build_parser(extend=extend if _needs_runtime(argv) else None)
     try:
         args = parser.parse_args(argv)
         if args.command is None:

@@ -69,7 +69,7 @@ oscillation near ``omega1``, with a free phase) and no coexistence of tangential
 responses are possible, for every parameter set with ``beta1 > 0`` and ``Vb > 0``.
 
 `difference_runs`, `difference_works` and `reversals_by_force_sign` check this with
-the simulation (`runtime.simulate`): two runs with one normal motion, the energy
+the simulation (`beltmdsm.simulate`): two runs with one normal motion, the energy
 balance of their difference split by the sign of ``F``, and the sign of ``F`` at the
 reversals of the friction.
 
@@ -598,7 +598,7 @@ def _numeric(expr, names):
 def difference_runs(
     shift=(5.0, -3.0), *, tension="clipped", contact="hertz_damp", t_end=1000.0, **overrides
 ) -> DifferenceRun:
-    """Simulate Eq. (4) twice under one normal motion (`runtime.simulate.simulate`).
+    """Simulate Eq. (4) twice under one normal motion (`beltmdsm.simulate.simulate`).
 
     Parameters
     ----------
@@ -611,22 +611,21 @@ def difference_runs(
     """
     import numpy as np
 
-    from runtime.model import initial_state, resolve_parameters
-    from runtime.simulate import SolverSettings, simulate
+    from beltmdsm.model import Model, initial_state
+    from beltmdsm.settings import SolverSettings
+    from beltmdsm.simulate import simulate
 
-    settings = {
-        k: overrides.pop(k) for k in list(overrides) if k in SolverSettings.__dataclass_fields__
-    }
+    settings = {k: overrides.pop(k) for k in list(overrides) if k in SolverSettings.names()}
     # the superposition integrates the normal motion once: both runs see the same
     # F(t), bit for bit, as the argument has it
     settings.setdefault("solver", "superposition")
-    p = resolve_parameters(None, contact=contact, **overrides)
-    y0 = initial_state(p, contact)
+    model = Model(contact=contact, tension=tension, **overrides)
+    y0 = initial_state(model)
     y0b = [y0[0] + shift[0], y0[1] + shift[1], y0[2], y0[3]]
-    a = simulate(p, contact=contact, tension=tension, t_end=t_end, **settings)
-    b = simulate(p, contact=contact, tension=tension, t_end=t_end, y0=y0b, **settings)
+    a = simulate(model, t_end=t_end, **settings)
+    b = simulate(model, t_end=t_end, y0=y0b, **settings)
     Ed = _numeric(difference_energy(), (e, ep, P["omega1"]))
-    energy = Ed(a.y[0] - b.y[0], a.y[1] - b.y[1], p["omega1"])
+    energy = Ed(a.y[0] - b.y[0], a.y[1] - b.y[1], model["omega1"])
     return DifferenceRun(a, b, tuple(shift), a.t, np.asarray(energy, dtype=float))
 
 
@@ -651,7 +650,7 @@ def difference_works(run: DifferenceRun, t0=None, t1=None) -> dict:
     """The energy balance of the difference over ``[t0, t1]`` by quadrature.
 
     ``dE_d/dt = -c1 e'^2 + (f_a - f_b) e'`` (`power_split`; ``f`` the friction force of
-    each run, `runtime.trajectory.Trajectory.forces`, which is ``-mu_s s F`` with
+    each run, `beltmdsm.integrate.trajectory.Trajectory.forces`, which is ``-mu_s s F`` with
     ``s`` in Sgn, the holding force in stick and 0 without contact). Integrated with
     `Trajectory.integrate` (Gauss-Legendre on the pieces of run ``a``, split at run
     ``b``'s switches and knots and at the sign changes of ``F``).
@@ -710,7 +709,7 @@ def reversals_by_force_sign(sim, t0=0.0) -> dict:
     """Reversals of the friction after ``t0`` by their new direction and the sign of ``F``.
 
     A reversal is a ``"vr_zero"`` event of ``sim.events`` whose new mode is a slip mode
-    (`runtime.simulate.summarize` counts them the same way); ``F`` is the normal force
+    (`beltmdsm.analysis.summary.summarize` counts them the same way); ``F`` is the normal force
     at its time (``sim.trajectory.forces``).
 
     Returns
@@ -720,7 +719,7 @@ def reversals_by_force_sign(sim, t0=0.0) -> dict:
     """
     import numpy as np
 
-    from runtime.switching import Mode
+    from beltmdsm.integrate.switching import Mode
 
     out = {}
     for name, mode in (("slip_forward", Mode.SLIP_FORWARD), ("slip_back", Mode.SLIP_BACK)):

@@ -22,7 +22,7 @@ The paper's claims in words are re-derived as rows with the status ``holds``,
 (seeded points, rows in paper order) and is written through `derive.codegen.write`.
 
 Two claim rows, "omega1 peak (Fig. 2b)" and "contraction (clipped)", also run the
-simulation of Eq. (4) (`derive.contraction`, on `runtime/` and `generated/`), so
+simulation of Eq. (4) (`derive.contraction`, on `beltmdsm/` and `generated/`), so
 check-paper runs after ``python -m derive``. Their numbers are rounded (two or
 three digits, counts, ``< 1e-4``) so that the report is the same on every code path
 of the CI.
@@ -914,7 +914,7 @@ DECAYED = 1e-12
 def _difference_runs():
     """Per tension law: two runs under one normal motion and their difference's balance.
 
-    Runs the simulation (`runtime.simulate`, on `generated/`): check-paper must run
+    Runs the simulation (`beltmdsm.simulate`, on `generated/`): check-paper must run
     after ``python -m derive``.
     """
     from . import contraction
@@ -932,12 +932,12 @@ def _shift_text() -> str:
 
 def _ratio_text(sim) -> str:
     s = sim.summary
-    r = s["peak_omega1"] / s["peak_Omega"]
+    r = s.peak_omega1 / s.peak_Omega
     return f"= {r:.2f}" if r >= 1e-2 else ("< 1e-4" if r < 1e-4 else f"= {r:.1g}")
 
 
 def _claim_omega1_peak():
-    from runtime.simulate import PEAK_PRESENT_RATIO
+    from beltmdsm.analysis.summary import PEAK_PRESENT_RATIO
 
     from . import contraction
 
@@ -946,7 +946,7 @@ def _claim_omega1_peak():
     for tension in ("allowed", "clipped"):
         run, works = runs[tension]
         sim = run.a
-        present = bool(sim.summary["omega1_peak_present"])
+        present = bool(sim.summary.omega1_peak_present)
         free_phase = run.energy[-1] > DECAYED * run.energy[0]
         rev = contraction.reversals_by_force_sign(sim, sim.settings.window_start)
         if present and free_phase:

@@ -11,7 +11,7 @@ Figures go to `FIGURES`: ``notebooks/figures/`` in full mode, a temporary folder
 quick mode, or ``BELTMDSM_FIGURES`` when it is set.
 
 Importing this module also puts the repository root on ``sys.path``: nbmake runs a
-notebook with its own folder as working directory, where ``generated``, ``runtime``
+notebook with its own folder as working directory, where ``generated``, ``beltmdsm``
 and ``benchmarks`` are importable only through an editable install (and
 ``benchmarks`` never is, since it is not a package of the distribution).
 """
@@ -29,10 +29,10 @@ ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from runtime import SolverSettings, simulate  # noqa: E402
-from runtime.intervals import format_intervals, jaccard  # noqa: E402
-from runtime.spectra import amplitude_spectrum  # noqa: E402
-from runtime.sweep import omega1_peak_ranges  # noqa: E402
+from beltmdsm import SolverSettings, simulate  # noqa: E402
+from beltmdsm.analysis.spectra import amplitude_spectrum  # noqa: E402
+from beltmdsm.intervals import format_intervals, jaccard  # noqa: E402
+from beltmdsm.studies.sweep import omega1_peak_ranges  # noqa: E402
 
 __all__ = [
     "FULL",
@@ -81,7 +81,7 @@ def settings(t_end_quick=300.0, t_end_full=1000.0, **kw):
     t_end_quick, t_end_full : float
         run length [s] in quick and full mode
     **kw
-        further `runtime.simulate.SolverSettings` fields
+        further `beltmdsm.settings.SolverSettings` fields
     """
     base = dict(solver="events", method="DOP853", rtol=1e-7, atol=1e-7)
     return SolverSettings(t_end=pick(t_end_quick, t_end_full), **{**base, **kw})
@@ -102,7 +102,7 @@ def spectrum_scan(
 ):
     """Amplitude spectra of X1' over the steady window for each value of one parameter.
 
-    Runs `runtime.simulate` serially (the machines that run the notebooks are shared;
+    Runs `beltmdsm.simulate` serially (the machines that run the notebooks are shared;
     a scan in quick mode takes seconds).
 
     Parameters
@@ -123,7 +123,7 @@ def spectrum_scan(
     run did not reach t_end), ``summaries`` (list of the runs' summary dicts) and, as arrays,
     ``omega1_peak_present``, ``resolved``, ``peak_omega1``, ``regime``. ``resolved``
     (bool) is False where the run could not tell the omega1 peak
-    (`runtime.simulate.summarize`); ``omega1_peak_present`` is False there too, as in a
+    (`beltmdsm.analysis.summary.summarize`); ``omega1_peak_present`` is False there too, as in a
     sweep table, so read it together with ``resolved`` (`peak_ranges` does).
     """
     values = np.asarray(values, dtype=float)
@@ -150,17 +150,17 @@ def spectrum_scan(
         "values": values,
         "omega": omega[keep],
         "amplitude": np.array(spectra),
-        "stopped": values[[s["status"] != "done" for s in summaries]],
+        "stopped": values[[s.status != "done" for s in summaries]],
         "summaries": summaries,
         param: values,
         # a summary's None (unresolved) would make an object array: False beside
-        # resolved = False, as runtime.sweep stores it
+        # resolved = False, as beltmdsm.studies.sweep stores it
         "omega1_peak_present": np.array(
-            [bool(s["resolved"] and s["omega1_peak_present"]) for s in summaries]
+            [bool(s.resolved and s.omega1_peak_present) for s in summaries]
         ),
-        "resolved": np.array([bool(s["resolved"]) for s in summaries]),
-        "peak_omega1": np.array([s["peak_omega1"] for s in summaries]),
-        "regime": np.array([s["regime"] for s in summaries]),
+        "resolved": np.array([bool(s.resolved) for s in summaries]),
+        "peak_omega1": np.array([s.peak_omega1 for s in summaries]),
+        "regime": np.array([s.regime for s in summaries]),
     }
 
 
@@ -177,7 +177,7 @@ def plot_spectrum_map(ax, scan, intervals=(), title=None):
         x, w, amp.T, shading="nearest", cmap="viridis", vmin=-4, vmax=max(1.0, np.nanmax(amp))
     )
     present = scan["omega1_peak_present"]
-    at = np.array([s["omega1_peak_at"] for s in scan["summaries"]])
+    at = np.array([s.omega1_peak_at for s in scan["summaries"]])
     ax.plot(x[present], at[present], "o", mfc="w", mec="k", ms=4, label=r"$\omega_1$ peak")
     for k, (label, ranges, colour) in enumerate(intervals):
         y = -0.35 - 0.3 * k
@@ -205,14 +205,14 @@ def peak_ranges(scan):
 
 
 def fmt_ranges(ranges, digits=2):
-    """``[(a, b), ...]`` as text, ``"none"`` when empty (`runtime.intervals.format_intervals`)."""
+    """``[(a, b), ...]`` as text, ``"none"`` when empty (`beltmdsm.intervals.format_intervals`)."""
     return format_intervals(ranges, f".{digits}f")
 
 
 def overlap(a, b):
     """Jaccard overlap |A and B| / |A or B| of two unions of intervals (1 = identical).
 
-    `runtime.intervals.jaccard`: both empty gives 1. Points (zero-length intervals)
+    `beltmdsm.intervals.jaccard`: both empty gives 1. Points (zero-length intervals)
     count through the grid resolution only, so callers pass ranges widened by half a
     grid step.
     """

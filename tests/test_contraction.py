@@ -2,7 +2,7 @@
 
 Symbolic: the derived energy of the difference and its rate against formulas typed
 here from Eq. (4), and every sign case of the set-valued Sgn. Numerical: two runs of
-the simulation (runtime/) at the base set with one normal motion and different
+the simulation (beltmdsm/) at the base set with one normal motion and different
 tangential initial states.
 
 Error model of the numerical checks. The runs integrate with rtol = atol = TOL, so a
@@ -142,7 +142,7 @@ def _sample_error(run):
 
 
 def _sampled_power(run):
-    """dE_d/dt at the samples: -c1 e'^2 + (f_a - f_b) e' (runtime friction forces)."""
+    """dE_d/dt at the samples: -c1 e'^2 + (f_a - f_b) e' (the runtime's friction forces)."""
     p = run.a.params
     ep = run.a.y[1] - run.b.y[1]
     c1 = 2 * p["beta1"] * p["omega1"]
@@ -227,7 +227,7 @@ def test_reversals_by_force_sign(allowed, clipped):
 
 
 def _figure_cases():
-    from runtime.validation import CASES
+    from beltmdsm.studies.validation import CASES
 
     cases = [(f"{c.figure} {c.name}", dict(c.overrides), "hertz_damp") for c in CASES]
     return cases + [
@@ -253,7 +253,7 @@ def _forced_line_in_band(p, band):
 )
 def test_clipped_motions_converge_in_every_figure_case(name, overrides, contact):
     """Fig. 2b and Figs. 14-21 with tension clipped, Vb from 1 to 16 m/s (400 s runs)."""
-    from runtime.simulate import PEAK_PRESENT_RATIO, omega1_band
+    from beltmdsm.analysis.summary import PEAK_PRESENT_RATIO, omega1_band
 
     for Vb in np.arange(1.0, 16.1, 1.5):
         run = C.difference_runs(
@@ -271,4 +271,4 @@ def test_clipped_motions_converge_in_every_figure_case(name, overrides, contact)
         assert E[-1] <= 1e-6 * E[0], (name, Vb)
         s, p = run.a.summary, run.a.params
         if not _forced_line_in_band(p, omega1_band(p)):
-            assert s["peak_omega1"] < PEAK_PRESENT_RATIO * s["peak_Omega"], (name, Vb)
+            assert s.peak_omega1 < PEAK_PRESENT_RATIO * s.peak_Omega, (name, Vb)

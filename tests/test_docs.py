@@ -5,7 +5,7 @@ repository. This test scans the prose of every ``.py`` file (docstrings and
 comments; other strings are data, e.g. a path a test creates), ``.md`` file and
 ``.ipynb`` file (Markdown cells, and the comments and docstrings of code cells) for
 
-* paths under the package's folders (``docs/``, ``derive/``, ``runtime/``,
+* paths under the package's folders (``docs/``, ``derive/``, ``beltmdsm/``,
   ``generated/``, ``tests/``, ``benchmarks/``, ``notebooks/``) and bare Markdown
   names (``README.md``): each must exist, relative to the repository root or to the
   citing file (a Markdown link);
@@ -28,7 +28,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 SKIP_DIRS = {"__pycache__", "build", "dist"}
 SUFFIXES = {".py", ".md", ".ipynb"}
-FOLDERS = ("docs", "derive", "runtime", "generated", "tests", "benchmarks", "notebooks")
+FOLDERS = ("docs", "derive", "beltmdsm", "generated", "tests", "benchmarks", "notebooks")
 
 #: A path under one of the package's folders, not itself part of a longer path or URL.
 PATH = re.compile(r"(?<![\w./~$-])((?:" + "|".join(FOLDERS) + r")/[\w./-]*[\w/])")

@@ -1,0 +1,61 @@
+"""beltmdsm: the forced mass on a moving belt of Eq. (4), simulated and analysed.
+
+The runtime of the package: it imports the generated model (``generated/``, written by
+``python -m derive`` from derive/), numpy and scipy, never SymPy. Its public API:
+
+* `Model`: a complete, checked parameter set and the model options (contact law,
+  tension law); every function below takes one, or the keywords it is built from.
+* `SolverSettings`, `simulate`, `Simulation`, `Summary`: one run of Eq. (4) and what it
+  says (regime, spectral peaks, energy balance).
+* `sweep`, `Sweep`: one parameter over a range, on any executor, with a disk cache.
+* `periodic_response`, `floquet`, `floquet_band`, `periodic_start` (`PeriodicResponse`,
+  `Floquet`, `NoPeriodicResponse`): the periodic response and its exact stability.
+* `predict` (`Prediction`): the unstable belt speeds of the paper's analysis and of a
+  consistent MDSM.
+* `validate`: the validation of Figs. 2 and 17-21 (``VALIDATION.md``).
+
+Subpackages, in the order of their layers (each imports only those before it):
+`beltmdsm.model` and `beltmdsm.settings` (the values every function takes),
+`beltmdsm.integrate` (the integrators and their compiled kernels), `beltmdsm.analysis`
+(spectra, run summary, modulation, Floquet, predictions), `beltmdsm.simulate`,
+`beltmdsm.studies` (sweeps and their cache, validation), `beltmdsm.cli` (the command
+line). The names below are imported when first used, so that ``import beltmdsm`` and
+the command line start fast.
+"""
+
+from importlib import import_module
+
+#: Each public name and the module that holds it.
+_API = {
+    "Model": "model",
+    "SolverSettings": "settings",
+    "simulate": "simulate",
+    "Simulation": "simulate",
+    "Summary": "analysis.summary",
+    "sweep": "studies.sweep",
+    "Sweep": "studies.sweep",
+    "periodic_response": "analysis.floquet",
+    "PeriodicResponse": "analysis.floquet",
+    "floquet": "analysis.floquet",
+    "Floquet": "analysis.floquet",
+    "floquet_band": "analysis.floquet",
+    "periodic_start": "analysis.floquet",
+    "NoPeriodicResponse": "analysis.floquet",
+    "predict": "analysis.predict",
+    "Prediction": "analysis.predict",
+    "validate": "studies.validation",
+}
+
+__all__ = list(_API)
+
+
+def __getattr__(name: str):
+    if name in _API:
+        value = getattr(import_module(f".{_API[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'beltmdsm' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

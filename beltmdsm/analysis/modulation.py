@@ -1,0 +1,113 @@
+"""Friction against relative velocity (Fig. 3b) and friction modulation (Figs. 10-12).
+
+The friction force is the tangential force of the belt on the mass per unit mass,
+``-mu_s sgn(Vr) Fn`` while sliding (positive along the belt, i.e. forward when the
+mass is slower than the belt), the holding force while sticking, zero in flight.
+The effective friction coefficient of a cycle is ``mu_eff = <F_f> / <F_n>`` over
+that cycle (the steady sliding value is mu_s); with Eq. (23)'s sign convention
+(the sign of Vr) the paper's mu_bar is ``-mu_eff``.
+Cycle averages are integrals of the trajectory, split at every switch, not sums of
+samples.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Protocol
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..integrate.trajectory import Trajectory
+from ..settings import SolverSettings
+
+__all__ = ["friction_loop", "cycle_averages", "modulation_scatter", "Simulated"]
+
+
+class Simulated(Protocol):
+    """What these analyses read of a run (`beltmdsm.simulate.Simulation` has it)."""
+
+    @property
+    def params(self) -> Mapping[str, float]: ...
+
+    @property
+    def trajectory(self) -> Trajectory: ...
+
+    @property
+    def settings(self) -> SolverSettings: ...
+
+
+def friction_loop(
+    sim: Simulated, period: float | None = None, t_stop: float | None = None, n: int = 2000
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Friction force against relative velocity over one period (Fig. 3b).
+
+    Parameters
+    ----------
+    sim : beltmdsm.simulate.Simulation
+    period : float, optional
+        default ``2 pi / omega1`` as in Fig. 3b
+    t_stop : float, optional
+        end of the period shown; default the end of the run
+
+    Returns
+    -------
+    t, Vr, friction : ndarray (n,)
+    """
+    period = 2 * np.pi / sim.params["omega1"] if period is None else float(period)
+    t_stop = sim.trajectory.t_end if t_stop is None else float(t_stop)
+    if not (period > 0 and t_stop - period >= sim.trajectory.segments[0].t0):
+        raise ValueError(
+            f"period={period!r} must be > 0 and fit in the run before t_stop={t_stop!r}"
+        )
+    t = np.linspace(t_stop - period, t_stop, n)
+    y = sim.trajectory.state(t)
+    _, friction = sim.trajectory.forces(t, y)
+    return t, y[1] - sim.params["Vb"], friction
+
+
+def cycle_averages(
+    sim: Simulated, period: float, t_start: float | None = None
+) -> dict[str, NDArray[np.float64]]:
+    """Mean friction and normal force over consecutive cycles of ``period``.
+
+    Cycles start at the first multiple of ``period`` after ``t_start`` (default the
+    start of the steady window), so they keep a fixed phase to the excitation.
+
+    Returns
+    -------
+    dict of arrays: ``t0`` (cycle starts), ``friction``, ``normal_force``, ``mu_eff``
+    """
+    if not period > 0:
+        raise ValueError(f"period must be > 0; got {period!r}")
+    t_start = sim.settings.window_start if t_start is None else float(t_start)
+    first = np.ceil(t_start / period - 1e-12) * period
+    count = int(np.floor((sim.trajectory.t_end - first) / period + 1e-9))
+    if count < 1:
+        raise ValueError(f"no full cycle of {period:.6g} s between t = {first:.6g} s and the end")
+    edges = first + period * np.arange(count + 1)
+    traj = sim.trajectory
+
+    def integrand(t, y, mode):
+        Fn, friction = traj.forces(t, y, mode)
+        return np.stack([friction, Fn])
+
+    F, N = traj.integrate(integrand, edges) / period
+    return {"t0": edges[:-1], "friction": F, "normal_force": N, "mu_eff": F / N}
+
+
+def modulation_scatter(sim: Simulated) -> dict[str, float]:
+    """Effective friction averaged over 2 pi/Omega_t and over 2 pi/omega1 (Figs. 10-12).
+
+    Returns a dict with, for each averaging period, the mean of ``mu_eff`` over the
+    cycles of the steady window and its scatter (standard deviation and range).
+    """
+    out = {}
+    for tag, omega in (("Omega", sim.params["Omega_t"]), ("omega1", sim.params["omega1"])):
+        if omega <= 0:
+            continue
+        mu = cycle_averages(sim, 2 * np.pi / omega)["mu_eff"]
+        out[f"mu_eff_{tag}_mean"] = float(mu.mean())
+        out[f"mu_eff_{tag}_std"] = float(mu.std())
+        out[f"mu_eff_{tag}_range"] = float(mu.max() - mu.min())
+    return out

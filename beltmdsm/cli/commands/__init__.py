@@ -1,0 +1,1 @@
+"""One module per command: ``add(commands, name)`` declares it, ``run(args)`` runs it."""

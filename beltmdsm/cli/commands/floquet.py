@@ -1,0 +1,39 @@
+"""``floquet``: the periodic response by shooting and its Floquet multipliers."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from ..flags import json_parent, model_from, model_parent, register
+
+
+def add(commands, name: str) -> None:
+    register(
+        commands,
+        name,
+        run,
+        [model_parent(), json_parent()],
+        help="Floquet multipliers of the periodic response",
+        description="The periodic response of Eq. (4) by shooting and its Floquet "
+        "multipliers, with saltation matrices at the switches "
+        "(beltmdsm/analysis/floquet.py).",
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    from ...analysis.floquet import floquet
+    from .. import text
+
+    f = floquet(model_from(args))
+    out = f.as_dict()
+    out.update(f.response.model.as_dict())
+    out["switches"] = [
+        {"t": t, "before": b.name.lower(), "after": a.name.lower(), "surface": s}
+        for t, b, a, s in f.response.switches
+    ]
+    if args.json:
+        print(json.dumps(text.jsonable(out)))
+    else:
+        print(text.floquet(f))
+    return 0

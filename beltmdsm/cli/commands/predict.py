@@ -1,0 +1,48 @@
+"""``predict``: the predicted unstable belt speeds (`beltmdsm.analysis.predict`)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from ..flags import POSITIVE, integer, json_parent, model_from, model_parent, register
+
+
+def add(commands, name: str) -> None:
+    sub = register(
+        commands,
+        name,
+        run,
+        [model_parent(exclude=("Vb",)), json_parent()],
+        help="predicted unstable belt speeds",
+        description="Predicted unstable belt speeds: the paper's analysis and the consistent MDSM.",
+    )
+    sub.add_argument(
+        "--vb-max",
+        type=POSITIVE,
+        default=None,
+        help="top of the Vb grid, > 0 (default: 1.05 x the linear amplitude)",
+    )
+    sub.add_argument(
+        "--vb-points",
+        type=integer(2),
+        default=400,
+        help="points of the Vb grid, >= 2 (default: 400)",
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from ...analysis.predict import predict
+    from .. import text
+
+    vb = None
+    if args.vb_max is not None:
+        vb = np.linspace(args.vb_max / args.vb_points, args.vb_max, args.vb_points)
+    result = predict(model_from(args), vb=vb, points=args.vb_points)
+    if args.json:
+        print(json.dumps(text.jsonable(result.as_dict())))
+    else:
+        print(text.prediction(result))
+    return 0

@@ -1,0 +1,89 @@
+"""``simulate``: one run of Eq. (4) and its summary (`beltmdsm.simulate`)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from ..flags import (
+    json_parent,
+    model_from,
+    model_parent,
+    number,
+    output_file,
+    register,
+    settings_from,
+    solver_parent,
+)
+
+
+def add(commands, name: str) -> None:
+    sub = register(
+        commands,
+        name,
+        run,
+        [model_parent(), solver_parent(), json_parent()],
+        help="simulate Eq. (4) and summarise the run",
+        description="Simulate Eq. (4) and summarise the run.",
+    )
+    sub.add_argument(
+        "--start",
+        choices=("rest", "periodic"),
+        default="rest",
+        help="start from the equilibrium at rest (default), or on the periodic "
+        "response (beltmdsm/analysis/floquet.py) with X1 moved by --perturbation",
+    )
+    sub.add_argument(
+        "--perturbation",
+        type=number(),
+        default=1e-2,
+        metavar="DX1",
+        help="the move of X1 from the periodic response [m] (default 1e-2)",
+    )
+    sub.add_argument(
+        "--modulation", action="store_true", help="add friction modulation averages (Figs. 10-12)"
+    )
+    sub.add_argument(
+        "--save", metavar="NPZ", type=output_file, help="save t, X1, Y1, X2, Y2, Fn, friction"
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from ...simulate import simulate
+    from .. import text
+
+    model = model_from(args)
+    settings = settings_from(args)
+    y0 = None
+    if args.start == "periodic":
+        from ...analysis.floquet import periodic_start
+
+        y0 = periodic_start(model, args.perturbation)
+    sim = simulate(model, settings=settings, y0=y0)
+    out = sim.summary.as_dict()
+    out["start"] = args.start
+    if args.start == "periodic":
+        out["perturbation"] = args.perturbation
+    if args.modulation:
+        from ...analysis.modulation import modulation_scatter
+
+        out.update(modulation_scatter(sim))
+    out.update(model.as_dict())
+    if args.save:
+        np.savez(
+            args.save,
+            t=sim.t,
+            X1=sim.y[0],
+            Y1=sim.y[1],
+            X2=sim.y[2],
+            Y2=sim.y[3],
+            Fn=sim.normal_force,
+            friction=sim.friction,
+        )
+    if args.json:
+        print(json.dumps(text.jsonable(out)))
+    else:
+        print(text.simulation(sim, out, args.modulation))
+    return 0 if sim.status == "done" else 2

@@ -1,0 +1,116 @@
+"""``sweep``: one parameter of Eq. (4) over a range (`beltmdsm.studies.sweep`)."""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+
+from ..flags import (
+    POSITIVE,
+    cache_dir_from,
+    cache_parent,
+    executor_from,
+    executor_parent,
+    json_parent,
+    model_from,
+    model_parent,
+    number,
+    output_file,
+    register,
+    settings_from,
+    solver_parent,
+    swept,
+)
+
+
+def add(commands, name: str) -> None:
+    from ...studies.sweep import MAX_POINTS, SWEEPABLE
+
+    sub = register(
+        commands,
+        name,
+        run,
+        [model_parent(), solver_parent(), executor_parent(), cache_parent(), json_parent()],
+        help="sweep one parameter of Eq. (4)",
+        description="Sweep one parameter of Eq. (4) (beltmdsm/studies/sweep.py; at most "
+        f"{MAX_POINTS:.0e} points).",
+    )
+    grid = sub.add_argument_group("the swept parameter")
+    grid.add_argument("--param", required=True, choices=SWEEPABLE, help="the parameter swept")
+    grid.add_argument("--from", dest="start", type=number(), metavar="X", help="first value")
+    grid.add_argument("--to", dest="stop", type=number(), metavar="X", help="last value, >= --from")
+    grid.add_argument("--step", type=POSITIVE, metavar="H", help="> 0")
+    grid.add_argument(
+        "--values", type=number(), nargs="+", metavar="X", help="explicit values instead"
+    )
+    sub.add_argument(
+        "--continue",
+        dest="continuation",
+        choices=("up", "down"),
+        default=None,
+        help="follow an attractor: run the points in ascending (up) or "
+        "descending (down) order, each from the previous point's state "
+        "at its last whole excitation period (excitation phase 0), the "
+        "first from rest; sequential, in this process (no --jobs N > 1 "
+        "or --scheduler)",
+    )
+    sub.add_argument(
+        "--modulation", action="store_true", help="add friction modulation columns (Figs. 10-12)"
+    )
+    sub.add_argument("--out", metavar="CSV", type=output_file, help="write the table as CSV")
+    sub.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+
+
+def _values(args):
+    import numpy as np
+
+    from ...studies.sweep import linear_values
+
+    if args.values:
+        grid = (("--from", args.start), ("--to", args.stop), ("--step", args.step))
+        given = [flag for flag, value in grid if value is not None]
+        if given:
+            args.parser.error(f"argument --values: give --values or {', '.join(given)}, not both")
+        return np.asarray(args.values)
+    if None in (args.start, args.stop, args.step):
+        args.parser.error("give --from, --to and --step, or --values")
+    if args.stop < args.start:
+        args.parser.error(f"argument --to: must be >= --from ({args.start:g}); got {args.stop:g}")
+    try:
+        return linear_values(args.start, args.stop, args.step)
+    except ValueError as err:
+        args.parser.error(f"argument --step: {err}")
+
+
+def run(args: argparse.Namespace) -> int:
+    from ...studies.sweep import sweep, table_to_csv
+    from .. import text
+
+    values = _values(args)
+    if args.continuation and (args.scheduler or (args.jobs or 1) > 1):
+        args.parser.error(
+            "argument --continue: a continued sweep runs its points one after "
+            "another in this process (each starts from the previous point's "
+            "state); drop --jobs/--scheduler"
+        )
+    model = model_from(args, skip=(swept(args),))
+    with contextlib.nullcontext("serial") if args.continuation else executor_from(args) as executor:
+        result = sweep(
+            args.param,
+            values,
+            model,
+            settings=settings_from(args),
+            executor=executor,
+            cache_dir=cache_dir_from(args),
+            progress=not args.no_progress,
+            modulation=args.modulation,
+            continuation=args.continuation,
+        )
+    if args.out:
+        table_to_csv(result.table, args.out)
+    if args.json:
+        print(json.dumps(text.jsonable(result.as_dict())))
+    else:
+        print(text.sweep(result, args.out))
+    return 0

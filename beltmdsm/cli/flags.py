@@ -1,0 +1,397 @@
+"""The flags the commands share, checked when they are parsed.
+
+Declared once, as parent parsers:
+
+* `model_parent`: every model parameter (``generated.parameters``) as a flag (``--mu_s``
+  and ``--mu-s``), checked against its domain (`beltmdsm.model.check_domain`), and the
+  model options (`beltmdsm.model.OPTIONS`) with their choices;
+* `solver_parent`: the fields of `beltmdsm.settings.SolverSettings`;
+* `executor_parent` and `executor_from`: ``--jobs``/``--scheduler`` and the executor
+  they ask for; `cache_parent`: the sweep cache; `json_parent`: ``--json``.
+
+`model_from` builds the `beltmdsm.Model` of a command line once; `settings_from` its
+`SolverSettings`. Every flag is checked when it is parsed (finite numbers, domains,
+ranges, existing output folders); a bad one is a one-line error naming it, exit status
+2 (`derive.cli.Parser`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import concurrent.futures as cf
+import contextlib
+import math
+import os
+import sys
+from collections.abc import Callable, Iterator, Sequence
+from pathlib import Path
+from typing import Any
+
+from generated.parameters import PARAMETERS
+
+from ..model import OPTION_DEFAULTS, OPTIONS, Model, check_domain
+from ..settings import CONTACT_LOSS, DEFAULT_T_END, METHODS, SOLVERS, SolverSettings
+
+__all__ = [
+    "register",
+    "number",
+    "integer",
+    "output_file",
+    "POSITIVE",
+    "NONNEGATIVE",
+    "OPTION_HELP",
+    "model_parent",
+    "model_from",
+    "swept",
+    "params_from",
+    "solver_parent",
+    "settings_from",
+    "executor_parent",
+    "executor_from",
+    "cache_parent",
+    "cache_dir_from",
+    "json_parent",
+]
+
+_MODEL_PARAMS = [p for p in PARAMETERS if p["name"] != "Vhat"]
+
+#: One line per model option for ``--help``.
+OPTION_HELP = {
+    "contact": "contact law: Hertz-Damp, Eq. (1), or the linear contact of Fig. 16",
+    "tension": "tension law (docs/modelling.md#tension): Eq. (1) as printed, which can pull, "
+    "or a contact that cannot pull (max(F, 0): the surfaces separate)",
+}
+
+
+def register(
+    commands: argparse._SubParsersAction,
+    name: str,
+    run: Callable[[argparse.Namespace], int],
+    parents: Sequence[argparse.ArgumentParser],
+    **kwargs: Any,
+) -> argparse.ArgumentParser:
+    """Add command ``name`` to ``commands`` (an argparse subparsers action), run by ``run``.
+
+    A bad value found while it runs (a ValueError) is reported like a bad flag: one
+    line naming it, exit status 2; the system refusing (an OSError), exit status 1.
+    """
+    sub = commands.add_parser(name, parents=list(parents), **kwargs)
+    sub.set_defaults(run=_run, handler=run, parser=sub)
+    return sub
+
+
+def _run(args):
+    try:
+        return args.handler(args)
+    except ValueError as err:
+        args.parser.error(str(err))
+    except OSError as err:
+        print(f"{args.parser.prog}: error: {err}", file=sys.stderr)
+        return 1
+    except (ImportError, SyntaxError) as err:
+        # generated/ broken or half written: the derive commands still work
+        where = f" ({err.filename}, line {err.lineno})" if isinstance(err, SyntaxError) else ""
+        print(
+            f"{args.parser.prog}: error: the runtime commands cannot be loaded: "
+            f"{type(err).__name__}: {err.msg if isinstance(err, SyntaxError) else err}{where}; "
+            "regenerate with `python -m derive`",
+            file=sys.stderr,
+        )
+        return 2
+
+
+def number(check: Callable[[float], bool] | None = None, text: str = "") -> Callable[[str], float]:
+    """An argparse type: a finite float, and ``check(x)`` if given ("must be <text>")."""
+
+    def parse(s: str) -> float:
+        try:
+            x = float(s)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be a number; got {s!r}") from None
+        if not math.isfinite(x):
+            raise argparse.ArgumentTypeError(f"must be finite; got {s}")
+        if check is not None and not check(x):
+            raise argparse.ArgumentTypeError(f"must be {text}; got {s}")
+        return x
+
+    return parse
+
+
+def _parameter(name):
+    """An argparse type: a finite float in the domain of model parameter ``name``."""
+
+    def parse(s: str) -> float:
+        x = number()(s)
+        problem = check_domain(name, x)
+        if problem:
+            raise argparse.ArgumentTypeError(f"{problem}; got {s}")
+        return x
+
+    return parse
+
+
+def integer(minimum: int, maximum: int | None = None) -> Callable[[str], int]:
+    """An argparse type: an integer in ``[minimum, maximum]``."""
+
+    def parse(s: str) -> int:
+        try:
+            n = int(s)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be an integer; got {s!r}") from None
+        if n < minimum:
+            raise argparse.ArgumentTypeError(f"must be >= {minimum}; got {n}")
+        if maximum is not None and n > maximum:
+            raise argparse.ArgumentTypeError(f"must be <= {maximum}; got {n}")
+        return n
+
+    return parse
+
+
+def output_file(s: str) -> str:
+    """A file to write: its folder must exist and be writable, and it must not be a folder."""
+    path = Path(s)
+    folder = path.parent if str(path.parent) else Path(".")
+    if not folder.is_dir():
+        raise argparse.ArgumentTypeError(f"folder {folder} does not exist")
+    if path.is_dir():
+        raise argparse.ArgumentTypeError(f"{path} is a folder, not a file")
+    if not os.access(folder, os.W_OK):
+        raise argparse.ArgumentTypeError(f"folder {folder} is not writable")
+    return s
+
+
+def _cache_folder(s):
+    if s != "default" and Path(s).exists() and not Path(s).is_dir():
+        raise argparse.ArgumentTypeError(f"{s} exists and is not a folder")
+    return s
+
+
+POSITIVE = number(lambda x: x > 0, "> 0")
+NONNEGATIVE = number(lambda x: x >= 0, ">= 0")
+
+
+def model_parent(
+    *,
+    parameters: bool = True,
+    exclude: Sequence[str] = (),
+    options: Sequence[str] | None = None,
+) -> argparse.ArgumentParser:
+    """Parent parser: the model parameters as flags and the model options.
+
+    Parameters
+    ----------
+    parameters : bool
+        add a flag per model parameter of ``generated.parameters.PARAMETERS``
+    exclude : tuple of str
+        parameters without a flag (``predict`` scans ``Vb`` itself)
+    options : tuple of str, optional
+        the model options taken (default: all of `beltmdsm.model.OPTIONS`)
+    """
+    parent = argparse.ArgumentParser(add_help=False)
+    if parameters:
+        group = parent.add_argument_group("model parameters (default: the base set, Fig. 2)")
+        for p in _MODEL_PARAMS:
+            if p["name"] in exclude:
+                continue
+            flags = [f"--{p['name']}"]
+            if "_" in p["name"]:
+                flags.append(f"--{p['name'].replace('_', '-')}")
+            default = (
+                f"default: {p['default_from']}"
+                if p["default_from"]
+                else f"default: {p['base']:g}"
+                if p["base"] is not None
+                else ""
+            )
+            group.add_argument(
+                *flags,
+                dest=p["name"],
+                type=_parameter(p["name"]),
+                default=None,
+                metavar="X",
+                help=f"{p['description']} [{p['unit']}]; {default}".rstrip("; "),
+            )
+    group = parent.add_argument_group("model options")
+    for name, choices in OPTIONS.items():
+        if options is not None and name not in options:
+            continue
+        group.add_argument(
+            f"--{name}",
+            dest=name,
+            choices=choices,
+            default=OPTION_DEFAULTS[name],
+            help=f"{OPTION_HELP[name]} (default: {OPTION_DEFAULTS[name]})",
+        )
+    return parent
+
+
+def params_from(args: argparse.Namespace, skip: Sequence[str] = ()) -> dict[str, float]:
+    """The model parameters given as flags (not ``skip``)."""
+    return {
+        p["name"]: getattr(args, p["name"])
+        for p in _MODEL_PARAMS
+        if getattr(args, p["name"], None) is not None and p["name"] not in skip
+    }
+
+
+def swept(args: argparse.Namespace) -> str:
+    """``args.param``, refused where it is also given as a fixed parameter (``--Vb 3``)."""
+    if getattr(args, args.param, None) is not None:
+        args.parser.error(
+            f"argument --{args.param}: {args.param} is the parameter walked (--param "
+            f"{args.param}); drop --{args.param}"
+        )
+    return args.param
+
+
+def model_from(args: argparse.Namespace, skip: Sequence[str] = ()) -> Model:
+    """The `beltmdsm.Model` of the parameter and option flags (a bad value: exit 2)."""
+    options = {name: getattr(args, name) for name in OPTIONS if hasattr(args, name)}
+    try:
+        return Model(**params_from(args, skip), **options)
+    except ValueError as err:
+        args.parser.error(str(err))
+
+
+def solver_parent() -> argparse.ArgumentParser:
+    """Parent parser: the fields of `beltmdsm.settings.SolverSettings`."""
+    parent = argparse.ArgumentParser(add_help=False)
+    s = parent.add_argument_group("solver")
+    s.add_argument(
+        "--solver",
+        choices=SOLVERS,
+        default="events",
+        help="events: the package's DOP853 integrator on each mode of Eq. (4), switches "
+        "located (beltmdsm/integrate/events.py); superposition: the normal motion once "
+        "and the tangential one in closed form between switches, handed to events where "
+        "its closed forms do not exist (beltmdsm/integrate/superposition.py) "
+        "(default: events)",
+    )
+    s.add_argument(
+        "--method",
+        choices=METHODS,
+        default="DOP853",
+        help="the Runge-Kutta method of the integrators (default: DOP853, the only one)",
+    )
+    s.add_argument("--rtol", type=POSITIVE, default=1e-10, help="> 0 (default: 1e-10)")
+    s.add_argument("--atol", type=POSITIVE, default=1e-10, help="> 0 (default: 1e-10)")
+    s.add_argument(
+        "--t-end",
+        type=POSITIVE,
+        default=DEFAULT_T_END,
+        help=f"duration [s], > 0 (default: {DEFAULT_T_END:g})",
+    )
+    s.add_argument(
+        "--t-discard",
+        type=NONNEGATIVE,
+        default=None,
+        help="start of the steady window [s] (default 30%% of --t-end)",
+    )
+    s.add_argument(
+        "--dt", type=POSITIVE, default=0.02, help="sampling step [s], > 0 (default: 0.02)"
+    )
+    s.add_argument(
+        "--on-contact-loss",
+        choices=CONTACT_LOSS,
+        default="continue",
+        help="on loss of contact (X2 = 0): go on in flight, or stop the run (default: continue)",
+    )
+    return parent
+
+
+def settings_from(args: argparse.Namespace) -> SolverSettings:
+    """The `SolverSettings` of the solver flags (settings that do not fit: exit 2)."""
+    try:
+        return SolverSettings(
+            solver=args.solver,
+            method=args.method,
+            rtol=args.rtol,
+            atol=args.atol,
+            t_end=args.t_end,
+            t_discard=args.t_discard,
+            dt=args.dt,
+            on_contact_loss=args.on_contact_loss,
+        )
+    except ValueError as err:
+        # every field is checked alone when parsed: what is left is how they fit together
+        args.parser.error(f"argument --t-end/--t-discard/--dt: {err}")
+
+
+def executor_parent() -> argparse.ArgumentParser:
+    """Parent parser: where the runs go, ``--jobs`` and ``--scheduler`` (`executor_from`)."""
+    parent = argparse.ArgumentParser(add_help=False)
+    g = parent.add_argument_group("where the runs go")
+    g.add_argument(
+        "--jobs",
+        type=integer(1),
+        default=None,
+        help="worker processes (default: all cores; 1: in this process)",
+    )
+    g.add_argument(
+        "--scheduler",
+        default=None,
+        metavar="ADDRESS",
+        help="a dask.distributed scheduler, e.g. tcp://host:8786 (needs the "
+        "'dask' extra); overrides --jobs",
+    )
+    return parent
+
+
+@contextlib.contextmanager
+def executor_from(args: argparse.Namespace) -> Iterator[cf.Executor | str | None]:
+    """The executor that ``--scheduler``/``--jobs`` ask for, closed when the block ends.
+
+    Yields
+    ------
+    ``Client(ADDRESS).get_executor()`` of a dask.distributed cluster for
+    ``--scheduler``; ``"serial"`` for ``--jobs 1``; a process pool of ``--jobs N``
+    workers; None without either (the sweep opens a pool over the local cores).
+    """
+    if args.scheduler:
+        try:
+            from distributed import Client
+        except ImportError:
+            args.parser.error(
+                "argument --scheduler: needs dask.distributed (pip install 'beltmdsm[dask]')"
+            )
+        try:
+            client = Client(args.scheduler, timeout="10s")
+        except (OSError, ValueError, TypeError) as err:
+            args.parser.error(f"argument --scheduler: cannot connect to {args.scheduler}: {err}")
+        executor = client.get_executor()
+        try:
+            yield executor
+        finally:
+            executor.shutdown()
+            client.close()
+    elif args.jobs == 1:
+        yield "serial"
+    elif args.jobs:
+        with cf.ProcessPoolExecutor(max_workers=args.jobs) as pool:
+            yield pool
+    else:
+        yield None
+
+
+def cache_parent() -> argparse.ArgumentParser:
+    """Parent parser: the sweep cache (`beltmdsm.studies.cache`)."""
+    parent = argparse.ArgumentParser(add_help=False)
+    g = parent.add_argument_group("cache")
+    g.add_argument(
+        "--cache-dir",
+        type=_cache_folder,
+        default="default",
+        help="default: $BELTMDSM_CACHE or ~/.cache/beltmdsm/sweeps",
+    )
+    g.add_argument("--no-cache", action="store_true", help="do not use the sweep cache")
+    return parent
+
+
+def cache_dir_from(args: argparse.Namespace) -> str | None:
+    return None if args.no_cache else args.cache_dir
+
+
+def json_parent() -> argparse.ArgumentParser:
+    parent = argparse.ArgumentParser(add_help=False)
+    parent.add_argument("--json", action="store_true", help="print JSON")
+    return parent

@@ -1,0 +1,267 @@
+"""The readable text of each command's result, and JSON-able values.
+
+Every function takes a result and returns the lines the command prints; none computes.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ..analysis.floquet import Floquet
+from ..analysis.predict import Prediction
+from ..analysis.summary import PEAK_PRESENT_RATIO, Summary
+from ..intervals import format_intervals
+from ..simulate import Simulation
+from ..studies.sweep import Sweep
+
+__all__ = [
+    "jsonable",
+    "peak_verdict",
+    "simulation",
+    "floquet",
+    "band",
+    "sweep",
+    "sweep_validation",
+    "prediction",
+    "validation",
+    "PAPER_STATEMENT",
+]
+
+#: What the paper says of the omega1 peak of Fig. 2b, printed beside a sweep over Vb.
+PAPER_STATEMENT = "the omega1 peak 'vanishes after Vb ~ 8 m/s' (Sect. 3, Fig. 2b)"
+
+
+def jsonable(x: Any) -> Any:
+    """``x`` with numpy scalars as Python numbers, tuples as lists and NaN or inf as None."""
+    if isinstance(x, dict):
+        return {k: jsonable(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [jsonable(v) for v in x]
+    if isinstance(x, (np.floating, float)):
+        return None if not np.isfinite(x) else float(x)
+    if isinstance(x, (np.integer, np.bool_)):
+        return x.item()
+    return x
+
+
+def peak_verdict(summary: Summary) -> str:
+    """The verdict on the omega1 peak: unresolved (and why), PRESENT or absent."""
+    if not summary.resolved:
+        return f"unresolved ({summary.unresolved_reason})"
+    if summary.omega1_peak_present:
+        return "PRESENT (friction-induced vibration)"
+    return "absent"
+
+
+def simulation(sim: Simulation, out: dict, modulation: bool) -> str:
+    """The readable summary of ``simulate``."""
+    p, s = sim.params, sim.summary
+    e = s.energy
+    fractions = s.time_fraction
+    if sim.tension == "clipped":
+        force = (
+            f"normal force: min {s.min_normal_force:.4g} m/s^2 (clipped: the contact "
+            f"cannot pull; separated {100 * fractions.get('separated', 0.0):.1f}% of the "
+            f"steady window, {s.n_separations} separations)"
+        )
+    else:
+        force = (
+            f"normal force: min {s.min_normal_force:.4g} m/s^2, negative (tensile, "
+            f"Eq. 1 as printed) {100 * s.tension_fraction:.1f}% of the steady window"
+        )
+    lines = [
+        f"Eq. (4), {sim.contact}, tension {sim.tension}, Vb = {p['Vb']:g} m/s, "
+        f"t = 0..{s.t_end:g} s (steady window from {s.t_discard:g} s), "
+        f"solver: {s.solver}",
+        f"status: {sim.status} ({sim.message})",
+        f"regime: {s.regime}  (time in "
+        + "/".join(fractions)
+        + ": "
+        + "/".join(f"{100 * v:.1f}%" for v in fractions.values())
+        + ")",
+        f"switches: {s.n_switches} (reversals {s.n_reversals}, sticks {s.n_sticks}, "
+        f"contact losses {s.n_contact_losses}, separations {s.n_separations}, "
+        f"Zeno limits {s.n_zeno})",
+        f"X1' spectrum: {s.peak_omega1:.6g} m/s at {s.omega1_peak_at:.6g} rad/s "
+        f"(omega1 = {p['omega1']:g}), {s.peak_Omega:.6g} m/s at Omega = {p['Omega_t']:g}; "
+        f"omega1 peak {peak_verdict(s)}",
+        f"energy balance: residual {s.energy_residual:.3g} (dE = {e.energy_change:.6g}, "
+        f"W_in = {e.work_input:.6g}, W_visc = {e.work_viscous:.6g}, "
+        f"W_fric = {e.work_friction:.6g})",
+        force,
+        f"Vr range in the window: {s.vr_min:.4g} .. {s.vr_max:.4g} m/s; "
+        f"mean friction {s.mean_friction:.6g} m/s^2",
+    ]
+    if modulation:
+        lines.append(
+            "mu_eff over 2pi/Omega: {mu_eff_Omega_mean:.5g} +- {mu_eff_Omega_std:.3g}; "
+            "over 2pi/omega1: {mu_eff_omega1_mean:.5g} +- {mu_eff_omega1_std:.3g}".format(**out)
+        )
+    lines.append(f"wall time {s.wall_s:.2f} s")
+    return "\n".join(lines)
+
+
+def floquet(f: Floquet) -> str:
+    """The readable result of ``floquet``."""
+    resp = f.response
+    p = resp.model.params
+    mus = ", ".join(f"{z.real:.6g}{z.imag:+.6g}j" for z in f.multipliers)
+    lines = [
+        f"periodic response of Eq. (4), {resp.model.contact}, tension "
+        f"{resp.model.tension}, Vb = {p['Vb']:g} m/s: period {f.period:.6g} s, "
+        f"{f.n_reversals} reversals and {f.n_sticks} sticks per period, Newton "
+        f"{resp.iterations} iterations (residual {resp.residual:.1e})"
+    ]
+    if f.grazing is not None:
+        lines.append(
+            f"GRAZING: a reversal at t = {f.grazing['t']:.6g} s is reached with a "
+            f"vanishing acceleration (ratio {f.grazing['ratio']:.1e}); no multiplier "
+            "is reported"
+        )
+    else:
+        lines += [
+            f"Floquet multipliers: {mus}",
+            f"largest |mu| = {f.max_abs_multiplier:.6g}: "
+            f"{'stable' if f.stable else 'UNSTABLE'}; growth rate "
+            f"{f.growth_rate:.6g} 1/s, critical pair at {f.frequency:.6g} rad/s "
+            f"(omega1 = {p['omega1']:g}; modulo {2 * math.pi / f.period:.6g})",
+        ]
+    return "\n".join(lines)
+
+
+_SIDES = {
+    (False, True): "unstable above",
+    (True, False): "unstable below",
+    (False, False): "stable on both sides",
+    (True, True): "unstable on both sides",
+}
+
+
+def band(result: dict, param: str, lo: float, hi: float) -> str:
+    """The readable result of ``floquet-band``."""
+    lines = [
+        f"periodic response unstable (or absent) for {param} in "
+        f"{format_intervals(result['unstable'], '.4f')} of {lo:g}..{hi:g}"
+    ]
+    for e in result["edges"]:
+        lines.append(
+            f"  edge at {e['value']:.4f} ({e['kind']}; "
+            f"{_SIDES[e['unstable_below'], e['unstable_above']]})"
+        )
+    if result["no_periodic_response"]:
+        lines.append(
+            f"  no periodic response in {format_intervals(result['no_periodic_response'], '.4f')}"
+        )
+    for f in result["failed"]:
+        lines.append(f"  no periodic response found at {f['value']:g}: {f['reason']}")
+    return "\n".join(lines)
+
+
+def sweep_validation(result: Sweep) -> list[str]:
+    """Where the omega1 peak appears in a sweep over Vb, beside the paper's statement."""
+    table, param = result.table, result.param
+    x = np.asarray(table[param], float)
+    resolved = np.asarray(table["resolved"], bool)
+    present = np.asarray(table["omega1_peak_present"], bool) & resolved
+    found = format_intervals(result.omega1_peak_ranges(), "g", "nowhere")
+    lines = [
+        f"omega1 peak (>= {100 * PEAK_PRESENT_RATIO:g}% of the Omega peak) present for "
+        f"{param} in {found} m/s of the swept {x.min():g}..{x.max():g} m/s "
+        f"({int(present.sum())} of {int(resolved.sum())} resolved points)"
+    ]
+    unresolved = result.unresolved_values()
+    if unresolved:
+        lines.append(
+            f"unresolved (the run cannot tell; neither present nor absent) at {param} = "
+            + ", ".join(f"{v:g}" for v in unresolved)
+            + " m/s; lengthen --t-end"
+        )
+    return lines + [f"paper: {PAPER_STATEMENT}"]
+
+
+def sweep(result: Sweep, out_file: str | None = None) -> str:
+    """The readable table of ``sweep`` and what it says."""
+    table, param = result.table, result.param
+    names = [
+        param,
+        "regime",
+        "peak_omega1",
+        "peak_Omega",
+        "resolved",
+        "energy_residual",
+        "n_switches",
+        "wall_s",
+    ]
+    widths = {"regime": 22, "resolved": 8}
+    lines = ["  ".join(f"{n:>{widths.get(n, 15)}}" for n in names)]
+    for r in table:
+        lines.append(
+            "  ".join(
+                f"{str(r[n]):>{widths[n]}}"
+                if n in widths
+                else (f"{r[n]:>15d}" if n == "n_switches" else f"{r[n]:>15.6g}")
+                for n in names
+            )
+        )
+    how = (
+        f"continued {result.continuation} from rest at {param} = "
+        f"{(table[param].min() if result.continuation == 'up' else table[param].max()):g}"
+        if result.continuation
+        else "each point from rest"
+    )
+    lines.append(
+        f"tension {result.model.tension}; {how}; {result.n_cached} of {len(table)} "
+        "points from the cache"
+    )
+    if result.dropped:
+        lines.append(
+            "duplicate values computed once: " + ", ".join(f"{v:g}" for v in result.dropped)
+        )
+    if param == "Vb":
+        lines += sweep_validation(result)
+    if out_file:
+        lines.append(f"table written to {out_file}")
+    return "\n".join(lines)
+
+
+def prediction(result: Prediction) -> str:
+    """The readable result of ``predict``."""
+    lines = []
+    for name in result.ANALYSES:
+        found = getattr(result, name)
+        if found is None:
+            lines.append(f"no prediction for {name}: {result.reasons[name]}")
+            continue
+        note = f"; {result.reasons[name]}" if name in result.reasons else ""
+        lines.append(f"{name:>22}: unstable Vb in {format_intervals(found, '.3f')}{note}")
+    return "\n".join(lines)
+
+
+def validation(results: dict, out_file: str) -> str:
+    """What ``validate`` prints after writing its file."""
+    from ..studies.validation import ANALYSES
+
+    lines = []
+    for key, lab, _ in ANALYSES:
+        s = results["summary"][key]
+        mae = "—" if s["mae"] is None else f"{s['mae']:.2f} m/s"
+        na = f", no prediction {s['no_prediction']}" if s.get("no_prediction") else ""
+        lines.append(
+            f"{lab:>4}: MAE of edges {mae} (n = {s['n_edges']}), miss {s['miss']}, "
+            f"false alarm {s['false_alarm']}{na}"
+        )
+    for key, lab, _ in ANALYSES:
+        s = results["floquet_summary"][key]
+        mae = "—" if s["mae"] is None else f"{s['mae']:.3f} m/s"
+        lines.append(f"{lab:>4}: against Floquet, MAE of edges {mae} (n = {s['n_edges']})")
+    ms = results["mismatch_summary"]
+    lines.append(
+        f"periodic start against Floquet: {len(ms['mismatches'])} mismatches in "
+        f"{ms['checked']} points"
+    )
+    lines.append(f"tension law: {results['tension']}")
+    lines.append(f"wrote {out_file}")
+    return "\n".join(lines)

@@ -1,0 +1,42 @@
+"""The tree of commands: `derive.cli`'s top and derive commands, and the runtime commands.
+
+`COMMANDS` lists the runtime commands and the module of each (`beltmdsm.cli.commands`);
+`main` runs a command line. The command modules are imported when the tree is built
+(their flags), and each imports what it runs only when it runs.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from collections.abc import Sequence
+
+from derive import cli as derive_cli
+
+__all__ = ["COMMANDS", "add_commands", "main"]
+
+#: The runtime commands, in the order of ``--help``, and their modules.
+COMMANDS = {
+    "simulate": "simulate",
+    "sweep": "sweep",
+    "predict": "predict",
+    "floquet": "floquet",
+    "floquet-band": "floquet_band",
+    "validate": "validate",
+}
+
+
+def add_commands(commands: argparse._SubParsersAction) -> None:
+    """Hang the runtime commands on ``commands`` (an argparse subparsers action)."""
+    for name, module in COMMANDS.items():
+        importlib.import_module(f"beltmdsm.cli.commands.{module}").add(commands, name)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line ``argv`` (default ``sys.argv[1:]``); return the exit status.
+
+    0: done; 1: a check failed or the system refused (a file); 2: a bad command line or
+    parameter, or a run that could not be done, reported in one line on stderr.
+    """
+    return derive_cli.main(sys.argv[1:] if argv is None else list(argv), extend=add_commands)

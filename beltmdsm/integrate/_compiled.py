@@ -1,0 +1,219 @@
+"""The integrators bound to their generated kernels: plain Python, or compiled by numba.
+
+`beltmdsm.integrate._dop853` (one mode, stopping at switches) and
+`beltmdsm.integrate._superpose` (the scan of the closed-form tangential motion) call the
+generated scalar kernels (`generated.hybrid`, `generated.oscillator`) through module globals
+(``_field_kernel``, ``_surface_kernel``, ...). This module binds them:
+
+* in plain Python, as copies of the integrators' functions whose globals hold the
+  kernels (`advance`, `scan` with ``backend="python"``);
+* compiled, as a small module per integrator and kernel set, written to a cache
+  folder: the integrators' source with the kernels as numba-compiled globals, cached
+  on disk by numba.
+
+Two properties of numba's disk cache shape the compiled form: a signature that holds
+a kernel passed as an argument (a dispatcher object) cannot be saved in a process
+where an earlier one's dispatcher no longer exists, and a cached function is
+invalidated by a change of its own source file only, not of what it calls. So the
+compiled functions take numbers, tuples and arrays only, and the module's file name
+holds a hash of every source it depends on (the generated kernels, the integrators,
+this file, numba's version): regenerating a kernel or changing an integrator compiles
+afresh, and nothing stale is served.
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import importlib.util
+import inspect
+import os
+import sys
+import tempfile
+import types
+from pathlib import Path
+
+from generated import hybrid, oscillator
+
+from . import _dop853, _roots, _superpose
+
+__all__ = ["advance", "scan", "cache_folder"]
+
+_ROOT = Path(__file__).resolve().parents[2]
+_SOURCES = (
+    "generated/hybrid.py",
+    "generated/oscillator.py",
+    "generated/_support.py",
+    "beltmdsm/integrate/_dop853.py",
+    "beltmdsm/integrate/_superpose.py",
+    "beltmdsm/integrate/_roots.py",
+    "beltmdsm/integrate/_compiled.py",
+)
+_FIELDS = {"vector_field": hybrid._VECTOR_FIELD, "response_field": hybrid._RESPONSE_FIELD}
+#: The integrators: their module, their functions (the entry point last), their kernels,
+#: and the functions of other modules they call (compiled beside them).
+_ADVANCE = (
+    _dop853,
+    (
+        "_rhs",
+        "_dense",
+        "_initial_step",
+        "_inside",
+        "_rates",
+        "_surface_at",
+        "_refine",
+        "_first_crossing",
+        "advance",
+    ),
+    ("_field_kernel", "_surface_kernel", "_rate_kernel"),
+    (_roots.converged, _roots.secant, _roots.illinois),
+)
+_SCAN = (
+    _superpose,
+    ("tangential_state", "_normal_at", "_inside_at", "_refine", "scan"),
+    ("_stm_kernel", "_exc_kernel", "_surface_kernel", "_rate_kernel"),
+    (_dop853._dense, _roots.converged, _roots.secant, _roots.illinois),
+)
+
+
+def _scalar(table, contact=None):
+    return (table[(contact,)] if contact is not None else table[()]).scalar
+
+
+def advance(field, contact, backend=None):
+    """`beltmdsm.integrate._dop853.advance` on the ``field`` ("vector_field" or "response_field")
+    of ``contact``: ``f(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol,
+    max_step)``.
+
+    ``backend``: "python", "numba" or None (numba if installed).
+    """
+    kernels = (
+        _scalar(_FIELDS[field], contact),
+        _scalar(hybrid._SURFACES, contact),
+        _scalar(hybrid._SURFACE_RATES, contact),
+    )
+    return _bound(_ADVANCE, kernels, f"advance__{field}__{contact}", backend)
+
+
+def scan(contact, backend=None):
+    """`beltmdsm.integrate._superpose.scan` for ``contact``: ``f(mode, stick, ms, watch, dirs, t0,
+    tc, d0, d1, X1s, Vb, grid, on_grid, ts, hs, ys, Fs, stm_a, exc_a, surf_a, rate_a)``."""
+    kernels = (
+        _scalar(oscillator._STATE_TRANSITION),
+        _scalar(oscillator._EXCITATION_RESPONSE),
+        _scalar(hybrid._SURFACES, contact),
+        _scalar(hybrid._SURFACE_RATES, contact),
+    )
+    return _bound(_SCAN, kernels, f"scan__{contact}", backend)
+
+
+def _bound(integrator, kernels, name, backend):
+    if backend != "python":
+        try:
+            import numba
+        except ImportError:
+            if backend == "numba":
+                raise ImportError(
+                    "backend='numba' needs numba: pip install 'beltmdsm[fast]'"
+                ) from None
+        else:
+            return _compiled(integrator, kernels, name, numba.__version__)
+    return _python(integrator, kernels)
+
+
+@functools.cache
+def _python(integrator, kernels):
+    """Copies of the integrator's functions, with the kernels as their globals."""
+    module, functions, globals_, _ = integrator
+    namespace = dict(vars(module))
+    namespace.update(zip(globals_, kernels))
+    for fn in functions:
+        original = getattr(module, fn)
+        namespace[fn] = types.FunctionType(original.__code__, namespace, fn, original.__defaults__)
+    return namespace[functions[-1]]
+
+
+@functools.cache
+def _digest(numba_version):
+    digest = hashlib.sha256(numba_version.encode())
+    for rel in _SOURCES:
+        digest.update((_ROOT / rel).read_bytes())
+    return digest.hexdigest()[:20]
+
+
+@functools.cache
+def _compiled(integrator, kernels, name, numba_version):
+    """The compiled entry point: a module written from the integrator's source."""
+    module, functions, globals_, helpers = integrator
+    constants = [
+        n
+        for n, v in vars(module).items()
+        if not n.startswith("__")
+        and n not in functions
+        and n not in globals_
+        and not callable(v)
+        and not isinstance(v, types.ModuleType)
+    ]
+    lines = [
+        f"# Written by beltmdsm/integrate/_compiled.py (numba {numba_version}); do not edit.",
+        "import math",
+        "import numba",
+        "import numpy as np",
+        f"from {module.__name__} import {', '.join(constants)}",
+    ]
+    for helper in helpers:
+        name = helper.__name__
+        lines += [
+            f"from {helper.__module__} import {name} as _{name}_python",
+            f'{name} = numba.njit(error_model="numpy")(_{name}_python)',
+        ]
+    for glob, kernel in zip(globals_, kernels):
+        lines += [
+            f"from {kernel.__module__} import {kernel.__name__}",
+            f'{glob} = numba.njit(error_model="numpy")({kernel.__name__})',
+        ]
+    for fn in functions:
+        decorator = (
+            '@numba.njit(cache=True, error_model="numpy")'
+            if fn == functions[-1]
+            else '@numba.njit(error_model="numpy")'
+        )
+        lines += ["", "", decorator, inspect.getsource(getattr(module, fn)).rstrip()]
+    text = "\n".join(lines) + "\n"
+    folder = cache_folder()
+    stem = f"beltmdsm_{name}_{_digest(numba_version)}"
+    path = folder / f"{stem}.py"
+    if not path.exists() or path.read_text() != text:
+        tmp = folder / f".{stem}.{os.getpid()}.tmp"
+        tmp.write_text(text)
+        os.replace(tmp, path)
+    spec = importlib.util.spec_from_file_location(stem, path)
+    entry = importlib.util.module_from_spec(spec)
+    sys.modules[stem] = entry
+    spec.loader.exec_module(entry)
+    return getattr(entry, functions[-1])
+
+
+def cache_folder():
+    """Where the compiled modules and numba's cache of them live.
+
+    ``$BELTMDSM_COMPILED``, else ``~/.cache/beltmdsm/compiled``, else (not writable) a
+    folder in the temporary directory.
+    """
+    for folder in (
+        os.environ.get("BELTMDSM_COMPILED"),
+        Path.home() / ".cache" / "beltmdsm" / "compiled",
+        Path(tempfile.gettempdir()) / "beltmdsm-compiled",
+    ):
+        if folder is None:
+            continue
+        folder = Path(folder)
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            probe = folder / f".probe-{os.getpid()}"
+            probe.write_text("")
+            probe.unlink()
+        except OSError:
+            continue
+        return folder
+    raise OSError("no writable folder for the compiled integrators (set BELTMDSM_COMPILED)")

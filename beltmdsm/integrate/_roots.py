@@ -1,0 +1,40 @@
+"""The Illinois method, written once for both integrators' root refinement.
+
+`beltmdsm.integrate._dop853` refines a crossing on a step's dense output,
+`beltmdsm.integrate._superpose` on the closed-form tangential motion; both keep a
+bracket ``[a, b]`` with ``fa > 0 >= fb`` and call these three steps in the same loop.
+Plain functions of numbers, so that `beltmdsm.integrate._compiled` compiles them with
+either integrator.
+"""
+
+from __future__ import annotations
+
+__all__ = ["converged", "secant", "illinois"]
+
+
+def converged(a: float, b: float) -> bool:
+    """Whether the bracket is down to a few ulps of its end."""
+    return b - a <= 4e-16 * max(1.0, abs(b))
+
+
+def secant(a: float, fa: float, b: float, fb: float) -> float:
+    """The secant point of the bracket, or its midpoint where rounding puts it outside."""
+    c = b - fb * (b - a) / (fb - fa)
+    return c if a < c < b else 0.5 * (a + b)
+
+
+def illinois(
+    a: float, fa: float, b: float, fb: float, c: float, fc: float, side: int
+) -> tuple[float, float, float, float, int]:
+    """The bracket after the value ``fc`` at ``c``: ``(a, fa, b, fb, side)``.
+
+    The end kept twice in a row has its value halved (the Illinois modification of
+    regula falsi), which keeps the convergence superlinear.
+    """
+    if fc > 0.0:
+        if side == -1:
+            fb *= 0.5
+        return c, fc, b, fb, -1
+    if side == 1:
+        fa *= 0.5
+    return a, fa, c, fc, 1

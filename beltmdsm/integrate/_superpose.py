@@ -1,0 +1,337 @@
+"""The scan of the superposition integrator: the first switch of a closed-form tangential motion.
+
+Between switches the tangential motion of a slip mode is
+
+    (X1, X1')(t) = Phi(t - t0) d + zf(t) - mu_s sgn z(t),
+
+with ``Phi`` the closed-form state-transition matrix (`generated.oscillator`), ``zf``
+the closed-form excitation response and ``z`` the response to the contact force
+(`beltmdsm.integrate.normal`); in flight or separation the ``z`` term drops, while sticking
+``X1 = X1s + Vb (t - t0)``. `scan` walks a uniform grid from ``t0`` to ``tc`` (the
+end of the normal motion's current segment), evaluates the watched switching
+functions there (`generated.hybrid.surfaces`, at the full state) with their rates
+along the mode (`generated.hybrid.surface_rates`), and where a sign changes or the
+rates show a minimum inside a cell, samples the cell and refines the crossing on the
+exact motion (the normal motion's dense output, the closed forms), as
+`beltmdsm.integrate._dop853` does between its steps. No formula of the model is here.
+
+Plain Python, or compiled by numba with its kernels (`beltmdsm.integrate._compiled`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._dop853 import _dense
+from ._roots import converged, illinois, secant
+
+__all__ = ["scan", "tangential_state"]
+
+_SAMPLES = 16
+
+# The kernels are globals, bound by `beltmdsm.integrate._compiled` (see its _dop853).
+_stm_kernel = _exc_kernel = _surface_kernel = _rate_kernel = None
+
+
+def tangential_state(stick, ms, t, t0, d0, d1, X1s, Vb, z, v, zf, vf, stm_a):
+    """``(X1, X1')`` at ``t`` of the mode started at ``t0`` (module docstring)."""
+    if stick:
+        return X1s + Vb * (t - t0), Vb
+    P = _stm_kernel(t - t0, *stm_a)
+    return (P[0] * d0 + P[1] * d1 + zf - ms * z, P[2] * d0 + P[3] * d1 + vf - ms * v)
+
+
+def _normal_at(ts, hs, ys, Fs, t, out):
+    k = np.searchsorted(ts, t, side="right") - 1
+    if k < 0:
+        k = 0
+    _dense(Fs[k], ys[k], (t - ts[k]) / hs[k], out)
+
+
+def _inside_at(
+    t,
+    j,
+    watch,
+    dirs,
+    mode,
+    stick,
+    ms,
+    t0,
+    d0,
+    d1,
+    X1s,
+    Vb,
+    ts,
+    hs,
+    ys,
+    Fs,
+    stm_a,
+    exc_a,
+    surf_a,
+    tmp,
+):
+    _normal_at(ts, hs, ys, Fs, t, tmp)
+    zf, vf = _exc_kernel(t, *exc_a)
+    X1, Y1 = tangential_state(stick, ms, t, t0, d0, d1, X1s, Vb, tmp[0], tmp[1], zf, vf, stm_a)
+    h = _surface_kernel(t, X1, Y1, tmp[2], tmp[3], *surf_a)
+    return -dirs[j] * h[watch[j]]
+
+
+def _refine(
+    a,
+    fa,
+    b,
+    fb,
+    j,
+    watch,
+    dirs,
+    mode,
+    stick,
+    ms,
+    t0,
+    d0,
+    d1,
+    X1s,
+    Vb,
+    ts,
+    hs,
+    ys,
+    Fs,
+    stm_a,
+    exc_a,
+    surf_a,
+    tmp,
+):
+    side = 0
+    for _ in range(200):
+        if converged(a, b):
+            break
+        c = secant(a, fa, b, fb)
+        fc = _inside_at(
+            c,
+            j,
+            watch,
+            dirs,
+            mode,
+            stick,
+            ms,
+            t0,
+            d0,
+            d1,
+            X1s,
+            Vb,
+            ts,
+            hs,
+            ys,
+            Fs,
+            stm_a,
+            exc_a,
+            surf_a,
+            tmp,
+        )
+        a, fa, b, fb, side = illinois(a, fa, b, fb, c, fc, side)
+    return b
+
+
+def scan(
+    mode,
+    stick,
+    ms,
+    watch,
+    dirs,
+    t0,
+    tc,
+    d0,
+    d1,
+    X1s,
+    Vb,
+    grid,
+    on_grid,
+    ts,
+    hs,
+    ys,
+    Fs,
+    stm_a,
+    exc_a,
+    surf_a,
+    rate_a,
+):
+    """The first crossing of a watched surface in ``(t0, tc]``.
+
+    Parameters
+    ----------
+    mode : float
+        Mode code (for the rates along the mode).
+    stick : bool
+        Whether the mode holds ``X1' = Vb``.
+    ms : float
+        ``mu_s sgn`` of a slip mode, 0 in flight or separation.
+    watch, dirs : arrays
+        Watched surfaces and the directions of the crossings that end the mode.
+    t0, tc : float
+    d0, d1 : float
+        The free-motion part of the state at ``t0`` (slip, flight, separation).
+    X1s : float
+        ``X1`` at ``t0`` (stick).
+    grid, on_grid : arrays
+        `beltmdsm.integrate.normal.NormalMotion` grid and its ``z, z', X2, X2', zf, zf'``.
+    ts, hs, ys, Fs : arrays
+        The normal motion's DOP853 steps.
+    stm_a, exc_a, surf_a, rate_a : tuple
+        The bound arguments of the kernels ``_stm_kernel`` (state transition),
+        ``_exc_kernel`` (excitation response), ``_surface_kernel``, ``_rate_kernel``.
+
+    Returns
+    -------
+    hit : int
+        Index into ``watch`` (-1: none before ``tc``).
+    t_hit : float
+    """
+    n_watch = watch.shape[0]
+    tmp = np.empty(4)
+    u_old = np.empty(n_watch)
+    u_new = np.empty(n_watch)
+    r_old = np.empty(n_watch)
+    r_new = np.empty(n_watch)
+    armed = np.empty(n_watch, dtype=np.bool_)
+    _normal_at(ts, hs, ys, Fs, t0, tmp)
+    zf, vf = _exc_kernel(t0, *exc_a)
+    X1, Y1 = tangential_state(stick, ms, t0, t0, d0, d1, X1s, Vb, tmp[0], tmp[1], zf, vf, stm_a)
+    h = _surface_kernel(t0, X1, Y1, tmp[2], tmp[3], *surf_a)
+    r = _rate_kernel(t0, X1, Y1, tmp[2], tmp[3], mode, *rate_a)
+    for j in range(n_watch):
+        u_old[j] = -dirs[j] * h[watch[j]]
+        r_old[j] = -dirs[j] * r[watch[j]]
+        armed[j] = u_old[j] > 0.0
+    if n_watch == 0:
+        return -1, tc
+    k = np.searchsorted(grid, t0, side="right")
+    t_prev = t0
+    while k < grid.shape[0] and t_prev < tc:
+        t_new = grid[k]
+        if t_new > tc:
+            t_new = tc
+            _normal_at(ts, hs, ys, Fs, t_new, tmp)
+            zf, vf = _exc_kernel(t_new, *exc_a)
+            z, v, X2, Y2 = tmp[0], tmp[1], tmp[2], tmp[3]
+        else:
+            z, v, X2, Y2 = on_grid[0, k], on_grid[1, k], on_grid[2, k], on_grid[3, k]
+            zf, vf = on_grid[4, k], on_grid[5, k]
+        X1, Y1 = tangential_state(stick, ms, t_new, t0, d0, d1, X1s, Vb, z, v, zf, vf, stm_a)
+        h = _surface_kernel(t_new, X1, Y1, X2, Y2, *surf_a)
+        r = _rate_kernel(t_new, X1, Y1, X2, Y2, mode, *rate_a)
+        best_j, best_t = -1, 0.0
+        for j in range(n_watch):
+            u_new[j] = -dirs[j] * h[watch[j]]
+            r_new[j] = -dirs[j] * r[watch[j]]
+            dip = r_old[j] < 0.0 and r_new[j] > 0.0
+            if u_new[j] > 0.0 and not dip:
+                continue
+            a, fa = t_prev, u_old[j] if armed[j] else 0.0
+            if not armed[j]:
+                # the mode's field points inside at the start: the first time inside may
+                # be far closer to it than a sample (a short excursion), so look there
+                delta = (t_new - t_prev) / _SAMPLES
+                for _ in range(60):
+                    delta *= 0.5
+                    fk = _inside_at(
+                        t_prev + delta,
+                        j,
+                        watch,
+                        dirs,
+                        mode,
+                        stick,
+                        ms,
+                        t0,
+                        d0,
+                        d1,
+                        X1s,
+                        Vb,
+                        ts,
+                        hs,
+                        ys,
+                        Fs,
+                        stm_a,
+                        exc_a,
+                        surf_a,
+                        tmp,
+                    )
+                    if fk > 0.0:
+                        a, fa = t_prev + delta, fk
+                        break
+            found = False
+            tcross = t_prev
+            for s in range(1, _SAMPLES + 1):
+                tk = t_prev + (t_new - t_prev) * s / _SAMPLES if s < _SAMPLES else t_new
+                if tk <= a:
+                    continue
+                fk = (
+                    u_new[j]
+                    if s == _SAMPLES
+                    else _inside_at(
+                        tk,
+                        j,
+                        watch,
+                        dirs,
+                        mode,
+                        stick,
+                        ms,
+                        t0,
+                        d0,
+                        d1,
+                        X1s,
+                        Vb,
+                        ts,
+                        hs,
+                        ys,
+                        Fs,
+                        stm_a,
+                        exc_a,
+                        surf_a,
+                        tmp,
+                    )
+                )
+                if fa > 0.0 and fk <= 0.0:
+                    tcross = _refine(
+                        a,
+                        fa,
+                        tk,
+                        fk,
+                        j,
+                        watch,
+                        dirs,
+                        mode,
+                        stick,
+                        ms,
+                        t0,
+                        d0,
+                        d1,
+                        X1s,
+                        Vb,
+                        ts,
+                        hs,
+                        ys,
+                        Fs,
+                        stm_a,
+                        exc_a,
+                        surf_a,
+                        tmp,
+                    )
+                    found = True
+                    break
+                if fk > 0.0:
+                    a, fa = tk, fk
+            if not found and not armed[j] and u_new[j] <= 0.0 and fa <= 0.0:
+                tcross, found = t_prev, True
+            if found and (best_j < 0 or tcross < best_t):
+                best_j, best_t = j, tcross
+        if best_j >= 0:
+            return best_j, best_t
+        for j in range(n_watch):
+            u_old[j] = u_new[j]
+            r_old[j] = r_new[j]
+            if u_new[j] > 0.0:
+                armed[j] = True
+        t_prev = t_new
+        k += 1
+    return -1, tc

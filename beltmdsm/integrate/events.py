@@ -1,0 +1,159 @@
+"""Event-driven integration of Eq. (4): one smooth mode at a time, every switch located.
+
+The general integrator of the package, and the fallback of
+`beltmdsm.integrate.superposition`. It runs the compiled Dormand-Prince 8(5,3)
+integrator (`beltmdsm.integrate._dop853`) on the generated field of the current mode
+(`generated.hybrid.vector_field`) until one of the mode's guard surfaces is crossed
+(`generated.hybrid.GUARDS`), then lets `beltmdsm.integrate.switching` choose the next
+mode, and goes on. Nothing is stepped over: the run is a sequence of smooth segments
+joined at located switches. Accumulating switches are handled by
+`beltmdsm.integrate.zeno`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..model import Model, initial_state
+from ..settings import SolverSettings
+from . import _compiled, _dop853
+from .switching import Switching
+from .trajectory import Run, Segment, Trajectory
+from .zeno import Zeno
+
+__all__ = ["integrate_events", "StepSegment", "StepTooSmall"]
+
+
+class StepTooSmall(ArithmeticError):
+    """The integrator's step fell below what the time's rounding allows."""
+
+
+class StepSegment:
+    """The dense output of a run of DOP853 steps: ``evaluate(t[, index]) -> (4, n)``.
+
+    Built over the steps of all segments of a run (they follow each other in time,
+    each switch starting a new step), it evaluates the whole trajectory at once.
+    """
+
+    __slots__ = ("t_steps", "h_steps", "y_steps", "F_steps")
+
+    def __init__(
+        self,
+        t_steps: NDArray[np.float64],
+        h_steps: NDArray[np.float64],
+        y_steps: NDArray[np.float64],
+        F_steps: NDArray[np.float64],
+    ) -> None:
+        self.t_steps, self.h_steps = t_steps, h_steps
+        self.y_steps, self.F_steps = y_steps, F_steps
+
+    def __call__(self, t: ArrayLike, index: ArrayLike | None = None) -> NDArray[np.float64]:
+        return _dop853.evaluate(self.t_steps, self.h_steps, self.y_steps, self.F_steps, t)
+
+
+def integrate_events(
+    model: Model,
+    settings: SolverSettings,
+    *,
+    y0: ArrayLike | None = None,
+    t0: float = 0.0,
+) -> Run:
+    """Integrate Eq. (4) mode by mode with located switches (module docstring).
+
+    Parameters
+    ----------
+    model : Model
+    settings : SolverSettings
+        ``t_end``, ``rtol``, ``atol``, ``on_contact_loss``, ``backend`` (the integrator
+        and kernels compiled by numba, or plain Python; None: numba if installed).
+    y0 : array_like, optional
+        Initial state at ``t0``; default the unforced equilibrium (Eq. 9) at rest.
+    t0 : float
+
+    Returns
+    -------
+    Run
+
+    Raises
+    ------
+    StepTooSmall
+        Where the step size falls below the rounding of the time (tolerances too
+        loose or too tight for the field there), naming the time and the mode.
+    """
+    sw = Switching(model, settings.backend)
+    advance = _compiled.advance("vector_field", model.contact, settings.backend)
+    y = initial_state(model) if y0 is None else np.array(y0, dtype=float)
+    t, t_end = float(t0), settings.t_end
+    mode = sw.initial_mode(t, y)
+    segments, events, steps = [], [], []
+    zeno = Zeno(sw)
+    status, message = "done", "reached t_end"
+    h_next = 0.0
+    max_step = np.inf
+    field, surf, rates = sw.field, sw.surfaces, sw.rates
+    while t < t_end:
+        watch, dirs, _ = sw.guards[mode]
+        (code, n, ts, hs, ys, Fs, t_stop, y_stop, hit, h_next) = advance(
+            field.args,
+            surf.args,
+            rates.args,
+            float(mode),
+            watch,
+            dirs,
+            t,
+            y,
+            float(t_end),
+            h_next,
+            settings.rtol,
+            settings.atol,
+            max_step,
+        )
+        if code == _dop853.STATUS_STEP_TOO_SMALL:
+            raise StepTooSmall(
+                f"the integrator's step fell below the rounding of the time at "
+                f"t = {t_stop:.6g} s in mode {mode.name.lower()} (rtol = "
+                f"{settings.rtol:g}, atol = {settings.atol:g}): loosen or tighten the tolerances"
+            )
+        if n:
+            steps.append((ts, hs, ys, Fs))
+            segments.append(Segment(t, float(t_stop), mode, StepSegment(ts, hs, ys, Fs), ts.copy()))
+        t, y = float(t_stop), np.array(y_stop)
+        if code == _dop853.STATUS_END:
+            break
+        h_next = 0.0  # the field jumps at a switch: choose the next step afresh
+        kind = sw.kind(mode, hit)
+        y = sw.project(mode, hit, y)
+        target = sw.target(mode, hit, t, y)
+        new = zeno.after(t, kind, sw.guards[mode][2][hit][0], y, target)
+        if isinstance(new, str):
+            events.append((t, kind, target))
+            status, message = "zeno", new
+            break
+        events.append((t, kind, new))
+        if kind == "lift_off" and settings.on_contact_loss == "stop":
+            status = "contact_lost"
+            message = (
+                f"contact lost (X2 = 0, Eq. 1) at t = {t:.6g} s; stopped as "
+                "requested (on_contact_loss='stop')"
+            )
+            break
+        mode = new
+    if not segments:
+        # the run stopped where it started: a segment of zero length keeps the state
+        y_at = y.copy()
+        segments.append(
+            Segment(
+                t,
+                t,
+                mode,
+                lambda tt, y_at=y_at: np.repeat(y_at[:, None], np.size(tt), axis=1),
+                np.array([t]),
+            )
+        )
+        evaluator = None
+    else:
+        evaluator = StepSegment(*(np.concatenate(part) for part in zip(*steps)))
+    trajectory = Trajectory(segments, model, evaluator)
+    trajectory.n_zeno = zeno.entered
+    return Run(trajectory, events, status, message, "events")

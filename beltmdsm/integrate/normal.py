@@ -1,0 +1,235 @@
+"""The normal motion of Eq. (4), once, with the tangential response to its contact force.
+
+The normal equation of Eq. (4) contains neither ``X1``, ``X1'``, ``Vb`` nor
+``mu_s``: the normal motion is fixed by the excitation alone. `NormalMotion`
+integrates it once, together with ``z``, the response of the tangential oscillator
+(from rest) to the contact force (`generated.hybrid.response_field`), mode by mode
+with located switches (loss of contact and touchdown; separation and recontact
+under the clipped tension law), on the compiled DOP853 integrator of
+`beltmdsm.integrate._dop853`. Every run of a sweep over ``Vb`` or ``mu_s`` reuses it
+(`normal_motion` caches the last few), and `beltmdsm.integrate.superposition` builds the
+tangential motion on it in closed form.
+
+The motion is kept twice: as DOP853 dense output (exact to the integration
+tolerance at any time), and sampled on a uniform grid for the superposition's scan
+for switches.
+"""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+from collections.abc import Iterable
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from generated import hybrid, oscillator
+
+from ..model import Backend, Model
+from . import _compiled, _dop853
+from .switching import EVENT_KINDS, SURFACE_INDEX, Mode, Switching
+
+__all__ = ["NormalMotion", "normal_motion", "normal_key", "clear_cache", "GRID_STEP"]
+
+#: Grid of the scan for switches [s].
+GRID_STEP = 0.005
+_NORMAL_SURFACES = ("penetration", "contact_force")
+#: How many normal motions `normal_motion` keeps.
+_KEPT = 4
+
+
+def normal_key(model: Model) -> tuple:
+    """What the normal motion, ``z`` and the excitation response of ``model`` depend on.
+
+    The parameters that the generated response field (the normal equation with the
+    tangential response to its force) and the tangential excitation response take,
+    as the generated code declares them, with the contact and tension laws: ``Vb``
+    and ``mu_s`` are not among them, so a sweep over either shares one normal motion.
+    """
+    p = model.params
+    used = hybrid.bind_response_field(contact=model.contact, backend="python", **p).params
+    used |= oscillator.bind_excitation_response(backend="python", **p).params
+    return (model.contact, model.tension, tuple(sorted((k, float(v)) for k, v in used.items())))
+
+
+class NormalMotion:
+    """The normal motion, ``z`` and the excitation response, from ``t = 0`` to ``t_end``.
+
+    Attributes
+    ----------
+    switch_t : float array
+        Times of the normal switches (the segment boundaries), with 0 and t_end.
+    switch_mode : list of Mode
+        The normal mode of each segment: ``Mode.SLIP_BACK`` stands for contact
+        (the contact modes share the normal field), ``FLIGHT`` or ``SEPARATED``.
+    switch_kind, switch_surface : list of str
+        The event kind of each switch (`beltmdsm.integrate.switching.EVENT_KINDS`) and the
+        surface crossed.
+    t_steps, h_steps, y_steps, F_steps : arrays
+        The DOP853 steps of all segments (state ``(z, z', X2, X2')``).
+    grid : float array (n,)
+        Uniform times, ``GRID_STEP`` apart (the segment boundaries added).
+    on_grid : float array (6, n)
+        ``z, z', X2, X2'`` and the excitation response ``zf, zf'`` at ``grid``.
+    """
+
+    def __init__(
+        self,
+        model: Model,
+        t_end: float,
+        rtol: float,
+        atol: float,
+        y0_normal: Iterable[float],
+        backend: Backend | None = None,
+        grid_step: float = GRID_STEP,
+    ) -> None:
+        self.model, self.t_end = model, float(t_end)
+        p = model.params
+        field = hybrid.bind_response_field(contact=model.contact, backend=backend, **p)
+        sw = Switching(model, backend)
+        advance = _compiled.advance("response_field", model.contact, backend)
+        guards = {}
+        for mode in (Mode.SLIP_BACK, Mode.FLIGHT, Mode.SEPARATED):
+            rows = [
+                (SURFACE_INDEX[s], float(d), target)
+                for s, d, target in sw.guards.get(mode, ((), (), ()))[2]
+                if s in _NORMAL_SURFACES
+            ]
+            guards[mode] = (
+                np.array([r[0] for r in rows], dtype=np.int64),
+                np.array([r[1] for r in rows]),
+                [r[2] for r in rows],
+            )
+        t, y = 0.0, np.array([0.0, 0.0, *y0_normal], dtype=float)
+        mode = self._normal_mode(sw, t, y, entering=y[2] > 0 or (y[2] == 0 and y[3] > 0))
+        switch_t, switch_mode, switch_kind, switch_surface, steps = [0.0], [mode], [], [], []
+        h_next = 0.0
+        while t < self.t_end:
+            watch, dirs, targets = guards[mode]
+            (code, n, ts, hs, ys, Fs, t_stop, y_stop, hit, h_next) = advance(
+                field.args,
+                sw.surfaces.args,
+                sw.rates.args,
+                float(mode),
+                watch,
+                dirs,
+                t,
+                y,
+                self.t_end,
+                h_next,
+                rtol,
+                atol,
+                np.inf,
+            )
+            if code == _dop853.STATUS_STEP_TOO_SMALL:
+                raise ArithmeticError(
+                    f"the normal motion's step fell below the rounding of the time at "
+                    f"t = {t_stop:.6g} s (rtol = {rtol:g}, atol = {atol:g})"
+                )
+            if n:
+                steps.append((ts, hs, ys, Fs))
+            t, y = float(t_stop), np.array(y_stop)
+            if code == _dop853.STATUS_END:
+                break
+            target = targets[hit]
+            if target in (hybrid.DECIDE_CONTACT,):
+                mode = self._normal_mode(sw, t, y, entering=True)
+            else:
+                mode = Mode[target.upper()]
+            surface = hybrid.SURFACES[watch[hit]]
+            if surface == "penetration":
+                y[2] = 0.0
+            switch_t.append(t)
+            switch_mode.append(mode)
+            switch_kind.append(EVENT_KINDS[(surface, int(dirs[hit]))])
+            switch_surface.append(surface)
+        switch_t.append(self.t_end)
+        self.switch_t = np.array(switch_t)
+        self.switch_mode = switch_mode
+        self.switch_kind = switch_kind
+        self.switch_surface = switch_surface
+        self.t_steps = np.concatenate([s[0] for s in steps])
+        self.h_steps = np.concatenate([s[1] for s in steps])
+        self.y_steps = np.concatenate([s[2] for s in steps])
+        self.F_steps = np.concatenate([s[3] for s in steps])
+        n_grid = int(np.ceil(self.t_end / grid_step - 1e-9))
+        grid = np.union1d(np.linspace(0.0, self.t_end, n_grid + 1), self.switch_t)
+        self.grid = grid
+        zf, vf = oscillator.bind_excitation_response(backend="python", **p).array(grid)
+        self.on_grid = np.vstack([self.evaluate(grid), zf, vf])
+
+    def _normal_mode(self, sw, t, y, entering):
+        """Contact (coded SLIP_BACK) or the free mode of a normal state."""
+        if not entering:
+            return Mode.FLIGHT
+        if sw.tension == "clipped" and sw.pulls(t, y):
+            return Mode.SEPARATED
+        return Mode.SLIP_BACK
+
+    def evaluate(self, t: ArrayLike) -> NDArray[np.float64]:
+        """``(z, z', X2, X2')`` at the times ``t`` from the dense output, shape (4, n)."""
+        return _dop853.evaluate(self.t_steps, self.h_steps, self.y_steps, self.F_steps, t)
+
+    def at(self, t: float) -> NDArray[np.float64]:
+        """``(z, z', X2, X2')`` at one time: the dense output of the step holding ``t``."""
+        # the period maps of a Floquet band call this thousands of times: the compiled
+        # loop of `evaluate` (bit-identical) costs a seventh of the Python one
+        fast = _dop853._evaluate_compiled()
+        if fast is not None:
+            out = np.empty((4, 1))
+            fast(self.t_steps, self.h_steps, self.y_steps, self.F_steps, np.array([t]), out)
+            return out[:, 0]
+        k = max(int(np.searchsorted(self.t_steps, t, side="right")) - 1, 0)
+        F = self.F_steps[k]
+        x = (t - self.t_steps[k]) / self.h_steps[k]
+        y = F[-1].copy()
+        for j in range(1, F.shape[0]):
+            y *= x if j % 2 else 1.0 - x
+            y += F[-1 - j]
+        y *= x if F.shape[0] % 2 else 1.0 - x
+        return y + self.y_steps[k]
+
+    def segment_at(self, t: float) -> int:
+        """Index of the normal segment that holds ``t`` (the later one at a switch)."""
+        return min(
+            int(np.searchsorted(self.switch_t, t, side="right")) - 1, len(self.switch_mode) - 1
+        )
+
+
+_KEEP: OrderedDict = OrderedDict()
+
+
+def normal_motion(
+    model: Model,
+    t_end: float,
+    rtol: float,
+    atol: float,
+    y0_normal: Iterable[float],
+    backend: Backend | None = None,
+) -> NormalMotion:
+    """The `NormalMotion` of ``model`` (the last few are kept, by `normal_key`).
+
+    ``mu_s`` and ``Vb`` do not enter the normal motion or ``z``: a sweep over either
+    reuses one.
+    """
+    key = (
+        normal_key(model),
+        float(t_end),
+        float(rtol),
+        float(atol),
+        tuple(float(v) for v in y0_normal),
+        backend,
+    )
+    if key in _KEEP:
+        _KEEP.move_to_end(key)
+        return _KEEP[key]
+    motion = NormalMotion(model, *key[1:5], backend)
+    _KEEP[key] = motion
+    if len(_KEEP) > _KEPT:
+        _KEEP.popitem(last=False)
+    return motion
+
+
+def clear_cache() -> None:
+    """Forget the normal motions kept for the last parameter sets."""
+    _KEEP.clear()

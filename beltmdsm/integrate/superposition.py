@@ -1,0 +1,311 @@
+"""Fast simulation of Eq. (4) by the one-way coupling and superposition.
+
+The normal equation of Eq. (4) does not depend on the tangential state, on Vb or on
+mu_s, so the normal motion and ``z``, the tangential oscillator's response to its
+contact force, are integrated once (`beltmdsm.integrate.normal.NormalMotion`, cached across a
+sweep). The tangential equation is linear in each mode, so between switches
+
+    (X1, X1')(t) = Phi(t - t0) d + zf(t) - mu_s sgn z(t)
+
+with ``Phi`` the closed-form state-transition matrix and ``zf`` the closed-form
+response to the tangential excitation (`generated.oscillator`, derived in
+derive/oscillator.py), ``d`` fixed by the state at the switch ``t0``; in flight and
+separation the ``z`` term drops (no friction), while sticking ``X1' = Vb``. Every
+tangential switch is located on these closed forms (`beltmdsm.integrate._superpose.scan`),
+every normal switch comes from the normal motion, and the mode after a switch is
+chosen by the same rules as in the event-driven integrator (`beltmdsm.integrate.switching`).
+
+Where its closed forms do not exist (at undamped resonance of the tangential
+oscillator, ``beta1 = 0``, ``Omega_t = omega1``, where the excitation response grows
+without bound), it raises `NotApplicable` with the reason, and
+`beltmdsm.simulate.simulate` hands the run to `beltmdsm.integrate.events`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from generated import oscillator
+
+from ..model import Backend, Model, initial_state
+from ..settings import SolverSettings
+from . import _compiled
+from .normal import GRID_STEP, NormalMotion, clear_cache, normal_motion
+from .switching import SURFACE_INDEX, Mode, Switching
+from .trajectory import Run, Segment, Trajectory
+from .zeno import Zeno
+
+__all__ = [
+    "Superposition",
+    "TangentialRun",
+    "NotApplicable",
+    "integrate_superposed",
+    "clear_cache",
+    "GRID_STEP",
+    "KNOT_STEP",
+]
+
+
+class NotApplicable(ValueError):
+    """The superposition's closed forms do not exist for this model (the reason)."""
+
+
+#: Grid points of the normal motion per quadrature piece of a segment, at most.
+KNOT_STEP = 10
+_TANGENTIAL = ("relative_velocity", "stick_forward", "stick_back")
+
+
+class _Segments:
+    """The closed form of every segment, evaluated for many times at once."""
+
+    def __init__(self, normal, stm, exc, Vb):
+        self.normal, self.stm, self.exc, self.Vb = normal, stm, exc, Vb
+        self.t0, self.stick, self.ms, self.d, self.X1s = [], [], [], [], []
+
+    def add(self, t0, stick, ms, d, X1s):
+        self.t0.append(t0)
+        self.stick.append(stick)
+        self.ms.append(ms)
+        self.d.append(d)
+        self.X1s.append(X1s)
+
+    def freeze(self):
+        self.t0, self.stick, self.ms = (
+            np.array(a, dtype=dt)
+            for a, dt in ((self.t0, float), (self.stick, bool), (self.ms, float))
+        )
+        self.d, self.X1s = np.array(self.d, dtype=float).reshape(-1, 2), np.array(self.X1s)
+
+    def __call__(self, t, index):
+        t = np.asarray(t, dtype=float)
+        z, v, X2, Y2 = self.normal.evaluate(t)
+        zf, vf = self.exc.array(t)
+        t0 = self.t0[index]
+        P = self.stm.array(t - t0)
+        d, ms = self.d[index], self.ms[index]
+        X1 = P[:, 0, 0] * d[:, 0] + P[:, 0, 1] * d[:, 1] + zf - ms * z
+        Y1 = P[:, 1, 0] * d[:, 0] + P[:, 1, 1] * d[:, 1] + vf - ms * v
+        stick = self.stick[index]
+        X1 = np.where(stick, self.X1s[index] + self.Vb * (t - t0), X1)
+        Y1 = np.where(stick, self.Vb, Y1)
+        return np.array([X1, Y1, X2, Y2])
+
+
+@dataclass
+class TangentialRun:
+    """The tangential motion on a normal motion between two times (`Superposition.run`).
+
+    Attributes
+    ----------
+    segments : _Segments
+        The closed form of every segment, evaluated for many times at once.
+    modes, starts, ends : lists
+        The mode and the time span of each segment.
+    events : list of (t, kind, new_mode)
+    switches : list of (t, before, after, surface, state)
+        Every switch with the surface's name and the state on it.
+    status, message : str
+    n_zeno : int
+    final : ndarray (4,)
+        The state where the run stopped.
+    """
+
+    segments: _Segments = field(repr=False)
+    modes: list
+    starts: list
+    ends: list
+    events: list = field(repr=False)
+    switches: list = field(repr=False)
+    status: str
+    message: str
+    n_zeno: int
+    final: NDArray[np.float64]
+
+
+class Superposition:
+    """The tangential switching on one normal motion: closed forms between switches.
+
+    Parameters
+    ----------
+    model : Model
+    normal : beltmdsm.integrate.normal.NormalMotion
+    backend : {"python", "numba", None}
+
+    Raises
+    ------
+    NotApplicable
+        At undamped resonance, where the excitation response has no closed form.
+    """
+
+    def __init__(
+        self,
+        model: Model,
+        normal: NormalMotion,
+        backend: Backend | None = None,
+    ) -> None:
+        self.model, self.normal = model, normal
+        p = model.params
+        self.stm = oscillator.bind_state_transition(backend=backend, **p)
+        self.exc = oscillator.bind_excitation_response(backend=backend, **p)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            finite = np.all(np.isfinite(self.exc.array(np.array([1.0]))))
+        if not finite:
+            raise NotApplicable(
+                "no closed-form excitation response at undamped resonance "
+                "(beta1 = 0, Omega_t = omega1)"
+            )
+        self.sw = sw = Switching(model, backend)
+        self.scan = _compiled.scan(model.contact, backend)
+        self.watch = {}
+        for mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD, Mode.STICK):
+            rows = [
+                (i, SURFACE_INDEX[s], float(d))
+                for i, (s, d, _) in enumerate(sw.guards[mode][2])
+                if s in _TANGENTIAL
+            ]
+            self.watch[mode] = (
+                np.array([r[1] for r in rows], dtype=np.int64),
+                np.array([r[2] for r in rows]),
+                [r[0] for r in rows],
+            )
+        self._none = (np.zeros(0, dtype=np.int64), np.zeros(0), [])
+        self._args = (
+            normal.grid,
+            normal.on_grid,
+            normal.t_steps,
+            normal.h_steps,
+            normal.y_steps,
+            normal.F_steps,
+            self.stm.args,
+            self.exc.args,
+            sw.surfaces.args,
+            sw.rates.args,
+        )
+
+    def run(
+        self,
+        t0: float,
+        X1: float,
+        Y1: float,
+        t_end: float,
+        on_contact_loss: Literal["continue", "stop"] = "continue",
+    ) -> TangentialRun:
+        """The tangential motion from ``(X1, Y1)`` at ``t0`` to ``t_end``."""
+        sw, normal, p = self.sw, self.normal, self.model.params
+        Vb, mu = p["Vb"], p["mu_s"]
+        segs = _Segments(normal, self.stm, self.exc, Vb)
+        modes, starts, ends, events, switches = [], [], [], [], []
+        zeno = Zeno(sw)
+        t = float(t0)
+        mode = _mode_in(sw, normal, normal.segment_at(t), t, X1, Y1)
+        status, message = "done", "reached t_end"
+        while t < t_end:
+            k = normal.segment_at(t)
+            tc = min(float(normal.switch_t[k + 1]), t_end)
+            stick = mode == Mode.STICK
+            ms = mu * int(mode) if mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD) else 0.0
+            z, v = normal.at(t)[:2]
+            zf, vf = self.exc(t)
+            d = (X1 - zf + ms * z, Y1 - vf + ms * v)
+            w, dirs, rows = self.watch.get(mode, self._none)
+            hit, t_hit = self.scan(
+                float(mode), stick, ms, w, dirs, t, tc, d[0], d[1], X1, Vb, *self._args
+            )
+            t_stop = float(t_hit) if hit >= 0 else tc
+            segs.add(t, stick, ms, d, X1)
+            modes.append(mode)
+            starts.append(t)
+            ends.append(t_stop)
+            state = segs_state(segs, t_stop, len(modes) - 1)
+            if t_stop >= t_end:
+                break
+            if hit >= 0:
+                guard = rows[hit]
+                surface = sw.guards[mode][2][guard][0]
+                kind = sw.kind(mode, guard)
+                state = sw.project(mode, guard, state)
+                target = sw.target(mode, guard, t_stop, state)
+                new = zeno.after(t_stop, kind, surface, state, target)
+                if isinstance(new, str):
+                    events.append((t_stop, kind, target))
+                    status, message = "zeno", new
+                    break
+            else:
+                surface = normal.switch_surface[k]
+                kind = normal.switch_kind[k]
+                new = _mode_in(sw, normal, k + 1, t_stop, state[0], state[1])
+            events.append((t_stop, kind, new))
+            switches.append((t_stop, mode, new, surface, state))
+            if kind == "lift_off" and on_contact_loss == "stop":
+                status = "contact_lost"
+                message = (
+                    f"contact lost (X2 = 0, Eq. 1) at t = {t_stop:.6g} s; stopped as "
+                    "requested (on_contact_loss='stop')"
+                )
+                break
+            t, X1, Y1, mode = t_stop, float(state[0]), float(state[1]), new
+        segs.freeze()
+        return TangentialRun(
+            segs, modes, starts, ends, events, switches, status, message, zeno.entered, state
+        )
+
+
+def integrate_superposed(
+    model: Model, settings: SolverSettings, *, y0: ArrayLike | None = None
+) -> Run:
+    """A run of Eq. (4) by superposition.
+
+    Raises
+    ------
+    NotApplicable
+        Where the closed forms do not exist (the reason); the event-driven
+        integrator applies there.
+    """
+    y = initial_state(model) if y0 is None else np.array(y0, dtype=float)
+    normal = normal_motion(
+        model, settings.t_end, settings.rtol, settings.atol, y[2:], settings.backend
+    )
+    engine = Superposition(model, normal, settings.backend)
+    out = engine.run(0.0, float(y[0]), float(y[1]), float(settings.t_end), settings.on_contact_loss)
+    # quadrature pieces (energy balance, cycle averages): a knot every KNOT_STEP grid
+    # points, and the normal motion's own steps within 0.2 s of its switches, where
+    # they shrink because it is not smooth there (X2^(3/2) about a touchdown)
+    near = np.zeros(normal.t_steps.size, dtype=bool)
+    for ts in normal.switch_t[1:-1]:
+        near |= np.abs(normal.t_steps - ts) <= 4 * KNOT_STEP * GRID_STEP
+    knots = np.union1d(normal.grid[::KNOT_STEP], normal.t_steps[near])
+    lo = np.searchsorted(knots, out.starts, side="right")
+    hi = np.searchsorted(knots, out.ends, side="left")
+    segments = [
+        Segment(a, b, m, None, knots[i:j])
+        for a, b, m, i, j in zip(out.starts, out.ends, out.modes, lo, hi)
+    ]
+    trajectory = Trajectory(segments, model, out.segments)
+    trajectory.n_zeno = out.n_zeno
+    return Run(trajectory, out.events, out.status, out.message, "superposition")
+
+
+def segs_state(segs, t, index):
+    """The state at ``t`` in segment ``index`` (before `_Segments.freeze`)."""
+    z, v, X2, Y2 = segs.normal.at(t)
+    if segs.stick[index]:
+        return np.array([segs.X1s[index] + segs.Vb * (t - segs.t0[index]), segs.Vb, X2, Y2])
+    P = segs.stm(t - segs.t0[index])
+    zf, vf = segs.exc(t)
+    d, ms = segs.d[index], segs.ms[index]
+    return np.array(
+        [P[0] * d[0] + P[1] * d[1] + zf - ms * z, P[2] * d[0] + P[3] * d[1] + vf - ms * v, X2, Y2]
+    )
+
+
+def _mode_in(sw, normal, k, t, X1, Y1):
+    """The mode at ``t`` where the normal motion is in its segment ``k``."""
+    normal_mode = normal.switch_mode[k]
+    if normal_mode != Mode.SLIP_BACK:
+        return normal_mode
+    _, _, X2, Y2 = normal.at(t)
+    return sw.by_relative_velocity(t, np.array([X1, Y1, X2, Y2]))

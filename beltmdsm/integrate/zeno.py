@@ -1,0 +1,63 @@
+"""Accumulating switches (Zeno), detected once for both integrators.
+
+Switches that accumulate are never counted to a cap: when `ZENO_SWITCHES` switches
+fall within `ZENO_WINDOW` (relative to the time), the run is chattering on one
+surface. On ``Vr = 0`` with friction that holds the mass (``|a_free| <= mu_s F``,
+`cone_holds`), the limit of that chattering is Filippov's sliding motion, which is
+the stick mode: the integrator enters it. Anywhere else the run stops with status
+``"zeno"`` and a message naming the surface and the time.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+
+from numpy.typing import ArrayLike
+
+from .switching import Mode, Switching
+
+__all__ = ["ZENO_SWITCHES", "ZENO_WINDOW", "Zeno", "cone_holds"]
+
+ZENO_SWITCHES = 8
+ZENO_WINDOW = 1e-9
+
+
+def cone_holds(sw: Switching, t: float, y: ArrayLike) -> bool:
+    """Whether friction holds the mass at this state: ``mu_s F > 0`` beyond rounding and
+    ``|a_free| <= mu_s F`` within it (both stick limits non-negative).
+
+    Chattering on ``Vr = 0`` converges to Filippov's sliding motion only there; a run
+    that chatters outside the cone is not chattering in exact arithmetic, and stops.
+    """
+    h, tol = sw.ties(t, y)
+    return bool(h[1] + h[2] > tol[1] + tol[2] and h[1] >= -tol[1] and h[2] >= -tol[2])
+
+
+class Zeno:
+    """The last `ZENO_SWITCHES` switch times of a run, and what an accumulation means.
+
+    ``entered`` counts the chattering limits resolved as stick (a run's ``n_zeno``).
+    """
+
+    def __init__(self, sw: Switching) -> None:
+        self.sw = sw
+        self.recent: deque[float] = deque(maxlen=ZENO_SWITCHES)
+        self.entered = 0
+
+    def after(self, t: float, kind: str, surface: str, y: ArrayLike, new: Mode) -> Mode | str:
+        """The mode after a switch at ``t`` to ``new``, or the message of a Zeno stop.
+
+        Returns ``new`` unless switches accumulate: then ``Mode.STICK`` inside the
+        friction cone on ``Vr = 0``, else a str saying where the run stops.
+        """
+        self.recent.append(t)
+        if len(self.recent) < ZENO_SWITCHES or t - self.recent[0] > ZENO_WINDOW * max(1.0, abs(t)):
+            return new
+        if kind == "vr_zero" and cone_holds(self.sw, t, y):
+            self.entered += 1
+            self.recent.clear()
+            return Mode.STICK
+        return (
+            f"switches accumulate on the {surface} surface at t = {t:.9g} s "
+            f"({ZENO_SWITCHES} within {t - self.recent[0]:.2g} s); stopped"
+        )

@@ -1,0 +1,307 @@
+"""The model: a complete, checked parameter set and its options (Eqs. 1-4, 9).
+
+`Model` is the value every analysis of the package takes: the parameters of Eq. (4)
+(the paper's base set, ``generated.parameters.BASE``, updated by what the caller
+gives, with the per-direction excitation filled in from ``alpha`` and ``Omega`` as
+Eq. (4) has it) and the model options (`OPTIONS`: the contact law, the tension law),
+held as a mapping of named options so that new options are added, not wired. It is
+checked once, when it is built, against the one domain table
+(``generated.parameters.DOMAINS``); it is frozen and hashable, and `Model.digest`
+keys the sweep cache. The public functions of the package take a `Model` or the
+keywords it is built from (`as_model`), convert once at the boundary and pass the
+`Model` down; nothing inside checks a parameter again.
+
+`initial_state` is the default start of a run (the unforced equilibrium of Eq. 9),
+`excitation_period` the common period of the excitation.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import numbers
+from collections.abc import Mapping
+from fractions import Fraction
+from types import MappingProxyType
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from generated import hybrid, unforced
+from generated.parameters import BASE, DEFAULT_FROM, DEFAULTS, DOMAINS, KNOWN
+
+__all__ = [
+    "Model",
+    "as_model",
+    "OPTIONS",
+    "OPTION_DEFAULTS",
+    "CONTACTS",
+    "TENSIONS",
+    "Contact",
+    "Tension",
+    "Backend",
+    "MODEL_PARAMETERS",
+    "check_domain",
+    "is_real",
+    "initial_state",
+    "excitation_period",
+]
+
+#: The contact laws of ``generated/`` (Eq. 1; Fig. 16).
+CONTACTS = ("hertz_damp", "kelvin_voigt")
+#: The tension laws of ``generated.hybrid.GUARDS`` (docs/modelling.md#tension).
+TENSIONS = tuple(hybrid.GUARDS)
+#: The model options and their choices; the first choice is the default.
+OPTIONS: Mapping[str, tuple[str, ...]] = MappingProxyType(
+    {"contact": CONTACTS, "tension": TENSIONS}
+)
+OPTION_DEFAULTS: Mapping[str, str] = MappingProxyType({k: v[0] for k, v in OPTIONS.items()})
+#: Annotation types of the options (tests/beltmdsm/test_typing.py keeps them equal to
+#: `OPTIONS`) and of the backends of the bound kernels (None: numba if installed).
+Contact = Literal["hertz_damp", "kelvin_voigt"]
+Tension = Literal["allowed", "clipped"]
+Backend = Literal["python", "numba"]
+#: The parameters of a model: every parameter of the table but ``Vhat``, which is an
+#: input of the MDSM's effective friction (Eq. 23), not of Eq. (4).
+MODEL_PARAMETERS = tuple(name for name in DOMAINS if name != "Vhat")
+
+#: Each domain of the parameter table as a test and the text of a failure.
+_DOMAIN_TESTS = {
+    "positive": (lambda x: x > 0, "> 0"),
+    "nonnegative": (lambda x: x >= 0, ">= 0"),
+    "real": (lambda x: True, "a number"),
+}
+
+
+def is_real(value: object) -> bool:
+    """True for a real number (int, float, numpy scalar), False for a bool or anything else."""
+    return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
+
+
+def check_domain(name: str, value: float) -> str | None:
+    """What is wrong with ``value`` for parameter ``name`` ("must be > 0"), or None."""
+    test, text = _DOMAIN_TESTS[DOMAINS[name]]
+    return None if test(value) else f"must be {text}"
+
+
+def _number(name: str, value: object) -> float:
+    # float(True) is 1.0: a flag passed where a number belongs is a mistake
+    if not is_real(value):
+        raise ValueError(f"parameter {name!r} must be a number; got {value!r}")
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"parameter {name!r} must be finite; got {value!r}")
+    return value
+
+
+class Model:
+    """A complete, checked parameter set of Eq. (4) and the model options.
+
+    Parameters
+    ----------
+    **kw
+        Model parameters by name (``generated.parameters``; missing ones take the
+        base set, ``None`` leaves one at its default) and options (`OPTIONS`:
+        ``contact="kelvin_voigt"``, ``tension="clipped"``).
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter or option: an unknown name, a value that is not a real
+        number (a bool, a string, an array), NaN, infinite or outside its domain, or
+        an unknown choice of an option.
+
+    Examples
+    --------
+    >>> m = Model(Vb=5, tension="clipped")
+    >>> m["Vb"], m.tension, m["alpha_t"]
+    (5.0, 'clipped', 2.0)
+    >>> m.replace(Vb=6) == Model(Vb=6, tension="clipped")
+    True
+    """
+
+    __slots__ = ("_given", "_params", "_options", "_key")
+
+    def __init__(self, **kw: Any) -> None:
+        given, options = {}, dict(OPTION_DEFAULTS)
+        for name, value in kw.items():
+            if name in OPTIONS:
+                if value not in OPTIONS[name]:
+                    raise ValueError(
+                        f"{name} must be one of {', '.join(map(repr, OPTIONS[name]))}; "
+                        f"got {value!r}"
+                    )
+                options[name] = value
+            elif name == "Vhat":
+                raise ValueError(
+                    "Vhat is an input of the effective friction of Eq. (23) "
+                    "(generated.stability, generated.friction), not a parameter of the model"
+                )
+            elif name not in KNOWN:
+                raise ValueError(
+                    f"unknown parameter {name!r}; known: {', '.join(MODEL_PARAMETERS)}; "
+                    f"options: {', '.join(OPTIONS)}"
+                )
+            elif value is not None:
+                given[name] = _number(name, value)
+        params = {**BASE, **given}
+        params.pop("Vhat", None)
+        for name, value in DEFAULTS.items():
+            params.setdefault(name, value)
+        for name, source in DEFAULT_FROM.items():
+            params.setdefault(name, params[source])
+        for name, value in params.items():
+            problem = check_domain(name, value)
+            if problem:
+                raise ValueError(f"parameter {name!r} {problem}; got {value!r}")
+        ordered = {name: params[name] for name in MODEL_PARAMETERS}
+        setattr_ = object.__setattr__
+        setattr_(self, "_given", MappingProxyType(given))
+        setattr_(self, "_params", MappingProxyType(ordered))
+        setattr_(self, "_options", MappingProxyType(options))
+        setattr_(self, "_key", (tuple(ordered.items()), tuple(sorted(options.items()))))
+
+    @classmethod
+    def from_mapping(cls, mapping: Mapping[str, Any] | None, **kw: Any) -> Model:
+        """A model from a mapping of parameters and options, updated by ``kw``."""
+        if mapping is not None and not isinstance(mapping, Mapping):
+            raise ValueError(f"params must be a dict of parameters; got {type(mapping).__name__}")
+        return cls(**{**(mapping or {}), **kw})
+
+    def replace(self, **kw: Any) -> Model:
+        """A new model with some parameters or options changed.
+
+        The parameters given when this model was built stay given; the others
+        follow their defaults (``alpha_t`` follows ``alpha`` unless it was given).
+        """
+        return Model(**{**self._given, **self._options, **kw})
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError("Model is immutable; use replace()")
+
+    def __reduce__(self):
+        # pickled as what it was built from (process pools, dask workers)
+        return (_rebuild, (dict(self._given), dict(self._options)))
+
+    @property
+    def params(self) -> Mapping[str, float]:
+        """Every parameter of Eq. (4), in the order of the parameter table."""
+        return self._params
+
+    @property
+    def options(self) -> Mapping[str, str]:
+        """The model options (`OPTIONS`)."""
+        return self._options
+
+    @property
+    def contact(self) -> Contact:
+        return self._options["contact"]
+
+    @property
+    def tension(self) -> Tension:
+        return self._options["tension"]
+
+    def __getitem__(self, name: str) -> float:
+        return self._params[name]
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Model) and self._key == other._key
+
+    def __hash__(self) -> int:
+        return hash(self._key)
+
+    def __repr__(self) -> str:
+        changed = {k: v for k, v in self._params.items() if BASE.get(k) != v}
+        for name, source in DEFAULT_FROM.items():
+            if changed.get(name) == self._params[source]:
+                del changed[name]
+        for name, value in DEFAULTS.items():
+            if changed.get(name) == value:
+                del changed[name]
+        options = {k: v for k, v in self._options.items() if OPTION_DEFAULTS[k] != v}
+        args = [f"{k}={v!r}" for k, v in {**changed, **options}.items()]
+        return f"Model({', '.join(args)})"
+
+    def as_dict(self) -> dict[str, Any]:
+        """``{"params": {...}, <option>: <choice>, ...}``, for JSON."""
+        return {"params": dict(self._params), **self._options}
+
+    def digest(self) -> str:
+        """SHA-256 of the parameters and options: the same on every machine and run."""
+        text = json.dumps({"params": self._params.copy(), **self._options}, sort_keys=True)
+        return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _rebuild(given: dict[str, float], options: dict[str, str]) -> Model:
+    return Model(**given, **options)
+
+
+def as_model(model: Model | Mapping[str, Any] | None = None, **kw: Any) -> Model:
+    """The `Model` that a public function's arguments describe (the boundary check).
+
+    A `Model` is passed through as it is (``kw`` replaces some of its entries); a
+    mapping of parameters and options, or keywords, build one.
+    """
+    if isinstance(model, Model):
+        return model.replace(**kw) if kw else model
+    return Model.from_mapping(model, **kw)
+
+
+def initial_state(model: Model) -> NDArray[np.float64]:
+    """Default initial state: the unforced equilibrium of Eq. (9), at rest.
+
+    ``X1 = mu_s g / omega1^2``, ``X2 = (g / omega2*^2)^(2/3)`` (Hertz-Damp) or
+    ``g / omega2^2`` (Kelvin-Voigt), zero velocities; the excitation is switched on at
+    t = 0. For ``Vb > 0`` the mass starts sliding backwards relative to the belt.
+    """
+    state = unforced.equilibrium(contact=model.contact, **model.params)
+    return np.array([float(v) for v in state])
+
+
+#: (`excitation_period`): a common period of more than 1000 periods of the faster
+#: excitation is longer than any run of the paper.
+_MAX_DENOMINATOR = 1000
+
+
+def excitation_period(model: Model) -> float:
+    """The common period ``T`` [s] of the excitation of Eq. (4): ``2 pi / gcd``.
+
+    The tangential force ``alpha_t Omega_t^2 sin(Omega_t t + phase_t)`` and the normal
+    one (``_n``) repeat together after ``T = 2 pi a / Omega_t = 2 pi b / Omega_n``
+    where ``Omega_t / Omega_n = a / b`` in lowest terms. A direction whose force is
+    zero (``alpha = 0`` or ``Omega = 0``) is absent and does not enter.
+
+    Raises
+    ------
+    ValueError
+        Without excitation (no force in either direction: no phase to take), or for
+        frequencies ``Omega_t``, ``Omega_n`` whose ratio is not a fraction with a
+        denominator up to 1000 within 1e-12 (incommensurate: no common period).
+
+    Examples
+    --------
+    >>> m = Model(alpha_t=2, Omega_t=6, alpha_n=2, Omega_n=4)
+    >>> round(excitation_period(m), 6)
+    3.141593
+    """
+    p = model.params
+    active = [p[f"Omega_{d}"] for d in ("t", "n") if p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0]
+    if not active:
+        raise ValueError(
+            "no excitation (alpha_t Omega_t = alpha_n Omega_n = 0): there is no "
+            "excitation period to take the phase from"
+        )
+    if len(active) == 1 or active[0] == active[1]:
+        return 2 * math.pi / active[0]
+    w_t, w_n = active
+    ratio = Fraction(w_t / w_n).limit_denominator(_MAX_DENOMINATOR)
+    # rounding of the given frequencies only: their ratio must be the fraction
+    if abs(ratio.numerator / ratio.denominator - w_t / w_n) > 1e-12 * (w_t / w_n):
+        raise ValueError(
+            f"Omega_t = {w_t!r} and Omega_n = {w_n!r} are incommensurate (their "
+            f"ratio is no fraction a/b with b <= {_MAX_DENOMINATOR}): the "
+            "excitation has no common period"
+        )
+    return 2 * math.pi * ratio.numerator / w_t

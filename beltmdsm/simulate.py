@@ -1,0 +1,175 @@
+"""Simulation of Eq. (4): one run and its summary (Sects. 2-3).
+
+A run integrates Eq. (4) as a hybrid system: smooth modes (slip in either direction,
+stick, flight and, under the clipped tension law, separation) joined at located
+switches, with Filippov's rules where the friction is set-valued
+(`beltmdsm.integrate.switching`). Two integrators produce the same `Run`:
+
+* ``solver="events"`` (`beltmdsm.integrate.events`, the default): the compiled DOP853
+  integrator on the generated field of each mode, the general one and, compiled,
+  the faster;
+* ``solver="superposition"`` (`beltmdsm.integrate.superposition`): the normal motion
+  is integrated once and the tangential motion is a closed-form superposition between
+  switches (Eq. 4 is one-way coupled); where it does not apply, the run is handed to
+  ``events`` with the reason in its message.
+
+The tension law (``tension=``, docs/modelling.md#tension) is Eq. (1) as printed
+(``"allowed"``) or a contact that cannot pull (``"clipped"``).
+`beltmdsm.analysis.summary.summarize` reads the run's steady window.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .analysis.summary import Summary, summarize
+from .integrate.events import integrate_events
+from .integrate.superposition import NotApplicable, integrate_superposed
+from .integrate.trajectory import Run, Samples, Trajectory
+from .model import Model, as_model
+from .settings import SolverSettings
+
+__all__ = ["Simulation", "simulate"]
+
+
+@dataclass
+class Simulation:
+    """A run: the model, the settings, the run, its samples on a uniform grid, the summary."""
+
+    model: Model
+    settings: SolverSettings
+    run: Run = field(repr=False)
+    samples: Samples = field(repr=False)
+    summary: Summary
+    wall_s: float = 0.0
+
+    # what a run is read by, kept by the names the studies and notebooks use
+    @property
+    def params(self) -> Mapping[str, float]:
+        return self.model.params
+
+    @property
+    def contact(self) -> str:
+        return self.model.contact
+
+    @property
+    def tension(self) -> str:
+        return self.model.tension
+
+    @property
+    def trajectory(self) -> Trajectory:
+        return self.run.trajectory
+
+    @property
+    def events(self) -> list:
+        return self.run.events
+
+    @property
+    def status(self) -> str:
+        return self.run.status
+
+    @property
+    def message(self) -> str:
+        return self.run.message
+
+    @property
+    def solver_used(self) -> str:
+        return self.run.solver
+
+    @property
+    def t(self) -> NDArray[np.float64]:
+        return self.samples.t
+
+    @property
+    def y(self) -> NDArray[np.float64]:
+        return self.samples.y
+
+    @property
+    def normal_force(self) -> NDArray[np.float64]:
+        return self.samples.normal_force
+
+    @property
+    def friction(self) -> NDArray[np.float64]:
+        return self.samples.friction
+
+    @property
+    def window(self) -> NDArray[np.bool_]:
+        """Boolean mask of the samples in the steady window."""
+        return self.samples.t >= self.settings.window_start
+
+
+def simulate(
+    model: Model | Mapping[str, Any] | None = None,
+    *,
+    settings: SolverSettings | None = None,
+    y0: ArrayLike | None = None,
+    **kw: Any,
+) -> Simulation:
+    """Simulate Eq. (4) and summarise the run.
+
+    Parameters
+    ----------
+    model : Model or dict, optional
+        the model (`beltmdsm.Model`), or a dict of parameters and options; missing
+        parameters come from the base set ``generated.parameters.BASE``
+    settings : SolverSettings, optional
+    y0 : array_like, optional
+        initial state (X1, Y1, X2, Y2) at t = 0; default the unforced equilibrium,
+        Eq. (9). To start on the periodic response, pass
+        `beltmdsm.analysis.floquet.periodic_start` of the model.
+    **kw
+        parameters (``Vb=4``), options (``tension="clipped"``) or solver settings
+        (``t_end=500``, ``solver="events"``)
+
+    Returns
+    -------
+    Simulation, with ``summary`` filled in (`beltmdsm.analysis.summary.summarize`).
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter, setting or option, for a bad value.
+    beltmdsm.integrate.events.StepTooSmall
+        Where the integrator cannot go on at the tolerances given.
+    """
+    clock = time.perf_counter()
+    if "start" in kw or "perturbation" in kw:
+        raise TypeError(
+            "simulate() takes the start state as y0: for a start on the periodic "
+            "response pass y0=beltmdsm.analysis.floquet.periodic_start(model, perturbation)"
+        )
+    names = SolverSettings.names()
+    changes = {k: kw.pop(k) for k in list(kw) if k in names}
+    settings = settings or SolverSettings()
+    if changes:
+        settings = SolverSettings(**{**settings.__dict__, **changes})
+    model = as_model(model, **kw)
+    if y0 is not None:
+        y0 = np.asarray(y0, dtype=float)
+        if y0.shape != (4,) or not np.all(np.isfinite(y0)):
+            raise ValueError(f"y0 must be 4 finite numbers (X1, Y1, X2, Y2); got {y0!r}")
+    return _simulate(model, settings, y0, clock)
+
+
+def _simulate(model: Model, settings: SolverSettings, y0, clock: float) -> Simulation:
+    """`simulate` on checked arguments."""
+    run = None
+    if settings.solver == "superposition":
+        try:
+            run = integrate_superposed(model, settings, y0=y0)
+        except NotApplicable as reason:
+            fallback = str(reason)
+    if run is None:
+        run = integrate_events(model, settings, y0=y0)
+        if settings.solver == "superposition":
+            run.message = f"{run.message} (events solver: {fallback})"
+    samples = run.sample(settings.dt)
+    summary = summarize(model, settings, run, samples)
+    wall = time.perf_counter() - clock
+    return Simulation(model, settings, run, samples, replace(summary, wall_s=wall), wall)

@@ -1,0 +1,444 @@
+"""Parameter sweeps on any concurrent.futures.Executor, with a disk cache.
+
+A sweep runs one point per parameter value (`beltmdsm.studies.row.run_point`) on an
+executor: by default a process pool over the local cores; any object with the
+``concurrent.futures.Executor`` interface works, e.g. ``dask.distributed``'s
+``Client(...).get_executor()`` for a cluster. Each point goes through the disk cache
+of `beltmdsm.studies.cache`, so rerunning a figure recomputes nothing and a change of
+the integrator never serves a stale result. The values are sorted and duplicates
+dropped; the result (`Sweep`) holds the table as a numpy structured array
+(`table_to_csv` writes CSV) and what the sweep found: where the omega1 peak is
+present, the points that could not tell, how many came from the cache.
+
+A sweep with ``continuation="up"`` or ``"down"`` follows an attractor: the points run
+one after another in ascending (descending) order of the swept value, each from the
+previous point's state at its last whole excitation period (`excitation_period`),
+the first from rest. Such a sweep is sequential by nature and runs in this process.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import csv
+import math
+import os
+import sys
+import warnings
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import intervals
+from ..model import MODEL_PARAMETERS, Model, as_model, excitation_period
+from ..settings import SolverSettings
+from .cache import (
+    CacheWarning,
+    Problem,
+    cache_key,
+    default_cache_dir,
+    identity,
+    read_cached,
+    writable_folder,
+    write_cached,
+)
+from .row import STARTS, Start, columns, run_point
+
+__all__ = [
+    "sweep",
+    "Sweep",
+    "linear_values",
+    "table_to_csv",
+    "table_from_csv",
+    "omega1_peak_ranges",
+    "resolved_mask",
+    "unresolved_values",
+    "MAX_POINTS",
+    "SWEEPABLE",
+    "CONTINUATIONS",
+    "CacheWarning",
+]
+
+#: Directions of a continued sweep (`sweep`'s ``continuation``).
+CONTINUATIONS = ("up", "down")
+#: `CONTINUATIONS` as an annotation.
+Continuation = Literal["up", "down"]
+#: Most points of one sweep. A sweep of 10^6 runs of a second each is eleven days on
+#: one core; a larger one is a mistake (a step of 1e-15), refused before anything is
+#: allocated.
+MAX_POINTS = 10**6
+#: Parameters a sweep can vary: every model parameter.
+SWEEPABLE = MODEL_PARAMETERS
+
+
+def linear_values(start: float, stop: float, step: float) -> NDArray[np.float64]:
+    """``start, start + step, ...`` up to ``stop`` (within 1e-9 steps), checked first.
+
+    The values are ``start + step * k``, as the command line has always computed
+    them (they key the sweep cache, so they must not change by a rounding).
+
+    Raises
+    ------
+    ValueError
+        Naming ``start``, ``stop`` or ``step``: not finite, ``step <= 0``,
+        ``stop < start``, or more than `MAX_POINTS` values.
+    """
+    for name, value in (("start", start), ("stop", stop), ("step", step)):
+        if not (isinstance(value, (int, float, np.integer, np.floating)) and math.isfinite(value)):
+            raise ValueError(f"{name} must be a finite number; got {value!r}")
+    if not step > 0:
+        raise ValueError(f"step must be > 0; got {step!r}")
+    if stop < start:
+        raise ValueError(f"stop must be >= start; got start = {start!r}, stop = {stop!r}")
+    count = math.floor((stop - start) / step + 1e-9) + 1
+    if count > MAX_POINTS:
+        raise ValueError(
+            f"from {start!r} to {stop!r} in steps of {step!r} is {count:.3g} "
+            f"points, more than MAX_POINTS = {MAX_POINTS:.0e} (beltmdsm/studies/sweep.py)"
+        )
+    return start + step * np.arange(count)
+
+
+@dataclass
+class Sweep:
+    """The result of a sweep: the table and what it says.
+
+    Attributes
+    ----------
+    param : str
+        The swept parameter.
+    model : Model
+        The model of the other parameters and the options.
+    settings : SolverSettings
+    table : numpy structured array
+        One row per value, ascending, the swept parameter first, then
+        `beltmdsm.studies.row.COLUMNS`.
+    continuation : {None, "up", "down"}
+    start : {"rest", "periodic"}
+    n_cached : int
+        Points read from the cache.
+    problems : list of `beltmdsm.studies.cache.Problem`
+        Cache files that failed their checks and were recomputed.
+    dropped : list of float
+        Duplicate values given, computed once.
+    """
+
+    param: str
+    model: Model
+    settings: SolverSettings
+    table: NDArray[np.void] = field(repr=False)
+    continuation: str | None = None
+    start: str = "rest"
+    n_cached: int = 0
+    problems: list[Problem] = field(default_factory=list)
+    dropped: list[float] = field(default_factory=list)
+
+    def omega1_peak_ranges(self) -> list[tuple[float, float]]:
+        """Where the omega1 peak is present (`omega1_peak_ranges`)."""
+        return omega1_peak_ranges(self.table, self.param)
+
+    def unresolved_values(self) -> list[float]:
+        """Values whose run could not tell the omega1 peak (`unresolved_values`)."""
+        return unresolved_values(self.table, self.param)
+
+    def as_dict(self) -> dict[str, Any]:
+        """The JSON of ``sweep --json`` (keys documented in the README)."""
+        rows = [dict(zip(self.table.dtype.names, r.tolist())) for r in self.table]
+        model = self.model.as_dict()
+        del model["params"][self.param]  # its values are the rows'
+        return {
+            "param": self.param,
+            **model,
+            "settings": asdict(self.settings),
+            "continuation": self.continuation,
+            "start": self.start,
+            "rows": rows,
+            "omega1_peak_ranges": [list(r) for r in self.omega1_peak_ranges()],
+            "unresolved": self.unresolved_values(),
+            "n_points": len(rows),
+            "n_cached": self.n_cached,
+            "cache_problems": [asdict(p) for p in self.problems],
+            "dropped_duplicates": self.dropped,
+        }
+
+
+def _cached_run(
+    model, settings, modulation, cache_dir, continuation=None, y0=None, period=None, start="rest"
+):
+    """One point through the cache: ``(row, cached, problem)``.
+
+    ``problem`` (a `Problem` or None) says what was wrong with a cache file that was
+    recomputed (the caller reports it: a warning in a worker process would be lost).
+    ``continuation``, ``y0`` and ``period``: a point of a continued sweep, started at
+    ``y0`` (None: from rest), its row with the state after its last whole excitation
+    period ``period``; ``start``: `run_point`'s.
+    """
+    problem = None
+    if cache_dir is not None:
+        ident = identity(model, settings, modulation, continuation=continuation, y0=y0, start=start)
+        path = Path(cache_dir) / f"{cache_key(ident)}.json"
+        needed = [n for n, _ in columns(modulation)]
+        needed += ["restart_t", "restart_state"] if continuation else []
+        row, reason = read_cached(path, ident, needed)
+        if row is not None:
+            return row, True, None
+        problem = None if reason is None else Problem(str(path), reason)
+    row = run_point(model, settings, modulation, y0=y0, restart_period=period, start=start)
+    if cache_dir is not None:
+        write_cached(path, ident, row)
+    return row, False, problem
+
+
+def sweep(
+    param: str,
+    values: ArrayLike,
+    model: Model | Mapping[str, Any] | None = None,
+    *,
+    settings: SolverSettings | None = None,
+    executor: cf.Executor | Literal["serial"] | None = None,
+    cache_dir: os.PathLike | str | None = "default",
+    progress: bool = True,
+    modulation: bool = False,
+    continuation: Continuation | None = None,
+    start: Start = "rest",
+    **kw: Any,
+) -> Sweep:
+    """Run one point for each value of one parameter.
+
+    Parameters
+    ----------
+    param : str
+        the swept model parameter (e.g. "Vb"; one of `SWEEPABLE`)
+    values : array_like
+        at most `MAX_POINTS` finite values (`linear_values` makes a range); sorted,
+        duplicates computed once
+    model : Model or dict, optional
+        the other parameters and the options (default: the base set); ``**kw`` too.
+        The swept parameter must not be among them.
+    settings : SolverSettings, optional
+    executor : concurrent.futures.Executor, "serial" or None
+        None: a process pool over the local cores (closed afterwards); "serial":
+        in this process; otherwise used as given (and left open), e.g. a dask
+        ``Client.get_executor()``.
+    cache_dir : path, "default" or None
+        None disables the cache; "default" is `beltmdsm.studies.cache.default_cache_dir`.
+    progress : bool
+        show a tqdm progress bar on stderr
+    modulation : bool
+        add the friction modulation columns (`beltmdsm.analysis.modulation`)
+    continuation : {None, "up", "down"}
+        None: every point from rest (the unforced equilibrium), independently.
+        "up"/"down": follow an attractor. The points run in ascending ("up") or
+        descending ("down") order of the value; the first starts from rest, each
+        next one from the previous run's state at its last time ``k T <= t_end``
+        (``T``: `excitation_period` of the previous point, so the excitation phase
+        is 0 there as at the start of a run). Each point needs its predecessor's end,
+        so the runs are sequential, in this process: ``executor`` must be None or
+        "serial". Needs a periodic excitation (`excitation_period`) with
+        ``T <= t_end``.
+    start : {"rest", "periodic"}
+        where each (not continued) run starts (`beltmdsm.studies.row.run_point`)
+
+    Returns
+    -------
+    Sweep
+
+    Raises
+    ------
+    ValueError
+        Naming what is wrong, before any run: an unknown ``param``, empty or too
+        many ``values``, a bad parameter value, the swept parameter also given as a
+        fixed one, a bad executor, a bad ``continuation`` or one that cannot be done
+        (an executor given, no periodic excitation, a period longer than ``t_end``),
+        a cache folder that cannot be written.
+
+    Warns
+    -----
+    CacheWarning
+        For each cache file that failed its checks, naming the file; the point is
+        recomputed and the file rewritten.
+    """
+    if param not in SWEEPABLE:
+        raise ValueError(f"cannot sweep {param!r}: param must be one of {', '.join(SWEEPABLE)}")
+    given = model.params if isinstance(model, Model) else (model or {})
+    if param in kw or (not isinstance(model, Model) and param in given):
+        raise ValueError(f"{param} is swept: give its values, not a fixed {param} as well")
+    values = np.atleast_1d(np.asarray(values, dtype=float))
+    if values.ndim != 1 or values.size == 0:
+        raise ValueError("values must be a non-empty 1-D sequence")
+    if values.size > MAX_POINTS:
+        raise ValueError(
+            f"{values.size} values are more than MAX_POINTS = {MAX_POINTS:.0e} "
+            "(beltmdsm/studies/sweep.py)"
+        )
+    if not (
+        executor is None or executor == "serial" or callable(getattr(executor, "submit", None))
+    ):
+        raise ValueError(
+            f"executor must be None, 'serial' or a concurrent.futures.Executor; got {executor!r}"
+        )
+    if start not in STARTS:
+        raise ValueError(f"start must be one of {', '.join(map(repr, STARTS))}; got {start!r}")
+    if continuation is not None:
+        if continuation not in CONTINUATIONS:
+            raise ValueError(f"continuation must be None, 'up' or 'down'; got {continuation!r}")
+        if start != "rest":
+            raise ValueError(
+                f"a continued sweep starts from rest and then from each "
+                f"previous point's end: start must be 'rest'; got {start!r}"
+            )
+        if not (executor is None or executor == "serial"):
+            raise ValueError(
+                "continuation runs the points one after another (each starts "
+                "from the previous point's state), in this process: executor "
+                f"must be None or 'serial'; got {executor!r}"
+            )
+    model = as_model(model, **kw)
+    settings = settings or SolverSettings()
+    unique = np.unique(values)
+    dropped = sorted(float(v) for v in values if (values == v).sum() > 1)
+    dropped = sorted(set(dropped))
+    points = [model.replace(**{param: float(v)}) for v in unique]
+    cache_dir = default_cache_dir() if cache_dir == "default" else cache_dir
+    if cache_dir is not None:
+        cache_dir = writable_folder(cache_dir)
+    if continuation is not None:
+        periods = [_continuation_period(m, settings, param) for m in points]
+        order = np.arange(len(points))[:: 1 if continuation == "up" else -1]
+        results = _continued(points, periods, order, settings, modulation, cache_dir, continuation)
+        collected = _collect(results, len(points), f"sweep {param} ({continuation})", progress)
+    else:
+        own = executor is None
+        if own:
+            executor = cf.ProcessPoolExecutor(max_workers=os.cpu_count())
+        try:
+            if executor == "serial":
+                results = (
+                    (i, _cached_run(m, settings, modulation, cache_dir, start=start))
+                    for i, m in enumerate(points)
+                )
+            else:
+                futures = {
+                    executor.submit(_cached_run, m, settings, modulation, cache_dir, start=start): i
+                    for i, m in enumerate(points)
+                }
+                results = ((futures[fut], fut.result()) for fut in cf.as_completed(futures))
+            collected = _collect(results, len(points), f"sweep {param}", progress)
+        finally:
+            if own:
+                executor.shutdown()
+    rows, n_cached, problems = collected
+    table = _table(((param, "f8"),) + columns(modulation), param, unique, rows)
+    return Sweep(param, model, settings, table, continuation, start, n_cached, problems, dropped)
+
+
+def _continuation_period(model, settings, param):
+    """`excitation_period` of a point of a continued sweep, checked against ``t_end``."""
+    try:
+        period = excitation_period(model)
+    except ValueError as err:
+        raise ValueError(f"continuation at {param} = {model[param]:g}: {err}") from None
+    if period > settings.t_end:
+        raise ValueError(
+            f"continuation at {param} = {model[param]:g}: the excitation period "
+            f"{period:.6g} s is longer than t_end = {settings.t_end:g} s, so a "
+            "run holds no whole period to continue from"
+        )
+    return period
+
+
+def _continued(points, periods, order, settings, modulation, cache_dir, continuation):
+    """The runs of a continued sweep in ``order``: yields ``(index, result)``."""
+    y0 = None
+    for i in order:
+        result = _cached_run(
+            points[i], settings, modulation, cache_dir, continuation, y0, periods[i]
+        )
+        yield i, result
+        y0 = result[0]["restart_state"]
+
+
+def _collect(results, n, desc, progress):
+    """``(rows, n_cached, problems)`` from ``(index, (row, cached, problem))`` results,
+    with a progress bar; each problem is warned about once, by the file's name."""
+    from tqdm import tqdm
+
+    rows, n_cached, problems = [None] * n, 0, []
+    bar = tqdm(total=n, desc=desc, disable=not progress, file=sys.stderr)
+    try:
+        for i, (row, cached, problem) in results:
+            rows[i] = row
+            n_cached += bool(cached)
+            if problem is not None:
+                problems.append(problem)
+                # stacklevel 4: the caller of sweep (sweep -> _collect -> warn)
+                warnings.warn(str(problem), CacheWarning, stacklevel=3)
+            bar.update()
+    finally:
+        bar.close()
+    return rows, n_cached, problems
+
+
+def _table(cols, param, values, rows):
+    table = np.zeros(len(rows), dtype=list(cols))
+    for i, (v, row) in enumerate(zip(values, rows)):
+        table[i][param] = v
+        for name, _ in cols[1:]:
+            table[i][name] = row.get(name, np.nan)
+    return table
+
+
+def table_to_csv(table: NDArray[np.void], path: os.PathLike | str) -> None:
+    """Write a sweep table as CSV with a header line."""
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(table.dtype.names)
+        for row in table:
+            w.writerow([repr(float(x)) if isinstance(x, np.floating) else x for x in row.tolist()])
+
+
+def table_from_csv(path: os.PathLike | str) -> NDArray[np.void]:
+    """Read a table written by `table_to_csv` back into a structured array."""
+    return np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")
+
+
+def resolved_mask(
+    table: NDArray[np.void] | dict[str, Any], param: str | None = None
+) -> NDArray[np.bool_]:
+    """The ``resolved`` column of a sweep table; all True for a table without one.
+
+    ``table``: a structured array (`sweep`) or a dict of columns (the notebooks'
+    scans); ``param`` names a column whose length counts the points of a dict.
+    """
+    names = (
+        table.keys()
+        if isinstance(table, dict)
+        else getattr(getattr(table, "dtype", None), "names", None) or ()
+    )
+    if "resolved" in names:
+        return np.asarray(table["resolved"], dtype=bool)
+    n = len(table[param]) if isinstance(table, dict) else len(table)
+    return np.ones(n, dtype=bool)
+
+
+def omega1_peak_ranges(
+    table: NDArray[np.void] | dict[str, Any], param: str = "Vb"
+) -> list[tuple[float, float]]:
+    """Contiguous ranges of ``param`` where the omega1 peak is present: [(lo, hi), ...].
+
+    `beltmdsm.intervals.runs` of ``omega1_peak_present`` at resolved points. An
+    unresolved point (``resolved`` False: the run could not tell) is treated like
+    an excluded point of the validation: it is not a point with the peak, so it
+    ends a range, and it is not a point without it either; `unresolved_values`
+    lists them, so that a reader never takes the gap for "no peak".
+    """
+    present = np.asarray(table["omega1_peak_present"], dtype=bool) & resolved_mask(table, param)
+    return intervals.runs(table[param], present)
+
+
+def unresolved_values(table: NDArray[np.void] | dict[str, Any], param: str = "Vb") -> list[float]:
+    """Values of ``param`` whose run could not tell the omega1 peak (ascending)."""
+    return sorted(float(v) for v in np.asarray(table[param])[~resolved_mask(table, param)])

@@ -1,0 +1,73 @@
+"""beltmdsm.analysis.predict: the consistent MDSM and the paper's intervals."""
+
+import json
+
+import numpy as np
+import pytest
+
+from beltmdsm.analysis import predict
+from beltmdsm.cli import main
+from beltmdsm.model import Model
+from generated import correlation, friction, stability
+from generated.parameters import BASE
+
+
+def test_linear_fast_motion_is_the_coupled_vhat():
+    p = Model(Vb=12.0)
+    fast = predict.fast_motion(p)
+    assert not fast.reverses
+    assert fast.V == pytest.approx(friction.vhat(model="coupled", **p.params), rel=1e-12)
+
+
+def test_harmonic_balance_residual_and_reversal():
+    p = Model(Vb=4.0)
+    fast = predict.fast_motion(p)
+    assert fast.reverses and fast.V > 4.0 and fast.residual < 1e-9
+
+
+def test_consistent_mdsm_reduces_to_the_consistent_convention_without_normal_fluctuation():
+    """With N1 = 0 (no normal excitation) the slope is mu_bar' and the damping positive."""
+    p = Model(Vb=2.0, alpha_n=0.0)
+    fast = predict.fast_motion(p)
+    assert fast.N1 == 0.0
+    slope = friction.mu_bar_slope(2.0, fast.V, p["mu_s"])
+    expected = 2 * p["beta1"] * p["omega1"] + p["g"] * slope
+    assert predict.consistent_mdsm_damping(p, fast=fast) == pytest.approx(expected, rel=1e-12)
+    assert not predict.unstable_intervals(alpha_n=0.0)[0]
+
+
+def test_prediction_edges_are_roots_or_the_reversal_onset():
+    intervals, table = predict.unstable_intervals()
+    assert len(intervals) == 1
+    lower, upper = intervals[0]
+    p = Model()
+    assert abs(predict.consistent_mdsm_damping(p.replace(Vb=lower))) < 1e-8
+    assert upper == pytest.approx(correlation.fast_tangential_velocity(**p.params)[0], rel=1e-12)
+    inside = table["Vb"][(table["Vb"] > lower) & (table["Vb"] < upper)]
+    assert np.all(table["damping"][np.isin(table["Vb"], inside)] < 0)
+
+
+def test_paper_intervals_match_generated_stability():
+    out = predict.paper_intervals(beta1=0.4)
+    lo, up = stability.unstable_interval(**{**BASE, "beta1": 0.4})
+    assert out["tangential"] == [(float(lo), float(up))]
+
+
+def test_two_frequencies_are_refused():
+    with pytest.raises(ValueError, match="one excitation frequency"):
+        predict.unstable_intervals(Omega_t=6.0)
+
+
+def test_predict_cli_json(capsys):
+    assert main(["predict", "--beta1", "0.4", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert set(out) == {
+        "paper_tangential_vhat",
+        "paper_coupled_vhat",
+        "consistent_mdsm",
+        "reasons",
+        "tension",
+        "contact",
+    }
+    assert out["tension"] == "allowed"
+    assert out["consistent_mdsm"][0][0] > out["paper_coupled_vhat"][0][0]

@@ -1,0 +1,451 @@
+"""The one command line (derive/cli.py, beltmdsm/cli/): flags checked, one-line errors,
+the shared parents, the executor factory, the console script, predict's edge cases."""
+
+import concurrent.futures as cf
+import json
+import os
+import shutil
+import subprocess
+import sys
+from argparse import Namespace
+from pathlib import Path
+
+import pytest
+
+from beltmdsm.analysis import predict as predict_module
+from beltmdsm.cli import flags, main, tree
+from beltmdsm.model import OPTIONS
+from derive import cli as derive_cli
+
+ROOT = Path(__file__).resolve().parents[3]
+
+
+def _fails(capsys, argv, *names):
+    """``argv`` exits 2 with one line on stderr naming each of ``names``; nothing on stdout."""
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    assert out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert "error:" in lines[0] and "Traceback" not in err
+    for name in names:
+        assert name in lines[0], lines[0]
+    return lines[0]
+
+
+@pytest.mark.parametrize(
+    "argv, names",
+    [
+        (["simulate", "--mu_s", "-1"], ["--mu_s", ">= 0"]),
+        (["simulate", "--mu-s", "nan"], ["--mu_s/--mu-s", "finite"]),
+        (["simulate", "--Vb", "inf"], ["--Vb", "finite"]),
+        (["simulate", "--omega1", "0"], ["--omega1", "> 0"]),
+        (["simulate", "--beta2", "-0.1"], ["--beta2", ">= 0"]),
+        (["simulate", "--Omega", "-4"], ["--Omega", ">= 0"]),
+        (["simulate", "--phase-t", "x"], ["--phase_t", "must be a number"]),
+        (["simulate", "--t-end", "0"], ["--t-end", "> 0"]),
+        (["simulate", "--t-end", "-5"], ["--t-end", "> 0"]),
+        (["simulate", "--dt", "0"], ["--dt", "> 0"]),
+        (["simulate", "--rtol", "0"], ["--rtol", "> 0"]),
+        (["simulate", "--atol=-1e-9"], ["--atol", "> 0"]),
+        (["simulate", "--t-discard", "-1"], ["--t-discard", ">= 0"]),
+        (["simulate", "--t-end", "100", "--t-discard", "99.8"], ["--t-discard", "steady window"]),
+        (["simulate", "--t-end", "1e9"], ["--t-end", "MAX_SAMPLES"]),
+        (["simulate", "--method", "Euler"], ["--method", "invalid choice"]),
+        (["simulate", "--contact", "coulomb"], ["--contact", "invalid choice"]),
+        (["simulate", "--solver", "rk4"], ["--solver", "invalid choice"]),
+        (["simulate", "--bogus", "1"], ["unrecognized arguments: --bogus"]),
+        (
+            ["simulate", "--save", "/nonexistent/run.npz"],
+            ["--save", "/nonexistent", "does not exist"],
+        ),
+        (["frobnicate"], ["COMMAND", "frobnicate"]),
+        (["--check", "simulate"], ["--check"]),
+        (
+            ["sweep", "--param", "Vb", "--from", "1", "--to", "2", "--step", "1e-15"],
+            ["--step", "MAX_POINTS"],
+        ),
+        (
+            ["sweep", "--param", "Vb", "--from", "2", "--to", "1", "--step", "0.5"],
+            ["--to", "--from"],
+        ),
+        (["sweep", "--param", "Vb", "--from", "1", "--to", "2", "--step", "0"], ["--step", "> 0"]),
+        (["sweep", "--param", "Vb", "--from", "1", "--to", "2", "--step", "-1"], ["--step", "> 0"]),
+        (
+            ["sweep", "--param", "Vb", "--from", "nan", "--to", "2", "--step", "1"],
+            ["--from", "finite"],
+        ),
+        (["sweep", "--param", "Vb", "--from", "1", "--to", "2"], ["--from, --to and --step"]),
+        (["sweep", "--param", "Vhat", "--values", "1"], ["--param", "invalid choice"]),
+        (["sweep", "--param", "Vb", "--values", "1", "inf"], ["--values", "finite"]),
+        (["sweep", "--param", "Vb", "--values", "-1"], ["'Vb'", ">= 0"]),  # found deeper
+        (["sweep", "--param", "Vb", "--values", "1", "--Vb", "3"], ["--Vb", "walked"]),
+        (
+            ["sweep", "--param", "Vb", "--values", "5", "--from", "1", "--to", "3", "--step", "1"],
+            ["--values", "--from, --to, --step", "not both"],
+        ),
+        (
+            ["floquet-band", "--param", "Vb", "--from", "1", "--to", "3", "--Vb", "3"],
+            ["--Vb", "walked"],
+        ),
+        (
+            ["floquet-band", "--param", "Vb", "--from", "-1", "--to", "9"],
+            ["[-1, 9]", "Vb must be >= 0"],
+        ),
+        (
+            ["floquet-band", "--param", "omega1", "--from", "0", "--to", "9"],
+            ["omega1 must be > 0"],
+        ),
+        (["sweep", "--param", "Vb", "--values", "1", "--jobs", "0"], ["--jobs", ">= 1"]),
+        (
+            ["sweep", "--param", "Vb", "--values", "1", "--out", "/nonexistent/x.csv"],
+            ["--out", "/nonexistent", "does not exist"],
+        ),
+        (["predict", "--mu_s", "-1"], ["--mu_s", ">= 0"]),
+        (["predict", "--vb-points", "0"], ["--vb-points", ">= 2"]),
+        (["predict", "--vb-points", "1.5"], ["--vb-points", "integer"]),
+        (["predict", "--vb-max", "0"], ["--vb-max", "> 0"]),
+        (["predict", "--vb-max", "-3"], ["--vb-max", "> 0"]),
+        (["predict", "--Vb", "3"], ["--Vb"]),  # predict scans Vb itself
+        (["validate", "--jobs", "0"], ["--jobs", ">= 1"]),
+        (["validate", "--out", "/nonexistent/V.md"], ["--out", "does not exist"]),
+    ],
+)
+def test_a_bad_flag_is_one_line_naming_it_and_exit_2(capsys, argv, names):
+    _fails(capsys, argv, *names)
+
+
+def test_the_sweep_checks_its_output_before_it_computes(capsys, monkeypatch, tmp_path):
+    from beltmdsm.studies import sweep
+
+    def never(*args, **kwargs):
+        raise AssertionError("computed before checking --out")
+
+    monkeypatch.setattr(sweep, "sweep", never)
+    _fails(
+        capsys,
+        [
+            "sweep",
+            "--param",
+            "Vb",
+            "--from",
+            "1",
+            "--to",
+            "2",
+            "--step",
+            "1",
+            "--out",
+            str(tmp_path / "missing" / "x.csv"),
+        ],
+        "--out",
+        "does not exist",
+    )
+    _fails(
+        capsys,
+        ["sweep", "--param", "Vb", "--values", "1", "--out", str(tmp_path)],
+        "--out",
+        "is a folder",
+    )
+
+
+def test_a_file_where_the_cache_folder_should_be_is_refused(capsys, tmp_path):
+    (tmp_path / "f").write_text("")
+    _fails(
+        capsys,
+        ["sweep", "--param", "Vb", "--values", "1", "--cache-dir", str(tmp_path / "f")],
+        "--cache-dir",
+        "not a folder",
+    )
+
+
+def test_both_spellings_of_a_parameter_flag_work(capsys):
+    for flag in ("--mu_s", "--mu-s"):
+        assert main(["simulate", flag, "0.3", "--Vb", "12", "--t-end", "30", "--json"]) == 0
+        assert json.loads(capsys.readouterr().out)["params"]["mu_s"] == 0.3
+
+
+def test_derive_alone_knows_only_its_own_commands(capsys):
+    assert derive_cli.main(["simulate", "--Vb", "3"]) == 2
+    assert "invalid choice: 'simulate'" in capsys.readouterr().err
+
+
+def test_help_returns_0(capsys):
+    assert main(["sweep", "--help"]) == 0
+    out = capsys.readouterr().out
+    assert "--scheduler" in out and "--mu_s" in out and "--mu-s" in out
+
+
+def test_a_real_subprocess_prints_one_line_and_no_traceback():
+    for entry, argv, flag in (
+        ("derive", ["simulate", "--mu_s", "-1"], "--mu_s"),
+        ("beltmdsm", ["predict", "--vb-points", "0"], "--vb-points"),
+        (
+            "derive",
+            ["sweep", "--param", "Vb", "--from", "0", "--to", "1", "--step", "1e-15"],
+            "--step",
+        ),
+    ):
+        r = subprocess.run(
+            [sys.executable, "-m", entry, *argv], capture_output=True, text=True, cwd=ROOT
+        )
+        assert r.returncode == 2
+        assert r.stdout == "" and "Traceback" not in r.stderr
+        assert len(r.stderr.strip().splitlines()) == 1 and flag in r.stderr
+
+
+def test_the_cli_path_of_a_runtime_command_does_not_import_sympy():
+    code = (
+        "import sys\nfrom beltmdsm.cli import main\n"
+        "rc = main(['simulate', '--Vb', '12', '--t-end', '30', '--json'])\n"
+        "sys.exit(3 if any(m == 'sympy' or m.startswith('sympy.') for m in sys.modules) "
+        "else rc)"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["params"]["Vb"] == 12.0
+
+
+def test_regeneration_works_when_the_runtime_cannot_be_loaded(tmp_path):
+    """The runtime imports generated/, which `python -m derive` exists to rewrite."""
+    for part in ("derive", "generated", "beltmdsm"):
+        shutil.copytree(ROOT / part, tmp_path / part, ignore=shutil.ignore_patterns("__pycache__"))
+    (tmp_path / "generated" / "dynamics.py").write_text("def (:\n")
+    env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
+    r = subprocess.run(
+        [sys.executable, "-m", "derive", "--help"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        env=env,
+    )
+    assert r.returncode == 0 and "--check" in r.stdout
+    assert "runtime commands cannot be loaded: SyntaxError" in r.stdout
+    r = subprocess.run(
+        [sys.executable, "-m", "derive", "simulate"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        env=env,
+    )
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert "cannot be loaded" in r.stderr
+
+
+# ---------------------------------------------------------------- the console script
+
+
+def test_the_console_script_is_declared_and_resolves_to_main():
+    tomllib = pytest.importorskip("tomllib")
+    with open(ROOT / "pyproject.toml", "rb") as fh:
+        scripts = tomllib.load(fh)["project"]["scripts"]
+    module, _, name = scripts["beltmdsm"].partition(":")
+    import importlib
+
+    target = getattr(importlib.import_module(module), name)
+    assert target is main
+    # the script wrapper passes the return value to sys.exit: it must be the status
+    assert target(["predict", "--vb-points", "0"]) == 2
+
+
+def test_the_program_name_follows_the_console_script(monkeypatch):
+    monkeypatch.setattr(sys, "argv", ["/usr/bin/beltmdsm"])
+    assert derive_cli.build_parser().prog == "beltmdsm"
+    monkeypatch.setattr(sys, "argv", ["/x/derive/__main__.py"])
+    assert derive_cli.build_parser().prog == "python -m derive"
+    monkeypatch.setattr(sys, "argv", ["/x/beltmdsm/__main__.py"])
+    assert derive_cli.build_parser().prog == "python -m beltmdsm"
+
+
+# ---------------------------------------------------------------- shared parents
+
+
+def _subparser(parser, name):
+    action = next(a for a in parser._actions if a.dest == "command")
+    return action.choices[name]
+
+
+def _parser():
+    return derive_cli.build_parser(extend=tree.add_commands)
+
+
+def test_every_runtime_command_takes_the_model_flags_it_should():
+    parser = _parser()
+    params = [p["name"] for p in flags._MODEL_PARAMS]
+    for command in ("simulate", "sweep", "predict"):
+        taken = {s for a in _subparser(parser, command)._actions for s in a.option_strings}
+        expected = {f"--{n}" for n in params if not (command == "predict" and n == "Vb")}
+        assert expected <= taken and "--contact" in taken and "--mu-s" in taken
+    assert "--Vb" not in {
+        s for a in _subparser(parser, "predict")._actions for s in a.option_strings
+    }
+    for command in ("sweep", "validate"):
+        taken = {s for a in _subparser(parser, command)._actions for s in a.option_strings}
+        assert {"--jobs", "--scheduler", "--no-cache", "--cache-dir"} <= taken
+
+
+def test_every_model_option_is_a_flag_of_every_command_but_validate():
+    parser = _parser()
+    extra = {
+        "sweep": ["--param", "Vb"],
+        "floquet-band": ["--param", "Vb", "--from", "1", "--to", "2"],
+    }
+    for command in ("simulate", "sweep", "predict", "floquet", "floquet-band", "validate"):
+        for option, choices in OPTIONS.items():
+            if command == "validate" and option != "tension":
+                continue
+            args = parser.parse_args([command, f"--{option}", choices[-1]] + extra.get(command, []))
+            assert getattr(args, option) == choices[-1]
+            args = parser.parse_args([command] + extra.get(command, []))
+            assert getattr(args, option) == choices[0]
+            with pytest.raises(derive_cli.UsageError, match=f"--{option}"):
+                parser.parse_args([command, f"--{option}", "nonsense"])
+
+
+# ---------------------------------------------------------------- the executor factory
+
+
+def _executor_args(jobs=None, scheduler=None):
+    return Namespace(jobs=jobs, scheduler=scheduler, parser=derive_cli.Parser(prog="test"))
+
+
+def test_executor_factory_serial_pool_default():
+    with flags.executor_from(_executor_args(jobs=1)) as ex:
+        assert ex == "serial"
+    with flags.executor_from(_executor_args()) as ex:
+        assert ex is None
+    with flags.executor_from(_executor_args(jobs=2)) as ex:
+        assert isinstance(ex, cf.ProcessPoolExecutor)
+        assert ex.submit(abs, -3).result() == 3
+    with pytest.raises(RuntimeError):  # closed afterwards
+        ex.submit(abs, -3)
+
+
+def test_executor_factory_dask_client_is_closed_and_failures_name_the_flag(monkeypatch):
+    distributed = pytest.importorskip("distributed")
+    events = []
+
+    class FakeExecutor:
+        def shutdown(self):
+            events.append("shutdown")
+
+    class FakeClient:
+        def __init__(self, address, timeout):
+            if address.endswith(":9"):
+                raise OSError(f"Timed out trying to connect to {address}")
+            events.append(address)
+
+        def get_executor(self):
+            return FakeExecutor()
+
+        def close(self):
+            events.append("close")
+
+    monkeypatch.setattr(distributed, "Client", FakeClient)
+    with flags.executor_from(_executor_args(jobs=4, scheduler="tcp://h:8786")) as ex:
+        assert isinstance(ex, FakeExecutor)
+    assert events == ["tcp://h:8786", "shutdown", "close"]
+    with pytest.raises(derive_cli.UsageError, match="--scheduler: cannot connect"):
+        with flags.executor_from(_executor_args(scheduler="tcp://127.0.0.1:9")):
+            pass
+
+
+# ---------------------------------------------------------------- predict
+
+
+def test_predict_at_resonance_of_the_tangential_oscillator(capsys):
+    """Omega = omega1 = 1: the harmonic balance once stepped to V < 0 near Vb = 0."""
+    assert main(["predict", "--Omega", "1", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["consistent_mdsm"] == [] and out["reasons"] == {}
+    # the linear amplitude at resonance: alpha Omega^3 / (2 beta1 omega1 Omega)
+    assert out["paper_tangential_vhat"][0][1] == pytest.approx(2.0 / 0.2)
+
+
+def test_predict_without_excitation_says_so(capsys):
+    assert main(["predict", "--alpha", "0"]) == 0
+    text = capsys.readouterr().out
+    assert "consistent_mdsm: unstable Vb in none; no fast tangential motion" in text
+    assert "no prediction for paper_tangential_vhat: V_hat = 0" in text
+    assert main(["predict", "--alpha", "0", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["consistent_mdsm"] == [] and out["paper_coupled_vhat"] is None
+    assert out["reasons"]["consistent_mdsm"] == predict_module.NO_EXCITATION
+
+
+def test_predict_with_two_excitation_frequencies_keeps_the_closed_forms(capsys):
+    assert main(["predict", "--Omega_t", "6", "--Omega_n", "4"]) == 0
+    text = capsys.readouterr().out
+    assert (
+        "no prediction for consistent_mdsm: the harmonic balance needs one excitation "
+        "frequency" in text
+    )
+    assert "paper_tangential_vhat: unstable Vb in [" in text
+    assert main(["predict", "--Omega_t", "6", "--Omega_n", "4", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["consistent_mdsm"] is None and "Omega_t = 6.0" in out["reasons"]["consistent_mdsm"]
+    assert len(out["paper_coupled_vhat"]) == 1
+
+
+def test_predict_reports_a_harmonic_balance_that_does_not_converge(capsys, monkeypatch):
+    def diverge(model, guess=None):
+        raise RuntimeError(f"harmonic balance did not converge at Vb = {model['Vb']}")
+
+    monkeypatch.setattr(predict_module, "fast_motion", diverge)
+    assert main(["predict"]) == 0
+    assert (
+        "no prediction for consistent_mdsm: harmonic balance did not converge"
+        in capsys.readouterr().out
+    )
+
+
+def test_predict_clipped_keeps_the_closed_forms_and_refuses_the_harmonic_balance(capsys):
+    assert main(["predict", "--json"]) == 0
+    allowed = json.loads(capsys.readouterr().out)
+    assert main(["predict", "--tension", "clipped", "--json"]) == 0
+    clipped = json.loads(capsys.readouterr().out)
+    assert allowed["tension"] == "allowed" and clipped["tension"] == "clipped"
+    # the linearisation at the equilibrium (force g > 0) does not see the law
+    for key in ("paper_tangential_vhat", "paper_coupled_vhat"):
+        assert clipped[key] == allowed[key]
+        assert clipped["reasons"][key] == predict_module.CLIPPED_PAPER
+    # the base set's fast normal force g + N1 sin has N1 = 27.2 > g: the clip cuts it
+    assert allowed["consistent_mdsm"] and clipped["consistent_mdsm"] is None
+    assert "non-harmonic" in clipped["reasons"]["consistent_mdsm"]
+    assert "N1 = 27.17 >= g = 9.81" in clipped["reasons"]["consistent_mdsm"]
+    assert main(["predict", "--tension", "clipped"]) == 0
+    assert (
+        "no prediction for consistent_mdsm: tension='clipped': the harmonic balance"
+        in capsys.readouterr().out
+    )
+
+
+def test_predict_clipped_where_the_clip_does_not_act_keeps_the_mdsm_with_a_note():
+    # alpha = 0.3: N1 = 4.08 < g, so the linear fast normal force never reaches zero
+    allowed = predict_module.predict(alpha=0.3)
+    clipped = predict_module.predict(alpha=0.3, tension="clipped")
+    assert clipped.consistent_mdsm == allowed.consistent_mdsm
+    assert "the clip does not act on it" in clipped.reasons["consistent_mdsm"]
+    with pytest.raises(ValueError, match="tension must be one of"):
+        predict_module.predict(tension="pulling")
+
+
+def test_vb_points_sets_the_default_grid_too():
+    _, table = predict_module.unstable_intervals(points=50)
+    assert table["Vb"].size == 50
+    with pytest.raises(ValueError, match="points must be an integer >= 2"):
+        predict_module.predict(points=1)
+    with pytest.raises(ValueError, match="vb must be a 1-D grid of at least 2"):
+        predict_module.predict(vb=[3.0])
+    with pytest.raises(ValueError, match="finite belt speeds >= 0"):
+        predict_module.unstable_intervals(vb=[-1.0, 2.0])
+
+
+def test_regeneration_and_check_paper_do_not_load_the_runtime(monkeypatch):
+    def refuse(*args, **kwargs):
+        raise AssertionError("the runtime was loaded")
+
+    assert not derive_cli._needs_runtime([]) and not derive_cli._needs_runtime(["--check"])
+    assert not derive_cli._needs_runtime(["check-paper"])
+    assert derive_cli._needs_runtime(["--help"]) and derive_cli._needs_runtime(["simulate"])
+    monkeypatch.setattr(derive_cli, "_generate", lambda args: 0)
+    assert derive_cli.main(["--check"], extend=refuse) == 0

@@ -1,0 +1,186 @@
+"""The import graph of derive/, generated/ and beltmdsm/: no cycle, one direction of layers.
+
+Every ``import`` and ``from ... import`` counts, at module level or inside a function
+(a function-local import hides a cycle from Python, not from this test), as an edge to
+the package module it names (a name imported from a package is an edge to its
+submodule where one exists). The layers, lowest first:
+
+derive -> generated -> beltmdsm.{model, settings, intervals} -> beltmdsm.integrate ->
+beltmdsm.analysis -> beltmdsm.simulate -> beltmdsm.studies -> beltmdsm.cli
+
+A module imports only modules of its own layer or below, with no cycle; derive/ and
+generated/ import no beltmdsm module, except ``derive.__main__`` (``python -m derive``),
+which hands the command line to ``beltmdsm.cli``; generated/ imports nothing of derive/
+(it must run where only it is installed); and beltmdsm imports derive only in its
+command line (the derive commands of the one tree).
+"""
+
+import ast
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGES = ("derive", "generated", "beltmdsm")
+#: Layer of each module, by the longest prefix that names it.
+LAYERS = {
+    "derive": 0,
+    "generated": 1,
+    "beltmdsm": 2,  # the package: its public names are imported lazily (importlib)
+    "beltmdsm.model": 2,
+    "beltmdsm.settings": 2,
+    "beltmdsm.intervals": 2,
+    "beltmdsm.integrate": 3,
+    "beltmdsm.analysis": 4,
+    "beltmdsm.simulate": 5,
+    "beltmdsm.studies": 6,
+    "beltmdsm.cli": 7,
+    "beltmdsm.__main__": 7,
+}
+#: The one entry point allowed to reach up the layers.
+ENTRY_POINTS = {("derive.__main__", "beltmdsm.cli")}
+
+
+def modules():
+    """``{module name: path}`` of every module of the packages."""
+    out = {}
+    for package in PACKAGES:
+        for path in sorted((ROOT / package).rglob("*.py")):
+            name = path.relative_to(ROOT).with_suffix("").as_posix().replace("/", ".")
+            out[name.removesuffix(".__init__")] = path
+    return out
+
+
+def _resolve(name, known):
+    """The longest prefix of ``name`` that is a known module (None if none is)."""
+    while name and name not in known:
+        name = name.rpartition(".")[0]
+    return name or None
+
+
+def edges(known=None):
+    """``{(importer, imported)}`` over all imports, function-local ones included."""
+    known = known or modules()
+    out = set()
+    for module, path in known.items():
+        package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Import):
+                targets = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                if node.level:
+                    parts = package.split(".")
+                    base = ".".join(parts[: len(parts) - node.level + 1])
+                    source = f"{base}.{node.module}" if node.module else base
+                else:
+                    source = node.module or ""
+                # a name that is a submodule is an edge to it, else to the source
+                targets = [
+                    f"{source}.{a.name}" if f"{source}.{a.name}" in known else source
+                    for a in node.names
+                ]
+            else:
+                continue
+            for target in targets:
+                resolved = _resolve(target, known)
+                if resolved and resolved != module:
+                    out.add((module, resolved))
+    return out
+
+
+def layer(module):
+    return LAYERS[_resolve(module, LAYERS)]
+
+
+def cycles(graph):
+    """The strongly connected components with more than one module (Tarjan)."""
+    index, low, stack, on, found, counter = {}, {}, [], set(), [], [0]
+    nodes = sorted({a for a, _ in graph} | {b for _, b in graph})
+    succ = {n: sorted(b for a, b in graph if a == n) for n in nodes}
+
+    def visit(v):
+        index[v] = low[v] = counter[0]
+        counter[0] += 1
+        stack.append(v)
+        on.add(v)
+        for w in succ[v]:
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for v in nodes:
+        if v not in index:
+            visit(v)
+    return found
+
+
+def violations(graph):
+    """Edges against the layer order, and the cross-package edges the rules forbid."""
+    bad = []
+    for a, b in sorted(graph):
+        if (a, b) in ENTRY_POINTS:
+            continue
+        top_a, top_b = a.split(".")[0], b.split(".")[0]
+        if layer(b) > layer(a):
+            bad.append(f"{a} -> {b}: imports a higher layer")
+        elif top_a == "generated" and top_b == "derive":
+            bad.append(f"{a} -> {b}: generated/ must run without derive/")
+        elif top_a == "beltmdsm" and top_b == "derive" and not a.startswith("beltmdsm.cli"):
+            bad.append(f"{a} -> {b}: only the command line imports derive/")
+    return bad
+
+
+def test_the_graph_is_read_with_function_local_imports(tmp_path):
+    (tmp_path / "pkg").mkdir()
+    (tmp_path / "pkg" / "__init__.py").write_text("")
+    (tmp_path / "pkg" / "a.py").write_text("def f():\n    from . import b\n")
+    (tmp_path / "pkg" / "b.py").write_text("from .a import f\n")
+    known = {
+        "pkg": tmp_path / "pkg" / "__init__.py",
+        "pkg.a": tmp_path / "pkg" / "a.py",
+        "pkg.b": tmp_path / "pkg" / "b.py",
+    }
+    graph = edges(known)
+    assert graph == {("pkg.a", "pkg.b"), ("pkg.b", "pkg.a")}
+    assert cycles(graph) == [["pkg.a", "pkg.b"]]
+
+
+def test_a_layer_violation_is_found():
+    assert violations({("beltmdsm.analysis.floquet", "beltmdsm.cli.flags")}) == [
+        "beltmdsm.analysis.floquet -> beltmdsm.cli.flags: imports a higher layer"
+    ]
+    assert violations({("derive.paper_check", "beltmdsm.simulate")})
+    assert violations({("beltmdsm.simulate", "derive.model")})
+    assert not violations({("beltmdsm.cli.tree", "derive.cli")})
+    assert not violations(ENTRY_POINTS)
+
+
+def test_every_module_has_a_layer():
+    unplaced = [m for m in modules() if _resolve(m, LAYERS) is None]
+    assert not unplaced, unplaced
+
+
+@pytest.fixture(scope="module")
+def graph():
+    return edges()
+
+
+def test_no_import_cycle(graph):
+    assert not cycles(graph), cycles(graph)
+
+
+def test_imports_follow_the_layers(graph):
+    bad = violations(graph)
+    assert not bad, "\n".join(bad)
