@@ -17,7 +17,7 @@ The runtime of the package: it imports the generated model (``generated/``, writ
 Subpackages, in the order of their layers (each imports only those before it):
 `beltmdsm.model` and `beltmdsm.settings` (the values every function takes),
 `beltmdsm.integrate` (the integrators and their compiled kernels), `beltmdsm.analysis`
-(spectra, run summary, modulation, Floquet, predictions), `beltmdsm.simulate`,
+(spectra, run summary, modulation, Floquet, predictions), `beltmdsm.simulation`,
 `beltmdsm.studies` (sweeps and their cache, validation), `beltmdsm.cli` (the command
 line). The names below are imported when first used, so that ``import beltmdsm`` and
 the command line start fast.
@@ -29,8 +29,8 @@ from importlib import import_module
 _API = {
     "Model": "model",
     "SolverSettings": "settings",
-    "simulate": "simulate",
-    "Simulation": "simulate",
+    "simulate": "simulation",
+    "Simulation": "simulation",
     "Summary": "analysis.summary",
     "sweep": "studies.sweep",
     "Sweep": "studies.sweep",

@@ -19,6 +19,7 @@ __all__ = [
     "METHODS",
     "CONTACT_LOSS",
     "MAX_SAMPLES",
+    "MAX_POINTS",
     "DEFAULT_T_END",
 ]
 
@@ -33,6 +34,10 @@ CONTACT_LOSS = ("continue", "stop")
 #: returned arrays, so this caps them near 0.6 GB, and an absurd request fails before
 #: anything is allocated.
 MAX_SAMPLES = 10**7
+#: Most points of one sweep (`beltmdsm.studies.sweep`). A sweep of 10^6 runs of a second
+#: each is eleven days on one core; a larger one is a mistake (a step of 1e-15), refused
+#: before anything is allocated.
+MAX_POINTS = 10**6
 DEFAULT_T_END = 1000.0
 
 

@@ -49,7 +49,7 @@ from beltmdsm.analysis.summary import PEAK_PRESENT_RATIO, omega1_band  # noqa: E
 from beltmdsm.integrate import superposition  # noqa: E402
 from beltmdsm.model import Model, initial_state  # noqa: E402
 from beltmdsm.settings import SolverSettings  # noqa: E402
-from beltmdsm.simulate import simulate  # noqa: E402
+from beltmdsm.simulation import simulate  # noqa: E402
 
 #: The fast configuration: the event-driven integrator (the default solver), at the
 #: tolerance that keeps peak_omega1 within 1e-6 of the reference with a margin.

@@ -82,7 +82,7 @@ def command(task):
 
 def run(task):
     """One run: the record of `module docstring` (never raises)."""
-    from beltmdsm.simulate import simulate
+    from beltmdsm.simulation import simulate
 
     record = dict(task)
     start = time.perf_counter()
@@ -122,7 +122,7 @@ def run(task):
 
 def _warm_up():
     """Compile the numba kernels of every combination before anything is timed."""
-    from beltmdsm.simulate import simulate
+    from beltmdsm.simulation import simulate
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

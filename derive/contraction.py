@@ -69,7 +69,7 @@ oscillation near ``omega1``, with a free phase) and no coexistence of tangential
 responses are possible, for every parameter set with ``beta1 > 0`` and ``Vb > 0``.
 
 `difference_runs`, `difference_works` and `reversals_by_force_sign` check this with
-the simulation (`beltmdsm.simulate`): two runs with one normal motion, the energy
+the simulation (`beltmdsm.simulation`): two runs with one normal motion, the energy
 balance of their difference split by the sign of ``F``, and the sign of ``F`` at the
 reversals of the friction.
 
@@ -598,7 +598,7 @@ def _numeric(expr, names):
 def difference_runs(
     shift=(5.0, -3.0), *, tension="clipped", contact="hertz_damp", t_end=1000.0, **overrides
 ) -> DifferenceRun:
-    """Simulate Eq. (4) twice under one normal motion (`beltmdsm.simulate.simulate`).
+    """Simulate Eq. (4) twice under one normal motion (`beltmdsm.simulation.simulate`).
 
     Parameters
     ----------
@@ -613,7 +613,7 @@ def difference_runs(
 
     from beltmdsm.model import Model, initial_state
     from beltmdsm.settings import SolverSettings
-    from beltmdsm.simulate import simulate
+    from beltmdsm.simulation import simulate
 
     settings = {k: overrides.pop(k) for k in list(overrides) if k in SolverSettings.names()}
     # the superposition integrates the normal motion once: both runs see the same

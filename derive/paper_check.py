@@ -914,7 +914,7 @@ DECAYED = 1e-12
 def _difference_runs():
     """Per tension law: two runs under one normal motion and their difference's balance.
 
-    Runs the simulation (`beltmdsm.simulate`, on `generated/`): check-paper must run
+    Runs the simulation (`beltmdsm.simulation`, on `generated/`): check-paper must run
     after ``python -m derive``.
     """
     from . import contraction

@@ -6,7 +6,7 @@ the package module it names (a name imported from a package is an edge to its
 submodule where one exists). The layers, lowest first:
 
 derive -> generated -> beltmdsm.{model, settings, intervals} -> beltmdsm.integrate ->
-beltmdsm.analysis -> beltmdsm.simulate -> beltmdsm.studies -> beltmdsm.cli
+beltmdsm.analysis -> beltmdsm.simulation -> beltmdsm.studies -> beltmdsm.cli
 
 A module imports only modules of its own layer or below, with no cycle; derive/ and
 generated/ import no beltmdsm module, except ``derive.__main__`` (``python -m derive``),
@@ -32,7 +32,7 @@ LAYERS = {
     "beltmdsm.intervals": 2,
     "beltmdsm.integrate": 3,
     "beltmdsm.analysis": 4,
-    "beltmdsm.simulate": 5,
+    "beltmdsm.simulation": 5,
     "beltmdsm.studies": 6,
     "beltmdsm.cli": 7,
     "beltmdsm.__main__": 7,
@@ -161,8 +161,8 @@ def test_a_layer_violation_is_found():
     assert violations({("beltmdsm.analysis.floquet", "beltmdsm.cli.flags")}) == [
         "beltmdsm.analysis.floquet -> beltmdsm.cli.flags: imports a higher layer"
     ]
-    assert violations({("derive.paper_check", "beltmdsm.simulate")})
-    assert violations({("beltmdsm.simulate", "derive.model")})
+    assert violations({("derive.paper_check", "beltmdsm.simulation")})
+    assert violations({("beltmdsm.simulation", "derive.model")})
     assert not violations({("beltmdsm.cli.tree", "derive.cli")})
     assert not violations(ENTRY_POINTS)
 

@@ -49,8 +49,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy import optimize
-from scipy.integrate import solve_ivp
 
 from generated import dynamics, hybrid, oscillator
 
@@ -135,6 +133,10 @@ def _normal_flow(model, x0, T):
     ``normal_rhs``, ``normal_jacobian``), integrated mode by mode; at each switch the
     variational solution jumps by the normal block of the saltation matrix.
     """
+    # scipy.integrate costs half a second to import: a sweep that never starts on the
+    # periodic response does not pay it
+    from scipy.integrate import solve_ivp
+
     p, kw = model.params, dict(contact=model.contact, tension=model.tension, backend="python")
     rhs = dynamics.bind_normal_rhs(**kw, **p)
     jac = dynamics.bind_normal_jacobian(**kw, **p)
@@ -907,6 +909,8 @@ def _largest_sliding_velocity(pmap):
         P = np.array(pmap.stm(t)).reshape(2, 2)
         z = normal.at(t)
         return -(P[1] @ x0 + pmap.engine.exc(t)[1] + mu * z[1])
+
+    from scipy import optimize
 
     # refine within the contact segment that holds the largest grid value
     lo = max(grid[max(k - 1, 0)], normal.switch_t[segment[k]])

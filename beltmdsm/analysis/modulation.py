@@ -25,7 +25,7 @@ __all__ = ["friction_loop", "cycle_averages", "modulation_scatter", "Simulated"]
 
 
 class Simulated(Protocol):
-    """What these analyses read of a run (`beltmdsm.simulate.Simulation` has it)."""
+    """What these analyses read of a run (`beltmdsm.simulation.Simulation` has it)."""
 
     @property
     def params(self) -> Mapping[str, float]: ...
@@ -44,7 +44,7 @@ def friction_loop(
 
     Parameters
     ----------
-    sim : beltmdsm.simulate.Simulation
+    sim : beltmdsm.simulation.Simulation
     period : float, optional
         default ``2 pi / omega1`` as in Fig. 3b
     t_stop : float, optional

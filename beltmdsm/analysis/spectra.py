@@ -13,13 +13,32 @@ from collections.abc import Iterable
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy import fft, signal
 
 __all__ = ["amplitude_spectrum", "peak_amplitude", "peak_amplitudes", "spectrogram"]
 
 
 def _window(name, n):
+    # the Hann window of every run's spectrum without importing scipy.signal, which
+    # costs half a second of a sweep's start (numpy's is the same symmetric window)
+    if name == "hann":
+        return np.hanning(n)
+    from scipy import signal
+
     return signal.get_window(name, n, fftbins=False)
+
+
+def _fast_length(n):
+    """The smallest ``2^a 3^b 5^c >= n``: a length numpy's FFT factors into small primes."""
+    best = 2 ** int(np.ceil(np.log2(n)))
+    power5 = 1
+    while power5 < best:
+        power35 = power5
+        while power35 < best:
+            length = power35 * 2 ** max(0, int(np.ceil(np.log2(n / power35))))
+            best = min(best, length)
+            power35 *= 3
+        power5 *= 5
+    return best
 
 
 def amplitude_spectrum(
@@ -94,7 +113,7 @@ def peak_amplitudes(
     xw, wsum = (x - x.mean()) * w, w.sum()
     # the coarse search: at least twofold zero padding, to a length the FFT factors
     # into small primes (the peak is refined off the grid anyway)
-    n = fft.next_fast_len(2 * x.size, real=True)
+    n = _fast_length(2 * x.size)
     spec = 2 * np.abs(np.fft.rfft(xw, n)) / wsum
     omega = 2 * np.pi * np.fft.rfftfreq(n, dt)
     step = omega[1] - omega[0]
@@ -175,6 +194,8 @@ def spectrogram(
         )
     if not 0 <= overlap < 1:
         raise ValueError(f"overlap must be in [0, 1); got {overlap!r}")
+    from scipy import signal
+
     f, t, Z = signal.stft(
         x - x.mean(),
         fs=1 / dt,

@@ -14,7 +14,7 @@ from ..analysis.floquet import Floquet
 from ..analysis.predict import Prediction
 from ..analysis.summary import PEAK_PRESENT_RATIO, Summary
 from ..intervals import format_intervals
-from ..simulate import Simulation
+from ..simulation import Simulation
 from ..studies.sweep import Sweep
 
 __all__ = [

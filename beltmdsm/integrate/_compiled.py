@@ -162,10 +162,10 @@ def _compiled(integrator, kernels, name, numba_version):
         f"from {module.__name__} import {', '.join(constants)}",
     ]
     for helper in helpers:
-        name = helper.__name__
+        called = helper.__name__
         lines += [
-            f"from {helper.__module__} import {name} as _{name}_python",
-            f'{name} = numba.njit(error_model="numpy")(_{name}_python)',
+            f"from {helper.__module__} import {called} as _{called}_python",
+            f'{called} = numba.njit(error_model="numpy")(_{called}_python)',
         ]
     for glob, kernel in zip(globals_, kernels):
         lines += [

@@ -18,7 +18,7 @@ chosen by the same rules as in the event-driven integrator (`beltmdsm.integrate.
 Where its closed forms do not exist (at undamped resonance of the tangential
 oscillator, ``beta1 = 0``, ``Omega_t = omega1``, where the excitation response grows
 without bound), it raises `NotApplicable` with the reason, and
-`beltmdsm.simulate.simulate` hands the run to `beltmdsm.integrate.events`.
+`beltmdsm.simulation.simulate` hands the run to `beltmdsm.integrate.events`.
 """
 
 from __future__ import annotations

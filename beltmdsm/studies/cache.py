@@ -60,7 +60,7 @@ NUMERIC_SOURCES = (
     "beltmdsm/model.py",
     "beltmdsm/settings.py",
     "beltmdsm/integrate",
-    "beltmdsm/simulate.py",
+    "beltmdsm/simulation.py",
     "beltmdsm/analysis/summary.py",
     "beltmdsm/analysis/spectra.py",
     "beltmdsm/analysis/modulation.py",

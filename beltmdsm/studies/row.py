@@ -17,7 +17,7 @@ from ..analysis.floquet import NoPeriodicResponse, periodic_start
 from ..analysis.modulation import modulation_scatter
 from ..model import Model
 from ..settings import SolverSettings
-from ..simulate import simulate
+from ..simulation import simulate
 
 __all__ = [
     "COLUMNS",

@@ -34,7 +34,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import intervals
 from ..model import MODEL_PARAMETERS, Model, as_model, excitation_period
-from ..settings import SolverSettings
+from ..settings import MAX_POINTS, SolverSettings
 from .cache import (
     CacheWarning,
     Problem,
@@ -66,10 +66,6 @@ __all__ = [
 CONTINUATIONS = ("up", "down")
 #: `CONTINUATIONS` as an annotation.
 Continuation = Literal["up", "down"]
-#: Most points of one sweep. A sweep of 10^6 runs of a second each is eleven days on
-#: one core; a larger one is a mistake (a step of 1e-15), refused before anything is
-#: allocated.
-MAX_POINTS = 10**6
 #: Parameters a sweep can vary: every model parameter.
 SWEEPABLE = MODEL_PARAMETERS
 
@@ -97,7 +93,7 @@ def linear_values(start: float, stop: float, step: float) -> NDArray[np.float64]
     if count > MAX_POINTS:
         raise ValueError(
             f"from {start!r} to {stop!r} in steps of {step!r} is {count:.3g} "
-            f"points, more than MAX_POINTS = {MAX_POINTS:.0e} (beltmdsm/studies/sweep.py)"
+            f"points, more than MAX_POINTS = {MAX_POINTS:.0e} (beltmdsm/settings.py)"
         )
     return start + step * np.arange(count)
 
@@ -272,7 +268,7 @@ def sweep(
     if values.size > MAX_POINTS:
         raise ValueError(
             f"{values.size} values are more than MAX_POINTS = {MAX_POINTS:.0e} "
-            "(beltmdsm/studies/sweep.py)"
+            "(beltmdsm/settings.py)"
         )
     if not (
         executor is None or executor == "serial" or callable(getattr(executor, "submit", None))

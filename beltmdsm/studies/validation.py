@@ -20,7 +20,7 @@ Figs. 17-21 this module sets side by side:
 and, as before Floquet, against the run from rest:
 
 * the simulated range: the belt speeds ``Vb`` of a sweep (`beltmdsm.sweep.sweep`)
-  where the omega1 peak is present (`beltmdsm.simulate.PEAK_PRESENT_RATIO`, fixed
+  where the omega1 peak is present (`beltmdsm.simulation.PEAK_PRESENT_RATIO`, fixed
   before any sweep) and the mass slides (stick-slip and contact loss are marked
   and left out, as the paper leaves stick-slip out of Figs. 19b, c; so are the
   runs that cannot tell the peak, ``resolved`` False, which are never "no peak");
@@ -228,12 +228,12 @@ QUICK = Resolution(step=1.0, t_end=300.0, min_top=0.0)
 
 DEFINITIONS = """\
 * **Simulated range.** A grid point *shows the peak* when the omega1 peak of X1' is at
-  least {ratio:g} of the peak at Omega (`beltmdsm.simulate.PEAK_PRESENT_RATIO`, fixed
+  least {ratio:g} of the peak at Omega (`beltmdsm.simulation.PEAK_PRESENT_RATIO`, fixed
   before any sweep). Points in stick-slip or contact loss are *excluded* (the stability
   analyses describe steady sliding; the paper leaves stick-slip out of Figs. 19b, c),
   and so are *unresolved* points, whose run cannot tell the peak (a steady window too
   short for the omega1 band, or a transient not yet decayed: `resolved` False in
-  `beltmdsm.simulate.summarize`); an unresolved point is never a point without the peak.
+  `beltmdsm.simulation.summarize`); an unresolved point is never a point without the peak.
   A simulated range is a maximal run of consecutive sliding points that show the peak.
   Its lower edge is taken at the first such point minus h/2 and its upper edge at the
   last plus h/2 (h: the grid step); each lies within ± h/2 of that value, between a
@@ -244,7 +244,7 @@ DEFINITIONS = """\
   the mean absolute error.
 * **Not comparable.** A case is not comparable when an integer multiple k Omega
   (k >= 2) of the excitation lies in the band where the omega1 peak is read
-  (`beltmdsm.simulate.omega1_band`): the forced harmonics of the nonlinear contact
+  (`beltmdsm.simulation.omega1_band`): the forced harmonics of the nonlinear contact
   force are then counted as the omega1 peak whatever the stability. A case with no
   sliding point is not comparable either. Such cases are listed, and left out of
   every mean.
@@ -325,7 +325,7 @@ def simulated_ranges(
     present : array_like of bool
         ``omega1_peak_present`` of each point
     regime : array_like of str
-        the regime of each point (`beltmdsm.simulate.REGIMES`)
+        the regime of each point (`beltmdsm.simulation.REGIMES`)
     step : float
     resolved : array_like of bool, optional
         ``resolved`` of each point (default: all True); an unresolved point is
@@ -387,7 +387,7 @@ def harmonic_in_band(p: Mapping[str, float]) -> list[tuple[int, float]]:
 
     The normal force of Eq. (1) is nonlinear, so the sliding response contains every
     harmonic of the excitation; one inside the band of the omega1 peak
-    (`beltmdsm.simulate.omega1_band`) reads as an omega1 peak whatever the
+    (`beltmdsm.simulation.omega1_band`) reads as an omega1 peak whatever the
     stability. Returns ``[(k, k Omega), ...]`` (empty when the peak is unambiguous).
     """
     band = omega1_band(p)
@@ -547,7 +547,7 @@ RUNS = (
     (
         "periodic",
         "periodic start",
-        "on the periodic response plus `beltmdsm.simulate.PERTURBATION` in X1",
+        "on the periodic response plus `beltmdsm.simulation.PERTURBATION` in X1",
     ),
     ("up", "up sweep", "continued upwards in Vb, from rest at the lowest point"),
     ("down", "down sweep", "continued downwards in Vb, from rest at the highest point"),
@@ -683,7 +683,7 @@ def coexistence(
     sweep (up or down) under the same law shows the omega1 peak (resolved), while
     the periodic response attracts fast enough that a run converging to it would have
     settled by the steady window: ``exp(growth_rate * window_start)`` at most
-    `beltmdsm.simulate.TRANSIENT_DECAYED`, the rule the runs apply to the free
+    `beltmdsm.simulation.TRANSIENT_DECAYED`, the rule the runs apply to the free
     transient. Near a Floquet edge the response attracts too slowly for a run to
     tell a second attractor from a slow approach; those points are listed as
     ``unsettled``.
@@ -831,7 +831,7 @@ FLOQUET_DEFINITIONS = """\
   continued sweep shows the omega1 peak: two attractors. A point counts only where
   the periodic response attracts fast enough that a run converging to it would have
   settled before the steady window, exp(growth rate × {window:g} s) ≤ {decayed:g} (the
-  rule the runs apply to the free transient, `beltmdsm.simulate.TRANSIENT_DECAYED`);
+  rule the runs apply to the free transient, `beltmdsm.simulation.TRANSIENT_DECAYED`);
   the other candidates are listed as *unsettled*.
 * **Edges against Floquet.** The hull of each analysis' unstable ranges against the
   hull of the Floquet band, lower with lower and upper with upper; Δ = predicted −
@@ -1405,7 +1405,7 @@ def render_markdown(results: dict, quick: bool) -> str:
         f"{0.3 * res.t_end:g} s, solver `{res.settings.solver}` ({res.settings.method}, "
         f"rtol = atol = {res.rtol:g}), sampling {res.settings.dt:g} s.",
         f"* Peak criterion: omega1 peak ≥ {PEAK_PRESENT_RATIO:g} × the peak at Omega "
-        "(`beltmdsm.simulate.PEAK_PRESENT_RATIO`).",
+        "(`beltmdsm.simulation.PEAK_PRESENT_RATIO`).",
         "* Grid per case: "
         + "; ".join(
             f"{c['name']} {_num(c['grid']['start'])}–{_num(c['grid']['stop'])} "

@@ -120,7 +120,7 @@ def test_excitation_period_is_two_pi_over_the_gcd():
 
 def test_importing_the_runtime_does_not_import_sympy():
     code = (
-        "import sys, beltmdsm, beltmdsm.simulate, beltmdsm.integrate.superposition, "
+        "import sys, beltmdsm, beltmdsm.simulation, beltmdsm.integrate.superposition, "
         "beltmdsm.analysis.spectra, beltmdsm.analysis.modulation, beltmdsm.analysis.floquet, "
         "beltmdsm.analysis.predict, beltmdsm.studies.sweep, beltmdsm.studies.validation, "
         "beltmdsm.cli; "

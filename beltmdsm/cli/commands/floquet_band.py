@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from ...model import MODEL_PARAMETERS
 from ..flags import (
     POSITIVE,
     integer,
@@ -18,8 +19,6 @@ from ..flags import (
 
 
 def add(commands, name: str) -> None:
-    from ...studies.sweep import SWEEPABLE
-
     sub = register(
         commands,
         name,
@@ -29,7 +28,9 @@ def add(commands, name: str) -> None:
         description="Ranges of one parameter where the periodic response is "
         "unstable, edges located by bisection (beltmdsm/analysis/floquet.py).",
     )
-    sub.add_argument("--param", required=True, choices=SWEEPABLE, help="the parameter walked")
+    sub.add_argument(
+        "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter walked"
+    )
     sub.add_argument(
         "--from", dest="start", type=number(), required=True, metavar="X", help="lower end"
     )

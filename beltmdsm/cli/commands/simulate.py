@@ -1,4 +1,4 @@
-"""``simulate``: one run of Eq. (4) and its summary (`beltmdsm.simulate`)."""
+"""``simulate``: one run of Eq. (4) and its summary (`beltmdsm.simulation`)."""
 
 from __future__ import annotations
 
@@ -51,7 +51,7 @@ def add(commands, name: str) -> None:
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from ...simulate import simulate
+    from ...simulation import simulate
     from .. import text
 
     model = model_from(args)

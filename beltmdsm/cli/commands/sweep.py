@@ -6,6 +6,8 @@ import argparse
 import contextlib
 import json
 
+from ...model import MODEL_PARAMETERS
+from ...settings import MAX_POINTS
 from ..flags import (
     POSITIVE,
     cache_dir_from,
@@ -25,8 +27,6 @@ from ..flags import (
 
 
 def add(commands, name: str) -> None:
-    from ...studies.sweep import MAX_POINTS, SWEEPABLE
-
     sub = register(
         commands,
         name,
@@ -37,7 +37,9 @@ def add(commands, name: str) -> None:
         f"{MAX_POINTS:.0e} points).",
     )
     grid = sub.add_argument_group("the swept parameter")
-    grid.add_argument("--param", required=True, choices=SWEEPABLE, help="the parameter swept")
+    grid.add_argument(
+        "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter swept"
+    )
     grid.add_argument("--from", dest="start", type=number(), metavar="X", help="first value")
     grid.add_argument("--to", dest="stop", type=number(), metavar="X", help="last value, >= --from")
     grid.add_argument("--step", type=POSITIVE, metavar="H", help="> 0")

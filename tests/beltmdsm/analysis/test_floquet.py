@@ -16,7 +16,7 @@ from beltmdsm.analysis import floquet as F
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.model import Model
 from beltmdsm.settings import SolverSettings
-from beltmdsm.simulate import simulate
+from beltmdsm.simulation import simulate
 from generated import dynamics
 
 # Newton stops at 1e-11 of the state's scale; the event-driven run at rtol = atol =

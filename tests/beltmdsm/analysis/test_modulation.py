@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from beltmdsm.analysis.modulation import cycle_averages, friction_loop, modulation_scatter
-from beltmdsm.simulate import simulate
+from beltmdsm.simulation import simulate
 
 
 @pytest.fixture(scope="module")

@@ -55,3 +55,12 @@ def test_bad_inputs_are_named():
         amplitude_spectrum(np.sin(T), 0.0)
     with pytest.raises(ValueError, match="segment_s"):
         spectrogram(np.sin(T), DT, segment_s=1e5)
+
+
+def test_the_fft_length_is_scipys_next_fast_length():
+    from scipy.fft import next_fast_len
+
+    from beltmdsm.analysis.spectra import _fast_length
+
+    for n in [*range(1, 2000), 2**20 + 1, 3**9 + 7, 5**8 - 1, 12_345_679]:
+        assert _fast_length(n) == next_fast_len(n, real=True), n

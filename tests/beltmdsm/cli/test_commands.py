@@ -91,7 +91,7 @@ def test_an_unresolved_peak_is_never_called_absent_or_present(capsys):
 
 
 def test_readable_summary_names_the_modes_in_the_order_of_the_fractions(capsys):
-    from beltmdsm.simulate import simulate
+    from beltmdsm.simulation import simulate
 
     assert main(["simulate", "--Vb", "4", "--t-end", "300"]) == 0
     text = capsys.readouterr().out

@@ -6,7 +6,7 @@ import pytest
 from beltmdsm.analysis.summary import REGIMES
 from beltmdsm.integrate.switching import Mode
 from beltmdsm.settings import SolverSettings
-from beltmdsm.simulate import simulate
+from beltmdsm.simulation import simulate
 from generated import dynamics
 
 FLIGHT, SLIP_BACK, SLIP_FORWARD, STICK = Mode.FLIGHT, Mode.SLIP_BACK, Mode.SLIP_FORWARD, Mode.STICK

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from beltmdsm.integrate import _compiled, _dop853, normal, superposition
-from beltmdsm.simulate import simulate
+from beltmdsm.simulation import simulate
 
 
 def _line_kernels(offset):

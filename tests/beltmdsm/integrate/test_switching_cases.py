@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 
 from beltmdsm.integrate.switching import TIE_ULPS, Mode, Switching
-from beltmdsm.simulate import simulate
+from beltmdsm.simulation import simulate
 from generated import dynamics
 
 T_END = 100.0

@@ -176,7 +176,7 @@ def test_the_code_hash_covers_the_numerics_only():
         "generated/stability.py",
         "generated/mp/stability.py",
         "generated/_support.py",
-        "beltmdsm/simulate.py",
+        "beltmdsm/simulation.py",
         "beltmdsm/integrate/superposition.py",
         "beltmdsm/integrate/_dop853.py",
         "beltmdsm/analysis/summary.py",

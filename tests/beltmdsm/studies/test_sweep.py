@@ -279,7 +279,7 @@ def test_continued_sweeps_up_and_down_follow_different_attractors(hysteresis):
 
 
 def test_a_continued_point_starts_at_its_predecessors_state_at_phase_zero(hysteresis, monkeypatch):
-    from beltmdsm.simulate import simulate
+    from beltmdsm.simulation import simulate
 
     seen = []
     real = row_module.simulate

@@ -8,7 +8,7 @@ import pytest
 from beltmdsm.analysis.predict import fast_motion, unstable_intervals
 from beltmdsm.cli import main
 from beltmdsm.model import Model
-from beltmdsm.simulate import simulate
+from beltmdsm.simulation import simulate
 from beltmdsm.studies import validation
 from beltmdsm.studies.validation import (
     ANALYSES,

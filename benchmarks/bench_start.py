@@ -1,0 +1,122 @@
+"""Start-up and whole-process speed of the command line, as ratios from one run.
+
+Every figure is a whole process, timed from outside (the median of ``--repeat`` runs,
+after one run not counted, the two commands of a ratio taken in turn so that a
+drift of the machine's speed falls on both):
+
+1. ``beltmdsm --help`` (``python -m beltmdsm --help``) against ``python -c pass``, the
+   interpreter's own start (target: the help under 0.5 s);
+2. ``import beltmdsm`` against ``import numpy, scipy.integrate`` (target: at most 1.5x);
+3. a 32-point sweep, ``python -m beltmdsm sweep --param Vb --from 0.5 --to 16 --step 0.5
+   --jobs 1`` of 1000 s runs at the fast tolerance of benchmarks/bench_simulation.py
+   (``--rtol 1e-7 --atol 1e-7``, without the cache), against the named baseline of
+   that benchmark, plain ``solve_ivp(RK45, rtol=1e-9)`` with a right-hand side using
+   ``np.sign`` (`benchmarks.bench_simulation.baseline`), run on the same points in a
+   process of its own (target: at least 25x).
+
+numba compiles the integrators once and caches them on disk: a first sweep, not
+counted, fills that cache, as any user's first run does.
+
+Usage: python -m benchmarks.bench_start [--quick] [--repeat N]
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _sweep_command(points, t_end):
+    stop = 0.5 * points
+    return [
+        sys.executable,
+        "-m",
+        "beltmdsm",
+        "sweep",
+        "--param",
+        "Vb",
+        "--from",
+        "0.5",
+        "--to",
+        f"{stop:g}",
+        "--step",
+        "0.5",
+        "--t-end",
+        f"{t_end:g}",
+        "--jobs",
+        "1",
+        "--rtol",
+        "1e-7",
+        "--atol",
+        "1e-7",
+        "--no-cache",
+        "--no-progress",
+    ]
+
+
+def _baseline_command(points, t_end):
+    code = (
+        "from benchmarks.bench_simulation import baseline\n"
+        f"for k in range(1, {points} + 1):\n"
+        f"    baseline(0.5 * k, {t_end!r}, 0.02, {0.3 * t_end!r})\n"
+    )
+    return [sys.executable, "-c", code]
+
+
+def _wall(command):
+    start = time.perf_counter()
+    subprocess.run(command, cwd=ROOT, check=True, capture_output=True)
+    return time.perf_counter() - start
+
+
+def paired(a, b, repeat):
+    """Medians of the wall times of ``a`` and ``b`` taken in turn, and of the ratios a/b."""
+    _wall(a), _wall(b)  # not counted: disk caches, numba's cache
+    walls_a, walls_b = [], []
+    for _ in range(repeat):
+        walls_a.append(_wall(a))
+        walls_b.append(_wall(b))
+    ratios = [x / y for x, y in zip(walls_a, walls_b)]
+    return statistics.median(walls_a), statistics.median(walls_b), statistics.median(ratios)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="8 points of 300 s for the sweep")
+    ap.add_argument("--repeat", type=int, default=5, help="counted runs of each (default 5)")
+    args = ap.parse_args(argv)
+    points, t_end = (8, 300.0) if args.quick else (32, 1000.0)
+    py = [sys.executable, "-c"]
+    help_s, bare_s, help_ratio = paired(
+        [sys.executable, "-m", "beltmdsm", "--help"], py + ["pass"], args.repeat
+    )
+    print(
+        f"beltmdsm --help: {help_s:.3f} s, {help_ratio:.1f}x the interpreter's start "
+        f"({bare_s:.3f} s) (target: under 0.5 s)"
+    )
+    ours, theirs, ratio = paired(
+        py + ["import beltmdsm"], py + ["import numpy, scipy.integrate"], args.repeat
+    )
+    print(
+        f"import beltmdsm: {ours:.3f} s, {ratio:.2f}x import numpy, scipy.integrate "
+        f"({theirs:.3f} s) (target: at most 1.5x)"
+    )
+    base_s, sweep_s, ratio = paired(
+        _baseline_command(points, t_end), _sweep_command(points, t_end), max(1, args.repeat // 2)
+    )
+    print(
+        f"{points}-point sweep of {t_end:g} s runs, whole processes: beltmdsm sweep "
+        f"{sweep_s:.2f} s, baseline (solve_ivp RK45, rtol 1e-9, np.sign) {base_s:.2f} s: "
+        f"the sweep is {ratio:.1f}x faster (target: at least 25x)"
+    )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
