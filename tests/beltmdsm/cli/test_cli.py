@@ -206,27 +206,37 @@ def test_the_cli_path_of_a_runtime_command_does_not_import_sympy():
 
 
 def test_regeneration_works_when_the_runtime_cannot_be_loaded(tmp_path):
-    """The runtime imports generated/, which `python -m derive` exists to rewrite."""
+    """The runtime imports generated/, which `python -m derive` exists to rewrite: a
+    broken generated module fails the commands that need it, in one line, and never the
+    derive commands."""
     for part in ("derive", "generated", "beltmdsm"):
         shutil.copytree(ROOT / part, tmp_path / part, ignore=shutil.ignore_patterns("__pycache__"))
-    (tmp_path / "generated" / "dynamics.py").write_text("def (:\n")
     env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
-    r = subprocess.run(
-        [sys.executable, "-m", "derive", "--help"],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        env=env,
-    )
+
+    def run(*argv):
+        return subprocess.run(
+            [sys.executable, "-m", "derive", *argv],
+            capture_output=True,
+            text=True,
+            cwd=tmp_path,
+            env=env,
+        )
+
+    # a broken module that the flags do not need: --help lists every command, the run
+    # says in one line what cannot be loaded
+    (tmp_path / "generated" / "dynamics.py").write_text("def (:\n")
+    r = run("--help")
+    assert r.returncode == 0 and "--check" in r.stdout and "simulate" in r.stdout
+    r = run("simulate")
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert "runtime commands cannot be loaded: SyntaxError" in r.stderr
+    assert "generated/dynamics.py, line 1" in r.stderr and len(r.stderr.splitlines()) == 1
+    # a broken parameter table: the runtime commands are gone from --help, with the reason
+    (tmp_path / "generated" / "parameters.py").write_text("def (:\n")
+    r = run("--help")
     assert r.returncode == 0 and "--check" in r.stdout
     assert "runtime commands cannot be loaded: SyntaxError" in r.stdout
-    r = subprocess.run(
-        [sys.executable, "-m", "derive", "simulate"],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        env=env,
-    )
+    r = run("simulate")
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert "cannot be loaded" in r.stderr
 
