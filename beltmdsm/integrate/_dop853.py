@@ -33,7 +33,17 @@ from scipy.integrate._ivp import dop853_coefficients as _coef
 
 from ._roots import converged, illinois, secant
 
-__all__ = ["advance", "evaluate", "N_DENSE", "STATUS_END", "STATUS_EVENT", "STATUS_STEP_TOO_SMALL"]
+__all__ = [
+    "advance",
+    "evaluate",
+    "N_DENSE",
+    "TABLEAU_A",
+    "TABLEAU_B",
+    "TABLEAU_C",
+    "STATUS_END",
+    "STATUS_EVENT",
+    "STATUS_STEP_TOO_SMALL",
+]
 
 
 def _table(a):
@@ -55,6 +65,11 @@ _C_EXTRA = _table(_coef.C[_N_STAGES + 1 :])
 _N_EXTENDED = _coef.N_STAGES_EXTENDED
 #: Rows of the dense-output coefficients of a step.
 N_DENSE = _coef.INTERPOLATOR_POWER
+#: The method's tableau as arrays (its 12 stages, order 8), for a linear equation
+#: carried along a run's steps (`beltmdsm.analysis.variational`).
+TABLEAU_A = np.array(_A)
+TABLEAU_B = np.array(_B)
+TABLEAU_C = np.array(_C)
 
 _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
 _EXPONENT = -1.0 / 8.0
