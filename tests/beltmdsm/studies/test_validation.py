@@ -380,7 +380,7 @@ def test_validation_grid_and_cases_refuse_bad_input_by_name():
 
 def test_quick_validation_runs_every_sweep_under_the_law_it_names(monkeypatch):
     laws = []
-    real = validation.sweep
+    real = validation.run.sweep
 
     def recording(*args, **kwargs):
         kind = (
@@ -393,7 +393,7 @@ def test_quick_validation_runs_every_sweep_under_the_law_it_names(monkeypatch):
         assert set(result.table["tension"]) == {kwargs["tension"]}
         return result
 
-    monkeypatch.setattr(validation, "sweep", recording)
+    monkeypatch.setattr(validation.run, "sweep", recording)
     results = validate(
         True, tension="clipped", executor="serial", cache_dir=None, progress=False, cases=["base"]
     )
