@@ -220,7 +220,7 @@ def vb_grid(step: float, top: float, start: float | None = None) -> np.ndarray:
     if top / step > MAX_POINTS:
         raise ValueError(
             f"step = {step!r} up to top = {top!r} is more than MAX_POINTS = "
-            f"{MAX_POINTS:.0e} points (runtime/sweep.py)"
+            f"{MAX_POINTS:.0e} points (beltmdsm/studies/sweep.py)"
         )
     last = math.ceil(top / step - 1e-9)
     first = 1 if start is None else int(round(start / step))
