@@ -46,9 +46,12 @@ Modules, one concept each:
 * `beltmdsm.studies.validation.cases`: the cases of Figs. 2b and 17-21, the analyses,
   the runs, the grid and the rules (`DEFINITIONS`);
 * `beltmdsm.studies.validation.comparison`: the analyses' edges against the runs from
-  rest and against the Floquet band, and their summaries;
+  rest and against the Floquet band (`Comparison`), and the summary of one analysis'
+  comparisons;
 * `beltmdsm.studies.validation.verdicts`: the Floquet verdicts at the grid points
   against the runs: mismatches, coexistence;
+* `beltmdsm.studies.validation.results`: what `validate` returns (`Validation`, one
+  `CaseResult` per case) and the summaries over the cases;
 * `beltmdsm.studies.validation.run`: `validate`, the orchestration of the bands and
   the sweeps on an executor;
 * `beltmdsm.studies.validation.report`: `render_markdown`.
@@ -75,24 +78,41 @@ from .cases import (
     vb_grid,
 )
 from .comparison import (
+    Comparison,
+    Edge,
+    EdgeSummary,
+    SimulatedRange,
+    SimulatedRanges,
     compare,
     compare_floquet,
     disagreement_length,
     predicted_intervals,
     regime_runs,
     simulated_ranges,
-    summarize,
-    summarize_floquet,
+    summarize_edges,
 )
 from .report import render_markdown
+from .results import (
+    CaseFloquet,
+    CaseResult,
+    MismatchSummary,
+    Validation,
+    summarize,
+    summarize_floquet,
+    summarize_mismatches,
+)
 from .run import validate
 from .verdicts import (
+    Coexistence,
+    Mismatch,
+    Mismatches,
+    PointVerdict,
+    Run,
     band_grid_disagreements,
     coexistence,
     floquet_verdicts,
     peak_ranges,
     periodic_mismatches,
-    summarize_mismatches,
 )
 
 __all__ = [
@@ -127,4 +147,20 @@ __all__ = [
     "summarize_mismatches",
     "validate",
     "render_markdown",
+    # the result types
+    "Validation",
+    "CaseResult",
+    "CaseFloquet",
+    "MismatchSummary",
+    "SimulatedRange",
+    "SimulatedRanges",
+    "Edge",
+    "Comparison",
+    "EdgeSummary",
+    "summarize_edges",
+    "PointVerdict",
+    "Run",
+    "Mismatch",
+    "Mismatches",
+    "Coexistence",
 ]

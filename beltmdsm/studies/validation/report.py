@@ -8,11 +8,23 @@ next to what the paper reports in Appendix A.5, and the rules of
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from ... import intervals
 from ...analysis.floquet import PERTURBATION
 from ...analysis.summary import PEAK_PRESENT_RATIO, TRANSIENT_DECAYED
 from .cases import ANALYSES, DEFINITIONS, FLOQUET_DEFINITIONS, FLOQUET_TOL, UNRESOLVED
-from .comparison import regime_runs
+from .comparison import Comparison, SimulatedRanges, regime_runs
+from .results import CaseResult, Validation
+from .verdicts import Run
+
+#: The text of a comparison that pairs no edges, by its status.
+_STATUS_TEXT = {
+    "miss": "miss",
+    "false_alarm": "false alarm",
+    "both_empty": "both none",
+    "no_prediction": "n/a",
+}
 
 
 def _num(x):
@@ -23,32 +35,26 @@ def _ranges_text(ranges):
     return "n/a" if ranges is None else intervals.format_intervals(ranges, ".2f")
 
 
-def _simulated_text(sim):
-    if not sim["ranges"]:
+def _simulated_text(sim: SimulatedRanges) -> str:
+    if not sim.ranges:
         return "none"
     parts = []
-    for r in sim["ranges"]:
-        lo = _num(r["lower"]) + ("*" if r["lower_censored"] else "")
-        hi = _num(r["upper"]) + ("*" if r["upper_censored"] else "")
+    for r in sim.ranges:
+        lo = _num(r.lower) + ("*" if r.lower_censored else "")
+        hi = _num(r.upper) + ("*" if r.upper_censored else "")
         parts.append(f"[{lo}, {hi}]")
     return ", ".join(parts)
 
 
-def _delta_text(comp):
-    if comp["status"] != "paired":
-        return {
-            "miss": "miss",
-            "false_alarm": "false alarm",
-            "both_empty": "both none",
-            "no_prediction": "n/a",
-        }[comp["status"]]
+def _delta_text(comp: Comparison) -> str:
+    if comp.status != "paired":
+        return _STATUS_TEXT[comp.status]
     texts = []
-    for side in ("lower", "upper"):
-        e = comp[side]
-        t = f"{e['delta']:+.2f}"
-        if e["censored"]:
+    for e in (comp.lower, comp.upper):
+        t = f"{e.delta:+.2f}"
+        if e.censored:
             t = f"({t})*"
-        if e["from_zero"]:
+        if e.from_zero:
             t += "⁰"
         texts.append(t)
     return " / ".join(texts)
@@ -89,31 +95,25 @@ def _edges_text(band):
     return ", ".join(f"{e['value']:.3f} {short[e['kind']]}" for e in band["edges"]) or "—"
 
 
-def _run_text(run):
-    text = intervals.format_intervals(run["ranges"], ".2f")
-    if run["unresolved"]:
-        text += f" ({len(run['unresolved'])} unresolved)"
+def _run_text(run: Run) -> str:
+    text = intervals.format_intervals(run.ranges, ".2f")
+    if run.unresolved:
+        text += f" ({len(run.unresolved)} unresolved)"
     return text
 
 
-def _floquet_delta_text(comp):
-    if comp["status"] != "paired":
-        return {
-            "miss": "miss",
-            "false_alarm": "false alarm",
-            "both_empty": "both none",
-            "no_prediction": "n/a",
-        }[comp["status"]]
+def _floquet_delta_text(comp: Comparison) -> str:
+    if comp.status != "paired":
+        return _STATUS_TEXT[comp.status]
     return " / ".join(
-        f"({comp[s]['delta']:+.3f})*" if comp[s]["censored"] else f"{comp[s]['delta']:+.3f}"
-        for s in ("lower", "upper")
+        f"({e.delta:+.3f})*" if e.censored else f"{e.delta:+.3f}" for e in (comp.lower, comp.upper)
     )
 
 
-def _floquet_sections(results):
+def _floquet_sections(results: Validation) -> list[str]:
     """The Floquet tables of `render_markdown`: the runs, mismatches, coexistence, edges."""
-    cases, step = results["cases"], results["resolution"].step
-    other = {"allowed": "clipped", "clipped": "allowed"}[results.get("tension", "allowed")]
+    cases, step = results.cases, results.resolution.step
+    other = {"allowed": "clipped", "clipped": "allowed"}[results.tension]
     lines = [
         "## Floquet: where the periodic response is unstable, and what the runs find",
         "",
@@ -128,37 +128,37 @@ def _floquet_sections(results):
         "|---|---|---|---|---|---|---|---|---|",
     ]
     for c in cases:
-        band, runs = c["floquet"], c["runs"]
+        band, runs = c.floquet.band, c.runs
         lines.append(
-            f"| {c['name']} | {_band_text(band)} | {_edges_text(band)} | "
+            f"| {c.case.name} | {_band_text(band)} | {_edges_text(band)} | "
             + " | ".join(_run_text(runs[k]) for k in ("periodic", "rest", "up", "down"))
-            + f" | {intervals.format_intervals(c['coexistence']['ranges'], '.2f')} | "
+            + f" | {intervals.format_intervals(c.coexistence.ranges, '.2f')} | "
             f"{_run_text(runs['rest_other'])} |"
         )
-    ms = results["mismatch_summary"]
+    ms = results.mismatch_summary
     lines += [
         "",
         "## The periodic start against Floquet",
         "",
-        f"**{len(ms['mismatches'])} mismatches** in {ms['checked']} compared grid points "
-        f"of {ms['cases']} cases: the run started on the perturbed periodic response "
+        f"**{len(ms.mismatches)} mismatches** in {ms.checked} compared grid points "
+        f"of {ms.cases} cases: the run started on the perturbed periodic response "
         "shows the omega1 peak exactly where Floquet says unstable"
-        + (" everywhere it is compared." if not ms["mismatches"] else ", except at:"),
+        + (" everywhere it is compared." if not ms.mismatches else ", except at:"),
     ]
     lines += [
-        f"* {m['case']}, Vb = {m['Vb']:g} m/s: Floquet {m['floquet']}, peak "
-        f"{'present' if m['peak'] else 'absent'}."
-        for m in ms["mismatches"]
+        f"* {name}, Vb = {m.Vb:g} m/s: Floquet {m.floquet}, peak "
+        f"{'present' if m.peak else 'absent'}."
+        for name, m in ms.mismatches
     ]
-    if ms["not_counted"]:
+    if ms.not_counted:
         lines.append("")
         lines.append(
             "Not counted (an excitation harmonic in the omega1 band): "
             + "; ".join(
-                f"{c['name']} ({len(c['mismatches']['mismatches'])} of "
-                f"{c['mismatches']['checked']} points differ)"
+                f"{c.case.name} ({len(c.mismatches.mismatches)} of "
+                f"{c.mismatches.checked} points differ)"
                 for c in cases
-                if c["name"] in ms["not_counted"]
+                if c.case.name in ms.not_counted
             )
             + "."
         )
@@ -168,11 +168,11 @@ def _floquet_sections(results):
         "|---|---|---|---|---|---|",
     ]
     for c in cases:
-        m = c["mismatches"]
+        m = c.mismatches
         lines.append(
-            f"| {c['name']} | {m['checked']} | {len(m['near_edge'])} | "
-            f"{len(m['no_verdict'])} | {len(m['unresolved'])} | "
-            f"{_points_text([(v, v) for v in c['band_disagreements']])} |"
+            f"| {c.case.name} | {m.checked} | {len(m.near_edge)} | "
+            f"{len(m.no_verdict)} | {len(m.unresolved)} | "
+            f"{_points_text([(v, v) for v in c.band_disagreements])} |"
         )
     lines += [
         "",
@@ -182,12 +182,12 @@ def _floquet_sections(results):
         "|---|---|---|---|",
     ]
     for c in cases:
-        co = c["coexistence"]
-        by = sorted({k for ks in co["found_by"].values() for k in ks})
+        co = c.coexistence
+        by = sorted({k for ks in co.found_by.values() for k in ks})
         lines.append(
-            f"| {c['name']} | {intervals.format_intervals(co['ranges'], '.2f')} | "
+            f"| {c.case.name} | {intervals.format_intervals(co.ranges, '.2f')} | "
             f"{', '.join(by) or '—'} | "
-            f"{_points_text([(v, v) for v in co['unsettled']])} |"
+            f"{_points_text([(v, v) for v in co.unsettled])} |"
         )
     lines += [
         "",
@@ -200,11 +200,11 @@ def _floquet_sections(results):
     ]
     for c in cases:
         lines.append(
-            f"| {c['name']} | {_band_text(c['floquet'])} | "
-            + " | ".join(_floquet_delta_text(c["floquet_comparison"][k]) for k, _, _ in ANALYSES)
+            f"| {c.case.name} | {_band_text(c.floquet.band)} | "
+            + " | ".join(_floquet_delta_text(c.floquet_comparison[k]) for k, _, _ in ANALYSES)
             + " |"
         )
-    fs = results["floquet_summary"]
+    fs = results.floquet_summary
     lines += [
         "",
         "| analysis | MAE of edges [m/s] | largest \\|Δ\\| | edges *n* | paired | miss "
@@ -213,31 +213,30 @@ def _floquet_sections(results):
     ]
     for key, lab, _ in ANALYSES:
         s = fs[key]
-        cell = ["—" if s[k] is None else f"{s[k]:.3f}" for k in ("mae", "max", "mean_disagreement")]
+        cell = [
+            "—" if x is None else f"{x:.3f}" for x in (s.mae, s.max_abs_delta, s.mean_disagreement)
+        ]
         lines.append(
-            f"| {lab} | {cell[0]} | {cell[1]} | {s['n_edges']} | {s['paired']} | "
-            f"{s['miss']} | {s['false_alarm']} | {s['both_empty']} | {cell[2]} |"
+            f"| {lab} | {cell[0]} | {cell[1]} | {s.n_edges} | {s.paired} | "
+            f"{s.miss} | {s.false_alarm} | {s.both_empty} | {cell[2]} |"
         )
     lines += ["", f"Over all {len(cases)} cases.", ""]
     return lines
 
 
-def _verdict(cases, key, reference, step):
+def _closer_sentence(cases: Sequence[CaseResult], key: str, reference: str, step: float) -> str:
     """One generated sentence: where ``key`` is closer to the simulation than ``reference``."""
     better, worse, tie, none = [], [], [], []
     for c in cases:
-        if not c["comparable"]:
+        if not c.comparable:
             continue
-        ours, theirs = (
-            c["comparison"][key]["disagreement"],
-            c["comparison"][reference]["disagreement"],
-        )
+        ours, theirs = c.comparison[key].disagreement, c.comparison[reference].disagreement
         if ours is None or theirs is None:
-            none.append(c["name"])
+            none.append(c.case.name)
             continue
         d = ours - theirs
         # Differences within one grid step are below the resolution of the sweep.
-        (better if d < -step else worse if d > step else tie).append(c["name"])
+        (better if d < -step else worse if d > step else tie).append(c.case.name)
     label = {k: lab for k, lab, _ in ANALYSES}
 
     def names(xs):
@@ -258,12 +257,25 @@ def _verdict(cases, key, reference, step):
     )
 
 
-def render_markdown(results: dict, quick: bool) -> str:
-    """``VALIDATION.md``: tables of ranges, edge differences, the summary and definitions."""
-    res = results["resolution"]
-    cases = results["cases"]
+def render_markdown(results: Validation, quick: bool) -> str:
+    """``VALIDATION.md``: tables of ranges, edge differences, the summary and definitions.
+
+    Parameters
+    ----------
+    results : Validation
+        from `validate`
+    quick : bool
+        the mode the file names (and its command)
+
+    Returns
+    -------
+    str
+        the Markdown text
+    """
+    res = results.resolution
+    cases = results.cases
     step = res.step
-    tension = results.get("tension", "allowed")
+    tension = results.tension
     command = (
         "python -m derive validate"
         + (" --quick" if quick else "")
@@ -311,9 +323,7 @@ def render_markdown(results: dict, quick: bool) -> str:
         "(`beltmdsm.simulate.PEAK_PRESENT_RATIO`).",
         "* Grid per case: "
         + "; ".join(
-            f"{c['name']} {_num(c['grid']['start'])}–{_num(c['grid']['stop'])} "
-            f"({c['grid']['n']} points)"
-            for c in cases
+            f"{c.case.name} {_num(c.Vb[0])}–{_num(c.Vb[-1])} ({len(c.Vb)} points)" for c in cases
         )
         + ".",
         "",
@@ -341,10 +351,10 @@ def render_markdown(results: dict, quick: bool) -> str:
         rule,
     ]
     for c in cases:
-        name = c["name"] + ("" if c["comparable"] else " †")
+        name = c.case.name + ("" if c.comparable else " †")
         lines.append(
-            f"| {name} | {c['figure']} | {_simulated_text(c['simulated'])} | "
-            + " | ".join(_ranges_text(c["predicted"][k]) for k, _, _ in ANALYSES)
+            f"| {name} | {c.case.figure} | {_simulated_text(c.simulated)} | "
+            + " | ".join(_ranges_text(c.predicted[k]) for k, _, _ in ANALYSES)
             + " |"
         )
     lines += [
@@ -360,15 +370,15 @@ def render_markdown(results: dict, quick: bool) -> str:
         "|" + "---|" * (1 + len(ANALYSES)),
     ]
     for c in cases:
-        if not c["comparable"]:
-            lines.append(f"| {c['name']} † | " + " | ".join("—" for _ in ANALYSES) + " |")
+        if not c.comparable:
+            lines.append(f"| {c.case.name} † | " + " | ".join("—" for _ in ANALYSES) + " |")
             continue
         lines.append(
-            f"| {c['name']} | "
-            + " | ".join(_delta_text(c["comparison"][k]) for k, _, _ in ANALYSES)
+            f"| {c.case.name} | "
+            + " | ".join(_delta_text(c.comparison[k]) for k, _, _ in ANALYSES)
             + " |"
         )
-    summary = results["summary"]
+    summary = results.summary
     lines += [
         "",
         "## Summary per analysis",
@@ -379,25 +389,25 @@ def render_markdown(results: dict, quick: bool) -> str:
     ]
     for key, lab, _ in ANALYSES:
         s = summary[key]
-        mae = "—" if s["mae"] is None else _num(s["mae"])
-        dis = "—" if s["mean_disagreement"] is None else _num(s["mean_disagreement"])
+        mae = "—" if s.mae is None else _num(s.mae)
+        dis = "—" if s.mean_disagreement is None else _num(s.mean_disagreement)
         lines.append(
-            f"| {lab} | {mae} | {s['n_edges']} | {s['paired']} | {s['miss']} | "
-            f"{s['false_alarm']} | {s['both_empty']} | {dis} |"
+            f"| {lab} | {mae} | {s.n_edges} | {s.paired} | {s.miss} | "
+            f"{s.false_alarm} | {s.both_empty} | {dis} |"
         )
-    n_comp = sum(c["comparable"] for c in cases)
+    n_comp = sum(c.comparable for c in cases)
     for key, lab, _ in ANALYSES:
-        if summary[key].get("no_prediction"):
+        if summary[key].no_prediction:
             lines.append(
-                f"\n{lab} gives no prediction in {summary[key]['no_prediction']} "
+                f"\n{lab} gives no prediction in {summary[key].no_prediction} "
                 f"comparable case(s) (n/a); its columns count the other "
-                f"{summary[key]['n_cases']}."
+                f"{summary[key].n_cases}."
             )
     lines += [
         "",
         f"Over {n_comp} comparable cases of {len(cases)}.",
-        _verdict(cases, "consistent_mdsm", "paper_tangential_paper", step),
-        _verdict(cases, "consistent_mdsm", "paper_coupled_paper", step),
+        _closer_sentence(cases, "consistent_mdsm", "paper_tangential_paper", step),
+        _closer_sentence(cases, "consistent_mdsm", "paper_coupled_paper", step),
         "",
     ]
     lines += [
@@ -410,19 +420,20 @@ def render_markdown(results: dict, quick: bool) -> str:
         "|---|---|---|---|",
     ]
     for c in cases:
-        runs = regime_runs(c["Vb"], c["regime"])
-        note = _runs_text(runs)
-        anywhere = [(a, b) for r, a, b in regime_runs(c["Vb"], c["present"]) if r == "True"]
-        if c["harmonics"]:
+        rest = c.runs["rest"]
+        note = _runs_text(regime_runs(c.Vb, rest.regime))
+        anywhere = [(a, b) for r, a, b in regime_runs(c.Vb, rest.present) if r == "True"]
+        if c.harmonics:
             note += (
                 "; † not comparable: "
-                + ", ".join(f"{k} Omega = {_num(w)} rad/s" for k, w in c["harmonics"])
+                + ", ".join(f"{k} Omega = {_num(w)} rad/s" for k, w in c.harmonics)
                 + " lies in the omega1 band"
             )
-        elif not c["comparable"]:
+        elif not c.comparable:
             note += "; † not comparable: no sliding point"
         lines.append(
-            f"| {c['name']} | {note} | {_points_text(anywhere)} | {c['figure']}: {c['paper']} |"
+            f"| {c.case.name} | {note} | {_points_text(anywhere)} | "
+            f"{c.case.figure}: {c.case.paper} |"
         )
     lines += [
         "",

@@ -34,21 +34,14 @@ from .cases import (
     harmonic_in_band,
     vb_grid,
 )
-from .comparison import (
-    compare,
-    compare_floquet,
-    predicted_intervals,
-    simulated_ranges,
-    summarize,
-    summarize_floquet,
-)
+from .comparison import compare, compare_floquet, predicted_intervals, simulated_ranges
+from .results import CaseFloquet, CaseResult, Validation
 from .verdicts import (
+    Run,
     band_grid_disagreements,
     coexistence,
     floquet_verdicts,
-    peak_ranges,
     periodic_mismatches,
-    summarize_mismatches,
 )
 
 
@@ -96,7 +89,7 @@ def validate(
     cache_dir: os.PathLike | str | None = "default",
     progress: bool = True,
     cases: Sequence[Case | str] | None = None,
-) -> dict:
+) -> Validation:
     """Simulated omega1-peak ranges against every analysis' prediction (Figs. 2, 17-21).
 
     Parameters
@@ -108,10 +101,10 @@ def validate(
         the tension law of the simulations (docs/modelling.md#tension); see
         `predicted_intervals` for the predictions
     executor : concurrent.futures.Executor, "serial" or None
-        where the runs go (`beltmdsm.sweep.sweep`); None: one process pool over the
-        local cores for all cases
+        where the runs go (`beltmdsm.studies.sweep.sweep`); None: one process pool
+        over the local cores for all cases
     cache_dir : path, "default" or None
-        the sweep cache (`beltmdsm.sweep.sweep`); None disables it
+        the sweep cache (`beltmdsm.studies.sweep.sweep`); None disables it
     progress : bool
         progress bars on stderr
     cases : sequence of Case or of case names, optional
@@ -119,14 +112,13 @@ def validate(
 
     Returns
     -------
-    dict
-        ``quick``, ``tension``, ``resolution`` (`Resolution`), ``cases`` (one dict
-        per case: ``name``, ``figure``, ``overrides``, ``paper``, ``grid`` (``step``,
-        ``start``, ``stop``, ``n``), ``Vb``, ``present``, ``resolved``, ``regime``,
-        ``peak_ratio``,
-        ``simulated`` (`simulated_ranges`), ``harmonics`` (`harmonic_in_band`),
-        ``comparable``, ``predicted`` (`predicted_intervals`), ``comparison``
-        (per analysis, `compare`)), ``summary`` (`summarize`).
+    Validation
+        one `CaseResult` per case, in the order of ``cases``, and the summaries
+
+    Raises
+    ------
+    ValueError
+        For an unknown tension law or case name.
     """
     if tension not in TENSIONS:
         raise ValueError(
@@ -145,121 +137,75 @@ def validate(
     own = executor is None
     if own:
         executor = cf.ProcessPoolExecutor(max_workers=os.cpu_count())
-    results = []
     try:
-        for case in selected:
-            model = Model(**case.overrides, tension=tension)
-            predicted = predicted_intervals(model)
-            harmonics = harmonic_in_band(model.params)
-            band = _floquet_band(case, resolution, tension)
-            edges = [x for ranges in predicted.values() for pair in ranges or () for x in pair]
-            edges += [e["value"] for e in band["edges"]]
-            table = _case_sweep(
-                case,
-                resolution,
-                edges,
-                executor,
-                cache_dir,
-                progress,
-                extend=not harmonics,
-                tension=tension,
-            )
-            vb = np.asarray(table["Vb"], float)
-            simulated = simulated_ranges(
-                vb,
-                table["omega1_peak_present"],
-                table["regime"],
-                resolution.step,
-                table["resolved"],
-            )
-            runs = _other_runs(case, vb, resolution, executor, cache_dir, progress, tension)
-            runs["rest"] = table
-            runs = {key: _run_columns(runs[key], resolution.step) for key, _, _ in RUNS}
-            verdicts = floquet_verdicts(vb, case.overrides, tension=tension)
-            edge_values = [e["value"] for e in band["edges"]]
-            results.append(
-                {
-                    "name": case.name,
-                    "figure": case.figure,
-                    "overrides": dict(case.overrides),
-                    "paper": case.paper,
-                    "grid": {
-                        "step": resolution.step,
-                        "start": float(vb[0]),
-                        "stop": float(vb[-1]),
-                        "n": int(vb.size),
-                    },
-                    "Vb": vb.tolist(),
-                    "present": table["omega1_peak_present"].tolist(),
-                    "resolved": table["resolved"].tolist(),
-                    "regime": [str(r) for r in table["regime"]],
-                    "peak_ratio": (table["peak_omega1"] / table["peak_Omega"]).tolist(),
-                    "simulated": simulated,
-                    "harmonics": harmonics,
-                    "comparable": not harmonics and simulated["sliding_points"] > 0,
-                    "predicted": predicted,
-                    "comparison": {
-                        key: compare(predicted[key], simulated, resolution.step)
-                        for key, _, _ in ANALYSES
-                    },
-                    "floquet": {
-                        **{
-                            k: band[k]
-                            for k in (
-                                "unstable",
-                                "edges",
-                                "grazing_points",
-                                "no_periodic_response",
-                                "failed",
-                            )
-                        },
-                        "lo": resolution.step / 2,
-                        "hi": resolution.vb_cap,
-                        "verdicts": verdicts,
-                    },
-                    "runs": runs,
-                    "mismatches": periodic_mismatches(
-                        vb, verdicts, runs["periodic"], edge_values, resolution.step
-                    ),
-                    "coexistence": coexistence(
-                        vb, verdicts, runs, resolution.step, resolution.settings.window_start
-                    ),
-                    "band_disagreements": band_grid_disagreements(
-                        vb, verdicts, band, resolution.step
-                    ),
-                    "floquet_comparison": {
-                        key: compare_floquet(
-                            predicted[key], band, resolution.step / 2, resolution.vb_cap
-                        )
-                        for key, _, _ in ANALYSES
-                    },
-                }
-            )
+        results = [
+            _validate_case(case, resolution, tension, executor, cache_dir, progress)
+            for case in selected
+        ]
     finally:
         if own:
             executor.shutdown()
-    return {
-        "quick": bool(quick),
-        "tension": tension,
-        "resolution": resolution,
-        "cases": results,
-        "summary": summarize(results),
-        "floquet_summary": summarize_floquet(results),
-        "mismatch_summary": summarize_mismatches(results),
-    }
+    return Validation(bool(quick), tension, resolution, results)
 
 
-def _floquet_band(case, resolution, tension):
-    """`beltmdsm.floquet.floquet_band` in ``Vb`` over ``[h/2, vb_cap]`` for one case.
+def _validate_case(case, resolution, tension, executor, cache_dir, progress):
+    """The `CaseResult` of one case (`validate`)."""
+    step = resolution.step
+    model = Model(**case.overrides, tension=tension)
+    predicted = predicted_intervals(model)
+    harmonics = harmonic_in_band(model.params)
+    band = _floquet_band(model, resolution)
+    edges = [x for ranges in predicted.values() for pair in ranges or () for x in pair]
+    edges += [e["value"] for e in band["edges"]]
+    table = _case_sweep(
+        case,
+        resolution,
+        edges,
+        executor,
+        cache_dir,
+        progress,
+        extend=not harmonics,
+        tension=tension,
+    )
+    vb = np.asarray(table["Vb"], float)
+    simulated = simulated_ranges(
+        vb, table["omega1_peak_present"], table["regime"], step, table["resolved"]
+    )
+    tables = _other_runs(case, vb, resolution, executor, cache_dir, progress, tension)
+    tables["rest"] = table
+    runs = {key: Run.from_table(tables[key], step) for key, _, _ in RUNS}
+    verdicts = floquet_verdicts(vb, model)
+    lo, hi = step / 2, resolution.vb_cap
+    return CaseResult(
+        case=case,
+        Vb=vb.tolist(),
+        runs=runs,
+        simulated=simulated,
+        harmonics=harmonics,
+        comparable=not harmonics and simulated.sliding_points > 0,
+        predicted=predicted,
+        comparison={key: compare(predicted[key], simulated, step) for key, _, _ in ANALYSES},
+        floquet=CaseFloquet(band, lo, hi, verdicts),
+        mismatches=periodic_mismatches(
+            vb, verdicts, runs["periodic"], [e["value"] for e in band["edges"]], step
+        ),
+        coexistence=coexistence(vb, verdicts, runs, step, resolution.settings.window_start),
+        band_disagreements=band_grid_disagreements(vb, verdicts, band, step),
+        floquet_comparison={
+            key: compare_floquet(predicted[key], band, lo, hi) for key, _, _ in ANALYSES
+        },
+    )
+
+
+def _floquet_band(model, resolution):
+    """`beltmdsm.analysis.floquet.floquet_band` in ``Vb`` over ``[h/2, vb_cap]`` for one case.
 
     From ``h/2``, the lower end of the lowest grid point's cell, so that an edge
     just below the lowest grid point is found, not taken for the end of the range.
     """
     lo, hi = resolution.step / 2, resolution.vb_cap
     points = math.ceil((hi - lo) / FLOQUET_SPACING) + 1
-    return floquet_band(
-        "Vb", lo, hi, case.overrides, tension=tension, points=points, tol=FLOQUET_TOL
-    )
+    return floquet_band("Vb", lo, hi, model, points=points, tol=FLOQUET_TOL)
 
 
 def _other_runs(case, vb, resolution, executor, cache_dir, progress, tension):
@@ -290,17 +236,3 @@ def _other_runs(case, vb, resolution, executor, cache_dir, progress, tension):
         for key, kw in plans.items()
     }
     return {key: fut.result().table for key, fut in futures.items()}
-
-
-def _run_columns(table, step):
-    """What the Floquet tables need of one sweep: its flags, regimes and peak ranges."""
-    present = np.asarray(table["omega1_peak_present"], bool)
-    resolved = np.asarray(table["resolved"], bool)
-    vb = np.asarray(table["Vb"], float)
-    return {
-        "present": present.tolist(),
-        "resolved": resolved.tolist(),
-        "regime": [str(r) for r in table["regime"]],
-        "ranges": peak_ranges(vb, present, resolved, step),
-        "unresolved": [float(v) for v in vb[~resolved]],
-    }
