@@ -210,7 +210,7 @@ def vb_grid(step: float, top: float, start: float | None = None) -> np.ndarray:
     ------
     ValueError
         Naming ``step``, ``top`` or ``start``: not finite, ``step <= 0``, ``top < 0``,
-        or more than `beltmdsm.sweep.MAX_POINTS` points.
+        or more than `beltmdsm.studies.sweep.MAX_POINTS` points.
     """
     for name, value in (("step", step), ("top", top), ("start", start)):
         if value is not None and not math.isfinite(value):
@@ -232,7 +232,7 @@ def harmonic_in_band(p: Mapping[str, float]) -> list[tuple[int, float]]:
 
     The normal force of Eq. (1) is nonlinear, so the sliding response contains every
     harmonic of the excitation; one inside the band of the omega1 peak
-    (`beltmdsm.simulate.omega1_band`) reads as an omega1 peak whatever the
+    (`beltmdsm.analysis.summary.omega1_band`) reads as an omega1 peak whatever the
     stability. Returns ``[(k, k Omega), ...]`` (empty when the peak is unambiguous).
     """
     band = omega1_band(p)
@@ -254,13 +254,13 @@ RUNS = (
     (
         "periodic",
         "periodic start",
-        "on the periodic response plus `beltmdsm.simulate.PERTURBATION` in X1",
+        "on the periodic response plus `beltmdsm.analysis.floquet.PERTURBATION` in X1",
     ),
     ("up", "up sweep", "continued upwards in Vb, from rest at the lowest point"),
     ("down", "down sweep", "continued downwards in Vb, from rest at the highest point"),
     ("rest_other", "from rest, other law", "from rest under the other tension law"),
 )
-#: Largest spacing [m/s] of the first grid of `beltmdsm.floquet.floquet_band`: an unstable
+#: Largest spacing [m/s] of the first grid of `beltmdsm.analysis.floquet.floquet_band`: an unstable
 #: range narrower than this inside one switch structure could fall between its points.
 FLOQUET_SPACING = 0.5
 #: Tolerance [m/s] of the Floquet band's edges (issue 13: 1e-3).
