@@ -12,7 +12,7 @@ The runtime of the package: it imports the generated model (``generated/``, writ
   `Floquet`, `NoPeriodicResponse`): the periodic response and its exact stability.
 * `predict` (`Prediction`): the unstable belt speeds of the paper's analysis and of a
   consistent MDSM.
-* `validate`: the validation of Figs. 2 and 17-21 (``VALIDATION.md``).
+* `validate` (`Validation`): the validation of Figs. 2 and 17-21 (``VALIDATION.md``).
 
 Subpackages, in the order of their layers (each imports only those before it):
 `beltmdsm.model` and `beltmdsm.settings` (the values every function takes),
@@ -44,6 +44,7 @@ _API = {
     "predict": "analysis.predict",
     "Prediction": "analysis.predict",
     "validate": "studies.validation",
+    "Validation": "studies.validation",
 }
 
 __all__ = list(_API)

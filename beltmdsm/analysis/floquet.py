@@ -46,7 +46,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 
@@ -546,6 +546,13 @@ class Floquet:
     period: float
     response: PeriodicResponse = field(repr=False)
 
+    @property
+    def verdict(self) -> Literal["stable", "unstable", "grazing"]:
+        """``"stable"``, ``"unstable"`` or ``"grazing"`` (no multiplier at a grazing orbit)."""
+        if self.stable is None:
+            return "grazing"
+        return "stable" if self.stable else "unstable"
+
     def as_dict(self) -> dict:
         """The JSON-able summary (the keys of ``python -m derive floquet --json``)."""
         return {
@@ -816,14 +823,7 @@ def _multiplier_step(a, fa, b, fb, tol):
 
 def _state(f):
     """What a value's evaluation says: not found, or (structure, verdict)."""
-    return None if f is None else (f.n_reversals, f.n_sticks, _verdict(f))
-
-
-def _verdict(f):
-    """'stable', 'unstable' or 'grazing' (no multiplier at a grazing orbit)."""
-    if f.stable is None:
-        return "grazing"
-    return "stable" if f.stable else "unstable"
+    return None if f is None else (f.n_reversals, f.n_sticks, f.verdict)
 
 
 def _edge(a, fa, b, fb, kind=None):

@@ -36,7 +36,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -289,9 +289,20 @@ def unstable_intervals(
 
 
 def paper_intervals(
-    model: Model | Mapping[str, Any] | None = None, **kw: Any
+    model: Model | Mapping[str, Any] | None = None,
+    *,
+    convention: Literal["paper", "consistent"] = "paper",
+    **kw: Any,
 ) -> dict[str, list[tuple[float, float]] | None]:
     """The paper's unstable interval ``(Vb_c, Vhat]`` for each ``V_hat`` reading (Eq. 25, 28).
+
+    Parameters
+    ----------
+    model : Model, mapping or None
+        the parameter set (or the keywords ``**kw`` it is built from)
+    convention : {"paper", "consistent"}
+        the sign of the effective friction in Eq. (A4): as printed, or as Eq. (4)
+        implies (`generated.stability.unstable_interval`, docs/modelling.md#friction-sign)
 
     Returns
     -------
@@ -309,7 +320,10 @@ def paper_intervals(
             out[reading] = None
             continue
         lower, upper = (
-            float(x) for x in stability.unstable_interval(contact=contact, vhat_model=reading, **p)
+            float(x)
+            for x in stability.unstable_interval(
+                convention=convention, contact=contact, vhat_model=reading, **p
+            )
         )
         out[reading] = [] if math.isnan(lower) else [(lower, upper)]
     return out

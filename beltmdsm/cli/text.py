@@ -16,6 +16,7 @@ from ..analysis.summary import PEAK_PRESENT_RATIO, Summary
 from ..intervals import format_intervals
 from ..simulation import Simulation
 from ..studies.sweep import Sweep
+from ..studies.validation import ANALYSES, Validation
 
 __all__ = [
     "jsonable",
@@ -240,28 +241,25 @@ def prediction(result: Prediction) -> str:
     return "\n".join(lines)
 
 
-def validation(results: dict, out_file: str) -> str:
+def validation(results: Validation, out_file: str) -> str:
     """What ``validate`` prints after writing its file."""
-    from ..studies.validation import ANALYSES
-
     lines = []
     for key, lab, _ in ANALYSES:
-        s = results["summary"][key]
-        mae = "—" if s["mae"] is None else f"{s['mae']:.2f} m/s"
-        na = f", no prediction {s['no_prediction']}" if s.get("no_prediction") else ""
+        s = results.summary[key]
+        mae = "—" if s.mae is None else f"{s.mae:.2f} m/s"
+        na = f", no prediction {s.no_prediction}" if s.no_prediction else ""
         lines.append(
-            f"{lab:>4}: MAE of edges {mae} (n = {s['n_edges']}), miss {s['miss']}, "
-            f"false alarm {s['false_alarm']}{na}"
+            f"{lab:>4}: MAE of edges {mae} (n = {s.n_edges}), miss {s.miss}, "
+            f"false alarm {s.false_alarm}{na}"
         )
     for key, lab, _ in ANALYSES:
-        s = results["floquet_summary"][key]
-        mae = "—" if s["mae"] is None else f"{s['mae']:.3f} m/s"
-        lines.append(f"{lab:>4}: against Floquet, MAE of edges {mae} (n = {s['n_edges']})")
-    ms = results["mismatch_summary"]
+        s = results.floquet_summary[key]
+        mae = "—" if s.mae is None else f"{s.mae:.3f} m/s"
+        lines.append(f"{lab:>4}: against Floquet, MAE of edges {mae} (n = {s.n_edges})")
+    ms = results.mismatch_summary
     lines.append(
-        f"periodic start against Floquet: {len(ms['mismatches'])} mismatches in "
-        f"{ms['checked']} points"
+        f"periodic start against Floquet: {len(ms.mismatches)} mismatches in {ms.checked} points"
     )
-    lines.append(f"tension law: {results['tension']}")
+    lines.append(f"tension law: {results.tension}")
     lines.append(f"wrote {out_file}")
     return "\n".join(lines)

@@ -6,6 +6,7 @@ the flow; the damped oscillator's own multipliers typed by hand where the fricti
 never reverses; scipy's solve_ivp on the normal equation for the normal orbit.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -119,6 +120,9 @@ def test_the_paper_point_and_the_issue_examples():
     # Omega = 6, Vb = 12: the periodic sliding response is stable (issue 13)
     stable = F.floquet(Vb=12.0, Omega=6.0)
     assert stable.stable and stable.n_reversals == 0
+    # the verdict text of the band and the validation
+    assert (unstable.verdict, stable.verdict) == ("unstable", "stable")
+    assert dataclasses.replace(stable, stable=None).verdict == "grazing"
 
 
 def test_a_stick_phase_makes_the_tangential_monodromy_singular():

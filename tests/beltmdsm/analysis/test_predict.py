@@ -51,6 +51,16 @@ def test_paper_intervals_match_generated_stability():
     out = predict.paper_intervals(beta1=0.4)
     lo, up = stability.unstable_interval(**{**BASE, "beta1": 0.4})
     assert out["tangential"] == [(float(lo), float(up))]
+    # each sign convention of Eq. (A4) is its own closed form, and the default is "paper"
+    for convention in ("paper", "consistent"):
+        got = predict.paper_intervals(beta1=0.4, convention=convention)
+        for reading in ("tangential", "coupled"):
+            lo, up = stability.unstable_interval(
+                convention=convention, vhat_model=reading, **{**BASE, "beta1": 0.4}
+            )
+            assert got[reading] == ([] if np.isnan(lo) else [(float(lo), float(up))])
+    assert predict.paper_intervals(beta1=0.4, convention="paper") == out
+    assert predict.paper_intervals(convention="consistent") != predict.paper_intervals()
 
 
 def test_two_frequencies_are_refused():

@@ -1,10 +1,12 @@
 """The validation table (beltmdsm.studies.validation), the harmonic balance against runs."""
 
+import dataclasses
 import math
 
 import numpy as np
 import pytest
 
+from beltmdsm.analysis.floquet import floquet
 from beltmdsm.analysis.predict import fast_motion, unstable_intervals
 from beltmdsm.cli import main
 from beltmdsm.model import Model
@@ -13,12 +15,15 @@ from beltmdsm.studies import validation
 from beltmdsm.studies.validation import (
     ANALYSES,
     CASES,
+    Comparison,
+    Run,
     compare,
     disagreement_length,
     harmonic_in_band,
     render_markdown,
     simulated_ranges,
     summarize,
+    summarize_edges,
     validate,
     vb_grid,
 )
@@ -75,32 +80,32 @@ def test_harmonic_of_the_excitation_in_the_omega1_band_is_found():
 
 def test_simulated_edges_lie_half_a_step_outside_the_points_with_the_peak():
     sim = _sim([False, False, True, True, True, False, False, True, False])
-    assert [(r["first"], r["last"]) for r in sim["ranges"]] == [(1.5, 2.5), (4.0, 4.0)]
-    assert [(r["lower"], r["upper"]) for r in sim["ranges"]] == [(1.25, 2.75), (3.75, 4.25)]
-    assert not any(r["lower_censored"] or r["upper_censored"] for r in sim["ranges"])
-    assert sim["top"] == 4.5 and sim["excluded"] == []
+    assert [(r.first, r.last) for r in sim.ranges] == [(1.5, 2.5), (4.0, 4.0)]
+    assert [(r.lower, r.upper) for r in sim.ranges] == [(1.25, 2.75), (3.75, 4.25)]
+    assert not any(r.lower_censored or r.upper_censored for r in sim.ranges)
+    assert sim.top == 4.5 and sim.excluded == []
 
 
 def test_a_range_from_the_lowest_point_starts_at_half_a_step_and_is_not_censored():
     sim = _sim([True, True, False])
-    (r,) = sim["ranges"]
-    assert r["lower"] == 0.25 and not r["lower_censored"]
+    (r,) = sim.ranges
+    assert r.lower == 0.25 and not r.lower_censored
 
 
 def test_stick_slip_points_are_excluded_and_censor_the_neighbouring_edges():
     regime = ["stick_slip"] * 3 + ["sliding_with_reversals"] * 4 + ["continuous_sliding"]
     # the peak in stick-slip does not count; the range then starts next to it
     sim = _sim([True, True, True, True, True, False, False, False], regime)
-    (r,) = sim["ranges"]
-    assert (r["lower"], r["upper"]) == (1.75, 2.75)
-    assert r["lower_censored"] and not r["upper_censored"]
-    assert sim["excluded"] == [("stick_slip", 0.5, 1.5)]
-    assert sim["excluded_vb"] == [0.5, 1.0, 1.5]
+    (r,) = sim.ranges
+    assert (r.lower, r.upper) == (1.75, 2.75)
+    assert r.lower_censored and not r.upper_censored
+    assert sim.excluded == [("stick_slip", 0.5, 1.5)]
+    assert sim.excluded_vb == [0.5, 1.0, 1.5]
 
 
 def test_a_range_reaching_the_top_of_the_grid_is_censored_there():
-    (r,) = _sim([False, True, True])["ranges"]
-    assert r["upper"] == 1.75 and r["upper_censored"]
+    (r,) = _sim([False, True, True]).ranges
+    assert r.upper == 1.75 and r.upper_censored
 
 
 def test_simulated_ranges_rejects_a_grid_that_is_not_the_multiples_of_the_step():
@@ -111,16 +116,17 @@ def test_simulated_ranges_rejects_a_grid_that_is_not_the_multiples_of_the_step()
 def test_compare_pairs_the_hulls_and_names_the_empty_cases():
     sim = _sim([False, False, True, True, True, False, False, True, False])
     comp = compare([(0.0, 2.0), (3.0, 4.5)], sim, H)
-    assert comp["status"] == "paired"
-    assert comp["lower"]["delta"] == pytest.approx(0.0 - 1.25)
-    assert comp["lower"]["from_zero"] and not comp["upper"]["from_zero"]
-    assert comp["upper"]["delta"] == pytest.approx(4.5 - 4.25)
-    assert compare([], sim, H)["status"] == "miss"
+    assert comp.status == "paired"
+    assert (comp.lower.predicted, comp.lower.reference) == (0.0, 1.25)
+    assert comp.lower.delta == pytest.approx(0.0 - 1.25)
+    assert comp.lower.from_zero and not comp.upper.from_zero
+    assert comp.upper.delta == pytest.approx(4.5 - 4.25)
+    assert compare([], sim, H).status == "miss"
     empty = _sim([False] * 5)
-    assert compare([(1.0, 2.0)], empty, H)["status"] == "false_alarm"
+    assert compare([(1.0, 2.0)], empty, H).status == "false_alarm"
     both = compare([], empty, H)
-    assert both["status"] == "both_empty" and both["lower"] is None
-    assert both["disagreement"] == 0.0
+    assert both.status == "both_empty" and both.lower is None and both.upper is None
+    assert both.disagreement == 0.0
 
 
 def test_disagreement_length_by_hand():
@@ -144,10 +150,10 @@ def test_unresolved_points_are_excluded_not_taken_for_points_without_the_peak():
     present = [False, True, True, False, True, True, False, False]
     resolved = [True, True, True, False, True, True, True, True]
     sim = simulated_ranges(H * np.arange(1, 9), present, ["continuous_sliding"] * 8, H, resolved)
-    assert [(r["lower"], r["upper"]) for r in sim["ranges"]] == [(0.75, 1.75), (2.25, 3.25)]
-    assert sim["ranges"][0]["upper_censored"] and sim["ranges"][1]["lower_censored"]
-    assert sim["excluded"] == [(validation.UNRESOLVED, 2.0, 2.0)]
-    assert sim["sliding_points"] == 7
+    assert [(r.lower, r.upper) for r in sim.ranges] == [(0.75, 1.75), (2.25, 3.25)]
+    assert sim.ranges[0].upper_censored and sim.ranges[1].lower_censored
+    assert sim.excluded == [(validation.UNRESOLVED, 2.0, 2.0)]
+    assert sim.sliding_points == 7
     # predicted [0.75, 3.25]: agrees everywhere but the cell of the unresolved point
     assert disagreement_length([(0.75, 3.25)], sim, H) == pytest.approx(0.0)
     with pytest.raises(ValueError, match="resolved must hold one flag per grid point"):
@@ -157,19 +163,11 @@ def test_unresolved_points_are_excluded_not_taken_for_points_without_the_peak():
 def test_an_analysis_without_a_prediction_is_counted_nowhere():
     sim = _sim([False, True, True, False])
     comp = compare(None, sim, H)
-    assert comp == {"status": "no_prediction", "lower": None, "upper": None, "disagreement": None}
-    cases = [
-        _case(
-            {
-                key: (comp if key == "consistent_mdsm" else compare([(0.5, 1.5)], sim, H))
-                for key, _, _ in ANALYSES
-            }
-        )
-    ]
-    s = summarize(cases)["consistent_mdsm"]
-    assert s["no_prediction"] == 1 and s["n_cases"] == 0 and s["mae"] is None
-    assert s["mean_disagreement"] is None and s["paired"] + s["miss"] == 0
-    assert summarize(cases)["paper_tangential_paper"]["paired"] == 1
+    assert comp == Comparison("no_prediction", None, None, None)
+    s = summarize_edges([comp])
+    assert s.no_prediction == 1 and s.n_cases == 0 and s.mae is None
+    assert s.mean_disagreement is None and s.paired + s.miss == 0
+    assert summarize_edges([comp, compare([(0.5, 1.5)], sim, H)]).paired == 1
 
 
 def test_predictions_under_the_clipped_law():
@@ -191,11 +189,7 @@ def test_predictions_under_the_clipped_law():
         )
 
 
-def _case(comparison, comparable=True):
-    return {"name": "x", "comparable": comparable, "comparison": comparison}
-
-
-def test_summary_is_the_mean_over_uncensored_paired_edges_of_comparable_cases():
+def test_summary_is_the_mean_over_uncensored_paired_edges():
     sim = _sim([False, True, True, True, False, False])  # [0.75, 2.25]
     sim_censored = _sim(
         [True, True, False], ["stick_slip", "sliding_with_reversals", "continuous_sliding"]
@@ -209,27 +203,21 @@ def test_summary_is_the_mean_over_uncensored_paired_edges_of_comparable_cases():
         "consistent_mdsm": [(1.0, 2.0)],
     }
 
-    def comparison(s):
-        return {key: compare(predicted[key], s, H) for key, _, _ in ANALYSES}
+    def summary(key):
+        return summarize_edges([compare(predicted[key], s, H) for s in (sim, sim_censored, empty)])
 
-    cases = [
-        _case(comparison(sim)),
-        _case(comparison(sim_censored)),
-        _case(comparison(empty)),
-        _case(comparison(sim), comparable=False),
-    ]
-    s = summarize(cases)
-    a1 = s["paper_tangential_paper"]
+    a1 = summary("paper_tangential_paper")
     # case 1: |0 - 0.75| and |3 - 2.25|; case 2: the lower edge (next to stick-slip)
-    # is censored, the upper |3 - 1.25|; case 3: a false alarm; case 4: left out
-    assert a1["n_edges"] == 3 and a1["mae"] == pytest.approx((0.75 + 0.75 + 1.75) / 3)
-    assert (a1["paired"], a1["false_alarm"], a1["miss"], a1["n_cases"]) == (2, 1, 0, 3)
-    a2 = s["paper_coupled_paper"]
-    assert a2["mae"] is None and a2["n_edges"] == 0
-    assert (a2["miss"], a2["both_empty"]) == (2, 1)
-    assert a2["mean_disagreement"] == pytest.approx((1.5 + 0.5 + 0.0) / 3)
-    mdsm = s["consistent_mdsm"]
-    assert mdsm["mae"] == pytest.approx((0.25 + 0.25 + 0.75) / 3)
+    # is censored, the upper |3 - 1.25|; case 3: a false alarm
+    assert a1.n_edges == 3 and a1.mae == pytest.approx((0.75 + 0.75 + 1.75) / 3)
+    assert a1.max_abs_delta == pytest.approx(1.75)
+    assert (a1.paired, a1.false_alarm, a1.miss, a1.n_cases) == (2, 1, 0, 3)
+    a2 = summary("paper_coupled_paper")
+    assert a2.mae is None and a2.max_abs_delta is None and a2.n_edges == 0
+    assert (a2.miss, a2.both_empty) == (2, 1)
+    assert a2.mean_disagreement == pytest.approx((1.5 + 0.5 + 0.0) / 3)
+    mdsm = summary("consistent_mdsm")
+    assert mdsm.mae == pytest.approx((0.25 + 0.25 + 0.75) / 3)
 
 
 # ------------------------------------------------------------------ quick mode, base set
@@ -241,49 +229,64 @@ def quick_base():
 
 
 def test_quick_validation_wires_the_predictions_of_every_analysis(quick_base):
-    (case,) = quick_base["cases"]
+    (case,) = quick_base.cases
     p = Model()
     for model in ("tangential", "coupled"):
         for convention in ("paper", "consistent"):
             lower, upper = stability.unstable_interval(
                 vhat_model=model, convention=convention, **p.params
             )
-            got = case["predicted"][f"paper_{model}_{convention}"]
+            got = case.predicted[f"paper_{model}_{convention}"]
             assert got == ([] if math.isnan(lower) else [(float(lower), float(upper))])
-    assert case["predicted"]["consistent_mdsm"] == unstable_intervals(p)[0]
-    assert set(case["comparison"]) == {key for key, _, _ in ANALYSES}
+    assert case.predicted["consistent_mdsm"] == unstable_intervals(p)[0]
+    keys = [key for key, _, _ in ANALYSES]
+    assert list(case.predicted) == list(case.comparison) == list(case.floquet_comparison) == keys
 
 
 def test_quick_grid_contains_every_predicted_edge_and_closes_the_simulated_range(quick_base):
-    (case,) = quick_base["cases"]
-    step = quick_base["resolution"].step
-    vb = np.asarray(case["Vb"])
+    (case,) = quick_base.cases
+    step = quick_base.resolution.step
+    vb = np.asarray(case.Vb)
     assert np.allclose(vb, step * np.arange(1, vb.size + 1))
-    edges = [x for ranges in case["predicted"].values() for pair in ranges for x in pair]
+    edges = [x for ranges in case.predicted.values() for pair in ranges for x in pair]
     assert max(edges) <= vb[-1]
-    assert case["regime"][-1] in validation.SLIDING and not case["present"][-1]
-    present = np.asarray(case["present"]) & np.isin(case["regime"], validation.SLIDING)
-    shown = [v for r in case["simulated"]["ranges"] for v in vb if r["first"] <= v <= r["last"]]
+    rest = case.runs["rest"]
+    assert rest.regime[-1] in validation.SLIDING and not rest.present[-1]
+    present = np.asarray(rest.present) & np.isin(rest.regime, validation.SLIDING)
+    shown = [v for r in case.simulated.ranges for v in vb if r.first <= v <= r.last]
     assert shown == list(vb[present])
+    # every run is on the case's grid
+    for run in case.runs.values():
+        assert len(run.present) == len(run.resolved) == len(run.peak_ratio) == vb.size
 
 
 def test_quick_base_set_shows_the_peak_where_the_consistent_mdsm_predicts_it(quick_base):
     # Fig. 2b: the omega1 peak at the base set; the consistent MDSM interval
     # (beltmdsm.analysis.predict) must meet the simulated range.
-    (case,) = quick_base["cases"]
-    ((lo, hi),) = case["predicted"]["consistent_mdsm"]
-    ranges = case["simulated"]["ranges"]
-    assert ranges and any(r["lower"] < hi and lo < r["upper"] for r in ranges)
-    assert case["comparable"]
-    mdsm = case["comparison"]["consistent_mdsm"]
-    assert mdsm["upper"]["delta"] == pytest.approx(hi - ranges[-1]["upper"])
+    (case,) = quick_base.cases
+    ((lo, hi),) = case.predicted["consistent_mdsm"]
+    ranges = case.simulated.ranges
+    assert ranges and any(r.lower < hi and lo < r.upper for r in ranges)
+    assert case.comparable
+    mdsm = case.comparison["consistent_mdsm"]
+    assert mdsm.upper.delta == pytest.approx(hi - ranges[-1].upper)
+    # the summaries are those of the one case
+    assert quick_base.summary == summarize(quick_base.cases)
+    assert quick_base.summary["consistent_mdsm"].mae == pytest.approx(
+        np.mean([abs(e.delta) for e in (mdsm.lower, mdsm.upper) if not e.censored])
+    )
+    # a case that is not comparable is left out of the summary against the runs
+    # from rest, not out of the one against Floquet
+    apart = [dataclasses.replace(case, comparable=False)]
+    assert summarize(apart)["consistent_mdsm"].n_cases == 0
+    assert validation.summarize_floquet(apart) == quick_base.floquet_summary
 
 
 def test_render_markdown_says_how_it_was_made_and_lists_every_analysis(quick_base):
     text = render_markdown(quick_base, True)
-    assert quick_base["tension"] == "allowed"
+    assert quick_base.tension == "allowed"
     assert "Tension law (docs/modelling.md#tension): `allowed`" in text
-    clipped = render_markdown({**quick_base, "tension": "clipped"}, True)
+    clipped = render_markdown(dataclasses.replace(quick_base, tension="clipped"), True)
     assert "python -m derive validate --quick --tension clipped" in clipped
     assert "Tension law (docs/modelling.md#tension): `clipped`" in clipped
     assert text.startswith("# Validation")
@@ -380,7 +383,7 @@ def test_validation_grid_and_cases_refuse_bad_input_by_name():
 
 def test_quick_validation_runs_every_sweep_under_the_law_it_names(monkeypatch):
     laws = []
-    real = validation.sweep
+    real = validation.run.sweep
 
     def recording(*args, **kwargs):
         kind = (
@@ -393,7 +396,7 @@ def test_quick_validation_runs_every_sweep_under_the_law_it_names(monkeypatch):
         assert set(result.table["tension"]) == {kwargs["tension"]}
         return result
 
-    monkeypatch.setattr(validation, "sweep", recording)
+    monkeypatch.setattr(validation.run, "sweep", recording)
     results = validate(
         True, tension="clipped", executor="serial", cache_dir=None, progress=False, cases=["base"]
     )
@@ -405,9 +408,9 @@ def test_quick_validation_runs_every_sweep_under_the_law_it_names(monkeypatch):
         ("rest", "clipped"),
         ("up", "clipped"),
     ]
-    assert results["tension"] == "clipped"
-    (case,) = results["cases"]
-    assert case["comparison"]["consistent_mdsm"]["status"] == "no_prediction"
+    assert results.tension == "clipped"
+    (case,) = results.cases
+    assert case.comparison["consistent_mdsm"].status == "no_prediction"
     text = render_markdown(results, True)
     assert "| base | Fig. 2b |" in text and "| n/a |" in text
     assert "MDSM gives no prediction in 1 comparable case(s)" in text
@@ -416,9 +419,28 @@ def test_quick_validation_runs_every_sweep_under_the_law_it_names(monkeypatch):
 # ------------------------------------------------------------------ Floquet (issue 13)
 
 
-def _verdicts(*names):
+def _verdicts(*names, vb=None):
+    """Verdicts on the grid ``vb`` (default 0.5, 1.0, ...), growth rates by verdict."""
+    vb = H * np.arange(1, len(names) + 1) if vb is None else vb
     rate = {"stable": -0.1, "unstable": 0.05}
-    return [{"verdict": v, "growth_rate": rate.get(v, math.nan)} for v in names]
+    return [
+        validation.PointVerdict(float(v), name, math.nan, rate.get(name, math.nan))
+        for v, name in zip(vb, names)
+    ]
+
+
+def _run(present, resolved):
+    """A run on the grid 0.5, 1.0, ... with these flags (regimes and ratios unused)."""
+    n = len(present)
+    vb = H * np.arange(1, n + 1)
+    return Run(
+        present=list(present),
+        resolved=list(resolved),
+        regime=["continuous_sliding"] * n,
+        peak_ratio=[math.nan] * n,
+        ranges=validation.peak_ranges(vb, present, resolved, H),
+        unresolved=[float(v) for v, ok in zip(vb, resolved) if not ok],
+    )
 
 
 def test_periodic_mismatches_compare_away_from_edges_and_count_each_exclusion():
@@ -426,56 +448,57 @@ def test_periodic_mismatches_compare_away_from_edges_and_count_each_exclusion():
     verdicts = _verdicts(
         "stable", "stable", "unstable", "unstable", "unstable", "absent", "stable", "stable"
     )
-    periodic = {
-        "present": [False, True, True, True, False, False, False, False],
-        "resolved": [True, True, True, True, True, False, True, False],
-    }
+    periodic = _run(
+        [False, True, True, True, False, False, False, False],
+        [True, True, True, True, True, False, True, False],
+    )
     out = validation.periodic_mismatches(vb, verdicts, periodic, [1.3], H)
     # 1.3 +- 0.5: the points 1.0 and 1.5 are near the edge, whatever they show
-    assert out["near_edge"] == [1.0, 1.5]
-    assert out["no_verdict"] == [3.0] and out["unresolved"] == [4.0]
-    assert out["checked"] == 4
-    assert out["mismatches"] == [{"Vb": 2.5, "floquet": "unstable", "peak": False}]
+    assert out.near_edge == [1.0, 1.5]
+    assert out.no_verdict == [3.0] and out.unresolved == [4.0]
+    assert out.checked == 4
+    assert out.mismatches == [validation.Mismatch(2.5, "unstable", False)]
     # a point exactly one step from an edge is near it (rounding forgiven)
     assert validation.periodic_mismatches(
-        [1.0], _verdicts("stable"), {"present": [True], "resolved": [True]}, [1.5], H
-    )["near_edge"] == [1.0]
+        [1.0], _verdicts("stable", vb=[1.0]), _run([True], [True]), [1.5], H
+    ).near_edge == [1.0]
 
 
 def test_coexistence_needs_a_stable_response_that_the_periodic_start_keeps_and_attracts():
     vb = H * np.arange(1, 6)
     verdicts = _verdicts("stable", "stable", "unstable", "stable", "stable")
-    verdicts[4]["growth_rate"] = -0.001  # slow: exp(-0.001 * 90) > 1e-3
+    # slow: exp(-0.001 * 90) > 1e-3
+    verdicts[4] = dataclasses.replace(verdicts[4], growth_rate=-0.001)
     no, yes = False, True
     runs = {
-        "periodic": {"present": [no, yes, yes, no, no], "resolved": [yes] * 5},
-        "rest": {"present": [yes, yes, yes, no, yes], "resolved": [yes] * 5},
-        "up": {"present": [no, no, yes, yes, yes], "resolved": [yes, yes, yes, no, yes]},
-        "down": {"present": [no] * 5, "resolved": [yes] * 5},
+        "periodic": _run([no, yes, yes, no, no], [yes] * 5),
+        "rest": _run([yes, yes, yes, no, yes], [yes] * 5),
+        "up": _run([no, no, yes, yes, yes], [yes, yes, yes, no, yes]),
+        "down": _run([no] * 5, [yes] * 5),
     }
     out = validation.coexistence(vb, verdicts, runs, H, window_start=90.0)
     # 0.5: stable, kept, shown from rest; 1.0: the periodic start leaves it; 1.5:
     # unstable; 2.0: the up sweep shows it but is unresolved; 2.5: too slow to tell
-    assert out["points"] == [0.5] and out["found_by"] == {0.5: ["rest"]}
-    assert out["ranges"] == [(0.25, 0.75)] and out["unsettled"] == [2.5]
+    assert out.points == [0.5] and out.found_by == {0.5: ["rest"]}
+    assert out.ranges == [(0.25, 0.75)] and out.unsettled == [2.5]
 
 
 def test_compare_floquet_pairs_exact_edges_and_censors_the_ends_of_the_range():
     band = {"unstable": [[4.0, 6.5]]}
     comp = validation.compare_floquet([(0.0, 6.4)], band, 0.125, 40.0)
-    assert comp["status"] == "paired"
-    assert comp["lower"]["delta"] == pytest.approx(0.0 - 4.0)
-    assert comp["upper"]["delta"] == pytest.approx(6.4 - 6.5)
-    assert not comp["lower"]["censored"] and not comp["upper"]["censored"]
+    assert comp.status == "paired"
+    assert (comp.lower.predicted, comp.lower.reference) == (0.0, 4.0)
+    assert comp.lower.delta == pytest.approx(0.0 - 4.0)
+    assert comp.upper.delta == pytest.approx(6.4 - 6.5)
+    assert not comp.lower.censored and not comp.upper.censored
     # predicted [0, 6.4] clipped to [0.125, 40]: disagrees on [0.125, 4] and [6.4, 6.5]
-    assert comp["disagreement"] == pytest.approx(3.875 + 0.1)
+    assert comp.disagreement == pytest.approx(3.875 + 0.1)
     at_end = validation.compare_floquet([(1.0, 2.0)], {"unstable": [[0.125, 3.0]]}, 0.125, 40)
-    assert at_end["lower"]["censored"] and not at_end["upper"]["censored"]
-    assert validation.compare_floquet([], band, 0.125, 40)["status"] == "miss"
-    assert (
-        validation.compare_floquet([(1, 2)], {"unstable": []}, 0.125, 40)["status"] == "false_alarm"
-    )
-    assert validation.compare_floquet(None, band, 0.125, 40)["status"] == "no_prediction"
+    assert at_end.lower.censored and not at_end.upper.censored
+    assert validation.compare_floquet([], band, 0.125, 40).status == "miss"
+    assert validation.compare_floquet([(1, 2)], {"unstable": []}, 0.125, 40).status == "false_alarm"
+    none = validation.compare_floquet(None, band, 0.125, 40)
+    assert none == Comparison("no_prediction", None, None, None)
 
 
 def test_band_grid_disagreements_flag_a_change_the_band_missed():
@@ -483,29 +506,36 @@ def test_band_grid_disagreements_flag_a_change_the_band_missed():
     vb = H * np.arange(1, 11)  # 0.5 .. 5.0
     verdicts = _verdicts(*["stable"] * 10)
     assert validation.band_grid_disagreements(vb, verdicts, band, H) == []
-    verdicts[8] = _verdicts("unstable")[0]  # 4.5: unstable, outside
-    verdicts[4] = _verdicts("grazing")[0]  # 2.5: no verdict, skipped
+    verdicts[8] = dataclasses.replace(verdicts[8], verdict="unstable")  # 4.5: outside
+    verdicts[4] = dataclasses.replace(verdicts[4], verdict="grazing")  # 2.5: no verdict
     assert validation.band_grid_disagreements(vb, verdicts, band, H) == [4.5]
 
 
 def test_quick_base_periodic_start_agrees_with_floquet_and_the_band_with_its_grid(quick_base):
-    (case,) = quick_base["cases"]
-    band = case["floquet"]
+    (case,) = quick_base.cases
+    band = case.floquet.band
     ((lo, hi),) = band["unstable"]
     # an independent Floquet evaluation at the band's middle and outside it
-    from beltmdsm.analysis.floquet import floquet
-
     assert floquet(Vb=0.5 * (lo + hi) - 0.5).stable is False
     assert floquet(Vb=lo - 0.5).stable and floquet(Vb=hi + 0.5).stable
-    assert case["mismatches"]["checked"] >= 4 and case["mismatches"]["mismatches"] == []
-    assert case["band_disagreements"] == []
+    assert case.mismatches.checked >= 4 and case.mismatches.mismatches == []
+    assert quick_base.mismatch_summary.checked == case.mismatches.checked
+    assert case.band_disagreements == []
+    # the verdict at each grid point is Floquet's own, inside the band and outside it
+    verdicts = {v.Vb: v for v in case.floquet.verdicts}
+    assert list(verdicts) == case.Vb
+    for vb, verdict in ((5.0, "unstable"), (2.0, "stable"), (9.0, "stable")):
+        f = floquet(Vb=vb)
+        assert verdicts[vb].verdict == f.verdict == verdict
+        assert verdicts[vb].max_abs_multiplier == f.max_abs_multiplier
+        assert verdicts[vb].growth_rate == f.growth_rate
     # the analyses are measured against the band's exact edges
-    mdsm = case["floquet_comparison"]["consistent_mdsm"]
-    ((p_lo, p_hi),) = case["predicted"]["consistent_mdsm"]
-    assert mdsm["upper"]["delta"] == pytest.approx(p_hi - hi)
-    assert mdsm["lower"]["delta"] == pytest.approx(p_lo - lo)
+    mdsm = case.floquet_comparison["consistent_mdsm"]
+    ((p_lo, p_hi),) = case.predicted["consistent_mdsm"]
+    assert mdsm.upper.delta == pytest.approx(p_hi - hi)
+    assert mdsm.lower.delta == pytest.approx(p_lo - lo)
     # tension clipped: no omega1 peak from rest (docs/modelling.md#tension)
-    assert case["runs"]["rest_other"]["ranges"] == []
+    assert case.runs["rest_other"].ranges == []
     text = render_markdown(quick_base, True)
     assert "**0 mismatches**" in text and "## Coexistence" in text
     assert "| base | [4.058, 6.415]" in text
