@@ -435,13 +435,13 @@ def friction_power_sign_cases() -> tuple[SignCase, ...]:
     return tuple(out)
 
 
-def clipped_force_nonnegative(contact: str = "hertz_damp") -> bool:
+def clipped_force_nonnegative(contact: str = _CONTACT, tension: str = "clipped") -> bool:
     """Whether ``contact_force(tension="clipped")`` is ``>= 0`` on each of its branches.
 
     The clipped force is ``Piecewise((F, F > 0), (0, True))``; with ``F`` replaced by a
     positive symbol it is that symbol, with a non-positive one it is 0.
     """
-    Fc = contact_force(contact, "clipped")
+    Fc = contact_force(contact, tension)
     F = normal_force(contact)
     pos, nonpos = sp.Symbol("F_pos", positive=True), sp.Symbol("F_np", nonnegative=True)
     y = sp.Dummy("F", real=True)

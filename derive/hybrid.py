@@ -181,7 +181,9 @@ def response_field(contact: str) -> sp.Matrix:
     flight or separation). The normal equation does not contain the tangential
     state, so this system is integrated once per normal motion; between switches a
     slip mode's tangential motion is then the free motion plus the excitation
-    response minus ``mu_s sgn`` times ``z`` (derive/oscillator.py). The positions
+    response minus ``mu_s sgn`` times ``z`` (derive/oscillator.py), for a friction law
+    whose slip-mode friction is ``mu_s sgn F`` (the capability
+    ``slip_friction_state_independent``, derive/capabilities.py). The positions
     of ``X2, X2'`` are those of the full state, so `surfaces` applies unchanged.
     """
     b1, w1 = P["beta1"], P["omega1"]

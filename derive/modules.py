@@ -428,7 +428,7 @@ def hybrid() -> ModuleSpec:
             "dstate : ndarray, shape (..., 4)\n    Derivative of (z, z', X2, X2').",
             _per(lambda c: list(hy.response_field(c)[0]), "contact"),
             CONTACT,
-            (t,) + hy.response_field("hertz_damp")[1] + hy.STATE[2:] + (hy.mode,),
+            (t,) + hy.response_field(laws.default("contact"))[1] + hy.STATE[2:] + (hy.mode,),
             {
                 **mode_doc,
                 "z": "tangential response to the contact force [m]",
