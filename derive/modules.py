@@ -64,6 +64,11 @@ def law_options(*options: str) -> tuple:
     return tuple(rows)
 
 
+def _or_refuse(expr, reason: str):
+    """``expr``, or a `Refusal` with ``reason`` where the derivation claims no closed form."""
+    return Refusal(reason) if expr is None else expr
+
+
 def _per(build, *options: str) -> dict:
     """``{(choice, ...): build(choice, ...)}`` over every combination of the options' choices."""
     keys = itertools.product(*(laws.choices(o) for o in options))
@@ -161,7 +166,15 @@ def unforced() -> ModuleSpec:
             "Vb_c : ndarray\n    Steady sliding is unstable for 0 <= Vb < Vb_c, where the "
             "tangential\n    damping 2 beta1 omega1 + g mu'(Vb) is negative; NaN where no belt "
             "speed is\n    (Coulomb's law: always).",
-            _per(lambda f, c: ss.critical_belt_speed(c, f), "friction", "contact"),
+            _per(
+                lambda f, c: _or_refuse(
+                    ss.critical_belt_speed(c, f),
+                    f"friction={f!r}: the tangential damping of J^0 vanishes at more than "
+                    "one belt speed; no closed-form boundary is claimed",
+                ),
+                "friction",
+                "contact",
+            ),
             LAWS_FC,
             notes="Stribeck's law: Vb_c = v_s log(g (mu_s - mu_k) / (2 beta1 omega1 v_s)), "
             "solved by SymPy from p(Vb) = 0.",
@@ -814,10 +827,15 @@ def stability() -> ModuleSpec:
     def boundary(f, c, cv, upper=False):
         lower = st.critical_belt_speed(cv, c, f)
         if lower is None:
+            closed, why = cap.closed_form_average(f)
             return Refusal(
-                f"friction={f!r} has no closed-form critical belt speed: the slope of its "
-                f"effective friction is a quadrature (closed_form_average: "
-                f"{cap.closed_form_average(f)[1]})"
+                f"friction={f!r} has no closed-form critical belt speed: "
+                + (
+                    "SymPy's roots of p(Vb) = 0 are not one root sqrt(Vhat^2 - m^2)"
+                    if closed
+                    else f"the slope of its effective friction is a quadrature "
+                    f"(closed_form_average: {why})"
+                )
             )
         if not upper:
             return lower

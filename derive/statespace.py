@@ -263,7 +263,7 @@ def free_of(expr, symbol: sp.Symbol) -> bool:
 @cache
 def critical_belt_speed(
     contact: str = DEFAULT["contact"], friction: str = DEFAULT["friction"]
-) -> sp.Expr:
+) -> sp.Expr | None:
     """The belt speed below which steady sliding is unstable, solved by SymPy; NaN if none.
 
     The tangential damping of ``J^0`` is ``p(Vb) = 2 beta1 omega1 + g mu'(Vb)`` (the
@@ -273,11 +273,11 @@ def critical_belt_speed(
     and NaN stands for "no unstable belt speed" where the root is not positive.
     Without a root (Coulomb: ``p = 2 beta1 omega1`` whatever ``Vb``) the value is NaN.
 
-    Raises
-    ------
-    ValueError
-        If SymPy finds more than one root: the unstable set is then not one interval
-        from 0 and needs its own derivation.
+    Returns
+    -------
+    sympy.Expr or None
+        None where SymPy finds more than one root: the unstable set is then not one
+        interval from 0, and no closed form is claimed.
     """
     p = tangential_damping(contact, friction)
     Vb = P["Vb"]
@@ -285,7 +285,7 @@ def critical_belt_speed(
         return sp.nan
     roots = sp.solve(p, Vb)
     if len(roots) != 1:
-        raise ValueError(f"{friction}: p(Vb) = {p} = 0 has roots {roots}, not one")
+        return None
     return sp.Piecewise((roots[0], roots[0] > 0), (sp.nan, True))
 
 
