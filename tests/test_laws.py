@@ -264,3 +264,55 @@ def test_capabilities_of_the_shipped_laws():
     assert "0 < |Vr| < oo" in stribeck["friction_monotone"][1]
     assert "mu_k < mu_s" in stribeck["friction_monotone"][1]
     assert "Risch" in stribeck["closed_form_average"][1]
+
+
+def _bind_cases():
+    for m in (dynamics, hybrid):
+        for name in m.__all__:
+            if not name.startswith("bind_"):
+                continue
+            public = getattr(m, name[5:])
+            options = inspect.signature(getattr(m, name)).parameters
+            if "friction" not in options and "contact" not in options:
+                continue
+            table = getattr(m, "_" + name[5:].upper())
+            keys = [o for o in options if o not in ("backend", "params")]
+            for key in table:
+                chosen = dict(zip(keys, key))
+                if chosen.get("friction") == "stribeck" or chosen.get("contact") == "hunt_crossley":
+                    yield pytest.param(m, name, public, chosen, id=f"{name}{key}")
+
+
+@pytest.mark.parametrize("m,name,public,options", list(_bind_cases()))
+def test_bound_kernels_of_the_new_laws_equal_their_public_functions(m, name, public, options):
+    """Each bound scalar kernel of Stribeck's and Hunt-Crossley's laws (plain Python)
+    against its public function, both against the mpmath variant: the kernel's error is
+    at most four times the public function's, or 16 ulps of max(1, |value|) (the same
+    expressions; only libm and numpy round their elementary functions differently)."""
+    from generated._support import Refused
+
+    if isinstance(getattr(m, "_" + name[5:].upper())[tuple(options.values())], Refused):
+        return
+    params = {**BASE, "n_h": 1.7, "mu_k": 0.2}
+    pos = [
+        p
+        for p, q in inspect.signature(public).parameters.items()
+        if q.kind is q.POSITIONAL_OR_KEYWORD
+    ]
+    for mode in (-1.0, 0.0, 1.0, 2.0) if "mode" in pos else (None,):
+        args = [mode if p == "mode" else ARGS[p] for p in pos]
+        try:
+            bound = getattr(m, name)(**options, backend="python", **params)
+        except ValueError:  # a switch no run takes (no saltation variant)
+            return
+        got = np.ravel(np.asarray(bound(*args), dtype=float))
+        with np.errstate(all="ignore"):
+            ref_np = np.ravel(np.asarray(public(*args, **options, **params), dtype=float))
+        mp_module = importlib.import_module(f"generated.mp.{m.__name__.split('.')[-1]}")
+        with mpmath.workdps(30):
+            exact = _flat(
+                getattr(mp_module, name[5:])(*map(mpmath.mpf, args), **options, **params), mp=True
+            )
+        for g, r, e in zip(got, ref_np, exact):
+            e = float(e)
+            assert abs(g - e) <= max(4 * abs(r - e), 16 * EPS * max(1.0, abs(e))), (name, mode)
