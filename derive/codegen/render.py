@@ -163,13 +163,20 @@ def _indent(lines):
     return [("    " + line.replace("\n", "\n    ")).rstrip() for line in lines]
 
 
+@functools.cache
+def _eliminate(flat: tuple) -> tuple:
+    """``sp.cse`` of ``flat``, once: the numpy, scalar and mpmath printings of a
+    variant share it (it does not depend on the printer)."""
+    return sp.cse(list(flat), symbols=sp.numbered_symbols("_x"), order="canonical")
+
+
 def _cse(flat, printer):
     """Common subexpressions of ``flat`` as lines, and the reduced outputs.
 
     Quadratures come first, one statement each (`lift_integrals`).
     """
     lines, flat = lift_integrals(flat, printer)
-    repl, reduced = sp.cse(flat, symbols=sp.numbered_symbols("_x"), order="canonical")
+    repl, reduced = _eliminate(tuple(flat))
     return lines + [f"{sym} = {printer.doprint(e)}" for sym, e in repl], reduced
 
 
