@@ -64,6 +64,7 @@ __all__ = [
     "slow_damping",
     "phi",
     "psi",
+    "transfer_function",
     "harmonic_balance",
 ]
 
@@ -223,6 +224,17 @@ def _phasor(force, W) -> sp.Expr:
     return expanded.coeff(sp.sin(W * t)) + sp.I * expanded.coeff(sp.cos(W * t))
 
 
+def transfer_function() -> tuple[sp.Expr, sp.Expr]:
+    """``(Re, Im)`` of ``q(i Omega_t)`` of the tangential oscillator without friction.
+
+    ``q(lambda) = lambda^2 + 2 beta1 omega1 lambda + omega1^2`` is the characteristic
+    polynomial of `derive.oscillator.system_matrix`: a displacement ``x e^(iWt)``
+    needs the force ``q(iW) x``. The fast tangential motion's harmonic balance
+    (`harmonic_balance`) divides the excitation's phasor by it.
+    """
+    return frequency_response(Quadratic.from_block(system_matrix()), P["Omega_t"])
+
+
 @cache
 def harmonic_balance(friction: str = _FRICTION) -> tuple[sp.Expr, sp.Expr]:
     """Residual ``(Re, Im)`` of the harmonic balance of the fast tangential motion (Eq. A1).
@@ -238,7 +250,7 @@ def harmonic_balance(friction: str = _FRICTION) -> tuple[sp.Expr, sp.Expr]:
     divided by ``|F_t|`` (0 where the balance holds).
     """
     W = P["Omega_t"]
-    a, b = frequency_response(Quadratic.from_block(system_matrix()), W)
+    a, b = transfer_function()
     Ft = _phasor(excitation()[0], W)
     s1, c1 = (
         h.subs({u: -P["Vb"], N0: mean_normal_force(), theta: psi - phi})

@@ -1117,6 +1117,16 @@ def correlation() -> ModuleSpec:
             "phase (runtime.predict's consistent MDSM). " + quadrature,
         ),
         FunctionSpec(
+            "transfer_function",
+            "q(i Omega_t) of the tangential oscillator without friction.",
+            "Eq. (4), first row, harmonic",
+            "tuple",
+            "re, im : ndarray\n    omega1^2 - Omega_t^2 and 2 beta1 omega1 Omega_t: a displacement "
+            "x e^(i W t)\n    needs the force q(i W) x.",
+            {(): list(cr.transfer_function())},
+            notes="The transfer function of the harmonic balance (runtime.predict's D).",
+        ),
+        FunctionSpec(
             "harmonic_balance",
             "Residual of the harmonic balance of the fast tangential motion.",
             "Eq. (A1), first harmonic",

@@ -228,6 +228,7 @@ def test_generated_slow_damping_and_harmonic_balance_are_the_runtimes(Vb):
     assert damping == pytest.approx(predict.consistent_mdsm_damping(p, fast=fast), rel=1e-14)
     W = p["Omega_t"]
     D = p["omega1"] ** 2 - W**2 + 2j * p["beta1"] * p["omega1"] * W
+    assert complex(*correlation.transfer_function(**p)) == pytest.approx(D, rel=1e-15)
     Ft = p["alpha_t"] * W**2 * np.exp(1j * p["phase_t"])
     ref = predict._balance((fast.V, fast.phi), p, W, fast.N1, fast.psi, D, Ft)
     got = correlation.harmonic_balance(fast.V, fast.phi, fast.N1, fast.psi, **p)

@@ -20,7 +20,7 @@ import mpmath
 
 from .. import _support
 
-__all__ = ['averaged_friction', 'averaged_friction_slope', 'first_harmonic', 'fast_normal_force', 'fast_tangential_velocity', 'friction_average', 'friction_average_slope', 'friction_harmonic', 'slow_damping', 'harmonic_balance']
+__all__ = ['averaged_friction', 'averaged_friction_slope', 'first_harmonic', 'fast_normal_force', 'fast_tangential_velocity', 'friction_average', 'friction_average_slope', 'friction_harmonic', 'slow_damping', 'transfer_function', 'harmonic_balance']
 
 
 def averaged_friction(u, V, N0, N1, theta, **params):
@@ -1012,6 +1012,59 @@ def _slow_damping__stribeck(V, N1, theta, beta1, omega1, mu_s, g, Vb, mu_k, v_s)
 _SLOW_DAMPING = {
     ('coulomb',): _support.Variant(_slow_damping__coulomb, ('beta1', 'omega1', 'mu_s', 'g', 'Vb', )),
     ('stribeck',): _support.Variant(_slow_damping__stribeck, ('beta1', 'omega1', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
+}
+
+
+def transfer_function(**params):
+    """q(i Omega_t) of the tangential oscillator without friction.
+
+    Implements Eq. (4), first row, harmonic of the paper.
+
+    The transfer function of the harmonic balance (runtime.predict's D).
+
+    mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits.
+
+    Parameters
+    ----------
+    beta1 : mpmath number
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : mpmath number
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    Omega : mpmath number
+        excitation frequency Omega_e, Eq. (4) [rad/s], nonnegative.
+    Omega_t : mpmath number
+        tangential excitation frequency (Fig. 14b) [rad/s], nonnegative, default:
+        ``Omega``.
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    re, im : ndarray
+        omega1^2 - Omega_t^2 and 2 beta1 omega1 Omega_t: a displacement x e^(i W t)
+        needs the force q(i W) x.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing (also
+        a parameter of the chosen law).
+    """
+    _variant = _support.choose("transfer_function", _TRANSFER_FUNCTION)
+    _values = _support.mp_arguments("transfer_function", _variant.names, params)
+    return _variant.impl(*_values)
+
+
+def _transfer_function__impl(beta1, omega1, Omega_t):
+    return (-(Omega_t - omega1)*(Omega_t + omega1), 2*Omega_t*beta1*omega1,)
+
+
+_TRANSFER_FUNCTION = {
+    (): _support.Variant(_transfer_function__impl, ('beta1', 'omega1', 'Omega_t', )),
 }
 
 
