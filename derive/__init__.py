@@ -1,7 +1,14 @@
 """Symbolic derivations of the forced 2-DOF mass-on-belt model, and the code generator.
 
 Modules, one per concept (the paper's equations they implement in their docstrings):
-``parameters`` (the parameter table), ``model`` (Eqs. 1-4), ``statespace``
-(Eqs. 5-12), ``dynamics`` (Eq. 4 for simulation), ``modules`` (what generated/
-contains), ``codegen`` (writes generated/), ``cli`` (``python -m derive``).
+``parameters`` (the model's own parameters), ``laws`` (the registry of friction,
+contact and tension laws, with their parameters), ``units`` (the contact law's units),
+``model`` (Eqs. 1-4 from the chosen laws), ``statespace`` (Eqs. 5-12), ``dynamics``
+(Eq. 4 for simulation), ``hybrid`` (modes, surfaces, saltation), ``oscillator``,
+``fit`` (Eqs. 16-17), ``mdsm`` (Eqs. 13-21, A1-A2), ``averaging`` (a law over a fast
+period), ``friction`` (Eqs. 23-25), ``stability`` (Eqs. 22, 26-28, A3-A8),
+``correlation`` (the consistent MDSM), ``contraction``, ``capabilities`` (what each
+choice of laws allows), ``modules`` (what generated/ contains), ``codegen`` (writes
+generated/), ``paper``, ``paper_check`` and ``simulated_claims`` (the paper check),
+``cli`` (``python -m derive``).
 """

@@ -68,8 +68,8 @@ def _generate(args) -> int:
         return 0
     changed = codegen.write(files)
     for m in mods:
-        names = ", ".join(f.name for f in m.functions)
-        print(f"generated/{m.name}.py (+ mp/{m.name}.py): {names}")
+        names = ", ".join([f.name for f in m.functions] + [c[0] for c in m.constants])
+        print(f"generated/{m.name}.py{f' (+ mp/{m.name}.py)' if m.mp else ''}: {names}")
     print(
         f"derived {sum(len(m.functions) for m in mods)} functions in {len(mods)} modules "
         f"in {elapsed:.1f} s; wrote {len(changed)} changed file(s) of {len(files)}."

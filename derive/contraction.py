@@ -26,18 +26,23 @@ What this module proves with SymPy (each a function returning the result):
 2. `difference_energy`, `difference_power`: ``E_d`` is the tangential part of the
    mechanical energy of `derive.dynamics.energy` evaluated at the difference, and
    its rate along the two motions (accelerations of `derive.dynamics.accelerations`,
-   friction directions ``s_a, s_b``) is identically ``-c1 e'^2 - (mu(s_a) - mu(s_b))
-   F e'`` with ``c1 = -d a_free/d X1'`` and ``mu(s) = mu_s s``
-   (`derive.model.friction_coefficient`), ``F`` the contact force of the tension law.
+   friction directions ``s_a, s_b``) is identically ``-c1 e'^2 - (f_a - f_b) F e'``
+   with ``c1 = -d a_free/d X1'`` and ``f`` the signed friction coefficient of each
+   run (`derive.model.friction_coefficient`: ``mu_s s`` for Coulomb's law, Eq. 3),
+   ``F`` the contact force of the tension law.
 3. `stick_is_set_valued`: the stick field of `derive.hybrid` (``Y1' = 0``) is the slip
-   field with ``s = a_free / (mu_s F)``, which lies in ``[-1, 1]`` exactly while the
-   stick guard ``|a_free| <= mu_s F`` holds.
+   field at ``Vr = 0`` with ``s = a_free / (mu(0) F)``, which lies in ``[-1, 1]``
+   exactly while the stick guard ``|a_free| <= mu(0) F`` holds.
 4. `friction_power_sign_cases`: ``(s_a - s_b)(v_a - v_b) >= 0`` in each of the nine
    pairs of friction states (slip back, stick, slip forward for each run; stick
    with ``s`` at either end of ``[-1, 1]`` and inside it: 25 cases), by substitution of the
    state's ``Vr`` and ``s`` and SymPy's sign decision under the symbols'
    assumptions: the monotonicity of the set-valued ``Sgn``. ``v_a - v_b = Vr_a -
    Vr_b`` because both runs see the same ``Vb``.
+   `monotonicity`: the friction law beyond the sign, ``sgn(Vr) mu(|Vr|)`` with
+   ``mu(0) >= 0`` and ``mu' >= 0`` (Coulomb's constant ``mu_s``); it fails for
+   Stribeck's law, which falls at every ``|Vr| > 0`` where ``mu_k < mu_s``, and then
+   the claim does not hold (`claim` per friction law says so).
 5. `clipped_force_nonnegative`: ``max(F, 0)`` of `derive.model.contact_force` with
    ``tension="clipped"`` is ``>= 0`` on each branch.
 6. `sign_of_friction_power`: from 4, ``mu_s >= 0`` and ``F >= 0`` the friction term
@@ -68,14 +73,13 @@ them, as ``omega1 = 12 = 3 Omega`` of Fig. 20c). No self-excited vibration (a fr
 oscillation near ``omega1``, with a free phase) and no coexistence of tangential
 responses are possible, for every parameter set with ``beta1 > 0`` and ``Vb > 0``.
 
-`difference_runs`, `difference_works` and `reversals_by_force_sign` check this with
-the simulation (`beltmdsm.simulation`): two runs with one normal motion, the energy
-balance of their difference split by the sign of ``F``, and the sign of ``F`` at the
-reversals of the friction.
+`derive.simulated_claims` checks this with the simulation: two runs with one normal
+motion, the energy balance of their difference split by the sign of ``F``, and the
+sign of ``F`` at the reversals of the friction.
 
 Conditions, each shown by `breaking_conditions` to be needed:
 
-* Coulomb friction non-decreasing in ``Vr`` (the set-valued ``mu_s Sgn``). A
+* Friction non-decreasing in ``Vr`` (Coulomb's set-valued ``mu_s Sgn``). A
   coefficient ``mu_s sgn(Vr) + m(Vr)`` gives, on one slip branch,
   ``(mu(v_a) - mu(v_b))(v_a - v_b) = (m(v_a) - m(v_b))(v_a - v_b)`` (SymPy), which is
   ``m'(xi)(v_a - v_b)^2 < 0`` for a falling ``m`` by the mean value theorem (words).
@@ -102,18 +106,21 @@ from functools import cache
 
 import sympy as sp
 
-from . import dynamics, hybrid
+from . import dynamics, hybrid, laws
 from .model import (
     CONTACT_LAWS,
+    SPEED,
     TENSION_LAWS,
     X1,
     X2,
     Y1,
     Y2,
     P,
+    coefficient,
     contact_force,
     friction_coefficient,
     normal_force,
+    static_coefficient,
 )
 
 __all__ = [
@@ -140,6 +147,8 @@ __all__ = [
     "clipped_force_nonnegative",
     "sign_of_friction_power",
     "breaking_conditions",
+    "Monotonicity",
+    "monotonicity",
     "claim",
 ]
 
@@ -150,6 +159,12 @@ sa, sb = sp.symbols("s_a s_b", real=True)
 e, ep = sp.symbols("e e_dot", real=True)
 #: The friction states of one run: the three parts of the graph of Sgn.
 STATES = ("slip_back", "stick", "slip_forward")
+_FRICTION, _CONTACT, _TENSION = (laws.default(o) for o in laws.OPTIONS)
+#: The set-valued part of every friction law, mu(0) Sgn(Vr): the steps on the sign
+#: (`friction_power_sign_cases`, `sign_of_friction_power`, `breaking_conditions`) are
+#: derived for Coulomb's law, whose mu(0) = mu_s stands for any nonnegative mu(0)
+#: (`monotonicity` checks mu(0) >= 0 of each law).
+_SIGN_LAW = laws.default("friction")
 
 
 def _run(expr, X, Y):
@@ -190,18 +205,26 @@ def difference_energy() -> sp.Expr:
 
 
 def tangential_acceleration(
-    contact: str = "hertz_damp", tension: str = "allowed", X=X1, Y=Y1, s=sa
+    contact: str = _CONTACT,
+    tension: str = _TENSION,
+    X=X1,
+    Y=Y1,
+    s=sa,
+    friction: str = _FRICTION,
 ) -> sp.Expr:
     """``X1''`` of Eq. (4) in contact for the tangential state ``(X, Y)`` and direction ``s``.
 
     `derive.dynamics.accelerations` with ``direction=s``; ``s`` is any element of
-    ``Sgn(Y - Vb)`` (in stick ``s = a_free / (mu_s F)``, `stick_is_set_valued`).
+    ``Sgn(Y - Vb)`` (in stick ``s = a_free / (mu(0) F)``, `stick_is_set_valued`).
     """
-    return _run(dynamics.accelerations(contact, direction=s, tension=tension)[0], X, Y)
+    acc = dynamics.accelerations(contact, direction=s, tension=tension, friction=friction)
+    return _run(acc[0], X, Y)
 
 
 @cache
-def difference_power(contact: str = "hertz_damp", tension: str = "allowed") -> sp.Expr:
+def difference_power(
+    contact: str = _CONTACT, tension: str = _TENSION, friction: str = _FRICTION
+) -> sp.Expr:
     """``dE_d/dt`` along two motions under one normal motion, by the chain rule.
 
     ``dE_d/dt = dE_d/de e' + dE_d/de' e''`` with ``e' = Y1_a - Y1_b`` and ``e''`` the
@@ -211,8 +234,8 @@ def difference_power(contact: str = "hertz_damp", tension: str = "allowed") -> s
     """
     Ed = difference_energy()
     de = Ya - Yb
-    dde = tangential_acceleration(contact, tension, Xa, Ya, sa) - tangential_acceleration(
-        contact, tension, Xb, Yb, sb
+    dde = tangential_acceleration(contact, tension, Xa, Ya, sa, friction) - tangential_acceleration(
+        contact, tension, Xb, Yb, sb, friction
     )
     rate = sp.diff(Ed, e) * de + sp.diff(Ed, ep) * dde
     return rate.xreplace({e: Xa - Xb, ep: de})
@@ -237,39 +260,116 @@ class PowerSplit:
 
 
 @cache
-def power_split(contact: str = "hertz_damp", tension: str = "allowed") -> PowerSplit:
+def power_split(
+    contact: str = _CONTACT, tension: str = _TENSION, friction: str = _FRICTION
+) -> PowerSplit:
     """Split `difference_power` into the dashpot's and the friction's part.
 
-    ``viscous = -c1 e'^2``, ``friction = -(mu(s_a) - mu(s_b)) F e'`` with
-    ``mu(s) = mu_s s`` (Eq. 3); ``exact`` is True when ``total - viscous - friction``
-    expands to zero.
+    ``viscous = -c1 e'^2``, ``friction = -(f_a - f_b) F e'`` with ``f`` the signed
+    coefficient of the friction law on each run (``mu_s s`` for Eq. 3);
+    ``exact`` is True when ``total - viscous - friction`` expands to zero.
     """
-    total = difference_power(contact, tension)
+    total = difference_power(contact, tension, friction)
     c1 = -sp.diff(dynamics.free_acceleration(), Y1)
     F = contact_force(contact, tension)
     de = Ya - Yb
     viscous = -c1 * de**2
-    factor = -(friction_coefficient(sa) - friction_coefficient(sb)) * de
+    f_a = _run(friction_coefficient(friction, sa), Xa, Ya)
+    f_b = _run(friction_coefficient(friction, sb), Xb, Yb)
+    factor = -(f_a - f_b) * de
     friction = factor * F
     exact = sp.expand(total - viscous - friction) == 0
     return PowerSplit(total, c1, F, viscous, factor, friction, bool(exact))
 
 
-def stick_is_set_valued(contact: str = "hertz_damp") -> bool:
-    """Whether the stick mode is the slip field with ``s = a_free / (mu_s F)``.
+def stick_is_set_valued(contact: str = _CONTACT, friction: str = _FRICTION) -> bool:
+    """Whether the stick mode is the slip field at ``Vr = 0`` with ``s = a_free / (mu(0) F)``.
 
-    `derive.hybrid.field_of_mode`: the ``Y1'`` entry of the ``slip_forward`` field with
-    its direction ``+1`` replaced by ``s`` (the field is affine in ``s``) equals the
-    stick field's ``0`` at that ``s``. The stick guard ``mu_s F -+ a_free >= 0``
-    (`derive.hybrid.surfaces`) is ``-1 <= s <= 1``.
+    `derive.hybrid.field_of_mode`: the ``Y1'`` entry of the ``slip_forward`` field at
+    ``X1' = Vb`` with its direction ``+1`` replaced by ``s`` (the field is affine in
+    ``s`` there, the coefficient being ``mu(0)``) equals the stick field's ``0`` at that
+    ``s``. The stick guard ``mu(0) F -+ a_free >= 0`` (`derive.hybrid.surfaces`) is
+    ``-1 <= s <= 1``.
     """
-    slip = hybrid.field_of_mode("slip_forward", contact)[1]
-    stick = hybrid.field_of_mode("stick", contact)[1]
+    at_rest = {Y1: P["Vb"]}
+    slip = hybrid.field_of_mode("slip_forward", contact, friction)[1].subs(at_rest)
+    stick = hybrid.field_of_mode("stick", contact, friction)[1]
     F = hybrid.contact_force_in_contact(contact)
-    a_free = dynamics.free_acceleration()
-    mu = P["mu_s"]
+    a_free = dynamics.free_acceleration().subs(at_rest)
+    mu = static_coefficient(friction)
     with_s = slip + mu * F - mu * sa * F  # direction +1 replaced by s
     return bool(sp.simplify(with_s.xreplace({sa: a_free / (mu * F)}) - stick) == 0)
+
+
+@dataclass(frozen=True)
+class Monotonicity:
+    """Whether ``f(Vr) = sgn(Vr) mu(|Vr|)`` is non-decreasing, and where it is not.
+
+    ``slope`` is ``d mu / d|Vr|``; ``holds`` is True when SymPy proves ``mu(0) >= 0``
+    and ``slope >= 0`` for every speed and every parameter value of the domain;
+    otherwise ``falls`` says for which ``|Vr|`` (and under which condition on the
+    parameters) the slope is negative, and ``reason`` is one line for the reports.
+    """
+
+    friction: str
+    slope: sp.Expr
+    holds: bool
+    falls: str
+    reason: str
+
+
+def _inequality(expr: sp.Expr) -> str:
+    """``expr < 0`` with the negative terms moved to the right: ``mu_k < mu_s``."""
+    terms = sp.Add.make_args(sp.expand(expr))
+    left = sp.Add(*(x for x in terms if not x.could_extract_minus_sign()))
+    right = -sp.Add(*(x for x in terms if x.could_extract_minus_sign()))
+    return f"{sp.sstr(left)} < {sp.sstr(right)}"
+
+
+@cache
+def monotonicity(friction: str = _FRICTION) -> Monotonicity:
+    """Decide with SymPy whether the friction law is non-decreasing in ``Vr``.
+
+    The set-valued sign is monotone (`friction_power_sign_cases`); ``sgn(Vr) mu(|Vr|)``
+    is then non-decreasing exactly when ``mu(0) >= 0`` (the jump at ``Vr = 0``) and
+    ``mu' >= 0`` at every speed. The slope is factored; factors SymPy proves positive
+    or negative are dropped (with their sign), and what remains decides: a factor free
+    of the speed gives a condition on the parameters under which the law falls at
+    every ``|Vr| > 0`` (Stribeck's: ``mu_k < mu_s``); one that depends on the speed
+    gives the speeds between the roots SymPy finds.
+    """
+    m0 = static_coefficient(friction)
+    slope = sp.diff(coefficient(friction, SPEED), SPEED)
+    shown = slope.subs(SPEED, sp.Symbol("|Vr|", nonnegative=True))
+    if m0.is_nonnegative is not True:
+        why = f"friction={friction!r}: mu(0) = {sp.sstr(m0)} is not provably >= 0"
+        return Monotonicity(friction, slope, False, "Vr = 0", why)
+    if slope == 0 or slope.is_nonnegative:
+        why = (
+            f"friction={friction!r}: mu(0) >= 0 and dmu/d|Vr| = {sp.sstr(shown)} >= 0: "
+            "non-decreasing in Vr"
+        )
+        return Monotonicity(friction, slope, True, "", why)
+    sign, rest = 1, []
+    for factor in sp.Mul.make_args(sp.factor(slope)):
+        if factor.is_positive:
+            continue
+        if factor.is_negative:
+            sign = -sign
+            continue
+        rest.append(factor)
+    remaining = sign * sp.Mul(*rest)
+    if SPEED not in remaining.free_symbols:
+        falls = f"every |Vr| > 0 (0 < |Vr| < oo) where {_inequality(remaining)}"
+    else:
+        roots = sp.solve(slope, SPEED)
+        falls = f"|Vr| where {sp.sstr(shown)} < 0 (roots at {sp.sstr(roots)})"
+    why = (
+        f"friction={friction!r}: dmu/d|Vr| = {sp.sstr(shown)} < 0 for {falls}: the "
+        "coefficient falls with the sliding speed there, so sgn(Vr) mu(|Vr|) is not "
+        "monotone in Vr"
+    )
+    return Monotonicity(friction, slope, False, falls, why)
 
 
 @dataclass(frozen=True)
@@ -335,13 +435,13 @@ def friction_power_sign_cases() -> tuple[SignCase, ...]:
     return tuple(out)
 
 
-def clipped_force_nonnegative(contact: str = "hertz_damp") -> bool:
+def clipped_force_nonnegative(contact: str = _CONTACT, tension: str = "clipped") -> bool:
     """Whether ``contact_force(tension="clipped")`` is ``>= 0`` on each of its branches.
 
     The clipped force is ``Piecewise((F, F > 0), (0, True))``; with ``F`` replaced by a
     positive symbol it is that symbol, with a non-positive one it is 0.
     """
-    Fc = contact_force(contact, "clipped")
+    Fc = contact_force(contact, tension)
     F = normal_force(contact)
     pos, nonpos = sp.Symbol("F_pos", positive=True), sp.Symbol("F_np", nonnegative=True)
     y = sp.Dummy("F", real=True)
@@ -364,7 +464,7 @@ def sign_of_friction_power() -> dict[str, bool]:
     """
     M = sp.Symbol("M", nonnegative=True)
     Fp, Fm = sp.Symbol("F_p", nonnegative=True), sp.Symbol("F_m", negative=True)
-    mu = friction_coefficient(1)
+    mu = friction_coefficient(_SIGN_LAW, 1)
     split = power_split()
     ua, ub = sp.symbols("u_a u_b", positive=True)
     mu_pos = sp.Symbol("mu_pos", positive=True)
@@ -405,8 +505,8 @@ def breaking_conditions() -> dict[str, tuple[bool, str]]:
     Vb = P["Vb"]
     # falling friction: mu(Vr) = mu_s s + m(Vr), one branch (s_a = s_b = s)
     m = sp.Function("m")
-    mu_a = friction_coefficient(s) + m(Ya - Vb)
-    mu_b = friction_coefficient(s) + m(Yb - Vb)
+    mu_a = friction_coefficient(_SIGN_LAW, s) + m(Ya - Vb)
+    mu_b = friction_coefficient(_SIGN_LAW, s) + m(Yb - Vb)
     factor = sp.expand((mu_a - mu_b) * de)
     generic = sp.expand(factor - (m(Ya - Vb) - m(Yb - Vb)) * de) == 0
     kappa = sp.Symbol("kappa", positive=True)
@@ -437,7 +537,8 @@ def breaking_conditions() -> dict[str, tuple[bool, str]]:
     # two-way coupling: a force per run
     dF = sp.Symbol("dF", positive=True)
     mu_pos = sp.Symbol("mu_pos", positive=True)
-    coupled = -(friction_coefficient(-1) * (F + dF) - friction_coefficient(-1) * F) * de
+    mu = friction_coefficient(_SIGN_LAW, -1)
+    coupled = -(mu * (F + dF) - mu * F) * de
     coupled = sp.factor(coupled.xreplace({Ya: Yb + d, P["mu_s"]: mu_pos}))
     ok = coupled.is_positive and sp.expand(coupled - mu_pos * dF * d) == 0
     out["two-way coupling"] = (
@@ -463,13 +564,16 @@ class Step:
 
 @dataclass(frozen=True)
 class ContractionClaim:
-    """The contraction result: statement, conditions, converse, and its steps."""
+    """The contraction result for one friction law: statement, conditions, converse,
+    its steps, and the law's monotonicity (where it fails, the claim does not hold)."""
 
     statement: str
     conditions: tuple[str, ...]
     converse: str
     steps: tuple[Step, ...]
     breaks: dict
+    friction: str
+    monotone: Monotonicity
 
     @property
     def proved_by_sympy(self) -> bool:
@@ -478,15 +582,21 @@ class ContractionClaim:
 
 
 @cache
-def claim() -> ContractionClaim:
-    """Run every SymPy step (module docstring) and state the result."""
+def claim(friction: str = _FRICTION) -> ContractionClaim:
+    """Run every SymPy step (module docstring) for the friction law ``friction``.
+
+    The steps on the set-valued sign hold for every law; the step "friction law
+    non-decreasing" (`monotonicity`) decides whether the law keeps the claim: it
+    fails for Stribeck's law, which falls with the sliding speed.
+    """
     coupling = one_way_coupling()
-    splits = {(c, tn): power_split(c, tn) for c in CONTACT_LAWS for tn in TENSION_LAWS}
+    splits = {(c, tn): power_split(c, tn, friction) for c in CONTACT_LAWS for tn in TENSION_LAWS}
     cases = friction_power_sign_cases()
-    stick = {c: stick_is_set_valued(c) for c in CONTACT_LAWS}
+    stick = {c: stick_is_set_valued(c, friction) for c in CONTACT_LAWS}
     clipped = {c: clipped_force_nonnegative(c) for c in CONTACT_LAWS}
     signs = sign_of_friction_power()
     breaks = breaking_conditions()
+    law = monotonicity(friction)
     n_pairs = len({(c.state_a, c.state_b) for c in cases})
     steps = (
         Step(
@@ -500,15 +610,15 @@ def claim() -> ContractionClaim:
             "difference energy and power",
             "SymPy",
             all(s.exact for s in splits.values()),
-            "dE_d/dt = -c1 e'^2 - mu_s F (s_a - s_b) e' (expand to zero), both contact "
-            "and both tension laws",
+            "dE_d/dt = -c1 e'^2 - (f_a - f_b) F e' (expand to zero; f the signed "
+            f"coefficient of friction={friction!r}), every contact and tension law",
         ),
         Step(
             "stick is Sgn at Vr = 0",
             "SymPy",
             all(stick.values()),
-            "the stick field is the slip field with s = a_free/(mu_s F), in [-1, 1] "
-            "exactly while the stick guard holds",
+            "the stick field is the slip field at Vr = 0 with s = a_free/(mu(0) F), in "
+            "[-1, 1] exactly while the stick guard holds",
         ),
         Step(
             "Sgn is monotone",
@@ -517,6 +627,7 @@ def claim() -> ContractionClaim:
             f"(s_a - s_b)(Vr_a - Vr_b) >= 0 in all {len(cases)} cases ({n_pairs} pairs "
             "of slip back / stick / slip forward, stick with s = -1, inside, +1)",
         ),
+        Step("friction law non-decreasing", "SymPy", law.holds, law.reason),
         Step(
             "clipped force >= 0",
             "SymPy",
@@ -529,7 +640,7 @@ def claim() -> ContractionClaim:
             signs["friction part = -mu_s F (s_a - s_b)(Vr_a - Vr_b)"]
             and signs["F >= 0 -> <= 0"]
             and signs["c1 e'^2 >= 0"],
-            "F >= 0: friction part <= 0, so dE_d/dt <= -c1 e'^2 <= 0",
+            "F >= 0 and a non-decreasing law: friction part <= 0, so dE_d/dt <= -c1 e'^2 <= 0",
         ),
         Step(
             "converse (tension allowed)",
@@ -550,13 +661,14 @@ def claim() -> ContractionClaim:
     )
     return ContractionClaim(
         statement=(
-            "with tension clipped, all tangential motions under one normal motion "
-            "converge to one (the periodic response when the normal motion is "
-            "periodic): no self-excited vibration and no coexistence of "
-            "tangential responses, for every parameter set"
+            "with tension clipped and a friction law non-decreasing in Vr, all "
+            "tangential motions under one normal motion converge to one (the periodic "
+            "response when the normal motion is periodic): no self-excited vibration "
+            "and no coexistence of tangential responses, for every parameter set"
         ),
         conditions=(
-            "Coulomb friction mu_s Sgn(Vr), non-decreasing in Vr (static = kinetic)",
+            "a friction law sgn(Vr) mu(|Vr|) non-decreasing in Vr (Coulomb's mu_s Sgn: "
+            "static = kinetic)",
             "beta1 > 0 (strict decay of E_d)",
             "one-way coupling: the normal equation is free of the tangential state",
             "F >= 0 (tension clipped)",
@@ -568,164 +680,6 @@ def claim() -> ContractionClaim:
         ),
         steps=steps,
         breaks=breaks,
+        friction=friction,
+        monotone=law,
     )
-
-
-# Numerical evidence (the runtime) ---------------------------------------------------------
-
-
-@dataclass
-class DifferenceRun:
-    """Two runs with one normal motion and different tangential initial states.
-
-    ``a`` starts at the default state (Eq. 9 at rest), ``b`` at the same normal state
-    with ``(X1, X1')`` shifted by ``shift``; ``energy`` is `difference_energy` at the
-    samples ``t`` of both runs.
-    """
-
-    a: object
-    b: object
-    shift: tuple
-    t: object
-    energy: object
-
-
-def _numeric(expr, names):
-    """``expr`` as a numpy function of the symbols ``names`` (from the derivation)."""
-    return sp.lambdify(names, expr, "numpy")
-
-
-def difference_runs(
-    shift=(5.0, -3.0), *, tension="clipped", contact="hertz_damp", t_end=1000.0, **overrides
-) -> DifferenceRun:
-    """Simulate Eq. (4) twice under one normal motion (`beltmdsm.simulation.simulate`).
-
-    Parameters
-    ----------
-    shift : (dX1, dX1')
-        Tangential offset of run ``b``'s initial state from run ``a``'s.
-    tension, contact : str
-    t_end : float
-    **overrides
-        Parameters and solver settings for both runs (``Vb=4``, ``rtol=1e-10``).
-    """
-    import numpy as np
-
-    from beltmdsm.model import Model, initial_state
-    from beltmdsm.settings import SolverSettings
-    from beltmdsm.simulation import simulate
-
-    settings = {k: overrides.pop(k) for k in list(overrides) if k in SolverSettings.names()}
-    # the superposition integrates the normal motion once: both runs see the same
-    # F(t), bit for bit, as the argument has it
-    settings.setdefault("solver", "superposition")
-    model = Model(contact=contact, tension=tension, **overrides)
-    y0 = initial_state(model)
-    y0b = [y0[0] + shift[0], y0[1] + shift[1], y0[2], y0[3]]
-    a = simulate(model, t_end=t_end, **settings)
-    b = simulate(model, t_end=t_end, y0=y0b, **settings)
-    Ed = _numeric(difference_energy(), (e, ep, P["omega1"]))
-    energy = Ed(a.y[0] - b.y[0], a.y[1] - b.y[1], model["omega1"])
-    return DifferenceRun(a, b, tuple(shift), a.t, np.asarray(energy, dtype=float))
-
-
-def _force_zeros(sim, t0, t1):
-    """Times in (t0, t1) where the run's normal force changes sign, to 1e-13 s."""
-    import numpy as np
-
-    t, F = sim.t, sim.normal_force
-    keep = (t >= t0) & (t <= t1)
-    t, F = t[keep], F[keep]
-    k = np.flatnonzero(np.sign(F[:-1]) * np.sign(F[1:]) < 0)
-    lo, hi = t[k].copy(), t[k + 1].copy()
-    s_lo = np.sign(F[k])
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        same = np.sign(sim.trajectory.forces(mid)[0]) == s_lo
-        lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
-    return 0.5 * (lo + hi)
-
-
-def difference_works(run: DifferenceRun, t0=None, t1=None) -> dict:
-    """The energy balance of the difference over ``[t0, t1]`` by quadrature.
-
-    ``dE_d/dt = -c1 e'^2 + (f_a - f_b) e'`` (`power_split`; ``f`` the friction force of
-    each run, `beltmdsm.integrate.trajectory.Trajectory.forces`, which is ``-mu_s s F`` with
-    ``s`` in Sgn, the holding force in stick and 0 without contact). Integrated with
-    `Trajectory.integrate` (Gauss-Legendre on the pieces of run ``a``, split at run
-    ``b``'s switches and knots and at the sign changes of ``F``).
-
-    Returns
-    -------
-    dict
-        ``energy_change`` (``E_d(t1) - E_d(t0)`` from the states), ``work_viscous``
-        (``-int c1 e'^2``), ``work_friction_push`` and ``work_friction_pull`` (the
-        friction part while ``F >= 0`` and while ``F < 0``), ``imbalance``
-        (change minus the three works) and ``scale`` (the integral of the absolute
-        values of both parts, for tolerances).
-    """
-    import numpy as np
-
-    a, b = run.a.trajectory, run.b.trajectory
-    t0 = a.segments[0].t0 if t0 is None else t0
-    t1 = min(a.t_end, b.t_end) if t1 is None else t1
-    p = run.a.params
-    c1 = float(power_split().c1.subs({P["beta1"]: p["beta1"], P["omega1"]: p["omega1"]}))
-    cuts = [np.array([t0, t1]), _force_zeros(run.a, t0, t1)]
-    for s in b.segments:
-        cuts.append(np.concatenate([[s.t0, s.t1], s.knots]))
-    edges = np.unique(np.concatenate(cuts))
-    edges = edges[(edges >= t0) & (edges <= t1)]
-
-    def powers(t, y, mode):
-        F, fa = a.forces(t, y, mode)
-        yb = b.state(t)
-        _, fb = b.forces(t, yb, b.mode(t))
-        de = y[1] - yb[1]
-        visc = -c1 * de**2
-        fric = (fa - fb) * de
-        push = np.where(F >= 0, fric, 0.0)
-        pull = np.where(F < 0, fric, 0.0)
-        return np.stack([visc, push, pull, np.abs(visc) + np.abs(fric)])
-
-    W = a.integrate(powers, edges).sum(axis=1)
-    ends = [np.array([t0]), np.array([t1])]
-    ya, yb = (a.state(ends[0]), a.state(ends[1])), (b.state(ends[0]), b.state(ends[1]))
-    Ed = _numeric(difference_energy(), (e, ep, P["omega1"]))
-    E0 = float(Ed(ya[0][0] - yb[0][0], ya[0][1] - yb[0][1], p["omega1"])[0])
-    E1 = float(Ed(ya[1][0] - yb[1][0], ya[1][1] - yb[1][1], p["omega1"])[0])
-    change = E1 - E0
-    return {
-        "energy_change": change,
-        "work_viscous": float(W[0]),
-        "work_friction_push": float(W[1]),
-        "work_friction_pull": float(W[2]),
-        "imbalance": change - float(W[0] + W[1] + W[2]),
-        "scale": float(W[3]),
-    }
-
-
-def reversals_by_force_sign(sim, t0=0.0) -> dict:
-    """Reversals of the friction after ``t0`` by their new direction and the sign of ``F``.
-
-    A reversal is a ``"vr_zero"`` event of ``sim.events`` whose new mode is a slip mode
-    (`beltmdsm.analysis.summary.summarize` counts them the same way); ``F`` is the normal force
-    at its time (``sim.trajectory.forces``).
-
-    Returns
-    -------
-    dict
-        ``{"slip_forward": (n with F < 0, n with F >= 0), "slip_back": (...)}``.
-    """
-    import numpy as np
-
-    from beltmdsm.integrate.switching import Mode
-
-    out = {}
-    for name, mode in (("slip_forward", Mode.SLIP_FORWARD), ("slip_back", Mode.SLIP_BACK)):
-        times = np.array(
-            [t for t, kind, new in sim.events if kind == "vr_zero" and new == mode and t >= t0]
-        )
-        F = sim.trajectory.forces(times)[0] if times.size else np.array([])
-        out[name] = (int(np.sum(F < 0)), int(np.sum(F >= 0)))
-    return out

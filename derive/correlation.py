@@ -22,6 +22,14 @@ of Eq. (4).
 The first harmonic of the same product (``sin`` and ``cos`` coefficients) closes the
 harmonic balance of the fast tangential motion when the friction reverses within a
 fast cycle (``Vb < V``); with ``|u| >= V`` it is the friction times the fast normal force.
+
+These are the set-valued sign's averages. A friction law enters as its value at rest
+``mu(0)`` times them plus the average of the law beyond it (`derive.averaging`:
+nothing for Coulomb's law, a quadrature for Stribeck's): `friction_average`,
+`friction_average_slope` and `friction_harmonic`. From them the pieces of the
+consistent MDSM: `slow_damping`, the damping of the slow tangential motion at the
+equilibrium, and `harmonic_balance`, the residual of the harmonic balance of the fast
+tangential motion (Eq. A1).
 """
 
 from __future__ import annotations
@@ -30,8 +38,13 @@ from functools import cache
 
 import sympy as sp
 
-from .friction import coupled_velocity, normal_response
-from .model import P
+from . import averaging, laws
+from .dynamics import free_acceleration
+from .friction import coupled_velocity, frequency_response, normal_response
+from .model import Y1, P, excitation, normal_force, static_coefficient, t
+from .oscillator import system_matrix
+from .stability import S2, Z2, slow_state_space_A3_A6
+from .statespace import Quadratic
 
 __all__ = [
     "u",
@@ -44,13 +57,24 @@ __all__ = [
     "first_harmonic",
     "fast_normal_force",
     "fast_tangential_velocity",
+    "friction_average",
+    "friction_average_slope",
+    "friction_harmonic",
+    "mean_normal_force",
+    "slow_damping",
+    "phi",
+    "psi",
+    "transfer_function",
+    "harmonic_balance",
 ]
 
-u = sp.Symbol("u", real=True)
-V = sp.Symbol("V", positive=True)
+u, V = averaging.u, averaging.V
 N0, N1 = sp.symbols("N0 N1", real=True)
 theta = sp.Symbol("theta", real=True)
-_t = sp.Symbol("t", real=True)
+#: Phases of the fast velocity and of the fast normal force (harmonic balance).
+phi, psi = sp.symbols("phi psi", real=True)
+_t = averaging.PHASE
+_FRICTION, _CONTACT = laws.default("friction"), laws.default("contact")
 _a = sp.Symbol("a", real=True)  # asin(u/V): sgn(u + V sin t) > 0 on (-a, pi + a)
 
 
@@ -104,7 +128,7 @@ def first_harmonic() -> tuple[sp.Expr, sp.Expr]:
     )
 
 
-def fast_normal_force(contact: str = "hertz_damp") -> tuple[sp.Expr, sp.Expr]:
+def fast_normal_force(contact: str = _CONTACT) -> tuple[sp.Expr, sp.Expr]:
     """Complex amplitude ``(Re, Im)`` of the fast normal force per unit mass.
 
     The normal block of Eq. (11), forced by ``-alpha_n Omega_n^2 sin(Omega_n t + phase_n)``,
@@ -119,15 +143,121 @@ def fast_normal_force(contact: str = "hertz_damp") -> tuple[sp.Expr, sp.Expr]:
     return sp.simplify(re), sp.simplify(im)
 
 
-def fast_tangential_velocity(contact: str = "hertz_damp") -> tuple[sp.Expr, sp.Expr]:
+def fast_tangential_velocity(
+    contact: str = _CONTACT, friction: str = _FRICTION
+) -> tuple[sp.Expr, sp.Expr]:
     """Complex amplitude ``(Re, Im)`` of the fast relative velocity while friction keeps
     its direction (``Vr < 0`` throughout the fast cycle), one excitation frequency.
 
     The linear response of Eq. (11) to both excitations (the ``"coupled"`` reading of
-    ``V_hat`` with its phase): ``X1' = Im((Re + i Im) e^(i Omega t))``.
+    ``V_hat`` with its phase): ``X1' = Im((Re + i Im) e^(i Omega t))``. The friction
+    law enters through its value and slope at ``Vb``.
     """
     W = P["Omega_t"]
     Ft = P["alpha_t"] * W**2 * sp.exp(sp.I * P["phase_t"])
     Fn = -P["alpha_n"] * W**2 * sp.exp(sp.I * P["phase_n"])
-    re, im = sp.expand_complex(coupled_velocity(Ft, Fn, W, contact)).as_real_imag()
+    re, im = sp.expand_complex(coupled_velocity(Ft, Fn, W, contact, friction)).as_real_imag()
     return re, im
+
+
+def _with_law(friction: str, sign_part: sp.Expr, weight, scale, slope: bool) -> sp.Expr:
+    """``mu(0)`` times a Piecewise of the sign's average plus the law's part beyond ``mu(0)``."""
+    build = averaging.remainder_slope if slope else averaging.remainder_average
+    inside, outside = build(friction, weight, scale)
+    mu0 = static_coefficient(friction)
+    (sign_in, cond), (sign_out, _) = sign_part.args
+    return sp.Piecewise((mu0 * sign_in + inside, cond), (mu0 * sign_out + outside, True))
+
+
+@cache
+def friction_average(friction: str = _FRICTION) -> sp.Expr:
+    """``<mu(|v|) sgn(v) (N0 + N1 sin(. + theta))>``, ``v = u + V sin``: the mean friction
+    force per unit mass of the law. Coulomb's: ``mu_s`` times `averaged_friction`."""
+    return _with_law(friction, averaged_friction(), _normal(), 1 / (2 * sp.pi), False)
+
+
+@cache
+def friction_average_slope(friction: str = _FRICTION) -> sp.Expr:
+    """``d/du`` of `friction_average`: the sign's slope (`averaged_friction_slope`) times
+    ``mu(0)`` plus the slope of the law beyond it (`derive.averaging.remainder_slope`)."""
+    return _with_law(friction, averaged_friction_slope(), _normal(), 1 / (2 * sp.pi), True)
+
+
+@cache
+def friction_harmonic(friction: str = _FRICTION) -> tuple[sp.Expr, sp.Expr]:
+    """``(s1, c1)``: the first harmonic of ``mu(|v|) sgn(v) (N0 + N1 sin(t + theta))``,
+    ``v = u + V sin t``, as `first_harmonic` is of the sign alone."""
+    s1, c1 = first_harmonic()
+    return (
+        _with_law(friction, s1, _normal() * sp.sin(_t), 1 / sp.pi, False),
+        _with_law(friction, c1, _normal() * sp.cos(_t), 1 / sp.pi, False),
+    )
+
+
+@cache
+def mean_normal_force() -> sp.Expr:
+    """``<N>`` at the slow equilibrium: the slow normal equation (Eq. A6) at rest gives ``g``."""
+    F = sp.Symbol("F", real=True)
+    rest = slow_state_space_A3_A6()[3].subs(normal_force(_CONTACT, Z2, S2), F)
+    (mean,) = sp.solve(rest, F)
+    return mean
+
+
+@cache
+def slow_damping(friction: str = _FRICTION) -> sp.Expr:
+    """Damping of the slow tangential motion at the equilibrium ``u = -Vb`` (consistent MDSM).
+
+    The slow tangential equation has the free damping ``-d a_free/d X1'`` and the
+    averaged friction ``<mu(|v|) sgn(v) N>`` in the sign of Eq. (4): linearised at
+    frozen fast amplitude ``V`` and phase ``theta``, its damping is
+    ``2 beta1 omega1 + d/du <mu sgn N>`` at ``u = -Vb``, ``N0 = <N>`` (unstable where
+    negative; for Coulomb's law ``2 beta1 omega1 + mu_s dF/du`` of
+    `averaged_friction_slope`).
+    """
+    free = -sp.diff(free_acceleration(), Y1)
+    return free + friction_average_slope(friction).subs({u: -P["Vb"], N0: mean_normal_force()})
+
+
+def _phasor(force, W) -> sp.Expr:
+    """``c`` with ``force(t) = Im(c e^(i W t))`` for a harmonic ``force`` of frequency ``W``."""
+    expanded = sp.expand(sp.expand_trig(force))
+    return expanded.coeff(sp.sin(W * t)) + sp.I * expanded.coeff(sp.cos(W * t))
+
+
+def transfer_function() -> tuple[sp.Expr, sp.Expr]:
+    """``(Re, Im)`` of ``q(i Omega_t)`` of the tangential oscillator without friction.
+
+    ``q(lambda) = lambda^2 + 2 beta1 omega1 lambda + omega1^2`` is the characteristic
+    polynomial of `derive.oscillator.system_matrix`: a displacement ``x e^(iWt)``
+    needs the force ``q(iW) x``. The fast tangential motion's harmonic balance
+    (`harmonic_balance`) divides the excitation's phasor by it.
+    """
+    return frequency_response(Quadratic.from_block(system_matrix()), P["Omega_t"])
+
+
+@cache
+def harmonic_balance(friction: str = _FRICTION) -> tuple[sp.Expr, sp.Expr]:
+    """Residual ``(Re, Im)`` of the harmonic balance of the fast tangential motion (Eq. A1).
+
+    For ``X1' - Z1' = V sin(W t + phi)`` and the normal force ``<N> + N1 sin(W t +
+    psi)`` at one excitation frequency ``W = Omega_t``: with the tangential
+    oscillator's ``q(iW)`` (`derive.oscillator.system_matrix`), the excitation's
+    phasor ``F_t`` and the first harmonic ``s1 + i c1`` of the friction force
+    (`friction_harmonic` at ``u = -Vb``, ``theta = psi - phi``),
+
+        q(iW) V / (iW) - F_t e^(-i phi) + (s1 + i c1) = 0,
+
+    divided by ``|F_t|`` (0 where the balance holds).
+    """
+    W = P["Omega_t"]
+    a, b = transfer_function()
+    Ft = _phasor(excitation()[0], W)
+    s1, c1 = (
+        h.subs({u: -P["Vb"], N0: mean_normal_force(), theta: psi - phi})
+        for h in friction_harmonic(friction)
+    )
+    # the friction's harmonic (s1, c1) is real already: split the rest only
+    linear = (a + sp.I * b) * V / (sp.I * W) - Ft * sp.exp(-sp.I * phi)
+    re, im = sp.expand_complex(linear).as_real_imag()
+    size = sp.simplify(sp.sqrt(sp.expand_complex(Ft * sp.conjugate(Ft))))
+    return (re + s1) / size, (im + c1) / size

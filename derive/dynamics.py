@@ -5,8 +5,9 @@ quantity is derived on both branches and joined entrywise, so the Jacobian of th
 simulated system is the derivative of each branch, not of a kink. The friction
 direction is either ``sgn(X1' - Vb)`` (Eq. 3) or a given value ``sgn`` (the
 simulator's branch; ``sgn = 0`` gives the force that sticking must supply). The
-tension law (`derive.model.contact_force`) is Eq. (1) as printed or a contact that
-cannot pull.
+friction, contact and tension laws come from the registry (`derive.laws`,
+`derive.model`): the coefficient ``mu(|Vr|)`` of the friction law, the contact law's
+force, and Eq. (1) as printed or a contact that cannot pull.
 
 The mechanical energy and the power balance let a simulation check itself (the
 paper verifies its simulations with an energy balance, Sect. 3):
@@ -21,6 +22,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from . import laws
 from .model import (
     X1,
     X2,
@@ -44,6 +46,7 @@ __all__ = [
     "free_acceleration",
     "normal_rhs",
     "normal_jacobian",
+    "friction_force",
     "energy",
     "power_balance",
 ]
@@ -53,6 +56,7 @@ X2r = sp.Symbol("X2", real=True)
 #: Friction direction chosen by the simulator.
 sgn = sp.Symbol("sgn", real=True)
 STATE_R = (X1, Y1, X2r, Y2)
+DEFAULT = {option: laws.default(option) for option in laws.OPTIONS}
 
 
 def in_contact(expr_contact, expr_flight):
@@ -76,44 +80,69 @@ def free_acceleration() -> sp.Expr:
 
 
 def accelerations(
-    contact: str = "hertz_damp", direction=None, flight: bool = False, tension: str = "allowed"
+    contact: str = DEFAULT["contact"],
+    direction=None,
+    flight: bool = False,
+    tension: str = DEFAULT["tension"],
+    friction: str = DEFAULT["friction"],
 ):
     """``(X1'', X2'')`` of Eq. (4) in contact (positive ``X2``) or in flight."""
     Fn = 0 if flight else contact_force(contact, tension)
     f_n = excitation()[1]
-    mu = friction_coefficient(direction)
+    mu = friction_coefficient(friction, direction)
     return sp.Matrix([free_acceleration() - mu * Fn, -Fn + P["g"] + f_n])
 
 
-def rhs(contact: str = "hertz_damp", direction=None, tension: str = "allowed") -> sp.Matrix:
+def rhs(
+    contact: str = DEFAULT["contact"],
+    direction=None,
+    tension: str = DEFAULT["tension"],
+    friction: str = DEFAULT["friction"],
+) -> sp.Matrix:
     """Right-hand side ``(X1', Y1', X2', Y2')`` of Eq. (4) with loss of contact."""
-    c = accelerations(contact, direction, tension=tension)
-    f = accelerations(contact, direction, flight=True)
+    c = accelerations(contact, direction, tension=tension, friction=friction)
+    f = accelerations(contact, direction, flight=True, friction=friction)
     return sp.Matrix([Y1, in_contact(c[0], f[0]), Y2, in_contact(c[1], f[1])])
 
 
-def jacobian(contact: str = "hertz_damp", direction=sgn, tension: str = "allowed") -> sp.Matrix:
+def jacobian(
+    contact: str = DEFAULT["contact"],
+    direction=sgn,
+    tension: str = DEFAULT["tension"],
+    friction: str = DEFAULT["friction"],
+) -> sp.Matrix:
     """State Jacobian of `rhs` on a fixed friction branch, branch by branch."""
 
     def branch(flight):
-        a = accelerations(contact, direction, flight, tension)
+        a = accelerations(contact, direction, flight, tension, friction)
         return sp.Matrix([Y1, a[0], Y2, a[1]]).jacobian((X1, Y1, X2, Y2))
 
     c, f = branch(False), branch(True)
     return sp.Matrix(4, 4, lambda i, j: in_contact(c[i, j], f[i, j]))
 
 
-def normal_rhs(contact: str = "hertz_damp", tension: str = "allowed") -> sp.Matrix:
+def normal_rhs(contact: str = DEFAULT["contact"], tension: str = DEFAULT["tension"]) -> sp.Matrix:
     """``(X2', Y2')`` of Eq. (4): the normal equation, free of the tangential state."""
     return rhs(contact, 0, tension)[2:, 0]
 
 
-def normal_jacobian(contact: str = "hertz_damp", tension: str = "allowed") -> sp.Matrix:
+def normal_jacobian(
+    contact: str = DEFAULT["contact"], tension: str = DEFAULT["tension"]
+) -> sp.Matrix:
     """Jacobian of `normal_rhs` with respect to ``(X2, Y2)`` (its variational equation)."""
     return jacobian(contact, 0, tension)[2:, 2:]
 
 
-def energy(contact: str = "hertz_damp") -> sp.Expr:
+def friction_force(
+    contact: str = DEFAULT["contact"],
+    tension: str = DEFAULT["tension"],
+    friction: str = DEFAULT["friction"],
+) -> sp.Expr:
+    """``-mu(|Vr|) sgn F``, zero out of contact: the friction term of Eq. (4) on branch ``sgn``."""
+    return in_contact(-friction_coefficient(friction, sgn) * contact_force(contact, tension), 0)
+
+
+def energy(contact: str = DEFAULT["contact"]) -> sp.Expr:
     """Mechanical energy per unit mass: kinetic, spring, contact and gravity.
 
     ``X2`` points into the belt, so gravity's potential is ``-g X2``. The tension
@@ -130,13 +159,18 @@ def energy(contact: str = "hertz_damp") -> sp.Expr:
     )
 
 
-def power_balance(contact: str = "hertz_damp", direction=sgn, tension: str = "allowed"):
+def power_balance(
+    contact: str = DEFAULT["contact"],
+    direction=sgn,
+    tension: str = DEFAULT["tension"],
+    friction: str = DEFAULT["friction"],
+):
     """``(P_input, P_viscous, P_friction)`` per unit mass.
 
     ``P_input`` is the work rate of the excitation, ``P_viscous`` that of the
     tangential dashpot and of the contact force beyond its elastic part (the
     contact damping; with ``tension="clipped"`` also the elastic force the clip
-    removes, which is then ``>= 0``), ``P_friction = mu F_n X1'`` the rate at which
+    removes, which is then ``>= 0``), ``P_friction = mu sgn F_n X1'`` the rate at which
     friction takes energy from the mass (it includes the belt's work). The split is
     checked against ``dE/dt`` along `rhs` by the tests.
     """
@@ -146,5 +180,5 @@ def power_balance(contact: str = "hertz_damp", direction=sgn, tension: str = "al
     Fc = contact_force(contact, tension)
     p_input = f_t * Y1 + f_n * Y2
     p_viscous = 2 * b1 * w1 * Y1**2 + in_contact((Fc - elastic) * Y2, 0)
-    p_friction = friction_coefficient(direction) * in_contact(Fc, 0) * Y1
+    p_friction = friction_coefficient(friction, direction) * in_contact(Fc, 0) * Y1
     return p_input, p_viscous, p_friction

@@ -1,6 +1,8 @@
 """The Method of Direct Separation of Motion: Eqs. (13)-(21) and (A1)-(A2).
 
-Eq. (4) with the polynomial contact force of Eq. (16) is written for
+Eq. (4) with the polynomial contact force of Eq. (16) (the contact law's power of the
+penetration replaced by the cubic of `derive.fit`; nothing to replace for the linear
+law of Fig. 16) is written for
 ``X = Z(tau) + Omega^-1 Phi(tau, theta)``, ``theta = Omega tau`` (Eqs. 13-14), so that
 
     X'  = Z' + Omega^-1 Phi_tau + Phi_theta,
@@ -12,9 +14,10 @@ The average over the fast period (Eq. 15), with ``<Phi> = 0``, is applied term b
 * a term linear in one fast quantity (``Phi``, any derivative of it, ``sin theta``)
   averages to zero, and so does ``Phi^k Phi_theta`` (an exact theta-derivative);
 * every other product stays as an unevaluated average ``avg(...)``;
-* the friction term ``mu(Vr) N`` (``mu`` the Coulomb law, ``N`` the normal force of
-  the total motion) becomes ``mu_bar <N> + cov(mu, N)``, with ``mu_bar = <mu(Vr)>``
-  the effective friction of Eq. (23).
+* the friction term ``mu(Vr) N`` (``mu`` the friction law with its direction, any
+  law of `derive.laws`; ``N`` the normal force of the total motion) becomes
+  ``mu_bar <N> + cov(mu, N)``, with ``mu_bar = <mu(Vr)>`` the effective friction of
+  Eq. (23) (`derive.friction` derives it for each law).
 
 Each term of the averaged equations is labelled with what the paper does with it
 (docs/modelling.md#averaging): Eqs. (18)-(19) keep the slow terms and
@@ -32,9 +35,10 @@ from functools import cache
 
 import sympy as sp
 
-from .fit import X2max, coefficients_eq_17
+from . import laws
+from .fit import X2max, coefficients_eq_17, exponent
 from .friction import frequency_response, normal_block
-from .model import X2, P, equal_excitation, normal_force
+from .model import X2, Y2, P, equal_excitation, normal_force
 from .statespace import equilibrium_eq_9
 
 __all__ = [
@@ -69,8 +73,10 @@ Phi1 = sp.Function("Phi1", real=True)(tau, theta)
 Phi2 = sp.Function("Phi2", real=True)(tau, theta)
 #: Coefficients of the cubic of Eq. (16).
 c = sp.symbols("c0:4", real=True)
-#: The Coulomb law mu(Vr) = mu_s sgn(Vr) of Eq. (3), kept as an unknown function.
+#: The friction law with its direction, mu(|Vr|) sgn(Vr) (Eq. 3 for Coulomb's law),
+#: kept as an unknown function: the split and the averaging hold for every law.
 mu = sp.Function("mu")
+_CONTACT = laws.default("contact")
 #: The effective friction <mu(Vr)> of Eq. (23).
 mu_bar = sp.Symbol("mu_bar", real=True)
 #: Unevaluated average over the fast period, and covariance, Eq. (15).
@@ -97,13 +103,19 @@ def polynomial_eq_16(x):
     return sum(ck * x**k for k, ck in enumerate(c))
 
 
-def _normal(x, xd):
-    """The Hertz-Damp normal force with the cubic fit of ``X2^(3/2)``."""
-    b2, w2 = P["beta2"], P["omega2"]
-    return (2 * b2 * w2 * xd + w2**2) * polynomial_eq_16(x)
+def _normal(x, xd, contact=_CONTACT):
+    """The contact law's normal force with its power ``X2^n`` replaced by the cubic (Eq. 16).
+
+    A law whose force is a polynomial in ``X2`` (an integer ``n``) is left as it is.
+    """
+    F = normal_force(contact)
+    n = exponent(contact)
+    if not (n.is_integer and n.is_nonnegative):
+        F = F.subs(X2**n, polynomial_eq_16(X2))
+    return F.xreplace({X2: x, Y2: xd})
 
 
-def equations_of_motion_split():
+def equations_of_motion_split(contact: str = _CONTACT):
     """Eq. (4) with Eq. (16), in the split variables: ``(linear part, friction, normal)``.
 
     Returns the tangential equation as its part without friction, the friction
@@ -113,7 +125,7 @@ def equations_of_motion_split():
     b1, w1, a, W, g, Vb = (P[k] for k in ("beta1", "omega1", "alpha", "Omega", "g", "Vb"))
     X, Xd, Xdd = split_eqs_13_14()
     force = a * W**2 * sp.sin(theta)
-    N = _normal(X[1], Xd[1])
+    N = _normal(X[1], Xd[1], contact)
     tangential = Xdd[0] + 2 * b1 * w1 * Xd[0] + w1**2 * X[0] - force
     friction = mu(Xd[0] - Vb) * N
     normal = Xdd[1] + N - g + force
@@ -173,13 +185,13 @@ def _label(term):
 
 
 @cache
-def averaged_terms() -> tuple[Term, ...]:
+def averaged_terms(contact: str = _CONTACT) -> tuple[Term, ...]:
     """Every term of the averaged equations of slow motion, labelled (kept or dropped)."""
-    tangential, _, normal = equations_of_motion_split()
+    tangential, _, normal = equations_of_motion_split(contact)
     X, Xd, _ = split_eqs_13_14()
-    N = _normal(X[1], Xd[1])
+    N = _normal(X[1], Xd[1], contact)
     N_avg = _average(N)
-    N_slow = _normal(Z2, sp.diff(Z2, tau))
+    N_slow = _normal(Z2, sp.diff(Z2, tau), contact)
     out = []
     for t in sp.Add.make_args(_average(tangential)):
         out.append(Term("tangential", t, *_label(t)))
@@ -201,8 +213,8 @@ def averaged_terms() -> tuple[Term, ...]:
     return tuple(out)
 
 
-def _slow(kept_only: bool):
-    terms = averaged_terms()
+def _slow(kept_only: bool, contact: str):
+    terms = averaged_terms(contact)
     return sp.Matrix(
         [
             sp.Add(*(t.expr for t in terms if t.equation == eq and (t.kept or not kept_only)))
@@ -211,40 +223,41 @@ def _slow(kept_only: bool):
     )
 
 
-def slow_equations_18_19() -> sp.Matrix:
+def slow_equations_18_19(contact: str = _CONTACT) -> sp.Matrix:
     """The slow equations the paper keeps, Eqs. (18)-(19), as residuals ``= 0``."""
-    return _slow(kept_only=True)
+    return _slow(kept_only=True, contact=contact)
 
 
-def slow_equations_20_21() -> sp.Matrix:
-    """Eqs. (20)-(21): Eqs. (18)-(19) with the cubic put back as ``Z2^(3/2)``.
+def slow_equations_20_21(contact: str = _CONTACT) -> sp.Matrix:
+    """Eqs. (20)-(21): Eqs. (18)-(19) with the cubic put back as ``Z2^n``.
 
-    Built from the model's Hertz-Damp normal force at the slow state and checked:
-    replacing ``Z2^(3/2)`` by the cubic of Eq. (16) gives Eqs. (18)-(19) back.
+    Built from the contact law's normal force at the slow state and checked:
+    replacing ``Z2^n`` by the cubic of Eq. (16) gives Eqs. (18)-(19) back.
     """
     b1, w1, g = P["beta1"], P["omega1"], P["g"]
     Z2d = sp.diff(Z2, tau)
-    N = normal_force("hertz_damp", Z2, Z2d)
+    N = normal_force(contact, Z2, Z2d)
     eqs = sp.Matrix(
         [
             sp.diff(Z1, tau, 2) + 2 * b1 * w1 * sp.diff(Z1, tau) + w1**2 * Z1 + mu_bar * N,
             sp.diff(Z2, tau, 2) + N - g,
         ]
     )
-    back = eqs.subs(Z2 ** sp.Rational(3, 2), polynomial_eq_16(Z2))
-    if (back - slow_equations_18_19()).applyfunc(sp.expand) != sp.zeros(2, 1):
-        raise AssertionError("Eqs. (20)-(21) do not reduce to Eqs. (18)-(19)")
+    n = exponent(contact)
+    back = eqs if n.is_integer else eqs.subs(Z2**n, polynomial_eq_16(Z2))
+    if (back - slow_equations_18_19(contact)).applyfunc(sp.expand) != sp.zeros(2, 1):
+        raise AssertionError(f"{contact}: Eqs. (20)-(21) do not reduce to Eqs. (18)-(19)")
     return eqs
 
 
-def fast_equations_A1_A2() -> sp.Matrix:
+def fast_equations_A1_A2(contact: str = _CONTACT) -> sp.Matrix:
     """Eqs. (A1)-(A2): Eq. (4) in split form minus the slow equations (18)-(19).
 
     As in the paper, only the kept slow terms are subtracted; the averages of these
     fast equations are then the dropped terms, not zero.
     """
-    tangential, friction, normal = equations_of_motion_split()
-    slow = slow_equations_18_19()
+    tangential, friction, normal = equations_of_motion_split(contact)
+    slow = slow_equations_18_19(contact)
     return sp.Matrix([tangential + friction - slow[0], normal - slow[1]])
 
 
@@ -275,7 +288,7 @@ def harmonic_averages(expr, A1, A2, phase1=0, phase2=0):
     return sp.sympify(expr).replace(lambda e: isinstance(e, avg), evaluate)
 
 
-def fast_normal_amplitude(contact: str = "hertz_damp") -> sp.Expr:
+def fast_normal_amplitude(contact: str = _CONTACT) -> sp.Expr:
     """Displacement amplitude of the fast normal motion, linearised at Eq. (9).
 
     The normal block of Eq. (11) forced by ``-alpha_n Omega_n^2 sin``
@@ -285,17 +298,19 @@ def fast_normal_amplitude(contact: str = "hertz_damp") -> sp.Expr:
     return P["alpha_n"] * P["Omega_n"] ** 2 / sp.sqrt(a**2 + b**2)
 
 
-def x2max(contact: str = "hertz_damp") -> sp.Expr:
+def x2max(contact: str = _CONTACT) -> sp.Expr:
     """Upper end of the fitted range for the MDSM: ``X2^0`` plus the fast amplitude."""
     return equilibrium_eq_9(contact)[X2] + fast_normal_amplitude(contact)
 
 
-def dropped_at_equilibrium(values: dict) -> list[tuple[str, str, float, float]]:
+def dropped_at_equilibrium(
+    values: dict, contact: str = _CONTACT
+) -> list[tuple[str, str, float, float]]:
     """Size of each dropped average at the slow equilibrium, for a harmonic fast motion.
 
     ``values`` maps parameter names to numbers (the base set, say). The cubic is the
-    fit of Eq. (17) on ``[0, x2max]``; ``Phi2`` has the amplitude ``Omega`` times
-    `fast_normal_amplitude`; ``Z2 = X2^0``, ``Z2' = 0``.
+    fit of Eq. (17) (of the contact law's power) on ``[0, x2max]``; ``Phi2`` has the
+    amplitude ``Omega`` times `fast_normal_amplitude`; ``Z2 = X2^0`` (Eq. 9), ``Z2' = 0``.
 
     Returns
     -------
@@ -306,13 +321,13 @@ def dropped_at_equilibrium(values: dict) -> list[tuple[str, str, float, float]]:
     """
     subs = {P[k]: v for k, v in values.items() if k in P}
     subs.update({k: sp.sympify(v).subs(subs) for k, v in equal_excitation().items()})
-    amp = fast_normal_amplitude().subs(subs)
-    top = x2max().subs(subs)
-    coeffs = {ck: v.subs(X2max, top) for ck, v in zip(c, coefficients_eq_17(3))}
-    z2 = (P["g"] / P["omega2"] ** 2) ** sp.Rational(2, 3)
+    amp = fast_normal_amplitude(contact).subs(subs)
+    top = x2max(contact).subs(subs)
+    coeffs = {ck: v.subs(X2max, top).subs(subs) for ck, v in zip(c, coefficients_eq_17(3, contact))}
+    z2 = equilibrium_eq_9(contact)[X2]
     A = sp.Symbol("A", positive=True)
     out = []
-    for term in averaged_terms():
+    for term in averaged_terms(contact):
         if term.kept or term.expr.has(cov) or term.expr.has(mu_bar):
             continue
         v = harmonic_averages(term.expr, 0, A).subs(sp.diff(Z2, tau), 0).subs(Z2, z2)

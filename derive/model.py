@@ -1,14 +1,17 @@
-"""The model: symbols, contact laws, friction, excitation and the equations of motion.
+"""The model: symbols, the laws of the registry, excitation and the equations of motion.
 
 Implements Eqs. (1)-(4) of the paper. The equations of motion are assembled from
 parts so that each part is a choice:
 
-* the contact law: Hertz-Damp, Eq. (1) (``"hertz_damp"``), or the linear
-  Kelvin-Voigt law of Fig. 16 (``"kelvin_voigt"``);
-* the tension law: Eq. (1) as printed, whose force turns negative (tensile) when
-  the damping term outweighs the stiffness term (``"allowed"``), or a contact that
-  cannot pull, ``max(F, 0)`` (``"clipped"``; docs/modelling.md#tension);
-* the friction direction: ``sgn(Vr)`` as in Eq. (3), or a fixed branch
+* the contact law (`derive.laws`): Hertz-Damp, Eq. (1) (``"hertz_damp"``), the
+  linear Kelvin-Voigt law of Fig. 16 (``"kelvin_voigt"``), Hunt-Crossley with a
+  symbolic exponent (``"hunt_crossley"``), or any registered law;
+* the tension law (`derive.laws`): Eq. (1) as printed, whose force turns negative
+  (tensile) when the damping term outweighs the stiffness term (``"allowed"``), or a
+  contact that cannot pull, ``max(F, 0)`` (``"clipped"``; docs/modelling.md#tension);
+* the friction law (`derive.laws`): the coefficient ``mu(|Vr|)``, Coulomb's constant
+  ``mu_s`` of Eq. (3) (``"coulomb"``) or Stribeck's falling one (``"stribeck"``),
+  with the direction applied here: ``sgn(Vr)`` as in Eq. (3), or a fixed branch
   (``-1`` while the mass is slower than the belt, the branch of Eqs. 5-8);
 * the excitation: amplitude, frequency and phase per direction (Figs. 14-15),
   whose defaults reduce to Eq. (4).
@@ -20,11 +23,15 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .parameters import PARAMETERS
+from . import laws
+from .parameters import base_values
 
 __all__ = [
+    "FRICTION_LAWS",
     "CONTACT_LAWS",
     "TENSION_LAWS",
+    "PARAMETERS",
+    "BASE",
     "P",
     "t",
     "X1",
@@ -32,7 +39,10 @@ __all__ = [
     "X2",
     "Y2",
     "STATE",
+    "SPEED",
     "lam",
+    "coefficient",
+    "static_coefficient",
     "normal_force",
     "contact_force",
     "contact_potential",
@@ -42,8 +52,14 @@ __all__ = [
     "equations_of_motion",
 ]
 
-CONTACT_LAWS = ("hertz_damp", "kelvin_voigt")
-TENSION_LAWS = ("allowed", "clipped")
+#: The choices of each option, from the registry (the default first).
+FRICTION_LAWS = laws.choices("friction")
+CONTACT_LAWS = laws.choices("contact")
+TENSION_LAWS = laws.choices("tension")
+#: The full parameter table: the model's own parameters and those of every law.
+PARAMETERS = laws.parameter_table()
+#: The base set: the paper's Fig. 2 with Vb = 4 (Fig. 3), and each law's base values.
+BASE = base_values(PARAMETERS)
 
 _ASSUMPTIONS = {
     "positive": {"positive": True},
@@ -59,42 +75,57 @@ X1, Y1, Y2 = sp.symbols("X1 Y1 Y2", real=True)
 #: Penetration. Positive: Eqs. (5)-(8) hold in contact only (the non-jumping case).
 X2 = sp.Symbol("X2", positive=True)
 STATE = (X1, Y1, X2, Y2)
+#: The sliding speed |Vr|, the argument of a friction law's coefficient.
+SPEED = sp.Symbol("speed", nonnegative=True)
 lam = sp.Symbol("lambda")
 
+_DEFAULT = {option: laws.default(option) for option in laws.OPTIONS}
 
-def normal_force(contact: str = "hertz_damp", X2=X2, Y2=Y2) -> sp.Expr:
-    """Mass-normalised normal force in contact, Eq. (1) divided by ``M``.
+
+def coefficient(friction=_DEFAULT["friction"], speed=SPEED) -> sp.Expr:
+    """The friction law's coefficient ``mu(speed)`` at the sliding speed ``speed = |Vr|``.
+
+    ``friction`` is the name of a law of `derive.laws`, or a function of the speed
+    (a derivation's stand-in for a law, e.g. its expansion at an operating point).
+    """
+    if callable(friction):
+        return sp.sympify(friction(speed))
+    return sp.sympify(laws.get("friction", friction).coefficient(P, speed))
+
+
+def static_coefficient(friction: str = _DEFAULT["friction"]) -> sp.Expr:
+    """``mu(0)``: the bound of the holding force while sticking (the stick cone).
+
+    At ``Vr = 0`` the set-valued sign of Eq. (3) lets friction take any value in
+    ``[-mu(0) F, mu(0) F]``; for both shipped laws this is ``mu_s``.
+    """
+    return sp.simplify(coefficient(friction, sp.Integer(0)))
+
+
+def normal_force(contact: str = _DEFAULT["contact"], X2=X2, Y2=Y2) -> sp.Expr:
+    """Mass-normalised normal force in contact, Eq. (1) divided by ``M``: the contact law's.
 
     ``hertz_damp``: ``(omega2^2 + 2 beta2 omega2 X2') X2^(3/2)``;
-    ``kelvin_voigt``: ``omega2^2 X2 + 2 beta2 omega2 X2'`` (Fig. 16).
-    Both vanish for ``X2 <= 0``; the caller handles loss of contact.
+    ``kelvin_voigt``: ``omega2^2 X2 + 2 beta2 omega2 X2'`` (Fig. 16);
+    ``hunt_crossley``: ``(omega2^2 + 2 beta2 omega2 X2') X2^n_h``.
+    All vanish for ``X2 <= 0``; the caller handles loss of contact.
     """
-    b2, w2 = P["beta2"], P["omega2"]
-    if contact == "hertz_damp":
-        return (w2**2 + 2 * b2 * w2 * Y2) * X2 ** sp.Rational(3, 2)
-    if contact == "kelvin_voigt":
-        return w2**2 * X2 + 2 * b2 * w2 * Y2
-    raise ValueError(f"contact must be one of {CONTACT_LAWS}, got {contact!r}")
+    return sp.sympify(laws.get("contact", contact).force(P, X2, Y2))
 
 
-def contact_force(contact: str = "hertz_damp", tension: str = "allowed", X2=X2, Y2=Y2) -> sp.Expr:
-    """The normal force in contact under a tension law.
+def contact_force(
+    contact: str = _DEFAULT["contact"], tension: str = _DEFAULT["tension"], X2=X2, Y2=Y2
+) -> sp.Expr:
+    """The normal force in contact under a tension law (`derive.laws`).
 
     ``allowed``: Eq. (1) as printed (`normal_force`), negative when the damping term
     outweighs the stiffness term. ``clipped``: ``max(F, 0)``, a contact that cannot
     pull; where Eq. (1) would be tensile the surfaces separate and no force acts.
-    The clipped force is continuous where Eq. (1) crosses zero, so the clip is a kink
-    of the vector field, not a jump.
     """
-    F = normal_force(contact, X2, Y2)
-    if tension == "allowed":
-        return F
-    if tension == "clipped":
-        return sp.Piecewise((F, F > 0), (0, True))
-    raise ValueError(f"tension must be one of {TENSION_LAWS}, got {tension!r}")
+    return laws.get("tension", tension).acting(normal_force(contact, X2, Y2))
 
 
-def contact_potential(contact: str = "hertz_damp", X2=X2) -> sp.Expr:
+def contact_potential(contact: str = _DEFAULT["contact"], X2=X2) -> sp.Expr:
     """Potential of the elastic part of the normal force, per unit mass.
 
     Derived by integration so that it stays consistent with `normal_force`.
@@ -104,14 +135,19 @@ def contact_potential(contact: str = "hertz_damp", X2=X2) -> sp.Expr:
     return sp.integrate(elastic, (s, 0, X2))
 
 
-def friction_coefficient(direction=None) -> sp.Expr:
-    """Friction coefficient ``mu_s sgn(Vr)``, Eq. (3), ``Vr = X1' - Vb``.
+def friction_coefficient(friction: str = _DEFAULT["friction"], direction=None) -> sp.Expr:
+    """The signed friction coefficient ``mu(|Vr|) sgn(Vr)``, Eq. (3), ``Vr = X1' - Vb``.
 
     ``direction`` replaces ``sgn(Vr)`` by a fixed branch (``-1``: the mass is slower
-    than the belt, as in Eqs. 5-8); ``None`` keeps the sign function.
+    than the belt, as in Eqs. 5-8; a symbol: the simulator's branch); on a branch
+    the speed is ``direction * Vr``, which is ``|Vr|`` there and differentiable.
+    ``None`` keeps the sign function (and ``|Vr|``).
     """
-    sgn = sp.sign(Y1 - P["Vb"]) if direction is None else sp.sympify(direction)
-    return P["mu_s"] * sgn
+    Vr = Y1 - P["Vb"]
+    if direction is None:
+        return coefficient(friction, sp.Abs(Vr)) * sp.sign(Vr)
+    direction = sp.sympify(direction)
+    return coefficient(friction, direction * Vr) * direction
 
 
 def excitation(general: bool = True) -> tuple[sp.Expr, sp.Expr]:
@@ -141,23 +177,30 @@ def equal_excitation() -> dict[sp.Symbol, sp.Expr]:
 
 
 def equations_of_motion(
-    contact: str = "hertz_damp", direction=None, forced: bool = True, general: bool = True
+    contact: str = _DEFAULT["contact"],
+    direction=None,
+    forced: bool = True,
+    general: bool = True,
+    friction: str = _DEFAULT["friction"],
 ) -> sp.Matrix:
     """Accelerations ``(X1'', X2'')`` of Eq. (4), solved for (the mass matrix is I).
 
     Parameters
     ----------
-    contact : {"hertz_damp", "kelvin_voigt"}
+    contact : str
+        A contact law of `derive.laws`.
     direction : None, -1 or +1
         Friction direction; see `friction_coefficient`.
     forced : bool
         ``False`` drops the excitation (the unforced system of Sect. 4.1).
     general : bool
         Per-direction excitation (``True``) or the single one of Eq. (4).
+    friction : str
+        A friction law of `derive.laws`.
     """
     b1, w1, g = P["beta1"], P["omega1"], P["g"]
     Fn = normal_force(contact)
     f_t, f_n = excitation(general) if forced else (0, 0)
-    X1dd = -2 * b1 * w1 * Y1 - w1**2 * X1 - friction_coefficient(direction) * Fn + f_t
+    X1dd = -2 * b1 * w1 * Y1 - w1**2 * X1 - friction_coefficient(friction, direction) * Fn + f_t
     X2dd = -Fn + g + f_n
     return sp.Matrix([X1dd, X2dd])

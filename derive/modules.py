@@ -1,26 +1,33 @@
 """What ``generated/`` contains: each module as a list of function specs.
 
 This is the pipeline's last pure step: it calls the derivations and packages their
-expressions as `codegen.FunctionSpec` specs. Nothing here writes files.
+expressions as `codegen.FunctionSpec` specs. Nothing here writes files. The options
+``friction=``, ``contact=`` and ``tension=`` of every function are the choices of the
+registry (`derive.laws`), one variant per choice, and a function takes an option
+only where its law enters.
 """
 
 from __future__ import annotations
 
+import itertools
+
 import sympy as sp
 
+from . import capabilities as cap
 from . import correlation as cr
 from . import dynamics as dyn
 from . import fit as ft
 from . import friction as fr
 from . import hybrid as hy
-from . import mdsm
+from . import laws, mdsm
 from . import oscillator as osc
 from . import stability as st
 from . import statespace as ss
-from .codegen import FunctionSpec, ModuleSpec
-from .model import CONTACT_LAWS, STATE, TENSION_LAWS, X1, Y1, Y2, P, contact_force, t
+from .codegen import FunctionSpec, ModuleSpec, Refusal
+from .model import STATE, X1, Y1, Y2, P, contact_force, t
 
 __all__ = [
+    "law_options",
     "unforced",
     "dynamics",
     "fit",
@@ -29,28 +36,50 @@ __all__ = [
     "correlation",
     "hybrid",
     "oscillator",
+    "capabilities",
     "all_modules",
 ]
 
-CONTACT_OPTION = (
-    (
-        "contact",
-        '{"hertz_damp", "kelvin_voigt"}',
-        "hertz_damp",
-        "contact law: Hertz-Damp, Eq. (1), or linear Kelvin-Voigt (Fig. 16)",
-    ),
-)
-TENSION_OPTION = (
-    (
-        "tension",
-        '{"allowed", "clipped"}',
-        "allowed",
-        "Eq. (1) as printed, tensile when its damping term outweighs its "
-        "stiffness term, or max(F, 0), a contact that cannot pull "
-        "(docs/modelling.md#tension)",
-    ),
-)
-CONTACT_TENSION = CONTACT_OPTION + TENSION_OPTION
+_WHAT = {
+    "friction": "friction law (derive/laws.py)",
+    "contact": "contact law (derive/laws.py)",
+    "tension": "tension law (derive/laws.py; docs/modelling.md#tension)",
+}
+
+
+def law_options(*options: str) -> tuple:
+    """The ``(name, choices, default, description)`` rows of the law options, from the registry."""
+    rows = []
+    for option in options:
+        choices = laws.choices(option)
+        doc = "; ".join(f"{c}: {laws.get(option, c).summary}" for c in choices)
+        rows.append(
+            (
+                option,
+                "{" + ", ".join(f'"{c}"' for c in choices) + "}",
+                laws.default(option),
+                f"{_WHAT[option]}: {doc}.",
+            )
+        )
+    return tuple(rows)
+
+
+def _or_refuse(expr, reason: str):
+    """``expr``, or a `Refusal` with ``reason`` where the derivation claims no closed form."""
+    return Refusal(reason) if expr is None else expr
+
+
+def _per(build, *options: str) -> dict:
+    """``{(choice, ...): build(choice, ...)}`` over every combination of the options' choices."""
+    keys = itertools.product(*(laws.choices(o) for o in options))
+    return {key: build(*key) for key in keys}
+
+
+FRICTION = law_options("friction")
+CONTACT = law_options("contact")
+LAWS_FC = law_options("friction", "contact")
+CONTACT_TENSION = law_options("contact", "tension")
+LAWS_FCT = law_options("friction", "contact", "tension")
 STATE_DOCS = {
     "X1": "tangential displacement [m]",
     "Y1": "tangential velocity X1' [m/s]",
@@ -63,18 +92,10 @@ STATE_DOCS = {
 IN_CONTACT = {"X2": ("positive", "Eqs. (5)-(8) hold in contact only, X2 > 0")}
 
 
-def _per_contact(build):
-    return {(c,): build(c) for c in CONTACT_LAWS}
-
-
-def _per_contact_tension(build):
-    return {(c, tl): build(c, tl) for c in CONTACT_LAWS for tl in TENSION_LAWS}
-
-
 def unforced() -> ModuleSpec:
     """Sect. 4.1: equilibrium, Jacobian and characteristic polynomial (Eqs. 9-12)."""
-    eq = _per_contact(ss.equilibrium_eq_9)
-    J0 = _per_contact(ss.jacobian_at_equilibrium_eq_11)
+    eq = _per(lambda f, c: ss.equilibrium_eq_9(c, f), "friction", "contact")
+    J0 = _per(lambda f, c: ss.jacobian_at_equilibrium_eq_11(c, f), "friction", "contact")
     functions = (
         FunctionSpec(
             "equilibrium",
@@ -83,7 +104,9 @@ def unforced() -> ModuleSpec:
             "tuple",
             "X1, Y1, X2, Y2 : ndarray\n    Broadcast to the shape of the inputs.",
             {k: [v[s] for s in STATE] for k, v in eq.items()},
-            CONTACT_OPTION,
+            LAWS_FC,
+            notes="X1 = mu(Vb) g / omega1^2: the friction coefficient at the sliding "
+            "speed Vb (mu_s for Coulomb's law, as printed).",
         ),
         FunctionSpec(
             "jacobian",
@@ -91,8 +114,8 @@ def unforced() -> ModuleSpec:
             "Eq. (10)",
             "matrix",
             "J : ndarray, shape (..., 4, 4)\n    d(X1', Y1', X2', Y2')/d(X1, Y1, X2, Y2).",
-            _per_contact(ss.jacobian_eq_10),
-            CONTACT_OPTION,
+            _per(lambda f, c: ss.jacobian_eq_10(c, friction=f), "friction", "contact"),
+            LAWS_FC,
             STATE,
             STATE_DOCS,
             IN_CONTACT,
@@ -104,7 +127,9 @@ def unforced() -> ModuleSpec:
             "matrix",
             "J0 : ndarray, shape (..., 4, 4)",
             J0,
-            CONTACT_OPTION,
+            LAWS_FC,
+            notes="The tangential damping entry is -(2 beta1 omega1 + g mu'(Vb)) with "
+            "the slope of the friction law at the sliding speed (0 for Coulomb).",
         ),
         FunctionSpec(
             "charpoly",
@@ -114,8 +139,9 @@ def unforced() -> ModuleSpec:
             "a1, a2, a3, a4 : ndarray\n"
             "    det(lambda I - J0) = lambda^4 + a1 lambda^3 + a2 lambda^2 + a3 lambda + a4.",
             {k: ss.charpoly_eq_12(v).all_coeffs()[1:] for k, v in J0.items()},
-            CONTACT_OPTION,
-            notes="mu_s does not appear (the claim below Eq. 12).",
+            LAWS_FC,
+            notes="mu_s does not appear for Coulomb's law (the claim below Eq. 12); a "
+            "friction law that depends on the speed enters through its slope mu'(Vb).",
         ),
         FunctionSpec(
             "eigenvalues",
@@ -125,20 +151,42 @@ def unforced() -> ModuleSpec:
             "lam : complex ndarray, shape (..., 4)\n"
             "    Tangential pair, then normal pair; for a complex pair the root with\n"
             "    positive imaginary part first.",
-            {k: ss.block_quadratics(v) for k, v in J0.items()},
-            CONTACT_OPTION,
+            _per(lambda f, c: ss.quadratics_at_equilibrium(c, f), "friction", "contact"),
+            LAWS_FC,
             notes="J^0 is block triangular, so the quartic is the product of a "
             "tangential and a normal quadratic; their roots are computed "
             "without cancellation from factored discriminants, which keeps "
             "full accuracy at a double root (beta1 = 1).",
+        ),
+        FunctionSpec(
+            "critical_belt_speed",
+            "Belt speed below which steady sliding is unstable, closed form.",
+            "Eqs. (11)-(12): root of the tangential damping p(Vb)",
+            "value",
+            "Vb_c : ndarray\n    Steady sliding is unstable for 0 <= Vb < Vb_c, where the "
+            "tangential\n    damping 2 beta1 omega1 + g mu'(Vb) is negative; NaN where no belt "
+            "speed is\n    (Coulomb's law: always).",
+            _per(
+                lambda f, c: _or_refuse(
+                    ss.critical_belt_speed(c, f),
+                    f"friction={f!r}: the tangential damping of J^0 vanishes at more than "
+                    "one belt speed; no closed-form boundary is claimed",
+                ),
+                "friction",
+                "contact",
+            ),
+            LAWS_FC,
+            notes="Stribeck's law: Vb_c = v_s log(g (mu_s - mu_k) / (2 beta1 omega1 v_s)), "
+            "solved by SymPy from p(Vb) = 0.",
         ),
     )
     return ModuleSpec(
         "unforced",
         """The unforced system at its equilibrium (Sect. 4.1, Eqs. 9-12).
 
-Both contact laws (``contact="hertz_damp"``, Eq. 1, the default; ``"kelvin_voigt"``,
-Fig. 16). Every function takes the parameters as keywords.
+Every friction and contact law of the registry (``friction=``, ``contact=``; the
+choices are ``generated.parameters.OPTIONS``, the defaults the paper's Eqs. 1 and 3).
+Every function takes the parameters as keywords.
 """,
         functions,
     )
@@ -155,11 +203,16 @@ def dynamics() -> ModuleSpec:
             "Eqs. (1)-(4)",
             "vector",
             "dstate : ndarray, shape (..., 4)",
-            _per_contact_tension(lambda c, tl: list(dyn.rhs(c, tension=tl))),
-            CONTACT_TENSION,
+            _per(
+                lambda f, c, tl: list(dyn.rhs(c, tension=tl, friction=f)),
+                "friction",
+                "contact",
+                "tension",
+            ),
+            LAWS_FCT,
             state_t,
             STATE_DOCS,
-            notes="Friction direction sgn(X1' - Vb) as in Eq. (3); zero normal "
+            notes="Friction -mu(|Vr|) sgn(Vr) F with the sign of Eq. (3); zero normal "
             "force when X2 <= 0 (loss of contact, Eq. 1).",
         ),
         FunctionSpec(
@@ -168,14 +221,17 @@ def dynamics() -> ModuleSpec:
             "Eqs. (1)-(4)",
             "vector",
             "dstate : ndarray, shape (..., 4)",
-            _per_contact_tension(lambda c, tl: list(dyn.rhs(c, dyn.sgn, tl))),
-            CONTACT_TENSION,
+            _per(
+                lambda f, c, tl: list(dyn.rhs(c, dyn.sgn, tl, f)), "friction", "contact", "tension"
+            ),
+            LAWS_FCT,
             state_t + (dyn.sgn,),
             STATE_DOCS,
             notes="For a simulator that tracks the sliding direction itself: "
             "with sgn = 0 the second entry is the tangential acceleration "
-            "without friction, whose magnitude against mu_s F_n decides "
-            "whether sticking holds.",
+            "without friction, whose magnitude against mu(0) F_n decides "
+            "whether sticking holds. On branch sgn the friction coefficient is "
+            "mu(sgn Vr), |Vr| on the branch.",
             bind=True,
         ),
         FunctionSpec(
@@ -184,8 +240,10 @@ def dynamics() -> ModuleSpec:
             "Eqs. (1)-(4)",
             "matrix",
             "J : ndarray, shape (..., 4, 4)",
-            _per_contact_tension(lambda c, tl: dyn.jacobian(c, dyn.sgn, tl)),
-            CONTACT_TENSION,
+            _per(
+                lambda f, c, tl: dyn.jacobian(c, dyn.sgn, tl, f), "friction", "contact", "tension"
+            ),
+            LAWS_FCT,
             state_t + (dyn.sgn,),
             STATE_DOCS,
         ),
@@ -195,7 +253,7 @@ def dynamics() -> ModuleSpec:
             "Eq. (1)",
             "value",
             "Fn : ndarray",
-            _per_contact_tension(lambda c, tl: dyn.in_contact(contact_force(c, tl), 0)),
+            _per(lambda c, tl: dyn.in_contact(contact_force(c, tl), 0), "contact", "tension"),
             CONTACT_TENSION,
             (dyn.X2r, Y2),
             STATE_DOCS,
@@ -207,17 +265,14 @@ def dynamics() -> ModuleSpec:
             "Eqs. (2)-(3)",
             "value",
             "Ff : ndarray",
-            _per_contact_tension(
-                lambda c, tl: dyn.in_contact(
-                    -dyn.friction_coefficient(dyn.sgn) * contact_force(c, tl), 0
-                )
-            ),
-            CONTACT_TENSION,
-            (dyn.X2r, Y2, dyn.sgn),
+            _per(lambda f, c, tl: dyn.friction_force(c, tl, f), "friction", "contact", "tension"),
+            LAWS_FCT,
+            (Y1, dyn.X2r, Y2, dyn.sgn),
             STATE_DOCS,
-            notes="-mu_s sgn F_n, zero out of contact: the friction term of Eq. (4) on a "
-            "slip branch (positive along the belt). While sticking the force that holds "
-            "the mass is -a_free (`free_acceleration`).",
+            notes="-mu(sgn Vr) sgn F_n, zero out of contact: the friction term of Eq. (4) "
+            "on a slip branch (positive along the belt). While sticking the force that "
+            "holds the mass is -a_free (`free_acceleration`). Coulomb's law does not use "
+            "X1'; every law takes it, so that one call serves all.",
         ),
         FunctionSpec(
             "normal_rhs",
@@ -225,12 +280,12 @@ def dynamics() -> ModuleSpec:
             "Eq. (4), second row",
             "vector",
             "dnormal : ndarray, shape (..., 2)",
-            _per_contact_tension(lambda c, tl: list(dyn.normal_rhs(c, tl))),
+            _per(lambda c, tl: list(dyn.normal_rhs(c, tl)), "contact", "tension"),
             CONTACT_TENSION,
             normal,
             STATE_DOCS,
-            notes="The normal equation contains neither X1, X1', Vb nor mu_s "
-            "(the one-way coupling of Eq. 4).",
+            notes="The normal equation contains neither X1, X1', Vb nor a friction "
+            "parameter (the one-way coupling of Eq. 4; generated.capabilities).",
             bind=True,
         ),
         FunctionSpec(
@@ -239,7 +294,7 @@ def dynamics() -> ModuleSpec:
             "Eq. (4), second row",
             "matrix",
             "J : ndarray, shape (..., 2, 2)",
-            _per_contact_tension(lambda c, tl: dyn.normal_jacobian(c, tl)),
+            _per(lambda c, tl: dyn.normal_jacobian(c, tl), "contact", "tension"),
             CONTACT_TENSION,
             normal,
             STATE_DOCS,
@@ -258,7 +313,7 @@ def dynamics() -> ModuleSpec:
             (t, X1, Y1),
             STATE_DOCS,
             notes="f_t - 2 beta1 omega1 X1' - omega1^2 X1; sticking holds while "
-            "|a_free| <= mu_s F_n.",
+            "|a_free| <= mu(0) F_n (mu_s for both shipped friction laws).",
             bind=True,
         ),
         FunctionSpec(
@@ -282,7 +337,7 @@ def dynamics() -> ModuleSpec:
             "Eq. (4) (energy balance of Sect. 3)",
             "value",
             "E : ndarray",
-            _per_contact_tension(lambda c, tl: dyn.energy(c)),
+            _per(lambda c, tl: dyn.energy(c), "contact", "tension"),
             CONTACT_TENSION,
             (X1, Y1, dyn.X2r, Y2),
             STATE_DOCS,
@@ -296,8 +351,13 @@ def dynamics() -> ModuleSpec:
             "Eq. (4) (energy balance of Sect. 3)",
             "tuple",
             "P_input, P_viscous, P_friction : ndarray",
-            _per_contact_tension(lambda c, tl: list(dyn.power_balance(c, tension=tl))),
-            CONTACT_TENSION,
+            _per(
+                lambda f, c, tl: list(dyn.power_balance(c, tension=tl, friction=f)),
+                "friction",
+                "contact",
+                "tension",
+            ),
+            LAWS_FCT,
             state_t + (dyn.sgn,),
             STATE_DOCS,
             bind=True,
@@ -311,7 +371,8 @@ Loss of contact follows Eq. (1): zero normal force for ``X2 <= 0``. ``rhs`` uses
 sign function of Eq. (3); ``rhs_branch`` and ``jacobian_branch`` take the friction
 direction as an argument for an event-driven simulator. ``energy`` and
 ``power_balance`` give the energy check of Sect. 3. ``tension=`` chooses Eq. (1) as
-printed or a contact that cannot pull (docs/modelling.md#tension). ``bind_<name>``
+printed or a contact that cannot pull (docs/modelling.md#tension), ``friction=`` the
+friction law, ``contact=`` the contact law (derive/laws.py). ``bind_<name>``
 returns a function's scalar kernel with the parameters checked once, for the
 runtime's inner loops.
 """,
@@ -331,15 +392,15 @@ def hybrid() -> ModuleSpec:
         "h : tuple of ndarray\n    One value per switching surface, in the order of SURFACES."
     )
     salt = {}
-    for before, after, surface in hy.transitions():
-        for c in CONTACT_LAWS:
-            salt[(before, after, surface, c)] = hy.saltation(before, after, surface, c)
+    for f, c in itertools.product(laws.choices("friction"), laws.choices("contact")):
+        for before, after, surface in hy.transitions():
+            salt[(f, c, before, after, surface)] = hy.saltation(before, after, surface, c, f)
     names = sorted({k for k in hy.MODE_CODES})
-    salt_opts = (
+    salt_opts = LAWS_FC + (
         ("before", "str", "slip_back", "mode before the switch"),
         ("after", "str", "slip_forward", "mode after the switch"),
         ("surface", "str", "relative_velocity", "the surface crossed (SURFACES)"),
-    ) + CONTACT_OPTION
+    )
     fns = (
         FunctionSpec(
             "vector_field",
@@ -347,13 +408,29 @@ def hybrid() -> ModuleSpec:
             "Eqs. (1)-(4)",
             "vector",
             "dstate : ndarray, shape (..., 4)",
-            _per_contact(lambda c: list(hy.vector_field(c))),
-            CONTACT_OPTION,
+            _per(lambda f, c: list(hy.vector_field(c, f)), "friction", "contact"),
+            LAWS_FC,
             state_t + (hy.mode,),
             mode_doc,
             notes="Each field is smooth on the whole state space: the contact modes "
-            "use the unclipped force of Eq. (1) (with max(X2, 0)), stick holds "
-            "X1' = Vb, flight and separated are free of contact.",
+            "use the unclipped force of the contact law (with max(X2, 0)) and the "
+            "friction law's coefficient at sgn Vr, stick holds X1' = Vb, flight and "
+            "separated are free of contact.",
+            bind=True,
+        ),
+        FunctionSpec(
+            "mode_jacobian",
+            "Jacobian d(X1', Y1', X2', Y2')/d(X1, Y1, X2, Y2) of one mode's field.",
+            "Eqs. (1)-(4)",
+            "matrix",
+            "J : ndarray, shape (..., 4, 4)",
+            _per(lambda f, c: hy.mode_jacobian(c, f), "friction", "contact"),
+            LAWS_FC,
+            state_t + (hy.mode,),
+            mode_doc,
+            notes="The variational equation Phi' = J Phi of a run within one mode; across "
+            "a switch the variation jumps by `saltation`. For a general Floquet "
+            "analysis along an event-driven run (every friction law).",
             bind=True,
         ),
         FunctionSpec(
@@ -362,9 +439,9 @@ def hybrid() -> ModuleSpec:
             "Eqs. (1)-(4)",
             "vector",
             "dstate : ndarray, shape (..., 4)\n    Derivative of (z, z', X2, X2').",
-            _per_contact(lambda c: list(hy.response_field(c)[0])),
-            CONTACT_OPTION,
-            (t,) + hy.response_field("hertz_damp")[1] + hy.STATE[2:] + (hy.mode,),
+            _per(lambda c: list(hy.response_field(c)[0]), "contact"),
+            CONTACT,
+            (t,) + hy.response_field(laws.default("contact"))[1] + hy.STATE[2:] + (hy.mode,),
             {
                 **mode_doc,
                 "z": "tangential response to the contact force [m]",
@@ -373,7 +450,8 @@ def hybrid() -> ModuleSpec:
             notes="z'' + 2 beta1 omega1 z' + omega1^2 z = F(mode) from rest, beside "
             "the normal equation: the normal motion does not depend on the "
             "tangential one, so the superposition integrator integrates this "
-            "once.",
+            "once. Friction laws whose slip-mode friction depends on the tangential "
+            "state cannot use it (generated.capabilities).",
             bind=True,
         ),
         FunctionSpec(
@@ -382,13 +460,13 @@ def hybrid() -> ModuleSpec:
             "Eqs. (1)-(4)",
             "tuple",
             surfaces_doc,
-            _per_contact(lambda c: [hy.surfaces(c)[n] for n in hy.SURFACES]),
-            CONTACT_OPTION,
+            _per(lambda f, c: [hy.surfaces(c, f)[n] for n in hy.SURFACES], "friction", "contact"),
+            LAWS_FC,
             state_t,
             STATE_DOCS,
             notes="relative_velocity Y1 - Vb; stick_forward, stick_back "
-            "mu_s F -+ a_free; penetration X2; contact_force: the sign of F "
-            "(F over its factors positive in contact).",
+            "mu(0) F -+ a_free (the stick cone of the friction law); penetration X2; "
+            "contact_force: the sign of F (F over its factors positive in contact).",
             bind=True,
         ),
         FunctionSpec(
@@ -397,8 +475,12 @@ def hybrid() -> ModuleSpec:
             "Eqs. (1)-(4)",
             "tuple",
             surfaces_doc,
-            _per_contact(lambda c: [hy.surface_scales(c)[n] for n in hy.SURFACES]),
-            CONTACT_OPTION,
+            _per(
+                lambda f, c: [hy.surface_scales(c, f)[n] for n in hy.SURFACES],
+                "friction",
+                "contact",
+            ),
+            LAWS_FC,
             state_t,
             STATE_DOCS,
             notes="The sum of the absolute values of the terms of h: a computed h "
@@ -412,8 +494,12 @@ def hybrid() -> ModuleSpec:
             "Eqs. (1)-(4)",
             "tuple",
             surfaces_doc,
-            _per_contact(lambda c: [hy.surface_rates(c)[n] for n in hy.SURFACES]),
-            CONTACT_OPTION,
+            _per(
+                lambda f, c: [hy.surface_rates(c, f)[n] for n in hy.SURFACES],
+                "friction",
+                "contact",
+            ),
+            LAWS_FC,
             state_t + (hy.mode,),
             mode_doc,
             notes="dh/dt = partial h / partial t + grad h . f(mode): which side of a "
@@ -459,11 +545,13 @@ def hybrid() -> ModuleSpec:
         "hybrid",
         """Eq. (4) as a hybrid system (derive/hybrid.py).
 
-Modes with smooth vector fields (`vector_field`, by mode code), the switching surfaces
-between them (`surfaces`, with rounding scales and rates along a mode), the guards of
-each tension law (`GUARDS`: which surface ends which mode, crossed in which direction,
-and what follows) and the saltation matrices of the switches (`saltation`), which the
-Floquet analysis of the periodic response needs.
+Modes with smooth vector fields (`vector_field`, by mode code) and their Jacobians
+(`mode_jacobian`), the switching surfaces between them (`surfaces`, with rounding
+scales and rates along a mode), the guards of each tension law (`GUARDS`: which
+surface ends which mode, crossed in which direction, and what follows) and the
+saltation matrices of the switches (`saltation`), which the Floquet analysis of the
+periodic response needs. Fields, surfaces and saltation matrices take the friction
+and contact laws of the registry (``friction=``, ``contact=``).
 """,
         fns,
         constants,
@@ -518,38 +606,46 @@ contact force (integrated by the runtime) add to it (derive/oscillator.py).
 
 
 def fit() -> ModuleSpec:
-    """Eqs. (16)-(17): the least-squares polynomial of X2^(3/2) and its exact errors."""
-    degree = (("degree", "int, 1 to 8", 3, "polynomial degree; 3 gives Eq. (17)"),)
+    """Eqs. (16)-(17): the least-squares polynomial of the contact law's X2^n, exact errors."""
+    options = CONTACT + (("degree", "int, 1 to 8", 3, "polynomial degree; 3 gives Eq. (17)"),)
     arg = (ft.X2max,)
     docs = {"X2max": "upper end of the fitted range [0, X2max] [m]"}
 
     def per_degree(build):
-        return {(n,): build(n) for n in ft.DEGREES}
+        return {(c, n): build(n, c) for c in laws.choices("contact") for n in ft.DEGREES}
 
+    endpoints = (
+        "For a symbolic exponent (hunt_crossley) the larger of the errors at X2 = 0 and at "
+        "X2max, closed forms in n_h: an interior extremum of X2^n_h - fit has no closed "
+        "form (the tests check against a dense scan that none is larger)."
+    )
     functions = (
         FunctionSpec(
             "coefficients",
-            "Coefficients (c0, ..., c_degree) of the L2 fit of X2^(3/2).",
+            "Coefficients (c0, ..., c_degree) of the L2 fit of X2^n.",
             "Eqs. (16)-(17)",
             "tuple",
-            "c : tuple of ndarray\n    X2^(3/2) ~ sum_k c_k X2^k on [0, X2max].",
-            per_degree(lambda n: list(ft.coefficients_eq_17(n))),
-            degree,
+            "c : tuple of ndarray\n    X2^n ~ sum_k c_k X2^k on [0, X2max], n the contact "
+            "law's exponent\n    (3/2: Eq. 17).",
+            per_degree(lambda n, c: list(ft.coefficients_eq_17(n, c))),
+            options,
             arg,
             docs,
-            notes="Exact rationals times powers of X2max, from the continuous "
-            "normal equations (Hilbert matrix) solved by SymPy.",
+            notes="Rational functions of the exponent times powers of X2max, from the "
+            "continuous normal equations (Hilbert matrix) solved by SymPy; exact "
+            "rationals for Eq. (1).",
         ),
         FunctionSpec(
             "max_error",
             "Largest absolute error of the fit on [0, X2max], exact.",
             "Eq. (17) (the paper: 'about 1e-2')",
             "value",
-            "err : ndarray\n    max |X2^(3/2) - fit| (for degree 3: 8/1155 X2max^(3/2)).",
-            per_degree(lambda n: ft.fit_error(n).max_abs),
-            degree,
+            "err : ndarray\n    max |X2^n - fit| (for Eq. 1, degree 3: 8/1155 X2max^(3/2)).",
+            per_degree(lambda n, c: ft.fit_error(n, c).max_abs),
+            options,
             arg,
             docs,
+            notes=endpoints,
         ),
         FunctionSpec(
             "max_error_location",
@@ -557,10 +653,11 @@ def fit() -> ModuleSpec:
             "Eq. (17)",
             "value",
             "X2 : ndarray",
-            per_degree(lambda n: ft.fit_error(n).argmax),
-            degree,
+            per_degree(lambda n, c: ft.fit_error(n, c).argmax),
+            options,
             arg,
             docs,
+            notes=endpoints,
         ),
         FunctionSpec(
             "rms_error",
@@ -568,10 +665,12 @@ def fit() -> ModuleSpec:
             "Eq. (17)",
             "value",
             "rms : ndarray",
-            per_degree(lambda n: ft.fit_error(n).rms),
-            degree,
+            per_degree(lambda n, c: ft.fit_error(n, c).rms),
+            options,
             arg,
             docs,
+            notes="From the normal equations: the mean square error is "
+            "X2max^(2n) (1/(2n+1) - sum_k d_k/(k+n+1)), a closed form in n.",
         ),
         FunctionSpec(
             "mdsm_fit_range",
@@ -579,18 +678,21 @@ def fit() -> ModuleSpec:
             "Eqs. (9), (14), (16)",
             "value",
             "X2max : ndarray",
-            _per_contact(mdsm.x2max),
-            CONTACT_OPTION,
+            _per(mdsm.x2max, "contact"),
+            CONTACT,
             notes="The fast normal motion is the linear response of the normal block "
-            "of Eq. (11) to the normal excitation.",
+            "of Eq. (11) to the normal excitation; X2^0 and the block are those of "
+            "the contact law whose power `coefficients` fits.",
         ),
     )
     return ModuleSpec(
         "fit",
-        """Least-squares polynomial fit of X2^(3/2) on [0, X2max] (Eqs. 16-17).
+        """Least-squares polynomial fit of the contact law's power X2^n on [0, X2max] (Eqs. 16-17).
 
-Degrees 1 to 8, exact in X2max. ``X2max`` comes from the scene (for the MDSM: the
-slow penetration plus the amplitude of the fast normal motion), not a constant.
+Degrees 1 to 8, exact in X2max and in the exponent (``contact=``: 3/2 for Eq. 1, the
+symbol ``n_h`` of Hunt-Crossley's law; the linear law's fit is exact). ``X2max`` comes
+from the scene (for the MDSM: the slow penetration plus the amplitude of the fast
+normal motion, `mdsm_fit_range` of the same contact law), not a constant.
 """,
         functions,
     )
@@ -603,8 +705,13 @@ def friction() -> ModuleSpec:
         "Vr": "relative velocity X1' - Vb [m/s]",
         "Vb": "belt speed [m/s]; the equilibrium has Vr = -Vb",
         "Vhat": "velocity amplitude of Eq. (23) [m/s]",
-        "mu_s": "Coulomb friction coefficient",
+        "mu_s": "static friction coefficient (Coulomb's of Eq. 3)",
     }
+    quadrature = (
+        "For a friction law whose fast average has no closed form (Stribeck's; "
+        "generated.capabilities) the law's part beyond mu(0) is a quadrature of the "
+        "same expression (generated._support.quad)."
+    )
     vhat_opts = (
         (
             "model",
@@ -613,7 +720,7 @@ def friction() -> ModuleSpec:
             "reading of V_hat (docs/modelling.md#vhat): the tangential oscillator alone, "
             "or the 2-DOF system linearised at equilibrium",
         ),
-    ) + CONTACT_OPTION
+    )
     functions = (
         FunctionSpec(
             "mu_bar",
@@ -621,10 +728,12 @@ def friction() -> ModuleSpec:
             "Eq. (23)",
             "value",
             "mu_bar : ndarray",
-            {(): fr.mu_bar_eq_23()},
-            (),
+            _per(lambda f: fr.mu_bar_eq_23(fr.Vr, f), "friction"),
+            FRICTION,
             (fr.Vr, Vh, mu),
             docs,
+            notes="mu(0) (1 - 2/pi acos(Vr/Vhat)) inside |Vr| <= Vhat, mu(0) sgn(Vr) outside "
+            "(Eq. 23), plus the average of mu(|Vr + Vhat sin|) - mu(0). " + quadrature,
         ),
         FunctionSpec(
             "mu_bar0",
@@ -632,24 +741,26 @@ def friction() -> ModuleSpec:
             "Eq. (25), mu_bar^0",
             "value",
             "mu_bar0 : ndarray\n    Negative: the mass is slower than the belt.",
-            {(): fr.mu_bar0_eq_25()},
-            (),
+            _per(fr.mu_bar0_eq_25, "friction"),
+            FRICTION,
             (Vb, Vh, mu),
             docs,
+            notes=quadrature,
         ),
         FunctionSpec(
             "mu_bar_slope",
             "Slope of the effective friction at the equilibrium.",
             "Eqs. (24)-(25)",
             "value",
-            "slope : ndarray\n    2 mu_s / (pi sqrt((Vhat - Vb)(Vhat + Vb))) for Vb < Vhat;\n"
-            "    +inf at Vb = Vhat exactly; 0 for Vb > Vhat.",
-            {(): fr.mu_bar_slope_eq_25()},
-            (),
+            "slope : ndarray\n    Coulomb: 2 mu_s / (pi sqrt((Vhat - Vb)(Vhat + Vb))) for "
+            "Vb < Vhat;\n    +inf at Vb = Vhat exactly; 0 for Vb > Vhat. Other laws add the "
+            "slope of\n    their part beyond mu(0) on both sides.",
+            _per(fr.mu_bar_slope_eq_25, "friction"),
+            FRICTION,
             (Vb, Vh, mu),
             docs,
             notes="The same in both sign conventions: they differ in how the slope "
-            "enters the slow equations (generated.stability).",
+            "enters the slow equations (generated.stability). " + quadrature,
         ),
         FunctionSpec(
             "vhat",
@@ -657,12 +768,17 @@ def friction() -> ModuleSpec:
             "Eq. (23) (docs/modelling.md#vhat)",
             "value",
             "Vhat : ndarray",
-            {(m, c): fr.vhat(m, c) for m in fr.VHAT_MODELS for c in CONTACT_LAWS},
-            vhat_opts,
-            notes="tangential: alpha_t Omega_t^3 / |omega1^2 - Omega_t^2 + 2i beta1 "
-            "omega1 Omega_t|. coupled: the normal response drives the "
-            "tangential one through mu_s times the normal force fluctuation; "
-            "with Omega_t != Omega_n the two amplitudes add.",
+            {
+                (f, c, m): fr.vhat(m, c, f)
+                for f in laws.choices("friction")
+                for c in laws.choices("contact")
+                for m in fr.VHAT_MODELS
+            },
+            LAWS_FC + vhat_opts,
+            notes="tangential: alpha_t Omega_t^3 / |omega1^2 - Omega_t^2 + 2i (beta1 "
+            "omega1 + g mu'(Vb)/2) Omega_t| (Coulomb: mu' = 0). coupled: the normal "
+            "response drives the tangential one through mu(Vb) times the normal force "
+            "fluctuation; with Omega_t != Omega_n the two amplitudes add.",
         ),
     )
     return ModuleSpec(
@@ -672,7 +788,9 @@ def friction() -> ModuleSpec:
 ``mu_bar(Vr, Vhat, mu_s)`` is Eq. (23) as printed (the sign of ``Vr``);
 ``mu_bar_slope(Vb, Vhat, mu_s)`` its slope at the equilibrium ``Vr = -Vb``
 (Eq. 25), exact up to ``Vb -> Vhat`` (``+inf`` at equality, 0 beyond);
-``vhat(model=...)`` the two readings of ``V_hat``.
+``vhat(model=...)`` the two readings of ``V_hat``. ``friction=`` takes any friction
+law of the registry: Eq. (23) with its static coefficient, plus the average of the
+rest of the law (a quadrature for Stribeck's, derive/averaging.py).
 """,
         functions,
     )
@@ -688,24 +806,43 @@ def stability() -> ModuleSpec:
             "sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) "
             "implies (docs/modelling.md#friction-sign)",
         ),
-    ) + CONTACT_OPTION
-    keys = [(cv, c) for cv in st.CONVENTIONS for c in CONTACT_LAWS]
+    )
+    keys = list(
+        itertools.product(laws.choices("friction"), laws.choices("contact"), st.CONVENTIONS)
+    )
 
     def each(build):
-        return {k: build(*k) for k in keys}
+        return {(f, c, cv): build(f, c, cv) for f, c, cv in keys}
 
-    def pqrs(cv, c):
-        return [st.with_friction(e) for e in st.factored(cv, c).pqrs]
+    def pqrs(f, c, cv):
+        return [st.with_friction(e, f) for e in st.factored(cv, c).pqrs]
 
-    def quads(cv, c):
-        f = st.factored(cv, c)
+    def quads(f, c, cv):
+        fq = st.factored(cv, c)
         return [
-            ss.Quadratic(*(st.with_friction(e) for e in (q.p, q.q, q.disc)))
-            for q in (f.tangential, f.normal)
+            ss.Quadratic(*(st.with_friction(e, f) for e in (q.p, q.q, q.disc)))
+            for q in (fq.tangential, fq.normal)
         ]
 
-    hurwitz = each(lambda cv, c: st.hurwitz_factored(*pqrs(cv, c)))
-    common = dict(options=opts, vhat=True)
+    def boundary(f, c, cv, upper=False):
+        lower = st.critical_belt_speed(cv, c, f)
+        if lower is None:
+            closed, why = cap.closed_form_average(f)
+            return Refusal(
+                f"friction={f!r} has no closed-form critical belt speed: "
+                + (
+                    "SymPy's roots of p(Vb) = 0 are not one root sqrt(Vhat^2 - m^2)"
+                    if closed
+                    else f"the slope of its effective friction is a quadrature "
+                    f"(closed_form_average: {why})"
+                )
+            )
+        if not upper:
+            return lower
+        return [lower, P["Vhat"] if cv == "paper" else sp.nan]
+
+    hurwitz = each(lambda f, c, cv: st.hurwitz_factored(*pqrs(f, c, cv)))
+    common = dict(options=LAWS_FC + opts, vhat=True)
     functions = (
         FunctionSpec(
             "equilibrium",
@@ -714,7 +851,9 @@ def stability() -> ModuleSpec:
             "tuple",
             "Z1, S1, Z2, S2 : ndarray",
             each(
-                lambda cv, c: [st.with_friction(v) for v in st.slow_equilibrium_A7(cv, c).values()]
+                lambda f, c, cv: [
+                    st.with_friction(v, f) for v in st.slow_equilibrium_A7(cv, c).values()
+                ]
             ),
             **common,
             notes="paper: Z1 = mu_bar^0 g / omega1^2 with mu_bar^0 < 0 (Eq. A7 as "
@@ -726,7 +865,11 @@ def stability() -> ModuleSpec:
             "Eq. (22)",
             "matrix",
             "J : ndarray, shape (..., 4, 4)",
-            each(lambda cv, c: st.forced_jacobian_eq_22(cv, c).applyfunc(st.with_friction)),
+            each(
+                lambda f, c, cv: st.forced_jacobian_eq_22(cv, c).applyfunc(
+                    lambda e: st.with_friction(e, f)
+                )
+            ),
             **common,
         ),
         FunctionSpec(
@@ -735,7 +878,7 @@ def stability() -> ModuleSpec:
             "Eqs. (26)-(27), (A8)",
             "tuple",
             "a1, a2, a3, a4 : ndarray",
-            each(lambda cv, c: [st.with_friction(a) for a in st.coefficients_A8(cv, c)]),
+            each(lambda f, c, cv: [st.with_friction(a, f) for a in st.coefficients_A8(cv, c)]),
             **common,
             notes="Only the slope mu_bar' enters, not mu_bar^0 (Sect. 4.3).",
         ),
@@ -781,7 +924,7 @@ def stability() -> ModuleSpec:
             "Eq. (28)",
             "stable",
             "stable : bool ndarray",
-            each(lambda cv, c: [st.with_friction(e) for e in st.stability_conditions(cv, c)]),
+            each(lambda f, c, cv: [st.with_friction(e, f) for e in st.stability_conditions(cv, c)]),
             **common,
             notes="With the quartic = (l^2 + p l + q)(l^2 + r l + s) and q, s > 0 "
             "(proved by SymPy on the parameter domains), all of H1..H4 > 0 "
@@ -797,8 +940,9 @@ def stability() -> ModuleSpec:
             "value",
             "Vb_c : ndarray\n    paper: sqrt((Vhat - m)(Vhat + m)), m = mu_s g / (pi beta1 "
             "omega1),\n    unstable for Vb_c < Vb <= Vhat; 0 where m >= Vhat (unstable "
-            "for all\n    0 <= Vb <= Vhat); consistent: NaN (no belt speed is unstable).",
-            each(lambda cv, c: st.critical_belt_speed(cv, c)),
+            "for all\n    0 <= Vb <= Vhat); consistent: NaN (no belt speed is unstable).\n"
+            "    Only where the effective friction's slope has a closed form.",
+            each(boundary),
             **common,
         ),
         FunctionSpec(
@@ -808,12 +952,7 @@ def stability() -> ModuleSpec:
             "tuple",
             "lower, upper : ndarray\n    paper: (critical_belt_speed, Vhat), an interval"
             " closed at Vhat\n    (infinite slope); consistent: (NaN, NaN), empty.",
-            each(
-                lambda cv, c: [
-                    st.critical_belt_speed(cv, c),
-                    P["Vhat"] if cv == "paper" else sp.nan,
-                ]
-            ),
+            each(lambda f, c, cv: boundary(f, c, cv, upper=True)),
             **common,
         ),
     )
@@ -822,11 +961,14 @@ def stability() -> ModuleSpec:
         """Stability of the forced system (Sects. 4.2-4.3, Eqs. 22, 26-28, A7-A8).
 
 Every function takes ``Vb`` and either ``Vhat=`` or ``vhat_model=`` (default
-``"tangential"``), the sign ``convention=`` (``"paper"``, default, or
-``"consistent"``) and ``contact=``. The forced Jacobian is block triangular: the
-quartic factors into a tangential and a normal quadratic, so eigenvalues, Hurwitz
-determinants and the critical belt speed are closed forms. A stability map
-needs only ``is_stable`` (a sign), not eigenvalues.
+``"tangential"``; ``V_hat`` is then that of the same laws), the sign ``convention=``
+(``"paper"``, default, or ``"consistent"``), ``friction=`` and ``contact=``. The forced
+Jacobian is block triangular: the quartic factors into a tangential and a normal
+quadratic, so eigenvalues, Hurwitz determinants and the critical belt speed are
+closed forms in the effective friction's value and slope (a quadrature for a
+friction law without a closed-form fast average; the critical belt speed and the
+unstable interval then refuse). A stability map needs only ``is_stable`` (a sign),
+not eigenvalues.
 """,
         functions,
     )
@@ -842,10 +984,23 @@ def correlation() -> ModuleSpec:
         "N1": "amplitude of the fast normal force per unit mass [m/s^2]",
         "theta": "phase of the fast normal force ahead of the fast velocity [rad]",
     }
-    re, im, vre, vim = {}, {}, {}, {}
-    for contact in CONTACT_LAWS:
-        re[contact], im[contact] = cr.fast_normal_force(contact)
-        vre[contact], vim[contact] = cr.fast_tangential_velocity(contact)
+    quadrature = (
+        "For a friction law whose fast average has no closed form (Stribeck's; "
+        "generated.capabilities) the law's part beyond mu(0) is a quadrature of the "
+        "same expression (generated._support.quad)."
+    )
+
+    def amplitude_phase(re_im):
+        re, im = re_im
+        return [sp.sqrt(re**2 + im**2), sp.atan2(im, re)]
+
+    balance_docs = {
+        "V": "amplitude of the fast relative velocity [m/s]",
+        "phi": "its phase: X1' - Z1' = V sin(Omega_t t + phi) [rad]",
+        "N1": "amplitude of the fast normal force per unit mass [m/s^2]",
+        "psi": "its phase: N = g + N1 sin(Omega_t t + psi) [rad]",
+        "theta": "phase of the fast normal force ahead of the fast velocity, psi - phi [rad]",
+    }
     functions = (
         FunctionSpec(
             "averaged_friction",
@@ -890,11 +1045,8 @@ def correlation() -> ModuleSpec:
             "tuple",
             "N1, psi : ndarray\n    N(t) = g + N1 sin(Omega_n t + psi) per unit mass, "
             "from the\n    linear response of the normal block of Eq. (11).",
-            {
-                (c,): [sp.sqrt(re[c] ** 2 + im[c] ** 2), sp.atan2(im[c], re[c])]
-                for c in CONTACT_LAWS
-            },
-            CONTACT_OPTION,
+            _per(lambda c: amplitude_phase(cr.fast_normal_force(c)), "contact"),
+            CONTACT,
         ),
         FunctionSpec(
             "fast_tangential_velocity",
@@ -904,11 +1056,91 @@ def correlation() -> ModuleSpec:
             "V, phi : ndarray\n    X1'(t) - Z1' = V sin(Omega_t t + phi) while Vr < 0 "
             "throughout\n    (V is the coupled V_hat). One frequency: Omega_n is taken "
             "equal to Omega_t.",
-            {
-                (c,): [sp.sqrt(vre[c] ** 2 + vim[c] ** 2), sp.atan2(vim[c], vre[c])]
-                for c in CONTACT_LAWS
-            },
-            CONTACT_OPTION,
+            _per(
+                lambda f, c: amplitude_phase(cr.fast_tangential_velocity(c, f)),
+                "friction",
+                "contact",
+            ),
+            LAWS_FC,
+            notes="The friction law enters through its value and slope at Vb.",
+        ),
+        FunctionSpec(
+            "friction_average",
+            "Average of mu(|v|) sgn(v) (N0 + N1 sin(. + theta)), v = u + V sin, over a period.",
+            "Eq. (23) generalised (docs/modelling.md#averaging)",
+            "value",
+            "F : ndarray\n    The mean friction force per unit mass of the friction law (Coulomb: "
+            "mu_s\n    times `averaged_friction`).",
+            _per(cr.friction_average, "friction"),
+            FRICTION,
+            args,
+            docs,
+            notes=quadrature,
+        ),
+        FunctionSpec(
+            "friction_average_slope",
+            "Slope in u of `friction_average`.",
+            "Eq. (25) generalised",
+            "value",
+            "dF/du : ndarray",
+            _per(cr.friction_average_slope, "friction"),
+            FRICTION,
+            args,
+            docs,
+            notes=quadrature,
+        ),
+        FunctionSpec(
+            "friction_harmonic",
+            "First harmonic (s1, c1) of mu(|v|) sgn(v) (N0 + N1 sin(t + theta)), v = u + V sin t.",
+            "harmonic balance of Eq. (A1)",
+            "tuple",
+            "s1, c1 : ndarray\n    The friction force ~ s1 sin t + c1 cos t + (mean, higher "
+            "harmonics).",
+            _per(lambda f: list(cr.friction_harmonic(f)), "friction"),
+            FRICTION,
+            args,
+            docs,
+            notes=quadrature,
+        ),
+        FunctionSpec(
+            "slow_damping",
+            "Damping of the slow tangential motion at the equilibrium (consistent MDSM).",
+            "Eqs. (20), (23)-(25) generalised",
+            "value",
+            "p : ndarray\n    2 beta1 omega1 + d/du <mu(|v|) sgn(v) N> at u = -Vb, N0 = g; "
+            "the slow\n    sliding is unstable where p < 0.",
+            _per(cr.slow_damping, "friction"),
+            FRICTION,
+            (cr.V, cr.N1, cr.theta),
+            {**docs, **balance_docs},
+            notes="The linearisation of the averaged friction at frozen fast amplitude and "
+            "phase (runtime.predict's consistent MDSM). " + quadrature,
+        ),
+        FunctionSpec(
+            "transfer_function",
+            "q(i Omega_t) of the tangential oscillator without friction.",
+            "Eq. (4), first row, harmonic",
+            "tuple",
+            "re, im : ndarray\n    omega1^2 - Omega_t^2 and 2 beta1 omega1 Omega_t: a displacement "
+            "x e^(i W t)\n    needs the force q(i W) x.",
+            {(): list(cr.transfer_function())},
+            notes="The transfer function of the harmonic balance (runtime.predict's D).",
+        ),
+        FunctionSpec(
+            "harmonic_balance",
+            "Residual of the harmonic balance of the fast tangential motion.",
+            "Eq. (A1), first harmonic",
+            "tuple",
+            "re, im : ndarray\n    Of q(i W) V/(i W) - F_t e^(-i phi) + (s1 + i c1), divided by "
+            "|F_t|,\n    W = Omega_t; zero at a solution (V, phi).",
+            _per(lambda f: list(cr.harmonic_balance(f)), "friction"),
+            FRICTION,
+            (cr.V, cr.phi, cr.N1, cr.psi),
+            balance_docs,
+            notes="s1 + i c1 is the first harmonic of the friction force (`friction_harmonic` "
+            "at u = -Vb, N0 = g, theta = psi - phi): with the fast normal force "
+            "(`fast_normal_force`) its roots give the fast motion of the consistent MDSM. "
+            + quadrature,
         ),
     )
     return ModuleSpec(
@@ -919,10 +1151,37 @@ The paper's slow equations drop the correlation between the fast friction direct
 and the fast normal force (docs/modelling.md#averaging). These closed forms keep it, for a
 harmonic fast motion: the averaged friction and its slope (the consistent
 counterpart of Eqs. 23-25), the first harmonic for the harmonic balance of the
-fast tangential motion, and the fast normal force. ``runtime.predict`` builds the
-stability prediction from them.
+fast tangential motion, and the fast normal force. ``averaged_friction``,
+``averaged_friction_slope`` and ``first_harmonic`` are the set-valued sign's
+averages; ``friction_average``, ``friction_average_slope`` and ``friction_harmonic``
+those of a friction law (``friction=``), and ``slow_damping`` and
+``harmonic_balance`` the pieces of the consistent MDSM built from them.
+``runtime.predict`` builds the stability prediction from them.
 """,
         functions,
+    )
+
+
+def capabilities() -> ModuleSpec:
+    """The structural facts of each combination of laws, as data (derive/capabilities.py)."""
+    table = cap.capabilities()
+    return ModuleSpec(
+        "capabilities",
+        """What each combination of laws allows: facts SymPy decided (derive/capabilities.py).
+
+``CAPABILITIES[(friction, contact, tension)][fact] = (holds, reason)``: ``holds`` a
+bool, ``reason`` one line naming the law and the property. ``FACTS`` are the fact
+names, ``FACT_DOCS`` say what each means and which analysis relies on it. An
+analysis checks the facts it needs and either takes a general path or refuses with
+the reason, never computing with the physics of another law.
+""",
+        (),
+        (
+            ("FACTS", tuple(cap.FACTS), "The facts, in the order of every entry."),
+            ("FACT_DOCS", dict(cap.FACTS), "What each fact means and which analysis needs it."),
+            ("CAPABILITIES", table, "(friction, contact, tension) -> fact -> (holds, reason)."),
+        ),
+        mp=False,
     )
 
 
@@ -936,4 +1195,5 @@ def all_modules() -> tuple[ModuleSpec, ...]:
         correlation(),
         hybrid(),
         oscillator(),
+        capabilities(),
     )

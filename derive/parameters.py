@@ -1,4 +1,4 @@
-"""The parameter table: every model parameter, once, with unit and base value.
+"""The model's own parameters: every parameter that all laws share, once, with unit and base value.
 
 Base values are those of the paper's Fig. 2 (Sect. 3); ``Vb = 4`` is the belt speed
 of Fig. 3. Names follow the paper in ASCII: ``beta2`` and ``omega2`` are the starred
@@ -12,7 +12,13 @@ The excitation has its own amplitude, frequency and phase in each direction
 phase_n`` (normal) default to ``alpha``, ``Omega`` and 0, which gives Eq. (4)
 exactly.
 
-This module is plain Python (no SymPy): the code generator copies the table into
+The friction and contact laws bring parameters of their own (``mu_k``, ``v_s`` of
+Stribeck's law, ``n_h`` of Hunt-Crossley's): they are entries of the laws in
+`derive.laws`, and `derive.laws.parameter_table` appends them to `MODEL`. The units of
+``omega2`` and ``beta2`` depend on the contact law (`derived_unit`): `derive.units`
+derives them from its force.
+
+This module is plain Python (no SymPy): the code generator copies the full table into
 ``generated/parameters.py`` so the runtime layer can read it without SymPy.
 """
 
@@ -20,7 +26,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Parameter", "PARAMETERS", "BASE", "names"]
+__all__ = ["Parameter", "MODEL", "base_values"]
 
 
 @dataclass(frozen=True)
@@ -32,7 +38,8 @@ class Parameter:
     name : str
         ASCII name used as keyword argument everywhere.
     unit : str
-        SI unit (for the Hertz-Damp contact law).
+        SI unit. For a parameter with `derived_unit` the unit under the linear
+        contact law of Fig. 16; `derive.units` derives it for each contact law.
     base : float or None
         Value of the paper's base set (Fig. 2); ``None`` for an optional parameter
         that defaults to another one (see `default_from`).
@@ -43,6 +50,11 @@ class Parameter:
     default_from : str or None
         For the per-direction excitation: the parameter whose value is taken when
         this one is not given.
+    law : (str, str) or None
+        ``(option, choice)`` of the law that owns the parameter (``("friction",
+        "stribeck")``); None for the model's own parameters.
+    derived_unit : bool
+        The unit depends on the contact law (its stiffness and damping).
     """
 
     name: str
@@ -51,9 +63,11 @@ class Parameter:
     domain: str
     description: str
     default_from: str | None = None
+    law: tuple[str, str] | None = None
+    derived_unit: bool = False
 
 
-PARAMETERS: tuple[Parameter, ...] = (
+MODEL: tuple[Parameter, ...] = (
     Parameter(
         "beta1", "1", 0.1, "nonnegative", "tangential damping ratio C1/(2 M omega1), Eq. (4)"
     ),
@@ -62,17 +76,19 @@ PARAMETERS: tuple[Parameter, ...] = (
     ),
     Parameter(
         "beta2",
-        "1/m^(5/4)",
+        "1",
         0.15,
         "nonnegative",
-        "Hertz-Damp damping beta2* = C2/(2 M omega2*), Eq. (4)",
+        "contact damping: beta2* = C2/(2 M omega2*) of Hertz-Damp, Eq. (4)",
+        derived_unit=True,
     ),
     Parameter(
         "omega2",
-        "rad/(m^(1/4) s)",
+        "rad/s",
         0.5,
         "positive",
-        "Hertz-Damp stiffness omega2* = sqrt(K2/M), Eq. (4)",
+        "contact stiffness: omega2* = sqrt(K2/M) of Hertz-Damp, Eq. (4)",
+        derived_unit=True,
     ),
     Parameter(
         "alpha",
@@ -82,7 +98,13 @@ PARAMETERS: tuple[Parameter, ...] = (
         "excitation amplitude: force per mass alpha Omega^2, Eq. (4)",
     ),
     Parameter("Omega", "rad/s", 4.0, "nonnegative", "excitation frequency Omega_e, Eq. (4)"),
-    Parameter("mu_s", "1", 0.4, "nonnegative", "Coulomb friction coefficient, Eq. (3)"),
+    Parameter(
+        "mu_s",
+        "1",
+        0.4,
+        "nonnegative",
+        "static friction coefficient: Coulomb's of Eq. (3), the bound of stick",
+    ),
     Parameter("g", "m/s^2", 9.81, "positive", "gravity pressing the mass on the belt, Eq. (4)"),
     Parameter("Vb", "m/s", 4.0, "nonnegative", "belt speed (base value: Fig. 3)"),
     Parameter(
@@ -114,13 +136,15 @@ PARAMETERS: tuple[Parameter, ...] = (
     ),
 )
 
-BASE: dict[str, float] = {
-    p.name: p.base
-    for p in PARAMETERS
-    if p.base is not None and p.default_from is None and not p.name.startswith("phase")
-}
 
+def base_values(table: tuple[Parameter, ...]) -> dict[str, float]:
+    """The base set of ``table``: every parameter with a value of its own.
 
-def names() -> tuple[str, ...]:
-    """All parameter names, in table order."""
-    return tuple(p.name for p in PARAMETERS)
+    Per-direction excitation parameters (they default to ``alpha``, ``Omega``) and
+    the phases (optional, 0) are left out, so that the base set is Eq. (4) itself.
+    """
+    return {
+        p.name: p.base
+        for p in table
+        if p.base is not None and p.default_from is None and not p.name.startswith("phase")
+    }

@@ -11,8 +11,11 @@ The slow equations (Eqs. 20-21, state-space form A3-A6) carry the effective fric
 * ``convention="consistent"``: the sign of Eq. (4), ``- mu_bar(Z1' - Vb) F_n``: the
   entry becomes ``-2 beta1 omega1 - mu_bar' g`` and ``Z1^0 > 0``.
 
-Derivations are cached (pure functions of the two option strings; SymPy objects
-are immutable). The forced Jacobian is block triangular, so its quartic is the product of a
+The friction law enters only through ``mu_bar^0`` and ``mu_bar'`` (`with_friction`,
+`derive.friction`): the slow equations, their Jacobian, quartic and Hurwitz
+determinants are derived once per contact law in the symbols ``mu0, mu1``.
+Derivations are cached (pure functions of the option strings; SymPy objects are
+immutable). The forced Jacobian is block triangular, so its quartic is the product of a
 tangential quadratic ``lambda^2 + p lambda + q`` and a normal one
 ``lambda^2 + r lambda + s``. In those four quantities the Hurwitz determinants of
 Eq. (28) factor exactly:
@@ -41,6 +44,7 @@ from functools import cache
 
 import sympy as sp
 
+from . import laws
 from .friction import mu_bar0_eq_25, mu_bar_slope_eq_25
 from .model import P, normal_force
 from .statespace import Quadratic, block_quadratics, charpoly_eq_12
@@ -79,9 +83,11 @@ mu_bar = sp.Function("mu_bar")
 mu0, mu1 = sp.symbols("mu_bar0 mu_bar_slope", real=True)
 
 _SIGN = {"paper": 1, "consistent": -1}
+_CONTACT = laws.default("contact")
+_FRICTION = laws.default("friction")
 
 
-def slow_state_space_A3_A6(convention: str = "paper", contact: str = "hertz_damp") -> sp.Matrix:
+def slow_state_space_A3_A6(convention: str = "paper", contact: str = _CONTACT) -> sp.Matrix:
     """Right-hand side ``(Z1', S1', Z2', S2')`` of Eqs. (A3)-(A6)."""
     if convention not in _SIGN:
         raise ValueError(f"convention must be one of {CONVENTIONS}, got {convention!r}")
@@ -101,7 +107,7 @@ def _linearise(expr):
     return expr.subs(at, mu0)
 
 
-def slow_equilibrium_A7(convention: str = "paper", contact: str = "hertz_damp") -> dict:
+def slow_equilibrium_A7(convention: str = "paper", contact: str = _CONTACT) -> dict:
     """Equilibrium of Eqs. (A3)-(A6), solved by SymPy, in terms of ``mu0``, Eq. (A7)."""
     rhs = slow_state_space_A3_A6(convention, contact).subs(S1, 0).subs(mu_bar(-P["Vb"]), mu0)
     sol = sp.solve(list(rhs), [Z1, Z2, S2], dict=True)
@@ -111,7 +117,7 @@ def slow_equilibrium_A7(convention: str = "paper", contact: str = "hertz_damp") 
 
 
 @cache
-def forced_jacobian_eq_22(convention: str = "paper", contact: str = "hertz_damp") -> sp.Matrix:
+def forced_jacobian_eq_22(convention: str = "paper", contact: str = _CONTACT) -> sp.Matrix:
     """Jacobian of Eqs. (A3)-(A6) at Eq. (A7), ``J_f^0`` of Eq. (22), in ``mu0, mu1``."""
     J = slow_state_space_A3_A6(convention, contact).jacobian(SLOW)
     eq = slow_equilibrium_A7(convention, contact)
@@ -131,13 +137,13 @@ class Factored:
 
 
 @cache
-def factored(convention: str = "paper", contact: str = "hertz_damp") -> Factored:
+def factored(convention: str = "paper", contact: str = _CONTACT) -> Factored:
     """Exact factorisation of Eq. (26) found from the block structure of Eq. (22)."""
     return Factored(*block_quadratics(forced_jacobian_eq_22(convention, contact)))
 
 
 @cache
-def coefficients_A8(convention: str = "paper", contact: str = "hertz_damp") -> tuple[sp.Expr, ...]:
+def coefficients_A8(convention: str = "paper", contact: str = _CONTACT) -> tuple[sp.Expr, ...]:
     """``a1..a4`` of the monic quartic, Eqs. (26)-(27) and (A8)."""
     J = forced_jacobian_eq_22(convention, contact)
     return tuple(sp.expand(a) for a in charpoly_eq_12(J).all_coeffs()[1:])
@@ -170,7 +176,7 @@ def hurwitz_factored(p, q, r, s) -> list[sp.Expr]:
 
 
 @cache
-def stability_conditions(convention: str = "paper", contact: str = "hertz_damp") -> tuple:
+def stability_conditions(convention: str = "paper", contact: str = _CONTACT) -> tuple:
     """``(p, r)``: ``is_stable`` is ``p > 0 and r > 0``, equivalent to Eq. (28)'s ``H_k > 0``.
 
     Raises
@@ -191,37 +197,53 @@ def stability_conditions(convention: str = "paper", contact: str = "hertz_damp")
 
 
 @cache
-def critical_belt_speed(convention: str = "paper", contact: str = "hertz_damp") -> sp.Expr:
+def critical_belt_speed(
+    convention: str = "paper", contact: str = _CONTACT, friction: str = _FRICTION
+) -> sp.Expr | None:
     """Lower edge of the unstable belt speeds: the root of ``p(Vb) = 0`` below ``V_hat``.
 
-    SymPy solves ``p = 0`` with the slope of Eq. (25); the root is returned in the
-    factored form ``sqrt((V_hat - m)(V_hat + m))``, ``m = mu_s g / (pi beta1 omega1)``,
-    proved equal to SymPy's. Where ``m >= V_hat`` the whole range ``0 <= Vb < V_hat``
-    is unstable and the value is 0. In the consistent convention ``p > 0`` for
-    every ``Vb``: there is no boundary and the value is NaN.
+    SymPy solves ``p = 0`` with the slope of Eq. (25); a root ``sqrt(R)`` with
+    ``V_hat^2 - R = m^2`` free of ``V_hat`` is returned in the factored form
+    ``sqrt((V_hat - m)(V_hat + m))`` (for Coulomb's law ``m = mu_s g / (pi beta1
+    omega1)``), proved equal to SymPy's. Where ``m >= V_hat`` the whole range
+    ``0 <= Vb < V_hat`` is unstable and the value is 0. In the consistent
+    convention with Coulomb's law ``p > 0`` for every ``Vb``: there is no boundary
+    and the value is NaN.
+
+    Returns
+    -------
+    sympy.Expr or None
+        None where the slope of the law's effective friction is a quadrature
+        (`derive.averaging.closed_form`), or where SymPy's roots of ``p(Vb) = 0`` are
+        not one root of the form above: then no closed-form boundary is claimed.
     """
-    p = factored(convention, contact).tangential.p
+    slope = mu_bar_slope_eq_25(friction).args[0][0]
+    if slope.has(sp.Integral):
+        return None
+    return _root_below_vhat(factored(convention, contact).tangential.p.subs(mu1, slope))
+
+
+@cache
+def _root_below_vhat(p_of_vb: sp.Expr) -> sp.Expr | None:
+    """`critical_belt_speed` of the tangential damping ``p(Vb)`` (the same for every
+    contact law: the normal block does not enter it)."""
     Vb, Vh = P["Vb"], P["Vhat"]
-    slope = mu_bar_slope_eq_25().args[0][0]
-    p_of_vb = p.subs(mu1, slope)
-    m = P["mu_s"] * P["g"] / (sp.pi * P["beta1"] * P["omega1"])
-    closed = sp.sqrt((Vh - m) * (Vh + m))
     # solve() squares the square root away, so each candidate is substituted back
     # on the branch where it is real (Vhat = m + d, d > 0).
     d = sp.Symbol("d", positive=True)
-    roots = [
-        r
-        for r in sp.solve(p_of_vb, Vb)
-        if not r.could_extract_minus_sign()
-        and sp.simplify(sp.expand(p_of_vb.subs(Vb, r).subs(Vh, m + d))) == 0
-    ]
-    if not roots:
+    candidates = [r for r in sp.solve(p_of_vb, Vb) if not r.could_extract_minus_sign()]
+    if not candidates:
         return sp.nan
-    if len(roots) != 1 or sp.simplify((roots[0] ** 2 - closed**2).subs(Vh, m + d)) != 0:
-        raise AssertionError(f"unexpected roots of p(Vb) = 0: {roots}")
+    m = sp.sqrt(sp.factor(sp.expand(Vh**2 - candidates[0] ** 2)))
+    if Vh in m.free_symbols or len(candidates) != 1:
+        return None  # a root of another form: no closed-form boundary is claimed
+    closed = sp.sqrt((Vh - m) * (Vh + m))
+    if sp.simplify(sp.expand(p_of_vb.subs(Vb, closed).subs(Vh, m + d))) != 0:
+        return sp.nan
     return sp.Piecewise((closed, m < Vh), (0, True))
 
 
-def with_friction(expr) -> sp.Expr:
-    """``expr`` with ``mu0``, ``mu1`` replaced by Eq. (25) (``Vhat`` stays a parameter)."""
-    return sp.sympify(expr).subs({mu0: mu_bar0_eq_25(), mu1: mu_bar_slope_eq_25()})
+def with_friction(expr, friction: str = _FRICTION) -> sp.Expr:
+    """``expr`` with ``mu0``, ``mu1`` replaced by Eq. (25) of the friction law (``Vhat``
+    stays a parameter)."""
+    return sp.sympify(expr).subs({mu0: mu_bar0_eq_25(friction), mu1: mu_bar_slope_eq_25(friction)})

@@ -1,10 +1,16 @@
 """State-space form, equilibrium, Jacobian and characteristic polynomial (Sect. 4.1).
 
-Implements Eqs. (5)-(12) of the paper for either contact law: the first-order
-form on the sliding branch ``X1' < Vb``, ``X2 > 0`` (Eqs. 5-8), the equilibrium
-solved by SymPy (Eq. 9), the Jacobian (Eq. 10) and its value at equilibrium
-(Eq. 11), the characteristic polynomial (Eq. 12) and its exact factorisation into
-the tangential and normal quadratics.
+Implements Eqs. (5)-(12) of the paper for every friction and contact law of the
+registry (`derive.laws`): the first-order form on the sliding branch ``X1' < Vb``,
+``X2 > 0`` (Eqs. 5-8), the equilibrium solved by SymPy (Eq. 9), the Jacobian
+(Eq. 10) and its value at equilibrium (Eq. 11), the characteristic polynomial
+(Eq. 12) and its exact factorisation into the tangential and normal quadratics.
+
+With a friction coefficient that depends on the sliding speed the equilibrium
+depends on the belt speed (``X1^0 = mu(Vb) g / omega1^2``) and the tangential
+damping of the linearisation is ``2 beta1 omega1 + g mu'(Vb)``: Stribeck's falling
+law makes steady sliding unstable below a belt speed that `critical_belt_speed`
+solves for in closed form.
 """
 
 from __future__ import annotations
@@ -14,10 +20,12 @@ from functools import cache
 
 import sympy as sp
 
-from .model import STATE, Y1, Y2, equations_of_motion, lam
+from . import laws
+from .model import SPEED, STATE, Y1, Y2, P, coefficient, equations_of_motion, lam
 
 __all__ = [
     "SLIDING",
+    "DEFAULT",
     "state_space_eqs_5_8",
     "equilibrium_eq_9",
     "jacobian_eq_10",
@@ -26,43 +34,127 @@ __all__ = [
     "Quadratic",
     "block_quadratics",
     "free_of",
+    "critical_belt_speed",
+    "tangential_damping",
+    "quadratics_at_equilibrium",
+    "MU_VB",
+    "DMU_VB",
 ]
 
 #: Friction direction on the branch of Eqs. (5)-(8): the mass is slower than the belt.
 SLIDING = -1
+#: The default friction and contact laws (the paper's).
+DEFAULT = {"friction": laws.default("friction"), "contact": laws.default("contact")}
 
 
 def state_space_eqs_5_8(
-    contact: str = "hertz_damp", forced: bool = False, direction=SLIDING
+    contact: str = DEFAULT["contact"],
+    forced: bool = False,
+    direction=SLIDING,
+    friction: str = DEFAULT["friction"],
 ) -> sp.Matrix:
     """Right-hand side ``(X1', Y1', X2', Y2')`` of Eqs. (5)-(8)."""
-    acc = equations_of_motion(contact, direction=direction, forced=forced)
+    acc = equations_of_motion(contact, direction=direction, forced=forced, friction=friction)
     return sp.Matrix([Y1, acc[0], Y2, acc[1]])
 
 
-def equilibrium_eq_9(contact: str = "hertz_damp") -> dict[sp.Symbol, sp.Expr]:
+#: The friction law's value ``mu(Vb)`` and slope ``mu'(Vb)`` at the sliding speed of the
+#: equilibrium, as symbols while SymPy simplifies (see `_law_at_equilibrium`).
+MU_VB, DMU_VB = sp.symbols("mu_Vb dmu_Vb", real=True)
+
+
+def _law_at_equilibrium(friction: str) -> tuple[tuple, tuple]:
+    """``(early, late)`` substitutions of `MU_VB`, `DMU_VB` by the law's value and slope.
+
+    What does not depend on the belt speed (Coulomb's ``mu_s`` and its zero slope) is
+    substituted before the simplification, which then sees the law; what does
+    (Stribeck's ``exp(-Vb/v_s)``) after it, so that ``simplify`` cannot rewrite it into
+    a form such as ``exp(Vb/v_s)``, which overflows. Both are tuples (hashable keys
+    of the cached derivations).
+    """
+    m = coefficient(friction, SPEED)
+    at = {MU_VB: m.subs(SPEED, P["Vb"]), DMU_VB: sp.diff(m, SPEED).subs(SPEED, P["Vb"])}
+    early = tuple((k, v) for k, v in at.items() if P["Vb"] not in v.free_symbols)
+    late = tuple((k, v) for k, v in at.items() if P["Vb"] in v.free_symbols)
+    return early, late
+
+
+def _sliding_equations(contact: str, early: tuple) -> sp.Matrix:
+    """Eqs. (5)-(8), unforced, with the friction law to first order in the speed at ``Vb``.
+
+    On the branch the sliding speed is ``Vb - X1'``, and ``mu(Vb - X1') = mu(Vb) -
+    mu'(Vb) X1' + O(X1'^2)``: exact for the equilibrium (``X1' = 0``) and for the
+    Jacobian there, which is all that `equilibrium_eq_9` and
+    `jacobian_at_equilibrium_eq_11` take from it.
+    """
+    early = dict(early)
+
+    def linear(speed):
+        return (MU_VB + DMU_VB * (speed - P["Vb"])).subs(early)
+
+    return state_space_eqs_5_8(contact, friction=linear)
+
+
+@cache
+def _equilibrium(contact: str, early: tuple) -> dict[sp.Symbol, sp.Expr]:
+    solutions = sp.solve(list(_sliding_equations(contact, early)), list(STATE), dict=True)
+    if len(solutions) != 1:
+        raise RuntimeError(f"expected one equilibrium in contact, got {solutions}")
+    return {s: sp.simplify(v) for s, v in solutions[0].items()}
+
+
+def equilibrium_eq_9(
+    contact: str = DEFAULT["contact"], friction: str = DEFAULT["friction"]
+) -> dict[sp.Symbol, sp.Expr]:
     """Equilibrium of the unforced state equations, Eq. (9), solved by SymPy.
+
+    ``X1^0 = mu(Vb) g / omega1^2``: for Coulomb's law ``mu_s g / omega1^2`` as printed.
 
     Raises
     ------
     RuntimeError
         If SymPy does not find exactly one equilibrium with ``X2 > 0``.
     """
-    solutions = sp.solve(list(state_space_eqs_5_8(contact)), list(STATE), dict=True)
-    if len(solutions) != 1:
-        raise RuntimeError(f"expected one equilibrium in contact, got {solutions}")
-    return {s: sp.simplify(v) for s, v in solutions[0].items()}
+    early, late = _law_at_equilibrium(friction)
+    return {s: v.subs(dict(late)) for s, v in _equilibrium(contact, early).items()}
 
 
-def jacobian_eq_10(contact: str = "hertz_damp", forced: bool = False) -> sp.Matrix:
+def jacobian_eq_10(
+    contact: str = DEFAULT["contact"], forced: bool = False, friction: str = DEFAULT["friction"]
+) -> sp.Matrix:
     """Jacobian of Eqs. (5)-(8) with respect to ``(X1, Y1, X2, Y2)``, Eq. (10)."""
-    return state_space_eqs_5_8(contact, forced).jacobian(STATE)
+    return state_space_eqs_5_8(contact, forced, friction=friction).jacobian(STATE)
 
 
 @cache
-def jacobian_at_equilibrium_eq_11(contact: str = "hertz_damp") -> sp.Matrix:
+def _jacobian_at_equilibrium(contact: str, early: tuple) -> sp.Matrix:
+    J = _sliding_equations(contact, early).jacobian(STATE)
+    return J.subs(_equilibrium(contact, early)).applyfunc(sp.simplify)
+
+
+def jacobian_at_equilibrium_eq_11(
+    contact: str = DEFAULT["contact"], friction: str = DEFAULT["friction"]
+) -> sp.Matrix:
     """Eq. (10) evaluated at Eq. (9): the matrix ``J^0`` of Eq. (11)."""
-    return jacobian_eq_10(contact).subs(equilibrium_eq_9(contact)).applyfunc(sp.simplify)
+    early, late = _law_at_equilibrium(friction)
+    return _jacobian_at_equilibrium(contact, early).subs(dict(late))
+
+
+@cache
+def _quadratics(contact: str, early: tuple) -> tuple[Quadratic, Quadratic]:
+    return block_quadratics(_jacobian_at_equilibrium(contact, early))
+
+
+def quadratics_at_equilibrium(
+    contact: str = DEFAULT["contact"], friction: str = DEFAULT["friction"]
+) -> tuple[Quadratic, Quadratic]:
+    """`block_quadratics` of ``J^0``: (tangential, normal), factored before the law's
+    belt-speed dependence is substituted (see `_law_at_equilibrium`)."""
+    early, late = _law_at_equilibrium(friction)
+    return tuple(
+        Quadratic(*(x.subs(dict(late)) for x in (q.p, q.q, q.disc)))
+        for q in _quadratics(contact, early)
+    )
 
 
 def charpoly_eq_12(J: sp.Matrix) -> sp.Poly:
@@ -166,3 +258,39 @@ def block_quadratics(J: sp.Matrix) -> tuple[Quadratic, Quadratic]:
 def free_of(expr, symbol: sp.Symbol) -> bool:
     """Whether ``symbol`` is absent from ``expr`` (the claim below Eq. 12 for ``mu_s``)."""
     return symbol not in sp.sympify(expr).free_symbols
+
+
+@cache
+def critical_belt_speed(
+    contact: str = DEFAULT["contact"], friction: str = DEFAULT["friction"]
+) -> sp.Expr | None:
+    """The belt speed below which steady sliding is unstable, solved by SymPy; NaN if none.
+
+    The tangential damping of ``J^0`` is ``p(Vb) = 2 beta1 omega1 + g mu'(Vb)`` (the
+    slope of the friction law at the sliding speed ``Vb``); the normal block does not
+    depend on ``Vb``. Where ``p = 0`` has one root in ``Vb`` (a falling law such as
+    Stribeck's), steady sliding is unstable for ``0 <= Vb < Vb_c`` where ``Vb_c > 0``,
+    and NaN stands for "no unstable belt speed" where the root is not positive.
+    Without a root (Coulomb: ``p = 2 beta1 omega1`` whatever ``Vb``) the value is NaN.
+
+    Returns
+    -------
+    sympy.Expr or None
+        None where SymPy finds more than one root: the unstable set is then not one
+        interval from 0, and no closed form is claimed.
+    """
+    p = tangential_damping(contact, friction)
+    Vb = P["Vb"]
+    if Vb not in p.free_symbols:
+        return sp.nan
+    roots = sp.solve(p, Vb)
+    if len(roots) != 1:
+        return None
+    return sp.Piecewise((roots[0], roots[0] > 0), (sp.nan, True))
+
+
+def tangential_damping(
+    contact: str = DEFAULT["contact"], friction: str = DEFAULT["friction"]
+) -> sp.Expr:
+    """``p`` of the tangential quadratic ``lambda^2 + p lambda + q`` of ``J^0`` (Eq. 12)."""
+    return quadratics_at_equilibrium(contact, friction)[0].p

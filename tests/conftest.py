@@ -11,8 +11,12 @@ MODEL = ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g", "V
 
 
 def random_params(rng, spread=3.0):
-    """One parameter set: each base value times a log-uniform factor in [1/spread, spread]."""
-    return {k: BASE[k] * float(np.exp(rng.uniform(-np.log(spread), np.log(spread)))) for k in MODEL}
+    """One parameter set: the registry's base set (``BASE``: every law's parameters too),
+    each parameter of Eq. (4) times a log-uniform factor in [1/spread, spread]."""
+    varied = {
+        k: BASE[k] * float(np.exp(rng.uniform(-np.log(spread), np.log(spread)))) for k in MODEL
+    }
+    return {**BASE, **varied}
 
 
 @pytest.fixture

@@ -13,6 +13,9 @@ import math
 import numpy as np
 
 CONTACTS = ("hertz_damp", "kelvin_voigt")
+#: Every law typed here (the CONTACTS above are the runtime's).
+ALL_CONTACTS = ("hertz_damp", "kelvin_voigt", "hunt_crossley")
+FRICTIONS = ("coulomb", "stribeck")
 TENSIONS = ("allowed", "clipped")
 MODES = {"slip_back": -1, "stick": 0, "slip_forward": 1, "flight": 2, "separated": 3}
 EPS = np.finfo(float).eps
@@ -64,19 +67,24 @@ def excitation_scale(t, p, derivative=0, argument=True):
     return tuple(out)
 
 
+def power(p, contact):
+    """The exponent of the penetration: 3/2 (Eq. 1), ``n_h`` (Hunt-Crossley), 1."""
+    return {"hertz_damp": 1.5, "hunt_crossley": p.get("n_h", 1.5)}.get(contact, 1)
+
+
 def force(X2, Y2, p, contact, tension="allowed", extend=False):
     """Eq. (1): Hertz-Damp ``(w2^2 + 2 b2 w2 Y2) X2^(3/2)``, Kelvin-Voigt
-    ``w2^2 X2 + 2 b2 w2 Y2``; zero for ``X2 <= 0`` unless ``extend`` (the hybrid
-    modes' smooth extension, with ``max(X2, 0)`` in place of ``X2``); ``clipped``:
-    ``max(F, 0)``."""
+    ``w2^2 X2 + 2 b2 w2 Y2``, Hunt-Crossley ``(w2^2 + 2 b2 w2 Y2) X2^n_h``; zero for
+    ``X2 <= 0`` unless ``extend`` (the hybrid modes' smooth extension, with
+    ``max(X2, 0)`` in place of ``X2``); ``clipped``: ``max(F, 0)``."""
     b2, w2 = p["beta2"], p["omega2"]
     if X2 <= 0 and not extend:
         return 0 * X2
     X = X2 if X2 > 0 else 0 * X2
-    if contact == "hertz_damp":
-        F = (w2**2 + 2 * b2 * w2 * Y2) * X**1.5
-    else:
+    if contact == "kelvin_voigt":
         F = w2**2 * X + 2 * b2 * w2 * Y2
+    else:
+        F = (w2**2 + 2 * b2 * w2 * Y2) * X ** power(p, contact)
     if tension == "clipped" and F < 0:
         return 0 * F
     return F
@@ -86,17 +94,27 @@ def force_scale(X2, Y2, p, contact):
     """Sum of the absolute values of the terms of Eq. (1) (in contact)."""
     b2, w2 = p["beta2"], p["omega2"]
     X = max(X2, 0)
-    if contact == "hertz_damp":
-        return (w2**2 + 2 * b2 * w2 * abs(Y2)) * X**1.5
-    return w2**2 * X + 2 * b2 * w2 * abs(Y2)
+    if contact == "kelvin_voigt":
+        return w2**2 * X + 2 * b2 * w2 * abs(Y2)
+    return (w2**2 + 2 * b2 * w2 * abs(Y2)) * X ** power(p, contact)
 
 
 def force_gradient(X2, Y2, p, contact, m=math):
     """``(dF/dX2, dF/dY2)`` of Eq. (1) in contact (``X2 > 0``)."""
     b2, w2 = p["beta2"], p["omega2"]
-    if contact == "hertz_damp":
-        return 1.5 * (w2**2 + 2 * b2 * w2 * Y2) * m.sqrt(X2), 2 * b2 * w2 * X2**1.5
-    return w2**2, 2 * b2 * w2
+    if contact == "kelvin_voigt":
+        return w2**2, 2 * b2 * w2
+    n = power(p, contact)
+    return n * (w2**2 + 2 * b2 * w2 * Y2) * X2 ** (n - 1), 2 * b2 * w2 * X2**n
+
+
+def mu(speed, p, friction="coulomb", m=math):
+    """The friction coefficient at the sliding speed and its slope: Coulomb's ``mu_s``
+    (Eq. 3), Stribeck's ``mu_k + (mu_s - mu_k) exp(-speed/v_s)``."""
+    if friction == "coulomb":
+        return p["mu_s"], 0 * speed
+    fall = (p["mu_s"] - p["mu_k"]) * m.exp(-speed / p["v_s"])
+    return p["mu_k"] + fall, -fall / p["v_s"]
 
 
 def a_free(t, X1, Y1, p, m=math):
@@ -110,9 +128,9 @@ def a_free_scale(t, X1, Y1, p, m=math, argument=True):
     return excitation_scale(t, p, argument=argument)[0] + 2 * b1 * w1 * abs(Y1) + w1**2 * abs(X1)
 
 
-def field(mode, t, x, p, contact, m=math):
+def field(mode, t, x, p, contact, m=math, friction="coulomb"):
     """The vector field of a mode (derive/hybrid.py): slip ``s``
-    ``(Y1, a_free - mu s F, Y2, g + f_n - F)``; stick ``(Vb, 0, Y2, g + f_n - F)``;
+    ``(Y1, a_free - mu(s Vr) s F, Y2, g + f_n - F)``; stick ``(Vb, 0, Y2, g + f_n - F)``;
     flight and separated ``(Y1, a_free, Y2, g + f_n)``. ``F`` is the unclipped
     Eq. (1) extended past ``X2 = 0`` with ``max(X2, 0)``."""
     X1, Y1, X2, Y2 = x
@@ -120,24 +138,63 @@ def field(mode, t, x, p, contact, m=math):
     f_n = excitation(t, p, m)[1]
     a = a_free(t, X1, Y1, p, m)
     F = force(X2, Y2, p, contact, extend=True)
-    g, mu = p["g"], p["mu_s"]
+    g = p["g"]
     if code in (-1, 1):
-        return [Y1, a - mu * code * F, Y2, g + f_n - F]
+        coefficient = mu(code * (Y1 - p["Vb"]), p, friction, m)[0]
+        return [Y1, a - coefficient * code * F, Y2, g + f_n - F]
     if code == 0:
         return [p["Vb"] + 0 * Y1, 0 * Y1, Y2, g + f_n - F]
     return [Y1, a, Y2, g + f_n]
 
 
-def field_scale(mode, t, x, p, contact, m=math):
+def mode_jacobian(mode, t, x, p, contact, m=math, friction="coulomb"):
+    """``d field / d (X1, Y1, X2, Y2)`` of a mode, by hand (the force's derivative in
+    ``X2`` taken as 0 at ``X2 <= 0``, where ``max(X2, 0)`` is constant)."""
+    X1, Y1, X2, Y2 = x
+    code = MODES.get(mode, mode)
+    b1, w1 = p["beta1"], p["omega1"]
+    zero = 0 * X2
+    F = force(X2, Y2, p, contact, extend=True)
+    FX, FY = force_gradient(X2, Y2, p, contact, m) if X2 > 0 else (zero, zero)
+    if contact == "kelvin_voigt" and X2 <= 0:
+        FY = 2 * p["beta2"] * p["omega2"] + zero
+    normal = [0, 0, -FX, -FY]
+    if code in (-1, 1):
+        c, dc = mu(code * (Y1 - p["Vb"]), p, friction, m)
+        row = [-(w1**2), -2 * b1 * w1 - dc * F, -c * code * FX, -c * code * FY]
+        return [[0, 1, 0, 0], row, [0, 0, 0, 1], normal]
+    if code == 0:
+        return [[0, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 1], normal]
+    return [[0, 1, 0, 0], [-(w1**2), -2 * b1 * w1, 0, 0], [0, 0, 0, 1], [0, 0, 0, 0]]
+
+
+def mode_jacobian_scale(mode, t, x, p, contact, friction="coulomb"):
+    """Terms' scale of each entry of `mode_jacobian`."""
+    X1, Y1, X2, Y2 = x
+    J = mode_jacobian(mode, t, (X1, Y1, X2, abs(Y2)), p, contact, friction=friction)
+    F = force_scale(X2, Y2, p, contact)
+    code = MODES.get(mode, mode)
+    out = [[abs(v) for v in row] for row in J]
+    if code in (-1, 1):
+        c, dc = mu(code * (Y1 - p["Vb"]), p, friction)
+        out[1][1] = 2 * p["beta1"] * p["omega1"] + abs(dc) * F
+    return out
+
+
+def field_scale(mode, t, x, p, contact, m=math, friction="coulomb"):
     """Terms' scale of each entry of `field`."""
     X1, Y1, X2, Y2 = x
     code = MODES.get(mode, mode)
     f_n = excitation_scale(t, p)[1]
     a = a_free_scale(t, X1, Y1, p, m)
     F = force_scale(X2, Y2, p, contact)
-    g, mu = p["g"], p["mu_s"]
+    g = p["g"]
     if code in (-1, 1):
-        return [abs(Y1), a + mu * F, abs(Y2), g + f_n + F]
+        c = mu(code * (Y1 - p["Vb"]), p, friction, m)[0]
+        # Stribeck: mu_k plus its fall, each rounded (past the switch the field continues
+        # the exponential, which grows there)
+        terms = abs(c) if friction == "coulomb" else abs(p["mu_k"]) + abs(c - p["mu_k"])
+        return [abs(Y1), a + terms * F, abs(Y2), g + f_n + F]
     if code == 0:
         return [p["Vb"], 0, abs(Y2), g + f_n + F]
     return [abs(Y1), a, abs(Y2), g + f_n]
@@ -152,7 +209,7 @@ def surfaces(t, x, p, contact, m=math):
     F = force(X2, Y2, p, contact, extend=True)
     a = a_free(t, X1, Y1, p, m)
     X = X2 if X2 > 0 else 0 * X2
-    sign_F = w2 + 2 * b2 * Y2 if contact == "hertz_damp" else w2 * X + 2 * b2 * Y2
+    sign_F = w2 + 2 * b2 * Y2 if contact != "kelvin_voigt" else w2 * X + 2 * b2 * Y2
     return [Y1 - p["Vb"], mu * F - a, mu * F + a, X2, sign_F]
 
 
@@ -163,7 +220,7 @@ def surface_scales(t, x, p, contact, m=math, argument=True):
     b2, w2, mu = p["beta2"], p["omega2"], p["mu_s"]
     stick = mu * force_scale(X2, Y2, p, contact) + a_free_scale(t, X1, Y1, p, m, argument)
     X = max(X2, 0)
-    sign_F = w2 + 2 * b2 * abs(Y2) if contact == "hertz_damp" else w2 * X + 2 * b2 * abs(Y2)
+    sign_F = w2 + 2 * b2 * abs(Y2) if contact != "kelvin_voigt" else w2 * X + 2 * b2 * abs(Y2)
     return [abs(Y1) + p["Vb"], stick, stick, abs(X2), sign_F]
 
 
@@ -197,7 +254,7 @@ def surface_gradients(t, x, p, contact, m=math, absolute=False):
         (
             zero,
             [zero, zero, zero, 2 * b2 + zero]
-            if contact == "hertz_damp"
+            if contact != "kelvin_voigt"
             else [zero, zero, (w2 if X2 > 0 else 0) + zero, 2 * b2 + zero],
         ),
     ]
@@ -222,7 +279,8 @@ def energy(x, p, contact):
     X1, Y1, X2, Y2 = x
     w1, w2, g = p["omega1"], p["omega2"], p["g"]
     X = max(X2, 0)
-    V = 0.4 * w2**2 * X**2.5 if contact == "hertz_damp" else 0.5 * w2**2 * X**2
+    n = power(p, contact)
+    V = w2**2 * X ** (n + 1) / (n + 1)
     return 0.5 * Y1**2 + 0.5 * Y2**2 + 0.5 * w1**2 * X1**2 + V - g * X2
 
 
@@ -302,7 +360,8 @@ def energy_scale(x, p, contact):
     X1, Y1, X2, Y2 = x
     w1, w2, g = p["omega1"], p["omega2"], p["g"]
     X = max(X2, 0)
-    V = 0.4 * w2**2 * X**2.5 if contact == "hertz_damp" else 0.5 * w2**2 * X**2
+    n = power(p, contact)
+    V = w2**2 * X ** (n + 1) / (n + 1)
     return 0.5 * Y1**2 + 0.5 * Y2**2 + 0.5 * w1**2 * X1**2 + V + g * abs(X2)
 
 

@@ -20,7 +20,8 @@ import pytest
 import sympy as sp
 
 from derive import contraction as C
-from derive.model import X2, Y2, P, normal_force
+from derive import simulated_claims as S
+from derive.model import CONTACT_LAWS, FRICTION_LAWS, TENSION_LAWS, X2, Y2, P, normal_force
 
 TOL = 1e-10
 K = 10.0
@@ -98,10 +99,12 @@ def test_the_sign_decision_fails_for_an_anti_monotone_law():
 
 
 def test_couplings_stick_and_clipped_force():
-    assert all(C.one_way_coupling().values()) and len(C.one_way_coupling()) == 4
-    assert C.stick_is_set_valued("hertz_damp") and C.stick_is_set_valued("kelvin_voigt")
-    assert C.clipped_force_nonnegative("hertz_damp")
-    assert C.clipped_force_nonnegative("kelvin_voigt")
+    coupling = C.one_way_coupling()
+    assert all(coupling.values()) and len(coupling) == len(CONTACT_LAWS) * len(TENSION_LAWS)
+    for contact in CONTACT_LAWS:
+        for friction in FRICTION_LAWS:
+            assert C.stick_is_set_valued(contact, friction), (contact, friction)
+        assert C.clipped_force_nonnegative(contact)
     # the law as printed is not: Eq. (1) at X2 = 1, X2' = -10 (base set) pulls
     pull = normal_force().subs({X2: 1, Y2: -10, b2: sp.Rational(3, 20), w2: sp.Rational(1, 2)})
     assert pull < 0
@@ -123,7 +126,7 @@ def test_the_claim_says_which_steps_sympy_proved():
     assert claim.proved_by_sympy
     how = {s.name: s.how for s in claim.steps}
     assert how["convergence"] == "words"
-    assert sum(h == "SymPy" for h in how.values()) == 7
+    assert sum(h == "SymPy" for h in how.values()) == 8
     assert any("beta1 > 0" in c for c in claim.conditions)
     assert any("one-way" in c for c in claim.conditions)
     assert "F < 0" in claim.converse
@@ -153,12 +156,12 @@ def _sampled_power(run):
 
 @pytest.fixture(scope="module")
 def clipped():
-    return C.difference_runs(SHIFT, tension="clipped", t_end=T_END, Vb=4.0, rtol=TOL, atol=TOL)
+    return S.difference_runs(SHIFT, tension="clipped", t_end=T_END, Vb=4.0, rtol=TOL, atol=TOL)
 
 
 @pytest.fixture(scope="module")
 def allowed():
-    return C.difference_runs(SHIFT, tension="allowed", t_end=T_END, Vb=4.0, rtol=TOL, atol=TOL)
+    return S.difference_runs(SHIFT, tension="allowed", t_end=T_END, Vb=4.0, rtol=TOL, atol=TOL)
 
 
 def test_the_two_runs_share_the_normal_motion(clipped, allowed):
@@ -185,7 +188,7 @@ def test_clipped_friction_never_adds_energy(clipped):
     assert clipped.a.normal_force.min() >= 0
     power, fric, bound = _sampled_power(clipped)
     assert np.all(fric <= bound)
-    w = C.difference_works(clipped)
+    w = S.difference_works(clipped)
     assert w["work_friction_pull"] == 0.0
     assert w["work_friction_push"] <= K * TOL * w["scale"]
     assert w["work_friction_push"] < -0.1  # the transient's reversals: not vacuous
@@ -207,7 +210,7 @@ def test_allowed_difference_energy_gains_only_while_the_contact_pulls(allowed):
 
 
 def test_allowed_energy_balance_of_the_difference(allowed):
-    w = C.difference_works(allowed)
+    w = S.difference_works(allowed)
     assert abs(w["imbalance"]) <= K * TOL * w["scale"]
     assert w["work_friction_push"] <= K * TOL * w["scale"]
     assert w["work_friction_pull"] > 0.4 * w["scale"]
@@ -216,10 +219,10 @@ def test_allowed_energy_balance_of_the_difference(allowed):
 
 def test_reversals_by_force_sign(allowed, clipped):
     """At Vb = 4 (Eq. 1 as printed) every reversal to forward sliding sees a pulling contact."""
-    rev = C.reversals_by_force_sign(allowed.a)
+    rev = S.reversals_by_force_sign(allowed.a)
     assert rev["slip_forward"][0] > 50 and rev["slip_forward"][1] == 0
     assert rev["slip_back"][0] == 0 and rev["slip_back"][1] > 50
-    quiet = C.reversals_by_force_sign(clipped.a, t0=50.0)
+    quiet = S.reversals_by_force_sign(clipped.a, t0=50.0)
     assert quiet == {"slip_forward": (0, 0), "slip_back": (0, 0)}
 
 
@@ -256,7 +259,7 @@ def test_clipped_motions_converge_in_every_figure_case(name, overrides, contact)
     from beltmdsm.analysis.summary import PEAK_PRESENT_RATIO, omega1_band
 
     for Vb in np.arange(1.0, 16.1, 1.5):
-        run = C.difference_runs(
+        run = S.difference_runs(
             SHIFT,
             tension="clipped",
             contact=contact,
@@ -272,3 +275,26 @@ def test_clipped_motions_converge_in_every_figure_case(name, overrides, contact)
         s, p = run.a.summary, run.a.params
         if not _forced_line_in_band(p, omega1_band(p)):
             assert s.peak_omega1 < PEAK_PRESENT_RATIO * s.peak_Omega, (name, Vb)
+
+
+def test_monotonicity_of_each_friction_law():
+    """Coulomb's law is proved non-decreasing; Stribeck's falls at every |Vr| > 0 where
+    mu_k < mu_s, and the claim says so (not proved for it)."""
+    coulomb, stribeck = C.monotonicity("coulomb"), C.monotonicity("stribeck")
+    assert coulomb.holds and coulomb.slope == 0
+    assert not stribeck.holds
+    assert stribeck.falls == "every |Vr| > 0 (0 < |Vr| < oo) where mu_k < mu_s"
+    mu_s, mu_k, v_s = P["mu_s"], P["mu_k"], P["v_s"]
+    speed = sp.Symbol("speed", nonnegative=True)
+    assert sp.simplify(stribeck.slope + (mu_s - mu_k) / v_s * sp.exp(-speed / v_s)) == 0
+    assert C.claim("coulomb").proved_by_sympy
+    failed = [s for s in C.claim("stribeck").steps if not s.proved]
+    assert [s.name for s in failed] == ["friction law non-decreasing"]
+    assert "mu_k < mu_s" in failed[0].detail
+
+
+def test_the_power_split_holds_for_every_law():
+    """dE_d/dt = -c1 e'^2 - (f_a - f_b) F e' with the law's signed coefficient per run."""
+    for friction in FRICTION_LAWS:
+        for contact in CONTACT_LAWS:
+            assert C.power_split(contact, "clipped", friction).exact, (friction, contact)

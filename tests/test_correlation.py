@@ -6,6 +6,7 @@ import pytest
 
 from generated import correlation, friction, unforced
 from generated.mp import correlation as mp_correlation
+from generated.parameters import BASE
 
 CASES = [
     (-4.0, 8.0, 9.81, 27.0, 3.9),
@@ -95,3 +96,74 @@ def test_fast_tangential_velocity_amplitude_and_phase(rng, contact):
         v = 1j * W * np.linalg.solve(1j * W * np.eye(4) - J0, b)[0]
         V, phi = correlation.fast_tangential_velocity(contact=contact, **p)
         assert V * np.exp(1j * phi) == pytest.approx(v, rel=1e-11)
+
+
+# Friction laws: the law's averages, and the consistent MDSM's pieces generated ---------
+
+
+def stribeck_signed(v, p):
+    """sgn(v) (mu_k + (mu_s - mu_k) exp(-|v|/v_s)), typed by hand."""
+    return mpmath.sign(v) * (p["mu_k"] + (p["mu_s"] - p["mu_k"]) * mpmath.exp(-abs(v) / p["v_s"]))
+
+
+def quad_law(u, V, N0, N1, th, p, weight=lambda t: 1, harmonic=False):
+    """Quadrature of f(u + V sin t)(N0 + N1 sin(t + th)) weight(t) for Stribeck's f, split
+    where the sign changes and at the extremes of the sine."""
+    u, V, N0, N1, th = map(mpmath.mpf, (u, V, N0, N1, th))
+    points = [-mpmath.pi / 2, mpmath.pi / 2, 3 * mpmath.pi / 2]
+    if abs(u) < V:
+        a = mpmath.asin(-u / V)
+        points = sorted(points + [a, mpmath.pi - a])
+
+    def f(t):
+        return (
+            stribeck_signed(u + V * mpmath.sin(t), p) * (N0 + N1 * mpmath.sin(t + th)) * weight(t)
+        )
+
+    return mpmath.quad(f, points) / (mpmath.pi if harmonic else 2 * mpmath.pi)
+
+
+LAW = {"mu_s": mpmath.mpf("0.4"), "mu_k": mpmath.mpf("0.25"), "v_s": mpmath.mpf("0.8")}
+#: generated._support.quad's error for these integrands (test_friction.QUAD_TOL) times the
+#: integral's scale (mu_s - mu_k)(|N0| + |N1|), plus a few ulps of the closed part.
+QUAD_TOL = 1e-13
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_stribeck_friction_average_slope_and_harmonic_against_quadrature(mp50, case):
+    law = {k: float(v) for k, v in LAW.items()}
+    scale = float(LAW["mu_s"] - LAW["mu_k"]) * (abs(case[2]) + abs(case[3]))
+    eps = np.finfo(float).eps
+    opts = dict(friction="stribeck", **law)
+    mp_opts = dict(friction="stribeck", **LAW)
+    avg = quad_law(*case, LAW)
+    assert abs(mp_correlation.friction_average(*case, **mp_opts) - avg) < mpmath.mpf(10) ** -30
+    got = correlation.friction_average(*case, **opts)
+    assert abs(got - float(avg)) <= QUAD_TOL * scale + 16 * eps * abs(float(avg))
+    for k, w in enumerate((mpmath.sin, mpmath.cos)):
+        ref = quad_law(*case, LAW, weight=w, harmonic=True)
+        assert abs(mp_correlation.friction_harmonic(*case, **mp_opts)[k] - ref) < 1e-30
+        got = correlation.friction_harmonic(*case, **opts)[k]
+        assert abs(got - float(ref)) <= QUAD_TOL * scale + 16 * eps * max(1, abs(float(ref)))
+    if abs(case[0]) != case[1]:
+        d = mpmath.diff(lambda x: quad_law(x, *case[1:], LAW), case[0])
+        assert abs(mp_correlation.friction_average_slope(*case, **mp_opts) - d) < 1e-20
+
+
+def test_coulomb_law_averages_are_mu_s_times_the_signs():
+    for case in CASES:
+        for law_fn, sign_fn in (
+            (correlation.friction_average, correlation.averaged_friction),
+            (correlation.friction_average_slope, correlation.averaged_friction_slope),
+        ):
+            assert law_fn(*case, **BASE) == pytest.approx(BASE["mu_s"] * sign_fn(*case), rel=1e-15)
+
+
+def test_stribeck_slow_damping_has_the_laws_slope(base):
+    """Without fast motion the slow damping is 2 beta1 omega1 + g mu'(Vb) (the unforced
+    damping of Stribeck's law): the law enters, not only its value at rest."""
+    p = {**base, "Vb": 2.0}
+    V = 1e-9  # no reversal: the sign's slope vanishes, the law's remains
+    got = correlation.slow_damping(V, 0.0, 0.0, friction="stribeck", **p)
+    slope = -(p["mu_s"] - p["mu_k"]) / p["v_s"] * np.exp(-p["Vb"] / p["v_s"])
+    assert got == pytest.approx(2 * p["beta1"] * p["omega1"] + p["g"] * slope, rel=1e-12)

@@ -6,7 +6,16 @@ import sympy as sp
 from derive import dynamics as dyn
 from derive import stability as st
 from derive import statespace as ss
-from derive.model import CONTACT_LAWS, STATE, X2, P, equal_excitation, equations_of_motion, t
+from derive.model import (
+    CONTACT_LAWS,
+    FRICTION_LAWS,
+    STATE,
+    X2,
+    P,
+    equal_excitation,
+    equations_of_motion,
+    t,
+)
 
 
 @pytest.mark.parametrize("contact", CONTACT_LAWS)
@@ -104,3 +113,68 @@ def test_stability_conditions_are_p_and_r_with_q_and_s_positive(convention, cont
         == 2 * P["beta1"] * P["omega1"]
         + (1 if convention == "consistent" else -1) * P["g"] * st.mu1
     )
+
+
+# The registry of laws (derive/laws.py) -------------------------------------------------
+
+
+def test_registry_refuses_a_clash_and_a_wrong_kind():
+    from derive import laws
+    from derive.parameters import Parameter
+
+    coulomb = laws.get("friction", "coulomb")
+    with pytest.raises(ValueError, match="registered already"):
+        laws.register("friction", coulomb)
+    with pytest.raises(ValueError, match="must be a ContactLaw"):
+        laws.register("contact", coulomb)
+    clash = laws.FrictionLaw(
+        "other", "s", "d", "e", (Parameter("mu_s", "1", 1.0, "positive", "taken"),), lambda P, s: 1
+    )
+    with pytest.raises(ValueError, match="taken already"):
+        laws.register("friction", clash)
+    with pytest.raises(ValueError, match="friction must be one of"):
+        laws.get("friction", "dahl")
+
+
+def test_static_coefficient_is_mu_s_for_every_shipped_law():
+    from derive.model import static_coefficient
+
+    assert all(static_coefficient(f) == P["mu_s"] for f in FRICTION_LAWS)
+
+
+@pytest.mark.parametrize("contact", CONTACT_LAWS)
+def test_exponent_of_the_contact_law(contact):
+    from derive.fit import exponent
+
+    assert (
+        exponent(contact)
+        == {
+            "hertz_damp": sp.Rational(3, 2),
+            "kelvin_voigt": 1,
+            "hunt_crossley": P["n_h"],
+        }[contact]
+    )
+
+
+def test_the_fast_average_is_closed_form_exactly_for_a_constant_or_polynomial_law():
+    """Risch decides: Coulomb's (nothing beyond mu_s) and a polynomial remainder are
+    elementary; Stribeck's exp(-|v|/v_s) is not (a quadrature)."""
+    from derive import averaging
+
+    assert averaging.closed_form("coulomb")[0]
+    holds, why = averaging.closed_form("stribeck")
+    assert not holds and "no elementary antiderivative" in why
+    inside, outside = averaging.remainder_average("stribeck")
+    assert inside.has(sp.Integral) and outside.has(sp.Integral)
+
+
+@pytest.mark.parametrize("friction", FRICTION_LAWS)
+@pytest.mark.parametrize("contact", CONTACT_LAWS)
+def test_power_balance_is_the_time_derivative_of_energy_for_every_law(friction, contact):
+    E = dyn.energy(contact)
+    f = dyn.rhs(contact, dyn.sgn, friction=friction)
+    dEdt = sum(sp.diff(E, s) * fi for s, fi in zip(dyn.STATE_R, f)) + sp.diff(E, t)
+    p_in, p_visc, p_fric = dyn.power_balance(contact, friction=friction)
+    x = sp.Symbol("x", positive=True)
+    for value in (x, -x):
+        assert sp.simplify((dEdt - (p_in - p_visc - p_fric)).subs(dyn.X2r, value)) == 0

@@ -177,7 +177,7 @@ def call_args(name, t, x, sgn):
         "rhs_branch": (t, *x, sgn),
         "jacobian_branch": (t, *x, sgn),
         "normal_force": tuple(x[2:]),
-        "friction_force": (*x[2:], sgn),
+        "friction_force": (*x[1:], sgn),
         "normal_rhs": (t, *x[2:]),
         "normal_jacobian": (t, *x[2:]),
         "energy": tuple(x),
@@ -261,7 +261,7 @@ def test_friction_force_is_coulomb_with_the_normal_force_of_eq1(rng, tension):
             _, x = tension_state(rng, p, contact, i)
             for sgn in (-1.0, 0.0, 1.0):
                 got = dynamics.friction_force(
-                    x[2], x[3], sgn, contact=contact, tension=tension, **p
+                    x[1], x[2], x[3], sgn, contact=contact, tension=tension, **p
                 )
                 Fn = H.force(x[2], x[3], H.full(p), contact, tension) if x[2] > 0 else 0.0
                 scale = p["mu_s"] * H.force_scale(x[2], x[3], H.full(p), contact) if x[2] > 0 else 0

@@ -106,3 +106,88 @@ def test_x2max_of_the_mdsm_scene_is_equilibrium_plus_fast_amplitude(rng):
         x = np.linalg.solve(1j * W * np.eye(2) - J, [0, -p["alpha"] * W**2])[0]
         expected = unforced.equilibrium(contact=contact, **p)[2] + abs(x)
         assert fit.mdsm_fit_range(contact=contact, **p) == pytest.approx(expected, rel=1e-12)
+
+
+# The fit of a general exponent (Hunt-Crossley's n_h), closed forms in n_h -------------
+
+
+def mp_least_squares_power(X, degree, n):
+    """Continuous L2 fit of x^n by mpmath: normal equations with quadrature."""
+    size = degree + 1
+    gram = mpmath.matrix(size, size)
+    rhs = mpmath.matrix(size, 1)
+    for j in range(size):
+        rhs[j] = mpmath.quad(lambda x: x**n * x**j, [0, X])
+        for k in range(size):
+            gram[j, k] = mpmath.quad(lambda x: x ** (j + k), [0, X])
+    return list(mpmath.lu_solve(gram, rhs))
+
+
+N_H = ["0.7", "1.25", "1.5", "2.3", "3.6", "5.5"]
+
+
+@pytest.mark.parametrize("n", N_H)
+@pytest.mark.parametrize("degree", [1, 3, 8])
+def test_hunt_crossley_fit_is_the_least_squares_fit_of_the_power(mp50, n, degree):
+    """Coefficients and RMS error, closed forms in n_h, against mpmath at 50 digits
+    (quadrature to ~1e-45; the closed forms are exact)."""
+    X, n = mpmath.mpf(3), mpmath.mpf(n)
+    ref = mp_least_squares_power(X, degree, n)
+    got = mp_fit.coefficients(X, degree=degree, contact="hunt_crossley", n_h=n)
+    assert max(abs(a - b) for a, b in zip(got, ref)) < mpmath.mpf(10) ** -35 * max(map(abs, ref))
+    mean_sq = (
+        mpmath.quad(lambda x: (x**n - sum(ck * x**k for k, ck in enumerate(ref))) ** 2, [0, X]) / X
+    )
+    rms = mp_fit.rms_error(X, degree=degree, contact="hunt_crossley", n_h=n)
+    assert abs(rms - mpmath.sqrt(mean_sq)) < mpmath.mpf(10) ** -30 * mpmath.sqrt(mean_sq)
+
+
+@pytest.mark.parametrize("n", [float(x) for x in N_H])
+@pytest.mark.parametrize("degree", [1, 3, 5, 8])
+def test_hunt_crossley_max_error_is_the_larger_end_value_and_no_interior_one_exceeds_it(n, degree):
+    """The largest error is that of an end of the range (closed forms in n_h), and a dense
+    scan finds no interior value above it (to the scan's resolution, 2.5e-6 of X2max,
+    where |err'| <= 1e2 X2max^(n-1) bounds the miss by 1e-3 of the largest error)."""
+    X = 2.0
+    kw = dict(degree=degree, contact="hunt_crossley", n_h=n)
+    c = fit.coefficients(X, **kw)
+    x = np.linspace(0.0, X, 800001)
+    err = np.abs(x**n - sum(ck * x**k for k, ck in enumerate(c)))
+    largest = fit.max_error(X, **kw)
+    assert largest == pytest.approx(max(err[0], err[-1]), rel=1e-9)
+    assert err.max() <= largest * (1 + 1e-9)
+    assert fit.max_error_location(X, **kw) == (0.0 if err[0] >= err[-1] else X)
+
+
+@pytest.mark.parametrize("degree", range(1, 9))
+def test_hunt_crossley_at_three_halves_is_eq17(degree):
+    """n_h = 3/2 reduces the closed forms to Eqs. (16)-(17) of Hertz-Damp (exactly at 50
+    digits; the numpy forms differ by their rounding)."""
+    with mpmath.workdps(50):
+        X = mpmath.mpf(3)
+        hc = dict(degree=degree, contact="hunt_crossley", n_h=mpmath.mpf(3) / 2)
+        for name in ("coefficients", "max_error", "rms_error"):
+            a, b = getattr(mp_fit, name)(X, **hc), getattr(mp_fit, name)(X, degree=degree)
+            a, b = (a, b) if isinstance(a, tuple) else ((a,), (b,))
+            assert all(abs(x - y) <= mpmath.mpf(10) ** -40 * (1 + abs(y)) for x, y in zip(a, b))
+    if degree == 3:
+        np.testing.assert_allclose(
+            fit.coefficients(11.547, contact="hunt_crossley", n_h=1.5), eq17(11.547), rtol=1e-13
+        )
+
+
+def test_kelvin_voigt_needs_no_fit():
+    assert fit.coefficients(2.0, contact="kelvin_voigt") == (0.0, 1.0, 0.0, 0.0)
+    assert fit.max_error(2.0, contact="kelvin_voigt") == 0.0
+
+
+def test_the_fit_and_its_range_use_the_same_exponent(base):
+    """mdsm_fit_range's X2^0 is (g/omega2^2)^(1/n_h): the exponent the fit fits."""
+    for n in (1.2, 1.5, 2.5):
+        p = {**base, "n_h": n}
+        top = fit.mdsm_fit_range(contact="hunt_crossley", **p)
+        from generated import unforced
+
+        X20 = unforced.equilibrium(contact="hunt_crossley", **p)[2]
+        assert X20 == pytest.approx((p["g"] / p["omega2"] ** 2) ** (1 / n), rel=1e-14)
+        assert top > X20

@@ -174,3 +174,69 @@ def test_bad_input_raises_naming_the_parameter(args, name):
 def test_unknown_vhat_model_raises(base):
     with pytest.raises(ValueError, match="model"):
         friction.vhat(model="linear", **base)
+
+
+# Stribeck's law: the effective friction is Eq. (23) with mu_s plus a quadrature ----------
+
+
+def stribeck_signed(v, mu_s, mu_k, v_s, m=mpmath):
+    """sgn(v) (mu_k + (mu_s - mu_k) exp(-|v|/v_s)), typed by hand."""
+    return m.sign(v) * (mu_k + (mu_s - mu_k) * m.exp(-abs(v) / v_s))
+
+
+def mp_average(f, Vr, Vhat):
+    """<f(Vr + Vhat sin theta)> over a period by mpmath, split where the sign changes and
+    at the extremes of the sine (where an exp(-|v|/v_s) peaks)."""
+    points = [-mpmath.pi / 2, mpmath.pi / 2, 3 * mpmath.pi / 2]
+    if abs(Vr) < Vhat:
+        cut = mpmath.asin(-Vr / Vhat)
+        points = sorted(points + [cut, mpmath.pi - cut])
+    return mpmath.quad(lambda th: f(Vr + Vhat * mpmath.sin(th)), points) / (2 * mpmath.pi)
+
+
+#: Quadrature error of generated._support.quad (28 graded panels of 10 Gauss-Legendre
+#: nodes) for these integrands, measured against mpmath over Vhat/v_s in [0.1, 1e3]:
+#: below 1e-13 of the integral's scale mu_s - mu_k; rounding adds a few ulps of mu_s.
+QUAD_TOL = 1e-13
+
+
+@pytest.mark.parametrize("kappa", [0.5, 5.0, 50.0, 500.0])
+@pytest.mark.parametrize("Vr", [-9.0, -7.99, -4.0, -0.3, 0.0, 2.5, 11.0])
+def test_stribeck_mu_bar_is_the_average_of_the_law_over_a_harmonic_cycle(mp50, Vr, kappa):
+    """friction.mu_bar(friction="stribeck") (numpy: the quadrature of generated._support;
+    mpmath: mpmath.quad) against the cycle average by mpmath of the law typed here."""
+    Vhat, mu_s, mu_k = mpmath.mpf(8), mpmath.mpf("0.4"), mpmath.mpf("0.25")
+    v_s = Vhat / kappa
+    avg = mp_average(lambda v: stribeck_signed(v, mu_s, mu_k, v_s), mpmath.mpf(Vr), Vhat)
+    law = dict(friction="stribeck", mu_k=mu_k, v_s=v_s)
+    assert abs(mp_friction.mu_bar(Vr, Vhat, mu_s, **law) - avg) < mpmath.mpf(10) ** -30
+    got = friction.mu_bar(Vr, 8.0, 0.4, friction="stribeck", mu_k=0.25, v_s=float(v_s))
+    assert abs(got - float(avg)) <= QUAD_TOL * 0.15 + 16 * np.finfo(float).eps * 0.4
+
+
+@pytest.mark.parametrize("kappa", [0.5, 5.0, 50.0])
+@pytest.mark.parametrize("Vb", [0.3, 4.0, 7.9, 11.0])
+def test_stribeck_slope_is_the_derivative_of_the_average(mp50, Vb, kappa):
+    """mu_bar_slope at Vr = -Vb: the sign's Eq. (25) times mu_s plus the quadrature of the
+    law's slope, against mpmath's derivative of the mpmath cycle average."""
+    Vhat, mu_s, mu_k = mpmath.mpf(8), mpmath.mpf("0.4"), mpmath.mpf("0.25")
+    v_s = Vhat / kappa
+
+    def average(x):
+        return mp_average(lambda v: stribeck_signed(v, mu_s, mu_k, v_s), x, Vhat)
+
+    with mpmath.workdps(40):
+        d = mpmath.diff(average, -mpmath.mpf(Vb))
+    law = dict(friction="stribeck", mu_k=mu_k, v_s=v_s)
+    assert abs(mp_friction.mu_bar_slope(Vb, Vhat, mu_s, **law) - d) < mpmath.mpf(10) ** -25
+    got = friction.mu_bar_slope(Vb, 8.0, 0.4, friction="stribeck", mu_k=0.25, v_s=float(v_s))
+    # the sign's part: Eq. (25)'s rounding (a few ulps of it, <= 1e-15 relative)
+    assert abs(got - float(d)) <= QUAD_TOL * 0.15 * float(kappa / Vhat) + 1e-15 * abs(float(d))
+
+
+def test_stribeck_slope_below_vhat_is_coulombs_minus_the_fall(base):
+    """Without reversal (Vb > Vhat) the sign has no slope; the law's slope remains and is
+    negative (falling friction): the effective friction is no longer flat above Vhat."""
+    s = friction.mu_bar_slope(12.0, 8.0, 0.4, friction="stribeck", mu_k=0.25, v_s=1.0)
+    assert s < 0
+    assert friction.mu_bar_slope(12.0, 8.0, 0.4) == 0.0

@@ -7,7 +7,7 @@ import sympy as sp
 from derive import mdsm
 from derive.fit import X2max, coefficients_eq_17
 from derive.model import P
-from derive.parameters import BASE
+from generated.parameters import BASE
 
 b1, w1, b2, w2, g = (P[k] for k in ("beta1", "omega1", "beta2", "omega2", "g"))
 Z1, Z2, tau = mdsm.Z1, mdsm.Z2, mdsm.tau
@@ -100,3 +100,29 @@ def test_dropped_cubic_averages_are_small_at_the_base_set():
     rows = mdsm.dropped_at_equilibrium(BASE)
     assert rows and all(eq == "normal" for eq, *_ in rows)
     assert abs(sum(rel for *_, rel in rows)) < 1e-2
+
+
+@pytest.mark.parametrize("contact", ["kelvin_voigt", "hunt_crossley"])
+def test_the_split_of_every_contact_law(contact):
+    """Eqs. (18)-(21) of the other contact laws: Hunt-Crossley's X2^n_h replaced by the
+    cubic and put back (slow_equations_20_21 checks that the two agree), the linear law
+    with nothing to replace; the dropped terms are averages, the kept ones slow."""
+    eqs = mdsm.slow_equations_20_21(contact)
+    if contact == "hunt_crossley":
+        assert eqs.has(Z2 ** P["n_h"]) and not mdsm.slow_equations_18_19(contact).has(
+            Z2 ** P["n_h"]
+        )
+    else:
+        assert not mdsm.slow_equations_18_19(contact).has(mdsm.c[0])
+    for t in mdsm.averaged_terms(contact):
+        assert t.kept != (t.expr.has(mdsm.avg) or t.expr.has(mdsm.cov)), t
+
+
+def test_hunt_crossley_dropped_averages_at_three_halves_are_hertz_damps():
+    """At n_h = 3/2 the sizes of the dropped averages equal Hertz-Damp's (same fit,
+    same equilibrium, same fast amplitude: exact in SymPy up to float evaluation)."""
+    hertz = mdsm.dropped_at_equilibrium(BASE)
+    hunt = mdsm.dropped_at_equilibrium({**BASE, "n_h": 1.5}, "hunt_crossley")
+    assert [(e, lab) for e, lab, _, _ in hunt] == [(e, lab) for e, lab, _, _ in hertz]
+    for (_, _, a, _), (_, _, b, _) in zip(hunt, hertz):
+        assert a == pytest.approx(b, rel=1e-12)

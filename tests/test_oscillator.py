@@ -21,10 +21,16 @@ from scipy.integrate import solve_ivp
 
 from generated import hybrid, oscillator
 from generated.mp import oscillator as mp_oscillator
+from generated.parameters import BASE
 
 EPS = np.finfo(float).eps
 TAUS = (0.0, 1e-3, 0.5, 3.0, 30.0, 300.0, 1000.0)
 BETAS = (0.0, 0.1, 0.5, 1 - 1e-4, 1 - 1e-9, 1.0, 1 + 1e-9, 1 + 1e-4, 2.0, 5.0)
+
+
+def params(**values):
+    """The registry's base set (every law's parameters too) with ``values``."""
+    return {**BASE, **values}
 
 
 def system_matrix(beta1, omega1):
@@ -56,12 +62,12 @@ def test_state_transition_is_the_matrix_exponential(beta1, omega1):
     """Against mpmath's expm at 40 digits: relative to the matrix norm, 8 ulps times
     (1 + omega1 tau); no NaN or overflow up to tau = 1000 (the result may underflow)."""
     for tau in TAUS:
-        Phi = oscillator.state_transition(tau, beta1=beta1, omega1=omega1)
+        Phi = oscillator.state_transition(tau, **params(beta1=beta1, omega1=omega1))
         assert Phi.shape == (2, 2) and np.all(np.isfinite(Phi))
         ratio = check_against(Phi, expm_mp(beta1, omega1, tau), 8 * EPS * (1 + omega1 * tau))
         assert ratio <= 1, (tau, ratio)
     np.testing.assert_array_equal(
-        oscillator.state_transition(0.0, beta1=beta1, omega1=omega1), np.eye(2)
+        oscillator.state_transition(0.0, **params(beta1=beta1, omega1=omega1)), np.eye(2)
     )
 
 
@@ -72,7 +78,7 @@ def test_state_transition_agrees_with_scipy_expm(beta1):
     omega1 = 1.7
     A = np.array(system_matrix(beta1, omega1))
     for tau in (0.01, 0.5, 2.0, 10.0):
-        Phi = oscillator.state_transition(tau, beta1=beta1, omega1=omega1)
+        Phi = oscillator.state_transition(tau, **params(beta1=beta1, omega1=omega1))
         ref = scipy.linalg.expm(A * tau)
         tol = 64 * EPS * (1 + np.abs(A).sum(axis=1).max() * tau) * np.abs(ref).max()
         assert np.abs(Phi - ref).max() <= tol
@@ -84,9 +90,9 @@ def test_state_transition_broadcasts_and_composes(rng):
     beta1 = np.array([0.0, 0.2, 1 - 1e-7, 1.0, 1 + 1e-7, 1.5, 4.0])[:, None]
     omega1 = 1.3
     t1, t2 = 0.7, 2.1
-    P1 = oscillator.state_transition(t1, beta1=beta1, omega1=omega1)
-    P2 = oscillator.state_transition(t2, beta1=beta1, omega1=omega1)
-    P12 = oscillator.state_transition(np.array([t1 + t2]), beta1=beta1, omega1=omega1)
+    P1 = oscillator.state_transition(t1, **params(beta1=beta1, omega1=omega1))
+    P2 = oscillator.state_transition(t2, **params(beta1=beta1, omega1=omega1))
+    P12 = oscillator.state_transition(np.array([t1 + t2]), **params(beta1=beta1, omega1=omega1))
     assert P1.shape == (7, 1, 2, 2)
     np.testing.assert_allclose(P12, P1 @ P2, rtol=0, atol=3 * 8 * EPS * (1 + omega1 * (t1 + t2)))
 
@@ -100,10 +106,10 @@ def test_state_transition_long_times_stay_finite():
         (1e3, 10.0, 1e6),
         (0.999, 10.0, 1e5),
     ]:
-        Phi = oscillator.state_transition(tau, beta1=beta1, omega1=omega1)
+        Phi = oscillator.state_transition(tau, **params(beta1=beta1, omega1=omega1))
         assert np.all(np.isfinite(Phi)), (beta1, omega1, tau)
     # undamped: a rotation, |det| = 1 at any tau
-    Phi = oscillator.state_transition(1e6, beta1=0.0, omega1=3.0)
+    Phi = oscillator.state_transition(1e6, **params(beta1=0.0, omega1=3.0))
     assert abs(np.linalg.det(Phi) - 1) < 1e-9
 
 
@@ -114,7 +120,7 @@ def test_state_transition_strongly_overdamped_keeps_its_accuracy(beta1):
     closed form misses it by a factor ~13 (beta1 = 341) to ~25 (beta1 = 1000)."""
     worst = max(
         check_against(
-            oscillator.state_transition(tau, beta1=beta1, omega1=1.0),
+            oscillator.state_transition(tau, **params(beta1=beta1, omega1=1.0)),
             expm_mp(beta1, 1.0, tau),
             8 * EPS * (1 + tau),
         )
@@ -129,8 +135,10 @@ def test_mpmath_twin_at_critical_damping(function):
     divide by sqrt(1 - beta1) = 0 there and must not be evaluated); numpy within a few
     ulps of the terms (all O(1) here: 24 ulps)."""
     with mpmath.workdps(30):
-        got = getattr(mp_oscillator, function)(0.8, beta1=1.0, omega1=1.3, alpha=1.0, Omega=2.0)
-    fast = getattr(oscillator, function)(0.8, beta1=1.0, omega1=1.3, alpha=1.0, Omega=2.0)
+        got = getattr(mp_oscillator, function)(
+            0.8, **params(beta1=1.0, omega1=1.3, alpha=1.0, Omega=2.0)
+        )
+    fast = getattr(oscillator, function)(0.8, **params(beta1=1.0, omega1=1.3, alpha=1.0, Omega=2.0))
     got = got.tolist() if isinstance(got, mpmath.matrix) else got
     assert np.allclose(
         np.asarray(fast, dtype=float).ravel(),
@@ -143,8 +151,8 @@ def test_mpmath_twin_at_critical_damping(function):
 @pytest.mark.parametrize("beta1", [0.0, 0.1, 0.7, 1.5, 4.0])
 def test_state_transition_mpmath_twin_agrees(beta1, mp50):
     for tau in (0.3, 7.0, 80.0):
-        fast = oscillator.state_transition(tau, beta1=beta1, omega1=1.9)
-        twin = mp_oscillator.state_transition(tau, beta1=beta1, omega1=1.9)
+        fast = oscillator.state_transition(tau, **params(beta1=beta1, omega1=1.9))
+        twin = mp_oscillator.state_transition(tau, **params(beta1=beta1, omega1=1.9))
         assert check_against(fast, twin, 8 * EPS * (1 + 1.9 * tau)) <= 1
 
 
@@ -160,7 +168,7 @@ response_scale = H.response_scale
 
 
 RESPONSE_CASES = [
-    dict(beta1=b, omega1=w, alpha_t=a, Omega_t=W, phase_t=ph)
+    params(beta1=b, omega1=w, alpha_t=a, Omega_t=W, phase_t=ph)
     for b, w, a, W, ph in [
         (0.0, 1.3, 2.0, 0.5, 0.7),
         (0.0, 1.0, 2.0, 4.0, 0.0),
@@ -227,7 +235,7 @@ def test_excitation_response_against_a_30_digit_integration(p):
 
 def test_excitation_response_mpmath_twin_agrees(rng, mp50):
     for _ in range(20):
-        p = dict(
+        p = params(
             beta1=float(rng.choice([0.0, rng.uniform(0, 1), rng.uniform(1, 5)])),
             omega1=rng.uniform(0.3, 3),
             alpha_t=rng.uniform(0.1, 3),
@@ -246,7 +254,9 @@ def test_excitation_response_is_nan_only_at_undamped_resonance():
     divides by |omega1^2 - Omega_t^2 + 2i beta1 omega1 Omega_t| = 0): both entries are
     NaN at every t, t = 0 included. Next to it (damped, or detuned) they are finite."""
     t = np.array([0.0, 0.5, 10.0])
-    X, V = oscillator.excitation_response(t, beta1=0.0, omega1=1.3, alpha_t=1.0, Omega_t=1.3)
+    X, V = oscillator.excitation_response(
+        t, **params(beta1=0.0, omega1=1.3, alpha_t=1.0, Omega_t=1.3)
+    )
     assert np.all(np.isnan(X)) and np.all(np.isnan(V))
     for beta1, Omega_t in [
         (1e-9, 1.3),
@@ -255,11 +265,13 @@ def test_excitation_response_is_nan_only_at_undamped_resonance():
         (0.5, 1.3),
     ]:
         X, V = oscillator.excitation_response(
-            t, beta1=beta1, omega1=1.3, alpha_t=1.0, Omega_t=Omega_t
+            t, **params(beta1=beta1, omega1=1.3, alpha_t=1.0, Omega_t=Omega_t)
         )
         assert np.all(np.isfinite(X)) and np.all(np.isfinite(V)), (beta1, Omega_t)
     b, W = np.meshgrid(np.linspace(0, 2, 41), np.linspace(0, 3, 61))
-    X, V = oscillator.excitation_response(7.0, beta1=b, omega1=1.5, alpha_t=1.0, Omega_t=W)
+    X, V = oscillator.excitation_response(
+        7.0, **params(beta1=b, omega1=1.5, alpha_t=1.0, Omega_t=W)
+    )
     bad = ~np.isfinite(X) | ~np.isfinite(V)
     assert np.array_equal(bad, (b == 0) & (W == 1.5))
 
@@ -268,7 +280,7 @@ def test_excitation_response_next_to_resonance_loses_only_what_its_terms_cancel(
     """beta1 = 0, Omega_t = omega1 (1 + 1e-6): the response grows like t sin(omega1 t)
     while x_p and Phi x_p(0) are ~1e6 times larger and cancel. The error stays within
     8 ulps of those terms (response_scale), i.e. ~1e-9 of the response here."""
-    p = dict(beta1=0.0, omega1=1.3, alpha_t=1.0, Omega_t=1.3 * (1 + 1e-6), phase_t=0.3)
+    p = params(beta1=0.0, omega1=1.3, alpha_t=1.0, Omega_t=1.3 * (1 + 1e-6), phase_t=0.3)
     ts = np.linspace(0, 20, 41)
     X, V = oscillator.excitation_response(ts, **p)
     sol = solve_ivp(

@@ -7,7 +7,7 @@ import pytest
 import sympy as sp
 from sympy.parsing.sympy_parser import TokenError
 
-from derive import codegen, paper, paper_check, stability
+from derive import codegen, paper, paper_check, simulated_claims, stability
 from derive.model import P
 from derive.statespace import jacobian_at_equilibrium_eq_11
 
@@ -256,7 +256,7 @@ def test_the_omega1_peak_is_self_excited_only_with_tension(checked):
 def test_the_reversal_counts_against_the_samples(checked):
     """Independent count: upward zero crossings of Vr = X1' - Vb on the 0.02 s samples."""
     _, claims, _ = checked
-    run, _ = paper_check._difference_runs()["allowed"]
+    run, _ = simulated_claims._difference_runs()["allowed"]
     sim = run.a
     w = sim.t >= sim.settings.window_start
     vr, F = sim.y[1, w] - sim.params["Vb"], sim.normal_force[w]
@@ -275,10 +275,44 @@ def test_the_contraction_claim(checked):
     _, claims, _ = checked
     c = claims["contraction (clipped)"]
     assert c.status == "holds under reading `tension clipped`"
-    assert "NOT proved" not in c.evidence and c.evidence.count("(proved)") == 7
+    assert "NOT proved" not in c.evidence and c.evidence.count("(proved)") == 8
     clipped = c.evidence.split("tension clipped:")[1].split("tension allowed:")[0]
     assert "never rising" in clipped and "none while F < 0" in clipped
     allowed = c.evidence.split("tension allowed:")[1]
     assert "largest rise between samples" in allowed
-    run, works = paper_check._difference_runs()["allowed"]
+    run, works = simulated_claims._difference_runs()["allowed"]
     assert works["work_friction_pull"] > 0 >= works["work_friction_push"]
+
+
+@pytest.mark.parametrize(
+    "key,laws",
+    [
+        ("Eq. 6", ("coulomb",)),
+        ("Eq. 9", ("coulomb",)),
+        ("Eq. 12", ("coulomb",)),
+        ("Eq. 23", ("coulomb",)),
+        ("Eq. 25 (mu_bar')", ("coulomb",)),
+        ("Eq. 7", ("coulomb", "stribeck")),
+        ("Eq. 17", ("coulomb", "stribeck")),
+        ("Eq. 22", ("coulomb", "stribeck")),
+        ("Eq. A8", ("coulomb", "stribeck")),
+    ],
+)
+def test_rows_that_hold_for_coulomb_only_say_so(checked, key, laws):
+    """A row whose derivation takes the friction law is derived for Stribeck's too: where
+    that differs the row holds for Coulomb's law only, with a numeric example; the MDSM
+    rows are written in mu_bar, whatever law it averages, and hold for every law."""
+    rows, _, text = checked
+    assert rows[key].laws == laws
+    if laws == ("coulomb",):
+        assert "stribeck: " in rows[key].law_detail
+        assert f"| {key} |" in text and "coulomb only (stribeck" in text
+
+
+def test_claims_say_for_which_friction_laws_they_hold(checked):
+    _, claims, _ = checked
+    assert claims["mu_s absent"].laws.startswith("coulomb only")
+    assert claims["only mu_bar'"].laws.startswith("every law")
+    contraction = claims["contraction (clipped)"].laws
+    assert "coulomb: proved" in contraction and "stribeck: NOT proved" in contraction
+    assert "0 < |Vr| < oo" in contraction and "mu_k < mu_s" in contraction

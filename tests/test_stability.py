@@ -761,7 +761,8 @@ def test_backend_choice(base, monkeypatch):
         stability.is_stable(**base, backend="numba")
     assert stability.is_stable(**base) == stability.is_stable(**base, backend="numpy")
     assert (
-        _support.compiled(stability._is_stable__paper__hertz_damp__scalar, "boolean", None) is None
+        _support.compiled(stability._is_stable__coulomb__hertz_damp__paper__scalar, "boolean", None)
+        is None
     )
 
 
@@ -775,3 +776,39 @@ def test_results_never_alias_the_callers_arrays(base):
     _, upper = stability.unstable_interval(**{**base, "Vhat": Vhat})
     upper[:] = 0.0
     np.testing.assert_array_equal(Vhat, [5.0, 8.0])
+
+
+# Stribeck's law: the same closed forms in its effective friction (a quadrature) -------
+
+
+@pytest.mark.parametrize("convention", CONVENTIONS)
+def test_stribeck_growth_rate_against_mpmath_and_both_backends(mp50, convention, backend):
+    """The forced eigenvalues with Stribeck's effective friction (quadrature: numpy,
+    the scalar kernels' inline loop, mpmath.quad) agree: numpy and numba to the
+    quadrature's 1e-13 of the slope's scale (times g), mpmath to its own precision."""
+    Vb = np.array([0.5, 3.0, 7.5, 9.0, 12.0])
+    p = {**BASE_ARRAY, "Vb": Vb}
+    law = dict(friction="stribeck", convention=convention)
+    got = stability.growth_rate(**p, **law, backend=backend)
+    vhat = friction.vhat(friction="stribeck", **p)
+    for k, v in enumerate(Vb):
+        q = {**BASE_ARRAY, "Vb": v, "Vhat": float(vhat[k])}
+        ref = mp_stability.growth_rate(**{n: mpmath.mpf(x) for n, x in q.items()}, **law)
+        assert abs(got[k] - float(ref)) <= 1e-13 * BASE["g"] + 1e-15 * abs(float(ref)), v
+
+
+def test_stribeck_consistent_analysis_tends_to_the_unforced_one_and_the_excitation_stabilises(
+    base,
+):
+    """Consistent convention, Stribeck's law: with a vanishing excitation (V_hat ~ 4e-3 <<
+    Vb, no reversal) the slow damping tends to the unforced 2 beta1 omega1 + g mu'(Vb)
+    (to O(V_hat^2 / v_s^2) ~ 1e-5); at the base excitation the averaging over the fast
+    motion makes the same belt speed stable (Vb = 1 < unforced Vb_c = 2.0)."""
+    p = {**base, "Vb": 1.0}
+    assert unforced.critical_belt_speed(friction="stribeck", **p) > 1.0
+    weak = {**p, "alpha": 1e-3}
+    J = stability.jacobian(friction="stribeck", convention="consistent", **weak)
+    J0 = unforced.jacobian_at_equilibrium(friction="stribeck", **weak)
+    assert J[1, 1] == pytest.approx(J0[1, 1], rel=1e-4)
+    assert not stability.is_stable(friction="stribeck", convention="consistent", **weak)
+    assert stability.is_stable(friction="stribeck", convention="consistent", **p)

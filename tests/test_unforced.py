@@ -231,3 +231,60 @@ def test_missing_parameter_is_a_type_error(base):
 def test_unknown_contact_law_raises(base):
     with pytest.raises(ValueError, match="contact"):
         unforced.charpoly(contact="hertz", **base)
+
+
+# Stribeck friction: the equilibrium depends on Vb, the slope damps the tangential mode ----
+
+
+def stribeck(speed, p):
+    """mu(|Vr|) = mu_k + (mu_s - mu_k) exp(-|Vr|/v_s) and its slope in |Vr|, by hand."""
+    fall = (p["mu_s"] - p["mu_k"]) * np.exp(-speed / p["v_s"])
+    return p["mu_k"] + fall, -fall / p["v_s"]
+
+
+def stribeck_boundary(p):
+    """Hand closed form: the tangential damping 2 beta1 omega1 + g mu'(Vb) of J^0 vanishes
+    where g (mu_s - mu_k) exp(-Vb/v_s) / v_s = 2 beta1 omega1, i.e. at
+    Vb_c = v_s log(g (mu_s - mu_k) / (2 beta1 omega1 v_s)); below it sliding is unstable."""
+    return p["v_s"] * np.log(
+        p["g"] * (p["mu_s"] - p["mu_k"]) / (2 * p["beta1"] * p["omega1"] * p["v_s"])
+    )
+
+
+@pytest.mark.parametrize("contact", ["hertz_damp", "kelvin_voigt", "hunt_crossley"])
+def test_stribeck_equilibrium_and_jacobian_at_it(rng, contact):
+    """X1^0 = mu(Vb) g / omega1^2; J^0[1, 1] = -(2 beta1 omega1 + g mu'(Vb)); the friction
+    column is mu(Vb) times the normal block's stiffness and damping."""
+    for _ in range(10):
+        p = random_params(rng)
+        mu, slope = stribeck(p["Vb"], p)
+        X1, Y1, X2, Y2 = unforced.equilibrium(friction="stribeck", contact=contact, **p)
+        assert X1 == pytest.approx(mu * p["g"] / p["omega1"] ** 2, rel=1e-14)
+        J = unforced.jacobian_at_equilibrium(friction="stribeck", contact=contact, **p)
+        J_c = unforced.jacobian_at_equilibrium(friction="coulomb", contact=contact, **p)
+        damping = 2 * p["beta1"] * p["omega1"] + p["g"] * slope
+        assert J[1, 1] == pytest.approx(-damping, rel=1e-13, abs=1e-15 * p["g"] * abs(slope))
+        np.testing.assert_allclose(J[1, 2:], mu / p["mu_s"] * J_c[1, 2:], rtol=1e-13)
+        np.testing.assert_array_equal(J[2:], J_c[2:])  # the normal block: no friction
+
+
+def test_unforced_stribeck_boundary_is_the_hand_closed_form(rng):
+    """unforced.critical_belt_speed against the hand formula, and the growth rate of the
+    tangential pair changes sign there (Re = -p/2 for a complex pair)."""
+    for _ in range(20):
+        p = random_params(rng)
+        p["mu_k"] = p["mu_s"] * rng.uniform(0.05, 0.9)
+        Vc = stribeck_boundary(p)
+        got = unforced.critical_belt_speed(friction="stribeck", **p)
+        if Vc <= 0:
+            assert np.isnan(got)
+            continue
+        assert got == pytest.approx(Vc, rel=1e-13)
+        for side, Vb in ((1, Vc * (1 - 1e-6)), (-1, Vc * (1 + 1e-6))):
+            lam = unforced.eigenvalues(friction="stribeck", **{**p, "Vb": Vb})
+            assert np.sign(lam[:2].real.max()) == side
+
+
+def test_coulomb_has_no_unforced_boundary(base):
+    assert np.isnan(unforced.critical_belt_speed(**base))
+    assert np.isnan(unforced.critical_belt_speed(friction="stribeck", **{**base, "mu_k": 0.4}))

@@ -34,6 +34,7 @@ import types
 from pathlib import Path
 
 from generated import hybrid, oscillator
+from generated.parameters import OPTION_DEFAULTS
 
 from . import _dop853, _roots, _superpose
 
@@ -76,8 +77,13 @@ _SCAN = (
 )
 
 
-def _scalar(table, contact=None):
-    return (table[(contact,)] if contact is not None else table[()]).scalar
+#: The friction law of the runtime's kernels (the generated tables are keyed by the
+#: friction law first; the runtime simulates the default law).
+_FRICTION = OPTION_DEFAULTS["friction"]
+
+
+def _scalar(table, *key):
+    return table[key].scalar
 
 
 def advance(field, contact, backend=None):
@@ -88,9 +94,11 @@ def advance(field, contact, backend=None):
     ``backend``: "python", "numba" or None (numba if installed).
     """
     kernels = (
-        _scalar(_FIELDS[field], contact),
-        _scalar(hybrid._SURFACES, contact),
-        _scalar(hybrid._SURFACE_RATES, contact),
+        _scalar(_FIELDS[field], _FRICTION, contact)
+        if field == "vector_field"
+        else _scalar(_FIELDS[field], contact),
+        _scalar(hybrid._SURFACES, _FRICTION, contact),
+        _scalar(hybrid._SURFACE_RATES, _FRICTION, contact),
     )
     return _bound(_ADVANCE, kernels, f"advance__{field}__{contact}", backend)
 
@@ -101,8 +109,8 @@ def scan(contact, backend=None):
     kernels = (
         _scalar(oscillator._STATE_TRANSITION),
         _scalar(oscillator._EXCITATION_RESPONSE),
-        _scalar(hybrid._SURFACES, contact),
-        _scalar(hybrid._SURFACE_RATES, contact),
+        _scalar(hybrid._SURFACES, _FRICTION, contact),
+        _scalar(hybrid._SURFACE_RATES, _FRICTION, contact),
     )
     return _bound(_SCAN, kernels, f"scan__{contact}", backend)
 

@@ -113,7 +113,7 @@ class Trajectory:
         a_free = dynamics.free_acceleration(t, y[0], y[1], **p)
         slip = (mode == Mode.SLIP_BACK) | (mode == Mode.SLIP_FORWARD)
         sliding = dynamics.friction_force(
-            y[2], y[3], np.where(slip, mode, 0), contact=c, tension=tension, **p
+            y[1], y[2], y[3], np.where(slip, mode, 0), contact=c, tension=tension, **p
         )
         friction = np.where(slip, sliding, np.where(mode == Mode.STICK, -a_free, 0.0))
         return Fn, friction

@@ -81,3 +81,24 @@ def test_predict_cli_json(capsys):
     }
     assert out["tension"] == "allowed"
     assert out["consistent_mdsm"][0][0] > out["paper_coupled_vhat"][0][0]
+
+
+@pytest.mark.parametrize("Vb", [1.0, 4.0, 7.0, 12.0])
+def test_generated_slow_damping_and_harmonic_balance_are_the_runtimes(Vb):
+    """The consistent MDSM's pieces that beltmdsm.analysis.predict types by hand (its damping
+    2 beta1 omega1 + mu_s dF/du and the residual of its harmonic balance), generated from
+    the derivation: equal to rounding (one rearranged product and sum)."""
+    p = Model(Vb=Vb)
+    fast = predict.fast_motion(p)
+    damping = correlation.slow_damping(fast.V, fast.N1, fast.theta, **p.params)
+    assert damping == pytest.approx(predict.consistent_mdsm_damping(p, fast=fast), rel=1e-14)
+    W = p["Omega_t"]
+    D = p["omega1"] ** 2 - W**2 + 2j * p["beta1"] * p["omega1"] * W
+    assert complex(*correlation.transfer_function(**p.params)) == pytest.approx(D, rel=1e-15)
+    Ft = p["alpha_t"] * W**2 * np.exp(1j * p["phase_t"])
+    ref = predict._balance((fast.V, fast.phi), p.params, W, fast.N1, fast.psi, D, Ft)
+    got = correlation.harmonic_balance(fast.V, fast.phi, fast.N1, fast.psi, **p.params)
+    # the residual is 0 at the solution: compare against the size of its terms, |D| V / W
+    np.testing.assert_allclose(
+        got, ref, rtol=0, atol=64 * np.finfo(float).eps * abs(D) * fast.V / W
+    )

@@ -1,0 +1,169 @@
+"""A friction law averaged over a harmonic fast motion: what is closed form, what is a quadrature.
+
+The MDSM replaces the friction of Eq. (4) by its average over a fast period (Eq. 23;
+`derive.mdsm`). For a relative velocity ``v = u + V sin(phi)`` (slow part ``u``, fast
+amplitude ``V``) the friction coefficient with its direction is
+``f(v) = sgn(v) mu(|v|)``. Split the law at rest, ``mu(s) = mu(0) + r(s)`` with
+``r(0) = 0``:
+
+    < f(v) w > = mu(0) < sgn(v) w > + < sgn(v) r(|v|) w >
+
+for a weight ``w(phi)`` (1 for the effective friction of Eq. 23; the fast normal force,
+and its products with ``sin``, ``cos`` for the consistent MDSM, `derive.correlation`).
+The first term is the set-valued sign's average, the framework's closed form (Eq. 23:
+an arc-cosine; `derive.friction`, `derive.correlation`). The second is the law's own:
+
+* zero for Coulomb's law (``r = 0``);
+* a closed form where ``r(u + V sin phi)`` has an elementary antiderivative: SymPy's
+  Risch algorithm decides (`closed_form`), on the Weierstrass substitution
+  ``x = tan(phi/2)`` that makes the integrand rational in ``x`` and its exponentials
+  (the Risch implementation has no trigonometric extensions);
+* otherwise a quadrature, ``Integral`` objects that the code generator prints as a
+  Gauss-Legendre rule (`generated._support.quad`) and as ``mpmath.quad``. Stribeck's
+  ``exp(-|v|/v_s)`` is such a case: ``exp(-k sin)`` has no elementary antiderivative
+  (SymPy proves it), and its average over a period is a Bessel function only where
+  the sign does not change.
+
+The integrals run over the pieces of the period where ``v`` keeps its sign
+(``|u| < V``: ``[-a, pi + a]`` and ``[pi + a, 2 pi - a]``, ``a = asin(u/V)``), or,
+without a reversal, over the halves between the extremes of ``sin``. Inside a piece
+the integrand is smooth; ``r(0) = 0`` makes ``sgn(v) r(|v|)`` continuous at a reversal,
+so the slope in ``u`` is the integral of the slope (`remainder_slope`: the boundary
+terms vanish, which SymPy checks).
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import sympy as sp
+from sympy.integrals.risch import NonElementaryIntegral, risch_integrate
+
+from .model import SPEED, coefficient, static_coefficient
+
+__all__ = [
+    "u",
+    "V",
+    "PHASE",
+    "remainder",
+    "closed_form",
+    "remainder_average",
+    "remainder_slope",
+]
+
+#: Slow relative velocity, fast amplitude and the fast phase (the integration variable).
+_ONE = sp.Integer(1)
+u = sp.Symbol("u", real=True)
+V = sp.Symbol("V", positive=True)
+PHASE = sp.Symbol("fast_phase", real=True)
+
+
+@cache
+def remainder(friction: str) -> sp.Expr:
+    """``r(s) = mu(s) - mu(0)``: the friction law beyond its value at rest, in `SPEED`."""
+    return coefficient(friction, SPEED) - static_coefficient(friction)
+
+
+@cache
+def closed_form(friction: str) -> tuple[bool, str]:
+    """Whether ``<sgn(v) r(|v|)>`` over a fast period has an elementary closed form, and why.
+
+    ``r = 0`` (Coulomb): yes. Otherwise SymPy's Risch algorithm on
+    ``r(u + V sin phi) dphi`` with ``x = tan(phi/2)``: an elementary antiderivative
+    gives a closed form; a proof that there is none (``NonElementaryIntegral``), or
+    a case the implementation cannot decide, gives a quadrature.
+    """
+    r = remainder(friction)
+    if sp.simplify(r) == 0:
+        return True, f"{friction}: mu(|Vr|) = mu(0) is constant, its average is Eq. (23)'s"
+    x = sp.Symbol("x", real=True)
+    integrand = r.subs(SPEED, u + V * 2 * x / (1 + x**2)) * 2 / (1 + x**2)
+    try:
+        result = risch_integrate(integrand, x)
+    except NotImplementedError as err:
+        return False, f"{friction}: SymPy's Risch algorithm cannot decide ({err})"
+    if isinstance(result, NonElementaryIntegral):
+        return False, (
+            f"{friction}: mu(|Vr + V sin|) - mu(0) = {sp.sstr(r.subs(SPEED, sp.Symbol('s')))} "
+            "(s = |Vr + V sin|) has no elementary antiderivative over the fast phase "
+            "(SymPy's Risch algorithm proves it); its average is a quadrature"
+        )
+    return True, f"{friction}: mu(|Vr + V sin|) has an elementary antiderivative (Risch)"
+
+
+#: ``sgn(u)`` while the integrand is differentiated in ``u`` (it is constant on a side).
+_SIDE = sp.Symbol("side", real=True)
+
+
+def _pieces(inside: bool):
+    """``[(lo, hi, sign of v), ...]`` covering a fast period (`_SIDE` stands for ``sgn(u)``)."""
+    if inside:
+        a = sp.asin(u / V)
+        return [(-a, sp.pi + a, 1), (sp.pi + a, 2 * sp.pi - a, -1)]
+    half = sp.pi / 2
+    return [(-half, half, _SIDE), (half, 3 * half, _SIDE)]
+
+
+def _integrate(integrand, lo, hi, exact: bool):
+    integrand = integrand.subs(_SIDE**2, 1).subs(_SIDE, sp.sign(u))
+    if exact:
+        return sp.integrate(integrand, (PHASE, lo, hi))
+    return sp.Integral(integrand, (PHASE, lo, hi))
+
+
+def _signed(friction: str, direction, weight) -> sp.Expr:
+    """``sgn(v) r(|v|) w`` on a piece where ``sgn(v) = direction``."""
+    v = u + V * sp.sin(PHASE)
+    return direction * remainder(friction).subs(SPEED, direction * v) * weight
+
+
+@cache
+def remainder_average(friction: str, weight=_ONE, scale=1 / (2 * sp.pi)):
+    """``scale * integral over a fast period of sgn(v) r(|v|) weight``, per side of ``|u| = V``.
+
+    Returns
+    -------
+    (inside, outside) : tuple of sympy.Expr
+        For ``|u| <= V`` (the friction reverses within the period) and ``|u| >= V``;
+        ``(0, 0)`` for Coulomb's law. ``weight`` is a function of `PHASE`.
+    """
+    if sp.simplify(remainder(friction)) == 0:
+        return sp.Integer(0), sp.Integer(0)
+    exact = closed_form(friction)[0]
+    out = []
+    for inside in (True, False):
+        total = sum(
+            _integrate(_signed(friction, sign, weight), lo, hi, exact)
+            for lo, hi, sign in _pieces(inside)
+        )
+        out.append(scale * total)
+    return tuple(out)
+
+
+@cache
+def remainder_slope(friction: str, weight=_ONE, scale=1 / (2 * sp.pi)):
+    """``d/du`` of `remainder_average`: the integrals of the slope of the integrand.
+
+    The limits of the pieces move with ``u``, but the integrand vanishes there
+    (``r(0) = 0`` at a reversal; the extremes of ``sin`` do not move): the boundary
+    terms of Leibniz's rule are zero, which SymPy checks.
+
+    Raises
+    ------
+    AssertionError
+        If a boundary term does not vanish (a law with ``r(0) != 0``).
+    """
+    if sp.simplify(remainder(friction)) == 0:
+        return sp.Integer(0), sp.Integer(0)
+    exact = closed_form(friction)[0]
+    out = []
+    for inside in (True, False):
+        total = 0
+        for lo, hi, sign in _pieces(inside):
+            f = _signed(friction, sign, weight)
+            for end in (lo, hi):
+                if sp.diff(end, u) != 0 and sp.simplify(f.subs(PHASE, end)) != 0:
+                    raise AssertionError(f"{friction}: the integrand does not vanish at {end}")
+            total += _integrate(sp.diff(f, u), lo, hi, exact)
+        out.append(scale * total)
+    return tuple(out)

@@ -1,0 +1,26 @@
+"""Code generation: SymPy expressions to plain numpy and mpmath modules in ``generated/``.
+
+One module per concept:
+
+* `derive.codegen.specs`: what a generated function and module contain (data);
+* `derive.codegen.printers`: the numpy, scalar and mpmath printers (roots, quadratures);
+* `derive.codegen.render`: specs to source text, deterministically;
+* `derive.codegen.files`: where ``generated/`` is, writing it and the staleness check
+  (the only place in the package that writes files).
+"""
+
+from .files import GENERATED, HEADER, stale, write
+from .render import render, render_all
+from .specs import FunctionSpec, ModuleSpec, Refusal
+
+__all__ = [
+    "FunctionSpec",
+    "ModuleSpec",
+    "Refusal",
+    "render",
+    "render_all",
+    "write",
+    "stale",
+    "GENERATED",
+    "HEADER",
+]
