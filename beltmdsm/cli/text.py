@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from ..analysis.band import Band
 from ..analysis.floquet import Floquet
 from ..analysis.predict import Prediction
 from ..analysis.summary import PEAK_PRESENT_RATIO, Summary
@@ -23,6 +24,7 @@ __all__ = [
     "peak_verdict",
     "simulation",
     "floquet",
+    "kind",
     "band",
     "sweep",
     "sweep_validation",
@@ -110,10 +112,11 @@ def floquet(f: Floquet) -> str:
     resp = f.response
     p = resp.model.params
     mus = ", ".join(f"{z.real:.6g}{z.imag:+.6g}j" for z in f.multipliers)
+    per = "per period" if resp.periods == 1 else f"per {resp.periods} periods"
     lines = [
         f"periodic response of Eq. (4), {resp.model.contact}, tension "
         f"{resp.model.tension}, Vb = {p['Vb']:g} m/s: period {f.period:.6g} s, "
-        f"{f.n_reversals} reversals and {f.n_sticks} sticks per period, Newton "
+        f"{f.n_reversals} reversals and {f.n_sticks} sticks {per}, Newton "
         f"{resp.iterations} iterations (residual {resp.residual:.1e})"
     ]
     if f.grazing is not None:
@@ -141,23 +144,35 @@ _SIDES = {
 }
 
 
-def band(result: dict, param: str, lo: float, hi: float) -> str:
+def kind(name: str, frequency: float | None = None) -> str:
+    """A bifurcation kind as the text prints it (a Neimark-Sacker pair with its frequency)."""
+    if name == "neimark_sacker" and frequency is not None:
+        return f"neimark_sacker at {frequency:.4g} rad/s"
+    return name
+
+
+def _name(periods: int) -> str:
+    return "T" if periods == 1 else f"{periods}T"
+
+
+def band(result: Band, lo: float, hi: float) -> str:
     """The readable result of ``floquet-band``."""
+    what = "periodic response" if result.periods == 1 else f"{_name(result.periods)} response"
     lines = [
-        f"periodic response unstable (or absent) for {param} in "
-        f"{format_intervals(result['unstable'], '.4f')} of {lo:g}..{hi:g}"
+        f"{what} unstable (or absent) for {result.param} in "
+        f"{format_intervals(result.unstable, '.4f')} of {lo:g}..{hi:g}"
     ]
-    for e in result["edges"]:
+    for e in result.edges:
         lines.append(
-            f"  edge at {e['value']:.4f} ({e['kind']}; "
-            f"{_SIDES[e['unstable_below'], e['unstable_above']]})"
+            f"  edge at {e.value:.4f} ({kind(e.kind, e.frequency)}; "
+            f"{_SIDES[e.unstable_below, e.unstable_above]})"
         )
-    if result["no_periodic_response"]:
+    if result.no_periodic_response:
         lines.append(
-            f"  no periodic response in {format_intervals(result['no_periodic_response'], '.4f')}"
+            f"  no periodic response in {format_intervals(result.no_periodic_response, '.4f')}"
         )
-    for f in result["failed"]:
-        lines.append(f"  no periodic response found at {f['value']:g}: {f['reason']}")
+    for f in result.failed:
+        lines.append(f"  no periodic response found at {f.value:g}: {f.reason}")
     return "\n".join(lines)
 
 
