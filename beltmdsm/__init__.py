@@ -13,7 +13,8 @@ The runtime of the package: it imports the generated model (``generated/``, writ
   too (``periods=k``), and its exact stability.
 * `floquet_band` (`Band`, `Edge`): the ranges of one parameter where it is unstable,
   each edge with its bifurcation; `branch` (`Branch`): a response continued in one
-  parameter through folds.
+  parameter through folds; `floquet_map` (`FloquetMap`): the two-parameter map of
+  where it is unstable, its boundary curves traced.
 * `responses` (`ResponseSet`): every periodic response found at one point, locked
   ones included; `coexistence` (`Coexistence`): where stable responses coexist.
 * `predict` (`Prediction`): the unstable belt speeds of the paper's analysis and of a
@@ -24,7 +25,7 @@ Subpackages, in the order of their layers (each imports only those before it):
 `beltmdsm.model` and `beltmdsm.settings` (the values every function takes),
 `beltmdsm.integrate` (the integrators and their compiled kernels), `beltmdsm.analysis`
 (spectra, run summary, modulation, the period map, Floquet, lock detection, edges,
-branches, bands, predictions), `beltmdsm.simulation`, `beltmdsm.studies`
+branches, bands, maps, predictions), `beltmdsm.simulation`, `beltmdsm.studies`
 (sweeps and their cache, responses at a point, coexistence, validation),
 `beltmdsm.cli` (the command line). The names below are imported when first used, so
 that ``import beltmdsm`` and the command line start fast.
@@ -52,6 +53,8 @@ _API = {
     "Edge": "analysis.band",
     "branch": "analysis.branch",
     "Branch": "analysis.branch",
+    "floquet_map": "analysis.floquet_map",
+    "FloquetMap": "analysis.floquet_map",
     "responses": "studies.responses",
     "ResponseSet": "studies.responses",
     "coexistence": "studies.coexistence",
