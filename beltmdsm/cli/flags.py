@@ -8,7 +8,8 @@ Declared once, as parent parsers:
 * `solver_parent`: the fields of `beltmdsm.settings.SolverSettings`;
 * `executor_parent` and `executor_from`: ``--jobs``/``--scheduler`` and the executor
   they ask for; `cache_parent`: the sweep cache; `json_parent`: ``--json``;
-* `periods_parent`: ``--periods K``, the response of ``K`` excitation periods.
+* `periods_parent`: ``--periods K``, the response of ``K`` excitation periods;
+  `lock_parent`: ``--limit``, the longest lock looked for.
 
 `model_from` builds the `beltmdsm.Model` of a command line once; `settings_from` its
 `SolverSettings`. Every flag is checked when it is parsed (finite numbers, domains,
@@ -53,6 +54,7 @@ __all__ = [
     "cache_dir_from",
     "json_parent",
     "periods_parent",
+    "lock_parent",
 ]
 
 _MODEL_PARAMS = [p for p in PARAMETERS if p["name"] != "Vhat"]
@@ -410,5 +412,22 @@ def periods_parent() -> argparse.ArgumentParser:
         metavar="K",
         help="the response of K excitation periods, a phase-locked one for K > 1 (seeded "
         "from the attractor of the period map iterated from rest; default 1)",
+    )
+    return parent
+
+
+#: The default of ``--limit``: ``beltmdsm.analysis.locked.LOCK_LIMIT``, written out so that
+#: ``--help`` imports no analysis (tests/beltmdsm/cli/test_locked_commands.py keeps them equal).
+LOCK_LIMIT = 12
+
+
+def lock_parent() -> argparse.ArgumentParser:
+    """Parent parser: ``--limit``, the longest period a lock is looked for at."""
+    parent = argparse.ArgumentParser(add_help=False)
+    parent.add_argument(
+        "--limit",
+        type=integer(1),
+        default=LOCK_LIMIT,
+        help=f"the longest period looked for, in excitation periods (default {LOCK_LIMIT})",
     )
     return parent
