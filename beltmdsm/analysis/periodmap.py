@@ -71,7 +71,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from generated import dynamics, hybrid, oscillator
+from generated import dynamics, hybrid
 
 from ..integrate.normal import normal_motion
 from ..integrate.superposition import Superposition, TangentialRun, segs_state
@@ -272,17 +272,22 @@ def _normal_orbit(model):
     return NormalOrbit(x, T, M, np.linalg.eigvals(M), switches, iteration)
 
 
+#: The parameter names of the normal orbit's key by contact and tension law.
+_NORMAL_NAMES: dict[tuple[str, str], tuple[str, ...]] = {}
+
+
 def _normal_orbit_key(model):
     """What the normal orbit depends on: the parameters of the generated normal equation
-    and its Jacobian (as the generated code declares them), the period and the laws."""
-    kw = dict(contact=model.contact, tension=model.tension, backend="python", **model.params)
-    used = dynamics.bind_normal_rhs(**kw).params | dynamics.bind_normal_jacobian(**kw).params
-    return (
-        model.contact,
-        model.tension,
-        tuple(sorted((k, float(v)) for k, v in used.items())),
-        excitation_period(model),
-    )
+    and its Jacobian (as the generated code declares them: the names depend on the laws
+    only, found once per pair), the period and the laws."""
+    laws = (model.contact, model.tension)
+    names = _NORMAL_NAMES.get(laws)
+    if names is None:
+        kw = dict(contact=model.contact, tension=model.tension, backend="python", **model.params)
+        used = dynamics.bind_normal_rhs(**kw).params | dynamics.bind_normal_jacobian(**kw).params
+        names = _NORMAL_NAMES[laws] = tuple(sorted(used))
+    p = model.params
+    return (*laws, tuple((k, float(p[k])) for k in names), excitation_period(model))
 
 
 def normal_orbit(model: Model) -> NormalOrbit:
@@ -323,8 +328,7 @@ class OnePeriodMap:
         self.T = self.orbit.period
         normal = normal_motion(model, self.T, RTOL, RTOL, self.orbit.state0, backend)
         self.engine = Superposition(model, normal, backend)
-        self.stm = oscillator.bind_state_transition(backend=backend, **self.p)
-        self.sw = self.engine.sw
+        self.stm, self.sw = self.engine.stm, self.engine.sw
         self._saltation = {}
         self.backend = backend
 

@@ -46,6 +46,10 @@ def test_normal_orbit_is_periodic_and_its_monodromy_is_the_flow_jacobian():
     np.testing.assert_allclose(orbit.monodromy, J, rtol=0, atol=1e-7)
     # the overdamped normal motion: both multipliers well inside the unit circle
     assert np.all(np.abs(orbit.multipliers) < 0.9)
+    # kept per normal parameter set: the tangential parameters, mu_s and Vb are not in
+    # the normal equation (a map over beta1 computes one normal orbit)
+    assert F.normal_orbit(Model(beta1=0.3, omega1=2.0, mu_s=0.2, Vb=7.0)) is orbit
+    assert F.normal_orbit(Model(omega2=0.6)) is not orbit
 
 
 @pytest.mark.parametrize(
