@@ -8,7 +8,9 @@ response (found on one side only) by continuing it across the interval
 (`beltmdsm.analysis.branch`) to where its closing margin vanishes
 (`beltmdsm.analysis.edges.locate_end`). Each edge carries its bifurcation
 (`beltmdsm.analysis.edges.KINDS`, docs/modelling.md#bifurcations) and, for one
-release, the kind of before (``old_kind``).
+release, the kind of before (``old_kind``). In ``Vb`` the band is the exact
+counterpart of the unstable belt speeds of the paper's linear analysis (Sects. 4.2-4.3,
+Fig. 5) and of the ranges Figs. 17-21 validate.
 
 The result is a `Band`; its `Band.as_dict` is the JSON of ``floquet-band --json``.
 """

@@ -1,7 +1,7 @@
 """Branches of periodic responses: pseudo-arclength continuation on the ``k``-fold period map.
 
-A response of ``k`` excitation periods is a zero of ``G(x, p) = P_p(x) - x``, with
-``P_p`` the ``k``-fold period map at the parameter value ``p``
+A response of Eq. (4) of ``k`` excitation periods is a zero of ``G(x, p) = P_p(x) - x``,
+with ``P_p`` the ``k``-fold period map at the parameter value ``p``
 (`beltmdsm.analysis.periodmap.MapFamily`). `continue_branch` follows the curve of zeros in
 ``(x, p)`` by pseudo-arclength continuation, so it passes folds: a secant predictor
 along the unit tangent (the null vector of ``[dP/dx - I, dP/dp]``, in coordinates

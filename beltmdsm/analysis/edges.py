@@ -21,7 +21,9 @@ looks like):
   so does the largest multiplier; the response ends there. It is grazing seen from
   the side where the orbit crosses.
 
-`beltmdsm.analysis.band.floquet_band` used the kinds ``multiplier`` (now
+The paper's linear analysis (Sect. 4.3, Eqs. 26-28) sees an edge only where a pair of
+eigenvalues of the slow equations crosses the imaginary axis, the counterpart of
+``neimark_sacker``. `beltmdsm.analysis.band.floquet_band` used the kinds ``multiplier`` (now
 ``neimark_sacker``, ``period_doubling`` or ``fold``), ``existence`` (now ``tangency``,
 ``grazing`` or ``fold``) and ``grazing``; its edges keep the old one as ``old_kind``
 for one release (`OLD_KINDS`).

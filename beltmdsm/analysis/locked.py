@@ -1,8 +1,9 @@
 """Phase locking: whether stroboscopic samples repeat after ``k`` excitation periods.
 
 A self-excited oscillation of a forced system often locks to the excitation: the
-stroboscopic samples ``y(nT)`` of a run (``T`` the excitation period) then repeat with
-a period ``k T``. At the base set the run from rest locks at ``4 T`` for ``Vb`` in
+stroboscopic samples ``y(nT)`` of a run of Eq. (4) (``T`` the excitation period) then
+repeat with a period ``k T``; the omega1 peak of the spectra of Fig. 2b is then a line
+of the ``k T``-periodic response. At the base set the run from rest locks at ``4 T`` for ``Vb`` in
 [3.87, 7.67] (``omega1 = 1 = Omega / 4``), and at ``Omega = 6`` at ``6 T``. A locked
 response is a fixed point of the ``k``-fold period map
 (`beltmdsm.analysis.periodmap.TangentialMap`), which shooting computes exactly

@@ -513,11 +513,6 @@ class TangentialMap(PeriodMap):
         self.period = self.one.T
         self.sw = self.one.sw
 
-    @property
-    def normal(self) -> NormalOrbit:
-        """The periodic normal motion the map runs on (one excitation period)."""
-        return self.one.orbit
-
     def fixed_multipliers(self) -> NDArray[np.complex128]:
         """The normal block's multipliers to the power ``k``."""
         return np.asarray(self.one.orbit.multipliers, dtype=complex) ** self.periods

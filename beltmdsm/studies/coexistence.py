@@ -1,9 +1,11 @@
 """Where stable periodic responses coexist, exactly: branches of every response found.
 
-A run from rest, a run from the perturbed periodic response or a continued sweep ends
-on one attractor; where several are stable, which one depends on where the run
-starts. `coexistence` finds the attractors over a range of one parameter and computes
-each exactly:
+A run of Eq. (4) from rest, a run from the perturbed periodic response or a continued
+sweep ends on one attractor; where several are stable, which one depends on where the
+run starts, and a simulated range of the omega1 peak (Fig. 2b, Figs. 17-21) need not
+be the unstable range of any analysis (docs/modelling.md#what-unstable-means).
+`coexistence` finds the attractors over a range of one parameter and computes each
+exactly:
 
 1. **Seeds.** On a grid of the parameter: the periodic response of period ``T``
    (`beltmdsm.analysis.floquet.floquet`, continued down the grid from its neighbour);

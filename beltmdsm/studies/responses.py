@@ -1,10 +1,11 @@
 """Every periodic response at one point: the ``T``-periodic one and the phase-locked ones.
 
-A run from rest, a run from the perturbed periodic response or a sweep continued in a
-parameter ends on one attractor; where it locks to the excitation at ``k`` periods
-(`beltmdsm.analysis.locked`), the attractor is a fixed point of the ``k``-fold period
-map, which shooting computes exactly (`beltmdsm.analysis.periodmap.fixed_point`), with
-the multipliers of the ``k``-fold map (`beltmdsm.analysis.floquet.Floquet`).
+A run of Eq. (4) from rest (the runs of Fig. 2b and Figs. 17-21), a run from the
+perturbed periodic response or a sweep continued in a parameter ends on one attractor;
+where it locks to the excitation at ``k`` periods (`beltmdsm.analysis.locked`), the
+attractor is a fixed point of the ``k``-fold period map, which shooting computes
+exactly (`beltmdsm.analysis.periodmap.fixed_point`), with the multipliers of the
+``k``-fold map (`beltmdsm.analysis.floquet.Floquet`).
 
 * `run_stroboscope`: the stroboscopic samples of a run of `beltmdsm.simulation.simulate`
   from rest or from the perturbed periodic response
