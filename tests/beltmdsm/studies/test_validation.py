@@ -555,3 +555,6 @@ def test_quick_base_periodic_start_agrees_with_floquet_and_the_band_with_its_gri
     text = render_markdown(quick_base, True)
     assert "**0 mismatches**" in text and "## Coexistence" in text
     assert "| base | [4.058, 6.415]" in text
+    # the edges by their bifurcation, abbreviated as the legend says
+    assert "| 4.058 NS, 6.164 tang, 6.415 graz |" in text
+    assert "kinds: NS = Neimark-Sacker, PD = period doubling, fold, graz = grazing" in text
