@@ -247,10 +247,12 @@ def periodic_response(
     pmap = TangentialMap(model, periods, backend)
     if isinstance(guess, PeriodicResponse):
         guess = guess.state0[:2]
+    if pmap.periods > 1 and guess is not None:
+        return response_from(pmap, fixed_point(pmap, guess, max_iter))
     if pmap.periods > 1:
-        point = fixed_point(pmap, _locked_seed(pmap) if guess is None else guess, max_iter)
+        point = fixed_point(pmap, _locked_seed(pmap), max_iter)
         shortest = minimal_periods(point.image, pmap.periods)
-        if guess is None and shortest != pmap.periods:
+        if shortest != pmap.periods:
             raise NoPeriodicResponse(
                 f"no response of {pmap.periods} periods found: from the attractor of the "
                 f"period map iterated from rest, Newton's method finds one of {shortest}"
