@@ -8,8 +8,15 @@ The runtime of the package: it imports the generated model (``generated/``, writ
 * `SolverSettings`, `simulate`, `Simulation`, `Summary`: one run of Eq. (4) and what it
   says (regime, spectral peaks, energy balance).
 * `sweep`, `Sweep`: one parameter over a range, on any executor, with a disk cache.
-* `periodic_response`, `floquet`, `floquet_band`, `periodic_start` (`PeriodicResponse`,
-  `Floquet`, `NoPeriodicResponse`): the periodic response and its exact stability.
+* `periodic_response`, `floquet`, `periodic_start` (`PeriodicResponse`, `Floquet`,
+  `NoPeriodicResponse`): the periodic response, phase-locked ones of ``k`` periods
+  too (``periods=k``), and its exact stability.
+* `floquet_band` (`Band`, `Edge`): the ranges of one parameter where it is unstable,
+  each edge with its bifurcation; `branch` (`Branch`): a response continued in one
+  parameter through folds; `floquet_map` (`FloquetMap`): the two-parameter map of
+  where it is unstable, its boundary curves traced.
+* `responses` (`ResponseSet`): every periodic response found at one point, locked
+  ones included; `coexistence` (`Coexistence`): where stable responses coexist.
 * `predict` (`Prediction`): the unstable belt speeds of the paper's analysis and of a
   consistent MDSM.
 * `validate` (`Validation`): the validation of Figs. 2 and 17-21 (``VALIDATION.md``).
@@ -17,10 +24,11 @@ The runtime of the package: it imports the generated model (``generated/``, writ
 Subpackages, in the order of their layers (each imports only those before it):
 `beltmdsm.model` and `beltmdsm.settings` (the values every function takes),
 `beltmdsm.integrate` (the integrators and their compiled kernels), `beltmdsm.analysis`
-(spectra, run summary, modulation, Floquet, predictions), `beltmdsm.simulation`,
-`beltmdsm.studies` (sweeps and their cache, validation), `beltmdsm.cli` (the command
-line). The names below are imported when first used, so that ``import beltmdsm`` and
-the command line start fast.
+(spectra, run summary, modulation, the period map, Floquet, lock detection, edges,
+branches, bands, maps, predictions), `beltmdsm.simulation`, `beltmdsm.studies`
+(sweeps and their cache, responses at a point, coexistence, validation),
+`beltmdsm.cli` (the command line). The names below are imported when first used, so
+that ``import beltmdsm`` and the command line start fast.
 """
 
 from importlib import import_module
@@ -38,9 +46,19 @@ _API = {
     "PeriodicResponse": "analysis.floquet",
     "floquet": "analysis.floquet",
     "Floquet": "analysis.floquet",
-    "floquet_band": "analysis.floquet",
     "periodic_start": "analysis.floquet",
     "NoPeriodicResponse": "analysis.floquet",
+    "floquet_band": "analysis.band",
+    "Band": "analysis.band",
+    "Edge": "analysis.band",
+    "branch": "analysis.branch",
+    "Branch": "analysis.branch",
+    "floquet_map": "analysis.floquet_map",
+    "FloquetMap": "analysis.floquet_map",
+    "responses": "studies.responses",
+    "ResponseSet": "studies.responses",
+    "coexistence": "studies.coexistence",
+    "Coexistence": "studies.coexistence",
     "predict": "analysis.predict",
     "Prediction": "analysis.predict",
     "validate": "studies.validation",

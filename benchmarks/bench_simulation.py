@@ -15,7 +15,7 @@ All in one run on this machine, serially (one core):
      events solver alone, peak_omega1 within 1e-6 of the reference);
    * the superposition integrator at the same tolerance;
    * each with ``backend="python"`` (no numba) too, where ``--python`` is given;
-   * the Floquet band of the same case (`beltmdsm.analysis.floquet.floquet_band`, edges to
+   * the Floquet band of the same case (`beltmdsm.analysis.band.floquet_band`, edges to
      1e-3) against the from-rest sweep (target: at most 1/50 of its time).
    Printed: the wall times, their ratios and each configuration's largest relative
    error of peak_omega1 where the peak is present (>= 1 % of the Omega peak of the
@@ -43,7 +43,8 @@ from scipy.integrate import solve_ivp
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from beltmdsm.analysis import floquet  # noqa: E402
+from beltmdsm.analysis.band import floquet_band  # noqa: E402
+from beltmdsm.analysis.floquet import floquet  # noqa: E402
 from beltmdsm.analysis.spectra import peak_amplitudes  # noqa: E402
 from beltmdsm.analysis.summary import PEAK_PRESENT_RATIO, omega1_band  # noqa: E402
 from beltmdsm.integrate import superposition  # noqa: E402
@@ -157,7 +158,7 @@ def measure(points=64, t_end=1000.0, dt=0.02, python=False, progress=print):
         ]
     for _, cfg in configs + [("reference", REFERENCE)]:
         run(4.0, 20.0, dt, cfg)  # compile before timing
-    floquet.floquet(Vb=4.0)
+    floquet(Vb=4.0)
     progress(f"[1] reference: events at rtol = atol = 1e-12 on {points} points of {t_end:g} s ...")
     ref = {Vb: run(Vb, t_end, dt, REFERENCE) for Vb in values}
     progress(f"    max energy residual {max(r['energy_residual'] for r in ref.values()):.2e}")
@@ -199,7 +200,7 @@ def measure(points=64, t_end=1000.0, dt=0.02, python=False, progress=print):
         wall, res = sweep_time(values, t_end, dt, cfg)
         rows.append(summary_row(name, wall, res, ref, values, base_wall))
     t0 = time.perf_counter()
-    band = floquet.floquet_band("Vb", float(values[0]), float(values[-1]))
+    band = floquet_band("Vb", float(values[0]), float(values[-1]))
     band_wall = time.perf_counter() - t0
     return {
         "points": points,
@@ -208,7 +209,7 @@ def measure(points=64, t_end=1000.0, dt=0.02, python=False, progress=print):
         "sweeps": rows,
         "floquet_band": {
             "wall_s": band_wall,
-            "unstable": band["unstable"],
+            "unstable": band.unstable,
             "sweep_over_band": rows[1]["wall_s"] / band_wall,
         },
     }

@@ -7,7 +7,9 @@ Declared once, as parent parsers:
   model options (`beltmdsm.model.OPTIONS`) with their choices;
 * `solver_parent`: the fields of `beltmdsm.settings.SolverSettings`;
 * `executor_parent` and `executor_from`: ``--jobs``/``--scheduler`` and the executor
-  they ask for; `cache_parent`: the sweep cache; `json_parent`: ``--json``.
+  they ask for; `cache_parent`: the sweep cache; `json_parent`: ``--json``;
+* `periods_parent`: ``--periods K``, the response of ``K`` excitation periods;
+  `lock_parent`: ``--limit``, the longest lock looked for.
 
 `model_from` builds the `beltmdsm.Model` of a command line once; `settings_from` its
 `SolverSettings`. Every flag is checked when it is parsed (finite numbers, domains,
@@ -51,6 +53,8 @@ __all__ = [
     "cache_parent",
     "cache_dir_from",
     "json_parent",
+    "periods_parent",
+    "lock_parent",
 ]
 
 _MODEL_PARAMS = [p for p in PARAMETERS if p["name"] != "Vhat"]
@@ -234,14 +238,15 @@ def params_from(args: argparse.Namespace, skip: Sequence[str] = ()) -> dict[str,
     }
 
 
-def swept(args: argparse.Namespace) -> str:
-    """``args.param``, refused where it is also given as a fixed parameter (``--Vb 3``)."""
-    if getattr(args, args.param, None) is not None:
+def swept(args: argparse.Namespace, dest: str = "param") -> str:
+    """``args.param`` (or the flag ``dest`` that names a walked parameter: ``--x``),
+    refused where it is also given as a fixed parameter (``--Vb 3``)."""
+    name = getattr(args, dest)
+    if getattr(args, name, None) is not None:
         args.parser.error(
-            f"argument --{args.param}: {args.param} is the parameter walked (--param "
-            f"{args.param}); drop --{args.param}"
+            f"argument --{name}: {name} is the parameter walked (--{dest} {name}); drop --{name}"
         )
-    return args.param
+    return name
 
 
 def model_from(args: argparse.Namespace, skip: Sequence[str] = ()) -> Model:
@@ -394,4 +399,35 @@ def cache_dir_from(args: argparse.Namespace) -> str | None:
 def json_parent() -> argparse.ArgumentParser:
     parent = argparse.ArgumentParser(add_help=False)
     parent.add_argument("--json", action="store_true", help="print JSON")
+    return parent
+
+
+def periods_parent() -> argparse.ArgumentParser:
+    """Parent parser: ``--periods K``, the response of ``K`` excitation periods."""
+    parent = argparse.ArgumentParser(add_help=False)
+    parent.add_argument(
+        "--periods",
+        type=integer(1),
+        default=1,
+        metavar="K",
+        help="the response of K excitation periods, a phase-locked one for K > 1 (seeded "
+        "from the attractor of the period map iterated from rest; default 1)",
+    )
+    return parent
+
+
+#: The default of ``--limit``: ``beltmdsm.analysis.locked.LOCK_LIMIT``, written out so that
+#: ``--help`` imports no analysis (tests/beltmdsm/cli/test_locked_commands.py keeps them equal).
+LOCK_LIMIT = 12
+
+
+def lock_parent() -> argparse.ArgumentParser:
+    """Parent parser: ``--limit``, the longest period a lock is looked for at."""
+    parent = argparse.ArgumentParser(add_help=False)
+    parent.add_argument(
+        "--limit",
+        type=integer(1),
+        default=LOCK_LIMIT,
+        help=f"the longest period looked for, in excitation periods (default {LOCK_LIMIT})",
+    )
     return parent

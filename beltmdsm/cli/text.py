@@ -10,11 +10,16 @@ from typing import Any
 
 import numpy as np
 
+from ..analysis.band import Band
+from ..analysis.branch import Branch
 from ..analysis.floquet import Floquet
+from ..analysis.floquet_map import FloquetMap
 from ..analysis.predict import Prediction
 from ..analysis.summary import PEAK_PRESENT_RATIO, Summary
 from ..intervals import format_intervals
 from ..simulation import Simulation
+from ..studies.coexistence import Coexistence
+from ..studies.responses import ResponseSet
 from ..studies.sweep import Sweep
 from ..studies.validation import ANALYSES, Validation
 
@@ -23,7 +28,12 @@ __all__ = [
     "peak_verdict",
     "simulation",
     "floquet",
+    "kind",
     "band",
+    "responses",
+    "branch",
+    "coexistence",
+    "floquet_map",
     "sweep",
     "sweep_validation",
     "prediction",
@@ -110,10 +120,11 @@ def floquet(f: Floquet) -> str:
     resp = f.response
     p = resp.model.params
     mus = ", ".join(f"{z.real:.6g}{z.imag:+.6g}j" for z in f.multipliers)
+    per = "per period" if resp.periods == 1 else f"per {resp.periods} periods"
     lines = [
         f"periodic response of Eq. (4), {resp.model.contact}, tension "
         f"{resp.model.tension}, Vb = {p['Vb']:g} m/s: period {f.period:.6g} s, "
-        f"{f.n_reversals} reversals and {f.n_sticks} sticks per period, Newton "
+        f"{f.n_reversals} reversals and {f.n_sticks} sticks {per}, Newton "
         f"{resp.iterations} iterations (residual {resp.residual:.1e})"
     ]
     if f.grazing is not None:
@@ -141,23 +152,137 @@ _SIDES = {
 }
 
 
-def band(result: dict, param: str, lo: float, hi: float) -> str:
+def kind(name: str, frequency: float | None = None) -> str:
+    """A bifurcation kind as the text prints it (a Neimark-Sacker pair with its frequency)."""
+    if name == "neimark_sacker" and frequency is not None:
+        return f"neimark_sacker at {frequency:.4g} rad/s"
+    return name
+
+
+def _name(periods: int) -> str:
+    return "T" if periods == 1 else f"{periods}T"
+
+
+def band(result: Band, lo: float, hi: float) -> str:
     """The readable result of ``floquet-band``."""
+    what = "periodic response" if result.periods == 1 else f"{_name(result.periods)} response"
     lines = [
-        f"periodic response unstable (or absent) for {param} in "
-        f"{format_intervals(result['unstable'], '.4f')} of {lo:g}..{hi:g}"
+        f"{what} unstable (or absent) for {result.param} in "
+        f"{format_intervals(result.unstable, '.4f')} of {lo:g}..{hi:g}"
     ]
-    for e in result["edges"]:
+    for e in result.edges:
         lines.append(
-            f"  edge at {e['value']:.4f} ({e['kind']}; "
-            f"{_SIDES[e['unstable_below'], e['unstable_above']]})"
+            f"  edge at {e.value:.4f} ({kind(e.kind, e.frequency)}; "
+            f"{_SIDES[e.unstable_below, e.unstable_above]})"
         )
-    if result["no_periodic_response"]:
+    if result.no_periodic_response:
         lines.append(
-            f"  no periodic response in {format_intervals(result['no_periodic_response'], '.4f')}"
+            f"  no periodic response in {format_intervals(result.no_periodic_response, '.4f')}"
         )
-    for f in result["failed"]:
-        lines.append(f"  no periodic response found at {f['value']:g}: {f['reason']}")
+    for f in result.failed:
+        lines.append(f"  no periodic response found at {f.value:g}: {f.reason}")
+    return "\n".join(lines)
+
+
+def responses(found: ResponseSet) -> str:
+    """The readable list of ``responses``."""
+    m = found.model
+    lines = [
+        f"periodic responses of Eq. (4), {m.contact}, tension {m.tension}, "
+        f"Vb = {m['Vb']:g} m/s (locks looked for up to {found.limit} periods):"
+    ]
+    for r in found.responses:
+        f = r.floquet
+        verdict = (
+            "GRAZING (no multiplier)"
+            if f.stable is None
+            else f"{'stable' if f.stable else 'UNSTABLE'}, max|mu| = {f.max_abs_multiplier:.5g}"
+        )
+        check = (
+            ""
+            if r.run_distance is None
+            else f"; the run's last samples lie on it to {r.run_distance:.1e}"
+        )
+        lines.append(
+            f"  {_name(r.periods):>4}: {verdict}; {f.n_reversals} reversals, {f.n_sticks} "
+            f"sticks per orbit; amplitude of X1' {r.amplitude:.4g} m/s; found by "
+            + ", ".join(r.sources)
+            + check
+        )
+    for u in found.unlocked:
+        lines.append(f"  {u.text()}")
+    for failed in found.failed:
+        lines.append(f"  no response from {failed.source}: {failed.reason}")
+    return "\n".join(lines)
+
+
+def branch(found: Branch) -> str:
+    """The readable summary of ``branch``."""
+    lo, hi = found.value_range()
+    lines = [
+        f"branch of the {_name(found.periods)}-periodic response in {found.param} "
+        f"({found.model.contact}, tension {found.model.tension}): {found.param} from "
+        f"{lo:.6g} to {hi:.6g}, {len(found.points)} points; stable for {found.param} in "
+        f"{format_intervals(found.stable_ranges(), '.5f', 'none')}"
+    ]
+    for s in found.special:
+        lines.append(
+            f"  {kind(s.kind, s.frequency)} at {found.param} = {s.value:.6f} "
+            f"(+- {s.accuracy:.0e})" + (f": {s.detail}" if s.detail else "")
+        )
+    for part in found.parts():
+        a, b = part.range
+        state = {True: "stable", False: "unstable", None: "grazing"}[part.stable]
+        lines.append(f"  {state} from {a:.6f} to {b:.6f} ({part.start} to {part.end})")
+    return "\n".join(lines)
+
+
+def coexistence(found: Coexistence) -> str:
+    """The readable summary of ``coexistence``."""
+    param = found.param
+    lines = [
+        f"stable periodic responses of Eq. (4) for {param} in {found.lo:g}..{found.hi:g} "
+        f"({found.model.contact}, tension {found.model.tension}; {found.wall_s:.1f} s):"
+    ]
+    for r in found.responses:
+        stable = ", ".join(
+            f"[{s.range[0]:.5f}, {s.range[1]:.5f}] ({s.lower} to {s.upper})" for s in r.stable
+        )
+        lines.append(f"  {r.name:>6}: stable in {stable or 'none'}")
+    if found.ranges:
+        lines.append("coexistence:")
+        for c in found.ranges:
+            a, b = c.range
+            lines.append(f"  [{a:.5f}, {b:.5f}]: {', '.join(c.responses)} ({c.lower} to {c.upper})")
+    else:
+        lines.append("coexistence: none")
+    if found.unlocked:
+        values = ", ".join(f"{v:g}" for v in sorted({u.value for u in found.unlocked}))
+        lines.append(
+            f"not locked (quasi-periodic or longer period) at {param} = {values}: "
+            "attractors not among the responses above"
+        )
+    for u in found.unexplained:
+        lines.append(f"  a lock at {param} = {u.value:g} ({u.source}) not found: {u.reason}")
+    return "\n".join(lines)
+
+
+def floquet_map(result: FloquetMap, png: str | None = None) -> str:
+    """The readable summary of ``floquet-map`` (``png``: the file it was drawn to)."""
+    lines = [
+        f"periodic response of Eq. (4) over {result.x} in {result.x_range[0]:g}..."
+        f"{result.x_range[1]:g} and {result.y} in {result.y_range[0]:g}..."
+        f"{result.y_range[1]:g} ({len(result.rows)} rows, {result.wall_s:.1f} s): "
+        f"{len(result.curves)} boundary curves"
+    ]
+    for c in result.curves:
+        lines.append(
+            f"  {c.kind}: {result.y} {c.y[0]:.4g}..{c.y[-1]:.4g}, {result.x} "
+            f"{c.x[0]:.5f}..{c.x[-1]:.5f} (to {max(c.accuracy):.0e})"
+            + (f"; {c.ended}" if c.ended else "")
+        )
+    if png:
+        lines.append(f"drawn to {png}, over the paper's linear analysis")
     return "\n".join(lines)
 
 

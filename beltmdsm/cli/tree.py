@@ -23,6 +23,10 @@ COMMANDS = {
     "predict": "predict",
     "floquet": "floquet",
     "floquet-band": "floquet_band",
+    "responses": "responses",
+    "branch": "branch",
+    "coexistence": "coexistence",
+    "floquet-map": "floquet_map",
     "validate": "validate",
 }
 

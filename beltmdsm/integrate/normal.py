@@ -47,9 +47,25 @@ def normal_key(model: Model) -> tuple:
     and ``mu_s`` are not among them, so a sweep over either shares one normal motion.
     """
     p = model.params
-    used = hybrid.bind_response_field(contact=model.contact, backend="python", **p).params
-    used |= oscillator.bind_excitation_response(backend="python", **p).params
-    return (model.contact, model.tension, tuple(sorted((k, float(v)) for k, v in used.items())))
+    names = _normal_names(model)
+    return (model.contact, model.tension, tuple((k, float(p[k])) for k in names))
+
+
+#: The parameter names of `normal_key` by contact law (`_normal_names`).
+_NAMES: dict[str, tuple[str, ...]] = {}
+
+
+def _normal_names(model):
+    """The parameter names of `normal_key`: those the generated kernels declare. They
+    depend on the contact law only (the variant bound), not on the values: found once
+    per law, so that a continuation's trial points do not bind kernels to build a key."""
+    names = _NAMES.get(model.contact)
+    if names is None:
+        p = model.params
+        used = hybrid.bind_response_field(contact=model.contact, backend="python", **p).params
+        used |= oscillator.bind_excitation_response(backend="python", **p).params
+        names = _NAMES[model.contact] = tuple(sorted(used))
+    return names
 
 
 class NormalMotion:

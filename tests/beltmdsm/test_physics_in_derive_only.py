@@ -83,7 +83,7 @@ ALLOWED = {
     ): _SUPERPOSITION,
     (
         "analysis/floquet.py",
-        "_largest_sliding_velocity",
+        "largest_sliding_velocity",
         "+ mu * normal.on_grid[1, : grid.size]",
     ): _SUPERPOSITION,
     (

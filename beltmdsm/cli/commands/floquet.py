@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..flags import json_parent, model_from, model_parent, register
+from ..flags import json_parent, model_from, model_parent, periods_parent, register
 
 
 def add(commands, name: str) -> None:
@@ -13,11 +13,12 @@ def add(commands, name: str) -> None:
         commands,
         name,
         run,
-        [model_parent(), json_parent()],
+        [model_parent(), periods_parent(), json_parent()],
         help="Floquet multipliers of the periodic response",
         description="The periodic response of Eq. (4) by shooting and its Floquet "
         "multipliers, with saltation matrices at the switches "
-        "(beltmdsm/analysis/floquet.py).",
+        "(beltmdsm/analysis/floquet.py); --periods K: the response of K excitation "
+        "periods, by shooting on the K-fold period map.",
     )
 
 
@@ -25,7 +26,7 @@ def run(args: argparse.Namespace) -> int:
     from ...analysis.floquet import floquet
     from .. import text
 
-    f = floquet(model_from(args))
+    f = floquet(model_from(args), periods=args.periods)
     out = f.as_dict()
     out.update(f.response.model.as_dict())
     out["switches"] = [

@@ -13,6 +13,7 @@ from ..flags import (
     model_from,
     model_parent,
     number,
+    periods_parent,
     register,
     swept,
 )
@@ -23,10 +24,11 @@ def add(commands, name: str) -> None:
         commands,
         name,
         run,
-        [model_parent(), json_parent()],
+        [model_parent(), periods_parent(), json_parent()],
         help="ranges of a parameter where the periodic response is unstable",
         description="Ranges of one parameter where the periodic response is "
-        "unstable, edges located by bisection (beltmdsm/analysis/floquet.py).",
+        "unstable, every edge located and labelled with its bifurcation "
+        "(beltmdsm/analysis/band.py, docs/modelling.md#bifurcations).",
     )
     sub.add_argument(
         "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter walked"
@@ -41,7 +43,7 @@ def add(commands, name: str) -> None:
         "--points",
         type=integer(2),
         default=17,
-        help="grid points walked before the bisection (default 17)",
+        help="grid points walked before the refinement (default 17)",
     )
     sub.add_argument(
         "--tol", type=POSITIVE, default=1e-3, help="the edges' tolerance, > 0 (default 1e-3)"
@@ -49,7 +51,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...analysis.floquet import floquet_band
+    from ...analysis.band import floquet_band
     from .. import text
 
     if not args.stop > args.start:
@@ -61,9 +63,10 @@ def run(args: argparse.Namespace) -> int:
         model_from(args, skip=(swept(args),)),
         points=args.points,
         tol=args.tol,
+        periods=args.periods,
     )
     if args.json:
-        print(json.dumps(text.jsonable(band)))
+        print(json.dumps(text.jsonable(band.as_dict())))
     else:
-        print(text.band(band, args.param, args.start, args.stop))
+        print(text.band(band, args.start, args.stop))
     return 0

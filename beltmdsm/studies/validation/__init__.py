@@ -7,7 +7,7 @@ peak at omega1. The analyses approximate the linear stability of the periodic
 response; `beltmdsm.analysis.floquet` computes it exactly. For the base set and every
 case of Figs. 17-21 this package sets side by side:
 
-* the Floquet band (`beltmdsm.analysis.floquet.floquet_band`) and the verdict at each
+* the Floquet band (`beltmdsm.analysis.band.floquet_band`) and the verdict at each
   grid point (`floquet_verdicts`);
 * five runs per grid point (`RUNS`): from rest under each tension law, on the
   periodic response plus a small perturbation, and continued up and down in ``Vb``;

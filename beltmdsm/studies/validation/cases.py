@@ -259,7 +259,7 @@ RUNS = (
     ("down", "down sweep", "continued downwards in Vb, from rest at the highest point"),
     ("rest_other", "from rest, other law", "from rest under the other tension law"),
 )
-#: Largest spacing [m/s] of the first grid of `beltmdsm.analysis.floquet.floquet_band`: an unstable
+#: Largest spacing [m/s] of the first grid of `beltmdsm.analysis.band.floquet_band`: an unstable
 #: range narrower than this inside one switch structure could fall between its points.
 FLOQUET_SPACING = 0.5
 #: Tolerance [m/s] of the Floquet band's edges (issue 13: 1e-3).
@@ -270,10 +270,12 @@ FLOQUET_DEFINITIONS = """\
 * **Floquet band.** `beltmdsm.floquet.floquet_band` in `Vb` over [h/2, {cap:g}] m/s: the
   belt speeds where the periodic response of period 2 pi / Omega is unstable (largest
   Floquet multiplier |mu| > 1) or absent (no periodic response found), with every edge
-  located to {tol:g} m/s and named by its kind: *multiplier* (|mu| = 1), *grazing* (a
-  reversal appears or disappears with a vanishing acceleration), *existence* (the
-  periodic response stops existing). This is the quantity the linear analyses
-  approximate (docs/modelling.md#what-unstable-means).
+  located to {tol:g} m/s (an edge where the response ends to about 1e-6) and named by
+  its bifurcation (docs/modelling.md#bifurcations): *Neimark-Sacker* (a complex pair
+  of multipliers leaves the unit circle), *period doubling*, *fold*, *grazing* (the
+  switch structure changes: a reversal appears or disappears) and *tangency* (a
+  reversal's crossing becomes tangential and the response ends). This is the quantity
+  the linear analyses approximate (docs/modelling.md#what-unstable-means).
 * **Verdict at a grid point.** `beltmdsm.floquet.floquet` at that point, on the periodic
   response found without a guess: the orbit the periodic-start run starts on.
 * **Runs.** On the validation grid, each case is run five ways: from rest (the file's

@@ -18,7 +18,7 @@ The rules are `DEFINITIONS` and `FLOQUET_DEFINITIONS` (`beltmdsm.studies.validat
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ... import intervals
+from ...analysis.band import Band
 from ...analysis.predict import clip_acts, paper_intervals, unstable_intervals
 from ...model import Model
 from .cases import SLIDING, UNRESOLVED
@@ -302,11 +303,11 @@ def disagreement_length(
 
 
 def compare_floquet(
-    predicted: Sequence[tuple[float, float]] | None, band: Mapping, lo: float, hi: float
+    predicted: Sequence[tuple[float, float]] | None, band: Band, lo: float, hi: float
 ) -> Comparison:
     """Pair an analysis' unstable ranges with the Floquet band (hull rule, exact edges).
 
-    The Floquet band (``band["unstable"]`` of `beltmdsm.analysis.floquet.floquet_band`)
+    The Floquet band (``band.unstable`` of `beltmdsm.analysis.band.floquet_band`)
     is computed on ``[lo, hi]``: an edge of it at ``lo`` or ``hi`` (unstable up to the
     end of the range) is not observed and is *censored*. The predicted ranges are
     clipped to ``[lo, hi]`` for the disagreement length.
@@ -319,7 +320,7 @@ def compare_floquet(
     """
     if predicted is None:
         return Comparison("no_prediction", None, None, None)
-    unstable = [tuple(r) for r in band["unstable"]]
+    unstable = [tuple(r) for r in band.unstable]
     status = _status(predicted, unstable)
     lower = upper = None
     if status == "paired":

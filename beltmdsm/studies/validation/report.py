@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from ... import intervals
+from ...analysis.band import Band
 from ...analysis.floquet import PERTURBATION
 from ...analysis.summary import PEAK_PRESENT_RATIO, TRANSIENT_DECAYED
 from .cases import ANALYSES, DEFINITIONS, FLOQUET_DEFINITIONS, FLOQUET_TOL, UNRESOLVED
@@ -77,22 +78,33 @@ def _runs_text(runs):
     )
 
 
-def _band_text(band):
-    if not band["unstable"]:
+def _band_text(band: Band) -> str:
+    if not band.unstable:
         return "none"
-    text = intervals.format_intervals(band["unstable"], ".3f")
-    if band["no_periodic_response"]:
+    text = intervals.format_intervals(band.unstable, ".3f")
+    if band.no_periodic_response:
         text += (
-            " (none found in "
-            + intervals.format_intervals(band["no_periodic_response"], ".3f")
-            + ")"
+            " (none found in " + intervals.format_intervals(band.no_periodic_response, ".3f") + ")"
         )
     return text
 
 
-def _edges_text(band):
-    short = {"multiplier": "mu", "grazing": "graz", "existence": "exist"}
-    return ", ".join(f"{e['value']:.3f} {short[e['kind']]}" for e in band["edges"]) or "—"
+#: The kinds of a band's edges (`beltmdsm.analysis.edges.KINDS`, and ``existence`` for an
+#: end that is not classified): their abbreviation in the Floquet table and its legend.
+EDGE_ABBREVIATIONS = {
+    "neimark_sacker": ("NS", "Neimark-Sacker"),
+    "period_doubling": ("PD", "period doubling"),
+    "fold": ("fold", "fold"),
+    "grazing": ("graz", "grazing"),
+    "tangency": ("tang", "tangency"),
+    "existence": ("end", "an end not classified"),
+}
+#: The legend of `EDGE_ABBREVIATIONS` ("NS = Neimark-Sacker, ...").
+EDGE_LEGEND = ", ".join(a if a == w else f"{a} = {w}" for a, w in EDGE_ABBREVIATIONS.values())
+
+
+def _edges_text(band: Band) -> str:
+    return ", ".join(f"{e.value:.3f} {EDGE_ABBREVIATIONS[e.kind][0]}" for e in band.edges) or "—"
 
 
 def _run_text(run: Run) -> str:
@@ -118,9 +130,9 @@ def _floquet_sections(results: Validation) -> list[str]:
         "## Floquet: where the periodic response is unstable, and what the runs find",
         "",
         "The Floquet band is exact (edges to "
-        f"{FLOQUET_TOL:g} m/s, kinds: mu = multiplier, graz = grazing, exist = "
-        "existence). The runs' ranges hold the grid points that show the omega1 peak "
-        f"(resolved, any regime), each ± {step / 2:g} m/s. Coexistence: a stable "
+        f"{FLOQUET_TOL:g} m/s, ends of the response to about 1e-6; kinds: {EDGE_LEGEND}). "
+        "The runs' ranges hold the grid points that show the omega1 peak (resolved, any "
+        f"regime), each ± {step / 2:g} m/s. Coexistence: a stable "
         "periodic response beside a self-excited oscillation (definitions below).",
         "",
         "| case | Floquet unstable [m/s] | edges | periodic start | from rest | up sweep "

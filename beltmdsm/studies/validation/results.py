@@ -14,6 +14,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
+from ...analysis.band import Band
 from ...model import Tension
 from .cases import ANALYSES, Case, Resolution
 from .comparison import Comparison, EdgeSummary, SimulatedRanges, summarize_edges
@@ -26,9 +27,8 @@ class CaseFloquet:
 
     Attributes
     ----------
-    band : dict
-        `beltmdsm.analysis.floquet.floquet_band` in ``Vb`` over ``[lo, hi]``, as it
-        returns it (``unstable``, ``edges``, ``no_periodic_response``, ...)
+    band : Band
+        `beltmdsm.analysis.band.floquet_band` in ``Vb`` over ``[lo, hi]``
     lo, hi : float
         the range of the band: half a grid step, and the grid's cap
         (`Resolution.vb_cap`)
@@ -36,7 +36,7 @@ class CaseFloquet:
         the verdict at each grid point of the case (`floquet_verdicts`)
     """
 
-    band: dict
+    band: Band
     lo: float
     hi: float
     verdicts: list[PointVerdict]

@@ -1,7 +1,7 @@
 """`validate`: the Floquet bands and the sweeps of every case of Figs. 2b and 17-21.
 
 For each case of `CASES` it computes the predictions (Eqs. 22-28 and the consistent
-MDSM), the Floquet band in ``Vb`` (`beltmdsm.analysis.floquet.floquet_band`), the
+MDSM), the Floquet band in ``Vb`` (`beltmdsm.analysis.band.floquet_band`), the
 sweep from rest on a grid that contains every edge and closes the simulated range,
 the four other runs of `RUNS` on that grid (on an executor: a process pool, a dask
 cluster or ``"serial"``), the Floquet verdict at each grid point, and sets them side
@@ -18,7 +18,7 @@ from typing import Literal
 
 import numpy as np
 
-from ...analysis.floquet import floquet_band
+from ...analysis.band import floquet_band
 from ...model import TENSIONS, Model, Tension
 from ..sweep import sweep
 from .cases import (
@@ -156,7 +156,7 @@ def _validate_case(case, resolution, tension, executor, cache_dir, progress):
     harmonics = harmonic_in_band(model.params)
     band = _floquet_band(model, resolution)
     edges = [x for ranges in predicted.values() for pair in ranges or () for x in pair]
-    edges += [e["value"] for e in band["edges"]]
+    edges += [e.value for e in band.edges]
     table = _case_sweep(
         case,
         resolution,
@@ -187,7 +187,7 @@ def _validate_case(case, resolution, tension, executor, cache_dir, progress):
         comparison={key: compare(predicted[key], simulated, step) for key, _, _ in ANALYSES},
         floquet=CaseFloquet(band, lo, hi, verdicts),
         mismatches=periodic_mismatches(
-            vb, verdicts, runs["periodic"], [e["value"] for e in band["edges"]], step
+            vb, verdicts, runs["periodic"], [e.value for e in band.edges], step
         ),
         coexistence=coexistence(vb, verdicts, runs, step, resolution.settings.window_start),
         band_disagreements=band_grid_disagreements(vb, verdicts, band, step),
@@ -198,7 +198,7 @@ def _validate_case(case, resolution, tension, executor, cache_dir, progress):
 
 
 def _floquet_band(model, resolution):
-    """`beltmdsm.analysis.floquet.floquet_band` in ``Vb`` over ``[h/2, vb_cap]`` for one case.
+    """`beltmdsm.analysis.band.floquet_band` in ``Vb`` over ``[h/2, vb_cap]`` for one case.
 
     From ``h/2``, the lower end of the lowest grid point's cell, so that an edge
     just below the lowest grid point is found, not taken for the end of the range.

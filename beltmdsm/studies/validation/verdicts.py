@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ... import intervals
+from ...analysis.band import Band
 from ...analysis.floquet import NoPeriodicResponse, floquet
 from ...analysis.summary import TRANSIENT_DECAYED
 from ...model import Model, as_model
@@ -323,23 +324,23 @@ def coexistence(
 
 
 def band_grid_disagreements(
-    vb: ArrayLike, verdicts: Sequence[PointVerdict], band: Mapping, step: float
+    vb: ArrayLike, verdicts: Sequence[PointVerdict], band: Band, step: float
 ) -> list[float]:
     """Grid points whose own Floquet verdict contradicts the band, away from its edges.
 
-    The band (`beltmdsm.analysis.floquet.floquet_band`) is found on its own, coarser
+    The band (`beltmdsm.analysis.band.floquet_band`) is found on its own, coarser
     grid and refined at each change; a point more than one grid step from every edge
     whose verdict differs (unstable or absent inside the band, stable outside) means
     the band missed a change. Grazing points have no verdict and are skipped.
     """
-    edges = np.asarray([e["value"] for e in band["edges"]], float)
+    edges = np.asarray([e.value for e in band.edges], float)
     out = []
     for v, verdict in zip(np.asarray(vb, float), verdicts):
         if verdict.verdict == "grazing" or (
             edges.size and np.min(np.abs(edges - v)) <= step * (1 + 1e-9)
         ):
             continue
-        inside = any(lo <= v <= hi for lo, hi in band["unstable"])
+        inside = any(lo <= v <= hi for lo, hi in band.unstable)
         if inside != (verdict.verdict in ("unstable", "absent")):
             out.append(float(v))
     return out

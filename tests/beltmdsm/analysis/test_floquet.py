@@ -46,6 +46,10 @@ def test_normal_orbit_is_periodic_and_its_monodromy_is_the_flow_jacobian():
     np.testing.assert_allclose(orbit.monodromy, J, rtol=0, atol=1e-7)
     # the overdamped normal motion: both multipliers well inside the unit circle
     assert np.all(np.abs(orbit.multipliers) < 0.9)
+    # kept per normal parameter set: the tangential parameters, mu_s and Vb are not in
+    # the normal equation (a map over beta1 computes one normal orbit)
+    assert F.normal_orbit(Model(beta1=0.3, omega1=2.0, mu_s=0.2, Vb=7.0)) is orbit
+    assert F.normal_orbit(Model(omega2=0.6)) is not orbit
 
 
 @pytest.mark.parametrize(
@@ -156,40 +160,11 @@ def test_a_run_started_on_the_perturbed_periodic_response_follows_the_verdict():
         simulate(Vb=6.0, start="periodic")
 
 
-def test_band_edges_are_located_and_match_pointwise_verdicts():
-    band = F.floquet_band("Vb", 1.0, 9.0, points=17, tol=1e-3)
-    assert len(band["unstable"]) == 1
-    lo, hi = band["unstable"][0]
-    for e in band["edges"]:
-        assert e["bracket"][1] - e["bracket"][0] <= 1e-3
-    # the lower edge is a multiplier crossing: |mu| - 1 changes sign across it
-    below, above = F.floquet(Vb=lo - 2e-3), F.floquet(Vb=lo + 2e-3)
-    assert below.stable and not above.stable
-    # the upper edge is the grazing point of the sliding orbit: its largest velocity
-    # equals Vb there (the sliding orbit does not depend on Vb)
-    sliding = F.periodic_response(Vb=12.0)
-    t = np.linspace(0, sliding.period, 4001)
-    run = sliding._engine.engine.run(0.0, *sliding.state0[:2], sliding.period)
-    vmax = run.segments(t, np.zeros(t.size, dtype=int))[1].max()
-    assert hi == pytest.approx(vmax, abs=2e-3)
-    assert band["no_periodic_response"] and band["no_periodic_response"][0][1] == pytest.approx(
-        hi, abs=1e-9
-    )
-
-
 def test_bad_input_is_refused_by_name():
     with pytest.raises(ValueError, match="tension"):
         F.floquet(tension="loose")
     with pytest.raises(ValueError, match="incommensurate"):
         F.floquet(Omega_t=4.0 * math.sqrt(2), Omega_n=4.0)
-    with pytest.raises(ValueError, match="param"):
-        F.floquet_band("Vbelt", 1.0, 2.0)
-    with pytest.raises(ValueError, match="lo < hi"):
-        F.floquet_band("Vb", 2.0, 1.0)
-    with pytest.raises(ValueError, match=r"leaves the domain: Vb must be >= 0"):
-        F.floquet_band("Vb", -1.0, 9.0)
-    with pytest.raises(ValueError, match=r"leaves the domain: omega1 must be > 0"):
-        F.floquet_band("omega1", 0.0, 9.0)
     with pytest.raises(ValueError, match="perturbation"):
         F.periodic_start(Model(), float("nan"))
     with pytest.raises(ValueError, match="'mu_s'"):

@@ -173,7 +173,13 @@ def test_floquet_band_text_and_json_agree(capsys):
     ((lo, hi),) = band["unstable"]
     assert 3 < lo < 5 < hi < 7
     assert f"[{lo:.4f}, {hi:.4f}]" in text
-    assert {e["kind"] for e in band["edges"]} <= {"multiplier", "grazing", "existence"}
+    kinds = {e["kind"]: e["old_kind"] for e in band["edges"]}
+    # the bifurcation, and the kind of before for one release (beltmdsm.analysis.edges.OLD_KINDS)
+    assert kinds == {"neimark_sacker": "multiplier", "tangency": "existence", "grazing": "grazing"}
+    assert all(f"({kind}" in text for kind in kinds)
+    # the Neimark-Sacker edge with the frequency of its critical pair
+    (ns,) = [e for e in band["edges"] if e["kind"] == "neimark_sacker"]
+    assert f"(neimark_sacker at {ns['frequency']:.4g} rad/s; unstable above)" in text
 
 
 def test_floquet_band_rejects_an_empty_range(capsys):

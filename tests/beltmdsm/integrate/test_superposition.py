@@ -4,7 +4,9 @@ import numpy as np
 import pytest
 
 from beltmdsm.integrate import _compiled, _dop853, normal, superposition
+from beltmdsm.model import Model
 from beltmdsm.simulation import simulate
+from generated import hybrid, oscillator
 
 
 def _line_kernels(offset):
@@ -164,3 +166,16 @@ def test_normal_motion_at_one_time_is_its_dense_output(compiled, monkeypatch):
     t = np.linspace(0.0, 20.0, 37)
     # the same polynomial of the same step, so the same bits whichever path runs
     np.testing.assert_array_equal(np.stack([nm.at(x) for x in t], axis=1), nm.evaluate(t))
+
+
+def test_the_normal_key_holds_what_the_generated_kernels_take():
+    """The key of the kept normal motions lists the parameters the bound kernels declare
+    (their names found once per contact law), so that a change of any of them, and of
+    nothing else, is a new normal motion."""
+    for contact in ("hertz_damp", "kelvin_voigt"):
+        m = Model(Vb=3.0, beta1=0.2, contact=contact)
+        used = hybrid.bind_response_field(contact=contact, backend="python", **m.params).params
+        used |= oscillator.bind_excitation_response(backend="python", **m.params).params
+        assert normal.normal_key(m) == (contact, "allowed", tuple(sorted(used.items())))
+        assert normal.normal_key(m.replace(Vb=7.0, mu_s=0.1)) == normal.normal_key(m)
+        assert normal.normal_key(m.replace(beta1=0.3)) != normal.normal_key(m)

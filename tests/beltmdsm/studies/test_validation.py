@@ -6,6 +6,7 @@ import math
 import numpy as np
 import pytest
 
+from beltmdsm.analysis.band import Band, Edge
 from beltmdsm.analysis.floquet import floquet
 from beltmdsm.analysis.predict import fast_motion, unstable_intervals
 from beltmdsm.cli import main
@@ -30,6 +31,21 @@ from beltmdsm.studies.validation import (
 from generated import stability, unforced
 
 H = 0.5  # grid step of the constructed sweeps
+
+
+def _band(unstable, edges=()):
+    """A constructed Floquet band in Vb: its unstable ranges and the values of its edges."""
+    return Band(
+        "Vb",
+        Model(),
+        1,
+        [list(r) for r in unstable],
+        [Edge(v, "grazing", "grazing", (v, v), 0.0, None, True, True) for v in edges],
+        [],
+        [],
+        [],
+        [],
+    )
 
 
 def _sim(present, regime=None):
@@ -484,7 +500,7 @@ def test_coexistence_needs_a_stable_response_that_the_periodic_start_keeps_and_a
 
 
 def test_compare_floquet_pairs_exact_edges_and_censors_the_ends_of_the_range():
-    band = {"unstable": [[4.0, 6.5]]}
+    band = _band([[4.0, 6.5]])
     comp = validation.compare_floquet([(0.0, 6.4)], band, 0.125, 40.0)
     assert comp.status == "paired"
     assert (comp.lower.predicted, comp.lower.reference) == (0.0, 4.0)
@@ -493,16 +509,16 @@ def test_compare_floquet_pairs_exact_edges_and_censors_the_ends_of_the_range():
     assert not comp.lower.censored and not comp.upper.censored
     # predicted [0, 6.4] clipped to [0.125, 40]: disagrees on [0.125, 4] and [6.4, 6.5]
     assert comp.disagreement == pytest.approx(3.875 + 0.1)
-    at_end = validation.compare_floquet([(1.0, 2.0)], {"unstable": [[0.125, 3.0]]}, 0.125, 40)
+    at_end = validation.compare_floquet([(1.0, 2.0)], _band([[0.125, 3.0]]), 0.125, 40)
     assert at_end.lower.censored and not at_end.upper.censored
     assert validation.compare_floquet([], band, 0.125, 40).status == "miss"
-    assert validation.compare_floquet([(1, 2)], {"unstable": []}, 0.125, 40).status == "false_alarm"
+    assert validation.compare_floquet([(1, 2)], _band([]), 0.125, 40).status == "false_alarm"
     none = validation.compare_floquet(None, band, 0.125, 40)
     assert none == Comparison("no_prediction", None, None, None)
 
 
 def test_band_grid_disagreements_flag_a_change_the_band_missed():
-    band = {"unstable": [[2.0, 3.0]], "edges": [{"value": 2.0}, {"value": 3.0}]}
+    band = _band([[2.0, 3.0]], edges=(2.0, 3.0))
     vb = H * np.arange(1, 11)  # 0.5 .. 5.0
     verdicts = _verdicts(*["stable"] * 10)
     assert validation.band_grid_disagreements(vb, verdicts, band, H) == []
@@ -514,7 +530,7 @@ def test_band_grid_disagreements_flag_a_change_the_band_missed():
 def test_quick_base_periodic_start_agrees_with_floquet_and_the_band_with_its_grid(quick_base):
     (case,) = quick_base.cases
     band = case.floquet.band
-    ((lo, hi),) = band["unstable"]
+    ((lo, hi),) = band.unstable
     # an independent Floquet evaluation at the band's middle and outside it
     assert floquet(Vb=0.5 * (lo + hi) - 0.5).stable is False
     assert floquet(Vb=lo - 0.5).stable and floquet(Vb=hi + 0.5).stable
@@ -539,3 +555,6 @@ def test_quick_base_periodic_start_agrees_with_floquet_and_the_band_with_its_gri
     text = render_markdown(quick_base, True)
     assert "**0 mismatches**" in text and "## Coexistence" in text
     assert "| base | [4.058, 6.415]" in text
+    # the edges by their bifurcation, abbreviated as the legend says
+    assert "| 4.058 NS, 6.164 tang, 6.415 graz |" in text
+    assert "kinds: NS = Neimark-Sacker, PD = period doubling, fold, graz = grazing" in text

@@ -1,0 +1,661 @@
+"""The ranges of one parameter where the periodic response is unstable, every edge labelled.
+
+`floquet_band` walks a grid of the parameter with the Floquet analysis of
+`beltmdsm.analysis.floquet`, each periodic response continued from its neighbour, and
+locates every change between neighbours: a multiplier crossing the unit circle by the
+secant of ``log|mu|``, a change of switch structure by bisection, and an end of the
+response (found on one side only) by continuing it across the interval
+(`beltmdsm.analysis.branch`) to where its closing margin vanishes
+(`beltmdsm.analysis.edges.locate_end`). Each edge carries its bifurcation
+(`beltmdsm.analysis.edges.KINDS`, docs/modelling.md#bifurcations) and, for one
+release, the kind of before (``old_kind``). In ``Vb`` the band is the exact
+counterpart of the unstable belt speeds of the paper's linear analysis (Sects. 4.2-4.3,
+Fig. 5) and of the ranges Figs. 17-21 validate.
+
+The result is a `Band`; its `Band.as_dict` is the JSON of ``floquet-band --json``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain
+from .branch import SpecialPoint, continue_branch
+from .edges import KINDS, OLD_KINDS, End, NoEdge, locate_end, log_max_multiplier, multiplier_kind
+from .floquet import (
+    FORWARD_PERIODS,
+    Floquet,
+    NoPeriodicResponse,
+    floquet,
+    largest_sliding_velocity,
+    response_from,
+)
+from .periodmap import FixedPoint, MapFamily, fixed_point
+
+__all__ = ["Edge", "BandPoint", "BandFailure", "Band", "floquet_band"]
+
+#: Natural continuation towards an end stops at steps below this share of its way.
+_NATURAL_SMALLEST = 1e-3
+
+
+@dataclass(frozen=True)
+class Edge:
+    """A change of the periodic response at one parameter value.
+
+    Attributes
+    ----------
+    value : float
+    kind : str
+        The bifurcation (`beltmdsm.analysis.edges.KINDS`), or ``existence`` for an end
+        that is not classified.
+    old_kind : str
+        The kind `floquet_band` gave before (`beltmdsm.analysis.edges.OLD_KINDS`):
+        ``multiplier``, ``grazing`` or ``existence``; for one release.
+    bracket : tuple of float
+        Values on either side that the edge lies between.
+    accuracy : float
+        A bound of the error of ``value``.
+    frequency : float or None
+        Of the critical pair at a Neimark-Sacker edge [rad/s].
+    unstable_below, unstable_above : bool
+        Whether no stable response is found just below and just above.
+    detail : str
+        What vanishes at an end (the margin), or "".
+    """
+
+    value: float
+    kind: str
+    old_kind: str
+    bracket: tuple[float, float]
+    accuracy: float
+    frequency: float | None
+    unstable_below: bool
+    unstable_above: bool
+    detail: str = ""
+
+    def as_dict(self) -> dict:
+        """For JSON: the attributes, ``bracket`` as a list."""
+        return {
+            "value": self.value,
+            "kind": self.kind,
+            "old_kind": self.old_kind,
+            "bracket": list(self.bracket),
+            "accuracy": self.accuracy,
+            "frequency": self.frequency,
+            "unstable_below": self.unstable_below,
+            "unstable_above": self.unstable_above,
+            "detail": self.detail,
+        }
+
+
+@dataclass(frozen=True)
+class BandPoint:
+    """The Floquet analysis at one evaluated value of a band.
+
+    ``grazing``: whether the response grazes (no multiplier); ``state0`` its state at
+    phase 0 (``X1, X1', X2, X2'``).
+    """
+
+    value: float
+    max_abs_multiplier: float
+    stable: bool | None
+    growth_rate: float
+    n_reversals: int
+    n_sticks: int
+    grazing: bool
+    state0: tuple[float, ...]
+
+    def as_dict(self) -> dict:
+        """For JSON: the attributes, ``state0`` as a list."""
+        return {**dataclasses.asdict(self), "state0": list(self.state0)}
+
+
+@dataclass(frozen=True)
+class BandFailure:
+    """A grid value where no periodic response is found, and why."""
+
+    value: float
+    reason: str
+
+    def as_dict(self) -> dict:
+        """For JSON: ``value``, ``reason``."""
+        return dataclasses.asdict(self)
+
+
+@dataclass
+class Band:
+    """The ranges of one parameter where the periodic response is unstable (`floquet_band`).
+
+    Attributes
+    ----------
+    param : str
+    model : Model
+        The other parameters and the options.
+    periods : int
+        ``k``: the band of the response of ``k`` excitation periods.
+    unstable : list of [lo, hi]
+        Where no stable periodic response is found (unstable, or none found: the
+        `no_periodic_response` ranges are included).
+    edges : list of Edge
+        In order of value.
+    grazing_points : list of float
+    no_periodic_response : list of [lo, hi]
+        Where no periodic response is found (from the continued neighbours by Newton's
+        method, or, next to a stable one, by iterating the period map, and the
+        continuation across an interval).
+    grid : list of BandPoint
+        Every evaluated value, in order.
+    failed : list of BandFailure
+        The grid values where no periodic response was found, with the reason.
+    """
+
+    param: str
+    model: Model
+    periods: int
+    unstable: list[list[float]]
+    edges: list[Edge]
+    grazing_points: list[float]
+    no_periodic_response: list[list[float]]
+    grid: list[BandPoint]
+    failed: list[BandFailure]
+
+    def as_dict(self) -> dict:
+        """The JSON of ``floquet-band --json``: ``param``, ``unstable``, ``edges``,
+        ``grazing_points``, ``no_periodic_response``, ``grid``, ``failed``,
+        ``tension``, ``contact``."""
+        return {
+            "param": self.param,
+            "unstable": [list(r) for r in self.unstable],
+            "edges": [e.as_dict() for e in self.edges],
+            "grazing_points": list(self.grazing_points),
+            "no_periodic_response": [list(r) for r in self.no_periodic_response],
+            "grid": [g.as_dict() for g in self.grid],
+            "failed": [f.as_dict() for f in self.failed],
+            "tension": self.model.tension,
+            "contact": self.model.contact,
+        }
+
+
+def floquet_band(
+    param: str,
+    lo: float,
+    hi: float,
+    model: Model | Mapping[str, Any] | None = None,
+    *,
+    points: int = 17,
+    tol: float = 1e-3,
+    backend: Backend | None = None,
+    periods: int = 1,
+    **kw: Any,
+) -> Band:
+    """Ranges of ``param`` in ``[lo, hi]`` where the periodic response is unstable.
+
+    A grid of ``points`` values is walked from ``hi`` down to ``lo``, each periodic
+    response continued from the previous one. Between neighbours whose state differs
+    (found or not, the switch structure: reversals and sticks per period, the
+    verdict) the interval is refined, each new value continued from a neighbour,
+    until it is below ``tol``: every change is located to ``tol``, and several
+    changes between two grid points are all found. Where a response is found on one
+    side only, it is continued across the interval instead (natural continuation,
+    else the pseudo-arclength continuation of `beltmdsm.analysis.branch`): it either
+    reaches the other side (where Newton's method had missed it) or ends at a
+    tangency, a grazing or a fold, located exactly (to about 1e-6; `Edge.accuracy`).
+    For ``param = "Vb"`` the grazing point of the backward-sliding response is
+    computed exactly: it is that response's largest velocity in contact, which does
+    not depend on ``Vb`` (`beltmdsm.analysis.floquet.largest_sliding_velocity`).
+
+    Parameters
+    ----------
+    param : str
+        A model parameter.
+    lo, hi : float
+        The range, inside the parameter's domain.
+    model : Model or dict, optional
+        The other parameters and the options (default: the base set); ``**kw`` too.
+    points : int
+        Grid values walked before the refinement, >= 2.
+    tol : float
+        The edges' tolerance, > 0.
+    backend : {"python", "numba", None}
+    periods : int
+        ``k > 1``: the band of the response of ``k`` periods (a value without a
+        neighbour is seeded from the attractor of the period map,
+        `beltmdsm.analysis.floquet.periodic_response`).
+
+    Returns
+    -------
+    Band
+
+    Raises
+    ------
+    ValueError
+        For an unknown parameter, a range that is not finite, empty or outside the
+        parameter's domain, ``points < 2`` or ``tol`` not above the rounding of the range.
+    """
+    if param not in MODEL_PARAMETERS:
+        raise ValueError(f"param must be a model parameter; got {param!r}")
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+        raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
+    for end in (lo, hi):
+        problem = check_domain(param, end)
+        if problem:
+            raise ValueError(f"the range [{lo:g}, {hi:g}] leaves the domain: {param} {problem}")
+    model = as_model(model, **kw)
+    if int(points) < 2 or not tol > 0:
+        raise ValueError(f"points must be >= 2 and tol > 0; got {points}, {tol}")
+    failed, seen = [], {}
+
+    def evaluate(v, neighbours, record=False):
+        """The Floquet analysis at ``v``, continued from the nearest neighbour found."""
+        near = [f for f in neighbours if f is not None]
+        guess = near[0].response if near else None
+        # forward iteration finds only a stable response: tried next to a stable one
+        forward = FORWARD_PERIODS if not near or near[0].stable is not False else 0
+        try:
+            f = floquet(
+                model.replace(**{param: float(v)}),
+                guess=guess,
+                forward=forward,
+                backend=backend,
+                periods=periods,
+            )
+        except NoPeriodicResponse as err:
+            if record:
+                failed.append(BandFailure(float(v), str(err)))
+            f = None
+        seen[float(v)] = f
+        return f
+
+    grid, last = [], None
+    for v in np.linspace(hi, lo, int(points)):
+        f = evaluate(v, [last], record=True)
+        last = f if f is not None else last
+        grid.append((float(v), f))
+    grid.sort(key=lambda r: r[0])
+    edges, grazing_points = [], []
+
+    def refine(a, fa, b, fb):
+        """Locate the changes between ``a`` and ``b``; ``b``'s evaluation (a miss repaired)."""
+        if _state(fa) == _state(fb):
+            return fb
+        if (fa is None) != (fb is None):
+            end = _band_existence(param, a, fa, b, fb, backend)
+            edges.extend(end.edges)
+            for v, f in end.solved:
+                seen.setdefault(v, f)
+            if end.reached is None:
+                return fb
+            seen[b if fb is None else a] = end.reached
+            if fb is None:
+                return refine(a, fa, b, end.reached)
+            return refine(a, end.reached, b, fb)
+        if b - a <= tol:
+            edges.append(_edge(a, fa, b, fb))
+            return fb
+        g = _sliding_grazing(param, fa, fb)
+        if g is not None and a + tol / 4 < g < b - tol / 4:
+            below = evaluate(g - tol / 4, [fa, fb])
+            above = evaluate(g + tol / 4, [fb, fa])
+            grazing_points.append(g)
+            below = refine(a, fa, g - tol / 4, below)
+            # the grazing point of the sliding response is exact (its largest velocity)
+            edges.append(
+                _edge(g - tol / 4, below, g + tol / 4, above, kind="grazing", accuracy=1e-12)
+            )
+            return refine(g + tol / 4, above, b, fb)
+        m = _multiplier_step(a, fa, b, fb, tol) if _same_structure(fa, fb) else None
+        m = 0.5 * (a + b) if m is None else m
+        fm = evaluate(m, [fa, fb] if abs(m - a) <= abs(b - m) else [fb, fa])
+        fm = refine(a, fa, m, fm)
+        return refine(m, fm, b, fb)
+
+    for i in range(len(grid) - 1):
+        (a, fa), (b, fb) = grid[i], grid[i + 1]
+        grid[i + 1] = (b, refine(a, fa, b, fb))
+    edges = sorted(edges, key=lambda e: e.value)
+    grazing_points += [
+        e.value for e in edges if e.kind == "grazing" and e.value not in grazing_points
+    ]
+    points_seen = sorted(seen.items())
+    unstable = _runs(points_seen, edges, lambda f: f is None or f.stable is not True, lo, hi)
+    gaps = _runs(points_seen, edges, lambda f: f is None, lo, hi)
+    table = [
+        BandPoint(
+            v,
+            f.max_abs_multiplier,
+            f.stable,
+            f.growth_rate,
+            f.n_reversals,
+            f.n_sticks,
+            f.grazing is not None,
+            tuple(float(x) for x in f.response.state0),
+        )
+        for v, f in points_seen
+        if f is not None
+    ]
+    return Band(
+        param,
+        model,
+        int(periods),
+        unstable,
+        edges,
+        sorted(grazing_points),
+        gaps,
+        table,
+        failed,
+    )
+
+
+def _same_structure(fa, fb):
+    return (
+        fa is not None
+        and fb is not None
+        and fa.stable is not None
+        and fb.stable is not None
+        and (fa.n_reversals, fa.n_sticks) == (fb.n_reversals, fb.n_sticks)
+    )
+
+
+def _multiplier_step(a, fa, b, fb, tol):
+    """The next value for ``|mu| = 1`` within one structure: the secant of ``log|mu|``.
+
+    ``log|mu|`` is smooth there (it is ``k T`` times the growth rate), so the secant
+    converges in a few steps; kept inside the bracket, a tolerance away from its ends
+    so that the bracket shrinks.
+    """
+    ga, gb = math.log(fa.max_abs_multiplier), math.log(fb.max_abs_multiplier)
+    if ga == gb:
+        return None
+    m = a - ga * (b - a) / (gb - ga)
+    return min(max(m, a + tol / 3), b - tol / 3)
+
+
+def _state(f):
+    """What a value's evaluation says: not found, or (structure, verdict)."""
+    return None if f is None else (f.n_reversals, f.n_sticks, f.verdict)
+
+
+def _band_kind(old_kind, fa, fb):
+    """The bifurcation of an edge between two responses, from the band's classification.
+
+    A ``multiplier`` edge takes the kind of the critical multiplier of the unstable
+    side (the largest in modulus); a change of structure is a grazing.
+    """
+    if old_kind != "multiplier":
+        return "grazing", None
+    unstable = fa if fa.stable is False else fb
+    mu = unstable.multipliers[int(np.argmax(np.abs(unstable.multipliers)))]
+    return multiplier_kind(mu, unstable.period)
+
+
+def _edge(a, fa, b, fb, kind=None, accuracy=None):
+    """The change between two responses closer than the tolerance, classified.
+
+    ``kind``: the old kind, ``multiplier`` or ``grazing`` (found from the structures
+    where not given); the new one by `_band_kind`. ``accuracy``: where the value is
+    known better than the bracket says.
+    """
+    if kind is None:
+        if (fa.n_reversals, fa.n_sticks) != (fb.n_reversals, fb.n_sticks):
+            kind = "grazing"
+        else:
+            kind = "multiplier"
+    new_kind, frequency = _band_kind(kind, fa, fb)
+    return Edge(
+        0.5 * (a + b),
+        new_kind,
+        kind,
+        (a, b),
+        0.5 * (b - a) if accuracy is None else accuracy,
+        frequency,
+        fa is None or fa.stable is not True,
+        fb is None or fb.stable is not True,
+    )
+
+
+def _runs(points, edges, flag, lo, hi):
+    """Maximal ranges of the evaluated values where ``flag`` holds, cut at the edges."""
+    out, start, previous = [], None, None
+    cuts = sorted(e.value for e in edges)
+    for v, f in points:
+        if flag(f) and start is None:
+            inside = [c for c in cuts if previous is not None and previous < c < v]
+            start = inside[-1] if inside else (lo if previous is None else v)
+        elif not flag(f) and start is not None:
+            inside = [c for c in cuts if previous < c < v]
+            out.append([start, inside[0] if inside else previous])
+            start = None
+        previous = v
+    if start is not None:
+        out.append([start, hi])
+    return out
+
+
+def _sliding_grazing(param, fa, fb):
+    """The grazing point of the backward-sliding response between ``a`` and ``b``, or None.
+
+    Where the side above slides backwards throughout (no switch in contact) and the
+    side below does not, the sliding response stops at the belt speed equal to its
+    largest velocity in contact; it does not depend on ``Vb``. Only for ``param =
+    "Vb"``; other parameters are bisected.
+    """
+    if (
+        param != "Vb"
+        or fb is None
+        or (fb.n_reversals, fb.n_sticks) != (0, 0)
+        or (fa is not None and (fa.n_reversals, fa.n_sticks) == (0, 0))
+    ):
+        return None
+    return largest_sliding_velocity(fb.response._engine)
+
+
+# ---------------------------------------------------------------- an end inside an interval
+
+
+@dataclass
+class _BandEnd:
+    """Where the response found on one side of a band's interval ends within it.
+
+    ``edges``: the band's edges that the continuation across the interval finds (its
+    bifurcations and its end); ``reached``: the `Floquet` of the response at the far
+    value, where the continuation reaches it (Newton's method had missed it there);
+    ``solved``: ``(value, Floquet)`` of the responses solved on the way.
+    """
+
+    edges: list
+    reached: Floquet | None
+    solved: list = field(default_factory=list)
+
+
+def _end_detail(end: End) -> str:
+    m = end.margin
+    return f"the {m.kind} margin of {m.surface} ({m.mode.name.lower()}) at t = {m.t:.4g} s vanishes"
+
+
+def _special_edge(kind, value, accuracy, frequency, detail, unstable_below, unstable_above):
+    """An edge at a located special point or end (its accuracy as located)."""
+    if kind == "branch_point":  # a real multiplier through +1 without a turn
+        kind = "fold"
+    kind = kind if kind in KINDS else "existence"
+    return Edge(
+        value,
+        kind,
+        OLD_KINDS.get(kind, "existence"),
+        (value - accuracy, value + accuracy),
+        accuracy,
+        frequency,
+        unstable_below,
+        unstable_above,
+        detail,
+    )
+
+
+def _natural(family, value, state, far):
+    """Natural continuation from ``value`` towards ``far``, quadratic predictor, step control.
+
+    Returns the responses solved (``(value, FixedPoint)``, in order), whether ``far``
+    was reached, and whether the response kept its switch structure on the way (if
+    not, the caller continues by arclength). It stops where the step falls below
+    `_NATURAL_SMALLEST` of the distance: `locate_end` takes over from there.
+    """
+    first = fixed_point(family(value), state)
+    points = [(value, first)]
+    h = (far - value) / 8
+    smallest = _NATURAL_SMALLEST * abs(far - value)
+    while abs(h) >= smallest:
+        x = points[-1][0] + h
+        if (far - x) * h <= 0:
+            x = far
+        known = np.array([v for v, _ in points[-3:]])
+        states = np.array([p.state for _, p in points[-3:]])
+        if known.size > 1:
+            c = np.polyfit(known - known[-1], states, known.size - 1)
+            guess = np.array([np.polyval(c[:, i], x - known[-1]) for i in range(states.shape[1])])
+        else:
+            guess = states[-1]
+        try:
+            p = fixed_point(family(x), guess)
+        except NoPeriodicResponse:
+            h *= 0.5
+            continue
+        if p.image.signature != points[-1][1].image.signature:
+            return points, False, False
+        points.append((x, p))
+        if x == far:
+            return points, True, True
+        h *= 1.5
+    return points, False, True
+
+
+def _multiplier_edge(family, a, b, tol):
+    """The edge where ``max |mu| = 1`` between two responses of one structure (secant)."""
+    (va, pa), (vb, pb) = a, b
+    ga, gb = log_max_multiplier(family(va), pa)[0], log_max_multiplier(family(vb), pb)[0]
+    stable_below = (ga < 0) if va < vb else (gb < 0)
+    for _ in range(40):
+        v = vb - gb * (vb - va) / (gb - ga)
+        p = fixed_point(family(v), pb.state)
+        g, mu = log_max_multiplier(family(v), p)
+        (va, pa, ga), (vb, pb, gb) = (vb, pb, gb), (v, p, g)
+        if abs(vb - va) <= tol:
+            break
+    kind, frequency = multiplier_kind(mu, family.periods * family(vb).period)
+    return Edge(
+        vb,
+        kind,
+        OLD_KINDS[kind],
+        (vb - abs(vb - va), vb + abs(vb - va)),
+        abs(vb - va),
+        frequency,
+        not stable_below,
+        stable_below,
+    )
+
+
+def _towards(points, value, far):
+    """The branch's points from the one at ``value`` towards ``far``, up to where it turns.
+
+    Past a fold the branch comes back over values where the first part holds responses
+    too; the band records the first part only.
+    """
+    if not points:
+        return []
+    i = min(range(len(points)), key=lambda j: abs(points[j].value - value))
+    toward = 1.0 if far > value else -1.0
+    step = 1 if i + 1 < len(points) and (points[i + 1].value - value) * toward > 0 else -1
+    out = []
+    while 0 <= i + step < len(points) and (points[i + step].value - points[i].value) * toward > 0:
+        i += step
+        out.append(points[i])
+    return out
+
+
+def _verdict(pmap, point):
+    """Whether a fixed point of a map is stable: every multiplier inside the unit circle."""
+    mu = np.concatenate([np.linalg.eigvals(point.image.jacobian), pmap.fixed_multipliers()])
+    return bool(np.max(np.abs(mu)) < 1.0)
+
+
+def _band_existence(param, a, fa, b, fb, backend):
+    """Continue the response found at ``a`` or ``b`` across ``[a, b]``: a `_BandEnd`.
+
+    Exactly one of ``fa``, ``fb`` (`beltmdsm.analysis.floquet.Floquet`) is None. The
+    response through the other either reaches the far value (Newton's method had
+    missed it there) or ends inside at a tangency, a grazing or a fold, located
+    exactly; the bifurcations on the way are edges too.
+    """
+    found, value, far = (fa, a, b) if fa is not None else (fb, b, a)
+    r = found.response
+    family = MapFamily(r.model, param, r.periods, backend)
+
+    def floquet_at(v, point):
+        return Floquet.of(response_from(family(v), point))
+
+    # the common case first: the response goes on unchanged to where a margin closes
+    points, reached, plain = _natural(family, value, r.state0[:2], far)
+    solved = [(v, floquet_at(v, p)) for v, p in points[1:]]
+    if plain and not reached and len(points) >= 2:
+        try:
+            end = locate_end(family, points)
+        except NoEdge:
+            end = None
+        if end is not None:
+            stable = _verdict(family(end.point_value), end.point)
+            side = {("unstable_below" if far > value else "unstable_above"): not stable}
+            edge = _special_edge(
+                end.kind, end.value, end.accuracy, None, _end_detail(end), True, True
+            )
+            # a multiplier crossing on the way (the verdict changes between two responses)
+            crossings = [
+                _multiplier_edge(family, p, q, 1e-9 * abs(far - value))
+                for p, q in zip(points[:-1], points[1:])
+                if _verdict(family(p[0]), p[1]) != _verdict(family(q[0]), q[1])
+            ]
+            return _BandEnd(crossings + [dataclasses.replace(edge, **side)], None, solved)
+    if plain and reached:
+        guess = points[-1][1].state
+        at = r.model.replace(**{param: far})
+        reached_f = floquet(at, guess=guess, forward=0, backend=backend, periods=r.periods)
+        return _BandEnd([], reached_f, solved)
+    branch = continue_branch(r, param, min(a, b), max(a, b), backend=backend)
+    solved = [
+        (q.value, floquet_at(q.value, FixedPoint(q.state, q.image, 0.0, 0)))
+        for q in _towards(branch.points, value, far)
+    ]
+    toward = 1.0 if far > value else -1.0
+    out = [
+        _from_special(s, s.stable_before is not True, s.stable_after is not True)
+        for s in branch.special
+        if s.kind in ("neimark_sacker", "period_doubling", "branch_point")
+    ]
+    # the farthest the branch gets towards the far value is where the response ends
+    extreme = max(branch.special, key=lambda s: toward * s.value)
+    if extreme.kind == "range" and extreme.value == far:
+        near = branch.point_near(far)
+        reached_f = floquet(
+            branch.model.replace(**{param: far}),
+            guess=near.state,
+            forward=0,
+            backend=backend,
+            periods=branch.periods,
+        )
+        return _BandEnd(out, reached_f, solved)
+    # no stable response on the side where they exist: neither half at a fold is stable
+    exists_unstable = True not in (extreme.stable_before, extreme.stable_after)
+    if toward > 0:
+        edge = _from_special(extreme, exists_unstable, True)
+    else:
+        edge = _from_special(extreme, True, exists_unstable)
+    return _BandEnd(out + [edge], None, solved)
+
+
+def _from_special(s: SpecialPoint, unstable_below: bool, unstable_above: bool) -> Edge:
+    return _special_edge(
+        s.kind, s.value, s.accuracy, s.frequency, s.detail, unstable_below, unstable_above
+    )

@@ -1,0 +1,862 @@
+"""The period map of Eq. (4) as an object: the state at phase 0 to the state ``k`` periods later.
+
+The analyses of periodic responses (shooting on the ``k``-fold map in
+`beltmdsm.analysis.floquet`, branches, edges, bands and two-parameter maps:
+`beltmdsm.analysis.branch`, `beltmdsm.analysis.edges`, `beltmdsm.analysis.band`,
+`beltmdsm.analysis.floquet_map`) see a period map only through `PeriodMap`: a
+callable from the shooting state ``x`` at phase 0 to a `MapImage` (the state ``k``
+excitation periods later, its Jacobian, the switches on the way and the `Margin` of
+every feature of the orbit that a parameter change could remove), plus the
+multipliers of the directions that are not part of the shooting state. A general
+Floquet engine (the variational equations along an event-driven run) plugs in by
+implementing the same protocol.
+
+`TangentialMap` is the implementation for Eq. (4):
+
+* **Structure.** The normal equation of Eq. (4) does not contain the tangential
+  state, so the monodromy matrix (the Jacobian of the period map) is block
+  triangular, ``[[M_t, M_tn], [0, M_n]]``, and the multipliers are those of the
+  tangential block ``M_t`` and of the normal block ``M_n``. The normal block belongs
+  to the periodic orbit of the (overdamped) normal motion, which depends only on
+  what the normal equation contains (not on ``Vb``, ``mu_s`` or the tangential
+  parameters): `normal_orbit` computes it once per normal parameter set (cached), by
+  shooting on the normal period map with the variational equation
+  (`generated.dynamics.normal_jacobian`) and the normal blocks of the saltation
+  matrices.
+* **Tangential block.** Between switches the tangential variational flow is the
+  closed-form state-transition matrix of the tangential oscillator
+  (`generated.oscillator.state_transition`; the identity while sticking, where
+  ``X1' = Vb`` holds whatever the perturbation); across a switch it jumps by the
+  tangential block of the saltation matrix (`generated.hybrid.saltation`). So over
+  one period ``M_t = Phi(T - t_n) S_n ... Phi(t_2 - t_1) S_1 Phi(t_1)``, on the
+  closed-form superposition of the tangential motion
+  (`beltmdsm.integrate.superposition.Superposition`). A stick phase makes ``M_t``
+  singular (the saltation into stick zeroes the velocity perturbation). The
+  ``k``-fold map applies the one-period map ``k`` times; its Jacobian is the product.
+* **Grazing.** Where a reversal is reached with a vanishing acceleration (a velocity
+  that just touches the belt's), the saltation entry ``a_after / a_before`` diverges
+  (the square-root singularity of grazing bifurcations). A switch whose rate is
+  below `GRAZING_RATIO` of its scale is reported as grazing.
+
+`fixed_point` is Newton's method on ``P(x) - x`` with damped steps (``dP/dx - I`` its
+Jacobian): the shooting of a response of period ``k T`` from a guess (the sliding
+orbit, an attractor of the map, a neighbour on a branch). `MapFamily` is the maps of
+one parameter's values, with the map's derivative in that parameter.
+
+Margins (how far an orbit is from changing its switch structure; positive away
+from the change, dimensionless):
+
+* ``crossing``: the rate of a switching function at a crossing, along the mode
+  before, over the function's rounding scale (`generated.hybrid.surface_rates`,
+  `surface_scales`). It vanishes where a crossing becomes tangential: a
+  **tangency**, where the saltation matrix and the multipliers diverge.
+* ``approach``: the closest approach of a segment to a surface it does not cross
+  (an interior maximum of ``Vr`` while sliding back, a minimum while sliding
+  forward, a minimum of the friction margin while sticking), over its scale. It
+  vanishes at **grazing**, where the segment touches the surface and new switches
+  appear.
+* ``decision``: at ``Vr = 0`` (and on entering contact), how far Filippov's choice
+  (`beltmdsm.integrate.switching.Switching.decide_slip`) is from the other outcome (a
+  reversal from sticking, a stick from reversing). It vanishes where a stick phase
+  appears or disappears, also a grazing.
+"""
+
+from __future__ import annotations
+
+import abc
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from generated import dynamics, hybrid
+
+from ..integrate.normal import normal_motion
+from ..integrate.superposition import Superposition, TangentialRun, segs_state
+from ..integrate.switching import SURFACE_INDEX, Mode, Switching
+from ..model import Backend, Model, excitation_period, initial_state
+
+__all__ = [
+    "NoPeriodicResponse",
+    "GRAZING_RATIO",
+    "NEWTON_TOL",
+    "RTOL",
+    "NormalOrbit",
+    "normal_orbit",
+    "Margin",
+    "MARGIN_KINDS",
+    "OnePeriodMap",
+    "MapImage",
+    "PeriodMap",
+    "TangentialMap",
+    "MapFamily",
+    "FixedPoint",
+    "fixed_point",
+    "signature",
+]
+
+#: A switch whose rate is below this fraction of its scale is grazing: the saltation
+#: entry a_after / a_before then carries a relative rounding error of about
+#: ulps / ratio, so below it a multiplier would keep fewer than 8 correct digits.
+GRAZING_RATIO = 1e-8
+#: Newton's method stops when the period map moves the state by less than this
+#: (relative to the state's scale).
+NEWTON_TOL = 1e-11
+#: Integration tolerance of the periodic orbits.
+RTOL = 1e-12
+#: Halvings of a Newton step before the method counts as stalled.
+_LINE_SEARCH = 8
+#: Iterations over which Newton's residual must halve (converging, it squares; where
+#: the orbit has stopped existing, the damped steps creep towards a switch-structure
+#: change and the residual shrinks by a few per cent per iteration). 2 finds the same
+#: periodic responses as 4 at all 262 points of the quick validation grids and every
+#: band of its 16 cases, with a third fewer period maps in a band.
+_STAGNATION = 2
+#: Periods the normal motion is followed before Newton's method polishes its orbit.
+_NORMAL_PERIODS = 200
+
+MarginKind = Literal["crossing", "approach", "decision"]
+#: The kinds of `Margin`.
+MARGIN_KINDS = ("crossing", "decision", "approach")
+#: Samples per second of a segment when its closest approach is searched.
+_SAMPLES_PER_S = 200
+#: A sampled closest approach below this (relative) is refined to machine precision.
+_REFINE_BELOW = 0.2
+_VR = SURFACE_INDEX["relative_velocity"]
+_SF = SURFACE_INDEX["stick_forward"]
+_SB = SURFACE_INDEX["stick_back"]
+_TANGENTIAL = ("relative_velocity", "stick_forward", "stick_back")
+
+
+class NoPeriodicResponse(RuntimeError):
+    """No periodic response is found (Newton's method and forward iteration fail)."""
+
+
+# ---------------------------------------------------------------- the normal block
+
+
+@dataclass
+class NormalOrbit:
+    """The periodic normal motion: ``(X2, X2')`` at phase 0, its monodromy, its switches."""
+
+    state0: np.ndarray
+    period: float
+    monodromy: np.ndarray
+    multipliers: np.ndarray
+    switches: list = field(default_factory=list)
+    iterations: int = 0
+
+
+def _normal_flow(model, x0, T):
+    """The normal state after ``T``, the monodromy of the normal block and the switches.
+
+    The normal equation with its variational equation (`generated.dynamics`:
+    ``normal_rhs``, ``normal_jacobian``), integrated mode by mode; at each switch the
+    variational solution jumps by the normal block of the saltation matrix.
+    """
+    # scipy.integrate costs half a second to import: a sweep that never starts on the
+    # periodic response does not pay it
+    from scipy.integrate import solve_ivp
+
+    p, kw = model.params, dict(contact=model.contact, tension=model.tension, backend="python")
+    rhs = dynamics.bind_normal_rhs(**kw, **p)
+    jac = dynamics.bind_normal_jacobian(**kw, **p)
+    sw = Switching(model, "python")
+
+    def fun(t, y):
+        J = np.array(jac(t, y[0], y[1])).reshape(2, 2)
+        return np.concatenate([rhs(t, y[0], y[1]), (J @ y[2:].reshape(2, 2)).ravel()])
+
+    def events_of(mode):
+        out = []
+        for surface, direction, target in sw.guards[mode][2]:
+            if surface not in ("penetration", "contact_force"):
+                continue
+            index = SURFACE_INDEX[surface]
+
+            def h(t, y, index=index):
+                return sw.surfaces(t, 0.0, 0.0, y[0], y[1])[index]
+
+            h.terminal, h.direction = True, float(direction)
+            out.append((h, surface, target))
+        return out
+
+    mode = _normal_mode(sw, 0.0, x0)
+    t, y = 0.0, np.concatenate([x0, np.eye(2).ravel()])
+    switches = []
+    while t < T:
+        watched = events_of(mode)
+        sol = solve_ivp(
+            fun,
+            (t, T),
+            y,
+            method="DOP853",
+            rtol=RTOL,
+            atol=RTOL,
+            events=[h for h, _, _ in watched] or None,
+        )
+        if sol.status < 0:
+            raise NoPeriodicResponse(f"normal orbit: {sol.message}")
+        t, y = float(sol.t[-1]), sol.y[:, -1].copy()
+        if sol.status == 0:
+            break
+        k = next(i for i, te in enumerate(sol.t_events) if te.size)
+        _, surface, target = watched[k]
+        if surface == "penetration":
+            y[0] = 0.0
+        state = np.array([0.0, 0.0, y[0], y[1]])
+        if target == hybrid.DECIDE_CONTACT:
+            new = _normal_mode(sw, t, y[:2], entering=True)
+        else:
+            new = Mode[target.upper()]
+        S = np.array(
+            hybrid.bind_saltation(
+                before=mode.name.lower(),
+                after=new.name.lower(),
+                surface=surface,
+                contact=model.contact,
+                backend="python",
+                **p,
+            )(t, *state)
+        ).reshape(4, 4)[2:, 2:]
+        y[2:] = (S @ y[2:].reshape(2, 2)).ravel()
+        switches.append((t, mode, new, surface))
+        mode = new
+    return y[:2], y[2:].reshape(2, 2), switches
+
+
+def _normal_mode(sw, t, x, entering=False):
+    """Contact (coded SLIP_BACK), flight or separation, for a normal state ``x``.
+
+    ``entering``: the state is on the contact surface, coming into contact.
+    """
+    X2, Y2 = x
+    if not entering and (X2 < 0 or (X2 == 0 and Y2 <= 0)):
+        return Mode.FLIGHT
+    if sw.tension == "clipped" and sw.pulls(t, np.array([0.0, 0.0, X2, Y2])):
+        return Mode.SEPARATED
+    return Mode.SLIP_BACK
+
+
+#: The normal orbits of the last parameter sets, by `_normal_orbit_key`.
+_NORMAL_ORBITS: dict = {}
+_NORMAL_ORBITS_KEPT = 16
+
+
+def _normal_orbit(model):
+    T = excitation_period(model)
+    # The normal motion is overdamped: follow it from the equilibrium until it repeats
+    # itself to 1e-4 (a few periods; more where it loses contact), then Newton.
+    x = initial_state(model)[2:]
+    for _ in range(_NORMAL_PERIODS):
+        xT, M, switches = _normal_flow(model, x, T)
+        close = np.max(np.abs(xT - x)) <= 1e-4 * (1 + np.max(np.abs(x)))
+        x = xT
+        if close:
+            break
+    for iteration in range(1, 31):  # noqa: B007 (the count is reported after the loop)
+        xT, M, switches = _normal_flow(model, x, T)
+        r = xT - x
+        if np.max(np.abs(r)) <= NEWTON_TOL * (1 + np.max(np.abs(x))):
+            break
+        x = x + np.linalg.lstsq(np.eye(2) - M, r, rcond=None)[0]
+    else:
+        raise NoPeriodicResponse(
+            "the normal motion has no periodic orbit: followed from the "
+            f"equilibrium for {_NORMAL_PERIODS} periods and then by Newton's "
+            "method it does not repeat itself (it loses contact irregularly)"
+        )
+    xT, M, switches = _normal_flow(model, x, T)
+    return NormalOrbit(x, T, M, np.linalg.eigvals(M), switches, iteration)
+
+
+#: The parameter names of the normal orbit's key by contact and tension law.
+_NORMAL_NAMES: dict[tuple[str, str], tuple[str, ...]] = {}
+
+
+def _normal_orbit_key(model):
+    """What the normal orbit depends on: the parameters of the generated normal equation
+    and its Jacobian (as the generated code declares them: the names depend on the laws
+    only, found once per pair), the period and the laws."""
+    laws = (model.contact, model.tension)
+    names = _NORMAL_NAMES.get(laws)
+    if names is None:
+        kw = dict(contact=model.contact, tension=model.tension, backend="python", **model.params)
+        used = dynamics.bind_normal_rhs(**kw).params | dynamics.bind_normal_jacobian(**kw).params
+        names = _NORMAL_NAMES[laws] = tuple(sorted(used))
+    p = model.params
+    return (*laws, tuple((k, float(p[k])) for k in names), excitation_period(model))
+
+
+def normal_orbit(model: Model) -> NormalOrbit:
+    """The periodic orbit of the normal motion (cached per normal parameter set).
+
+    The key is what the normal equation contains (the parameters of
+    `generated.dynamics.normal_rhs` and ``normal_jacobian``), the excitation period
+    and the laws: a band or a map over ``beta1``, ``omega1``, ``mu_s`` or ``Vb``
+    computes one normal orbit.
+    """
+    key = _normal_orbit_key(model)
+    if key not in _NORMAL_ORBITS:
+        if len(_NORMAL_ORBITS) >= _NORMAL_ORBITS_KEPT:
+            del _NORMAL_ORBITS[next(iter(_NORMAL_ORBITS))]
+        _NORMAL_ORBITS[key] = _normal_orbit(model)
+    return _NORMAL_ORBITS[key]
+
+
+# ---------------------------------------------------------------- the tangential map
+
+
+class OnePeriodMap:
+    """The tangential period map over one excitation period on the periodic normal motion.
+
+    ``map(x)`` is ``(P(x), M_t, run, grazing)``: the image of the tangential state
+    ``x`` at phase 0, the Jacobian of the map there (module docstring), the
+    `beltmdsm.integrate.superposition.TangentialRun` and the grazing switch or None.
+
+    Parameters
+    ----------
+    model : Model
+    backend : {"python", "numba", None}
+    """
+
+    def __init__(self, model: Model, backend: Backend | None = None) -> None:
+        self.model, self.p = model, model.params
+        self.orbit = normal_orbit(model)
+        self.T = self.orbit.period
+        normal = normal_motion(model, self.T, RTOL, RTOL, self.orbit.state0, backend)
+        self.engine = Superposition(model, normal, backend)
+        self.stm, self.sw = self.engine.stm, self.engine.sw
+        self._saltation = {}
+        self.backend = backend
+
+    def saltation(self, before: Mode, after: Mode, surface: str) -> Any:
+        """The bound saltation matrix of one switch (`generated.hybrid.saltation`), kept."""
+        key = (before, after, surface)
+        if key not in self._saltation:
+            self._saltation[key] = hybrid.bind_saltation(
+                before=before.name.lower(),
+                after=after.name.lower(),
+                surface=surface,
+                contact=self.model.contact,
+                backend=self.backend,
+                **self.p,
+            )
+        return self._saltation[key]
+
+    def __call__(
+        self, x: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], TangentialRun, dict | None]:
+        """``(P(x), M_t, run, grazing)`` for the tangential state ``x`` at phase 0."""
+        run = self.engine.run(0.0, float(x[0]), float(x[1]), self.T)
+        if run.status != "done":
+            raise NoPeriodicResponse(f"period map: {run.message}")
+        M = np.eye(2)
+        grazing = None
+        for (t0, t1, mode), switch in zip(
+            zip(run.starts, run.ends, run.modes), run.switches + [None]
+        ):
+            if mode != Mode.STICK:
+                M = np.array(self.stm(t1 - t0)).reshape(2, 2) @ M
+            if switch is None:
+                continue
+            t, before, after, surface, state = switch
+            S = np.array(self.saltation(before, after, surface)(t, *state)).reshape(4, 4)
+            M = S[:2, :2] @ M
+            ratio = self._rate_ratio(t, state, before, surface)
+            if ratio is not None and ratio < GRAZING_RATIO and grazing is None:
+                grazing = {"t": float(t), "surface": surface, "ratio": float(ratio)}
+        return run.final[:2], M, run, grazing
+
+    def _rate_ratio(self, t, state, before, surface):
+        """``|dh/dt|`` at the switch over its scale (None where S = I regardless)."""
+        if surface != "relative_velocity":
+            return None
+        rate = self.sw.rates(t, *state, float(before))[SURFACE_INDEX[surface]]
+        scale = self.sw.scales(t, *state)[SURFACE_INDEX["stick_forward"]]
+        return abs(rate) / scale if scale > 0 else 0.0
+
+
+@dataclass(frozen=True)
+class Margin:
+    """How far one feature of an orbit is from a change of its switch structure.
+
+    Attributes
+    ----------
+    kind : {"crossing", "approach", "decision"}
+        See the module docstring.
+    surface : str
+        The switching surface (`generated.hybrid.SURFACES`).
+    mode : Mode
+        The mode before the crossing, or of the segment.
+    t : float
+        Time from phase 0 [s].
+    value : float
+        Positive away from the change, zero at it.
+    """
+
+    kind: MarginKind
+    surface: str
+    mode: Mode
+    t: float
+    value: float
+
+
+def signature(switches: Sequence[tuple]) -> tuple:
+    """The switch structure of an orbit: the ``(before, after, surface)`` of its switches."""
+    return tuple((int(b), int(a), s) for _, b, a, s in switches)
+
+
+@dataclass
+class MapImage:
+    """One application of a period map at a state.
+
+    Attributes
+    ----------
+    start, state : ndarray (n,)
+        The shooting state at phase 0 and its image ``k`` periods later.
+    jacobian : ndarray (n, n)
+        ``d state / d start``.
+    switches : list of (t, before, after, surface)
+        Every switch on the way, ``t`` from phase 0 of the first period.
+    segments : list of (t0, t1, mode)
+    grazing : dict or None
+        ``{"t", "surface", "ratio"}`` of a crossing whose rate is too small for a
+        multiplier with 8 correct digits (`GRAZING_RATIO`).
+    """
+
+    start: NDArray[np.float64]
+    state: NDArray[np.float64]
+    jacobian: NDArray[np.float64]
+    switches: list
+    segments: list
+    grazing: dict | None
+    _map: TangentialMap = field(repr=False)
+    _runs: list[TangentialRun] = field(repr=False)
+    _margins: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def signature(self) -> tuple:
+        """`signature` of the switches."""
+        return signature(self.switches)
+
+    @property
+    def phases(self) -> list[NDArray[np.float64]]:
+        """The shooting state at phase 0 of each of the ``k`` periods."""
+        return [self.start] + [np.asarray(r.final[:2], dtype=float) for r in self._runs[:-1]]
+
+    @property
+    def margins(self) -> list[Margin]:
+        """Every `Margin` of the orbit through ``start`` (computed once)."""
+        return self.margins_of(MARGIN_KINDS)
+
+    def margins_of(self, kinds: Sequence[str]) -> list[Margin]:
+        """The margins of the given kinds (the ``approach`` ones cost most: a search)."""
+        missing = tuple(k for k in kinds if k not in self._margins)
+        if missing:
+            found = self._map.margins(self._runs, missing)
+            for k in missing:
+                self._margins[k] = [m for m in found if m.kind == k]
+        return [m for k in kinds for m in self._margins[k]]
+
+    def velocity_range(self) -> tuple[float, float]:
+        """The smallest and largest ``X1'`` over the ``k`` periods."""
+        return self._map.velocity_range(self._runs)
+
+
+class PeriodMap(abc.ABC):
+    """What the algorithms on periodic responses need of a period map.
+
+    ``model`` is the model, ``period`` one excitation period, ``periods`` the number
+    ``k`` of them per application. An implementation maps the shooting state at phase
+    0 to a `MapImage` and gives the multipliers of the directions it does not shoot in.
+    """
+
+    model: Model
+    period: float
+    periods: int
+
+    @abc.abstractmethod
+    def __call__(self, x: ArrayLike) -> MapImage:
+        """The image of the shooting state ``x`` (raises NoPeriodicResponse)."""
+
+    @abc.abstractmethod
+    def fixed_multipliers(self) -> NDArray[np.complex128]:
+        """Multipliers of the directions outside the shooting state (over ``k`` periods)."""
+
+
+class TangentialMap(PeriodMap):
+    """``k`` periods of the tangential period map of Eq. (4) on its periodic normal motion.
+
+    Parameters
+    ----------
+    model : Model
+    periods : int
+        ``k >= 1``.
+    backend : {"python", "numba", None}
+
+    Raises
+    ------
+    ValueError
+        For ``periods < 1``, or an excitation without a period.
+    NoPeriodicResponse
+        Where the normal motion has no periodic orbit.
+    """
+
+    def __init__(self, model: Model, periods: int = 1, backend: Backend | None = None) -> None:
+        if int(periods) != periods or int(periods) < 1:
+            raise ValueError(f"periods must be an integer >= 1; got {periods!r}")
+        self.model, self.periods = model, int(periods)
+        self.one = OnePeriodMap(model, backend)
+        self.period = self.one.T
+        self.sw = self.one.sw
+
+    def fixed_multipliers(self) -> NDArray[np.complex128]:
+        """The normal block's multipliers to the power ``k``."""
+        return np.asarray(self.one.orbit.multipliers, dtype=complex) ** self.periods
+
+    def __call__(self, x: ArrayLike) -> MapImage:
+        """The image of the tangential state ``x`` at phase 0 (raises NoPeriodicResponse)."""
+        start = np.array(x, dtype=float)
+        y, M = start, np.eye(2)
+        switches, segments, runs, grazing = [], [], [], None
+        for j in range(self.periods):
+            y, Mj, run, g = self.one(y)
+            y = np.array(y, dtype=float)
+            offset = j * self.period
+            M = Mj @ M
+            switches += [(t + offset, b, a, s) for t, b, a, s, _ in run.switches]
+            segments += [
+                (t0 + offset, t1 + offset, m) for t0, t1, m in zip(run.starts, run.ends, run.modes)
+            ]
+            if grazing is None and g is not None:
+                grazing = {**g, "t": g["t"] + offset}
+            runs.append(run)
+        return MapImage(start, y, M, switches, segments, grazing, self, runs)
+
+    # ------------------------------------------------------------ what the orbit is near
+
+    def _states(self, run, index, t):
+        """``(X1, X1', X2, X2')`` at the times ``t`` of segment ``index`` of one period's run."""
+        return run.segments(t, np.full(np.size(t), index))
+
+    def _pieces(self, runs):
+        """The segments of the orbit, joined where a mode goes on across a period boundary.
+
+        Each piece is ``{"mode", "parts", "start", "end"}``: ``parts`` a list of
+        ``(run, index, t0, t1, offset)`` (segment ``index`` of one period's ``run``,
+        from ``t0`` to ``t1`` of that period, ``offset`` from phase 0 of the orbit),
+        ``start`` and ``end`` whether the piece begins and ends at a switch. The last
+        piece wraps around to the first where the orbit's mode goes on through phase 0.
+        """
+        pieces = []
+        for j, run in enumerate(runs):
+            offset = j * self.period
+            n = len(run.modes)
+            for i, (t0, t1, m) in enumerate(zip(run.starts, run.ends, run.modes)):
+                part = (run, i, t0, t1, offset)
+                if pieces and i == 0 and pieces[-1]["mode"] == m and not pieces[-1]["end"]:
+                    pieces[-1]["parts"].append(part)
+                    pieces[-1]["end"] = i < n - 1
+                else:
+                    pieces.append({"mode": m, "parts": [part], "start": i > 0, "end": i < n - 1})
+        first, last = pieces[0], pieces[-1]
+        if len(pieces) > 1 and last["mode"] == first["mode"] and not last["end"]:
+            wrap = self.periods * self.period
+            last["parts"] += [(r, i, a, b, o + wrap) for r, i, a, b, o in first["parts"]]
+            last["end"] = first["end"]
+            pieces = pieces[1:]
+        return pieces
+
+    def margins(
+        self, runs: list[TangentialRun], kinds: Sequence[str] = MARGIN_KINDS
+    ) -> list[Margin]:
+        """The margins of the given kinds of the orbit made of ``runs`` (module docstring)."""
+        out = []
+        sw = self.sw
+        for j, run in enumerate(runs):
+            offset = j * self.period
+            for t, before, after, surface, state in run.switches:
+                if surface in _TANGENTIAL and "crossing" in kinds:
+                    index = SURFACE_INDEX[surface]
+                    rate = sw.rates(t, *state, float(before))[index]
+                    scale = sw.scales(t, *state)[_SF]
+                    out.append(
+                        Margin("crossing", surface, before, t + offset, float(abs(rate) / scale))
+                    )
+                if "decision" in kinds and (
+                    surface == "relative_velocity"
+                    or (surface == "penetration" and after != Mode.FLIGHT)
+                ):
+                    out.append(self._decision(t, state, before, after, surface, offset))
+        if "approach" not in kinds:
+            return out
+        for piece in self._pieces(runs):
+            if piece["mode"] in (Mode.SLIP_BACK, Mode.SLIP_FORWARD, Mode.STICK):
+                margin = self._approach(piece)
+                if margin is not None:
+                    out.append(margin)
+        return out
+
+    def _decision(self, t, state, before, after, surface, offset):
+        """How far Filippov's choice at a switch onto ``Vr = 0`` is from the other outcome."""
+        h = self.sw.surfaces(t, *state)
+        scales = self.sw.scales(t, *state)
+        sf, sb = h[_SF], h[_SB]
+        if surface == "penetration" and abs(h[_VR]) > 0:
+            # touchdown away from Vr = 0: the sign of Vr decides
+            value = abs(h[_VR]) / scales[_VR]
+        elif after == Mode.STICK:
+            value = min(sf, sb) / scales[_SF]
+        elif sf + sb > 0:  # a cone that could hold the mass: how far outside it
+            value = -(sf if after == Mode.SLIP_FORWARD else sb) / scales[_SF]
+        else:  # an empty cone: the side of a_free decides
+            value = abs(0.5 * (sb - sf)) / scales[_SF]
+        return Margin("decision", surface, before, t + offset, float(value))
+
+    def _distance(self, mode, states, t):
+        """Distance of a segment in ``mode`` to the surface that would end it, and that surface."""
+        sw = self.sw
+        h = np.asarray(sw.surfaces.array(t, *states), dtype=float)
+        scale = np.asarray(sw.scales.array(t, *states), dtype=float)
+        if mode == Mode.SLIP_BACK:
+            return -h[_VR] / scale[_VR], np.full(t.size, _VR)
+        if mode == Mode.SLIP_FORWARD:
+            return h[_VR] / scale[_VR], np.full(t.size, _VR)
+        sf, sb = h[_SF] / scale[_SF], h[_SB] / scale[_SB]
+        return np.minimum(sf, sb), np.where(sf <= sb, _SF, _SB)
+
+    def _approach(self, piece):
+        """The smallest interior minimum of a piece's distance to the surface that would end it.
+
+        None where the distance has no interior minimum below 1 (its saturation: a
+        velocity against the belt's is as far from ``Vr = 0`` as the scale says).
+        """
+        from scipy import optimize
+
+        mode, parts = piece["mode"], piece["parts"]
+        times, values, where = [], [], []
+        for run, index, t0, t1, offset in parts:
+            n = max(8, int((t1 - t0) * _SAMPLES_PER_S))
+            t = np.linspace(t0, t1, n + 1)
+            d, surface = self._distance(mode, self._states(run, index, t), t)
+            times.append(t + offset)
+            values.append(d)
+            where.append(surface)
+        t, d, surface = np.concatenate(times), np.concatenate(values), np.concatenate(where)
+        bounds = np.array([offset + t1 for _, _, _, t1, offset in parts])
+
+        def at(s, rate_of=None):
+            """The distance at ``s``, or the rate of the surface ``rate_of`` there."""
+            k = min(int(np.searchsorted(bounds, s)), len(parts) - 1)
+            run, index, _, _, offset = parts[k]
+            local = s - offset
+            state = segs_state(run.segments, local, index)
+            if rate_of is None:
+                h, scale = self.sw.surfaces(local, *state), self.sw.scales(local, *state)
+                if mode == Mode.STICK:
+                    return min(h[_SF] / scale[_SF], h[_SB] / scale[_SB])
+                return (h[_VR] if mode == Mode.SLIP_FORWARD else -h[_VR]) / scale[_VR]
+            return float(self.sw.rates(local, *state, float(mode))[rate_of])
+
+        # an end at a switch is on the surface by definition: only interior minima count
+        candidate = np.ones(d.size, dtype=bool)
+        candidate[0], candidate[-1] = not piece["start"], not piece["end"]
+        candidate[1:] &= d[1:] <= d[:-1]
+        candidate[:-1] &= d[:-1] <= d[1:]
+        best = None
+        for k in np.flatnonzero(candidate):
+            value, tk = float(d[k]), float(t[k])
+            if value < _REFINE_BELOW and 0 < k < d.size - 1:
+                # the closest approach is where the surface's rate along the mode vanishes
+                # (the scale varies slowly: the two minima agree to second order in the
+                # distance, which vanishes at grazing)
+                a, b, index = t[k - 1], t[k + 1], int(surface[k])
+                ra, rb = at(a, index), at(b, index)
+                if ra * rb < 0:
+                    tk = optimize.brentq(at, a, b, args=(index,), xtol=1e-14, rtol=1e-15)
+                    value = min(value, at(tk))
+            if value < 1.0 and (best is None or value < best.value):
+                name = hybrid.SURFACES[int(surface[k])]
+                best = Margin("approach", name, mode, tk, value)
+        return best
+
+    def velocity_range(self, runs: list[TangentialRun]) -> tuple[float, float]:
+        """The smallest and largest ``X1'`` over the runs (segments sampled, extremes refined)."""
+        from scipy import optimize
+
+        lo, hi = np.inf, -np.inf
+        for run in runs:
+            for index, (t0, t1) in enumerate(zip(run.starts, run.ends)):
+                n = max(8, int((t1 - t0) * _SAMPLES_PER_S))
+                t = np.linspace(t0, t1, n + 1)
+                v = self._states(run, index, t)[1]
+                for sign in (1.0, -1.0):
+                    k = int(np.argmax(sign * v))
+                    value = float(v[k])
+                    if 0 < k < v.size - 1:
+                        res = optimize.minimize_scalar(
+                            lambda s, run=run, index=index, sign=sign: (
+                                -sign * float(self._states(run, index, np.array([s]))[1][0])
+                            ),
+                            bounds=(t[k - 1], t[k + 1]),
+                            method="bounded",
+                            options={"xatol": 1e-12},
+                        )
+                        value = sign * max(sign * value, -float(res.fun))
+                    lo, hi = (min(lo, value), hi) if sign < 0 else (lo, max(hi, value))
+        return float(lo), float(hi)
+
+
+class MapFamily:
+    """The ``k``-fold period maps of one parameter's values, the others fixed.
+
+    Parameters
+    ----------
+    model : Model
+        The other parameters and the options.
+    param : str
+        The model parameter that varies.
+    periods : int
+    backend : {"python", "numba", None}
+
+    ``family(value)`` is the `TangentialMap` at ``param = value`` (the last few are
+    kept); ``family.derivative(x, value)`` is ``dP/d param`` at ``x`` by central
+    differences (relative step `DERIVATIVE_STEP`: a truncation error of about its
+    square and a rounding error of about ``1e-12 / step`` relative, 1e-6, which slows
+    Newton's method on a bordered system by nothing measurable). Both sides must keep
+    the switch structure of ``x``'s image: close to a tangency the step shrinks by
+    tens until they do.
+    """
+
+    DERIVATIVE_STEP = 1e-6
+    _SMALLEST_STEP = 1e-11
+    _KEPT = 8
+
+    def __init__(
+        self, model: Model, param: str, periods: int = 1, backend: Backend | None = None
+    ) -> None:
+        if param not in model.params:
+            raise ValueError(f"param must be a model parameter; got {param!r}")
+        self.model, self.param = model, param
+        self.periods, self.backend = int(periods), backend
+        self._maps: dict = {}
+
+    def __call__(self, value: float) -> TangentialMap:
+        """The map at ``param = value`` (raises NoPeriodicResponse outside its domain)."""
+        value = float(value)
+        if value not in self._maps:
+            if len(self._maps) >= self._KEPT:
+                self._maps.pop(next(iter(self._maps)))
+            try:
+                model = self.model.replace(**{self.param: value})
+            except ValueError as err:  # a value outside the parameter's domain
+                raise NoPeriodicResponse(f"{self.param} = {value:g}: {err}") from None
+            self._maps[value] = TangentialMap(model, self.periods, self.backend)
+        return self._maps[value]
+
+    def derivative(
+        self, x: ArrayLike, value: float, structure: tuple | None = None
+    ) -> NDArray[np.float64]:
+        """``dP/d param`` at the shooting state ``x`` by central differences.
+
+        ``structure``: the `signature` of the image at ``x`` (computed if not given),
+        which both sides must keep.
+        """
+        x = np.asarray(x, dtype=float)
+        if structure is None:
+            structure = self(value)(x).signature
+        h = self.DERIVATIVE_STEP * max(1.0, abs(float(value)))
+        while True:
+            up = self(value + h)(x)
+            try:
+                down, width = self(value - h)(x), 2 * h
+            except NoPeriodicResponse:  # at the edge of the domain: one-sided
+                down, width = self(value)(x), h
+            if (up.signature == structure and down.signature == structure) or (
+                h < self._SMALLEST_STEP * max(1.0, abs(float(value)))
+            ):
+                return (up.state - down.state) / width
+            h *= 0.1
+
+
+@dataclass
+class FixedPoint:
+    """A fixed point of a period map: the state at phase 0 of a response of ``k`` periods.
+
+    Attributes
+    ----------
+    state : ndarray (n,)
+    image : MapImage
+        The map at ``state`` (its Jacobian is the monodromy of the shooting state).
+    residual : float
+        ``max |P(x) - x|``.
+    iterations : int
+    """
+
+    state: NDArray[np.float64]
+    image: MapImage
+    residual: float
+    iterations: int
+
+
+def fixed_point(pmap: PeriodMap, guess: ArrayLike, max_iter: int = 30) -> FixedPoint:
+    """Newton's method on ``P(x) - x`` with damped steps, ``dP/dx - I`` its Jacobian.
+
+    Parameters
+    ----------
+    pmap : PeriodMap
+    guess : array_like (n,)
+    max_iter : int
+
+    Returns
+    -------
+    FixedPoint
+
+    Raises
+    ------
+    NoPeriodicResponse
+        If the residual stops halving (over a few iterations), no damped step reduces
+        it, or ``max_iter`` iterations leave it above `NEWTON_TOL` (relative to the
+        state's scale).
+    """
+    what = "" if pmap.periods == 1 else f" of {pmap.periods} periods"
+    x = np.array(guess, dtype=float)
+    image = pmap(x)
+    r = image.state - x
+    history = []
+    for iteration in range(1, max_iter + 1):
+        residual = float(np.max(np.abs(r)))
+        if residual <= NEWTON_TOL * (1.0 + np.max(np.abs(x))):
+            return FixedPoint(x, image, residual, iteration)
+        history.append(residual)
+        if len(history) > _STAGNATION and history[-1] > 0.5 * history[-1 - _STAGNATION]:
+            raise NoPeriodicResponse(
+                f"no periodic response{what} found: Newton's method stagnates at a "
+                f"residual {residual:.2e} (not halved in {_STAGNATION} iterations)"
+            )
+        A = image.jacobian - np.eye(x.size)
+        try:
+            step = -np.linalg.solve(A, r)
+        except np.linalg.LinAlgError:
+            step = -np.linalg.lstsq(A, r, rcond=None)[0]
+        lam = 1.0
+        for _ in range(_LINE_SEARCH):
+            x_new = x + lam * step
+            image_new = pmap(x_new)
+            r_new = image_new.state - x_new
+            if np.max(np.abs(r_new)) < residual:
+                break
+            lam *= 0.5
+        else:
+            raise NoPeriodicResponse(
+                f"no periodic response{what} found: Newton's method stalled at a "
+                f"residual {residual:.2e} (no step of {_LINE_SEARCH} halvings reduces it)"
+            )
+        x, image, r = x_new, image_new, r_new
+    raise NoPeriodicResponse(
+        f"no periodic response{what} found: Newton's method left a residual "
+        f"{float(np.max(np.abs(r))):.2e} after {max_iter} iterations"
+    )

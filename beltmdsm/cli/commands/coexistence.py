@@ -1,0 +1,65 @@
+"""``coexistence``: where stable periodic responses coexist (`beltmdsm.studies.coexistence`)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from ...model import MODEL_PARAMETERS
+from ..flags import (
+    POSITIVE,
+    json_parent,
+    lock_parent,
+    model_from,
+    model_parent,
+    number,
+    register,
+    swept,
+)
+
+
+def add(commands, name: str) -> None:
+    sub = register(
+        commands,
+        name,
+        run,
+        [model_parent(), lock_parent(), json_parent()],
+        help="where two or more stable periodic responses coexist",
+        description="The ranges of one parameter where two or more stable periodic "
+        "responses (the T-periodic one and phase-locked ones) coexist, each edge with "
+        "its bifurcation: seeds from shooting, runs from rest and continued ladders, "
+        "each continued as a branch (beltmdsm/studies/coexistence.py).",
+    )
+    sub.add_argument(
+        "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter walked"
+    )
+    sub.add_argument(
+        "--from", dest="start", type=number(), required=True, metavar="X", help="lower end"
+    )
+    sub.add_argument(
+        "--to", dest="stop", type=number(), required=True, metavar="X", help="upper end, > --from"
+    )
+    sub.add_argument(
+        "--step", type=POSITIVE, default=0.5, help="spacing of the seeds, > 0 (default 0.5)"
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    from ...studies.coexistence import coexistence
+    from .. import text
+
+    if not args.stop > args.start:
+        args.parser.error(f"argument --to: must be > --from ({args.start:g}); got {args.stop:g}")
+    found = coexistence(
+        args.param,
+        args.start,
+        args.stop,
+        model_from(args, skip=(swept(args),)),
+        step=args.step,
+        limit=args.limit,
+    )
+    if args.json:
+        print(json.dumps(text.jsonable(found.as_dict())))
+    else:
+        print(text.coexistence(found))
+    return 0

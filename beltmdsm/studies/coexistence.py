@@ -1,0 +1,382 @@
+"""Where stable periodic responses coexist, exactly: branches of every response found.
+
+A run of Eq. (4) from rest, a run from the perturbed periodic response or a continued
+sweep ends on one attractor; where several are stable, which one depends on where the
+run starts, and a simulated range of the omega1 peak (Fig. 2b, Figs. 17-21) need not
+be the unstable range of any analysis (docs/modelling.md#what-unstable-means).
+`coexistence` finds the attractors over a range of one parameter and computes each
+exactly:
+
+1. **Seeds.** On a grid of the parameter: the periodic response of period ``T``
+   (`beltmdsm.analysis.floquet.floquet`, continued down the grid from its neighbour);
+   the attractor of a run from rest (`beltmdsm.studies.responses.run_stroboscope`);
+   and those of two ladders, continued up and down the grid on the period map
+   (`beltmdsm.studies.responses.ladder`). An attractor that locks at ``k`` periods
+   (`beltmdsm.analysis.locked.LOCK_LIMIT` at most) is a seed; one that does not is
+   listed with the evidence (`beltmdsm.analysis.locked.NotLocked`).
+2. **Branches.** Every seed that no branch found so far passes through (same ``k``,
+   same orbit) is continued over the whole range
+   (`beltmdsm.analysis.branch.continue_branch`): its stable and unstable parts, each
+   bounded by a located bifurcation.
+3. **Coexistence.** The stable parts of all branches, overlaid: the ranges where two
+   or more are stable, each with the responses that coexist and the kinds of its two
+   edges (the bifurcations where a response starts or stops being stable, or the end of
+   the range).
+
+What this does not see: attractors that are not locked within the limit (quasi-periodic
+motion on an invariant torus, or a longer period), which are listed, not continued, and
+attractors that no seed reaches.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..analysis.branch import Branch, continue_branch
+from ..analysis.floquet import NoPeriodicResponse, floquet, response_from
+from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
+from .responses import ladder, run_stroboscope, shoot
+
+__all__ = [
+    "DEFAULT_STEP",
+    "SEED_T_END",
+    "StablePart",
+    "ResponseBranch",
+    "CoexistenceRange",
+    "Unlocked",
+    "Unexplained",
+    "Coexistence",
+    "coexistence",
+    "overlay",
+]
+
+#: Spacing of the seeds' grid [in the parameter's unit].
+DEFAULT_STEP = 0.5
+#: Duration of the runs from rest that seed the branches [s].
+SEED_T_END = 600.0
+#: A seed lies on a known branch when the branch, interpolated between its points,
+#: comes this close (relative) to it; Newton's method from there then decides.
+_NEAR = 1e-2
+
+
+@dataclass(frozen=True)
+class StablePart:
+    """A range where a branch is stable, with the kinds of the special points that bound it."""
+
+    range: tuple[float, float]
+    lower: str
+    upper: str
+
+    def as_dict(self) -> dict:
+        """For JSON: ``range``, ``lower``, ``upper``."""
+        return {"range": list(self.range), "lower": self.lower, "upper": self.upper}
+
+
+@dataclass
+class ResponseBranch:
+    """A branch of responses and its stable parts.
+
+    Attributes
+    ----------
+    name : str
+        ``T`` or ``kT``, numbered where several branches share ``k`` (``T#1``).
+    branch : Branch
+    stable : list of StablePart
+        Where it is stable (merged where two parts touch at a grazing).
+    sources : list of str
+        The seeds that found it.
+    """
+
+    name: str
+    branch: Branch
+    stable: list[StablePart]
+    sources: list[str] = field(default_factory=list)
+
+    def as_dict(self) -> dict:
+        """For JSON: ``name``, ``periods``, ``range``, ``stable``, ``special_points``,
+        ``sources``."""
+        return {
+            "name": self.name,
+            "periods": self.branch.periods,
+            "range": self.branch.value_range(),
+            "stable": [s.as_dict() for s in self.stable],
+            "special_points": [s.as_dict() for s in self.branch.special],
+            "sources": self.sources,
+        }
+
+
+@dataclass(frozen=True)
+class CoexistenceRange:
+    """A range where the same two or more stable responses coexist.
+
+    ``responses``: their names (`ResponseBranch.name`); ``lower``, ``upper``: the kinds
+    of the edges at either end (a bifurcation, or ``range`` at the end of the range).
+    """
+
+    range: tuple[float, float]
+    responses: tuple[str, ...]
+    lower: str
+    upper: str
+
+    def as_dict(self) -> dict:
+        """For JSON: ``range``, ``responses``, ``lower``, ``upper``."""
+        return {
+            "range": list(self.range),
+            "responses": list(self.responses),
+            "lower": self.lower,
+            "upper": self.upper,
+        }
+
+
+@dataclass(frozen=True)
+class Unlocked:
+    """A seed attractor that does not lock within the limit: where, and the evidence."""
+
+    value: float
+    evidence: NotLocked
+
+    def as_dict(self) -> dict:
+        """For JSON: ``value`` and the keys of `beltmdsm.analysis.locked.NotLocked.as_dict`."""
+        return {"value": self.value, **self.evidence.as_dict()}
+
+
+@dataclass(frozen=True)
+class Unexplained:
+    """A seed that locks but whose orbit Newton's method does not find."""
+
+    value: float
+    source: str
+    reason: str
+
+    def as_dict(self) -> dict:
+        """For JSON: ``value``, ``source``, ``reason``."""
+        return {"value": self.value, "source": self.source, "reason": self.reason}
+
+
+@dataclass
+class Coexistence:
+    """The result of `coexistence`.
+
+    Attributes
+    ----------
+    param : str
+    lo, hi : float
+    model : Model
+        The other parameters and the options.
+    responses : list of ResponseBranch
+    ranges : list of CoexistenceRange
+    unlocked : list of Unlocked
+    unexplained : list of Unexplained
+    wall_s : float
+    """
+
+    param: str
+    lo: float
+    hi: float
+    model: Model
+    responses: list[ResponseBranch]
+    ranges: list[CoexistenceRange]
+    unlocked: list[Unlocked]
+    unexplained: list[Unexplained]
+    wall_s: float
+
+    def as_dict(self) -> dict:
+        """The JSON of ``coexistence --json``: ``param``, ``range``, ``contact``,
+        ``tension``, ``coexistence``, ``responses``, ``unlocked``, ``unexplained``,
+        ``wall_s``."""
+        return {
+            "param": self.param,
+            "range": [self.lo, self.hi],
+            "contact": self.model.contact,
+            "tension": self.model.tension,
+            "coexistence": [r.as_dict() for r in self.ranges],
+            "responses": [r.as_dict() for r in self.responses],
+            "unlocked": [u.as_dict() for u in self.unlocked],
+            "unexplained": [u.as_dict() for u in self.unexplained],
+            "wall_s": self.wall_s,
+        }
+
+
+def _stable_parts(branch: Branch) -> list[StablePart]:
+    """The stable parts of a branch, merged where they touch (a grazing between them)."""
+    parts = sorted((p for p in branch.parts() if p.stable), key=lambda p: p.range)
+    out = []
+    for p in parts:
+        if out and p.range[0] <= out[-1].range[1] + 1e-12:
+            if p.range[1] > out[-1].range[1]:
+                out[-1] = StablePart((out[-1].range[0], p.range[1]), out[-1].lower, p.upper)
+            continue
+        out.append(StablePart(p.range, p.lower, p.upper))
+    return out
+
+
+def overlay(responses: list[ResponseBranch]) -> list[CoexistenceRange]:
+    """The ranges where two or more responses are stable together (constant membership)."""
+    intervals = [(r.name, s) for r in responses for s in r.stable]
+    cuts = sorted({v for _, s in intervals for v in s.range})
+    segments = []
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        mid = 0.5 * (a + b)
+        active = tuple(sorted({n for n, s in intervals if s.range[0] < mid < s.range[1]}))
+        if len(active) < 2:
+            continue
+        if segments and segments[-1][1] == a and segments[-1][2] == active:
+            segments[-1][1] = b
+        else:
+            segments.append([a, b, active])
+
+    def kind_at(value):
+        # the interval end at this value that starts or stops a membership
+        for _, s in intervals:
+            if s.range[0] == value:
+                return s.lower
+            if s.range[1] == value:
+                return s.upper
+        return "range"
+
+    return [CoexistenceRange((a, b), active, kind_at(a), kind_at(b)) for a, b, active in segments]
+
+
+def _on_branch(branch, value, k, phases):
+    """Whether the orbit with these phase-0 states at ``value`` lies on ``branch``."""
+    if branch.periods != k:
+        return False
+    scale = 1.0 + max(float(np.max(np.abs(x))) for x in phases)
+    points = branch.points
+    for a, b in zip(points[:-1], points[1:]):
+        if not min(a.value, b.value) <= value <= max(a.value, b.value) or a.value == b.value:
+            continue
+        w = (value - a.value) / (b.value - a.value)
+        x = (1 - w) * a.state + w * b.state
+        if any(np.max(np.abs(x - y)) <= _NEAR * scale for y in phases):
+            return True
+    return False
+
+
+def coexistence(
+    param: str,
+    lo: float,
+    hi: float,
+    model: Model | Mapping[str, Any] | None = None,
+    *,
+    step: float = DEFAULT_STEP,
+    limit: int = LOCK_LIMIT,
+    backend: Backend | None = None,
+    **kw: Any,
+) -> Coexistence:
+    """Where two or more stable periodic responses coexist in ``param`` over ``[lo, hi]``.
+
+    Parameters
+    ----------
+    param : str
+        A model parameter.
+    lo, hi : float
+    model : Model or dict, optional
+        The other parameters and the options (default: the base set); ``**kw`` too.
+    step : float
+        Spacing of the seeds' grid.
+    limit : int
+        The longest period looked for, in excitation periods.
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    Coexistence
+
+    Raises
+    ------
+    ValueError
+        For an unknown parameter, a bad range, ``step <= 0`` or ``limit < 1``.
+    """
+    clock = time.perf_counter()
+    if param not in MODEL_PARAMETERS:
+        raise ValueError(f"param must be a model parameter; got {param!r}")
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+        raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
+    if not step > 0 or int(limit) < 1:
+        raise ValueError(f"step must be > 0 and limit >= 1; got {step}, {limit}")
+    model = as_model(model, **kw).replace(**{param: lo})
+    excitation_period(model)
+    grid = np.linspace(lo, hi, max(int(round((hi - lo) / step)), 1) + 1)
+    seeds, unlocked = [], []
+
+    last = None
+    for v in grid[::-1]:
+        for guess in ([last.response] if last is not None else []) + [None]:
+            try:
+                f = floquet(model.replace(**{param: float(v)}), guess=guess, backend=backend)
+            except NoPeriodicResponse:
+                continue
+            seeds.append((float(v), 1, f.response.state0[:2], "shooting"))
+            last = f
+            break
+
+    def examine(v, strobe):
+        if strobe.candidate is None:
+            unlocked.append(Unlocked(float(v), NotLocked.of(strobe)))
+        else:
+            seeds.append((float(v), strobe.candidate, strobe.samples[-1], strobe.source))
+
+    for v in grid:
+        at = model.replace(**{param: float(v)})
+        examine(v, run_stroboscope(at, t_end=SEED_T_END, limit=limit, backend=backend))
+    for values in (grid, grid[::-1]):
+        strobes = ladder(model, param, values, limit=limit, backend=backend)
+        for v, strobe in zip(values, strobes):
+            examine(v, strobe)
+
+    branches, sources, unexplained = [], [], []
+    for v, k, x, source in seeds:
+        at = model.replace(**{param: v})
+        try:
+            pmap, point = shoot(at, k, x, backend)
+            k_min = minimal_periods(point.image, k)
+            if k_min != k:
+                pmap, point = shoot(at, k_min, point.state, backend)
+                k = k_min
+        except NoPeriodicResponse as err:
+            unexplained.append(Unexplained(v, source, str(err)))
+            continue
+        phases = point.image.phases
+        known = next((i for i, b in enumerate(branches) if _on_branch(b, v, k, phases)), None)
+        if known is None:
+            start = response_from(pmap, point)
+            branches.append(continue_branch(start, param, lo, hi, backend=backend))
+            sources.append([])
+            known = len(branches) - 1
+        label = f"{source} at {param} = {v:g}"
+        if source not in {s.split(" at ")[0] for s in sources[known]}:
+            sources[known].append(label)
+
+    order = sorted(
+        range(len(branches)), key=lambda i: (branches[i].periods, branches[i].value_range()[0])
+    )
+    counts: dict = {}
+    for i in order:
+        counts[branches[i].periods] = counts.get(branches[i].periods, 0) + 1
+    numbered: dict = {}
+    found = []
+    for i in order:
+        k = branches[i].periods
+        name = "T" if k == 1 else f"{k}T"
+        if counts[k] > 1:
+            numbered[k] = numbered.get(k, 0) + 1
+            name = f"{name}#{numbered[k]}"
+        found.append(ResponseBranch(name, branches[i], _stable_parts(branches[i]), sources[i]))
+    return Coexistence(
+        param,
+        float(lo),
+        float(hi),
+        model,
+        found,
+        overlay(found),
+        unlocked,
+        unexplained,
+        time.perf_counter() - clock,
+    )

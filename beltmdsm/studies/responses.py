@@ -1,0 +1,397 @@
+"""Every periodic response at one point: the ``T``-periodic one and the phase-locked ones.
+
+A run of Eq. (4) from rest (the runs of Fig. 2b and Figs. 17-21), a run from the
+perturbed periodic response or a sweep continued in a parameter ends on one attractor;
+where it locks to the excitation at ``k`` periods (`beltmdsm.analysis.locked`), the
+attractor is a fixed point of the ``k``-fold period map, which shooting computes
+exactly (`beltmdsm.analysis.periodmap.fixed_point`), with the multipliers of the
+``k``-fold map (`beltmdsm.analysis.floquet.Floquet`).
+
+* `run_stroboscope`: the stroboscopic samples of a run of `beltmdsm.simulation.simulate`
+  from rest or from the perturbed periodic response
+  (`beltmdsm.analysis.floquet.periodic_start`).
+* `ladder`, `ladder_stroboscope`: a sweep continued on the period map: the tangential
+  state carried from rung to rung (on the periodic normal motion), as ``sweep
+  --continue`` carries a run's state, and the samples of each rung.
+* `responses`: every periodic response found at one point (``python -m derive
+  responses``): the periodic one of period ``T`` and every locked one up to a limit,
+  each with its multipliers, the amplitude of ``X1'`` and where it was found; the
+  attractors that do not lock, with the evidence (`beltmdsm.analysis.locked.NotLocked`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..analysis.floquet import Floquet, NoPeriodicResponse, floquet, periodic_start, response_from
+from ..analysis.locked import (
+    LOCK_LIMIT,
+    NotLocked,
+    Stroboscope,
+    map_stroboscope,
+    minimal_periods,
+    same_phases,
+    stroboscope,
+)
+from ..analysis.periodmap import FixedPoint, TangentialMap, fixed_point
+from ..model import Backend, Model, as_model, excitation_period, initial_state
+from ..settings import SolverSettings
+from ..simulation import simulate
+
+__all__ = [
+    "RUN_T_END",
+    "LADDER_SPAN",
+    "run_stroboscope",
+    "ladder",
+    "ladder_stroboscope",
+    "shoot",
+    "Response",
+    "SeedFailure",
+    "ResponseSet",
+    "responses",
+]
+
+#: Duration of the runs that seed the search [s] (the runs of `beltmdsm.simulation`
+#: default to it too), and the share of it whose samples are examined.
+RUN_T_END = 1000.0
+WINDOW = 0.4
+#: A ladder of belt speeds (a continued sweep on the period map): its span below and
+#: above the point [m/s], its step, and the periods spent at each rung to settle (as
+#: many more are sampled).
+LADDER_SPAN = 2.0
+LADDER_STEP = 0.25
+LADDER_PERIODS = 150
+
+
+def run_stroboscope(
+    model: Model,
+    *,
+    start: Literal["rest", "periodic"] = "rest",
+    t_end: float = RUN_T_END,
+    limit: int = LOCK_LIMIT,
+    backend: Backend | None = None,
+) -> Stroboscope:
+    """The stroboscope of a run of `beltmdsm.simulation.simulate` from rest or the periodic start.
+
+    The samples are the last `WINDOW` of the run's whole excitation periods.
+
+    Raises
+    ------
+    NoPeriodicResponse
+        For ``start="periodic"`` where there is no periodic response to start on, or a
+        run that stops before ``t_end``.
+    """
+    T = excitation_period(model)
+    settings = SolverSettings(t_end=t_end, backend=backend)
+    y0 = periodic_start(model, backend=backend) if start == "periodic" else None
+    sim = simulate(model, settings=settings, y0=y0)
+    if sim.status != "done":
+        raise NoPeriodicResponse(f"the run ({start}) stopped: {sim.message}")
+    n_end = int(math.floor(sim.trajectory.t_end / T + 1e-9))
+    n_start = max(int(math.ceil((1.0 - WINDOW) * n_end)), 0)
+    y = sim.trajectory.state(T * np.arange(n_start, n_end + 1))[:2].T
+    name = "run from rest" if start == "rest" else "run from the perturbed periodic response"
+    return stroboscope(y, name, limit)
+
+
+def ladder(
+    model: Model,
+    param: str,
+    values: Sequence[float],
+    *,
+    limit: int = LOCK_LIMIT,
+    backend: Backend | None = None,
+) -> list[Stroboscope]:
+    """A continued sweep on the period map: the stroboscope of every rung.
+
+    The tangential state starts at rest at ``values[0]`` and is carried from rung to
+    rung, as ``sweep --continue`` carries a run's state (on the periodic normal
+    motion); at each rung `LADDER_PERIODS` periods settle it and as many more are
+    the samples. A rung where the period map fails ends the ladder.
+    """
+    values = [float(v) for v in values]
+    x = initial_state(model.replace(**{param: values[0]}))[:2]
+    direction = "up" if values[-1] >= values[0] else "down"
+    source = f"continued {direction} from {param} = {values[0]:g}"
+    out = []
+    for v in values:
+        pmap = TangentialMap(model.replace(**{param: v}), 1, backend)
+        try:
+            strobe = map_stroboscope(pmap, x, LADDER_PERIODS, LADDER_PERIODS, source, limit)
+        except NoPeriodicResponse:
+            break
+        x = strobe.samples[-1]
+        out.append(strobe)
+    return out
+
+
+def ladder_stroboscope(
+    model: Model,
+    direction: Literal["up", "down"],
+    *,
+    span: float = LADDER_SPAN,
+    limit: int = LOCK_LIMIT,
+    backend: Backend | None = None,
+) -> Stroboscope:
+    """The last rung of a `ladder` in ``Vb`` that ends at ``model``, from ``span`` below or above.
+
+    Raises
+    ------
+    ValueError
+        For a direction other than "up" or "down".
+    NoPeriodicResponse
+        Where the ladder does not reach ``model`` (the period map fails on the way).
+    """
+    if direction not in ("up", "down"):
+        raise ValueError(f"direction must be 'up' or 'down'; got {direction!r}")
+    vb = float(model["Vb"])
+    first = max(vb - span, 0.0) if direction == "up" else vb + span
+    rungs = np.linspace(first, vb, max(int(round(abs(vb - first) / LADDER_STEP)), 1) + 1)
+    strobes = ladder(model, "Vb", rungs, limit=limit, backend=backend)
+    if len(strobes) < rungs.size:
+        raise NoPeriodicResponse(f"the ladder from Vb = {first:g} stops on the way")
+    return strobes[-1]
+
+
+def shoot(
+    model: Model, periods: int, guess: ArrayLike, backend: Backend | None = None
+) -> tuple[TangentialMap, FixedPoint]:
+    """The ``periods``-fold map of ``model`` and its fixed point from ``guess`` (Newton).
+
+    Raises
+    ------
+    NoPeriodicResponse
+        Where Newton's method fails.
+    """
+    pmap = TangentialMap(model, periods, backend)
+    return pmap, fixed_point(pmap, guess)
+
+
+@dataclass
+class Response:
+    """One periodic response at a parameter point.
+
+    Attributes
+    ----------
+    periods : int
+        ``k``: the response repeats after ``k`` excitation periods (1: the periodic
+        response of `beltmdsm.analysis.floquet`).
+    floquet : Floquet
+        Multipliers of the ``k``-fold map and what they say.
+    velocity_range : tuple of float
+        The smallest and largest ``X1'`` over the orbit [m/s].
+    sources : list of str
+        The attractors and shootings that found it.
+    run_distance : float or None
+        For a response found from an attractor: the largest distance between its
+        last ``k`` stroboscopic samples and the orbit's phase-0 states (a check of the
+        shooting against the simulation), relative to their scale.
+    phases : list of ndarray
+        The tangential state at phase 0 of each of the ``k`` periods.
+    """
+
+    periods: int
+    floquet: Floquet
+    velocity_range: tuple[float, float]
+    sources: list[str]
+    run_distance: float | None
+    phases: list[NDArray[np.float64]] = field(repr=False)
+
+    @property
+    def amplitude(self) -> float:
+        """Half the peak-to-peak of ``X1'`` [m/s]."""
+        return 0.5 * (self.velocity_range[1] - self.velocity_range[0])
+
+    def same_orbit(self, periods: int, x: ArrayLike) -> bool:
+        """Whether the orbit of ``periods`` periods through ``x`` is this one."""
+        return periods == self.periods and same_phases(self.phases, x)
+
+    def as_dict(self) -> dict:
+        """The keys of ``floquet --json``, and ``amplitude``, ``velocity_range``,
+        ``sources``, ``run_distance``."""
+        return {
+            **self.floquet.as_dict(),
+            "periods": self.periods,
+            "amplitude": self.amplitude,
+            "velocity_range": list(self.velocity_range),
+            "sources": list(self.sources),
+            "run_distance": self.run_distance,
+        }
+
+
+@dataclass(frozen=True)
+class SeedFailure:
+    """A seed whose shooting failed: where it came from, and why."""
+
+    source: str
+    reason: str
+
+    def as_dict(self) -> dict:
+        """For JSON: ``source``, ``reason``."""
+        return {"source": self.source, "reason": self.reason}
+
+
+@dataclass
+class ResponseSet:
+    """The periodic responses found at one parameter point (`responses`).
+
+    Attributes
+    ----------
+    model : Model
+    limit : int
+        The largest ``k`` looked for.
+    responses : list of Response
+        By ``k``, then by amplitude.
+    unlocked : list of NotLocked
+        The attractors that do not lock within the limit.
+    failed : list of SeedFailure
+    """
+
+    model: Model
+    limit: int
+    responses: list[Response]
+    unlocked: list[NotLocked]
+    failed: list[SeedFailure]
+
+    def as_dict(self) -> dict:
+        """The JSON of ``responses --json``: ``params``, ``contact``, ``tension``,
+        ``limit``, ``responses``, ``unlocked``, ``failed``."""
+        return {
+            **self.model.as_dict(),
+            "limit": self.limit,
+            "responses": [r.as_dict() for r in self.responses],
+            "unlocked": [u.as_dict() for u in self.unlocked],
+            "failed": [f.as_dict() for f in self.failed],
+        }
+
+
+def _run_distance(strobe, phases):
+    """How far the last samples of a run are from an orbit's phase-0 states (best alignment)."""
+    k = len(phases)
+    last = strobe.samples[-k:]
+    scale = 1.0 + float(np.max(np.abs(last)))
+    return (
+        min(
+            max(float(np.max(np.abs(last[i] - phases[(i + shift) % k]))) for i in range(k))
+            for shift in range(k)
+        )
+        / scale
+    )
+
+
+def responses(
+    model: Model | Mapping[str, Any] | None = None,
+    *,
+    limit: int = LOCK_LIMIT,
+    ladder: float = LADDER_SPAN,
+    t_end: float = RUN_T_END,
+    backend: Backend | None = None,
+    **kw: Any,
+) -> ResponseSet:
+    """Every periodic response found at one point: the ``T``-periodic one and the locked ones.
+
+    The periodic response of period ``T`` by `beltmdsm.analysis.floquet.floquet`; then
+    the attractors of the run from rest, of the run from the perturbed periodic
+    response (where there is one), and of ladders in ``Vb`` continued up and down over
+    ``ladder`` m/s (0: none) on the period map. Each attractor that locks at ``k <=
+    limit`` periods is polished by Newton's method on the ``k``-fold map; the others
+    are listed with the evidence (`beltmdsm.analysis.locked.NotLocked`).
+
+    Parameters
+    ----------
+    model : Model or dict, optional
+        The model (default: the base set); ``**kw``: parameters and options.
+    limit : int
+        The largest ``k`` looked for (>= 1).
+    ladder : float
+        Span of the continued ladders [m/s], >= 0.
+    t_end : float
+        Duration of the runs [s].
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    ResponseSet
+
+    Raises
+    ------
+    ValueError
+        For bad parameters, ``limit < 1``, ``ladder < 0`` or ``t_end <= 0``.
+    """
+    if int(limit) < 1 or not ladder >= 0 or not t_end > 0:
+        raise ValueError(
+            f"limit must be >= 1, ladder >= 0 and t_end > 0; got {limit}, {ladder}, {t_end}"
+        )
+    limit = int(limit)
+    model = as_model(model, **kw)
+    excitation_period(model)
+    found, unlocked, failed = [], [], []
+    try:
+        f = floquet(model, backend=backend)
+        image = TangentialMap(model, 1, backend)(f.response.state0[:2])
+        found.append(
+            Response(
+                1,
+                f,
+                image.velocity_range(),
+                ["shooting from the sliding orbit"],
+                None,
+                [f.response.state0[:2]],
+            )
+        )
+    except NoPeriodicResponse as err:
+        failed.append(SeedFailure("shooting from the sliding orbit", str(err)))
+    strobes = []
+    for start in ("rest", "periodic"):
+        if start == "periodic" and not found:
+            continue
+        strobes.append(
+            run_stroboscope(model, start=start, t_end=t_end, limit=limit, backend=backend)
+        )
+    if ladder > 0:
+        for direction in ("up", "down"):
+            try:
+                strobes.append(
+                    ladder_stroboscope(model, direction, span=ladder, limit=limit, backend=backend)
+                )
+            except NoPeriodicResponse as err:
+                failed.append(SeedFailure(f"ladder {direction}", str(err)))
+    for strobe in strobes:
+        k = strobe.candidate
+        if k is None:
+            unlocked.append(NotLocked.of(strobe))
+            continue
+        known = next((r for r in found if r.same_orbit(k, strobe.samples[-1])), None)
+        if known is None:
+            try:
+                pmap, point = shoot(model, k, strobe.samples[-1], backend)
+            except NoPeriodicResponse as err:
+                failed.append(SeedFailure(strobe.source, str(err)))
+                unlocked.append(NotLocked.of(strobe))
+                continue
+            k = minimal_periods(point.image, k)
+            if k != pmap.periods:
+                pmap, point = shoot(model, k, point.state, backend)
+            known = next((r for r in found if r.same_orbit(k, point.state)), None)
+            if known is None:
+                known = Response(
+                    k,
+                    Floquet.of(response_from(pmap, point)),
+                    point.image.velocity_range(),
+                    [],
+                    None,
+                    point.image.phases,
+                )
+                found.append(known)
+        known.sources.append(strobe.source)
+        distance = _run_distance(strobe, known.phases)
+        if known.run_distance is None or distance < known.run_distance:
+            known.run_distance = distance
+    found.sort(key=lambda r: (r.periods, r.amplitude))
+    return ResponseSet(model, limit, found, unlocked, failed)
