@@ -1,15 +1,23 @@
 """The model: a complete, checked parameter set and its options (Eqs. 1-4, 9).
 
-`Model` is the value every analysis of the package takes: the parameters of Eq. (4)
-(the paper's base set, ``generated.parameters.BASE``, updated by what the caller
+`Model` is the value every analysis of the package takes: the model options (`OPTIONS`:
+the friction, contact and tension laws of the registry, derive/laws.py, as
+``generated.parameters`` lists them), held as a mapping of named options so that a new
+option or law is added, not wired, and the parameters of Eq. (4) with the chosen
+laws (the paper's base set, ``generated.parameters.BASE``, updated by what the caller
 gives, with the per-direction excitation filled in from ``alpha`` and ``Omega`` as
-Eq. (4) has it) and the model options (`OPTIONS`: the contact law, the tension law),
-held as a mapping of named options so that new options are added, not wired. It is
-checked once, when it is built, against the one domain table
-(``generated.parameters.DOMAINS``); it is frozen and hashable, and `Model.digest`
-keys the sweep cache. The public functions of the package take a `Model` or the
-keywords it is built from (`as_model`), convert once at the boundary and pass the
-`Model` down; nothing inside checks a parameter again.
+Eq. (4) has it; a law's own parameters, ``mu_k`` of Stribeck's friction, belong to
+the model only where that law is chosen). It is checked once, when it is built,
+against the one domain table (``generated.parameters.DOMAINS``); it is frozen and
+hashable, and `Model.digest` keys the sweep cache. The public functions of the
+package take a `Model` or the keywords it is built from (`as_model`), convert once at
+the boundary and pass the `Model` down; nothing inside checks a parameter again.
+`Model.arguments` gives a generated function the keywords it takes: every parameter
+and the options it declares.
+
+`require` is how an analysis checks a structural fact of the chosen laws that SymPy
+decided (``generated.capabilities``): it raises `Unsupported`, naming the law and the
+missing property, where the fact does not hold.
 
 `initial_state` is the default start of a run (the unforced equilibrium of Eq. 9),
 `excitation_period` the common period of the excitation.
@@ -17,11 +25,13 @@ keywords it is built from (`as_model`), convert once at the boundary and pass th
 
 from __future__ import annotations
 
+import functools
 import hashlib
+import inspect
 import json
 import math
 import numbers
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from fractions import Fraction
 from types import MappingProxyType
 from typing import Any, Literal
@@ -29,50 +39,61 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from generated import hybrid, unforced
-from generated.parameters import BASE, DEFAULT_FROM, DEFAULTS, DOMAINS, KNOWN
+from generated import parameters as _table
+from generated.parameters import (
+    BASE,
+    DEFAULT_FROM,
+    DEFAULTS,
+    DOMAIN_RULES,
+    DOMAINS,
+    KNOWN,
+    PARAMETERS,
+    within,
+)
 
 __all__ = [
     "Model",
     "as_model",
     "OPTIONS",
     "OPTION_DEFAULTS",
+    "OPTION_DOCS",
+    "FRICTIONS",
     "CONTACTS",
     "TENSIONS",
+    "Friction",
     "Contact",
     "Tension",
     "Backend",
     "MODEL_PARAMETERS",
+    "LAW_OF",
+    "Unsupported",
+    "require",
     "check_domain",
     "is_real",
     "initial_state",
     "excitation_period",
 ]
 
-#: The contact laws of ``generated/`` (Eq. 1; Fig. 16).
-CONTACTS = ("hertz_damp", "kelvin_voigt")
-#: The tension laws of ``generated.hybrid.GUARDS`` (docs/modelling.md#tension).
-TENSIONS = tuple(hybrid.GUARDS)
-#: The model options and their choices; the first choice is the default.
-OPTIONS: Mapping[str, tuple[str, ...]] = MappingProxyType(
-    {"contact": CONTACTS, "tension": TENSIONS}
-)
-OPTION_DEFAULTS: Mapping[str, str] = MappingProxyType({k: v[0] for k, v in OPTIONS.items()})
-#: Annotation types of the options (tests/beltmdsm/test_typing.py keeps them equal to
-#: `OPTIONS`) and of the backends of the bound kernels (None: numba if installed).
-Contact = Literal["hertz_damp", "kelvin_voigt"]
-Tension = Literal["allowed", "clipped"]
+#: The model options and their choices, the default first (the registry of laws,
+#: derive/laws.py, through ``generated.parameters``).
+OPTIONS: Mapping[str, tuple[str, ...]] = MappingProxyType(dict(_table.OPTIONS))
+OPTION_DEFAULTS: Mapping[str, str] = MappingProxyType(dict(_table.OPTION_DEFAULTS))
+#: Option -> choice -> one line, for the command line's help and the README.
+OPTION_DOCS: Mapping[str, Mapping[str, str]] = MappingProxyType(dict(_table.OPTION_DOCS))
+FRICTIONS, CONTACTS, TENSIONS = _table.FRICTION_LAWS, _table.CONTACT_LAWS, _table.TENSION_LAWS
+#: Annotation types of the options, built from the registry's choices, and of the
+#: backends of the bound kernels (None: numba if installed).
+Friction = Literal[FRICTIONS]
+Contact = Literal[CONTACTS]
+Tension = Literal[TENSIONS]
 Backend = Literal["python", "numba"]
-#: The parameters of a model: every parameter of the table but ``Vhat``, which is an
-#: input of the MDSM's effective friction (Eq. 23), not of Eq. (4).
+#: The parameters a model may have: every parameter of the table but ``Vhat``, which
+#: is an input of the MDSM's effective friction (Eq. 23), not of Eq. (4).
 MODEL_PARAMETERS = tuple(name for name in DOMAINS if name != "Vhat")
-
-#: Each domain of the parameter table as a test and the text of a failure.
-_DOMAIN_TESTS = {
-    "positive": (lambda x: x > 0, "> 0"),
-    "nonnegative": (lambda x: x >= 0, ">= 0"),
-    "real": (lambda x: True, "a number"),
-}
+#: A law's own parameter -> the ``(option, choice)`` of the law that owns it.
+LAW_OF: Mapping[str, tuple[str, str]] = MappingProxyType(
+    {p["name"]: tuple(p["law"]) for p in PARAMETERS if p["law"] is not None}
+)
 
 
 def is_real(value: object) -> bool:
@@ -82,8 +103,8 @@ def is_real(value: object) -> bool:
 
 def check_domain(name: str, value: float) -> str | None:
     """What is wrong with ``value`` for parameter ``name`` ("must be > 0"), or None."""
-    test, text = _DOMAIN_TESTS[DOMAINS[name]]
-    return None if test(value) else f"must be {text}"
+    domain = DOMAINS[name]
+    return None if within(domain, value) else f"must be {DOMAIN_RULES[domain][2]}"
 
 
 def _number(name: str, value: object) -> float:
@@ -104,14 +125,18 @@ class Model:
     **kw
         Model parameters by name (``generated.parameters``; missing ones take the
         base set, ``None`` leaves one at its default) and options (`OPTIONS`:
-        ``contact="kelvin_voigt"``, ``tension="clipped"``).
+        ``friction="stribeck"``, ``contact="kelvin_voigt"``, ``tension="clipped"``).
+        A law's own parameter (`LAW_OF`) is part of the model where its law is
+        chosen; elsewhere it may only be given at its base value (``**BASE`` serves
+        every law), and is then left out.
 
     Raises
     ------
     ValueError
         Naming the parameter or option: an unknown name, a value that is not a real
-        number (a bool, a string, an array), NaN, infinite or outside its domain, or
-        an unknown choice of an option.
+        number (a bool, a string, an array), NaN, infinite or outside its domain, an
+        unknown choice of an option, or a value for a parameter of a law not chosen
+        (it would be ignored).
 
     Examples
     --------
@@ -146,7 +171,16 @@ class Model:
                 )
             elif value is not None:
                 given[name] = _number(name, value)
-        params = {**BASE, **given}
+        chosen = set(options.items())
+        for name in [n for n in given if n in LAW_OF and LAW_OF[n] not in chosen]:
+            option, choice = LAW_OF[name]
+            if given.pop(name) != BASE.get(name):
+                raise ValueError(
+                    f"parameter {name!r} belongs to the {option} law {choice!r}, not "
+                    f"chosen ({option}={options[option]!r}); choose {option}={choice!r}"
+                )
+        params = {k: v for k, v in BASE.items() if k not in LAW_OF or LAW_OF[k] in chosen}
+        params.update(given)
         params.pop("Vhat", None)
         for name, value in DEFAULTS.items():
             params.setdefault(name, value)
@@ -156,7 +190,7 @@ class Model:
             problem = check_domain(name, value)
             if problem:
                 raise ValueError(f"parameter {name!r} {problem}; got {value!r}")
-        ordered = {name: params[name] for name in MODEL_PARAMETERS}
+        ordered = {name: params[name] for name in MODEL_PARAMETERS if name in params}
         setattr_ = object.__setattr__
         setattr_(self, "_given", MappingProxyType(given))
         setattr_(self, "_params", MappingProxyType(ordered))
@@ -175,8 +209,15 @@ class Model:
 
         The parameters given when this model was built stay given; the others
         follow their defaults (``alpha_t`` follows ``alpha`` unless it was given).
+        A law's own parameters go with the law where another is chosen.
         """
-        return Model(**{**self._given, **self._options, **kw})
+        options = {**self._options, **{k: v for k, v in kw.items() if k in OPTIONS}}
+        given = {
+            k: v
+            for k, v in self._given.items()
+            if k not in LAW_OF or options.get(LAW_OF[k][0]) == LAW_OF[k][1]
+        }
+        return Model(**{**given, **options, **kw})
 
     def __setattr__(self, name: str, value: object) -> None:
         raise AttributeError("Model is immutable; use replace()")
@@ -194,6 +235,10 @@ class Model:
     def options(self) -> Mapping[str, str]:
         """The model options (`OPTIONS`)."""
         return self._options
+
+    @property
+    def friction(self) -> Friction:
+        return self._options["friction"]
 
     @property
     def contact(self) -> Contact:
@@ -224,6 +269,12 @@ class Model:
         args = [f"{k}={v!r}" for k, v in {**changed, **options}.items()]
         return f"Model({', '.join(args)})"
 
+    def arguments(self, function: Callable[..., Any]) -> dict[str, Any]:
+        """The keywords a generated function takes of this model: the options it declares
+        (``friction=``, ``contact=``, ...) and every parameter (the generated functions
+        accept every known parameter and check them)."""
+        return {**{k: self._options[k] for k in _declared_options(function)}, **self._params}
+
     def as_dict(self) -> dict[str, Any]:
         """``{"params": {...}, <option>: <choice>, ...}``, for JSON."""
         return {"params": dict(self._params), **self._options}
@@ -232,6 +283,30 @@ class Model:
         """SHA-256 of the parameters and options: the same on every machine and run."""
         text = json.dumps({"params": self._params.copy(), **self._options}, sort_keys=True)
         return hashlib.sha256(text.encode()).hexdigest()
+
+
+@functools.cache
+def _declared_options(function: Callable[..., Any]) -> tuple[str, ...]:
+    """The model options among a function's keyword-only parameters."""
+    kinds = inspect.signature(function).parameters.items()
+    return tuple(name for name, p in kinds if p.kind is p.KEYWORD_ONLY and name in OPTIONS)
+
+
+class Unsupported(ValueError):
+    """An analysis that the chosen laws do not allow: the law and the missing property."""
+
+
+def require(model: Model, fact: str, analysis: str) -> None:
+    """Raise `Unsupported` unless ``fact`` (``generated.capabilities.FACTS``) holds.
+
+    The message names the analysis, the law and the property, in one line:
+    ``"superposition: friction='stribeck': the slip-mode friction depends on X1'"``.
+    """
+    from generated.capabilities import CAPABILITIES
+
+    holds, reason = CAPABILITIES[(model.friction, model.contact, model.tension)][fact]
+    if not holds:
+        raise Unsupported(f"{analysis}: {reason}")
 
 
 def _rebuild(given: dict[str, float], options: dict[str, str]) -> Model:
@@ -256,7 +331,9 @@ def initial_state(model: Model) -> NDArray[np.float64]:
     ``g / omega2^2`` (Kelvin-Voigt), zero velocities; the excitation is switched on at
     t = 0. For ``Vb > 0`` the mass starts sliding backwards relative to the belt.
     """
-    state = unforced.equilibrium(contact=model.contact, **model.params)
+    from generated import unforced
+
+    state = unforced.equilibrium(**model.arguments(unforced.equilibrium))
     return np.array([float(v) for v in state])
 
 

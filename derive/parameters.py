@@ -24,9 +24,19 @@ This module is plain Python (no SymPy): the code generator copies the full table
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
-__all__ = ["Parameter", "MODEL", "base_values"]
+__all__ = ["Parameter", "MODEL", "DOMAINS", "base_values"]
+
+#: The domains of the parameter table, each as ``(lower bound, whether the bound itself
+#: is excluded, the text of a failure)``: the one rule that the generated argument
+#: checks and the runtime's `Model` both apply (``generated.parameters.within``).
+DOMAINS: dict[str, tuple[float, bool, str]] = {
+    "positive": (0.0, True, "> 0"),
+    "nonnegative": (0.0, False, ">= 0"),
+    "real": (-math.inf, True, "real"),
+}
 
 
 @dataclass(frozen=True)

@@ -11,6 +11,7 @@
 * ``hybrid``: Eq. (4) as a hybrid system (derive/hybrid.py).
 * ``oscillator``: The tangential oscillator of Eq. (4) in closed form.
 * ``capabilities``: What each combination of laws allows: facts SymPy decided (derive/capabilities.py).
+* ``tableau``: The Dormand-Prince 8(5,3) tableau (Hairer, Norsett and Wanner) of ``scipy.integrate``.
 
 Importing them never imports SymPy.
 """

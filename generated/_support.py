@@ -12,16 +12,11 @@ import math
 import mpmath
 import numpy
 
-from .parameters import DEFAULT_FROM, DEFAULTS, DOMAINS, KNOWN
+from .parameters import DEFAULT_FROM, DEFAULTS, DOMAIN_RULES, DOMAINS, KNOWN, within
 
-# Each domain is a test of the smallest value; together with ``largest < inf`` it
-# checks an array in two reductions and no temporary array, and NaN fails both
+# A domain (`within`) is a test of the smallest value; together with ``largest < inf``
+# it checks an array in two reductions and no temporary array, and NaN fails both
 # (comparisons with NaN are False).
-_DOMAIN_TEST = {
-    "positive": (lambda lo: lo > 0, "> 0"),
-    "nonnegative": (lambda lo: lo >= 0, ">= 0"),
-    "real": (lambda lo: lo > -math.inf, "real"),
-}
 
 
 def _reject_unknown(function, extra):
@@ -90,13 +85,6 @@ def arguments(function, names, params):
     return values, extra
 
 
-_SCALAR_TEST = {
-    "positive": lambda x: x > 0,
-    "nonnegative": lambda x: x >= 0,
-    "real": lambda x: True,
-}
-
-
 def _scalar_arguments(function, names, params):
     """`arguments` for scalar parameters (a kernel's): floats, checked without arrays.
 
@@ -108,7 +96,7 @@ def _scalar_arguments(function, names, params):
     values = []
     for n in names:
         v = _lookup(function, n, params)
-        if type(v) is float and math.isfinite(v) and _SCALAR_TEST[DOMAINS[n]](v):
+        if type(v) is float and math.isfinite(v) and within(DOMAINS[n], v):
             values.append(v)
             continue
         x = param(function, n, v)
@@ -119,7 +107,7 @@ def _scalar_arguments(function, names, params):
         if (
             k not in names
             and v is not None
-            and not (type(v) is float and math.isfinite(v) and _SCALAR_TEST[DOMAINS[k]](v))
+            and not (type(v) is float and math.isfinite(v) and within(DOMAINS[k], v))
         ):
             param(function, k, v)
     return tuple(values)
@@ -155,8 +143,8 @@ def param(function, name, value, domain=None, why=None):
     """
     domain = domain or DOMAINS[name]
     x = numpy.asarray(value, dtype=float)
-    test, text = _DOMAIN_TEST[domain]
-    if x.size and not (test(x.min()) and x.max() < math.inf):
+    text = DOMAIN_RULES[domain][2]
+    if x.size and not (within(domain, x.min()) and x.max() < math.inf):
         # Tell the reasons apart only on failure, so valid input costs two reductions.
         if numpy.isnan(x).any():
             raise _fail(function, name, None, "a number, not NaN")
@@ -174,8 +162,8 @@ def mp_param(function, name, value, domain=None, why=None):
         raise _fail(function, name, None, "a number, not NaN")
     if mpmath.isinf(x):
         raise _fail(function, name, None, "finite, not inf")
-    test, text = _DOMAIN_TEST[domain]
-    if not test(x):
+    text = DOMAIN_RULES[domain][2]
+    if not within(domain, x):
         raise _fail(function, name, why, text)
     return x
 

@@ -9,8 +9,6 @@ analysis checks the facts it needs and either takes a general path or refuses wi
 the reason, never computing with the physics of another law.
 """
 
-from . import _support
-
 __all__ = ['FACTS', 'FACT_DOCS', 'CAPABILITIES']
 
 #: The facts, in the order of every entry.

@@ -15,7 +15,12 @@ ready for ``typing.Literal[...]``), ``OPTION_DEFAULTS``, ``OPTION_DOCS`` (option
 choice -> one line), ``LAW_PARAMETERS`` ((option, choice) -> the law's own
 parameters) and ``LAW_UNITS`` ((option, choice) -> the units the law gives to
 parameters; ``PARAMETERS`` has those of the default contact law).
+
+``DOMAIN_RULES``: each domain as (lower bound, bound excluded, the text of a
+failure); ``within(domain, x)`` applies it (NaN is never within).
 """
+
+import math
 
 PARAMETERS = (
     dict(name='beta1', unit='1', base=0.1, domain='nonnegative',
@@ -110,3 +115,11 @@ LAW_UNITS = {('contact', 'hertz_damp'): {'beta2': '1/m^(5/4)', 'omega2': 'rad/(m
  ('contact', 'kelvin_voigt'): {'beta2': '1', 'omega2': 'rad/s'},
  ('contact', 'hunt_crossley'): {'beta2': '1/m^((n_h + 1)/2)',
                                 'omega2': 'rad m^((1 - n_h)/2)/s'}}
+
+DOMAIN_RULES = {'positive': (0.0, True, '> 0'), 'nonnegative': (0.0, False, '>= 0'), 'real': (-math.inf, True, 'real')}
+
+
+def within(domain, x):
+    """Whether ``x`` (a number, or the least of an array) lies in ``domain``."""
+    bound, excluded, _ = DOMAIN_RULES[domain]
+    return x > bound if excluded else x >= bound

@@ -160,9 +160,9 @@ def _normal_flow(model, x0, T):
     # periodic response does not pay it
     from scipy.integrate import solve_ivp
 
-    p, kw = model.params, dict(contact=model.contact, tension=model.tension, backend="python")
-    rhs = dynamics.bind_normal_rhs(**kw, **p)
-    jac = dynamics.bind_normal_jacobian(**kw, **p)
+    bind_rhs, bind_jac = dynamics.bind_normal_rhs, dynamics.bind_normal_jacobian
+    rhs = bind_rhs(backend="python", **model.arguments(bind_rhs))
+    jac = bind_jac(backend="python", **model.arguments(bind_jac))
     sw = Switching(model, "python")
 
     def fun(t, y):
@@ -216,9 +216,8 @@ def _normal_flow(model, x0, T):
                 before=mode.name.lower(),
                 after=new.name.lower(),
                 surface=surface,
-                contact=model.contact,
                 backend="python",
-                **p,
+                **model.arguments(hybrid.bind_saltation),
             )(t, *state)
         ).reshape(4, 4)[2:, 2:]
         y[2:] = (S @ y[2:].reshape(2, 2)).ravel()
@@ -280,11 +279,12 @@ def _normal_orbit_key(model):
     """What the normal orbit depends on: the parameters of the generated normal equation
     and its Jacobian (as the generated code declares them: the names depend on the laws
     only, found once per pair), the period and the laws."""
-    laws = (model.contact, model.tension)
+    laws = tuple(model.options.values())
     names = _NORMAL_NAMES.get(laws)
     if names is None:
-        kw = dict(contact=model.contact, tension=model.tension, backend="python", **model.params)
-        used = dynamics.bind_normal_rhs(**kw).params | dynamics.bind_normal_jacobian(**kw).params
+        bind_rhs, bind_jac = dynamics.bind_normal_rhs, dynamics.bind_normal_jacobian
+        used = bind_rhs(backend="python", **model.arguments(bind_rhs)).params
+        used |= bind_jac(backend="python", **model.arguments(bind_jac)).params
         names = _NORMAL_NAMES[laws] = tuple(sorted(used))
     p = model.params
     return (*laws, tuple((k, float(p[k])) for k in names), excitation_period(model))
@@ -340,9 +340,8 @@ class OnePeriodMap:
                 before=before.name.lower(),
                 after=after.name.lower(),
                 surface=surface,
-                contact=self.model.contact,
                 backend=self.backend,
-                **self.p,
+                **self.model.arguments(hybrid.bind_saltation),
             )
         return self._saltation[key]
 

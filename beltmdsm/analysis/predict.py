@@ -388,6 +388,7 @@ class Prediction:
     reasons: dict[str, str] = field(default_factory=dict)
     tension: str = "allowed"
     contact: str = "hertz_damp"
+    friction: str = "coulomb"
 
     #: The analyses, in the order they are printed.
     ANALYSES = ("paper_tangential_vhat", "paper_coupled_vhat", "consistent_mdsm")
@@ -465,5 +466,11 @@ def predict(
         elif tension == "clipped":
             reasons[key] = CLIPPED_PAPER
     return Prediction(
-        paper["tangential"], paper["coupled"], consistent, reasons, tension, model.contact
+        paper["tangential"],
+        paper["coupled"],
+        consistent,
+        reasons,
+        tension,
+        model.contact,
+        model.friction,
     )

@@ -31,7 +31,7 @@ from typing import Any
 
 from generated.parameters import PARAMETERS
 
-from ..model import OPTION_DEFAULTS, OPTIONS, Model, check_domain
+from ..model import OPTION_DEFAULTS, OPTION_DOCS, OPTIONS, Model, check_domain
 from ..settings import CONTACT_LOSS, DEFAULT_T_END, METHODS, SOLVERS, SolverSettings
 
 __all__ = [
@@ -59,11 +59,11 @@ __all__ = [
 
 _MODEL_PARAMS = [p for p in PARAMETERS if p["name"] != "Vhat"]
 
-#: One line per model option for ``--help``.
+#: The help of each model option: its choices, each with the registry's one line.
 OPTION_HELP = {
-    "contact": "contact law: Hertz-Damp, Eq. (1), or the linear contact of Fig. 16",
-    "tension": "tension law (docs/modelling.md#tension): Eq. (1) as printed, which can pull, "
-    "or a contact that cannot pull (max(F, 0): the surfaces separate)",
+    option: f"{option} law (derive/laws.py): "
+    + "; ".join(f"{choice}: {doc}" for choice, doc in docs.items())
+    for option, docs in OPTION_DOCS.items()
 }
 
 
@@ -224,7 +224,7 @@ def model_parent(
             dest=name,
             choices=choices,
             default=OPTION_DEFAULTS[name],
-            help=f"{OPTION_HELP[name]} (default: {OPTION_DEFAULTS[name]})",
+            help=f"{OPTION_HELP[name]} (default: {OPTION_DEFAULTS[name]})".replace("%", "%%"),
         )
     return parent
 

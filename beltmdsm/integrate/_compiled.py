@@ -34,8 +34,8 @@ import types
 from pathlib import Path
 
 from generated import hybrid, oscillator
-from generated.parameters import OPTION_DEFAULTS
 
+from ..model import Backend, Model
 from . import _dop853, _roots, _superpose
 
 __all__ = ["advance", "scan", "cache_folder"]
@@ -50,7 +50,7 @@ _SOURCES = (
     "beltmdsm/integrate/_roots.py",
     "beltmdsm/integrate/_compiled.py",
 )
-_FIELDS = {"vector_field": hybrid._VECTOR_FIELD, "response_field": hybrid._RESPONSE_FIELD}
+_FIELDS = {"vector_field": hybrid.bind_vector_field, "response_field": hybrid.bind_response_field}
 #: The integrators: their module, their functions (the entry point last), their kernels,
 #: and the functions of other modules they call (compiled beside them).
 _ADVANCE = (
@@ -77,42 +77,38 @@ _SCAN = (
 )
 
 
-#: The friction law of the runtime's kernels (the generated tables are keyed by the
-#: friction law first; the runtime simulates the default law).
-_FRICTION = OPTION_DEFAULTS["friction"]
+def _kernel(bind, model):
+    """The plain-Python scalar kernel that the generated ``bind`` chooses for the model's
+    laws (the variant of its options)."""
+    return bind(backend="python", **model.arguments(bind)).kernel
 
 
-def _scalar(table, *key):
-    return table[key].scalar
-
-
-def advance(field, contact, backend=None):
-    """`beltmdsm.integrate._dop853.advance` on the ``field`` ("vector_field" or "response_field")
-    of ``contact``: ``f(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol,
-    max_step)``.
+def advance(field: str, model: Model, backend: Backend | None = None):
+    """`beltmdsm.integrate._dop853.advance` on the ``field`` ("vector_field" or
+    "response_field") of the model's laws: ``f(fa, sa, ra, mode, watch, dirs, t0, y0,
+    t_end, h0, rtol, atol, max_step)``.
 
     ``backend``: "python", "numba" or None (numba if installed).
     """
     kernels = (
-        _scalar(_FIELDS[field], _FRICTION, contact)
-        if field == "vector_field"
-        else _scalar(_FIELDS[field], contact),
-        _scalar(hybrid._SURFACES, _FRICTION, contact),
-        _scalar(hybrid._SURFACE_RATES, _FRICTION, contact),
+        _kernel(_FIELDS[field], model),
+        _kernel(hybrid.bind_surfaces, model),
+        _kernel(hybrid.bind_surface_rates, model),
     )
-    return _bound(_ADVANCE, kernels, f"advance__{field}__{contact}", backend)
+    return _bound(_ADVANCE, kernels, f"advance_{kernels[0].__name__}", backend)
 
 
-def scan(contact, backend=None):
-    """`beltmdsm.integrate._superpose.scan` for ``contact``: ``f(mode, stick, ms, watch, dirs, t0,
-    tc, d0, d1, X1s, Vb, grid, on_grid, ts, hs, ys, Fs, stm_a, exc_a, surf_a, rate_a)``."""
+def scan(model: Model, backend: Backend | None = None):
+    """`beltmdsm.integrate._superpose.scan` for the model's laws: ``f(mode, stick, ms, watch,
+    dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, ts, hs, ys, Fs, stm_a, exc_a, surf_a,
+    rate_a)``."""
     kernels = (
-        _scalar(oscillator._STATE_TRANSITION),
-        _scalar(oscillator._EXCITATION_RESPONSE),
-        _scalar(hybrid._SURFACES, _FRICTION, contact),
-        _scalar(hybrid._SURFACE_RATES, _FRICTION, contact),
+        _kernel(oscillator.bind_state_transition, model),
+        _kernel(oscillator.bind_excitation_response, model),
+        _kernel(hybrid.bind_surfaces, model),
+        _kernel(hybrid.bind_surface_rates, model),
     )
-    return _bound(_SCAN, kernels, f"scan__{contact}", backend)
+    return _bound(_SCAN, kernels, f"scan_{kernels[2].__name__}", backend)
 
 
 def _bound(integrator, kernels, name, backend):

@@ -2,7 +2,7 @@
 
 The method and its step-size control are SciPy's ``DOP853`` (Hairer, Norsett and
 Wanner, *Solving ODEs I*, Sect. II.10; the coefficients are SciPy's own,
-``scipy.integrate._ivp.dop853_coefficients``), with the 7th-order dense output
+``generated.tableau``, copied from ``scipy.integrate``), with the 7th-order dense output
 computed for every step, because a trajectory is sampled, integrated
 (energy balance) and searched for switches between the steps.
 
@@ -29,7 +29,8 @@ import math
 import types
 
 import numpy as np
-from scipy.integrate._ivp import dop853_coefficients as _coef
+
+from generated import tableau as _coef
 
 from ._roots import converged, illinois, secant
 
@@ -54,7 +55,7 @@ def _table(a):
 
 
 _N_STAGES = _coef.N_STAGES
-_A = _table(_coef.A[:_N_STAGES, :_N_STAGES])
+_A = _table(np.asarray(_coef.A)[:_N_STAGES, :_N_STAGES])
 _B = _table(_coef.B)
 _C = _table(_coef.C[:_N_STAGES])
 _E3 = _table(_coef.E3)

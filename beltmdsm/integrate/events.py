@@ -82,7 +82,7 @@ def integrate_events(
         loose or too tight for the field there), naming the time and the mode.
     """
     sw = Switching(model, settings.backend)
-    advance = _compiled.advance("vector_field", model.contact, settings.backend)
+    advance = _compiled.advance("vector_field", model, settings.backend)
     y = initial_state(model) if y0 is None else np.array(y0, dtype=float)
     t, t_end = float(t0), settings.t_end
     mode = sw.initial_mode(t, y)

@@ -48,23 +48,24 @@ def normal_key(model: Model) -> tuple:
     """
     p = model.params
     names = _normal_names(model)
-    return (model.contact, model.tension, tuple((k, float(p[k])) for k in names))
+    return (*model.options.values(), tuple((k, float(p[k])) for k in names))
 
 
-#: The parameter names of `normal_key` by contact law (`_normal_names`).
-_NAMES: dict[str, tuple[str, ...]] = {}
+#: The parameter names of `normal_key` by the laws (`_normal_names`).
+_NAMES: dict[tuple, tuple[str, ...]] = {}
 
 
 def _normal_names(model):
     """The parameter names of `normal_key`: those the generated kernels declare. They
     depend on the contact law only (the variant bound), not on the values: found once
     per law, so that a continuation's trial points do not bind kernels to build a key."""
-    names = _NAMES.get(model.contact)
+    laws = tuple(model.options.items())
+    names = _NAMES.get(laws)
     if names is None:
-        p = model.params
-        used = hybrid.bind_response_field(contact=model.contact, backend="python", **p).params
-        used |= oscillator.bind_excitation_response(backend="python", **p).params
-        names = _NAMES[model.contact] = tuple(sorted(used))
+        field, exc = hybrid.bind_response_field, oscillator.bind_excitation_response
+        used = field(backend="python", **model.arguments(field)).params
+        used |= exc(backend="python", **model.arguments(exc)).params
+        names = _NAMES[laws] = tuple(sorted(used))
     return names
 
 
@@ -100,10 +101,11 @@ class NormalMotion:
         grid_step: float = GRID_STEP,
     ) -> None:
         self.model, self.t_end = model, float(t_end)
-        p = model.params
-        field = hybrid.bind_response_field(contact=model.contact, backend=backend, **p)
+        field = hybrid.bind_response_field(
+            backend=backend, **model.arguments(hybrid.bind_response_field)
+        )
         sw = Switching(model, backend)
-        advance = _compiled.advance("response_field", model.contact, backend)
+        advance = _compiled.advance("response_field", model, backend)
         guards = {}
         for mode in (Mode.SLIP_BACK, Mode.FLIGHT, Mode.SEPARATED):
             rows = [
@@ -171,7 +173,8 @@ class NormalMotion:
         n_grid = int(np.ceil(self.t_end / grid_step - 1e-9))
         grid = np.union1d(np.linspace(0.0, self.t_end, n_grid + 1), self.switch_t)
         self.grid = grid
-        zf, vf = oscillator.bind_excitation_response(backend="python", **p).array(grid)
+        exc = oscillator.bind_excitation_response
+        zf, vf = exc(backend="python", **model.arguments(exc)).array(grid)
         self.on_grid = np.vstack([self.evaluate(grid), zf, vf])
 
     def _normal_mode(self, sw, t, y, entering):

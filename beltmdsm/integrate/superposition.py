@@ -148,9 +148,9 @@ class Superposition:
         backend: Backend | None = None,
     ) -> None:
         self.model, self.normal = model, normal
-        p = model.params
-        self.stm = oscillator.bind_state_transition(backend=backend, **p)
-        self.exc = oscillator.bind_excitation_response(backend=backend, **p)
+        stm, exc = oscillator.bind_state_transition, oscillator.bind_excitation_response
+        self.stm = stm(backend=backend, **model.arguments(stm))
+        self.exc = exc(backend=backend, **model.arguments(exc))
         # the scalar kernel answers inf or NaN where the closed form does not exist, as
         # the array implementation does, at a fraction of its cost
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -161,7 +161,7 @@ class Superposition:
                 "(beta1 = 0, Omega_t = omega1)"
             )
         self.sw = sw = Switching(model, backend)
-        self.scan = _compiled.scan(model.contact, backend)
+        self.scan = _compiled.scan(model, backend)
         self.watch = {}
         for mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD, Mode.STICK):
             rows = [

@@ -93,11 +93,15 @@ class Switching:
 
     def __init__(self, model: Model, backend: Backend | None = None) -> None:
         self.model, self.tension = model, model.tension
-        kw = dict(contact=model.contact, backend=backend, **model.params)
-        self.field = hybrid.bind_vector_field(**kw)
-        self.surfaces = hybrid.bind_surfaces(**kw)
-        self.scales = hybrid.bind_surface_scales(**kw)
-        self.rates = hybrid.bind_surface_rates(**kw)
+        self.field, self.surfaces, self.scales, self.rates = (
+            bind(backend=backend, **model.arguments(bind))
+            for bind in (
+                hybrid.bind_vector_field,
+                hybrid.bind_surfaces,
+                hybrid.bind_surface_scales,
+                hybrid.bind_surface_rates,
+            )
+        )
         self.Vb = model["Vb"]
         self.guards = {}
         for name, guards in hybrid.GUARDS[model.tension].items():

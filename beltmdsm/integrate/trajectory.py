@@ -108,12 +108,12 @@ class Trajectory:
         t = np.asarray(t, dtype=float)
         y = self.state(t) if y is None else y
         mode = self.mode(t) if mode is None else mode
-        p, c, tension = self.model.params, self.model.contact, self.model.tension
-        Fn = dynamics.normal_force(y[2], y[3], contact=c, tension=tension, **p)
-        a_free = dynamics.free_acceleration(t, y[0], y[1], **p)
+        kw = self.model.arguments
+        Fn = dynamics.normal_force(y[2], y[3], **kw(dynamics.normal_force))
+        a_free = dynamics.free_acceleration(t, y[0], y[1], **kw(dynamics.free_acceleration))
         slip = (mode == Mode.SLIP_BACK) | (mode == Mode.SLIP_FORWARD)
         sliding = dynamics.friction_force(
-            y[1], y[2], y[3], np.where(slip, mode, 0), contact=c, tension=tension, **p
+            y[1], y[2], y[3], np.where(slip, mode, 0), **kw(dynamics.friction_force)
         )
         friction = np.where(slip, sliding, np.where(mode == Mode.STICK, -a_free, 0.0))
         return Fn, friction
@@ -176,23 +176,21 @@ class Trajectory:
         Delta E - W_in + W_visc + W_fric and ``residual`` =
         |imbalance| / (int |P_in| + int |P_visc| + int |P_fric|).
         """
-        p, c, tension = self.model.params, self.model.contact, self.model.tension
+        kw = self.model.arguments
         t0 = self.segments[0].t0 if t0 is None else t0
         t1 = self.t_end if t1 is None else t1
 
         def powers(t, y, mode):
             slip = (mode == Mode.SLIP_BACK) | (mode == Mode.SLIP_FORWARD)
             sgn = np.where(slip, mode, 0).astype(float)
-            P_in, P_visc, P_fric = dynamics.power_balance(
-                t, *y, sgn, contact=c, tension=tension, **p
-            )
-            a_free = dynamics.free_acceleration(t, y[0], y[1], **p)
+            P_in, P_visc, P_fric = dynamics.power_balance(t, *y, sgn, **kw(dynamics.power_balance))
+            a_free = dynamics.free_acceleration(t, y[0], y[1], **kw(dynamics.free_acceleration))
             P_fric = P_fric + np.where(mode == Mode.STICK, y[1] * a_free, 0.0)
             return np.stack([P_in, P_visc, P_fric, np.abs(P_in), np.abs(P_visc), np.abs(P_fric)])
 
         W = self.integrate(powers, [t0, t1])[:, 0]
         ends = self.state(np.array([t0, t1]))
-        E0, E1 = dynamics.energy(*ends, contact=c, tension=tension, **p)
+        E0, E1 = dynamics.energy(*ends, **kw(dynamics.energy))
         dE = float(E1 - E0)
         balance = dE - (W[0] - W[1] - W[2])
         scale = W[3] + W[4] + W[5]

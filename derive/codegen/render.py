@@ -31,6 +31,7 @@ The layers of a generated function (PyDy's generator / printer / wrapper):
 from __future__ import annotations
 
 import functools
+import math
 import pprint
 import re
 import textwrap
@@ -41,6 +42,7 @@ import sympy as sp
 
 from .. import laws
 from ..model import PARAMETERS
+from ..parameters import DOMAINS as DOMAIN_RULES
 from ..statespace import Quadratic
 from ..units import contact_units
 from .files import HEADER
@@ -696,7 +698,10 @@ def render(module: ModuleSpec, mp: bool = False) -> str:
         else ""
     )
     doc = f'"""{variant}{module.doc.strip()}\n"""'
-    support = "from .. import _support" if mp else "from . import _support"
+    # a module of data alone (the integrator's tableau) imports nothing
+    support = None
+    if module.functions:
+        support = "from .. import _support" if mp else "from . import _support"
     if any(fn.vhat for fn in module.functions):
         support += "\nfrom . import friction as _friction"
     constants = "\n\n".join(
@@ -738,6 +743,10 @@ def _parameters_module() -> str:
         for c in laws.choices(o)
     }
     units = {("contact", c): contact_units(c) for c in laws.choices("contact")}
+    rules = ", ".join(
+        f"{name!r}: ({'-math.inf' if bound == -math.inf else repr(bound)}, {strict!r}, {text!r})"
+        for name, (bound, strict, text) in DOMAIN_RULES.items()
+    )
     return (
         HEADER
         + '"""The parameter table and the model options (derive/parameters.py, derive/laws.py).\n\n'
@@ -753,7 +762,11 @@ def _parameters_module() -> str:
         "choice -> one line), ``LAW_PARAMETERS`` ((option, choice) -> the law's own\n"
         "parameters) and ``LAW_UNITS`` ((option, choice) -> the units the law gives to\n"
         "parameters; ``PARAMETERS`` has those of the default contact law).\n"
+        "\n"
+        "``DOMAIN_RULES``: each domain as (lower bound, bound excluded, the text of a\n"
+        "failure); ``within(domain, x)`` applies it (NaN is never within).\n"
         '"""\n\n'
+        "import math\n\n"
         f"PARAMETERS = (\n{rows}\n)\n\n"
         "BASE = {p['name']: p['base'] for p in PARAMETERS\n"
         "        if p['base'] is not None and p['default_from'] is None\n"
@@ -770,6 +783,13 @@ def _parameters_module() -> str:
         f"OPTION_DOCS = {_literal(docs)}\n"
         f"LAW_PARAMETERS = {_literal(owners)}\n"
         f"LAW_UNITS = {_literal(units)}\n"
+        "\n"
+        f"DOMAIN_RULES = {{{rules}}}\n"
+        "\n\n"
+        "def within(domain, x):\n"
+        '    """Whether ``x`` (a number, or the least of an array) lies in ``domain``."""\n'
+        "    bound, excluded, _ = DOMAIN_RULES[domain]\n"
+        "    return x > bound if excluded else x >= bound\n"
     )
 
 

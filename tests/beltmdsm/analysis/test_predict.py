@@ -78,6 +78,7 @@ def test_predict_cli_json(capsys):
         "reasons",
         "tension",
         "contact",
+        "friction",
     }
     assert out["tension"] == "allowed"
     assert out["consistent_mdsm"][0][0] > out["paper_coupled_vhat"][0][0]

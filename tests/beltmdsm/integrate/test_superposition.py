@@ -143,8 +143,10 @@ def test_compiled_integrators_take_numbers_only_and_live_in_a_module_named_by_th
     """numba's disk cache: no dispatcher in a signature (it cannot be saved across
     processes), and a file name that changes with any source the code depends on."""
     pytest.importorskip("numba")
-    f = _compiled.advance("vector_field", "hertz_damp", backend="numba")
-    assert f.__module__.startswith("beltmdsm_advance__vector_field__hertz_damp_")
+    f = _compiled.advance("vector_field", Model(), backend="numba")
+    assert f.__module__.startswith("beltmdsm_advance__vector_field__coulomb__hertz_damp__scalar_")
+    g = _compiled.advance("vector_field", Model(friction="stribeck"), backend="numba")
+    assert g.__module__.startswith("beltmdsm_advance__vector_field__stribeck__hertz_damp__scalar_")
     assert _compiled._digest.cache_info().currsize >= 1
     digest = _compiled._digest.__wrapped__("0")
     assert digest != _compiled._digest.__wrapped__("1")  # numba's version counts
@@ -170,12 +172,13 @@ def test_normal_motion_at_one_time_is_its_dense_output(compiled, monkeypatch):
 
 def test_the_normal_key_holds_what_the_generated_kernels_take():
     """The key of the kept normal motions lists the parameters the bound kernels declare
-    (their names found once per contact law), so that a change of any of them, and of
+    (their names found once per combination of laws), so that a change of any of them, and of
     nothing else, is a new normal motion."""
-    for contact in ("hertz_damp", "kelvin_voigt"):
+    for contact in ("hertz_damp", "kelvin_voigt", "hunt_crossley"):
         m = Model(Vb=3.0, beta1=0.2, contact=contact)
         used = hybrid.bind_response_field(contact=contact, backend="python", **m.params).params
         used |= oscillator.bind_excitation_response(backend="python", **m.params).params
-        assert normal.normal_key(m) == (contact, "allowed", tuple(sorted(used.items())))
+        laws = ("coulomb", contact, "allowed")
+        assert normal.normal_key(m) == (*laws, tuple(sorted(used.items())))
         assert normal.normal_key(m.replace(Vb=7.0, mu_s=0.1)) == normal.normal_key(m)
         assert normal.normal_key(m.replace(beta1=0.3)) != normal.normal_key(m)

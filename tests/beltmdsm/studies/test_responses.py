@@ -45,6 +45,7 @@ def test_responses_at_the_base_point_list_both_and_say_what_is_not_locked():
     assert keys | {"amplitude"} <= set(by_k[4].as_dict())
     assert set(found.as_dict()) == {
         "params",
+        "friction",
         "contact",
         "tension",
         "limit",
