@@ -9,6 +9,6 @@ contact and tension laws, with their parameters), ``units`` (the contact law's u
 period), ``friction`` (Eqs. 23-25), ``stability`` (Eqs. 22, 26-28, A3-A8),
 ``correlation`` (the consistent MDSM), ``contraction``, ``capabilities`` (what each
 choice of laws allows), ``modules`` (what generated/ contains), ``codegen`` (writes
-generated/), ``paper``, ``paper_check`` and ``simulated_claims`` (the paper check),
+generated/), ``paper`` and ``paper_check`` (the paper check),
 ``cli`` (``python -m derive``).
 """

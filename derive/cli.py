@@ -24,6 +24,7 @@ import argparse
 import os
 import sys
 import time
+from pathlib import Path
 
 __all__ = ["main", "build_parser", "Parser", "UsageError"]
 
@@ -47,12 +48,18 @@ class Parser(argparse.ArgumentParser):
 def _generate(args) -> int:
     from . import codegen, modules
 
+    root = codegen.GENERATED if args.out is None else Path(args.out)
+    if args.out is None and not args.check and not codegen.source_checkout():
+        args.parser.error(
+            f"regenerating generated/ needs a source checkout: this one is installed "
+            f"({codegen.GENERATED.parent}); give --out DIR to write a complete copy there"
+        )
     start = time.perf_counter()
     mods = modules.all_modules()
     files = codegen.render_all(mods)
     elapsed = time.perf_counter() - start
     if args.check:
-        stale = codegen.stale(files)
+        stale = codegen.stale(files, root)
         if stale:
             for rel, diff in stale.items():
                 print(f"STALE generated/{rel}: {diff if len(diff) < 80 else ''}".rstrip())
@@ -66,7 +73,7 @@ def _generate(args) -> int:
             return 1
         print(f"generated/ is up to date ({len(files)} files, derived in {elapsed:.1f} s).")
         return 0
-    changed = codegen.write(files)
+    changed = codegen.write(files, root)
     for m in mods:
         names = ", ".join([f.name for f in m.functions] + [c[0] for c in m.constants])
         print(f"generated/{m.name}.py{f' (+ mp/{m.name}.py)' if m.mp else ''}: {names}")
@@ -78,9 +85,9 @@ def _generate(args) -> int:
 
 
 def _check_paper(args) -> int:
-    from .paper_check import main as check_paper
+    from .paper_check import report_path, write_report
 
-    return check_paper([])
+    return write_report(Path(args.out) if args.out else report_path(), args.evidence)
 
 
 def _prog():
@@ -92,8 +99,28 @@ def _prog():
     return "beltmdsm" if os.path.basename(path) == "beltmdsm" else "python -m derive"
 
 
-def build_parser(prog=None, extend=None):
+def _folder(s):
+    """A folder to write into: created if missing; not an existing file."""
+    if Path(s).exists() and not Path(s).is_dir():
+        raise argparse.ArgumentTypeError(f"{s} exists and is not a folder")
+    return s
+
+
+def _report_file(s):
+    """A file to write: its folder must exist and it must not be a folder."""
+    path = Path(s)
+    if not (path.parent if str(path.parent) else Path(".")).is_dir():
+        raise argparse.ArgumentTypeError(f"folder {path.parent} does not exist")
+    if path.is_dir():
+        raise argparse.ArgumentTypeError(f"{path} is a folder, not a file")
+    return s
+
+
+def build_parser(prog=None, extend=None, evidence=None):
     """The command-line tree (`Parser`); ``extend(commands)`` adds more commands.
+
+    ``evidence`` returns the simulated numbers of the paper check
+    (`derive.paper_check.claims.claims`); the runtime's command line hands it over.
 
     The runtime's commands import ``generated/``, which ``python -m derive`` may be
     about to regenerate, or which may be absent from a copy of ``derive/`` alone: if
@@ -111,14 +138,30 @@ def build_parser(prog=None, extend=None):
         help="do not write; exit 1 and name the stale files if "
         "generated/ differs from the derivations",
     )
+    parser.add_argument(
+        "--out",
+        type=_folder,
+        default=None,
+        metavar="DIR",
+        help="write (or check) a complete copy of generated/ in DIR instead of the "
+        "package's generated/ (which only a source checkout may rewrite)",
+    )
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", title="commands")
     paper = commands.add_parser(
         "check-paper",
         help="compare the paper's equations and claims with the derivation",
         description="Compare the paper's equations and claims with the derivation; write "
-        "generated/PAPER_CHECK.md.",
+        "the report PAPER_CHECK.md.",
     )
-    paper.set_defaults(run=_check_paper)
+    paper.add_argument(
+        "--out",
+        type=_report_file,
+        default=None,
+        metavar="FILE",
+        help="the report (default: generated/PAPER_CHECK.md in a source checkout, else "
+        "PAPER_CHECK.md in the current folder)",
+    )
+    paper.set_defaults(run=_check_paper, evidence=evidence, parser=paper)
     parser.unavailable = None
     if extend is not None:
         try:
@@ -136,21 +179,23 @@ def _needs_runtime(argv):
     return not (set(argv) <= {"--check"} or argv[:1] == ["check-paper"])
 
 
-def main(argv=None, *, extend=None) -> int:
+def main(argv=None, *, extend=None, evidence=None) -> int:
     """Run the command line ``argv`` (default ``sys.argv[1:]``); return the exit status.
 
     ``extend(commands)`` hangs more commands on the tree (not called for the
-    regeneration and check-paper, which must not need ``generated/``).
+    regeneration and check-paper, which must not need ``generated/``); ``evidence``
+    returns the paper check's simulated numbers (`build_parser`).
 
     0: done; 1: a check failed (``--check``) or the system refused (a file, the
     network); 2: a bad command line or parameter, reported in one line on stderr.
     A simulation that did not reach its end returns 2 as well (``simulate``).
     """
     argv = sys.argv[1:] if argv is None else list(argv)
-    parser = build_parser(extend=extend if _needs_runtime(argv) else None)
+    parser = build_parser(extend=extend if _needs_runtime(argv) else None, evidence=evidence)
     try:
         args = parser.parse_args(argv)
         if args.command is None:
+            args.parser = parser
             return _generate(args)
         if args.check:
             parser.error("--check applies to the regeneration, not to a command")

@@ -12,6 +12,7 @@
 * ``oscillator``: The tangential oscillator of Eq. (4) in closed form.
 * ``capabilities``: What each combination of laws allows: facts SymPy decided (derive/capabilities.py).
 * ``tableau``: The Dormand-Prince 8(5,3) tableau (Hairer, Norsett and Wanner) of ``scipy.integrate``.
+* ``contraction``: The energy of the difference of two tangential motions under one normal motion.
 
 Importing them never imports SymPy.
 """

@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 import sympy as sp
 
+from beltmdsm.studies import evidence as S
 from derive import contraction as C
-from derive import simulated_claims as S
 from derive.model import CONTACT_LAWS, FRICTION_LAWS, TENSION_LAWS, X2, Y2, P, normal_force
 
 TOL = 1e-10

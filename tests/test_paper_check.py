@@ -7,7 +7,9 @@ import pytest
 import sympy as sp
 from sympy.parsing.sympy_parser import TokenError
 
-from derive import codegen, paper, paper_check, simulated_claims, stability
+from beltmdsm.model import Model
+from beltmdsm.studies import evidence
+from derive import codegen, paper, paper_check, stability
 from derive.model import P
 from derive.statespace import jacobian_at_equilibrium_eq_11
 
@@ -23,7 +25,7 @@ PARSE_ERRORS = (SyntaxError, NameError, TypeError, TokenError)
 @pytest.fixture(scope="module")
 def checked():
     """One full run of the check (rows and claims), shared by the tests below."""
-    results, claims = paper_check.run()
+    results, claims = paper_check.run(evidence=evidence.paper_evidence)
     return (
         {r.row.key: r for r in results},
         {c.claim.key: c for c in claims},
@@ -232,6 +234,20 @@ def test_the_report_in_the_tree_is_up_to_date(checked):
 # The simulated claims (derive/contraction.py) ---------------------------------------------
 
 
+def _allowed_runs():
+    """The pair of runs behind the claims' evidence under the allowed law."""
+    return evidence.difference_runs(
+        evidence.SHIFT, Model(Vb=evidence.VB, tension="allowed"), t_end=evidence.T_END
+    )
+
+
+def test_without_the_simulation_the_simulated_claims_are_not_checked():
+    claims = {c.key: c for c in paper_check.claims()}
+    for key in ("omega1 peak (Fig. 2b)", "contraction (clipped)"):
+        holds, text = claims[key].check()
+        assert holds == [] and text.startswith("not checked: the simulation of Eq. (4)")
+
+
 def _counts(evidence, tension):
     part = evidence.split(f"tension {tension}:")[1]
     m = re.search(
@@ -256,7 +272,7 @@ def test_the_omega1_peak_is_self_excited_only_with_tension(checked):
 def test_the_reversal_counts_against_the_samples(checked):
     """Independent count: upward zero crossings of Vr = X1' - Vb on the 0.02 s samples."""
     _, claims, _ = checked
-    run, _ = simulated_claims._difference_runs()["allowed"]
+    run = _allowed_runs()
     sim = run.a
     w = sim.t >= sim.settings.window_start
     vr, F = sim.y[1, w] - sim.params["Vb"], sim.normal_force[w]
@@ -280,7 +296,7 @@ def test_the_contraction_claim(checked):
     assert "never rising" in clipped and "none while F < 0" in clipped
     allowed = c.evidence.split("tension allowed:")[1]
     assert "largest rise between samples" in allowed
-    run, works = simulated_claims._difference_runs()["allowed"]
+    works = evidence.paper_evidence()["allowed"].works
     assert works["work_friction_pull"] > 0 >= works["work_friction_push"]
 
 

@@ -37,10 +37,18 @@ def add_commands(commands: argparse._SubParsersAction) -> None:
         importlib.import_module(f"beltmdsm.cli.commands.{module}").add(commands, name)
 
 
+def _paper_evidence():
+    """The simulated numbers of the paper check (`beltmdsm.studies.evidence`)."""
+    from ..studies.evidence import paper_evidence
+
+    return paper_evidence()
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line ``argv`` (default ``sys.argv[1:]``); return the exit status.
 
     0: done; 1: a check failed or the system refused (a file); 2: a bad command line or
     parameter, or a run that could not be done, reported in one line on stderr.
     """
-    return derive_cli.main(sys.argv[1:] if argv is None else list(argv), extend=add_commands)
+    argv = sys.argv[1:] if argv is None else list(argv)
+    return derive_cli.main(argv, extend=add_commands, evidence=_paper_evidence)

@@ -9,7 +9,7 @@ One module per concept:
   (the only place in the package that writes files).
 """
 
-from .files import GENERATED, HEADER, stale, write
+from .files import GENERATED, HEADER, source_checkout, stale, write
 from .render import render, render_all
 from .specs import FunctionSpec, ModuleSpec, Refusal
 
@@ -23,4 +23,5 @@ __all__ = [
     "stale",
     "GENERATED",
     "HEADER",
+    "source_checkout",
 ]

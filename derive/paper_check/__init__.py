@@ -10,14 +10,14 @@ Coulomb's law only says so. One module per concept:
 * `derive.paper_check.engine`: the comparison of a printed and a derived object,
   the variants of a row and their status;
 * `derive.paper_check.rows`: the rows, one per numbered equation, in paper order;
-* `derive.paper_check.claims`: the claims in words (two of them run the simulation,
-  `derive.simulated_claims`);
-* `derive.paper_check.report`: the Markdown report and the command (`main`).
+* `derive.paper_check.claims`: the claims in words (two of them read the simulation's
+  numbers, handed in by the command line: beltmdsm/studies/evidence.py);
+* `derive.paper_check.report`: the Markdown report (`report`, `write_report`, `report_path`).
 """
 
 from .claims import Claim, ClaimResult, check_claim, claims
 from .engine import DIGITS, POINTS, REPORT, Outcome, Row, RowResult, Variant, check_row, compare
-from .report import main, report, run
+from .report import report, report_path, run, write_report
 from .rows import rows
 
 __all__ = [
@@ -34,7 +34,8 @@ __all__ = [
     "claims",
     "run",
     "report",
-    "main",
+    "write_report",
+    "report_path",
     "REPORT",
     "DIGITS",
     "POINTS",

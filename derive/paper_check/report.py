@@ -8,24 +8,25 @@
 
 from __future__ import annotations
 
-import argparse
 import re
 import time
+from pathlib import Path
 
 from .. import codegen, laws
 from .claims import check_claim, claims
 from .engine import DIGITS, POINTS, REPORT, check_row
 from .rows import rows
 
-__all__ = ["run", "report", "main"]
+__all__ = ["run", "report", "report_path", "write_report"]
 
 # Report ----------------------------------------------------------------------------------
 
 
-def run(selected: tuple[str, ...] | None = None):
-    """Check the rows (all, or those whose key is in ``selected``) and every claim."""
+def run(selected: tuple[str, ...] | None = None, evidence=None):
+    """Check the rows (all, or those whose key is in ``selected``) and every claim
+    (``evidence``: the simulated numbers, `derive.paper_check.claims.claims`)."""
     results = tuple(check_row(r) for r in rows() if selected is None or r.key in selected)
-    claim_results = tuple(check_claim(c) for c in claims()) if selected is None else ()
+    claim_results = tuple(check_claim(c) for c in claims(evidence)) if selected is None else ()
     return results, claim_results
 
 
@@ -129,20 +130,24 @@ def report(results, claim_results) -> str:
     return "\n".join(lines)
 
 
-def main(argv=None) -> int:
-    """Run the check, write ``generated/PAPER_CHECK.md`` and print a summary.
+def report_path() -> Path:
+    """Where the report goes by default: generated/ in a source checkout, else the current
+    folder (an installed package's files are the install's)."""
+    return codegen.GENERATED / REPORT if codegen.source_checkout() else Path(REPORT)
 
-    Returns 0 whatever the paper says; a broken check raises.
+
+def write_report(path: Path, evidence=None) -> int:
+    """Run the check, write the report to ``path`` and print a summary.
+
+    ``evidence`` returns the simulated numbers of two claims (`claims.claims`). Returns
+    0 whatever the paper says; a broken check raises.
     """
-    argparse.ArgumentParser(
-        prog="python -m derive check-paper",
-        description=f"Compare the paper's equations and claims with the derivation; "
-        f"write generated/{REPORT}.",
-    ).parse_args(argv)
     start = time.perf_counter()
-    results, claim_results = run()
+    results, claim_results = run(evidence=evidence)
     text = report(results, claim_results)
-    changed = codegen.write({REPORT: text})
+    changed = not path.exists() or path.read_text() != text
+    if changed:
+        path.write_text(text)
     statuses = [r.status for r in results]
     print(
         f"{len(results)} equation rows: {statuses.count('matches')} match, "
@@ -156,7 +161,6 @@ def main(argv=None) -> int:
         for p in r.problems:
             print(f"WARNING: {p}")
     print(
-        f"generated/{REPORT} ({'updated' if changed else 'unchanged'}) "
-        f"in {time.perf_counter() - start:.1f} s"
+        f"{path} ({'updated' if changed else 'unchanged'}) in {time.perf_counter() - start:.1f} s"
     )
     return 0
