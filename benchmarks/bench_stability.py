@@ -63,7 +63,7 @@ SCENARIOS = {"random": sample, "map": sample_map}
 
 def stiff_sample(n, rng):
     """A stiff, lightly damped tangential mode next to a heavily damped normal one:
-    where the expanded H3 cancels most (see tests/test_stability.py)."""
+    where the expanded H3 cancels most (see tests/generated/test_stability.py)."""
     p = sample(n, rng)
     p["omega1"] = 10 ** rng.uniform(1.5, 2.5, n)
     p["beta1"] = 0.1 / p["omega1"]

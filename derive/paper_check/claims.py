@@ -292,7 +292,7 @@ def _claim_state_space():
 
 
 #: E_d "never rises" when no step between samples exceeds this fraction of E_d(0) (the
-#: runs' tolerance is 1e-10; tests/test_contraction.py bounds it finer).
+#: runs' tolerance is 1e-10; tests/beltmdsm/studies/test_evidence.py bounds it finer).
 RISE_TOLERANCE = 1e-9
 #: E_d has "decayed" below this fraction of E_d(0) at the end of a run.
 DECAYED = 1e-12

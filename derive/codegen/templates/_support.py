@@ -281,7 +281,7 @@ def _graded_gauss_legendre(nodes, levels):
 #: The quadrature rule of `quad` (and of the scalar kernels' inline loop): nodes and
 #: weights on [-1, 1], 28 panels of 10 Gauss-Legendre nodes (`_graded_gauss_legendre`).
 #: Against mpmath it integrates the averages of Stribeck's law to about 1e-14
-#: relative for V / v_s up to 1e3 (tests/test_friction.py has the error model).
+#: relative for V / v_s up to 1e3 (tests/generated/test_friction.py has the error model).
 _QUAD_PANELS = _graded_gauss_legendre(10, 14)
 QUAD_NODES = _QUAD_PANELS[0].ravel()
 QUAD_WEIGHTS = _QUAD_PANELS[1].ravel()

@@ -22,7 +22,7 @@ from generated import hybrid as _hybrid
 from generated import oscillator as _osc
 from generated.parameters import BASE, DOMAINS
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 DIGEST = (
     "import hashlib, sys; from derive import codegen, modules; "
