@@ -8,6 +8,8 @@ it never imports SymPy.
 """
 
 import math
+import os
+import tempfile
 
 import mpmath
 import numpy
@@ -351,13 +353,52 @@ _COMPILED = {}
 _numba = None
 
 
-def _import_numba(required):
+def user_cache(name):
+    """A writable folder ``name`` for what is compiled at run time, outside the package
+    (an installed package's files belong to its installer, and a file left in it
+    survives ``pip uninstall``).
+
+    ``$BELTMDSM_CACHE/name``, else ``$XDG_CACHE_HOME/beltmdsm/name`` (default
+    ``~/.cache``), else, where neither can be written, one in the temporary directory.
+
+    Raises
+    ------
+    OSError
+        When no candidate folder can be written.
+    """
+    home = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    candidates = [os.path.join(home, "beltmdsm"), os.path.join(tempfile.gettempdir(), "beltmdsm")]
+    if os.environ.get("BELTMDSM_CACHE"):
+        candidates.insert(0, os.environ["BELTMDSM_CACHE"])
+    for parent in candidates:
+        folder = os.path.join(parent, name)
+        try:
+            os.makedirs(folder, exist_ok=True)
+            probe = os.path.join(folder, f".probe-{os.getpid()}")
+            open(probe, "w").close()
+            os.remove(probe)
+        except OSError:
+            continue
+        return folder
+    raise OSError(f"no writable folder for {name} (set BELTMDSM_CACHE)")
+
+
+def import_numba(required):
+    """numba, or None where it is not installed (ImportError if ``required``).
+
+    Its on-disk cache (``cache=True``) goes to `user_cache` ``("numba")`` unless
+    ``$NUMBA_CACHE_DIR`` names one: by default numba writes next to the module it
+    compiles, which for an installed package is inside site-packages.
+    """
     global _numba
     if _numba is None:
         try:
             import numba
         except ImportError:
             numba = False
+        else:
+            if not numba.config.CACHE_DIR:
+                numba.config.CACHE_DIR = user_cache("numba")
         _numba = numba
     if _numba is False and required:
         raise ImportError(
@@ -396,7 +437,7 @@ def compiled(kernel, result, backend):
         For ``backend="numba"`` without numba installed.
     """
     _check_backend(backend, _BACKENDS)
-    if backend == "numpy" or _import_numba(backend == "numba") is None:
+    if backend == "numpy" or import_numba(backend == "numba") is None:
         return None
     ufunc = _COMPILED.get(kernel)
     if ufunc is None:
@@ -433,7 +474,7 @@ def jit(kernel):
     """
     fast = _JITTED.get(kernel)
     if fast is None:
-        fast = _JITTED[kernel] = _import_numba(True).njit(cache=True, error_model="numpy")(kernel)
+        fast = _JITTED[kernel] = import_numba(True).njit(cache=True, error_model="numpy")(kernel)
     return fast
 
 
@@ -492,7 +533,7 @@ def bind(function, variant, params, backend):
     name = f"bind_{function}"
     values = _scalar_arguments(name, variant.names, params)
     roots = tuple(float(r) for r in variant.prep(*values)) if variant.prep is not None else ()
-    use_numba = backend == "numba" or (backend is None and _import_numba(False) is not None)
+    use_numba = backend == "numba" or (backend is None and import_numba(False) is not None)
     kernel = jit(variant.scalar) if use_numba else variant.scalar
     # the array implementation keeps numpy's floating-point semantics (inf, not an
     # exception, for a power of zero) with numpy scalars

@@ -28,6 +28,7 @@ COMMANDS = {
     "coexistence": "coexistence",
     "floquet-map": "floquet_map",
     "validate": "validate",
+    "docs": "docs",
 }
 
 

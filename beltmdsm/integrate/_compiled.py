@@ -29,16 +29,16 @@ import importlib.util
 import inspect
 import os
 import sys
-import tempfile
 import types
 from pathlib import Path
 
 from generated import hybrid, oscillator
+from generated._support import import_numba, user_cache
 
 from ..model import Backend, Model
 from . import _dop853, _roots, _superpose
 
-__all__ = ["advance", "scan", "cache_folder"]
+__all__ = ["advance", "scan"]
 
 _ROOT = Path(__file__).resolve().parents[2]
 _SOURCES = (
@@ -113,14 +113,8 @@ def scan(model: Model, backend: Backend | None = None):
 
 def _bound(integrator, kernels, name, backend):
     if backend != "python":
-        try:
-            import numba
-        except ImportError:
-            if backend == "numba":
-                raise ImportError(
-                    "backend='numba' needs numba: pip install 'beltmdsm[fast]'"
-                ) from None
-        else:
+        numba = import_numba(backend == "numba")
+        if numba is not None:
             return _compiled(integrator, kernels, name, numba.__version__)
     return _python(integrator, kernels)
 
@@ -184,7 +178,7 @@ def _compiled(integrator, kernels, name, numba_version):
         )
         lines += ["", "", decorator, inspect.getsource(getattr(module, fn)).rstrip()]
     text = "\n".join(lines) + "\n"
-    folder = cache_folder()
+    folder = Path(user_cache("compiled"))
     stem = f"beltmdsm_{name}_{_digest(numba_version)}"
     path = folder / f"{stem}.py"
     if not path.exists() or path.read_text() != text:
@@ -196,28 +190,3 @@ def _compiled(integrator, kernels, name, numba_version):
     sys.modules[stem] = entry
     spec.loader.exec_module(entry)
     return getattr(entry, functions[-1])
-
-
-def cache_folder():
-    """Where the compiled modules and numba's cache of them live.
-
-    ``$BELTMDSM_COMPILED``, else ``~/.cache/beltmdsm/compiled``, else (not writable) a
-    folder in the temporary directory.
-    """
-    for folder in (
-        os.environ.get("BELTMDSM_COMPILED"),
-        Path.home() / ".cache" / "beltmdsm" / "compiled",
-        Path(tempfile.gettempdir()) / "beltmdsm-compiled",
-    ):
-        if folder is None:
-            continue
-        folder = Path(folder)
-        try:
-            folder.mkdir(parents=True, exist_ok=True)
-            probe = folder / f".probe-{os.getpid()}"
-            probe.write_text("")
-            probe.unlink()
-        except OSError:
-            continue
-        return folder
-    raise OSError("no writable folder for the compiled integrators (set BELTMDSM_COMPILED)")

@@ -31,6 +31,7 @@ import types
 import numpy as np
 
 from generated import tableau as _coef
+from generated._support import import_numba
 
 from ._roots import converged, illinois, secant
 
@@ -432,9 +433,8 @@ _COMPILED_EVALUATE = []
 
 def _evaluate_compiled():
     if not _COMPILED_EVALUATE:
-        try:
-            import numba
-        except ImportError:
+        numba = import_numba(False)
+        if numba is None:
             _COMPILED_EVALUATE.append(None)
         else:
             dense = numba.njit(cache=True)(_dense)

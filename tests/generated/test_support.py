@@ -94,13 +94,13 @@ def test_infinite_parameters_are_refused_by_name(value):
 def test_infinite_parameters_are_refused_by_the_mpmath_variants():
     import mpmath
 
-    from generated import mp
+    from generated.mp import stability, unforced
     from generated.parameters import BASE
 
     with pytest.raises(ValueError, match="'mu_s' must be finite"):
-        mp.unforced.equilibrium(**{**BASE, "mu_s": mpmath.inf})
+        unforced.equilibrium(**{**BASE, "mu_s": mpmath.inf})
     with pytest.raises(ValueError, match="'Vb' must be finite"):
-        mp.stability.is_stable(**{**BASE, "Vb": -mpmath.inf})
+        stability.is_stable(**{**BASE, "Vb": -mpmath.inf})
 
 
 def test_nan_and_domain_messages_are_unchanged_and_an_empty_array_passes():
