@@ -29,11 +29,13 @@ from typing import Any
 
 from generated.parameters import PARAMETERS
 
+from ..errors import StepTooSmall
 from ..model import OPTION_DEFAULTS, OPTIONS, Model, check_domain
 from ..settings import CONTACT_LOSS, DEFAULT_T_END, METHODS, SOLVERS, SolverSettings
 
 __all__ = [
     "register",
+    "flag_of",
     "number",
     "integer",
     "output_file",
@@ -73,18 +75,41 @@ def register(
     """Add command ``name`` to ``commands`` (an argparse subparsers action), run by ``run``.
 
     A bad value found while it runs (a ValueError) is reported like a bad flag: one
-    line naming it, exit status 2; the system refusing (an OSError), exit status 1.
+    line naming it, exit status 2; so are a request the package refuses
+    (`beltmdsm.errors.Refused`, naming the flags of the settings it refuses), an
+    integrator that cannot go on at the tolerances given
+    (`beltmdsm.errors.StepTooSmall`, naming ``--rtol/--atol``) and a periodic
+    response that is not found (`beltmdsm.analysis.floquet.NoPeriodicResponse`). The
+    system refusing (an OSError): one line, exit status 1.
     """
     sub = commands.add_parser(name, parents=list(parents), **kwargs)
     sub.set_defaults(run=_run, handler=run, parser=sub)
     return sub
 
 
+def flag_of(name: str) -> str:
+    """The command-line flag of a setting or argument named in Python (``t_end``: ``--t-end``)."""
+    return "--" + name.replace("_", "-")
+
+
 def _run(args):
     try:
         return args.handler(args)
     except ValueError as err:
-        args.parser.error(str(err))
+        names = getattr(err, "names", ())
+        where = "/".join(flag_of(n) for n in names)
+        args.parser.error(f"argument {where}: {err}" if where else str(err))
+    except StepTooSmall as err:
+        print(f"{args.parser.prog}: error: argument --rtol/--atol: {err}", file=sys.stderr)
+        return 2
+    except RuntimeError as err:
+        # the module is loaded where the error comes from; not imported here, so that
+        # the command line starts without the analyses
+        floquet = sys.modules.get("beltmdsm.analysis.floquet")
+        if floquet is None or not isinstance(err, floquet.NoPeriodicResponse):
+            raise
+        print(f"{args.parser.prog}: error: {err}", file=sys.stderr)
+        return 2
     except OSError as err:
         print(f"{args.parser.prog}: error: {err}", file=sys.stderr)
         return 1

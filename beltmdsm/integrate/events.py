@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..errors import StepTooSmall
 from ..model import Model, initial_state
 from ..settings import SolverSettings
 from . import _compiled, _dop853
@@ -23,10 +24,6 @@ from .trajectory import Run, Segment, Trajectory
 from .zeno import Zeno
 
 __all__ = ["integrate_events", "StepSegment", "StepTooSmall"]
-
-
-class StepTooSmall(ArithmeticError):
-    """The integrator's step fell below what the time's rounding allows."""
 
 
 class StepSegment:
@@ -77,7 +74,7 @@ def integrate_events(
 
     Raises
     ------
-    StepTooSmall
+    beltmdsm.errors.StepTooSmall
         Where the step size falls below the rounding of the time (tolerances too
         loose or too tight for the field there), naming the time and the mode.
     """
@@ -112,8 +109,12 @@ def integrate_events(
         if code == _dop853.STATUS_STEP_TOO_SMALL:
             raise StepTooSmall(
                 f"the integrator's step fell below the rounding of the time at "
-                f"t = {t_stop:.6g} s in mode {mode.name.lower()} (rtol = "
-                f"{settings.rtol:g}, atol = {settings.atol:g}): loosen or tighten the tolerances"
+                f"t = {t_stop:.6g} s in mode {mode.name.lower()} at rtol = "
+                f"{settings.rtol:g}, atol = {settings.atol:g}: tolerances this loose let the "
+                "state drift across a switching surface between steps (tighten them), or "
+                "tolerances this tight ask for more than the rounding allows (loosen them)",
+                settings.rtol,
+                settings.atol,
             )
         if n:
             steps.append((ts, hs, ys, Fs))
