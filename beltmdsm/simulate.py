@@ -33,7 +33,7 @@ from .integrate.events import integrate_events
 from .integrate.superposition import NotApplicable, integrate_superposed
 from .integrate.trajectory import Run, Samples, Trajectory
 from .model import Model, as_model
-from .settings import SolverSettings
+from .settings import SolverSettings, check_request
 
 __all__ = ["Simulation", "simulate"]
 
@@ -135,7 +135,11 @@ def simulate(
     ------
     ValueError
         Naming the parameter, setting or option, for a bad value.
-    beltmdsm.integrate.events.StepTooSmall
+    beltmdsm.errors.Refused
+        Before anything is computed, for a sampling step that would alias the
+        excitation into the omega1 band or a run that would not fit in memory
+        (`beltmdsm.settings.check_request`).
+    beltmdsm.errors.StepTooSmall
         Where the integrator cannot go on at the tolerances given.
     """
     clock = time.perf_counter()
@@ -154,6 +158,7 @@ def simulate(
         y0 = np.asarray(y0, dtype=float)
         if y0.shape != (4,) or not np.all(np.isfinite(y0)):
             raise ValueError(f"y0 must be 4 finite numbers (X1, Y1, X2, Y2); got {y0!r}")
+    check_request(model, settings)
     return _simulate(model, settings, y0, clock)
 
 
