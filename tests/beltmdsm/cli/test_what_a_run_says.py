@@ -1,0 +1,217 @@
+"""Issue 17, "What a run says must be true", through the command line, end to end.
+
+Each test reproduces one report of the issue with the command that showed it and
+checks what the command says now (`beltmdsm.cli.main` with capsys; a real
+subprocess where the exit status and stderr of the program itself matter).
+"""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from beltmdsm.cli import main
+
+ROOT = Path(__file__).resolve().parents[3]
+
+
+def _json(capsys, argv, status=0):
+    assert main([*argv, "--json"]) == status
+    return json.loads(capsys.readouterr().out)
+
+
+def _one_line_error(capsys, argv, *names):
+    """``argv`` exits 2 with one line on stderr naming each of ``names``; nothing on stdout."""
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and "Traceback" not in err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    for name in names:
+        assert name in lines[0], lines[0]
+    return lines[0]
+
+
+# ---------------------------------------------------------------- 1. no forced peak
+
+
+def test_simulate_without_excitation_reports_no_vibration(capsys):
+    # the report: "omega1 peak PRESENT (friction-induced vibration)", 1.3e-13 against
+    # 1.1e-13 at Omega, both rounding noise
+    assert main(["simulate", "--alpha", "0", "--t-end", "300"]) == 0
+    text = capsys.readouterr().out
+    assert "PRESENT" not in text and "friction-induced" not in text
+    assert "omega1 peak absent (no forced peak either" in text
+    out = _json(capsys, ["simulate", "--alpha", "0", "--t-end", "300"])
+    assert out["forced_peak"] is False and out["omega1_peak_present"] is False
+    assert out["resolved"] is True
+    # both peaks are below the floor of the tolerances, and the floor is far below
+    # any vibration worth the name
+    assert max(out["peak_omega1"], out["peak_Omega"]) < out["noise_floor"] < 1e-6
+
+
+def test_sweep_without_excitation_finds_the_peak_nowhere(capsys):
+    argv = ["sweep", "--param", "Vb", "--values", "2", "4", "8", "--alpha", "0"]
+    argv += ["--t-end", "300", "--jobs", "1", "--no-cache", "--no-progress"]
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "present at none of the 3 resolved points" in text
+    assert "present for Vb in" not in text and "nowhere" not in text
+    assert "no forced peak above the noise floor of the tolerances at Vb = 2, 4, 8" in text
+    out = _json(capsys, argv)
+    assert out["omega1_peak_ranges"] == []
+    assert [r["forced_peak"] for r in out["rows"]] == [False] * 3
+    assert [r["omega1_peak_present"] for r in out["rows"]] == [False] * 3
+
+
+def test_a_forced_run_keeps_its_verdict(capsys):
+    out = _json(capsys, ["simulate", "--Vb", "4", "--t-end", "300"])
+    assert out["forced_peak"] is True and out["omega1_peak_present"] is True
+    # the floor of the default tolerances does not touch the 1 % criterion
+    assert out["noise_floor"] < 1e-3 * 0.01 * out["peak_Omega"]
+
+
+# ---------------------------------------------------------------- 2. aliasing
+
+
+def test_a_sampling_step_that_aliases_is_refused_before_computing(capsys, monkeypatch):
+    from beltmdsm import simulate as simulate_module
+
+    def never(*args, **kwargs):
+        raise AssertionError("integrated before checking --dt")
+
+    monkeypatch.setattr(simulate_module, "_simulate", never)
+    # the report: 2 Omega = 8 rad/s aliased to 2 pi/0.7 - 8 = 0.976 rad/s, "PRESENT"
+    line = _one_line_error(capsys, ["simulate", "--Vb", "1", "--dt", "0.7"], "--dt", "alias")
+    assert "8 x Omega_t = 32 rad/s" in line and "NYQUIST_MULTIPLE" in line
+    _one_line_error(capsys, ["simulate", "--Vb", "1", "--dt", "0.5"], "--dt")
+    # a sweep checks every point before it runs any
+    _one_line_error(
+        capsys,
+        ["sweep", "--param", "Omega", "--values", "4", "30", "--no-cache", "--no-progress"],
+        "--dt",
+        "at Omega = 30",
+    )
+
+
+# ---------------------------------------------------------------- 4. energy residual
+
+
+def test_a_run_whose_energy_balance_does_not_close_says_so(capsys):
+    # the report: rtol 0.1 ended "done" with a residual of 0.265, no warning
+    argv = ["simulate", "--rtol", "0.1", "--t-end", "300"]
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "DOES NOT CLOSE" in text
+    assert "warning: the energy balance does not close" in text
+    assert "friction-induced" not in text
+    out = _json(capsys, argv)
+    assert out["energy_ok"] is False and out["energy_residual"] > out["energy_bound"]
+    assert len(out["warnings"]) == 1 and "tighten the tolerances" in out["warnings"][0]
+    # the default tolerances close it
+    out = _json(capsys, ["simulate", "--t-end", "300"])
+    assert out["energy_ok"] is True and out["warnings"] == []
+
+
+def test_the_sweep_marks_points_whose_energy_balance_does_not_close(capsys):
+    argv = ["sweep", "--param", "Vb", "--values", "4", "--rtol", "0.1", "--t-end", "300"]
+    argv += ["--jobs", "1", "--no-cache", "--no-progress"]
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "energy_ok" in text.splitlines()[0]
+    assert "warning: the energy balance does not close within its bound at Vb = 4" in text
+    out = _json(capsys, argv)
+    assert out["rows"][0]["energy_ok"] is False
+
+
+# ---------------------------------------------------------------- 5. resolved
+
+
+def test_a_slow_decay_towards_the_periodic_response_is_not_called_resolved(capsys):
+    # Vb = 4 is stable but next to the Floquet edge 4.058 (|mu| = 0.995 per period):
+    # started on the periodic response and moved by 0.5 m, the omega1 component decays
+    # at that rate and is still 1 % of the forced peak in the window; the free
+    # transient exp(-beta1 omega1 t) alone called it resolved and PRESENT
+    argv = ["simulate", "--Vb", "4", "--start", "periodic", "--perturbation", "0.5"]
+    out = _json(capsys, argv)
+    assert out["resolved"] is False and out["omega1_peak_present"] is None
+    assert "Floquet rate |mu| = 0.99" in out["unresolved_reason"]
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "omega1 peak unresolved (the peak may be a decay towards the periodic" in text
+    # from rest the run lands on a self-excited oscillation of constant amplitude,
+    # which coexists with the stable periodic response: resolved, and present
+    out = _json(capsys, ["simulate", "--Vb", "4"])
+    assert out["resolved"] is True and out["omega1_peak_present"] is True
+
+
+# ---------------------------------------------------------------- 6. no tracebacks
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["floquet", "--mu_s", "1"],
+        ["floquet", "--mu_s", "1.5"],
+        ["floquet", "--mu_s", "2"],
+        ["floquet", "--beta1", "10", "--Vb", "1.1"],
+        ["simulate", "--start", "periodic", "--mu_s", "1"],
+    ],
+)
+def test_no_periodic_response_is_one_line(capsys, argv):
+    _one_line_error(capsys, argv, "error: no periodic response found")
+
+
+def test_tolerances_the_integrator_cannot_keep_are_one_line(capsys):
+    for solver in ("events", "superposition"):
+        line = _one_line_error(
+            capsys, ["simulate", "--rtol", "1", "--solver", solver], "--rtol/--atol", "rtol = 1"
+        )
+        assert "step fell below the rounding of the time" in line
+
+
+# ---------------------------------------------------------------- 7. bounded work
+
+
+def test_a_run_too_large_for_memory_is_refused_before_computing(capsys, monkeypatch):
+    from beltmdsm import simulate as simulate_module
+
+    def never(*args, **kwargs):
+        raise AssertionError("integrated before checking --t-end")
+
+    monkeypatch.setattr(simulate_module, "_simulate", never)
+    # the report: accepted, and 7.1 GB held after 60 s
+    line = _one_line_error(capsys, ["simulate", "--t-end", "1e7", "--dt", "1"], "--t-end")
+    assert "MAX_RUN_BYTES = 4 GiB" in line and "GiB" in line
+    _one_line_error(capsys, ["simulate", "--t-end", "2e5"], "--t-end", "MAX_RUN_BYTES")
+
+
+# ---------------------------------------------------------------- real processes
+
+
+def test_a_real_process_refuses_in_one_line_without_a_traceback():
+    for argv, flag in (
+        (["simulate", "--Vb", "1", "--dt", "0.7"], "--dt"),
+        (["simulate", "--t-end", "1e7", "--dt", "1"], "--t-end"),
+        (["simulate", "--rtol", "1"], "--rtol/--atol"),
+        (["floquet", "--mu_s", "1"], "no periodic response"),
+    ):
+        r = subprocess.run(
+            [sys.executable, "-m", "beltmdsm", *argv], capture_output=True, text=True, cwd=ROOT
+        )
+        assert r.returncode == 2, (argv, r.stderr)
+        assert r.stdout == "" and "Traceback" not in r.stderr
+        assert len(r.stderr.strip().splitlines()) == 1 and flag in r.stderr, r.stderr
+
+
+def test_a_real_process_says_no_forced_peak():
+    r = subprocess.run(
+        [sys.executable, "-m", "beltmdsm", "simulate", "--alpha", "0", "--t-end", "300"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
+    assert r.returncode == 0 and r.stderr == ""
+    assert "omega1 peak absent (no forced peak either" in r.stdout
