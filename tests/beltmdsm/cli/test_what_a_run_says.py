@@ -215,3 +215,33 @@ def test_a_real_process_says_no_forced_peak():
     )
     assert r.returncode == 0 and r.stderr == ""
     assert "omega1 peak absent (no forced peak either" in r.stdout
+
+
+# ---------------------------------------------------------------- 3. predict's grid
+
+
+def test_predict_on_a_coarse_grid_keeps_the_band(capsys):
+    # the report: with --vb-points 2 the consistent MDSM found no unstable speed
+    ref = _json(capsys, ["predict"])["consistent_mdsm"]
+    assert ref[0] == pytest.approx([4.6816, 6.3754], abs=1e-4)
+    for points in ("2", "3"):
+        out = _json(capsys, ["predict", "--vb-points", points])
+        assert out["consistent_mdsm"][0] == pytest.approx(ref[0], abs=1e-8)
+        assert len(out["consistent_mdsm"]) == len(ref) == 1
+        assert "consistent_mdsm" not in out["reasons"]
+
+
+def test_predict_refuses_more_points_than_its_cap(capsys):
+    _one_line_error(capsys, ["predict", "--vb-points", "100001"], "--vb-points", "<= 100000")
+    _one_line_error(capsys, ["predict", "--vb-points", "1e7"], "--vb-points", "integer")
+
+
+def test_a_real_process_predicts_on_two_points():
+    r = subprocess.run(
+        [sys.executable, "-m", "beltmdsm", "predict", "--vb-points", "2"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
+    assert r.returncode == 0 and r.stderr == ""
+    assert "consistent_mdsm: unstable Vb in [4.682, 6.375]" in r.stdout
