@@ -54,6 +54,7 @@ from scipy.integrate import solve_ivp
 
 from generated import dynamics, hybrid, oscillator
 
+from ..errors import Refused
 from ..integrate.normal import normal_key, normal_motion
 from ..integrate.superposition import Superposition
 from ..integrate.switching import SURFACE_INDEX, Mode, Switching
@@ -81,6 +82,8 @@ __all__ = [
     "PERTURBATION",
     "GRAZING_RATIO",
     "NEWTON_TOL",
+    "MAX_BAND_POINTS",
+    "MIN_TOL_ULPS",
 ]
 
 #: A switch whose rate is below this fraction of its scale is grazing: the saltation
@@ -657,6 +660,7 @@ def floquet_band(
     points: int = 17,
     tol: float = 1e-3,
     backend: Backend | None = None,
+    progress: bool = False,
     **kw: Any,
 ) -> dict:
     """Ranges of ``param`` in ``[lo, hi]`` where the periodic response is unstable.
@@ -674,6 +678,21 @@ def floquet_band(
     backward-sliding response is computed exactly: it is that response's largest
     velocity in contact, which does not depend on ``Vb``.
 
+    Changes closer together than ``tol`` cannot be told apart at that tolerance: they
+    are one edge, whose sides are the outer sides of the first and the last, and the
+    values evaluated between them do not enter the ranges. So the edges' sides agree
+    with the ranges at every ``tol``, and a finer ``tol`` only resolves more.
+
+    Parameters
+    ----------
+    points : int
+        the grid walked before the bisection, 2 to `MAX_BAND_POINTS`
+    tol : float
+        the edges' tolerance, at least `MIN_TOL_ULPS` ulps of the larger end of the
+        range (the bisection cannot split a bracket finer than its rounding)
+    progress : bool
+        show the evaluations on stderr (tqdm) once they take more than 2 s
+
     Returns
     -------
     dict
@@ -686,13 +705,15 @@ def floquet_band(
         Newton's method, or, next to a stable one, by iterating the period map);
         ``grid``: every evaluated value with ``max_abs_multiplier``, ``stable``,
         ``growth_rate``, ``n_reversals``, ``n_sticks``, ``grazing``; ``failed``: the
-        grid values where no periodic response was found, with the reason.
+        grid values where no periodic response was found, with the reason; ``tol``.
 
     Raises
     ------
     ValueError
         For an unknown parameter, a range that is not finite, empty or outside the
-        parameter's domain, ``points < 2`` or ``tol`` not above the rounding of the range.
+        parameter's domain, ``points < 2`` or ``tol <= 0``; `beltmdsm.errors.Refused`
+        for ``points`` above `MAX_BAND_POINTS` or ``tol`` below the rounding of the
+        range (`MIN_TOL_ULPS`).
     """
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")
@@ -705,6 +726,10 @@ def floquet_band(
     model = as_model(model, **kw)
     if int(points) < 2 or not tol > 0:
         raise ValueError(f"points must be >= 2 and tol > 0; got {points}, {tol}")
+    _check_band_request(lo, hi, int(points), tol)
+    from tqdm import tqdm
+
+    bar = tqdm(desc=f"floquet-band {param}", unit=" values", disable=not progress, delay=2)
     failed, seen = [], {}
 
     def evaluate(v, neighbours, record=False):
@@ -722,6 +747,7 @@ def floquet_band(
                 failed.append({"value": float(v), "reason": str(err)})
             f = None
         seen[float(v)] = f
+        bar.update()
         return f
 
     grid, last = [], None
@@ -733,33 +759,40 @@ def floquet_band(
     edges, grazing_points = [], []
 
     def refine(a, fa, b, fb):
-        if _state(fa) == _state(fb):
-            return
-        if b - a <= tol:
-            edges.append(_edge(a, fa, b, fb))
-            return
-        g = _sliding_grazing(param, fa, fb)
-        if g is not None and a + tol / 4 < g < b - tol / 4:
-            below = evaluate(g - tol / 4, [fa, fb])
-            above = evaluate(g + tol / 4, [fb, fa])
-            grazing_points.append(g)
-            refine(a, fa, g - tol / 4, below)
-            edges.append(_edge(g - tol / 4, below, g + tol / 4, above, kind="grazing"))
-            refine(g + tol / 4, above, b, fb)
-            return
-        m = _multiplier_step(a, fa, b, fb, tol) if _same_structure(fa, fb) else None
-        m = 0.5 * (a + b) if m is None else m
-        fm = evaluate(m, [fa, fb] if abs(m - a) <= abs(b - m) else [fb, fa])
-        refine(a, fa, m, fm)
-        refine(m, fm, b, fb)
+        # iterative (a stack of brackets, the left one first), not recursive: a fine
+        # tol on a wide range needs many levels
+        stack = [(a, fa, b, fb)]
+        while stack:
+            a, fa, b, fb = stack.pop()
+            if _state(fa) == _state(fb):
+                continue
+            if b - a <= tol:
+                edges.append(_edge(a, fa, b, fb))
+                continue
+            g = _sliding_grazing(param, fa, fb)
+            if g is not None and a + tol / 4 < g < b - tol / 4:
+                below = evaluate(g - tol / 4, [fa, fb])
+                above = evaluate(g + tol / 4, [fb, fa])
+                grazing_points.append(g)
+                edges.append(_edge(g - tol / 4, below, g + tol / 4, above, kind="grazing"))
+                stack += [(g + tol / 4, above, b, fb), (a, fa, g - tol / 4, below)]
+                continue
+            m = _multiplier_step(a, fa, b, fb, tol) if _same_structure(fa, fb) else None
+            m = 0.5 * (a + b) if m is None else m
+            fm = evaluate(m, [fa, fb] if abs(m - a) <= abs(b - m) else [fb, fa])
+            stack += [(m, fm, b, fb), (a, fa, m, fm)]
 
-    for (a, fa), (b, fb) in zip(grid[:-1], grid[1:]):
-        refine(a, fa, b, fb)
+    try:
+        for (a, fa), (b, fb) in zip(grid[:-1], grid[1:]):
+            refine(a, fa, b, fb)
+    finally:
+        bar.close()
     edges = [e for e in sorted(edges, key=lambda e: e["value"]) if e is not None]
+    edges, hidden = _merge_close(edges, tol)
     grazing_points += [
         e["value"] for e in edges if e["kind"] == "grazing" and e["value"] not in grazing_points
     ]
-    points_seen = sorted(seen.items())
+    points_seen = sorted((v, f) for v, f in seen.items() if not any(a < v < b for a, b in hidden))
     unstable = _runs(points_seen, edges, lambda f: f is None or f.stable is not True, lo, hi)
     gaps = _runs(points_seen, edges, lambda f: f is None, lo, hi)
     table = [
@@ -785,7 +818,84 @@ def floquet_band(
         "failed": failed,
         "tension": model.tension,
         "contact": model.contact,
+        "tol": float(tol),
     }
+
+
+#: Most grid points of `floquet_band`: a point takes about 2 ms (6 ms where no
+#: periodic response is found; measured at the base set over Vb in [1, 9]), so 10^4
+#: points take 20 s to a minute.
+MAX_BAND_POINTS = 10**4
+#: `floquet_band`'s ``tol`` must span this many ulps of the larger end of the range:
+#: below, the midpoint of a bracket rounds to one of its ends and the bisection stops
+#: shrinking it.
+MIN_TOL_ULPS = 64
+
+
+def _check_band_request(lo, hi, points, tol):
+    """Refuse a grid above `MAX_BAND_POINTS` or a ``tol`` below the range's rounding."""
+    if points > MAX_BAND_POINTS:
+        raise Refused(
+            f"points = {points} is more than MAX_BAND_POINTS = {MAX_BAND_POINTS:.0e} "
+            "(beltmdsm/analysis/floquet.py): about 2 ms a point, and every edge is "
+            "bisected to tol anyway",
+            "points",
+        )
+    finest = MIN_TOL_ULPS * float(np.spacing(max(abs(lo), abs(hi))))
+    if tol < finest:
+        raise Refused(
+            f"tol = {tol:g} is below what the rounding of the range [{lo:g}, {hi:g}] can "
+            f"resolve: at least {MIN_TOL_ULPS} ulps of {max(abs(lo), abs(hi)):g}, "
+            f"{finest:.2g} (MIN_TOL_ULPS in beltmdsm/analysis/floquet.py)",
+            "tol",
+        )
+
+
+def _merge_close(edges, tol):
+    """Edges closer than ``tol`` to the first of their group, merged into one.
+
+    At that tolerance they cannot be told apart. The merged edge takes the outer
+    sides (below from the first, above from the last), the union of the brackets,
+    the kind "grazing" if one is (its value then that exact grazing point), else
+    "existence" if one is, else "multiplier" (its value the middle of the union).
+
+    Returns
+    -------
+    edges : list of dict
+    hidden : list of (lo, hi)
+        The merged brackets: the values evaluated strictly inside do not enter the
+        ranges (their change is below the resolution).
+    """
+    groups = []
+    for e in edges:
+        if groups and e["value"] - groups[-1][0]["value"] <= tol:
+            groups[-1].append(e)
+        else:
+            groups.append([e])
+    out, hidden = [], []
+    for group in groups:
+        if len(group) == 1:
+            out.append(group[0])
+            continue
+        kinds = [e["kind"] for e in group]
+        kind = next(k for k in ("grazing", "existence", "multiplier") if k in kinds)
+        bracket = [group[0]["bracket"][0], group[-1]["bracket"][1]]
+        value = (
+            next(e["value"] for e in group if e["kind"] == "grazing")
+            if kind == "grazing"
+            else 0.5 * (bracket[0] + bracket[1])
+        )
+        out.append(
+            {
+                "value": value,
+                "kind": kind,
+                "bracket": bracket,
+                "unstable_below": group[0]["unstable_below"],
+                "unstable_above": group[-1]["unstable_above"],
+            }
+        )
+        hidden.append(tuple(bracket))
+    return out, hidden
 
 
 def _same_structure(fa, fb):

@@ -170,19 +170,25 @@ _SIDES = {
 
 
 def band(result: dict, param: str, lo: float, hi: float) -> str:
-    """The readable result of ``floquet-band``."""
+    """The readable result of ``floquet-band``.
+
+    Values are printed to the digits of the edges' tolerance (at least 4 decimals), so
+    that two edges more than a tolerance apart never print alike.
+    """
+    tol = result.get("tol", 1e-3)
+    spec = f".{max(4, math.ceil(-math.log10(tol)) + 1)}f"
     lines = [
         f"periodic response unstable (or absent) for {param} in "
-        f"{format_intervals(result['unstable'], '.4f')} of {lo:g}..{hi:g}"
+        f"{format_intervals(result['unstable'], spec)} of {lo:g}..{hi:g}"
     ]
     for e in result["edges"]:
         lines.append(
-            f"  edge at {e['value']:.4f} ({e['kind']}; "
+            f"  edge at {e['value']:{spec}} ({e['kind']}; "
             f"{_SIDES[e['unstable_below'], e['unstable_above']]})"
         )
     if result["no_periodic_response"]:
         lines.append(
-            f"  no periodic response in {format_intervals(result['no_periodic_response'], '.4f')}"
+            f"  no periodic response in {format_intervals(result['no_periodic_response'], spec)}"
         )
     for f in result["failed"]:
         lines.append(f"  no periodic response found at {f['value']:g}: {f['reason']}")

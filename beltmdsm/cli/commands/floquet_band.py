@@ -18,6 +18,7 @@ from ..flags import (
 
 
 def add(commands, name: str) -> None:
+    from ...analysis.floquet import MAX_BAND_POINTS, MIN_TOL_ULPS
     from ...studies.sweep import SWEEPABLE
 
     sub = register(
@@ -31,19 +32,40 @@ def add(commands, name: str) -> None:
     )
     sub.add_argument("--param", required=True, choices=SWEEPABLE, help="the parameter walked")
     sub.add_argument(
-        "--from", dest="start", type=number(), required=True, metavar="X", help="lower end"
+        "--from",
+        dest="start",
+        type=number(),
+        required=True,
+        metavar="X",
+        help="lower end of the range, in the parameter's domain",
     )
     sub.add_argument(
-        "--to", dest="stop", type=number(), required=True, metavar="X", help="upper end, > --from"
+        "--to",
+        dest="stop",
+        type=number(),
+        required=True,
+        metavar="X",
+        help="upper end of the range, strictly above --from",
     )
     sub.add_argument(
         "--points",
-        type=integer(2),
+        type=integer(2, MAX_BAND_POINTS),
         default=17,
-        help="grid points walked before the bisection (default 17)",
+        help=f"grid points walked before the bisection, 2 to {MAX_BAND_POINTS} "
+        "(MAX_BAND_POINTS in beltmdsm/analysis/floquet.py; about 2 ms a point) "
+        "(default: 17)",
     )
     sub.add_argument(
-        "--tol", type=POSITIVE, default=1e-3, help="the edges' tolerance, > 0 (default 1e-3)"
+        "--tol",
+        type=POSITIVE,
+        default=1e-3,
+        help=f"the edges' tolerance, at least {MIN_TOL_ULPS} ulps of the larger end of "
+        "the range; edges closer than it are one edge (default: 1e-3)",
+    )
+    sub.add_argument(
+        "--no-progress",
+        action="store_true",
+        help="no progress bar on stderr (shown once the band takes more than 2 s)",
     )
 
 
@@ -60,6 +82,7 @@ def run(args: argparse.Namespace) -> int:
         model_from(args, skip=(swept(args),)),
         points=args.points,
         tol=args.tol,
+        progress=not args.no_progress,
     )
     if args.json:
         print(json.dumps(text.jsonable(band)))

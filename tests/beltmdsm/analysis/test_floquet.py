@@ -190,3 +190,83 @@ def test_bad_input_is_refused_by_name():
         F.periodic_start(Model(), float("nan"))
     with pytest.raises(ValueError, match="'mu_s'"):
         F.floquet(mu_s=-1.0)
+
+
+# ---------------------------------------------------------------- issue 17, items 6 and 8
+
+
+def _inside(ranges, x):
+    return any(lo <= x <= hi for lo, hi in ranges)
+
+
+def _check_consistent(band, lo, hi):
+    """The edges' sides agree with the ranges, and every end of a range is an edge."""
+    tol = band["tol"]
+    values = [e["value"] for e in band["edges"]]
+    assert all(b - a > tol for a, b in zip(values, values[1:])), values
+    for e in band["edges"]:
+        a, b = e["bracket"]
+        assert a <= e["value"] <= b and b - a <= 2 * tol
+        below, above = e["value"] - tol / 2, e["value"] + tol / 2  # edges are > tol apart
+        assert e["unstable_below"] == _inside(band["unstable"], below), e
+        assert e["unstable_above"] == _inside(band["unstable"], above), e
+    for ranges in (band["unstable"], band["no_periodic_response"]):
+        for r_lo, r_hi in ranges:
+            for end in (r_lo, r_hi):
+                assert end in (lo, hi) or end in values, (end, values)
+    for r_lo, r_hi in band["no_periodic_response"]:
+        assert any(u_lo <= r_lo and r_hi <= u_hi for u_lo, u_hi in band["unstable"])
+
+
+def test_the_band_text_agrees_with_itself_at_every_tolerance():
+    """``--tol 1e-6`` added "edge at 6.4154 (grazing; stable on both sides)" beside
+    "no periodic response in [6.1637, 6.4154]"."""
+    from beltmdsm.cli import text
+
+    coarse = None
+    for tol in (1e-3, 1e-4, 1e-6, 1e-7, 1e-9):
+        band = F.floquet_band("Vb", 1.0, 9.0, tol=tol)
+        _check_consistent(band, 1.0, 9.0)
+        printed = text.band(band, "Vb", 1.0, 9.0)
+        at = [line.split()[2] for line in printed.splitlines() if "edge at" in line]
+        assert len(set(at)) == len(at), printed
+        structure = [(e["kind"], e["unstable_below"], e["unstable_above"]) for e in band["edges"]]
+        if tol >= 1e-6:
+            # a stable window 2.9e-7 wide below the grazing point at 6.41541471 is
+            # below these tolerances: the same three edges as at 1e-3
+            coarse = coarse or structure
+            assert (
+                structure
+                == coarse
+                == [
+                    ("multiplier", False, True),
+                    ("existence", True, True),
+                    ("grazing", True, False),
+                ]
+            )
+        else:
+            # resolved: no periodic response up to 6.41541443, a stable response with
+            # a reversal up to the grazing point, stable sliding above
+            assert structure[-2:] == [("existence", True, False), ("grazing", False, False)]
+            assert 2.5e-7 < band["edges"][-1]["value"] - band["edges"][-2]["value"] < 3.2e-7
+
+
+def test_the_clipped_band_stays_consistent():
+    band = F.floquet_band("Vb", 0.5, 16.0, tension="clipped")
+    _check_consistent(band, 0.5, 16.0)
+
+
+def test_a_tolerance_below_the_rounding_of_the_range_is_refused():
+    from beltmdsm.errors import Refused
+
+    # the report: RecursionError
+    with pytest.raises(Refused, match="below what the rounding of the range") as err:
+        F.floquet_band("Vb", 1.0, 9.0, tol=1e-15)
+    assert err.value.names == ("tol",)
+    finest = F.MIN_TOL_ULPS * np.spacing(9.0)
+    # at the finest tolerance the refinement (iterative) still ends
+    band = F.floquet_band("Vb", 1.0, 9.0, tol=2 * finest)
+    _check_consistent(band, 1.0, 9.0)
+    with pytest.raises(Refused, match="MAX_BAND_POINTS") as err:
+        F.floquet_band("Vb", 1.0, 9.0, points=F.MAX_BAND_POINTS + 1)
+    assert err.value.names == ("points",)

@@ -245,3 +245,38 @@ def test_a_real_process_predicts_on_two_points():
     )
     assert r.returncode == 0 and r.stderr == ""
     assert "consistent_mdsm: unstable Vb in [4.682, 6.375]" in r.stdout
+
+
+# ---------------------------------------------------------------- 6 and 8. floquet-band
+
+
+def test_floquet_band_refuses_a_tolerance_below_the_rounding(capsys):
+    # the report: RecursionError
+    argv = ["floquet-band", "--param", "Vb", "--from", "1", "--to", "9", "--tol", "1e-15"]
+    line = _one_line_error(capsys, argv, "--tol", "MIN_TOL_ULPS")
+    assert "rounding of the range [1, 9]" in line
+    argv = ["floquet-band", "--param", "Vb", "--from", "1", "--to", "9", "--points", "100000"]
+    _one_line_error(capsys, argv, "--points", "<= 10000")
+
+
+def test_floquet_band_text_agrees_with_itself(capsys):
+    # the report, at --tol 1e-6: "edge at 6.4154 (grazing; stable on both sides)" while
+    # "no periodic response in [6.1637, 6.4154]"
+    texts = {}
+    for tol in ("1e-3", "1e-6"):
+        argv = ["floquet-band", "--param", "Vb", "--from", "1", "--to", "9", "--tol", tol]
+        assert main(argv) == 0
+        texts[tol] = capsys.readouterr().out
+    for text in texts.values():
+        assert "(grazing; stable on both sides)" not in text
+        edges = [line for line in text.splitlines() if "edge at" in line]
+        assert [e.split("(")[1] for e in edges] == [
+            "multiplier; unstable above)",
+            "existence; unstable on both sides)",
+            "grazing; unstable below)",
+        ]
+        # the last edge ends both the unstable range and the range without a response
+        last = edges[-1].split()[2]
+        assert f", {last}] of 1..9" in text and f", {last}]" in text.splitlines()[-1]
+    # printed to the digits of the tolerance
+    assert "edge at 6.4154147 (grazing; unstable below)" in texts["1e-6"]
