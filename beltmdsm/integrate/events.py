@@ -12,6 +12,8 @@ joined at located switches. Accumulating switches are handled by
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -55,6 +57,7 @@ def integrate_events(
     *,
     y0: ArrayLike | None = None,
     t0: float = 0.0,
+    progress: Callable[[float], object] | None = None,
 ) -> Run:
     """Integrate Eq. (4) mode by mode with located switches (module docstring).
 
@@ -67,6 +70,8 @@ def integrate_events(
     y0 : array_like, optional
         Initial state at ``t0``; default the unforced equilibrium (Eq. 9) at rest.
     t0 : float
+    progress : callable, optional
+        Called with the time reached after every smooth segment (a progress bar).
 
     Returns
     -------
@@ -120,6 +125,8 @@ def integrate_events(
             steps.append((ts, hs, ys, Fs))
             segments.append(Segment(t, float(t_stop), mode, StepSegment(ts, hs, ys, Fs), ts.copy()))
         t, y = float(t_stop), np.array(y_stop)
+        if progress is not None:
+            progress(t)
         if code == _dop853.STATUS_END:
             break
         h_next = 0.0  # the field jumps at a switch: choose the next step afresh

@@ -280,3 +280,53 @@ def test_floquet_band_text_agrees_with_itself(capsys):
         assert f", {last}] of 1..9" in text and f", {last}]" in text.splitlines()[-1]
     # printed to the digits of the tolerance
     assert "edge at 6.4154147 (grazing; unstable below)" in texts["1e-6"]
+
+
+# ---------------------------------------------------------------- 7. progress
+
+
+class _Bars:
+    """A stand-in for tqdm.tqdm that records each bar: its keywords and its progress."""
+
+    def __init__(self):
+        self.made = []
+
+    def __call__(self, *args, **kwargs):
+        bars = self
+
+        class Bar:
+            def __init__(self):
+                self.kwargs, self.n = kwargs, 0
+                bars.made.append(self)
+
+            def update(self, k=1):
+                self.n += k
+
+            def close(self):
+                self.closed = True
+
+        return Bar()
+
+
+@pytest.mark.parametrize(
+    "argv, desc",
+    [
+        (["simulate", "--t-end", "300"], "simulate"),
+        (["predict"], "predict Vb"),
+        (["floquet-band", "--param", "Vb", "--from", "3", "--to", "7"], "floquet-band Vb"),
+    ],
+)
+def test_long_commands_show_progress_on_stderr_unless_told_not_to(capsys, monkeypatch, argv, desc):
+    import tqdm
+
+    for flag, shown in (([], True), (["--no-progress"], False)):
+        bars = _Bars()
+        monkeypatch.setattr(tqdm, "tqdm", bars)
+        assert main(argv + flag) == 0
+        capsys.readouterr()
+        (bar,) = [b for b in bars.made if b.kwargs.get("desc") == desc]
+        assert bar.kwargs["disable"] is not shown and bar.closed
+        # only once it takes more than 2 s, so that short runs print nothing
+        assert bar.kwargs["delay"] == 2 and bar.n > 0
+    if desc == "simulate":
+        assert bar.kwargs["total"] == 300.0 and bar.n == pytest.approx(300.0)
