@@ -298,13 +298,26 @@ def solver_parent() -> argparse.ArgumentParser:
         default="DOP853",
         help="the Runge-Kutta method of the integrators (default: DOP853, the only one)",
     )
-    s.add_argument("--rtol", type=POSITIVE, default=1e-10, help="> 0 (default: 1e-10)")
-    s.add_argument("--atol", type=POSITIVE, default=1e-10, help="> 0 (default: 1e-10)")
+    s.add_argument(
+        "--rtol",
+        type=POSITIVE,
+        default=1e-10,
+        help="relative tolerance of the integrators' local error per step, > 0; the "
+        "noise floor of the spectrum and the bound of the energy residual follow it "
+        "(beltmdsm/analysis/summary.py) (default: 1e-10)",
+    )
+    s.add_argument(
+        "--atol",
+        type=POSITIVE,
+        default=1e-10,
+        help="absolute tolerance of the integrators' local error per step, > 0 (default: 1e-10)",
+    )
     s.add_argument(
         "--t-end",
         type=POSITIVE,
         default=DEFAULT_T_END,
-        help=f"duration [s], > 0 (default: {DEFAULT_T_END:g})",
+        help="simulated time [s], > 0; a run whose memory estimate exceeds MAX_RUN_BYTES "
+        f"(beltmdsm/settings.py) is refused (default: {DEFAULT_T_END:g})",
     )
     s.add_argument(
         "--t-discard",
@@ -313,7 +326,12 @@ def solver_parent() -> argparse.ArgumentParser:
         help="start of the steady window [s] (default 30%% of --t-end)",
     )
     s.add_argument(
-        "--dt", type=POSITIVE, default=0.02, help="sampling step [s], > 0 (default: 0.02)"
+        "--dt",
+        type=POSITIVE,
+        default=0.02,
+        help="sampling step of the time series [s], > 0; pi/dt must be at least "
+        "NYQUIST_MULTIPLE = 8 times the fastest of Omega_t, Omega_n, omega1 "
+        "(beltmdsm/settings.py) (default: 0.02)",
     )
     s.add_argument(
         "--on-contact-loss",
@@ -406,7 +424,9 @@ def cache_parent() -> argparse.ArgumentParser:
         "--cache-dir",
         type=_cache_folder,
         default="default",
-        help="default: $BELTMDSM_CACHE or ~/.cache/beltmdsm/sweeps",
+        metavar="FOLDER",
+        help="the folder of the sweep cache, refused if it cannot be written (default: "
+        "$BELTMDSM_CACHE or ~/.cache/beltmdsm/sweeps)",
     )
     g.add_argument("--no-cache", action="store_true", help="do not use the sweep cache")
     return parent
@@ -418,5 +438,9 @@ def cache_dir_from(args: argparse.Namespace) -> str | None:
 
 def json_parent() -> argparse.ArgumentParser:
     parent = argparse.ArgumentParser(add_help=False)
-    parent.add_argument("--json", action="store_true", help="print JSON")
+    parent.add_argument(
+        "--json",
+        action="store_true",
+        help="print the result as one JSON object instead of text (its keys: README.md)",
+    )
     return parent
