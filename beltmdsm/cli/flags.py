@@ -23,6 +23,7 @@ import contextlib
 import math
 import os
 import sys
+import warnings
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
@@ -80,7 +81,8 @@ def register(
     integrator that cannot go on at the tolerances given
     (`beltmdsm.errors.StepTooSmall`, naming ``--rtol/--atol``) and a periodic
     response that is not found (`beltmdsm.analysis.floquet.NoPeriodicResponse`). The
-    system refusing (an OSError): one line, exit status 1.
+    system refusing (an OSError): one line, exit status 1. A warning while it runs
+    (a cache file recomputed) is one line on stderr, ``PROG: warning: ...``.
     """
     sub = commands.add_parser(name, parents=list(parents), **kwargs)
     sub.set_defaults(run=_run, handler=run, parser=sub)
@@ -93,6 +95,16 @@ def flag_of(name: str) -> str:
 
 
 def _run(args):
+    # a warning (a cache file recomputed, ...) is one line naming the program, not
+    # Python's file:line and source line
+    with warnings.catch_warnings():
+        warnings.showwarning = lambda message, *_, **__: print(
+            f"{args.parser.prog}: warning: {message}", file=sys.stderr
+        )
+        return _handle(args)
+
+
+def _handle(args):
     try:
         return args.handler(args)
     except ValueError as err:

@@ -243,16 +243,18 @@ def sweep(result: Sweep, out_file: str | None = None) -> str:
         "wall_s",
     ]
     widths = {"regime": 22, "resolved": 8, "energy_ok": 9}
+
+    def cell(r, n):
+        if n in widths:
+            return f"{str(r[n]):>{widths[n]}}"
+        if n == "n_switches":
+            return f"{r[n]:>15d}"
+        # a peak the window could not read is "-", not nan
+        return f"{r[n]:>15.6g}" if np.isfinite(r[n]) else f"{'-':>15}"
+
     lines = ["  ".join(f"{n:>{widths.get(n, 15)}}" for n in names)]
     for r in table:
-        lines.append(
-            "  ".join(
-                f"{str(r[n]):>{widths[n]}}"
-                if n in widths
-                else (f"{r[n]:>15d}" if n == "n_switches" else f"{r[n]:>15.6g}")
-                for n in names
-            )
-        )
+        lines.append("  ".join(cell(r, n) for n in names))
     how = (
         f"continued {result.continuation} from rest at {param} = "
         f"{(table[param].min() if result.continuation == 'up' else table[param].max()):g}"

@@ -330,3 +330,143 @@ def test_long_commands_show_progress_on_stderr_unless_told_not_to(capsys, monkey
         assert bar.kwargs["delay"] == 2 and bar.n > 0
     if desc == "simulate":
         assert bar.kwargs["total"] == 300.0 and bar.n == pytest.approx(300.0)
+
+
+# ---------------------------------------------------------------- fixed in the move
+
+
+def _sweep_argv(*extra):
+    return ["sweep", "--param", "Vb", "--t-end", "60", "--jobs", "1", "--no-progress", *extra]
+
+
+def test_a_cache_file_that_is_not_utf8_is_named_recomputed_and_rewritten(capsys, tmp_path):
+    cache = tmp_path / "cache"
+    argv = _sweep_argv("--values", "4", "12", "--cache-dir", str(cache))
+    first = _json(capsys, argv)
+    (path, *_) = sorted(cache.glob("*.json"))
+    path.write_bytes(bytes(range(128, 256)) * 4)  # no UTF-8 text
+    assert main([*argv, "--json"]) == 0
+    out, err = capsys.readouterr()
+    # one line, naming the file; the sweep goes on and writes its table
+    (line,) = err.strip().splitlines()
+    assert " sweep: warning: sweep cache file " in line
+    assert str(path) in line and "not UTF-8" in line and "recomputed and rewritten" in line
+    again = json.loads(out)
+
+    def numbers(rows):
+        return [{k: v for k, v in r.items() if k != "wall_s"} for r in rows]
+
+    assert again["n_cached"] == 1 and numbers(again["rows"]) == numbers(first["rows"])
+    assert [p["path"] for p in again["cache_problems"]] == [str(path)]
+    json.loads(path.read_text())  # rewritten
+
+
+def test_a_cache_folder_that_cannot_be_written_is_refused_before_computing(capsys, monkeypatch):
+    from beltmdsm.studies import sweep as sweep_module
+
+    def never(*args, **kwargs):
+        raise AssertionError("computed before checking --cache-dir")
+
+    monkeypatch.setattr(sweep_module, "_cached_run", never)
+    assert main(_sweep_argv("--values", "4", "--cache-dir", "/proc/x")) != 0
+    out, err = capsys.readouterr()
+    assert out == "" and "Traceback" not in err and len(err.strip().splitlines()) == 1
+    assert "/proc/x" in err
+
+
+def test_sweep_values_are_sorted_and_duplicates_run_once(capsys):
+    argv = _sweep_argv("--values", "5", "1", "5", "4", "--no-cache")
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "duplicate values computed once: 5" in text
+    lines = text.splitlines()
+    rows = lines[1 : next(i for i, line in enumerate(lines) if line.startswith("tension"))]
+    assert [float(r.split()[0]) for r in rows] == [1.0, 4.0, 5.0]
+    out = _json(capsys, argv)
+    assert [r["Vb"] for r in out["rows"]] == [1.0, 4.0, 5.0]
+    assert out["dropped_duplicates"] == [5.0] and out["n_points"] == 3
+
+
+def test_python_and_the_command_line_share_cache_entries(capsys, tmp_path):
+    from beltmdsm.settings import SolverSettings
+    from beltmdsm.studies.sweep import sweep
+
+    # integers from Python, floats from the command line: one key
+    sweep(
+        "Vb",
+        [4, 12],
+        settings=SolverSettings(t_end=60),
+        executor="serial",
+        cache_dir=tmp_path,
+        progress=False,
+    )
+    out = _json(capsys, _sweep_argv("--values", "4", "12", "--cache-dir", str(tmp_path)))
+    assert out["n_cached"] == 2
+
+
+def test_sweep_json_holds_what_the_text_says(capsys):
+    out = _json(capsys, _sweep_argv("--values", "4", "12", "--no-cache"))
+    assert set(out) == {
+        "param",
+        "params",
+        "contact",
+        "tension",
+        "settings",
+        "continuation",
+        "start",
+        "rows",
+        "omega1_peak_ranges",
+        "unresolved",
+        "n_points",
+        "n_cached",
+        "cache_problems",
+        "dropped_duplicates",
+    }
+    assert out["param"] == "Vb" and "Vb" not in out["params"]
+    assert out["settings"]["t_end"] == 60.0 and out["n_points"] == len(out["rows"]) == 2
+    for key in ("resolved", "omega1_peak_present", "energy_ok", "forced_peak", "noise_floor"):
+        assert key in out["rows"][0]
+
+
+def test_short_runs_print_no_python_warnings():
+    # the report: RuntimeWarnings with source lines, once per sweep point
+    for argv in (
+        ["simulate", "--t-end", "30"],
+        [
+            "sweep",
+            "--param",
+            "Vb",
+            "--values",
+            "4",
+            "12",
+            "--t-end",
+            "30",
+            "--no-cache",
+            "--no-progress",
+            "--jobs",
+            "1",
+        ],
+    ):
+        r = subprocess.run(
+            [sys.executable, "-W", "error", "-m", "beltmdsm", *argv],
+            capture_output=True,
+            text=True,
+            cwd=ROOT,
+        )
+        assert r.returncode == 0 and r.stderr == "", r.stderr
+        assert "nan" not in r.stdout and "nowhere" not in r.stdout
+
+
+def test_validate_writes_into_the_current_folder(capsys, monkeypatch, tmp_path):
+    from beltmdsm.cli import text
+    from beltmdsm.studies import validation
+
+    monkeypatch.setattr(validation, "validate", lambda *a, **k: {"stub": True})
+    monkeypatch.setattr(validation, "render_markdown", lambda results, quick: "# stub\n")
+    monkeypatch.setattr(text, "validation", lambda results, out: f"wrote {out}")
+    monkeypatch.chdir(tmp_path)
+    before = (ROOT / "VALIDATION.md").read_text()
+    assert main(["validate", "--quick", "--no-progress"]) == 0
+    assert capsys.readouterr().out.strip() == "wrote VALIDATION.md"
+    assert (tmp_path / "VALIDATION.md").read_text() == "# stub\n"
+    assert (ROOT / "VALIDATION.md").read_text() == before
