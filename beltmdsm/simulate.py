@@ -178,6 +178,7 @@ def _simulate(
         desc="simulate",
         unit="s",
         delay=2,
+        leave=False,
         disable=not progress,
         file=sys.stderr,
         bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.0f}/{total:.0f} s of simulated "

@@ -729,7 +729,9 @@ def floquet_band(
     _check_band_request(lo, hi, int(points), tol)
     from tqdm import tqdm
 
-    bar = tqdm(desc=f"floquet-band {param}", unit=" values", disable=not progress, delay=2)
+    bar = tqdm(
+        desc=f"floquet-band {param}", unit=" values", disable=not progress, delay=2, leave=False
+    )
     failed, seen = [], {}
 
     def evaluate(v, neighbours, record=False):

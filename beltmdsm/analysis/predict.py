@@ -282,10 +282,12 @@ def unstable_intervals(
     fast cycle, above it never, and the slope of the averaged friction jumps to zero)
     the edge is the linear amplitude in closed form.
 
-    The grid always holds ``V_lin`` and a point `ONSET_STEP` below it (where they lie
-    within the grid), and no point between them, so that this edge is found on any
-    grid, however coarse or fine: with 2 points the band of the base set is
-    [4.682, 6.375], as with 400 or 30000. An edge at a root
+    The edges are found on the grid with ``V_lin`` and a point `ONSET_STEP` below it
+    added (where they lie within the grid) and the grid's points between them left
+    out (the balance may be singular there; in the table they hold the damping where
+    it can be solved, else NaN), so that this edge is found on any grid, however
+    coarse or fine: with 2 points the band of the base set is [4.682, 6.375], as with
+    400 or 30000. An edge at a root
     of the damping is found wherever the damping changes sign between neighbours; a
     band narrower than the grid step (two roots between neighbours) can be missed,
     and a band that reaches the lowest point of the grid may extend below it
@@ -309,7 +311,8 @@ def unstable_intervals(
         that reaches it). Without excitation (no fast motion) the list is empty
         and so is the default grid.
     table : dict of arrays
-        ``Vb``, ``damping``, ``V``, ``theta``, ``reverses`` on the grid.
+        ``Vb``, ``damping``, ``V``, ``theta``, ``reverses`` on the grid asked for
+        (ascending).
 
     Raises
     ------
@@ -331,10 +334,15 @@ def unstable_intervals(
         vb = np.linspace(top / points, top, points) if top > 0 else np.empty(0)
     else:
         vb = _check_grid(vb)
+    requested = np.sort(vb)
+    zone = np.zeros(vb.size, bool)
     if vb.size and V_lin > 0:
-        below = V_lin * (1 - ONSET_STEP)
-        onset = [v for v in (below, V_lin) if vb.min() < v < vb.max()]
-        vb = np.union1d(vb[(vb <= below) | (vb >= V_lin)], onset)
+        # the onset of reversal and a point just below it; the requested points between
+        # them are evaluated for the table only (the balance may be singular there)
+        onset_below = V_lin * (1 - ONSET_STEP)
+        zone = (requested > onset_below) & (requested < V_lin)
+        onset = [v for v in (onset_below, V_lin) if vb.min() < v < vb.max()]
+        vb = np.union1d(requested[~zone], onset)
     if vb.size == 0:
         return [], {
             "Vb": vb,
@@ -346,7 +354,10 @@ def unstable_intervals(
     from tqdm import tqdm
 
     rows, guess = [], None
-    bar = tqdm(total=vb.size, desc="predict Vb", disable=not progress, file=sys.stderr, delay=2)
+    total = vb.size + int(zone.sum())
+    bar = tqdm(
+        total=total, desc="predict Vb", disable=not progress, file=sys.stderr, delay=2, leave=False
+    )
     try:
         for v in sorted(vb, reverse=True):
             q = model.replace(Vb=float(v))
@@ -354,9 +365,18 @@ def unstable_intervals(
             guess = fast
             rows.append((v, consistent_mdsm_damping(q, fast), fast))
             bar.update()
+        rows.sort(key=lambda r: r[0])
+        found = {float(r[0]): r[1:] for r in rows}
+        for v in requested[zone]:
+            q = model.replace(Vb=float(v))
+            try:
+                fast = fast_motion(q, found[float(onset_below)][1])
+                found[float(v)] = (consistent_mdsm_damping(q, fast), fast)
+            except RuntimeError:
+                found[float(v)] = (math.nan, None)
+            bar.update()
     finally:
         bar.close()
-    rows.sort(key=lambda r: r[0])
     grid = np.array([r[0] for r in rows])
     damping = np.array([r[1] for r in rows])
 
@@ -375,12 +395,13 @@ def unstable_intervals(
             continue
         cuts.append(optimize.brentq(damping_at, grid[i], grid[i + 1], args=(above,), xtol=1e-10))
     unstable = intervals.from_crossings(grid, damping < 0, cuts)
+    at = [found[float(v)] for v in requested]
     table = {
-        "Vb": grid,
-        "damping": damping,
-        "V": np.array([r[2].V for r in rows]),
-        "theta": np.array([r[2].theta for r in rows]),
-        "reverses": np.array([r[2].reverses for r in rows]),
+        "Vb": requested,
+        "damping": np.array([d for d, _ in at]),
+        "V": np.array([f.V if f else math.nan for _, f in at]),
+        "theta": np.array([f.theta if f else math.nan for _, f in at]),
+        "reverses": np.array([bool(f and f.reverses) for _, f in at]),
     }
     return unstable, table
 

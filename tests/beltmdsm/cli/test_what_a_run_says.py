@@ -166,9 +166,8 @@ def test_no_periodic_response_is_one_line(capsys, argv):
 
 def test_tolerances_the_integrator_cannot_keep_are_one_line(capsys):
     for solver in ("events", "superposition"):
-        line = _one_line_error(
-            capsys, ["simulate", "--rtol", "1", "--solver", solver], "--rtol/--atol", "rtol = 1"
-        )
+        argv = ["simulate", "--rtol", "1", "--solver", solver, "--no-progress"]
+        line = _one_line_error(capsys, argv, "--rtol/--atol", "rtol = 1")
         assert "step fell below the rounding of the time" in line
 
 
@@ -195,7 +194,8 @@ def test_a_real_process_refuses_in_one_line_without_a_traceback():
     for argv, flag in (
         (["simulate", "--Vb", "1", "--dt", "0.7"], "--dt"),
         (["simulate", "--t-end", "1e7", "--dt", "1"], "--t-end"),
-        (["simulate", "--rtol", "1"], "--rtol/--atol"),
+        # (no progress bar: under load the run may pass the 2 s after which it shows)
+        (["simulate", "--rtol", "1", "--no-progress"], "--rtol/--atol"),
         (["floquet", "--mu_s", "1"], "no periodic response"),
     ):
         r = subprocess.run(
@@ -208,7 +208,8 @@ def test_a_real_process_refuses_in_one_line_without_a_traceback():
 
 def test_a_real_process_says_no_forced_peak():
     r = subprocess.run(
-        [sys.executable, "-m", "beltmdsm", "simulate", "--alpha", "0", "--t-end", "300"],
+        [sys.executable, "-m", "beltmdsm", "simulate", "--alpha", "0", "--t-end", "300"]
+        + ["--no-progress"],
         capture_output=True,
         text=True,
         cwd=ROOT,
@@ -431,7 +432,7 @@ def test_sweep_json_holds_what_the_text_says(capsys):
 def test_short_runs_print_no_python_warnings():
     # the report: RuntimeWarnings with source lines, once per sweep point
     for argv in (
-        ["simulate", "--t-end", "30"],
+        ["simulate", "--t-end", "30", "--no-progress"],
         [
             "sweep",
             "--param",
