@@ -2,7 +2,9 @@
 
 The settings are checked once, when they are built, and normalised (every number a
 float), so that equal settings key the sweep cache equally whether they came from
-the command line or from Python.
+the command line or from Python. `check_request` checks them against a model before
+a run computes anything: the sampling must resolve the model's frequencies
+(`NYQUIST_MULTIPLE`) and the run must fit in `MAX_RUN_BYTES` of memory (`run_bytes`).
 """
 
 from __future__ import annotations
@@ -11,7 +13,12 @@ import math
 from dataclasses import dataclass, fields
 from typing import Literal
 
-from .model import Backend, is_real
+import numpy as np
+
+from generated import unforced
+
+from .errors import Refused
+from .model import Backend, Model, is_real
 
 __all__ = [
     "SolverSettings",
@@ -21,6 +28,16 @@ __all__ = [
     "MAX_SAMPLES",
     "MAX_POINTS",
     "DEFAULT_T_END",
+    "NYQUIST_MULTIPLE",
+    "BYTES_PER_PERIOD",
+    "BYTES_PER_SAMPLE",
+    "MAX_RUN_BYTES",
+    "MAX_VB_POINTS",
+    "MAX_BAND_POINTS",
+    "MIN_TOL_ULPS",
+    "fastest_rate",
+    "run_bytes",
+    "check_request",
 ]
 
 #: The integrators: `beltmdsm.integrate.events` and `beltmdsm.integrate.superposition`.
@@ -113,3 +130,116 @@ class SolverSettings:
     def names(cls) -> tuple[str, ...]:
         """The field names (keywords that `beltmdsm.simulate` passes to the settings)."""
         return tuple(f.name for f in fields(cls))
+
+
+#: The sampling step ``dt`` must give a Nyquist frequency ``pi / dt`` of at least this
+#: multiple of the fastest of ``Omega_t``, ``Omega_n`` and ``omega1``. The velocity X1'
+#: has a kink at every switch (the friction jumps at a reversal, a stick, a loss of
+#: contact), so its harmonics fall off only as 1/k^2, and a harmonic above the Nyquist
+#: frequency folds back onto the spectrum: at ``--dt 0.7`` (``pi/dt = 1.1 Omega``)
+#: 2 Omega lands in the omega1 band and reads as a peak. With ``pi/dt >= 8 w`` only
+#: harmonics above about ``2 x 8 - 1.25 = 14.75`` times the fastest line fold into the
+#: omega1 band, and they carry less than 1/14.75^2 = 0.5 % of the fundamental, half
+#: the criterion of a present peak (`beltmdsm.analysis.summary.PEAK_PRESENT_RATIO`).
+#: Measured over the 16 cases of `beltmdsm.studies.validation.CASES` at Vb = 0.5, 2,
+#: 4, 6, 10 and 16 m/s (600 s runs): against a reference sampled at dt = 0.005 s, the
+#: omega1 peak moves by at most 32 % of the present threshold at ``pi/dt = 4 w``, 11 %
+#: at 6 w, 5.8 % at 8 w and 3.7 % at 10 w (the rest is the window's own leakage). The
+#: default dt = 0.02 s passes up to w = 19.6 rad/s (every case of the paper: Omega up
+#: to 10, omega1 up to 12).
+NYQUIST_MULTIPLE = 8.0
+#: The memory a run holds, per period ``2 pi / w`` of its fastest rate ``w``
+#: (`fastest_rate`) at rtol = atol = 1e-10: the integrators keep every step's dense
+#: output (DOP853: about 280 bytes a step in arrays) until the run is summarised, and
+#: the summary's quadrature and samples add to it. Measured as the growth of the peak
+#: resident memory between runs of 10^4 s and 4 x 10^4 s (dt = 0.05 s): 41 kB per
+#: period at the base set (events; Vb = 4), 53 kB at Omega = 10 (Vb = 1, stick-slip),
+#: 28 kB at omega1 = 12, and with the superposition solver 59, 40 and 28 kB; rounded up
+#: to 64 KiB. A tighter tolerance takes more steps, as ``tol^(-1/8)`` (DOP853 is of
+#: order 8).
+BYTES_PER_PERIOD = 64 * 1024
+#: The memory of one sample of a run's time series and of the summary's work on it
+#: (7 floats kept, the steady window's spectra): measured 77-104 bytes a sample
+#: (5 x 10^4 to 5 x 10^6 samples), rounded up.
+BYTES_PER_SAMPLE = 128
+#: The largest run `check_request` accepts, by `run_bytes`: 4 GiB, so that a sweep
+#: with a worker per core of a small machine fits in its memory. At the base set and
+#: the default tolerances this is about 7 x 10^4 s of simulated time.
+MAX_RUN_BYTES = 4 * 2**30
+#: Most belt speeds of one grid of `beltmdsm.analysis.predict` (``points``, or the
+#: size of ``vb``): the harmonic
+#: balance takes 1.3 to 2 ms a point (measured at the base set: 400 points in 0.8 s,
+#: 4000 in 5.2 s, 30000 in 60 s with the other core busy), so 10^5 points take two to
+#: three minutes (with a progress bar); a larger grid resolves nothing that the
+#: refinement of every edge to 1e-10 m/s does not already.
+MAX_VB_POINTS = 10**5
+#: Most grid points of `beltmdsm.analysis.band.floquet_band`: a point takes about 2 ms
+#: (6 ms where no periodic response is found; measured at the base set over Vb in
+#: [1, 9]), so 10^4 points take 20 s to a minute.
+MAX_BAND_POINTS = 10**4
+#: `beltmdsm.analysis.band.floquet_band`'s ``tol`` must span this many ulps of the
+#: larger end of the range: below, the midpoint of a bracket rounds to one of its ends
+#: and the bisection stops shrinking it.
+MIN_TOL_ULPS = 64
+
+
+def fastest_rate(model: Model) -> float:
+    """The fastest rate of the model [rad/s or 1/s], which sets an integrator's steps.
+
+    The largest of the excitation frequencies ``Omega_t``, ``Omega_n``, ``omega1`` and
+    the moduli of the unforced eigenvalues at the equilibrium
+    (`generated.unforced.eigenvalues`: the stiffness and damping of the contact).
+    """
+    p = model.params
+    lam = np.abs(unforced.eigenvalues(contact=model.contact, **p))
+    return float(max(p["Omega_t"], p["Omega_n"], p["omega1"], float(np.max(lam))))
+
+
+def run_bytes(model: Model, settings: SolverSettings) -> float:
+    """An upper estimate of the memory a run of ``model`` with ``settings`` holds [bytes].
+
+    ``BYTES_PER_PERIOD`` per period ``2 pi / w`` of the fastest rate (`fastest_rate`),
+    scaled by ``(1e-10 / tol)^(1/8)`` for a tolerance ``tol = min(rtol, atol)`` below
+    1e-10, plus ``BYTES_PER_SAMPLE`` per sample (``t_end / dt``).
+    """
+    periods = settings.t_end * fastest_rate(model) / (2 * math.pi)
+    tol = min(settings.rtol, settings.atol)
+    steps = max(1.0, (1e-10 / tol) ** 0.125)
+    return periods * BYTES_PER_PERIOD * steps + settings.t_end / settings.dt * BYTES_PER_SAMPLE
+
+
+def check_request(model: Model, settings: SolverSettings) -> None:
+    """Refuse a run that could not be read or would not fit, before it computes anything.
+
+    Raises
+    ------
+    beltmdsm.errors.Refused
+        Naming ``t_end`` where `run_bytes` exceeds `MAX_RUN_BYTES`, and ``dt`` where
+        ``pi / dt`` is below `NYQUIST_MULTIPLE` times the fastest of ``Omega_t``,
+        ``Omega_n`` and ``omega1`` (its harmonics would alias into the omega1 band).
+    """
+    need = run_bytes(model, settings)
+    if need > MAX_RUN_BYTES:
+        rate = fastest_rate(model)
+        top = settings.t_end * MAX_RUN_BYTES / need
+        raise Refused(
+            f"t_end = {settings.t_end:g} s would hold about {need / 2**30:.3g} GiB "
+            f"(dense output of every step: {BYTES_PER_PERIOD // 1024} KiB per period "
+            f"of the fastest rate {rate:.4g} rad/s, and {BYTES_PER_SAMPLE} bytes per "
+            f"sample), more than MAX_RUN_BYTES = {MAX_RUN_BYTES / 2**30:g} GiB "
+            f"(beltmdsm/settings.py); shorten t_end to at most about {top:.3g} s",
+            "t_end",
+        )
+    p = model.params
+    lines = {"Omega_t": p["Omega_t"], "Omega_n": p["Omega_n"], "omega1": p["omega1"]}
+    name, fastest = max(lines.items(), key=lambda kv: kv[1])
+    nyquist = math.pi / settings.dt
+    if nyquist < NYQUIST_MULTIPLE * fastest:
+        raise Refused(
+            f"dt = {settings.dt:g} s samples up to pi/dt = {nyquist:.4g} rad/s, below "
+            f"{NYQUIST_MULTIPLE:g} x {name} = {NYQUIST_MULTIPLE * fastest:.4g} rad/s: the "
+            "harmonics of the motion would alias into the omega1 band and read as a "
+            f"peak (NYQUIST_MULTIPLE in beltmdsm/settings.py); use dt <= "
+            f"{math.pi / (NYQUIST_MULTIPLE * fastest):.4g} s",
+            "dt",
+        )

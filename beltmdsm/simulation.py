@@ -20,6 +20,7 @@ The tension law (``tension=``, docs/modelling.md#tension) is Eq. (1) as printed
 
 from __future__ import annotations
 
+import sys
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
@@ -33,7 +34,7 @@ from .integrate.events import integrate_events
 from .integrate.superposition import NotApplicable, integrate_superposed
 from .integrate.trajectory import Run, Samples, Trajectory
 from .model import Model, as_model
-from .settings import SolverSettings
+from .settings import SolverSettings, check_request
 
 __all__ = ["Simulation", "simulate"]
 
@@ -109,6 +110,7 @@ def simulate(
     *,
     settings: SolverSettings | None = None,
     y0: ArrayLike | None = None,
+    progress: bool = False,
     **kw: Any,
 ) -> Simulation:
     """Simulate Eq. (4) and summarise the run.
@@ -123,6 +125,9 @@ def simulate(
         initial state (X1, Y1, X2, Y2) at t = 0; default the unforced equilibrium,
         Eq. (9). To start on the periodic response, pass
         `beltmdsm.analysis.floquet.periodic_start` of the model.
+    progress : bool
+        show the simulated time on stderr (tqdm) once the run takes more than 2 s;
+        it advances at every switch (a run without switches shows its elapsed time)
     **kw
         parameters (``Vb=4``), options (``tension="clipped"``) or solver settings
         (``t_end=500``, ``solver="events"``)
@@ -135,7 +140,11 @@ def simulate(
     ------
     ValueError
         Naming the parameter, setting or option, for a bad value.
-    beltmdsm.integrate.events.StepTooSmall
+    beltmdsm.errors.Refused
+        Before anything is computed, for a sampling step that would alias the
+        excitation into the omega1 band or a run that would not fit in memory
+        (`beltmdsm.settings.check_request`).
+    beltmdsm.errors.StepTooSmall
         Where the integrator cannot go on at the tolerances given.
     """
     clock = time.perf_counter()
@@ -154,21 +163,44 @@ def simulate(
         y0 = np.asarray(y0, dtype=float)
         if y0.shape != (4,) or not np.all(np.isfinite(y0)):
             raise ValueError(f"y0 must be 4 finite numbers (X1, Y1, X2, Y2); got {y0!r}")
-    return _simulate(model, settings, y0, clock)
+    check_request(model, settings)
+    return _simulate(model, settings, y0, clock, progress)
 
 
-def _simulate(model: Model, settings: SolverSettings, y0, clock: float) -> Simulation:
+def _simulate(
+    model: Model, settings: SolverSettings, y0, clock: float, progress: bool = False
+) -> Simulation:
     """`simulate` on checked arguments."""
+    from tqdm import tqdm
+
+    bar = tqdm(
+        total=settings.t_end,
+        desc="simulate",
+        unit="s",
+        delay=2,
+        leave=False,
+        disable=not progress,
+        file=sys.stderr,
+        bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.0f}/{total:.0f} s of simulated "
+        "time [{elapsed}<{remaining}]",
+    )
+
+    def reached(t):
+        bar.update(t - bar.n)
+
     run = None
-    if settings.solver == "superposition":
-        try:
-            run = integrate_superposed(model, settings, y0=y0)
-        except NotApplicable as reason:
-            fallback = str(reason)
-    if run is None:
-        run = integrate_events(model, settings, y0=y0)
+    try:
         if settings.solver == "superposition":
-            run.message = f"{run.message} (events solver: {fallback})"
+            try:
+                run = integrate_superposed(model, settings, y0=y0, progress=reached)
+            except NotApplicable as reason:
+                fallback = str(reason)
+        if run is None:
+            run = integrate_events(model, settings, y0=y0, progress=reached)
+            if settings.solver == "superposition":
+                run.message = f"{run.message} (events solver: {fallback})"
+    finally:
+        bar.close()
     samples = run.sample(settings.dt)
     summary = summarize(model, settings, run, samples)
     wall = time.perf_counter() - clock

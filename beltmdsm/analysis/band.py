@@ -25,7 +25,9 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain
+from ..settings import MAX_BAND_POINTS, MIN_TOL_ULPS
 from .branch import SpecialPoint, continue_branch
 from .edges import KINDS, OLD_KINDS, End, NoEdge, locate_end, log_max_multiplier, multiplier_kind
 from .floquet import (
@@ -153,6 +155,8 @@ class Band:
         Every evaluated value, in order.
     failed : list of BandFailure
         The grid values where no periodic response was found, with the reason.
+    tol : float
+        The edges' tolerance: edges closer than it are one (`floquet_band`).
     """
 
     param: str
@@ -164,10 +168,11 @@ class Band:
     no_periodic_response: list[list[float]]
     grid: list[BandPoint]
     failed: list[BandFailure]
+    tol: float
 
     def as_dict(self) -> dict:
         """The JSON of ``floquet-band --json``: ``param``, ``unstable``, ``edges``,
-        ``grazing_points``, ``no_periodic_response``, ``grid``, ``failed``,
+        ``grazing_points``, ``no_periodic_response``, ``grid``, ``failed``, ``tol``,
         ``tension``, ``contact``."""
         return {
             "param": self.param,
@@ -177,6 +182,7 @@ class Band:
             "no_periodic_response": [list(r) for r in self.no_periodic_response],
             "grid": [g.as_dict() for g in self.grid],
             "failed": [f.as_dict() for f in self.failed],
+            "tol": self.tol,
             "tension": self.model.tension,
             "contact": self.model.contact,
         }
@@ -192,6 +198,7 @@ def floquet_band(
     tol: float = 1e-3,
     backend: Backend | None = None,
     periods: int = 1,
+    progress: bool = False,
     **kw: Any,
 ) -> Band:
     """Ranges of ``param`` in ``[lo, hi]`` where the periodic response is unstable.
@@ -210,6 +217,11 @@ def floquet_band(
     computed exactly: it is that response's largest velocity in contact, which does
     not depend on ``Vb`` (`beltmdsm.analysis.floquet.largest_sliding_velocity`).
 
+    Changes closer together than ``tol`` cannot be told apart at that tolerance: they
+    are one edge, whose sides are the outer sides of the first and the last, and the
+    values evaluated between them do not enter the ranges. So the edges' sides agree
+    with the ranges at every ``tol``, and a finer ``tol`` only resolves more.
+
     Parameters
     ----------
     param : str
@@ -219,14 +231,18 @@ def floquet_band(
     model : Model or dict, optional
         The other parameters and the options (default: the base set); ``**kw`` too.
     points : int
-        Grid values walked before the refinement, >= 2.
+        Grid values walked before the refinement, 2 to
+        `beltmdsm.settings.MAX_BAND_POINTS`.
     tol : float
-        The edges' tolerance, > 0.
+        The edges' tolerance, at least `beltmdsm.settings.MIN_TOL_ULPS` ulps of the
+        larger end of the range (a bracket cannot be split finer than its rounding).
     backend : {"python", "numba", None}
     periods : int
         ``k > 1``: the band of the response of ``k`` periods (a value without a
         neighbour is seeded from the attractor of the period map,
         `beltmdsm.analysis.floquet.periodic_response`).
+    progress : bool
+        Show the evaluations on stderr (tqdm) once they take more than 2 s.
 
     Returns
     -------
@@ -236,7 +252,10 @@ def floquet_band(
     ------
     ValueError
         For an unknown parameter, a range that is not finite, empty or outside the
-        parameter's domain, ``points < 2`` or ``tol`` not above the rounding of the range.
+        parameter's domain, ``points < 2`` or ``tol <= 0``.
+    beltmdsm.errors.Refused
+        For ``points`` above `beltmdsm.settings.MAX_BAND_POINTS` or ``tol`` below the
+        rounding of the range (`beltmdsm.settings.MIN_TOL_ULPS`).
     """
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")
@@ -249,6 +268,12 @@ def floquet_band(
     model = as_model(model, **kw)
     if int(points) < 2 or not tol > 0:
         raise ValueError(f"points must be >= 2 and tol > 0; got {points}, {tol}")
+    _check_band_request(lo, hi, int(points), tol)
+    from tqdm import tqdm
+
+    bar = tqdm(
+        desc=f"floquet-band {param}", unit=" values", disable=not progress, delay=2, leave=False
+    )
     failed, seen = [], {}
 
     def evaluate(v, neighbours, record=False):
@@ -270,6 +295,7 @@ def floquet_band(
                 failed.append(BandFailure(float(v), str(err)))
             f = None
         seen[float(v)] = f
+        bar.update()
         return f
 
     grid, last = [], None
@@ -315,14 +341,17 @@ def floquet_band(
         fm = refine(a, fa, m, fm)
         return refine(m, fm, b, fb)
 
-    for i in range(len(grid) - 1):
-        (a, fa), (b, fb) = grid[i], grid[i + 1]
-        grid[i + 1] = (b, refine(a, fa, b, fb))
-    edges = sorted(edges, key=lambda e: e.value)
+    try:
+        for i in range(len(grid) - 1):
+            (a, fa), (b, fb) = grid[i], grid[i + 1]
+            grid[i + 1] = (b, refine(a, fa, b, fb))
+    finally:
+        bar.close()
+    edges, hidden = _merge_close(sorted(edges, key=lambda e: e.value), tol)
     grazing_points += [
         e.value for e in edges if e.kind == "grazing" and e.value not in grazing_points
     ]
-    points_seen = sorted(seen.items())
+    points_seen = sorted((v, f) for v, f in seen.items() if not any(a < v < b for a, b in hidden))
     unstable = _runs(points_seen, edges, lambda f: f is None or f.stable is not True, lo, hi)
     gaps = _runs(points_seen, edges, lambda f: f is None, lo, hi)
     table = [
@@ -349,7 +378,77 @@ def floquet_band(
         gaps,
         table,
         failed,
+        float(tol),
     )
+
+
+def _check_band_request(lo, hi, points, tol):
+    """Refuse a grid above `MAX_BAND_POINTS` or a ``tol`` below the range's rounding."""
+    if points > MAX_BAND_POINTS:
+        raise Refused(
+            f"points = {points} is more than MAX_BAND_POINTS = {MAX_BAND_POINTS:.0e} "
+            "(beltmdsm/settings.py): about 2 ms a point, and every edge is refined to tol "
+            "anyway",
+            "points",
+        )
+    finest = MIN_TOL_ULPS * float(np.spacing(max(abs(lo), abs(hi))))
+    if tol < finest:
+        raise Refused(
+            f"tol = {tol:g} is below what the rounding of the range [{lo:g}, {hi:g}] can "
+            f"resolve: at least {MIN_TOL_ULPS} ulps of {max(abs(lo), abs(hi)):g}, "
+            f"{finest:.2g} (MIN_TOL_ULPS in beltmdsm/settings.py)",
+            "tol",
+        )
+
+
+#: Which edge of a group closer than the tolerance names the group: an exact grazing
+#: point, then an end of the response, then a multiplier crossing.
+_MERGE_ORDER = ("grazing", "tangency", "fold", "existence", "period_doubling", "neimark_sacker")
+
+
+def _merge_close(edges, tol):
+    """Edges closer than ``tol`` to the first of their group, merged into one.
+
+    At that tolerance they cannot be told apart. The merged edge takes the outer
+    sides (below from the first, above from the last), the union of the brackets and
+    the value, kind and frequency of the first of the group in `_MERGE_ORDER`; its
+    accuracy covers the union.
+
+    Returns
+    -------
+    edges : list of Edge
+    hidden : list of (lo, hi)
+        The merged brackets: the values evaluated strictly inside do not enter the
+        ranges (their changes are below the resolution).
+    """
+    groups = []
+    for e in edges:
+        if groups and e.value - groups[-1][0].value <= tol:
+            groups[-1].append(e)
+        else:
+            groups.append([e])
+    out, hidden = [], []
+    for group in groups:
+        if len(group) == 1:
+            out.append(group[0])
+            continue
+        lead = min(group, key=lambda e: _MERGE_ORDER.index(e.kind))
+        bracket = (min(e.bracket[0] for e in group), max(e.bracket[1] for e in group))
+        others = ", ".join(f"{e.kind} at {e.value:.9g}" for e in group if e is not lead)
+        out.append(
+            dataclasses.replace(
+                lead,
+                bracket=bracket,
+                accuracy=max(lead.value - bracket[0], bracket[1] - lead.value),
+                unstable_below=group[0].unstable_below,
+                unstable_above=group[-1].unstable_above,
+                detail="; ".join(
+                    filter(None, [lead.detail, f"with {others}, closer than tol = {tol:g}"])
+                ),
+            )
+        )
+        hidden.append(bracket)
+    return out, hidden
 
 
 def _same_structure(fa, fb):

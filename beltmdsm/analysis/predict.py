@@ -34,6 +34,7 @@ analysis gives no prediction (`CLIPPED_MDSM`) rather than the allowed law's.
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 from typing import Any, Literal
@@ -45,7 +46,9 @@ from scipy import optimize
 from generated import correlation, friction, stability
 
 from .. import intervals
+from ..errors import Refused
 from ..model import Model, as_model
+from ..settings import MAX_VB_POINTS
 
 __all__ = [
     "FastMotion",
@@ -60,6 +63,7 @@ __all__ = [
     "CLIPPED_MDSM",
     "CLIPPED_PAPER",
     "clip_acts",
+    "ONSET_STEP",
 ]
 
 
@@ -108,6 +112,17 @@ def _log_balance(z, *args):
     return _balance((np.exp(z[0]), z[1]), *args)
 
 
+def _reversing_balance(z, *args):
+    """`_balance` in ``(s, phi)`` with ``V = Vb + s^2``: every iterate reverses.
+
+    At the onset of reversal (``V = Vb``) the first harmonic of the friction has a
+    square-root singularity in ``V``: the reversal lasts a phase interval of width
+    proportional to ``sqrt(V - Vb)``. In ``s`` it is smooth, so Newton's method
+    converges next to the linear amplitude, where it stalls in ``V``.
+    """
+    return _balance((args[0]["Vb"] + z[0] ** 2, z[1]), *args)
+
+
 def _hybr(fun, start, args):
     """``scipy.optimize.root`` (hybr) from ``start``; None if an iterate had ``V <= 0``."""
     try:
@@ -116,6 +131,14 @@ def _hybr(fun, start, args):
         # the generated first_harmonic refuses V <= 0 (checked before the Vb loop, the
         # parameters themselves are valid here)
         return None
+
+
+#: The shallowest reversal a solution of the harmonic balance may have, relative to
+#: ``V``: ``V - Vb`` of 1024 ulps of ``V``. Below it the first harmonic of the friction
+#: (``sqrt(1 - Vb^2 / V^2)``) carries a relative rounding error of about
+#: ``eps V / (2 (V - Vb))``, over 5e-4, and a near-root at ``V -> Vb`` (no reversal)
+#: can pass the residual test next to the linear amplitude.
+_SHALLOWEST_REVERSAL = 1024 * np.finfo(float).eps
 
 
 def fast_motion(model: Model, guess: FastMotion | None = None) -> FastMotion:
@@ -141,32 +164,49 @@ def fast_motion(model: Model, guess: FastMotion | None = None) -> FastMotion:
     V_lin, phi_lin = (float(x) for x in correlation.fast_tangential_velocity(contact=contact, **p))
     if V_lin <= p["Vb"]:
         return FastMotion(V_lin, phi_lin, N1, psi, False, 0.0)
-    start = (guess.V, guess.phi) if guess is not None and guess.reverses else (V_lin, phi_lin)
+    reversing = guess is not None and guess.reverses
+    start = (guess.V, guess.phi) if reversing else (V_lin, phi_lin)
     args = (p, W, N1, psi, D, Ft)
-
-    def residual_of(sol, V):
-        return float(np.max(np.abs(_balance((V, sol.x[1]), *args)))) if V > 0 else np.inf
-
-    sol = _hybr(_balance, start, args)
-    V = sol.x[0] if sol is not None else 0.0
-    # hybr may report "not making good progress" once at machine precision: the
-    # residual itself is the criterion.
-    residual = residual_of(sol, V) if sol is not None else np.inf
-    if residual > 1e-9:
-        # Where V is small (Vb near 0, or an excitation at resonance) a Newton step can
-        # cross V = 0; in log V it cannot. Tried second, so that the cases the direct
-        # iteration solves keep their digits.
-        sol = _hybr(_log_balance, (np.log(start[0]), start[1]), args)
-        if sol is not None:
-            V = float(np.exp(sol.x[0]))
-            residual = residual_of(sol, V)
-    if residual > 1e-9:
-        why = sol.message if sol is not None else "an iterate reached V <= 0"
-        raise RuntimeError(
-            f"harmonic balance did not converge at Vb = {p['Vb']}: {why} (residual {residual:.1e})"
-        )
-    phi = sol.x[1]
-    return FastMotion(float(V), float(np.angle(np.exp(1j * phi))), N1, psi, V > p["Vb"], residual)
+    Vb = p["Vb"]
+    # The attempts, in order: Newton's method (hybr) in V, then in log V (where V is
+    # small, Vb near 0 or an excitation at resonance, a step can cross V = 0; in log V
+    # it cannot), then in s = sqrt(V - Vb) (`_reversing_balance`; next to the linear
+    # amplitude, where the first two stall on the square-root singularity), from the
+    # guess and from reversals of 1 %, 10 % and 100 % of the linear amplitude (the
+    # reversing solution there has V - Vb of the order of 1e-3 V_lin, and a start
+    # below half of it falls towards s = 0, which is no solution). Tried in this
+    # order, so that the cases the direct iteration solves keep their digits.
+    attempts = [
+        (_balance, start, lambda x: x),
+        (_log_balance, (math.log(start[0]), start[1]), math.exp),
+    ]
+    depths = [start[0] - Vb] if start[0] > Vb else []
+    depths += [f * V_lin for f in (0.01, 0.1, 1.0)]
+    attempts += [
+        (_reversing_balance, (math.sqrt(d), start[1]), lambda x: Vb + x * x) for d in depths
+    ]
+    residual, why = np.inf, ""
+    for fun, z0, to_V in attempts:
+        sol = _hybr(fun, z0, args)
+        if sol is None:
+            why = "an iterate reached V <= 0"
+            continue
+        V = float(to_V(sol.x[0]))
+        if not V - Vb > _SHALLOWEST_REVERSAL * V:
+            # the friction would not reverse, which holds only at V_lin <= Vb; or the
+            # reversal is too shallow for the first harmonic to be told from rounding
+            why = f"an iterate settled at V = {V!r}, without a resolved reversal (Vb = {Vb!r})"
+            continue
+        # hybr may report "not making good progress" once at machine precision: the
+        # residual itself is the criterion.
+        residual = float(np.max(np.abs(_balance((V, sol.x[1]), *args))))
+        why = sol.message
+        if residual <= 1e-9:
+            phi = sol.x[1]
+            return FastMotion(V, float(np.angle(np.exp(1j * phi))), N1, psi, True, residual)
+    raise RuntimeError(
+        f"harmonic balance did not converge at Vb = {Vb}: {why} (residual {residual:.1e})"
+    )
 
 
 def consistent_mdsm_damping(model: Model, fast: FastMotion | None = None) -> float:
@@ -185,14 +225,38 @@ def _check_grid(vb):
     vb = np.asarray(vb, dtype=float)
     if vb.ndim != 1 or vb.size < 2:
         raise ValueError(f"vb must be a 1-D grid of at least 2 belt speeds; got shape {vb.shape}")
+    if vb.size > MAX_VB_POINTS:
+        raise Refused(
+            f"vb has {vb.size} belt speeds, more than MAX_VB_POINTS = {MAX_VB_POINTS:.0e} "
+            "(beltmdsm/settings.py)",
+            "points",
+        )
     if not np.all(np.isfinite(vb)) or np.any(vb < 0):
         raise ValueError("vb must hold finite belt speeds >= 0")
     return vb
 
 
+#: The grid gets a point this far below the linear amplitude ``V_lin``, relative, and
+#: none between it and ``V_lin``: the damping there is that of the onset of reversal.
+#: Closer to ``V_lin`` the harmonic balance can be singular: at the base set its
+#: reversing solution keeps ``V - Vb = 2.1e-3 m/s`` up to ``V_lin`` (the damping tends
+#: to -18.4), but where the excitation is at resonance (``Omega = omega1``) the
+#: reversal vanishes as ``(V_lin - Vb)^2``, and within 1e-8 of ``V_lin`` it is below the
+#: rounding of ``V`` (no solution can be resolved). At 1e-4 both are resolved (the
+#: residual 7e-12 at resonance, 5e-16 at the base set), with the sign of their limits.
+ONSET_STEP = 1e-4
+
+
 def _check_points(points):
     if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < 2:
         raise ValueError(f"points must be an integer >= 2; got {points!r}")
+    if points > MAX_VB_POINTS:
+        raise Refused(
+            f"points = {points} is more than MAX_VB_POINTS = {MAX_VB_POINTS:.0e} "
+            "(beltmdsm/settings.py): up to 2 ms a point, and every edge is "
+            "refined to 1e-10 m/s anyway",
+            "points",
+        )
 
 
 def unstable_intervals(
@@ -200,6 +264,7 @@ def unstable_intervals(
     *,
     vb: ArrayLike | None = None,
     points: int | np.integer = 400,
+    progress: bool = False,
     **kw: Any,
 ) -> tuple[list[tuple[float, float]], dict[str, NDArray[Any]]]:
     """Unstable belt speeds of the consistent MDSM.
@@ -207,16 +272,31 @@ def unstable_intervals(
     The damping is evaluated on a grid (continuation from high ``Vb`` down, where the
     fast motion is linear), and each change of sign is refined by bisection
     (``brentq``, to 1e-10 m/s) at a root of the damping; at the onset of friction
-    reversal ``V = Vb``, where the slope jumps from an infinite value to zero, the
-    edge is the linear amplitude in closed form.
+    reversal (the linear amplitude ``V_lin``: below it the friction reverses within a
+    fast cycle, above it never, and the slope of the averaged friction jumps to zero)
+    the edge is the linear amplitude in closed form.
+
+    The edges are found on the grid with ``V_lin`` and a point `ONSET_STEP` below it
+    added (where they lie within the grid) and the grid's points between them left
+    out (the balance may be singular there; in the table they hold the damping where
+    it can be solved, else NaN), so that this edge is found on any grid, however
+    coarse or fine: with 2 points the band of the base set is [4.682, 6.375], as with
+    400 or 30000. An edge at a root
+    of the damping is found wherever the damping changes sign between neighbours; a
+    band narrower than the grid step (two roots between neighbours) can be missed,
+    and a band that reaches the lowest point of the grid may extend below it
+    (`predict` says so).
 
     Parameters
     ----------
     vb : array_like, optional
-        the grid of belt speeds (at least 2, finite, >= 0); default: ``points``
-        speeds up to 1.05 times the linear amplitude of the fast motion
+        the grid of belt speeds (at least 2, at most `MAX_VB_POINTS`, finite, >= 0);
+        default: ``points`` speeds up to 1.05 times the linear amplitude of the fast
+        motion
     points : int
-        size of the default grid (at least 2)
+        size of the default grid (at least 2, at most `MAX_VB_POINTS`)
+    progress : bool
+        show a progress bar on stderr (tqdm) once the grid takes more than 2 s
 
     Returns
     -------
@@ -225,13 +305,15 @@ def unstable_intervals(
         that reaches it). Without excitation (no fast motion) the list is empty
         and so is the default grid.
     table : dict of arrays
-        ``Vb``, ``damping``, ``V``, ``theta``, ``reverses`` on the grid.
+        ``Vb``, ``damping``, ``V``, ``theta``, ``reverses`` on the grid asked for
+        (ascending).
 
     Raises
     ------
     ValueError
         For bad parameters or a bad grid (naming them), and for two excitation
-        frequencies (the harmonic balance needs one).
+        frequencies (the harmonic balance needs one); `beltmdsm.errors.Refused` for a
+        grid of more than `MAX_VB_POINTS` points.
     RuntimeError
         If the harmonic balance does not converge at a belt speed.
     """
@@ -239,12 +321,22 @@ def unstable_intervals(
     p, contact = model.params, model.contact
     _check_points(points)
     _single_frequency(p)
+    V_lin = float(correlation.fast_tangential_velocity(contact=contact, **p)[0])
     if vb is None:
         # Above the linear amplitude the friction never reverses and the slope is 0.
-        top = 1.05 * float(correlation.fast_tangential_velocity(contact=contact, **p)[0])
+        top = 1.05 * V_lin
         vb = np.linspace(top / points, top, points) if top > 0 else np.empty(0)
     else:
         vb = _check_grid(vb)
+    requested = np.sort(vb)
+    zone = np.zeros(vb.size, bool)
+    if vb.size and V_lin > 0:
+        # the onset of reversal and a point just below it; the requested points between
+        # them are evaluated for the table only (the balance may be singular there)
+        onset_below = V_lin * (1 - ONSET_STEP)
+        zone = (requested > onset_below) & (requested < V_lin)
+        onset = [v for v in (onset_below, V_lin) if vb.min() < v < vb.max()]
+        vb = np.union1d(requested[~zone], onset)
     if vb.size == 0:
         return [], {
             "Vb": vb,
@@ -253,13 +345,32 @@ def unstable_intervals(
             "theta": vb.copy(),
             "reverses": np.zeros(0, bool),
         }
+    from tqdm import tqdm
+
     rows, guess = [], None
-    for v in sorted(vb, reverse=True):
-        q = model.replace(Vb=float(v))
-        fast = fast_motion(q, guess)
-        guess = fast
-        rows.append((v, consistent_mdsm_damping(q, fast), fast))
-    rows.sort(key=lambda r: r[0])
+    total = vb.size + int(zone.sum())
+    bar = tqdm(
+        total=total, desc="predict Vb", disable=not progress, file=sys.stderr, delay=2, leave=False
+    )
+    try:
+        for v in sorted(vb, reverse=True):
+            q = model.replace(Vb=float(v))
+            fast = fast_motion(q, guess)
+            guess = fast
+            rows.append((v, consistent_mdsm_damping(q, fast), fast))
+            bar.update()
+        rows.sort(key=lambda r: r[0])
+        found = {float(r[0]): r[1:] for r in rows}
+        for v in requested[zone]:
+            q = model.replace(Vb=float(v))
+            try:
+                fast = fast_motion(q, found[float(onset_below)][1])
+                found[float(v)] = (consistent_mdsm_damping(q, fast), fast)
+            except RuntimeError:
+                found[float(v)] = (math.nan, None)
+            bar.update()
+    finally:
+        bar.close()
     grid = np.array([r[0] for r in rows])
     damping = np.array([r[1] for r in rows])
 
@@ -278,12 +389,13 @@ def unstable_intervals(
             continue
         cuts.append(optimize.brentq(damping_at, grid[i], grid[i + 1], args=(above,), xtol=1e-10))
     unstable = intervals.from_crossings(grid, damping < 0, cuts)
+    at = [found[float(v)] for v in requested]
     table = {
-        "Vb": grid,
-        "damping": damping,
-        "V": np.array([r[2].V for r in rows]),
-        "theta": np.array([r[2].theta for r in rows]),
-        "reverses": np.array([r[2].reverses for r in rows]),
+        "Vb": requested,
+        "damping": np.array([d for d, _ in at]),
+        "V": np.array([f.V if f else math.nan for _, f in at]),
+        "theta": np.array([f.theta if f else math.nan for _, f in at]),
+        "reverses": np.array([bool(f and f.reverses) for _, f in at]),
     }
     return unstable, table
 
@@ -336,6 +448,11 @@ NO_EXCITATION = (
     "friction with slope 0, so no belt speed is unstable"
 )
 NO_VHAT = "V_hat = 0 (no fast tangential motion): Eqs. (23)-(25) need V_hat > 0"
+#: The note on a band of the consistent MDSM that reaches an end of its grid.
+GRID_END = (
+    "an unstable range reaches the {end} belt speed of the grid, {value:.4g} m/s, "
+    "and may extend {side} it"
+)
 #: Why the consistent MDSM gives no prediction under the clipped tension law
 #: (formatted with the amplitude ``N1`` of the fast normal force and ``g``).
 CLIPPED_MDSM = (
@@ -402,6 +519,7 @@ def predict(
     *,
     vb: ArrayLike | None = None,
     points: int | np.integer = 400,
+    progress: bool = False,
     **kw: Any,
 ) -> Prediction:
     """Both analyses' predicted unstable ``Vb`` intervals.
@@ -413,8 +531,10 @@ def predict(
         change with it (a note in ``reasons`` says why); the consistent MDSM under
         ``"clipped"`` has no prediction where the clip cuts its fast normal force
         (`clip_acts`, `CLIPPED_MDSM`) and a note where it does not.
-    vb, points
-        the ``Vb`` grid of the consistent MDSM (`unstable_intervals`)
+    vb, points, progress
+        the ``Vb`` grid of the consistent MDSM and its progress bar
+        (`unstable_intervals`). Where a band of the consistent MDSM reaches the
+        lowest point of the grid above 0, ``reasons`` says that it may extend below.
 
     Returns
     -------
@@ -423,7 +543,8 @@ def predict(
     Raises
     ------
     ValueError
-        For bad parameters, a bad option or a bad grid (naming them).
+        For bad parameters, a bad option or a bad grid (naming them);
+        `beltmdsm.errors.Refused` for more than `MAX_VB_POINTS` points.
     """
     model = as_model(model, **kw)
     p, tension = model.params, model.tension
@@ -439,7 +560,7 @@ def predict(
     try:
         if clipped:
             raise _Refused(note)
-        consistent, _ = unstable_intervals(model, vb=vb, points=points)
+        consistent, table = unstable_intervals(model, vb=vb, points=points, progress=progress)
     except _Refused as err:
         consistent, reasons["consistent_mdsm"] = None, str(err)
     except RuntimeError as err:
@@ -452,6 +573,15 @@ def predict(
         linear = float(correlation.fast_tangential_velocity(contact=model.contact, **p)[0])
         if linear == 0:
             reasons["consistent_mdsm"] = NO_EXCITATION
+        ends = []
+        if table["Vb"].size:
+            lowest, highest = float(table["Vb"][0]), float(table["Vb"][-1])
+            if lowest > 0 and any(lo == lowest for lo, _ in consistent):
+                ends.append(GRID_END.format(end="lowest", value=lowest, side="below"))
+            if any(hi == highest for _, hi in consistent):
+                ends.append(GRID_END.format(end="highest", value=highest, side="above"))
+        if ends:
+            reasons["consistent_mdsm"] = "; ".join(ends)
         if tension == "clipped":
             reasons["consistent_mdsm"] = "; ".join(
                 r for r in (reasons.get("consistent_mdsm"), note) if r

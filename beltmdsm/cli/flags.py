@@ -25,17 +25,20 @@ import contextlib
 import math
 import os
 import sys
+import warnings
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
 from generated.parameters import PARAMETERS
 
+from ..errors import StepTooSmall
 from ..model import OPTION_DEFAULTS, OPTION_DOCS, OPTIONS, Model, check_domain
 from ..settings import CONTACT_LOSS, DEFAULT_T_END, METHODS, SOLVERS, SolverSettings
 
 __all__ = [
     "register",
+    "flag_of",
     "number",
     "integer",
     "output_file",
@@ -45,6 +48,8 @@ __all__ = [
     "model_parent",
     "model_from",
     "swept",
+    "range_flags",
+    "range_from",
     "params_from",
     "solver_parent",
     "settings_from",
@@ -77,18 +82,52 @@ def register(
     """Add command ``name`` to ``commands`` (an argparse subparsers action), run by ``run``.
 
     A bad value found while it runs (a ValueError) is reported like a bad flag: one
-    line naming it, exit status 2; the system refusing (an OSError), exit status 1.
+    line naming it, exit status 2; so are a request the package refuses
+    (`beltmdsm.errors.Refused`, naming the flags of the settings it refuses), an
+    integrator that cannot go on at the tolerances given
+    (`beltmdsm.errors.StepTooSmall`, naming ``--rtol/--atol``) and a periodic
+    response that is not found (`beltmdsm.analysis.floquet.NoPeriodicResponse`). The
+    system refusing (an OSError): one line, exit status 1. A warning while it runs
+    (a cache file recomputed) is one line on stderr, ``PROG: warning: ...``.
     """
     sub = commands.add_parser(name, parents=list(parents), **kwargs)
     sub.set_defaults(run=_run, handler=run, parser=sub)
     return sub
 
 
+def flag_of(name: str) -> str:
+    """The command-line flag of a setting or argument named in Python (``t_end``: ``--t-end``)."""
+    return "--" + name.replace("_", "-")
+
+
 def _run(args):
+    # a warning (a cache file recomputed, ...) is one line naming the program, not
+    # Python's file:line and source line
+    with warnings.catch_warnings():
+        warnings.showwarning = lambda message, *_, **__: print(
+            f"{args.parser.prog}: warning: {message}", file=sys.stderr
+        )
+        return _handle(args)
+
+
+def _handle(args):
     try:
         return args.handler(args)
     except ValueError as err:
-        args.parser.error(str(err))
+        names = getattr(err, "names", ())
+        where = "/".join(flag_of(n) for n in names)
+        args.parser.error(f"argument {where}: {err}" if where else str(err))
+    except StepTooSmall as err:
+        print(f"{args.parser.prog}: error: argument --rtol/--atol: {err}", file=sys.stderr)
+        return 2
+    except RuntimeError as err:
+        # the module is loaded where the error comes from; not imported here, so that
+        # the command line starts without the analyses
+        floquet = sys.modules.get("beltmdsm.analysis.floquet")
+        if floquet is None or not isinstance(err, floquet.NoPeriodicResponse):
+            raise
+        print(f"{args.parser.prog}: error: {err}", file=sys.stderr)
+        return 2
     except OSError as err:
         print(f"{args.parser.prog}: error: {err}", file=sys.stderr)
         return 1
@@ -249,6 +288,37 @@ def swept(args: argparse.Namespace, dest: str = "param") -> str:
     return name
 
 
+def range_flags(sub: argparse.ArgumentParser, axis: str = "") -> None:
+    """``--from X --to X`` (``--{axis}-from``, ``--{axis}-to`` for a map's axis): the
+    range walked; `range_from` reads and checks it."""
+    prefix, dest = (f"--{axis}-", f"{axis}_") if axis else ("--", "")
+    sub.add_argument(
+        f"{prefix}from",
+        dest=f"{dest}start",
+        type=number(),
+        required=True,
+        metavar="X",
+        help="lower end of the range, in the parameter's domain",
+    )
+    sub.add_argument(
+        f"{prefix}to",
+        dest=f"{dest}stop",
+        type=number(),
+        required=True,
+        metavar="X",
+        help=f"upper end of the range, strictly above {prefix}from",
+    )
+
+
+def range_from(args: argparse.Namespace, axis: str = "") -> tuple[float, float]:
+    """The range of `range_flags`, refused (exit 2) unless its upper end is above its lower."""
+    prefix, dest = (f"--{axis}-", f"{axis}_") if axis else ("--", "")
+    lo, hi = getattr(args, f"{dest}start"), getattr(args, f"{dest}stop")
+    if not hi > lo:
+        args.parser.error(f"argument {prefix}to: must be > {prefix}from ({lo:g}); got {hi:g}")
+    return lo, hi
+
+
 def model_from(args: argparse.Namespace, skip: Sequence[str] = ()) -> Model:
     """The `beltmdsm.Model` of the parameter and option flags (a bad value: exit 2)."""
     options = {name: getattr(args, name) for name in OPTIONS if hasattr(args, name)}
@@ -278,13 +348,26 @@ def solver_parent() -> argparse.ArgumentParser:
         default="DOP853",
         help="the Runge-Kutta method of the integrators (default: DOP853, the only one)",
     )
-    s.add_argument("--rtol", type=POSITIVE, default=1e-10, help="> 0 (default: 1e-10)")
-    s.add_argument("--atol", type=POSITIVE, default=1e-10, help="> 0 (default: 1e-10)")
+    s.add_argument(
+        "--rtol",
+        type=POSITIVE,
+        default=1e-10,
+        help="relative tolerance of the integrators' local error per step, > 0; the "
+        "noise floor of the spectrum and the bound of the energy residual follow it "
+        "(beltmdsm/analysis/summary.py) (default: 1e-10)",
+    )
+    s.add_argument(
+        "--atol",
+        type=POSITIVE,
+        default=1e-10,
+        help="absolute tolerance of the integrators' local error per step, > 0 (default: 1e-10)",
+    )
     s.add_argument(
         "--t-end",
         type=POSITIVE,
         default=DEFAULT_T_END,
-        help=f"duration [s], > 0 (default: {DEFAULT_T_END:g})",
+        help="simulated time [s], > 0; a run whose memory estimate exceeds MAX_RUN_BYTES "
+        f"(beltmdsm/settings.py) is refused (default: {DEFAULT_T_END:g})",
     )
     s.add_argument(
         "--t-discard",
@@ -293,7 +376,12 @@ def solver_parent() -> argparse.ArgumentParser:
         help="start of the steady window [s] (default 30%% of --t-end)",
     )
     s.add_argument(
-        "--dt", type=POSITIVE, default=0.02, help="sampling step [s], > 0 (default: 0.02)"
+        "--dt",
+        type=POSITIVE,
+        default=0.02,
+        help="sampling step of the time series [s], > 0; pi/dt must be at least "
+        "NYQUIST_MULTIPLE = 8 times the fastest of Omega_t, Omega_n, omega1 "
+        "(beltmdsm/settings.py) (default: 0.02)",
     )
     s.add_argument(
         "--on-contact-loss",
@@ -386,7 +474,9 @@ def cache_parent() -> argparse.ArgumentParser:
         "--cache-dir",
         type=_cache_folder,
         default="default",
-        help="default: $BELTMDSM_CACHE or ~/.cache/beltmdsm/sweeps",
+        metavar="FOLDER",
+        help="the folder of the sweep cache, refused if it cannot be written (default: "
+        "$BELTMDSM_CACHE or ~/.cache/beltmdsm/sweeps)",
     )
     g.add_argument("--no-cache", action="store_true", help="do not use the sweep cache")
     return parent
@@ -398,7 +488,11 @@ def cache_dir_from(args: argparse.Namespace) -> str | None:
 
 def json_parent() -> argparse.ArgumentParser:
     parent = argparse.ArgumentParser(add_help=False)
-    parent.add_argument("--json", action="store_true", help="print JSON")
+    parent.add_argument(
+        "--json",
+        action="store_true",
+        help="print the result as one JSON object instead of text (its keys: README.md)",
+    )
     return parent
 
 

@@ -59,12 +59,41 @@ def jsonable(x: Any) -> Any:
 
 
 def peak_verdict(summary: Summary) -> str:
-    """The verdict on the omega1 peak: unresolved (and why), PRESENT or absent."""
+    """The verdict on the omega1 peak: unresolved (and why), PRESENT or absent.
+
+    A peak is called friction-induced vibration only where it is present, resolved,
+    and the run's energy balance closes within its bound; without a forced peak
+    above the noise floor, the verdict says that it was judged against the floor.
+    """
     if not summary.resolved:
         return f"unresolved ({summary.unresolved_reason})"
+    floor = f"the noise floor {summary.noise_floor:.2g} m/s of the tolerances"
     if summary.omega1_peak_present:
+        if not summary.energy_ok:
+            return "PRESENT, but not trusted (the energy balance does not close; see the warning)"
+        if not summary.forced_peak:
+            return f"PRESENT (friction-induced vibration, above {floor}; no forced peak)"
         return "PRESENT (friction-induced vibration)"
+    if not summary.forced_peak:
+        return f"absent (no forced peak either: nothing rises above {floor})"
     return "absent"
+
+
+def _peak(amplitude: float, at: float | None = None) -> str:
+    """``"A m/s at W rad/s"``, or ``"not read"`` where the window could not read it."""
+    if not math.isfinite(amplitude):
+        return "not read"
+    return f"{amplitude:.6g} m/s" + (f" at {at:.6g} rad/s" if at is not None else "")
+
+
+def spectrum_line(sim: Simulation) -> str:
+    """The line of the readable summary on the X1' spectrum and the omega1 verdict."""
+    p, s = sim.params, sim.summary
+    return (
+        f"X1' spectrum: omega1 peak {_peak(s.peak_omega1, s.omega1_peak_at)} "
+        f"(omega1 = {p['omega1']:g}), Omega peak {_peak(s.peak_Omega)} (Omega = "
+        f"{p['Omega_t']:g}); omega1 peak {peak_verdict(s)}"
+    )
 
 
 def simulation(sim: Simulation, out: dict, modulation: bool) -> str:
@@ -96,10 +125,9 @@ def simulation(sim: Simulation, out: dict, modulation: bool) -> str:
         f"switches: {s.n_switches} (reversals {s.n_reversals}, sticks {s.n_sticks}, "
         f"contact losses {s.n_contact_losses}, separations {s.n_separations}, "
         f"Zeno limits {s.n_zeno})",
-        f"X1' spectrum: {s.peak_omega1:.6g} m/s at {s.omega1_peak_at:.6g} rad/s "
-        f"(omega1 = {p['omega1']:g}), {s.peak_Omega:.6g} m/s at Omega = {p['Omega_t']:g}; "
-        f"omega1 peak {peak_verdict(s)}",
-        f"energy balance: residual {s.energy_residual:.3g} (dE = {e.energy_change:.6g}, "
+        spectrum_line(sim),
+        f"energy balance: residual {s.energy_residual:.3g}, bound {s.energy_bound:.2g} "
+        f"({'closes' if s.energy_ok else 'DOES NOT CLOSE'}; dE = {e.energy_change:.6g}, "
         f"W_in = {e.work_input:.6g}, W_visc = {e.work_viscous:.6g}, "
         f"W_fric = {e.work_friction:.6g})",
         force,
@@ -112,6 +140,7 @@ def simulation(sim: Simulation, out: dict, modulation: bool) -> str:
             "over 2pi/omega1: {mu_eff_omega1_mean:.5g} +- {mu_eff_omega1_std:.3g}".format(**out)
         )
     lines.append(f"wall time {s.wall_s:.2f} s")
+    lines += [f"warning: {w}" for w in s.warnings]
     return "\n".join(lines)
 
 
@@ -164,20 +193,25 @@ def _name(periods: int) -> str:
 
 
 def band(result: Band, lo: float, hi: float) -> str:
-    """The readable result of ``floquet-band``."""
+    """The readable result of ``floquet-band``.
+
+    Values are printed to the digits of the edges' tolerance (at least 4 decimals), so
+    that two edges more than a tolerance apart never print alike.
+    """
+    spec = f".{max(4, math.ceil(-math.log10(result.tol)) + 1)}f"
     what = "periodic response" if result.periods == 1 else f"{_name(result.periods)} response"
     lines = [
         f"{what} unstable (or absent) for {result.param} in "
-        f"{format_intervals(result.unstable, '.4f')} of {lo:g}..{hi:g}"
+        f"{format_intervals(result.unstable, spec)} of {lo:g}..{hi:g}"
     ]
     for e in result.edges:
         lines.append(
-            f"  edge at {e.value:.4f} ({kind(e.kind, e.frequency)}; "
+            f"  edge at {e.value:{spec}} ({kind(e.kind, e.frequency)}; "
             f"{_SIDES[e.unstable_below, e.unstable_above]})"
         )
     if result.no_periodic_response:
         lines.append(
-            f"  no periodic response in {format_intervals(result.no_periodic_response, '.4f')}"
+            f"  no periodic response in {format_intervals(result.no_periodic_response, spec)}"
         )
     for f in result.failed:
         lines.append(f"  no periodic response found at {f.value:g}: {f.reason}")
@@ -286,24 +320,35 @@ def floquet_map(result: FloquetMap, png: str | None = None) -> str:
     return "\n".join(lines)
 
 
+def _values(x) -> str:
+    return ", ".join(f"{v:g}" for v in x)
+
+
 def sweep_validation(result: Sweep) -> list[str]:
     """Where the omega1 peak appears in a sweep over Vb, beside the paper's statement."""
     table, param = result.table, result.param
     x = np.asarray(table[param], float)
     resolved = np.asarray(table["resolved"], bool)
     present = np.asarray(table["omega1_peak_present"], bool) & resolved
-    found = format_intervals(result.omega1_peak_ranges(), "g", "nowhere")
-    lines = [
-        f"omega1 peak (>= {100 * PEAK_PRESENT_RATIO:g}% of the Omega peak) present for "
-        f"{param} in {found} m/s of the swept {x.min():g}..{x.max():g} m/s "
-        f"({int(present.sum())} of {int(resolved.sum())} resolved points)"
-    ]
+    criterion = f"omega1 peak (>= {100 * PEAK_PRESENT_RATIO:g}% of the Omega peak)"
+    swept = f"the swept {x.min():g}..{x.max():g} m/s"
+    if not resolved.any():
+        lines = [f"{criterion}: no point of {swept} can tell (all unresolved)"]
+    elif not present.any():
+        lines = [
+            f"{criterion} present at none of the {int(resolved.sum())} resolved points of {swept}"
+        ]
+    else:
+        found = format_intervals(result.omega1_peak_ranges(), "g")
+        lines = [
+            f"{criterion} present for {param} in {found} m/s of {swept} "
+            f"({int(present.sum())} of {int(resolved.sum())} resolved points)"
+        ]
     unresolved = result.unresolved_values()
     if unresolved:
         lines.append(
             f"unresolved (the run cannot tell; neither present nor absent) at {param} = "
-            + ", ".join(f"{v:g}" for v in unresolved)
-            + " m/s; lengthen --t-end"
+            f"{_values(unresolved)} m/s; lengthen --t-end"
         )
     return lines + [f"paper: {PAPER_STATEMENT}"]
 
@@ -318,20 +363,23 @@ def sweep(result: Sweep, out_file: str | None = None) -> str:
         "peak_Omega",
         "resolved",
         "energy_residual",
+        "energy_ok",
         "n_switches",
         "wall_s",
     ]
-    widths = {"regime": 22, "resolved": 8}
+    widths = {"regime": 22, "resolved": 8, "energy_ok": 9}
+
+    def cell(r, n):
+        if n in widths:
+            return f"{str(r[n]):>{widths[n]}}"
+        if n == "n_switches":
+            return f"{r[n]:>15d}"
+        # a peak the window could not read is "-", not nan
+        return f"{r[n]:>15.6g}" if np.isfinite(r[n]) else f"{'-':>15}"
+
     lines = ["  ".join(f"{n:>{widths.get(n, 15)}}" for n in names)]
     for r in table:
-        lines.append(
-            "  ".join(
-                f"{str(r[n]):>{widths[n]}}"
-                if n in widths
-                else (f"{r[n]:>15d}" if n == "n_switches" else f"{r[n]:>15.6g}")
-                for n in names
-            )
-        )
+        lines.append("  ".join(cell(r, n) for n in names))
     how = (
         f"continued {result.continuation} from rest at {param} = "
         f"{(table[param].min() if result.continuation == 'up' else table[param].max()):g}"
@@ -343,8 +391,21 @@ def sweep(result: Sweep, out_file: str | None = None) -> str:
         "points from the cache"
     )
     if result.dropped:
+        lines.append(f"duplicate values computed once: {_values(result.dropped)}")
+    x = np.asarray(table[param], float)
+    ran = np.asarray(table["status"]) != "no_periodic"
+    unforced = x[ran & ~np.asarray(table["forced_peak"], bool)]
+    if unforced.size:
         lines.append(
-            "duplicate values computed once: " + ", ".join(f"{v:g}" for v in result.dropped)
+            f"no forced peak above the noise floor of the tolerances at {param} = "
+            f"{_values(unforced)}: the omega1 peak is judged against the floor alone"
+        )
+    untrusted = x[~np.asarray(table["energy_ok"], bool)]
+    if untrusted.size:
+        lines.append(
+            f"warning: the energy balance does not close within its bound at {param} = "
+            f"{_values(untrusted)} (energy_ok False): those points are not trusted; "
+            "tighten --rtol/--atol"
         )
     if param == "Vb":
         lines += sweep_validation(result)

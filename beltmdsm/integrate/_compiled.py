@@ -63,17 +63,18 @@ _ADVANCE = (
         "_rates",
         "_surface_at",
         "_refine",
+        "_dip",
         "_first_crossing",
         "advance",
     ),
     ("_field_kernel", "_surface_kernel", "_rate_kernel"),
-    (_roots.converged, _roots.secant, _roots.illinois),
+    (_roots.converged, _roots.secant, _roots.illinois, _roots.golden),
 )
 _SCAN = (
     _superpose,
-    ("tangential_state", "_normal_at", "_inside_at", "_refine", "scan"),
+    ("tangential_state", "_normal_at", "_inside_at", "_refine", "_dip", "scan"),
     ("_stm_kernel", "_exc_kernel", "_surface_kernel", "_rate_kernel"),
-    (_dop853._dense, _roots.converged, _roots.secant, _roots.illinois),
+    (_dop853._dense, _roots.converged, _roots.secant, _roots.illinois, _roots.golden),
 )
 
 

@@ -33,7 +33,7 @@ import numpy as np
 from generated import tableau as _coef
 from generated._support import import_numba
 
-from ._roots import converged, illinois, secant
+from ._roots import GOLDEN, converged, golden, illinois, secant
 
 __all__ = [
     "advance",
@@ -77,6 +77,9 @@ _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
 _EXPONENT = -1.0 / 8.0
 #: Dense-output samples per step when a crossing is bracketed inside it.
 _SAMPLES = 16
+#: `_dip` narrows a minimum to this share of the step: the value there is then the
+#: minimum's to ``(1e-8 h)^2`` times the surface's curvature, far below any tolerance.
+_DIP_RESOLUTION = 1e-8
 
 STATUS_END, STATUS_EVENT, STATUS_STEP_TOO_SMALL = 0, 1, 2
 
@@ -165,13 +168,32 @@ def _refine(sa, watch, dirs, j, F, y_old, t_old, h, a, fa, b, fb, tmp):
     return b
 
 
+def _dip(sa, watch, dirs, j, F, y_old, t_old, h, lo, hi, tmp):
+    """The lowest value of surface ``j`` on ``[lo, hi]``, which holds one minimum:
+    ``(t, f)`` by golden-section steps to ``_DIP_RESOLUTION`` of the step, or the
+    first value found <= 0 (a crossing)."""
+    a, b = lo, hi
+    c, d = a + GOLDEN * (b - a), b - GOLDEN * (b - a)
+    fc = _surface_at(sa, watch, dirs, j, F, y_old, t_old, h, c, tmp)
+    fd = _surface_at(sa, watch, dirs, j, F, y_old, t_old, h, d, tmp)
+    while fc > 0.0 and fd > 0.0 and b - a > _DIP_RESOLUTION * h:
+        a, b, kept, f_kept, t = golden(a, b, c, fc, d, fd)
+        ft = _surface_at(sa, watch, dirs, j, F, y_old, t_old, h, t, tmp)
+        if t < kept:
+            c, fc, d, fd = t, ft, kept, f_kept
+        else:
+            c, fc, d, fd = kept, f_kept, t, ft
+    return (c, fc) if fc <= fd else (d, fd)
+
+
 def _first_crossing(sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old, r_new, armed, tmp):
     """Earliest crossing inside the step ``[t_old, t_old + h]``: ``(j, t)`` or ``(-1, 0)``.
 
     A surface crosses where its inside value falls to <= 0 after being > 0. Within
     the step the dense output is sampled where the end values change sign, where
     the rates show a minimum inside, or where the surface is not yet armed (it
-    started on zero).
+    started on zero). A minimum that no sample shows below zero is searched for
+    (`_dip`): a surface crossed by less than the samples resolve is crossed too.
     """
     best_j, best_t = -1, 0.0
     t_new = t_old + h
@@ -192,6 +214,8 @@ def _first_crossing(sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old, r_
                     a, fa = t_old + delta, fk
                     break
         found = False
+        # the lowest sample of a dip and the sample before it (> 0, inside)
+        low_k, low_f, before, f_before = 0, fa, a, fa
         for k in range(1, _SAMPLES + 1):
             tk = t_old + h * k / _SAMPLES if k < _SAMPLES else t_new
             if tk <= a:
@@ -206,7 +230,15 @@ def _first_crossing(sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old, r_
                 found = True
                 break
             if fk > 0.0:
+                if fk < low_f:
+                    low_k, low_f, before, f_before = k, fk, a, fa
                 a, fa = tk, fk
+        if not found and dip and armed[j] and f_before > 0.0:
+            after = t_old + h * min(low_k + 1, _SAMPLES) / _SAMPLES
+            tm, fm = _dip(sa, watch, dirs, j, F, y_old, t_old, h, before, after, tmp)
+            if fm <= 0.0:
+                tc = _refine(sa, watch, dirs, j, F, y_old, t_old, h, before, f_before, tm, fm, tmp)
+                found = True
         if not found and not armed[j] and u_new[j] <= 0.0 and fa <= 0.0:
             # never inside: the field leaves through the surface it started on
             tc, found = t_old, True

@@ -1,15 +1,22 @@
-"""The Illinois method, written once for both integrators' root refinement.
+"""The Illinois method and the golden-section search, written once for both integrators.
 
 `beltmdsm.integrate._dop853` refines a crossing on a step's dense output,
 `beltmdsm.integrate._superpose` on the closed-form tangential motion; both keep a
 bracket ``[a, b]`` with ``fa > 0 >= fb`` and call these three steps in the same loop.
-Plain functions of numbers, so that `beltmdsm.integrate._compiled` compiles them with
-either integrator.
+Where a switching function dips inside a step without a sample below zero, both look
+for its minimum with `golden` steps: a dip shallower than the samples' spacing (an
+orbit that grazes a surface and crosses it by a hair) is crossed too, not stepped
+over. Plain functions of numbers, so that `beltmdsm.integrate._compiled` compiles them
+with either integrator.
 """
 
 from __future__ import annotations
 
-__all__ = ["converged", "secant", "illinois"]
+__all__ = ["converged", "secant", "illinois", "GOLDEN", "golden"]
+
+#: The golden-section ratio ``(3 - sqrt 5) / 2``: each `golden` step keeps ``1 - GOLDEN``
+#: of the bracket.
+GOLDEN = 0.3819660112501051
 
 
 def converged(a: float, b: float) -> bool:
@@ -38,3 +45,17 @@ def illinois(
     if side == 1:
         fa *= 0.5
     return a, fa, c, fc, 1
+
+
+def golden(
+    a: float, b: float, c: float, fc: float, d: float, fd: float
+) -> tuple[float, float, float, float, float]:
+    """One step of the golden-section search for a minimum in ``[a, b]``.
+
+    ``c < d`` are the inner points, ``fc``, ``fd`` the values there. Returns the new
+    bracket ``(a, b)``, the inner point kept with its value, and the new inner point
+    at which the caller evaluates next: ``(a, b, kept, f_kept, new)``.
+    """
+    if fc <= fd:
+        return a, d, c, fc, a + GOLDEN * (d - a)
+    return c, b, d, fd, b - GOLDEN * (b - c)

@@ -23,11 +23,13 @@ from __future__ import annotations
 import numpy as np
 
 from ._dop853 import _dense
-from ._roots import converged, illinois, secant
+from ._roots import GOLDEN, converged, golden, illinois, secant
 
 __all__ = ["scan", "tangential_state"]
 
 _SAMPLES = 16
+#: `_dip` narrows a minimum to this share of the cell (`beltmdsm.integrate._dop853`).
+_DIP_RESOLUTION = 1e-8
 
 # The kernels are globals, bound by `beltmdsm.integrate._compiled` (see its _dop853).
 _stm_kernel = _exc_kernel = _surface_kernel = _rate_kernel = None
@@ -48,28 +50,13 @@ def _normal_at(ts, hs, ys, Fs, t, out):
     _dense(Fs[k], ys[k], (t - ts[k]) / hs[k], out)
 
 
-def _inside_at(
-    t,
-    j,
-    watch,
-    dirs,
-    mode,
-    stick,
-    ms,
-    t0,
-    d0,
-    d1,
-    X1s,
-    Vb,
-    ts,
-    hs,
-    ys,
-    Fs,
-    stm_a,
-    exc_a,
-    surf_a,
-    tmp,
-):
+def _inside_at(t, j, ctx):
+    """``-direction * h`` of watched surface ``j`` at ``t``: positive inside the mode.
+
+    ``ctx`` holds the mode's motion: ``(watch, dirs, stick, ms, t0, d0, d1, X1s, Vb,
+    ts, hs, ys, Fs, stm_a, exc_a, surf_a, tmp)`` (`scan`).
+    """
+    watch, dirs, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys, Fs, stm_a, exc_a, surf_a, tmp = ctx
     _normal_at(ts, hs, ys, Fs, t, tmp)
     zf, vf = _exc_kernel(t, *exc_a)
     X1, Y1 = tangential_state(stick, ms, t, t0, d0, d1, X1s, Vb, tmp[0], tmp[1], zf, vf, stm_a)
@@ -77,60 +64,34 @@ def _inside_at(
     return -dirs[j] * h[watch[j]]
 
 
-def _refine(
-    a,
-    fa,
-    b,
-    fb,
-    j,
-    watch,
-    dirs,
-    mode,
-    stick,
-    ms,
-    t0,
-    d0,
-    d1,
-    X1s,
-    Vb,
-    ts,
-    hs,
-    ys,
-    Fs,
-    stm_a,
-    exc_a,
-    surf_a,
-    tmp,
-):
+def _refine(a, fa, b, fb, j, ctx):
+    """Root of surface ``j`` in ``[a, b]`` (``fa > 0 >= fb``) by the Illinois method."""
     side = 0
     for _ in range(200):
         if converged(a, b):
             break
         c = secant(a, fa, b, fb)
-        fc = _inside_at(
-            c,
-            j,
-            watch,
-            dirs,
-            mode,
-            stick,
-            ms,
-            t0,
-            d0,
-            d1,
-            X1s,
-            Vb,
-            ts,
-            hs,
-            ys,
-            Fs,
-            stm_a,
-            exc_a,
-            surf_a,
-            tmp,
-        )
+        fc = _inside_at(c, j, ctx)
         a, fa, b, fb, side = illinois(a, fa, b, fb, c, fc, side)
     return b
+
+
+def _dip(lo, hi, j, ctx):
+    """The lowest value of surface ``j`` on ``[lo, hi]``, which holds one minimum:
+    ``(t, f)`` by golden-section steps to ``_DIP_RESOLUTION`` of the interval, or the
+    first value found <= 0 (a crossing)."""
+    a, b = lo, hi
+    c, d = a + GOLDEN * (b - a), b - GOLDEN * (b - a)
+    fc = _inside_at(c, j, ctx)
+    fd = _inside_at(d, j, ctx)
+    while fc > 0.0 and fd > 0.0 and b - a > _DIP_RESOLUTION * (hi - lo):
+        a, b, kept, f_kept, t = golden(a, b, c, fc, d, fd)
+        ft = _inside_at(t, j, ctx)
+        if t < kept:
+            c, fc, d, fd = t, ft, kept, f_kept
+        else:
+            c, fc, d, fd = kept, f_kept, t, ft
+    return (c, fc) if fc <= fd else (d, fd)
 
 
 def scan(
@@ -194,6 +155,7 @@ def scan(
     r_old = np.empty(n_watch)
     r_new = np.empty(n_watch)
     armed = np.empty(n_watch, dtype=np.bool_)
+    ctx = (watch, dirs, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys, Fs, stm_a, exc_a, surf_a, tmp)
     _normal_at(ts, hs, ys, Fs, t0, tmp)
     zf, vf = _exc_kernel(t0, *exc_a)
     X1, Y1 = tangential_state(stick, ms, t0, t0, d0, d1, X1s, Vb, tmp[0], tmp[1], zf, vf, stm_a)
@@ -234,93 +196,33 @@ def scan(
                 delta = (t_new - t_prev) / _SAMPLES
                 for _ in range(60):
                     delta *= 0.5
-                    fk = _inside_at(
-                        t_prev + delta,
-                        j,
-                        watch,
-                        dirs,
-                        mode,
-                        stick,
-                        ms,
-                        t0,
-                        d0,
-                        d1,
-                        X1s,
-                        Vb,
-                        ts,
-                        hs,
-                        ys,
-                        Fs,
-                        stm_a,
-                        exc_a,
-                        surf_a,
-                        tmp,
-                    )
+                    fk = _inside_at(t_prev + delta, j, ctx)
                     if fk > 0.0:
                         a, fa = t_prev + delta, fk
                         break
             found = False
             tcross = t_prev
+            # the lowest sample of a dip and the sample before it (> 0, inside)
+            low_s, low_f, before, f_before = 0, fa, a, fa
             for s in range(1, _SAMPLES + 1):
                 tk = t_prev + (t_new - t_prev) * s / _SAMPLES if s < _SAMPLES else t_new
                 if tk <= a:
                     continue
-                fk = (
-                    u_new[j]
-                    if s == _SAMPLES
-                    else _inside_at(
-                        tk,
-                        j,
-                        watch,
-                        dirs,
-                        mode,
-                        stick,
-                        ms,
-                        t0,
-                        d0,
-                        d1,
-                        X1s,
-                        Vb,
-                        ts,
-                        hs,
-                        ys,
-                        Fs,
-                        stm_a,
-                        exc_a,
-                        surf_a,
-                        tmp,
-                    )
-                )
+                fk = u_new[j] if s == _SAMPLES else _inside_at(tk, j, ctx)
                 if fa > 0.0 and fk <= 0.0:
-                    tcross = _refine(
-                        a,
-                        fa,
-                        tk,
-                        fk,
-                        j,
-                        watch,
-                        dirs,
-                        mode,
-                        stick,
-                        ms,
-                        t0,
-                        d0,
-                        d1,
-                        X1s,
-                        Vb,
-                        ts,
-                        hs,
-                        ys,
-                        Fs,
-                        stm_a,
-                        exc_a,
-                        surf_a,
-                        tmp,
-                    )
+                    tcross = _refine(a, fa, tk, fk, j, ctx)
                     found = True
                     break
                 if fk > 0.0:
+                    if fk < low_f:
+                        low_s, low_f, before, f_before = s, fk, a, fa
                     a, fa = tk, fk
+            if not found and dip and armed[j] and f_before > 0.0:
+                after = t_prev + (t_new - t_prev) * min(low_s + 1, _SAMPLES) / _SAMPLES
+                tm, fm = _dip(before, after, j, ctx)
+                if fm <= 0.0:
+                    tcross = _refine(before, f_before, tm, fm, j, ctx)
+                    found = True
             if not found and not armed[j] and u_new[j] <= 0.0 and fa <= 0.0:
                 tcross, found = t_prev, True
             if found and (best_j < 0 or tcross < best_t):

@@ -12,9 +12,12 @@ joined at located switches. Accumulating switches are handled by
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..errors import StepTooSmall
 from ..model import Model, initial_state
 from ..settings import SolverSettings
 from . import _compiled, _dop853
@@ -23,10 +26,6 @@ from .trajectory import Run, Segment, Trajectory
 from .zeno import Zeno
 
 __all__ = ["integrate_events", "StepSegment", "StepTooSmall"]
-
-
-class StepTooSmall(ArithmeticError):
-    """The integrator's step fell below what the time's rounding allows."""
 
 
 class StepSegment:
@@ -58,6 +57,7 @@ def integrate_events(
     *,
     y0: ArrayLike | None = None,
     t0: float = 0.0,
+    progress: Callable[[float], object] | None = None,
 ) -> Run:
     """Integrate Eq. (4) mode by mode with located switches (module docstring).
 
@@ -70,6 +70,8 @@ def integrate_events(
     y0 : array_like, optional
         Initial state at ``t0``; default the unforced equilibrium (Eq. 9) at rest.
     t0 : float
+    progress : callable, optional
+        Called with the time reached after every smooth segment (a progress bar).
 
     Returns
     -------
@@ -77,7 +79,7 @@ def integrate_events(
 
     Raises
     ------
-    StepTooSmall
+    beltmdsm.errors.StepTooSmall
         Where the step size falls below the rounding of the time (tolerances too
         loose or too tight for the field there), naming the time and the mode.
     """
@@ -112,13 +114,19 @@ def integrate_events(
         if code == _dop853.STATUS_STEP_TOO_SMALL:
             raise StepTooSmall(
                 f"the integrator's step fell below the rounding of the time at "
-                f"t = {t_stop:.6g} s in mode {mode.name.lower()} (rtol = "
-                f"{settings.rtol:g}, atol = {settings.atol:g}): loosen or tighten the tolerances"
+                f"t = {t_stop:.6g} s in mode {mode.name.lower()} at rtol = "
+                f"{settings.rtol:g}, atol = {settings.atol:g}: tolerances this loose let the "
+                "state drift across a switching surface between steps (tighten them), or "
+                "tolerances this tight ask for more than the rounding allows (loosen them)",
+                settings.rtol,
+                settings.atol,
             )
         if n:
             steps.append((ts, hs, ys, Fs))
             segments.append(Segment(t, float(t_stop), mode, StepSegment(ts, hs, ys, Fs), ts.copy()))
         t, y = float(t_stop), np.array(y_stop)
+        if progress is not None:
+            progress(t)
         if code == _dop853.STATUS_END:
             break
         h_next = 0.0  # the field jumps at a switch: choose the next step afresh

@@ -25,6 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from generated import hybrid, oscillator
 
+from ..errors import StepTooSmall
 from ..model import Backend, Model
 from . import _compiled, _dop853
 from .switching import EVENT_KINDS, SURFACE_INDEX, Mode, Switching
@@ -140,9 +141,14 @@ class NormalMotion:
                 np.inf,
             )
             if code == _dop853.STATUS_STEP_TOO_SMALL:
-                raise ArithmeticError(
+                raise StepTooSmall(
                     f"the normal motion's step fell below the rounding of the time at "
-                    f"t = {t_stop:.6g} s (rtol = {rtol:g}, atol = {atol:g})"
+                    f"t = {t_stop:.6g} s at rtol = {rtol:g}, atol = {atol:g}: tolerances "
+                    "this loose let the state drift across a switching surface between "
+                    "steps (tighten them), or tolerances this tight ask for more than the "
+                    "rounding allows (loosen them)",
+                    rtol,
+                    atol,
                 )
             if n:
                 steps.append((ts, hs, ys, Fs))

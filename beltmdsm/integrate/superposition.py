@@ -23,6 +23,7 @@ without bound), it raises `NotApplicable` with the reason, and
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -195,8 +196,12 @@ class Superposition:
         Y1: float,
         t_end: float,
         on_contact_loss: Literal["continue", "stop"] = "continue",
+        progress: Callable[[float], object] | None = None,
     ) -> TangentialRun:
-        """The tangential motion from ``(X1, Y1)`` at ``t0`` to ``t_end``."""
+        """The tangential motion from ``(X1, Y1)`` at ``t0`` to ``t_end``.
+
+        ``progress``, if given, is called with the time reached after every segment.
+        """
         sw, normal, p = self.sw, self.normal, self.model.params
         Vb, mu = p["Vb"], p["mu_s"]
         segs = _Segments(normal, self.stm, self.exc, Vb)
@@ -250,6 +255,8 @@ class Superposition:
                 )
                 break
             t, X1, Y1, mode = t_stop, float(state[0]), float(state[1]), new
+            if progress is not None:
+                progress(t)
         segs.freeze()
         return TangentialRun(
             segs, modes, starts, ends, events, switches, status, message, zeno.entered, state
@@ -257,9 +264,16 @@ class Superposition:
 
 
 def integrate_superposed(
-    model: Model, settings: SolverSettings, *, y0: ArrayLike | None = None
+    model: Model,
+    settings: SolverSettings,
+    *,
+    y0: ArrayLike | None = None,
+    progress: Callable[[float], object] | None = None,
 ) -> Run:
     """A run of Eq. (4) by superposition.
+
+    ``progress``, if given, is called with the time reached after every segment of
+    the tangential motion (the normal motion is integrated first, in one call).
 
     Raises
     ------
@@ -272,7 +286,9 @@ def integrate_superposed(
         model, settings.t_end, settings.rtol, settings.atol, y[2:], settings.backend
     )
     engine = Superposition(model, normal, settings.backend)
-    out = engine.run(0.0, float(y[0]), float(y[1]), float(settings.t_end), settings.on_contact_loss)
+    out = engine.run(
+        0.0, float(y[0]), float(y[1]), float(settings.t_end), settings.on_contact_loss, progress
+    )
     # quadrature pieces (energy balance, cycle averages): a knot every KNOT_STEP grid
     # points, and the normal motion's own steps within 0.2 s of its switches, where
     # they shrink because it is not smooth there (X2^(3/2) about a touchdown)

@@ -173,8 +173,10 @@ class Trajectory:
         the velocity Vb). Returns a dict with the change of E (``energy_change``:
         kinetic, spring, Hertz and gravity), the three works (``work_input``,
         ``work_viscous``, ``work_friction``), ``imbalance`` =
-        Delta E - W_in + W_visc + W_fric and ``residual`` =
-        |imbalance| / (int |P_in| + int |P_visc| + int |P_fric|).
+        Delta E - W_in + W_visc + W_fric, ``work_total`` = int |P_in| + int |P_visc| +
+        int |P_fric|, ``residual`` = |imbalance| / work_total and ``energy_level`` =
+        max |E| at the two ends (the scale of the rounding and of the integration
+        error of Delta E).
         """
         kw = self.model.arguments
         t0 = self.segments[0].t0 if t0 is None else t0
@@ -201,6 +203,8 @@ class Trajectory:
             "work_friction": float(W[2]),
             "imbalance": float(balance),
             "residual": float(abs(balance) / scale) if scale > 0 else 0.0,
+            "work_total": float(scale),
+            "energy_level": float(max(abs(E0), abs(E1))),
         }
 
     def time_in_modes(self, t0: float, t1: float) -> dict[Mode, float]:

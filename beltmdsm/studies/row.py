@@ -32,15 +32,21 @@ __all__ = [
 #: The table's columns after the swept parameter. ``omega1_peak_present`` is False
 #: where ``resolved`` is False (the run could not tell,
 #: `beltmdsm.analysis.summary.summarize`): read it together with ``resolved``, never
-#: alone as "no peak".
+#: alone as "no peak". ``forced_peak`` and ``noise_floor`` say whether a peak at an
+#: excitation frequency rose above what the tolerances can put into the spectrum,
+#: ``energy_ok`` whether the energy balance closed within its bound (False: the
+#: point's numbers are not trusted).
 COLUMNS = (
     ("regime", "U24"),
     ("peak_omega1", "f8"),
     ("omega1_peak_at", "f8"),
     ("peak_Omega", "f8"),
+    ("noise_floor", "f8"),
+    ("forced_peak", "?"),
     ("omega1_peak_present", "?"),
     ("resolved", "?"),
     ("energy_residual", "f8"),
+    ("energy_ok", "?"),
     ("n_switches", "i8"),
     ("n_reversals", "i8"),
     ("n_sticks", "i8"),
@@ -112,6 +118,8 @@ def run_point(
                 regime=NO_PERIODIC_RESPONSE,
                 omega1_peak_present=False,
                 resolved=False,
+                forced_peak=False,
+                energy_ok=True,  # nothing was integrated: no balance to fail
                 tension=model.tension,
                 solver=settings.solver,
                 status="no_periodic",

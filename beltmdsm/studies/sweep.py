@@ -33,8 +33,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import intervals
+from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Model, as_model, excitation_period
-from ..settings import MAX_POINTS, SolverSettings
+from ..settings import MAX_POINTS, SolverSettings, check_request
 from .cache import (
     CacheWarning,
     Problem,
@@ -249,7 +250,9 @@ def sweep(
         many ``values``, a bad parameter value, the swept parameter also given as a
         fixed one, a bad executor, a bad ``continuation`` or one that cannot be done
         (an executor given, no periodic excitation, a period longer than ``t_end``),
-        a cache folder that cannot be written.
+        a cache folder that cannot be written; `beltmdsm.errors.Refused` (a
+        ValueError) for a point that `beltmdsm.settings.check_request` refuses
+        (a sampling step that aliases, a run that would not fit in memory).
 
     Warns
     -----
@@ -298,6 +301,11 @@ def sweep(
     dropped = sorted(float(v) for v in values if (values == v).sum() > 1)
     dropped = sorted(set(dropped))
     points = [model.replace(**{param: float(v)}) for v in unique]
+    for m in points:
+        try:
+            check_request(m, settings)
+        except Refused as err:
+            raise Refused(f"at {param} = {m[param]:g}: {err}", *err.names) from None
     cache_dir = default_cache_dir() if cache_dir == "default" else cache_dir
     if cache_dir is not None:
         cache_dir = writable_folder(cache_dir)

@@ -10,9 +10,10 @@ from ..flags import (
     json_parent,
     model_from,
     model_parent,
-    number,
     params_from,
     periods_parent,
+    range_flags,
+    range_from,
     register,
 )
 
@@ -33,31 +34,22 @@ def add(commands, name: str) -> None:
     sub.add_argument(
         "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter continued in"
     )
-    sub.add_argument(
-        "--from", dest="start", type=number(), required=True, metavar="X", help="lower end"
-    )
-    sub.add_argument(
-        "--to", dest="stop", type=number(), required=True, metavar="X", help="upper end, > --from"
-    )
+    range_flags(sub)
 
 
 def run(args: argparse.Namespace) -> int:
     from ...analysis.branch import branch
     from .. import text
 
-    if not args.stop > args.start:
-        args.parser.error(f"argument --to: must be > --from ({args.start:g}); got {args.stop:g}")
+    lo, hi = range_from(args)
     value = params_from(args).get(args.param)
     if value is None:
         args.parser.error(f"argument --{args.param}: give the start's {args.param} as well")
-    if not args.start <= value <= args.stop:
+    if not lo <= value <= hi:
         args.parser.error(
-            f"argument --{args.param}: the start ({value:g}) must lie in "
-            f"[{args.start:g}, {args.stop:g}]"
+            f"argument --{args.param}: the start ({value:g}) must lie in [{lo:g}, {hi:g}]"
         )
-    found = branch(
-        model_from(args), periods=args.periods, param=args.param, lo=args.start, hi=args.stop
-    )
+    found = branch(model_from(args), periods=args.periods, param=args.param, lo=lo, hi=hi)
     if args.json:
         print(json.dumps(text.jsonable(found.as_dict())))
     else:

@@ -12,7 +12,8 @@ from ..flags import (
     lock_parent,
     model_from,
     model_parent,
-    number,
+    range_flags,
+    range_from,
     register,
     swept,
 )
@@ -33,12 +34,7 @@ def add(commands, name: str) -> None:
     sub.add_argument(
         "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter walked"
     )
-    sub.add_argument(
-        "--from", dest="start", type=number(), required=True, metavar="X", help="lower end"
-    )
-    sub.add_argument(
-        "--to", dest="stop", type=number(), required=True, metavar="X", help="upper end, > --from"
-    )
+    range_flags(sub)
     sub.add_argument(
         "--step", type=POSITIVE, default=0.5, help="spacing of the seeds, > 0 (default 0.5)"
     )
@@ -48,12 +44,11 @@ def run(args: argparse.Namespace) -> int:
     from ...studies.coexistence import coexistence
     from .. import text
 
-    if not args.stop > args.start:
-        args.parser.error(f"argument --to: must be > --from ({args.start:g}); got {args.stop:g}")
+    lo, hi = range_from(args)
     found = coexistence(
         args.param,
-        args.start,
-        args.stop,
+        lo,
+        hi,
         model_from(args, skip=(swept(args),)),
         step=args.step,
         limit=args.limit,

@@ -6,14 +6,16 @@ import argparse
 import json
 
 from ...model import MODEL_PARAMETERS
+from ...settings import MAX_BAND_POINTS, MIN_TOL_ULPS
 from ..flags import (
     POSITIVE,
     integer,
     json_parent,
     model_from,
     model_parent,
-    number,
     periods_parent,
+    range_flags,
+    range_from,
     register,
     swept,
 )
@@ -33,20 +35,25 @@ def add(commands, name: str) -> None:
     sub.add_argument(
         "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter walked"
     )
-    sub.add_argument(
-        "--from", dest="start", type=number(), required=True, metavar="X", help="lower end"
-    )
-    sub.add_argument(
-        "--to", dest="stop", type=number(), required=True, metavar="X", help="upper end, > --from"
-    )
+    range_flags(sub)
     sub.add_argument(
         "--points",
-        type=integer(2),
+        type=integer(2, MAX_BAND_POINTS),
         default=17,
-        help="grid points walked before the refinement (default 17)",
+        help=f"grid points walked before the refinement, 2 to {MAX_BAND_POINTS} "
+        "(MAX_BAND_POINTS in beltmdsm/settings.py; about 2 ms a point) (default: 17)",
     )
     sub.add_argument(
-        "--tol", type=POSITIVE, default=1e-3, help="the edges' tolerance, > 0 (default 1e-3)"
+        "--tol",
+        type=POSITIVE,
+        default=1e-3,
+        help=f"the edges' tolerance, at least {MIN_TOL_ULPS} ulps of the larger end of "
+        "the range; edges closer than it are one edge (default: 1e-3)",
+    )
+    sub.add_argument(
+        "--no-progress",
+        action="store_true",
+        help="no progress bar on stderr (shown once the band takes more than 2 s)",
     )
 
 
@@ -54,19 +61,19 @@ def run(args: argparse.Namespace) -> int:
     from ...analysis.band import floquet_band
     from .. import text
 
-    if not args.stop > args.start:
-        args.parser.error(f"argument --to: must be > --from ({args.start:g}); got {args.stop:g}")
+    lo, hi = range_from(args)
     band = floquet_band(
         args.param,
-        args.start,
-        args.stop,
+        lo,
+        hi,
         model_from(args, skip=(swept(args),)),
         points=args.points,
         tol=args.tol,
         periods=args.periods,
+        progress=not args.no_progress,
     )
     if args.json:
         print(json.dumps(text.jsonable(band.as_dict())))
     else:
-        print(text.band(band, args.start, args.stop))
+        print(text.band(band, lo, hi))
     return 0

@@ -11,8 +11,9 @@ from ..flags import (
     json_parent,
     model_from,
     model_parent,
-    number,
     output_file,
+    range_flags,
+    range_from,
     register,
     swept,
 )
@@ -34,22 +35,7 @@ def add(commands, name: str) -> None:
         sub.add_argument(
             f"--{axis}", required=True, choices=MODEL_PARAMETERS, help=f"the parameter of {axis}"
         )
-        sub.add_argument(
-            f"--{axis}-from",
-            dest=f"{axis}_from",
-            type=number(),
-            required=True,
-            metavar="X",
-            help="lower end",
-        )
-        sub.add_argument(
-            f"--{axis}-to",
-            dest=f"{axis}_to",
-            type=number(),
-            required=True,
-            metavar="X",
-            help=f"upper end, > --{axis}-from",
-        )
+        range_flags(sub, axis)
     sub.add_argument(
         "--rows", type=integer(2), default=100, help="values of --y, >= 2 (default 100)"
     )
@@ -62,19 +48,16 @@ def run(args: argparse.Namespace) -> int:
     from ...analysis.floquet_map import floquet_map
     from .. import text
 
-    for axis in ("x", "y"):
-        lo, hi = getattr(args, f"{axis}_from"), getattr(args, f"{axis}_to")
-        if not hi > lo:
-            args.parser.error(f"argument --{axis}-to: must be > --{axis}-from ({lo:g}); got {hi:g}")
+    (x_lo, x_hi), (y_lo, y_hi) = range_from(args, "x"), range_from(args, "y")
     if args.x == args.y:
         args.parser.error(f"argument --y: must differ from --x ({args.x})")
     result = floquet_map(
         args.x,
-        args.x_from,
-        args.x_to,
+        x_lo,
+        x_hi,
         args.y,
-        args.y_from,
-        args.y_to,
+        y_lo,
+        y_hi,
         model_from(args, skip=(swept(args, "x"), swept(args, "y"))),
         rows=args.rows,
     )

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from ...settings import MAX_VB_POINTS
 from ..flags import POSITIVE, integer, json_parent, model_from, model_parent, register
 
 
@@ -25,9 +26,17 @@ def add(commands, name: str) -> None:
     )
     sub.add_argument(
         "--vb-points",
-        type=integer(2),
+        type=integer(2, MAX_VB_POINTS),
         default=400,
-        help="points of the Vb grid, >= 2 (default: 400)",
+        help=f"points of the Vb grid, 2 to {MAX_VB_POINTS} (MAX_VB_POINTS in "
+        "beltmdsm/settings.py; up to 2 ms a point); the grid also holds the "
+        "linear amplitude and a point just below it, so the onset of friction reversal "
+        "is found on any grid (default: 400)",
+    )
+    sub.add_argument(
+        "--no-progress",
+        action="store_true",
+        help="no progress bar on stderr (shown once the grid takes more than 2 s)",
     )
 
 
@@ -40,7 +49,7 @@ def run(args: argparse.Namespace) -> int:
     vb = None
     if args.vb_max is not None:
         vb = np.linspace(args.vb_max / args.vb_points, args.vb_max, args.vb_points)
-    result = predict(model_from(args), vb=vb, points=args.vb_points)
+    result = predict(model_from(args), vb=vb, points=args.vb_points, progress=not args.no_progress)
     if args.json:
         print(json.dumps(text.jsonable(result.as_dict())))
     else:

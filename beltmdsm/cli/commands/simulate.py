@@ -44,24 +44,35 @@ def add(commands, name: str) -> None:
         "--modulation", action="store_true", help="add friction modulation averages (Figs. 10-12)"
     )
     sub.add_argument(
-        "--save", metavar="NPZ", type=output_file, help="save t, X1, Y1, X2, Y2, Fn, friction"
+        "--save",
+        metavar="NPZ",
+        type=output_file,
+        help="save the samples t, X1, Y1, X2, Y2, Fn, friction to this .npz file",
+    )
+    sub.add_argument(
+        "--no-progress",
+        action="store_true",
+        help="no progress bar on stderr (shown once the run takes more than 2 s; it "
+        "advances at every switch)",
     )
 
 
 def run(args: argparse.Namespace) -> int:
     import numpy as np
 
+    from ...settings import check_request
     from ...simulation import simulate
     from .. import text
 
     model = model_from(args)
     settings = settings_from(args)
+    check_request(model, settings)  # before the periodic start is computed
     y0 = None
     if args.start == "periodic":
         from ...analysis.floquet import periodic_start
 
         y0 = periodic_start(model, args.perturbation)
-    sim = simulate(model, settings=settings, y0=y0)
+    sim = simulate(model, settings=settings, y0=y0, progress=not args.no_progress)
     out = sim.summary.as_dict()
     out["start"] = args.start
     if args.start == "periodic":

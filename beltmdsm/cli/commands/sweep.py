@@ -40,11 +40,17 @@ def add(commands, name: str) -> None:
     grid.add_argument(
         "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter swept"
     )
-    grid.add_argument("--from", dest="start", type=number(), metavar="X", help="first value")
-    grid.add_argument("--to", dest="stop", type=number(), metavar="X", help="last value, >= --from")
-    grid.add_argument("--step", type=POSITIVE, metavar="H", help="> 0")
     grid.add_argument(
-        "--values", type=number(), nargs="+", metavar="X", help="explicit values instead"
+        "--from", dest="start", type=number(), metavar="X", help="first value (with --to, --step)"
+    )
+    grid.add_argument("--to", dest="stop", type=number(), metavar="X", help="last value, >= --from")
+    grid.add_argument("--step", type=POSITIVE, metavar="H", help="step between the values, > 0")
+    grid.add_argument(
+        "--values",
+        type=number(),
+        nargs="+",
+        metavar="X",
+        help="explicit values instead of --from/--to/--step (sorted, duplicates run once)",
     )
     sub.add_argument(
         "--continue",

@@ -68,6 +68,7 @@ def test_every_edge_is_labelled_with_its_bifurcation_and_the_kind_of_before(base
         "no_periodic_response",
         "grid",
         "failed",
+        "tol",
         "tension",
         "contact",
     }
@@ -151,3 +152,96 @@ def test_bad_input_is_refused_by_name():
         floquet_band("omega1", 0.0, 9.0)
     with pytest.raises(ValueError, match="tension"):
         floquet_band("Vb", 1.0, 2.0, Model(), tension="loose")
+
+
+# ------------------------------------------- issue 17, items 6 and 8: the text agrees
+
+
+def _inside(ranges, x):
+    return any(lo <= x <= hi for lo, hi in ranges)
+
+
+def _check_consistent(band, lo, hi):
+    """The edges' sides agree with the ranges, and every end of a range is an edge."""
+    tol = band.tol
+    values = [e.value for e in band.edges]
+    assert all(b - a > tol for a, b in zip(values, values[1:])), values
+    for e in band.edges:
+        a, b = e.bracket
+        # to tol, or, for an end located by extrapolation, to its stated accuracy
+        assert a <= e.value <= b and b - a <= 2 * max(tol, e.accuracy)
+        assert e.accuracy <= max(tol, 1e-6)
+        below, above = e.value - tol / 2, e.value + tol / 2  # edges are > tol apart
+        assert e.unstable_below == _inside(band.unstable, below), e
+        assert e.unstable_above == _inside(band.unstable, above), e
+    for ranges in (band.unstable, band.no_periodic_response):
+        for r_lo, r_hi in ranges:
+            for end in (r_lo, r_hi):
+                assert end in (lo, hi) or end in values, (end, values)
+    for r_lo, r_hi in band.no_periodic_response:
+        assert any(u_lo <= r_lo and r_hi <= u_hi for u_lo, u_hi in band.unstable)
+
+
+def test_the_band_text_agrees_with_itself_at_every_tolerance():
+    """``--tol 1e-6`` added "edge at 6.4154 (grazing; stable on both sides)" beside
+    "no periodic response in [6.1637, 6.4154]"; at 1e-7 a "stable window" 2.9e-7 wide
+    appeared below the grazing point: the sliding response, whose crossing of the belt
+    speed the integrators stepped over (tests/beltmdsm/integrate/test_shallow_crossings.py).
+    Every tolerance now gives the same three edges, the finer ones closer."""
+    from beltmdsm.cli import text
+
+    previous = None
+    for tol in (1e-3, 1e-4, 1e-6, 1e-7, 1e-9):
+        band = floquet_band("Vb", 1.0, 9.0, tol=tol)
+        _check_consistent(band, 1.0, 9.0)
+        printed = text.band(band, 1.0, 9.0)
+        at = [line.split()[2] for line in printed.splitlines() if "edge at" in line]
+        assert len(set(at)) == len(at), printed
+        assert [(e.kind, e.unstable_below, e.unstable_above) for e in band.edges] == [
+            ("neimark_sacker", False, True),
+            ("tangency", True, True),
+            ("grazing", True, False),
+        ]
+        if previous is not None:  # the multiplier edge within the coarser tolerance
+            assert abs(band.edges[0].value - previous.edges[0].value) <= previous.tol
+        previous = band
+
+
+def test_edges_closer_than_tol_are_one_with_the_outer_sides():
+    from beltmdsm.analysis.band import Edge, _merge_close
+
+    def edge(v, kind, below, above):
+        return Edge(v, kind, "x", (v - 1e-9, v + 1e-9), 1e-9, None, below, above)
+
+    merged, hidden = _merge_close(
+        [edge(1.0, "tangency", False, True), edge(1.0 + 5e-4, "grazing", True, False)], 1e-3
+    )
+    (e,) = merged
+    sides = (e.unstable_below, e.unstable_above)
+    assert (e.kind, e.value, sides) == ("grazing", 1.0005, (False, False))
+    assert hidden == [(1.0 - 1e-9, 1.0005 + 1e-9)] and e.accuracy == pytest.approx(5e-4 + 1e-9)
+    apart, hidden = _merge_close(
+        [edge(1.0, "tangency", False, True), edge(1.002, "grazing", True, False)], 1e-3
+    )
+    assert len(apart) == 2 and hidden == []
+
+
+def test_the_clipped_band_stays_consistent():
+    band = floquet_band("Vb", 0.5, 16.0, tension="clipped")
+    _check_consistent(band, 0.5, 16.0)
+
+
+def test_a_tolerance_below_the_rounding_of_the_range_is_refused():
+    from beltmdsm.errors import Refused
+    from beltmdsm.settings import MAX_BAND_POINTS, MIN_TOL_ULPS
+
+    # the report: RecursionError
+    with pytest.raises(Refused, match="below what the rounding of the range") as err:
+        floquet_band("Vb", 1.0, 9.0, tol=1e-15)
+    assert err.value.names == ("tol",)
+    # at the finest tolerance the refinement still ends, consistent
+    band = floquet_band("Vb", 1.0, 9.0, tol=2 * MIN_TOL_ULPS * np.spacing(9.0))
+    _check_consistent(band, 1.0, 9.0)
+    with pytest.raises(Refused, match="MAX_BAND_POINTS") as err:
+        floquet_band("Vb", 1.0, 9.0, points=MAX_BAND_POINTS + 1)
+    assert err.value.names == ("points",)

@@ -8,6 +8,7 @@ import pytest
 from beltmdsm.analysis import predict
 from beltmdsm.cli import main
 from beltmdsm.model import Model
+from beltmdsm.settings import MAX_VB_POINTS
 from generated import correlation, friction, stability
 from generated.parameters import BASE
 
@@ -103,3 +104,75 @@ def test_generated_slow_damping_and_harmonic_balance_are_the_runtimes(Vb):
     np.testing.assert_allclose(
         got, ref, rtol=0, atol=64 * np.finfo(float).eps * abs(D) * fast.V / W
     )
+
+
+# ---------------------------------------------------------------- issue 17, item 3
+
+
+def _close(a, b, tol=1e-8):
+    return len(a) == len(b) and all(
+        abs(x - y) <= tol and abs(u - v) <= tol for (x, u), (y, v) in zip(a, b)
+    )
+
+
+def test_a_coarse_grid_keeps_both_edges():
+    """``--vb-points 2`` found no unstable speed: the band was between two points."""
+    ref, _ = predict.unstable_intervals(points=400)
+    for points in (2, 3, 10):
+        found, _ = predict.unstable_intervals(points=points)
+        assert _close(found, ref), (points, found)
+    V_lin = float(correlation.fast_tangential_velocity(**Model().params)[0])
+    assert ref[0][1] == V_lin
+
+
+def test_the_harmonic_balance_converges_next_to_the_linear_amplitude():
+    """``--vb-points 30000`` failed at Vb = 6.3753, 1.5e-5 below the linear amplitude."""
+    p = Model()
+    V_lin = float(correlation.fast_tangential_velocity(**p.params)[0])
+    for eps in (1.5e-5, 1e-8, 1e-12):
+        q = p.replace(Vb=V_lin * (1 - eps))
+        fast = predict.fast_motion(q)
+        # the reversing solution keeps a reversal of 2.1e-3 m/s up to V_lin, where the
+        # damping tends to -18.4 (it is continuous in s = sqrt(V - Vb))
+        assert fast.reverses and 2e-3 < fast.V - q["Vb"] < 2.3e-3 and fast.residual < 1e-14
+        assert -18.5 < predict.consistent_mdsm_damping(q, fast) < -17.5
+    # a grid with points where the report failed finds the same band
+    ref, _ = predict.unstable_intervals(points=400)
+    grid = [1.0, 4.0, 6.375275534917551, V_lin * (1 - 1e-9), V_lin * (1 + 1e-9), 6.4]
+    found, table = predict.unstable_intervals(vb=grid)
+    assert _close(found, ref)
+    # the table is on the grid asked for, the point 1e-9 below V_lin included
+    assert list(table["Vb"]) == sorted(grid)
+    assert table["reverses"][3] and -18.5 < table["damping"][3] < -18.4
+
+
+def test_at_resonance_the_onset_point_is_solved_too():
+    # Omega = omega1: the reversal vanishes as (V_lin - Vb)^2 and the damping tends to
+    # +infinity: no unstable speed, on any grid
+    for points in (2, 400):
+        found, _ = predict.unstable_intervals(Omega=1.0, points=points)
+        assert found == []
+    # within 1e-8 of V_lin the reversal is below the rounding of V: such a point of
+    # the grid is NaN in the table and does not cost the answer
+    p = Model(Omega=1.0)
+    V_lin = float(correlation.fast_tangential_velocity(**p.params)[0])
+    found, table = predict.unstable_intervals(p, vb=[1.0, V_lin * (1 - 1e-10), 7.0])
+    assert found == [] and np.isnan(table["damping"][1]) and not table["reverses"][1]
+
+
+def test_a_band_at_the_end_of_the_grid_says_it_may_extend_beyond():
+    out = predict.predict(Omega=10.0, points=2)
+    assert "reaches the lowest belt speed of the grid" in out.reasons["consistent_mdsm"]
+    out = predict.predict(vb=[1.0, 5.0])
+    assert "reaches the highest belt speed of the grid, 5 m/s" in out.reasons["consistent_mdsm"]
+    assert "consistent_mdsm" not in predict.predict(points=400).reasons
+
+
+def test_the_grid_has_a_cap():
+    from beltmdsm.errors import Refused
+
+    with pytest.raises(Refused, match="MAX_VB_POINTS") as err:
+        predict.predict(points=MAX_VB_POINTS + 1)
+    assert err.value.names == ("points",)
+    with pytest.raises(Refused, match="MAX_VB_POINTS"):
+        predict.unstable_intervals(vb=np.linspace(1, 2, MAX_VB_POINTS + 1))

@@ -459,3 +459,35 @@ def test_regeneration_and_check_paper_do_not_load_the_runtime(monkeypatch):
     assert derive_cli._needs_runtime(["--help"]) and derive_cli._needs_runtime(["simulate"])
     monkeypatch.setattr(derive_cli, "_generate", lambda args: 0)
     assert derive_cli.main(["--check"], extend=refuse) == 0
+
+
+# ---------------------------------------------------------------- help (issue 17)
+
+
+def _actions(parser, command="(top)"):
+    """``(command, action)`` for every flag of every command of the tree."""
+    import argparse
+
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for name, sub in action.choices.items():
+                yield from _actions(sub, name)
+        elif action.dest != "help":
+            yield command, action
+
+
+def test_every_flag_of_every_command_has_a_help_text_that_states_its_default():
+    import argparse
+
+    parser = _parser()
+    walked = list(_actions(parser))
+    assert {c for c, _ in walked} >= set(tree.COMMANDS) | {"(top)"}
+    for command, action in walked:
+        name = f"{command} {'/'.join(action.option_strings) or action.dest}"
+        assert action.help and action.help != argparse.SUPPRESS, name
+        assert len(action.help) >= 12, name  # a sentence, not "> 0"
+        takes_value = action.nargs != 0 and action.option_strings
+        if takes_value and action.default not in (None, False):
+            assert "default" in action.help, name
+    (solver,) = [a for c, a in walked if c == "simulate" and a.dest == "solver"]
+    assert "(default: events)" in solver.help and "DOP853" in solver.help

@@ -124,3 +124,32 @@ def test_omega10_at_vb5_is_stick_slip(runs):
         sim = runs["Omega=10,Vb=5", "allowed", solver]
         assert sim.summary.regime == "stick_slip"
         assert sim.summary.n_sticks > 0
+
+
+def test_chattering_that_stick_does_not_resolve_stops_instead_of_looping():
+    """Issue 17, bounded work: omega1 = 12, Vb = 0.5 at rtol = atol = 1e-3 (superposition).
+
+    At t = 252.97 s the run chattered on Vr = 0, entered stick, left it at once and
+    chattered again at the same time, for ever (10 GB within minutes). A stick that
+    ends where it was entered stops the run with status "zeno". Run in a process of
+    its own with a time limit, so that a regression fails instead of hanging.
+    """
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    code = (
+        "from beltmdsm.simulation import simulate\n"
+        "s = simulate(t_end=300.0, Vb=0.5, omega1=12.0, rtol=1e-3, atol=1e-3, "
+        "solver='superposition')\n"
+        "print(s.status, s.summary.n_zeno)\n"
+        "print(s.message)\n"
+    )
+    root = Path(__file__).resolve().parents[3]
+    r = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, cwd=root, timeout=120
+    )
+    assert r.returncode == 0, r.stderr
+    status, message = r.stdout.splitlines()
+    assert status.split()[0] == "zeno"
+    assert "again right after the stick entered there ended" in message

@@ -45,6 +45,7 @@ def _band(unstable, edges=()):
         [],
         [],
         [],
+        1e-3,
     )
 
 
