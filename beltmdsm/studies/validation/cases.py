@@ -111,7 +111,7 @@ ANALYSES = (
     (
         "consistent_mdsm",
         "MDSM",
-        "consistent MDSM with the friction-normal-force correlation (runtime.predict)",
+        "consistent MDSM with the friction-normal-force correlation (`beltmdsm.analysis.predict`)",
     ),
 )
 
@@ -156,12 +156,12 @@ QUICK = Resolution(step=1.0, t_end=300.0, min_top=0.0)
 
 DEFINITIONS = """\
 * **Simulated range.** A grid point *shows the peak* when the omega1 peak of X1' is at
-  least {ratio:g} of the peak at Omega (`beltmdsm.simulate.PEAK_PRESENT_RATIO`, fixed
+  least {ratio:g} of the peak at Omega (`beltmdsm.analysis.summary.PEAK_PRESENT_RATIO`, fixed
   before any sweep). Points in stick-slip or contact loss are *excluded* (the stability
   analyses describe steady sliding; the paper leaves stick-slip out of Figs. 19b, c),
   and so are *unresolved* points, whose run cannot tell the peak (a steady window too
   short for the omega1 band, or a transient not yet decayed: `resolved` False in
-  `beltmdsm.simulate.summarize`); an unresolved point is never a point without the peak.
+  `beltmdsm.analysis.summary.summarize`); an unresolved point is never a point without the peak.
   A simulated range is a maximal run of consecutive sliding points that show the peak.
   Its lower edge is taken at the first such point minus h/2 and its upper edge at the
   last plus h/2 (h: the grid step); each lies within ± h/2 of that value, between a
@@ -172,7 +172,7 @@ DEFINITIONS = """\
   the mean absolute error.
 * **Not comparable.** A case is not comparable when an integer multiple k Omega
   (k >= 2) of the excitation lies in the band where the omega1 peak is read
-  (`beltmdsm.simulate.omega1_band`): the forced harmonics of the nonlinear contact
+  (`beltmdsm.analysis.summary.omega1_band`): the forced harmonics of the nonlinear contact
   force are then counted as the omega1 peak whatever the stability. A case with no
   sliding point is not comparable either. Such cases are listed, and left out of
   every mean.
@@ -183,7 +183,7 @@ DEFINITIONS = """\
   simulated lower edge (at or above the lowest simulated Vb = h).
 * **No prediction.** Where an analysis gives no prediction (the consistent MDSM under
   the clipped tension law when the clip cuts its harmonic fast normal force:
-  `beltmdsm.predict.CLIPPED_MDSM`), its cells read *n/a* and the case counts in none of
+  `beltmdsm.analysis.predict.CLIPPED_MDSM`), its cells read *n/a* and the case counts in none of
   its columns.
 * **Mean absolute error (MAE)** of an analysis: the mean of |Δ| over every paired edge
   whose simulated edge is not censored, over all comparable cases (0, 1 or 2 edges per
@@ -267,7 +267,7 @@ FLOQUET_TOL = 1e-3
 
 
 FLOQUET_DEFINITIONS = """\
-* **Floquet band.** `beltmdsm.floquet.floquet_band` in `Vb` over [h/2, {cap:g}] m/s: the
+* **Floquet band.** `beltmdsm.analysis.band.floquet_band` in `Vb` over [h/2, {cap:g}] m/s: the
   belt speeds where the periodic response of period 2 pi / Omega is unstable (largest
   Floquet multiplier |mu| > 1) or absent (no periodic response found), with every edge
   located to {tol:g} m/s (an edge where the response ends to about 1e-6) and named by
@@ -276,11 +276,11 @@ FLOQUET_DEFINITIONS = """\
   switch structure changes: a reversal appears or disappears) and *tangency* (a
   reversal's crossing becomes tangential and the response ends). This is the quantity
   the linear analyses approximate (docs/modelling.md#what-unstable-means).
-* **Verdict at a grid point.** `beltmdsm.floquet.floquet` at that point, on the periodic
+* **Verdict at a grid point.** `beltmdsm.analysis.floquet.floquet` at that point, on the periodic
   response found without a guess: the orbit the periodic-start run starts on.
 * **Runs.** On the validation grid, each case is run five ways: from rest (the file's
   tension law); on the periodic response plus {perturbation:g} m in X1 (*periodic
-  start*); continued upwards and downwards in `Vb` (`beltmdsm.sweep.sweep`,
+  start*); continued upwards and downwards in `Vb` (`beltmdsm.studies.sweep.sweep`,
   ``continuation``: each point starts from the previous point's state at excitation
   phase 0); and from rest under the other tension law. A run's range is every point
   that shows the omega1 peak (resolved, any regime), each ± h/2.
@@ -294,7 +294,7 @@ FLOQUET_DEFINITIONS = """\
   continued sweep shows the omega1 peak: two attractors. A point counts only where
   the periodic response attracts fast enough that a run converging to it would have
   settled before the steady window, exp(growth rate × {window:g} s) ≤ {decayed:g} (the
-  rule the runs apply to the free transient, `beltmdsm.simulate.TRANSIENT_DECAYED`);
+  rule the runs apply to the free transient, `beltmdsm.analysis.summary.TRANSIENT_DECAYED`);
   the other candidates are listed as *unsettled*.
 * **Edges against Floquet.** The hull of each analysis' unstable ranges against the
   hull of the Floquet band, lower with lower and upper with upper; Δ = predicted −
