@@ -296,6 +296,21 @@ FLOQUET_DEFINITIONS = """\
   settled before the steady window, exp(growth rate × {window:g} s) ≤ {decayed:g} (the
   rule the runs apply to the free transient, `beltmdsm.analysis.summary.TRANSIENT_DECAYED`);
   the other candidates are listed as *unsettled*.
+* **Exact coexistence.** `beltmdsm.studies.coexistence.coexistence` in `Vb` over the
+  cells of the case's grid, [h/2, top + h/2]: the periodic response of period
+  2 pi / Omega and every phase-locked response (a fixed point of the k-fold period
+  map, k up to {limit}) that its seeds reach (shooting; runs from rest and ladders
+  continued up and down on the period map, every {seeds:g} m/s), each continued in
+  `Vb` through its folds, with its stable parts and the bifurcations that bound them.
+* **Explained.** A run that shows the omega1 peak at a point of simulated
+  coexistence is explained by a computed response when that response is stable at the
+  point and the run's smallest and largest X1' over its steady window are the
+  response's to (Omega dt)^2 / 4 of its amplitude (dt the sampling step: a sample
+  falls at most dt/2 from an extreme; `beltmdsm.studies.validation.exact.range_tolerance`).
+  Otherwise it is unexplained: *not locked* where a seed of the same kind of run
+  within {seeds:g} m/s does not lock within {limit} periods (quasi-periodic motion on
+  an invariant torus, or a longer period), else with the closest response's
+  deviation.
 * **Edges against Floquet.** The hull of each analysis' unstable ranges against the
   hull of the Floquet band, lower with lower and upper with upper; Δ = predicted −
   Floquet, exact on both sides (no grid). A Floquet edge at an end of [h/2, {cap:g}] is
