@@ -98,7 +98,7 @@ from .comparison import (
     simulated_ranges,
     summarize_edges,
 )
-from .exact import SEED_SOURCES, Explanation, explain_coexistence, range_tolerance
+from .exact import SEED_SOURCES, STATUSES, Explanation, explain_coexistence, range_tolerance
 from .report import render_markdown
 from .results import (
     CaseFloquet,
@@ -173,6 +173,7 @@ __all__ = [
     "Coexistence",
     "Explanation",
     "SEED_SOURCES",
+    "STATUSES",
     "explain_coexistence",
     "range_tolerance",
 ]

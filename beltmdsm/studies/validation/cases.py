@@ -307,10 +307,12 @@ FLOQUET_DEFINITIONS = """\
   point and the run's smallest and largest X1' over its steady window are the
   response's to (Omega dt)^2 / 4 of its amplitude (dt the sampling step: a sample
   falls at most dt/2 from an extreme; `beltmdsm.studies.validation.exact.range_tolerance`).
-  Otherwise it is unexplained: *not locked* where a seed of the same kind of run
-  within {seeds:g} m/s does not lock within {limit} periods (quasi-periodic motion on
-  an invariant torus, or a longer period), else with the closest response's
-  deviation.
+  Otherwise it is *not locked* where a seed of the same kind of run within
+  {seeds:g} m/s does not lock within {limit} periods (quasi-periodic motion on an
+  invariant torus, or a longer period); *not settled* where the closest stable
+  response attracts too slowly for the run to have reached it by the steady window
+  (|mu|^(window / kT) > {decayed:g}, the rule of the coexistence points); else
+  *unexplained*, with the closest response's deviation.
 * **Edges against Floquet.** The hull of each analysis' unstable ranges against the
   hull of the Floquet band, lower with lower and upper with upper; Δ = predicted −
   Floquet, exact on both sides (no grid). A Floquet edge at an end of [h/2, {cap:g}] is

@@ -10,32 +10,39 @@ its stable parts and the bifurcations that bound them (docs/modelling.md#bifurca
 `explain_coexistence` sets the two side by side, point by point: a run that shows the
 peak at a simulated coexistence point is *explained* by a computed response when that
 response is stable there and the run's steady window spans the response's range of
-``X1'`` (`Explanation`, `range_tolerance`); otherwise it is *unexplained*, with the
-reason: the nearby seed runs of the exact study do not lock (quasi-periodic motion or a
-longer period than `beltmdsm.analysis.locked.LOCK_LIMIT`), or no stable computed
-response has the run's range.
+``X1'`` (`Explanation`, `range_tolerance`). Otherwise it is, by `STATUSES`, *not
+settled* (the closest stable response attracts too slowly for a run to have reached
+it by its steady window, the rule the runs apply to their own transient), *not locked*
+(the nearby seed runs of the exact study do not lock: quasi-periodic motion, or a
+longer period than `beltmdsm.analysis.locked.LOCK_LIMIT`), or *unexplained*.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 
 from ...analysis.floquet import NoPeriodicResponse
 from ...analysis.locked import minimal_periods
+from ...analysis.summary import TRANSIENT_DECAYED
 from ...model import Model
 from ..coexistence import Coexistence, ResponseBranch
 from ..responses import shoot
 from .verdicts import Run
 
-__all__ = ["SEED_SOURCES", "Explanation", "range_tolerance", "explain_coexistence"]
+__all__ = ["SEED_SOURCES", "STATUSES", "Explanation", "range_tolerance", "explain_coexistence"]
 
 #: The seeds of `beltmdsm.studies.coexistence.coexistence` that stand for each run that
 #: can show a second attractor: its runs from rest, and its ladders continued up and
 #: down on the period map (a continued sweep's counterpart).
 SEED_SOURCES = {"rest": "run from rest", "up": "continued up", "down": "continued down"}
+#: What a run at a simulated coexistence point is found to be (module docstring).
+STATUSES = ("explained", "not_settled", "not_locked", "unexplained")
+Status = Literal["explained", "not_settled", "not_locked", "unexplained"]
 
 
 @dataclass(frozen=True)
@@ -48,6 +55,8 @@ class Explanation:
         The grid point.
     run : {"rest", "up", "down"}
         The run that shows the omega1 peak there (a key of `RUNS`).
+    status : {"explained", "not_settled", "not_locked", "unexplained"}
+        `STATUSES`.
     response : str or None
         The computed response the run is on (`beltmdsm.studies.coexistence.ResponseBranch.name`),
         or None: unexplained.
@@ -65,6 +74,7 @@ class Explanation:
 
     Vb: float
     run: str
+    status: Status
     response: str | None
     closest: str | None
     deviation: float | None
@@ -74,7 +84,7 @@ class Explanation:
     @property
     def explained(self) -> bool:
         """Whether a computed response explains the run."""
-        return self.response is not None
+        return self.status == "explained"
 
 
 def range_tolerance(model: Model, dt: float) -> float:
@@ -116,8 +126,9 @@ def _stable_at(branch: ResponseBranch, value: float) -> bool:
     return any(s.range[0] <= value <= s.range[1] for s in branch.stable)
 
 
-def _response_ranges(branch: ResponseBranch, model: Model) -> list[tuple[float, float]]:
-    """The ranges of ``X1'`` of the stable responses of ``branch`` at ``model``'s ``Vb``.
+def _responses_at(branch: ResponseBranch, model: Model) -> list[tuple[tuple, float, float]]:
+    """The stable responses of ``branch`` at ``model``'s ``Vb``: ``(range of X1', max |mu|,
+    k T)`` of each.
 
     Each is solved by Newton's method on the ``k``-fold map from the branch
     interpolated there, and kept where it is stable and of minimal period ``k``.
@@ -129,9 +140,17 @@ def _response_ranges(branch: ResponseBranch, model: Model) -> list[tuple[float, 
             pmap, point = shoot(model, k, guess)
         except NoPeriodicResponse:
             continue
-        mu = np.concatenate([np.linalg.eigvals(point.image.jacobian), pmap.fixed_multipliers()])
-        if np.max(np.abs(mu)) < 1.0 and minimal_periods(point.image, k) == k:
-            out.append(point.image.velocity_range())
+        mu = float(
+            np.max(
+                np.abs(
+                    np.concatenate(
+                        [np.linalg.eigvals(point.image.jacobian), pmap.fixed_multipliers()]
+                    )
+                )
+            )
+        )
+        if mu < 1.0 and minimal_periods(point.image, k) == k:
+            out.append((point.image.velocity_range(), mu, k * pmap.period))
     return out
 
 
@@ -162,6 +181,7 @@ def explain_coexistence(
     vb: Sequence[float],
     exact: Coexistence,
     dt: float,
+    window_start: float,
     seed_step: float,
 ) -> list[Explanation]:
     """Each run at each simulated coexistence point, explained by a computed response or not.
@@ -180,6 +200,11 @@ def explain_coexistence(
         The exact coexistence in ``Vb`` over a range that holds ``points``.
     dt : float
         The runs' sampling step [s] (`range_tolerance`).
+    window_start : float
+        The start of the runs' steady window [s]: a response whose largest multiplier
+        ``mu`` (of ``k T``) leaves ``|mu|^(window_start / (k T))`` above
+        `beltmdsm.analysis.summary.TRANSIENT_DECAYED` attracts too slowly for a run to
+        have settled on it (the rule the runs apply to their own transient).
     seed_step : float
         The spacing of ``exact``'s seeds: a seed this close to a point stands for it.
 
@@ -194,30 +219,45 @@ def explain_coexistence(
         i = grid.index(float(value))
         model = exact.model.replace(Vb=float(value))
         tolerance = range_tolerance(model, dt)
-        ranges = [
-            (r.name, rng)
+        stable = [
+            (r.name, *at)
             for r in exact.responses
             if _stable_at(r, value)
-            for rng in _response_ranges(r, model)
+            for at in _responses_at(r, model)
         ]
         for run in found_by[value]:
             lo, hi = runs[run].velocity_range[i]
             best = None
-            for name, (a, b) in ranges:
+            for name, (a, b), mu, period in stable:
                 deviation = max(abs(lo - a), abs(hi - b)) / (0.5 * (b - a))
                 if best is None or deviation < best[1]:
-                    best = (name, deviation)
-            closest, deviation = best if best is not None else (None, None)
+                    best = (name, deviation, mu, period)
+            closest, deviation = (best[0], best[1]) if best is not None else (None, None)
             if deviation is not None and deviation <= tolerance:
-                out.append(Explanation(value, run, closest, closest, deviation, tolerance, ""))
+                out.append(
+                    Explanation(value, run, "explained", closest, closest, deviation, tolerance, "")
+                )
                 continue
-            reason = _unlocked_reason(exact, value, run, seed_step)
-            if reason is None and closest is not None:
+            status, reason = "unexplained", _unlocked_reason(exact, value, run, seed_step)
+            if reason is not None:
+                status = "not_locked"
+            elif best is not None and math.log(best[2]) * window_start / best[3] > math.log(
+                TRANSIENT_DECAYED
+            ):
+                status = "not_settled"
+                left = best[2] ** (window_start / best[3])
+                reason = (
+                    f"not settled: the closest stable response, {closest} ({deviation:.1e} of "
+                    f"its amplitude off), attracts with |mu| = {best[2]:.4f} per "
+                    f"{best[3]:.4g} s, so a run reaches it only to {left:.1e} of its "
+                    f"distance by the window's start ({window_start:g} s)"
+                )
+            elif closest is not None:
                 reason = (
                     f"the run's X1' spans [{lo:.4g}, {hi:.4g}] m/s, no stable computed "
                     f"response's (closest: {closest}, {deviation:.1e} of its amplitude off)"
                 )
-            elif reason is None:
+            else:
                 reason = "no stable computed response at this Vb"
-            out.append(Explanation(value, run, None, closest, deviation, tolerance, reason))
+            out.append(Explanation(value, run, status, None, closest, deviation, tolerance, reason))
     return out

@@ -18,6 +18,7 @@ from ...analysis.summary import PEAK_PRESENT_RATIO, TRANSIENT_DECAYED
 from ..coexistence import DEFAULT_STEP
 from .cases import ANALYSES, DEFINITIONS, FLOQUET_DEFINITIONS, FLOQUET_TOL, UNRESOLVED
 from .comparison import Comparison, SimulatedRanges, regime_runs
+from .exact import STATUSES
 from .results import CaseResult, Validation
 from .verdicts import Run
 
@@ -153,12 +154,8 @@ def _explanation_groups(c: CaseResult) -> list[tuple[float, float, str]]:
     for value in sorted(by_point):
         parts = []
         for e in by_point[value]:
-            if e.explained:
-                parts.append(f"{e.run}: {e.response}")
-            elif e.reason.startswith("not locked"):
-                parts.append(f"{e.run}: not locked")
-            else:
-                parts.append(f"{e.run}: unexplained")
+            status = e.response if e.explained else e.status.replace("_", " ")
+            parts.append(f"{e.run}: {status}")
         text = "; ".join(parts)
         if groups and groups[-1][2] == text and value - groups[-1][1] <= step * (1 + 1e-9):
             groups[-1][1] = value
@@ -191,19 +188,18 @@ def _coexistence_section(results: Validation) -> list[str]:
         "with the reason.",
         "",
         "| case | exact coexistence [m/s]: responses (edges) | simulated [m/s] | shown by "
-        "| runs explained | unexplained | unsettled (slow attraction) |",
-        "|---|---|---|---|---|---|---|",
+        "| runs: explained / not settled / not locked / unexplained | unsettled points "
+        "(slow attraction) |",
+        "|---|---|---|---|---|---|",
     ]
     for c in cases:
         co = c.coexistence
         by = sorted({k for ks in co.found_by.values() for k in ks})
-        explained = sum(e.explained for e in c.explanations)
+        counts = " / ".join(str(sum(e.status == s for e in c.explanations)) for s in STATUSES)
         lines.append(
             f"| {c.case.name} | {_exact_text(c)} | "
             f"{intervals.format_intervals(co.ranges, '.2f')} | {', '.join(by) or '—'} | "
-            f"{explained} of {len(c.explanations)} | "
-            f"{len(c.explanations) - explained} | "
-            f"{_points_text([(v, v) for v in co.unsettled])} |"
+            f"{counts} | {_points_text([(v, v) for v in co.unsettled])} |"
         )
     lines += [
         "",
@@ -233,9 +229,10 @@ def _coexistence_section(results: Validation) -> list[str]:
         "",
         "### Each simulated coexistence point",
         "",
-        "Per run that shows the peak: the computed response it is on, *not locked* (a seed "
-        "of the exact study next to it, of the same kind of run, does not lock: "
-        "quasi-periodic motion or a longer period), or *unexplained*. Consecutive points "
+        "Per run that shows the peak: the computed response it is on, *not settled* (the "
+        "closest stable response attracts too slowly for the run to have reached it), *not "
+        "locked* (a seed of the exact study next to it, of the same kind of run, does not "
+        "lock: quasi-periodic motion or a longer period), or *unexplained*. Consecutive points "
         "with the same answers share a row; the largest deviation of a run's X1' range "
         "from its response's, over the response's amplitude, is given.",
         "",
@@ -253,7 +250,7 @@ def _coexistence_section(results: Validation) -> list[str]:
             )
     unexplained = [(c, e) for c in cases for e in c.explanations if not e.explained]
     if unexplained:
-        lines += ["", "Why each unexplained run is not explained:", ""]
+        lines += ["", "Why each run that no response explains is not explained:", ""]
         lines += [
             f"* {c.case.name}, Vb = {e.Vb:g} m/s, {e.run}: {e.reason}." for c, e in unexplained
         ]

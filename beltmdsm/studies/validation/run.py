@@ -213,6 +213,7 @@ def _validate_case(case, resolution, tension, executor, cache_dir, progress):
             vb,
             exact,
             resolution.settings.dt,
+            resolution.settings.window_start,
             DEFAULT_STEP,
         ),
     )

@@ -586,7 +586,7 @@ def _explained(vb, runs_at, lo, hi):
         for key, rng in runs_at.items()
     }
     return exact, validation.explain_coexistence(
-        [vb], {vb: list(runs_at)}, runs, [vb], exact, 0.02, 0.5
+        [vb], {vb: list(runs_at)}, runs, [vb], exact, 0.02, 300.0, 0.5
     )
 
 
@@ -607,25 +607,23 @@ def test_a_run_on_the_4t_response_is_explained_by_it_and_one_elsewhere_is_not():
     assert a.deviation < 1e-2 * a.tolerance
     # a run on the sliding periodic response (stable here too) is on that response
     assert b.response == "T" and b.deviation <= b.tolerance
-    # a range that no stable response has is unexplained, with the closest one named
+    # a range that no stable response has is unexplained, with the closest one named;
+    # the same run with a steady window from 1 s could still be on its way to it
+    off = {"down": dataclasses.replace(_run([True], [True]), velocity_range=[(-9.0, 9.0)])}
     (c,) = validation.explain_coexistence(
-        [7.0],
-        {7.0: ["down"]},
-        {"down": dataclasses.replace(_run([True], [True]), velocity_range=[(-9.0, 9.0)])},
-        [7.0],
-        exact,
-        0.02,
-        0.5,
+        [7.0], {7.0: ["down"]}, off, [7.0], exact, 0.02, 300.0, 0.5
     )
-    assert not c.explained and c.closest in ("4T", "T") and c.deviation > c.tolerance
+    assert c.status == "unexplained" and c.closest in ("4T", "T") and c.deviation > c.tolerance
     assert "no stable computed response's" in c.reason
+    (d,) = validation.explain_coexistence([7.0], {7.0: ["down"]}, off, [7.0], exact, 0.02, 1.0, 0.5)
+    assert d.status == "not_settled" and d.closest == c.closest and "|mu| = 0." in d.reason
 
 
 def test_a_run_that_does_not_lock_is_unexplained_and_says_so():
     # Vb = 3.5: the run from rest ends on a torus beside the stable periodic response
     exact, (e,) = _explained(3.5, {"rest": _run_range(3.5)}, 3.0, 4.0)
     assert any(abs(u.value - 3.5) < 1e-9 for u in exact.unlocked)
-    assert not e.explained and e.reason.startswith("not locked within 12 periods")
+    assert e.status == "not_locked" and e.reason.startswith("not locked within 12 periods")
     assert "run from rest" in e.reason
 
 
