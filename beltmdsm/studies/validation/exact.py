@@ -14,7 +14,13 @@ response is stable there and the run's steady window spans the response's range 
 settled* (the closest stable response attracts too slowly for a run to have reached
 it by its steady window, the rule the runs apply to their own transient), *not locked*
 (the nearby seed runs of the exact study do not lock: quasi-periodic motion, or a
-longer period than `beltmdsm.analysis.locked.LOCK_LIMIT`), or *unexplained*.
+longer period than `beltmdsm.analysis.locked.LOCK_LIMIT`), or *unexplained*. A run
+from rest that no computed response explains is run again with its settings and its
+stroboscope examined (`beltmdsm.studies.responses.run_stroboscope`): where it locks,
+its response is computed by shooting and compared like the others (a response the
+exact study's seeds did not reach); where it does not, it is *not locked* with that
+run's own evidence. The continued sweeps cannot be rerun at one point: for them the
+seeds of the exact study that stand for them (its ladders) decide.
 """
 
 from __future__ import annotations
@@ -27,11 +33,12 @@ from typing import Literal
 import numpy as np
 
 from ...analysis.floquet import NoPeriodicResponse
-from ...analysis.locked import minimal_periods
+from ...analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ...analysis.summary import TRANSIENT_DECAYED
 from ...model import Model
+from ...settings import SolverSettings
 from ..coexistence import Coexistence, ResponseBranch
-from ..responses import shoot
+from ..responses import run_stroboscope, shoot
 from .verdicts import Run
 
 __all__ = ["SEED_SOURCES", "STATUSES", "Explanation", "range_tolerance", "explain_coexistence"]
@@ -140,18 +147,20 @@ def _responses_at(branch: ResponseBranch, model: Model) -> list[tuple[tuple, flo
             pmap, point = shoot(model, k, guess)
         except NoPeriodicResponse:
             continue
-        mu = float(
-            np.max(
-                np.abs(
-                    np.concatenate(
-                        [np.linalg.eigvals(point.image.jacobian), pmap.fixed_multipliers()]
-                    )
-                )
-            )
-        )
+        mu = _largest_multiplier(pmap, point)
         if mu < 1.0 and minimal_periods(point.image, k) == k:
             out.append((point.image.velocity_range(), mu, k * pmap.period))
     return out
+
+
+def _not_locked_text(evidence: NotLocked, where: str) -> str:
+    e = evidence
+    shape = "on a closed curve" if e.closed_curve else "not on a closed curve"
+    return (
+        f"not locked within {e.limit} periods: {where} returns at best to "
+        f"{e.closest_return:.1e} (after {e.closest_periods} periods), its samples {shape}, "
+        f"rotation number {e.rotation_number:.3f}"
+    )
 
 
 def _unlocked_reason(exact: Coexistence, value: float, run: str, seed_step: float) -> str | None:
@@ -165,13 +174,38 @@ def _unlocked_reason(exact: Coexistence, value: float, run: str, seed_step: floa
     if not near:
         return None
     u = min(near, key=lambda u: abs(u.value - value))
-    e = u.evidence
-    shape = "on a closed curve" if e.closed_curve else "not on a closed curve"
-    return (
-        f"not locked within {e.limit} periods: the seed '{e.source}' at Vb = {u.value:g} "
-        f"returns at best to {e.closest_return:.1e} (after {e.closest_periods} periods), "
-        f"its samples {shape}, rotation number {e.rotation_number:.3f}"
-    )
+    return _not_locked_text(u.evidence, f"the seed '{u.evidence.source}' at Vb = {u.value:g}")
+
+
+def _rest_rerun(model: Model, settings: SolverSettings, limit: int):
+    """The run from rest at ``model`` again: ``(name, (range, max |mu|, k T))`` of the response
+    it locks on, or ``(None, reason)`` where it does not lock or its response is not found."""
+    strobe = run_stroboscope(model, settings=settings, limit=limit)
+    k = strobe.candidate
+    if k is None:
+        return None, _not_locked_text(NotLocked.of(strobe), "the run from rest at this Vb")
+    try:
+        pmap, point = shoot(model, k, strobe.samples[-1])
+    except NoPeriodicResponse as err:
+        return None, f"the run from rest locks at {k} periods, but {err}"
+    k = minimal_periods(point.image, k)
+    if k != pmap.periods:
+        pmap, point = shoot(model, k, point.state)
+    mu = _largest_multiplier(pmap, point)
+    if not mu < 1.0:
+        return None, f"the run from rest locks at {k} periods on a response with |mu| = {mu:.4g}"
+    name = ("T" if k == 1 else f"{k}T") + " (from the run from rest)"
+    return name, (point.image.velocity_range(), mu, k * pmap.period)
+
+
+def _largest_multiplier(pmap, point) -> float:
+    mu = np.concatenate([np.linalg.eigvals(point.image.jacobian), pmap.fixed_multipliers()])
+    return float(np.max(np.abs(mu)))
+
+
+def _deviation(run_range, response_range):
+    (lo, hi), (a, b) = run_range, response_range
+    return max(abs(lo - a), abs(hi - b)) / (0.5 * (b - a))
 
 
 def explain_coexistence(
@@ -180,9 +214,9 @@ def explain_coexistence(
     runs: Mapping[str, Run],
     vb: Sequence[float],
     exact: Coexistence,
-    dt: float,
-    window_start: float,
+    settings: SolverSettings,
     seed_step: float,
+    limit: int = LOCK_LIMIT,
 ) -> list[Explanation]:
     """Each run at each simulated coexistence point, explained by a computed response or not.
 
@@ -198,15 +232,17 @@ def explain_coexistence(
         The case's grid.
     exact : beltmdsm.studies.coexistence.Coexistence
         The exact coexistence in ``Vb`` over a range that holds ``points``.
-    dt : float
-        The runs' sampling step [s] (`range_tolerance`).
-    window_start : float
-        The start of the runs' steady window [s]: a response whose largest multiplier
-        ``mu`` (of ``k T``) leaves ``|mu|^(window_start / (k T))`` above
+    settings : SolverSettings
+        The runs' settings: the sampling step ``dt`` (`range_tolerance`); the start of
+        the steady window, where a response whose largest multiplier ``mu`` (of ``k T``)
+        leaves ``|mu|^(window_start / (k T))`` above
         `beltmdsm.analysis.summary.TRANSIENT_DECAYED` attracts too slowly for a run to
-        have settled on it (the rule the runs apply to their own transient).
+        have settled on it (the rule the runs apply to their own transient); the run
+        from rest rerun where no computed response explains it.
     seed_step : float
         The spacing of ``exact``'s seeds: a seed this close to a point stands for it.
+    limit : int
+        The longest lock looked for in a rerun, in excitation periods.
 
     Returns
     -------
@@ -214,11 +250,12 @@ def explain_coexistence(
         In the order of ``points``, then of the runs.
     """
     grid = [float(v) for v in vb]
+    window = settings.window_start
     out = []
     for value in points:
         i = grid.index(float(value))
         model = exact.model.replace(Vb=float(value))
-        tolerance = range_tolerance(model, dt)
+        tolerance = range_tolerance(model, settings.dt)
         stable = [
             (r.name, *at)
             for r in exact.responses
@@ -226,38 +263,46 @@ def explain_coexistence(
             for at in _responses_at(r, model)
         ]
         for run in found_by[value]:
-            lo, hi = runs[run].velocity_range[i]
-            best = None
-            for name, (a, b), mu, period in stable:
-                deviation = max(abs(lo - a), abs(hi - b)) / (0.5 * (b - a))
-                if best is None or deviation < best[1]:
-                    best = (name, deviation, mu, period)
-            closest, deviation = (best[0], best[1]) if best is not None else (None, None)
+            observed = runs[run].velocity_range[i]
+            candidates = list(stable)
+            best = min(candidates, key=lambda c: _deviation(observed, c[1]), default=None)
+            rerun = None
+            if run == "rest" and (best is None or _deviation(observed, best[1]) > tolerance):
+                name, found = _rest_rerun(model, settings, limit)
+                if name is None:
+                    rerun = found
+                else:
+                    candidates.append((name, *found))
+                    best = min(candidates, key=lambda c: _deviation(observed, c[1]))
+            closest = None if best is None else best[0]
+            deviation = None if best is None else _deviation(observed, best[1])
             if deviation is not None and deviation <= tolerance:
                 out.append(
                     Explanation(value, run, "explained", closest, closest, deviation, tolerance, "")
                 )
                 continue
-            status, reason = "unexplained", _unlocked_reason(exact, value, run, seed_step)
-            if reason is not None:
+            reason = rerun or _unlocked_reason(exact, value, run, seed_step)
+            if reason is not None and reason.startswith("not locked"):
                 status = "not_locked"
-            elif best is not None and math.log(best[2]) * window_start / best[3] > math.log(
+            elif best is not None and math.log(best[2]) * window / best[3] > math.log(
                 TRANSIENT_DECAYED
             ):
                 status = "not_settled"
-                left = best[2] ** (window_start / best[3])
+                left = best[2] ** (window / best[3])
                 reason = (
                     f"not settled: the closest stable response, {closest} ({deviation:.1e} of "
                     f"its amplitude off), attracts with |mu| = {best[2]:.4f} per "
                     f"{best[3]:.4g} s, so a run reaches it only to {left:.1e} of its "
-                    f"distance by the window's start ({window_start:g} s)"
-                )
-            elif closest is not None:
-                reason = (
-                    f"the run's X1' spans [{lo:.4g}, {hi:.4g}] m/s, no stable computed "
-                    f"response's (closest: {closest}, {deviation:.1e} of its amplitude off)"
+                    f"distance by the window's start ({window:g} s)"
                 )
             else:
-                reason = "no stable computed response at this Vb"
+                status = "unexplained"
+                lo, hi = observed
+                reason = (reason + "; " if reason else "") + (
+                    f"the run's X1' spans [{lo:.4g}, {hi:.4g}] m/s, no stable computed "
+                    f"response's (closest: {closest}, {deviation:.1e} of its amplitude off)"
+                    if closest is not None
+                    else "no stable computed response at this Vb"
+                )
             out.append(Explanation(value, run, status, None, closest, deviation, tolerance, reason))
     return out

@@ -184,8 +184,8 @@ def _coexistence_section(results: Validation) -> list[str]:
         "*explained* by a computed response that is stable at its `Vb` and whose range of "
         "X1' its steady window spans, to the sampling error "
         "(`beltmdsm.studies.validation.exact.range_tolerance`, "
-        f"{_tolerance_text(cases)} of the amplitude); otherwise it is *unexplained*, "
-        "with the reason.",
+        f"{_tolerance_text(cases)} of the amplitude); otherwise it is *not settled*, *not "
+        "locked* or *unexplained*, with the reason.",
         "",
         "| case | exact coexistence [m/s]: responses (edges) | simulated [m/s] | shown by "
         "| runs: explained / not settled / not locked / unexplained | unsettled points "

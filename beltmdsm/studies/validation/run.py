@@ -212,8 +212,7 @@ def _validate_case(case, resolution, tension, executor, cache_dir, progress):
             runs,
             vb,
             exact,
-            resolution.settings.dt,
-            resolution.settings.window_start,
+            resolution.settings,
             DEFAULT_STEP,
         ),
     )

@@ -586,7 +586,7 @@ def _explained(vb, runs_at, lo, hi):
         for key, rng in runs_at.items()
     }
     return exact, validation.explain_coexistence(
-        [vb], {vb: list(runs_at)}, runs, [vb], exact, 0.02, 300.0, 0.5
+        [vb], {vb: list(runs_at)}, runs, [vb], exact, validation.FULL.settings, 0.5
     )
 
 
@@ -610,12 +610,12 @@ def test_a_run_on_the_4t_response_is_explained_by_it_and_one_elsewhere_is_not():
     # a range that no stable response has is unexplained, with the closest one named;
     # the same run with a steady window from 1 s could still be on its way to it
     off = {"down": dataclasses.replace(_run([True], [True]), velocity_range=[(-9.0, 9.0)])}
-    (c,) = validation.explain_coexistence(
-        [7.0], {7.0: ["down"]}, off, [7.0], exact, 0.02, 300.0, 0.5
-    )
+    full = validation.FULL.settings
+    (c,) = validation.explain_coexistence([7.0], {7.0: ["down"]}, off, [7.0], exact, full, 0.5)
     assert c.status == "unexplained" and c.closest in ("4T", "T") and c.deviation > c.tolerance
     assert "no stable computed response's" in c.reason
-    (d,) = validation.explain_coexistence([7.0], {7.0: ["down"]}, off, [7.0], exact, 0.02, 1.0, 0.5)
+    early = dataclasses.replace(full, t_discard=1.0)
+    (d,) = validation.explain_coexistence([7.0], {7.0: ["down"]}, off, [7.0], exact, early, 0.5)
     assert d.status == "not_settled" and d.closest == c.closest and "|mu| = 0." in d.reason
 
 
