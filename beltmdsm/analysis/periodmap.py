@@ -362,8 +362,9 @@ class OnePeriodMap:
             if switch is None:
                 continue
             t, before, after, surface, state = switch
-            S = np.array(self.saltation(before, after, surface)(t, *state)).reshape(4, 4)
-            M = S[:2, :2] @ M
+            if after != before:  # a touch that keeps the mode has one field: S = I
+                S = np.array(self.saltation(before, after, surface)(t, *state)).reshape(4, 4)
+                M = S[:2, :2] @ M
             ratio = self._rate_ratio(t, state, before, surface)
             if ratio is not None and ratio < GRAZING_RATIO and grazing is None:
                 grazing = {"t": float(t), "surface": surface, "ratio": float(ratio)}
