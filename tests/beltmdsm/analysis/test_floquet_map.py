@@ -115,3 +115,21 @@ def test_a_row_with_a_band_takes_its_unstable_set_beside_a_coexisting_response()
     ]
     assert apart and all(floquet(Vb=cx + 0.1, beta2=cy).stable for cy, cx in apart)
     _agrees_with_floquet(result, "Vb", "beta2", np.linspace(0.5, 15.5, 16), 0.3)
+
+
+def test_a_touch_of_the_belt_speed_that_keeps_the_mode_leaves_the_jacobian_smooth():
+    # met by the (Vb, omega1) map at omega1 = 6.59: sliding forward, the velocity touches
+    # the belt's and slides forward on; the fields on both sides are one, S = I
+    from beltmdsm.analysis.periodmap import TangentialMap
+    from beltmdsm.integrate.switching import Mode
+
+    pmap = TangentialMap(Model(omega1=6.59090909090909, Vb=2.3549836562893516), 1)
+    x = np.array([-0.2732120331036181, 2.354983656289352])
+    image = pmap(x)
+    touch = (Mode.SLIP_FORWARD, Mode.SLIP_FORWARD, "relative_velocity")
+    assert touch in [s[1:4] for s in image.switches]
+    # the X1 direction is smooth here (the velocity direction starts on the stick
+    # boundary): the Jacobian's column against central differences of the map
+    h = 1e-6
+    column = (pmap(x + [h, 0]).state - pmap(x - [h, 0]).state) / (2 * h)
+    assert np.allclose(image.jacobian[:, 0], column, rtol=1e-6, atol=1e-9)
