@@ -549,17 +549,25 @@ def _walk(cont, first, direction, kT):
             failure = str(err)
         if failure is None and not (cont.lo <= value <= cont.hi):
             bound = cont.hi if value > cont.hi else cont.lo
-            end_point, acc = _regula_falsi(
-                cont,
-                prev,
-                tangent,
-                ds,
-                lambda q, b=bound: q.value - b,
-                prev.value - bound,
-                value - bound,
-            )
-            if end_point.image.signature == prev.image.signature:
-                special += _special_between(cont, prev, end_point, tangent, ds * 0.999, kT)
+            try:
+                end_point, acc = _regula_falsi(
+                    cont,
+                    prev,
+                    tangent,
+                    ds,
+                    lambda q, b=bound: q.value - b,
+                    prev.value - bound,
+                    value - bound,
+                )
+                if end_point.image.signature == prev.image.signature:
+                    found = _special_between(cont, prev, end_point, tangent, ds * 0.999, kT)
+                else:
+                    found = []
+            except NoPeriodicResponse as err:
+                # a corrector inside the step failed: a shorter step gets closer first
+                failure = f"locating the end of the range: {err}"
+        if failure is None and not (cont.lo <= value <= cont.hi):
+            special += found
             try:  # the response at the bound itself
                 at = fixed_point(cont.family(bound), end_point.state)
                 end_point = cont.point(at.state, bound, end_point.tangent, at.image)
@@ -595,6 +603,20 @@ def _walk(cont, first, direction, kT):
         t_new = cont.tangent(J_new, tangent)
         new = cont.point(x, value, float(t_new[-1]), image)
         new.column = J_new[:, -1].copy()
+        found = []
+        if image.signature == prev.image.signature:
+            try:
+                found = _special_between(cont, prev, new, tangent, ds, kT)
+            except NoPeriodicResponse:
+                # a corrector inside the step failed while locating a special point: a
+                # shorter step brackets it more closely
+                ds *= 0.5
+                if ds < STEP_MIN:
+                    end, extra = _end(cont, stretch(), "a special point cannot be located")
+                    points += extra
+                    special.append(end)
+                    return points, special
+                continue
         if image.signature != prev.image.signature:
             # a small step onto another structure: the response goes on through a grazing
             try:
@@ -616,7 +638,6 @@ def _walk(cont, first, direction, kT):
             )
             since.append(len(points))
         else:
-            found = _special_between(cont, prev, new, tangent, ds, kT)
             special += found
             if found:
                 since.append(len(points))

@@ -17,15 +17,18 @@ continuation in ``y``, row by row, not on a grid of pixels:
   ``Vb`` and the response slides back throughout, its grazing point is exact: its
   largest velocity in contact (`beltmdsm.analysis.floquet.largest_sliding_velocity`,
   as the band finds it).
-* A curve that cannot be continued on a row ends there; a band on that row, and on
-  every ``check_every``-th row, finds the edges afresh, and an edge that no curve
-  follows starts a new one.
+* A curve that cannot be continued on a row ends there; a band on that row, on every
+  row where no curve is followed, and on every ``check_every``-th row, finds the
+  edges afresh, and an edge that no curve follows starts a new one.
 
-Each row's unstable set follows from its edges and from which of their sides is
-unstable; the paper's linear analysis (`generated.stability.is_stable`, the options of
-the paper) is evaluated on the same rows for comparison, on a grid of ``x`` fine enough
-to show it (`LINEAR_POINTS`). ``floquet-map --png`` draws the result
-(`beltmdsm.cli.figure`).
+Each row's unstable set is where no stable periodic response is found: on a row with a
+band, the band's (`beltmdsm.analysis.band.Band.unstable`; a curve of a second periodic
+response that coexists with a stable one then bounds nothing); on the rows between,
+it follows from the curves' edges and from which of their sides is unstable, which
+assumes one periodic response at each ``x``. The paper's linear analysis
+(`generated.stability.is_stable`, the options of the paper) is evaluated on the same
+rows for comparison, on a grid of ``x`` fine enough to show it (`LINEAR_POINTS`).
+``floquet-map --png`` draws the result (`beltmdsm.cli.figure`).
 """
 
 from __future__ import annotations
@@ -73,6 +76,9 @@ _END_WIDENINGS = 4
 _RESUME = 0.1
 #: Steps of the natural continuation that carries a band's response to a curve's start.
 _WALK_STEPS = 8
+#: Two curves of one kind closer than this many times `EDGE_TOL` on a row have become
+#: one (edges that merge, e.g. grazings that become one tangency): one goes on.
+_SAME = 10
 
 
 @dataclass
@@ -131,8 +137,8 @@ class FloquetMap:
         The other parameters and the options (``x`` and ``y`` at the first row's start).
     curves : list of Curve
     unstable : list of list
-        Per row, the ``[lo, hi]`` of ``x`` where the periodic response is unstable or
-        absent.
+        Per row, the ``[lo, hi]`` of ``x`` where no stable periodic response is found
+        (unstable or absent; on a row in ``band_rows`` the band's, module docstring).
     linear : list of list
         Per row, where the paper's linear analysis says unstable (``x`` resolved to
         the range over `LINEAR_POINTS` - 1).
@@ -211,14 +217,23 @@ class _Tracker:
     role: str  # "multiplier", "end", "fold" or "sliding"
     side: float  # ends: +1 where the responses lie below the edge in x, -1 above
     kinds: tuple
-    states: list = field(default_factory=list)  # per row: the responses it keeps
+    # per row where the edge was located (across changes of kind, unlike the curve's
+    # points): the row's y, the edge's x and the responses kept next to it
+    ys: list = field(default_factory=list)
+    xs: list = field(default_factory=list)
+    states: list = field(default_factory=list)
     slope: float | None = None
+
+    def record(self, y, x):
+        """The edge located at ``x`` on row ``y`` (the responses already kept by `step`)."""
+        self.ys.append(float(y))
+        self.xs.append(float(x))
 
     def step(self, family, y, span):
         if self.role == "sliding":
             # the grazing point of the backward-sliding response in Vb is its largest
             # velocity in contact, which does not depend on Vb
-            return "grazing", largest_sliding_velocity(family(self.curve.x[-1]).one), 1e-12, None
+            return "grazing", largest_sliding_velocity(family(self.xs[-1]).one), 1e-12, None
         if self.role == "multiplier":
             return self._multiplier(family, y, span)
         if self.role == "fold":
@@ -227,8 +242,8 @@ class _Tracker:
 
     def _multiplier(self, family, y, span):
         c = self.curve
-        x0 = _extrapolate(c.y, c.x, y)
-        guess = _extrapolate(c.y[-len(self.states) :], [s[0] for s in self.states], y)
+        x0 = _extrapolate(self.ys, self.xs, y)
+        guess = _extrapolate(self.ys, [s[0] for s in self.states], y)
 
         def g(x, guess):
             point = fixed_point(family(x), guess)
@@ -253,9 +268,8 @@ class _Tracker:
         return kind, x1, abs(x1 - x0), frequency
 
     def _end(self, family, y, span):
-        c = self.curve
-        x_end = _extrapolate(c.y, c.x, y)
-        last = c.x[-1] - c.x[-2] if len(c.x) > 1 else 0.0
+        x_end = _extrapolate(self.ys, self.xs, y)
+        last = self.xs[-1] - self.xs[-2] if len(self.xs) > 1 else 0.0
         offset = max(3 * abs(last), _END_OFFSET * span)
         for _ in range(_END_WIDENINGS):
             points, states = self._next_to_end(family, y, x_end, offset)
@@ -271,11 +285,10 @@ class _Tracker:
 
     def _next_to_end(self, family, y, x_end, offset):
         """The responses at `_END_SHARES` of ``offset`` from the predicted end, and their states."""
-        c = self.curve
         points, states = [], []
         for i, share in enumerate(_END_SHARES):
             x = x_end - self.side * offset * share
-            known = zip(c.y[-len(self.states) :], self.states)
+            known = zip(self.ys, self.states)
             rows = [(yy, st[i]) for yy, st in known if st[i] is not None]
             # the same share on the rows before, extrapolated in y, is the better guess
             # where two rows are known: next to a tangency the response is not linear
@@ -303,11 +316,11 @@ class _Tracker:
         return points, states
 
     def _fold(self, family, y, span):
-        c = self.curve
-        x_fold = _extrapolate(c.y, c.x, y)
-        offset = max(10 * abs(c.x[-1] - c.x[-2]) if len(c.x) > 1 else 0.0, 10 * _END_OFFSET * span)
+        x_fold = _extrapolate(self.ys, self.xs, y)
+        last = abs(self.xs[-1] - self.xs[-2]) if len(self.xs) > 1 else 0.0
+        offset = max(10 * last, 10 * _END_OFFSET * span)
         x = x_fold - self.side * offset
-        guess = _extrapolate(c.y[-len(self.states) :], [s[0] for s in self.states], y)
+        guess = _extrapolate(self.ys, [s[0] for s in self.states], y)
         point = fixed_point(family(x), guess)
         lo, hi = sorted((x, x_fold + self.side * offset))
         branch = continue_branch(response_from(family(x), point), family.param, lo, hi)
@@ -365,6 +378,7 @@ def _trackers_from_band(band: Band, edges, family, y, span):
             continue
         curve.y.append(float(y))
         curve.x.append(float(v))
+        tracker.record(y, v)
         curve.accuracy.append(float(e.accuracy))
         curve.frequency.append(e.frequency)
         if role == "multiplier":  # the band's tolerance, refined by the secant
@@ -376,6 +390,7 @@ def _trackers_from_band(band: Band, edges, family, y, span):
                     accuracy,
                     frequency,
                 )
+                tracker.xs[-1] = float(at)
             except (NoPeriodicResponse, NoEdge):
                 pass
         out.append(tracker)
@@ -437,7 +452,7 @@ def floquet_map(
         Values of ``y`` (>= 2), evenly spaced.
     check_every : int
         A band finds the edges afresh on every such row (>= 1), besides where a curve
-        cannot be continued.
+        cannot be continued and where no curve is followed.
     backend : {"python", "numba", None}
 
     Returns
@@ -482,16 +497,37 @@ def floquet_map(
                 c.ended = f"leaves the range of {x} at {y} = {value:g}"
                 continue
             if kind != c.kind:  # a new kind: a new curve from the same point
-                new = Curve(kind, unstable_below=c.unstable_below, unstable_above=c.unstable_above)
+                # a tangency ends the response, violently unstable next to it (the
+                # saltation diverges): unstable on both sides; a change between
+                # multiplier kinds keeps the stable side
+                both = kind == "tangency"
+                new = Curve(
+                    kind,
+                    unstable_below=both or c.unstable_below,
+                    unstable_above=both or c.unstable_above,
+                )
                 c.ended = f"becomes {kind} at {y} = {value:g}"
                 curves.append(new)
                 tracker.curve, c = new, new
             c.y.append(float(value))
             c.x.append(float(at))
+            tracker.record(value, at)
             c.accuracy.append(float(accuracy))
             c.frequency.append(frequency)
+            twin = next(
+                (
+                    t
+                    for t in live
+                    if t.curve.kind == kind and abs(t.xs[-1] - at) <= _SAME * EDGE_TOL * span
+                ),
+                None,
+            )
+            if twin is not None:  # two edges that have become one: one curve goes on
+                c.ended = f"joins another {kind} curve at {y} = {value:g}"
+                continue
             live.append(tracker)
-        if i == 0 or len(live) < len(trackers) or i % int(check_every) == 0:
+        band = None
+        if i == 0 or not live or len(live) < len(trackers) or i % int(check_every) == 0:
             band = floquet_band(x, x_from, x_to, row, backend=backend)
             band_rows.append(float(value))
             followed = [t.curve.x[-1] for t in live if t.curve.y[-1] == float(value)]
@@ -523,7 +559,10 @@ def floquet_map(
             for t in trackers
             if t.curve.y and t.curve.y[-1] == float(value)
         ]
-        unstable.append(_row_unstable(edges, x_from, x_to))
+        if band is None:
+            unstable.append(_row_unstable(edges, x_from, x_to))
+        else:  # where no stable response is found, also beside an unstable one
+            unstable.append([[float(a), float(b)] for a, b in band.unstable])
         linear.append(_linear(row, x, xs))
     return FloquetMap(
         x,

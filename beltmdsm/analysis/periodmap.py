@@ -362,7 +362,7 @@ class OnePeriodMap:
             if switch is None:
                 continue
             t, before, after, surface, state = switch
-            if after != before:  # a touch that keeps the mode keeps the field: no jump
+            if after != before:  # a touch that keeps the mode has one field: S = I
                 S = np.array(self.saltation(before, after, surface)(t, *state)).reshape(4, 4)
                 M = S[:2, :2] @ M
             ratio = self._rate_ratio(t, state, before, surface)

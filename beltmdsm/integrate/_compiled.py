@@ -80,8 +80,17 @@ _SCAN = (
 
 def _kernel(bind, model):
     """The plain-Python scalar kernel that the generated ``bind`` chooses for the model's
-    laws (the variant of its options)."""
-    return bind(backend="python", **model.arguments(bind)).kernel
+    laws (the variant of its options): bound once per laws, since the kernel does not
+    depend on the parameters' values (a period map is built at every value of a band)."""
+    laws = tuple(model.options.items())
+    kernel = _KERNELS.get((bind, laws))
+    if kernel is None:
+        kernel = _KERNELS[bind, laws] = bind(backend="python", **model.arguments(bind)).kernel
+    return kernel
+
+
+#: `_kernel` by the bind function and the model's laws.
+_KERNELS: dict = {}
 
 
 def advance(field: str, model: Model, backend: Backend | None = None):

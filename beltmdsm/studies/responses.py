@@ -76,10 +76,13 @@ def run_stroboscope(
     t_end: float = RUN_T_END,
     limit: int = LOCK_LIMIT,
     backend: Backend | None = None,
+    settings: SolverSettings | None = None,
 ) -> Stroboscope:
     """The stroboscope of a run of `beltmdsm.simulation.simulate` from rest or the periodic start.
 
-    The samples are the last `WINDOW` of the run's whole excitation periods.
+    The samples are the last `WINDOW` of the run's whole excitation periods. The run's
+    settings are ``settings`` where given (its ``t_end`` and ``backend`` then replace
+    the arguments), else ``SolverSettings(t_end=t_end, backend=backend)``.
 
     Raises
     ------
@@ -88,8 +91,9 @@ def run_stroboscope(
         run that stops before ``t_end``.
     """
     T = excitation_period(model)
-    settings = SolverSettings(t_end=t_end, backend=backend)
-    y0 = periodic_start(model, backend=backend) if start == "periodic" else None
+    if settings is None:
+        settings = SolverSettings(t_end=t_end, backend=backend)
+    y0 = periodic_start(model, backend=settings.backend) if start == "periodic" else None
     sim = simulate(model, settings=settings, y0=y0)
     if sim.status != "done":
         raise NoPeriodicResponse(f"the run ({start}) stopped: {sim.message}")

@@ -14,6 +14,10 @@ case of Figs. 17-21 this package sets side by side:
   where the periodic start disagrees with Floquet (`periodic_mismatches`), and where
   a stable periodic response coexists with a self-excited oscillation
   (`coexistence`);
+* the exact coexistence (`beltmdsm.studies.coexistence.coexistence`): every periodic
+  response found, phase-locked ones too, with its stable parts, and each run of the
+  simulated coexistence explained by one of them or listed as unexplained
+  (`explain_coexistence`);
 * each analysis' edges against the Floquet band (`compare_floquet`), exact on both
   sides;
 
@@ -50,6 +54,9 @@ Modules, one concept each:
   comparisons;
 * `beltmdsm.studies.validation.verdicts`: the Floquet verdicts at the grid points
   against the runs: mismatches, coexistence;
+* `beltmdsm.studies.validation.exact`: the exact coexistence of each case
+  (`beltmdsm.studies.coexistence`) beside the simulated one, each simulated coexistence
+  point explained by a computed response or listed as unexplained;
 * `beltmdsm.studies.validation.results`: what `validate` returns (`Validation`, one
   `CaseResult` per case) and the summaries over the cases;
 * `beltmdsm.studies.validation.run`: `validate`, the orchestration of the bands and
@@ -91,6 +98,7 @@ from .comparison import (
     simulated_ranges,
     summarize_edges,
 )
+from .exact import SEED_SOURCES, STATUSES, Explanation, explain_coexistence, range_tolerance
 from .report import render_markdown
 from .results import (
     CaseFloquet,
@@ -163,4 +171,9 @@ __all__ = [
     "Mismatch",
     "Mismatches",
     "Coexistence",
+    "Explanation",
+    "SEED_SOURCES",
+    "STATUSES",
+    "explain_coexistence",
+    "range_tolerance",
 ]

@@ -111,7 +111,7 @@ ANALYSES = (
     (
         "consistent_mdsm",
         "MDSM",
-        "consistent MDSM with the friction-normal-force correlation (beltmdsm.analysis.predict)",
+        "consistent MDSM with the friction-normal-force correlation (`beltmdsm.analysis.predict`)",
     ),
 )
 
@@ -183,7 +183,7 @@ DEFINITIONS = """\
   simulated lower edge (at or above the lowest simulated Vb = h).
 * **No prediction.** Where an analysis gives no prediction (the consistent MDSM under
   the clipped tension law when the clip cuts its harmonic fast normal force:
-  `beltmdsm.predict.CLIPPED_MDSM`), its cells read *n/a* and the case counts in none of
+  `beltmdsm.analysis.predict.CLIPPED_MDSM`), its cells read *n/a* and the case counts in none of
   its columns.
 * **Mean absolute error (MAE)** of an analysis: the mean of |Δ| over every paired edge
   whose simulated edge is not censored, over all comparable cases (0, 1 or 2 edges per
@@ -267,7 +267,7 @@ FLOQUET_TOL = 1e-3
 
 
 FLOQUET_DEFINITIONS = """\
-* **Floquet band.** `beltmdsm.floquet.floquet_band` in `Vb` over [h/2, {cap:g}] m/s: the
+* **Floquet band.** `beltmdsm.analysis.band.floquet_band` in `Vb` over [h/2, {cap:g}] m/s: the
   belt speeds where the periodic response of period 2 pi / Omega is unstable (largest
   Floquet multiplier |mu| > 1) or absent (no periodic response found), with every edge
   located to {tol:g} m/s (an edge where the response ends to about 1e-6) and named by
@@ -276,11 +276,11 @@ FLOQUET_DEFINITIONS = """\
   switch structure changes: a reversal appears or disappears) and *tangency* (a
   reversal's crossing becomes tangential and the response ends). This is the quantity
   the linear analyses approximate (docs/modelling.md#what-unstable-means).
-* **Verdict at a grid point.** `beltmdsm.floquet.floquet` at that point, on the periodic
+* **Verdict at a grid point.** `beltmdsm.analysis.floquet.floquet` at that point, on the periodic
   response found without a guess: the orbit the periodic-start run starts on.
 * **Runs.** On the validation grid, each case is run five ways: from rest (the file's
   tension law); on the periodic response plus {perturbation:g} m in X1 (*periodic
-  start*); continued upwards and downwards in `Vb` (`beltmdsm.sweep.sweep`,
+  start*); continued upwards and downwards in `Vb` (`beltmdsm.studies.sweep.sweep`,
   ``continuation``: each point starts from the previous point's state at excitation
   phase 0); and from rest under the other tension law. A run's range is every point
   that shows the omega1 peak (resolved, any regime), each ± h/2.
@@ -296,6 +296,23 @@ FLOQUET_DEFINITIONS = """\
   settled before the steady window, exp(growth rate × {window:g} s) ≤ {decayed:g} (the
   rule the runs apply to the free transient, `beltmdsm.analysis.summary.TRANSIENT_DECAYED`);
   the other candidates are listed as *unsettled*.
+* **Exact coexistence.** `beltmdsm.studies.coexistence.coexistence` in `Vb` over the
+  cells of the case's grid, [h/2, top + h/2]: the periodic response of period
+  2 pi / Omega and every phase-locked response (a fixed point of the k-fold period
+  map, k up to {limit}) that its seeds reach (shooting; runs from rest and ladders
+  continued up and down on the period map, every {seeds:g} m/s), each continued in
+  `Vb` through its folds, with its stable parts and the bifurcations that bound them.
+* **Explained.** A run that shows the omega1 peak at a point of simulated
+  coexistence is explained by a computed response when that response is stable at the
+  point and the run's smallest and largest X1' over its steady window are the
+  response's to (Omega dt)^2 / 4 of its amplitude (dt the sampling step: a sample
+  falls at most dt/2 from an extreme; `beltmdsm.studies.validation.exact.range_tolerance`).
+  Otherwise it is *not locked* where a seed of the same kind of run within
+  {seeds:g} m/s does not lock within {limit} periods (quasi-periodic motion on an
+  invariant torus, or a longer period); *not settled* where the closest stable
+  response attracts too slowly for the run to have reached it by the steady window
+  (|mu|^(window / kT) > {decayed:g}, the rule of the coexistence points); else
+  *unexplained*, with the closest response's deviation.
 * **Edges against Floquet.** The hull of each analysis' unstable ranges against the
   hull of the Floquet band, lower with lower and upper with upper; Δ = predicted −
   Floquet, exact on both sides (no grid). A Floquet edge at an end of [h/2, {cap:g}] is

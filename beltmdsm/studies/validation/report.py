@@ -13,9 +13,12 @@ from collections.abc import Sequence
 from ... import intervals
 from ...analysis.band import Band
 from ...analysis.floquet import PERTURBATION
+from ...analysis.locked import LOCK_LIMIT
 from ...analysis.summary import PEAK_PRESENT_RATIO, TRANSIENT_DECAYED
+from ..coexistence import DEFAULT_STEP
 from .cases import ANALYSES, DEFINITIONS, FLOQUET_DEFINITIONS, FLOQUET_TOL, UNRESOLVED
 from .comparison import Comparison, SimulatedRanges, regime_runs
+from .exact import STATUSES
 from .results import CaseResult, Validation
 from .verdicts import Run
 
@@ -107,6 +110,163 @@ def _edges_text(band: Band) -> str:
     return ", ".join(f"{e.value:.3f} {EDGE_ABBREVIATIONS[e.kind][0]}" for e in band.edges) or "—"
 
 
+#: The kinds at the ends of a response's stable part besides the bifurcations: the end
+#: of the range studied, a real multiplier through +1 without a turn, a continuation
+#: that stopped (`beltmdsm.analysis.branch.SpecialPoint`).
+END_ABBREVIATIONS = {
+    "range": ("end", "the end of the range"),
+    "branch_point": ("BP", "branch point"),
+    "failed": ("stop", "the continuation stops"),
+}
+#: The legend of the exact coexistence tables.
+COEXISTENCE_LEGEND = ", ".join(
+    a if a == w else f"{a} = {w}"
+    for key, (a, w) in {**EDGE_ABBREVIATIONS, **END_ABBREVIATIONS}.items()
+    if key != "existence"
+)
+
+
+def _kind(kind: str) -> str:
+    return {**EDGE_ABBREVIATIONS, **END_ABBREVIATIONS}.get(kind, (kind, kind))[0]
+
+
+def _exact_text(c: CaseResult) -> str:
+    """The exact coexistence ranges of a case: range, responses, kinds of both edges."""
+    return (
+        "; ".join(
+            f"[{r.range[0]:.3f}, {r.range[1]:.3f}] {' + '.join(r.responses)} "
+            f"({_kind(r.lower)} / {_kind(r.upper)})"
+            for r in c.exact.ranges
+        )
+        or "none"
+    )
+
+
+def _explanation_groups(c: CaseResult) -> list[tuple[float, float, str]]:
+    """Consecutive grid points whose runs have the same explanations, as one row each:
+    ``(first, last, text)``."""
+    grid = c.Vb
+    step = grid[1] - grid[0] if len(grid) > 1 else 1.0
+    by_point: dict = {}
+    for e in c.explanations:
+        by_point.setdefault(e.Vb, []).append(e)
+    groups = []
+    for value in sorted(by_point):
+        parts = []
+        for e in by_point[value]:
+            status = e.response if e.explained else e.status.replace("_", " ")
+            parts.append(f"{e.run}: {status}")
+        text = "; ".join(parts)
+        if groups and groups[-1][2] == text and value - groups[-1][1] <= step * (1 + 1e-9):
+            groups[-1][1] = value
+        else:
+            groups.append([value, value, text])
+    return [tuple(g) for g in groups]
+
+
+def _coexistence_section(results: Validation) -> list[str]:
+    """The exact coexistence of each case beside the simulated one, point by point."""
+    cases = results.cases
+    lines = [
+        "",
+        "## Coexistence: exact and simulated",
+        "",
+        "Exact: every periodic response that `beltmdsm.studies.coexistence.coexistence` "
+        "finds in `Vb` over the case's grid cells (seeds every "
+        f"{DEFAULT_STEP:g} m/s: shooting, runs from rest and ladders continued up and "
+        "down on the period map; locks looked for up to "
+        f"{LOCK_LIMIT} periods), each continued as a branch, and the ranges where "
+        "two or more are stable: the responses that coexist there (`T`: period 2 pi / "
+        "Omega; `kT`: phase-locked, numbered where several share k) and the kinds of "
+        f"both edges ({COEXISTENCE_LEGEND}). Simulated: the grid points where the "
+        "periodic start stays on a stable periodic response while a run from rest or a "
+        "continued sweep shows the omega1 peak (definitions below). A run there is "
+        "*explained* by a computed response that is stable at its `Vb` and whose range of "
+        "X1' its steady window spans, to the sampling error "
+        "(`beltmdsm.studies.validation.exact.range_tolerance`, "
+        f"{_tolerance_text(cases)} of the amplitude); otherwise it is *not settled*, *not "
+        "locked* or *unexplained*, with the reason.",
+        "",
+        "| case | exact coexistence [m/s]: responses (edges) | simulated [m/s] | shown by "
+        "| runs: explained / not settled / not locked / unexplained | unsettled points "
+        "(slow attraction) |",
+        "|---|---|---|---|---|---|",
+    ]
+    for c in cases:
+        co = c.coexistence
+        by = sorted({k for ks in co.found_by.values() for k in ks})
+        counts = " / ".join(str(sum(e.status == s for e in c.explanations)) for s in STATUSES)
+        lines.append(
+            f"| {c.case.name} | {_exact_text(c)} | "
+            f"{intervals.format_intervals(co.ranges, '.2f')} | {', '.join(by) or '—'} | "
+            f"{counts} | {_points_text([(v, v) for v in co.unsettled])} |"
+        )
+    lines += [
+        "",
+        "### The responses found",
+        "",
+        "Each branch's stable parts, with the kinds of the edges that bound them; a response "
+        "that is nowhere stable in the range is listed with its extent.",
+        "",
+        "| case | response | periods | stable in [m/s] (edges) | exists in [m/s] |",
+        "|---|---|---|---|---|",
+    ]
+    for c in cases:
+        for r in c.exact.responses:
+            stable = (
+                "; ".join(
+                    f"[{s.range[0]:.3f}, {s.range[1]:.3f}] ({_kind(s.lower)} / {_kind(s.upper)})"
+                    for s in r.stable
+                )
+                or "nowhere"
+            )
+            lo, hi = r.branch.value_range()
+            lines.append(
+                f"| {c.case.name} | {r.name} | {r.branch.periods} | {stable} | "
+                f"[{lo:.3f}, {hi:.3f}] |"
+            )
+    lines += [
+        "",
+        "### Each simulated coexistence point",
+        "",
+        "Per run that shows the peak: the computed response it is on, *not settled* (the "
+        "closest stable response attracts too slowly for the run to have reached it), *not "
+        "locked* (a seed of the exact study next to it, of the same kind of run, does not "
+        "lock: quasi-periodic motion or a longer period), or *unexplained*. Consecutive points "
+        "with the same answers share a row; the largest deviation of a run's X1' range "
+        "from its response's, over the response's amplitude, is given.",
+        "",
+        "| case | Vb [m/s] | runs | largest deviation |",
+        "|---|---|---|---|",
+    ]
+    for c in cases:
+        for first, last, text in _explanation_groups(c):
+            inside = [e for e in c.explanations if first <= e.Vb <= last and e.explained]
+            worst = max((e.deviation for e in inside), default=None)
+            lines.append(
+                f"| {c.case.name} | {_points_text([(first, last)])} | {text} | "
+                + ("—" if worst is None else f"{worst:.1e}")
+                + " |"
+            )
+    unexplained = [(c, e) for c in cases for e in c.explanations if not e.explained]
+    if unexplained:
+        lines += ["", "Why each run that no response explains is not explained:", ""]
+        lines += [
+            f"* {c.case.name}, Vb = {e.Vb:g} m/s, {e.run}: {e.reason}." for c, e in unexplained
+        ]
+    lines.append("")
+    return lines
+
+
+def _tolerance_text(cases):
+    values = sorted({e.tolerance for c in cases for e in c.explanations})
+    if not values:
+        return "(Omega dt)^2 / 4"
+    if values[0] == values[-1]:
+        return f"(Omega dt)^2 / 4 = {values[0]:.1e}"
+    return f"(Omega dt)^2 / 4, {values[0]:.1e} to {values[-1]:.1e}"
+
+
 def _run_text(run: Run) -> str:
     text = intervals.format_intervals(run.ranges, ".2f")
     if run.unresolved:
@@ -136,7 +296,7 @@ def _floquet_sections(results: Validation) -> list[str]:
         "periodic response beside a self-excited oscillation (definitions below).",
         "",
         "| case | Floquet unstable [m/s] | edges | periodic start | from rest | up sweep "
-        f"| down sweep | coexistence | from rest, {other} |",
+        f"| down sweep | coexistence (runs) | from rest, {other} |",
         "|---|---|---|---|---|---|---|---|---|",
     ]
     for c in cases:
@@ -186,21 +346,7 @@ def _floquet_sections(results: Validation) -> list[str]:
             f"{len(m.no_verdict)} | {len(m.unresolved)} | "
             f"{_points_text([(v, v) for v in c.band_disagreements])} |"
         )
-    lines += [
-        "",
-        "## Coexistence",
-        "",
-        "| case | coexistence [m/s] | shown by | unsettled (slow attraction) |",
-        "|---|---|---|---|",
-    ]
-    for c in cases:
-        co = c.coexistence
-        by = sorted({k for ks in co.found_by.values() for k in ks})
-        lines.append(
-            f"| {c.case.name} | {intervals.format_intervals(co.ranges, '.2f')} | "
-            f"{', '.join(by) or '—'} | "
-            f"{_points_text([(v, v) for v in co.unsettled])} |"
-        )
+    lines += _coexistence_section(results)
     lines += [
         "",
         "## The analyses against Floquet",
@@ -306,7 +452,7 @@ def render_markdown(results: Validation, quick: bool) -> str:
         "",
         "For the base set (Fig. 2b) and every case of Appendix A.5 (Figs. 17-21): where the "
         "periodic response of Eq. (4) is unstable (Floquet multipliers, exact; "
-        "`beltmdsm.floquet`), where runs started on it, from rest and along continued "
+        "`beltmdsm.analysis.floquet`), where runs started on it, from rest and along continued "
         "sweeps show the omega1 peak in the spectrum of X1', where two attractors coexist, "
         "and how far each analysis' unstable range lies from the Floquet band (the "
         "quantity it approximates) and from the runs from rest.",
@@ -324,7 +470,7 @@ def render_markdown(results: Validation, quick: bool) -> str:
         + (
             " The consistent MDSM assumes a harmonic fast normal force, which the "
             "clip makes non-harmonic where it cuts it: n/a there "
-            "(`beltmdsm.predict.CLIPPED_MDSM`)."
+            "(`beltmdsm.analysis.predict.CLIPPED_MDSM`)."
             if tension == "clipped"
             else ""
         ),
@@ -457,6 +603,8 @@ def render_markdown(results: Validation, quick: bool) -> str:
             perturbation=PERTURBATION,
             window=res.settings.window_start,
             decayed=TRANSIENT_DECAYED,
+            limit=LOCK_LIMIT,
+            seeds=DEFAULT_STEP,
         ),
         DEFINITIONS.format(ratio=PEAK_PRESENT_RATIO, cap=res.vb_cap),
     ]

@@ -16,8 +16,10 @@ from functools import cached_property
 
 from ...analysis.band import Band
 from ...model import Tension
+from .. import coexistence as exact_coexistence
 from .cases import ANALYSES, Case, Resolution
 from .comparison import Comparison, EdgeSummary, SimulatedRanges, summarize_edges
+from .exact import Explanation
 from .verdicts import Coexistence, Mismatch, Mismatches, PointVerdict, Run
 
 
@@ -68,10 +70,17 @@ class CaseResult:
     mismatches : Mismatches
         the periodic-start run against the verdicts (`periodic_mismatches`)
     coexistence : Coexistence
+        where the runs find two attractors (`beltmdsm.studies.validation.verdicts.coexistence`)
     band_disagreements : list of float
         the grid points whose verdict contradicts the band (`band_grid_disagreements`)
     floquet_comparison : dict of str to Comparison
         each analysis against the Floquet band (`compare_floquet`)
+    exact : beltmdsm.studies.coexistence.Coexistence
+        every periodic response found in ``Vb`` over the grid's cells, with its stable
+        parts, and where stable ones coexist (`beltmdsm.studies.coexistence.coexistence`)
+    explanations : list of Explanation
+        each run at each point of ``coexistence``, explained by a response of ``exact``
+        or not (`beltmdsm.studies.validation.exact.explain_coexistence`)
     """
 
     case: Case
@@ -87,6 +96,8 @@ class CaseResult:
     coexistence: Coexistence
     band_disagreements: list[float]
     floquet_comparison: dict[str, Comparison]
+    exact: exact_coexistence.Coexistence
+    explanations: list[Explanation]
 
 
 @dataclass(frozen=True)

@@ -4,8 +4,11 @@ For each case of `CASES` it computes the predictions (Eqs. 22-28 and the consist
 MDSM), the Floquet band in ``Vb`` (`beltmdsm.analysis.band.floquet_band`), the
 sweep from rest on a grid that contains every edge and closes the simulated range,
 the four other runs of `RUNS` on that grid (on an executor: a process pool, a dask
-cluster or ``"serial"``), the Floquet verdict at each grid point, and sets them side
-by side (`beltmdsm.studies.validation.comparison`, `beltmdsm.studies.validation.verdicts`).
+cluster or ``"serial"``), the exact coexistence over the grid's cells
+(`beltmdsm.studies.coexistence.coexistence`, computed while the executor runs the
+sweeps), the Floquet verdict at each grid point, and sets them side by side
+(`beltmdsm.studies.validation.comparison`, `beltmdsm.studies.validation.verdicts`,
+`beltmdsm.studies.validation.exact`).
 """
 
 from __future__ import annotations
@@ -20,6 +23,7 @@ import numpy as np
 
 from ...analysis.band import floquet_band
 from ...model import TENSIONS, Model, Tension
+from ..coexistence import DEFAULT_STEP, coexistence
 from ..sweep import sweep
 from .cases import (
     ANALYSES,
@@ -35,14 +39,15 @@ from .cases import (
     vb_grid,
 )
 from .comparison import compare, compare_floquet, predicted_intervals, simulated_ranges
+from .exact import explain_coexistence
 from .results import CaseFloquet, CaseResult, Validation
 from .verdicts import (
     Run,
     band_grid_disagreements,
-    coexistence,
     floquet_verdicts,
     periodic_mismatches,
 )
+from .verdicts import coexistence as coexistence_points
 
 
 def _case_sweep(
@@ -171,10 +176,16 @@ def _validate_case(case, resolution, tension, executor, cache_dir, progress):
     simulated = simulated_ranges(
         vb, table["omega1_peak_present"], table["regime"], step, table["resolved"]
     )
-    tables = _other_runs(case, vb, resolution, executor, cache_dir, progress, tension)
+    pending = _other_runs(case, vb, resolution, executor, cache_dir, progress, tension)
+    # the exact study runs here while the executor runs the sweeps
+    exact = coexistence("Vb", step / 2, float(vb[-1]) + step / 2, model, step=DEFAULT_STEP)
+    tables = {key: table_of() for key, table_of in pending.items()}
     tables["rest"] = table
     runs = {key: Run.from_table(tables[key], step) for key, _, _ in RUNS}
     verdicts = floquet_verdicts(vb, model)
+    simulated_coexistence = coexistence_points(
+        vb, verdicts, runs, step, resolution.settings.window_start
+    )
     lo, hi = step / 2, resolution.vb_cap
     return CaseResult(
         case=case,
@@ -189,11 +200,21 @@ def _validate_case(case, resolution, tension, executor, cache_dir, progress):
         mismatches=periodic_mismatches(
             vb, verdicts, runs["periodic"], [e.value for e in band.edges], step
         ),
-        coexistence=coexistence(vb, verdicts, runs, step, resolution.settings.window_start),
+        coexistence=simulated_coexistence,
         band_disagreements=band_grid_disagreements(vb, verdicts, band, step),
         floquet_comparison={
             key: compare_floquet(predicted[key], band, lo, hi) for key, _, _ in ANALYSES
         },
+        exact=exact,
+        explanations=explain_coexistence(
+            simulated_coexistence.points,
+            simulated_coexistence.found_by,
+            runs,
+            vb,
+            exact,
+            resolution.settings,
+            DEFAULT_STEP,
+        ),
     )
 
 
@@ -211,8 +232,11 @@ def _floquet_band(model, resolution):
 def _other_runs(case, vb, resolution, executor, cache_dir, progress, tension):
     """The periodic-start, up, down and other-law sweeps of one case on the grid ``vb``.
 
-    The continued sweeps are sequential within themselves; each is one task for the
-    executor, so the two directions run side by side.
+    Returns, by key, a function without arguments that gives the sweep's table. On an
+    executor the sweeps are submitted at once, so that they run while the caller
+    works; the continued sweeps are sequential within themselves, each one task, so the
+    two directions run side by side. With ``"serial"`` each runs when its table is asked
+    for.
     """
     other = {"allowed": "clipped", "clipped": "allowed"}[tension]
     common = dict(settings=resolution.settings, cache_dir=cache_dir)
@@ -223,16 +247,19 @@ def _other_runs(case, vb, resolution, executor, cache_dir, progress, tension):
         "rest_other": dict(tension=other),
     }
     if executor == "serial":
-        return {
-            key: sweep(
-                "Vb", vb, case.overrides, executor="serial", progress=progress, **common, **kw
-            ).table
-            for key, kw in plans.items()
-        }
+
+        def later(kw):
+            return lambda: (
+                sweep(
+                    "Vb", vb, case.overrides, executor="serial", progress=progress, **common, **kw
+                ).table
+            )
+
+        return {key: later(kw) for key, kw in plans.items()}
     futures = {
         key: executor.submit(
             sweep, "Vb", vb, case.overrides, executor="serial", progress=False, **common, **kw
         )
         for key, kw in plans.items()
     }
-    return {key: fut.result().table for key, fut in futures.items()}
+    return {key: (lambda fut=fut: fut.result().table) for key, fut in futures.items()}

@@ -127,6 +127,10 @@ class Run:
         the points that show the peak (resolved, any regime), each ± h/2 (`peak_ranges`)
     unresolved : list of float
         the belt speeds of the unresolved points
+    velocity_range : list of (float, float)
+        the smallest and largest X1' of each point's steady window [m/s] (the sweep's
+        ``vr_min`` and ``vr_max`` plus ``Vb``): what `explain_coexistence` compares with
+        a computed response
     """
 
     present: list[bool]
@@ -135,6 +139,7 @@ class Run:
     peak_ratio: list[float]
     ranges: list[tuple[float, float]]
     unresolved: list[float]
+    velocity_range: list[tuple[float, float]]
 
     @classmethod
     def from_table(cls, table: np.ndarray, step: float) -> Run:
@@ -149,6 +154,10 @@ class Run:
             peak_ratio=(table["peak_omega1"] / table["peak_Omega"]).tolist(),
             ranges=peak_ranges(vb, present, resolved, step),
             unresolved=[float(v) for v in vb[~resolved]],
+            velocity_range=[
+                (float(v + lo), float(v + hi))
+                for v, lo, hi in zip(vb, table["vr_min"], table["vr_max"])
+            ],
         )
 
 

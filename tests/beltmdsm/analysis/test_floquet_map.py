@@ -57,3 +57,79 @@ def test_bad_axes_are_refused():
         floquet_map("Vbelt", 1.0, 2.0, "beta1", 0.1, 0.2)
     with pytest.raises(ValueError, match="rows"):
         floquet_map("Vb", 1.0, 2.0, "beta1", 0.1, 0.2, rows=1)
+
+
+def _agrees_with_floquet(result, x, y, points, near):
+    """Every point of each row farther than ``near`` from a curve: the map's verdict is that
+    of ``floquet()`` from scratch (unstable or absent inside the row's unstable set)."""
+    for row, unstable in zip(result.rows, result.unstable):
+        edges = [cx for c in result.curves for cy, cx in zip(c.y, c.x) if cy == row]
+        for value in points:
+            if edges and min(abs(value - e) for e in edges) < near:
+                continue
+            try:
+                verdict = floquet(**{x: float(value), y: float(row)}).stable is not True
+            except NoPeriodicResponse:
+                verdict = True
+            assert verdict == any(a <= value <= b for a, b in unstable), (row, value)
+
+
+def test_a_curve_that_changes_kind_goes_on_from_its_edges_history():
+    # omega1 from 1 to 2.6: the Neimark-Sacker pair of the base set becomes a multiplier
+    # through -1 (period doubling), continued on the next row from the edge's history
+    result = floquet_map("Vb", 0.25, 20.0, "omega1", 1.0, 2.6, rows=5, check_every=1)
+    ns = next(c for c in result.curves if c.kind == "neimark_sacker")
+    assert ns.ended.startswith("becomes period_doubling")
+    pd = next(c for c in result.curves if c.kind == "period_doubling")
+    assert len(pd.y) >= 2
+    # the kind, independently: floquet() on both sides of the edge, the unstable side's
+    # critical multiplier real and below -1 (on the stable side, a complex pair near -1
+    # that meets on the real axis just before the edge)
+    y, x = pd.y[-1], pd.x[-1]
+    sides = [floquet(Vb=x + d, omega1=y) for d in (-0.02, 0.02)]
+    assert sorted(f.max_abs_multiplier < 1 for f in sides) == [False, True]
+    unstable = next(f for f in sides if f.max_abs_multiplier > 1)
+    mu = unstable.multipliers[np.argmax(np.abs(unstable.multipliers))]
+    assert abs(mu.imag) < 1e-9 and mu.real < -1
+    _agrees_with_floquet(result, "Vb", "omega1", np.linspace(0.5, 19.5, 20), 0.5)
+
+
+def test_a_row_with_a_band_takes_its_unstable_set_beside_a_coexisting_response():
+    # beta2 from 0.036 to 0.09: a second periodic response (reversing) goes on past the
+    # sliding one's grazing point and loses stability at a Neimark-Sacker point, while
+    # the sliding one is stable there: that curve bounds nothing
+    result = floquet_map("Vb", 0.25, 16.0, "beta2", 0.036, 0.09, rows=3, check_every=1)
+    assert result.band_rows == [float(v) for v in result.rows]
+    for y, unstable in zip(result.rows, result.unstable):
+        band = floquet_band("Vb", 0.25, 16.0, beta2=float(y))
+        assert unstable == [[float(a), float(b)] for a, b in band.unstable]
+    # (farther from every unstable range than the band's tolerance, 1e-3)
+    apart = [
+        (cy, cx)
+        for c in result.curves
+        if c.kind == "neimark_sacker"
+        for cy, cx in zip(c.y, c.x)
+        if not any(
+            a - 1e-2 <= cx <= b + 1e-2 for a, b in result.unstable[list(result.rows).index(cy)]
+        )
+    ]
+    assert apart and all(floquet(Vb=cx + 0.1, beta2=cy).stable for cy, cx in apart)
+    _agrees_with_floquet(result, "Vb", "beta2", np.linspace(0.5, 15.5, 16), 0.3)
+
+
+def test_a_touch_of_the_belt_speed_that_keeps_the_mode_leaves_the_jacobian_smooth():
+    # met by the (Vb, omega1) map at omega1 = 6.59: sliding forward, the velocity touches
+    # the belt's and slides forward on; the fields on both sides are one, S = I
+    from beltmdsm.analysis.periodmap import TangentialMap
+    from beltmdsm.integrate.switching import Mode
+
+    pmap = TangentialMap(Model(omega1=6.59090909090909, Vb=2.3549836562893516), 1)
+    x = np.array([-0.2732120331036181, 2.354983656289352])
+    image = pmap(x)
+    touch = (Mode.SLIP_FORWARD, Mode.SLIP_FORWARD, "relative_velocity")
+    assert touch in [s[1:4] for s in image.switches]
+    # the X1 direction is smooth here (the velocity direction starts on the stick
+    # boundary): the Jacobian's column against central differences of the map
+    h = 1e-6
+    column = (pmap(x + [h, 0]).state - pmap(x - [h, 0]).state) / (2 * h)
+    assert np.allclose(image.jacobian[:, 0], column, rtol=1e-6, atol=1e-9)

@@ -1,7 +1,9 @@
 """The validation table (beltmdsm.studies.validation), the harmonic balance against runs."""
 
 import dataclasses
+import importlib
 import math
+import re
 
 import numpy as np
 import pytest
@@ -13,6 +15,7 @@ from beltmdsm.cli import main
 from beltmdsm.model import Model
 from beltmdsm.simulation import simulate
 from beltmdsm.studies import validation
+from beltmdsm.studies.coexistence import coexistence
 from beltmdsm.studies.validation import (
     ANALYSES,
     CASES,
@@ -21,6 +24,7 @@ from beltmdsm.studies.validation import (
     compare,
     disagreement_length,
     harmonic_in_band,
+    range_tolerance,
     render_markdown,
     simulated_ranges,
     summarize,
@@ -457,6 +461,7 @@ def _run(present, resolved):
         peak_ratio=[math.nan] * n,
         ranges=validation.peak_ranges(vb, present, resolved, H),
         unresolved=[float(v) for v, ok in zip(vb, resolved) if not ok],
+        velocity_range=[(math.nan, math.nan)] * n,
     )
 
 
@@ -559,3 +564,97 @@ def test_quick_base_periodic_start_agrees_with_floquet_and_the_band_with_its_gri
     # the edges by their bifurcation, abbreviated as the legend says
     assert "| 4.058 NS, 6.164 tang, 6.415 graz |" in text
     assert "kinds: NS = Neimark-Sacker, PD = period doubling, fold, graz = grazing" in text
+
+
+# ------------------------------------------------------------------ exact coexistence (issue 20)
+
+
+def test_range_tolerance_bounds_the_sampling_deficit_of_a_harmonic_twice():
+    # the worst sample phase: the extreme of A sin(Omega t) half a step from a sample
+    model, dt = Model(Omega=6.0), 0.02
+    tol = range_tolerance(model, dt)
+    t = dt * (np.arange(-3, 4) + 0.5)
+    deficit = 1.0 - np.max(np.sin(6.0 * t + np.pi / 2))
+    assert tol / 4 < deficit <= tol / 2
+    assert range_tolerance(Model(Omega_t=6.0, Omega_n=9.0), dt) == pytest.approx((9 * dt) ** 2 / 4)
+
+
+def _explained(vb, runs_at, lo, hi):
+    """`explain_coexistence` at one point ``vb`` for runs with the given X1' ranges."""
+    exact = coexistence("Vb", lo, hi, step=0.5)
+    runs = {
+        key: dataclasses.replace(_run([True], [True]), velocity_range=[rng])
+        for key, rng in runs_at.items()
+    }
+    return exact, validation.explain_coexistence(
+        [vb], {vb: list(runs_at)}, runs, [vb], exact, validation.FULL.settings, 0.5
+    )
+
+
+def _run_range(vb, **kw):
+    """X1' over the steady window of a run of Eq. (4) (the validation's settings)."""
+    s = simulate(Model(Vb=vb), settings=validation.FULL.settings, **kw).summary
+    return (vb + s.vr_min, vb + s.vr_max)
+
+
+def test_a_run_on_the_4t_response_is_explained_by_it_and_one_elsewhere_is_not():
+    # the reference: the run from rest at Vb = 7 (on the 4T orbit, docs/modelling.md)
+    # and a run started on the periodic response (which stays on it: Floquet stable)
+    rest = _run_range(7.0)
+    on_t = _run_range(7.0, y0=floquet(Vb=7.0).response.state0)
+    exact, (a, b) = _explained(7.0, {"rest": rest, "up": on_t}, 6.5, 7.5)
+    assert a.explained and a.response == "4T" and a.deviation <= a.tolerance
+    # the sampled window spans the computed range far inside the error model
+    assert a.deviation < 1e-2 * a.tolerance
+    # a run on the sliding periodic response (stable here too) is on that response
+    assert b.response == "T" and b.deviation <= b.tolerance
+    # a range that no stable response has is unexplained, with the closest one named;
+    # the same run with a steady window from 1 s could still be on its way to it
+    off = {"down": dataclasses.replace(_run([True], [True]), velocity_range=[(-9.0, 9.0)])}
+    full = validation.FULL.settings
+    (c,) = validation.explain_coexistence([7.0], {7.0: ["down"]}, off, [7.0], exact, full, 0.5)
+    assert c.status == "unexplained" and c.closest in ("4T", "T") and c.deviation > c.tolerance
+    assert "no stable computed response's" in c.reason
+    early = dataclasses.replace(full, t_discard=1.0)
+    (d,) = validation.explain_coexistence([7.0], {7.0: ["down"]}, off, [7.0], exact, early, 0.5)
+    assert d.status == "not_settled" and d.closest == c.closest and "|mu| = 0." in d.reason
+
+
+def test_a_run_that_does_not_lock_is_unexplained_and_says_so():
+    # Vb = 3.5: the run from rest ends on a torus beside the stable periodic response
+    exact, (e,) = _explained(3.5, {"rest": _run_range(3.5)}, 3.0, 4.0)
+    assert any(abs(u.value - 3.5) < 1e-9 for u in exact.unlocked)
+    assert e.status == "not_locked" and e.reason.startswith("not locked within 12 periods")
+    assert "run from rest" in e.reason
+
+
+def test_quick_base_explains_its_simulated_coexistence_by_the_4t_response(quick_base):
+    (case,) = quick_base.cases
+    assert case.coexistence.points and case.explanations
+    assert {e.Vb for e in case.explanations} == set(case.coexistence.points)
+    assert all(e.explained and e.response == "4T" for e in case.explanations)
+    # the exact ranges: the 4T response beside the sliding one up to the 4T fold
+    upper = [r for r in case.exact.ranges if r.range[0] > 6.0]
+    assert [(sorted(r.responses), r.lower, r.upper) for r in upper] == [
+        (["4T", "T#2"], "grazing", "fold")
+    ]
+    text = render_markdown(quick_base, True)
+    assert "## Coexistence: exact and simulated" in text
+    assert "[6.415, 7.674] 4T + T#2 (graz / fold)" in text
+
+
+def test_the_report_names_only_modules_and_attributes_that_exist(quick_base):
+    text = render_markdown(quick_base, True)
+    assert "runtime" not in text
+    names = set(re.findall(r"`(beltmdsm(?:\.\w+)+)`", text))
+    assert len(names) > 5
+    for name in names:
+        parts = name.split(".")
+        for cut in range(len(parts), 0, -1):
+            try:
+                obj = importlib.import_module(".".join(parts[:cut]))
+                break
+            except ModuleNotFoundError:
+                continue
+        for attr in parts[cut:]:
+            obj = getattr(obj, attr)  # AttributeError names a stale reference
