@@ -442,12 +442,14 @@ def _sliding_grazing(param, fa, fb):
 
     Where the side above slides backwards throughout (no switch in contact) and the
     side below does not, the sliding response stops at the belt speed equal to its
-    largest velocity in contact; it does not depend on ``Vb``. Only for ``param =
-    "Vb"``; other parameters are bisected.
+    largest velocity in contact; on the closed-form path it does not depend on ``Vb``.
+    Only for ``param = "Vb"`` on that path; other parameters, and the general path
+    (where the friction depends on the velocity), are bisected.
     """
     if (
         param != "Vb"
         or fb is None
+        or fb.engine != "closed_form"
         or (fb.n_reversals, fb.n_sticks) != (0, 0)
         or (fa is not None and (fa.n_reversals, fa.n_sticks) == (0, 0))
     ):
@@ -598,7 +600,7 @@ def _band_existence(param, a, fa, b, fb, backend):
         return Floquet.of(response_from(family(v), point))
 
     # the common case first: the response goes on unchanged to where a margin closes
-    points, reached, plain = _natural(family, value, r.state0[:2], far)
+    points, reached, plain = _natural(family, value, r.shooting_state, far)
     solved = [(v, floquet_at(v, p)) for v, p in points[1:]]
     if plain and not reached and len(points) >= 2:
         try:

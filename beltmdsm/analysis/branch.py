@@ -699,7 +699,7 @@ def continue_branch(
     if not lo <= v0 <= hi:
         raise ValueError(f"the start's {param} = {v0:g} is outside [{lo:g}, {hi:g}]")
     family = MapFamily(model, param, start.periods, backend)
-    x0 = np.asarray(start.state0[:2], dtype=float)
+    x0 = np.asarray(start.shooting_state, dtype=float)
     cont = _Continuation(family, float(lo), float(hi), 1.0 + float(np.max(np.abs(x0))))
     image = family(v0)(x0)
     kT = start.periods * family(v0).period

@@ -313,7 +313,7 @@ def coexistence(
                 f = floquet(model.replace(**{param: float(v)}), guess=guess, backend=backend)
             except NoPeriodicResponse:
                 continue
-            seeds.append((float(v), 1, f.response.state0[:2], "shooting"))
+            seeds.append((float(v), 1, f.response.shooting_state, "shooting"))
             last = f
             break
 
