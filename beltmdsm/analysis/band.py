@@ -36,7 +36,7 @@ from .floquet import (
     largest_sliding_velocity,
     response_from,
 )
-from .periodmap import FixedPoint, MapFamily, fixed_point
+from .periodmap import FixedPoint, MapFamily, engine_of, fixed_point
 
 __all__ = ["Edge", "BandPoint", "BandFailure", "Band", "floquet_band"]
 
@@ -168,7 +168,8 @@ class Band:
     def as_dict(self) -> dict:
         """The JSON of ``floquet-band --json``: ``param``, ``unstable``, ``edges``,
         ``grazing_points``, ``no_periodic_response``, ``grid``, ``failed``,
-        ``tension``, ``contact``."""
+        ``tension``, ``contact``, ``friction`` and ``engine`` (the period map of the
+        model's laws, `beltmdsm.analysis.periodmap.engine_of`)."""
         return {
             "param": self.param,
             "unstable": [list(r) for r in self.unstable],
@@ -179,6 +180,8 @@ class Band:
             "failed": [f.as_dict() for f in self.failed],
             "tension": self.model.tension,
             "contact": self.model.contact,
+            "friction": self.model.friction,
+            "engine": engine_of(self.model),
         }
 
 

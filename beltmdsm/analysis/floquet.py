@@ -59,6 +59,7 @@ from .periodmap import (
     GRAZING_RATIO,
     NEWTON_TOL,
     RTOL,
+    Engine,
     FixedPoint,
     GeneralMap,
     NoPeriodicResponse,
@@ -223,6 +224,7 @@ def periodic_response(
     forward: int = FORWARD_PERIODS,
     backend: Backend | None = None,
     periods: int = 1,
+    engine: Engine | None = None,
     **kw: Any,
 ) -> PeriodicResponse:
     """The periodic response of Eq. (4) by shooting (module docstring).
@@ -252,6 +254,9 @@ def periodic_response(
     periods : int
         ``k >= 1``: the response of ``k`` excitation periods (phase-locked for ``k >
         1``), by shooting on the ``k``-fold map.
+    engine : {"closed_form", "general", None}
+        The period map (`beltmdsm.analysis.periodmap.period_map`); None: the one the
+        model's laws allow.
 
     Returns
     -------
@@ -263,7 +268,9 @@ def periodic_response(
     ValueError
         For bad parameters, a tension law that does not exist, an excitation without
         a period (zero or incommensurate frequencies), ``periods`` not an integer
-        >= 1, or a guess of another size than 2 or 4.
+        >= 1, a guess of another size than 2 or 4, or an unknown engine.
+    beltmdsm.model.Unsupported
+        For ``engine="closed_form"`` where the model's laws lack a fact it needs.
     NoPeriodicResponse
         (a RuntimeError) If no periodic response is found; for ``periods > 1``
         without a guess, where the attractor of the period map does not lock at
@@ -271,7 +278,7 @@ def periodic_response(
     """
     model = as_model(model, **kw)
     excitation_period(model)
-    pmap = period_map(model, periods, backend)
+    pmap = period_map(model, periods, backend, engine)
     if isinstance(guess, PeriodicResponse):
         guess = guess.state0
     if guess is not None:
@@ -447,12 +454,14 @@ def floquet(
     forward: int = FORWARD_PERIODS,
     backend: Backend | None = None,
     periods: int = 1,
+    engine: Engine | None = None,
     **kw: Any,
 ) -> Floquet:
     """Floquet multipliers of the periodic response (module docstring).
 
     Takes the arguments of `periodic_response`; ``periods = k > 1``: of the response
-    of ``k`` periods, the multipliers of the ``k``-fold map.
+    of ``k`` periods, the multipliers of the ``k``-fold map; ``engine``: the period
+    map (None: the one the model's laws allow).
 
     Returns
     -------
@@ -460,7 +469,9 @@ def floquet(
     """
     model = as_model(model, **kw)
     return Floquet.of(
-        periodic_response(model, guess=guess, forward=forward, backend=backend, periods=periods)
+        periodic_response(
+            model, guess=guess, forward=forward, backend=backend, periods=periods, engine=engine
+        )
     )
 
 

@@ -155,7 +155,8 @@ class FloquetMap:
 
     def as_dict(self) -> dict:
         """For JSON: ``x``, ``y``, ``x_range``, ``y_range``, ``rows``, ``contact``,
-        ``tension``, ``curves``, ``unstable``, ``linear``, ``band_rows``, ``wall_s``."""
+        ``tension``, ``friction``, ``engine``, ``curves``, ``unstable``, ``linear``,
+        ``band_rows``, ``wall_s``."""
         return {
             "x": self.x,
             "y": self.y,
@@ -164,6 +165,8 @@ class FloquetMap:
             "rows": [float(v) for v in self.rows],
             "contact": self.model.contact,
             "tension": self.model.tension,
+            "friction": self.model.friction,
+            "engine": engine_of(self.model),
             "curves": [c.as_dict() for c in self.curves],
             "unstable": self.unstable,
             "linear": self.linear,

@@ -115,6 +115,7 @@ __all__ = [
     "EventPeriod",
     "CLOSED_FORM_FACTS",
     "ENGINES",
+    "Engine",
     "engine_of",
     "period_map",
     "crossing_ratio",
@@ -151,6 +152,7 @@ _SLIDING_ITER = 20
 _DENSE_SAMPLES = 50
 
 MarginKind = Literal["crossing", "approach", "decision"]
+Engine = Literal["closed_form", "general"]
 #: The kinds of `Margin`.
 MARGIN_KINDS = ("crossing", "decision", "approach")
 #: Samples per second of a segment when its closest approach is searched.
@@ -1035,9 +1037,34 @@ def engine_of(model: Model) -> str:
     return "closed_form" if all(facts[f][0] for f in CLOSED_FORM_FACTS) else "general"
 
 
-def period_map(model: Model, periods: int = 1, backend: Backend | None = None) -> PeriodMap:
-    """The ``k``-fold period map of the model by the engine its laws allow (`engine_of`)."""
-    return ENGINES[engine_of(model)](model, periods, backend)
+def period_map(
+    model: Model,
+    periods: int = 1,
+    backend: Backend | None = None,
+    engine: Engine | None = None,
+) -> PeriodMap:
+    """The ``k``-fold period map of the model.
+
+    Parameters
+    ----------
+    model : Model
+    periods : int
+    backend : {"python", "numba", None}
+    engine : {"closed_form", "general", None}
+        None: the engine the model's laws allow (`engine_of`); a name asks for that
+        engine (the general one applies to every law, and serves as a cross-check of
+        the closed-form one).
+
+    Raises
+    ------
+    ValueError
+        For an unknown engine.
+    beltmdsm.model.Unsupported
+        For ``engine="closed_form"`` where the laws lack a fact it needs.
+    """
+    if engine is not None and engine not in ENGINES:
+        raise ValueError(f"engine must be one of {', '.join(map(repr, ENGINES))}; got {engine!r}")
+    return ENGINES[engine or engine_of(model)](model, periods, backend)
 
 
 class MapFamily:

@@ -70,6 +70,8 @@ def test_every_edge_is_labelled_with_its_bifurcation_and_the_kind_of_before(base
         "failed",
         "tension",
         "contact",
+        "friction",
+        "engine",
     }
     assert set(out["edges"][0]) == {
         "value",
