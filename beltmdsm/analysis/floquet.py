@@ -294,14 +294,13 @@ def periodic_response(
                 f"period map iterated from rest, Newton's method finds one of {shortest}"
             )
         return response_from(pmap, point)
-    sliding = pmap.sliding_guess()
-    start = sliding if guess is None else guess
+    start = pmap.sliding_guess() if guess is None else guess
     try:
         point = fixed_point(pmap, start, max_iter)
     except NoPeriodicResponse as newton_failed:
         if not forward:
             raise
-        x, steps = sliding, []
+        x, steps = pmap.sliding_guess(), []
         for k in range(int(forward)):
             xT = pmap.step(x)
             steps.append(float(np.max(np.abs(xT - x))))

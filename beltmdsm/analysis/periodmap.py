@@ -144,9 +144,9 @@ _LINE_SEARCH = 8
 _STAGNATION = 2
 #: Periods the normal motion is followed before Newton's method polishes its orbit.
 _NORMAL_PERIODS = 200
-#: Newton iterations on the backward-sliding field (`GeneralMap.sliding_guess`): it
-#: converges quadratically where that orbit exists, in 4 to 6 from the equilibrium.
-_SLIDING_ITER = 20
+#: Iterations on the backward-sliding field (`GeneralMap.sliding_guess`): where that
+#: orbit exists they converge in 5 to 8 from the equilibrium.
+_SLIDING_ITER = 30
 #: Samples per excitation period of `GeneralMap`'s runs (the integrator's samples are
 #: not read; its dense output is).
 _DENSE_SAMPLES = 50
@@ -966,10 +966,13 @@ class GeneralMap(PeriodMap):
         its contact force where ``X2 < 0``, as in flight) is integrated over one period
         with no switch watched (the compiled DOP853 of `beltmdsm.integrate._dop853`),
         its Jacobian by the step propagators of `beltmdsm.analysis.variational`, from
-        the unforced equilibrium (Eq. 9). It is the counterpart of the closed-form
-        sliding orbit of `TangentialMap` and the same where the mass slides back in
-        contact throughout; where Newton's method does not settle in
-        `_SLIDING_ITER` iterations, its last iterate is the guess (kept).
+        the unforced equilibrium (Eq. 9). The Jacobian is kept while the residual at
+        least halves (a chord method: the field is linear in the tangential state under
+        Coulomb friction and nearly so under Stribeck's, so one Jacobian serves most
+        iterations). It is the counterpart of the closed-form sliding orbit of
+        `TangentialMap` and the same where the mass slides back in contact throughout;
+        where the iterations do not settle in `_SLIDING_ITER`, the last iterate is the
+        guess (kept).
         """
         if self._sliding is not None:
             return self._sliding.copy()
@@ -977,7 +980,7 @@ class GeneralMap(PeriodMap):
         advance = _compiled.advance("vector_field", self.model, self.backend)
         watch, dirs = np.zeros(0, dtype=np.int64), np.zeros(0)
         mode = float(Mode.SLIP_BACK)
-        x = initial_state(self.model)
+        x, M, last = initial_state(self.model), None, np.inf
         for _ in range(_SLIDING_ITER):
             code, n, ts, hs, ys, Fs, t_stop, y, _, _ = advance(
                 sw.field.args,
@@ -996,14 +999,19 @@ class GeneralMap(PeriodMap):
             )
             if code != _dop853.STATUS_END:
                 break
-            ts, hs, ys, Fs = ts[:n], hs[:n], ys[:n], Fs[:n]
-            ends = np.minimum(ts + hs, np.append(ts[1:], t_stop))
-            M = np.eye(4)
-            for R in variational.propagators(self.model, ts, hs, ys, Fs, ends, np.full(n, mode)):
-                M = R @ M
             r = np.asarray(y) - x
-            if np.max(np.abs(r)) <= NEWTON_TOL * (1.0 + np.max(np.abs(x))):
+            size = float(np.max(np.abs(r)))
+            if size <= NEWTON_TOL * (1.0 + np.max(np.abs(x))):
                 break
+            if M is None or size > 0.5 * last:
+                ts, hs, ys, Fs = ts[:n], hs[:n], ys[:n], Fs[:n]
+                ends = np.minimum(ts + hs, np.append(ts[1:], t_stop))
+                M = np.eye(4)
+                for R in variational.propagators(
+                    self.model, ts, hs, ys, Fs, ends, np.full(n, mode)
+                ):
+                    M = R @ M
+            last = size
             try:
                 x_new = x + np.linalg.solve(np.eye(4) - M, r)
             except np.linalg.LinAlgError:
