@@ -21,6 +21,7 @@ from beltmdsm.analysis.periodmap import (
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.model import CONTACTS, FRICTIONS, TENSIONS, Model, Unsupported
 from beltmdsm.settings import SolverSettings
+from beltmdsm.simulation import simulate
 from generated.capabilities import CAPABILITIES
 
 #: Coulomb friction, where both paths apply: a point of each switch structure and law.
@@ -71,6 +72,23 @@ def test_the_closed_form_path_refuses_stribeck_friction_by_name():
         assert "friction='stribeck'" in text and "X1'" in text and "\n" not in text
     with pytest.raises(ValueError, match="engine"):
         period_map(model, engine="numeric")
+
+
+def test_the_choice_reads_the_facts_not_the_law(monkeypatch):
+    # a law whose slip-mode friction depended on the state would be Coulomb's in every
+    # other respect: the facts, not the name, send it to the general path
+    key = ("coulomb", "hertz_damp", "allowed")
+    facts = dict(CAPABILITIES[key])
+    facts["slip_friction_state_independent"] = (False, "friction='coulomb': a toy fact")
+    monkeypatch.setitem(CAPABILITIES, key, facts)
+    model = Model(Vb=5.0)
+    assert engine_of(model) == "general" and floquet(model).engine == "general"
+    with pytest.raises(Unsupported, match="the closed-form period map: .*a toy fact"):
+        TangentialMap(model)
+    run = simulate(model, solver="superposition", t_end=20.0)
+    assert run.solver_used == "events" and "superposition: friction='coulomb': a toy fact" in (
+        run.message
+    )
 
 
 @pytest.mark.parametrize("case", BOTH)
