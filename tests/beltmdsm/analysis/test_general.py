@@ -112,6 +112,17 @@ def test_both_paths_agree_where_both_apply(case):
     assert np.max(np.abs(M[2:, 2:] - closed.response.monodromy_normal)) <= AGREE
     # the general multipliers are the whole monodromy's, largest first
     assert np.all(np.diff(np.abs(general.multipliers)) <= 0)
+    # what the band, edges and branches read of the orbit: the same margins and range
+    # of X1' (states on the orbit agree to about 1e-10: a dense output of order 7 at
+    # RTOL against closed forms)
+    a = period_map(model)(closed.response.shooting_state)
+    b = period_map(model, engine="general")(general.response.shooting_state)
+    assert [(m.kind, m.surface, m.mode) for m in a.margins] == [
+        (m.kind, m.surface, m.mode) for m in b.margins
+    ]
+    for m, n in zip(a.margins, b.margins):
+        assert abs(m.t - n.t) <= 1e-8 and abs(m.value - n.value) <= 1e-8
+    assert np.allclose(a.velocity_range(), b.velocity_range(), rtol=0, atol=1e-8)
 
 
 def test_both_paths_agree_on_a_locked_response():
