@@ -38,7 +38,7 @@ from .floquet import (
     largest_sliding_velocity,
     response_from,
 )
-from .periodmap import FixedPoint, MapFamily, fixed_point
+from .periodmap import FixedPoint, MapFamily, engine_of, fixed_point
 
 __all__ = ["Edge", "BandPoint", "BandFailure", "Band", "floquet_band"]
 
@@ -173,7 +173,8 @@ class Band:
     def as_dict(self) -> dict:
         """The JSON of ``floquet-band --json``: ``param``, ``unstable``, ``edges``,
         ``grazing_points``, ``no_periodic_response``, ``grid``, ``failed``, ``tol``,
-        ``tension``, ``contact``."""
+        ``tension``, ``contact``, ``friction`` and ``engine`` (the period map of the
+        model's laws, `beltmdsm.analysis.periodmap.engine_of`)."""
         return {
             "param": self.param,
             "unstable": [list(r) for r in self.unstable],
@@ -185,6 +186,8 @@ class Band:
             "tol": self.tol,
             "tension": self.model.tension,
             "contact": self.model.contact,
+            "friction": self.model.friction,
+            "engine": engine_of(self.model),
         }
 
 
@@ -541,12 +544,14 @@ def _sliding_grazing(param, fa, fb):
 
     Where the side above slides backwards throughout (no switch in contact) and the
     side below does not, the sliding response stops at the belt speed equal to its
-    largest velocity in contact; it does not depend on ``Vb``. Only for ``param =
-    "Vb"``; other parameters are bisected.
+    largest velocity in contact; on the closed-form path it does not depend on ``Vb``.
+    Only for ``param = "Vb"`` on that path; other parameters, and the general path
+    (where the friction depends on the velocity), are bisected.
     """
     if (
         param != "Vb"
         or fb is None
+        or fb.engine != "closed_form"
         or (fb.n_reversals, fb.n_sticks) != (0, 0)
         or (fa is not None and (fa.n_reversals, fa.n_sticks) == (0, 0))
     ):
@@ -697,7 +702,7 @@ def _band_existence(param, a, fa, b, fb, backend):
         return Floquet.of(response_from(family(v), point))
 
     # the common case first: the response goes on unchanged to where a margin closes
-    points, reached, plain = _natural(family, value, r.state0[:2], far)
+    points, reached, plain = _natural(family, value, r.shooting_state, far)
     solved = [(v, floquet_at(v, p)) for v, p in points[1:]]
     if plain and not reached and len(points) >= 2:
         try:

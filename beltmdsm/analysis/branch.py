@@ -50,6 +50,7 @@ from .periodmap import (
     MapFamily,
     MapImage,
     NoPeriodicResponse,
+    engine_of,
     fixed_point,
 )
 
@@ -278,13 +279,16 @@ class Branch:
         return min(self.points, key=lambda p: abs(p.value - value))
 
     def as_dict(self) -> dict:
-        """For JSON: ``param``, ``periods``, ``contact``, ``tension``, ``range``,
-        ``parts``, ``stable_ranges``, ``special_points``, ``points``."""
+        """For JSON: ``param``, ``periods``, ``contact``, ``tension``, ``friction``,
+        ``engine``, ``range``, ``parts``, ``stable_ranges``, ``special_points``,
+        ``points``."""
         return {
             "param": self.param,
             "periods": self.periods,
             "contact": self.model.contact,
             "tension": self.model.tension,
+            "friction": self.model.friction,
+            "engine": engine_of(self.model),
             "range": self.value_range(),
             "parts": [p.as_dict() for p in self.parts()],
             "stable_ranges": self.stable_ranges(),
@@ -720,7 +724,7 @@ def continue_branch(
     if not lo <= v0 <= hi:
         raise ValueError(f"the start's {param} = {v0:g} is outside [{lo:g}, {hi:g}]")
     family = MapFamily(model, param, start.periods, backend)
-    x0 = np.asarray(start.state0[:2], dtype=float)
+    x0 = np.asarray(start.shooting_state, dtype=float)
     cont = _Continuation(family, float(lo), float(hi), 1.0 + float(np.max(np.abs(x0))))
     image = family(v0)(x0)
     kT = start.periods * family(v0).period

@@ -3,20 +3,33 @@
 The MDSM and the paper's analysis (Sects. 4.2-4.3) linearise about a slow equilibrium
 that stands for the response of period ``T = 2 pi / Omega``; the exact counterpart is
 the Floquet stability of that periodic response (docs/modelling.md#what-unstable-means).
-This module computes it, on the period map of `beltmdsm.analysis.periodmap` (the
-monodromy's structure, the normal orbit, the closed-form tangential block, grazing).
+This module computes it, on the period map of `beltmdsm.analysis.periodmap`, by one of
+two engines that the facts of the model's laws choose (``generated.capabilities``,
+`beltmdsm.analysis.periodmap.engine_of`), never by assumption:
 
-* **Periodic response.** `periodic_response` finds the tangential state at phase 0
-  that the period map returns to, by Newton's method with ``M_t`` as the Jacobian
-  (damped steps, `beltmdsm.analysis.periodmap.fixed_point`). The first guess is the
-  orbit that slides backwards throughout, which is exact where the friction never
-  reverses; a continuation passes the previous orbit instead.
+* ``closed_form`` (`beltmdsm.analysis.periodmap.TangentialMap`), where the slip-mode
+  friction is free of the tangential state and the normal equation too (Coulomb
+  friction): the tangential map on the cached normal orbit, closed-form state
+  transitions and saltation matrices, the normal block's multipliers apart;
+* ``general`` (`beltmdsm.analysis.periodmap.GeneralMap`), every law (Stribeck
+  friction): the full state shot with the event-driven integrator, the monodromy by
+  the variational equations with the generated Jacobians of the modes and the
+  saltation matrices (`beltmdsm.analysis.variational`; Leine and Nijmeijer 2004).
+
+The results say which (``engine``); where both apply they agree to 1e-9.
+
+* **Periodic response.** `periodic_response` finds the state at phase 0 that the
+  period map returns to, by Newton's method with the map's Jacobian (damped steps,
+  `beltmdsm.analysis.periodmap.fixed_point`). The first guess is the orbit that
+  slides backwards throughout, which is exact where the friction never reverses; a
+  continuation passes the previous orbit instead.
 * **Phase-locked responses** (``periods = k > 1``): the response of ``k T``, a fixed
   point of the ``k``-fold map, whose multipliers are those of the ``k``-fold map
-  (the eigenvalues of the product of the ``k`` one-period Jacobians, and the normal
-  block's to the power ``k``). Without a guess it is seeded from the attractor of the
-  period map iterated from rest (`beltmdsm.analysis.locked.map_stroboscope`), where
-  that attractor locks at ``k`` periods (docs/modelling.md#bifurcations).
+  (the eigenvalues of the product of the ``k`` one-period Jacobians, and on the
+  closed-form path the normal block's to the power ``k``). Without a guess it is
+  seeded from the attractor of the period map iterated from rest
+  (`beltmdsm.analysis.locked.map_stroboscope`), where that attractor locks at ``k``
+  periods (docs/modelling.md#bifurcations).
 * **Grazing.** A switch reached with a vanishing rate
   (`beltmdsm.analysis.periodmap.GRAZING_RATIO`) is reported as grazing, and no
   multiplier is returned for it.
@@ -42,16 +55,20 @@ from ..integrate.switching import Mode
 from ..model import Backend, Model, as_model, excitation_period, initial_state
 from .locked import LOCK_LIMIT, NotLocked, map_stroboscope, minimal_periods
 from .periodmap import (
+    ENGINES,
     GRAZING_RATIO,
     NEWTON_TOL,
     RTOL,
+    Engine,
     FixedPoint,
+    GeneralMap,
     NoPeriodicResponse,
     NormalOrbit,
     OnePeriodMap,
-    TangentialMap,
+    PeriodMap,
     fixed_point,
     normal_orbit,
+    period_map,
 )
 
 __all__ = [
@@ -105,9 +122,10 @@ class PeriodicResponse:
     monodromy_tangential, monodromy_normal : ndarray (2, 2)
         The diagonal blocks of the monodromy matrix.
     monodromy : ndarray (4, 4)
-        The whole monodromy matrix; its coupling block ``[:2, 2:]`` by central finite
-        differences of the period map (relative accuracy about 1e-6), the diagonal
-        blocks as above.
+        The whole monodromy matrix. On the closed-form path its coupling block
+        ``[:2, 2:]`` by central finite differences of the period map (relative
+        accuracy about 1e-6), the diagonal blocks as above; on the general path the
+        variational equations' (`beltmdsm.analysis.variational`).
     grazing : dict or None
         ``{"t", "surface", "ratio"}`` of a switch reached with a vanishing rate.
     residual : float
@@ -116,6 +134,9 @@ class PeriodicResponse:
     periods : int
         ``k``: the response repeats after ``k`` excitation periods; the monodromy is
         that of the ``k``-fold map.
+    engine : {"closed_form", "general"}
+        The period map that found it (`beltmdsm.analysis.periodmap.ENGINES`, chosen by
+        the facts of the model's laws, `beltmdsm.analysis.periodmap.engine_of`).
     """
 
     model: Model
@@ -130,15 +151,25 @@ class PeriodicResponse:
     iterations: int
     _engine: object = field(default=None, repr=False)
     periods: int = 1
+    engine: str = "closed_form"
+    _monodromy: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def monodromy(self) -> np.ndarray:
         """The 4 x 4 monodromy matrix (see the class docstring)."""
-        M = np.zeros((4, 4))
-        M[:2, :2] = self.monodromy_tangential
-        M[2:, 2:] = self.monodromy_normal
-        M[:2, 2:] = _coupling_block(self)
-        return M
+        if self._monodromy is None:
+            M = np.zeros((4, 4))
+            M[:2, :2] = self.monodromy_tangential
+            M[2:, 2:] = self.monodromy_normal
+            M[:2, 2:] = _coupling_block(self)
+            self._monodromy = M
+        return self._monodromy.copy()
+
+    @property
+    def shooting_state(self) -> np.ndarray:
+        """The state at phase 0 that the engine's period map shoots in: ``(X1, X1')``
+        on the closed-form path, all four on the general one."""
+        return ENGINES[self.engine].shooting(self.state0)
 
 
 def _coupling_block(resp):
@@ -159,35 +190,29 @@ def _coupling_block(resp):
     return out
 
 
-def _sliding_guess(pmap):
-    """The orbit that slides backwards throughout: exact where the friction never reverses.
-
-    Sliding back in contact and free of friction in flight or separation, the
-    tangential motion is linear: ``x(T) = Phi(T) x0 + zf(T) + mu_s z(T)``.
-    """
-    normal = pmap.engine.normal
-    z = normal.evaluate(np.array([pmap.T]))[:2, 0]
-    zf = np.array(pmap.engine.exc(pmap.T))
-    Phi = np.array(pmap.stm(pmap.T)).reshape(2, 2)
-    return np.linalg.solve(np.eye(2) - Phi, zf + pmap.p["mu_s"] * z)
-
-
-def response_from(pmap: TangentialMap, point: FixedPoint) -> PeriodicResponse:
-    """The `PeriodicResponse` of a fixed point of a ``k``-fold map."""
+def response_from(pmap: PeriodMap, point: FixedPoint) -> PeriodicResponse:
+    """The `PeriodicResponse` of a fixed point of a ``k``-fold map (either engine)."""
     k, image = pmap.periods, point.image
+    if isinstance(pmap, GeneralMap):
+        M = image.jacobian
+        blocks, full, engine = (M[:2, :2], M[2:, 2:]), M, pmap
+    else:
+        blocks = (image.jacobian, np.linalg.matrix_power(pmap.one.orbit.monodromy, k))
+        full, engine = None, pmap.one
     return PeriodicResponse(
         pmap.model,
         k * pmap.period,
-        np.concatenate([point.state, pmap.one.orbit.state0]),
+        pmap.full_state(point.state),
         list(image.switches),
         list(image.segments),
-        image.jacobian,
-        np.linalg.matrix_power(pmap.one.orbit.monodromy, k),
+        *blocks,
         image.grazing,
         point.residual,
         point.iterations,
-        pmap.one,
+        engine,
         k,
+        pmap.engine,
+        full,
     )
 
 
@@ -199,6 +224,7 @@ def periodic_response(
     forward: int = FORWARD_PERIODS,
     backend: Backend | None = None,
     periods: int = 1,
+    engine: Engine | None = None,
     **kw: Any,
 ) -> PeriodicResponse:
     """The periodic response of Eq. (4) by shooting (module docstring).
@@ -206,17 +232,20 @@ def periodic_response(
     Newton's method from ``guess`` (or the backward-sliding orbit); where it fails,
     the period map is iterated forward from the sliding orbit for up to ``forward``
     periods (it converges to a stable periodic response, where Newton's method may
-    not, next to a grazing point) and Newton's method polishes the result.
+    not, next to a grazing point) and Newton's method polishes the result. The period
+    map is the closed-form one where the model's laws allow it, else the general one
+    (`beltmdsm.analysis.periodmap.period_map`); the result's ``engine`` says which.
 
     Parameters
     ----------
     model : Model or dict, optional
         The model (default: the base set); ``**kw``: parameters and options.
-    guess : array_like (2,) or PeriodicResponse, optional
-        Tangential state ``(X1, X1')`` at phase 0 to start Newton's method from (a
-        continuation's predictor, a neighbour on a branch); default the
-        backward-sliding orbit (``periods = 1``) or the attractor of the period map
-        iterated from rest (``periods > 1``).
+    guess : array_like (2,) or (4,), or PeriodicResponse, optional
+        The state at phase 0 to start Newton's method from (a continuation's
+        predictor, a neighbour on a branch): ``(X1, X1', X2, X2')`` or the tangential
+        ``(X1, X1')`` (on the general path completed by the sliding orbit's normal
+        state); default the backward-sliding orbit (``periods = 1``) or the attractor
+        of the period map iterated from rest (``periods > 1``).
     max_iter : int
     forward : int
         Periods of forward iteration after Newton's method fails (0: none;
@@ -225,6 +254,9 @@ def periodic_response(
     periods : int
         ``k >= 1``: the response of ``k`` excitation periods (phase-locked for ``k >
         1``), by shooting on the ``k``-fold map.
+    engine : {"closed_form", "general", None}
+        The period map (`beltmdsm.analysis.periodmap.period_map`); None: the one the
+        model's laws allow.
 
     Returns
     -------
@@ -235,8 +267,10 @@ def periodic_response(
     ------
     ValueError
         For bad parameters, a tension law that does not exist, an excitation without
-        a period (zero or incommensurate frequencies), or ``periods`` not an integer
-        >= 1.
+        a period (zero or incommensurate frequencies), ``periods`` not an integer
+        >= 1, a guess of another size than 2 or 4, or an unknown engine.
+    beltmdsm.model.Unsupported
+        For ``engine="closed_form"`` where the model's laws lack a fact it needs.
     NoPeriodicResponse
         (a RuntimeError) If no periodic response is found; for ``periods > 1``
         without a guess, where the attractor of the period map does not lock at
@@ -244,9 +278,11 @@ def periodic_response(
     """
     model = as_model(model, **kw)
     excitation_period(model)
-    pmap = TangentialMap(model, periods, backend)
+    pmap = period_map(model, periods, backend, engine)
     if isinstance(guess, PeriodicResponse):
-        guess = guess.state0[:2]
+        guess = guess.state0
+    if guess is not None:
+        guess = pmap.guess(guess)
     if pmap.periods > 1 and guess is not None:
         return response_from(pmap, fixed_point(pmap, guess, max_iter))
     if pmap.periods > 1:
@@ -258,16 +294,15 @@ def periodic_response(
                 f"period map iterated from rest, Newton's method finds one of {shortest}"
             )
         return response_from(pmap, point)
-    sliding = _sliding_guess(pmap.one)
-    start = sliding if guess is None else np.array(guess, dtype=float)
+    start = pmap.sliding_guess() if guess is None else guess
     try:
         point = fixed_point(pmap, start, max_iter)
     except NoPeriodicResponse as newton_failed:
         if not forward:
             raise
-        x, steps = sliding, []
+        x, steps = pmap.sliding_guess(), []
         for k in range(int(forward)):
-            xT = pmap.one(x)[0]
+            xT = pmap.step(x)
             steps.append(float(np.max(np.abs(xT - x))))
             if steps[-1] <= 1e-7 * (1 + np.max(np.abs(x))):
                 break
@@ -292,7 +327,7 @@ def _locked_seed(pmap):
     k = pmap.periods
     strobe = map_stroboscope(
         pmap,
-        initial_state(pmap.model)[:2],
+        pmap.shooting(initial_state(pmap.model)),
         *SEED_PERIODS,
         "the period map iterated from rest",
         max(k, LOCK_LIMIT),
@@ -313,10 +348,13 @@ def _locked_seed(pmap):
 class Floquet:
     """Floquet multipliers of the periodic response and what they say.
 
-    ``multipliers`` are the tangential pair, then the normal pair, of the ``k``-fold
-    map (``k = response.periods``); NaN where the response grazes (``grazing`` is then
-    set and ``stable`` is None). ``n_reversals`` and ``n_sticks`` count over the
-    ``k`` periods.
+    ``multipliers`` are those of the ``k``-fold map (``k = response.periods``): on the
+    closed-form path the tangential pair, then the normal pair; on the general path
+    the four eigenvalues of the whole monodromy, by decreasing modulus (no pair is
+    singled out where nothing says the blocks decouple). NaN where the response
+    grazes (``grazing`` is then set and ``stable`` is None). ``n_reversals`` and
+    ``n_sticks`` count over the ``k`` periods. ``engine`` is the path taken
+    (`PeriodicResponse`).
     """
 
     multipliers: np.ndarray
@@ -353,9 +391,13 @@ class Floquet:
                 resp.period,
                 resp,
             )
-        mt = np.linalg.eigvals(resp.monodromy_tangential)
-        mn = np.linalg.eigvals(resp.monodromy_normal)
-        mu = np.concatenate([mt, mn])
+        if resp.engine == "closed_form":
+            mt = np.linalg.eigvals(resp.monodromy_tangential)
+            mn = np.linalg.eigvals(resp.monodromy_normal)
+            mu = np.concatenate([mt, mn])
+        else:
+            mu = np.linalg.eigvals(resp.monodromy).astype(complex)
+            mu = mu[np.argsort(-np.abs(mu), kind="stable")]
         k = int(np.argmax(np.abs(mu)))
         biggest = float(abs(mu[k]))
         growth = math.log(biggest) / resp.period if biggest > 0 else -math.inf
@@ -371,6 +413,11 @@ class Floquet:
             resp.period,
             resp,
         )
+
+    @property
+    def engine(self) -> str:
+        """The path that computed the response: ``"closed_form"`` or ``"general"``."""
+        return self.response.engine
 
     @property
     def verdict(self) -> Literal["stable", "unstable", "grazing"]:
@@ -395,6 +442,7 @@ class Floquet:
             "state0": [float(v) for v in self.response.state0],
             "newton_iterations": self.response.iterations,
             "residual": self.response.residual,
+            "engine": self.engine,
         }
 
 
@@ -405,12 +453,14 @@ def floquet(
     forward: int = FORWARD_PERIODS,
     backend: Backend | None = None,
     periods: int = 1,
+    engine: Engine | None = None,
     **kw: Any,
 ) -> Floquet:
     """Floquet multipliers of the periodic response (module docstring).
 
     Takes the arguments of `periodic_response`; ``periods = k > 1``: of the response
-    of ``k`` periods, the multipliers of the ``k``-fold map.
+    of ``k`` periods, the multipliers of the ``k``-fold map; ``engine``: the period
+    map (None: the one the model's laws allow).
 
     Returns
     -------
@@ -418,7 +468,9 @@ def floquet(
     """
     model = as_model(model, **kw)
     return Floquet.of(
-        periodic_response(model, guess=guess, forward=forward, backend=backend, periods=periods)
+        periodic_response(
+            model, guess=guess, forward=forward, backend=backend, periods=periods, engine=engine
+        )
     )
 
 
@@ -450,12 +502,13 @@ def periodic_start(
 def largest_sliding_velocity(pmap: OnePeriodMap) -> float:
     """The largest ``X1'`` over one period of the backward-sliding orbit, in contact.
 
-    ``pmap`` is a one-period map (``TangentialMap.one``). Out of contact (flight,
-    separation) there is no friction to reverse, so only the times in contact count. It
-    does not depend on ``Vb``: the sliding response grazes at the belt speed equal to it
-    (`beltmdsm.analysis.band`).
+    ``pmap`` is a one-period map of the closed-form path (``TangentialMap.one``). Out of
+    contact (flight, separation) there is no friction to reverse, so only the times in
+    contact count. Where the slip-mode friction does not depend on the tangential state
+    (the closed-form path's condition) it does not depend on ``Vb``: the sliding
+    response grazes at the belt speed equal to it (`beltmdsm.analysis.band`).
     """
-    x0 = _sliding_guess(pmap)
+    x0 = pmap.sliding_orbit()
     normal = pmap.engine.normal
     grid = normal.grid[normal.grid <= pmap.T]
     segment = np.clip(

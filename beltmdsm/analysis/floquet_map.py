@@ -48,7 +48,7 @@ from .band import Band, floquet_band
 from .branch import continue_branch
 from .edges import NoEdge, locate_end, log_max_multiplier, multiplier_kind
 from .floquet import NoPeriodicResponse, largest_sliding_velocity, response_from
-from .periodmap import MARGIN_KINDS, MapFamily, fixed_point
+from .periodmap import MARGIN_KINDS, MapFamily, engine_of, fixed_point
 
 __all__ = [
     "EDGE_TOL",
@@ -161,7 +161,8 @@ class FloquetMap:
 
     def as_dict(self) -> dict:
         """For JSON: ``x``, ``y``, ``x_range``, ``y_range``, ``rows``, ``contact``,
-        ``tension``, ``curves``, ``unstable``, ``linear``, ``band_rows``, ``wall_s``."""
+        ``tension``, ``friction``, ``engine``, ``curves``, ``unstable``, ``linear``,
+        ``band_rows``, ``wall_s``."""
         return {
             "x": self.x,
             "y": self.y,
@@ -170,6 +171,8 @@ class FloquetMap:
             "rows": [float(v) for v in self.rows],
             "contact": self.model.contact,
             "tension": self.model.tension,
+            "friction": self.model.friction,
+            "engine": engine_of(self.model),
             "curves": [c.as_dict() for c in self.curves],
             "unstable": self.unstable,
             "linear": self.linear,
@@ -358,19 +361,23 @@ def _trackers_from_band(band: Band, edges, family, y, span):
             continue
         start = near[0]
         sliding = (start.n_reversals, start.n_sticks) == (0, 0)
-        if kind == "grazing" and family.param == "Vb" and sliding:
+        # the grazing point is the largest velocity only where the friction is free of
+        # the tangential state (the closed-form path)
+        closed = engine_of(family.model) == "closed_form"
+        if kind == "grazing" and family.param == "Vb" and sliding and closed:
             role = "sliding"
         tracker = _Tracker(curve, role, side, _margin_kinds(kind))
         try:
             if role == "sliding":
                 pass
             elif role == "multiplier":
-                point = _walk(family, start.value, start.state0[:2], v)
+                point = _walk(family, start.value, family(start.value).guess(start.state0), v)
                 tracker.states.append((point.state,))
             else:
                 offset = _END_OFFSET * span
                 xs = [v - side * offset * share for share in _END_SHARES]
-                states = [_walk(family, start.value, start.state0[:2], xs[0]).state]
+                guess = family(start.value).guess(start.state0)
+                states = [_walk(family, start.value, guess, xs[0]).state]
                 for x_share in xs[1:]:
                     states.append(fixed_point(family(x_share), states[-1]).state)
                 tracker.states.append(tuple(states))
@@ -420,7 +427,7 @@ def _row_unstable(edges, lo, hi):
 
 def _linear(row, x, xs):
     """Where the paper's linear analysis says unstable on a row (`generated.stability`)."""
-    stable = stability.is_stable(**{**row.params, x: xs})
+    stable = stability.is_stable(**{**row.arguments(stability.is_stable), x: xs})
     return [[float(a), float(b)] for a, b in true_intervals(xs, ~np.asarray(stable, bool))]
 
 

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .periodmap import MapImage, TangentialMap
+from .periodmap import MapImage, PeriodMap
 
 __all__ = [
     "LOCK_LIMIT",
@@ -72,8 +72,10 @@ class Stroboscope:
     ----------
     source : str
         How the attractor was reached ("run from rest", ...).
-    samples : ndarray (n, 2)
-        Tangential states ``(X1, X1')`` at phase 0, in time order.
+    samples : ndarray (n, 2) or (n, 4)
+        The shooting states at phase 0 (`beltmdsm.analysis.periodmap.PeriodMap.shooting`:
+        ``(X1, X1')`` on the closed-form path, the full state on the general one), in
+        time order.
     returns : ndarray (limit,)
         ``max_n |y(nT + kT) - y(nT)|`` over the samples' scale, for ``k = 1..limit``.
     """
@@ -90,23 +92,23 @@ class Stroboscope:
 
 
 def stroboscope(samples: ArrayLike, source: str, limit: int = LOCK_LIMIT) -> Stroboscope:
-    """`Stroboscope` of tangential samples at phase 0 (rows in time order).
+    """`Stroboscope` of samples of the shooting state at phase 0 (rows in time order).
 
     Raises
     ------
     ValueError
-        Unless ``samples`` is ``(n, 2)`` with ``n > 2 limit``.
+        Unless ``samples`` is ``(n, 2)`` or ``(n, 4)`` with ``n > 2 limit``.
     """
     y = np.asarray(samples, dtype=float)
-    if y.ndim != 2 or y.shape[1] != 2 or y.shape[0] < 2 * limit + 1:
-        raise ValueError(f"samples must be (n, 2) with n > 2 * limit; got {y.shape}")
+    if y.ndim != 2 or y.shape[1] not in (2, 4) or y.shape[0] < 2 * limit + 1:
+        raise ValueError(f"samples must be (n, 2) or (n, 4) with n > 2 * limit; got {y.shape}")
     scale = 1.0 + float(np.max(np.abs(y)))
     returns = np.array([float(np.max(np.abs(y[k:] - y[:-k]))) / scale for k in range(1, limit + 1)])
     return Stroboscope(source, y, returns)
 
 
 def map_stroboscope(
-    pmap: TangentialMap,
+    pmap: PeriodMap,
     x: ArrayLike,
     settle: int,
     samples: int,
@@ -115,8 +117,8 @@ def map_stroboscope(
 ) -> Stroboscope:
     """The attractor of the period map iterated from ``x``: ``settle`` periods, then samples.
 
-    The one-period map of ``pmap`` (``pmap.one``) is iterated, whatever its ``k``: the
-    samples are one excitation period apart.
+    The one-period map of ``pmap`` (`beltmdsm.analysis.periodmap.PeriodMap.step`) is
+    iterated, whatever its ``k``: the samples are one excitation period apart.
 
     Raises
     ------
@@ -125,10 +127,10 @@ def map_stroboscope(
     """
     x = np.array(x, dtype=float)
     for _ in range(int(settle)):
-        x = pmap.one(x)[0]
-    out = np.empty((int(samples), 2))
+        x = pmap.step(x)
+    out = np.empty((int(samples), x.size))
     for n in range(int(samples)):
-        x = out[n] = pmap.one(x)[0]
+        x = out[n] = pmap.step(x)
     return stroboscope(out, source, limit)
 
 
@@ -167,10 +169,11 @@ class NotLocked:
 
     @classmethod
     def of(cls, strobe: Stroboscope) -> NotLocked:
-        """The evidence of a stroboscope that does not lock."""
+        """The evidence of a stroboscope that does not lock, in the samples' projection
+        on ``(X1, X1')`` (all the closed-form path samples)."""
         from scipy.spatial.distance import pdist
 
-        y = strobe.samples
+        y = strobe.samples[:, :2]
         centre = y.mean(axis=0)
         spread = y.std(axis=0)
         spread[spread == 0] = 1.0

@@ -7,11 +7,20 @@ The analyses of periodic responses (shooting on the ``k``-fold map in
 callable from the shooting state ``x`` at phase 0 to a `MapImage` (the state ``k``
 excitation periods later, its Jacobian, the switches on the way and the `Margin` of
 every feature of the orbit that a parameter change could remove), plus the
-multipliers of the directions that are not part of the shooting state. A general
-Floquet engine (the variational equations along an event-driven run) plugs in by
-implementing the same protocol.
+multipliers of the directions that are not part of the shooting state. Two engines
+implement it (`ENGINES`), and `period_map` chooses by the structural facts of the
+model's laws that SymPy decided (``generated.capabilities``), never by assumption:
 
-`TangentialMap` is the implementation for Eq. (4):
+* `TangentialMap` (``"closed_form"``), the fast special case, where the slip-mode
+  friction does not depend on the tangential state and the normal equation is free
+  of it (`CLOSED_FORM_FACTS`: Coulomb friction with every contact and tension law);
+  it refuses a model without them (`beltmdsm.model.Unsupported`).
+* `GeneralMap` (``"general"``), every law: the event-driven run in the full state
+  ``(X1, X1', X2, X2')`` and its monodromy by the variational equations
+  (`beltmdsm.analysis.variational`). Where both apply they agree to 1e-9 in the
+  multipliers (tests/beltmdsm/analysis/test_general.py).
+
+`TangentialMap` on Eq. (4) with those facts:
 
 * **Structure.** The normal equation of Eq. (4) does not contain the tangential
   state, so the monodromy matrix (the Jacobian of the period map) is block
@@ -37,6 +46,10 @@ implementing the same protocol.
   that just touches the belt's), the saltation entry ``a_after / a_before`` diverges
   (the square-root singularity of grazing bifurcations). A switch whose rate is
   below `GRAZING_RATIO` of its scale is reported as grazing.
+
+`GeneralMap` shoots in the full state with the Jacobian of the whole period map, its
+multipliers all four eigenvalues of it; the grazing test and the margins below are
+read from its runs as from `TangentialMap`'s (the same switches, the same rules).
 
 `fixed_point` is Newton's method on ``P(x) - x`` with damped steps (``dP/dx - I`` its
 Jacobian): the shooting of a response of period ``k T`` from a guess (the sliding
@@ -66,17 +79,24 @@ from __future__ import annotations
 import abc
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from generated import dynamics, hybrid
+from generated.capabilities import CAPABILITIES
 
+from ..integrate import _compiled, _dop853
+from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.normal import normal_motion
-from ..integrate.superposition import Superposition, TangentialRun, segs_state
+from ..integrate.superposition import FACTS as SUPERPOSITION_FACTS
+from ..integrate.superposition import Superposition, TangentialRun
 from ..integrate.switching import SURFACE_INDEX, Mode, Switching
-from ..model import Backend, Model, excitation_period, initial_state
+from ..integrate.trajectory import Run
+from ..model import Backend, Model, excitation_period, initial_state, require
+from ..settings import SolverSettings
+from . import variational
 
 __all__ = [
     "NoPeriodicResponse",
@@ -91,6 +111,14 @@ __all__ = [
     "MapImage",
     "PeriodMap",
     "TangentialMap",
+    "GeneralMap",
+    "EventPeriod",
+    "CLOSED_FORM_FACTS",
+    "ENGINES",
+    "Engine",
+    "engine_of",
+    "period_map",
+    "crossing_ratio",
     "MapFamily",
     "FixedPoint",
     "fixed_point",
@@ -116,8 +144,15 @@ _LINE_SEARCH = 8
 _STAGNATION = 2
 #: Periods the normal motion is followed before Newton's method polishes its orbit.
 _NORMAL_PERIODS = 200
+#: Iterations on the backward-sliding field (`GeneralMap.sliding_guess`): where that
+#: orbit exists they converge in 5 to 8 from the equilibrium.
+_SLIDING_ITER = 30
+#: Samples per excitation period of `GeneralMap`'s runs (the integrator's samples are
+#: not read; its dense output is).
+_DENSE_SAMPLES = 50
 
 MarginKind = Literal["crossing", "approach", "decision"]
+Engine = Literal["closed_form", "general"]
 #: The kinds of `Margin`.
 MARGIN_KINDS = ("crossing", "decision", "approach")
 #: Samples per second of a segment when its closest approach is searched.
@@ -297,7 +332,13 @@ def normal_orbit(model: Model) -> NormalOrbit:
     `generated.dynamics.normal_rhs` and ``normal_jacobian``), the excitation period
     and the laws: a band or a map over ``beta1``, ``omega1``, ``mu_s`` or ``Vb``
     computes one normal orbit.
+
+    Raises
+    ------
+    beltmdsm.model.Unsupported
+        Where the normal equation is not free of the tangential state (the law).
     """
+    require(model, "one_way_coupling", "the normal orbit")
     key = _normal_orbit_key(model)
     if key not in _NORMAL_ORBITS:
         if len(_NORMAL_ORBITS) >= _NORMAL_ORBITS_KEPT:
@@ -320,9 +361,17 @@ class OnePeriodMap:
     ----------
     model : Model
     backend : {"python", "numba", None}
+
+    Raises
+    ------
+    beltmdsm.model.Unsupported
+        Where a fact of `CLOSED_FORM_FACTS` does not hold for the model's laws (the
+        law and the property).
     """
 
     def __init__(self, model: Model, backend: Backend | None = None) -> None:
+        for fact in CLOSED_FORM_FACTS:
+            require(model, fact, "the closed-form period map")
         self.model, self.p = model, model.params
         self.orbit = normal_orbit(model)
         self.T = self.orbit.period
@@ -331,6 +380,17 @@ class OnePeriodMap:
         self.stm, self.sw = self.engine.stm, self.engine.sw
         self._saltation = {}
         self.backend = backend
+
+    def sliding_orbit(self) -> NDArray[np.float64]:
+        """``(X1, X1')`` at phase 0 of the orbit that slides backwards throughout.
+
+        Sliding back in contact and free of friction in flight or separation, the
+        tangential motion is linear: ``x(T) = Phi(T) x0 + zf(T) + mu_s z(T)``.
+        """
+        z = self.engine.normal.evaluate(np.array([self.T]))[:2, 0]
+        zf = np.array(self.engine.exc(self.T))
+        Phi = np.array(self.stm(self.T)).reshape(2, 2)
+        return np.linalg.solve(np.eye(2) - Phi, zf + self.p["mu_s"] * z)
 
     def saltation(self, before: Mode, after: Mode, surface: str) -> Any:
         """The bound saltation matrix of one switch (`generated.hybrid.saltation`), kept."""
@@ -365,18 +425,20 @@ class OnePeriodMap:
             if after != before:  # a touch that keeps the mode has one field: S = I
                 S = np.array(self.saltation(before, after, surface)(t, *state)).reshape(4, 4)
                 M = S[:2, :2] @ M
-            ratio = self._rate_ratio(t, state, before, surface)
-            if ratio is not None and ratio < GRAZING_RATIO and grazing is None:
-                grazing = {"t": float(t), "surface": surface, "ratio": float(ratio)}
+            if surface == "relative_velocity" and grazing is None:
+                ratio = crossing_ratio(self.sw, t, state, before, surface)
+                if ratio < GRAZING_RATIO:
+                    grazing = {"t": float(t), "surface": surface, "ratio": float(ratio)}
         return run.final[:2], M, run, grazing
 
-    def _rate_ratio(self, t, state, before, surface):
-        """``|dh/dt|`` at the switch over its scale (None where S = I regardless)."""
-        if surface != "relative_velocity":
-            return None
-        rate = self.sw.rates(t, *state, float(before))[SURFACE_INDEX[surface]]
-        scale = self.sw.scales(t, *state)[SURFACE_INDEX["stick_forward"]]
-        return abs(rate) / scale if scale > 0 else 0.0
+
+def crossing_ratio(sw: Switching, t: float, state: ArrayLike, before: Mode, surface: str) -> float:
+    """The rate of a switching function at a crossing, along the mode before, over the
+    rounding scale of the friction cone (an acceleration, as the rate of ``Vr`` and of
+    the cone's functions is): the ``crossing`` margin, and the grazing test."""
+    rate = sw.rates(t, *state, float(before))[SURFACE_INDEX[surface]]
+    scale = sw.scales(t, *state)[_SF]
+    return float(abs(rate) / scale) if scale > 0 else 0.0
 
 
 @dataclass(frozen=True)
@@ -433,8 +495,8 @@ class MapImage:
     switches: list
     segments: list
     grazing: dict | None
-    _map: TangentialMap = field(repr=False)
-    _runs: list[TangentialRun] = field(repr=False)
+    _map: PeriodMap = field(repr=False)
+    _runs: list = field(repr=False)
     _margins: dict = field(default_factory=dict, repr=False)
 
     @property
@@ -445,7 +507,7 @@ class MapImage:
     @property
     def phases(self) -> list[NDArray[np.float64]]:
         """The shooting state at phase 0 of each of the ``k`` periods."""
-        return [self.start] + [np.asarray(r.final[:2], dtype=float) for r in self._runs[:-1]]
+        return [self.start] + [self._map.shooting(r.final) for r in self._runs[:-1]]
 
     @property
     def margins(self) -> list[Margin]:
@@ -470,60 +532,83 @@ class PeriodMap(abc.ABC):
     """What the algorithms on periodic responses need of a period map.
 
     ``model`` is the model, ``period`` one excitation period, ``periods`` the number
-    ``k`` of them per application. An implementation maps the shooting state at phase
-    0 to a `MapImage` and gives the multipliers of the directions it does not shoot in.
+    ``k`` of them per application, ``engine`` the name of the implementation (`ENGINES`),
+    ``sw`` the model's switching rules. An implementation gives the map over one
+    excitation period (`one_period`), the multipliers of the directions it does not
+    shoot in, how a full state and its shooting state relate, and the first guess of
+    the shooting. The ``k``-fold map (`__call__`) and what an orbit is near (its
+    margins, the module docstring, and its velocity range) are read here from the
+    runs of the ``k`` periods, whatever the engine: each run has ``starts``, ``ends``
+    and ``modes`` of its segments, ``switches`` ``(t, before, after, surface,
+    state)``, ``final`` (the state where it ends) and ``segments(t, index) -> (4, n)``.
     """
 
     model: Model
     period: float
     periods: int
+    sw: Switching
+    engine: ClassVar[str]
 
     @abc.abstractmethod
-    def __call__(self, x: ArrayLike) -> MapImage:
-        """The image of the shooting state ``x`` (raises NoPeriodicResponse)."""
+    def one_period(
+        self, x: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], Any, dict | None]:
+        """``(P(x), dP/dx, run, grazing)`` over one excitation period from the shooting
+        state ``x`` at phase 0 (raises NoPeriodicResponse)."""
 
     @abc.abstractmethod
     def fixed_multipliers(self) -> NDArray[np.complex128]:
         """Multipliers of the directions outside the shooting state (over ``k`` periods)."""
 
+    @abc.abstractmethod
+    def full_state(self, x: ArrayLike) -> NDArray[np.float64]:
+        """``(X1, X1', X2, X2')`` at phase 0 of the shooting state ``x``."""
 
-class TangentialMap(PeriodMap):
-    """``k`` periods of the tangential period map of Eq. (4) on its periodic normal motion.
+    @staticmethod
+    @abc.abstractmethod
+    def shooting(state: ArrayLike) -> NDArray[np.float64]:
+        """The shooting state of full states ``(..., 4)``: the last axis cut to the shot ones."""
 
-    Parameters
-    ----------
-    model : Model
-    periods : int
-        ``k >= 1``.
-    backend : {"python", "numba", None}
+    @abc.abstractmethod
+    def sliding_guess(self) -> NDArray[np.float64]:
+        """The shooting state of the orbit that slides backwards throughout: the first
+        guess of the shooting, exact where the friction never reverses."""
 
-    Raises
-    ------
-    ValueError
-        For ``periods < 1``, or an excitation without a period.
-    NoPeriodicResponse
-        Where the normal motion has no periodic orbit.
-    """
+    def guess(self, x: ArrayLike) -> NDArray[np.float64]:
+        """A shooting state from a full state (4 numbers) or a shooting state.
 
-    def __init__(self, model: Model, periods: int = 1, backend: Backend | None = None) -> None:
-        if int(periods) != periods or int(periods) < 1:
-            raise ValueError(f"periods must be an integer >= 1; got {periods!r}")
-        self.model, self.periods = model, int(periods)
-        self.one = OnePeriodMap(model, backend)
-        self.period = self.one.T
-        self.sw = self.one.sw
+        Raises
+        ------
+        ValueError
+            For a guess of another size.
+        """
+        x = np.array(x, dtype=float).ravel()
+        n = self.dimension
+        if x.size == 4:
+            return self.shooting(x)
+        if x.size == 2 and n == 4:
+            # the tangential state, the normal one from the sliding orbit
+            return np.concatenate([x, self.sliding_guess()[2:]])
+        if x.size != n:
+            raise ValueError(f"a guess must be {n} or 4 numbers; got {x.size}")
+        return x
 
-    def fixed_multipliers(self) -> NDArray[np.complex128]:
-        """The normal block's multipliers to the power ``k``."""
-        return np.asarray(self.one.orbit.multipliers, dtype=complex) ** self.periods
+    @property
+    def dimension(self) -> int:
+        """The size of the shooting state."""
+        return int(self.shooting(np.zeros(4)).size)
+
+    def step(self, x: ArrayLike) -> NDArray[np.float64]:
+        """The shooting state one excitation period after ``x`` (forward iteration)."""
+        return np.array(self.one_period(x)[0], dtype=float)
 
     def __call__(self, x: ArrayLike) -> MapImage:
-        """The image of the tangential state ``x`` at phase 0 (raises NoPeriodicResponse)."""
+        """The image of the shooting state ``x`` at phase 0 (raises NoPeriodicResponse)."""
         start = np.array(x, dtype=float)
-        y, M = start, np.eye(2)
+        y, M = start, np.eye(start.size)
         switches, segments, runs, grazing = [], [], [], None
         for j in range(self.periods):
-            y, Mj, run, g = self.one(y)
+            y, Mj, run, g = self.one_period(y)
             y = np.array(y, dtype=float)
             offset = j * self.period
             M = Mj @ M
@@ -535,6 +620,16 @@ class TangentialMap(PeriodMap):
                 grazing = {**g, "t": g["t"] + offset}
             runs.append(run)
         return MapImage(start, y, M, switches, segments, grazing, self, runs)
+
+    def _grazing(self, switches):
+        """The first reversal reached with a vanishing rate (`GRAZING_RATIO`), or None."""
+        for t, before, _, surface, state in switches:
+            if surface != "relative_velocity":
+                continue
+            ratio = crossing_ratio(self.sw, t, state, before, surface)
+            if ratio < GRAZING_RATIO:
+                return {"t": float(t), "surface": surface, "ratio": float(ratio)}
+        return None
 
     # ------------------------------------------------------------ what the orbit is near
 
@@ -570,22 +665,15 @@ class TangentialMap(PeriodMap):
             pieces = pieces[1:]
         return pieces
 
-    def margins(
-        self, runs: list[TangentialRun], kinds: Sequence[str] = MARGIN_KINDS
-    ) -> list[Margin]:
+    def margins(self, runs: list, kinds: Sequence[str] = MARGIN_KINDS) -> list[Margin]:
         """The margins of the given kinds of the orbit made of ``runs`` (module docstring)."""
         out = []
-        sw = self.sw
         for j, run in enumerate(runs):
             offset = j * self.period
             for t, before, after, surface, state in run.switches:
                 if surface in _TANGENTIAL and "crossing" in kinds:
-                    index = SURFACE_INDEX[surface]
-                    rate = sw.rates(t, *state, float(before))[index]
-                    scale = sw.scales(t, *state)[_SF]
-                    out.append(
-                        Margin("crossing", surface, before, t + offset, float(abs(rate) / scale))
-                    )
+                    ratio = crossing_ratio(self.sw, t, state, before, surface)
+                    out.append(Margin("crossing", surface, before, t + offset, ratio))
                 if "decision" in kinds and (
                     surface == "relative_velocity"
                     or (surface == "penetration" and after != Mode.FLIGHT)
@@ -653,7 +741,7 @@ class TangentialMap(PeriodMap):
             k = min(int(np.searchsorted(bounds, s)), len(parts) - 1)
             run, index, _, _, offset = parts[k]
             local = s - offset
-            state = segs_state(run.segments, local, index)
+            state = self._states(run, index, np.array([local]))[:, 0]
             if rate_of is None:
                 h, scale = self.sw.surfaces(local, *state), self.sw.scales(local, *state)
                 if mode == Mode.STICK:
@@ -683,7 +771,7 @@ class TangentialMap(PeriodMap):
                 best = Margin("approach", name, mode, tk, value)
         return best
 
-    def velocity_range(self, runs: list[TangentialRun]) -> tuple[float, float]:
+    def velocity_range(self, runs: list) -> tuple[float, float]:
         """The smallest and largest ``X1'`` over the runs (segments sampled, extremes refined)."""
         from scipy import optimize
 
@@ -710,6 +798,284 @@ class TangentialMap(PeriodMap):
         return float(lo), float(hi)
 
 
+class TangentialMap(PeriodMap):
+    """``k`` periods of the tangential period map of Eq. (4) on its periodic normal motion.
+
+    The closed-form path (module docstring): the shooting state is ``(X1, X1')`` at
+    phase 0, the normal motion the cached periodic orbit (`normal_orbit`). It needs the
+    facts `CLOSED_FORM_FACTS` of the model's laws (``generated.capabilities``) and
+    refuses a model without them.
+
+    Parameters
+    ----------
+    model : Model
+    periods : int
+        ``k >= 1``.
+    backend : {"python", "numba", None}
+
+    Raises
+    ------
+    beltmdsm.model.Unsupported
+        Where a fact of `CLOSED_FORM_FACTS` does not hold (the law and the property).
+    ValueError
+        For ``periods < 1``, or an excitation without a period.
+    NoPeriodicResponse
+        Where the normal motion has no periodic orbit.
+    """
+
+    engine = "closed_form"
+
+    def __init__(self, model: Model, periods: int = 1, backend: Backend | None = None) -> None:
+        self.periods = _periods(periods)
+        self.model = model
+        self.one = OnePeriodMap(model, backend)
+        self.period = self.one.T
+        self.sw = self.one.sw
+
+    def one_period(
+        self, x: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], TangentialRun, dict | None]:
+        """``(P(x), M_t, run, grazing)`` of `OnePeriodMap`."""
+        return self.one(x)
+
+    def fixed_multipliers(self) -> NDArray[np.complex128]:
+        """The normal block's multipliers to the power ``k``."""
+        return np.asarray(self.one.orbit.multipliers, dtype=complex) ** self.periods
+
+    def full_state(self, x: ArrayLike) -> NDArray[np.float64]:
+        """``x`` with the periodic normal motion's state at phase 0."""
+        return np.concatenate([np.asarray(x, dtype=float), self.one.orbit.state0])
+
+    @staticmethod
+    def shooting(state: ArrayLike) -> NDArray[np.float64]:
+        """``(X1, X1')`` of full states."""
+        return np.asarray(state, dtype=float)[..., :2]
+
+    def sliding_guess(self) -> NDArray[np.float64]:
+        """`OnePeriodMap.sliding_orbit`."""
+        return self.one.sliding_orbit()
+
+
+@dataclass
+class EventPeriod:
+    """One excitation period of an event-driven run, as `PeriodMap` reads a period.
+
+    Attributes
+    ----------
+    segments : callable
+        ``(t, index) -> (4, n)``: the run's dense output.
+    modes, starts, ends : list
+        The mode and the time span of each segment.
+    switches : list of (t, before, after, surface, state)
+    final : ndarray (4,)
+        The state at the end of the period.
+    """
+
+    segments: Any = field(repr=False)
+    modes: list
+    starts: list
+    ends: list
+    switches: list = field(repr=False)
+    final: NDArray[np.float64]
+
+    @classmethod
+    def of(cls, run: Run, switches: list) -> EventPeriod:
+        """The period of a run of `beltmdsm.integrate.events.integrate_events`."""
+        tr = run.trajectory
+        return cls(
+            tr.state,
+            [Mode(int(s.mode)) for s in tr.segments],
+            [float(s.t0) for s in tr.segments],
+            [float(s.t1) for s in tr.segments],
+            switches,
+            tr.state(np.array([tr.t_end]))[:, 0],
+        )
+
+
+class GeneralMap(PeriodMap):
+    """``k`` periods of the period map of Eq. (4) in the full state, by its variational equations.
+
+    The general path: the shooting state is ``(X1, X1', X2, X2')`` at phase 0; one
+    period is a run of the event-driven integrator (`beltmdsm.integrate.events`) at the
+    tolerance `RTOL`, its Jacobian the monodromy of that run by the variational
+    equations (`beltmdsm.analysis.variational`: the generated Jacobian of each mode's
+    field, the saltation matrix at every switch; Leine and Nijmeijer 2004). Nothing
+    of the laws' structure is assumed: every direction is shot in, so there are no
+    fixed multipliers, and the normal motion is integrated with the tangential one.
+
+    Parameters
+    ----------
+    model : Model
+    periods : int
+        ``k >= 1``.
+    backend : {"python", "numba", None}
+
+    Raises
+    ------
+    ValueError
+        For ``periods < 1``, or an excitation without a period.
+    """
+
+    engine = "general"
+
+    def __init__(self, model: Model, periods: int = 1, backend: Backend | None = None) -> None:
+        self.periods = _periods(periods)
+        self.model, self.backend = model, backend
+        self.period = excitation_period(model)
+        self.sw = Switching(model, backend)
+        self._settings = SolverSettings(
+            t_end=self.period,
+            rtol=RTOL,
+            atol=RTOL,
+            dt=self.period / _DENSE_SAMPLES,
+            t_discard=0.0,
+            backend=backend,
+        )
+        self._sliding = None
+
+    def one_period(
+        self, x: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], EventPeriod, dict | None]:
+        """``(P(x), dP/dx, period, grazing)`` from the full state ``x`` at phase 0."""
+        try:
+            run = integrate_events(self.model, self._settings, y0=np.array(x, dtype=float))
+        except StepTooSmall as err:
+            raise NoPeriodicResponse(f"period map: {err}") from None
+        if run.status != "done":
+            raise NoPeriodicResponse(f"period map: {run.message}")
+        m = variational.monodromy(run, self.backend)
+        period = EventPeriod.of(run, m.switches)
+        return period.final, m.matrix, period, self._grazing(m.switches)
+
+    def fixed_multipliers(self) -> NDArray[np.complex128]:
+        """None: every direction is shot in."""
+        return np.zeros(0, dtype=complex)
+
+    def full_state(self, x: ArrayLike) -> NDArray[np.float64]:
+        """``x`` itself."""
+        return np.array(x, dtype=float)
+
+    @staticmethod
+    def shooting(state: ArrayLike) -> NDArray[np.float64]:
+        """Full states as they are."""
+        return np.asarray(state, dtype=float)
+
+    def sliding_guess(self) -> NDArray[np.float64]:
+        """The periodic orbit of the backward-sliding field alone, by Newton's method.
+
+        The field of the mode ``slip_back`` (`generated.hybrid.vector_field`; without
+        its contact force where ``X2 < 0``, as in flight) is integrated over one period
+        with no switch watched (the compiled DOP853 of `beltmdsm.integrate._dop853`),
+        its Jacobian by the step propagators of `beltmdsm.analysis.variational`, from
+        the unforced equilibrium (Eq. 9). The Jacobian is kept while the residual at
+        least halves (a chord method: the field is linear in the tangential state under
+        Coulomb friction and nearly so under Stribeck's, so one Jacobian serves most
+        iterations). It is the counterpart of the closed-form sliding orbit of
+        `TangentialMap` and the same where the mass slides back in contact throughout;
+        where the iterations do not settle in `_SLIDING_ITER`, the last iterate is the
+        guess (kept).
+        """
+        if self._sliding is not None:
+            return self._sliding.copy()
+        sw = self.sw
+        advance = _compiled.advance("vector_field", self.model, self.backend)
+        watch, dirs = np.zeros(0, dtype=np.int64), np.zeros(0)
+        mode = float(Mode.SLIP_BACK)
+        x, M, last = initial_state(self.model), None, np.inf
+        for _ in range(_SLIDING_ITER):
+            code, n, ts, hs, ys, Fs, t_stop, y, _, _ = advance(
+                sw.field.args,
+                sw.surfaces.args,
+                sw.rates.args,
+                mode,
+                watch,
+                dirs,
+                0.0,
+                x,
+                self.period,
+                0.0,
+                RTOL,
+                RTOL,
+                np.inf,
+            )
+            if code != _dop853.STATUS_END:
+                break
+            r = np.asarray(y) - x
+            size = float(np.max(np.abs(r)))
+            if size <= NEWTON_TOL * (1.0 + np.max(np.abs(x))):
+                break
+            if M is None or size > 0.5 * last:
+                ts, hs, ys, Fs = ts[:n], hs[:n], ys[:n], Fs[:n]
+                ends = np.minimum(ts + hs, np.append(ts[1:], t_stop))
+                M = np.eye(4)
+                for R in variational.propagators(
+                    self.model, ts, hs, ys, Fs, ends, np.full(n, mode)
+                ):
+                    M = R @ M
+            last = size
+            try:
+                x_new = x + np.linalg.solve(np.eye(4) - M, r)
+            except np.linalg.LinAlgError:
+                break
+            if not np.all(np.isfinite(x_new)):
+                break
+            x = x_new
+        self._sliding = x
+        return x.copy()
+
+
+def _periods(periods):
+    if int(periods) != periods or int(periods) < 1:
+        raise ValueError(f"periods must be an integer >= 1; got {periods!r}")
+    return int(periods)
+
+
+#: The facts of the laws (``generated.capabilities``) that the closed-form path needs,
+#: those of the superposition it runs on: the slip-mode friction free of the
+#: tangential state (the tangential motion is linear between switches) and the normal
+#: equation free of it (the cached normal orbit, the block-triangular monodromy).
+CLOSED_FORM_FACTS = SUPERPOSITION_FACTS
+#: The period maps by engine name.
+ENGINES: dict[str, type[PeriodMap]] = {"closed_form": TangentialMap, "general": GeneralMap}
+
+
+def engine_of(model: Model) -> str:
+    """The engine of the model's laws: ``"closed_form"`` where they have every fact of
+    `CLOSED_FORM_FACTS`, else ``"general"``."""
+    facts = CAPABILITIES[(model.friction, model.contact, model.tension)]
+    return "closed_form" if all(facts[f][0] for f in CLOSED_FORM_FACTS) else "general"
+
+
+def period_map(
+    model: Model,
+    periods: int = 1,
+    backend: Backend | None = None,
+    engine: Engine | None = None,
+) -> PeriodMap:
+    """The ``k``-fold period map of the model.
+
+    Parameters
+    ----------
+    model : Model
+    periods : int
+    backend : {"python", "numba", None}
+    engine : {"closed_form", "general", None}
+        None: the engine the model's laws allow (`engine_of`); a name asks for that
+        engine (the general one applies to every law, and serves as a cross-check of
+        the closed-form one).
+
+    Raises
+    ------
+    ValueError
+        For an unknown engine.
+    beltmdsm.model.Unsupported
+        For ``engine="closed_form"`` where the laws lack a fact it needs.
+    """
+    if engine is not None and engine not in ENGINES:
+        raise ValueError(f"engine must be one of {', '.join(map(repr, ENGINES))}; got {engine!r}")
+    return ENGINES[engine or engine_of(model)](model, periods, backend)
+
+
 class MapFamily:
     """The ``k``-fold period maps of one parameter's values, the others fixed.
 
@@ -722,7 +1088,7 @@ class MapFamily:
     periods : int
     backend : {"python", "numba", None}
 
-    ``family(value)`` is the `TangentialMap` at ``param = value`` (the last few are
+    ``family(value)`` is the `period_map` at ``param = value`` (the last few are
     kept); ``family.derivative(x, value)`` is ``dP/d param`` at ``x`` by central
     differences (relative step `DERIVATIVE_STEP`: a truncation error of about its
     square and a rounding error of about ``1e-12 / step`` relative, 1e-6, which slows
@@ -744,7 +1110,7 @@ class MapFamily:
         self.periods, self.backend = int(periods), backend
         self._maps: dict = {}
 
-    def __call__(self, value: float) -> TangentialMap:
+    def __call__(self, value: float) -> PeriodMap:
         """The map at ``param = value`` (raises NoPeriodicResponse outside its domain)."""
         value = float(value)
         if value not in self._maps:
@@ -754,7 +1120,7 @@ class MapFamily:
                 model = self.model.replace(**{self.param: value})
             except ValueError as err:  # a value outside the parameter's domain
                 raise NoPeriodicResponse(f"{self.param} = {value:g}: {err}") from None
-            self._maps[value] = TangentialMap(model, self.periods, self.backend)
+            self._maps[value] = period_map(model, self.periods, self.backend)
         return self._maps[value]
 
     def derivative(

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from ..analysis.floquet_map import FloquetMap
 
 __all__ = ["floquet_map", "draw_floquet_map", "KIND_COLOURS"]
@@ -16,8 +18,9 @@ KIND_COLOURS = {
 }
 
 
-def draw_floquet_map(ax, result: FloquetMap, linear: bool = True) -> None:
-    """Draw a map on matplotlib axes: the exact unstable region and its curves by kind.
+def draw_floquet_map(ax: Any, result: FloquetMap, linear: bool = True) -> None:
+    """Draw a map on matplotlib axes ``ax`` (typed Any: matplotlib is imported only when
+    drawing): the exact unstable region and its curves by kind.
 
     Shaded: where no stable periodic response is found, row by row; lines: the boundary
     curves, coloured by kind (`KIND_COLOURS`); thin blue (``linear``): where the paper's

@@ -151,10 +151,12 @@ def floquet(f: Floquet) -> str:
     mus = ", ".join(f"{z.real:.6g}{z.imag:+.6g}j" for z in f.multipliers)
     per = "per period" if resp.periods == 1 else f"per {resp.periods} periods"
     lines = [
-        f"periodic response of Eq. (4), {resp.model.contact}, tension "
+        f"periodic response of Eq. (4), {resp.model.friction} friction, "
+        f"{resp.model.contact}, tension "
         f"{resp.model.tension}, Vb = {p['Vb']:g} m/s: period {f.period:.6g} s, "
         f"{f.n_reversals} reversals and {f.n_sticks} sticks {per}, Newton "
-        f"{resp.iterations} iterations (residual {resp.residual:.1e})"
+        f"{resp.iterations} iterations (residual {resp.residual:.1e}), "
+        f"{f.engine} path (beltmdsm/analysis/periodmap.py)"
     ]
     if f.grazing is not None:
         lines.append(

@@ -15,10 +15,13 @@ tangential switch is located on these closed forms (`beltmdsm.integrate._superpo
 every normal switch comes from the normal motion, and the mode after a switch is
 chosen by the same rules as in the event-driven integrator (`beltmdsm.integrate.switching`).
 
-Where its closed forms do not exist (at undamped resonance of the tangential
-oscillator, ``beta1 = 0``, ``Omega_t = omega1``, where the excitation response grows
-without bound), it raises `NotApplicable` with the reason, and
-`beltmdsm.simulation.simulate` hands the run to `beltmdsm.integrate.events`.
+Where its closed forms do not exist, it raises `NotApplicable` with the reason, and
+`beltmdsm.simulation.simulate` hands the run to `beltmdsm.integrate.events`: where the
+model's laws lack a fact it needs (`FACTS`, decided by SymPy in
+``generated.capabilities``: the slip-mode friction free of the tangential state, as
+Coulomb's is and Stribeck's is not, and the normal equation free of it), and at
+undamped resonance of the tangential oscillator (``beta1 = 0``, ``Omega_t = omega1``,
+where the excitation response grows without bound).
 """
 
 from __future__ import annotations
@@ -32,7 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from generated import oscillator
 
-from ..model import Backend, Model, initial_state
+from ..model import Backend, Model, Unsupported, initial_state, require
 from ..settings import SolverSettings
 from . import _compiled
 from .normal import GRID_STEP, NormalMotion, clear_cache, normal_motion
@@ -41,6 +44,8 @@ from .trajectory import Run, Segment, Trajectory
 from .zeno import Zeno
 
 __all__ = [
+    "FACTS",
+    "check_applicable",
     "Superposition",
     "TangentialRun",
     "NotApplicable",
@@ -53,6 +58,21 @@ __all__ = [
 
 class NotApplicable(ValueError):
     """The superposition's closed forms do not exist for this model (the reason)."""
+
+
+#: The facts of the laws (``generated.capabilities``) that the superposition needs: the
+#: tangential equation linear in each slip mode, the normal motion integrated alone.
+FACTS = ("slip_friction_state_independent", "one_way_coupling")
+
+
+def check_applicable(model: Model) -> None:
+    """Raise `NotApplicable` where a fact of `FACTS` fails for the model's laws (the
+    law and the property, `beltmdsm.model.require`)."""
+    for fact in FACTS:
+        try:
+            require(model, fact, "superposition")
+        except Unsupported as reason:
+            raise NotApplicable(str(reason)) from None
 
 
 #: Grid points of the normal motion per quadrature piece of a segment, at most.
@@ -139,7 +159,8 @@ class Superposition:
     Raises
     ------
     NotApplicable
-        At undamped resonance, where the excitation response has no closed form.
+        Where the model's laws lack a fact of `FACTS`, and at undamped resonance,
+        where the excitation response has no closed form.
     """
 
     def __init__(
@@ -148,6 +169,7 @@ class Superposition:
         normal: NormalMotion,
         backend: Backend | None = None,
     ) -> None:
+        check_applicable(model)
         self.model, self.normal = model, normal
         stm, exc = oscillator.bind_state_transition, oscillator.bind_excitation_response
         self.stm = stm(backend=backend, **model.arguments(stm))
@@ -281,6 +303,7 @@ def integrate_superposed(
         Where the closed forms do not exist (the reason); the event-driven
         integrator applies there.
     """
+    check_applicable(model)
     y = initial_state(model) if y0 is None else np.array(y0, dtype=float)
     normal = normal_motion(
         model, settings.t_end, settings.rtol, settings.atol, y[2:], settings.backend

@@ -40,6 +40,7 @@ import numpy as np
 from ..analysis.branch import Branch, continue_branch
 from ..analysis.floquet import NoPeriodicResponse, floquet, response_from
 from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
+from ..analysis.periodmap import engine_of
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
 from .responses import ladder, run_stroboscope, shoot
 
@@ -188,13 +189,15 @@ class Coexistence:
 
     def as_dict(self) -> dict:
         """The JSON of ``coexistence --json``: ``param``, ``range``, ``contact``,
-        ``tension``, ``coexistence``, ``responses``, ``unlocked``, ``unexplained``,
-        ``wall_s``."""
+        ``tension``, ``friction``, ``engine``, ``coexistence``, ``responses``,
+        ``unlocked``, ``unexplained``, ``wall_s``."""
         return {
             "param": self.param,
             "range": [self.lo, self.hi],
             "contact": self.model.contact,
             "tension": self.model.tension,
+            "friction": self.model.friction,
+            "engine": engine_of(self.model),
             "coexistence": [r.as_dict() for r in self.ranges],
             "responses": [r.as_dict() for r in self.responses],
             "unlocked": [u.as_dict() for u in self.unlocked],
@@ -313,7 +316,7 @@ def coexistence(
                 f = floquet(model.replace(**{param: float(v)}), guess=guess, backend=backend)
             except NoPeriodicResponse:
                 continue
-            seeds.append((float(v), 1, f.response.state0[:2], "shooting"))
+            seeds.append((float(v), 1, f.response.shooting_state, "shooting"))
             last = f
             break
 

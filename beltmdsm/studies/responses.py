@@ -10,9 +10,10 @@ exactly (`beltmdsm.analysis.periodmap.fixed_point`), with the multipliers of the
 * `run_stroboscope`: the stroboscopic samples of a run of `beltmdsm.simulation.simulate`
   from rest or from the perturbed periodic response
   (`beltmdsm.analysis.floquet.periodic_start`).
-* `ladder`, `ladder_stroboscope`: a sweep continued on the period map: the tangential
-  state carried from rung to rung (on the periodic normal motion), as ``sweep
-  --continue`` carries a run's state, and the samples of each rung.
+* `ladder`, `ladder_stroboscope`: a sweep continued on the period map: the shooting
+  state carried from rung to rung (the tangential one on the periodic normal motion,
+  on the closed-form path), as ``sweep --continue`` carries a run's state, and the
+  samples of each rung.
 * `responses`: every periodic response found at one point (``python -m derive
   responses``): the periodic one of period ``T`` and every locked one up to a limit,
   each with its multipliers, the amplitude of ``X1'`` and where it was found; the
@@ -39,7 +40,7 @@ from ..analysis.locked import (
     same_phases,
     stroboscope,
 )
-from ..analysis.periodmap import FixedPoint, TangentialMap, fixed_point
+from ..analysis.periodmap import ENGINES, FixedPoint, PeriodMap, engine_of, fixed_point, period_map
 from ..model import Backend, Model, as_model, excitation_period, initial_state
 from ..settings import SolverSettings
 from ..simulation import simulate
@@ -99,7 +100,8 @@ def run_stroboscope(
         raise NoPeriodicResponse(f"the run ({start}) stopped: {sim.message}")
     n_end = int(math.floor(sim.trajectory.t_end / T + 1e-9))
     n_start = max(int(math.ceil((1.0 - WINDOW) * n_end)), 0)
-    y = sim.trajectory.state(T * np.arange(n_start, n_end + 1))[:2].T
+    states = sim.trajectory.state(T * np.arange(n_start, n_end + 1)).T
+    y = ENGINES[engine_of(model)].shooting(states)
     name = "run from rest" if start == "rest" else "run from the perturbed periodic response"
     return stroboscope(y, name, limit)
 
@@ -114,18 +116,20 @@ def ladder(
 ) -> list[Stroboscope]:
     """A continued sweep on the period map: the stroboscope of every rung.
 
-    The tangential state starts at rest at ``values[0]`` and is carried from rung to
-    rung, as ``sweep --continue`` carries a run's state (on the periodic normal
-    motion); at each rung `LADDER_PERIODS` periods settle it and as many more are
+    The shooting state (`beltmdsm.analysis.periodmap.PeriodMap.shooting`: the tangential
+    state on the periodic normal motion, on the closed-form path) starts at rest at
+    ``values[0]`` and is carried from rung to rung, as ``sweep --continue`` carries a
+    run's state; at each rung `LADDER_PERIODS` periods settle it and as many more are
     the samples. A rung where the period map fails ends the ladder.
     """
     values = [float(v) for v in values]
-    x = initial_state(model.replace(**{param: values[0]}))[:2]
+    first = model.replace(**{param: values[0]})
+    x = ENGINES[engine_of(first)].shooting(initial_state(first))
     direction = "up" if values[-1] >= values[0] else "down"
     source = f"continued {direction} from {param} = {values[0]:g}"
     out = []
     for v in values:
-        pmap = TangentialMap(model.replace(**{param: v}), 1, backend)
+        pmap = period_map(model.replace(**{param: v}), 1, backend)
         try:
             strobe = map_stroboscope(pmap, x, LADDER_PERIODS, LADDER_PERIODS, source, limit)
         except NoPeriodicResponse:
@@ -165,7 +169,7 @@ def ladder_stroboscope(
 
 def shoot(
     model: Model, periods: int, guess: ArrayLike, backend: Backend | None = None
-) -> tuple[TangentialMap, FixedPoint]:
+) -> tuple[PeriodMap, FixedPoint]:
     """The ``periods``-fold map of ``model`` and its fixed point from ``guess`` (Newton).
 
     Raises
@@ -173,8 +177,8 @@ def shoot(
     NoPeriodicResponse
         Where Newton's method fails.
     """
-    pmap = TangentialMap(model, periods, backend)
-    return pmap, fixed_point(pmap, guess)
+    pmap = period_map(model, periods, backend)
+    return pmap, fixed_point(pmap, pmap.guess(guess))
 
 
 @dataclass
@@ -338,7 +342,7 @@ def responses(
     found, unlocked, failed = [], [], []
     try:
         f = floquet(model, backend=backend)
-        image = TangentialMap(model, 1, backend)(f.response.state0[:2])
+        image = period_map(model, 1, backend)(f.response.shooting_state)
         found.append(
             Response(
                 1,
@@ -346,7 +350,7 @@ def responses(
                 image.velocity_range(),
                 ["shooting from the sliding orbit"],
                 None,
-                [f.response.state0[:2]],
+                [f.response.shooting_state],
             )
         )
     except NoPeriodicResponse as err:

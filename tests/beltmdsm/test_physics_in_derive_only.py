@@ -77,9 +77,9 @@ ALLOWED = {
     ): "the a-priori decay of the free transient, exp(-beta1 omega1 t), to decide "
     "whether a window can tell the peak",
     (
-        "analysis/floquet.py",
-        "_sliding_guess",
-        'return np.linalg.solve(np.eye(2) - Phi, zf + pmap.p["mu_s"] * z)',
+        "analysis/periodmap.py",
+        "sliding_orbit",
+        'return np.linalg.solve(np.eye(2) - Phi, zf + self.p["mu_s"] * z)',
     ): _SUPERPOSITION,
     (
         "analysis/floquet.py",

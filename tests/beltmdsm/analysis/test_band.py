@@ -71,6 +71,8 @@ def test_every_edge_is_labelled_with_its_bifurcation_and_the_kind_of_before(base
         "tol",
         "tension",
         "contact",
+        "friction",
+        "engine",
     }
     assert set(out["edges"][0]) == {
         "value",
