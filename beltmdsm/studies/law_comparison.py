@@ -401,11 +401,13 @@ class RunScan:
         ``omega1_peak_present`` of each run's summary: True, False, or None where the
         run cannot tell (`beltmdsm.analysis.summary.Summary`), and None where `slow`.
     slow : ndarray of bool
-        Unforced runs whose present peak may be the slow decay of a disturbance of
-        stable steady sliding (`slow_decay`), set to None here: the summary judges the
-        free transient by ``exp(-beta1 omega1 t)``, Coulomb's decay, and has no Floquet
-        multiplier without excitation, while next to the Stribeck boundary steady
-        sliding decays far more slowly.
+        Unforced runs that slide without sticking or reversing (regime
+        ``continuous_sliding``) and whose present peak may be the slow decay of a
+        disturbance of stable steady sliding (`slow_decay`), set to None here: the summary
+        judges the free transient by ``exp(-beta1 omega1 t)``, Coulomb's decay, and has no
+        Floquet multiplier without excitation, while next to the Stribeck boundary
+        steady sliding decays far more slowly. A run that sticks or reverses is off the
+        linearisation, and its peak is judged by the summary alone.
     peak_omega1 : ndarray
         The amplitude of the ``omega1`` peak of X1' [m/s].
     min_normal_force : ndarray
@@ -540,7 +542,12 @@ def runs_from_rest(
         m = law.model(model, Vb=float(vb), tension=tension, **({} if forced else {"alpha": 0.0}))
         s = simulate(m, settings=settings, y0=_start_state(m, start, settings)).summary
         rows.append(s)
-        slow.append(not forced and s.omega1_peak_present is True and slow_decay(m, settings))
+        slow.append(
+            not forced
+            and s.omega1_peak_present is True
+            and s.regime == "continuous_sliding"
+            and slow_decay(m, settings)
+        )
     return RunScan(
         law=law,
         tension=tension,
