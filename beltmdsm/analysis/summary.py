@@ -40,6 +40,7 @@ __all__ = [
     "ENERGY_RESIDUAL_FLOOR",
     "ENERGY_RESIDUAL_MAX",
     "classify_regime",
+    "free_decay_rate",
     "omega1_band",
     "noise_floor",
     "energy_bound",
@@ -174,12 +175,13 @@ def energy_bound(
 
 
 #: The free tangential transient has decayed in the steady window when its envelope
-#: exp(-beta1 omega1 t) is below this at the window's start (a priori), or when the
-#: omega1 band holds the same amplitude, within `STATIONARY_RATIO`, in both halves of
-#: the window (measured). A peak that would be present is also checked against the
-#: slowest decay towards the periodic response, ``|mu|^(t / T)`` with the largest
-#: Floquet multiplier ``mu`` (`beltmdsm.analysis.floquet`): next to a Floquet edge it
-#: is far slower than the free transient.
+#: exp(sigma t) (`free_decay_rate`; Coulomb: sigma = -beta1 omega1) is below this at
+#: the window's start (a priori), or when the omega1 band holds the same amplitude,
+#: within `STATIONARY_RATIO`, in both halves of the window (measured). A peak that
+#: would be present is also checked against the slowest decay towards the periodic
+#: response, ``|mu|^(t / T)`` with the largest Floquet multiplier ``mu``
+#: (`beltmdsm.analysis.floquet`): next to a Floquet edge it is far slower than the
+#: free transient.
 TRANSIENT_DECAYED = 1e-3
 STATIONARY_RATIO = 0.5
 
@@ -216,20 +218,36 @@ def _floquet_decay(model, settings, t0):
     )
 
 
+def free_decay_rate(model: Model) -> float:
+    """``sigma``: the slowest rate of the free tangential transient about steady sliding.
+
+    The largest real part of the tangential pair of `generated.unforced.eigenvalues`
+    for the model's laws: ``-beta1 omega1`` for Coulomb friction (``beta1 < 1``);
+    ``-beta1 omega1 + g dmu/d|Vr| / 2`` at ``|Vr| = Vb`` for a friction that falls with
+    speed, which is >= 0 where steady sliding is unstable (the transient grows).
+    """
+    from generated import unforced
+
+    lam = unforced.eigenvalues(**model.arguments(unforced.eigenvalues))
+    return float(np.max(np.real(lam[:2])))
+
+
 def _resolution(model, settings, v, out):
     """Whether the steady window can tell the omega1 peak (``resolved``) and why not.
 
     Three things can make it unable to: a window too short for the omega1 band to hold
     two frequency bins; a window in which the transient of the tangential oscillator
-    (frequency near omega1, envelope ``exp(-beta1 omega1 t)``) has not decayed, which
-    would read as an omega1 peak whatever the dynamics; and, for a peak that would be
-    present, a slow decay towards a stable periodic response (Floquet multiplier
-    close to 1, next to an edge of the Floquet band), which the free transient does
-    not see. Both decays are checked in the window itself where they are not small
-    a priori: a peak that holds its amplitude in both halves is stationary (a
-    self-excited oscillation), one that does not is a transient.
+    (frequency near omega1, envelope ``exp(sigma t)``, `free_decay_rate`) has not
+    decayed, which would read as an omega1 peak whatever the dynamics; and, for a peak
+    that would be present, a slow decay towards a stable periodic response (Floquet
+    multiplier close to 1, next to an edge of the Floquet band), which the free
+    transient does not see. Both decays are checked in the window itself where they
+    are not small a priori: a peak that holds its amplitude in both halves is
+    stationary (a self-excited oscillation), one that does not is a transient; unless
+    the free transient decays so slowly (next to a Stribeck boundary, ``sigma -> 0-``)
+    that it too would hold its amplitude within `STATIONARY_RATIO` over half the
+    window: then the window cannot tell the two.
     """
-    p = model.params
     if out["omega1_band"] is None:
         return False, "an excitation line sits at omega1: no band to read the peak in"
     if not np.isfinite(out["peak_omega1"]):
@@ -239,10 +257,13 @@ def _resolution(model, settings, v, out):
         )
     t0 = out["t_discard"]
     threshold = _threshold(out)
-    envelope = np.exp(-p["beta1"] * p["omega1"] * out["t_discard"])
+    sigma = free_decay_rate(model)
+    envelope = math.exp(min(sigma * t0, 0.0)) if sigma < 0 else 1.0
     why = (
         f"the tangential transient has not decayed in the steady window (its "
-        f"envelope exp(-beta1 omega1 t) is {envelope:.2g} at t = {t0:g} s)"
+        f"envelope exp(sigma t), sigma = {sigma:.3g} 1/s, is {envelope:.2g} at t = {t0:g} s)"
+        if sigma < 0
+        else f"steady sliding is unstable (free tangential rate sigma = {sigma:.3g} 1/s >= 0)"
     )
     if envelope <= TRANSIENT_DECAYED:
         if not out["peak_omega1"] > threshold:
@@ -261,10 +282,16 @@ def _resolution(model, settings, v, out):
     first, second = (
         spectra.peak_amplitudes(part, settings.dt, band)[0][1] for part in (v[:half], v[half:])
     )
-    if max(first, second) <= threshold or min(first, second) >= STATIONARY_RATIO * max(
-        first, second
-    ):
+    if max(first, second) <= threshold:
         return True, ""
+    slow = sigma < 0 and math.exp(sigma * (out["t_end"] - t0) / 2) >= STATIONARY_RATIO
+    if min(first, second) >= STATIONARY_RATIO * max(first, second) and not slow:
+        return True, ""
+    if slow:
+        why = (
+            f"{why}, and so slow (sigma = {sigma:.3g} 1/s) that a decay would hold its "
+            f"amplitude within {STATIONARY_RATIO:g} over half the window too"
+        )
     return False, (
         f"{why}; the omega1 band holds {first:.3g} m/s in the first half of the window "
         f"and {second:.3g} m/s in the second; lengthen --t-end"

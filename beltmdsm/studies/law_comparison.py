@@ -47,7 +47,6 @@ from generated import unforced
 from ..analysis.band import Band, floquet_band
 from ..analysis.floquet import PERTURBATION
 from ..analysis.periodmap import engine_of
-from ..analysis.summary import STATIONARY_RATIO, TRANSIENT_DECAYED
 from ..intervals import clip, difference, format_intervals, runs, union
 from ..model import Model, as_model, initial_state
 from ..settings import SolverSettings
@@ -69,7 +68,6 @@ __all__ = [
     "steady_sliding",
     "forced_stability",
     "runs_from_rest",
-    "slow_decay",
     "answer",
     "compare",
 ]
@@ -399,15 +397,9 @@ class RunScan:
         The belt speeds [m/s].
     present : ndarray of object
         ``omega1_peak_present`` of each run's summary: True, False, or None where the
-        run cannot tell (`beltmdsm.analysis.summary.Summary`), and None where `slow`.
-    slow : ndarray of bool
-        Unforced runs that slide without sticking or reversing (regime
-        ``continuous_sliding``) and whose present peak may be the slow decay of a
-        disturbance of stable steady sliding (`slow_decay`), set to None here: the summary
-        judges the free transient by ``exp(-beta1 omega1 t)``, Coulomb's decay, and has no
-        Floquet multiplier without excitation, while next to the Stribeck boundary
-        steady sliding decays far more slowly. A run that sticks or reverses is off the
-        linearisation, and its peak is judged by the summary alone.
+        run cannot tell (`beltmdsm.analysis.summary.Summary`; next to the Stribeck
+        boundary the free transient decays too slowly for the window to tell,
+        `beltmdsm.analysis.summary.free_decay_rate`).
     peak_omega1 : ndarray
         The amplitude of the ``omega1`` peak of X1' [m/s].
     min_normal_force : ndarray
@@ -426,7 +418,6 @@ class RunScan:
     start: str
     values: NDArray[np.float64] = field(repr=False)
     present: NDArray[np.object_] = field(repr=False)
-    slow: NDArray[np.bool_] = field(repr=False)
     peak_omega1: NDArray[np.float64] = field(repr=False)
     min_normal_force: NDArray[np.float64] = field(repr=False)
     regime: NDArray[np.str_] = field(repr=False)
@@ -452,7 +443,6 @@ class RunScan:
             "start": self.start,
             "present": [list(r) for r in self.present_ranges],
             "unresolved": self.unresolved,
-            "slow": [float(v) for v in self.values[self.slow]],
             "min_normal_force": float(np.min(self.min_normal_force)),
             "energy_ok": bool(np.all(self.energy_ok)),
             "wall_s": self.wall_s,
@@ -473,28 +463,6 @@ def _start_state(model: Model, start: str, settings: SolverSettings) -> NDArray[
     else:  # released
         y0[0] = 0.0
     return y0
-
-
-def slow_decay(model: Model, settings: SolverSettings) -> bool:
-    """Whether a run without excitation cannot tell a present ``omega1`` peak from the
-    decay of a disturbance of stable steady sliding.
-
-    Steady sliding decays at the largest real part ``sigma < 0`` of
-    `generated.unforced.eigenvalues`; the run cannot tell where that decay has not
-    brought a disturbance below `TRANSIENT_DECAYED` by the window's start
-    (``exp(sigma t0)``), nor would its halves differ by more than `STATIONARY_RATIO`
-    (``exp(sigma (t_end - t0) / 2)``), the two tests of
-    `beltmdsm.analysis.summary.Summary.resolved` with this rate. Where steady sliding is
-    unstable (``sigma >= 0``) a peak is not a decay: False.
-    """
-    sigma = float(_largest_real_part(model, model["Vb"]))
-    if sigma >= 0:
-        return False
-    t0 = settings.window_start
-    return bool(
-        math.exp(sigma * t0) > TRANSIENT_DECAYED
-        and math.exp(sigma * (settings.t_end - t0) / 2) > STATIONARY_RATIO
-    )
 
 
 def runs_from_rest(
@@ -537,27 +505,17 @@ def runs_from_rest(
     settings = settings or RUN_SETTINGS
     values = np.asarray(values, dtype=float)
     began = time.perf_counter()
-    rows, slow = [], []
+    rows = []
     for vb in values:
         m = law.model(model, Vb=float(vb), tension=tension, **({} if forced else {"alpha": 0.0}))
-        s = simulate(m, settings=settings, y0=_start_state(m, start, settings)).summary
-        rows.append(s)
-        slow.append(
-            not forced
-            and s.omega1_peak_present is True
-            and s.regime == "continuous_sliding"
-            and slow_decay(m, settings)
-        )
+        rows.append(simulate(m, settings=settings, y0=_start_state(m, start, settings)).summary)
     return RunScan(
         law=law,
         tension=tension,
         forced=forced,
         start=start,
         values=values,
-        present=np.array(
-            [None if w else s.omega1_peak_present for s, w in zip(rows, slow)], dtype=object
-        ),
-        slow=np.array(slow, dtype=bool),
+        present=np.array([s.omega1_peak_present for s in rows], dtype=object),
         peak_omega1=np.array([s.peak_omega1 for s in rows]),
         min_normal_force=np.array([s.min_normal_force for s in rows]),
         regime=np.array([s.regime for s in rows]),

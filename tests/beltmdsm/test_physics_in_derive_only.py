@@ -71,12 +71,6 @@ ALLOWED = {
         "return (w1 - half, w1 + half) if half > 0 else None",
     ): "the same window",
     (
-        "analysis/summary.py",
-        "_resolution",
-        'envelope = np.exp(-p["beta1"] * p["omega1"] * out["t_discard"])',
-    ): "the a-priori decay of the free transient, exp(-beta1 omega1 t), to decide "
-    "whether a window can tell the peak",
-    (
         "analysis/periodmap.py",
         "sliding_orbit",
         'return np.linalg.solve(np.eye(2) - Phi, zf + self.p["mu_s"] * z)',

@@ -69,3 +69,14 @@ def test_a_stable_periodic_response_does_not_make_a_growing_peak_unresolved():
     model = Model(Vb=5.0)
     s = simulate(model, y0=periodic_start(model), t_end=400.0).summary
     assert s.resolved and s.omega1_peak_present
+
+
+@pytest.mark.parametrize("beta1", [0.05, 0.5, 2.0])
+def test_the_free_decay_rate_is_the_slower_root_of_the_tangential_oscillator(beta1):
+    from beltmdsm.model import Model
+
+    w1 = 1.3
+    rate = summary.free_decay_rate(Model(beta1=beta1, omega1=w1))
+    # the roots of l^2 + 2 beta1 w1 l + w1^2: -beta1 w1 (+-) w1 sqrt(beta1^2 - 1)
+    slower = -beta1 * w1 + (w1 * np.sqrt(beta1**2 - 1) if beta1 > 1 else 0.0)
+    assert rate == pytest.approx(slower, rel=1e-13)
