@@ -18,6 +18,19 @@ over-damped exponentials through ``expm1`` (no overflow for long ``tau``, no
 cancellation as ``b -> 0``); critically damped (``beta1 = 1`` exactly) ``C = 1``,
 ``S = tau``. `verify_state_transition` proves with SymPy that each form solves
 ``Phi' = A Phi``, ``Phi(0) = I``.
+
+`tangential_state` is the superposition itself, the one formula of the tangential
+motion between switches that the runtime evaluates (the superposition integrator, the
+sliding orbit of the period map):
+
+    x(t) = Phi(t - t0) (x(t0) - f(t0)) + f(t),    f = zf - mu sgn z,
+
+with ``zf`` the excitation response, ``z`` the response to the contact force ``F``
+(both from rest at ``t = 0``), ``sgn`` the friction direction of the mode (0 in flight
+or separation) and ``mu`` the friction law's coefficient, constant within a slip mode
+where the law's friction does not depend on the sliding speed (Coulomb's ``mu_s``).
+`verify_tangential_state` proves that it solves the tangential equation with
+``x(t0)`` as its start.
 """
 
 from __future__ import annotations
@@ -25,7 +38,7 @@ from __future__ import annotations
 import sympy as sp
 from sympy.codegen.cfunctions import expm1
 
-from .model import P, excitation, t
+from .model import SPEED, P, coefficient, excitation, t
 
 __all__ = [
     "tau",
@@ -35,6 +48,9 @@ __all__ = [
     "verify_state_transition",
     "harmonic_steady_state",
     "excitation_response",
+    "SUPERPOSITION_ARGS",
+    "tangential_state",
+    "verify_tangential_state",
 ]
 
 #: Time elapsed since the switch.
@@ -151,3 +167,92 @@ def excitation_response() -> sp.Matrix:
     """
     xp = harmonic_steady_state()
     return xp - state_transition().subs(tau, t) * xp.subs(t, 0)
+
+
+#: The friction direction of a mode: -1 or +1 slipping, 0 in flight or separation.
+sgn = sp.Symbol("sgn", real=True)
+#: The arguments of `tangential_state` after ``tau``: the state at the switch, the
+#: excitation response ``(zf, zf')`` and the response to the contact force ``(z, z')``
+#: there, the same two responses at ``t0 + tau``, and the friction direction.
+SUPERPOSITION_ARGS = (
+    *sp.symbols("X1_0 Y1_0 zf_0 vf_0 z_0 v_0 zf vf z v", real=True),
+    sgn,
+)
+
+
+def _forced(mu, zf, vf, z, v) -> sp.Matrix:
+    """``f = zf - mu sgn z``: the forced part of the motion of a mode."""
+    return sp.Matrix([zf - mu * sgn * z, vf - mu * sgn * v])
+
+
+def tangential_state(friction: str = "coulomb") -> sp.Matrix | None:
+    """``(X1, X1')`` at ``t0 + tau`` of a mode entered at ``t0`` (module docstring).
+
+    ``Phi(tau) (x0 - f0) + f`` in the arguments `SUPERPOSITION_ARGS`, one Piecewise over
+    the damping regime per entry (as `state_transition`). None where the friction law's
+    coefficient depends on the sliding speed: the friction of a slip mode then depends
+    on ``X1'`` and the motion is no superposition.
+    """
+    mu = coefficient(friction, SPEED)
+    if SPEED in mu.free_symbols:
+        return None
+    X10, Y10, zf0, vf0, z0, v0, zf, vf, z, v, _ = SUPERPOSITION_ARGS
+    free = sp.Matrix([X10, Y10]) - _forced(mu, zf0, vf0, z0, v0)
+    forced = _forced(mu, zf, vf, z, v)
+    forms = {name: Phi * free + forced for name, Phi in state_transition_branches().items()}
+    b1 = P["beta1"]
+    return sp.Matrix(
+        [
+            sp.Piecewise(
+                (forms["under"][i], b1 < 1),
+                (forms["over"][i], b1 > 1),
+                (forms["critical"][i], True),
+            )
+            for i in range(2)
+        ]
+    )
+
+
+def verify_tangential_state(friction: str = "coulomb") -> None:
+    """Prove that `tangential_state` is the motion of the mode from ``x(t0)``.
+
+    With ``Phi`` any matrix with ``Phi' = A Phi`` and ``Phi(0) = I``
+    (`verify_state_transition`), ``zf' = vf``, ``vf' = f_t - 2 beta1 omega1 vf -
+    omega1^2 zf`` and ``z' = v``, ``v' = F - 2 beta1 omega1 v - omega1^2 z``, the
+    superposition ``x = Phi (x0 - f0) + f`` has ``x(t0) = x0`` and
+    ``x' = A x + (0, f_t - mu sgn F)``: the tangential equation of Eq. (4) in a mode
+    with friction direction ``sgn`` (derive/model.py).
+
+    Raises
+    ------
+    AssertionError
+        Naming what fails.
+    """
+    mu = coefficient(friction, SPEED)
+    assert SPEED not in mu.free_symbols, f"friction={friction!r}: no superposition"
+    X10, Y10, zf0, vf0, z0, v0, zf, vf, z, v, _ = SUPERPOSITION_ARGS
+    A = system_matrix()
+    Phi = sp.Matrix(2, 2, sp.symbols("p0:4"))
+    f_t, F = excitation()[0], sp.Symbol("F", real=True)
+    free = sp.Matrix([X10, Y10]) - _forced(mu, zf0, vf0, z0, v0)
+    x = Phi * free + _forced(mu, zf, vf, z, v)
+    # d/dt along the responses' own equations, and Phi' = A Phi
+    rates = {
+        zf: vf,
+        vf: f_t + A[1, 0] * zf + A[1, 1] * vf,
+        z: v,
+        v: F + A[1, 0] * z + A[1, 1] * v,
+    }
+    dPhi = A * Phi
+    dx = x.applyfunc(
+        lambda e: (
+            sum(sp.diff(e, s) * r for s, r in rates.items())
+            + sum(sp.diff(e, Phi[k]) * dPhi[k] for k in range(4))
+        )
+    )
+    residual = (dx - A * x - sp.Matrix([0, f_t - mu * sgn * F])).applyfunc(sp.expand)
+    if not residual.is_zero_matrix:
+        raise AssertionError(f"tangential_state does not solve Eq. (4): residual {residual}")
+    at_start = x.subs(dict(zip(Phi, sp.eye(2)))).subs({zf: zf0, vf: vf0, z: z0, v: v0})
+    if (at_start - sp.Matrix([X10, Y10])).applyfunc(sp.expand) != sp.zeros(2, 1):
+        raise AssertionError(f"tangential_state at tau = 0 is {at_start.T}, not (X1_0, Y1_0)")

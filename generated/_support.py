@@ -4,14 +4,15 @@
 
 Copied verbatim into ``generated/_support.py`` by ``python -m derive``; edit the
 template in ``derive/codegen/templates/`` and regenerate. Plain numpy and mpmath: importing
-it never imports SymPy.
+it never imports SymPy, nor mpmath (the mpmath variants in ``generated/mp/`` import it;
+the helpers for them below import it when called), so that a program on the numpy
+functions starts without it.
 """
 
 import math
 import os
 import tempfile
 
-import mpmath
 import numpy
 
 from .parameters import DEFAULT_FROM, DEFAULTS, DOMAIN_RULES, DOMAINS, KNOWN, within
@@ -158,6 +159,8 @@ def param(function, name, value, domain=None, why=None):
 
 def mp_param(function, name, value, domain=None, why=None):
     """`param` for the mpmath variants: a scalar ``mpf``."""
+    import mpmath
+
     domain = domain or DOMAINS[name]
     x = mpmath.mpf(value)
     if mpmath.isnan(x):
@@ -230,6 +233,8 @@ def quadratic_roots(half_p, q, disc):
 
 def mp_quadratic_roots(half_p, q, disc):
     """`quadratic_roots` for the mpmath variants."""
+    import mpmath
+
     if disc >= 0:
         big = -(half_p + (1 if half_p >= 0 else -1) * mpmath.sqrt(disc))
         return mpmath.mpc(big), mpmath.mpc(q / big if big != 0 else 0)

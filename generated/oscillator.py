@@ -4,7 +4,8 @@
 
 Between two switches the tangential motion is linear: the state-transition matrix
 carries the state at the switch, the excitation response and the response to the
-contact force (integrated by the runtime) add to it (derive/oscillator.py).
+contact force (integrated by the runtime) add to it (derive/oscillator.py);
+`tangential_state` is that superposition.
 """
 
 import math
@@ -12,7 +13,7 @@ import numpy
 
 from . import _support
 
-__all__ = ['state_transition', 'excitation_response', 'bind_state_transition', 'bind_excitation_response']
+__all__ = ['state_transition', 'excitation_response', 'tangential_state', 'bind_state_transition', 'bind_excitation_response', 'bind_tangential_state']
 
 
 def state_transition(tau, **params):
@@ -398,4 +399,232 @@ def _excitation_response__impl__scalar(t, beta1, omega1, alpha_t, Omega_t, phase
 
 _EXCITATION_RESPONSE = {
     (): _support.Variant(_excitation_response__impl, ('beta1', 'omega1', 'alpha_t', 'Omega_t', 'phase_t', ), _excitation_response__impl__scalar, None),
+}
+
+
+def tangential_state(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, *, friction='coulomb', **params):
+    """(X1, X1') at t0 + tau of a mode entered at t0: the superposition.
+
+    Implements Eq. (4), first row of the paper.
+
+    Phi(tau) (x0 - f(t0)) + f(t) with f = zf - mu sgn z: the free motion from the state
+    at the switch and the forced responses, zf to the excitation (`excitation_response`)
+    and z to the contact force (integrated with the normal motion,
+    generated.hybrid.response_field), both from rest at t = 0 (derive/oscillator.py).
+    Exact for a friction law whose slip-mode friction mu sgn F does not depend on the
+    tangential state.
+
+    Parameters
+    ----------
+    tau : array_like
+        time since the switch [s], >= 0
+    X1_0 : array_like
+        tangential displacement at the switch t0 [m]
+    Y1_0 : array_like
+        tangential velocity X1' at the switch t0 [m/s]
+    zf_0 : array_like
+        excitation response at t0 (`excitation_response`) [m]
+    vf_0 : array_like
+        its rate at t0 [m/s]
+    z_0 : array_like
+        response to the contact force at t0 (per unit friction coefficient) [m]
+    v_0 : array_like
+        its rate at t0 [m/s]
+    zf : array_like
+        excitation response at t0 + tau [m]
+    vf : array_like
+        its rate at t0 + tau [m/s]
+    z : array_like
+        response to the contact force at t0 + tau [m]
+    v : array_like
+        its rate at t0 + tau [m/s]
+    sgn : array_like
+        friction direction of the mode: -1 (mass slower than the belt), +1, or 0 (flight or separation: no friction)
+    beta1 : array_like
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : array_like
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    mu_s : array_like
+        static friction coefficient: Coulomb's of Eq. (3), the bound of stick [1],
+        nonnegative.
+    friction : {"coulomb", "stribeck"}, default 'coulomb'
+        friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
+        static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
+        mu_k) exp(-|Vr|/v_s).
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    X1, Y1 : ndarray
+        The tangential state at t0 + tau.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing (also
+        a parameter of the chosen law).
+    _support.Unsupported
+        A ValueError, for a choice of laws without the property this needs:
+        - friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' through
+        Vr = X1' - Vb: the tangential motion of a slip mode is no superposition
+    """
+    _variant = _support.choose("tangential_state", _TANGENTIAL_STATE, friction=friction)
+    _values, _extra = _support.arguments("tangential_state", _variant.names, params)
+    tau = _support.param("tangential_state", "tau", tau, "nonnegative")
+    X1_0 = _support.param("tangential_state", "X1_0", X1_0, "real")
+    Y1_0 = _support.param("tangential_state", "Y1_0", Y1_0, "real")
+    zf_0 = _support.param("tangential_state", "zf_0", zf_0, "real")
+    vf_0 = _support.param("tangential_state", "vf_0", vf_0, "real")
+    z_0 = _support.param("tangential_state", "z_0", z_0, "real")
+    v_0 = _support.param("tangential_state", "v_0", v_0, "real")
+    zf = _support.param("tangential_state", "zf", zf, "real")
+    vf = _support.param("tangential_state", "vf", vf, "real")
+    z = _support.param("tangential_state", "z", z, "real")
+    v = _support.param("tangential_state", "v", v, "real")
+    sgn = _support.param("tangential_state", "sgn", sgn, "real")
+    _shape = _support.shape_of(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, *_values, *_extra)
+    return _variant.impl(_shape, tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, *_values)
+
+
+def bind_tangential_state(*, friction='coulomb', backend=None, **params):
+    """`tangential_state` as a scalar kernel with the parameters checked once and bound.
+
+    ``bind_tangential_state(**params)(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn)`` equals ``tangential_state(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, **params)``
+    for scalar inputs and returns a tuple of floats. For the inner loops of an
+    integrator: the arguments are checked here, not on every call.
+
+    Parameters
+    ----------
+    beta1 : float
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : float
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    mu_s : float
+        static friction coefficient: Coulomb's of Eq. (3), the bound of stick [1],
+        nonnegative.
+    friction : {"coulomb", "stribeck"}, default 'coulomb'
+        friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
+        static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
+        mu_k) exp(-|Vr|/v_s).
+    backend : {"python", "numba"}, optional
+        The kernel as plain Python, or compiled by ``numba.njit`` (on first call;
+        cached on disk). Default: numba if it is installed, else python.
+    **params
+        Any other model parameter (accepted and ignored).
+
+    Returns
+    -------
+    _support.Bound
+        Call it as ``kernel(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn)``; ``.kernel`` and ``.args`` are the raw kernel
+        and the bound values, for a caller that compiles its own loop.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing (also
+        a parameter of the chosen law).
+    _support.Unsupported
+        A ValueError, for a choice of laws without the property this needs:
+        - friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' through
+        Vr = X1' - Vb: the tangential motion of a slip mode is no superposition
+    ImportError
+        For backend="numba" when numba is not installed.
+    """
+    _variant = _support.choose("bind_tangential_state", _TANGENTIAL_STATE, friction=friction)
+    return _support.bind("tangential_state", _variant, params, backend)
+
+
+def _tangential_state__coulomb(_shape, tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, beta1, omega1, mu_s):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = mu_s*sgn
+        _x1 = X1_0 + _x0*z_0 - zf_0
+        _x2 = omega1*tau
+        _x3 = _x2*beta1
+        _x4 = numpy.exp(-_x3)
+        _x5 = numpy.sqrt(beta1 + 1)
+        _x6 = beta1 - 1
+        _x7 = numpy.sqrt(-_x6)
+        _x8 = _x2*_x5*_x7
+        _x9 = numpy.cos(_x8)
+        _x10 = _x5**(-1.0)
+        _x11 = _x10*beta1
+        _x12 = _x4*numpy.sin(_x8)/_x7
+        _x13 = _x11*_x12
+        _x14 = _x10*_x12
+        _x15 = Y1_0 + _x0*v_0 - vf_0
+        _x16 = _x15/omega1
+        _x17 = _x0*z
+        _x18 = -_x17 + zf
+        _x19 = numpy.less(beta1, 1)
+        _x20 = numpy.sqrt(_x6)
+        _x21 = _x20*_x5
+        _x22 = numpy.exp(-_x2/(_x21 + beta1))
+        _x23 = (1/2)*numpy.expm1(-2*_x2*_x21)
+        _x24 = _x22*_x23/_x20
+        _x25 = _x10*_x24
+        _x26 = _x23 + 1
+        _x27 = _x11*_x24
+        _x28 = numpy.greater(beta1, 1)
+        _x29 = _x3*_x4
+        _x30 = _x4*tau
+        _x31 = _x1*omega1
+        _x32 = _x0*v
+        _x33 = _x32 - vf
+        return _support.tuple_of(_shape, numpy.select([_x19,_x28,True], [_x1*(_x13 + _x4*_x9) + _x14*_x16 + _x18,_x1*(_x22*_x26 - _x27) - _x16*_x25 - _x17 + zf,_x1*(_x29 + _x4) + _x15*_x30 + _x18], default=numpy.nan), numpy.select([_x19,_x28,True], [-_x14*_x31 + _x15*(-_x13 + _x4*_x9) - _x33,_x15*(_x22*_x26 + _x27) + _x25*_x31 - _x32 + vf,-_x1*_x30*omega1**2 + _x15*(-_x29 + _x4) - _x33], default=numpy.nan))
+
+
+def _tangential_state__coulomb__scalar(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, beta1, omega1, mu_s):
+    """Scalar kernel of `tangential_state` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (beta1 < 1):
+        _x0 = mu_s*sgn
+        _x1 = Y1_0 + _x0*v_0 - vf_0
+        _x2 = omega1*tau
+        _x3 = math.exp(-_x2*beta1)
+        _x4 = math.sqrt(beta1 + 1)
+        _x5 = math.sqrt(1 - beta1)
+        _x6 = _x2*_x4*_x5
+        _x7 = _x3*math.sin(_x6)/(_x4*_x5)
+        _x8 = X1_0 + _x0*z_0 - zf_0
+        _x9 = math.cos(_x6)
+        _x10 = _x7*beta1
+        return (-_x0*z + _x1*_x7/omega1 + _x8*(_x10 + _x3*_x9) + zf, -_x0*v + _x1*(-_x10 + _x3*_x9) - _x7*_x8*omega1 + vf,)
+    elif (beta1 > 1):
+        _x0 = mu_s*sgn
+        _x1 = Y1_0 + _x0*v_0 - vf_0
+        _x2 = math.sqrt(beta1 - 1)
+        _x3 = math.sqrt(beta1 + 1)
+        _x4 = _x2*_x3
+        _x5 = omega1*tau
+        _x6 = math.exp(-_x5/(_x4 + beta1))
+        _x7 = (1/2)*math.expm1(-2*_x4*_x5)
+        _x8 = _x6*_x7/(_x2*_x3)
+        _x9 = X1_0 + _x0*z_0 - zf_0
+        _x10 = _x7 + 1
+        _x11 = _x8*beta1
+        return (-_x0*z - _x1*_x8/omega1 + _x9*(_x10*_x6 - _x11) + zf, -_x0*v + _x1*(_x10*_x6 + _x11) + _x8*_x9*omega1 + vf,)
+    else:
+        _x0 = mu_s*sgn
+        _x1 = Y1_0 + _x0*v_0 - vf_0
+        _x2 = beta1*omega1*tau
+        _x3 = math.exp(-_x2)
+        _x4 = _x3*tau
+        _x5 = X1_0 + _x0*z_0 - zf_0
+        _x6 = _x2*_x3
+        return (-_x0*z + _x1*_x4 + _x5*(_x3 + _x6) + zf, -_x0*v + _x1*(_x3 - _x6) - _x4*_x5*omega1**2 + vf,)
+
+
+_TANGENTIAL_STATE = {
+    ('coulomb',): _support.Variant(_tangential_state__coulomb, ('beta1', 'omega1', 'mu_s', ), _tangential_state__coulomb__scalar, None),
+    ('stribeck',): _support.Refused("friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' through Vr = X1' - Vb: the tangential motion of a slip mode is no superposition"),
 }

@@ -50,7 +50,7 @@ from typing import Any, Literal
 import numpy as np
 
 from ..integrate.normal import normal_motion
-from ..integrate.superposition import Superposition
+from ..integrate.superposition import Superposition, friction_direction
 from ..integrate.switching import Mode
 from ..model import Backend, Model, as_model, excitation_period, initial_state
 from .locked import LOCK_LIMIT, NotLocked, map_stroboscope, minimal_periods
@@ -509,27 +509,23 @@ def largest_sliding_velocity(pmap: OnePeriodMap) -> float:
     response grazes at the belt speed equal to it (`beltmdsm.analysis.band`).
     """
     x0 = pmap.sliding_orbit()
-    normal = pmap.engine.normal
+    engine = pmap.engine
+    normal = engine.normal
     grid = normal.grid[normal.grid <= pmap.T]
     segment = np.clip(
         np.searchsorted(normal.switch_t, grid, side="right") - 1, 0, len(normal.switch_mode) - 1
     )
     contact = np.array([normal.switch_mode[k] == Mode.SLIP_BACK for k in segment])
-    P = pmap.stm.array(grid)
-    mu = pmap.p["mu_s"]
-    v = (
-        P[:, 1, 0] * x0[0]
-        + P[:, 1, 1] * x0[1]
-        + normal.on_grid[5, : grid.size]
-        + mu * normal.on_grid[1, : grid.size]
-    )
+    # the orbit is one superposition from phase 0 (`OnePeriodMap.sliding_orbit`)
+    start, sgn = engine.start(0.0, x0[0], x0[1]), friction_direction(Mode.SLIP_BACK)
+    z, v, _, _, zf, vf = normal.on_grid[:, : grid.size]
+    v = engine.state.array(grid, *start, zf, vf, z, v, sgn)[1]
     v = np.where(contact, v, -np.inf)
     k = int(np.argmax(v))
 
     def minus_velocity(t):
-        P = np.array(pmap.stm(t)).reshape(2, 2)
-        z = normal.at(t)
-        return -(P[1] @ x0 + pmap.engine.exc(t)[1] + mu * z[1])
+        z, v = normal.at(t)[:2]
+        return -engine.state(t, *start, *engine.exc(t), z, v, sgn)[1]
 
     from scipy import optimize
 

@@ -91,7 +91,7 @@ from ..integrate import _compiled, _dop853
 from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.normal import normal_motion
 from ..integrate.superposition import FACTS as SUPERPOSITION_FACTS
-from ..integrate.superposition import Superposition, TangentialRun
+from ..integrate.superposition import Superposition, TangentialRun, friction_direction
 from ..integrate.switching import SURFACE_INDEX, Mode, Switching
 from ..integrate.trajectory import Run
 from ..model import Backend, Model, excitation_period, initial_state, require
@@ -384,13 +384,19 @@ class OnePeriodMap:
     def sliding_orbit(self) -> NDArray[np.float64]:
         """``(X1, X1')`` at phase 0 of the orbit that slides backwards throughout.
 
-        Sliding back in contact and free of friction in flight or separation, the
-        tangential motion is linear: ``x(T) = Phi(T) x0 + zf(T) + mu_s z(T)``.
+        Sliding back in contact and free of friction in flight or separation (where the
+        response ``z`` to the contact force has no forcing), the tangential motion is
+        one superposition with ``sgn = -1`` (`generated.oscillator.tangential_state`),
+        affine in the start: ``x(T) = Phi(T) x0 + c`` with ``c`` the motion from
+        ``x0 = 0``, whose fixed point solves ``(I - Phi(T)) x0 = c``.
         """
-        z = self.engine.normal.evaluate(np.array([self.T]))[:2, 0]
-        zf = np.array(self.engine.exc(self.T))
+        engine = self.engine
+        start = engine.start(0.0, 0.0, 0.0)
+        z, v = engine.normal.evaluate(np.array([self.T]))[:2, 0]
+        sgn = friction_direction(Mode.SLIP_BACK)
+        c = np.array(engine.state(self.T, *start, *engine.exc(self.T), z, v, sgn))
         Phi = np.array(self.stm(self.T)).reshape(2, 2)
-        return np.linalg.solve(np.eye(2) - Phi, zf + self.p["mu_s"] * z)
+        return np.linalg.solve(np.eye(2) - Phi, c)
 
     def saltation(self, before: Mode, after: Mode, surface: str) -> Any:
         """The bound saltation matrix of one switch (`generated.hybrid.saltation`), kept."""

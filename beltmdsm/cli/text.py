@@ -1,27 +1,32 @@
 """The readable text of each command's result, and JSON-able values.
 
 Every function takes a result and returns the lines the command prints; none computes.
+The result types are imported for the annotations only: a command loads this module
+with what it runs, not with every analysis (``sweep`` would otherwise import the
+predictions, SciPy's optimizers among them, before its first point).
 """
 
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..analysis.band import Band
-from ..analysis.branch import Branch
-from ..analysis.floquet import Floquet
-from ..analysis.floquet_map import FloquetMap
-from ..analysis.predict import Prediction
-from ..analysis.summary import PEAK_PRESENT_RATIO, Summary
 from ..intervals import format_intervals
-from ..simulation import Simulation
-from ..studies.coexistence import Coexistence
-from ..studies.responses import ResponseSet
-from ..studies.sweep import Sweep
-from ..studies.validation import ANALYSES, Validation
+
+if TYPE_CHECKING:
+    from ..analysis.band import Band
+    from ..analysis.branch import Branch
+    from ..analysis.floquet import Floquet
+    from ..analysis.floquet_map import FloquetMap
+    from ..analysis.predict import Prediction
+    from ..analysis.summary import Summary
+    from ..simulation import Simulation
+    from ..studies.coexistence import Coexistence
+    from ..studies.responses import ResponseSet
+    from ..studies.sweep import Sweep
+    from ..studies.validation import Validation
 
 __all__ = [
     "jsonable",
@@ -328,6 +333,8 @@ def _values(x) -> str:
 
 def sweep_validation(result: Sweep) -> list[str]:
     """Where the omega1 peak appears in a sweep over Vb, beside the paper's statement."""
+    from ..analysis.summary import PEAK_PRESENT_RATIO
+
     table, param = result.table, result.param
     x = np.asarray(table[param], float)
     resolved = np.asarray(table["resolved"], bool)
@@ -431,6 +438,8 @@ def prediction(result: Prediction) -> str:
 
 def validation(results: Validation, out_file: str) -> str:
     """What ``validate`` prints after writing its file."""
+    from ..studies.validation import ANALYSES
+
     lines = []
     for key, lab, _ in ANALYSES:
         s = results.summary[key]

@@ -73,7 +73,7 @@ _ADVANCE = (
 _SCAN = (
     _superpose,
     ("tangential_state", "_normal_at", "_inside_at", "_refine", "_dip", "scan"),
-    ("_stm_kernel", "_exc_kernel", "_surface_kernel", "_rate_kernel"),
+    ("_state_kernel", "_exc_kernel", "_surface_kernel", "_rate_kernel"),
     (_dop853._dense, _roots.converged, _roots.secant, _roots.illinois, _roots.golden),
 )
 
@@ -109,11 +109,11 @@ def advance(field: str, model: Model, backend: Backend | None = None):
 
 
 def scan(model: Model, backend: Backend | None = None):
-    """`beltmdsm.integrate._superpose.scan` for the model's laws: ``f(mode, stick, ms, watch,
-    dirs, t0, tc, d0, d1, X1s, Vb, grid, on_grid, ts, hs, ys, Fs, stm_a, exc_a, surf_a,
+    """`beltmdsm.integrate._superpose.scan` for the model's laws: ``f(mode, stick, sgn,
+    watch, dirs, t0, tc, start, Vb, grid, on_grid, ts, hs, ys, Fs, state_a, exc_a, surf_a,
     rate_a)``."""
     kernels = (
-        _kernel(oscillator.bind_state_transition, model),
+        _kernel(oscillator.bind_tangential_state, model),
         _kernel(oscillator.bind_excitation_response, model),
         _kernel(hybrid.bind_surfaces, model),
         _kernel(hybrid.bind_surface_rates, model),

@@ -1,13 +1,10 @@
 """The scan of the superposition integrator: the first switch of a closed-form tangential motion.
 
-Between switches the tangential motion of a slip mode is
-
-    (X1, X1')(t) = Phi(t - t0) d + zf(t) - mu_s sgn z(t),
-
-with ``Phi`` the closed-form state-transition matrix (`generated.oscillator`), ``zf``
-the closed-form excitation response and ``z`` the response to the contact force
-(`beltmdsm.integrate.normal`); in flight or separation the ``z`` term drops, while sticking
-``X1 = X1s + Vb (t - t0)``. `scan` walks a uniform grid from ``t0`` to ``tc`` (the
+Between switches the tangential motion of a slip mode, in flight or in separation
+is the generated superposition `generated.oscillator.tangential_state` of the state at
+the switch ``t0``, the excitation response and the response to the contact force
+(`beltmdsm.integrate.normal`) with the mode's friction direction (0 out of contact),
+while sticking ``X1 = X1(t0) + Vb (t - t0)``. `scan` walks a uniform grid from ``t0`` to ``tc`` (the
 end of the normal motion's current segment), evaluates the watched switching
 functions there (`generated.hybrid.surfaces`, at the full state) with their rates
 along the mode (`generated.hybrid.surface_rates`), and where a sign changes or the
@@ -32,15 +29,32 @@ _SAMPLES = 16
 _DIP_RESOLUTION = 1e-8
 
 # The kernels are globals, bound by `beltmdsm.integrate._compiled` (see its _dop853).
-_stm_kernel = _exc_kernel = _surface_kernel = _rate_kernel = None
+_state_kernel = _exc_kernel = _surface_kernel = _rate_kernel = None
 
 
-def tangential_state(stick, ms, t, t0, d0, d1, X1s, Vb, z, v, zf, vf, stm_a):
-    """``(X1, X1')`` at ``t`` of the mode started at ``t0`` (module docstring)."""
+def tangential_state(stick, sgn, t, t0, start, Vb, z, v, zf, vf, state_a):
+    """``(X1, X1')`` at ``t`` of the mode started at ``t0`` (module docstring).
+
+    ``start``: ``(X1, X1', zf, zf', z, z')`` at ``t0``; ``z, v, zf, vf`` the responses
+    at ``t``; ``sgn`` the friction direction (0 out of contact).
+    """
     if stick:
-        return X1s + Vb * (t - t0), Vb
-    P = _stm_kernel(t - t0, *stm_a)
-    return (P[0] * d0 + P[1] * d1 + zf - ms * z, P[2] * d0 + P[3] * d1 + vf - ms * v)
+        return start[0] + Vb * (t - t0), Vb
+    return _state_kernel(
+        t - t0,
+        start[0],
+        start[1],
+        start[2],
+        start[3],
+        start[4],
+        start[5],
+        zf,
+        vf,
+        z,
+        v,
+        sgn,
+        *state_a,
+    )
 
 
 def _normal_at(ts, hs, ys, Fs, t, out):
@@ -53,13 +67,13 @@ def _normal_at(ts, hs, ys, Fs, t, out):
 def _inside_at(t, j, ctx):
     """``-direction * h`` of watched surface ``j`` at ``t``: positive inside the mode.
 
-    ``ctx`` holds the mode's motion: ``(watch, dirs, stick, ms, t0, d0, d1, X1s, Vb,
-    ts, hs, ys, Fs, stm_a, exc_a, surf_a, tmp)`` (`scan`).
+    ``ctx`` holds the mode's motion: ``(watch, dirs, stick, sgn, t0, start, Vb, ts, hs,
+    ys, Fs, state_a, exc_a, surf_a, tmp)`` (`scan`).
     """
-    watch, dirs, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys, Fs, stm_a, exc_a, surf_a, tmp = ctx
+    watch, dirs, stick, sgn, t0, start, Vb, ts, hs, ys, Fs, state_a, exc_a, surf_a, tmp = ctx
     _normal_at(ts, hs, ys, Fs, t, tmp)
     zf, vf = _exc_kernel(t, *exc_a)
-    X1, Y1 = tangential_state(stick, ms, t, t0, d0, d1, X1s, Vb, tmp[0], tmp[1], zf, vf, stm_a)
+    X1, Y1 = tangential_state(stick, sgn, t, t0, start, Vb, tmp[0], tmp[1], zf, vf, state_a)
     h = _surface_kernel(t, X1, Y1, tmp[2], tmp[3], *surf_a)
     return -dirs[j] * h[watch[j]]
 
@@ -97,14 +111,12 @@ def _dip(lo, hi, j, ctx):
 def scan(
     mode,
     stick,
-    ms,
+    sgn,
     watch,
     dirs,
     t0,
     tc,
-    d0,
-    d1,
-    X1s,
+    start,
     Vb,
     grid,
     on_grid,
@@ -112,7 +124,7 @@ def scan(
     hs,
     ys,
     Fs,
-    stm_a,
+    state_a,
     exc_a,
     surf_a,
     rate_a,
@@ -125,21 +137,19 @@ def scan(
         Mode code (for the rates along the mode).
     stick : bool
         Whether the mode holds ``X1' = Vb``.
-    ms : float
-        ``mu_s sgn`` of a slip mode, 0 in flight or separation.
+    sgn : float
+        The friction direction of a slip mode (-1, +1), 0 in flight or separation.
     watch, dirs : arrays
         Watched surfaces and the directions of the crossings that end the mode.
     t0, tc : float
-    d0, d1 : float
-        The free-motion part of the state at ``t0`` (slip, flight, separation).
-    X1s : float
-        ``X1`` at ``t0`` (stick).
+    start : tuple of 6 floats
+        ``(X1, X1', zf, zf', z, z')`` at ``t0``: the state and the two responses.
     grid, on_grid : arrays
         `beltmdsm.integrate.normal.NormalMotion` grid and its ``z, z', X2, X2', zf, zf'``.
     ts, hs, ys, Fs : arrays
         The normal motion's DOP853 steps.
-    stm_a, exc_a, surf_a, rate_a : tuple
-        The bound arguments of the kernels ``_stm_kernel`` (state transition),
+    state_a, exc_a, surf_a, rate_a : tuple
+        The bound arguments of the kernels ``_state_kernel`` (the superposition),
         ``_exc_kernel`` (excitation response), ``_surface_kernel``, ``_rate_kernel``.
 
     Returns
@@ -155,10 +165,10 @@ def scan(
     r_old = np.empty(n_watch)
     r_new = np.empty(n_watch)
     armed = np.empty(n_watch, dtype=np.bool_)
-    ctx = (watch, dirs, stick, ms, t0, d0, d1, X1s, Vb, ts, hs, ys, Fs, stm_a, exc_a, surf_a, tmp)
+    ctx = (watch, dirs, stick, sgn, t0, start, Vb, ts, hs, ys, Fs, state_a, exc_a, surf_a, tmp)
     _normal_at(ts, hs, ys, Fs, t0, tmp)
     zf, vf = _exc_kernel(t0, *exc_a)
-    X1, Y1 = tangential_state(stick, ms, t0, t0, d0, d1, X1s, Vb, tmp[0], tmp[1], zf, vf, stm_a)
+    X1, Y1 = tangential_state(stick, sgn, t0, t0, start, Vb, tmp[0], tmp[1], zf, vf, state_a)
     h = _surface_kernel(t0, X1, Y1, tmp[2], tmp[3], *surf_a)
     r = _rate_kernel(t0, X1, Y1, tmp[2], tmp[3], mode, *rate_a)
     for j in range(n_watch):
@@ -179,7 +189,7 @@ def scan(
         else:
             z, v, X2, Y2 = on_grid[0, k], on_grid[1, k], on_grid[2, k], on_grid[3, k]
             zf, vf = on_grid[4, k], on_grid[5, k]
-        X1, Y1 = tangential_state(stick, ms, t_new, t0, d0, d1, X1s, Vb, z, v, zf, vf, stm_a)
+        X1, Y1 = tangential_state(stick, sgn, t_new, t0, start, Vb, z, v, zf, vf, state_a)
         h = _surface_kernel(t_new, X1, Y1, X2, Y2, *surf_a)
         r = _rate_kernel(t_new, X1, Y1, X2, Y2, mode, *rate_a)
         best_j, best_t = -1, 0.0

@@ -5,12 +5,12 @@ mu_s, so the normal motion and ``z``, the tangential oscillator's response to it
 contact force, are integrated once (`beltmdsm.integrate.normal.NormalMotion`, cached across a
 sweep). The tangential equation is linear in each mode, so between switches
 
-    (X1, X1')(t) = Phi(t - t0) d + zf(t) - mu_s sgn z(t)
+    (X1, X1')(t) = Phi(t - t0) (x(t0) - f(t0)) + f(t),    f = zf - mu_s sgn z,
 
 with ``Phi`` the closed-form state-transition matrix and ``zf`` the closed-form
-response to the tangential excitation (`generated.oscillator`, derived in
-derive/oscillator.py), ``d`` fixed by the state at the switch ``t0``; in flight and
-separation the ``z`` term drops (no friction), while sticking ``X1' = Vb``. Every
+response to the tangential excitation: the generated superposition
+`generated.oscillator.tangential_state` (derived in derive/oscillator.py), with
+``sgn = 0`` in flight and separation (no friction), while sticking ``X1' = Vb``. Every
 tangential switch is located on these closed forms (`beltmdsm.integrate._superpose.scan`),
 every normal switch comes from the normal motion, and the mode after a switch is
 chosen by the same rules as in the event-driven integrator (`beltmdsm.integrate.switching`).
@@ -83,35 +83,32 @@ _TANGENTIAL = ("relative_velocity", "stick_forward", "stick_back")
 class _Segments:
     """The closed form of every segment, evaluated for many times at once."""
 
-    def __init__(self, normal, stm, exc, Vb):
-        self.normal, self.stm, self.exc, self.Vb = normal, stm, exc, Vb
-        self.t0, self.stick, self.ms, self.d, self.X1s = [], [], [], [], []
+    def __init__(self, normal, state, exc, Vb):
+        self.normal, self.state, self.exc, self.Vb = normal, state, exc, Vb
+        self.t0, self.stick, self.sgn, self.start = [], [], [], []
 
-    def add(self, t0, stick, ms, d, X1s):
+    def add(self, t0, stick, sgn, start):
+        """A segment from ``t0``: ``start`` is `Superposition.start` there."""
         self.t0.append(t0)
         self.stick.append(stick)
-        self.ms.append(ms)
-        self.d.append(d)
-        self.X1s.append(X1s)
+        self.sgn.append(sgn)
+        self.start.append(start)
 
     def freeze(self):
-        self.t0, self.stick, self.ms = (
+        self.t0, self.stick, self.sgn = (
             np.array(a, dtype=dt)
-            for a, dt in ((self.t0, float), (self.stick, bool), (self.ms, float))
+            for a, dt in ((self.t0, float), (self.stick, bool), (self.sgn, float))
         )
-        self.d, self.X1s = np.array(self.d, dtype=float).reshape(-1, 2), np.array(self.X1s)
+        self.start = np.array(self.start, dtype=float).reshape(-1, 6)
 
     def __call__(self, t, index):
         t = np.asarray(t, dtype=float)
         z, v, X2, Y2 = self.normal.evaluate(t)
         zf, vf = self.exc.array(t)
-        t0 = self.t0[index]
-        P = self.stm.array(t - t0)
-        d, ms = self.d[index], self.ms[index]
-        X1 = P[:, 0, 0] * d[:, 0] + P[:, 0, 1] * d[:, 1] + zf - ms * z
-        Y1 = P[:, 1, 0] * d[:, 0] + P[:, 1, 1] * d[:, 1] + vf - ms * v
+        t0, start = self.t0[index], self.start[index]
+        X1, Y1 = self.state.array(t - t0, *start.T, zf, vf, z, v, self.sgn[index])
         stick = self.stick[index]
-        X1 = np.where(stick, self.X1s[index] + self.Vb * (t - t0), X1)
+        X1 = np.where(stick, start[:, 0] + self.Vb * (t - t0), X1)
         Y1 = np.where(stick, self.Vb, Y1)
         return np.array([X1, Y1, X2, Y2])
 
@@ -172,8 +169,12 @@ class Superposition:
         check_applicable(model)
         self.model, self.normal = model, normal
         stm, exc = oscillator.bind_state_transition, oscillator.bind_excitation_response
+        state = oscillator.bind_tangential_state
         self.stm = stm(backend=backend, **model.arguments(stm))
         self.exc = exc(backend=backend, **model.arguments(exc))
+        #: the superposition: ``state(tau, *start, zf, vf, z, v, sgn)`` is ``(X1, X1')``
+        #: at ``t0 + tau`` of a mode entered at ``t0`` (`start`)
+        self.state = state(backend=backend, **model.arguments(state))
         # the scalar kernel answers inf or NaN where the closed form does not exist, as
         # the array implementation does, at a fraction of its cost
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -205,11 +206,19 @@ class Superposition:
             normal.h_steps,
             normal.y_steps,
             normal.F_steps,
-            self.stm.args,
+            self.state.args,
             self.exc.args,
             sw.surfaces.args,
             sw.rates.args,
         )
+
+    def start(self, t0: float, X1: float, Y1: float) -> tuple[float, ...]:
+        """``(X1, X1', zf, zf', z, z')`` at ``t0``: the state at a switch and the two
+        responses there, the start of `self.state <Superposition>` (the superposition,
+        `generated.oscillator.tangential_state`)."""
+        z, v = self.normal.at(t0)[:2]
+        zf, vf = self.exc(t0)
+        return (float(X1), float(Y1), float(zf), float(vf), float(z), float(v))
 
     def run(
         self,
@@ -224,9 +233,9 @@ class Superposition:
 
         ``progress``, if given, is called with the time reached after every segment.
         """
-        sw, normal, p = self.sw, self.normal, self.model.params
-        Vb, mu = p["Vb"], p["mu_s"]
-        segs = _Segments(normal, self.stm, self.exc, Vb)
+        sw, normal = self.sw, self.normal
+        Vb = self.model.params["Vb"]
+        segs = _Segments(normal, self.state, self.exc, Vb)
         modes, starts, ends, events, switches = [], [], [], [], []
         zeno = Zeno(sw)
         t = float(t0)
@@ -236,16 +245,12 @@ class Superposition:
             k = normal.segment_at(t)
             tc = min(float(normal.switch_t[k + 1]), t_end)
             stick = mode == Mode.STICK
-            ms = mu * int(mode) if mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD) else 0.0
-            z, v = normal.at(t)[:2]
-            zf, vf = self.exc(t)
-            d = (X1 - zf + ms * z, Y1 - vf + ms * v)
+            sgn = friction_direction(mode)
+            start = self.start(t, X1, Y1)
             w, dirs, rows = self.watch.get(mode, self._none)
-            hit, t_hit = self.scan(
-                float(mode), stick, ms, w, dirs, t, tc, d[0], d[1], X1, Vb, *self._args
-            )
+            hit, t_hit = self.scan(float(mode), stick, sgn, w, dirs, t, tc, start, Vb, *self._args)
             t_stop = float(t_hit) if hit >= 0 else tc
-            segs.add(t, stick, ms, d, X1)
+            segs.add(t, stick, sgn, start)
             modes.append(mode)
             starts.append(t)
             ends.append(t_stop)
@@ -330,17 +335,21 @@ def integrate_superposed(
     return Run(trajectory, out.events, out.status, out.message, "superposition")
 
 
+def friction_direction(mode: Mode) -> float:
+    """The friction direction ``sgn`` of a mode in the superposition: ``sgn(Vr)`` of a
+    slip mode (its code), 0 in flight or separation (no friction) and in stick (unused)."""
+    return float(int(mode)) if mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD) else 0.0
+
+
 def segs_state(segs, t, index):
     """The state at ``t`` in segment ``index`` (before `_Segments.freeze`)."""
     z, v, X2, Y2 = segs.normal.at(t)
+    start, t0 = segs.start[index], segs.t0[index]
     if segs.stick[index]:
-        return np.array([segs.X1s[index] + segs.Vb * (t - segs.t0[index]), segs.Vb, X2, Y2])
-    P = segs.stm(t - segs.t0[index])
+        return np.array([start[0] + segs.Vb * (t - t0), segs.Vb, X2, Y2])
     zf, vf = segs.exc(t)
-    d, ms = segs.d[index], segs.ms[index]
-    return np.array(
-        [P[0] * d[0] + P[1] * d[1] + zf - ms * z, P[2] * d[0] + P[3] * d[1] + vf - ms * v, X2, Y2]
-    )
+    X1, Y1 = segs.state(t - t0, *start, zf, vf, z, v, segs.sgn[index])
+    return np.array([X1, Y1, X2, Y2])
 
 
 def _mode_in(sw, normal, k, t, X1, Y1):

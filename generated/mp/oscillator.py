@@ -6,14 +6,15 @@ The tangential oscillator of Eq. (4) in closed form.
 
 Between two switches the tangential motion is linear: the state-transition matrix
 carries the state at the switch, the excitation response and the response to the
-contact force (integrated by the runtime) add to it (derive/oscillator.py).
+contact force (integrated by the runtime) add to it (derive/oscillator.py);
+`tangential_state` is that superposition.
 """
 
 import mpmath
 
 from .. import _support
 
-__all__ = ['state_transition', 'excitation_response']
+__all__ = ['state_transition', 'excitation_response', 'tangential_state']
 
 
 def state_transition(tau, **params):
@@ -232,4 +233,139 @@ def _excitation_response__impl(t, beta1, omega1, alpha_t, Omega_t, phase_t):
 
 _EXCITATION_RESPONSE = {
     (): _support.Variant(_excitation_response__impl, ('beta1', 'omega1', 'alpha_t', 'Omega_t', 'phase_t', )),
+}
+
+
+def tangential_state(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, *, friction='coulomb', **params):
+    """(X1, X1') at t0 + tau of a mode entered at t0: the superposition.
+
+    Implements Eq. (4), first row of the paper.
+
+    Phi(tau) (x0 - f(t0)) + f(t) with f = zf - mu sgn z: the free motion from the state
+    at the switch and the forced responses, zf to the excitation (`excitation_response`)
+    and z to the contact force (integrated with the normal motion,
+    generated.hybrid.response_field), both from rest at t = 0 (derive/oscillator.py).
+    Exact for a friction law whose slip-mode friction mu sgn F does not depend on the
+    tangential state.
+
+    mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits.
+
+    Parameters
+    ----------
+    tau : mpmath number
+        time since the switch [s], >= 0
+    X1_0 : mpmath number
+        tangential displacement at the switch t0 [m]
+    Y1_0 : mpmath number
+        tangential velocity X1' at the switch t0 [m/s]
+    zf_0 : mpmath number
+        excitation response at t0 (`excitation_response`) [m]
+    vf_0 : mpmath number
+        its rate at t0 [m/s]
+    z_0 : mpmath number
+        response to the contact force at t0 (per unit friction coefficient) [m]
+    v_0 : mpmath number
+        its rate at t0 [m/s]
+    zf : mpmath number
+        excitation response at t0 + tau [m]
+    vf : mpmath number
+        its rate at t0 + tau [m/s]
+    z : mpmath number
+        response to the contact force at t0 + tau [m]
+    v : mpmath number
+        its rate at t0 + tau [m/s]
+    sgn : mpmath number
+        friction direction of the mode: -1 (mass slower than the belt), +1, or 0 (flight or separation: no friction)
+    beta1 : mpmath number
+        tangential damping ratio C1/(2 M omega1), Eq. (4) [1], nonnegative.
+    omega1 : mpmath number
+        tangential natural frequency sqrt(K1/M), Eq. (4) [rad/s], positive.
+    mu_s : mpmath number
+        static friction coefficient: Coulomb's of Eq. (3), the bound of stick [1],
+        nonnegative.
+    friction : {"coulomb", "stribeck"}, default 'coulomb'
+        friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
+        static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
+        mu_k) exp(-|Vr|/v_s).
+    **params
+        Any other model parameter (accepted and ignored); an unknown
+        name raises TypeError.
+
+    Returns
+    -------
+    X1, Y1 : ndarray
+        The tangential state at t0 + tau.
+
+    Raises
+    ------
+    ValueError
+        If an input is NaN, infinite or outside its domain (the message names
+        it), or an option value is unknown.
+    TypeError
+        If a keyword is not a model parameter, or a parameter is missing (also
+        a parameter of the chosen law).
+    _support.Unsupported
+        A ValueError, for a choice of laws without the property this needs:
+        - friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' through
+        Vr = X1' - Vb: the tangential motion of a slip mode is no superposition
+    """
+    _variant = _support.choose("tangential_state", _TANGENTIAL_STATE, friction=friction)
+    _values = _support.mp_arguments("tangential_state", _variant.names, params)
+    tau = _support.mp_param("tangential_state", "tau", tau, "nonnegative")
+    X1_0 = _support.mp_param("tangential_state", "X1_0", X1_0, "real")
+    Y1_0 = _support.mp_param("tangential_state", "Y1_0", Y1_0, "real")
+    zf_0 = _support.mp_param("tangential_state", "zf_0", zf_0, "real")
+    vf_0 = _support.mp_param("tangential_state", "vf_0", vf_0, "real")
+    z_0 = _support.mp_param("tangential_state", "z_0", z_0, "real")
+    v_0 = _support.mp_param("tangential_state", "v_0", v_0, "real")
+    zf = _support.mp_param("tangential_state", "zf", zf, "real")
+    vf = _support.mp_param("tangential_state", "vf", vf, "real")
+    z = _support.mp_param("tangential_state", "z", z, "real")
+    v = _support.mp_param("tangential_state", "v", v, "real")
+    sgn = _support.mp_param("tangential_state", "sgn", sgn, "real")
+    return _variant.impl(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, *_values)
+
+
+def _tangential_state__coulomb(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, beta1, omega1, mu_s):
+    if (beta1 < 1):
+        _x0 = mu_s*sgn
+        _x1 = Y1_0 + _x0*v_0 - vf_0
+        _x2 = omega1*tau
+        _x3 = mpmath.exp(-_x2*beta1)
+        _x4 = mpmath.sqrt(beta1 + 1)
+        _x5 = mpmath.sqrt(1 - beta1)
+        _x6 = _x2*_x4*_x5
+        _x7 = _x3*mpmath.sin(_x6)/(_x4*_x5)
+        _x8 = X1_0 + _x0*z_0 - zf_0
+        _x9 = mpmath.cos(_x6)
+        _x10 = _x7*beta1
+        return (-_x0*z + _x1*_x7/omega1 + _x8*(_x10 + _x3*_x9) + zf, -_x0*v + _x1*(-_x10 + _x3*_x9) - _x7*_x8*omega1 + vf,)
+    elif (beta1 > 1):
+        _x0 = mu_s*sgn
+        _x1 = Y1_0 + _x0*v_0 - vf_0
+        _x2 = mpmath.sqrt(beta1 - 1)
+        _x3 = mpmath.sqrt(beta1 + 1)
+        _x4 = _x2*_x3
+        _x5 = omega1*tau
+        _x6 = mpmath.exp(-_x5/(_x4 + beta1))
+        _x7 = (mpmath.mpf(1)/mpmath.mpf(2))*mpmath.expm1(-2*_x4*_x5)
+        _x8 = _x6*_x7/(_x2*_x3)
+        _x9 = X1_0 + _x0*z_0 - zf_0
+        _x10 = _x7 + 1
+        _x11 = _x8*beta1
+        return (-_x0*z - _x1*_x8/omega1 + _x9*(_x10*_x6 - _x11) + zf, -_x0*v + _x1*(_x10*_x6 + _x11) + _x8*_x9*omega1 + vf,)
+    else:
+        _x0 = mu_s*sgn
+        _x1 = Y1_0 + _x0*v_0 - vf_0
+        _x2 = beta1*omega1*tau
+        _x3 = mpmath.exp(-_x2)
+        _x4 = _x3*tau
+        _x5 = X1_0 + _x0*z_0 - zf_0
+        _x6 = _x2*_x3
+        return (-_x0*z + _x1*_x4 + _x5*(_x3 + _x6) + zf, -_x0*v + _x1*(_x3 - _x6) - _x4*_x5*omega1**2 + vf,)
+
+
+_TANGENTIAL_STATE = {
+    ('coulomb',): _support.Variant(_tangential_state__coulomb, ('beta1', 'omega1', 'mu_s', )),
+    ('stribeck',): _support.Refused("friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' through Vr = X1' - Vb: the tangential motion of a slip mode is no superposition"),
 }

@@ -20,10 +20,6 @@ PACKAGE = Path(__file__).resolve().parents[2] / "beltmdsm"
 #: (relative velocity, periods, spectral lines) and may be computed with.
 COEFFICIENTS = {"beta1", "omega1", "beta2", "omega2", "alpha", "alpha_t", "alpha_n", "mu_s", "g"}
 
-_SUPERPOSITION = (
-    "superposition of generated responses: x = Phi x0 + zf + mu_s z (the tangential "
-    "equation is linear with the friction as a forcing)"
-)
 _BALANCE = (
     "the harmonic balance of the consistent MDSM: the tangential transfer function, "
     "not yet generated (issue 19)"
@@ -70,26 +66,6 @@ ALLOWED = {
         "omega1_band",
         "return (w1 - half, w1 + half) if half > 0 else None",
     ): "the same window",
-    (
-        "analysis/periodmap.py",
-        "sliding_orbit",
-        'return np.linalg.solve(np.eye(2) - Phi, zf + self.p["mu_s"] * z)',
-    ): _SUPERPOSITION,
-    (
-        "analysis/floquet.py",
-        "largest_sliding_velocity",
-        "+ mu * normal.on_grid[1, : grid.size]",
-    ): _SUPERPOSITION,
-    (
-        "analysis/floquet.py",
-        "minus_velocity",
-        "return -(P[1] @ x0 + pmap.engine.exc(t)[1] + mu * z[1])",
-    ): _SUPERPOSITION,
-    (
-        "integrate/superposition.py",
-        "run",
-        "ms = mu * int(mode) if mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD) else 0.0",
-    ): _SUPERPOSITION + "; mu_s sgn scales the response z",
     (
         "analysis/modulation.py",
         "friction_loop",

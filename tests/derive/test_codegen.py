@@ -140,6 +140,14 @@ STATE_DRAW = {
     "tau": lambda r: r.uniform(0, 30),
     "z": lambda r: r.normal() * 2,
     "v": lambda r: r.normal() * 3,
+    "X1_0": lambda r: r.normal() * 2,
+    "Y1_0": lambda r: r.normal() * 3,
+    "zf_0": lambda r: r.normal(),
+    "vf_0": lambda r: r.normal() * 2,
+    "z_0": lambda r: r.normal() * 2,
+    "v_0": lambda r: r.normal() * 3,
+    "zf": lambda r: r.normal(),
+    "vf": lambda r: r.normal() * 2,
 }
 
 
@@ -227,6 +235,17 @@ def entry_scale(name, state, options, p, ref):
         return (1 + p["omega1"] * s["tau"]) * np.abs(ref).max()
     if name == "excitation_response":
         return H.response_scale(p, t)
+    if name == "tangential_state":  # Phi's scale times the free part, plus the forced part
+        tau, m = s["tau"], p["mu_s"] * abs(s["sgn"])
+        Phi = np.abs(_osc.state_transition(tau, beta1=p["beta1"], omega1=p["omega1"]))
+        free = [
+            abs(s[x]) + abs(s[f]) + m * abs(s[r])
+            for x, f, r in (("X1_0", "zf_0", "z_0"), ("Y1_0", "vf_0", "v_0"))
+        ]
+        forced = [abs(s["zf"]) + m * abs(s["z"]), abs(s["vf"]) + m * abs(s["v"])]
+        return (1 + p["omega1"] * tau) * Phi.max() * sum(free) * (
+            1 + p["omega1"] + 1 / p["omega1"]
+        ) + np.array(forced)
     raise KeyError(name)
 
 
@@ -246,8 +265,8 @@ def compare_bound(module, name, backend, rng, draws):
         for _ in range(draws):
             p = bind_params(rng)
             state = [STATE_DRAW[n](rng) for n in names]
-            if module is _osc:
-                state = [abs(v) * 6 for v in state]  # the response from rest: t >= 0
+            if module is _osc:  # the response from rest: t >= 0
+                state = [abs(v) * 6 if n in ("t", "tau") else v for n, v in zip(names, state)]
             bound = getattr(module, name)(**options, backend=backend, **p)
             assert bound.backend == backend
             got = np.ravel(np.asarray(bound(*state), dtype=float))
@@ -335,7 +354,8 @@ def test_bound_kernel_exposes_its_raw_kernel_and_checked_parameters(module, name
     }
     assert bound.params == {k: full[k] for k in bound.params}
     assert all(type(v) is float for v in bound.args)
-    state = [0.3, 0.1, 2.0, 1.3, -0.2, -1.0][: len(state_names(getattr(module, name[5:])))]
+    n_state = len(state_names(getattr(module, name[5:])))
+    state = [0.3, 0.1, 2.0, 1.3, -0.2, -1.0, 0.7, -0.4, 0.9, 1.1, -0.6, -1.0][:n_state]
     if name in ("bind_vector_field", "bind_surface_rates", "bind_response_field"):
         state[-1] = 1.0
     assert bound.kernel(*state, *bound.args) == bound(*state)

@@ -4,6 +4,7 @@ import pytest
 import sympy as sp
 
 from derive import dynamics as dyn
+from derive import oscillator as osc
 from derive import stability as st
 from derive import statespace as ss
 from derive.model import (
@@ -178,3 +179,18 @@ def test_power_balance_is_the_time_derivative_of_energy_for_every_law(friction, 
     x = sp.Symbol("x", positive=True)
     for value in (x, -x):
         assert sp.simplify((dEdt - (p_in - p_visc - p_fric)).subs(dyn.X2r, value)) == 0
+
+
+def test_the_superposition_solves_the_tangential_equation():
+    """Phi' = A Phi, Phi(0) = I for each damping regime, and Phi (x0 - f0) + f solves
+    the tangential equation of a mode from x0 (derive/oscillator.py); no superposition
+    for a friction law that depends on the sliding speed."""
+    osc.verify_state_transition()
+    for friction in FRICTION_LAWS:
+        if osc.tangential_state(friction) is None:
+            with pytest.raises(AssertionError, match="no superposition"):
+                osc.verify_tangential_state(friction)
+        else:
+            osc.verify_tangential_state(friction)
+    assert osc.tangential_state("coulomb") is not None
+    assert osc.tangential_state("stribeck") is None

@@ -337,5 +337,42 @@ def test_slip_motion_is_free_plus_forced_plus_contact_response(mode, contact):
         )
         size = max(1.0, np.abs(x).max(), np.abs(y).max())
         assert np.abs(x[:2] - parts).max() <= 1e-9 * size, (t, x[:2], parts)
+        # the generated superposition, from a switch at t0 = 0.5 where the responses
+        # are not at rest
+        t0 = 0.5
+        start = (*full.sol(t0)[:2], *oscillator.excitation_response(t0, **p), *resp.sol(t0)[:2])
+        zf, vf = oscillator.excitation_response(t, **p)
+        got = oscillator.tangential_state(t - t0, *start, zf, vf, *y[:2], s, **p)
+        assert np.abs(x[:2] - np.array(got)).max() <= 1e-9 * size, (t, x[:2], got)
         assert np.abs(x[2:] - y[2:]).max() <= 1e-9 * size  # the same normal motion
         assert np.abs(y[:2]).max() > 1e-3 or s == 0 or contact == "kelvin_voigt"
+
+
+@pytest.mark.parametrize("beta1", [0.3, 1.0, 2.5])
+def test_tangential_state_is_its_parts_and_its_mpmath_twin(beta1):
+    """Phi (x0 - f0) + f with f = zf - mu_s sgn z, typed here from `state_transition`;
+    and the mpmath twin at 30 digits (the critical branch at beta1 = 1). A few ulps of
+    the terms: (1 + omega1 tau) |Phi| times the free part, plus the forced part."""
+    p = params(beta1=beta1, omega1=1.3)
+    tau, x0, f0, z0, f, z = 2.1, (0.4, -1.2), (0.3, -0.7), (1.1, 0.2), (-0.2, 0.9), (0.8, -0.5)
+    for sgn in (-1.0, 0.0, 1.0):
+        args = (tau, *x0, *f0, *z0, *f, *z, sgn)
+        got = np.array(oscillator.tangential_state(*args, **p))
+        m = p["mu_s"] * sgn
+        free = np.subtract(x0, np.subtract(f0, np.multiply(m, z0)))
+        Phi = oscillator.state_transition(tau, **p)
+        ref = Phi @ free + np.subtract(f, np.multiply(m, z))
+        scale = (1 + 1.3 * tau) * np.abs(Phi).max() * np.abs(free).sum() + 2
+        assert np.abs(got - ref).max() <= 16 * EPS * scale
+        with mpmath.workdps(30):
+            twin = [float(v) for v in mp_oscillator.tangential_state(*args, **p)]
+        assert np.abs(got - twin).max() <= 16 * EPS * scale
+
+
+def test_tangential_state_refuses_a_friction_law_that_depends_on_the_speed():
+    from generated._support import Unsupported
+
+    with pytest.raises(Unsupported, match="no superposition"):
+        oscillator.tangential_state(1.0, *[0.0] * 10, -1.0, friction="stribeck", **BASE)
+    with pytest.raises(Unsupported, match="stribeck"):
+        oscillator.bind_tangential_state(friction="stribeck", **BASE)
