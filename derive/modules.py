@@ -1137,7 +1137,7 @@ def correlation() -> ModuleSpec:
             (cr.V, cr.N1, cr.theta),
             {**docs, **balance_docs},
             notes="The linearisation of the averaged friction at frozen fast amplitude and "
-            "phase (runtime.predict's consistent MDSM). " + quadrature,
+            "phase (beltmdsm.analysis.predict's consistent MDSM). " + quadrature,
         ),
         FunctionSpec(
             "transfer_function",
@@ -1147,7 +1147,7 @@ def correlation() -> ModuleSpec:
             "re, im : ndarray\n    omega1^2 - Omega_t^2 and 2 beta1 omega1 Omega_t: a displacement "
             "x e^(i W t)\n    needs the force q(i W) x.",
             {(): list(cr.transfer_function())},
-            notes="The transfer function of the harmonic balance (runtime.predict's D).",
+            notes="The transfer function of the harmonic balance (`harmonic_balance`).",
         ),
         FunctionSpec(
             "harmonic_balance",
@@ -1179,7 +1179,7 @@ fast tangential motion, and the fast normal force. ``averaged_friction``,
 averages; ``friction_average``, ``friction_average_slope`` and ``friction_harmonic``
 those of a friction law (``friction=``), and ``slow_damping`` and
 ``harmonic_balance`` the pieces of the consistent MDSM built from them.
-``runtime.predict`` builds the stability prediction from them.
+``beltmdsm.analysis.predict`` builds the stability prediction from them.
 """,
         functions,
     )

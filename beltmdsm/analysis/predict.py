@@ -60,7 +60,7 @@ from generated import _support, capabilities, correlation, friction, stability, 
 
 from .. import intervals
 from ..errors import Refused
-from ..model import Model, as_model, require
+from ..model import OPTION_DEFAULTS, Model, as_model, require
 from ..settings import MAX_VB_POINTS
 
 __all__ = [
@@ -760,9 +760,9 @@ class Prediction:
     paper_coupled_vhat: list[tuple[float, float]] | None
     consistent_mdsm: list[tuple[float, float]] | None
     reasons: dict[str, str] = field(default_factory=dict)
-    tension: str = "allowed"
-    contact: str = "hertz_damp"
-    friction: str = "coulomb"
+    tension: str = OPTION_DEFAULTS["tension"]
+    contact: str = OPTION_DEFAULTS["contact"]
+    friction: str = OPTION_DEFAULTS["friction"]
 
     #: The analyses, in the order they are printed.
     ANALYSES = ("paper_tangential_vhat", "paper_coupled_vhat", "consistent_mdsm")
