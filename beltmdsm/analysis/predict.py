@@ -397,7 +397,8 @@ def _check_points(points):
     if points > MAX_VB_POINTS:
         raise Refused(
             f"points = {points} is more than MAX_VB_POINTS = {MAX_VB_POINTS:.0e} "
-            "(beltmdsm/settings.py): up to 2 ms a point, and every edge is "
+            "(beltmdsm/settings.py): up to 2 ms a point (6 ms under a law whose fast "
+            "average is a quadrature), and every edge is "
             "refined to 1e-10 m/s anyway",
             "points",
         )
