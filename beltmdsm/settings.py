@@ -171,7 +171,9 @@ MAX_RUN_BYTES = 4 * 2**30
 #: balance takes 1.3 to 2 ms a point (measured at the base set: 400 points in 0.8 s,
 #: 4000 in 5.2 s, 30000 in 60 s with the other core busy), so 10^5 points take two to
 #: three minutes (with a progress bar); a larger grid resolves nothing that the
-#: refinement of every edge to 1e-10 m/s does not already.
+#: refinement of every edge to 1e-10 m/s does not already. Under a friction law whose
+#: fast average is a quadrature (Stribeck's) a point takes about 6 ms (2000 points in
+#: 12 s), 10^5 points ten minutes.
 MAX_VB_POINTS = 10**5
 #: Most grid points of `beltmdsm.analysis.band.floquet_band`: a point takes about 2 ms
 #: (6 ms where no periodic response is found; measured at the base set over Vb in

@@ -871,6 +871,17 @@ def stability() -> ModuleSpec:
             for q in (fq.tangential, fq.normal)
         ]
 
+    def _below(expr, bound):
+        """``expr < bound`` as a condition (a Piecewise ``expr`` taken branch by branch:
+        the printers' conditions are plain relations, not Piecewise values)."""
+        if not isinstance(expr, sp.Piecewise):
+            return sp.StrictLessThan(expr, bound)
+        terms, others = [], sp.true
+        for value, cond in expr.args:
+            terms.append(sp.And(others, cond, _below(value, bound)))
+            others = sp.And(others, sp.Not(cond))
+        return sp.Or(*terms)
+
     def boundary(f, c, cv, upper=False):
         lower = st.critical_belt_speed(cv, c, f)
         if lower is None:
@@ -886,7 +897,15 @@ def stability() -> ModuleSpec:
             )
         if not upper:
             return lower
-        return [lower, P["Vhat"] if cv == "paper" else sp.nan]
+        if cv != "paper":
+            return [lower, sp.nan]
+        # (Vb_c, Vhat] is empty where Vb_c = Vhat (no friction at rest, mu_s = 0: the
+        # slope of Eq. 25 is 0, also at Vhat): NaN, as the consistent convention's
+        nonempty = _below(lower, P["Vhat"])
+        return [
+            sp.Piecewise((lower, nonempty), (sp.nan, True)),
+            sp.Piecewise((P["Vhat"], nonempty), (sp.nan, True)),
+        ]
 
     hurwitz = each(lambda f, c, cv: st.hurwitz_factored(*pqrs(f, c, cv)))
     common = dict(options=LAWS_FC + opts, vhat=True)
@@ -998,7 +1017,8 @@ def stability() -> ModuleSpec:
             "Eqs. (25), (28)",
             "tuple",
             "lower, upper : ndarray\n    paper: (critical_belt_speed, Vhat), an interval"
-            " closed at Vhat\n    (infinite slope); consistent: (NaN, NaN), empty.",
+            " closed at Vhat\n    (infinite slope), or (NaN, NaN) where it is empty "
+            "(critical_belt_speed = Vhat:\n    mu_s = 0); consistent: (NaN, NaN), empty.",
             each(lambda f, c, cv: boundary(f, c, cv, upper=True)),
             **common,
         ),
@@ -1161,7 +1181,7 @@ def correlation() -> ModuleSpec:
             (cr.V, cr.N1, cr.theta),
             {**docs, **balance_docs},
             notes="The linearisation of the averaged friction at frozen fast amplitude and "
-            "phase (runtime.predict's consistent MDSM). " + quadrature,
+            "phase (beltmdsm.analysis.predict's consistent MDSM). " + quadrature,
         ),
         FunctionSpec(
             "transfer_function",
@@ -1171,7 +1191,7 @@ def correlation() -> ModuleSpec:
             "re, im : ndarray\n    omega1^2 - Omega_t^2 and 2 beta1 omega1 Omega_t: a displacement "
             "x e^(i W t)\n    needs the force q(i W) x.",
             {(): list(cr.transfer_function())},
-            notes="The transfer function of the harmonic balance (runtime.predict's D).",
+            notes="The transfer function of the harmonic balance (`harmonic_balance`).",
         ),
         FunctionSpec(
             "harmonic_balance",
@@ -1203,7 +1223,7 @@ fast tangential motion, and the fast normal force. ``averaged_friction``,
 averages; ``friction_average``, ``friction_average_slope`` and ``friction_harmonic``
 those of a friction law (``friction=``), and ``slow_damping`` and
 ``harmonic_balance`` the pieces of the consistent MDSM built from them.
-``runtime.predict`` builds the stability prediction from them.
+``beltmdsm.analysis.predict`` builds the stability prediction from them.
 """,
         functions,
     )

@@ -11,7 +11,7 @@ fast tangential motion, and the fast normal force. ``averaged_friction``,
 averages; ``friction_average``, ``friction_average_slope`` and ``friction_harmonic``
 those of a friction law (``friction=``), and ``slow_damping`` and
 ``harmonic_balance`` the pieces of the consistent MDSM built from them.
-``runtime.predict`` builds the stability prediction from them.
+``beltmdsm.analysis.predict`` builds the stability prediction from them.
 """
 
 import numpy
@@ -914,9 +914,9 @@ def slow_damping(V, N1, theta, *, friction='coulomb', **params):
     Implements Eqs. (20), (23)-(25) generalised of the paper.
 
     The linearisation of the averaged friction at frozen fast amplitude and phase
-    (runtime.predict's consistent MDSM). For a friction law whose fast average has no
-    closed form (Stribeck's; generated.capabilities) the law's part beyond mu(0) is a
-    quadrature of the same expression (generated._support.quad).
+    (beltmdsm.analysis.predict's consistent MDSM). For a friction law whose fast average
+    has no closed form (Stribeck's; generated.capabilities) the law's part beyond mu(0)
+    is a quadrature of the same expression (generated._support.quad).
 
     Parameters
     ----------
@@ -1002,7 +1002,7 @@ def transfer_function(**params):
 
     Implements Eq. (4), first row, harmonic of the paper.
 
-    The transfer function of the harmonic balance (runtime.predict's D).
+    The transfer function of the harmonic balance (`harmonic_balance`).
 
     Parameters
     ----------

@@ -2912,7 +2912,8 @@ def unstable_interval(*, friction='coulomb', contact='hertz_damp', convention='p
     -------
     lower, upper : ndarray
         paper: (critical_belt_speed, Vhat), an interval closed at Vhat
-        (infinite slope); consistent: (NaN, NaN), empty.
+        (infinite slope), or (NaN, NaN) where it is empty (critical_belt_speed = Vhat:
+        mu_s = 0); consistent: (NaN, NaN), empty.
 
     Raises
     ------
@@ -2940,7 +2941,10 @@ def unstable_interval(*, friction='coulomb', contact='hertz_damp', convention='p
 def _unstable_interval__coulomb__hertz_damp__paper(_shape, beta1, omega1, mu_s, g, Vhat):
     with numpy.errstate(divide="ignore", invalid="ignore"):
         _x0 = g*mu_s/(numpy.pi*beta1*omega1)
-        return _support.tuple_of(_shape, numpy.select([numpy.greater(Vhat, _x0),True], [numpy.sqrt((Vhat - _x0)*(Vhat + _x0)),0], default=numpy.nan), numpy.copy(Vhat))
+        _x1 = numpy.sqrt((Vhat - _x0)*(Vhat + _x0))
+        _x2 = numpy.greater(Vhat, _x0)
+        _x3 = numpy.logical_or(numpy.less_equal(Vhat, _x0), numpy.logical_and(_x2, numpy.greater(Vhat, _x1)))
+        return _support.tuple_of(_shape, numpy.select([_x3,True], [numpy.select([_x2,True], [_x1,0], default=numpy.nan),numpy.nan], default=numpy.nan), numpy.select([_x3,True], [Vhat,numpy.nan], default=numpy.nan))
 
 
 def _unstable_interval__coulomb__hertz_damp__consistent(_shape):

@@ -5,23 +5,36 @@ Eq. (25); `generated.stability` gives its unstable interval in closed form. The
 consistent analysis here keeps what the paper drops (docs/modelling.md#averaging): the
 correlation between the fast friction direction and the fast normal force.
 
-For a belt speed ``Vb`` it
+Both follow the model's laws (``friction=``, ``contact=``; `Model.arguments` hands each
+generated function the options it declares), and neither computes with another law's
+physics. For a belt speed ``Vb`` the consistent MDSM
 
 1. takes the fast normal force ``N(t) = g + N1 sin(Omega t + psi)`` from the linear
    normal response (`generated.correlation.fast_normal_force`; the normal motion does
-   not depend on the tangential one);
+   not depend on the tangential one, the capability ``one_way_coupling``, checked);
 2. finds the fast relative velocity ``V sin(Omega t + phi)`` by harmonic balance of the
-   tangential equation (Eq. A1) with Coulomb friction in the sign of Eq. (4): linear
-   (the coupled ``V_hat``) while ``V <= Vb``; otherwise the friction reverses within a
-   fast cycle and its first harmonic (`generated.correlation.first_harmonic`) closes a
-   two-unknown nonlinear system, solved by Newton iterations continued in ``Vb``;
-3. linearises the averaged friction ``mu_s <sgn(Vr) N>`` in the slow velocity at
-   frozen fast amplitude and phase (`generated.correlation.averaged_friction_slope`):
-   the tangential damping is ``p = 2 beta1 omega1 + mu_s dF/du``, unstable when ``p < 0``
-   (the normal block is that of Eq. 22 and always stable).
+   tangential equation (Eq. A1, `generated.correlation.harmonic_balance`: the
+   transfer function of the tangential oscillator, the excitation and the first
+   harmonic of the law's friction force, `friction_harmonic`). Without a reversal of
+   the friction within a fast cycle (``V <= Vb``) and a friction coefficient that is
+   constant in slip (the capability ``slip_friction_state_independent``: Coulomb's
+   law) the balance is linear and its solution the coupled ``V_hat``
+   (`generated.correlation.fast_tangential_velocity`); otherwise (a reversal, or a
+   coefficient that varies with the sliding speed, Stribeck's) it is a two-unknown
+   nonlinear system, solved by Newton iterations continued in ``Vb``;
+3. linearises the averaged friction ``<mu(|v|) sgn(v) N>`` in the slow velocity at
+   frozen fast amplitude and phase: the tangential damping is
+   `generated.correlation.slow_damping`, ``2 beta1 omega1 + d<...>/du`` (for
+   Coulomb's law ``2 beta1 omega1 + mu_s dF/du``), unstable when negative (the normal
+   block is that of Eq. 22 and always stable). For a law without a closed-form fast
+   average (Stribeck's) the averages are quadratures of the same expression.
 
 Only one excitation frequency is covered (``Omega_t == Omega_n``): with two frequencies
 a single harmonic balance does not apply and `consistent_mdsm_damping` raises.
+
+The paper's closed forms (Eqs. 25, 28) need the law's fast average in closed form (the
+capability ``closed_form_average``) and a ``V_hat`` that does not depend on ``Vb``;
+where either fails `paper_intervals` gives None and `predict` the reason.
 
 The tension law (`predict`'s ``tension=``, docs/modelling.md#tension): the paper's
 analyses linearise at the equilibrium, where the contact force is ``g > 0``, so
@@ -43,23 +56,28 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import optimize
 
-from generated import correlation, friction, stability
+from generated import _support, capabilities, correlation, friction, stability, unforced
 
 from .. import intervals
 from ..errors import Refused
-from ..model import Model, as_model
+from ..model import OPTION_DEFAULTS, Model, as_model, require
 from ..settings import MAX_VB_POINTS
 
 __all__ = [
     "FastMotion",
     "fast_motion",
     "consistent_mdsm_damping",
+    "reversal_onset",
     "unstable_intervals",
     "paper_intervals",
+    "paper_reasons",
     "predict",
     "Prediction",
     "NO_EXCITATION",
+    "NO_FAST_MOTION",
     "NO_VHAT",
+    "VHAT_OF_VB",
+    "NO_CLOSED_FORM",
     "CLIPPED_MDSM",
     "CLIPPED_PAPER",
     "clip_acts",
@@ -99,37 +117,69 @@ def _single_frequency(p):
     return p["Omega_t"]
 
 
-def _balance(z, p, W, N1, psi, D, Ft):
-    """Residual of D V/(i W) = Ft e^{-i phi} - mu_s (s1 + i c1), scaled by |Ft|."""
-    V, phi = z
-    s1, c1 = correlation.first_harmonic(-p["Vb"], V, p["g"], N1, psi - phi)
-    r = D * V / (1j * W) - Ft * np.exp(-1j * phi) + p["mu_s"] * (s1 + 1j * c1)
-    return np.array([r.real, r.imag]) / abs(Ft)
+def _fact(model: Model, name: str) -> tuple[bool, str]:
+    """``(holds, reason)`` of a capability of the model's laws (``generated.capabilities``)."""
+    return capabilities.CAPABILITIES[(model.friction, model.contact, model.tension)][name]
 
 
-def _log_balance(z, *args):
-    """`_balance` in ``(log V, phi)``: every iterate keeps ``V > 0``."""
-    return _balance((np.exp(z[0]), z[1]), *args)
+def _linear_without_reversal(model: Model) -> bool:
+    """Whether the fast motion without a reversal of the friction is the linear response
+    (`generated.correlation.fast_tangential_velocity`, exact): where the slip friction
+    does not depend on the tangential state (Coulomb's constant coefficient), it is a
+    linear function of the normal force. Otherwise the harmonic balance is solved."""
+    return _fact(model, "slip_friction_state_independent")[0]
 
 
-def _reversing_balance(z, *args):
-    """`_balance` in ``(s, phi)`` with ``V = Vb + s^2``: every iterate reverses.
+class _Balance:
+    """The harmonic balance of the fast tangential motion at one belt speed.
 
-    At the onset of reversal (``V = Vb``) the first harmonic of the friction has a
-    square-root singularity in ``V``: the reversal lasts a phase interval of width
-    proportional to ``sqrt(V - Vb)``. In ``s`` it is smooth, so Newton's method
-    converges next to the linear amplitude, where it stalls in ``V``.
+    ``residual((V, phi))`` is `generated.correlation.harmonic_balance` (relative to the
+    excitation's size) with the model's friction law and the fast normal force
+    ``N1, psi`` (`generated.correlation.fast_normal_force`).
     """
-    return _balance((args[0]["Vb"] + z[0] ** 2, z[1]), *args)
+
+    def __init__(self, model: Model, N1: float, psi: float) -> None:
+        if model["alpha_t"] == 0:
+            raise ValueError(
+                "alpha_t = 0: the residual of the harmonic balance "
+                "(generated.correlation.harmonic_balance) is relative to the tangential "
+                "excitation alpha_t Omega_t^2, which is 0 here"
+            )
+        self.kw = model.arguments(correlation.harmonic_balance)
+        self.N1, self.psi, self.Vb = N1, psi, model["Vb"]
+
+    def residual(self, z):
+        V, phi = z
+        re, im = correlation.harmonic_balance(V, phi, self.N1, self.psi, **self.kw)
+        return np.array([float(re), float(im)])
+
+    def log(self, z):
+        """In ``(log V, phi)``: every iterate keeps ``V > 0``."""
+        return self.residual((np.exp(z[0]), z[1]))
+
+    def reversing(self, z):
+        """In ``(s, phi)`` with ``V = Vb + s^2``: every iterate reverses.
+
+        At the onset of reversal (``V = Vb``) the first harmonic of the friction has a
+        square-root singularity in ``V``: the reversal lasts a phase interval of width
+        proportional to ``sqrt(V - Vb)``. In ``s`` it is smooth, so Newton's method
+        converges next to the linear amplitude, where it stalls in ``V``.
+        """
+        return self.residual((self.Vb + z[0] ** 2, z[1]))
+
+    def steady(self, z):
+        """In ``(s, phi)`` with ``V = Vb (1 - s^2 / (1 + s^2))``: no iterate reverses and
+        every one keeps ``0 < V <= Vb``."""
+        return self.residual((self.Vb / (1 + z[0] ** 2), z[1]))
 
 
-def _hybr(fun, start, args):
+def _hybr(fun, start):
     """``scipy.optimize.root`` (hybr) from ``start``; None if an iterate had ``V <= 0``."""
     try:
-        return optimize.root(fun, start, args=args, method="hybr", options={"xtol": 1e-13})
+        return optimize.root(fun, start, method="hybr", options={"xtol": 1e-13})
     except ValueError:
-        # the generated first_harmonic refuses V <= 0 (checked before the Vb loop, the
-        # parameters themselves are valid here)
+        # the generated harmonic_balance refuses V <= 0 (the parameters themselves are
+        # checked when the model is built)
         return None
 
 
@@ -139,6 +189,37 @@ def _hybr(fun, start, args):
 #: ``eps V / (2 (V - Vb))``, over 5e-4, and a near-root at ``V -> Vb`` (no reversal)
 #: can pass the residual test next to the linear amplitude.
 _SHALLOWEST_REVERSAL = 1024 * np.finfo(float).eps
+#: The largest residual of the harmonic balance (relative to the excitation) accepted.
+_TOLERANCE = 1e-9
+
+
+def _linear(model: Model) -> tuple[float, float]:
+    """``(V, phi)`` of the linear fast response without reversal at the model's ``Vb``."""
+    fn = correlation.fast_tangential_velocity
+    V, phi = (float(x) for x in fn(**model.arguments(fn)))
+    return V, phi
+
+
+def _normal(model: Model) -> tuple[float, float]:
+    fn = correlation.fast_normal_force
+    N1, psi = (float(x) for x in fn(**model.arguments(fn)))
+    return N1, psi
+
+
+def _steady_motion(balance, start, N1, psi) -> FastMotion | None:
+    """The solution without reversal (``V <= Vb``) of the harmonic balance from
+    ``start = (V, phi)``, or None where Newton's method finds none."""
+    Vb = balance.Vb
+    V0 = min(start[0], Vb)
+    s0 = math.sqrt(max(Vb / V0 - 1, 1e-6)) if V0 > 0 else 1.0
+    sol = _hybr(balance.steady, (s0, start[1]))
+    if sol is None:
+        return None
+    V = Vb / (1 + sol.x[0] ** 2)
+    residual = float(np.max(np.abs(balance.residual((V, sol.x[1])))))
+    if not residual <= _TOLERANCE:
+        return None
+    return FastMotion(V, float(np.angle(np.exp(1j * sol.x[1]))), N1, psi, False, residual)
 
 
 def fast_motion(model: Model, guess: FastMotion | None = None) -> FastMotion:
@@ -147,78 +228,141 @@ def fast_motion(model: Model, guess: FastMotion | None = None) -> FastMotion:
     Parameters
     ----------
     guess : FastMotion, optional
-        Start of the Newton iterations (continuation from a neighbouring ``Vb``);
-        default: the linear solution.
+        Start of the Newton iterations (continuation from a neighbouring ``Vb``), whose
+        kind (reversing or not) is tried first; default: the linear solution, and the
+        solution without reversal first (the one Coulomb's law has wherever it exists).
 
     Raises
     ------
     RuntimeError
         If the harmonic balance does not converge.
+    ValueError
+        Two excitation frequencies, or laws whose normal motion depends on the
+        tangential one (`beltmdsm.model.Unsupported`, naming the law).
     """
-    p, contact = model.params, model.contact
-    W = _single_frequency(p)
-    N1, psi = (float(x) for x in correlation.fast_normal_force(contact=contact, **p))
-    D = p["omega1"] ** 2 - W**2 + 2j * p["beta1"] * p["omega1"] * W
-    Ft = p["alpha_t"] * W**2 * np.exp(1j * p["phase_t"])
-    # Friction of constant direction (Vr < 0 throughout): the linear, coupled response.
-    V_lin, phi_lin = (float(x) for x in correlation.fast_tangential_velocity(contact=contact, **p))
-    if V_lin <= p["Vb"]:
+    p = model.params
+    _single_frequency(p)
+    require(model, "one_way_coupling", "the consistent MDSM's fast normal force")
+    N1, psi = _normal(model)
+    # Friction of constant direction (Vr < 0 throughout): the linear, coupled response
+    # (for a coefficient that varies in slip its linearisation at Vb).
+    V_lin, phi_lin = _linear(model)
+    Vb = p["Vb"]
+    if V_lin == 0:
+        # no excitation reaches the tangential motion: no fast motion at all
+        return FastMotion(0.0, phi_lin, N1, psi, False, 0.0)
+    linear = _linear_without_reversal(model)
+    if linear and V_lin <= Vb:
         return FastMotion(V_lin, phi_lin, N1, psi, False, 0.0)
+    balance = _Balance(model, N1, psi)
+    # without a guess the solution without reversal is preferred where it exists, as
+    # for Coulomb's law (at the onset a reversing one coexists with it)
+    steady_first = not linear and (guess is None or not guess.reverses)
+    if steady_first:
+        start = (guess.V, guess.phi) if guess is not None else (V_lin, phi_lin)
+        found = _steady_motion(balance, start, N1, psi)
+        if found is not None:
+            return found
     reversing = guess is not None and guess.reverses
     start = (guess.V, guess.phi) if reversing else (V_lin, phi_lin)
-    args = (p, W, N1, psi, D, Ft)
-    Vb = p["Vb"]
     # The attempts, in order: Newton's method (hybr) in V, then in log V (where V is
     # small, Vb near 0 or an excitation at resonance, a step can cross V = 0; in log V
-    # it cannot), then in s = sqrt(V - Vb) (`_reversing_balance`; next to the linear
+    # it cannot), then in s = sqrt(V - Vb) (`_Balance.reversing`; next to the linear
     # amplitude, where the first two stall on the square-root singularity), from the
     # guess and from reversals of 1 %, 10 % and 100 % of the linear amplitude (the
     # reversing solution there has V - Vb of the order of 1e-3 V_lin, and a start
     # below half of it falls towards s = 0, which is no solution). Tried in this
     # order, so that the cases the direct iteration solves keep their digits.
     attempts = [
-        (_balance, start, lambda x: x),
-        (_log_balance, (math.log(start[0]), start[1]), math.exp),
+        (balance.residual, start, lambda x: x),
+        (balance.log, (math.log(start[0]), start[1]), math.exp),
     ]
     depths = [start[0] - Vb] if start[0] > Vb else []
     depths += [f * V_lin for f in (0.01, 0.1, 1.0)]
     attempts += [
-        (_reversing_balance, (math.sqrt(d), start[1]), lambda x: Vb + x * x) for d in depths
+        (balance.reversing, (math.sqrt(d), start[1]), lambda x: Vb + x * x) for d in depths
     ]
     residual, why = np.inf, ""
     for fun, z0, to_V in attempts:
-        sol = _hybr(fun, z0, args)
+        sol = _hybr(fun, z0)
         if sol is None:
             why = "an iterate reached V <= 0"
             continue
         V = float(to_V(sol.x[0]))
         if not V - Vb > _SHALLOWEST_REVERSAL * V:
-            # the friction would not reverse, which holds only at V_lin <= Vb; or the
-            # reversal is too shallow for the first harmonic to be told from rounding
+            # the friction would not reverse, which holds only without a reversing
+            # solution; or the reversal is too shallow for the first harmonic to be
+            # told from rounding
             why = f"an iterate settled at V = {V!r}, without a resolved reversal (Vb = {Vb!r})"
             continue
         # hybr may report "not making good progress" once at machine precision: the
         # residual itself is the criterion.
-        residual = float(np.max(np.abs(_balance((V, sol.x[1]), *args))))
+        residual = float(np.max(np.abs(balance.residual((V, sol.x[1])))))
         why = sol.message
-        if residual <= 1e-9:
+        if residual <= _TOLERANCE:
             phi = sol.x[1]
             return FastMotion(V, float(np.angle(np.exp(1j * phi))), N1, psi, True, residual)
+    if not linear and not steady_first:
+        found = _steady_motion(balance, (V_lin, phi_lin), N1, psi)
+        if found is not None:
+            return found
     raise RuntimeError(
         f"harmonic balance did not converge at Vb = {Vb}: {why} (residual {residual:.1e})"
     )
 
 
 def consistent_mdsm_damping(model: Model, fast: FastMotion | None = None) -> float:
-    """Tangential damping ``p = 2 beta1 omega1 + mu_s dF/du`` of the slow motion at ``-Vb``."""
-    p = model.params
+    """Tangential damping of the slow motion at ``-Vb`` (`generated.correlation.slow_damping`,
+    with the model's friction law; for Coulomb's ``2 beta1 omega1 + mu_s dF/du``).
+
+    Without fast motion (no excitation) it is the damping of the unforced equilibrium,
+    ``-J[1, 1]`` of `generated.unforced.jacobian_at_equilibrium` (for Coulomb's law
+    ``2 beta1 omega1``: the average of friction of constant direction does not depend
+    on the slow velocity).
+    """
     fast = fast or fast_motion(model)
     if fast.V == 0:
-        # No fast motion (no excitation): Coulomb friction of constant direction,
-        # whose average does not depend on the slow velocity.
-        return float(2 * p["beta1"] * p["omega1"])
-    slope = correlation.averaged_friction_slope(-p["Vb"], fast.V, p["g"], fast.N1, fast.theta)
-    return float(2 * p["beta1"] * p["omega1"] + p["mu_s"] * slope)
+        fn = unforced.jacobian_at_equilibrium
+        return float(-fn(**model.arguments(fn))[1, 1])
+    fn = correlation.slow_damping
+    return float(fn(fast.V, fast.N1, fast.theta, **model.arguments(fn)))
+
+
+def reversal_onset(model: Model, start: float | None = None) -> float:
+    """The belt speed where the friction starts to reverse within a fast cycle.
+
+    The fast motion without reversal just touches ``Vr = 0``: ``V(Vb) = Vb``. For a
+    coefficient constant in slip (`_linear_without_reversal`) ``V`` does not depend on
+    ``Vb`` and the onset is the linear amplitude in closed form; otherwise the
+    harmonic balance at ``V = Vb`` is solved for ``(Vb, phi)``, from ``start`` (default:
+    the linear amplitude at the linear amplitude). 0 without fast motion.
+
+    Raises
+    ------
+    RuntimeError
+        If the balance does not converge (naming the belt speed it started from).
+    """
+    V_lin, phi_lin = _linear(model if start is None else model.replace(Vb=start))
+    if _linear_without_reversal(model) or V_lin == 0:
+        return V_lin
+    N1, psi = _normal(model)
+    if start is None:
+        V_lin, phi_lin = _linear(model.replace(Vb=V_lin))
+    balance = _Balance(model, N1, psi)
+
+    def touching(z):
+        # V = Vb = exp(z[0]) > 0: the balance at the edge of its branch without reversal
+        balance.kw["Vb"] = balance.Vb = math.exp(z[0])
+        return balance.residual((balance.Vb, z[1]))
+
+    sol = _hybr(touching, (math.log(V_lin), phi_lin))
+    residual = np.inf if sol is None else float(np.max(np.abs(touching(sol.x))))
+    if not residual <= _TOLERANCE:
+        raise RuntimeError(
+            f"the onset of friction reversal (V = Vb) was not found from Vb = {V_lin!r}: "
+            f"residual {residual:.1e}"
+        )
+    return math.exp(sol.x[0])
 
 
 def _check_grid(vb):
@@ -253,7 +397,8 @@ def _check_points(points):
     if points > MAX_VB_POINTS:
         raise Refused(
             f"points = {points} is more than MAX_VB_POINTS = {MAX_VB_POINTS:.0e} "
-            "(beltmdsm/settings.py): up to 2 ms a point, and every edge is "
+            "(beltmdsm/settings.py): up to 2 ms a point (6 ms under a law whose fast "
+            "average is a quadrature), and every edge is "
             "refined to 1e-10 m/s anyway",
             "points",
         )
@@ -270,13 +415,13 @@ def unstable_intervals(
     """Unstable belt speeds of the consistent MDSM.
 
     The damping is evaluated on a grid (continuation from high ``Vb`` down, where the
-    fast motion is linear), and each change of sign is refined by bisection
+    friction does not reverse), and each change of sign is refined by bisection
     (``brentq``, to 1e-10 m/s) at a root of the damping; at the onset of friction
-    reversal (the linear amplitude ``V_lin``: below it the friction reverses within a
-    fast cycle, above it never, and the slope of the averaged friction jumps to zero)
-    the edge is the linear amplitude in closed form.
+    reversal (`reversal_onset`: below it the friction reverses within a fast cycle,
+    above it not, and the damping jumps) the edge is the onset itself: for Coulomb's
+    law the linear amplitude ``V_lin`` in closed form.
 
-    The edges are found on the grid with ``V_lin`` and a point `ONSET_STEP` below it
+    The edges are found on the grid with the onset and a point `ONSET_STEP` below it
     added (where they lie within the grid) and the grid's points between them left
     out (the balance may be singular there; in the table they hold the damping where
     it can be solved, else NaN), so that this edge is found on any grid, however
@@ -291,8 +436,11 @@ def unstable_intervals(
     ----------
     vb : array_like, optional
         the grid of belt speeds (at least 2, at most `MAX_VB_POINTS`, finite, >= 0);
-        default: ``points`` speeds up to 1.05 times the linear amplitude of the fast
-        motion
+        default: ``points`` speeds up to 1.05 times the onset of reversal; for a
+        friction coefficient that varies in slip up to 1.05 times the onset plus the
+        unforced critical belt speed (`generated.unforced.critical_belt_speed`, where
+        it is finite: above the onset the fast motion still sweeps the falling part
+        of the law), doubled up to 3 times while a band reaches the top
     points : int
         size of the default grid (at least 2, at most `MAX_VB_POINTS`)
     progress : bool
@@ -302,8 +450,8 @@ def unstable_intervals(
     -------
     intervals : list of (lower, upper)
         Unstable ranges of ``Vb`` within the grid (an end of the grid bounds a range
-        that reaches it). Without excitation (no fast motion) the list is empty
-        and so is the default grid.
+        that reaches it). Without excitation (no fast motion) and a coefficient
+        constant in slip the list is empty and so is the default grid.
     table : dict of arrays
         ``Vb``, ``damping``, ``V``, ``theta``, ``reverses`` on the grid asked for
         (ascending).
@@ -311,32 +459,54 @@ def unstable_intervals(
     Raises
     ------
     ValueError
-        For bad parameters or a bad grid (naming them), and for two excitation
-        frequencies (the harmonic balance needs one); `beltmdsm.errors.Refused` for a
-        grid of more than `MAX_VB_POINTS` points.
+        For bad parameters or a bad grid (naming them), for two excitation
+        frequencies (the harmonic balance needs one), for laws whose normal motion
+        depends on the tangential one (`beltmdsm.model.Unsupported`);
+        `beltmdsm.errors.Refused` for a grid of more than `MAX_VB_POINTS` points.
     RuntimeError
         If the harmonic balance does not converge at a belt speed.
     """
     model = as_model(model, **kw)
-    p, contact = model.params, model.contact
     _check_points(points)
-    _single_frequency(p)
-    V_lin = float(correlation.fast_tangential_velocity(contact=contact, **p)[0])
-    if vb is None:
-        # Above the linear amplitude the friction never reverses and the slope is 0.
-        top = 1.05 * V_lin
-        vb = np.linspace(top / points, top, points) if top > 0 else np.empty(0)
-    else:
-        vb = _check_grid(vb)
+    _single_frequency(model.params)
+    require(model, "one_way_coupling", "the consistent MDSM's fast normal force")
+    onset = reversal_onset(model)
+    if vb is not None:
+        return _scan(model, _check_grid(vb), onset, progress)
+    # Above the onset the friction never reverses (for Coulomb's law the slope of its
+    # average is 0 there); a coefficient that varies with the sliding speed keeps a
+    # slope while the fast motion reaches its steep part: the unforced critical belt
+    # speed is added, and the grid is doubled (up to `_EXTEND` times) while a band
+    # reaches its top.
+    linear = _linear_without_reversal(model)
+    top = 1.05 * (onset + (0.0 if linear else _unforced_edge(model)))
+    if not top > 0:
+        return _scan(model, np.empty(0), onset, progress)
+    for extend in range(_EXTEND + 1):
+        vb = np.linspace(top / points, top, points)
+        found, table = _scan(model, vb, onset, progress)
+        if linear or not (found and found[-1][1] == vb[-1]) or extend == _EXTEND:
+            return found, table
+        top *= 2
+    raise AssertionError("unreachable")
+
+
+#: How often the default grid of a law whose coefficient varies in slip is doubled
+#: while an unstable band reaches its top (`unstable_intervals`).
+_EXTEND = 3
+
+
+def _scan(model: Model, vb: NDArray[np.float64], onset: float, progress: bool):
+    """`unstable_intervals` on the grid ``vb`` (checked), with the onset of reversal."""
     requested = np.sort(vb)
     zone = np.zeros(vb.size, bool)
-    if vb.size and V_lin > 0:
+    if vb.size and onset > 0:
         # the onset of reversal and a point just below it; the requested points between
         # them are evaluated for the table only (the balance may be singular there)
-        onset_below = V_lin * (1 - ONSET_STEP)
-        zone = (requested > onset_below) & (requested < V_lin)
-        onset = [v for v in (onset_below, V_lin) if vb.min() < v < vb.max()]
-        vb = np.union1d(requested[~zone], onset)
+        onset_below = onset * (1 - ONSET_STEP)
+        zone = (requested > onset_below) & (requested < onset)
+        extra = [v for v in (onset_below, onset) if vb.min() < v < vb.max()]
+        vb = np.union1d(requested[~zone], extra)
     if vb.size == 0:
         return [], {
             "Vb": vb,
@@ -382,10 +552,10 @@ def unstable_intervals(
     for i in intervals.sign_changes(damping):
         below, above = rows[i][2], rows[i + 1][2]
         if below.reverses != above.reverses:
-            # Onset of reversal: at V = Vb the balance is the linear one, so the edge
-            # is the linear amplitude itself (independent of Vb); the harmonic balance
-            # is singular there and no root-finder is needed.
-            cuts.append(above.V if not above.reverses else below.V)
+            # Onset of reversal: the edge is the onset itself (for Coulomb's law the
+            # linear amplitude, independent of Vb); the harmonic balance is singular
+            # there and no root-finder is needed.
+            cuts.append(_onset_between(model, onset, grid[i], grid[i + 1]))
             continue
         cuts.append(optimize.brentq(damping_at, grid[i], grid[i + 1], args=(above,), xtol=1e-10))
     unstable = intervals.from_crossings(grid, damping < 0, cuts)
@@ -400,6 +570,31 @@ def unstable_intervals(
     return unstable, table
 
 
+def _unforced_edge(model: Model) -> float:
+    """The unforced critical belt speed (`generated.unforced.critical_belt_speed`) where it
+    is finite and positive, else 0."""
+    fn = unforced.critical_belt_speed
+    try:
+        edge = float(fn(**model.arguments(fn)))
+    except ValueError:  # a law without a closed-form boundary refuses (Unsupported)
+        return 0.0
+    return edge if math.isfinite(edge) and edge > 0 else 0.0
+
+
+def _onset_between(model: Model, onset: float, lo: float, hi: float) -> float:
+    """The onset of reversal within ``[lo, hi]``: the one found first, or another one
+    of a law whose fast amplitude varies with ``Vb`` (`reversal_onset` from ``hi``)."""
+    if lo <= onset <= hi:
+        return onset
+    other = reversal_onset(model, start=hi)
+    if not lo <= other <= hi:
+        raise RuntimeError(
+            f"the friction starts to reverse between Vb = {lo!r} and {hi!r}, but the "
+            f"onset (V = Vb) was not found there (found {other!r})"
+        )
+    return other
+
+
 def paper_intervals(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -407,6 +602,9 @@ def paper_intervals(
     **kw: Any,
 ) -> dict[str, list[tuple[float, float]] | None]:
     """The paper's unstable interval ``(Vb_c, Vhat]`` for each ``V_hat`` reading (Eq. 25, 28).
+
+    With the model's laws (`generated.stability.unstable_interval` and
+    `generated.friction.vhat` get ``friction=`` and ``contact=``).
 
     Parameters
     ----------
@@ -421,33 +619,93 @@ def paper_intervals(
     dict
         ``{"tangential": [(lower, upper)], "coupled": [...]}``; an empty interval
         (NaN from `generated.stability.unstable_interval`) is ``[]``, and a reading
-        whose ``V_hat`` is 0 (no excitation, where Eqs. 23-25 have no meaning) is
-        ``None``.
+        without a closed form is ``None``: ``V_hat`` is 0 (no excitation, where Eqs.
+        23-25 have no meaning), the law's fast average is no closed form (the
+        capability ``closed_form_average``: Stribeck's), or ``V_hat`` depends on
+        ``Vb``. `paper_reasons` says which.
     """
-    model = as_model(model, **kw)
-    p, contact = model.params, model.contact
-    out = {}
+    return _paper(as_model(model, **kw), convention)[0]
+
+
+def paper_reasons(
+    model: Model | Mapping[str, Any] | None = None,
+    *,
+    convention: Literal["paper", "consistent"] = "paper",
+    **kw: Any,
+) -> dict[str, str]:
+    """``{reading: why}`` for each ``V_hat`` reading whose `paper_intervals` is None: one
+    line naming the law and the missing property (`NO_CLOSED_FORM`, `VHAT_OF_VB`,
+    `NO_VHAT`, or the refusal of `generated.stability.unstable_interval`)."""
+    return _paper(as_model(model, **kw), convention)[1]
+
+
+def _vhat_depends_on_vb(model: Model, reading: str) -> bool:
+    """Whether the law's ``V_hat`` takes ``Vb`` (the slope of a coefficient that varies
+    in slip enters the linear response): the generated function then needs it."""
+    fn = friction.vhat
+    try:
+        fn(model=reading, **{**model.arguments(fn), "Vb": None})
+    except TypeError:
+        return True
+    return False
+
+
+def _paper(model: Model, convention: str):
+    intervals_, reasons = {}, {}
+    closed, why = _fact(model, "closed_form_average")
+    fn = friction.vhat
     for reading in ("tangential", "coupled"):
-        if not friction.vhat(model=reading, contact=contact, **p) > 0:
-            out[reading] = None
-            continue
-        lower, upper = (
-            float(x)
-            for x in stability.unstable_interval(
-                convention=convention, contact=contact, vhat_model=reading, **p
-            )
-        )
-        out[reading] = [] if math.isnan(lower) else [(lower, upper)]
-    return out
+        intervals_[reading] = None
+        if not closed:
+            reasons[reading] = NO_CLOSED_FORM.format(friction=model.friction, why=why)
+        elif _vhat_depends_on_vb(model, reading):
+            reasons[reading] = VHAT_OF_VB.format(friction=model.friction, reading=reading)
+        elif not fn(model=reading, **model.arguments(fn)) > 0:
+            reasons[reading] = NO_VHAT
+        else:
+            interval = stability.unstable_interval
+            try:
+                lower, upper = (
+                    float(x)
+                    for x in interval(
+                        convention=convention, vhat_model=reading, **model.arguments(interval)
+                    )
+                )
+            except _support.Unsupported as err:  # no closed-form boundary for these laws
+                reasons[reading] = str(err)
+                continue
+            # an empty interval is NaN (also (Vb_c, Vhat] with Vb_c = Vhat: mu_s = 0)
+            empty = math.isnan(lower) or not lower < upper
+            intervals_[reading] = [] if empty else [(lower, upper)]
+    return intervals_, reasons
 
 
 #: Why an analysis gives no prediction, or none of its usual kind.
 NO_EXCITATION = (
     "no fast tangential motion: without tangential excitation, and none passed "
-    "on by friction from the normal one, the averaged friction is Coulomb "
-    "friction with slope 0, so no belt speed is unstable"
+    "on by friction from the normal one, the averaged friction is friction of "
+    "constant direction and coefficient with slope 0, so no belt speed is unstable"
+)
+#: The note on the consistent MDSM without fast motion, for a coefficient that
+#: varies in slip (formatted with the law).
+NO_FAST_MOTION = (
+    "no fast tangential motion: the slow damping is the unforced equilibrium's, "
+    "2 beta1 omega1 + g dmu/d|Vr| at |Vr| = Vb (generated.unforced), which varies "
+    "with Vb under friction={friction!r}"
 )
 NO_VHAT = "V_hat = 0 (no fast tangential motion): Eqs. (23)-(25) need V_hat > 0"
+#: Why the paper's closed form has no interval for a law without a closed-form fast
+#: average (formatted with the law and the capability's reason).
+NO_CLOSED_FORM = (
+    "friction={friction!r} has no closed-form unstable interval: Eqs. (23)-(25), (28) "
+    "need the friction law's fast average in closed form (closed_form_average: {why})"
+)
+#: Why the paper's closed form has no interval where V_hat depends on Vb.
+VHAT_OF_VB = (
+    "friction={friction!r} has no closed-form unstable interval: its V_hat "
+    "({reading} reading) depends on Vb through the slope of the law at Vb, and "
+    "(Vb_c, V_hat] of Eqs. (25), (28) holds for a V_hat independent of Vb"
+)
 #: The note on a band of the consistent MDSM that reaches an end of its grid.
 GRID_END = (
     "an unstable range reaches the {end} belt speed of the grid, {value:.4g} m/s, "
@@ -485,7 +743,7 @@ def clip_acts(model: Model) -> tuple[bool, float]:
     True when ``N1 >= g`` (the force would reach zero within a fast cycle), with
     ``N1`` from `generated.correlation.fast_normal_force`.
     """
-    N1 = float(correlation.fast_normal_force(contact=model.contact, **model.params)[0])
+    N1 = _normal(model)[0]
     return N1 >= model["g"], N1
 
 
@@ -503,9 +761,9 @@ class Prediction:
     paper_coupled_vhat: list[tuple[float, float]] | None
     consistent_mdsm: list[tuple[float, float]] | None
     reasons: dict[str, str] = field(default_factory=dict)
-    tension: str = "allowed"
-    contact: str = "hertz_damp"
-    friction: str = "coulomb"
+    tension: str = OPTION_DEFAULTS["tension"]
+    contact: str = OPTION_DEFAULTS["contact"]
+    friction: str = OPTION_DEFAULTS["friction"]
 
     #: The analyses, in the order they are printed.
     ANALYSES = ("paper_tangential_vhat", "paper_coupled_vhat", "consistent_mdsm")
@@ -567,12 +825,16 @@ def predict(
         consistent, reasons["consistent_mdsm"] = None, str(err)
     except ValueError as err:
         # the parameters and the grid are checked above: what is left is the
-        # analysis' own limit (one excitation frequency)
+        # analysis' own limit (one excitation frequency, laws whose normal motion
+        # depends on the tangential one: beltmdsm.model.Unsupported)
         consistent, reasons["consistent_mdsm"] = None, str(err)
     else:
-        linear = float(correlation.fast_tangential_velocity(contact=model.contact, **p)[0])
-        if linear == 0:
-            reasons["consistent_mdsm"] = NO_EXCITATION
+        if _linear(model)[0] == 0:
+            reasons["consistent_mdsm"] = (
+                NO_EXCITATION
+                if _linear_without_reversal(model)
+                else NO_FAST_MOTION.format(friction=model.friction)
+            )
         ends = []
         if table["Vb"].size:
             lowest, highest = float(table["Vb"][0]), float(table["Vb"][-1])
@@ -581,18 +843,20 @@ def predict(
             if any(hi == highest for _, hi in consistent):
                 ends.append(GRID_END.format(end="highest", value=highest, side="above"))
         if ends:
-            reasons["consistent_mdsm"] = "; ".join(ends)
+            reasons["consistent_mdsm"] = "; ".join(
+                r for r in (reasons.get("consistent_mdsm"), *ends) if r
+            )
         if tension == "clipped":
             reasons["consistent_mdsm"] = "; ".join(
                 r for r in (reasons.get("consistent_mdsm"), note) if r
             )
-    paper = paper_intervals(model)
+    paper, why = _paper(model, "paper")
     for key, reading in (
         ("paper_tangential_vhat", "tangential"),
         ("paper_coupled_vhat", "coupled"),
     ):
         if paper[reading] is None:
-            reasons[key] = NO_VHAT
+            reasons[key] = why[reading]
         elif tension == "clipped":
             reasons[key] = CLIPPED_PAPER
     return Prediction(

@@ -2707,7 +2707,8 @@ def unstable_interval(*, friction='coulomb', contact='hertz_damp', convention='p
     -------
     lower, upper : ndarray
         paper: (critical_belt_speed, Vhat), an interval closed at Vhat
-        (infinite slope); consistent: (NaN, NaN), empty.
+        (infinite slope), or (NaN, NaN) where it is empty (critical_belt_speed = Vhat:
+        mu_s = 0); consistent: (NaN, NaN), empty.
 
     Raises
     ------
@@ -2732,11 +2733,11 @@ def unstable_interval(*, friction='coulomb', contact='hertz_damp', convention='p
 
 
 def _unstable_interval__coulomb__hertz_damp__paper(beta1, omega1, mu_s, g, Vhat):
-    if (Vhat > g*mu_s/(mpmath.pi*beta1*omega1)):
-        _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
-        return (mpmath.sqrt((Vhat - _x0)*(Vhat + _x0)), Vhat,)
-    else:
-        return (0, Vhat,)
+    _x0 = g*mu_s/(mpmath.pi*beta1*omega1)
+    _x1 = mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))
+    _x2 = (Vhat > _x0)
+    _x3 = _x2 and (Vhat > _x1) or (Vhat <= _x0)
+    return (((((_x1) if _x2 else (0))) if _x3 else (mpmath.nan)), ((Vhat) if _x3 else (mpmath.nan)),)
 
 
 def _unstable_interval__coulomb__hertz_damp__consistent():

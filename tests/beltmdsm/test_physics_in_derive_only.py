@@ -20,37 +20,8 @@ PACKAGE = Path(__file__).resolve().parents[2] / "beltmdsm"
 #: (relative velocity, periods, spectral lines) and may be computed with.
 COEFFICIENTS = {"beta1", "omega1", "beta2", "omega2", "alpha", "alpha_t", "alpha_n", "mu_s", "g"}
 
-_BALANCE = (
-    "the harmonic balance of the consistent MDSM: the tangential transfer function, "
-    "not yet generated (issue 19)"
-)
 #: (file, function, line text) -> why it may compute with a coefficient.
 ALLOWED = {
-    (
-        "analysis/predict.py",
-        "_balance",
-        'r = D * V / (1j * W) - Ft * np.exp(-1j * phi) + p["mu_s"] * (s1 + 1j * c1)',
-    ): _BALANCE,
-    (
-        "analysis/predict.py",
-        "fast_motion",
-        'D = p["omega1"] ** 2 - W**2 + 2j * p["beta1"] * p["omega1"] * W',
-    ): _BALANCE,
-    (
-        "analysis/predict.py",
-        "fast_motion",
-        'Ft = p["alpha_t"] * W**2 * np.exp(1j * p["phase_t"])',
-    ): _BALANCE,
-    (
-        "analysis/predict.py",
-        "consistent_mdsm_damping",
-        'return float(2 * p["beta1"] * p["omega1"])',
-    ): "the slow damping 2 beta1 omega1 of the consistent MDSM, not yet generated (issue 19)",
-    (
-        "analysis/predict.py",
-        "consistent_mdsm_damping",
-        'return float(2 * p["beta1"] * p["omega1"] + p["mu_s"] * slope)',
-    ): "the slow damping 2 beta1 omega1 + mu_s dF/du, not yet generated (issue 19)",
     (
         "analysis/summary.py",
         "omega1_band",

@@ -260,6 +260,24 @@ def test_critical_belt_speed_documented_values(base):
     assert np.all(np.isnan(stability.unstable_interval(**base, convention="consistent")))
 
 
+@pytest.mark.parametrize("vhat_model", ["tangential", "coupled"])
+def test_without_friction_the_paper_interval_is_empty(vhat_model):
+    """Issue 17: with mu_s = 0 the interval (Vb_c, Vhat] had Vb_c = Vhat and was returned as
+    (Vhat, Vhat), read as the point Vhat, where is_stable is True: it is empty, (NaN, NaN)."""
+    p = {**BASE, "mu_s": 0.0}
+    lower, upper = stability.unstable_interval(vhat_model=vhat_model, **p)
+    assert np.isnan(lower) and np.isnan(upper)
+    vhat = float(friction.vhat(model=vhat_model, **p))
+    assert float(stability.critical_belt_speed(vhat_model=vhat_model, **p)) == vhat
+    for Vb in (0.5 * vhat, vhat, 1.5 * vhat):
+        assert stability.is_stable(vhat_model=vhat_model, **{**p, "Vb": Vb})
+    assert all(mpmath.isnan(x) for x in mp_stability.unstable_interval(vhat_model=vhat_model, **p))
+    # any friction at rest keeps the interval, closed at Vhat
+    lower, upper = stability.unstable_interval(vhat_model=vhat_model, **{**p, "mu_s": 0.01})
+    assert 0 < lower < upper == float(friction.vhat(model=vhat_model, **{**p, "mu_s": 0.01}))
+    assert not stability.is_stable(vhat_model=vhat_model, **{**p, "mu_s": 0.01, "Vb": upper})
+
+
 def test_higher_beta1_narrows_the_unstable_range(base):
     """Fig. 6a and the conclusions: a higher beta1 shrinks the unstable range of Vb."""
     beta1 = np.array([0.05, 0.1, 0.2, 0.3, 0.4, 0.6])

@@ -22,16 +22,19 @@ def add(commands, name: str) -> None:
         "--vb-max",
         type=POSITIVE,
         default=None,
-        help="top of the Vb grid, > 0 (default: 1.05 x the linear amplitude)",
+        help="top of the Vb grid, > 0 (default: 1.05 x the onset of friction reversal, "
+        "for Coulomb's law the linear amplitude; for a law whose coefficient varies in "
+        "slip plus the unforced critical belt speed, doubled while a band reaches it)",
     )
     sub.add_argument(
         "--vb-points",
         type=integer(2, MAX_VB_POINTS),
         default=400,
         help=f"points of the Vb grid, 2 to {MAX_VB_POINTS} (MAX_VB_POINTS in "
-        "beltmdsm/settings.py; up to 2 ms a point); the grid also holds the "
-        "linear amplitude and a point just below it, so the onset of friction reversal "
-        "is found on any grid (default: 400)",
+        "beltmdsm/settings.py; up to 2 ms a point, 6 ms under Stribeck's law); the "
+        "grid also holds the onset of friction reversal (for Coulomb's law the linear "
+        "amplitude) and a point just below it, so that edge is found on any grid "
+        "(default: 400)",
     )
     sub.add_argument(
         "--no-progress",

@@ -2,10 +2,12 @@
 
 import json
 
+import mpmath
 import numpy as np
 import pytest
 
 from beltmdsm.analysis import predict
+from beltmdsm.analysis.predict import Prediction
 from beltmdsm.cli import main
 from beltmdsm.model import Model
 from beltmdsm.settings import MAX_VB_POINTS
@@ -85,25 +87,219 @@ def test_predict_cli_json(capsys):
     assert out["consistent_mdsm"][0][0] > out["paper_coupled_vhat"][0][0]
 
 
-@pytest.mark.parametrize("Vb", [1.0, 4.0, 7.0, 12.0])
-def test_generated_slow_damping_and_harmonic_balance_are_the_runtimes(Vb):
-    """The consistent MDSM's pieces that beltmdsm.analysis.predict types by hand (its damping
-    2 beta1 omega1 + mu_s dF/du and the residual of its harmonic balance), generated from
-    the derivation: equal to rounding (one rearranged product and sum)."""
-    p = Model(Vb=Vb)
-    fast = predict.fast_motion(p)
-    damping = correlation.slow_damping(fast.V, fast.N1, fast.theta, **p.params)
-    assert damping == pytest.approx(predict.consistent_mdsm_damping(p, fast=fast), rel=1e-14)
-    W = p["Omega_t"]
-    D = p["omega1"] ** 2 - W**2 + 2j * p["beta1"] * p["omega1"] * W
-    assert complex(*correlation.transfer_function(**p.params)) == pytest.approx(D, rel=1e-15)
-    Ft = p["alpha_t"] * W**2 * np.exp(1j * p["phase_t"])
-    ref = predict._balance((fast.V, fast.phi), p.params, W, fast.N1, fast.psi, D, Ft)
-    got = correlation.harmonic_balance(fast.V, fast.phi, fast.N1, fast.psi, **p.params)
-    # the residual is 0 at the solution: compare against the size of its terms, |D| V / W
-    np.testing.assert_allclose(
-        got, ref, rtol=0, atol=64 * np.finfo(float).eps * abs(D) * fast.V / W
+# ------------------------------------------- issue 19: the model's laws, never Coulomb's
+
+
+def _mu(model, s):
+    """The friction coefficient at sliding speed ``s``, typed here from the laws' formulas."""
+    if model.friction == "coulomb":
+        return mpmath.mpf(model["mu_s"])
+    assert model.friction == "stribeck"
+    return model["mu_k"] + (model["mu_s"] - model["mu_k"]) * mpmath.exp(-s / model["v_s"])
+
+
+def _average(model, u, V, N1, theta, weight=lambda t: 1):
+    """``integral over a period of mu(|v|) sgn(v) (g + N1 sin(t + theta)) weight(t)``,
+    ``v = u + V sin t``, by mpmath with the reversals as breakpoints."""
+
+    def f(t):
+        v = u + V * mpmath.sin(t)
+        return (
+            mpmath.sign(v)
+            * _mu(model, abs(v))
+            * (model["g"] + N1 * mpmath.sin(t + theta))
+            * weight(t)
+        )
+
+    points = {mpmath.mpf(0), 2 * mpmath.pi}
+    if abs(u) < V:
+        a = mpmath.asin(-u / V)
+        points |= {a % (2 * mpmath.pi), (mpmath.pi - a) % (2 * mpmath.pi)}
+    return mpmath.quad(f, sorted(points))
+
+
+def _reference(model, fast):
+    """The harmonic balance's residual at ``fast`` and the slow damping, from Eq. (A1) and
+    the averaged friction typed here and integrated by mpmath (30 digits), independent
+    of the generated quadratures: ``q(iW) V / (iW) - F_t e^(-i phi) + (s1 + i c1)``
+    relative to ``|F_t|``, and ``2 beta1 omega1 + d/du <mu(|v|) sgn(v) N>`` at ``u = -Vb``
+    (mpmath's numerical derivative of the average)."""
+    with mpmath.workdps(30):
+        V, phi, N1, psi = (mpmath.mpf(x) for x in (fast.V, fast.phi, fast.N1, fast.psi))
+        u, theta = -mpmath.mpf(model["Vb"]), psi - phi
+        s1 = _average(model, u, V, N1, theta, mpmath.sin) / mpmath.pi
+        c1 = _average(model, u, V, N1, theta, mpmath.cos) / mpmath.pi
+        W, w1, b1 = mpmath.mpf(model["Omega_t"]), model["omega1"], model["beta1"]
+        q = w1**2 - W**2 + 2j * b1 * w1 * W
+        Ft = model["alpha_t"] * W**2 * mpmath.expj(model["phase_t"])
+        residual = abs(q * V / (1j * W) - Ft * mpmath.expj(-phi) + (s1 + 1j * c1)) / abs(Ft)
+        slope = mpmath.diff(lambda x: _average(model, x, V, N1, theta) / (2 * mpmath.pi), u)
+        return float(residual), float(2 * b1 * w1 + slope)
+
+
+STRIBECK = {"friction": "stribeck", "mu_k": 0.25, "v_s": 1.0}
+
+
+@pytest.mark.parametrize(
+    "laws",
+    [
+        {},
+        STRIBECK,
+        {**STRIBECK, "contact": "kelvin_voigt"},
+        {**STRIBECK, "contact": "hunt_crossley", "n_h": 1.3},
+    ],
+    ids=["coulomb", "stribeck", "stribeck-kelvin_voigt", "stribeck-hunt_crossley"],
+)
+@pytest.mark.parametrize("Vb", [1.0, 4.0, 6.5, 7.05, 7.2, 9.0])
+def test_fast_motion_and_damping_against_mpmath(laws, Vb):
+    """The consistent MDSM with the model's laws (generated harmonic balance and slow
+    damping; for Stribeck's law quadratures of the same expression) against Eq. (A1)
+    and the averaged friction integrated by mpmath: reversing and not, below and above
+    the onset of reversal (7.083 for Stribeck at the base set)."""
+    model = Model(Vb=Vb, **laws)
+    fast = predict.fast_motion(model)
+    fn = correlation.fast_normal_force
+    assert (fast.N1, fast.psi) == tuple(float(x) for x in fn(**model.arguments(fn)))
+    assert fast.reverses == (fast.V > Vb)
+    residual, damping = _reference(model, fast)
+    assert residual < 1e-12
+    got = predict.consistent_mdsm_damping(model, fast)
+    assert got == pytest.approx(damping, rel=1e-12, abs=1e-13)
+
+
+def test_stribeck_band_against_its_own_edges():
+    """Stribeck's law (mu_k = 0.25, v_s = 1) at the base set: the band [5.878, 7.083]
+    (Coulomb's is [4.682, 6.375]). Its lower edge is a root of the damping, its upper
+    edge the onset of reversal, where the fast motion without reversal has V = Vb."""
+    found, table = predict.unstable_intervals(Model(**STRIBECK), points=60)
+    assert len(found) == 1
+    lower, upper = found[0]
+    assert lower == pytest.approx(5.878018659582, abs=1e-9)
+    assert upper == pytest.approx(7.082839963373, abs=1e-9)
+    at = Model(Vb=lower, **STRIBECK)
+    assert abs(predict.consistent_mdsm_damping(at)) < 1e-8
+    onset = Model(Vb=upper, **STRIBECK)
+    fast = predict.fast_motion(onset)
+    assert not fast.reverses and fast.V == pytest.approx(upper, rel=1e-12)
+    assert _reference(onset, fast)[0] < 1e-12
+    # just below the onset the friction reverses and the damping is negative
+    below = predict.fast_motion(onset.replace(Vb=upper * (1 - 1e-3)))
+    assert below.reverses
+    assert predict.consistent_mdsm_damping(onset.replace(Vb=upper * (1 - 1e-3)), below) < -1
+    assert np.all(table["damping"][(table["Vb"] > upper)] > 0)
+    # not Coulomb's band
+    assert predict.unstable_intervals(points=60)[0][0] == pytest.approx((4.6816, 6.3754), abs=1e-4)
+
+
+@pytest.mark.parametrize(
+    "laws",
+    [
+        {},
+        {"contact": "kelvin_voigt"},
+        {"contact": "hunt_crossley", "n_h": 1.2},
+        {"beta1": 0.4},
+        {"Omega": 10.0},
+        {"alpha": 0.0},
+    ],
+)
+def test_stribeck_with_mu_k_equal_to_mu_s_is_coulomb(laws):
+    """mu_k = mu_s: Stribeck's law is Coulomb's. The consistent MDSM takes the general
+    path (harmonic balance without reversal, onset solved for) and reproduces the
+    closed-form path to rounding."""
+    coulomb = predict.predict(points=40, **laws)
+    stribeck = predict.predict(points=40, friction="stribeck", mu_k=0.4, **laws)
+    assert len(coulomb.consistent_mdsm) == len(stribeck.consistent_mdsm)
+    for a, b in zip(coulomb.consistent_mdsm, stribeck.consistent_mdsm):
+        assert a == pytest.approx(b, rel=1e-13, abs=1e-13)
+    _, c_table = predict.unstable_intervals(points=40, **laws)
+    _, s_table = predict.unstable_intervals(points=40, friction="stribeck", mu_k=0.4, **laws)
+    np.testing.assert_allclose(s_table["Vb"], c_table["Vb"], rtol=1e-13)
+    np.testing.assert_allclose(s_table["damping"], c_table["damping"], rtol=1e-11, atol=1e-12)
+    assert list(s_table["reverses"]) == list(c_table["reverses"])
+
+
+def test_stribeck_without_excitation_is_the_unforced_boundary():
+    """No fast motion: the consistent MDSM is the unforced linearisation, unstable below
+    the unforced critical belt speed (v_s ln(g (mu_s - mu_k) / (2 beta1 omega1 v_s)),
+    1.996 m/s, by hand), not Coulomb's "no belt speed is unstable"."""
+    out = predict.predict(alpha=0.0, **STRIBECK)
+    ((lower, upper),) = out.consistent_mdsm
+    p = Model(**STRIBECK)
+    by_hand = p["v_s"] * np.log(
+        p["g"] * (p["mu_s"] - p["mu_k"]) / (2 * p["beta1"] * p["omega1"] * p["v_s"])
     )
+    assert upper == pytest.approx(by_hand, rel=1e-10)
+    assert "unforced equilibrium" in out.reasons["consistent_mdsm"]
+    assert "may extend below" in out.reasons["consistent_mdsm"]
+    coulomb = predict.predict(alpha=0.0)
+    assert (
+        coulomb.consistent_mdsm == []
+        and coulomb.reasons["consistent_mdsm"] == predict.NO_EXCITATION
+    )
+
+
+def test_the_paper_closed_form_refuses_stribeck_with_the_capability_reason():
+    """Never Coulomb's interval under Stribeck's law: None, with the reason of the
+    capability closed_form_average (the law and the missing property)."""
+    from generated.capabilities import CAPABILITIES
+
+    holds, why = CAPABILITIES[("stribeck", "hertz_damp", "allowed")]["closed_form_average"]
+    assert not holds
+    for contact in ("hertz_damp", "kelvin_voigt", "hunt_crossley"):
+        out = predict.predict(contact=contact, points=10, **STRIBECK)
+        for key in ("paper_tangential_vhat", "paper_coupled_vhat"):
+            assert getattr(out, key) is None
+            reason = out.reasons[key]
+            assert "friction='stribeck'" in reason and "closed_form_average" in reason
+            assert why in reason and "\n" not in reason
+        assert out.friction == "stribeck" and out.contact == contact
+        assert predict.paper_intervals(contact=contact, **STRIBECK) == {
+            "tangential": None,
+            "coupled": None,
+        }
+    # with mu_k = mu_s too: the law's fast average is a quadrature all the same
+    assert predict.paper_intervals(friction="stribeck", mu_k=0.4)["coupled"] is None
+
+
+@pytest.mark.parametrize("contact", ["kelvin_voigt", "hunt_crossley"])
+def test_the_contact_law_reaches_every_generated_function(contact):
+    """The paper's intervals take the contact law's coupled V_hat, the consistent MDSM
+    its fast normal force; hunt_crossley at n_h = 3/2 is hertz_damp."""
+    model = Model(contact=contact)
+    vhat = float(friction.vhat(model="coupled", contact=contact, **model.params))
+    assert predict.paper_intervals(model)["coupled"][0][1] == vhat
+    N1 = float(correlation.fast_normal_force(contact=contact, **model.params)[0])
+    assert predict.fast_motion(model.replace(Vb=2.0)).N1 == N1
+    if contact == "hunt_crossley":
+        a = predict.predict(model, points=20)
+        b = predict.predict(points=20)
+        for key in Prediction.ANALYSES:
+            np.testing.assert_allclose(getattr(a, key), getattr(b, key), rtol=1e-12)
+    else:
+        # Kelvin-Voigt's linear contact: no unstable speed in the consistent MDSM here,
+        # and a V_hat of its own (not Hertz-Damp's 6.375)
+        assert predict.predict(model, points=20).consistent_mdsm == []
+        assert vhat == pytest.approx(8.5714, abs=1e-4)
+
+
+def test_without_friction_the_paper_intervals_are_empty():
+    """Issue 17: ``predict --mu_s 0`` printed "unstable Vb in [8.521, 8.521]" while
+    is_stable(mu_s=0, Vb=8.521) is True: the interval (Vb_c, Vhat] with Vb_c = Vhat."""
+    out = predict.predict(mu_s=0.0, points=10)
+    assert out.paper_tangential_vhat == [] and out.paper_coupled_vhat == []
+    assert predict.paper_intervals(mu_s=0.0, convention="consistent") == {
+        "tangential": [],
+        "coupled": [],
+    }
+    for reading in ("tangential", "coupled"):
+        vhat = float(friction.vhat(model=reading, **{**BASE, "mu_s": 0.0}))
+        assert stability.is_stable(vhat_model=reading, **{**BASE, "mu_s": 0.0, "Vb": vhat})
+
+
+def test_a_balance_without_tangential_excitation_is_refused_by_name():
+    out = predict.predict(alpha_t=0.0, points=10)
+    assert out.consistent_mdsm is None
+    assert out.reasons["consistent_mdsm"].startswith("alpha_t = 0: the residual of the harmonic")
 
 
 # ---------------------------------------------------------------- issue 17, item 3

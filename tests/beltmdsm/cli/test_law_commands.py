@@ -53,3 +53,54 @@ def test_simulate_from_the_periodic_response_under_stribeck_friction(capsys):
     # stable by Floquet (the general path): the perturbed run settles back on the
     # periodic response, whose two reversals per period continue
     assert out["start"] == "periodic" and out["regime"] == "sliding_with_reversals"
+
+
+def test_predict_under_stribeck_prints_why_the_closed_forms_have_no_answer(capsys):
+    """Issue 19: predict followed Coulomb's law whatever the model's (the paper's
+    intervals of Coulomb's closed form under Stribeck's name). Now the paper's
+    analyses have no answer, each with one line naming the law and the missing
+    property (closed_form_average), and the consistent MDSM computes with Stribeck's
+    averages: the band [5.878, 7.083], not Coulomb's [4.682, 6.375]."""
+    assert main(["predict", *STRIBECK, "--no-progress"]) == 0
+    lines = capsys.readouterr().out.strip().splitlines()
+    assert len(lines) == 3
+    for line, key in zip(lines, ("paper_tangential_vhat", "paper_coupled_vhat")):
+        assert line.startswith(f"no prediction for {key}: friction='stribeck' ")
+        assert "closed_form_average: stribeck:" in line and "no elementary antiderivative" in line
+    assert lines[2] == "       consistent_mdsm: unstable Vb in [5.878, 7.083]"
+    assert main(["predict", *STRIBECK, "--no-progress", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["friction"] == "stribeck" and out["contact"] == "hertz_damp"
+    assert out["paper_tangential_vhat"] is None and out["paper_coupled_vhat"] is None
+    assert "closed_form_average" in out["reasons"]["paper_coupled_vhat"]
+    ((lo, hi),) = out["consistent_mdsm"]
+    assert abs(lo - 5.878018659582) < 1e-8 and abs(hi - 7.082839963373) < 1e-8
+    assert "consistent_mdsm" not in out["reasons"]
+
+
+def test_predict_stribeck_with_mu_k_equal_to_mu_s_is_coulombs_consistent_mdsm(capsys):
+    assert main(["predict", "--vb-points", "40", "--json"]) == 0
+    coulomb = json.loads(capsys.readouterr().out)
+    argv = ["predict", "--friction", "stribeck", "--mu_k", "0.4", "--vb-points", "40"]
+    assert main([*argv, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    ((lo, hi),) = out["consistent_mdsm"]
+    ((c_lo, c_hi),) = coulomb["consistent_mdsm"]
+    assert abs(lo - c_lo) < 1e-12 and abs(hi - c_hi) < 1e-12
+    # the closed form refuses the law all the same: its average is a quadrature
+    assert out["paper_coupled_vhat"] is None
+
+
+def test_predict_under_other_contact_laws_takes_their_physics(capsys):
+    assert main(["predict", "--contact", "kelvin_voigt", "--json"]) == 0
+    kv = json.loads(capsys.readouterr().out)
+    assert kv["contact"] == "kelvin_voigt"
+    assert abs(kv["paper_coupled_vhat"][0][1] - 8.5714) < 1e-4  # Hertz-Damp's: 6.375
+    assert kv["consistent_mdsm"] == []
+    assert main(["predict", "--contact", "hunt_crossley", "--n_h", "1.5", "--json"]) == 0
+    hc = json.loads(capsys.readouterr().out)
+    assert main(["predict", "--json"]) == 0
+    hd = json.loads(capsys.readouterr().out)
+    for key in ("paper_tangential_vhat", "paper_coupled_vhat", "consistent_mdsm"):
+        for (a, b), (c, d) in zip(hc[key], hd[key]):
+            assert abs(a - c) < 1e-9 and abs(b - d) < 1e-9

@@ -232,6 +232,18 @@ def test_predict_on_a_coarse_grid_keeps_the_band(capsys):
         assert "consistent_mdsm" not in out["reasons"]
 
 
+def test_predict_without_friction_reports_no_zero_width_band(capsys):
+    # the report: "unstable Vb in [8.521, 8.521]" for both paper readings with --mu_s 0,
+    # while generated.stability.is_stable(mu_s=0, Vb=8.521) is True
+    assert main(["predict", "--mu_s", "0", "--no-progress"]) == 0
+    text = capsys.readouterr().out
+    assert "8.521" not in text
+    assert " paper_tangential_vhat: unstable Vb in none" in text
+    assert "    paper_coupled_vhat: unstable Vb in none" in text
+    out = _json(capsys, ["predict", "--mu_s", "0"])
+    assert out["paper_tangential_vhat"] == out["paper_coupled_vhat"] == []
+
+
 def test_predict_refuses_more_points_than_its_cap(capsys):
     _one_line_error(capsys, ["predict", "--vb-points", "100001"], "--vb-points", "<= 100000")
     _one_line_error(capsys, ["predict", "--vb-points", "1e7"], "--vb-points", "integer")
