@@ -22,6 +22,7 @@ if TYPE_CHECKING:
     from ..analysis.floquet_map import FloquetMap
     from ..analysis.predict import Prediction
     from ..analysis.summary import Summary
+    from ..model import Model
     from ..simulation import Simulation
     from ..studies.coexistence import Coexistence
     from ..studies.responses import ResponseSet
@@ -195,6 +196,16 @@ def kind(name: str, frequency: float | None = None) -> str:
     return name
 
 
+def _laws(model: Model) -> str:
+    """The model's laws and the Floquet path they take, as the headers print them."""
+    from ..analysis.periodmap import engine_of
+
+    return (
+        f"{model.friction} friction, {model.contact}, tension {model.tension}; "
+        f"{engine_of(model)} path"
+    )
+
+
 def _name(periods: int) -> str:
     return "T" if periods == 1 else f"{periods}T"
 
@@ -209,7 +220,8 @@ def band(result: Band, lo: float, hi: float) -> str:
     what = "periodic response" if result.periods == 1 else f"{_name(result.periods)} response"
     lines = [
         f"{what} unstable (or absent) for {result.param} in "
-        f"{format_intervals(result.unstable, spec)} of {lo:g}..{hi:g}"
+        f"{format_intervals(result.unstable, spec)} of {lo:g}..{hi:g} "
+        f"({_laws(result.model)})"
     ]
     for e in result.edges:
         lines.append(
@@ -229,7 +241,7 @@ def responses(found: ResponseSet) -> str:
     """The readable list of ``responses``."""
     m = found.model
     lines = [
-        f"periodic responses of Eq. (4), {m.contact}, tension {m.tension}, "
+        f"periodic responses of Eq. (4) ({_laws(m)}), "
         f"Vb = {m['Vb']:g} m/s (locks looked for up to {found.limit} periods):"
     ]
     for r in found.responses:
@@ -262,7 +274,7 @@ def branch(found: Branch) -> str:
     lo, hi = found.value_range()
     lines = [
         f"branch of the {_name(found.periods)}-periodic response in {found.param} "
-        f"({found.model.contact}, tension {found.model.tension}): {found.param} from "
+        f"({_laws(found.model)}): {found.param} from "
         f"{lo:.6g} to {hi:.6g}, {len(found.points)} points; stable for {found.param} in "
         f"{format_intervals(found.stable_ranges(), '.5f', 'none')}"
     ]
@@ -283,7 +295,7 @@ def coexistence(found: Coexistence) -> str:
     param = found.param
     lines = [
         f"stable periodic responses of Eq. (4) for {param} in {found.lo:g}..{found.hi:g} "
-        f"({found.model.contact}, tension {found.model.tension}; {found.wall_s:.1f} s):"
+        f"({_laws(found.model)}; {found.wall_s:.1f} s):"
     ]
     for r in found.responses:
         stable = ", ".join(
@@ -313,7 +325,8 @@ def floquet_map(result: FloquetMap, png: str | None = None) -> str:
     lines = [
         f"periodic response of Eq. (4) over {result.x} in {result.x_range[0]:g}..."
         f"{result.x_range[1]:g} and {result.y} in {result.y_range[0]:g}..."
-        f"{result.y_range[1]:g} ({len(result.rows)} rows, {result.wall_s:.1f} s): "
+        f"{result.y_range[1]:g} ({_laws(result.model)}; {len(result.rows)} rows, "
+        f"{result.wall_s:.1f} s): "
         f"{len(result.curves)} boundary curves"
     ]
     for c in result.curves:
