@@ -894,6 +894,9 @@ def stability() -> ModuleSpec:
                     else f"the slope of its effective friction is a quadrature "
                     f"(closed_form_average: {why})"
                 )
+                + "; the pointwise functions (growth_rate, is_stable, hurwitz) take it, and "
+                "beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds "
+                "numerically from growth_rate"
             )
         if not upper:
             return lower
@@ -1034,7 +1037,9 @@ Jacobian is block triangular: the quartic factors into a tangential and a normal
 quadratic, so eigenvalues, Hurwitz determinants and the critical belt speed are
 closed forms in the effective friction's value and slope (a quadrature for a
 friction law without a closed-form fast average; the critical belt speed and the
-unstable interval then refuse). A stability map needs only ``is_stable`` (a sign),
+unstable interval then refuse, and ``beltmdsm.analysis.predict.paper_intervals``
+finds the unstable belt speeds numerically from the pointwise ``growth_rate``, with
+``V_hat`` of the chosen reading at each ``Vb``). A stability map needs only ``is_stable`` (a sign),
 not eigenvalues.
 """,
         functions,

@@ -34,7 +34,13 @@ a single harmonic balance does not apply and `consistent_mdsm_damping` raises.
 
 The paper's closed forms (Eqs. 25, 28) need the law's fast average in closed form (the
 capability ``closed_form_average``) and a ``V_hat`` that does not depend on ``Vb``;
-where either fails `paper_intervals` gives None and `predict` the reason.
+where either fails (Stribeck's law) `paper_intervals` finds the same analysis' unstable
+set numerically (`paper_numeric`): the sign of the pointwise
+`generated.stability.growth_rate` (its effective friction a quadrature of the law's
+expression) on a grid of ``Vb``, each edge refined by ``brentq``, with ``V_hat`` of the
+chosen reading evaluated at each ``Vb`` (the fast amplitude frozen in the slow
+linearisation: the slope is ``d mu_bar / d Vr`` at fixed ``V_hat``), and
+`paper_reasons` says so with its grid and tolerance.
 
 The tension law (`predict`'s ``tension=``, docs/modelling.md#tension): the paper's
 analyses linearise at the equilibrium, where the contact force is ``g > 0``, so
@@ -71,13 +77,17 @@ __all__ = [
     "unstable_intervals",
     "paper_intervals",
     "paper_reasons",
+    "paper_numeric",
+    "PAPER_POINTS",
+    "PAPER_XTOL",
+    "PAPER_NUMERIC",
     "predict",
     "Prediction",
     "NO_EXCITATION",
     "NO_FAST_MOTION",
     "NO_VHAT",
-    "VHAT_OF_VB",
-    "NO_CLOSED_FORM",
+    "NUMERIC_NO_AVERAGE",
+    "NUMERIC_VHAT_OF_VB",
     "CLIPPED_MDSM",
     "CLIPPED_PAPER",
     "clip_acts",
@@ -604,7 +614,10 @@ def paper_intervals(
     """The paper's unstable interval ``(Vb_c, Vhat]`` for each ``V_hat`` reading (Eq. 25, 28).
 
     With the model's laws (`generated.stability.unstable_interval` and
-    `generated.friction.vhat` get ``friction=`` and ``contact=``).
+    `generated.friction.vhat` get ``friction=`` and ``contact=``). Where the closed form
+    does not exist (the law's fast average is no closed form, the capability
+    ``closed_form_average``, Stribeck's; or ``V_hat`` depends on ``Vb``) the same
+    analysis is solved numerically (`paper_numeric`).
 
     Parameters
     ----------
@@ -617,12 +630,10 @@ def paper_intervals(
     Returns
     -------
     dict
-        ``{"tangential": [(lower, upper)], "coupled": [...]}``; an empty interval
+        ``{"tangential": [(lower, upper), ...], "coupled": [...]}``; an empty interval
         (NaN from `generated.stability.unstable_interval`) is ``[]``, and a reading
-        without a closed form is ``None``: ``V_hat`` is 0 (no excitation, where Eqs.
-        23-25 have no meaning), the law's fast average is no closed form (the
-        capability ``closed_form_average``: Stribeck's), or ``V_hat`` depends on
-        ``Vb``. `paper_reasons` says which.
+        without an answer is ``None``: ``V_hat`` is 0 (no excitation, where Eqs. 23-25
+        have no meaning). `paper_reasons` says why, or how a numeric set was found.
     """
     return _paper(as_model(model, **kw), convention)[0]
 
@@ -633,9 +644,10 @@ def paper_reasons(
     convention: Literal["paper", "consistent"] = "paper",
     **kw: Any,
 ) -> dict[str, str]:
-    """``{reading: why}`` for each ``V_hat`` reading whose `paper_intervals` is None: one
-    line naming the law and the missing property (`NO_CLOSED_FORM`, `VHAT_OF_VB`,
-    `NO_VHAT`, or the refusal of `generated.stability.unstable_interval`)."""
+    """``{reading: why}`` for each ``V_hat`` reading whose `paper_intervals` is None
+    (`NO_VHAT`, or the refusal of `generated.stability.unstable_interval`) or was found
+    numerically (`PAPER_NUMERIC`: why there is no closed form, the grid and the
+    tolerance): one line each."""
     return _paper(as_model(model, **kw), convention)[1]
 
 
@@ -650,18 +662,126 @@ def _vhat_depends_on_vb(model: Model, reading: str) -> bool:
     return False
 
 
+#: Points of the grid of `paper_numeric` (from ``Vb = 0``); the growth rate under a
+#: quadrature costs about 20 us a point, vectorised.
+PAPER_POINTS = 2000
+#: The tolerance of `paper_numeric`'s edges (brentq's ``xtol``) [m/s].
+PAPER_XTOL = 1e-12
+#: How far (relative) either side of a crossing ``V_hat(Vb) = Vb`` `paper_numeric` puts
+#: grid points: the slope of Eq. (25) jumps there, and a change of stability between
+#: them is an edge at the crossing itself.
+_CROSSING_STEP = 1e-9
+
+
+def _grid_top(model: Model, kw_vhat: dict) -> float:
+    """The default top of `paper_numeric`'s grid: 1.05 times ``V_hat(0)`` plus the
+    unforced critical belt speed (as the consistent MDSM's grid: above ``V_hat`` the
+    fast motion still sweeps the falling part of a law like Stribeck's)."""
+    v0 = float(friction.vhat(**{**kw_vhat, "Vb": 0.0}))
+    return 1.05 * (v0 + _unforced_edge(model))
+
+
+def paper_numeric(
+    model: Model | Mapping[str, Any] | None = None,
+    *,
+    reading: Literal["tangential", "coupled"] = "tangential",
+    convention: Literal["paper", "consistent"] = "paper",
+    points: int = PAPER_POINTS,
+    **kw: Any,
+) -> tuple[list[tuple[float, float]], dict[str, Any]]:
+    """The unstable belt speeds of the paper's analysis without its closed form.
+
+    The set where `generated.stability.growth_rate` (Eq. 26 with Eqs. 23-25; the
+    effective friction and its slope a quadrature of the law's expression where the
+    law has no closed-form fast average) is positive, with ``V_hat`` of ``reading``
+    (`generated.friction.vhat`) evaluated at each ``Vb``: the reading implemented is
+    the fast amplitude of the equilibrium at that belt speed, held fixed in the slow
+    linearisation (the slope is ``d mu_bar / d Vr`` at fixed ``V_hat``, not the total
+    derivative in ``Vb``). For Coulomb's law it is the closed form's set, to the
+    tolerance (`tests/beltmdsm/analysis/test_predict.py`).
+
+    On ``points`` belt speeds from 0 up to `_grid_top` (doubled up to 3 times while
+    a band reaches it) plus the points either side of each crossing ``V_hat(Vb) = Vb``
+    (found by brentq), each change of sign of the growth rate between neighbours is
+    an edge: the crossing itself where the two sit either side of one (the slope of
+    Eq. 25 jumps there), else a root of the growth rate refined by brentq to
+    `PAPER_XTOL`. A band narrower than the grid step can be missed.
+
+    Returns
+    -------
+    intervals : list of (lower, upper)
+    info : dict
+        ``top`` (the grid's end), ``points``, ``step``, ``crossings`` (the belt speeds
+        where ``V_hat(Vb) = Vb``), ``reaches_top`` (a band ends at the grid's end).
+
+    Raises
+    ------
+    ValueError
+        Where ``V_hat`` is not positive on the grid (no fast motion: Eqs. 23-25
+        need ``V_hat > 0``; the message is `NO_VHAT`).
+    """
+    model = as_model(model, **kw)
+    grow, fv = stability.growth_rate, friction.vhat
+    kw_grow = {**model.arguments(grow), "convention": convention, "vhat_model": reading}
+    kw_vhat = {**model.arguments(fv), "model": reading}
+
+    def sigma(vb):
+        return grow(**{**kw_grow, "Vb": vb})
+
+    def gap(vb):
+        return vb - fv(**{**kw_vhat, "Vb": vb})
+
+    top = _grid_top(model, kw_vhat)
+    if not top > 0:
+        raise ValueError(NO_VHAT)
+    for extend in range(_EXTEND + 1):
+        base = np.linspace(0.0, top, points)
+        g = gap(base)
+        if not np.all(g < base):
+            raise ValueError(NO_VHAT)
+        crossings = [
+            optimize.brentq(gap, base[i], base[i + 1], xtol=PAPER_XTOL)
+            for i in intervals.sign_changes(g)
+        ]
+        sides = [c * (1 + d * _CROSSING_STEP) for c in crossings for d in (-1, 1)]
+        grid = np.union1d(base, [v for v in sides if 0 < v < top])
+        s = sigma(grid)
+        cuts = []
+        for i in intervals.sign_changes(-s):
+            lo, hi = grid[i], grid[i + 1]
+            at = [c for c in crossings if lo <= c <= hi]
+            if at:
+                cuts.append(at[0])
+            else:
+                cuts.append(optimize.brentq(sigma, lo, hi, xtol=PAPER_XTOL))
+        found = intervals.from_crossings(grid, s > 0, cuts)
+        reaches = bool(found and found[-1][1] == grid[-1])
+        if not reaches or extend == _EXTEND:
+            break
+        top *= 2
+    info = {
+        "top": float(top),
+        "points": int(grid.size),
+        "step": float(top / (points - 1)),
+        "crossings": [float(c) for c in crossings],
+        "reaches_top": reaches,
+    }
+    return found, info
+
+
 def _paper(model: Model, convention: str):
     intervals_, reasons = {}, {}
-    closed, why = _fact(model, "closed_form_average")
+    closed = _fact(model, "closed_form_average")[0]
     fn = friction.vhat
     for reading in ("tangential", "coupled"):
         intervals_[reading] = None
         if not closed:
-            reasons[reading] = NO_CLOSED_FORM.format(friction=model.friction, why=why)
+            without = NUMERIC_NO_AVERAGE.format(friction=model.friction)
         elif _vhat_depends_on_vb(model, reading):
-            reasons[reading] = VHAT_OF_VB.format(friction=model.friction, reading=reading)
+            without = NUMERIC_VHAT_OF_VB.format(friction=model.friction)
         elif not fn(model=reading, **model.arguments(fn)) > 0:
             reasons[reading] = NO_VHAT
+            continue
         else:
             interval = stability.unstable_interval
             try:
@@ -677,6 +797,17 @@ def _paper(model: Model, convention: str):
             # an empty interval is NaN (also (Vb_c, Vhat] with Vb_c = Vhat: mu_s = 0)
             empty = math.isnan(lower) or not lower < upper
             intervals_[reading] = [] if empty else [(lower, upper)]
+            continue
+        try:
+            found, info = paper_numeric(model, reading=reading, convention=convention)
+        except ValueError as err:
+            reasons[reading] = str(err)
+            continue
+        intervals_[reading] = found
+        note = PAPER_NUMERIC.format(without=without, reading=reading, xtol=PAPER_XTOL, **info)
+        if info["reaches_top"]:
+            note += "; " + GRID_END.format(end="highest", value=info["top"], side="above")
+        reasons[reading] = note
     return intervals_, reasons
 
 
@@ -694,18 +825,19 @@ NO_FAST_MOTION = (
     "with Vb under friction={friction!r}"
 )
 NO_VHAT = "V_hat = 0 (no fast tangential motion): Eqs. (23)-(25) need V_hat > 0"
-#: Why the paper's closed form has no interval for a law without a closed-form fast
-#: average (formatted with the law and the capability's reason).
-NO_CLOSED_FORM = (
-    "friction={friction!r} has no closed-form unstable interval: Eqs. (23)-(25), (28) "
-    "need the friction law's fast average in closed form (closed_form_average: {why})"
+#: How `paper_intervals` found a set without the closed form (formatted with the reason
+#: there is none, the reading and `paper_numeric`'s grid).
+PAPER_NUMERIC = (
+    "numeric ({without}: Eqs. (25), (28) have no closed form): Vb where "
+    "generated.stability.growth_rate > 0 with V_hat ({reading} reading) at each Vb, "
+    "{points} points in [0, {top:.4g}] m/s, edges by brentq to {xtol:.0e} m/s (a root, "
+    "or V_hat(Vb) = Vb where the slope of Eq. (25) jumps); a band narrower than "
+    "{step:.2g} m/s can be missed"
 )
-#: Why the paper's closed form has no interval where V_hat depends on Vb.
-VHAT_OF_VB = (
-    "friction={friction!r} has no closed-form unstable interval: its V_hat "
-    "({reading} reading) depends on Vb through the slope of the law at Vb, and "
-    "(Vb_c, V_hat] of Eqs. (25), (28) holds for a V_hat independent of Vb"
-)
+#: The clauses of `PAPER_NUMERIC`: a law without a closed-form fast average, a V_hat
+#: that depends on Vb.
+NUMERIC_NO_AVERAGE = "friction={friction!r} has no closed-form fast average (closed_form_average)"
+NUMERIC_VHAT_OF_VB = "V_hat depends on Vb under friction={friction!r}"
 #: The note on a band of the consistent MDSM that reaches an end of its grid.
 GRID_END = (
     "an unstable range reaches the {end} belt speed of the grid, {value:.4g} m/s, "
@@ -855,10 +987,11 @@ def predict(
         ("paper_tangential_vhat", "tangential"),
         ("paper_coupled_vhat", "coupled"),
     ):
-        if paper[reading] is None:
-            reasons[key] = why[reading]
-        elif tension == "clipped":
-            reasons[key] = CLIPPED_PAPER
+        note = why.get(reading)
+        if tension == "clipped" and paper[reading] is not None:
+            note = "; ".join(r for r in (note, CLIPPED_PAPER) if r)
+        if note:
+            reasons[key] = note
     return Prediction(
         paper["tangential"],
         paper["coupled"],

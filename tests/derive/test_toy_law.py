@@ -13,7 +13,8 @@ forms typed here or an mpmath reference, or refuses it in one line naming it:
   against the law (``simulate``), the superposition solver's refusal naming the law and
   the property it lacks;
 * the paper's tangential interval in closed form, ``(sqrt(V_hat^2 - m^2), V_hat]``, its
-  coupled reading refused (its ``V_hat`` depends on ``Vb``), and the consistent MDSM's
+  coupled reading solved numerically (its ``V_hat`` depends on ``Vb``: no closed form),
+  its edges where the pointwise growth rate changes sign, and the consistent MDSM's
   band against Eq. (A1) and the averaged friction integrated by mpmath (``predict``);
 * Liouville's formula for the periodic response that slides without reversal: the
   slip-mode friction ``(mu_s - c_f (Vb - X1')) F`` adds ``c_f F`` to the trace, and the
@@ -229,13 +230,18 @@ def check_predict(toy):
     ((lower, upper),) = out["paper_tangential_vhat"]
     assert upper == pytest.approx(vhat, rel=1e-12)
     assert lower == pytest.approx(math.sqrt(vhat**2 - m**2), rel=1e-10)
-    # the coupled reading's V_hat takes mu(Vb) = mu_s - c_f Vb: refused by name
-    assert out["paper_coupled_vhat"] is None
+    # the coupled reading's V_hat takes mu(Vb) = mu_s - c_f Vb: no closed form, solved
+    # numerically from the pointwise growth rate, and the reason says so
+    coupled = out["paper_coupled_vhat"]
+    assert coupled and all(lo < hi for lo, hi in coupled)
     why = out["reasons"]["paper_coupled_vhat"]
-    assert why.startswith("friction='falling' has no closed-form unstable interval")
-    assert "depends on Vb" in why and "\n" not in why
+    assert why.startswith("numeric (V_hat depends on Vb under friction='falling'")
+    assert "\n" not in why
     text = cli(toy, "predict --no-progress")
-    assert f"no prediction for paper_coupled_vhat: {why}" in text.splitlines()
+    assert any(
+        line.strip().startswith("paper_coupled_vhat: unstable Vb in") and why in line
+        for line in text.splitlines()
+    )
     # the consistent MDSM: its band's edges and points of its grid against Eq. (A1)
     # and the averaged friction of the law typed here, integrated by mpmath
     ((lo, hi),) = out["consistent_mdsm"]

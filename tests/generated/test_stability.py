@@ -12,6 +12,7 @@ import pytest
 from conftest import random_params, rel_err
 
 from generated import _support, friction, stability, unforced
+from generated.mp import friction as mp_friction
 from generated.mp import stability as mp_stability
 from generated.parameters import BASE
 
@@ -830,3 +831,117 @@ def test_stribeck_consistent_analysis_tends_to_the_unforced_one_and_the_excitati
     assert J[1, 1] == pytest.approx(J0[1, 1], rel=1e-4)
     assert not stability.is_stable(friction="stribeck", convention="consistent", **weak)
     assert stability.is_stable(friction="stribeck", convention="consistent", **p)
+
+
+# Stribeck's law in the paper's pointwise analysis, by an independent computation -----
+
+
+def stribeck_mu_bar_by_hand(Vr, Vh, p):
+    """Eq. (23)'s average of sgn(v) mu(|v|), v = Vr + Vh sin t, over a period: mpmath.quad
+    of Stribeck's law typed here, split where v changes sign."""
+    mu_s, mu_k, v_s = (mpmath.mpf(p[k]) for k in ("mu_s", "mu_k", "v_s"))
+
+    def f(t):
+        v = Vr + Vh * mpmath.sin(t)
+        return mpmath.sign(v) * (mu_k + (mu_s - mu_k) * mpmath.exp(-abs(v) / v_s))
+
+    cuts = [-mpmath.pi / 2, mpmath.pi / 2, 3 * mpmath.pi / 2]
+    if abs(Vr) < Vh:
+        t1 = mpmath.asin(-Vr / Vh)
+        cuts += [t1, mpmath.pi - t1]
+    return mpmath.quad(f, sorted(cuts)) / (2 * mpmath.pi)
+
+
+def stribeck_vhat_by_hand(Vb, p):
+    """The tangential reading: alpha Omega^3 / |omega1^2 - Omega^2 + i (2 beta1 omega1 +
+    g mu'(Vb)) Omega| with Stribeck's slope mu'(Vb) = -(mu_s - mu_k) exp(-Vb/v_s) / v_s."""
+    q = {k: mpmath.mpf(v) for k, v in p.items()}
+    slope = -(q["mu_s"] - q["mu_k"]) * mpmath.exp(-Vb / q["v_s"]) / q["v_s"]
+    W = q["Omega"]
+    damping = 2 * q["beta1"] * q["omega1"] + q["g"] * slope
+    return q["alpha"] * W**3 / abs(q["omega1"] ** 2 - W**2 + 1j * damping * W)
+
+
+def hurwitz_by_hand(J):
+    """H1..H4 of the characteristic quartic of J (Faddeev-LeVerrier), as minors of the
+    Hurwitz matrix."""
+    n = J.rows
+    M, a = mpmath.zeros(n, n), []
+    for k in range(1, n + 1):
+        M = J * M + (a[-1] if a else 1) * mpmath.eye(n) if k > 1 else mpmath.eye(n)
+        c = -sum((J * M)[i, i] for i in range(n)) / k
+        a.append(c)
+    a1, a2, a3, a4 = a
+    H = mpmath.matrix([[a1, a3, 0, 0], [1, a2, a4, 0], [0, a1, a3, 0], [0, 1, a2, a4]])
+    return [mpmath.det(H[:k, :k]) if k > 1 else a1 for k in range(1, 5)]
+
+
+@pytest.mark.parametrize("convention", CONVENTIONS)
+@pytest.mark.parametrize("Vb", [1.0, 5.0, 8.53])
+def test_stribeck_pointwise_analysis_against_an_independent_computation(mp50, Vb, convention):
+    """At a Stribeck point (mu_k = 0.25, v_s = 1): V_hat (tangential reading) typed by
+    hand, mu_bar^0 by mpmath.quad of the law, its slope by a central difference
+    (h = 1e-18 at 50 digits), the slow Jacobian of Eq. (22) built from them and its
+    eigenvalues and Hurwitz determinants (Faddeev-LeVerrier) computed here: the mpmath
+    twins agree to 30 digits, the numpy functions to their quadrature's 1e-12, and
+    is_stable is the sign of all four H_k. Vb = 8.53 lies above V_hat(Vb) (no reversal:
+    the consistent convention's band just above the crossing)."""
+    p = {k: v for k, v in BASE.items() if k != "Vb"}
+    Vb_mp = mpmath.mpf(Vb)
+    Vh = stribeck_vhat_by_hand(Vb_mp, p)
+    law = dict(friction="stribeck", convention=convention)
+    mp_p = {k: mpmath.mpf(v) for k, v in p.items()}
+    vh_twin = mp_friction.vhat(friction="stribeck", **mp_p, Vb=Vb_mp)
+    assert abs(vh_twin - Vh) <= mpmath.mpf(10) ** -30 * Vh
+    h = mpmath.mpf(10) ** -18
+    m0 = stribeck_mu_bar_by_hand(-Vb_mp, Vh, p)
+    m1 = (
+        stribeck_mu_bar_by_hand(-Vb_mp + h, Vh, p) - stribeck_mu_bar_by_hand(-Vb_mp - h, Vh, p)
+    ) / (2 * h)
+    b1, w1, b2, w2, g = (mp_p[k] for k in ("beta1", "omega1", "beta2", "omega2", "g"))
+    s = 1 if convention == "paper" else -1
+    k = mpmath.mpf(3) / 2 * w2**2 * mpmath.cbrt(g / w2**2)
+    J = mpmath.matrix(
+        [
+            [0, 1, 0, 0],
+            [-(w1**2), -2 * b1 * w1 + s * m1 * g, s * m0 * k, s * 2 * m0 * b2 * g / w2],
+            [0, 0, 0, 1],
+            [0, 0, -k, -2 * b2 * g / w2],
+        ]
+    )
+    sigma = max(mpmath.re(x) for x in mpmath.eig(J)[0])
+    H = hurwitz_by_hand(J)
+    at = {**mp_p, "Vb": Vb_mp, "Vhat": Vh}
+    tol = mpmath.mpf(10) ** -30
+    assert abs(mp_stability.growth_rate(**at, **law) - sigma) <= tol
+    for got, ref in zip(mp_stability.hurwitz(**at, **law), H):
+        assert abs(got - ref) <= tol * max(1, abs(ref))
+    J_twin = mp_stability.jacobian(**at, **law)
+    assert mpmath.mnorm(J_twin - J, 1) <= tol
+    # the numpy functions (V_hat from vhat_model, as paper_intervals uses them)
+    q = {**p, "Vb": Vb}
+    got = stability.growth_rate(**q, **law, vhat_model="tangential", backend="numpy")
+    assert abs(got - float(sigma)) <= 1e-12
+    stable = stability.is_stable(**q, **law, vhat_model="tangential", backend="numpy")
+    assert bool(stable) == all(x > 0 for x in H) == (sigma < 0)
+
+
+@pytest.mark.parametrize("vhat_model", ["tangential", "coupled"])
+@pytest.mark.parametrize("convention", CONVENTIONS)
+def test_stribeck_with_mu_k_equal_to_mu_s_has_coulombs_growth_rate(convention, vhat_model):
+    """mu_k = mu_s: the law's part beyond mu(0) is exactly 0, its quadratures too, and the
+    growth rate, verdict and Hurwitz determinants are Coulomb's to rounding, on both
+    sides of V_hat and at Vb = 0."""
+    Vb = np.linspace(0.0, 12.0, 241)
+    p = {**BASE_ARRAY, "Vb": Vb}
+    opts = dict(convention=convention, vhat_model=vhat_model, backend="numpy")
+    same = dict(friction="stribeck", mu_k=BASE["mu_s"])
+    ref = stability.growth_rate(**p, **opts)
+    got = stability.growth_rate(**{**p, **same}, **opts)
+    np.testing.assert_allclose(got, ref, rtol=1e-13, atol=1e-15)
+    np.testing.assert_array_equal(
+        stability.is_stable(**{**p, **same}, **opts), stability.is_stable(**p, **opts)
+    )
+    opts.pop("backend")  # hurwitz has one backend
+    for a, b in zip(stability.hurwitz(**{**p, **same}, **opts), stability.hurwitz(**p, **opts)):
+        np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-14)

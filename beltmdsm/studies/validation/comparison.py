@@ -167,8 +167,9 @@ def predicted_intervals(model: Model) -> dict[str, list[tuple[float, float]] | N
     """Every analysis' unstable ``Vb`` ranges: ``{key: [(lower, upper), ...] or None}``.
 
     One entry for each key of `ANALYSES`, in its order. The paper's analysis is the
-    closed form of Eqs. (25), (28) for each ``V_hat`` reading and sign convention
-    (`beltmdsm.analysis.predict.paper_intervals`: an empty interval is ``[]``, None
+    closed form of Eqs. (25), (28) for each ``V_hat`` reading and sign convention, or
+    its numeric solution where there is none (Stribeck's law;
+    `beltmdsm.analysis.predict.paper_intervals`: an empty interval is ``[]``, None
     where ``V_hat`` is 0), the same under both tension laws (a linearisation at the
     equilibrium, where the contact force is positive); the
     consistent MDSM is `beltmdsm.analysis.predict.unstable_intervals`, and None (no

@@ -238,27 +238,77 @@ def test_stribeck_without_excitation_is_the_unforced_boundary():
     )
 
 
-def test_the_paper_closed_form_refuses_stribeck_with_the_capability_reason():
-    """Never Coulomb's interval under Stribeck's law: None, with the reason of the
-    capability closed_form_average (the law and the missing property)."""
+def test_the_paper_analysis_of_stribeck_is_numeric_and_says_so():
+    """Stribeck's law has no closed-form fast average (closed_form_average): the paper's
+    analysis is solved numerically from the pointwise growth rate, never with Coulomb's
+    closed form, and the reason says so with its grid and tolerance."""
     from generated.capabilities import CAPABILITIES
 
-    holds, why = CAPABILITIES[("stribeck", "hertz_damp", "allowed")]["closed_form_average"]
+    holds, _ = CAPABILITIES[("stribeck", "hertz_damp", "allowed")]["closed_form_average"]
     assert not holds
     for contact in ("hertz_damp", "kelvin_voigt", "hunt_crossley"):
         out = predict.predict(contact=contact, points=10, **STRIBECK)
-        for key in ("paper_tangential_vhat", "paper_coupled_vhat"):
-            assert getattr(out, key) is None
+        for key, reading in (
+            ("paper_tangential_vhat", "tangential"),
+            ("paper_coupled_vhat", "coupled"),
+        ):
+            assert getattr(out, key)
             reason = out.reasons[key]
-            assert "friction='stribeck'" in reason and "closed_form_average" in reason
-            assert why in reason and "\n" not in reason
+            assert reason.startswith("numeric (friction='stribeck' has no closed-form fast")
+            assert f"({reading} reading)" in reason and "brentq to 1e-12" in reason
+            assert "\n" not in reason
         assert out.friction == "stribeck" and out.contact == contact
-        assert predict.paper_intervals(contact=contact, **STRIBECK) == {
-            "tangential": None,
-            "coupled": None,
-        }
-    # with mu_k = mu_s too: the law's fast average is a quadrature all the same
-    assert predict.paper_intervals(friction="stribeck", mu_k=0.4)["coupled"] is None
+    # the numbers of the base set (docs/modelling.md, README): the tangential reading
+    # has a lower edge where Coulomb's has 0, the coupled one ends at V_hat(Vb) = Vb
+    paper = predict.paper_intervals(**STRIBECK)
+    ((lo, hi),) = paper["tangential"]
+    assert lo == pytest.approx(3.8049, abs=1e-4) and hi == pytest.approx(8.5213, abs=1e-4)
+    ((lo, hi),) = paper["coupled"]
+    assert lo == 0.0 and hi == pytest.approx(7.1177, abs=1e-4)
+    p = Model(**STRIBECK, Vb=hi)
+    assert friction.vhat(model="coupled", **p.arguments(friction.vhat)) == pytest.approx(
+        hi, abs=1e-11
+    )
+
+
+def test_predict_prints_stribecks_numeric_paper_intervals(capsys):
+    assert main(["predict", "--friction", "stribeck", "--mu_k", "0.25", "--v_s", "1",
+                 "--no-progress"]) == 0  # fmt: skip
+    lines = capsys.readouterr().out.splitlines()
+    for key, interval in (
+        ("paper_tangential_vhat", "[3.805, 8.521]"),
+        ("paper_coupled_vhat", "[0.000, 7.118]"),
+    ):
+        (line,) = [x for x in lines if x.strip().startswith(f"{key}:")]
+        assert f"unstable Vb in {interval}; numeric (" in line
+
+
+CLOSED_CASES = {
+    "base": {},  # the closed form's lower edge is 0 (m >= V_hat)
+    "low_mu": {"mu_s": 0.1},  # a positive lower edge
+    "damped": {"beta1": 0.4},
+}
+
+
+@pytest.mark.parametrize("convention", ["paper", "consistent"])
+@pytest.mark.parametrize("case", list(CLOSED_CASES))
+def test_stribeck_with_mu_k_equal_to_mu_s_has_coulombs_paper_intervals(case, convention):
+    """mu_k = mu_s: the numeric path (a quadrature of a law part that is exactly 0, a
+    V_hat that does not vary) gives the closed form's intervals to brentq's 1e-12 m/s;
+    Coulomb's own numeric path too."""
+    p = CLOSED_CASES[case]
+    coulomb = Model(**p)
+    stribeck = Model(**p, friction="stribeck", mu_k=coulomb["mu_s"], v_s=1.0)
+    closed = predict.paper_intervals(coulomb, convention=convention)
+    numeric = predict.paper_intervals(stribeck, convention=convention)
+    for reading in ("tangential", "coupled"):
+        own = predict.paper_numeric(coulomb, reading=reading, convention=convention)[0]
+        for got in (numeric[reading], own):
+            assert len(got) == len(closed[reading]), (reading, got, closed[reading])
+            for (a, b), (c, d) in zip(got, closed[reading]):
+                assert abs(a - c) <= 2e-12 and abs(b - d) <= 2e-12, (reading, got)
+    assert "numeric" in predict.paper_reasons(stribeck, convention=convention)["coupled"]
+    assert predict.paper_reasons(coulomb, convention=convention) == {}
 
 
 @pytest.mark.parametrize("contact", ["kelvin_voigt", "hunt_crossley"])

@@ -55,23 +55,29 @@ def test_simulate_from_the_periodic_response_under_stribeck_friction(capsys):
     assert out["start"] == "periodic" and out["regime"] == "sliding_with_reversals"
 
 
-def test_predict_under_stribeck_prints_why_the_closed_forms_have_no_answer(capsys):
+def test_predict_under_stribeck_prints_numeric_paper_intervals(capsys):
     """Issue 19: predict followed Coulomb's law whatever the model's (the paper's
     intervals of Coulomb's closed form under Stribeck's name). Now the paper's
-    analyses have no answer, each with one line naming the law and the missing
-    property (closed_form_average), and the consistent MDSM computes with Stribeck's
-    averages: the band [5.878, 7.083], not Coulomb's [4.682, 6.375]."""
+    analysis, which has no closed form under Stribeck's law (closed_form_average), is
+    solved numerically from the pointwise growth rate, each row saying so, and the
+    consistent MDSM computes with Stribeck's averages: the band [5.878, 7.083], not
+    Coulomb's [4.682, 6.375]."""
     assert main(["predict", *STRIBECK, "--no-progress"]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
     assert len(lines) == 3
-    for line, key in zip(lines, ("paper_tangential_vhat", "paper_coupled_vhat")):
-        assert line.startswith(f"no prediction for {key}: friction='stribeck' ")
-        assert "closed_form_average: stribeck:" in line and "no elementary antiderivative" in line
+    for line, key, interval in zip(
+        lines,
+        ("paper_tangential_vhat", "paper_coupled_vhat"),
+        ("[3.805, 8.521]", "[0.000, 7.118]"),
+    ):
+        assert line.strip().startswith(f"{key}: unstable Vb in {interval}; numeric (")
+        assert "friction='stribeck' has no closed-form fast average" in line
     assert lines[2] == "       consistent_mdsm: unstable Vb in [5.878, 7.083]"
     assert main(["predict", *STRIBECK, "--no-progress", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["friction"] == "stribeck" and out["contact"] == "hertz_damp"
-    assert out["paper_tangential_vhat"] is None and out["paper_coupled_vhat"] is None
+    ((lo, hi),) = out["paper_tangential_vhat"]
+    assert abs(lo - 3.804882953858) < 1e-9 and abs(hi - 8.521258261835) < 1e-9
     assert "closed_form_average" in out["reasons"]["paper_coupled_vhat"]
     ((lo, hi),) = out["consistent_mdsm"]
     assert abs(lo - 5.878018659582) < 1e-8 and abs(hi - 7.082839963373) < 1e-8
@@ -87,8 +93,12 @@ def test_predict_stribeck_with_mu_k_equal_to_mu_s_is_coulombs_consistent_mdsm(ca
     ((lo, hi),) = out["consistent_mdsm"]
     ((c_lo, c_hi),) = coulomb["consistent_mdsm"]
     assert abs(lo - c_lo) < 1e-12 and abs(hi - c_hi) < 1e-12
-    # the closed form refuses the law all the same: its average is a quadrature
-    assert out["paper_coupled_vhat"] is None
+    # the paper's analysis has no closed form all the same (its average is a
+    # quadrature): the numeric path gives Coulomb's closed-form interval
+    ((lo, hi),) = out["paper_coupled_vhat"]
+    ((c_lo, c_hi),) = coulomb["paper_coupled_vhat"]
+    assert abs(lo - c_lo) < 1e-11 and abs(hi - c_hi) < 1e-11
+    assert out["reasons"]["paper_coupled_vhat"].startswith("numeric (")
 
 
 def test_predict_under_other_contact_laws_takes_their_physics(capsys):
