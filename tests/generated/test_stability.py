@@ -945,3 +945,10 @@ def test_stribeck_with_mu_k_equal_to_mu_s_has_coulombs_growth_rate(convention, v
     opts.pop("backend")  # hurwitz has one backend
     for a, b in zip(stability.hurwitz(**{**p, **same}, **opts), stability.hurwitz(**p, **opts)):
         np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-14)
+
+
+@pytest.mark.parametrize("fn", [stability.hurwitz, mp_stability.hurwitz, stability.coefficients])
+def test_an_unknown_keyword_with_vhat_model_names_the_function_called(fn):
+    # it reached vhat() first, whose message named vhat() and not the caller
+    with pytest.raises(TypeError, match=rf"^{fn.__name__}\(\) got unexpected .*'backend'"):
+        fn(vhat_model="tangential", backend="numpy", **{**BASE, "Vb": 4.0})

@@ -257,6 +257,8 @@ def resolve_vhat(function, params, vhat_model, vhat, **laws):
         if vhat_model is not None:
             raise ValueError(f"{function}(): give either Vhat or vhat_model, not both")
         return params
+    # an unknown keyword is the caller's to report, not vhat()'s
+    _reject_unknown(function, params)
     model = "tangential" if vhat_model is None else vhat_model
     value = vhat(model=model, **laws, **params)
     # Without this the check of Vhat would blame a parameter the caller never gave
