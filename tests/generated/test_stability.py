@@ -952,3 +952,10 @@ def test_an_unknown_keyword_with_vhat_model_names_the_function_called(fn):
     # it reached vhat() first, whose message named vhat() and not the caller
     with pytest.raises(TypeError, match=rf"^{fn.__name__}\(\) got unexpected .*'backend'"):
         fn(vhat_model="tangential", backend="numpy", **{**BASE, "Vb": 4.0})
+
+
+@pytest.mark.parametrize("fn", [stability.is_stable, mp_stability.growth_rate, stability.hurwitz])
+def test_a_bad_value_with_vhat_from_the_model_names_the_function_called(fn):
+    # issue 17: stability.is_stable(Vb=nan) raised an error that named vhat()
+    with pytest.raises(ValueError, match=rf"^{fn.__name__}\(\): parameter 'Vb' .*NaN"):
+        fn(**{**BASE, "Vb": float("nan")})

@@ -257,10 +257,17 @@ def resolve_vhat(function, params, vhat_model, vhat, **laws):
         if vhat_model is not None:
             raise ValueError(f"{function}(): give either Vhat or vhat_model, not both")
         return params
-    # an unknown keyword is the caller's to report, not vhat()'s
+    # a bad keyword or value is the caller's to report, not the vhat() it reaches first
     _reject_unknown(function, params)
     model = "tangential" if vhat_model is None else vhat_model
-    value = vhat(model=model, **laws, **params)
+    try:
+        value = vhat(model=model, **laws, **params)
+    except ValueError as err:
+        prefix = f"{vhat.__name__}(): "
+        text = str(err)
+        raise ValueError(
+            f"{function}(): {text[len(prefix):]}" if text.startswith(prefix) else text
+        ) from None
     # Without this the check of Vhat would blame a parameter the caller never gave
     # (the mpmath variants pass an mpf, hence the conversion).
     if not numpy.isfinite(numpy.asarray(value, dtype=float)).all():
