@@ -232,13 +232,42 @@ def free_decay_rate(model: Model) -> float:
     return float(np.max(np.real(lam[:2])))
 
 
+def _transient_rate(model, settings, forced):
+    """``(sigma, what)``: the rate at which a disturbance decays in the run, and its name.
+
+    `free_decay_rate` where it is the rate: without excitation (steady sliding), and
+    under a law whose slip friction does not depend on the tangential state (Coulomb:
+    between switches the tangential equation is linear with that rate). Under excitation
+    and a friction that depends on the sliding speed (Stribeck), the disturbance decays
+    towards the periodic response at its Floquet rate ``ln max|mu| / T`` instead, which
+    steady sliding's rate need not resemble; where that response is not stable or not
+    known, the free rate is all there is.
+    """
+    from generated.capabilities import CAPABILITIES
+
+    sigma = free_decay_rate(model)
+    laws = CAPABILITIES[(model.friction, model.contact, model.tension)]
+    if not forced or laws["slip_friction_state_independent"][0]:
+        return sigma, "exp(sigma t)"
+    from .floquet import NoPeriodicResponse, floquet
+
+    try:
+        f = floquet(model, backend=settings.backend)
+    except (NoPeriodicResponse, ValueError):
+        return sigma, "exp(sigma t)"
+    if not f.stable:
+        return sigma, "exp(sigma t)"
+    return math.log(f.max_abs_multiplier) / f.period, "the Floquet rate |mu|^(t/T)"
+
+
 def _resolution(model, settings, v, out):
     """Whether the steady window can tell the omega1 peak (``resolved``) and why not.
 
     Three things can make it unable to: a window too short for the omega1 band to hold
     two frequency bins; a window in which the transient of the tangential oscillator
-    (frequency near omega1, envelope ``exp(sigma t)``, `free_decay_rate`) has not
-    decayed, which would read as an omega1 peak whatever the dynamics; and, for a peak
+    (frequency near omega1, envelope ``exp(sigma t)``, `free_decay_rate`, or under
+    excitation and a speed-dependent friction the Floquet rate, `_transient_rate`) has
+    not decayed, which would read as an omega1 peak whatever the dynamics; and, for a peak
     that would be present, a slow decay towards a stable periodic response (Floquet
     multiplier close to 1, next to an edge of the Floquet band), which the free
     transient does not see. Both decays are checked in the window itself where they
@@ -257,11 +286,11 @@ def _resolution(model, settings, v, out):
         )
     t0 = out["t_discard"]
     threshold = _threshold(out)
-    sigma = free_decay_rate(model)
+    sigma, what = _transient_rate(model, settings, out["forced_peak"])
     envelope = math.exp(min(sigma * t0, 0.0)) if sigma < 0 else 1.0
     why = (
         f"the tangential transient has not decayed in the steady window (its "
-        f"envelope exp(sigma t), sigma = {sigma:.3g} 1/s, is {envelope:.2g} at t = {t0:g} s)"
+        f"envelope, {what} with sigma = {sigma:.3g} 1/s, is {envelope:.2g} at t = {t0:g} s)"
         if sigma < 0
         else f"steady sliding is unstable (free tangential rate sigma = {sigma:.3g} 1/s >= 0)"
     )

@@ -80,3 +80,28 @@ def test_the_free_decay_rate_is_the_slower_root_of_the_tangential_oscillator(bet
     # the roots of l^2 + 2 beta1 w1 l + w1^2: -beta1 w1 (+-) w1 sqrt(beta1^2 - 1)
     slower = -beta1 * w1 + (w1 * np.sqrt(beta1**2 - 1) if beta1 > 1 else 0.0)
     assert rate == pytest.approx(slower, rel=1e-13)
+
+
+def test_under_excitation_a_speed_dependent_friction_decays_at_the_floquet_rate():
+    import math
+
+    from beltmdsm.analysis.floquet import floquet
+    from beltmdsm.model import Model
+    from beltmdsm.settings import SolverSettings
+
+    settings = SolverSettings()
+    # Stribeck (mu_k = 0.1, v_s = 3) at 4.5 m/s: steady sliding grows (its free rate is
+    # > 0), the forced periodic response attracts; a disturbance of the run decays at
+    # the latter's rate (docs/stribeck.md: +0.0094/s against -0.076/s)
+    m = Model(friction="stribeck", mu_k=0.1, v_s=3.0, Vb=4.5)
+    f = floquet(m)
+    sigma, what = summary._transient_rate(m, settings, forced=True)
+    assert summary.free_decay_rate(m) > 0 > sigma
+    assert sigma == pytest.approx(math.log(f.max_abs_multiplier) / f.period, rel=1e-12)
+    assert "Floquet" in what
+    # without excitation, and under Coulomb friction, the free rate is the rate
+    assert summary._transient_rate(m, settings, forced=False)[0] == summary.free_decay_rate(m)
+    coulomb = Model(Vb=4.5)
+    assert summary._transient_rate(coulomb, settings, forced=True)[0] == pytest.approx(
+        -coulomb["beta1"] * coulomb["omega1"], rel=1e-14
+    )
