@@ -266,7 +266,7 @@ def resolve_vhat(function, params, vhat_model, vhat, **laws):
         prefix = f"{vhat.__name__}(): "
         text = str(err)
         raise ValueError(
-            f"{function}(): {text[len(prefix):]}" if text.startswith(prefix) else text
+            f"{function}(): {text[len(prefix) :]}" if text.startswith(prefix) else text
         ) from None
     # Without this the check of Vhat would blame a parameter the caller never gave
     # (the mpmath variants pass an mpf, hence the conversion).
