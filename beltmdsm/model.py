@@ -269,6 +269,13 @@ class Model:
         args = [f"{k}={v!r}" for k, v in {**changed, **options}.items()]
         return f"Model({', '.join(args)})"
 
+    def fact(self, name: str) -> tuple[bool, str]:
+        """``(holds, reason)``: a capability of this model's laws that SymPy decided
+        (``generated.capabilities``; ``name`` one of its ``FACTS``)."""
+        from generated.capabilities import CAPABILITIES
+
+        return CAPABILITIES[(self.friction, self.contact, self.tension)][name]
+
     def arguments(self, function: Callable[..., Any]) -> dict[str, Any]:
         """The keywords a generated function takes of this model: the options it declares
         (``friction=``, ``contact=``, ...) and every parameter (the generated functions
@@ -302,9 +309,7 @@ def require(model: Model, fact: str, analysis: str) -> None:
     The message names the analysis, the law and the property, in one line:
     ``"superposition: friction='stribeck': the slip-mode friction depends on X1'"``.
     """
-    from generated.capabilities import CAPABILITIES
-
-    holds, reason = CAPABILITIES[(model.friction, model.contact, model.tension)][fact]
+    holds, reason = model.fact(fact)
     if not holds:
         raise Unsupported(f"{analysis}: {reason}")
 

@@ -85,7 +85,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from generated import dynamics, hybrid
-from generated.capabilities import CAPABILITIES
 
 from ..integrate import _compiled, _dop853
 from ..integrate.events import StepTooSmall, integrate_events
@@ -1048,8 +1047,7 @@ ENGINES: dict[str, type[PeriodMap]] = {"closed_form": TangentialMap, "general": 
 def engine_of(model: Model) -> str:
     """The engine of the model's laws: ``"closed_form"`` where they have every fact of
     `CLOSED_FORM_FACTS`, else ``"general"``."""
-    facts = CAPABILITIES[(model.friction, model.contact, model.tension)]
-    return "closed_form" if all(facts[f][0] for f in CLOSED_FORM_FACTS) else "general"
+    return "closed_form" if all(model.fact(f)[0] for f in CLOSED_FORM_FACTS) else "general"
 
 
 def period_map(

@@ -62,7 +62,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import optimize
 
-from generated import _support, capabilities, correlation, friction, stability, unforced
+from generated import _support, correlation, friction, stability, unforced
 
 from .. import intervals
 from ..errors import Refused
@@ -127,17 +127,12 @@ def _single_frequency(p):
     return p["Omega_t"]
 
 
-def _fact(model: Model, name: str) -> tuple[bool, str]:
-    """``(holds, reason)`` of a capability of the model's laws (``generated.capabilities``)."""
-    return capabilities.CAPABILITIES[(model.friction, model.contact, model.tension)][name]
-
-
 def _linear_without_reversal(model: Model) -> bool:
     """Whether the fast motion without a reversal of the friction is the linear response
     (`generated.correlation.fast_tangential_velocity`, exact): where the slip friction
     does not depend on the tangential state (Coulomb's constant coefficient), it is a
     linear function of the normal force. Otherwise the harmonic balance is solved."""
-    return _fact(model, "slip_friction_state_independent")[0]
+    return model.fact("slip_friction_state_independent")[0]
 
 
 class _Balance:
@@ -771,7 +766,7 @@ def paper_numeric(
 
 def _paper(model: Model, convention: str):
     intervals_, reasons = {}, {}
-    closed = _fact(model, "closed_form_average")[0]
+    closed = model.fact("closed_form_average")[0]
     fn = friction.vhat
     for reading in ("tangential", "coupled"):
         intervals_[reading] = None

@@ -232,6 +232,10 @@ def free_decay_rate(model: Model) -> float:
     return float(np.max(np.real(lam[:2])))
 
 
+#: How `_transient_rate` names the Floquet rate of the periodic response.
+FLOQUET_RATE = "the Floquet rate |mu|^(t/T)"
+
+
 def _transient_rate(model, settings, forced):
     """``(sigma, what)``: the rate at which a disturbance decays in the run, and its name.
 
@@ -243,11 +247,8 @@ def _transient_rate(model, settings, forced):
     steady sliding's rate need not resemble; where that response is not stable or not
     known, the free rate is all there is.
     """
-    from generated.capabilities import CAPABILITIES
-
     sigma = free_decay_rate(model)
-    laws = CAPABILITIES[(model.friction, model.contact, model.tension)]
-    if not forced or laws["slip_friction_state_independent"][0]:
+    if not forced or model.fact("slip_friction_state_independent")[0]:
         return sigma, "exp(sigma t)"
     from .floquet import NoPeriodicResponse, floquet
 
@@ -257,7 +258,7 @@ def _transient_rate(model, settings, forced):
         return sigma, "exp(sigma t)"
     if not f.stable:
         return sigma, "exp(sigma t)"
-    return math.log(f.max_abs_multiplier) / f.period, "the Floquet rate |mu|^(t/T)"
+    return math.log(f.max_abs_multiplier) / f.period, FLOQUET_RATE
 
 
 def _resolution(model, settings, v, out):
@@ -295,7 +296,8 @@ def _resolution(model, settings, v, out):
         else f"steady sliding is unstable (free tangential rate sigma = {sigma:.3g} 1/s >= 0)"
     )
     if envelope <= TRANSIENT_DECAYED:
-        if not out["peak_omega1"] > threshold:
+        if not out["peak_omega1"] > threshold or what == FLOQUET_RATE:
+            # (the envelope was the Floquet rate already: no need to ask again)
             return True, ""
         # a present peak: is it a slow decay towards a stable periodic response?
         envelope, text = _floquet_decay(model, settings, t0)
