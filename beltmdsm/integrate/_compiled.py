@@ -169,6 +169,10 @@ def _compiled(integrator, kernels, name, numba_version):
         "import numpy as np",
         f"from {module.__name__} import {', '.join(constants)}",
     ]
+    # numba reads a global array at a run-time index with one load, a global tuple
+    # through a switch over its entries: the Runge-Kutta tables, indexed in loops,
+    # become arrays (the same numbers)
+    lines += [f"{n} = np.array({n})" for n in constants if isinstance(vars(module)[n], tuple)]
     for helper in helpers:
         called = helper.__name__
         lines += [
