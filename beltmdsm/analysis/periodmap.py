@@ -29,9 +29,9 @@ model's laws that SymPy decided (``generated.capabilities``), never by assumptio
   to the periodic orbit of the (overdamped) normal motion, which depends only on
   what the normal equation contains (not on ``Vb``, ``mu_s`` or the tangential
   parameters): `normal_orbit` computes it once per normal parameter set (cached), by
-  shooting on the normal period map with the variational equation
-  (`generated.dynamics.normal_jacobian`) and the normal blocks of the saltation
-  matrices.
+  shooting on the normal period map with the variational equation (the normal block
+  of `generated.hybrid.mode_jacobian`, through the integrator's own steps) and the
+  normal blocks of the saltation matrices.
 * **Tangential block.** Between switches the tangential variational flow is the
   closed-form state-transition matrix of the tangential oscillator
   (`generated.oscillator.state_transition`; the identity while sticking, where
@@ -88,7 +88,7 @@ from generated import dynamics, hybrid
 
 from ..integrate import _compiled, _dop853
 from ..integrate.events import StepTooSmall, integrate_events
-from ..integrate.normal import normal_motion
+from ..integrate.normal import NormalMotion, normal_motion
 from ..integrate.superposition import FACTS as SUPERPOSITION_FACTS
 from ..integrate.superposition import Superposition, TangentialRun, friction_direction
 from ..integrate.switching import SURFACE_INDEX, Mode, Switching
@@ -186,91 +186,46 @@ class NormalOrbit:
 def _normal_flow(model, x0, T):
     """The normal state after ``T``, the monodromy of the normal block and the switches.
 
-    The normal equation with its variational equation (`generated.dynamics`:
-    ``normal_rhs``, ``normal_jacobian``), integrated mode by mode; at each switch the
-    variational solution jumps by the normal block of the saltation matrix.
+    The normal motion of `beltmdsm.integrate.normal.NormalMotion` (the compiled DOP853
+    integrator, mode by mode with located switches, the motion the tangential map is
+    built on), with its variational equation carried through the same steps
+    (`beltmdsm.analysis.variational.propagators`) and the normal block of the saltation
+    matrix applied at each switch (the steps next to a touchdown or a lift-off in
+    graded pieces, `beltmdsm.analysis.variational.graded_pieces`). Under one-way
+    coupling the Jacobians and the saltation matrices are block-triangular: their
+    normal blocks, taken at zero tangential state, multiply on their own.
     """
-    # scipy.integrate costs half a second to import: a sweep that never starts on the
-    # periodic response does not pay it
-    from scipy.integrate import solve_ivp
-
-    bind_rhs, bind_jac = dynamics.bind_normal_rhs, dynamics.bind_normal_jacobian
-    rhs = bind_rhs(backend="python", **model.arguments(bind_rhs))
-    jac = bind_jac(backend="python", **model.arguments(bind_jac))
-    sw = Switching(model, "python")
-
-    def fun(t, y):
-        J = np.array(jac(t, y[0], y[1])).reshape(2, 2)
-        return np.concatenate([rhs(t, y[0], y[1]), (J @ y[2:].reshape(2, 2)).ravel()])
-
-    def events_of(mode):
-        out = []
-        for surface, direction, target in sw.guards[mode][2]:
-            if surface not in ("penetration", "contact_force"):
-                continue
-            index = SURFACE_INDEX[surface]
-
-            def h(t, y, index=index):
-                return sw.surfaces(t, 0.0, 0.0, y[0], y[1])[index]
-
-            h.terminal, h.direction = True, float(direction)
-            out.append((h, surface, target))
-        return out
-
-    mode = _normal_mode(sw, 0.0, x0)
-    t, y = 0.0, np.concatenate([x0, np.eye(2).ravel()])
-    switches = []
-    while t < T:
-        watched = events_of(mode)
-        sol = solve_ivp(
-            fun,
-            (t, T),
-            y,
-            method="DOP853",
-            rtol=RTOL,
-            atol=RTOL,
-            events=[h for h, _, _ in watched] or None,
-        )
-        if sol.status < 0:
-            raise NoPeriodicResponse(f"normal orbit: {sol.message}")
-        t, y = float(sol.t[-1]), sol.y[:, -1].copy()
-        if sol.status == 0:
-            break
-        k = next(i for i, te in enumerate(sol.t_events) if te.size)
-        _, surface, target = watched[k]
-        if surface == "penetration":
-            y[0] = 0.0
-        state = np.array([0.0, 0.0, y[0], y[1]])
-        if target == hybrid.DECIDE_CONTACT:
-            new = _normal_mode(sw, t, y[:2], entering=True)
-        else:
-            new = Mode[target.upper()]
-        S = np.array(
-            hybrid.bind_saltation(
-                before=mode.name.lower(),
-                after=new.name.lower(),
-                surface=surface,
-                backend="python",
-                **model.arguments(hybrid.bind_saltation),
-            )(t, *state)
-        ).reshape(4, 4)[2:, 2:]
-        y[2:] = (S @ y[2:].reshape(2, 2)).ravel()
-        switches.append((t, mode, new, surface))
-        mode = new
-    return y[:2], y[2:].reshape(2, 2), switches
-
-
-def _normal_mode(sw, t, x, entering=False):
-    """Contact (coded SLIP_BACK), flight or separation, for a normal state ``x``.
-
-    ``entering``: the state is on the contact surface, coming into contact.
-    """
-    X2, Y2 = x
-    if not entering and (X2 < 0 or (X2 == 0 and Y2 <= 0)):
-        return Mode.FLIGHT
-    if sw.tension == "clipped" and sw.pulls(t, np.array([0.0, 0.0, X2, Y2])):
-        return Mode.SEPARATED
-    return Mode.SLIP_BACK
+    motion = NormalMotion(model, T, RTOL, RTOL, x0)
+    t_steps, h_steps = motion.t_steps, motion.h_steps
+    ends = np.minimum(t_steps + h_steps, np.append(t_steps[1:], T))
+    contact = [t for t, s in zip(motion.switch_t[1:], motion.switch_surface) if s == "penetration"]
+    index, starts, piece_ends = variational.graded_pieces(t_steps, ends, contact)
+    # the tangential slots hold z (the response to the contact force): put the
+    # tangential state to zero, which the normal block does not read
+    y_steps, F_steps = motion.y_steps[index].copy(), motion.F_steps[index].copy()
+    y_steps[:, :2] = 0.0
+    F_steps[:, :, :2] = 0.0
+    segment = np.searchsorted(motion.switch_t, 0.5 * (starts + piece_ends), side="right") - 1
+    modes = np.array([float(motion.switch_mode[k]) for k in segment])
+    R = variational.propagators(
+        model, t_steps[index], h_steps[index], y_steps, F_steps, piece_ends, modes, starts
+    )
+    # the pieces of each segment, then the saltation of the switch that ends it
+    cuts = np.searchsorted(starts, motion.switch_t[1:-1], side="left")
+    M, first, switches = np.eye(2), 0, []
+    for i, (t, cut) in enumerate(zip(motion.switch_t[1:-1], cuts)):
+        for k in range(first, cut):
+            M = R[k, 2:, 2:] @ M
+        first = cut
+        before, after = motion.switch_mode[i], motion.switch_mode[i + 1]
+        surface = motion.switch_surface[i]
+        state = np.array([0.0, 0.0, *motion.at(t)[2:]])
+        S = variational.saltation(model, before, after, surface)(t, *state)
+        M = np.array(S).reshape(4, 4)[2:, 2:] @ M
+        switches.append((float(t), before, after, surface))
+    for k in range(first, starts.size):
+        M = R[k, 2:, 2:] @ M
+    return motion.at(T)[2:], M, switches
 
 
 #: The normal orbits of the last parameter sets, by `_normal_orbit_key`.
@@ -927,7 +882,7 @@ class GeneralMap(PeriodMap):
         self.periods = _periods(periods)
         self.model, self.backend = model, backend
         self.period = excitation_period(model)
-        self.sw = Switching(model, backend)
+        self.sw = Switching(model)
         self._settings = SolverSettings(
             t_end=self.period,
             rtol=RTOL,

@@ -83,7 +83,7 @@ def integrate_events(
         Where the step size falls below the rounding of the time (tolerances too
         loose or too tight for the field there), naming the time and the mode.
     """
-    sw = Switching(model, settings.backend)
+    sw = Switching(model)
     advance = _compiled.advance("vector_field", model, settings.backend)
     y = initial_state(model) if y0 is None else np.array(y0, dtype=float)
     t, t_end = float(t0), settings.t_end

@@ -105,7 +105,7 @@ class NormalMotion:
         field = hybrid.bind_response_field(
             backend=backend, **model.arguments(hybrid.bind_response_field)
         )
-        sw = Switching(model, backend)
+        sw = Switching(model)
         advance = _compiled.advance("response_field", model, backend)
         guards = {}
         for mode in (Mode.SLIP_BACK, Mode.FLIGHT, Mode.SEPARATED):

@@ -184,7 +184,7 @@ class Superposition:
                 "no closed-form excitation response at undamped resonance "
                 "(beta1 = 0, Omega_t = omega1)"
             )
-        self.sw = sw = Switching(model, backend)
+        self.sw = sw = Switching(model)
         self.scan = _compiled.scan(model, backend)
         self.watch = {}
         for mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD, Mode.STICK):

@@ -38,7 +38,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from generated import hybrid
 
-from ..model import Backend, Model
+from ..model import Model
 
 __all__ = ["Mode", "MODE_NAMES", "SURFACE_INDEX", "TIE_ULPS", "EVENT_KINDS", "Switching"]
 
@@ -79,22 +79,25 @@ class Switching:
     Parameters
     ----------
     model : Model
-    backend : {"python", "numba", None}
-        For the bound kernels (`generated.hybrid`); None: numba if installed.
 
     Attributes
     ----------
     field, surfaces, scales, rates : generated ``_support.Bound`` kernels
+        Plain Python (``backend="python"``): the rules run once per switch, where a
+        numba kernel's dispatch costs about what the Python evaluation does (4 against
+        6 us), while loading it from numba's cache costs a process about 0.1 s per
+        kernel. The compiled integrators take only their ``args``: they compile the
+        kernels into their own loops.
     guards : dict
         ``Mode -> (watch, dirs, targets)``: the indices of the surfaces that end the
         mode (int64 array), their crossing directions (float array) and the guard
         targets (mode names or rule names) of `generated.hybrid.GUARDS`.
     """
 
-    def __init__(self, model: Model, backend: Backend | None = None) -> None:
+    def __init__(self, model: Model) -> None:
         self.model, self.tension = model, model.tension
         self.field, self.surfaces, self.scales, self.rates = (
-            bind(backend=backend, **model.arguments(bind))
+            bind(backend="python", **model.arguments(bind))
             for bind in (
                 hybrid.bind_vector_field,
                 hybrid.bind_surfaces,

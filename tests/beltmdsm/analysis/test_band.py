@@ -170,8 +170,10 @@ def _check_consistent(band, lo, hi):
     assert all(b - a > tol for a, b in zip(values, values[1:])), values
     for e in band.edges:
         a, b = e.bracket
-        # to tol, or, for an end located by extrapolation, to its stated accuracy
-        assert a <= e.value <= b and b - a <= 2 * max(tol, e.accuracy)
+        # to tol, or, for an end located by extrapolation, to its stated accuracy; an
+        # end's bracket is value -+ accuracy, each end rounded to half an ulp of value
+        rounding = 2 * np.spacing(abs(e.value))
+        assert a <= e.value <= b and b - a <= 2 * max(tol, e.accuracy) + rounding
         assert e.accuracy <= max(tol, 1e-6)
         below, above = e.value - tol / 2, e.value + tol / 2  # edges are > tol apart
         assert e.unstable_below == _inside(band.unstable, below), e
