@@ -15,7 +15,9 @@ drift of the machine's speed falls on both):
    process of its own (target: at least 25x).
 
 numba compiles the integrators once and caches them on disk: a first sweep, not
-counted, fills that cache, as any user's first run does.
+counted, fills that cache, as any user's first run does. The package is byte-compiled
+first, as an installation is (pip compiles what it installs): in a checkout run with
+``PYTHONDONTWRITEBYTECODE`` set, every process would compile every module again.
 
 Usage: python -m benchmarks.bench_start [--quick] [--repeat N]
 """
@@ -23,6 +25,7 @@ Usage: python -m benchmarks.bench_start [--quick] [--repeat N]
 from __future__ import annotations
 
 import argparse
+import compileall
 import statistics
 import subprocess
 import sys
@@ -92,6 +95,8 @@ def main(argv=None):
     ap.add_argument("--repeat", type=int, default=5, help="counted runs of each (default 5)")
     args = ap.parse_args(argv)
     points, t_end = (8, 300.0) if args.quick else (32, 1000.0)
+    for package in ("beltmdsm", "generated", "derive", "benchmarks"):
+        compileall.compile_dir(ROOT / package, quiet=1)
     py = [sys.executable, "-c"]
     help_s, bare_s, help_ratio = paired(
         [sys.executable, "-m", "beltmdsm", "--help"], py + ["pass"], args.repeat
