@@ -29,7 +29,16 @@ from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain
 from ..settings import MAX_BAND_POINTS, MIN_TOL_ULPS
 from .branch import SpecialPoint, continue_branch
-from .edges import KINDS, OLD_KINDS, End, NoEdge, locate_end, log_max_multiplier, multiplier_kind
+from .edges import (
+    KINDS,
+    OLD_KINDS,
+    End,
+    NoEdge,
+    closing_margins,
+    locate_end,
+    log_max_multiplier,
+    multiplier_kind,
+)
 from .floquet import (
     FORWARD_PERIODS,
     Floquet,
@@ -38,10 +47,14 @@ from .floquet import (
     largest_sliding_velocity,
     response_from,
 )
-from .periodmap import FixedPoint, MapFamily, engine_of, fixed_point
+from .periodmap import MARGIN_KINDS, FixedPoint, MapFamily, engine_of, fixed_point
 
 __all__ = ["Edge", "BandPoint", "BandFailure", "Band", "floquet_band"]
 
+#: An end (tangency, grazing) inside an interval is located to the band's ``tol`` or to
+#: this, whichever is smaller (the margin's secant converges fast: 1e-4 asked takes a
+#: third of the period maps of 1e-7 and gives about 1e-6).
+_END_TOL = 1e-4
 #: Natural continuation towards an end stops at steps below this share of its way.
 _NATURAL_SMALLEST = 1e-3
 
@@ -313,8 +326,19 @@ def floquet_band(
         """Locate the changes between ``a`` and ``b``; ``b``'s evaluation (a miss repaired)."""
         if _state(fa) == _state(fb):
             return fb
+        g = _sliding_grazing(param, fa, fb)
+        if g is not None and a + tol / 4 < g < b - tol / 4:
+            below = evaluate(g - tol / 4, [fa, fb])
+            above = evaluate(g + tol / 4, [fb, fa])
+            grazing_points.append(g)
+            below = refine(a, fa, g - tol / 4, below)
+            # the grazing point of the sliding response is exact (its largest velocity)
+            edges.append(
+                _edge(g - tol / 4, below, g + tol / 4, above, kind="grazing", accuracy=1e-12)
+            )
+            return refine(g + tol / 4, above, b, fb)
         if (fa is None) != (fb is None):
-            end = _band_existence(param, a, fa, b, fb, backend)
+            end = _band_existence(param, a, fa, b, fb, backend, tol)
             edges.extend(end.edges)
             for v, f in end.solved:
                 seen.setdefault(v, f)
@@ -327,17 +351,6 @@ def floquet_band(
         if b - a <= tol:
             edges.append(_edge(a, fa, b, fb))
             return fb
-        g = _sliding_grazing(param, fa, fb)
-        if g is not None and a + tol / 4 < g < b - tol / 4:
-            below = evaluate(g - tol / 4, [fa, fb])
-            above = evaluate(g + tol / 4, [fb, fa])
-            grazing_points.append(g)
-            below = refine(a, fa, g - tol / 4, below)
-            # the grazing point of the sliding response is exact (its largest velocity)
-            edges.append(
-                _edge(g - tol / 4, below, g + tol / 4, above, kind="grazing", accuracy=1e-12)
-            )
-            return refine(g + tol / 4, above, b, fb)
         m = _multiplier_step(a, fa, b, fb, tol) if _same_structure(fa, fb) else None
         m = 0.5 * (a + b) if m is None else m
         fm = evaluate(m, [fa, fb] if abs(m - a) <= abs(b - m) else [fb, fa])
@@ -605,8 +618,12 @@ def _natural(family, value, state, far):
 
     Returns the responses solved (``(value, FixedPoint)``, in order), whether ``far``
     was reached, and whether the response kept its switch structure on the way (if
-    not, the caller continues by arclength). It stops where the step falls below
-    `_NATURAL_SMALLEST` of the distance: `locate_end` takes over from there.
+    not, the caller continues by arclength). A step that finds no response is halved;
+    the continuation stops where the step falls below `_NATURAL_SMALLEST` of the
+    distance, or at once where a margin of the last two responses closes before the
+    step's end (`_closes_before`): `locate_end` takes over from there, its steps aimed
+    at the margin's zero (halving blindly towards a tangency costs a failed Newton's
+    method of 10-20 period maps a time).
     """
     first = fixed_point(family(value), state)
     points = [(value, first)]
@@ -626,15 +643,36 @@ def _natural(family, value, state, far):
         try:
             p = fixed_point(family(x), guess)
         except NoPeriodicResponse:
-            h *= 0.5
+            if _closes_before(family, points, x):
+                return points, False, True
+            h = 0.5 * (x - points[-1][0])  # of the step tried (it may end at far)
             continue
         if p.image.signature != points[-1][1].image.signature:
             return points, False, False
         points.append((x, p))
         if x == far:
             return points, True, True
+        if _closes_before(family, points, far):
+            return points, False, True
         h *= 1.5
     return points, False, True
+
+
+def _closes_before(family, points, x):
+    """Whether a margin of the last two of ``points`` has its secant's zero before ``x``.
+
+    Close to a tangency the crossing margin falls like the square root of the distance
+    to the end, so the secant's zero lies beyond the end: a zero before ``x`` means an
+    end before ``x`` (`beltmdsm.analysis.edges.closing_margins`).
+    """
+    if len(points) < 2:
+        return False
+    (va, pa), (vb, pb) = points[-2:]
+    window = 0.25 * family.periods * family(vb).period
+    closing = closing_margins(
+        pa.image.margins_of(MARGIN_KINDS), pb.image.margins_of(MARGIN_KINDS), va, vb, window
+    )
+    return any(0.0 < (zero - vb) * (x - vb) < (x - vb) ** 2 for zero, _ in closing)
 
 
 def _multiplier_edge(family, a, b, tol):
@@ -686,13 +724,13 @@ def _verdict(pmap, point):
     return bool(np.max(np.abs(mu)) < 1.0)
 
 
-def _band_existence(param, a, fa, b, fb, backend):
+def _band_existence(param, a, fa, b, fb, backend, tol):
     """Continue the response found at ``a`` or ``b`` across ``[a, b]``: a `_BandEnd`.
 
     Exactly one of ``fa``, ``fb`` (`beltmdsm.analysis.floquet.Floquet`) is None. The
     response through the other either reaches the far value (Newton's method had
-    missed it there) or ends inside at a tangency, a grazing or a fold, located
-    exactly; the bifurcations on the way are edges too.
+    missed it there) or ends inside at a tangency, a grazing or a fold, located to
+    ``min(tol, _END_TOL)``; the bifurcations on the way are edges too.
     """
     found, value, far = (fa, a, b) if fa is not None else (fb, b, a)
     r = found.response
@@ -706,10 +744,15 @@ def _band_existence(param, a, fa, b, fb, backend):
     solved = [(v, floquet_at(v, p)) for v, p in points[1:]]
     if plain and not reached and len(points) >= 2:
         try:
-            end = locate_end(family, points)
+            end = locate_end(family, points, tol=min(tol, _END_TOL))
         except NoEdge:
             end = None
         if end is not None:
+            # the responses of locate_end's trials belong to the branch too: a
+            # multiplier crossing may lie among them, and they are the band's responses
+            # nearest the end (where a map starts its curve)
+            points = points + end.solved
+            solved = [(v, floquet_at(v, p)) for v, p in points[1:]]
             stable = _verdict(family(end.point_value), end.point)
             side = {("unstable_below" if far > value else "unstable_above"): not stable}
             edge = _special_edge(

@@ -378,8 +378,19 @@ def _trackers_from_band(band: Band, edges, family, y, span):
                 xs = [v - side * offset * share for share in _END_SHARES]
                 guess = family(start.value).guess(start.state0)
                 states = [_walk(family, start.value, guess, xs[0]).state]
-                for x_share in xs[1:]:
-                    states.append(fixed_point(family(x_share), states[-1]).state)
+                for j in range(1, len(xs)):
+                    # along the row from the two before; the nearest may be too close
+                    # to a tangency for Newton's method (as in _Tracker._next_to_end)
+                    known = [(xk, sk) for xk, sk in zip(xs, states) if sk is not None]
+                    (xa, sa), (xb, sb) = known[-2:] if len(known) > 1 else known * 2
+                    slope = (sb - sa) / (xb - xa) if xb != xa else 0.0
+                    try:
+                        point = fixed_point(family(xs[j]), sb + slope * (xs[j] - xb))
+                        states.append(point.state)
+                    except NoPeriodicResponse:
+                        states.append(None)
+                if sum(s is not None for s in states) < 2:
+                    continue
                 tracker.states.append(tuple(states))
         except NoPeriodicResponse:
             continue

@@ -10,6 +10,7 @@ of the rate's fit against the belt speed.
 
 import numpy as np
 import pytest
+from scipy import optimize
 
 from beltmdsm.analysis import floquet as F
 from beltmdsm.analysis.band import Band, floquet_band
@@ -46,6 +47,32 @@ def test_band_edges_are_located_and_match_pointwise_verdicts(base_band):
     assert hi == pytest.approx(vmax, abs=2e-3)
     assert band.no_periodic_response
     assert band.no_periodic_response[0][1] == pytest.approx(hi, abs=1e-9)
+
+
+def test_the_sliding_grazing_point_is_exact_where_the_grid_finds_nothing_below_it():
+    # on [0.5, 12] the grid point 6.25 (between the tangency and the grazing) finds no
+    # response: the edge above it is still the sliding response's largest velocity
+    band = floquet_band("Vb", 0.5, 12.0)
+    assert any(f.value == 6.25 for f in band.failed)
+    (edge,) = [e for e in band.edges if e.kind == "grazing"]
+    sliding = F.periodic_response(Vb=12.0)
+    run = sliding._engine.engine.run(0.0, *sliding.state0[:2], sliding.period)
+
+    def velocity(t):
+        return float(run.segments(np.array([t]), np.zeros(1, dtype=int))[1][0])
+
+    t = np.linspace(0, sliding.period, 4001)
+    k = int(np.argmax([velocity(s) for s in t]))
+    top = optimize.minimize_scalar(
+        lambda s: -velocity(s),
+        bounds=(t[max(k - 1, 0)], t[min(k + 1, t.size - 1)]),
+        method="bounded",
+        options={"xatol": 1e-12},
+    )
+    # the maximum is quadratic in t: a bounded search to 1e-12 s gives it to rounding
+    assert edge.value == pytest.approx(-top.fun, abs=1e-10)
+    assert edge.accuracy <= 1e-12
+    assert band.no_periodic_response[-1][1] == edge.value
 
 
 def test_every_edge_is_labelled_with_its_bifurcation_and_the_kind_of_before(base_band):
