@@ -613,15 +613,19 @@ def choose(function, table, **options):
     Unsupported
         For a combination the function refuses, with the reason.
     """
-    for position, (option, value) in enumerate(options.items()):
-        choices = list(dict.fromkeys(key[position] for key in table))
-        if isinstance(value, bool) or value not in choices:
-            raise ValueError(
-                f"{function}(): {option} must be one of "
-                f"{', '.join(map(repr, choices))}; got {value!r}"
-            )
     key = tuple(options.values())
-    if key not in table:
+    try:  # the common case, a known combination, without building the lists of choices
+        known = key in table and not any(isinstance(v, bool) for v in key)
+    except TypeError:  # an unhashable value
+        known = False
+    if not known:
+        for position, (option, value) in enumerate(options.items()):
+            choices = list(dict.fromkeys(k[position] for k in table))
+            if isinstance(value, bool) or value not in choices:
+                raise ValueError(
+                    f"{function}(): {option} must be one of "
+                    f"{', '.join(map(repr, choices))}; got {value!r}"
+                )
         given = ", ".join(f"{k}={v!r}" for k, v in options.items())
         raise ValueError(f"{function}(): no variant for {given}")
     entry = table[key]
