@@ -747,6 +747,10 @@ def _band_existence(param, a, fa, b, fb, backend, tol):
             end = locate_end(family, points, tol=min(tol, _END_TOL))
         except NoEdge:
             end = None
+        if end is not None and not min(value, far) < end.value < max(value, far):
+            # a margin's extrapolated zero beyond the interval is no end inside it:
+            # the branch decides (Newton's method may have missed the response at far)
+            end = None
         if end is not None:
             # the responses of locate_end's trials belong to the branch too: a
             # multiplier crossing may lie among them, and they are the band's responses
