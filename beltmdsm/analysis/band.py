@@ -662,8 +662,9 @@ def _closes_before(family, points, x):
     """Whether a margin of the last two of ``points`` has its secant's zero before ``x``.
 
     Close to a tangency the crossing margin falls like the square root of the distance
-    to the end, so the secant's zero lies beyond the end: a zero before ``x`` means an
-    end before ``x`` (`beltmdsm.analysis.edges.closing_margins`).
+    to the end, so the secant's zero lies beyond the end: a zero before ``x`` is taken
+    for an end before ``x`` (`beltmdsm.analysis.edges.closing_margins`); `locate_end`
+    finds it, or `_band_existence` falls back on the branch.
     """
     if len(points) < 2:
         return False
@@ -756,7 +757,7 @@ def _band_existence(param, a, fa, b, fb, backend, tol):
             # multiplier crossing may lie among them, and they are the band's responses
             # nearest the end (where a map starts its curve)
             points = points + end.solved
-            solved = [(v, floquet_at(v, p)) for v, p in points[1:]]
+            solved += [(v, floquet_at(v, p)) for v, p in end.solved]
             stable = _verdict(family(end.point_value), end.point)
             side = {("unstable_below" if far > value else "unstable_above"): not stable}
             edge = _special_edge(

@@ -382,11 +382,12 @@ def _trackers_from_band(band: Band, edges, family, y, span):
                     # along the row from the two before; the nearest may be too close
                     # to a tangency for Newton's method (as in _Tracker._next_to_end)
                     known = [(xk, sk) for xk, sk in zip(xs, states) if sk is not None]
-                    (xa, sa), (xb, sb) = known[-2:] if len(known) > 1 else known * 2
-                    slope = (sb - sa) / (xb - xa) if xb != xa else 0.0
+                    xb, guess = known[-1]
+                    if len(known) > 1:
+                        xa, sa = known[-2]
+                        guess = guess + (guess - sa) * (xs[j] - xb) / (xb - xa)
                     try:
-                        point = fixed_point(family(xs[j]), sb + slope * (xs[j] - xb))
-                        states.append(point.state)
+                        states.append(fixed_point(family(xs[j]), guess).state)
                     except NoPeriodicResponse:
                         states.append(None)
                 if sum(s is not None for s in states) < 2:
