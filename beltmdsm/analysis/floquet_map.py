@@ -185,14 +185,21 @@ class FloquetMap:
 
 
 def _extrapolate(ys, values, y):
-    """The polynomial through the last (up to three) points, at ``y``."""
-    ys, values = np.asarray(ys[-3:], dtype=float), np.asarray(values[-3:], dtype=float)
-    if ys.size == 1:
-        return values[0]
-    coefficients = np.polyfit(ys - ys[-1], values, ys.size - 1)
-    if values.ndim == 1:
-        return float(np.polyval(coefficients, y - ys[-1]))
-    return np.array([np.polyval(coefficients[:, i], y - ys[-1]) for i in range(values.shape[1])])
+    """The polynomial through the last (up to four) points, at ``y``: Lagrange's form.
+
+    Cubic: the responses kept next to an end, extrapolated so from the rows before,
+    are within about 1e-8 of the next row's, and Newton's method takes two period maps
+    from there (three from the quadratic's 1e-6).
+    """
+    ys, values = [float(v) for v in ys[-4:]], [np.asarray(v, dtype=float) for v in values[-4:]]
+    out = 0.0
+    for i, (yi, vi) in enumerate(zip(ys, values)):
+        weight = 1.0
+        for j, yj in enumerate(ys):
+            if j != i:
+                weight *= (y - yj) / (yi - yj)
+        out = out + weight * vi
+    return float(out) if np.ndim(out) == 0 else out
 
 
 def _walk(family, x0, state, x1):
@@ -226,6 +233,8 @@ class _Tracker:
     xs: list = field(default_factory=list)
     states: list = field(default_factory=list)
     slope: float | None = None
+    # multiplier curves: d(response)/dx along the row, from the last secant step
+    tangent: np.ndarray | None = None
 
     def record(self, y, x):
         """The edge located at ``x`` on row ``y`` (the responses already kept by `step`)."""
@@ -244,7 +253,7 @@ class _Tracker:
         return self._end(family, y, span)
 
     def _multiplier(self, family, y, span):
-        c = self.curve
+        c, tol = self.curve, EDGE_TOL * span
         x0 = _extrapolate(self.ys, self.xs, y)
         guess = _extrapolate(self.ys, [s[0] for s in self.states], y)
 
@@ -253,21 +262,37 @@ class _Tracker:
             value, mu = log_max_multiplier(family(x), point)
             return value, mu, point
 
-        g0, _, p0 = g(x0, guess)
+        def along(point, x_from, x):
+            """The response at ``x`` predicted from ``point`` at ``x_from`` by the
+            tangent of the last secant step wide enough to measure it (Newton's method
+            then takes two period maps, not three)."""
+            if self.tangent is None:
+                return point.state
+            return point.state + self.tangent * (x - x_from)
+
+        g0, mu0, p0 = g(x0, guess)
         slope = self.slope if self.slope else None
         x1 = x0 - g0 / slope if slope else x0 + 1e-3 * span
         for _ in range(_SECANT_ITER):
-            g1, mu1, p1 = g(x1, p0.state)
-            if abs(x1 - x0) <= EDGE_TOL * span or g1 == g0:
+            g1, mu1, p1 = g(x1, along(p0, x0, x1))
+            if g1 == g0:
+                x0, mu0, p0 = x1, mu1, p1
                 break
             slope = (g1 - g0) / (x1 - x0)
-            x0, g0, p0 = x1, g1, p1
+            if abs(x1 - x0) > tol:  # above the Newton tolerance's noise (1e-11 / tol)
+                self.tangent = (p1.state - p0.state) / (x1 - x0)
+            x0, g0, mu0, p0 = x1, g1, mu1, p1
             x1 = x1 - g1 / slope
+            # the secant's last step bounds the error of its next iterate (which is
+            # of second order in it): x1 is taken without a period map of its own,
+            # its multiplier that at x0, within tol
+            if abs(x1 - x0) <= tol:
+                break
         else:
             raise NoEdge(f"the secant of log max|mu| does not converge at {c.kind}")
         self.slope = slope
-        kind, frequency = multiplier_kind(mu1, family.periods * family(x1).period)
-        self.states.append((p1.state,))
+        kind, frequency = multiplier_kind(mu0, family.periods * family(x0).period)
+        self.states.append((along(p0, x0, x1),))
         return kind, x1, abs(x1 - x0), frequency
 
     def _end(self, family, y, span):
@@ -288,22 +313,24 @@ class _Tracker:
 
     def _next_to_end(self, family, y, x_end, offset):
         """The responses at `_END_SHARES` of ``offset`` from the predicted end, and their states."""
-        points, states = [], []
+        points, states, shift = [], [], None
         for i, share in enumerate(_END_SHARES):
             x = x_end - self.side * offset * share
             known = zip(self.ys, self.states)
             rows = [(yy, st[i]) for yy, st in known if st[i] is not None]
-            # the same share on the rows before, extrapolated in y, is the better guess
-            # where two rows are known: next to a tangency the response is not linear
-            # along the row (it varies like the square root of the distance to the end),
-            # and Newton's method needed 11 iterations from the row's secant, 3 from this
-            if len(rows) >= 2:
-                guess = _extrapolate([r[0] for r in rows], [r[1] for r in rows], y)
+            # the same share on the rows before, extrapolated in y, is the better guess:
+            # next to a tangency the response is not linear along the row (it varies
+            # like the square root of the distance to the end), and Newton's method
+            # needed 11 iterations from the row's secant, 3 from this; corrected by the
+            # error of that prediction at the share solved before on this row (where few
+            # rows are known, 4 iterations instead of 10)
+            predicted = None
+            if rows:
+                predicted = _extrapolate([r[0] for r in rows], [r[1] for r in rows], y)
+                guess = predicted if shift is None else predicted + shift
             elif len(points) >= 2:  # along the row from the two before
                 (xa, pa), (xb, pb) = points[-2:]
                 guess = pb.state + (pb.state - pa.state) * (x - xb) / (xb - xa)
-            elif rows:
-                guess = rows[-1][1]
             elif points:
                 guess = points[-1][1].state
             else:
@@ -316,6 +343,8 @@ class _Tracker:
                 continue
             points.append((x, point))
             states.append(point.state)
+            if predicted is not None:
+                shift = point.state - predicted
         return points, states
 
     def _fold(self, family, y, span):

@@ -17,6 +17,18 @@ def test_runs_of_true_flags_over_a_grid_in_any_order():
         iv.runs([1.0, 2.0], [True])
 
 
+def test_true_runs_agree_with_a_loop_over_the_flags():
+    # the vectorised runs against the plain loop of label_runs, on every length to 12
+    # and all densities, runs touching either end included
+    rng = np.random.default_rng(20)
+    for n in range(13):
+        for density in (0.0, 0.3, 0.7, 1.0):
+            flags = rng.random(n) < density
+            loop = [(i, j) for label, i, j in iv.label_runs(flags.tolist()) if label]
+            assert iv.true_runs(flags) == loop
+    assert iv.true_runs([True] * 3) == [(0, 2)]
+
+
 def test_label_runs_keep_sequence_order():
     labels = ["a", "a", "b", "a", "a", "a"]
     assert iv.label_runs(labels) == [("a", 0, 1), ("b", 2, 2), ("a", 3, 5)]

@@ -50,6 +50,22 @@ def test_the_map_rows_are_the_bands_and_the_verdicts_of_floquet():
     assert len(out["unstable"]) == len(out["linear"]) == 4
 
 
+def test_each_neimark_sacker_edge_lies_within_its_accuracy():
+    # ten rows followed from one band: the edge extrapolated from the rows before and
+    # taken from the secant's last step without a period map of its own. floquet()
+    # from scratch on either side, twice the accuracy away (at least 1e-5 m/s, so that
+    # |mu| - 1 stands well above the multipliers' rounding), brackets |mu| = 1
+    result = floquet_map("Vb", 0.5, 12.0, "beta1", 0.05, 0.35, rows=10)
+    assert result.band_rows == [0.05]
+    ns = next(c for c in result.curves if c.kind == "neimark_sacker")
+    assert len(ns.y) == 10
+    for y, x, accuracy in zip(ns.y, ns.x, ns.accuracy):
+        assert accuracy <= 1e-6 * (12.0 - 0.5)  # the map's EDGE_TOL of the range
+        d = max(2 * accuracy, 1e-5)
+        below, above = (floquet(Vb=x + s * d, beta1=y).max_abs_multiplier for s in (-1, 1))
+        assert below < 1 < above, (y, x, accuracy)
+
+
 def test_bad_axes_are_refused():
     with pytest.raises(ValueError, match="differ"):
         floquet_map("Vb", 1.0, 2.0, "Vb", 1.0, 2.0)
