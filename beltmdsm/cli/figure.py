@@ -23,7 +23,7 @@ def draw_floquet_map(ax: Any, result: FloquetMap, linear: bool = True) -> None:
     drawing): the exact unstable region and its curves by kind.
 
     Shaded: where no stable periodic response is found, row by row; lines: the boundary
-    curves, coloured by kind (`KIND_COLOURS`); thin blue (``linear``): where the paper's
+    curves, coloured by kind (`KIND_COLOURS`); hatched blue (``linear``): where the paper's
     linear analysis says unstable on the same rows.
     """
     dy = (result.rows[1] - result.rows[0]) if result.rows.size > 1 else 1.0
@@ -31,12 +31,13 @@ def draw_floquet_map(ax: Any, result: FloquetMap, linear: bool = True) -> None:
         for a, b in intervals:
             ax.fill_between([a, b], value - dy / 2, value + dy / 2, color="0.8", lw=0)
     if linear:
+        # hatched row by row: the hatching is aligned on the canvas, so the rows join
+        # into one region whose outline is the linear analysis's boundary
+        hatch = {"facecolor": "none", "edgecolor": "tab:blue", "hatch": "////", "lw": 0}
         for value, intervals in zip(result.rows, result.linear):
             for a, b in intervals:
-                ax.plot([a, b], [value, value], color="tab:blue", lw=0.4, alpha=0.35)
-        ax.plot(
-            [], [], color="tab:blue", lw=2, alpha=0.5, label="paper's linear analysis: unstable"
-        )
+                ax.fill_between([a, b], value - dy / 2, value + dy / 2, alpha=0.5, **hatch)
+        ax.fill_between([], [], alpha=0.5, label="paper's linear analysis: unstable", **hatch)
     seen = set()
     for c in result.curves:
         label = c.kind if c.kind not in seen else None
