@@ -10,7 +10,10 @@ continuation in ``y``, row by row, not on a grid of pixels:
   the curves, each with the responses next to it.
 * A **multiplier** curve (Neimark-Sacker, period doubling) is continued by the secant
   in ``x`` of ``log max |mu|``, its response continued from the row before (the edge
-  and the response extrapolated from the last rows), to `EDGE_TOL` of the range.
+  and the response extrapolated from the last rows, cubically; along the row by the
+  tangent of the secant's last wide step), to `EDGE_TOL` of the range: the secant's
+  last step bounds the error of its next iterate, which is taken without a period map
+  of its own.
 * An **end** (tangency, grazing) is continued by `beltmdsm.analysis.edges.locate_end` from
   responses on the side where they exist, next to the predicted end; a fold by a short
   branch (`beltmdsm.analysis.branch.continue_branch`) across the predicted fold. Where ``x`` is
