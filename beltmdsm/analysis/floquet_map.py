@@ -278,8 +278,8 @@ class _Tracker:
         x1 = x0 - g0 / slope if slope else x0 + 1e-3 * span
         for _ in range(_SECANT_ITER):
             g1, mu1, p1 = g(x1, along(p0, x0, x1))
-            if g1 == g0:
-                x0, mu0, p0 = x1, mu1, p1
+            if g1 == g0:  # a flat secant: x1 itself, to the step that reached it
+                accuracy, x0, mu0, p0 = abs(x1 - x0), x1, mu1, p1
                 break
             slope = (g1 - g0) / (x1 - x0)
             if abs(x1 - x0) > tol:  # above the Newton tolerance's noise (1e-11 / tol)
@@ -290,13 +290,14 @@ class _Tracker:
             # of second order in it): x1 is taken without a period map of its own,
             # its multiplier that at x0, within tol
             if abs(x1 - x0) <= tol:
+                accuracy = abs(x1 - x0)
                 break
         else:
             raise NoEdge(f"the secant of log max|mu| does not converge at {c.kind}")
         self.slope = slope
         kind, frequency = multiplier_kind(mu0, family.periods * family(x0).period)
         self.states.append((along(p0, x0, x1),))
-        return kind, x1, abs(x1 - x0), frequency
+        return kind, x1, accuracy, frequency
 
     def _end(self, family, y, span):
         x_end = _extrapolate(self.ys, self.xs, y)

@@ -151,3 +151,20 @@ def test_a_touch_of_the_belt_speed_that_keeps_the_mode_leaves_the_jacobian_smoot
     h = 1e-6
     column = (pmap(x + [h, 0]).state - pmap(x - [h, 0]).state) / (2 * h)
     assert np.allclose(image.jacobian[:, 0], column, rtol=1e-6, atol=1e-9)
+
+
+def test_a_flat_secant_reports_the_step_that_reached_its_edge(monkeypatch):
+    # log max|mu| the same at both points of the secant: no slope to go on with, so the
+    # edge is the point reached, its accuracy the step that reached it (not zero)
+    from beltmdsm.analysis import floquet_map as module
+    from beltmdsm.analysis.periodmap import MapFamily
+
+    model = Model(beta1=0.3)
+    state = floquet(model.replace(Vb=5.48)).response.shooting_state
+    tracker = module._Tracker(module.Curve("neimark_sacker"), "multiplier", 0.0, ())
+    tracker.ys, tracker.xs, tracker.states = [0.3], [5.48], [(state,)]
+    monkeypatch.setattr(module, "log_max_multiplier", lambda pmap, point: (0.25, 0.9 + 0.5j))
+    kind, x, accuracy, frequency = tracker.step(MapFamily(model, "Vb"), 0.3, 11.5)
+    assert kind == "neimark_sacker" and frequency > 0
+    assert x == pytest.approx(5.48 + 1e-3 * 11.5, abs=1e-12)
+    assert accuracy == pytest.approx(1e-3 * 11.5, rel=1e-9)
