@@ -61,6 +61,7 @@ __all__ = [
     "log_max_multiplier",
     "margin_kind",
     "closing_margins",
+    "counterpart",
     "locate_end",
 ]
 
@@ -111,7 +112,7 @@ def margin_kind(margin: Margin) -> str:
     return "tangency" if margin.kind == "crossing" else "grazing"
 
 
-def _counterpart(margin, margins, window):
+def counterpart(margin, margins, window):
     """The margin of another orbit on the same branch that is ``margin`` (same feature)."""
     same = [
         m
@@ -142,7 +143,7 @@ def closing_margins(
     """
     out = []
     for mb in b:
-        ma = _counterpart(mb, a, window)
+        ma = counterpart(mb, a, window)
         if ma is None or not ma.value > mb.value:
             continue
         zero = vb + mb.value * (vb - va) / (ma.value - mb.value)
@@ -170,6 +171,9 @@ class End:
         Its parameter value.
     solved : list of (float, FixedPoint)
         Every response solved on the way, in order.
+    chain : list of (float, float)
+        The parameter values and closing margins that ``value`` was fitted to (the
+        polynomial of `_zero`), towards the end.
     """
 
     kind: str
@@ -179,6 +183,7 @@ class End:
     point: FixedPoint
     point_value: float
     solved: list = field(default_factory=list, repr=False)
+    chain: list = field(default_factory=list, repr=False)
 
 
 def _same_structure(a: FixedPoint, b: FixedPoint) -> bool:
@@ -268,19 +273,20 @@ def locate_end(
                 break
             if abs(v - vb) < gap:
                 continue
-            m = _counterpart(chain[-1][1], p.image.margins_of(kinds), window)
+            m = counterpart(chain[-1][1], p.image.margins_of(kinds), window)
             if m is None or not m.value > chain[-1][1].value:
                 break
             chain.append((v, m))
             gap = 1.5 * abs(v - vb)
         chain.reverse()
         if len(chain) < 2:
-            chain = [(va, _counterpart(margin, pa.image.margins_of(kinds), window)), (vb, margin)]
-        zeros = _zero([v for v, _ in chain], [m.value for _, m in chain])
+            chain = [(va, counterpart(margin, pa.image.margins_of(kinds), window)), (vb, margin)]
+        chain = [(v, m.value) for v, m in chain]
+        zeros = _zero([v for v, _ in chain], [m for _, m in chain])
         zero = zeros[-1]
         accuracy = abs(zero - zeros[-2]) if len(zeros) > 1 else abs(zero - vb)
         accuracy = max(accuracy, 1e-3 * abs(zero - vb))
-        best = End(margin_kind(margin), zero, accuracy, margin, pb, vb, solved)
+        best = End(margin_kind(margin), zero, accuracy, margin, pb, vb, solved, chain)
         if accuracy <= tol or reach < 1e-3:
             break
         v = vb + reach * (zero - vb)

@@ -515,7 +515,7 @@ def largest_sliding_velocity(pmap: OnePeriodMap) -> float:
     segment = np.clip(
         np.searchsorted(normal.switch_t, grid, side="right") - 1, 0, len(normal.switch_mode) - 1
     )
-    contact = np.array([normal.switch_mode[k] == Mode.SLIP_BACK for k in segment])
+    contact = np.array([mode == Mode.SLIP_BACK for mode in normal.switch_mode])[segment]
     # the orbit is one superposition from phase 0 (`OnePeriodMap.sliding_orbit`)
     start, sgn = engine.start(0.0, x0[0], x0[1]), friction_direction(Mode.SLIP_BACK)
     z, v, _, _, zf, vf = normal.on_grid[:, : grid.size]

@@ -13,10 +13,19 @@ continuation in ``y``, row by row, not on a grid of pixels:
   and the response extrapolated from the last rows, cubically; along the row by the
   tangent of the secant's last wide step), to `EDGE_TOL` of the range: the secant's
   last step bounds the error of its next iterate, which is taken without a period map
-  of its own.
+  of its own. Where the secant's slope, predicted linearly from the last two rows
+  that measured it, is known to better than half its value, the row takes one
+  response: the step with that slope from the predicted edge is within `EDGE_TOL`,
+  and its error is below the step.
 * An **end** (tangency, grazing) is continued by `beltmdsm.analysis.edges.locate_end` from
-  responses on the side where they exist, next to the predicted end; a fold by a short
-  branch (`beltmdsm.analysis.branch.continue_branch`) across the predicted fold. Where ``x`` is
+  four responses on the side where they exist, next to the predicted end: ``x`` is a
+  smooth function of the closing margin, whose cubic through them gives the end. That
+  function changes smoothly from row to row: between rows that measure it, a row
+  takes one response and the cubic of the rows before, extrapolated (its accuracy
+  theirs plus the difference of the cubic and the quadratic extrapolation; four
+  responses again every `_REMEASURE` rows, or where that difference passes `_DRIFT`
+  of the tolerance). A fold is continued by a short branch
+  (`beltmdsm.analysis.branch.continue_branch`) across the predicted fold. Where ``x`` is
   ``Vb`` and the response slides back throughout, its grazing point is exact: its
   largest velocity in contact (`beltmdsm.analysis.floquet.largest_sliding_velocity`,
   as the band finds it).
@@ -49,7 +58,14 @@ from ..intervals import runs as true_intervals
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
 from .band import Band, floquet_band
 from .branch import continue_branch
-from .edges import NoEdge, locate_end, log_max_multiplier, multiplier_kind
+from .edges import (
+    NoEdge,
+    counterpart,
+    locate_end,
+    log_max_multiplier,
+    margin_kind,
+    multiplier_kind,
+)
 from .floquet import NoPeriodicResponse, largest_sliding_velocity, response_from
 from .periodmap import MARGIN_KINDS, MapFamily, engine_of, fixed_point
 
@@ -74,6 +90,13 @@ _END_OFFSET = 2e-3
 _END_SHARES = (1.0, 0.5, 0.25, 0.125)
 #: Times the distance to the end is tripled where fewer than two responses are found.
 _END_WIDENINGS = 4
+#: A row takes one response per curve where the shape of the end (``x`` against the
+#: closing margin) or the slope of the multiplier's secant was measured on one of
+#: this many rows before, and measures it afresh otherwise.
+_REMEASURE = 8
+#: ... and where the shape's extrapolation to the row (the difference between its
+#: cubic and its quadratic extrapolation) is below this share of the tolerance.
+_DRIFT = 0.1
 #: A band's edge within this share of the ``x`` range of where a lost curve of its kind
 #: was heading goes on that curve.
 _RESUME = 0.1
@@ -238,6 +261,14 @@ class _Tracker:
     slope: float | None = None
     # multiplier curves: d(response)/dx along the row, from the last secant step
     tangent: np.ndarray | None = None
+    # multiplier curves: (row index, y, slope) where the secant measured its slope
+    slopes: list = field(default_factory=list)
+    # ends: per row, the x of each response kept in ``states`` (None where none)
+    positions: list = field(default_factory=list)
+    # ends: (row index, y, coefficients of x against the closing margin, accuracy) where
+    # four responses measured that shape, and the closing margin on the last row
+    shapes: list = field(default_factory=list)
+    margin: Any = None
 
     def record(self, y, x):
         """The edge located at ``x`` on row ``y`` (the responses already kept by `step`)."""
@@ -247,8 +278,9 @@ class _Tracker:
     def step(self, family, y, span):
         if self.role == "sliding":
             # the grazing point of the backward-sliding response in Vb is its largest
-            # velocity in contact, which does not depend on Vb
-            return "grazing", largest_sliding_velocity(family(self.xs[-1]).one), 1e-12, None
+            # velocity in contact, which does not depend on Vb: any map of the row's
+            one = family.any_map(self.xs[-1]).one
+            return "grazing", largest_sliding_velocity(one), 1e-12, None
         if self.role == "multiplier":
             return self._multiplier(family, y, span)
         if self.role == "fold":
@@ -274,7 +306,15 @@ class _Tracker:
             return point.state + self.tangent * (x - x_from)
 
         g0, mu0, p0 = g(x0, guess)
-        slope = self.slope if self.slope else None
+        predicted = self._predicted_slope(y)
+        if predicted is not None and abs(g0 / predicted) <= tol:
+            # one response on this row: the secant's step with the predicted slope,
+            # whose error is the step times the slope's relative error (below one)
+            x1 = x0 - g0 / predicted
+            kind, frequency = multiplier_kind(mu0, family.periods * family(x0).period)
+            self.states.append((along(p0, x0, x1),))
+            return kind, x1, abs(x1 - x0), frequency
+        slope = predicted or self.slope or None
         x1 = x0 - g0 / slope if slope else x0 + 1e-3 * span
         for _ in range(_SECANT_ITER):
             g1, mu1, p1 = g(x1, along(p0, x0, x1))
@@ -295,61 +335,174 @@ class _Tracker:
         else:
             raise NoEdge(f"the secant of log max|mu| does not converge at {c.kind}")
         self.slope = slope
+        self.slopes.append((len(self.ys), float(y), slope))
         kind, frequency = multiplier_kind(mu0, family.periods * family(x0).period)
         self.states.append((along(p0, x0, x1),))
         return kind, x1, accuracy, frequency
+
+    def _predicted_slope(self, y):
+        """The secant's slope on row ``y``, linear in ``y`` from the last two measured.
+
+        None where the last was measured `_REMEASURE` rows before or more, or where the
+        prediction differs from it by more than half its value: that difference bounds
+        the prediction's error (pessimistically, by one order), and below one half
+        the error of a step with it is below the step.
+        """
+        if len(self.slopes) < 2 or len(self.ys) - self.slopes[-1][0] >= _REMEASURE:
+            return None
+        (_, ya, sa), (_, yb, sb) = self.slopes[-2:]
+        s = sb + (sb - sa) * (y - yb) / (yb - ya)
+        return s if abs(s - sb) <= 0.5 * abs(s) else None
 
     def _end(self, family, y, span):
         x_end = _extrapolate(self.ys, self.xs, y)
         last = self.xs[-1] - self.xs[-2] if len(self.xs) > 1 else 0.0
         offset = max(3 * abs(last), _END_OFFSET * span)
+        found, nearest = self._end_from_shape(family, y, span, x_end, offset)
+        if found is not None:
+            return found
         for _ in range(_END_WIDENINGS):
-            points, states = self._next_to_end(family, y, x_end, offset)
+            points, states, positions = self._next_to_end(family, y, x_end, offset, nearest)
             if len(points) >= 2:
                 break
             # the end moved more than predicted: responses farther from it
-            offset *= 3
+            offset, nearest = 3 * offset, None
         else:
             raise NoEdge("no two responses next to the predicted end")
         end = locate_end(family, points, tol=EDGE_TOL * span, kinds=self.kinds)
         self.states.append(tuple(states))
+        self.positions.append(tuple(positions))
+        if len(end.chain) == 4:
+            values, margins = zip(*end.chain)
+            shape = np.polyfit(margins, values, 3)
+            self.shapes.append((len(self.ys), float(y), shape, end.accuracy))
+        self.margin = end.margin
         return end.kind, end.value, end.accuracy, None
 
-    def _next_to_end(self, family, y, x_end, offset):
-        """The responses at `_END_SHARES` of ``offset`` from the predicted end, and their states."""
-        points, states, shift = [], [], None
-        for i, share in enumerate(_END_SHARES):
-            x = x_end - self.side * offset * share
-            known = zip(self.ys, self.states)
-            rows = [(yy, st[i]) for yy, st in known if st[i] is not None]
+    def _end_from_shape(self, family, y, span, x_end, offset):
+        """The end from one response next to it and the shape measured on rows before.
+
+        Along a row ``x`` is a smooth function of the closing margin up to the end
+        (`beltmdsm.analysis.edges.locate_end`), and that function changes smoothly from
+        row to row: its cubic on the last four rows where four responses measured it,
+        extrapolated to this row, carries the one response at the nearest share to
+        the margin's zero. The accuracy is the largest of those rows' plus the
+        difference between the cubic and the quadratic extrapolation (the drift).
+
+        Returns ``(edge, None)``, or ``(None, (x, response))`` with the response solved
+        (or None) where four responses measure the shape afresh: where four rows have
+        not measured it, the last `_REMEASURE` rows before or more, where the drift is
+        above `_DRIFT` of the tolerance or the accuracy above the tolerance.
+        """
+        shapes, last = self.shapes[-4:], len(_END_SHARES) - 1
+        rows = self._solved(last)
+        if len(shapes) < 4 or len(self.ys) - shapes[-1][0] >= _REMEASURE or not rows:
+            return None, None
+        x = x_end - self.side * offset * _END_SHARES[last]
+        pmap = family(x)
+        try:
+            point = fixed_point(pmap, self._extrapolated(last, rows, y, x, x_end))
+        except NoPeriodicResponse:
+            return None, None
+        window = 0.25 * family.periods * pmap.period
+        margin = counterpart(self.margin, point.image.margins_of(self.kinds), window)
+        if margin is None or not margin.value > 0:
+            return None, (x, point)
+        ys, shapes_at = [s[1] for s in shapes], [s[2] for s in shapes]
+
+        def reach(shape):  # x at the margin less x at its zero
+            return float(np.polyval(np.append(shape[:-1], 0.0), margin.value))
+
+        cubic = reach(_extrapolate(ys, shapes_at, y))
+        quadratic = reach(_extrapolate(ys[1:], shapes_at[1:], y))
+        value = x - cubic
+        drift = abs(cubic - quadratic)
+        accuracy = max(s[3] for s in shapes) + drift
+        if (
+            accuracy > EDGE_TOL * span
+            or drift > _DRIFT * EDGE_TOL * span
+            or self.side * (value - x) <= 0
+        ):
+            return None, (x, point)
+        self.states.append((None,) * last + (point.state,))
+        self.positions.append((None,) * last + (x,))
+        self.margin = margin
+        return (margin_kind(margin), value, accuracy, None), None
+
+    def _next_to_end(self, family, y, x_end, offset, nearest=None):
+        """The responses at `_END_SHARES` of ``offset`` from the predicted end, and their states.
+
+        ``nearest``: ``(x, response)`` at the last share, already solved (or None).
+        """
+        n = len(_END_SHARES)
+        history = [self._solved(i) for i in range(n)]
+        # the share with the freshest history first (after rows of one response,
+        # `_end_from_shape`, the nearest), the others in order
+        order = sorted(range(n), key=lambda i: -history[i][-1] if history[i] else 1)
+        solved = {} if nearest is None else {n - 1: nearest}
+        for i in (i for i in order if i not in solved):
+            x = x_end - self.side * offset * _END_SHARES[i]
+            rows = history[i]
             # the same share on the rows before, extrapolated in y, is the better guess:
             # next to a tangency the response is not linear along the row (it varies
             # like the square root of the distance to the end), and Newton's method
             # needed 11 iterations from the row's secant, 3 from this; corrected by the
-            # error of that prediction at the share solved before on this row (where few
-            # rows are known, 4 iterations instead of 10)
-            predicted = None
+            # error that extrapolation from the same rows makes at the nearest share
+            # solved on this row (where few rows are known, 4 iterations instead of 10;
+            # after rows of one response, 3 instead of 5)
             if rows:
-                predicted = _extrapolate([r[0] for r in rows], [r[1] for r in rows], y)
-                guess = predicted if shift is None else predicted + shift
-            elif len(points) >= 2:  # along the row from the two before
-                (xa, pa), (xb, pb) = points[-2:]
-                guess = pb.state + (pb.state - pa.state) * (x - xb) / (xb - xa)
-            elif points:
-                guess = points[-1][1].state
-            else:
-                states.append(None)
-                continue
+                guess = self._extrapolated(i, rows, y, x, x_end)
+                donors = [j for j in solved if all(self.states[k][j] is not None for k in rows)]
+                if donors:
+                    j = min(donors, key=lambda j: abs(j - i))
+                    xj, pj = solved[j]
+                    guess = guess + pj.state - self._extrapolated(j, rows, y, xj, x_end)
+            else:  # along the row from the nearest shares solved
+                near = sorted(solved, key=lambda j: abs(j - i))[:2]
+                if not near:
+                    continue
+                guess = solved[near[0]][1].state
+                if len(near) == 2:
+                    (xa, pa), (xb, pb) = solved[near[1]], solved[near[0]]
+                    guess = pb.state + (pb.state - pa.state) * (x - xb) / (xb - xa)
             try:  # the nearest may lie beyond the end, or too close for Newton's method
-                point = fixed_point(family(x), guess)
+                solved[i] = (x, fixed_point(family(x), guess))
             except NoPeriodicResponse:
-                states.append(None)
                 continue
-            points.append((x, point))
-            states.append(point.state)
-            if predicted is not None:
-                shift = point.state - predicted
-        return points, states
+        return (
+            [solved[i] for i in range(n) if i in solved],
+            [solved[i][1].state if i in solved else None for i in range(n)],
+            [solved[i][0] if i in solved else None for i in range(n)],
+        )
+
+    def _solved(self, i):
+        """The last (up to four) rows where the response at share ``i`` was solved."""
+        return [k for k, st in enumerate(self.states) if st[i] is not None][-4:]
+
+    def _extrapolated(self, i, rows, y, x, x_end):
+        """The response at share ``i`` at ``x`` on row ``y``, from ``rows`` before.
+
+        Each row's response is first moved along its row to the distance from that
+        row's end that ``x`` has from ``x_end`` (the predicted end), by the slope along
+        the row between two shares on the last row where both were solved: an end
+        located less smoothly than the rows around it (by 1e-7, within its accuracy)
+        moves the responses next to a tangency by 1e-7 from where a smooth curve
+        would put them, and Newton's method then takes three period maps, not two.
+        """
+        slope = None
+        for k in reversed(range(len(self.states))):
+            st, at = self.states[k], self.positions[k]
+            j = i - 1 if i > 0 else i + 1
+            if st[i] is not None and st[j] is not None:
+                slope = (st[i] - st[j]) / (at[i] - at[j])
+                break
+        distance = x_end - x
+        values = [
+            self.states[k][i]
+            + (0.0 if slope is None else slope * (self.xs[k] - distance - self.positions[k][i]))
+            for k in rows
+        ]
+        return _extrapolate([self.ys[k] for k in rows], values, y)
 
     def _fold(self, family, y, span):
         x_fold = _extrapolate(self.ys, self.xs, y)
@@ -426,6 +579,9 @@ def _trackers_from_band(band: Band, edges, family, y, span):
                 if sum(s is not None for s in states) < 2:
                     continue
                 tracker.states.append(tuple(states))
+                tracker.positions.append(
+                    tuple(x if st is not None else None for x, st in zip(xs, states))
+                )
         except NoPeriodicResponse:
             continue
         curve.y.append(float(y))

@@ -1082,6 +1082,11 @@ class MapFamily:
             self._maps[value] = period_map(model, self.periods, self.backend)
         return self._maps[value]
 
+    def any_map(self, value: float) -> PeriodMap:
+        """The map bound last, or the map at ``value`` where none is kept: for what
+        does not depend on ``param`` (it saves a binding)."""
+        return next(reversed(self._maps.values())) if self._maps else self(value)
+
     def derivative(
         self, x: ArrayLike, value: float, structure: tuple | None = None
     ) -> NDArray[np.float64]:

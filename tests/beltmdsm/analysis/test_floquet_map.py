@@ -168,3 +168,52 @@ def test_a_flat_secant_reports_the_step_that_reached_its_edge(monkeypatch):
     assert kind == "neimark_sacker" and frequency > 0
     assert x == pytest.approx(5.48 + 1e-3 * 11.5, abs=1e-12)
     assert accuracy == pytest.approx(1e-3 * 11.5, rel=1e-9)
+
+
+def _count_rows_of_one_response(monkeypatch):
+    """Per role, the rows where a curve was continued from one response (module docstring)."""
+    from beltmdsm.analysis import floquet_map as module
+
+    counts = {"multiplier": 0, "end": 0}
+    multiplier, end = module._Tracker._multiplier, module._Tracker._end
+
+    def counted(step, role, measured):
+        def wrapper(self, *args):
+            before = len(measured(self))
+            out = step(self, *args)
+            counts[role] += len(measured(self)) == before
+            return out
+
+        return wrapper
+
+    monkeypatch.setattr(
+        module._Tracker, "_multiplier", counted(multiplier, "multiplier", lambda t: t.slopes)
+    )
+    monkeypatch.setattr(module._Tracker, "_end", counted(end, "end", lambda t: t.shapes))
+    return counts
+
+
+def test_rows_of_one_response_lie_within_their_accuracy(monkeypatch):
+    # twelve close rows: after the first few, the Neimark-Sacker curve takes one response
+    # a row (its secant's slope predicted from the rows before), the tangency one too
+    # (x against the closing margin, measured by four responses on rows before). The
+    # references: floquet() from scratch on either side of each Neimark-Sacker edge,
+    # twice its accuracy away, brackets |mu| = 1; the band on each row, which continues
+    # the response to its end itself, gives the tangency to its own accuracy
+    counts = _count_rows_of_one_response(monkeypatch)
+    result = floquet_map("Vb", 0.5, 12.0, "beta1", 0.3, 0.36, rows=12)
+    assert counts["multiplier"] >= 5 and counts["end"] >= 5, counts
+    ns = next(c for c in result.curves if c.kind == "neimark_sacker")
+    tangency = next(c for c in result.curves if c.kind == "tangency")
+    assert len(ns.y) == len(tangency.y) == 12
+    for y, x, accuracy in zip(ns.y, ns.x, ns.accuracy):
+        assert accuracy <= 1e-6 * (12.0 - 0.5)
+        d = max(2 * accuracy, 1e-5)
+        below, above = (floquet(Vb=x + s * d, beta1=y).max_abs_multiplier for s in (-1, 1))
+        assert below < 1 < above, (y, x, accuracy)
+    for i, (y, x, accuracy) in enumerate(zip(tangency.y, tangency.x, tangency.accuracy)):
+        # (the first row's edge is the band's, located to 1e-4)
+        assert i == 0 or accuracy <= 1e-6 * (12.0 - 0.5)
+        band = floquet_band("Vb", 5.8, 6.6, beta1=y)
+        (edge,) = (e for e in band.edges if e.kind == "tangency")
+        assert abs(x - edge.value) <= accuracy + edge.accuracy, (y, x, edge.value)
