@@ -81,6 +81,8 @@ __all__ = [
 EDGE_TOL = 1e-6
 #: Points of ``x`` on which the linear analysis is evaluated per row.
 LINEAR_POINTS = 2001
+#: Rows of the linear analysis evaluated at once.
+_LINEAR_BLOCK = 64
 #: Iterations of the secant on one row.
 _SECANT_ITER = 12
 #: The responses next to an end are taken this share of the ``x`` range from it, at
@@ -100,8 +102,10 @@ _DRIFT = 0.1
 #: A band's edge within this share of the ``x`` range of where a lost curve of its kind
 #: was heading goes on that curve.
 _RESUME = 0.1
-#: Steps of the natural continuation that carries a band's response to a curve's start.
-_WALK_STEPS = 8
+#: Steps of the natural continuation that carries a band's response to a curve's start
+#: (the band's nearest response lies about its tolerance from the edge; where a step
+#: fails, the rest are halved).
+_WALK_STEPS = 2
 #: Two curves of one kind closer than this many times `EDGE_TOL` on a row have become
 #: one (edges that merge, e.g. grazings that become one tangency): one goes on.
 _SAME = 10
@@ -626,10 +630,22 @@ def _row_unstable(edges, lo, hi):
     return out
 
 
-def _linear(row, x, xs):
-    """Where the paper's linear analysis says unstable on a row (`generated.stability`)."""
-    stable = stability.is_stable(**{**row.arguments(stability.is_stable), x: xs})
-    return [[float(a), float(b)] for a, b in true_intervals(xs, ~np.asarray(stable, bool))]
+def _linear(rows, x, xs):
+    """Per row, where the paper's linear analysis says unstable (`generated.stability`).
+
+    One evaluation for `_LINEAR_BLOCK` rows at a time: a call costs about as much as
+    its 2001 points (0.15 ms), which for a 100-row map is 4 % of its time.
+    """
+    out = []
+    for first in range(0, len(rows), _LINEAR_BLOCK):
+        args = [row.arguments(stability.is_stable) for row in rows[first : first + _LINEAR_BLOCK]]
+        block = {
+            k: v if isinstance(v, str) else np.array([a[k] for a in args])[:, None]
+            for k, v in args[0].items()
+        }
+        stable = np.asarray(stability.is_stable(**{**block, x: xs[None, :]}), bool)
+        out += [[[float(a), float(b)] for a, b in true_intervals(xs, ~s)] for s in stable]
+    return out
 
 
 def floquet_map(
@@ -688,7 +704,7 @@ def floquet_map(
     span = x_to - x_from
     ys = np.linspace(y_from, y_to, int(rows))
     xs = np.linspace(x_from, x_to, LINEAR_POINTS)
-    curves, trackers, unstable, linear, band_rows = [], [], [], [], []
+    curves, trackers, unstable, models, band_rows = [], [], [], [], []
     for i, value in enumerate(ys):
         row = base.replace(**{y: float(value)})
         family = MapFamily(row, x, 1, backend)
@@ -771,7 +787,7 @@ def floquet_map(
             unstable.append(_row_unstable(edges, x_from, x_to))
         else:  # where no stable response is found, also beside an unstable one
             unstable.append([[float(a), float(b)] for a, b in band.unstable])
-        linear.append(_linear(row, x, xs))
+        models.append(row)
     return FloquetMap(
         x,
         y,
@@ -781,7 +797,7 @@ def floquet_map(
         base,
         curves,
         unstable,
-        linear,
+        _linear(models, x, xs),
         band_rows,
         time.perf_counter() - clock,
     )
