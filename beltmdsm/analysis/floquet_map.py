@@ -67,7 +67,7 @@ from .edges import (
     multiplier_kind,
 )
 from .floquet import NoPeriodicResponse, largest_sliding_velocity, response_from
-from .periodmap import MARGIN_KINDS, MapFamily, engine_of, fixed_point
+from .periodmap import MARGIN_KINDS, MapFamily, Margin, engine_of, fixed_point
 
 __all__ = [
     "EDGE_TOL",
@@ -272,7 +272,7 @@ class _Tracker:
     # ends: (row index, y, coefficients of x against the closing margin, accuracy) where
     # four responses measured that shape, and the closing margin on the last row
     shapes: list = field(default_factory=list)
-    margin: Any = None
+    margin: Margin | None = None
 
     def record(self, y, x):
         """The edge located at ``x`` on row ``y`` (the responses already kept by `step`)."""
@@ -403,8 +403,8 @@ class _Tracker:
         if len(shapes) < 4 or len(self.ys) - shapes[-1][0] >= _REMEASURE or not rows:
             return None, None
         x = x_end - self.side * offset * _END_SHARES[last]
-        pmap = family(x)
-        try:
+        try:  # (outside the parameter's domain, family(x) raises it too)
+            pmap = family(x)
             point = fixed_point(pmap, self._extrapolated(last, rows, y, x, x_end))
         except NoPeriodicResponse:
             return None, None
