@@ -3,7 +3,9 @@
 Times, in one run on one core, after compiling the kernels:
 
 * ``beltmdsm.analysis.floquet_map.floquet_map`` over (Vb, beta1) = [0.5, 12] x [0.02, 0.6] with
-  100 rows (the boundary curves traced by continuation, edges to about 1e-5 m/s);
+  100 rows (the boundary curves traced by continuation, edges to about 1e-5 m/s), the
+  median of ``--repeat`` runs (a run of half a second varies by 10 % from one to the
+  next on a shared machine; the grid's ten seconds average over its calls);
 * the baseline: ``beltmdsm.analysis.floquet.floquet()`` at every point of a grid with the same
   100 rows and ``--columns`` columns (default 100), each from scratch as a user's loop
   would call it; a point where it finds no periodic response counts as unstable;
@@ -74,15 +76,19 @@ def main(argv=None):
         help="also time a grid at the band's tolerance (1e-3 m/s), a few rows scaled",
     )
     ap.add_argument("--matched-rows", type=int, default=2)
+    ap.add_argument("--repeat", type=int, default=5, help="runs of the map, median (5)")
     args = ap.parse_args(argv)
 
     # compile and warm every kernel outside the timed regions
     floquet(Vb=5.0)
     floquet_map(X, *X_RANGE, Y, *Y_RANGE, rows=3)
 
-    clock = time.perf_counter()
-    result = floquet_map(X, *X_RANGE, Y, *Y_RANGE, rows=ROWS)
-    t_map = time.perf_counter() - clock
+    runs = []
+    for _ in range(max(args.repeat, 1)):
+        clock = time.perf_counter()
+        result = floquet_map(X, *X_RANGE, Y, *Y_RANGE, rows=ROWS)
+        runs.append(time.perf_counter() - clock)
+    t_map = float(np.median(runs))
 
     ys = np.linspace(*Y_RANGE, ROWS)
     xs = np.linspace(*X_RANGE, args.columns)
@@ -95,7 +101,8 @@ def main(argv=None):
 
     print(
         f"map: {ROWS} rows of {Y} in [{Y_RANGE[0]:g}, {Y_RANGE[1]:g}], {X} in "
-        f"[{X_RANGE[0]:g}, {X_RANGE[1]:g}]: {t_map:.2f} s; curves: "
+        f"[{X_RANGE[0]:g}, {X_RANGE[1]:g}]: {t_map:.2f} s (median of {len(runs)} runs, "
+        f"{min(runs):.2f}-{max(runs):.2f}); curves: "
         + ", ".join(f"{c.kind} ({len(c.y)} rows)" for c in result.curves)
         + f"; bands on {len(result.band_rows)} rows"
     )
