@@ -262,7 +262,6 @@ class _Tracker:
     ys: list = field(default_factory=list)
     xs: list = field(default_factory=list)
     states: list = field(default_factory=list)
-    slope: float | None = None
     # multiplier curves: d(response)/dx along the row, from the last secant step
     tangent: np.ndarray | None = None
     # multiplier curves: (row index, y, slope) where the secant measured its slope
@@ -318,7 +317,7 @@ class _Tracker:
             kind, frequency = multiplier_kind(mu0, family.periods * family(x0).period)
             self.states.append((along(p0, x0, x1),))
             return kind, x1, abs(x1 - x0), frequency
-        slope = predicted or self.slope or None
+        slope = predicted or (self.slopes[-1][2] if self.slopes else None) or None
         x1 = x0 - g0 / slope if slope else x0 + 1e-3 * span
         for _ in range(_SECANT_ITER):
             g1, mu1, p1 = g(x1, along(p0, x0, x1))
@@ -338,7 +337,6 @@ class _Tracker:
                 break
         else:
             raise NoEdge(f"the secant of log max|mu| does not converge at {c.kind}")
-        self.slope = slope
         self.slopes.append((len(self.ys), float(y), slope))
         kind, frequency = multiplier_kind(mu0, family.periods * family(x0).period)
         self.states.append((along(p0, x0, x1),))
@@ -493,10 +491,9 @@ class _Tracker:
         moves the responses next to a tangency by 1e-7 from where a smooth curve
         would put them, and Newton's method then takes three period maps, not two.
         """
-        slope = None
+        slope, j = None, i - 1 if i > 0 else i + 1
         for k in reversed(range(len(self.states))):
             st, at = self.states[k], self.positions[k]
-            j = i - 1 if i > 0 else i + 1
             if st[i] is not None and st[j] is not None:
                 slope = (st[i] - st[j]) / (at[i] - at[j])
                 break
