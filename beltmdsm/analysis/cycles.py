@@ -229,6 +229,7 @@ class _Shooting:
         self.jacobian = hybrid.bind_mode_jacobian(
             backend="python", **model.arguments(hybrid.bind_mode_jacobian)
         )
+        self.direction = section_direction(model)
 
     def flow(self, x: NDArray[np.float64], T: float):
         """``(phi_T(x), M, period, f(phi_T(x)))``: the run of ``T`` from ``x`` and its monodromy."""
@@ -257,12 +258,24 @@ class _Shooting:
     def mode(self, x: NDArray[np.float64]) -> Mode:
         return self.sw.initial_mode(0.0, x)
 
-    def section(self, x: NDArray[np.float64]) -> tuple[float, NDArray[np.float64]]:
-        """``(g(x), grad g(x))``: ``X1''`` in the mode of ``x`` and its gradient."""
-        mode = float(self.mode(x))
-        g = float(self.sw.field(0.0, *x, mode)[1])
-        grad = np.array(self.jacobian(0.0, *x, mode), dtype=float).reshape(4, 4)[1]
-        return g, grad
+    def section(self, x: NDArray[np.float64]) -> tuple[float, NDArray[np.float64], bool]:
+        """``(g(x), grad g(x), on_side)``: ``X1''`` in the mode of ``x``, its gradient, and
+        whether ``x`` lies on the section's side (`_on_side`)."""
+        mode = self.mode(x)
+        f = np.array(self.sw.field(0.0, *x, float(mode)), dtype=float)
+        grad = np.array(self.jacobian(0.0, *x, float(mode)), dtype=float).reshape(4, 4)[1]
+        return float(f[1]), grad, self._on_side(mode, f, grad)
+
+    def _on_side(self, mode: Mode, f: NDArray[np.float64], grad: NDArray[np.float64]) -> bool:
+        """In the slip mode of the section, with ``X1'`` at a minimum (``Vb > 0``; a maximum
+        for ``Vb < 0``).
+
+        ``X1'' = 0`` holds elsewhere too: on a whole stick phase and, for a friction
+        continuous at ``Vr = 0`` (Stribeck's), where a stick ends, at the other extreme of
+        ``X1'`` (the belt's speed). The rate ``X1''' = grad g . f`` must have the sign of
+        an extremum on the section's side; Newton's steps that leave it are shortened.
+        """
+        return int(mode) == self.direction and -self.direction * float(grad @ f) > 0
 
     def scale(self, x: NDArray[np.float64]) -> float:
         """The rounding scale of an acceleration at ``x`` (that of the friction cone)."""
@@ -319,9 +332,14 @@ def cycle(
 
 
 def _residuals(shoot, x, T):
+    g, grad, on_side = shoot.section(x)
+    if not on_side:
+        raise NoPeriodicResponse(
+            "no self-excited cycle found: the state is off the section (not in the slip "
+            "mode of the largest |Vr|, or X1' not at its extremum on that side)"
+        )
     flow = shoot.flow(x, T)
     r = flow[0] - x
-    g, grad = shoot.section(x)
     return flow, r, g, grad
 
 
