@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..integrate.switching import Mode
-from ..model import MODEL_PARAMETERS, Backend, Model, as_model
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model, is_autonomous
 from .edges import NoEdge, locate_end, multiplier_kind
 from .floquet import PeriodicResponse, periodic_response
 from .periodmap import (
@@ -720,6 +720,10 @@ def continue_branch(
     if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
         raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
     model = start.model
+    if getattr(start, "autonomous", False):
+        from .cycle_branch import cycle_branch_from
+
+        return cycle_branch_from(start.cycle, param, lo, hi, backend=backend)
     v0 = float(model[param])
     if not lo <= v0 <= hi:
         raise ValueError(f"the start's {param} = {v0:g} is outside [{lo:g}, {hi:g}]")
@@ -768,7 +772,10 @@ def branch(
     """The branch of the response of ``periods`` periods at a point (`continue_branch`).
 
     The response is found as `beltmdsm.analysis.floquet.periodic_response` finds it
-    (``periods > 1``: seeded from the attractor of the period map).
+    (``periods > 1``: seeded from the attractor of the period map). Without excitation
+    (`beltmdsm.model.is_autonomous`) it is the branch of self-excited cycles born at
+    the Hopf point of steady sliding in ``[lo, hi]``
+    (`beltmdsm.analysis.cycle_branch.cycle_branch`: a `CycleBranch`).
 
     Parameters
     ----------
@@ -791,5 +798,14 @@ def branch(
         Where no response of ``periods`` periods is found at the point.
     """
     model = as_model(model, **kw)
+    if is_autonomous(model):
+        from .cycle_branch import cycle_branch
+
+        if periods != 1:
+            raise ValueError(
+                f"periods must be 1 without excitation (a self-excited cycle has no "
+                f"excitation period to count); got {periods!r}"
+            )
+        return cycle_branch(model, param=param, lo=lo, hi=hi, backend=backend)
     start = periodic_response(model, periods=periods, backend=backend)
     return continue_branch(start, param, lo, hi, backend=backend)

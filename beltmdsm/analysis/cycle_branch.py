@@ -37,23 +37,23 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import NDArray
 
-from ..integrate.switching import Mode
-from ..model import MODEL_PARAMETERS, Backend, Model
-from .branch import LOCATE_TOL, Branch, SpecialPoint
-from .cycle_flow import CycleFlow, FlowImage, autonomous, orbit_observables
-from .edges import multiplier_kind
+from ..model import MODEL_PARAMETERS, Backend, Model, is_autonomous
+from .branch import Branch, SpecialPoint
+from .cycle_continuation import PERIOD_LIMIT, Continuation, CyclePoint, walk
+from .cycle_flow import CycleFlow
+from .cycles import Cycle, cycle
 from .hopf import HopfPoint, NoHopfPoint, hopf_point
-from .periodmap import NEWTON_TOL, NoPeriodicResponse
+from .periodmap import NoPeriodicResponse
 
 __all__ = [
     "CyclePoint",
     "CycleBranch",
     "cycle_branch",
+    "cycle_branch_from",
     "hopf_cycle",
     "HOPF_AMPLITUDE",
     "PERIOD_LIMIT",
@@ -62,82 +62,11 @@ __all__ = [
 #: The first cycle of a branch from a Hopf point: amplitude of ``X1'`` over the
 #: state's scale (`_scale`).
 HOPF_AMPLITUDE = 2e-3
-#: Arclength steps (scaled coordinates): first, smallest, largest.
-STEP_FIRST = 0.02
-STEP_MIN = 1e-7
-STEP_MAX = 0.2
-#: A branch ends where the period exceeds this many Hopf periods.
-PERIOD_LIMIT = 50.0
-_CORRECTOR_ITER = 12
-_EASY = 4
-MAX_POINTS = 2000
-#: The section's residual (relative to its gradient times the state's scale).
-_SECTION_TOL = 1e-11
 
 
-@dataclass
-class CyclePoint:
-    """One cycle on a branch.
-
-    Attributes
-    ----------
-    value : float
-    state : ndarray (4,)
-        ``(X1, X1', X2, X2')`` on the section (the smallest ``X1'``).
-    period : float
-    multipliers : ndarray
-        Without the trivial one, ``|mu|`` descending.
-    trivial_multiplier : complex
-        The one nearest 1 (its distance from 1 shows the accuracy).
-    max_abs_multiplier : float
-    stable : bool
-    n_sticks, n_reversals : int
-    amplitude : float
-        Half the range of ``X1'``.
-    x1_range, velocity_range : tuple of float
-    max_relative_velocity : float
-        Largest ``Vr = X1' - Vb`` (0 where the mass sticks).
-    tangent : float
-        The parameter component of the unit tangent, along the continuation.
-    """
-
-    value: float
-    state: NDArray[np.float64] = field(repr=False)
-    period: float
-    multipliers: NDArray[np.complex128] = field(repr=False)
-    trivial_multiplier: complex = field(repr=False)
-    max_abs_multiplier: float
-    stable: bool
-    n_sticks: int
-    n_reversals: int
-    amplitude: float
-    x1_range: tuple[float, float] = field(repr=False)
-    velocity_range: tuple[float, float] = field(repr=False)
-    max_relative_velocity: float
-    tangent: float = field(repr=False)
-    image: FlowImage = field(repr=False, default=None)
-    column: NDArray[np.float64] | None = field(repr=False, default=None)
-
-    def as_dict(self) -> dict:
-        """For JSON: ``value``, ``state0``, ``period``, ``amplitude``, ``x1_range``,
-        ``velocity_range``, ``max_relative_velocity``, ``multipliers`` (pairs),
-        ``trivial_multiplier``, ``max_abs_multiplier``, ``stable``, ``n_sticks``,
-        ``n_reversals``."""
-        return {
-            "value": self.value,
-            "state0": [float(v) for v in self.state],
-            "period": self.period,
-            "amplitude": self.amplitude,
-            "x1_range": list(self.x1_range),
-            "velocity_range": list(self.velocity_range),
-            "max_relative_velocity": self.max_relative_velocity,
-            "multipliers": [[float(z.real), float(z.imag)] for z in self.multipliers],
-            "trivial_multiplier": [self.trivial_multiplier.real, self.trivial_multiplier.imag],
-            "max_abs_multiplier": self.max_abs_multiplier,
-            "stable": self.stable,
-            "n_sticks": self.n_sticks,
-            "n_reversals": self.n_reversals,
-        }
+def _scale(state) -> float:
+    """The scale of the state: ``1 + max |x|``."""
+    return 1.0 + float(np.max(np.abs(state)))
 
 
 @dataclass(repr=False)
@@ -172,111 +101,6 @@ class CycleBranch(Branch):
         return out
 
 
-def _scale(model: Model, eq) -> float:
-    return 1.0 + float(np.max(np.abs(eq)))
-
-
-class _Cycles:
-    """Pseudo-arclength continuation in ``z = (x/sx, T/sT, p/sp)`` (module docstring)."""
-
-    def __init__(self, flow: CycleFlow, lo: float, hi: float, sx: float, sT: float, x, p):
-        self.flow, self.lo, self.hi = flow, lo, hi
-        self.sx, self.sT, self.sp = sx, sT, max((hi - lo) / 10.0, 1e-12)
-        self.hs = float(np.linalg.norm(flow.section_gradient(x, p))) * sx or 1.0
-
-    def z(self, point) -> NDArray[np.float64]:
-        return np.concatenate(
-            [point.state / self.sx, [point.period / self.sT, point.value / self.sp]]
-        )
-
-    def z_of(self, x, T, p) -> NDArray[np.float64]:
-        return np.concatenate([np.asarray(x, float) / self.sx, [T / self.sT, p / self.sp]])
-
-    def unpack(self, z):
-        return z[:4] * self.sx, float(z[4] * self.sT), float(z[5] * self.sp)
-
-    def jacobian(self, x, T, p, img, column=None) -> NDArray[np.float64]:
-        """``d(G, H)/dz`` (5 x 6); ``column``: the scaled ``p`` column, if known."""
-        J = np.zeros((5, 6))
-        J[:4, :4] = img.monodromy - np.eye(4)
-        J[:4, 4] = img.field * self.sT / self.sx
-        J[4, :4] = self.flow.section_gradient(x, p) * self.sx / self.hs
-        if column is None:
-            c = self.flow.p_column(x, T, p)
-            column = np.append(c[:4] * self.sp / self.sx, c[4] * self.sp / self.hs)
-        J[:, 5] = column
-        return J
-
-    def correct(self, z_pred, extra, column=None):
-        """Newton's method on ``G = 0``, ``H = 0`` and ``extra(z) = (value, row)``.
-
-        Returns ``(x, T, p, image, J, iterations)``, ``J`` (5 x 6) with the ``p``
-        column at the result; raises NoPeriodicResponse.
-        """
-        z, last = z_pred.copy(), math.inf
-        for iteration in range(1, _CORRECTOR_ITER + 1):
-            x, T, p = self.unpack(z)
-            img = self.flow.image(x, T, p)
-            G = (img.state - x) / self.sx
-            H = self.flow.section(x, p) / self.hs
-            size = max(float(np.max(np.abs(G))), abs(H))
-            e, row = extra(z)
-            if (
-                size * self.sx <= NEWTON_TOL * (1.0 + float(np.max(np.abs(x))))
-                and abs(H) <= _SECTION_TOL
-                and iteration > 1
-            ):
-                return x, T, p, img, self.jacobian(x, T, p, img), iteration
-            if size >= last and iteration > 2:
-                raise NoPeriodicResponse(f"the corrector diverges (residual {size:.2e})")
-            last = size
-            J = self.jacobian(x, T, p, img, column)
-            column = J[:, 5].copy()
-            try:
-                z = z + np.linalg.solve(np.vstack([J, row]), -np.append(np.append(G, H), e))
-            except np.linalg.LinAlgError:
-                raise NoPeriodicResponse("the corrector's matrix is singular") from None
-        raise NoPeriodicResponse(f"the corrector leaves a residual {last:.2e}")
-
-    def arclength(self, z_pred, tangent):
-        return lambda z: (float(tangent @ (z - z_pred)), tangent)
-
-    @staticmethod
-    def tangent(J, previous=None, sign=1.0):
-        t = np.linalg.svd(J)[2][-1]
-        if previous is not None:
-            return t if float(t @ previous) >= 0 else -t
-        return t if sign >= 0 else -t
-
-    def point(self, x, T, p, img, tangent_p, J=None) -> CyclePoint:
-        mu = np.linalg.eigvals(img.monodromy)
-        i = int(np.argmin(np.abs(mu - 1.0)))
-        trivial = complex(mu[i])
-        rest = np.delete(mu, i)
-        rest = rest[np.argsort(-np.abs(rest), kind="stable")]
-        biggest = float(np.abs(rest[0])) if rest.size else 0.0
-        model, _ = self.flow.at(p)
-        obs = orbit_observables(img.run, model["Vb"])
-        return CyclePoint(
-            float(p),
-            np.array(x, float),
-            float(T),
-            rest,
-            trivial,
-            biggest,
-            bool(biggest < 1.0),
-            obs.n_sticks,
-            obs.n_reversals,
-            obs.amplitude,
-            obs.x1_range,
-            obs.velocity_range,
-            obs.max_relative_velocity,
-            float(tangent_p),
-            img,
-            None if J is None else J[:, 5].copy(),
-        )
-
-
 def hopf_cycle(hopf: HopfPoint, amplitude: float, *, backend: Backend | None = None) -> CyclePoint:
     """The cycle of amplitude ``amplitude`` of ``X1'`` (coordinate ``k``) near a Hopf point.
 
@@ -308,7 +132,7 @@ def _hopf_start(hopf, amplitude, backend, lo=None, hi=None):
     x0 = hopf.equilibrium + (amplitude / abs(v[k])) * np.real(v * np.exp(1j * theta))
     lo = hopf.value - 1.0 if lo is None else lo
     hi = hopf.value + 1.0 if hi is None else hi
-    cont = _Cycles(flow, lo, hi, _scale(hopf.model, hopf.equilibrium), hopf.period, x0, hopf.value)
+    cont = Continuation(flow, lo, hi, _scale(hopf.equilibrium), hopf.period, x0, hopf.value)
     return cont, np.concatenate([x0 / cont.sx, [hopf.period / cont.sT, hopf.value / cont.sp]])
 
 
@@ -332,325 +156,6 @@ def _amplitude_row(cont, hopf, amplitude):
         return (x[k] - _equilibrium_k(hopf, p) + amplitude) / cont.sx, row
 
     return extra
-
-
-# ---------------------------------------------------------------- special points
-
-
-def _count_outside(point):
-    return int(np.sum(np.abs(point.multipliers) > 1.0))
-
-
-def _trial(cont, start, tangent, s):
-    """The corrected point at arclength ``s`` from ``start`` along ``tangent``."""
-    z_pred = cont.z(start) + s * tangent
-    x, T, p, img, J, _ = cont.correct(z_pred, cont.arclength(z_pred, tangent), start.column)
-    return cont.point(x, T, p, img, cont.tangent(J, tangent)[-1], J)
-
-
-def _regula_falsi(cont, start, tangent, ds, psi, fa, fb):
-    """The point in ``[0, ds]`` along the arclength where ``psi`` vanishes (Illinois).
-
-    Returns the located `CyclePoint` and the accuracy in the parameter.
-    """
-    a, b, pa, pb = 0.0, ds, start.value, None
-    located, side = start, 0
-    for _ in range(60):
-        s = b - fb * (b - a) / (fb - fa) if fb != fa else 0.5 * (a + b)
-        s = min(max(s, a + 1e-3 * (b - a)), b - 1e-3 * (b - a))
-        try:
-            pt = _trial(cont, start, tangent, s)
-        except NoPeriodicResponse:
-            s = 0.5 * (a + b)
-            pt = _trial(cont, start, tangent, s)
-        fs = psi(pt)
-        if fs * fa > 0:
-            a, fa, pa = s, fs, pt.value
-            fb, side = (0.5 * fb if side == -1 else fb), -1
-        else:
-            b, fb, pb = s, fs, pt.value
-            fa, side = (0.5 * fa if side == 1 else fa), 1
-        located = pt
-        if pb is not None and abs(pb - pa) <= LOCATE_TOL or b - a <= 1e-13:
-            break
-    return located, (abs(pb - pa) if pb is not None else math.inf)
-
-
-def _locate_stick(cont, prev, tangent, s_onset):
-    """The stick onset ahead of the sliding cycle ``prev``, about ``s_onset`` along ``tangent``.
-
-    Sliding cycles are solved at safe distances short of the onset (near it, on a
-    hyperplane of the arclength, Newton's method may land on a stick-slip cycle as
-    well: at a nonsmooth fold both lie on the same side), and ``p``, ``s`` and the
-    state are extrapolated to ``max_relative_velocity = 0`` by quadratics in it; the
-    accuracy is the difference from the linear extrapolation through the nearest two.
-    The distances shrink by 4 until it is below ``LOCATE_TOL / 10``.
-
-    Returns ``(value, accuracy, nearest sliding point, scaled state at the onset)``,
-    or None where fewer than three sliding cycles are found.
-    """
-    s_g, D = s_onset, min(0.5 * s_onset, 4e-3)
-    good = []
-    value, accuracy, zg = prev.value, math.inf, None
-    for _ in range(6):
-        stuck = False
-        for frac in (1.0, 0.5, 0.25):
-            s = s_g - frac * D
-            if s <= 0 or any(abs(s - q) < 1e-15 for q, _ in good):
-                continue
-            try:
-                pt = _trial(cont, prev, tangent, s)
-            except NoPeriodicResponse:
-                stuck = True
-                continue
-            if pt.n_sticks or pt.max_relative_velocity >= 0:
-                stuck = True
-                continue
-            good.append((s, pt))
-        if stuck and len(good) < 3:
-            s_g -= D  # the estimate lies beyond the onset
-            continue
-        if len(good) < 3:
-            return None
-        near = sorted(good, key=lambda g: g[0])[-3:]
-        f = np.array([q.max_relative_velocity for _, q in near])
-        p = np.array([q.value for _, q in near])
-        value = float(np.polyval(np.polyfit(f, p, 2), 0.0))
-        accuracy = abs(value - float(np.polyval(np.polyfit(f[1:], p[1:], 1), 0.0)))
-        Z = np.array([cont.z(q) for _, q in near])
-        zg = np.array([np.polyval(np.polyfit(f, Z[:, i], 2), 0.0) for i in range(Z.shape[1])])
-        if accuracy <= 0.1 * LOCATE_TOL:
-            break
-        s_g = float(np.polyval(np.polyfit(f, [g for g, _ in near], 2), 0.0))
-        D *= 0.25
-    if zg is None:
-        return None
-    return value, accuracy, near[-1][1], zg
-
-
-def _cross_stick(cont, prev, tangent, s_onset):
-    """Locate the stick onset ahead of ``prev`` and step onto the stick-slip cycles.
-
-    Beyond the onset the map has another Jacobian (a stick phase zeroes the velocity
-    perturbation), so Newton's method started across the kink from the sliding side
-    alternates between the two sides. The tangent of the stick-slip branch is the null
-    vector of the Jacobian taken just inside the stick side of the grazing cycle; of
-    its two directions, the one along the sliding branch's goes first (the branch goes
-    on), the other second (it turns back at the onset: a nonsmooth fold).
-
-    Returns ``(special point, first stick-slip point, tangent)``, or None.
-    """
-    located = _locate_stick(cont, prev, tangent, s_onset)
-    if located is None:
-        return None
-    value, accuracy, near, zg = located
-    for eps in (1e-7, 1e-6, 1e-5, 1e-4):
-        x, T, p = cont.unpack(zg + eps * tangent)
-        try:
-            img = cont.flow.image(x, T, p)
-        except NoPeriodicResponse:
-            continue
-        if _sticks(img):
-            break
-    else:
-        return None
-    tk = cont.tangent(cont.jacobian(x, T, p, img), tangent)
-    for sign in (1.0, -1.0):
-        for step in (1e-3, 1e-4, 1e-5):
-            z_pred = zg + sign * step * tk
-            try:
-                x, T, p, img, J, _ = cont.correct(z_pred, cont.arclength(z_pred, sign * tk))
-            except NoPeriodicResponse:
-                continue
-            z = cont.z_of(x, T, p)
-            if float(np.linalg.norm(z - zg)) < 0.5 * step:
-                continue
-            t_new = cont.tangent(J, sign * tk)
-            pt = cont.point(x, T, p, img, t_new[-1], J)
-            if pt.n_sticks == 0:
-                continue
-            turns = tangent[-1] * t_new[-1] < 0
-            detail = "the largest Vr reaches 0: a stick phase appears (grazing-sliding)" + (
-                "; the branch turns back there (a nonsmooth fold)" if turns else ""
-            )
-            sp = SpecialPoint(
-                "stick_onset",
-                value,
-                accuracy,
-                None,
-                near.multipliers,
-                near.stable,
-                pt.stable,
-                detail,
-            )
-            return sp, near, pt, t_new
-    return None
-
-
-def _special_between(cont, prev, new, tangent, ds):
-    """Folds and multipliers through the unit circle between two points of one structure."""
-    out = []
-    if prev.tangent * new.tangent < 0:
-        pt, acc = _regula_falsi(
-            cont, prev, tangent, ds, lambda q: q.tangent, prev.tangent, new.tangent
-        )
-        out.append(
-            SpecialPoint(
-                "fold",
-                pt.value,
-                acc,
-                None,
-                pt.multipliers,
-                prev.stable,
-                new.stable,
-                "the branch turns back",
-            )
-        )
-    na, nb = _count_outside(prev), _count_outside(new)
-    if na != nb:
-        rank = min(na, nb)
-
-        def psi(q):
-            return math.log(abs(q.multipliers[min(rank, q.multipliers.size - 1)]))
-
-        pt, acc = _regula_falsi(cont, prev, tangent, ds, psi, psi(prev), psi(new))
-        kind, freq = multiplier_kind(pt.multipliers[min(rank, pt.multipliers.size - 1)], pt.period)
-        if kind == "fold" and out:
-            return out  # the multiplier through +1 of the fold located by the turn
-        kind = "branch_point" if kind == "fold" else kind
-        detail = {
-            "neimark_sacker": f"a complex pair crosses the unit circle at {freq or 0:.6g} rad/s",
-            "period_doubling": "a real multiplier crosses -1",
-            "branch_point": "a real multiplier crosses +1",
-        }[kind]
-        out.append(
-            SpecialPoint(kind, pt.value, acc, freq, pt.multipliers, prev.stable, new.stable, detail)
-        )
-    return sorted(out, key=lambda s: abs(s.value - prev.value))
-
-
-def _end(kind, point, detail, value=None, accuracy=0.0):
-    return SpecialPoint(
-        kind,
-        point.value if value is None else value,
-        accuracy,
-        None,
-        point.multipliers,
-        point.stable,
-        None,
-        detail,
-    )
-
-
-# ---------------------------------------------------------------- the walk
-
-
-def _sticks(img) -> int:
-    return sum(1 for _, _, new in img.run.events if Mode(int(new)) == Mode.STICK)
-
-
-def _stick_ahead(cont, points, ds) -> float | None:
-    """The arclength ahead at which the largest Vr of the sliding cycles, extrapolated
-    from the last two, reaches 0, where that is within ``2 ds``; else None."""
-    if len(points) < 2 or points[-2].n_sticks:
-        return None
-    (q1, q2) = points[-2:]
-    f1, f2 = q1.max_relative_velocity, q2.max_relative_velocity
-    dist = float(np.linalg.norm(cont.z(q2) - cont.z(q1)))
-    if not (f2 > f1 and dist > 0):
-        return None
-    s = -f2 / (f2 - f1) * dist
-    return s if s <= 2 * ds else None
-
-
-def _walk(cont, first, tangent, period0):
-    """Continue from ``first`` along ``tangent`` to the range's end or a failure."""
-    points, special = [first], []
-    ds = STEP_FIRST
-    while True:
-        prev = points[-1]
-        if len(points) >= MAX_POINTS:
-            special.append(_end("failed", prev, f"stopped after {MAX_POINTS} points"))
-            return points, special
-        z_pred = cont.z(prev) + ds * tangent
-        failure = None
-        try:
-            x, T, p, img, J, iterations = cont.correct(
-                z_pred, cont.arclength(z_pred, tangent), prev.column
-            )
-            if np.max(np.abs(cont.z_of(x, T, p) - z_pred)) > 10 * ds:
-                failure = "the corrector jumps to another branch"
-        except NoPeriodicResponse as err:
-            failure = str(err)
-        if failure is None and (prev.n_sticks == 0) != (_sticks(img) == 0):
-            failure = "a stick phase appears"
-        if failure is not None:
-            ahead = None if prev.n_sticks else _stick_ahead(cont, points, ds)
-            if ahead is not None:
-                crossed = _cross_stick(cont, prev, tangent, ahead)
-                if crossed is not None:
-                    sp, near, first, tangent = crossed
-                    special.append(sp)
-                    points += [near, first]
-                    ds = STEP_FIRST
-                    continue
-            ds *= 0.5
-            if ds < STEP_MIN:
-                special.append(_end("failed", prev, f"no step converges: {failure}"))
-                return points, special
-            continue
-        t_new = cont.tangent(J, tangent)
-        new = cont.point(x, T, p, img, t_new[-1], J)
-        if not cont.lo <= p <= cont.hi:
-            bound = cont.hi if p > cont.hi else cont.lo
-            try:
-                end, _ = _regula_falsi(
-                    cont,
-                    prev,
-                    tangent,
-                    ds,
-                    lambda q, b=bound: q.value - b,
-                    prev.value - bound,
-                    p - bound,
-                )
-            except NoPeriodicResponse as err:
-                ds *= 0.5
-                if ds < STEP_MIN:
-                    special.append(_end("failed", prev, f"locating the range's end: {err}"))
-                    return points, special
-                continue
-            if end.n_sticks == prev.n_sticks:
-                special += [
-                    s
-                    for s in _special_between(cont, prev, end, tangent, ds)
-                    if min(prev.value, bound) <= s.value <= max(prev.value, bound)
-                ]
-            points.append(end)
-            special.append(_end("range", end, "the end of the requested range", bound))
-            return points, special
-        if (prev.n_sticks, prev.n_reversals) == (new.n_sticks, new.n_reversals):
-            try:
-                special += _special_between(cont, prev, new, tangent, ds)
-            except NoPeriodicResponse:
-                ds *= 0.5
-                if ds < STEP_MIN:
-                    special.append(_end("failed", prev, "a special point cannot be located"))
-                    return points, special
-                continue
-        points.append(new)
-        tangent = t_new
-        if T > PERIOD_LIMIT * period0:
-            special.append(
-                _end(
-                    "failed",
-                    new,
-                    f"the period ({T:.4g} s) grows past {PERIOD_LIMIT:g} times the Hopf "
-                    "period: towards a homoclinic orbit or a standstill",
-                )
-            )
-            return points, special
-        if iterations <= _EASY:
-            ds = min(ds * 1.5, STEP_MAX)
 
 
 # ---------------------------------------------------------------- the branch
@@ -692,13 +197,13 @@ def cycle_branch(
         raise ValueError(f"param must be a model parameter; got {param!r}")
     if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
         raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
-    if not autonomous(model):
+    if not is_autonomous(model):
         raise ValueError("a branch of self-excited cycles needs a model without excitation")
     try:
         hopf = hopf_point(model, param, lo, hi)
     except NoHopfPoint as err:
-        return _from_cycle(model, param, float(lo), float(hi), backend, str(err), clock)
-    amplitude = HOPF_AMPLITUDE * _scale(hopf.model, hopf.equilibrium)
+        return _from_cycle(model, param, float(lo), float(hi), backend, str(err))
+    amplitude = HOPF_AMPLITUDE * _scale(hopf.equilibrium)
     cont, z = _hopf_start(hopf, amplitude, backend, float(lo), float(hi))
     try:
         x, T, p, img, J, _ = cont.correct(z, _amplitude_row(cont, hopf, amplitude))
@@ -725,7 +230,7 @@ def cycle_branch(
         f"{hopf.frequency:.6g} rad/s; {criticality}: the cycles exist where sliding is "
         + ("unstable" if criticality == "supercritical" else "stable"),
     )
-    points, special = _walk(cont, first, tangent, hopf.period)
+    points, special = walk(cont, first, tangent, hopf.period)
     return CycleBranch(
         param,
         1,
@@ -738,27 +243,26 @@ def cycle_branch(
     )
 
 
-def _from_cycle(model, param, lo, hi, backend, no_hopf, clock):
-    """The branch both ways through the cycle at the model's value of ``param``."""
-    from .cycles import cycle
+def cycle_branch_from(
+    start: Cycle, param: str, lo: float, hi: float, *, backend: Backend | None = None
+) -> CycleBranch:
+    """The branch of cycles through ``start`` in ``param`` over ``[lo, hi]``, both ways.
 
+    Raises
+    ------
+    ValueError
+        For an unknown parameter, a bad range or a start outside it.
+    """
+    clock = time.perf_counter()
+    model = start.model
     v0 = float(model[param])
-    if not lo <= v0 <= hi:
-        raise NoPeriodicResponse(
-            f"{no_hopf}; and the model's {param} = {v0:g} is outside the range"
-        )
-    try:
-        found = cycle(model, backend=backend)
-    except NoPeriodicResponse as err:
-        raise NoPeriodicResponse(f"{no_hopf}; and no cycle at {param} = {v0:g}: {err}") from None
+    if param not in MODEL_PARAMETERS:
+        raise ValueError(f"param must be a model parameter; got {param!r}")
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo <= v0 <= hi and lo < hi):
+        raise ValueError(f"the start's {param} = {v0:g} must lie in [{lo:g}, {hi:g}]")
     flow = CycleFlow(model, param, 1, backend)
-    run = flow.run(found.state, found.period, v0)
-    tr = run.trajectory
-    ts = np.linspace(0.0, found.period, 513)
-    t0 = ts[int(np.argmin(tr.state(ts)[1]))]
-    x0 = tr.state(np.array([t0]))[:, 0]  # near the section; Newton puts it there
-    cont = _Cycles(flow, lo, hi, _scale(model, x0), found.period, x0, v0)
-    z = cont.z_of(x0, found.period, v0)
+    cont = Continuation(flow, lo, hi, _scale(start.state), start.period, start.state, v0)
+    z = cont.z_of(start.state, start.period, v0)
     row = np.zeros(6)
     row[5] = 1.0
     x, T, p, img, J, _ = cont.correct(z, lambda q: (float(q[5] - z[5]), row))
@@ -767,7 +271,7 @@ def _from_cycle(model, param, lo, hi, backend, no_hopf, clock):
         t = cont.tangent(J, sign=1.0)
         t = t if t[-1] * sign >= 0 else -t
         first = cont.point(x, T, p, img, t[-1], J)
-        walks.append(_walk(cont, first, t, found.period))
+        walks.append(walk(cont, first, t, start.period))
     (up, up_special), (down, down_special) = walks
     for s in down_special:
         s.stable_before, s.stable_after = s.stable_after, s.stable_before
@@ -781,3 +285,17 @@ def _from_cycle(model, param, lo, hi, backend, no_hopf, clock):
         None,
         time.perf_counter() - clock,
     )
+
+
+def _from_cycle(model, param, lo, hi, backend, no_hopf):
+    """The branch both ways through the cycle at the model's value of ``param``."""
+    v0 = float(model[param])
+    if not lo <= v0 <= hi:
+        raise NoPeriodicResponse(
+            f"{no_hopf}; and the model's {param} = {v0:g} is outside the range"
+        )
+    try:
+        found = cycle(model, backend=backend)
+    except NoPeriodicResponse as err:
+        raise NoPeriodicResponse(f"{no_hopf}; and no cycle at {param} = {v0:g}: {err}") from None
+    return cycle_branch_from(found, param, lo, hi, backend=backend)

@@ -33,12 +33,12 @@ from ..errors import StepTooSmall
 from ..integrate.events import integrate_events
 from ..integrate.switching import Mode, Switching
 from ..integrate.trajectory import Run
-from ..model import Backend, Model
+from ..model import Backend, Model, is_autonomous
 from ..settings import SolverSettings
 from . import variational
 from .periodmap import RTOL, NoPeriodicResponse
 
-__all__ = ["CycleFlow", "FlowImage", "Observables", "orbit_observables", "autonomous"]
+__all__ = ["CycleFlow", "FlowImage", "Observables", "orbit_observables", "split_multipliers"]
 
 #: Relative step of the central differences in the parameter (as
 #: `beltmdsm.analysis.periodmap.MapFamily`) and in the state (the section's gradient).
@@ -48,10 +48,16 @@ X_STEP = 1e-6
 _SAMPLES = 256
 
 
-def autonomous(model: Model) -> bool:
-    """True where Eq. (4) has no excitation (``alpha_d Omega_d = 0`` in both directions)."""
-    p = model.params
-    return all(p[f"alpha_{d}"] == 0 or p[f"Omega_{d}"] == 0 for d in ("t", "n"))
+def split_multipliers(M, f) -> tuple[complex, NDArray[np.complex128]]:
+    """``(trivial, others)``: the trivial multiplier of a cycle's monodromy ``M``, the one
+    whose eigenvector is closest in direction to the field ``f`` on the section (as
+    `beltmdsm.analysis.cycles` picks it: near a Hopf point another multiplier lies
+    as close to 1), and the others by decreasing modulus."""
+    mu, V = np.linalg.eig(M)
+    cosines = np.abs(np.conj(V).T @ (f / np.linalg.norm(f))) / np.linalg.norm(V, axis=0)
+    k = int(np.argmax(cosines))
+    others = np.delete(mu.astype(complex), k)
+    return complex(mu[k]), others[np.argsort(-np.abs(others), kind="stable")]
 
 
 @dataclass
@@ -131,7 +137,7 @@ class CycleFlow:
     _KEPT = 8
 
     def __init__(self, model: Model, param: str, k: int = 1, backend: Backend | None = None):
-        if not autonomous(model):
+        if not is_autonomous(model):
             raise ValueError("a cycle's flow needs a model without excitation (alpha = 0)")
         self.model, self.param, self.k, self.backend = model, param, int(k), backend
         self._at: dict = {}
