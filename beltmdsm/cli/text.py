@@ -312,14 +312,32 @@ def responses(found: ResponseSet) -> str:
 
 
 def branch(found: Branch) -> str:
-    """The readable summary of ``branch``."""
+    """The readable summary of ``branch`` (of a forced response or of self-excited cycles)."""
     lo, hi = found.value_range()
+    cycles = getattr(found, "hopf", None) is not None or hasattr(found, "criticality")
+    what = (
+        "self-excited cycles (no excitation)"
+        if cycles
+        else f"the {_name(found.periods)}-periodic response"
+    )
     lines = [
-        f"branch of the {_name(found.periods)}-periodic response in {found.param} "
+        f"branch of {what} in {found.param} "
         f"({_laws(found.model)}): {found.param} from "
         f"{lo:.6g} to {hi:.6g}, {len(found.points)} points; stable for {found.param} in "
         f"{format_intervals(found.stable_ranges(), '.5f', 'none')}"
     ]
+    if cycles and found.hopf is not None:
+        h = found.hopf
+        lines.append(
+            f"  Hopf point of steady sliding at {found.param} = {h.value:.6f} "
+            f"({h.pair} pair, {h.frequency:.6g} rad/s, period {h.period:.6g} s, "
+            f"d Re(lambda)/d{found.param} = {h.transversality:.4g}): {found.criticality}"
+            + (
+                " (cycles where steady sliding is stable: hysteresis)"
+                if found.criticality == "subcritical"
+                else ""
+            )
+        )
     for s in found.special:
         lines.append(
             f"  {kind(s.kind, s.frequency)} at {found.param} = {s.value:.6f} "
@@ -329,6 +347,14 @@ def branch(found: Branch) -> str:
         a, b = part.range
         state = {True: "stable", False: "unstable", None: "grazing"}[part.stable]
         lines.append(f"  {state} from {a:.6f} to {b:.6f} ({part.start} to {part.end})")
+    if cycles and found.points:
+        for p in (found.points[0], found.points[-1]):
+            lines.append(
+                f"  cycle at {found.param} = {p.value:.6g}: period {p.period:.6g} s, "
+                f"amplitude of X1' {p.amplitude:.4g} m/s, largest Vr "
+                f"{p.max_relative_velocity:.3g} m/s, {p.n_sticks} sticks, "
+                f"{'stable' if p.stable else 'unstable'}"
+            )
     return "\n".join(lines)
 
 
