@@ -37,7 +37,15 @@ from generated import unforced
 
 from ..model import MODEL_PARAMETERS, Model
 
-__all__ = ["HopfPoint", "NoHopfPoint", "hopf_point", "hopf_points", "HOPF_TOL", "SCAN_POINTS"]
+__all__ = [
+    "HopfPoint",
+    "NoHopfPoint",
+    "hopf_point",
+    "hopf_points",
+    "eigenvalues_over",
+    "HOPF_TOL",
+    "SCAN_POINTS",
+]
 
 #: Hopf points are placed to this in the parameter (Brent's method's ``xtol``).
 HOPF_TOL = 1e-10
@@ -122,7 +130,7 @@ class HopfPoint:
         }
 
 
-def _eigenvalues(model: Model, param: str, values) -> NDArray[np.complex128]:
+def eigenvalues_over(model: Model, param: str, values) -> NDArray[np.complex128]:
     """``(len(values), 4)`` eigenvalues of ``J^0`` with ``param`` at ``values`` (one call)."""
     kw = model.arguments(unforced.eigenvalues)
     kw[param] = np.asarray(values, dtype=float)
@@ -164,7 +172,7 @@ def hopf_points(model: Model, param: str, lo: float, hi: float) -> list[HopfPoin
     if param != "Vb" and model["Vb"] <= 0:
         raise ValueError("steady sliding needs a moving belt: Vb must be > 0 for a Hopf point")
     grid = np.linspace(lo, hi, SCAN_POINTS)
-    lam = _eigenvalues(model, param, grid)
+    lam = eigenvalues_over(model, param, grid)
     found = []
     for k, name in enumerate(PAIRS):
         re = _real_part(lam, k)
@@ -173,7 +181,7 @@ def hopf_points(model: Model, param: str, lo: float, hi: float) -> list[HopfPoin
                 continue
 
             def f(v, k=k):
-                return float(_real_part(_eigenvalues(model, param, [v]), k)[0])
+                return float(_real_part(eigenvalues_over(model, param, [v]), k)[0])
 
             a, b = grid[i], grid[i + 1]
             value = a if re[i] == 0 else b if re[i + 1] == 0 else brentq(f, a, b, xtol=HOPF_TOL)
@@ -198,7 +206,7 @@ def hopf_point(model: Model, param: str, lo: float, hi: float) -> HopfPoint:
     found = hopf_points(model, param, lo, hi)
     if found:
         return found[0]
-    lam = _eigenvalues(model, param, [lo, hi])
+    lam = eigenvalues_over(model, param, [lo, hi])
     ends = ", ".join(
         f"{name} pair {_real_part(lam, k)[0]:+.3g} to {_real_part(lam, k)[1]:+.3g}"
         for k, name in enumerate(PAIRS)
@@ -213,7 +221,7 @@ def hopf_point(model: Model, param: str, lo: float, hi: float) -> HopfPoint:
 
 def _at(model, param, value, k, name, accuracy, bounds):
     """The `HopfPoint` at a located crossing of pair ``k``; None where the pair is real."""
-    lam = _eigenvalues(model, param, [value])[0, 2 * k : 2 * k + 2]
+    lam = eigenvalues_over(model, param, [value])[0, 2 * k : 2 * k + 2]
     top = lam[np.argmax(lam.imag)]
     if not abs(top.imag) > _COMPLEX_SHARE * max(abs(top), 1e-300):
         return None
@@ -228,7 +236,7 @@ def _at(model, param, value, k, name, accuracy, bounds):
     v = v * (abs(big) / big)
     h = 1e-5 * max(1.0, abs(value))
     a, b = max(value - h, bounds[0]), min(value + h, bounds[1])  # inside the domain
-    re = _real_part(_eigenvalues(model, param, [a, b]), k)
+    re = _real_part(eigenvalues_over(model, param, [a, b]), k)
     eq = np.array([float(x) for x in unforced.equilibrium(**at.arguments(unforced.equilibrium))])
     return HopfPoint(
         param,

@@ -360,6 +360,8 @@ def branch(found: Branch) -> str:
 
 def coexistence(found: Coexistence) -> str:
     """The readable summary of ``coexistence``."""
+    if getattr(found, "branch", False) is not False:  # without excitation
+        return cycle_coexistence(found)
     param = found.param
     lines = [
         f"stable periodic responses of Eq. (4) for {param} in {found.lo:g}..{found.hi:g} "
@@ -385,6 +387,41 @@ def coexistence(found: Coexistence) -> str:
         )
     for u in found.unexplained:
         lines.append(f"  a lock at {param} = {u.value:g} ({u.source}) not found: {u.reason}")
+    return "\n".join(lines)
+
+
+def cycle_coexistence(found) -> str:
+    """The readable summary of ``coexistence`` without excitation
+    (`beltmdsm.studies.cycle_coexistence.CycleCoexistence`)."""
+    param, b = found.param, found.branch
+
+    def parts(ps):
+        return (
+            ", ".join(f"[{s.range[0]:.6f}, {s.range[1]:.6f}] ({s.lower} to {s.upper})" for s in ps)
+            or "none"
+        )
+
+    lines = [
+        f"steady sliding and self-excited cycles of Eq. (4) without excitation for {param} "
+        f"in {found.lo:g}..{found.hi:g} ({_laws(found.model)}; {found.wall_s:.1f} s):",
+        f"  steady sliding: stable in {parts(found.sliding)}",
+    ]
+    for h in found.hopf:
+        lines.append(
+            f"  Hopf point at {param} = {h.value:.6f} ({h.frequency:.6g} rad/s)"
+            + (f": {b.criticality}" if b is not None and b.hopf and b.hopf.value == h.value else "")
+        )
+    if b is not None:
+        from ..studies.coexistence import _stable_parts
+
+        lines.append(f"  cycle: stable in {parts(_stable_parts(b))}")
+    if found.ranges:
+        lines.append("coexistence (hysteresis: a run ends on either by where it starts):")
+        for c in found.ranges:
+            a, z = c.range
+            lines.append(f"  [{a:.6f}, {z:.6f}]: {', '.join(c.responses)} ({c.lower} to {c.upper})")
+    else:
+        lines.append(f"coexistence: none: {found.reason}")
     return "\n".join(lines)
 
 

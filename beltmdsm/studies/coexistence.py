@@ -23,6 +23,10 @@ exactly:
    edges (the bifurcations where a response starts or stops being stable, or the end of
    the range).
 
+Without excitation (`beltmdsm.model.is_autonomous`) the attractors are steady sliding
+and the self-excited cycles: `beltmdsm.studies.cycle_coexistence` gives where they
+coexist (hysteresis at a subcritical Hopf point), or why they do not.
+
 What this does not see: attractors that are not locked within the limit (quasi-periodic
 motion on an invariant torus, or a longer period), which are listed, not continued, and
 attractors that no seed reaches.
@@ -41,7 +45,7 @@ from ..analysis.branch import Branch, continue_branch
 from ..analysis.floquet import NoPeriodicResponse, floquet, response_from
 from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ..analysis.periodmap import engine_of
-from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period, is_autonomous
 from .responses import ladder, run_stroboscope, shoot
 
 __all__ = [
@@ -305,6 +309,10 @@ def coexistence(
     if not step > 0 or int(limit) < 1:
         raise ValueError(f"step must be > 0 and limit >= 1; got {step}, {limit}")
     model = as_model(model, **kw).replace(**{param: lo})
+    if is_autonomous(model):
+        from .cycle_coexistence import cycle_coexistence
+
+        return cycle_coexistence(param, lo, hi, model, backend=backend)
     excitation_period(model)
     grid = np.linspace(lo, hi, max(int(round((hi - lo) / step)), 1) + 1)
     seeds, unlocked = [], []
