@@ -60,6 +60,8 @@ class CyclePoint:
     x1_range, velocity_range : tuple of float
     max_relative_velocity : float
         Largest ``Vr = X1' - Vb`` (0 where the mass sticks).
+    stick_time : float
+        Time stuck per period [s].
     tangent : float
         The parameter component of the unit tangent, along the continuation.
     """
@@ -78,6 +80,7 @@ class CyclePoint:
     velocity_range: tuple[float, float] = field(repr=False)
     max_relative_velocity: float
     tangent: float = field(repr=False)
+    stick_time: float = field(repr=False, default=0.0)
     image: FlowImage = field(repr=False, default=None)
     column: NDArray[np.float64] | None = field(repr=False, default=None)
 
@@ -100,6 +103,7 @@ class CyclePoint:
             "stable": self.stable,
             "n_sticks": self.n_sticks,
             "n_reversals": self.n_reversals,
+            "stick_time": self.stick_time,
         }
 
 
@@ -134,8 +138,12 @@ class Continuation:
         J[:, 5] = column
         return J
 
-    def correct(self, z_pred, extra, column=None):
+    def correct(self, z_pred, extra, column=None, fresh=False):
         """Newton's method on ``G = 0``, ``H = 0`` and ``extra(z) = (value, row)``.
+
+        ``column``: the ``p`` column of a point nearby, kept through the iterations
+        (computed at the first where not given) unless ``fresh`` (across a kink of the
+        map it changes).
 
         Returns ``(x, T, p, image, J, iterations)``, ``J`` (5 x 6) with the ``p``
         column at the result; raises NoPeriodicResponse.
@@ -146,8 +154,8 @@ class Continuation:
             img = self.flow.image(x, T, p)
             G = (img.state - x) / self.sx
             H = self.flow.section(x, p) / self.hs
-            size = max(float(np.max(np.abs(G))), abs(H))
             e, row = extra(z)
+            size = max(float(np.max(np.abs(G))), abs(H), abs(e))
             if (
                 size * self.sx <= NEWTON_TOL * (1.0 + float(np.max(np.abs(x))))
                 and abs(H) <= _SECTION_TOL
@@ -157,7 +165,7 @@ class Continuation:
             if size >= last and iteration > 2:
                 raise NoPeriodicResponse(f"the corrector diverges (residual {size:.2e})")
             last = size
-            J = self.jacobian(x, T, p, img, column)
+            J = self.jacobian(x, T, p, img, None if fresh else column)
             column = J[:, 5].copy()
             try:
                 z = z + np.linalg.solve(np.vstack([J, row]), -np.append(np.append(G, H), e))
@@ -195,6 +203,7 @@ class Continuation:
             obs.velocity_range,
             obs.max_relative_velocity,
             float(tangent_p),
+            obs.stick_time,
             img,
             None if J is None else J[:, 5].copy(),
         )
@@ -242,19 +251,34 @@ def _regula_falsi(cont, start, tangent, ds, psi, fa, fb):
     return located, (abs(pb - pa) if pb is not None else math.inf)
 
 
+def _measure(point, sticking: bool) -> float:
+    """How far a cycle is from the stick onset, negative on its side and 0 there: the
+    largest Vr of a sliding cycle; minus the squared stick time of a stick-slip one
+    (the stick phase of a grazing-sliding orbit lasts as the square root of the
+    distance)."""
+    return -(point.stick_time**2) if sticking else point.max_relative_velocity
+
+
+def _on_side(point, sticking: bool) -> bool:
+    return (point.n_sticks > 0) == sticking and _measure(point, sticking) < 0
+
+
 def _locate_stick(cont, prev, tangent, s_onset):
-    """The stick onset ahead of the sliding cycle ``prev``, about ``s_onset`` along ``tangent``.
+    """The stick onset ahead of ``prev`` (sliding or sticking), about ``s_onset`` along
+    ``tangent``.
 
-    Sliding cycles are solved at safe distances short of the onset (near it, on a
-    hyperplane of the arclength, Newton's method may land on a stick-slip cycle as
-    well: at a nonsmooth fold both lie on the same side), and ``p``, ``s`` and the
-    state are extrapolated to ``max_relative_velocity = 0`` by quadratics in it; the
-    accuracy is the difference from the linear extrapolation through the nearest two.
-    The distances shrink by 4 until it is below ``LOCATE_TOL / 10``.
+    Cycles of ``prev``'s side are solved at safe distances short of the onset (near
+    it, on a hyperplane of the arclength, Newton's method may land on a cycle of the
+    other side as well: at a nonsmooth fold both lie on the same side of the
+    parameter), and ``p``, ``s`` and the state are extrapolated to `_measure` = 0 by
+    quadratics in it; the accuracy is the difference from the linear extrapolation
+    through the nearest two. The distances shrink by 4 until it is below
+    ``LOCATE_TOL / 10``.
 
-    Returns ``(value, accuracy, nearest sliding point, scaled state at the onset)``,
-    or None where fewer than three sliding cycles are found.
+    Returns ``(value, accuracy, nearest point of prev's side, scaled state at the
+    onset)``, or None where fewer than three such cycles are found.
     """
+    sticking = prev.n_sticks > 0
     s_g, D = s_onset, min(0.5 * s_onset, 4e-3)
     good = []
     value, accuracy, zg = prev.value, math.inf, None
@@ -269,7 +293,7 @@ def _locate_stick(cont, prev, tangent, s_onset):
             except NoPeriodicResponse:
                 stuck = True
                 continue
-            if pt.n_sticks or pt.max_relative_velocity >= 0:
+            if not _on_side(pt, sticking):
                 stuck = True
                 continue
             good.append((s, pt))
@@ -279,7 +303,7 @@ def _locate_stick(cont, prev, tangent, s_onset):
         if len(good) < 3:
             return None
         near = sorted(good, key=lambda g: g[0])[-3:]
-        f = np.array([q.max_relative_velocity for _, q in near])
+        f = np.array([_measure(q, sticking) for _, q in near])
         p = np.array([q.value for _, q in near])
         value = float(np.polyval(np.polyfit(f, p, 2), 0.0))
         accuracy = abs(value - float(np.polyval(np.polyfit(f[1:], p[1:], 1), 0.0)))
@@ -295,31 +319,40 @@ def _locate_stick(cont, prev, tangent, s_onset):
 
 
 def _cross_stick(cont, prev, tangent, s_onset):
-    """Locate the stick onset ahead of ``prev`` and step onto the stick-slip cycles.
+    """Locate the stick onset ahead of ``prev`` and step onto the cycles of the other side.
 
-    Beyond the onset the map has another Jacobian (a stick phase zeroes the velocity
-    perturbation), so Newton's method started across the kink from the sliding side
-    alternates between the two sides. The tangent of the stick-slip branch is the null
-    vector of the Jacobian taken just inside the stick side of the grazing cycle; of
-    its two directions, the one along the sliding branch's goes first (the branch goes
-    on), the other second (it turns back at the onset: a nonsmooth fold).
+    Across the onset the map has another Jacobian (a stick phase zeroes the velocity
+    perturbation), so Newton's method started across the kink alternates between the
+    two sides. The tangent of the other side's branch is the null vector of the
+    Jacobian taken just on that side of the grazing cycle; of its two directions, the
+    one along the branch so far goes first (the branch goes on), the other second (it
+    turns back at the onset: a nonsmooth fold).
 
-    Returns ``(special point, first stick-slip point, tangent)``, or None.
+    Returns ``(special point, nearest point before, first point after, tangent)``, or
+    None.
     """
+    sticking = prev.n_sticks > 0
     located = _locate_stick(cont, prev, tangent, s_onset)
     if located is None:
         return None
     value, accuracy, near, zg = located
-    for eps in (1e-7, 1e-6, 1e-5, 1e-4):
-        x, T, p = cont.unpack(zg + eps * tangent)
+    # off the grazing cycle to the other side: along the tangent, or the section's
+    # coordinate x_k towards a larger |Vr| (to stick) or a smaller one (to slide)
+    e_k = np.zeros(zg.size)
+    e_k[cont.flow.k] = 1.0 if sticking else -1.0
+    offsets = [eps * d for eps in (1e-7, 1e-6, 1e-5, 1e-4) for d in (tangent, -tangent, e_k)]
+    for offset in offsets:
+        x, T, p = cont.unpack(zg + offset)
         try:
             img = cont.flow.image(x, T, p)
         except NoPeriodicResponse:
             continue
-        if _sticks(img):
+        if (_sticks(img) > 0) != sticking:
             break
     else:
         return None
+    if sticking:
+        return _slide_off(cont, zg, value, accuracy, near, tangent)
     tk = cont.tangent(cont.jacobian(x, T, p, img), tangent)
     for sign in (1.0, -1.0):
         for step in (1e-3, 1e-4, 1e-5):
@@ -333,11 +366,14 @@ def _cross_stick(cont, prev, tangent, s_onset):
                 continue
             t_new = cont.tangent(J, sign * tk)
             pt = cont.point(x, T, p, img, t_new[-1], J)
-            if pt.n_sticks == 0:
+            if (pt.n_sticks > 0) == sticking:
                 continue
             turns = tangent[-1] * t_new[-1] < 0
-            detail = "the largest Vr reaches 0: a stick phase appears (grazing-sliding)" + (
-                "; the branch turns back there (a nonsmooth fold)" if turns else ""
+            detail = (
+                "the largest Vr reaches 0: a stick phase "
+                + ("disappears" if sticking else "appears")
+                + " (grazing-sliding)"
+                + ("; the branch turns back there (a nonsmooth fold)" if turns else "")
             )
             sp = SpecialPoint(
                 "stick_onset",
@@ -350,6 +386,57 @@ def _cross_stick(cont, prev, tangent, s_onset):
                 detail,
             )
             return sp, near, pt, t_new
+    return None
+
+
+def _largest_vr_row(cont, target):
+    """The extra equation ``max Vr(z) = target`` for `Continuation.correct` (gradient by
+    central differences): it holds on sliding cycles only (a stick-slip one has 0)."""
+
+    def value(z):
+        return cont.flow.largest_vr(*cont.unpack(z))
+
+    def extra(z):
+        row = np.empty(z.size)
+        for i in range(z.size):
+            h = 1e-7 * max(1.0, abs(z[i]))
+            e = np.zeros(z.size)
+            e[i] = h
+            row[i] = (value(z + e) - value(z - e)) / (2 * h)
+        return (value(z) - target) / cont.sx, row / cont.sx
+
+    return extra
+
+
+def _slide_off(cont, zg, value, accuracy, near, tangent):
+    """From the grazing cycle ``zg`` reached on stick-slip cycles onto the sliding ones.
+
+    Near the onset both branches lie close together on every hyperplane of the
+    arclength, and Newton's method lands on the stick-slip one; the sliding cycle with
+    ``max Vr = -delta`` is the one of the two that has it, so it is solved for
+    instead, the parameter free, and the branch goes on from it away from ``zg``.
+    """
+    for delta in (1e-4, 1e-3, 1e-5):
+        try:
+            x, T, p, img, J, _ = cont.correct(
+                zg, _largest_vr_row(cont, -delta * cont.sx), fresh=True
+            )
+        except NoPeriodicResponse:
+            continue
+        t_new = cont.tangent(J)
+        z = cont.z_of(x, T, p)
+        t_new = t_new if float(t_new @ (z - zg)) >= 0 else -t_new
+        pt = cont.point(x, T, p, img, t_new[-1], J)
+        if pt.n_sticks or pt.max_relative_velocity >= 0:
+            continue
+        turns = tangent[-1] * t_new[-1] < 0
+        detail = "the largest Vr reaches 0: a stick phase disappears (grazing-sliding)" + (
+            "; the branch turns back there (a nonsmooth fold)" if turns else ""
+        )
+        sp = SpecialPoint(
+            "stick_onset", value, accuracy, None, near.multipliers, near.stable, pt.stable, detail
+        )
+        return sp, near, pt, t_new
     return None
 
 
@@ -416,12 +503,13 @@ def _sticks(img) -> int:
 
 
 def _stick_ahead(cont, points, ds) -> float | None:
-    """The arclength ahead at which the largest Vr of the sliding cycles, extrapolated
-    from the last two, reaches 0, where that is within ``2 ds``; else None."""
-    if len(points) < 2 or points[-2].n_sticks:
+    """The arclength ahead at which `_measure` of the last two cycles (one side),
+    extrapolated, reaches 0, where that is within ``2 ds``; else None."""
+    if len(points) < 2 or (points[-2].n_sticks > 0) != (points[-1].n_sticks > 0):
         return None
     (q1, q2) = points[-2:]
-    f1, f2 = q1.max_relative_velocity, q2.max_relative_velocity
+    sticking = q2.n_sticks > 0
+    f1, f2 = _measure(q1, sticking), _measure(q2, sticking)
     dist = float(np.linalg.norm(cont.z(q2) - cont.z(q1)))
     if not (f2 > f1 and dist > 0):
         return None
@@ -449,9 +537,9 @@ def walk(cont, first, tangent, period0):
         except NoPeriodicResponse as err:
             failure = str(err)
         if failure is None and (prev.n_sticks == 0) != (_sticks(img) == 0):
-            failure = "a stick phase appears"
+            failure = "a stick phase " + ("disappears" if prev.n_sticks else "appears")
         if failure is not None:
-            ahead = None if prev.n_sticks else _stick_ahead(cont, points, ds)
+            ahead = _stick_ahead(cont, points, ds)
             if ahead is not None:
                 crossed = _cross_stick(cont, prev, tangent, ahead)
                 if crossed is not None:

@@ -78,7 +78,7 @@ class Observables:
     ``max_relative_velocity``: the largest ``Vr = X1' - Vb`` (0 where the mass sticks:
     ``X1' = Vb`` holds exactly while sticking); ``amplitude``: half the range of
     ``X1'``; ``n_sticks``, ``n_reversals``: stick phases and direct crossings of
-    ``Vr = 0``.
+    ``Vr = 0``; ``stick_time``: the time stuck per period [s].
     """
 
     x1_range: tuple[float, float]
@@ -87,6 +87,7 @@ class Observables:
     amplitude: float
     n_sticks: int
     n_reversals: int
+    stick_time: float = 0.0
 
 
 def _extreme(tr, T, i, sign):
@@ -118,7 +119,8 @@ def orbit_observables(run: Run, Vb: float) -> Observables:
         1 for _, kind, new in run.events if kind == "vr_zero" and Mode(int(new)) != Mode.STICK
     )
     max_vr = 0.0 if n_sticks and v[1] <= Vb else v[1] - Vb
-    return Observables(x1, v, float(max_vr), 0.5 * (v[1] - v[0]), n_sticks, n_rev)
+    stuck = float(tr.time_in_modes(0.0, T)[Mode.STICK])
+    return Observables(x1, v, float(max_vr), 0.5 * (v[1] - v[0]), n_sticks, n_rev, stuck)
 
 
 class CycleFlow:
@@ -185,6 +187,11 @@ class CycleFlow:
         M = variational.monodromy(run, self.backend).matrix if monodromy else None
         f = self.field(p, end, Mode(int(tr.mode(np.array([T]))[0])))
         return FlowImage(end, M, f, run)
+
+    def largest_vr(self, x, T: float, p: float) -> float:
+        """The largest ``Vr = X1' - Vb`` over the run of length ``T`` from ``x``."""
+        run = self.run(x, T, p)
+        return _extreme(run.trajectory, T, 1, 1) - self.at(p)[0]["Vb"]
 
     def p_column(self, x, T: float, p: float) -> NDArray[np.float64]:
         """``d phi/dp`` and ``dh/dp`` at ``(x, T, p)`` (5,), central differences."""

@@ -29,7 +29,12 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import fsolve
 
 from beltmdsm.analysis.branch import branch
-from beltmdsm.analysis.cycle_branch import CycleBranch, cycle_branch, hopf_cycle
+from beltmdsm.analysis.cycle_branch import (
+    CycleBranch,
+    cycle_branch,
+    cycle_branch_from,
+    hopf_cycle,
+)
 from beltmdsm.analysis.cycles import cycle
 from beltmdsm.analysis.hopf import NoHopfPoint, hopf_point
 from beltmdsm.cli import main
@@ -230,7 +235,7 @@ def test_branch_cli_json_and_text(capsys):
     assert out["hopf"]["value"] == pytest.approx(vb_hopf(BASE.params), abs=1e-9)
     assert [s["kind"] for s in out["special_points"]] == ["hopf", "stick_onset", "range"]
     assert {"period", "amplitude", "stable", "max_relative_velocity"} <= set(out["points"][0])
-    assert main(args) == 0
+    assert main(args[:-4] + ["--from", "1.9", "--to", "2.1"]) == 0  # the sliding part only
     text = capsys.readouterr().out
     assert "Hopf point of steady sliding at Vb = 1.99572" in text and "subcritical" in text
 
@@ -245,3 +250,17 @@ def test_coexistence_cli_gives_the_hysteresis(capsys):
     assert (both["lower"], both["upper"]) == ("hopf", "stick_onset")
     assert main(["coexistence", "--alpha", "0", "--param", "Vb", "--from", "1", "--to", "3"]) == 0
     assert "coexistence: none: no Hopf point" in capsys.readouterr().out
+
+
+def test_the_onset_from_the_stick_side_is_the_same(cycles):
+    # from a stick-slip cycle towards the onset: the stick time vanishes there, the
+    # branch turns back onto the sliding cycles (unstable)
+    q = min((q for q in cycles.points if q.n_sticks), key=lambda q: abs(q.value - 2.85))
+    start = cycle(BASE.replace(Vb=q.value), q.state, q.period)
+    from_stick = cycle_branch_from(start, "Vb", 2.8, 3.0)
+    kinds = [s.kind for s in from_stick.special]
+    assert kinds == ["range", "stick_onset", "range"]
+    onset = from_stick.special[1]
+    assert onset.value == pytest.approx(cycles.special[1].value, abs=1e-6)
+    assert (onset.stable_before, onset.stable_after) == (True, False)
+    assert "disappears" in onset.detail and "turns back" in onset.detail
