@@ -42,7 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model import MODEL_PARAMETERS, Backend, Model, is_autonomous
-from .branch import Branch, SpecialPoint
+from .branch_parts import Branch, SpecialPoint
 from .cycle_continuation import PERIOD_LIMIT, Continuation, CyclePoint, walk
 from .cycle_flow import CycleFlow
 from .cycles import Cycle, cycle

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..integrate.switching import Mode
-from .branch import LOCATE_TOL, SpecialPoint
+from .branch_parts import LOCATE_TOL, SpecialPoint
 from .cycle_flow import CycleFlow, FlowImage, orbit_observables, split_multipliers
 from .edges import multiplier_kind
 from .periodmap import NEWTON_TOL, NoPeriodicResponse

@@ -412,9 +412,9 @@ def cycle_coexistence(found) -> str:
             + (f": {b.criticality}" if b is not None and b.hopf and b.hopf.value == h.value else "")
         )
     if b is not None:
-        from ..studies.coexistence import _stable_parts
+        from ..studies.overlay import stable_parts
 
-        lines.append(f"  cycle: stable in {parts(_stable_parts(b))}")
+        lines.append(f"  cycle: stable in {parts(stable_parts(b))}")
     if found.ranges:
         lines.append("coexistence (hysteresis: a run ends on either by where it starts):")
         for c in found.ranges:

@@ -25,7 +25,7 @@ from ..analysis.cycle_branch import CycleBranch, cycle_branch
 from ..analysis.hopf import HopfPoint, eigenvalues_over, hopf_points
 from ..analysis.periodmap import NoPeriodicResponse, engine_of
 from ..model import Model
-from .coexistence import CoexistenceRange, StablePart, _stable_parts, overlay
+from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
 
 __all__ = ["CycleCoexistence", "cycle_coexistence", "SLIDING", "CYCLES"]
 
@@ -90,7 +90,7 @@ class CycleCoexistence:
             "hopf": [h.as_dict() for h in self.hopf],
             "criticality": None if b is None else b.criticality,
             "sliding_stable": [s.as_dict() for s in self.sliding],
-            "cycle_stable": [] if b is None else [s.as_dict() for s in _stable_parts(b)],
+            "cycle_stable": [] if b is None else [s.as_dict() for s in stable_parts(b)],
             "coexistence": [r.as_dict() for r in self.ranges],
             "reason": self.reason,
             "special_points": [] if b is None else [s.as_dict() for s in b.special],
@@ -158,7 +158,7 @@ def cycle_coexistence(
             reason = f"no cycle found from the Hopf point: {err}"
     ranges = []
     if branch is not None:
-        attractors = [_Attractor(SLIDING, sliding), _Attractor(CYCLES, _stable_parts(branch))]
+        attractors = [_Attractor(SLIDING, sliding), _Attractor(CYCLES, stable_parts(branch))]
         ranges = overlay(attractors)
         if not ranges:
             reason = (
