@@ -350,7 +350,9 @@ def _newton(shoot, x, T, max_iter):
     for iteration in range(1, max_iter + 1):
         residual = float(np.max(np.abs(r)))
         scale = 1.0 + float(np.max(np.abs(x)))
-        if residual <= NEWTON_TOL * scale and abs(g) <= NEWTON_TOL * shoot.scale(x):
+        converged = residual <= NEWTON_TOL * scale and abs(g) <= NEWTON_TOL * shoot.scale(x)
+        # one step at least: a guess within the tolerance is polished to the rounding
+        if converged and iteration > 1:
             return x, T, flow, residual, iteration
         merit = max(residual, abs(g))
         history.append(merit)
@@ -381,6 +383,8 @@ def _newton(shoot, x, T, max_iter):
                 break
             lam *= 0.5
         else:
+            if converged:  # at the rounding already
+                return x, T, flow, residual, iteration
             raise NoPeriodicResponse(
                 f"no self-excited cycle found: Newton's method stalled at a residual "
                 f"{residual:.2e} (no step of {_LINE_SEARCH} halvings reduces it)"
