@@ -303,3 +303,34 @@ def test_forced_floquet_json_gains_the_ranges_of_its_orbit(capsys):
     assert out["x1_range"] == pytest.approx([y[0].min(), y[0].max()], abs=1e-6)
     assert out["velocity_range"] == pytest.approx([y[1].min(), y[1].max()], abs=1e-6)
     assert out["x1_range"][0] <= y[0].min() and out["velocity_range"][1] >= y[1].max()
+
+
+def test_responses_find_the_cycle_that_coexists_with_stable_sliding():
+    from beltmdsm.studies.responses import responses
+
+    found = responses(stribeck(Vb=2.2), ladder=1.0)
+    (r,) = found.responses
+    assert r.floquet.autonomous and r.floquet.stable and r.floquet.n_sticks == 1
+    assert r.sources == ["cycles continued up from Vb = 1.2"]
+    # the same cycle as continued here by hand from the seed at 1.99
+    c = cycle(stribeck(Vb=1.99))
+    c = cycle(stribeck(Vb=2.2), c.state, c.period)
+    assert r.floquet.period == pytest.approx(c.period, rel=1e-9)
+    assert r.as_dict()["x1_range"] == pytest.approx(list(c.x1_range), rel=1e-9)
+    reasons = {f.source: f.reason for f in found.failed}
+    assert "steady sliding is stable at Vb=2.2" in reasons["the run off perturbed steady sliding"]
+    # where sliding is unstable, the seed and the ladder find one cycle, listed once
+    (r,) = responses(stribeck(Vb=1.5), ladder=0.5).responses
+    assert len(r.sources) == 2 and r.run_distance < 1e-4
+
+
+def test_simulate_starts_on_the_cycle(capsys):
+    argv = ["simulate", "--alpha", "0", "--friction", "stribeck", "--Vb", "1.5"]
+    argv += ["--start", "periodic", "--perturbation", "0", "--t-end", "100", "--json"]
+    assert main(argv + ["--no-progress"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    c = cycle(stribeck(Vb=1.5))
+    assert out["regime"] == "stick_slip" and out["n_reversals"] == 0
+    # sampled every 0.02 s: the sampled minimum misses by <= |X1'''| dt^2 / 8 < 1e-4
+    assert out["vr_min"] == pytest.approx(c.velocity_range[0] - 1.5, abs=1e-4)
+    assert out["n_sticks"] == pytest.approx(100 / c.period, abs=1)
