@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..integrate.switching import Mode
-from ..model import MODEL_PARAMETERS, Backend, Model, as_model
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
 from .edges import NoEdge, locate_end, multiplier_kind
 from .floquet import PeriodicResponse, periodic_response
 from .periodmap import (
@@ -791,5 +791,6 @@ def branch(
         Where no response of ``periods`` periods is found at the point.
     """
     model = as_model(model, **kw)
+    excitation_period(model)  # branches of the forced response (self-excited cycles: not yet)
     start = periodic_response(model, periods=periods, backend=backend)
     return continue_branch(start, param, lo, hi, backend=backend)
