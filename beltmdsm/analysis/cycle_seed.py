@@ -39,14 +39,17 @@ __all__ = [
 #: velocity ``X1'`` moved by this fraction of ``|Vb|``.
 SEED_AMPLITUDE = 1e-2
 #: The seed's run lasts at most this many periods of the unstable pair
-#: (``2 pi / Im lambda``), in chunks of `_SEED_CHUNK` periods; a run of 300 s costs about
+#: (``2 pi / Im lambda``), in chunks of 10 periods doubling up to `_SEED_CHUNK` (a cycle
+#: reached early is read early); a run of 300 s costs about
 #: 15 ms compiled, so the bound is generous: from `SEED_AMPLITUDE` at a growth rate of
 #: 0.01 1/s (Vb = 1.9, next to the Hopf point of the base Stribeck set) the cycle is
 #: reached in about 80 periods.
 SEED_PERIODS = 3000
 _SEED_CHUNK = 50
-#: The run has settled when the state at the section returns to within this (relative
-#: to the state's scale): Newton's method converges from there.
+#: The run has settled when the state at the section returns to within this, relative
+#: to the return's distance from steady sliding (a run that decays to steady sliding
+#: returns by a fixed share of that distance, and never settles): Newton's method
+#: converges from there.
 SETTLE_TOL = 1e-6
 #: The seed's run has decayed to steady sliding when ``X1'`` varies by less than this
 #: fraction of ``|Vb|`` over a chunk.
@@ -166,10 +169,11 @@ def seed_cycle(
         start = "the equilibrium perturbed as given"
     sw = Switching(model)
     d = section_direction(model)
-    chunk = _SEED_CHUNK * turn
+    chunk = 10 * turn
     t, returns, first_amplitude = 0.0, [], None
     while t < t_end:
         t1 = min(t + chunk, t_end)
+        chunk = min(2 * chunk, _SEED_CHUNK * turn)
         settings = SolverSettings(
             t_end=t1, rtol=1e-10, atol=1e-10, dt=(t1 - t) / 400, t_discard=t, backend=backend
         )
@@ -189,7 +193,7 @@ def seed_cycle(
                 f"Vb={vb:g} (X1' varies by {amplitude:.1e} m/s at t = {t1:g} s)"
             )
         returns += _section_returns(sw, tr, d, turn)
-        found = _settled(returns, amplitude)
+        found = _settled(returns, amplitude, x0)
         if found is not None:
             return found
         t, y = t1, tr.state(np.array([t1]))[:, 0]
@@ -248,7 +252,7 @@ def _extremum(sw, tr, d, a, b):
     return 0.5 * (a + b)
 
 
-def _settled(returns, amplitude):
+def _settled(returns, amplitude, equilibrium):
     """``(state, period)`` where the last deepest return repeats an earlier one, else None.
 
     The deepest returns are those within `_DEEP` of the velocity's ``amplitude`` of the
@@ -260,7 +264,7 @@ def _settled(returns, amplitude):
     top = max(r[2] for r in recent)
     deep = [r for r in recent if r[2] >= top - _DEEP * amplitude]
     t_last, x_last, _ = deep[-1]
-    scale = 1.0 + float(np.max(np.abs(x_last)))
+    scale = float(np.max(np.abs(x_last - equilibrium)))
     for t_prev, x_prev, _ in reversed(deep[-9:-1]):
         if float(np.max(np.abs(x_last - x_prev))) <= SETTLE_TOL * scale:
             return x_last, float(t_last - t_prev)

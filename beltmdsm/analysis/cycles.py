@@ -31,6 +31,10 @@ velocity; it does not need a switch (a pure-slip cycle has none); and it is cros
 transversally wherever the cycle has an amplitude (``X1'''`` is about ``omega1^2``
 times it). The seed (`seed_cycle`) chooses the extremum of largest ``|Vr|`` of a
 settled run; Newton's method then keeps ``x`` near it (the condition is local).
+``X1'' = 0`` holds elsewhere on the orbit too, on a whole stick phase and, under a
+friction continuous at ``Vr = 0`` (Stribeck's), where a stick ends: a Newton step that
+would leave the section's side (its slip mode, with ``X1'`` at a minimum there for
+``Vb > 0``) is shortened.
 
 **Multipliers.** The monodromy ``M`` of the cycle always has the multiplier 1 along the
 flow (``M f(x) = f(x)``): the *trivial* multiplier, reported apart (its distance from
@@ -44,6 +48,8 @@ the orbit (``stick_collapses``). The normal motion ``(X2, X2')`` is autonomous a
 at its equilibrium on the cycle; its two multipliers are ``exp(lambda T)`` of the
 normal eigenvalues of steady sliding (strongly damped: near 0), and it does not
 disturb Newton's method (``M - I`` is regular in those directions).
+
+See docs/modelling.md#self-excited-cycles.
 
 **Grazing.** A crossing of ``Vr = 0`` reached with a vanishing rate
 (`beltmdsm.analysis.periodmap.GRAZING_RATIO`) is reported as for forced responses:
@@ -350,7 +356,9 @@ def _newton(shoot, x, T, max_iter):
     for iteration in range(1, max_iter + 1):
         residual = float(np.max(np.abs(r)))
         scale = 1.0 + float(np.max(np.abs(x)))
-        if residual <= NEWTON_TOL * scale and abs(g) <= NEWTON_TOL * shoot.scale(x):
+        converged = residual <= NEWTON_TOL * scale and abs(g) <= NEWTON_TOL * shoot.scale(x)
+        # one step at least: a guess within the tolerance is polished to the rounding
+        if converged and iteration > 1:
             return x, T, flow, residual, iteration
         merit = max(residual, abs(g))
         history.append(merit)
@@ -381,6 +389,8 @@ def _newton(shoot, x, T, max_iter):
                 break
             lam *= 0.5
         else:
+            if converged:  # at the rounding already
+                return x, T, flow, residual, iteration
             raise NoPeriodicResponse(
                 f"no self-excited cycle found: Newton's method stalled at a residual "
                 f"{residual:.2e} (no step of {_LINE_SEARCH} halvings reduces it)"
