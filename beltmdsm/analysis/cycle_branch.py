@@ -16,9 +16,11 @@ scaled by the state's, the period's and the range's size:
   ``supercritical`` where the cycles exist where steady sliding is unstable,
   ``subcritical`` where it is stable (hysteresis: both coexist with the cycle).
 * **Stick onset** (``stick_onset``): the largest ``Vr = X1' - Vb`` of the cycle reaches
-  0 (grazing-sliding, in Filippov's terms). Located by a secant on
-  ``max_relative_velocity`` from the sliding side, bracketed by the points that stick,
-  to `LOCATE_TOL`.
+  0 (grazing-sliding, in Filippov's terms). Cycles of one side solved at safe
+  distances are extrapolated to it (``max_relative_velocity`` on the sliding side,
+  the stick time squared on the other) to `LOCATE_TOL` / 10, and the branch goes on
+  on the other side, also where it turns back there (a nonsmooth fold: Stribeck's
+  law), `beltmdsm.analysis.cycle_continuation`.
 * **Folds** (a sign change of the tangent's ``p``-component) and the multipliers
   (without the trivial one) through the unit circle: ``period_doubling`` (-1),
   ``neimark_sacker`` (a complex pair), ``branch_point`` (+1 without a turn), located by
@@ -27,7 +29,9 @@ scaled by the state's, the period's and the range's size:
   stability changes).
 * **Ends**: the range's bounds (``range``), or ``failed`` with the reason (no corrector
   converges even at the smallest step; the period grows past `PERIOD_LIMIT` times the
-  Hopf period, as towards a homoclinic orbit; the amplitude returns to 0).
+  Hopf period, as towards a homoclinic orbit). A branch that shrinks back to a second
+  Hopf point is not recognised as such: it ends ``failed`` where the corrector no
+  longer converges near zero amplitude.
 
 Without a Hopf point in the range, the branch goes both ways through the cycle found
 at the model's value of the parameter (`beltmdsm.analysis.cycles.cycle`).

@@ -517,6 +517,21 @@ def _stick_ahead(cont, points, ds) -> float | None:
     return s if s <= 2 * ds else None
 
 
+def _at_value(cont, point, value):
+    """The cycle at ``p = value`` exactly, from a point located near it (itself where
+    Newton's method does not converge)."""
+    z = cont.z(point)
+    z[-1] = value / cont.sp
+    row = np.zeros(z.size)
+    row[-1] = 1.0
+    try:
+        x, T, p, img, J, _ = cont.correct(z, lambda q: (float(q[-1] - z[-1]), row))
+    except NoPeriodicResponse:
+        return point
+    t = cont.tangent(J)
+    return cont.point(x, T, p, img, t[-1] if t[-1] * point.tangent >= 0 else -t[-1], J)
+
+
 def walk(cont, first, tangent, period0):
     """Continue from ``first`` along ``tangent`` to the range's end or a failure."""
     points, special = [first], []
@@ -579,7 +594,7 @@ def walk(cont, first, tangent, period0):
                     for s in _special_between(cont, prev, end, tangent, ds)
                     if min(prev.value, bound) <= s.value <= max(prev.value, bound)
                 ]
-            points.append(end)
+            points.append(_at_value(cont, end, bound))
             special.append(_end("range", end, "the end of the requested range", bound))
             return points, special
         if (prev.n_sticks, prev.n_reversals) == (new.n_sticks, new.n_reversals):

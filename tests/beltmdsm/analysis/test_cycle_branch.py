@@ -264,3 +264,15 @@ def test_the_onset_from_the_stick_side_is_the_same(cycles):
     assert onset.value == pytest.approx(cycles.special[1].value, abs=1e-6)
     assert (onset.stable_before, onset.stable_after) == (True, False)
     assert "disappears" in onset.detail and "turns back" in onset.detail
+
+
+def test_continue_branch_of_a_cycle_goes_both_ways():
+    from beltmdsm.analysis.branch import continue_branch
+    from beltmdsm.analysis.floquet import periodic_response
+
+    start = periodic_response(BASE.replace(Vb=1.0))
+    found = continue_branch(start, "Vb", 0.9, 1.1)
+    assert isinstance(found, CycleBranch) and found.hopf is None
+    assert [s.kind for s in found.special] == ["range", "range"]
+    assert found.value_range() == pytest.approx([0.9, 1.1], abs=1e-9)
+    assert all(q.stable and q.n_sticks == 1 for q in found.points)
