@@ -240,7 +240,6 @@ def test_branch_cli_json_and_text(capsys):
     assert "Hopf point of steady sliding at Vb = 1.99572" in text and "subcritical" in text
 
 
-@pytest.mark.slow
 def test_coexistence_cli_gives_the_hysteresis(capsys):
     args = ["coexistence", "--alpha", "0", "--friction", "stribeck", "--param", "Vb"]
     assert main(args + ["--from", "1.8", "--to", "3", "--json"]) == 0
