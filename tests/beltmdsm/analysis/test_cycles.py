@@ -16,6 +16,7 @@ saltation or stick rule would change.
 
 import json
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -221,7 +222,9 @@ def test_the_seed_is_the_run_settled_on_the_section():
     c = cycle(model, x, T)
     assert np.max(np.abs(x - c.state)) < 1e-4 * np.max(np.abs(c.state))
     assert T == pytest.approx(c.period, rel=1e-4)
-    assert c == c and isinstance(c, Cycle) and "Cycle(Vb=1.5" in repr(c)
+    assert isinstance(c, Cycle) and "Cycle(Vb=1.5" in repr(c) and "\n" not in repr(c)
+    back = pickle.loads(pickle.dumps(c))
+    assert back.period == c.period and back.model == c.model and back.switches == c.switches
 
 
 def test_where_steady_sliding_is_stable_no_cycle_and_one_line_why():
