@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from generated import unforced
 
 from ..integrate.events import StepTooSmall, integrate_events
-from ..integrate.switching import Switching
+from ..integrate.switching import SURFACE_INDEX, Switching
 from ..model import Backend, Model, as_model, initial_state, is_autonomous
 from ..settings import SolverSettings
 from .periodmap import NoPeriodicResponse
@@ -30,6 +30,7 @@ __all__ = [
     "require_autonomous",
     "section_direction",
     "unstable_pair",
+    "stick_end",
     "SEED_AMPLITUDE",
     "SEED_PERIODS",
     "SETTLE_TOL",
@@ -52,8 +53,10 @@ _SEED_CHUNK = 50
 #: converges from there.
 SETTLE_TOL = 1e-6
 #: The seed's run has decayed to steady sliding when ``X1'`` varies by less than this
-#: fraction of ``|Vb|`` over a chunk.
-_DECAYED = 1e-9
+#: fraction of ``|Vb|`` over a chunk: far above the run's rounding (its tolerance, 1e-10,
+#: leaves X1' a floor of a few 1e-9), and a cycle that small exists only within about
+#: 1e-12 of a Hopf point (its amplitude grows like the square root of the distance).
+_DECAYED = 1e-6
 #: Samples per period of the unstable pair when the seed's run is searched for the section.
 _SECTION_SAMPLES = 64
 #: Extrema of the seed's run within this fraction of the orbit's velocity range of
@@ -107,10 +110,14 @@ def seed_cycle(
     The run starts at the unforced equilibrium (Eq. 9) moved by ``perturbation``, or
     where none is given along the real part of the eigenvector of the most unstable
     eigenvalue of steady sliding (`generated.unforced.jacobian_at_equilibrium`), its
-    velocity by `SEED_AMPLITUDE` of ``|Vb|``. It goes on in chunks until its returns to
-    the section (module docstring) repeat to `SETTLE_TOL`; the period is the time
-    between the last two returns that match (several turns where the cycle has
-    several extrema of the same depth).
+    velocity by `SEED_AMPLITUDE` of ``|Vb|``. Where steady sliding is stable and no
+    perturbation is given, the run starts where a stick ends instead (`stick_end`):
+    every stick-slip cycle passes there, so a stick-slip cycle that coexists with
+    stable sliding is found (it is superstable: one slip phase later the run is on it),
+    and where none does the run decays. It goes on in chunks until its returns to the
+    section (module docstring) repeat to `SETTLE_TOL`; the period is the time between
+    the last two returns that match (several turns where the cycle has several extrema
+    of the same depth).
 
     Parameters
     ----------
@@ -148,14 +155,23 @@ def seed_cycle(
     if not (math.isfinite(t_end) and t_end > 0):
         raise ValueError(f"t_end must be a finite number > 0; got {t_end!r}")
     x0 = initial_state(model)
-    if perturbation is None:
-        if lam.real <= 0:
+    if perturbation is None and lam.real <= 0:
+        stable = (
+            f"no self-excited cycle from the equilibrium: steady sliding is stable at "
+            f"Vb={vb:g} (largest real part of its eigenvalues {lam.real:.3g} 1/s), a run "
+            "from it decays to it"
+        )
+        y = stick_end(model)
+        if y is None:
+            raise NoPeriodicResponse(f"{stable}; and no stick can end (an empty friction cone)")
+        try:
+            return _settle(model, y, "the end of a stick", t_end, turn, backend)
+        except NoPeriodicResponse as err:
+            why = str(err).replace("no self-excited cycle from the end of a stick: ", "")
             raise NoPeriodicResponse(
-                f"no self-excited cycle from the equilibrium: steady sliding is stable at "
-                f"Vb={vb:g} (largest real part of its eigenvalues {lam.real:.3g} 1/s), a "
-                "run from it decays to it; a cycle that coexists with it needs a guess or "
-                "a perturbation"
-            )
+                f"{stable}; nor from the end of a stick (X1 at the friction limit, X1' = Vb): {why}"
+            ) from None
+    if perturbation is None:
         v = np.real(vec)
         if abs(v[1]) < 1e-3 * np.max(np.abs(v)):
             v = np.imag(vec)
@@ -167,6 +183,43 @@ def seed_cycle(
             raise ValueError(f"perturbation must be 4 finite numbers; got {perturbation!r}")
         y = x0 + offset
         start = "the equilibrium perturbed as given"
+    return _settle(model, y, start, t_end, turn, backend)
+
+
+def stick_end(model: Model) -> NDArray[np.float64] | None:
+    """The state where a stick ends: ``X1' = Vb``, ``X1`` at the edge of the friction cone
+    on the section's side (the mass leaves against the belt's motion), the normal
+    motion at its equilibrium. None where the cone has no such edge.
+
+    The edge's switching function (`generated.hybrid.surfaces`, ``stick_back`` for
+    ``Vb > 0``) is affine in ``X1`` (the spring's force); its root is found by two
+    secant steps and checked.
+    """
+    sw = Switching(model)
+    index = SURFACE_INDEX["stick_back" if section_direction(model) < 0 else "stick_forward"]
+    y = initial_state(model)
+    y[1] = model["Vb"]
+
+    def edge(x1):
+        return float(sw.surfaces(0.0, x1, *y[1:])[index])
+
+    a, b = float(y[0]), float(y[0]) + 1.0
+    fa, fb = edge(a), edge(b)
+    for _ in range(2):
+        if fb == fa:
+            return None
+        a, fa, b = b, fb, b - fb * (b - a) / (fb - fa)
+        fb = edge(b)
+    if not abs(fb) <= 1e-9 * (1.0 + float(sw.scales(0.0, b, *y[1:])[index])):
+        return None
+    y[0] = b
+    return y
+
+
+def _settle(model, y, start, t_end, turn, backend):
+    """Run from ``y`` until the returns to the section repeat: ``(state, period)``."""
+    vb = float(model["Vb"])
+    x0 = initial_state(model)
     sw = Switching(model)
     d = section_direction(model)
     chunk = 10 * turn

@@ -112,7 +112,7 @@ _LINE_SEARCH = 8
 _STAGNATION = 2
 
 
-@dataclass(repr=False)
+@dataclass(repr=False, eq=False)
 class Cycle:
     """A self-excited cycle of the autonomous Eq. (4) and its multipliers (module docstring).
 
@@ -154,6 +154,9 @@ class Cycle:
     switches : list of (t, before, after, surface)
         The switches over one period from ``state``.
     segments : list of (t0, t1, mode)
+
+    Two cycles are equal only when they are the same object (arrays have no one truth
+    value); compare ``period`` and ``state`` to a tolerance instead.
     """
 
     model: Model

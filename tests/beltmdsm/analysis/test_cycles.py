@@ -16,6 +16,7 @@ saltation or stick rule would change.
 
 import json
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -221,14 +222,17 @@ def test_the_seed_is_the_run_settled_on_the_section():
     c = cycle(model, x, T)
     assert np.max(np.abs(x - c.state)) < 1e-4 * np.max(np.abs(c.state))
     assert T == pytest.approx(c.period, rel=1e-4)
-    assert c == c and isinstance(c, Cycle) and "Cycle(Vb=1.5" in repr(c)
+    assert isinstance(c, Cycle) and "Cycle(Vb=1.5" in repr(c) and "\n" not in repr(c)
+    back = pickle.loads(pickle.dumps(c))
+    assert back.period == c.period and back.model == c.model and back.switches == c.switches
 
 
 def test_where_steady_sliding_is_stable_no_cycle_and_one_line_why():
-    for model in (stribeck(Vb=2.5), Model(alpha=0, Vb=1.5)):
+    # beyond the stick-slip branch's end (a run from the end of a stick decays too)
+    for model in (stribeck(Vb=3.5), Model(alpha=0, Vb=1.5)):
         with pytest.raises(NoPeriodicResponse, match="steady sliding is stable") as err:
             cycle(model)
-        assert "\n" not in str(err.value)
+        assert "\n" not in str(err.value) and "nor from the end of a stick" in str(err.value)
     with pytest.raises(NoPeriodicResponse, match="decays to steady sliding"):
         seed_cycle(stribeck(Vb=2.5), perturbation=[0.0, 1e-3, 0.0, 0.0])
     with pytest.raises(NoPeriodicResponse, match="Vb = 0"):
@@ -237,10 +241,13 @@ def test_where_steady_sliding_is_stable_no_cycle_and_one_line_why():
         cycle(Model(friction="stribeck", Vb=1.5))
 
 
-def test_a_cycle_coexisting_with_stable_sliding_is_reached_from_a_neighbour(stick_slip):
+def test_a_cycle_coexisting_with_stable_sliding_is_found_from_the_end_of_a_stick():
     c = cycle(stribeck(Vb=1.99))
-    c = cycle(stribeck(Vb=2.1), c.state, c.period)  # above the Hopf speed
+    c = cycle(stribeck(Vb=2.2), c.state, c.period)  # above the Hopf speed, by a neighbour
     assert c.stable and c.n_sticks == 1
+    seeded = cycle(stribeck(Vb=2.2))  # steady sliding is stable: the seed starts at a stick's end
+    assert seeded.period == pytest.approx(c.period, rel=1e-10)
+    np.testing.assert_allclose(seeded.state, c.state, rtol=0, atol=1e-9)
 
 
 def test_floquet_and_periodic_response_compute_the_cycle_without_excitation(stick_slip):
@@ -285,9 +292,9 @@ def test_floquet_cli_for_a_cycle_has_the_documented_keys(capsys):
 
 
 def test_floquet_cli_without_a_cycle_says_why_in_one_line(capsys):
-    assert main(["floquet", "--alpha", "0", "--friction", "stribeck", "--Vb", "2.5"]) == 2
+    assert main(["floquet", "--alpha", "0", "--friction", "stribeck", "--Vb", "3.5"]) == 2
     err = capsys.readouterr().err.strip()
-    assert "\n" not in err and "steady sliding is stable at Vb=2.5" in err
+    assert "\n" not in err and "steady sliding is stable at Vb=3.5" in err
 
 
 def test_forced_floquet_json_gains_the_ranges_of_its_orbit(capsys):
@@ -311,17 +318,20 @@ def test_responses_find_the_cycle_that_coexists_with_stable_sliding():
     found = responses(stribeck(Vb=2.2), ladder=1.0)
     (r,) = found.responses
     assert r.floquet.autonomous and r.floquet.stable and r.floquet.n_sticks == 1
-    assert r.sources == ["cycles continued up from Vb = 1.2"]
+    assert r.sources == [
+        "the run off perturbed steady sliding",
+        "cycles continued up from Vb = 1.2",
+    ]
     # the same cycle as continued here by hand from the seed at 1.99
     c = cycle(stribeck(Vb=1.99))
     c = cycle(stribeck(Vb=2.2), c.state, c.period)
     assert r.floquet.period == pytest.approx(c.period, rel=1e-9)
     assert r.as_dict()["x1_range"] == pytest.approx(list(c.x1_range), rel=1e-9)
     reasons = {f.source: f.reason for f in found.failed}
-    assert "steady sliding is stable at Vb=2.2" in reasons["the run off perturbed steady sliding"]
-    # where sliding is unstable, the seed and the ladder find one cycle, listed once
+    assert "steady sliding is stable at Vb=3.2" in reasons["cycles continued down from Vb = 3.2"]
+    # where sliding is unstable, the seed and both ladders find one cycle, listed once
     (r,) = responses(stribeck(Vb=1.5), ladder=0.5).responses
-    assert len(r.sources) == 2 and r.run_distance < 1e-4
+    assert len(r.sources) == 3 and r.run_distance < 1e-4
 
 
 def test_simulate_starts_on_the_cycle(capsys):
