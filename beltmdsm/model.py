@@ -20,7 +20,8 @@ decided (``generated.capabilities``): it raises `Unsupported`, naming the law an
 missing property, where the fact does not hold.
 
 `initial_state` is the default start of a run (the unforced equilibrium of Eq. 9),
-`excitation_period` the common period of the excitation.
+`excitation_period` the common period of the excitation, `is_autonomous` whether
+there is none.
 """
 
 from __future__ import annotations
@@ -72,6 +73,8 @@ __all__ = [
     "is_real",
     "initial_state",
     "excitation_period",
+    "excited_directions",
+    "is_autonomous",
 ]
 
 #: The model options and their choices, the default first (the registry of laws,
@@ -342,6 +345,21 @@ def initial_state(model: Model) -> NDArray[np.float64]:
     return np.array([float(v) for v in state])
 
 
+def excited_directions(model: Model) -> list[float]:
+    """The frequencies ``Omega_t``, ``Omega_n`` of the directions whose excitation force is
+    present (``alpha != 0`` and ``Omega != 0``), tangential first: the one place that
+    decides whether Eq. (4) is forced."""
+    p = model.params
+    return [p[f"Omega_{d}"] for d in ("t", "n") if p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0]
+
+
+def is_autonomous(model: Model) -> bool:
+    """True where no excitation is present (``alpha_t Omega_t = alpha_n Omega_n = 0``):
+    Eq. (4) is then autonomous, and its periodic orbits are self-excited cycles whose
+    period is found, not given (`beltmdsm.analysis.cycles`)."""
+    return not excited_directions(model)
+
+
 #: (`excitation_period`): a common period of more than 1000 periods of the faster
 #: excitation is longer than any run of the paper.
 _MAX_DENOMINATOR = 1000
@@ -368,8 +386,7 @@ def excitation_period(model: Model) -> float:
     >>> round(excitation_period(m), 6)
     3.141593
     """
-    p = model.params
-    active = [p[f"Omega_{d}"] for d in ("t", "n") if p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0]
+    active = excited_directions(model)
     if not active:
         raise ValueError(
             "no excitation (alpha_t Omega_t = alpha_n Omega_n = 0): there is no "

@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import Refused
-from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain, excitation_period
 from ..settings import MAX_BAND_POINTS, MIN_TOL_ULPS
 from .branch import SpecialPoint, continue_branch
 from .edges import (
@@ -283,6 +283,7 @@ def floquet_band(
         if problem:
             raise ValueError(f"the range [{lo:g}, {hi:g}] leaves the domain: {param} {problem}")
     model = as_model(model, **kw)
+    excitation_period(model)  # a band of the forced response (not of self-excited cycles)
     if int(points) < 2 or not tol > 0:
         raise ValueError(f"points must be >= 2 and tol > 0; got {points}, {tol}")
     _check_band_request(lo, hi, int(points), tol)

@@ -41,7 +41,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..integrate.switching import Mode
-from ..model import MODEL_PARAMETERS, Backend, Model, as_model
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model, is_autonomous
+from .branch_parts import LOCATE_TOL, Branch, BranchPart, SpecialPoint
 from .edges import NoEdge, locate_end, multiplier_kind
 from .floquet import PeriodicResponse, periodic_response
 from .periodmap import (
@@ -50,7 +51,6 @@ from .periodmap import (
     MapFamily,
     MapImage,
     NoPeriodicResponse,
-    engine_of,
     fixed_point,
 )
 
@@ -65,8 +65,6 @@ __all__ = [
     "GRAZING_STEP",
 ]
 
-#: Special points are located to this in the parameter.
-LOCATE_TOL = 1e-6
 #: Arclength steps (in the scaled coordinates): first, smallest, largest.
 STEP_FIRST = 0.02
 STEP_MIN = 1e-7
@@ -133,167 +131,6 @@ class BranchPoint:
             "stable": self.stable,
             "n_reversals": self.n_reversals,
             "n_sticks": self.n_sticks,
-        }
-
-
-@dataclass
-class SpecialPoint:
-    """A bifurcation or an end of a branch.
-
-    Attributes
-    ----------
-    kind : str
-        One of `beltmdsm.analysis.edges.KINDS`, ``branch_point`` (a real multiplier through +1
-        without a turn), ``range`` (the end of the requested range) or ``failed`` (the
-        continuation stops for another reason, in ``detail``).
-    value : float
-    accuracy : float
-        A bound of the error of ``value``.
-    frequency : float or None
-        Of the critical pair at a Neimark-Sacker point [rad/s].
-    multipliers : ndarray
-        At the located point (at an end: at the last response solved).
-    stable_before, stable_after : bool or None
-        Whether the branch is stable just before and after, along the continuation.
-    detail : str
-    """
-
-    kind: str
-    value: float
-    accuracy: float
-    frequency: float | None
-    multipliers: NDArray[np.complex128]
-    stable_before: bool | None
-    stable_after: bool | None
-    detail: str = ""
-
-    def as_dict(self) -> dict:
-        """For JSON: the attributes (``multipliers`` as pairs of real and imaginary parts)."""
-        return {
-            "kind": self.kind,
-            "value": self.value,
-            "accuracy": self.accuracy,
-            "frequency": self.frequency,
-            "multipliers": [[float(z.real), float(z.imag)] for z in self.multipliers],
-            "stable_before": self.stable_before,
-            "stable_after": self.stable_after,
-            "detail": self.detail,
-        }
-
-
-@dataclass(frozen=True)
-class BranchPart:
-    """A stretch of a branch between two special points, stable or not.
-
-    Attributes
-    ----------
-    range : tuple of float
-        ``(lo, hi)``: the parameter values it covers.
-    stable : bool or None
-        None where the orbit grazes.
-    start, end : str
-        The kinds of the special points that bound it, in arclength order
-        (``from`` and ``to`` in `as_dict`).
-    lower, upper : str
-        The kinds of those at its lower and upper value.
-    """
-
-    range: tuple[float, float]
-    stable: bool | None
-    start: str
-    end: str
-    lower: str
-    upper: str
-
-    def as_dict(self) -> dict:
-        """For JSON: ``range``, ``stable``, ``from``, ``to``, ``lower``, ``upper``."""
-        return {
-            "range": list(self.range),
-            "stable": self.stable,
-            "from": self.start,
-            "to": self.end,
-            "lower": self.lower,
-            "upper": self.upper,
-        }
-
-
-@dataclass
-class Branch:
-    """A branch of responses of ``periods`` excitation periods in one parameter.
-
-    Attributes
-    ----------
-    param : str
-    periods : int
-    model : Model
-        The other parameters and the options (``param`` at the start's value).
-    points : list of BranchPoint
-        In arclength order, from the start's lower end.
-    special : list of SpecialPoint
-        In arclength order; the first and the last are the ends.
-    """
-
-    param: str
-    periods: int
-    model: Model
-    points: list[BranchPoint]
-    special: list[SpecialPoint]
-
-    @property
-    def ends(self) -> tuple[SpecialPoint, SpecialPoint]:
-        """The first and the last special point: where the branch ends both ways."""
-        return self.special[0], self.special[-1]
-
-    def parts(self) -> list[BranchPart]:
-        """The stable and unstable parts, in arclength order."""
-        out = []
-        bounds = self.special
-        for a, b in zip(bounds[:-1], bounds[1:]):
-            stable = a.stable_after if a.stable_after is not None else b.stable_before
-            low, high = (a, b) if a.value <= b.value else (b, a)
-            out.append(
-                BranchPart((low.value, high.value), stable, a.kind, b.kind, low.kind, high.kind)
-            )
-        return out
-
-    def stable_ranges(self) -> list[list[float]]:
-        """The parameter ranges where the branch is stable (merged where they touch)."""
-        ranges = sorted(list(p.range) for p in self.parts() if p.stable)
-        merged = []
-        for lo, hi in ranges:
-            if merged and lo <= merged[-1][1]:
-                merged[-1][1] = max(merged[-1][1], hi)
-            else:
-                merged.append([lo, hi])
-        return merged
-
-    def value_range(self) -> list[float]:
-        """The smallest and largest parameter value the branch reaches."""
-        values = [p.value for p in self.points] + [s.value for s in self.special]
-        return [min(values), max(values)]
-
-    def point_near(self, value: float) -> BranchPoint | None:
-        """The point of the branch nearest to ``value`` (None on an empty branch)."""
-        if not self.points:
-            return None
-        return min(self.points, key=lambda p: abs(p.value - value))
-
-    def as_dict(self) -> dict:
-        """For JSON: ``param``, ``periods``, ``contact``, ``tension``, ``friction``,
-        ``engine``, ``range``, ``parts``, ``stable_ranges``, ``special_points``,
-        ``points``."""
-        return {
-            "param": self.param,
-            "periods": self.periods,
-            "contact": self.model.contact,
-            "tension": self.model.tension,
-            "friction": self.model.friction,
-            "engine": engine_of(self.model),
-            "range": self.value_range(),
-            "parts": [p.as_dict() for p in self.parts()],
-            "stable_ranges": self.stable_ranges(),
-            "special_points": [s.as_dict() for s in self.special],
-            "points": [p.as_dict() for p in self.points],
         }
 
 
@@ -720,6 +557,10 @@ def continue_branch(
     if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
         raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
     model = start.model
+    if getattr(start, "autonomous", False):
+        from .cycle_branch import cycle_branch_from
+
+        return cycle_branch_from(start.cycle, param, lo, hi, backend=backend)
     v0 = float(model[param])
     if not lo <= v0 <= hi:
         raise ValueError(f"the start's {param} = {v0:g} is outside [{lo:g}, {hi:g}]")
@@ -768,7 +609,10 @@ def branch(
     """The branch of the response of ``periods`` periods at a point (`continue_branch`).
 
     The response is found as `beltmdsm.analysis.floquet.periodic_response` finds it
-    (``periods > 1``: seeded from the attractor of the period map).
+    (``periods > 1``: seeded from the attractor of the period map). Without excitation
+    (`beltmdsm.model.is_autonomous`) it is the branch of self-excited cycles born at
+    the Hopf point of steady sliding in ``[lo, hi]``
+    (`beltmdsm.analysis.cycle_branch.cycle_branch`: a `CycleBranch`).
 
     Parameters
     ----------
@@ -791,5 +635,14 @@ def branch(
         Where no response of ``periods`` periods is found at the point.
     """
     model = as_model(model, **kw)
+    if is_autonomous(model):
+        from .cycle_branch import cycle_branch
+
+        if periods != 1:
+            raise ValueError(
+                f"periods must be 1 without excitation (a self-excited cycle has no "
+                f"excitation period to count); got {periods!r}"
+            )
+        return cycle_branch(model, param=param, lo=lo, hi=hi, backend=backend)
     start = periodic_response(model, periods=periods, backend=backend)
     return continue_branch(start, param, lo, hi, backend=backend)

@@ -18,6 +18,12 @@ two engines that the facts of the model's laws choose (``generated.capabilities`
 
 The results say which (``engine``); where both apply they agree to 1e-9.
 
+* **Without excitation** (`beltmdsm.model.is_autonomous`) there is no period to take
+  the phase from: `periodic_response` and `floquet` compute the self-excited cycle
+  instead (`beltmdsm.analysis.cycles`: the period found by shooting with a phase
+  condition), with ``autonomous`` set, its multipliers without the trivial one (along
+  the flow, reported as ``trivial_multiplier``) and a multiplier 0 for a stick phase.
+
 * **Periodic response.** `periodic_response` finds the state at phase 0 that the
   period map returns to, by Newton's method with the map's Jacobian (damped steps,
   `beltmdsm.analysis.periodmap.fixed_point`). The first guess is the orbit that
@@ -52,7 +58,7 @@ import numpy as np
 from ..integrate.normal import normal_motion
 from ..integrate.superposition import Superposition, friction_direction
 from ..integrate.switching import Mode
-from ..model import Backend, Model, as_model, excitation_period, initial_state
+from ..model import Backend, Model, as_model, excitation_period, initial_state, is_autonomous
 from .locked import LOCK_LIMIT, NotLocked, map_stroboscope, minimal_periods
 from .periodmap import (
     ENGINES,
@@ -78,6 +84,7 @@ __all__ = [
     "normal_orbit",
     "PeriodicResponse",
     "periodic_response",
+    "response_of_cycle",
     "response_from",
     "Floquet",
     "floquet",
@@ -137,6 +144,10 @@ class PeriodicResponse:
     engine : {"closed_form", "general"}
         The period map that found it (`beltmdsm.analysis.periodmap.ENGINES`, chosen by
         the facts of the model's laws, `beltmdsm.analysis.periodmap.engine_of`).
+    autonomous : bool
+        A self-excited cycle of the model without excitation (`response_of_cycle`):
+        ``period`` was found, ``state0`` lies on its section, ``cycle`` is the
+        `beltmdsm.analysis.cycles.Cycle`.
     """
 
     model: Model
@@ -153,6 +164,9 @@ class PeriodicResponse:
     periods: int = 1
     engine: str = "closed_form"
     _monodromy: np.ndarray | None = field(default=None, repr=False)
+    autonomous: bool = False
+    cycle: Any = field(default=None, repr=False)
+    _ranges: tuple | None = field(default=None, repr=False)
 
     @property
     def monodromy(self) -> np.ndarray:
@@ -164,6 +178,21 @@ class PeriodicResponse:
             M[:2, 2:] = _coupling_block(self)
             self._monodromy = M
         return self._monodromy.copy()
+
+    def ranges(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """``(x1_range, velocity_range)``: ``(min, max)`` of ``X1`` and ``X1'`` over the orbit.
+
+        A cycle carries them; a forced response's are read from one application of its
+        period map at ``state0`` (computed once).
+        """
+        if self._ranges is None:
+            if self.autonomous:
+                self._ranges = (self.cycle.x1_range, self.cycle.velocity_range)
+            else:
+                pmap = period_map(self.model, self.periods, engine=self.engine)
+                image = pmap(self.shooting_state)
+                self._ranges = (image.x1_range(), image.velocity_range())
+        return self._ranges
 
     @property
     def shooting_state(self) -> np.ndarray:
@@ -188,6 +217,61 @@ def _coupling_block(resp):
             ends.append(run.final[:2])
         out[:, j] = (ends[0] - ends[1]) / (2 * h)
     return out
+
+
+def response_of_cycle(c: Any) -> PeriodicResponse:
+    """The `PeriodicResponse` of a self-excited cycle (`beltmdsm.analysis.cycles.Cycle`).
+
+    Its ``state0`` is the cycle's state on the section, ``period`` the one found, the
+    monodromy the whole one of the general path (``engine="general"``).
+    """
+    M = np.array(c.monodromy, dtype=float)
+    return PeriodicResponse(
+        c.model,
+        c.period,
+        np.array(c.state, dtype=float),
+        list(c.switches),
+        list(c.segments),
+        M[:2, :2],
+        M[2:, 2:],
+        c.grazing,
+        c.residual,
+        c.iterations,
+        None,
+        1,
+        "general",
+        M,
+        True,
+        c,
+        (c.x1_range, c.velocity_range),
+    )
+
+
+def _cycle_response(model, guess, max_iter, backend, periods, engine):
+    """`periodic_response` without excitation: the self-excited cycle."""
+    from .cycles import Cycle, cycle
+
+    if periods != 1:
+        raise ValueError(
+            f"periods must be 1 without excitation (a self-excited cycle has no "
+            f"excitation period to count); got {periods!r}"
+        )
+    if engine not in (None, "general"):
+        raise ValueError(
+            f"engine={engine!r}: a self-excited cycle is computed on the general path only"
+        )
+    if isinstance(guess, PeriodicResponse):
+        guess = guess.cycle if guess.autonomous else None
+    if isinstance(guess, Cycle):
+        return response_of_cycle(
+            cycle(model, guess.state, guess.period, max_iter=max_iter, backend=backend)
+        )
+    if guess is not None:
+        raise ValueError(
+            "a guess of a self-excited cycle needs its period: pass a PeriodicResponse "
+            "or a beltmdsm.analysis.cycles.Cycle, or call beltmdsm.analysis.cycles.cycle"
+        )
+    return response_of_cycle(cycle(model, max_iter=max(max_iter, 30), backend=backend))
 
 
 def response_from(pmap: PeriodMap, point: FixedPoint) -> PeriodicResponse:
@@ -258,6 +342,11 @@ def periodic_response(
         The period map (`beltmdsm.analysis.periodmap.period_map`); None: the one the
         model's laws allow.
 
+    Without excitation (`beltmdsm.model.is_autonomous`) the response is the self-excited
+    cycle (`beltmdsm.analysis.cycles.cycle`, ``autonomous`` set): seeded from a run off
+    unstable steady sliding, or from ``guess`` (a `PeriodicResponse` of a cycle or a
+    `beltmdsm.analysis.cycles.Cycle`: a neighbour); ``forward`` does not apply.
+
     Returns
     -------
     PeriodicResponse
@@ -277,6 +366,8 @@ def periodic_response(
         ``k`` periods (the message says what it does instead).
     """
     model = as_model(model, **kw)
+    if is_autonomous(model):
+        return _cycle_response(model, guess, max_iter, backend, periods, engine)
     excitation_period(model)
     pmap = period_map(model, periods, backend, engine)
     if isinstance(guess, PeriodicResponse):
@@ -354,7 +445,9 @@ class Floquet:
     singled out where nothing says the blocks decouple). NaN where the response
     grazes (``grazing`` is then set and ``stable`` is None). ``n_reversals`` and
     ``n_sticks`` count over the ``k`` periods. ``engine`` is the path taken
-    (`PeriodicResponse`).
+    (`PeriodicResponse`). For a self-excited cycle (``autonomous``) the multipliers are
+    the three of its Poincare map, without the trivial one along the flow
+    (``trivial_multiplier``, 1 to the accuracy of the orbit); a stick phase makes one 0.
     """
 
     multipliers: np.ndarray
@@ -367,10 +460,14 @@ class Floquet:
     grazing: dict | None
     period: float
     response: PeriodicResponse = field(repr=False)
+    autonomous: bool = False
+    trivial_multiplier: complex | None = None
 
     @classmethod
     def of(cls, resp: PeriodicResponse) -> Floquet:
         """The multipliers of a periodic response and what they say."""
+        if resp.autonomous:
+            return cls._of_cycle(resp)
         n_rev = sum(
             1
             for _, b, a, s in resp.switches
@@ -414,6 +511,33 @@ class Floquet:
             resp,
         )
 
+    @classmethod
+    def _of_cycle(cls, resp: PeriodicResponse) -> Floquet:
+        """`Floquet` of a self-excited cycle: its multipliers as the cycle reports them."""
+        c = resp.cycle
+        mu = np.asarray(c.multipliers, dtype=complex)
+        biggest = float(np.max(np.abs(mu)))
+        if resp.grazing is not None or not math.isfinite(biggest):
+            growth = frequency = math.nan
+        else:
+            k = int(np.argmax(np.abs(mu)))
+            growth = math.log(biggest) / c.period if biggest > 0 else -math.inf
+            frequency = abs(float(np.angle(mu[k]))) / c.period
+        return cls(
+            mu,
+            biggest,
+            growth,
+            frequency,
+            c.stable,
+            c.n_reversals,
+            c.n_sticks,
+            c.grazing,
+            c.period,
+            resp,
+            True,
+            complex(c.trivial_multiplier),
+        )
+
     @property
     def engine(self) -> str:
         """The path that computed the response: ``"closed_form"`` or ``"general"``."""
@@ -427,7 +551,20 @@ class Floquet:
         return "stable" if self.stable else "unstable"
 
     def as_dict(self) -> dict:
-        """The JSON-able summary (the keys of ``python -m derive floquet --json``)."""
+        """The JSON-able summary (the keys of ``python -m derive floquet --json``).
+
+        ``autonomous`` says whether it is a self-excited cycle; a cycle adds the keys of
+        `beltmdsm.analysis.cycles.Cycle.as_dict` (``trivial_multiplier``, ``x1_range``,
+        ``velocity_range``, ``stick_time``, ``stick_collapses``, ...).
+        """
+        if self.autonomous:
+            return {
+                **self.response.cycle.as_dict(),
+                "growth_rate": self.growth_rate,
+                "frequency": self.frequency,
+                "periods": 1,
+                "engine": self.engine,
+            }
         return {
             "multipliers": [[float(z.real), float(z.imag)] for z in self.multipliers],
             "max_abs_multiplier": self.max_abs_multiplier,
@@ -443,6 +580,7 @@ class Floquet:
             "newton_iterations": self.response.iterations,
             "residual": self.response.residual,
             "engine": self.engine,
+            "autonomous": False,
         }
 
 

@@ -122,6 +122,7 @@ __all__ = [
     "FixedPoint",
     "fixed_point",
     "signature",
+    "orbit_range",
 ]
 
 #: A switch whose rate is below this fraction of its scale is grazing: the saltation
@@ -487,6 +488,10 @@ class MapImage:
         """The smallest and largest ``X1'`` over the ``k`` periods."""
         return self._map.velocity_range(self._runs)
 
+    def x1_range(self) -> tuple[float, float]:
+        """The smallest and largest ``X1`` over the ``k`` periods."""
+        return orbit_range(self._runs, 0)
+
 
 class PeriodMap(abc.ABC):
     """What the algorithms on periodic responses need of a period map.
@@ -732,30 +737,42 @@ class PeriodMap(abc.ABC):
         return best
 
     def velocity_range(self, runs: list) -> tuple[float, float]:
-        """The smallest and largest ``X1'`` over the runs (segments sampled, extremes refined)."""
-        from scipy import optimize
+        """The smallest and largest ``X1'`` over the runs (`orbit_range`)."""
+        return orbit_range(runs, 1)
 
-        lo, hi = np.inf, -np.inf
-        for run in runs:
-            for index, (t0, t1) in enumerate(zip(run.starts, run.ends)):
-                n = max(8, int((t1 - t0) * _SAMPLES_PER_S))
-                t = np.linspace(t0, t1, n + 1)
-                v = self._states(run, index, t)[1]
-                for sign in (1.0, -1.0):
-                    k = int(np.argmax(sign * v))
-                    value = float(v[k])
-                    if 0 < k < v.size - 1:
-                        res = optimize.minimize_scalar(
-                            lambda s, run=run, index=index, sign=sign: (
-                                -sign * float(self._states(run, index, np.array([s]))[1][0])
-                            ),
-                            bounds=(t[k - 1], t[k + 1]),
-                            method="bounded",
-                            options={"xatol": 1e-12},
-                        )
-                        value = sign * max(sign * value, -float(res.fun))
-                    lo, hi = (min(lo, value), hi) if sign < 0 else (lo, max(hi, value))
-        return float(lo), float(hi)
+
+def orbit_range(runs: list, component: int = 1) -> tuple[float, float]:
+    """The smallest and largest of one state component over the runs of an orbit.
+
+    ``runs`` are periods as `PeriodMap` reads them (``starts``, ``ends`` and
+    ``segments(t, index) -> (4, n)``: an `EventPeriod` or a tangential run);
+    ``component`` 0 is ``X1``, 1 ``X1'``. Each segment is sampled (`_SAMPLES_PER_S`)
+    and an interior extreme is refined by a bounded search to 1e-12 s.
+    """
+    from scipy import optimize
+
+    def value(run, index, s):
+        return float(run.segments(np.array([s]), np.full(1, index))[component][0])
+
+    lo, hi = np.inf, -np.inf
+    for run in runs:
+        for index, (t0, t1) in enumerate(zip(run.starts, run.ends)):
+            n = max(8, int((t1 - t0) * _SAMPLES_PER_S))
+            t = np.linspace(t0, t1, n + 1)
+            v = run.segments(t, np.full(t.size, index))[component]
+            for sign in (1.0, -1.0):
+                k = int(np.argmax(sign * v))
+                extreme = float(v[k])
+                if 0 < k < v.size - 1:
+                    res = optimize.minimize_scalar(
+                        lambda s, run=run, index=index, sign=sign: -sign * value(run, index, s),
+                        bounds=(t[k - 1], t[k + 1]),
+                        method="bounded",
+                        options={"xatol": 1e-12},
+                    )
+                    extreme = sign * max(sign * extreme, -float(res.fun))
+                lo, hi = (min(lo, extreme), hi) if sign < 0 else (lo, max(hi, extreme))
+    return float(lo), float(hi)
 
 
 class TangentialMap(PeriodMap):

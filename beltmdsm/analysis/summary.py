@@ -24,7 +24,7 @@ from numpy.typing import NDArray
 
 from ..integrate.switching import MODE_NAMES, Mode
 from ..integrate.trajectory import Run, Samples, Trajectory
-from ..model import Model
+from ..model import Model, excitation_period
 from ..settings import SolverSettings
 from . import spectra
 
@@ -203,6 +203,7 @@ def _floquet_decay(model, settings, t0):
     from .floquet import NoPeriodicResponse, floquet
 
     try:
+        excitation_period(model)  # the forced response's (a self-excited cycle is not it)
         f = floquet(model, backend=settings.backend)
     except (NoPeriodicResponse, ValueError) as err:
         return None, f"its Floquet multipliers are not known ({err})"
@@ -253,6 +254,7 @@ def _transient_rate(model, settings, forced):
     from .floquet import NoPeriodicResponse, floquet
 
     try:
+        excitation_period(model)  # the forced response's (a self-excited cycle is not it)
         f = floquet(model, backend=settings.backend)
     except (NoPeriodicResponse, ValueError):
         return sigma, "exp(sigma t)"

@@ -34,6 +34,7 @@ __all__ = [
     "peak_verdict",
     "simulation",
     "floquet",
+    "cycle",
     "kind",
     "band",
     "responses",
@@ -152,6 +153,8 @@ def simulation(sim: Simulation, out: dict, modulation: bool) -> str:
 
 def floquet(f: Floquet) -> str:
     """The readable result of ``floquet``."""
+    if f.autonomous:
+        return cycle(f)
     resp = f.response
     p = resp.model.params
     mus = ", ".join(f"{z.real:.6g}{z.imag:+.6g}j" for z in f.multipliers)
@@ -178,6 +181,39 @@ def floquet(f: Floquet) -> str:
             f"{f.growth_rate:.6g} 1/s, critical pair at {f.frequency:.6g} rad/s "
             f"(omega1 = {p['omega1']:g}; modulo {2 * math.pi / f.period:.6g})",
         ]
+    return "\n".join(lines)
+
+
+def cycle(f: Floquet) -> str:
+    """The readable result of ``floquet`` for a self-excited cycle (no excitation)."""
+    c = f.response.cycle
+    m = c.model
+    mus = ", ".join(f"{z.real:.6g}{z.imag:+.6g}j" for z in f.multipliers)
+    lines = [
+        f"self-excited cycle of Eq. (4) without excitation, {m.friction} friction, "
+        f"{m.contact}, Vb = {m['Vb']:g} m/s: period {c.period:.8g} s (found), "
+        f"{c.n_reversals} reversals and {c.n_sticks} sticks per period (stick "
+        f"{c.stick_time:.6g} s), Newton {c.iterations} iterations (residual "
+        f"{c.residual:.1e}) (beltmdsm/analysis/cycles.py)",
+        f"X1 in [{c.x1_range[0]:.6g}, {c.x1_range[1]:.6g}] m, X1' in "
+        f"[{c.velocity_range[0]:.6g}, {c.velocity_range[1]:.6g}] m/s, largest Vr "
+        f"{c.max_relative_velocity:.6g} m/s",
+    ]
+    if f.grazing is not None:
+        lines.append(
+            f"GRAZING: Vr = 0 is reached at t = {f.grazing['t']:.6g} s with a vanishing "
+            f"acceleration (ratio {f.grazing['ratio']:.1e}); no multiplier is reported"
+        )
+        return "\n".join(lines)
+    mu1 = c.trivial_multiplier
+    lines += [
+        f"Floquet multipliers (without the trivial one): {mus}",
+        f"trivial multiplier {mu1.real:.12g}{mu1.imag:+.1e}j (|mu - 1| = "
+        f"{abs(mu1 - 1):.1e}: the accuracy)",
+        f"largest |mu| = {f.max_abs_multiplier:.6g}: {'stable' if f.stable else 'UNSTABLE'}",
+    ]
+    if c.stick_collapses:
+        lines.append("a stick phase collapses the velocity perturbation: one multiplier is 0")
     return "\n".join(lines)
 
 
@@ -239,9 +275,14 @@ def band(result: Band, lo: float, hi: float) -> str:
 
 def responses(found: ResponseSet) -> str:
     """The readable list of ``responses``."""
+    from ..model import is_autonomous
+
     m = found.model
+    autonomous = any(r.floquet.autonomous for r in found.responses) or is_autonomous(m)
     lines = [
-        f"periodic responses of Eq. (4) ({_laws(m)}), "
+        f"self-excited cycles of Eq. (4) without excitation ({_laws(m)}), Vb = {m['Vb']:g} m/s:"
+        if autonomous
+        else f"periodic responses of Eq. (4) ({_laws(m)}), "
         f"Vb = {m['Vb']:g} m/s (locks looked for up to {found.limit} periods):"
     ]
     for r in found.responses:
@@ -256,8 +297,9 @@ def responses(found: ResponseSet) -> str:
             if r.run_distance is None
             else f"; the run's last samples lie on it to {r.run_distance:.1e}"
         )
+        name = f"cycle of period {f.period:.6g} s" if f.autonomous else f"{_name(r.periods):>4}"
         lines.append(
-            f"  {_name(r.periods):>4}: {verdict}; {f.n_reversals} reversals, {f.n_sticks} "
+            f"  {name}: {verdict}; {f.n_reversals} reversals, {f.n_sticks} "
             f"sticks per orbit; amplitude of X1' {r.amplitude:.4g} m/s; found by "
             + ", ".join(r.sources)
             + check
@@ -270,14 +312,32 @@ def responses(found: ResponseSet) -> str:
 
 
 def branch(found: Branch) -> str:
-    """The readable summary of ``branch``."""
+    """The readable summary of ``branch`` (of a forced response or of self-excited cycles)."""
     lo, hi = found.value_range()
+    cycles = getattr(found, "hopf", None) is not None or hasattr(found, "criticality")
+    what = (
+        "self-excited cycles (no excitation)"
+        if cycles
+        else f"the {_name(found.periods)}-periodic response"
+    )
     lines = [
-        f"branch of the {_name(found.periods)}-periodic response in {found.param} "
+        f"branch of {what} in {found.param} "
         f"({_laws(found.model)}): {found.param} from "
         f"{lo:.6g} to {hi:.6g}, {len(found.points)} points; stable for {found.param} in "
         f"{format_intervals(found.stable_ranges(), '.5f', 'none')}"
     ]
+    if cycles and found.hopf is not None:
+        h = found.hopf
+        lines.append(
+            f"  Hopf point of steady sliding at {found.param} = {h.value:.6f} "
+            f"({h.pair} pair, {h.frequency:.6g} rad/s, period {h.period:.6g} s, "
+            f"d Re(lambda)/d{found.param} = {h.transversality:.4g}): {found.criticality}"
+            + (
+                " (cycles where steady sliding is stable: hysteresis)"
+                if found.criticality == "subcritical"
+                else ""
+            )
+        )
     for s in found.special:
         lines.append(
             f"  {kind(s.kind, s.frequency)} at {found.param} = {s.value:.6f} "
@@ -287,11 +347,21 @@ def branch(found: Branch) -> str:
         a, b = part.range
         state = {True: "stable", False: "unstable", None: "grazing"}[part.stable]
         lines.append(f"  {state} from {a:.6f} to {b:.6f} ({part.start} to {part.end})")
+    if cycles and found.points:
+        for p in (found.points[0], found.points[-1]):
+            lines.append(
+                f"  cycle at {found.param} = {p.value:.6g}: period {p.period:.6g} s, "
+                f"amplitude of X1' {p.amplitude:.4g} m/s, largest Vr "
+                f"{p.max_relative_velocity:.3g} m/s, {p.n_sticks} sticks, "
+                f"{'stable' if p.stable else 'unstable'}"
+            )
     return "\n".join(lines)
 
 
 def coexistence(found: Coexistence) -> str:
     """The readable summary of ``coexistence``."""
+    if getattr(found, "branch", False) is not False:  # without excitation
+        return cycle_coexistence(found)
     param = found.param
     lines = [
         f"stable periodic responses of Eq. (4) for {param} in {found.lo:g}..{found.hi:g} "
@@ -317,6 +387,41 @@ def coexistence(found: Coexistence) -> str:
         )
     for u in found.unexplained:
         lines.append(f"  a lock at {param} = {u.value:g} ({u.source}) not found: {u.reason}")
+    return "\n".join(lines)
+
+
+def cycle_coexistence(found) -> str:
+    """The readable summary of ``coexistence`` without excitation
+    (`beltmdsm.studies.cycle_coexistence.CycleCoexistence`)."""
+    param, b = found.param, found.branch
+
+    def parts(ps):
+        return (
+            ", ".join(f"[{s.range[0]:.6f}, {s.range[1]:.6f}] ({s.lower} to {s.upper})" for s in ps)
+            or "none"
+        )
+
+    lines = [
+        f"steady sliding and self-excited cycles of Eq. (4) without excitation for {param} "
+        f"in {found.lo:g}..{found.hi:g} ({_laws(found.model)}; {found.wall_s:.1f} s):",
+        f"  steady sliding: stable in {parts(found.sliding)}",
+    ]
+    for h in found.hopf:
+        lines.append(
+            f"  Hopf point at {param} = {h.value:.6f} ({h.frequency:.6g} rad/s)"
+            + (f": {b.criticality}" if b is not None and b.hopf and b.hopf.value == h.value else "")
+        )
+    if b is not None:
+        from ..studies.overlay import stable_parts
+
+        lines.append(f"  cycle: stable in {parts(stable_parts(b))}")
+    if found.ranges:
+        lines.append("coexistence (hysteresis: a run ends on either by where it starts):")
+        for c in found.ranges:
+            a, z = c.range
+            lines.append(f"  [{a:.6f}, {z:.6f}]: {', '.join(c.responses)} ({c.lower} to {c.upper})")
+    else:
+        lines.append(f"coexistence: none: {found.reason}")
     return "\n".join(lines)
 
 

@@ -23,6 +23,10 @@ exactly:
    edges (the bifurcations where a response starts or stops being stable, or the end of
    the range).
 
+Without excitation (`beltmdsm.model.is_autonomous`) the attractors are steady sliding
+and the self-excited cycles: `beltmdsm.studies.cycle_coexistence` gives where they
+coexist (hysteresis at a subcritical Hopf point), or why they do not.
+
 What this does not see: attractors that are not locked within the limit (quasi-periodic
 motion on an invariant torus, or a longer period), which are listed, not continued, and
 attractors that no seed reaches.
@@ -41,7 +45,8 @@ from ..analysis.branch import Branch, continue_branch
 from ..analysis.floquet import NoPeriodicResponse, floquet, response_from
 from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ..analysis.periodmap import engine_of
-from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period, is_autonomous
+from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
 from .responses import ladder, run_stroboscope, shoot
 
 __all__ = [
@@ -64,19 +69,6 @@ SEED_T_END = 600.0
 #: A seed lies on a known branch when the branch, interpolated between its points,
 #: comes this close (relative) to it; Newton's method from there then decides.
 _NEAR = 1e-2
-
-
-@dataclass(frozen=True)
-class StablePart:
-    """A range where a branch is stable, with the kinds of the special points that bound it."""
-
-    range: tuple[float, float]
-    lower: str
-    upper: str
-
-    def as_dict(self) -> dict:
-        """For JSON: ``range``, ``lower``, ``upper``."""
-        return {"range": list(self.range), "lower": self.lower, "upper": self.upper}
 
 
 @dataclass
@@ -109,29 +101,6 @@ class ResponseBranch:
             "stable": [s.as_dict() for s in self.stable],
             "special_points": [s.as_dict() for s in self.branch.special],
             "sources": self.sources,
-        }
-
-
-@dataclass(frozen=True)
-class CoexistenceRange:
-    """A range where the same two or more stable responses coexist.
-
-    ``responses``: their names (`ResponseBranch.name`); ``lower``, ``upper``: the kinds
-    of the edges at either end (a bifurcation, or ``range`` at the end of the range).
-    """
-
-    range: tuple[float, float]
-    responses: tuple[str, ...]
-    lower: str
-    upper: str
-
-    def as_dict(self) -> dict:
-        """For JSON: ``range``, ``responses``, ``lower``, ``upper``."""
-        return {
-            "range": list(self.range),
-            "responses": list(self.responses),
-            "lower": self.lower,
-            "upper": self.upper,
         }
 
 
@@ -206,46 +175,6 @@ class Coexistence:
         }
 
 
-def _stable_parts(branch: Branch) -> list[StablePart]:
-    """The stable parts of a branch, merged where they touch (a grazing between them)."""
-    parts = sorted((p for p in branch.parts() if p.stable), key=lambda p: p.range)
-    out = []
-    for p in parts:
-        if out and p.range[0] <= out[-1].range[1] + 1e-12:
-            if p.range[1] > out[-1].range[1]:
-                out[-1] = StablePart((out[-1].range[0], p.range[1]), out[-1].lower, p.upper)
-            continue
-        out.append(StablePart(p.range, p.lower, p.upper))
-    return out
-
-
-def overlay(responses: list[ResponseBranch]) -> list[CoexistenceRange]:
-    """The ranges where two or more responses are stable together (constant membership)."""
-    intervals = [(r.name, s) for r in responses for s in r.stable]
-    cuts = sorted({v for _, s in intervals for v in s.range})
-    segments = []
-    for a, b in zip(cuts[:-1], cuts[1:]):
-        mid = 0.5 * (a + b)
-        active = tuple(sorted({n for n, s in intervals if s.range[0] < mid < s.range[1]}))
-        if len(active) < 2:
-            continue
-        if segments and segments[-1][1] == a and segments[-1][2] == active:
-            segments[-1][1] = b
-        else:
-            segments.append([a, b, active])
-
-    def kind_at(value):
-        # the interval end at this value that starts or stops a membership
-        for _, s in intervals:
-            if s.range[0] == value:
-                return s.lower
-            if s.range[1] == value:
-                return s.upper
-        return "range"
-
-    return [CoexistenceRange((a, b), active, kind_at(a), kind_at(b)) for a, b, active in segments]
-
-
 def _on_branch(branch, value, k, phases):
     """Whether the orbit with these phase-0 states at ``value`` lies on ``branch``."""
     if branch.periods != k:
@@ -305,6 +234,10 @@ def coexistence(
     if not step > 0 or int(limit) < 1:
         raise ValueError(f"step must be > 0 and limit >= 1; got {step}, {limit}")
     model = as_model(model, **kw).replace(**{param: lo})
+    if is_autonomous(model):
+        from .cycle_coexistence import cycle_coexistence
+
+        return cycle_coexistence(param, lo, hi, model, backend=backend)
     excitation_period(model)
     grid = np.linspace(lo, hi, max(int(round((hi - lo) / step)), 1) + 1)
     seeds, unlocked = [], []
@@ -371,7 +304,7 @@ def coexistence(
         if counts[k] > 1:
             numbered[k] = numbered.get(k, 0) + 1
             name = f"{name}#{numbered[k]}"
-        found.append(ResponseBranch(name, branches[i], _stable_parts(branches[i]), sources[i]))
+        found.append(ResponseBranch(name, branches[i], stable_parts(branches[i]), sources[i]))
     return Coexistence(
         param,
         float(lo),

@@ -18,6 +18,10 @@ exactly (`beltmdsm.analysis.periodmap.fixed_point`), with the multipliers of the
   responses``): the periodic one of period ``T`` and every locked one up to a limit,
   each with its multipliers, the amplitude of ``X1'`` and where it was found; the
   attractors that do not lock, with the evidence (`beltmdsm.analysis.locked.NotLocked`).
+  Without excitation (`beltmdsm.model.is_autonomous`): the self-excited cycles
+  (`beltmdsm.analysis.cycles`), from the run off perturbed steady sliding and from
+  cycles continued up and down in ``Vb`` (a cycle that coexists with stable steady
+  sliding is found only so).
 """
 
 from __future__ import annotations
@@ -41,7 +45,7 @@ from ..analysis.locked import (
     stroboscope,
 )
 from ..analysis.periodmap import ENGINES, FixedPoint, PeriodMap, engine_of, fixed_point, period_map
-from ..model import Backend, Model, as_model, excitation_period, initial_state
+from ..model import Backend, Model, as_model, excitation_period, initial_state, is_autonomous
 from ..settings import SolverSettings
 from ..simulation import simulate
 
@@ -56,6 +60,7 @@ __all__ = [
     "SeedFailure",
     "ResponseSet",
     "responses",
+    "cycle_responses",
 ]
 
 #: Duration of the runs that seed the search [s] (the runs of `beltmdsm.simulation`
@@ -201,7 +206,10 @@ class Response:
         last ``k`` stroboscopic samples and the orbit's phase-0 states (a check of the
         shooting against the simulation), relative to their scale.
     phases : list of ndarray
-        The tangential state at phase 0 of each of the ``k`` periods.
+        The tangential state at phase 0 of each of the ``k`` periods (of a cycle: its
+        state on the section).
+    x1_range : tuple of float or None
+        The smallest and largest ``X1`` over the orbit [m].
     """
 
     periods: int
@@ -210,6 +218,7 @@ class Response:
     sources: list[str]
     run_distance: float | None
     phases: list[NDArray[np.float64]] = field(repr=False)
+    x1_range: tuple[float, float] | None = None
 
     @property
     def amplitude(self) -> float:
@@ -228,6 +237,7 @@ class Response:
             "periods": self.periods,
             "amplitude": self.amplitude,
             "velocity_range": list(self.velocity_range),
+            "x1_range": None if self.x1_range is None else list(self.x1_range),
             "sources": list(self.sources),
             "run_distance": self.run_distance,
         }
@@ -327,6 +337,9 @@ def responses(
     -------
     ResponseSet
 
+    Without excitation, the self-excited cycles (`cycle_responses`; ``limit`` and
+    ``t_end`` do not apply).
+
     Raises
     ------
     ValueError
@@ -338,6 +351,8 @@ def responses(
         )
     limit = int(limit)
     model = as_model(model, **kw)
+    if is_autonomous(model):
+        return cycle_responses(model, limit=limit, ladder=ladder, backend=backend)
     excitation_period(model)
     found, unlocked, failed = [], [], []
     try:
@@ -351,6 +366,7 @@ def responses(
                 ["shooting from the sliding orbit"],
                 None,
                 [f.response.shooting_state],
+                image.x1_range(),
             )
         )
     except NoPeriodicResponse as err:
@@ -395,6 +411,7 @@ def responses(
                     [],
                     None,
                     point.image.phases,
+                    point.image.x1_range(),
                 )
                 found.append(known)
         known.sources.append(strobe.source)
@@ -403,3 +420,87 @@ def responses(
             known.run_distance = distance
     found.sort(key=lambda r: (r.periods, r.amplitude))
     return ResponseSet(model, limit, found, unlocked, failed)
+
+
+def _cycle_response(c, source, distance=None):
+    """The `Response` of a self-excited cycle (`beltmdsm.analysis.cycles.Cycle`)."""
+    from ..analysis.floquet import response_of_cycle
+
+    return Response(
+        1,
+        Floquet.of(response_of_cycle(c)),
+        c.velocity_range,
+        [source],
+        distance,
+        [c.state],
+        c.x1_range,
+    )
+
+
+def _continued_cycle(model, first, last, backend):
+    """The cycle seeded at ``Vb = first`` and continued to ``Vb = last`` by Newton's method
+    from each step's cycle: steps of `LADDER_STEP`, halved where Newton's method fails
+    (down to 1/64 of it) and doubled again after each success."""
+    from ..analysis.cycles import cycle
+
+    c = cycle(model.replace(Vb=float(first)), backend=backend)
+    v, step = float(first), LADDER_STEP * np.sign(last - first)
+    while v != last:
+        target = last if abs(last - v) <= abs(step) else v + step
+        try:
+            c = cycle(model.replace(Vb=target), c.state, c.period, backend=backend)
+        except NoPeriodicResponse as err:
+            if abs(step) < LADDER_STEP / 64:
+                raise NoPeriodicResponse(f"at Vb = {target:g} from Vb = {v:g}: {err}") from None
+            step *= 0.5
+            continue
+        v, step = target, np.sign(step) * min(2 * abs(step), LADDER_STEP)
+    return c
+
+
+def cycle_responses(
+    model: Model,
+    *,
+    limit: int = LOCK_LIMIT,
+    ladder: float = LADDER_SPAN,
+    backend: Backend | None = None,
+) -> ResponseSet:
+    """The self-excited cycles of the model without excitation (`beltmdsm.analysis.cycles`).
+
+    The cycle from the run off perturbed steady sliding (`beltmdsm.analysis.cycles.seed_cycle`:
+    ``run_distance`` is how far the run's settled return lies from the cycle), and the
+    cycles continued in ``Vb`` from ``ladder`` m/s below and above (seeded there, then
+    Newton's method from each step's cycle, `_continued_cycle`): where steady sliding
+    is stable at ``Vb`` and a stick-slip cycle coexists with it (a subcritical Hopf
+    point), the ladder from below finds the cycle. Cycles found from several seeds are
+    listed once, with every source; a seed that fails is listed in ``failed``.
+    """
+    from ..analysis.cycles import cycle, seed_cycle
+
+    found, failed = [], []
+
+    def add(c, source, distance=None):
+        known = next((r for r in found if r.same_orbit(1, c.state)), None)
+        if known is None:
+            found.append(_cycle_response(c, source, distance))
+        else:
+            known.sources.append(source)
+
+    source = "the run off perturbed steady sliding"
+    try:
+        x, T = seed_cycle(model, backend=backend)
+        c = cycle(model, x, T, backend=backend)
+        add(c, source, float(np.max(np.abs(x - c.state))) / (1.0 + float(np.max(np.abs(x)))))
+    except NoPeriodicResponse as err:
+        failed.append(SeedFailure(source, str(err)))
+    vb = float(model["Vb"])
+    for direction, first in (("up", vb - ladder), ("down", vb + ladder)):
+        if ladder <= 0 or first <= 0:
+            continue
+        source = f"cycles continued {direction} from Vb = {first:g}"
+        try:
+            add(_continued_cycle(model, first, vb, backend), source)
+        except NoPeriodicResponse as err:
+            failed.append(SeedFailure(source, str(err)))
+    found.sort(key=lambda r: r.amplitude)
+    return ResponseSet(model, int(limit), found, [], failed)

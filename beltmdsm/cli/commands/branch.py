@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from ...model import MODEL_PARAMETERS
+from ...model import MODEL_PARAMETERS, is_autonomous
 from ..flags import (
     json_parent,
     model_from,
@@ -29,7 +29,10 @@ def add(commands, name: str) -> None:
         "point the model flags give, continued in --param over [--from, --to] by "
         "pseudo-arclength continuation on the period map, through folds, with its "
         "stable and unstable parts and every bifurcation located "
-        "(beltmdsm/analysis/branch.py).",
+        "(beltmdsm/analysis/branch.py). Without excitation (--alpha 0) the branch of "
+        "self-excited cycles born at the Hopf point of steady sliding in the range, its "
+        "criticality, the onset of stick, folds and period doubling "
+        "(beltmdsm/analysis/cycle_branch.py); no start value is needed.",
     )
     sub.add_argument(
         "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter continued in"
@@ -42,14 +45,20 @@ def run(args: argparse.Namespace) -> int:
     from .. import text
 
     lo, hi = range_from(args)
+    model = model_from(args)
     value = params_from(args).get(args.param)
+    if is_autonomous(model):
+        # the cycles are born at the Hopf point in the range: no start to give
+        found = branch(model, periods=args.periods, param=args.param, lo=lo, hi=hi)
+        print(json.dumps(text.jsonable(found.as_dict())) if args.json else text.branch(found))
+        return 0
     if value is None:
         args.parser.error(f"argument --{args.param}: give the start's {args.param} as well")
     if not lo <= value <= hi:
         args.parser.error(
             f"argument --{args.param}: the start ({value:g}) must lie in [{lo:g}, {hi:g}]"
         )
-    found = branch(model_from(args), periods=args.periods, param=args.param, lo=lo, hi=hi)
+    found = branch(model, periods=args.periods, param=args.param, lo=lo, hi=hi)
     if args.json:
         print(json.dumps(text.jsonable(found.as_dict())))
     else:

@@ -18,7 +18,10 @@ def add(commands, name: str) -> None:
         description="The periodic response of Eq. (4) by shooting and its Floquet "
         "multipliers, with saltation matrices at the switches "
         "(beltmdsm/analysis/floquet.py); --periods K: the response of K excitation "
-        "periods, by shooting on the K-fold period map.",
+        "periods, by shooting on the K-fold period map. Without excitation (--alpha 0) "
+        "the self-excited cycle, its period found by shooting with a phase condition "
+        "(beltmdsm/analysis/cycles.py); --json then says autonomous: true and gives "
+        "the trivial multiplier apart.",
     )
 
 
@@ -28,6 +31,8 @@ def run(args: argparse.Namespace) -> int:
 
     f = floquet(model_from(args), periods=args.periods)
     out = f.as_dict()
+    x1_range, velocity_range = f.response.ranges()
+    out["x1_range"], out["velocity_range"] = list(x1_range), list(velocity_range)
     out.update(f.response.model.as_dict())
     out["switches"] = [
         {"t": t, "before": b.name.lower(), "after": a.name.lower(), "surface": s}

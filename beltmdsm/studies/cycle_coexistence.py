@@ -1,0 +1,179 @@
+"""Where a self-excited cycle and stable steady sliding coexist: hysteresis without excitation.
+
+Without excitation the attractors of Eq. (4) are steady sliding (Eq. 9) and the
+self-excited cycles. Steady sliding is stable where every eigenvalue of ``J^0``
+(`generated.unforced.eigenvalues`) has a negative real part; its stability changes at
+the Hopf points (`beltmdsm.analysis.hopf.hopf_points`) and where a real eigenvalue
+crosses 0 (placed by Brent's method on the largest real part). The cycles are the
+branch born at the first Hopf point of the range
+(`beltmdsm.analysis.cycle_branch.cycle_branch`), with its stable parts. Where a stable
+cycle and stable steady sliding share a range, a run ends on either one by where it
+starts: hysteresis, the mark of a subcritical Hopf point (the cycles exist where
+steady sliding is stable) or of a branch that folds back past it. The overlay is
+`beltmdsm.studies.coexistence.overlay`'s.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..analysis.cycle_branch import CycleBranch, cycle_branch
+from ..analysis.hopf import HopfPoint, eigenvalues_over, hopf_points
+from ..analysis.periodmap import NoPeriodicResponse, engine_of
+from ..model import Model
+from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
+
+__all__ = ["CycleCoexistence", "cycle_coexistence", "SLIDING", "CYCLES"]
+
+#: The names of the two kinds of attractor in the overlay.
+SLIDING, CYCLES = "steady sliding", "cycle"
+#: Grid on which the sign of the largest real part is read between the Hopf points.
+_GRID = 201
+
+
+@dataclass(frozen=True)
+class _Attractor:
+    name: str
+    stable: list[StablePart]
+
+
+@dataclass
+class CycleCoexistence:
+    """The result of `cycle_coexistence` (``coexistence`` without excitation).
+
+    Attributes
+    ----------
+    param : str
+    lo, hi : float
+    model : Model
+    hopf : list of HopfPoint
+    sliding : list of StablePart
+        Where steady sliding is stable, bounded by ``hopf`` or ``real_eigenvalue``.
+    branch : CycleBranch or None
+        The cycles born at the first Hopf point (None without one, or where none is
+        found: ``reason``).
+    ranges : list of CoexistenceRange
+        Where a stable cycle and stable steady sliding coexist.
+    reason : str
+        Why there is none, where there is none.
+    wall_s : float
+    """
+
+    param: str
+    lo: float
+    hi: float
+    model: Model
+    hopf: list[HopfPoint]
+    sliding: list[StablePart]
+    branch: CycleBranch | None = field(repr=False)
+    ranges: list[CoexistenceRange]
+    reason: str
+    wall_s: float
+
+    def as_dict(self) -> dict:
+        """The JSON of ``coexistence --json`` without excitation: ``autonomous``,
+        ``param``, ``range``, the laws, ``hopf``, ``criticality``, ``sliding_stable``,
+        ``cycle_stable``, ``coexistence``, ``reason``, ``special_points``, ``wall_s``."""
+        b = self.branch
+        return {
+            "autonomous": True,
+            "param": self.param,
+            "range": [self.lo, self.hi],
+            "contact": self.model.contact,
+            "tension": self.model.tension,
+            "friction": self.model.friction,
+            "engine": engine_of(self.model),
+            "hopf": [h.as_dict() for h in self.hopf],
+            "criticality": None if b is None else b.criticality,
+            "sliding_stable": [s.as_dict() for s in self.sliding],
+            "cycle_stable": [] if b is None else [s.as_dict() for s in stable_parts(b)],
+            "coexistence": [r.as_dict() for r in self.ranges],
+            "reason": self.reason,
+            "special_points": [] if b is None else [s.as_dict() for s in b.special],
+            "wall_s": self.wall_s,
+        }
+
+
+def _sliding_parts(model, param, lo, hi, hopf):
+    """Where steady sliding is stable: cut at the Hopf points and the real crossings."""
+
+    def top(v):
+        lam = eigenvalues_over(model, param, np.atleast_1d(v))
+        return np.max(lam.real, axis=1)
+
+    cuts = [(lo, "range")] + [(h.value, "hopf") for h in hopf]
+    grid = np.linspace(lo, hi, _GRID)
+    re = top(grid)
+    for i in np.flatnonzero(np.sign(re[:-1]) * np.sign(re[1:]) < 0):
+        v = brentq(lambda s: float(top(s)[0]), grid[i], grid[i + 1], xtol=1e-12)
+        if all(abs(v - h.value) > 1e-8 for h in hopf):
+            cuts.append((v, "real_eigenvalue"))
+    cuts = sorted(cuts) + [(hi, "range")]
+    parts = []
+    for (a, ka), (b, kb) in zip(cuts[:-1], cuts[1:]):
+        if b > a and top(0.5 * (a + b))[0] < 0:
+            if parts and parts[-1].range[1] == a:
+                parts[-1] = StablePart((parts[-1].range[0], b), parts[-1].lower, kb)
+            else:
+                parts.append(StablePart((a, b), ka, kb))
+    return parts
+
+
+def cycle_coexistence(
+    param: str, lo: float, hi: float, model: Model, *, backend=None
+) -> CycleCoexistence:
+    """Where a stable self-excited cycle and stable steady sliding coexist in ``param``.
+
+    Parameters
+    ----------
+    param : str
+    lo, hi : float
+    model : Model
+        Without excitation; the other parameters and the options.
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    CycleCoexistence
+    """
+    clock = time.perf_counter()
+    hopf = hopf_points(model, param, lo, hi)
+    sliding = _sliding_parts(model, param, lo, hi, hopf)
+    branch, reason = None, ""
+    if not hopf:
+        reason = (
+            f"no Hopf point of steady sliding for {param} in [{lo:g}, {hi:g}]: no cycle is "
+            "born in the range (steady sliding is "
+            + ("stable" if sliding else "unstable")
+            + " throughout; cycles not connected to a Hopf point are not looked for)"
+        )
+    else:
+        try:
+            branch = cycle_branch(model, param=param, lo=lo, hi=hi, backend=backend)
+        except NoPeriodicResponse as err:
+            reason = f"no cycle found from the Hopf point: {err}"
+    ranges = []
+    if branch is not None:
+        attractors = [_Attractor(SLIDING, sliding), _Attractor(CYCLES, stable_parts(branch))]
+        ranges = overlay(attractors)
+        if not ranges:
+            reason = (
+                f"the Hopf point at {param} = {hopf[0].value:.6g} is {branch.criticality} "
+                "and no stable part of the cycles' branch overlaps stable steady sliding"
+            )
+    return CycleCoexistence(
+        param,
+        float(lo),
+        float(hi),
+        model,
+        hopf,
+        sliding,
+        branch,
+        ranges,
+        reason,
+        time.perf_counter() - clock,
+    )
