@@ -59,6 +59,8 @@ _API = {
     "ResponseSet": "studies.responses",
     "coexistence": "studies.coexistence",
     "Coexistence": "studies.coexistence",
+    "lyapunov": "analysis.lyapunov",
+    "Lyapunov": "analysis.lyapunov",
     "predict": "analysis.predict",
     "Prediction": "analysis.predict",
     "validate": "studies.validation",

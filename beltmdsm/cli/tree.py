@@ -27,6 +27,7 @@ COMMANDS = {
     "branch": "branch",
     "coexistence": "coexistence",
     "floquet-map": "floquet_map",
+    "lyapunov": "lyapunov",
     "validate": "validate",
     "docs": "docs",
 }
