@@ -90,6 +90,10 @@ class Lyapunov:
         The running means at the end of each chunk of the window.
     state : ndarray (4,)
         The state where the run ended.
+    samples : ndarray (n, 4)
+        The state at the end of each base period of the window (`chunk_length`): with
+        excitation, the stroboscopic samples at phase 0 (`beltmdsm.analysis.attractor`
+        reads the attractor's kind from them).
     """
 
     model: Model = field(repr=False)
@@ -102,6 +106,7 @@ class Lyapunov:
     switches: int
     running: NDArray[np.float64] = field(repr=False)
     state: NDArray[np.float64] = field(repr=False)
+    samples: NDArray[np.float64] = field(repr=False)
 
     @property
     def largest(self) -> float:
@@ -186,7 +191,8 @@ def lyapunov(
     t_end : float
         The whole run [s]: the transient, the alignment of the frame, the average.
     t_transient : float, optional
-        Time run before the frame starts turning [s]; default 30 % of ``t_end``.
+        Time run before the frame starts turning [s]; default 30 % of ``t_end``; cut
+        down to whole base periods (`chunk_length`).
     rtol : float
         Tolerance of the runs (also their ``atol``).
     backend : {"python", "numba", None}
@@ -218,6 +224,8 @@ def lyapunov(
     t_transient = 0.3 * t_end if t_transient is None else float(t_transient)
     if not (math.isfinite(t_transient) and 0 <= t_transient < t_end):
         raise ValueError(f"t_transient must be in [0, t_end); got {t_transient!r}")
+    # whole base periods, so that the samples are at the excitation's phase 0
+    t_transient = base * math.floor(t_transient / base + 1e-9)
     n_periods = int((t_end - t_transient) / base + 1e-9)
     n_align = min(_ALIGN, n_periods // 4)
     n_avg = n_periods - n_align
@@ -242,6 +250,7 @@ def lyapunov(
     max_step = STEP / fastest_rate(model)
     Q = np.eye(4)
     logs = np.zeros((n_avg, 4))
+    samples = np.zeros((n_avg, 4))
     collapsed = np.zeros(4, dtype=bool)
     switches = 0
     for k in range(n_periods):
@@ -258,7 +267,9 @@ def lyapunov(
                 collapsed |= d < COLLAPSE * d.max()
             with np.errstate(divide="ignore"):
                 logs[k - n_align] += np.log(d)
-    return _spectrum(model, logs, collapsed, base, tau, t_transient, switches, y)
+        if k >= n_align:
+            samples[k - n_align] = y
+    return _spectrum(model, logs, collapsed, base, tau, t_transient, switches, samples)
 
 
 def _settings(t0, t1, rtol, backend):
@@ -268,7 +279,7 @@ def _settings(t0, t1, rtol, backend):
     )
 
 
-def _spectrum(model, logs, collapsed, base, tau, t_transient, switches, y):
+def _spectrum(model, logs, collapsed, base, tau, t_transient, switches, samples):
     """The exponents, their errors and running means from each period's ``sum log |R_ii|``."""
     n = logs.shape[0]
     finite = np.where(collapsed, 0.0, logs)
@@ -292,7 +303,8 @@ def _spectrum(model, logs, collapsed, base, tau, t_transient, switches, y):
         int(collapsed.sum()),
         int(switches),
         running[:, order],
-        np.asarray(y, dtype=float),
+        samples[-1].copy(),
+        samples,
     )
 
 
