@@ -28,6 +28,7 @@ COMMANDS = {
     "coexistence": "coexistence",
     "floquet-map": "floquet_map",
     "lyapunov": "lyapunov",
+    "basins": "basins",
     "validate": "validate",
     "docs": "docs",
 }
