@@ -11,7 +11,8 @@ as Attractors.jl's recurrence approach does, instead of being run to the end and
 classified by its spectrum.
 
 Attractors are found and named by `beltmdsm.analysis.attractor.classify`: first the
-one the run from rest reaches (and any the caller gives), then, round by round, the
+one the run from rest reaches, the T-periodic response where it is stable (shooting and
+Floquet) and any the caller gives, then, round by round, the
 one each start that no known attractor claims settles on (classified from its state
 after `MAX_PERIODS`; the first such start in grid order). The rounds depend on the
 grid only, never on the order in which workers finish: the map and its labels are the
@@ -369,12 +370,14 @@ def basins(
         )
     if isinstance(max_periods, bool) or not isinstance(max_periods, int) or max_periods < 1:
         raise ValueError(f"max_periods must be an integer >= 1; got {max_periods!r}")
+    x_range = _checked("x_range", x_range)
+    y_range = _checked("y_range", y_range)
     if cache_dir is not None:
         cache_dir = cache.writable_folder(cache_dir)
 
     general = x in ("X2", "Y2") or y in ("X2", "Y2")
     pmap = _map(model, general)
-    found = [classify(model, t_end=t_end)] + list(attractors or [])
+    found = [classify(model, t_end=t_end), *_periodic_response(model), *(attractors or [])]
     found_points = [_points(pmap, a) for a in found]
     base = np.asarray(found[0].state, dtype=float)
     ix, iy = AXES.index(x), AXES.index(y)
@@ -421,12 +424,52 @@ def basins(
     return _result(pmap, model, x, y, xs, ys, labels, periods, found, found_points)
 
 
+def _periodic_response(model):
+    """The T-periodic response as a known attractor where it is stable (Floquet), so that
+    the starts it attracts are claimed in the first round: ``[]`` or ``[Attractor]``."""
+    from ..analysis.floquet import floquet
+
+    try:
+        f = floquet(model)
+    except NoPeriodicResponse:
+        return []
+    if not f.stable:
+        return []
+    mu = np.sort(np.abs(f.multipliers))[::-1]
+    with np.errstate(divide="ignore"):
+        exponents = np.log(mu) / f.response.period
+    state = f.response.state0
+    return [
+        Attractor(
+            "periodic",
+            1,
+            0.0,
+            0.0,
+            float(exponents[0]),
+            0.0,
+            exponents,
+            "the T-periodic response by shooting, stable (Floquet multipliers)",
+            state,
+            state[None, :],
+        )
+    ]
+
+
+def _checked(name, given):
+    if given is None:
+        return None
+    try:
+        lo, hi = (float(v) for v in given)
+    except (TypeError, ValueError):
+        lo, hi = np.nan, np.nan
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+        raise ValueError(f"{name} must be two finite numbers, low < high; got {given!r}")
+    return lo, hi
+
+
 def _range(name, given, found, index):
     if given is not None:
-        lo, hi = (float(v) for v in given)
-        if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
-            raise ValueError(f"{name} must be two finite numbers, low < high; got {given!r}")
-        return lo, hi
+        return given
     values = np.concatenate([np.atleast_1d(a.points[:, index]) for a in found])
     values = np.append(values, [a.state[index] for a in found])
     c, w = 0.5 * (values.min() + values.max()), max(float(np.ptp(values)), 1.0)
