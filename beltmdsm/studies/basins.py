@@ -5,8 +5,8 @@ starts the vibration. `basins` starts the model on a grid of a plane of states a
 excitation's phase 0 (default ``X1`` and ``X1'``, the normal state on its periodic
 orbit) and iterates the period map (`beltmdsm.analysis.periodmap.period_map`, the
 closed-form map where the laws allow it) from each start until the state stays within
-`IDENTIFY_TOL` of a known attractor's stroboscopic points for one full cycle of them
-(``k`` periods of a ``kT`` response): a start is stopped as soon as it is identified,
+`IDENTIFY_TOL` of a known attractor's stroboscopic points for two cycles of them,
+contracting towards them (`_land`): a start is stopped as soon as it is identified,
 as Attractors.jl's recurrence approach does, instead of being run to the end and
 classified by its spectrum.
 
@@ -61,9 +61,11 @@ _LABELS = {"X1": "X1 [m]", "Y1": "X1' [m/s]", "X2": "X2 [m]", "Y2": "X2' [m/s]"}
 #: Consecutive periods a start must stay on an attractor that is not a periodic
 #: response (a curve or a cloud of points) to be claimed by it.
 CONFIRM = 20
-#: A state within this distance of an attractor's point (relative to ``1 + |x|``), for
-#: a whole cycle of its points, is on that attractor.
-IDENTIFY_TOL = 1e-4
+#: A state within this distance of a periodic attractor's point (relative to
+#: ``1 + |x|``) for two cycles of its points, closer after the second, is on it
+#: (`_land`). The basins here are O(1) wide (the T-periodic response's at Vb = 3.88
+#: about 2 m by 3 m/s, 30 times this at |x| = 6).
+IDENTIFY_TOL = 1e-2
 #: Periods a start is iterated before it is handed to the classification.
 MAX_PERIODS = 2000
 #: Rounds of classifying the first unclaimed start.
@@ -197,33 +199,50 @@ def _map(model, general=False):
 
 
 def _claim(x, known):
-    """The label of the known attractor whose points ``x`` is within tolerance of, or None."""
+    """``(label, distance)`` of the first known attractor whose points ``x`` is within
+    tolerance of (the distance relative to ``1 + |x|``), or ``(None, inf)``."""
     scale = 1.0 + float(np.max(np.abs(x)))
     for label, points, tol, _ in known:
-        if float(np.min(np.max(np.abs(points - x), axis=1))) <= tol * scale:
-            return label
-    return None
+        d = float(np.min(np.max(np.abs(points - x), axis=1))) / scale
+        if d <= tol:
+            return label, d
+    return None, np.inf
 
 
 def _land(model, general, start, known, max_periods):
     """Iterate the period map from ``start`` until a known attractor claims it.
+
+    A periodic attractor of ``k`` phases claims a start that stays within its tolerance
+    for two whole cycles (``2 k`` periods) and comes closer over the second: the
+    contraction a stable orbit's neighbourhood shows, which a trajectory passing by on
+    its way to another attractor does not. Any other attractor claims after `CONFIRM`
+    periods within its tolerance.
 
     Returns ``{"label", "periods", "final", "failed"}``: the label (None if unclaimed
     after ``max_periods``), the periods iterated, the shooting state reached.
     """
     pmap = _map(model, general)
     x = pmap.guess(np.asarray(start, dtype=float))
-    need = {label: n for label, _, _, n in known}
-    run_label, run = None, 0
+    cycle = {label: k for label, _, _, k in known}
+    run_label, run, last = None, 0, np.inf
     for n in range(1, max_periods + 1):
         try:
             x = pmap.step(x)
         except NoPeriodicResponse as err:
             return {"label": None, "periods": n, "final": None, "failed": str(err)}
-        label = _claim(x, known)
+        label, d = _claim(x, known)
         run = run + 1 if label is not None and label == run_label else int(label is not None)
         run_label = label
-        if label is not None and run >= need[label]:
+        if label is None:
+            continue
+        k = cycle[label]
+        if k == 0:  # not periodic
+            done = run >= CONFIRM
+        elif run % k == 0:
+            done, last = run >= 2 * k and d < last, d
+        else:
+            done = False
+        if done:
             return {"label": label, "periods": n, "final": x.tolist(), "failed": None}
     return {"label": None, "periods": max_periods, "final": x.tolist(), "failed": None}
 
@@ -396,7 +415,7 @@ def basins(
     current = {i: starts[i] for i in todo}
     for _ in range(MAX_ROUNDS):
         known = [
-            (j, p, _tolerance(a, p), a.periods if a.kind == "periodic" else CONFIRM)
+            (j, p, _tolerance(a, p), a.periods if a.kind == "periodic" else 0)
             for j, (a, p) in enumerate(zip(found, found_points))
         ]
         rows = _map_all(
