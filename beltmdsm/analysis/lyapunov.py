@@ -24,10 +24,12 @@ monodromy loses rank and one exponent is ``-inf`` (a Floquet multiplier 0). It i
 reported as ``-inf`` (``None`` in JSON) with ``collapsed`` counting such directions,
 never as the large negative number rounding would give.
 
-**Error.** ``error`` is the larger of the standard error of the exponents over
-`BLOCKS` blocks of the averaging window and the drift of the running mean (the mean
-over the whole window against the mean over its second half): the first bounds the
-fluctuation, the second the transient left in the start.
+**Error.** ``error`` is the largest of the standard error of the exponents over
+`BLOCKS` blocks of the averaging window, the drift of the running mean (the mean over
+the whole window against the mean over its second half) and ``rtol / tau``: the first
+bounds the fluctuation, the second the transient left in the start, the third the
+runs' tolerance, which no average removes (benchmarks/bench_lyapunov.py: errors of
+6e-12 1/s on the stick orbit where the spread says 1e-14).
 """
 
 from __future__ import annotations
@@ -269,7 +271,7 @@ def lyapunov(
                 logs[k - n_align] += np.log(d)
         if k >= n_align:
             samples[k - n_align] = y
-    return _spectrum(model, logs, collapsed, base, tau, t_transient, switches, samples)
+    return _spectrum(model, logs, collapsed, base, tau, rtol, t_transient, switches, samples)
 
 
 def _settings(t0, t1, rtol, backend):
@@ -279,7 +281,7 @@ def _settings(t0, t1, rtol, backend):
     )
 
 
-def _spectrum(model, logs, collapsed, base, tau, t_transient, switches, samples):
+def _spectrum(model, logs, collapsed, base, tau, rtol, t_transient, switches, samples):
     """The exponents, their errors and running means from each period's ``sum log |R_ii|``."""
     n = logs.shape[0]
     finite = np.where(collapsed, 0.0, logs)
@@ -288,7 +290,9 @@ def _spectrum(model, logs, collapsed, base, tau, t_transient, switches, samples)
     blocks = finite[: n - n % BLOCKS].reshape(BLOCKS, -1, 4).mean(axis=1) / base
     spread = blocks.std(axis=0, ddof=1) / math.sqrt(BLOCKS)
     second = finite[n // 2 :].mean(axis=0) / base
-    error = np.maximum(spread, np.abs(mean - second))
+    # the runs' tolerance bounds what no average removes: each chunk's R_ii carries
+    # about rtol of relative error, rtol / tau of rate
+    error = np.maximum(np.maximum(spread, np.abs(mean - second)), rtol / tau)
     exponents = np.where(collapsed, -np.inf, mean)
     error = np.where(collapsed, 0.0, error)
     order = np.argsort(-exponents, kind="stable")
