@@ -42,6 +42,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..model import Backend, Model, as_model, excitation_period
+from .floquet import periodic_response
 from .locked import NotLocked, stroboscope
 from .lyapunov import lyapunov
 from .periodmap import NoPeriodicResponse
@@ -245,8 +246,6 @@ def _attractor(kind, spec, evidence, periods=None, rotation=None, accuracy=None,
 
 
 def _forced(model, spec, backend):
-    from .floquet import periodic_response
-
     lam, err = spec.largest, float(spec.error[0])
     bound = SIGNIFICANCE * err + ZERO_TOL
     tried = []

@@ -39,6 +39,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..analysis.attractor import KINDS, Attractor, classify
+from ..analysis.floquet import floquet
 from ..analysis.periodmap import NoPeriodicResponse, period_map
 from ..errors import Refused
 from ..model import Model, as_model, excitation_period
@@ -446,8 +447,6 @@ def basins(
 def _periodic_response(model):
     """The T-periodic response as a known attractor where it is stable (Floquet), so that
     the starts it attracts are claimed in the first round: ``[]`` or ``[Attractor]``."""
-    from ..analysis.floquet import floquet
-
     try:
         f = floquet(model)
     except NoPeriodicResponse:

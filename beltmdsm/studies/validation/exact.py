@@ -39,6 +39,7 @@ import numpy as np
 from ...analysis.attractor import classify
 from ...analysis.floquet import NoPeriodicResponse
 from ...analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
+from ...analysis.periodmap import period_map
 from ...analysis.summary import TRANSIENT_DECAYED
 from ...model import Model
 from ...settings import SolverSettings
@@ -196,8 +197,6 @@ def _seed_classified(exact, model, value, run, seed_step, settings):
         return None, None
     u = min(near, key=lambda u: abs(u.value - value))
     where = f"the seed '{u.evidence.source}' at Vb = {u.value:g}"
-    from ...analysis.periodmap import period_map
-
     pmap = period_map(model)
     start = pmap.full_state(pmap.guess(u.evidence.state))
     return _classified(model, start, settings, _not_locked_text(u.evidence, where))
