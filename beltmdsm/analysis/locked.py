@@ -155,6 +155,9 @@ class NotLocked:
         closed path through them in that order.
     centre : tuple of float
         ``(X1, X1')`` of the centre.
+    state : tuple of float
+        The last sample (a shooting state at phase 0): where a closer look, the
+        classification of `beltmdsm.analysis.attractor`, starts.
     """
 
     source: str
@@ -166,6 +169,7 @@ class NotLocked:
     dimension: float
     largest_step: float
     centre: tuple[float, float]
+    state: tuple[float, ...] = ()
 
     @classmethod
     def of(cls, strobe: Stroboscope) -> NotLocked:
@@ -199,6 +203,7 @@ class NotLocked:
             dimension,
             step,
             (float(centre[0]), float(centre[1])),
+            tuple(float(v) for v in strobe.samples[-1]),
         )
 
     def text(self) -> str:

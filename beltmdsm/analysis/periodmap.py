@@ -815,6 +815,15 @@ class TangentialMap(PeriodMap):
         """``(P(x), M_t, run, grazing)`` of `OnePeriodMap`."""
         return self.one(x)
 
+    def step(self, x: ArrayLike) -> NDArray[np.float64]:
+        """The tangential state one excitation period after ``x``: the run alone, without
+        the Jacobian and the grazing test of `one_period` (a third of its cost), for the
+        forward iterations that read the state only (basins, attractors of the map)."""
+        run = self.one.engine.run(0.0, float(x[0]), float(x[1]), self.period)
+        if run.status != "done":
+            raise NoPeriodicResponse(f"period map: {run.message}")
+        return np.array(run.final[:2], dtype=float)
+
     def fixed_multipliers(self) -> NDArray[np.complex128]:
         """The normal block's multipliers to the power ``k``."""
         return np.asarray(self.one.orbit.multipliers, dtype=complex) ** self.periods
@@ -923,6 +932,18 @@ class GeneralMap(PeriodMap):
         m = variational.monodromy(run, self.backend)
         period = EventPeriod.of(run, m.switches)
         return period.final, m.matrix, period, self._grazing(m.switches)
+
+    def step(self, x: ArrayLike) -> NDArray[np.float64]:
+        """The full state one excitation period after ``x``: the run alone, without its
+        monodromy (most of `one_period`'s cost), for forward iterations."""
+        try:
+            run = integrate_events(self.model, self._settings, y0=np.array(x, dtype=float))
+        except StepTooSmall as err:
+            raise NoPeriodicResponse(f"period map: {err}") from None
+        if run.status != "done":
+            raise NoPeriodicResponse(f"period map: {run.message}")
+        tr = run.trajectory
+        return tr.state(np.array([tr.t_end]))[:, 0]
 
     def fixed_multipliers(self) -> NDArray[np.complex128]:
         """None: every direction is shot in."""

@@ -27,6 +27,8 @@ COMMANDS = {
     "branch": "branch",
     "coexistence": "coexistence",
     "floquet-map": "floquet_map",
+    "lyapunov": "lyapunov",
+    "basins": "basins",
     "validate": "validate",
     "docs": "docs",
 }

@@ -58,6 +58,7 @@ def integrate_events(
     y0: ArrayLike | None = None,
     t0: float = 0.0,
     progress: Callable[[float], object] | None = None,
+    max_step: float = np.inf,
 ) -> Run:
     """Integrate Eq. (4) mode by mode with located switches (module docstring).
 
@@ -72,6 +73,11 @@ def integrate_events(
     t0 : float
     progress : callable, optional
         Called with the time reached after every smooth segment (a progress bar).
+    max_step : float
+        The longest step [s]. The step control sees the state only: where it rests
+        (an equilibrium) the steps grow without bound, and a variational equation
+        carried on them (`beltmdsm.analysis.variational`) leaves the method's region
+        of accuracy; `beltmdsm.analysis.lyapunov` bounds them.
 
     Returns
     -------
@@ -92,7 +98,7 @@ def integrate_events(
     zeno = Zeno(sw)
     status, message = "done", "reached t_end"
     h_next = 0.0
-    max_step = np.inf
+    max_step = float(max_step)
     field, surf, rates = sw.field, sw.surfaces, sw.rates
     while t < t_end:
         watch, dirs, _ = sw.guards[mode]

@@ -18,9 +18,13 @@ longer period than `beltmdsm.analysis.locked.LOCK_LIMIT`), or *unexplained*. A r
 from rest that no computed response explains is run again with its settings and its
 stroboscope examined (`beltmdsm.studies.responses.run_stroboscope`): where it locks,
 its response is computed by shooting and compared like the others (a response the
-exact study's seeds did not reach); where it does not, it is *not locked* with that
-run's own evidence. The continued sweeps cannot be rerun at one point: for them the
-seeds of the exact study that stand for them (its ladders) decide.
+exact study's seeds did not reach). Where it does not lock within the limit, the run is
+classified (`beltmdsm.analysis.attractor.classify`: its Lyapunov spectrum and its
+return after any number of periods) and a long lock it finds (59T at the base set's
+Vb = 3.5) is computed and compared the same way; otherwise it is *not locked* with the
+classification's evidence (quasi-periodic, chaotic, or what could not be told). The
+continued sweeps cannot be rerun at one point: for them the seed of the exact study
+that stands for them (its ladders) is classified from its last state the same way.
 """
 
 from __future__ import annotations
@@ -32,8 +36,10 @@ from typing import Literal
 
 import numpy as np
 
+from ...analysis.attractor import classify
 from ...analysis.floquet import NoPeriodicResponse
 from ...analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
+from ...analysis.periodmap import period_map
 from ...analysis.summary import TRANSIENT_DECAYED
 from ...model import Model
 from ...settings import SolverSettings
@@ -177,13 +183,35 @@ def _unlocked_reason(exact: Coexistence, value: float, run: str, seed_step: floa
     return _not_locked_text(u.evidence, f"the seed '{u.evidence.source}' at Vb = {u.value:g}")
 
 
+def _seed_classified(exact, model, value, run, seed_step, settings):
+    """The seed of ``run``'s kind near ``value`` that does not lock, classified from its
+    last state at ``value``: as `_classified`, or ``(None, None)`` without such a seed."""
+    near = [
+        u
+        for u in exact.unlocked
+        if abs(u.value - value) <= seed_step * (1 + 1e-9)
+        and u.evidence.source.startswith(SEED_SOURCES[run])
+        and u.evidence.state
+    ]
+    if not near:
+        return None, None
+    u = min(near, key=lambda u: abs(u.value - value))
+    where = f"the seed '{u.evidence.source}' at Vb = {u.value:g}"
+    pmap = period_map(model)
+    start = pmap.full_state(pmap.guess(u.evidence.state))
+    return _classified(model, start, settings, _not_locked_text(u.evidence, where))
+
+
 def _rest_rerun(model: Model, settings: SolverSettings, limit: int):
     """The run from rest at ``model`` again: ``(name, (range, max |mu|, k T))`` of the response
     it locks on, or ``(None, reason)`` where it does not lock or its response is not found."""
     strobe = run_stroboscope(model, settings=settings, limit=limit)
     k = strobe.candidate
     if k is None:
-        return None, _not_locked_text(NotLocked.of(strobe), "the run from rest at this Vb")
+        evidence = NotLocked.of(strobe)
+        return _classified(
+            model, None, settings, _not_locked_text(evidence, "the run from rest at this Vb")
+        )
     try:
         pmap, point = shoot(model, k, strobe.samples[-1])
     except NoPeriodicResponse as err:
@@ -196,6 +224,27 @@ def _rest_rerun(model: Model, settings: SolverSettings, limit: int):
         return None, f"the run from rest locks at {k} periods on a response with |mu| = {mu:.4g}"
     name = ("T" if k == 1 else f"{k}T") + " (from the run from rest)"
     return name, (point.image.velocity_range(), mu, k * pmap.period)
+
+
+#: The length of a classification run [s]: long locks (up to 281T found) need their
+#: return seen three times over.
+CLASSIFY_T_END = 2000.0
+
+
+def _classified(model, start, settings, not_locked):
+    """Classify the attractor reached from ``start`` (None: rest) where no lock within the
+    limit was seen: ``(name, (range, max |mu|, k T))`` of a long lock it finds, else
+    ``(None, reason)`` with ``not_locked`` and the classification's evidence."""
+    a = classify(model, y0=start, t_end=max(CLASSIFY_T_END, settings.t_end))
+    if a.kind == "periodic":
+        try:
+            pmap, point = shoot(model, a.periods, a.state)
+        except NoPeriodicResponse as err:  # classify's Newton converged: not expected
+            return None, f"{not_locked}; classified {a.periods}T, but {err}"
+        mu = _largest_multiplier(pmap, point)
+        name = f"{a.periods}T (classified: rotation {a.rotation_number:+.4f})"
+        return name, (point.image.velocity_range(), mu, a.periods * pmap.period)
+    return None, f"{not_locked}; classified {a.kind.replace('_', '-')}: {a.evidence}"
 
 
 def _largest_multiplier(pmap, point) -> float:
@@ -267,8 +316,11 @@ def explain_coexistence(
             candidates = list(stable)
             best = min(candidates, key=lambda c: _deviation(observed, c[1]), default=None)
             rerun = None
-            if run == "rest" and (best is None or _deviation(observed, best[1]) > tolerance):
-                name, found = _rest_rerun(model, settings, limit)
+            if best is None or _deviation(observed, best[1]) > tolerance:
+                if run == "rest":
+                    name, found = _rest_rerun(model, settings, limit)
+                else:
+                    name, found = _seed_classified(exact, model, value, run, seed_step, settings)
                 if name is None:
                     rerun = found
                 else:

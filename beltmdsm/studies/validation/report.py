@@ -231,8 +231,11 @@ def _coexistence_section(results: Validation) -> list[str]:
         "",
         "Per run that shows the peak: the computed response it is on, *not settled* (the "
         "closest stable response attracts too slowly for the run to have reached it), *not "
-        "locked* (a seed of the exact study next to it, of the same kind of run, does not "
-        "lock: quasi-periodic motion or a longer period), or *unexplained*. Consecutive points "
+        "locked* (neither the run nor a seed of the exact study next to it, of the same kind "
+        "of run, locks within 12 periods, and their classification by Lyapunov exponents "
+        "and returns after any number of periods, `beltmdsm.analysis.attractor.classify`, "
+        "names no long lock: the attractor's kind is given), or *unexplained*. A long lock "
+        "that the classification finds is named kT (classified). Consecutive points "
         "with the same answers share a row; the largest deviation of a run's X1' range "
         "from its response's, over the response's amplitude, is given.",
         "",

@@ -1,0 +1,77 @@
+"""``lyapunov``: the Lyapunov spectrum of a run, through the switches."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from ..flags import json_parent, model_from, model_parent, number, register
+
+
+def add(commands, name: str) -> None:
+    sub = register(
+        commands,
+        name,
+        run,
+        [model_parent(), json_parent()],
+        help="Lyapunov exponents of a run (saltation matrices at every switch)",
+        description="The Lyapunov spectrum of a run of Eq. (4), largest first, by the "
+        "variational equations with the saltation matrix at every switch and QR "
+        "re-orthonormalisation (beltmdsm/analysis/lyapunov.py); -inf (null in JSON) for "
+        "a direction a stick phase removes.",
+    )
+    sub.add_argument(
+        "--start",
+        choices=("rest", "periodic"),
+        default="rest",
+        help="start from the equilibrium at rest (default), or on the periodic response "
+        "with X1 moved by --perturbation",
+    )
+    sub.add_argument(
+        "--perturbation",
+        type=number(),
+        default=1e-2,
+        metavar="DX1",
+        help="with --start periodic: the move of X1 from the periodic response [m] (default 1e-2)",
+    )
+    sub.add_argument(
+        "--t-end",
+        type=number(lambda x: x > 0, "positive"),
+        default=1000.0,
+        metavar="T",
+        help="the run's length [s] (default 1000): 30 %% transient, then the average",
+    )
+    sub.add_argument(
+        "--t-transient",
+        type=number(lambda x: x >= 0, "nonnegative"),
+        default=None,
+        metavar="T",
+        help="time run before averaging [s] (default 30 %% of --t-end)",
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    from ...analysis.lyapunov import lyapunov
+    from .. import text
+
+    model = model_from(args)
+    y0 = None
+    if args.start == "periodic":
+        from ...analysis.floquet import periodic_start
+
+        y0 = periodic_start(model, args.perturbation)
+    spec = lyapunov(model, y0=y0, t_end=args.t_end, t_transient=args.t_transient)
+    out = spec.as_dict()
+    out["start"] = args.start
+    if args.start == "periodic":
+        out["perturbation"] = args.perturbation
+    out.update(model.as_dict())
+    if args.json:
+        print(json.dumps(text.jsonable(out)))
+    else:
+        print(repr(spec))
+        print(
+            f"error from the spread over {8} blocks and the drift of the running mean; "
+            f"{spec.collapsed} direction(s) removed by stick (exponent -inf)"
+        )
+    return 0

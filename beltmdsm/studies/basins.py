@@ -1,0 +1,521 @@
+"""Basins of attraction: which attractor each start of a plane of initial states reaches.
+
+The question an engineer asks where stable responses coexist: how large a disturbance
+starts the vibration. `basins` starts the model on a grid of a plane of states at the
+excitation's phase 0 (default ``X1`` and ``X1'``, the normal state on its periodic
+orbit) and iterates the period map (`beltmdsm.analysis.periodmap.period_map`, the
+closed-form map where the laws allow it) from each start until the state stays within
+`IDENTIFY_TOL` of a known attractor's stroboscopic points for two cycles of them,
+contracting towards them (`_land`): a start is stopped as soon as it is identified,
+as Attractors.jl's recurrence approach does, instead of being run to the end and
+classified by its spectrum.
+
+Attractors are found and named by `beltmdsm.analysis.attractor.classify`: first the
+one the run from rest reaches, the T-periodic response where it is stable (shooting and
+Floquet) and any the caller gives, then, round by round, the
+one each start that no known attractor claims settles on (classified from its state
+after `MAX_PERIODS`; the first such start in grid order). The rounds depend on the
+grid only, never on the order in which workers finish: the map and its labels are the
+same on one process, a pool or a dask cluster. Labels are ordered by kind, period
+and state, not by discovery.
+
+Each start is a pure function of the model, the start, the known attractors and the
+settings, cached on disk (`beltmdsm.studies.cache`) when a cache folder is given: an
+interrupted map resumes from its cache.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import functools
+import hashlib
+import json
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..analysis.attractor import KINDS, Attractor, classify
+from ..analysis.floquet import floquet
+from ..analysis.periodmap import NoPeriodicResponse, period_map
+from ..errors import Refused
+from ..model import Model, as_model, excitation_period
+from . import cache
+
+__all__ = [
+    "Basins",
+    "BasinAttractor",
+    "basins",
+    "AXES",
+    "IDENTIFY_TOL",
+    "MAX_PERIODS",
+    "MAX_ROUNDS",
+    "MAX_STARTS",
+]
+
+#: The axes of the plane: the state's components at phase 0.
+AXES = ("X1", "Y1", "X2", "Y2")
+_LABELS = {"X1": "X1 [m]", "Y1": "X1' [m/s]", "X2": "X2 [m]", "Y2": "X2' [m/s]"}
+#: Consecutive periods a start must stay on an attractor that is not a periodic
+#: response (a curve or a cloud of points) to be claimed by it.
+CONFIRM = 20
+#: A state within this distance of a periodic attractor's point (relative to
+#: ``1 + |x|``) for two cycles of its points, closer after the second, is on it
+#: (`_land`). The basins here are O(1) wide (the T-periodic response's at Vb = 3.88
+#: about 2 m by 3 m/s, 30 times this at |x| = 6).
+IDENTIFY_TOL = 1e-2
+#: Periods a start is iterated before it is handed to the classification.
+MAX_PERIODS = 2000
+#: Rounds of classifying the first unclaimed start.
+MAX_ROUNDS = 6
+#: Most starts of one map (a 300 x 300 grid).
+MAX_STARTS = 90_000
+
+
+@dataclass
+class BasinAttractor:
+    """An attractor of a basin map: its classification, label and share of the starts."""
+
+    label: int
+    attractor: Attractor = field(repr=False)
+    fraction: float
+    points: NDArray[np.float64] = field(repr=False)
+
+    def __repr__(self) -> str:
+        a = self.attractor
+        what = a.kind + (f" {a.periods}T" if a.periods else "")
+        return f"BasinAttractor({self.label}: {what}, {100 * self.fraction:.1f}% of the starts)"
+
+    def as_dict(self) -> dict:
+        a = self.attractor.as_dict()
+        return {
+            "label": self.label,
+            "kind": a["kind"],
+            "periods": a["periods"],
+            "rotation_number": a["rotation_number"],
+            "lyapunov": a["lyapunov"],
+            "lyapunov_error": a["lyapunov_error"],
+            "fraction": self.fraction,
+            "evidence": a["evidence"],
+            "state": a["state"],
+        }
+
+
+@dataclass
+class Basins:
+    """A basin map: a label per start of a grid of the plane ``(x, y)``.
+
+    Attributes
+    ----------
+    model : Model
+    x, y : str
+        The axes (`AXES`).
+    xs, ys : ndarray
+        The grid's values on each axis.
+    labels : ndarray (len(ys), len(xs)) of int
+        The attractor each start reaches (`BasinAttractor.label`), -1 where none was
+        identified within the rounds.
+    attractors : list of BasinAttractor
+    periods : ndarray (len(ys), len(xs))
+        The periods each start was iterated before it was identified.
+    """
+
+    model: Model = field(repr=False)
+    x: str
+    y: str
+    xs: NDArray[np.float64] = field(repr=False)
+    ys: NDArray[np.float64] = field(repr=False)
+    labels: NDArray[np.int_] = field(repr=False)
+    attractors: list[BasinAttractor]
+    periods: NDArray[np.int_] = field(repr=False)
+
+    def __repr__(self) -> str:
+        shares = ", ".join(repr(a) for a in self.attractors)
+        left = int(np.sum(self.labels < 0))
+        return (
+            f"Basins({self.labels.size} starts on ({self.x}, {self.y}): [{shares}]"
+            + (f", {left} unidentified" if left else "")
+            + ")"
+        )
+
+    def as_dict(self) -> dict:
+        """JSON-ready: ``attractors`` and ``grid`` (the axes and a label per start)."""
+        return {
+            "attractors": [a.as_dict() for a in self.attractors],
+            "grid": {
+                "x": self.x,
+                "y": self.y,
+                "xs": [float(v) for v in self.xs],
+                "ys": [float(v) for v in self.ys],
+                "labels": self.labels.tolist(),
+            },
+            "unidentified": int(np.sum(self.labels < 0)),
+        }
+
+    def plot(self, ax: Any = None) -> Any:
+        """The basin map: one colour per attractor, a legend with its kind and share."""
+        import matplotlib.pyplot as plt
+        from matplotlib.colors import ListedColormap
+
+        if ax is None:
+            ax = plt.figure().add_subplot()
+        n = max(len(self.attractors), 1)
+        colours = plt.get_cmap("tab10")(np.arange(n) % 10)
+        cmap = ListedColormap(np.vstack([[0.85, 0.85, 0.85, 1.0], colours]))
+        ax.pcolormesh(
+            self.xs,
+            self.ys,
+            self.labels + 1,
+            cmap=cmap,
+            vmin=0,
+            vmax=n,
+            shading="nearest",
+            alpha=0.5,
+        )
+        for a, c in zip(self.attractors, colours):
+            p = a.points
+            ax.plot(
+                p[:, AXES.index(self.x)],
+                p[:, AXES.index(self.y)],
+                "o",
+                ms=6,
+                mec="k",
+                color=c,
+                label=repr(a).removeprefix("BasinAttractor(").rstrip(")"),
+            )
+        ax.set_xlabel(_LABELS[self.x])
+        ax.set_ylabel(_LABELS[self.y])
+        ax.legend(loc="best", fontsize="small")
+        return ax
+
+
+@functools.lru_cache(maxsize=4)
+def _map(model, general=False):
+    """The one-period map; the general engine where the plane has a normal axis (the
+    closed-form map keeps the normal motion on its periodic orbit)."""
+    return period_map(model, engine="general" if general else None)
+
+
+def _claim(x, known):
+    """``(label, distance)`` of the first known attractor whose points ``x`` is within
+    tolerance of (the distance relative to ``1 + |x|``), or ``(None, inf)``."""
+    scale = 1.0 + float(np.max(np.abs(x)))
+    for label, points, tol, _ in known:
+        d = float(np.min(np.max(np.abs(points - x), axis=1))) / scale
+        if d <= tol:
+            return label, d
+    return None, np.inf
+
+
+def _land(model, general, start, known, max_periods):
+    """Iterate the period map from ``start`` until a known attractor claims it.
+
+    A periodic attractor of ``k`` phases claims a start that stays within its tolerance
+    for two whole cycles (``2 k`` periods) and comes closer over the second: the
+    contraction a stable orbit's neighbourhood shows, which a trajectory passing by on
+    its way to another attractor does not. Any other attractor claims after `CONFIRM`
+    periods within its tolerance.
+
+    Returns ``{"label", "periods", "final", "failed"}``: the label (None if unclaimed
+    after ``max_periods``), the periods iterated, the shooting state reached.
+    """
+    pmap = _map(model, general)
+    x = pmap.guess(np.asarray(start, dtype=float))
+    cycle = {label: k for label, _, _, k in known}
+    run_label, run, last = None, 0, np.inf
+    for n in range(1, max_periods + 1):
+        try:
+            x = pmap.step(x)
+        except NoPeriodicResponse as err:
+            return {"label": None, "periods": n, "final": None, "failed": str(err)}
+        label, d = _claim(x, known)
+        run = run + 1 if label is not None and label == run_label else int(label is not None)
+        run_label = label
+        if label is None:
+            continue
+        k = cycle[label]
+        if k == 0:  # not periodic
+            done = run >= CONFIRM
+        elif run % k == 0:
+            done, last = run >= 2 * k and d < last, d
+        else:
+            done = False
+        if done:
+            return {"label": label, "periods": n, "final": x.tolist(), "failed": None}
+    return {"label": None, "periods": max_periods, "final": x.tolist(), "failed": None}
+
+
+def _known_digest(known):
+    h = hashlib.sha256()
+    for label, points, tol, need in known:
+        h.update(json.dumps([label, tol, need]).encode())
+        h.update(np.round(np.asarray(points), 12).tobytes())
+    return h.hexdigest()
+
+
+def _cached_land(model, general, start, known, max_periods, cache_dir):
+    if cache_dir is None:
+        return _land(model, general, start, known, max_periods)
+    ident = {
+        "basin": model.as_dict(),
+        "general": bool(general),
+        "start": [float(v) for v in start],
+        "known": _known_digest(known),
+        "max_periods": int(max_periods),
+    }
+    path = Path(cache_dir) / f"{cache.cache_key(ident)}.json"
+    row, _ = cache.read_cached(path, ident, ("label", "periods", "final", "failed"))
+    if row is None:
+        row = _land(model, general, start, known, max_periods)
+        cache.write_cached(path, ident, row)
+    return row
+
+
+def _points(pmap, attractor):
+    """An attractor's stroboscopic points in the map's shooting state."""
+    if attractor.kind == "periodic":
+        x = pmap.guess(attractor.state)
+        out = [x]
+        for _ in range(attractor.periods - 1):
+            x = pmap.step(x)
+            out.append(x)
+        return np.array(out)
+    return pmap.shooting(attractor.points)
+
+
+def _tolerance(attractor, points):
+    """Periodic: `IDENTIFY_TOL`; a curve or a cloud: twice its largest gap between
+    neighbours as well (its points are samples, not the whole set)."""
+    if attractor.kind == "periodic" or len(points) < 2:
+        return IDENTIFY_TOL
+    from scipy.spatial import cKDTree
+
+    d, _ = cKDTree(points).query(points, k=2)
+    scale = 1.0 + float(np.max(np.abs(points)))
+    return max(IDENTIFY_TOL, 2.0 * float(np.max(d[:, 1])) / scale)
+
+
+def _same(a, pa, b, pb):
+    """Whether two classified attractors are one (kind, period and points agree)."""
+    if a.kind != b.kind or a.periods != b.periods:
+        return False
+    scale = 1.0 + float(np.max(np.abs(pa)))
+    tol = max(_tolerance(a, pa), _tolerance(b, pb)) * scale
+    near = [float(np.min(np.max(np.abs(pa - x), axis=1))) for x in pb]
+    return max(near) <= max(tol, 1e-6 * scale)
+
+
+def _map_all(fn, items, executor):
+    if executor is None or executor == "serial":
+        return [fn(*it) for it in items]
+    futures = [executor.submit(fn, *it) for it in items]
+    return [f.result() for f in futures]
+
+
+def basins(
+    model: Model | None = None,
+    *,
+    x: str = "X1",
+    x_range: tuple[float, float] | None = None,
+    y: str = "Y1",
+    y_range: tuple[float, float] | None = None,
+    points: int = 21,
+    executor: cf.Executor | str | None = "serial",
+    cache_dir: os.PathLike | str | None = None,
+    attractors: list[Attractor] | None = None,
+    max_periods: int = MAX_PERIODS,
+    t_end: float = 2000.0,
+    **params: float | str,
+) -> Basins:
+    """The basins of attraction on a ``points x points`` grid of a plane (module docstring).
+
+    Parameters
+    ----------
+    model : Model, optional
+        Or the keywords it is built from; it must have a periodic excitation.
+    x, y : {"X1", "Y1", "X2", "Y2"}
+        The axes of the plane (``Y1`` is ``X1'``); the other components are those of the
+        first attractor's state at phase 0 (for the default plane: the normal state on
+        its periodic orbit).
+    x_range, y_range : (float, float), optional
+        Default: the known attractors' points, widened threefold about their centre.
+    points : int
+        Starts per axis.
+    executor : concurrent.futures.Executor, "serial" or None
+        Where the starts run (a process pool, ``Client.get_executor()`` of a dask
+        cluster); the result does not depend on it.
+    cache_dir : path, optional
+        The disk cache of the starts (resume after an interruption).
+    attractors : list of Attractor, optional
+        Known attractors (`beltmdsm.analysis.attractor.classify`), besides the run
+        from rest's.
+    max_periods : int
+        Periods a start is iterated before the classification takes it.
+    t_end : float
+        The length of each classification run [s].
+
+    Returns
+    -------
+    Basins
+
+    Raises
+    ------
+    ValueError
+        For a bad axis, range, ``points`` or ``max_periods``, or no excitation.
+    beltmdsm.errors.Refused
+        For more than `MAX_STARTS` starts.
+
+    See Also
+    --------
+    beltmdsm.analysis.attractor.classify : names each attractor.
+    beltmdsm.studies.coexistence.coexistence : where stable responses coexist.
+    """
+    model = as_model(model, **params)
+    excitation_period(model)  # a map needs a period: refuse before anything runs
+    for name, axis in (("x", x), ("y", y)):
+        if axis not in AXES:
+            raise ValueError(f"{name} must be one of {AXES}; got {axis!r}")
+    if x == y:
+        raise ValueError(f"x and y must differ; got {x!r} twice")
+    if isinstance(points, bool) or not isinstance(points, int) or points < 2:
+        raise ValueError(f"points must be an integer >= 2; got {points!r}")
+    if points * points > MAX_STARTS:
+        raise Refused(
+            f"points = {points} gives {points * points} starts, more than MAX_STARTS = "
+            f"{MAX_STARTS} (beltmdsm/studies/basins.py)",
+            "points",
+        )
+    if isinstance(max_periods, bool) or not isinstance(max_periods, int) or max_periods < 1:
+        raise ValueError(f"max_periods must be an integer >= 1; got {max_periods!r}")
+    x_range = _checked("x_range", x_range)
+    y_range = _checked("y_range", y_range)
+    if cache_dir is not None:
+        cache_dir = cache.writable_folder(cache_dir)
+
+    general = x in ("X2", "Y2") or y in ("X2", "Y2")
+    pmap = _map(model, general)
+    found = [classify(model, t_end=t_end), *_periodic_response(model), *(attractors or [])]
+    found_points = [_points(pmap, a) for a in found]
+    base = np.asarray(found[0].state, dtype=float)
+    ix, iy = AXES.index(x), AXES.index(y)
+    xs = np.linspace(*_range("x_range", x_range, found, ix), points)
+    ys = np.linspace(*_range("y_range", y_range, found, iy), points)
+    starts = []
+    for vy in ys:
+        for vx in xs:
+            s = base.copy()
+            s[ix], s[iy] = vx, vy
+            starts.append(s)
+
+    labels = np.full(len(starts), -1)
+    periods = np.zeros(len(starts), dtype=int)
+    todo = list(range(len(starts)))
+    current = {i: starts[i] for i in todo}
+    for _ in range(MAX_ROUNDS):
+        known = [
+            (j, p, _tolerance(a, p), a.periods if a.kind == "periodic" else 0)
+            for j, (a, p) in enumerate(zip(found, found_points))
+        ]
+        rows = _map_all(
+            _cached_land,
+            [(model, general, current[i], known, max_periods, cache_dir) for i in todo],
+            executor,
+        )
+        left = []
+        for i, row in zip(todo, rows):
+            periods[i] += row["periods"]
+            if row["label"] is not None:
+                labels[i] = row["label"]
+            elif row["final"] is not None:
+                current[i] = pmap.full_state(row["final"])
+                left.append(i)
+        if not left:
+            break
+        new = classify(model, y0=current[left[0]], t_end=t_end)
+        new_points = _points(pmap, new)
+        if any(_same(a, p, new, new_points) for a, p in zip(found, found_points)):
+            break  # the unclaimed starts approach a known attractor too slowly: stop
+        found.append(new)
+        found_points.append(new_points)
+        todo = left
+    return _result(pmap, model, x, y, xs, ys, labels, periods, found, found_points)
+
+
+def _periodic_response(model):
+    """The T-periodic response as a known attractor where it is stable (Floquet), so that
+    the starts it attracts are claimed in the first round: ``[]`` or ``[Attractor]``."""
+    try:
+        f = floquet(model)
+    except NoPeriodicResponse:
+        return []
+    if not f.stable:
+        return []
+    mu = np.sort(np.abs(f.multipliers))[::-1]
+    with np.errstate(divide="ignore"):
+        exponents = np.log(mu) / f.response.period
+    state = f.response.state0
+    return [
+        Attractor(
+            "periodic",
+            1,
+            0.0,
+            0.0,
+            float(exponents[0]),
+            0.0,
+            exponents,
+            "the T-periodic response by shooting, stable (Floquet multipliers)",
+            state,
+            state[None, :],
+        )
+    ]
+
+
+def _checked(name, given):
+    if given is None:
+        return None
+    try:
+        lo, hi = (float(v) for v in given)
+    except (TypeError, ValueError):
+        lo, hi = np.nan, np.nan
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+        raise ValueError(f"{name} must be two finite numbers, low < high; got {given!r}")
+    return lo, hi
+
+
+def _range(name, given, found, index):
+    if given is not None:
+        return given
+    values = np.concatenate([np.atleast_1d(a.points[:, index]) for a in found])
+    values = np.append(values, [a.state[index] for a in found])
+    c, w = 0.5 * (values.min() + values.max()), max(float(np.ptp(values)), 1.0)
+    return c - 1.5 * w, c + 1.5 * w
+
+
+def _result(pmap, model, x, y, xs, ys, labels, periods, found, found_points):
+    """Labels ordered by kind, period and state, fractions, the grid reshaped."""
+    used = sorted(set(labels[labels >= 0].tolist()))
+    order = sorted(
+        used,
+        key=lambda j: (
+            KINDS.index(found[j].kind),
+            found[j].periods or 0,
+            tuple(np.round(found_points[j].min(axis=0), 6)),
+        ),
+    )
+    relabel = {j: n for n, j in enumerate(order)}
+    new = np.array([relabel.get(int(v), -1) for v in labels])
+    total = labels.size
+    attractors = [
+        BasinAttractor(
+            relabel[j],
+            found[j],
+            float(np.sum(labels == j)) / total,
+            np.array([pmap.full_state(p) for p in found_points[j]]),
+        )
+        for j in order
+    ]
+    shape = (len(ys), len(xs))
+    return Basins(model, x, y, xs, ys, new.reshape(shape), attractors, periods.reshape(shape))
