@@ -10,7 +10,10 @@ The runtime of the package: it imports the generated model (``generated/``, writ
 * `sweep`, `Sweep`: one parameter over a range, on any executor, with a disk cache.
 * `periodic_response`, `floquet`, `periodic_start` (`PeriodicResponse`, `Floquet`,
   `NoPeriodicResponse`): the periodic response, phase-locked ones of ``k`` periods
-  too (``periods=k``), and its exact stability.
+  too (``periods=k``), and its exact stability; without excitation, the self-excited
+  cycle.
+* `cycle`, `seed_cycle` (`Cycle`): a self-excited cycle of the model without
+  excitation, its period found by shooting with a phase condition, and its seed.
 * `floquet_band` (`Band`, `Edge`): the ranges of one parameter where it is unstable,
   each edge with its bifurcation; `branch` (`Branch`): a response continued in one
   parameter through folds; `floquet_map` (`FloquetMap`): the two-parameter map of
@@ -48,6 +51,9 @@ _API = {
     "Floquet": "analysis.floquet",
     "periodic_start": "analysis.floquet",
     "NoPeriodicResponse": "analysis.floquet",
+    "cycle": "analysis.cycles",
+    "Cycle": "analysis.cycles",
+    "seed_cycle": "analysis.cycles",
     "floquet_band": "analysis.band",
     "Band": "analysis.band",
     "Edge": "analysis.band",

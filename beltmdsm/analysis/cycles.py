@@ -66,7 +66,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from generated import hybrid
+from generated import hybrid, unforced
 
 from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.switching import Mode, Switching
@@ -239,6 +239,14 @@ class _Shooting:
             backend="python", **model.arguments(hybrid.bind_mode_jacobian)
         )
         self.direction = section_direction(model)
+        # the variational equation in pieces of h |lambda| <= 1 for the eigenvalues of
+        # steady sliding: over a long stick the normal motion sits still and the run's
+        # steps grow to seconds (`beltmdsm.analysis.variational.split_pieces`)
+        J = np.array(
+            unforced.jacobian_at_equilibrium(**model.arguments(unforced.jacobian_at_equilibrium)),
+            dtype=float,
+        ).reshape(4, 4)
+        self.max_piece = 1.0 / max(float(np.max(np.abs(np.linalg.eigvals(J)))), model["omega1"])
 
     def flow(self, x: NDArray[np.float64], T: float):
         """``(phi_T(x), M, period, f(phi_T(x)))``: the run of ``T`` from ``x`` and its monodromy."""
@@ -258,7 +266,7 @@ class _Shooting:
             raise NoPeriodicResponse(f"no self-excited cycle found: {err}") from None
         if run.status != "done":
             raise NoPeriodicResponse(f"no self-excited cycle found: {run.message}")
-        m = variational.monodromy(run, self.backend)
+        m = variational.monodromy(run, self.backend, self.max_piece)
         period = EventPeriod.of(run, m.switches)
         end = period.final
         f_end = np.array(self.sw.field(T, *end, float(period.modes[-1])), dtype=float)
@@ -355,14 +363,17 @@ def _residuals(shoot, x, T):
 def _newton(shoot, x, T, max_iter):
     """Newton's method on the bordered system (module docstring), damped steps."""
     flow, r, g, grad = _residuals(shoot, x, T)
-    history = []
+    history, polished = [], False
     for iteration in range(1, max_iter + 1):
         residual = float(np.max(np.abs(r)))
         scale = 1.0 + float(np.max(np.abs(x)))
         converged = residual <= NEWTON_TOL * scale and abs(g) <= NEWTON_TOL * shoot.scale(x)
-        # one step at least: a guess within the tolerance is polished to the rounding
-        if converged and iteration > 1:
+        # once within the tolerance, one more step polishes the orbit to the rounding:
+        # the trivial multiplier's distance from 1 is the phase condition's residual at
+        # the end times the sensitivity of the return time, large after a long stick
+        if converged and polished:
             return x, T, flow, residual, iteration
+        polished = converged
         merit = max(residual, abs(g))
         history.append(merit)
         if len(history) > _STAGNATION and history[-1] > 0.5 * history[-1 - _STAGNATION]:
@@ -407,11 +418,31 @@ def _newton(shoot, x, T, max_iter):
 
 
 def _trivial_index(M, f):
-    """The eigenvalue of ``M`` whose eigenvector is closest in direction to ``f``."""
+    """The eigenvalues of ``M`` and the index of the one whose eigenvector is closest in
+    direction to ``f``."""
     mu, V = np.linalg.eig(M)
     unit = f / np.linalg.norm(f)
     cosines = np.abs(np.conj(V).T @ unit) / np.linalg.norm(V, axis=0)
     return mu.astype(complex), int(np.argmax(cosines))
+
+
+def _multipliers(model, M, f):
+    """``(trivial, others)``: the multiplier along the flow ``f`` and the others.
+
+    Where the normal equation is free of the tangential state (the laws' fact
+    ``one_way_coupling``, ``generated.capabilities``) the monodromy is block upper
+    triangular, and its eigenvalues are those of the diagonal blocks: computed so, the
+    stick's 0 and the trivial 1 of the tangential block keep the rounding of that
+    block, not that of the coupling block (which grows like 1e4 at small ``Vb``, where
+    a perturbation of the normal force moves the end of a long stick) through a double
+    0 with the fast normal multiplier.
+    """
+    if model.fact("one_way_coupling")[0] and not np.any(M[2:, :2]):
+        mu, k = _trivial_index(M[:2, :2], f[:2])
+        normal = np.linalg.eigvals(M[2:, 2:]).astype(complex)
+        return mu[k], np.concatenate([np.delete(mu, k), normal])
+    mu, k = _trivial_index(M, f)
+    return mu[k], np.delete(mu, k)
 
 
 def _cycle_of(shoot, x, T, M, run, residual, iterations):
@@ -424,8 +455,7 @@ def _cycle_of(shoot, x, T, M, run, residual, iterations):
             f"(X1' varies by {vr[1] - vr[0]:.1e} m/s over the orbit)"
         )
     f = np.array(shoot.sw.field(0.0, *x, float(shoot.mode(x))), dtype=float)
-    mu, k = _trivial_index(M, f)
-    others = np.delete(mu, k)
+    trivial, others = _multipliers(model, M, f)
     others = others[np.argsort(-np.abs(others), kind="stable")]
     switches = [(t, b, a, s) for t, b, a, s, _ in run.switches]
     grazing = None
@@ -454,7 +484,7 @@ def _cycle_of(shoot, x, T, M, run, residual, iterations):
         float(T),
         M,
         others,
-        complex(mu[k]),
+        complex(trivial),
         residual,
         iterations,
         n_stick,

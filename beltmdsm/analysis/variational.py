@@ -45,6 +45,7 @@ __all__ = [
     "monodromy",
     "propagators",
     "graded_pieces",
+    "split_pieces",
     "saltation",
     "SURFACE_OF",
     "GRADED",
@@ -198,7 +199,33 @@ def saltation(
     )
 
 
-def monodromy(run: Run, backend: Backend | None = None) -> Monodromy:
+def split_pieces(
+    index: NDArray[np.int_],
+    starts: NDArray[np.float64],
+    ends: NDArray[np.float64],
+    max_piece: float,
+) -> tuple[NDArray[np.int_], NDArray[np.float64], NDArray[np.float64]]:
+    """Pieces longer than ``max_piece`` cut into equal ones (each in its step's polynomial).
+
+    The step control of a run watches the state only. Where part of the state sits
+    still (the normal motion at its equilibrium during a long stick, with nothing
+    exciting it) the integrator takes steps of seconds, over which one Runge-Kutta
+    step of the variational equation is far outside its accuracy for the fast
+    directions of the Jacobian: a multiplier of about 1e-47 came out as 1.4e7. Pieces
+    of at most ``max_piece`` keep ``h |lambda|`` small for the Jacobian's eigenvalues.
+    """
+    n = np.maximum(1, np.ceil((ends - starts) / max_piece)).astype(np.int64)
+    owner = np.repeat(np.arange(n.size), n)
+    k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
+    length = (ends - starts)[owner] / n[owner]
+    new_starts = starts[owner] + k * length
+    new_ends = np.where(k == n[owner] - 1, ends[owner], new_starts + length)
+    return index[owner], new_starts, new_ends
+
+
+def monodromy(
+    run: Run, backend: Backend | None = None, max_piece: float | None = None
+) -> Monodromy:
     """``d x(t1) / d x(t0)`` of a run of the event-driven integrator (module docstring).
 
     Parameters
@@ -207,6 +234,9 @@ def monodromy(run: Run, backend: Backend | None = None) -> Monodromy:
         From `beltmdsm.integrate.events.integrate_events` (its dense output is read).
     backend : {"python", "numba", None}
         For the bound saltation kernels.
+    max_piece : float, optional
+        The longest piece the variational equation is carried over in one step
+        (`split_pieces`); None: the run's own steps (graded at contact switches).
 
     Raises
     ------
@@ -223,6 +253,8 @@ def monodromy(run: Run, backend: Backend | None = None) -> Monodromy:
     ends = np.minimum(t_steps + steps.h_steps, np.append(t_steps[1:], tr.t_end))
     contact = [t for t, kind, _ in run.events if SURFACE_OF.get(kind) == "penetration"]
     index, starts, ends = graded_pieces(t_steps, ends, contact)
+    if max_piece is not None:
+        index, starts, ends = split_pieces(index, starts, ends, max_piece)
     modes = tr.mode(0.5 * (starts + ends))
     R = propagators(
         tr.model,
