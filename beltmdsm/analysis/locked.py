@@ -158,6 +158,9 @@ class NotLocked:
     state : tuple of float
         The last sample (a shooting state at phase 0): where a closer look, the
         classification of `beltmdsm.analysis.attractor`, starts.
+    classification : dict or None
+        That classification (`beltmdsm.analysis.attractor.Attractor.as_dict`: ``kind``,
+        ``lyapunov``, ``evidence``, ...) where one was made.
     """
 
     source: str
@@ -170,6 +173,7 @@ class NotLocked:
     largest_step: float
     centre: tuple[float, float]
     state: tuple[float, ...] = ()
+    classification: dict | None = None
 
     @classmethod
     def of(cls, strobe: Stroboscope) -> NotLocked:
@@ -226,8 +230,14 @@ class NotLocked:
         )
 
     def as_dict(self) -> dict:
-        """The evidence for JSON: the attributes, ``locked`` (False) and ``text``."""
+        """The evidence for JSON: the attributes, ``locked`` (False) and ``text``; ``kind``,
+        ``lyapunov`` and ``evidence`` of the classification where one was made
+        (``kind`` "unclassified" otherwise)."""
+        c = self.classification or {}
         return {
+            "kind": c.get("kind", "unclassified"),
+            "lyapunov": c.get("lyapunov"),
+            "evidence": c.get("evidence", "not classified"),
             "source": self.source,
             "locked": False,
             "limit": self.limit,

@@ -28,12 +28,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..analysis.attractor import classify
 from ..analysis.floquet import Floquet, NoPeriodicResponse, floquet, periodic_start, response_from
 from ..analysis.locked import (
     LOCK_LIMIT,
@@ -229,11 +230,20 @@ class Response:
         """Whether the orbit of ``periods`` periods through ``x`` is this one."""
         return periods == self.periods and same_phases(self.phases, x)
 
+    @property
+    def lyapunov(self) -> float:
+        """The largest Lyapunov exponent of the orbit [1/s]: its Floquet growth rate
+        ``ln max |mu| / (k T)``; of a cycle the larger of that and 0 (along the flow)."""
+        rate = self.floquet.growth_rate
+        return max(0.0, rate) if self.floquet.autonomous else rate
+
     def as_dict(self) -> dict:
-        """The keys of ``floquet --json``, and ``amplitude``, ``velocity_range``,
-        ``sources``, ``run_distance``."""
+        """The keys of ``floquet --json``, and ``kind`` ("periodic"), ``lyapunov``,
+        ``amplitude``, ``velocity_range``, ``sources``, ``run_distance``."""
         return {
             **self.floquet.as_dict(),
+            "kind": "periodic",
+            "lyapunov": self.lyapunov,
             "periods": self.periods,
             "amplitude": self.amplitude,
             "velocity_range": list(self.velocity_range),
@@ -387,11 +397,27 @@ def responses(
             except NoPeriodicResponse as err:
                 failed.append(SeedFailure(f"ladder {direction}", str(err)))
     for strobe in strobes:
+        point = None
         k = strobe.candidate
         if k is None:
-            unlocked.append(NotLocked.of(strobe))
-            continue
+            k, point, evidence = _classified(model, strobe, backend)
+            if point is None:
+                unlocked.append(evidence)
+                continue
+            strobe = replace(strobe, source=f"{strobe.source} (classified)")
         known = next((r for r in found if r.same_orbit(k, strobe.samples[-1])), None)
+        if known is None and point is not None:
+            pmap = period_map(model, k, backend)
+            known = Response(
+                k,
+                Floquet.of(response_from(pmap, point)),
+                point.image.velocity_range(),
+                [],
+                None,
+                point.image.phases,
+                point.image.x1_range(),
+            )
+            found.append(known)
         if known is None:
             try:
                 pmap, point = shoot(model, k, strobe.samples[-1], backend)
@@ -420,6 +446,24 @@ def responses(
             known.run_distance = distance
     found.sort(key=lambda r: (r.periods, r.amplitude))
     return ResponseSet(model, limit, found, unlocked, failed)
+
+
+def _classified(model, strobe, backend):
+    """A stroboscope that does not lock within the limit, classified from its last sample
+    (`beltmdsm.analysis.attractor.classify`: returns after any number of periods and the
+    Lyapunov spectrum): ``(k, FixedPoint, None)`` of a long lock it finds, else
+    ``(None, None, NotLocked)`` with the classification as the evidence."""
+    evidence = NotLocked.of(strobe)
+    pmap = period_map(model, 1, backend)
+    start = pmap.full_state(pmap.guess(strobe.samples[-1]))
+    a = classify(model, y0=start, backend=backend)
+    if a.kind == "periodic":
+        try:
+            _, point = shoot(model, a.periods, a.state, backend)
+            return a.periods, point, None
+        except NoPeriodicResponse:
+            pass  # classify's Newton converged from the same state: not expected
+    return None, None, replace(evidence, classification=a.as_dict())
 
 
 def _cycle_response(c, source, distance=None):

@@ -53,12 +53,15 @@ def test_responses_at_the_base_point_list_both_and_say_what_is_not_locked():
         "unlocked",
         "failed",
     }
-    # just below the lower band edge the run from rest rotates on a closed curve
+    # just below the lower band edge the run from rest does not lock within 12 periods
+    # (its samples on a closed curve, rotation -0.254); classified, it is a 59T lock
+    # (issue 31), shot and listed as a response with its Floquet rate as its exponent
     below = R.responses(Vb=3.5, ladder=0.0)
-    assert [r.periods for r in below.responses] == [1]
-    (unlocked,) = [u for u in below.unlocked if u.source == "run from rest"]
-    assert unlocked.closed_curve and "not locked" in unlocked.text()
-    assert abs(unlocked.rotation_number + 0.254) < 0.01
+    assert [r.periods for r in below.responses] == [1, 59] and not below.unlocked
+    lock = below.responses[1]
+    assert lock.sources == ["run from rest (classified)"] and lock.floquet.stable
+    d = lock.as_dict()
+    assert d["kind"] == "periodic" and d["lyapunov"] == lock.floquet.growth_rate < 0
 
 
 def test_bad_arguments_are_refused():
