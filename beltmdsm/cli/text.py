@@ -232,8 +232,17 @@ def band(result: Band, lo: float, hi: float) -> str:
         lines.append(
             f"  no periodic response in {format_intervals(result.no_periodic_response, spec)}"
         )
+    for a, b in result.merged_away:
+        lines.append(
+            f"  merged away: edges in [{a:{spec}}, {b:{spec}}] are closer than tol = "
+            f"{result.tol:g} and count as one; values between them without a stable "
+            "response, or without any, are missing from the ranges above (a finer --tol "
+            "resolves them)"
+        )
     for f in result.failed:
-        lines.append(f"  no periodic response found at {f.value:g}: {f.reason}")
+        merged = any(a < f.value < b for a, b in result.merged_away)
+        inside = " (inside a merged-away bracket)" if merged else ""
+        lines.append(f"  no periodic response found at {f.value:g}{inside}: {f.reason}")
     return "\n".join(lines)
 
 

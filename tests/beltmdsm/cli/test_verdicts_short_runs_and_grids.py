@@ -97,3 +97,85 @@ def test_sweep_t50_finds_the_peak_nowhere_it_cannot_tell():
     out = json.loads(r.stdout)
     assert out["omega1_peak_ranges"] == []
     assert out["unresolved"] == [3.0, 8.0]
+
+
+# ------------------------------------------- floquet-band at the default grid
+
+
+def _end_accuracy(band_edges, value, lo, hi):
+    """The stated accuracy of a range's end: 0 at the range's bounds, else its edge's."""
+    if value in (lo, hi):
+        return 0.0
+    (edge,) = [e for e in band_edges if e["value"] == value]
+    return edge["accuracy"]
+
+
+def test_floquet_band_default_grid_agrees_with_a_fine_grid_and_with_floquet():
+    from beltmdsm.analysis.band import floquet_band
+    from beltmdsm.analysis.edges import KINDS
+    from beltmdsm.analysis.floquet import NoPeriodicResponse, floquet
+
+    argv = ["floquet-band", "--param", "Vb", "--from", "0", "--to", "40", "--omega1", "12"]
+    r = _run(*argv, "--no-progress", "--json")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    # every edge a documented kind, located (no zero-width bracket), no empty range
+    for e in out["edges"]:
+        assert e["kind"] in (*KINDS, "unclassified"), e
+        assert e["accuracy"] > 0 and e["bracket"][0] < e["value"] < e["bracket"][1], e
+    assert all(b > a for a, b in out["unstable"]), out["unstable"]
+    # the same ranges as a grid of 160 points, to the accuracies the two state
+    fine = floquet_band("Vb", 0.0, 40.0, omega1=12.0, points=160)
+    fine_edges = [e.as_dict() for e in fine.edges]
+    assert len(out["unstable"]) == len(fine.unstable) == 1
+    for got, ref in zip(out["unstable"], fine.unstable):
+        for x, y in zip(got, ref):
+            bound = _end_accuracy(out["edges"], x, 0, 40) + _end_accuracy(fine_edges, y, 0, 40)
+            assert abs(x - y) <= bound, (got, ref)
+    # independent floquet() calls: none or unstable inside the range, stable outside
+    ((lo, hi),) = out["unstable"]
+    for v in (0.05, 0.1, 0.2):
+        assert lo <= v <= hi
+        try:
+            assert floquet(Vb=v, omega1=12.0).stable is False
+        except NoPeriodicResponse:
+            pass
+    for v in (0.3, 0.5, 0.7, 2.0, 10.0, 30.0):
+        assert v > hi and floquet(Vb=v, omega1=12.0).stable is True
+
+
+# ------------------------------------------------ a large --tol erases bands
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["--from", "1", "--to", "9", "--tol", "3"],
+        ["--omega1", "3", "--from", "10", "--to", "15", "--tol", "1"],
+    ],
+)
+def test_a_tol_above_the_grid_step_is_refused_by_name(argv):
+    r = _run("floquet-band", "--param", "Vb", *argv, "--no-progress")
+    assert r.returncode == 2 and r.stdout == ""
+    (line,) = r.stderr.strip().splitlines()
+    assert "--tol" in line and "grid's step" in line and "Traceback" not in r.stderr
+
+
+def test_merging_that_removes_a_range_says_so():
+    import re
+
+    from beltmdsm.analysis.band import floquet_band
+
+    argv = ["floquet-band", "--param", "Vb", "--omega1", "3", "--from", "10", "--to", "15"]
+    r = _run(*argv, "--tol", "0.3", "--no-progress")
+    assert r.returncode == 0, r.stderr
+    text = r.stdout
+    (bracket,) = re.findall(r"merged away: edges in \[([0-9.]+), ([0-9.]+)\]", text)
+    a, b = map(float, bracket)
+    assert "no periodic response found at 12.8125 (inside a merged-away bracket)" in text
+    assert "no periodic response in" not in text
+    # at the default tol the range without a response, which the merging removed, lies
+    # inside the merged bracket (to the 4 decimals printed)
+    fine = floquet_band("Vb", 10.0, 15.0, omega1=3.0)
+    ((c, d),) = fine.no_periodic_response
+    assert a - 1e-4 <= c < d <= b + 1e-4
