@@ -326,6 +326,12 @@ def coexistence(found: Coexistence) -> str:
         )
     for u in found.unexplained:
         lines.append(f"  a lock at {param} = {u.value:g} ({u.source}) not found: {u.reason}")
+    if found.n_seeds:
+        lines.append(
+            f"seeds every {found.seed_step:.4g} in {param} ({found.n_seeds} values): a "
+            "response stable only between two seeds, over less than that, may be missed "
+            "(a smaller --step looks closer)"
+        )
     return "\n".join(lines)
 
 

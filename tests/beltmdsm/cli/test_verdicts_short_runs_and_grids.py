@@ -179,3 +179,27 @@ def test_merging_that_removes_a_range_says_so():
     fine = floquet_band("Vb", 10.0, 15.0, omega1=3.0)
     ((c, d),) = fine.no_periodic_response
     assert a - 1e-4 <= c < d <= b + 1e-4
+
+
+# ------------------------------------------------- coarse grids without a word
+
+
+def test_coexistence_refuses_a_step_that_leaves_no_seed_inside():
+    argv = ["coexistence", "--param", "Vb", "--from", "0.5", "--to", "12", "--step", "20"]
+    r = _run(*argv)
+    assert r.returncode == 2 and r.stdout == ""
+    (line,) = r.stderr.strip().splitlines()
+    assert "--step" in line and "no seed inside" in line and "5.75" in line
+
+
+def test_predict_with_a_coarse_vb_max_keeps_the_band_and_says_what_it_cannot_resolve():
+    from beltmdsm.analysis.predict import unstable_intervals
+
+    r = _run("predict", "--vb-max", "3000", "--no-progress", "--json")
+    assert r.returncode == 0, r.stderr
+    out = json.loads(r.stdout)
+    # the default grid's band (checked against the linear amplitude elsewhere)
+    ((lo, hi),) = unstable_intervals()[0]
+    ((a, b),) = out["consistent_mdsm"]
+    assert abs(a - lo) < 1e-9 and abs(b - hi) < 1e-9
+    assert "above it the step is 7.5 m/s" in out["reasons"]["consistent_mdsm"]
