@@ -388,6 +388,11 @@ class Summary:
     another peak of noise. ``energy_ok`` is False where ``energy_residual`` exceeds
     ``energy_bound`` (`energy_bound`); ``warnings`` says so in words, one sentence
     per problem (empty where there is none).
+
+    ``start_perturbation`` is how far the run's start was moved off steady sliding
+    along its unstable direction (without excitation, where steady sliding is
+    unstable: `beltmdsm.simulation.equilibrium_start`; 0.0 elsewhere). Such a run that
+    still slides steadily at its end is unresolved, the instability named.
     """
 
     status: str
@@ -426,16 +431,55 @@ class Summary:
     vr_min: float
     vr_max: float
     wall_s: float
+    start_perturbation: float = 0.0
 
     def as_dict(self) -> dict[str, Any]:
         """The summary as plain JSON-able values, by field name."""
         return asdict(self)
 
 
+def _on_unstable_sliding(model, regime, present, t_end, moved):
+    """Why a run without excitation that slides steadily cannot tell, or "".
+
+    Without excitation, continuous sliding is steady sliding, and where that is unstable
+    (`free_decay_rate` >= 0) a run that still slides at the end has not yet grown into
+    the self-excited oscillation (a cubic law at Vb = 0.48 sat there for 20 000 s and
+    was called "continuous_sliding, omega1 peak absent").
+    """
+    p = model.params
+    excited = any(p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0 for d in ("t", "n"))
+    if excited or present or regime != "continuous_sliding" or not p["Vb"] > 0:
+        return ""
+    sigma = free_decay_rate(model)
+    if sigma < 0:
+        return ""
+    start = (
+        f"started on it moved by {moved:g} along its unstable direction, a disturbance "
+        f"that grows as exp(sigma t) to {moved * math.exp(min(sigma * t_end, 700)):.2g} "
+        f"by t = {t_end:g} s"
+        if moved > 0
+        else "started on it, where only rounding moves it"
+    )
+    return (
+        f"steady sliding is unstable (free tangential rate sigma = {sigma:.3g} 1/s >= 0, "
+        f"free_decay_rate) and the run has not left it: {start}; the self-excited "
+        "oscillation it leaves for is not in the window; lengthen --t-end"
+    )
+
+
 def summarize(
-    model: Model, settings: SolverSettings, run: Run, samples: Samples, wall_s: float = 0.0
+    model: Model,
+    settings: SolverSettings,
+    run: Run,
+    samples: Samples,
+    wall_s: float = 0.0,
+    start_perturbation: float = 0.0,
 ) -> Summary:
-    """Regime, spectral peaks, energy balance and counts of a run."""
+    """Regime, spectral peaks, energy balance and counts of a run.
+
+    ``start_perturbation``: how far the run's start was moved off an unstable steady
+    sliding (`beltmdsm.simulation.equilibrium_start`), stated in the summary.
+    """
     p = model.params
     t0, t1 = settings.window_start, run.trajectory.t_end
     win = samples.t >= t0
@@ -474,7 +518,14 @@ def summarize(
     out["forced_amplitude"] = max(forced) if forced else float("nan")
     out["forced_peak"] = bool(forced and out["forced_amplitude"] > out["noise_floor"])
     resolved, why = _resolution(model, settings, v, out)
+    regime = (
+        "contact_loss" if run.status == "contact_lost" else classify_regime(run.trajectory, t0, t1)
+    )
     present = bool(out["peak_omega1"] > _threshold(out)) if resolved else None
+    if resolved:
+        why = _on_unstable_sliding(model, regime, present, t1, start_perturbation)
+        if why:
+            resolved, present = False, None
     del out["forced_amplitude"]
     balance = run.trajectory.energy_balance()
     bound = energy_bound(
@@ -498,11 +549,7 @@ def summarize(
         message=run.message,
         solver=run.solver,
         tension=model.tension,
-        regime=(
-            "contact_loss"
-            if run.status == "contact_lost"
-            else classify_regime(run.trajectory, t0, t1)
-        ),
+        regime=regime,
         resolved=resolved,
         omega1_peak_present=present,
         unresolved_reason=why,
@@ -529,5 +576,6 @@ def summarize(
         vr_max=float(np.max(v - p["Vb"])),
         vr_min=float(np.min(v - p["Vb"])),
         wall_s=float(wall_s),
+        start_perturbation=float(start_perturbation),
         **out,
     )

@@ -123,6 +123,15 @@ def simulation(sim: Simulation, out: dict, modulation: bool) -> str:
         f"t = 0..{s.t_end:g} s (steady window from {s.t_discard:g} s), "
         f"solver: {s.solver}",
         f"status: {sim.status} ({sim.message})",
+        *(
+            [
+                f"start: steady sliding is unstable here; the run starts on it moved by "
+                f"{s.start_perturbation:g} along its unstable direction "
+                "(beltmdsm/simulation.py, START_PERTURBATION)"
+            ]
+            if s.start_perturbation > 0
+            else []
+        ),
         f"regime: {s.regime}  (time in "
         + "/".join(fractions)
         + ": "
