@@ -278,7 +278,7 @@ def _halves(v, settings, out):
     )
 
 
-def _resolution(model, settings, v, out):
+def _resolution(model, settings, v, out, regime=""):
     """Whether the steady window can tell the omega1 peak (``resolved``) and why not.
 
     A window too short for the omega1 band to hold two frequency bins cannot. A peak
@@ -296,7 +296,9 @@ def _resolution(model, settings, v, out):
     not even then where a known decay (the free rate, or the Floquet rate ``|mu|^(t/T)``
     towards a stable periodic response, `_floquet_decay`, slow next to a Floquet edge)
     is so slow that it too would hold its amplitude within that ratio over half the
-    window: then the window cannot tell the two.
+    window: then the window cannot tell the two. Without excitation where steady
+    sliding is unstable, a run that has left it (``regime`` not continuous sliding)
+    cannot decay back: its peak is present, settled or not.
     """
     if out["omega1_band"] is None:
         return False, "an excitation line sits at omega1: no band to read the peak in"
@@ -328,7 +330,8 @@ def _resolution(model, settings, v, out):
                 why = f"{why}, and {text}"
         elif rate < 0:  # stable
             rates.append(rate)
-            if math.exp(rate * t0) > TRANSIENT_DECAYED:
+            if envelope <= TRANSIENT_DECAYED < math.exp(rate * t0):
+                # (where the free transient has not decayed either, that is the reason)
                 why = f"the peak may be a decay towards the periodic response ({text})"
     first, second = _halves(v, settings, out)
     if max(first, second) <= threshold:
@@ -341,6 +344,12 @@ def _resolution(model, settings, v, out):
     slowest = max(rates, default=-math.inf)
     slow = math.exp(slowest * h) >= STATIONARY_RATIO
     if stationary and not slow:
+        return True, ""
+    if present and sigma >= 0 and not _excited(model) and regime != "continuous_sliding":
+        # without excitation steady sliding is the only steady state, and it is
+        # unstable: a run that has left it (sticks, reversals) cannot decay back, so
+        # its peak, settling or not, stays (Stribeck at Vb = 3.5, growth 0.053/s: a
+        # stick-slip cycle still settling at 300 s)
         return True, ""
     if slow:
         why = (
@@ -438,6 +447,12 @@ class Summary:
         return asdict(self)
 
 
+def _excited(model):
+    """Whether the model has an excitation (a force in either direction)."""
+    p = model.params
+    return any(p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0 for d in ("t", "n"))
+
+
 def _on_unstable_sliding(model, regime, present, t_end, moved):
     """Why a run without excitation that slides steadily cannot tell, or "".
 
@@ -446,9 +461,7 @@ def _on_unstable_sliding(model, regime, present, t_end, moved):
     the self-excited oscillation (a cubic law at Vb = 0.48 sat there for 20 000 s and
     was called "continuous_sliding, omega1 peak absent").
     """
-    p = model.params
-    excited = any(p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0 for d in ("t", "n"))
-    if excited or present or regime != "continuous_sliding" or not p["Vb"] > 0:
+    if _excited(model) or present or regime != "continuous_sliding" or not model["Vb"] > 0:
         return ""
     sigma = free_decay_rate(model)
     if sigma < 0:
@@ -517,10 +530,10 @@ def summarize(
     forced = [a for a in (out["peak_Omega"], out["peak_Omega_n"]) if np.isfinite(a)]
     out["forced_amplitude"] = max(forced) if forced else float("nan")
     out["forced_peak"] = bool(forced and out["forced_amplitude"] > out["noise_floor"])
-    resolved, why = _resolution(model, settings, v, out)
     regime = (
         "contact_loss" if run.status == "contact_lost" else classify_regime(run.trajectory, t0, t1)
     )
+    resolved, why = _resolution(model, settings, v, out, regime)
     present = bool(out["peak_omega1"] > _threshold(out)) if resolved else None
     if resolved:
         why = _on_unstable_sliding(model, regime, present, t1, start_perturbation)
