@@ -68,8 +68,9 @@ class Edge:
     ----------
     value : float
     kind : str
-        The bifurcation (`beltmdsm.analysis.edges.KINDS`), or ``existence`` for an end
-        that is not classified.
+        The bifurcation (`beltmdsm.analysis.edges.KINDS`), or ``unclassified`` for an
+        end of the response located to the band's ``tol`` by bisection where no
+        continuation could classify it (``detail`` says why).
     old_kind : str
         The kind `floquet_band` gave before (`beltmdsm.analysis.edges.OLD_KINDS`):
         ``multiplier``, ``grazing`` or ``existence``; for one release.
@@ -80,7 +81,8 @@ class Edge:
     frequency : float or None
         Of the critical pair at a Neimark-Sacker edge [rad/s].
     unstable_below, unstable_above : bool
-        Whether no stable response is found just below and just above.
+        Whether no stable response is found just below and just above (a response
+        that grazes, without multipliers, counts as neither).
     detail : str
         What vanishes at an end (the margin), or "".
     """
@@ -157,7 +159,8 @@ class Band:
         ``k``: the band of the response of ``k`` excitation periods.
     unstable : list of [lo, hi]
         Where no stable periodic response is found (unstable, or none found: the
-        `no_periodic_response` ranges are included).
+        `no_periodic_response` ranges are included). A response that grazes has no
+        multipliers: it is an edge (``grazing``), not a range.
     edges : list of Edge
         In order of value.
     grazing_points : list of float
@@ -171,6 +174,11 @@ class Band:
         The grid values where no periodic response was found, with the reason.
     tol : float
         The edges' tolerance: edges closer than it are one (`floquet_band`).
+    merged_away : list of [lo, hi]
+        The merged brackets of edges closer than ``tol`` inside which a value without a
+        stable response (without any) was evaluated that no range of `unstable` (of
+        `no_periodic_response`) holds: a range narrower than ``tol`` that the merging
+        removes.
     """
 
     param: str
@@ -183,12 +191,13 @@ class Band:
     grid: list[BandPoint]
     failed: list[BandFailure]
     tol: float
+    merged_away: list[list[float]] = field(default_factory=list)
 
     def as_dict(self) -> dict:
         """The JSON of ``floquet-band --json``: ``param``, ``unstable``, ``edges``,
         ``grazing_points``, ``no_periodic_response``, ``grid``, ``failed``, ``tol``,
-        ``tension``, ``contact``, ``friction`` and ``engine`` (the period map of the
-        model's laws, `beltmdsm.analysis.periodmap.engine_of`)."""
+        ``merged_away``, ``tension``, ``contact``, ``friction`` and ``engine`` (the
+        period map of the model's laws, `beltmdsm.analysis.periodmap.engine_of`)."""
         return {
             "param": self.param,
             "unstable": [list(r) for r in self.unstable],
@@ -198,6 +207,7 @@ class Band:
             "grid": [g.as_dict() for g in self.grid],
             "failed": [f.as_dict() for f in self.failed],
             "tol": self.tol,
+            "merged_away": [list(r) for r in self.merged_away],
             "tension": self.model.tension,
             "contact": self.model.contact,
             "friction": self.model.friction,
@@ -252,7 +262,10 @@ def floquet_band(
         `beltmdsm.settings.MAX_BAND_POINTS`.
     tol : float
         The edges' tolerance, at least `beltmdsm.settings.MIN_TOL_ULPS` ulps of the
-        larger end of the range (a bracket cannot be split finer than its rounding).
+        larger end of the range (a bracket cannot be split finer than its rounding)
+        and at most the grid's step ``(hi - lo) / (points - 1)`` (a larger one only
+        merges what the grid resolves). A range without a stable response narrower
+        than ``tol`` merges away: `Band.merged_away` says where.
     backend : {"python", "numba", None}
     periods : int
         ``k > 1``: the band of the response of ``k`` periods (a value without a
@@ -271,8 +284,9 @@ def floquet_band(
         For an unknown parameter, a range that is not finite, empty or outside the
         parameter's domain, ``points < 2`` or ``tol <= 0``.
     beltmdsm.errors.Refused
-        For ``points`` above `beltmdsm.settings.MAX_BAND_POINTS` or ``tol`` below the
-        rounding of the range (`beltmdsm.settings.MIN_TOL_ULPS`).
+        For ``points`` above `beltmdsm.settings.MAX_BAND_POINTS`, ``tol`` above the
+        grid's step or below the rounding of the range
+        (`beltmdsm.settings.MIN_TOL_ULPS`).
     """
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")
@@ -344,6 +358,8 @@ def floquet_band(
             edges.extend(end.edges)
             for v, f in end.solved:
                 seen.setdefault(v, f)
+            if end.stalled:
+                return bisect_stall(a, fa, b, fb, end)
             if end.reached is None:
                 return fb
             seen[b if fb is None else a] = end.reached
@@ -359,6 +375,28 @@ def floquet_band(
         fm = refine(a, fa, m, fm)
         return refine(m, fm, b, fb)
 
+    def bisect_stall(a, fa, b, fb, end):
+        """The continuation across ``[a, b]`` stopped without locating an end: bisect.
+
+        It is split at the farthest response the continuation solved (its stop), else
+        at the middle, each part refined again; where the part with the response's end
+        is below ``tol`` and the end is still not classified, the edge says so
+        (``unclassified``, its bracket that part). The grid never takes the stop for
+        the response's end (it called one at 0.5768 with accuracy 0 where the response
+        goes on to 0.2395, `floquet-band --param Vb --from 0 --to 40 --omega1 12`).
+        """
+        if b - a <= tol:
+            edges.append(_unclassified_edge(a, fa, b, fb, end.stalled))
+            return fb
+        found = b if fa is None else a
+        inside = [v for v, f in end.solved if f is not None and a < v < b and v != found]
+        m = (min(inside) if fa is None else max(inside)) if inside else 0.5 * (a + b)
+        fm = seen.get(m) if inside else None
+        if fm is None:
+            fm = evaluate(m, [fa, fb] if abs(m - a) <= abs(b - m) else [fb, fa])
+        fm = refine(a, fa, m, fm)
+        return refine(m, fm, b, fb)
+
     try:
         for i in range(len(grid) - 1):
             (a, fa), (b, fb) = grid[i], grid[i + 1]
@@ -366,12 +404,34 @@ def floquet_band(
     finally:
         bar.close()
     edges, hidden = _merge_close(sorted(edges, key=lambda e: e.value), tol)
+
     grazing_points += [
         e.value for e in edges if e.kind == "grazing" and e.value not in grazing_points
     ]
     points_seen = sorted((v, f) for v, f in seen.items() if not any(a < v < b for a, b in hidden))
-    unstable = _runs(points_seen, edges, lambda f: f is None or f.stable is not True, lo, hi)
+    # a response that grazes (no multipliers) is neither: it ends no range and starts
+    # none (its grazing is an edge); only where none is found or it is unstable
+    decided = [(v, f) for v, f in points_seen if f is None or f.stable is not None]
+    unstable = _runs(decided, edges, lambda f: f is None or f.stable is False, lo, hi)
     gaps = _runs(points_seen, edges, lambda f: f is None, lo, hi)
+
+    # what the merging removes: a value inside a merged bracket without a stable
+    # response (without any) that no unstable range (no range without one) holds
+    def held(v, ranges):
+        return any(r[0] <= v <= r[1] for r in ranges)
+
+    merged_away = [
+        [a, b]
+        for a, b in hidden
+        if any(
+            a < v < b
+            and (
+                (f is None and not held(v, gaps))
+                or ((f is None or f.stable is False) and not held(v, unstable))
+            )
+            for v, f in seen.items()
+        )
+    ]
     table = [
         BandPoint(
             v,
@@ -397,17 +457,29 @@ def floquet_band(
         table,
         failed,
         float(tol),
+        merged_away,
     )
 
 
 def _check_band_request(lo, hi, points, tol):
-    """Refuse a grid above `MAX_BAND_POINTS` or a ``tol`` below the range's rounding."""
+    """Refuse a grid above `MAX_BAND_POINTS`, or a ``tol`` above the grid's step or below
+    the range's rounding."""
     if points > MAX_BAND_POINTS:
         raise Refused(
             f"points = {points} is more than MAX_BAND_POINTS = {MAX_BAND_POINTS:.0e} "
             "(beltmdsm/settings.py): about 2 ms a point, and every edge is refined to tol "
             "anyway",
             "points",
+        )
+    step = (hi - lo) / (points - 1)
+    if tol > step:
+        raise Refused(
+            f"tol = {tol:g} is above the grid's step (hi - lo) / (points - 1) = {step:.4g} "
+            f"of [{lo:g}, {hi:g}] with {points} points: every change between grid points "
+            "is located to tol and edges closer than tol are one, so a tol above the step "
+            "only merges what the grid resolves (a whole band can vanish); choose tol <= "
+            f"{step:.4g}, or more points",
+            "tol",
         )
     finest = MIN_TOL_ULPS * float(np.spacing(max(abs(lo), abs(hi))))
     if tol < finest:
@@ -421,7 +493,15 @@ def _check_band_request(lo, hi, points, tol):
 
 #: Which edge of a group closer than the tolerance names the group: an exact grazing
 #: point, then an end of the response, then a multiplier crossing.
-_MERGE_ORDER = ("grazing", "tangency", "fold", "existence", "period_doubling", "neimark_sacker")
+_MERGE_ORDER = (
+    "grazing",
+    "tangency",
+    "fold",
+    "existence",
+    "unclassified",
+    "period_doubling",
+    "neimark_sacker",
+)
 
 
 def _merge_close(edges, tol):
@@ -519,10 +599,10 @@ def _edge(a, fa, b, fb, kind=None, accuracy=None):
     known better than the bracket says.
     """
     if kind is None:
-        if (fa.n_reversals, fa.n_sticks) != (fb.n_reversals, fb.n_sticks):
-            kind = "grazing"
-        else:
-            kind = "multiplier"
+        # a response that grazes has no multipliers (`Floquet.stable` None): the change
+        # next to it is the grazing, never a multiplier's crossing
+        same = (fa.n_reversals, fa.n_sticks) == (fb.n_reversals, fb.n_sticks)
+        kind = "multiplier" if same and None not in (fa.stable, fb.stable) else "grazing"
     new_kind, frequency = _band_kind(kind, fa, fb)
     return Edge(
         0.5 * (a + b),
@@ -531,8 +611,25 @@ def _edge(a, fa, b, fb, kind=None, accuracy=None):
         (a, b),
         0.5 * (b - a) if accuracy is None else accuracy,
         frequency,
-        fa is None or fa.stable is not True,
-        fb is None or fb.stable is not True,
+        fa is None or fa.stable is False,
+        fb is None or fb.stable is False,
+    )
+
+
+def _unclassified_edge(a, fa, b, fb, why):
+    """The end of a response between ``a`` and ``b`` (closer than the tolerance, found on
+    one side only) that no continuation could classify: kind ``unclassified``."""
+    return Edge(
+        0.5 * (a + b),
+        "unclassified",
+        "existence",
+        (a, b),
+        0.5 * (b - a),
+        None,
+        fa is None or fa.stable is False,
+        fb is None or fb.stable is False,
+        f"the response ends between {a:.9g} and {b:.9g}; its continuation stops there "
+        f"without classifying the end ({why})",
     )
 
 
@@ -584,12 +681,14 @@ class _BandEnd:
     ``edges``: the band's edges that the continuation across the interval finds (its
     bifurcations and its end); ``reached``: the `Floquet` of the response at the far
     value, where the continuation reaches it (Newton's method had missed it there);
-    ``solved``: ``(value, Floquet)`` of the responses solved on the way.
+    ``solved``: ``(value, Floquet)`` of the responses solved on the way; ``stalled``:
+    why the continuation stopped inside without locating an end ("" where it did not).
     """
 
     edges: list
     reached: Floquet | None
     solved: list = field(default_factory=list)
+    stalled: str = ""
 
 
 def _end_detail(end: End) -> str:
@@ -601,7 +700,7 @@ def _special_edge(kind, value, accuracy, frequency, detail, unstable_below, unst
     """An edge at a located special point or end (its accuracy as located)."""
     if kind == "branch_point":  # a real multiplier through +1 without a turn
         kind = "fold"
-    kind = kind if kind in KINDS else "existence"
+    kind = kind if kind in KINDS else "unclassified"
     return Edge(
         value,
         kind,
@@ -800,6 +899,10 @@ def _band_existence(param, a, fa, b, fb, backend, tol):
             periods=branch.periods,
         )
         return _BandEnd(out, reached_f, solved)
+    if extreme.kind not in KINDS:
+        # the continuation stopped (a corrector diverged) short of an end it could
+        # locate: no edge, the band bisects what is left (its grid cannot tell)
+        return _BandEnd(out, None, solved, stalled=extreme.detail or extreme.kind)
     # no stable response on the side where they exist: neither half at a fold is stable
     exists_unstable = True not in (extreme.stable_before, extreme.stable_after)
     if toward > 0:

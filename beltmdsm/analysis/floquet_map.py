@@ -749,7 +749,9 @@ def floquet_map(
             live.append(tracker)
         band = None
         if i == 0 or not live or len(live) < len(trackers) or i % int(check_every) == 0:
-            band = floquet_band(x, x_from, x_to, row, backend=backend)
+            # the band's tol is at most its grid's step (17 points)
+            tol = min(1e-3, (x_to - x_from) / 16)
+            band = floquet_band(x, x_from, x_to, row, tol=tol, backend=backend)
             band_rows.append(float(value))
             followed = [t.curve.x[-1] for t in live if t.curve.y[-1] == float(value)]
             for e in band.edges:

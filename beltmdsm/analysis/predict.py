@@ -92,6 +92,12 @@ __all__ = [
     "CLIPPED_PAPER",
     "clip_acts",
     "ONSET_STEP",
+    "GRID_COARSE",
+    "UNFORCED_NUMERIC",
+    "UNFORCED_SCAN",
+    "grid_note",
+    "unforced_rate",
+    "unforced_edges",
 ]
 
 
@@ -415,6 +421,7 @@ def unstable_intervals(
     vb: ArrayLike | None = None,
     points: int | np.integer = 400,
     progress: bool = False,
+    vb_max: float | None = None,
     **kw: Any,
 ) -> tuple[list[tuple[float, float]], dict[str, NDArray[Any]]]:
     """Unstable belt speeds of the consistent MDSM.
@@ -450,6 +457,12 @@ def unstable_intervals(
         size of the default grid (at least 2, at most `MAX_VB_POINTS`)
     progress : bool
         show a progress bar on stderr (tqdm) once the grid takes more than 2 s
+    vb_max : float, optional
+        the top of the grid instead of the default's (``vb`` not given): ``points``
+        speeds up to it, and, where it lies above the default's top, the default grid
+        below that too, so that a coarse grid keeps the default's resolution where the
+        bands are (``--vb-max 3000``: a step of 7.5 m/s missed the base set's band
+        [4.682, 6.375] entirely); `grid_note` says what the coarse part cannot resolve
 
     Returns
     -------
@@ -484,7 +497,15 @@ def unstable_intervals(
     # speed is added, and the grid is doubled (up to `_EXTEND` times) while a band
     # reaches its top.
     linear = _linear_without_reversal(model)
-    top = 1.05 * (onset + (0.0 if linear else _unforced_edge(model)))
+    top = _default_top(model, onset)
+    if vb_max is not None:
+        if not (math.isfinite(vb_max) and vb_max > 0):
+            raise ValueError(f"vb_max must be a finite belt speed > 0; got {vb_max!r}")
+        grid = np.linspace(vb_max / points, vb_max, points)
+        if top > 0:
+            fine = np.linspace(top / points, top, points)
+            grid = np.union1d(grid, fine[fine < vb_max])
+        return _scan(model, grid, onset, progress)
     if not top > 0:
         return _scan(model, np.empty(0), onset, progress)
     for extend in range(_EXTEND + 1):
@@ -575,15 +596,99 @@ def _scan(model: Model, vb: NDArray[np.float64], onset: float, progress: bool):
     return unstable, table
 
 
+def _default_top(model: Model, onset: float) -> float:
+    """The top of the default grid (before any doubling): 1.05 times the onset of
+    reversal, plus the unforced critical belt speed for a coefficient that varies in slip."""
+    linear = _linear_without_reversal(model)
+    return 1.05 * (onset + (0.0 if linear else _unforced_edge(model)))
+
+
+def grid_note(
+    model: Model | Mapping[str, Any] | None = None,
+    *,
+    vb_max: float,
+    points: int = 400,
+    **kw: Any,
+) -> str:
+    """What a grid of ``points`` speeds up to ``vb_max`` cannot resolve ("" if nothing).
+
+    Where ``vb_max`` lies above the default grid's top, `unstable_intervals` keeps the
+    default grid below that top; above it the step is ``vb_max / points``, and a band
+    narrower than that there can be missed.
+    """
+    model = as_model(model, **kw)
+    onset = reversal_onset(model)
+    top = _default_top(model, onset)
+    step = vb_max / points
+    if not top > 0 or top >= vb_max or step <= top / points:
+        return ""
+    return GRID_COARSE.format(top=top, fine=top / points, step=step)
+
+
+#: Where the unforced growth rate's roots are looked for when the law's closed form is
+#: refused (`unforced_edges`): 1e-8 to 1e8 m/s, 100 speeds a decade (a ratio of 2.3 %
+#: between neighbours: a band narrower than that can be missed).
+UNFORCED_SCAN = (1e-8, 1e8, 100)
+
+
+def unforced_rate(model: Model | Mapping[str, Any] | None, vb: ArrayLike) -> NDArray:
+    """The largest real part of `generated.unforced.eigenvalues` at each belt speed:
+    steady sliding is unstable where it is positive."""
+    model = as_model(model)
+    fn = unforced.eigenvalues
+    args = {**model.arguments(fn), "Vb": np.asarray(vb, dtype=float)}
+    return np.max(np.real(fn(**args)), axis=-1)
+
+
+def unforced_edges(model: Model | Mapping[str, Any] | None = None, **kw: Any) -> list[float]:
+    """The belt speeds where steady sliding changes stability, numerically.
+
+    The roots of `unforced_rate` over `UNFORCED_SCAN` (a geometric grid), each sign
+    change refined by ``brentq`` to 1e-12 relative: the path where the law's closed
+    form (`generated.unforced.critical_belt_speed`) is refused. A band narrower than
+    the scan's ratio (2.3 %) can be missed.
+    """
+    model = as_model(model, **kw)
+    lo, hi, per_decade = UNFORCED_SCAN
+    vb = np.geomspace(lo, hi, int(round(per_decade * math.log10(hi / lo))) + 1)
+    rate = unforced_rate(model, vb)
+    edges = []
+    for i in intervals.sign_changes(rate):
+        edges.append(
+            optimize.brentq(
+                lambda v: float(unforced_rate(model, [v])[0]),
+                vb[i],
+                vb[i + 1],
+                xtol=1e-300,
+                rtol=1e-12,
+            )
+        )
+    return edges
+
+
 def _unforced_edge(model: Model) -> float:
     """The unforced critical belt speed (`generated.unforced.critical_belt_speed`) where it
-    is finite and positive, else 0."""
+    is finite and positive; where the law's closed form is refused, the largest of
+    `unforced_edges`; else 0."""
     fn = unforced.critical_belt_speed
     try:
         edge = float(fn(**model.arguments(fn)))
     except ValueError:  # a law without a closed-form boundary refuses (Unsupported)
-        return 0.0
+        edges = unforced_edges(model)
+        return max(edges) if edges else 0.0
     return edge if math.isfinite(edge) and edge > 0 else 0.0
+
+
+def _unforced_note(model: Model) -> str:
+    """Where the unforced critical speed's closed form is refused: how it was found."""
+    fn = unforced.critical_belt_speed
+    try:
+        fn(**model.arguments(fn))
+    except ValueError as err:
+        edges = unforced_edges(model)
+        found = ", ".join(f"{v:.6g}" for v in edges) or "none"
+        return UNFORCED_NUMERIC.format(why=err, edges=found)
+    return ""
 
 
 def _onset_between(model: Model, onset: float, lo: float, hi: float) -> float:
@@ -833,6 +938,20 @@ PAPER_NUMERIC = (
 #: that depends on Vb.
 NUMERIC_NO_AVERAGE = "friction={friction!r} has no closed-form fast average (closed_form_average)"
 NUMERIC_VHAT_OF_VB = "V_hat depends on Vb under friction={friction!r}"
+#: The note on a grid whose step above the default's top is coarser than the default's
+#: (formatted with the default top, its step and the coarse step).
+GRID_COARSE = (
+    "the grid keeps the default's step {fine:.3g} m/s up to {top:.4g} m/s; above it the "
+    "step is {step:.3g} m/s, and a band narrower than that there can be missed"
+)
+#: How the unforced critical belt speed was found where the law's closed form is
+#: refused (formatted with the refusal and the edges found).
+UNFORCED_NUMERIC = (
+    "the unforced critical belt speed has no closed form ({why}); steady sliding "
+    "changes stability at Vb = {edges} m/s, the roots of the largest real part of "
+    "generated.unforced.eigenvalues over 1e-8..1e8 m/s (100 speeds a decade, brentq "
+    "to 1e-12 relative; a band narrower than 2.3 % can be missed)"
+)
 #: The note on a band of the consistent MDSM that reaches an end of its grid.
 GRID_END = (
     "an unstable range reaches the {end} belt speed of the grid, {value:.4g} m/s, "
@@ -905,6 +1024,7 @@ def predict(
     vb: ArrayLike | None = None,
     points: int | np.integer = 400,
     progress: bool = False,
+    vb_max: float | None = None,
     **kw: Any,
 ) -> Prediction:
     """Both analyses' predicted unstable ``Vb`` intervals.
@@ -916,10 +1036,13 @@ def predict(
         change with it (a note in ``reasons`` says why); the consistent MDSM under
         ``"clipped"`` has no prediction where the clip cuts its fast normal force
         (`clip_acts`, `CLIPPED_MDSM`) and a note where it does not.
-    vb, points, progress
+    vb, points, progress, vb_max
         the ``Vb`` grid of the consistent MDSM and its progress bar
         (`unstable_intervals`). Where a band of the consistent MDSM reaches the
-        lowest point of the grid above 0, ``reasons`` says that it may extend below.
+        lowest point of the grid above 0, ``reasons`` says that it may extend below;
+        where ``vb_max`` makes the grid coarser than the default's, what it cannot
+        resolve (`grid_note`); where the law's unforced critical belt speed has no
+        closed form, that its edges were found numerically (`unforced_edges`).
 
     Returns
     -------
@@ -945,7 +1068,9 @@ def predict(
     try:
         if clipped:
             raise _Refused(note)
-        consistent, table = unstable_intervals(model, vb=vb, points=points, progress=progress)
+        consistent, table = unstable_intervals(
+            model, vb=vb, points=points, progress=progress, vb_max=vb_max
+        )
     except _Refused as err:
         consistent, reasons["consistent_mdsm"] = None, str(err)
     except RuntimeError as err:
@@ -963,13 +1088,17 @@ def predict(
                 else NO_FAST_MOTION.format(friction=model.friction)
             )
         ends = []
+        if not _linear_without_reversal(model):
+            ends.append(_unforced_note(model))
+        if vb is None and vb_max is not None:
+            ends.append(grid_note(model, vb_max=vb_max, points=int(points)))
         if table["Vb"].size:
             lowest, highest = float(table["Vb"][0]), float(table["Vb"][-1])
             if lowest > 0 and any(lo == lowest for lo, _ in consistent):
                 ends.append(GRID_END.format(end="lowest", value=lowest, side="below"))
             if any(hi == highest for _, hi in consistent):
                 ends.append(GRID_END.format(end="highest", value=highest, side="above"))
-        if ends:
+        if any(ends):
             reasons["consistent_mdsm"] = "; ".join(
                 r for r in (reasons.get("consistent_mdsm"), *ends) if r
             )

@@ -124,6 +124,15 @@ def simulation(sim: Simulation, out: dict, modulation: bool) -> str:
         f"t = 0..{s.t_end:g} s (steady window from {s.t_discard:g} s), "
         f"solver: {s.solver}",
         f"status: {sim.status} ({sim.message})",
+        *(
+            [
+                f"start: steady sliding is unstable here; the run starts on it moved by "
+                f"{s.start_perturbation:g} along its unstable direction "
+                "(beltmdsm/simulation.py, START_PERTURBATION)"
+            ]
+            if s.start_perturbation > 0
+            else []
+        ),
         f"regime: {s.regime}  (time in "
         + "/".join(fractions)
         + ": "
@@ -268,8 +277,17 @@ def band(result: Band, lo: float, hi: float) -> str:
         lines.append(
             f"  no periodic response in {format_intervals(result.no_periodic_response, spec)}"
         )
+    for a, b in result.merged_away:
+        lines.append(
+            f"  merged away: edges in [{a:{spec}}, {b:{spec}}] are closer than tol = "
+            f"{result.tol:g} and count as one; values between them without a stable "
+            "response, or without any, are missing from the ranges above (a finer --tol "
+            "resolves them)"
+        )
     for f in result.failed:
-        lines.append(f"  no periodic response found at {f.value:g}: {f.reason}")
+        merged = any(a < f.value < b for a, b in result.merged_away)
+        inside = " (inside a merged-away bracket)" if merged else ""
+        lines.append(f"  no periodic response found at {f.value:g}{inside}: {f.reason}")
     return "\n".join(lines)
 
 
@@ -387,6 +405,12 @@ def coexistence(found: Coexistence) -> str:
         )
     for u in found.unexplained:
         lines.append(f"  a lock at {param} = {u.value:g} ({u.source}) not found: {u.reason}")
+    if found.n_seeds:
+        lines.append(
+            f"seeds every {found.seed_step:.4g} in {param} ({found.n_seeds} values): a "
+            "response stable only between two seeds, over less than that, may be missed "
+            "(a smaller --step looks closer)"
+        )
     return "\n".join(lines)
 
 

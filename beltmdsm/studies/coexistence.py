@@ -45,6 +45,7 @@ from ..analysis.branch import Branch, continue_branch
 from ..analysis.floquet import NoPeriodicResponse, floquet, response_from
 from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ..analysis.periodmap import engine_of
+from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period, is_autonomous
 from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
 from .responses import ladder, run_stroboscope, shoot
@@ -144,6 +145,11 @@ class Coexistence:
     unlocked : list of Unlocked
     unexplained : list of Unexplained
     wall_s : float
+    seed_step : float
+        The spacing of the seeds' grid: a response stable only between two seeds,
+        over less than it, may be missed (the text says so).
+    n_seeds : int
+        The values of the seeds' grid.
     """
 
     param: str
@@ -155,11 +161,13 @@ class Coexistence:
     unlocked: list[Unlocked]
     unexplained: list[Unexplained]
     wall_s: float
+    seed_step: float = float("nan")
+    n_seeds: int = 0
 
     def as_dict(self) -> dict:
         """The JSON of ``coexistence --json``: ``param``, ``range``, ``contact``,
         ``tension``, ``friction``, ``engine``, ``coexistence``, ``responses``,
-        ``unlocked``, ``unexplained``, ``wall_s``."""
+        ``unlocked``, ``unexplained``, ``wall_s``, ``seed_step``, ``n_seeds``."""
         return {
             "param": self.param,
             "range": [self.lo, self.hi],
@@ -172,6 +180,8 @@ class Coexistence:
             "unlocked": [u.as_dict() for u in self.unlocked],
             "unexplained": [u.as_dict() for u in self.unexplained],
             "wall_s": self.wall_s,
+            "seed_step": self.seed_step,
+            "n_seeds": self.n_seeds,
         }
 
 
@@ -225,6 +235,8 @@ def coexistence(
     ------
     ValueError
         For an unknown parameter, a bad range, ``step <= 0`` or ``limit < 1``.
+    beltmdsm.errors.Refused
+        For ``step > (hi - lo) / 2``: no seed inside the range.
     """
     clock = time.perf_counter()
     if param not in MODEL_PARAMETERS:
@@ -233,6 +245,16 @@ def coexistence(
         raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
     if not step > 0 or int(limit) < 1:
         raise ValueError(f"step must be > 0 and limit >= 1; got {step}, {limit}")
+    if step > (hi - lo) / 2:
+        # two seeds, the ends: a response stable only inside is never seeded
+        raise Refused(
+            f"step = {step:g} leaves no seed inside [{lo:g}, {hi:g}]: the seeds would be "
+            f"the two ends only, and a response stable only between them is never found "
+            f"(--step 20 over Vb 0.5..12 said 'coexistence: none' where the 4T response "
+            f"coexists on 3.87..4.06 and 6.42..7.67); at most (hi - lo) / 2 = "
+            f"{(hi - lo) / 2:g}",
+            "step",
+        )
     model = as_model(model, **kw).replace(**{param: lo})
     if is_autonomous(model):
         from .cycle_coexistence import cycle_coexistence
@@ -315,4 +337,6 @@ def coexistence(
         unlocked,
         unexplained,
         time.perf_counter() - clock,
+        float(grid[1] - grid[0]),
+        int(grid.size),
     )

@@ -36,7 +36,11 @@ def add(commands, name: str) -> None:
     )
     range_flags(sub)
     sub.add_argument(
-        "--step", type=POSITIVE, default=0.5, help="spacing of the seeds, > 0 (default 0.5)"
+        "--step",
+        type=POSITIVE,
+        default=0.5,
+        help="spacing of the seeds, > 0 and at most (to - from) / 2 (a seed inside); a "
+        "response stable only between two seeds may be missed (default 0.5)",
     )
 
 

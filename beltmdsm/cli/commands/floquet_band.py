@@ -48,7 +48,9 @@ def add(commands, name: str) -> None:
         type=POSITIVE,
         default=1e-3,
         help=f"the edges' tolerance, at least {MIN_TOL_ULPS} ulps of the larger end of "
-        "the range; edges closer than it are one edge (default: 1e-3)",
+        "the range and at most the grid's step (to - from) / (points - 1); edges closer "
+        "than it are one edge, and the text says where that merges a range away "
+        "(default: 1e-3)",
     )
     sub.add_argument(
         "--no-progress",

@@ -24,7 +24,9 @@ def add(commands, name: str) -> None:
         default=None,
         help="top of the Vb grid, > 0 (default: 1.05 x the onset of friction reversal, "
         "for Coulomb's law the linear amplitude; for a law whose coefficient varies in "
-        "slip plus the unforced critical belt speed, doubled while a band reaches it)",
+        "slip plus the unforced critical belt speed, doubled while a band reaches it); "
+        "above the default's top the default grid is kept below it, and the result says "
+        "what the coarser step above cannot resolve",
     )
     sub.add_argument(
         "--vb-points",
@@ -44,15 +46,15 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    import numpy as np
-
     from ...analysis.predict import predict
     from .. import text
 
-    vb = None
-    if args.vb_max is not None:
-        vb = np.linspace(args.vb_max / args.vb_points, args.vb_max, args.vb_points)
-    result = predict(model_from(args), vb=vb, points=args.vb_points, progress=not args.no_progress)
+    result = predict(
+        model_from(args),
+        points=args.vb_points,
+        progress=not args.no_progress,
+        vb_max=args.vb_max,
+    )
     if args.json:
         print(json.dumps(text.jsonable(result.as_dict())))
     else:

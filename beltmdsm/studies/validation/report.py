@@ -100,7 +100,7 @@ EDGE_ABBREVIATIONS = {
     "fold": ("fold", "fold"),
     "grazing": ("graz", "grazing"),
     "tangency": ("tang", "tangency"),
-    "existence": ("end", "an end not classified"),
+    "unclassified": ("end", "an end not classified"),
 }
 #: The legend of `EDGE_ABBREVIATIONS` ("NS = Neimark-Sacker, ...").
 EDGE_LEGEND = ", ".join(a if a == w else f"{a} = {w}" for a, w in EDGE_ABBREVIATIONS.values())
@@ -122,7 +122,7 @@ END_ABBREVIATIONS = {
 COEXISTENCE_LEGEND = ", ".join(
     a if a == w else f"{a} = {w}"
     for key, (a, w) in {**EDGE_ABBREVIATIONS, **END_ABBREVIATIONS}.items()
-    if key != "existence"
+    if key != "unclassified"
 )
 
 

@@ -96,6 +96,7 @@ def test_every_edge_is_labelled_with_its_bifurcation_and_the_kind_of_before(base
         "grid",
         "failed",
         "tol",
+        "merged_away",
         "tension",
         "contact",
         "friction",
