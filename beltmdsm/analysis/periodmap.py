@@ -131,6 +131,11 @@ GRAZING_RATIO = 1e-8
 #: Newton's method stops when the period map moves the state by less than this
 #: (relative to the state's scale).
 NEWTON_TOL = 1e-11
+#: ``I - M`` whose smallest singular value is below this (relative to ``M``) is singular:
+#: a multiplier is 1 to within the closed forms' rounding amplified far past it, and the
+#: fixed point, if any, is not isolated (its solve would return ~ 1 / this times the
+#: forcing, or rounding noise).
+ISOLATION_TOL = 1e-9
 #: Integration tolerance of the periodic orbits.
 RTOL = 1e-12
 #: Halvings of a Newton step before the method counts as stalled.
@@ -350,6 +355,16 @@ class OnePeriodMap:
         sgn = friction_direction(Mode.SLIP_BACK)
         c = np.array(engine.state(self.T, *start, *engine.exc(self.T), z, v, sgn))
         Phi = np.array(self.stm(self.T)).reshape(2, 2)
+        smallest = float(np.linalg.svd(np.eye(2) - Phi, compute_uv=False)[-1])
+        if smallest <= ISOLATION_TOL * max(1.0, float(np.max(np.abs(Phi)))):
+            raise NoPeriodicResponse(
+                "no periodic response found: the response is not isolated: a multiplier "
+                f"is 1 (I - M singular: the smallest singular value of I - Phi(T) of the "
+                f"backward-sliding motion is {smallest:.1e}), so its periodic responses form "
+                "a family (an undamped free oscillation whose period divides the "
+                f"excitation's, T = {self.T:.6g} s) and shooting has no isolated one to "
+                "converge to; with damping (beta1 > 0) or a detuned omega1 it is isolated"
+            )
         return np.linalg.solve(np.eye(2) - Phi, c)
 
     def saltation(self, before: Mode, after: Mode, surface: str) -> Any:

@@ -25,9 +25,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from generated import hybrid, oscillator
 
-from ..errors import StepTooSmall
 from ..model import Backend, Model
 from . import _compiled, _dop853
+from .events import check_status
 from .switching import EVENT_KINDS, SURFACE_INDEX, Mode, Switching
 
 __all__ = ["NormalMotion", "normal_motion", "normal_key", "clear_cache", "GRID_STEP"]
@@ -140,16 +140,7 @@ class NormalMotion:
                 atol,
                 np.inf,
             )
-            if code == _dop853.STATUS_STEP_TOO_SMALL:
-                raise StepTooSmall(
-                    f"the normal motion's step fell below the rounding of the time at "
-                    f"t = {t_stop:.6g} s at rtol = {rtol:g}, atol = {atol:g}: tolerances "
-                    "this loose let the state drift across a switching surface between "
-                    "steps (tighten them), or tolerances this tight ask for more than the "
-                    "rounding allows (loosen them)",
-                    rtol,
-                    atol,
-                )
+            check_status(code, t_stop, "in the normal motion", rtol, atol)
             if n:
                 steps.append((ts, hs, ys, Fs))
             t, y = float(t_stop), np.array(y_stop)
