@@ -38,6 +38,7 @@ __all__ = [
     "fastest_rate",
     "run_bytes",
     "check_request",
+    "check_finite",
 ]
 
 #: The integrators: `beltmdsm.integrate.events` and `beltmdsm.integrate.superposition`.
@@ -210,6 +211,70 @@ def run_bytes(model: Model, settings: SolverSettings) -> float:
     return periods * BYTES_PER_PERIOD * steps + settings.t_end / settings.dt * BYTES_PER_SAMPLE
 
 
+def _overflows(model: Model) -> str | None:
+    """What of the start is beyond floating point: None, or ``"X1 = inf"``, ...
+
+    The start is the unforced equilibrium (Eq. 9) and the field of every mode there;
+    a state whose square overflows (the energy balance squares it) counts too.
+    """
+    import warnings
+
+    from generated import hybrid
+
+    from .integrate.switching import Mode
+
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore", RuntimeWarning)
+        state = np.array(unforced.equilibrium(**model.arguments(unforced.equilibrium)), float)
+        for name, value in zip(("X1", "X1'", "X2", "X2'"), state):
+            if not math.isfinite(value):
+                return f"the unforced equilibrium (Eq. 9) has {name} = {value:.3g}"
+            if not math.isfinite(value * value):
+                return (
+                    f"the unforced equilibrium (Eq. 9) has {name} = {value:.3g}, whose "
+                    "square (in the energy balance) overflows"
+                )
+        field = hybrid.bind_vector_field(
+            backend="python", **model.arguments(hybrid.bind_vector_field)
+        )
+        for mode in Mode:
+            rate = np.array(field(0.0, *state, float(mode)), float)
+            if not np.all(np.isfinite(rate)):
+                return f"the field of mode {mode.name.lower()} at that state is {rate.tolist()}"
+    return None
+
+
+def check_finite(model: Model) -> None:
+    """Refuse parameters that put the start of a run beyond floating point.
+
+    A state or rate that overflows to inf or NaN (``omega1 = 1e-200``: the equilibrium
+    ``X1 = mu_s g / omega1^2``) would be integrated as NaN; the parameters responsible
+    are those whose base value (``generated.parameters.BASE``) makes it finite.
+
+    Raises
+    ------
+    beltmdsm.errors.Refused
+        Naming those parameters.
+    """
+    problem = _overflows(model)
+    if problem is None:
+        return
+    from generated.parameters import BASE
+
+    names = [
+        k
+        for k, v in model.params.items()
+        if k in BASE and v != BASE[k] and _overflows(model.replace(**{k: BASE[k]})) is None
+    ]
+    names = names or [k for k, v in model.params.items() if k in BASE and v != BASE[k]]
+    given = ", ".join(f"{k} = {model.params[k]:g}" for k in names)
+    raise Refused(
+        f"{problem}: beyond floating point at {given} (the motion would be integrated "
+        "as NaN); choose values whose equilibrium and forces are finite",
+        *names,
+    )
+
+
 def check_request(model: Model, settings: SolverSettings) -> None:
     """Refuse a run that could not be read or would not fit, before it computes anything.
 
@@ -220,6 +285,7 @@ def check_request(model: Model, settings: SolverSettings) -> None:
         ``pi / dt`` is below `NYQUIST_MULTIPLE` times the fastest of ``Omega_t``,
         ``Omega_n`` and ``omega1`` (its harmonics would alias into the omega1 band).
     """
+    check_finite(model)
     need = run_bytes(model, settings)
     if need > MAX_RUN_BYTES:
         rate = fastest_rate(model)

@@ -94,7 +94,7 @@ from ..integrate.superposition import Superposition, TangentialRun, friction_dir
 from ..integrate.switching import SURFACE_INDEX, Mode, Switching
 from ..integrate.trajectory import Run
 from ..model import Backend, Model, excitation_period, initial_state, require
-from ..settings import SolverSettings
+from ..settings import SolverSettings, check_finite
 from . import variational
 
 __all__ = [
@@ -1041,12 +1041,14 @@ def period_map(
     Raises
     ------
     ValueError
-        For an unknown engine.
+        For an unknown engine; `beltmdsm.errors.Refused` for parameters that put the
+        start beyond floating point (`beltmdsm.settings.check_finite`).
     beltmdsm.model.Unsupported
         For ``engine="closed_form"`` where the laws lack a fact it needs.
     """
     if engine is not None and engine not in ENGINES:
         raise ValueError(f"engine must be one of {', '.join(map(repr, ENGINES))}; got {engine!r}")
+    check_finite(model)
     return ENGINES[engine or engine_of(model)](model, periods, backend)
 
 
