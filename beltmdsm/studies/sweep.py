@@ -47,7 +47,7 @@ from .cache import (
     writable_folder,
     write_cached,
 )
-from .row import STARTS, Start, columns, run_point
+from .row import STARTS, Start, columns, failed_row, run_point
 
 __all__ = [
     "sweep",
@@ -186,7 +186,14 @@ def _cached_run(
         if row is not None:
             return row, True, None
         problem = None if reason is None else Problem(str(path), reason)
-    row = run_point(model, settings, modulation, y0=y0, restart_period=period, start=start)
+    try:
+        row = run_point(model, settings, modulation, y0=y0, restart_period=period, start=start)
+    except (ValueError, ArithmeticError, RuntimeError) as err:
+        if continuation is not None:
+            raise  # the next point has no state to start from
+        # the point is a row that says why, not the end of the sweep; not cached
+        # (a rerun tries again)
+        return failed_row(model, settings, modulation, err), False, problem
     if cache_dir is not None:
         write_cached(path, ident, row)
     return row, False, problem
