@@ -151,6 +151,12 @@ _NORMAL_PERIODS = 200
 #: Iterations on the backward-sliding field (`GeneralMap.sliding_guess`): where that
 #: orbit exists they converge in 5 to 8 from the equilibrium.
 _SLIDING_ITER = 30
+#: The most steps of one period of `GeneralMap.sliding_guess`'s iterations: about 5 MB
+#: with their variational propagators tens of MB. Stribeck friction with v_s = 1e-3
+#: takes 1 700 a period, v_s = 1e-5 150 000 (the continued slip-back field crosses
+#: Vr = 0, where it changes on the scale v_s: steps ~ T / v_s), which cost 1.3 GB and
+#: half a minute for a guess; past the bound the guess is the last iterate.
+_SLIDING_STEPS = 20_000
 #: Samples per excitation period of `GeneralMap`'s runs (the integrator's samples are
 #: not read; its dense output is).
 _DENSE_SAMPLES = 50
@@ -972,8 +978,12 @@ class GeneralMap(PeriodMap):
                 RTOL,
                 RTOL,
                 np.inf,
+                _SLIDING_STEPS,
             )
             if code != _dop853.STATUS_END:
+                # too stiff to be worth a guess (a slip law that changes on a small
+                # velocity scale where this continued field crosses Vr = 0), or no
+                # end at all: the last iterate is the guess
                 break
             r = np.asarray(y) - x
             size = float(np.max(np.abs(r)))

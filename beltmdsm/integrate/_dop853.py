@@ -88,7 +88,7 @@ STATUS_END, STATUS_EVENT, STATUS_STEP_TOO_SMALL = 0, 1, 2
 #: The state or the step size is NaN or infinite (an overflow): no step can be accepted,
 #: and a NaN step size compares false with every bound, so it is tested for by name.
 STATUS_NOT_FINITE = 3
-#: More than `MAX_STEPS` steps in one call.
+#: More than `MAX_STEPS` (or the call's ``max_steps``) steps in one call.
 STATUS_TOO_MANY_STEPS = 4
 #: The most steps of one call: 2^24 steps hold (2 + 4 + 4 N_DENSE) x 8 bytes each, about
 #: 4.6 GB, past `beltmdsm.settings.MAX_RUN_BYTES`: a run that needs more cannot be kept.
@@ -262,7 +262,9 @@ def _first_crossing(sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old, r_
     return best_j, best_t
 
 
-def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_step):
+def advance(
+    fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_step, max_steps=MAX_STEPS
+):
     """Integrate one mode from ``t0`` until ``t_end`` or the first watched crossing.
 
     Parameters
@@ -281,6 +283,9 @@ def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_st
     h0 : float
         First step size (``<= 0``: chosen from the tolerances).
     rtol, atol, max_step : float
+    max_steps : int, optional
+        The most steps (at most `MAX_STEPS`): past them the call ends with
+        `STATUS_TOO_MANY_STEPS`, its memory bounded.
 
     Returns
     -------
@@ -330,7 +335,7 @@ def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_st
     status = STATUS_END
     hit = -1
     while t < t_end:
-        if n >= MAX_STEPS:
+        if n >= max_steps or n >= MAX_STEPS:
             status = STATUS_TOO_MANY_STEPS
             break
         if not (math.isfinite(y[0]) and math.isfinite(y[1])):

@@ -146,11 +146,10 @@ def integrate_events(
             settings.rtol,
             settings.atol,
             max_step,
+            _dop853.MAX_STEPS - n_steps,
         )
         check_status(code, t_stop, f"in mode {mode.name.lower()}", settings.rtol, settings.atol)
-        n_steps += n
-        if n_steps > _dop853.MAX_STEPS:
-            check_status(_dop853.STATUS_TOO_MANY_STEPS, t_stop, "", settings.rtol, settings.atol)
+        n_steps += n  # the run's steps together within MAX_STEPS (its memory)
         if n:
             steps.append((ts, hs, ys, Fs))
             segments.append(Segment(t, float(t_stop), mode, StepSegment(ts, hs, ys, Fs), ts.copy()))

@@ -122,7 +122,7 @@ class NormalMotion:
         t, y = 0.0, np.array([0.0, 0.0, *y0_normal], dtype=float)
         mode = self._normal_mode(sw, t, y, entering=y[2] > 0 or (y[2] == 0 and y[3] > 0))
         switch_t, switch_mode, switch_kind, switch_surface, steps = [0.0], [mode], [], [], []
-        h_next = 0.0
+        h_next, n_steps = 0.0, 0
         while t < self.t_end:
             watch, dirs, targets = guards[mode]
             (code, n, ts, hs, ys, Fs, t_stop, y_stop, hit, h_next) = advance(
@@ -139,8 +139,10 @@ class NormalMotion:
                 rtol,
                 atol,
                 np.inf,
+                _dop853.MAX_STEPS - n_steps,
             )
             check_status(code, t_stop, "in the normal motion", rtol, atol)
+            n_steps += n
             if n:
                 steps.append((ts, hs, ys, Fs))
             t, y = float(t_stop), np.array(y_stop)
