@@ -34,6 +34,8 @@ __all__ = [
     "MAX_RUN_BYTES",
     "MAX_VB_POINTS",
     "MAX_BAND_POINTS",
+    "MAX_SEED_POINTS",
+    "MAX_MAP_ROWS",
     "MIN_TOL_ULPS",
     "fastest_rate",
     "run_bytes",
@@ -180,6 +182,16 @@ MAX_VB_POINTS = 10**5
 #: (6 ms where no periodic response is found; measured at the base set over Vb in
 #: [1, 9]), so 10^4 points take 20 s to a minute.
 MAX_BAND_POINTS = 10**4
+#: Most seeds' grid points of `beltmdsm.studies.coexistence.coexistence` (its range
+#: over ``step``): a point is a shooting, a 600 s run from rest and two continued
+#: ladders, 0.5 to 2 s (measured at the base set over Vb in [3, 5]), so 10^3 points
+#: take ten to thirty minutes; a smaller step is a mistake (``--step 1e-6``: millions
+#: of points, memory growing for hours), refused before anything is computed.
+MAX_SEED_POINTS = 10**3
+#: Most rows of `beltmdsm.analysis.floquet_map.floquet_map`: a row whose curves are
+#: continued takes a few ms, one with a band (every ``check_every`` rows, and where a
+#: curve is lost) a second or more, so 10^4 rows take minutes.
+MAX_MAP_ROWS = 10**4
 #: `beltmdsm.analysis.band.floquet_band`'s ``tol`` must span this many ulps of the
 #: larger end of the range: below, the midpoint of a bracket rounds to one of its ends
 #: and the bisection stops shrinking it.

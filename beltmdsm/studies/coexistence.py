@@ -30,6 +30,7 @@ attractors that no seed reaches.
 
 from __future__ import annotations
 
+import sys
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -41,7 +42,9 @@ from ..analysis.branch import Branch, continue_branch
 from ..analysis.floquet import NoPeriodicResponse, floquet, response_from
 from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ..analysis.periodmap import engine_of
+from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
+from ..settings import MAX_SEED_POINTS
 from .responses import ladder, run_stroboscope, shoot
 
 __all__ = [
@@ -271,6 +274,7 @@ def coexistence(
     step: float = DEFAULT_STEP,
     limit: int = LOCK_LIMIT,
     backend: Backend | None = None,
+    progress: bool = False,
     **kw: Any,
 ) -> Coexistence:
     """Where two or more stable periodic responses coexist in ``param`` over ``[lo, hi]``.
@@ -287,6 +291,8 @@ def coexistence(
     limit : int
         The longest period looked for, in excitation periods.
     backend : {"python", "numba", None}
+    progress : bool
+        Show the seeds on stderr (tqdm) once they take more than 2 s.
 
     Returns
     -------
@@ -295,7 +301,9 @@ def coexistence(
     Raises
     ------
     ValueError
-        For an unknown parameter, a bad range, ``step <= 0`` or ``limit < 1``.
+        For an unknown parameter, a bad range, ``step <= 0`` or ``limit < 1``;
+        `beltmdsm.errors.Refused` for a step that makes more than
+        `beltmdsm.settings.MAX_SEED_POINTS` grid points.
     """
     clock = time.perf_counter()
     if param not in MODEL_PARAMETERS:
@@ -304,13 +312,33 @@ def coexistence(
         raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
     if not step > 0 or int(limit) < 1:
         raise ValueError(f"step must be > 0 and limit >= 1; got {step}, {limit}")
+    count = (hi - lo) / step
+    if count > MAX_SEED_POINTS:
+        raise Refused(
+            f"step = {step:g} makes {count:.3g} seeds' grid points on [{lo:g}, {hi:g}], more "
+            f"than MAX_SEED_POINTS = {MAX_SEED_POINTS} (beltmdsm/settings.py; each a shooting, "
+            f"a run and two ladders); use step >= {(hi - lo) / MAX_SEED_POINTS:.3g}",
+            "step",
+        )
     model = as_model(model, **kw).replace(**{param: lo})
     excitation_period(model)
     grid = np.linspace(lo, hi, max(int(round((hi - lo) / step)), 1) + 1)
     seeds, unlocked = [], []
+    from tqdm import tqdm
+
+    bar = tqdm(
+        total=4 * grid.size,
+        desc="coexistence seeds",
+        unit=" seeds",
+        delay=2,
+        leave=False,
+        disable=not progress,
+        file=sys.stderr,
+    )
 
     last = None
     for v in grid[::-1]:
+        bar.update()
         for guess in ([last.response] if last is not None else []) + [None]:
             try:
                 f = floquet(model.replace(**{param: float(v)}), guess=guess, backend=backend)
@@ -329,10 +357,13 @@ def coexistence(
     for v in grid:
         at = model.replace(**{param: float(v)})
         examine(v, run_stroboscope(at, t_end=SEED_T_END, limit=limit, backend=backend))
+        bar.update()
     for values in (grid, grid[::-1]):
         strobes = ladder(model, param, values, limit=limit, backend=backend)
         for v, strobe in zip(values, strobes):
             examine(v, strobe)
+            bar.update()
+    bar.close()
 
     branches, sources, unexplained = [], [], []
     for v, k, x, source in seeds:

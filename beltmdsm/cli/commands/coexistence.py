@@ -36,8 +36,13 @@ def add(commands, name: str) -> None:
     )
     range_flags(sub)
     sub.add_argument(
-        "--step", type=POSITIVE, default=0.5, help="spacing of the seeds, > 0 (default 0.5)"
+        "--step",
+        type=POSITIVE,
+        default=0.5,
+        help="spacing of the seeds, > 0, at most MAX_SEED_POINTS = 1000 of them over the "
+        "range (default 0.5)",
     )
+    sub.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -52,6 +57,7 @@ def run(args: argparse.Namespace) -> int:
         model_from(args, skip=(swept(args),)),
         step=args.step,
         limit=args.limit,
+        progress=not args.no_progress,
     )
     if args.json:
         print(json.dumps(text.jsonable(found.as_dict())))
