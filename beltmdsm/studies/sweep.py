@@ -425,8 +425,9 @@ def _collect(results, n, desc, progress, cache_dir=None):
     """``(rows, n_cached, problems)`` from ``(index, (row, cached, problem))`` results,
     with a progress bar; each problem is warned about once, by the file's name.
 
-    Interrupted (Ctrl-C), it raises KeyboardInterrupt saying how many points finished
-    (each is in the cache, written by the process that computed it).
+    Interrupted (Ctrl-C), it raises KeyboardInterrupt saying how many points it had
+    received (each finished point is in the cache, written by the process that
+    computed it: a worker may have written one more than it had sent).
     """
     from tqdm import tqdm
 
@@ -444,8 +445,12 @@ def _collect(results, n, desc, progress, cache_dir=None):
                 warnings.warn(str(problem), CacheWarning, stacklevel=3)
             bar.update()
     except KeyboardInterrupt:
-        kept = f", kept in the cache ({cache_dir})" if cache_dir is not None else ""
-        raise KeyboardInterrupt(f"{desc}: {done} of {n} points finished{kept}") from None
+        kept = (
+            f"; every point finished is kept in the cache ({cache_dir})"
+            if cache_dir is not None
+            else " (no cache: nothing kept)"
+        )
+        raise KeyboardInterrupt(f"{desc}: stopped after {done} of {n} points{kept}") from None
     finally:
         bar.close()
     return rows, n_cached, problems
