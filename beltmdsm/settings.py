@@ -226,12 +226,12 @@ def run_bytes(model: Model, settings: SolverSettings) -> float:
 def _overflows(model: Model) -> str | None:
     """What of the start is beyond floating point: None, or ``"X1 = inf"``, ...
 
-    The start is the unforced equilibrium (Eq. 9) and the field of its mode there;
+    The start is the unforced equilibrium (Eq. 9) and the fields of slip back and stick;
     a state whose square overflows (the energy balance squares it) counts too.
     """
     import warnings
 
-    from .integrate.switching import Switching
+    from generated import hybrid
 
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore", RuntimeWarning)
@@ -244,13 +244,15 @@ def _overflows(model: Model) -> str | None:
                     f"the unforced equilibrium (Eq. 9) has {name} = {value:.3g}, whose "
                     "square (in the energy balance) overflows"
                 )
-        # the field of the mode the run starts in (another mode's law may be undefined
-        # there: Stribeck's forward slip at Vr < 0)
-        sw = Switching(model)
-        mode = sw.initial_mode(0.0, state)
-        rate = np.array(sw.field(0.0, *state, float(mode)), float)
-        if not np.all(np.isfinite(rate)):
-            return f"the field of mode {mode.name.lower()} at that state is {rate.tolist()}"
+        # the fields of the modes a start at rest on the belt can take (another mode's
+        # law may be undefined there: Stribeck's forward slip at Vr < 0)
+        field = hybrid.bind_vector_field(
+            backend="python", **model.arguments(hybrid.bind_vector_field)
+        )
+        for mode in ("slip_back", "stick"):
+            rate = np.array(field(0.0, *state, float(hybrid.MODE_CODES[mode])), float)
+            if not np.all(np.isfinite(rate)):
+                return f"the field of mode {mode} at that state is {rate.tolist()}"
     return None
 
 
