@@ -182,11 +182,22 @@ def floquet(f: Floquet) -> str:
         lines += [
             f"Floquet multipliers: {mus}",
             f"largest |mu| = {f.max_abs_multiplier:.6g}: "
-            f"{'stable' if f.stable else 'UNSTABLE'}; growth rate "
+            f"{'stable' if f.stable else 'UNSTABLE'}{_isolation(f)}; growth rate "
             f"{f.growth_rate:.6g} 1/s, critical pair at {f.frequency:.6g} rad/s "
             f"(omega1 = {p['omega1']:g}; modulo {2 * math.pi / f.period:.6g})",
         ]
     return "\n".join(lines)
+
+
+def _isolation(f) -> str:
+    """What a multiplier 1 (to `ISOLATION_TOL`) means: the response is not isolated and
+    its multipliers cannot decide its stability."""
+    from ..analysis.periodmap import ISOLATION_TOL
+
+    mus = np.asarray(f.multipliers, dtype=complex)
+    if mus.size and np.min(np.abs(mus - 1.0)) <= ISOLATION_TOL:
+        return " (a multiplier is 1, I - M singular: not isolated, its linear stability undecided)"
+    return ""
 
 
 _SIDES = {
@@ -258,6 +269,7 @@ def responses(found: ResponseSet) -> str:
             "GRAZING (no multiplier)"
             if f.stable is None
             else f"{'stable' if f.stable else 'UNSTABLE'}, max|mu| = {f.max_abs_multiplier:.5g}"
+            + _isolation(f)
         )
         check = (
             ""

@@ -171,6 +171,12 @@ def test_den_hartog_responses_end_and_floquet_says_not_isolated():
     sim = simulate(model, y0=r["state0"], t_end=r["period"], rtol=1e-12, atol=1e-12)
     end = sim.trajectory.state(np.array([r["period"]]))[:, 0]
     np.testing.assert_allclose(end, r["state0"], atol=1e-7)
+    # its verdict says so
+    from beltmdsm.cli.text import _isolation
+
+    mus = [complex(re, im) for re, im in r["multipliers"]]
+    assert "not isolated" in _isolation(types.SimpleNamespace(multipliers=mus))
+    assert _isolation(types.SimpleNamespace(multipliers=[0.9999, 0.5])) == ""
     # floquet: not "no periodic response found" alone, but why
     rc, out, err = _cli("floquet", *DEN_HARTOG, timeout=120)
     line = _one_line(err)
