@@ -34,10 +34,13 @@ __all__ = [
     "MAX_RUN_BYTES",
     "MAX_VB_POINTS",
     "MAX_BAND_POINTS",
+    "MAX_SEED_POINTS",
+    "MAX_MAP_ROWS",
     "MIN_TOL_ULPS",
     "fastest_rate",
     "run_bytes",
     "check_request",
+    "check_finite",
 ]
 
 #: The integrators: `beltmdsm.integrate.events` and `beltmdsm.integrate.superposition`.
@@ -179,6 +182,16 @@ MAX_VB_POINTS = 10**5
 #: (6 ms where no periodic response is found; measured at the base set over Vb in
 #: [1, 9]), so 10^4 points take 20 s to a minute.
 MAX_BAND_POINTS = 10**4
+#: Most seeds' grid points of `beltmdsm.studies.coexistence.coexistence` (its range
+#: over ``step``): a point is a shooting, a 600 s run from rest and two continued
+#: ladders, 0.5 to 2 s (measured at the base set over Vb in [3, 5]), so 10^3 points
+#: take ten to thirty minutes; a smaller step is a mistake (``--step 1e-6``: millions
+#: of points, memory growing for hours), refused before anything is computed.
+MAX_SEED_POINTS = 10**3
+#: Most rows of `beltmdsm.analysis.floquet_map.floquet_map`: a row whose curves are
+#: continued takes a few ms, one with a band (every ``check_every`` rows, and where a
+#: curve is lost) a second or more, so 10^4 rows take minutes.
+MAX_MAP_ROWS = 10**4
 #: `beltmdsm.analysis.band.floquet_band`'s ``tol`` must span this many ulps of the
 #: larger end of the range: below, the midpoint of a bracket rounds to one of its ends
 #: and the bisection stops shrinking it.
@@ -210,6 +223,70 @@ def run_bytes(model: Model, settings: SolverSettings) -> float:
     return periods * BYTES_PER_PERIOD * steps + settings.t_end / settings.dt * BYTES_PER_SAMPLE
 
 
+def _overflows(model: Model) -> str | None:
+    """What of the start is beyond floating point: None, or ``"X1 = inf"``, ...
+
+    The start is the unforced equilibrium (Eq. 9) and the fields of slip back and stick;
+    a state whose square overflows (the energy balance squares it) counts too.
+    """
+    import warnings
+
+    from generated import hybrid
+
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore", RuntimeWarning)
+        state = np.array(unforced.equilibrium(**model.arguments(unforced.equilibrium)), float)
+        for name, value in zip(("X1", "X1'", "X2", "X2'"), state):
+            if not math.isfinite(value):
+                return f"the unforced equilibrium (Eq. 9) has {name} = {value:.3g}"
+            if not math.isfinite(value * value):
+                return (
+                    f"the unforced equilibrium (Eq. 9) has {name} = {value:.3g}, whose "
+                    "square (in the energy balance) overflows"
+                )
+        # the fields of the modes a start at rest on the belt can take (another mode's
+        # law may be undefined there: Stribeck's forward slip at Vr < 0)
+        field = hybrid.bind_vector_field(
+            backend="python", **model.arguments(hybrid.bind_vector_field)
+        )
+        for mode in ("slip_back", "stick"):
+            rate = np.array(field(0.0, *state, float(hybrid.MODE_CODES[mode])), float)
+            if not np.all(np.isfinite(rate)):
+                return f"the field of mode {mode} at that state is {rate.tolist()}"
+    return None
+
+
+def check_finite(model: Model) -> None:
+    """Refuse parameters that put the start of a run beyond floating point.
+
+    A state or rate that overflows to inf or NaN (``omega1 = 1e-200``: the equilibrium
+    ``X1 = mu_s g / omega1^2``) would be integrated as NaN; the parameters responsible
+    are those whose base value (``generated.parameters.BASE``) makes it finite.
+
+    Raises
+    ------
+    beltmdsm.errors.Refused
+        Naming those parameters.
+    """
+    problem = _overflows(model)
+    if problem is None:
+        return
+    from generated.parameters import BASE
+
+    names = [
+        k
+        for k, v in model.params.items()
+        if k in BASE and v != BASE[k] and _overflows(model.replace(**{k: BASE[k]})) is None
+    ]
+    names = names or [k for k, v in model.params.items() if k in BASE and v != BASE[k]]
+    given = ", ".join(f"{k} = {model.params[k]:g}" for k in names)
+    raise Refused(
+        f"{problem}: beyond floating point at {given} (the motion would be integrated "
+        "as NaN); choose values whose equilibrium and forces are finite",
+        *names,
+    )
+
+
 def check_request(model: Model, settings: SolverSettings) -> None:
     """Refuse a run that could not be read or would not fit, before it computes anything.
 
@@ -220,6 +297,7 @@ def check_request(model: Model, settings: SolverSettings) -> None:
         ``pi / dt`` is below `NYQUIST_MULTIPLE` times the fastest of ``Omega_t``,
         ``Omega_n`` and ``omega1`` (its harmonics would alias into the omega1 band).
     """
+    check_finite(model)
     need = run_bytes(model, settings)
     if need > MAX_RUN_BYTES:
         rate = fastest_rate(model)

@@ -782,12 +782,22 @@ def _multiplier_edge(family, a, b, tol):
     (va, pa), (vb, pb) = a, b
     ga, gb = log_max_multiplier(family(va), pa)[0], log_max_multiplier(family(vb), pb)[0]
     stable_below = (ga < 0) if va < vb else (gb < 0)
+    # the secant, kept inside the bracket of the sign change [lo, hi]: where it has no
+    # slope (ga == gb: a multiplier flat in the parameter, as on |mu| = 1 undamped) or
+    # leaves the bracket, the bracket is bisected
+    (lo, glo), hi = (va, ga), vb
     for _ in range(40):
-        v = vb - gb * (vb - va) / (gb - ga)
+        v = vb - gb * (vb - va) / (gb - ga) if gb != ga else math.nan
+        if not min(lo, hi) < v < max(lo, hi):
+            v = 0.5 * (lo + hi)
         p = fixed_point(family(v), pb.state)
         g, mu = log_max_multiplier(family(v), p)
         (va, pa, ga), (vb, pb, gb) = (vb, pb, gb), (v, p, g)
-        if abs(vb - va) <= tol:
+        if (g < 0) == (glo < 0):
+            lo, glo = v, g
+        else:
+            hi = v
+        if abs(vb - va) <= tol or abs(hi - lo) <= tol:
             break
     kind, frequency = multiplier_kind(mu, family.periods * family(vb).period)
     return Edge(

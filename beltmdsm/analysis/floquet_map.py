@@ -45,6 +45,7 @@ rows for comparison, on a grid of ``x`` fine enough to show it (`LINEAR_POINTS`)
 
 from __future__ import annotations
 
+import sys
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -54,8 +55,10 @@ import numpy as np
 
 from generated import stability
 
+from ..errors import Refused
 from ..intervals import runs as true_intervals
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
+from ..settings import MAX_MAP_ROWS
 from .band import Band, floquet_band
 from .branch import continue_branch
 from .edges import (
@@ -657,6 +660,7 @@ def floquet_map(
     rows: int = 100,
     check_every: int = 50,
     backend: Backend | None = None,
+    progress: bool = False,
     **kw: Any,
 ) -> FloquetMap:
     """The region of ``(x, y)`` where the periodic response is unstable, its boundary traced.
@@ -675,6 +679,8 @@ def floquet_map(
         A band finds the edges afresh on every such row (>= 1), besides where a curve
         cannot be continued and where no curve is followed.
     backend : {"python", "numba", None}
+    progress : bool
+        Show the rows on stderr (tqdm) once they take more than 2 s.
 
     Returns
     -------
@@ -683,7 +689,8 @@ def floquet_map(
     Raises
     ------
     ValueError
-        For unknown or equal parameters, bad ranges, ``rows < 2`` or ``check_every < 1``.
+        For unknown or equal parameters, bad ranges, ``rows < 2`` or ``check_every < 1``;
+        `beltmdsm.errors.Refused` for more than `beltmdsm.settings.MAX_MAP_ROWS` rows.
     """
     clock = time.perf_counter()
     for name in (x, y):
@@ -696,13 +703,32 @@ def floquet_map(
             raise ValueError(f"each range must be finite with from < to; got [{a}, {b}]")
     if int(rows) < 2 or int(check_every) < 1:
         raise ValueError(f"rows must be >= 2 and check_every >= 1; got {rows}, {check_every}")
+    if int(rows) > MAX_MAP_ROWS:
+        raise Refused(
+            f"rows = {int(rows)} is more than MAX_MAP_ROWS = {MAX_MAP_ROWS} "
+            "(beltmdsm/settings.py; a row is a continuation step of every curve, every "
+            f"{int(check_every)}th a band): use rows <= {MAX_MAP_ROWS}",
+            "rows",
+        )
     base = as_model(model, **kw).replace(**{x: x_from, y: y_from})
     excitation_period(base)
     span = x_to - x_from
     ys = np.linspace(y_from, y_to, int(rows))
     xs = np.linspace(x_from, x_to, LINEAR_POINTS)
     curves, trackers, unstable, models, band_rows = [], [], [], [], []
+    from tqdm import tqdm
+
+    bar = tqdm(
+        total=ys.size,
+        desc=f"floquet-map {y}",
+        unit=" rows",
+        delay=2,
+        leave=False,
+        disable=not progress,
+        file=sys.stderr,
+    )
     for i, value in enumerate(ys):
+        bar.update()
         row = base.replace(**{y: float(value)})
         family = MapFamily(row, x, 1, backend)
         live, lost = [], []
@@ -787,6 +813,7 @@ def floquet_map(
         else:  # where no stable response is found, also beside an unstable one
             unstable.append([[float(a), float(b)] for a, b in band.unstable])
         models.append(row)
+    bar.close()
     return FloquetMap(
         x,
         y,

@@ -84,7 +84,11 @@ def cycle_averages(
     first = np.ceil(t_start / period - 1e-12) * period
     count = int(np.floor((sim.trajectory.t_end - first) / period + 1e-9))
     if count < 1:
-        raise ValueError(f"no full cycle of {period:.6g} s between t = {first:.6g} s and the end")
+        raise ValueError(
+            f"no full cycle of {period:.6g} s fits between t = {t_start:.6g} s and the "
+            f"end t = {sim.trajectory.t_end:.6g} s (cycles start at multiples of the "
+            f"period, the first at t = {first:.6g} s; lengthen t_end)"
+        )
     edges = first + period * np.arange(count + 1)
     traj = sim.trajectory
 
@@ -100,14 +104,24 @@ def modulation_scatter(sim: Simulated) -> dict[str, float]:
     """Effective friction averaged over 2 pi/Omega_t and over 2 pi/omega1 (Figs. 10-12).
 
     Returns a dict with, for each averaging period, the mean of ``mu_eff`` over the
-    cycles of the steady window and its scatter (standard deviation and range).
+    cycles of the steady window and its scatter (standard deviation and range). Where
+    no full cycle of a period fits in the steady window, its three numbers are NaN and
+    ``"modulation_error"`` says why (the run and the other period are kept).
     """
-    out = {}
+    out, missing = {}, []
     for tag, omega in (("Omega", sim.params["Omega_t"]), ("omega1", sim.params["omega1"])):
         if omega <= 0:
             continue
-        mu = cycle_averages(sim, 2 * np.pi / omega)["mu_eff"]
+        try:
+            mu = cycle_averages(sim, 2 * np.pi / omega)["mu_eff"]
+        except ValueError as err:
+            for stat in ("mean", "std", "range"):
+                out[f"mu_eff_{tag}_{stat}"] = float("nan")
+            missing.append(f"mu_eff over 2pi/{tag}: {err}")
+            continue
         out[f"mu_eff_{tag}_mean"] = float(mu.mean())
         out[f"mu_eff_{tag}_std"] = float(mu.std())
         out[f"mu_eff_{tag}_range"] = float(mu.max() - mu.min())
+    if missing:
+        out["modulation_error"] = "; ".join(missing)
     return out

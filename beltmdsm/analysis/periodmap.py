@@ -94,7 +94,7 @@ from ..integrate.superposition import Superposition, TangentialRun, friction_dir
 from ..integrate.switching import SURFACE_INDEX, Mode, Switching
 from ..integrate.trajectory import Run
 from ..model import Backend, Model, excitation_period, initial_state, require
-from ..settings import SolverSettings
+from ..settings import SolverSettings, check_finite
 from . import variational
 
 __all__ = [
@@ -132,6 +132,11 @@ GRAZING_RATIO = 1e-8
 #: Newton's method stops when the period map moves the state by less than this
 #: (relative to the state's scale).
 NEWTON_TOL = 1e-11
+#: ``I - M`` whose smallest singular value is below this (relative to ``M``) is singular:
+#: a multiplier is 1 to within the closed forms' rounding amplified far past it, and the
+#: fixed point, if any, is not isolated (its solve would return ~ 1 / this times the
+#: forcing, or rounding noise).
+ISOLATION_TOL = 1e-9
 #: Integration tolerance of the periodic orbits.
 RTOL = 1e-12
 #: Halvings of a Newton step before the method counts as stalled.
@@ -147,6 +152,12 @@ _NORMAL_PERIODS = 200
 #: Iterations on the backward-sliding field (`GeneralMap.sliding_guess`): where that
 #: orbit exists they converge in 5 to 8 from the equilibrium.
 _SLIDING_ITER = 30
+#: The most steps of one period of `GeneralMap.sliding_guess`'s iterations: about 5 MB
+#: with their variational propagators tens of MB. Stribeck friction with v_s = 1e-3
+#: takes 1 700 a period, v_s = 1e-5 150 000 (the continued slip-back field crosses
+#: Vr = 0, where it changes on the scale v_s: steps ~ T / v_s), which cost 1.3 GB and
+#: half a minute for a guess; past the bound the guess is the last iterate.
+_SLIDING_STEPS = 20_000
 #: Samples per excitation period of `GeneralMap`'s runs (the integrator's samples are
 #: not read; its dense output is).
 _DENSE_SAMPLES = 50
@@ -351,6 +362,16 @@ class OnePeriodMap:
         sgn = friction_direction(Mode.SLIP_BACK)
         c = np.array(engine.state(self.T, *start, *engine.exc(self.T), z, v, sgn))
         Phi = np.array(self.stm(self.T)).reshape(2, 2)
+        smallest = float(np.linalg.svd(np.eye(2) - Phi, compute_uv=False)[-1])
+        if smallest <= ISOLATION_TOL * max(1.0, float(np.max(np.abs(Phi)))):
+            raise NoPeriodicResponse(
+                "no periodic response found: the response is not isolated: a multiplier "
+                f"is 1 (I - M singular: the smallest singular value of I - Phi(T) of the "
+                f"backward-sliding motion is {smallest:.1e}), so its periodic responses form "
+                "a family (an undamped free oscillation whose period divides the "
+                f"excitation's, T = {self.T:.6g} s) and shooting has no isolated one to "
+                "converge to; with damping (beta1 > 0) or a detuned omega1 it is isolated"
+            )
         return np.linalg.solve(np.eye(2) - Phi, c)
 
     def saltation(self, before: Mode, after: Mode, surface: str) -> Any:
@@ -995,8 +1016,12 @@ class GeneralMap(PeriodMap):
                 RTOL,
                 RTOL,
                 np.inf,
+                _SLIDING_STEPS,
             )
             if code != _dop853.STATUS_END:
+                # too stiff to be worth a guess (a slip law that changes on a small
+                # velocity scale where this continued field crosses Vr = 0), or no
+                # end at all: the last iterate is the guess
                 break
             r = np.asarray(y) - x
             size = float(np.max(np.abs(r)))
@@ -1048,6 +1073,8 @@ def period_map(
     periods: int = 1,
     backend: Backend | None = None,
     engine: Engine | None = None,
+    *,
+    check: bool = True,
 ) -> PeriodMap:
     """The ``k``-fold period map of the model.
 
@@ -1060,16 +1087,23 @@ def period_map(
         None: the engine the model's laws allow (`engine_of`); a name asks for that
         engine (the general one applies to every law, and serves as a cross-check of
         the closed-form one).
+    check : bool
+        Refuse a start beyond floating point (`beltmdsm.settings.check_finite`, 0.3 ms);
+        `MapFamily` checks its model once instead of at every value (an overflow there
+        still ends its runs, with `beltmdsm.errors.StepTooSmall`).
 
     Raises
     ------
     ValueError
-        For an unknown engine.
+        For an unknown engine; `beltmdsm.errors.Refused` for parameters that put the
+        start beyond floating point (`beltmdsm.settings.check_finite`).
     beltmdsm.model.Unsupported
         For ``engine="closed_form"`` where the laws lack a fact it needs.
     """
     if engine is not None and engine not in ENGINES:
         raise ValueError(f"engine must be one of {', '.join(map(repr, ENGINES))}; got {engine!r}")
+    if check:
+        check_finite(model)
     return ENGINES[engine or engine_of(model)](model, periods, backend)
 
 
@@ -1103,6 +1137,7 @@ class MapFamily:
     ) -> None:
         if param not in model.params:
             raise ValueError(f"param must be a model parameter; got {param!r}")
+        check_finite(model)
         self.model, self.param = model, param
         self.periods, self.backend = int(periods), backend
         self._maps: dict = {}
@@ -1117,7 +1152,7 @@ class MapFamily:
                 model = self.model.replace(**{self.param: value})
             except ValueError as err:  # a value outside the parameter's domain
                 raise NoPeriodicResponse(f"{self.param} = {value:g}: {err}") from None
-            self._maps[value] = period_map(model, self.periods, self.backend)
+            self._maps[value] = period_map(model, self.periods, self.backend, check=False)
         return self._maps[value]
 
     def any_map(self, value: float) -> PeriodMap:

@@ -112,6 +112,29 @@ def _run(args):
 
 def _handle(args):
     try:
+        return _interrupted(args)
+    except KeyboardInterrupt as err:
+        # Ctrl-C: one line, what was kept (a sweep's finished points), exit status 130
+        print(f"{args.parser.prog}: interrupted{f' ({err})' if str(err) else ''}", file=sys.stderr)
+        return 130
+
+
+def _interrupted(args):
+    """`_dispatch`, with the SystemError that numba raises where Ctrl-C lands inside a
+    compiled function ("CPUDispatcher(...) returned a result with an exception set")
+    read as the KeyboardInterrupt it wraps."""
+    try:
+        return _dispatch(args)
+    except SystemError as err:
+        if isinstance(err.__cause__, KeyboardInterrupt) or isinstance(
+            err.__context__, KeyboardInterrupt
+        ):
+            raise KeyboardInterrupt from None
+        raise
+
+
+def _dispatch(args):
+    try:
         return args.handler(args)
     except ValueError as err:
         names = getattr(err, "names", ())
@@ -460,8 +483,16 @@ def executor_from(args: argparse.Namespace) -> Iterator[cf.Executor | str | None
     elif args.jobs == 1:
         yield "serial"
     elif args.jobs:
-        with cf.ProcessPoolExecutor(max_workers=args.jobs) as pool:
+        from ..studies.sweep import process_pool, stop_process_pool
+
+        pool = process_pool(args.jobs)
+        try:
             yield pool
+        except BaseException:
+            # Ctrl-C or a failure: the queued points are not waited for
+            stop_process_pool(pool)
+            raise
+        pool.shutdown()
     else:
         yield None
 

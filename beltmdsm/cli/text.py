@@ -151,10 +151,18 @@ def simulation(sim: Simulation, out: dict, modulation: bool) -> str:
         f"mean friction {s.mean_friction:.6g} m/s^2",
     ]
     if modulation:
+        nan = float("nan")
         lines.append(
-            "mu_eff over 2pi/Omega: {mu_eff_Omega_mean:.5g} +- {mu_eff_Omega_std:.3g}; "
-            "over 2pi/omega1: {mu_eff_omega1_mean:.5g} +- {mu_eff_omega1_std:.3g}".format(**out)
+            "mu_eff over 2pi/Omega: {:.5g} +- {:.3g}; over 2pi/omega1: {:.5g} +- {:.3g}".format(
+                *(
+                    out.get(f"mu_eff_{t}_{s}", nan)
+                    for t in ("Omega", "omega1")
+                    for s in ("mean", "std")
+                )
+            )
         )
+        if out.get("modulation_error"):
+            lines.append(f"not computed: {out['modulation_error']}")
     lines.append(f"wall time {s.wall_s:.2f} s")
     lines += [f"warning: {w}" for w in s.warnings]
     return "\n".join(lines)
@@ -186,7 +194,7 @@ def floquet(f: Floquet) -> str:
         lines += [
             f"Floquet multipliers: {mus}",
             f"largest |mu| = {f.max_abs_multiplier:.6g}: "
-            f"{'stable' if f.stable else 'UNSTABLE'}; growth rate "
+            f"{'stable' if f.stable else 'UNSTABLE'}{_isolation(f)}; growth rate "
             f"{f.growth_rate:.6g} 1/s, critical pair at {f.frequency:.6g} rad/s "
             f"(omega1 = {p['omega1']:g}; modulo {2 * math.pi / f.period:.6g})",
         ]
@@ -224,6 +232,17 @@ def cycle(f: Floquet) -> str:
     if c.stick_collapses:
         lines.append("a stick phase collapses the velocity perturbation: one multiplier is 0")
     return "\n".join(lines)
+
+
+def _isolation(f) -> str:
+    """What a multiplier 1 (to `ISOLATION_TOL`) means: the response is not isolated and
+    its multipliers cannot decide its stability."""
+    from ..analysis.periodmap import ISOLATION_TOL
+
+    mus = np.asarray(f.multipliers, dtype=complex)
+    if mus.size and np.min(np.abs(mus - 1.0)) <= ISOLATION_TOL:
+        return " (a multiplier is 1, I - M singular: not isolated, its linear stability undecided)"
+    return ""
 
 
 _SIDES = {
@@ -309,6 +328,7 @@ def responses(found: ResponseSet) -> str:
             "GRAZING (no multiplier)"
             if f.stable is None
             else f"{'stable' if f.stable else 'UNSTABLE'}, max|mu| = {f.max_abs_multiplier:.5g}"
+            + _isolation(f)
         )
         check = (
             ""
@@ -544,14 +564,18 @@ def sweep(result: Sweep, out_file: str | None = None) -> str:
     if result.dropped:
         lines.append(f"duplicate values computed once: {_values(result.dropped)}")
     x = np.asarray(table[param], float)
-    ran = np.asarray(table["status"]) != "no_periodic"
+    ran = ~np.isin(np.asarray(table["status"]), ("no_periodic", "failed"))
+    for r in table:
+        if "error" in table.dtype.names and str(r["error"]):
+            failed = "failed" if r["status"] == "failed" else "not all computed"
+            lines.append(f"{param} = {r[param]:g} {failed}: {r['error']}")
     unforced = x[ran & ~np.asarray(table["forced_peak"], bool)]
     if unforced.size:
         lines.append(
             f"no forced peak above the noise floor of the tolerances at {param} = "
             f"{_values(unforced)}: the omega1 peak is judged against the floor alone"
         )
-    untrusted = x[~np.asarray(table["energy_ok"], bool)]
+    untrusted = x[ran & ~np.asarray(table["energy_ok"], bool)]
     if untrusted.size:
         lines.append(
             f"warning: the energy balance does not close within its bound at {param} = "

@@ -54,4 +54,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     parameter, or a run that could not be done, reported in one line on stderr.
     """
     argv = sys.argv[1:] if argv is None else list(argv)
-    return derive_cli.main(argv, extend=add_commands, evidence=_paper_evidence)
+    try:
+        return derive_cli.main(argv, extend=add_commands, evidence=_paper_evidence)
+    except KeyboardInterrupt:
+        # Ctrl-C outside a command's run (while the program starts): one line, as in it
+        print("beltmdsm: interrupted", file=sys.stderr)
+        return 130

@@ -96,7 +96,7 @@ _KERNELS: dict = {}
 def advance(field: str, model: Model, backend: Backend | None = None):
     """`beltmdsm.integrate._dop853.advance` on the ``field`` ("vector_field" or
     "response_field") of the model's laws: ``f(fa, sa, ra, mode, watch, dirs, t0, y0,
-    t_end, h0, rtol, atol, max_step)``.
+    t_end, h0, rtol, atol, max_step, max_steps)``.
 
     ``backend``: "python", "numba" or None (numba if installed).
     """

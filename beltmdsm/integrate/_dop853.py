@@ -33,7 +33,7 @@ import numpy as np
 from generated import tableau as _coef
 from generated._support import import_numba
 
-from ._roots import GOLDEN, converged, golden, illinois, secant
+from ._roots import GOLDEN, GOLDEN_STEPS, converged, golden, illinois, secant
 
 __all__ = [
     "advance",
@@ -45,6 +45,9 @@ __all__ = [
     "STATUS_END",
     "STATUS_EVENT",
     "STATUS_STEP_TOO_SMALL",
+    "STATUS_NOT_FINITE",
+    "STATUS_TOO_MANY_STEPS",
+    "MAX_STEPS",
 ]
 
 
@@ -82,6 +85,14 @@ _SAMPLES = 16
 _DIP_RESOLUTION = 1e-8
 
 STATUS_END, STATUS_EVENT, STATUS_STEP_TOO_SMALL = 0, 1, 2
+#: The state or the step size is NaN or infinite (an overflow): no step can be accepted,
+#: and a NaN step size compares false with every bound, so it is tested for by name.
+STATUS_NOT_FINITE = 3
+#: More than `MAX_STEPS` (or the call's ``max_steps``) steps in one call.
+STATUS_TOO_MANY_STEPS = 4
+#: The most steps of one call: 2^24 steps hold (2 + 4 + 4 N_DENSE) x 8 bytes each, about
+#: 4.6 GB, past `beltmdsm.settings.MAX_RUN_BYTES`: a run that needs more cannot be kept.
+MAX_STEPS = 2**24
 
 # The kernels are globals of the functions below, not arguments: `beltmdsm.integrate._compiled`
 # binds them (copies of the functions with these globals set, or a module numba
@@ -176,7 +187,11 @@ def _dip(sa, watch, dirs, j, F, y_old, t_old, h, lo, hi, tmp):
     c, d = a + GOLDEN * (b - a), b - GOLDEN * (b - a)
     fc = _surface_at(sa, watch, dirs, j, F, y_old, t_old, h, c, tmp)
     fd = _surface_at(sa, watch, dirs, j, F, y_old, t_old, h, d, tmp)
-    while fc > 0.0 and fd > 0.0 and b - a > _DIP_RESOLUTION * h:
+    # bounded: once the bracket is a few ulps of t wide (a short step late in a long
+    # run: 1e-8 h below one ulp), rounding stops shrinking it and the search ends there
+    for _ in range(GOLDEN_STEPS):
+        if not (fc > 0.0 and fd > 0.0) or b - a <= _DIP_RESOLUTION * h or converged(a, b):
+            break
         a, b, kept, f_kept, t = golden(a, b, c, fc, d, fd)
         ft = _surface_at(sa, watch, dirs, j, F, y_old, t_old, h, t, tmp)
         if t < kept:
@@ -247,7 +262,9 @@ def _first_crossing(sa, watch, dirs, F, y_old, t_old, h, u_old, u_new, r_old, r_
     return best_j, best_t
 
 
-def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_step):
+def advance(
+    fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_step, max_steps=MAX_STEPS
+):
     """Integrate one mode from ``t0`` until ``t_end`` or the first watched crossing.
 
     Parameters
@@ -266,6 +283,9 @@ def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_st
     h0 : float
         First step size (``<= 0``: chosen from the tolerances).
     rtol, atol, max_step : float
+    max_steps : int, optional
+        The most steps (at most `MAX_STEPS`): past them the call ends with
+        `STATUS_TOO_MANY_STEPS`, its memory bounded.
 
     Returns
     -------
@@ -315,6 +335,15 @@ def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_st
     status = STATUS_END
     hit = -1
     while t < t_end:
+        if n >= max_steps or n >= MAX_STEPS:
+            status = STATUS_TOO_MANY_STEPS
+            break
+        if not (math.isfinite(y[0]) and math.isfinite(y[1])):
+            status = STATUS_NOT_FINITE
+            break
+        if not (math.isfinite(y[2]) and math.isfinite(y[3])):
+            status = STATUS_NOT_FINITE
+            break
         min_step = 10.0 * (np.nextafter(t, np.inf) - t)
         if h_abs > max_step:
             h_abs = max_step
@@ -322,6 +351,9 @@ def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_st
             h_abs = min_step
         rejected = False
         while True:
+            if not (math.isfinite(h_abs) and math.isfinite(t)):
+                status = STATUS_NOT_FINITE
+                break
             if h_abs < min_step:
                 status = STATUS_STEP_TOO_SMALL
                 break
@@ -365,7 +397,7 @@ def advance(fa, sa, ra, mode, watch, dirs, t0, y0, t_end, h0, rtol, atol, max_st
                 break
             h_abs *= max(_MIN_FACTOR, _SAFETY * norm**_EXPONENT)
             rejected = True
-        if status == STATUS_STEP_TOO_SMALL:
+        if status != STATUS_END:
             break
         # the dense output of the accepted step [t, t_new]
         for s in range(_N_STAGES + 1, _N_EXTENDED):

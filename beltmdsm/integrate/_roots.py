@@ -12,11 +12,15 @@ with either integrator.
 
 from __future__ import annotations
 
-__all__ = ["converged", "secant", "illinois", "GOLDEN", "golden"]
+__all__ = ["converged", "secant", "illinois", "GOLDEN", "golden", "GOLDEN_STEPS"]
 
 #: The golden-section ratio ``(3 - sqrt 5) / 2``: each `golden` step keeps ``1 - GOLDEN``
 #: of the bracket.
 GOLDEN = 0.3819660112501051
+#: The most `golden` steps of one search: 0.618^100 ~ 1e-21 of the bracket, past both the
+#: resolution asked (``1e-8`` of a step, 38 steps) and the rounding of the time; a bracket
+#: that rounding no longer shrinks ends at ulp resolution, not in an endless loop.
+GOLDEN_STEPS = 100
 
 
 def converged(a: float, b: float) -> bool:

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._dop853 import _dense
-from ._roots import GOLDEN, converged, golden, illinois, secant
+from ._roots import GOLDEN, GOLDEN_STEPS, converged, golden, illinois, secant
 
 __all__ = ["scan", "tangential_state"]
 
@@ -98,7 +98,10 @@ def _dip(lo, hi, j, ctx):
     c, d = a + GOLDEN * (b - a), b - GOLDEN * (b - a)
     fc = _inside_at(c, j, ctx)
     fd = _inside_at(d, j, ctx)
-    while fc > 0.0 and fd > 0.0 and b - a > _DIP_RESOLUTION * (hi - lo):
+    # bounded, and ends at ulp resolution of t (`beltmdsm.integrate._dop853._dip`)
+    for _ in range(GOLDEN_STEPS):
+        if not (fc > 0.0 and fd > 0.0) or b - a <= _DIP_RESOLUTION * (hi - lo) or converged(a, b):
+            break
         a, b, kept, f_kept, t = golden(a, b, c, fc, d, fd)
         ft = _inside_at(t, j, ctx)
         if t < kept:

@@ -25,7 +25,42 @@ from .switching import Switching
 from .trajectory import Run, Segment, Trajectory
 from .zeno import Zeno
 
-__all__ = ["integrate_events", "StepSegment", "StepTooSmall"]
+__all__ = ["integrate_events", "StepSegment", "StepTooSmall", "check_status"]
+
+
+def check_status(code: int, t: float, where: str, rtol: float, atol: float) -> None:
+    """Raise the named failure of an `beltmdsm.integrate._dop853.advance` status that is
+    neither its end nor an event: `StepTooSmall` (the step below the rounding of the
+    time, a state that is not finite, more than `_dop853.MAX_STEPS` steps).
+
+    ``where`` says where the run is (``"in mode slip_back"``, ``"in the normal motion"``).
+    """
+    if code == _dop853.STATUS_STEP_TOO_SMALL:
+        raise StepTooSmall(
+            f"the integrator's step fell below the rounding of the time at "
+            f"t = {t:.6g} s {where} at rtol = {rtol:g}, atol = {atol:g}: tolerances this "
+            "loose let the state drift across a switching surface between steps (tighten "
+            "them), or tolerances this tight ask for more than the rounding allows "
+            "(loosen them)",
+            rtol,
+            atol,
+        )
+    if code == _dop853.STATUS_NOT_FINITE:
+        raise StepTooSmall(
+            f"the state is not finite (NaN or an overflow) at t = {t:.6g} s {where}: "
+            "the parameters put the motion beyond floating point",
+            rtol,
+            atol,
+        )
+    if code == _dop853.STATUS_TOO_MANY_STEPS:
+        raise StepTooSmall(
+            f"the integrator took more than {_dop853.MAX_STEPS} steps (MAX_STEPS, "
+            f"beltmdsm/integrate/_dop853.py) by t = {t:.6g} s {where} at rtol = {rtol:g}, "
+            f"atol = {atol:g}: a field this stiff needs more steps than a run can keep "
+            "(shorten t_end or loosen the tolerances)",
+            rtol,
+            atol,
+        )
 
 
 class StepSegment:
@@ -98,6 +133,7 @@ def integrate_events(
     zeno = Zeno(sw)
     status, message = "done", "reached t_end"
     h_next = 0.0
+    n_steps = 0
     max_step = float(max_step)
     field, surf, rates = sw.field, sw.surfaces, sw.rates
     while t < t_end:
@@ -116,17 +152,10 @@ def integrate_events(
             settings.rtol,
             settings.atol,
             max_step,
+            _dop853.MAX_STEPS - n_steps,
         )
-        if code == _dop853.STATUS_STEP_TOO_SMALL:
-            raise StepTooSmall(
-                f"the integrator's step fell below the rounding of the time at "
-                f"t = {t_stop:.6g} s in mode {mode.name.lower()} at rtol = "
-                f"{settings.rtol:g}, atol = {settings.atol:g}: tolerances this loose let the "
-                "state drift across a switching surface between steps (tighten them), or "
-                "tolerances this tight ask for more than the rounding allows (loosen them)",
-                settings.rtol,
-                settings.atol,
-            )
+        check_status(code, t_stop, f"in mode {mode.name.lower()}", settings.rtol, settings.atol)
+        n_steps += n  # the run's steps together within MAX_STEPS (its memory)
         if n:
             steps.append((ts, hs, ys, Fs))
             segments.append(Segment(t, float(t_stop), mode, StepSegment(ts, hs, ys, Fs), ts.copy()))

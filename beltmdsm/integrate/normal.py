@@ -25,9 +25,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from generated import hybrid, oscillator
 
-from ..errors import StepTooSmall
 from ..model import Backend, Model
 from . import _compiled, _dop853
+from .events import check_status
 from .switching import EVENT_KINDS, SURFACE_INDEX, Mode, Switching
 
 __all__ = ["NormalMotion", "normal_motion", "normal_key", "clear_cache", "GRID_STEP"]
@@ -122,7 +122,7 @@ class NormalMotion:
         t, y = 0.0, np.array([0.0, 0.0, *y0_normal], dtype=float)
         mode = self._normal_mode(sw, t, y, entering=y[2] > 0 or (y[2] == 0 and y[3] > 0))
         switch_t, switch_mode, switch_kind, switch_surface, steps = [0.0], [mode], [], [], []
-        h_next = 0.0
+        h_next, n_steps = 0.0, 0
         while t < self.t_end:
             watch, dirs, targets = guards[mode]
             (code, n, ts, hs, ys, Fs, t_stop, y_stop, hit, h_next) = advance(
@@ -139,17 +139,10 @@ class NormalMotion:
                 rtol,
                 atol,
                 np.inf,
+                _dop853.MAX_STEPS - n_steps,
             )
-            if code == _dop853.STATUS_STEP_TOO_SMALL:
-                raise StepTooSmall(
-                    f"the normal motion's step fell below the rounding of the time at "
-                    f"t = {t_stop:.6g} s at rtol = {rtol:g}, atol = {atol:g}: tolerances "
-                    "this loose let the state drift across a switching surface between "
-                    "steps (tighten them), or tolerances this tight ask for more than the "
-                    "rounding allows (loosen them)",
-                    rtol,
-                    atol,
-                )
+            check_status(code, t_stop, "in the normal motion", rtol, atol)
+            n_steps += n
             if n:
                 steps.append((ts, hs, ys, Fs))
             t, y = float(t_stop), np.array(y_stop)

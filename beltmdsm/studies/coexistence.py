@@ -34,6 +34,7 @@ attractors that no seed reaches.
 
 from __future__ import annotations
 
+import sys
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -47,6 +48,7 @@ from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ..analysis.periodmap import engine_of
 from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period, is_autonomous
+from ..settings import MAX_SEED_POINTS
 from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
 from .responses import ladder, run_stroboscope, shoot
 
@@ -210,6 +212,7 @@ def coexistence(
     step: float = DEFAULT_STEP,
     limit: int = LOCK_LIMIT,
     backend: Backend | None = None,
+    progress: bool = False,
     **kw: Any,
 ) -> Coexistence:
     """Where two or more stable periodic responses coexist in ``param`` over ``[lo, hi]``.
@@ -226,6 +229,8 @@ def coexistence(
     limit : int
         The longest period looked for, in excitation periods.
     backend : {"python", "numba", None}
+    progress : bool
+        Show the seeds on stderr (tqdm) once they take more than 2 s.
 
     Returns
     -------
@@ -236,7 +241,8 @@ def coexistence(
     ValueError
         For an unknown parameter, a bad range, ``step <= 0`` or ``limit < 1``.
     beltmdsm.errors.Refused
-        For ``step > (hi - lo) / 2``: no seed inside the range.
+        For ``step > (hi - lo) / 2`` (no seed inside the range), or a step that makes
+        more than `beltmdsm.settings.MAX_SEED_POINTS` grid points.
     """
     clock = time.perf_counter()
     if param not in MODEL_PARAMETERS:
@@ -255,6 +261,14 @@ def coexistence(
             f"{(hi - lo) / 2:g}",
             "step",
         )
+    count = (hi - lo) / step
+    if count > MAX_SEED_POINTS:
+        raise Refused(
+            f"step = {step:g} makes {count:.3g} seeds' grid points on [{lo:g}, {hi:g}], more "
+            f"than MAX_SEED_POINTS = {MAX_SEED_POINTS} (beltmdsm/settings.py; each a shooting, "
+            f"a run and two ladders); use step >= {(hi - lo) / MAX_SEED_POINTS:.3g}",
+            "step",
+        )
     model = as_model(model, **kw).replace(**{param: lo})
     if is_autonomous(model):
         from .cycle_coexistence import cycle_coexistence
@@ -263,9 +277,21 @@ def coexistence(
     excitation_period(model)
     grid = np.linspace(lo, hi, max(int(round((hi - lo) / step)), 1) + 1)
     seeds, unlocked = [], []
+    from tqdm import tqdm
+
+    bar = tqdm(
+        total=4 * grid.size,
+        desc="coexistence seeds",
+        unit=" seeds",
+        delay=2,
+        leave=False,
+        disable=not progress,
+        file=sys.stderr,
+    )
 
     last = None
     for v in grid[::-1]:
+        bar.update()
         for guess in ([last.response] if last is not None else []) + [None]:
             try:
                 f = floquet(model.replace(**{param: float(v)}), guess=guess, backend=backend)
@@ -284,10 +310,13 @@ def coexistence(
     for v in grid:
         at = model.replace(**{param: float(v)})
         examine(v, run_stroboscope(at, t_end=SEED_T_END, limit=limit, backend=backend))
+        bar.update()
     for values in (grid, grid[::-1]):
         strobes = ladder(model, param, values, limit=limit, backend=backend)
         for v, strobe in zip(values, strobes):
             examine(v, strobe)
+            bar.update()
+    bar.close()
 
     branches, sources, unexplained = [], [], []
     for v, k, x, source in seeds:

@@ -26,6 +26,7 @@ __all__ = [
     "STARTS",
     "Start",
     "columns",
+    "failed_row",
     "run_point",
 ]
 
@@ -35,7 +36,10 @@ __all__ = [
 #: alone as "no peak". ``forced_peak`` and ``noise_floor`` say whether a peak at an
 #: excitation frequency rose above what the tolerances can put into the spectrum,
 #: ``energy_ok`` whether the energy balance closed within its bound (False: the
-#: point's numbers are not trusted).
+#: point's numbers are not trusted). ``error`` says what the point could not compute:
+#: empty where it computed everything; the reason where its run failed (``status``
+#: "failed", `failed_row`) or a part of it (the modulation of a period longer than the
+#: steady window: those columns NaN).
 COLUMNS = (
     ("regime", "U24"),
     ("peak_omega1", "f8"),
@@ -60,6 +64,7 @@ COLUMNS = (
     ("solver", "U16"),
     ("status", "U16"),
     ("wall_s", "f8"),
+    ("error", "U400"),
 )
 MODULATION_COLUMNS = tuple(
     (f"mu_eff_{tag}_{stat}", "f8")
@@ -112,7 +117,7 @@ def run_point(
     if start == "periodic":
         try:
             y0 = periodic_start(model, backend=settings.backend)
-        except NoPeriodicResponse:
+        except NoPeriodicResponse as err:
             row = {name: 0 if kind == "i8" else float("nan") for name, kind in columns(modulation)}
             row.update(
                 regime=NO_PERIODIC_RESPONSE,
@@ -123,19 +128,47 @@ def run_point(
                 tension=model.tension,
                 solver=settings.solver,
                 status="no_periodic",
+                error=_one_field(str(err)),
             )
             return row
     sim = simulate(model, settings=settings, y0=y0)
     summary = sim.summary
-    row = {name: getattr(summary, name) for name, _ in COLUMNS}
+    row = {name: getattr(summary, name) for name, _ in COLUMNS if name != "error"}
+    row["error"] = ""
     # None (unresolved) is stored as False beside resolved = False: a bool column
     row["omega1_peak_present"] = bool(row["resolved"] and row["omega1_peak_present"])
     if modulation:
         row.update(modulation_scatter(sim))
+        row["error"] = _one_field(row.pop("modulation_error", ""))
     if restart_period is not None:
         t_end = sim.trajectory.t_end
         # the last whole period; 1e-9 forgives the rounding of t_end / T at a multiple
         t_k = min(math.floor(t_end / restart_period + 1e-9) * restart_period, t_end)
         row["restart_t"] = float(t_k)
         row["restart_state"] = [float(x) for x in sim.trajectory.state(np.array([t_k]))[:, 0]]
+    return row
+
+
+def _one_field(text: str) -> str:
+    """``text`` as one CSV field that `beltmdsm.studies.sweep.table_from_csv` reads back
+    (numpy's reader splits at every comma, quoted or not)."""
+    return " ".join(str(text).replace(",", ";").split())[:400]
+
+
+def failed_row(model: Model, settings: SolverSettings, modulation: bool, err: Exception) -> dict:
+    """The row of a point whose run failed: ``status`` "failed", ``error`` the reason,
+    NaN (or 0) in the numeric columns, ``resolved`` False (it never counts as a point
+    without the peak)."""
+    row = {name: 0 if kind == "i8" else float("nan") for name, kind in columns(modulation)}
+    row.update(
+        regime="failed",
+        omega1_peak_present=False,
+        resolved=False,
+        forced_peak=False,
+        energy_ok=False,
+        tension=model.tension,
+        solver=settings.solver,
+        status="failed",
+        error=_one_field(f"{type(err).__name__}: {err}"),
+    )
     return row

@@ -22,6 +22,7 @@ import concurrent.futures as cf
 import csv
 import math
 import os
+import signal
 import sys
 import warnings
 from collections.abc import Mapping
@@ -46,7 +47,7 @@ from .cache import (
     writable_folder,
     write_cached,
 )
-from .row import STARTS, Start, columns, run_point
+from .row import STARTS, Start, columns, failed_row, run_point
 
 __all__ = [
     "sweep",
@@ -61,6 +62,8 @@ __all__ = [
     "SWEEPABLE",
     "CONTINUATIONS",
     "CacheWarning",
+    "process_pool",
+    "stop_process_pool",
 ]
 
 #: Directions of a continued sweep (`sweep`'s ``continuation``).
@@ -183,7 +186,14 @@ def _cached_run(
         if row is not None:
             return row, True, None
         problem = None if reason is None else Problem(str(path), reason)
-    row = run_point(model, settings, modulation, y0=y0, restart_period=period, start=start)
+    try:
+        row = run_point(model, settings, modulation, y0=y0, restart_period=period, start=start)
+    except (ValueError, ArithmeticError, RuntimeError) as err:
+        if continuation is not None:
+            raise  # the next point has no state to start from
+        # the point is a row that says why, not the end of the sweep; not cached
+        # (a rerun tries again)
+        return failed_row(model, settings, modulation, err), False, problem
     if cache_dir is not None:
         write_cached(path, ident, row)
     return row, False, problem
@@ -313,11 +323,15 @@ def sweep(
         periods = [_continuation_period(m, settings, param) for m in points]
         order = np.arange(len(points))[:: 1 if continuation == "up" else -1]
         results = _continued(points, periods, order, settings, modulation, cache_dir, continuation)
-        collected = _collect(results, len(points), f"sweep {param} ({continuation})", progress)
+        collected = _collect(
+            results, len(points), f"sweep {param} ({continuation})", progress, cache_dir
+        )
     else:
         own = executor is None
         if own:
-            executor = cf.ProcessPoolExecutor(max_workers=os.cpu_count())
+            # the workers leave Ctrl-C to this process, which stops them (`_stop`)
+            executor = process_pool(os.cpu_count())
+        futures = {}
         try:
             if executor == "serial":
                 results = (
@@ -330,7 +344,15 @@ def sweep(
                     for i, m in enumerate(points)
                 }
                 results = ((futures[fut], fut.result()) for fut in cf.as_completed(futures))
-            collected = _collect(results, len(points), f"sweep {param}", progress)
+            collected = _collect(results, len(points), f"sweep {param}", progress, cache_dir)
+        except KeyboardInterrupt:
+            if own:
+                stop_process_pool(executor, futures)
+                own = False
+            else:
+                for fut in futures:
+                    fut.cancel()
+            raise
         finally:
             if own:
                 executor.shutdown()
@@ -365,15 +387,56 @@ def _continued(points, periods, order, settings, modulation, cache_dir, continua
         y0 = result[0]["restart_state"]
 
 
-def _collect(results, n, desc, progress):
+def _ignore_interrupt():
+    """A pool worker's initializer: Ctrl-C (SIGINT to the terminal's process group) is
+    the sweep's to handle; a worker that raised KeyboardInterrupt itself would leave
+    the pool waiting on it."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def process_pool(workers: int | None) -> cf.ProcessPoolExecutor:
+    """A process pool for sweeps whose workers leave Ctrl-C to this process, which
+    stops them (`stop_process_pool`)."""
+    return cf.ProcessPoolExecutor(max_workers=workers, initializer=_ignore_interrupt)
+
+
+def stop_process_pool(executor: cf.ProcessPoolExecutor, futures=()) -> None:
+    """Stop a process pool now (Ctrl-C): the queued points cancelled, the running
+    ones ended (their workers terminated), nothing waited for but the workers' exit.
+
+    A second Ctrl-C meanwhile is ignored, so that it cannot leave the pool half shut
+    (the permanent hang of a shutdown interrupted while it joins its threads).
+    """
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        for fut in futures:
+            fut.cancel()
+        workers = list((getattr(executor, "_processes", None) or {}).values())
+        executor.shutdown(wait=False, cancel_futures=True)
+        for worker in workers:
+            worker.terminate()
+        for worker in workers:
+            worker.join(timeout=5)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _collect(results, n, desc, progress, cache_dir=None):
     """``(rows, n_cached, problems)`` from ``(index, (row, cached, problem))`` results,
-    with a progress bar; each problem is warned about once, by the file's name."""
+    with a progress bar; each problem is warned about once, by the file's name.
+
+    Interrupted (Ctrl-C), it raises KeyboardInterrupt saying how many points it had
+    received (each finished point is in the cache, written by the process that
+    computed it: a worker may have written one more than it had sent).
+    """
     from tqdm import tqdm
 
     rows, n_cached, problems = [None] * n, 0, []
     bar = tqdm(total=n, desc=desc, disable=not progress, file=sys.stderr)
+    done = 0
     try:
-        for i, (row, cached, problem) in results:
+        for i, (row, cached, problem) in _interruptible(results):
+            done += 1
             rows[i] = row
             n_cached += bool(cached)
             if problem is not None:
@@ -381,9 +444,30 @@ def _collect(results, n, desc, progress):
                 # stacklevel 4: the caller of sweep (sweep -> _collect -> warn)
                 warnings.warn(str(problem), CacheWarning, stacklevel=3)
             bar.update()
+    except KeyboardInterrupt:
+        kept = (
+            f"; every point finished is kept in the cache ({cache_dir})"
+            if cache_dir is not None
+            else " (no cache: nothing kept)"
+        )
+        raise KeyboardInterrupt(f"{desc}: stopped after {done} of {n} points{kept}") from None
     finally:
         bar.close()
     return rows, n_cached, problems
+
+
+def _interruptible(results):
+    """``results``, with the SystemError that numba raises where Ctrl-C lands inside a
+    compiled function ("returned a result with an exception set") read as the
+    KeyboardInterrupt it wraps."""
+    try:
+        yield from results
+    except SystemError as err:
+        if isinstance(err.__context__, KeyboardInterrupt) or isinstance(
+            err.__cause__, KeyboardInterrupt
+        ):
+            raise KeyboardInterrupt from None
+        raise
 
 
 def _table(cols, param, values, rows):

@@ -39,9 +39,11 @@ def add(commands, name: str) -> None:
         "--step",
         type=POSITIVE,
         default=0.5,
-        help="spacing of the seeds, > 0 and at most (to - from) / 2 (a seed inside); a "
-        "response stable only between two seeds may be missed (default 0.5)",
+        help="spacing of the seeds, > 0, at most (to - from) / 2 (a seed inside) and "
+        "giving at most MAX_SEED_POINTS = 1000 of them; a response stable only between two "
+        "seeds may be missed (default 0.5)",
     )
+    sub.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -56,6 +58,7 @@ def run(args: argparse.Namespace) -> int:
         model_from(args, skip=(swept(args),)),
         step=args.step,
         limit=args.limit,
+        progress=not args.no_progress,
     )
     if args.json:
         print(json.dumps(text.jsonable(found.as_dict())))

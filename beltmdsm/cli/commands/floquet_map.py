@@ -37,8 +37,12 @@ def add(commands, name: str) -> None:
         )
         range_flags(sub, axis)
     sub.add_argument(
-        "--rows", type=integer(2), default=100, help="values of --y, >= 2 (default 100)"
+        "--rows",
+        type=integer(2),
+        default=100,
+        help="values of --y, >= 2 and at most MAX_MAP_ROWS = 10^4 (default 100)",
     )
+    sub.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     sub.add_argument(
         "--png", metavar="FILE", type=output_file, help="draw the map to FILE (needs matplotlib)"
     )
@@ -60,6 +64,7 @@ def run(args: argparse.Namespace) -> int:
         y_hi,
         model_from(args, skip=(swept(args, "x"), swept(args, "y"))),
         rows=args.rows,
+        progress=not args.no_progress,
     )
     if args.png:
         from ..figure import floquet_map as draw
