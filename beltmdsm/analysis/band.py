@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from .._calling import ranged
 from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain
 from ..settings import MAX_BAND_POINTS, MIN_TOL_ULPS
@@ -205,6 +206,7 @@ class Band:
         }
 
 
+@ranged
 def floquet_band(
     param: str,
     lo: float,

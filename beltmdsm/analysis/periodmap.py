@@ -86,6 +86,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from generated import dynamics, hybrid
 
+from ..errors import NoPeriodicResponse  # its home; importable here as before
 from ..integrate import _compiled, _dop853
 from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.normal import NormalMotion, normal_motion
@@ -162,10 +163,6 @@ _VR = SURFACE_INDEX["relative_velocity"]
 _SF = SURFACE_INDEX["stick_forward"]
 _SB = SURFACE_INDEX["stick_back"]
 _TANGENTIAL = ("relative_velocity", "stick_forward", "stick_back")
-
-
-class NoPeriodicResponse(RuntimeError):
-    """No periodic response is found (Newton's method and forward iteration fail)."""
 
 
 # ---------------------------------------------------------------- the normal block

@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from .._calling import ranged
 from ..analysis.branch import Branch, continue_branch
 from ..analysis.floquet import NoPeriodicResponse, floquet, response_from
 from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
@@ -262,6 +263,7 @@ def _on_branch(branch, value, k, phases):
     return False
 
 
+@ranged
 def coexistence(
     param: str,
     lo: float,

@@ -33,6 +33,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import intervals
+from .._calling import settings_keywords, valued
 from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Model, as_model, excitation_period
 from ..settings import MAX_POINTS, SolverSettings, check_request
@@ -189,6 +190,8 @@ def _cached_run(
     return row, False, problem
 
 
+@valued
+@settings_keywords
 def sweep(
     param: str,
     values: ArrayLike,
@@ -216,6 +219,7 @@ def sweep(
         the other parameters and the options (default: the base set); ``**kw`` too.
         The swept parameter must not be among them.
     settings : SolverSettings, optional
+        Its fields may also be given as keywords (``t_end=50``), as to `simulate`.
     executor : concurrent.futures.Executor, "serial" or None
         None: a process pool over the local cores (closed afterwards); "serial":
         in this process; otherwise used as given (and left open), e.g. a dask
