@@ -31,42 +31,12 @@ Subpackages, in the order of their layers (each imports only those before it):
 branches, bands, maps, predictions), `beltmdsm.simulation`, `beltmdsm.studies`
 (sweeps and their cache, responses at a point, coexistence, validation),
 `beltmdsm.cli` (the command line). The names below are imported when first used, so
-that ``import beltmdsm`` and the command line start fast; a type checker sees them
-through the imports under ``TYPE_CHECKING`` below (the package ships ``py.typed``).
+that ``import beltmdsm`` and the command line start fast; a type checker reads them
+from the stub ``__init__.pyi`` beside this file (the package ships ``py.typed``).
 """
 
 from importlib import import_module
 from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:  # what `__getattr__` imports on first use, for type checkers only;
-    from .analysis.band import Band, Edge, floquet_band
-    from .analysis.branch import Branch, branch
-    from .analysis.floquet import (
-        Floquet,
-        PeriodicResponse,
-        floquet,
-        periodic_response,
-        periodic_start,
-    )
-    from .analysis.floquet_map import FloquetMap, floquet_map
-    from .analysis.predict import Prediction, predict
-    from .analysis.summary import Summary
-    from .errors import (
-        BeltmdsmError,
-        NoPeriodicResponse,
-        Refused,
-        StepTooSmall,
-        Unsupported,
-    )
-    from .model import Model
-    from .settings import SolverSettings
-    from .simulation import Simulation, simulate
-    from .studies.coexistence import Coexistence, coexistence
-    from .studies.responses import ResponseSet, responses
-    from .studies.sweep import Sweep, sweep
-    from .studies.validation import Validation, validate
-
-    __version__: str
 
 #: Each public name and the module that holds it.
 _API = {
@@ -104,7 +74,7 @@ _API = {
     "NoPeriodicResponse": "errors",
 }
 
-#: Written out (not ``list(_API)``) so that type checkers read it: the names re-exported.
+#: Written out (not ``list(_API)``), as the stub ``__init__.pyi`` lists them.
 __all__ = [
     "Model",
     "SolverSettings",
@@ -161,7 +131,7 @@ def _version() -> str:
         return f"{found[1]}+source" if found else "0+unknown"
 
 
-if not TYPE_CHECKING:  # hidden from type checkers: a misspelt name is then an error
+if not TYPE_CHECKING:  # the stub has none: to a type checker a misspelt name is an error
 
     def __getattr__(name: str) -> object:
         if name in _API:

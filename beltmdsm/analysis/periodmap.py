@@ -332,6 +332,15 @@ class OnePeriodMap:
         self._saltation = {}
         self.backend = backend
 
+    def __getstate__(self) -> dict[str, Any]:
+        # ``p`` is the model's read-only view of its parameters, which does not pickle;
+        # it is rebuilt from the model (results holding a map travel to other processes)
+        return {k: v for k, v in self.__dict__.items() if k != "p"}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        self.p = self.model.params
+
     def sliding_orbit(self) -> NDArray[np.float64]:
         """``(X1, X1')`` at phase 0 of the orbit that slides backwards throughout.
 

@@ -8,6 +8,8 @@
   base, one class of each name wherever it is imported from.
 """
 
+import ast
+import importlib
 import importlib.metadata
 import pickle
 import re
@@ -44,6 +46,23 @@ def test_the_public_api_has_no_any_for_mypy():
         "beltmdsm.studies.coexistence.Coexistence",
         "beltmdsm.studies.sweep.Sweep",
     ]
+
+
+def test_the_stub_names_every_lazy_export_from_its_module():
+    stub = ast.parse((ROOT / "beltmdsm" / "__init__.pyi").read_text())
+    imported = {
+        a.name: node.module.removeprefix("beltmdsm.").lstrip(".")
+        for node in stub.body
+        if isinstance(node, ast.ImportFrom)
+        for a in node.names
+    }
+    listed = next(
+        ast.literal_eval(n.value)
+        for n in stub.body
+        if isinstance(n, ast.Assign) and n.targets[0].id == "__all__"
+    )
+    assert imported == beltmdsm._API
+    assert listed == beltmdsm.__all__ == list(beltmdsm._API)
 
 
 def test_the_package_is_typed_and_versioned():
