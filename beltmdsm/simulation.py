@@ -104,6 +104,15 @@ class Simulation:
         """Boolean mask of the samples in the steady window."""
         return self.samples.t >= self.settings.window_start
 
+    def __repr__(self) -> str:
+        from ._display import laws
+
+        head = (
+            f"Simulation({self.model!r}; {laws(self.model)}; {self.t.size} samples "
+            f"to t = {self.settings.t_end:g} s in {self.wall_s:.2f} s)"
+        )
+        return head + "\n" + "\n".join("  " + line for line in repr(self.summary).splitlines())
+
 
 def simulate(
     model: Model | Mapping[str, Any] | None = None,

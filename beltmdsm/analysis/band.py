@@ -185,6 +185,32 @@ class Band:
     failed: list[BandFailure]
     tol: float
 
+    def __repr__(self) -> str:
+        from .._display import block, intervals, label, laws
+
+        what = "T" if self.periods == 1 else f"{self.periods}T"
+        sides = {
+            (False, True): "unstable above",
+            (True, False): "unstable below",
+            (False, False): "stable on both sides",
+            (True, True): "unstable on both sides",
+        }
+        lines = [
+            f"{label(e.kind)} at {self.param} = {e.value:.6g} (+- {e.accuracy:.0e}"
+            + (f", {e.frequency:.4g} rad/s" if e.frequency is not None else "")
+            + f"; {sides[e.unstable_below, e.unstable_above]})"
+            for e in self.edges
+        ]
+        if self.no_periodic_response:
+            lines.append(f"no periodic response in {intervals(self.no_periodic_response)}")
+        lines += [f"failed at {f.value:g}: {f.reason}" for f in self.failed]
+        return block(
+            f"Band({self.param!r}, {what}-periodic response, {self.model!r}; "
+            f"{laws(self.model)}; {len(self.grid)} values): unstable in "
+            f"{intervals(self.unstable)}",
+            lines,
+        )
+
     def as_dict(self) -> dict:
         """The JSON of ``floquet-band --json``: ``param``, ``unstable``, ``edges``,
         ``grazing_points``, ``no_periodic_response``, ``grid``, ``failed``, ``tol``,

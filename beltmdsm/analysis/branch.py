@@ -278,6 +278,24 @@ class Branch:
             return None
         return min(self.points, key=lambda p: abs(p.value - value))
 
+    def __repr__(self) -> str:
+        from .._display import block, intervals, label, laws
+
+        lo, hi = self.value_range() if self.points else (math.nan, math.nan)
+        what = "T" if self.periods == 1 else f"{self.periods}T"
+        lines = [
+            f"{label(s.kind)} at {self.param} = {s.value:.6g} (+- {s.accuracy:.0e})"
+            + (f", {s.frequency:.4g} rad/s" if s.frequency is not None else "")
+            + (f": {s.detail}" if s.detail else "")
+            for s in self.special
+        ]
+        return block(
+            f"Branch({self.param!r}, {what}-periodic response, {self.model!r}; "
+            f"{laws(self.model)}; {len(self.points)} points, {self.param} from {lo:.6g} "
+            f"to {hi:.6g}): stable in {intervals(self.stable_ranges())}",
+            lines,
+        )
+
     def as_dict(self) -> dict:
         """For JSON: ``param``, ``periods``, ``contact``, ``tension``, ``friction``,
         ``engine``, ``range``, ``parts``, ``stable_ranges``, ``special_points``,

@@ -138,6 +138,17 @@ class Curve:
     unstable_above: bool = True
     ended: str = ""
 
+    def __repr__(self) -> str:
+        from .._display import label
+
+        if not self.x:
+            return f"Curve({self.kind!r}, no points)"
+        return (
+            f"Curve({self.kind!r} ({label(self.kind)}), {len(self.x)} points: y "
+            f"{self.y[0]:.4g}..{self.y[-1]:.4g}, x {self.x[0]:.6g}..{self.x[-1]:.6g}, to "
+            f"{max(self.accuracy):.0e}" + (f"; {self.ended}" if self.ended else "") + ")"
+        )
+
     def as_dict(self) -> dict:
         """For JSON: the attributes."""
         return {
@@ -188,6 +199,17 @@ class FloquetMap:
     linear: list
     band_rows: list
     wall_s: float
+
+    def __repr__(self) -> str:
+        from .._display import block, laws
+
+        return block(
+            f"FloquetMap({self.x!r} in [{self.x_range[0]:g}, {self.x_range[1]:g}], "
+            f"{self.y!r} in [{self.y_range[0]:g}, {self.y_range[1]:g}], {self.model!r}; "
+            f"{laws(self.model)}; {len(self.rows)} rows, {self.wall_s:.1f} s): "
+            f"{len(self.curves)} boundary curves",
+            [repr(c) for c in self.curves],
+        )
 
     def as_dict(self) -> dict:
         """For JSON: ``x``, ``y``, ``x_range``, ``y_range``, ``rows``, ``contact``,

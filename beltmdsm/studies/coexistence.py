@@ -30,6 +30,7 @@ attractors that no seed reaches.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -99,6 +100,15 @@ class ResponseBranch:
     branch: Branch
     stable: list[StablePart]
     sources: list[str] = field(default_factory=list)
+
+    def __repr__(self) -> str:
+        from .._display import intervals
+
+        lo, hi = self.branch.value_range() if self.branch.points else (math.nan, math.nan)
+        return (
+            f"ResponseBranch({self.name!r}, {self.branch.param} from {lo:.6g} to {hi:.6g}, "
+            f"stable in {intervals(s.range for s in self.stable)})"
+        )
 
     def as_dict(self) -> dict:
         """For JSON: ``name``, ``periods``, ``range``, ``stable``, ``special_points``,
@@ -187,6 +197,36 @@ class Coexistence:
     unlocked: list[Unlocked]
     unexplained: list[Unexplained]
     wall_s: float
+
+    def __repr__(self) -> str:
+        from .._display import block, intervals, label, laws
+
+        lines = [
+            f"{r.name}: stable in "
+            + (
+                ", ".join(
+                    f"[{s.range[0]:.6g}, {s.range[1]:.6g}] ({label(s.lower)} to {label(s.upper)})"
+                    for s in r.stable
+                )
+                or "none"
+            )
+            for r in self.responses
+        ]
+        lines += [
+            f"coexist in [{c.range[0]:.6g}, {c.range[1]:.6g}]: {', '.join(c.responses)} "
+            f"({label(c.lower)} to {label(c.upper)})"
+            for c in self.ranges
+        ]
+        if self.unlocked:
+            values = sorted({u.value for u in self.unlocked})
+            lines.append(f"not locked at {self.param} = {', '.join(f'{v:g}' for v in values)}")
+        lines += [f"a lock at {u.value:g} not found: {u.reason}" for u in self.unexplained]
+        coexist = intervals(c.range for c in self.ranges)
+        return block(
+            f"Coexistence({self.param!r} in [{self.lo:g}, {self.hi:g}], {self.model!r}; "
+            f"{laws(self.model)}; {len(self.responses)} responses): coexisting in {coexist}",
+            lines,
+        )
 
     def as_dict(self) -> dict:
         """The JSON of ``coexistence --json``: ``param``, ``range``, ``contact``,
