@@ -1,7 +1,7 @@
 """One way of calling the analyses: the model first, then what is varied.
 
-`simulate`, `floquet` and `branch` take the model first; `floquet_band`,
-`coexistence` and `sweep` were written with the model after the range
+`simulate`, `floquet`, `branch` and `responses` take the model first; `floquet_band`,
+`coexistence`, `sweep` and `floquet_map` were written with the model after the range
 (``floquet_band(param, lo, hi, model)``). `model_first` lets those take the model
 first as well (``floquet_band(model, "Vb", 1, 8)``) while every old positional call
 keeps working: the varied parameter is always a string, so a first positional
@@ -58,6 +58,26 @@ class Valued(Protocol, Generic[P, R]):
     def __call__(self, *args: P.args, **kwargs: P.kwargs) -> R: ...
 
 
+class Mapped(Protocol, Generic[P, R]):
+    """``f(x, x_lo, x_hi, y, y_lo, y_hi, model=None, ...)`` that also takes the model first."""
+
+    @overload
+    def __call__(
+        self,
+        model: Model | Mapping[str, Any] | None,
+        x: str,
+        x_from: float,
+        x_to: float,
+        y: str,
+        y_from: float,
+        y_to: float,
+        /,
+        **kw: Any,
+    ) -> R: ...
+    @overload
+    def __call__(self, *args: P.args, **kwargs: P.kwargs) -> R: ...
+
+
 def _model_first(function: Callable[..., Any], order: str) -> Callable[..., Any]:
     @functools.wraps(function)
     def call(*args: Any, **kw: Any) -> Any:
@@ -81,6 +101,12 @@ def ranged(function: Callable[P, R]) -> Ranged[P, R]:
 def valued(function: Callable[P, R]) -> Valued[P, R]:
     """`function` (``f(param, values, model=None, ...)``), also taking the model first."""
     return _model_first(function, "param, values")  # type: ignore[return-value]
+
+
+def mapped(function: Callable[P, R]) -> Mapped[P, R]:
+    """`function` (``f(x, x_from, x_to, y, y_from, y_to, model=None, ...)``), also taking
+    the model first."""
+    return _model_first(function, "x, x_from, x_to, y, y_from, y_to")  # type: ignore[return-value]
 
 
 def settings_keywords(function: Callable[P, R]) -> Callable[P, R]:

@@ -20,12 +20,13 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
 
 from .._calling import ranged
+from .._tables import DataFrame
 from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain
 from ..settings import MAX_BAND_POINTS, MIN_TOL_ULPS
@@ -184,6 +185,17 @@ class Band:
     grid: list[BandPoint]
     failed: list[BandFailure]
     tol: float
+
+    def to_pandas(self, table: str = "edges") -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas, imported here) of the ``"edges"`` (one row
+        per `Edge`, its attributes) or of the ``"grid"`` (one row per `BandPoint`)."""
+        from .._tables import frame
+
+        if table == "edges":
+            return frame([e.as_dict() for e in self.edges], [f.name for f in fields(Edge)])
+        if table == "grid":
+            return frame([g.as_dict() for g in self.grid], [f.name for f in fields(BandPoint)])
+        raise ValueError(f"table must be 'edges' or 'grid'; got {table!r}")
 
     def __repr__(self) -> str:
         from .._display import block, intervals, label, laws

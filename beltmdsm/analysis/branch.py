@@ -40,6 +40,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from .._tables import DataFrame
 from ..integrate.switching import Mode
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model
 from .edges import NoEdge, locate_end, multiplier_kind
@@ -277,6 +278,36 @@ class Branch:
         if not self.points:
             return None
         return min(self.points, key=lambda p: abs(p.value - value))
+
+    def to_pandas(self, table: str = "points") -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas, imported here) of the ``"points"`` (one row
+        per `BranchPoint`: ``param``'s value, the shooting state at phase 0,
+        ``max_abs_multiplier``, ``stable``, ``n_reversals``, ``n_sticks``) or of the
+        ``"special"`` points (their attributes, ``label`` the short name of the kind)."""
+        from .._display import label
+        from .._tables import frame
+
+        if table == "points":
+            names = ["X1", "X1'", "X2", "X2'"][: len(self.points[0].state) if self.points else 4]
+            rows = [
+                {
+                    self.param: p.value,
+                    **dict(zip(names, map(float, p.state))),
+                    "max_abs_multiplier": p.max_abs_multiplier,
+                    "stable": p.stable,
+                    "n_reversals": p.n_reversals,
+                    "n_sticks": p.n_sticks,
+                }
+                for p in self.points
+            ]
+            tail = ["max_abs_multiplier", "stable", "n_reversals", "n_sticks"]
+            return frame(rows, [self.param, *names, *tail])
+        if table == "special":
+            rows = [{**s.as_dict(), "label": label(s.kind)} for s in self.special]
+            columns = ["kind", "label", "value", "accuracy", "frequency", "multipliers",
+                       "stable_before", "stable_after", "detail"]  # fmt: skip
+            return frame(rows, columns)
+        raise ValueError(f"table must be 'points' or 'special'; got {table!r}")
 
     def __repr__(self) -> str:
         from .._display import block, intervals, label, laws

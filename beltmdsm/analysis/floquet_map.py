@@ -54,6 +54,8 @@ import numpy as np
 
 from generated import stability
 
+from .._calling import mapped
+from .._tables import DataFrame
 from ..intervals import runs as true_intervals
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
 from .band import Band, floquet_band
@@ -199,6 +201,19 @@ class FloquetMap:
     linear: list
     band_rows: list
     wall_s: float
+
+    def to_pandas(self) -> DataFrame:
+        """The boundary curves as a `pandas.DataFrame` (needs pandas, imported here): one
+        row per point of a curve, ``curve`` (its index in `curves`), ``kind``, ``y``
+        and ``x`` named by their parameters, ``accuracy``, ``frequency``."""
+        from .._tables import frame
+
+        rows = [
+            {"curve": i, "kind": c.kind, self.y: y, self.x: x, "accuracy": a, "frequency": f}
+            for i, c in enumerate(self.curves)
+            for y, x, a, f in zip(c.y, c.x, c.accuracy, c.frequency or [None] * len(c.x))
+        ]
+        return frame(rows, ["curve", "kind", self.y, self.x, "accuracy", "frequency"])
 
     def __repr__(self) -> str:
         from .._display import block, laws
@@ -667,6 +682,7 @@ def _linear(rows, x, xs):
     return out
 
 
+@mapped
 def floquet_map(
     x: str,
     x_from: float,

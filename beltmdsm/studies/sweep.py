@@ -34,6 +34,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import intervals
 from .._calling import settings_keywords, valued
+from .._tables import DataFrame
 from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Model, as_model, excitation_period
 from ..settings import MAX_POINTS, SolverSettings, check_request
@@ -141,6 +142,13 @@ class Sweep:
     def unresolved_values(self) -> list[float]:
         """Values whose run could not tell the omega1 peak (`unresolved_values`)."""
         return unresolved_values(self.table, self.param)
+
+    def to_pandas(self) -> DataFrame:
+        """The table as a `pandas.DataFrame`: one row per value, the columns of `table`
+        (needs pandas, imported here)."""
+        from .._tables import frame
+
+        return frame(self.table)
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON of ``sweep --json`` (keys documented in the README)."""

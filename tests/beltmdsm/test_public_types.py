@@ -45,6 +45,7 @@ def test_the_public_api_has_no_any_for_mypy():
         "beltmdsm.analysis.branch.Branch",
         "beltmdsm.studies.coexistence.Coexistence",
         "beltmdsm.studies.sweep.Sweep",
+        "beltmdsm.analysis.floquet_map.FloquetMap",
     ]
 
 

@@ -17,6 +17,7 @@ from beltmdsm import (
     coexistence,
     floquet,
     floquet_band,
+    floquet_map,
     simulate,
     sweep,
 )
@@ -33,5 +34,6 @@ reveal_type(floquet_band("Vb", 1.0, 8.0, model))
 reveal_type(branch(model, param="Vb", lo=1.0, hi=8.0))
 reveal_type(coexistence(model, "Vb", 1.0, 8.0))
 reveal_type(sweep(model, "Vb", [1.0, 2.0], t_end=50.0))
+reveal_type(floquet_map(model, "Vb", 1.0, 8.0, "beta1", 0.05, 0.35))
 version: str = beltmdsm.__version__
 failures: tuple[type[BeltmdsmError], ...] = (Refused, Unsupported, StepTooSmall, NoPeriodicResponse)
