@@ -104,6 +104,15 @@ class Simulation:
         """Boolean mask of the samples in the steady window."""
         return self.samples.t >= self.settings.window_start
 
+    def plot(self, ax: Any = None, kind: str = "time", variable: str = "X1'") -> Any:
+        """The run: ``variable`` against time (``kind="time"``), or the friction loop,
+        friction against Vr over the steady window (``kind="friction"``), on
+        matplotlib axes ``ax`` (new ones if None), which it returns
+        (`beltmdsm.plotting.simulation`; matplotlib is imported here)."""
+        from .plotting import simulation as draw
+
+        return draw(self, ax, kind, variable)
+
     def __repr__(self) -> str:
         from ._display import laws
 

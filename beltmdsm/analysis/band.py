@@ -186,6 +186,14 @@ class Band:
     failed: list[BandFailure]
     tol: float
 
+    def plot(self, ax: Any = None) -> Any:
+        """The largest multiplier against the parameter, the unstable ranges shaded,
+        the edges labelled, on matplotlib axes ``ax`` (new ones if None), which it
+        returns (`beltmdsm.plotting.band`; matplotlib is imported here)."""
+        from ..plotting import band as draw
+
+        return draw(self, ax)
+
     def to_pandas(self, table: str = "edges") -> DataFrame:
         """A `pandas.DataFrame` (needs pandas, imported here) of the ``"edges"`` (one row
         per `Edge`, its attributes) or of the ``"grid"`` (one row per `BandPoint`)."""

@@ -33,7 +33,7 @@ with the reason.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -279,11 +279,47 @@ class Branch:
             return None
         return min(self.points, key=lambda p: abs(p.value - value))
 
+    def observables(
+        self, record: Callable[[BranchPoint], float | Mapping[str, float]] | None = None
+    ) -> dict[str, NDArray[np.float64]]:
+        """What each point's orbit measures, in arclength order: ``param``'s value, then
+        the `beltmdsm.analysis.observables.OBSERVABLES` (ranges of X1' and X1, the
+        largest |Vr|), read from the runs the point keeps (nothing is solved again).
+
+        ``record(point)`` adds columns of its own, as BifurcationKit's
+        ``record_from_solution`` does: a float (column ``"record"``) or a mapping of
+        names to floats, for each `BranchPoint` (its ``state``, ``value``, ``image``).
+        """
+        from .observables import OBSERVABLES, observables
+
+        vb = [p.value if self.param == "Vb" else self.model["Vb"] for p in self.points]
+        rows = [observables(p.image, v) for p, v in zip(self.points, vb)]
+        out = {self.param: np.array([p.value for p in self.points], dtype=float)}
+        out.update({k: np.array([r[k] for r in rows], dtype=float) for k in OBSERVABLES})
+        if record is not None:
+            recorded = [record(p) for p in self.points]
+            if recorded and isinstance(recorded[0], Mapping):
+                for key in recorded[0]:
+                    out[key] = np.array([r[key] for r in recorded], dtype=float)
+            else:
+                out["record"] = np.array(recorded, dtype=float)
+        return out
+
+    def plot(self, ax: Any = None, observable: str = "X1'_amplitude", labels: bool = True) -> Any:
+        """The bifurcation diagram: ``observable`` (one of `observables`' columns)
+        against ``param``, stable solid, unstable dashed, grazing dotted, the special
+        points marked (NS, PD, LP, GR, BP, HB); on matplotlib axes ``ax`` (new ones
+        if None), which it returns (`beltmdsm.plotting.branch`)."""
+        from ..plotting import branch as draw
+
+        return draw(self, ax, observable, labels)
+
     def to_pandas(self, table: str = "points") -> DataFrame:
         """A `pandas.DataFrame` (needs pandas, imported here) of the ``"points"`` (one row
         per `BranchPoint`: ``param``'s value, the shooting state at phase 0,
-        ``max_abs_multiplier``, ``stable``, ``n_reversals``, ``n_sticks``) or of the
-        ``"special"`` points (their attributes, ``label`` the short name of the kind)."""
+        ``max_abs_multiplier``, ``stable``, ``n_reversals``, ``n_sticks``, then the
+        `observables`) or of the ``"special"`` points (their attributes, ``label`` the
+        short name of the kind)."""
         from .._display import label
         from .._tables import frame
 
@@ -301,7 +337,10 @@ class Branch:
                 for p in self.points
             ]
             tail = ["max_abs_multiplier", "stable", "n_reversals", "n_sticks"]
-            return frame(rows, [self.param, *names, *tail])
+            table_ = frame(rows, [self.param, *names, *tail])
+            for key, column in list(self.observables().items())[1:]:
+                table_[key] = column
+            return table_
         if table == "special":
             rows = [{**s.as_dict(), "label": label(s.kind)} for s in self.special]
             columns = ["kind", "label", "value", "accuracy", "frequency", "multipliers",

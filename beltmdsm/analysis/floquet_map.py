@@ -202,6 +202,15 @@ class FloquetMap:
     band_rows: list
     wall_s: float
 
+    def plot(self, ax: Any = None, linear: bool = True) -> Any:
+        """The map: where no stable response is found, the boundary curves by kind,
+        and (``linear``) the paper's linear analysis, on matplotlib axes ``ax`` (new
+        ones if None), which it returns (`beltmdsm.plotting.floquet_map`; matplotlib
+        is imported here)."""
+        from ..plotting import floquet_map as draw
+
+        return draw(self, ax, linear)
+
     def to_pandas(self) -> DataFrame:
         """The boundary curves as a `pandas.DataFrame` (needs pandas, imported here): one
         row per point of a curve, ``curve`` (its index in `curves`), ``kind``, ``y``

@@ -228,6 +228,15 @@ class Coexistence:
             lines,
         )
 
+    def plot(self, ax: Any = None, observable: str = "X1'_amplitude") -> Any:
+        """Each response's bifurcation diagram (``observable`` against the parameter,
+        stable solid, unstable dashed), the coexistence ranges shaded, on matplotlib
+        axes ``ax`` (new ones if None), which it returns
+        (`beltmdsm.plotting.coexistence`; matplotlib is imported here)."""
+        from ..plotting import coexistence as draw
+
+        return draw(self, ax, observable)
+
     def as_dict(self) -> dict:
         """The JSON of ``coexistence --json``: ``param``, ``range``, ``contact``,
         ``tension``, ``friction``, ``engine``, ``coexistence``, ``responses``,
