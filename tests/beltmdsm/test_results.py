@@ -18,29 +18,13 @@ import beltmdsm
 from beltmdsm import Model
 from beltmdsm._display import MAX_LINES
 
-MODEL = Model(Vb=4.0)
+MODEL = Model(Vb=4.0)  # that of the small results (conftest.py)
 
 
-@pytest.fixture(scope="module")
-def results():
-    """One of each result, on ranges small enough to compute in seconds."""
-    return {
-        "simulation": beltmdsm.simulate(MODEL, t_end=50.0),
-        "floquet": beltmdsm.floquet(MODEL),
-        "band": beltmdsm.floquet_band(MODEL, "Vb", 3.0, 7.0, points=9),
-        "branch": beltmdsm.branch(MODEL, param="Vb", lo=3.0, hi=5.0),
-        "coexistence": beltmdsm.coexistence(MODEL, "Vb", 3.5, 4.5, step=0.5),
-        "map": beltmdsm.floquet_map(MODEL, "Vb", 0.5, 12.0, "beta1", 0.05, 0.35, rows=3),
-        "sweep": beltmdsm.sweep(
-            MODEL,
-            "Vb",
-            [3.0, 4.0],
-            t_end=50.0,
-            executor="serial",
-            cache_dir=None,
-            progress=False,
-        ),  # fmt: skip
-    }
+@pytest.fixture
+def results(small_results):
+    """One of each result, on small ranges (tests/beltmdsm/conftest.py)."""
+    return small_results
 
 
 @pytest.mark.parametrize(
