@@ -18,12 +18,12 @@ import beltmdsm
 from beltmdsm import Model
 from beltmdsm._display import MAX_LINES
 
-MODEL = Model(Vb=4.0)  # that of the small results (conftest.py)
+MODEL = Model(Vb=4.0)  # that of the small results (tests/conftest.py)
 
 
 @pytest.fixture
 def results(small_results):
-    """One of each result, on small ranges (tests/beltmdsm/conftest.py)."""
+    """One of each result, on small ranges (tests/conftest.py)."""
     return small_results
 
 
