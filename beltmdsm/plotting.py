@@ -184,13 +184,18 @@ def branch(
 
 def observable_label(name: str) -> str:
     """The axis label of an observable of `beltmdsm.analysis.observables` (units: m for
-    X1, m/s for X1' and Vr); a column of a user's ``record`` is labelled by its name."""
+    X1, m/s for X1' and Vr, m/s^2 for a force per unit mass); a column of a user's
+    ``record`` is labelled by its name."""
     if name.startswith("X1_"):
         return axis_label(name.replace("_", " ", 1), "m")
     if name.startswith("X1'_"):
         return axis_label(name.replace("_", " ", 1), "m/s")
     if name == "max_abs_Vr":
         return axis_label("max |Vr|", "m/s")
+    if name == "mean_friction":
+        return axis_label("mean friction per unit mass", "m/s^2")
+    if name == "mu_eff":
+        return axis_label("mu_eff = <Ff>/<Fn>", "1")
     return f"{name} (recorded)"
 
 

@@ -284,7 +284,8 @@ class Branch:
     ) -> dict[str, NDArray[np.float64]]:
         """What each point's orbit measures, in arclength order: ``param``'s value, then
         the `beltmdsm.analysis.observables.OBSERVABLES` (ranges of X1' and X1, the
-        largest |Vr|), read from the runs the point keeps (nothing is solved again).
+        largest |Vr|, the mean friction and ``mu_eff = <Ff>/<Fn>``), read from the
+        runs the point keeps (nothing is solved again).
 
         ``record(point)`` adds columns of its own, as BifurcationKit's
         ``record_from_solution`` does: a float (column ``"record"``) or a mapping of

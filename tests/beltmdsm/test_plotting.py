@@ -96,17 +96,24 @@ def test_the_observables_are_those_of_a_run_on_the_orbit(small_results):
         p = branch.points[i]
         f = beltmdsm.floquet(branch.model.replace(Vb=p.value), guess=p.state)
         run = beltmdsm.simulate(
-            branch.model.replace(Vb=p.value), y0=f.response.state0, t_end=f.period, dt=1e-3
+            branch.model.replace(Vb=p.value), y0=f.response.state0, t_end=f.period, dt=2e-4
         )
         x1, v1 = run.y[0], run.y[1]
         scale = v1.max() - v1.min()
-        # the run samples at 1e-3 s, the observables at T/1000: extremes low by at
+        # the run samples at 2e-4 s, the observables at T/1000: extremes low by at
         # most (h w)^2 / 8 of the amplitude, w <= 14 rad/s here (the spikes of X1')
         tol = 5e-4 * scale
         assert abs(table["X1'_max"][i] - v1.max()) < tol
         assert abs(table["X1'_min"][i] - v1.min()) < tol
         assert abs(table["X1_amplitude"][i] - 0.5 * (x1.max() - x1.min())) < tol
         assert abs(table["max_abs_Vr"][i] - np.abs(v1 - p.value).max()) < tol
+        # the means: the trapezoidal rule over the run's samples (the friction jumps at
+        # the switches: an error of dt x jump / T, below 2e-3 of the mean here)
+        dt = np.diff(run.t)
+        Ff = 0.5 * np.sum((run.friction[1:] + run.friction[:-1]) * dt)
+        Fn = 0.5 * np.sum((run.normal_force[1:] + run.normal_force[:-1]) * dt)
+        assert table["mean_friction"][i] == pytest.approx(Ff / run.t[-1], rel=2e-3)
+        assert table["mu_eff"][i] == pytest.approx(Ff / Fn, rel=2e-3)
 
 
 def test_coexistence_draws_each_response_and_shades_the_ranges(small_results, ax):
