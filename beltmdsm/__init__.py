@@ -30,7 +30,9 @@ Subpackages, in the order of their layers (each imports only those before it):
 (spectra, run summary, modulation, the period map, Floquet, lock detection, edges,
 branches, bands, maps, predictions), `beltmdsm.simulation`, `beltmdsm.studies`
 (sweeps and their cache, responses at a point, coexistence, validation),
-`beltmdsm.cli` (the command line). The names below are imported when first used, so
+`beltmdsm.cli` (the command line); beside them `beltmdsm.errors` (the failures) and
+`beltmdsm.plotting` (the figures of the results, matplotlib imported when drawing).
+The names below are imported when first used, so
 that ``import beltmdsm`` and the command line start fast; a type checker reads them
 from the stub ``__init__.pyi`` beside this file (the package ships ``py.typed``).
 """
