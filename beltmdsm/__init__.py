@@ -23,6 +23,9 @@ The runtime of the package: it imports the generated model (``generated/``, writ
 * `predict` (`Prediction`): the unstable belt speeds of the paper's analysis and of a
   consistent MDSM.
 * `validate` (`Validation`): the validation of Figs. 2 and 17-21 (``VALIDATION.md``).
+* The failures (`beltmdsm.errors`): `BeltmdsmError`, the base of `Refused`,
+  `Unsupported`, `StepTooSmall` and `NoPeriodicResponse`.
+* ``__version__``: the installed distribution's version.
 
 Subpackages, in the order of their layers (each imports only those before it):
 `beltmdsm.model` and `beltmdsm.settings` (the values every function takes),
@@ -30,11 +33,15 @@ Subpackages, in the order of their layers (each imports only those before it):
 (spectra, run summary, modulation, the period map, Floquet, lock detection, edges,
 branches, bands, maps, predictions), `beltmdsm.simulation`, `beltmdsm.studies`
 (sweeps and their cache, responses at a point, coexistence, validation),
-`beltmdsm.cli` (the command line). The names below are imported when first used, so
-that ``import beltmdsm`` and the command line start fast.
+`beltmdsm.cli` (the command line); beside them `beltmdsm.errors` (the failures) and
+`beltmdsm.plotting` (the figures of the results, matplotlib imported when drawing).
+The names below are imported when first used, so
+that ``import beltmdsm`` and the command line start fast; a type checker reads them
+from the stub ``__init__.pyi`` beside this file (the package ships ``py.typed``).
 """
 
 from importlib import import_module
+from typing import TYPE_CHECKING
 
 #: Each public name and the module that holds it.
 _API = {
@@ -50,7 +57,6 @@ _API = {
     "floquet": "analysis.floquet",
     "Floquet": "analysis.floquet",
     "periodic_start": "analysis.floquet",
-    "NoPeriodicResponse": "analysis.floquet",
     "cycle": "analysis.cycles",
     "Cycle": "analysis.cycles",
     "seed_cycle": "analysis.cycles",
@@ -75,17 +81,81 @@ _API = {
     "Prediction": "analysis.predict",
     "validate": "studies.validation",
     "Validation": "studies.validation",
+    "BeltmdsmError": "errors",
+    "Refused": "errors",
+    "Unsupported": "errors",
+    "StepTooSmall": "errors",
+    "NoPeriodicResponse": "errors",
 }
 
-__all__ = list(_API)
+#: Written out (not ``list(_API)``), as the stub ``__init__.pyi`` lists them.
+__all__ = [
+    "Model",
+    "SolverSettings",
+    "simulate",
+    "Simulation",
+    "Summary",
+    "sweep",
+    "Sweep",
+    "periodic_response",
+    "PeriodicResponse",
+    "floquet",
+    "Floquet",
+    "periodic_start",
+    "floquet_band",
+    "Band",
+    "Edge",
+    "branch",
+    "Branch",
+    "floquet_map",
+    "FloquetMap",
+    "responses",
+    "ResponseSet",
+    "coexistence",
+    "Coexistence",
+    "predict",
+    "Prediction",
+    "validate",
+    "Validation",
+    "BeltmdsmError",
+    "Refused",
+    "Unsupported",
+    "StepTooSmall",
+    "NoPeriodicResponse",
+]
 
 
-def __getattr__(name: str):
-    if name in _API:
-        value = getattr(import_module(f".{_API[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'beltmdsm' has no attribute {name!r}")
+def _version() -> str:
+    """The installed distribution's version; from a source tree that is not installed,
+    pyproject.toml's with a local label (``0.1.0+source``), else ``0+unknown``."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("beltmdsm")
+    except PackageNotFoundError:
+        import re
+        from pathlib import Path
+
+        pyproject = Path(__file__).resolve().parents[1] / "pyproject.toml"
+        found = (
+            re.search(r'^version = "([^"]+)"', pyproject.read_text(), re.M)
+            if pyproject.is_file()
+            else None
+        )
+        return f"{found[1]}+source" if found else "0+unknown"
+
+
+if not TYPE_CHECKING:  # the stub has none: to a type checker a misspelt name is an error
+
+    def __getattr__(name: str) -> object:
+        if name in _API:
+            value = getattr(import_module(f".{_API[name]}", __name__), name)
+            globals()[name] = value
+            return value
+        if name == "__version__":  # importlib.metadata costs ~10 ms: read when asked
+            globals()[name] = value = _version()
+            return value
+        raise AttributeError(f"module 'beltmdsm' has no attribute {name!r}")
 
 
 def __dir__() -> list[str]:

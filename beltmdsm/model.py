@@ -52,6 +52,10 @@ from generated.parameters import (
     within,
 )
 
+# generated._support's class (beltmdsm.errors): one class of one name, so that
+# ``except Unsupported`` catches a refusal of the generated modules too
+from .errors import Unsupported
+
 __all__ = [
     "Model",
     "as_model",
@@ -300,10 +304,6 @@ def _declared_options(function: Callable[..., Any]) -> tuple[str, ...]:
     """The model options among a function's keyword-only parameters."""
     kinds = inspect.signature(function).parameters.items()
     return tuple(name for name, p in kinds if p.kind is p.KEYWORD_ONLY and name in OPTIONS)
-
-
-class Unsupported(ValueError):
-    """An analysis that the chosen laws do not allow: the law and the missing property."""
 
 
 def require(model: Model, fact: str, analysis: str) -> None:

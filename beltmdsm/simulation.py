@@ -113,6 +113,24 @@ class Simulation:
         """Boolean mask of the samples in the steady window."""
         return self.samples.t >= self.settings.window_start
 
+    def plot(self, ax: Any = None, kind: str = "time", variable: str = "X1'") -> Any:
+        """The run: ``variable`` against time (``kind="time"``), or the friction loop,
+        friction against Vr over the steady window (``kind="friction"``), on
+        matplotlib axes ``ax`` (new ones if None), which it returns
+        (`beltmdsm.plotting.simulation`; matplotlib is imported here)."""
+        from .plotting import simulation as draw
+
+        return draw(self, ax, kind, variable)
+
+    def __repr__(self) -> str:
+        from ._display import laws
+
+        head = (
+            f"Simulation({self.model!r}; {laws(self.model)}; {self.t.size} samples "
+            f"to t = {self.settings.t_end:g} s in {self.wall_s:.2f} s)"
+        )
+        return head + "\n" + "\n".join("  " + line for line in repr(self.summary).splitlines())
+
 
 def simulate(
     model: Model | Mapping[str, Any] | None = None,

@@ -569,12 +569,23 @@ def bind(function, variant, params, backend):
     )
 
 
-class Unsupported(ValueError):
+class BeltmdsmError(Exception):
+    """The base of every named failure of beltmdsm and of its generated modules.
+
+    Defined here, in the lowest layer that raises one, so that the runtime's failures
+    (``beltmdsm.errors``, which re-exports this class) and the generated modules'
+    `Unsupported` form one hierarchy: ``except beltmdsm.errors.BeltmdsmError`` catches
+    them all. Each failure also keeps its builtin base (`ValueError`, ...).
+    """
+
+
+class Unsupported(BeltmdsmError, ValueError):
     """A choice of laws without a property that the function needs.
 
     The message is one line naming the law and the missing property (from
     ``generated.capabilities``): the function refuses rather than computing with
-    the physics of another law.
+    the physics of another law. ``beltmdsm.errors.Unsupported`` (and
+    ``beltmdsm.model.Unsupported``) is this class.
     """
 
 
@@ -659,6 +670,7 @@ __all__ = [
     "quad",
     "QUAD_NODES",
     "QUAD_WEIGHTS",
+    "BeltmdsmError",
     "Unsupported",
     "Refused",
 ]

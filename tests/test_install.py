@@ -129,6 +129,35 @@ def test_installed_help_cites_documents_that_print(installed):
     assert str(purelib / "beltmdsm" / "docs") in listing
 
 
+def test_installed_package_is_typed_licensed_and_versioned(installed):
+    python, _, purelib, work = installed
+    assert (purelib / "beltmdsm" / "py.typed").is_file()
+    assert (purelib / "beltmdsm" / "__init__.pyi").is_file()
+    dist = next(purelib.glob("beltmdsm-*.dist-info"))
+    meta = (dist / "METADATA").read_text()
+    assert "Classifier: License :: OSI Approved :: MIT License" in meta
+    assert "Classifier: Typing :: Typed" in meta
+    (license_,) = [p for p in dist.rglob("LICENSE*") if p.is_file()]
+    assert license_.read_text() == (ROOT / "LICENSE").read_text()
+    version = subprocess.run(
+        [python, "-c", "import beltmdsm; print(beltmdsm.__version__)"],
+        capture_output=True, text=True, check=True, cwd=work,
+    ).stdout.strip()  # fmt: skip
+    assert f"Version: {version}\n" in meta and version == _declared_version()
+
+
+def _declared_version():
+    return re.search(r'^version = "([^"]+)"', (ROOT / "pyproject.toml").read_text(), re.M)[1]
+
+
+def test_the_citation_names_this_version_and_the_paper():
+    cff = (ROOT / "CITATION.cff").read_text()
+    assert f'\nversion: "{_declared_version()}"\n' in cff and "\nlicense: MIT\n" in cff
+    readme = (ROOT / "README.md").read_text()  # the paper, as the README cites it
+    title = "Parametric excitation and friction modulation for a forced 2-DOF system"
+    assert title in readme and f'title: "{title}"' in cff
+
+
 def test_installed_runs_write_outside_the_package_and_uninstall_is_clean(installed):
     python, pip, purelib, work = installed
     imported = _run(installed, "beltmdsm", "simulate", "--t-end", "20")

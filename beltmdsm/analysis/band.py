@@ -20,11 +20,13 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
 
+from .._calling import ranged
+from .._tables import DataFrame
 from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain, excitation_period
 from ..settings import MAX_BAND_POINTS, MIN_TOL_ULPS
@@ -193,6 +195,51 @@ class Band:
     tol: float
     merged_away: list[list[float]] = field(default_factory=list)
 
+    def plot(self, ax: Any = None) -> Any:
+        """The largest multiplier against the parameter, the unstable ranges shaded,
+        the edges labelled, on matplotlib axes ``ax`` (new ones if None), which it
+        returns (`beltmdsm.plotting.band`; matplotlib is imported here)."""
+        from ..plotting import band as draw
+
+        return draw(self, ax)
+
+    def to_pandas(self, table: str = "edges") -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas, imported here) of the ``"edges"`` (one row
+        per `Edge`, its attributes) or of the ``"grid"`` (one row per `BandPoint`)."""
+        from .._tables import frame
+
+        if table == "edges":
+            return frame([e.as_dict() for e in self.edges], [f.name for f in fields(Edge)])
+        if table == "grid":
+            return frame([g.as_dict() for g in self.grid], [f.name for f in fields(BandPoint)])
+        raise ValueError(f"table must be 'edges' or 'grid'; got {table!r}")
+
+    def __repr__(self) -> str:
+        from .._display import block, intervals, label, laws
+
+        what = "T" if self.periods == 1 else f"{self.periods}T"
+        sides = {
+            (False, True): "unstable above",
+            (True, False): "unstable below",
+            (False, False): "stable on both sides",
+            (True, True): "unstable on both sides",
+        }
+        lines = [
+            f"{label(e.kind)} at {self.param} = {e.value:.6g} (+- {e.accuracy:.0e}"
+            + (f", {e.frequency:.4g} rad/s" if e.frequency is not None else "")
+            + f"; {sides[e.unstable_below, e.unstable_above]})"
+            for e in self.edges
+        ]
+        if self.no_periodic_response:
+            lines.append(f"no periodic response in {intervals(self.no_periodic_response)}")
+        lines += [f"failed at {f.value:g}: {f.reason}" for f in self.failed]
+        return block(
+            f"Band({self.param!r}, {what}-periodic response, {self.model!r}; "
+            f"{laws(self.model)}; {len(self.grid)} values): unstable in "
+            f"{intervals(self.unstable)}",
+            lines,
+        )
+
     def as_dict(self) -> dict:
         """The JSON of ``floquet-band --json``: ``param``, ``unstable``, ``edges``,
         ``grazing_points``, ``no_periodic_response``, ``grid``, ``failed``, ``tol``,
@@ -215,6 +262,7 @@ class Band:
         }
 
 
+@ranged
 def floquet_band(
     param: str,
     lo: float,

@@ -7,12 +7,15 @@ re-exports them.
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from .._tables import DataFrame
 from ..model import Model
 from .periodmap import engine_of
 
@@ -163,6 +166,100 @@ class Branch:
         if not self.points:
             return None
         return min(self.points, key=lambda p: abs(p.value - value))
+
+    def observables(
+        self, record: Callable[[Any], float | Mapping[str, float]] | None = None
+    ) -> dict[str, NDArray[np.float64]]:
+        """What each point's orbit measures, in arclength order: ``param``'s value, then
+        the `beltmdsm.analysis.observables.OBSERVABLES` (ranges of X1' and X1, the
+        largest |Vr|, the mean friction and ``mu_eff = <Ff>/<Fn>``), read from the
+        runs the point keeps (nothing is solved again).
+
+        ``record(point)`` adds columns of its own, as BifurcationKit's
+        ``record_from_solution`` does: a float (column ``"record"``) or a mapping of
+        names to floats, for each `BranchPoint` (its ``state``, ``value``, ``image``).
+        """
+        from .observables import OBSERVABLES, observables
+
+        if self.points and not hasattr(self.points[0], "image"):
+            raise ValueError(
+                "observables are read from a forced response's runs; a branch of cycles "
+                "carries its own: period, amplitude, x1_range, velocity_range, "
+                "max_relative_velocity of each point"
+            )
+        vb = [p.value if self.param == "Vb" else self.model["Vb"] for p in self.points]
+        rows = [observables(p.image, v) for p, v in zip(self.points, vb)]
+        out = {self.param: np.array([p.value for p in self.points], dtype=float)}
+        out.update({k: np.array([r[k] for r in rows], dtype=float) for k in OBSERVABLES})
+        if record is not None:
+            recorded = [record(p) for p in self.points]
+            if recorded and isinstance(recorded[0], Mapping):
+                for key in recorded[0]:
+                    out[key] = np.array([r[key] for r in recorded], dtype=float)
+            else:
+                out["record"] = np.array(recorded, dtype=float)
+        return out
+
+    def plot(self, ax: Any = None, observable: str = "X1'_amplitude", labels: bool = True) -> Any:
+        """The bifurcation diagram: ``observable`` (one of `observables`' columns)
+        against ``param``, stable solid, unstable dashed, grazing dotted, the special
+        points marked (NS, PD, LP, GR, BP, HB); on matplotlib axes ``ax`` (new ones
+        if None), which it returns (`beltmdsm.plotting.branch`)."""
+        from ..plotting import branch as draw
+
+        return draw(self, ax, observable, labels)
+
+    def to_pandas(self, table: str = "points") -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas, imported here) of the ``"points"`` (one row
+        per `BranchPoint`: ``param``'s value, the shooting state at phase 0,
+        ``max_abs_multiplier``, ``stable``, ``n_reversals``, ``n_sticks``, then the
+        `observables`) or of the ``"special"`` points (their attributes, ``label`` the
+        short name of the kind)."""
+        from .._display import label
+        from .._tables import frame
+
+        if table == "points":
+            names = ["X1", "X1'", "X2", "X2'"][: len(self.points[0].state) if self.points else 4]
+            rows = [
+                {
+                    self.param: p.value,
+                    **dict(zip(names, map(float, p.state))),
+                    "max_abs_multiplier": p.max_abs_multiplier,
+                    "stable": p.stable,
+                    "n_reversals": p.n_reversals,
+                    "n_sticks": p.n_sticks,
+                }
+                for p in self.points
+            ]
+            tail = ["max_abs_multiplier", "stable", "n_reversals", "n_sticks"]
+            table_ = frame(rows, [self.param, *names, *tail])
+            for key, column in list(self.observables().items())[1:]:
+                table_[key] = column
+            return table_
+        if table == "special":
+            rows = [{**s.as_dict(), "label": label(s.kind)} for s in self.special]
+            columns = ["kind", "label", "value", "accuracy", "frequency", "multipliers",
+                       "stable_before", "stable_after", "detail"]  # fmt: skip
+            return frame(rows, columns)
+        raise ValueError(f"table must be 'points' or 'special'; got {table!r}")
+
+    def __repr__(self) -> str:
+        from .._display import block, intervals, label, laws
+
+        lo, hi = self.value_range() if self.points else (math.nan, math.nan)
+        what = "T" if self.periods == 1 else f"{self.periods}T"
+        lines = [
+            f"{label(s.kind)} at {self.param} = {s.value:.6g} (+- {s.accuracy:.0e})"
+            + (f", {s.frequency:.4g} rad/s" if s.frequency is not None else "")
+            + (f": {s.detail}" if s.detail else "")
+            for s in self.special
+        ]
+        return block(
+            f"Branch({self.param!r}, {what}-periodic response, {self.model!r}; "
+            f"{laws(self.model)}; {len(self.points)} points, {self.param} from {lo:.6g} "
+            f"to {hi:.6g}): stable in {intervals(self.stable_ranges())}",
+            lines,
+        )
 
     def as_dict(self) -> dict:
         """For JSON: ``param``, ``periods``, ``contact``, ``tension``, ``friction``,

@@ -42,6 +42,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import NoEdge  # its home; importable here as before
 from .periodmap import (
     MARGIN_KINDS,
     FixedPoint,
@@ -79,10 +80,6 @@ OLD_KINDS = {
 REAL_SHARE = 1e-6
 #: Trials of `locate_end` before it gives up.
 _END_TRIALS = 40
-
-
-class NoEdge(RuntimeError):
-    """No margin of the response closes towards where it is no longer found."""
 
 
 def multiplier_kind(mu: complex, period: float) -> tuple[str, float | None]:

@@ -200,6 +200,16 @@ class PeriodicResponse:
         on the closed-form path, all four on the general one."""
         return ENGINES[self.engine].shooting(self.state0)
 
+    def __repr__(self) -> str:
+        state = ", ".join(f"{v:.6g}" for v in self.state0)
+        grazing = "" if self.grazing is None else f", GRAZING at t = {self.grazing['t']:.6g} s"
+        return (
+            f"PeriodicResponse({self.model!r}, period={self.period:.6g} s, "
+            f"periods={self.periods}, state0=[{state}], {len(self.switches)} switches, "
+            f"{self.engine} path, residual {self.residual:.1e} after {self.iterations} "
+            f"Newton iterations{grazing})"
+        )
+
 
 def _coupling_block(resp):
     """``d x_t(T) / d x_n(0)`` by central differences of the period map (4 normal runs)."""
@@ -549,6 +559,27 @@ class Floquet:
         if self.stable is None:
             return "grazing"
         return "stable" if self.stable else "unstable"
+
+    def __repr__(self) -> str:
+        from .._display import block, laws
+
+        resp = self.response
+        head = (
+            f"Floquet({resp.model!r}; {laws(resp.model)}: {self.verdict}, "
+            f"period {self.period:.6g} s ({resp.periods} T), {self.engine} path)"
+        )
+        if self.stable is None:
+            return block(head, [f"grazing: {self.grazing}"])
+        mus = ", ".join(f"{z.real:.6g}{z.imag:+.6g}j" for z in self.multipliers)
+        return block(
+            head,
+            [
+                f"max |mu| = {self.max_abs_multiplier:.6g}, growth rate "
+                f"{self.growth_rate:.6g} 1/s, critical pair at {self.frequency:.6g} rad/s",
+                f"multipliers: {mus}",
+                f"{self.n_reversals} reversals and {self.n_sticks} sticks per orbit",
+            ],
+        )
 
     def as_dict(self) -> dict:
         """The JSON-able summary (the keys of ``python -m derive floquet --json``).

@@ -55,6 +55,8 @@ import numpy as np
 
 from generated import stability
 
+from .._calling import mapped
+from .._tables import DataFrame
 from ..errors import Refused
 from ..intervals import runs as true_intervals
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
@@ -141,6 +143,17 @@ class Curve:
     unstable_above: bool = True
     ended: str = ""
 
+    def __repr__(self) -> str:
+        from .._display import label
+
+        if not self.x:
+            return f"Curve({self.kind!r}, no points)"
+        return (
+            f"Curve({self.kind!r} ({label(self.kind)}), {len(self.x)} points: y "
+            f"{self.y[0]:.4g}..{self.y[-1]:.4g}, x {self.x[0]:.6g}..{self.x[-1]:.6g}, to "
+            f"{max(self.accuracy):.0e}" + (f"; {self.ended}" if self.ended else "") + ")"
+        )
+
     def as_dict(self) -> dict:
         """For JSON: the attributes."""
         return {
@@ -191,6 +204,39 @@ class FloquetMap:
     linear: list
     band_rows: list
     wall_s: float
+
+    def plot(self, ax: Any = None, linear: bool = True) -> Any:
+        """The map: where no stable response is found, the boundary curves by kind,
+        and (``linear``) the paper's linear analysis, on matplotlib axes ``ax`` (new
+        ones if None), which it returns (`beltmdsm.plotting.floquet_map`; matplotlib
+        is imported here)."""
+        from ..plotting import floquet_map as draw
+
+        return draw(self, ax, linear)
+
+    def to_pandas(self) -> DataFrame:
+        """The boundary curves as a `pandas.DataFrame` (needs pandas, imported here): one
+        row per point of a curve, ``curve`` (its index in `curves`), ``kind``, ``y``
+        and ``x`` named by their parameters, ``accuracy``, ``frequency``."""
+        from .._tables import frame
+
+        rows = [
+            {"curve": i, "kind": c.kind, self.y: y, self.x: x, "accuracy": a, "frequency": f}
+            for i, c in enumerate(self.curves)
+            for y, x, a, f in zip(c.y, c.x, c.accuracy, c.frequency or [None] * len(c.x))
+        ]
+        return frame(rows, ["curve", "kind", self.y, self.x, "accuracy", "frequency"])
+
+    def __repr__(self) -> str:
+        from .._display import block, laws
+
+        return block(
+            f"FloquetMap({self.x!r} in [{self.x_range[0]:g}, {self.x_range[1]:g}], "
+            f"{self.y!r} in [{self.y_range[0]:g}, {self.y_range[1]:g}], {self.model!r}; "
+            f"{laws(self.model)}; {len(self.rows)} rows, {self.wall_s:.1f} s): "
+            f"{len(self.curves)} boundary curves",
+            [repr(c) for c in self.curves],
+        )
 
     def as_dict(self) -> dict:
         """For JSON: ``x``, ``y``, ``x_range``, ``y_range``, ``rows``, ``contact``,
@@ -648,6 +694,7 @@ def _linear(rows, x, xs):
     return out
 
 
+@mapped
 def floquet_map(
     x: str,
     x_from: float,

@@ -86,6 +86,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from generated import dynamics, hybrid
 
+from ..errors import NoPeriodicResponse  # its home; importable here as before
 from ..integrate import _compiled, _dop853
 from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.normal import NormalMotion, normal_motion
@@ -174,10 +175,6 @@ _VR = SURFACE_INDEX["relative_velocity"]
 _SF = SURFACE_INDEX["stick_forward"]
 _SB = SURFACE_INDEX["stick_back"]
 _TANGENTIAL = ("relative_velocity", "stick_forward", "stick_back")
-
-
-class NoPeriodicResponse(RuntimeError):
-    """No periodic response is found (Newton's method and forward iteration fail)."""
 
 
 # ---------------------------------------------------------------- the normal block
@@ -346,6 +343,15 @@ class OnePeriodMap:
         self.stm, self.sw = self.engine.stm, self.engine.sw
         self._saltation = {}
         self.backend = backend
+
+    def __getstate__(self) -> dict[str, Any]:
+        # ``p`` is the model's read-only view of its parameters, which does not pickle;
+        # it is rebuilt from the model (results holding a map travel to other processes)
+        return {k: v for k, v in self.__dict__.items() if k != "p"}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        self.p = self.model.params
 
     def sliding_orbit(self) -> NDArray[np.float64]:
         """``(X1, X1')`` at phase 0 of the orbit that slides backwards throughout.

@@ -448,6 +448,32 @@ class Summary:
         """The summary as plain JSON-able values, by field name."""
         return asdict(self)
 
+    def __repr__(self) -> str:
+        from .._display import block, number
+
+        if not self.resolved:
+            peak = f"unresolved ({self.unresolved_reason})"
+        else:
+            peak = (
+                f"{'present' if self.omega1_peak_present else 'absent'} "
+                f"(amplitude {number(self.peak_omega1, '.3g')} at "
+                f"{number(self.omega1_peak_at, '.4g')} rad/s)"
+            )
+        return block(
+            f"Summary({self.status!r}, regime {self.regime!r}, {self.solver}, "
+            f"t_end={self.t_end:g} s)",
+            [
+                f"omega1 peak: {peak}",
+                f"{self.n_switches} switches: {self.n_reversals} reversals, {self.n_sticks} "
+                f"sticks, {self.n_contact_losses} contact losses, {self.n_zeno} Zeno",
+                f"Vr in [{self.vr_min:.4g}, {self.vr_max:.4g}] m/s, mean friction "
+                f"{number(self.mean_friction, '.4g')} m/s^2 (per unit mass)",
+                f"energy residual {self.energy_residual:.1e} "
+                f"({'within' if self.energy_ok else 'ABOVE'} its bound {self.energy_bound:.1e})",
+                *self.warnings,
+            ],
+        )
+
 
 def _excited(model):
     """Whether the model has an excitation (a force in either direction)."""

@@ -1,68 +1,56 @@
-"""The figures the commands draw: ``floquet-map --png`` (matplotlib, imported when drawing)."""
+"""The figures the commands draw (``--png FILE``): matplotlib, imported when drawing.
+
+The drawing is the results' own (`beltmdsm.plotting`, the ``plot`` methods); here a
+figure is made, drawn on, titled and written to a PNG.
+"""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
+from .. import plotting
 from ..analysis.floquet_map import FloquetMap
+from ..plotting import KIND_COLOURS
 
-__all__ = ["floquet_map", "draw_floquet_map", "KIND_COLOURS"]
-
-#: The colour of each kind of boundary curve (`beltmdsm.analysis.edges.KINDS`).
-KIND_COLOURS = {
-    "neimark_sacker": "tab:red",
-    "period_doubling": "tab:purple",
-    "fold": "tab:orange",
-    "grazing": "tab:green",
-    "tangency": "k",
-}
+__all__ = ["floquet_map", "draw_floquet_map", "KIND_COLOURS", "save"]
 
 
-def draw_floquet_map(ax: Any, result: FloquetMap, linear: bool = True) -> None:
-    """Draw a map on matplotlib axes ``ax`` (typed Any: matplotlib is imported only when
-    drawing): the exact unstable region and its curves by kind.
-
-    Shaded: where no stable periodic response is found, row by row; lines: the boundary
-    curves, coloured by kind (`KIND_COLOURS`); hatched blue (``linear``): where the paper's
-    linear analysis says unstable on the same rows.
-    """
-    dy = (result.rows[1] - result.rows[0]) if result.rows.size > 1 else 1.0
-    for value, intervals in zip(result.rows, result.unstable):
-        for a, b in intervals:
-            ax.fill_between([a, b], value - dy / 2, value + dy / 2, color="0.8", lw=0)
-    if linear:
-        # hatched row by row: the hatching is aligned on the canvas, so the rows join
-        # into one region whose outline is the linear analysis's boundary
-        hatch = {"facecolor": "none", "edgecolor": "tab:blue", "hatch": "////", "lw": 0}
-        for value, intervals in zip(result.rows, result.linear):
-            for a, b in intervals:
-                ax.fill_between([a, b], value - dy / 2, value + dy / 2, alpha=0.5, **hatch)
-        ax.fill_between([], [], alpha=0.5, label="paper's linear analysis: unstable", **hatch)
-    seen = set()
-    for c in result.curves:
-        label = c.kind if c.kind not in seen else None
-        seen.add(c.kind)
-        ax.plot(c.x, c.y, ".-", color=KIND_COLOURS.get(c.kind, "0.3"), lw=1.4, ms=3, label=label)
-    ax.fill_between([], [], color="0.8", label="no stable periodic response")
-    ax.set_xlim(*result.x_range)
-    ax.set_ylim(*result.y_range)
-    ax.set_xlabel(result.x)
-    ax.set_ylabel(result.y)
-
-
-def floquet_map(result: FloquetMap, path: str) -> None:
-    """Draw a map to a PNG (`draw_floquet_map`, with a legend and a title)."""
+def save(
+    draw: Callable[[Any], Any], path: str, title: str, panels: int = 1, size: tuple = (7, 4.5)
+) -> None:
+    """Call ``draw(ax)`` on new axes (``draw(axes)``, a list, for ``panels > 1`` side by
+    side), add a legend to each that labels something, the title, and write the figure
+    to the PNG ``path`` (Agg backend: no display needed)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    draw_floquet_map(ax, result)
-    ax.legend(fontsize=7, loc="best")
-    ax.set_title(
-        f"Floquet map ({result.model.contact}, tension {result.model.tension})", fontsize=9
+    fig, axes = plt.subplots(1, panels, figsize=(size[0] * (1 + 0.6 * (panels - 1)), size[1]))
+    try:
+        draw(axes if panels == 1 else list(axes))
+        for ax in [axes] if panels == 1 else axes:
+            if ax.get_legend_handles_labels()[0]:
+                ax.legend(fontsize=7, loc="best")
+        fig.suptitle(title, fontsize=9)
+        fig.tight_layout()
+        fig.savefig(path, dpi=120)
+    finally:
+        plt.close(fig)
+
+
+def draw_floquet_map(ax: Any, result: FloquetMap, linear: bool = True) -> None:
+    """Draw a map on matplotlib axes ``ax`` (`beltmdsm.plotting.floquet_map`, which
+    ``FloquetMap.plot`` calls; kept here, with its arguments in this order, for the
+    notebooks that call it)."""
+    plotting.floquet_map(result, ax, linear)
+
+
+def floquet_map(result: FloquetMap, path: str) -> None:
+    """Draw a map to a PNG (`beltmdsm.plotting.floquet_map`, with a legend and a title)."""
+    save(
+        lambda ax: plotting.floquet_map(result, ax),
+        path,
+        f"Floquet map ({result.model.contact}, tension {result.model.tension})",
     )
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)

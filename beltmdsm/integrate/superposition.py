@@ -35,6 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from generated import oscillator
 
+from ..errors import NotApplicable  # its home; importable here as before
 from ..model import Backend, Model, Unsupported, initial_state, require
 from ..settings import SolverSettings
 from . import _compiled
@@ -54,10 +55,6 @@ __all__ = [
     "GRID_STEP",
     "KNOT_STEP",
 ]
-
-
-class NotApplicable(ValueError):
-    """The superposition's closed forms do not exist for this model (the reason)."""
 
 
 #: The facts of the laws (``generated.capabilities``) that the superposition needs: the

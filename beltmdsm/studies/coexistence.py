@@ -34,6 +34,7 @@ attractors that no seed reaches.
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from collections.abc import Mapping
@@ -42,6 +43,7 @@ from typing import Any
 
 import numpy as np
 
+from .._calling import ranged
 from ..analysis.branch import Branch, continue_branch
 from ..analysis.floquet import NoPeriodicResponse, floquet, response_from
 from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
@@ -93,6 +95,15 @@ class ResponseBranch:
     branch: Branch
     stable: list[StablePart]
     sources: list[str] = field(default_factory=list)
+
+    def __repr__(self) -> str:
+        from .._display import intervals
+
+        lo, hi = self.branch.value_range() if self.branch.points else (math.nan, math.nan)
+        return (
+            f"ResponseBranch({self.name!r}, {self.branch.param} from {lo:.6g} to {hi:.6g}, "
+            f"stable in {intervals(s.range for s in self.stable)})"
+        )
 
     def as_dict(self) -> dict:
         """For JSON: ``name``, ``periods``, ``range``, ``stable``, ``special_points``,
@@ -166,6 +177,45 @@ class Coexistence:
     seed_step: float = float("nan")
     n_seeds: int = 0
 
+    def __repr__(self) -> str:
+        from .._display import block, intervals, label, laws
+
+        lines = [
+            f"{r.name}: stable in "
+            + (
+                ", ".join(
+                    f"[{s.range[0]:.6g}, {s.range[1]:.6g}] ({label(s.lower)} to {label(s.upper)})"
+                    for s in r.stable
+                )
+                or "none"
+            )
+            for r in self.responses
+        ]
+        lines += [
+            f"coexist in [{c.range[0]:.6g}, {c.range[1]:.6g}]: {', '.join(c.responses)} "
+            f"({label(c.lower)} to {label(c.upper)})"
+            for c in self.ranges
+        ]
+        if self.unlocked:
+            values = sorted({u.value for u in self.unlocked})
+            lines.append(f"not locked at {self.param} = {', '.join(f'{v:g}' for v in values)}")
+        lines += [f"a lock at {u.value:g} not found: {u.reason}" for u in self.unexplained]
+        coexist = intervals(c.range for c in self.ranges)
+        return block(
+            f"Coexistence({self.param!r} in [{self.lo:g}, {self.hi:g}], {self.model!r}; "
+            f"{laws(self.model)}; {len(self.responses)} responses): coexisting in {coexist}",
+            lines,
+        )
+
+    def plot(self, ax: Any = None, observable: str = "X1'_amplitude") -> Any:
+        """Each response's bifurcation diagram (``observable`` against the parameter,
+        stable solid, unstable dashed), the coexistence ranges shaded, on matplotlib
+        axes ``ax`` (new ones if None), which it returns
+        (`beltmdsm.plotting.coexistence`; matplotlib is imported here)."""
+        from ..plotting import coexistence as draw
+
+        return draw(self, ax, observable)
+
     def as_dict(self) -> dict:
         """The JSON of ``coexistence --json``: ``param``, ``range``, ``contact``,
         ``tension``, ``friction``, ``engine``, ``coexistence``, ``responses``,
@@ -203,6 +253,7 @@ def _on_branch(branch, value, k, phases):
     return False
 
 
+@ranged
 def coexistence(
     param: str,
     lo: float,

@@ -226,6 +226,13 @@ class Response:
         """Half the peak-to-peak of ``X1'`` [m/s]."""
         return 0.5 * (self.velocity_range[1] - self.velocity_range[0])
 
+    def __repr__(self) -> str:
+        return (
+            f"Response({self.periods}T: {self.floquet.verdict}, max |mu| = "
+            f"{self.floquet.max_abs_multiplier:.5g}, amplitude of X1' {self.amplitude:.4g} m/s, "
+            f"found by {', '.join(self.sources)})"
+        )
+
     def same_orbit(self, periods: int, x: ArrayLike) -> bool:
         """Whether the orbit of ``periods`` periods through ``x`` is this one."""
         return periods == self.periods and same_phases(self.phases, x)
@@ -286,6 +293,22 @@ class ResponseSet:
     responses: list[Response]
     unlocked: list[NotLocked]
     failed: list[SeedFailure]
+
+    def __repr__(self) -> str:
+        from .._display import block, laws
+
+        lines = [
+            f"{r.periods}T: {r.floquet.verdict}, max |mu| = {r.floquet.max_abs_multiplier:.5g}, "
+            f"amplitude of X1' {r.amplitude:.4g} m/s, found by {', '.join(r.sources)}"
+            for r in self.responses
+        ]
+        lines += [f"not locked: {u.text()}" for u in self.unlocked]
+        lines += [f"no response from {f.source}: {f.reason}" for f in self.failed]
+        return block(
+            f"ResponseSet({self.model!r}; {laws(self.model)}; locks up to {self.limit} "
+            f"periods): {len(self.responses)} responses",
+            lines,
+        )
 
     def as_dict(self) -> dict:
         """The JSON of ``responses --json``: ``params``, ``contact``, ``tension``,

@@ -34,6 +34,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import intervals
+from .._calling import settings_keywords, valued
+from .._tables import DataFrame
 from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Model, as_model, excitation_period
 from ..settings import MAX_POINTS, SolverSettings, check_request
@@ -144,6 +146,13 @@ class Sweep:
         """Values whose run could not tell the omega1 peak (`unresolved_values`)."""
         return unresolved_values(self.table, self.param)
 
+    def to_pandas(self) -> DataFrame:
+        """The table as a `pandas.DataFrame`: one row per value, the columns of `table`
+        (needs pandas, imported here)."""
+        from .._tables import frame
+
+        return frame(self.table)
+
     def as_dict(self) -> dict[str, Any]:
         """The JSON of ``sweep --json`` (keys documented in the README)."""
         rows = [dict(zip(self.table.dtype.names, r.tolist())) for r in self.table]
@@ -199,6 +208,8 @@ def _cached_run(
     return row, False, problem
 
 
+@valued
+@settings_keywords
 def sweep(
     param: str,
     values: ArrayLike,
@@ -226,6 +237,7 @@ def sweep(
         the other parameters and the options (default: the base set); ``**kw`` too.
         The swept parameter must not be among them.
     settings : SolverSettings, optional
+        Its fields may also be given as keywords (``t_end=50``), as to `simulate`.
     executor : concurrent.futures.Executor, "serial" or None
         None: a process pool over the local cores (closed afterwards); "serial":
         in this process; otherwise used as given (and left open), e.g. a dask

@@ -10,6 +10,7 @@ from ..flags import (
     json_parent,
     model_from,
     model_parent,
+    output_file,
     params_from,
     periods_parent,
     range_flags,
@@ -38,6 +39,13 @@ def add(commands, name: str) -> None:
         "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter continued in"
     )
     range_flags(sub)
+    sub.add_argument(
+        "--png",
+        metavar="FILE",
+        type=output_file,
+        help="draw the bifurcation diagram (amplitude of X1' against --param) to FILE "
+        "(needs matplotlib)",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -59,8 +67,14 @@ def run(args: argparse.Namespace) -> int:
             f"argument --{args.param}: the start ({value:g}) must lie in [{lo:g}, {hi:g}]"
         )
     found = branch(model, periods=args.periods, param=args.param, lo=lo, hi=hi)
+    if args.png:
+        from ..figure import save
+
+        save(lambda ax: found.plot(ax), args.png, f"branch in {found.param} ({found.model!r})")
     if args.json:
         print(json.dumps(text.jsonable(found.as_dict())))
     else:
         print(text.branch(found))
+        if args.png:
+            print(f"drawn to {args.png}")
     return 0

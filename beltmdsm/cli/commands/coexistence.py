@@ -12,6 +12,7 @@ from ..flags import (
     lock_parent,
     model_from,
     model_parent,
+    output_file,
     range_flags,
     range_from,
     register,
@@ -44,6 +45,13 @@ def add(commands, name: str) -> None:
         "seeds may be missed (default 0.5)",
     )
     sub.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    sub.add_argument(
+        "--png",
+        metavar="FILE",
+        type=output_file,
+        help="draw each response's branch (amplitude of X1') and the coexistence ranges "
+        "to FILE (needs matplotlib)",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -60,8 +68,18 @@ def run(args: argparse.Namespace) -> int:
         limit=args.limit,
         progress=not args.no_progress,
     )
+    if args.png:
+        from ..figure import save
+
+        save(
+            lambda ax: found.plot(ax),
+            args.png,
+            f"stable responses in {found.param} ({found.model!r})",
+        )
     if args.json:
         print(json.dumps(text.jsonable(found.as_dict())))
     else:
         print(text.coexistence(found))
+        if args.png:
+            print(f"drawn to {args.png}")
     return 0

@@ -13,6 +13,7 @@ from ..flags import (
     json_parent,
     model_from,
     model_parent,
+    output_file,
     periods_parent,
     range_flags,
     range_from,
@@ -53,6 +54,13 @@ def add(commands, name: str) -> None:
         "(default: 1e-3)",
     )
     sub.add_argument(
+        "--png",
+        metavar="FILE",
+        type=output_file,
+        help="draw the largest multiplier, the unstable ranges and the edges to FILE "
+        "(needs matplotlib)",
+    )
+    sub.add_argument(
         "--no-progress",
         action="store_true",
         help="no progress bar on stderr (shown once the band takes more than 2 s)",
@@ -74,8 +82,14 @@ def run(args: argparse.Namespace) -> int:
         periods=args.periods,
         progress=not args.no_progress,
     )
+    if args.png:
+        from ..figure import save
+
+        save(lambda ax: band.plot(ax), args.png, f"Floquet band in {band.param} ({band.model!r})")
     if args.json:
         print(json.dumps(text.jsonable(band.as_dict())))
     else:
         print(text.band(band, lo, hi))
+        if args.png:
+            print(f"drawn to {args.png}")
     return 0

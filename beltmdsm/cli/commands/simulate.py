@@ -50,6 +50,12 @@ def add(commands, name: str) -> None:
         help="save the samples t, X1, Y1, X2, Y2, Fn, friction to this .npz file",
     )
     sub.add_argument(
+        "--png",
+        metavar="FILE",
+        type=output_file,
+        help="draw the run (X1' against time) and its friction loop to FILE (needs matplotlib)",
+    )
+    sub.add_argument(
         "--no-progress",
         action="store_true",
         help="no progress bar on stderr (shown once the run takes more than 2 s; it "
@@ -93,8 +99,18 @@ def run(args: argparse.Namespace) -> int:
             Fn=sim.normal_force,
             friction=sim.friction,
         )
+    if args.png:
+        from ..figure import save
+
+        def draw(axes):
+            sim.plot(axes[0])
+            sim.plot(axes[1], kind="friction")
+
+        save(draw, args.png, f"Eq. (4), {model!r}: X1' and the friction loop", panels=2)
     if args.json:
         print(json.dumps(text.jsonable(out)))
     else:
         print(text.simulation(sim, out, args.modulation))
+        if args.png:
+            print(f"drawn to {args.png}")
     return 0 if sim.status == "done" else 2

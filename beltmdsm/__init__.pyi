@@ -1,0 +1,69 @@
+"""The names `beltmdsm/__init__.py` imports on first use, as a type checker sees them.
+
+Kept in step with ``_API`` and ``__all__`` there (tests/beltmdsm/test_public_types.py).
+A stub, not ``if TYPE_CHECKING:`` imports in the package: the package is the lowest
+layer of beltmdsm (tests/test_layers.py), and these names live in every layer above it.
+"""
+
+from .analysis.band import Band, Edge, floquet_band
+from .analysis.branch import Branch, branch
+from .analysis.floquet import (
+    Floquet,
+    PeriodicResponse,
+    floquet,
+    periodic_response,
+    periodic_start,
+)
+from .analysis.floquet_map import FloquetMap, floquet_map
+from .analysis.predict import Prediction, predict
+from .analysis.summary import Summary
+from .errors import (
+    BeltmdsmError,
+    NoPeriodicResponse,
+    Refused,
+    StepTooSmall,
+    Unsupported,
+)
+from .model import Model
+from .settings import SolverSettings
+from .simulation import Simulation, simulate
+from .studies.coexistence import Coexistence, coexistence
+from .studies.responses import ResponseSet, responses
+from .studies.sweep import Sweep, sweep
+from .studies.validation import Validation, validate
+
+__version__: str
+__all__ = [
+    "Model",
+    "SolverSettings",
+    "simulate",
+    "Simulation",
+    "Summary",
+    "sweep",
+    "Sweep",
+    "periodic_response",
+    "PeriodicResponse",
+    "floquet",
+    "Floquet",
+    "periodic_start",
+    "floquet_band",
+    "Band",
+    "Edge",
+    "branch",
+    "Branch",
+    "floquet_map",
+    "FloquetMap",
+    "responses",
+    "ResponseSet",
+    "coexistence",
+    "Coexistence",
+    "predict",
+    "Prediction",
+    "validate",
+    "Validation",
+    "BeltmdsmError",
+    "Refused",
+    "Unsupported",
+    "StepTooSmall",
+    "NoPeriodicResponse",
+]

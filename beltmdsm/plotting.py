@@ -1,0 +1,244 @@
+"""Figures of the results: matplotlib, imported only when a figure is drawn.
+
+Each function draws one result on matplotlib axes (new ones where ``ax`` is None) and
+returns the axes; the results' ``plot`` methods call them. Every axis names its
+quantity and its unit (the parameter table's units, ``generated.parameters``, with the
+units each contact law gives, ``LAW_UNITS``); each symbol has one spelling (``X1'``
+the tangential velocity, ``Vr = X1' - Vb`` the relative one). Special points carry
+the labels of the continuation literature (`beltmdsm._display.LABELS`: NS, PD, LP, GR,
+BP, HB). The lines drawn are the result's own arrays (tests/beltmdsm/test_plotting.py
+reads them back), so a figure shows what the result holds and nothing recomputed.
+
+The results are taken as they are (typed ``Any``): this module sits below the analyses
+in the layers of the package (tests/test_layers.py) and imports none of them.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from generated.parameters import LAW_UNITS, PARAMETERS
+
+from ._display import LABELS
+
+__all__ = [
+    "unit",
+    "axis_label",
+    "simulation",
+    "band",
+    "branch",
+    "coexistence",
+    "floquet_map",
+    "observable_label",
+    "KIND_COLOURS",
+    "STATE",
+]
+
+#: The colour of each kind of special point or boundary curve.
+KIND_COLOURS = {
+    "neimark_sacker": "tab:red",
+    "period_doubling": "tab:purple",
+    "fold": "tab:orange",
+    "grazing": "tab:green",
+    "tangency": "k",
+    "branch_point": "tab:brown",
+    "hopf": "tab:pink",
+}
+#: The rows of a run's state and their units.
+STATE = {"X1": ("m", 0), "X1'": ("m/s", 1), "X2": ("m", 2), "X2'": ("m/s", 3)}
+_UNITS = {p["name"]: p["unit"] for p in PARAMETERS}
+#: Line styles of a branch by stability: stable, unstable, grazing (no multiplier).
+_STYLES = {True: "-", False: "--", None: ":"}
+
+
+def unit(name: str, model: Any = None) -> str:
+    """The unit of parameter ``name`` (under the model's contact law, where it has one)."""
+    if model is not None:
+        for (option, choice), units in LAW_UNITS.items():
+            if getattr(model, option, None) == choice and name in units:
+                return units[name]
+    return _UNITS[name]
+
+
+def axis_label(name: str, unit_: str) -> str:
+    """``"Vb [m/s]"``; a dimensionless quantity ``"[-]"``."""
+    return f"{name} [{'-' if unit_ == '1' else unit_}]"
+
+
+def _axes(ax: Any) -> Any:
+    if ax is not None:
+        return ax
+    import matplotlib.pyplot as plt
+
+    return plt.subplots()[1]
+
+
+def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str = "X1'") -> Any:
+    """A run (`beltmdsm.simulation.Simulation`).
+
+    ``kind="time"``: ``variable`` (``X1``, ``X1'``, ``X2``, ``X2'``, ``friction`` or
+    ``normal_force``, the forces per unit mass) against time, the samples of the run.
+    ``kind="friction"``: the friction loop (Fig. 3b), friction per unit mass against
+    ``Vr = X1' - Vb``, over the steady window (``sim.window``).
+    """
+    ax = _axes(ax)
+    if kind == "time":
+        if variable in STATE:
+            u, row = STATE[variable]
+            y = sim.y[row]
+        elif variable in ("friction", "normal_force"):
+            u, y = "m/s^2", getattr(sim, variable)
+        else:
+            raise ValueError(
+                f"variable must be one of {', '.join([*STATE, 'friction', 'normal_force'])}; "
+                f"got {variable!r}"
+            )
+        ax.plot(sim.t, y, lw=0.8)
+        ax.set_xlabel(axis_label("t", "s"))
+        ax.set_ylabel(axis_label(variable, u))
+    elif kind == "friction":
+        w = sim.window
+        ax.plot(sim.y[1][w] - sim.params["Vb"], sim.friction[w], lw=0.6)
+        ax.set_xlabel(axis_label("Vr = X1' - Vb", "m/s"))
+        ax.set_ylabel(axis_label("friction per unit mass", "m/s^2"))
+    else:
+        raise ValueError(f"kind must be 'time' or 'friction'; got {kind!r}")
+    ax.set_title(f"{sim.model!r}", fontsize=8)
+    return ax
+
+
+def band(result: Any, ax: Any = None) -> Any:
+    """A Floquet band (`beltmdsm.analysis.band.Band`): the largest multiplier's modulus
+    at each evaluated value, the unit circle's 1, the unstable ranges shaded and each
+    edge marked with its label."""
+    ax = _axes(ax)
+    x, y = [], []
+    for g in result.grid:
+        # the line breaks (NaN) across a range with no periodic response
+        if x and any(x[-1] <= a and b <= g.value for a, b in result.no_periodic_response):
+            x.append(np.nan), y.append(np.nan)
+        x.append(g.value), y.append(g.max_abs_multiplier)
+    ax.plot(x, y, ".-", color="tab:blue", label="max |mu|")
+    ax.axhline(1.0, color="0.5", lw=0.8)
+    for i, (a, b) in enumerate(result.unstable):
+        ax.axvspan(a, b, color="0.85", lw=0, label="unstable or absent" if i == 0 else None)
+    for e in result.edges:
+        ax.axvline(e.value, color=KIND_COLOURS.get(e.kind, "0.3"), lw=1)
+        ax.annotate(LABELS.get(e.kind, e.kind), (e.value, 1.0), xytext=(2, 4),
+                    textcoords="offset points", fontsize=8)  # fmt: skip
+    ax.set_xlabel(axis_label(result.param, unit(result.param, result.model)))
+    ax.set_ylabel(axis_label("max |mu|", "1"))
+    return ax
+
+
+def _special_markers(ax: Any, param_values: Any, y: Any, special: Any, labels: bool) -> None:
+    """Mark each special point (not the ends of the range) at the nearest point."""
+    for s in special:
+        if s.kind not in LABELS or not len(param_values):
+            continue
+        i = int(np.argmin(np.abs(np.asarray(param_values) - s.value)))
+        colour = KIND_COLOURS.get(s.kind, "0.3")
+        ax.plot([s.value], [y[i]], "o", color=colour, ms=5, zorder=3)
+        if labels:
+            ax.annotate(LABELS[s.kind], (s.value, y[i]), xytext=(3, 3),
+                        textcoords="offset points", fontsize=8, color=colour)  # fmt: skip
+
+
+def _stability_runs(stable: list) -> list[tuple[int, int, Any]]:
+    """``(start, stop, stable)`` of the runs of equal stability; consecutive runs share
+    their boundary point, so that the drawn line is unbroken."""
+    runs, start = [], 0
+    for i in range(1, len(stable) + 1):
+        if i == len(stable) or stable[i] != stable[start]:
+            runs.append((start, min(i + 1, len(stable)), stable[start]))
+            start = i
+    return runs
+
+
+def branch(
+    result: Any, ax: Any = None, observable: str = "X1'_amplitude", labels: bool = True,
+    colour: str = "tab:blue", name: str | None = None,
+) -> Any:  # fmt: skip
+    """A bifurcation diagram (`beltmdsm.analysis.branch.Branch`): ``observable`` (a
+    column of ``result.observables()``) against the parameter; stable parts solid,
+    unstable dashed, grazing dotted; the special points marked with their labels."""
+    ax = _axes(ax)
+    table = result.observables()
+    if observable not in table or observable == result.param:
+        raise ValueError(
+            f"observable must be one of {', '.join(list(table)[1:])}; got {observable!r}"
+        )
+    x, y = table[result.param], table[observable]
+    stable = [p.stable for p in result.points]
+    for n, (a, b, s) in enumerate(_stability_runs(stable)):
+        tag = {True: "stable", False: "unstable", None: "grazing"}[s]
+        ax.plot(x[a:b], y[a:b], _STYLES[s], color=colour,
+                label=f"{name} {tag}" if name else tag, gid=f"branch:{tag}:{n}")  # fmt: skip
+    _special_markers(ax, x, y, result.special, labels)
+    ax.set_xlabel(axis_label(result.param, unit(result.param, result.model)))
+    ax.set_ylabel(observable_label(observable))
+    return ax
+
+
+def observable_label(name: str) -> str:
+    """The axis label of an observable of `beltmdsm.analysis.observables` (units: m for
+    X1, m/s for X1' and Vr, m/s^2 for a force per unit mass); a column of a user's
+    ``record`` is labelled by its name."""
+    if name.startswith("X1_"):
+        return axis_label(name.replace("_", " ", 1), "m")
+    if name.startswith("X1'_"):
+        return axis_label(name.replace("_", " ", 1), "m/s")
+    if name == "max_abs_Vr":
+        return axis_label("max |Vr|", "m/s")
+    if name == "mean_friction":
+        return axis_label("mean friction per unit mass", "m/s^2")
+    if name == "mu_eff":
+        return axis_label("mu_eff = <Ff>/<Fn>", "1")
+    return f"{name} (recorded)"
+
+
+def coexistence(result: Any, ax: Any = None, observable: str = "X1'_amplitude") -> Any:
+    """Where stable responses coexist (`beltmdsm.studies.coexistence.Coexistence`): each
+    response's branch as in `branch`, one colour each, the coexistence ranges shaded."""
+    ax = _axes(ax)
+    colours = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]
+    for i, r in enumerate(result.responses):
+        branch(r.branch, ax, observable, colour=colours[i % len(colours)], name=r.name)
+    for i, c in enumerate(result.ranges):
+        ax.axvspan(*c.range, color="0.9", lw=0, zorder=0,
+                   label="stable responses coexist" if i == 0 else None)  # fmt: skip
+    ax.set_xlim(result.lo, result.hi)
+    return ax
+
+
+def floquet_map(result: Any, ax: Any = None, linear: bool = True) -> Any:
+    """A Floquet map (`beltmdsm.analysis.floquet_map.FloquetMap`): shaded where no
+    stable periodic response is found, row by row; the boundary curves coloured by kind
+    (`KIND_COLOURS`) and labelled; hatched blue (``linear``): where the paper's linear
+    analysis says unstable on the same rows."""
+    ax = _axes(ax)
+    dy = (result.rows[1] - result.rows[0]) if result.rows.size > 1 else 1.0
+    for value, intervals in zip(result.rows, result.unstable):
+        for a, b in intervals:
+            ax.fill_between([a, b], value - dy / 2, value + dy / 2, color="0.8", lw=0)
+    if linear:
+        # hatched row by row: the hatching is aligned on the canvas, so the rows join
+        # into one region whose outline is the linear analysis's boundary
+        hatch = {"facecolor": "none", "edgecolor": "tab:blue", "hatch": "////", "lw": 0}
+        for value, intervals in zip(result.rows, result.linear):
+            for a, b in intervals:
+                ax.fill_between([a, b], value - dy / 2, value + dy / 2, alpha=0.5, **hatch)
+        ax.fill_between([], [], alpha=0.5, label="paper's linear analysis: unstable", **hatch)
+    seen = set()
+    for c in result.curves:
+        label = f"{LABELS.get(c.kind, c.kind)} ({c.kind})" if c.kind not in seen else None
+        seen.add(c.kind)
+        ax.plot(c.x, c.y, ".-", color=KIND_COLOURS.get(c.kind, "0.3"), lw=1.4, ms=3, label=label)
+    ax.fill_between([], [], color="0.8", label="no stable periodic response")
+    ax.set_xlim(*result.x_range)
+    ax.set_ylim(*result.y_range)
+    ax.set_xlabel(axis_label(result.x, unit(result.x, result.model)))
+    ax.set_ylabel(axis_label(result.y, unit(result.y, result.model)))
+    return ax

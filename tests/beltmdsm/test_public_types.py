@@ -1,0 +1,118 @@
+"""The public API as a type checker and a user's ``except`` see it (issue 30, item 2).
+
+* mypy reads ``typing_check/uses_public_api.py`` (a study on the lazily exported names
+  of ``beltmdsm``) with ``--disallow-any-expr``: no expression there is ``Any``, and
+  each ``reveal_type`` names the class the call returns;
+* the package ships ``py.typed`` and has a ``__version__``;
+* the failures form one hierarchy under `BeltmdsmError`, each keeping its builtin
+  base, one class of each name wherever it is imported from.
+"""
+
+import ast
+import importlib
+import importlib.metadata
+import pickle
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import beltmdsm
+from beltmdsm import errors
+
+ROOT = Path(__file__).resolve().parents[2]
+SCRIPT = Path(__file__).parent / "typing_check" / "uses_public_api.py"
+
+
+def test_the_public_api_has_no_any_for_mypy():
+    pytest.importorskip("mypy", reason="mypy is in the test extra (pyproject.toml)")
+    done = subprocess.run(
+        [sys.executable, "-m", "mypy", "--follow-imports=silent", "--disallow-any-expr",
+         "--no-incremental", "--cache-dir=/dev/null", "--python-version=3.10", str(SCRIPT)],
+        capture_output=True, text=True, cwd=ROOT, timeout=300,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stdout + done.stderr
+    revealed = re.findall(r'Revealed type is "([^"]+)"', done.stdout)
+    assert revealed == [
+        "beltmdsm.model.Model",
+        "beltmdsm.simulation.Simulation",
+        "beltmdsm.analysis.summary.Summary",
+        "beltmdsm.analysis.floquet.Floquet",
+        "beltmdsm.analysis.band.Band",  # the model first
+        "beltmdsm.analysis.band.Band",  # the model last, as before
+        "beltmdsm.analysis.branch.Branch",
+        "beltmdsm.studies.coexistence.Coexistence",
+        "beltmdsm.studies.sweep.Sweep",
+        "beltmdsm.analysis.floquet_map.FloquetMap",
+    ]
+
+
+def test_the_stub_names_every_lazy_export_from_its_module():
+    stub = ast.parse((ROOT / "beltmdsm" / "__init__.pyi").read_text())
+    imported = {
+        a.name: node.module.removeprefix("beltmdsm.").lstrip(".")
+        for node in stub.body
+        if isinstance(node, ast.ImportFrom)
+        for a in node.names
+    }
+    listed = next(
+        ast.literal_eval(n.value)
+        for n in stub.body
+        if isinstance(n, ast.Assign) and n.targets[0].id == "__all__"
+    )
+    assert imported == beltmdsm._API
+    assert listed == beltmdsm.__all__ == list(beltmdsm._API)
+
+
+def test_the_package_is_typed_and_versioned():
+    assert (ROOT / "beltmdsm" / "py.typed").is_file()
+    assert beltmdsm.__version__ == importlib.metadata.version("beltmdsm")
+    assert "__version__" in dir(beltmdsm)
+    with pytest.raises(AttributeError, match="no attribute 'simlate'"):
+        beltmdsm.simlate  # noqa: B018
+
+
+FAILURES = {
+    "Refused": ValueError,
+    "Unsupported": ValueError,
+    "StepTooSmall": ArithmeticError,
+    "NoPeriodicResponse": RuntimeError,
+    "NotApplicable": ValueError,
+    "NoEdge": RuntimeError,
+}
+#: The modules that defined a failure before beltmdsm.errors held them all.
+OLD_HOMES = {
+    "Unsupported": ["beltmdsm.model", "generated._support"],
+    "NoPeriodicResponse": ["beltmdsm.analysis.periodmap", "beltmdsm.analysis.floquet"],
+    "NoEdge": ["beltmdsm.analysis.edges"],
+    "NotApplicable": ["beltmdsm.integrate.superposition"],
+    "StepTooSmall": ["beltmdsm.integrate.events"],
+}
+
+
+@pytest.mark.parametrize("name", FAILURES)
+def test_one_hierarchy_one_class_per_name(name):
+    cls = getattr(errors, name)
+    assert issubclass(cls, errors.BeltmdsmError) and issubclass(cls, FAILURES[name])
+    for module in OLD_HOMES.get(name, []):
+        assert getattr(importlib.import_module(module), name) is cls, module
+    if name in beltmdsm.__all__:
+        assert getattr(beltmdsm, name) is cls
+
+
+def test_a_refusal_of_the_generated_modules_is_beltmdsm_unsupported():
+    from beltmdsm.model import Model
+    from generated import oscillator
+
+    p = Model(friction="stribeck").params
+    with pytest.raises(beltmdsm.Unsupported, match="stribeck"):
+        oscillator.bind_tangential_state(friction="stribeck", **p)
+
+
+def test_failures_pickle_with_what_they_carry():
+    refused = pickle.loads(pickle.dumps(errors.Refused("too many points", "points", "tol")))
+    assert (str(refused), refused.names) == ("too many points", ("points", "tol"))
+    step = pickle.loads(pickle.dumps(errors.StepTooSmall("stuck", 1e-9, 1e-12)))
+    assert (str(step), step.rtol, step.atol) == ("stuck", 1e-9, 1e-12)

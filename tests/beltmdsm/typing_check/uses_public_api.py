@@ -1,0 +1,39 @@
+"""A study written against the public API, type-checked (never run) by
+tests/beltmdsm/test_public_types.py: mypy, with ``--disallow-any-expr``, must find no
+expression of type ``Any`` here, and each ``reveal_type`` must name the real type
+(``reveal_type`` is the type checker's own)."""
+
+# ruff: noqa: F821
+
+import beltmdsm
+from beltmdsm import (
+    BeltmdsmError,
+    Model,
+    NoPeriodicResponse,
+    Refused,
+    StepTooSmall,
+    Unsupported,
+    branch,
+    coexistence,
+    floquet,
+    floquet_band,
+    floquet_map,
+    simulate,
+    sweep,
+)
+
+model = Model(Vb=5.0)
+reveal_type(model)
+run = simulate(model, t_end=50.0)
+reveal_type(run)
+reveal_type(run.summary)
+growth: float = floquet(model).growth_rate
+reveal_type(floquet(model))
+reveal_type(floquet_band(model, "Vb", 1.0, 8.0))
+reveal_type(floquet_band("Vb", 1.0, 8.0, model))
+reveal_type(branch(model, param="Vb", lo=1.0, hi=8.0))
+reveal_type(coexistence(model, "Vb", 1.0, 8.0))
+reveal_type(sweep(model, "Vb", [1.0, 2.0], t_end=50.0))
+reveal_type(floquet_map(model, "Vb", 1.0, 8.0, "beta1", 0.05, 0.35))
+version: str = beltmdsm.__version__
+failures: tuple[type[BeltmdsmError], ...] = (Refused, Unsupported, StepTooSmall, NoPeriodicResponse)
