@@ -476,7 +476,8 @@ def cache_parent() -> argparse.ArgumentParser:
         default="default",
         metavar="FOLDER",
         help="the folder of the sweep cache, refused if it cannot be written (default: "
-        "$BELTMDSM_CACHE or ~/.cache/beltmdsm/sweeps)",
+        "sweeps in $BELTMDSM_CACHE, else in $XDG_CACHE_HOME/beltmdsm-cache, else in "
+        "~/.cache/beltmdsm-cache; an empty variable counts as unset)",
     )
     g.add_argument("--no-cache", action="store_true", help="do not use the sweep cache")
     return parent

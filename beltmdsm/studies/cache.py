@@ -32,6 +32,8 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
+from generated._support import cache_root
+
 from ..model import Model
 from ..settings import SolverSettings
 
@@ -83,8 +85,11 @@ class Problem:
 
 
 def default_cache_dir() -> Path:
-    """``$BELTMDSM_CACHE`` or ``~/.cache/beltmdsm/sweeps``."""
-    return Path(os.environ.get("BELTMDSM_CACHE", Path.home() / ".cache" / "beltmdsm" / "sweeps"))
+    """``sweeps`` in the folder of the package's caches (`generated._support.cache_root`,
+    one rule for every cache): ``$BELTMDSM_CACHE/sweeps``, else
+    ``$XDG_CACHE_HOME/beltmdsm-cache/sweeps``, else ``~/.cache/beltmdsm-cache/sweeps``
+    (an empty variable counts as unset)."""
+    return Path(cache_root()) / "sweeps"
 
 
 def writable_folder(folder: os.PathLike | str) -> Path:
