@@ -42,7 +42,7 @@ from ..analysis.floquet import NoPeriodicResponse, floquet, response_from
 from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ..analysis.periodmap import engine_of
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
-from .responses import ladder, run_stroboscope, shoot
+from .responses import check_limit, ladder, run_stroboscope, shoot
 
 __all__ = [
     "DEFAULT_STEP",
@@ -307,6 +307,9 @@ def coexistence(
     model = as_model(model, **kw).replace(**{param: lo})
     excitation_period(model)
     grid = np.linspace(lo, hi, max(int(round((hi - lo) / step)), 1) + 1)
+    # the seeds: a run of SEED_T_END at each value, and ladders
+    at = [model.replace(**{param: float(v)}) for v in grid]
+    check_limit(int(limit), at, SEED_T_END, ladder=True, t_end_is_given=False)
     seeds, unlocked = [], []
 
     last = None
