@@ -91,6 +91,7 @@ __all__ = [
     "FORWARD_PERIODS",
     "SEED_PERIODS",
     "MAX_SEED_PERIODS",
+    "ShorterPeriod",
 ]
 
 #: Periods of forward iteration of the tangential period map where Newton's method
@@ -268,10 +269,7 @@ def periodic_response(
     Returns
     -------
     PeriodicResponse
-        With ``periods = k`` and ``period = k T``; for ``k > 1`` without a guess,
-        where the attractor locks at a divisor ``d`` of ``k`` (its orbit is
-        ``k T``-periodic too), the response of ``d`` periods, as what it is
-        (``periods = d``: ``floquet --periods 8 --Vb 5`` reports the 4T response).
+        With ``periods = k`` and ``period = k T``.
 
     Raises
     ------
@@ -287,7 +285,9 @@ def periodic_response(
     NoPeriodicResponse
         (a RuntimeError) If no periodic response is found; for ``periods > 1``
         without a guess, where the attractor of the period map does not lock at
-        ``k`` periods (the message says what it does instead).
+        ``k`` periods (the message says what it does instead): `ShorterPeriod` where
+        it locks at a divisor ``d`` of ``k`` (its orbit is ``k T``-periodic too, a
+        response of ``d`` periods; ``floquet --periods 8 --Vb 5`` reports the 4T one).
     """
     model = as_model(model, **kw)
     periods = count("periods", periods, 1)
@@ -313,14 +313,16 @@ def periodic_response(
     if pmap.periods > 1:
         seed, locks = _locked_seed(pmap)
         if locks != pmap.periods:
-            # the attractor locks at a divisor of k: its orbit is k T-periodic too, and
-            # is reported as what it is, a response of its own (shorter) period
-            pmap = period_map(model, locks, backend, engine)
+            raise ShorterPeriod(pmap.periods, locks, "the period map iterated from rest locks at")
         point = fixed_point(pmap, seed, max_iter)
         shortest = minimal_periods(point.image, pmap.periods)
         if shortest != pmap.periods:
-            pmap = period_map(model, shortest, backend, engine)
-            point = fixed_point(pmap, point.state, max_iter)
+            raise ShorterPeriod(
+                pmap.periods,
+                shortest,
+                "from the attractor of the period map iterated from rest, Newton's method "
+                "finds a response of",
+            )
         return response_from(pmap, point)
     start = pmap.sliding_guess() if guess is None else guess
     try:
@@ -369,6 +371,21 @@ def _locked_seed(pmap):
             f"no response of {_periods(k)} found: the period map iterated from rest {what}"
         )
     return strobe.samples[-1], locks
+
+
+class ShorterPeriod(NoPeriodicResponse):
+    """No response of minimal period ``asked`` periods: the attractor is a response of
+    ``periods``, a divisor of it (its orbit repeats after ``asked`` periods too, but is
+    not a new response). ``periodic_response(..., periods=periods)`` computes it
+    (``floquet --periods K`` reports it so)."""
+
+    def __init__(self, asked: int, periods: int, how: str) -> None:
+        super().__init__(
+            f"no response of minimal period {_periods(asked)} found: {how} "
+            f"{_periods(periods)}, whose orbit repeats after {asked} too "
+            f"(periods={periods} computes it)"
+        )
+        self.asked, self.periods = asked, periods
 
 
 def _periods(k: int) -> str:

@@ -24,10 +24,15 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...analysis.floquet import floquet
+    from ...analysis.floquet import ShorterPeriod, floquet
     from .. import text
 
-    f = floquet(model_from(args), periods=args.periods)
+    model = model_from(args)
+    try:
+        f = floquet(model, periods=args.periods)
+    except ShorterPeriod as err:
+        # an attractor locked at a divisor d of K is K T-periodic too: its d T response
+        f = floquet(model, periods=err.periods)
     out = f.as_dict()
     # an attractor locked at a divisor d of K is K T-periodic too: its d T response
     # is what is reported ("periods": d), and the request is kept beside it
