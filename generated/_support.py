@@ -442,7 +442,7 @@ def user_cache(name):
     return folder
 
 
-class CacheWarning(UserWarning):
+class CacheFolderWarning(UserWarning):
     """No private cache folder: what is compiled is not kept between runs."""
 
 
@@ -453,7 +453,7 @@ def import_numba(required):
     ``$NUMBA_CACHE_DIR`` names one: by default numba writes next to the module it
     compiles, which for an installed package is inside site-packages. Where no
     private folder can be made, numba caches nothing (`DISK_CACHE` False), said once
-    (a `CacheWarning`).
+    (a `CacheFolderWarning`).
     """
     global _numba, DISK_CACHE
     if _numba is None:
@@ -471,7 +471,7 @@ def import_numba(required):
                     DISK_CACHE = False
                     warnings.warn(
                         f"{err}; compiled code is not cached (compiled again in every run)",
-                        CacheWarning,
+                        CacheFolderWarning,
                         stacklevel=2,
                     )
         _numba = numba

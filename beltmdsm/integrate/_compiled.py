@@ -36,7 +36,7 @@ import warnings
 from pathlib import Path
 
 from generated import _support, hybrid, oscillator
-from generated._support import CacheWarning, import_numba, user_cache
+from generated._support import CacheFolderWarning, import_numba, user_cache
 
 from ..model import Backend, Model
 from . import _dop853, _roots, _superpose
@@ -225,7 +225,7 @@ def _compiled(integrator, kernels, name, numba_version):
 @functools.cache
 def _folder() -> Path | None:
     """The private folder of the compiled modules (`generated._support.user_cache`), or
-    None where none can be made: said once (a `generated._support.CacheWarning`, unless
+    None where none can be made: said once (a `generated._support.CacheFolderWarning`, unless
     `generated._support.import_numba` said it for numba's cache)."""
     try:
         return Path(user_cache("compiled"))
@@ -234,7 +234,7 @@ def _folder() -> Path | None:
             return None  # said once already, by import_numba
         warnings.warn(
             f"{err}; the compiled integrators are not cached (compiled again in every run)",
-            CacheWarning,
+            CacheFolderWarning,
             stacklevel=4,
         )
         return None

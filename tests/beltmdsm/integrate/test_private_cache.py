@@ -159,7 +159,7 @@ def test_without_a_home_nothing_goes_to_the_shared_temporary_folder(tmp_path):
         "No such file or directory; set BELTMDSM_CACHE to a folder of yours"
     )
     # said once; numba then caches nothing and still compiles
-    assert lines[1:] == ["1 CacheWarning False", "9.0"]
+    assert lines[1:] == ["1 CacheFolderWarning False", "9.0"]
     assert list((tmp_path / "tmp").iterdir()) == []
     assert not (tmp_path / "beltmdsm").exists()
 
