@@ -143,3 +143,24 @@ def test_a_closed_pipe_ends_quietly():
     err = proc.stderr.read().decode()
     assert proc.wait(timeout=60) == 1
     assert err == ""
+
+
+# ------------------------------------------------------------- one rule, both caches
+
+
+def test_an_empty_beltmdsm_cache_is_unset_for_the_sweeps(tmp_path):
+    # issue 28: BELTMDSM_CACHE= wrote the sweep files into the current folder, and
+    # only the compiled code honoured XDG_CACHE_HOME. Here the folder that the rule
+    # gives cannot be written, so the sweep is refused (before computing) naming it.
+    env = {**ENV, "BELTMDSM_CACHE": "", "XDG_CACHE_HOME": "/proc/x"}
+    done = subprocess.run(
+        [sys.executable, "-m", "beltmdsm", "sweep", "--param", "Vb", "--values", "3"],
+        env=env,
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert done.returncode == 2, done.stderr
+    assert "cache folder /proc/x/beltmdsm-cache/sweeps cannot be written" in done.stderr
+    assert list(tmp_path.iterdir()) == []
