@@ -41,7 +41,8 @@ from ..analysis.branch import Branch, continue_branch
 from ..analysis.floquet import NoPeriodicResponse, floquet, response_from
 from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ..analysis.periodmap import engine_of
-from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
+from ..arguments import count
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period, is_real
 from .responses import check_limit, ladder, run_stroboscope, shoot
 
 __all__ = [
@@ -302,14 +303,15 @@ def coexistence(
         raise ValueError(f"param must be a model parameter; got {param!r}")
     if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
         raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
-    if not step > 0 or int(limit) < 1:
-        raise ValueError(f"step must be > 0 and limit >= 1; got {step}, {limit}")
+    limit = count("limit", limit, 1)
+    if not (is_real(step) and step > 0):
+        raise ValueError(f"step must be a number > 0; got {step!r}")
     model = as_model(model, **kw).replace(**{param: lo})
     excitation_period(model)
     grid = np.linspace(lo, hi, max(int(round((hi - lo) / step)), 1) + 1)
     # the seeds: a run of SEED_T_END at each value, and ladders
     at = [model.replace(**{param: float(v)}) for v in grid]
-    check_limit(int(limit), at, SEED_T_END, ladder=True, t_end_is_given=False)
+    check_limit(limit, at, SEED_T_END, ladder=True, t_end_is_given=False)
     seeds, unlocked = [], []
 
     last = None

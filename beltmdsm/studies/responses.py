@@ -41,8 +41,9 @@ from ..analysis.locked import (
     stroboscope,
 )
 from ..analysis.periodmap import ENGINES, FixedPoint, PeriodMap, engine_of, fixed_point, period_map
+from ..arguments import count
 from ..errors import Refused
-from ..model import Backend, Model, as_model, excitation_period, initial_state
+from ..model import Backend, Model, as_model, excitation_period, initial_state, is_real
 from ..settings import SolverSettings
 from ..simulation import simulate
 
@@ -386,11 +387,9 @@ def responses(
         `beltmdsm.errors.Refused` for a ``limit`` that the samples cannot decide
         (`check_limit`).
     """
-    if int(limit) < 1 or not ladder >= 0 or not t_end > 0:
-        raise ValueError(
-            f"limit must be >= 1, ladder >= 0 and t_end > 0; got {limit}, {ladder}, {t_end}"
-        )
-    limit = int(limit)
+    limit = count("limit", limit, 1)
+    if not (is_real(ladder) and ladder >= 0 and is_real(t_end) and t_end > 0):
+        raise ValueError(f"ladder must be >= 0 and t_end > 0; got {ladder!r}, {t_end!r}")
     model = as_model(model, **kw)
     excitation_period(model)
     check_limit(limit, [model], t_end, ladder=ladder > 0)

@@ -33,6 +33,9 @@ from beltmdsm.settings import SolverSettings
         (lambda: beltmdsm.simulate(y0=[True, 0, 0, 0], t_end=1.0), "y0"),
         (lambda: beltmdsm.simulate(settings={"t_end": 10}), "settings"),
         (lambda: beltmdsm.simulate(t_end=1.0, progress="yes"), "progress"),
+        (lambda: beltmdsm.responses(limit=True), "limit"),
+        (lambda: beltmdsm.coexistence("Vb", 3.0, 4.0, limit=2.5), "limit"),
+        (lambda: beltmdsm.coexistence("Vb", 3.0, 4.0, step=True), "step"),
     ],
 )
 def test_a_bad_argument_is_one_value_error_naming_it(call, name):
@@ -67,3 +70,22 @@ def test_a_lock_at_a_divisor_is_named_with_its_period():
     assert "locks at 4 periods, whose orbit repeats after 8 too" in str(caught.value)
     with pytest.raises(ShorterPeriod, match="locks at 1 period, whose orbit repeats after 2"):
         beltmdsm.periodic_response(Vb=10.0, periods=2)
+
+
+def test_the_limit_bound_counts_the_samples_a_run_has():
+    from beltmdsm.model import Model, excitation_period
+    from beltmdsm.studies.responses import check_limit, run_samples, run_stroboscope
+
+    m = Model()
+    T = excitation_period(m)
+    # the run of 10 s: 3 samples, as the stroboscope itself says (the message of issue 28)
+    assert run_samples(m, 10.0) == 3
+    with pytest.raises(ValueError, match=r"got \(3, 2\)"):
+        run_stroboscope(m, t_end=10.0)
+    with pytest.raises(Refused, match="give t_end >= 98.9602 s or limit <= 1"):
+        check_limit(12, [m], 10.0, ladder=False)
+    # the t_end it suggests is enough: the run has more than 2 * 12 samples
+    need = math.ceil(25 / 0.4) * T
+    check_limit(12, [m], need, ladder=False)
+    strobe = run_stroboscope(m, t_end=need)
+    assert strobe.samples.shape[0] == run_samples(m, need) > 24
