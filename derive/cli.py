@@ -235,10 +235,13 @@ def main(argv=None, *, extend=None, evidence=None) -> int:
         args = parser.parse_args(argv)
         if args.command is None:
             args.parser = parser
-            return _generate(args)
-        if args.check:
-            parser.error("--check applies to the regeneration, not to a command")
-        return args.run(args)
+            status = _generate(args)
+        else:
+            if args.check:
+                parser.error("--check applies to the regeneration, not to a command")
+            status = args.run(args)
+        sys.stdout.flush()  # a reader gone (`| head`) shows here, not at exit
+        return status
     except UsageError as err:
         print(err, file=sys.stderr)
         if parser.unavailable:

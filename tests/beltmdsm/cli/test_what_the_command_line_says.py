@@ -164,3 +164,19 @@ def test_an_empty_beltmdsm_cache_is_unset_for_the_sweeps(tmp_path):
     assert done.returncode == 2, done.stderr
     assert "cache folder /proc/x/beltmdsm-cache/sweeps cannot be written" in done.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_pipe_closed_before_the_last_flush_ends_quietly():
+    # a short output stays in the buffer until the end: the flush meets the closed pipe
+    env = {k: v for k, v in ENV.items() if k != "PYTHONUNBUFFERED"}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "beltmdsm", "docs"],
+        env=env,
+        cwd=ROOT,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
+    proc.stdout.close()
+    err = proc.stderr.read().decode()
+    assert proc.wait(timeout=60) == 1
+    assert err == ""
