@@ -271,7 +271,9 @@ class Model:
     def __repr__(self) -> str:
         changed = {k: v for k, v in self._params.items() if BASE.get(k) != v}
         for name, source in DEFAULT_FROM.items():
-            if changed.get(name) == self._params[source]:
+            if name in self._pinned:
+                changed[name] = self._params[name]  # given: part of the identity
+            elif changed.get(name) == self._params[source]:
                 del changed[name]
         for name, value in DEFAULTS.items():
             if changed.get(name) == value:

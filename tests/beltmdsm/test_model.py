@@ -156,6 +156,7 @@ def test_equal_models_stay_equal_under_replace():
     assert pinned.params == follows.params
     assert pinned.replace(alpha=1)["alpha_t"] == 3.0 and follows.replace(alpha=1)["alpha_t"] == 1.0
     assert pinned != follows and pinned.digest() != follows.digest()
+    assert repr(pinned) == "Model(alpha=3.0, alpha_t=3.0)" and repr(follows) == "Model(alpha=3.0)"
     # where replace() treats them alike they are equal, hash and digest alike
     for a, b in [(Model(alpha=3), Model(alpha=3.0)), (pinned, Model(alpha_t=3, alpha=3))]:
         assert a == b and hash(a) == hash(b) and a.digest() == b.digest()
