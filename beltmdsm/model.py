@@ -121,7 +121,8 @@ def _number(name: str, value: object) -> float:
     value = float(value)
     if not math.isfinite(value):
         raise ValueError(f"parameter {name!r} must be finite; got {value!r}")
-    return value
+    # -0.0 + 0.0 is 0.0: the two zeros are one value, with one digest
+    return value + 0.0
 
 
 class Model:
@@ -136,6 +137,11 @@ class Model:
         A law's own parameter (`LAW_OF`) is part of the model where its law is
         chosen; elsewhere it may only be given at its base value (``**BASE`` serves
         every law), and is then left out.
+
+    Two models are equal (same hash, same `digest`) where their parameters and
+    options are and `replace` treats them alike: ``Model(alpha=3, alpha_t=3)`` is
+    not ``Model(alpha=3)``, since ``replace(alpha=1)`` keeps ``alpha_t = 3`` in the
+    first only. ``-0.0`` is taken as ``0.0``.
 
     Raises
     ------
@@ -154,7 +160,7 @@ class Model:
     True
     """
 
-    __slots__ = ("_given", "_params", "_options", "_key")
+    __slots__ = ("_given", "_params", "_options", "_pinned", "_key")
 
     def __init__(self, **kw: Any) -> None:
         given, options = {}, dict(OPTION_DEFAULTS)
@@ -202,7 +208,12 @@ class Model:
         setattr_(self, "_given", MappingProxyType(given))
         setattr_(self, "_params", MappingProxyType(ordered))
         setattr_(self, "_options", MappingProxyType(options))
-        setattr_(self, "_key", (tuple(ordered.items()), tuple(sorted(options.items()))))
+        # a parameter that follows another (alpha_t follows alpha) and was given keeps
+        # its value under replace(): it belongs to the model's identity, else two equal
+        # models would differ after the same replace()
+        pinned = tuple(sorted(name for name in DEFAULT_FROM if name in given))
+        setattr_(self, "_pinned", pinned)
+        setattr_(self, "_key", (tuple(ordered.items()), tuple(sorted(options.items())), pinned))
 
     @classmethod
     def from_mapping(cls, mapping: Mapping[str, Any] | None, **kw: Any) -> Model:
@@ -267,7 +278,9 @@ class Model:
     def __repr__(self) -> str:
         changed = {k: v for k, v in self._params.items() if BASE.get(k) != v}
         for name, source in DEFAULT_FROM.items():
-            if changed.get(name) == self._params[source]:
+            if name in self._pinned:
+                changed[name] = self._params[name]  # given: part of the identity
+            elif changed.get(name) == self._params[source]:
                 del changed[name]
         for name, value in DEFAULTS.items():
             if changed.get(name) == value:
@@ -294,8 +307,13 @@ class Model:
         return {"params": dict(self._params), **self._options}
 
     def digest(self) -> str:
-        """SHA-256 of the parameters and options: the same on every machine and run."""
-        text = json.dumps({"params": self._params.copy(), **self._options}, sort_keys=True)
+        """SHA-256 of the parameters, the options and the parameters that follow
+        another but were given (``alpha_t`` given: `replace` keeps it): the same on
+        every machine and run, equal exactly where the models are."""
+        text = json.dumps(
+            {"params": self._params.copy(), **self._options, "pinned": list(self._pinned)},
+            sort_keys=True,
+        )
         return hashlib.sha256(text.encode()).hexdigest()
 
 

@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .analysis.summary import Summary, summarize
+from .arguments import flag, settings_of, state
 from .integrate.events import integrate_events
 from .integrate.superposition import NotApplicable, integrate_superposed
 from .integrate.trajectory import Run, Samples, Trajectory
@@ -184,14 +185,13 @@ def simulate(
         )
     names = SolverSettings.names()
     changes = {k: kw.pop(k) for k in list(kw) if k in names}
-    settings = settings or SolverSettings()
+    settings = settings_of(settings)
+    progress = flag("progress", progress)
     if changes:
         settings = SolverSettings(**{**settings.__dict__, **changes})
     model = as_model(model, **kw)
     if y0 is not None:
-        y0 = np.asarray(y0, dtype=float)
-        if y0.shape != (4,) or not np.all(np.isfinite(y0)):
-            raise ValueError(f"y0 must be 4 finite numbers (X1, Y1, X2, Y2); got {y0!r}")
+        y0 = state("y0", y0, (4,), "X1, Y1, X2, Y2")
     check_request(model, settings)
     return _simulate(model, settings, y0, clock, progress)
 

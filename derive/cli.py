@@ -23,10 +23,11 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import tempfile
 import time
 from pathlib import Path
 
-__all__ = ["main", "build_parser", "Parser", "UsageError"]
+__all__ = ["main", "build_parser", "Parser", "UsageError", "writable_file", "writable_folder"]
 
 
 class UsageError(Exception):
@@ -54,6 +55,10 @@ def _generate(args) -> int:
             f"regenerating generated/ needs a source checkout: this one is installed "
             f"({codegen.GENERATED.parent}); give --out DIR to write a complete copy there"
         )
+    if args.out is not None and not args.check:
+        problem = writable_folder(root)  # before the derivation, not after it
+        if problem:
+            args.parser.error(f"argument --out: {problem}")
     start = time.perf_counter()
     mods = modules.all_modules()
     files = codegen.render_all(mods)
@@ -106,13 +111,46 @@ def _folder(s):
     return s
 
 
-def _report_file(s):
-    """A file to write: its folder must exist and it must not be a folder."""
+def writable_folder(folder):
+    """Why ``folder`` (created if missing) cannot be written, or None: a test file of a
+    unique name is created in it and removed, since ``os.access`` passes for root
+    where writing fails (``/proc``)."""
+    try:
+        Path(folder).mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(dir=folder, prefix=".probe-")
+        os.close(fd)
+        os.remove(probe)
+    except OSError as err:
+        return f"{folder} cannot be written ({err.strerror or err})"
+    return None
+
+
+def writable_file(s):
+    """An argparse type: a file to write, checked by writing before anything is computed.
+
+    Its folder must exist and it must not be a folder; an existing file is opened for
+    appending (and left as it was), a new one is tried as a sibling temporary file,
+    created and removed: ``os.access`` passes for root where writing fails, and a
+    report computed for two minutes was lost at the end (issue 28).
+    """
     path = Path(s)
-    if not (path.parent if str(path.parent) else Path(".")).is_dir():
-        raise argparse.ArgumentTypeError(f"folder {path.parent} does not exist")
+    folder = path.parent if str(path.parent) else Path(".")
+    if not folder.is_dir():
+        raise argparse.ArgumentTypeError(f"folder {folder} does not exist")
     if path.is_dir():
         raise argparse.ArgumentTypeError(f"{path} is a folder, not a file")
+    try:
+        if path.exists():
+            with open(path, "ab"):
+                pass
+        else:
+            fd, probe = tempfile.mkstemp(dir=folder, prefix=f".{path.name}.", suffix=".tmp")
+            os.close(fd)
+            os.remove(probe)
+    except OSError as err:
+        raise argparse.ArgumentTypeError(
+            f"{path} cannot be written ({err.strerror or err})"
+        ) from None
     return s
 
 
@@ -155,7 +193,7 @@ def build_parser(prog=None, extend=None, evidence=None):
     )
     paper.add_argument(
         "--out",
-        type=_report_file,
+        type=writable_file,
         default=None,
         metavar="FILE",
         help="the report (default: generated/PAPER_CHECK.md in a source checkout, else "
@@ -187,7 +225,8 @@ def main(argv=None, *, extend=None, evidence=None) -> int:
     returns the paper check's simulated numbers (`build_parser`).
 
     0: done; 1: a check failed (``--check``) or the system refused (a file, the
-    network); 2: a bad command line or parameter, reported in one line on stderr.
+    network), or the reader of the output went away (``| head``, quietly); 2: a bad
+    command line or parameter, reported in one line on stderr.
     A simulation that did not reach its end returns 2 as well (``simulate``).
     """
     argv = sys.argv[1:] if argv is None else list(argv)
@@ -196,15 +235,25 @@ def main(argv=None, *, extend=None, evidence=None) -> int:
         args = parser.parse_args(argv)
         if args.command is None:
             args.parser = parser
-            return _generate(args)
-        if args.check:
-            parser.error("--check applies to the regeneration, not to a command")
-        return args.run(args)
+            status = _generate(args)
+        else:
+            if args.check:
+                parser.error("--check applies to the regeneration, not to a command")
+            status = args.run(args)
+        sys.stdout.flush()  # a reader gone (`| head`) shows here, not at exit
+        return status
     except UsageError as err:
         print(err, file=sys.stderr)
         if parser.unavailable:
             print(parser.unavailable, file=sys.stderr)
         return 2
+    except BrokenPipeError:
+        # the reader of the output went away (`| head`): end quietly, as the Python
+        # documentation advises (the signal module's note on SIGPIPE); what is still
+        # buffered goes to the null device, not to a second error at exit
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 1
     except SystemExit as done:  # --help, or a command that exits
         if done.code is None or isinstance(done.code, int):
             return done.code or 0

@@ -372,36 +372,78 @@ def blockwise(kernel, *args, block=BLOCK):
 _BACKENDS = ("numpy", "numba")
 _COMPILED = {}
 _numba = None
+#: Whether numba may cache compiled code on disk (`import_numba`): False where no
+#: private cache folder can be made; the code is then compiled in every process.
+DISK_CACHE = True
+
+#: The folder of the package's caches inside the user's cache folder. Not named like
+#: a package: a folder "beltmdsm" in the current directory would be imported as a
+#: namespace package in place of the installed one.
+CACHE_NAME = "beltmdsm-cache"
+
+
+def cache_root():
+    """The folder of every cache of the package (the sweeps' and the compiled code's).
+
+    ``$BELTMDSM_CACHE`` where set and not empty, else ``$XDG_CACHE_HOME/beltmdsm-cache``
+    where that is an absolute path, else ``~/.cache/beltmdsm-cache`` (an empty variable
+    counts as unset, as the XDG base directory specification has it). Nothing else:
+    no shared temporary folder.
+    """
+    given = os.environ.get("BELTMDSM_CACHE")
+    if given:
+        return os.path.abspath(given)
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    if not (xdg and os.path.isabs(xdg)):
+        xdg = os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(xdg, CACHE_NAME)
 
 
 def user_cache(name):
-    """A writable folder ``name`` for what is compiled at run time, outside the package
-    (an installed package's files belong to its installer, and a file left in it
-    survives ``pip uninstall``).
+    """A private folder ``cache_root()/name`` for what is compiled at run time: code
+    that is imported, and numba's cache, which it unpickles.
 
-    ``$BELTMDSM_CACHE/name``, else ``$XDG_CACHE_HOME/beltmdsm/name`` (default
-    ``~/.cache``), else, where neither can be written, one in the temporary directory.
+    Outside the package (an installed package's files belong to its installer, and a
+    file left in it survives ``pip uninstall``), and private: created with mode 0700,
+    then checked to be a folder (not a link) owned by this user that no one else can
+    write, in a folder that no one else can rename it in (else another user could
+    put code there that this process runs). A test file of a unique name (per
+    process and thread) is written and removed.
 
     Raises
     ------
     OSError
-        When no candidate folder can be written.
+        One line naming the folder and why, when it cannot be made private.
     """
-    home = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    candidates = [os.path.join(home, "beltmdsm"), os.path.join(tempfile.gettempdir(), "beltmdsm")]
-    if os.environ.get("BELTMDSM_CACHE"):
-        candidates.insert(0, os.environ["BELTMDSM_CACHE"])
-    for parent in candidates:
-        folder = os.path.join(parent, name)
-        try:
-            os.makedirs(folder, exist_ok=True)
-            probe = os.path.join(folder, f".probe-{os.getpid()}")
-            open(probe, "w").close()
-            os.remove(probe)
-        except OSError:
-            continue
-        return folder
-    raise OSError(f"no writable folder for {name} (set BELTMDSM_CACHE)")
+    import stat
+
+    folder = os.path.join(cache_root(), name)
+    try:
+        os.makedirs(folder, mode=0o700, exist_ok=True)
+        info = os.lstat(folder)
+        if not stat.S_ISDIR(info.st_mode):
+            raise OSError("it is not a folder")
+        if hasattr(os, "geteuid"):
+            if info.st_uid != os.geteuid():
+                raise OSError(f"it belongs to user id {info.st_uid}, not to this one")
+            if info.st_mode & 0o077:
+                os.chmod(folder, 0o700)
+            parent = os.stat(os.path.dirname(folder))
+            if parent.st_mode & 0o022 and not parent.st_mode & stat.S_ISVTX:
+                raise OSError("others may write its parent folder, and rename it")
+        fd, probe = tempfile.mkstemp(dir=folder, prefix=".probe-")
+        os.close(fd)
+        os.remove(probe)
+    except OSError as err:
+        raise OSError(
+            f"no private cache folder {folder}: {err.strerror or err}; set BELTMDSM_CACHE "
+            "to a folder of yours"
+        ) from None
+    return folder
+
+
+class CacheFolderWarning(UserWarning):
+    """No private cache folder: what is compiled is not kept between runs."""
 
 
 def import_numba(required):
@@ -409,9 +451,11 @@ def import_numba(required):
 
     Its on-disk cache (``cache=True``) goes to `user_cache` ``("numba")`` unless
     ``$NUMBA_CACHE_DIR`` names one: by default numba writes next to the module it
-    compiles, which for an installed package is inside site-packages.
+    compiles, which for an installed package is inside site-packages. Where no
+    private folder can be made, numba caches nothing (`DISK_CACHE` False), said once
+    (a `CacheFolderWarning`).
     """
-    global _numba
+    global _numba, DISK_CACHE
     if _numba is None:
         try:
             import numba
@@ -419,7 +463,17 @@ def import_numba(required):
             numba = False
         else:
             if not numba.config.CACHE_DIR:
-                numba.config.CACHE_DIR = user_cache("numba")
+                try:
+                    numba.config.CACHE_DIR = user_cache("numba")
+                except OSError as err:
+                    import warnings
+
+                    DISK_CACHE = False
+                    warnings.warn(
+                        f"{err}; compiled code is not cached (compiled again in every run)",
+                        CacheFolderWarning,
+                        stacklevel=2,
+                    )
         _numba = numba
     if _numba is False and required:
         raise ImportError(
@@ -463,7 +517,7 @@ def compiled(kernel, result, backend):
     ufunc = _COMPILED.get(kernel)
     if ufunc is None:
         signature = f"{result}({', '.join(['float64'] * kernel.__code__.co_argcount)})"
-        ufunc = _numba.vectorize([signature], cache=True)(kernel)
+        ufunc = _numba.vectorize([signature], cache=DISK_CACHE)(kernel)
         _COMPILED[kernel] = ufunc
     return ufunc
 
@@ -495,7 +549,8 @@ def jit(kernel):
     """
     fast = _JITTED.get(kernel)
     if fast is None:
-        fast = _JITTED[kernel] = import_numba(True).njit(cache=True, error_model="numpy")(kernel)
+        numba = import_numba(True)
+        fast = _JITTED[kernel] = numba.njit(cache=DISK_CACHE, error_model="numpy")(kernel)
     return fast
 
 

@@ -55,6 +55,8 @@ from typing import Any, Literal
 
 import numpy as np
 
+from ..arguments import count, state
+from ..errors import Refused
 from ..integrate.normal import normal_motion
 from ..integrate.superposition import Superposition, friction_direction
 from ..integrate.switching import Mode
@@ -95,6 +97,8 @@ __all__ = [
     "NEWTON_TOL",
     "FORWARD_PERIODS",
     "SEED_PERIODS",
+    "MAX_SEED_PERIODS",
+    "ShorterPeriod",
 ]
 
 #: Periods of forward iteration of the tangential period map where Newton's method
@@ -110,6 +114,10 @@ _FORWARD_PROGRESS = 0.9
 #: 1000 s at the base set; the lock is found there at every point of
 #: tests/beltmdsm/analysis/test_locked.py, as the run from rest of Eq. (4) finds it).
 SEED_PERIODS = (400, 256)
+#: The longest response looked for without a guess: a lock at ``k`` periods is seen in
+#: more than ``2 k`` samples (`beltmdsm.analysis.locked.stroboscope`), of which the
+#: seed has ``SEED_PERIODS[1]``.
+MAX_SEED_PERIODS = (SEED_PERIODS[1] - 1) // 2
 
 
 @dataclass
@@ -365,34 +373,56 @@ def periodic_response(
     Raises
     ------
     ValueError
-        For bad parameters, a tension law that does not exist, an excitation without
-        a period (zero or incommensurate frequencies), ``periods`` not an integer
-        >= 1, a guess of another size than 2 or 4, or an unknown engine.
+        Naming the argument: bad parameters, a tension law that does not exist, an
+        excitation without a period (zero or incommensurate frequencies), ``periods``
+        or ``max_iter`` not an integer >= 1 (a bool is not one), ``forward`` not an
+        integer >= 0, a guess that is not 2 or 4 finite real numbers, or an unknown
+        engine; `beltmdsm.errors.Refused` for ``periods > MAX_SEED_PERIODS`` without
+        a guess (the seed cannot tell such a lock).
     beltmdsm.model.Unsupported
         For ``engine="closed_form"`` where the model's laws lack a fact it needs.
     NoPeriodicResponse
         (a RuntimeError) If no periodic response is found; for ``periods > 1``
         without a guess, where the attractor of the period map does not lock at
-        ``k`` periods (the message says what it does instead).
+        ``k`` periods (the message says what it does instead): `ShorterPeriod` where
+        it locks at a divisor ``d`` of ``k`` (its orbit is ``k T``-periodic too, a
+        response of ``d`` periods; ``floquet --periods 8 --Vb 5`` reports the 4T one).
     """
     model = as_model(model, **kw)
+    periods = count("periods", periods, 1)
+    max_iter = count("max_iter", max_iter, 1)
+    forward = count("forward", forward, 0)
     if is_autonomous(model):
         return _cycle_response(model, guess, max_iter, backend, periods, engine)
-    excitation_period(model)
-    pmap = period_map(model, periods, backend, engine)
     if isinstance(guess, PeriodicResponse):
         guess = guess.state0
+    if guess is not None:
+        guess = state("guess", guess, (2, 4), "the state at phase 0")
+    elif periods > MAX_SEED_PERIODS:
+        raise Refused(
+            f"periods must be <= {MAX_SEED_PERIODS} without a guess: the seed samples "
+            f"{SEED_PERIODS[1]} periods of the period map, and a lock at k periods needs "
+            f"more than 2 k (SEED_PERIODS, beltmdsm/analysis/floquet.py); got {periods}",
+            "periods",
+        )
+    excitation_period(model)
+    pmap = period_map(model, periods, backend, engine)
     if guess is not None:
         guess = pmap.guess(guess)
     if pmap.periods > 1 and guess is not None:
         return response_from(pmap, fixed_point(pmap, guess, max_iter))
     if pmap.periods > 1:
-        point = fixed_point(pmap, _locked_seed(pmap), max_iter)
+        seed, locks = _locked_seed(pmap)
+        if locks != pmap.periods:
+            raise ShorterPeriod(pmap.periods, locks, "the period map iterated from rest locks at")
+        point = fixed_point(pmap, seed, max_iter)
         shortest = minimal_periods(point.image, pmap.periods)
         if shortest != pmap.periods:
-            raise NoPeriodicResponse(
-                f"no response of {pmap.periods} periods found: from the attractor of the "
-                f"period map iterated from rest, Newton's method finds one of {shortest}"
+            raise ShorterPeriod(
+                pmap.periods,
+                shortest,
+                "from the attractor of the period map iterated from rest, Newton's method "
+                "finds a response of",
             )
         return response_from(pmap, point)
     start = pmap.sliding_guess() if guess is None else guess
@@ -424,7 +454,9 @@ def periodic_response(
 
 
 def _locked_seed(pmap):
-    """The last sample of the attractor of the period map from rest, where it locks at ``k``."""
+    """The last sample of the attractor of the period map from rest, and the number of
+    periods it locks at: ``k`` or a divisor of it (a ``k/d``-periodic orbit is
+    ``k``-periodic too)."""
     k = pmap.periods
     strobe = map_stroboscope(
         pmap,
@@ -433,16 +465,32 @@ def _locked_seed(pmap):
         "the period map iterated from rest",
         max(k, LOCK_LIMIT),
     )
-    if strobe.candidate != k:
-        what = (
-            f"locks at {strobe.candidate} periods"
-            if strobe.candidate
-            else NotLocked.of(strobe).text()
-        )
+    locks = strobe.candidate
+    if locks is None or k % locks:
+        what = f"locks at {_periods(locks)}" if locks else NotLocked.of(strobe).text()
         raise NoPeriodicResponse(
-            f"no response of {k} periods found: the period map iterated from rest {what}"
+            f"no response of {_periods(k)} found: the period map iterated from rest {what}"
         )
-    return strobe.samples[-1]
+    return strobe.samples[-1], locks
+
+
+class ShorterPeriod(NoPeriodicResponse):
+    """No response of minimal period ``asked`` periods: the attractor is a response of
+    ``periods``, a divisor of it (its orbit repeats after ``asked`` periods too, but is
+    not a new response). ``periodic_response(..., periods=periods)`` computes it
+    (``floquet --periods K`` reports it so)."""
+
+    def __init__(self, asked: int, periods: int, how: str) -> None:
+        super().__init__(
+            f"no response of minimal period {_periods(asked)} found: {how} "
+            f"{_periods(periods)}, whose orbit repeats after {asked} too "
+            f"(periods={periods} computes it)"
+        )
+        self.asked, self.periods = asked, periods
+
+
+def _periods(k: int) -> str:
+    return "1 period" if k == 1 else f"{k} periods"
 
 
 @dataclass

@@ -23,13 +23,13 @@ import argparse
 import concurrent.futures as cf
 import contextlib
 import math
-import os
 import sys
 import warnings
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
+from derive.cli import writable_file
 from generated.parameters import PARAMETERS
 
 from ..errors import StepTooSmall
@@ -42,6 +42,7 @@ __all__ = [
     "number",
     "integer",
     "output_file",
+    "npz_file",
     "POSITIVE",
     "NONNEGATIVE",
     "OPTION_HELP",
@@ -151,6 +152,8 @@ def _dispatch(args):
             raise
         print(f"{args.parser.prog}: error: {err}", file=sys.stderr)
         return 2
+    except BrokenPipeError:
+        raise  # the reader went away (`| head`): derive.cli.main ends quietly
     except OSError as err:
         print(f"{args.parser.prog}: error: {err}", file=sys.stderr)
         return 1
@@ -214,16 +217,16 @@ def integer(minimum: int, maximum: int | None = None) -> Callable[[str], int]:
 
 
 def output_file(s: str) -> str:
-    """A file to write: its folder must exist and be writable, and it must not be a folder."""
-    path = Path(s)
-    folder = path.parent if str(path.parent) else Path(".")
-    if not folder.is_dir():
-        raise argparse.ArgumentTypeError(f"folder {folder} does not exist")
-    if path.is_dir():
-        raise argparse.ArgumentTypeError(f"{path} is a folder, not a file")
-    if not os.access(folder, os.W_OK):
-        raise argparse.ArgumentTypeError(f"folder {folder} is not writable")
-    return s
+    """A file to write: its folder must exist, it must not be a folder, and it is
+    written to (a sibling temporary file) before anything is computed
+    (`derive.cli.writable_file`)."""
+    return writable_file(s)
+
+
+def npz_file(s: str) -> str:
+    """`output_file` for ``numpy.savez``, which adds ``.npz`` to a name without it: the
+    name it writes."""
+    return output_file(s if s.endswith(".npz") else f"{s}.npz")
 
 
 def _cache_folder(s):
@@ -507,7 +510,8 @@ def cache_parent() -> argparse.ArgumentParser:
         default="default",
         metavar="FOLDER",
         help="the folder of the sweep cache, refused if it cannot be written (default: "
-        "$BELTMDSM_CACHE or ~/.cache/beltmdsm/sweeps)",
+        "sweeps in $BELTMDSM_CACHE, else in $XDG_CACHE_HOME/beltmdsm-cache, else in "
+        "~/.cache/beltmdsm-cache; an empty variable counts as unset)",
     )
     g.add_argument("--no-cache", action="store_true", help="do not use the sweep cache")
     return parent

@@ -9,7 +9,8 @@ generated scalar kernels (`generated.hybrid`, `generated.oscillator`) through mo
   kernels (`advance`, `scan` with ``backend="python"``);
 * compiled, as a small module per integrator and kernel set, written to a cache
   folder: the integrators' source with the kernels as numba-compiled globals, cached
-  on disk by numba.
+  on disk by numba, in a private folder (`generated._support.user_cache`); where none
+  can be made, compiled in memory, every run (said once).
 
 Two properties of numba's disk cache shape the compiled form: a signature that holds
 a kernel passed as an argument (a dispatcher object) cannot be saved in a process
@@ -29,11 +30,13 @@ import importlib.util
 import inspect
 import os
 import sys
+import tempfile
 import types
+import warnings
 from pathlib import Path
 
-from generated import hybrid, oscillator
-from generated._support import import_numba, user_cache
+from generated import _support, hybrid, oscillator
+from generated._support import CacheFolderWarning, import_numba, user_cache
 
 from ..model import Backend, Model
 from . import _dop853, _roots, _superpose
@@ -192,15 +195,46 @@ def _compiled(integrator, kernels, name, numba_version):
         )
         lines += ["", "", decorator, inspect.getsource(getattr(module, fn)).rstrip()]
     text = "\n".join(lines) + "\n"
-    folder = Path(user_cache("compiled"))
     stem = f"beltmdsm_{name}_{_digest(numba_version)}"
+    folder = _folder()
+    if folder is None:
+        # no private folder: compiled in memory, for this process only
+        entry = types.ModuleType(stem)
+        sys.modules[stem] = entry
+        code = text.replace("numba.njit(cache=True,", "numba.njit(cache=False,")
+        exec(compile(code, f"<{stem}>", "exec"), vars(entry))  # noqa: S102 (our own source)
+        return getattr(entry, functions[-1])
     path = folder / f"{stem}.py"
     if not path.exists() or path.read_text() != text:
-        tmp = folder / f".{stem}.{os.getpid()}.tmp"
-        tmp.write_text(text)
-        os.replace(tmp, path)
+        # a unique temporary name per process and thread, renamed into place
+        fd, tmp = tempfile.mkstemp(dir=folder, prefix=f".{stem}.", suffix=".tmp")
+        try:
+            with os.fdopen(fd, "w") as fh:
+                fh.write(text)
+            os.replace(tmp, path)
+        finally:
+            if os.path.exists(tmp):
+                os.remove(tmp)
     spec = importlib.util.spec_from_file_location(stem, path)
     entry = importlib.util.module_from_spec(spec)
     sys.modules[stem] = entry
     spec.loader.exec_module(entry)
     return getattr(entry, functions[-1])
+
+
+@functools.cache
+def _folder() -> Path | None:
+    """The private folder of the compiled modules (`generated._support.user_cache`), or
+    None where none can be made: said once (a `generated._support.CacheFolderWarning`, unless
+    `generated._support.import_numba` said it for numba's cache)."""
+    try:
+        return Path(user_cache("compiled"))
+    except OSError as err:
+        if not _support.DISK_CACHE:
+            return None  # said once already, by import_numba
+        warnings.warn(
+            f"{err}; the compiled integrators are not cached (compiled again in every run)",
+            CacheFolderWarning,
+            stacklevel=4,
+        )
+        return None

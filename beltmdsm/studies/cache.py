@@ -3,10 +3,11 @@
 A point's summary row is cached as a small JSON file named by `cache_key`, a SHA-256 of
 what the row depends on: the model (`beltmdsm.Model.digest`: parameters and options),
 the solver settings, the start state of a continued point, the cache format, the
-package version and the code that computes a row (`code_hash` over `NUMERIC_SOURCES`:
-the generated model, the integrators, the run's summary; not the command line, the
-reports or this file's neighbours, whose edits change no number). No pickles are
-stored.
+package version and the code that computes a row (`code_hash` over `code_files`: the
+modules that a row's entry module, `NUMERIC_SOURCES`, imports, read from the sources:
+the generated model, the integrators, the run's summary, the period map; not the
+command line, the reports or the sweep's orchestration, whose edits change no number).
+No pickles are stored.
 
 The cache is safe to share between processes and hosts (dask workers on several
 machines): a file is written under a unique temporary name and renamed into place, so
@@ -19,15 +20,19 @@ served. A folder that cannot be written is refused before anything is computed
 
 from __future__ import annotations
 
+import ast
 import functools
 import hashlib
 import json
 import os
+import re
 import uuid
 from collections.abc import Iterable
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
+
+from generated._support import cache_root
 
 from ..model import Model
 from ..settings import SolverSettings
@@ -35,6 +40,7 @@ from ..settings import SolverSettings
 __all__ = [
     "CACHE_FORMAT",
     "NUMERIC_SOURCES",
+    "CODE_PACKAGES",
     "CacheWarning",
     "Problem",
     "default_cache_dir",
@@ -51,22 +57,16 @@ __all__ = [
 CACHE_FORMAT = "beltmdsm-sweep-4"
 _PACKAGE = Path(__file__).resolve().parents[1]
 _ROOT = _PACKAGE.parent
-#: The sources a cached row is computed by, relative to the folder that holds the
-#: packages: the generated model, the model and settings, the integrators, the run
-#: and its summary, and the analyses a row may hold (modulation; Floquet for a start
-#: on the periodic response).
-NUMERIC_SOURCES = (
-    "generated",
-    "beltmdsm/model.py",
-    "beltmdsm/settings.py",
-    "beltmdsm/integrate",
-    "beltmdsm/simulation.py",
-    "beltmdsm/analysis/summary.py",
-    "beltmdsm/analysis/spectra.py",
-    "beltmdsm/analysis/modulation.py",
-    "beltmdsm/analysis/floquet.py",
-    "beltmdsm/studies/row.py",
-)
+#: The entry module of a row's computation (`beltmdsm.studies.row.run_point`). The
+#: sources hashed into every key (`code_files`) are the modules that importing it
+#: executes within `CODE_PACKAGES`: its imports, theirs, and so on, read from the
+#: source (every ``import`` statement, a function's own included), so that no hand
+#: list can leave a module out (issue 28: the period map, the variational equations
+#: and the lock detection decided a row's ``resolved`` and start, and were not hashed).
+NUMERIC_SOURCES = ("beltmdsm.studies.row",)
+#: The packages whose modules are hashed; numpy, scipy and numba enter by the
+#: package version only.
+CODE_PACKAGES = ("beltmdsm", "generated")
 
 
 class CacheWarning(UserWarning):
@@ -85,8 +85,11 @@ class Problem:
 
 
 def default_cache_dir() -> Path:
-    """``$BELTMDSM_CACHE`` or ``~/.cache/beltmdsm/sweeps``."""
-    return Path(os.environ.get("BELTMDSM_CACHE", Path.home() / ".cache" / "beltmdsm" / "sweeps"))
+    """``sweeps`` in the folder of the package's caches (`generated._support.cache_root`,
+    one rule for every cache): ``$BELTMDSM_CACHE/sweeps``, else
+    ``$XDG_CACHE_HOME/beltmdsm-cache/sweeps``, else ``~/.cache/beltmdsm-cache/sweeps``
+    (an empty variable counts as unset)."""
+    return Path(cache_root()) / "sweeps"
 
 
 def writable_folder(folder: os.PathLike | str) -> Path:
@@ -112,14 +115,72 @@ def writable_folder(folder: os.PathLike | str) -> Path:
     return folder
 
 
+def _module_file(name: str) -> Path | None:
+    """The source of module ``name`` in `CODE_PACKAGES` (a package: its ``__init__.py``),
+    or None (another package's, a namespace package, a name that is no module)."""
+    parts = name.split(".")
+    if parts[0] not in CODE_PACKAGES:
+        return None
+    base = _ROOT.joinpath(*parts)
+    for path in (base / "__init__.py", base.with_suffix(".py")):
+        if path.is_file():
+            return path
+    return None
+
+
+#: An import statement (``from M import (a,\n b)``, a line continued by ``\\``),
+#: indented or not: each match is parsed alone (`ast`), which reads the statements of
+#: a large generated module many times faster than parsing the whole module; a match
+#: that does not parse is prose (a docstring's "import ...").
+_IMPORT = re.compile(
+    rb"^[ \t]*((?:from[ \t]+[.\w]+[ \t]+)?import[ \t]+(?:\([^)]*\)|(?:[^\n]*\\\n)*[^\n]*))",
+    re.M,
+)
+
+
+def _imported(name: str, path: Path) -> set[str]:
+    """The modules that module ``name`` (source ``path``) may import: every ``import``
+    statement in it, a function's own included, with each package above a module
+    (Python runs them first) and each name of ``from M import a`` that may be a
+    submodule ``M.a``."""
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = set()
+    for match in _IMPORT.finditer(path.read_bytes()):
+        try:
+            # the match runs to the end of its line: "import a; import b" parses whole
+            nodes = ast.parse(match.group(1).decode("utf-8")).body
+        except (SyntaxError, UnicodeDecodeError):
+            continue
+        for node in nodes:
+            if isinstance(node, ast.Import):
+                found.update(alias.name for alias in node.names)
+            elif isinstance(node, ast.ImportFrom):
+                base = node.module or ""
+                if node.level:
+                    up = package.split(".")[: package.count(".") + 2 - node.level]
+                    base = ".".join(up + ([node.module] if node.module else []))
+                found.add(base)
+                found.update(f"{base}.{alias.name}" for alias in node.names)
+    return {".".join(m.split(".")[:i]) for m in found for i in range(1, m.count(".") + 2)}
+
+
 def code_files() -> list[Path]:
-    """The files of `NUMERIC_SOURCES`, sorted (their hash must not depend on the file
-    system's order)."""
-    out = []
-    for rel in NUMERIC_SOURCES:
-        path = _ROOT / rel
-        out += sorted(path.rglob("*.py")) if path.is_dir() else [path]
-    return out
+    """The sources of the modules that importing `NUMERIC_SOURCES` executes within
+    `CODE_PACKAGES` (the import graph, read from the sources), sorted by path (their
+    hash must not depend on the order they are found in)."""
+    seen: dict[str, Path] = {}
+    # an entry and the packages above it, which Python imports first
+    todo = [e.rsplit(".", k)[0] for e in NUMERIC_SOURCES for k in range(e.count(".") + 1)]
+    while todo:
+        name = todo.pop()
+        if name in seen:
+            continue
+        path = _module_file(name)
+        if path is None:
+            continue
+        seen[name] = path
+        todo += sorted(_imported(name, path) - set(seen))
+    return sorted(set(seen.values()))
 
 
 @functools.cache

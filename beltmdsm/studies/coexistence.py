@@ -48,11 +48,20 @@ from ..analysis.branch import Branch, continue_branch
 from ..analysis.floquet import NoPeriodicResponse, floquet, response_from
 from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ..analysis.periodmap import engine_of
+from ..arguments import count
 from ..errors import Refused
-from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period, is_autonomous
+from ..model import (
+    MODEL_PARAMETERS,
+    Backend,
+    Model,
+    as_model,
+    excitation_period,
+    is_autonomous,
+    is_real,
+)
 from ..settings import MAX_SEED_POINTS
 from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
-from .responses import ladder, run_stroboscope, shoot
+from .responses import check_limit, ladder, run_stroboscope, shoot
 
 __all__ = [
     "DEFAULT_STEP",
@@ -300,8 +309,9 @@ def coexistence(
         raise ValueError(f"param must be a model parameter; got {param!r}")
     if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
         raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
-    if not step > 0 or int(limit) < 1:
-        raise ValueError(f"step must be > 0 and limit >= 1; got {step}, {limit}")
+    limit = count("limit", limit, 1)
+    if not (is_real(step) and step > 0):
+        raise ValueError(f"step must be a number > 0; got {step!r}")
     if step > (hi - lo) / 2:
         # two seeds, the ends: a response stable only inside is never seeded
         raise Refused(
@@ -312,10 +322,10 @@ def coexistence(
             f"{(hi - lo) / 2:g}",
             "step",
         )
-    count = (hi - lo) / step
-    if count > MAX_SEED_POINTS:
+    points = (hi - lo) / step
+    if points > MAX_SEED_POINTS:
         raise Refused(
-            f"step = {step:g} makes {count:.3g} seeds' grid points on [{lo:g}, {hi:g}], more "
+            f"step = {step:g} makes {points:.3g} seeds' grid points on [{lo:g}, {hi:g}], more "
             f"than MAX_SEED_POINTS = {MAX_SEED_POINTS} (beltmdsm/settings.py; each a shooting, "
             f"a run and two ladders); use step >= {(hi - lo) / MAX_SEED_POINTS:.3g}",
             "step",
@@ -327,6 +337,9 @@ def coexistence(
         return cycle_coexistence(param, lo, hi, model, backend=backend)
     excitation_period(model)
     grid = np.linspace(lo, hi, max(int(round((hi - lo) / step)), 1) + 1)
+    # the seeds: a run of SEED_T_END at each value, and ladders
+    at = [model.replace(**{param: float(v)}) for v in grid]
+    check_limit(limit, at, SEED_T_END, ladder=True, t_end_is_given=False)
     seeds, unlocked = [], []
     from tqdm import tqdm
 

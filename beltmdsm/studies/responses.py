@@ -46,13 +46,25 @@ from ..analysis.locked import (
     stroboscope,
 )
 from ..analysis.periodmap import ENGINES, FixedPoint, PeriodMap, engine_of, fixed_point, period_map
-from ..model import Backend, Model, as_model, excitation_period, initial_state, is_autonomous
+from ..arguments import count
+from ..errors import Refused
+from ..model import (
+    Backend,
+    Model,
+    as_model,
+    excitation_period,
+    initial_state,
+    is_autonomous,
+    is_real,
+)
 from ..settings import SolverSettings
 from ..simulation import simulate
 
 __all__ = [
     "RUN_T_END",
     "LADDER_SPAN",
+    "run_samples",
+    "check_limit",
     "run_stroboscope",
     "ladder",
     "ladder_stroboscope",
@@ -74,6 +86,55 @@ WINDOW = 0.4
 LADDER_SPAN = 2.0
 LADDER_STEP = 0.25
 LADDER_PERIODS = 150
+
+
+def run_samples(model: Model, t_end: float) -> int:
+    """The number of stroboscopic samples of `run_stroboscope` for a run of ``t_end``
+    seconds: the excitation periods of its last `WINDOW`, both ends counted."""
+    n_end = int(math.floor(t_end / excitation_period(model) + 1e-9))
+    return n_end - max(int(math.ceil((1.0 - WINDOW) * n_end)), 0) + 1
+
+
+def check_limit(
+    limit: int,
+    models: Sequence[Model],
+    t_end: float,
+    ladder: bool,
+    t_end_is_given: bool = True,
+) -> None:
+    """Refuse a ``limit`` that the samples cannot decide: a lock at ``k`` periods needs
+    more than ``2 k`` samples (`beltmdsm.analysis.locked.stroboscope`), the runs' of
+    ``t_end`` s (`run_samples`, for each model) and, with ``ladder``, the ladders'
+    (`LADDER_PERIODS` a rung). ``t_end_is_given``: the caller's argument (named in
+    the message), not a constant of the study.
+
+    Raises
+    ------
+    beltmdsm.errors.Refused
+        Naming ``limit`` (and ``t_end`` where a longer run would do) and the bound.
+    """
+    if ladder and 2 * limit >= LADDER_PERIODS:
+        raise Refused(
+            f"limit must be <= {(LADDER_PERIODS - 1) // 2}, since the ladders sample "
+            f"{LADDER_PERIODS} periods a rung and a lock of k periods needs more than 2 k "
+            f"samples (LADDER_PERIODS, beltmdsm/studies/responses.py); got {limit}"
+            + (" (or give ladder 0 and a long enough t_end)" if t_end_is_given else ""),
+            "limit",
+        )
+    for model in models:
+        n = run_samples(model, t_end)
+        if n > 2 * limit:
+            continue
+        T = excitation_period(model)
+        need = math.ceil((2 * limit + 1) / WINDOW) * T
+        bound = f"limit <= {max((n - 1) // 2, 0)}"
+        raise Refused(
+            f"a run of {t_end:g} s has {n} stroboscopic samples (the last {WINDOW:.0%} of "
+            f"its periods of T = {T:.6g} s) and a lock at limit = {limit} periods needs "
+            f"more than {2 * limit}: "
+            + (f"give t_end >= {need:.6g} s or {bound}" if t_end_is_given else f"give {bound}"),
+            *(("limit", "t_end") if t_end_is_given else ("limit",)),
+        )
 
 
 def run_stroboscope(
@@ -376,17 +437,18 @@ def responses(
     Raises
     ------
     ValueError
-        For bad parameters, ``limit < 1``, ``ladder < 0`` or ``t_end <= 0``.
+        For bad parameters, ``limit < 1``, ``ladder < 0`` or ``t_end <= 0``;
+        `beltmdsm.errors.Refused` for a ``limit`` that the samples cannot decide
+        (`check_limit`).
     """
-    if int(limit) < 1 or not ladder >= 0 or not t_end > 0:
-        raise ValueError(
-            f"limit must be >= 1, ladder >= 0 and t_end > 0; got {limit}, {ladder}, {t_end}"
-        )
-    limit = int(limit)
+    limit = count("limit", limit, 1)
+    if not (is_real(ladder) and ladder >= 0 and is_real(t_end) and t_end > 0):
+        raise ValueError(f"ladder must be >= 0 and t_end > 0; got {ladder!r}, {t_end!r}")
     model = as_model(model, **kw)
     if is_autonomous(model):
         return cycle_responses(model, limit=limit, ladder=ladder, backend=backend)
     excitation_period(model)
+    check_limit(limit, [model], t_end, ladder=ladder > 0)
     found, unlocked, failed = [], [], []
     try:
         f = floquet(model, backend=backend)

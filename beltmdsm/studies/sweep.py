@@ -36,6 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import intervals
 from .._calling import settings_keywords, valued
 from .._tables import DataFrame
+from ..arguments import flag, reals, settings_of
 from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Model, as_model, excitation_period
 from ..settings import MAX_POINTS, SolverSettings, check_request
@@ -287,7 +288,9 @@ def sweep(
     given = model.params if isinstance(model, Model) else (model or {})
     if param in kw or (not isinstance(model, Model) and param in given):
         raise ValueError(f"{param} is swept: give its values, not a fixed {param} as well")
-    values = np.atleast_1d(np.asarray(values, dtype=float))
+    values = np.atleast_1d(reals("values", values))
+    settings = settings_of(settings)
+    progress, modulation = flag("progress", progress), flag("modulation", modulation)
     if values.ndim != 1 or values.size == 0:
         raise ValueError("values must be a non-empty 1-D sequence")
     if values.size > MAX_POINTS:
@@ -318,7 +321,6 @@ def sweep(
                 f"must be None or 'serial'; got {executor!r}"
             )
     model = as_model(model, **kw)
-    settings = settings or SolverSettings()
     unique = np.unique(values)
     dropped = sorted(float(v) for v in values if (values == v).sum() > 1)
     dropped = sorted(set(dropped))

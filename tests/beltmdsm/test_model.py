@@ -147,3 +147,23 @@ def test_a_model_survives_pickling_with_its_given_values():
     m = Model(Vb=3, alpha_t=1.0, tension="clipped")
     back = pickle.loads(pickle.dumps(m))
     assert back == m and back.replace(alpha=3.0)["alpha_t"] == 1.0
+
+
+def test_equal_models_stay_equal_under_replace():
+    # issue 28: Model(alpha=3, alpha_t=3) == Model(alpha=3), yet replace(alpha=1)
+    # moved alpha_t in the second only
+    pinned, follows = Model(alpha=3, alpha_t=3), Model(alpha=3)
+    assert pinned.params == follows.params
+    assert pinned.replace(alpha=1)["alpha_t"] == 3.0 and follows.replace(alpha=1)["alpha_t"] == 1.0
+    assert pinned != follows and pinned.digest() != follows.digest()
+    assert repr(pinned) == "Model(alpha=3.0, alpha_t=3.0)" and repr(follows) == "Model(alpha=3.0)"
+    # where replace() treats them alike they are equal, hash and digest alike
+    for a, b in [(Model(alpha=3), Model(alpha=3.0)), (pinned, Model(alpha_t=3, alpha=3))]:
+        assert a == b and hash(a) == hash(b) and a.digest() == b.digest()
+        assert a.replace(alpha=1) == b.replace(alpha=1)
+
+
+def test_minus_zero_is_zero():
+    a, b = Model(phase_t=-0.0, Vb=-0.0), Model(phase_t=0.0, Vb=0.0)
+    assert a == b and hash(a) == hash(b) and a.digest() == b.digest()
+    assert math.copysign(1.0, a["phase_t"]) == 1.0

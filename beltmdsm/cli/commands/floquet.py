@@ -18,7 +18,8 @@ def add(commands, name: str) -> None:
         description="The periodic response of Eq. (4) by shooting and its Floquet "
         "multipliers, with saltation matrices at the switches "
         "(beltmdsm/analysis/floquet.py); --periods K: the response of K excitation "
-        "periods, by shooting on the K-fold period map. Without excitation (--alpha 0) "
+        "periods, by shooting on the K-fold period map (an attractor locked at a divisor d of K "
+        "is reported as the dT response it is). Without excitation (--alpha 0) "
         "the self-excited cycle, its period found by shooting with a phase condition "
         "(beltmdsm/analysis/cycles.py); --json then says autonomous: true and gives "
         "the trivial multiplier apart.",
@@ -26,13 +27,21 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...analysis.floquet import floquet
+    from ...analysis.floquet import ShorterPeriod, floquet
     from .. import text
 
-    f = floquet(model_from(args), periods=args.periods)
+    model = model_from(args)
+    try:
+        f = floquet(model, periods=args.periods)
+    except ShorterPeriod as err:
+        # an attractor locked at a divisor d of K is K T-periodic too: its d T response
+        f = floquet(model, periods=err.periods)
     out = f.as_dict()
     x1_range, velocity_range = f.response.ranges()
     out["x1_range"], out["velocity_range"] = list(x1_range), list(velocity_range)
+    # an attractor locked at a divisor d of K is K T-periodic too: its d T response
+    # is what is reported ("periods": d), and the request is kept beside it
+    out["periods_asked"] = args.periods
     out.update(f.response.model.as_dict())
     out["switches"] = [
         {"t": t, "before": b.name.lower(), "after": a.name.lower(), "surface": s}
@@ -41,5 +50,12 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(text.jsonable(out)))
     else:
+        got = f.response.periods
+        if got != args.periods:
+            print(
+                f"the response of {args.periods} periods is the {got}T response: the period "
+                f"map from rest locks at {got} {'period' if got == 1 else 'periods'}, and "
+                f"its orbit repeats every {args.periods} T too"
+            )
         print(text.floquet(f))
     return 0

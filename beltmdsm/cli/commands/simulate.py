@@ -9,6 +9,7 @@ from ..flags import (
     json_parent,
     model_from,
     model_parent,
+    npz_file,
     number,
     output_file,
     register,
@@ -36,9 +37,10 @@ def add(commands, name: str) -> None:
     sub.add_argument(
         "--perturbation",
         type=number(),
-        default=1e-2,
+        default=None,
         metavar="DX1",
-        help="the move of X1 from the periodic response [m] (default 1e-2)",
+        help="the move of X1 from the periodic response [m], with --start periodic only "
+        "(default 1e-2)",
     )
     sub.add_argument(
         "--modulation", action="store_true", help="add friction modulation averages (Figs. 10-12)"
@@ -46,8 +48,9 @@ def add(commands, name: str) -> None:
     sub.add_argument(
         "--save",
         metavar="NPZ",
-        type=output_file,
-        help="save the samples t, X1, Y1, X2, Y2, Fn, friction to this .npz file",
+        type=npz_file,
+        help="save the samples t, X1, Y1, X2, Y2, Fn, friction to this .npz file (.npz "
+        "added to a name without it, as numpy.savez does; the name written is printed)",
     )
     sub.add_argument(
         "--png",
@@ -70,13 +73,20 @@ def run(args: argparse.Namespace) -> int:
     from ...simulation import simulate
     from .. import text
 
+    if args.perturbation is not None and args.start != "periodic":
+        args.parser.error(
+            "argument --perturbation: moves the start on the periodic response; "
+            "give --start periodic, or drop it"
+        )
     model = model_from(args)
     settings = settings_from(args)
     check_request(model, settings)  # before the periodic start is computed
     y0 = None
     if args.start == "periodic":
-        from ...analysis.floquet import periodic_start
+        from ...analysis.floquet import PERTURBATION, periodic_start
 
+        if args.perturbation is None:
+            args.perturbation = PERTURBATION
         y0 = periodic_start(model, args.perturbation)
     sim = simulate(model, settings=settings, y0=y0, progress=not args.no_progress)
     out = sim.summary.as_dict()
@@ -99,6 +109,7 @@ def run(args: argparse.Namespace) -> int:
             Fn=sim.normal_force,
             friction=sim.friction,
         )
+        out["saved"] = args.save
     if args.png:
         from ..figure import save
 
@@ -111,6 +122,8 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(text.jsonable(out)))
     else:
         print(text.simulation(sim, out, args.modulation))
+        if args.save:
+            print(f"samples written to {args.save}")
         if args.png:
             print(f"drawn to {args.png}")
     return 0 if sim.status == "done" else 2

@@ -215,13 +215,16 @@ def _rest_rerun(model: Model, settings: SolverSettings, limit: int):
     try:
         pmap, point = shoot(model, k, strobe.samples[-1])
     except NoPeriodicResponse as err:
-        return None, f"the run from rest locks at {k} periods, but {err}"
+        return None, f"the run from rest locks at {k} period{'s' * (k > 1)}, but {err}"
     k = minimal_periods(point.image, k)
     if k != pmap.periods:
         pmap, point = shoot(model, k, point.state)
     mu = _largest_multiplier(pmap, point)
     if not mu < 1.0:
-        return None, f"the run from rest locks at {k} periods on a response with |mu| = {mu:.4g}"
+        return None, (
+            f"the run from rest locks at {k} period{'s' * (k > 1)} on a response with "
+            f"|mu| = {mu:.4g}"
+        )
     name = ("T" if k == 1 else f"{k}T") + " (from the run from rest)"
     return name, (point.image.velocity_range(), mu, k * pmap.period)
 

@@ -169,24 +169,118 @@ def test_the_key_changes_with_the_code_and_the_version(tmp_path, monkeypatch):
         cache_module.code_hash.cache_clear()
 
 
-def test_the_code_hash_covers_the_numerics_only():
+def test_the_code_hash_covers_what_a_row_imports_and_not_the_rest():
     root = cache_module._ROOT
     names = {f.relative_to(root).as_posix() for f in cache_module.code_files()}
     assert {
-        "generated/stability.py",
-        "generated/mp/stability.py",
         "generated/_support.py",
+        "generated/hybrid.py",
         "beltmdsm/simulation.py",
         "beltmdsm/integrate/superposition.py",
         "beltmdsm/integrate/_dop853.py",
         "beltmdsm/analysis/summary.py",
         "beltmdsm/studies/row.py",
+        # issue 28: they decide a row's `resolved` and its periodic start, and a hand
+        # list had left them out
+        "beltmdsm/analysis/periodmap.py",
+        "beltmdsm/analysis/variational.py",
+        "beltmdsm/analysis/locked.py",
     } <= names
     # the command line, the reports and the sweep's own orchestration change no number
     for path in names:
         assert not path.startswith(("beltmdsm/cli/", "beltmdsm/studies/validation")), path
     assert "beltmdsm/studies/sweep.py" not in names
+    assert "beltmdsm/analysis/band.py" not in names
     assert len(cache_module.code_hash()) == 64
+
+
+def _copy_tree(tmp_path):
+    import shutil
+
+    root = tmp_path / "tree"
+    for package in cache_module.CODE_PACKAGES:
+        shutil.copytree(
+            cache_module._ROOT / package, root / package, ignore=shutil.ignore_patterns("*.pyc")
+        )
+    return root
+
+
+def test_changing_any_imported_source_changes_the_code_hash(tmp_path, monkeypatch):
+    # issue 28: the hash must follow every module a row's computation imports
+    root = _copy_tree(tmp_path)
+    monkeypatch.setattr(cache_module, "_ROOT", root)
+    cache_module.code_hash.cache_clear()
+    try:
+        files = cache_module.code_files()
+        assert [f.relative_to(root) for f in files] == [
+            f.relative_to(cache_module._ROOT) for f in cache_module.code_files()
+        ]
+        before = cache_module.code_hash()
+        for path in files:
+            data = path.read_bytes()
+            path.write_bytes(data + b"\n# changed\n")
+            cache_module.code_hash.cache_clear()
+            assert cache_module.code_hash() != before, path
+            path.write_bytes(data)
+        cache_module.code_hash.cache_clear()
+        assert cache_module.code_hash() == before
+        # a module a row starts to import (here by a lazy import inside a function)
+        # joins the hash; the hash then follows its edits
+        band = root / "beltmdsm/analysis/band.py"
+        row = root / "beltmdsm/studies/row.py"
+        row.write_text(row.read_text() + "\n\ndef _later():\n    from ..analysis import band\n")
+        assert band in cache_module.code_files()
+        cache_module.code_hash.cache_clear()
+        with_band = cache_module.code_hash()
+        band.write_text(band.read_text() + "\n# changed\n")
+        cache_module.code_hash.cache_clear()
+        assert cache_module.code_hash() != with_band
+    finally:
+        monkeypatch.undo()
+        cache_module.code_hash.cache_clear()
+
+
+def test_a_changed_period_map_serves_no_stale_row(tmp_path, monkeypatch):
+    # issue 28: sweep("Vb", [3, 5], start="periodic", cache_dir=D), then NEWTON_TOL =
+    # 1e-300 in periodmap.py: the rerun served 2 cached sliding rows where the new code
+    # finds no periodic response
+    from beltmdsm.analysis import periodmap
+
+    settings = SolverSettings(t_end=20.0)
+
+    def run(cache_dir):
+        return sweep(
+            "Vb",
+            [3.0, 5.0],
+            start="periodic",
+            settings=settings,
+            executor="serial",
+            cache_dir=cache_dir,
+            progress=False,
+        )
+
+    first = run(tmp_path / "D")
+    assert list(first.table["status"]) == ["done", "done"]
+    # the edit, on disk (a copy of the tree) and in the running code
+    root = _copy_tree(tmp_path)
+    source = root / "beltmdsm/analysis/periodmap.py"
+    text = source.read_text()
+    assert "\nNEWTON_TOL = 1e-11\n" in text
+    source.write_text(text.replace("\nNEWTON_TOL = 1e-11\n", "\nNEWTON_TOL = 1e-300\n"))
+    monkeypatch.setattr(cache_module, "_ROOT", root)
+    monkeypatch.setattr(periodmap, "NEWTON_TOL", 1e-300)
+    cache_module.code_hash.cache_clear()
+    try:
+        fresh = run(None)
+        rerun = run(tmp_path / "D")
+    finally:
+        monkeypatch.undo()
+        cache_module.code_hash.cache_clear()
+    # the new code answers otherwise (else the test would prove nothing), and the
+    # rerun with the cache answers as the new code does
+    assert list(fresh.table["status"]) != list(first.table["status"])
+    assert rerun.n_cached == 0
+    assert list(rerun.table["status"]) == list(fresh.table["status"])
 
 
 def test_package_version_falls_back_to_pyproject(monkeypatch):
