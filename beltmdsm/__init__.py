@@ -20,6 +20,10 @@ The runtime of the package: it imports the generated model (``generated/``, writ
   where it is unstable, its boundary curves traced.
 * `responses` (`ResponseSet`): every periodic response found at one point, locked
   ones included; `coexistence` (`Coexistence`): where stable responses coexist.
+* `lyapunov` (`Lyapunov`): the Lyapunov spectrum of a run through the switches;
+  `classify` (`Attractor`): what a run settles on, named (periodic, quasi-periodic,
+  chaotic, equilibrium); `basins` (`Basins`): which attractor each start of a plane
+  of initial states reaches.
 * `predict` (`Prediction`): the unstable belt speeds of the paper's analysis and of a
   consistent MDSM.
 * `validate` (`Validation`): the validation of Figs. 2 and 17-21 (``VALIDATION.md``).
@@ -102,6 +106,9 @@ __all__ = [
     "floquet",
     "Floquet",
     "periodic_start",
+    "cycle",
+    "Cycle",
+    "seed_cycle",
     "floquet_band",
     "Band",
     "Edge",
@@ -113,6 +120,12 @@ __all__ = [
     "ResponseSet",
     "coexistence",
     "Coexistence",
+    "lyapunov",
+    "Lyapunov",
+    "classify",
+    "Attractor",
+    "basins",
+    "Basins",
     "predict",
     "Prediction",
     "validate",

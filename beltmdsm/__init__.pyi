@@ -5,8 +5,10 @@ A stub, not ``if TYPE_CHECKING:`` imports in the package: the package is the low
 layer of beltmdsm (tests/test_layers.py), and these names live in every layer above it.
 """
 
+from .analysis.attractor import Attractor, classify
 from .analysis.band import Band, Edge, floquet_band
 from .analysis.branch import Branch, branch
+from .analysis.cycles import Cycle, cycle, seed_cycle
 from .analysis.floquet import (
     Floquet,
     PeriodicResponse,
@@ -15,6 +17,7 @@ from .analysis.floquet import (
     periodic_start,
 )
 from .analysis.floquet_map import FloquetMap, floquet_map
+from .analysis.lyapunov import Lyapunov, lyapunov
 from .analysis.predict import Prediction, predict
 from .analysis.summary import Summary
 from .errors import (
@@ -27,6 +30,7 @@ from .errors import (
 from .model import Model
 from .settings import SolverSettings
 from .simulation import Simulation, simulate
+from .studies.basins import Basins, basins
 from .studies.coexistence import Coexistence, coexistence
 from .studies.responses import ResponseSet, responses
 from .studies.sweep import Sweep, sweep
@@ -46,6 +50,9 @@ __all__ = [
     "floquet",
     "Floquet",
     "periodic_start",
+    "cycle",
+    "Cycle",
+    "seed_cycle",
     "floquet_band",
     "Band",
     "Edge",
@@ -57,6 +64,12 @@ __all__ = [
     "ResponseSet",
     "coexistence",
     "Coexistence",
+    "lyapunov",
+    "Lyapunov",
+    "classify",
+    "Attractor",
+    "basins",
+    "Basins",
     "predict",
     "Prediction",
     "validate",

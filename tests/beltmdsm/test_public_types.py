@@ -42,10 +42,14 @@ def test_the_public_api_has_no_any_for_mypy():
         "beltmdsm.analysis.floquet.Floquet",
         "beltmdsm.analysis.band.Band",  # the model first
         "beltmdsm.analysis.band.Band",  # the model last, as before
-        "beltmdsm.analysis.branch.Branch",
+        "beltmdsm.analysis.branch_parts.Branch",  # defined there, shared with cycles
         "beltmdsm.studies.coexistence.Coexistence",
         "beltmdsm.studies.sweep.Sweep",
         "beltmdsm.analysis.floquet_map.FloquetMap",
+        "beltmdsm.analysis.cycles.Cycle",
+        "beltmdsm.analysis.lyapunov.Lyapunov",
+        "beltmdsm.analysis.attractor.Attractor",
+        "beltmdsm.studies.basins.Basins",
     ]
 
 

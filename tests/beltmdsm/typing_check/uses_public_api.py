@@ -13,11 +13,15 @@ from beltmdsm import (
     Refused,
     StepTooSmall,
     Unsupported,
+    basins,
     branch,
+    classify,
     coexistence,
+    cycle,
     floquet,
     floquet_band,
     floquet_map,
+    lyapunov,
     simulate,
     sweep,
 )
@@ -35,5 +39,10 @@ reveal_type(branch(model, param="Vb", lo=1.0, hi=8.0))
 reveal_type(coexistence(model, "Vb", 1.0, 8.0))
 reveal_type(sweep(model, "Vb", [1.0, 2.0], t_end=50.0))
 reveal_type(floquet_map(model, "Vb", 1.0, 8.0, "beta1", 0.05, 0.35))
+reveal_type(cycle(Model(friction="stribeck", alpha=0.0, Vb=1.5)))
+reveal_type(lyapunov(model, t_end=300.0))
+largest: float = lyapunov(model, t_end=300.0).largest
+reveal_type(classify(model))
+reveal_type(basins(model, points=3))
 version: str = beltmdsm.__version__
 failures: tuple[type[BeltmdsmError], ...] = (Refused, Unsupported, StepTooSmall, NoPeriodicResponse)
