@@ -204,8 +204,13 @@ class Cycle:
             if self.stick_collapses
             else None
         )
+        mu = self.max_abs_multiplier
         return {
             "autonomous": True,
+            # the attractor's classification (beltmdsm.analysis.attractor): its largest
+            # Lyapunov exponent is 0 along the flow where the cycle attracts
+            "kind": "periodic",
+            "lyapunov": max(0.0, math.log(mu) / self.period) if mu > 0 else 0.0,
             "period": self.period,
             "state0": [float(v) for v in self.state],
             "multipliers": [[float(z.real), float(z.imag)] for z in self.multipliers],

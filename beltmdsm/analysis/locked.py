@@ -237,7 +237,11 @@ class NotLocked:
         return {
             "kind": c.get("kind", "unclassified"),
             "lyapunov": c.get("lyapunov"),
-            "evidence": c.get("evidence", "not classified"),
+            "evidence": c.get(
+                "evidence",
+                "not classified here: beltmdsm.analysis.attractor.classify names it from "
+                "its last sample (state), by its Lyapunov spectrum and its returns",
+            ),
             "source": self.source,
             "locked": False,
             "limit": self.limit,

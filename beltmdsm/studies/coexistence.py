@@ -115,9 +115,10 @@ class ResponseBranch:
         )
 
     def as_dict(self) -> dict:
-        """For JSON: ``name``, ``periods``, ``range``, ``stable``, ``special_points``,
-        ``sources``."""
+        """For JSON: ``kind`` ("periodic": a branch of periodic responses), ``name``,
+        ``periods``, ``range``, ``stable``, ``special_points``, ``sources``."""
         return {
+            "kind": "periodic",
             "name": self.name,
             "periods": self.branch.periods,
             "range": self.branch.value_range(),

@@ -59,6 +59,14 @@ def add(commands, name: str) -> None:
         help="draw the run (X1' against time) and its friction loop to FILE (needs matplotlib)",
     )
     sub.add_argument(
+        "--classify",
+        action="store_true",
+        help="name the attractor the run settles on (periodic with its period, "
+        "quasi-periodic, chaotic, equilibrium) by its Lyapunov spectrum and its returns, "
+        "from the same start (beltmdsm/analysis/attractor.py; a run of max(2000 s, "
+        "--t-end) more); JSON key 'attractor'",
+    )
+    sub.add_argument(
         "--no-progress",
         action="store_true",
         help="no progress bar on stderr (shown once the run takes more than 2 s; it "
@@ -98,6 +106,12 @@ def run(args: argparse.Namespace) -> int:
 
         out.update(modulation_scatter(sim))
     out.update(model.as_dict())
+    attractor = None
+    if args.classify:
+        from ...analysis.attractor import classify
+
+        attractor = classify(model, y0=sim.y[:, 0], t_end=max(2000.0, settings.t_end))
+        out["attractor"] = attractor.as_dict()
     if args.save:
         np.savez(
             args.save,
@@ -122,6 +136,8 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(text.jsonable(out)))
     else:
         print(text.simulation(sim, out, args.modulation))
+        if attractor is not None:
+            print(f"attractor: {attractor!r}: {attractor.evidence}")
         if args.save:
             print(f"samples written to {args.save}")
         if args.png:

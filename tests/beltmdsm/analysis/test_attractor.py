@@ -3,6 +3,12 @@ locked" are long-period locks, found by their return and confirmed by Newton's m
 Floquet; the weighted Birkhoff rotation number against closed forms; a run too short to
 tell says so instead of naming a kind."""
 
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -65,3 +71,30 @@ def test_the_weighted_birkhoff_rotation_number_converges_far_faster_than_the_mea
     assert r == pytest.approx(-3 / 11, abs=1e-12)
     with pytest.raises(ValueError, match="n >= 64"):
         rotation_number(samples[:63])
+
+
+def _cli(*argv):
+    root = Path(__file__).resolve().parents[3]
+    r = subprocess.run(
+        [sys.executable, "-m", "beltmdsm", *argv, "--json"],
+        capture_output=True,
+        text=True,
+        cwd=root,
+        env={**os.environ, "PYTHONPATH": str(root)},
+        timeout=300,
+    )
+    assert r.returncode == 0, r.stderr
+    return json.loads(r.stdout)
+
+
+def test_every_attractor_reported_has_a_kind_and_a_largest_exponent():
+    # a run's summary on request, a self-excited cycle, a branch of coexistence
+    out = _cli("simulate", "--Vb", "5", "--t-end", "300", "--classify", "--no-progress")
+    a = out["attractor"]
+    assert (a["kind"], a["periods"], a["rotation_number"]) == ("periodic", 4, -0.25)
+    f = floquet(Model(Vb=5.0), periods=4)
+    rate = np.log(np.max(np.abs(f.multipliers))) / f.response.period
+    assert a["lyapunov"] == pytest.approx(rate, abs=a["lyapunov_error"] + 1e-4)
+    c = _cli("floquet", "--alpha", "0", "--friction", "stribeck", "--Vb", "1.5")
+    assert c["autonomous"] and c["kind"] == "periodic" and c["stable"]
+    assert c["lyapunov"] == 0.0  # along the flow; the others are negative
