@@ -185,3 +185,29 @@ def test_command_line_simulate_and_floquet_under_static_kinetic(capsys):
     # from rest at X1 = mu_k g / omega1^2 the run settles on the stable orbit: its two
     # reversals per period, and no stick after the first
     assert abs(run["n_reversals"] - 2 * t_end / T) <= 3 and run["n_sticks"] <= 1
+
+
+def test_mu_k_belongs_to_both_laws_that_list_it_and_to_no_other():
+    assert Model(friction="static_kinetic", mu_k=0.2)["mu_k"] == 0.2
+    assert Model(friction="stribeck", mu_k=0.2)["mu_k"] == 0.2
+    assert "mu_k" not in Model().params  # Coulomb's model has no kinetic coefficient
+    with pytest.raises(ValueError, match="'stribeck' or 'static_kinetic', not chosen"):
+        Model(mu_k=0.2)
+    # a law's parameter goes with the law, and stays where the next law lists it too
+    m = Model(friction="stribeck", mu_k=0.2, v_s=2.0).replace(friction="static_kinetic")
+    assert m["mu_k"] == 0.2 and "v_s" not in m.params
+
+
+def test_predict_averages_the_kinetic_coefficient_and_says_what_it_leaves_out():
+    """The MDSM averages the slip law over a fast motion that passes Vr = 0: static above
+    kinetic predicts what Coulomb's law with mu_s = mu_k does, and each analysis notes
+    the static bound it cannot see."""
+    from beltmdsm.analysis.predict import predict
+
+    got = predict(friction="static_kinetic", mu_s=0.4, mu_k=0.25, points=60)
+    coulomb = predict(friction="coulomb", mu_s=0.25, points=60)
+    for key in got.ANALYSES:
+        assert getattr(got, key) == getattr(coulomb, key), key
+        assert "static bound mu_s bounds stick only" in got.reasons[key]
+        assert "friction='static_kinetic'" in got.reasons[key] and "\n" not in got.reasons[key]
+    assert got.paper_tangential_vhat  # not empty: a check that compares something
