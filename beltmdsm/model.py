@@ -150,8 +150,10 @@ class Model:
     ValueError
         Naming the parameter or option: an unknown name, a value that is not a real
         number (a bool, a string, an array), NaN, infinite or outside its domain, an
-        unknown choice of an option, or a value for a parameter of a law not chosen
-        (it would be ignored).
+        unknown choice of an option, a value for a parameter of a law not chosen
+        (it would be ignored), or a friction law's static bound below its slip
+        coefficient at rest (``generated.parameters.static_shortfall``: ``mu_k > mu_s``
+        under ``static_kinetic``).
 
     Examples
     --------
@@ -207,6 +209,14 @@ class Model:
             problem = check_domain(name, value)
             if problem:
                 raise ValueError(f"parameter {name!r} {problem}; got {value!r}")
+        excess = _table.static_shortfall(options["friction"], **params)
+        if excess > 0:
+            static, rest = _table.STATIC_BOUNDS[options["friction"]]
+            raise ValueError(
+                f"friction={options['friction']!r}: its slip coefficient at rest {rest} "
+                f"exceeds its static bound {static} by {excess:.6g}: stick would hold less "
+                f"than slip does; choose {rest} <= {static}"
+            )
         ordered = {name: params[name] for name in MODEL_PARAMETERS if name in params}
         setattr_ = object.__setattr__
         setattr_(self, "_given", MappingProxyType(given))

@@ -285,7 +285,7 @@ register(
         "monotone, derive/contraction.py): steady sliding, linearly stable, may "
         "coexist with a stick-slip cycle. With mu_k = mu_s it is Coulomb's law of "
         "Eq. (3); mu_k > mu_s (a static bound below the kinetic coefficient) is "
-        "outside the law.",
+        "outside the law and refused where a model is built.",
         "Eq. (3) for mu_k = mu_s; Eq. (3) with mu_k while slipping otherwise",
         (_MU_K,),
         coefficient=lambda P, s: P["mu_k"],

@@ -18,7 +18,8 @@ parameters) and ``LAW_UNITS`` ((option, choice) -> the units the law gives to
 parameters; ``PARAMETERS`` has those of the default contact law).
 ``STATIC_BOUNDS``: friction law -> ``(static bound, slip coefficient at rest)``
 of the laws that bound stick by a static coefficient of their own
-(derive/laws.py, ``FrictionLaw.static``).
+(derive/laws.py, ``FrictionLaw.static``); ``static_shortfall`` how far the slip
+coefficient at rest exceeds that bound for given parameters.
 
 ``DOMAIN_RULES``: each domain as (lower bound, bound excluded, the text of a
 failure); ``within(domain, x)`` applies it (NaN is never within).
@@ -123,6 +124,9 @@ LAW_UNITS = {('contact', 'hertz_damp'): {'beta2': '1/m^(5/4)', 'omega2': 'rad/(m
  ('contact', 'hunt_crossley'): {'beta2': '1/m^((n_h + 1)/2)',
                                 'omega2': 'rad m^((1 - n_h)/2)/s'}}
 STATIC_BOUNDS = {'static_kinetic': ('mu_s', 'mu_k')}
+_SHORTFALL = {
+    'static_kinetic': lambda mu_k, mu_s, **_: mu_k - mu_s,
+}
 
 DOMAIN_RULES = {'positive': (0.0, True, '> 0'), 'nonnegative': (0.0, False, '>= 0'), 'real': (-math.inf, True, 'real')}
 
@@ -131,3 +135,10 @@ def within(domain, x):
     """Whether ``x`` (a number, or the least of an array) lies in ``domain``."""
     bound, excluded, _ = DOMAIN_RULES[domain]
     return x > bound if excluded else x >= bound
+
+
+def static_shortfall(friction, **params):
+    """The friction law's slip coefficient at rest minus its static bound
+    (``STATIC_BOUNDS``) at ``params``: positive where the stick cone would hold less
+    than slip does; 0 for a law without a static bound of its own."""
+    return _SHORTFALL[friction](**params) if friction in _SHORTFALL else 0.0

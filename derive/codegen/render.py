@@ -745,11 +745,16 @@ def _parameters_module() -> str:
         for c in laws.choices(o)
     }
     units = {("contact", c): contact_units(c) for c in laws.choices("contact")}
+    with_static = [c for c in laws.choices("friction") if laws.get("friction", c).static]
     static = {
-        c: (sp.sstr(static_coefficient(c)), sp.sstr(rest_coefficient(c)))
-        for c in laws.choices("friction")
-        if laws.get("friction", c).static is not None
+        c: (sp.sstr(static_coefficient(c)), sp.sstr(rest_coefficient(c))) for c in with_static
     }
+    shortfalls = []
+    for c in with_static:
+        excess = rest_coefficient(c) - static_coefficient(c)
+        names = ", ".join(sorted(str(x) for x in excess.free_symbols))
+        shortfalls.append(f"    {c!r}: lambda {names}, **_: {sp.pycode(excess)},")
+    shortfall = "\n".join(shortfalls)
     rules = ", ".join(
         f"{name!r}: ({'-math.inf' if bound == -math.inf else repr(bound)}, {strict!r}, {text!r})"
         for name, (bound, strict, text) in DOMAIN_RULES.items()
@@ -772,7 +777,8 @@ def _parameters_module() -> str:
         "parameters; ``PARAMETERS`` has those of the default contact law).\n"
         "``STATIC_BOUNDS``: friction law -> ``(static bound, slip coefficient at rest)``\n"
         "of the laws that bound stick by a static coefficient of their own\n"
-        "(derive/laws.py, ``FrictionLaw.static``).\n"
+        "(derive/laws.py, ``FrictionLaw.static``); ``static_shortfall`` how far the slip\n"
+        "coefficient at rest exceeds that bound for given parameters.\n"
         "\n"
         "``DOMAIN_RULES``: each domain as (lower bound, bound excluded, the text of a\n"
         "failure); ``within(domain, x)`` applies it (NaN is never within).\n"
@@ -795,6 +801,7 @@ def _parameters_module() -> str:
         f"LAW_PARAMETERS = {_literal(owners)}\n"
         f"LAW_UNITS = {_literal(units)}\n"
         f"STATIC_BOUNDS = {_literal(static)}\n"
+        f"_SHORTFALL = {{\n{shortfall}\n}}\n"
         "\n"
         f"DOMAIN_RULES = {{{rules}}}\n"
         "\n\n"
@@ -802,6 +809,12 @@ def _parameters_module() -> str:
         '    """Whether ``x`` (a number, or the least of an array) lies in ``domain``."""\n'
         "    bound, excluded, _ = DOMAIN_RULES[domain]\n"
         "    return x > bound if excluded else x >= bound\n"
+        "\n\n"
+        "def static_shortfall(friction, **params):\n"
+        '    """The friction law\'s slip coefficient at rest minus its static bound\n'
+        "    (``STATIC_BOUNDS``) at ``params``: positive where the stick cone would hold less\n"
+        '    than slip does; 0 for a law without a static bound of its own."""\n'
+        "    return _SHORTFALL[friction](**params) if friction in _SHORTFALL else 0.0\n"
     )
 
 

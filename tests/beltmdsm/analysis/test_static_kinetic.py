@@ -211,3 +211,16 @@ def test_predict_averages_the_kinetic_coefficient_and_says_what_it_leaves_out():
         assert "static bound mu_s bounds stick only" in got.reasons[key]
         assert "friction='static_kinetic'" in got.reasons[key] and "\n" not in got.reasons[key]
     assert got.paper_tangential_vhat  # not empty: a check that compares something
+
+
+def test_a_static_bound_below_the_kinetic_coefficient_is_refused_by_name(capsys):
+    """mu_k > mu_s would let slip hold more than stick: at Vr = 0 with mu_s F < |a_free|
+    <= mu_k F neither mode is consistent. Refused once, where the model is built."""
+    assert Model(friction="static_kinetic", mu_s=0.3, mu_k=0.3)["mu_k"] == 0.3  # Coulomb's
+    with pytest.raises(ValueError, match=r"static_kinetic.*mu_k exceeds its static bound mu_s"):
+        Model(friction="static_kinetic", mu_s=0.3, mu_k=0.31)
+    assert Model(friction="stribeck", mu_s=0.3, mu_k=0.5)["mu_k"] == 0.5  # rising: its own
+    args = ["simulate", "--friction", "static_kinetic", "--mu_k", "0.5", "--t-end", "10"]
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "choose mu_k <= mu_s" in err[0]
