@@ -18,7 +18,10 @@ References, each independent of what it checks:
   normal force) with ``r_k = mu_k g / F0 = 0.3``, ``r_s = mu_s g / F0 = 0.4`` at
   ``Omega = 3 omega1``, whose periodic orbit moves without stops and reverses twice per
   period: the multipliers of both Floquet engines against central finite differences of
-  the period map simulated by the event-driven integrator.
+  the period map simulated by the event-driven integrator; the same forcing at
+  ``Omega = omega1 / 2`` on a slow belt, whose orbit sticks twice a period and leaves
+  stick with the jump of the acceleration, likewise;
+* Coulomb's law with ``mu_s = mu_k`` for what the MDSM predicts (it averages the slip law).
 
 Error model. The event-driven runs at ``rtol = atol = 1e-12`` locate a switch and carry
 the state to about 1e-11 (measured: 3e-11 on the first stick, 1e-12 per period later);
@@ -55,7 +58,8 @@ def _state_at(sim, t):
     return sim.run.trajectory.state(np.array([t]))[:, 0]
 
 
-def test_the_undamped_belt_oscillators_stick_slip_cycle_is_the_closed_form():
+@pytest.mark.parametrize("solver", ["events", "superposition"])
+def test_the_undamped_belt_oscillators_stick_slip_cycle_is_the_closed_form(solver):
     mu_s, mu_k, w, Vb = 0.4, 0.25, 1.0, 1.0
     m = _belt_oscillator(mu_s, mu_k, w, Vb)
     x_s, x_k = mu_s * G / w**2, mu_k * G / w**2
@@ -66,7 +70,9 @@ def test_the_undamped_belt_oscillators_stick_slip_cycle_is_the_closed_form():
     # its equilibrium, where F = g
     y0 = initial_state(m)
     y0[:2] = (x_k - d, Vb)
-    sim = beltmdsm.simulate(m, y0=y0, t_end=3.2 * (stick + slip), dt=0.05, **TIGHT)
+    run = {**TIGHT, "solver": solver}
+    sim = beltmdsm.simulate(m, y0=y0, t_end=3.2 * (stick + slip), dt=0.05, **run)
+    assert sim.solver_used == solver
     unstick = [t for t, kind, _ in sim.events if kind == "unstick"]
     sticks = [t for t, kind, mode in sim.events if kind == "vr_zero" and mode == 0]
     assert len(unstick) == 3 and len(sticks) == 3
@@ -162,6 +168,28 @@ def test_den_hartogs_orbit_multipliers_on_both_engines_are_the_period_maps():
     assert np.sort_complex(general.multipliers) == pytest.approx(np.sort_complex(fd_all), abs=1e-6)
     assert np.allclose(r.monodromy, J, rtol=0, atol=1e-5 * np.abs(J).max())
     assert general.stable and closed.stable
+
+
+def test_a_forced_stick_slip_orbits_multipliers_are_the_period_maps():
+    """Den Hartog's forcing at Omega = omega1 / 2 on a belt (Vb = 0.2, beta1 = 0.1): two
+    stick phases per period, each left with the acceleration's jump (mu_s - mu_k) F, whose
+    saltation (S21 = -(mu_s - mu_k) F / Vb, about -4.9 here) the one nonzero tangential
+    multiplier carries; a stick makes the other zero."""
+    W = 0.5
+    m = _den_hartog(W).replace(Vb=0.2, beta1=0.1)
+    closed, general = floquet(m, engine="closed_form"), floquet(m, engine="general")
+    assert closed.n_sticks == general.n_sticks == 2 and general.n_reversals == 0
+    r = general.response
+    kinds = {(int(b), int(a), s) for _, b, a, s in r.switches}
+    assert (0, -1, "stick_back") in kinds and (0, 1, "stick_forward") in kinds
+    J = _period_map_jacobian(m, r.state0, r.period)
+    assert np.allclose(r.monodromy, J, rtol=0, atol=1e-6)
+    assert np.allclose(closed.response.monodromy_tangential, J[:2, :2], rtol=0, atol=1e-6)
+    (fd,) = [z for z in np.linalg.eigvals(J[:2, :2]) if abs(z) > 1e-6]
+    for f in (closed, general):
+        big = [z for z in f.multipliers if abs(z) > 0.1]
+        assert big[0] == pytest.approx(fd, abs=1e-6), f.engine
+    assert min(abs(z) for z in closed.multipliers[:2]) < 1e-12  # the stick's zero
 
 
 def test_command_line_simulate_and_floquet_under_static_kinetic(capsys):
