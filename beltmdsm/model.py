@@ -71,6 +71,7 @@ __all__ = [
     "Backend",
     "MODEL_PARAMETERS",
     "LAW_OF",
+    "LAW_OWNERS",
     "Unsupported",
     "require",
     "check_domain",
@@ -97,10 +98,24 @@ Backend = Literal["python", "numba"]
 #: The parameters a model may have: every parameter of the table but ``Vhat``, which
 #: is an input of the MDSM's effective friction (Eq. 23), not of Eq. (4).
 MODEL_PARAMETERS = tuple(name for name in DOMAINS if name != "Vhat")
-#: A law's own parameter -> the ``(option, choice)`` of the law that owns it.
+#: A law's own parameter -> the ``(option, choice)`` of the first law that lists it.
 LAW_OF: Mapping[str, tuple[str, str]] = MappingProxyType(
     {p["name"]: tuple(p["law"]) for p in PARAMETERS if p["law"] is not None}
 )
+#: A law's own parameter -> every ``(option, choice)`` whose law lists it (a name that
+#: laws share where it means the same, ``mu_k`` of ``stribeck`` and ``static_kinetic``).
+LAW_OWNERS: Mapping[str, tuple[tuple[str, str], ...]] = MappingProxyType(
+    {
+        name: tuple(key for key, names in _table.LAW_PARAMETERS.items() if name in names)
+        for name in LAW_OF
+    }
+)
+
+
+def _owned(name: str, options: Mapping[str, str]) -> bool:
+    """Whether parameter ``name`` is part of a model with these options: a model
+    parameter, or one of a chosen law's own."""
+    return name not in LAW_OWNERS or any(options.get(o) == c for o, c in LAW_OWNERS[name])
 
 
 def is_real(value: object) -> bool:
@@ -148,8 +163,10 @@ class Model:
     ValueError
         Naming the parameter or option: an unknown name, a value that is not a real
         number (a bool, a string, an array), NaN, infinite or outside its domain, an
-        unknown choice of an option, or a value for a parameter of a law not chosen
-        (it would be ignored).
+        unknown choice of an option, a value for a parameter of a law not chosen
+        (it would be ignored), or a friction law's static bound below its slip
+        coefficient at rest (``generated.parameters.static_shortfall``: ``mu_k > mu_s``
+        under ``static_kinetic``).
 
     Examples
     --------
@@ -184,15 +201,17 @@ class Model:
                 )
             elif value is not None:
                 given[name] = _number(name, value)
-        chosen = set(options.items())
-        for name in [n for n in given if n in LAW_OF and LAW_OF[n] not in chosen]:
-            option, choice = LAW_OF[name]
+        for name in [n for n in given if not _owned(n, options)]:
             if given.pop(name) != BASE.get(name):
+                by = LAW_OWNERS[name]
+                option = by[0][0]
+                laws_ = " or ".join(f"{c!r}" for _, c in by)
+                choose = " or ".join(f"{o}={c!r}" for o, c in by)
                 raise ValueError(
-                    f"parameter {name!r} belongs to the {option} law {choice!r}, not "
-                    f"chosen ({option}={options[option]!r}); choose {option}={choice!r}"
+                    f"parameter {name!r} belongs to the {option} law {laws_}, not "
+                    f"chosen ({option}={options[option]!r}); choose {choose}"
                 )
-        params = {k: v for k, v in BASE.items() if k not in LAW_OF or LAW_OF[k] in chosen}
+        params = {k: v for k, v in BASE.items() if _owned(k, options)}
         params.update(given)
         params.pop("Vhat", None)
         for name, value in DEFAULTS.items():
@@ -203,6 +222,14 @@ class Model:
             problem = check_domain(name, value)
             if problem:
                 raise ValueError(f"parameter {name!r} {problem}; got {value!r}")
+        excess = _table.static_shortfall(options["friction"], **params)
+        if excess > 0:
+            static, rest = _table.STATIC_BOUNDS[options["friction"]]
+            raise ValueError(
+                f"friction={options['friction']!r}: its slip coefficient at rest {rest} "
+                f"exceeds its static bound {static} by {excess:.6g}: stick would hold less "
+                f"than slip does; choose {rest} <= {static}"
+            )
         ordered = {name: params[name] for name in MODEL_PARAMETERS if name in params}
         setattr_ = object.__setattr__
         setattr_(self, "_given", MappingProxyType(given))
@@ -230,11 +257,7 @@ class Model:
         A law's own parameters go with the law where another is chosen.
         """
         options = {**self._options, **{k: v for k, v in kw.items() if k in OPTIONS}}
-        given = {
-            k: v
-            for k, v in self._given.items()
-            if k not in LAW_OF or options.get(LAW_OF[k][0]) == LAW_OF[k][1]
-        }
+        given = {k: v for k, v in self._given.items() if _owned(k, options)}
         return Model(**{**given, **options, **kw})
 
     def __setattr__(self, name: str, value: object) -> None:

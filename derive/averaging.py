@@ -10,8 +10,11 @@ amplitude ``V``) the friction coefficient with its direction is
 
 for a weight ``w(phi)`` (1 for the effective friction of Eq. 23; the fast normal force,
 and its products with ``sin``, ``cos`` for the consistent MDSM, `derive.correlation`).
-The first term is the set-valued sign's average, the framework's closed form (Eq. 23:
-an arc-cosine; `derive.friction`, `derive.correlation`). The second is the law's own:
+Here ``mu(0)`` is the slip law's value at rest (`derive.model.rest_coefficient`): the
+fast motion is taken to pass ``Vr = 0`` without sticking, so a static bound above it
+(``static_kinetic``'s ``mu_s``) enters no average. The first term is the set-valued
+sign's average, the framework's closed form (Eq. 23: an arc-cosine; `derive.friction`,
+`derive.correlation`). The second is the law's own:
 
 * zero for Coulomb's law (``r = 0``);
 * a closed form where ``r(u + V sin phi)`` has an elementary antiderivative: SymPy's
@@ -39,7 +42,7 @@ from functools import cache
 import sympy as sp
 from sympy.integrals.risch import NonElementaryIntegral, risch_integrate
 
-from .model import SPEED, coefficient, static_coefficient
+from .model import SPEED, coefficient, rest_coefficient
 
 __all__ = [
     "u",
@@ -61,7 +64,7 @@ PHASE = sp.Symbol("fast_phase", real=True)
 @cache
 def remainder(friction: str) -> sp.Expr:
     """``r(s) = mu(s) - mu(0)``: the friction law beyond its value at rest, in `SPEED`."""
-    return coefficient(friction, SPEED) - static_coefficient(friction)
+    return coefficient(friction, SPEED) - rest_coefficient(friction)
 
 
 @cache

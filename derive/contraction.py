@@ -120,6 +120,7 @@ from .model import (
     contact_force,
     friction_coefficient,
     normal_force,
+    rest_coefficient,
     static_coefficient,
 )
 
@@ -283,21 +284,22 @@ def power_split(
 
 
 def stick_is_set_valued(contact: str = _CONTACT, friction: str = _FRICTION) -> bool:
-    """Whether the stick mode is the slip field at ``Vr = 0`` with ``s = a_free / (mu(0) F)``.
+    """Whether the stick mode is the slip field at ``Vr = 0`` with ``s = a_free / (mu_st F)``.
 
     `derive.hybrid.field_of_mode`: the ``Y1'`` entry of the ``slip_forward`` field at
-    ``X1' = Vb`` with its direction ``+1`` replaced by ``s`` (the field is affine in
-    ``s`` there, the coefficient being ``mu(0)``) equals the stick field's ``0`` at that
-    ``s``. The stick guard ``mu(0) F -+ a_free >= 0`` (`derive.hybrid.surfaces`) is
-    ``-1 <= s <= 1``.
+    ``X1' = Vb`` with its friction ``mu(0) F`` replaced by ``s mu_st F`` (``mu_st`` the
+    static bound, `derive.model.static_coefficient`; ``mu(0)`` the slip law's value at
+    rest) equals the stick field's ``0`` at that ``s``. The stick guard
+    ``mu_st F -+ a_free >= 0`` (`derive.hybrid.surfaces`) is ``-1 <= s <= 1``.
     """
     at_rest = {Y1: P["Vb"]}
     slip = hybrid.field_of_mode("slip_forward", contact, friction)[1].subs(at_rest)
     stick = hybrid.field_of_mode("stick", contact, friction)[1]
     F = hybrid.contact_force_in_contact(contact)
     a_free = dynamics.free_acceleration().subs(at_rest)
-    mu = static_coefficient(friction)
-    with_s = slip + mu * F - mu * sa * F  # direction +1 replaced by s
+    mu, rest = static_coefficient(friction), rest_coefficient(friction)
+    # the slip friction mu(0+) F of direction +1 replaced by the set's value s mu_st F
+    with_s = slip + rest * F - mu * sa * F
     return bool(sp.simplify(with_s.xreplace({sa: a_free / (mu * F)}) - stick) == 0)
 
 
@@ -305,8 +307,9 @@ def stick_is_set_valued(contact: str = _CONTACT, friction: str = _FRICTION) -> b
 class Monotonicity:
     """Whether ``f(Vr) = sgn(Vr) mu(|Vr|)`` is non-decreasing, and where it is not.
 
-    ``slope`` is ``d mu / d|Vr|``; ``holds`` is True when SymPy proves ``mu(0) >= 0``
-    and ``slope >= 0`` for every speed and every parameter value of the domain;
+    ``slope`` is ``d mu / d|Vr|``; ``holds`` is True when SymPy proves ``mu_st >= 0``
+    (the static bound), ``mu(0) - mu_st >= 0`` (no falling jump from the stick cone to
+    slip) and ``slope >= 0`` for every speed and every parameter value of the domain;
     otherwise ``falls`` says for which ``|Vr|`` (and under which condition on the
     parameters) the slope is negative, and ``reason`` is one line for the reports.
     """
@@ -331,19 +334,32 @@ def monotonicity(friction: str = _FRICTION) -> Monotonicity:
     """Decide with SymPy whether the friction law is non-decreasing in ``Vr``.
 
     The set-valued sign is monotone (`friction_power_sign_cases`); ``sgn(Vr) mu(|Vr|)``
-    is then non-decreasing exactly when ``mu(0) >= 0`` (the jump at ``Vr = 0``) and
-    ``mu' >= 0`` at every speed. The slope is factored; factors SymPy proves positive
-    or negative are dropped (with their sign), and what remains decides: a factor free
-    of the speed gives a condition on the parameters under which the law falls at
-    every ``|Vr| > 0`` (Stribeck's: ``mu_k < mu_s``); one that depends on the speed
-    gives the speeds between the roots SymPy finds.
+    is then non-decreasing exactly when its graph at ``Vr = 0``, ``[-mu_st, mu_st]``
+    with the static bound ``mu_st >= 0``, lies below its value ``mu(0)`` just beyond
+    (``mu(0) >= mu_st``: a static bound above the slip law's value at rest, as
+    ``static_kinetic``'s ``mu_s > mu_k``, is a falling jump), and ``mu' >= 0`` at every
+    speed. The slope is factored; factors SymPy proves positive or negative are
+    dropped (with their sign), and what remains decides: a factor free of the speed
+    gives a condition on the parameters under which the law falls at every
+    ``|Vr| > 0`` (Stribeck's: ``mu_k < mu_s``); one that depends on the speed gives the
+    speeds between the roots SymPy finds.
     """
-    m0 = static_coefficient(friction)
+    m0, rest = static_coefficient(friction), rest_coefficient(friction)
     slope = sp.diff(coefficient(friction, SPEED), SPEED)
     shown = slope.subs(SPEED, sp.Symbol("|Vr|", nonnegative=True))
     if m0.is_nonnegative is not True:
-        why = f"friction={friction!r}: mu(0) = {sp.sstr(m0)} is not provably >= 0"
+        why = f"friction={friction!r}: the static bound {sp.sstr(m0)} is not provably >= 0"
         return Monotonicity(friction, slope, False, "Vr = 0", why)
+    jump = sp.simplify(rest - m0)
+    if jump != 0 and jump.is_nonnegative is not True:
+        falls = f"Vr = 0, where {_inequality(jump)}"
+        why = (
+            f"friction={friction!r}: the static bound {sp.sstr(m0)} exceeds the slip "
+            f"coefficient at rest {sp.sstr(rest)} where {_inequality(jump)}: a falling "
+            "jump at Vr = 0, so sgn(Vr) mu(|Vr|) is not monotone in Vr (steady sliding "
+            "and a stick-slip cycle may coexist)"
+        )
+        return Monotonicity(friction, slope, False, falls, why)
     if slope == 0 or slope.is_nonnegative:
         why = (
             f"friction={friction!r}: mu(0) >= 0 and dmu/d|Vr| = {sp.sstr(shown)} >= 0: "

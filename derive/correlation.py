@@ -41,7 +41,7 @@ import sympy as sp
 from . import averaging, laws
 from .dynamics import free_acceleration
 from .friction import coupled_velocity, frequency_response, normal_response
-from .model import Y1, P, excitation, normal_force, static_coefficient, t
+from .model import Y1, P, excitation, normal_force, rest_coefficient, t
 from .oscillator import system_matrix
 from .stability import S2, Z2, slow_state_space_A3_A6
 from .statespace import Quadratic
@@ -164,7 +164,7 @@ def _with_law(friction: str, sign_part: sp.Expr, weight, scale, slope: bool) -> 
     """``mu(0)`` times a Piecewise of the sign's average plus the law's part beyond ``mu(0)``."""
     build = averaging.remainder_slope if slope else averaging.remainder_average
     inside, outside = build(friction, weight, scale)
-    mu0 = static_coefficient(friction)
+    mu0 = rest_coefficient(friction)
     (sign_in, cond), (sign_out, _) = sign_part.args
     return sp.Piecewise((mu0 * sign_in + inside, cond), (mu0 * sign_out + outside, True))
 

@@ -9,7 +9,9 @@ which SymPy proves equal and which keeps full accuracy as ``Vb -> V_hat``.
 Every friction law of the registry gets its effective friction: the sign's average
 times the law's value at rest ``mu(0)`` (Eq. 23 with ``mu(0)`` for ``mu_s``) plus the
 average of the rest of the law (`derive.averaging`), which is zero for Coulomb's law
-and a quadrature for Stribeck's.
+and a quadrature for Stribeck's. ``mu(0)`` is the slip law's (`derive.model.rest_coefficient`:
+the kinetic ``mu_k`` of ``static_kinetic``): the fast motion passes ``Vr = 0`` without
+sticking, so a static bound does not enter.
 
 ``V_hat`` is "the amplitude of the velocity response obtained for linear contact
 properties" (below Eq. 23); the paper gives no formula (docs/modelling.md#vhat).
@@ -30,7 +32,7 @@ from functools import cache
 import sympy as sp
 
 from . import averaging, laws
-from .model import P, static_coefficient
+from .model import P, rest_coefficient
 from .statespace import Quadratic, jacobian_at_equilibrium_eq_11, quadratics_at_equilibrium
 
 __all__ = [
@@ -68,7 +70,7 @@ def mu_bar_eq_23(Vr=Vr, friction: str = DEFAULT["friction"]) -> sp.Expr:
     outside (Eq. 23 with the law's static coefficient), plus the average of the law
     beyond it (`derive.averaging`; zero for Coulomb's law).
     """
-    mu, Vh = static_coefficient(friction), P["Vhat"]
+    mu, Vh = rest_coefficient(friction), P["Vhat"]
     inside, outside = _beyond_rest(friction, False, Vr, Vh)
     return sp.Piecewise(
         (mu * (1 - 2 / sp.pi * sp.acos(Vr / Vh)) + inside, sp.Abs(Vr) <= Vh),
@@ -84,7 +86,7 @@ def mu_bar0_eq_25(friction: str = DEFAULT["friction"]) -> sp.Expr:
 def mu_bar_slope_derived(friction: str = DEFAULT["friction"]) -> sp.Expr:
     """``d mu_bar / d Vr`` of the sign's part at ``Vr = -Vb`` for ``Vb < V_hat``, by
     differentiation of Eq. (23)."""
-    inner = static_coefficient(friction) * (1 - 2 / sp.pi * sp.acos(Vr / P["Vhat"]))
+    inner = rest_coefficient(friction) * (1 - 2 / sp.pi * sp.acos(Vr / P["Vhat"]))
     return sp.diff(inner, Vr).subs(Vr, -P["Vb"])
 
 
@@ -100,7 +102,7 @@ def mu_bar_slope_eq_25(friction: str = DEFAULT["friction"]) -> sp.Expr:
     law's part beyond ``mu(0)`` (`derive.averaging.remainder_slope`) adds on both
     sides.
     """
-    mu, Vh, Vb = static_coefficient(friction), P["Vhat"], P["Vb"]
+    mu, Vh, Vb = rest_coefficient(friction), P["Vhat"], P["Vb"]
     factored = 2 * mu / (sp.pi * sp.sqrt((Vh - Vb) * (Vh + Vb)))
     below = sp.Symbol("below", positive=True)  # Vh - Vb > 0 on this branch
     check = (mu_bar_slope_derived(friction) - factored).subs(Vh, Vb + below)

@@ -14,9 +14,11 @@ Floquet analysis all work on the same description, derived here:
   ``separated`` (under a tension law that cannot pull only: ``X2 > 0`` where the
   contact law would pull; docs/modelling.md#tension), both with the free field;
 * **switching surfaces** ``h(t, x) = 0``: ``relative_velocity`` ``Y1 - Vb``;
-  ``stick_forward`` and ``stick_back`` ``mu(0) F -+ a_free`` (the stick cone: the
-  friction limit at rest, ``mu(0) = mu_s`` for both shipped friction laws,
-  ``a_free`` the tangential acceleration without friction); ``penetration`` ``X2``;
+  ``stick_forward`` and ``stick_back`` ``mu_st F -+ a_free`` (the stick cone: the
+  friction law's static bound ``mu_st``, `derive.model.static_coefficient`, ``mu_s`` for
+  every shipped law, while the slip modes take the law's coefficient, ``mu_k`` below it
+  for ``static_kinetic``: leaving stick then has ``S != I``; ``a_free`` the tangential
+  acceleration without friction); ``penetration`` ``X2``;
   ``contact_force``, a function with the sign of ``F`` in contact (``F`` divided by
   its factors that are positive there: for Hertz-Damp ``omega2 + 2 beta2 X2'``,
   which, unlike ``F``, crosses zero transversally where ``X2 = 0`` does not);
@@ -28,7 +30,8 @@ Floquet analysis all work on the same description, derived here:
   ``(dh/dt)- = dh/dt + n^T f-`` (Aizerman-Gantmakher; Leine and Nijmeijer 2004), the
   jump of the variational solution across a switch: without them Floquet
   multipliers are wrong. Where the two fields agree on the surface (the clipped
-  force, the friction limit, lift-off of the Hertz-Damp contact) ``S = I``;
+  force, the friction limit of a law whose static bound is its slip coefficient at
+  rest, lift-off of the Hertz-Damp contact) ``S = I``;
 * **mode Jacobians** ``d f / d x`` of each mode's field (`mode_jacobian`), for the
   variational equations along an event-driven run (a Floquet analysis that does not
   rely on the tangential motion between switches being linear).
@@ -244,8 +247,9 @@ def mode_jacobian(contact: str, friction: str = laws.default("friction")) -> sp.
 def surfaces(contact: str, friction: str = laws.default("friction")) -> dict[str, sp.Expr]:
     """The switching functions ``h(t, x)`` of `SURFACES`, by name.
 
-    The stick surfaces bound the holding force by the friction law's static
-    coefficient ``mu(0)`` (`derive.model.static_coefficient`).
+    The stick surfaces bound the holding force by the friction law's static bound
+    (`derive.model.static_coefficient`: its ``static`` where it gives one, else
+    ``mu(0)``).
     """
     F = contact_force_in_contact(contact)
     a_free = free_acceleration()

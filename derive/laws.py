@@ -16,12 +16,19 @@ equations it reproduces and its documentation:
   function of the sliding speed ``s = |Vr| >= 0``, ``Vr = X1' - Vb``. The framework
   applies the direction: the friction force per unit mass is ``-mu(|Vr|) sgn(Vr) F``
   while slipping (Eqs. 2-3), and at ``Vr = 0`` the set-valued sign bounds the
-  holding force by the static coefficient ``mu(0)``, the stick cone
-  ``|a_free| <= mu(0) F`` (for both shipped laws ``mu(0) = mu_s``);
+  holding force by the static bound ``mu_st``, the stick cone
+  ``|a_free| <= mu_st F``: the law's ``static`` where it gives one (``static_kinetic``:
+  ``mu_s`` above the kinetic ``mu_k`` of slip), else ``mu(0)`` (``mu_s`` for
+  ``coulomb`` and ``stribeck``);
 * a **contact law** (`ContactLaw`) gives the normal force per unit mass in contact,
   ``F(X2, X2')`` for ``X2 > 0`` (zero in flight is the framework's, Eq. 1);
 * a **tension law** (`TensionLaw`) maps that force to the one that acts: Eq. (1) as
   printed, or a contact that cannot pull.
+
+A parameter belongs to the laws that list it. Two laws may list the same name where
+it means the same (the same unit, domain, base value and description: one row of the
+parameter table, ``mu_k`` of ``stribeck`` and ``static_kinetic``); `register` refuses
+a name whose row would differ.
 
 The first entry of each option is its default: ``coulomb``, ``hertz_damp``,
 ``allowed``, which give the paper's model.
@@ -49,6 +56,7 @@ __all__ = [
     "get",
     "parameter_table",
     "law_parameters",
+    "owners",
 ]
 
 
@@ -83,11 +91,14 @@ class FrictionLaw(Law):
     """A friction law: ``coefficient(P, s)`` is ``mu(s)`` at sliding speed ``s = |Vr|``.
 
     ``P`` maps parameter names to their SymPy symbols, ``s`` is a nonnegative
-    symbol. The framework multiplies by ``-sgn(Vr) F`` and bounds stick by
-    ``mu(0)``.
+    symbol. The framework multiplies by ``-sgn(Vr) F`` while slipping and bounds
+    stick by ``static(P)``, the static bound, where the law gives one (a static
+    coefficient above the kinetic one: ``static_kinetic``), else by ``mu(0)``.
+    ``coefficient`` is then the slip law only: ``mu(0)`` is its limit as ``s -> 0+``.
     """
 
     coefficient: Callable[[Mapping[str, sp.Symbol], sp.Expr], sp.Expr] = None
+    static: Callable[[Mapping[str, sp.Symbol]], sp.Expr] | None = None
 
 
 @dataclass(frozen=True)
@@ -108,6 +119,9 @@ class TensionLaw(Law):
     acting: Callable[[sp.Expr], sp.Expr] = None
 
 
+#: The fields of a parameter that two laws sharing its name must agree on.
+_MEANING = ("unit", "base", "domain", "description", "default_from", "derived_unit")
+
 #: The options, in the order in which generated tables key them.
 OPTIONS = ("friction", "contact", "tension")
 _KIND = {"friction": FrictionLaw, "contact": ContactLaw, "tension": TensionLaw}
@@ -119,11 +133,17 @@ LAWS: dict[str, dict[str, Law]] = {option: {} for option in OPTIONS}
 def register(option: str, law: Law) -> Law:
     """Add ``law`` to the registry under ``option``; return it with its parameters' owner set.
 
+    A parameter name in the table already is shared where it means the same: a
+    law's parameter (not one of the model's own) with the same unit, base value,
+    domain and description; the table keeps one row, owned by the first law that
+    listed it (`owners` gives every law that lists it).
+
     Raises
     ------
     ValueError
         For an unknown option, a law of the wrong kind, a name taken already, or a
-        parameter name that the table has already.
+        parameter name of the table whose row differs (naming the fields), or that is
+        one of the model's own.
     """
     if option not in _KIND:
         raise ValueError(f"option must be one of {OPTIONS}; got {option!r}")
@@ -131,10 +151,23 @@ def register(option: str, law: Law) -> Law:
         raise ValueError(f"a {option} law must be a {_KIND[option].__name__}; got {law!r}")
     if law.name in LAWS[option]:
         raise ValueError(f"{option} law {law.name!r} is registered already")
-    taken = {p.name for p in parameter_table()}
-    clash = sorted(p.name for p in law.parameters if p.name in taken)
+    table = {p.name: p for p in parameter_table()}
+    clash = {}
+    for p in law.parameters:
+        row = table.get(p.name)
+        if row is None:
+            continue
+        if row.law is None:
+            clash[p.name] = "one of the model's own parameters"
+            continue
+        differ = [f for f in _MEANING if getattr(row, f) != getattr(p, f)]
+        if differ:
+            clash[p.name] = f"{row.law[1]!r} gives it another {', '.join(differ)}"
     if clash:
-        raise ValueError(f"{option} law {law.name!r}: parameter names taken already: {clash}")
+        why = "; ".join(f"{name}: {text}" for name, text in sorted(clash.items()))
+        raise ValueError(
+            f"{option} law {law.name!r}: parameter names taken already with another meaning ({why})"
+        )
     owned = tuple(replace(p, law=(option, law.name)) for p in law.parameters)
     law = replace(law, parameters=owned)
     LAWS[option][law.name] = law
@@ -166,8 +199,26 @@ def get(option: str, name: str) -> Law:
 
 
 def law_parameters() -> tuple[Parameter, ...]:
-    """The parameters of every registered law, in registry order."""
-    return tuple(p for option in OPTIONS for law in LAWS[option].values() for p in law.parameters)
+    """The parameters of every registered law, in registry order, each name once (a
+    shared one with its first owner)."""
+    seen, out = set(), []
+    for option in OPTIONS:
+        for law in LAWS[option].values():
+            for p in law.parameters:
+                if p.name not in seen:
+                    seen.add(p.name)
+                    out.append(p)
+    return tuple(out)
+
+
+def owners(name: str) -> tuple[tuple[str, str], ...]:
+    """``(option, choice)`` of every registered law that lists the parameter ``name``."""
+    return tuple(
+        (option, law.name)
+        for option in OPTIONS
+        for law in LAWS[option].values()
+        if any(p.name == name for p in law.parameters)
+    )
 
 
 def parameter_table() -> tuple[Parameter, ...]:
@@ -176,6 +227,16 @@ def parameter_table() -> tuple[Parameter, ...]:
 
 
 # The shipped laws ----------------------------------------------------------------------
+
+#: The kinetic coefficient, one parameter of two laws (`register`: a shared name).
+_MU_K = Parameter(
+    "mu_k",
+    "1",
+    0.25,
+    "nonnegative",
+    "kinetic friction coefficient: mu while slipping (static_kinetic), "
+    "the limit at high |Vr| (stribeck)",
+)
 
 register(
     "friction",
@@ -200,13 +261,7 @@ register(
         "(derive/contraction.py) and acts as a negative damping of steady sliding.",
         "Eq. (3) for mu_k = mu_s; not in the paper otherwise",
         (
-            Parameter(
-                "mu_k",
-                "1",
-                0.25,
-                "nonnegative",
-                "kinetic friction coefficient, the Stribeck law's limit at high |Vr|",
-            ),
+            _MU_K,
             Parameter(
                 "v_s",
                 "m/s",
@@ -216,6 +271,25 @@ register(
             ),
         ),
         coefficient=lambda P, s: P["mu_k"] + (P["mu_s"] - P["mu_k"]) * sp.exp(-s / P["v_s"]),
+    ),
+)
+register(
+    "friction",
+    FrictionLaw(
+        "static_kinetic",
+        "Static above kinetic: stick held up to mu_s F, slip at mu_k F < mu_s F",
+        "The classical stick-slip law: the friction force is mu_k F_n against the "
+        "relative velocity while slipping, at any speed, and holds the mass while "
+        "sticking up to the static mu_s F_n (its static bound, FrictionLaw.static). "
+        "For mu_k < mu_s the signed friction falls by a jump at Vr = 0 (not "
+        "monotone, derive/contraction.py): steady sliding, linearly stable, may "
+        "coexist with a stick-slip cycle. With mu_k = mu_s it is Coulomb's law of "
+        "Eq. (3); mu_k > mu_s (a static bound below the kinetic coefficient) is "
+        "outside the law and refused where a model is built.",
+        "Eq. (3) for mu_k = mu_s; Eq. (3) with mu_k while slipping otherwise",
+        (_MU_K,),
+        coefficient=lambda P, s: P["mu_k"],
+        static=lambda P: P["mu_s"],
     ),
 )
 register(

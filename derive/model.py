@@ -43,6 +43,7 @@ __all__ = [
     "lam",
     "coefficient",
     "static_coefficient",
+    "rest_coefficient",
     "normal_force",
     "contact_force",
     "contact_potential",
@@ -94,10 +95,25 @@ def coefficient(friction=_DEFAULT["friction"], speed=SPEED) -> sp.Expr:
 
 
 def static_coefficient(friction: str = _DEFAULT["friction"]) -> sp.Expr:
-    """``mu(0)``: the bound of the holding force while sticking (the stick cone).
+    """The static bound: the bound of the holding force while sticking (the stick cone).
 
     At ``Vr = 0`` the set-valued sign of Eq. (3) lets friction take any value in
-    ``[-mu(0) F, mu(0) F]``; for both shipped laws this is ``mu_s``.
+    ``[-mu_st F, mu_st F]``: ``mu_st`` is the law's ``static`` where it gives one
+    (`derive.laws.FrictionLaw`; ``mu_s`` of ``static_kinetic``), else `rest_coefficient`
+    (``mu_s`` of ``coulomb`` and ``stribeck``).
+    """
+    law = laws.get("friction", friction)
+    if law.static is not None:
+        return sp.sympify(law.static(P))
+    return rest_coefficient(friction)
+
+
+def rest_coefficient(friction: str = _DEFAULT["friction"]) -> sp.Expr:
+    """``mu(0)``: the slip law's coefficient at rest, its limit as ``|Vr| -> 0+``.
+
+    What a slip mode's friction is at ``Vr = 0`` and what the averages of the slip
+    friction over a fast motion multiply the sign's average by (`derive.averaging`);
+    it differs from `static_coefficient` where the law has a static bound of its own.
     """
     return sp.simplify(coefficient(friction, sp.Integer(0)))
 

@@ -316,7 +316,8 @@ def dynamics() -> ModuleSpec:
             (t, X1, Y1),
             STATE_DOCS,
             notes="f_t - 2 beta1 omega1 X1' - omega1^2 X1; sticking holds while "
-            "|a_free| <= mu(0) F_n (mu_s for both shipped friction laws).",
+            "|a_free| <= mu_st F_n, mu_st the law's static bound (mu_s for every "
+            "shipped friction law; static_kinetic slips at mu_k below it).",
             bind=True,
         ),
         FunctionSpec(

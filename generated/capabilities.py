@@ -336,7 +336,197 @@ CAPABILITIES = {('coulomb', 'hertz_damp', 'allowed'): {'slip_friction_state_inde
                                                                     'over the fast phase '
                                                                     "(SymPy's Risch algorithm "
                                                                     'proves it); its average '
-                                                                    'is a quadrature')}}
+                                                                    'is a quadrature')},
+ ('static_kinetic', 'hertz_damp', 'allowed'): {'slip_friction_state_independent': (True,
+                                                                                   "friction='static_kinetic': "
+                                                                                   'the '
+                                                                                   'slip-mode '
+                                                                                   'friction '
+                                                                                   'is free of '
+                                                                                   'X1 and '
+                                                                                   "X1'"),
+                                               'one_way_coupling': (True,
+                                                                    "contact='hertz_damp', "
+                                                                    "tension='allowed': the "
+                                                                    'normal equation is free '
+                                                                    "of X1 and X1'"),
+                                               'friction_monotone': (False,
+                                                                     "friction='static_kinetic': "
+                                                                     'the static bound mu_s '
+                                                                     'exceeds the slip '
+                                                                     'coefficient at rest mu_k '
+                                                                     'where mu_k < mu_s: a '
+                                                                     'falling jump at Vr = 0, '
+                                                                     'so sgn(Vr) mu(|Vr|) is '
+                                                                     'not monotone in Vr '
+                                                                     '(steady sliding and a '
+                                                                     'stick-slip cycle may '
+                                                                     'coexist)'),
+                                               'closed_form_average': (True,
+                                                                       'static_kinetic: '
+                                                                       'mu(|Vr|) = mu(0) is '
+                                                                       'constant, its average '
+                                                                       "is Eq. (23)'s")},
+ ('static_kinetic', 'hertz_damp', 'clipped'): {'slip_friction_state_independent': (True,
+                                                                                   "friction='static_kinetic': "
+                                                                                   'the '
+                                                                                   'slip-mode '
+                                                                                   'friction '
+                                                                                   'is free of '
+                                                                                   'X1 and '
+                                                                                   "X1'"),
+                                               'one_way_coupling': (True,
+                                                                    "contact='hertz_damp', "
+                                                                    "tension='clipped': the "
+                                                                    'normal equation is free '
+                                                                    "of X1 and X1'"),
+                                               'friction_monotone': (False,
+                                                                     "friction='static_kinetic': "
+                                                                     'the static bound mu_s '
+                                                                     'exceeds the slip '
+                                                                     'coefficient at rest mu_k '
+                                                                     'where mu_k < mu_s: a '
+                                                                     'falling jump at Vr = 0, '
+                                                                     'so sgn(Vr) mu(|Vr|) is '
+                                                                     'not monotone in Vr '
+                                                                     '(steady sliding and a '
+                                                                     'stick-slip cycle may '
+                                                                     'coexist)'),
+                                               'closed_form_average': (True,
+                                                                       'static_kinetic: '
+                                                                       'mu(|Vr|) = mu(0) is '
+                                                                       'constant, its average '
+                                                                       "is Eq. (23)'s")},
+ ('static_kinetic', 'kelvin_voigt', 'allowed'): {'slip_friction_state_independent': (True,
+                                                                                     "friction='static_kinetic': "
+                                                                                     'the '
+                                                                                     'slip-mode '
+                                                                                     'friction '
+                                                                                     'is free '
+                                                                                     'of X1 '
+                                                                                     "and X1'"),
+                                                 'one_way_coupling': (True,
+                                                                      "contact='kelvin_voigt', "
+                                                                      "tension='allowed': the "
+                                                                      'normal equation is free '
+                                                                      "of X1 and X1'"),
+                                                 'friction_monotone': (False,
+                                                                       "friction='static_kinetic': "
+                                                                       'the static bound mu_s '
+                                                                       'exceeds the slip '
+                                                                       'coefficient at rest '
+                                                                       'mu_k where mu_k < '
+                                                                       'mu_s: a falling jump '
+                                                                       'at Vr = 0, so sgn(Vr) '
+                                                                       'mu(|Vr|) is not '
+                                                                       'monotone in Vr (steady '
+                                                                       'sliding and a '
+                                                                       'stick-slip cycle may '
+                                                                       'coexist)'),
+                                                 'closed_form_average': (True,
+                                                                         'static_kinetic: '
+                                                                         'mu(|Vr|) = mu(0) is '
+                                                                         'constant, its '
+                                                                         'average is Eq. '
+                                                                         "(23)'s")},
+ ('static_kinetic', 'kelvin_voigt', 'clipped'): {'slip_friction_state_independent': (True,
+                                                                                     "friction='static_kinetic': "
+                                                                                     'the '
+                                                                                     'slip-mode '
+                                                                                     'friction '
+                                                                                     'is free '
+                                                                                     'of X1 '
+                                                                                     "and X1'"),
+                                                 'one_way_coupling': (True,
+                                                                      "contact='kelvin_voigt', "
+                                                                      "tension='clipped': the "
+                                                                      'normal equation is free '
+                                                                      "of X1 and X1'"),
+                                                 'friction_monotone': (False,
+                                                                       "friction='static_kinetic': "
+                                                                       'the static bound mu_s '
+                                                                       'exceeds the slip '
+                                                                       'coefficient at rest '
+                                                                       'mu_k where mu_k < '
+                                                                       'mu_s: a falling jump '
+                                                                       'at Vr = 0, so sgn(Vr) '
+                                                                       'mu(|Vr|) is not '
+                                                                       'monotone in Vr (steady '
+                                                                       'sliding and a '
+                                                                       'stick-slip cycle may '
+                                                                       'coexist)'),
+                                                 'closed_form_average': (True,
+                                                                         'static_kinetic: '
+                                                                         'mu(|Vr|) = mu(0) is '
+                                                                         'constant, its '
+                                                                         'average is Eq. '
+                                                                         "(23)'s")},
+ ('static_kinetic', 'hunt_crossley', 'allowed'): {'slip_friction_state_independent': (True,
+                                                                                      "friction='static_kinetic': "
+                                                                                      'the '
+                                                                                      'slip-mode '
+                                                                                      'friction '
+                                                                                      'is free '
+                                                                                      'of X1 '
+                                                                                      'and '
+                                                                                      "X1'"),
+                                                  'one_way_coupling': (True,
+                                                                       "contact='hunt_crossley', "
+                                                                       "tension='allowed': the "
+                                                                       'normal equation is '
+                                                                       "free of X1 and X1'"),
+                                                  'friction_monotone': (False,
+                                                                        "friction='static_kinetic': "
+                                                                        'the static bound mu_s '
+                                                                        'exceeds the slip '
+                                                                        'coefficient at rest '
+                                                                        'mu_k where mu_k < '
+                                                                        'mu_s: a falling jump '
+                                                                        'at Vr = 0, so sgn(Vr) '
+                                                                        'mu(|Vr|) is not '
+                                                                        'monotone in Vr '
+                                                                        '(steady sliding and a '
+                                                                        'stick-slip cycle may '
+                                                                        'coexist)'),
+                                                  'closed_form_average': (True,
+                                                                          'static_kinetic: '
+                                                                          'mu(|Vr|) = mu(0) is '
+                                                                          'constant, its '
+                                                                          'average is Eq. '
+                                                                          "(23)'s")},
+ ('static_kinetic', 'hunt_crossley', 'clipped'): {'slip_friction_state_independent': (True,
+                                                                                      "friction='static_kinetic': "
+                                                                                      'the '
+                                                                                      'slip-mode '
+                                                                                      'friction '
+                                                                                      'is free '
+                                                                                      'of X1 '
+                                                                                      'and '
+                                                                                      "X1'"),
+                                                  'one_way_coupling': (True,
+                                                                       "contact='hunt_crossley', "
+                                                                       "tension='clipped': the "
+                                                                       'normal equation is '
+                                                                       "free of X1 and X1'"),
+                                                  'friction_monotone': (False,
+                                                                        "friction='static_kinetic': "
+                                                                        'the static bound mu_s '
+                                                                        'exceeds the slip '
+                                                                        'coefficient at rest '
+                                                                        'mu_k where mu_k < '
+                                                                        'mu_s: a falling jump '
+                                                                        'at Vr = 0, so sgn(Vr) '
+                                                                        'mu(|Vr|) is not '
+                                                                        'monotone in Vr '
+                                                                        '(steady sliding and a '
+                                                                        'stick-slip cycle may '
+                                                                        'coexist)'),
+                                                  'closed_form_average': (True,
+                                                                          'static_kinetic: '
+                                                                          'mu(|Vr|) = mu(0) is '
+                                                                          'constant, its '
+                                                                          'average is Eq. '
+                                                                          "(23)'s")}}
 
 
 

@@ -381,18 +381,20 @@ def fast_tangential_velocity(*, friction='coulomb', contact='hertz_damp', **para
     phase_n : array_like
         normal excitation phase [rad], real, default 0.0.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -618,6 +620,101 @@ def _fast_tangential_velocity__stribeck__hunt_crossley(_shape, beta1, omega1, be
     return _support.tuple_of(_shape, numpy.sqrt(_x0*_x27**2 + _x0*_x28**2), numpy.arctan2(Omega_t*_x27, -Omega_t*_x28))
 
 
+def _fast_tangential_velocity__static_kinetic__hertz_damp(_shape, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, phase_n, mu_k):
+    _root0 = numpy.cbrt(g)
+    _root1 = numpy.cbrt(omega2)
+    _x0 = Omega_t**2
+    _x1 = beta1*omega1
+    _x2 = 4*_x0
+    _x3 = Omega_t + omega1
+    _x4 = Omega_t - omega1
+    _x5 = (_x2*beta1**2*omega1**2 + _x3**2*_x4**2)**(-1.0)
+    _x6 = _x5*numpy.cos(phase_t)
+    _x7 = Omega_t**3
+    _x8 = 2*_x7
+    _x9 = beta2*g/omega2
+    _x10 = numpy.cos(phase_n)
+    _x11 = _root0
+    _x12 = (omega2*_root1)
+    _x13 = -_x0 + (3/2)*_x11*_x12
+    _x14 = (_x13**2 + _x2*beta2**2*g**2/omega2**2)**(-1.0)
+    _x15 = 2*Omega_t*_x14*_x9
+    _x16 = numpy.sin(phase_n)
+    _x17 = alpha_n*mu_k
+    _x18 = _x17*(-_x10*_x15 + _x13*_x14*_x16)
+    _x19 = _x18*_x5
+    _x20 = _x10*_x13*_x14 + _x15*_x16
+    _x21 = _x8*_x9
+    _x22 = -3/2*_x0*_x11*_x12*_x18 + _x0*alpha_t*numpy.sin(phase_t) - _x17*_x20*_x21
+    _x23 = _x3*_x4
+    _x24 = -4*Omega_t**4*_x1*_x19*_x9 - _x1*_x6*_x8*alpha_t + 3*_x11*_x12*_x20*_x5*_x7*alpha_n*beta1*mu_k*omega1 - _x22*_x23*_x5
+    _x25 = 2*Omega_t*_x22*_x5*beta1*omega1 + (3/2)*_x0*_x11*_x12*_x20*_x3*_x4*_x5*alpha_n*mu_k - _x0*_x23*_x6*alpha_t - _x19*_x21*_x23
+    return _support.tuple_of(_shape, numpy.sqrt(_x0*_x24**2 + _x0*_x25**2), numpy.arctan2(Omega_t*_x25, -Omega_t*_x24))
+
+
+def _fast_tangential_velocity__static_kinetic__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, phase_n, mu_k):
+    _x0 = Omega_t**2
+    _x1 = beta1*omega1
+    _x2 = 4*_x0
+    _x3 = Omega_t + omega1
+    _x4 = Omega_t - omega1
+    _x5 = (_x2*beta1**2*omega1**2 + _x3**2*_x4**2)**(-1.0)
+    _x6 = _x5*numpy.cos(phase_t)
+    _x7 = Omega_t**3
+    _x8 = 2*_x7
+    _x9 = omega2**2
+    _x10 = Omega_t + omega2
+    _x11 = Omega_t - omega2
+    _x12 = (_x10**2*_x11**2 + _x2*_x9*beta2**2)**(-1.0)
+    _x13 = _x12*numpy.cos(phase_n)
+    _x14 = beta2*omega2
+    _x15 = 2*Omega_t*_x14
+    _x16 = _x12*numpy.sin(phase_n)
+    _x17 = _x10*_x11
+    _x18 = -_x13*_x15 - _x16*_x17
+    _x19 = alpha_n*mu_k
+    _x20 = _x14*_x19
+    _x21 = _x18*_x20
+    _x22 = -_x13*_x17 + _x15*_x16
+    _x23 = -_x0*_x18*_x19*_x9 + _x0*alpha_t*numpy.sin(phase_t) - _x20*_x22*_x8
+    _x24 = _x3*_x4
+    _x25 = -4*Omega_t**4*_x1*_x21*_x5 - _x1*_x6*_x8*alpha_t + 2*_x22*_x5*_x7*_x9*alpha_n*beta1*mu_k*omega1 - _x23*_x24*_x5
+    _x26 = 2*Omega_t*_x23*_x5*beta1*omega1 + _x0*_x22*_x3*_x4*_x5*_x9*alpha_n*mu_k - _x0*_x24*_x6*alpha_t - _x21*_x24*_x5*_x8
+    return _support.tuple_of(_shape, numpy.sqrt(_x0*_x25**2 + _x0*_x26**2), numpy.arctan2(Omega_t*_x26, -Omega_t*_x25))
+
+
+def _fast_tangential_velocity__static_kinetic__hunt_crossley(_shape, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, phase_n, mu_k, n_h):
+    _x0 = Omega_t**2
+    _x1 = 4*_x0
+    _x2 = Omega_t + omega1
+    _x3 = Omega_t - omega1
+    _x4 = (_x1*beta1**2*omega1**2 + _x2**2*_x3**2)**(-1.0)
+    _x5 = _x4*numpy.cos(phase_t)
+    _x6 = beta1*omega1
+    _x7 = Omega_t**3
+    _x8 = 2*_x7
+    _x9 = beta2*g/omega2
+    _x10 = alpha_n*mu_k
+    _x11 = _x10*_x9
+    _x12 = numpy.cos(phase_n)
+    _x13 = n_h**(-1.0)
+    _x14 = g**(-_x13)
+    _x15 = omega2**(2*_x13)
+    _x16 = -_x0 + _x14*_x15*g*n_h
+    _x17 = (_x1*beta2**2*g**2/omega2**2 + _x16**2)**(-1.0)
+    _x18 = 2*Omega_t*_x17*_x9
+    _x19 = numpy.sin(phase_n)
+    _x20 = -_x12*_x18 + _x16*_x17*_x19
+    _x21 = _x20*_x4
+    _x22 = _x12*_x16*_x17 + _x18*_x19
+    _x23 = _x11*_x8
+    _x24 = -_x0*_x10*_x14*_x15*_x20*g*n_h + _x0*alpha_t*numpy.sin(phase_t) - _x22*_x23
+    _x25 = _x2*_x3
+    _x26 = -4*Omega_t**4*_x11*_x21*_x6 + 2*_x14*_x15*_x22*_x4*_x7*alpha_n*beta1*g*mu_k*n_h*omega1 - _x24*_x25*_x4 - _x5*_x6*_x8*alpha_t
+    _x27 = 2*Omega_t*_x24*_x4*beta1*omega1 + _x0*_x14*_x15*_x2*_x22*_x3*_x4*alpha_n*g*mu_k*n_h - _x0*_x25*_x5*alpha_t - _x21*_x23*_x25
+    return _support.tuple_of(_shape, numpy.sqrt(_x0*_x26**2 + _x0*_x27**2), numpy.arctan2(Omega_t*_x27, -Omega_t*_x26))
+
+
 _FAST_TANGENTIAL_VELOCITY = {
     ('coulomb', 'hertz_damp'): _support.Variant(_fast_tangential_velocity__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', )),
     ('coulomb', 'kelvin_voigt'): _support.Variant(_fast_tangential_velocity__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', )),
@@ -625,6 +722,9 @@ _FAST_TANGENTIAL_VELOCITY = {
     ('stribeck', 'hertz_damp'): _support.Variant(_fast_tangential_velocity__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_fast_tangential_velocity__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_fast_tangential_velocity__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_fast_tangential_velocity__static_kinetic__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_fast_tangential_velocity__static_kinetic__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_fast_tangential_velocity__static_kinetic__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', 'mu_k', 'n_h', )),
 }
 
 
@@ -653,15 +753,17 @@ def friction_average(u, V, N0, N1, theta, *, friction='coulomb', **params):
         static friction coefficient: Coulomb's of Eq. (3), the bound of stick [1],
         nonnegative.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -710,9 +812,16 @@ def _friction_average__stribeck(_shape, u, V, N0, N1, theta, mu_s, mu_k, v_s):
         return _support.full(_shape, numpy.select([numpy.greater(V, abs(u)),True], [2*_x0*_x2*mu_s*(N0*V*numpy.arcsin(_x2*u) + N1*numpy.sqrt(V**2 - u**2)*numpy.cos(theta)) + _x1*(_quad0 + _quad1),N0*mu_s*numpy.sign(u) + _x1*(_quad2 + _quad3)], default=numpy.nan))
 
 
+def _friction_average__static_kinetic(_shape, u, V, N0, N1, theta, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = V**(-1.0)
+        return _support.full(_shape, numpy.select([numpy.greater(V, abs(u)),True], [2*_x0*mu_k*(N0*V*numpy.arcsin(_x0*u) + N1*numpy.sqrt(V**2 - u**2)*numpy.cos(theta))/numpy.pi,N0*mu_k*numpy.sign(u)], default=numpy.nan))
+
+
 _FRICTION_AVERAGE = {
     ('coulomb',): _support.Variant(_friction_average__coulomb, ('mu_s', )),
     ('stribeck',): _support.Variant(_friction_average__stribeck, ('mu_s', 'mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_friction_average__static_kinetic, ('mu_k', )),
 }
 
 
@@ -741,15 +850,17 @@ def friction_average_slope(u, V, N0, N1, theta, *, friction='coulomb', **params)
         static friction coefficient: Coulomb's of Eq. (3), the bound of stick [1],
         nonnegative.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -794,9 +905,15 @@ def _friction_average_slope__stribeck(_shape, u, V, N0, N1, theta, mu_s, mu_k, v
         return _support.full(_shape, numpy.select([numpy.greater(V, abs(u)),True], [_x1*(_quad0 + _quad1) + _x0*mu_s*(2*N0*V - 2*N1*u*numpy.cos(theta))/(V*numpy.sqrt((V - u)*(V + u))),_x1*(_quad2 + _quad3)], default=numpy.nan))
 
 
+def _friction_average_slope__static_kinetic(_shape, u, V, N0, N1, theta, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, numpy.select([numpy.greater(V, abs(u)),True], [mu_k*(2*N0*V - 2*N1*u*numpy.cos(theta))/(numpy.pi*V*numpy.sqrt((V - u)*(V + u))),0], default=numpy.nan))
+
+
 _FRICTION_AVERAGE_SLOPE = {
     ('coulomb',): _support.Variant(_friction_average_slope__coulomb, ('mu_s', )),
     ('stribeck',): _support.Variant(_friction_average_slope__stribeck, ('mu_s', 'mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_friction_average_slope__static_kinetic, ('mu_k', )),
 }
 
 
@@ -825,15 +942,17 @@ def friction_harmonic(u, V, N0, N1, theta, *, friction='coulomb', **params):
         static friction coefficient: Coulomb's of Eq. (3), the bound of stick [1],
         nonnegative.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -902,9 +1021,25 @@ def _friction_harmonic__stribeck(_shape, u, V, N0, N1, theta, mu_s, mu_k, v_s):
         return _support.tuple_of(_shape, numpy.select([_x8,True], [_x0*(_quad0 + _quad2) + _x1*_x7*(4*N0*_x3 + 2*V*_x6*(_x4 - _x5)),_x0*(_quad4 + _quad5) + _x6*_x9], default=numpy.nan), numpy.select([_x8,True], [_x0*(_quad1 + _quad3) + 2*_x10*_x7*(_x4 + _x5),_x0*(_quad6 + _quad7) + _x10*_x9], default=numpy.nan))
 
 
+def _friction_harmonic__static_kinetic(_shape, u, V, N0, N1, theta, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = V**(-1.0)
+        _x1 = V**2
+        _x2 = numpy.sqrt(_x1 - u**2)
+        _x3 = numpy.arcsin(_x0*u)
+        _x4 = _x2*u/_x1
+        _x5 = N1*numpy.cos(theta)
+        _x6 = mu_k/numpy.pi
+        _x7 = numpy.greater(V, abs(u))
+        _x8 = mu_k*numpy.sign(u)
+        _x9 = N1*numpy.sin(theta)
+        return _support.tuple_of(_shape, numpy.select([_x7,True], [_x0*_x6*(4*N0*_x2 + 2*V*_x5*(_x3 - _x4)),_x5*_x8], default=numpy.nan), numpy.select([_x7,True], [2*_x6*_x9*(_x3 + _x4),_x8*_x9], default=numpy.nan))
+
+
 _FRICTION_HARMONIC = {
     ('coulomb',): _support.Variant(_friction_harmonic__coulomb, ('mu_s', )),
     ('stribeck',): _support.Variant(_friction_harmonic__stribeck, ('mu_s', 'mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_friction_harmonic__static_kinetic, ('mu_k', )),
 }
 
 
@@ -938,15 +1073,17 @@ def slow_damping(V, N1, theta, *, friction='coulomb', **params):
     Vb : array_like
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -991,9 +1128,15 @@ def _slow_damping__stribeck(_shape, V, N1, theta, beta1, omega1, mu_s, g, Vb, mu
         return _support.full(_shape, 2*beta1*omega1 + numpy.select([numpy.greater(V, Vb),True], [_x1*(_quad0 + _quad1) + _x0*mu_s*(2*N1*Vb*numpy.cos(theta) + 2*V*g)/(V*numpy.sqrt(V - Vb)*numpy.sqrt(V + Vb)),_x1*(_quad2 + _quad3)], default=numpy.nan))
 
 
+def _slow_damping__static_kinetic(_shape, V, N1, theta, beta1, omega1, g, Vb, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, 2*beta1*omega1 + numpy.select([numpy.greater(V, Vb),True], [mu_k*(2*N1*Vb*numpy.cos(theta) + 2*V*g)/(numpy.pi*V*numpy.sqrt(V - Vb)*numpy.sqrt(V + Vb)),0], default=numpy.nan))
+
+
 _SLOW_DAMPING = {
     ('coulomb',): _support.Variant(_slow_damping__coulomb, ('beta1', 'omega1', 'mu_s', 'g', 'Vb', )),
     ('stribeck',): _support.Variant(_slow_damping__stribeck, ('beta1', 'omega1', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_slow_damping__static_kinetic, ('beta1', 'omega1', 'g', 'Vb', 'mu_k', )),
 }
 
 
@@ -1094,15 +1237,17 @@ def harmonic_balance(V, phi, N1, psi, *, friction='coulomb', **params):
     phase_t : array_like
         tangential excitation phase (Fig. 15: pi/2) [rad], real, default 0.0.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -1187,7 +1332,31 @@ def _harmonic_balance__stribeck(_shape, V, phi, N1, psi, beta1, omega1, mu_s, g,
         return _support.tuple_of(_shape, _x17*(2*V*beta1*omega1 - _x0*_x3 - _x4*_x5 + numpy.select([_x15,True], [_x14*_x7*(2*V*_x13*(-_x10 + _x11) + 4*_x9*g) + _x6*(_quad0 + _quad2),-_x13*_x16 + _x6*(_quad4 + _quad5)], default=numpy.nan)), _x17*(_x0*_x5 - _x3*_x4 + numpy.select([_x15,True], [-2*_x14*_x18*(-_x10 - _x11) + _x6*(_quad1 + _quad3),_x16*_x18 + _x6*(_quad6 + _quad7)], default=numpy.nan) + V*(Omega_t - omega1)*(Omega_t + omega1)/Omega_t))
 
 
+def _harmonic_balance__static_kinetic(_shape, V, phi, N1, psi, beta1, omega1, g, Vb, alpha_t, Omega_t, phase_t, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = numpy.sin(phi)
+        _x1 = Omega_t**2
+        _x2 = _x1*alpha_t
+        _x3 = _x2*numpy.sin(phase_t)
+        _x4 = numpy.cos(phi)
+        _x5 = _x2*numpy.cos(phase_t)
+        _x6 = V**(-1.0)
+        _x7 = V**2
+        _x8 = numpy.sqrt(-Vb**2 + _x7)
+        _x9 = numpy.arcsin(Vb*_x6)
+        _x10 = Vb*_x8/_x7
+        _x11 = phi - psi
+        _x12 = N1*numpy.cos(_x11)
+        _x13 = mu_k/numpy.pi
+        _x14 = numpy.greater(V, Vb)
+        _x15 = mu_k*numpy.sign(Vb)
+        _x16 = 1/(_x1*alpha_t)
+        _x17 = N1*numpy.sin(_x11)
+        return _support.tuple_of(_shape, _x16*(2*V*beta1*omega1 - _x0*_x3 - _x4*_x5 + numpy.select([_x14,True], [_x13*_x6*(2*V*_x12*(_x10 - _x9) + 4*_x8*g),-_x12*_x15], default=numpy.nan)), _x16*(_x0*_x5 - _x3*_x4 + numpy.select([_x14,True], [-2*_x13*_x17*(-_x10 - _x9),_x15*_x17], default=numpy.nan) + V*(Omega_t - omega1)*(Omega_t + omega1)/Omega_t))
+
+
 _HARMONIC_BALANCE = {
     ('coulomb',): _support.Variant(_harmonic_balance__coulomb, ('beta1', 'omega1', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
     ('stribeck',): _support.Variant(_harmonic_balance__stribeck, ('beta1', 'omega1', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_harmonic_balance__static_kinetic, ('beta1', 'omega1', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', )),
 }

@@ -78,18 +78,20 @@ def rhs(t, X1, Y1, X2, Y2, *, friction='coulomb', contact='hertz_damp', tension=
     phase_n : array_like
         normal excitation phase [rad], real, default 0.0.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -247,6 +249,63 @@ def _rhs__stribeck__hunt_crossley__clipped(_shape, t, X1, Y1, X2, Y2, beta1, ome
         return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x4,True], [_x2*(mu_k + (-mu_k + mu_s)*numpy.exp(-abs(_x0)/v_s))*numpy.sign(_x0) - _x3,-_x3], default=numpy.nan), numpy.copy(Y2), numpy.select([_x4,True], [-_x2 - _x5,-_x5], default=numpy.nan)])
 
 
+def _rhs__static_kinetic__hertz_damp__allowed(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
+        _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x2 = numpy.greater(X2, 0)
+        _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_k*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+
+
+def _rhs__static_kinetic__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
+        _x1 = numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan)
+        _x2 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x3 = numpy.greater(X2, 0)
+        _x4 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x3,True], [-_x1*mu_k*numpy.sign(-Vb + Y1) - _x2,-_x2], default=numpy.nan), numpy.copy(Y2), numpy.select([_x3,True], [-_x1 - _x4,-_x4], default=numpy.nan)])
+
+
+def _rhs__static_kinetic__kelvin_voigt__allowed(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x2 = numpy.greater(X2, 0)
+        _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_k*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+
+
+def _rhs__static_kinetic__kelvin_voigt__clipped(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        _x1 = numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan)
+        _x2 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x3 = numpy.greater(X2, 0)
+        _x4 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x3,True], [-_x1*mu_k*numpy.sign(-Vb + Y1) - _x2,-_x2], default=numpy.nan), numpy.copy(Y2), numpy.select([_x3,True], [-_x1 - _x4,-_x4], default=numpy.nan)])
+
+
+def _rhs__static_kinetic__hunt_crossley__allowed(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**n_h
+        _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x2 = numpy.greater(X2, 0)
+        _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_k*numpy.sign(-Vb + Y1) - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+
+
+def _rhs__static_kinetic__hunt_crossley__clipped(_shape, t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**n_h
+        _x1 = numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan)
+        _x2 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x3 = numpy.greater(X2, 0)
+        _x4 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x3,True], [-_x1*mu_k*numpy.sign(-Vb + Y1) - _x2,-_x2], default=numpy.nan), numpy.copy(Y2), numpy.select([_x3,True], [-_x1 - _x4,-_x4], default=numpy.nan)])
+
+
 _RHS = {
     ('coulomb', 'hertz_damp', 'allowed'): _support.Variant(_rhs__coulomb__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
     ('coulomb', 'hertz_damp', 'clipped'): _support.Variant(_rhs__coulomb__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
@@ -260,6 +319,12 @@ _RHS = {
     ('stribeck', 'kelvin_voigt', 'clipped'): _support.Variant(_rhs__stribeck__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'allowed'): _support.Variant(_rhs__stribeck__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'clipped'): _support.Variant(_rhs__stribeck__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'allowed'): _support.Variant(_rhs__static_kinetic__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'clipped'): _support.Variant(_rhs__static_kinetic__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'allowed'): _support.Variant(_rhs__static_kinetic__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'clipped'): _support.Variant(_rhs__static_kinetic__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'allowed'): _support.Variant(_rhs__static_kinetic__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'clipped'): _support.Variant(_rhs__static_kinetic__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
 }
 
 
@@ -324,18 +389,20 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, friction='coulomb', contact='hertz_dam
     phase_n : array_like
         normal excitation phase [rad], real, default 0.0.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -420,18 +487,20 @@ def bind_rhs_branch(*, friction='coulomb', contact='hertz_damp', tension='allowe
     phase_n : float
         normal excitation phase [rad], real, default 0.0.
     mu_k : float
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : float
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : float
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -732,6 +801,138 @@ def _rhs_branch__stribeck__hunt_crossley__clipped__scalar(t, X1, Y1, X2, Y2, sgn
     return (Y1, ((-_x1*sgn*(mu_k + (-mu_k + mu_s)*math.exp(-sgn*(-Vb + Y1)/v_s)) - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4)),)
 
 
+def _rhs_branch__static_kinetic__hertz_damp__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
+        _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x2 = numpy.greater(X2, 0)
+        _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_k*sgn - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+
+
+def _rhs_branch__static_kinetic__hertz_damp__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    """Scalar kernel of `rhs_branch` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (X2 > 0):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
+        return (Y1, Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_k*sgn, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x0 + g,)
+    else:
+        return (Y1, Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g,)
+
+
+def _rhs_branch__static_kinetic__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
+        _x1 = numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan)
+        _x2 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x3 = numpy.greater(X2, 0)
+        _x4 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x3,True], [-_x1*mu_k*sgn - _x2,-_x2], default=numpy.nan), numpy.copy(Y2), numpy.select([_x3,True], [-_x1 - _x4,-_x4], default=numpy.nan)])
+
+
+def _rhs_branch__static_kinetic__hertz_damp__clipped__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    """Scalar kernel of `rhs_branch` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
+    return (Y1, ((-_x1*mu_k*sgn - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4)),)
+
+
+def _rhs_branch__static_kinetic__kelvin_voigt__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x2 = numpy.greater(X2, 0)
+        _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_k*sgn - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+
+
+def _rhs_branch__static_kinetic__kelvin_voigt__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    """Scalar kernel of `rhs_branch` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (X2 > 0):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+        return (Y1, Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_k*sgn, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x0 + g,)
+    else:
+        return (Y1, Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g,)
+
+
+def _rhs_branch__static_kinetic__kelvin_voigt__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        _x1 = numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan)
+        _x2 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x3 = numpy.greater(X2, 0)
+        _x4 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x3,True], [-_x1*mu_k*sgn - _x2,-_x2], default=numpy.nan), numpy.copy(Y2), numpy.select([_x3,True], [-_x1 - _x4,-_x4], default=numpy.nan)])
+
+
+def _rhs_branch__static_kinetic__kelvin_voigt__clipped__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    """Scalar kernel of `rhs_branch` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
+    return (Y1, ((-_x1*mu_k*sgn - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4)),)
+
+
+def _rhs_branch__static_kinetic__hunt_crossley__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**n_h
+        _x1 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x2 = numpy.greater(X2, 0)
+        _x3 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x2,True], [-_x0*mu_k*sgn - _x1,-_x1], default=numpy.nan), numpy.copy(Y2), numpy.select([_x2,True], [-_x0 - _x3,-_x3], default=numpy.nan)])
+
+
+def _rhs_branch__static_kinetic__hunt_crossley__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    """Scalar kernel of `rhs_branch` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (X2 > 0):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+        return (Y1, Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_k*sgn, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x0 + g,)
+    else:
+        return (Y1, Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g,)
+
+
+def _rhs_branch__static_kinetic__hunt_crossley__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**n_h
+        _x1 = numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan)
+        _x2 = -Omega_t**2*alpha_t*numpy.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+        _x3 = numpy.greater(X2, 0)
+        _x4 = Omega_n**2*alpha_n*numpy.sin(Omega_n*t + phase_n) - g
+        return _support.vector(_shape, [numpy.copy(Y1), numpy.select([_x3,True], [-_x1*mu_k*sgn - _x2,-_x2], default=numpy.nan), numpy.copy(Y2), numpy.select([_x3,True], [-_x1 - _x4,-_x4], default=numpy.nan)])
+
+
+def _rhs_branch__static_kinetic__hunt_crossley__clipped__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    """Scalar kernel of `rhs_branch` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - g
+    return (Y1, ((-_x1*mu_k*sgn - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4)),)
+
+
 _RHS_BRANCH = {
     ('coulomb', 'hertz_damp', 'allowed'): _support.Variant(_rhs_branch__coulomb__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _rhs_branch__coulomb__hertz_damp__allowed__scalar, None),
     ('coulomb', 'hertz_damp', 'clipped'): _support.Variant(_rhs_branch__coulomb__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _rhs_branch__coulomb__hertz_damp__clipped__scalar, None),
@@ -745,6 +946,12 @@ _RHS_BRANCH = {
     ('stribeck', 'kelvin_voigt', 'clipped'): _support.Variant(_rhs_branch__stribeck__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', ), _rhs_branch__stribeck__kelvin_voigt__clipped__scalar, None),
     ('stribeck', 'hunt_crossley', 'allowed'): _support.Variant(_rhs_branch__stribeck__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', ), _rhs_branch__stribeck__hunt_crossley__allowed__scalar, None),
     ('stribeck', 'hunt_crossley', 'clipped'): _support.Variant(_rhs_branch__stribeck__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', ), _rhs_branch__stribeck__hunt_crossley__clipped__scalar, None),
+    ('static_kinetic', 'hertz_damp', 'allowed'): _support.Variant(_rhs_branch__static_kinetic__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', ), _rhs_branch__static_kinetic__hertz_damp__allowed__scalar, None),
+    ('static_kinetic', 'hertz_damp', 'clipped'): _support.Variant(_rhs_branch__static_kinetic__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', ), _rhs_branch__static_kinetic__hertz_damp__clipped__scalar, None),
+    ('static_kinetic', 'kelvin_voigt', 'allowed'): _support.Variant(_rhs_branch__static_kinetic__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', ), _rhs_branch__static_kinetic__kelvin_voigt__allowed__scalar, None),
+    ('static_kinetic', 'kelvin_voigt', 'clipped'): _support.Variant(_rhs_branch__static_kinetic__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', ), _rhs_branch__static_kinetic__kelvin_voigt__clipped__scalar, None),
+    ('static_kinetic', 'hunt_crossley', 'allowed'): _support.Variant(_rhs_branch__static_kinetic__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', ), _rhs_branch__static_kinetic__hunt_crossley__allowed__scalar, None),
+    ('static_kinetic', 'hunt_crossley', 'clipped'): _support.Variant(_rhs_branch__static_kinetic__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', ), _rhs_branch__static_kinetic__hunt_crossley__clipped__scalar, None),
 }
 
 
@@ -784,18 +991,20 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, friction='coulomb', contact='hert
     Vb : array_like
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -1067,6 +1276,108 @@ def _jacobian_branch__stribeck__hunt_crossley__clipped(_shape, t, X1, Y1, X2, Y2
             ])
 
 
+def _jacobian_branch__static_kinetic__hertz_damp__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = functools.reduce(numpy.maximum, [0, X2])
+        _x1 = 2*beta2*omega2
+        _x2 = (3/2)*numpy.sqrt(_x0)*(Y2*_x1 + omega2**2)
+        _x3 = mu_k*sgn
+        _x4 = numpy.greater(X2, 0)
+        _x5 = _x0**(3/2)*_x1
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, numpy.select([_x4,True], [-_x2*_x3,0], default=numpy.nan), numpy.select([_x4,True], [-_x3*_x5,0], default=numpy.nan)],
+                [0, 0, 0, 1],
+                [0, 0, numpy.select([_x4,True], [-_x2,0], default=numpy.nan), numpy.select([_x4,True], [-_x5,0], default=numpy.nan)],
+            ])
+
+
+def _jacobian_branch__static_kinetic__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = functools.reduce(numpy.maximum, [0, X2])
+        _x1 = 2*beta2*omega2
+        _x2 = Y2*_x1 + omega2**2
+        _x3 = _x0**(3/2)
+        _x4 = numpy.greater(_x2*_x3, 0)
+        _x5 = numpy.select([_x4,True], [(3/2)*numpy.sqrt(_x0)*_x2,0], default=numpy.nan)
+        _x6 = mu_k*sgn
+        _x7 = numpy.greater(X2, 0)
+        _x8 = numpy.select([_x4,True], [_x1*_x3,0], default=numpy.nan)
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, numpy.select([_x7,True], [-_x5*_x6,0], default=numpy.nan), numpy.select([_x7,True], [-_x6*_x8,0], default=numpy.nan)],
+                [0, 0, 0, 1],
+                [0, 0, numpy.select([_x7,True], [-_x5,0], default=numpy.nan), numpy.select([_x7,True], [-_x8,0], default=numpy.nan)],
+            ])
+
+
+def _jacobian_branch__static_kinetic__kelvin_voigt__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2
+        _x1 = mu_k*sgn
+        _x2 = numpy.greater(X2, 0)
+        _x3 = 2*beta2*omega2
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, numpy.select([_x2,True], [-_x0*_x1,0], default=numpy.nan), numpy.select([_x2,True], [-_x1*_x3,0], default=numpy.nan)],
+                [0, 0, 0, 1],
+                [0, 0, numpy.select([_x2,True], [-_x0,0], default=numpy.nan), numpy.select([_x2,True], [-_x3,0], default=numpy.nan)],
+            ])
+
+
+def _jacobian_branch__static_kinetic__kelvin_voigt__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2
+        _x1 = 2*beta2*omega2
+        _x2 = numpy.greater(Y2*_x1 + _x0*functools.reduce(numpy.maximum, [0, X2]), 0)
+        _x3 = numpy.select([_x2,True], [_x0,0], default=numpy.nan)
+        _x4 = mu_k*sgn
+        _x5 = numpy.greater(X2, 0)
+        _x6 = numpy.select([_x2,True], [_x1,0], default=numpy.nan)
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, numpy.select([_x5,True], [-_x3*_x4,0], default=numpy.nan), numpy.select([_x5,True], [-_x4*_x6,0], default=numpy.nan)],
+                [0, 0, 0, 1],
+                [0, 0, numpy.select([_x5,True], [-_x3,0], default=numpy.nan), numpy.select([_x5,True], [-_x6,0], default=numpy.nan)],
+            ])
+
+
+def _jacobian_branch__static_kinetic__hunt_crossley__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = functools.reduce(numpy.maximum, [0, X2])
+        _x1 = _x0**n_h
+        _x2 = 2*beta2*omega2
+        _x3 = _x1*n_h*(Y2*_x2 + omega2**2)/_x0
+        _x4 = mu_k*sgn
+        _x5 = numpy.greater(X2, 0)
+        _x6 = _x1*_x2
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, numpy.select([_x5,True], [-_x3*_x4,0], default=numpy.nan), numpy.select([_x5,True], [-_x4*_x6,0], default=numpy.nan)],
+                [0, 0, 0, 1],
+                [0, 0, numpy.select([_x5,True], [-_x3,0], default=numpy.nan), numpy.select([_x5,True], [-_x6,0], default=numpy.nan)],
+            ])
+
+
+def _jacobian_branch__static_kinetic__hunt_crossley__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = functools.reduce(numpy.maximum, [0, X2])
+        _x1 = _x0**n_h
+        _x2 = 2*beta2*omega2
+        _x3 = _x1*(Y2*_x2 + omega2**2)
+        _x4 = numpy.greater(_x3, 0)
+        _x5 = numpy.select([_x4,True], [_x3*n_h/_x0,0], default=numpy.nan)
+        _x6 = mu_k*sgn
+        _x7 = numpy.greater(X2, 0)
+        _x8 = numpy.select([_x4,True], [_x1*_x2,0], default=numpy.nan)
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, numpy.select([_x7,True], [-_x5*_x6,0], default=numpy.nan), numpy.select([_x7,True], [-_x6*_x8,0], default=numpy.nan)],
+                [0, 0, 0, 1],
+                [0, 0, numpy.select([_x7,True], [-_x5,0], default=numpy.nan), numpy.select([_x7,True], [-_x8,0], default=numpy.nan)],
+            ])
+
+
 _JACOBIAN_BRANCH = {
     ('coulomb', 'hertz_damp', 'allowed'): _support.Variant(_jacobian_branch__coulomb__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
     ('coulomb', 'hertz_damp', 'clipped'): _support.Variant(_jacobian_branch__coulomb__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
@@ -1080,6 +1391,12 @@ _JACOBIAN_BRANCH = {
     ('stribeck', 'kelvin_voigt', 'clipped'): _support.Variant(_jacobian_branch__stribeck__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'allowed'): _support.Variant(_jacobian_branch__stribeck__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'clipped'): _support.Variant(_jacobian_branch__stribeck__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'allowed'): _support.Variant(_jacobian_branch__static_kinetic__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'clipped'): _support.Variant(_jacobian_branch__static_kinetic__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'allowed'): _support.Variant(_jacobian_branch__static_kinetic__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'clipped'): _support.Variant(_jacobian_branch__static_kinetic__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'allowed'): _support.Variant(_jacobian_branch__static_kinetic__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'clipped'): _support.Variant(_jacobian_branch__static_kinetic__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', 'n_h', )),
 }
 
 
@@ -1329,18 +1646,20 @@ def friction_force(Y1, X2, Y2, sgn, *, friction='coulomb', contact='hertz_damp',
     Vb : array_like
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -1443,6 +1762,39 @@ def _friction_force__stribeck__hunt_crossley__clipped(_shape, Y1, X2, Y2, sgn, b
         return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [-sgn*(mu_k + (-mu_k + mu_s)*numpy.exp(-sgn*(-Vb + Y1)/v_s))*numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan),0], default=numpy.nan))
 
 
+def _friction_force__static_kinetic__hertz_damp__allowed(_shape, Y1, X2, Y2, sgn, beta2, omega2, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [-mu_k*sgn*(2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2]))),0], default=numpy.nan))
+
+
+def _friction_force__static_kinetic__hertz_damp__clipped(_shape, Y1, X2, Y2, sgn, beta2, omega2, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*(functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [-mu_k*sgn*numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan),0], default=numpy.nan))
+
+
+def _friction_force__static_kinetic__kelvin_voigt__allowed(_shape, Y1, X2, Y2, sgn, beta2, omega2, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [-mu_k*sgn*(2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])),0], default=numpy.nan))
+
+
+def _friction_force__static_kinetic__kelvin_voigt__clipped(_shape, Y1, X2, Y2, sgn, beta2, omega2, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [-mu_k*sgn*numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan),0], default=numpy.nan))
+
+
+def _friction_force__static_kinetic__hunt_crossley__allowed(_shape, Y1, X2, Y2, sgn, beta2, omega2, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [-mu_k*sgn*(2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**n_h,0], default=numpy.nan))
+
+
+def _friction_force__static_kinetic__hunt_crossley__clipped(_shape, Y1, X2, Y2, sgn, beta2, omega2, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*functools.reduce(numpy.maximum, [0, X2])**n_h
+        return _support.full(_shape, numpy.select([numpy.greater(X2, 0),True], [-mu_k*sgn*numpy.select([numpy.greater(_x0, 0),True], [_x0,0], default=numpy.nan),0], default=numpy.nan))
+
+
 _FRICTION_FORCE = {
     ('coulomb', 'hertz_damp', 'allowed'): _support.Variant(_friction_force__coulomb__hertz_damp__allowed, ('beta2', 'omega2', 'mu_s', )),
     ('coulomb', 'hertz_damp', 'clipped'): _support.Variant(_friction_force__coulomb__hertz_damp__clipped, ('beta2', 'omega2', 'mu_s', )),
@@ -1456,6 +1808,12 @@ _FRICTION_FORCE = {
     ('stribeck', 'kelvin_voigt', 'clipped'): _support.Variant(_friction_force__stribeck__kelvin_voigt__clipped, ('beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'allowed'): _support.Variant(_friction_force__stribeck__hunt_crossley__allowed, ('beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'clipped'): _support.Variant(_friction_force__stribeck__hunt_crossley__clipped, ('beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'allowed'): _support.Variant(_friction_force__static_kinetic__hertz_damp__allowed, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'clipped'): _support.Variant(_friction_force__static_kinetic__hertz_damp__clipped, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'allowed'): _support.Variant(_friction_force__static_kinetic__kelvin_voigt__allowed, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'clipped'): _support.Variant(_friction_force__static_kinetic__kelvin_voigt__clipped, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'allowed'): _support.Variant(_friction_force__static_kinetic__hunt_crossley__allowed, ('beta2', 'omega2', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'clipped'): _support.Variant(_friction_force__static_kinetic__hunt_crossley__clipped, ('beta2', 'omega2', 'mu_k', 'n_h', )),
 }
 
 
@@ -1992,8 +2350,9 @@ def free_acceleration(t, X1, Y1, **params):
 
     Implements Eq. (4), first row of the paper.
 
-    f_t - 2 beta1 omega1 X1' - omega1^2 X1; sticking holds while |a_free| <= mu(0) F_n
-    (mu_s for both shipped friction laws).
+    f_t - 2 beta1 omega1 X1' - omega1^2 X1; sticking holds while |a_free| <= mu_st F_n,
+    mu_st the law's static bound (mu_s for every shipped friction law; static_kinetic
+    slips at mu_k below it).
 
     Parameters
     ----------
@@ -2474,18 +2833,20 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, friction='coulomb', contact='hertz_
     phase_n : array_like
         normal excitation phase [rad], real, default 0.0.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -2568,18 +2929,20 @@ def bind_power_balance(*, friction='coulomb', contact='hertz_damp', tension='all
     phase_n : float
         normal excitation phase [rad], real, default 0.0.
     mu_k : float
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : float
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : float
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -2880,6 +3243,138 @@ def _power_balance__stribeck__hunt_crossley__clipped__scalar(t, X1, Y1, X2, Y2, 
     return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x3)) if _x4 else (0)), Y1*sgn*(mu_k + (-mu_k + mu_s)*math.exp(-sgn*(-Vb + Y1)/v_s))*((_x3) if _x4 else (0)),)
 
 
+def _power_balance__static_kinetic__hertz_damp__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2
+        _x1 = (functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
+        _x2 = 2*Y2*beta2*omega2 + _x0
+        _x3 = numpy.greater(X2, 0)
+        return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x3,True], [Y2*(-_x0*_x1 + _x1*_x2),0], default=numpy.nan), Y1*mu_k*sgn*numpy.select([_x3,True], [_x1*_x2,0], default=numpy.nan))
+
+
+def _power_balance__static_kinetic__hertz_damp__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    """Scalar kernel of `power_balance` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (X2 > 0):
+        _x0 = omega2**2
+        _x1 = (max(0, X2)*math.sqrt(max(0, X2)))
+        _x2 = 2*Y2*beta2*omega2 + _x0
+        return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + Y2*(-_x0*_x1 + _x1*_x2), Y1*_x1*_x2*mu_k*sgn,)
+    else:
+        return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1, 0,)
+
+
+def _power_balance__static_kinetic__hertz_damp__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2
+        _x1 = (functools.reduce(numpy.maximum, [0, X2])*numpy.sqrt(functools.reduce(numpy.maximum, [0, X2])))
+        _x2 = _x1*(2*Y2*beta2*omega2 + _x0)
+        _x3 = numpy.select([numpy.greater(_x2, 0),True], [_x2,0], default=numpy.nan)
+        _x4 = numpy.greater(X2, 0)
+        return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x4,True], [Y2*(-_x0*_x1 + _x3),0], default=numpy.nan), Y1*mu_k*sgn*numpy.select([_x4,True], [_x3,0], default=numpy.nan))
+
+
+def _power_balance__static_kinetic__hertz_damp__clipped__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    """Scalar kernel of `power_balance` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = omega2**2
+    _x1 = (max(0, X2)*math.sqrt(max(0, X2)))
+    _x2 = _x1*(2*Y2*beta2*omega2 + _x0)
+    _x3 = ((_x2) if (_x2 > 0) else (0))
+    _x4 = (X2 > 0)
+    return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x3)) if _x4 else (0)), Y1*mu_k*sgn*((_x3) if _x4 else (0)),)
+
+
+def _power_balance__static_kinetic__kelvin_voigt__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*beta2*omega2
+        _x1 = numpy.greater(X2, 0)
+        return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x1,True], [Y2**2*_x0,0], default=numpy.nan), Y1*mu_k*sgn*numpy.select([_x1,True], [Y2*_x0 + omega2**2*functools.reduce(numpy.maximum, [0, X2]),0], default=numpy.nan))
+
+
+def _power_balance__static_kinetic__kelvin_voigt__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    """Scalar kernel of `power_balance` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (X2 > 0):
+        _x0 = 2*beta2*omega2
+        return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + Y2**2*_x0, Y1*mu_k*sgn*(Y2*_x0 + omega2**2*max(0, X2)),)
+    else:
+        return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1, 0,)
+
+
+def _power_balance__static_kinetic__kelvin_voigt__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2*functools.reduce(numpy.maximum, [0, X2])
+        _x1 = 2*Y2*beta2*omega2 + _x0
+        _x2 = numpy.select([numpy.greater(_x1, 0),True], [_x1,0], default=numpy.nan)
+        _x3 = numpy.greater(X2, 0)
+        return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x3,True], [Y2*(-_x0 + _x2),0], default=numpy.nan), Y1*mu_k*sgn*numpy.select([_x3,True], [_x2,0], default=numpy.nan))
+
+
+def _power_balance__static_kinetic__kelvin_voigt__clipped__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    """Scalar kernel of `power_balance` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = omega2**2*max(0, X2)
+    _x1 = 2*Y2*beta2*omega2 + _x0
+    _x2 = ((_x1) if (_x1 > 0) else (0))
+    _x3 = (X2 > 0)
+    return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0 + _x2)) if _x3 else (0)), Y1*mu_k*sgn*((_x2) if _x3 else (0)),)
+
+
+def _power_balance__static_kinetic__hunt_crossley__allowed(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2
+        _x1 = functools.reduce(numpy.maximum, [0, X2])**n_h
+        _x2 = 2*Y2*beta2*omega2 + _x0
+        _x3 = numpy.greater(X2, 0)
+        return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x3,True], [Y2*(-_x0*_x1 + _x1*_x2),0], default=numpy.nan), Y1*mu_k*sgn*numpy.select([_x3,True], [_x1*_x2,0], default=numpy.nan))
+
+
+def _power_balance__static_kinetic__hunt_crossley__allowed__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    """Scalar kernel of `power_balance` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (X2 > 0):
+        _x0 = omega2**2
+        _x1 = max(0, X2)**n_h
+        _x2 = 2*Y2*beta2*omega2 + _x0
+        return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + Y2*(-_x0*_x1 + _x1*_x2), Y1*_x1*_x2*mu_k*sgn,)
+    else:
+        return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1, 0,)
+
+
+def _power_balance__static_kinetic__hunt_crossley__clipped(_shape, t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = omega2**2
+        _x1 = functools.reduce(numpy.maximum, [0, X2])**n_h
+        _x2 = _x1*(2*Y2*beta2*omega2 + _x0)
+        _x3 = numpy.select([numpy.greater(_x2, 0),True], [_x2,0], default=numpy.nan)
+        _x4 = numpy.greater(X2, 0)
+        return _support.tuple_of(_shape, -Omega_n**2*Y2*alpha_n*numpy.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*numpy.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + numpy.select([_x4,True], [Y2*(-_x0*_x1 + _x3),0], default=numpy.nan), Y1*mu_k*sgn*numpy.select([_x4,True], [_x3,0], default=numpy.nan))
+
+
+def _power_balance__static_kinetic__hunt_crossley__clipped__scalar(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    """Scalar kernel of `power_balance` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    _x0 = omega2**2
+    _x1 = max(0, X2)**n_h
+    _x2 = _x1*(2*Y2*beta2*omega2 + _x0)
+    _x3 = ((_x2) if (_x2 > 0) else (0))
+    _x4 = (X2 > 0)
+    return (-Omega_n**2*Y2*alpha_n*math.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*math.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x3)) if _x4 else (0)), Y1*mu_k*sgn*((_x3) if _x4 else (0)),)
+
+
 _POWER_BALANCE = {
     ('coulomb', 'hertz_damp', 'allowed'): _support.Variant(_power_balance__coulomb__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _power_balance__coulomb__hertz_damp__allowed__scalar, None),
     ('coulomb', 'hertz_damp', 'clipped'): _support.Variant(_power_balance__coulomb__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', ), _power_balance__coulomb__hertz_damp__clipped__scalar, None),
@@ -2893,4 +3388,10 @@ _POWER_BALANCE = {
     ('stribeck', 'kelvin_voigt', 'clipped'): _support.Variant(_power_balance__stribeck__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', ), _power_balance__stribeck__kelvin_voigt__clipped__scalar, None),
     ('stribeck', 'hunt_crossley', 'allowed'): _support.Variant(_power_balance__stribeck__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', ), _power_balance__stribeck__hunt_crossley__allowed__scalar, None),
     ('stribeck', 'hunt_crossley', 'clipped'): _support.Variant(_power_balance__stribeck__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', ), _power_balance__stribeck__hunt_crossley__clipped__scalar, None),
+    ('static_kinetic', 'hertz_damp', 'allowed'): _support.Variant(_power_balance__static_kinetic__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', ), _power_balance__static_kinetic__hertz_damp__allowed__scalar, None),
+    ('static_kinetic', 'hertz_damp', 'clipped'): _support.Variant(_power_balance__static_kinetic__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', ), _power_balance__static_kinetic__hertz_damp__clipped__scalar, None),
+    ('static_kinetic', 'kelvin_voigt', 'allowed'): _support.Variant(_power_balance__static_kinetic__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', ), _power_balance__static_kinetic__kelvin_voigt__allowed__scalar, None),
+    ('static_kinetic', 'kelvin_voigt', 'clipped'): _support.Variant(_power_balance__static_kinetic__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', ), _power_balance__static_kinetic__kelvin_voigt__clipped__scalar, None),
+    ('static_kinetic', 'hunt_crossley', 'allowed'): _support.Variant(_power_balance__static_kinetic__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', ), _power_balance__static_kinetic__hunt_crossley__allowed__scalar, None),
+    ('static_kinetic', 'hunt_crossley', 'clipped'): _support.Variant(_power_balance__static_kinetic__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', ), _power_balance__static_kinetic__hunt_crossley__clipped__scalar, None),
 }

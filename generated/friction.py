@@ -36,15 +36,17 @@ def mu_bar(Vr, Vhat, mu_s, *, friction='coulomb', **params):
     mu_s : array_like
         static friction coefficient (Coulomb's of Eq. 3)
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -87,9 +89,15 @@ def _mu_bar__stribeck(_shape, Vr, Vhat, mu_s, mu_k, v_s):
         return _support.full(_shape, numpy.select([numpy.greater_equal(Vhat, abs(Vr)),True], [_x1*(_quad2 + _quad3) + mu_s*(-2*_x0*numpy.arccos(Vr/Vhat) + 1),_x1*(_quad0 + _quad1) + mu_s*numpy.sign(Vr)], default=numpy.nan))
 
 
+def _mu_bar__static_kinetic(_shape, Vr, Vhat, mu_s, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, numpy.select([numpy.greater_equal(Vhat, abs(Vr)),True], [mu_k*(-2*numpy.arccos(Vr/Vhat)/numpy.pi + 1),mu_k*numpy.sign(Vr)], default=numpy.nan))
+
+
 _MU_BAR = {
     ('coulomb',): _support.Variant(_mu_bar__coulomb, ()),
     ('stribeck',): _support.Variant(_mu_bar__stribeck, ('mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_mu_bar__static_kinetic, ('mu_k', )),
 }
 
 
@@ -111,15 +119,17 @@ def mu_bar0(Vb, Vhat, mu_s, *, friction='coulomb', **params):
     mu_s : array_like
         static friction coefficient (Coulomb's of Eq. 3)
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -162,9 +172,15 @@ def _mu_bar0__stribeck(_shape, Vb, Vhat, mu_s, mu_k, v_s):
         return _support.full(_shape, numpy.select([numpy.less_equal(Vb, Vhat),True], [(1/2)*_x0*(_quad2 + _quad3) + mu_s*(-2*_x0*numpy.arccos(-Vb/Vhat) + 1),(1/2)*_x0*(_quad0 + _quad1) - mu_s*numpy.sign(Vb)], default=numpy.nan))
 
 
+def _mu_bar0__static_kinetic(_shape, Vb, Vhat, mu_s, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan))
+
+
 _MU_BAR0 = {
     ('coulomb',): _support.Variant(_mu_bar0__coulomb, ()),
     ('stribeck',): _support.Variant(_mu_bar0__stribeck, ('mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_mu_bar0__static_kinetic, ('mu_k', )),
 }
 
 
@@ -187,15 +203,17 @@ def mu_bar_slope(Vb, Vhat, mu_s, *, friction='coulomb', **params):
     mu_s : array_like
         static friction coefficient (Coulomb's of Eq. 3)
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -241,9 +259,15 @@ def _mu_bar_slope__stribeck(_shape, Vb, Vhat, mu_s, mu_k, v_s):
         return _support.full(_shape, numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_s, 0)),True], [2*_x0*mu_s/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)) + _x1*(_quad0 + _quad1),numpy.inf,_x1*(_quad2 + _quad3)], default=numpy.nan))
 
 
+def _mu_bar_slope__static_kinetic(_shape, Vb, Vhat, mu_s, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.full(_shape, numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan))
+
+
 _MU_BAR_SLOPE = {
     ('coulomb',): _support.Variant(_mu_bar_slope__coulomb, ()),
     ('stribeck',): _support.Variant(_mu_bar_slope__stribeck, ('mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_mu_bar_slope__static_kinetic, ('mu_k', )),
 }
 
 
@@ -296,18 +320,20 @@ def vhat(*, friction='coulomb', contact='hertz_damp', model='tangential', **para
     phase_n : array_like
         normal excitation phase [rad], real, default 0.0.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -492,6 +518,79 @@ def _vhat__stribeck__hunt_crossley__coupled(_shape, beta1, omega1, beta2, omega2
         return _support.full(_shape, numpy.select([numpy.equal(Omega_n, Omega_t),True], [Omega_t*abs(_x15*(-_x0*_x1*alpha_t + _x0*_x11*_x12 + _x11*_x2*_x4)),alpha_t*abs(_x1*_x15*_x2) + abs(_x17*(Omega_n**3*_x18*_x4 + _x12*_x16*_x18)/(Omega_n*_x14 - (Omega_n + _x13)*(Omega_n + omega1)))], default=numpy.nan))
 
 
+def _vhat__static_kinetic__hertz_damp__coupled(_shape, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        _x0 = 1j*Omega_t
+        _x1 = 2*_x0
+        _x2 = beta1*omega1
+        _x3 = -omega1
+        _x4 = (_x1*_x2 - (Omega_t + _x3)*(Omega_t + omega1))**(-1.0)
+        _x5 = Omega_t**2
+        _x6 = numpy.exp(1j*phase_t)
+        _x7 = beta2*g/omega2
+        _x8 = _root0*(omega2*_root1)
+        _x9 = -3*_x8
+        _x10 = alpha_n*mu_k*numpy.exp(1j*phase_n)
+        _x11 = _x10/(_x1*_x7 - _x5 - 1/2*_x9)
+        _x12 = (3/2)*_x8
+        _x13 = 1j*Omega_t**3
+        _x14 = 2*_x7
+        _x15 = 1j*Omega_n
+        _x16 = 2*_x15
+        _x17 = Omega_n**2
+        _x18 = _x10/(_x16*_x7 - _x17 - 1/2*_x9)
+        return _support.full(_shape, numpy.select([numpy.equal(Omega_n, Omega_t),True], [abs(_x0*_x4*(_x11*_x12*_x5 + _x11*_x13*_x14 - _x5*_x6*alpha_t)),alpha_t*abs(_x13*_x4*_x6) + abs(_x15*(1j*Omega_n**3*_x14*_x18 + _x12*_x17*_x18)/(_x16*_x2 - (Omega_n + _x3)*(Omega_n + omega1)))], default=numpy.nan))
+
+
+def _vhat__static_kinetic__kelvin_voigt__coupled(_shape, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 1j*Omega_t
+        _x1 = 2*_x0
+        _x2 = beta1*omega1
+        _x3 = -omega1
+        _x4 = (_x1*_x2 - (Omega_t + _x3)*(Omega_t + omega1))**(-1.0)
+        _x5 = Omega_t**2
+        _x6 = numpy.exp(1j*phase_t)
+        _x7 = beta2*omega2
+        _x8 = -omega2
+        _x9 = (_x1*_x7 - (Omega_t + _x8)*(Omega_t + omega2))**(-1.0)
+        _x10 = alpha_n*mu_k*numpy.exp(1j*phase_n)
+        _x11 = _x10*omega2**2
+        _x12 = 1j*Omega_t**3
+        _x13 = 2*_x10*_x7
+        _x14 = 1j*Omega_n
+        _x15 = 2*_x14
+        _x16 = (_x15*_x7 - (Omega_n + _x8)*(Omega_n + omega2))**(-1.0)
+        return _support.full(_shape, numpy.select([numpy.equal(Omega_n, Omega_t),True], [abs(_x0*_x4*(_x11*_x5*_x9 + _x12*_x13*_x9 - _x5*_x6*alpha_t)),alpha_t*abs(_x12*_x4*_x6) + abs(_x14*(1j*Omega_n**3*_x13*_x16 + Omega_n**2*_x11*_x16)/(_x15*_x2 - (Omega_n + _x3)*(Omega_n + omega1)))], default=numpy.nan))
+
+
+def _vhat__static_kinetic__hunt_crossley__coupled(_shape, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 1j*Omega_t
+        _x1 = 2*_x0
+        _x2 = beta1*omega1
+        _x3 = -omega1
+        _x4 = (_x1*_x2 - (Omega_t + _x3)*(Omega_t + omega1))**(-1.0)
+        _x5 = Omega_t**2
+        _x6 = numpy.exp(1j*phase_t)
+        _x7 = 1j*Omega_t**3
+        _x8 = beta2*g/omega2
+        _x9 = n_h**(-1.0)
+        _x10 = n_h*omega2**(2*_x9)
+        _x11 = _x10*g*g**(-_x9)
+        _x12 = alpha_n*mu_k*numpy.exp(1j*phase_n)
+        _x13 = _x12/(_x1*_x8 + _x11 - _x5)
+        _x14 = 2*_x8
+        _x15 = _x10*g**(_x9*(n_h - 1))
+        _x16 = 1j*Omega_n
+        _x17 = 2*_x16
+        _x18 = Omega_n**2
+        _x19 = _x12/(_x11 + _x17*_x8 - _x18)
+        return _support.full(_shape, numpy.select([numpy.equal(Omega_n, Omega_t),True], [abs(_x0*_x4*(_x13*_x14*_x7 + _x13*_x15*_x5 - _x5*_x6*alpha_t)),alpha_t*abs(_x4*_x6*_x7) + abs(_x16*(1j*Omega_n**3*_x14*_x19 + _x15*_x18*_x19)/(_x17*_x2 - (Omega_n + _x3)*(Omega_n + omega1)))], default=numpy.nan))
+
+
 _VHAT = {
     ('coulomb', 'hertz_damp', 'tangential'): _support.Variant(_vhat__coulomb__hertz_damp__tangential, ('beta1', 'omega1', 'alpha_t', 'Omega_t', )),
     ('coulomb', 'hertz_damp', 'coupled'): _support.Variant(_vhat__coulomb__hertz_damp__coupled, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
@@ -505,4 +604,10 @@ _VHAT = {
     ('stribeck', 'kelvin_voigt', 'coupled'): _support.Variant(_vhat__stribeck__kelvin_voigt__coupled, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'tangential'): _support.Variant(_vhat__stribeck__hertz_damp__tangential, ('beta1', 'omega1', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'coupled'): _support.Variant(_vhat__stribeck__hunt_crossley__coupled, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'tangential'): _support.Variant(_vhat__coulomb__hertz_damp__tangential, ('beta1', 'omega1', 'alpha_t', 'Omega_t', )),
+    ('static_kinetic', 'hertz_damp', 'coupled'): _support.Variant(_vhat__static_kinetic__hertz_damp__coupled, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'tangential'): _support.Variant(_vhat__coulomb__hertz_damp__tangential, ('beta1', 'omega1', 'alpha_t', 'Omega_t', )),
+    ('static_kinetic', 'kelvin_voigt', 'coupled'): _support.Variant(_vhat__static_kinetic__kelvin_voigt__coupled, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'tangential'): _support.Variant(_vhat__coulomb__hertz_damp__tangential, ('beta1', 'omega1', 'alpha_t', 'Omega_t', )),
+    ('static_kinetic', 'hunt_crossley', 'coupled'): _support.Variant(_vhat__static_kinetic__hunt_crossley__coupled, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
 }

@@ -447,10 +447,15 @@ def tangential_state(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, *
     mu_s : array_like
         static friction coefficient: Coulomb's of Eq. (3), the bound of stick [1],
         nonnegative.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    mu_k : array_like
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -507,10 +512,15 @@ def bind_tangential_state(*, friction='coulomb', backend=None, **params):
     mu_s : float
         static friction coefficient: Coulomb's of Eq. (3), the bound of stick [1],
         nonnegative.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    mu_k : float
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     backend : {"python", "numba"}, optional
         The kernel as plain Python, or compiled by ``numba.njit`` (on first call;
         cached on disk). Default: numba if it is installed, else python.
@@ -624,7 +634,90 @@ def _tangential_state__coulomb__scalar(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf
         return (-_x0*z + _x1*_x4 + _x5*(_x3 + _x6) + zf, -_x0*v + _x1*(_x3 - _x6) - _x4*_x5*omega1**2 + vf,)
 
 
+def _tangential_state__static_kinetic(_shape, tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, beta1, omega1, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = mu_k*sgn
+        _x1 = X1_0 + _x0*z_0 - zf_0
+        _x2 = omega1*tau
+        _x3 = _x2*beta1
+        _x4 = numpy.exp(-_x3)
+        _x5 = numpy.sqrt(beta1 + 1)
+        _x6 = beta1 - 1
+        _x7 = numpy.sqrt(-_x6)
+        _x8 = _x2*_x5*_x7
+        _x9 = numpy.cos(_x8)
+        _x10 = _x5**(-1.0)
+        _x11 = _x10*beta1
+        _x12 = _x4*numpy.sin(_x8)/_x7
+        _x13 = _x11*_x12
+        _x14 = _x10*_x12
+        _x15 = Y1_0 + _x0*v_0 - vf_0
+        _x16 = _x15/omega1
+        _x17 = _x0*z
+        _x18 = -_x17 + zf
+        _x19 = numpy.less(beta1, 1)
+        _x20 = numpy.sqrt(_x6)
+        _x21 = _x20*_x5
+        _x22 = numpy.exp(-_x2/(_x21 + beta1))
+        _x23 = (1/2)*numpy.expm1(-2*_x2*_x21)
+        _x24 = _x22*_x23/_x20
+        _x25 = _x10*_x24
+        _x26 = _x23 + 1
+        _x27 = _x11*_x24
+        _x28 = numpy.greater(beta1, 1)
+        _x29 = _x3*_x4
+        _x30 = _x4*tau
+        _x31 = _x1*omega1
+        _x32 = _x0*v
+        _x33 = _x32 - vf
+        return _support.tuple_of(_shape, numpy.select([_x19,_x28,True], [_x1*(_x13 + _x4*_x9) + _x14*_x16 + _x18,_x1*(_x22*_x26 - _x27) - _x16*_x25 - _x17 + zf,_x1*(_x29 + _x4) + _x15*_x30 + _x18], default=numpy.nan), numpy.select([_x19,_x28,True], [-_x14*_x31 + _x15*(-_x13 + _x4*_x9) - _x33,_x15*(_x22*_x26 + _x27) + _x25*_x31 - _x32 + vf,-_x1*_x30*omega1**2 + _x15*(-_x29 + _x4) - _x33], default=numpy.nan))
+
+
+def _tangential_state__static_kinetic__scalar(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, beta1, omega1, mu_k):
+    """Scalar kernel of `tangential_state` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (beta1 < 1):
+        _x0 = mu_k*sgn
+        _x1 = Y1_0 + _x0*v_0 - vf_0
+        _x2 = omega1*tau
+        _x3 = math.exp(-_x2*beta1)
+        _x4 = math.sqrt(beta1 + 1)
+        _x5 = math.sqrt(1 - beta1)
+        _x6 = _x2*_x4*_x5
+        _x7 = _x3*math.sin(_x6)/(_x4*_x5)
+        _x8 = X1_0 + _x0*z_0 - zf_0
+        _x9 = math.cos(_x6)
+        _x10 = _x7*beta1
+        return (-_x0*z + _x1*_x7/omega1 + _x8*(_x10 + _x3*_x9) + zf, -_x0*v + _x1*(-_x10 + _x3*_x9) - _x7*_x8*omega1 + vf,)
+    elif (beta1 > 1):
+        _x0 = mu_k*sgn
+        _x1 = Y1_0 + _x0*v_0 - vf_0
+        _x2 = math.sqrt(beta1 - 1)
+        _x3 = math.sqrt(beta1 + 1)
+        _x4 = _x2*_x3
+        _x5 = omega1*tau
+        _x6 = math.exp(-_x5/(_x4 + beta1))
+        _x7 = (1/2)*math.expm1(-2*_x4*_x5)
+        _x8 = _x6*_x7/(_x2*_x3)
+        _x9 = X1_0 + _x0*z_0 - zf_0
+        _x10 = _x7 + 1
+        _x11 = _x8*beta1
+        return (-_x0*z - _x1*_x8/omega1 + _x9*(_x10*_x6 - _x11) + zf, -_x0*v + _x1*(_x10*_x6 + _x11) + _x8*_x9*omega1 + vf,)
+    else:
+        _x0 = mu_k*sgn
+        _x1 = Y1_0 + _x0*v_0 - vf_0
+        _x2 = beta1*omega1*tau
+        _x3 = math.exp(-_x2)
+        _x4 = _x3*tau
+        _x5 = X1_0 + _x0*z_0 - zf_0
+        _x6 = _x2*_x3
+        return (-_x0*z + _x1*_x4 + _x5*(_x3 + _x6) + zf, -_x0*v + _x1*(_x3 - _x6) - _x4*_x5*omega1**2 + vf,)
+
+
 _TANGENTIAL_STATE = {
     ('coulomb',): _support.Variant(_tangential_state__coulomb, ('beta1', 'omega1', 'mu_s', ), _tangential_state__coulomb__scalar, None),
     ('stribeck',): _support.Refused("friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' through Vr = X1' - Vb: the tangential motion of a slip mode is no superposition"),
+    ('static_kinetic',): _support.Variant(_tangential_state__static_kinetic, ('beta1', 'omega1', 'mu_k', ), _tangential_state__static_kinetic__scalar, None),
 }

@@ -2,8 +2,9 @@
 # DO NOT EDIT: change the derivation in derive/ and regenerate.
 """The parameter table and the model options (derive/parameters.py, derive/laws.py).
 
-``PARAMETERS``: one dict per parameter (``law``: the ``(option, choice)`` whose
-law owns it, or None); ``BASE``: the paper's base set (Fig. 2, with ``Vb = 4`` of
+``PARAMETERS``: one dict per parameter (``law``: the ``(option, choice)`` of the
+first law that lists it, or None; ``LAW_PARAMETERS`` has every law that shares
+it); ``BASE``: the paper's base set (Fig. 2, with ``Vb = 4`` of
 Fig. 3) and every law's base values, so that ``**BASE`` serves every law;
 ``KNOWN``: every accepted keyword; ``DEFAULT_FROM``: the parameter a
 per-direction one defaults to; ``DEFAULTS``: the values of the optional
@@ -15,6 +16,10 @@ ready for ``typing.Literal[...]``), ``OPTION_DEFAULTS``, ``OPTION_DOCS`` (option
 choice -> one line), ``LAW_PARAMETERS`` ((option, choice) -> the law's own
 parameters) and ``LAW_UNITS`` ((option, choice) -> the units the law gives to
 parameters; ``PARAMETERS`` has those of the default contact law).
+``STATIC_BOUNDS``: friction law -> ``(static bound, slip coefficient at rest)``
+of the laws that bound stick by a static coefficient of their own
+(derive/laws.py, ``FrictionLaw.static``); ``static_shortfall`` how far the slip
+coefficient at rest exceeds that bound for given parameters.
 
 ``DOMAIN_RULES``: each domain as (lower bound, bound excluded, the text of a
 failure); ``within(domain, x)`` applies it (NaN is never within).
@@ -72,7 +77,7 @@ PARAMETERS = (
          description='velocity amplitude in the effective friction, Eq. (23)', default_from=None,
          law=None),
     dict(name='mu_k', unit='1', base=0.25, domain='nonnegative',
-         description="kinetic friction coefficient, the Stribeck law's limit at high |Vr|", default_from=None,
+         description='kinetic friction coefficient: mu while slipping (static_kinetic), the limit at high |Vr| (stribeck)', default_from=None,
          law=('friction', 'stribeck')),
     dict(name='v_s', unit='m/s', base=1.0, domain='positive',
          description='Stribeck velocity: the speed over which mu falls from mu_s towards mu_k', default_from=None,
@@ -91,13 +96,15 @@ DEFAULT_FROM = {p['name']: p['default_from'] for p in PARAMETERS
                 if p['default_from'] is not None}
 DEFAULTS = {p['name']: p['base'] for p in PARAMETERS if p['name'].startswith('phase')}
 
-FRICTION_LAWS = ('coulomb', 'stribeck')
+FRICTION_LAWS = ('coulomb', 'stribeck', 'static_kinetic')
 CONTACT_LAWS = ('hertz_damp', 'kelvin_voigt', 'hunt_crossley')
 TENSION_LAWS = ('allowed', 'clipped')
 OPTIONS = {'friction': FRICTION_LAWS, 'contact': CONTACT_LAWS, 'tension': TENSION_LAWS}
 OPTION_DEFAULTS = {'friction': 'coulomb', 'contact': 'hertz_damp', 'tension': 'allowed'}
 OPTION_DOCS = {'friction': {'coulomb': 'Coulomb friction: mu(|Vr|) = mu_s, static equal to kinetic',
-              'stribeck': 'Stribeck friction: mu(|Vr|) = mu_k + (mu_s - mu_k) exp(-|Vr|/v_s)'},
+              'stribeck': 'Stribeck friction: mu(|Vr|) = mu_k + (mu_s - mu_k) exp(-|Vr|/v_s)',
+              'static_kinetic': 'Static above kinetic: stick held up to mu_s F, slip at mu_k F '
+                                '< mu_s F'},
  'contact': {'hertz_damp': "Hertz-Damp: (omega2^2 + 2 beta2 omega2 X2') X2^(3/2)",
              'kelvin_voigt': "Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2' (linear)",
              'hunt_crossley': "Hunt-Crossley: omega2^2 X2^n_h + 2 beta2 omega2 X2^n_h X2'"},
@@ -106,6 +113,7 @@ OPTION_DOCS = {'friction': {'coulomb': 'Coulomb friction: mu(|Vr|) = mu_s, stati
              'clipped': 'max(F, 0): a contact that cannot pull (the surfaces separate)'}}
 LAW_PARAMETERS = {('friction', 'coulomb'): (),
  ('friction', 'stribeck'): ('mu_k', 'v_s'),
+ ('friction', 'static_kinetic'): ('mu_k',),
  ('contact', 'hertz_damp'): (),
  ('contact', 'kelvin_voigt'): (),
  ('contact', 'hunt_crossley'): ('n_h',),
@@ -115,6 +123,10 @@ LAW_UNITS = {('contact', 'hertz_damp'): {'beta2': '1/m^(5/4)', 'omega2': 'rad/(m
  ('contact', 'kelvin_voigt'): {'beta2': '1', 'omega2': 'rad/s'},
  ('contact', 'hunt_crossley'): {'beta2': '1/m^((n_h + 1)/2)',
                                 'omega2': 'rad m^((1 - n_h)/2)/s'}}
+STATIC_BOUNDS = {'static_kinetic': ('mu_s', 'mu_k')}
+_SHORTFALL = {
+    'static_kinetic': lambda mu_k, mu_s, **_: mu_k - mu_s,
+}
 
 DOMAIN_RULES = {'positive': (0.0, True, '> 0'), 'nonnegative': (0.0, False, '>= 0'), 'real': (-math.inf, True, 'real')}
 
@@ -123,3 +135,10 @@ def within(domain, x):
     """Whether ``x`` (a number, or the least of an array) lies in ``domain``."""
     bound, excluded, _ = DOMAIN_RULES[domain]
     return x > bound if excluded else x >= bound
+
+
+def static_shortfall(friction, **params):
+    """The friction law's slip coefficient at rest minus its static bound
+    (``STATIC_BOUNDS``) at ``params``: positive where the stick cone would hold less
+    than slip does; 0 for a law without a static bound of its own."""
+    return _SHORTFALL[friction](**params) if friction in _SHORTFALL else 0.0

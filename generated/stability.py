@@ -50,18 +50,20 @@ def equilibrium(*, friction='coulomb', contact='hertz_damp', convention='paper',
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -195,6 +197,40 @@ def _equilibrium__stribeck__hunt_crossley__consistent(_shape, omega1, omega2, mu
         return _support.tuple_of(_shape, -g*numpy.select([numpy.less_equal(Vb, Vhat),True], [(1/2)*_x0*(_quad2 + _quad3) + mu_s*(-2*_x0*numpy.arccos(-Vb/Vhat) + 1),(1/2)*_x0*(_quad0 + _quad1) - mu_s*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, (g/omega2**2)**(n_h**(-1.0)), 0)
 
 
+def _equilibrium__static_kinetic__hertz_damp__paper(_shape, omega1, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        return _support.tuple_of(_shape, g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, _root0**2/(omega2*_root1), 0)
+
+
+def _equilibrium__static_kinetic__hertz_damp__consistent(_shape, omega1, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        return _support.tuple_of(_shape, -g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, _root0**2/(omega2*_root1), 0)
+
+
+def _equilibrium__static_kinetic__kelvin_voigt__paper(_shape, omega1, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.tuple_of(_shape, g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, g/omega2**2, 0)
+
+
+def _equilibrium__static_kinetic__kelvin_voigt__consistent(_shape, omega1, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.tuple_of(_shape, -g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, g/omega2**2, 0)
+
+
+def _equilibrium__static_kinetic__hunt_crossley__paper(_shape, omega1, omega2, g, Vb, Vhat, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.tuple_of(_shape, g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, (g/omega2**2)**(n_h**(-1.0)), 0)
+
+
+def _equilibrium__static_kinetic__hunt_crossley__consistent(_shape, omega1, omega2, g, Vb, Vhat, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return _support.tuple_of(_shape, -g*numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-2*numpy.arccos(-Vb/Vhat)/numpy.pi + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan)/omega1**2, 0, (g/omega2**2)**(n_h**(-1.0)), 0)
+
+
 _EQUILIBRIUM = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_equilibrium__coulomb__hertz_damp__paper, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_equilibrium__coulomb__hertz_damp__consistent, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
@@ -208,6 +244,12 @@ _EQUILIBRIUM = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_equilibrium__stribeck__kelvin_voigt__consistent, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_equilibrium__stribeck__hunt_crossley__paper, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_equilibrium__stribeck__hunt_crossley__consistent, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_equilibrium__static_kinetic__hertz_damp__paper, ('omega1', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_equilibrium__static_kinetic__hertz_damp__consistent, ('omega1', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_equilibrium__static_kinetic__kelvin_voigt__paper, ('omega1', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_equilibrium__static_kinetic__kelvin_voigt__consistent, ('omega1', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_equilibrium__static_kinetic__hunt_crossley__paper, ('omega1', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_equilibrium__static_kinetic__hunt_crossley__consistent, ('omega1', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
 }
 
 
@@ -239,18 +281,20 @@ def jacobian(*, friction='coulomb', contact='hertz_damp', convention='paper', vh
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -526,6 +570,96 @@ def _jacobian__stribeck__hunt_crossley__consistent(_shape, beta1, omega1, beta2,
             ])
 
 
+def _jacobian__static_kinetic__hertz_damp__paper(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        _x0 = 2/numpy.pi
+        _x1 = numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-_x0*numpy.arccos(-Vb/Vhat) + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan)
+        _x2 = (3/2)*_root0*(omega2*_root1)
+        _x3 = 2*beta2*g/omega2
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [_x0*mu_k/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), _x1*_x2, _x1*_x3],
+                [0, 0, 0, 1],
+                [0, 0, -_x2, -_x3],
+            ])
+
+
+def _jacobian__static_kinetic__hertz_damp__consistent(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        _x0 = 2/numpy.pi
+        _x1 = numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-_x0*numpy.arccos(-Vb/Vhat) + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan)
+        _x2 = (3/2)*_root0*(omega2*_root1)
+        _x3 = 2*beta2*g/omega2
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [_x0*mu_k/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), -_x1*_x2, -_x1*_x3],
+                [0, 0, 0, 1],
+                [0, 0, -_x2, -_x3],
+            ])
+
+
+def _jacobian__static_kinetic__kelvin_voigt__paper(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2/numpy.pi
+        _x1 = omega2**2
+        _x2 = numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-_x0*numpy.arccos(-Vb/Vhat) + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan)
+        _x3 = 2*beta2*omega2
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [_x0*mu_k/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), _x1*_x2, _x2*_x3],
+                [0, 0, 0, 1],
+                [0, 0, -_x1, -_x3],
+            ])
+
+
+def _jacobian__static_kinetic__kelvin_voigt__consistent(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2/numpy.pi
+        _x1 = omega2**2
+        _x2 = numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-_x0*numpy.arccos(-Vb/Vhat) + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan)
+        _x3 = 2*beta2*omega2
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [_x0*mu_k/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), -_x1*_x2, -_x2*_x3],
+                [0, 0, 0, 1],
+                [0, 0, -_x1, -_x3],
+            ])
+
+
+def _jacobian__static_kinetic__hunt_crossley__paper(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2/numpy.pi
+        _x1 = numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-_x0*numpy.arccos(-Vb/Vhat) + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan)
+        _x2 = n_h**(-1.0)
+        _x3 = g**(_x2*(n_h - 1))*n_h*omega2**(2*_x2)
+        _x4 = 2*beta2*g/omega2
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [_x0*mu_k/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), _x1*_x3, _x1*_x4],
+                [0, 0, 0, 1],
+                [0, 0, -_x3, -_x4],
+            ])
+
+
+def _jacobian__static_kinetic__hunt_crossley__consistent(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2/numpy.pi
+        _x1 = numpy.select([numpy.less_equal(Vb, Vhat),True], [mu_k*(-_x0*numpy.arccos(-Vb/Vhat) + 1),-mu_k*numpy.sign(Vb)], default=numpy.nan)
+        _x2 = n_h**(-1.0)
+        _x3 = g**(_x2*(n_h - 1))*n_h*omega2**(2*_x2)
+        _x4 = 2*beta2*g/omega2
+        return _support.matrix(_shape, [
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [_x0*mu_k/(numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan), -_x1*_x3, -_x1*_x4],
+                [0, 0, 0, 1],
+                [0, 0, -_x3, -_x4],
+            ])
+
+
 _JACOBIAN = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_jacobian__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_jacobian__coulomb__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
@@ -539,6 +673,12 @@ _JACOBIAN = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_jacobian__stribeck__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_jacobian__stribeck__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_jacobian__stribeck__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_jacobian__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_jacobian__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_jacobian__static_kinetic__kelvin_voigt__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_jacobian__static_kinetic__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_jacobian__static_kinetic__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_jacobian__static_kinetic__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
 }
 
 
@@ -572,18 +712,20 @@ def coefficients(*, friction='coulomb', contact='hertz_damp', convention='paper'
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -835,6 +977,96 @@ def _coefficients__stribeck__hunt_crossley__consistent(_shape, beta1, omega1, be
         return _support.tuple_of(_shape, _x1 + _x4 + _x7*g, 4*_x0*_x2*beta2*g + _x11 + _x12*_x3 + _x8, _x1*_x11 + _x10*_x12 + _x4*_x8, _x11*_x8)
 
 
+def _coefficients__static_kinetic__hertz_damp__paper(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        _x0 = beta1*omega1
+        _x1 = omega2**(-1.0)
+        _x2 = 2*_x1*beta2
+        _x3 = _x2*g
+        _x4 = numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x5 = omega1**2
+        _x6 = _root0
+        _x7 = (omega2*_root1)
+        _x8 = (3/2)*_x7
+        _x9 = _x6*_x8
+        return _support.tuple_of(_shape, 2*_x0 + _x3 - _x4*g, 4*_x0*_x1*beta2*g - _x2*_x4*g**2 + _x5 + _x9, 3*_x0*_x6*_x7 + _x3*_x5 - _x4*_x8*(g*_root0), _x5*_x9)
+
+
+def _coefficients__static_kinetic__hertz_damp__consistent(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        _x0 = beta1*omega1
+        _x1 = omega2**(-1.0)
+        _x2 = 2*_x1*beta2
+        _x3 = _x2*g
+        _x4 = numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x5 = omega1**2
+        _x6 = _root0
+        _x7 = (omega2*_root1)
+        _x8 = (3/2)*_x7
+        _x9 = _x6*_x8
+        return _support.tuple_of(_shape, 2*_x0 + _x3 + _x4*g, 4*_x0*_x1*beta2*g + _x2*_x4*g**2 + _x5 + _x9, 3*_x0*_x6*_x7 + _x3*_x5 + _x4*_x8*(g*_root0), _x5*_x9)
+
+
+def _coefficients__static_kinetic__kelvin_voigt__paper(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*omega2
+        _x3 = 2*_x2
+        _x4 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x5 = omega1**2
+        _x6 = omega2**2
+        return _support.tuple_of(_shape, _x1 + _x3 - _x4, 4*_x0*_x2 - _x3*_x4 + _x5 + _x6, _x1*_x6 + _x3*_x5 - _x4*_x6, _x5*_x6)
+
+
+def _coefficients__static_kinetic__kelvin_voigt__consistent(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*omega2
+        _x3 = 2*_x2
+        _x4 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x5 = omega1**2
+        _x6 = omega2**2
+        return _support.tuple_of(_shape, _x1 + _x3 + _x4, 4*_x0*_x2 + _x3*_x4 + _x5 + _x6, _x1*_x6 + _x3*_x5 + _x4*_x6, _x5*_x6)
+
+
+def _coefficients__static_kinetic__hunt_crossley__paper(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = omega2**(-1.0)
+        _x3 = 2*_x2*beta2
+        _x4 = _x3*g
+        _x5 = numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x6 = omega1**2
+        _x7 = n_h**(-1.0)
+        _x8 = g**(-_x7)*n_h*omega2**(2*_x7)
+        _x9 = _x8*g
+        _x10 = _x5*g**2
+        return _support.tuple_of(_shape, _x1 + _x4 - _x5*g, 4*_x0*_x2*beta2*g - _x10*_x3 + _x6 + _x9, _x1*_x9 - _x10*_x8 + _x4*_x6, _x6*_x9)
+
+
+def _coefficients__static_kinetic__hunt_crossley__consistent(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = omega2**(-1.0)
+        _x3 = 2*_x2*beta2
+        _x4 = _x3*g
+        _x5 = numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x6 = omega1**2
+        _x7 = n_h**(-1.0)
+        _x8 = g**(-_x7)*n_h*omega2**(2*_x7)
+        _x9 = _x8*g
+        _x10 = _x5*g**2
+        return _support.tuple_of(_shape, _x1 + _x4 + _x5*g, 4*_x0*_x2*beta2*g + _x10*_x3 + _x6 + _x9, _x1*_x9 + _x10*_x8 + _x4*_x6, _x6*_x9)
+
+
 _COEFFICIENTS = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_coefficients__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_coefficients__coulomb__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
@@ -848,6 +1080,12 @@ _COEFFICIENTS = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_coefficients__stribeck__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_coefficients__stribeck__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_coefficients__stribeck__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_coefficients__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_coefficients__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_coefficients__static_kinetic__kelvin_voigt__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_coefficients__static_kinetic__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_coefficients__static_kinetic__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_coefficients__static_kinetic__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
 }
 
 
@@ -883,18 +1121,20 @@ def hurwitz(*, friction='coulomb', contact='hertz_damp', convention='paper', vha
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -1133,6 +1373,88 @@ def _hurwitz__stribeck__hunt_crossley__consistent(_shape, beta1, omega1, beta2, 
         return _support.tuple_of(_shape, _x4, _x0*_x6 + _x3*(_x0*_x4 + _x7), _x0*_x10*_x3, _x10*_x8*_x9)
 
 
+def _hurwitz__static_kinetic__hertz_damp__paper(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        _x0 = 2*beta2*g/omega2
+        _x1 = 2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x2 = _x0 + _x1
+        _x3 = 3*beta2*(g*_root0)*_root1
+        _x4 = omega1**2
+        _x5 = (3/2)*_root0*(omega2*_root1)
+        _x6 = _x1*(_x2*(_x0*_x4 + _x1*_x5) + (_x4 - _x5)**2)
+        return _support.tuple_of(_shape, _x2, _x1*(_x0*_x2 + _x4) + _x3, _x0*_x6, _x3*_x4*_x6)
+
+
+def _hurwitz__static_kinetic__hertz_damp__consistent(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        _x0 = 2*beta2*g/omega2
+        _x1 = 2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x2 = _x0 + _x1
+        _x3 = 3*beta2*(g*_root0)*_root1
+        _x4 = omega1**2
+        _x5 = (3/2)*_root0*(omega2*_root1)
+        _x6 = _x1*(_x2*(_x0*_x4 + _x1*_x5) + (_x4 - _x5)**2)
+        return _support.tuple_of(_shape, _x2, _x1*(_x0*_x2 + _x4) + _x3, _x0*_x6, _x3*_x4*_x6)
+
+
+def _hurwitz__static_kinetic__kelvin_voigt__paper(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*beta2
+        _x1 = _x0*omega2
+        _x2 = 2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x3 = _x1 + _x2
+        _x4 = _x0*omega2**3
+        _x5 = omega1**2
+        _x6 = omega2**2
+        _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
+        return _support.tuple_of(_shape, _x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7)
+
+
+def _hurwitz__static_kinetic__kelvin_voigt__consistent(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*beta2
+        _x1 = _x0*omega2
+        _x2 = 2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x3 = _x1 + _x2
+        _x4 = _x0*omega2**3
+        _x5 = omega1**2
+        _x6 = omega2**2
+        _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
+        return _support.tuple_of(_shape, _x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7)
+
+
+def _hurwitz__static_kinetic__hunt_crossley__paper(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*beta2*g/omega2
+        _x1 = 2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x2 = _x0 + _x1
+        _x3 = n_h**(-1.0)
+        _x4 = g**(_x3*(n_h - 1))*n_h*omega2**(2*_x3)
+        _x5 = omega1**2
+        _x6 = _x0*_x5
+        _x7 = _x1*_x4
+        _x8 = _x2*(_x6 + _x7) + (-_x4 + _x5)**2
+        return _support.tuple_of(_shape, _x2, _x0*_x4 + _x1*(_x0*_x2 + _x5), _x0*_x1*_x8, _x6*_x7*_x8)
+
+
+def _hurwitz__static_kinetic__hunt_crossley__consistent(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = 2*beta2*g/omega2
+        _x1 = 2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x2 = _x0 + _x1
+        _x3 = n_h**(-1.0)
+        _x4 = g**(_x3*(n_h - 1))*n_h*omega2**(2*_x3)
+        _x5 = omega1**2
+        _x6 = _x0*_x5
+        _x7 = _x1*_x4
+        _x8 = _x2*(_x6 + _x7) + (-_x4 + _x5)**2
+        return _support.tuple_of(_shape, _x2, _x0*_x4 + _x1*(_x0*_x2 + _x5), _x0*_x1*_x8, _x6*_x7*_x8)
+
+
 _HURWITZ = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_hurwitz__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_hurwitz__coulomb__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
@@ -1146,6 +1468,12 @@ _HURWITZ = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_hurwitz__stribeck__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_hurwitz__stribeck__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_hurwitz__stribeck__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_hurwitz__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_hurwitz__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_hurwitz__static_kinetic__kelvin_voigt__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_hurwitz__static_kinetic__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_hurwitz__static_kinetic__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_hurwitz__static_kinetic__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
 }
 
 
@@ -1177,18 +1505,20 @@ def eigenvalues(*, friction='coulomb', contact='hertz_damp', convention='paper',
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -1397,6 +1727,74 @@ def _eigenvalues__stribeck__hunt_crossley__consistent(_shape, beta1, omega1, bet
         return _support.vector(_shape, [*_r0, *_r1])
 
 
+def _eigenvalues__static_kinetic__hertz_damp__paper(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*omega1
+        _x2 = _root0
+        _r0 = _support.quadratic_roots(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1)))
+        _r1 = _support.quadratic_roots(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2)
+        return _support.vector(_shape, [*_r0, *_r1])
+
+
+def _eigenvalues__static_kinetic__hertz_damp__consistent(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _root0 = numpy.cbrt(g)
+        _root1 = numpy.cbrt(omega2)
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*omega1
+        _x2 = _root0
+        _r0 = _support.quadratic_roots((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1)))
+        _r1 = _support.quadratic_roots(beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2)
+        return _support.vector(_shape, [*_r0, *_r1])
+
+
+def _eigenvalues__static_kinetic__kelvin_voigt__paper(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*omega1
+        _x2 = omega2**2
+        _r0 = _support.quadratic_roots(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1)))
+        _r1 = _support.quadratic_roots(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1))
+        return _support.vector(_shape, [*_r0, *_r1])
+
+
+def _eigenvalues__static_kinetic__kelvin_voigt__consistent(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*omega1
+        _x2 = omega2**2
+        _r0 = _support.quadratic_roots((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1)))
+        _r1 = _support.quadratic_roots(beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1))
+        return _support.vector(_shape, [*_r0, *_r1])
+
+
+def _eigenvalues__static_kinetic__hunt_crossley__paper(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*omega1
+        _x2 = n_h**(-1.0)
+        _x3 = n_h*omega2**(2*_x2)
+        _x4 = omega2**2
+        _r0 = _support.quadratic_roots(-1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1)))
+        _r1 = _support.quadratic_roots(beta2*g/omega2, _x3*g**(_x2*(n_h - 1)), g**(1 - _x2)*(-_x3*_x4 + beta2**2*g*g**_x2)/_x4)
+        return _support.vector(_shape, [*_r0, *_r1])
+
+
+def _eigenvalues__static_kinetic__hunt_crossley__consistent(_shape, beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*omega1
+        _x2 = n_h**(-1.0)
+        _x3 = n_h*omega2**(2*_x2)
+        _x4 = omega2**2
+        _r0 = _support.quadratic_roots((1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1)))
+        _r1 = _support.quadratic_roots(beta2*g/omega2, _x3*g**(_x2*(n_h - 1)), g**(1 - _x2)*(-_x3*_x4 + beta2**2*g*g**_x2)/_x4)
+        return _support.vector(_shape, [*_r0, *_r1])
+
+
 _EIGENVALUES = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_eigenvalues__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_eigenvalues__coulomb__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
@@ -1410,6 +1808,12 @@ _EIGENVALUES = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_eigenvalues__stribeck__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_eigenvalues__stribeck__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_eigenvalues__stribeck__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_eigenvalues__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_eigenvalues__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_eigenvalues__static_kinetic__kelvin_voigt__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_eigenvalues__static_kinetic__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_eigenvalues__static_kinetic__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_eigenvalues__static_kinetic__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
 }
 
 
@@ -1441,18 +1845,20 @@ def growth_rate(*, friction='coulomb', contact='hertz_damp', convention='paper',
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -2345,6 +2751,322 @@ def _growth_rate__stribeck__hunt_crossley__consistent__scalar(beta1, omega1, bet
         return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
 
 
+def _growth_rate__static_kinetic__hertz_damp__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, _root0, _root1):
+    """numpy kernel of `growth_rate` (``_support.blockwise``).
+
+    Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*omega1
+        _x2 = _root0
+        _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
+        _g0 = numpy.select([numpy.less(_d0, 0),numpy.greater(_h0, 0),True], [-_h0,_q0/(-numpy.sqrt(_d0) - _h0),numpy.sqrt(_d0) - _h0], default=numpy.nan)
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = numpy.select([numpy.less(_d1, 0),numpy.greater(_h1, 0),True], [-_h1,_q1/(-numpy.sqrt(_d1) - _h1),numpy.sqrt(_d1) - _h1], default=numpy.nan)
+        return numpy.maximum(_g0, _g1)
+
+
+def _growth_rate__static_kinetic__hertz_damp__paper__scalar(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, _root0, _root1):
+    """Scalar kernel of `growth_rate` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
+    """
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = _root0
+        _h0, _q0, _d0 = -_x0 + beta1*omega1, omega1**2, (1/4)*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x3*(omega2*_root1), (1/2)*(-3*_x3*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = _root0
+        _h0, _q0, _d0 = float('-inf'), omega1**2, math.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x0*(omega2*_root1), (1/2)*(-3*_x0*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = _root0
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x1*(omega2*_root1), (1/2)*(-3*_x1*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+
+
+def _growth_rate__static_kinetic__hertz_damp__paper__roots(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    _root0 = numpy.cbrt(g)
+    _root1 = numpy.cbrt(omega2)
+    return (_root0, _root1,)
+
+
+def _growth_rate__static_kinetic__hertz_damp__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, _root0, _root1):
+    """numpy kernel of `growth_rate` (``_support.blockwise``).
+
+    Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*omega1
+        _x2 = _root0
+        _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
+        _g0 = numpy.select([numpy.less(_d0, 0),numpy.greater(_h0, 0),True], [-_h0,_q0/(-numpy.sqrt(_d0) - _h0),numpy.sqrt(_d0) - _h0], default=numpy.nan)
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x2*(omega2*_root1), (1/2)*(-3*_x2*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = numpy.select([numpy.less(_d1, 0),numpy.greater(_h1, 0),True], [-_h1,_q1/(-numpy.sqrt(_d1) - _h1),numpy.sqrt(_d1) - _h1], default=numpy.nan)
+        return numpy.maximum(_g0, _g1)
+
+
+def _growth_rate__static_kinetic__hertz_damp__consistent__scalar(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, _root0, _root1):
+    """Scalar kernel of `growth_rate` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: _root0 = g**(1/3), _root1 = omega2**(1/3).
+    """
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = _root0
+        _h0, _q0, _d0 = _x0 + beta1*omega1, omega1**2, (1/4)*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x3*(omega2*_root1), (1/2)*(-3*_x3*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = _root0
+        _h0, _q0, _d0 = math.inf, omega1**2, math.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x0*(omega2*_root1), (1/2)*(-3*_x0*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = _root0
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (3/2)*_x1*(omega2*_root1), (1/2)*(-3*_x1*(omega2**3*_root1) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+
+
+def _growth_rate__static_kinetic__hertz_damp__consistent__roots(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    _root0 = numpy.cbrt(g)
+    _root1 = numpy.cbrt(omega2)
+    return (_root0, _root1,)
+
+
+def _growth_rate__static_kinetic__kelvin_voigt__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    """numpy kernel of `growth_rate` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*omega1
+        _x2 = omega2**2
+        _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
+        _g0 = numpy.select([numpy.less(_d0, 0),numpy.greater(_h0, 0),True], [-_h0,_q0/(-numpy.sqrt(_d0) - _h0),numpy.sqrt(_d0) - _h0], default=numpy.nan)
+        _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
+        _g1 = numpy.select([numpy.less(_d1, 0),numpy.greater(_h1, 0),True], [-_h1,_q1/(-numpy.sqrt(_d1) - _h1),numpy.sqrt(_d1) - _h1], default=numpy.nan)
+        return numpy.maximum(_g0, _g1)
+
+
+def _growth_rate__static_kinetic__kelvin_voigt__paper__scalar(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    """Scalar kernel of `growth_rate` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = omega2**2
+        _h0, _q0, _d0 = -_x0 + beta1*omega1, omega1**2, (1/4)*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x3, _x3*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = omega2**2
+        _h0, _q0, _d0 = float('-inf'), omega1**2, math.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x0, _x0*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = omega2**2
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x1, _x1*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+
+
+def _growth_rate__static_kinetic__kelvin_voigt__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    """numpy kernel of `growth_rate` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*omega1
+        _x2 = omega2**2
+        _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
+        _g0 = numpy.select([numpy.less(_d0, 0),numpy.greater(_h0, 0),True], [-_h0,_q0/(-numpy.sqrt(_d0) - _h0),numpy.sqrt(_d0) - _h0], default=numpy.nan)
+        _h1, _q1, _d1 = beta2*omega2, _x2, _x2*(beta2 - 1)*(beta2 + 1)
+        _g1 = numpy.select([numpy.less(_d1, 0),numpy.greater(_h1, 0),True], [-_h1,_q1/(-numpy.sqrt(_d1) - _h1),numpy.sqrt(_d1) - _h1], default=numpy.nan)
+        return numpy.maximum(_g0, _g1)
+
+
+def _growth_rate__static_kinetic__kelvin_voigt__consistent__scalar(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    """Scalar kernel of `growth_rate` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = omega2**2
+        _h0, _q0, _d0 = _x0 + beta1*omega1, omega1**2, (1/4)*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x3, _x3*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = omega2**2
+        _h0, _q0, _d0 = math.inf, omega1**2, math.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x0, _x0*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = omega2**2
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x1, _x1*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+
+
+def _growth_rate__static_kinetic__hunt_crossley__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    """numpy kernel of `growth_rate` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*omega1
+        _x2 = n_h**(-1.0)
+        _x3 = n_h*omega2**(2*_x2)
+        _x4 = omega2**2
+        _h0, _q0, _d0 = -1/2*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 - _x1*(beta1 - 1))*(_x0 - _x1*(beta1 + 1))
+        _g0 = numpy.select([numpy.less(_d0, 0),numpy.greater(_h0, 0),True], [-_h0,_q0/(-numpy.sqrt(_d0) - _h0),numpy.sqrt(_d0) - _h0], default=numpy.nan)
+        _h1, _q1, _d1 = beta2*g/omega2, _x3*g**(_x2*(n_h - 1)), g**(1 - _x2)*(-_x3*_x4 + beta2**2*g*g**_x2)/_x4
+        _g1 = numpy.select([numpy.less(_d1, 0),numpy.greater(_h1, 0),True], [-_h1,_q1/(-numpy.sqrt(_d1) - _h1),numpy.sqrt(_d1) - _h1], default=numpy.nan)
+        return numpy.maximum(_g0, _g1)
+
+
+def _growth_rate__static_kinetic__hunt_crossley__paper__scalar(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    """Scalar kernel of `growth_rate` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = 1/n_h
+        _x4 = n_h*omega2**(2*_x3)
+        _x5 = omega2**2
+        _h0, _q0, _d0 = -_x0 + beta1*omega1, omega1**2, (1/4)*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, _x4*g**(_x3*(n_h - 1)), g**(1 - _x3)*(-_x4*_x5 + beta2**2*g*g**_x3)/_x5
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = 1/n_h
+        _x1 = n_h*omega2**(2*_x0)
+        _x2 = omega2**2
+        _h0, _q0, _d0 = float('-inf'), omega1**2, math.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, _x1*g**(_x0*(n_h - 1)), g**(1 - _x0)*(-_x1*_x2 + beta2**2*g*g**_x0)/_x2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = 1/n_h
+        _x2 = n_h*omega2**(2*_x1)
+        _x3 = omega2**2
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, _x2*g**(_x1*(n_h - 1)), g**(1 - _x1)*(-_x2*_x3 + beta2**2*g*g**_x1)/_x3
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+
+
+def _growth_rate__static_kinetic__hunt_crossley__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    """numpy kernel of `growth_rate` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan)
+        _x1 = 2*omega1
+        _x2 = n_h**(-1.0)
+        _x3 = n_h*omega2**(2*_x2)
+        _x4 = omega2**2
+        _h0, _q0, _d0 = (1/2)*_x0 + beta1*omega1, omega1**2, (1/4)*(_x0 + _x1*(beta1 - 1))*(_x0 + _x1*(beta1 + 1))
+        _g0 = numpy.select([numpy.less(_d0, 0),numpy.greater(_h0, 0),True], [-_h0,_q0/(-numpy.sqrt(_d0) - _h0),numpy.sqrt(_d0) - _h0], default=numpy.nan)
+        _h1, _q1, _d1 = beta2*g/omega2, _x3*g**(_x2*(n_h - 1)), g**(1 - _x2)*(-_x3*_x4 + beta2**2*g*g**_x2)/_x4
+        _g1 = numpy.select([numpy.less(_d1, 0),numpy.greater(_h1, 0),True], [-_h1,_q1/(-numpy.sqrt(_d1) - _h1),numpy.sqrt(_d1) - _h1], default=numpy.nan)
+        return numpy.maximum(_g0, _g1)
+
+
+def _growth_rate__static_kinetic__hunt_crossley__consistent__scalar(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    """Scalar kernel of `growth_rate` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = 1/n_h
+        _x4 = n_h*omega2**(2*_x3)
+        _x5 = omega2**2
+        _h0, _q0, _d0 = _x0 + beta1*omega1, omega1**2, (1/4)*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, _x4*g**(_x3*(n_h - 1)), g**(1 - _x3)*(-_x4*_x5 + beta2**2*g*g**_x3)/_x5
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = 1/n_h
+        _x1 = n_h*omega2**(2*_x0)
+        _x2 = omega2**2
+        _h0, _q0, _d0 = math.inf, omega1**2, math.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, _x1*g**(_x0*(n_h - 1)), g**(1 - _x0)*(-_x1*_x2 + beta2**2*g*g**_x0)/_x2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = 1/n_h
+        _x2 = n_h*omega2**(2*_x1)
+        _x3 = omega2**2
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-math.sqrt(_d0) - _h0)) if (_h0 > 0) else (math.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, _x2*g**(_x1*(n_h - 1)), g**(1 - _x1)*(-_x2*_x3 + beta2**2*g*g**_x1)/_x3
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-math.sqrt(_d1) - _h1)) if (_h1 > 0) else (math.sqrt(_d1) - _h1))
+        return (_g0 if (_g0 >= _g1 or _g0 != _g0) else _g1)
+
+
 _GROWTH_RATE = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_growth_rate__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', ), _growth_rate__coulomb__hertz_damp__paper__scalar, _growth_rate__coulomb__hertz_damp__paper__roots),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_growth_rate__coulomb__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', ), _growth_rate__coulomb__hertz_damp__consistent__scalar, _growth_rate__coulomb__hertz_damp__consistent__roots),
@@ -2358,6 +3080,12 @@ _GROWTH_RATE = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_growth_rate__stribeck__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', ), _growth_rate__stribeck__kelvin_voigt__consistent__scalar, None),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_growth_rate__stribeck__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', ), _growth_rate__stribeck__hunt_crossley__paper__scalar, None),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_growth_rate__stribeck__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', ), _growth_rate__stribeck__hunt_crossley__consistent__scalar, None),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_growth_rate__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', ), _growth_rate__static_kinetic__hertz_damp__paper__scalar, _growth_rate__static_kinetic__hertz_damp__paper__roots),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_growth_rate__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', ), _growth_rate__static_kinetic__hertz_damp__consistent__scalar, _growth_rate__static_kinetic__hertz_damp__consistent__roots),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_growth_rate__static_kinetic__kelvin_voigt__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', ), _growth_rate__static_kinetic__kelvin_voigt__paper__scalar, None),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_growth_rate__static_kinetic__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', ), _growth_rate__static_kinetic__kelvin_voigt__consistent__scalar, None),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_growth_rate__static_kinetic__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', ), _growth_rate__static_kinetic__hunt_crossley__paper__scalar, None),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_growth_rate__static_kinetic__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', ), _growth_rate__static_kinetic__hunt_crossley__consistent__scalar, None),
 }
 
 
@@ -2394,15 +3122,17 @@ def is_stable(*, friction='coulomb', contact='hertz_damp', convention='paper', v
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -2763,6 +3493,96 @@ def _is_stable__stribeck__kelvin_voigt__consistent__scalar(beta1, omega1, beta2,
         return (2*beta1*omega1 + (1/2)*g*(_quad0 + _quad1)/math.pi > 0) and (2*beta2*omega2 > 0)
 
 
+def _is_stable__static_kinetic__hertz_damp__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    """numpy kernel of `is_stable` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0)
+
+
+def _is_stable__static_kinetic__hertz_damp__paper__scalar(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    """Scalar kernel of `is_stable` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (Vb < Vhat):
+        _x0 = 2*g
+        return (-_x0*mu_k/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat)) + 2*beta1*omega1 > 0) and (_x0*beta2/omega2 > 0)
+    elif (Vb == Vhat) and (mu_k > 0):
+        return (float('-inf') > 0) and (2*beta2*g/omega2 > 0)
+    else:
+        return (2*beta1*omega1 > 0) and (2*beta2*g/omega2 > 0)
+
+
+def _is_stable__static_kinetic__hertz_damp__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    """numpy kernel of `is_stable` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*g/omega2 > 0)
+
+
+def _is_stable__static_kinetic__hertz_damp__consistent__scalar(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    """Scalar kernel of `is_stable` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (Vb < Vhat):
+        _x0 = 2*g
+        return (_x0*mu_k/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat)) + 2*beta1*omega1 > 0) and (_x0*beta2/omega2 > 0)
+    elif (Vb == Vhat) and (mu_k > 0):
+        return (math.inf > 0) and (2*beta2*g/omega2 > 0)
+    else:
+        return (2*beta1*omega1 > 0) and (2*beta2*g/omega2 > 0)
+
+
+def _is_stable__static_kinetic__kelvin_voigt__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    """numpy kernel of `is_stable` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return (2*beta1*omega1 - g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0)
+
+
+def _is_stable__static_kinetic__kelvin_voigt__paper__scalar(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    """Scalar kernel of `is_stable` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (Vb < Vhat):
+        return (2*beta1*omega1 - 2*g*mu_k/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat)) > 0) and (2*beta2*omega2 > 0)
+    elif (Vb == Vhat) and (mu_k > 0):
+        return (float('-inf') > 0) and (2*beta2*omega2 > 0)
+    else:
+        return (2*beta1*omega1 > 0) and (2*beta2*omega2 > 0)
+
+
+def _is_stable__static_kinetic__kelvin_voigt__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    """numpy kernel of `is_stable` (``_support.blockwise``).
+
+    Extra arguments: none.
+    """
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        return (2*beta1*omega1 + g*numpy.select([numpy.less(Vb, Vhat),numpy.logical_and(numpy.equal(Vb, Vhat), numpy.greater(mu_k, 0)),True], [2*mu_k/(numpy.pi*numpy.sqrt(-Vb + Vhat)*numpy.sqrt(Vb + Vhat)),numpy.inf,0], default=numpy.nan) > 0) & (2*beta2*omega2 > 0)
+
+
+def _is_stable__static_kinetic__kelvin_voigt__consistent__scalar(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    """Scalar kernel of `is_stable` (``_support.compiled``, ``_support.Bound``).
+
+    Extra arguments: none.
+    """
+    if (Vb < Vhat):
+        return (2*beta1*omega1 + 2*g*mu_k/(math.pi*math.sqrt(-Vb + Vhat)*math.sqrt(Vb + Vhat)) > 0) and (2*beta2*omega2 > 0)
+    elif (Vb == Vhat) and (mu_k > 0):
+        return (math.inf > 0) and (2*beta2*omega2 > 0)
+    else:
+        return (2*beta1*omega1 > 0) and (2*beta2*omega2 > 0)
+
+
 _IS_STABLE = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_is_stable__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', ), _is_stable__coulomb__hertz_damp__paper__scalar, None),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_is_stable__coulomb__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', ), _is_stable__coulomb__hertz_damp__consistent__scalar, None),
@@ -2776,6 +3596,12 @@ _IS_STABLE = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_is_stable__stribeck__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', ), _is_stable__stribeck__kelvin_voigt__consistent__scalar, None),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_is_stable__stribeck__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', ), _is_stable__stribeck__hertz_damp__paper__scalar, None),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_is_stable__stribeck__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', ), _is_stable__stribeck__hertz_damp__consistent__scalar, None),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_is_stable__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', ), _is_stable__static_kinetic__hertz_damp__paper__scalar, None),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_is_stable__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', ), _is_stable__static_kinetic__hertz_damp__consistent__scalar, None),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_is_stable__static_kinetic__kelvin_voigt__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', ), _is_stable__static_kinetic__kelvin_voigt__paper__scalar, None),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_is_stable__static_kinetic__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', ), _is_stable__static_kinetic__kelvin_voigt__consistent__scalar, None),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_is_stable__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', ), _is_stable__static_kinetic__hertz_damp__paper__scalar, None),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_is_stable__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', ), _is_stable__static_kinetic__hertz_damp__consistent__scalar, None),
 }
 
 
@@ -2797,10 +3623,15 @@ def critical_belt_speed(*, friction='coulomb', contact='hertz_damp', convention=
         gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    mu_k : array_like
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -2859,6 +3690,12 @@ def _critical_belt_speed__coulomb__hertz_damp__consistent(_shape):
     return _support.full(_shape, numpy.nan)
 
 
+def _critical_belt_speed__static_kinetic__hertz_damp__paper(_shape, beta1, omega1, g, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = g*mu_k/(numpy.pi*beta1*omega1)
+        return _support.full(_shape, numpy.select([numpy.greater(Vhat, _x0),True], [numpy.sqrt((Vhat - _x0)*(Vhat + _x0)),0], default=numpy.nan))
+
+
 _CRITICAL_BELT_SPEED = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'mu_s', 'g', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp__consistent, ()),
@@ -2872,6 +3709,12 @@ _CRITICAL_BELT_SPEED = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Refused("friction='stribeck' has no closed-form critical belt speed: the slope of its effective friction is a quadrature (closed_form_average: stribeck: mu(|Vr + V sin|) - mu(0) = mu_k - mu_s + (-mu_k + mu_s)*exp(-s/v_s) (s = |Vr + V sin|) has no elementary antiderivative over the fast phase (SymPy's Risch algorithm proves it); its average is a quadrature); the pointwise functions (growth_rate, is_stable, hurwitz) take it, and beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds numerically from growth_rate"),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Refused("friction='stribeck' has no closed-form critical belt speed: the slope of its effective friction is a quadrature (closed_form_average: stribeck: mu(|Vr + V sin|) - mu(0) = mu_k - mu_s + (-mu_k + mu_s)*exp(-s/v_s) (s = |Vr + V sin|) has no elementary antiderivative over the fast phase (SymPy's Risch algorithm proves it); its average is a quadrature); the pointwise functions (growth_rate, is_stable, hurwitz) take it, and beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds numerically from growth_rate"),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Refused("friction='stribeck' has no closed-form critical belt speed: the slope of its effective friction is a quadrature (closed_form_average: stribeck: mu(|Vr + V sin|) - mu(0) = mu_k - mu_s + (-mu_k + mu_s)*exp(-s/v_s) (s = |Vr + V sin|) has no elementary antiderivative over the fast phase (SymPy's Risch algorithm proves it); its average is a quadrature); the pointwise functions (growth_rate, is_stable, hurwitz) take it, and beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds numerically from growth_rate"),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_critical_belt_speed__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'g', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp__consistent, ()),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_critical_belt_speed__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'g', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp__consistent, ()),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_critical_belt_speed__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'g', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp__consistent, ()),
 }
 
 
@@ -2893,10 +3736,15 @@ def unstable_interval(*, friction='coulomb', contact='hertz_damp', convention='p
         gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
     Vhat : array_like
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    mu_k : array_like
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -2957,6 +3805,15 @@ def _unstable_interval__coulomb__hertz_damp__consistent(_shape):
     return _support.tuple_of(_shape, numpy.nan, numpy.nan)
 
 
+def _unstable_interval__static_kinetic__hertz_damp__paper(_shape, beta1, omega1, g, Vhat, mu_k):
+    with numpy.errstate(divide="ignore", invalid="ignore"):
+        _x0 = g*mu_k/(numpy.pi*beta1*omega1)
+        _x1 = numpy.sqrt((Vhat - _x0)*(Vhat + _x0))
+        _x2 = numpy.greater(Vhat, _x0)
+        _x3 = numpy.logical_or(numpy.less_equal(Vhat, _x0), numpy.logical_and(_x2, numpy.greater(Vhat, _x1)))
+        return _support.tuple_of(_shape, numpy.select([_x3,True], [numpy.select([_x2,True], [_x1,0], default=numpy.nan),numpy.nan], default=numpy.nan), numpy.select([_x3,True], [Vhat,numpy.nan], default=numpy.nan))
+
+
 _UNSTABLE_INTERVAL = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_unstable_interval__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'mu_s', 'g', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_unstable_interval__coulomb__hertz_damp__consistent, ()),
@@ -2970,4 +3827,10 @@ _UNSTABLE_INTERVAL = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Refused("friction='stribeck' has no closed-form critical belt speed: the slope of its effective friction is a quadrature (closed_form_average: stribeck: mu(|Vr + V sin|) - mu(0) = mu_k - mu_s + (-mu_k + mu_s)*exp(-s/v_s) (s = |Vr + V sin|) has no elementary antiderivative over the fast phase (SymPy's Risch algorithm proves it); its average is a quadrature); the pointwise functions (growth_rate, is_stable, hurwitz) take it, and beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds numerically from growth_rate"),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Refused("friction='stribeck' has no closed-form critical belt speed: the slope of its effective friction is a quadrature (closed_form_average: stribeck: mu(|Vr + V sin|) - mu(0) = mu_k - mu_s + (-mu_k + mu_s)*exp(-s/v_s) (s = |Vr + V sin|) has no elementary antiderivative over the fast phase (SymPy's Risch algorithm proves it); its average is a quadrature); the pointwise functions (growth_rate, is_stable, hurwitz) take it, and beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds numerically from growth_rate"),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Refused("friction='stribeck' has no closed-form critical belt speed: the slope of its effective friction is a quadrature (closed_form_average: stribeck: mu(|Vr + V sin|) - mu(0) = mu_k - mu_s + (-mu_k + mu_s)*exp(-s/v_s) (s = |Vr + V sin|) has no elementary antiderivative over the fast phase (SymPy's Risch algorithm proves it); its average is a quadrature); the pointwise functions (growth_rate, is_stable, hurwitz) take it, and beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds numerically from growth_rate"),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_unstable_interval__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'g', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_unstable_interval__coulomb__hertz_damp__consistent, ()),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_unstable_interval__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'g', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_unstable_interval__coulomb__hertz_damp__consistent, ()),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_unstable_interval__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'g', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_unstable_interval__coulomb__hertz_damp__consistent, ()),
 }

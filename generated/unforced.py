@@ -38,18 +38,20 @@ def equilibrium(*, friction='coulomb', contact='hertz_damp', **params):
     Vb : array_like
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -107,6 +109,20 @@ def _equilibrium__stribeck__hunt_crossley(_shape, omega1, omega2, mu_s, g, Vb, m
     return _support.tuple_of(_shape, g*(mu_k + (-mu_k + mu_s)*numpy.exp(-Vb/v_s))/omega1**2, 0, (g/omega2**2)**(n_h**(-1.0)), 0)
 
 
+def _equilibrium__static_kinetic__hertz_damp(_shape, omega1, omega2, g, mu_k):
+    _root0 = numpy.cbrt(g)
+    _root1 = numpy.cbrt(omega2)
+    return _support.tuple_of(_shape, g*mu_k/omega1**2, 0, _root0**2/(omega2*_root1), 0)
+
+
+def _equilibrium__static_kinetic__kelvin_voigt(_shape, omega1, omega2, g, mu_k):
+    return _support.tuple_of(_shape, g*mu_k/omega1**2, 0, g/omega2**2, 0)
+
+
+def _equilibrium__static_kinetic__hunt_crossley(_shape, omega1, omega2, g, mu_k, n_h):
+    return _support.tuple_of(_shape, g*mu_k/omega1**2, 0, (g/omega2**2)**(n_h**(-1.0)), 0)
+
+
 _EQUILIBRIUM = {
     ('coulomb', 'hertz_damp'): _support.Variant(_equilibrium__coulomb__hertz_damp, ('omega1', 'omega2', 'mu_s', 'g', )),
     ('coulomb', 'kelvin_voigt'): _support.Variant(_equilibrium__coulomb__kelvin_voigt, ('omega1', 'omega2', 'mu_s', 'g', )),
@@ -114,6 +130,9 @@ _EQUILIBRIUM = {
     ('stribeck', 'hertz_damp'): _support.Variant(_equilibrium__stribeck__hertz_damp, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_equilibrium__stribeck__kelvin_voigt, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_equilibrium__stribeck__hunt_crossley, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_equilibrium__static_kinetic__hertz_damp, ('omega1', 'omega2', 'g', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_equilibrium__static_kinetic__kelvin_voigt, ('omega1', 'omega2', 'g', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_equilibrium__static_kinetic__hunt_crossley, ('omega1', 'omega2', 'g', 'mu_k', 'n_h', )),
 }
 
 
@@ -149,18 +168,20 @@ def jacobian(X1, Y1, X2, Y2, *, friction='coulomb', contact='hertz_damp', **para
     Vb : array_like
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -279,6 +300,42 @@ def _jacobian__stribeck__hunt_crossley(_shape, X1, Y1, X2, Y2, beta1, omega1, be
         ])
 
 
+def _jacobian__static_kinetic__hertz_damp(_shape, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_k):
+    _x0 = 2*beta2*omega2
+    _x1 = (3/2)*numpy.sqrt(X2)*(Y2*_x0 + omega2**2)
+    _x2 = (X2*numpy.sqrt(X2))*_x0
+    return _support.matrix(_shape, [
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, _x1*mu_k, _x2*mu_k],
+            [0, 0, 0, 1],
+            [0, 0, -_x1, -_x2],
+        ])
+
+
+def _jacobian__static_kinetic__kelvin_voigt(_shape, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_k):
+    _x0 = omega2**2
+    _x1 = 2*beta2*omega2
+    return _support.matrix(_shape, [
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, _x0*mu_k, _x1*mu_k],
+            [0, 0, 0, 1],
+            [0, 0, -_x0, -_x1],
+        ])
+
+
+def _jacobian__static_kinetic__hunt_crossley(_shape, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_k, n_h):
+    _x0 = X2**n_h
+    _x1 = 2*beta2*omega2
+    _x2 = _x0*n_h*(Y2*_x1 + omega2**2)/X2
+    _x3 = _x0*_x1
+    return _support.matrix(_shape, [
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, _x2*mu_k, _x3*mu_k],
+            [0, 0, 0, 1],
+            [0, 0, -_x2, -_x3],
+        ])
+
+
 _JACOBIAN = {
     ('coulomb', 'hertz_damp'): _support.Variant(_jacobian__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
     ('coulomb', 'kelvin_voigt'): _support.Variant(_jacobian__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
@@ -286,6 +343,9 @@ _JACOBIAN = {
     ('stribeck', 'hertz_damp'): _support.Variant(_jacobian__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_jacobian__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_jacobian__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_jacobian__static_kinetic__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_jacobian__static_kinetic__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_jacobian__static_kinetic__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', 'n_h', )),
 }
 
 
@@ -318,18 +378,20 @@ def jacobian_at_equilibrium(*, friction='coulomb', contact='hertz_damp', **param
     Vb : array_like
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -442,6 +504,42 @@ def _jacobian_at_equilibrium__stribeck__hunt_crossley(_shape, beta1, omega1, bet
         ])
 
 
+def _jacobian_at_equilibrium__static_kinetic__hertz_damp(_shape, beta1, omega1, beta2, omega2, g, mu_k):
+    _root0 = numpy.cbrt(g)
+    _root1 = numpy.cbrt(omega2)
+    _x0 = (3/2)*_root0*(omega2*_root1)
+    _x1 = 2*beta2*g/omega2
+    return _support.matrix(_shape, [
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, _x0*mu_k, _x1*mu_k],
+            [0, 0, 0, 1],
+            [0, 0, -_x0, -_x1],
+        ])
+
+
+def _jacobian_at_equilibrium__static_kinetic__kelvin_voigt(_shape, beta1, omega1, beta2, omega2, mu_k):
+    _x0 = omega2**2
+    _x1 = 2*beta2*omega2
+    return _support.matrix(_shape, [
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, _x0*mu_k, _x1*mu_k],
+            [0, 0, 0, 1],
+            [0, 0, -_x0, -_x1],
+        ])
+
+
+def _jacobian_at_equilibrium__static_kinetic__hunt_crossley(_shape, beta1, omega1, beta2, omega2, g, mu_k, n_h):
+    _x0 = n_h**(-1.0)
+    _x1 = g**(_x0*(n_h - 1))*n_h*omega2**(2*_x0)
+    _x2 = 2*beta2*g/omega2
+    return _support.matrix(_shape, [
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, _x1*mu_k, _x2*mu_k],
+            [0, 0, 0, 1],
+            [0, 0, -_x1, -_x2],
+        ])
+
+
 _JACOBIAN_AT_EQUILIBRIUM = {
     ('coulomb', 'hertz_damp'): _support.Variant(_jacobian_at_equilibrium__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', )),
     ('coulomb', 'kelvin_voigt'): _support.Variant(_jacobian_at_equilibrium__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
@@ -449,6 +547,9 @@ _JACOBIAN_AT_EQUILIBRIUM = {
     ('stribeck', 'hertz_damp'): _support.Variant(_jacobian_at_equilibrium__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_jacobian_at_equilibrium__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_jacobian_at_equilibrium__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_jacobian_at_equilibrium__static_kinetic__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_jacobian_at_equilibrium__static_kinetic__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_jacobian_at_equilibrium__static_kinetic__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'mu_k', 'n_h', )),
 }
 
 
@@ -481,18 +582,20 @@ def charpoly(*, friction='coulomb', contact='hertz_damp', **params):
     Vb : array_like
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -617,6 +720,9 @@ _CHARPOLY = {
     ('stribeck', 'hertz_damp'): _support.Variant(_charpoly__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_charpoly__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_charpoly__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_charpoly__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_charpoly__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_charpoly__coulomb__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'n_h', )),
 }
 
 
@@ -650,18 +756,20 @@ def eigenvalues(*, friction='coulomb', contact='hertz_damp', **params):
     Vb : array_like
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : array_like
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -758,6 +866,9 @@ _EIGENVALUES = {
     ('stribeck', 'hertz_damp'): _support.Variant(_eigenvalues__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_eigenvalues__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_eigenvalues__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_eigenvalues__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_eigenvalues__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_eigenvalues__coulomb__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'n_h', )),
 }
 
 
@@ -781,15 +892,17 @@ def critical_belt_speed(*, friction='coulomb', contact='hertz_damp', **params):
     g : array_like
         gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
     mu_k : array_like
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : array_like
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -838,4 +951,7 @@ _CRITICAL_BELT_SPEED = {
     ('stribeck', 'hertz_damp'): _support.Variant(_critical_belt_speed__stribeck__hertz_damp, ('beta1', 'omega1', 'mu_s', 'g', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_critical_belt_speed__stribeck__hertz_damp, ('beta1', 'omega1', 'mu_s', 'g', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_critical_belt_speed__stribeck__hertz_damp, ('beta1', 'omega1', 'mu_s', 'g', 'mu_k', 'v_s', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp, ()),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp, ()),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp, ()),
 }

@@ -15,7 +15,7 @@ import numpy as np
 CONTACTS = ("hertz_damp", "kelvin_voigt")
 #: Every law typed here (the CONTACTS above are the runtime's).
 ALL_CONTACTS = ("hertz_damp", "kelvin_voigt", "hunt_crossley")
-FRICTIONS = ("coulomb", "stribeck")
+FRICTIONS = ("coulomb", "stribeck", "static_kinetic")
 TENSIONS = ("allowed", "clipped")
 MODES = {"slip_back": -1, "stick": 0, "slip_forward": 1, "flight": 2, "separated": 3}
 EPS = np.finfo(float).eps
@@ -110,9 +110,12 @@ def force_gradient(X2, Y2, p, contact, m=math):
 
 def mu(speed, p, friction="coulomb", m=math):
     """The friction coefficient at the sliding speed and its slope: Coulomb's ``mu_s``
-    (Eq. 3), Stribeck's ``mu_k + (mu_s - mu_k) exp(-speed/v_s)``."""
+    (Eq. 3), Stribeck's ``mu_k + (mu_s - mu_k) exp(-speed/v_s)``, static_kinetic's
+    ``mu_k`` while slipping (its static bound ``mu_s`` is the surfaces')."""
     if friction == "coulomb":
         return p["mu_s"], 0 * speed
+    if friction == "static_kinetic":
+        return p["mu_k"], 0 * speed
     fall = (p["mu_s"] - p["mu_k"]) * m.exp(-speed / p["v_s"])
     return p["mu_k"] + fall, -fall / p["v_s"]
 

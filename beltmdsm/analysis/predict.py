@@ -48,6 +48,14 @@ their closed forms are the same under both laws. The consistent MDSM takes a
 harmonic fast normal force ``g + N1 sin``; with ``tension="clipped"`` and
 ``N1 >= g`` the clip ``max(F, 0)`` cuts it off and it is no longer harmonic, so that
 analysis gives no prediction (`CLIPPED_MDSM`) rather than the allowed law's.
+
+A friction law with a static bound of its own (``static_kinetic``: stick held up to
+``mu_s F``, slip at ``mu_k F``): every analysis here linearises sliding and averages the
+slip law over a fast motion that passes ``Vr = 0`` without sticking, so it takes the
+kinetic coefficient and the static bound enters none of them. Their verdicts are
+local: where the static bound exceeds the kinetic coefficient a stick-slip cycle can
+coexist with stable sliding, and `predict` says so in each analysis' note
+(`STATIC_BOUND`).
 """
 
 from __future__ import annotations
@@ -63,6 +71,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy import optimize
 
 from generated import _support, correlation, friction, stability, unforced
+from generated.parameters import STATIC_BOUNDS
 
 from .. import intervals
 from ..errors import Refused
@@ -90,6 +99,7 @@ __all__ = [
     "NUMERIC_VHAT_OF_VB",
     "CLIPPED_MDSM",
     "CLIPPED_PAPER",
+    "STATIC_BOUND",
     "clip_acts",
     "ONSET_STEP",
     "GRID_COARSE",
@@ -972,6 +982,14 @@ CLIPPED_MDSM_INACTIVE = (
     "positive (N1 = {N1:.4g} < g = {g:.4g}), so the clip does not act on "
     "it and the harmonic balance is the same as under 'allowed'"
 )
+#: The note on every analysis under a friction law with a static bound of its own
+#: (``generated.parameters.STATIC_BOUNDS``; formatted with the law and both bounds).
+STATIC_BOUND = (
+    "friction={friction!r}: averaged is the slip law (mu(0) = {rest}) over a fast "
+    "motion that passes Vr = 0 without sticking; the static bound {static} bounds "
+    "stick only, so a belt speed found stable here does not exclude a stick-slip "
+    "cycle beside stable sliding (friction_monotone fails where {rest} < {static})"
+)
 #: The note on the paper's closed forms under the clipped tension law.
 CLIPPED_PAPER = (
     "tension='clipped': the same as under 'allowed', since the analysis "
@@ -1116,6 +1134,11 @@ def predict(
             note = "; ".join(r for r in (note, CLIPPED_PAPER) if r)
         if note:
             reasons[key] = note
+    if model.friction in STATIC_BOUNDS:
+        static, rest = STATIC_BOUNDS[model.friction]
+        text = STATIC_BOUND.format(friction=model.friction, static=static, rest=rest)
+        for key in Prediction.ANALYSES:
+            reasons[key] = "; ".join(r for r in (reasons.get(key), text) if r)
     return Prediction(
         paper["tangential"],
         paper["coupled"],

@@ -8,9 +8,13 @@ only (no formula of the model):
 
 * ``decide_slip``, at ``Vr = 0`` in contact (Filippov's convention for the
   set-valued friction of Eq. 3). With ``sf = mu_s F - a_free`` and
-  ``sb = mu_s F + a_free`` (the ``stick_forward`` and ``stick_back`` surfaces), the
+  ``sb = mu_s F + a_free`` (the ``stick_forward`` and ``stick_back`` surfaces; ``mu_s``
+  stands for the law's static bound, which a law with a static coefficient above its
+  kinetic one, ``static_kinetic``, gives apart from its slip law), the
   slip fields point at the surface from both sides exactly when ``sf >= 0`` and
-  ``sb >= 0``: the mass sticks. Where ``sf < 0`` (``a_free > mu_s F``) it slips
+  ``sb >= 0``: the mass sticks (under a static bound above the kinetic coefficient
+  also where the slip fields alone would cross, ``mu_k F < |a_free| <= mu_s F``: the
+  static friction holds it). Where ``sf < 0`` (``a_free > mu_s F``) it slips
   forward, where ``sb < 0`` backward, whether it crossed or started there.
   The friction cone is empty where ``mu_s F <= 0`` (no friction, or a pulling
   contact under ``tension="allowed"``): both fields then point away from the

@@ -41,7 +41,7 @@ from pathlib import Path
 import sympy as sp
 
 from .. import laws
-from ..model import PARAMETERS
+from ..model import PARAMETERS, rest_coefficient, static_coefficient
 from ..parameters import DOMAINS as DOMAIN_RULES
 from ..statespace import Quadratic
 from ..units import contact_units
@@ -456,7 +456,9 @@ def _param_docs(params, kind):
             default = f", default: ``{p.default_from}``"
         elif n.startswith("phase"):
             default = f", default {p.base!r}"
-        owner = f" Only for {p.law[0]}={p.law[1]!r}." if p.law else ""
+        owner = ""
+        if p.law:
+            owner = " Only for " + " or ".join(f"{o}={c!r}" for o, c in laws.owners(n)) + "."
         text = f"{p.description} {_unit(p)}, {p.domain}{default}.{owner}"
         doc += [f"{n} : {kind}"] + ["    " + line for line in textwrap.wrap(text, 80)]
     return doc
@@ -743,6 +745,16 @@ def _parameters_module() -> str:
         for c in laws.choices(o)
     }
     units = {("contact", c): contact_units(c) for c in laws.choices("contact")}
+    with_static = [c for c in laws.choices("friction") if laws.get("friction", c).static]
+    static = {
+        c: (sp.sstr(static_coefficient(c)), sp.sstr(rest_coefficient(c))) for c in with_static
+    }
+    shortfalls = []
+    for c in with_static:
+        excess = rest_coefficient(c) - static_coefficient(c)
+        names = ", ".join(sorted(str(x) for x in excess.free_symbols))
+        shortfalls.append(f"    {c!r}: lambda {names}, **_: {sp.pycode(excess)},")
+    shortfall = "\n".join(shortfalls)
     rules = ", ".join(
         f"{name!r}: ({'-math.inf' if bound == -math.inf else repr(bound)}, {strict!r}, {text!r})"
         for name, (bound, strict, text) in DOMAIN_RULES.items()
@@ -750,8 +762,9 @@ def _parameters_module() -> str:
     return (
         HEADER
         + '"""The parameter table and the model options (derive/parameters.py, derive/laws.py).\n\n'
-        "``PARAMETERS``: one dict per parameter (``law``: the ``(option, choice)`` whose\n"
-        "law owns it, or None); ``BASE``: the paper's base set (Fig. 2, with ``Vb = 4`` of\n"
+        "``PARAMETERS``: one dict per parameter (``law``: the ``(option, choice)`` of the\n"
+        "first law that lists it, or None; ``LAW_PARAMETERS`` has every law that shares\n"
+        "it); ``BASE``: the paper's base set (Fig. 2, with ``Vb = 4`` of\n"
         "Fig. 3) and every law's base values, so that ``**BASE`` serves every law;\n"
         "``KNOWN``: every accepted keyword; ``DEFAULT_FROM``: the parameter a\n"
         "per-direction one defaults to; ``DEFAULTS``: the values of the optional\n"
@@ -762,6 +775,10 @@ def _parameters_module() -> str:
         "choice -> one line), ``LAW_PARAMETERS`` ((option, choice) -> the law's own\n"
         "parameters) and ``LAW_UNITS`` ((option, choice) -> the units the law gives to\n"
         "parameters; ``PARAMETERS`` has those of the default contact law).\n"
+        "``STATIC_BOUNDS``: friction law -> ``(static bound, slip coefficient at rest)``\n"
+        "of the laws that bound stick by a static coefficient of their own\n"
+        "(derive/laws.py, ``FrictionLaw.static``); ``static_shortfall`` how far the slip\n"
+        "coefficient at rest exceeds that bound for given parameters.\n"
         "\n"
         "``DOMAIN_RULES``: each domain as (lower bound, bound excluded, the text of a\n"
         "failure); ``within(domain, x)`` applies it (NaN is never within).\n"
@@ -783,6 +800,8 @@ def _parameters_module() -> str:
         f"OPTION_DOCS = {_literal(docs)}\n"
         f"LAW_PARAMETERS = {_literal(owners)}\n"
         f"LAW_UNITS = {_literal(units)}\n"
+        f"STATIC_BOUNDS = {_literal(static)}\n"
+        f"_SHORTFALL = {{\n{shortfall}\n}}\n"
         "\n"
         f"DOMAIN_RULES = {{{rules}}}\n"
         "\n\n"
@@ -790,6 +809,12 @@ def _parameters_module() -> str:
         '    """Whether ``x`` (a number, or the least of an array) lies in ``domain``."""\n'
         "    bound, excluded, _ = DOMAIN_RULES[domain]\n"
         "    return x > bound if excluded else x >= bound\n"
+        "\n\n"
+        "def static_shortfall(friction, **params):\n"
+        '    """The friction law\'s slip coefficient at rest minus its static bound\n'
+        "    (``STATIC_BOUNDS``) at ``params``: positive where the stick cone would hold less\n"
+        '    than slip does; 0 for a law without a static bound of its own."""\n'
+        "    return _SHORTFALL[friction](**params) if friction in _SHORTFALL else 0.0\n"
     )
 
 

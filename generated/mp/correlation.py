@@ -390,18 +390,20 @@ def fast_tangential_velocity(*, friction='coulomb', contact='hertz_damp', **para
     phase_n : mpmath number
         normal excitation phase [rad], real, default 0.0.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -622,6 +624,99 @@ def _fast_tangential_velocity__stribeck__hunt_crossley(beta1, omega1, beta2, ome
     return (mpmath.sqrt(_x0*_x27**2 + _x0*_x28**2), mpmath.atan2(Omega_t*_x27, -Omega_t*_x28),)
 
 
+def _fast_tangential_velocity__static_kinetic__hertz_damp(beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, phase_n, mu_k):
+    _x0 = Omega_t**2
+    _x1 = beta1*omega1
+    _x2 = 4*_x0
+    _x3 = Omega_t + omega1
+    _x4 = Omega_t - omega1
+    _x5 = 1/(_x2*beta1**2*omega1**2 + _x3**2*_x4**2)
+    _x6 = _x5*mpmath.cos(phase_t)
+    _x7 = Omega_t**3
+    _x8 = 2*_x7
+    _x9 = beta2*g/omega2
+    _x10 = mpmath.cos(phase_n)
+    _x11 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+    _x12 = omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+    _x13 = -_x0 + (mpmath.mpf(3)/mpmath.mpf(2))*_x11*_x12
+    _x14 = 1/(_x13**2 + _x2*beta2**2*g**2/omega2**2)
+    _x15 = 2*Omega_t*_x14*_x9
+    _x16 = mpmath.sin(phase_n)
+    _x17 = alpha_n*mu_k
+    _x18 = _x17*(-_x10*_x15 + _x13*_x14*_x16)
+    _x19 = _x18*_x5
+    _x20 = _x10*_x13*_x14 + _x15*_x16
+    _x21 = _x8*_x9
+    _x22 = -mpmath.mpf(3)/mpmath.mpf(2)*_x0*_x11*_x12*_x18 + _x0*alpha_t*mpmath.sin(phase_t) - _x17*_x20*_x21
+    _x23 = _x3*_x4
+    _x24 = -4*Omega_t**4*_x1*_x19*_x9 - _x1*_x6*_x8*alpha_t + 3*_x11*_x12*_x20*_x5*_x7*alpha_n*beta1*mu_k*omega1 - _x22*_x23*_x5
+    _x25 = 2*Omega_t*_x22*_x5*beta1*omega1 + (mpmath.mpf(3)/mpmath.mpf(2))*_x0*_x11*_x12*_x20*_x3*_x4*_x5*alpha_n*mu_k - _x0*_x23*_x6*alpha_t - _x19*_x21*_x23
+    return (mpmath.sqrt(_x0*_x24**2 + _x0*_x25**2), mpmath.atan2(Omega_t*_x25, -Omega_t*_x24),)
+
+
+def _fast_tangential_velocity__static_kinetic__kelvin_voigt(beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, phase_n, mu_k):
+    _x0 = Omega_t**2
+    _x1 = beta1*omega1
+    _x2 = 4*_x0
+    _x3 = Omega_t + omega1
+    _x4 = Omega_t - omega1
+    _x5 = 1/(_x2*beta1**2*omega1**2 + _x3**2*_x4**2)
+    _x6 = _x5*mpmath.cos(phase_t)
+    _x7 = Omega_t**3
+    _x8 = 2*_x7
+    _x9 = omega2**2
+    _x10 = Omega_t + omega2
+    _x11 = Omega_t - omega2
+    _x12 = 1/(_x10**2*_x11**2 + _x2*_x9*beta2**2)
+    _x13 = _x12*mpmath.cos(phase_n)
+    _x14 = beta2*omega2
+    _x15 = 2*Omega_t*_x14
+    _x16 = _x12*mpmath.sin(phase_n)
+    _x17 = _x10*_x11
+    _x18 = -_x13*_x15 - _x16*_x17
+    _x19 = alpha_n*mu_k
+    _x20 = _x14*_x19
+    _x21 = _x18*_x20
+    _x22 = -_x13*_x17 + _x15*_x16
+    _x23 = -_x0*_x18*_x19*_x9 + _x0*alpha_t*mpmath.sin(phase_t) - _x20*_x22*_x8
+    _x24 = _x3*_x4
+    _x25 = -4*Omega_t**4*_x1*_x21*_x5 - _x1*_x6*_x8*alpha_t + 2*_x22*_x5*_x7*_x9*alpha_n*beta1*mu_k*omega1 - _x23*_x24*_x5
+    _x26 = 2*Omega_t*_x23*_x5*beta1*omega1 + _x0*_x22*_x3*_x4*_x5*_x9*alpha_n*mu_k - _x0*_x24*_x6*alpha_t - _x21*_x24*_x5*_x8
+    return (mpmath.sqrt(_x0*_x25**2 + _x0*_x26**2), mpmath.atan2(Omega_t*_x26, -Omega_t*_x25),)
+
+
+def _fast_tangential_velocity__static_kinetic__hunt_crossley(beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, phase_n, mu_k, n_h):
+    _x0 = Omega_t**2
+    _x1 = 4*_x0
+    _x2 = Omega_t + omega1
+    _x3 = Omega_t - omega1
+    _x4 = 1/(_x1*beta1**2*omega1**2 + _x2**2*_x3**2)
+    _x5 = _x4*mpmath.cos(phase_t)
+    _x6 = beta1*omega1
+    _x7 = Omega_t**3
+    _x8 = 2*_x7
+    _x9 = beta2*g/omega2
+    _x10 = alpha_n*mu_k
+    _x11 = _x10*_x9
+    _x12 = mpmath.cos(phase_n)
+    _x13 = 1/n_h
+    _x14 = g**(-_x13)
+    _x15 = omega2**(2*_x13)
+    _x16 = -_x0 + _x14*_x15*g*n_h
+    _x17 = 1/(_x1*beta2**2*g**2/omega2**2 + _x16**2)
+    _x18 = 2*Omega_t*_x17*_x9
+    _x19 = mpmath.sin(phase_n)
+    _x20 = -_x12*_x18 + _x16*_x17*_x19
+    _x21 = _x20*_x4
+    _x22 = _x12*_x16*_x17 + _x18*_x19
+    _x23 = _x11*_x8
+    _x24 = -_x0*_x10*_x14*_x15*_x20*g*n_h + _x0*alpha_t*mpmath.sin(phase_t) - _x22*_x23
+    _x25 = _x2*_x3
+    _x26 = -4*Omega_t**4*_x11*_x21*_x6 + 2*_x14*_x15*_x22*_x4*_x7*alpha_n*beta1*g*mu_k*n_h*omega1 - _x24*_x25*_x4 - _x5*_x6*_x8*alpha_t
+    _x27 = 2*Omega_t*_x24*_x4*beta1*omega1 + _x0*_x14*_x15*_x2*_x22*_x3*_x4*alpha_n*g*mu_k*n_h - _x0*_x25*_x5*alpha_t - _x21*_x23*_x25
+    return (mpmath.sqrt(_x0*_x26**2 + _x0*_x27**2), mpmath.atan2(Omega_t*_x27, -Omega_t*_x26),)
+
+
 _FAST_TANGENTIAL_VELOCITY = {
     ('coulomb', 'hertz_damp'): _support.Variant(_fast_tangential_velocity__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', )),
     ('coulomb', 'kelvin_voigt'): _support.Variant(_fast_tangential_velocity__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', )),
@@ -629,6 +724,9 @@ _FAST_TANGENTIAL_VELOCITY = {
     ('stribeck', 'hertz_damp'): _support.Variant(_fast_tangential_velocity__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_fast_tangential_velocity__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_fast_tangential_velocity__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_fast_tangential_velocity__static_kinetic__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_fast_tangential_velocity__static_kinetic__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_fast_tangential_velocity__static_kinetic__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'phase_n', 'mu_k', 'n_h', )),
 }
 
 
@@ -659,15 +757,17 @@ def friction_average(u, V, N0, N1, theta, *, friction='coulomb', **params):
         static friction coefficient: Coulomb's of Eq. (3), the bound of stick [1],
         nonnegative.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -718,9 +818,18 @@ def _friction_average__stribeck(u, V, N0, N1, theta, mu_s, mu_k, v_s):
         return N0*mu_s*mpmath.sign(u) + (mpmath.mpf(1)/mpmath.mpf(2))*(_quad0 + _quad1)/mpmath.pi
 
 
+def _friction_average__static_kinetic(u, V, N0, N1, theta, mu_k):
+    if (V > abs(u)):
+        _x0 = 1/V
+        return 2*_x0*mu_k*(N0*V*mpmath.asin(_x0*u) + N1*mpmath.sqrt(V**2 - u**2)*mpmath.cos(theta))/mpmath.pi
+    else:
+        return N0*mu_k*mpmath.sign(u)
+
+
 _FRICTION_AVERAGE = {
     ('coulomb',): _support.Variant(_friction_average__coulomb, ('mu_s', )),
     ('stribeck',): _support.Variant(_friction_average__stribeck, ('mu_s', 'mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_friction_average__static_kinetic, ('mu_k', )),
 }
 
 
@@ -751,15 +860,17 @@ def friction_average_slope(u, V, N0, N1, theta, *, friction='coulomb', **params)
         static friction coefficient: Coulomb's of Eq. (3), the bound of stick [1],
         nonnegative.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -806,9 +917,17 @@ def _friction_average_slope__stribeck(u, V, N0, N1, theta, mu_s, mu_k, v_s):
         return (mpmath.mpf(1)/mpmath.mpf(2))*(_quad0 + _quad1)/mpmath.pi
 
 
+def _friction_average_slope__static_kinetic(u, V, N0, N1, theta, mu_k):
+    if (V > abs(u)):
+        return mu_k*(2*N0*V - 2*N1*u*mpmath.cos(theta))/(mpmath.pi*V*mpmath.sqrt((V - u)*(V + u)))
+    else:
+        return 0
+
+
 _FRICTION_AVERAGE_SLOPE = {
     ('coulomb',): _support.Variant(_friction_average_slope__coulomb, ('mu_s', )),
     ('stribeck',): _support.Variant(_friction_average_slope__stribeck, ('mu_s', 'mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_friction_average_slope__static_kinetic, ('mu_k', )),
 }
 
 
@@ -839,15 +958,17 @@ def friction_harmonic(u, V, N0, N1, theta, *, friction='coulomb', **params):
         static friction coefficient: Coulomb's of Eq. (3), the bound of stick [1],
         nonnegative.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -916,9 +1037,25 @@ def _friction_harmonic__stribeck(u, V, N0, N1, theta, mu_s, mu_k, v_s):
         return (_x0*(_quad0 + _quad1) + _x1*mpmath.cos(theta), _x0*(_quad2 + _quad3) + _x1*mpmath.sin(theta),)
 
 
+def _friction_harmonic__static_kinetic(u, V, N0, N1, theta, mu_k):
+    if (V > abs(u)):
+        _x0 = 1/V
+        _x1 = V**2
+        _x2 = mpmath.sqrt(_x1 - u**2)
+        _x3 = mpmath.asin(_x0*u)
+        _x4 = _x2*u/_x1
+        _x5 = 2*N1
+        _x6 = mu_k/mpmath.pi
+        return (_x0*_x6*(4*N0*_x2 + V*_x5*(_x3 - _x4)*mpmath.cos(theta)), _x5*_x6*(_x3 + _x4)*mpmath.sin(theta),)
+    else:
+        _x0 = N1*mu_k*mpmath.sign(u)
+        return (_x0*mpmath.cos(theta), _x0*mpmath.sin(theta),)
+
+
 _FRICTION_HARMONIC = {
     ('coulomb',): _support.Variant(_friction_harmonic__coulomb, ('mu_s', )),
     ('stribeck',): _support.Variant(_friction_harmonic__stribeck, ('mu_s', 'mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_friction_harmonic__static_kinetic, ('mu_k', )),
 }
 
 
@@ -954,15 +1091,17 @@ def slow_damping(V, N1, theta, *, friction='coulomb', **params):
     Vb : mpmath number
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -1009,9 +1148,17 @@ def _slow_damping__stribeck(V, N1, theta, beta1, omega1, mu_s, g, Vb, mu_k, v_s)
         return 2*beta1*omega1 + (mpmath.mpf(1)/mpmath.mpf(2))*(_quad0 + _quad1)/mpmath.pi
 
 
+def _slow_damping__static_kinetic(V, N1, theta, beta1, omega1, g, Vb, mu_k):
+    if (V > Vb):
+        return 2*beta1*omega1 + mu_k*(2*N1*Vb*mpmath.cos(theta) + 2*V*g)/(mpmath.pi*V*mpmath.sqrt(V - Vb)*mpmath.sqrt(V + Vb))
+    else:
+        return 2*beta1*omega1
+
+
 _SLOW_DAMPING = {
     ('coulomb',): _support.Variant(_slow_damping__coulomb, ('beta1', 'omega1', 'mu_s', 'g', 'Vb', )),
     ('stribeck',): _support.Variant(_slow_damping__stribeck, ('beta1', 'omega1', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_slow_damping__static_kinetic, ('beta1', 'omega1', 'g', 'Vb', 'mu_k', )),
 }
 
 
@@ -1115,15 +1262,17 @@ def harmonic_balance(V, phi, N1, psi, *, friction='coulomb', **params):
     phase_t : mpmath number
         tangential excitation phase (Fig. 15: pi/2) [rad], real, default 0.0.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -1223,7 +1372,38 @@ def _harmonic_balance__stribeck(V, phi, N1, psi, beta1, omega1, mu_s, g, Vb, alp
         return (_x9*(2*V*beta1*omega1 + _x0*(_quad0 + _quad1) - _x1*_x4 - _x5*_x6 - _x8*mpmath.cos(_x7)), _x9*(_x0*(_quad2 + _quad3) + _x1*_x6 - _x4*_x5 + _x8*mpmath.sin(_x7) + V*(Omega_t - omega1)*(Omega_t + omega1)/Omega_t),)
 
 
+def _harmonic_balance__static_kinetic(V, phi, N1, psi, beta1, omega1, g, Vb, alpha_t, Omega_t, phase_t, mu_k):
+    if (V > Vb):
+        _x0 = mpmath.sin(phi)
+        _x1 = Omega_t**2
+        _x2 = _x1*alpha_t
+        _x3 = _x2*mpmath.sin(phase_t)
+        _x4 = mpmath.cos(phi)
+        _x5 = mpmath.cos(phase_t)
+        _x6 = 1/mpmath.pi
+        _x7 = 1/V
+        _x8 = V**2
+        _x9 = mpmath.sqrt(-Vb**2 + _x8)
+        _x10 = mpmath.asin(Vb*_x7)
+        _x11 = Vb*_x9/_x8
+        _x12 = phi - psi
+        _x13 = 1/(_x1*alpha_t)
+        return (_x13*(2*V*beta1*omega1 - _x0*_x3 - _x2*_x4*_x5 + _x6*_x7*mu_k*(2*N1*V*(-_x10 + _x11)*mpmath.cos(_x12) + 4*_x9*g)), _x13*(-2*N1*_x6*mu_k*(-_x10 - _x11)*mpmath.sin(_x12) + _x0*_x1*_x5*alpha_t - _x3*_x4 + V*(Omega_t - omega1)*(Omega_t + omega1)/Omega_t),)
+    else:
+        _x0 = mpmath.sin(phi)
+        _x1 = Omega_t**2
+        _x2 = _x1*alpha_t
+        _x3 = _x2*mpmath.sin(phase_t)
+        _x4 = mpmath.cos(phi)
+        _x5 = _x2*mpmath.cos(phase_t)
+        _x6 = phi - psi
+        _x7 = N1*mu_k*mpmath.sign(Vb)
+        _x8 = 1/(_x1*alpha_t)
+        return (_x8*(2*V*beta1*omega1 - _x0*_x3 - _x4*_x5 - _x7*mpmath.cos(_x6)), _x8*(_x0*_x5 - _x3*_x4 + _x7*mpmath.sin(_x6) + V*(Omega_t - omega1)*(Omega_t + omega1)/Omega_t),)
+
+
 _HARMONIC_BALANCE = {
     ('coulomb',): _support.Variant(_harmonic_balance__coulomb, ('beta1', 'omega1', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
     ('stribeck',): _support.Variant(_harmonic_balance__stribeck, ('beta1', 'omega1', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_harmonic_balance__static_kinetic, ('beta1', 'omega1', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', )),
 }

@@ -80,18 +80,20 @@ def rhs(t, X1, Y1, X2, Y2, *, friction='coulomb', contact='hertz_damp', tension=
     phase_n : mpmath number
         normal excitation phase [rad], real, default 0.0.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -236,6 +238,57 @@ def _rhs__stribeck__hunt_crossley__clipped(t, X1, Y1, X2, Y2, beta1, omega1, bet
     return [Y1, ((_x2*(mu_k + (-mu_k + mu_s)*mpmath.exp(-abs(_x0)/v_s))*mpmath.sign(_x0) - _x3) if _x4 else (-_x3)), Y2, ((-_x2 - _x5) if _x4 else (-_x5))]
 
 
+def _rhs__static_kinetic__hertz_damp__allowed(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    if (X2 > 0):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_k*mpmath.sign(-Vb + Y1), Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g]
+    else:
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
+
+
+def _rhs__static_kinetic__hertz_damp__clipped(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y1, ((-_x1*mu_k*mpmath.sign(-Vb + Y1) - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4))]
+
+
+def _rhs__static_kinetic__kelvin_voigt__allowed(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    if (X2 > 0):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_k*mpmath.sign(-Vb + Y1), Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g]
+    else:
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
+
+
+def _rhs__static_kinetic__kelvin_voigt__clipped(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y1, ((-_x1*mu_k*mpmath.sign(-Vb + Y1) - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4))]
+
+
+def _rhs__static_kinetic__hunt_crossley__allowed(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    if (X2 > 0):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_k*mpmath.sign(-Vb + Y1), Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g]
+    else:
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
+
+
+def _rhs__static_kinetic__hunt_crossley__clipped(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y1, ((-_x1*mu_k*mpmath.sign(-Vb + Y1) - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4))]
+
+
 _RHS = {
     ('coulomb', 'hertz_damp', 'allowed'): _support.Variant(_rhs__coulomb__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
     ('coulomb', 'hertz_damp', 'clipped'): _support.Variant(_rhs__coulomb__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
@@ -249,6 +302,12 @@ _RHS = {
     ('stribeck', 'kelvin_voigt', 'clipped'): _support.Variant(_rhs__stribeck__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'allowed'): _support.Variant(_rhs__stribeck__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'clipped'): _support.Variant(_rhs__stribeck__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'allowed'): _support.Variant(_rhs__static_kinetic__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'clipped'): _support.Variant(_rhs__static_kinetic__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'allowed'): _support.Variant(_rhs__static_kinetic__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'clipped'): _support.Variant(_rhs__static_kinetic__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'allowed'): _support.Variant(_rhs__static_kinetic__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'clipped'): _support.Variant(_rhs__static_kinetic__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
 }
 
 
@@ -315,18 +374,20 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, friction='coulomb', contact='hertz_dam
     phase_n : mpmath number
         normal excitation phase [rad], real, default 0.0.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -466,6 +527,57 @@ def _rhs_branch__stribeck__hunt_crossley__clipped(t, X1, Y1, X2, Y2, sgn, beta1,
     return [Y1, ((-_x1*sgn*(mu_k + (-mu_k + mu_s)*mpmath.exp(-sgn*(-Vb + Y1)/v_s)) - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4))]
 
 
+def _rhs_branch__static_kinetic__hertz_damp__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    if (X2 > 0):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_k*sgn, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g]
+    else:
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
+
+
+def _rhs_branch__static_kinetic__hertz_damp__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y1, ((-_x1*mu_k*sgn - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4))]
+
+
+def _rhs_branch__static_kinetic__kelvin_voigt__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    if (X2 > 0):
+        _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_k*sgn, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g]
+    else:
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
+
+
+def _rhs_branch__static_kinetic__kelvin_voigt__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y1, ((-_x1*mu_k*sgn - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4))]
+
+
+def _rhs_branch__static_kinetic__hunt_crossley__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    if (X2 > 0):
+        _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0*mu_k*sgn, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g]
+    else:
+        return [Y1, Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1, Y2, -Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g]
+
+
+def _rhs_branch__static_kinetic__hunt_crossley__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+    _x1 = ((_x0) if (_x0 > 0) else (0))
+    _x2 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1
+    _x3 = (X2 > 0)
+    _x4 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [Y1, ((-_x1*mu_k*sgn - _x2) if _x3 else (-_x2)), Y2, ((-_x1 - _x4) if _x3 else (-_x4))]
+
+
 _RHS_BRANCH = {
     ('coulomb', 'hertz_damp', 'allowed'): _support.Variant(_rhs_branch__coulomb__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
     ('coulomb', 'hertz_damp', 'clipped'): _support.Variant(_rhs_branch__coulomb__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
@@ -479,6 +591,12 @@ _RHS_BRANCH = {
     ('stribeck', 'kelvin_voigt', 'clipped'): _support.Variant(_rhs_branch__stribeck__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'allowed'): _support.Variant(_rhs_branch__stribeck__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'clipped'): _support.Variant(_rhs_branch__stribeck__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'allowed'): _support.Variant(_rhs_branch__static_kinetic__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'clipped'): _support.Variant(_rhs_branch__static_kinetic__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'allowed'): _support.Variant(_rhs_branch__static_kinetic__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'clipped'): _support.Variant(_rhs_branch__static_kinetic__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'allowed'): _support.Variant(_rhs_branch__static_kinetic__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'clipped'): _support.Variant(_rhs_branch__static_kinetic__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
 }
 
 
@@ -520,18 +638,20 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, friction='coulomb', contact='hert
     Vb : mpmath number
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -829,6 +949,123 @@ def _jacobian_branch__stribeck__hunt_crossley__clipped(t, X1, Y1, X2, Y2, sgn, b
         ])
 
 
+def _jacobian_branch__static_kinetic__hertz_damp__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_k):
+    if (X2 > 0):
+        _x0 = max(0, X2)
+        _x1 = 2*beta2*omega2
+        _x2 = (mpmath.mpf(3)/mpmath.mpf(2))*mpmath.sqrt(_x0)*(Y2*_x1 + omega2**2)
+        _x3 = mu_k*sgn
+        _x4 = _x0**(mpmath.mpf(3)/mpmath.mpf(2))*_x1
+        return mpmath.matrix([
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, -_x2*_x3, -_x3*_x4],
+                [0, 0, 0, 1],
+                [0, 0, -_x2, -_x4],
+            ])
+    else:
+        return mpmath.matrix([
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, 0, 0],
+                [0, 0, 0, 1],
+                [0, 0, 0, 0],
+            ])
+
+
+def _jacobian_branch__static_kinetic__hertz_damp__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_k):
+    _x0 = max(0, X2)
+    _x1 = 2*beta2*omega2
+    _x2 = Y2*_x1 + omega2**2
+    _x3 = _x0**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x4 = (_x2*_x3 > 0)
+    _x5 = (((mpmath.mpf(3)/mpmath.mpf(2))*mpmath.sqrt(_x0)*_x2) if _x4 else (0))
+    _x6 = mu_k*sgn
+    _x7 = (X2 > 0)
+    _x8 = ((_x1*_x3) if _x4 else (0))
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, ((-_x5*_x6) if _x7 else (0)), ((-_x6*_x8) if _x7 else (0))],
+            [0, 0, 0, 1],
+            [0, 0, ((-_x5) if _x7 else (0)), ((-_x8) if _x7 else (0))],
+        ])
+
+
+def _jacobian_branch__static_kinetic__kelvin_voigt__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_k):
+    if (X2 > 0):
+        _x0 = omega2**2
+        _x1 = mu_k*sgn
+        _x2 = 2*beta2*omega2
+        return mpmath.matrix([
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, -_x0*_x1, -_x1*_x2],
+                [0, 0, 0, 1],
+                [0, 0, -_x0, -_x2],
+            ])
+    else:
+        return mpmath.matrix([
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, 0, 0],
+                [0, 0, 0, 1],
+                [0, 0, 0, 0],
+            ])
+
+
+def _jacobian_branch__static_kinetic__kelvin_voigt__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_k):
+    _x0 = omega2**2
+    _x1 = 2*beta2*omega2
+    _x2 = (Y2*_x1 + _x0*max(0, X2) > 0)
+    _x3 = ((_x0) if _x2 else (0))
+    _x4 = mu_k*sgn
+    _x5 = (X2 > 0)
+    _x6 = ((_x1) if _x2 else (0))
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, ((-_x3*_x4) if _x5 else (0)), ((-_x4*_x6) if _x5 else (0))],
+            [0, 0, 0, 1],
+            [0, 0, ((-_x3) if _x5 else (0)), ((-_x6) if _x5 else (0))],
+        ])
+
+
+def _jacobian_branch__static_kinetic__hunt_crossley__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_k, n_h):
+    if (X2 > 0):
+        _x0 = max(0, X2)
+        _x1 = _x0**n_h
+        _x2 = 2*beta2*omega2
+        _x3 = _x1*n_h*(Y2*_x2 + omega2**2)/_x0
+        _x4 = mu_k*sgn
+        _x5 = _x1*_x2
+        return mpmath.matrix([
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, -_x3*_x4, -_x4*_x5],
+                [0, 0, 0, 1],
+                [0, 0, -_x3, -_x5],
+            ])
+    else:
+        return mpmath.matrix([
+                [0, 1, 0, 0],
+                [-omega1**2, -2*beta1*omega1, 0, 0],
+                [0, 0, 0, 1],
+                [0, 0, 0, 0],
+            ])
+
+
+def _jacobian_branch__static_kinetic__hunt_crossley__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, mu_k, n_h):
+    _x0 = max(0, X2)
+    _x1 = _x0**n_h
+    _x2 = 2*beta2*omega2
+    _x3 = _x1*(Y2*_x2 + omega2**2)
+    _x4 = (_x3 > 0)
+    _x5 = ((_x3*n_h/_x0) if _x4 else (0))
+    _x6 = mu_k*sgn
+    _x7 = (X2 > 0)
+    _x8 = ((_x1*_x2) if _x4 else (0))
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, ((-_x5*_x6) if _x7 else (0)), ((-_x6*_x8) if _x7 else (0))],
+            [0, 0, 0, 1],
+            [0, 0, ((-_x5) if _x7 else (0)), ((-_x8) if _x7 else (0))],
+        ])
+
+
 _JACOBIAN_BRANCH = {
     ('coulomb', 'hertz_damp', 'allowed'): _support.Variant(_jacobian_branch__coulomb__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
     ('coulomb', 'hertz_damp', 'clipped'): _support.Variant(_jacobian_branch__coulomb__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
@@ -842,6 +1079,12 @@ _JACOBIAN_BRANCH = {
     ('stribeck', 'kelvin_voigt', 'clipped'): _support.Variant(_jacobian_branch__stribeck__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'allowed'): _support.Variant(_jacobian_branch__stribeck__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'clipped'): _support.Variant(_jacobian_branch__stribeck__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'allowed'): _support.Variant(_jacobian_branch__static_kinetic__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'clipped'): _support.Variant(_jacobian_branch__static_kinetic__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'allowed'): _support.Variant(_jacobian_branch__static_kinetic__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'clipped'): _support.Variant(_jacobian_branch__static_kinetic__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'allowed'): _support.Variant(_jacobian_branch__static_kinetic__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'clipped'): _support.Variant(_jacobian_branch__static_kinetic__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', 'n_h', )),
 }
 
 
@@ -982,18 +1225,20 @@ def friction_force(Y1, X2, Y2, sgn, *, friction='coulomb', contact='hertz_damp',
     Vb : mpmath number
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -1101,6 +1346,42 @@ def _friction_force__stribeck__hunt_crossley__clipped(Y1, X2, Y2, sgn, beta2, om
     return ((-sgn*(mu_k + (-mu_k + mu_s)*mpmath.exp(-sgn*(-Vb + Y1)/v_s))*((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (0))
 
 
+def _friction_force__static_kinetic__hertz_damp__allowed(Y1, X2, Y2, sgn, beta2, omega2, mu_k):
+    if (X2 > 0):
+        return -mu_k*sgn*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    else:
+        return 0
+
+
+def _friction_force__static_kinetic__hertz_damp__clipped(Y1, X2, Y2, sgn, beta2, omega2, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    return ((-mu_k*sgn*((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (0))
+
+
+def _friction_force__static_kinetic__kelvin_voigt__allowed(Y1, X2, Y2, sgn, beta2, omega2, mu_k):
+    if (X2 > 0):
+        return -mu_k*sgn*(2*Y2*beta2*omega2 + omega2**2*max(0, X2))
+    else:
+        return 0
+
+
+def _friction_force__static_kinetic__kelvin_voigt__clipped(Y1, X2, Y2, sgn, beta2, omega2, mu_k):
+    _x0 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    return ((-mu_k*sgn*((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (0))
+
+
+def _friction_force__static_kinetic__hunt_crossley__allowed(Y1, X2, Y2, sgn, beta2, omega2, mu_k, n_h):
+    if (X2 > 0):
+        return -mu_k*sgn*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+    else:
+        return 0
+
+
+def _friction_force__static_kinetic__hunt_crossley__clipped(Y1, X2, Y2, sgn, beta2, omega2, mu_k, n_h):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+    return ((-mu_k*sgn*((_x0) if (_x0 > 0) else (0))) if (X2 > 0) else (0))
+
+
 _FRICTION_FORCE = {
     ('coulomb', 'hertz_damp', 'allowed'): _support.Variant(_friction_force__coulomb__hertz_damp__allowed, ('beta2', 'omega2', 'mu_s', )),
     ('coulomb', 'hertz_damp', 'clipped'): _support.Variant(_friction_force__coulomb__hertz_damp__clipped, ('beta2', 'omega2', 'mu_s', )),
@@ -1114,6 +1395,12 @@ _FRICTION_FORCE = {
     ('stribeck', 'kelvin_voigt', 'clipped'): _support.Variant(_friction_force__stribeck__kelvin_voigt__clipped, ('beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'allowed'): _support.Variant(_friction_force__stribeck__hunt_crossley__allowed, ('beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'clipped'): _support.Variant(_friction_force__stribeck__hunt_crossley__clipped, ('beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'allowed'): _support.Variant(_friction_force__static_kinetic__hertz_damp__allowed, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'clipped'): _support.Variant(_friction_force__static_kinetic__hertz_damp__clipped, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'allowed'): _support.Variant(_friction_force__static_kinetic__kelvin_voigt__allowed, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'clipped'): _support.Variant(_friction_force__static_kinetic__kelvin_voigt__clipped, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'allowed'): _support.Variant(_friction_force__static_kinetic__hunt_crossley__allowed, ('beta2', 'omega2', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'clipped'): _support.Variant(_friction_force__static_kinetic__hunt_crossley__clipped, ('beta2', 'omega2', 'mu_k', 'n_h', )),
 }
 
 
@@ -1398,8 +1685,9 @@ def free_acceleration(t, X1, Y1, **params):
 
     Implements Eq. (4), first row of the paper.
 
-    f_t - 2 beta1 omega1 X1' - omega1^2 X1; sticking holds while |a_free| <= mu(0) F_n
-    (mu_s for both shipped friction laws).
+    f_t - 2 beta1 omega1 X1' - omega1^2 X1; sticking holds while |a_free| <= mu_st F_n,
+    mu_st the law's static bound (mu_s for every shipped friction law; static_kinetic
+    slips at mu_k below it).
 
     mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits.
 
@@ -1679,18 +1967,20 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, friction='coulomb', contact='hertz_
     phase_n : mpmath number
         normal excitation phase [rad], real, default 0.0.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -1836,6 +2126,60 @@ def _power_balance__stribeck__hunt_crossley__clipped(t, X1, Y1, X2, Y2, sgn, bet
     return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x3)) if _x4 else (0)), Y1*sgn*(mu_k + (-mu_k + mu_s)*mpmath.exp(-sgn*(-Vb + Y1)/v_s))*((_x3) if _x4 else (0)),)
 
 
+def _power_balance__static_kinetic__hertz_damp__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    if (X2 > 0):
+        _x0 = omega2**2
+        _x1 = max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+        _x2 = 2*Y2*beta2*omega2 + _x0
+        return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + Y2*(-_x0*_x1 + _x1*_x2), Y1*_x1*_x2*mu_k*sgn,)
+    else:
+        return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1, 0,)
+
+
+def _power_balance__static_kinetic__hertz_damp__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = omega2**2
+    _x1 = max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x2 = _x1*(2*Y2*beta2*omega2 + _x0)
+    _x3 = ((_x2) if (_x2 > 0) else (0))
+    _x4 = (X2 > 0)
+    return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x3)) if _x4 else (0)), Y1*mu_k*sgn*((_x3) if _x4 else (0)),)
+
+
+def _power_balance__static_kinetic__kelvin_voigt__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    if (X2 > 0):
+        _x0 = 2*beta2*omega2
+        return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + Y2**2*_x0, Y1*mu_k*sgn*(Y2*_x0 + omega2**2*max(0, X2)),)
+    else:
+        return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1, 0,)
+
+
+def _power_balance__static_kinetic__kelvin_voigt__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = omega2**2*max(0, X2)
+    _x1 = 2*Y2*beta2*omega2 + _x0
+    _x2 = ((_x1) if (_x1 > 0) else (0))
+    _x3 = (X2 > 0)
+    return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0 + _x2)) if _x3 else (0)), Y1*mu_k*sgn*((_x2) if _x3 else (0)),)
+
+
+def _power_balance__static_kinetic__hunt_crossley__allowed(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    if (X2 > 0):
+        _x0 = omega2**2
+        _x1 = max(0, X2)**n_h
+        _x2 = 2*Y2*beta2*omega2 + _x0
+        return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + Y2*(-_x0*_x1 + _x1*_x2), Y1*_x1*_x2*mu_k*sgn,)
+    else:
+        return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1, 0,)
+
+
+def _power_balance__static_kinetic__hunt_crossley__clipped(t, X1, Y1, X2, Y2, sgn, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    _x0 = omega2**2
+    _x1 = max(0, X2)**n_h
+    _x2 = _x1*(2*Y2*beta2*omega2 + _x0)
+    _x3 = ((_x2) if (_x2 > 0) else (0))
+    _x4 = (X2 > 0)
+    return (-Omega_n**2*Y2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + Omega_t**2*Y1*alpha_t*mpmath.sin(Omega_t*t + phase_t), 2*Y1**2*beta1*omega1 + ((Y2*(-_x0*_x1 + _x3)) if _x4 else (0)), Y1*mu_k*sgn*((_x3) if _x4 else (0)),)
+
+
 _POWER_BALANCE = {
     ('coulomb', 'hertz_damp', 'allowed'): _support.Variant(_power_balance__coulomb__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
     ('coulomb', 'hertz_damp', 'clipped'): _support.Variant(_power_balance__coulomb__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
@@ -1849,4 +2193,10 @@ _POWER_BALANCE = {
     ('stribeck', 'kelvin_voigt', 'clipped'): _support.Variant(_power_balance__stribeck__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'allowed'): _support.Variant(_power_balance__stribeck__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'clipped'): _support.Variant(_power_balance__stribeck__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'allowed'): _support.Variant(_power_balance__static_kinetic__hertz_damp__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'clipped'): _support.Variant(_power_balance__static_kinetic__hertz_damp__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'allowed'): _support.Variant(_power_balance__static_kinetic__kelvin_voigt__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'clipped'): _support.Variant(_power_balance__static_kinetic__kelvin_voigt__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'allowed'): _support.Variant(_power_balance__static_kinetic__hunt_crossley__allowed, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'clipped'): _support.Variant(_power_balance__static_kinetic__hunt_crossley__clipped, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
 }

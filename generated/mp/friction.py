@@ -40,15 +40,17 @@ def mu_bar(Vr, Vhat, mu_s, *, friction='coulomb', **params):
     mu_s : mpmath number
         static friction coefficient (Coulomb's of Eq. 3)
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -93,9 +95,17 @@ def _mu_bar__stribeck(Vr, Vhat, mu_s, mu_k, v_s):
         return mu_s*mpmath.sign(Vr) + (mpmath.mpf(1)/mpmath.mpf(2))*(_quad0 + _quad1)/mpmath.pi
 
 
+def _mu_bar__static_kinetic(Vr, Vhat, mu_s, mu_k):
+    if (Vhat >= abs(Vr)):
+        return mu_k*(-2*mpmath.acos(Vr/Vhat)/mpmath.pi + 1)
+    else:
+        return mu_k*mpmath.sign(Vr)
+
+
 _MU_BAR = {
     ('coulomb',): _support.Variant(_mu_bar__coulomb, ()),
     ('stribeck',): _support.Variant(_mu_bar__stribeck, ('mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_mu_bar__static_kinetic, ('mu_k', )),
 }
 
 
@@ -119,15 +129,17 @@ def mu_bar0(Vb, Vhat, mu_s, *, friction='coulomb', **params):
     mu_s : mpmath number
         static friction coefficient (Coulomb's of Eq. 3)
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -173,9 +185,17 @@ def _mu_bar0__stribeck(Vb, Vhat, mu_s, mu_k, v_s):
         return -mu_s*mpmath.sign(Vb) + (mpmath.mpf(1)/mpmath.mpf(2))*(_quad0 + _quad1)/mpmath.pi
 
 
+def _mu_bar0__static_kinetic(Vb, Vhat, mu_s, mu_k):
+    if (Vb <= Vhat):
+        return mu_k*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)
+    else:
+        return -mu_k*mpmath.sign(Vb)
+
+
 _MU_BAR0 = {
     ('coulomb',): _support.Variant(_mu_bar0__coulomb, ()),
     ('stribeck',): _support.Variant(_mu_bar0__stribeck, ('mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_mu_bar0__static_kinetic, ('mu_k', )),
 }
 
 
@@ -200,15 +220,17 @@ def mu_bar_slope(Vb, Vhat, mu_s, *, friction='coulomb', **params):
     mu_s : mpmath number
         static friction coefficient (Coulomb's of Eq. 3)
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -260,9 +282,19 @@ def _mu_bar_slope__stribeck(Vb, Vhat, mu_s, mu_k, v_s):
         return (mpmath.mpf(1)/mpmath.mpf(2))*(_quad0 + _quad1)/mpmath.pi
 
 
+def _mu_bar_slope__static_kinetic(Vb, Vhat, mu_s, mu_k):
+    if (Vb < Vhat):
+        return 2*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+    elif (Vb == Vhat) and (mu_k > 0):
+        return mpmath.inf
+    else:
+        return 0
+
+
 _MU_BAR_SLOPE = {
     ('coulomb',): _support.Variant(_mu_bar_slope__coulomb, ()),
     ('stribeck',): _support.Variant(_mu_bar_slope__stribeck, ('mu_k', 'v_s', )),
+    ('static_kinetic',): _support.Variant(_mu_bar_slope__static_kinetic, ('mu_k', )),
 }
 
 
@@ -317,18 +349,20 @@ def vhat(*, friction='coulomb', contact='hertz_damp', model='tangential', **para
     phase_n : mpmath number
         normal excitation phase [rad], real, default 0.0.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -501,6 +535,71 @@ def _vhat__stribeck__hunt_crossley__coupled(beta1, omega1, beta2, omega2, mu_s, 
         return Omega_t**3*alpha_t*abs(1/(Omega_t*_x3 - (Omega_t + _x0)*(Omega_t + omega1))) + abs(_x6*(1j*Omega_n**3*_x4*_x9 + _x5*_x8*_x9*g**(_x7*(n_h - 1)))/(Omega_n*_x3 - (Omega_n + _x0)*(Omega_n + omega1)))
 
 
+def _vhat__static_kinetic__hertz_damp__coupled(beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    if (Omega_n == Omega_t):
+        _x0 = 1j*Omega_t
+        _x1 = 2*_x0
+        _x2 = Omega_t**2
+        _x3 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x4 = beta2*g/omega2
+        _x5 = alpha_n*mu_k*mpmath.exp(1j*phase_n)/(_x1*_x4 - _x2 + (mpmath.mpf(3)/mpmath.mpf(2))*_x3)
+        return abs(_x0*(2*1j*Omega_t**3*_x4*_x5 + (mpmath.mpf(3)/mpmath.mpf(2))*_x2*_x3*_x5 - _x2*alpha_t*mpmath.exp(1j*phase_t))/(_x1*beta1*omega1 - (Omega_t - omega1)*(Omega_t + omega1)))
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*1j
+        _x2 = -omega1
+        _x3 = 1j*Omega_n
+        _x4 = 2*_x3
+        _x5 = Omega_n**2
+        _x6 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x7 = beta2*g/omega2
+        _x8 = alpha_n*mu_k*mpmath.exp(1j*phase_n)/(_x4*_x7 - _x5 + (mpmath.mpf(3)/mpmath.mpf(2))*_x6)
+        return Omega_t**3*alpha_t*abs(1/(Omega_t*_x0*_x1 - (Omega_t + _x2)*(Omega_t + omega1))) + abs(_x3*(Omega_n**3*_x1*_x7*_x8 + (mpmath.mpf(3)/mpmath.mpf(2))*_x5*_x6*_x8)/(_x0*_x4 - (Omega_n + _x2)*(Omega_n + omega1)))
+
+
+def _vhat__static_kinetic__kelvin_voigt__coupled(beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    if (Omega_n == Omega_t):
+        _x0 = 1j*Omega_t
+        _x1 = 2*_x0
+        _x2 = Omega_t**2
+        _x3 = beta2*omega2
+        _x4 = alpha_n*mu_k*mpmath.exp(1j*phase_n)/(_x1*_x3 - (Omega_t - omega2)*(Omega_t + omega2))
+        return abs(_x0*(2*1j*Omega_t**3*_x3*_x4 + _x2*_x4*omega2**2 - _x2*alpha_t*mpmath.exp(1j*phase_t))/(_x1*beta1*omega1 - (Omega_t - omega1)*(Omega_t + omega1)))
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*1j
+        _x2 = -omega1
+        _x3 = 1j*Omega_n
+        _x4 = 2*_x3
+        _x5 = beta2*omega2
+        _x6 = alpha_n*mu_k*mpmath.exp(1j*phase_n)/(_x4*_x5 - (Omega_n - omega2)*(Omega_n + omega2))
+        return Omega_t**3*alpha_t*abs(1/(Omega_t*_x0*_x1 - (Omega_t + _x2)*(Omega_t + omega1))) + abs(_x3*(Omega_n**3*_x1*_x5*_x6 + Omega_n**2*_x6*omega2**2)/(_x0*_x4 - (Omega_n + _x2)*(Omega_n + omega1)))
+
+
+def _vhat__static_kinetic__hunt_crossley__coupled(beta1, omega1, beta2, omega2, g, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    if (Omega_n == Omega_t):
+        _x0 = 1j*Omega_t
+        _x1 = 2*_x0
+        _x2 = Omega_t**2
+        _x3 = beta2*g/omega2
+        _x4 = 1/n_h
+        _x5 = n_h*omega2**(2*_x4)
+        _x6 = alpha_n*mu_k*mpmath.exp(1j*phase_n)/(_x1*_x3 - _x2 + _x5*g*g**(-_x4))
+        return abs(_x0*(2*1j*Omega_t**3*_x3*_x6 + _x2*_x5*_x6*g**(_x4*(n_h - 1)) - _x2*alpha_t*mpmath.exp(1j*phase_t))/(_x1*beta1*omega1 - (Omega_t - omega1)*(Omega_t + omega1)))
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*1j
+        _x2 = -omega1
+        _x3 = 1j*Omega_n
+        _x4 = 2*_x3
+        _x5 = beta2*g/omega2
+        _x6 = Omega_n**2
+        _x7 = 1/n_h
+        _x8 = n_h*omega2**(2*_x7)
+        _x9 = alpha_n*mu_k*mpmath.exp(1j*phase_n)/(_x4*_x5 - _x6 + _x8*g*g**(-_x7))
+        return Omega_t**3*alpha_t*abs(1/(Omega_t*_x0*_x1 - (Omega_t + _x2)*(Omega_t + omega1))) + abs(_x3*(Omega_n**3*_x1*_x5*_x9 + _x6*_x8*_x9*g**(_x7*(n_h - 1)))/(_x0*_x4 - (Omega_n + _x2)*(Omega_n + omega1)))
+
+
 _VHAT = {
     ('coulomb', 'hertz_damp', 'tangential'): _support.Variant(_vhat__coulomb__hertz_damp__tangential, ('beta1', 'omega1', 'alpha_t', 'Omega_t', )),
     ('coulomb', 'hertz_damp', 'coupled'): _support.Variant(_vhat__coulomb__hertz_damp__coupled, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
@@ -514,4 +613,10 @@ _VHAT = {
     ('stribeck', 'kelvin_voigt', 'coupled'): _support.Variant(_vhat__stribeck__kelvin_voigt__coupled, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'tangential'): _support.Variant(_vhat__stribeck__hertz_damp__tangential, ('beta1', 'omega1', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'coupled'): _support.Variant(_vhat__stribeck__hunt_crossley__coupled, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'tangential'): _support.Variant(_vhat__coulomb__hertz_damp__tangential, ('beta1', 'omega1', 'alpha_t', 'Omega_t', )),
+    ('static_kinetic', 'hertz_damp', 'coupled'): _support.Variant(_vhat__static_kinetic__hertz_damp__coupled, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'tangential'): _support.Variant(_vhat__coulomb__hertz_damp__tangential, ('beta1', 'omega1', 'alpha_t', 'Omega_t', )),
+    ('static_kinetic', 'kelvin_voigt', 'coupled'): _support.Variant(_vhat__static_kinetic__kelvin_voigt__coupled, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'tangential'): _support.Variant(_vhat__coulomb__hertz_damp__tangential, ('beta1', 'omega1', 'alpha_t', 'Omega_t', )),
+    ('static_kinetic', 'hunt_crossley', 'coupled'): _support.Variant(_vhat__static_kinetic__hunt_crossley__coupled, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
 }

@@ -146,18 +146,20 @@ def vector_field(t, X1, Y1, X2, Y2, mode, *, friction='coulomb', contact='hertz_
     phase_n : mpmath number
         normal excitation phase [rad], real, default 0.0.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -275,6 +277,51 @@ def _vector_field__stribeck__hunt_crossley(t, X1, Y1, X2, Y2, mode, beta1, omega
     return [((Y1) if _x0 else (Vb) if _x1 else (Y1)), ((-_x5*(-_x2*mpmath.exp(-_x3*_x4) - mu_k) - _x6) if _x0 else (0) if _x1 else (-_x5*(_x2*mpmath.exp(_x3*_x4) + mu_k) - _x6) if _x7 else (-_x6)), Y2, ((-_x5 - _x8) if _x0 or _x1 or _x7 else (-_x8))]
 
 
+def _vector_field__static_kinetic__hertz_damp(t, X1, Y1, X2, Y2, mode, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = (mode == -1)
+    _x1 = (mode == 0)
+    _x2 = 2*Y1*beta1*omega1
+    _x3 = X1*omega1**2
+    _x4 = Omega_t**2
+    _x5 = mpmath.sin(Omega_t*t + phase_t)
+    _x6 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x7 = _x6*mu_k
+    _x8 = _x2 + _x3 - _x4*_x5*alpha_t
+    _x9 = (mode == 1)
+    _x10 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [((Y1) if _x0 else (Vb) if _x1 else (Y1)), ((-_x2 - _x3 + _x4*_x5*alpha_t + _x7) if _x0 else (0) if _x1 else (-_x7 - _x8) if _x9 else (-_x8)), Y2, ((-_x10 - _x6) if _x0 or _x1 or _x9 else (-_x10))]
+
+
+def _vector_field__static_kinetic__kelvin_voigt(t, X1, Y1, X2, Y2, mode, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = (mode == -1)
+    _x1 = (mode == 0)
+    _x2 = 2*Y1*beta1*omega1
+    _x3 = X1*omega1**2
+    _x4 = Omega_t**2
+    _x5 = mpmath.sin(Omega_t*t + phase_t)
+    _x6 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    _x7 = _x6*mu_k
+    _x8 = _x2 + _x3 - _x4*_x5*alpha_t
+    _x9 = (mode == 1)
+    _x10 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [((Y1) if _x0 else (Vb) if _x1 else (Y1)), ((-_x2 - _x3 + _x4*_x5*alpha_t + _x7) if _x0 else (0) if _x1 else (-_x7 - _x8) if _x9 else (-_x8)), Y2, ((-_x10 - _x6) if _x0 or _x1 or _x9 else (-_x10))]
+
+
+def _vector_field__static_kinetic__hunt_crossley(t, X1, Y1, X2, Y2, mode, beta1, omega1, beta2, omega2, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    _x0 = (mode == -1)
+    _x1 = (mode == 0)
+    _x2 = 2*Y1*beta1*omega1
+    _x3 = X1*omega1**2
+    _x4 = Omega_t**2
+    _x5 = mpmath.sin(Omega_t*t + phase_t)
+    _x6 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+    _x7 = _x6*mu_k
+    _x8 = _x2 + _x3 - _x4*_x5*alpha_t
+    _x9 = (mode == 1)
+    _x10 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    return [((Y1) if _x0 else (Vb) if _x1 else (Y1)), ((-_x2 - _x3 + _x4*_x5*alpha_t + _x7) if _x0 else (0) if _x1 else (-_x7 - _x8) if _x9 else (-_x8)), Y2, ((-_x10 - _x6) if _x0 or _x1 or _x9 else (-_x10))]
+
+
 _VECTOR_FIELD = {
     ('coulomb', 'hertz_damp'): _support.Variant(_vector_field__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
     ('coulomb', 'kelvin_voigt'): _support.Variant(_vector_field__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
@@ -282,6 +329,9 @@ _VECTOR_FIELD = {
     ('stribeck', 'hertz_damp'): _support.Variant(_vector_field__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_vector_field__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_vector_field__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_vector_field__static_kinetic__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_vector_field__static_kinetic__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_vector_field__static_kinetic__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
 }
 
 
@@ -327,18 +377,20 @@ def mode_jacobian(t, X1, Y1, X2, Y2, mode, *, friction='coulomb', contact='hertz
     Vb : mpmath number
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -515,6 +567,67 @@ def _mode_jacobian__stribeck__hunt_crossley(t, X1, Y1, X2, Y2, mode, beta1, omeg
         ])
 
 
+def _mode_jacobian__static_kinetic__hertz_damp(t, X1, Y1, X2, Y2, mode, beta1, omega1, beta2, omega2, mu_k):
+    _x0 = (mode == -1)
+    _x1 = (mode == 0)
+    _x2 = -omega1**2
+    _x3 = -2*beta1*omega1
+    _x4 = max(0, X2)
+    _x5 = 2*beta2*omega2
+    _x6 = (mpmath.mpf(3)/mpmath.mpf(2))*mpmath.sqrt(_x4)*(Y2*_x5 + omega2**2)*(1 if (X2) > 0 else 0)
+    _x7 = _x6*mu_k
+    _x8 = (mode == 1)
+    _x9 = _x4**(mpmath.mpf(3)/mpmath.mpf(2))*_x5
+    _x10 = _x9*mu_k
+    _x11 = _x0 or _x1 or _x8
+    return mpmath.matrix([
+            [0, ((1) if _x0 else (0) if _x1 else (1)), 0, 0],
+            [((_x2) if _x0 else (0) if _x1 else (_x2)), ((_x3) if _x0 else (0) if _x1 else (_x3)), ((_x7) if _x0 else (0) if _x1 else (-_x7) if _x8 else (0)), ((_x10) if _x0 else (0) if _x1 else (-_x10) if _x8 else (0))],
+            [0, 0, 0, 1],
+            [0, 0, ((-_x6) if _x11 else (0)), ((-_x9) if _x11 else (0))],
+        ])
+
+
+def _mode_jacobian__static_kinetic__kelvin_voigt(t, X1, Y1, X2, Y2, mode, beta1, omega1, beta2, omega2, mu_k):
+    _x0 = (mode == -1)
+    _x1 = (mode == 0)
+    _x2 = -omega1**2
+    _x3 = -2*beta1*omega1
+    _x4 = omega2**2*(1 if (X2) > 0 else 0)
+    _x5 = _x4*mu_k
+    _x6 = (mode == 1)
+    _x7 = 2*beta2*omega2
+    _x8 = _x7*mu_k
+    _x9 = _x0 or _x1 or _x6
+    return mpmath.matrix([
+            [0, ((1) if _x0 else (0) if _x1 else (1)), 0, 0],
+            [((_x2) if _x0 else (0) if _x1 else (_x2)), ((_x3) if _x0 else (0) if _x1 else (_x3)), ((_x5) if _x0 else (0) if _x1 else (-_x5) if _x6 else (0)), ((_x8) if _x0 else (0) if _x1 else (-_x8) if _x6 else (0))],
+            [0, 0, 0, 1],
+            [0, 0, ((-_x4) if _x9 else (0)), ((-_x7) if _x9 else (0))],
+        ])
+
+
+def _mode_jacobian__static_kinetic__hunt_crossley(t, X1, Y1, X2, Y2, mode, beta1, omega1, beta2, omega2, mu_k, n_h):
+    _x0 = (mode == -1)
+    _x1 = (mode == 0)
+    _x2 = -omega1**2
+    _x3 = -2*beta1*omega1
+    _x4 = max(0, X2)
+    _x5 = 2*beta2*omega2
+    _x6 = _x4**(n_h - 1)*n_h*(Y2*_x5 + omega2**2)*(1 if (X2) > 0 else 0)
+    _x7 = _x6*mu_k
+    _x8 = (mode == 1)
+    _x9 = _x4**n_h*_x5
+    _x10 = _x9*mu_k
+    _x11 = _x0 or _x1 or _x8
+    return mpmath.matrix([
+            [0, ((1) if _x0 else (0) if _x1 else (1)), 0, 0],
+            [((_x2) if _x0 else (0) if _x1 else (_x2)), ((_x3) if _x0 else (0) if _x1 else (_x3)), ((_x7) if _x0 else (0) if _x1 else (-_x7) if _x8 else (0)), ((_x10) if _x0 else (0) if _x1 else (-_x10) if _x8 else (0))],
+            [0, 0, 0, 1],
+            [0, 0, ((-_x6) if _x11 else (0)), ((-_x9) if _x11 else (0))],
+        ])
+
+
 _MODE_JACOBIAN = {
     ('coulomb', 'hertz_damp'): _support.Variant(_mode_jacobian__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
     ('coulomb', 'kelvin_voigt'): _support.Variant(_mode_jacobian__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
@@ -522,6 +635,9 @@ _MODE_JACOBIAN = {
     ('stribeck', 'hertz_damp'): _support.Variant(_mode_jacobian__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_mode_jacobian__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_mode_jacobian__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_mode_jacobian__static_kinetic__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_mode_jacobian__static_kinetic__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_mode_jacobian__static_kinetic__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', 'n_h', )),
 }
 
 
@@ -696,10 +812,11 @@ def surfaces(t, X1, Y1, X2, Y2, *, friction='coulomb', contact='hertz_damp', **p
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -768,6 +885,9 @@ _SURFACES = {
     ('stribeck', 'hertz_damp'): _support.Variant(_surfaces__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_surfaces__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_surfaces__coulomb__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_surfaces__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_surfaces__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_surfaces__coulomb__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'n_h', )),
 }
 
 
@@ -824,10 +944,11 @@ def surface_scales(t, X1, Y1, X2, Y2, *, friction='coulomb', contact='hertz_damp
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -898,6 +1019,9 @@ _SURFACE_SCALES = {
     ('stribeck', 'hertz_damp'): _support.Variant(_surface_scales__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_surface_scales__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_surface_scales__coulomb__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_surface_scales__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_surface_scales__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_surface_scales__coulomb__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'n_h', )),
 }
 
 
@@ -962,18 +1086,20 @@ def surface_rates(t, X1, Y1, X2, Y2, mode, *, friction='coulomb', contact='hertz
     phase_n : mpmath number
         normal excitation phase [rad], real, default 0.0.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -1262,6 +1388,136 @@ def _surface_rates__stribeck__hunt_crossley(t, X1, Y1, X2, Y2, mode, beta1, omeg
     return (((_x12) if _x13 else (0) if _x14 else (_x15) if _x16 else (_x17)), ((_x18 + _x28) if _x13 else (_x27 + _x29) if _x14 else (_x28 + _x30) if _x16 else (_x19 + _x21 + _x31 + _x33)), ((-_x18 + _x36) if _x13 else (-_x29 + _x35) if _x14 else (-_x30 + _x36) if _x16 else (_x20 - _x31 + _x33 + _x34)), Y2, ((_x23) if _x13 or _x14 or _x16 else (_x32)),)
 
 
+def _surface_rates__static_kinetic__hertz_damp(t, X1, Y1, X2, Y2, mode, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = 2*beta1*omega1
+    _x1 = Y1*_x0
+    _x2 = omega1**2
+    _x3 = X1*_x2
+    _x4 = Omega_t**2
+    _x5 = Omega_t*t + phase_t
+    _x6 = mpmath.sin(_x5)
+    _x7 = max(0, X2)
+    _x8 = _x7**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x9 = 2*beta2
+    _x10 = Y2*_x9*omega2 + omega2**2
+    _x11 = _x10*_x8
+    _x12 = _x11*mu_k
+    _x13 = -_x1 + _x12 - _x3 + _x4*_x6*alpha_t
+    _x14 = (mode == -1)
+    _x15 = (mode == 0)
+    _x16 = _x1 + _x3 - _x4*_x6*alpha_t
+    _x17 = -_x12 - _x16
+    _x18 = (mode == 1)
+    _x19 = -_x16
+    _x20 = _x0*_x13
+    _x21 = Y1*_x2
+    _x22 = Omega_t**3*alpha_t*mpmath.cos(_x5)
+    _x23 = -_x22
+    _x24 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    _x25 = _x9*(-_x11 - _x24)
+    _x26 = _x8*mu_s*omega2
+    _x27 = (mpmath.mpf(3)/mpmath.mpf(2))*Y2*_x10*mpmath.sqrt(_x7)*mu_s*(1 if (X2) > 0 else 0)
+    _x28 = _x25*_x26 + _x27
+    _x29 = _x23 + _x28
+    _x30 = _x21 + _x29
+    _x31 = Vb*_x2
+    _x32 = _x0*_x17
+    _x33 = _x0*_x19
+    _x34 = -_x24*_x9
+    _x35 = _x26*_x34 + _x27
+    _x36 = -_x21
+    _x37 = _x22 + _x28
+    _x38 = _x36 + _x37
+    return (((_x13) if _x14 else (0) if _x15 else (_x17) if _x18 else (_x19)), ((_x20 + _x30) if _x14 else (_x29 + _x31) if _x15 else (_x30 + _x32) if _x18 else (_x21 + _x23 + _x33 + _x35)), ((-_x20 + _x38) if _x14 else (-_x31 + _x37) if _x15 else (-_x32 + _x38) if _x18 else (_x22 - _x33 + _x35 + _x36)), Y2, ((_x25) if _x14 or _x15 or _x18 else (_x34)),)
+
+
+def _surface_rates__static_kinetic__kelvin_voigt(t, X1, Y1, X2, Y2, mode, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = 2*beta1*omega1
+    _x1 = Y1*_x0
+    _x2 = omega1**2
+    _x3 = X1*_x2
+    _x4 = Omega_t**2
+    _x5 = Omega_t*t + phase_t
+    _x6 = mpmath.sin(_x5)
+    _x7 = 2*beta2
+    _x8 = Y2*omega2
+    _x9 = omega2**2
+    _x10 = _x7*_x8 + _x9*max(0, X2)
+    _x11 = _x10*mu_k
+    _x12 = -_x1 + _x11 - _x3 + _x4*_x6*alpha_t
+    _x13 = (mode == -1)
+    _x14 = (mode == 0)
+    _x15 = _x1 + _x3 - _x4*_x6*alpha_t
+    _x16 = -_x11 - _x15
+    _x17 = (mode == 1)
+    _x18 = -_x15
+    _x19 = _x0*_x12
+    _x20 = Y1*_x2
+    _x21 = Omega_t**3*alpha_t*mpmath.cos(_x5)
+    _x22 = -_x21
+    _x23 = (1 if (X2) > 0 else 0)
+    _x24 = Y2*_x23*_x9*mu_s
+    _x25 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    _x26 = _x7*(-_x10 - _x25)
+    _x27 = mu_s*omega2
+    _x28 = _x24 + _x26*_x27
+    _x29 = _x22 + _x28
+    _x30 = _x20 + _x29
+    _x31 = Vb*_x2
+    _x32 = _x0*_x16
+    _x33 = _x0*_x18
+    _x34 = -_x25*_x7
+    _x35 = _x24 + _x27*_x34
+    _x36 = -_x20
+    _x37 = _x21 + _x28
+    _x38 = _x36 + _x37
+    _x39 = _x23*_x8
+    return (((_x12) if _x13 else (0) if _x14 else (_x16) if _x17 else (_x18)), ((_x19 + _x30) if _x13 else (_x29 + _x31) if _x14 else (_x30 + _x32) if _x17 else (_x20 + _x22 + _x33 + _x35)), ((-_x19 + _x38) if _x13 else (-_x31 + _x37) if _x14 else (-_x32 + _x38) if _x17 else (_x21 - _x33 + _x35 + _x36)), Y2, ((_x26 + _x39) if _x13 or _x14 or _x17 else (_x34 + _x39)),)
+
+
+def _surface_rates__static_kinetic__hunt_crossley(t, X1, Y1, X2, Y2, mode, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    _x0 = 2*beta1*omega1
+    _x1 = Y1*_x0
+    _x2 = omega1**2
+    _x3 = X1*_x2
+    _x4 = Omega_t**2
+    _x5 = Omega_t*t + phase_t
+    _x6 = mpmath.sin(_x5)
+    _x7 = max(0, X2)
+    _x8 = _x7**n_h
+    _x9 = 2*beta2
+    _x10 = Y2*_x9*omega2 + omega2**2
+    _x11 = _x10*_x8
+    _x12 = _x11*mu_k
+    _x13 = -_x1 + _x12 - _x3 + _x4*_x6*alpha_t
+    _x14 = (mode == -1)
+    _x15 = (mode == 0)
+    _x16 = _x1 + _x3 - _x4*_x6*alpha_t
+    _x17 = -_x12 - _x16
+    _x18 = (mode == 1)
+    _x19 = -_x16
+    _x20 = _x0*_x13
+    _x21 = Y1*_x2
+    _x22 = Omega_t**3*alpha_t*mpmath.cos(_x5)
+    _x23 = -_x22
+    _x24 = Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - g
+    _x25 = _x9*(-_x11 - _x24)
+    _x26 = _x8*mu_s*omega2
+    _x27 = Y2*_x10*_x7**(n_h - 1)*mu_s*n_h*(1 if (X2) > 0 else 0)
+    _x28 = _x25*_x26 + _x27
+    _x29 = _x23 + _x28
+    _x30 = _x21 + _x29
+    _x31 = Vb*_x2
+    _x32 = _x0*_x17
+    _x33 = _x0*_x19
+    _x34 = -_x24*_x9
+    _x35 = _x26*_x34 + _x27
+    _x36 = -_x21
+    _x37 = _x22 + _x28
+    _x38 = _x36 + _x37
+    return (((_x13) if _x14 else (0) if _x15 else (_x17) if _x18 else (_x19)), ((_x20 + _x30) if _x14 else (_x29 + _x31) if _x15 else (_x30 + _x32) if _x18 else (_x21 + _x23 + _x33 + _x35)), ((-_x20 + _x38) if _x14 else (-_x31 + _x37) if _x15 else (-_x32 + _x38) if _x18 else (_x22 - _x33 + _x35 + _x36)), Y2, ((_x25) if _x14 or _x15 or _x18 else (_x34)),)
+
+
 _SURFACE_RATES = {
     ('coulomb', 'hertz_damp'): _support.Variant(_surface_rates__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
     ('coulomb', 'kelvin_voigt'): _support.Variant(_surface_rates__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
@@ -1269,6 +1525,9 @@ _SURFACE_RATES = {
     ('stribeck', 'hertz_damp'): _support.Variant(_surface_rates__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_surface_rates__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_surface_rates__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_surface_rates__static_kinetic__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_surface_rates__static_kinetic__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_surface_rates__static_kinetic__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
 }
 
 
@@ -1332,18 +1591,20 @@ def saltation(t, X1, Y1, X2, Y2, *, friction='coulomb', contact='hertz_damp', be
     phase_n : mpmath number
         normal excitation phase [rad], real, default 0.0.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -2657,6 +2918,554 @@ def _saltation__stribeck__hunt_crossley__stick__slip_forward__stick_forward(t, X
         ])
 
 
+def _saltation__static_kinetic__hertz_damp__flight__slip_back__penetration(t, X1, Y1, X2, Y2, beta2, omega2, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))/Y2
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, _x0*mu_k, 0],
+            [0, 0, 1, 0],
+            [0, 0, -_x0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__flight__slip_forward__penetration(t, X1, Y1, X2, Y2, beta2, omega2, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))/Y2
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, -_x0*mu_k, 0],
+            [0, 0, 1, 0],
+            [0, 0, -_x0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__separated__slip_back__contact_force(t, X1, Y1, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))/(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g)
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, 0, _x0*mu_k],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1 - _x0],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__separated__slip_forward__contact_force(t, X1, Y1, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))/(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g)
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, 0, -_x0*mu_k],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1 - _x0],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__slip_back__flight__penetration(t, X1, Y1, X2, Y2, beta2, omega2, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))/Y2
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, -_x0*mu_k, 0],
+            [0, 0, 1, 0],
+            [0, 0, _x0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__slip_back__separated__contact_force(t, X1, Y1, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x1 = _x0/(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g)
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, 0, -_x1*mu_k],
+            [0, 0, 1, 0],
+            [0, 0, 0, _x1 + 1],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__slip_back__slip_forward__relative_velocity(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, mu_k):
+    _x0 = mu_k*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, -2*_x0/(Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 + _x0) + 1, 0, 0],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__slip_back__stick__relative_velocity(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, Vb, alpha_t, Omega_t, phase_t, mu_k):
+    _x0 = Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 + mu_k*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x1 = 1/_x0
+    return mpmath.matrix([
+            [1, _x1*(Vb - Y1), 0, 0],
+            [0, -_x0*_x1 + 1, 0, 0],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__slip_forward__flight__penetration(t, X1, Y1, X2, Y2, beta2, omega2, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))/Y2
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, _x0*mu_k, 0],
+            [0, 0, 1, 0],
+            [0, 0, _x0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__slip_forward__separated__contact_force(t, X1, Y1, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x1 = _x0/(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g)
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, 0, _x1*mu_k],
+            [0, 0, 1, 0],
+            [0, 0, 0, _x1 + 1],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__slip_forward__slip_back__relative_velocity(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, mu_k):
+    _x0 = mu_k*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 2*_x0/(Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0) + 1, 0, 0],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__slip_forward__stick__relative_velocity(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, Vb, alpha_t, Omega_t, phase_t, mu_k):
+    _x0 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1 + mu_k*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x1 = -1/_x0
+    return mpmath.matrix([
+            [1, _x1*(Vb - Y1), 0, 0],
+            [0, _x0*_x1 + 1, 0, 0],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__stick__slip_back__stick_back(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = -Vb + Y1
+    _x1 = omega1**2
+    _x2 = Omega_t*t + phase_t
+    _x3 = 2*beta2*omega2
+    _x4 = Y2*_x3 + omega2**2
+    _x5 = max(0, X2)
+    _x6 = (mpmath.mpf(3)/mpmath.mpf(2))*_x4*mpmath.sqrt(_x5)*mu_s*(1 if (X2) > 0 else 0)
+    _x7 = _x5**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x8 = _x4*_x7
+    _x9 = _x3*_x7*mu_s
+    _x10 = 1/(Omega_t**3*alpha_t*mpmath.cos(_x2) - Vb*_x1 + Y2*_x6 + _x9*(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x8 + g))
+    _x11 = _x1*_x10
+    _x12 = 2*beta1*omega1
+    _x13 = _x10*_x12
+    _x14 = _x0*_x10
+    _x15 = Omega_t**2*alpha_t*mpmath.sin(_x2) - X1*_x1 - Y1*_x12 + _x8*mu_k
+    _x16 = _x10*_x15
+    return mpmath.matrix([
+            [-_x0*_x11 + 1, -_x0*_x13, _x14*_x6, _x14*_x9],
+            [-_x11*_x15, -_x13*_x15 + 1, _x16*_x6, _x16*_x9],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hertz_damp__stick__slip_forward__stick_forward(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = -Vb + Y1
+    _x1 = omega1**2
+    _x2 = Omega_t*t + phase_t
+    _x3 = 2*beta2*omega2
+    _x4 = Y2*_x3 + omega2**2
+    _x5 = max(0, X2)
+    _x6 = (mpmath.mpf(3)/mpmath.mpf(2))*_x4*mpmath.sqrt(_x5)*mu_s*(1 if (X2) > 0 else 0)
+    _x7 = _x5**(mpmath.mpf(3)/mpmath.mpf(2))
+    _x8 = _x4*_x7
+    _x9 = _x3*_x7*mu_s
+    _x10 = 1/(-Omega_t**3*alpha_t*mpmath.cos(_x2) + Vb*_x1 + Y2*_x6 + _x9*(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x8 + g))
+    _x11 = _x1*_x10
+    _x12 = 2*beta1*omega1
+    _x13 = _x10*_x12
+    _x14 = _x0*_x10
+    _x15 = Omega_t**2*alpha_t*mpmath.sin(_x2) - X1*_x1 - Y1*_x12 - _x8*mu_k
+    _x16 = _x10*_x15
+    return mpmath.matrix([
+            [_x0*_x11 + 1, _x0*_x13, _x14*_x6, _x14*_x9],
+            [_x11*_x15, _x13*_x15 + 1, _x16*_x6, _x16*_x9],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__flight__slip_back__penetration(t, X1, Y1, X2, Y2, beta2, omega2, mu_k):
+    _x0 = 1/Y2
+    _x1 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, _x0*_x1*mu_k, 0],
+            [0, 0, 1, 0],
+            [0, 0, -_x0*_x1, 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__flight__slip_forward__penetration(t, X1, Y1, X2, Y2, beta2, omega2, mu_k):
+    _x0 = 1/Y2
+    _x1 = 2*Y2*beta2*omega2 + omega2**2*max(0, X2)
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, -_x0*_x1*mu_k, 0],
+            [0, 0, 1, 0],
+            [0, 0, -_x0*_x1, 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__separated__slip_back__contact_force(t, X1, Y1, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = (1 if (X2) > 0 else 0)
+    _x1 = _x0*omega2
+    _x2 = Y2*omega2
+    _x3 = 2*beta2
+    _x4 = 1/(_x0*_x2 + _x3*(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g))
+    _x5 = _x2*_x3 + omega2**2*max(0, X2)
+    _x6 = _x4*_x5*mu_k
+    _x7 = -_x4*_x5
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, _x1*_x6, _x3*_x6],
+            [0, 0, 1, 0],
+            [0, 0, _x1*_x7, _x3*_x7 + 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__separated__slip_forward__contact_force(t, X1, Y1, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = (1 if (X2) > 0 else 0)
+    _x1 = _x0*omega2
+    _x2 = Y2*omega2
+    _x3 = 2*beta2
+    _x4 = 1/(_x0*_x2 + _x3*(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g))
+    _x5 = _x2*_x3 + omega2**2*max(0, X2)
+    _x6 = _x4*_x5*mu_k
+    _x7 = -_x4*_x5
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, -_x1*_x6, -_x3*_x6],
+            [0, 0, 1, 0],
+            [0, 0, _x1*_x7, _x3*_x7 + 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__slip_back__flight__penetration(t, X1, Y1, X2, Y2, beta2, omega2, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2*max(0, X2))/Y2
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, -_x0*mu_k, 0],
+            [0, 0, 1, 0],
+            [0, 0, _x0, 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__slip_back__separated__contact_force(t, X1, Y1, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = (1 if (X2) > 0 else 0)
+    _x1 = Y2*omega2
+    _x2 = 2*beta2
+    _x3 = _x1*_x2 + omega2**2*max(0, X2)
+    _x4 = _x3/(_x0*_x1 + _x2*(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x3 + g))
+    _x5 = _x0*_x4*omega2
+    _x6 = _x2*_x4
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, -_x5*mu_k, -_x6*mu_k],
+            [0, 0, 1, 0],
+            [0, 0, _x5, _x6 + 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__slip_back__slip_forward__relative_velocity(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, mu_k):
+    _x0 = mu_k*(2*Y2*beta2*omega2 + omega2**2*max(0, X2))
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, -2*_x0/(Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 + _x0) + 1, 0, 0],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__slip_back__stick__relative_velocity(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, Vb, alpha_t, Omega_t, phase_t, mu_k):
+    _x0 = Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 + mu_k*(2*Y2*beta2*omega2 + omega2**2*max(0, X2))
+    _x1 = 1/_x0
+    return mpmath.matrix([
+            [1, _x1*(Vb - Y1), 0, 0],
+            [0, -_x0*_x1 + 1, 0, 0],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__slip_forward__flight__penetration(t, X1, Y1, X2, Y2, beta2, omega2, mu_k):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2*max(0, X2))/Y2
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, _x0*mu_k, 0],
+            [0, 0, 1, 0],
+            [0, 0, _x0, 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__slip_forward__separated__contact_force(t, X1, Y1, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = (1 if (X2) > 0 else 0)
+    _x1 = Y2*omega2
+    _x2 = 2*beta2
+    _x3 = _x1*_x2 + omega2**2*max(0, X2)
+    _x4 = _x3/(_x0*_x1 + _x2*(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x3 + g))
+    _x5 = _x0*_x4*omega2
+    _x6 = _x2*_x4
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, _x5*mu_k, _x6*mu_k],
+            [0, 0, 1, 0],
+            [0, 0, _x5, _x6 + 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__slip_forward__slip_back__relative_velocity(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, mu_k):
+    _x0 = mu_k*(2*Y2*beta2*omega2 + omega2**2*max(0, X2))
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 2*_x0/(Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0) + 1, 0, 0],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__slip_forward__stick__relative_velocity(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, Vb, alpha_t, Omega_t, phase_t, mu_k):
+    _x0 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1 + mu_k*(2*Y2*beta2*omega2 + omega2**2*max(0, X2))
+    _x1 = -1/_x0
+    return mpmath.matrix([
+            [1, _x1*(Vb - Y1), 0, 0],
+            [0, _x0*_x1 + 1, 0, 0],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__stick__slip_back__stick_back(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = -Vb + Y1
+    _x1 = omega1**2
+    _x2 = omega2**2
+    _x3 = _x2*mu_s*(1 if (X2) > 0 else 0)
+    _x4 = Omega_t*t + phase_t
+    _x5 = 2*beta2*omega2
+    _x6 = Y2*_x5 + _x2*max(0, X2)
+    _x7 = _x5*mu_s
+    _x8 = 1/(Omega_t**3*alpha_t*mpmath.cos(_x4) - Vb*_x1 + Y2*_x3 + _x7*(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x6 + g))
+    _x9 = _x1*_x8
+    _x10 = 2*beta1*omega1
+    _x11 = _x0*_x8
+    _x12 = Omega_t**2*alpha_t*mpmath.sin(_x4) - X1*_x1 - Y1*_x10 + _x6*mu_k
+    _x13 = _x12*_x8
+    return mpmath.matrix([
+            [-_x0*_x9 + 1, -_x10*_x11, _x11*_x3, _x11*_x7],
+            [-_x12*_x9, -_x10*_x13 + 1, _x13*_x3, _x13*_x7],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__kelvin_voigt__stick__slip_forward__stick_forward(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k):
+    _x0 = -Vb + Y1
+    _x1 = omega1**2
+    _x2 = omega2**2
+    _x3 = _x2*mu_s*(1 if (X2) > 0 else 0)
+    _x4 = Omega_t*t + phase_t
+    _x5 = 2*beta2*omega2
+    _x6 = Y2*_x5 + _x2*max(0, X2)
+    _x7 = _x5*mu_s
+    _x8 = 1/(-Omega_t**3*alpha_t*mpmath.cos(_x4) + Vb*_x1 + Y2*_x3 + _x7*(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x6 + g))
+    _x9 = _x1*_x8
+    _x10 = 2*beta1*omega1
+    _x11 = _x0*_x8
+    _x12 = Omega_t**2*alpha_t*mpmath.sin(_x4) - X1*_x1 - Y1*_x10 - _x6*mu_k
+    _x13 = _x12*_x8
+    return mpmath.matrix([
+            [_x0*_x9 + 1, _x10*_x11, _x11*_x3, _x11*_x7],
+            [_x12*_x9, _x10*_x13 + 1, _x13*_x3, _x13*_x7],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__flight__slip_back__penetration(t, X1, Y1, X2, Y2, beta2, omega2, mu_k, n_h):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h/Y2
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, _x0*mu_k, 0],
+            [0, 0, 1, 0],
+            [0, 0, -_x0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__flight__slip_forward__penetration(t, X1, Y1, X2, Y2, beta2, omega2, mu_k, n_h):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h/Y2
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, -_x0*mu_k, 0],
+            [0, 0, 1, 0],
+            [0, 0, -_x0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__separated__slip_back__contact_force(t, X1, Y1, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h/(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g)
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, 0, _x0*mu_k],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1 - _x0],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__separated__slip_forward__contact_force(t, X1, Y1, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h/(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) + g)
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, 0, -_x0*mu_k],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1 - _x0],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__slip_back__flight__penetration(t, X1, Y1, X2, Y2, beta2, omega2, mu_k, n_h):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h/Y2
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, -_x0*mu_k, 0],
+            [0, 0, 1, 0],
+            [0, 0, _x0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__slip_back__separated__contact_force(t, X1, Y1, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+    _x1 = _x0/(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g)
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, 0, -_x1*mu_k],
+            [0, 0, 1, 0],
+            [0, 0, 0, _x1 + 1],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__slip_back__slip_forward__relative_velocity(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, mu_k, n_h):
+    _x0 = mu_k*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, -2*_x0/(Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 + _x0) + 1, 0, 0],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__slip_back__stick__relative_velocity(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, Vb, alpha_t, Omega_t, phase_t, mu_k, n_h):
+    _x0 = Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 + mu_k*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+    _x1 = 1/_x0
+    return mpmath.matrix([
+            [1, _x1*(Vb - Y1), 0, 0],
+            [0, -_x0*_x1 + 1, 0, 0],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__slip_forward__flight__penetration(t, X1, Y1, X2, Y2, beta2, omega2, mu_k, n_h):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h/Y2
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, _x0*mu_k, 0],
+            [0, 0, 1, 0],
+            [0, 0, _x0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__slip_forward__separated__contact_force(t, X1, Y1, X2, Y2, beta2, omega2, g, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    _x0 = (2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+    _x1 = _x0/(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x0 + g)
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 1, 0, _x1*mu_k],
+            [0, 0, 1, 0],
+            [0, 0, 0, _x1 + 1],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__slip_forward__slip_back__relative_velocity(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, alpha_t, Omega_t, phase_t, mu_k, n_h):
+    _x0 = mu_k*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+    return mpmath.matrix([
+            [1, 0, 0, 0],
+            [0, 2*_x0/(Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) - X1*omega1**2 - 2*Y1*beta1*omega1 - _x0) + 1, 0, 0],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__slip_forward__stick__relative_velocity(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, Vb, alpha_t, Omega_t, phase_t, mu_k, n_h):
+    _x0 = -Omega_t**2*alpha_t*mpmath.sin(Omega_t*t + phase_t) + X1*omega1**2 + 2*Y1*beta1*omega1 + mu_k*(2*Y2*beta2*omega2 + omega2**2)*max(0, X2)**n_h
+    _x1 = -1/_x0
+    return mpmath.matrix([
+            [1, _x1*(Vb - Y1), 0, 0],
+            [0, _x0*_x1 + 1, 0, 0],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__stick__slip_back__stick_back(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    _x0 = -Vb + Y1
+    _x1 = omega1**2
+    _x2 = Omega_t*t + phase_t
+    _x3 = 2*beta2*omega2
+    _x4 = Y2*_x3 + omega2**2
+    _x5 = max(0, X2)
+    _x6 = _x4*_x5**(n_h - 1)*mu_s*n_h*(1 if (X2) > 0 else 0)
+    _x7 = _x5**n_h
+    _x8 = _x4*_x7
+    _x9 = _x3*_x7*mu_s
+    _x10 = 1/(Omega_t**3*alpha_t*mpmath.cos(_x2) - Vb*_x1 + Y2*_x6 + _x9*(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x8 + g))
+    _x11 = _x1*_x10
+    _x12 = 2*beta1*omega1
+    _x13 = _x10*_x12
+    _x14 = _x0*_x10
+    _x15 = Omega_t**2*alpha_t*mpmath.sin(_x2) - X1*_x1 - Y1*_x12 + _x8*mu_k
+    _x16 = _x10*_x15
+    return mpmath.matrix([
+            [-_x0*_x11 + 1, -_x0*_x13, _x14*_x6, _x14*_x9],
+            [-_x11*_x15, -_x13*_x15 + 1, _x16*_x6, _x16*_x9],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
+def _saltation__static_kinetic__hunt_crossley__stick__slip_forward__stick_forward(t, X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_s, g, Vb, alpha_t, Omega_t, phase_t, alpha_n, Omega_n, phase_n, mu_k, n_h):
+    _x0 = -Vb + Y1
+    _x1 = omega1**2
+    _x2 = Omega_t*t + phase_t
+    _x3 = 2*beta2*omega2
+    _x4 = Y2*_x3 + omega2**2
+    _x5 = max(0, X2)
+    _x6 = _x4*_x5**(n_h - 1)*mu_s*n_h*(1 if (X2) > 0 else 0)
+    _x7 = _x5**n_h
+    _x8 = _x4*_x7
+    _x9 = _x3*_x7*mu_s
+    _x10 = 1/(-Omega_t**3*alpha_t*mpmath.cos(_x2) + Vb*_x1 + Y2*_x6 + _x9*(-Omega_n**2*alpha_n*mpmath.sin(Omega_n*t + phase_n) - _x8 + g))
+    _x11 = _x1*_x10
+    _x12 = 2*beta1*omega1
+    _x13 = _x10*_x12
+    _x14 = _x0*_x10
+    _x15 = Omega_t**2*alpha_t*mpmath.sin(_x2) - X1*_x1 - Y1*_x12 - _x8*mu_k
+    _x16 = _x10*_x15
+    return mpmath.matrix([
+            [_x0*_x11 + 1, _x0*_x13, _x14*_x6, _x14*_x9],
+            [_x11*_x15, _x13*_x15 + 1, _x16*_x6, _x16*_x9],
+            [0, 0, 1, 0],
+            [0, 0, 0, 1],
+        ])
+
+
 _SALTATION = {
     ('coulomb', 'hertz_damp', 'flight', 'separated', 'penetration'): _support.Variant(_saltation__coulomb__hertz_damp__flight__separated__penetration, ()),
     ('coulomb', 'hertz_damp', 'flight', 'slip_back', 'penetration'): _support.Variant(_saltation__coulomb__hertz_damp__flight__slip_back__penetration, ('beta2', 'omega2', 'mu_s', )),
@@ -2778,4 +3587,64 @@ _SALTATION = {
     ('stribeck', 'hunt_crossley', 'stick', 'separated', 'contact_force'): _support.Variant(_saltation__coulomb__hunt_crossley__stick__separated__contact_force, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'stick', 'slip_back', 'stick_back'): _support.Variant(_saltation__stribeck__hunt_crossley__stick__slip_back__stick_back, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'stick', 'slip_forward', 'stick_forward'): _support.Variant(_saltation__stribeck__hunt_crossley__stick__slip_forward__stick_forward, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'flight', 'separated', 'penetration'): _support.Variant(_saltation__coulomb__hertz_damp__flight__separated__penetration, ()),
+    ('static_kinetic', 'hertz_damp', 'flight', 'slip_back', 'penetration'): _support.Variant(_saltation__static_kinetic__hertz_damp__flight__slip_back__penetration, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'flight', 'slip_forward', 'penetration'): _support.Variant(_saltation__static_kinetic__hertz_damp__flight__slip_forward__penetration, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'flight', 'stick', 'penetration'): _support.Variant(_saltation__coulomb__hertz_damp__flight__stick__penetration, ('beta1', 'omega1', 'beta2', 'omega2', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
+    ('static_kinetic', 'hertz_damp', 'separated', 'flight', 'penetration'): _support.Variant(_saltation__coulomb__hertz_damp__flight__separated__penetration, ()),
+    ('static_kinetic', 'hertz_damp', 'separated', 'slip_back', 'contact_force'): _support.Variant(_saltation__static_kinetic__hertz_damp__separated__slip_back__contact_force, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'separated', 'slip_forward', 'contact_force'): _support.Variant(_saltation__static_kinetic__hertz_damp__separated__slip_forward__contact_force, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'separated', 'stick', 'contact_force'): _support.Variant(_saltation__coulomb__hertz_damp__separated__stick__contact_force, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('static_kinetic', 'hertz_damp', 'slip_back', 'flight', 'penetration'): _support.Variant(_saltation__static_kinetic__hertz_damp__slip_back__flight__penetration, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'slip_back', 'separated', 'contact_force'): _support.Variant(_saltation__static_kinetic__hertz_damp__slip_back__separated__contact_force, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'slip_back', 'slip_forward', 'relative_velocity'): _support.Variant(_saltation__static_kinetic__hertz_damp__slip_back__slip_forward__relative_velocity, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'slip_back', 'stick', 'relative_velocity'): _support.Variant(_saltation__static_kinetic__hertz_damp__slip_back__stick__relative_velocity, ('beta1', 'omega1', 'beta2', 'omega2', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'slip_forward', 'flight', 'penetration'): _support.Variant(_saltation__static_kinetic__hertz_damp__slip_forward__flight__penetration, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'slip_forward', 'separated', 'contact_force'): _support.Variant(_saltation__static_kinetic__hertz_damp__slip_forward__separated__contact_force, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'slip_forward', 'slip_back', 'relative_velocity'): _support.Variant(_saltation__static_kinetic__hertz_damp__slip_forward__slip_back__relative_velocity, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'slip_forward', 'stick', 'relative_velocity'): _support.Variant(_saltation__static_kinetic__hertz_damp__slip_forward__stick__relative_velocity, ('beta1', 'omega1', 'beta2', 'omega2', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'stick', 'flight', 'penetration'): _support.Variant(_saltation__coulomb__hertz_damp__stick__flight__penetration, ('beta1', 'omega1', 'beta2', 'omega2', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
+    ('static_kinetic', 'hertz_damp', 'stick', 'separated', 'contact_force'): _support.Variant(_saltation__coulomb__hertz_damp__stick__separated__contact_force, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('static_kinetic', 'hertz_damp', 'stick', 'slip_back', 'stick_back'): _support.Variant(_saltation__static_kinetic__hertz_damp__stick__slip_back__stick_back, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'stick', 'slip_forward', 'stick_forward'): _support.Variant(_saltation__static_kinetic__hertz_damp__stick__slip_forward__stick_forward, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'flight', 'separated', 'penetration'): _support.Variant(_saltation__coulomb__hertz_damp__flight__separated__penetration, ()),
+    ('static_kinetic', 'kelvin_voigt', 'flight', 'slip_back', 'penetration'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__flight__slip_back__penetration, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'flight', 'slip_forward', 'penetration'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__flight__slip_forward__penetration, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'flight', 'stick', 'penetration'): _support.Variant(_saltation__coulomb__kelvin_voigt__flight__stick__penetration, ('beta1', 'omega1', 'beta2', 'omega2', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
+    ('static_kinetic', 'kelvin_voigt', 'separated', 'flight', 'penetration'): _support.Variant(_saltation__coulomb__hertz_damp__flight__separated__penetration, ()),
+    ('static_kinetic', 'kelvin_voigt', 'separated', 'slip_back', 'contact_force'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__separated__slip_back__contact_force, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'separated', 'slip_forward', 'contact_force'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__separated__slip_forward__contact_force, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'separated', 'stick', 'contact_force'): _support.Variant(_saltation__coulomb__kelvin_voigt__separated__stick__contact_force, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('static_kinetic', 'kelvin_voigt', 'slip_back', 'flight', 'penetration'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__slip_back__flight__penetration, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'slip_back', 'separated', 'contact_force'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__slip_back__separated__contact_force, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'slip_back', 'slip_forward', 'relative_velocity'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__slip_back__slip_forward__relative_velocity, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'slip_back', 'stick', 'relative_velocity'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__slip_back__stick__relative_velocity, ('beta1', 'omega1', 'beta2', 'omega2', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'slip_forward', 'flight', 'penetration'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__slip_forward__flight__penetration, ('beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'slip_forward', 'separated', 'contact_force'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__slip_forward__separated__contact_force, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'slip_forward', 'slip_back', 'relative_velocity'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__slip_forward__slip_back__relative_velocity, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'slip_forward', 'stick', 'relative_velocity'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__slip_forward__stick__relative_velocity, ('beta1', 'omega1', 'beta2', 'omega2', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'stick', 'flight', 'penetration'): _support.Variant(_saltation__coulomb__kelvin_voigt__stick__flight__penetration, ('beta1', 'omega1', 'beta2', 'omega2', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', )),
+    ('static_kinetic', 'kelvin_voigt', 'stick', 'separated', 'contact_force'): _support.Variant(_saltation__coulomb__kelvin_voigt__stick__separated__contact_force, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', )),
+    ('static_kinetic', 'kelvin_voigt', 'stick', 'slip_back', 'stick_back'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__stick__slip_back__stick_back, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'stick', 'slip_forward', 'stick_forward'): _support.Variant(_saltation__static_kinetic__kelvin_voigt__stick__slip_forward__stick_forward, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'flight', 'separated', 'penetration'): _support.Variant(_saltation__coulomb__hertz_damp__flight__separated__penetration, ()),
+    ('static_kinetic', 'hunt_crossley', 'flight', 'slip_back', 'penetration'): _support.Variant(_saltation__static_kinetic__hunt_crossley__flight__slip_back__penetration, ('beta2', 'omega2', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'flight', 'slip_forward', 'penetration'): _support.Variant(_saltation__static_kinetic__hunt_crossley__flight__slip_forward__penetration, ('beta2', 'omega2', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'flight', 'stick', 'penetration'): _support.Variant(_saltation__coulomb__hunt_crossley__flight__stick__penetration, ('beta1', 'omega1', 'beta2', 'omega2', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'separated', 'flight', 'penetration'): _support.Variant(_saltation__coulomb__hertz_damp__flight__separated__penetration, ()),
+    ('static_kinetic', 'hunt_crossley', 'separated', 'slip_back', 'contact_force'): _support.Variant(_saltation__static_kinetic__hunt_crossley__separated__slip_back__contact_force, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'separated', 'slip_forward', 'contact_force'): _support.Variant(_saltation__static_kinetic__hunt_crossley__separated__slip_forward__contact_force, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'separated', 'stick', 'contact_force'): _support.Variant(_saltation__coulomb__hunt_crossley__separated__stick__contact_force, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'slip_back', 'flight', 'penetration'): _support.Variant(_saltation__static_kinetic__hunt_crossley__slip_back__flight__penetration, ('beta2', 'omega2', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'slip_back', 'separated', 'contact_force'): _support.Variant(_saltation__static_kinetic__hunt_crossley__slip_back__separated__contact_force, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'slip_back', 'slip_forward', 'relative_velocity'): _support.Variant(_saltation__static_kinetic__hunt_crossley__slip_back__slip_forward__relative_velocity, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'slip_back', 'stick', 'relative_velocity'): _support.Variant(_saltation__static_kinetic__hunt_crossley__slip_back__stick__relative_velocity, ('beta1', 'omega1', 'beta2', 'omega2', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'slip_forward', 'flight', 'penetration'): _support.Variant(_saltation__static_kinetic__hunt_crossley__slip_forward__flight__penetration, ('beta2', 'omega2', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'slip_forward', 'separated', 'contact_force'): _support.Variant(_saltation__static_kinetic__hunt_crossley__slip_forward__separated__contact_force, ('beta2', 'omega2', 'g', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'slip_forward', 'slip_back', 'relative_velocity'): _support.Variant(_saltation__static_kinetic__hunt_crossley__slip_forward__slip_back__relative_velocity, ('beta1', 'omega1', 'beta2', 'omega2', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'slip_forward', 'stick', 'relative_velocity'): _support.Variant(_saltation__static_kinetic__hunt_crossley__slip_forward__stick__relative_velocity, ('beta1', 'omega1', 'beta2', 'omega2', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'stick', 'flight', 'penetration'): _support.Variant(_saltation__coulomb__hunt_crossley__stick__flight__penetration, ('beta1', 'omega1', 'beta2', 'omega2', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'stick', 'separated', 'contact_force'): _support.Variant(_saltation__coulomb__hunt_crossley__stick__separated__contact_force, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'stick', 'slip_back', 'stick_back'): _support.Variant(_saltation__static_kinetic__hunt_crossley__stick__slip_back__stick_back, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'stick', 'slip_forward', 'stick_forward'): _support.Variant(_saltation__static_kinetic__hunt_crossley__stick__slip_forward__stick_forward, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'alpha_t', 'Omega_t', 'phase_t', 'alpha_n', 'Omega_n', 'phase_n', 'mu_k', 'n_h', )),
 }

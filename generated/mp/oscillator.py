@@ -283,10 +283,15 @@ def tangential_state(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, *
     mu_s : mpmath number
         static friction coefficient: Coulomb's of Eq. (3), the bound of stick [1],
         nonnegative.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    mu_k : mpmath number
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     **params
         Any other model parameter (accepted and ignored); an unknown
         name raises TypeError.
@@ -365,7 +370,47 @@ def _tangential_state__coulomb(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z,
         return (-_x0*z + _x1*_x4 + _x5*(_x3 + _x6) + zf, -_x0*v + _x1*(_x3 - _x6) - _x4*_x5*omega1**2 + vf,)
 
 
+def _tangential_state__static_kinetic(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, beta1, omega1, mu_k):
+    if (beta1 < 1):
+        _x0 = mu_k*sgn
+        _x1 = Y1_0 + _x0*v_0 - vf_0
+        _x2 = omega1*tau
+        _x3 = mpmath.exp(-_x2*beta1)
+        _x4 = mpmath.sqrt(beta1 + 1)
+        _x5 = mpmath.sqrt(1 - beta1)
+        _x6 = _x2*_x4*_x5
+        _x7 = _x3*mpmath.sin(_x6)/(_x4*_x5)
+        _x8 = X1_0 + _x0*z_0 - zf_0
+        _x9 = mpmath.cos(_x6)
+        _x10 = _x7*beta1
+        return (-_x0*z + _x1*_x7/omega1 + _x8*(_x10 + _x3*_x9) + zf, -_x0*v + _x1*(-_x10 + _x3*_x9) - _x7*_x8*omega1 + vf,)
+    elif (beta1 > 1):
+        _x0 = mu_k*sgn
+        _x1 = Y1_0 + _x0*v_0 - vf_0
+        _x2 = mpmath.sqrt(beta1 - 1)
+        _x3 = mpmath.sqrt(beta1 + 1)
+        _x4 = _x2*_x3
+        _x5 = omega1*tau
+        _x6 = mpmath.exp(-_x5/(_x4 + beta1))
+        _x7 = (mpmath.mpf(1)/mpmath.mpf(2))*mpmath.expm1(-2*_x4*_x5)
+        _x8 = _x6*_x7/(_x2*_x3)
+        _x9 = X1_0 + _x0*z_0 - zf_0
+        _x10 = _x7 + 1
+        _x11 = _x8*beta1
+        return (-_x0*z - _x1*_x8/omega1 + _x9*(_x10*_x6 - _x11) + zf, -_x0*v + _x1*(_x10*_x6 + _x11) + _x8*_x9*omega1 + vf,)
+    else:
+        _x0 = mu_k*sgn
+        _x1 = Y1_0 + _x0*v_0 - vf_0
+        _x2 = beta1*omega1*tau
+        _x3 = mpmath.exp(-_x2)
+        _x4 = _x3*tau
+        _x5 = X1_0 + _x0*z_0 - zf_0
+        _x6 = _x2*_x3
+        return (-_x0*z + _x1*_x4 + _x5*(_x3 + _x6) + zf, -_x0*v + _x1*(_x3 - _x6) - _x4*_x5*omega1**2 + vf,)
+
+
 _TANGENTIAL_STATE = {
     ('coulomb',): _support.Variant(_tangential_state__coulomb, ('beta1', 'omega1', 'mu_s', )),
     ('stribeck',): _support.Refused("friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' through Vr = X1' - Vb: the tangential motion of a slip mode is no superposition"),
+    ('static_kinetic',): _support.Variant(_tangential_state__static_kinetic, ('beta1', 'omega1', 'mu_k', )),
 }

@@ -53,18 +53,20 @@ def equilibrium(*, friction='coulomb', contact='hertz_damp', convention='paper',
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -213,6 +215,48 @@ def _equilibrium__stribeck__hunt_crossley__consistent(omega1, omega2, mu_s, g, V
         return (-g*(-mu_s*mpmath.sign(Vb) + (mpmath.mpf(1)/mpmath.mpf(2))*(_quad0 + _quad1)/mpmath.pi)/omega1**2, 0, (g/omega2**2)**(1/n_h), 0,)
 
 
+def _equilibrium__static_kinetic__hertz_damp__paper(omega1, omega2, g, Vb, Vhat, mu_k):
+    if (Vb <= Vhat):
+        return (g*mu_k*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
+    else:
+        return (-g*mu_k*mpmath.sign(Vb)/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
+
+
+def _equilibrium__static_kinetic__hertz_damp__consistent(omega1, omega2, g, Vb, Vhat, mu_k):
+    if (Vb <= Vhat):
+        return (-g*mu_k*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
+    else:
+        return (g*mu_k*mpmath.sign(Vb)/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
+
+
+def _equilibrium__static_kinetic__kelvin_voigt__paper(omega1, omega2, g, Vb, Vhat, mu_k):
+    if (Vb <= Vhat):
+        return (g*mu_k*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)/omega1**2, 0, g/omega2**2, 0,)
+    else:
+        return (-g*mu_k*mpmath.sign(Vb)/omega1**2, 0, g/omega2**2, 0,)
+
+
+def _equilibrium__static_kinetic__kelvin_voigt__consistent(omega1, omega2, g, Vb, Vhat, mu_k):
+    if (Vb <= Vhat):
+        return (-g*mu_k*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)/omega1**2, 0, g/omega2**2, 0,)
+    else:
+        return (g*mu_k*mpmath.sign(Vb)/omega1**2, 0, g/omega2**2, 0,)
+
+
+def _equilibrium__static_kinetic__hunt_crossley__paper(omega1, omega2, g, Vb, Vhat, mu_k, n_h):
+    if (Vb <= Vhat):
+        return (g*mu_k*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)/omega1**2, 0, (g/omega2**2)**(1/n_h), 0,)
+    else:
+        return (-g*mu_k*mpmath.sign(Vb)/omega1**2, 0, (g/omega2**2)**(1/n_h), 0,)
+
+
+def _equilibrium__static_kinetic__hunt_crossley__consistent(omega1, omega2, g, Vb, Vhat, mu_k, n_h):
+    if (Vb <= Vhat):
+        return (-g*mu_k*(-2*mpmath.acos(-Vb/Vhat)/mpmath.pi + 1)/omega1**2, 0, (g/omega2**2)**(1/n_h), 0,)
+    else:
+        return (g*mu_k*mpmath.sign(Vb)/omega1**2, 0, (g/omega2**2)**(1/n_h), 0,)
+
+
 _EQUILIBRIUM = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_equilibrium__coulomb__hertz_damp__paper, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_equilibrium__coulomb__hertz_damp__consistent, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
@@ -226,6 +270,12 @@ _EQUILIBRIUM = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_equilibrium__stribeck__kelvin_voigt__consistent, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_equilibrium__stribeck__hunt_crossley__paper, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_equilibrium__stribeck__hunt_crossley__consistent, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_equilibrium__static_kinetic__hertz_damp__paper, ('omega1', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_equilibrium__static_kinetic__hertz_damp__consistent, ('omega1', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_equilibrium__static_kinetic__kelvin_voigt__paper, ('omega1', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_equilibrium__static_kinetic__kelvin_voigt__consistent, ('omega1', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_equilibrium__static_kinetic__hunt_crossley__paper, ('omega1', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_equilibrium__static_kinetic__hunt_crossley__consistent, ('omega1', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
 }
 
 
@@ -259,18 +309,20 @@ def jacobian(*, friction='coulomb', contact='hertz_damp', convention='paper', vh
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -525,6 +577,86 @@ def _jacobian__stribeck__hunt_crossley__consistent(beta1, omega1, beta2, omega2,
         ])
 
 
+def _jacobian__static_kinetic__hertz_damp__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    _x0 = 2/mpmath.pi
+    _x1 = ((mu_k*(-_x0*mpmath.acos(-Vb/Vhat) + 1)) if (Vb <= Vhat) else (-mu_k*mpmath.sign(Vb)))
+    _x2 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+    _x3 = 2*beta2*g/omega2
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1 + g*((_x0*mu_k/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_k > 0) else (0)), _x1*_x2, _x1*_x3],
+            [0, 0, 0, 1],
+            [0, 0, -_x2, -_x3],
+        ])
+
+
+def _jacobian__static_kinetic__hertz_damp__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    _x0 = 2/mpmath.pi
+    _x1 = ((mu_k*(-_x0*mpmath.acos(-Vb/Vhat) + 1)) if (Vb <= Vhat) else (-mu_k*mpmath.sign(Vb)))
+    _x2 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+    _x3 = 2*beta2*g/omega2
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1 - g*((_x0*mu_k/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_k > 0) else (0)), -_x1*_x2, -_x1*_x3],
+            [0, 0, 0, 1],
+            [0, 0, -_x2, -_x3],
+        ])
+
+
+def _jacobian__static_kinetic__kelvin_voigt__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    _x0 = 2/mpmath.pi
+    _x1 = omega2**2
+    _x2 = ((mu_k*(-_x0*mpmath.acos(-Vb/Vhat) + 1)) if (Vb <= Vhat) else (-mu_k*mpmath.sign(Vb)))
+    _x3 = 2*beta2*omega2
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1 + g*((_x0*mu_k/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_k > 0) else (0)), _x1*_x2, _x2*_x3],
+            [0, 0, 0, 1],
+            [0, 0, -_x1, -_x3],
+        ])
+
+
+def _jacobian__static_kinetic__kelvin_voigt__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    _x0 = 2/mpmath.pi
+    _x1 = omega2**2
+    _x2 = ((mu_k*(-_x0*mpmath.acos(-Vb/Vhat) + 1)) if (Vb <= Vhat) else (-mu_k*mpmath.sign(Vb)))
+    _x3 = 2*beta2*omega2
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1 - g*((_x0*mu_k/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_k > 0) else (0)), -_x1*_x2, -_x2*_x3],
+            [0, 0, 0, 1],
+            [0, 0, -_x1, -_x3],
+        ])
+
+
+def _jacobian__static_kinetic__hunt_crossley__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    _x0 = 2/mpmath.pi
+    _x1 = ((mu_k*(-_x0*mpmath.acos(-Vb/Vhat) + 1)) if (Vb <= Vhat) else (-mu_k*mpmath.sign(Vb)))
+    _x2 = 1/n_h
+    _x3 = g**(_x2*(n_h - 1))*n_h*omega2**(2*_x2)
+    _x4 = 2*beta2*g/omega2
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1 + g*((_x0*mu_k/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_k > 0) else (0)), _x1*_x3, _x1*_x4],
+            [0, 0, 0, 1],
+            [0, 0, -_x3, -_x4],
+        ])
+
+
+def _jacobian__static_kinetic__hunt_crossley__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    _x0 = 2/mpmath.pi
+    _x1 = ((mu_k*(-_x0*mpmath.acos(-Vb/Vhat) + 1)) if (Vb <= Vhat) else (-mu_k*mpmath.sign(Vb)))
+    _x2 = 1/n_h
+    _x3 = g**(_x2*(n_h - 1))*n_h*omega2**(2*_x2)
+    _x4 = 2*beta2*g/omega2
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1 - g*((_x0*mu_k/(mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))) if (Vb < Vhat) else (mpmath.inf) if (Vb == Vhat) and (mu_k > 0) else (0)), -_x1*_x3, -_x1*_x4],
+            [0, 0, 0, 1],
+            [0, 0, -_x3, -_x4],
+        ])
+
+
 _JACOBIAN = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_jacobian__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_jacobian__coulomb__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
@@ -538,6 +670,12 @@ _JACOBIAN = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_jacobian__stribeck__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_jacobian__stribeck__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_jacobian__stribeck__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_jacobian__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_jacobian__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_jacobian__static_kinetic__kelvin_voigt__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_jacobian__static_kinetic__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_jacobian__static_kinetic__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_jacobian__static_kinetic__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
 }
 
 
@@ -573,18 +711,20 @@ def coefficients(*, friction='coulomb', contact='hertz_damp', convention='paper'
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -999,6 +1139,174 @@ def _coefficients__stribeck__hunt_crossley__consistent(beta1, omega1, beta2, ome
         return (_x1 + _x4 + _x6*g, 4*_x0*_x3 + _x11 + _x2*_x5*_x8 + _x7, _x1*_x11 + _x10*_x6*_x8 + _x4*_x7, _x11*_x7,)
 
 
+def _coefficients__static_kinetic__hertz_damp__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = beta1*omega1
+        _x1 = 2*g
+        _x2 = beta2/omega2
+        _x3 = _x1*_x2
+        _x4 = mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x5 = omega1**2
+        _x6 = omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x7 = _x6*g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _x8 = (mpmath.mpf(3)/mpmath.mpf(2))*_x7
+        _x9 = 4*_x2
+        return (2*_x0 - _x1*_x4 + _x3, _x0*_x9*g - _x4*_x9*g**2 + _x5 + _x8, 3*_x0*_x7 + _x3*_x5 - 3*_x4*_x6*g**(mpmath.mpf(4)/mpmath.mpf(3)), _x5*_x8,)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = omega1**2
+        _x1 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        return (mpmath.ninf, _x0 + _x1 + 4*beta1*beta2*g*omega1/omega2 - mpmath.inf*beta2, mpmath.ninf, _x0*_x1,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = beta2*g/omega2
+        _x2 = 2*_x1
+        _x3 = omega1**2
+        _x4 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x5 = (mpmath.mpf(3)/mpmath.mpf(2))*_x4
+        return (2*_x0 + _x2, 4*_x0*_x1 + _x3 + _x5, 3*_x0*_x4 + _x2*_x3, _x3*_x5,)
+
+
+def _coefficients__static_kinetic__hertz_damp__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = beta1*omega1
+        _x1 = 2*g
+        _x2 = beta2/omega2
+        _x3 = _x1*_x2
+        _x4 = mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x5 = omega1**2
+        _x6 = omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x7 = _x6*g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _x8 = (mpmath.mpf(3)/mpmath.mpf(2))*_x7
+        _x9 = 4*_x2
+        return (2*_x0 + _x1*_x4 + _x3, _x0*_x9*g + _x4*_x9*g**2 + _x5 + _x8, 3*_x0*_x7 + _x3*_x5 + 3*_x4*_x6*g**(mpmath.mpf(4)/mpmath.mpf(3)), _x5*_x8,)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = omega1**2
+        _x1 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        return (mpmath.inf, _x0 + _x1 + 4*beta1*beta2*g*omega1/omega2 + mpmath.inf*beta2, mpmath.inf, _x0*_x1,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = beta2*g/omega2
+        _x2 = 2*_x1
+        _x3 = omega1**2
+        _x4 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x5 = (mpmath.mpf(3)/mpmath.mpf(2))*_x4
+        return (2*_x0 + _x2, 4*_x0*_x1 + _x3 + _x5, 3*_x0*_x4 + _x2*_x3, _x3*_x5,)
+
+
+def _coefficients__static_kinetic__kelvin_voigt__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*omega2
+        _x3 = 2*_x2
+        _x4 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x5 = 2*_x4
+        _x6 = omega1**2
+        _x7 = omega2**2
+        _x8 = 4*_x2
+        return (_x1 + _x3 - _x5, _x0*_x8 - _x4*_x8 + _x6 + _x7, _x1*_x7 + _x3*_x6 - _x5*_x7, _x6*_x7,)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = omega1**2
+        _x1 = omega2**2
+        return (mpmath.ninf, _x0 + _x1 + 4*beta1*beta2*omega1*omega2 - mpmath.inf*beta2, mpmath.ninf, _x0*_x1,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*omega2
+        _x3 = 2*_x2
+        _x4 = omega1**2
+        _x5 = omega2**2
+        return (_x1 + _x3, 4*_x0*_x2 + _x4 + _x5, _x1*_x5 + _x3*_x4, _x4*_x5,)
+
+
+def _coefficients__static_kinetic__kelvin_voigt__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*omega2
+        _x3 = 2*_x2
+        _x4 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x5 = 2*_x4
+        _x6 = omega1**2
+        _x7 = omega2**2
+        _x8 = 4*_x2
+        return (_x1 + _x3 + _x5, _x0*_x8 + _x4*_x8 + _x6 + _x7, _x1*_x7 + _x3*_x6 + _x5*_x7, _x6*_x7,)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = omega1**2
+        _x1 = omega2**2
+        return (mpmath.inf, _x0 + _x1 + 4*beta1*beta2*omega1*omega2 + mpmath.inf*beta2, mpmath.inf, _x0*_x1,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*omega2
+        _x3 = 2*_x2
+        _x4 = omega1**2
+        _x5 = omega2**2
+        return (_x1 + _x3, 4*_x0*_x2 + _x4 + _x5, _x1*_x5 + _x3*_x4, _x4*_x5,)
+
+
+def _coefficients__static_kinetic__hunt_crossley__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    if (Vb < Vhat):
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = 2*g
+        _x3 = beta2/omega2
+        _x4 = _x2*_x3
+        _x5 = mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x6 = omega1**2
+        _x7 = 4*_x3
+        _x8 = 1/n_h
+        _x9 = g**(-_x8)*n_h*omega2**(2*_x8)
+        _x10 = _x9*g
+        _x11 = _x5*g**2
+        return (_x1 - _x2*_x5 + _x4, _x0*_x7*g + _x10 - _x11*_x7 + _x6, _x1*_x10 - 2*_x11*_x9 + _x4*_x6, _x10*_x6,)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = omega1**2
+        _x1 = 1/n_h
+        _x2 = g*g**(-_x1)*n_h*omega2**(2*_x1)
+        return (mpmath.ninf, _x0 + _x2 + 4*beta1*beta2*g*omega1/omega2 - mpmath.inf*beta2, mpmath.ninf, _x0*_x2,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*g/omega2
+        _x3 = 2*_x2
+        _x4 = omega1**2
+        _x5 = 1/n_h
+        _x6 = g*g**(-_x5)*n_h*omega2**(2*_x5)
+        return (_x1 + _x3, 4*_x0*_x2 + _x4 + _x6, _x1*_x6 + _x3*_x4, _x4*_x6,)
+
+
+def _coefficients__static_kinetic__hunt_crossley__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    if (Vb < Vhat):
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = 2*g
+        _x3 = beta2/omega2
+        _x4 = _x2*_x3
+        _x5 = mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x6 = omega1**2
+        _x7 = 4*_x3
+        _x8 = 1/n_h
+        _x9 = g**(-_x8)*n_h*omega2**(2*_x8)
+        _x10 = _x9*g
+        _x11 = _x5*g**2
+        return (_x1 + _x2*_x5 + _x4, _x0*_x7*g + _x10 + _x11*_x7 + _x6, _x1*_x10 + 2*_x11*_x9 + _x4*_x6, _x10*_x6,)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = omega1**2
+        _x1 = 1/n_h
+        _x2 = g*g**(-_x1)*n_h*omega2**(2*_x1)
+        return (mpmath.inf, _x0 + _x2 + 4*beta1*beta2*g*omega1/omega2 + mpmath.inf*beta2, mpmath.inf, _x0*_x2,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*g/omega2
+        _x3 = 2*_x2
+        _x4 = omega1**2
+        _x5 = 1/n_h
+        _x6 = g*g**(-_x5)*n_h*omega2**(2*_x5)
+        return (_x1 + _x3, 4*_x0*_x2 + _x4 + _x6, _x1*_x6 + _x3*_x4, _x4*_x6,)
+
+
 _COEFFICIENTS = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_coefficients__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_coefficients__coulomb__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
@@ -1012,6 +1320,12 @@ _COEFFICIENTS = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_coefficients__stribeck__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_coefficients__stribeck__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_coefficients__stribeck__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_coefficients__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_coefficients__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_coefficients__static_kinetic__kelvin_voigt__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_coefficients__static_kinetic__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_coefficients__static_kinetic__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_coefficients__static_kinetic__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
 }
 
 
@@ -1049,18 +1363,20 @@ def hurwitz(*, friction='coulomb', contact='hertz_damp', convention='paper', vha
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -1458,6 +1774,176 @@ def _hurwitz__stribeck__hunt_crossley__consistent(beta1, omega1, beta2, omega2, 
         return (_x2, _x0*_x4 + _x1*(_x0*_x2 + _x5), _x0*_x1*_x8, _x6*_x7*_x8,)
 
 
+def _hurwitz__static_kinetic__hertz_damp__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = 2*g
+        _x1 = _x0*beta2/omega2
+        _x2 = -_x0*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) + 2*beta1*omega1
+        _x3 = _x1 + _x2
+        _x4 = 3*beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
+        _x5 = omega1**2
+        _x6 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
+        return (_x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7,)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = mpmath.inf*beta2
+        _x1 = -_x0
+        return (mpmath.ninf, 3*beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3)) - mpmath.inf*(-_x0 + omega1**2), _x1, _x1,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*g/omega2
+        _x3 = 2*_x2
+        _x4 = _x1 + _x3
+        _x5 = beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
+        _x6 = omega1**2
+        _x7 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x8 = _x4*(3*_x0*_x7 + _x3*_x6) + (_x6 - mpmath.mpf(3)/mpmath.mpf(2)*_x7)**2
+        return (_x4, _x1*(_x3*_x4 + _x6) + 3*_x5, 4*_x0*_x2*_x8, 6*_x5*_x8*beta1*omega1**3,)
+
+
+def _hurwitz__static_kinetic__hertz_damp__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = 2*g
+        _x1 = _x0*beta2/omega2
+        _x2 = _x0*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) + 2*beta1*omega1
+        _x3 = _x1 + _x2
+        _x4 = 3*beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
+        _x5 = omega1**2
+        _x6 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
+        return (_x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7,)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = mpmath.inf*beta2
+        return (mpmath.inf, mpmath.inf, _x0, _x0,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*g/omega2
+        _x3 = 2*_x2
+        _x4 = _x1 + _x3
+        _x5 = beta2*g**(mpmath.mpf(4)/mpmath.mpf(3))*omega2**(mpmath.mpf(1)/mpmath.mpf(3))
+        _x6 = omega1**2
+        _x7 = g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+        _x8 = _x4*(3*_x0*_x7 + _x3*_x6) + (_x6 - mpmath.mpf(3)/mpmath.mpf(2)*_x7)**2
+        return (_x4, _x1*(_x3*_x4 + _x6) + 3*_x5, 4*_x0*_x2*_x8, 6*_x5*_x8*beta1*omega1**3,)
+
+
+def _hurwitz__static_kinetic__kelvin_voigt__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = 2*beta2
+        _x1 = _x0*omega2
+        _x2 = 2*beta1*omega1 - 2*g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x3 = _x1 + _x2
+        _x4 = _x0*omega2**3
+        _x5 = omega1**2
+        _x6 = omega2**2
+        _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
+        return (_x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7,)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = mpmath.inf*beta2
+        _x1 = -_x0
+        return (mpmath.ninf, 2*beta2*omega2**3 - mpmath.inf*(-_x0 + omega1**2), _x1, _x1,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = 2*beta2
+        _x3 = _x2*omega2
+        _x4 = _x1 + _x3
+        _x5 = omega2**3
+        _x6 = omega1**2
+        _x7 = omega2**2
+        _x8 = 4*beta2*(_x4*(_x1*_x7 + _x3*_x6) + (_x6 - _x7)**2)
+        return (_x4, _x1*(_x3*_x4 + _x6) + _x2*_x5, _x0*_x8*omega2, _x5*_x8*beta1*omega1**3,)
+
+
+def _hurwitz__static_kinetic__kelvin_voigt__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = 2*beta2
+        _x1 = _x0*omega2
+        _x2 = 2*beta1*omega1 + 2*g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x3 = _x1 + _x2
+        _x4 = _x0*omega2**3
+        _x5 = omega1**2
+        _x6 = omega2**2
+        _x7 = _x2*(_x3*(_x1*_x5 + _x2*_x6) + (_x5 - _x6)**2)
+        return (_x3, _x2*(_x1*_x3 + _x5) + _x4, _x1*_x7, _x4*_x5*_x7,)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = mpmath.inf*beta2
+        return (mpmath.inf, mpmath.inf, _x0, _x0,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = 2*beta2
+        _x3 = _x2*omega2
+        _x4 = _x1 + _x3
+        _x5 = omega2**3
+        _x6 = omega1**2
+        _x7 = omega2**2
+        _x8 = 4*beta2*(_x4*(_x1*_x7 + _x3*_x6) + (_x6 - _x7)**2)
+        return (_x4, _x1*(_x3*_x4 + _x6) + _x2*_x5, _x0*_x8*omega2, _x5*_x8*beta1*omega1**3,)
+
+
+def _hurwitz__static_kinetic__hunt_crossley__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    if (Vb < Vhat):
+        _x0 = 2*g
+        _x1 = _x0*beta2/omega2
+        _x2 = -_x0*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) + 2*beta1*omega1
+        _x3 = _x1 + _x2
+        _x4 = 1/n_h
+        _x5 = g**(_x4*(n_h - 1))*n_h*omega2**(2*_x4)
+        _x6 = omega1**2
+        _x7 = _x1*_x6
+        _x8 = _x2*_x5
+        _x9 = _x3*(_x7 + _x8) + (-_x5 + _x6)**2
+        return (_x3, _x1*_x5 + _x2*(_x1*_x3 + _x6), _x1*_x2*_x9, _x7*_x8*_x9,)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = mpmath.inf*beta2
+        _x1 = 1/n_h
+        _x2 = -_x0
+        return (mpmath.ninf, 2*beta2*g*g**(_x1*(n_h - 1))*n_h*omega2**(2*_x1)/omega2 - mpmath.inf*(-_x0 + omega1**2), _x2, _x2,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*g/omega2
+        _x3 = 2*_x2
+        _x4 = _x1 + _x3
+        _x5 = 1/n_h
+        _x6 = g**(_x5*(n_h - 1))*n_h*omega2**(2*_x5)
+        _x7 = omega1**2
+        _x8 = 4*_x2*(_x4*(_x1*_x6 + _x3*_x7) + (-_x6 + _x7)**2)
+        return (_x4, _x1*(_x3*_x4 + _x7) + _x3*_x6, _x0*_x8, _x6*_x8*beta1*omega1**3,)
+
+
+def _hurwitz__static_kinetic__hunt_crossley__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    if (Vb < Vhat):
+        _x0 = 2*g
+        _x1 = _x0*beta2/omega2
+        _x2 = _x0*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) + 2*beta1*omega1
+        _x3 = _x1 + _x2
+        _x4 = 1/n_h
+        _x5 = g**(_x4*(n_h - 1))*n_h*omega2**(2*_x4)
+        _x6 = omega1**2
+        _x7 = _x1*_x6
+        _x8 = _x2*_x5
+        _x9 = _x3*(_x7 + _x8) + (-_x5 + _x6)**2
+        return (_x3, _x1*_x5 + _x2*(_x1*_x3 + _x6), _x1*_x2*_x9, _x7*_x8*_x9,)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = mpmath.inf*beta2
+        return (mpmath.inf, mpmath.inf, _x0, _x0,)
+    else:
+        _x0 = beta1*omega1
+        _x1 = 2*_x0
+        _x2 = beta2*g/omega2
+        _x3 = 2*_x2
+        _x4 = _x1 + _x3
+        _x5 = 1/n_h
+        _x6 = g**(_x5*(n_h - 1))*n_h*omega2**(2*_x5)
+        _x7 = omega1**2
+        _x8 = 4*_x2*(_x4*(_x1*_x6 + _x3*_x7) + (-_x6 + _x7)**2)
+        return (_x4, _x1*(_x3*_x4 + _x7) + _x3*_x6, _x0*_x8, _x6*_x8*beta1*omega1**3,)
+
+
 _HURWITZ = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_hurwitz__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_hurwitz__coulomb__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
@@ -1471,6 +1957,12 @@ _HURWITZ = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_hurwitz__stribeck__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_hurwitz__stribeck__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_hurwitz__stribeck__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_hurwitz__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_hurwitz__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_hurwitz__static_kinetic__kelvin_voigt__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_hurwitz__static_kinetic__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_hurwitz__static_kinetic__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_hurwitz__static_kinetic__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
 }
 
 
@@ -1504,18 +1996,20 @@ def eigenvalues(*, friction='coulomb', contact='hertz_damp', convention='paper',
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -1875,6 +2369,150 @@ def _eigenvalues__stribeck__hunt_crossley__consistent(beta1, omega1, beta2, omeg
         return [*_r0, *_r1]
 
 
+def _eigenvalues__static_kinetic__hertz_damp__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _r0 = _support.mp_quadratic_roots(-_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2))
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x3*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x3*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
+        return [*_r0, *_r1]
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _r0 = _support.mp_quadratic_roots(mpmath.ninf, omega1**2, mpmath.inf)
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x0*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x0*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
+        return [*_r0, *_r1]
+    else:
+        _x0 = omega1**2
+        _x1 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _r0 = _support.mp_quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x1*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x1*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
+        return [*_r0, *_r1]
+
+
+def _eigenvalues__static_kinetic__hertz_damp__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _r0 = _support.mp_quadratic_roots(_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2))
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x3*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x3*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
+        return [*_r0, *_r1]
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _r0 = _support.mp_quadratic_roots(mpmath.inf, omega1**2, mpmath.inf)
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x0*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x0*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
+        return [*_r0, *_r1]
+    else:
+        _x0 = omega1**2
+        _x1 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _r0 = _support.mp_quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x1*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x1*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2)
+        return [*_r0, *_r1]
+
+
+def _eigenvalues__static_kinetic__kelvin_voigt__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = omega2**2
+        _r0 = _support.mp_quadratic_roots(-_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2))
+        _r1 = _support.mp_quadratic_roots(beta2*omega2, _x3, _x3*(beta2 - 1)*(beta2 + 1))
+        return [*_r0, *_r1]
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = omega2**2
+        _r0 = _support.mp_quadratic_roots(mpmath.ninf, omega1**2, mpmath.inf)
+        _r1 = _support.mp_quadratic_roots(beta2*omega2, _x0, _x0*(beta2 - 1)*(beta2 + 1))
+        return [*_r0, *_r1]
+    else:
+        _x0 = omega1**2
+        _x1 = omega2**2
+        _r0 = _support.mp_quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
+        _r1 = _support.mp_quadratic_roots(beta2*omega2, _x1, _x1*(beta2 - 1)*(beta2 + 1))
+        return [*_r0, *_r1]
+
+
+def _eigenvalues__static_kinetic__kelvin_voigt__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = omega2**2
+        _r0 = _support.mp_quadratic_roots(_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2))
+        _r1 = _support.mp_quadratic_roots(beta2*omega2, _x3, _x3*(beta2 - 1)*(beta2 + 1))
+        return [*_r0, *_r1]
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = omega2**2
+        _r0 = _support.mp_quadratic_roots(mpmath.inf, omega1**2, mpmath.inf)
+        _r1 = _support.mp_quadratic_roots(beta2*omega2, _x0, _x0*(beta2 - 1)*(beta2 + 1))
+        return [*_r0, *_r1]
+    else:
+        _x0 = omega1**2
+        _x1 = omega2**2
+        _r0 = _support.mp_quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
+        _r1 = _support.mp_quadratic_roots(beta2*omega2, _x1, _x1*(beta2 - 1)*(beta2 + 1))
+        return [*_r0, *_r1]
+
+
+def _eigenvalues__static_kinetic__hunt_crossley__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = 1/n_h
+        _x4 = n_h*omega2**(2*_x3)
+        _x5 = omega2**2
+        _r0 = _support.mp_quadratic_roots(-_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2))
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, _x4*g**(_x3*(n_h - 1)), g**(1 - _x3)*(-_x4*_x5 + beta2**2*g*g**_x3)/_x5)
+        return [*_r0, *_r1]
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = 1/n_h
+        _x1 = n_h*omega2**(2*_x0)
+        _x2 = omega2**2
+        _r0 = _support.mp_quadratic_roots(mpmath.ninf, omega1**2, mpmath.inf)
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, _x1*g**(_x0*(n_h - 1)), g**(1 - _x0)*(-_x1*_x2 + beta2**2*g*g**_x0)/_x2)
+        return [*_r0, *_r1]
+    else:
+        _x0 = omega1**2
+        _x1 = 1/n_h
+        _x2 = n_h*omega2**(2*_x1)
+        _x3 = omega2**2
+        _r0 = _support.mp_quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, _x2*g**(_x1*(n_h - 1)), g**(1 - _x1)*(-_x2*_x3 + beta2**2*g*g**_x1)/_x3)
+        return [*_r0, *_r1]
+
+
+def _eigenvalues__static_kinetic__hunt_crossley__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = 1/n_h
+        _x4 = n_h*omega2**(2*_x3)
+        _x5 = omega2**2
+        _r0 = _support.mp_quadratic_roots(_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2))
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, _x4*g**(_x3*(n_h - 1)), g**(1 - _x3)*(-_x4*_x5 + beta2**2*g*g**_x3)/_x5)
+        return [*_r0, *_r1]
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = 1/n_h
+        _x1 = n_h*omega2**(2*_x0)
+        _x2 = omega2**2
+        _r0 = _support.mp_quadratic_roots(mpmath.inf, omega1**2, mpmath.inf)
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, _x1*g**(_x0*(n_h - 1)), g**(1 - _x0)*(-_x1*_x2 + beta2**2*g*g**_x0)/_x2)
+        return [*_r0, *_r1]
+    else:
+        _x0 = omega1**2
+        _x1 = 1/n_h
+        _x2 = n_h*omega2**(2*_x1)
+        _x3 = omega2**2
+        _r0 = _support.mp_quadratic_roots(beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1))
+        _r1 = _support.mp_quadratic_roots(beta2*g/omega2, _x2*g**(_x1*(n_h - 1)), g**(1 - _x1)*(-_x2*_x3 + beta2**2*g*g**_x1)/_x3)
+        return [*_r0, *_r1]
+
+
 _EIGENVALUES = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_eigenvalues__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_eigenvalues__coulomb__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
@@ -1888,6 +2526,12 @@ _EIGENVALUES = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_eigenvalues__stribeck__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_eigenvalues__stribeck__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_eigenvalues__stribeck__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_eigenvalues__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_eigenvalues__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_eigenvalues__static_kinetic__kelvin_voigt__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_eigenvalues__static_kinetic__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_eigenvalues__static_kinetic__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_eigenvalues__static_kinetic__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
 }
 
 
@@ -1921,18 +2565,20 @@ def growth_rate(*, friction='coulomb', contact='hertz_damp', convention='paper',
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -2365,6 +3011,186 @@ def _growth_rate__stribeck__hunt_crossley__consistent(beta1, omega1, beta2, omeg
         return max(_g0, _g1)
 
 
+def _growth_rate__static_kinetic__hertz_damp__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _h0, _q0, _d0 = -_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x3*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x3*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _h0, _q0, _d0 = mpmath.ninf, omega1**2, mpmath.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x0*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x0*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x1*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x1*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+
+
+def _growth_rate__static_kinetic__hertz_damp__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _h0, _q0, _d0 = _x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x3*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x3*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _h0, _q0, _d0 = mpmath.inf, omega1**2, mpmath.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x0*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x0*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = g**(mpmath.mpf(1)/mpmath.mpf(3))
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, (mpmath.mpf(3)/mpmath.mpf(2))*_x1*omega2**(mpmath.mpf(4)/mpmath.mpf(3)), (mpmath.mpf(1)/mpmath.mpf(2))*(-3*_x1*omega2**(mpmath.mpf(10)/mpmath.mpf(3)) + 2*beta2**2*g**2)/omega2**2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+
+
+def _growth_rate__static_kinetic__kelvin_voigt__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = omega2**2
+        _h0, _q0, _d0 = -_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x3, _x3*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = omega2**2
+        _h0, _q0, _d0 = mpmath.ninf, omega1**2, mpmath.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x0, _x0*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = omega2**2
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x1, _x1*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+
+
+def _growth_rate__static_kinetic__kelvin_voigt__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = omega2**2
+        _h0, _q0, _d0 = _x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x3, _x3*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = omega2**2
+        _h0, _q0, _d0 = mpmath.inf, omega1**2, mpmath.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x0, _x0*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = omega2**2
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*omega2, _x1, _x1*(beta2 - 1)*(beta2 + 1)
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+
+
+def _growth_rate__static_kinetic__hunt_crossley__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = 1/n_h
+        _x4 = n_h*omega2**(2*_x3)
+        _x5 = omega2**2
+        _h0, _q0, _d0 = -_x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(-_x1*(beta1 - 1) + _x2)*(-_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, _x4*g**(_x3*(n_h - 1)), g**(1 - _x3)*(-_x4*_x5 + beta2**2*g*g**_x3)/_x5
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = 1/n_h
+        _x1 = n_h*omega2**(2*_x0)
+        _x2 = omega2**2
+        _h0, _q0, _d0 = mpmath.ninf, omega1**2, mpmath.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, _x1*g**(_x0*(n_h - 1)), g**(1 - _x0)*(-_x1*_x2 + beta2**2*g*g**_x0)/_x2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = 1/n_h
+        _x2 = n_h*omega2**(2*_x1)
+        _x3 = omega2**2
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, _x2*g**(_x1*(n_h - 1)), g**(1 - _x1)*(-_x2*_x3 + beta2**2*g*g**_x1)/_x3
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+
+
+def _growth_rate__static_kinetic__hunt_crossley__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k, n_h):
+    if (Vb < Vhat):
+        _x0 = g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat))
+        _x1 = 2*omega1
+        _x2 = 2*_x0
+        _x3 = 1/n_h
+        _x4 = n_h*omega2**(2*_x3)
+        _x5 = omega2**2
+        _h0, _q0, _d0 = _x0 + beta1*omega1, omega1**2, (mpmath.mpf(1)/mpmath.mpf(4))*(_x1*(beta1 - 1) + _x2)*(_x1*(beta1 + 1) + _x2)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, _x4*g**(_x3*(n_h - 1)), g**(1 - _x3)*(-_x4*_x5 + beta2**2*g*g**_x3)/_x5
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    elif (Vb == Vhat) and (mu_k > 0):
+        _x0 = 1/n_h
+        _x1 = n_h*omega2**(2*_x0)
+        _x2 = omega2**2
+        _h0, _q0, _d0 = mpmath.inf, omega1**2, mpmath.inf
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, _x1*g**(_x0*(n_h - 1)), g**(1 - _x0)*(-_x1*_x2 + beta2**2*g*g**_x0)/_x2
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+    else:
+        _x0 = omega1**2
+        _x1 = 1/n_h
+        _x2 = n_h*omega2**(2*_x1)
+        _x3 = omega2**2
+        _h0, _q0, _d0 = beta1*omega1, _x0, _x0*(beta1 - 1)*(beta1 + 1)
+        _g0 = ((-_h0) if (_d0 < 0) else (_q0/(-mpmath.sqrt(_d0) - _h0)) if (_h0 > 0) else (mpmath.sqrt(_d0) - _h0))
+        _h1, _q1, _d1 = beta2*g/omega2, _x2*g**(_x1*(n_h - 1)), g**(1 - _x1)*(-_x2*_x3 + beta2**2*g*g**_x1)/_x3
+        _g1 = ((-_h1) if (_d1 < 0) else (_q1/(-mpmath.sqrt(_d1) - _h1)) if (_h1 > 0) else (mpmath.sqrt(_d1) - _h1))
+        return max(_g0, _g1)
+
+
 _GROWTH_RATE = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_growth_rate__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_growth_rate__coulomb__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
@@ -2378,6 +3204,12 @@ _GROWTH_RATE = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_growth_rate__stribeck__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_growth_rate__stribeck__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_growth_rate__stribeck__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_growth_rate__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_growth_rate__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_growth_rate__static_kinetic__kelvin_voigt__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_growth_rate__static_kinetic__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_growth_rate__static_kinetic__hunt_crossley__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_growth_rate__static_kinetic__hunt_crossley__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', 'n_h', )),
 }
 
 
@@ -2416,15 +3248,17 @@ def is_stable(*, friction='coulomb', contact='hertz_damp', convention='paper', v
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -2553,6 +3387,44 @@ def _is_stable__stribeck__kelvin_voigt__consistent(beta1, omega1, beta2, omega2,
         return bool((2*beta1*omega1 + (mpmath.mpf(1)/mpmath.mpf(2))*g*(_quad0 + _quad1)/mpmath.pi > 0) and (2*beta2*omega2 > 0))
 
 
+def _is_stable__static_kinetic__hertz_damp__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = 2*g
+        return bool((-_x0*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) + 2*beta1*omega1 > 0) and (_x0*beta2/omega2 > 0))
+    elif (Vb == Vhat) and (mu_k > 0):
+        return bool((mpmath.ninf > 0) and (2*beta2*g/omega2 > 0))
+    else:
+        return bool((2*beta1*omega1 > 0) and (2*beta2*g/omega2 > 0))
+
+
+def _is_stable__static_kinetic__hertz_damp__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        _x0 = 2*g
+        return bool((_x0*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) + 2*beta1*omega1 > 0) and (_x0*beta2/omega2 > 0))
+    elif (Vb == Vhat) and (mu_k > 0):
+        return bool((mpmath.inf > 0) and (2*beta2*g/omega2 > 0))
+    else:
+        return bool((2*beta1*omega1 > 0) and (2*beta2*g/omega2 > 0))
+
+
+def _is_stable__static_kinetic__kelvin_voigt__paper(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        return bool((2*beta1*omega1 - 2*g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) > 0) and (2*beta2*omega2 > 0))
+    elif (Vb == Vhat) and (mu_k > 0):
+        return bool((mpmath.ninf > 0) and (2*beta2*omega2 > 0))
+    else:
+        return bool((2*beta1*omega1 > 0) and (2*beta2*omega2 > 0))
+
+
+def _is_stable__static_kinetic__kelvin_voigt__consistent(beta1, omega1, beta2, omega2, g, Vb, Vhat, mu_k):
+    if (Vb < Vhat):
+        return bool((2*beta1*omega1 + 2*g*mu_k/(mpmath.pi*mpmath.sqrt(-Vb + Vhat)*mpmath.sqrt(Vb + Vhat)) > 0) and (2*beta2*omega2 > 0))
+    elif (Vb == Vhat) and (mu_k > 0):
+        return bool((mpmath.inf > 0) and (2*beta2*omega2 > 0))
+    else:
+        return bool((2*beta1*omega1 > 0) and (2*beta2*omega2 > 0))
+
+
 _IS_STABLE = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_is_stable__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_is_stable__coulomb__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', )),
@@ -2566,6 +3438,12 @@ _IS_STABLE = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Variant(_is_stable__stribeck__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Variant(_is_stable__stribeck__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Variant(_is_stable__stribeck__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'Vhat', 'mu_k', 'v_s', )),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_is_stable__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_is_stable__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_is_stable__static_kinetic__kelvin_voigt__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_is_stable__static_kinetic__kelvin_voigt__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_is_stable__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_is_stable__static_kinetic__hertz_damp__consistent, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'Vb', 'Vhat', 'mu_k', )),
 }
 
 
@@ -2589,10 +3467,15 @@ def critical_belt_speed(*, friction='coulomb', contact='hertz_damp', convention=
         gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    mu_k : mpmath number
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -2652,6 +3535,14 @@ def _critical_belt_speed__coulomb__hertz_damp__consistent():
     return mpmath.nan
 
 
+def _critical_belt_speed__static_kinetic__hertz_damp__paper(beta1, omega1, g, Vhat, mu_k):
+    if (Vhat > g*mu_k/(mpmath.pi*beta1*omega1)):
+        _x0 = g*mu_k/(mpmath.pi*beta1*omega1)
+        return mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))
+    else:
+        return 0
+
+
 _CRITICAL_BELT_SPEED = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'mu_s', 'g', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp__consistent, ()),
@@ -2665,6 +3556,12 @@ _CRITICAL_BELT_SPEED = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Refused("friction='stribeck' has no closed-form critical belt speed: the slope of its effective friction is a quadrature (closed_form_average: stribeck: mu(|Vr + V sin|) - mu(0) = mu_k - mu_s + (-mu_k + mu_s)*exp(-s/v_s) (s = |Vr + V sin|) has no elementary antiderivative over the fast phase (SymPy's Risch algorithm proves it); its average is a quadrature); the pointwise functions (growth_rate, is_stable, hurwitz) take it, and beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds numerically from growth_rate"),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Refused("friction='stribeck' has no closed-form critical belt speed: the slope of its effective friction is a quadrature (closed_form_average: stribeck: mu(|Vr + V sin|) - mu(0) = mu_k - mu_s + (-mu_k + mu_s)*exp(-s/v_s) (s = |Vr + V sin|) has no elementary antiderivative over the fast phase (SymPy's Risch algorithm proves it); its average is a quadrature); the pointwise functions (growth_rate, is_stable, hurwitz) take it, and beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds numerically from growth_rate"),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Refused("friction='stribeck' has no closed-form critical belt speed: the slope of its effective friction is a quadrature (closed_form_average: stribeck: mu(|Vr + V sin|) - mu(0) = mu_k - mu_s + (-mu_k + mu_s)*exp(-s/v_s) (s = |Vr + V sin|) has no elementary antiderivative over the fast phase (SymPy's Risch algorithm proves it); its average is a quadrature); the pointwise functions (growth_rate, is_stable, hurwitz) take it, and beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds numerically from growth_rate"),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_critical_belt_speed__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'g', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp__consistent, ()),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_critical_belt_speed__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'g', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp__consistent, ()),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_critical_belt_speed__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'g', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp__consistent, ()),
 }
 
 
@@ -2688,10 +3585,15 @@ def unstable_interval(*, friction='coulomb', contact='hertz_damp', convention='p
         gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
     Vhat : mpmath number
         velocity amplitude in the effective friction, Eq. (23) [m/s], positive.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    mu_k : mpmath number
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -2750,6 +3652,14 @@ def _unstable_interval__coulomb__hertz_damp__consistent():
     return (mpmath.nan, mpmath.nan,)
 
 
+def _unstable_interval__static_kinetic__hertz_damp__paper(beta1, omega1, g, Vhat, mu_k):
+    _x0 = g*mu_k/(mpmath.pi*beta1*omega1)
+    _x1 = mpmath.sqrt((Vhat - _x0)*(Vhat + _x0))
+    _x2 = (Vhat > _x0)
+    _x3 = _x2 and (Vhat > _x1) or (Vhat <= _x0)
+    return (((((_x1) if _x2 else (0))) if _x3 else (mpmath.nan)), ((Vhat) if _x3 else (mpmath.nan)),)
+
+
 _UNSTABLE_INTERVAL = {
     ('coulomb', 'hertz_damp', 'paper'): _support.Variant(_unstable_interval__coulomb__hertz_damp__paper, ('beta1', 'omega1', 'mu_s', 'g', 'Vhat', )),
     ('coulomb', 'hertz_damp', 'consistent'): _support.Variant(_unstable_interval__coulomb__hertz_damp__consistent, ()),
@@ -2763,4 +3673,10 @@ _UNSTABLE_INTERVAL = {
     ('stribeck', 'kelvin_voigt', 'consistent'): _support.Refused("friction='stribeck' has no closed-form critical belt speed: the slope of its effective friction is a quadrature (closed_form_average: stribeck: mu(|Vr + V sin|) - mu(0) = mu_k - mu_s + (-mu_k + mu_s)*exp(-s/v_s) (s = |Vr + V sin|) has no elementary antiderivative over the fast phase (SymPy's Risch algorithm proves it); its average is a quadrature); the pointwise functions (growth_rate, is_stable, hurwitz) take it, and beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds numerically from growth_rate"),
     ('stribeck', 'hunt_crossley', 'paper'): _support.Refused("friction='stribeck' has no closed-form critical belt speed: the slope of its effective friction is a quadrature (closed_form_average: stribeck: mu(|Vr + V sin|) - mu(0) = mu_k - mu_s + (-mu_k + mu_s)*exp(-s/v_s) (s = |Vr + V sin|) has no elementary antiderivative over the fast phase (SymPy's Risch algorithm proves it); its average is a quadrature); the pointwise functions (growth_rate, is_stable, hurwitz) take it, and beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds numerically from growth_rate"),
     ('stribeck', 'hunt_crossley', 'consistent'): _support.Refused("friction='stribeck' has no closed-form critical belt speed: the slope of its effective friction is a quadrature (closed_form_average: stribeck: mu(|Vr + V sin|) - mu(0) = mu_k - mu_s + (-mu_k + mu_s)*exp(-s/v_s) (s = |Vr + V sin|) has no elementary antiderivative over the fast phase (SymPy's Risch algorithm proves it); its average is a quadrature); the pointwise functions (growth_rate, is_stable, hurwitz) take it, and beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds numerically from growth_rate"),
+    ('static_kinetic', 'hertz_damp', 'paper'): _support.Variant(_unstable_interval__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'g', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hertz_damp', 'consistent'): _support.Variant(_unstable_interval__coulomb__hertz_damp__consistent, ()),
+    ('static_kinetic', 'kelvin_voigt', 'paper'): _support.Variant(_unstable_interval__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'g', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt', 'consistent'): _support.Variant(_unstable_interval__coulomb__hertz_damp__consistent, ()),
+    ('static_kinetic', 'hunt_crossley', 'paper'): _support.Variant(_unstable_interval__static_kinetic__hertz_damp__paper, ('beta1', 'omega1', 'g', 'Vhat', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley', 'consistent'): _support.Variant(_unstable_interval__coulomb__hertz_damp__consistent, ()),
 }

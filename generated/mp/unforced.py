@@ -42,18 +42,20 @@ def equilibrium(*, friction='coulomb', contact='hertz_damp', **params):
     Vb : mpmath number
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -106,6 +108,18 @@ def _equilibrium__stribeck__hunt_crossley(omega1, omega2, mu_s, g, Vb, mu_k, v_s
     return (g*(mu_k + (-mu_k + mu_s)*mpmath.exp(-Vb/v_s))/omega1**2, 0, (g/omega2**2)**(1/n_h), 0,)
 
 
+def _equilibrium__static_kinetic__hertz_damp(omega1, omega2, g, mu_k):
+    return (g*mu_k/omega1**2, 0, g**(mpmath.mpf(2)/mpmath.mpf(3))/omega2**(mpmath.mpf(4)/mpmath.mpf(3)), 0,)
+
+
+def _equilibrium__static_kinetic__kelvin_voigt(omega1, omega2, g, mu_k):
+    return (g*mu_k/omega1**2, 0, g/omega2**2, 0,)
+
+
+def _equilibrium__static_kinetic__hunt_crossley(omega1, omega2, g, mu_k, n_h):
+    return (g*mu_k/omega1**2, 0, (g/omega2**2)**(1/n_h), 0,)
+
+
 _EQUILIBRIUM = {
     ('coulomb', 'hertz_damp'): _support.Variant(_equilibrium__coulomb__hertz_damp, ('omega1', 'omega2', 'mu_s', 'g', )),
     ('coulomb', 'kelvin_voigt'): _support.Variant(_equilibrium__coulomb__kelvin_voigt, ('omega1', 'omega2', 'mu_s', 'g', )),
@@ -113,6 +127,9 @@ _EQUILIBRIUM = {
     ('stribeck', 'hertz_damp'): _support.Variant(_equilibrium__stribeck__hertz_damp, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_equilibrium__stribeck__kelvin_voigt, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_equilibrium__stribeck__hunt_crossley, ('omega1', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_equilibrium__static_kinetic__hertz_damp, ('omega1', 'omega2', 'g', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_equilibrium__static_kinetic__kelvin_voigt, ('omega1', 'omega2', 'g', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_equilibrium__static_kinetic__hunt_crossley, ('omega1', 'omega2', 'g', 'mu_k', 'n_h', )),
 }
 
 
@@ -150,18 +167,20 @@ def jacobian(X1, Y1, X2, Y2, *, friction='coulomb', contact='hertz_damp', **para
     Vb : mpmath number
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -279,6 +298,42 @@ def _jacobian__stribeck__hunt_crossley(X1, Y1, X2, Y2, beta1, omega1, beta2, ome
         ])
 
 
+def _jacobian__static_kinetic__hertz_damp(X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_k):
+    _x0 = 2*beta2*omega2
+    _x1 = (mpmath.mpf(3)/mpmath.mpf(2))*mpmath.sqrt(X2)*(Y2*_x0 + omega2**2)
+    _x2 = X2**(mpmath.mpf(3)/mpmath.mpf(2))*_x0
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, _x1*mu_k, _x2*mu_k],
+            [0, 0, 0, 1],
+            [0, 0, -_x1, -_x2],
+        ])
+
+
+def _jacobian__static_kinetic__kelvin_voigt(X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_k):
+    _x0 = omega2**2
+    _x1 = 2*beta2*omega2
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, _x0*mu_k, _x1*mu_k],
+            [0, 0, 0, 1],
+            [0, 0, -_x0, -_x1],
+        ])
+
+
+def _jacobian__static_kinetic__hunt_crossley(X1, Y1, X2, Y2, beta1, omega1, beta2, omega2, mu_k, n_h):
+    _x0 = X2**n_h
+    _x1 = 2*beta2*omega2
+    _x2 = _x0*n_h*(Y2*_x1 + omega2**2)/X2
+    _x3 = _x0*_x1
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, _x2*mu_k, _x3*mu_k],
+            [0, 0, 0, 1],
+            [0, 0, -_x2, -_x3],
+        ])
+
+
 _JACOBIAN = {
     ('coulomb', 'hertz_damp'): _support.Variant(_jacobian__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
     ('coulomb', 'kelvin_voigt'): _support.Variant(_jacobian__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
@@ -286,6 +341,9 @@ _JACOBIAN = {
     ('stribeck', 'hertz_damp'): _support.Variant(_jacobian__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_jacobian__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_jacobian__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_jacobian__static_kinetic__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_jacobian__static_kinetic__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_jacobian__static_kinetic__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', 'n_h', )),
 }
 
 
@@ -320,18 +378,20 @@ def jacobian_at_equilibrium(*, friction='coulomb', contact='hertz_damp', **param
     Vb : mpmath number
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -439,6 +499,40 @@ def _jacobian_at_equilibrium__stribeck__hunt_crossley(beta1, omega1, beta2, omeg
         ])
 
 
+def _jacobian_at_equilibrium__static_kinetic__hertz_damp(beta1, omega1, beta2, omega2, g, mu_k):
+    _x0 = (mpmath.mpf(3)/mpmath.mpf(2))*g**(mpmath.mpf(1)/mpmath.mpf(3))*omega2**(mpmath.mpf(4)/mpmath.mpf(3))
+    _x1 = 2*beta2*g/omega2
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, _x0*mu_k, _x1*mu_k],
+            [0, 0, 0, 1],
+            [0, 0, -_x0, -_x1],
+        ])
+
+
+def _jacobian_at_equilibrium__static_kinetic__kelvin_voigt(beta1, omega1, beta2, omega2, mu_k):
+    _x0 = omega2**2
+    _x1 = 2*beta2*omega2
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, _x0*mu_k, _x1*mu_k],
+            [0, 0, 0, 1],
+            [0, 0, -_x0, -_x1],
+        ])
+
+
+def _jacobian_at_equilibrium__static_kinetic__hunt_crossley(beta1, omega1, beta2, omega2, g, mu_k, n_h):
+    _x0 = 1/n_h
+    _x1 = g**(_x0*(n_h - 1))*n_h*omega2**(2*_x0)
+    _x2 = 2*beta2*g/omega2
+    return mpmath.matrix([
+            [0, 1, 0, 0],
+            [-omega1**2, -2*beta1*omega1, _x1*mu_k, _x2*mu_k],
+            [0, 0, 0, 1],
+            [0, 0, -_x1, -_x2],
+        ])
+
+
 _JACOBIAN_AT_EQUILIBRIUM = {
     ('coulomb', 'hertz_damp'): _support.Variant(_jacobian_at_equilibrium__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', )),
     ('coulomb', 'kelvin_voigt'): _support.Variant(_jacobian_at_equilibrium__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', )),
@@ -446,6 +540,9 @@ _JACOBIAN_AT_EQUILIBRIUM = {
     ('stribeck', 'hertz_damp'): _support.Variant(_jacobian_at_equilibrium__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_jacobian_at_equilibrium__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_jacobian_at_equilibrium__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_jacobian_at_equilibrium__static_kinetic__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'mu_k', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_jacobian_at_equilibrium__static_kinetic__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_k', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_jacobian_at_equilibrium__static_kinetic__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'mu_k', 'n_h', )),
 }
 
 
@@ -480,18 +577,20 @@ def charpoly(*, friction='coulomb', contact='hertz_damp', **params):
     Vb : mpmath number
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -611,6 +710,9 @@ _CHARPOLY = {
     ('stribeck', 'hertz_damp'): _support.Variant(_charpoly__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_charpoly__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_charpoly__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_charpoly__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_charpoly__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_charpoly__coulomb__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'n_h', )),
 }
 
 
@@ -646,18 +748,20 @@ def eigenvalues(*, friction='coulomb', contact='hertz_damp', **params):
     Vb : mpmath number
         belt speed (base value: Fig. 3) [m/s], nonnegative.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
     n_h : mpmath number
         Hunt-Crossley exponent (Hertz-Damp: 3/2) [1], positive. Only for
         contact='hunt_crossley'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -749,6 +853,9 @@ _EIGENVALUES = {
     ('stribeck', 'hertz_damp'): _support.Variant(_eigenvalues__stribeck__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_eigenvalues__stribeck__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_eigenvalues__stribeck__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'mu_s', 'g', 'Vb', 'mu_k', 'v_s', 'n_h', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_eigenvalues__coulomb__hertz_damp, ('beta1', 'omega1', 'beta2', 'omega2', 'g', )),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_eigenvalues__coulomb__kelvin_voigt, ('beta1', 'omega1', 'beta2', 'omega2', )),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_eigenvalues__coulomb__hunt_crossley, ('beta1', 'omega1', 'beta2', 'omega2', 'g', 'n_h', )),
 }
 
 
@@ -774,15 +881,17 @@ def critical_belt_speed(*, friction='coulomb', contact='hertz_damp', **params):
     g : mpmath number
         gravity pressing the mass on the belt, Eq. (4) [m/s^2], positive.
     mu_k : mpmath number
-        kinetic friction coefficient, the Stribeck law's limit at high |Vr| [1],
-        nonnegative. Only for friction='stribeck'.
+        kinetic friction coefficient: mu while slipping (static_kinetic), the limit at
+        high |Vr| (stribeck) [1], nonnegative. Only for friction='stribeck' or
+        friction='static_kinetic'.
     v_s : mpmath number
         Stribeck velocity: the speed over which mu falls from mu_s towards mu_k [m/s],
         positive. Only for friction='stribeck'.
-    friction : {"coulomb", "stribeck"}, default 'coulomb'
+    friction : {"coulomb", "stribeck", "static_kinetic"}, default 'coulomb'
         friction law (derive/laws.py): coulomb: Coulomb friction: mu(|Vr|) = mu_s,
         static equal to kinetic; stribeck: Stribeck friction: mu(|Vr|) = mu_k + (mu_s -
-        mu_k) exp(-|Vr|/v_s).
+        mu_k) exp(-|Vr|/v_s); static_kinetic: Static above kinetic: stick held up to
+        mu_s F, slip at mu_k F < mu_s F.
     contact : {"hertz_damp", "kelvin_voigt", "hunt_crossley"}, default 'hertz_damp'
         contact law (derive/laws.py): hertz_damp: Hertz-Damp: (omega2^2 + 2 beta2 omega2
         X2') X2^(3/2); kelvin_voigt: Kelvin-Voigt: omega2^2 X2 + 2 beta2 omega2 X2'
@@ -831,4 +940,7 @@ _CRITICAL_BELT_SPEED = {
     ('stribeck', 'hertz_damp'): _support.Variant(_critical_belt_speed__stribeck__hertz_damp, ('beta1', 'omega1', 'mu_s', 'g', 'mu_k', 'v_s', )),
     ('stribeck', 'kelvin_voigt'): _support.Variant(_critical_belt_speed__stribeck__hertz_damp, ('beta1', 'omega1', 'mu_s', 'g', 'mu_k', 'v_s', )),
     ('stribeck', 'hunt_crossley'): _support.Variant(_critical_belt_speed__stribeck__hertz_damp, ('beta1', 'omega1', 'mu_s', 'g', 'mu_k', 'v_s', )),
+    ('static_kinetic', 'hertz_damp'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp, ()),
+    ('static_kinetic', 'kelvin_voigt'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp, ()),
+    ('static_kinetic', 'hunt_crossley'): _support.Variant(_critical_belt_speed__coulomb__hertz_damp, ()),
 }

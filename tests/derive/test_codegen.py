@@ -20,7 +20,7 @@ from generated import _support
 from generated import dynamics as _dynamics
 from generated import hybrid as _hybrid
 from generated import oscillator as _osc
-from generated.parameters import BASE, DOMAINS
+from generated.parameters import BASE, DOMAINS, FRICTION_LAWS
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -463,7 +463,7 @@ def test_a_law_registered_in_a_test_is_derived_into_every_function(tmp_path):
     assert out.returncode == 0, out.stderr
     got = __import__("json").loads(out.stdout)
     p = {**BASE, "c_v": 0.05, "Vb": 3.0}
-    assert got["options"] == ["coulomb", "stribeck", "viscous"]
+    assert got["options"] == [*FRICTION_LAWS, "viscous"]  # the shipped laws, then it
     assert got["owner"] == ["c_v"] and got["base"] == 0.02
     # a product and a quotient of rounded inputs: a few ulps
     X1 = (p["mu_s"] + p["c_v"] * p["Vb"]) * p["g"] / p["omega1"] ** 2

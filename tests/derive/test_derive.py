@@ -137,10 +137,42 @@ def test_registry_refuses_a_clash_and_a_wrong_kind():
         laws.get("friction", "dahl")
 
 
+def test_registry_shares_a_parameter_name_only_where_it_means_the_same():
+    """A law may list a parameter of another law with the same row (one row in the
+    table, every owner in `laws.owners`); a row that differs is refused by name."""
+    from dataclasses import replace
+
+    from derive import laws
+
+    (mu_k,) = [p for p in laws.get("friction", "static_kinetic").parameters if p.name == "mu_k"]
+    assert laws.owners("mu_k") == (("friction", "stribeck"), ("friction", "static_kinetic"))
+    assert [p.name for p in laws.parameter_table()].count("mu_k") == 1
+    same = replace(mu_k, law=None)
+
+    def law(name, parameter):
+        return laws.FrictionLaw(name, "s", "d", "e", (parameter,), lambda P, s: P["mu_k"])
+
+    try:
+        laws.register("friction", law("sharing", same))
+        assert laws.owners("mu_k")[-1] == ("friction", "sharing")
+        assert [p.name for p in laws.parameter_table()].count("mu_k") == 1
+    finally:
+        laws.LAWS["friction"].pop("sharing", None)
+    for field, value in (("unit", "m/s"), ("base", 0.3), ("description", "another")):
+        with pytest.raises(ValueError, match=rf"mu_k: 'stribeck' gives it another {field}"):
+            laws.register("friction", law("differing", replace(same, **{field: value})))
+    assert "differing" not in laws.choices("friction")
+
+
 def test_static_coefficient_is_mu_s_for_every_shipped_law():
     from derive.model import static_coefficient
 
     assert all(static_coefficient(f) == P["mu_s"] for f in FRICTION_LAWS)
+    # the slip law at rest: mu_s but for static_kinetic, whose slip is at mu_k
+    from derive.model import rest_coefficient
+
+    assert rest_coefficient("static_kinetic") == P["mu_k"]
+    assert all(rest_coefficient(f) == P["mu_s"] for f in ("coulomb", "stribeck"))
 
 
 @pytest.mark.parametrize("contact", CONTACT_LAWS)

@@ -3,7 +3,7 @@
 * The generated interface: ``OPTIONS``, ``OPTION_DEFAULTS``, ``OPTION_DOCS``,
   ``LAW_PARAMETERS``, ``LAW_UNITS``, each parameter's ``law``, and every generated
   function's option table, all from the one registry.
-* Stribeck's law with ``mu_k = mu_s`` is Coulomb's, and Hunt-Crossley's with
+* Stribeck's and static_kinetic's laws with ``mu_k = mu_s`` are Coulomb's, and Hunt-Crossley's with
   ``n_h = 3/2`` is Hertz-Damp, in every generated function that takes the option.
 
 Error model of the consistency checks. The mpmath variants at 30 digits compute the
@@ -63,11 +63,15 @@ def test_options_are_the_registry():
 
 def test_every_law_parameter_is_in_the_table_with_its_owner_and_in_base():
     owner = {p["name"]: p["law"] for p in PARAMETERS}
+    assert len(owner) == len(PARAMETERS)  # one row per name, shared ones too
     for (option, choice), names in LAW_PARAMETERS.items():
         assert choice in OPTIONS[option]
         for name in names:
-            assert owner[name] == (option, choice) and name in BASE and name in KNOWN
+            # the row's owner is the first law that lists the name (registry order)
+            first = next(key for key, listed in LAW_PARAMETERS.items() if name in listed)
+            assert owner[name] == first and name in BASE and name in KNOWN
     assert LAW_PARAMETERS[("friction", "stribeck")] == ("mu_k", "v_s")
+    assert LAW_PARAMETERS[("friction", "static_kinetic")] == ("mu_k",)  # shared
     assert LAW_PARAMETERS[("contact", "hunt_crossley")] == ("n_h",)
     assert LAW_PARAMETERS[("friction", "coulomb")] == ()
     assert {n for names in LAW_PARAMETERS.values() for n in names} == {
@@ -224,6 +228,18 @@ def test_stribeck_with_equal_coefficients_is_coulomb(case):
     )  # fmt: skip
 
 
+@pytest.mark.parametrize("case", list(_calls("friction")), ids=lambda c: c[0])
+def test_static_kinetic_with_equal_coefficients_is_coulomb(case):
+    """mu_k = mu_s: the static bound equals the slip coefficient, and every generated
+    function (stick surfaces, saltation matrices, averages) is Coulomb's."""
+    label, name, m, args, other = case
+    params = {**BASE, "mu_k": BASE["mu_s"]}
+    _same_function(
+        label, m, name, args, params, params, {**other, "friction": "coulomb"},
+        {**other, "friction": "static_kinetic"},
+    )  # fmt: skip
+
+
 @pytest.mark.parametrize("case", list(_calls("contact")), ids=lambda c: c[0])
 def test_hunt_crossley_with_exponent_three_halves_is_hertz_damp(case):
     label, name, m, args, other = case
@@ -252,13 +268,27 @@ def test_capabilities_cover_every_combination_with_every_fact():
 def test_capabilities_of_the_shipped_laws():
     from generated import capabilities
 
+    # per shipped friction law: (slip_friction_state_independent, friction_monotone,
+    # closed_form_average); static_kinetic slips at a constant mu_k but its static bound
+    # mu_s jumps down to it at Vr = 0
+    expected = {
+        "coulomb": (True, True, True),
+        "stribeck": (False, False, False),
+        "static_kinetic": (True, False, True),
+    }
     for key, facts in capabilities.CAPABILITIES.items():
-        friction_law = key[0]
+        if key[0] not in expected:  # a law registered by another test
+            continue
         holds = {name: h for name, (h, _) in facts.items()}
         assert holds["one_way_coupling"], key
-        assert holds["slip_friction_state_independent"] == (friction_law == "coulomb"), key
-        assert holds["friction_monotone"] == (friction_law == "coulomb"), key
-        assert holds["closed_form_average"] == (friction_law == "coulomb"), key
+        assert (
+            holds["slip_friction_state_independent"],
+            holds["friction_monotone"],
+            holds["closed_form_average"],
+        ) == expected[key[0]], key
+    jump = capabilities.CAPABILITIES[("static_kinetic", "kelvin_voigt", "clipped")]
+    assert "falling jump at Vr = 0" in jump["friction_monotone"][1]
+    assert "mu_k < mu_s" in jump["friction_monotone"][1]
     stribeck = capabilities.CAPABILITIES[("stribeck", "hertz_damp", "clipped")]
     assert "X1'" in stribeck["slip_friction_state_independent"][1]
     assert "0 < |Vr| < oo" in stribeck["friction_monotone"][1]

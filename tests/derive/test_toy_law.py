@@ -44,7 +44,7 @@ import numpy as np
 import pytest
 
 from beltmdsm.cli.tree import COMMANDS
-from generated.parameters import BASE
+from generated.parameters import BASE, FRICTION_LAWS
 
 ROOT = Path(__file__).resolve().parents[2]
 #: The law's name and its parameter's base value (as registered below).
@@ -159,7 +159,7 @@ def test_the_law_is_an_option_of_every_model_command_and_its_parameter_a_flag(to
         )))
         """,
     )
-    assert facts["options"] == ["coulomb", "stribeck", LAW]
+    assert facts["options"] == [*FRICTION_LAWS, LAW]
     assert facts["owner"] == ["c_f"]
     holds = {k: v[0] for k, v in facts["facts"].items()}
     assert holds == {
@@ -172,7 +172,7 @@ def test_the_law_is_an_option_of_every_model_command_and_its_parameter_a_flag(to
         if command in WITHOUT_MODEL:
             continue
         text = cli(toy, command, "--help")
-        assert "coulomb,stribeck,falling" in text and "--c_f" in text, command
+        assert ",".join((*FRICTION_LAWS, LAW)) in text and "--c_f" in text, command
 
 
 # ---------------------------------------------------------------- each command

@@ -291,6 +291,13 @@ def test_monotonicity_of_each_friction_law():
     failed = [s for s in C.claim("stribeck").steps if not s.proved]
     assert [s.name for s in failed] == ["friction law non-decreasing"]
     assert "mu_k < mu_s" in failed[0].detail
+    # static above kinetic: constant in slip, but the static bound falls to mu_k at Vr = 0
+    jump = C.monotonicity("static_kinetic")
+    assert not jump.holds and jump.slope == 0
+    assert jump.falls == "Vr = 0, where mu_k < mu_s"
+    failed = [s for s in C.claim("static_kinetic").steps if not s.proved]
+    assert [s.name for s in failed] == ["friction law non-decreasing"]
+    assert "falling jump at Vr = 0" in failed[0].detail
 
 
 def test_the_power_split_holds_for_every_law():
