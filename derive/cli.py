@@ -45,8 +45,19 @@ class Parser(argparse.ArgumentParser):
         raise UsageError(f"{self.prog}: error: {message} (--help for usage)")
 
 
+def _progress(spec, seconds):
+    """One line on stderr per derived module, as the derivation goes (stdout keeps the
+    summary that scripts read)."""
+    print(f"derived generated/{spec.name}.py in {seconds:.1f} s", file=sys.stderr, flush=True)
+
+
 def _generate(args) -> int:
-    from . import codegen, modules
+    try:
+        from . import codegen, modules
+    except ValueError as err:  # a law refused at `register` (derive.lawcheck.UnsupportedLaw)
+        if type(err).__name__ != "UnsupportedLaw":
+            raise
+        raise UsageError(f"{args.parser.prog}: error: {err}") from None
 
     root = codegen.GENERATED if args.out is None else Path(args.out)
     if args.out is None and not args.check and not codegen.source_checkout():
@@ -55,7 +66,7 @@ def _generate(args) -> int:
             f"({codegen.GENERATED.parent}); give --out DIR to write a complete copy there"
         )
     start = time.perf_counter()
-    mods = modules.all_modules()
+    mods = modules.all_modules(progress=_progress)
     files = codegen.render_all(mods)
     elapsed = time.perf_counter() - start
     if args.check:

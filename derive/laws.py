@@ -34,6 +34,7 @@ from dataclasses import dataclass, replace
 
 import sympy as sp
 
+from .lawcheck import check
 from .parameters import MODEL, Parameter
 
 __all__ = [
@@ -123,7 +124,8 @@ def register(option: str, law: Law) -> Law:
     ------
     ValueError
         For an unknown option, a law of the wrong kind, a name taken already, or a
-        parameter name that the table has already.
+        parameter name that the table has already; `derive.lawcheck.UnsupportedLaw`
+        (a ValueError) for a construct the framework cannot take (docs/extending.md).
     """
     if option not in _KIND:
         raise ValueError(f"option must be one of {OPTIONS}; got {option!r}")
@@ -135,6 +137,7 @@ def register(option: str, law: Law) -> Law:
     clash = sorted(p.name for p in law.parameters if p.name in taken)
     if clash:
         raise ValueError(f"{option} law {law.name!r}: parameter names taken already: {clash}")
+    check(option, law, parameter_table() + law.parameters)
     owned = tuple(replace(p, law=(option, law.name)) for p in law.parameters)
     law = replace(law, parameters=owned)
     LAWS[option][law.name] = law
