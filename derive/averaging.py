@@ -50,6 +50,7 @@ __all__ = [
     "closed_form",
     "remainder_average",
     "remainder_slope",
+    "fallbacks",
 ]
 
 #: Slow relative velocity, fast amplitude and the fast phase (the integration variable).
@@ -140,6 +141,15 @@ def _integrate(integrand, lo, hi, exact: bool):
 #: The exact averages computed under the budget: ``{(friction, weight, scale, slope): (inside,
 #: outside)}`` (`closed_form` fills those of weight 1, `_average` the others).
 _EXACT: dict = {}
+#: friction -> the averages of other weights that fell back to quadratures (`fallbacks`).
+_FALLBACKS: dict[str, list[str]] = {}
+
+
+def fallbacks(friction: str) -> tuple[str, ...]:
+    """The weighted averages of ``friction`` (the consistent MDSM's, `derive.correlation`)
+    that ran past their budget and are quadratures, each as one phrase; `capabilities`
+    appends them to the reason of ``closed_form_average`` (derived after the MDSM)."""
+    return tuple(_FALLBACKS.get(friction, ()))
 
 
 def _exact_averages(friction: str) -> dict:
@@ -164,7 +174,13 @@ def _average(friction: str, weight, scale, slope: bool):
             _EXACT[key] = budget.within(
                 f"{friction}: average", _pieces_sum, friction, weight, scale, slope, True
             )
-        except budget.OverBudget:
+        except budget.OverBudget as over:
+            note = (
+                f"a weighted average of the consistent MDSM (derive/correlation.py): "
+                f"{over.reason}, a quadrature"
+            )
+            if note not in _FALLBACKS.setdefault(friction, []):
+                _FALLBACKS[friction].append(note)
             _EXACT[key] = _pieces_sum(friction, weight, scale, slope, False)
     return _EXACT[key]
 
