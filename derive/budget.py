@@ -18,10 +18,10 @@ time would make the generated code depend on the load (with a wall-clock limit o
 `WALL_FACTOR` times the budget as a safety net).
 
 A worker is a ``fork`` of the derivation: it starts with SymPy's caches and every
-derived expression, and sends back one picklable result (about 10 ms for the fork and
-the pipe, measured in tests/derive/test_budget.py). The budget bounds the step, not
-its result: a step within the budget gives the same expression in a worker as in the
-derivation itself, so ``generated/`` stays byte-identical for the shipped laws, whose
+derived expression, and sends back one picklable result (tens of ms for the fork and
+the pipe; tests/derive/test_budget.py prints it). ``BELTMDSM_DERIVE_LOG=1`` prints each
+step's CPU and wall time on stderr. The budget bounds the step, not its result: a step
+within the budget gives the same expression in a worker as in the derivation itself, so ``generated/`` stays byte-identical for the shipped laws, whose
 slowest budgeted step takes about a second of CPU time, well within the default 20 s.
 A step near its budget would make the output depend on the machine's speed; the reason
 printed names the budget, and ``BELTMDSM_DERIVE_SECONDS`` raises it.
@@ -133,7 +133,10 @@ def _work(conn, fn, args, seconds, memory_bytes):
     except MemoryError:
         conn.send(("memory", None))
     except BaseException as err:  # noqa: BLE001 (handed to the caller, raised there)
-        conn.send(("raised", err))
+        try:
+            conn.send(("raised", err))
+        except Exception:  # noqa: BLE001 (an exception that does not pickle)
+            conn.send(("raised", RuntimeError(f"{type(err).__name__}: {err}")))
     finally:
         conn.close()
 
@@ -165,7 +168,7 @@ def within(what: str, fn: Callable, *args, seconds: float | None = None):
     hard = resource.getrlimit(resource.RLIMIT_AS)[1]
     if memory_bytes and hard != resource.RLIM_INFINITY:
         memory_bytes = min(memory_bytes, hard)
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN)
     ctx = multiprocessing.get_context("fork")
     receive, send = ctx.Pipe(duplex=False)
     worker = ctx.Process(target=_work, args=(send, fn, args, seconds, memory_bytes), daemon=True)
@@ -187,7 +190,13 @@ def within(what: str, fn: Callable, *args, seconds: float | None = None):
         worker.join()
         receive.close()
         if os.environ.get("BELTMDSM_DERIVE_LOG"):
-            print(f"  budget: {what}: {time.perf_counter() - start:.1f} s", file=sys.stderr)
+            now = resource.getrusage(resource.RUSAGE_CHILDREN)
+            used_cpu = now.ru_utime + now.ru_stime - cpu.ru_utime - cpu.ru_stime
+            print(
+                f"  budget: {what}: {used_cpu:.1f} s of CPU time, "
+                f"{time.perf_counter() - start:.1f} s wall",
+                file=sys.stderr,
+            )
     if status == "memory":
         raise OverBudget(what, seconds, memory=True)
     if status == "raised":

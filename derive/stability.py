@@ -215,8 +215,10 @@ def critical_belt_speed(
     sympy.Expr, None or budget.NoClosedForm
         None where the slope of the law's effective friction is a quadrature
         (`derive.averaging.closed_form`), or where SymPy's roots of ``p(Vb) = 0`` are
-        not one root of the form above; `NoClosedForm` where `sympy.solve` ran past
-        its budget (`derive.budget`): then no closed-form boundary is claimed.
+        not one root of the form above; `NoClosedForm` where ``p`` depends on ``Vb``
+        otherwise than through ``V_hat^2 - Vb^2`` (no root of that form: `sympy.solve`
+        is not called) or `sympy.solve` ran past its budget (`derive.budget`): then no
+        closed-form boundary is claimed.
     """
     slope = mu_bar_slope_eq_25(friction).args[0][0]
     if slope.has(sp.Integral):
