@@ -21,10 +21,11 @@ A worker is a ``fork`` of the derivation: it starts with SymPy's caches and ever
 derived expression, and sends back one picklable result (tens of ms for the fork and
 the pipe; tests/derive/test_budget.py prints it). ``BELTMDSM_DERIVE_LOG=1`` prints each
 step's CPU and wall time on stderr. The budget bounds the step, not its result: a step
-within the budget gives the same expression in a worker as in the derivation itself, so ``generated/`` stays byte-identical for the shipped laws, whose
-slowest budgeted step takes about a second of CPU time, well within the default 20 s.
-A step near its budget would make the output depend on the machine's speed; the reason
-printed names the budget, and ``BELTMDSM_DERIVE_SECONDS`` raises it.
+within the budget gives the same expression in a worker as in the derivation itself, so
+``generated/`` stays byte-identical for the shipped laws, whose slowest budgeted step
+takes about a second of CPU time, well within the default 20 s. A step near its budget
+would make the output depend on the machine's speed; the reason printed names the
+budget, and ``BELTMDSM_DERIVE_SECONDS`` raises it.
 """
 
 from __future__ import annotations
