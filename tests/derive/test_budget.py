@@ -169,7 +169,9 @@ def test_python_m_derive_refuses_such_a_law_in_one_line(tmp_path):
                 """
             )
         )
-    env = {**os.environ, "PYTHONPATH": str(tmp_path), "PYTHONDONTWRITEBYTECODE": "1"}
+    # the copied derive/ first, this checkout's runtime and generated/ after it
+    path = f"{tmp_path}{os.pathsep}{ROOT}"
+    env = {**os.environ, "PYTHONPATH": path, "PYTHONDONTWRITEBYTECODE": "1"}
     out = subprocess.run(
         [sys.executable, "-m", "derive", "--out", str(tmp_path / "out")],
         cwd=tmp_path, env=env, capture_output=True, text=True,
