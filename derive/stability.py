@@ -246,8 +246,8 @@ def _solve_below_vhat(p_of_vb: sp.Expr) -> sp.Expr | None | budget.NoClosedForm:
     # none of which would be claimed: it is not called.
     if sp.simplify(Vh * sp.diff(p_of_vb, Vb) + Vb * sp.diff(p_of_vb, Vh)) != 0:
         return budget.NoClosedForm(
-            "p(Vb) depends on Vb otherwise than through Vhat^2 - Vb^2, so it has no root "
-            "sqrt(Vhat^2 - m^2)"
+            "p(Vb) depends on Vb otherwise than through Vhat^2 - Vb^2, so no root "
+            "sqrt(Vhat^2 - m^2) is claimed (SymPy's solve is not called)"
         )
     # solve() squares the square root away, so each candidate is substituted back
     # on the branch where it is real (Vhat = m + d, d > 0).

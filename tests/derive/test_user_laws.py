@@ -84,10 +84,13 @@ print(json.dumps(dict(cases=cases, laws=out)))
 """
 
 b1, w1, g, mu_s = BASE["beta1"], BASE["omega1"], BASE["g"], BASE["mu_s"]
+#: The laws at their base values, as the generated code receives them: the binary
+#: doubles nearest 0.3, 0.1, 0.2 (mpmath.mpf of a float is exact).
+c_1, c_3, mu_d = mpmath.mpf(0.3), mpmath.mpf(0.1), mpmath.mpf(0.2)
 LAWS = {
-    "rational": lambda s: mu_s / (1 + 3 * s),
-    "cubic": lambda s: mu_s - mpmath.mpf("0.3") * s + mpmath.mpf("0.1") * s**3,
-    "exponential": lambda s: 0.2 + (mu_s - 0.2) * mpmath.exp(-s / mpmath.mpf("0.5")),
+    "rational": lambda s: mpmath.mpf(mu_s) / (1 + 3 * s),
+    "cubic": lambda s: mpmath.mpf(mu_s) - c_1 * s + c_3 * s**3,
+    "exponential": lambda s: mu_d + (mpmath.mpf(mu_s) - mu_d) * mpmath.exp(-2 * s),
 }
 
 
