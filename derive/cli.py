@@ -13,6 +13,10 @@ derive`` (derive/__main__.py) is the one place that hands the command line to it
 Nothing symbolic is imported until a derive command runs, so the runtime commands
 never load SymPy.
 
+The regeneration prints one line per module on stderr as it derives it, with its time
+(stdout keeps the summary). A law that `derive.laws.register` refuses
+(`derive.lawcheck.UnsupportedLaw`) is one line too, exit status 2.
+
 Every error in a command line is one line on stderr and exit status 2 (`Parser`);
 `main` returns the exit status, which ``python -m derive`` and the console script
 pass to ``sys.exit``.
