@@ -126,9 +126,12 @@ def _work(conn, fn, args, seconds, memory_bytes):
     # faster than a busy process's CPU clock, and the budget must not depend on the load.
     # Past the soft limit the kernel sends SIGXCPU, whose default action ends the worker.
     cpu = math.ceil(seconds)
-    resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
-    if memory_bytes:
-        resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
+    try:
+        resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
+        if memory_bytes:
+            resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
+    except (ValueError, OSError):  # a platform without the limit: the wall clock's remains
+        pass
     try:
         conn.send(("done", fn(*args)))
     except MemoryError:
@@ -162,8 +165,8 @@ def within(what: str, fn: Callable, *args, seconds: float | None = None):
         Whatever ``fn`` raised, raised again here.
     """
     seconds = SECONDS if seconds is None else seconds
-    if _IN_WORKER:
-        return fn(*args)
+    if _IN_WORKER or "fork" not in multiprocessing.get_all_start_methods():
+        return fn(*args)  # nested, or no fork (Windows): the step runs here, unbudgeted
     used = _address_space()
     memory_bytes = used + int(MEMORY_MB * 2**20) if used else 0
     hard = resource.getrlimit(resource.RLIMIT_AS)[1]
