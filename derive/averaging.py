@@ -42,6 +42,7 @@ from functools import cache
 import sympy as sp
 from sympy.integrals.risch import NonElementaryIntegral, risch_integrate
 
+from . import budget
 from .model import SPEED, coefficient, rest_coefficient
 
 __all__ = [
@@ -52,6 +53,7 @@ __all__ = [
     "closed_form",
     "remainder_average",
     "remainder_slope",
+    "fallbacks",
 ]
 
 #: Slow relative velocity, fast amplitude and the fast phase (the integration variable).
@@ -67,18 +69,9 @@ def remainder(friction: str) -> sp.Expr:
     return coefficient(friction, SPEED) - rest_coefficient(friction)
 
 
-@cache
-def closed_form(friction: str) -> tuple[bool, str]:
-    """Whether ``<sgn(v) r(|v|)>`` over a fast period has an elementary closed form, and why.
-
-    ``r = 0`` (Coulomb): yes. Otherwise SymPy's Risch algorithm on
-    ``r(u + V sin phi) dphi`` with ``x = tan(phi/2)``: an elementary antiderivative
-    gives a closed form; a proof that there is none (``NonElementaryIntegral``), or
-    a case the implementation cannot decide, gives a quadrature.
-    """
+def _risch(friction: str):
+    """``(elementary, reason)`` of Risch's algorithm on ``r(u + V sin phi) dphi``."""
     r = remainder(friction)
-    if sp.simplify(r) == 0:
-        return True, f"{friction}: mu(|Vr|) = mu(0) is constant, its average is Eq. (23)'s"
     x = sp.Symbol("x", real=True)
     integrand = r.subs(SPEED, u + V * 2 * x / (1 + x**2)) * 2 / (1 + x**2)
     try:
@@ -92,6 +85,40 @@ def closed_form(friction: str) -> tuple[bool, str]:
             "(SymPy's Risch algorithm proves it); its average is a quadrature"
         )
     return True, f"{friction}: mu(|Vr + V sin|) has an elementary antiderivative (Risch)"
+
+
+@cache
+def closed_form(friction: str) -> tuple[bool, str]:
+    """Whether ``<sgn(v) r(|v|)>`` over a fast period has an elementary closed form, and why.
+
+    ``r = 0`` (Coulomb): yes. Otherwise SymPy's Risch algorithm on
+    ``r(u + V sin phi) dphi`` with ``x = tan(phi/2)``: an elementary antiderivative
+    gives a closed form; a proof that there is none (``NonElementaryIntegral``), or
+    a case the implementation cannot decide, gives a quadrature. Risch's algorithm and
+    then the definite integrals of the average and its slope run under the budget of
+    `derive.budget`; past it the average is a quadrature too, and the reason says so.
+    """
+    r = remainder(friction)
+    if sp.simplify(r) == 0:
+        return True, f"{friction}: mu(|Vr|) = mu(0) is constant, its average is Eq. (23)'s"
+    try:
+        elementary, why = budget.within(f"{friction}: Risch", _risch, friction)
+    except budget.OverBudget as over:
+        return False, (
+            f"{friction}: {over.reason} (SymPy's Risch algorithm on mu(|Vr + V sin|) - "
+            "mu(0)); its average is a quadrature"
+        )
+    if not elementary:
+        return False, why
+    try:
+        _EXACT.update(budget.within(f"{friction}: averages", _exact_averages, friction))
+    except budget.OverBudget as over:
+        return False, (
+            f"{friction}: mu(|Vr + V sin|) has an elementary antiderivative (Risch), but its "
+            f"integrals over the pieces of the fast period: {over.reason}; its average "
+            "is a quadrature"
+        )
+    return True, why
 
 
 #: ``sgn(u)`` while the integrand is differentiated in ``u`` (it is constant on a side).
@@ -114,6 +141,53 @@ def _integrate(integrand, lo, hi, exact: bool):
     return sp.Integral(integrand, (PHASE, lo, hi))
 
 
+#: The exact averages computed under the budget: ``{(friction, weight, scale, slope): (inside,
+#: outside)}`` (`closed_form` fills those of weight 1, `_average` the others).
+_EXACT: dict = {}
+#: friction -> the averages of other weights that fell back to quadratures (`fallbacks`).
+_FALLBACKS: dict[str, list[str]] = {}
+
+
+def fallbacks(friction: str) -> tuple[str, ...]:
+    """The weighted averages of ``friction`` (the consistent MDSM's, `derive.correlation`)
+    that ran past their budget and are quadratures, each as one phrase; `capabilities`
+    appends them to the reason of ``closed_form_average`` (derived after the MDSM)."""
+    return tuple(_FALLBACKS.get(friction, ()))
+
+
+def _exact_averages(friction: str) -> dict:
+    """The effective friction's exact average and slope (weight 1), for `closed_form`."""
+    key = (_ONE, 1 / (2 * sp.pi))
+    return {
+        (friction, *key, slope): _pieces_sum(friction, *key, slope, True) for slope in (False, True)
+    }
+
+
+def _average(friction: str, weight, scale, slope: bool):
+    """`_pieces_sum`, exact where `closed_form` holds and the budget suffices, else quadratures.
+
+    A weight other than 1 (the consistent MDSM's) is integrated under its own budget; past
+    it that average is a quadrature, as a law without a closed form has.
+    """
+    if not closed_form(friction)[0]:
+        return _pieces_sum(friction, weight, scale, slope, False)
+    key = (friction, weight, scale, slope)
+    if key not in _EXACT:
+        try:
+            _EXACT[key] = budget.within(
+                f"{friction}: average", _pieces_sum, friction, weight, scale, slope, True
+            )
+        except budget.OverBudget as over:
+            note = (
+                f"a weighted average of the consistent MDSM (derive/correlation.py): "
+                f"{over.reason}, a quadrature"
+            )
+            if note not in _FALLBACKS.setdefault(friction, []):
+                _FALLBACKS[friction].append(note)
+            _EXACT[key] = _pieces_sum(friction, weight, scale, slope, False)
+    return _EXACT[key]
+
+
 def _signed(friction: str, direction, weight) -> sp.Expr:
     """``sgn(v) r(|v|) w`` on a piece where ``sgn(v) = direction``."""
     v = u + V * sp.sin(PHASE)
@@ -132,15 +206,7 @@ def remainder_average(friction: str, weight=_ONE, scale=1 / (2 * sp.pi)):
     """
     if sp.simplify(remainder(friction)) == 0:
         return sp.Integer(0), sp.Integer(0)
-    exact = closed_form(friction)[0]
-    out = []
-    for inside in (True, False):
-        total = sum(
-            _integrate(_signed(friction, sign, weight), lo, hi, exact)
-            for lo, hi, sign in _pieces(inside)
-        )
-        out.append(scale * total)
-    return tuple(out)
+    return _average(friction, weight, scale, False)
 
 
 @cache
@@ -158,15 +224,23 @@ def remainder_slope(friction: str, weight=_ONE, scale=1 / (2 * sp.pi)):
     """
     if sp.simplify(remainder(friction)) == 0:
         return sp.Integer(0), sp.Integer(0)
-    exact = closed_form(friction)[0]
-    out = []
     for inside in (True, False):
-        total = 0
         for lo, hi, sign in _pieces(inside):
             f = _signed(friction, sign, weight)
             for end in (lo, hi):
                 if sp.diff(end, u) != 0 and sp.simplify(f.subs(PHASE, end)) != 0:
                     raise AssertionError(f"{friction}: the integrand does not vanish at {end}")
-            total += _integrate(sp.diff(f, u), lo, hi, exact)
+    return _average(friction, weight, scale, True)
+
+
+def _pieces_sum(friction: str, weight, scale, slope: bool, exact: bool):
+    """``(inside, outside)``: the integrals over the pieces of a fast period (of the slope of
+    the integrand where ``slope``), exact or as ``Integral`` objects."""
+    out = []
+    for inside in (True, False):
+        total = 0
+        for lo, hi, sign in _pieces(inside):
+            f = _signed(friction, sign, weight)
+            total += _integrate(sp.diff(f, u) if slope else f, lo, hi, exact)
         out.append(scale * total)
     return tuple(out)

@@ -89,8 +89,11 @@ def friction_monotone(friction: str) -> tuple[bool, str]:
 
 
 def closed_form_average(friction: str) -> tuple[bool, str]:
-    """Whether the law's average over a harmonic fast motion is a closed form (Risch)."""
-    return averaging.closed_form(friction)
+    """Whether the law's average over a harmonic fast motion is a closed form (Risch), with
+    the weighted averages of the consistent MDSM that ran past their budget
+    (`derive.averaging.fallbacks`; ``python -m derive`` derives them first)."""
+    holds, why = averaging.closed_form(friction)
+    return holds, "; ".join((why, *averaging.fallbacks(friction)))
 
 
 _DECIDE = {

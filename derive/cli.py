@@ -13,6 +13,10 @@ derive`` (derive/__main__.py) is the one place that hands the command line to it
 Nothing symbolic is imported until a derive command runs, so the runtime commands
 never load SymPy.
 
+The regeneration prints one line per module on stderr as it derives it, with its time
+(stdout keeps the summary). A law that `derive.laws.register` refuses
+(`derive.lawcheck.UnsupportedLaw`) is one line too, exit status 2.
+
 Every error in a command line is one line on stderr and exit status 2 (`Parser`);
 `main` returns the exit status, which ``python -m derive`` and the console script
 pass to ``sys.exit``.
@@ -46,8 +50,19 @@ class Parser(argparse.ArgumentParser):
         raise UsageError(f"{self.prog}: error: {message} (--help for usage)")
 
 
+def _progress(spec, seconds):
+    """One line on stderr per derived module, as the derivation goes (stdout keeps the
+    summary that scripts read)."""
+    print(f"derived generated/{spec.name}.py in {seconds:.1f} s", file=sys.stderr, flush=True)
+
+
 def _generate(args) -> int:
-    from . import codegen, modules
+    try:
+        from . import codegen, modules
+    except ValueError as err:  # a law refused at `register` (derive.lawcheck.UnsupportedLaw)
+        if type(err).__name__ != "UnsupportedLaw":
+            raise
+        raise UsageError(f"{args.parser.prog}: error: {err}") from None
 
     root = codegen.GENERATED if args.out is None else Path(args.out)
     if args.out is None and not args.check and not codegen.source_checkout():
@@ -60,7 +75,7 @@ def _generate(args) -> int:
         if problem:
             args.parser.error(f"argument --out: {problem}")
     start = time.perf_counter()
-    mods = modules.all_modules()
+    mods = modules.all_modules(progress=_progress)
     files = codegen.render_all(mods)
     elapsed = time.perf_counter() - start
     if args.check:

@@ -41,6 +41,7 @@ from dataclasses import dataclass, replace
 
 import sympy as sp
 
+from .lawcheck import check
 from .parameters import MODEL, Parameter
 
 __all__ = [
@@ -143,7 +144,8 @@ def register(option: str, law: Law) -> Law:
     ValueError
         For an unknown option, a law of the wrong kind, a name taken already, or a
         parameter name of the table whose row differs (naming the fields), or that is
-        one of the model's own.
+        one of the model's own; `derive.lawcheck.UnsupportedLaw` (a ValueError) for a
+        construct the framework cannot take (docs/extending.md).
     """
     if option not in _KIND:
         raise ValueError(f"option must be one of {OPTIONS}; got {option!r}")
@@ -168,6 +170,7 @@ def register(option: str, law: Law) -> Law:
         raise ValueError(
             f"{option} law {law.name!r}: parameter names taken already with another meaning ({why})"
         )
+    check(option, law, parameter_table() + law.parameters)
     owned = tuple(replace(p, law=(option, law.name)) for p in law.parameters)
     law = replace(law, parameters=owned)
     LAWS[option][law.name] = law

@@ -10,9 +10,11 @@ only where its law enters.
 from __future__ import annotations
 
 import itertools
+import time
 
 import sympy as sp
 
+from . import budget, laws, mdsm
 from . import capabilities as cap
 from . import contraction as ctr
 from . import correlation as cr
@@ -20,7 +22,6 @@ from . import dynamics as dyn
 from . import fit as ft
 from . import friction as fr
 from . import hybrid as hy
-from . import laws, mdsm
 from . import oscillator as osc
 from . import stability as st
 from . import statespace as ss
@@ -40,6 +41,7 @@ __all__ = [
     "capabilities",
     "tableau",
     "contraction",
+    "BUILDERS",
     "all_modules",
 ]
 
@@ -68,7 +70,10 @@ def law_options(*options: str) -> tuple:
 
 
 def _or_refuse(expr, reason: str):
-    """``expr``, or a `Refusal` with ``reason`` where the derivation claims no closed form."""
+    """``expr``, or a `Refusal` with ``reason`` where the derivation claims no closed form
+    (with the budget's reason where a step ran past its budget, `derive.budget`)."""
+    if isinstance(expr, budget.NoClosedForm):
+        return Refusal(f"{reason.split(':')[0]}: {expr.reason}; no closed-form boundary is claimed")
     return Refusal(reason) if expr is None else expr
 
 
@@ -172,8 +177,8 @@ def unforced() -> ModuleSpec:
             _per(
                 lambda f, c: _or_refuse(
                     ss.critical_belt_speed(c, f),
-                    f"friction={f!r}: the tangential damping of J^0 vanishes at more than "
-                    "one belt speed; no closed-form boundary is claimed",
+                    f"friction={f!r}: the tangential damping of J^0 may vanish at more than "
+                    "one belt speed, or is positive at rest; no closed-form boundary is claimed",
                 ),
                 "friction",
                 "contact",
@@ -885,6 +890,13 @@ def stability() -> ModuleSpec:
 
     def boundary(f, c, cv, upper=False):
         lower = st.critical_belt_speed(cv, c, f)
+        if isinstance(lower, budget.NoClosedForm):
+            return Refusal(
+                f"friction={f!r} has no closed-form critical belt speed: {lower.reason}; the "
+                "pointwise functions (growth_rate, is_stable, hurwitz) take it, and "
+                "beltmdsm.analysis.predict.paper_intervals finds the unstable belt speeds "
+                "numerically from growth_rate"
+            )
         if lower is None:
             closed, why = cap.closed_form_average(f)
             return Refusal(
@@ -1338,17 +1350,28 @@ Copied when generated/ is written, so that the runtime's integrator
     )
 
 
-def all_modules() -> tuple[ModuleSpec, ...]:
-    return (
-        unforced(),
-        dynamics(),
-        fit(),
-        friction(),
-        stability(),
-        correlation(),
-        hybrid(),
-        oscillator(),
-        capabilities(),
-        tableau(),
-        contraction(),
-    )
+#: The builders of the generated modules, in the order `all_modules` derives them.
+BUILDERS = (
+    unforced,
+    dynamics,
+    fit,
+    friction,
+    stability,
+    correlation,
+    hybrid,
+    oscillator,
+    capabilities,
+    tableau,
+    contraction,
+)
+
+
+def all_modules(progress=None) -> tuple[ModuleSpec, ...]:
+    """Every generated module's spec; ``progress(spec, seconds)`` is called after each."""
+    specs = []
+    for build in BUILDERS:
+        start = time.perf_counter()
+        specs.append(build())
+        if progress is not None:
+            progress(specs[-1], time.perf_counter() - start)
+    return tuple(specs)

@@ -44,7 +44,7 @@ from functools import cache
 
 import sympy as sp
 
-from . import laws
+from . import budget, laws
 from .friction import mu_bar0_eq_25, mu_bar_slope_eq_25
 from .model import P, normal_force
 from .statespace import Quadratic, block_quadratics, charpoly_eq_12
@@ -212,10 +212,13 @@ def critical_belt_speed(
 
     Returns
     -------
-    sympy.Expr or None
+    sympy.Expr, None or budget.NoClosedForm
         None where the slope of the law's effective friction is a quadrature
         (`derive.averaging.closed_form`), or where SymPy's roots of ``p(Vb) = 0`` are
-        not one root of the form above: then no closed-form boundary is claimed.
+        not one root of the form above; `NoClosedForm` where ``p`` depends on ``Vb``
+        otherwise than through ``V_hat^2 - Vb^2`` (no root of that form: `sympy.solve`
+        is not called) or `sympy.solve` ran past its budget (`derive.budget`): then no
+        closed-form boundary is claimed.
     """
     slope = mu_bar_slope_eq_25(friction).args[0][0]
     if slope.has(sp.Integral):
@@ -224,10 +227,28 @@ def critical_belt_speed(
 
 
 @cache
-def _root_below_vhat(p_of_vb: sp.Expr) -> sp.Expr | None:
+def _root_below_vhat(p_of_vb: sp.Expr) -> sp.Expr | None | budget.NoClosedForm:
     """`critical_belt_speed` of the tangential damping ``p(Vb)`` (the same for every
-    contact law: the normal block does not enter it)."""
+    contact law: the normal block does not enter it), found under the budget of
+    `derive.budget` (`NoClosedForm` past it)."""
+    try:
+        return budget.within("p(Vb) = 0 below Vhat", _solve_below_vhat, p_of_vb)
+    except budget.OverBudget as over:
+        return budget.NoClosedForm(f"SymPy's roots of p(Vb) = 0: {over.reason}")
+
+
+def _solve_below_vhat(p_of_vb: sp.Expr) -> sp.Expr | None | budget.NoClosedForm:
     Vb, Vh = P["Vb"], P["Vhat"]
+    # The closed form claimed is a root sqrt(Vhat^2 - m^2) with m free of Vhat: where p
+    # depends on Vb and Vhat through Vhat^2 - Vb^2 alone (its derivative along the
+    # hyperbolas Vhat^2 - Vb^2 = const vanishes), and then SymPy finds it in a second.
+    # Elsewhere solve() would search for roots of other forms (a cubic law: for hours),
+    # none of which would be claimed: it is not called.
+    if sp.simplify(Vh * sp.diff(p_of_vb, Vb) + Vb * sp.diff(p_of_vb, Vh)) != 0:
+        return budget.NoClosedForm(
+            "p(Vb) depends on Vb otherwise than through Vhat^2 - Vb^2, so no root "
+            "sqrt(Vhat^2 - m^2) is claimed (SymPy's solve is not called)"
+        )
     # solve() squares the square root away, so each candidate is substituted back
     # on the branch where it is real (Vhat = m + d, d > 0).
     d = sp.Symbol("d", positive=True)

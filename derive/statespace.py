@@ -20,7 +20,7 @@ from functools import cache
 
 import sympy as sp
 
-from . import laws
+from . import budget, laws
 from .model import SPEED, STATE, Y1, Y2, P, coefficient, equations_of_motion, lam
 
 __all__ = [
@@ -35,6 +35,7 @@ __all__ = [
     "block_quadratics",
     "free_of",
     "critical_belt_speed",
+    "never_positive",
     "tangential_damping",
     "quadratics_at_equilibrium",
     "MU_VB",
@@ -260,31 +261,67 @@ def free_of(expr, symbol: sp.Symbol) -> bool:
     return symbol not in sp.sympify(expr).free_symbols
 
 
+def never_positive(root: sp.Expr) -> bool:
+    """Whether ``root`` is provably ``<= 0`` wherever it is real (no belt speed then).
+
+    Each fractional power of a base of unknown sign is real only where the base is
+    nonnegative: there it is taken as a power of a nonnegative symbol, so that
+    ``-sqrt(c_1 g - 2 beta1 omega1) / sqrt(3 c_3 g)`` is recognised as nonpositive. A
+    nonnegative parameter is taken positive (at 0, where ``-1/delta_l`` has no value, the
+    law degenerates to another one).
+    """
+    root = root.subs(
+        {x: sp.Dummy(x.name, positive=True) for x in root.free_symbols if x.is_positive is not True}
+    )
+
+    def real_branch(e):
+        return sp.Pow(sp.Dummy("base", nonnegative=True), e.exp)
+
+    def fractional(e):
+        return (
+            e.is_Pow
+            and e.exp.is_Rational
+            and not e.exp.is_integer
+            and e.base.is_nonnegative is not True
+        )
+
+    return root.replace(fractional, real_branch).is_nonpositive is True
+
+
 @cache
 def critical_belt_speed(
     contact: str = DEFAULT["contact"], friction: str = DEFAULT["friction"]
-) -> sp.Expr | None:
+) -> sp.Expr | None | budget.NoClosedForm:
     """The belt speed below which steady sliding is unstable, solved by SymPy; NaN if none.
 
     The tangential damping of ``J^0`` is ``p(Vb) = 2 beta1 omega1 + g mu'(Vb)`` (the
     slope of the friction law at the sliding speed ``Vb``); the normal block does not
-    depend on ``Vb``. Where ``p = 0`` has one root in ``Vb`` (a falling law such as
-    Stribeck's), steady sliding is unstable for ``0 <= Vb < Vb_c`` where ``Vb_c > 0``,
-    and NaN stands for "no unstable belt speed" where the root is not positive.
+    depend on ``Vb``. Where ``p = 0`` has one root in ``Vb`` that may be positive (a
+    falling law such as Stribeck's; of the cubic law ``mu_s - c_1 s + c_3 s^3`` the
+    roots are ``+-sqrt((c_1 g - 2 beta1 omega1) / (3 c_3 g))``, and the negative one is
+    no belt speed), steady sliding is unstable for ``0 <= Vb < Vb_c`` where ``Vb_c >
+    0``, and NaN stands for "no unstable belt speed" where the root is not positive.
     Without a root (Coulomb: ``p = 2 beta1 omega1`` whatever ``Vb``) the value is NaN.
+    `sympy.solve` runs under the budget of `derive.budget`.
 
     Returns
     -------
-    sympy.Expr or None
-        None where SymPy finds more than one root: the unstable set is then not one
-        interval from 0, and no closed form is claimed.
+    sympy.Expr, None or budget.NoClosedForm
+        None where more than one root may be positive (the unstable set is then not
+        one interval from 0), or where ``p(0) > 0`` (steady sliding is stable at low
+        belt speeds: a root bounds the unstable speeds from below); `NoClosedForm` where
+        `sympy.solve` ran past its budget. No closed form is claimed then.
     """
     p = tangential_damping(contact, friction)
     Vb = P["Vb"]
     if Vb not in p.free_symbols:
         return sp.nan
-    roots = sp.solve(p, Vb)
-    if len(roots) != 1:
+    try:
+        roots = budget.within(f"{friction}: p(Vb) = 0", sp.solve, p, Vb)
+    except budget.OverBudget as over:
+        return budget.NoClosedForm(f"SymPy's roots of the tangential damping p(Vb): {over.reason}")
+    roots = [r for r in roots if not never_positive(r)]
+    if len(roots) != 1 or p.subs(Vb, 0).is_positive:
         return None
     return sp.Piecewise((roots[0], roots[0] > 0), (sp.nan, True))
 

@@ -132,8 +132,9 @@ def test_a_missing_law_parameter_is_named():
         unforced.equilibrium(friction="stribeck", **without)
     with pytest.raises(TypeError, match="'n_h'"):
         fit.coefficients(1.0, contact="hunt_crossley")
-    with pytest.raises(ValueError, match="friction must be one of 'coulomb', 'stribeck'"):
-        unforced.equilibrium(friction="viscous", **BASE)
+    listed = ", ".join(map(repr, FRICTION_LAWS))  # every registered law, in order
+    with pytest.raises(ValueError, match=f"friction must be one of {listed}; got 'no_such_law'"):
+        unforced.equilibrium(friction="no_such_law", **BASE)
 
 
 def test_a_function_refuses_a_law_without_the_property_it_needs():
@@ -265,27 +266,36 @@ def test_capabilities_cover_every_combination_with_every_fact():
             assert isinstance(holds, bool) and reason and "\n" not in reason, (key, name)
 
 
+#: The facts of the laws shipped when this test was written; a law added later is checked
+#: by the implications of `test_capabilities_agree_with_the_laws_values` only.
+SHIPPED_FACTS = {
+    "coulomb": dict(slip=True, monotone=True, closed=True),
+    "stribeck": dict(slip=False, monotone=False, closed=False),
+    # slips at a constant mu_k, but its static bound mu_s jumps down to it at Vr = 0
+    "static_kinetic": dict(slip=True, monotone=False, closed=True),
+}
+SHIPPED_CONTACTS = ("hertz_damp", "kelvin_voigt", "hunt_crossley")
+
+
+def _mu(law, speeds):
+    """``mu(s)`` at the base set, read from the unforced equilibrium X1 = mu(Vb) g / omega1^2."""
+    p = {k: v for k, v in BASE.items() if k != "Vb"}
+    X1 = unforced.equilibrium(friction=law, Vb=np.asarray(speeds), **p)[0]
+    return X1 * p["omega1"] ** 2 / p["g"]
+
+
 def test_capabilities_of_the_shipped_laws():
     from generated import capabilities
 
-    # per shipped friction law: (slip_friction_state_independent, friction_monotone,
-    # closed_form_average); static_kinetic slips at a constant mu_k but its static bound
-    # mu_s jumps down to it at Vr = 0
-    expected = {
-        "coulomb": (True, True, True),
-        "stribeck": (False, False, False),
-        "static_kinetic": (True, False, True),
-    }
     for key, facts in capabilities.CAPABILITIES.items():
-        if key[0] not in expected:  # a law registered by another test
-            continue
+        if key[0] not in SHIPPED_FACTS or key[1] not in SHIPPED_CONTACTS:
+            continue  # a law registered by another test
         holds = {name: h for name, (h, _) in facts.items()}
+        expected = SHIPPED_FACTS[key[0]]
         assert holds["one_way_coupling"], key
-        assert (
-            holds["slip_friction_state_independent"],
-            holds["friction_monotone"],
-            holds["closed_form_average"],
-        ) == expected[key[0]], key
+        assert holds["slip_friction_state_independent"] == expected["slip"], key
+        assert holds["friction_monotone"] == expected["monotone"], key
+        assert holds["closed_form_average"] == expected["closed"], key
     jump = capabilities.CAPABILITIES[("static_kinetic", "kelvin_voigt", "clipped")]
     assert "falling jump at Vr = 0" in jump["friction_monotone"][1]
     assert "mu_k < mu_s" in jump["friction_monotone"][1]
@@ -294,6 +304,29 @@ def test_capabilities_of_the_shipped_laws():
     assert "0 < |Vr| < oo" in stribeck["friction_monotone"][1]
     assert "mu_k < mu_s" in stribeck["friction_monotone"][1]
     assert "Risch" in stribeck["closed_form_average"][1]
+
+
+@pytest.mark.parametrize("law", FRICTION_LAWS)
+def test_capabilities_agree_with_the_laws_values(law):
+    """Every registered friction law: a fact that holds implies what the law's values at
+    the base set show (mu read from the generated unforced equilibrium), and a law whose
+    average is a quadrature has a quadrature in generated/friction.py, a closed form none."""
+    import inspect as _inspect
+
+    from generated import capabilities
+
+    facts = capabilities.CAPABILITIES[(law, CONTACT_LAWS[0], TENSION_LAWS[0])]
+    holds = {name: h for name, (h, _) in facts.items()}
+    speeds = np.linspace(1e-3, 20.0, 401)
+    mu = _mu(law, speeds)
+    if holds["slip_friction_state_independent"]:
+        assert np.ptp(mu) <= 1e-12 * max(1.0, abs(mu).max()), law
+    if holds["friction_monotone"]:
+        assert mu[0] >= 0 and np.all(np.diff(mu) >= -1e-12 * abs(mu).max()), law
+    quadrature = "_support.quad(" in _inspect.getsource(friction._MU_BAR[(law,)].impl)
+    assert quadrature == (not holds["closed_form_average"]), law
+    if not holds["closed_form_average"]:
+        assert "quadrature" in facts["closed_form_average"][1], law
 
 
 def _bind_cases():

@@ -308,10 +308,10 @@ def test_the_contraction_claim(checked):
         ("Eq. 12", ("coulomb", "static_kinetic")),  # no friction coefficient in it
         ("Eq. 23", ("coulomb",)),
         ("Eq. 25 (mu_bar')", ("coulomb",)),
-        ("Eq. 7", FRICTION_LAWS),
-        ("Eq. 17", FRICTION_LAWS),
-        ("Eq. 22", FRICTION_LAWS),
-        ("Eq. A8", FRICTION_LAWS),
+        ("Eq. 7", "every law"),
+        ("Eq. 17", "every law"),
+        ("Eq. 22", "every law"),
+        ("Eq. A8", "every law"),
     ],
 )
 def test_rows_that_hold_for_coulomb_only_say_so(checked, key, laws):
@@ -319,6 +319,8 @@ def test_rows_that_hold_for_coulomb_only_say_so(checked, key, laws):
     that differs the row holds for Coulomb's law only, with a numeric example; the MDSM
     rows are written in mu_bar, whatever law it averages, and hold for every law."""
     rows, _, text = checked
+    if laws == "every law":  # the registry's, so that adding a law breaks no test
+        laws = tuple(FRICTION_LAWS)
     assert rows[key].laws == laws
     if laws == ("coulomb",):
         assert "stribeck: " in rows[key].law_detail

@@ -1,0 +1,208 @@
+"""Budgets for the symbolic steps that may not terminate.
+
+Some of SymPy's algorithms decide a question by a search whose length depends on the
+law: Risch's algorithm on a rational law's average (minutes and tens of GB), `solve`
+on the forced damping of a cubic law (hours). A derivation that must finish for every
+law a user writes runs each such step through `within`: in a forked worker process,
+under a CPU-time budget (`SECONDS`, the environment's ``BELTMDSM_DERIVE_SECONDS``) and a
+memory budget (`MEMORY_MB`, ``BELTMDSM_DERIVE_MEMORY_MB``, on top of the address space
+the derivation holds already: ``RLIMIT_AS`` in the worker). A worker past its budget
+is killed, and `within` raises `OverBudget`; the caller then takes the numeric path the
+package has for laws without a closed form (a quadrature printed as a Gauss-Legendre
+rule, roots found at run time) and records why, in the words of `OverBudget.reason`,
+in ``generated/capabilities.py`` or in the refusal of the generated function.
+
+The time budget is CPU time (``RLIMIT_CPU`` in the worker): the wall clock of a busy
+shared machine runs several times faster than a step's CPU clock, and a budget in wall
+time would make the generated code depend on the load (with a wall-clock limit of
+`WALL_FACTOR` times the budget as a safety net).
+
+A worker is a ``fork`` of the derivation: it starts with SymPy's caches and every
+derived expression, and sends back one picklable result (tens of ms for the fork and
+the pipe; tests/derive/test_budget.py prints it). ``BELTMDSM_DERIVE_LOG=1`` prints each
+step's CPU and wall time on stderr. The budget bounds the step, not its result: a step
+within the budget gives the same expression in a worker as in the derivation itself, so
+``generated/`` stays byte-identical for the shipped laws, whose slowest budgeted step
+takes about a second of CPU time, well within the default 20 s. A step near its budget
+would make the output depend on the machine's speed; the reason printed names the
+budget, and ``BELTMDSM_DERIVE_SECONDS`` raises it.
+"""
+
+from __future__ import annotations
+
+import math
+import multiprocessing
+import os
+import resource
+import signal
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+__all__ = [
+    "SECONDS",
+    "MEMORY_MB",
+    "OverBudget",
+    "NoClosedForm",
+    "within",
+    "reason",
+    "in_worker",
+]
+
+
+def _setting(name: str, default: float) -> float:
+    value = os.environ.get(name, "")
+    try:
+        number = float(value) if value else default
+    except ValueError:
+        raise ValueError(
+            f"{name} must be a number of {'s' if 'SECONDS' in name else 'MB'}; got {value!r}"
+        ) from None
+    if not number > 0:
+        raise ValueError(f"{name} must be > 0; got {value!r}")
+    return number
+
+
+#: The time budget of one step, in seconds.
+SECONDS = _setting("BELTMDSM_DERIVE_SECONDS", 20.0)
+#: The memory a step may add to the derivation's address space, in MB.
+MEMORY_MB = _setting("BELTMDSM_DERIVE_MEMORY_MB", 1536.0)
+
+#: The wall-clock limit of a step, in multiples of its CPU budget: a safety net for a
+#: worker that stops computing (the CPU budget is the one that ends a long search).
+WALL_FACTOR = 10
+
+_IN_WORKER = False
+
+
+class OverBudget(Exception):
+    """A step that did not finish within its budget (time or memory)."""
+
+    def __init__(self, what: str, seconds: float, memory: bool = False):
+        self.what, self.seconds, self.memory = what, seconds, memory
+        super().__init__(f"{what}: {reason(seconds, memory)}")
+
+    @property
+    def reason(self) -> str:
+        """``no closed form found within the budget of N s`` (or of its memory)."""
+        return reason(self.seconds, self.memory)
+
+
+@dataclass(frozen=True)
+class NoClosedForm:
+    """A derivation's answer where a step ran past its budget: why there is no closed form
+    (the code generator turns it into a refusal that names the law and the budget)."""
+
+    reason: str
+
+
+def reason(seconds: float | None = None, memory: bool = False) -> str:
+    """The words a capability fact or a refusal records for a step past its budget."""
+    if memory:
+        return f"no closed form found within the memory budget of {MEMORY_MB:g} MB"
+    seconds = SECONDS if seconds is None else seconds
+    return f"no closed form found within the budget of {seconds:g} s of CPU time"
+
+
+def in_worker() -> bool:
+    """Whether this process is a budget's worker (a nested step then runs in it directly)."""
+    return _IN_WORKER
+
+
+def _address_space() -> int:
+    """The bytes of address space this process holds now (Linux; 0 where unknown)."""
+    try:
+        with open("/proc/self/statm") as f:
+            return int(f.read().split()[0]) * resource.getpagesize()
+    except (OSError, ValueError, IndexError):
+        return 0
+
+
+def _work(conn, fn, args, seconds, memory_bytes):
+    global _IN_WORKER
+    _IN_WORKER = True
+    # CPU time, not wall time: on a shared machine the wall clock runs several times
+    # faster than a busy process's CPU clock, and the budget must not depend on the load.
+    # Past the soft limit the kernel sends SIGXCPU, whose default action ends the worker.
+    cpu = math.ceil(seconds)
+    try:
+        resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
+        if memory_bytes:
+            resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
+    except (ValueError, OSError):  # a platform without the limit: the wall clock's remains
+        pass
+    try:
+        conn.send(("done", fn(*args)))
+    except MemoryError:
+        conn.send(("memory", None))
+    except BaseException as err:  # noqa: BLE001 (handed to the caller, raised there)
+        try:
+            conn.send(("raised", err))
+        except Exception:  # noqa: BLE001 (an exception that does not pickle)
+            conn.send(("raised", RuntimeError(f"{type(err).__name__}: {err}")))
+    finally:
+        conn.close()
+
+
+def within(what: str, fn: Callable, *args, seconds: float | None = None):
+    """``fn(*args)``, computed in a forked worker under the time and memory budgets.
+
+    Parameters
+    ----------
+    what : str
+        The step, for `OverBudget`'s message.
+    fn, args
+        A function of the derivation and its arguments; the result must pickle.
+    seconds : float, optional
+        The time budget; default `SECONDS`.
+
+    Raises
+    ------
+    OverBudget
+        If the worker did not answer within ``seconds``, or ran out of its memory.
+    Exception
+        Whatever ``fn`` raised, raised again here.
+    """
+    seconds = SECONDS if seconds is None else seconds
+    if _IN_WORKER or "fork" not in multiprocessing.get_all_start_methods():
+        return fn(*args)  # nested, or no fork (Windows): the step runs here, unbudgeted
+    used = _address_space()
+    memory_bytes = used + int(MEMORY_MB * 2**20) if used else 0
+    hard = resource.getrlimit(resource.RLIMIT_AS)[1]
+    if memory_bytes and hard != resource.RLIM_INFINITY:
+        memory_bytes = min(memory_bytes, hard)
+    start, cpu = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN)
+    ctx = multiprocessing.get_context("fork")
+    receive, send = ctx.Pipe(duplex=False)
+    worker = ctx.Process(target=_work, args=(send, fn, args, seconds, memory_bytes), daemon=True)
+    worker.start()
+    send.close()
+    try:
+        if not receive.poll(WALL_FACTOR * seconds):  # a worker that waits, not computes
+            raise OverBudget(what, seconds)
+        try:
+            status, value = receive.recv()
+        except EOFError:  # the worker died without a word
+            worker.join()
+            if worker.exitcode == -signal.SIGXCPU:
+                raise OverBudget(what, seconds) from None
+            raise OverBudget(what, seconds, memory=True) from None
+    finally:
+        if worker.is_alive():
+            worker.kill()
+        worker.join()
+        receive.close()
+        if os.environ.get("BELTMDSM_DERIVE_LOG"):
+            now = resource.getrusage(resource.RUSAGE_CHILDREN)
+            used_cpu = now.ru_utime + now.ru_stime - cpu.ru_utime - cpu.ru_stime
+            print(
+                f"  budget: {what}: {used_cpu:.1f} s of CPU time, "
+                f"{time.perf_counter() - start:.1f} s wall",
+                file=sys.stderr,
+            )
+    if status == "memory":
+        raise OverBudget(what, seconds, memory=True)
+    if status == "raised":
+        raise value
+    return value
