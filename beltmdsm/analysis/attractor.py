@@ -28,8 +28,8 @@ one per excitation period):
   negative exponent without a return: a lock longer than the run can show; a zero
   exponent off a closed curve).
 
-Without excitation the samples are taken every ``2 pi / omega1`` and there is no phase:
-a self-excited cycle has a zero largest exponent (the direction along the flow) and is
+Without excitation the samples are taken every base period
+(`beltmdsm.analysis.lyapunov.chunk_length`) and there is no phase: a self-excited cycle has a zero largest exponent (the direction along the flow) and is
 ``periodic`` where it is found as a cycle (``periods`` 1).
 """
 

@@ -7,7 +7,8 @@ across every switch (stick, slip, reversal, contact loss) a jump by the saltatio
 matrix. Integrating the variational equations across an event without that jump
 gives wrong exponents (the known failure of event callbacks in tangent-space
 methods). Here the run is cut into chunks of length ``tau`` (one excitation period,
-or ``2 pi / omega1`` without excitation, cut so that no direction underflows:
+or without excitation the slowest oscillation's of steady sliding, cut so that no
+direction underflows:
 `chunk_length`); the monodromy ``M_k`` of each chunk acts on an
 orthonormal frame ``Q``, re-orthonormalised by ``M_k Q = Q' R`` (QR), and the exponents
 are the running means of ``log |R_ii|`` over the time averaged (Benettin et al. 1980).
@@ -39,6 +40,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+from generated import unforced
 
 from ..errors import StepTooSmall
 from ..integrate.events import integrate_events
@@ -142,7 +145,8 @@ class Lyapunov:
 def chunk_length(model: Model) -> tuple[float, int]:
     """The base period and the number ``n`` of chunks it is cut into: ``tau = base / n``.
 
-    The base period is one excitation period, or ``2 pi / omega1`` without excitation
+    The base period is one excitation period, or without excitation the period of the
+    slowest oscillation of steady sliding (`generated.unforced.eigenvalues`)
     (the averages are taken over whole base periods, so that the phase of the forcing
     does not enter their spread). ``n`` is the least integer that keeps ``tau`` times
     the fastest rate (`beltmdsm.settings.fastest_rate`) within `SPREAD`: within one
@@ -153,7 +157,10 @@ def chunk_length(model: Model) -> tuple[float, int]:
     try:
         base = excitation_period(model)
     except ValueError:
-        base = 2 * math.pi / model.params["omega1"]
+        # without excitation: the period of the slowest oscillation of steady sliding
+        lam = np.asarray(unforced.eigenvalues(**model.arguments(unforced.eigenvalues)))
+        w = np.abs(lam.imag)[np.abs(lam.imag) > 0]
+        base = 2 * math.pi / (float(w.min()) if w.size else fastest_rate(model))
     return base, max(1, math.ceil(base * fastest_rate(model) / SPREAD))
 
 

@@ -23,6 +23,7 @@ import argparse
 import concurrent.futures as cf
 import contextlib
 import math
+import signal
 import sys
 import warnings
 from collections.abc import Callable, Iterator, Sequence
@@ -115,23 +116,48 @@ def _handle(args):
     try:
         return _interrupted(args)
     except KeyboardInterrupt as err:
-        # Ctrl-C: one line, what was kept (a sweep's finished points), exit status 130
+        # Ctrl-C: one line, what was kept (a sweep's finished points), exit status 130;
+        # a second Ctrl-C while the process winds down (a pool's threads joined at exit)
+        # is ignored, so that it cannot kill it half way (exit -2, or a traceback)
+        with contextlib.suppress(ValueError):  # not the main thread
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
         print(f"{args.parser.prog}: interrupted{f' ({err})' if str(err) else ''}", file=sys.stderr)
         return 130
 
 
+class _Sigint:
+    """Python's own Ctrl-C handling (KeyboardInterrupt), remembering that it fired: where
+    it lands inside a compiled function, numba reports "CPUDispatcher(...) returned a
+    result with an exception set" as a SystemError that does not always chain the
+    KeyboardInterrupt, so the chain alone cannot tell it from a real SystemError."""
+
+    fired = False
+
+    def __call__(self, signum, frame):
+        type(self).fired = True
+        signal.default_int_handler(signum, frame)
+
+
 def _interrupted(args):
     """`_dispatch`, with the SystemError that numba raises where Ctrl-C lands inside a
-    compiled function ("CPUDispatcher(...) returned a result with an exception set")
-    read as the KeyboardInterrupt it wraps."""
+    compiled function read as the KeyboardInterrupt it is (`_Sigint`)."""
+    try:
+        previous = signal.signal(signal.SIGINT, _Sigint())
+    except ValueError:  # not the main thread: no handler of ours
+        previous = None
     try:
         return _dispatch(args)
     except SystemError as err:
-        if isinstance(err.__cause__, KeyboardInterrupt) or isinstance(
-            err.__context__, KeyboardInterrupt
+        if (
+            _Sigint.fired
+            or isinstance(err.__cause__, KeyboardInterrupt)
+            or isinstance(err.__context__, KeyboardInterrupt)
         ):
             raise KeyboardInterrupt from None
         raise
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
 
 
 def _dispatch(args):

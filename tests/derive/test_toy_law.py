@@ -21,7 +21,8 @@ forms typed here or an mpmath reference, or refuses it in one line naming it:
   mean contact force over a period is ``g``, so the tangential pair of multipliers has
   ``|mu|^2 = exp(-(2 beta1 omega1 - c_f g) T)``: the growth rate ``-(2 beta1 omega1 - c_f
   g) / 2`` and a Neimark-Sacker boundary at ``c_f = 2 beta1 omega1 / g`` (``floquet``,
-  ``floquet-band``, ``responses``, ``branch``, ``coexistence``, ``floquet-map``);
+  ``floquet-band``, ``responses``, ``branch``, ``coexistence``, ``floquet-map``; the
+  Lyapunov exponents of ``lyapunov`` and the attractor of ``basins`` too);
 * ``validate`` (the paper's cases), ``docs`` and ``check-paper`` take no model: they
   refuse ``--friction`` in one line naming it.
 
@@ -355,6 +356,25 @@ def check_floquet_map(toy):
     assert out["unstable"] == [[], [], [[5.0, 7.0]]]
 
 
+def check_lyapunov(toy):
+    # on the periodic response that slides back throughout (Vb = 12): the tangential
+    # pair's exponents are its Floquet growth rate, their sum Liouville's -D_TOY
+    out = cli_json(toy, "lyapunov --Vb 12 --start periodic --perturbation 0 --t-end 400")
+    ex, err = out["exponents"], out["error"]
+    assert out["collapsed"] == 0
+    assert abs(ex[0] - _growth(C_F)) <= err[0] + 1e-6
+    assert abs(ex[0] + ex[1] + D_TOY) <= err[0] + err[1] + 1e-6
+
+
+def check_basins(toy):
+    # one attractor, the sliding response: every start reaches it
+    line = "basins --Vb 12 --points 2 --jobs 1 --no-cache --t-end 600"
+    out = cli_json(toy, line)
+    (a,) = out["attractors"]
+    assert (a["kind"], a["periods"], a["fraction"]) == ("periodic", 1, 1.0)
+    assert abs(a["lyapunov"] - _growth(C_F)) <= a["lyapunov_error"] + 1e-6
+
+
 #: The commands that take no model: they refuse the flag by name.
 WITHOUT_MODEL = ("validate", "docs", "check-paper")
 
@@ -376,6 +396,8 @@ CHECKS = {
     "branch": check_branch,
     "coexistence": check_coexistence,
     "floquet-map": check_floquet_map,
+    "lyapunov": check_lyapunov,
+    "basins": check_basins,
     **{name: (lambda toy, name=name: check_without_model(toy, name)) for name in WITHOUT_MODEL},
 }
 
