@@ -89,6 +89,27 @@ def test_the_undamped_belt_oscillators_stick_slip_cycle_is_the_closed_form(solve
     assert sim.summary.regime == "stick_slip"
 
 
+def test_the_self_excited_cycle_by_shooting_is_the_closed_form():
+    # issue 29: the autonomous cycle of beltmdsm.analysis.cycles (period unknown, phase
+    # condition) on the same oscillator, against the same closed form; its stick phase
+    # gives a multiplier 0, and it coexists with steady sliding (constant mu_k: stable
+    # for beta1 > 0, neutral here), which the static bound alone makes possible
+    mu_s, mu_k, w, Vb = 0.4, 0.25, 1.0, 1.0
+    x_s, x_k = mu_s * G / w**2, mu_k * G / w**2
+    d = x_s - x_k
+    period = 2 * d / Vb + (math.pi + 2 * math.atan(Vb / (w * d))) / w
+    c = beltmdsm.cycle(_belt_oscillator(mu_s, mu_k, w, Vb))
+    assert c.period == pytest.approx(period, abs=1e-8)
+    assert c.n_sticks == 1 and c.n_reversals == 0 and c.stable
+    assert c.stick_time == pytest.approx(2 * d / Vb, abs=1e-8)
+    # the slip's harmonic arc about x_k, of amplitude A (it starts at d with velocity
+    # Vb), spans X1 beyond the stick's [x_k - d, x_s] on both sides
+    A = math.hypot(d, Vb / w)
+    assert c.x1_range == pytest.approx((x_k - A, x_k + A), abs=1e-8)
+    assert c.velocity_range == pytest.approx((-A * w, Vb), abs=1e-8)
+    assert min(abs(c.multipliers)) < 1e-12 and abs(c.trivial_multiplier - 1) < 1e-8
+
+
 def test_the_saltation_of_leaving_stick_is_the_flows_jacobian_across_the_switch():
     """Stick ends on ``stick_back`` (``h = mu_s F + a_free``, ``a_free = -w^2 X1``) into
     ``slip_back``: ``f+ - f- = (0, -(mu_s - mu_k) F)``, ``n = (-w^2, 0)``, ``n . f- =
