@@ -6,7 +6,10 @@ self-excited cycles. Steady sliding is stable where every eigenvalue of ``J^0``
 the Hopf points (`beltmdsm.analysis.hopf.hopf_points`) and where a real eigenvalue
 crosses 0 (placed by Brent's method on the largest real part). The cycles are the
 branch born at the first Hopf point of the range
-(`beltmdsm.analysis.cycle_branch.cycle_branch`), with its stable parts. Where a stable
+(`beltmdsm.analysis.cycle_branch.cycle_branch`), with its stable parts; without a Hopf
+point in the range, the branch through a cycle seeded where a stick ends, at the
+model's value or the middle of the range (a static bound above the kinetic
+coefficient keeps a stick-slip cycle beside stable sliding, with no Hopf point). Where a stable
 cycle and stable steady sliding share a range, a run ends on either one by where it
 starts: hysteresis, the mark of a subcritical Hopf point (the cycles exist where
 steady sliding is stable) or of a branch that folds back past it. The overlay is
@@ -123,6 +126,29 @@ def _sliding_parts(model, param, lo, hi, hopf):
     return parts
 
 
+#: Where a range without a Hopf point is seeded for cycles, as shares of the range.
+_SEEDS = (0.5, 0.25, 0.75)
+
+
+def _unborn(model, param, lo, hi, backend):
+    """A branch of cycles through a seeded one where no Hopf point is in the range:
+    ``(branch, "")``, or ``(None, reason)``."""
+    values = [float(model[param])] if lo <= float(model[param]) <= hi else []
+    values += [lo + share * (hi - lo) for share in _SEEDS]
+    failures = []
+    for v in values:
+        try:
+            found = cycle_branch(model.replace(**{param: v}), param=param, lo=lo, hi=hi,
+                                 backend=backend)  # fmt: skip
+            return found, ""
+        except NoPeriodicResponse as err:
+            failures.append(f"{param} = {v:g}: {str(err).split(';')[-1].strip()}")
+    return None, (
+        f"no Hopf point of steady sliding for {param} in [{lo:g}, {hi:g}], and no cycle "
+        f"seeded where a stick ends ({'; '.join(failures[:2])})"
+    )
+
+
 def cycle_coexistence(
     param: str, lo: float, hi: float, model: Model, *, backend=None
 ) -> CycleCoexistence:
@@ -145,12 +171,10 @@ def cycle_coexistence(
     sliding = _sliding_parts(model, param, lo, hi, hopf)
     branch, reason = None, ""
     if not hopf:
-        reason = (
-            f"no Hopf point of steady sliding for {param} in [{lo:g}, {hi:g}]: no cycle is "
-            "born in the range (steady sliding is "
-            + ("stable" if sliding else "unstable")
-            + " throughout; cycles not connected to a Hopf point are not looked for)"
-        )
+        # no cycle is born in the range; one may still exist there, apart from steady
+        # sliding (a static bound above the kinetic coefficient keeps a stick-slip cycle
+        # beside stable sliding): seeded where a stick ends, at a few values
+        branch, reason = _unborn(model, param, lo, hi, backend)
     else:
         try:
             branch = cycle_branch(model, param=param, lo=lo, hi=hi, backend=backend)

@@ -42,7 +42,7 @@ import beltmdsm
 from beltmdsm.analysis.floquet import floquet
 from beltmdsm.cli import main
 from beltmdsm.model import Model, initial_state
-from generated import hybrid
+from generated import hybrid, unforced
 
 G = 9.81
 TIGHT = dict(rtol=1e-12, atol=1e-12, solver="events", t_discard=0.0)
@@ -273,3 +273,18 @@ def test_a_static_bound_below_the_kinetic_coefficient_is_refused_by_name(capsys)
     assert main(args) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "choose mu_k <= mu_s" in err[0]
+
+
+def test_a_stick_slip_cycle_coexists_with_stable_sliding_without_a_hopf_point():
+    # a constant kinetic coefficient leaves steady sliding stable (no Hopf point), yet the
+    # static bound keeps a stick-slip cycle beside it: coexistence finds it by seeding
+    # where a stick ends, and says hysteresis where both are stable
+    m = Model(friction="static_kinetic", mu_k=0.25, beta1=0.05, alpha=0.0, Vb=1.0)
+    c = beltmdsm.coexistence(m, "Vb", 0.5, 2.0)
+    assert not c.hopf and c.branch is not None
+    ((lo, hi),) = [r.range for r in c.ranges]
+    assert lo == 0.5 and 1.0 < hi < 2.0
+    # at Vb = 1, independently: the cycle by shooting is stable and so is steady sliding
+    assert beltmdsm.cycle(m).stable
+    lam = np.asarray(unforced.eigenvalues(**m.arguments(unforced.eigenvalues)), dtype=complex)
+    assert np.max(lam.real) < 0
