@@ -70,6 +70,9 @@ nb_execution_raise_on_error = True
 nb_execution_show_tb = True
 nb_merge_streams = True
 
+# X1' is a derivative, not a quotation: no typographic quotes
+smartquotes = False
+
 # -- HTML -------------------------------------------------------------------------------
 html_theme = "pydata_sphinx_theme"
 html_title = "beltmdsm"

@@ -150,6 +150,32 @@ def test_the_reference_covers_the_public_api_and_the_command_line(site):
                 assert flag in commands, f"{command} {flag}"
 
 
+def test_the_laws_page_is_the_registry(site):
+    """Every law of ``generated.parameters`` with its summary and own parameters, and
+    every parameter, on the page of laws (the README's table of laws, moved here)."""
+    import html as html_module
+
+    from generated.parameters import LAW_PARAMETERS, OPTION_DOCS, OPTIONS, PARAMETERS
+
+    page = (site / "reference" / "laws.html").read_text(encoding="utf-8")
+    rows = [
+        " ".join(html_module.unescape(re.sub(r"<[^>]+>", " ", row)).split())
+        for row in re.findall(r"<tr[^>]*>(.*?)</tr>", page, flags=re.S)
+    ]
+    for option, choices in OPTIONS.items():
+        for choice in choices:
+            own = LAW_PARAMETERS[option, choice] or ("none",)
+            summary = " ".join(OPTION_DOCS[option][choice].split())
+            assert any(
+                row.startswith(f"{option}= , --{option} {choice}")
+                and summary in row
+                and all(f" {name}" in row.rsplit(summary, 1)[1] for name in own)
+                for row in rows
+            ), (option, choice)
+    for parameter in PARAMETERS:
+        assert any(row.startswith(parameter["name"] + " ") for row in rows), parameter["name"]
+
+
 def test_the_search_index_holds_floquet_band(site):
     index = (site / "searchindex.js").read_text(encoding="utf-8")
     assert "floquet_band" in index

@@ -3,6 +3,7 @@
 * ``reference/api.rst``: an autosummary of every name of ``beltmdsm.__all__``, grouped by
   the module that holds it, so that a name added to the public API joins the reference
   without an edit here;
+* ``reference/laws.rst``: the laws of the registry and every parameter;
 * ``reference/generated.rst``: an autosummary of every module of ``generated/`` (what
   ``python -m derive`` writes), each with its functions;
 * ``tutorials/notebooks.rst``, and in ``tutorials/notebooks/`` links to
@@ -129,6 +130,89 @@ def generated_page() -> str:
     return "\n".join(lines)
 
 
+def _rst_text(text: str) -> str:
+    """Plain text as reStructuredText inline text (no markup)."""
+    return re.sub(r"([\\`*|])", r"\\\1", str(text))
+
+
+def laws_page() -> str:
+    """``reference/laws.rst``: the laws of the registry and every parameter, from
+    ``generated.parameters`` (derive/laws.py wrote it), so that a law joins the page
+    when ``python -m derive`` adds it."""
+    from generated.parameters import (
+        LAW_PARAMETERS,
+        OPTION_DEFAULTS,
+        OPTION_DOCS,
+        OPTIONS,
+        PARAMETERS,
+    )
+
+    lines = [
+        ".. This page is written by docs/_ext/beltmdsm_site.py from generated.parameters.",
+        "",
+        "Laws and parameters",
+        "===================",
+        "",
+        "The laws of the model, one option each for friction, contact and tension, from the",
+        "registry ``derive/laws.py`` (:doc:`../extending` adds one). The generated functions",
+        "take the options their equations contain as keywords; ``Model`` and every command",
+        "take all three (``friction=``, ``--friction``).",
+        "",
+        ".. list-table::",
+        "   :header-rows: 1",
+        "   :widths: 12 18 50 20",
+        "",
+        "   * - option",
+        "     - choice",
+        "     - law",
+        "     - its own parameters",
+    ]
+    for option, choices in OPTIONS.items():
+        for choice in choices:
+            default = " (default)" if OPTION_DEFAULTS[option] == choice else ""
+            own = ", ".join(f"``{n}``" for n in LAW_PARAMETERS[option, choice]) or "none"
+            lines += [
+                f"   * - ``{option}=``, ``--{option}``",
+                f"     - ``{choice}``{default}",
+                f"     - {_rst_text(OPTION_DOCS[option][choice])}",
+                f"     - {own}",
+            ]
+    lines += [
+        "",
+        "Parameters",
+        "----------",
+        "",
+        "Every parameter, with its unit, the base value of the paper's Fig. 2 set and its",
+        "domain (a value outside it is refused, naming the parameter: :doc:`refusals`).",
+        "",
+        ".. list-table::",
+        "   :header-rows: 1",
+        "   :widths: 12 10 10 14 54",
+        "",
+        "   * - name",
+        "     - unit",
+        "     - base",
+        "     - domain",
+        "     - meaning",
+    ]
+    for row in PARAMETERS:
+        law = f" (law ``{row['law'][0]}={row['law'][1]}``)" if row.get("law") else ""
+        if row["base"] is not None:
+            base = f"{row['base']:g}"
+        elif row.get("default_from"):
+            base = f"``{row['default_from']}``"  # the two-frequency split of one flag
+        else:
+            base = "none"  # derived (Vhat) unless given
+        lines += [
+            f"   * - ``{row['name']}``",
+            f"     - {_rst_text(row['unit'])}",
+            f"     - {base}",
+            f"     - {_rst_text(row['domain'])}",
+            f"     - {_rst_text(row['description'])}{law}",
+        ]
+    return "\n".join(lines + [""])
+
+
 def link_notebooks() -> None:
     """Link ``notebooks/*.ipynb`` and ``_nbutil.py`` into ``tutorials/notebooks/``.
 
@@ -176,6 +260,7 @@ def generate(app) -> None:
     """builder-inited: write the generated pages and links before Sphinx reads sources."""
     _write(DOCS / "reference" / "api.rst", api_page())
     _write(DOCS / "reference" / "generated.rst", generated_page())
+    _write(DOCS / "reference" / "laws.rst", laws_page())
     _write(DOCS / "tutorials" / "notebooks.rst", notebook_index())
     link_notebooks()
 
