@@ -64,6 +64,10 @@ myst_heading_anchors = 4  # GitHub's anchors: docs/modelling.md#tension works in
 # Notebooks run at build in quick mode (BELTMDSM_FULL unset: coarse grids); set
 # BELTMDSM_DOCS_EXECUTE=off to build without running them (their pages then have no
 # output), as tests/test_docs_site.py's quick build does for the paper's notebooks.
+# 'cache': jupyter-cache keeps each executed notebook beside the output folder
+# (build/.jupyter_cache for build/docs) and reruns only a notebook or code that changed
+# the notebook's text; it does not see a change of the package, so after one, rebuild
+# with -D nb_execution_mode=force (or delete that folder) to redraw the figures.
 nb_execution_mode = os.environ.get("BELTMDSM_DOCS_EXECUTE", "cache")
 nb_execution_timeout = 600
 nb_execution_raise_on_error = True

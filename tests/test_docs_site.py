@@ -181,6 +181,26 @@ def test_the_search_index_holds_floquet_band(site):
     assert "floquet_band" in index
 
 
+#: The README's draft (the lead moves it to README.md; then point this at README.md).
+README = ROOT / "docs" / "readme_draft.md"
+
+
+def test_the_readme_example_prints_what_the_readme_says(tmp_path):
+    """The README's Python example runs, prints the lines the README shows after it, and
+    writes its figure."""
+    pytest.importorskip("matplotlib")
+    text = README.read_text(encoding="utf-8")
+    (code,) = re.findall(r"^```python\n(.*?)^```", text, flags=re.M | re.S)
+    (printed,) = re.findall(r"^prints\n\n```\n(.*?)^```", text, flags=re.M | re.S)
+    env = {**os.environ, "MPLBACKEND": "Agg", "PYTHONPATH": str(ROOT)}
+    done = subprocess.run(
+        [sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, env=env
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert done.stdout == printed
+    assert min(_png_size(tmp_path / "band_branch.png")) > 100
+
+
 def _png_size(path: Path) -> tuple[int, int]:
     data = path.read_bytes()[:24]
     assert data[:8] == b"\x89PNG\r\n\x1a\n", path
