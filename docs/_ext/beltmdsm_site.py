@@ -256,8 +256,10 @@ def notebook_index() -> str:
     return "\n".join(lines + [""])
 
 
-def generate(app) -> None:
-    """builder-inited: write the generated pages and links before Sphinx reads sources."""
+def generate(app, config=None) -> None:
+    """config-inited: write the generated pages and links before Sphinx looks for its
+    source files (at builder-inited, a fresh checkout's api.rst would be written after
+    the search, and autosummary would find no page to write stubs for)."""
     _write(DOCS / "reference" / "api.rst", api_page())
     _write(DOCS / "reference" / "generated.rst", generated_page())
     _write(DOCS / "reference" / "laws.rst", laws_page())
@@ -305,7 +307,6 @@ def skip_fields(app, what, name, obj, skip, options):
 def setup(app):
     app.connect("autodoc-skip-member", skip_fields)
     app.connect("autodoc-process-docstring", escape_bars)
-    # before autosummary's own builder-inited listener (priority 500) reads the pages
-    app.connect("builder-inited", generate, priority=400)
+    app.connect("config-inited", generate)
     app.connect("source-read", relink)
     return {"parallel_read_safe": True, "parallel_write_safe": True}
