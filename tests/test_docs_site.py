@@ -119,6 +119,22 @@ def test_broken_links_are_found(tmp_path):
     ]
 
 
+def test_a_reference_by_the_defining_module_is_resolved_or_refused():
+    """The site's rule for a docstring's reference to ``beltmdsm.analysis.band.floquet_band``:
+    the object is found and links to its public page; a path that names nothing is not
+    found, so the build's -n reports it."""
+    import beltmdsm
+
+    sys.path.insert(0, str(ROOT / "docs" / "_ext"))
+    try:
+        from beltmdsm_site import _resolve_object
+    finally:
+        sys.path.remove(str(ROOT / "docs" / "_ext"))
+    assert _resolve_object("beltmdsm.analysis.band.floquet_band") is beltmdsm.floquet_band
+    with pytest.raises(LookupError):
+        _resolve_object("beltmdsm.analysis.band.no_such_function")
+
+
 def test_the_site_builds_and_its_internal_links_resolve(site):
     for page in (
         "index.html",

@@ -304,7 +304,52 @@ def skip_fields(app, what, name, obj, skip, options):
     return None
 
 
+def _resolve_object(target: str):
+    """The object that the dotted path ``target`` names (a module, then attributes);
+    LookupError if there is none."""
+    parts = target.split(".")
+    for cut in range(len(parts), 0, -1):
+        try:
+            obj = importlib.import_module(".".join(parts[:cut]))
+        except ImportError:
+            continue
+        try:
+            for attr in parts[cut:]:
+                obj = getattr(obj, attr)
+        except AttributeError:
+            break
+        return obj
+    raise LookupError(target)
+
+
+def public_reference(app, env, node, contnode):
+    """missing-reference: a docstring's reference to an object by the path of the module
+    that defines it (``beltmdsm.analysis.band.floquet_band``) links to its page under
+    the public name (``beltmdsm.floquet_band``); one to an object that exists but has no
+    page (a private helper) reads as text. A name that names nothing stays an error."""
+    if node.get("refdomain") != "py" or not node.get("reftarget", "").startswith(
+        ("beltmdsm.", "generated.")
+    ):
+        return None
+    try:
+        obj = _resolve_object(node["reftarget"])
+    except LookupError:
+        return None
+    import beltmdsm
+
+    public = next((n for n in beltmdsm.__all__ if getattr(beltmdsm, n) is obj), None)
+    if public is not None:
+        domain = env.domains["py"]
+        found = domain.resolve_xref(
+            env, node["refdoc"], app.builder, "obj", f"beltmdsm.{public}", node, contnode
+        )
+        if found is not None:
+            return found
+    return contnode
+
+
 def setup(app):
+    app.connect("missing-reference", public_reference)
     app.connect("autodoc-skip-member", skip_fields)
     app.connect("autodoc-process-docstring", escape_bars)
     app.connect("config-inited", generate)
