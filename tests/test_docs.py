@@ -29,7 +29,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-SKIP_DIRS = {"__pycache__", "build", "dist"}
+# _build: a Sphinx build folder (Sphinx copies the notebooks there, executed)
+SKIP_DIRS = {"__pycache__", "build", "dist", "_build"}
 SUFFIXES = {".py", ".md", ".ipynb"}
 FOLDERS = ("docs", "derive", "beltmdsm", "generated", "tests", "benchmarks", "notebooks")
 
@@ -47,7 +48,9 @@ def repository_files():
         )
         for name in sorted(files):
             path = Path(folder) / name
-            if not name.startswith(".") and path.suffix in SUFFIXES:
+            # a link (the docs build links notebooks/ into docs/tutorials/) is the file
+            # it points to, read where it is
+            if not name.startswith(".") and path.suffix in SUFFIXES and not path.is_symlink():
                 yield path
 
 
