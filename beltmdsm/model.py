@@ -86,7 +86,7 @@ __all__ = [
 #: derive/laws.py, through ``generated.parameters``).
 OPTIONS: Mapping[str, tuple[str, ...]] = MappingProxyType(dict(_table.OPTIONS))
 OPTION_DEFAULTS: Mapping[str, str] = MappingProxyType(dict(_table.OPTION_DEFAULTS))
-#: Option -> choice -> one line, for the command line's help and the README.
+#: Option -> choice -> one line, for the command line's help and the site's laws page.
 OPTION_DOCS: Mapping[str, Mapping[str, str]] = MappingProxyType(dict(_table.OPTION_DOCS))
 FRICTIONS, CONTACTS, TENSIONS = _table.FRICTION_LAWS, _table.CONTACT_LAWS, _table.TENSION_LAWS
 #: Annotation types of the options, built from the registry's choices, and of the

@@ -38,7 +38,6 @@ root_doc = "index"
 exclude_patterns = [
     "_build",
     "_ext",
-    "readme_draft.md",  # the README's draft (the README itself is not a page of the site)
     "tutorials/notebooks/_nbutil.py",
     "**.ipynb_checkpoints",
 ]

@@ -14,8 +14,8 @@ comments; other strings are data, e.g. a path a test creates), ``.md`` file and
   GitHub's rule (lowercase; punctuation other than ``-`` and ``_`` dropped; spaces
   become ``-``; repeated headings get ``-1``, ``-2``, ...).
 
-And the README against the code: its command block names every command of ``beltmdsm
---help``, and its table of laws is the registry's (``generated.parameters``).
+The README is one screen; the site (docs/) holds the command list and the laws table, and
+tests/test_docs_site.py checks them against the code.
 """
 
 import ast
@@ -196,53 +196,6 @@ def test_modelling_notes_are_cited():
     assert cited and cited <= anchors
 
 
-# The README against the code -------------------------------------------------------------
-
-README = (ROOT / "README.md").read_text(encoding="utf-8")
-
-
-def test_the_readme_lists_every_command_of_the_command_line():
-    """The command block of the README (``beltmdsm COMMAND ...  what it does``) names every
-    command of ``beltmdsm --help``, and nothing else."""
-    import argparse
-
-    from beltmdsm.cli.tree import add_commands
-    from derive import cli as derive_cli
-
-    parser = derive_cli.build_parser(extend=add_commands)
-    (sub,) = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
-    (block,) = re.findall(r"^```\n(beltmdsm \[--check\].*?)^```", README, flags=re.M | re.S)
-    listed = re.findall(r"^beltmdsm ([a-z][\w-]*) .*\S\s{2,}\S", block, flags=re.M)
-    assert len(listed) == len(set(listed))
-    assert set(listed) == set(sub.choices)
-
-
-def test_the_readme_laws_table_is_the_registry():
-    """Every law of ``generated.parameters`` is a row of the README's table of laws, with its
-    one-line summary, its default and its own parameters; no row names another."""
-    from generated.parameters import LAW_PARAMETERS, OPTION_DEFAULTS, OPTION_DOCS, OPTIONS
-
-    rows = re.findall(
-        r"^\| `(\w+)=`, `--\1` \| `(\w+)`( \(default\))? \| (.*) \| (.*) \|$", README, flags=re.M
-    )
-    found = {
-        (option, choice): (bool(default), summary.replace("\\|", "|"), params)
-        for option, choice, default, summary, params in rows
-    }
-    expected = {
-        (option, choice): (
-            OPTION_DEFAULTS[option] == choice,
-            OPTION_DOCS[option][choice],
-            ", ".join(f"`{n}`" for n in LAW_PARAMETERS[option, choice]) or "none",
-        )
-        for option, choices in OPTIONS.items()
-        for choice in choices
-    }
-    assert len(rows) == len(found)
-    should = [
-        "| `{0}=`, `--{0}` | `{1}`{2} | {3} | {4} |".format(
-            o, c, " (default)" if d else "", s.replace("|", "\\|"), p
-        )
-        for (o, c), (d, s, p) in expected.items()
-    ]
-    assert found == expected, "the README's rows should read:\n" + "\n".join(should)
+# The README is one screen; the site holds the command list and the laws table, checked by
+# tests/test_docs_site.py (test_the_reference_covers_the_public_api_and_the_command_line,
+# test_the_laws_page_is_the_registry).

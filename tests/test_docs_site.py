@@ -203,7 +203,7 @@ def test_the_search_index_holds_floquet_band(site):
 
 
 #: The README's draft (the lead moves it to README.md; then point this at README.md).
-README = ROOT / "docs" / "readme_draft.md"
+README = ROOT / "README.md"
 
 
 def test_the_readme_example_prints_what_the_readme_says(tmp_path):

@@ -29,8 +29,9 @@ one per excitation period):
   exponent off a closed curve).
 
 Without excitation the samples are taken every base period
-(`beltmdsm.analysis.lyapunov.chunk_length`) and there is no phase: a self-excited cycle has a zero largest exponent (the direction along the flow) and is
-``periodic`` where it is found as a cycle (``periods`` 1).
+(`beltmdsm.analysis.lyapunov.chunk_length`) and there is no phase: a self-excited cycle
+has a zero largest exponent (the direction along the flow) and is ``periodic`` where it
+is found as a cycle (``periods`` 1).
 """
 
 from __future__ import annotations

@@ -552,7 +552,8 @@ def json_parent() -> argparse.ArgumentParser:
     parent.add_argument(
         "--json",
         action="store_true",
-        help="print the result as one JSON object instead of text (its keys: README.md)",
+        help="print the result as one JSON object instead of text (its keys: "
+        "docs/reference/json.md, the documentation site's JSON page)",
     )
     return parent
 

@@ -155,7 +155,7 @@ class Sweep:
         return frame(self.table)
 
     def as_dict(self) -> dict[str, Any]:
-        """The JSON of ``sweep --json`` (keys documented in the README)."""
+        """The JSON of ``sweep --json`` (keys in docs/reference/json.md)."""
         rows = [dict(zip(self.table.dtype.names, r.tolist())) for r in self.table]
         model = self.model.as_dict()
         del model["params"][self.param]  # its values are the rows'
