@@ -308,6 +308,11 @@ def check_floquet(toy):
     pair = [complex(*z) for z in out["multipliers"] if abs(z[1]) > 0]
     assert len(pair) == 2
     assert abs(pair[0] * pair[1]) == pytest.approx(math.exp(-D_TOY * T), rel=1e-8)
+    # without excitation, c_f above 2 beta1 omega1 / g: steady sliding is unstable and
+    # a self-excited stick-slip cycle is found by shooting (period unknown)
+    out = cli_json(toy, "floquet --alpha 0 --c_f 0.03 --Vb 1")
+    assert out["autonomous"] and out["stable"] and out["n_sticks"] >= 1
+    assert abs(complex(*out["trivial_multiplier"]) - 1) < 1e-8
     # c_f above 2 beta1 omega1 / g: the sliding response is unstable
     out = cli_json(toy, "floquet --alpha 1 --c_f 0.03 --Vb 6")
     assert out["n_reversals"] == 0 and not out["stable"]
@@ -337,6 +342,13 @@ def check_branch(toy):
     assert abs(ns["value"] - C_F_CRITICAL) <= max(ns["accuracy"], 1e-9)
     assert out["stable_ranges"] == [[0.01, ns["value"]]]
     assert all(p["n_reversals"] == 0 for p in out["points"])
+    # without excitation: steady sliding loses stability where its damping
+    # 2 beta1 omega1 - c_f g vanishes, the Hopf point of the self-excited cycles
+    # (issue 29: cycles under a law a user registers)
+    out = cli_json(toy, "branch --alpha 0 --Vb 1 --param c_f --from 0.015 --to 0.03")
+    assert out["autonomous"]
+    (hopf,) = [p for p in out["special_points"] if p["kind"] == "hopf"]
+    assert abs(hopf["value"] - C_F_CRITICAL) < 1e-6
 
 
 def check_coexistence(toy):

@@ -104,7 +104,7 @@ def run(args: argparse.Namespace) -> int:
         ax = result.plot()
         ax.figure.savefig(args.png, dpi=120, bbox_inches="tight")
     if args.json:
-        print(json.dumps(text.jsonable(result.as_dict())))
+        print(json.dumps(text.jsonable({**result.as_dict(), **result.model.as_dict()})))
     else:
         print(repr(result))
         for a in result.attractors:
