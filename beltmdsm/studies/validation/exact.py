@@ -318,7 +318,7 @@ def explain_coexistence(
             observed = runs[run].velocity_range[i]
             candidates = list(stable)
             best = min(candidates, key=lambda c: _deviation(observed, c[1]), default=None)
-            rerun = None
+            rerun, locked = None, None
             if best is None or _deviation(observed, best[1]) > tolerance:
                 if run == "rest":
                     name, found = _rest_rerun(model, settings, limit)
@@ -327,6 +327,7 @@ def explain_coexistence(
                 if name is None:
                     rerun = found
                 else:
+                    locked = name
                     candidates.append((name, *found))
                     best = min(candidates, key=lambda c: _deviation(observed, c[1]))
             closest = None if best is None else best[0]
@@ -336,7 +337,9 @@ def explain_coexistence(
                     Explanation(value, run, "explained", closest, closest, deviation, tolerance, "")
                 )
                 continue
-            reason = rerun or _unlocked_reason(exact, value, run, seed_step)
+            # a lock that the classification found and the run does not span is no reason
+            # to call the run "not locked": the rules below name the closest response
+            reason = rerun or (None if locked else _unlocked_reason(exact, value, run, seed_step))
             if reason is not None and reason.startswith("not locked"):
                 status = "not_locked"
             elif best is not None and math.log(best[2]) * window / best[3] > math.log(
