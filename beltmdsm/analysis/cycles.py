@@ -338,6 +338,18 @@ def cycle(
     NoPeriodicResponse
         Where no cycle is found: the seed's reason (steady sliding stable, the run does
         not settle), Newton's method stalling, or converging to steady sliding.
+
+    See Also
+    --------
+    beltmdsm.analysis.branch.branch : the cycles continued in a parameter, from the Hopf point.
+    beltmdsm.analysis.floquet.floquet : the same cycle where the model has no excitation.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, cycle
+    >>> c = cycle(Model(friction="stribeck", alpha=0.0, Vb=1.5))
+    >>> round(c.period, 3), c.n_sticks, c.stable
+    (6.654, 1, True)
     """
     model = as_model(model)
     require_autonomous(model)

@@ -387,6 +387,13 @@ def basins(
     --------
     beltmdsm.analysis.attractor.classify : names each attractor.
     beltmdsm.studies.coexistence.coexistence : where stable responses coexist.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, basins
+    >>> b = basins(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    >>> [(a.attractor.kind, a.attractor.periods) for a in b.attractors]
+    [('periodic', 1), ('periodic', 4)]
     """
     model = as_model(model, **params)
     excitation_period(model)  # a map needs a period: refuse before anything runs
