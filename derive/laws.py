@@ -70,8 +70,8 @@ class Law:
     name : str
         The choice's value (``friction="stribeck"``).
     summary : str
-        One line, for ``--help``, the site's laws page (docs/reference/laws.rst) and
-        ``OPTION_DOCS``.
+        One line, for ``--help``, the site's laws page (written at build from
+        ``OPTION_DOCS``, docs/_ext/beltmdsm_site.py) and ``OPTION_DOCS``.
     doc : str
         The longer documentation: what the law models and where it comes from.
     equations : str
