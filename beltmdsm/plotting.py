@@ -31,6 +31,7 @@ __all__ = [
     "branch",
     "coexistence",
     "floquet_map",
+    "basins",
     "observable_label",
     "KIND_COLOURS",
     "STATE",
@@ -241,4 +242,35 @@ def floquet_map(result: Any, ax: Any = None, linear: bool = True) -> Any:
     ax.set_ylim(*result.y_range)
     ax.set_xlabel(axis_label(result.x, unit(result.x, result.model)))
     ax.set_ylabel(axis_label(result.y, unit(result.y, result.model)))
+    return ax
+
+
+#: The state's names of `beltmdsm.studies.basins.AXES` (``Y1`` is ``X1'``).
+_BASIN_AXES = {"X1": "X1", "Y1": "X1'", "X2": "X2", "Y2": "X2'"}
+
+
+def basins(result: Any, ax: Any = None) -> Any:
+    """A basin map (`beltmdsm.studies.basins.Basins`): one colour per attractor (grey where
+    none was identified), its stroboscopic points marked, a legend with its kind and
+    share of the starts."""
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import ListedColormap
+
+    ax = _axes(ax)
+    n = max(len(result.attractors), 1)
+    colours = plt.get_cmap("tab10")(np.arange(n) % 10)
+    cmap = ListedColormap(np.vstack([[0.85, 0.85, 0.85, 1.0], colours]))
+    ax.pcolormesh(
+        result.xs, result.ys, result.labels + 1, cmap=cmap, vmin=0, vmax=n,
+        shading="nearest", alpha=0.5,
+    )  # fmt: skip
+    x, y = (_BASIN_AXES[a] for a in (result.x, result.y))
+    for a, c in zip(result.attractors, colours):
+        ax.plot(
+            a.points[:, STATE[x][1]], a.points[:, STATE[y][1]], "o", ms=6, mec="k", color=c,
+            label=repr(a).removeprefix("BasinAttractor(").rstrip(")"),
+        )  # fmt: skip
+    ax.set_xlabel(axis_label(x, STATE[x][0]))
+    ax.set_ylabel(axis_label(y, STATE[y][0]))
+    ax.legend(loc="best", fontsize="small")
     return ax

@@ -58,7 +58,6 @@ __all__ = [
 
 #: The axes of the plane: the state's components at phase 0.
 AXES = ("X1", "Y1", "X2", "Y2")
-_LABELS = {"X1": "X1 [m]", "Y1": "X1' [m/s]", "X2": "X2 [m]", "Y2": "X2' [m/s]"}
 #: Consecutive periods a start must stay on an attractor that is not a periodic
 #: response (a curve or a cloud of points) to be claimed by it.
 CONFIRM = 20
@@ -156,40 +155,12 @@ class Basins:
         }
 
     def plot(self, ax: Any = None) -> Any:
-        """The basin map: one colour per attractor, a legend with its kind and share."""
-        import matplotlib.pyplot as plt
-        from matplotlib.colors import ListedColormap
+        """The basin map: one colour per attractor, a legend with its kind and share, on
+        matplotlib axes ``ax`` (new ones if None), which it returns
+        (`beltmdsm.plotting.basins`)."""
+        from ..plotting import basins as draw
 
-        if ax is None:
-            ax = plt.figure().add_subplot()
-        n = max(len(self.attractors), 1)
-        colours = plt.get_cmap("tab10")(np.arange(n) % 10)
-        cmap = ListedColormap(np.vstack([[0.85, 0.85, 0.85, 1.0], colours]))
-        ax.pcolormesh(
-            self.xs,
-            self.ys,
-            self.labels + 1,
-            cmap=cmap,
-            vmin=0,
-            vmax=n,
-            shading="nearest",
-            alpha=0.5,
-        )
-        for a, c in zip(self.attractors, colours):
-            p = a.points
-            ax.plot(
-                p[:, AXES.index(self.x)],
-                p[:, AXES.index(self.y)],
-                "o",
-                ms=6,
-                mec="k",
-                color=c,
-                label=repr(a).removeprefix("BasinAttractor(").rstrip(")"),
-            )
-        ax.set_xlabel(_LABELS[self.x])
-        ax.set_ylabel(_LABELS[self.y])
-        ax.legend(loc="best", fontsize="small")
-        return ax
+        return draw(self, ax)
 
 
 @functools.lru_cache(maxsize=4)
