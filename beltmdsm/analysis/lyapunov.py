@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from generated import unforced
 
+from ..arguments import state
 from ..errors import StepTooSmall
 from ..integrate.events import integrate_events
 from ..integrate.switching import Mode
@@ -244,9 +245,7 @@ def lyapunov(
             f"{base:.4g} s: at least {2 * BLOCKS + n_align} are needed for the average and "
             f"its error; raise t_end"
         )
-    y = initial_state(model) if y0 is None else np.array(y0, dtype=float)
-    if y.shape != (4,) or not np.all(np.isfinite(y)):
-        raise ValueError(f"y0 must be 4 finite numbers (X1, Y1, X2, Y2); got {y0!r}")
+    y = initial_state(model) if y0 is None else state("y0", y0, (4,), "X1, Y1, X2, Y2")
 
     # the transient: a plain run, its phase kept (t = 0 is the excitation's phase 0)
     t = 0.0
