@@ -5,21 +5,12 @@ A stub, not ``if TYPE_CHECKING:`` imports in the package: the package is the low
 layer of beltmdsm (tests/test_layers.py), and these names live in every layer above it.
 """
 
-from .analysis.attractor import Attractor, classify
-from .analysis.band import Band, Edge, floquet_band
-from .analysis.branch import Branch, branch
-from .analysis.cycles import Cycle, cycle, seed_cycle
-from .analysis.floquet import (
-    Floquet,
-    PeriodicResponse,
-    floquet,
-    periodic_response,
-    periodic_start,
-)
-from .analysis.floquet_map import FloquetMap, floquet_map
-from .analysis.lyapunov import Lyapunov, lyapunov
-from .analysis.predict import Prediction, predict
-from .analysis.summary import Summary
+from .attractors.classification import Attractor, classify
+from .attractors.lyapunov import Lyapunov, lyapunov
+from .continuation.band import Band, Edge, floquet_band
+from .continuation.branch import Branch, branch
+from .continuation.floquet_map import FloquetMap, floquet_map
+from .cycles.cycle import Cycle, cycle, seed_cycle
 from .errors import (
     BeltmdsmError,
     NoPeriodicResponse,
@@ -28,6 +19,15 @@ from .errors import (
     Unsupported,
 )
 from .model import Model
+from .periodic.floquet import (
+    Floquet,
+    PeriodicResponse,
+    floquet,
+    periodic_response,
+    periodic_start,
+)
+from .prediction.predict import Prediction, predict
+from .run.summary import Summary
 from .settings import SolverSettings
 from .simulation import Simulation, simulate
 from .studies.basins import Basins, basins

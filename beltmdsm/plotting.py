@@ -111,7 +111,7 @@ def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str = "X1
 
 
 def band(result: Any, ax: Any = None) -> Any:
-    """A Floquet band (`beltmdsm.analysis.band.Band`): the largest multiplier's modulus
+    """A Floquet band (`beltmdsm.continuation.band.Band`): the largest multiplier's modulus
     at each evaluated value, the unit circle's 1, the unstable ranges shaded and each
     edge marked with its label."""
     ax = _axes(ax)
@@ -162,7 +162,7 @@ def branch(
     result: Any, ax: Any = None, observable: str = "X1'_amplitude", labels: bool = True,
     colour: str = "tab:blue", name: str | None = None,
 ) -> Any:  # fmt: skip
-    """A bifurcation diagram (`beltmdsm.analysis.branch.Branch`): ``observable`` (a
+    """A bifurcation diagram (`beltmdsm.continuation.branch.Branch`): ``observable`` (a
     column of ``result.observables()``) against the parameter; stable parts solid,
     unstable dashed, grazing dotted; the special points marked with their labels."""
     ax = _axes(ax)
@@ -184,7 +184,7 @@ def branch(
 
 
 def observable_label(name: str) -> str:
-    """The axis label of an observable of `beltmdsm.analysis.observables` (units: m for
+    """The axis label of an observable of `beltmdsm.periodic.observables` (units: m for
     X1, m/s for X1' and Vr, m/s^2 for a force per unit mass); a column of a user's
     ``record`` is labelled by its name."""
     if name.startswith("X1_"):
@@ -215,7 +215,7 @@ def coexistence(result: Any, ax: Any = None, observable: str = "X1'_amplitude") 
 
 
 def floquet_map(result: Any, ax: Any = None, linear: bool = True) -> Any:
-    """A Floquet map (`beltmdsm.analysis.floquet_map.FloquetMap`): shaded where no
+    """A Floquet map (`beltmdsm.continuation.floquet_map.FloquetMap`): shaded where no
     stable periodic response is found, row by row; the boundary curves coloured by kind
     (`KIND_COLOURS`) and labelled; hatched blue (``linear``): where the paper's linear
     analysis says unstable on the same rows."""

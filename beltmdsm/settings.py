@@ -143,7 +143,7 @@ class SolverSettings:
 #: 2 Omega lands in the omega1 band and reads as a peak. With ``pi/dt >= 8 w`` only
 #: harmonics above about ``2 x 8 - 1.25 = 14.75`` times the fastest line fold into the
 #: omega1 band, and they carry less than 1/14.75^2 = 0.5 % of the fundamental, half
-#: the criterion of a present peak (`beltmdsm.analysis.summary.PEAK_PRESENT_RATIO`).
+#: the criterion of a present peak (`beltmdsm.run.summary.PEAK_PRESENT_RATIO`).
 #: Measured over the 16 cases of `beltmdsm.studies.validation.CASES` at Vb = 0.5, 2,
 #: 4, 6, 10 and 16 m/s (600 s runs): against a reference sampled at dt = 0.005 s, the
 #: omega1 peak moves by at most 32 % of the present threshold at ``pi/dt = 4 w``, 11 %
@@ -169,7 +169,7 @@ BYTES_PER_SAMPLE = 128
 #: with a worker per core of a small machine fits in its memory. At the base set and
 #: the default tolerances this is about 7 x 10^4 s of simulated time.
 MAX_RUN_BYTES = 4 * 2**30
-#: Most belt speeds of one grid of `beltmdsm.analysis.predict` (``points``, or the
+#: Most belt speeds of one grid of `beltmdsm.prediction.predict` (``points``, or the
 #: size of ``vb``): the harmonic
 #: balance takes 1.3 to 2 ms a point (measured at the base set: 400 points in 0.8 s,
 #: 4000 in 5.2 s, 30000 in 60 s with the other core busy), so 10^5 points take two to
@@ -178,7 +178,7 @@ MAX_RUN_BYTES = 4 * 2**30
 #: fast average is a quadrature (Stribeck's) a point takes about 6 ms (2000 points in
 #: 12 s), 10^5 points ten minutes.
 MAX_VB_POINTS = 10**5
-#: Most grid points of `beltmdsm.analysis.band.floquet_band`: a point takes about 2 ms
+#: Most grid points of `beltmdsm.continuation.band.floquet_band`: a point takes about 2 ms
 #: (6 ms where no periodic response is found; measured at the base set over Vb in
 #: [1, 9]), so 10^4 points take 20 s to a minute.
 MAX_BAND_POINTS = 10**4
@@ -188,11 +188,11 @@ MAX_BAND_POINTS = 10**4
 #: take ten to thirty minutes; a smaller step is a mistake (``--step 1e-6``: millions
 #: of points, memory growing for hours), refused before anything is computed.
 MAX_SEED_POINTS = 10**3
-#: Most rows of `beltmdsm.analysis.floquet_map.floquet_map`: a row whose curves are
+#: Most rows of `beltmdsm.continuation.floquet_map.floquet_map`: a row whose curves are
 #: continued takes a few ms, one with a band (every ``check_every`` rows, and where a
 #: curve is lost) a second or more, so 10^4 rows take minutes.
 MAX_MAP_ROWS = 10**4
-#: `beltmdsm.analysis.band.floquet_band`'s ``tol`` must span this many ulps of the
+#: `beltmdsm.continuation.band.floquet_band`'s ``tol`` must span this many ulps of the
 #: larger end of the range: below, the midpoint of a bracket rounds to one of its ends
 #: and the bisection stops shrinking it.
 MIN_TOL_ULPS = 64

@@ -15,7 +15,7 @@ switches, with Filippov's rules where the friction is set-valued
 
 The tension law (``tension=``, docs/modelling.md#tension) is Eq. (1) as printed
 (``"allowed"``) or a contact that cannot pull (``"clipped"``).
-`beltmdsm.analysis.summary.summarize` reads the run's steady window.
+`beltmdsm.run.summary.summarize` reads the run's steady window.
 """
 
 from __future__ import annotations
@@ -29,12 +29,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .analysis.summary import Summary, summarize
 from .arguments import flag, settings_of, state
 from .integrate.events import integrate_events
 from .integrate.superposition import NotApplicable, integrate_superposed
 from .integrate.trajectory import Run, Samples, Trajectory
 from .model import Model, as_model
+from .run.summary import Summary, summarize
 from .settings import SolverSettings, check_request
 
 __all__ = ["Simulation", "simulate", "START_PERTURBATION", "equilibrium_start"]
@@ -154,7 +154,7 @@ def simulate(
         Eq. (9), or, without excitation where steady sliding is unstable, that
         equilibrium moved by `START_PERTURBATION` along its unstable direction
         (`equilibrium_start`; the summary's ``start_perturbation``). To start on the
-        periodic response, pass `beltmdsm.analysis.floquet.periodic_start` of the model.
+        periodic response, pass `beltmdsm.periodic.floquet.periodic_start` of the model.
     progress : bool
         show the simulated time on stderr (tqdm) once the run takes more than 2 s;
         it advances at every switch (a run without switches shows its elapsed time)
@@ -164,7 +164,7 @@ def simulate(
 
     Returns
     -------
-    Simulation, with ``summary`` filled in (`beltmdsm.analysis.summary.summarize`).
+    Simulation, with ``summary`` filled in (`beltmdsm.run.summary.summarize`).
 
     Raises
     ------
@@ -181,7 +181,7 @@ def simulate(
     if "start" in kw or "perturbation" in kw:
         raise TypeError(
             "simulate() takes the start state as y0: for a start on the periodic "
-            "response pass y0=beltmdsm.analysis.floquet.periodic_start(model, perturbation)"
+            "response pass y0=beltmdsm.periodic.floquet.periodic_start(model, perturbation)"
         )
     names = SolverSettings.names()
     changes = {k: kw.pop(k) for k in list(kw) if k in names}

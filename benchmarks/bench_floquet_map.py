@@ -2,11 +2,11 @@
 
 Times, in one run on one core, after compiling the kernels:
 
-* ``beltmdsm.analysis.floquet_map.floquet_map`` over (Vb, beta1) = [0.5, 12] x [0.02, 0.6] with
+* ``beltmdsm.continuation.floquet_map.floquet_map`` over (Vb, beta1) = [0.5, 12] x [0.02, 0.6] with
   100 rows (the boundary curves traced by continuation, edges to about 1e-5 m/s), the
   median of ``--repeat`` runs (a run of half a second varies by 10 % from one to the
   next on a shared machine; the grid's ten seconds average over its calls);
-* the baseline: ``beltmdsm.analysis.floquet.floquet()`` at every point of a grid with the same
+* the baseline: ``beltmdsm.periodic.floquet.floquet()`` at every point of a grid with the same
   100 rows and ``--columns`` columns (default 100), each from scratch as a user's loop
   would call it; a point where it finds no periodic response counts as unstable;
 
@@ -27,8 +27,8 @@ import time
 
 import numpy as np
 
-from beltmdsm.analysis.floquet import NoPeriodicResponse, floquet
-from beltmdsm.analysis.floquet_map import floquet_map
+from beltmdsm.continuation.floquet_map import floquet_map
+from beltmdsm.periodic.floquet import NoPeriodicResponse, floquet
 
 X, X_RANGE = "Vb", (0.5, 12.0)
 Y, Y_RANGE = "beta1", (0.02, 0.6)

@@ -2,12 +2,12 @@
 
 * **Exponents against run length**: on stable periodic responses of the base set (with
   reversals at Vb = 2; with a stick phase at Vb = 0.1, alpha = 0.05) the spectrum of
-  `beltmdsm.analysis.lyapunov.lyapunov` started on the orbit, for run lengths from 100 s
+  `beltmdsm.attractors.lyapunov.lyapunov` started on the orbit, for run lengths from 100 s
   up, against the exact ``ln |mu_i| / T`` of its Floquet multipliers: the time, the
   largest error over the finite exponents, and the error the method states.
 * **Rotation number against samples**: on an invariant circle with a known irrational
   rotation number (the golden mean, drawn through a nonlinear conjugacy), the weighted
-  Birkhoff average of `beltmdsm.analysis.attractor.rotation_number` against the plain
+  Birkhoff average of `beltmdsm.attractors.classification.rotation_number` against the plain
   mean of the angle increments (the baseline), by the number of samples (map iterates).
 
 Run from the repository root: ``python -m benchmarks.bench_lyapunov``.
@@ -20,9 +20,9 @@ import time
 import numpy as np
 
 from beltmdsm import Model
-from beltmdsm.analysis.attractor import rotation_number
-from beltmdsm.analysis.floquet import floquet
-from beltmdsm.analysis.lyapunov import lyapunov
+from beltmdsm.attractors.classification import rotation_number
+from beltmdsm.attractors.lyapunov import lyapunov
+from beltmdsm.periodic.floquet import floquet
 
 ORBITS = {"reversals (Vb=2)": dict(Vb=2.0), "stick (Vb=0.1, alpha=0.05)": dict(Vb=0.1, alpha=0.05)}
 

@@ -15,7 +15,7 @@ All in one run on this machine, serially (one core):
      events solver alone, peak_omega1 within 1e-6 of the reference);
    * the superposition integrator at the same tolerance;
    * each with ``backend="python"`` (no numba) too, where ``--python`` is given;
-   * the Floquet band of the same case (`beltmdsm.analysis.band.floquet_band`, edges to
+   * the Floquet band of the same case (`beltmdsm.continuation.band.floquet_band`, edges to
      1e-3) against the from-rest sweep (target: at most 1/50 of its time).
    Printed: the wall times, their ratios and each configuration's largest relative
    error of peak_omega1 where the peak is present (>= 1 % of the Omega peak of the
@@ -43,12 +43,12 @@ from scipy.integrate import solve_ivp
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from beltmdsm.analysis.band import floquet_band  # noqa: E402
-from beltmdsm.analysis.floquet import floquet  # noqa: E402
-from beltmdsm.analysis.spectra import peak_amplitudes  # noqa: E402
-from beltmdsm.analysis.summary import PEAK_PRESENT_RATIO, omega1_band  # noqa: E402
+from beltmdsm.continuation.band import floquet_band  # noqa: E402
 from beltmdsm.integrate import superposition  # noqa: E402
 from beltmdsm.model import Model, initial_state  # noqa: E402
+from beltmdsm.periodic.floquet import floquet  # noqa: E402
+from beltmdsm.run.spectra import peak_amplitudes  # noqa: E402
+from beltmdsm.run.summary import PEAK_PRESENT_RATIO, omega1_band  # noqa: E402
 from beltmdsm.settings import SolverSettings  # noqa: E402
 from beltmdsm.simulation import simulate  # noqa: E402
 

@@ -30,8 +30,8 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 from beltmdsm import SolverSettings, simulate  # noqa: E402
-from beltmdsm.analysis.spectra import amplitude_spectrum  # noqa: E402
 from beltmdsm.intervals import format_intervals, jaccard  # noqa: E402
+from beltmdsm.run.spectra import amplitude_spectrum  # noqa: E402
 from beltmdsm.studies.sweep import omega1_peak_ranges  # noqa: E402
 
 __all__ = [
@@ -127,7 +127,7 @@ def spectrum_scan(
     run did not reach t_end), ``summaries`` (list of the runs' summary dicts) and, as arrays,
     ``omega1_peak_present``, ``resolved``, ``peak_omega1``, ``regime``. ``resolved``
     (bool) is False where the run could not tell the omega1 peak
-    (`beltmdsm.analysis.summary.summarize`); ``omega1_peak_present`` is False there too, as in a
+    (`beltmdsm.run.summary.summarize`); ``omega1_peak_present`` is False there too, as in a
     sweep table, so read it together with ``resolved`` (`peak_ranges` does).
     """
     values = np.asarray(values, dtype=float)

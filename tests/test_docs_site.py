@@ -120,7 +120,7 @@ def test_broken_links_are_found(tmp_path):
 
 
 def test_a_reference_by_the_defining_module_is_resolved_or_refused():
-    """The site's rule for a docstring's reference to ``beltmdsm.analysis.band.floquet_band``:
+    """The site's rule for a docstring's reference to ``beltmdsm.continuation.band.floquet_band``:
     the object is found and links to its public page; a path that names nothing is not
     found, so the build's -n reports it."""
     import beltmdsm
@@ -130,9 +130,9 @@ def test_a_reference_by_the_defining_module_is_resolved_or_refused():
         from beltmdsm_site import _resolve_object
     finally:
         sys.path.remove(str(ROOT / "docs" / "_ext"))
-    assert _resolve_object("beltmdsm.analysis.band.floquet_band") is beltmdsm.floquet_band
+    assert _resolve_object("beltmdsm.continuation.band.floquet_band") is beltmdsm.floquet_band
     with pytest.raises(LookupError):
-        _resolve_object("beltmdsm.analysis.band.no_such_function")
+        _resolve_object("beltmdsm.continuation.band.no_such_function")
 
 
 def test_the_site_builds_and_its_internal_links_resolve(site):

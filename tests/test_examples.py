@@ -17,7 +17,7 @@ MODULES = sorted(
 
 
 def test_the_examples_are_found():
-    assert {"beltmdsm.model", "beltmdsm.analysis.cycles", "beltmdsm.studies.basins"} <= set(MODULES)
+    assert {"beltmdsm.model", "beltmdsm.cycles.cycle", "beltmdsm.studies.basins"} <= set(MODULES)
 
 
 @pytest.mark.parametrize("name", MODULES)

@@ -6,7 +6,8 @@ the package module it names (a name imported from a package is an edge to its
 submodule where one exists). The layers, lowest first:
 
 derive -> generated -> beltmdsm.{model, settings, intervals} -> beltmdsm.integrate ->
-beltmdsm.analysis -> beltmdsm.simulation -> beltmdsm.studies -> beltmdsm.cli
+beltmdsm.{periodic, continuation, cycles} -> beltmdsm.run -> beltmdsm.prediction ->
+beltmdsm.attractors -> beltmdsm.simulation -> beltmdsm.studies -> beltmdsm.cli
 
 A module imports only modules of its own layer or below, with no cycle; derive/ and
 generated/ import no beltmdsm module, except ``derive.__main__`` (``python -m derive``),
@@ -31,7 +32,14 @@ LAYERS = {
     "beltmdsm.settings": 2,
     "beltmdsm.intervals": 2,
     "beltmdsm.integrate": 3,
-    "beltmdsm.analysis": 4,
+    # periodic orbits, their continuation and the self-excited cycles are one layer:
+    # floquet and branch hand an autonomous model to cycles/, which builds on both
+    "beltmdsm.periodic": 4.0,
+    "beltmdsm.continuation": 4.0,
+    "beltmdsm.cycles": 4.0,
+    "beltmdsm.run": 4.1,
+    "beltmdsm.prediction": 4.2,
+    "beltmdsm.attractors": 4.3,
     "beltmdsm.simulation": 5,
     "beltmdsm.studies": 6,
     "beltmdsm.cli": 7,
@@ -158,8 +166,8 @@ def test_the_graph_is_read_with_function_local_imports(tmp_path):
 
 
 def test_a_layer_violation_is_found():
-    assert violations({("beltmdsm.analysis.floquet", "beltmdsm.cli.flags")}) == [
-        "beltmdsm.analysis.floquet -> beltmdsm.cli.flags: imports a higher layer"
+    assert violations({("beltmdsm.periodic.floquet", "beltmdsm.cli.flags")}) == [
+        "beltmdsm.periodic.floquet -> beltmdsm.cli.flags: imports a higher layer"
     ]
     assert violations({("derive.paper_check", "beltmdsm.simulation")})
     assert violations({("beltmdsm.simulation", "derive.model")})

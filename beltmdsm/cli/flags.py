@@ -88,7 +88,7 @@ def register(
     (`beltmdsm.errors.Refused`, naming the flags of the settings it refuses), an
     integrator that cannot go on at the tolerances given
     (`beltmdsm.errors.StepTooSmall`, naming ``--rtol/--atol``) and a periodic
-    response that is not found (`beltmdsm.analysis.floquet.NoPeriodicResponse`). The
+    response that is not found (`beltmdsm.periodic.floquet.NoPeriodicResponse`). The
     system refusing (an OSError): one line, exit status 1. A warning while it runs
     (a cache file recomputed) is one line on stderr, ``PROG: warning: ...``.
     """
@@ -173,7 +173,7 @@ def _dispatch(args):
     except RuntimeError as err:
         # the module is loaded where the error comes from; not imported here, so that
         # the command line starts without the analyses
-        floquet = sys.modules.get("beltmdsm.analysis.floquet")
+        floquet = sys.modules.get("beltmdsm.periodic.floquet")
         if floquet is None or not isinstance(err, floquet.NoPeriodicResponse):
             raise
         print(f"{args.parser.prog}: error: {err}", file=sys.stderr)
@@ -406,7 +406,7 @@ def solver_parent() -> argparse.ArgumentParser:
         default=1e-10,
         help="relative tolerance of the integrators' local error per step, > 0; the "
         "noise floor of the spectrum and the bound of the energy residual follow it "
-        "(beltmdsm/analysis/summary.py) (default: 1e-10)",
+        "(beltmdsm/run/summary.py) (default: 1e-10)",
     )
     s.add_argument(
         "--atol",
@@ -572,7 +572,7 @@ def periods_parent() -> argparse.ArgumentParser:
     return parent
 
 
-#: The default of ``--limit``: ``beltmdsm.analysis.locked.LOCK_LIMIT``, written out so that
+#: The default of ``--limit``: ``beltmdsm.periodic.locked.LOCK_LIMIT``, written out so that
 #: ``--help`` imports no analysis (tests/beltmdsm/cli/test_locked_commands.py keeps them equal).
 LOCK_LIMIT = 12
 

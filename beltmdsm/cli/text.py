@@ -16,13 +16,13 @@ import numpy as np
 from ..intervals import format_intervals
 
 if TYPE_CHECKING:
-    from ..analysis.band import Band
-    from ..analysis.branch import Branch
-    from ..analysis.floquet import Floquet
-    from ..analysis.floquet_map import FloquetMap
-    from ..analysis.predict import Prediction
-    from ..analysis.summary import Summary
+    from ..continuation.band import Band
+    from ..continuation.branch import Branch
+    from ..continuation.floquet_map import FloquetMap
     from ..model import Model
+    from ..periodic.floquet import Floquet
+    from ..prediction.predict import Prediction
+    from ..run.summary import Summary
     from ..simulation import Simulation
     from ..studies.coexistence import Coexistence
     from ..studies.responses import ResponseSet
@@ -182,7 +182,7 @@ def floquet(f: Floquet) -> str:
         f"{resp.model.tension}, Vb = {p['Vb']:g} m/s: period {f.period:.6g} s, "
         f"{f.n_reversals} reversals and {f.n_sticks} sticks {per}, Newton "
         f"{resp.iterations} iterations (residual {resp.residual:.1e}), "
-        f"{f.engine} path (beltmdsm/analysis/periodmap.py)"
+        f"{f.engine} path (beltmdsm/periodic/periodmap.py)"
     ]
     if f.grazing is not None:
         lines.append(
@@ -211,7 +211,7 @@ def cycle(f: Floquet) -> str:
         f"{m.contact}, Vb = {m['Vb']:g} m/s: period {c.period:.8g} s (found), "
         f"{c.n_reversals} reversals and {c.n_sticks} sticks per period (stick "
         f"{c.stick_time:.6g} s), Newton {c.iterations} iterations (residual "
-        f"{c.residual:.1e}) (beltmdsm/analysis/cycles.py)",
+        f"{c.residual:.1e}) (beltmdsm/cycles/cycle.py)",
         f"X1 in [{c.x1_range[0]:.6g}, {c.x1_range[1]:.6g}] m, X1' in "
         f"[{c.velocity_range[0]:.6g}, {c.velocity_range[1]:.6g}] m/s, largest Vr "
         f"{c.max_relative_velocity:.6g} m/s",
@@ -237,7 +237,7 @@ def cycle(f: Floquet) -> str:
 def _isolation(f) -> str:
     """What a multiplier 1 (to `ISOLATION_TOL`) means: the response is not isolated and
     its multipliers cannot decide its stability."""
-    from ..analysis.periodmap import ISOLATION_TOL
+    from ..periodic.periodmap import ISOLATION_TOL
 
     mus = np.asarray(f.multipliers, dtype=complex)
     if mus.size and np.min(np.abs(mus - 1.0)) <= ISOLATION_TOL:
@@ -262,7 +262,7 @@ def kind(name: str, frequency: float | None = None) -> str:
 
 def _laws(model: Model) -> str:
     """The model's laws and the Floquet path they take, as the headers print them."""
-    from ..analysis.periodmap import engine_of
+    from ..periodic.periodmap import engine_of
 
     return (
         f"{model.friction} friction, {model.contact}, tension {model.tension}; "
@@ -495,7 +495,7 @@ def _values(x) -> str:
 
 def sweep_validation(result: Sweep) -> list[str]:
     """Where the omega1 peak appears in a sweep over Vb, beside the paper's statement."""
-    from ..analysis.summary import PEAK_PRESENT_RATIO
+    from ..run.summary import PEAK_PRESENT_RATIO
 
     table, param = result.table, result.param
     x = np.asarray(table[param], float)

@@ -71,7 +71,7 @@ _N_EXTENDED = _coef.N_STAGES_EXTENDED
 #: Rows of the dense-output coefficients of a step.
 N_DENSE = _coef.INTERPOLATOR_POWER
 #: The method's tableau as arrays (its 12 stages, order 8), for a linear equation
-#: carried along a run's steps (`beltmdsm.analysis.variational`).
+#: carried along a run's steps (`beltmdsm.periodic.variational`).
 TABLEAU_A = np.array(_A)
 TABLEAU_B = np.array(_B)
 TABLEAU_C = np.array(_C)

@@ -111,8 +111,8 @@ def integrate_events(
     max_step : float
         The longest step [s]. The step control sees the state only: where it rests
         (an equilibrium) the steps grow without bound, and a variational equation
-        carried on them (`beltmdsm.analysis.variational`) leaves the method's region
-        of accuracy; `beltmdsm.analysis.lyapunov` bounds them.
+        carried on them (`beltmdsm.periodic.variational`) leaves the method's region
+        of accuracy; `beltmdsm.attractors.lyapunov` bounds them.
 
     Returns
     -------

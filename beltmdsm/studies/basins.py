@@ -3,14 +3,14 @@
 The question an engineer asks where stable responses coexist: how large a disturbance
 starts the vibration. `basins` starts the model on a grid of a plane of states at the
 excitation's phase 0 (default ``X1`` and ``X1'``, the normal state on its periodic
-orbit) and iterates the period map (`beltmdsm.analysis.periodmap.period_map`, the
+orbit) and iterates the period map (`beltmdsm.periodic.periodmap.period_map`, the
 closed-form map where the laws allow it) from each start until the state stays within
 `IDENTIFY_TOL` of a known attractor's stroboscopic points for two cycles of them,
 contracting towards them (`_land`): a start is stopped as soon as it is identified,
 as Attractors.jl's recurrence approach does, instead of being run to the end and
 classified by its spectrum.
 
-Attractors are found and named by `beltmdsm.analysis.attractor.classify`: first the
+Attractors are found and named by `beltmdsm.attractors.classification.classify`: first the
 one the run from rest reaches, the T-periodic response where it is stable (shooting and
 Floquet) and any the caller gives, then, round by round, the
 one each start that no known attractor claims settles on (classified from its state
@@ -38,11 +38,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..analysis.attractor import KINDS, Attractor, classify
-from ..analysis.floquet import floquet
-from ..analysis.periodmap import NoPeriodicResponse, period_map
+from ..attractors.classification import KINDS, Attractor, classify
 from ..errors import Refused
 from ..model import Model, as_model, excitation_period
+from ..periodic.floquet import floquet
+from ..periodic.periodmap import NoPeriodicResponse, period_map
 from . import cache
 
 __all__ = [
@@ -336,7 +336,7 @@ def basins(
     cache_dir : path, optional
         The disk cache of the starts (resume after an interruption).
     attractors : list of Attractor, optional
-        Known attractors (`beltmdsm.analysis.attractor.classify`), besides the run
+        Known attractors (`beltmdsm.attractors.classification.classify`), besides the run
         from rest's.
     max_periods : int
         Periods a start is iterated before the classification takes it.
@@ -356,7 +356,7 @@ def basins(
 
     See Also
     --------
-    beltmdsm.analysis.attractor.classify : names each attractor.
+    beltmdsm.attractors.classification.classify : names each attractor.
     beltmdsm.studies.coexistence.coexistence : where stable responses coexist.
 
     Examples

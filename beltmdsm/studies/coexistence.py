@@ -8,15 +8,15 @@ be the unstable range of any analysis (docs/modelling.md#what-unstable-means).
 exactly:
 
 1. **Seeds.** On a grid of the parameter: the periodic response of period ``T``
-   (`beltmdsm.analysis.floquet.floquet`, continued down the grid from its neighbour);
+   (`beltmdsm.periodic.floquet.floquet`, continued down the grid from its neighbour);
    the attractor of a run from rest (`beltmdsm.studies.responses.run_stroboscope`);
    and those of two ladders, continued up and down the grid on the period map
    (`beltmdsm.studies.responses.ladder`). An attractor that locks at ``k`` periods
-   (`beltmdsm.analysis.locked.LOCK_LIMIT` at most) is a seed; one that does not is
-   listed with the evidence (`beltmdsm.analysis.locked.NotLocked`).
+   (`beltmdsm.periodic.locked.LOCK_LIMIT` at most) is a seed; one that does not is
+   listed with the evidence (`beltmdsm.periodic.locked.NotLocked`).
 2. **Branches.** Every seed that no branch found so far passes through (same ``k``,
    same orbit) is continued over the whole range
-   (`beltmdsm.analysis.branch.continue_branch`): its stable and unstable parts, each
+   (`beltmdsm.continuation.branch.continue_branch`): its stable and unstable parts, each
    bounded by a located bifurcation.
 3. **Coexistence.** The stable parts of all branches, overlaid: the ranges where two
    or more are stable, each with the responses that coexist and the kinds of its two
@@ -44,11 +44,8 @@ from typing import Any
 import numpy as np
 
 from .._calling import ranged
-from ..analysis.branch import Branch, continue_branch
-from ..analysis.floquet import NoPeriodicResponse, floquet, response_from
-from ..analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
-from ..analysis.periodmap import engine_of
 from ..arguments import count
+from ..continuation.branch import Branch, continue_branch
 from ..errors import Refused
 from ..model import (
     MODEL_PARAMETERS,
@@ -59,6 +56,9 @@ from ..model import (
     is_autonomous,
     is_real,
 )
+from ..periodic.floquet import NoPeriodicResponse, floquet, response_from
+from ..periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods
+from ..periodic.periodmap import engine_of
 from ..settings import MAX_SEED_POINTS
 from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
 from .responses import check_limit, ladder, run_stroboscope, shoot
@@ -136,7 +136,7 @@ class Unlocked:
     evidence: NotLocked
 
     def as_dict(self) -> dict:
-        """For JSON: ``value`` and the keys of `beltmdsm.analysis.locked.NotLocked.as_dict`."""
+        """For JSON: ``value`` and the keys of `beltmdsm.periodic.locked.NotLocked.as_dict`."""
         return {"value": self.value, **self.evidence.as_dict()}
 
 

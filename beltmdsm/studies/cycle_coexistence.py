@@ -3,10 +3,10 @@
 Without excitation the attractors of Eq. (4) are steady sliding (Eq. 9) and the
 self-excited cycles. Steady sliding is stable where every eigenvalue of ``J^0``
 (`generated.unforced.eigenvalues`) has a negative real part; its stability changes at
-the Hopf points (`beltmdsm.analysis.hopf.hopf_points`) and where a real eigenvalue
+the Hopf points (`beltmdsm.cycles.hopf.hopf_points`) and where a real eigenvalue
 crosses 0 (placed by Brent's method on the largest real part). The cycles are the
 branch born at the first Hopf point of the range
-(`beltmdsm.analysis.cycle_branch.cycle_branch`), with its stable parts; without a Hopf
+(`beltmdsm.cycles.branch.cycle_branch`), with its stable parts; without a Hopf
 point in the range, the branch through a cycle seeded where a stick ends, at the
 model's value or the middle of the range (a static bound above the kinetic
 coefficient keeps a stick-slip cycle beside stable sliding, with no Hopf point). Where a stable
@@ -24,10 +24,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
-from ..analysis.cycle_branch import CycleBranch, cycle_branch
-from ..analysis.hopf import HopfPoint, eigenvalues_over, hopf_points
-from ..analysis.periodmap import NoPeriodicResponse, engine_of
+from ..cycles.branch import CycleBranch, cycle_branch
+from ..cycles.hopf import HopfPoint, eigenvalues_over, hopf_points
 from ..model import Model
+from ..periodic.periodmap import NoPeriodicResponse, engine_of
 from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
 
 __all__ = ["CycleCoexistence", "cycle_coexistence", "SLIDING", "CYCLES"]

@@ -27,9 +27,9 @@ from numpy.typing import NDArray
 
 from generated import contraction
 
-from ..analysis.summary import PEAK_PRESENT_RATIO
 from ..integrate.switching import Mode
 from ..model import Model, initial_state
+from ..run.summary import PEAK_PRESENT_RATIO
 from ..settings import SolverSettings
 from ..simulation import Simulation, simulate
 
@@ -175,7 +175,7 @@ def reversals_by_force_sign(sim: Simulation, t0: float = 0.0) -> dict[str, tuple
     """Reversals of the friction after ``t0`` by their new direction and the sign of ``F``.
 
     A reversal is a ``"vr_zero"`` event of ``sim.events`` whose new mode is a slip mode
-    (`beltmdsm.analysis.summary.summarize` counts them the same way); ``F`` is the normal
+    (`beltmdsm.run.summary.summarize` counts them the same way); ``F`` is the normal
     force at its time (``sim.trajectory.forces``).
 
     Returns

@@ -12,7 +12,7 @@ printed, the contact can pull; ``clipped``: ``max(F, 0)``), this module computes
     (the normal coupling does not move them: the normal equation is free of the
     tangential state, ``one_way_coupling`` of `generated.capabilities`);
 (b) where the ``T``-periodic forced response is unstable (`forced_stability`: the Floquet
-    band of `beltmdsm.analysis.band.floquet_band` over ``Vb``, its labelled edges and the
+    band of `beltmdsm.continuation.band.floquet_band` over ``Vb``, its labelled edges and the
     growth rate ``log max|mu| / T`` at every evaluated value);
 (c) where runs from rest show the ``omega1`` vibration (`runs_from_rest`: the
     ``omega1_peak_present`` of `beltmdsm.simulation.simulate`'s summaries on a grid);
@@ -44,11 +44,11 @@ from scipy.optimize import brentq
 
 from generated import unforced
 
-from ..analysis.band import Band, floquet_band
-from ..analysis.floquet import PERTURBATION
-from ..analysis.periodmap import engine_of
+from ..continuation.band import Band, floquet_band
 from ..intervals import clip, difference, format_intervals, runs, union
 from ..model import Model, as_model, initial_state
+from ..periodic.floquet import PERTURBATION
+from ..periodic.periodmap import engine_of
 from ..settings import SolverSettings
 from ..simulation import simulate
 
@@ -284,7 +284,7 @@ class ForcedStability:
     law : Law
     tension : str
     band : Band
-        `beltmdsm.analysis.band.floquet_band` over ``Vb``.
+        `beltmdsm.continuation.band.floquet_band` over ``Vb``.
     engine : str
         The Floquet path the law takes (``"closed_form"`` or ``"general"``).
     vb, growth_rate : ndarray
@@ -355,7 +355,7 @@ def forced_stability(
     lo, hi : float
         The range of ``Vb`` [m/s].
     points, tol
-        Of `beltmdsm.analysis.band.floquet_band`: grid values, and the edges' tolerance.
+        Of `beltmdsm.continuation.band.floquet_band`: grid values, and the edges' tolerance.
 
     Returns
     -------
@@ -397,9 +397,9 @@ class RunScan:
         The belt speeds [m/s].
     present : ndarray of object
         ``omega1_peak_present`` of each run's summary: True, False, or None where the
-        run cannot tell (`beltmdsm.analysis.summary.Summary`; next to the Stribeck
+        run cannot tell (`beltmdsm.run.summary.Summary`; next to the Stribeck
         boundary the free transient decays too slowly for the window to tell,
-        `beltmdsm.analysis.summary.free_decay_rate`).
+        `beltmdsm.run.summary.free_decay_rate`).
     peak_omega1 : ndarray
         The amplitude of the ``omega1`` peak of X1' [m/s].
     min_normal_force : ndarray

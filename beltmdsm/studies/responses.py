@@ -2,14 +2,14 @@
 
 A run of Eq. (4) from rest (the runs of Fig. 2b and Figs. 17-21), a run from the
 perturbed periodic response or a sweep continued in a parameter ends on one attractor;
-where it locks to the excitation at ``k`` periods (`beltmdsm.analysis.locked`), the
+where it locks to the excitation at ``k`` periods (`beltmdsm.periodic.locked`), the
 attractor is a fixed point of the ``k``-fold period map, which shooting computes
-exactly (`beltmdsm.analysis.periodmap.fixed_point`), with the multipliers of the
-``k``-fold map (`beltmdsm.analysis.floquet.Floquet`).
+exactly (`beltmdsm.periodic.periodmap.fixed_point`), with the multipliers of the
+``k``-fold map (`beltmdsm.periodic.floquet.Floquet`).
 
 * `run_stroboscope`: the stroboscopic samples of a run of `beltmdsm.simulation.simulate`
   from rest or from the perturbed periodic response
-  (`beltmdsm.analysis.floquet.periodic_start`).
+  (`beltmdsm.periodic.floquet.periodic_start`).
 * `ladder`, `ladder_stroboscope`: a sweep continued on the period map: the shooting
   state carried from rung to rung (the tangential one on the periodic normal motion,
   on the closed-form path), as ``sweep --continue`` carries a run's state, and the
@@ -17,9 +17,9 @@ exactly (`beltmdsm.analysis.periodmap.fixed_point`), with the multipliers of the
 * `responses`: every periodic response found at one point (``python -m derive
   responses``): the periodic one of period ``T`` and every locked one up to a limit,
   each with its multipliers, the amplitude of ``X1'`` and where it was found; the
-  attractors that do not lock, with the evidence (`beltmdsm.analysis.locked.NotLocked`).
+  attractors that do not lock, with the evidence (`beltmdsm.periodic.locked.NotLocked`).
   Without excitation (`beltmdsm.model.is_autonomous`): the self-excited cycles
-  (`beltmdsm.analysis.cycles`), from the run off perturbed steady sliding and from
+  (`beltmdsm.cycles.cycle`), from the run off perturbed steady sliding and from
   cycles continued up and down in ``Vb`` (a cycle that coexists with stable steady
   sliding is found only so).
 """
@@ -34,19 +34,8 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..analysis.attractor import classify
-from ..analysis.floquet import Floquet, NoPeriodicResponse, floquet, periodic_start, response_from
-from ..analysis.locked import (
-    LOCK_LIMIT,
-    NotLocked,
-    Stroboscope,
-    map_stroboscope,
-    minimal_periods,
-    same_phases,
-    stroboscope,
-)
-from ..analysis.periodmap import ENGINES, FixedPoint, PeriodMap, engine_of, fixed_point, period_map
 from ..arguments import count
+from ..attractors.classification import classify
 from ..errors import Refused
 from ..model import (
     Backend,
@@ -57,6 +46,17 @@ from ..model import (
     is_autonomous,
     is_real,
 )
+from ..periodic.floquet import Floquet, NoPeriodicResponse, floquet, periodic_start, response_from
+from ..periodic.locked import (
+    LOCK_LIMIT,
+    NotLocked,
+    Stroboscope,
+    map_stroboscope,
+    minimal_periods,
+    same_phases,
+    stroboscope,
+)
+from ..periodic.periodmap import ENGINES, FixedPoint, PeriodMap, engine_of, fixed_point, period_map
 from ..settings import SolverSettings
 from ..simulation import simulate
 
@@ -103,7 +103,7 @@ def check_limit(
     t_end_is_given: bool = True,
 ) -> None:
     """Refuse a ``limit`` that the samples cannot decide: a lock at ``k`` periods needs
-    more than ``2 k`` samples (`beltmdsm.analysis.locked.stroboscope`), the runs' of
+    more than ``2 k`` samples (`beltmdsm.periodic.locked.stroboscope`), the runs' of
     ``t_end`` s (`run_samples`, for each model) and, with ``ladder``, the ladders'
     (`LADDER_PERIODS` a rung). ``t_end_is_given``: the caller's argument (named in
     the message), not a constant of the study.
@@ -183,7 +183,7 @@ def ladder(
 ) -> list[Stroboscope]:
     """A continued sweep on the period map: the stroboscope of every rung.
 
-    The shooting state (`beltmdsm.analysis.periodmap.PeriodMap.shooting`: the tangential
+    The shooting state (`beltmdsm.periodic.periodmap.PeriodMap.shooting`: the tangential
     state on the periodic normal motion, on the closed-form path) starts at rest at
     ``values[0]`` and is carried from rung to rung, as ``sweep --continue`` carries a
     run's state; at each rung `LADDER_PERIODS` periods settle it and as many more are
@@ -256,7 +256,7 @@ class Response:
     ----------
     periods : int
         ``k``: the response repeats after ``k`` excitation periods (1: the periodic
-        response of `beltmdsm.analysis.floquet`).
+        response of `beltmdsm.periodic.floquet`).
     floquet : Floquet
         Multipliers of the ``k``-fold map and what they say.
     velocity_range : tuple of float
@@ -408,12 +408,12 @@ def responses(
 ) -> ResponseSet:
     """Every periodic response found at one point: the ``T``-periodic one and the locked ones.
 
-    The periodic response of period ``T`` by `beltmdsm.analysis.floquet.floquet`; then
+    The periodic response of period ``T`` by `beltmdsm.periodic.floquet.floquet`; then
     the attractors of the run from rest, of the run from the perturbed periodic
     response (where there is one), and of ladders in ``Vb`` continued up and down over
     ``ladder`` m/s (0: none) on the period map. Each attractor that locks at ``k <=
     limit`` periods is polished by Newton's method on the ``k``-fold map; the others
-    are listed with the evidence (`beltmdsm.analysis.locked.NotLocked`).
+    are listed with the evidence (`beltmdsm.periodic.locked.NotLocked`).
 
     Parameters
     ----------
@@ -535,7 +535,7 @@ def responses(
 
 def _classified(model, strobe, backend):
     """A stroboscope that does not lock within the limit, classified from its last sample
-    (`beltmdsm.analysis.attractor.classify`: returns after any number of periods and the
+    (`beltmdsm.attractors.classification.classify`: returns after any number of periods and the
     Lyapunov spectrum): ``(k, FixedPoint, None)`` of a long lock it finds, else
     ``(None, None, NotLocked)`` with the classification as the evidence."""
     evidence = NotLocked.of(strobe)
@@ -552,8 +552,8 @@ def _classified(model, strobe, backend):
 
 
 def _cycle_response(c, source, distance=None):
-    """The `Response` of a self-excited cycle (`beltmdsm.analysis.cycles.Cycle`)."""
-    from ..analysis.floquet import response_of_cycle
+    """The `Response` of a self-excited cycle (`beltmdsm.cycles.cycle.Cycle`)."""
+    from ..periodic.floquet import response_of_cycle
 
     return Response(
         1,
@@ -570,7 +570,7 @@ def _continued_cycle(model, first, last, backend):
     """The cycle seeded at ``Vb = first`` and continued to ``Vb = last`` by Newton's method
     from each step's cycle: steps of `LADDER_STEP`, halved where Newton's method fails
     (down to 1/64 of it) and doubled again after each success."""
-    from ..analysis.cycles import cycle
+    from ..cycles.cycle import cycle
 
     c = cycle(model.replace(Vb=float(first)), backend=backend)
     v, step = float(first), LADDER_STEP * np.sign(last - first)
@@ -594,9 +594,9 @@ def cycle_responses(
     ladder: float = LADDER_SPAN,
     backend: Backend | None = None,
 ) -> ResponseSet:
-    """The self-excited cycles of the model without excitation (`beltmdsm.analysis.cycles`).
+    """The self-excited cycles of the model without excitation (`beltmdsm.cycles.cycle`).
 
-    The cycle from the run off perturbed steady sliding (`beltmdsm.analysis.cycles.seed_cycle`:
+    The cycle from the run off perturbed steady sliding (`beltmdsm.cycles.cycle.seed_cycle`:
     ``run_distance`` is how far the run's settled return lies from the cycle), and the
     cycles continued in ``Vb`` from ``ladder`` m/s below and above (seeded there, then
     Newton's method from each step's cycle, `_continued_cycle`): where steady sliding
@@ -604,7 +604,7 @@ def cycle_responses(
     point), the ladder from below finds the cycle. Cycles found from several seeds are
     listed once, with every source; a seed that fails is listed in ``failed``.
     """
-    from ..analysis.cycles import cycle, seed_cycle
+    from ..cycles.cycle import cycle, seed_cycle
 
     found, failed = [], []
 

@@ -13,9 +13,9 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..analysis.floquet import NoPeriodicResponse, periodic_start
-from ..analysis.modulation import modulation_scatter
 from ..model import Model
+from ..periodic.floquet import NoPeriodicResponse, periodic_start
+from ..run.modulation import modulation_scatter
 from ..settings import SolverSettings
 from ..simulation import simulate
 
@@ -32,7 +32,7 @@ __all__ = [
 
 #: The table's columns after the swept parameter. ``omega1_peak_present`` is False
 #: where ``resolved`` is False (the run could not tell,
-#: `beltmdsm.analysis.summary.summarize`): read it together with ``resolved``, never
+#: `beltmdsm.run.summary.summarize`): read it together with ``resolved``, never
 #: alone as "no peak". ``forced_peak`` and ``noise_floor`` say whether a peak at an
 #: excitation frequency rose above what the tolerances can put into the spectrum,
 #: ``energy_ok`` whether the energy balance closed within its bound (False: the
@@ -74,7 +74,7 @@ MODULATION_COLUMNS = tuple(
 #: The regime of a point started on the periodic response where none is found.
 NO_PERIODIC_RESPONSE = "no_periodic_response"
 #: Where a (not continued) run starts: the unforced equilibrium, or the periodic
-#: response moved by `beltmdsm.analysis.floquet.PERTURBATION` in X1.
+#: response moved by `beltmdsm.periodic.floquet.PERTURBATION` in X1.
 STARTS = ("rest", "periodic")
 Start = Literal["rest", "periodic"]
 
@@ -100,7 +100,7 @@ def run_point(
     model : Model
     settings : SolverSettings
     modulation : bool
-        add the friction modulation columns (`beltmdsm.analysis.modulation`)
+        add the friction modulation columns (`beltmdsm.run.modulation`)
     y0 : sequence of 4 floats, optional
         start state (default: from rest, `beltmdsm.model.initial_state`)
     restart_period : float, optional

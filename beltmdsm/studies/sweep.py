@@ -248,7 +248,7 @@ def sweep(
     progress : bool
         show a tqdm progress bar on stderr
     modulation : bool
-        add the friction modulation columns (`beltmdsm.analysis.modulation`)
+        add the friction modulation columns (`beltmdsm.run.modulation`)
     continuation : {None, "up", "down"}
         None: every point from rest (the unforced equilibrium), independently.
         "up"/"down": follow an attractor. The points run in ascending ("up") or

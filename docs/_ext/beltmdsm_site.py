@@ -324,7 +324,7 @@ def _resolve_object(target: str):
 
 def public_reference(app, env, node, contnode):
     """missing-reference: a docstring's reference to an object by the path of the module
-    that defines it (``beltmdsm.analysis.band.floquet_band``) links to its page under
+    that defines it (``beltmdsm.continuation.band.floquet_band``) links to its page under
     the public name (``beltmdsm.floquet_band``); one to an object that exists but has no
     page (a private helper) reads as text. A name that names nothing stays an error."""
     if node.get("refdomain") != "py" or not node.get("reftarget", "").startswith(

@@ -3,7 +3,7 @@
 Stribeck friction with ``mu_k = mu_s`` is Coulomb friction, and Hunt-Crossley contact
 with ``n_h = 3/2`` is Hertz-Damp (derive/laws.py): the same equations, computed through
 other generated functions and, for Stribeck, through the other Floquet engine
-(beltmdsm/analysis/periodmap.py). Every parameter set is built from the registry's base
+(beltmdsm/periodic/periodmap.py). Every parameter set is built from the registry's base
 values (`beltmdsm.Model`, ``generated.parameters.BASE``), so a new law cannot break
 these tests through a missing name.
 """
@@ -11,10 +11,10 @@ these tests through a missing name.
 import numpy as np
 import pytest
 
-from beltmdsm.analysis.band import floquet_band
-from beltmdsm.analysis.floquet import floquet
-from beltmdsm.analysis.predict import predict
+from beltmdsm.continuation.band import floquet_band
 from beltmdsm.model import Model
+from beltmdsm.periodic.floquet import floquet
+from beltmdsm.prediction.predict import predict
 from beltmdsm.simulation import simulate
 from generated.parameters import BASE
 
@@ -36,7 +36,7 @@ POINTS = {
 T_END = 200.0
 #: The Floquet multipliers of the same equations: both found to Newton's tolerance (1e-11
 #: of the state) by integrators at 1e-12, the monodromies to about 1e-11, simple
-#: eigenvalues of condition O(1-10) (tests/beltmdsm/analysis/test_general.py, AGREE).
+#: eigenvalues of condition O(1-10) (tests/beltmdsm/periodic/test_general.py, AGREE).
 AGREE = 1e-9
 
 

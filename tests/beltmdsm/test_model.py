@@ -123,8 +123,8 @@ def test_excitation_period_is_two_pi_over_the_gcd():
 def test_importing_the_runtime_does_not_import_sympy():
     code = (
         "import sys, beltmdsm, beltmdsm.simulation, beltmdsm.integrate.superposition, "
-        "beltmdsm.analysis.spectra, beltmdsm.analysis.modulation, beltmdsm.analysis.floquet, "
-        "beltmdsm.analysis.predict, beltmdsm.studies.sweep, beltmdsm.studies.validation, "
+        "beltmdsm.run.spectra, beltmdsm.run.modulation, beltmdsm.periodic.floquet, "
+        "beltmdsm.prediction.predict, beltmdsm.studies.sweep, beltmdsm.studies.validation, "
         "beltmdsm.cli; "
         "sys.exit(1 if any(m == 'sympy' or m.startswith('sympy.') for m in sys.modules) else 0)"
     )

@@ -23,27 +23,27 @@ COEFFICIENTS = {"beta1", "omega1", "beta2", "omega2", "alpha", "alpha_t", "alpha
 #: (file, function, line text) -> why it may compute with a coefficient.
 ALLOWED = {
     (
-        "analysis/summary.py",
+        "run/summary.py",
         "omega1_band",
         "half = 0.25 * w1",
     ): "the frequency band where the omega1 peak is read: a spectral window, not dynamics",
     (
-        "analysis/summary.py",
+        "run/summary.py",
         "omega1_band",
         "half = min(half, 0.5 * abs(w1 - line))",
     ): "the same window, kept clear of the excitation lines",
     (
-        "analysis/summary.py",
+        "run/summary.py",
         "omega1_band",
         "return (w1 - half, w1 + half) if half > 0 else None",
     ): "the same window",
     (
-        "analysis/modulation.py",
+        "run/modulation.py",
         "friction_loop",
         'period = 2 * np.pi / sim.params["omega1"] if period is None else float(period)',
     ): "the window of Fig. 3b, one period 2 pi / omega1",
     (
-        "analysis/modulation.py",
+        "run/modulation.py",
         "modulation_scatter",
         'mu = cycle_averages(sim, 2 * np.pi / omega)["mu_eff"]',
     ): "the averaging periods of Figs. 10-12, 2 pi / Omega_t and 2 pi / omega1",

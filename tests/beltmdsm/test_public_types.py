@@ -38,17 +38,17 @@ def test_the_public_api_has_no_any_for_mypy():
     assert revealed == [
         "beltmdsm.model.Model",
         "beltmdsm.simulation.Simulation",
-        "beltmdsm.analysis.summary.Summary",
-        "beltmdsm.analysis.floquet.Floquet",
-        "beltmdsm.analysis.band.Band",  # the model first
-        "beltmdsm.analysis.band.Band",  # the model last, as before
-        "beltmdsm.analysis.branch_parts.Branch",  # defined there, shared with cycles
+        "beltmdsm.run.summary.Summary",
+        "beltmdsm.periodic.floquet.Floquet",
+        "beltmdsm.continuation.band.Band",  # the model first
+        "beltmdsm.continuation.band.Band",  # the model last, as before
+        "beltmdsm.continuation.branch_parts.Branch",  # defined there, shared with cycles
         "beltmdsm.studies.coexistence.Coexistence",
         "beltmdsm.studies.sweep.Sweep",
-        "beltmdsm.analysis.floquet_map.FloquetMap",
-        "beltmdsm.analysis.cycles.Cycle",
-        "beltmdsm.analysis.lyapunov.Lyapunov",
-        "beltmdsm.analysis.attractor.Attractor",
+        "beltmdsm.continuation.floquet_map.FloquetMap",
+        "beltmdsm.cycles.cycle.Cycle",
+        "beltmdsm.attractors.lyapunov.Lyapunov",
+        "beltmdsm.attractors.classification.Attractor",
         "beltmdsm.studies.basins.Basins",
     ]
 
@@ -89,8 +89,8 @@ FAILURES = {
 #: The modules that defined a failure before beltmdsm.errors held them all.
 OLD_HOMES = {
     "Unsupported": ["beltmdsm.model", "generated._support"],
-    "NoPeriodicResponse": ["beltmdsm.analysis.periodmap", "beltmdsm.analysis.floquet"],
-    "NoEdge": ["beltmdsm.analysis.edges"],
+    "NoPeriodicResponse": ["beltmdsm.periodic.periodmap", "beltmdsm.periodic.floquet"],
+    "NoEdge": ["beltmdsm.continuation.edges"],
     "NotApplicable": ["beltmdsm.integrate.superposition"],
     "StepTooSmall": ["beltmdsm.integrate.events"],
 }

@@ -251,7 +251,7 @@ def check_predict(toy):
         f"""
         import json
         import mpmath
-        from beltmdsm.analysis import predict
+        from beltmdsm.prediction import predict
         from beltmdsm.model import Model
         mpmath.mp.dps = 30
 

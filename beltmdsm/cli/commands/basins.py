@@ -33,7 +33,7 @@ def add(commands, name: str) -> None:
         "(default X1 and X1' = Y1, the normal state on its periodic orbit), each iterated "
         "on the period map until a known attractor claims it; attractors named by their "
         "kind, period, rotation number and largest Lyapunov exponent "
-        "(beltmdsm/studies/basins.py, beltmdsm/analysis/attractor.py).",
+        "(beltmdsm/studies/basins.py, beltmdsm/attractors/classification.py).",
     )
     for axis, default in (("x", "X1"), ("y", "Y1")):
         sub.add_argument(

@@ -1,4 +1,4 @@
-"""``branch``: a periodic response continued in one parameter (`beltmdsm.analysis.branch`)."""
+"""``branch``: a periodic response continued in one parameter (`beltmdsm.continuation.branch`)."""
 
 from __future__ import annotations
 
@@ -30,10 +30,10 @@ def add(commands, name: str) -> None:
         "point the model flags give, continued in --param over [--from, --to] by "
         "pseudo-arclength continuation on the period map, through folds, with its "
         "stable and unstable parts and every bifurcation located "
-        "(beltmdsm/analysis/branch.py). Without excitation (--alpha 0) the branch of "
+        "(beltmdsm/continuation/branch.py). Without excitation (--alpha 0) the branch of "
         "self-excited cycles born at the Hopf point of steady sliding in the range, its "
         "criticality, the onset of stick, folds and period doubling "
-        "(beltmdsm/analysis/cycle_branch.py); no start value is needed.",
+        "(beltmdsm/cycles/branch.py); no start value is needed.",
     )
     sub.add_argument(
         "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter continued in"
@@ -49,7 +49,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...analysis.branch import branch
+    from ...continuation.branch import branch
     from .. import text
 
     lo, hi = range_from(args)

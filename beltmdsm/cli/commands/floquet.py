@@ -17,17 +17,17 @@ def add(commands, name: str) -> None:
         help="Floquet multipliers of the periodic response",
         description="The periodic response of Eq. (4) by shooting and its Floquet "
         "multipliers, with saltation matrices at the switches "
-        "(beltmdsm/analysis/floquet.py); --periods K: the response of K excitation "
+        "(beltmdsm/periodic/floquet.py); --periods K: the response of K excitation "
         "periods, by shooting on the K-fold period map (an attractor locked at a divisor d of K "
         "is reported as the dT response it is). Without excitation (--alpha 0) "
         "the self-excited cycle, its period found by shooting with a phase condition "
-        "(beltmdsm/analysis/cycles.py); --json then says autonomous: true and gives "
+        "(beltmdsm/cycles/cycle.py); --json then says autonomous: true and gives "
         "the trivial multiplier apart.",
     )
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...analysis.floquet import ShorterPeriod, floquet
+    from ...periodic.floquet import ShorterPeriod, floquet
     from .. import text
 
     model = model_from(args)

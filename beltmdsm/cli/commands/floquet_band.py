@@ -31,7 +31,7 @@ def add(commands, name: str) -> None:
         help="ranges of a parameter where the periodic response is unstable",
         description="Ranges of one parameter where the periodic response is "
         "unstable, every edge located and labelled with its bifurcation "
-        "(beltmdsm/analysis/band.py, docs/modelling.md#bifurcations).",
+        "(beltmdsm/continuation/band.py, docs/modelling.md#bifurcations).",
     )
     sub.add_argument(
         "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter walked"
@@ -68,7 +68,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...analysis.band import floquet_band
+    from ...continuation.band import floquet_band
     from .. import text
 
     lo, hi = range_from(args)

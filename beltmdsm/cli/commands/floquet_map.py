@@ -29,7 +29,7 @@ def add(commands, name: str) -> None:
         description="The region of two parameters where the periodic response of "
         "period T is unstable or absent, its boundary curves (by bifurcation) traced "
         "by continuation row by row, beside the paper's linear analysis "
-        "(beltmdsm/analysis/floquet_map.py).",
+        "(beltmdsm/continuation/floquet_map.py).",
     )
     for axis in ("x", "y"):
         sub.add_argument(
@@ -49,7 +49,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...analysis.floquet_map import floquet_map
+    from ...continuation.floquet_map import floquet_map
     from .. import text
 
     (x_lo, x_hi), (y_lo, y_hi) = range_from(args, "x"), range_from(args, "y")

@@ -17,7 +17,7 @@ def add(commands, name: str) -> None:
         help="Lyapunov exponents of a run (saltation matrices at every switch)",
         description="The Lyapunov spectrum of a run of Eq. (4), largest first, by the "
         "variational equations with the saltation matrix at every switch and QR "
-        "re-orthonormalisation (beltmdsm/analysis/lyapunov.py); -inf (null in JSON) for "
+        "re-orthonormalisation (beltmdsm/attractors/lyapunov.py); -inf (null in JSON) for "
         "a direction a stick phase removes.",
     )
     sub.add_argument(
@@ -51,13 +51,13 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...analysis.lyapunov import lyapunov
+    from ...attractors.lyapunov import lyapunov
     from .. import text
 
     model = model_from(args)
     y0 = None
     if args.start == "periodic":
-        from ...analysis.floquet import periodic_start
+        from ...periodic.floquet import periodic_start
 
         y0 = periodic_start(model, args.perturbation)
     spec = lyapunov(model, y0=y0, t_end=args.t_end, t_transient=args.t_transient)

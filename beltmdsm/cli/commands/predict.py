@@ -1,4 +1,4 @@
-"""``predict``: the predicted unstable belt speeds (`beltmdsm.analysis.predict`)."""
+"""``predict``: the predicted unstable belt speeds (`beltmdsm.prediction.predict`)."""
 
 from __future__ import annotations
 
@@ -46,7 +46,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...analysis.predict import predict
+    from ...prediction.predict import predict
     from .. import text
 
     result = predict(

@@ -32,7 +32,7 @@ def add(commands, name: str) -> None:
         choices=("rest", "periodic"),
         default="rest",
         help="start from the equilibrium at rest (default), or on the periodic "
-        "response (beltmdsm/analysis/floquet.py) with X1 moved by --perturbation",
+        "response (beltmdsm/periodic/floquet.py) with X1 moved by --perturbation",
     )
     sub.add_argument(
         "--perturbation",
@@ -63,7 +63,7 @@ def add(commands, name: str) -> None:
         action="store_true",
         help="name the attractor the run settles on (periodic with its period, "
         "quasi-periodic, chaotic, equilibrium) by its Lyapunov spectrum and its returns, "
-        "from the same start (beltmdsm/analysis/attractor.py; a run of max(2000 s, "
+        "from the same start (beltmdsm/attractors/classification.py; a run of max(2000 s, "
         "--t-end) more); JSON key 'attractor'",
     )
     sub.add_argument(
@@ -91,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
     check_request(model, settings)  # before the periodic start is computed
     y0 = None
     if args.start == "periodic":
-        from ...analysis.floquet import PERTURBATION, periodic_start
+        from ...periodic.floquet import PERTURBATION, periodic_start
 
         if args.perturbation is None:
             args.perturbation = PERTURBATION
@@ -102,13 +102,13 @@ def run(args: argparse.Namespace) -> int:
     if args.start == "periodic":
         out["perturbation"] = args.perturbation
     if args.modulation:
-        from ...analysis.modulation import modulation_scatter
+        from ...run.modulation import modulation_scatter
 
         out.update(modulation_scatter(sim))
     out.update(model.as_dict())
     attractor = None
     if args.classify:
-        from ...analysis.attractor import classify
+        from ...attractors.classification import classify
 
         attractor = classify(model, y0=sim.y[:, 0], t_end=max(2000.0, settings.t_end))
         out["attractor"] = attractor.as_dict()

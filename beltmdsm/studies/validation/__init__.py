@@ -4,10 +4,10 @@ The paper validates its stability maps (Figs. 6-8) with amplitude spectra of X1'
 over a range of belt speeds (Appendix A.5, Figs. 17-21; Fig. 2b for the base set):
 where the steady sliding state is unstable, friction-induced vibration shows as a
 peak at omega1. The analyses approximate the linear stability of the periodic
-response; `beltmdsm.analysis.floquet` computes it exactly. For the base set and every
+response; `beltmdsm.periodic.floquet` computes it exactly. For the base set and every
 case of Figs. 17-21 this package sets side by side:
 
-* the Floquet band (`beltmdsm.analysis.band.floquet_band`) and the verdict at each
+* the Floquet band (`beltmdsm.continuation.band.floquet_band`) and the verdict at each
   grid point (`floquet_verdicts`);
 * five runs per grid point (`RUNS`): from rest under each tension law, on the
   periodic response plus a small perturbation, and continued up and down in ``Vb``;
@@ -25,20 +25,20 @@ and, as before Floquet, against the run from rest:
 
 * the simulated range: the belt speeds ``Vb`` of a sweep
   (`beltmdsm.studies.sweep.sweep`) where the omega1 peak is present
-  (`beltmdsm.analysis.summary.PEAK_PRESENT_RATIO`, fixed before any sweep) and the
+  (`beltmdsm.run.summary.PEAK_PRESENT_RATIO`, fixed before any sweep) and the
   mass slides (stick-slip and contact loss are marked and left out, as the paper
   leaves stick-slip out of Figs. 19b, c; so are the runs that cannot tell the peak,
   ``resolved`` False, which are never "no peak");
 * the predicted ranges: the paper's analysis (Eqs. 22-28, closed form in
   `generated.stability.unstable_interval`) for each ``V_hat`` reading and each sign
-  convention, and the consistent MDSM (`beltmdsm.analysis.predict.unstable_intervals`);
+  convention, and the consistent MDSM (`beltmdsm.prediction.predict.unstable_intervals`);
 * the differences of the edges, their mean absolute error per analysis and the
   length of the belt-speed set where prediction and simulation disagree.
 
 The simulations use one tension law (``tension=``, docs/modelling.md#tension), named
 in the file. The paper's closed forms linearise at the equilibrium and are the same
 under both; under ``"clipped"`` the consistent MDSM has no prediction where the clip
-cuts its harmonic fast normal force (`beltmdsm.analysis.predict.CLIPPED_MDSM`), and its
+cuts its harmonic fast normal force (`beltmdsm.prediction.predict.CLIPPED_MDSM`), and its
 column says so instead of counting as "predicts nothing".
 
 `render_markdown` writes ``VALIDATION.md``; ``python -m beltmdsm validate`` (or

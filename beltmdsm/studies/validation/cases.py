@@ -8,7 +8,7 @@ module holds what the validation compares and by which rules:
   what the paper reports for it;
 * `ANALYSES`: the predictions compared: the paper's analysis (Eqs. 22-28) for each
   ``V_hat`` reading (Eq. 23) and each sign convention of Eq. (A4), and the consistent
-  MDSM (`beltmdsm.analysis.predict`);
+  MDSM (`beltmdsm.prediction.predict`);
 * `RUNS`: the five runs of each grid point;
 * `Resolution` (`FULL`, `QUICK`) and `vb_grid`: the belt-speed grid and run length;
 * `harmonic_in_band`: where a forced harmonic of Eq. (4) reads as the omega1 peak
@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...analysis.summary import omega1_band
+from ...run.summary import omega1_band
 from ...settings import MAX_POINTS, SolverSettings
 
 
@@ -111,7 +111,8 @@ ANALYSES = (
     (
         "consistent_mdsm",
         "MDSM",
-        "consistent MDSM with the friction-normal-force correlation (`beltmdsm.analysis.predict`)",
+        "consistent MDSM with the friction-normal-force correlation "
+        "(`beltmdsm.prediction.predict`)",
     ),
 )
 
@@ -156,12 +157,12 @@ QUICK = Resolution(step=1.0, t_end=300.0, min_top=0.0)
 
 DEFINITIONS = """\
 * **Simulated range.** A grid point *shows the peak* when the omega1 peak of X1' is at
-  least {ratio:g} of the peak at Omega (`beltmdsm.analysis.summary.PEAK_PRESENT_RATIO`, fixed
+  least {ratio:g} of the peak at Omega (`beltmdsm.run.summary.PEAK_PRESENT_RATIO`, fixed
   before any sweep). Points in stick-slip or contact loss are *excluded* (the stability
   analyses describe steady sliding; the paper leaves stick-slip out of Figs. 19b, c),
   and so are *unresolved* points, whose run cannot tell the peak (a steady window too
   short for the omega1 band, or a transient not yet decayed: `resolved` False in
-  `beltmdsm.analysis.summary.summarize`); an unresolved point is never a point without the peak.
+  `beltmdsm.run.summary.summarize`); an unresolved point is never a point without the peak.
   A simulated range is a maximal run of consecutive sliding points that show the peak.
   Its lower edge is taken at the first such point minus h/2 and its upper edge at the
   last plus h/2 (h: the grid step); each lies within ± h/2 of that value, between a
@@ -172,7 +173,7 @@ DEFINITIONS = """\
   the mean absolute error.
 * **Not comparable.** A case is not comparable when an integer multiple k Omega
   (k >= 2) of the excitation lies in the band where the omega1 peak is read
-  (`beltmdsm.analysis.summary.omega1_band`): the forced harmonics of the nonlinear contact
+  (`beltmdsm.run.summary.omega1_band`): the forced harmonics of the nonlinear contact
   force are then counted as the omega1 peak whatever the stability. A case with no
   sliding point is not comparable either. Such cases are listed, and left out of
   every mean.
@@ -183,7 +184,7 @@ DEFINITIONS = """\
   simulated lower edge (at or above the lowest simulated Vb = h).
 * **No prediction.** Where an analysis gives no prediction (the consistent MDSM under
   the clipped tension law when the clip cuts its harmonic fast normal force:
-  `beltmdsm.analysis.predict.CLIPPED_MDSM`), its cells read *n/a* and the case counts in none of
+  `beltmdsm.prediction.predict.CLIPPED_MDSM`), its cells read *n/a* and the case counts in none of
   its columns.
 * **Mean absolute error (MAE)** of an analysis: the mean of |Δ| over every paired edge
   whose simulated edge is not censored, over all comparable cases (0, 1 or 2 edges per
@@ -231,7 +232,7 @@ def harmonic_in_band(p: Mapping[str, float]) -> list[tuple[int, float]]:
 
     The normal force of Eq. (1) is nonlinear, so the sliding response contains every
     harmonic of the excitation; one inside the band of the omega1 peak
-    (`beltmdsm.analysis.summary.omega1_band`) reads as an omega1 peak whatever the
+    (`beltmdsm.run.summary.omega1_band`) reads as an omega1 peak whatever the
     stability. Returns ``[(k, k Omega), ...]`` (empty when the peak is unambiguous).
     """
     band = omega1_band(p)
@@ -253,13 +254,13 @@ RUNS = (
     (
         "periodic",
         "periodic start",
-        "on the periodic response plus `beltmdsm.analysis.floquet.PERTURBATION` in X1",
+        "on the periodic response plus `beltmdsm.periodic.floquet.PERTURBATION` in X1",
     ),
     ("up", "up sweep", "continued upwards in Vb, from rest at the lowest point"),
     ("down", "down sweep", "continued downwards in Vb, from rest at the highest point"),
     ("rest_other", "from rest, other law", "from rest under the other tension law"),
 )
-#: Largest spacing [m/s] of the first grid of `beltmdsm.analysis.band.floquet_band`: an unstable
+#: Largest spacing [m/s] of the first grid of `beltmdsm.continuation.band.floquet_band`: an unstable
 #: range narrower than this inside one switch structure could fall between its points.
 FLOQUET_SPACING = 0.5
 #: Tolerance [m/s] of the Floquet band's edges (issue 13: 1e-3).
@@ -267,7 +268,7 @@ FLOQUET_TOL = 1e-3
 
 
 FLOQUET_DEFINITIONS = """\
-* **Floquet band.** `beltmdsm.analysis.band.floquet_band` in `Vb` over [h/2, {cap:g}] m/s: the
+* **Floquet band.** `beltmdsm.continuation.band.floquet_band` in `Vb` over [h/2, {cap:g}] m/s: the
   belt speeds where the periodic response of period 2 pi / Omega is unstable (largest
   Floquet multiplier |mu| > 1) or absent (no periodic response found), with every edge
   located to {tol:g} m/s (an edge where the response ends to about 1e-6) and named by
@@ -276,7 +277,7 @@ FLOQUET_DEFINITIONS = """\
   switch structure changes: a reversal appears or disappears) and *tangency* (a
   reversal's crossing becomes tangential and the response ends). This is the quantity
   the linear analyses approximate (docs/modelling.md#what-unstable-means).
-* **Verdict at a grid point.** `beltmdsm.analysis.floquet.floquet` at that point, on the periodic
+* **Verdict at a grid point.** `beltmdsm.periodic.floquet.floquet` at that point, on the periodic
   response found without a guess: the orbit the periodic-start run starts on.
 * **Runs.** On the validation grid, each case is run five ways: from rest (the file's
   tension law); on the periodic response plus {perturbation:g} m in X1 (*periodic
@@ -294,7 +295,7 @@ FLOQUET_DEFINITIONS = """\
   continued sweep shows the omega1 peak: two attractors. A point counts only where
   the periodic response attracts fast enough that a run converging to it would have
   settled before the steady window, exp(growth rate × {window:g} s) ≤ {decayed:g} (the
-  rule the runs apply to the free transient, `beltmdsm.analysis.summary.TRANSIENT_DECAYED`);
+  rule the runs apply to the free transient, `beltmdsm.run.summary.TRANSIENT_DECAYED`);
   the other candidates are listed as *unsettled*.
 * **Exact coexistence.** `beltmdsm.studies.coexistence.coexistence` in `Vb` over the
   cells of the case's grid, [h/2, top + h/2]: the periodic response of period

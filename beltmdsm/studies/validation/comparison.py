@@ -2,8 +2,8 @@
 
 * `predicted_intervals`: each analysis of `ANALYSES`: the closed form of Eqs. (25),
   (28) for each ``V_hat`` reading and sign convention of Eq. (A4)
-  (`beltmdsm.analysis.predict.paper_intervals`), and the consistent MDSM
-  (`beltmdsm.analysis.predict.unstable_intervals`);
+  (`beltmdsm.prediction.predict.paper_intervals`), and the consistent MDSM
+  (`beltmdsm.prediction.predict.unstable_intervals`);
 * `simulated_ranges`: where a sweep from rest shows the omega1 peak of X1' while the
   mass slides (Figs. 2b, 17-21), each edge within half a grid step (`SimulatedRanges`);
 * `compare` (against the simulated ranges) and `compare_floquet` (against the exact
@@ -26,9 +26,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ... import intervals
-from ...analysis.band import Band
-from ...analysis.predict import clip_acts, paper_intervals, unstable_intervals
+from ...continuation.band import Band
 from ...model import Model
+from ...prediction.predict import clip_acts, paper_intervals, unstable_intervals
 from .cases import SLIDING, UNRESOLVED
 
 #: How an analysis' prediction and its reference (the simulation or the Floquet band)
@@ -113,7 +113,7 @@ def simulated_ranges(
     present : array_like of bool
         ``omega1_peak_present`` of each point
     regime : array_like of str
-        the regime of each point (`beltmdsm.analysis.summary.REGIMES`)
+        the regime of each point (`beltmdsm.run.summary.REGIMES`)
     step : float
     resolved : array_like of bool, optional
         ``resolved`` of each point (default: all True); an unresolved point is
@@ -169,12 +169,12 @@ def predicted_intervals(model: Model) -> dict[str, list[tuple[float, float]] | N
     One entry for each key of `ANALYSES`, in its order. The paper's analysis is the
     closed form of Eqs. (25), (28) for each ``V_hat`` reading and sign convention, or
     its numeric solution where there is none (Stribeck's law;
-    `beltmdsm.analysis.predict.paper_intervals`: an empty interval is ``[]``, None
+    `beltmdsm.prediction.predict.paper_intervals`: an empty interval is ``[]``, None
     where ``V_hat`` is 0), the same under both tension laws (a linearisation at the
     equilibrium, where the contact force is positive); the
-    consistent MDSM is `beltmdsm.analysis.predict.unstable_intervals`, and None (no
+    consistent MDSM is `beltmdsm.prediction.predict.unstable_intervals`, and None (no
     prediction) under ``tension="clipped"`` where the clip cuts its fast normal force
-    (`beltmdsm.analysis.predict.clip_acts`).
+    (`beltmdsm.prediction.predict.clip_acts`).
     """
     paper = {c: paper_intervals(model, convention=c) for c in ("paper", "consistent")}
     out = {
@@ -308,7 +308,7 @@ def compare_floquet(
 ) -> Comparison:
     """Pair an analysis' unstable ranges with the Floquet band (hull rule, exact edges).
 
-    The Floquet band (``band.unstable`` of `beltmdsm.analysis.band.floquet_band`)
+    The Floquet band (``band.unstable`` of `beltmdsm.continuation.band.floquet_band`)
     is computed on ``[lo, hi]``: an edge of it at ``lo`` or ``hi`` (unstable up to the
     end of the range) is not observed and is *censored*. The predicted ranges are
     clipped to ``[lo, hi]`` for the disagreement length.

@@ -14,12 +14,12 @@ response is stable there and the run's steady window spans the response's range 
 settled* (the closest stable response attracts too slowly for a run to have reached
 it by its steady window, the rule the runs apply to their own transient), *not locked*
 (the nearby seed runs of the exact study do not lock: quasi-periodic motion, or a
-longer period than `beltmdsm.analysis.locked.LOCK_LIMIT`), or *unexplained*. A run
+longer period than `beltmdsm.periodic.locked.LOCK_LIMIT`), or *unexplained*. A run
 from rest that no computed response explains is run again with its settings and its
 stroboscope examined (`beltmdsm.studies.responses.run_stroboscope`): where it locks,
 its response is computed by shooting and compared like the others (a response the
 exact study's seeds did not reach). Where it does not lock within the limit, the run is
-classified (`beltmdsm.analysis.attractor.classify`: its Lyapunov spectrum and its
+classified (`beltmdsm.attractors.classification.classify`: its Lyapunov spectrum and its
 return after any number of periods) and a long lock it finds (59T at the base set's
 Vb = 3.5) is computed and compared the same way; otherwise it is *not locked* with the
 classification's evidence (quasi-periodic, chaotic, or what could not be told). The
@@ -36,12 +36,12 @@ from typing import Literal
 
 import numpy as np
 
-from ...analysis.attractor import classify
-from ...analysis.floquet import NoPeriodicResponse
-from ...analysis.locked import LOCK_LIMIT, NotLocked, minimal_periods
-from ...analysis.periodmap import period_map
-from ...analysis.summary import TRANSIENT_DECAYED
+from ...attractors.classification import classify
 from ...model import Model
+from ...periodic.floquet import NoPeriodicResponse
+from ...periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods
+from ...periodic.periodmap import period_map
+from ...run.summary import TRANSIENT_DECAYED
 from ...settings import SolverSettings
 from ..coexistence import Coexistence, ResponseBranch
 from ..responses import run_stroboscope, shoot
@@ -288,7 +288,7 @@ def explain_coexistence(
         The runs' settings: the sampling step ``dt`` (`range_tolerance`); the start of
         the steady window, where a response whose largest multiplier ``mu`` (of ``k T``)
         leaves ``|mu|^(window_start / (k T))`` above
-        `beltmdsm.analysis.summary.TRANSIENT_DECAYED` attracts too slowly for a run to
+        `beltmdsm.run.summary.TRANSIENT_DECAYED` attracts too slowly for a run to
         have settled on it (the rule the runs apply to their own transient); the run
         from rest rerun where no computed response explains it.
     seed_step : float

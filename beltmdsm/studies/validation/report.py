@@ -11,10 +11,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from ... import intervals
-from ...analysis.band import Band
-from ...analysis.floquet import PERTURBATION
-from ...analysis.locked import LOCK_LIMIT
-from ...analysis.summary import PEAK_PRESENT_RATIO, TRANSIENT_DECAYED
+from ...continuation.band import Band
+from ...periodic.floquet import PERTURBATION
+from ...periodic.locked import LOCK_LIMIT
+from ...run.summary import PEAK_PRESENT_RATIO, TRANSIENT_DECAYED
 from ..coexistence import DEFAULT_STEP
 from .cases import ANALYSES, DEFINITIONS, FLOQUET_DEFINITIONS, FLOQUET_TOL, UNRESOLVED
 from .comparison import Comparison, SimulatedRanges, regime_runs
@@ -92,7 +92,7 @@ def _band_text(band: Band) -> str:
     return text
 
 
-#: The kinds of a band's edges (`beltmdsm.analysis.edges.KINDS`, and ``existence`` for an
+#: The kinds of a band's edges (`beltmdsm.continuation.edges.KINDS`, and ``existence`` for an
 #: end that is not classified): their abbreviation in the Floquet table and its legend.
 EDGE_ABBREVIATIONS = {
     "neimark_sacker": ("NS", "Neimark-Sacker"),
@@ -112,7 +112,7 @@ def _edges_text(band: Band) -> str:
 
 #: The kinds at the ends of a response's stable part besides the bifurcations: the end
 #: of the range studied, a real multiplier through +1 without a turn, a continuation
-#: that stopped (`beltmdsm.analysis.branch.SpecialPoint`).
+#: that stopped (`beltmdsm.continuation.branch.SpecialPoint`).
 END_ABBREVIATIONS = {
     "range": ("end", "the end of the range"),
     "branch_point": ("BP", "branch point"),
@@ -233,7 +233,7 @@ def _coexistence_section(results: Validation) -> list[str]:
         "closest stable response attracts too slowly for the run to have reached it), *not "
         "locked* (neither the run nor a seed of the exact study next to it, of the same kind "
         "of run, locks within 12 periods, and their classification by Lyapunov exponents "
-        "and returns after any number of periods, `beltmdsm.analysis.attractor.classify`, "
+        "and returns after any number of periods, `beltmdsm.attractors.classification.classify`, "
         "names no long lock: the attractor's kind is given), or *unexplained*. A long lock "
         "that the classification finds is named kT (classified). Consecutive points "
         "with the same answers share a row; the largest deviation of a run's X1' range "
@@ -455,7 +455,7 @@ def render_markdown(results: Validation, quick: bool) -> str:
         "",
         "For the base set (Fig. 2b) and every case of Appendix A.5 (Figs. 17-21): where the "
         "periodic response of Eq. (4) is unstable (Floquet multipliers, exact; "
-        "`beltmdsm.analysis.floquet`), where runs started on it, from rest and along continued "
+        "`beltmdsm.periodic.floquet`), where runs started on it, from rest and along continued "
         "sweeps show the omega1 peak in the spectrum of X1', where two attractors coexist, "
         "and how far each analysis' unstable range lies from the Floquet band (the "
         "quantity it approximates) and from the runs from rest.",
@@ -473,7 +473,7 @@ def render_markdown(results: Validation, quick: bool) -> str:
         + (
             " The consistent MDSM assumes a harmonic fast normal force, which the "
             "clip makes non-harmonic where it cuts it: n/a there "
-            "(`beltmdsm.analysis.predict.CLIPPED_MDSM`)."
+            "(`beltmdsm.prediction.predict.CLIPPED_MDSM`)."
             if tension == "clipped"
             else ""
         ),
@@ -481,7 +481,7 @@ def render_markdown(results: Validation, quick: bool) -> str:
         f"{0.3 * res.t_end:g} s, solver `{res.settings.solver}` ({res.settings.method}, "
         f"rtol = atol = {res.rtol:g}), sampling {res.settings.dt:g} s.",
         f"* Peak criterion: omega1 peak ≥ {PEAK_PRESENT_RATIO:g} × the peak at Omega "
-        "(`beltmdsm.analysis.summary.PEAK_PRESENT_RATIO`).",
+        "(`beltmdsm.run.summary.PEAK_PRESENT_RATIO`).",
         "* Grid per case: "
         + "; ".join(
             f"{c.case.name} {_num(c.Vb[0])}–{_num(c.Vb[-1])} ({len(c.Vb)} points)" for c in cases

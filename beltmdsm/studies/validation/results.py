@@ -14,7 +14,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
-from ...analysis.band import Band
+from ...continuation.band import Band
 from ...model import Tension
 from .. import coexistence as exact_coexistence
 from .cases import ANALYSES, Case, Resolution
@@ -30,7 +30,7 @@ class CaseFloquet:
     Attributes
     ----------
     band : Band
-        `beltmdsm.analysis.band.floquet_band` in ``Vb`` over ``[lo, hi]``
+        `beltmdsm.continuation.band.floquet_band` in ``Vb`` over ``[lo, hi]``
     lo, hi : float
         the range of the band: half a grid step, and the grid's cap
         (`Resolution.vb_cap`)

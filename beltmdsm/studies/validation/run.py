@@ -1,7 +1,7 @@
 """`validate`: the Floquet bands and the sweeps of every case of Figs. 2b and 17-21.
 
 For each case of `CASES` it computes the predictions (Eqs. 22-28 and the consistent
-MDSM), the Floquet band in ``Vb`` (`beltmdsm.analysis.band.floquet_band`), the
+MDSM), the Floquet band in ``Vb`` (`beltmdsm.continuation.band.floquet_band`), the
 sweep from rest on a grid that contains every edge and closes the simulated range,
 the four other runs of `RUNS` on that grid (on an executor: a process pool, a dask
 cluster or ``"serial"``), the exact coexistence over the grid's cells
@@ -21,7 +21,7 @@ from typing import Literal
 
 import numpy as np
 
-from ...analysis.band import floquet_band
+from ...continuation.band import floquet_band
 from ...model import TENSIONS, Model, Tension
 from ..coexistence import DEFAULT_STEP, coexistence
 from ..sweep import sweep
@@ -219,7 +219,7 @@ def _validate_case(case, resolution, tension, executor, cache_dir, progress):
 
 
 def _floquet_band(model, resolution):
-    """`beltmdsm.analysis.band.floquet_band` in ``Vb`` over ``[h/2, vb_cap]`` for one case.
+    """`beltmdsm.continuation.band.floquet_band` in ``Vb`` over ``[h/2, vb_cap]`` for one case.
 
     From ``h/2``, the lower end of the lowest grid point's cell, so that an edge
     just below the lowest grid point is found, not taken for the end of the range.

@@ -2,7 +2,7 @@
 
 The paper's analyses (Sects. 4.2-4.3, Eqs. 22-28) linearise about a slow equilibrium
 that stands for the periodic response of Eq. (4); its Floquet multipliers
-(`beltmdsm.analysis.floquet`) say exactly where that response is unstable. On the grid
+(`beltmdsm.periodic.floquet`) say exactly where that response is unstable. On the grid
 of each case of Figs. 2b and 17-21:
 
 * `floquet_verdicts`: the verdict at each grid point (`PointVerdict`);
@@ -29,13 +29,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ... import intervals
-from ...analysis.band import Band
-from ...analysis.floquet import NoPeriodicResponse, floquet
-from ...analysis.summary import TRANSIENT_DECAYED
+from ...continuation.band import Band
 from ...model import Model, as_model
+from ...periodic.floquet import NoPeriodicResponse, floquet
+from ...run.summary import TRANSIENT_DECAYED
 
 #: The Floquet verdict on the periodic response at a grid point: `Floquet.verdict`
-#: (`beltmdsm.analysis.floquet`), or "absent" where no periodic response is found.
+#: (`beltmdsm.periodic.floquet`), or "absent" where no periodic response is found.
 Verdict = Literal["stable", "unstable", "grazing", "absent"]
 
 
@@ -65,7 +65,7 @@ def floquet_verdicts(
     """The Floquet verdict on the periodic response at each grid point.
 
     Each point is computed as the run started on the periodic response finds it
-    (`beltmdsm.analysis.floquet.periodic_response` without a guess), so the verdict
+    (`beltmdsm.periodic.floquet.periodic_response` without a guess), so the verdict
     belongs to the orbit that run starts on.
 
     Parameters
@@ -120,7 +120,7 @@ class Run:
     resolved : list of bool
         the run can tell the peak (``resolved``)
     regime : list of str
-        the regime of each point (`beltmdsm.analysis.summary.REGIMES`)
+        the regime of each point (`beltmdsm.run.summary.REGIMES`)
     peak_ratio : list of float
         the omega1 peak over the peak at Omega
     ranges : list of (float, float)
@@ -285,7 +285,7 @@ def coexistence(
     sweep (up or down) under the same law shows the omega1 peak (resolved), while
     the periodic response attracts fast enough that a run converging to it would have
     settled by the steady window: ``exp(growth_rate * window_start)`` at most
-    `beltmdsm.analysis.summary.TRANSIENT_DECAYED`, the rule the runs apply to the free
+    `beltmdsm.run.summary.TRANSIENT_DECAYED`, the rule the runs apply to the free
     transient. Near a Floquet edge the response attracts too slowly for a run to
     tell a second attractor from a slow approach; those points are listed as
     ``unsettled``.
@@ -337,7 +337,7 @@ def band_grid_disagreements(
 ) -> list[float]:
     """Grid points whose own Floquet verdict contradicts the band, away from its edges.
 
-    The band (`beltmdsm.analysis.band.floquet_band`) is found on its own, coarser
+    The band (`beltmdsm.continuation.band.floquet_band`) is found on its own, coarser
     grid and refined at each change; a point more than one grid step from every edge
     whose verdict differs (unstable or absent inside the band, stable outside) means
     the band missed a change. Grazing points have no verdict and are skipped.

@@ -133,7 +133,7 @@ def test_sweep_continue_runs_serially_and_says_so(capsys):
 
 
 def test_floquet_json_keys_and_verdict_match_the_api(capsys):
-    from beltmdsm.analysis.floquet import floquet
+    from beltmdsm.periodic.floquet import floquet
 
     assert main(["floquet", "--Vb", "5", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -174,7 +174,8 @@ def test_floquet_band_text_and_json_agree(capsys):
     assert 3 < lo < 5 < hi < 7
     assert f"[{lo:.4f}, {hi:.4f}]" in text
     kinds = {e["kind"]: e["old_kind"] for e in band["edges"]}
-    # the bifurcation, and the kind of before for one release (beltmdsm.analysis.edges.OLD_KINDS)
+    # the bifurcation, and the kind of before for one release
+    # (beltmdsm.continuation.edges.OLD_KINDS)
     assert kinds == {"neimark_sacker": "multiplier", "tangency": "existence", "grazing": "grazing"}
     assert all(f"({kind}" in text for kind in kinds)
     # the Neimark-Sacker edge with the frequency of its critical pair

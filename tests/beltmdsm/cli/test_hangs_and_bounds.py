@@ -272,7 +272,7 @@ _MEASURED = (
 
 
 def test_stribeck_with_a_small_velocity_scale_stays_bounded():
-    from beltmdsm.analysis.floquet import floquet
+    from beltmdsm.periodic.floquet import floquet
 
     # the report: 102 s and 7.1 GB (floquet); simulate's summary calls floquet (peak
     # memory of the run alone, `_MEASURED`)
@@ -406,7 +406,7 @@ def _band(*argv):
 
 
 def test_floquet_band_edges_where_the_secant_had_no_slope():
-    from beltmdsm.analysis.floquet import floquet
+    from beltmdsm.periodic.floquet import floquet
 
     band = _band("--param", "Vb", "--from", "0.5", "--to", "12", "--beta1", "1.5")
     doubling = [e for e in band["edges"] if e["kind"] == "period_doubling"]

@@ -4,8 +4,8 @@ import json
 
 import pytest
 
-from beltmdsm.analysis.locked import LOCK_LIMIT
 from beltmdsm.cli import flags, main
+from beltmdsm.periodic.locked import LOCK_LIMIT
 
 
 def test_floquet_of_four_periods_keeps_the_keys_of_floquet(capsys):

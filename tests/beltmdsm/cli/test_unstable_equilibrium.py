@@ -130,7 +130,7 @@ def test_predict_without_excitation_finds_the_critical_speed_of_the_closed_form(
 def test_predict_finds_the_unforced_edges_numerically_where_the_closed_form_is_refused(
     monkeypatch,
 ):
-    from beltmdsm.analysis import predict
+    from beltmdsm.prediction import predict
     from generated import unforced
 
     model = Model(friction="stribeck", alpha=0.0)

@@ -32,7 +32,7 @@ def _run(*argv, timeout=240):
 
 def _band_amplitude(v, dt, band):
     """The largest Hann-windowed amplitude of ``v`` in ``band`` on a fine frequency grid:
-    a transform written here, apart from beltmdsm.analysis.spectra."""
+    a transform written here, apart from beltmdsm.run.spectra."""
     n = v.size
     w = 0.5 - 0.5 * np.cos(2 * np.pi * np.arange(n) / (n - 1))
     x = (v - v.mean()) * w
@@ -111,9 +111,9 @@ def _end_accuracy(band_edges, value, lo, hi):
 
 
 def test_floquet_band_default_grid_agrees_with_a_fine_grid_and_with_floquet():
-    from beltmdsm.analysis.band import floquet_band
-    from beltmdsm.analysis.edges import KINDS
-    from beltmdsm.analysis.floquet import NoPeriodicResponse, floquet
+    from beltmdsm.continuation.band import floquet_band
+    from beltmdsm.continuation.edges import KINDS
+    from beltmdsm.periodic.floquet import NoPeriodicResponse, floquet
 
     argv = ["floquet-band", "--param", "Vb", "--from", "0", "--to", "40", "--omega1", "12"]
     r = _run(*argv, "--no-progress", "--json")
@@ -164,7 +164,7 @@ def test_a_tol_above_the_grid_step_is_refused_by_name(argv):
 def test_merging_that_removes_a_range_says_so():
     import re
 
-    from beltmdsm.analysis.band import floquet_band
+    from beltmdsm.continuation.band import floquet_band
 
     argv = ["floquet-band", "--param", "Vb", "--omega1", "3", "--from", "10", "--to", "15"]
     r = _run(*argv, "--tol", "0.3", "--no-progress")
@@ -193,7 +193,7 @@ def test_coexistence_refuses_a_step_that_leaves_no_seed_inside():
 
 
 def test_predict_with_a_coarse_vb_max_keeps_the_band_and_says_what_it_cannot_resolve():
-    from beltmdsm.analysis.predict import unstable_intervals
+    from beltmdsm.prediction.predict import unstable_intervals
 
     r = _run("predict", "--vb-max", "3000", "--no-progress", "--json")
     assert r.returncode == 0, r.stderr

@@ -12,9 +12,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from beltmdsm.analysis.floquet import floquet
-from beltmdsm.analysis.periodmap import period_map
 from beltmdsm.model import Model
+from beltmdsm.periodic.floquet import floquet
+from beltmdsm.periodic.periodmap import period_map
 
 ROOT = Path(__file__).resolve().parents[3]
 ENV = {**os.environ, "PYTHONPATH": str(ROOT)}

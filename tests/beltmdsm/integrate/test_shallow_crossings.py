@@ -2,7 +2,7 @@
 
 Reference: the backward-sliding orbit of the base set does not depend on ``Vb`` (the
 friction is ``mu_s Fn`` whatever the slip), so its largest velocity in contact ``g``
-(`beltmdsm.analysis.floquet.largest_sliding_velocity`, found by a bounded scalar
+(`beltmdsm.periodic.floquet.largest_sliding_velocity`, found by a bounded scalar
 minimisation on the closed form) is the belt speed at which it grazes. Started on
 that orbit at ``Vb = g - delta``, a run must reverse its slip within one excitation
 period, however small ``delta``: the relative velocity dips below zero for a time of
@@ -16,9 +16,9 @@ method found the sliding response 2.9e-7 m/s below its grazing point, and
 import numpy as np
 import pytest
 
-from beltmdsm.analysis import floquet as F
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.integrate.superposition import integrate_superposed
+from beltmdsm.periodic import floquet as F
 from beltmdsm.settings import SolverSettings
 
 INTEGRATORS = {"events": integrate_events, "superposition": integrate_superposed}

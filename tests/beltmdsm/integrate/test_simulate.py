@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from beltmdsm.analysis.summary import REGIMES
 from beltmdsm.integrate.switching import Mode
+from beltmdsm.run.summary import REGIMES
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
 from generated import dynamics

@@ -178,19 +178,19 @@ def test_the_code_hash_covers_what_a_row_imports_and_not_the_rest():
         "beltmdsm/simulation.py",
         "beltmdsm/integrate/superposition.py",
         "beltmdsm/integrate/_dop853.py",
-        "beltmdsm/analysis/summary.py",
+        "beltmdsm/run/summary.py",
         "beltmdsm/studies/row.py",
         # issue 28: they decide a row's `resolved` and its periodic start, and a hand
         # list had left them out
-        "beltmdsm/analysis/periodmap.py",
-        "beltmdsm/analysis/variational.py",
-        "beltmdsm/analysis/locked.py",
+        "beltmdsm/periodic/periodmap.py",
+        "beltmdsm/periodic/variational.py",
+        "beltmdsm/periodic/locked.py",
     } <= names
     # the command line, the reports and the sweep's own orchestration change no number
     for path in names:
         assert not path.startswith(("beltmdsm/cli/", "beltmdsm/studies/validation")), path
     assert "beltmdsm/studies/sweep.py" not in names
-    assert "beltmdsm/analysis/band.py" not in names
+    assert "beltmdsm/continuation/band.py" not in names
     assert len(cache_module.code_hash()) == 64
 
 
@@ -226,9 +226,9 @@ def test_changing_any_imported_source_changes_the_code_hash(tmp_path, monkeypatc
         assert cache_module.code_hash() == before
         # a module a row starts to import (here by a lazy import inside a function)
         # joins the hash; the hash then follows its edits
-        band = root / "beltmdsm/analysis/band.py"
+        band = root / "beltmdsm/continuation/band.py"
         row = root / "beltmdsm/studies/row.py"
-        row.write_text(row.read_text() + "\n\ndef _later():\n    from ..analysis import band\n")
+        row.write_text(row.read_text() + "\n\ndef _later():\n    from ..continuation import band\n")
         assert band in cache_module.code_files()
         cache_module.code_hash.cache_clear()
         with_band = cache_module.code_hash()
@@ -244,7 +244,7 @@ def test_a_changed_period_map_serves_no_stale_row(tmp_path, monkeypatch):
     # issue 28: sweep("Vb", [3, 5], start="periodic", cache_dir=D), then NEWTON_TOL =
     # 1e-300 in periodmap.py: the rerun served 2 cached sliding rows where the new code
     # finds no periodic response
-    from beltmdsm.analysis import periodmap
+    from beltmdsm.periodic import periodmap
 
     settings = SolverSettings(t_end=20.0)
 
@@ -263,7 +263,7 @@ def test_a_changed_period_map_serves_no_stale_row(tmp_path, monkeypatch):
     assert list(first.table["status"]) == ["done", "done"]
     # the edit, on disk (a copy of the tree) and in the running code
     root = _copy_tree(tmp_path)
-    source = root / "beltmdsm/analysis/periodmap.py"
+    source = root / "beltmdsm/periodic/periodmap.py"
     text = source.read_text()
     assert "\nNEWTON_TOL = 1e-11\n" in text
     source.write_text(text.replace("\nNEWTON_TOL = 1e-11\n", "\nNEWTON_TOL = 1e-300\n"))

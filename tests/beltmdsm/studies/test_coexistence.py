@@ -2,14 +2,14 @@
 
 References: runs of `beltmdsm.simulation.simulate` started on each coexisting response
 (a stable response keeps a run started on it), and the Floquet band
-(`beltmdsm.analysis.band`), found by another method, for the T-periodic response's edges.
+(`beltmdsm.continuation.band`), found by another method, for the T-periodic response's edges.
 """
 
 import numpy as np
 import pytest
 
-from beltmdsm.analysis.band import floquet_band
-from beltmdsm.analysis.floquet import floquet
+from beltmdsm.continuation.band import floquet_band
+from beltmdsm.periodic.floquet import floquet
 from beltmdsm.simulation import simulate
 from beltmdsm.studies.coexistence import coexistence
 

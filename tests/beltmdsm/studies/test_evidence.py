@@ -256,7 +256,7 @@ def _forced_line_in_band(p, band):
 )
 def test_clipped_motions_converge_in_every_figure_case(name, overrides, contact):
     """Fig. 2b and Figs. 14-21 with tension clipped, Vb from 1 to 16 m/s (400 s runs)."""
-    from beltmdsm.analysis.summary import PEAK_PRESENT_RATIO, omega1_band
+    from beltmdsm.run.summary import PEAK_PRESENT_RATIO, omega1_band
 
     for Vb in np.arange(1.0, 16.1, 1.5):
         run = S.difference_runs(

@@ -21,10 +21,10 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from beltmdsm.analysis.floquet import periodic_response
-from beltmdsm.analysis.summary import free_decay_rate
 from beltmdsm.intervals import runs
 from beltmdsm.model import excitation_period
+from beltmdsm.periodic.floquet import periodic_response
+from beltmdsm.run.summary import free_decay_rate
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
 from beltmdsm.studies.law_comparison import (

@@ -8,9 +8,9 @@ same orbit).
 
 import pytest
 
-from beltmdsm.analysis.floquet import periodic_response
-from beltmdsm.analysis.locked import same_phases
 from beltmdsm.model import Model
+from beltmdsm.periodic.floquet import periodic_response
+from beltmdsm.periodic.locked import same_phases
 from beltmdsm.studies import responses as R
 
 

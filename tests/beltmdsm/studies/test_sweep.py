@@ -6,8 +6,8 @@ import json
 import numpy as np
 import pytest
 
-from beltmdsm.analysis.summary import PEAK_PRESENT_RATIO
 from beltmdsm.model import Model
+from beltmdsm.run.summary import PEAK_PRESENT_RATIO
 from beltmdsm.settings import SolverSettings
 from beltmdsm.studies import row as row_module
 from beltmdsm.studies import sweep as sweep_module
@@ -356,11 +356,11 @@ def test_continuation_refuses_what_it_cannot_do():
 
 
 def test_a_sweep_started_on_the_periodic_response(tmp_path):
-    from beltmdsm.analysis.floquet import floquet
+    from beltmdsm.periodic.floquet import floquet
 
     settings = SolverSettings(t_end=300.0)
     kw = dict(settings=settings, executor="serial", progress=False)
-    # 3: stable, 5: unstable (Floquet); 6.3: no periodic response (analysis/floquet.py)
+    # 3: stable, 5: unstable (Floquet); 6.3: no periodic response (periodic/floquet.py)
     table = sweep("Vb", [3.0, 5.0, 6.3], start="periodic", cache_dir=tmp_path, **kw).table
     assert floquet(Vb=3.0).stable is True and floquet(Vb=5.0).stable is False
     assert list(table["omega1_peak_present"]) == [False, True, False]

@@ -1,0 +1,357 @@
+"""What a run settles on, named: equilibrium, periodic, quasi-periodic or chaotic.
+
+`classify` runs the model from a state, measures the Lyapunov spectrum of the run
+(`beltmdsm.attractors.lyapunov`, through the switches) and reads the attractor's kind
+from the spectrum and the stroboscopic samples (the state at the excitation's phase 0,
+one per excitation period):
+
+* ``periodic``: the last samples repeat after ``k`` periods to `RETURN_TOL` (searched up
+  to a third of the samples, far beyond the 12 of `beltmdsm.periodic.locked.LOCK_LIMIT`),
+  and Newton's method on the ``k``-fold period map from the last sample converges
+  (`beltmdsm.periodic.floquet.periodic_response`): ``periods`` is ``k``, minimal. Its
+  rotation number about the samples' centre is then a fraction ``p / k``.
+* ``quasi_periodic``: no return, the samples on a closed curve (an invariant circle of
+  the stroboscopic map, a torus of the flow: `beltmdsm.periodic.locked.NotLocked`) and
+  the largest exponent zero within its error, that error below `ZERO_FLOOR` (the slow
+  contraction towards a long lock, -0.015 1/s at the base set's 59T lock, must be told
+  from zero; a short run cannot): the motion along the curve neither
+  grows nor decays. Its rotation number is a weighted Birkhoff average of the angle
+  turned per period (Das, Sander and Yorke 2016: the weights ``exp(-1/(t (1 - t)))``
+  make it converge faster than any power of the samples on a smooth circle), its
+  accuracy the difference between the averages over all samples and over the first
+  half. The second exponent says whether the curve attracts.
+* ``chaotic``: the largest exponent positive beyond `SIGNIFICANCE` times its error and
+  beyond `ZERO_FLOOR`.
+* ``equilibrium``: without excitation, the samples standing still and every exponent
+  negative (steady sliding).
+* ``unclassified``: none of these holds; the evidence says which test failed (a
+  negative exponent without a return: a lock longer than the run can show; a zero
+  exponent off a closed curve).
+
+Without excitation the samples are taken every base period
+(`beltmdsm.attractors.lyapunov.chunk_length`) and there is no phase: a self-excited cycle
+has a zero largest exponent (the direction along the flow) and is ``periodic`` where it
+is found as a cycle (``periods`` 1).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..model import Backend, Model, as_model, excitation_period
+from ..periodic.floquet import periodic_response
+from ..periodic.locked import NotLocked, stroboscope
+from ..periodic.periodmap import NoPeriodicResponse
+from .lyapunov import lyapunov
+
+__all__ = [
+    "Attractor",
+    "KINDS",
+    "classify",
+    "rotation_number",
+    "RETURN_TOL",
+    "SIGNIFICANCE",
+    "ZERO_FLOOR",
+    "ZERO_TOL",
+]
+
+#: The kinds of attractor, in the order of the module docstring.
+KINDS = ("periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified")
+#: A return after ``k`` periods closer than this (relative to the state's scale) is a
+#: candidate period; Newton's method on the ``k``-fold map decides.
+RETURN_TOL = 1e-6
+#: Candidate periods tried by Newton's method before the exponents decide.
+_CANDIDATES = 3
+#: An exponent is nonzero where it is more than this many errors from zero.
+SIGNIFICANCE = 3.0
+#: The largest error with which a zero exponent names a torus, and the least positive
+#: exponent called chaos [1/s]: the long locks found here contract at 0.003-0.05 1/s
+#: (omega1 = 0.3, Vb = 9.25: -0.0029 +- 0.002 over 6000 s, no return in 884 periods,
+#: its neighbours 93T and 40T locks), and a run that cannot tell that from zero says so.
+ZERO_FLOOR = 1e-3
+#: Added to ``SIGNIFICANCE`` errors where an exponent is judged zero [1/s]: a torus's
+#: exponent converges like 1/t, which the block spread does not see.
+ZERO_TOL = 5e-4
+
+
+@dataclass
+class Attractor:
+    """An attractor, its kind and the evidence.
+
+    Attributes
+    ----------
+    kind : {"periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified"}
+    periods : int or None
+        Excitation periods of a periodic attractor (minimal).
+    rotation_number : float or None
+        Mean turn per period about the samples' centre [turns]; ``p / k`` where periodic.
+    rotation_accuracy : float or None
+        Its accuracy (quasi-periodic: module docstring; periodic: exact, 0).
+    lyapunov : float
+        The largest Lyapunov exponent [1/s].
+    lyapunov_error : float
+    exponents : ndarray (4,)
+        The spectrum, largest first (``-inf`` for a direction stick removes).
+    evidence : str
+        Why this kind, in one sentence.
+    state : ndarray (4,)
+        A state on the attractor at phase 0 (the fixed point where periodic).
+    points : ndarray (n, 4)
+        Its stroboscopic samples.
+    """
+
+    kind: Literal["periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified"]
+    periods: int | None
+    rotation_number: float | None
+    rotation_accuracy: float | None
+    lyapunov: float
+    lyapunov_error: float
+    exponents: NDArray[np.float64] = field(repr=False)
+    evidence: str = field(repr=False)
+    state: NDArray[np.float64] = field(repr=False)
+    points: NDArray[np.float64] = field(repr=False)
+
+    def __repr__(self) -> str:
+        what = self.kind + (f" ({self.periods}T)" if self.periods else "")
+        rot = "" if self.rotation_number is None else f", rotation {self.rotation_number:+.6f}"
+        return (
+            f"Attractor({what}, largest exponent {self.lyapunov:+.3g} +- "
+            f"{self.lyapunov_error:.1g} 1/s{rot})"
+        )
+
+    def as_dict(self) -> dict:
+        """JSON-ready: kind, periods, rotation number, exponents and the evidence."""
+        return {
+            "kind": self.kind,
+            "periods": self.periods,
+            "rotation_number": self.rotation_number,
+            "rotation_accuracy": self.rotation_accuracy,
+            "lyapunov": self.lyapunov,
+            "lyapunov_error": self.lyapunov_error,
+            "exponents": [float(x) for x in self.exponents],
+            "evidence": self.evidence,
+            "state": [float(x) for x in self.state],
+        }
+
+
+def _angles(samples):
+    """The angle of each sample about the samples' centre in ``(X1, X1')``, scaled."""
+    y = samples[:, :2]
+    w = (y - y.mean(axis=0)) / np.where(y.std(axis=0) > 0, y.std(axis=0), 1.0)
+    return np.arctan2(w[:, 1], w[:, 0])
+
+
+def rotation_number(samples: ArrayLike) -> tuple[float, float]:
+    """The rotation number of stroboscopic samples [turns per period] and its accuracy.
+
+    The weighted Birkhoff average of the angle turned per period about the samples'
+    centre (module docstring), and its difference from the same average over the first
+    half of the samples.
+
+    Raises
+    ------
+    ValueError
+        For fewer than 64 samples (below that the two averages are not yet in their
+        fast convergence, and their difference understates the error:
+        benchmarks/bench_lyapunov.py).
+    """
+    y = np.asarray(samples, dtype=float)
+    if y.ndim != 2 or y.shape[0] < 64:
+        raise ValueError(f"samples must be (n, 2+) with n >= 64; got {y.shape}")
+    turn = np.angle(np.exp(1j * np.diff(_angles(y)))) / (2 * np.pi)
+
+    def average(x):
+        t = (np.arange(x.size) + 0.5) / x.size
+        w = np.exp(-1.0 / (t * (1.0 - t)))
+        return float(np.sum(w * x) / np.sum(w))
+
+    full, half = average(turn), average(turn[: turn.size // 2])
+    return full, abs(full - half)
+
+
+def _returns(samples, tol):
+    """The ``k`` (increasing, up to a third of the samples) after which the last two
+    samples repeat to ``tol``: the candidate periods."""
+    y = samples
+    scale = 1.0 + float(np.max(np.abs(y)))
+    n = y.shape[0]
+    return [
+        k
+        for k in range(1, n // 3 + 1)
+        if float(np.max(np.abs(y[n - 2 :] - y[n - 2 - k : n - k]))) <= tol * scale
+    ]
+
+
+def classify(
+    model: Model | None = None,
+    *,
+    y0: ArrayLike | None = None,
+    t_end: float = 2000.0,
+    t_transient: float | None = None,
+    backend: Backend | None = None,
+    **params: float | str,
+) -> Attractor:
+    """The attractor the run from ``y0`` settles on, named (module docstring).
+
+    Parameters
+    ----------
+    model : Model, optional
+        Or the keywords it is built from.
+    y0 : array_like (4,), optional
+        The start; default the unforced equilibrium at rest.
+    t_end, t_transient : float
+        The run and the part of it before the spectrum and the samples are taken (as
+        `beltmdsm.attractors.lyapunov.lyapunov`, whose checks apply).
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    Attractor
+
+    See Also
+    --------
+    beltmdsm.attractors.lyapunov.lyapunov : the spectrum.
+    beltmdsm.periodic.locked.NotLocked : the closed-curve test.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> classify(Model(Vb=9.0), t_end=300.0).kind
+    'periodic'
+    """
+    model = as_model(model, **params)
+    spec = lyapunov(model, y0=y0, t_end=t_end, t_transient=t_transient, backend=backend)
+    try:
+        excitation_period(model)
+    except ValueError:
+        return _unforced(model, spec)
+    return _forced(model, spec, backend)
+
+
+def _attractor(kind, spec, evidence, periods=None, rotation=None, accuracy=None, state=None):
+    return Attractor(
+        kind,
+        periods,
+        rotation,
+        accuracy,
+        spec.largest,
+        float(spec.error[0]),
+        spec.exponents,
+        evidence,
+        spec.state if state is None else np.asarray(state, dtype=float),
+        spec.samples,
+    )
+
+
+def _forced(model, spec, backend):
+    lam, err = spec.largest, float(spec.error[0])
+    bound = SIGNIFICANCE * err + ZERO_TOL
+    tried = []
+    for k in _returns(spec.samples, RETURN_TOL)[:_CANDIDATES]:
+        try:
+            resp = periodic_response(
+                model, periods=k, guess=spec.samples[-1], forward=0, backend=backend
+            )
+        except NoPeriodicResponse:
+            tried.append(str(k))
+            continue
+        turns = np.angle(np.exp(1j * np.diff(_angles(spec.samples[-(k + 1) :]))))
+        p = int(round(float(np.sum(turns)) / (2 * np.pi)))
+        return _attractor(
+            "periodic",
+            spec,
+            f"the samples return after {k} excitation periods and Newton's method on the "
+            f"{k}-fold period map converges from them (residual {resp.residual:.1e})",
+            periods=k,
+            rotation=p / k,
+            accuracy=0.0,
+            state=resp.state0,
+        )
+    note = (
+        f"; the close returns after {', '.join(tried)} periods are no periodic response "
+        "(Newton's method does not converge from them)"
+        if tried
+        else ""
+    )
+    if lam > max(bound, ZERO_FLOOR):
+        return _attractor(
+            "chaotic",
+            spec,
+            f"the largest Lyapunov exponent {lam:+.4g} 1/s is positive beyond "
+            f"{SIGNIFICANCE:g} times its error {err:.1g} and {ZERO_FLOOR:g} 1/s" + note,
+        )
+    notlocked = NotLocked.of(stroboscope(spec.samples, "run", limit=1))
+    precise = err <= ZERO_FLOOR
+    if abs(lam) <= bound and precise and notlocked.closed_curve:
+        rot, acc = rotation_number(spec.samples)
+        attracts = "attracts" if spec.exponents[1] < 0 else "does not attract"
+        return _attractor(
+            "quasi_periodic",
+            spec,
+            f"no return within {spec.samples.shape[0] // 3} periods, the samples on a "
+            f"closed curve (correlation dimension {notlocked.dimension:.2f}), the largest "
+            f"exponent {lam:+.2g} 1/s zero within {bound:.1g}; the curve {attracts} "
+            f"(second exponent {spec.exponents[1]:+.3g} 1/s)" + note,
+            rotation=rot,
+            accuracy=acc,
+        )
+    if lam < -bound:
+        why = (
+            f"the largest exponent {lam:+.3g} 1/s is negative (a periodic attractor) but "
+            f"the samples do not return within {spec.samples.shape[0] // 3} periods to "
+            f"{RETURN_TOL:g}: a lock longer than the run shows, or a transient; run longer"
+        )
+    elif not precise:
+        why = (
+            f"the largest exponent {lam:+.3g} +- {err:.1g} 1/s: its error is above "
+            f"{ZERO_FLOOR:g} 1/s, too large to tell a torus (zero) from a slow contraction "
+            f"to a lock longer than the run shows; run longer"
+        )
+    else:
+        why = (
+            f"the largest exponent {lam:+.2g} 1/s is zero within {bound:.1g} but the "
+            f"samples do not lie on one closed curve (correlation dimension "
+            f"{notlocked.dimension:.2f})"
+        )
+    return _attractor("unclassified", spec, why + note)
+
+
+def _unforced(model, spec):
+    lam, err = spec.largest, float(spec.error[0])
+    bound = SIGNIFICANCE * err + ZERO_TOL
+    y = spec.samples
+    scale = 1.0 + float(np.max(np.abs(y)))
+    still = float(np.max(np.ptp(y, axis=0))) <= RETURN_TOL * scale
+    if still and lam < -bound:
+        return _attractor(
+            "equilibrium",
+            spec,
+            f"the state stands still (to {RETURN_TOL:g}) and every exponent is negative "
+            f"(largest {lam:+.3g} 1/s): steady sliding, stable",
+        )
+    if lam > max(bound, ZERO_FLOOR):
+        return _attractor(
+            "chaotic",
+            spec,
+            f"the largest Lyapunov exponent {lam:+.4g} 1/s is positive beyond "
+            f"{SIGNIFICANCE:g} times its error {err:.1g} and {ZERO_FLOOR:g} 1/s",
+        )
+    if abs(lam) <= bound and not still and spec.exponents[1] < -bound:
+        return _attractor(
+            "periodic",
+            spec,
+            f"a self-excited cycle: the largest exponent {lam:+.2g} 1/s is zero within "
+            f"{bound:.1g} (the direction along the flow) and the next "
+            f"{spec.exponents[1]:+.3g} 1/s negative",
+            periods=1,
+        )
+    return _attractor(
+        "unclassified",
+        spec,
+        f"without excitation: largest exponent {lam:+.3g} 1/s, next "
+        f"{spec.exponents[1]:+.3g} 1/s, the state {'still' if still else 'moving'}",
+    )

@@ -1,0 +1,328 @@
+"""Lyapunov exponents of the hybrid flow of Eq. (4): Benettin's method through the switches.
+
+The tangent dynamics of a run is the one the Floquet engine already carries
+(`beltmdsm.periodic.variational`): between switches the variational equation of the
+mode's field (the generated Jacobian, integrated with the run's own DOP853 steps),
+across every switch (stick, slip, reversal, contact loss) a jump by the saltation
+matrix. Integrating the variational equations across an event without that jump
+gives wrong exponents (the known failure of event callbacks in tangent-space
+methods). Here the run is cut into chunks of length ``tau`` (one excitation period,
+or without excitation the slowest oscillation's of steady sliding, cut so that no
+direction underflows:
+`chunk_length`); the monodromy ``M_k`` of each chunk acts on an
+orthonormal frame ``Q``, re-orthonormalised by ``M_k Q = Q' R`` (QR), and the exponents
+are the running means of ``log |R_ii|`` over the time averaged (Benettin et al. 1980).
+
+On a periodic orbit of period ``k T`` the exponents are ``ln |mu_i| / (k T)`` of its
+Floquet multipliers; on steady sliding they are the real parts of the unforced
+eigenvalues (tests/beltmdsm/attractors/test_lyapunov.py checks both, a two-trajectory
+separation estimate and the sum of the exponents against the mean divergence of the
+field plus the switches' ``ln |det S|``).
+
+**Stick removes a direction.** The saltation matrix into stick maps every velocity
+perturbation to the belt's (``X1' = Vb`` whatever the perturbation): the chunk's
+monodromy loses rank and one exponent is ``-inf`` (a Floquet multiplier 0). It is
+reported as ``-inf`` (``None`` in JSON) with ``collapsed`` counting such directions,
+never as the large negative number rounding would give.
+
+**Error.** ``error`` is the largest of the standard error of the exponents over
+`BLOCKS` blocks of the averaging window, the drift of the running mean (the mean over
+the whole window against the mean over its second half) and ``rtol / tau``: the first
+bounds the fluctuation, the second the transient left in the start, the third the
+runs' tolerance, which no average removes (benchmarks/bench_lyapunov.py: errors of
+6e-12 1/s on the stick orbit where the spread says 1e-14).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from generated import unforced
+
+from ..arguments import state
+from ..errors import StepTooSmall
+from ..integrate.events import integrate_events
+from ..integrate.switching import Mode
+from ..model import Backend, Model, as_model, excitation_period, initial_state
+from ..periodic import variational
+from ..settings import SolverSettings, fastest_rate
+
+__all__ = ["Lyapunov", "lyapunov", "chunk_length", "BLOCKS", "COLLAPSE", "RTOL", "SPREAD", "STEP"]
+
+#: Blocks of the averaging window whose spread estimates the error.
+BLOCKS = 8
+#: A diagonal entry of R below this fraction of the largest, in a chunk that enters
+#: stick, is the direction that stick removed (rounding leaves about 1e-16 there).
+COLLAPSE = 1e-10
+#: The most ``tau`` times the fastest rate of the model (`chunk_length`).
+SPREAD = 8.0
+#: The longest step times the fastest rate: the step control sees the state only, and
+#: at an equilibrium it would take steps on which the variational equation's order-8
+#: step errs by ``(h |lambda|)^9 / 9!``, 1e-11 at 0.25.
+STEP = 0.25
+#: Tolerance of the runs (the monodromy carries about this relative accuracy).
+RTOL = 1e-10
+#: Chunks with the frame turning but nothing averaged, by default: the frame aligns
+#: with the Lyapunov vectors at the rate of the gaps between the exponents.
+_ALIGN = 20
+
+
+@dataclass
+class Lyapunov:
+    """The Lyapunov spectrum of a run of Eq. (4).
+
+    Attributes
+    ----------
+    model : Model
+    exponents : ndarray (4,)
+        Largest first [1/s]; ``-inf`` for a direction that stick removes.
+    error : ndarray (4,)
+        Error estimate of each exponent (module docstring); 0 for ``-inf``.
+    t_transient : float
+        Time run before the frame starts turning [s].
+    t_average : float
+        Length of the averaging window [s].
+    tau : float
+        Chunk length between re-orthonormalisations [s] (`chunk_length`).
+    collapsed : int
+        Directions removed by stick (exponent ``-inf``).
+    switches : int
+        Switches passed in the averaging window.
+    running : ndarray (n, 4)
+        The running means at the end of each chunk of the window.
+    state : ndarray (4,)
+        The state where the run ended.
+    samples : ndarray (n, 4)
+        The state at the end of each base period of the window (`chunk_length`): with
+        excitation, the stroboscopic samples at phase 0 (`beltmdsm.attractors.classification`
+        reads the attractor's kind from them).
+    """
+
+    model: Model = field(repr=False)
+    exponents: NDArray[np.float64]
+    error: NDArray[np.float64]
+    t_transient: float
+    t_average: float
+    tau: float
+    collapsed: int
+    switches: int
+    running: NDArray[np.float64] = field(repr=False)
+    state: NDArray[np.float64] = field(repr=False)
+    samples: NDArray[np.float64] = field(repr=False)
+
+    @property
+    def largest(self) -> float:
+        """The largest exponent [1/s]."""
+        return float(self.exponents[0])
+
+    def __repr__(self) -> str:
+        parts = ", ".join(
+            "-inf" if not np.isfinite(x) else f"{x:+.4g}+-{e:.1g}"
+            for x, e in zip(self.exponents, self.error)
+        )
+        return (
+            f"Lyapunov([{parts}] 1/s over {self.t_average:g} s, "
+            f"{self.switches} switches, {self.collapsed} collapsed)"
+        )
+
+    def as_dict(self) -> dict:
+        """The spectrum as JSON-ready numbers (``-inf`` stays a float: callers map it)."""
+        return {
+            "exponents": [float(x) for x in self.exponents],
+            "error": [float(x) for x in self.error],
+            "largest": self.largest,
+            "t_transient": self.t_transient,
+            "t_average": self.t_average,
+            "tau": self.tau,
+            "collapsed": self.collapsed,
+            "switches": self.switches,
+        }
+
+
+def chunk_length(model: Model) -> tuple[float, int]:
+    """The base period and the number ``n`` of chunks it is cut into: ``tau = base / n``.
+
+    The base period is one excitation period, or without excitation the period of the
+    slowest oscillation of steady sliding (`generated.unforced.eigenvalues`)
+    (the averages are taken over whole base periods, so that the phase of the forcing
+    does not enter their spread). ``n`` is the least integer that keeps ``tau`` times
+    the fastest rate (`beltmdsm.settings.fastest_rate`) within `SPREAD`: within one
+    chunk the frame's directions separate by at most ``exp(2 SPREAD)`` (the exponents
+    lie within the fastest rate of zero), so the smallest ``R_ii`` keeps about
+    ``16 - 2 SPREAD / ln 10`` digits, 9 at `SPREAD` = 8.
+    """
+    try:
+        base = excitation_period(model)
+    except ValueError:
+        # without excitation: the period of the slowest oscillation of steady sliding
+        lam = np.asarray(unforced.eigenvalues(**model.arguments(unforced.eigenvalues)))
+        w = np.abs(lam.imag)[np.abs(lam.imag) > 0]
+        base = 2 * math.pi / (float(w.min()) if w.size else fastest_rate(model))
+    return base, max(1, math.ceil(base * fastest_rate(model) / SPREAD))
+
+
+def _chunk(model, settings, y, t0, max_step, backend):
+    """One chunk from ``t0`` to ``settings.t_end``: ``(end state, monodromy, switches)``."""
+    run = integrate_events(model, settings, y0=y, t0=t0, max_step=max_step)
+    if run.status != "done":
+        raise StepTooSmall(
+            f"lyapunov: the run stopped at t = {run.trajectory.t_end:.6g} s: {run.message}",
+            settings.rtol,
+            settings.atol,
+        )
+    m = variational.monodromy(run, backend)
+    end = run.trajectory.state(np.array([run.trajectory.t_end]))[:, 0]
+    return end, m.matrix, m.switches
+
+
+def lyapunov(
+    model: Model | None = None,
+    *,
+    y0: ArrayLike | None = None,
+    t_end: float = 1000.0,
+    t_transient: float | None = None,
+    rtol: float = RTOL,
+    backend: Backend | None = None,
+    **params: float | str,
+) -> Lyapunov:
+    """The Lyapunov spectrum of the run from ``y0`` (module docstring).
+
+    Parameters
+    ----------
+    model : Model, optional
+        Or the keywords it is built from (``**params``).
+    y0 : array_like (4,), optional
+        The start; default the unforced equilibrium at rest (as `simulate`). To start
+        on the periodic response pass `beltmdsm.periodic.floquet.periodic_start`.
+    t_end : float
+        The whole run [s]: the transient, the alignment of the frame, the average.
+    t_transient : float, optional
+        Time run before the frame starts turning [s]; default 30 % of ``t_end``; cut
+        down to whole base periods (`chunk_length`).
+    rtol : float
+        Tolerance of the runs (also their ``atol``).
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    Lyapunov
+
+    Raises
+    ------
+    ValueError
+        For a bad ``t_end``, ``t_transient``, ``rtol`` or ``y0``, or a window of
+        fewer than ``2 * BLOCKS`` base periods (`chunk_length`).
+    beltmdsm.errors.StepTooSmall
+        Where a run cannot go on at the tolerance.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> spec = lyapunov(Model(alpha=0.0, Vb=1.0), t_end=200.0)
+    >>> bool(spec.largest < 0)   # steady sliding, stable under Coulomb friction
+    True
+    """
+    model = as_model(model, **params)
+    t_end = _positive("t_end", t_end)
+    rtol = _positive("rtol", rtol)
+    base, cuts = chunk_length(model)
+    tau = base / cuts
+    t_transient = 0.3 * t_end if t_transient is None else float(t_transient)
+    if not (math.isfinite(t_transient) and 0 <= t_transient < t_end):
+        raise ValueError(f"t_transient must be in [0, t_end); got {t_transient!r}")
+    # whole base periods, so that the samples are at the excitation's phase 0
+    t_transient = base * math.floor(t_transient / base + 1e-9)
+    n_periods = int((t_end - t_transient) / base + 1e-9)
+    n_align = min(_ALIGN, n_periods // 4)
+    n_avg = n_periods - n_align
+    if n_avg < 2 * BLOCKS:
+        raise ValueError(
+            f"t_end - t_transient = {t_end - t_transient:g} s holds {n_periods} periods of "
+            f"{base:.4g} s: at least {2 * BLOCKS + n_align} are needed for the average and "
+            f"its error; raise t_end"
+        )
+    y = initial_state(model) if y0 is None else state("y0", y0, (4,), "X1, Y1, X2, Y2")
+
+    # the transient: a plain run, its phase kept (t = 0 is the excitation's phase 0)
+    t = 0.0
+    if t_transient > 0:
+        run = integrate_events(model, _settings(0.0, t_transient, rtol, backend), y0=y)
+        if run.status != "done":
+            raise StepTooSmall(f"lyapunov: the transient stopped: {run.message}", rtol, rtol)
+        y, t = run.trajectory.state(np.array([t_transient]))[:, 0], t_transient
+
+    max_step = STEP / fastest_rate(model)
+    Q = np.eye(4)
+    logs = np.zeros((n_avg, 4))
+    samples = np.zeros((n_avg, 4))
+    collapsed = np.zeros(4, dtype=bool)
+    switches = 0
+    for k in range(n_periods):
+        for _ in range(cuts):
+            s = _settings(t, t + tau, rtol, backend)
+            y, M, sw = _chunk(model, s, y, t, max_step, backend)
+            t += tau
+            Q, R = np.linalg.qr(M @ Q)
+            if k < n_align:
+                continue
+            d = np.abs(np.diag(R))
+            switches += len(sw)
+            if any(after == Mode.STICK for _, _, after, _, _ in sw):
+                collapsed |= d < COLLAPSE * d.max()
+            with np.errstate(divide="ignore"):
+                logs[k - n_align] += np.log(d)
+        if k >= n_align:
+            samples[k - n_align] = y
+    return _spectrum(model, logs, collapsed, base, tau, rtol, t_transient, switches, samples)
+
+
+def _settings(t0, t1, rtol, backend):
+    """The settings of a run from ``t0`` to ``t1`` (its samples are not read)."""
+    return SolverSettings(
+        t_end=t1, rtol=rtol, atol=rtol, dt=(t1 - t0) / 50, t_discard=t0, backend=backend
+    )
+
+
+def _spectrum(model, logs, collapsed, base, tau, rtol, t_transient, switches, samples):
+    """The exponents, their errors and running means from each period's ``sum log |R_ii|``."""
+    n = logs.shape[0]
+    finite = np.where(collapsed, 0.0, logs)
+    running = np.cumsum(finite, axis=0) / (base * np.arange(1, n + 1))[:, None]
+    mean = running[-1]
+    blocks = finite[: n - n % BLOCKS].reshape(BLOCKS, -1, 4).mean(axis=1) / base
+    spread = blocks.std(axis=0, ddof=1) / math.sqrt(BLOCKS)
+    second = finite[n // 2 :].mean(axis=0) / base
+    # the runs' tolerance bounds what no average removes: each chunk's R_ii carries
+    # about rtol of relative error, rtol / tau of rate
+    error = np.maximum(np.maximum(spread, np.abs(mean - second)), rtol / tau)
+    exponents = np.where(collapsed, -np.inf, mean)
+    error = np.where(collapsed, 0.0, error)
+    order = np.argsort(-exponents, kind="stable")
+    running[:, collapsed] = -np.inf
+    return Lyapunov(
+        model,
+        exponents[order],
+        error[order],
+        float(t_transient),
+        float(n * base),
+        float(tau),
+        int(collapsed.sum()),
+        int(switches),
+        running[:, order],
+        samples[-1].copy(),
+        samples,
+    )
+
+
+def _positive(name, value):
+    if isinstance(value, bool) or not (
+        isinstance(value, (int, float, np.floating, np.integer))
+        and math.isfinite(value)
+        and value > 0
+    ):
+        raise ValueError(f"{name} must be a positive finite number; got {value!r}")
+    return float(value)

@@ -1,0 +1,280 @@
+"""The results of a branch: its special points, its stable and unstable parts, the branch.
+
+Shared by the branches of forced responses (`beltmdsm.continuation.branch`) and of
+self-excited cycles (`beltmdsm.cycles.branch`); `beltmdsm.continuation.branch`
+re-exports them.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .._tables import DataFrame
+from ..model import Model
+from ..periodic.periodmap import engine_of
+
+__all__ = ["LOCATE_TOL", "SpecialPoint", "BranchPart", "Branch"]
+
+#: Special points are located to this in the parameter.
+LOCATE_TOL = 1e-6
+
+
+@dataclass
+class SpecialPoint:
+    """A bifurcation or an end of a branch.
+
+    Attributes
+    ----------
+    kind : str
+        One of `beltmdsm.continuation.edges.KINDS`, ``branch_point`` (a real multiplier through +1
+        without a turn), ``range`` (the end of the requested range) or ``failed`` (the
+        continuation stops for another reason, in ``detail``).
+    value : float
+    accuracy : float
+        A bound of the error of ``value``.
+    frequency : float or None
+        Of the critical pair at a Neimark-Sacker point [rad/s].
+    multipliers : ndarray
+        At the located point (at an end: at the last response solved).
+    stable_before, stable_after : bool or None
+        Whether the branch is stable just before and after, along the continuation.
+    detail : str
+    """
+
+    kind: str
+    value: float
+    accuracy: float
+    frequency: float | None
+    multipliers: NDArray[np.complex128]
+    stable_before: bool | None
+    stable_after: bool | None
+    detail: str = ""
+
+    def as_dict(self) -> dict:
+        """For JSON: the attributes (``multipliers`` as pairs of real and imaginary parts)."""
+        return {
+            "kind": self.kind,
+            "value": self.value,
+            "accuracy": self.accuracy,
+            "frequency": self.frequency,
+            "multipliers": [[float(z.real), float(z.imag)] for z in self.multipliers],
+            "stable_before": self.stable_before,
+            "stable_after": self.stable_after,
+            "detail": self.detail,
+        }
+
+
+@dataclass(frozen=True)
+class BranchPart:
+    """A stretch of a branch between two special points, stable or not.
+
+    Attributes
+    ----------
+    range : tuple of float
+        ``(lo, hi)``: the parameter values it covers.
+    stable : bool or None
+        None where the orbit grazes.
+    start, end : str
+        The kinds of the special points that bound it, in arclength order
+        (``from`` and ``to`` in `as_dict`).
+    lower, upper : str
+        The kinds of those at its lower and upper value.
+    """
+
+    range: tuple[float, float]
+    stable: bool | None
+    start: str
+    end: str
+    lower: str
+    upper: str
+
+    def as_dict(self) -> dict:
+        """For JSON: ``range``, ``stable``, ``from``, ``to``, ``lower``, ``upper``."""
+        return {
+            "range": list(self.range),
+            "stable": self.stable,
+            "from": self.start,
+            "to": self.end,
+            "lower": self.lower,
+            "upper": self.upper,
+        }
+
+
+@dataclass
+class Branch:
+    """A branch of responses of ``periods`` excitation periods in one parameter.
+
+    Attributes
+    ----------
+    param : str
+    periods : int
+    model : Model
+        The other parameters and the options (``param`` at the start's value).
+    points : list of BranchPoint (`beltmdsm.continuation.branch`) or CyclePoint
+        In arclength order, from the start's lower end.
+    special : list of SpecialPoint
+        In arclength order; the first and the last are the ends.
+    """
+
+    param: str
+    periods: int
+    model: Model
+    points: list[Any]
+    special: list[SpecialPoint]
+
+    @property
+    def ends(self) -> tuple[SpecialPoint, SpecialPoint]:
+        """The first and the last special point: where the branch ends both ways."""
+        return self.special[0], self.special[-1]
+
+    def parts(self) -> list[BranchPart]:
+        """The stable and unstable parts, in arclength order."""
+        out = []
+        bounds = self.special
+        for a, b in zip(bounds[:-1], bounds[1:]):
+            stable = a.stable_after if a.stable_after is not None else b.stable_before
+            low, high = (a, b) if a.value <= b.value else (b, a)
+            out.append(
+                BranchPart((low.value, high.value), stable, a.kind, b.kind, low.kind, high.kind)
+            )
+        return out
+
+    def stable_ranges(self) -> list[list[float]]:
+        """The parameter ranges where the branch is stable (merged where they touch)."""
+        ranges = sorted(list(p.range) for p in self.parts() if p.stable)
+        merged = []
+        for lo, hi in ranges:
+            if merged and lo <= merged[-1][1]:
+                merged[-1][1] = max(merged[-1][1], hi)
+            else:
+                merged.append([lo, hi])
+        return merged
+
+    def value_range(self) -> list[float]:
+        """The smallest and largest parameter value the branch reaches."""
+        values = [p.value for p in self.points] + [s.value for s in self.special]
+        return [min(values), max(values)]
+
+    def point_near(self, value: float) -> Any | None:
+        """The point of the branch nearest to ``value`` (None on an empty branch)."""
+        if not self.points:
+            return None
+        return min(self.points, key=lambda p: abs(p.value - value))
+
+    def observables(
+        self, record: Callable[[Any], float | Mapping[str, float]] | None = None
+    ) -> dict[str, NDArray[np.float64]]:
+        """What each point's orbit measures, in arclength order: ``param``'s value, then
+        the `beltmdsm.periodic.observables.OBSERVABLES` (ranges of X1' and X1, the
+        largest |Vr|, the mean friction and ``mu_eff = <Ff>/<Fn>``), read from the
+        runs the point keeps (nothing is solved again).
+
+        ``record(point)`` adds columns of its own, as BifurcationKit's
+        ``record_from_solution`` does: a float (column ``"record"``) or a mapping of
+        names to floats, for each `BranchPoint` (its ``state``, ``value``, ``image``).
+        """
+        from ..periodic.observables import OBSERVABLES, observables
+
+        if self.points and not hasattr(self.points[0], "image"):
+            raise ValueError(
+                "observables are read from a forced response's runs; a branch of cycles "
+                "carries its own: period, amplitude, x1_range, velocity_range, "
+                "max_relative_velocity of each point"
+            )
+        vb = [p.value if self.param == "Vb" else self.model["Vb"] for p in self.points]
+        rows = [observables(p.image, v) for p, v in zip(self.points, vb)]
+        out = {self.param: np.array([p.value for p in self.points], dtype=float)}
+        out.update({k: np.array([r[k] for r in rows], dtype=float) for k in OBSERVABLES})
+        if record is not None:
+            recorded = [record(p) for p in self.points]
+            if recorded and isinstance(recorded[0], Mapping):
+                for key in recorded[0]:
+                    out[key] = np.array([r[key] for r in recorded], dtype=float)
+            else:
+                out["record"] = np.array(recorded, dtype=float)
+        return out
+
+    def plot(self, ax: Any = None, observable: str = "X1'_amplitude", labels: bool = True) -> Any:
+        """The bifurcation diagram: ``observable`` (one of `observables`' columns)
+        against ``param``, stable solid, unstable dashed, grazing dotted, the special
+        points marked (NS, PD, LP, GR, BP, HB); on matplotlib axes ``ax`` (new ones
+        if None), which it returns (`beltmdsm.plotting.branch`)."""
+        from ..plotting import branch as draw
+
+        return draw(self, ax, observable, labels)
+
+    def to_pandas(self, table: str = "points") -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas, imported here) of the ``"points"`` (one row
+        per `BranchPoint`: ``param``'s value, the shooting state at phase 0,
+        ``max_abs_multiplier``, ``stable``, ``n_reversals``, ``n_sticks``, then the
+        `observables`) or of the ``"special"`` points (their attributes, ``label`` the
+        short name of the kind)."""
+        from .._display import label
+        from .._tables import frame
+
+        if table == "points":
+            names = ["X1", "X1'", "X2", "X2'"][: len(self.points[0].state) if self.points else 4]
+            rows = [
+                {
+                    self.param: p.value,
+                    **dict(zip(names, map(float, p.state))),
+                    "max_abs_multiplier": p.max_abs_multiplier,
+                    "stable": p.stable,
+                    "n_reversals": p.n_reversals,
+                    "n_sticks": p.n_sticks,
+                }
+                for p in self.points
+            ]
+            tail = ["max_abs_multiplier", "stable", "n_reversals", "n_sticks"]
+            table_ = frame(rows, [self.param, *names, *tail])
+            for key, column in list(self.observables().items())[1:]:
+                table_[key] = column
+            return table_
+        if table == "special":
+            rows = [{**s.as_dict(), "label": label(s.kind)} for s in self.special]
+            columns = ["kind", "label", "value", "accuracy", "frequency", "multipliers",
+                       "stable_before", "stable_after", "detail"]  # fmt: skip
+            return frame(rows, columns)
+        raise ValueError(f"table must be 'points' or 'special'; got {table!r}")
+
+    def __repr__(self) -> str:
+        from .._display import block, intervals, label, laws
+
+        lo, hi = self.value_range() if self.points else (math.nan, math.nan)
+        what = "T" if self.periods == 1 else f"{self.periods}T"
+        lines = [
+            f"{label(s.kind)} at {self.param} = {s.value:.6g} (+- {s.accuracy:.0e})"
+            + (f", {s.frequency:.4g} rad/s" if s.frequency is not None else "")
+            + (f": {s.detail}" if s.detail else "")
+            for s in self.special
+        ]
+        return block(
+            f"Branch({self.param!r}, {what}-periodic response, {self.model!r}; "
+            f"{laws(self.model)}; {len(self.points)} points, {self.param} from {lo:.6g} "
+            f"to {hi:.6g}): stable in {intervals(self.stable_ranges())}",
+            lines,
+        )
+
+    def as_dict(self) -> dict:
+        """For JSON: ``param``, ``periods``, ``contact``, ``tension``, ``friction``,
+        ``engine``, ``range``, ``parts``, ``stable_ranges``, ``special_points``,
+        ``points``."""
+        return {
+            "param": self.param,
+            "periods": self.periods,
+            "contact": self.model.contact,
+            "tension": self.model.tension,
+            "friction": self.model.friction,
+            "engine": engine_of(self.model),
+            "range": self.value_range(),
+            "parts": [p.as_dict() for p in self.parts()],
+            "stable_ranges": self.stable_ranges(),
+            "special_points": [s.as_dict() for s in self.special],
+            "points": [p.as_dict() for p in self.points],
+        }

@@ -1,0 +1,305 @@
+"""Branches of self-excited cycles, born at the Hopf point of steady sliding.
+
+Without excitation a cycle is a zero of ``phi_T(x; p) - x`` closed by a phase condition
+``h(x) = 0`` (`beltmdsm.cycles.flow`: the section through the smallest
+``X1'``); its period ``T`` is an unknown. `cycle_branch` follows the curve of zeros in
+``(x, T, p)`` by pseudo-arclength continuation, as `beltmdsm.continuation.branch` does
+for forced responses (the same steps, special points and parts), in coordinates
+scaled by the state's, the period's and the range's size:
+
+* **Birth.** At the Hopf point ``p_H`` (`beltmdsm.cycles.hopf.hopf_point`) the cycle
+  has zero amplitude. `hopf_cycle` solves the cycle of a small amplitude ``A`` of
+  ``X1'`` (the arclength equation replaced by ``x_k - x_eq,k(p) = -A``) from the
+  first-order cycle ``x_eq + (A / |v_k|) Re(v e^{i theta})``, ``T = 2 pi / omega_H``,
+  with ``p`` free: Newton's method finds the side on which the cycle exists, and the
+  branch starts there (label ``hopf``). **Criticality** follows from that side:
+  ``supercritical`` where the cycles exist where steady sliding is unstable,
+  ``subcritical`` where it is stable (hysteresis: both coexist with the cycle).
+* **Stick onset** (``stick_onset``): the largest ``Vr = X1' - Vb`` of the cycle reaches
+  0 (grazing-sliding, in Filippov's terms). Cycles of one side solved at safe
+  distances are extrapolated to it (``max_relative_velocity`` on the sliding side,
+  the stick time squared on the other) to `LOCATE_TOL` / 10, and the branch goes on
+  on the other side, also where it turns back there (a nonsmooth fold: Stribeck's
+  law), `beltmdsm.cycles.continuation`.
+* **Folds** (a sign change of the tangent's ``p``-component) and the multipliers
+  (without the trivial one) through the unit circle: ``period_doubling`` (-1),
+  ``neimark_sacker`` (a complex pair), ``branch_point`` (+1 without a turn), located by
+  regula falsi along the arclength to `LOCATE_TOL` (between points of the same switch
+  structure; at a stick onset the multipliers jump, the point says whether the
+  stability changes).
+* **Ends**: the range's bounds (``range``), or ``failed`` with the reason (no corrector
+  converges even at the smallest step; the period grows past `PERIOD_LIMIT` times the
+  Hopf period, as towards a homoclinic orbit). A branch that shrinks back to a second
+  Hopf point is not recognised as such: it ends ``failed`` where the corrector no
+  longer converges near zero amplitude.
+
+Without a Hopf point in the range, the branch goes both ways through the cycle found
+at the model's value of the parameter (`beltmdsm.cycles.cycle.cycle`).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..continuation.branch_parts import Branch, SpecialPoint
+from ..model import MODEL_PARAMETERS, Backend, Model, is_autonomous
+from ..periodic.periodmap import NoPeriodicResponse
+from .continuation import PERIOD_LIMIT, Continuation, CyclePoint, walk
+from .cycle import Cycle, cycle
+from .flow import CycleFlow
+from .hopf import HopfPoint, NoHopfPoint, hopf_point
+
+__all__ = [
+    "CyclePoint",
+    "CycleBranch",
+    "cycle_branch",
+    "cycle_branch_from",
+    "hopf_cycle",
+    "HOPF_AMPLITUDE",
+    "PERIOD_LIMIT",
+]
+
+#: The first cycle of a branch from a Hopf point: amplitude of ``X1'`` over the
+#: state's scale (`_scale`).
+HOPF_AMPLITUDE = 2e-3
+
+
+def _scale(state) -> float:
+    """The scale of the state: ``1 + max |x|``."""
+    return 1.0 + float(np.max(np.abs(state)))
+
+
+@dataclass(repr=False)
+class CycleBranch(Branch):
+    """A branch of self-excited cycles (`Branch`, ``periods = 1``, points `CyclePoint`).
+
+    ``hopf``: the Hopf point it is born at (None where it starts from a cycle);
+    ``criticality``: ``"supercritical"``, ``"subcritical"`` or None.
+    """
+
+    hopf: HopfPoint | None = None
+    criticality: str | None = None
+    wall_s: float = 0.0
+
+    def __repr__(self) -> str:
+        a, b = self.ends
+        crit = f", {self.criticality}" if self.criticality else ""
+        return (
+            f"CycleBranch({self.param}: {a.kind} {a.value:.6g}{crit} -> {b.kind} "
+            f"{b.value:.6g}, {len(self.points)} points, "
+            f"{len(self.special) - 2} special points inside)"
+        )
+
+    def as_dict(self) -> dict:
+        """`Branch.as_dict` with ``autonomous: true``, ``hopf``, ``criticality``,
+        ``wall_s``."""
+        out = super().as_dict()
+        out["autonomous"] = True
+        out["hopf"] = None if self.hopf is None else self.hopf.as_dict()
+        out["criticality"] = self.criticality
+        out["wall_s"] = self.wall_s
+        return out
+
+
+def hopf_cycle(hopf: HopfPoint, amplitude: float, *, backend: Backend | None = None) -> CyclePoint:
+    """The cycle of amplitude ``amplitude`` of ``X1'`` (coordinate ``k``) near a Hopf point.
+
+    Newton's method on the cycle's equations and ``x_k - x_eq,k(p) = -amplitude``, the
+    parameter free, from the first-order cycle (module docstring).
+
+    Raises
+    ------
+    NoPeriodicResponse
+        Where Newton's method does not converge.
+    """
+    cont, z = _hopf_start(hopf, float(amplitude), backend)
+    x, T, p, img, J, _ = cont.correct(z, _amplitude_row(cont, hopf, amplitude))
+    t = cont.tangent(J, sign=-1.0 if cont.tangent(J)[cont.flow.k] > 0 else 1.0)
+    return cont.point(x, T, p, img, t[-1], J)
+
+
+def _coordinate(hopf: HopfPoint) -> int:
+    """The coordinate of the section: ``X1'`` unless the pair barely moves it (``X2'``)."""
+    v = np.abs(hopf.eigenvector)
+    return 1 if v[1] >= 0.1 * v.max() else 3
+
+
+def _hopf_start(hopf, amplitude, backend, lo=None, hi=None):
+    k = _coordinate(hopf)
+    flow = CycleFlow(hopf.model, hopf.param, k, backend)
+    v = hopf.eigenvector
+    theta = math.pi - float(np.angle(v[k]))  # x_k smallest: on the section
+    x0 = hopf.equilibrium + (amplitude / abs(v[k])) * np.real(v * np.exp(1j * theta))
+    lo = hopf.value - 1.0 if lo is None else lo
+    hi = hopf.value + 1.0 if hi is None else hi
+    cont = Continuation(flow, lo, hi, _scale(hopf.equilibrium), hopf.period, x0, hopf.value)
+    return cont, np.concatenate([x0 / cont.sx, [hopf.period / cont.sT, hopf.value / cont.sp]])
+
+
+def _equilibrium_k(hopf, p):
+    from generated import unforced
+
+    model = hopf.model.replace(**{hopf.param: p})
+    return float(unforced.equilibrium(**model.arguments(unforced.equilibrium))[_coordinate(hopf)])
+
+
+def _amplitude_row(cont, hopf, amplitude):
+    k = cont.flow.k
+
+    def extra(z):
+        x, _, p = cont.unpack(z)
+        h = 1e-6 * max(1.0, abs(p))
+        deq = (_equilibrium_k(hopf, p + h) - _equilibrium_k(hopf, p - h)) / (2 * h)
+        row = np.zeros(6)
+        row[k] = 1.0
+        row[5] = -deq * cont.sp / cont.sx
+        return (x[k] - _equilibrium_k(hopf, p) + amplitude) / cont.sx, row
+
+    return extra
+
+
+# ---------------------------------------------------------------- the branch
+
+
+def cycle_branch(
+    model: Model,
+    *,
+    param: str = "Vb",
+    lo: float,
+    hi: float,
+    backend: Backend | None = None,
+) -> CycleBranch:
+    """The branch of self-excited cycles in ``param`` over ``[lo, hi]`` (module docstring).
+
+    Parameters
+    ----------
+    model : Model
+        Without excitation; its value of ``param`` is used only where the range holds
+        no Hopf point (the branch then goes both ways through the cycle there).
+    param : str
+    lo, hi : float
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    CycleBranch
+
+    Raises
+    ------
+    ValueError
+        For an unknown parameter, a bad range, or a model with excitation.
+    NoPeriodicResponse
+        Where no cycle is found: none near the Hopf point, or, without a Hopf point in
+        the range, none at the model's value (the message gives both reasons).
+    """
+    clock = time.perf_counter()
+    if param not in MODEL_PARAMETERS:
+        raise ValueError(f"param must be a model parameter; got {param!r}")
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+        raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
+    if not is_autonomous(model):
+        raise ValueError("a branch of self-excited cycles needs a model without excitation")
+    try:
+        hopf = hopf_point(model, param, lo, hi)
+    except NoHopfPoint as err:
+        return _from_cycle(model, param, float(lo), float(hi), backend, str(err))
+    amplitude = HOPF_AMPLITUDE * _scale(hopf.equilibrium)
+    cont, z = _hopf_start(hopf, amplitude, backend, float(lo), float(hi))
+    try:
+        x, T, p, img, J, _ = cont.correct(z, _amplitude_row(cont, hopf, amplitude))
+    except NoPeriodicResponse as err:
+        raise NoPeriodicResponse(
+            f"no cycle of amplitude {amplitude:.3g} near the Hopf point {param} = "
+            f"{hopf.value:.6g}: {err}"
+        ) from None
+    k = cont.flow.k
+    t = cont.tangent(J)
+    tangent = t if t[k] < 0 else -t  # the amplitude (-x_k on the section) grows
+    first = cont.point(x, T, p, img, tangent[-1], J)
+    unstable = 1.0 if hopf.transversality > 0 else -1.0
+    criticality = "supercritical" if (p - hopf.value) * unstable > 0 else "subcritical"
+    born = SpecialPoint(
+        "hopf",
+        hopf.value,
+        hopf.accuracy,
+        hopf.frequency,
+        first.multipliers,
+        None,
+        first.stable,
+        f"steady sliding's {hopf.pair} pair crosses the imaginary axis at "
+        f"{hopf.frequency:.6g} rad/s; {criticality}: the cycles exist where sliding is "
+        + ("unstable" if criticality == "supercritical" else "stable"),
+    )
+    points, special = walk(cont, first, tangent, hopf.period)
+    return CycleBranch(
+        param,
+        1,
+        hopf.model,
+        points,
+        [born] + special,
+        hopf,
+        criticality,
+        time.perf_counter() - clock,
+    )
+
+
+def cycle_branch_from(
+    start: Cycle, param: str, lo: float, hi: float, *, backend: Backend | None = None
+) -> CycleBranch:
+    """The branch of cycles through ``start`` in ``param`` over ``[lo, hi]``, both ways.
+
+    Raises
+    ------
+    ValueError
+        For an unknown parameter, a bad range or a start outside it.
+    """
+    clock = time.perf_counter()
+    model = start.model
+    v0 = float(model[param])
+    if param not in MODEL_PARAMETERS:
+        raise ValueError(f"param must be a model parameter; got {param!r}")
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo <= v0 <= hi and lo < hi):
+        raise ValueError(f"the start's {param} = {v0:g} must lie in [{lo:g}, {hi:g}]")
+    flow = CycleFlow(model, param, 1, backend)
+    cont = Continuation(flow, lo, hi, _scale(start.state), start.period, start.state, v0)
+    z = cont.z_of(start.state, start.period, v0)
+    row = np.zeros(6)
+    row[5] = 1.0
+    x, T, p, img, J, _ = cont.correct(z, lambda q: (float(q[5] - z[5]), row))
+    walks = []
+    for sign in (1.0, -1.0):
+        t = cont.tangent(J, sign=1.0)
+        t = t if t[-1] * sign >= 0 else -t
+        first = cont.point(x, T, p, img, t[-1], J)
+        walks.append(walk(cont, first, t, start.period))
+    (up, up_special), (down, down_special) = walks
+    for s in down_special:
+        s.stable_before, s.stable_after = s.stable_after, s.stable_before
+    return CycleBranch(
+        param,
+        1,
+        model,
+        list(reversed(down[1:])) + up,
+        list(reversed(down_special)) + up_special,
+        None,
+        None,
+        time.perf_counter() - clock,
+    )
+
+
+def _from_cycle(model, param, lo, hi, backend, no_hopf):
+    """The branch both ways through the cycle at the model's value of ``param``."""
+    v0 = float(model[param])
+    if not lo <= v0 <= hi:
+        raise NoPeriodicResponse(
+            f"{no_hopf}; and the model's {param} = {v0:g} is outside the range"
+        )
+    try:
+        found = cycle(model, backend=backend)
+    except NoPeriodicResponse as err:
+        raise NoPeriodicResponse(f"{no_hopf}; and no cycle at {param} = {v0:g}: {err}") from None
+    return cycle_branch_from(found, param, lo, hi, backend=backend)

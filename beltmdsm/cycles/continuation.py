@@ -1,0 +1,413 @@
+"""The pseudo-arclength continuation of self-excited cycles (`beltmdsm.cycles.branch`).
+
+The curve of zeros of ``(phi_T(x; p) - x, h(x))`` (`beltmdsm.cycles.flow`) in
+``z = (x / sx, T / sT, p / sp)``: a secant predictor along the unit tangent (the null
+vector of the 5 x 6 Jacobian ``[M - I, f, dphi/dp; grad h, 0, dh/dp]``), a corrector by
+Newton's method on the cycle's equations and the hyperplane normal to the tangent,
+a step that grows after easy steps and halves after failed ones; the special points
+between accepted points (`_special_between`, `_cross_stick`) and the walk to an end
+(`walk`), as `beltmdsm.continuation.branch` does for forced responses.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..continuation.branch_parts import LOCATE_TOL, SpecialPoint
+from ..continuation.edges import multiplier_kind
+from ..periodic.periodmap import NEWTON_TOL, NoPeriodicResponse
+from .flow import CycleFlow, FlowImage, orbit_observables, split_multipliers
+from .stick import cross_stick, stick_ahead, sticks
+
+__all__ = ["CyclePoint", "Continuation", "walk", "STEP_FIRST", "STEP_MIN", "STEP_MAX"]
+
+#: Arclength steps (scaled coordinates): first, smallest, largest.
+STEP_FIRST = 0.02
+STEP_MIN = 1e-7
+STEP_MAX = 0.2
+#: A branch ends where the period exceeds this many times the first one (the Hopf period).
+PERIOD_LIMIT = 50.0
+_CORRECTOR_ITER = 12
+_EASY = 4
+MAX_POINTS = 2000
+#: The section's residual (relative to its gradient times the state's scale).
+_SECTION_TOL = 1e-11
+
+
+@dataclass
+class CyclePoint:
+    """One cycle on a branch.
+
+    Attributes
+    ----------
+    value : float
+    state : ndarray (4,)
+        ``(X1, X1', X2, X2')`` on the section (the smallest ``X1'``).
+    period : float
+    multipliers : ndarray
+        Without the trivial one, ``|mu|`` descending.
+    trivial_multiplier : complex
+        The one nearest 1 (its distance from 1 shows the accuracy).
+    max_abs_multiplier : float
+    stable : bool
+    n_sticks, n_reversals : int
+    amplitude : float
+        Half the range of ``X1'``.
+    x1_range, velocity_range : tuple of float
+    max_relative_velocity : float
+        Largest ``Vr = X1' - Vb`` (0 where the mass sticks).
+    stick_time : float
+        Time stuck per period [s].
+    tangent : float
+        The parameter component of the unit tangent, along the continuation.
+    """
+
+    value: float
+    state: NDArray[np.float64] = field(repr=False)
+    period: float
+    multipliers: NDArray[np.complex128] = field(repr=False)
+    trivial_multiplier: complex = field(repr=False)
+    max_abs_multiplier: float
+    stable: bool
+    n_sticks: int
+    n_reversals: int
+    amplitude: float
+    x1_range: tuple[float, float] = field(repr=False)
+    velocity_range: tuple[float, float] = field(repr=False)
+    max_relative_velocity: float
+    tangent: float = field(repr=False)
+    stick_time: float = field(repr=False, default=0.0)
+    image: FlowImage = field(repr=False, default=None)
+    column: NDArray[np.float64] | None = field(repr=False, default=None)
+
+    def as_dict(self) -> dict:
+        """For JSON: ``value``, ``state0``, ``period``, ``amplitude``, ``x1_range``,
+        ``velocity_range``, ``max_relative_velocity``, ``multipliers`` (pairs),
+        ``trivial_multiplier``, ``max_abs_multiplier``, ``stable``, ``n_sticks``,
+        ``n_reversals``."""
+        return {
+            "value": self.value,
+            "state0": [float(v) for v in self.state],
+            "period": self.period,
+            "amplitude": self.amplitude,
+            "x1_range": list(self.x1_range),
+            "velocity_range": list(self.velocity_range),
+            "max_relative_velocity": self.max_relative_velocity,
+            "multipliers": [[float(z.real), float(z.imag)] for z in self.multipliers],
+            "trivial_multiplier": [self.trivial_multiplier.real, self.trivial_multiplier.imag],
+            "max_abs_multiplier": self.max_abs_multiplier,
+            "stable": self.stable,
+            "n_sticks": self.n_sticks,
+            "n_reversals": self.n_reversals,
+            "stick_time": self.stick_time,
+        }
+
+
+class Continuation:
+    """Pseudo-arclength continuation in ``z = (x/sx, T/sT, p/sp)`` (module docstring)."""
+
+    def __init__(self, flow: CycleFlow, lo: float, hi: float, sx: float, sT: float, x, p):
+        self.flow, self.lo, self.hi = flow, lo, hi
+        self.sx, self.sT, self.sp = sx, sT, max((hi - lo) / 10.0, 1e-12)
+        self.hs = float(np.linalg.norm(flow.section_gradient(x, p))) * sx or 1.0
+
+    def z(self, point) -> NDArray[np.float64]:
+        return np.concatenate(
+            [point.state / self.sx, [point.period / self.sT, point.value / self.sp]]
+        )
+
+    def z_of(self, x, T, p) -> NDArray[np.float64]:
+        return np.concatenate([np.asarray(x, float) / self.sx, [T / self.sT, p / self.sp]])
+
+    def unpack(self, z):
+        return z[:4] * self.sx, float(z[4] * self.sT), float(z[5] * self.sp)
+
+    def jacobian(self, x, T, p, img, column=None) -> NDArray[np.float64]:
+        """``d(G, H)/dz`` (5 x 6); ``column``: the scaled ``p`` column, if known."""
+        J = np.zeros((5, 6))
+        J[:4, :4] = img.monodromy - np.eye(4)
+        J[:4, 4] = img.field * self.sT / self.sx
+        J[4, :4] = self.flow.section_gradient(x, p) * self.sx / self.hs
+        if column is None:
+            c = self.flow.p_column(x, T, p)
+            column = np.append(c[:4] * self.sp / self.sx, c[4] * self.sp / self.hs)
+        J[:, 5] = column
+        return J
+
+    def correct(self, z_pred, extra, column=None, fresh=False):
+        """Newton's method on ``G = 0``, ``H = 0`` and ``extra(z) = (value, row)``.
+
+        ``column``: the ``p`` column of a point nearby, kept through the iterations
+        (computed at the first where not given) unless ``fresh`` (across a kink of the
+        map it changes).
+
+        Returns ``(x, T, p, image, J, iterations)``, ``J`` (5 x 6) with the ``p``
+        column at the result; raises NoPeriodicResponse.
+        """
+        z, last = z_pred.copy(), math.inf
+        for iteration in range(1, _CORRECTOR_ITER + 1):
+            x, T, p = self.unpack(z)
+            img = self.flow.image(x, T, p)
+            G = (img.state - x) / self.sx
+            H = self.flow.section(x, p) / self.hs
+            e, row = extra(z)
+            size = max(float(np.max(np.abs(G))), abs(H), abs(e))
+            if (
+                size * self.sx <= NEWTON_TOL * (1.0 + float(np.max(np.abs(x))))
+                and abs(H) <= _SECTION_TOL
+                and iteration > 1
+            ):
+                return x, T, p, img, self.jacobian(x, T, p, img), iteration
+            if size >= last and iteration > 2:
+                raise NoPeriodicResponse(f"the corrector diverges (residual {size:.2e})")
+            last = size
+            J = self.jacobian(x, T, p, img, None if fresh else column)
+            column = J[:, 5].copy()
+            try:
+                z = z + np.linalg.solve(np.vstack([J, row]), -np.append(np.append(G, H), e))
+            except np.linalg.LinAlgError:
+                raise NoPeriodicResponse("the corrector's matrix is singular") from None
+        raise NoPeriodicResponse(f"the corrector leaves a residual {last:.2e}")
+
+    def trial(self, start, tangent, s) -> CyclePoint:
+        """The corrected point at arclength ``s`` from ``start`` along ``tangent``."""
+        z_pred = self.z(start) + s * tangent
+        x, T, p, img, J, _ = self.correct(z_pred, self.arclength(z_pred, tangent), start.column)
+        return self.point(x, T, p, img, self.tangent(J, tangent)[-1], J)
+
+    def arclength(self, z_pred, tangent):
+        return lambda z: (float(tangent @ (z - z_pred)), tangent)
+
+    @staticmethod
+    def tangent(J, previous=None, sign=1.0):
+        t = np.linalg.svd(J)[2][-1]
+        if previous is not None:
+            return t if float(t @ previous) >= 0 else -t
+        return t if sign >= 0 else -t
+
+    def point(self, x, T, p, img, tangent_p, J=None) -> CyclePoint:
+        trivial, rest = split_multipliers(img.monodromy, self.flow.field(p, x))
+        biggest = float(np.abs(rest[0])) if rest.size else 0.0
+        model, _ = self.flow.at(p)
+        obs = orbit_observables(img.run, model["Vb"])
+        return CyclePoint(
+            float(p),
+            np.array(x, float),
+            float(T),
+            rest,
+            trivial,
+            biggest,
+            bool(biggest < 1.0),
+            obs.n_sticks,
+            obs.n_reversals,
+            obs.amplitude,
+            obs.x1_range,
+            obs.velocity_range,
+            obs.max_relative_velocity,
+            float(tangent_p),
+            obs.stick_time,
+            img,
+            None if J is None else J[:, 5].copy(),
+        )
+
+
+# ---------------------------------------------------------------- special points
+
+
+def _count_outside(point):
+    return int(np.sum(np.abs(point.multipliers) > 1.0))
+
+
+def _regula_falsi(cont, start, tangent, ds, psi, fa, fb):
+    """The point in ``[0, ds]`` along the arclength where ``psi`` vanishes (Illinois).
+
+    Returns the located `CyclePoint` and the accuracy in the parameter.
+    """
+    a, b, pa, pb = 0.0, ds, start.value, None
+    located, side = start, 0
+    for _ in range(60):
+        s = b - fb * (b - a) / (fb - fa) if fb != fa else 0.5 * (a + b)
+        s = min(max(s, a + 1e-3 * (b - a)), b - 1e-3 * (b - a))
+        try:
+            pt = cont.trial(start, tangent, s)
+        except NoPeriodicResponse:
+            s = 0.5 * (a + b)
+            pt = cont.trial(start, tangent, s)
+        fs = psi(pt)
+        if fs * fa > 0:
+            a, fa, pa = s, fs, pt.value
+            fb, side = (0.5 * fb if side == -1 else fb), -1
+        else:
+            b, fb, pb = s, fs, pt.value
+            fa, side = (0.5 * fa if side == 1 else fa), 1
+        located = pt
+        if pb is not None and abs(pb - pa) <= LOCATE_TOL or b - a <= 1e-13:
+            break
+    return located, (abs(pb - pa) if pb is not None else math.inf)
+
+
+def _special_between(cont, prev, new, tangent, ds):
+    """Folds and multipliers through the unit circle between two points of one structure."""
+    out = []
+    if prev.tangent * new.tangent < 0:
+        pt, acc = _regula_falsi(
+            cont, prev, tangent, ds, lambda q: q.tangent, prev.tangent, new.tangent
+        )
+        out.append(
+            SpecialPoint(
+                "fold",
+                pt.value,
+                acc,
+                None,
+                pt.multipliers,
+                prev.stable,
+                new.stable,
+                "the branch turns back",
+            )
+        )
+    na, nb = _count_outside(prev), _count_outside(new)
+    if na != nb:
+        rank = min(na, nb)
+
+        def psi(q):
+            return math.log(abs(q.multipliers[min(rank, q.multipliers.size - 1)]))
+
+        pt, acc = _regula_falsi(cont, prev, tangent, ds, psi, psi(prev), psi(new))
+        kind, freq = multiplier_kind(pt.multipliers[min(rank, pt.multipliers.size - 1)], pt.period)
+        if kind == "fold" and out:
+            return out  # the multiplier through +1 of the fold located by the turn
+        kind = "branch_point" if kind == "fold" else kind
+        detail = {
+            "neimark_sacker": f"a complex pair crosses the unit circle at {freq or 0:.6g} rad/s",
+            "period_doubling": "a real multiplier crosses -1",
+            "branch_point": "a real multiplier crosses +1",
+        }[kind]
+        out.append(
+            SpecialPoint(kind, pt.value, acc, freq, pt.multipliers, prev.stable, new.stable, detail)
+        )
+    return sorted(out, key=lambda s: abs(s.value - prev.value))
+
+
+def _end(kind, point, detail, value=None, accuracy=0.0):
+    return SpecialPoint(
+        kind,
+        point.value if value is None else value,
+        accuracy,
+        None,
+        point.multipliers,
+        point.stable,
+        None,
+        detail,
+    )
+
+
+# ---------------------------------------------------------------- the walk
+
+
+def _at_value(cont, point, value):
+    """The cycle at ``p = value`` exactly, from a point located near it (itself where
+    Newton's method does not converge)."""
+    z = cont.z(point)
+    z[-1] = value / cont.sp
+    row = np.zeros(z.size)
+    row[-1] = 1.0
+    try:
+        x, T, p, img, J, _ = cont.correct(z, lambda q: (float(q[-1] - z[-1]), row))
+    except NoPeriodicResponse:
+        return point
+    t = cont.tangent(J)
+    return cont.point(x, T, p, img, t[-1] if t[-1] * point.tangent >= 0 else -t[-1], J)
+
+
+def walk(cont, first, tangent, period0):
+    """Continue from ``first`` along ``tangent`` to the range's end or a failure."""
+    points, special = [first], []
+    ds = STEP_FIRST
+    while True:
+        prev = points[-1]
+        if len(points) >= MAX_POINTS:
+            special.append(_end("failed", prev, f"stopped after {MAX_POINTS} points"))
+            return points, special
+        z_pred = cont.z(prev) + ds * tangent
+        failure = None
+        try:
+            x, T, p, img, J, iterations = cont.correct(
+                z_pred, cont.arclength(z_pred, tangent), prev.column
+            )
+            if np.max(np.abs(cont.z_of(x, T, p) - z_pred)) > 10 * ds:
+                failure = "the corrector jumps to another branch"
+        except NoPeriodicResponse as err:
+            failure = str(err)
+        if failure is None and (prev.n_sticks == 0) != (sticks(img) == 0):
+            failure = "a stick phase " + ("disappears" if prev.n_sticks else "appears")
+        if failure is not None:
+            ahead = stick_ahead(cont, points, ds)
+            if ahead is not None:
+                crossed = cross_stick(cont, prev, tangent, ahead)
+                if crossed is not None:
+                    sp, near, first, tangent = crossed
+                    special.append(sp)
+                    points += [near, first]
+                    ds = STEP_FIRST
+                    continue
+            ds *= 0.5
+            if ds < STEP_MIN:
+                special.append(_end("failed", prev, f"no step converges: {failure}"))
+                return points, special
+            continue
+        t_new = cont.tangent(J, tangent)
+        new = cont.point(x, T, p, img, t_new[-1], J)
+        if not cont.lo <= p <= cont.hi:
+            bound = cont.hi if p > cont.hi else cont.lo
+            try:
+                end, _ = _regula_falsi(
+                    cont,
+                    prev,
+                    tangent,
+                    ds,
+                    lambda q, b=bound: q.value - b,
+                    prev.value - bound,
+                    p - bound,
+                )
+            except NoPeriodicResponse as err:
+                ds *= 0.5
+                if ds < STEP_MIN:
+                    special.append(_end("failed", prev, f"locating the range's end: {err}"))
+                    return points, special
+                continue
+            if end.n_sticks == prev.n_sticks:
+                special += [
+                    s
+                    for s in _special_between(cont, prev, end, tangent, ds)
+                    if min(prev.value, bound) <= s.value <= max(prev.value, bound)
+                ]
+            points.append(_at_value(cont, end, bound))
+            special.append(_end("range", end, "the end of the requested range", bound))
+            return points, special
+        if (prev.n_sticks, prev.n_reversals) == (new.n_sticks, new.n_reversals):
+            try:
+                special += _special_between(cont, prev, new, tangent, ds)
+            except NoPeriodicResponse:
+                ds *= 0.5
+                if ds < STEP_MIN:
+                    special.append(_end("failed", prev, "a special point cannot be located"))
+                    return points, special
+                continue
+        points.append(new)
+        tangent = t_new
+        if T > PERIOD_LIMIT * period0:
+            special.append(
+                _end(
+                    "failed",
+                    new,
+                    f"the period ({T:.4g} s) grows past {PERIOD_LIMIT:g} times the Hopf "
+                    "period: towards a homoclinic orbit or a standstill",
+                )
+            )
+            return points, special
+        if iterations <= _EASY:
+            ds = min(ds * 1.5, STEP_MAX)

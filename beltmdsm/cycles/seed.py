@@ -1,0 +1,324 @@
+"""The seed of a self-excited cycle: a run off unstable steady sliding, read on the section.
+
+`seed_cycle` gives `beltmdsm.cycles.cycle.cycle` its first guess where none is
+given: the state on the section (the extremum of ``X1'`` of largest ``|Vr|``,
+`beltmdsm.cycles.cycle`) and the period, from a run of the autonomous model that
+starts at steady sliding (the unforced equilibrium, Eq. 9) moved along its unstable
+direction and goes on until its returns to the section repeat. `require_autonomous`
+and `section_direction` are the checks and the orientation both share.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from generated import unforced
+
+from ..integrate.events import StepTooSmall, integrate_events
+from ..integrate.switching import SURFACE_INDEX, Switching
+from ..model import Backend, Model, as_model, initial_state, is_autonomous
+from ..periodic.periodmap import NoPeriodicResponse
+from ..settings import SolverSettings
+
+__all__ = [
+    "seed_cycle",
+    "require_autonomous",
+    "section_direction",
+    "unstable_pair",
+    "stick_end",
+    "SEED_AMPLITUDE",
+    "SEED_PERIODS",
+    "SETTLE_TOL",
+]
+
+#: The seed's perturbation of steady sliding along its unstable direction: the
+#: velocity ``X1'`` moved by this fraction of ``|Vb|``.
+SEED_AMPLITUDE = 1e-2
+#: The seed's run lasts at most this many periods of the unstable pair
+#: (``2 pi / Im lambda``), in chunks of 10 periods doubling up to `_SEED_CHUNK` (a cycle
+#: reached early is read early); a run of 300 s costs about
+#: 15 ms compiled, so the bound is generous: from `SEED_AMPLITUDE` at a growth rate of
+#: 0.01 1/s (Vb = 1.9, next to the Hopf point of the base Stribeck set) the cycle is
+#: reached in about 80 periods.
+SEED_PERIODS = 3000
+_SEED_CHUNK = 50
+#: The run has settled when the state at the section returns to within this, relative
+#: to the return's distance from steady sliding (a run that decays to steady sliding
+#: returns by a fixed share of that distance, and never settles): Newton's method
+#: converges from there.
+SETTLE_TOL = 1e-6
+#: The seed's run has decayed to steady sliding when ``X1'`` varies by less than this
+#: fraction of ``|Vb|`` over a chunk: far above the run's rounding (its tolerance, 1e-10,
+#: leaves X1' a floor of a few 1e-9), and a cycle that small exists only within about
+#: 1e-12 of a Hopf point (its amplitude grows like the square root of the distance).
+_DECAYED = 1e-6
+#: Samples per period of the unstable pair when the seed's run is searched for the section.
+_SECTION_SAMPLES = 64
+#: Extrema of the seed's run within this fraction of the orbit's velocity range of
+#: the deepest one count as the section (the others are lesser extrema of the cycle).
+_DEEP = 1e-3
+
+
+def require_autonomous(model: Model, analysis: str = "a self-excited cycle") -> None:
+    """Raise ValueError (one line) unless the model has no excitation and a moving belt."""
+    if not is_autonomous(model):
+        raise ValueError(
+            f"{analysis}: the model is forced (alpha_t Omega_t or alpha_n Omega_n is not "
+            "zero): its periodic responses have the excitation's period "
+            "(beltmdsm.periodic.floquet.periodic_response)"
+        )
+    if model["Vb"] == 0:
+        raise NoPeriodicResponse(
+            f"no self-excited cycle at Vb = 0: the belt is at rest and nothing feeds one "
+            f"({analysis})"
+        )
+
+
+def section_direction(model: Model) -> int:
+    """``sgn(Vr)`` while sliding steadily, ``-sgn(Vb)``: the slip mode code of the section.
+
+    The section is the extremum of ``X1'`` on this side: a minimum for ``Vb > 0``.
+    """
+    return -1 if model["Vb"] > 0 else 1
+
+
+def unstable_pair(model: Model) -> tuple[complex, NDArray[np.complex128]]:
+    """The eigenvalue of steady sliding with the largest real part and its eigenvector."""
+    J = np.array(
+        unforced.jacobian_at_equilibrium(**model.arguments(unforced.jacobian_at_equilibrium)),
+        dtype=float,
+    ).reshape(4, 4)
+    lam, V = np.linalg.eig(J)
+    k = int(np.argmax(lam.real))
+    return complex(lam[k]), V[:, k]
+
+
+def seed_cycle(
+    model: Model | Mapping[str, Any],
+    *,
+    t_end: float | None = None,
+    perturbation: ArrayLike | None = None,
+    backend: Backend | None = None,
+) -> tuple[NDArray[np.float64], float]:
+    """A state on the section and a period estimate, from a run off steady sliding.
+
+    The run starts at the unforced equilibrium (Eq. 9) moved by ``perturbation``, or
+    where none is given along the real part of the eigenvector of the most unstable
+    eigenvalue of steady sliding (`generated.unforced.jacobian_at_equilibrium`), its
+    velocity by `SEED_AMPLITUDE` of ``|Vb|``. Where steady sliding is stable and no
+    perturbation is given, the run starts where a stick ends instead (`stick_end`):
+    every stick-slip cycle passes there, so a stick-slip cycle that coexists with
+    stable sliding is found (it is superstable: one slip phase later the run is on it),
+    and where none does the run decays. It goes on in chunks until its returns to the
+    section (module docstring) repeat to `SETTLE_TOL`; the period is the time between
+    the last two returns that match (several turns where the cycle has several extrema
+    of the same depth).
+
+    Parameters
+    ----------
+    model : Model or dict
+        Without excitation.
+    t_end : float, optional
+        The longest run [s]; default `SEED_PERIODS` periods of the unstable pair.
+    perturbation : array_like (4,), optional
+        The start's offset from the equilibrium (a cycle that coexists with stable
+        steady sliding is reached only from far enough).
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    state : ndarray (4,)
+    period : float
+
+    Raises
+    ------
+    ValueError
+        For a forced model, a perturbation that is not 4 finite numbers, ``t_end <= 0``.
+    NoPeriodicResponse
+        Naming why: steady sliding is stable and no perturbation is given (a run from it
+        decays to it), the run decays to steady sliding, stops, or does not settle on
+        a cycle within ``t_end``.
+    """
+    model = as_model(model)
+    require_autonomous(model, "seed_cycle")
+    vb = float(model["Vb"])
+    lam, vec = unstable_pair(model)
+    omega = abs(lam.imag) if abs(lam.imag) > 0 else float(model["omega1"])
+    turn = 2 * math.pi / omega
+    if t_end is None:
+        t_end = SEED_PERIODS * turn
+    if not (math.isfinite(t_end) and t_end > 0):
+        raise ValueError(f"t_end must be a finite number > 0; got {t_end!r}")
+    x0 = initial_state(model)
+    if perturbation is None and lam.real <= 0:
+        stable = (
+            f"no self-excited cycle from the equilibrium: steady sliding is stable at "
+            f"Vb={vb:g} (largest real part of its eigenvalues {lam.real:.3g} 1/s), a run "
+            "from it decays to it"
+        )
+        y = stick_end(model)
+        if y is None:
+            raise NoPeriodicResponse(f"{stable}; and no stick can end (an empty friction cone)")
+        try:
+            return _settle(model, y, "the end of a stick", t_end, turn, backend)
+        except NoPeriodicResponse as err:
+            why = str(err).replace("no self-excited cycle from the end of a stick: ", "")
+            raise NoPeriodicResponse(
+                f"{stable}; nor from the end of a stick (X1 at the friction limit, X1' = Vb): {why}"
+            ) from None
+    if perturbation is None:
+        v = np.real(vec)
+        if abs(v[1]) < 1e-3 * np.max(np.abs(v)):
+            v = np.imag(vec)
+        y = x0 + SEED_AMPLITUDE * abs(vb) * v / abs(v[1])
+        start = f"the equilibrium perturbed along its unstable direction (lambda = {lam:.4g})"
+    else:
+        offset = np.array(perturbation, dtype=float).ravel()
+        if offset.size != 4 or not np.all(np.isfinite(offset)):
+            raise ValueError(f"perturbation must be 4 finite numbers; got {perturbation!r}")
+        y = x0 + offset
+        start = "the equilibrium perturbed as given"
+    return _settle(model, y, start, t_end, turn, backend)
+
+
+def stick_end(model: Model) -> NDArray[np.float64] | None:
+    """The state where a stick ends: ``X1' = Vb``, ``X1`` at the edge of the friction cone
+    on the section's side (the mass leaves against the belt's motion), the normal
+    motion at its equilibrium. None where the cone has no such edge.
+
+    The edge's switching function (`generated.hybrid.surfaces`, ``stick_back`` for
+    ``Vb > 0``) is affine in ``X1`` (the spring's force); its root is found by two
+    secant steps and checked.
+    """
+    sw = Switching(model)
+    index = SURFACE_INDEX["stick_back" if section_direction(model) < 0 else "stick_forward"]
+    y = initial_state(model)
+    y[1] = model["Vb"]
+
+    def edge(x1):
+        return float(sw.surfaces(0.0, x1, *y[1:])[index])
+
+    a, b = float(y[0]), float(y[0]) + 1.0
+    fa, fb = edge(a), edge(b)
+    for _ in range(2):
+        if fb == fa:
+            return None
+        a, fa, b = b, fb, b - fb * (b - a) / (fb - fa)
+        fb = edge(b)
+    if not abs(fb) <= 1e-9 * (1.0 + float(sw.scales(0.0, b, *y[1:])[index])):
+        return None
+    y[0] = b
+    return y
+
+
+def _settle(model, y, start, t_end, turn, backend):
+    """Run from ``y`` until the returns to the section repeat: ``(state, period)``."""
+    vb = float(model["Vb"])
+    x0 = initial_state(model)
+    sw = Switching(model)
+    d = section_direction(model)
+    chunk = 10 * turn
+    t, returns, first_amplitude = 0.0, [], None
+    while t < t_end:
+        t1 = min(t + chunk, t_end)
+        chunk = min(2 * chunk, _SEED_CHUNK * turn)
+        settings = SolverSettings(
+            t_end=t1, rtol=1e-10, atol=1e-10, dt=(t1 - t) / 400, t_discard=t, backend=backend
+        )
+        try:
+            run = integrate_events(model, settings, y0=y, t0=t)
+        except StepTooSmall as err:
+            raise NoPeriodicResponse(f"no self-excited cycle from {start}: {err}") from None
+        if run.status != "done":
+            raise NoPeriodicResponse(f"no self-excited cycle from {start}: {run.message}")
+        tr = run.trajectory
+        amplitude = _velocity_spread(tr, turn)
+        if first_amplitude is None:
+            first_amplitude = amplitude
+        if amplitude <= _DECAYED * abs(vb):
+            raise NoPeriodicResponse(
+                f"no self-excited cycle from {start}: the run decays to steady sliding at "
+                f"Vb={vb:g} (X1' varies by {amplitude:.1e} m/s at t = {t1:g} s)"
+            )
+        returns += _section_returns(sw, tr, d, turn)
+        found = _settled(returns, amplitude, x0)
+        if found is not None:
+            return found
+        t, y = t1, tr.state(np.array([t1]))[:, 0]
+    trend = (
+        "; its amplitude shrinks: it decays towards steady sliding"
+        if amplitude < 0.5 * first_amplitude
+        else ""
+    )
+    raise NoPeriodicResponse(
+        f"no self-excited cycle from {start}: the run does not settle on a cycle in "
+        f"{t_end:g} s (its returns to the section do not repeat to {SETTLE_TOL:g}){trend}"
+    )
+
+
+def _velocity_spread(tr, turn):
+    """How much ``X1'`` varies over a run (sampled)."""
+    t0 = tr.segments[0].t0
+    t = np.linspace(t0, tr.t_end, int((tr.t_end - t0) / turn * 16) + 2)
+    v = tr.state(t)[1]
+    return float(np.max(v) - np.min(v))
+
+
+def _section_returns(sw, tr, d, turn):
+    """``(t, state, depth)`` of the interior extrema of ``X1'`` in the slip mode ``d``.
+
+    ``depth`` is ``d X1'``: the largest is the section's point (module docstring).
+    """
+    out = []
+    step = turn / _SECTION_SAMPLES
+    for seg in tr.segments:
+        if seg.mode != d or seg.t1 - seg.t0 < 2 * step:
+            continue
+        t = np.linspace(seg.t0, seg.t1, int((seg.t1 - seg.t0) / step) + 2)
+        w = d * tr.state(t)[1]
+        for k in np.flatnonzero((w[1:-1] > w[:-2]) & (w[1:-1] >= w[2:])) + 1:
+            s = _extremum(sw, tr, d, t[k - 1], t[k + 1])
+            state = tr.state(np.array([s]))[:, 0]
+            out.append((s, state, d * state[1]))
+    return out
+
+
+def _extremum(sw, tr, d, a, b):
+    """Where ``X1''`` vanishes in ``[a, b]`` (slip mode ``d``), by bisection on the field."""
+
+    def accel(s):
+        return float(sw.field(s, *tr.state(np.array([s]))[:, 0], float(d))[1])
+
+    fa = accel(a)
+    while b - a > 1e-13 * max(1.0, abs(b)):
+        m = 0.5 * (a + b)
+        fm = accel(m)
+        if (fm > 0) == (fa > 0):
+            a, fa = m, fm
+        else:
+            b = m
+    return 0.5 * (a + b)
+
+
+def _settled(returns, amplitude, equilibrium):
+    """``(state, period)`` where the last deepest return repeats an earlier one, else None.
+
+    The deepest returns are those within `_DEEP` of the velocity's ``amplitude`` of the
+    deepest of the last 20 (a cycle's lesser extrema of ``X1'`` are not its section).
+    """
+    recent = returns[-20:]
+    if len(recent) < 2:
+        return None
+    top = max(r[2] for r in recent)
+    deep = [r for r in recent if r[2] >= top - _DEEP * amplitude]
+    t_last, x_last, _ = deep[-1]
+    scale = float(np.max(np.abs(x_last - equilibrium)))
+    for t_prev, x_prev, _ in reversed(deep[-9:-1]):
+        if float(np.max(np.abs(x_last - x_prev))) <= SETTLE_TOL * scale:
+            return x_last, float(t_last - t_prev)
+    return None
