@@ -9,9 +9,9 @@ exactly:
 
 1. **Seeds.** On a grid of the parameter: the periodic response of period ``T``
    (`beltmdsm.periodic.floquet.floquet`, continued down the grid from its neighbour);
-   the attractor of a run from rest (`beltmdsm.studies.responses.run_stroboscope`);
+   the attractor of a run from rest (`beltmdsm.studies.seeds.run_stroboscope`);
    and those of two ladders, continued up and down the grid on the period map
-   (`beltmdsm.studies.responses.ladder`). An attractor that locks at ``k`` periods
+   (`beltmdsm.studies.seeds.ladder`). An attractor that locks at ``k`` periods
    (`beltmdsm.periodic.locked.LOCK_LIMIT` at most) is a seed; one that does not is
    listed with the evidence (`beltmdsm.periodic.locked.NotLocked`).
 2. **Branches.** Every seed that no branch found so far passes through (same ``k``,
@@ -61,7 +61,7 @@ from ..periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ..periodic.periodmap import engine_of
 from ..settings import MAX_SEED_POINTS
 from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
-from .responses import check_limit, ladder, run_stroboscope, shoot
+from .seeds import check_limit, ladder, run_stroboscope, shoot
 
 __all__ = [
     "DEFAULT_STEP",
