@@ -9,7 +9,7 @@ import numpy as np
 if TYPE_CHECKING:
     from ...model import Model
 
-__all__ = ["jsonable", "kind"]
+__all__ = ["jsonable", "kind", "laws", "response_name"]
 
 
 def jsonable(x: Any) -> Any:
@@ -32,7 +32,7 @@ def kind(name: str, frequency: float | None = None) -> str:
     return name
 
 
-def _laws(model: Model) -> str:
+def laws(model: Model) -> str:
     """The model's laws and the Floquet path they take, as the headers print them."""
     from ...periodic.periodmap import engine_of
 
@@ -42,5 +42,6 @@ def _laws(model: Model) -> str:
     )
 
 
-def _name(periods: int) -> str:
+def response_name(periods: int) -> str:
+    """``"T"``, or ``"4T"`` for a response of 4 excitation periods."""
     return "T" if periods == 1 else f"{periods}T"

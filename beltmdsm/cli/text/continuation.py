@@ -6,7 +6,7 @@ import math
 from typing import TYPE_CHECKING
 
 from ...intervals import format_intervals
-from .common import _laws, _name, kind
+from .common import kind, laws, response_name
 
 if TYPE_CHECKING:
     from ...continuation.band import Band
@@ -31,11 +31,13 @@ def band(result: Band, lo: float, hi: float) -> str:
     that two edges more than a tolerance apart never print alike.
     """
     spec = f".{max(4, math.ceil(-math.log10(result.tol)) + 1)}f"
-    what = "periodic response" if result.periods == 1 else f"{_name(result.periods)} response"
+    what = (
+        "periodic response" if result.periods == 1 else f"{response_name(result.periods)} response"
+    )
     lines = [
         f"{what} unstable (or absent) for {result.param} in "
         f"{format_intervals(result.unstable, spec)} of {lo:g}..{hi:g} "
-        f"({_laws(result.model)})"
+        f"({laws(result.model)})"
     ]
     for e in result.edges:
         lines.append(
@@ -67,11 +69,11 @@ def branch(found: Branch) -> str:
     what = (
         "self-excited cycles (no excitation)"
         if cycles
-        else f"the {_name(found.periods)}-periodic response"
+        else f"the {response_name(found.periods)}-periodic response"
     )
     lines = [
         f"branch of {what} in {found.param} "
-        f"({_laws(found.model)}): {found.param} from "
+        f"({laws(found.model)}): {found.param} from "
         f"{lo:.6g} to {hi:.6g}, {len(found.points)} points; stable for {found.param} in "
         f"{format_intervals(found.stable_ranges(), '.5f', 'none')}"
     ]
@@ -112,7 +114,7 @@ def floquet_map(result: FloquetMap, png: str | None = None) -> str:
     lines = [
         f"periodic response of Eq. (4) over {result.x} in {result.x_range[0]:g}..."
         f"{result.x_range[1]:g} and {result.y} in {result.y_range[0]:g}..."
-        f"{result.y_range[1]:g} ({_laws(result.model)}; {len(result.rows)} rows, "
+        f"{result.y_range[1]:g} ({laws(result.model)}; {len(result.rows)} rows, "
         f"{result.wall_s:.1f} s): "
         f"{len(result.curves)} boundary curves"
     ]

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .common import _laws, _name
+from .common import laws, response_name
 
 if TYPE_CHECKING:
     from ...periodic.floquet import Floquet
@@ -106,9 +106,9 @@ def responses(found: ResponseSet) -> str:
     m = found.model
     autonomous = any(r.floquet.autonomous for r in found.responses) or is_autonomous(m)
     lines = [
-        f"self-excited cycles of Eq. (4) without excitation ({_laws(m)}), Vb = {m['Vb']:g} m/s:"
+        f"self-excited cycles of Eq. (4) without excitation ({laws(m)}), Vb = {m['Vb']:g} m/s:"
         if autonomous
-        else f"periodic responses of Eq. (4) ({_laws(m)}), "
+        else f"periodic responses of Eq. (4) ({laws(m)}), "
         f"Vb = {m['Vb']:g} m/s (locks looked for up to {found.limit} periods):"
     ]
     for r in found.responses:
@@ -124,7 +124,11 @@ def responses(found: ResponseSet) -> str:
             if r.run_distance is None
             else f"; the run's last samples lie on it to {r.run_distance:.1e}"
         )
-        name = f"cycle of period {f.period:.6g} s" if f.autonomous else f"{_name(r.periods):>4}"
+        name = (
+            f"cycle of period {f.period:.6g} s"
+            if f.autonomous
+            else f"{response_name(r.periods):>4}"
+        )
         lines.append(
             f"  {name}: {verdict}; {f.n_reversals} reversals, {f.n_sticks} "
             f"sticks per orbit; amplitude of X1' {r.amplitude:.4g} m/s; found by "
@@ -145,7 +149,7 @@ def coexistence(found: Coexistence) -> str:
     param = found.param
     lines = [
         f"stable periodic responses of Eq. (4) for {param} in {found.lo:g}..{found.hi:g} "
-        f"({_laws(found.model)}; {found.wall_s:.1f} s):"
+        f"({laws(found.model)}; {found.wall_s:.1f} s):"
     ]
     for r in found.responses:
         stable = ", ".join(
@@ -189,7 +193,7 @@ def cycle_coexistence(found) -> str:
 
     lines = [
         f"steady sliding and self-excited cycles of Eq. (4) without excitation for {param} "
-        f"in {found.lo:g}..{found.hi:g} ({_laws(found.model)}; {found.wall_s:.1f} s):",
+        f"in {found.lo:g}..{found.hi:g} ({laws(found.model)}; {found.wall_s:.1f} s):",
         f"  steady sliding: stable in {parts(found.sliding)}",
     ]
     for h in found.hopf:

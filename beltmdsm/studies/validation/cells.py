@@ -26,26 +26,26 @@ _STATUS_TEXT = {
 }
 
 
-def _num(x):
+def num(x):
     return f"{x:.2f}"
 
 
-def _ranges_text(ranges):
+def ranges_text(ranges):
     return "n/a" if ranges is None else intervals.format_intervals(ranges, ".2f")
 
 
-def _simulated_text(sim: SimulatedRanges) -> str:
+def simulated_text(sim: SimulatedRanges) -> str:
     if not sim.ranges:
         return "none"
     parts = []
     for r in sim.ranges:
-        lo = _num(r.lower) + ("*" if r.lower_censored else "")
-        hi = _num(r.upper) + ("*" if r.upper_censored else "")
+        lo = num(r.lower) + ("*" if r.lower_censored else "")
+        hi = num(r.upper) + ("*" if r.upper_censored else "")
         parts.append(f"[{lo}, {hi}]")
     return ", ".join(parts)
 
 
-def _delta_text(comp: Comparison) -> str:
+def delta_text(comp: Comparison) -> str:
     if comp.status != "paired":
         return _STATUS_TEXT[comp.status]
     texts = []
@@ -59,11 +59,11 @@ def _delta_text(comp: Comparison) -> str:
     return " / ".join(texts)
 
 
-def _points_text(runs):
-    return ", ".join(f"{_num(a)}–{_num(b)}" if a != b else _num(a) for a, b in runs) or "none"
+def points_text(runs):
+    return ", ".join(f"{num(a)}–{num(b)}" if a != b else num(a) for a, b in runs) or "none"
 
 
-def _runs_text(runs):
+def runs_text(runs):
     names = {
         "continuous_sliding": "sliding",
         "sliding_with_reversals": "reversals",
@@ -72,11 +72,11 @@ def _runs_text(runs):
         UNRESOLVED: "**unresolved**",
     }
     return "; ".join(
-        f"{names[r]} {_num(a)}–{_num(b)}" if a != b else f"{names[r]} {_num(a)}" for r, a, b in runs
+        f"{names[r]} {num(a)}–{num(b)}" if a != b else f"{names[r]} {num(a)}" for r, a, b in runs
     )
 
 
-def _band_text(band: Band) -> str:
+def band_text(band: Band) -> str:
     if not band.unstable:
         return "none"
     text = intervals.format_intervals(band.unstable, ".3f")
@@ -101,7 +101,7 @@ EDGE_ABBREVIATIONS = {
 EDGE_LEGEND = ", ".join(a if a == w else f"{a} = {w}" for a, w in EDGE_ABBREVIATIONS.values())
 
 
-def _edges_text(band: Band) -> str:
+def edges_text(band: Band) -> str:
     return ", ".join(f"{e.value:.3f} {EDGE_ABBREVIATIONS[e.kind][0]}" for e in band.edges) or "—"
 
 
@@ -121,23 +121,23 @@ COEXISTENCE_LEGEND = ", ".join(
 )
 
 
-def _kind(kind: str) -> str:
+def kind(kind: str) -> str:
     return {**EDGE_ABBREVIATIONS, **END_ABBREVIATIONS}.get(kind, (kind, kind))[0]
 
 
-def _exact_text(c: CaseResult) -> str:
+def exact_text(c: CaseResult) -> str:
     """The exact coexistence ranges of a case: range, responses, kinds of both edges."""
     return (
         "; ".join(
             f"[{r.range[0]:.3f}, {r.range[1]:.3f}] {' + '.join(r.responses)} "
-            f"({_kind(r.lower)} / {_kind(r.upper)})"
+            f"({kind(r.lower)} / {kind(r.upper)})"
             for r in c.exact.ranges
         )
         or "none"
     )
 
 
-def _tolerance_text(cases):
+def tolerance_text(cases):
     values = sorted({e.tolerance for c in cases for e in c.explanations})
     if not values:
         return "(Omega dt)^2 / 4"
@@ -146,14 +146,14 @@ def _tolerance_text(cases):
     return f"(Omega dt)^2 / 4, {values[0]:.1e} to {values[-1]:.1e}"
 
 
-def _run_text(run: Run) -> str:
+def run_text(run: Run) -> str:
     text = intervals.format_intervals(run.ranges, ".2f")
     if run.unresolved:
         text += f" ({len(run.unresolved)} unresolved)"
     return text
 
 
-def _floquet_delta_text(comp: Comparison) -> str:
+def floquet_delta_text(comp: Comparison) -> str:
     if comp.status != "paired":
         return _STATUS_TEXT[comp.status]
     return " / ".join(

@@ -11,14 +11,14 @@ from .cases import ANALYSES, FLOQUET_TOL
 from .cells import (
     COEXISTENCE_LEGEND,
     EDGE_LEGEND,
-    _band_text,
-    _edges_text,
-    _exact_text,
-    _floquet_delta_text,
-    _kind,
-    _points_text,
-    _run_text,
-    _tolerance_text,
+    band_text,
+    edges_text,
+    exact_text,
+    floquet_delta_text,
+    kind,
+    points_text,
+    run_text,
+    tolerance_text,
 )
 from .exact import STATUSES
 from .results import CaseResult, Validation
@@ -68,7 +68,7 @@ def _coexistence_section(results: Validation) -> list[str]:
         "*explained* by a computed response that is stable at its `Vb` and whose range of "
         "X1' its steady window spans, to the sampling error "
         "(`beltmdsm.studies.validation.exact.range_tolerance`, "
-        f"{_tolerance_text(cases)} of the amplitude); otherwise it is *not settled*, *not "
+        f"{tolerance_text(cases)} of the amplitude); otherwise it is *not settled*, *not "
         "locked* or *unexplained*, with the reason.",
         "",
         "| case | exact coexistence [m/s]: responses (edges) | simulated [m/s] | shown by "
@@ -81,9 +81,9 @@ def _coexistence_section(results: Validation) -> list[str]:
         by = sorted({k for ks in co.found_by.values() for k in ks})
         counts = " / ".join(str(sum(e.status == s for e in c.explanations)) for s in STATUSES)
         lines.append(
-            f"| {c.case.name} | {_exact_text(c)} | "
+            f"| {c.case.name} | {exact_text(c)} | "
             f"{intervals.format_intervals(co.ranges, '.2f')} | {', '.join(by) or '—'} | "
-            f"{counts} | {_points_text([(v, v) for v in co.unsettled])} |"
+            f"{counts} | {points_text([(v, v) for v in co.unsettled])} |"
         )
     lines += [
         "",
@@ -99,7 +99,7 @@ def _coexistence_section(results: Validation) -> list[str]:
         for r in c.exact.responses:
             stable = (
                 "; ".join(
-                    f"[{s.range[0]:.3f}, {s.range[1]:.3f}] ({_kind(s.lower)} / {_kind(s.upper)})"
+                    f"[{s.range[0]:.3f}, {s.range[1]:.3f}] ({kind(s.lower)} / {kind(s.upper)})"
                     for s in r.stable
                 )
                 or "nowhere"
@@ -131,7 +131,7 @@ def _coexistence_section(results: Validation) -> list[str]:
             inside = [e for e in c.explanations if first <= e.Vb <= last and e.explained]
             worst = max((e.deviation for e in inside), default=None)
             lines.append(
-                f"| {c.case.name} | {_points_text([(first, last)])} | {text} | "
+                f"| {c.case.name} | {points_text([(first, last)])} | {text} | "
                 + ("—" if worst is None else f"{worst:.1e}")
                 + " |"
             )
@@ -145,7 +145,7 @@ def _coexistence_section(results: Validation) -> list[str]:
     return lines
 
 
-def _floquet_sections(results: Validation) -> list[str]:
+def floquet_sections(results: Validation) -> list[str]:
     """The Floquet tables of `render_markdown`: the runs, mismatches, coexistence, edges."""
     cases, step = results.cases, results.resolution.step
     other = {"allowed": "clipped", "clipped": "allowed"}[results.tension]
@@ -165,10 +165,10 @@ def _floquet_sections(results: Validation) -> list[str]:
     for c in cases:
         band, runs = c.floquet.band, c.runs
         lines.append(
-            f"| {c.case.name} | {_band_text(band)} | {_edges_text(band)} | "
-            + " | ".join(_run_text(runs[k]) for k in ("periodic", "rest", "up", "down"))
+            f"| {c.case.name} | {band_text(band)} | {edges_text(band)} | "
+            + " | ".join(run_text(runs[k]) for k in ("periodic", "rest", "up", "down"))
             + f" | {intervals.format_intervals(c.coexistence.ranges, '.2f')} | "
-            f"{_run_text(runs['rest_other'])} |"
+            f"{run_text(runs['rest_other'])} |"
         )
     ms = results.mismatch_summary
     lines += [
@@ -207,7 +207,7 @@ def _floquet_sections(results: Validation) -> list[str]:
         lines.append(
             f"| {c.case.name} | {m.checked} | {len(m.near_edge)} | "
             f"{len(m.no_verdict)} | {len(m.unresolved)} | "
-            f"{_points_text([(v, v) for v in c.band_disagreements])} |"
+            f"{points_text([(v, v) for v in c.band_disagreements])} |"
         )
     lines += _coexistence_section(results)
     lines += [
@@ -221,8 +221,8 @@ def _floquet_sections(results: Validation) -> list[str]:
     ]
     for c in cases:
         lines.append(
-            f"| {c.case.name} | {_band_text(c.floquet.band)} | "
-            + " | ".join(_floquet_delta_text(c.floquet_comparison[k]) for k, _, _ in ANALYSES)
+            f"| {c.case.name} | {band_text(c.floquet.band)} | "
+            + " | ".join(floquet_delta_text(c.floquet_comparison[k]) for k, _, _ in ANALYSES)
             + " |"
         )
     fs = results.floquet_summary

@@ -16,9 +16,9 @@ from ...periodic.locked import LOCK_LIMIT
 from ...run.summary import PEAK_PRESENT_RATIO, TRANSIENT_DECAYED
 from ..coexistence import DEFAULT_STEP
 from .cases import ANALYSES, DEFINITIONS, FLOQUET_DEFINITIONS, FLOQUET_TOL
-from .cells import _delta_text, _num, _points_text, _ranges_text, _runs_text, _simulated_text
+from .cells import delta_text, num, points_text, ranges_text, runs_text, simulated_text
 from .comparison import regime_runs
-from .floquet_report import _floquet_sections
+from .floquet_report import floquet_sections
 from .results import CaseResult, Validation
 
 __all__ = ["render_markdown"]
@@ -123,7 +123,7 @@ def render_markdown(results: Validation, quick: bool) -> str:
         "(`beltmdsm.run.summary.PEAK_PRESENT_RATIO`).",
         "* Grid per case: "
         + "; ".join(
-            f"{c.case.name} {_num(c.Vb[0])}–{_num(c.Vb[-1])} ({len(c.Vb)} points)" for c in cases
+            f"{c.case.name} {num(c.Vb[0])}–{num(c.Vb[-1])} ({len(c.Vb)} points)" for c in cases
         )
         + ".",
         "",
@@ -131,7 +131,7 @@ def render_markdown(results: Validation, quick: bool) -> str:
         "",
     ]
     lines += [f"* **{lab}**: {desc}." for _, lab, desc in ANALYSES]
-    lines += [""] + _floquet_sections(results)
+    lines += [""] + floquet_sections(results)
     lines += [
         "# Against the runs from rest",
         "",
@@ -153,8 +153,8 @@ def render_markdown(results: Validation, quick: bool) -> str:
     for c in cases:
         name = c.case.name + ("" if c.comparable else " †")
         lines.append(
-            f"| {name} | {c.case.figure} | {_simulated_text(c.simulated)} | "
-            + " | ".join(_ranges_text(c.predicted[k]) for k, _, _ in ANALYSES)
+            f"| {name} | {c.case.figure} | {simulated_text(c.simulated)} | "
+            + " | ".join(ranges_text(c.predicted[k]) for k, _, _ in ANALYSES)
             + " |"
         )
     lines += [
@@ -175,7 +175,7 @@ def render_markdown(results: Validation, quick: bool) -> str:
             continue
         lines.append(
             f"| {c.case.name} | "
-            + " | ".join(_delta_text(c.comparison[k]) for k, _, _ in ANALYSES)
+            + " | ".join(delta_text(c.comparison[k]) for k, _, _ in ANALYSES)
             + " |"
         )
     summary = results.summary
@@ -189,8 +189,8 @@ def render_markdown(results: Validation, quick: bool) -> str:
     ]
     for key, lab, _ in ANALYSES:
         s = summary[key]
-        mae = "—" if s.mae is None else _num(s.mae)
-        dis = "—" if s.mean_disagreement is None else _num(s.mean_disagreement)
+        mae = "—" if s.mae is None else num(s.mae)
+        dis = "—" if s.mean_disagreement is None else num(s.mean_disagreement)
         lines.append(
             f"| {lab} | {mae} | {s.n_edges} | {s.paired} | {s.miss} | "
             f"{s.false_alarm} | {s.both_empty} | {dis} |"
@@ -221,18 +221,18 @@ def render_markdown(results: Validation, quick: bool) -> str:
     ]
     for c in cases:
         rest = c.runs["rest"]
-        note = _runs_text(regime_runs(c.Vb, rest.regime))
+        note = runs_text(regime_runs(c.Vb, rest.regime))
         anywhere = [(a, b) for r, a, b in regime_runs(c.Vb, rest.present) if r == "True"]
         if c.harmonics:
             note += (
                 "; † not comparable: "
-                + ", ".join(f"{k} Omega = {_num(w)} rad/s" for k, w in c.harmonics)
+                + ", ".join(f"{k} Omega = {num(w)} rad/s" for k, w in c.harmonics)
                 + " lies in the omega1 band"
             )
         elif not c.comparable:
             note += "; † not comparable: no sliding point"
         lines.append(
-            f"| {c.case.name} | {note} | {_points_text(anywhere)} | "
+            f"| {c.case.name} | {note} | {points_text(anywhere)} | "
             f"{c.case.figure}: {c.case.paper} |"
         )
     lines += [
