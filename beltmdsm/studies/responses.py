@@ -141,9 +141,13 @@ class SeedFailure:
 class ResponseSet:
     """The periodic responses found at one parameter point (`responses`).
 
-    Attributes
+    Its ``repr`` is one screen (a line per response, attractor not locked and failed
+    seed); ``as_dict()`` is the JSON of ``responses --json``.
+
+    Parameters
     ----------
     model : Model
+        The point: parameters and options.
     limit : int
         The largest ``k`` looked for.
     responses : list of Response
@@ -151,6 +155,26 @@ class ResponseSet:
     unlocked : list of NotLocked
         The attractors that do not lock within the limit.
     failed : list of SeedFailure
+        The seeds whose shooting failed, and why.
+
+    See Also
+    --------
+    responses : What builds it.
+    Response : One response: its multipliers, amplitude and sources.
+
+    Examples
+    --------
+    Built by `responses`; here by hand, with one failed seed and nothing found:
+
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.studies.responses import ResponseSet, SeedFailure
+    >>> found = ResponseSet(Model(Vb=5), 12, [], [], [SeedFailure("a ladder", "it stopped")])
+    >>> found  # doctest: +NORMALIZE_WHITESPACE
+    ResponseSet(Model(Vb=5.0); coulomb friction, hertz_damp, tension allowed; locks up to
+    12 periods): 0 responses
+      no response from a ladder: it stopped
+    >>> found.as_dict()["failed"]
+    [{'source': 'a ladder', 'reason': 'it stopped'}]
     """
 
     model: Model
@@ -217,7 +241,9 @@ def responses(
     response (where there is one), and of ladders in ``Vb`` continued up and down over
     ``ladder`` m/s (0: none) on the period map. Each attractor that locks at ``k <=
     limit`` periods is polished by Newton's method on the ``k``-fold map; the others
-    are listed with the evidence (`beltmdsm.periodic.locked.NotLocked`).
+    are listed with the evidence (`beltmdsm.periodic.locked.NotLocked`). Without
+    excitation, the self-excited cycles (`cycle_responses`; ``limit`` and ``t_end`` do
+    not apply).
 
     Parameters
     ----------
@@ -226,24 +252,47 @@ def responses(
     limit : int
         The largest ``k`` looked for (>= 1).
     ladder : float
-        Span of the continued ladders [m/s], >= 0.
+        Span of the continued ladders [m/s], >= 0 (0: no ladder; the default
+        `beltmdsm.studies.seeds.LADDER_SPAN`).
     t_end : float
-        Duration of the runs [s].
+        Duration of the runs [s] (default `beltmdsm.studies.seeds.RUN_T_END`).
     backend : {"python", "numba", None}
+        The kernels: compiled by numba, plain Python, or numba where installed.
+    **kw
+        Model parameters and options (``Vb=5``, ``tension="clipped"``).
 
     Returns
     -------
     ResponseSet
-
-    Without excitation, the self-excited cycles (`cycle_responses`; ``limit`` and
-    ``t_end`` do not apply).
+        The responses by ``k``, then by amplitude, each with its Floquet multipliers
+        and the seeds that found it; the attractors that do not lock; the seeds whose
+        shooting failed.
 
     Raises
     ------
     ValueError
-        For bad parameters, ``limit < 1``, ``ladder < 0`` or ``t_end <= 0``;
-        `beltmdsm.errors.Refused` for a ``limit`` that the samples cannot decide
-        (`check_limit`).
+        For bad parameters, ``limit < 1``, ``ladder < 0`` or ``t_end <= 0``.
+    beltmdsm.errors.Refused
+        For a ``limit`` that the samples cannot decide
+        (`beltmdsm.studies.seeds.check_limit`).
+
+    See Also
+    --------
+    beltmdsm.floquet : The ``T``-periodic response alone, or one of ``k`` periods.
+    beltmdsm.coexistence : The responses over a range of a parameter, where they coexist.
+    beltmdsm.classify : What one run settles on, named.
+
+    Examples
+    --------
+    At the base set and ``Vb = 5`` m/s the ``T``-periodic response is unstable and the
+    run from rest locks at four excitation periods, on a stable response:
+
+    >>> from beltmdsm import responses
+    >>> found = responses(Vb=5.0, ladder=0.0)
+    >>> [(r.periods, r.floquet.stable) for r in found.responses]
+    [(1, False), (4, True)]
+    >>> found.responses[1].sources
+    ['run from rest', 'run from the perturbed periodic response']
     """
     limit = count("limit", limit, 1)
     if not (is_real(ladder) and ladder >= 0 and is_real(t_end) and t_end > 0):
