@@ -232,6 +232,44 @@ def compare(
     Returns
     -------
     LawComparison
+        Every part by law (and tension law, and start), the answers, and the wall time
+        of each part; ``table(law)`` is the Markdown of docs/stribeck.md.
+
+    Raises
+    ------
+    ValueError
+        For a start not in `STARTS` (unforced) or `FORCED_STARTS` (forced), an
+        unknown tension law, or a bad parameter of a law or of ``model``.
+
+    See Also
+    --------
+    steady_sliding, forced_stability, runs_from_rest, answer : The parts, one at a time.
+    beltmdsm.floquet_band : The Floquet band of (b).
+
+    Examples
+    --------
+    One Stribeck law, one tension law, a coarse band and one short run (the study of
+    docs/stribeck.md takes the defaults): steady sliding is unstable below about
+    2 m/s without excitation, the forced response between about 5.7 and 7.06 m/s.
+
+    >>> from beltmdsm import SolverSettings
+    >>> from beltmdsm.studies.law_comparison import LAWS, compare
+    >>> result = compare(
+    ...     {"stribeck_A": LAWS["stribeck_A"]},
+    ...     tensions=("allowed",),
+    ...     band_points=5,
+    ...     run_values=[2.0],
+    ...     settings=SolverSettings(t_end=100.0),
+    ...     starts=("perturbed",),
+    ...     forced_starts=("rest",),
+    ... )
+    >>> a = result.answers[("stribeck_A", "allowed")]
+    >>> [(round(lo, 3), round(hi, 3)) for lo, hi in a.unforced_unstable]
+    [(0.0, 1.996)]
+    >>> [(round(lo, 2), round(hi, 2)) for lo, hi in a.forced_unstable]
+    [(5.7, 7.06)]
+    >>> sorted(result.wall_s)
+    ['floquet', 'forced_runs', 'steady', 'unforced_runs']
     """
     laws = dict(LAWS if laws is None else laws)
     tensions, starts, forced_starts = tuple(tensions), tuple(starts), tuple(forced_starts)
