@@ -79,7 +79,7 @@ class Refused(BeltmdsmError, ValueError):
 
     See Also
     --------
-    Unsupported : An analysis that the chosen laws do not allow.
+    beltmdsm.errors.Unsupported : an analysis that the chosen laws do not allow.
 
     Examples
     --------
@@ -125,7 +125,7 @@ class StepTooSmall(BeltmdsmError, ArithmeticError):
 
     See Also
     --------
-    beltmdsm.SolverSettings : Where the tolerances are set.
+    beltmdsm.settings.SolverSettings : where the tolerances are set.
 
     Examples
     --------
@@ -157,8 +157,8 @@ class NoPeriodicResponse(BeltmdsmError, RuntimeError):
 
     See Also
     --------
-    beltmdsm.floquet : Raises it where there is no periodic response to analyse.
-    beltmdsm.responses : Lists the seeds that failed with it instead of raising.
+    beltmdsm.periodic.floquet.floquet : raises it where there is no periodic response.
+    beltmdsm.studies.responses.responses : lists the seeds that failed with it.
 
     Examples
     --------
@@ -183,7 +183,7 @@ class NotApplicable(BeltmdsmError, ValueError):
 
     See Also
     --------
-    beltmdsm.SolverSettings : ``solver="superposition"`` falls back to "events".
+    beltmdsm.settings.SolverSettings : ``solver="superposition"`` falls back to "events".
 
     Examples
     --------
@@ -206,7 +206,7 @@ class NoEdge(BeltmdsmError, RuntimeError):
 
     See Also
     --------
-    beltmdsm.floquet_band : Labels each end of a response by the margin that closes.
+    beltmdsm.continuation.band.floquet_band : labels each end by the margin that closes.
 
     Examples
     --------

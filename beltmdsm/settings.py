@@ -103,8 +103,8 @@ class SolverSettings:
 
     See Also
     --------
-    beltmdsm.simulate : A run with these settings (its keywords are the fields too).
-    beltmdsm.sweep : Runs over a parameter; the settings are part of the cache key.
+    beltmdsm.simulation.simulate : a run with these settings (its keywords are the fields too).
+    beltmdsm.studies.sweep.sweep : runs over a parameter; the settings are in the cache key.
 
     Examples
     --------

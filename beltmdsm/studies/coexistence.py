@@ -186,8 +186,8 @@ class Coexistence:
 
     See Also
     --------
-    coexistence : What builds it.
-    beltmdsm.studies.cycle_coexistence.CycleCoexistence : Its twin without excitation.
+    beltmdsm.studies.coexistence.coexistence : what builds it.
+    beltmdsm.studies.cycle_coexistence.CycleCoexistence : its twin without excitation.
 
     Examples
     --------
@@ -346,9 +346,9 @@ def coexistence(
 
     See Also
     --------
-    beltmdsm.responses : Every response at one point.
-    beltmdsm.branch : One response continued in a parameter.
-    beltmdsm.floquet_band : Where the ``T``-periodic response alone is unstable.
+    beltmdsm.studies.responses.responses : every response at one point.
+    beltmdsm.continuation.branch.branch : one response continued in a parameter.
+    beltmdsm.continuation.band.floquet_band : where the ``T``-periodic response is unstable.
 
     Examples
     --------

@@ -159,8 +159,8 @@ class ResponseSet:
 
     See Also
     --------
-    responses : What builds it.
-    Response : One response: its multipliers, amplitude and sources.
+    beltmdsm.studies.responses.responses : what builds it.
+    beltmdsm.studies.responses.Response : one response: its multipliers, amplitude, sources.
 
     Examples
     --------
@@ -278,9 +278,9 @@ def responses(
 
     See Also
     --------
-    beltmdsm.floquet : The ``T``-periodic response alone, or one of ``k`` periods.
-    beltmdsm.coexistence : The responses over a range of a parameter, where they coexist.
-    beltmdsm.classify : What one run settles on, named.
+    beltmdsm.periodic.floquet.floquet : the ``T``-periodic response alone, or one of ``k`` periods.
+    beltmdsm.studies.coexistence.coexistence : the responses over a range, where they coexist.
+    beltmdsm.attractors.classification.classify : what one run settles on, named.
 
     Examples
     --------

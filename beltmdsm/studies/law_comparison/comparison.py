@@ -243,8 +243,10 @@ def compare(
 
     See Also
     --------
-    steady_sliding, forced_stability, runs_from_rest, answer : The parts, one at a time.
-    beltmdsm.floquet_band : The Floquet band of (b).
+    beltmdsm.studies.law_comparison.steady.steady_sliding : part (a).
+    beltmdsm.studies.law_comparison.forced.forced_stability : part (b).
+    beltmdsm.studies.law_comparison.runs.runs_from_rest : part (c).
+    beltmdsm.studies.law_comparison.comparison.answer : part (d).
 
     Examples
     --------

@@ -180,8 +180,8 @@ class Validation:
 
     See Also
     --------
-    validate : What builds it.
-    render_markdown : ``VALIDATION.md`` from it.
+    beltmdsm.studies.validation.run.validate : what builds it.
+    beltmdsm.studies.validation.report.render_markdown : ``VALIDATION.md`` from it.
 
     Examples
     --------

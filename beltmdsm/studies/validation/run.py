@@ -127,9 +127,9 @@ def validate(
 
     See Also
     --------
-    render_markdown : ``VALIDATION.md`` from the result.
-    beltmdsm.floquet_band : The Floquet band of one case.
-    beltmdsm.predict : The analyses' predicted ranges.
+    beltmdsm.studies.validation.report.render_markdown : ``VALIDATION.md`` from the result.
+    beltmdsm.continuation.band.floquet_band : the Floquet band of one case.
+    beltmdsm.prediction.predict.predict : the analyses' predicted ranges.
 
     Examples
     --------
