@@ -29,6 +29,21 @@ is what ``except Unsupported`` needs to catch a refusal of either layer. The cla
 are also importable from the modules that raised them before (`beltmdsm.model`,
 `beltmdsm.periodic.periodmap`, `beltmdsm.periodic.floquet`, `beltmdsm.continuation.edges`,
 `beltmdsm.integrate.superposition`): the same objects.
+
+Examples
+--------
+One ``except`` catches every named failure; each is still its builtin kind:
+
+>>> from beltmdsm import Model
+>>> from beltmdsm.errors import BeltmdsmError, Unsupported
+>>> from beltmdsm.model import require
+>>> try:
+...     require(Model(friction="stribeck"), "friction_monotone", "this analysis")
+... except BeltmdsmError as err:
+...     print(type(err).__name__, isinstance(err, ValueError))
+...     print(err)
+Unsupported True
+this analysis: friction='stribeck': dmu/d|Vr| ... the coefficient falls with the sliding speed ...
 """
 
 from __future__ import annotations
@@ -56,6 +71,33 @@ class Refused(BeltmdsmError, ValueError):
     *names : str
         The settings or arguments refused, by their Python names (``"dt"``,
         ``"t_end"``, ``"tol"``, ``"points"``).
+
+    Attributes
+    ----------
+    names : tuple of str
+        ``names``: the command line names its flags from them.
+
+    See Also
+    --------
+    beltmdsm.errors.Unsupported : an analysis that the chosen laws do not allow.
+
+    Examples
+    --------
+    A sampling step that would alias the excitation's harmonics into the omega1 band:
+
+    >>> from beltmdsm import simulate
+    >>> from beltmdsm.errors import Refused
+    >>> try:
+    ...     simulate(Vb=5, dt=0.7, t_end=50)
+    ... except Refused as err:
+    ...     print(err.names, err)
+    ('dt',) dt = 0.7 s samples up to pi/dt = 4.488 rad/s, below 8 x Omega_t = 32 rad/s: ...
+
+    It survives pickling (a refusal raised in a worker process arrives whole):
+
+    >>> import pickle
+    >>> pickle.loads(pickle.dumps(Refused("too many points", "points"))).names
+    ('points',)
     """
 
     def __init__(self, message: str, *names: str) -> None:
@@ -73,7 +115,28 @@ class StepTooSmall(BeltmdsmError, ArithmeticError):
 
     The tolerances are too loose for the switches to be located (the state drifts
     across a switching surface between steps) or too tight for the field there.
-    ``rtol`` and ``atol`` are the tolerances of the run.
+
+    Parameters
+    ----------
+    message : str
+        Where the step fell, and how far.
+    rtol, atol : float
+        The tolerances of the run (kept as attributes of the same names).
+
+    See Also
+    --------
+    beltmdsm.settings.SolverSettings : where the tolerances are set.
+
+    Examples
+    --------
+    >>> import pickle
+    >>> from beltmdsm.errors import BeltmdsmError, StepTooSmall
+    >>> err = StepTooSmall("the step fell below 1e-14 s at t = 3.2 s", 1e-10, 1e-10)
+    >>> isinstance(err, ArithmeticError) and isinstance(err, BeltmdsmError)
+    True
+    >>> again = pickle.loads(pickle.dumps(err))
+    >>> str(again), again.rtol, again.atol
+    ('the step fell below 1e-14 s at t = 3.2 s', 1e-10, 1e-10)
     """
 
     def __init__(self, message: str, rtol: float, atol: float) -> None:
@@ -85,12 +148,69 @@ class StepTooSmall(BeltmdsmError, ArithmeticError):
 
 
 class NoPeriodicResponse(BeltmdsmError, RuntimeError):
-    """No periodic response is found (Newton's method and forward iteration fail)."""
+    """No periodic response is found (Newton's method and forward iteration fail).
+
+    Parameters
+    ----------
+    message : str
+        Where and why the search failed.
+
+    See Also
+    --------
+    beltmdsm.periodic.floquet.floquet : raises it where there is no periodic response.
+    beltmdsm.studies.responses.responses : lists the seeds that failed with it.
+
+    Examples
+    --------
+    >>> from beltmdsm.errors import BeltmdsmError, NoPeriodicResponse
+    >>> try:
+    ...     raise NoPeriodicResponse("Newton's method did not converge at Vb = 9")
+    ... except RuntimeError as err:
+    ...     print(isinstance(err, BeltmdsmError), err)
+    True Newton's method did not converge at Vb = 9
+    """
 
 
 class NotApplicable(BeltmdsmError, ValueError):
-    """The superposition's closed forms do not exist for this model (the reason)."""
+    """The superposition's closed forms do not exist for this model (the reason).
+
+    Raised and caught inside the package: a run then takes the general integrator.
+
+    Parameters
+    ----------
+    message : str
+        Why the closed forms do not exist.
+
+    See Also
+    --------
+    beltmdsm.settings.SolverSettings : ``solver="superposition"`` falls back to "events".
+
+    Examples
+    --------
+    >>> from beltmdsm.errors import NotApplicable
+    >>> issubclass(NotApplicable, ValueError)
+    True
+    """
 
 
 class NoEdge(BeltmdsmError, RuntimeError):
-    """No margin of the response closes towards where it is no longer found."""
+    """No margin of the response closes towards where it is no longer found.
+
+    Raised and caught inside the package: the end of a response is then reported
+    unclassified.
+
+    Parameters
+    ----------
+    message : str
+        Which margins were tried.
+
+    See Also
+    --------
+    beltmdsm.continuation.band.floquet_band : labels each end by the margin that closes.
+
+    Examples
+    --------
+    >>> from beltmdsm.errors import NoEdge
+    >>> issubclass(NoEdge, RuntimeError)
+    True
+    """

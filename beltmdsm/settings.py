@@ -65,19 +65,56 @@ DEFAULT_T_END = 1000.0
 class SolverSettings:
     """How a run is computed; part of the cache key of a sweep.
 
-    ``solver``: "events" (the default; `beltmdsm.integrate.events`, the compiled
-    DOP853 integrator on each mode: the general one, and the faster) or
-    "superposition" (`beltmdsm.integrate.superposition`: the normal equation once, the
-    tangential one by superposition; it falls back to "events" where it does not
-    apply). ``method``: the Runge-Kutta method ("DOP853", the only one). ``dt``:
-    sampling step of the returned time series [s]. ``t_discard``: start of the steady
-    window [s]; ``None`` means 30 % of ``t_end``. ``backend``: "numba" (compiled),
-    "python" or None (numba if installed).
+    Frozen and checked once, when made: every field is validated here, so a run
+    never sees a bad setting.
+
+    Parameters
+    ----------
+    solver : {"events", "superposition"}
+        "events" (the default; `beltmdsm.integrate.events`, the compiled DOP853
+        integrator on each mode: the general one, and the faster) or "superposition"
+        (`beltmdsm.integrate.superposition`: the normal equation once, the tangential
+        one by superposition; it falls back to "events" where it does not apply).
+    method : {"DOP853"}
+        The Runge-Kutta method (the only one).
+    rtol, atol : float
+        The integrator's relative and absolute tolerances, > 0.
+    t_end : float
+        The duration of a run [s] (default `DEFAULT_T_END`).
+    t_discard : float or None
+        Start of the steady window [s]; ``None`` means 30 % of ``t_end``.
+    dt : float
+        Sampling step of the returned time series [s].
+    on_contact_loss : {"continue", "stop"}
+        At a loss of contact, go on (flight) or stop the run there.
+    backend : {"numba", "python", None}
+        "numba" (compiled), "python" or None (numba if installed).
+
+    Attributes
+    ----------
+    window_start : float
+        Where the steady window starts [s]: ``t_discard``, or 30 % of ``t_end``.
 
     Raises
     ------
     ValueError
-        Naming the field, for a bad value or settings that do not fit together.
+        Naming the field, for a bad value or settings that do not fit together (more
+        than `MAX_SAMPLES` samples, a steady window that starts after ``t_end``).
+
+    See Also
+    --------
+    beltmdsm.simulation.simulate : a run with these settings (its keywords are the fields too).
+    beltmdsm.studies.sweep.sweep : runs over a parameter; the settings are in the cache key.
+
+    Examples
+    --------
+    >>> from beltmdsm import SolverSettings
+    >>> s = SolverSettings(t_end=50.0, rtol=1e-8, atol=1e-8)
+    >>> s.solver, s.t_end, s.window_start
+    ('events', 50.0, 15.0)
+    >>> SolverSettings(dt=0)
+    Traceback (most recent call last):
+    ValueError: dt must be a finite number > 0; got 0
     """
 
     solver: Literal["events", "superposition"] = "events"

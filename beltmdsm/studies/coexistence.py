@@ -9,9 +9,9 @@ exactly:
 
 1. **Seeds.** On a grid of the parameter: the periodic response of period ``T``
    (`beltmdsm.periodic.floquet.floquet`, continued down the grid from its neighbour);
-   the attractor of a run from rest (`beltmdsm.studies.responses.run_stroboscope`);
+   the attractor of a run from rest (`beltmdsm.studies.seeds.run_stroboscope`);
    and those of two ladders, continued up and down the grid on the period map
-   (`beltmdsm.studies.responses.ladder`). An attractor that locks at ``k`` periods
+   (`beltmdsm.studies.seeds.ladder`). An attractor that locks at ``k`` periods
    (`beltmdsm.periodic.locked.LOCK_LIMIT` at most) is a seed; one that does not is
    listed with the evidence (`beltmdsm.periodic.locked.NotLocked`).
 2. **Branches.** Every seed that no branch found so far passes through (same ``k``,
@@ -61,7 +61,7 @@ from ..periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ..periodic.periodmap import engine_of
 from ..settings import MAX_SEED_POINTS
 from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
-from .responses import check_limit, ladder, run_stroboscope, shoot
+from .seeds import check_limit, ladder, run_stroboscope, shoot
 
 __all__ = [
     "DEFAULT_STEP",
@@ -155,24 +155,52 @@ class Unexplained:
 
 @dataclass
 class Coexistence:
-    """The result of `coexistence`.
+    """The result of `coexistence`: every response found, and where they coexist.
 
-    Attributes
+    Its ``repr`` is one screen (a line per response and per range); ``as_dict()`` is
+    the JSON of ``coexistence --json``; ``plot()`` draws the stable parts.
+
+    Parameters
     ----------
     param : str
+        The parameter varied.
     lo, hi : float
+        Its range.
     model : Model
         The other parameters and the options.
     responses : list of ResponseBranch
+        Each response found: its name (``"T"``, ``"4T"``), branch and stable parts.
     ranges : list of CoexistenceRange
+        Where two or more responses are stable, with the kinds of both edges.
     unlocked : list of Unlocked
+        The seeds' attractors that do not lock within the limit.
     unexplained : list of Unexplained
+        Locks that no branch passes through, and why.
     wall_s : float
+        The wall time [s].
     seed_step : float
         The spacing of the seeds' grid: a response stable only between two seeds,
         over less than it, may be missed (the text says so).
     n_seeds : int
         The values of the seeds' grid.
+
+    See Also
+    --------
+    beltmdsm.studies.coexistence.coexistence : what builds it.
+    beltmdsm.studies.cycle_coexistence.CycleCoexistence : its twin without excitation.
+
+    Examples
+    --------
+    Built by `coexistence`; here by hand, with nothing found:
+
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.studies.coexistence import Coexistence
+    >>> found = Coexistence("Vb", 1.0, 2.0, Model(), [], [], [], [], wall_s=0.1)
+    >>> found  # doctest: +NORMALIZE_WHITESPACE
+    Coexistence('Vb' in [1, 2], Model(); coulomb friction, hertz_damp, tension allowed;
+    0 responses): coexisting in none
+    >>> found.as_dict()["coexistence"]
+    []
     """
 
     param: str
@@ -278,24 +306,35 @@ def coexistence(
 ) -> Coexistence:
     """Where two or more stable periodic responses coexist in ``param`` over ``[lo, hi]``.
 
+    Seeds on a grid of ``step``, each continued as a branch, the stable parts overlaid.
+
     Parameters
     ----------
     param : str
         A model parameter.
     lo, hi : float
+        The range, ``lo < hi``, both finite.
     model : Model or dict, optional
         The other parameters and the options (default: the base set); ``**kw`` too.
     step : float
-        Spacing of the seeds' grid.
+        Spacing of the seeds' grid (at most ``(hi - lo) / 2``).
     limit : int
         The longest period looked for, in excitation periods.
     backend : {"python", "numba", None}
+        The kernels: compiled by numba, plain Python, or numba where installed.
     progress : bool
         Show the seeds on stderr (tqdm) once they take more than 2 s.
+    **kw
+        Model parameters and options (``tension="clipped"``).
 
     Returns
     -------
     Coexistence
+        Each response's branch and stable parts, the ranges where two or more are
+        stable, the attractors not locked. Without excitation
+        (`beltmdsm.model.is_autonomous`) a
+        `beltmdsm.studies.cycle_coexistence.CycleCoexistence`: steady sliding and the
+        self-excited cycles.
 
     Raises
     ------
@@ -304,6 +343,30 @@ def coexistence(
     beltmdsm.errors.Refused
         For ``step > (hi - lo) / 2`` (no seed inside the range), or a step that makes
         more than `beltmdsm.settings.MAX_SEED_POINTS` grid points.
+
+    See Also
+    --------
+    beltmdsm.studies.responses.responses : every response at one point.
+    beltmdsm.continuation.branch.branch : one response continued in a parameter.
+    beltmdsm.continuation.band.floquet_band : where the ``T``-periodic response is unstable.
+
+    Examples
+    --------
+    Between 6.5 and 7.5 m/s the ``T``-periodic response and one locked at four
+    excitation periods are both stable (seeds every 0.5 m/s, locks up to 4 periods):
+
+    >>> from beltmdsm import coexistence
+    >>> found = coexistence("Vb", 6.5, 7.5, step=0.5, limit=4)
+    >>> [r.name for r in found.responses]
+    ['T', '4T']
+    >>> [(c.range, c.responses) for c in found.ranges]
+    [((6.5, 7.5), ('4T', 'T'))]
+
+    A grid without a seed inside the range is refused, naming the argument:
+
+    >>> coexistence("Vb", 1.0, 2.0, step=1.0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    beltmdsm.errors.Refused: step = 1 leaves no seed inside [1, 2]: ...
     """
     clock = time.perf_counter()
     if param not in MODEL_PARAMETERS:

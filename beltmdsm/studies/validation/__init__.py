@@ -61,7 +61,9 @@ Modules, one concept each:
   `CaseResult` per case) and the summaries over the cases;
 * `beltmdsm.studies.validation.run`: `validate`, the orchestration of the bands and
   the sweeps on an executor;
-* `beltmdsm.studies.validation.report`: `render_markdown`.
+* `beltmdsm.studies.validation.report`: `render_markdown`, with the Floquet half of the
+  file in `beltmdsm.studies.validation.floquet_report` and the text of each cell in
+  `beltmdsm.studies.validation.cells`.
 
 Studies layer: imports ``generated``, the lower layers of ``beltmdsm``, numpy and
 scipy, never SymPy or the command line.

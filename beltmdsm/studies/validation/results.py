@@ -157,7 +157,7 @@ def summarize_mismatches(cases: Sequence[CaseResult]) -> MismatchSummary:
 class Validation:
     """The result of `validate`: every case, and the summaries over them.
 
-    Attributes
+    Parameters
     ----------
     quick : bool
         `QUICK` resolution (else `FULL`)
@@ -165,14 +165,34 @@ class Validation:
         the tension law of the runs from rest, the periodic start and the continued
         sweeps (the other law's run from rest is ``runs["rest_other"]``)
     resolution : Resolution
+        the grid and the runs' settings
     cases : list of CaseResult
         in the order they were asked for
+
+    Attributes
+    ----------
     summary : dict of str to EdgeSummary
-        `summarize` of ``cases``
+        `summarize` of ``cases``, by analysis
     floquet_summary : dict of str to EdgeSummary
-        `summarize_floquet` of ``cases``
+        `summarize_floquet` of ``cases``, by analysis
     mismatch_summary : MismatchSummary
         `summarize_mismatches` of ``cases``
+
+    See Also
+    --------
+    beltmdsm.studies.validation.run.validate : what builds it.
+    beltmdsm.studies.validation.report.render_markdown : ``VALIDATION.md`` from it.
+
+    Examples
+    --------
+    Built by `validate`; here by hand, without cases (the summaries are empty):
+
+    >>> from beltmdsm.studies.validation import QUICK, Validation, render_markdown
+    >>> v = Validation(True, "allowed", QUICK, [])
+    >>> v.mismatch_summary.checked, v.summary["consistent_mdsm"].n_edges
+    (0, 0)
+    >>> render_markdown(v, quick=True).splitlines()[0]
+    '# Validation: Floquet stability, the simulated omega1 peak and the analyses'
     """
 
     quick: bool

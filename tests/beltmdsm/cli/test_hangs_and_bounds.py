@@ -172,7 +172,7 @@ def test_den_hartog_responses_end_and_floquet_says_not_isolated():
     end = sim.trajectory.state(np.array([r["period"]]))[:, 0]
     np.testing.assert_allclose(end, r["state0"], atol=1e-7)
     # its verdict says so
-    from beltmdsm.cli.text import _isolation
+    from beltmdsm.cli.text.periodic import _isolation
 
     mus = [complex(re, im) for re, im in r["multipliers"]]
     assert "not isolated" in _isolation(types.SimpleNamespace(multipliers=mus))

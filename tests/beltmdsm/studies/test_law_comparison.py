@@ -1,4 +1,4 @@
-"""The research answer of issue 19, item 8 (beltmdsm/studies/law_comparison.py), each
+"""The research answer of issue 19, item 8 (beltmdsm/studies/law_comparison/), each
 reported number against an independent reference:
 
 * (a) the unstable belt speeds of steady sliding against the closed form derived by hand

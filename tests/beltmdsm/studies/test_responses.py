@@ -1,4 +1,5 @@
-"""Every response at one point (beltmdsm.studies.responses) against the simulated runs.
+"""Every response at one point (beltmdsm.studies.responses, seeded by
+beltmdsm.studies.seeds) against the simulated runs.
 
 References: the runs of `beltmdsm.simulation.simulate` from rest (their stroboscopic
 samples end on the computed orbit), and the response the analysis seeds from the
@@ -12,12 +13,13 @@ from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import periodic_response
 from beltmdsm.periodic.locked import same_phases
 from beltmdsm.studies import responses as R
+from beltmdsm.studies.seeds import ladder_stroboscope, run_stroboscope
 
 
 @pytest.mark.parametrize(("case", "k"), [(dict(Vb=5.0), 4), (dict(Vb=6.3), 4), (dict(Vb=7.0), 4)])
 def test_the_run_from_rest_locks_and_its_samples_are_the_computed_orbit(case, k):
     model = Model(**case)
-    assert R.run_stroboscope(model).candidate == k
+    assert run_stroboscope(model).candidate == k
     found = R.responses(model, ladder=0.0)
     (locked,) = [r for r in found.responses if r.periods == k]
     assert locked.floquet.stable
@@ -29,7 +31,7 @@ def test_the_run_from_rest_locks_and_its_samples_are_the_computed_orbit(case, k)
 
 
 def test_the_run_from_rest_locks_at_6T_at_omega_6():
-    assert R.run_stroboscope(Model(Vb=12.0, Omega=6.0)).candidate == 6
+    assert run_stroboscope(Model(Vb=12.0, Omega=6.0)).candidate == 6
 
 
 def test_responses_at_the_base_point_list_both_and_say_what_is_not_locked():
@@ -69,4 +71,4 @@ def test_bad_arguments_are_refused():
         with pytest.raises(ValueError):
             R.responses(Vb=5.0, **kw)
     with pytest.raises(ValueError, match="direction"):
-        R.ladder_stroboscope(Model(), "sideways")
+        ladder_stroboscope(Model(), "sideways")

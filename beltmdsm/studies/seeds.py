@@ -1,0 +1,222 @@
+"""Where the search for periodic responses starts: the attractors of runs and ladders.
+
+A run of Eq. (4) from rest (the runs of Fig. 2b and Figs. 17-21), a run from the
+perturbed periodic response or a sweep continued in a parameter ends on one attractor;
+its stroboscopic samples (`beltmdsm.periodic.locked.Stroboscope`) say whether it locks
+to the excitation at ``k`` periods, and shooting from the last sample gives the fixed
+point of the ``k``-fold period map (`beltmdsm.periodic.periodmap.fixed_point`).
+
+* `run_stroboscope`: the stroboscopic samples of a run of `beltmdsm.simulation.simulate`
+  from rest or from the perturbed periodic response
+  (`beltmdsm.periodic.floquet.periodic_start`); `run_samples`, `check_limit`: how many
+  there are, and the refusal of a lock limit they cannot decide.
+* `ladder`, `ladder_stroboscope`: a sweep continued on the period map: the shooting
+  state carried from rung to rung (the tangential one on the periodic normal motion,
+  on the closed-form path), as ``sweep --continue`` carries a run's state, and the
+  samples of each rung.
+* `shoot`: Newton's method on the ``k``-fold map from a sample.
+
+`beltmdsm.studies.responses` and `beltmdsm.studies.coexistence` seed their searches here.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..errors import Refused
+from ..model import Backend, Model, excitation_period, initial_state
+from ..periodic.floquet import NoPeriodicResponse, periodic_start
+from ..periodic.locked import LOCK_LIMIT, Stroboscope, map_stroboscope, stroboscope
+from ..periodic.periodmap import ENGINES, FixedPoint, PeriodMap, engine_of, fixed_point, period_map
+from ..settings import SolverSettings
+from ..simulation import simulate
+
+__all__ = [
+    "RUN_T_END",
+    "WINDOW",
+    "LADDER_SPAN",
+    "LADDER_STEP",
+    "LADDER_PERIODS",
+    "run_samples",
+    "check_limit",
+    "run_stroboscope",
+    "ladder",
+    "ladder_stroboscope",
+    "shoot",
+]
+
+#: Duration of the runs that seed the search [s] (the runs of `beltmdsm.simulation`
+#: default to it too), and the share of it whose samples are examined.
+RUN_T_END = 1000.0
+WINDOW = 0.4
+#: A ladder of belt speeds (a continued sweep on the period map): its span below and
+#: above the point [m/s], its step, and the periods spent at each rung to settle (as
+#: many more are sampled).
+LADDER_SPAN = 2.0
+LADDER_STEP = 0.25
+LADDER_PERIODS = 150
+
+
+def run_samples(model: Model, t_end: float) -> int:
+    """The number of stroboscopic samples of `run_stroboscope` for a run of ``t_end``
+    seconds: the excitation periods of its last `WINDOW`, both ends counted."""
+    n_end = int(math.floor(t_end / excitation_period(model) + 1e-9))
+    return n_end - max(int(math.ceil((1.0 - WINDOW) * n_end)), 0) + 1
+
+
+def check_limit(
+    limit: int,
+    models: Sequence[Model],
+    t_end: float,
+    ladder: bool,
+    t_end_is_given: bool = True,
+) -> None:
+    """Refuse a ``limit`` that the samples cannot decide: a lock at ``k`` periods needs
+    more than ``2 k`` samples (`beltmdsm.periodic.locked.stroboscope`), the runs' of
+    ``t_end`` s (`run_samples`, for each model) and, with ``ladder``, the ladders'
+    (`LADDER_PERIODS` a rung). ``t_end_is_given``: the caller's argument (named in
+    the message), not a constant of the study.
+
+    Raises
+    ------
+    beltmdsm.errors.Refused
+        Naming ``limit`` (and ``t_end`` where a longer run would do) and the bound.
+    """
+    if ladder and 2 * limit >= LADDER_PERIODS:
+        raise Refused(
+            f"limit must be <= {(LADDER_PERIODS - 1) // 2}, since the ladders sample "
+            f"{LADDER_PERIODS} periods a rung and a lock of k periods needs more than 2 k "
+            f"samples (LADDER_PERIODS, beltmdsm/studies/seeds.py); got {limit}"
+            + (" (or give ladder 0 and a long enough t_end)" if t_end_is_given else ""),
+            "limit",
+        )
+    for model in models:
+        n = run_samples(model, t_end)
+        if n > 2 * limit:
+            continue
+        T = excitation_period(model)
+        need = math.ceil((2 * limit + 1) / WINDOW) * T
+        bound = f"limit <= {max((n - 1) // 2, 0)}"
+        raise Refused(
+            f"a run of {t_end:g} s has {n} stroboscopic samples (the last {WINDOW:.0%} of "
+            f"its periods of T = {T:.6g} s) and a lock at limit = {limit} periods needs "
+            f"more than {2 * limit}: "
+            + (f"give t_end >= {need:.6g} s or {bound}" if t_end_is_given else f"give {bound}"),
+            *(("limit", "t_end") if t_end_is_given else ("limit",)),
+        )
+
+
+def run_stroboscope(
+    model: Model,
+    *,
+    start: Literal["rest", "periodic"] = "rest",
+    t_end: float = RUN_T_END,
+    limit: int = LOCK_LIMIT,
+    backend: Backend | None = None,
+    settings: SolverSettings | None = None,
+) -> Stroboscope:
+    """The stroboscope of a run of `beltmdsm.simulation.simulate` from rest or the periodic start.
+
+    The samples are the last `WINDOW` of the run's whole excitation periods. The run's
+    settings are ``settings`` where given (its ``t_end`` and ``backend`` then replace
+    the arguments), else ``SolverSettings(t_end=t_end, backend=backend)``.
+
+    Raises
+    ------
+    NoPeriodicResponse
+        For ``start="periodic"`` where there is no periodic response to start on, or a
+        run that stops before ``t_end``.
+    """
+    T = excitation_period(model)
+    if settings is None:
+        settings = SolverSettings(t_end=t_end, backend=backend)
+    y0 = periodic_start(model, backend=settings.backend) if start == "periodic" else None
+    sim = simulate(model, settings=settings, y0=y0)
+    if sim.status != "done":
+        raise NoPeriodicResponse(f"the run ({start}) stopped: {sim.message}")
+    n_end = int(math.floor(sim.trajectory.t_end / T + 1e-9))
+    n_start = max(int(math.ceil((1.0 - WINDOW) * n_end)), 0)
+    states = sim.trajectory.state(T * np.arange(n_start, n_end + 1)).T
+    y = ENGINES[engine_of(model)].shooting(states)
+    name = "run from rest" if start == "rest" else "run from the perturbed periodic response"
+    return stroboscope(y, name, limit)
+
+
+def ladder(
+    model: Model,
+    param: str,
+    values: Sequence[float],
+    *,
+    limit: int = LOCK_LIMIT,
+    backend: Backend | None = None,
+) -> list[Stroboscope]:
+    """A continued sweep on the period map: the stroboscope of every rung.
+
+    The shooting state (`beltmdsm.periodic.periodmap.PeriodMap.shooting`: the tangential
+    state on the periodic normal motion, on the closed-form path) starts at rest at
+    ``values[0]`` and is carried from rung to rung, as ``sweep --continue`` carries a
+    run's state; at each rung `LADDER_PERIODS` periods settle it and as many more are
+    the samples. A rung where the period map fails ends the ladder.
+    """
+    values = [float(v) for v in values]
+    first = model.replace(**{param: values[0]})
+    x = ENGINES[engine_of(first)].shooting(initial_state(first))
+    direction = "up" if values[-1] >= values[0] else "down"
+    source = f"continued {direction} from {param} = {values[0]:g}"
+    out = []
+    for v in values:
+        pmap = period_map(model.replace(**{param: v}), 1, backend)
+        try:
+            strobe = map_stroboscope(pmap, x, LADDER_PERIODS, LADDER_PERIODS, source, limit)
+        except NoPeriodicResponse:
+            break
+        x = strobe.samples[-1]
+        out.append(strobe)
+    return out
+
+
+def ladder_stroboscope(
+    model: Model,
+    direction: Literal["up", "down"],
+    *,
+    span: float = LADDER_SPAN,
+    limit: int = LOCK_LIMIT,
+    backend: Backend | None = None,
+) -> Stroboscope:
+    """The last rung of a `ladder` in ``Vb`` that ends at ``model``, from ``span`` below or above.
+
+    Raises
+    ------
+    ValueError
+        For a direction other than "up" or "down".
+    NoPeriodicResponse
+        Where the ladder does not reach ``model`` (the period map fails on the way).
+    """
+    if direction not in ("up", "down"):
+        raise ValueError(f"direction must be 'up' or 'down'; got {direction!r}")
+    vb = float(model["Vb"])
+    first = max(vb - span, 0.0) if direction == "up" else vb + span
+    rungs = np.linspace(first, vb, max(int(round(abs(vb - first) / LADDER_STEP)), 1) + 1)
+    strobes = ladder(model, "Vb", rungs, limit=limit, backend=backend)
+    if len(strobes) < rungs.size:
+        raise NoPeriodicResponse(f"the ladder from Vb = {first:g} stops on the way")
+    return strobes[-1]
+
+
+def shoot(
+    model: Model, periods: int, guess: ArrayLike, backend: Backend | None = None
+) -> tuple[PeriodMap, FixedPoint]:
+    """The ``periods``-fold map of ``model`` and its fixed point from ``guess`` (Newton).
+
+    Raises
+    ------
+    NoPeriodicResponse
+        Where Newton's method fails.
+    """
+    pmap = period_map(model, periods, backend)
+    return pmap, fixed_point(pmap, pmap.guess(guess))
