@@ -111,7 +111,7 @@ def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str = "X1
 
 
 def band(result: Any, ax: Any = None) -> Any:
-    """A Floquet band (`beltmdsm.continuation.band.Band`): the largest multiplier's modulus
+    """A Floquet band (`beltmdsm.continuation.band_result.Band`): the largest multiplier's modulus
     at each evaluated value, the unit circle's 1, the unstable ranges shaded and each
     edge marked with its label."""
     ax = _axes(ax)

@@ -16,7 +16,7 @@ import numpy as np
 from ..intervals import format_intervals
 
 if TYPE_CHECKING:
-    from ..continuation.band import Band
+    from ..continuation.band_result import Band
     from ..continuation.branch import Branch
     from ..continuation.floquet_map import FloquetMap
     from ..model import Model

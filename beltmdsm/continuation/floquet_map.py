@@ -34,7 +34,7 @@ continuation in ``y``, row by row, not on a grid of pixels:
   edges afresh, and an edge that no curve follows starts a new one.
 
 Each row's unstable set is where no stable periodic response is found: on a row with a
-band, the band's (`beltmdsm.continuation.band.Band.unstable`; a curve of a second periodic
+band, the band's (`beltmdsm.continuation.band_result.Band.unstable`; a curve of a second periodic
 response that coexists with a stable one then bounds nothing); on the rows between,
 it follows from the curves' edges and from which of their sides is unstable, which
 assumes one periodic response at each ``x``. The paper's linear analysis

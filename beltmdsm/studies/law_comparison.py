@@ -44,7 +44,8 @@ from scipy.optimize import brentq
 
 from generated import unforced
 
-from ..continuation.band import Band, floquet_band
+from ..continuation.band import floquet_band
+from ..continuation.band_result import Band
 from ..intervals import clip, difference, format_intervals, runs, union
 from ..model import Model, as_model, initial_state
 from ..periodic.floquet import PERTURBATION

@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from ... import intervals
-from ...continuation.band import Band
+from ...continuation.band_result import Band
 from ...periodic.floquet import PERTURBATION
 from ...periodic.locked import LOCK_LIMIT
 from ...run.summary import PEAK_PRESENT_RATIO, TRANSIENT_DECAYED
