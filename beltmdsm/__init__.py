@@ -74,7 +74,7 @@ _API = {
     "branch": "continuation.branch",
     "Branch": "continuation.branch",
     "floquet_map": "continuation.floquet_map",
-    "FloquetMap": "continuation.floquet_map",
+    "FloquetMap": "continuation.map_result",
     "responses": "studies.responses",
     "ResponseSet": "studies.responses",
     "coexistence": "studies.coexistence",

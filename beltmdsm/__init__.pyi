@@ -10,7 +10,8 @@ from .attractors.lyapunov import Lyapunov, lyapunov
 from .continuation.band import floquet_band
 from .continuation.band_result import Band, Edge
 from .continuation.branch import Branch, branch
-from .continuation.floquet_map import FloquetMap, floquet_map
+from .continuation.floquet_map import floquet_map
+from .continuation.map_result import FloquetMap
 from .cycles.cycle import Cycle, cycle, seed_cycle
 from .errors import (
     BeltmdsmError,

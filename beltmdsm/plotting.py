@@ -215,7 +215,7 @@ def coexistence(result: Any, ax: Any = None, observable: str = "X1'_amplitude") 
 
 
 def floquet_map(result: Any, ax: Any = None, linear: bool = True) -> Any:
-    """A Floquet map (`beltmdsm.continuation.floquet_map.FloquetMap`): shaded where no
+    """A Floquet map (`beltmdsm.continuation.map_result.FloquetMap`): shaded where no
     stable periodic response is found, row by row; the boundary curves coloured by kind
     (`KIND_COLOURS`) and labelled; hatched blue (``linear``): where the paper's linear
     analysis says unstable on the same rows."""

@@ -18,7 +18,7 @@ from ..intervals import format_intervals
 if TYPE_CHECKING:
     from ..continuation.band_result import Band
     from ..continuation.branch import Branch
-    from ..continuation.floquet_map import FloquetMap
+    from ..continuation.map_result import FloquetMap
     from ..model import Model
     from ..periodic.floquet import Floquet
     from ..prediction.predict import Prediction
