@@ -18,7 +18,8 @@ import numpy as np
 from ..periodic.floquet import Floquet, NoPeriodicResponse, floquet, response_from
 from ..periodic.periodmap import MARGIN_KINDS, FixedPoint, MapFamily, fixed_point
 from .band_result import Edge
-from .branch import SpecialPoint, continue_branch
+from .branch import continue_branch
+from .branch_parts import SpecialPoint
 from .edges import (
     KINDS,
     OLD_KINDS,

@@ -1,8 +1,7 @@
 """The results of a branch: its special points, its stable and unstable parts, the branch.
 
 Shared by the branches of forced responses (`beltmdsm.continuation.branch`) and of
-self-excited cycles (`beltmdsm.cycles.branch`); `beltmdsm.continuation.branch`
-re-exports them.
+self-excited cycles (`beltmdsm.cycles.branch`).
 """
 
 from __future__ import annotations
@@ -116,7 +115,7 @@ class Branch:
     periods : int
     model : Model
         The other parameters and the options (``param`` at the start's value).
-    points : list of BranchPoint (`beltmdsm.continuation.branch`) or CyclePoint
+    points : list of BranchPoint (`beltmdsm.continuation.arclength`) or CyclePoint
         In arclength order, from the start's lower end.
     special : list of SpecialPoint
         In arclength order; the first and the last are the ends.
