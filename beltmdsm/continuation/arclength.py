@@ -149,5 +149,13 @@ class _Continuation:
                 raise NoPeriodicResponse("the corrector's matrix is singular") from None
         raise NoPeriodicResponse(f"the corrector leaves a residual {last:.2e}")
 
+    def trial(self, start, tangent, s) -> BranchPoint:
+        """The corrected point at arclength ``s`` from ``start`` along ``tangent``
+        (`beltmdsm.continuation.special`); raises NoPeriodicResponse."""
+        z0 = self.z(start.state, start.value)
+        x, value, image, J, _ = self.correct(z0 + s * tangent, tangent, start.column)
+        t = self.tangent(J, tangent)
+        return self.point(x, value, float(t[-1]), image)
+
     def z(self, x, value):
         return np.concatenate([np.asarray(x, float) / self.sx, [value / self.sp]])

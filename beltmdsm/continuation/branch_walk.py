@@ -14,7 +14,7 @@ import numpy as np
 from ..periodic.periodmap import FixedPoint, NoPeriodicResponse, fixed_point
 from .branch_parts import LOCATE_TOL, SpecialPoint
 from .edges import NoEdge, locate_end
-from .special import _regula_falsi, _special_between
+from .special import regula_falsi, special_between
 
 #: Arclength steps (in the scaled coordinates): first, smallest, largest.
 STEP_FIRST = 0.02
@@ -24,6 +24,8 @@ STEP_MAX = 0.25
 GRAZING_STEP = 1e-4
 #: Corrector iterations under which the step grows.
 _EASY = 4
+#: A special point's regula falsi stops at brackets below this (scaled arclength).
+_S_TOL = 1e-12
 #: A crawl: this many steps in a row below `CRAWL_STEP` make the continuation try to
 #: locate the end it approaches (`_near_end`), accepted where the closing margin is
 #: below `CRAWL_MARGIN`.
@@ -70,6 +72,10 @@ def _walk(cont, first, direction, kT):
     ds = STEP_FIRST
     crawl = 0
 
+    def period(_point):
+        """``k T`` (of the start: the special points' frequencies are against it)."""
+        return kT
+
     def stretch(last=None):
         """The points since the last special point (at most `_END_POINTS`), up to ``last``.
 
@@ -108,7 +114,7 @@ def _walk(cont, first, direction, kT):
         if failure is None and not (cont.lo <= value <= cont.hi):
             bound = cont.hi if value > cont.hi else cont.lo
             try:
-                end_point, acc = _regula_falsi(
+                end_point, acc = regula_falsi(
                     cont,
                     prev,
                     tangent,
@@ -116,9 +122,12 @@ def _walk(cont, first, direction, kT):
                     lambda q, b=bound: q.value - b,
                     prev.value - bound,
                     value - bound,
+                    s_tol=_S_TOL,
                 )
                 if end_point.image.signature == prev.image.signature:
-                    found = _special_between(cont, prev, end_point, tangent, ds * 0.999, kT)
+                    found = special_between(
+                        cont, prev, end_point, tangent, ds * 0.999, period, s_tol=_S_TOL
+                    )
                 else:
                     found = []
             except NoPeriodicResponse as err:
@@ -164,7 +173,7 @@ def _walk(cont, first, direction, kT):
         found = []
         if image.signature == prev.image.signature:
             try:
-                found = _special_between(cont, prev, new, tangent, ds, kT)
+                found = special_between(cont, prev, new, tangent, ds, period, s_tol=_S_TOL)
             except NoPeriodicResponse:
                 # a corrector inside the step failed while locating a special point: a
                 # shorter step brackets it more closely

@@ -4,11 +4,21 @@ A sign change of the tangent's parameter component is a fold; a change in the nu
 multipliers outside the unit circle a Neimark-Sacker, period-doubling or branch point,
 classified by the critical multiplier (`beltmdsm.continuation.edges.multiplier_kind`).
 Each is located by regula falsi (Illinois) to `LOCATE_TOL` in the parameter.
+
+One source for both kinds of branch: the forced responses'
+(`beltmdsm.continuation.branch_walk`, on `beltmdsm.continuation.arclength`'s corrector)
+and the self-excited cycles' (`beltmdsm.cycles.continuation`). A continuation hands in
+``cont.trial(start, tangent, s)``, the corrected point at arclength ``s`` from ``start``
+along ``tangent`` (raising `NoPeriodicResponse` where its corrector fails); a point has
+``value``, ``tangent`` (the parameter component of its unit tangent), ``stable`` and
+``multipliers`` (without a cycle's trivial one).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -16,65 +26,118 @@ from ..periodic.periodmap import NoPeriodicResponse
 from .branch_parts import LOCATE_TOL, SpecialPoint
 from .edges import multiplier_kind
 
+__all__ = ["count_outside", "critical", "regula_falsi", "special_between"]
 
-def _count_outside(point):
+
+def count_outside(point: Any) -> int:
+    """The number of ``point``'s multipliers outside the unit circle."""
     return int(np.sum(np.abs(point.multipliers) > 1.0))
 
 
-def _critical(point, rank):
-    """The multiplier of rank ``rank`` (0: the largest modulus)."""
-    mu = point.multipliers[np.argsort(-np.abs(point.multipliers))]
+def critical(point: Any, rank: int) -> complex:
+    """The multiplier of rank ``rank`` (0: the largest modulus; a stable sort, so that a
+    cycle's multipliers, already in that order, keep it)."""
+    mu = point.multipliers[np.argsort(-np.abs(point.multipliers), kind="stable")]
     return mu[min(rank, mu.size - 1)]
 
 
-def _regula_falsi(cont, start, tangent, ds, psi, fa, fb):
+def regula_falsi(
+    cont: Any,
+    start: Any,
+    tangent: np.ndarray,
+    ds: float,
+    psi: Callable[[Any], float],
+    fa: float,
+    fb: float,
+    *,
+    s_tol: float,
+) -> tuple[Any, float]:
     """The arclength ``s`` in ``[0, ds]`` from ``start`` along ``tangent`` where ``psi`` is zero.
 
-    ``psi(point)`` is evaluated at the corrected point of each trial; ``fa``, ``fb``
-    its values at the two ends. Returns the located `BranchPoint` and the accuracy in
-    the parameter.
+    ``psi(point)`` is evaluated at the corrected point of each trial (``cont.trial``; a
+    trial whose corrector fails is retried at the bracket's middle); ``fa``, ``fb`` its
+    values at the two ends. The bracket shrinks by the Illinois variant of regula falsi
+    until its two ends are `LOCATE_TOL` apart in the parameter, or ``s_tol`` apart in
+    the (scaled) arclength.
+
+    Returns
+    -------
+    point, accuracy
+        The located point and the accuracy in the parameter (inf where the zero's side
+        was never reached).
+
+    Raises
+    ------
+    NoPeriodicResponse
+        Where a trial's corrector fails at the middle too.
     """
     a, b = 0.0, ds
-    pa_value = start.value
-    z0 = cont.z(start.state, start.value)
-    located, pb_value = start, None
-    side = 0
+    pa_value, pb_value = start.value, None
+    located, side = start, 0
     for _ in range(60):
         s = b - fb * (b - a) / (fb - fa) if fb != fa else 0.5 * (a + b)
         s = min(max(s, a + 1e-3 * (b - a)), b - 1e-3 * (b - a))
         try:
-            x, value, image, J, _ = cont.correct(z0 + s * tangent, tangent, start.column)
+            pt = cont.trial(start, tangent, s)
         except NoPeriodicResponse:
             s = 0.5 * (a + b)
-            x, value, image, J, _ = cont.correct(z0 + s * tangent, tangent, start.column)
-        t = cont.tangent(J, tangent)
-        pt = cont.point(x, value, float(t[-1]), image)
+            pt = cont.trial(start, tangent, s)
         fs = psi(pt)
         if fs * fa > 0:
-            a, fa, pa_value = s, fs, value
+            a, fa, pa_value = s, fs, pt.value
             if side == -1:
                 fb *= 0.5
             side = -1
         else:
-            b, fb, pb_value = s, fs, value
+            b, fb, pb_value = s, fs, pt.value
             if side == 1:
                 fa *= 0.5
             side = 1
         located = pt
         if pb_value is not None and abs(pb_value - pa_value) <= LOCATE_TOL:
             break
-        if b - a <= 1e-12:
+        if b - a <= s_tol:
             break
     accuracy = abs(pb_value - pa_value) if pb_value is not None else math.inf
     return located, accuracy
 
 
-def _special_between(cont, prev, new, tangent, ds, kT):
-    """The special points between two accepted points (same switch structure)."""
+def special_between(
+    cont: Any,
+    prev: Any,
+    new: Any,
+    tangent: np.ndarray,
+    ds: float,
+    period: Callable[[Any], float],
+    *,
+    s_tol: float,
+) -> list[SpecialPoint]:
+    """The special points between two accepted points of one switch structure.
+
+    Parameters
+    ----------
+    cont
+        The continuation (``cont.trial``, module docstring).
+    prev, new : point
+        The two points; ``new`` at arclength ``ds`` from ``prev`` along ``tangent``.
+    tangent : ndarray
+    ds : float
+    period : callable
+        ``period(point)``: the orbit's period at a located point [s], for the frequency
+        of a Neimark-Sacker pair.
+    s_tol : float
+        `regula_falsi`'s smallest bracket in the arclength.
+
+    Returns
+    -------
+    list of SpecialPoint
+        A fold and a multiplier's crossing, nearest ``prev`` first (a real multiplier
+        through +1 at a fold is the fold's, not a second point).
+    """
     out = []
     if prev.tangent * new.tangent < 0:
-        pt, acc = _regula_falsi(
-            cont, prev, tangent, ds, lambda q: q.tangent, prev.tangent, new.tangent
+        pt, acc = regula_falsi(
+            cont, prev, tangent, ds, lambda q: q.tangent, prev.tangent, new.tangent, s_tol=s_tol
         )
         out.append(
             SpecialPoint(
@@ -88,15 +151,15 @@ def _special_between(cont, prev, new, tangent, ds, kT):
                 "the branch turns back",
             )
         )
-    na, nb = _count_outside(prev), _count_outside(new)
+    na, nb = count_outside(prev), count_outside(new)
     if na != nb:
         rank = min(na, nb)
 
         def psi(q, rank=rank):
-            return math.log(abs(_critical(q, rank)))
+            return math.log(abs(critical(q, rank)))
 
-        pt, acc = _regula_falsi(cont, prev, tangent, ds, psi, psi(prev), psi(new))
-        kind, frequency = multiplier_kind(_critical(pt, rank), kT)
+        pt, acc = regula_falsi(cont, prev, tangent, ds, psi, psi(prev), psi(new), s_tol=s_tol)
+        kind, frequency = multiplier_kind(critical(pt, rank), period(pt))
         if kind == "fold" and out:
             # the multiplier through +1 of the fold located above by the turn
             return out
