@@ -44,6 +44,11 @@ class BranchPoint:
     tangent : float
         The parameter component of the unit tangent (scaled coordinates), in the
         direction of continuation.
+    image : MapImage
+        The period map's image of ``state``: the runs of the orbit, its Jacobian.
+    recorded : dict of str to float
+        What the ``record`` callable of `beltmdsm.continuation.branch.branch` returned
+        here (empty without one).
     """
 
     value: float
@@ -56,6 +61,14 @@ class BranchPoint:
     tangent: float
     image: MapImage = field(repr=False)
     column: NDArray[np.float64] | None = field(default=None, repr=False)
+    recorded: dict[str, float] = field(default_factory=dict, repr=False)
+
+    def observables(self, vb: float) -> dict[str, float]:
+        """The `beltmdsm.periodic.observables.OBSERVABLES` of the orbit at belt speed
+        ``vb`` [m/s], read from the runs of ``image`` (nothing is solved again)."""
+        from ..periodic.observables import observables
+
+        return observables(self.image, vb)
 
     def as_dict(self) -> dict:
         """For JSON: ``value``, ``state0``, ``multipliers`` (pairs of real and imaginary

@@ -37,16 +37,17 @@ and its ends `beltmdsm.continuation.branch_walk`'s, the result (`Branch`)
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
 
+from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, is_autonomous
 from ..periodic.floquet import PeriodicResponse, periodic_response
 from ..periodic.periodmap import MapFamily
 from .arclength import _Continuation
-from .branch_parts import Branch, SpecialPoint
+from .branch_parts import Branch, SpecialPoint, record_points
 from .branch_walk import _walk
 
 __all__ = ["continue_branch", "branch"]
@@ -59,6 +60,7 @@ def continue_branch(
     hi: float,
     *,
     backend: Backend | None = None,
+    record: Callable[[Any], float | Mapping[str, float]] | None = None,
 ) -> Branch:
     """The branch through a response in ``param`` over ``[lo, hi]``, both ways from the start.
 
@@ -66,22 +68,45 @@ def continue_branch(
     ----------
     start : PeriodicResponse
         A response (`beltmdsm.periodic.floquet.periodic_response`, ``periods=k`` for a
-        locked one).
+        locked one; a self-excited cycle's, without excitation, continues as a
+        branch of cycles, `beltmdsm.cycles.branch.cycle_branch_from`).
     param : str
         A model parameter.
     lo, hi : float
         The range; the start's value must lie in it.
     backend : {"python", "numba", None}
+    record : callable, optional
+        ``record(point)`` at each point of the branch, stored there (`branch`).
 
     Returns
     -------
     Branch
+        Its points in arclength order from the lower end, its special points.
 
     Raises
     ------
     ValueError
         For an unknown parameter, a bad range or a start outside it.
+    beltmdsm.errors.Refused
+        Naming ``record`` where it is not callable, raises, or returns anything but a
+        real number or a mapping of names to real numbers
+        (`beltmdsm.continuation.branch_parts.record_points`).
+
+    See Also
+    --------
+    branch : the same from a model, the response found first.
+    beltmdsm.continuation.band.floquet_band : the unstable ranges on a grid, edges located.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, periodic_response
+    >>> from beltmdsm.continuation.branch import continue_branch
+    >>> start = periodic_response(Model(beta1=0.3, Vb=5.3))
+    >>> b = continue_branch(start, "Vb", 5.3, 5.6)
+    >>> [(s.kind, round(s.value, 3)) for s in b.special]
+    [('range', 5.3), ('neimark_sacker', 5.45), ('range', 5.6)]
     """
+    _check_record(record)
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")
     if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
@@ -90,7 +115,7 @@ def continue_branch(
     if getattr(start, "autonomous", False):
         from ..cycles.branch import cycle_branch_from
 
-        return cycle_branch_from(start.cycle, param, lo, hi, backend=backend)
+        return record_points(cycle_branch_from(start.cycle, param, lo, hi, backend=backend), record)
     v0 = float(model[param])
     if not lo <= v0 <= hi:
         raise ValueError(f"the start's {param} = {v0:g} is outside [{lo:g}, {hi:g}]")
@@ -123,7 +148,7 @@ def continue_branch(
     # along the arclength from the lower end: 'before' and 'after' of the reversed half swap
     for s in reversed(down_special):
         s.stable_before, s.stable_after = s.stable_after, s.stable_before
-    return Branch(param, start.periods, model, points, special)
+    return record_points(Branch(param, start.periods, model, points, special), record)
 
 
 def branch(
@@ -134,6 +159,7 @@ def branch(
     lo: float,
     hi: float,
     backend: Backend | None = None,
+    record: Callable[[Any], float | Mapping[str, float]] | None = None,
     **kw: Any,
 ) -> Branch:
     """The branch of the response of ``periods`` periods at a point (`continue_branch`).
@@ -149,13 +175,28 @@ def branch(
     model : Model or dict, optional
         The model at the start (default: the base set); ``**kw``: parameters and options.
     periods : int
+        ``k``: the response of ``k`` excitation periods (1 without excitation).
     param : str
+        The model parameter continued.
     lo, hi : float
+        Its range.
     backend : {"python", "numba", None}
+    record : callable, optional
+        As BifurcationKit's ``record_from_solution``: ``record(point)`` is called at
+        each point of the branch once it is continued, with the point (a
+        `beltmdsm.continuation.arclength.BranchPoint`: ``value``, ``state`` the
+        shooting state ``(X1, X1', X2, X2')`` at phase 0, ``multipliers``, ``image``
+        the period map's image with the orbit's runs; on a branch of cycles a
+        `beltmdsm.cycles.continuation.CyclePoint`, with ``period`` too), and returns a
+        real number (a column ``"record"``) or a mapping of names to real numbers,
+        the same names at every point. Stored as the point's ``recorded``, they are
+        columns of `Branch.observables` and `Branch.to_pandas`.
 
     Returns
     -------
     Branch
+        Its points in arclength order from the lower end, its special points (folds,
+        Neimark-Sacker, period doubling, grazing, tangency, the range's ends).
 
     Raises
     ------
@@ -163,7 +204,30 @@ def branch(
         For bad parameters or range.
     NoPeriodicResponse
         Where no response of ``periods`` periods is found at the point.
+    beltmdsm.errors.Refused
+        Naming ``record`` where it is not callable, raises, or returns anything but a
+        real number or a mapping of names to real numbers, one of the branch's own
+        column names, or other names at another point.
+
+    See Also
+    --------
+    continue_branch : the same from a response already found.
+    beltmdsm.continuation.band.floquet_band : the unstable ranges on a grid, edges located.
+    beltmdsm.continuation.floquet_map.floquet_map : the edges traced over two parameters.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, branch
+    >>> b = branch(Model(beta1=0.3, Vb=5.3), lo=5.3, hi=5.6, record=lambda p: p.state[0])
+    >>> [(s.kind, round(s.value, 3)) for s in b.special]
+    [('range', 5.3), ('neimark_sacker', 5.45), ('range', 5.6)]
+    >>> b.stable_ranges()  # doctest: +ELLIPSIS
+    [[5.3, 5.449...]]
+    >>> table = b.observables()
+    >>> bool(all(table["record"] == [p.state[0] for p in b.points]))
+    True
     """
+    _check_record(record)
     model = as_model(model, **kw)
     if is_autonomous(model):
         from ..cycles.branch import cycle_branch
@@ -173,6 +237,14 @@ def branch(
                 f"periods must be 1 without excitation (a self-excited cycle has no "
                 f"excitation period to count); got {periods!r}"
             )
-        return cycle_branch(model, param=param, lo=lo, hi=hi, backend=backend)
+        return record_points(
+            cycle_branch(model, param=param, lo=lo, hi=hi, backend=backend), record
+        )
     start = periodic_response(model, periods=periods, backend=backend)
-    return continue_branch(start, param, lo, hi, backend=backend)
+    return continue_branch(start, param, lo, hi, backend=backend, record=record)
+
+
+def _check_record(record: Any) -> None:
+    """Refuse a ``record`` that is not callable before anything is computed."""
+    if record is not None and not callable(record):
+        raise Refused(f"record must be a callable of a branch point; got {record!r}", "record")

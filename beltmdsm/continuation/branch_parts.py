@@ -7,6 +7,7 @@ self-excited cycles (`beltmdsm.cycles.branch`).
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -15,10 +16,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .._tables import DataFrame
+from ..errors import Refused
 from ..model import Model
 from ..periodic.periodmap import engine_of
 
-__all__ = ["LOCATE_TOL", "SpecialPoint", "BranchPart", "Branch"]
+__all__ = ["LOCATE_TOL", "SpecialPoint", "BranchPart", "Branch", "record_points"]
 
 #: Special points are located to this in the parameter.
 LOCATE_TOL = 1e-6
@@ -172,31 +174,31 @@ class Branch:
         """What each point's orbit measures, in arclength order: ``param``'s value, then
         the `beltmdsm.periodic.observables.OBSERVABLES` (ranges of X1' and X1, the
         largest |Vr|, the mean friction and ``mu_eff = <Ff>/<Fn>``), read from the
-        runs the point keeps (nothing is solved again).
+        runs the point keeps (nothing is solved again; a branch of cycles gives the
+        ranges, the largest |Vr| and the ``period``), then what the ``record`` of
+        `beltmdsm.continuation.branch.branch` stored at each point.
 
-        ``record(point)`` adds columns of its own, as BifurcationKit's
-        ``record_from_solution`` does: a float (column ``"record"``) or a mapping of
-        names to floats, for each `BranchPoint` (its ``state``, ``value``, ``image``).
+        ``record(point)`` adds columns of its own afterwards, as the ``record`` of
+        `beltmdsm.continuation.branch.branch` does (`record_points`).
+
+        Raises
+        ------
+        beltmdsm.errors.Refused
+            Where ``record`` raises or returns anything but a real number or a mapping
+            of names to real numbers (`record_points`).
         """
-        from ..periodic.observables import OBSERVABLES, observables
+        from ..periodic.observables import OBSERVABLES
 
-        if self.points and not hasattr(self.points[0], "image"):
-            raise ValueError(
-                "observables are read from a forced response's runs; a branch of cycles "
-                "carries its own: period, amplitude, x1_range, velocity_range, "
-                "max_relative_velocity of each point"
-            )
         vb = [p.value if self.param == "Vb" else self.model["Vb"] for p in self.points]
-        rows = [observables(p.image, v) for p, v in zip(self.points, vb)]
+        rows = [p.observables(v) for p, v in zip(self.points, vb)]
         out = {self.param: np.array([p.value for p in self.points], dtype=float)}
-        out.update({k: np.array([r[k] for r in rows], dtype=float) for k in OBSERVABLES})
-        if record is not None:
-            recorded = [record(p) for p in self.points]
-            if recorded and isinstance(recorded[0], Mapping):
-                for key in recorded[0]:
-                    out[key] = np.array([r[key] for r in recorded], dtype=float)
-            else:
-                out["record"] = np.array(recorded, dtype=float)
+        columns = rows[0] if rows else dict.fromkeys(OBSERVABLES)
+        out.update({k: np.array([r[k] for r in rows], dtype=float) for k in columns})
+        for key in self.points[0].recorded if self.points else ():
+            out[key] = np.array([p.recorded[key] for p in self.points], dtype=float)
+        if record is not None and self.points:
+            rows = _recorded_rows(record, self.points, self.param)
+            out.update({k: np.array([r[k] for r in rows], dtype=float) for k in rows[0]})
         return out
 
     def plot(self, ax: Any = None, observable: str = "X1'_amplitude", labels: bool = True) -> Any:
@@ -277,3 +279,75 @@ class Branch:
             "special_points": [s.as_dict() for s in self.special],
             "points": [p.as_dict() for p in self.points],
         }
+
+
+#: Columns of `Branch.to_pandas` that a recorded name may not take.
+_RESERVED = frozenset(
+    ["X1", "X1'", "X2", "X2'", "max_abs_multiplier", "stable", "n_reversals", "n_sticks"]
+    + ["X1'_amplitude", "X1'_min", "X1'_max", "X1_amplitude", "X1_min", "X1_max"]
+    + ["max_abs_Vr", "mean_friction", "mu_eff", "period"]
+)
+
+
+def _recorded_rows(record: Callable[[Any], Any], points: list[Any], param: str) -> list:
+    """``record(point)`` at each of ``points``, checked: a list of dicts of one set of names."""
+    if not callable(record):
+        raise Refused(f"record must be a callable of a branch point; got {record!r}", "record")
+    rows = []
+    for p in points:
+        where = f"{param} = {p.value:.6g}"
+        try:
+            got = record(p)
+        except Exception as err:  # the user's code: refused, its error chained
+            raise Refused(
+                f"record raised {type(err).__name__} at {where}: {err}", "record"
+            ) from err
+        row = dict(got) if isinstance(got, Mapping) else {"record": got}
+        bad = [
+            k
+            for k, v in row.items()
+            if not isinstance(k, str) or isinstance(v, bool) or not isinstance(v, numbers.Real)
+        ]
+        if bad or not row:
+            raise Refused(
+                "record must return a real number or a mapping of names (str) to real "
+                f"numbers; at {where} it returned {got!r}",
+                "record",
+            )
+        taken = sorted(_RESERVED.intersection(row) | ({param} & row.keys()))
+        if taken:
+            raise Refused(
+                f"record's names {taken} are the branch's own columns; choose others",
+                "record",
+            )
+        if rows and row.keys() != rows[0].keys():
+            raise Refused(
+                f"record must return the same names at every point; at {where} "
+                f"{sorted(row)}, at the first {sorted(rows[0])}",
+                "record",
+            )
+        rows.append({k: float(v) for k, v in row.items()})
+    return rows
+
+
+def record_points(branch: Branch, record: Callable[[Any], Any] | None) -> Branch:
+    """Store ``record(point)`` on each point of ``branch`` (``point.recorded``); returns it.
+
+    As BifurcationKit's ``record_from_solution``: ``record`` takes a point of the branch
+    (a `beltmdsm.continuation.arclength.BranchPoint`: ``value``, ``state``, ``image``
+    with the orbit's runs, ``multipliers``; a cycle's
+    `beltmdsm.cycles.continuation.CyclePoint`: also ``period``) and returns a real number
+    (the column ``"record"``) or a mapping of names to real numbers, the same names at
+    every point. They are columns of `Branch.observables` and `Branch.to_pandas`.
+
+    Raises
+    ------
+    beltmdsm.errors.Refused
+        Naming ``record``: not callable; it raises; it returns anything else, no name,
+        a name of the branch's own columns or other names at another point.
+    """
+    if record is None:
+        return branch
+    for p, row in zip(branch.points, _recorded_rows(record, branch.points, branch.param)):
+        p.recorded = row
+    return branch

@@ -65,6 +65,9 @@ class CyclePoint:
         Time stuck per period [s].
     tangent : float
         The parameter component of the unit tangent, along the continuation.
+    recorded : dict of str to float
+        What the ``record`` callable of `beltmdsm.continuation.branch.branch` returned
+        here (empty without one).
     """
 
     value: float
@@ -84,6 +87,24 @@ class CyclePoint:
     stick_time: float = field(repr=False, default=0.0)
     image: FlowImage = field(repr=False, default=None)
     column: NDArray[np.float64] | None = field(repr=False, default=None)
+    recorded: dict[str, float] = field(repr=False, default_factory=dict)
+
+    def observables(self, vb: float) -> dict[str, float]:
+        """The ranges of ``X1'`` and ``X1``, the largest ``|Vr| = |X1' - vb|`` (at an
+        end of the range of ``X1'``, which the orbit passes continuously) and the
+        period [s]: the columns of `beltmdsm.continuation.branch_parts.Branch.observables`
+        for a cycle (the forced responses' names; no mean friction)."""
+        (v_lo, v_hi), (x_lo, x_hi) = self.velocity_range, self.x1_range
+        return {
+            "X1'_amplitude": float(self.amplitude),
+            "X1'_min": float(v_lo),
+            "X1'_max": float(v_hi),
+            "X1_amplitude": 0.5 * float(x_hi - x_lo),
+            "X1_min": float(x_lo),
+            "X1_max": float(x_hi),
+            "max_abs_Vr": max(abs(v_lo - vb), abs(v_hi - vb)),
+            "period": float(self.period),
+        }
 
     def as_dict(self) -> dict:
         """For JSON: ``value``, ``state0``, ``period``, ``amplitude``, ``x1_range``,
