@@ -49,6 +49,20 @@ class BranchPoint:
     recorded : dict of str to float
         What the ``record`` callable of `beltmdsm.continuation.branch.branch` returned
         here (empty without one).
+
+    See Also
+    --------
+    beltmdsm.continuation.branch_parts.Branch : its ``points``.
+    beltmdsm.cycles.continuation.CyclePoint : a point of a branch of cycles.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, branch
+    >>> p = branch(Model(beta1=0.3, Vb=5.3), lo=5.3, hi=5.6).points[0]
+    >>> p.value, p.stable, p.n_reversals, p.n_sticks, p.state.shape
+    (5.3, True, 2, 0, (2,))
+    >>> sorted(p.observables(5.3))[:3]
+    ["X1'_amplitude", "X1'_max", "X1'_min"]
     """
 
     value: float

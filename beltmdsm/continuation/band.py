@@ -109,16 +109,36 @@ def floquet_band(
     Returns
     -------
     Band
+        The unstable ranges, the labelled edges, every evaluated value.
 
     Raises
     ------
     ValueError
         For an unknown parameter, a range that is not finite, empty or outside the
-        parameter's domain, ``points < 2`` or ``tol <= 0``.
+        parameter's domain, ``points < 2`` or ``tol <= 0``; a model without
+        excitation (a band is of the forced response).
     beltmdsm.errors.Refused
         For ``points`` above `beltmdsm.settings.MAX_BAND_POINTS`, ``tol`` above the
         grid's step or below the rounding of the range
         (`beltmdsm.settings.MIN_TOL_ULPS`).
+
+    See Also
+    --------
+    beltmdsm.continuation.branch.branch : one response continued, its special points.
+    beltmdsm.continuation.floquet_map.floquet_map : the edges traced over two parameters.
+    beltmdsm.periodic.floquet.floquet : the Floquet analysis at one value.
+
+    Examples
+    --------
+    The model first, then the parameter and its range (the order of before, the model
+    last, is taken too). A Neimark-Sacker edge at ``Vb`` about 5.45 when ``beta1 = 0.3``:
+
+    >>> from beltmdsm import Model, floquet_band
+    >>> band = floquet_band(Model(beta1=0.3), "Vb", 5.2, 5.8, points=4)
+    >>> [[round(lo, 3), round(hi, 3)] for lo, hi in band.unstable]
+    [[5.45, 5.8]]
+    >>> [(e.kind, round(e.value, 3), e.unstable_below, e.unstable_above) for e in band.edges]
+    [('neimark_sacker', 5.45, False, True)]
     """
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")

@@ -43,6 +43,20 @@ class Edge:
         that grazes, without multipliers, counts as neither).
     detail : str
         What vanishes at an end (the margin), or "".
+
+    See Also
+    --------
+    Band : the band that holds the edges.
+    beltmdsm.continuation.edges.KINDS : the bifurcation kinds.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, floquet_band
+    >>> edge = floquet_band(Model(beta1=0.3), "Vb", 5.2, 5.8, points=4).edges[0]
+    >>> edge.kind, edge.old_kind, round(edge.value, 3), round(edge.frequency, 3)
+    ('neimark_sacker', 'multiplier', 5.45, 1.052)
+    >>> bool(edge.bracket[0] <= edge.value <= edge.bracket[1] and edge.accuracy < 1e-3)
+    True
     """
 
     value: float
@@ -74,8 +88,33 @@ class Edge:
 class BandPoint:
     """The Floquet analysis at one evaluated value of a band.
 
-    ``grazing``: whether the response grazes (no multiplier); ``state0`` its state at
-    phase 0 (``X1, X1', X2, X2'``).
+    Attributes
+    ----------
+    value : float
+    max_abs_multiplier : float
+    stable : bool or None
+        None where the response grazes.
+    growth_rate : float
+        ``log max |mu|`` over the orbit's period [1/s].
+    n_reversals, n_sticks : int
+        Per orbit.
+    grazing : bool
+        Whether the response grazes (no multiplier).
+    state0 : tuple of float
+        Its state at phase 0 (``X1, X1', X2, X2'``).
+
+    See Also
+    --------
+    Band : its ``grid`` holds one per evaluated value.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, floquet_band
+    >>> first = floquet_band(Model(beta1=0.3), "Vb", 5.2, 5.8, points=4).grid[0]
+    >>> first.value, first.stable, first.n_reversals, first.n_sticks
+    (5.2, True, 2, 0)
+    >>> round(first.max_abs_multiplier, 3)
+    0.916
     """
 
     value: float
@@ -94,7 +133,24 @@ class BandPoint:
 
 @dataclass(frozen=True)
 class BandFailure:
-    """A grid value where no periodic response is found, and why."""
+    """A grid value where no periodic response is found, and why.
+
+    Attributes
+    ----------
+    value : float
+    reason : str
+        The message of `beltmdsm.periodic.periodmap.NoPeriodicResponse`.
+
+    See Also
+    --------
+    Band : its ``failed`` holds them.
+
+    Examples
+    --------
+    >>> from beltmdsm.continuation.band_result import BandFailure
+    >>> BandFailure(3.0, "Newton's method diverges").as_dict()
+    {'value': 3.0, 'reason': "Newton's method diverges"}
+    """
 
     value: float
     reason: str
@@ -137,6 +193,23 @@ class Band:
         stable response (without any) was evaluated that no range of `unstable` (of
         `no_periodic_response`) holds: a range narrower than ``tol`` that the merging
         removes.
+
+    See Also
+    --------
+    floquet_band : computes it.
+    beltmdsm.continuation.branch.Branch : one response continued.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, floquet_band
+    >>> band = floquet_band(Model(beta1=0.3), "Vb", 5.2, 5.8, points=4)
+    >>> band  # doctest: +ELLIPSIS
+    Band('Vb', T-periodic response, Model(beta1=0.3); ... values): unstable in [5.4..., 5.8]
+      NS at Vb = 5.4... (+- ...e-04, 1.052 rad/s; unstable above)
+    >>> band.to_pandas("grid")["stable"].iloc[[0, -1]].tolist()  # at 5.2 and 5.8
+    [True, False]
+    >>> sorted(band.as_dict())[:4]
+    ['contact', 'edges', 'engine', 'failed']
     """
 
     param: str
@@ -161,7 +234,13 @@ class Band:
 
     def to_pandas(self, table: str = "edges") -> DataFrame:
         """A `pandas.DataFrame` (needs pandas, imported here) of the ``"edges"`` (one row
-        per `Edge`, its attributes) or of the ``"grid"`` (one row per `BandPoint`)."""
+        per `Edge`, its attributes) or of the ``"grid"`` (one row per `BandPoint`).
+
+        Raises
+        ------
+        ValueError
+            For another ``table``.
+        """
         from .._tables import frame
 
         if table == "edges":

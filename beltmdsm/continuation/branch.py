@@ -185,7 +185,7 @@ def branch(
         As BifurcationKit's ``record_from_solution``: ``record(point)`` is called at
         each point of the branch once it is continued, with the point (a
         `beltmdsm.continuation.arclength.BranchPoint`: ``value``, ``state`` the
-        shooting state ``(X1, X1', X2, X2')`` at phase 0, ``multipliers``, ``image``
+        shooting state at phase 0 (``X1, X1'`` first), ``multipliers``, ``image``
         the period map's image with the orbit's runs; on a branch of cycles a
         `beltmdsm.cycles.continuation.CyclePoint`, with ``period`` too), and returns a
         real number (a column ``"record"``) or a mapping of names to real numbers,

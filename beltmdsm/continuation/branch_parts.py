@@ -46,6 +46,21 @@ class SpecialPoint:
     stable_before, stable_after : bool or None
         Whether the branch is stable just before and after, along the continuation.
     detail : str
+
+    See Also
+    --------
+    Branch : its ``special`` holds them, in arclength order.
+    beltmdsm.continuation.special.special_between : locates folds and crossings.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, branch
+    >>> b = branch(Model(beta1=0.3, Vb=5.3), lo=5.3, hi=5.6)
+    >>> ns = b.special[1]
+    >>> ns.kind, round(ns.value, 3), round(ns.frequency, 3), ns.stable_before, ns.stable_after
+    ('neimark_sacker', 5.45, 1.052, True, False)
+    >>> bool(ns.accuracy <= 1e-6)
+    True
     """
 
     kind: str
@@ -86,6 +101,17 @@ class BranchPart:
         (``from`` and ``to`` in `as_dict`).
     lower, upper : str
         The kinds of those at its lower and upper value.
+
+    See Also
+    --------
+    Branch.parts : the parts of a branch.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, branch
+    >>> b = branch(Model(beta1=0.3, Vb=5.3), lo=5.3, hi=5.6)
+    >>> [(p.start, p.end, p.stable) for p in b.parts()]
+    [('range', 'neimark_sacker', True), ('neimark_sacker', 'range', False)]
     """
 
     range: tuple[float, float]
@@ -121,6 +147,28 @@ class Branch:
         In arclength order, from the start's lower end.
     special : list of SpecialPoint
         In arclength order; the first and the last are the ends.
+
+    See Also
+    --------
+    beltmdsm.continuation.branch.branch : computes it.
+    beltmdsm.continuation.band_result.Band : the unstable ranges of a grid.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, branch
+    >>> b = branch(Model(beta1=0.3, Vb=5.3), lo=5.3, hi=5.6)
+    >>> b  # doctest: +ELLIPSIS
+    Branch('Vb', T-periodic response, Model(beta1=0.3, Vb=5.3); ...): stable in [5.3, 5.4499...]
+      range at Vb = 5.3 (+- 0e+00): the end of the requested range
+      NS at Vb = 5.4499... (+- ...), 1.052 rad/s: a complex pair crosses the unit circle at ...
+      range at Vb = 5.6 (+- 0e+00): the end of the requested range
+    >>> b.value_range()
+    [5.3, 5.6]
+    >>> b.to_pandas("special")["label"].tolist()
+    ['range', 'NS', 'range']
+    >>> table = b.observables()
+    >>> bool(table["X1'_amplitude"][0] > 0 and len(table["Vb"]) == len(b.points))
+    True
     """
 
     param: str
@@ -215,7 +263,13 @@ class Branch:
         per `BranchPoint`: ``param``'s value, the shooting state at phase 0,
         ``max_abs_multiplier``, ``stable``, ``n_reversals``, ``n_sticks``, then the
         `observables`) or of the ``"special"`` points (their attributes, ``label`` the
-        short name of the kind)."""
+        short name of the kind).
+
+        Raises
+        ------
+        ValueError
+            For another ``table``.
+        """
         from .._display import label
         from .._tables import frame
 
@@ -340,11 +394,39 @@ def record_points(branch: Branch, record: Callable[[Any], Any] | None) -> Branch
     (the column ``"record"``) or a mapping of names to real numbers, the same names at
     every point. They are columns of `Branch.observables` and `Branch.to_pandas`.
 
+    Parameters
+    ----------
+    branch : Branch
+    record : callable or None
+        None: nothing is recorded.
+
+    Returns
+    -------
+    Branch
+        ``branch`` itself, its points' ``recorded`` filled.
+
     Raises
     ------
     beltmdsm.errors.Refused
         Naming ``record``: not callable; it raises; it returns anything else, no name,
         a name of the branch's own columns or other names at another point.
+
+    See Also
+    --------
+    beltmdsm.continuation.branch.branch : takes ``record`` and calls this.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, branch
+    >>> b = branch(Model(beta1=0.3, Vb=5.3), lo=5.3, hi=5.6)
+    >>> from beltmdsm.continuation.branch_parts import record_points
+    >>> _ = record_points(b, lambda p: {"twice": 2 * p.value})
+    >>> b.points[0].recorded
+    {'twice': 10.6}
+    >>> record_points(b, lambda p: "a word")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    beltmdsm.errors.Refused: record must return a real number or a mapping ...
     """
     if record is None:
         return branch

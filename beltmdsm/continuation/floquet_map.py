@@ -129,12 +129,33 @@ def floquet_map(
     Returns
     -------
     FloquetMap
+        The boundary curves, and per row the unstable set and the linear verdict.
 
     Raises
     ------
     ValueError
-        For unknown or equal parameters, bad ranges, ``rows < 2`` or ``check_every < 1``;
-        `beltmdsm.errors.Refused` for more than `beltmdsm.settings.MAX_MAP_ROWS` rows.
+        For unknown or equal parameters, bad ranges, ``rows < 2`` or ``check_every < 1``,
+        or a model without excitation.
+    beltmdsm.errors.Refused
+        For more than `beltmdsm.settings.MAX_MAP_ROWS` rows.
+
+    See Also
+    --------
+    beltmdsm.continuation.band.floquet_band : the edges of one row.
+    beltmdsm.continuation.branch.branch : one response continued in one parameter.
+
+    Examples
+    --------
+    The Neimark-Sacker curve in ``(Vb, beta1)`` over three rows:
+
+    >>> from beltmdsm import floquet_map
+    >>> m = floquet_map("Vb", 5.3, 5.7, "beta1", 0.29, 0.31, rows=3)
+    >>> [(c.kind, len(c.x)) for c in m.curves]
+    [('neimark_sacker', 3)]
+    >>> [round(x, 3) for x in m.curves[0].x]
+    [5.426, 5.45, 5.471]
+    >>> [[round(a, 2), round(b, 2)] for (a, b), in m.unstable]
+    [[5.43, 5.7], [5.45, 5.7], [5.47, 5.7]]
     """
     clock = time.perf_counter()
     for name in (x, y):

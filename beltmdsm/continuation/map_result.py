@@ -35,6 +35,20 @@ class Curve:
         Whether no stable response lies just below and just above the edge in ``x``.
     ended : str
         Why the curve stops where it does ("" at the last row).
+
+    See Also
+    --------
+    FloquetMap : its ``curves``.
+
+    Examples
+    --------
+    >>> from beltmdsm import floquet_map
+    >>> m = floquet_map("Vb", 5.3, 5.7, "beta1", 0.29, 0.31, rows=3)
+    >>> curve = m.curves[0]
+    >>> curve.kind, curve.y, curve.ended
+    ('neimark_sacker', [0.29, 0.3, 0.31], '')
+    >>> bool(max(curve.accuracy) < 1e-6 * (5.7 - 5.3) * 10)
+    True
     """
 
     kind: str
@@ -94,6 +108,23 @@ class FloquetMap:
     band_rows : list of float
         The rows on which a band found the edges afresh.
     wall_s : float
+
+    See Also
+    --------
+    beltmdsm.continuation.floquet_map.floquet_map : computes it.
+    beltmdsm.continuation.band_result.Band : one row's band.
+
+    Examples
+    --------
+    >>> from beltmdsm import floquet_map
+    >>> m = floquet_map("Vb", 5.3, 5.7, "beta1", 0.29, 0.31, rows=3)
+    >>> m  # doctest: +ELLIPSIS
+    FloquetMap('Vb' in [5.3, 5.7], 'beta1' in [0.29, 0.31], ...; 3 rows, ... s): 1 boundary curves
+      Curve('neimark_sacker' (NS), 3 points: y 0.29..0.31, x 5.42...5.47..., to ...)
+    >>> m.band_rows, m.linear
+    ([0.29], [[], [], []])
+    >>> m.to_pandas()[["beta1", "Vb"]].round(3).values.tolist()
+    [[0.29, 5.426], [0.3, 5.45], [0.31, 5.471]]
     """
 
     x: str
