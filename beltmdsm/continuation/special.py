@@ -30,13 +30,58 @@ __all__ = ["count_outside", "critical", "regula_falsi", "special_between"]
 
 
 def count_outside(point: Any) -> int:
-    """The number of ``point``'s multipliers outside the unit circle."""
+    """The number of ``point``'s multipliers outside the unit circle.
+
+    Parameters
+    ----------
+    point
+        Any object with ``multipliers`` (an array).
+
+    Returns
+    -------
+    int
+
+    See Also
+    --------
+    critical : the multiplier of a rank.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from types import SimpleNamespace
+    >>> count_outside(SimpleNamespace(multipliers=np.array([1.5, -0.2, 0.3 + 1.1j])))
+    2
+    """
     return int(np.sum(np.abs(point.multipliers) > 1.0))
 
 
 def critical(point: Any, rank: int) -> complex:
     """The multiplier of rank ``rank`` (0: the largest modulus; a stable sort, so that a
-    cycle's multipliers, already in that order, keep it)."""
+    cycle's multipliers, already in that order, keep it).
+
+    Parameters
+    ----------
+    point
+        Any object with ``multipliers`` (an array).
+    rank : int
+        0 for the largest modulus; past the last, the last.
+
+    Returns
+    -------
+    complex
+
+    See Also
+    --------
+    count_outside : how many lie outside the unit circle.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from types import SimpleNamespace
+    >>> point = SimpleNamespace(multipliers=np.array([0.5, -1.5, 0.9j]))
+    >>> complex(critical(point, 0)), complex(critical(point, 1)), complex(critical(point, 7))
+    ((-1.5+0j), 0.9j, (0.5+0j))
+    """
     mu = point.multipliers[np.argsort(-np.abs(point.multipliers), kind="stable")]
     return mu[min(rank, mu.size - 1)]
 
@@ -60,6 +105,23 @@ def regula_falsi(
     until its two ends are `LOCATE_TOL` apart in the parameter, or ``s_tol`` apart in
     the (scaled) arclength.
 
+    Parameters
+    ----------
+    cont
+        The continuation: ``cont.trial(start, tangent, s)`` (module docstring).
+    start : point
+        Where ``s = 0``.
+    tangent : ndarray
+        The direction (handed to ``cont.trial``).
+    ds : float
+        The bracket's far end.
+    psi : callable
+        ``psi(point)``: the function whose zero is located.
+    fa, fb : float
+        ``psi`` at ``s = 0`` and ``s = ds``, of opposite signs.
+    s_tol : float
+        The smallest bracket in the arclength.
+
     Returns
     -------
     point, accuracy
@@ -70,6 +132,31 @@ def regula_falsi(
     ------
     NoPeriodicResponse
         Where a trial's corrector fails at the middle too.
+
+    See Also
+    --------
+    special_between : the fold and the multiplier crossings it locates.
+
+    Examples
+    --------
+    A toy continuation: the curve ``p = 1 - (s - 1)^2`` in the arclength ``s`` from
+    ``s = 0``, its tangent turning at ``s = 1`` (a fold), one multiplier
+    ``-(0.4 + s / 2)`` through -1 at ``s = 1.2`` (period doubling):
+
+    >>> import numpy as np
+    >>> from types import SimpleNamespace
+    >>> class Toy:
+    ...     def at(self, s):
+    ...         mu = np.array([-(0.4 + 0.5 * s)])
+    ...         return SimpleNamespace(value=1 - (s - 1) ** 2, tangent=-2 * (s - 1),
+    ...                                multipliers=mu, stable=bool(abs(mu[0]) < 1))
+    ...     def trial(self, start, tangent, s):
+    ...         return self.at(s)
+    >>> toy = Toy()
+    >>> point, accuracy = regula_falsi(toy, toy.at(0.0), None, 1.5, lambda q: q.tangent,
+    ...                                2.0, -1.0, s_tol=1e-12)
+    >>> round(point.value, 9), bool(accuracy <= 1e-6)
+    (1.0, True)
     """
     a, b = 0.0, ds
     pa_value, pb_value = start.value, None
@@ -133,6 +220,37 @@ def special_between(
     list of SpecialPoint
         A fold and a multiplier's crossing, nearest ``prev`` first (a real multiplier
         through +1 at a fold is the fold's, not a second point).
+
+    Raises
+    ------
+    NoPeriodicResponse
+        Where a trial's corrector fails (`regula_falsi`): the caller shortens its step.
+
+    See Also
+    --------
+    beltmdsm.continuation.branch.branch : the forced responses' branches.
+    beltmdsm.cycles.branch.cycle_branch : the self-excited cycles' branches.
+
+    Examples
+    --------
+    A toy continuation: the curve ``p = 1 - (s - 1)^2`` in the arclength ``s`` from
+    ``s = 0``, its tangent turning at ``s = 1`` (a fold), one multiplier
+    ``-(0.4 + s / 2)`` through -1 at ``s = 1.2`` (period doubling):
+
+    >>> import numpy as np
+    >>> from types import SimpleNamespace
+    >>> class Toy:
+    ...     def at(self, s):
+    ...         mu = np.array([-(0.4 + 0.5 * s)])
+    ...         return SimpleNamespace(value=1 - (s - 1) ** 2, tangent=-2 * (s - 1),
+    ...                                multipliers=mu, stable=bool(abs(mu[0]) < 1))
+    ...     def trial(self, start, tangent, s):
+    ...         return self.at(s)
+    >>> toy = Toy()
+    >>> found = special_between(toy, toy.at(0.0), toy.at(1.5), None, 1.5, lambda q: 1.0,
+    ...                         s_tol=1e-12)
+    >>> [(s.kind, round(s.value, 6)) for s in found]
+    [('period_doubling', 0.96), ('fold', 1.0)]
     """
     out = []
     if prev.tangent * new.tangent < 0:
