@@ -46,7 +46,7 @@ class Edge:
 
     See Also
     --------
-    Band : the band that holds the edges.
+    beltmdsm.continuation.band_result.Band : the band that holds the edges.
     beltmdsm.continuation.edges.KINDS : the bifurcation kinds.
 
     Examples
@@ -105,7 +105,7 @@ class BandPoint:
 
     See Also
     --------
-    Band : its ``grid`` holds one per evaluated value.
+    beltmdsm.continuation.band_result.Band : its ``grid`` holds one per evaluated value.
 
     Examples
     --------
@@ -143,7 +143,7 @@ class BandFailure:
 
     See Also
     --------
-    Band : its ``failed`` holds them.
+    beltmdsm.continuation.band_result.Band : its ``failed`` holds them.
 
     Examples
     --------
@@ -196,7 +196,7 @@ class Band:
 
     See Also
     --------
-    floquet_band : computes it.
+    beltmdsm.continuation.band.floquet_band : computes it.
     beltmdsm.continuation.branch.Branch : one response continued.
 
     Examples

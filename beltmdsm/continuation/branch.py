@@ -94,7 +94,7 @@ def continue_branch(
 
     See Also
     --------
-    branch : the same from a model, the response found first.
+    beltmdsm.continuation.branch.branch : the same from a model, the response found first.
     beltmdsm.continuation.band.floquet_band : the unstable ranges on a grid, edges located.
 
     Examples
@@ -211,7 +211,7 @@ def branch(
 
     See Also
     --------
-    continue_branch : the same from a response already found.
+    beltmdsm.continuation.branch.continue_branch : the same from a response already found.
     beltmdsm.continuation.band.floquet_band : the unstable ranges on a grid, edges located.
     beltmdsm.continuation.floquet_map.floquet_map : the edges traced over two parameters.
 

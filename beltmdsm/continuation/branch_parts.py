@@ -49,7 +49,7 @@ class SpecialPoint:
 
     See Also
     --------
-    Branch : its ``special`` holds them, in arclength order.
+    beltmdsm.continuation.branch_parts.Branch : its ``special`` holds them, in arclength order.
     beltmdsm.continuation.special.special_between : locates folds and crossings.
 
     Examples
@@ -104,7 +104,7 @@ class BranchPart:
 
     See Also
     --------
-    Branch.parts : the parts of a branch.
+    beltmdsm.continuation.branch_parts.Branch.parts : the parts of a branch.
 
     Examples
     --------

@@ -105,7 +105,7 @@ def multiplier_kind(mu: complex, period: float) -> tuple[str, float | None]:
 
     See Also
     --------
-    log_max_multiplier : the critical multiplier of a response.
+    beltmdsm.continuation.edges.log_max_multiplier : the critical multiplier of a response.
 
     Examples
     --------
@@ -136,7 +136,7 @@ def margin_kind(margin: Margin) -> str:
 
     See Also
     --------
-    locate_end : where a margin closes.
+    beltmdsm.continuation.edges.locate_end : where a margin closes.
 
     Examples
     --------
@@ -168,7 +168,7 @@ def counterpart(margin, margins, window):
 
     See Also
     --------
-    closing_margins : the margins that fall between two orbits.
+    beltmdsm.continuation.edges.closing_margins : the margins that fall between two orbits.
 
     Examples
     --------
@@ -214,7 +214,7 @@ def closing_margins(
 
     See Also
     --------
-    locate_end : the zero located exactly.
+    beltmdsm.continuation.edges.locate_end : the zero located exactly.
 
     Examples
     --------
@@ -269,7 +269,7 @@ class End:
 
     See Also
     --------
-    locate_end : returns it.
+    beltmdsm.continuation.edges.locate_end : returns it.
 
     Examples
     --------
@@ -359,7 +359,7 @@ def locate_end(
 
     See Also
     --------
-    closing_margins : the first secant.
+    beltmdsm.continuation.edges.closing_margins : the first secant.
     beltmdsm.continuation.branch.branch : ends a branch where its corrector fails.
 
     Examples
@@ -463,7 +463,7 @@ def log_max_multiplier(pmap: PeriodMap, point: FixedPoint) -> tuple[float, compl
 
     See Also
     --------
-    multiplier_kind : the kind of the critical multiplier on the unit circle.
+    beltmdsm.continuation.edges.multiplier_kind : the critical multiplier's kind.
 
     Examples
     --------

@@ -38,7 +38,7 @@ class Curve:
 
     See Also
     --------
-    FloquetMap : its ``curves``.
+    beltmdsm.continuation.map_result.FloquetMap : its ``curves``.
 
     Examples
     --------

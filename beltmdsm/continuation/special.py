@@ -43,7 +43,7 @@ def count_outside(point: Any) -> int:
 
     See Also
     --------
-    critical : the multiplier of a rank.
+    beltmdsm.continuation.special.critical : the multiplier of a rank.
 
     Examples
     --------
@@ -72,7 +72,7 @@ def critical(point: Any, rank: int) -> complex:
 
     See Also
     --------
-    count_outside : how many lie outside the unit circle.
+    beltmdsm.continuation.special.count_outside : how many lie outside the unit circle.
 
     Examples
     --------
@@ -135,7 +135,7 @@ def regula_falsi(
 
     See Also
     --------
-    special_between : the fold and the multiplier crossings it locates.
+    beltmdsm.continuation.special.special_between : the special points it locates.
 
     Examples
     --------
