@@ -47,7 +47,7 @@ from ..model import MODEL_PARAMETERS, Backend, Model, as_model, is_autonomous
 from ..periodic.floquet import PeriodicResponse, periodic_response
 from ..periodic.periodmap import MapFamily
 from .arclength import _Continuation
-from .branch_parts import Branch, SpecialPoint, record_points
+from .branch_parts import Branch, SpecialPoint, _recorded_rows, record_points
 from .branch_walk import _walk
 
 __all__ = ["continue_branch", "branch"]
@@ -123,6 +123,8 @@ def continue_branch(
     x0 = np.asarray(start.shooting_state, dtype=float)
     cont = _Continuation(family, float(lo), float(hi), 1.0 + float(np.max(np.abs(x0))))
     image = family(v0)(x0)
+    if record is not None:  # one that fails is refused before the continuation runs
+        _recorded_rows(record, [cont.point(x0, v0, 1.0, image)], param)
     kT = start.periods * family(v0).period
     walks = []
     for direction in (1.0, -1.0):
@@ -190,7 +192,8 @@ def branch(
         `beltmdsm.cycles.continuation.CyclePoint`, with ``period`` too), and returns a
         real number (a column ``"record"``) or a mapping of names to real numbers,
         the same names at every point. Stored as the point's ``recorded``, they are
-        columns of `Branch.observables` and `Branch.to_pandas`.
+        columns of `Branch.observables` and `Branch.to_pandas`. It is tried at the
+        start first: one that fails there is refused before the continuation runs.
 
     Returns
     -------

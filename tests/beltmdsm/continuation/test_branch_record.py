@@ -83,3 +83,15 @@ def test_a_record_that_raises_or_returns_a_non_number_is_refused_naming_record(r
     with pytest.raises(Refused, match=f"^{re.escape(says)}") as err:
         branch(NS, lo=5.3, hi=5.32, record=record)
     assert err.value.names == ("record",)
+
+
+def test_a_record_that_fails_at_the_start_is_refused_before_the_continuation(monkeypatch):
+    from beltmdsm.continuation import branch as module
+
+    def walk(*args):
+        raise AssertionError("the continuation ran")
+
+    monkeypatch.setattr(module, "_walk", walk)
+    with pytest.raises(Refused, match="^record raised ZeroDivisionError at Vb = 5.3") as err:
+        branch(NS, lo=5.0, hi=6.0, record=_raises)
+    assert err.value.names == ("record",)
