@@ -7,9 +7,11 @@ layer of beltmdsm (tests/test_layers.py), and these names live in every layer ab
 
 from .attractors.classification import Attractor, classify
 from .attractors.lyapunov import Lyapunov, lyapunov
-from .continuation.band import Band, Edge, floquet_band
+from .continuation.band import floquet_band
+from .continuation.band_result import Band, Edge
 from .continuation.branch import Branch, branch
-from .continuation.floquet_map import FloquetMap, floquet_map
+from .continuation.floquet_map import floquet_map
+from .continuation.map_result import FloquetMap
 from .cycles.cycle import Cycle, cycle, seed_cycle
 from .errors import (
     BeltmdsmError,

@@ -111,7 +111,7 @@ def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str = "X1
 
 
 def band(result: Any, ax: Any = None) -> Any:
-    """A Floquet band (`beltmdsm.continuation.band.Band`): the largest multiplier's modulus
+    """A Floquet band (`beltmdsm.continuation.band_result.Band`): the largest multiplier's modulus
     at each evaluated value, the unit circle's 1, the unstable ranges shaded and each
     edge marked with its label."""
     ax = _axes(ax)
@@ -215,7 +215,7 @@ def coexistence(result: Any, ax: Any = None, observable: str = "X1'_amplitude") 
 
 
 def floquet_map(result: Any, ax: Any = None, linear: bool = True) -> Any:
-    """A Floquet map (`beltmdsm.continuation.floquet_map.FloquetMap`): shaded where no
+    """A Floquet map (`beltmdsm.continuation.map_result.FloquetMap`): shaded where no
     stable periodic response is found, row by row; the boundary curves coloured by kind
     (`KIND_COLOURS`) and labelled; hatched blue (``linear``): where the paper's linear
     analysis says unstable on the same rows."""

@@ -10,7 +10,7 @@ from collections.abc import Callable
 from typing import Any
 
 from .. import plotting
-from ..continuation.floquet_map import FloquetMap
+from ..continuation.map_result import FloquetMap
 from ..plotting import KIND_COLOURS
 
 __all__ = ["floquet_map", "draw_floquet_map", "KIND_COLOURS", "save"]

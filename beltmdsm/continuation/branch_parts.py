@@ -1,13 +1,13 @@
 """The results of a branch: its special points, its stable and unstable parts, the branch.
 
 Shared by the branches of forced responses (`beltmdsm.continuation.branch`) and of
-self-excited cycles (`beltmdsm.cycles.branch`); `beltmdsm.continuation.branch`
-re-exports them.
+self-excited cycles (`beltmdsm.cycles.branch`).
 """
 
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -16,10 +16,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .._tables import DataFrame
+from ..errors import Refused
 from ..model import Model
 from ..periodic.periodmap import engine_of
 
-__all__ = ["LOCATE_TOL", "SpecialPoint", "BranchPart", "Branch"]
+__all__ = ["LOCATE_TOL", "SpecialPoint", "BranchPart", "Branch", "record_points"]
 
 #: Special points are located to this in the parameter.
 LOCATE_TOL = 1e-6
@@ -45,6 +46,21 @@ class SpecialPoint:
     stable_before, stable_after : bool or None
         Whether the branch is stable just before and after, along the continuation.
     detail : str
+
+    See Also
+    --------
+    beltmdsm.continuation.branch_parts.Branch : its ``special`` holds them, in arclength order.
+    beltmdsm.continuation.special.special_between : locates folds and crossings.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, branch
+    >>> b = branch(Model(beta1=0.3, Vb=5.3), lo=5.3, hi=5.6)
+    >>> ns = b.special[1]
+    >>> ns.kind, round(ns.value, 3), round(ns.frequency, 3), ns.stable_before, ns.stable_after
+    ('neimark_sacker', 5.45, 1.052, True, False)
+    >>> bool(ns.accuracy <= 1e-6)
+    True
     """
 
     kind: str
@@ -85,6 +101,17 @@ class BranchPart:
         (``from`` and ``to`` in `as_dict`).
     lower, upper : str
         The kinds of those at its lower and upper value.
+
+    See Also
+    --------
+    beltmdsm.continuation.branch_parts.Branch.parts : the parts of a branch.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, branch
+    >>> b = branch(Model(beta1=0.3, Vb=5.3), lo=5.3, hi=5.6)
+    >>> [(p.start, p.end, p.stable) for p in b.parts()]
+    [('range', 'neimark_sacker', True), ('neimark_sacker', 'range', False)]
     """
 
     range: tuple[float, float]
@@ -116,10 +143,32 @@ class Branch:
     periods : int
     model : Model
         The other parameters and the options (``param`` at the start's value).
-    points : list of BranchPoint (`beltmdsm.continuation.branch`) or CyclePoint
+    points : list of BranchPoint (`beltmdsm.continuation.arclength`) or CyclePoint
         In arclength order, from the start's lower end.
     special : list of SpecialPoint
         In arclength order; the first and the last are the ends.
+
+    See Also
+    --------
+    beltmdsm.continuation.branch.branch : computes it.
+    beltmdsm.continuation.band_result.Band : the unstable ranges of a grid.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, branch
+    >>> b = branch(Model(beta1=0.3, Vb=5.3), lo=5.3, hi=5.6)
+    >>> b  # doctest: +ELLIPSIS
+    Branch('Vb', T-periodic response, Model(beta1=0.3, Vb=5.3); ...): stable in [5.3, 5.4499...]
+      range at Vb = 5.3 (+- 0e+00): the end of the requested range
+      NS at Vb = 5.4499... (+- ...), 1.052 rad/s: a complex pair crosses the unit circle at ...
+      range at Vb = 5.6 (+- 0e+00): the end of the requested range
+    >>> b.value_range()
+    [5.3, 5.6]
+    >>> b.to_pandas("special")["label"].tolist()
+    ['range', 'NS', 'range']
+    >>> table = b.observables()
+    >>> bool(table["X1'_amplitude"][0] > 0 and len(table["Vb"]) == len(b.points))
+    True
     """
 
     param: str
@@ -173,31 +222,31 @@ class Branch:
         """What each point's orbit measures, in arclength order: ``param``'s value, then
         the `beltmdsm.periodic.observables.OBSERVABLES` (ranges of X1' and X1, the
         largest |Vr|, the mean friction and ``mu_eff = <Ff>/<Fn>``), read from the
-        runs the point keeps (nothing is solved again).
+        runs the point keeps (nothing is solved again; a branch of cycles gives the
+        ranges, the largest |Vr| and the ``period``), then what the ``record`` of
+        `beltmdsm.continuation.branch.branch` stored at each point.
 
-        ``record(point)`` adds columns of its own, as BifurcationKit's
-        ``record_from_solution`` does: a float (column ``"record"``) or a mapping of
-        names to floats, for each `BranchPoint` (its ``state``, ``value``, ``image``).
+        ``record(point)`` adds columns of its own afterwards, as the ``record`` of
+        `beltmdsm.continuation.branch.branch` does (`record_points`).
+
+        Raises
+        ------
+        beltmdsm.errors.Refused
+            Where ``record`` raises or returns anything but a real number or a mapping
+            of names to real numbers (`record_points`).
         """
-        from ..periodic.observables import OBSERVABLES, observables
+        from ..periodic.observables import OBSERVABLES
 
-        if self.points and not hasattr(self.points[0], "image"):
-            raise ValueError(
-                "observables are read from a forced response's runs; a branch of cycles "
-                "carries its own: period, amplitude, x1_range, velocity_range, "
-                "max_relative_velocity of each point"
-            )
         vb = [p.value if self.param == "Vb" else self.model["Vb"] for p in self.points]
-        rows = [observables(p.image, v) for p, v in zip(self.points, vb)]
+        rows = [p.observables(v) for p, v in zip(self.points, vb)]
         out = {self.param: np.array([p.value for p in self.points], dtype=float)}
-        out.update({k: np.array([r[k] for r in rows], dtype=float) for k in OBSERVABLES})
-        if record is not None:
-            recorded = [record(p) for p in self.points]
-            if recorded and isinstance(recorded[0], Mapping):
-                for key in recorded[0]:
-                    out[key] = np.array([r[key] for r in recorded], dtype=float)
-            else:
-                out["record"] = np.array(recorded, dtype=float)
+        columns = rows[0] if rows else dict.fromkeys(OBSERVABLES)
+        out.update({k: np.array([r[k] for r in rows], dtype=float) for k in columns})
+        for key in self.points[0].recorded if self.points else ():
+            out[key] = np.array([p.recorded[key] for p in self.points], dtype=float)
+        if record is not None and self.points:
+            rows = _recorded_rows(record, self.points, self.param)
+            out.update({k: np.array([r[k] for r in rows], dtype=float) for k in rows[0]})
         return out
 
     def plot(self, ax: Any = None, observable: str = "X1'_amplitude", labels: bool = True) -> Any:
@@ -214,7 +263,13 @@ class Branch:
         per `BranchPoint`: ``param``'s value, the shooting state at phase 0,
         ``max_abs_multiplier``, ``stable``, ``n_reversals``, ``n_sticks``, then the
         `observables`) or of the ``"special"`` points (their attributes, ``label`` the
-        short name of the kind)."""
+        short name of the kind).
+
+        Raises
+        ------
+        ValueError
+            For another ``table``.
+        """
         from .._display import label
         from .._tables import frame
 
@@ -278,3 +333,103 @@ class Branch:
             "special_points": [s.as_dict() for s in self.special],
             "points": [p.as_dict() for p in self.points],
         }
+
+
+#: Columns of `Branch.to_pandas` that a recorded name may not take.
+_RESERVED = frozenset(
+    ["X1", "X1'", "X2", "X2'", "max_abs_multiplier", "stable", "n_reversals", "n_sticks"]
+    + ["X1'_amplitude", "X1'_min", "X1'_max", "X1_amplitude", "X1_min", "X1_max"]
+    + ["max_abs_Vr", "mean_friction", "mu_eff", "period"]
+)
+
+
+def _recorded_rows(record: Callable[[Any], Any], points: list[Any], param: str) -> list:
+    """``record(point)`` at each of ``points``, checked: a list of dicts of one set of names."""
+    if not callable(record):
+        raise Refused(f"record must be a callable of a branch point; got {record!r}", "record")
+    rows = []
+    for p in points:
+        where = f"{param} = {p.value:.6g}"
+        try:
+            got = record(p)
+        except Exception as err:  # the user's code: refused, its error chained
+            raise Refused(
+                f"record raised {type(err).__name__} at {where}: {err}", "record"
+            ) from err
+        row = dict(got) if isinstance(got, Mapping) else {"record": got}
+        bad = [
+            k
+            for k, v in row.items()
+            if not isinstance(k, str) or isinstance(v, bool) or not isinstance(v, numbers.Real)
+        ]
+        if bad or not row:
+            raise Refused(
+                "record must return a real number or a mapping of names (str) to real "
+                f"numbers; at {where} it returned {got!r}",
+                "record",
+            )
+        taken = sorted(_RESERVED.intersection(row) | ({param} & row.keys()))
+        if taken:
+            raise Refused(
+                f"record's names {taken} are the branch's own columns; choose others",
+                "record",
+            )
+        if rows and row.keys() != rows[0].keys():
+            raise Refused(
+                f"record must return the same names at every point; at {where} "
+                f"{sorted(row)}, at the first {sorted(rows[0])}",
+                "record",
+            )
+        rows.append({k: float(v) for k, v in row.items()})
+    return rows
+
+
+def record_points(branch: Branch, record: Callable[[Any], Any] | None) -> Branch:
+    """Store ``record(point)`` on each point of ``branch`` (``point.recorded``); returns it.
+
+    As BifurcationKit's ``record_from_solution``: ``record`` takes a point of the branch
+    (a `beltmdsm.continuation.arclength.BranchPoint`: ``value``, ``state``, ``image``
+    with the orbit's runs, ``multipliers``; a cycle's
+    `beltmdsm.cycles.continuation.CyclePoint`: also ``period``) and returns a real number
+    (the column ``"record"``) or a mapping of names to real numbers, the same names at
+    every point. They are columns of `Branch.observables` and `Branch.to_pandas`.
+
+    Parameters
+    ----------
+    branch : Branch
+    record : callable or None
+        None: nothing is recorded.
+
+    Returns
+    -------
+    Branch
+        ``branch`` itself, its points' ``recorded`` filled.
+
+    Raises
+    ------
+    beltmdsm.errors.Refused
+        Naming ``record``: not callable; it raises; it returns anything else, no name,
+        a name of the branch's own columns or other names at another point.
+
+    See Also
+    --------
+    beltmdsm.continuation.branch.branch : takes ``record`` and calls this.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, branch
+    >>> b = branch(Model(beta1=0.3, Vb=5.3), lo=5.3, hi=5.6)
+    >>> from beltmdsm.continuation.branch_parts import record_points
+    >>> _ = record_points(b, lambda p: {"twice": 2 * p.value})
+    >>> b.points[0].recorded
+    {'twice': 10.6}
+    >>> record_points(b, lambda p: "a word")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    beltmdsm.errors.Refused: record must return a real number or a mapping ...
+    """
+    if record is None:
+        return branch
+    for p, row in zip(branch.points, _recorded_rows(record, branch.points, branch.param)):
+        p.recorded = row
+    return branch

@@ -97,6 +97,24 @@ def multiplier_kind(mu: complex, period: float) -> tuple[str, float | None]:
     (kind, frequency)
         ``("neimark_sacker", |arg mu| / period)``, ``("period_doubling", None)`` or
         ``("fold", None)``.
+
+    Raises
+    ------
+    TypeError
+        Where ``mu`` is not a number.
+
+    See Also
+    --------
+    beltmdsm.continuation.edges.log_max_multiplier : the critical multiplier of a response.
+
+    Examples
+    --------
+    >>> import cmath
+    >>> kind, frequency = multiplier_kind(cmath.exp(0.5j), 2.0)
+    >>> kind, round(frequency, 6)
+    ('neimark_sacker', 0.25)
+    >>> multiplier_kind(-1.0, 2.0), multiplier_kind(1.0 + 1e-9j, 2.0)
+    (('period_doubling', None), ('fold', None))
     """
     mu = complex(mu)
     if abs(mu.imag) > REAL_SHARE * abs(mu):
@@ -105,12 +123,63 @@ def multiplier_kind(mu: complex, period: float) -> tuple[str, float | None]:
 
 
 def margin_kind(margin: Margin) -> str:
-    """``tangency`` for a crossing margin, ``grazing`` for the others."""
+    """``tangency`` for a crossing margin, ``grazing`` for the others.
+
+    Parameters
+    ----------
+    margin : Margin
+        `beltmdsm.periodic.periodmap.Margin`.
+
+    Returns
+    -------
+    {"tangency", "grazing"}
+
+    See Also
+    --------
+    beltmdsm.continuation.edges.locate_end : where a margin closes.
+
+    Examples
+    --------
+    >>> from beltmdsm.integrate.switching import Mode
+    >>> from beltmdsm.periodic.periodmap import Margin
+    >>> margin_kind(Margin("crossing", "relative_velocity", Mode.SLIP_BACK, 0.7, 0.02))
+    'tangency'
+    >>> margin_kind(Margin("approach", "relative_velocity", Mode.SLIP_BACK, 0.7, 0.02))
+    'grazing'
+    """
     return "tangency" if margin.kind == "crossing" else "grazing"
 
 
 def counterpart(margin, margins, window):
-    """The margin of another orbit on the same branch that is ``margin`` (same feature)."""
+    """The margin of another orbit on the same branch that is ``margin`` (same feature).
+
+    Parameters
+    ----------
+    margin : Margin
+    margins : list of Margin
+        The other orbit's.
+    window : float
+        How far in time [s] the feature may have moved.
+
+    Returns
+    -------
+    Margin or None
+        Of the same kind, surface and mode, nearest in time within ``window``.
+
+    See Also
+    --------
+    beltmdsm.continuation.edges.closing_margins : the margins that fall between two orbits.
+
+    Examples
+    --------
+    >>> from beltmdsm.integrate.switching import Mode
+    >>> from beltmdsm.periodic.periodmap import Margin
+    >>> m = Margin("crossing", "relative_velocity", Mode.SLIP_BACK, 0.70, 0.02)
+    >>> others = [Margin("crossing", "relative_velocity", Mode.SLIP_BACK, 0.72, 0.01),
+    ...           Margin("crossing", "relative_velocity", Mode.SLIP_FORWARD, 0.70, 0.1)]
+    >>> counterpart(m, others, 0.1).t, counterpart(m, others, 0.01)
+    (0.72, None)
+    """
     same = [
         m
         for m in margins
@@ -137,6 +206,32 @@ def closing_margins(
     list of (value, Margin)
         Where the secant through the two values of each falling margin is zero, beyond
         ``vb`` as seen from ``va``; nearest first.
+
+    Raises
+    ------
+    AttributeError
+        Where an item of ``a`` or ``b`` is no `beltmdsm.periodic.periodmap.Margin`.
+
+    See Also
+    --------
+    beltmdsm.continuation.edges.locate_end : the zero located exactly.
+
+    Examples
+    --------
+    The crossing margin of the response at ``Vb`` 6.0 and 6.1 falls towards a
+    tangency near 6.16 (`locate_end` places it exactly):
+
+    >>> from beltmdsm import Model, periodic_response
+    >>> from beltmdsm.periodic.periodmap import MapFamily, fixed_point
+    >>> family = MapFamily(Model(), "Vb")
+    >>> a = fixed_point(family(6.0), periodic_response(Model(Vb=6.0)).shooting_state)
+    >>> b = fixed_point(family(6.1), a.state)
+    >>> crossing = ("crossing",)
+    >>> found = closing_margins(a.image.margins_of(crossing), b.image.margins_of(crossing),
+    ...                         6.0, 6.1, 1.0)
+    >>> zero, margin = found[0]
+    >>> round(zero, 2), margin.surface
+    (6.18, 'relative_velocity')
     """
     out = []
     for mb in b:
@@ -171,6 +266,21 @@ class End:
     chain : list of (float, float)
         The parameter values and closing margins that ``value`` was fitted to (the
         polynomial of `_zero`), towards the end.
+
+    See Also
+    --------
+    beltmdsm.continuation.edges.locate_end : returns it.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, periodic_response
+    >>> from beltmdsm.periodic.periodmap import MapFamily, fixed_point
+    >>> family = MapFamily(Model(), "Vb")
+    >>> a = fixed_point(family(6.0), periodic_response(Model(Vb=6.0)).shooting_state)
+    >>> b = fixed_point(family(6.1), a.state)
+    >>> end = locate_end(family, [(6.0, a), (6.1, b)])
+    >>> end.kind, round(end.value, 5), bool(end.accuracy < 1e-6), end.margin.surface
+    ('tangency', 6.16435, True, 'relative_velocity')
     """
 
     kind: str
@@ -240,10 +350,31 @@ def locate_end(
 
     Raises
     ------
+    ValueError
+        For fewer than two ``points``.
     NoEdge
         If no margin of the response falls towards the end (it does not end at a
         tangency or a grazing: a fold, or a failure of Newton's method), or its zero
         is not found to ``required``.
+
+    See Also
+    --------
+    beltmdsm.continuation.edges.closing_margins : the first secant.
+    beltmdsm.continuation.branch.branch : ends a branch where its corrector fails.
+
+    Examples
+    --------
+    The response of the base set ends at a tangency at ``Vb`` = 6.16435 (its crossing
+    of the relative velocity's zero in backward slip becomes tangential):
+
+    >>> from beltmdsm import Model, periodic_response
+    >>> from beltmdsm.periodic.periodmap import MapFamily, fixed_point
+    >>> family = MapFamily(Model(), "Vb")
+    >>> a = fixed_point(family(6.0), periodic_response(Model(Vb=6.0)).shooting_state)
+    >>> b = fixed_point(family(6.1), a.state)
+    >>> end = locate_end(family, [(6.0, a), (6.1, b)])
+    >>> end.kind, round(end.value, 5), end.margin.mode.name
+    ('tangency', 6.16435, 'SLIP_BACK')
     """
     points = list(points)
     if len(points) < 2:
@@ -310,7 +441,41 @@ def locate_end(
 
 
 def log_max_multiplier(pmap: PeriodMap, point: FixedPoint) -> tuple[float, complex]:
-    """``log max |mu|`` of a response and its critical multiplier."""
+    """``log max |mu|`` of a response and its critical multiplier.
+
+    Parameters
+    ----------
+    pmap : PeriodMap
+        The period map at the response's parameter values (its fixed multipliers).
+    point : FixedPoint
+        The response (`beltmdsm.periodic.periodmap.fixed_point`).
+
+    Returns
+    -------
+    (float, complex)
+        ``log max |mu|`` over the monodromy's and the fixed multipliers, and that
+        multiplier.
+
+    Raises
+    ------
+    ValueError
+        Where the largest multiplier is 0 (``log`` of zero).
+
+    See Also
+    --------
+    beltmdsm.continuation.edges.multiplier_kind : the critical multiplier's kind.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, periodic_response
+    >>> from beltmdsm.periodic.periodmap import MapFamily, fixed_point
+    >>> family = MapFamily(Model(), "Vb")
+    >>> a = fixed_point(family(6.0), periodic_response(Model(Vb=6.0)).shooting_state)
+    >>> b = fixed_point(family(6.1), a.state)
+    >>> g, mu = log_max_multiplier(family(6.0), a)
+    >>> round(g, 4), multiplier_kind(mu, family(6.0).period)[0]
+    (0.6214, 'neimark_sacker')
+    """
     mu = np.concatenate([np.linalg.eigvals(point.image.jacobian), pmap.fixed_multipliers()])
     k = int(np.argmax(np.abs(mu)))
     return math.log(float(abs(mu[k]))), mu[k]

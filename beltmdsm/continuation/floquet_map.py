@@ -34,7 +34,7 @@ continuation in ``y``, row by row, not on a grid of pixels:
   edges afresh, and an edge that no curve follows starts a new one.
 
 Each row's unstable set is where no stable periodic response is found: on a row with a
-band, the band's (`beltmdsm.continuation.band.Band.unstable`; a curve of a second periodic
+band, the band's (`beltmdsm.continuation.band_result.Band.unstable`; a curve of a second periodic
 response that coexists with a stable one then bounds nothing); on the rows between,
 it follows from the curves' edges and from which of their sides is unstable, which
 assumes one periodic response at each ``x``. The paper's linear analysis
@@ -48,615 +48,30 @@ from __future__ import annotations
 import sys
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from generated import stability
-
 from .._calling import mapped
-from .._tables import DataFrame
 from ..errors import Refused
-from ..intervals import runs as true_intervals
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
-from ..periodic.floquet import NoPeriodicResponse, largest_sliding_velocity, response_from
-from ..periodic.periodmap import MARGIN_KINDS, MapFamily, Margin, engine_of, fixed_point
+from ..periodic.floquet import NoPeriodicResponse
+from ..periodic.periodmap import MapFamily
 from ..settings import MAX_MAP_ROWS
-from .band import Band, floquet_band
-from .branch import continue_branch
-from .edges import (
-    NoEdge,
-    counterpart,
-    locate_end,
-    log_max_multiplier,
-    margin_kind,
-    multiplier_kind,
-)
+from .band import floquet_band
+from .edges import NoEdge
+from .map_linear import LINEAR_POINTS, _linear
+from .map_result import Curve, FloquetMap
+from .map_tracker import EDGE_TOL, _extrapolate, _trackers_from_band
 
-__all__ = [
-    "EDGE_TOL",
-    "LINEAR_POINTS",
-    "Curve",
-    "FloquetMap",
-    "floquet_map",
-]
+__all__ = ["floquet_map"]
 
-#: Curves are located to this share of the ``x`` range on every row.
-EDGE_TOL = 1e-6
-#: Points of ``x`` on which the linear analysis is evaluated per row.
-LINEAR_POINTS = 2001
-#: Rows of the linear analysis evaluated at once.
-_LINEAR_BLOCK = 64
-#: Iterations of the secant on one row.
-_SECANT_ITER = 12
-#: The responses next to an end are taken this share of the ``x`` range from it, at
-#: least, and at these shares of that distance (four: the end is the zero of the cubic
-#: through their margins, its accuracy the distance to the quadratic's).
-_END_OFFSET = 2e-3
-_END_SHARES = (1.0, 0.5, 0.25, 0.125)
-#: Times the distance to the end is tripled where fewer than two responses are found.
-_END_WIDENINGS = 4
-#: A row takes one response per curve where the shape of the end (``x`` against the
-#: closing margin) or the slope of the multiplier's secant was measured on one of
-#: this many rows before, and measures it afresh otherwise.
-_REMEASURE = 8
-#: ... and where the shape's extrapolation to the row (the difference between its
-#: cubic and its quadratic extrapolation) is below this share of the tolerance.
-_DRIFT = 0.1
 #: A band's edge within this share of the ``x`` range of where a lost curve of its kind
 #: was heading goes on that curve.
 _RESUME = 0.1
-#: Steps of the natural continuation that carries a band's response to a curve's start
-#: (the band's nearest response lies about its tolerance from the edge; where a step
-#: fails, the rest are halved).
-_WALK_STEPS = 2
 #: Two curves of one kind closer than this many times `EDGE_TOL` on a row have become
 #: one (edges that merge, e.g. grazings that become one tangency): one goes on.
 _SAME = 10
-
-
-@dataclass
-class Curve:
-    """A boundary curve of one kind: ``x`` against ``y``.
-
-    Attributes
-    ----------
-    kind : str
-    y, x : list of float
-    accuracy : list of float
-        Per point, a bound of the error of ``x``.
-    frequency : list of float or None
-        Of the critical pair at a Neimark-Sacker curve [rad/s].
-    unstable_below, unstable_above : bool
-        Whether no stable response lies just below and just above the edge in ``x``.
-    ended : str
-        Why the curve stops where it does ("" at the last row).
-    """
-
-    kind: str
-    y: list = field(default_factory=list)
-    x: list = field(default_factory=list)
-    accuracy: list = field(default_factory=list)
-    frequency: list = field(default_factory=list)
-    unstable_below: bool = True
-    unstable_above: bool = True
-    ended: str = ""
-
-    def __repr__(self) -> str:
-        from .._display import label
-
-        if not self.x:
-            return f"Curve({self.kind!r}, no points)"
-        return (
-            f"Curve({self.kind!r} ({label(self.kind)}), {len(self.x)} points: y "
-            f"{self.y[0]:.4g}..{self.y[-1]:.4g}, x {self.x[0]:.6g}..{self.x[-1]:.6g}, to "
-            f"{max(self.accuracy):.0e}" + (f"; {self.ended}" if self.ended else "") + ")"
-        )
-
-    def as_dict(self) -> dict:
-        """For JSON: the attributes."""
-        return {
-            "kind": self.kind,
-            "y": self.y,
-            "x": self.x,
-            "accuracy": self.accuracy,
-            "frequency": self.frequency,
-            "unstable_below": self.unstable_below,
-            "unstable_above": self.unstable_above,
-            "ended": self.ended,
-        }
-
-
-@dataclass
-class FloquetMap:
-    """The result of `floquet_map`.
-
-    Attributes
-    ----------
-    x, y : str
-        The parameters of the axes.
-    x_range, y_range : list of float
-    rows : ndarray
-        The ``y`` of each row.
-    model : Model
-        The other parameters and the options (``x`` and ``y`` at the first row's start).
-    curves : list of Curve
-    unstable : list of list
-        Per row, the ``[lo, hi]`` of ``x`` where no stable periodic response is found
-        (unstable or absent; on a row in ``band_rows`` the band's, module docstring).
-    linear : list of list
-        Per row, where the paper's linear analysis says unstable (``x`` resolved to
-        the range over `LINEAR_POINTS` - 1).
-    band_rows : list of float
-        The rows on which a band found the edges afresh.
-    wall_s : float
-    """
-
-    x: str
-    y: str
-    x_range: list
-    y_range: list
-    rows: np.ndarray
-    model: Model
-    curves: list
-    unstable: list
-    linear: list
-    band_rows: list
-    wall_s: float
-
-    def plot(self, ax: Any = None, linear: bool = True) -> Any:
-        """The map: where no stable response is found, the boundary curves by kind,
-        and (``linear``) the paper's linear analysis, on matplotlib axes ``ax`` (new
-        ones if None), which it returns (`beltmdsm.plotting.floquet_map`; matplotlib
-        is imported here)."""
-        from ..plotting import floquet_map as draw
-
-        return draw(self, ax, linear)
-
-    def to_pandas(self) -> DataFrame:
-        """The boundary curves as a `pandas.DataFrame` (needs pandas, imported here): one
-        row per point of a curve, ``curve`` (its index in `curves`), ``kind``, ``y``
-        and ``x`` named by their parameters, ``accuracy``, ``frequency``."""
-        from .._tables import frame
-
-        rows = [
-            {"curve": i, "kind": c.kind, self.y: y, self.x: x, "accuracy": a, "frequency": f}
-            for i, c in enumerate(self.curves)
-            for y, x, a, f in zip(c.y, c.x, c.accuracy, c.frequency or [None] * len(c.x))
-        ]
-        return frame(rows, ["curve", "kind", self.y, self.x, "accuracy", "frequency"])
-
-    def __repr__(self) -> str:
-        from .._display import block, laws
-
-        return block(
-            f"FloquetMap({self.x!r} in [{self.x_range[0]:g}, {self.x_range[1]:g}], "
-            f"{self.y!r} in [{self.y_range[0]:g}, {self.y_range[1]:g}], {self.model!r}; "
-            f"{laws(self.model)}; {len(self.rows)} rows, {self.wall_s:.1f} s): "
-            f"{len(self.curves)} boundary curves",
-            [repr(c) for c in self.curves],
-        )
-
-    def as_dict(self) -> dict:
-        """For JSON: ``x``, ``y``, ``x_range``, ``y_range``, ``rows``, ``contact``,
-        ``tension``, ``friction``, ``engine``, ``curves``, ``unstable``, ``linear``,
-        ``band_rows``, ``wall_s``."""
-        return {
-            "x": self.x,
-            "y": self.y,
-            "x_range": self.x_range,
-            "y_range": self.y_range,
-            "rows": [float(v) for v in self.rows],
-            "contact": self.model.contact,
-            "tension": self.model.tension,
-            "friction": self.model.friction,
-            "engine": engine_of(self.model),
-            "curves": [c.as_dict() for c in self.curves],
-            "unstable": self.unstable,
-            "linear": self.linear,
-            "band_rows": self.band_rows,
-            "wall_s": self.wall_s,
-        }
-
-
-# ---------------------------------------------------------------- tracking one edge
-
-
-def _extrapolate(ys, values, y):
-    """The polynomial through the last (up to four) points, at ``y``: Lagrange's form.
-
-    Cubic: the responses kept next to an end, extrapolated so from the rows before,
-    are within about 1e-8 of the next row's, and Newton's method takes two period maps
-    from there (three from the quadratic's 1e-6).
-    """
-    ys, values = [float(v) for v in ys[-4:]], [np.asarray(v, dtype=float) for v in values[-4:]]
-    out = 0.0
-    for i, (yi, vi) in enumerate(zip(ys, values)):
-        weight = 1.0
-        for j, yj in enumerate(ys):
-            if j != i:
-                weight *= (y - yj) / (yi - yj)
-        out = out + weight * vi
-    return float(out) if np.ndim(out) == 0 else out
-
-
-def _walk(family, x0, state, x1):
-    """The response at ``x1``, continued from ``state`` at ``x0`` in natural steps."""
-    steps, x, s = _WALK_STEPS, float(x0), np.asarray(state, dtype=float)
-    while True:
-        target = x + (x1 - x) / steps
-        try:
-            s = fixed_point(family(target), s).state
-            x = target
-            if x == x1 or steps == 1:
-                return fixed_point(family(x1), s)
-            steps -= 1
-        except NoPeriodicResponse:
-            steps *= 2
-            if steps > 512:
-                raise
-
-
-@dataclass
-class _Tracker:
-    """Continues one edge in ``y`` (module docstring)."""
-
-    curve: Curve
-    role: str  # "multiplier", "end", "fold" or "sliding"
-    side: float  # ends: +1 where the responses lie below the edge in x, -1 above
-    kinds: tuple
-    # per row where the edge was located (across changes of kind, unlike the curve's
-    # points): the row's y, the edge's x and the responses kept next to it
-    ys: list = field(default_factory=list)
-    xs: list = field(default_factory=list)
-    states: list = field(default_factory=list)
-    # multiplier curves: d(response)/dx along the row, from the last secant step
-    tangent: np.ndarray | None = None
-    # multiplier curves: (row index, y, slope) where the secant measured its slope
-    slopes: list = field(default_factory=list)
-    # ends: per row, the x of each response kept in ``states`` (None where none)
-    positions: list = field(default_factory=list)
-    # ends: (row index, y, coefficients of x against the closing margin, accuracy) where
-    # four responses measured that shape, and the closing margin on the last row
-    shapes: list = field(default_factory=list)
-    margin: Margin | None = None
-
-    def record(self, y, x):
-        """The edge located at ``x`` on row ``y`` (the responses already kept by `step`)."""
-        self.ys.append(float(y))
-        self.xs.append(float(x))
-
-    def step(self, family, y, span):
-        if self.role == "sliding":
-            # the grazing point of the backward-sliding response in Vb is its largest
-            # velocity in contact, which does not depend on Vb: any map of the row's
-            one = family.any_map(self.xs[-1]).one
-            return "grazing", largest_sliding_velocity(one), 1e-12, None
-        if self.role == "multiplier":
-            return self._multiplier(family, y, span)
-        if self.role == "fold":
-            return self._fold(family, y, span)
-        return self._end(family, y, span)
-
-    def _multiplier(self, family, y, span):
-        c, tol = self.curve, EDGE_TOL * span
-        x0 = _extrapolate(self.ys, self.xs, y)
-        guess = _extrapolate(self.ys, [s[0] for s in self.states], y)
-
-        def g(x, guess):
-            point = fixed_point(family(x), guess)
-            value, mu = log_max_multiplier(family(x), point)
-            return value, mu, point
-
-        def along(point, x_from, x):
-            """The response at ``x`` predicted from ``point`` at ``x_from`` by the
-            tangent of the last secant step wide enough to measure it (Newton's method
-            then takes two period maps, not three)."""
-            if self.tangent is None:
-                return point.state
-            return point.state + self.tangent * (x - x_from)
-
-        g0, mu0, p0 = g(x0, guess)
-        predicted = self._predicted_slope(y)
-        if predicted is not None and abs(g0 / predicted) <= tol:
-            # one response on this row: the secant's step with the predicted slope,
-            # whose error is the step times the slope's relative error (below one)
-            x1 = x0 - g0 / predicted
-            kind, frequency = multiplier_kind(mu0, family.periods * family(x0).period)
-            self.states.append((along(p0, x0, x1),))
-            return kind, x1, abs(x1 - x0), frequency
-        slope = predicted or (self.slopes[-1][2] if self.slopes else None) or None
-        x1 = x0 - g0 / slope if slope else x0 + 1e-3 * span
-        for _ in range(_SECANT_ITER):
-            g1, mu1, p1 = g(x1, along(p0, x0, x1))
-            if g1 == g0:  # a flat secant: x1 itself, to the step that reached it
-                accuracy, x0, mu0, p0 = abs(x1 - x0), x1, mu1, p1
-                break
-            slope = (g1 - g0) / (x1 - x0)
-            if abs(x1 - x0) > tol:  # above the Newton tolerance's noise (1e-11 / tol)
-                self.tangent = (p1.state - p0.state) / (x1 - x0)
-            x0, g0, mu0, p0 = x1, g1, mu1, p1
-            x1 = x1 - g1 / slope
-            # the secant's last step bounds the error of its next iterate (which is
-            # of second order in it): x1 is taken without a period map of its own,
-            # its multiplier that at x0, within tol
-            if abs(x1 - x0) <= tol:
-                accuracy = abs(x1 - x0)
-                break
-        else:
-            raise NoEdge(f"the secant of log max|mu| does not converge at {c.kind}")
-        self.slopes.append((len(self.ys), float(y), slope))
-        kind, frequency = multiplier_kind(mu0, family.periods * family(x0).period)
-        self.states.append((along(p0, x0, x1),))
-        return kind, x1, accuracy, frequency
-
-    def _predicted_slope(self, y):
-        """The secant's slope on row ``y``, linear in ``y`` from the last two measured.
-
-        None where the last was measured `_REMEASURE` rows before or more, or where the
-        prediction differs from it by more than half its value: that difference bounds
-        the prediction's error (pessimistically, by one order), and below one half
-        the error of a step with it is below the step.
-        """
-        if len(self.slopes) < 2 or len(self.ys) - self.slopes[-1][0] >= _REMEASURE:
-            return None
-        (_, ya, sa), (_, yb, sb) = self.slopes[-2:]
-        s = sb + (sb - sa) * (y - yb) / (yb - ya)
-        return s if abs(s - sb) <= 0.5 * abs(s) else None
-
-    def _end(self, family, y, span):
-        x_end = _extrapolate(self.ys, self.xs, y)
-        last = self.xs[-1] - self.xs[-2] if len(self.xs) > 1 else 0.0
-        offset = max(3 * abs(last), _END_OFFSET * span)
-        found, nearest = self._end_from_shape(family, y, span, x_end, offset)
-        if found is not None:
-            return found
-        for _ in range(_END_WIDENINGS):
-            points, states, positions = self._next_to_end(family, y, x_end, offset, nearest)
-            if len(points) >= 2:
-                break
-            # the end moved more than predicted: responses farther from it
-            offset, nearest = 3 * offset, None
-        else:
-            raise NoEdge("no two responses next to the predicted end")
-        end = locate_end(family, points, tol=EDGE_TOL * span, kinds=self.kinds)
-        self.states.append(tuple(states))
-        self.positions.append(tuple(positions))
-        if len(end.chain) == 4:
-            values, margins = zip(*end.chain)
-            shape = np.polyfit(margins, values, 3)
-            self.shapes.append((len(self.ys), float(y), shape, end.accuracy))
-        self.margin = end.margin
-        return end.kind, end.value, end.accuracy, None
-
-    def _end_from_shape(self, family, y, span, x_end, offset):
-        """The end from one response next to it and the shape measured on rows before.
-
-        Along a row ``x`` is a smooth function of the closing margin up to the end
-        (`beltmdsm.continuation.edges.locate_end`), and that function changes smoothly from
-        row to row: its cubic on the last four rows where four responses measured it,
-        extrapolated to this row, carries the one response at the nearest share to
-        the margin's zero. The accuracy is the largest of those rows' plus the
-        difference between the cubic and the quadratic extrapolation (the drift).
-
-        Returns ``(edge, None)``, or ``(None, (x, response))`` with the response solved
-        (or None) where four responses measure the shape afresh: where four rows have
-        not measured it, the last `_REMEASURE` rows before or more, where the drift is
-        above `_DRIFT` of the tolerance or the accuracy above the tolerance.
-        """
-        shapes, last = self.shapes[-4:], len(_END_SHARES) - 1
-        rows = self._solved(last)
-        if len(shapes) < 4 or len(self.ys) - shapes[-1][0] >= _REMEASURE or not rows:
-            return None, None
-        x = x_end - self.side * offset * _END_SHARES[last]
-        try:  # (outside the parameter's domain, family(x) raises it too)
-            pmap = family(x)
-            point = fixed_point(pmap, self._extrapolated(last, rows, y, x, x_end))
-        except NoPeriodicResponse:
-            return None, None
-        window = 0.25 * family.periods * pmap.period
-        margin = counterpart(self.margin, point.image.margins_of(self.kinds), window)
-        if margin is None or not margin.value > 0:
-            return None, (x, point)
-        ys, shapes_at = [s[1] for s in shapes], [s[2] for s in shapes]
-
-        def reach(shape):  # x at the margin less x at its zero
-            return float(np.polyval(np.append(shape[:-1], 0.0), margin.value))
-
-        cubic = reach(_extrapolate(ys, shapes_at, y))
-        quadratic = reach(_extrapolate(ys[1:], shapes_at[1:], y))
-        value = x - cubic
-        drift = abs(cubic - quadratic)
-        accuracy = max(s[3] for s in shapes) + drift
-        if (
-            accuracy > EDGE_TOL * span
-            or drift > _DRIFT * EDGE_TOL * span
-            or self.side * (value - x) <= 0
-        ):
-            return None, (x, point)
-        self.states.append((None,) * last + (point.state,))
-        self.positions.append((None,) * last + (x,))
-        self.margin = margin
-        return (margin_kind(margin), value, accuracy, None), None
-
-    def _next_to_end(self, family, y, x_end, offset, nearest=None):
-        """The responses at `_END_SHARES` of ``offset`` from the predicted end, and their states.
-
-        ``nearest``: ``(x, response)`` at the last share, already solved (or None).
-        """
-        n = len(_END_SHARES)
-        history = [self._solved(i) for i in range(n)]
-        # the share with the freshest history first (after rows of one response,
-        # `_end_from_shape`, the nearest), the others in order
-        order = sorted(range(n), key=lambda i: -history[i][-1] if history[i] else 1)
-        solved = {} if nearest is None else {n - 1: nearest}
-        for i in (i for i in order if i not in solved):
-            x = x_end - self.side * offset * _END_SHARES[i]
-            rows = history[i]
-            # the same share on the rows before, extrapolated in y, is the better guess:
-            # next to a tangency the response is not linear along the row (it varies
-            # like the square root of the distance to the end), and Newton's method
-            # needed 11 iterations from the row's secant, 3 from this; corrected by the
-            # error that extrapolation from the same rows makes at the nearest share
-            # solved on this row (where few rows are known, 4 iterations instead of 10;
-            # after rows of one response, 3 instead of 5)
-            if rows:
-                guess = self._extrapolated(i, rows, y, x, x_end)
-                donors = [j for j in solved if all(self.states[k][j] is not None for k in rows)]
-                if donors:
-                    j = min(donors, key=lambda j: abs(j - i))
-                    xj, pj = solved[j]
-                    guess = guess + pj.state - self._extrapolated(j, rows, y, xj, x_end)
-            else:  # along the row from the nearest shares solved
-                near = sorted(solved, key=lambda j: abs(j - i))[:2]
-                if not near:
-                    continue
-                guess = solved[near[0]][1].state
-                if len(near) == 2:
-                    (xa, pa), (xb, pb) = solved[near[1]], solved[near[0]]
-                    guess = pb.state + (pb.state - pa.state) * (x - xb) / (xb - xa)
-            try:  # the nearest may lie beyond the end, or too close for Newton's method
-                solved[i] = (x, fixed_point(family(x), guess))
-            except NoPeriodicResponse:
-                continue
-        return (
-            [solved[i] for i in range(n) if i in solved],
-            [solved[i][1].state if i in solved else None for i in range(n)],
-            [solved[i][0] if i in solved else None for i in range(n)],
-        )
-
-    def _solved(self, i):
-        """The last (up to four) rows where the response at share ``i`` was solved."""
-        return [k for k, st in enumerate(self.states) if st[i] is not None][-4:]
-
-    def _extrapolated(self, i, rows, y, x, x_end):
-        """The response at share ``i`` at ``x`` on row ``y``, from ``rows`` before.
-
-        Each row's response is first moved along its row to the distance from that
-        row's end that ``x`` has from ``x_end`` (the predicted end), by the slope along
-        the row between two shares on the last row where both were solved: an end
-        located less smoothly than the rows around it (by 1e-7, within its accuracy)
-        moves the responses next to a tangency by 1e-7 from where a smooth curve
-        would put them, and Newton's method then takes three period maps, not two.
-        """
-        slope, j = None, i - 1 if i > 0 else i + 1
-        for k in reversed(range(len(self.states))):
-            st, at = self.states[k], self.positions[k]
-            if st[i] is not None and st[j] is not None:
-                slope = (st[i] - st[j]) / (at[i] - at[j])
-                break
-        distance = x_end - x
-        values = [
-            self.states[k][i]
-            + (0.0 if slope is None else slope * (self.xs[k] - distance - self.positions[k][i]))
-            for k in rows
-        ]
-        return _extrapolate([self.ys[k] for k in rows], values, y)
-
-    def _fold(self, family, y, span):
-        x_fold = _extrapolate(self.ys, self.xs, y)
-        last = abs(self.xs[-1] - self.xs[-2]) if len(self.xs) > 1 else 0.0
-        offset = max(10 * last, 10 * _END_OFFSET * span)
-        x = x_fold - self.side * offset
-        guess = _extrapolate(self.ys, [s[0] for s in self.states], y)
-        point = fixed_point(family(x), guess)
-        lo, hi = sorted((x, x_fold + self.side * offset))
-        branch = continue_branch(response_from(family(x), point), family.param, lo, hi)
-        folds = [s for s in branch.special if s.kind == "fold"]
-        if not folds:
-            raise NoEdge("no fold within the window")
-        fold = min(folds, key=lambda s: abs(s.value - x_fold))
-        self.states.append((point.state,))
-        return "fold", fold.value, fold.accuracy, None
-
-
-# ---------------------------------------------------------------- seeding from a band
-
-
-def _trackers_from_band(band: Band, edges, family, y, span):
-    """A tracker for each of ``edges`` of a band row (with the responses it needs)."""
-    gaps = band.no_periodic_response
-    out = []
-    for e in edges:
-        v, kind = e.value, e.kind
-        curve = Curve(kind, unstable_below=e.unstable_below, unstable_above=e.unstable_above)
-        if kind in ("neimark_sacker", "period_doubling"):
-            role, side = "multiplier", 0.0
-        else:
-            role = "fold" if kind == "fold" else "end"
-            # the responses lie below the edge where a gap begins at it, above where one ends
-            below = any(abs(g[0] - v) <= 1e-9 * span for g in gaps)
-            above = any(abs(g[1] - v) <= 1e-9 * span for g in gaps)
-            side = 1.0 if below or not above else -1.0
-        near = sorted(
-            (r for r in band.grid if role == "multiplier" or side * (v - r.value) > 0),
-            key=lambda r: abs(r.value - v),
-        )
-        if not near:
-            continue
-        start = near[0]
-        sliding = (start.n_reversals, start.n_sticks) == (0, 0)
-        # the grazing point is the largest velocity only where the friction is free of
-        # the tangential state (the closed-form path)
-        closed = engine_of(family.model) == "closed_form"
-        if kind == "grazing" and family.param == "Vb" and sliding and closed:
-            role = "sliding"
-        tracker = _Tracker(curve, role, side, _margin_kinds(kind))
-        try:
-            if role == "sliding":
-                pass
-            elif role == "multiplier":
-                point = _walk(family, start.value, family(start.value).guess(start.state0), v)
-                tracker.states.append((point.state,))
-            else:
-                offset = _END_OFFSET * span
-                xs = [v - side * offset * share for share in _END_SHARES]
-                guess = family(start.value).guess(start.state0)
-                states = [_walk(family, start.value, guess, xs[0]).state]
-                for j in range(1, len(xs)):
-                    # along the row from the two before; the nearest may be too close
-                    # to a tangency for Newton's method (as in _Tracker._next_to_end)
-                    known = [(xk, sk) for xk, sk in zip(xs, states) if sk is not None]
-                    xb, guess = known[-1]
-                    if len(known) > 1:
-                        xa, sa = known[-2]
-                        guess = guess + (guess - sa) * (xs[j] - xb) / (xb - xa)
-                    try:
-                        states.append(fixed_point(family(xs[j]), guess).state)
-                    except NoPeriodicResponse:
-                        states.append(None)
-                if sum(s is not None for s in states) < 2:
-                    continue
-                tracker.states.append(tuple(states))
-                tracker.positions.append(
-                    tuple(x if st is not None else None for x, st in zip(xs, states))
-                )
-        except NoPeriodicResponse:
-            continue
-        curve.y.append(float(y))
-        curve.x.append(float(v))
-        tracker.record(y, v)
-        curve.accuracy.append(float(e.accuracy))
-        curve.frequency.append(e.frequency)
-        if role == "multiplier":  # the band's tolerance, refined by the secant
-            try:
-                _, at, accuracy, frequency = tracker.step(family, y, span)
-                tracker.states.pop(0)
-                curve.x[-1], curve.accuracy[-1], curve.frequency[-1] = (
-                    float(at),
-                    accuracy,
-                    frequency,
-                )
-                tracker.xs[-1] = float(at)
-            except (NoPeriodicResponse, NoEdge):
-                pass
-        out.append(tracker)
-    return out
-
-
-def _margin_kinds(kind):
-    return ("crossing",) if kind == "tangency" else MARGIN_KINDS
 
 
 def _row_unstable(edges, lo, hi):
@@ -673,24 +88,6 @@ def _row_unstable(edges, lo, hi):
             start = x
     if start is not None:
         out.append([start, hi])
-    return out
-
-
-def _linear(rows, x, xs):
-    """Per row, where the paper's linear analysis says unstable (`generated.stability`).
-
-    One evaluation for `_LINEAR_BLOCK` rows at a time: a call costs about as much as
-    its 2001 points (0.15 ms), which for a 100-row map is 4 % of its time.
-    """
-    out = []
-    for first in range(0, len(rows), _LINEAR_BLOCK):
-        args = [row.arguments(stability.is_stable) for row in rows[first : first + _LINEAR_BLOCK]]
-        block = {
-            k: v if isinstance(v, str) else np.array([a[k] for a in args])[:, None]
-            for k, v in args[0].items()
-        }
-        stable = np.asarray(stability.is_stable(**{**block, x: xs[None, :]}), bool)
-        out += [[[float(a), float(b)] for a, b in true_intervals(xs, ~s)] for s in stable]
     return out
 
 
@@ -732,12 +129,33 @@ def floquet_map(
     Returns
     -------
     FloquetMap
+        The boundary curves, and per row the unstable set and the linear verdict.
 
     Raises
     ------
     ValueError
-        For unknown or equal parameters, bad ranges, ``rows < 2`` or ``check_every < 1``;
-        `beltmdsm.errors.Refused` for more than `beltmdsm.settings.MAX_MAP_ROWS` rows.
+        For unknown or equal parameters, bad ranges, ``rows < 2`` or ``check_every < 1``,
+        or a model without excitation.
+    beltmdsm.errors.Refused
+        For more than `beltmdsm.settings.MAX_MAP_ROWS` rows.
+
+    See Also
+    --------
+    beltmdsm.continuation.band.floquet_band : the edges of one row.
+    beltmdsm.continuation.branch.branch : one response continued in one parameter.
+
+    Examples
+    --------
+    The Neimark-Sacker curve in ``(Vb, beta1)`` over three rows:
+
+    >>> from beltmdsm import floquet_map
+    >>> m = floquet_map("Vb", 5.3, 5.7, "beta1", 0.29, 0.31, rows=3)
+    >>> [(c.kind, len(c.x)) for c in m.curves]
+    [('neimark_sacker', 3)]
+    >>> [round(x, 3) for x in m.curves[0].x]
+    [5.426, 5.45, 5.471]
+    >>> [[round(a, 2), round(b, 2)] for (a, b), in m.unstable]
+    [[5.43, 5.7], [5.45, 5.7], [5.47, 5.7]]
     """
     clock = time.perf_counter()
     for name in (x, y):

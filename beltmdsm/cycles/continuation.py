@@ -5,8 +5,9 @@ The curve of zeros of ``(phi_T(x; p) - x, h(x))`` (`beltmdsm.cycles.flow`) in
 vector of the 5 x 6 Jacobian ``[M - I, f, dphi/dp; grad h, 0, dh/dp]``), a corrector by
 Newton's method on the cycle's equations and the hyperplane normal to the tangent,
 a step that grows after easy steps and halves after failed ones; the special points
-between accepted points (`_special_between`, `_cross_stick`) and the walk to an end
-(`walk`), as `beltmdsm.continuation.branch` does for forced responses.
+between accepted points (`beltmdsm.continuation.special.special_between`, shared with the
+forced responses' branches; the stick onset by `beltmdsm.cycles.stick.cross_stick`) and
+the walk to an end (`walk`), as `beltmdsm.continuation.branch` does for forced responses.
 """
 
 from __future__ import annotations
@@ -17,8 +18,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ..continuation.branch_parts import LOCATE_TOL, SpecialPoint
-from ..continuation.edges import multiplier_kind
+from ..continuation.branch_parts import SpecialPoint
+from ..continuation.special import regula_falsi, special_between
 from ..periodic.periodmap import NEWTON_TOL, NoPeriodicResponse
 from .flow import CycleFlow, FlowImage, orbit_observables, split_multipliers
 from .stick import cross_stick, stick_ahead, sticks
@@ -64,6 +65,9 @@ class CyclePoint:
         Time stuck per period [s].
     tangent : float
         The parameter component of the unit tangent, along the continuation.
+    recorded : dict of str to float
+        What the ``record`` callable of `beltmdsm.continuation.branch.branch` returned
+        here (empty without one).
     """
 
     value: float
@@ -83,6 +87,24 @@ class CyclePoint:
     stick_time: float = field(repr=False, default=0.0)
     image: FlowImage = field(repr=False, default=None)
     column: NDArray[np.float64] | None = field(repr=False, default=None)
+    recorded: dict[str, float] = field(repr=False, default_factory=dict)
+
+    def observables(self, vb: float) -> dict[str, float]:
+        """The ranges of ``X1'`` and ``X1``, the largest ``|Vr| = |X1' - vb|`` (at an
+        end of the range of ``X1'``, which the orbit passes continuously) and the
+        period [s]: the columns of `beltmdsm.continuation.branch_parts.Branch.observables`
+        for a cycle (the forced responses' names; no mean friction)."""
+        (v_lo, v_hi), (x_lo, x_hi) = self.velocity_range, self.x1_range
+        return {
+            "X1'_amplitude": float(self.amplitude),
+            "X1'_min": float(v_lo),
+            "X1'_max": float(v_hi),
+            "X1_amplitude": 0.5 * float(x_hi - x_lo),
+            "X1_min": float(x_lo),
+            "X1_max": float(x_hi),
+            "max_abs_Vr": max(abs(v_lo - vb), abs(v_hi - vb)),
+            "period": float(self.period),
+        }
 
     def as_dict(self) -> dict:
         """For JSON: ``value``, ``state0``, ``period``, ``amplitude``, ``x1_range``,
@@ -217,79 +239,13 @@ class Continuation:
 
 # ---------------------------------------------------------------- special points
 
-
-def _count_outside(point):
-    return int(np.sum(np.abs(point.multipliers) > 1.0))
-
-
-def _regula_falsi(cont, start, tangent, ds, psi, fa, fb):
-    """The point in ``[0, ds]`` along the arclength where ``psi`` vanishes (Illinois).
-
-    Returns the located `CyclePoint` and the accuracy in the parameter.
-    """
-    a, b, pa, pb = 0.0, ds, start.value, None
-    located, side = start, 0
-    for _ in range(60):
-        s = b - fb * (b - a) / (fb - fa) if fb != fa else 0.5 * (a + b)
-        s = min(max(s, a + 1e-3 * (b - a)), b - 1e-3 * (b - a))
-        try:
-            pt = cont.trial(start, tangent, s)
-        except NoPeriodicResponse:
-            s = 0.5 * (a + b)
-            pt = cont.trial(start, tangent, s)
-        fs = psi(pt)
-        if fs * fa > 0:
-            a, fa, pa = s, fs, pt.value
-            fb, side = (0.5 * fb if side == -1 else fb), -1
-        else:
-            b, fb, pb = s, fs, pt.value
-            fa, side = (0.5 * fa if side == 1 else fa), 1
-        located = pt
-        if pb is not None and abs(pb - pa) <= LOCATE_TOL or b - a <= 1e-13:
-            break
-    return located, (abs(pb - pa) if pb is not None else math.inf)
+#: A special point's regula falsi stops at brackets below this (scaled arclength).
+_S_TOL = 1e-13
 
 
-def _special_between(cont, prev, new, tangent, ds):
-    """Folds and multipliers through the unit circle between two points of one structure."""
-    out = []
-    if prev.tangent * new.tangent < 0:
-        pt, acc = _regula_falsi(
-            cont, prev, tangent, ds, lambda q: q.tangent, prev.tangent, new.tangent
-        )
-        out.append(
-            SpecialPoint(
-                "fold",
-                pt.value,
-                acc,
-                None,
-                pt.multipliers,
-                prev.stable,
-                new.stable,
-                "the branch turns back",
-            )
-        )
-    na, nb = _count_outside(prev), _count_outside(new)
-    if na != nb:
-        rank = min(na, nb)
-
-        def psi(q):
-            return math.log(abs(q.multipliers[min(rank, q.multipliers.size - 1)]))
-
-        pt, acc = _regula_falsi(cont, prev, tangent, ds, psi, psi(prev), psi(new))
-        kind, freq = multiplier_kind(pt.multipliers[min(rank, pt.multipliers.size - 1)], pt.period)
-        if kind == "fold" and out:
-            return out  # the multiplier through +1 of the fold located by the turn
-        kind = "branch_point" if kind == "fold" else kind
-        detail = {
-            "neimark_sacker": f"a complex pair crosses the unit circle at {freq or 0:.6g} rad/s",
-            "period_doubling": "a real multiplier crosses -1",
-            "branch_point": "a real multiplier crosses +1",
-        }[kind]
-        out.append(
-            SpecialPoint(kind, pt.value, acc, freq, pt.multipliers, prev.stable, new.stable, detail)
-        )
-    return sorted(out, key=lambda s: abs(s.value - prev.value))
+def _period(point):
+    """The period of a located cycle, for the frequency of a Neimark-Sacker pair."""
+    return point.period
 
 
 def _end(kind, point, detail, value=None, accuracy=0.0):
@@ -364,7 +320,7 @@ def walk(cont, first, tangent, period0):
         if not cont.lo <= p <= cont.hi:
             bound = cont.hi if p > cont.hi else cont.lo
             try:
-                end, _ = _regula_falsi(
+                end, _ = regula_falsi(
                     cont,
                     prev,
                     tangent,
@@ -372,6 +328,7 @@ def walk(cont, first, tangent, period0):
                     lambda q, b=bound: q.value - b,
                     prev.value - bound,
                     p - bound,
+                    s_tol=_S_TOL,
                 )
             except NoPeriodicResponse as err:
                 ds *= 0.5
@@ -382,7 +339,7 @@ def walk(cont, first, tangent, period0):
             if end.n_sticks == prev.n_sticks:
                 special += [
                     s
-                    for s in _special_between(cont, prev, end, tangent, ds)
+                    for s in special_between(cont, prev, end, tangent, ds, _period, s_tol=_S_TOL)
                     if min(prev.value, bound) <= s.value <= max(prev.value, bound)
                 ]
             points.append(_at_value(cont, end, bound))
@@ -390,7 +347,7 @@ def walk(cont, first, tangent, period0):
             return points, special
         if (prev.n_sticks, prev.n_reversals) == (new.n_sticks, new.n_reversals):
             try:
-                special += _special_between(cont, prev, new, tangent, ds)
+                special += special_between(cont, prev, new, tangent, ds, _period, s_tol=_S_TOL)
             except NoPeriodicResponse:
                 ds *= 0.5
                 if ds < STEP_MIN:

@@ -40,12 +40,12 @@ def test_the_public_api_has_no_any_for_mypy():
         "beltmdsm.simulation.Simulation",
         "beltmdsm.run.summary.Summary",
         "beltmdsm.periodic.floquet.Floquet",
-        "beltmdsm.continuation.band.Band",  # the model first
-        "beltmdsm.continuation.band.Band",  # the model last, as before
+        "beltmdsm.continuation.band_result.Band",  # the model first
+        "beltmdsm.continuation.band_result.Band",  # the model last, as before
         "beltmdsm.continuation.branch_parts.Branch",  # defined there, shared with cycles
         "beltmdsm.studies.coexistence.Coexistence",
         "beltmdsm.studies.sweep.Sweep",
-        "beltmdsm.continuation.floquet_map.FloquetMap",
+        "beltmdsm.continuation.map_result.FloquetMap",
         "beltmdsm.cycles.cycle.Cycle",
         "beltmdsm.attractors.lyapunov.Lyapunov",
         "beltmdsm.attractors.classification.Attractor",

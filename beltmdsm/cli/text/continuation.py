@@ -9,9 +9,9 @@ from ...intervals import format_intervals
 from .common import kind, laws, response_name
 
 if TYPE_CHECKING:
-    from ...continuation.band import Band
+    from ...continuation.band_result import Band
     from ...continuation.branch import Branch
-    from ...continuation.floquet_map import FloquetMap
+    from ...continuation.map_result import FloquetMap
 
 __all__ = ["band", "branch", "floquet_map"]
 

@@ -15,7 +15,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ...continuation.band import Band, floquet_band
+from ...continuation.band import floquet_band
+from ...continuation.band_result import Band
 from ...model import Model
 from ...periodic.periodmap import engine_of
 from .laws import VB_RANGE, Law

@@ -8,7 +8,7 @@ and `beltmdsm.studies.validation.floquet_report` write the tables.
 from __future__ import annotations
 
 from ... import intervals
-from ...continuation.band import Band
+from ...continuation.band_result import Band
 from .cases import UNRESOLVED
 from .comparison import Comparison, SimulatedRanges
 from .results import CaseResult
@@ -107,7 +107,7 @@ def edges_text(band: Band) -> str:
 
 #: The kinds at the ends of a response's stable part besides the bifurcations: the end
 #: of the range studied, a real multiplier through +1 without a turn, a continuation
-#: that stopped (`beltmdsm.continuation.branch.SpecialPoint`).
+#: that stopped (`beltmdsm.continuation.branch_parts.SpecialPoint`).
 END_ABBREVIATIONS = {
     "range": ("end", "the end of the range"),
     "branch_point": ("BP", "branch point"),

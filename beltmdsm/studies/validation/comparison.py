@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ... import intervals
-from ...continuation.band import Band
+from ...continuation.band_result import Band
 from ...model import Model
 from ...prediction.predict import clip_acts, paper_intervals, unstable_intervals
 from .cases import SLIDING, UNRESOLVED

@@ -14,7 +14,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
-from ...continuation.band import Band
+from ...continuation.band_result import Band
 from ...model import Tension
 from .. import coexistence as exact_coexistence
 from .cases import ANALYSES, Case, Resolution

@@ -29,7 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ... import intervals
-from ...continuation.band import Band
+from ...continuation.band_result import Band
 from ...model import Model, as_model
 from ...periodic.floquet import NoPeriodicResponse, floquet
 from ...run.summary import TRANSIENT_DECAYED

@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 from scipy import optimize
 
-from beltmdsm.continuation.band import Band, floquet_band
+from beltmdsm.continuation.band import floquet_band
+from beltmdsm.continuation.band_result import Band
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.integrate.switching import SURFACE_INDEX, Mode, Switching
 from beltmdsm.model import Model
@@ -240,7 +241,8 @@ def test_the_band_text_agrees_with_itself_at_every_tolerance():
 
 
 def test_edges_closer_than_tol_are_one_with_the_outer_sides():
-    from beltmdsm.continuation.band import Edge, _merge_close
+    from beltmdsm.continuation.band_grid import _merge_close
+    from beltmdsm.continuation.band_result import Edge
 
     def edge(v, kind, below, above):
         return Edge(v, kind, "x", (v - 1e-9, v + 1e-9), 1e-9, None, below, above)

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from beltmdsm.continuation.band import floquet_band
-from beltmdsm.continuation.floquet_map import LINEAR_POINTS, floquet_map
+from beltmdsm.continuation.floquet_map import floquet_map
+from beltmdsm.continuation.map_linear import LINEAR_POINTS
 from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import NoPeriodicResponse, floquet
 from generated import stability
@@ -156,7 +157,7 @@ def test_a_touch_of_the_belt_speed_that_keeps_the_mode_leaves_the_jacobian_smoot
 def test_a_flat_secant_reports_the_step_that_reached_its_edge(monkeypatch):
     # log max|mu| the same at both points of the secant: no slope to go on with, so the
     # edge is the point reached, its accuracy the step that reached it (not zero)
-    from beltmdsm.continuation import floquet_map as module
+    from beltmdsm.continuation import map_tracker as module
     from beltmdsm.periodic.periodmap import MapFamily
 
     model = Model(beta1=0.3)
@@ -172,7 +173,7 @@ def test_a_flat_secant_reports_the_step_that_reached_its_edge(monkeypatch):
 
 def _count_rows_of_one_response(monkeypatch):
     """Per role, the rows where a curve was continued from one response (module docstring)."""
-    from beltmdsm.continuation import floquet_map as module
+    from beltmdsm.continuation import map_tracker as module
 
     counts = {"multiplier": 0, "end": 0}
     multiplier, end = module._Tracker._multiplier, module._Tracker._end

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from beltmdsm.cli import main
-from beltmdsm.continuation.band import Band, Edge
+from beltmdsm.continuation.band_result import Band, Edge
 from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.prediction.predict import fast_motion, unstable_intervals
