@@ -77,6 +77,27 @@ class CycleCoexistence:
     reason: str
     wall_s: float
 
+    def __repr__(self) -> str:
+        from .._display import block, intervals, laws
+
+        b = self.branch
+        lines = [
+            "Hopf points: "
+            + (", ".join(f"{h.value:.6g}" for h in self.hopf) or "none")
+            + ("" if b is None or b.criticality is None else f" ({b.criticality})"),
+            f"{SLIDING} stable in {intervals(s.range for s in self.sliding)}",
+            f"{CYCLES}s stable in "
+            + ("none" if b is None else intervals(s.range for s in stable_parts(b))),
+            "coexist in " + intervals(r.range for r in self.ranges),
+        ]
+        if self.reason:
+            lines.append(f"reason: {self.reason}")
+        head = (
+            f"CycleCoexistence({self.param} in [{self.lo:.6g}, {self.hi:.6g}], "
+            f"{laws(self.model)}, {self.wall_s:.1f} s)"
+        )
+        return block(head, lines)
+
     def as_dict(self) -> dict:
         """The JSON of ``coexistence --json`` without excitation: ``autonomous``,
         ``param``, ``range``, the laws, ``hopf``, ``criticality``, ``sliding_stable``,
@@ -185,9 +206,13 @@ def cycle_coexistence(
         attractors = [_Attractor(SLIDING, sliding), _Attractor(CYCLES, stable_parts(branch))]
         ranges = overlay(attractors)
         if not ranges:
+            born = (
+                f"the Hopf point at {param} = {hopf[0].value:.6g} is {branch.criticality}"
+                if hopf
+                else "no Hopf point is in the range (the cycles were seeded where a stick ends)"
+            )
             reason = (
-                f"the Hopf point at {param} = {hopf[0].value:.6g} is {branch.criticality} "
-                "and no stable part of the cycles' branch overlaps stable steady sliding"
+                f"{born} and no stable part of the cycles' branch overlaps stable steady sliding"
             )
     return CycleCoexistence(
         param,

@@ -28,6 +28,7 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.optimize import fsolve
 
+import beltmdsm
 from beltmdsm.cli import main
 from beltmdsm.continuation.branch import branch
 from beltmdsm.cycles.branch import (
@@ -275,3 +276,17 @@ def test_continue_branch_of_a_cycle_goes_both_ways():
     assert [s.kind for s in found.special] == ["range", "range"]
     assert found.value_range() == pytest.approx([0.9, 1.1], abs=1e-9)
     assert all(q.stable and q.n_sticks == 1 for q in found.points)
+
+
+def test_cycles_seeded_without_a_hopf_point_and_sliding_nowhere_stable_say_why():
+    # Stribeck with a small kinetic coefficient: steady sliding is unstable over the
+    # whole range and no Hopf point lies in it, so the cycles come from a seed where a
+    # stick ends; the reason names that (it indexed the empty list of Hopf points)
+    m = beltmdsm.Model(Vb=2, alpha=0, friction="stribeck", mu_k=0.1, v_s=3.0)
+    c = beltmdsm.coexistence(m, "Vb", 1.0, 3.0)
+    assert c.hopf == [] and c.sliding == [] and c.ranges == []
+    assert c.branch is not None and c.branch.points
+    assert "no Hopf point is in the range" in c.reason
+    text = repr(c)
+    assert text.startswith("CycleCoexistence(Vb in [1, 3]") and "Hopf points: none" in text
+    assert len(text.splitlines()) <= 10
