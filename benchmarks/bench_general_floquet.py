@@ -1,7 +1,7 @@
 """Cost of the general Floquet path against the closed-form one (issue 19, item 5).
 
 Times, in one run on one core, after compiling the kernels
-(beltmdsm/periodic/periodmap.py: `TangentialMap` is the closed-form path, `GeneralMap`
+(beltmdsm/periodic/base.py: `TangentialMap` is the closed-form path, `GeneralMap`
 the general one on beltmdsm/periodic/variational.py):
 
 * ``floquet()`` from scratch at belt speeds over [0.5, 12] (the sliding guess, Newton's
@@ -27,8 +27,8 @@ import numpy as np
 
 from beltmdsm.continuation.band import floquet_band
 from beltmdsm.model import Model
+from beltmdsm.periodic.base import period_map
 from beltmdsm.periodic.floquet import NoPeriodicResponse, floquet
-from beltmdsm.periodic.periodmap import period_map
 
 STRIBECK = dict(friction="stribeck", mu_k=0.25, v_s=1.0)
 CASES = (

@@ -43,9 +43,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..model import Backend, Model, as_model, excitation_period
+from ..periodic.base import NoPeriodicResponse
 from ..periodic.floquet import periodic_response
 from ..periodic.locked import NotLocked, stroboscope
-from ..periodic.periodmap import NoPeriodicResponse
 from .lyapunov import lyapunov
 
 __all__ = [

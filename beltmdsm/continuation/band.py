@@ -29,6 +29,7 @@ from .._calling import ranged
 from .._tables import DataFrame
 from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain, excitation_period
+from ..periodic.base import MARGIN_KINDS, FixedPoint, MapFamily, engine_of, fixed_point
 from ..periodic.floquet import (
     FORWARD_PERIODS,
     Floquet,
@@ -37,7 +38,6 @@ from ..periodic.floquet import (
     largest_sliding_velocity,
     response_from,
 )
-from ..periodic.periodmap import MARGIN_KINDS, FixedPoint, MapFamily, engine_of, fixed_point
 from ..settings import MAX_BAND_POINTS, MIN_TOL_ULPS
 from .branch import SpecialPoint, continue_branch
 from .edges import (
@@ -244,7 +244,7 @@ class Band:
         """The JSON of ``floquet-band --json``: ``param``, ``unstable``, ``edges``,
         ``grazing_points``, ``no_periodic_response``, ``grid``, ``failed``, ``tol``,
         ``merged_away``, ``tension``, ``contact``, ``friction`` and ``engine`` (the
-        period map of the model's laws, `beltmdsm.periodic.periodmap.engine_of`)."""
+        period map of the model's laws, `beltmdsm.periodic.base.engine_of`)."""
         return {
             "param": self.param,
             "unstable": [list(r) for r in self.unstable],

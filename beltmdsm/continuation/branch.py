@@ -2,7 +2,7 @@
 
 A response of Eq. (4) of ``k`` excitation periods is a zero of ``G(x, p) = P_p(x) - x``,
 with ``P_p`` the ``k``-fold period map at the parameter value ``p``
-(`beltmdsm.periodic.periodmap.MapFamily`). `continue_branch` follows the curve of zeros in
+(`beltmdsm.periodic.base.MapFamily`). `continue_branch` follows the curve of zeros in
 ``(x, p)`` by pseudo-arclength continuation, so it passes folds: a secant predictor
 along the unit tangent (the null vector of ``[dP/dx - I, dP/dp]``, in coordinates
 scaled by the state's and the range's size), a corrector by Newton's method on ``G = 0``
@@ -42,8 +42,7 @@ from numpy.typing import NDArray
 
 from ..integrate.switching import Mode
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, is_autonomous
-from ..periodic.floquet import PeriodicResponse, periodic_response
-from ..periodic.periodmap import (
+from ..periodic.base import (
     NEWTON_TOL,
     FixedPoint,
     MapFamily,
@@ -51,6 +50,7 @@ from ..periodic.periodmap import (
     NoPeriodicResponse,
     fixed_point,
 )
+from ..periodic.floquet import PeriodicResponse, periodic_response
 from .branch_parts import LOCATE_TOL, Branch, BranchPart, SpecialPoint
 from .edges import NoEdge, locate_end, multiplier_kind
 

@@ -1,6 +1,6 @@
 """What happens at the edge of a periodic response: bifurcation kinds, classified and located.
 
-A periodic response (of period ``k T``, `beltmdsm.periodic.periodmap`) changes at a parameter
+A periodic response (of period ``k T``, `beltmdsm.periodic.base`) changes at a parameter
 value in one of these ways (docs/modelling.md#bifurcations says what a run near each
 looks like):
 
@@ -13,7 +13,7 @@ looks like):
   through it.
 * ``grazing``: a segment of the orbit touches a switching surface that it did not
   cross, or Filippov's choice at a switch reaches a tie (a stick phase appears or
-  disappears): the switch structure changes (`beltmdsm.periodic.periodmap.Margin` of kind
+  disappears): the switch structure changes (`beltmdsm.periodic.base.Margin` of kind
   ``approach`` or ``decision`` reaches zero). The response may go on with the new
   structure, or end.
 * ``tangency``: a crossing of the orbit becomes tangential (a ``crossing`` margin
@@ -43,7 +43,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import NoEdge  # its home; importable here as before
-from ..periodic.periodmap import (
+from ..periodic.base import (
     MARGIN_KINDS,
     FixedPoint,
     MapFamily,
@@ -230,7 +230,7 @@ def locate_end(
     required : float
         Raise NoEdge when the trials end with an accuracy above it.
     kinds : tuple of str
-        The kinds of margin that may close (`beltmdsm.periodic.periodmap.MARGIN_KINDS`); where
+        The kinds of margin that may close (`beltmdsm.periodic.base.MARGIN_KINDS`); where
         the kind is known, a narrower choice saves the search of the ``approach``
         margins.
 

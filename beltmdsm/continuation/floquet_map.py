@@ -60,8 +60,8 @@ from .._tables import DataFrame
 from ..errors import Refused
 from ..intervals import runs as true_intervals
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
+from ..periodic.base import MARGIN_KINDS, MapFamily, Margin, engine_of, fixed_point
 from ..periodic.floquet import NoPeriodicResponse, largest_sliding_velocity, response_from
-from ..periodic.periodmap import MARGIN_KINDS, MapFamily, Margin, engine_of, fixed_point
 from ..settings import MAX_MAP_ROWS
 from .band import Band, floquet_band
 from .branch import continue_branch

@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 
 from ..continuation.branch_parts import LOCATE_TOL, SpecialPoint
 from ..continuation.edges import multiplier_kind
-from ..periodic.periodmap import NEWTON_TOL, NoPeriodicResponse
+from ..periodic.base import NEWTON_TOL, NoPeriodicResponse
 from .flow import CycleFlow, FlowImage, orbit_observables, split_multipliers
 from .stick import cross_stick, stick_ahead, sticks
 

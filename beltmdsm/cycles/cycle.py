@@ -52,7 +52,7 @@ disturb Newton's method (``M - I`` is regular in those directions).
 See docs/modelling.md#self-excited-cycles.
 
 **Grazing.** A crossing of ``Vr = 0`` reached with a vanishing rate
-(`beltmdsm.periodic.periodmap.GRAZING_RATIO`) is reported as for forced responses:
+(`beltmdsm.periodic.base.GRAZING_RATIO`) is reported as for forced responses:
 ``grazing`` set, no multiplier (NaN), ``stable`` None.
 """
 
@@ -72,7 +72,7 @@ from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.switching import Mode, Switching
 from ..model import Backend, Model, as_model
 from ..periodic import variational
-from ..periodic.periodmap import (
+from ..periodic.base import (
     GRAZING_RATIO,
     NEWTON_TOL,
     RTOL,
@@ -104,10 +104,10 @@ __all__ = [
     "SETTLE_TOL",
 ]
 
-#: Dense samples per period of a shooting run (as `beltmdsm.periodic.periodmap.GeneralMap`).
+#: Dense samples per period of a shooting run (as `beltmdsm.periodic.base.GeneralMap`).
 _DENSE_SAMPLES = 50
 #: Halvings of a Newton step before the method counts as stalled, and the iterations
-#: over which the residual must halve (as `beltmdsm.periodic.periodmap.fixed_point`).
+#: over which the residual must halve (as `beltmdsm.periodic.base.fixed_point`).
 _LINE_SEARCH = 8
 _STAGNATION = 2
 

@@ -22,7 +22,7 @@ from generated import unforced
 from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.switching import SURFACE_INDEX, Switching
 from ..model import Backend, Model, as_model, initial_state, is_autonomous
-from ..periodic.periodmap import NoPeriodicResponse
+from ..periodic.base import NoPeriodicResponse
 from ..settings import SolverSettings
 
 __all__ = [

@@ -21,7 +21,7 @@ import numpy as np
 
 from ..continuation.branch_parts import LOCATE_TOL, SpecialPoint
 from ..integrate.switching import Mode
-from ..periodic.periodmap import NoPeriodicResponse
+from ..periodic.base import NoPeriodicResponse
 
 __all__ = ["measure", "stick_ahead", "locate", "cross_stick", "sticks"]
 

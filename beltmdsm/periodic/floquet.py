@@ -3,15 +3,15 @@
 The MDSM and the paper's analysis (Sects. 4.2-4.3) linearise about a slow equilibrium
 that stands for the response of period ``T = 2 pi / Omega``; the exact counterpart is
 the Floquet stability of that periodic response (docs/modelling.md#what-unstable-means).
-This module computes it, on the period map of `beltmdsm.periodic.periodmap`, by one of
+This module computes it, on the period map of `beltmdsm.periodic.base`, by one of
 two engines that the facts of the model's laws choose (``generated.capabilities``,
-`beltmdsm.periodic.periodmap.engine_of`), never by assumption:
+`beltmdsm.periodic.base.engine_of`), never by assumption:
 
-* ``closed_form`` (`beltmdsm.periodic.periodmap.TangentialMap`), where the slip-mode
+* ``closed_form`` (`beltmdsm.periodic.base.TangentialMap`), where the slip-mode
   friction is free of the tangential state and the normal equation too (Coulomb
   friction): the tangential map on the cached normal orbit, closed-form state
   transitions and saltation matrices, the normal block's multipliers apart;
-* ``general`` (`beltmdsm.periodic.periodmap.GeneralMap`), every law (Stribeck
+* ``general`` (`beltmdsm.periodic.base.GeneralMap`), every law (Stribeck
   friction): the full state shot with the event-driven integrator, the monodromy by
   the variational equations with the generated Jacobians of the modes and the
   saltation matrices (`beltmdsm.periodic.variational`; Leine and Nijmeijer 2004).
@@ -26,7 +26,7 @@ The results say which (``engine``); where both apply they agree to 1e-9.
 
 * **Periodic response.** `periodic_response` finds the state at phase 0 that the
   period map returns to, by Newton's method with the map's Jacobian (damped steps,
-  `beltmdsm.periodic.periodmap.fixed_point`). The first guess is the orbit that
+  `beltmdsm.periodic.base.fixed_point`). The first guess is the orbit that
   slides backwards throughout, which is exact where the friction never reverses; a
   continuation passes the previous orbit instead.
 * **Phase-locked responses** (``periods = k > 1``): the response of ``k T``, a fixed
@@ -37,7 +37,7 @@ The results say which (``engine``); where both apply they agree to 1e-9.
   (`beltmdsm.periodic.locked.map_stroboscope`), where that attractor locks at ``k``
   periods (docs/modelling.md#bifurcations).
 * **Grazing.** A switch reached with a vanishing rate
-  (`beltmdsm.periodic.periodmap.GRAZING_RATIO`) is reported as grazing, and no
+  (`beltmdsm.periodic.base.GRAZING_RATIO`) is reported as grazing, and no
   multiplier is returned for it.
 
 `floquet` reports the multipliers, the largest modulus, the growth rate per unit time
@@ -61,8 +61,7 @@ from ..integrate.normal import normal_motion
 from ..integrate.superposition import Superposition, friction_direction
 from ..integrate.switching import Mode
 from ..model import Backend, Model, as_model, excitation_period, initial_state, is_autonomous
-from .locked import LOCK_LIMIT, NotLocked, map_stroboscope, minimal_periods
-from .periodmap import (
+from .base import (
     ENGINES,
     GRAZING_RATIO,
     NEWTON_TOL,
@@ -78,6 +77,7 @@ from .periodmap import (
     normal_orbit,
     period_map,
 )
+from .locked import LOCK_LIMIT, NotLocked, map_stroboscope, minimal_periods
 
 __all__ = [
     "excitation_period",
@@ -150,8 +150,8 @@ class PeriodicResponse:
         ``k``: the response repeats after ``k`` excitation periods; the monodromy is
         that of the ``k``-fold map.
     engine : {"closed_form", "general"}
-        The period map that found it (`beltmdsm.periodic.periodmap.ENGINES`, chosen by
-        the facts of the model's laws, `beltmdsm.periodic.periodmap.engine_of`).
+        The period map that found it (`beltmdsm.periodic.base.ENGINES`, chosen by
+        the facts of the model's laws, `beltmdsm.periodic.base.engine_of`).
     autonomous : bool
         A self-excited cycle of the model without excitation (`response_of_cycle`):
         ``period`` was found, ``state0`` lies on its section, ``cycle`` is the
@@ -336,7 +336,7 @@ def periodic_response(
     periods (it converges to a stable periodic response, where Newton's method may
     not, next to a grazing point) and Newton's method polishes the result. The period
     map is the closed-form one where the model's laws allow it, else the general one
-    (`beltmdsm.periodic.periodmap.period_map`); the result's ``engine`` says which.
+    (`beltmdsm.periodic.base.period_map`); the result's ``engine`` says which.
 
     Parameters
     ----------
@@ -357,7 +357,7 @@ def periodic_response(
         ``k >= 1``: the response of ``k`` excitation periods (phase-locked for ``k >
         1``), by shooting on the ``k``-fold map.
     engine : {"closed_form", "general", None}
-        The period map (`beltmdsm.periodic.periodmap.period_map`); None: the one the
+        The period map (`beltmdsm.periodic.base.period_map`); None: the one the
         model's laws allow.
 
     Without excitation (`beltmdsm.model.is_autonomous`) the response is the self-excited

@@ -6,7 +6,7 @@ repeat with a period ``k T``; the omega1 peak of the spectra of Fig. 2b is then 
 of the ``k T``-periodic response. At the base set the run from rest locks at ``4 T`` for ``Vb`` in
 [3.87, 7.67] (``omega1 = 1 = Omega / 4``), and at ``Omega = 6`` at ``6 T``. A locked
 response is a fixed point of the ``k``-fold period map
-(`beltmdsm.periodic.periodmap.TangentialMap`), which shooting computes exactly
+(`beltmdsm.periodic.base.TangentialMap`), which shooting computes exactly
 (``periodic_response(..., periods=k)``, `beltmdsm.periodic.floquet`).
 
 * `Stroboscope` (`stroboscope`): the samples of one attractor, with the distance of
@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .periodmap import MapImage, PeriodMap
+from .base import MapImage, PeriodMap
 
 __all__ = [
     "LOCK_LIMIT",
@@ -73,7 +73,7 @@ class Stroboscope:
     source : str
         How the attractor was reached ("run from rest", ...).
     samples : ndarray (n, 2) or (n, 4)
-        The shooting states at phase 0 (`beltmdsm.periodic.periodmap.PeriodMap.shooting`:
+        The shooting states at phase 0 (`beltmdsm.periodic.base.PeriodMap.shooting`:
         ``(X1, X1')`` on the closed-form path, the full state on the general one), in
         time order.
     returns : ndarray (limit,)
@@ -117,12 +117,12 @@ def map_stroboscope(
 ) -> Stroboscope:
     """The attractor of the period map iterated from ``x``: ``settle`` periods, then samples.
 
-    The one-period map of ``pmap`` (`beltmdsm.periodic.periodmap.PeriodMap.step`) is
+    The one-period map of ``pmap`` (`beltmdsm.periodic.base.PeriodMap.step`) is
     iterated, whatever its ``k``: the samples are one excitation period apart.
 
     Raises
     ------
-    beltmdsm.periodic.periodmap.NoPeriodicResponse
+    beltmdsm.periodic.base.NoPeriodicResponse
         Where the map fails on the way.
     """
     x = np.array(x, dtype=float)

@@ -1,7 +1,7 @@
 """What a periodic orbit on a branch measures: ranges of X1 and X1', the largest |Vr|,
 the mean friction force and the effective friction coefficient.
 
-A branch point keeps the runs of its orbit (`beltmdsm.periodic.periodmap.MapImage`),
+A branch point keeps the runs of its orbit (`beltmdsm.periodic.base.MapImage`),
 so its observables are read from them without solving anything again: each segment of
 each of the ``k`` periods is sampled at `SAMPLES_PER_PERIOD` points per excitation
 period (at least 8 per segment, both ends included: the extremes at a switch are
@@ -26,7 +26,7 @@ from generated import dynamics
 from ..integrate.switching import Mode
 
 if TYPE_CHECKING:
-    from .periodmap import MapImage
+    from .base import MapImage
 
 __all__ = ["OBSERVABLES", "UNITS", "SAMPLES_PER_PERIOD", "orbit_samples", "observables"]
 

@@ -56,9 +56,9 @@ from ..model import (
     is_autonomous,
     is_real,
 )
+from ..periodic.base import engine_of
 from ..periodic.floquet import NoPeriodicResponse, floquet, response_from
 from ..periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods
-from ..periodic.periodmap import engine_of
 from ..settings import MAX_SEED_POINTS
 from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
 from .responses import check_limit, ladder, run_stroboscope, shoot

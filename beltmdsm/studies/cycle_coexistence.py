@@ -27,7 +27,7 @@ from scipy.optimize import brentq
 from ..cycles.branch import CycleBranch, cycle_branch
 from ..cycles.hopf import HopfPoint, eigenvalues_over, hopf_points
 from ..model import Model
-from ..periodic.periodmap import NoPeriodicResponse, engine_of
+from ..periodic.base import NoPeriodicResponse, engine_of
 from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
 
 __all__ = ["CycleCoexistence", "cycle_coexistence", "SLIDING", "CYCLES"]

@@ -4,7 +4,7 @@ A run of Eq. (4) from rest (the runs of Fig. 2b and Figs. 17-21), a run from the
 perturbed periodic response or a sweep continued in a parameter ends on one attractor;
 where it locks to the excitation at ``k`` periods (`beltmdsm.periodic.locked`), the
 attractor is a fixed point of the ``k``-fold period map, which shooting computes
-exactly (`beltmdsm.periodic.periodmap.fixed_point`), with the multipliers of the
+exactly (`beltmdsm.periodic.base.fixed_point`), with the multipliers of the
 ``k``-fold map (`beltmdsm.periodic.floquet.Floquet`).
 
 * `run_stroboscope`: the stroboscopic samples of a run of `beltmdsm.simulation.simulate`
@@ -46,6 +46,7 @@ from ..model import (
     is_autonomous,
     is_real,
 )
+from ..periodic.base import ENGINES, FixedPoint, PeriodMap, engine_of, fixed_point, period_map
 from ..periodic.floquet import Floquet, NoPeriodicResponse, floquet, periodic_start, response_from
 from ..periodic.locked import (
     LOCK_LIMIT,
@@ -56,7 +57,6 @@ from ..periodic.locked import (
     same_phases,
     stroboscope,
 )
-from ..periodic.periodmap import ENGINES, FixedPoint, PeriodMap, engine_of, fixed_point, period_map
 from ..settings import SolverSettings
 from ..simulation import simulate
 
@@ -183,7 +183,7 @@ def ladder(
 ) -> list[Stroboscope]:
     """A continued sweep on the period map: the stroboscope of every rung.
 
-    The shooting state (`beltmdsm.periodic.periodmap.PeriodMap.shooting`: the tangential
+    The shooting state (`beltmdsm.periodic.base.PeriodMap.shooting`: the tangential
     state on the periodic normal motion, on the closed-form path) starts at rest at
     ``values[0]`` and is carried from rung to rung, as ``sweep --continue`` carries a
     run's state; at each rung `LADDER_PERIODS` periods settle it and as many more are

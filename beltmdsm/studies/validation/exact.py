@@ -38,9 +38,9 @@ import numpy as np
 
 from ...attractors.classification import classify
 from ...model import Model
+from ...periodic.base import period_map
 from ...periodic.floquet import NoPeriodicResponse
 from ...periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods
-from ...periodic.periodmap import period_map
 from ...run.summary import TRANSIENT_DECAYED
 from ...settings import SolverSettings
 from ..coexistence import Coexistence, ResponseBranch

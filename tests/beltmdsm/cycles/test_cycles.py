@@ -27,8 +27,8 @@ from beltmdsm.cli import main
 from beltmdsm.cycles.cycle import Cycle, cycle, seed_cycle, unstable_pair
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.model import Model, is_autonomous
+from beltmdsm.periodic.base import NoPeriodicResponse
 from beltmdsm.periodic.floquet import floquet, periodic_response, periodic_start
-from beltmdsm.periodic.periodmap import NoPeriodicResponse
 from beltmdsm.settings import SolverSettings
 from generated import unforced
 

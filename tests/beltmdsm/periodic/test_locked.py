@@ -14,8 +14,8 @@ import pytest
 
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.periodic import locked as L
+from beltmdsm.periodic.base import TangentialMap, fixed_point
 from beltmdsm.periodic.floquet import NoPeriodicResponse, floquet, periodic_response
-from beltmdsm.periodic.periodmap import TangentialMap, fixed_point
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
 

@@ -182,7 +182,7 @@ def test_the_code_hash_covers_what_a_row_imports_and_not_the_rest():
         "beltmdsm/studies/row.py",
         # issue 28: they decide a row's `resolved` and its periodic start, and a hand
         # list had left them out
-        "beltmdsm/periodic/periodmap.py",
+        "beltmdsm/periodic/base.py",
         "beltmdsm/periodic/variational.py",
         "beltmdsm/periodic/locked.py",
     } <= names
@@ -242,9 +242,9 @@ def test_changing_any_imported_source_changes_the_code_hash(tmp_path, monkeypatc
 
 def test_a_changed_period_map_serves_no_stale_row(tmp_path, monkeypatch):
     # issue 28: sweep("Vb", [3, 5], start="periodic", cache_dir=D), then NEWTON_TOL =
-    # 1e-300 in periodmap.py: the rerun served 2 cached sliding rows where the new code
+    # 1e-300 in base.py: the rerun served 2 cached sliding rows where the new code
     # finds no periodic response
-    from beltmdsm.periodic import periodmap
+    from beltmdsm.periodic import base as periodmap
 
     settings = SolverSettings(t_end=20.0)
 
@@ -263,7 +263,7 @@ def test_a_changed_period_map_serves_no_stale_row(tmp_path, monkeypatch):
     assert list(first.table["status"]) == ["done", "done"]
     # the edit, on disk (a copy of the tree) and in the running code
     root = _copy_tree(tmp_path)
-    source = root / "beltmdsm/periodic/periodmap.py"
+    source = root / "beltmdsm/periodic/base.py"
     text = source.read_text()
     assert "\nNEWTON_TOL = 1e-11\n" in text
     source.write_text(text.replace("\nNEWTON_TOL = 1e-11\n", "\nNEWTON_TOL = 1e-300\n"))
