@@ -27,8 +27,9 @@ here (the same classes): the generated modules raise `Unsupported` and cannot im
 beltmdsm (the layers point derive -> generated -> beltmdsm), and one class of one name
 is what ``except Unsupported`` needs to catch a refusal of either layer. The classes
 are also importable from the modules that raised them before (`beltmdsm.model`,
-`beltmdsm.periodic.base`, `beltmdsm.periodic.floquet`, `beltmdsm.continuation.edges`,
-`beltmdsm.integrate.superposition`): the same objects.
+`beltmdsm.continuation.edges`, `beltmdsm.integrate.superposition`): the same objects.
+`NoPeriodicResponse` is imported from here alone (it was defined in
+``beltmdsm.periodic.periodmap``, now cut by concept).
 """
 
 from __future__ import annotations

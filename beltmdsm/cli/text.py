@@ -182,7 +182,7 @@ def floquet(f: Floquet) -> str:
         f"{resp.model.tension}, Vb = {p['Vb']:g} m/s: period {f.period:.6g} s, "
         f"{f.n_reversals} reversals and {f.n_sticks} sticks {per}, Newton "
         f"{resp.iterations} iterations (residual {resp.residual:.1e}), "
-        f"{f.engine} path (beltmdsm/periodic/base.py)"
+        f"{f.engine} path (beltmdsm/periodic/engines.py)"
     ]
     if f.grazing is not None:
         lines.append(
@@ -237,7 +237,7 @@ def cycle(f: Floquet) -> str:
 def _isolation(f) -> str:
     """What a multiplier 1 (to `ISOLATION_TOL`) means: the response is not isolated and
     its multipliers cannot decide its stability."""
-    from ..periodic.base import ISOLATION_TOL
+    from ..periodic.newton import ISOLATION_TOL
 
     mus = np.asarray(f.multipliers, dtype=complex)
     if mus.size and np.min(np.abs(mus - 1.0)) <= ISOLATION_TOL:
@@ -262,7 +262,7 @@ def kind(name: str, frequency: float | None = None) -> str:
 
 def _laws(model: Model) -> str:
     """The model's laws and the Floquet path they take, as the headers print them."""
-    from ..periodic.base import engine_of
+    from ..periodic.engines import engine_of
 
     return (
         f"{model.friction} friction, {model.contact}, tension {model.tension}; "

@@ -27,17 +27,16 @@ import numpy as np
 
 from .._calling import ranged
 from .._tables import DataFrame
-from ..errors import Refused
+from ..errors import NoPeriodicResponse, Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain, excitation_period
-from ..periodic.base import MARGIN_KINDS, FixedPoint, MapFamily, engine_of, fixed_point
-from ..periodic.floquet import (
-    FORWARD_PERIODS,
-    Floquet,
-    NoPeriodicResponse,
-    floquet,
-    largest_sliding_velocity,
-    response_from,
-)
+from ..periodic.engines import engine_of
+from ..periodic.family import MapFamily
+from ..periodic.floquet import Floquet, floquet
+from ..periodic.margins import MARGIN_KINDS
+from ..periodic.newton import FixedPoint, fixed_point
+from ..periodic.response import response_from
+from ..periodic.shooting import FORWARD_PERIODS
+from ..periodic.tangential import largest_sliding_velocity
 from ..settings import MAX_BAND_POINTS, MIN_TOL_ULPS
 from .branch import SpecialPoint, continue_branch
 from .edges import (
@@ -244,7 +243,7 @@ class Band:
         """The JSON of ``floquet-band --json``: ``param``, ``unstable``, ``edges``,
         ``grazing_points``, ``no_periodic_response``, ``grid``, ``failed``, ``tol``,
         ``merged_away``, ``tension``, ``contact``, ``friction`` and ``engine`` (the
-        period map of the model's laws, `beltmdsm.periodic.base.engine_of`)."""
+        period map of the model's laws, `beltmdsm.periodic.engines.engine_of`)."""
         return {
             "param": self.param,
             "unstable": [list(r) for r in self.unstable],
@@ -290,7 +289,7 @@ def floquet_band(
     tangency, a grazing or a fold, located exactly (to about 1e-6; `Edge.accuracy`).
     For ``param = "Vb"`` the grazing point of the backward-sliding response is
     computed exactly: it is that response's largest velocity in contact, which does
-    not depend on ``Vb`` (`beltmdsm.periodic.floquet.largest_sliding_velocity`).
+    not depend on ``Vb`` (`beltmdsm.periodic.tangential.largest_sliding_velocity`).
 
     Changes closer together than ``tol`` cannot be told apart at that tolerance: they
     are one edge, whose sides are the outer sides of the first and the last, and the
@@ -318,7 +317,7 @@ def floquet_band(
     periods : int
         ``k > 1``: the band of the response of ``k`` periods (a value without a
         neighbour is seeded from the attractor of the period map,
-        `beltmdsm.periodic.floquet.periodic_response`).
+        `beltmdsm.periodic.shooting.periodic_response`).
     progress : bool
         Show the evaluations on stderr (tqdm) once they take more than 2 s.
 

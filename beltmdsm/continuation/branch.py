@@ -2,7 +2,7 @@
 
 A response of Eq. (4) of ``k`` excitation periods is a zero of ``G(x, p) = P_p(x) - x``,
 with ``P_p`` the ``k``-fold period map at the parameter value ``p``
-(`beltmdsm.periodic.base.MapFamily`). `continue_branch` follows the curve of zeros in
+(`beltmdsm.periodic.family.MapFamily`). `continue_branch` follows the curve of zeros in
 ``(x, p)`` by pseudo-arclength continuation, so it passes folds: a secant predictor
 along the unit tangent (the null vector of ``[dP/dx - I, dP/dp]``, in coordinates
 scaled by the state's and the range's size), a corrector by Newton's method on ``G = 0``
@@ -40,17 +40,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import NoPeriodicResponse
 from ..integrate.switching import Mode
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, is_autonomous
-from ..periodic.base import (
-    NEWTON_TOL,
-    FixedPoint,
-    MapFamily,
-    MapImage,
-    NoPeriodicResponse,
-    fixed_point,
-)
-from ..periodic.floquet import PeriodicResponse, periodic_response
+from ..periodic.base import MapImage
+from ..periodic.family import MapFamily
+from ..periodic.newton import NEWTON_TOL, FixedPoint, fixed_point
+from ..periodic.response import PeriodicResponse
+from ..periodic.shooting import periodic_response
 from .branch_parts import LOCATE_TOL, Branch, BranchPart, SpecialPoint
 from .edges import NoEdge, locate_end, multiplier_kind
 
@@ -101,7 +98,7 @@ class BranchPoint:
         block's).
     max_abs_multiplier : float
     stable : bool or None
-        None where the orbit grazes (`beltmdsm.periodic.floquet.GRAZING_RATIO`).
+        None where the orbit grazes (`beltmdsm.periodic.margins.GRAZING_RATIO`).
     n_reversals, n_sticks : int
         Per orbit (``k`` periods).
     tangent : float
@@ -536,7 +533,7 @@ def continue_branch(
     Parameters
     ----------
     start : PeriodicResponse
-        A response (`beltmdsm.periodic.floquet.periodic_response`, ``periods=k`` for a
+        A response (`beltmdsm.periodic.shooting.periodic_response`, ``periods=k`` for a
         locked one).
     param : str
         A model parameter.
@@ -609,7 +606,7 @@ def branch(
 ) -> Branch:
     """The branch of the response of ``periods`` periods at a point (`continue_branch`).
 
-    The response is found as `beltmdsm.periodic.floquet.periodic_response` finds it
+    The response is found as `beltmdsm.periodic.shooting.periodic_response` finds it
     (``periods > 1``: seeded from the attractor of the period map). Without excitation
     (`beltmdsm.model.is_autonomous`) it is the branch of self-excited cycles born at
     the Hopf point of steady sliding in ``[lo, hi]``

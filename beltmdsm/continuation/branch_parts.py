@@ -17,7 +17,7 @@ from numpy.typing import NDArray
 
 from .._tables import DataFrame
 from ..model import Model
-from ..periodic.base import engine_of
+from ..periodic.engines import engine_of
 
 __all__ = ["LOCATE_TOL", "SpecialPoint", "BranchPart", "Branch"]
 

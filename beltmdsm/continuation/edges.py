@@ -13,7 +13,7 @@ looks like):
   through it.
 * ``grazing``: a segment of the orbit touches a switching surface that it did not
   cross, or Filippov's choice at a switch reaches a tie (a stick phase appears or
-  disappears): the switch structure changes (`beltmdsm.periodic.base.Margin` of kind
+  disappears): the switch structure changes (`beltmdsm.periodic.margins.Margin` of kind
   ``approach`` or ``decision`` reaches zero). The response may go on with the new
   structure, or end.
 * ``tangency``: a crossing of the orbit becomes tangential (a ``crossing`` margin
@@ -42,16 +42,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import NoEdge  # its home; importable here as before
-from ..periodic.base import (
-    MARGIN_KINDS,
-    FixedPoint,
-    MapFamily,
-    Margin,
+from ..errors import (
+    NoEdge,  # its home; importable here as before
     NoPeriodicResponse,
-    PeriodMap,
-    fixed_point,
 )
+from ..periodic.base import PeriodMap
+from ..periodic.family import MapFamily
+from ..periodic.margins import MARGIN_KINDS, Margin
+from ..periodic.newton import FixedPoint, fixed_point
 
 __all__ = [
     "KINDS",
@@ -230,7 +228,7 @@ def locate_end(
     required : float
         Raise NoEdge when the trials end with an accuracy above it.
     kinds : tuple of str
-        The kinds of margin that may close (`beltmdsm.periodic.base.MARGIN_KINDS`); where
+        The kinds of margin that may close (`beltmdsm.periodic.margins.MARGIN_KINDS`); where
         the kind is known, a narrower choice saves the search of the ``approach``
         margins.
 

@@ -27,7 +27,7 @@ continuation in ``y``, row by row, not on a grid of pixels:
   of the tolerance). A fold is continued by a short branch
   (`beltmdsm.continuation.branch.continue_branch`) across the predicted fold. Where ``x`` is
   ``Vb`` and the response slides back throughout, its grazing point is exact: its
-  largest velocity in contact (`beltmdsm.periodic.floquet.largest_sliding_velocity`,
+  largest velocity in contact (`beltmdsm.periodic.tangential.largest_sliding_velocity`,
   as the band finds it).
 * A curve that cannot be continued on a row ends there; a band on that row, on every
   row where no curve is followed, and on every ``check_every``-th row, finds the
@@ -57,11 +57,15 @@ from generated import stability
 
 from .._calling import mapped
 from .._tables import DataFrame
-from ..errors import Refused
+from ..errors import NoPeriodicResponse, Refused
 from ..intervals import runs as true_intervals
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
-from ..periodic.base import MARGIN_KINDS, MapFamily, Margin, engine_of, fixed_point
-from ..periodic.floquet import NoPeriodicResponse, largest_sliding_velocity, response_from
+from ..periodic.engines import engine_of
+from ..periodic.family import MapFamily
+from ..periodic.margins import MARGIN_KINDS, Margin
+from ..periodic.newton import fixed_point
+from ..periodic.response import response_from
+from ..periodic.tangential import largest_sliding_velocity
 from ..settings import MAX_MAP_ROWS
 from .band import Band, floquet_band
 from .branch import continue_branch

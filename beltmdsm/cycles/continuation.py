@@ -19,7 +19,8 @@ from numpy.typing import NDArray
 
 from ..continuation.branch_parts import LOCATE_TOL, SpecialPoint
 from ..continuation.edges import multiplier_kind
-from ..periodic.base import NEWTON_TOL, NoPeriodicResponse
+from ..errors import NoPeriodicResponse
+from ..periodic.newton import NEWTON_TOL
 from .flow import CycleFlow, FlowImage, orbit_observables, split_multipliers
 from .stick import cross_stick, stick_ahead, sticks
 

@@ -29,19 +29,19 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import minimize_scalar
 
-from ..errors import StepTooSmall
+from ..errors import NoPeriodicResponse, StepTooSmall
 from ..integrate.events import integrate_events
 from ..integrate.switching import Mode, Switching
 from ..integrate.trajectory import Run
 from ..model import Backend, Model, is_autonomous
 from ..periodic import variational
-from ..periodic.base import RTOL, NoPeriodicResponse
+from ..periodic.base import RTOL
 from ..settings import SolverSettings
 
 __all__ = ["CycleFlow", "FlowImage", "Observables", "orbit_observables", "split_multipliers"]
 
 #: Relative step of the central differences in the parameter (as
-#: `beltmdsm.periodic.base.MapFamily`) and in the state (the section's gradient).
+#: `beltmdsm.periodic.family.MapFamily`) and in the state (the section's gradient).
 P_STEP = 1e-6
 X_STEP = 1e-6
 #: Samples of a period before the extremes are refined.

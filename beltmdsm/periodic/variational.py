@@ -8,8 +8,8 @@ saltation matrix ``S = I + (f+ - f-) n^T / (dh/dt)-`` (`generated.hybrid.saltati
 Leine and Nijmeijer, *Dynamics and Bifurcations of Non-Smooth Mechanical Systems*,
 2004, Sect. 7.2). Nothing here assumes a structure of the model: the friction may
 depend on the tangential state (Stribeck) and the normal motion on the tangential
-one. It is the engine of `beltmdsm.periodic.base.GeneralMap`, the path every
-law takes where the closed forms of `beltmdsm.periodic.base.TangentialMap`
+one. It is the engine of `beltmdsm.periodic.general.GeneralMap`, the path every
+law takes where the closed forms of `beltmdsm.periodic.tangential.TangentialMap`
 (friction independent of the state within a slip mode, one-way coupling) do not hold.
 
 Each step of the run is integrated again for the perturbation, with the same step

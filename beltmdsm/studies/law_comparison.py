@@ -47,8 +47,8 @@ from generated import unforced
 from ..continuation.band import Band, floquet_band
 from ..intervals import clip, difference, format_intervals, runs, union
 from ..model import Model, as_model, initial_state
-from ..periodic.base import engine_of
-from ..periodic.floquet import PERTURBATION
+from ..periodic.engines import engine_of
+from ..periodic.start import PERTURBATION
 from ..settings import SolverSettings
 from ..simulation import simulate
 

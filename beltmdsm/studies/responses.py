@@ -4,12 +4,12 @@ A run of Eq. (4) from rest (the runs of Fig. 2b and Figs. 17-21), a run from the
 perturbed periodic response or a sweep continued in a parameter ends on one attractor;
 where it locks to the excitation at ``k`` periods (`beltmdsm.periodic.locked`), the
 attractor is a fixed point of the ``k``-fold period map, which shooting computes
-exactly (`beltmdsm.periodic.base.fixed_point`), with the multipliers of the
+exactly (`beltmdsm.periodic.newton.fixed_point`), with the multipliers of the
 ``k``-fold map (`beltmdsm.periodic.floquet.Floquet`).
 
 * `run_stroboscope`: the stroboscopic samples of a run of `beltmdsm.simulation.simulate`
   from rest or from the perturbed periodic response
-  (`beltmdsm.periodic.floquet.periodic_start`).
+  (`beltmdsm.periodic.start.periodic_start`).
 * `ladder`, `ladder_stroboscope`: a sweep continued on the period map: the shooting
   state carried from rung to rung (the tangential one on the periodic normal motion,
   on the closed-form path), as ``sweep --continue`` carries a run's state, and the
@@ -36,7 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..arguments import count
 from ..attractors.classification import classify
-from ..errors import Refused
+from ..errors import NoPeriodicResponse, Refused
 from ..model import (
     Backend,
     Model,
@@ -46,8 +46,9 @@ from ..model import (
     is_autonomous,
     is_real,
 )
-from ..periodic.base import ENGINES, FixedPoint, PeriodMap, engine_of, fixed_point, period_map
-from ..periodic.floquet import Floquet, NoPeriodicResponse, floquet, periodic_start, response_from
+from ..periodic.base import PeriodMap
+from ..periodic.engines import ENGINES, engine_of, period_map
+from ..periodic.floquet import Floquet, floquet
 from ..periodic.locked import (
     LOCK_LIMIT,
     NotLocked,
@@ -57,6 +58,9 @@ from ..periodic.locked import (
     same_phases,
     stroboscope,
 )
+from ..periodic.newton import FixedPoint, fixed_point
+from ..periodic.response import response_from
+from ..periodic.start import periodic_start
 from ..settings import SolverSettings
 from ..simulation import simulate
 
@@ -553,7 +557,7 @@ def _classified(model, strobe, backend):
 
 def _cycle_response(c, source, distance=None):
     """The `Response` of a self-excited cycle (`beltmdsm.cycles.cycle.Cycle`)."""
-    from ..periodic.floquet import response_of_cycle
+    from ..periodic.response import response_of_cycle
 
     return Response(
         1,

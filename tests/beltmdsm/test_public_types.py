@@ -89,7 +89,6 @@ FAILURES = {
 #: The modules that defined a failure before beltmdsm.errors held them all.
 OLD_HOMES = {
     "Unsupported": ["beltmdsm.model", "generated._support"],
-    "NoPeriodicResponse": ["beltmdsm.periodic.base", "beltmdsm.periodic.floquet"],
     "NoEdge": ["beltmdsm.continuation.edges"],
     "NotApplicable": ["beltmdsm.integrate.superposition"],
     "StepTooSmall": ["beltmdsm.integrate.events"],

@@ -27,7 +27,8 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...periodic.floquet import ShorterPeriod, floquet
+    from ...periodic.floquet import floquet
+    from ...periodic.shooting import ShorterPeriod
     from .. import text
 
     model = model_from(args)

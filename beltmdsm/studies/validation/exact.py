@@ -37,9 +37,9 @@ from typing import Literal
 import numpy as np
 
 from ...attractors.classification import classify
+from ...errors import NoPeriodicResponse
 from ...model import Model
-from ...periodic.base import period_map
-from ...periodic.floquet import NoPeriodicResponse
+from ...periodic.engines import period_map
 from ...periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ...run.summary import TRANSIENT_DECAYED
 from ...settings import SolverSettings

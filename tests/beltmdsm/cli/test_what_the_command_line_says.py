@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from beltmdsm.model import Model
-from beltmdsm.periodic.base import period_map
+from beltmdsm.periodic.engines import period_map
 from beltmdsm.periodic.floquet import floquet
 
 ROOT = Path(__file__).resolve().parents[3]

@@ -9,8 +9,8 @@ same orbit).
 import pytest
 
 from beltmdsm.model import Model
-from beltmdsm.periodic.floquet import periodic_response
 from beltmdsm.periodic.locked import same_phases
+from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.studies import responses as R
 
 
