@@ -40,21 +40,14 @@ from typing import Any, ClassVar, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from generated import hybrid
-
-from ..integrate.switching import Mode, Switching
+from ..integrate.switching import Switching
 from ..model import Model
 from .margins import (
-    _REFINE_BELOW,
-    _SAMPLES_PER_S,
-    _SB,
-    _SF,
-    _TANGENTIAL,
-    _VR,
     GRAZING_RATIO,
     MARGIN_KINDS,
     Margin,
     crossing_ratio,
+    orbit_margins,
     orbit_range,
 )
 
@@ -241,145 +234,10 @@ class PeriodMap(abc.ABC):
                 return {"t": float(t), "surface": surface, "ratio": float(ratio)}
         return None
 
-    # ------------------------------------------------------------ what the orbit is near
-
-    def _states(self, run, index, t):
-        """``(X1, X1', X2, X2')`` at the times ``t`` of segment ``index`` of one period's run."""
-        return run.segments(t, np.full(np.size(t), index))
-
-    def _pieces(self, runs):
-        """The segments of the orbit, joined where a mode goes on across a period boundary.
-
-        Each piece is ``{"mode", "parts", "start", "end"}``: ``parts`` a list of
-        ``(run, index, t0, t1, offset)`` (segment ``index`` of one period's ``run``,
-        from ``t0`` to ``t1`` of that period, ``offset`` from phase 0 of the orbit),
-        ``start`` and ``end`` whether the piece begins and ends at a switch. The last
-        piece wraps around to the first where the orbit's mode goes on through phase 0.
-        """
-        pieces = []
-        for j, run in enumerate(runs):
-            offset = j * self.period
-            n = len(run.modes)
-            for i, (t0, t1, m) in enumerate(zip(run.starts, run.ends, run.modes)):
-                part = (run, i, t0, t1, offset)
-                if pieces and i == 0 and pieces[-1]["mode"] == m and not pieces[-1]["end"]:
-                    pieces[-1]["parts"].append(part)
-                    pieces[-1]["end"] = i < n - 1
-                else:
-                    pieces.append({"mode": m, "parts": [part], "start": i > 0, "end": i < n - 1})
-        first, last = pieces[0], pieces[-1]
-        if len(pieces) > 1 and last["mode"] == first["mode"] and not last["end"]:
-            wrap = self.periods * self.period
-            last["parts"] += [(r, i, a, b, o + wrap) for r, i, a, b, o in first["parts"]]
-            last["end"] = first["end"]
-            pieces = pieces[1:]
-        return pieces
-
     def margins(self, runs: list, kinds: Sequence[str] = MARGIN_KINDS) -> list[Margin]:
-        """The margins of the given kinds of the orbit made of ``runs`` (module docstring)."""
-        out = []
-        for j, run in enumerate(runs):
-            offset = j * self.period
-            for t, before, after, surface, state in run.switches:
-                if surface in _TANGENTIAL and "crossing" in kinds:
-                    ratio = crossing_ratio(self.sw, t, state, before, surface)
-                    out.append(Margin("crossing", surface, before, t + offset, ratio))
-                if "decision" in kinds and (
-                    surface == "relative_velocity"
-                    or (surface == "penetration" and after != Mode.FLIGHT)
-                ):
-                    out.append(self._decision(t, state, before, after, surface, offset))
-        if "approach" not in kinds:
-            return out
-        for piece in self._pieces(runs):
-            if piece["mode"] in (Mode.SLIP_BACK, Mode.SLIP_FORWARD, Mode.STICK):
-                margin = self._approach(piece)
-                if margin is not None:
-                    out.append(margin)
-        return out
-
-    def _decision(self, t, state, before, after, surface, offset):
-        """How far Filippov's choice at a switch onto ``Vr = 0`` is from the other outcome."""
-        h = self.sw.surfaces(t, *state)
-        scales = self.sw.scales(t, *state)
-        sf, sb = h[_SF], h[_SB]
-        if surface == "penetration" and abs(h[_VR]) > 0:
-            # touchdown away from Vr = 0: the sign of Vr decides
-            value = abs(h[_VR]) / scales[_VR]
-        elif after == Mode.STICK:
-            value = min(sf, sb) / scales[_SF]
-        elif sf + sb > 0:  # a cone that could hold the mass: how far outside it
-            value = -(sf if after == Mode.SLIP_FORWARD else sb) / scales[_SF]
-        else:  # an empty cone: the side of a_free decides
-            value = abs(0.5 * (sb - sf)) / scales[_SF]
-        return Margin("decision", surface, before, t + offset, float(value))
-
-    def _distance(self, mode, states, t):
-        """Distance of a segment in ``mode`` to the surface that would end it, and that surface."""
-        sw = self.sw
-        h = np.asarray(sw.surfaces.array(t, *states), dtype=float)
-        scale = np.asarray(sw.scales.array(t, *states), dtype=float)
-        if mode == Mode.SLIP_BACK:
-            return -h[_VR] / scale[_VR], np.full(t.size, _VR)
-        if mode == Mode.SLIP_FORWARD:
-            return h[_VR] / scale[_VR], np.full(t.size, _VR)
-        sf, sb = h[_SF] / scale[_SF], h[_SB] / scale[_SB]
-        return np.minimum(sf, sb), np.where(sf <= sb, _SF, _SB)
-
-    def _approach(self, piece):
-        """The smallest interior minimum of a piece's distance to the surface that would end it.
-
-        None where the distance has no interior minimum below 1 (its saturation: a
-        velocity against the belt's is as far from ``Vr = 0`` as the scale says).
-        """
-        from scipy import optimize
-
-        mode, parts = piece["mode"], piece["parts"]
-        times, values, where = [], [], []
-        for run, index, t0, t1, offset in parts:
-            n = max(8, int((t1 - t0) * _SAMPLES_PER_S))
-            t = np.linspace(t0, t1, n + 1)
-            d, surface = self._distance(mode, self._states(run, index, t), t)
-            times.append(t + offset)
-            values.append(d)
-            where.append(surface)
-        t, d, surface = np.concatenate(times), np.concatenate(values), np.concatenate(where)
-        bounds = np.array([offset + t1 for _, _, _, t1, offset in parts])
-
-        def at(s, rate_of=None):
-            """The distance at ``s``, or the rate of the surface ``rate_of`` there."""
-            k = min(int(np.searchsorted(bounds, s)), len(parts) - 1)
-            run, index, _, _, offset = parts[k]
-            local = s - offset
-            state = self._states(run, index, np.array([local]))[:, 0]
-            if rate_of is None:
-                h, scale = self.sw.surfaces(local, *state), self.sw.scales(local, *state)
-                if mode == Mode.STICK:
-                    return min(h[_SF] / scale[_SF], h[_SB] / scale[_SB])
-                return (h[_VR] if mode == Mode.SLIP_FORWARD else -h[_VR]) / scale[_VR]
-            return float(self.sw.rates(local, *state, float(mode))[rate_of])
-
-        # an end at a switch is on the surface by definition: only interior minima count
-        candidate = np.ones(d.size, dtype=bool)
-        candidate[0], candidate[-1] = not piece["start"], not piece["end"]
-        candidate[1:] &= d[1:] <= d[:-1]
-        candidate[:-1] &= d[:-1] <= d[1:]
-        best = None
-        for k in np.flatnonzero(candidate):
-            value, tk = float(d[k]), float(t[k])
-            if value < _REFINE_BELOW and 0 < k < d.size - 1:
-                # the closest approach is where the surface's rate along the mode vanishes
-                # (the scale varies slowly: the two minima agree to second order in the
-                # distance, which vanishes at grazing)
-                a, b, index = t[k - 1], t[k + 1], int(surface[k])
-                ra, rb = at(a, index), at(b, index)
-                if ra * rb < 0:
-                    tk = optimize.brentq(at, a, b, args=(index,), xtol=1e-14, rtol=1e-15)
-                    value = min(value, at(tk))
-            if value < 1.0 and (best is None or value < best.value):
-                name = hybrid.SURFACES[int(surface[k])]
-                best = Margin("approach", name, mode, tk, value)
-        return best
+        """The margins of the given kinds of the orbit made of ``runs``
+        (`beltmdsm.periodic.margins.orbit_margins`)."""
+        return orbit_margins(self, runs, kinds)
 
     def velocity_range(self, runs: list) -> tuple[float, float]:
         """The smallest and largest ``X1'`` over the runs (`orbit_range`)."""
