@@ -15,7 +15,9 @@ form one hierarchy under `BeltmdsmError`, and each keeps its builtin base, so th
   naming the law and the missing property.
 * `StepTooSmall` (an `ArithmeticError`): an integrator cannot go on at the
   tolerances given.
-* `NoPeriodicResponse` (a `RuntimeError`): no periodic response is found.
+* `NoPeriodicResponse` (a `RuntimeError`): no periodic response is found;
+  `ShorterPeriod`, one of them: the response of ``k`` periods asked for is one of a
+  divisor of ``k`` periods.
 
 The command line reports each in one line, exit status 2 (`beltmdsm.cli.flags`).
 `NotApplicable` (a `ValueError`: the superposition's closed forms do not exist for a
@@ -42,6 +44,7 @@ __all__ = [
     "Unsupported",
     "StepTooSmall",
     "NoPeriodicResponse",
+    "ShorterPeriod",
     "NotApplicable",
     "NoEdge",
 ]
@@ -87,6 +90,40 @@ class StepTooSmall(BeltmdsmError, ArithmeticError):
 
 class NoPeriodicResponse(BeltmdsmError, RuntimeError):
     """No periodic response is found (Newton's method and forward iteration fail)."""
+
+
+class ShorterPeriod(NoPeriodicResponse):
+    """No response of minimal period ``asked`` periods: the attractor is a response of
+    ``periods``, a divisor of it (its orbit repeats after ``asked`` periods too, but is
+    not a new response). ``periodic_response(..., periods=periods)`` computes it
+    (``floquet --periods K`` reports it so).
+
+    Parameters
+    ----------
+    asked : int
+        The periods asked for.
+    periods : int
+        The periods of the response found, a divisor of ``asked``.
+    how : str
+        How it was found (the message goes on with ``periods``).
+    """
+
+    def __init__(self, asked: int, periods: int, how: str) -> None:
+        super().__init__(
+            f"no response of minimal period {_periods(asked)} found: {how} "
+            f"{_periods(periods)}, whose orbit repeats after {asked} too "
+            f"(periods={periods} computes it)"
+        )
+        self.asked, self.periods, self.how = asked, periods, how
+
+    def __reduce__(self) -> tuple[type, tuple[int, int, str]]:
+        # rebuilt from what built it (the default passes the message alone, which this
+        # __init__ does not take: raised in a worker process it did not arrive)
+        return (type(self), (self.asked, self.periods, self.how))
+
+
+def _periods(k: int) -> str:
+    return "1 period" if k == 1 else f"{k} periods"
 
 
 class NotApplicable(BeltmdsmError, ValueError):

@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 
 from ..arguments import count, state
-from ..errors import NoPeriodicResponse, Refused
+from ..errors import NoPeriodicResponse, Refused, ShorterPeriod
 from ..model import Backend, Model, as_model, excitation_period, initial_state, is_autonomous
 from .base import Engine
 from .engines import period_map
@@ -37,7 +37,6 @@ from .response import PeriodicResponse, response_from, response_of_cycle
 
 __all__ = [
     "periodic_response",
-    "ShorterPeriod",
     "FORWARD_PERIODS",
     "SEED_PERIODS",
     "MAX_SEED_PERIODS",
@@ -155,7 +154,7 @@ def periodic_response(
     NoPeriodicResponse
         (a RuntimeError) If no periodic response is found; for ``periods > 1``
         without a guess, where the attractor of the period map does not lock at
-        ``k`` periods (the message says what it does instead): `ShorterPeriod` where
+        ``k`` periods (the message says what it does instead): `beltmdsm.errors.ShorterPeriod` where
         it locks at a divisor ``d`` of ``k`` (its orbit is ``k T``-periodic too, a
         response of ``d`` periods; ``floquet --periods 8 --Vb 5`` reports the 4T one).
     """
@@ -243,21 +242,6 @@ def _locked_seed(pmap):
             f"no response of {_periods(k)} found: the period map iterated from rest {what}"
         )
     return strobe.samples[-1], locks
-
-
-class ShorterPeriod(NoPeriodicResponse):
-    """No response of minimal period ``asked`` periods: the attractor is a response of
-    ``periods``, a divisor of it (its orbit repeats after ``asked`` periods too, but is
-    not a new response). ``periodic_response(..., periods=periods)`` computes it
-    (``floquet --periods K`` reports it so)."""
-
-    def __init__(self, asked: int, periods: int, how: str) -> None:
-        super().__init__(
-            f"no response of minimal period {_periods(asked)} found: {how} "
-            f"{_periods(periods)}, whose orbit repeats after {asked} too "
-            f"(periods={periods} computes it)"
-        )
-        self.asked, self.periods = asked, periods
 
 
 def _periods(k: int) -> str:

@@ -27,8 +27,8 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from ...errors import ShorterPeriod
     from ...periodic.floquet import floquet
-    from ...periodic.shooting import ShorterPeriod
     from .. import text
 
     model = model_from(args)
