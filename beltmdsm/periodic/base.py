@@ -135,15 +135,16 @@ class PeriodMap(abc.ABC):
     """What the algorithms on periodic responses need of a period map.
 
     ``model`` is the model, ``period`` one excitation period, ``periods`` the number
-    ``k`` of them per application, ``engine`` the name of the implementation (`ENGINES`),
-    ``sw`` the model's switching rules. An implementation gives the map over one
-    excitation period (`one_period`), the multipliers of the directions it does not
-    shoot in, how a full state and its shooting state relate, and the first guess of
-    the shooting. The ``k``-fold map (`__call__`) and what an orbit is near (its
-    margins, the module docstring, and its velocity range) are read here from the
-    runs of the ``k`` periods, whatever the engine: each run has ``starts``, ``ends``
-    and ``modes`` of its segments, ``switches`` ``(t, before, after, surface,
-    state)``, ``final`` (the state where it ends) and ``segments(t, index) -> (4, n)``.
+    ``k`` of them per application, ``engine`` the name of the implementation
+    (`beltmdsm.periodic.engines.ENGINES`), ``sw`` the model's switching rules. An
+    implementation gives the map over one excitation period (`one_period`), the
+    multipliers of the directions it does not shoot in, how a full state and its
+    shooting state relate, and the first guess of the shooting. The ``k``-fold map
+    (`__call__`) and what an orbit is near (its margins, the module docstring, and its
+    velocity range) are read here from the runs of the ``k`` periods, whatever the
+    engine: each run has ``starts``, ``ends`` and ``modes`` of its segments,
+    ``switches`` ``(t, before, after, surface, state)``, ``final`` (the state where it
+    ends) and ``segments(t, index) -> (4, n)``.
     """
 
     model: Model

@@ -51,8 +51,8 @@ def period_map(
         the closed-form one).
     check : bool
         Refuse a start beyond floating point (`beltmdsm.settings.check_finite`, 0.3 ms);
-        `MapFamily` checks its model once instead of at every value (an overflow there
-        still ends its runs, with `beltmdsm.errors.StepTooSmall`).
+        `beltmdsm.periodic.family.MapFamily` checks its model once instead of at every
+        value (an overflow there still ends its runs, with `beltmdsm.errors.StepTooSmall`).
 
     Raises
     ------

@@ -80,8 +80,8 @@ class MapFamily:
     ) -> NDArray[np.float64]:
         """``dP/d param`` at the shooting state ``x`` by central differences.
 
-        ``structure``: the `signature` of the image at ``x`` (computed if not given),
-        which both sides must keep.
+        ``structure``: the `beltmdsm.periodic.base.signature` of the image at ``x``
+        (computed if not given), which both sides must keep.
         """
         x = np.asarray(x, dtype=float)
         if structure is None:

@@ -175,9 +175,9 @@ class GeneralMap(PeriodMap):
         least halves (a chord method: the field is linear in the tangential state under
         Coulomb friction and nearly so under Stribeck's, so one Jacobian serves most
         iterations). It is the counterpart of the closed-form sliding orbit of
-        `TangentialMap` and the same where the mass slides back in contact throughout;
-        where the iterations do not settle in `_SLIDING_ITER`, the last iterate is the
-        guess (kept).
+        `beltmdsm.periodic.tangential.TangentialMap` and the same where the mass slides
+        back in contact throughout; where the iterations do not settle in
+        `_SLIDING_ITER`, the last iterate is the guess (kept).
         """
         if self._sliding is not None:
             return self._sliding.copy()

@@ -5,7 +5,7 @@ reads them from the runs of its orbit (`beltmdsm.periodic.base.MapImage.margins`
 
 * ``crossing``: the rate of a switching function at a crossing, along the mode
   before, over the function's rounding scale (`generated.hybrid.surface_rates`,
-  `surface_scales`). It vanishes where a crossing becomes tangential: a
+  `generated.hybrid.surface_scales`). It vanishes where a crossing becomes tangential: a
   **tangency**, where the saltation matrix and the multipliers diverge.
 * ``approach``: the closest approach of a segment to a surface it does not cross
   (an interior maximum of ``Vr`` while sliding back, a minimum while sliding
@@ -101,10 +101,11 @@ class Margin:
 def orbit_range(runs: list, component: int = 1) -> tuple[float, float]:
     """The smallest and largest of one state component over the runs of an orbit.
 
-    ``runs`` are periods as `PeriodMap` reads them (``starts``, ``ends`` and
-    ``segments(t, index) -> (4, n)``: an `EventPeriod` or a tangential run);
-    ``component`` 0 is ``X1``, 1 ``X1'``. Each segment is sampled (`_SAMPLES_PER_S`)
-    and an interior extreme is refined by a bounded search to 1e-12 s.
+    ``runs`` are periods as `beltmdsm.periodic.base.PeriodMap` reads them (``starts``,
+    ``ends`` and ``segments(t, index) -> (4, n)``: a
+    `beltmdsm.periodic.general.EventPeriod` or a tangential run); ``component`` 0 is
+    ``X1``, 1 ``X1'``. Each segment is sampled (`_SAMPLES_PER_S`) and an interior
+    extreme is refined by a bounded search to 1e-12 s.
     """
     from scipy import optimize
 

@@ -59,8 +59,8 @@ class PeriodicResponse:
         ``k``: the response repeats after ``k`` excitation periods; the monodromy is
         that of the ``k``-fold map.
     engine : {"closed_form", "general"}
-        The period map that found it (`beltmdsm.periodic.base.ENGINES`, chosen by
-        the facts of the model's laws, `beltmdsm.periodic.base.engine_of`).
+        The period map that found it (`beltmdsm.periodic.engines.ENGINES`, chosen by
+        the facts of the model's laws, `beltmdsm.periodic.engines.engine_of`).
     autonomous : bool
         A self-excited cycle of the model without excitation (`response_of_cycle`):
         ``period`` was found, ``state0`` lies on its section, ``cycle`` is the

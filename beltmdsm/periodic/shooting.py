@@ -106,7 +106,7 @@ def periodic_response(
     periods (it converges to a stable periodic response, where Newton's method may
     not, next to a grazing point) and Newton's method polishes the result. The period
     map is the closed-form one where the model's laws allow it, else the general one
-    (`beltmdsm.periodic.base.period_map`); the result's ``engine`` says which.
+    (`beltmdsm.periodic.engines.period_map`); the result's ``engine`` says which.
 
     Parameters
     ----------
@@ -127,7 +127,7 @@ def periodic_response(
         ``k >= 1``: the response of ``k`` excitation periods (phase-locked for ``k >
         1``), by shooting on the ``k``-fold map.
     engine : {"closed_form", "general", None}
-        The period map (`beltmdsm.periodic.base.period_map`); None: the one the
+        The period map (`beltmdsm.periodic.engines.period_map`); None: the one the
         model's laws allow.
 
     Without excitation (`beltmdsm.model.is_autonomous`) the response is the self-excited
@@ -172,7 +172,7 @@ def periodic_response(
         raise Refused(
             f"periods must be <= {MAX_SEED_PERIODS} without a guess: the seed samples "
             f"{SEED_PERIODS[1]} periods of the period map, and a lock at k periods needs "
-            f"more than 2 k (SEED_PERIODS, beltmdsm/periodic/floquet.py); got {periods}",
+            f"more than 2 k (SEED_PERIODS, beltmdsm/periodic/shooting.py); got {periods}",
             "periods",
         )
     excitation_period(model)
