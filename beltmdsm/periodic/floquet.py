@@ -65,11 +65,54 @@ class Floquet:
     closed-form path the tangential pair, then the normal pair; on the general path
     the four eigenvalues of the whole monodromy, by decreasing modulus (no pair is
     singled out where nothing says the blocks decouple). NaN where the response
-    grazes (``grazing`` is then set and ``stable`` is None). ``n_reversals`` and
-    ``n_sticks`` count over the ``k`` periods. ``engine`` is the path taken
-    (`PeriodicResponse`). For a self-excited cycle (``autonomous``) the multipliers are
-    the three of its Poincare map, without the trivial one along the flow
-    (``trivial_multiplier``, 1 to the accuracy of the orbit); a stick phase makes one 0.
+    grazes (``grazing`` is then set and ``stable`` is None). For a self-excited cycle
+    (``autonomous``) the multipliers are the three of its Poincare map, without the
+    trivial one along the flow (``trivial_multiplier``, 1 to the accuracy of the
+    orbit); a stick phase makes one 0. Built by `floquet`, or from a response by
+    `Floquet.of`.
+
+    Attributes
+    ----------
+    multipliers : ndarray of complex
+        Of the ``k``-fold map (4; 3 for a cycle).
+    max_abs_multiplier : float
+        The largest modulus, ``|mu|_max``.
+    growth_rate : float
+        ``log |mu|_max / (k T)`` [1/s]: negative where the response is stable.
+    frequency : float
+        ``|arg mu| / (k T)`` of the multiplier of largest modulus [rad/s], defined
+        modulo ``2 pi / (k T)`` (to compare with omega1).
+    stable : bool or None
+        ``|mu|_max < 1``; None where the response grazes.
+    n_reversals, n_sticks : int
+        Reversals of the relative velocity and stick phases over the ``k`` periods.
+    grazing : dict or None
+        ``{"t", "surface", "ratio"}`` of a switch reached with a vanishing rate.
+    period : float
+        ``k T`` [s] (a cycle's own period).
+    response : PeriodicResponse
+        The response the multipliers belong to.
+    autonomous : bool
+        A self-excited cycle of a model without excitation.
+    trivial_multiplier : complex or None
+        A cycle's multiplier along the flow.
+
+    See Also
+    --------
+    floquet : computes it.
+    beltmdsm.periodic.response.PeriodicResponse : the orbit and its monodromy.
+    beltmdsm.continuation.band.floquet_band : where along a parameter it is unstable.
+
+    Examples
+    --------
+    >>> from beltmdsm import floquet
+    >>> f = floquet(Vb=12.0)
+    >>> f.verdict, f.engine, round(f.max_abs_multiplier, 3), round(f.growth_rate, 3)
+    ('stable', 'closed_form', 0.855, -0.1)
+    >>> f.n_reversals, f.n_sticks, f.response.periods
+    (0, 0, 1)
+    >>> sorted(f.as_dict())[:4]
+    ['autonomous', 'engine', 'frequency', 'grazing']
     """
 
     multipliers: np.ndarray
@@ -237,15 +280,70 @@ def floquet(
     engine: Engine | None = None,
     **kw: Any,
 ) -> Floquet:
-    """Floquet multipliers of the periodic response (module docstring).
+    """Floquet multipliers of the periodic response of Eq. (4) (module docstring).
 
-    Takes the arguments of `periodic_response`; ``periods = k > 1``: of the response
-    of ``k`` periods, the multipliers of the ``k``-fold map; ``engine``: the period
-    map (None: the one the model's laws allow).
+    The response by shooting (`beltmdsm.periodic.shooting.periodic_response`, whose
+    arguments this takes), on the period map the model's laws allow; for ``periods =
+    k > 1`` the response of ``k`` periods and the multipliers of the ``k``-fold map.
+    Without excitation, the self-excited cycle's.
+
+    Parameters
+    ----------
+    model : Model or dict, optional
+        The model (default: the base set).
+    guess : array_like (2,) or (4,), or PeriodicResponse, optional
+        The state at phase 0 that Newton's method starts from (a neighbour on a
+        branch); default the backward-sliding orbit, or for ``periods > 1`` the
+        attractor of the period map iterated from rest.
+    forward : int
+        Periods of forward iteration where Newton's method fails (0: none).
+    backend : {"python", "numba", None}
+    periods : int
+        ``k >= 1``: the response of ``k`` excitation periods.
+    engine : {"closed_form", "general", None}
+        The period map (`beltmdsm.periodic.engines.period_map`); None: the one the
+        model's laws allow.
+    **kw
+        Parameters and options of the model (``floquet(Vb=5)``).
 
     Returns
     -------
     Floquet
+
+    Raises
+    ------
+    ValueError
+        Naming the argument, as `beltmdsm.periodic.shooting.periodic_response` (a
+        parameter outside its domain, an excitation without a period, a bad guess or
+        engine); `beltmdsm.errors.Refused` for ``periods > MAX_SEED_PERIODS`` without a
+        guess.
+    beltmdsm.errors.Unsupported
+        For ``engine="closed_form"`` where the model's laws lack a fact it needs.
+    beltmdsm.errors.NoPeriodicResponse
+        Where no periodic response is found (`beltmdsm.errors.ShorterPeriod` where the
+        attractor locks at a divisor of ``periods``).
+
+    See Also
+    --------
+    beltmdsm.periodic.shooting.periodic_response : the response alone.
+    beltmdsm.continuation.band.floquet_band : the ranges of a parameter where it is unstable.
+    beltmdsm.continuation.branch.branch : the response continued in a parameter.
+    beltmdsm.studies.responses.responses : every response at one point, locked ones too.
+
+    Examples
+    --------
+    >>> from beltmdsm import floquet
+    >>> f = floquet(Vb=5.0)
+    >>> f.verdict, round(f.max_abs_multiplier, 3), round(f.growth_rate, 3)
+    ('unstable', 1.12, 0.072)
+    >>> round(f.frequency, 3), round(f.period, 4)  # omega1 = 1 rad/s, T = 2 pi / 4
+    (1.029, 1.5708)
+
+    The response of 4 excitation periods, locked at ``omega1 = Omega / 4``:
+
+    >>> f4 = floquet(Vb=5.0, periods=4)
+    >>> f4.verdict, f4.n_reversals, round(f4.period, 4)
+    ('stable', 4, 6.2832)
     """
     model = as_model(model, **kw)
     return Floquet.of(

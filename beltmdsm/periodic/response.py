@@ -65,6 +65,29 @@ class PeriodicResponse:
         A self-excited cycle of the model without excitation (`response_of_cycle`):
         ``period`` was found, ``state0`` lies on its section, ``cycle`` is the
         `beltmdsm.cycles.cycle.Cycle`.
+
+    See Also
+    --------
+    beltmdsm.periodic.shooting.periodic_response : finds it.
+    beltmdsm.periodic.floquet.Floquet : its multipliers and what they say.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from beltmdsm import Model, periodic_response
+    >>> r = periodic_response(Model(Vb=5.0))
+    >>> r.engine, r.periods, round(r.period, 4), len(r.switches), r.residual < 1e-10
+    ('closed_form', 1, 1.5708, 2, True)
+    >>> np.round(r.state0, 3)  # X1, X1', X2, X2' at phase 0
+    array([ 4.566, -6.146, 12.521,  2.264])
+
+    The normal equation is free of the tangential state: the monodromy is block
+    triangular, its multipliers those of the diagonal blocks.
+
+    >>> bool(np.all(r.monodromy[2:, :2] == 0))
+    True
+    >>> r.shooting_state.shape  # the closed-form map shoots in (X1, X1')
+    (2,)
     """
 
     model: Model
@@ -151,6 +174,32 @@ def response_of_cycle(c: Any) -> PeriodicResponse:
 
     Its ``state0`` is the cycle's state on the section, ``period`` the one found, the
     monodromy the whole one of the general path (``engine="general"``).
+
+    Parameters
+    ----------
+    c : beltmdsm.cycles.cycle.Cycle
+
+    Returns
+    -------
+    PeriodicResponse
+        With ``autonomous`` set and ``cycle`` the cycle.
+
+    Raises
+    ------
+    AttributeError
+        Where ``c`` is not a cycle (it lacks what a `beltmdsm.cycles.cycle.Cycle` has).
+
+    See Also
+    --------
+    beltmdsm.cycles.cycle.cycle : the cycle by shooting with a phase condition.
+    beltmdsm.periodic.shooting.periodic_response : calls it for a model without excitation.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, cycle
+    >>> r = response_of_cycle(cycle(Model(friction="stribeck", alpha=0.0, Vb=1.5)))
+    >>> r.autonomous, r.engine, round(r.period, 3), r.monodromy.shape
+    (True, 'general', 6.654, (4, 4))
     """
     M = np.array(c.monodromy, dtype=float)
     return PeriodicResponse(
@@ -175,7 +224,40 @@ def response_of_cycle(c: Any) -> PeriodicResponse:
 
 
 def response_from(pmap: PeriodMap, point: FixedPoint) -> PeriodicResponse:
-    """The `PeriodicResponse` of a fixed point of a ``k``-fold map (either engine)."""
+    """The `PeriodicResponse` of a fixed point of a ``k``-fold map (either engine).
+
+    Parameters
+    ----------
+    pmap : beltmdsm.periodic.base.PeriodMap
+        The map of ``k = pmap.periods`` periods.
+    point : beltmdsm.periodic.newton.FixedPoint
+        Its fixed point (`beltmdsm.periodic.newton.fixed_point`).
+
+    Returns
+    -------
+    PeriodicResponse
+        Of ``periods = k``; on the closed-form path its normal block the normal orbit's
+        monodromy to the power ``k``.
+
+    Raises
+    ------
+    AttributeError
+        Where ``pmap`` is not a period map of `beltmdsm.periodic.engines.ENGINES`.
+
+    See Also
+    --------
+    beltmdsm.periodic.shooting.periodic_response : the shooting that calls it.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.periodic.engines import period_map
+    >>> from beltmdsm.periodic.newton import fixed_point
+    >>> pmap = period_map(Model(Vb=5.0))
+    >>> r = response_from(pmap, fixed_point(pmap, pmap.sliding_guess()))
+    >>> r.engine, r.periods, round(r.period, 4)
+    ('closed_form', 1, 1.5708)
+    """
     k, image = pmap.periods, point.image
     if isinstance(pmap, GeneralMap):
         M = image.jacobian

@@ -157,6 +157,35 @@ def periodic_response(
         ``k`` periods (the message says what it does instead): `beltmdsm.errors.ShorterPeriod` where
         it locks at a divisor ``d`` of ``k`` (its orbit is ``k T``-periodic too, a
         response of ``d`` periods; ``floquet --periods 8 --Vb 5`` reports the 4T one).
+
+    See Also
+    --------
+    beltmdsm.periodic.floquet.floquet : the response's multipliers.
+    beltmdsm.periodic.start.periodic_start : a run's start on it.
+    beltmdsm.continuation.branch.branch : the response continued in a parameter.
+    beltmdsm.cycles.cycle.cycle : the self-excited cycle of a model without excitation.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, periodic_response
+    >>> r = periodic_response(Model(Vb=5.0))
+    >>> r.engine, r.periods, round(r.period, 4), r.residual < 1e-10
+    ('closed_form', 1, 1.5708, True)
+
+    A neighbour's response as the guess (a continuation's step):
+
+    >>> near = periodic_response(Model(Vb=5.2), guess=r)
+    >>> near.residual < 1e-10, round(float(near.state0[0]), 3)  # X1 at phase 0 [m]
+    (True, 4.488)
+
+    The response of 4 periods; asked for 8, the attractor that locks at 4 is named:
+
+    >>> periodic_response(Model(Vb=5.0), periods=4).periods
+    4
+    >>> periodic_response(Model(Vb=5.0), periods=8)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    beltmdsm.errors.ShorterPeriod: no response of minimal period 8 periods found: ... 4 periods, ...
     """
     model = as_model(model, **kw)
     periods = count("periods", periods, 1)

@@ -31,12 +31,39 @@ def periodic_start(
     An unstable response shows its instability from there, a stable one stays put
     (``simulate --start periodic``).
 
+    Parameters
+    ----------
+    model : Model
+    perturbation : float
+        Added to ``X1`` [m] (default `PERTURBATION`).
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    ndarray (4,)
+        ``(X1, X1', X2, X2')`` at ``t = 0``: the response's state at phase 0 with
+        ``X1`` moved.
+
     Raises
     ------
     ValueError
         For a perturbation that is not a finite number.
-    NoPeriodicResponse
+    beltmdsm.errors.NoPeriodicResponse
         Where no periodic response is found.
+
+    See Also
+    --------
+    beltmdsm.periodic.shooting.periodic_response : the response it starts on.
+    beltmdsm.simulation.simulate : ``y0=periodic_start(model)``, or ``start="periodic"``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from beltmdsm import Model, periodic_response, periodic_start
+    >>> m = Model(Vb=5.0)
+    >>> y0 = periodic_start(m, perturbation=0.5)
+    >>> np.round(y0 - periodic_response(m).state0, 12)
+    array([0.5, 0. , 0. , 0. ])
     """
     if not (isinstance(perturbation, (int, float)) and math.isfinite(perturbation)):
         raise ValueError(f"perturbation must be a finite number; got {perturbation!r}")
