@@ -66,7 +66,34 @@ Engine = Literal["closed_form", "general"]
 
 
 def signature(switches: Sequence[tuple]) -> tuple:
-    """The switch structure of an orbit: the ``(before, after, surface)`` of its switches."""
+    """The switch structure of an orbit: the ``(before, after, surface)`` of its switches.
+
+    Parameters
+    ----------
+    switches : sequence of (t, before, after, surface)
+        As `MapImage.switches` and `beltmdsm.periodic.response.PeriodicResponse.switches`
+        hold them (the modes as `beltmdsm.integrate.switching.Mode`).
+
+    Returns
+    -------
+    tuple of (int, int, str)
+        The modes as integers (-1 slip back, 1 slip forward, 0 stick, ...).
+
+    Raises
+    ------
+    ValueError
+        Where an entry is not four values.
+
+    See Also
+    --------
+    beltmdsm.periodic.family.MapFamily.derivative : keeps a signature on both sides.
+
+    Examples
+    --------
+    >>> from beltmdsm.integrate.switching import Mode
+    >>> signature([(0.3, Mode.SLIP_BACK, Mode.SLIP_FORWARD, "relative_velocity")])
+    ((-1, 1, 'relative_velocity'),)
+    """
     return tuple((int(b), int(a), s) for _, b, a, s in switches)
 
 
@@ -85,7 +112,23 @@ class MapImage:
     segments : list of (t0, t1, mode)
     grazing : dict or None
         ``{"t", "surface", "ratio"}`` of a crossing whose rate is too small for a
-        multiplier with 8 correct digits (`GRAZING_RATIO`).
+        multiplier with 8 correct digits (`beltmdsm.periodic.margins.GRAZING_RATIO`).
+
+    See Also
+    --------
+    PeriodMap : what makes it (``pmap(x)``).
+    beltmdsm.periodic.margins.Margin : what `MapImage.margins` holds.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.periodic.engines import period_map
+    >>> pmap = period_map(Model(Vb=5.0))
+    >>> image = pmap(pmap.sliding_guess())
+    >>> image.jacobian.shape, image.signature
+    ((2, 2), ((-1, 1, 'relative_velocity'), (1, -1, 'relative_velocity')))
+    >>> sorted({m.kind for m in image.margins})
+    ['crossing', 'decision']
     """
 
     start: NDArray[np.float64]
@@ -145,6 +188,35 @@ class PeriodMap(abc.ABC):
     engine: each run has ``starts``, ``ends`` and ``modes`` of its segments,
     ``switches`` ``(t, before, after, surface, state)``, ``final`` (the state where it
     ends) and ``segments(t, index) -> (4, n)``.
+
+    Attributes
+    ----------
+    model : Model
+    period : float
+        One excitation period [s].
+    periods : int
+        ``k``: the periods of one application.
+    sw : beltmdsm.integrate.switching.Switching
+        The model's switching rules.
+    engine : str
+        ``"closed_form"`` or ``"general"``.
+
+    See Also
+    --------
+    beltmdsm.periodic.tangential.TangentialMap : the closed-form engine.
+    beltmdsm.periodic.general.GeneralMap : the general engine.
+    beltmdsm.periodic.engines.period_map : the engine the model's laws allow.
+    beltmdsm.periodic.newton.fixed_point : Newton's method on a map.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.periodic.engines import period_map
+    >>> pmap = period_map(Model(Vb=5.0), periods=2)
+    >>> pmap.engine, pmap.periods, pmap.dimension
+    ('closed_form', 2, 2)
+    >>> len(pmap(pmap.sliding_guess()).phases)  # the state at phase 0 of each period
+    2
     """
 
     model: Model

@@ -26,7 +26,32 @@ ENGINES: dict[str, type[PeriodMap]] = {"closed_form": TangentialMap, "general": 
 
 def engine_of(model: Model) -> str:
     """The engine of the model's laws: ``"closed_form"`` where they have every fact of
-    `CLOSED_FORM_FACTS`, else ``"general"``."""
+    `CLOSED_FORM_FACTS`, else ``"general"``.
+
+    Parameters
+    ----------
+    model : Model
+
+    Returns
+    -------
+    {"closed_form", "general"}
+
+    Raises
+    ------
+    KeyError
+        For laws that ``generated.capabilities`` does not know (a model checks its
+        options, so not for a `beltmdsm.model.Model`).
+
+    See Also
+    --------
+    period_map : the map of that engine.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> engine_of(Model()), engine_of(Model(friction="stribeck"))
+    ('closed_form', 'general')
+    """
     return "closed_form" if all(model.fact(f)[0] for f in CLOSED_FORM_FACTS) else "general"
 
 
@@ -61,6 +86,24 @@ def period_map(
         start beyond floating point (`beltmdsm.settings.check_finite`).
     beltmdsm.model.Unsupported
         For ``engine="closed_form"`` where the laws lack a fact it needs.
+
+    See Also
+    --------
+    beltmdsm.periodic.base.PeriodMap : what it returns.
+    beltmdsm.periodic.newton.fixed_point : the shooting on it.
+    beltmdsm.periodic.family.MapFamily : the maps of one parameter's values.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> type(period_map(Model(Vb=5.0))).__name__, period_map(Model(Vb=5.0), 4).periods
+    ('TangentialMap', 4)
+    >>> period_map(Model(Vb=5.0), engine="general").dimension  # the full state
+    4
+    >>> period_map(Model(), engine="fast")
+    Traceback (most recent call last):
+    ...
+    ValueError: engine must be one of 'closed_form', 'general'; got 'fast'
     """
     if engine is not None and engine not in ENGINES:
         raise ValueError(f"engine must be one of {', '.join(map(repr, ENGINES))}; got {engine!r}")

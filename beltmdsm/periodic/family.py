@@ -41,6 +41,26 @@ class MapFamily:
     Newton's method on a bordered system by nothing measurable). Both sides must keep
     the switch structure of ``x``'s image: close to a tangency the step shrinks by
     tens until they do.
+
+    Raises
+    ------
+    ValueError
+        For ``param`` not a model parameter; `beltmdsm.errors.Refused` for a model
+        whose start is beyond floating point (`beltmdsm.settings.check_finite`).
+
+    See Also
+    --------
+    beltmdsm.continuation.branch.branch : the continuation that reads it.
+    beltmdsm.periodic.engines.period_map : one map.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from beltmdsm import Model, periodic_response
+    >>> r = periodic_response(Model(Vb=5.0))
+    >>> family = MapFamily(r.model, "Vb")
+    >>> family(5.0).periods, np.round(family.derivative(r.shooting_state, 5.0), 3)
+    (1, array([-0.629, -0.225]))
     """
 
     DERIVATIVE_STEP = 1e-6

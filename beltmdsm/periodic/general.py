@@ -61,6 +61,18 @@ class EventPeriod:
     switches : list of (t, before, after, surface, state)
     final : ndarray (4,)
         The state at the end of the period.
+
+    See Also
+    --------
+    GeneralMap : whose runs these are.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> pmap = GeneralMap(Model(Vb=5.0))
+    >>> _, _, period, _ = pmap.one_period(pmap.sliding_guess())
+    >>> [mode.name for mode in period.modes], period.final.shape
+    (['SLIP_BACK', 'SLIP_FORWARD', 'SLIP_BACK'], (4,))
     """
 
     segments: Any = field(repr=False)
@@ -106,6 +118,25 @@ class GeneralMap(PeriodMap):
     ------
     ValueError
         For ``periods < 1``, or an excitation without a period.
+
+    See Also
+    --------
+    beltmdsm.periodic.tangential.TangentialMap : the closed-form engine, where it applies.
+    beltmdsm.periodic.engines.period_map : the engine the laws allow.
+
+    Examples
+    --------
+    Where both engines apply they agree (tests/beltmdsm/periodic/test_general.py):
+
+    >>> import numpy as np
+    >>> from beltmdsm import Model, floquet
+    >>> from beltmdsm.periodic.newton import fixed_point
+    >>> pmap = GeneralMap(Model(Vb=5.0))
+    >>> point = fixed_point(pmap, pmap.sliding_guess())
+    >>> mu = np.linalg.eigvals(point.image.jacobian)
+    >>> closed_form = floquet(Vb=5.0).max_abs_multiplier
+    >>> bool(abs(np.max(np.abs(mu)) - closed_form) < 1e-8)
+    True
     """
 
     engine = "general"

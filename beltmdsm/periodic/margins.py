@@ -67,7 +67,45 @@ _TANGENTIAL = ("relative_velocity", "stick_forward", "stick_back")
 def crossing_ratio(sw: Switching, t: float, state: ArrayLike, before: Mode, surface: str) -> float:
     """The rate of a switching function at a crossing, along the mode before, over the
     rounding scale of the friction cone (an acceleration, as the rate of ``Vr`` and of
-    the cone's functions is): the ``crossing`` margin, and the grazing test."""
+    the cone's functions is): the ``crossing`` margin, and the grazing test.
+
+    Parameters
+    ----------
+    sw : beltmdsm.integrate.switching.Switching
+        The model's switching rules.
+    t : float
+        Time from phase 0 [s].
+    state : array_like (4,)
+        ``(X1, X1', X2, X2')`` at the crossing.
+    before : Mode
+        The mode before it.
+    surface : str
+        The surface crossed (`generated.hybrid.SURFACES`).
+
+    Returns
+    -------
+    float
+        ``|rate| / scale``, 0 where the scale vanishes; below `GRAZING_RATIO` the
+        crossing grazes.
+
+    Raises
+    ------
+    KeyError
+        For a surface that is not one of `generated.hybrid.SURFACES`.
+
+    See Also
+    --------
+    Margin : the margins of an orbit, this one of kind ``crossing``.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.periodic.engines import period_map
+    >>> pmap = period_map(Model(Vb=5.0))
+    >>> t, before, _, surface, state = pmap.one(pmap.sliding_guess())[2].switches[0]
+    >>> crossing_ratio(pmap.sw, t, state, before, surface) > GRAZING_RATIO
+    True
+    """
     rate = sw.rates(t, *state, float(before))[SURFACE_INDEX[surface]]
     scale = sw.scales(t, *state)[_SF]
     return float(abs(rate) / scale) if scale > 0 else 0.0
@@ -89,6 +127,20 @@ class Margin:
         Time from phase 0 [s].
     value : float
         Positive away from the change, zero at it.
+
+    See Also
+    --------
+    orbit_margins : computes them.
+    beltmdsm.continuation.edges : where a closing margin ends a response.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.periodic.engines import period_map
+    >>> pmap = period_map(Model(Vb=5.0))
+    >>> m = pmap(pmap.sliding_guess()).margins[0]
+    >>> m.kind, m.surface, m.mode.name, m.value > 0
+    ('crossing', 'relative_velocity', 'SLIP_BACK', True)
     """
 
     kind: MarginKind
@@ -106,6 +158,37 @@ def orbit_range(runs: list, component: int = 1) -> tuple[float, float]:
     `beltmdsm.periodic.general.EventPeriod` or a tangential run); ``component`` 0 is
     ``X1``, 1 ``X1'``. Each segment is sampled (`_SAMPLES_PER_S`) and an interior
     extreme is refined by a bounded search to 1e-12 s.
+
+    Parameters
+    ----------
+    runs : list
+        The periods of the orbit (`beltmdsm.periodic.base.MapImage` keeps them).
+    component : int
+        The state component: 0 ``X1``, 1 ``X1'``, 2 ``X2``, 3 ``X2'``.
+
+    Returns
+    -------
+    (float, float)
+        The smallest and the largest value.
+
+    Raises
+    ------
+    IndexError
+        For a component outside 0..3.
+
+    See Also
+    --------
+    beltmdsm.periodic.base.MapImage.velocity_range : ``X1'``'s of an image.
+    beltmdsm.periodic.observables.observables : the sampled extremes and means.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, periodic_response
+    >>> from beltmdsm.periodic.engines import period_map
+    >>> r = periodic_response(Model(Vb=5.0))
+    >>> image = period_map(r.model)(r.shooting_state)
+    >>> [round(v, 3) for v in orbit_range(image._runs, 0)]  # X1 [m]
+    [3.373, 6.623]
     """
     from scipy import optimize
 
@@ -170,8 +253,37 @@ def _pieces(pmap, runs):
 def orbit_margins(pmap: Any, runs: list, kinds: Sequence[str] = MARGIN_KINDS) -> list[Margin]:
     """The margins of the given kinds of the orbit made of ``runs`` (module docstring).
 
-    ``pmap`` is the period map that ran them (a `beltmdsm.periodic.base.PeriodMap`: its
-    switching rules ``sw``, ``period`` and ``periods``), ``runs`` its ``k`` periods.
+    Parameters
+    ----------
+    pmap : beltmdsm.periodic.base.PeriodMap
+        The period map that ran them (its switching rules ``sw``, ``period`` and
+        ``periods``).
+    runs : list
+        Its ``k`` periods.
+    kinds : sequence of str
+        Of `MARGIN_KINDS`.
+
+    Returns
+    -------
+    list of Margin
+
+    Raises
+    ------
+    IndexError
+        For ``runs`` empty while ``"approach"`` is asked for.
+
+    See Also
+    --------
+    beltmdsm.periodic.base.MapImage.margins_of : the margins of an image, kept.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.periodic.engines import period_map
+    >>> pmap = period_map(Model(Vb=5.0))
+    >>> image = pmap(pmap.sliding_guess())
+    >>> [m.kind for m in orbit_margins(pmap, image._runs, ("crossing",))]
+    ['crossing', 'crossing']
     """
     out = []
     for j, run in enumerate(runs):

@@ -55,6 +55,20 @@ class FixedPoint:
     residual : float
         ``max |P(x) - x|``.
     iterations : int
+
+    See Also
+    --------
+    fixed_point : finds it.
+    beltmdsm.periodic.response.response_from : the response of a fixed point.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.periodic.engines import period_map
+    >>> pmap = period_map(Model(Vb=5.0))
+    >>> point = fixed_point(pmap, pmap.sliding_guess())
+    >>> point.residual < 1e-10, point.image.jacobian.shape
+    (True, (2, 2))
     """
 
     state: NDArray[np.float64]
@@ -82,6 +96,29 @@ def fixed_point(pmap: PeriodMap, guess: ArrayLike, max_iter: int = 30) -> FixedP
         If the residual stops halving (over a few iterations), no damped step reduces
         it, or ``max_iter`` iterations leave it above `NEWTON_TOL` (relative to the
         state's scale).
+
+    See Also
+    --------
+    beltmdsm.periodic.shooting.periodic_response : the shooting with its guesses.
+    beltmdsm.periodic.engines.period_map : the map.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, NoPeriodicResponse
+    >>> from beltmdsm.periodic.engines import period_map
+    >>> pmap = period_map(Model(Vb=5.0))
+    >>> point = fixed_point(pmap, pmap.sliding_guess())
+    >>> [round(float(v), 3) for v in point.state]  # (X1, X1') at phase 0
+    [4.566, -6.146]
+
+    Where the backward-sliding orbit is no guess for it, Newton's method says so:
+
+    >>> far = period_map(Model(Vb=6.3))
+    >>> try:
+    ...     fixed_point(far, far.sliding_guess())
+    ... except NoPeriodicResponse as failure:
+    ...     print(failure)  # doctest: +ELLIPSIS
+    no periodic response found: Newton's method ...
     """
     what = "" if pmap.periods == 1 else f" of {pmap.periods} periods"
     x = np.array(guess, dtype=float)

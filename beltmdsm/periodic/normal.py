@@ -37,7 +37,35 @@ _NORMAL_PERIODS = 200
 
 @dataclass
 class NormalOrbit:
-    """The periodic normal motion: ``(X2, X2')`` at phase 0, its monodromy, its switches."""
+    """The periodic normal motion: ``(X2, X2')`` at phase 0, its monodromy, its switches.
+
+    Attributes
+    ----------
+    state0 : ndarray (2,)
+        ``(X2, X2')`` at phase 0.
+    period : float
+        The excitation period [s].
+    monodromy : ndarray (2, 2)
+        The normal block ``M_n`` of the response's monodromy.
+    multipliers : ndarray (2,)
+        Its eigenvalues: the normal pair of every closed-form `beltmdsm.periodic.floquet.Floquet`.
+    switches : list of (t, before, after, surface)
+        Contact lost and regained over one period.
+    iterations : int
+        Newton's iterations that polished it.
+
+    See Also
+    --------
+    normal_orbit : computes it (cached).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from beltmdsm import Model
+    >>> orbit = normal_orbit(Model())
+    >>> np.round(orbit.state0, 3), np.round(np.abs(orbit.multipliers), 3), orbit.switches
+    (array([12.521,  2.264]), array([0.701, 0.   ]), [])
+    """
 
     state0: np.ndarray
     period: float
@@ -151,10 +179,36 @@ def normal_orbit(model: Model) -> NormalOrbit:
     and the laws: a band or a map over ``beta1``, ``omega1``, ``mu_s`` or ``Vb``
     computes one normal orbit.
 
+    Parameters
+    ----------
+    model : Model
+
+    Returns
+    -------
+    NormalOrbit
+        The same object for models that differ only in what the normal equation
+        does not contain.
+
     Raises
     ------
-    beltmdsm.model.Unsupported
+    beltmdsm.errors.Unsupported
         Where the normal equation is not free of the tangential state (the law).
+    beltmdsm.errors.NoPeriodicResponse
+        Where the normal motion does not repeat itself (it loses contact irregularly).
+    ValueError
+        For an excitation without a period.
+
+    See Also
+    --------
+    beltmdsm.periodic.tangential.TangentialMap : the map that runs on it.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> normal_orbit(Model(Vb=5.0)) is normal_orbit(Model(Vb=9.0, mu_s=0.4))
+    True
+    >>> normal_orbit(Model(omega2=0.6)) is normal_orbit(Model())
+    False
     """
     require(model, "one_way_coupling", "the normal orbit")
     key = _normal_orbit_key(model)

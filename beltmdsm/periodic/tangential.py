@@ -77,9 +77,23 @@ class OnePeriodMap:
 
     Raises
     ------
-    beltmdsm.model.Unsupported
+    beltmdsm.errors.Unsupported
         Where a fact of `CLOSED_FORM_FACTS` does not hold for the model's laws (the
         law and the property).
+    beltmdsm.errors.NoPeriodicResponse
+        Where the normal motion has no periodic orbit.
+
+    See Also
+    --------
+    TangentialMap : its ``k``-fold map, the closed-form `beltmdsm.periodic.base.PeriodMap`.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> one = OnePeriodMap(Model(Vb=5.0))
+    >>> state, M_t, run, grazing = one(one.sliding_orbit())
+    >>> state.shape, M_t.shape, len(run.switches), grazing
+    ((2,), (2, 2), 2, None)
     """
 
     def __init__(self, model: Model, backend: Backend | None = None) -> None:
@@ -193,6 +207,24 @@ class TangentialMap(PeriodMap):
         For ``periods < 1``, or an excitation without a period.
     NoPeriodicResponse
         Where the normal motion has no periodic orbit.
+
+    See Also
+    --------
+    beltmdsm.periodic.general.GeneralMap : the general engine, every law.
+    beltmdsm.periodic.engines.period_map : the engine the laws allow.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from beltmdsm import Model, Unsupported
+    >>> pmap = TangentialMap(Model(Vb=5.0))
+    >>> np.round(np.abs(pmap.fixed_multipliers()), 3)  # the normal block's
+    array([0.701, 0.   ])
+    >>> try:
+    ...     TangentialMap(Model(friction="stribeck"))
+    ... except Unsupported as refusal:
+    ...     print(refusal)  # doctest: +ELLIPSIS
+    the closed-form period map: friction='stribeck': the slip-mode friction ... depends on X1' ...
     """
 
     engine = "closed_form"
@@ -245,6 +277,30 @@ def largest_sliding_velocity(pmap: OnePeriodMap) -> float:
     contact count. Where the slip-mode friction does not depend on the tangential state
     (the closed-form path's condition) it does not depend on ``Vb``: the sliding
     response grazes at the belt speed equal to it (`beltmdsm.continuation.band`).
+
+    Parameters
+    ----------
+    pmap : OnePeriodMap
+
+    Returns
+    -------
+    float
+        ``max X1'`` in contact [m/s], refined to 1e-12 s by a bounded search.
+
+    Raises
+    ------
+    beltmdsm.errors.NoPeriodicResponse
+        Where the sliding orbit is not isolated (`OnePeriodMap.sliding_orbit`).
+
+    See Also
+    --------
+    beltmdsm.continuation.band.floquet_band : the grazing edge it predicts.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> round(largest_sliding_velocity(OnePeriodMap(Model(Vb=5.0))), 3)
+    6.415
     """
     x0 = pmap.sliding_orbit()
     engine = pmap.engine
