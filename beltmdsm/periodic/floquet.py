@@ -130,7 +130,35 @@ class Floquet:
 
     @classmethod
     def of(cls, resp: PeriodicResponse) -> Floquet:
-        """The multipliers of a periodic response and what they say."""
+        """The multipliers of a periodic response and what they say.
+
+        Parameters
+        ----------
+        resp : PeriodicResponse
+            A forced response (`beltmdsm.periodic.shooting.periodic_response`) or a
+            cycle's (`beltmdsm.periodic.response.response_of_cycle`).
+
+        Returns
+        -------
+        Floquet
+            NaN multipliers and ``stable`` None where the response grazes.
+
+        Raises
+        ------
+        numpy.linalg.LinAlgError
+            Where the monodromy holds a NaN (eigenvalues do not converge).
+
+        See Also
+        --------
+        floquet : the response and its multipliers in one call.
+
+        Examples
+        --------
+        >>> from beltmdsm import Floquet, periodic_response
+        >>> f = Floquet.of(periodic_response(Vb=5.0, periods=4))
+        >>> f.verdict, f.response.periods, round(f.max_abs_multiplier, 3)
+        ('stable', 4, 0.587)
+        """
         if resp.autonomous:
             return cls._of_cycle(resp)
         n_rev = sum(

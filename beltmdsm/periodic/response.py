@@ -123,7 +123,29 @@ class PeriodicResponse:
         """``(x1_range, velocity_range)``: ``(min, max)`` of ``X1`` and ``X1'`` over the orbit.
 
         A cycle carries them; a forced response's are read from one application of its
-        period map at ``state0`` (computed once).
+        period map at ``state0`` (computed once), its extremes refined to 1e-12 s
+        (`beltmdsm.periodic.margins.orbit_range`).
+
+        Returns
+        -------
+        x1_range, velocity_range : (float, float)
+            ``X1`` [m] and ``X1'`` [m/s].
+
+        Raises
+        ------
+        beltmdsm.errors.NoPeriodicResponse
+            Where the period map fails at ``state0`` (not for a response it found).
+
+        See Also
+        --------
+        beltmdsm.periodic.observables.observables : the observables of a branch point.
+
+        Examples
+        --------
+        >>> from beltmdsm import periodic_response
+        >>> x1, v1 = periodic_response(Vb=5.0).ranges()
+        >>> [round(v, 3) for v in x1 + v1]
+        [3.373, 6.623, -6.412, 6.985]
         """
         if self._ranges is None:
             if self.autonomous:
