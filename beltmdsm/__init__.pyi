@@ -21,13 +21,10 @@ from .errors import (
     Unsupported,
 )
 from .model import Model
-from .periodic.floquet import (
-    Floquet,
-    PeriodicResponse,
-    floquet,
-    periodic_response,
-    periodic_start,
-)
+from .periodic.floquet import Floquet, floquet
+from .periodic.response import PeriodicResponse
+from .periodic.shooting import periodic_response
+from .periodic.start import periodic_start
 from .prediction.predict import Prediction, predict
 from .run.summary import Summary
 from .settings import SolverSettings

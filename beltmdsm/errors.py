@@ -15,7 +15,9 @@ form one hierarchy under `BeltmdsmError`, and each keeps its builtin base, so th
   naming the law and the missing property.
 * `StepTooSmall` (an `ArithmeticError`): an integrator cannot go on at the
   tolerances given.
-* `NoPeriodicResponse` (a `RuntimeError`): no periodic response is found.
+* `NoPeriodicResponse` (a `RuntimeError`): no periodic response is found;
+  `ShorterPeriod`, one of them: the response of ``k`` periods asked for is one of a
+  divisor of ``k`` periods.
 
 The command line reports each in one line, exit status 2 (`beltmdsm.cli.flags`).
 `NotApplicable` (a `ValueError`: the superposition's closed forms do not exist for a
@@ -27,8 +29,9 @@ here (the same classes): the generated modules raise `Unsupported` and cannot im
 beltmdsm (the layers point derive -> generated -> beltmdsm), and one class of one name
 is what ``except Unsupported`` needs to catch a refusal of either layer. The classes
 are also importable from the modules that raised them before (`beltmdsm.model`,
-`beltmdsm.periodic.periodmap`, `beltmdsm.periodic.floquet`, `beltmdsm.continuation.edges`,
-`beltmdsm.integrate.superposition`): the same objects.
+`beltmdsm.continuation.edges`, `beltmdsm.integrate.superposition`): the same objects.
+`NoPeriodicResponse` is imported from here alone (it was defined in
+``beltmdsm.periodic.periodmap``, now cut by concept).
 
 Examples
 --------
@@ -56,6 +59,7 @@ __all__ = [
     "Unsupported",
     "StepTooSmall",
     "NoPeriodicResponse",
+    "ShorterPeriod",
     "NotApplicable",
     "NoEdge",
 ]
@@ -169,6 +173,40 @@ class NoPeriodicResponse(BeltmdsmError, RuntimeError):
     ...     print(isinstance(err, BeltmdsmError), err)
     True Newton's method did not converge at Vb = 9
     """
+
+
+class ShorterPeriod(NoPeriodicResponse):
+    """No response of minimal period ``asked`` periods: the attractor is a response of
+    ``periods``, a divisor of it (its orbit repeats after ``asked`` periods too, but is
+    not a new response). ``periodic_response(..., periods=periods)`` computes it
+    (``floquet --periods K`` reports it so).
+
+    Parameters
+    ----------
+    asked : int
+        The periods asked for.
+    periods : int
+        The periods of the response found, a divisor of ``asked``.
+    how : str
+        How it was found (the message goes on with ``periods``).
+    """
+
+    def __init__(self, asked: int, periods: int, how: str) -> None:
+        super().__init__(
+            f"no response of minimal period {_periods(asked)} found: {how} "
+            f"{_periods(periods)}, whose orbit repeats after {asked} too "
+            f"(periods={periods} computes it)"
+        )
+        self.asked, self.periods, self.how = asked, periods, how
+
+    def __reduce__(self) -> tuple[type, tuple[int, int, str]]:
+        # rebuilt from what built it (the default passes the message alone, which this
+        # __init__ does not take: raised in a worker process it did not arrive)
+        return (type(self), (self.asked, self.periods, self.how))
+
+
+def _periods(k: int) -> str:
+    return "1 period" if k == 1 else f"{k} periods"
 
 
 class NotApplicable(BeltmdsmError, ValueError):

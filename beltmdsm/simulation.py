@@ -154,7 +154,7 @@ def simulate(
         Eq. (9), or, without excitation where steady sliding is unstable, that
         equilibrium moved by `START_PERTURBATION` along its unstable direction
         (`equilibrium_start`; the summary's ``start_perturbation``). To start on the
-        periodic response, pass `beltmdsm.periodic.floquet.periodic_start` of the model.
+        periodic response, pass `beltmdsm.periodic.start.periodic_start` of the model.
     progress : bool
         show the simulated time on stderr (tqdm) once the run takes more than 2 s;
         it advances at every switch (a run without switches shows its elapsed time)
@@ -181,7 +181,7 @@ def simulate(
     if "start" in kw or "perturbation" in kw:
         raise TypeError(
             "simulate() takes the start state as y0: for a start on the periodic "
-            "response pass y0=beltmdsm.periodic.floquet.periodic_start(model, perturbation)"
+            "response pass y0=beltmdsm.periodic.start.periodic_start(model, perturbation)"
         )
     names = SolverSettings.names()
     changes = {k: kw.pop(k) for k in list(kw) if k in names}

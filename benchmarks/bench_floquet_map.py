@@ -28,7 +28,8 @@ import time
 import numpy as np
 
 from beltmdsm.continuation.floquet_map import floquet_map
-from beltmdsm.periodic.floquet import NoPeriodicResponse, floquet
+from beltmdsm.errors import NoPeriodicResponse
+from beltmdsm.periodic.floquet import floquet
 
 X, X_RANGE = "Vb", (0.5, 12.0)
 Y, Y_RANGE = "beta1", (0.02, 0.6)

@@ -1,8 +1,8 @@
 """Cost of the general Floquet path against the closed-form one (issue 19, item 5).
 
 Times, in one run on one core, after compiling the kernels
-(beltmdsm/periodic/periodmap.py: `TangentialMap` is the closed-form path, `GeneralMap`
-the general one on beltmdsm/periodic/variational.py):
+(beltmdsm/periodic/tangential.py: `TangentialMap` is the closed-form path;
+beltmdsm/periodic/general.py: `GeneralMap` the general one on beltmdsm/periodic/variational.py):
 
 * ``floquet()`` from scratch at belt speeds over [0.5, 12] (the sliding guess, Newton's
   method, and forward iteration where Newton fails), Coulomb friction on the
@@ -26,9 +26,10 @@ import time
 import numpy as np
 
 from beltmdsm.continuation.band import floquet_band
+from beltmdsm.errors import NoPeriodicResponse
 from beltmdsm.model import Model
-from beltmdsm.periodic.floquet import NoPeriodicResponse, floquet
-from beltmdsm.periodic.periodmap import period_map
+from beltmdsm.periodic.engines import period_map
+from beltmdsm.periodic.floquet import floquet
 
 STRIBECK = dict(friction="stribeck", mu_k=0.25, v_s=1.0)
 CASES = (

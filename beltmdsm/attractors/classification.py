@@ -8,7 +8,7 @@ one per excitation period):
 * ``periodic``: the last samples repeat after ``k`` periods to `RETURN_TOL` (searched up
   to a third of the samples, far beyond the 12 of `beltmdsm.periodic.locked.LOCK_LIMIT`),
   and Newton's method on the ``k``-fold period map from the last sample converges
-  (`beltmdsm.periodic.floquet.periodic_response`): ``periods`` is ``k``, minimal. Its
+  (`beltmdsm.periodic.shooting.periodic_response`): ``periods`` is ``k``, minimal. Its
   rotation number about the samples' centre is then a fraction ``p / k``.
 * ``quasi_periodic``: no return, the samples on a closed curve (an invariant circle of
   the stroboscopic map, a torus of the flow: `beltmdsm.periodic.locked.NotLocked`) and
@@ -42,10 +42,10 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..errors import NoPeriodicResponse
 from ..model import Backend, Model, as_model, excitation_period
-from ..periodic.floquet import periodic_response
 from ..periodic.locked import NotLocked, stroboscope
-from ..periodic.periodmap import NoPeriodicResponse
+from ..periodic.shooting import periodic_response
 from .lyapunov import lyapunov
 
 __all__ = [

@@ -197,7 +197,7 @@ def lyapunov(
         Or the keywords it is built from (``**params``).
     y0 : array_like (4,), optional
         The start; default the unforced equilibrium at rest (as `simulate`). To start
-        on the periodic response pass `beltmdsm.periodic.floquet.periodic_start`.
+        on the periodic response pass `beltmdsm.periodic.start.periodic_start`.
     t_end : float
         The whole run [s]: the transient, the alignment of the frame, the average.
     t_transient : float, optional

@@ -33,7 +33,7 @@ from typing import Any
 from derive.cli import writable_file
 from generated.parameters import PARAMETERS
 
-from ..errors import StepTooSmall
+from ..errors import NoPeriodicResponse, StepTooSmall
 from ..model import OPTION_DEFAULTS, OPTION_DOCS, OPTIONS, Model, check_domain
 from ..settings import CONTACT_LOSS, DEFAULT_T_END, METHODS, SOLVERS, SolverSettings
 
@@ -88,7 +88,7 @@ def register(
     (`beltmdsm.errors.Refused`, naming the flags of the settings it refuses), an
     integrator that cannot go on at the tolerances given
     (`beltmdsm.errors.StepTooSmall`, naming ``--rtol/--atol``) and a periodic
-    response that is not found (`beltmdsm.periodic.floquet.NoPeriodicResponse`). The
+    response that is not found (`beltmdsm.errors.NoPeriodicResponse`). The
     system refusing (an OSError): one line, exit status 1. A warning while it runs
     (a cache file recomputed) is one line on stderr, ``PROG: warning: ...``.
     """
@@ -170,12 +170,7 @@ def _dispatch(args):
     except StepTooSmall as err:
         print(f"{args.parser.prog}: error: argument --rtol/--atol: {err}", file=sys.stderr)
         return 2
-    except RuntimeError as err:
-        # the module is loaded where the error comes from; not imported here, so that
-        # the command line starts without the analyses
-        floquet = sys.modules.get("beltmdsm.periodic.floquet")
-        if floquet is None or not isinstance(err, floquet.NoPeriodicResponse):
-            raise
+    except NoPeriodicResponse as err:
         print(f"{args.parser.prog}: error: {err}", file=sys.stderr)
         return 2
     except BrokenPipeError:

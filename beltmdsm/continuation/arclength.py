@@ -14,8 +14,11 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import NoPeriodicResponse
 from ..integrate.switching import Mode
-from ..periodic.periodmap import NEWTON_TOL, MapFamily, MapImage, NoPeriodicResponse
+from ..periodic.base import MapImage
+from ..periodic.family import MapFamily
+from ..periodic.newton import NEWTON_TOL
 
 __all__ = ["BranchPoint"]
 
@@ -38,7 +41,7 @@ class BranchPoint:
         block's).
     max_abs_multiplier : float
     stable : bool or None
-        None where the orbit grazes (`beltmdsm.periodic.floquet.GRAZING_RATIO`).
+        None where the orbit grazes (`beltmdsm.periodic.margins.GRAZING_RATIO`).
     n_reversals, n_sticks : int
         Per orbit (``k`` periods).
     tangent : float

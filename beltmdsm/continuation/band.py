@@ -26,9 +26,10 @@ from typing import Any
 import numpy as np
 
 from .._calling import ranged
-from ..errors import Refused
+from ..errors import NoPeriodicResponse, Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain, excitation_period
-from ..periodic.floquet import FORWARD_PERIODS, NoPeriodicResponse, floquet
+from ..periodic.floquet import floquet
+from ..periodic.shooting import FORWARD_PERIODS
 from ..settings import MAX_BAND_POINTS, MIN_TOL_ULPS
 from .band_end import _band_existence
 from .band_grid import (
@@ -74,7 +75,7 @@ def floquet_band(
     tangency, a grazing or a fold, located exactly (to about 1e-6; `Edge.accuracy`).
     For ``param = "Vb"`` the grazing point of the backward-sliding response is
     computed exactly: it is that response's largest velocity in contact, which does
-    not depend on ``Vb`` (`beltmdsm.periodic.floquet.largest_sliding_velocity`).
+    not depend on ``Vb`` (`beltmdsm.periodic.tangential.largest_sliding_velocity`).
 
     Changes closer together than ``tol`` cannot be told apart at that tolerance: they
     are one edge, whose sides are the outer sides of the first and the last, and the
@@ -102,7 +103,7 @@ def floquet_band(
     periods : int
         ``k > 1``: the band of the response of ``k`` periods (a value without a
         neighbour is seeded from the attractor of the period map,
-        `beltmdsm.periodic.floquet.periodic_response`).
+        `beltmdsm.periodic.shooting.periodic_response`).
     progress : bool
         Show the evaluations on stderr (tqdm) once they take more than 2 s.
 

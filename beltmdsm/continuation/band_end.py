@@ -15,8 +15,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..periodic.floquet import Floquet, NoPeriodicResponse, floquet, response_from
-from ..periodic.periodmap import MARGIN_KINDS, FixedPoint, MapFamily, fixed_point
+from ..errors import NoPeriodicResponse
+from ..periodic.family import MapFamily
+from ..periodic.floquet import Floquet, floquet
+from ..periodic.margins import MARGIN_KINDS
+from ..periodic.newton import FixedPoint, fixed_point
+from ..periodic.response import response_from
 from .band_result import Edge
 from .branch import continue_branch
 from .branch_parts import SpecialPoint

@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from ..periodic.floquet import largest_sliding_velocity
+from ..periodic.tangential import largest_sliding_velocity
 from .band_result import Edge
 from .edges import multiplier_kind
 

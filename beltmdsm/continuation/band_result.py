@@ -13,7 +13,7 @@ from typing import Any
 
 from .._tables import DataFrame
 from ..model import Model
-from ..periodic.periodmap import engine_of
+from ..periodic.engines import engine_of
 
 __all__ = ["Edge", "BandPoint", "BandFailure", "Band"]
 
@@ -139,7 +139,7 @@ class BandFailure:
     ----------
     value : float
     reason : str
-        The message of `beltmdsm.periodic.periodmap.NoPeriodicResponse`.
+        The message of `beltmdsm.errors.NoPeriodicResponse`.
 
     See Also
     --------
@@ -279,7 +279,7 @@ class Band:
         """The JSON of ``floquet-band --json``: ``param``, ``unstable``, ``edges``,
         ``grazing_points``, ``no_periodic_response``, ``grid``, ``failed``, ``tol``,
         ``merged_away``, ``tension``, ``contact``, ``friction`` and ``engine`` (the
-        period map of the model's laws, `beltmdsm.periodic.periodmap.engine_of`)."""
+        period map of the model's laws, `beltmdsm.periodic.engines.engine_of`)."""
         return {
             "param": self.param,
             "unstable": [list(r) for r in self.unstable],

@@ -2,7 +2,7 @@
 
 A response of Eq. (4) of ``k`` excitation periods is a zero of ``G(x, p) = P_p(x) - x``,
 with ``P_p`` the ``k``-fold period map at the parameter value ``p``
-(`beltmdsm.periodic.periodmap.MapFamily`). `continue_branch` follows the curve of zeros in
+(`beltmdsm.periodic.family.MapFamily`). `continue_branch` follows the curve of zeros in
 ``(x, p)`` by pseudo-arclength continuation, so it passes folds: a secant predictor
 along the unit tangent (the null vector of ``[dP/dx - I, dP/dp]``, in coordinates
 scaled by the state's and the range's size), a corrector by Newton's method on ``G = 0``
@@ -44,8 +44,9 @@ import numpy as np
 
 from ..errors import Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, is_autonomous
-from ..periodic.floquet import PeriodicResponse, periodic_response
-from ..periodic.periodmap import MapFamily
+from ..periodic.family import MapFamily
+from ..periodic.response import PeriodicResponse
+from ..periodic.shooting import periodic_response
 from .arclength import _Continuation
 from .branch_parts import Branch, SpecialPoint, _recorded_rows, record_points
 from .branch_walk import _walk
@@ -67,7 +68,7 @@ def continue_branch(
     Parameters
     ----------
     start : PeriodicResponse
-        A response (`beltmdsm.periodic.floquet.periodic_response`, ``periods=k`` for a
+        A response (`beltmdsm.periodic.shooting.periodic_response`, ``periods=k`` for a
         locked one; a self-excited cycle's, without excitation, continues as a
         branch of cycles, `beltmdsm.cycles.branch.cycle_branch_from`).
     param : str
@@ -166,7 +167,7 @@ def branch(
 ) -> Branch:
     """The branch of the response of ``periods`` periods at a point (`continue_branch`).
 
-    The response is found as `beltmdsm.periodic.floquet.periodic_response` finds it
+    The response is found as `beltmdsm.periodic.shooting.periodic_response` finds it
     (``periods > 1``: seeded from the attractor of the period map). Without excitation
     (`beltmdsm.model.is_autonomous`) it is the branch of self-excited cycles born at
     the Hopf point of steady sliding in ``[lo, hi]``

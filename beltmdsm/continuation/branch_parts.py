@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 from .._tables import DataFrame
 from ..errors import Refused
 from ..model import Model
-from ..periodic.periodmap import engine_of
+from ..periodic.engines import engine_of
 
 __all__ = ["LOCATE_TOL", "SpecialPoint", "BranchPart", "Branch", "record_points"]
 

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..periodic.periodmap import FixedPoint, NoPeriodicResponse, fixed_point
+from ..errors import NoPeriodicResponse
+from ..periodic.newton import FixedPoint, fixed_point
 from .branch_parts import LOCATE_TOL, SpecialPoint
 from .edges import NoEdge, locate_end
 from .special import regula_falsi, special_between

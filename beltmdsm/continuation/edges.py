@@ -1,6 +1,6 @@
 """What happens at the edge of a periodic response: bifurcation kinds, classified and located.
 
-A periodic response (of period ``k T``, `beltmdsm.periodic.periodmap`) changes at a parameter
+A periodic response (of period ``k T``, `beltmdsm.periodic.base`) changes at a parameter
 value in one of these ways (docs/modelling.md#bifurcations says what a run near each
 looks like):
 
@@ -13,7 +13,7 @@ looks like):
   through it.
 * ``grazing``: a segment of the orbit touches a switching surface that it did not
   cross, or Filippov's choice at a switch reaches a tie (a stick phase appears or
-  disappears): the switch structure changes (`beltmdsm.periodic.periodmap.Margin` of kind
+  disappears): the switch structure changes (`beltmdsm.periodic.margins.Margin` of kind
   ``approach`` or ``decision`` reaches zero). The response may go on with the new
   structure, or end.
 * ``tangency``: a crossing of the orbit becomes tangential (a ``crossing`` margin
@@ -42,16 +42,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import NoEdge  # its home; importable here as before
-from ..periodic.periodmap import (
-    MARGIN_KINDS,
-    FixedPoint,
-    MapFamily,
-    Margin,
+from ..errors import (
+    NoEdge,  # its home; importable here as before
     NoPeriodicResponse,
-    PeriodMap,
-    fixed_point,
 )
+from ..periodic.base import PeriodMap
+from ..periodic.family import MapFamily
+from ..periodic.margins import MARGIN_KINDS, Margin
+from ..periodic.newton import FixedPoint, fixed_point
 
 __all__ = [
     "KINDS",
@@ -128,7 +126,7 @@ def margin_kind(margin: Margin) -> str:
     Parameters
     ----------
     margin : Margin
-        `beltmdsm.periodic.periodmap.Margin`.
+        `beltmdsm.periodic.margins.Margin`.
 
     Returns
     -------
@@ -141,7 +139,7 @@ def margin_kind(margin: Margin) -> str:
     Examples
     --------
     >>> from beltmdsm.integrate.switching import Mode
-    >>> from beltmdsm.periodic.periodmap import Margin
+    >>> from beltmdsm.periodic.margins import Margin
     >>> margin_kind(Margin("crossing", "relative_velocity", Mode.SLIP_BACK, 0.7, 0.02))
     'tangency'
     >>> margin_kind(Margin("approach", "relative_velocity", Mode.SLIP_BACK, 0.7, 0.02))
@@ -173,7 +171,7 @@ def counterpart(margin, margins, window):
     Examples
     --------
     >>> from beltmdsm.integrate.switching import Mode
-    >>> from beltmdsm.periodic.periodmap import Margin
+    >>> from beltmdsm.periodic.margins import Margin
     >>> m = Margin("crossing", "relative_velocity", Mode.SLIP_BACK, 0.70, 0.02)
     >>> others = [Margin("crossing", "relative_velocity", Mode.SLIP_BACK, 0.72, 0.01),
     ...           Margin("crossing", "relative_velocity", Mode.SLIP_FORWARD, 0.70, 0.1)]
@@ -210,7 +208,7 @@ def closing_margins(
     Raises
     ------
     AttributeError
-        Where an item of ``a`` or ``b`` is no `beltmdsm.periodic.periodmap.Margin`.
+        Where an item of ``a`` or ``b`` is no `beltmdsm.periodic.margins.Margin`.
 
     See Also
     --------
@@ -222,7 +220,8 @@ def closing_margins(
     tangency near 6.16 (`locate_end` places it exactly):
 
     >>> from beltmdsm import Model, periodic_response
-    >>> from beltmdsm.periodic.periodmap import MapFamily, fixed_point
+    >>> from beltmdsm.periodic.family import MapFamily
+    >>> from beltmdsm.periodic.newton import fixed_point
     >>> family = MapFamily(Model(), "Vb")
     >>> a = fixed_point(family(6.0), periodic_response(Model(Vb=6.0)).shooting_state)
     >>> b = fixed_point(family(6.1), a.state)
@@ -274,7 +273,8 @@ class End:
     Examples
     --------
     >>> from beltmdsm import Model, periodic_response
-    >>> from beltmdsm.periodic.periodmap import MapFamily, fixed_point
+    >>> from beltmdsm.periodic.family import MapFamily
+    >>> from beltmdsm.periodic.newton import fixed_point
     >>> family = MapFamily(Model(), "Vb")
     >>> a = fixed_point(family(6.0), periodic_response(Model(Vb=6.0)).shooting_state)
     >>> b = fixed_point(family(6.1), a.state)
@@ -340,7 +340,7 @@ def locate_end(
     required : float
         Raise NoEdge when the trials end with an accuracy above it.
     kinds : tuple of str
-        The kinds of margin that may close (`beltmdsm.periodic.periodmap.MARGIN_KINDS`); where
+        The kinds of margin that may close (`beltmdsm.periodic.margins.MARGIN_KINDS`); where
         the kind is known, a narrower choice saves the search of the ``approach``
         margins.
 
@@ -368,7 +368,8 @@ def locate_end(
     of the relative velocity's zero in backward slip becomes tangential):
 
     >>> from beltmdsm import Model, periodic_response
-    >>> from beltmdsm.periodic.periodmap import MapFamily, fixed_point
+    >>> from beltmdsm.periodic.family import MapFamily
+    >>> from beltmdsm.periodic.newton import fixed_point
     >>> family = MapFamily(Model(), "Vb")
     >>> a = fixed_point(family(6.0), periodic_response(Model(Vb=6.0)).shooting_state)
     >>> b = fixed_point(family(6.1), a.state)
@@ -448,7 +449,7 @@ def log_max_multiplier(pmap: PeriodMap, point: FixedPoint) -> tuple[float, compl
     pmap : PeriodMap
         The period map at the response's parameter values (its fixed multipliers).
     point : FixedPoint
-        The response (`beltmdsm.periodic.periodmap.fixed_point`).
+        The response (`beltmdsm.periodic.newton.fixed_point`).
 
     Returns
     -------
@@ -468,7 +469,8 @@ def log_max_multiplier(pmap: PeriodMap, point: FixedPoint) -> tuple[float, compl
     Examples
     --------
     >>> from beltmdsm import Model, periodic_response
-    >>> from beltmdsm.periodic.periodmap import MapFamily, fixed_point
+    >>> from beltmdsm.periodic.family import MapFamily
+    >>> from beltmdsm.periodic.newton import fixed_point
     >>> family = MapFamily(Model(), "Vb")
     >>> a = fixed_point(family(6.0), periodic_response(Model(Vb=6.0)).shooting_state)
     >>> b = fixed_point(family(6.1), a.state)

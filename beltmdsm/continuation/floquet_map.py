@@ -27,7 +27,7 @@ continuation in ``y``, row by row, not on a grid of pixels:
   of the tolerance). A fold is continued by a short branch
   (`beltmdsm.continuation.branch.continue_branch`) across the predicted fold. Where ``x`` is
   ``Vb`` and the response slides back throughout, its grazing point is exact: its
-  largest velocity in contact (`beltmdsm.periodic.floquet.largest_sliding_velocity`,
+  largest velocity in contact (`beltmdsm.periodic.tangential.largest_sliding_velocity`,
   as the band finds it).
 * A curve that cannot be continued on a row ends there; a band on that row, on every
   row where no curve is followed, and on every ``check_every``-th row, finds the
@@ -53,10 +53,9 @@ from typing import Any
 import numpy as np
 
 from .._calling import mapped
-from ..errors import Refused
+from ..errors import NoPeriodicResponse, Refused
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
-from ..periodic.floquet import NoPeriodicResponse
-from ..periodic.periodmap import MapFamily
+from ..periodic.family import MapFamily
 from ..settings import MAX_MAP_ROWS
 from .band import floquet_band
 from .edges import NoEdge

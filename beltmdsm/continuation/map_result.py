@@ -14,7 +14,7 @@ import numpy as np
 
 from .._tables import DataFrame
 from ..model import Model
-from ..periodic.periodmap import engine_of
+from ..periodic.engines import engine_of
 
 __all__ = ["Curve", "FloquetMap"]
 

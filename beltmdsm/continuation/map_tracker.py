@@ -14,8 +14,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..periodic.floquet import NoPeriodicResponse, largest_sliding_velocity, response_from
-from ..periodic.periodmap import MARGIN_KINDS, Margin, engine_of, fixed_point
+from ..errors import NoPeriodicResponse
+from ..periodic.engines import engine_of
+from ..periodic.margins import MARGIN_KINDS, Margin
+from ..periodic.newton import fixed_point
+from ..periodic.response import response_from
+from ..periodic.tangential import largest_sliding_velocity
 from .band_result import Band
 from .branch import continue_branch
 from .edges import (

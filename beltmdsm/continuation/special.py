@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from ..periodic.periodmap import NoPeriodicResponse
+from ..errors import NoPeriodicResponse
 from .branch_parts import LOCATE_TOL, SpecialPoint
 from .edges import multiplier_kind
 

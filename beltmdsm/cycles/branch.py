@@ -46,8 +46,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..continuation.branch_parts import Branch, SpecialPoint
+from ..errors import NoPeriodicResponse
 from ..model import MODEL_PARAMETERS, Backend, Model, is_autonomous
-from ..periodic.periodmap import NoPeriodicResponse
 from .continuation import PERIOD_LIMIT, Continuation, CyclePoint, walk
 from .cycle import Cycle, cycle
 from .flow import CycleFlow

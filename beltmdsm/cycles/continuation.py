@@ -20,7 +20,8 @@ from numpy.typing import NDArray
 
 from ..continuation.branch_parts import SpecialPoint
 from ..continuation.special import regula_falsi, special_between
-from ..periodic.periodmap import NEWTON_TOL, NoPeriodicResponse
+from ..errors import NoPeriodicResponse
+from ..periodic.newton import NEWTON_TOL
 from .flow import CycleFlow, FlowImage, orbit_observables, split_multipliers
 from .stick import cross_stick, stick_ahead, sticks
 

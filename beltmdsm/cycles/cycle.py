@@ -52,7 +52,7 @@ disturb Newton's method (``M - I`` is regular in those directions).
 See docs/modelling.md#self-excited-cycles.
 
 **Grazing.** A crossing of ``Vr = 0`` reached with a vanishing rate
-(`beltmdsm.periodic.periodmap.GRAZING_RATIO`) is reported as for forced responses:
+(`beltmdsm.periodic.margins.GRAZING_RATIO`) is reported as for forced responses:
 ``grazing`` set, no multiplier (NaN), ``stable`` None.
 """
 
@@ -68,19 +68,15 @@ from numpy.typing import ArrayLike, NDArray
 
 from generated import hybrid, unforced
 
+from ..errors import NoPeriodicResponse
 from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.switching import Mode, Switching
 from ..model import Backend, Model, as_model
 from ..periodic import variational
-from ..periodic.periodmap import (
-    GRAZING_RATIO,
-    NEWTON_TOL,
-    RTOL,
-    EventPeriod,
-    NoPeriodicResponse,
-    crossing_ratio,
-    orbit_range,
-)
+from ..periodic.base import RTOL
+from ..periodic.general import EventPeriod
+from ..periodic.margins import GRAZING_RATIO, crossing_ratio, orbit_range
+from ..periodic.newton import NEWTON_TOL
 from ..settings import SolverSettings
 from .seed import (
     SEED_AMPLITUDE,
@@ -104,10 +100,10 @@ __all__ = [
     "SETTLE_TOL",
 ]
 
-#: Dense samples per period of a shooting run (as `beltmdsm.periodic.periodmap.GeneralMap`).
+#: Dense samples per period of a shooting run (as `beltmdsm.periodic.general.GeneralMap`).
 _DENSE_SAMPLES = 50
 #: Halvings of a Newton step before the method counts as stalled, and the iterations
-#: over which the residual must halve (as `beltmdsm.periodic.periodmap.fixed_point`).
+#: over which the residual must halve (as `beltmdsm.periodic.newton.fixed_point`).
 _LINE_SEARCH = 8
 _STAGNATION = 2
 

@@ -3,7 +3,7 @@
 A self-excited cycle of period ``T`` through ``x`` is a zero of ``phi_T(x; p) - x``,
 ``phi`` the flow of the hybrid system (the event-driven run of
 `beltmdsm.integrate.events` at the period maps' tolerance
-`beltmdsm.periodic.periodmap.RTOL`), closed by a phase condition. `CycleFlow` gives
+`beltmdsm.periodic.base.RTOL`), closed by a phase condition. `CycleFlow` gives
 what the continuation of such a zero needs at ``(x, T, p)``: the end state, its
 Jacobian in ``x`` (the monodromy by the variational equations and the saltation
 matrices, `beltmdsm.periodic.variational`), in ``T`` (the field at the end) and in
@@ -29,19 +29,19 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import minimize_scalar
 
-from ..errors import StepTooSmall
+from ..errors import NoPeriodicResponse, StepTooSmall
 from ..integrate.events import integrate_events
 from ..integrate.switching import Mode, Switching
 from ..integrate.trajectory import Run
 from ..model import Backend, Model, is_autonomous
 from ..periodic import variational
-from ..periodic.periodmap import RTOL, NoPeriodicResponse
+from ..periodic.base import RTOL
 from ..settings import SolverSettings
 
 __all__ = ["CycleFlow", "FlowImage", "Observables", "orbit_observables", "split_multipliers"]
 
 #: Relative step of the central differences in the parameter (as
-#: `beltmdsm.periodic.periodmap.MapFamily`) and in the state (the section's gradient).
+#: `beltmdsm.periodic.family.MapFamily`) and in the state (the section's gradient).
 P_STEP = 1e-6
 X_STEP = 1e-6
 #: Samples of a period before the extremes are refined.

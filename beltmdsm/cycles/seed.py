@@ -19,10 +19,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from generated import unforced
 
+from ..errors import NoPeriodicResponse
 from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.switching import SURFACE_INDEX, Switching
 from ..model import Backend, Model, as_model, initial_state, is_autonomous
-from ..periodic.periodmap import NoPeriodicResponse
 from ..settings import SolverSettings
 
 __all__ = [
@@ -70,7 +70,7 @@ def require_autonomous(model: Model, analysis: str = "a self-excited cycle") -> 
         raise ValueError(
             f"{analysis}: the model is forced (alpha_t Omega_t or alpha_n Omega_n is not "
             "zero): its periodic responses have the excitation's period "
-            "(beltmdsm.periodic.floquet.periodic_response)"
+            "(beltmdsm.periodic.shooting.periodic_response)"
         )
     if model["Vb"] == 0:
         raise NoPeriodicResponse(

@@ -20,8 +20,8 @@ import math
 import numpy as np
 
 from ..continuation.branch_parts import LOCATE_TOL, SpecialPoint
+from ..errors import NoPeriodicResponse
 from ..integrate.switching import Mode
-from ..periodic.periodmap import NoPeriodicResponse
 
 __all__ = ["measure", "stick_ahead", "locate", "cross_stick", "sticks"]
 

@@ -6,8 +6,8 @@ repeat with a period ``k T``; the omega1 peak of the spectra of Fig. 2b is then 
 of the ``k T``-periodic response. At the base set the run from rest locks at ``4 T`` for ``Vb`` in
 [3.87, 7.67] (``omega1 = 1 = Omega / 4``), and at ``Omega = 6`` at ``6 T``. A locked
 response is a fixed point of the ``k``-fold period map
-(`beltmdsm.periodic.periodmap.TangentialMap`), which shooting computes exactly
-(``periodic_response(..., periods=k)``, `beltmdsm.periodic.floquet`).
+(`beltmdsm.periodic.tangential.TangentialMap`), which shooting computes exactly
+(``periodic_response(..., periods=k)``, `beltmdsm.periodic.shooting`).
 
 * `Stroboscope` (`stroboscope`): the samples of one attractor, with the distance of
   each return ``|y(n T + k T) - y(n T)|`` for ``k`` up to a limit (`LOCK_LIMIT`). The
@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .periodmap import MapImage, PeriodMap
+from .base import MapImage, PeriodMap
 
 __all__ = [
     "LOCK_LIMIT",
@@ -73,11 +73,24 @@ class Stroboscope:
     source : str
         How the attractor was reached ("run from rest", ...).
     samples : ndarray (n, 2) or (n, 4)
-        The shooting states at phase 0 (`beltmdsm.periodic.periodmap.PeriodMap.shooting`:
+        The shooting states at phase 0 (`beltmdsm.periodic.base.PeriodMap.shooting`:
         ``(X1, X1')`` on the closed-form path, the full state on the general one), in
         time order.
     returns : ndarray (limit,)
         ``max_n |y(nT + kT) - y(nT)|`` over the samples' scale, for ``k = 1..limit``.
+
+    See Also
+    --------
+    stroboscope : builds it from samples.
+    map_stroboscope : the samples of the period map's attractor.
+    NotLocked : the evidence where no ``k`` locks.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> s = stroboscope(np.tile([[0.0, 1.0], [1.0, 0.0], [-1.0, -1.0]], (20, 1)), "a 3-cycle")
+    >>> s.candidate, s.samples.shape
+    (3, (60, 2))
     """
 
     source: str
@@ -94,10 +107,40 @@ class Stroboscope:
 def stroboscope(samples: ArrayLike, source: str, limit: int = LOCK_LIMIT) -> Stroboscope:
     """`Stroboscope` of samples of the shooting state at phase 0 (rows in time order).
 
+    Parameters
+    ----------
+    samples : array_like (n, 2) or (n, 4)
+        ``y(nT)``, one excitation period apart.
+    source : str
+        How the attractor was reached (for the reports).
+    limit : int
+        The largest ``k`` whose return is measured.
+
+    Returns
+    -------
+    Stroboscope
+
     Raises
     ------
     ValueError
         Unless ``samples`` is ``(n, 2)`` or ``(n, 4)`` with ``n > 2 limit``.
+
+    See Also
+    --------
+    map_stroboscope : the samples of the period map's attractor.
+    beltmdsm.studies.responses.responses : the samples of runs of Eq. (4).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> y = np.tile([[0.0, 1.0], [1.0, 0.0], [-1.0, -1.0]], (20, 1))
+    >>> s = stroboscope(y, "a 3-cycle")
+    >>> s.candidate, np.round(s.returns[:4], 3)
+    (3, array([1., 1., 0., 1.]))
+    >>> stroboscope(y[:10], "too few")
+    Traceback (most recent call last):
+    ...
+    ValueError: samples must be (n, 2) or (n, 4) with n > 2 * limit; got (10, 2)
     """
     y = np.asarray(samples, dtype=float)
     if y.ndim != 2 or y.shape[1] not in (2, 4) or y.shape[0] < 2 * limit + 1:
@@ -117,13 +160,48 @@ def map_stroboscope(
 ) -> Stroboscope:
     """The attractor of the period map iterated from ``x``: ``settle`` periods, then samples.
 
-    The one-period map of ``pmap`` (`beltmdsm.periodic.periodmap.PeriodMap.step`) is
+    The one-period map of ``pmap`` (`beltmdsm.periodic.base.PeriodMap.step`) is
     iterated, whatever its ``k``: the samples are one excitation period apart.
+
+    Parameters
+    ----------
+    pmap : beltmdsm.periodic.base.PeriodMap
+    x : array_like
+        The shooting state to start from (`beltmdsm.periodic.base.PeriodMap.shooting`).
+    settle : int
+        Periods iterated before sampling.
+    samples : int
+        Periods sampled; more than ``2 limit``.
+    source : str
+        How the attractor was reached (for the reports).
+    limit : int
+        The largest ``k`` whose return is measured.
+
+    Returns
+    -------
+    Stroboscope
 
     Raises
     ------
-    beltmdsm.periodic.periodmap.NoPeriodicResponse
+    beltmdsm.errors.NoPeriodicResponse
         Where the map fails on the way.
+    ValueError
+        For ``samples <= 2 limit`` (`stroboscope`).
+
+    See Also
+    --------
+    beltmdsm.periodic.shooting.periodic_response : seeds ``periods > 1`` so.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.model import initial_state
+    >>> from beltmdsm.periodic.engines import period_map
+    >>> m = Model(Vb=5.0)
+    >>> pmap = period_map(m)
+    >>> s = map_stroboscope(pmap, pmap.shooting(initial_state(m)), 100, 48, "from rest")
+    >>> s.candidate  # locked at 4 T: omega1 = Omega / 4
+    4
     """
     x = np.array(x, dtype=float)
     for _ in range(int(settle)):
@@ -161,6 +239,26 @@ class NotLocked:
     classification : dict or None
         That classification (`beltmdsm.attractors.classification.Attractor.as_dict`: ``kind``,
         ``lyapunov``, ``evidence``, ...) where one was made.
+
+    See Also
+    --------
+    Stroboscope : the samples it reads (`NotLocked.of`).
+    beltmdsm.attractors.classification.classify : what the attractor is.
+
+    Examples
+    --------
+    Samples that turn by 0.1234 of a circle per period: a torus, not a lock.
+
+    >>> import numpy as np
+    >>> angle = 2 * np.pi * 0.1234 * np.arange(300)
+    >>> s = stroboscope(np.c_[np.cos(angle), np.sin(angle)], "a torus")
+    >>> s.candidate is None
+    True
+    >>> evidence = NotLocked.of(s)
+    >>> evidence.closed_curve, round(evidence.rotation_number, 4)
+    (True, 0.1234)
+    >>> print(evidence.text())  # doctest: +ELLIPSIS
+    not locked (quasi-periodic or longer period) within 12 periods (a torus): the ...
     """
 
     source: str
@@ -257,14 +355,75 @@ class NotLocked:
 
 
 def same_phases(phases: list[NDArray[np.float64]], x: ArrayLike) -> bool:
-    """Whether ``x`` is one of an orbit's phase-0 states (to `SAME_ORBIT`, relative)."""
+    """Whether ``x`` is one of an orbit's phase-0 states (to `SAME_ORBIT`, relative).
+
+    Parameters
+    ----------
+    phases : list of ndarray
+        The orbit's shooting states at phase 0 (`beltmdsm.periodic.base.MapImage.phases`).
+    x : array_like
+        A shooting state.
+
+    Returns
+    -------
+    bool
+
+    Raises
+    ------
+    ValueError
+        Where ``x`` and the phases differ in size (numpy's broadcast).
+
+    See Also
+    --------
+    minimal_periods : the period of the orbit itself.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> phases = [np.array([1.0, 0.0]), np.array([0.0, 1.0])]
+    >>> same_phases(phases, [1e-9, 1.0]), same_phases(phases, [0.0, 1.1])
+    (True, False)
+    """
     x = np.asarray(x, dtype=float)
     scale = 1.0 + float(np.max(np.abs(x)))
     return any(np.max(np.abs(x - y)) <= SAME_ORBIT * scale for y in phases)
 
 
 def minimal_periods(image: MapImage, k: int) -> int:
-    """The smallest divisor ``j`` of ``k`` after which the orbit's phase-0 states repeat."""
+    """The smallest divisor ``j`` of ``k`` after which the orbit's phase-0 states repeat.
+
+    Parameters
+    ----------
+    image : beltmdsm.periodic.base.MapImage
+        The ``k``-fold map at a point of the orbit.
+    k : int
+        The map's periods.
+
+    Returns
+    -------
+    int
+        ``j``: the orbit is a response of ``j`` periods (``k`` where it is of minimal
+        period ``k``).
+
+    Raises
+    ------
+    IndexError
+        Where ``image`` has fewer than ``k`` phases.
+
+    See Also
+    --------
+    beltmdsm.errors.ShorterPeriod : raised where shooting for ``k`` finds ``j < k``.
+
+    Examples
+    --------
+    The response of 4 periods seen by the 8-fold map:
+
+    >>> from beltmdsm import Model, periodic_response
+    >>> from beltmdsm.periodic.engines import period_map
+    >>> r = periodic_response(Model(Vb=5.0), periods=4)
+    >>> minimal_periods(period_map(r.model, 8)(r.shooting_state), 8)
+    4
+    """
     phases = image.phases
     scale = 1.0 + max(float(np.max(np.abs(x))) for x in phases)
     for j in range(1, k):

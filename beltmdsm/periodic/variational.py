@@ -8,8 +8,8 @@ saltation matrix ``S = I + (f+ - f-) n^T / (dh/dt)-`` (`generated.hybrid.saltati
 Leine and Nijmeijer, *Dynamics and Bifurcations of Non-Smooth Mechanical Systems*,
 2004, Sect. 7.2). Nothing here assumes a structure of the model: the friction may
 depend on the tangential state (Stribeck) and the normal motion on the tangential
-one. It is the engine of `beltmdsm.periodic.periodmap.GeneralMap`, the path every
-law takes where the closed forms of `beltmdsm.periodic.periodmap.TangentialMap`
+one. It is the engine of `beltmdsm.periodic.general.GeneralMap`, the path every
+law takes where the closed forms of `beltmdsm.periodic.tangential.TangentialMap`
 (friction independent of the state within a slip mode, one-way coupling) do not hold.
 
 Each step of the run is integrated again for the perturbation, with the same step
@@ -76,6 +76,25 @@ class Monodromy:
         the surface's name, ``generated.hybrid.SURFACES``) with the state on the surface.
     steps : int
         The integration steps the perturbation was carried through.
+
+    See Also
+    --------
+    monodromy : computes it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from beltmdsm import Model, periodic_response
+    >>> from beltmdsm.integrate.events import integrate_events
+    >>> from beltmdsm.settings import SolverSettings
+    >>> m = Model(Vb=5.0)
+    >>> r = periodic_response(m, engine="general")
+    >>> T = r.period
+    >>> settings = SolverSettings(t_end=T, rtol=1e-12, atol=1e-12, dt=T / 50, t_discard=0.0)
+    >>> run = integrate_events(m, settings, y0=r.state0)
+    >>> mono = monodromy(run)
+    >>> mono.matrix.shape, [(b.name, a.name) for _, b, a, _, _ in mono.switches]
+    ((4, 4), [('SLIP_BACK', 'SLIP_FORWARD'), ('SLIP_FORWARD', 'SLIP_BACK')])
     """
 
     matrix: NDArray[np.float64]
@@ -119,6 +138,44 @@ def propagators(
     starts : ndarray (n,), optional
         Where each propagator starts inside its step (default: the step's start): a
         step cut into pieces, each carried by one Runge-Kutta step on the dense output.
+
+    Returns
+    -------
+    ndarray (n, 4, 4)
+        ``d x(end) / d x(start)`` of each step (or piece).
+
+    Raises
+    ------
+    ValueError
+        Where the arrays' lengths differ (numpy's broadcast).
+
+    See Also
+    --------
+    monodromy : the propagators and the saltation matrices of a whole run.
+
+    Examples
+    --------
+    Under Coulomb friction the tangential block of a slip step is the closed-form
+    state transition of the oscillator (`generated.oscillator.state_transition`):
+
+    >>> import numpy as np
+    >>> from beltmdsm import Model, periodic_response
+    >>> from beltmdsm.integrate.events import integrate_events
+    >>> from beltmdsm.settings import SolverSettings
+    >>> m = Model(Vb=5.0)
+    >>> r = periodic_response(m, engine="general")
+    >>> T = r.period
+    >>> settings = SolverSettings(t_end=T, rtol=1e-12, atol=1e-12, dt=T / 50, t_discard=0.0)
+    >>> run = integrate_events(m, settings, y0=r.state0)
+    >>> s = run.trajectory.evaluator
+    >>> ends = np.minimum(s.t_steps + s.h_steps, np.append(s.t_steps[1:], T))
+    >>> modes = run.trajectory.mode(0.5 * (s.t_steps + ends))
+    >>> R = propagators(m, s.t_steps, s.h_steps, s.y_steps, s.F_steps, ends, modes)
+    >>> from beltmdsm.periodic.tangential import OnePeriodMap
+    >>> stm = OnePeriodMap(m).stm
+    >>> Phi = np.array([np.reshape(stm(h), (2, 2)) for h in ends - s.t_steps])
+    >>> bool(np.abs(R[:, :2, :2] - Phi).max() < 1e-12)
+    True
     """
     A, B, C = _dop853.TABLEAU_A, _dop853.TABLEAU_B, _dop853.TABLEAU_C
     starts = t_steps if starts is None else starts
@@ -167,12 +224,41 @@ def graded_pieces(
     switch are carried in pieces halving towards it (`GRADED`); every piece then sees
     a Jacobian that is smooth on it to the accuracy that matters.
 
+    Parameters
+    ----------
+    t_steps : ndarray (n,)
+        The steps' starts.
+    ends : ndarray (n,)
+        Where each step ends on the run.
+    switches : sequence of float
+        The times of the contact switches.
+
     Returns
     -------
     index : int array
         The step of each piece.
     starts, ends : float arrays
         Where each piece starts and ends.
+
+    Raises
+    ------
+    ValueError
+        Where ``t_steps`` and ``ends`` differ in length.
+
+    See Also
+    --------
+    split_pieces : pieces cut to a largest length.
+
+    Examples
+    --------
+    Three steps with a switch where the second begins: the first is graded towards
+    its end, the second towards its start (`GRADED` halvings each), the third whole.
+
+    >>> import numpy as np
+    >>> t_steps, ends = np.array([0.0, 1.0, 2.0]), np.array([1.0, 2.0, 3.0])
+    >>> index, starts, ends = graded_pieces(t_steps, ends, [1.0])
+    >>> np.bincount(index).tolist(), bool(np.all(starts[1:] == ends[:-1]))
+    ([31, 31, 1], True)
     """
     opening = set(np.searchsorted(t_steps, switches, side="left").tolist()) - {t_steps.size}
     closing = {k - 1 for k in opening if k > 0}
@@ -189,7 +275,50 @@ def graded_pieces(
 def saltation(
     model: Model, before: Mode, after: Mode, surface: str, backend: Backend | None = None
 ):
-    """The bound saltation matrix of one switch (`generated.hybrid.saltation`), kept."""
+    """The bound saltation matrix of one switch (`generated.hybrid.saltation`), kept.
+
+    Parameters
+    ----------
+    model : Model
+    before, after : Mode
+        The modes on either side.
+    surface : str
+        The surface crossed (`generated.hybrid.SURFACES`).
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    callable
+        ``S(t, X1, X1', X2, X2')``: the 16 entries of the 4 x 4 matrix, row by row.
+
+    Raises
+    ------
+    ValueError
+        For a switch that the generated module does not have (the modes and surface).
+
+    See Also
+    --------
+    monodromy : applies it at every switch of a run.
+
+    Examples
+    --------
+    The normal rows of a reversal's saltation matrix are the identity's: the normal
+    motion does not see the friction (one-way coupling).
+
+    >>> import numpy as np
+    >>> from beltmdsm import Model, periodic_response
+    >>> from beltmdsm.integrate.events import integrate_events
+    >>> from beltmdsm.settings import SolverSettings
+    >>> m = Model(Vb=5.0)
+    >>> r = periodic_response(m, engine="general")
+    >>> T = r.period
+    >>> settings = SolverSettings(t_end=T, rtol=1e-12, atol=1e-12, dt=T / 50, t_discard=0.0)
+    >>> run = integrate_events(m, settings, y0=r.state0)
+    >>> t, before, after, surface, state = monodromy(run).switches[0]
+    >>> S = np.reshape(saltation(m, before, after, surface)(t, *state), (4, 4))
+    >>> S[2:].tolist()
+    [[0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]]
+    """
     return hybrid.bind_saltation(
         before=before.name.lower(),
         after=after.name.lower(),
@@ -213,6 +342,36 @@ def split_pieces(
     step of the variational equation is far outside its accuracy for the fast
     directions of the Jacobian: a multiplier of about 1e-47 came out as 1.4e7. Pieces
     of at most ``max_piece`` keep ``h |lambda|`` small for the Jacobian's eigenvalues.
+
+    Parameters
+    ----------
+    index : int array
+        The step of each piece (`graded_pieces`).
+    starts, ends : float arrays
+        Where each piece starts and ends.
+    max_piece : float
+        The longest piece [s].
+
+    Returns
+    -------
+    index, starts, ends : arrays
+        As the arguments, with the long pieces cut.
+
+    Raises
+    ------
+    ValueError
+        Where ``max_piece`` is not positive (no finite count of pieces).
+
+    See Also
+    --------
+    monodromy : ``max_piece`` passes it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> index, starts, ends = split_pieces(np.array([0]), np.array([0.0]), np.array([1.0]), 0.3)
+    >>> index.tolist(), starts.tolist(), ends.tolist()
+    ([0, 0, 0, 0], [0.0, 0.25, 0.5, 0.75], [0.25, 0.5, 0.75, 1.0])
     """
     n = np.maximum(1, np.ceil((ends - starts) / max_piece)).astype(np.int64)
     owner = np.repeat(np.arange(n.size), n)
@@ -238,10 +397,35 @@ def monodromy(
         The longest piece the variational equation is carried over in one step
         (`split_pieces`); None: the run's own steps (graded at contact switches).
 
+    Returns
+    -------
+    Monodromy
+
     Raises
     ------
     ValueError
         For a run without the event-driven integrator's dense output.
+
+    See Also
+    --------
+    beltmdsm.periodic.general.GeneralMap : the period map built on it.
+    propagators : its steps.
+
+    Examples
+    --------
+    Over one period from the periodic response it is the response's monodromy:
+
+    >>> import numpy as np
+    >>> from beltmdsm import Model, periodic_response
+    >>> from beltmdsm.integrate.events import integrate_events
+    >>> from beltmdsm.settings import SolverSettings
+    >>> m = Model(Vb=5.0)
+    >>> r = periodic_response(m, engine="general")
+    >>> T = r.period
+    >>> settings = SolverSettings(t_end=T, rtol=1e-12, atol=1e-12, dt=T / 50, t_discard=0.0)
+    >>> run = integrate_events(m, settings, y0=r.state0)
+    >>> bool(np.allclose(monodromy(run).matrix, r.monodromy, rtol=0, atol=1e-9))
+    True
     """
     tr = run.trajectory
     steps = tr.evaluator

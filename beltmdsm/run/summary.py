@@ -208,7 +208,8 @@ def _floquet_decay(model, settings, t0):
     (the run does not decay towards it: a peak there grows), and None where its
     multipliers cannot be computed (``text`` says why).
     """
-    from ..periodic.floquet import NoPeriodicResponse, floquet
+    from ..errors import NoPeriodicResponse
+    from ..periodic.floquet import floquet
 
     try:
         excitation_period(model)  # the forced response's (a self-excited cycle is not it)
@@ -259,7 +260,8 @@ def _transient_rate(model, settings, forced):
     sigma = free_decay_rate(model)
     if not forced or model.fact("slip_friction_state_independent")[0]:
         return sigma, "exp(sigma t)"
-    from ..periodic.floquet import NoPeriodicResponse, floquet
+    from ..errors import NoPeriodicResponse
+    from ..periodic.floquet import floquet
 
     try:
         excitation_period(model)  # the forced response's (a self-excited cycle is not it)

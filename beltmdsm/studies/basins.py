@@ -3,7 +3,7 @@
 The question an engineer asks where stable responses coexist: how large a disturbance
 starts the vibration. `basins` starts the model on a grid of a plane of states at the
 excitation's phase 0 (default ``X1`` and ``X1'``, the normal state on its periodic
-orbit) and iterates the period map (`beltmdsm.periodic.periodmap.period_map`, the
+orbit) and iterates the period map (`beltmdsm.periodic.engines.period_map`, the
 closed-form map where the laws allow it) from each start until the state stays within
 `IDENTIFY_TOL` of a known attractor's stroboscopic points for two cycles of them,
 contracting towards them (`_land`): a start is stopped as soon as it is identified,
@@ -39,10 +39,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..attractors.classification import KINDS, Attractor, classify
-from ..errors import Refused
+from ..errors import NoPeriodicResponse, Refused
 from ..model import Model, as_model, excitation_period
+from ..periodic.engines import period_map
 from ..periodic.floquet import floquet
-from ..periodic.periodmap import NoPeriodicResponse, period_map
 from . import cache
 
 __all__ = [

@@ -46,7 +46,7 @@ import numpy as np
 from .._calling import ranged
 from ..arguments import count
 from ..continuation.branch import Branch, continue_branch
-from ..errors import Refused
+from ..errors import NoPeriodicResponse, Refused
 from ..model import (
     MODEL_PARAMETERS,
     Backend,
@@ -56,9 +56,10 @@ from ..model import (
     is_autonomous,
     is_real,
 )
-from ..periodic.floquet import NoPeriodicResponse, floquet, response_from
+from ..periodic.engines import engine_of
+from ..periodic.floquet import floquet
 from ..periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods
-from ..periodic.periodmap import engine_of
+from ..periodic.response import response_from
 from ..settings import MAX_SEED_POINTS
 from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
 from .seeds import check_limit, ladder, run_stroboscope, shoot

@@ -26,8 +26,9 @@ from scipy.optimize import brentq
 
 from ..cycles.branch import CycleBranch, cycle_branch
 from ..cycles.hopf import HopfPoint, eigenvalues_over, hopf_points
+from ..errors import NoPeriodicResponse
 from ..model import Model
-from ..periodic.periodmap import NoPeriodicResponse, engine_of
+from ..periodic.engines import engine_of
 from .overlay import CoexistenceRange, StablePart, overlay, stable_parts
 
 __all__ = ["CycleCoexistence", "cycle_coexistence", "SLIDING", "CYCLES"]

@@ -4,7 +4,7 @@ A run of Eq. (4) from rest (the runs of Fig. 2b and Figs. 17-21), a run from the
 perturbed periodic response or a sweep continued in a parameter ends on one attractor;
 where it locks to the excitation at ``k`` periods (`beltmdsm.periodic.locked`), the
 attractor is a fixed point of the ``k``-fold period map, which shooting computes
-exactly (`beltmdsm.periodic.periodmap.fixed_point`), with the multipliers of the
+exactly (`beltmdsm.periodic.newton.fixed_point`), with the multipliers of the
 ``k``-fold map (`beltmdsm.periodic.floquet.Floquet`). The runs, ladders and shootings
 that seed the search are `beltmdsm.studies.seeds`.
 
@@ -29,10 +29,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..arguments import count
 from ..attractors.classification import classify
+from ..errors import NoPeriodicResponse
 from ..model import Backend, Model, as_model, excitation_period, is_autonomous, is_real
-from ..periodic.floquet import Floquet, NoPeriodicResponse, floquet, response_from
+from ..periodic.engines import period_map
+from ..periodic.floquet import Floquet, floquet
 from ..periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods, same_phases
-from ..periodic.periodmap import period_map
+from ..periodic.response import response_from
 from .seeds import (
     LADDER_SPAN,
     LADDER_STEP,
@@ -406,7 +408,7 @@ def _classified(model, strobe, backend):
 
 def _cycle_response(c, source, distance=None):
     """The `Response` of a self-excited cycle (`beltmdsm.cycles.cycle.Cycle`)."""
-    from ..periodic.floquet import response_of_cycle
+    from ..periodic.response import response_of_cycle
 
     return Response(
         1,

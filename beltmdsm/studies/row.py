@@ -13,8 +13,9 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..errors import NoPeriodicResponse
 from ..model import Model
-from ..periodic.floquet import NoPeriodicResponse, periodic_start
+from ..periodic.start import periodic_start
 from ..run.modulation import modulation_scatter
 from ..settings import SolverSettings
 from ..simulation import simulate
@@ -74,7 +75,7 @@ MODULATION_COLUMNS = tuple(
 #: The regime of a point started on the periodic response where none is found.
 NO_PERIODIC_RESPONSE = "no_periodic_response"
 #: Where a (not continued) run starts: the unforced equilibrium, or the periodic
-#: response moved by `beltmdsm.periodic.floquet.PERTURBATION` in X1.
+#: response moved by `beltmdsm.periodic.start.PERTURBATION` in X1.
 STARTS = ("rest", "periodic")
 Start = Literal["rest", "periodic"]
 

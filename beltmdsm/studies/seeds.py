@@ -4,11 +4,11 @@ A run of Eq. (4) from rest (the runs of Fig. 2b and Figs. 17-21), a run from the
 perturbed periodic response or a sweep continued in a parameter ends on one attractor;
 its stroboscopic samples (`beltmdsm.periodic.locked.Stroboscope`) say whether it locks
 to the excitation at ``k`` periods, and shooting from the last sample gives the fixed
-point of the ``k``-fold period map (`beltmdsm.periodic.periodmap.fixed_point`).
+point of the ``k``-fold period map (`beltmdsm.periodic.newton.fixed_point`).
 
 * `run_stroboscope`: the stroboscopic samples of a run of `beltmdsm.simulation.simulate`
   from rest or from the perturbed periodic response
-  (`beltmdsm.periodic.floquet.periodic_start`); `run_samples`, `check_limit`: how many
+  (`beltmdsm.periodic.start.periodic_start`); `run_samples`, `check_limit`: how many
   there are, and the refusal of a lock limit they cannot decide.
 * `ladder`, `ladder_stroboscope`: a sweep continued on the period map: the shooting
   state carried from rung to rung (the tangential one on the periodic normal motion,
@@ -28,11 +28,13 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import Refused
+from ..errors import NoPeriodicResponse, Refused
 from ..model import Backend, Model, excitation_period, initial_state
-from ..periodic.floquet import NoPeriodicResponse, periodic_start
+from ..periodic.base import PeriodMap
+from ..periodic.engines import ENGINES, engine_of, period_map
 from ..periodic.locked import LOCK_LIMIT, Stroboscope, map_stroboscope, stroboscope
-from ..periodic.periodmap import ENGINES, FixedPoint, PeriodMap, engine_of, fixed_point, period_map
+from ..periodic.newton import FixedPoint, fixed_point
+from ..periodic.start import periodic_start
 from ..settings import SolverSettings
 from ..simulation import simulate
 
@@ -157,7 +159,7 @@ def ladder(
 ) -> list[Stroboscope]:
     """A continued sweep on the period map: the stroboscope of every rung.
 
-    The shooting state (`beltmdsm.periodic.periodmap.PeriodMap.shooting`: the tangential
+    The shooting state (`beltmdsm.periodic.base.PeriodMap.shooting`: the tangential
     state on the periodic normal motion, on the closed-form path) starts at rest at
     ``values[0]`` and is carried from rung to rung, as ``sweep --continue`` carries a
     run's state; at each rung `LADDER_PERIODS` periods settle it and as many more are

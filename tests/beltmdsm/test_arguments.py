@@ -8,8 +8,8 @@ import pytest
 
 import beltmdsm
 from beltmdsm import arguments
-from beltmdsm.errors import Refused
-from beltmdsm.periodic.floquet import MAX_SEED_PERIODS, SEED_PERIODS, ShorterPeriod
+from beltmdsm.errors import Refused, ShorterPeriod
+from beltmdsm.periodic.shooting import MAX_SEED_PERIODS, SEED_PERIODS
 from beltmdsm.settings import SolverSettings
 
 

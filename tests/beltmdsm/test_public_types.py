@@ -83,13 +83,13 @@ FAILURES = {
     "Unsupported": ValueError,
     "StepTooSmall": ArithmeticError,
     "NoPeriodicResponse": RuntimeError,
+    "ShorterPeriod": RuntimeError,
     "NotApplicable": ValueError,
     "NoEdge": RuntimeError,
 }
 #: The modules that defined a failure before beltmdsm.errors held them all.
 OLD_HOMES = {
     "Unsupported": ["beltmdsm.model", "generated._support"],
-    "NoPeriodicResponse": ["beltmdsm.periodic.periodmap", "beltmdsm.periodic.floquet"],
     "NoEdge": ["beltmdsm.continuation.edges"],
     "NotApplicable": ["beltmdsm.integrate.superposition"],
     "StepTooSmall": ["beltmdsm.integrate.events"],
@@ -120,3 +120,13 @@ def test_failures_pickle_with_what_they_carry():
     assert (str(refused), refused.names) == ("too many points", ("points", "tol"))
     step = pickle.loads(pickle.dumps(errors.StepTooSmall("stuck", 1e-9, 1e-12)))
     assert (str(step), step.rtol, step.atol) == ("stuck", 1e-9, 1e-12)
+    # raised by periodic_response(periods=k) in a worker of an executor, it arrives whole
+    shorter = errors.ShorterPeriod(8, 4, "the period map iterated from rest locks at")
+    back = pickle.loads(pickle.dumps(shorter))
+    assert (type(back), str(back), back.asked, back.periods) == (
+        errors.ShorterPeriod,
+        str(shorter),
+        8,
+        4,
+    )
+    assert "locks at 4 periods, whose orbit repeats after 8 too" in str(back)

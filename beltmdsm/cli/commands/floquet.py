@@ -27,7 +27,8 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...periodic.floquet import ShorterPeriod, floquet
+    from ...errors import ShorterPeriod
+    from ...periodic.floquet import floquet
     from .. import text
 
     model = model_from(args)

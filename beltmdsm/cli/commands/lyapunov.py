@@ -57,7 +57,7 @@ def run(args: argparse.Namespace) -> int:
     model = model_from(args)
     y0 = None
     if args.start == "periodic":
-        from ...periodic.floquet import periodic_start
+        from ...periodic.start import periodic_start
 
         y0 = periodic_start(model, args.perturbation)
     spec = lyapunov(model, y0=y0, t_end=args.t_end, t_transient=args.t_transient)

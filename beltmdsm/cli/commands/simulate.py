@@ -32,7 +32,7 @@ def add(commands, name: str) -> None:
         choices=("rest", "periodic"),
         default="rest",
         help="start from the equilibrium at rest (default), or on the periodic "
-        "response (beltmdsm/periodic/floquet.py) with X1 moved by --perturbation",
+        "response (beltmdsm/periodic/start.py) with X1 moved by --perturbation",
     )
     sub.add_argument(
         "--perturbation",
@@ -91,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
     check_request(model, settings)  # before the periodic start is computed
     y0 = None
     if args.start == "periodic":
-        from ...periodic.floquet import PERTURBATION, periodic_start
+        from ...periodic.start import PERTURBATION, periodic_start
 
         if args.perturbation is None:
             args.perturbation = PERTURBATION

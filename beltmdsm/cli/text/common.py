@@ -34,7 +34,7 @@ def kind(name: str, frequency: float | None = None) -> str:
 
 def laws(model: Model) -> str:
     """The model's laws and the Floquet path they take, as the headers print them."""
-    from ...periodic.periodmap import engine_of
+    from ...periodic.engines import engine_of
 
     return (
         f"{model.friction} friction, {model.contact}, tension {model.tension}; "

@@ -36,7 +36,7 @@ def floquet(f: Floquet) -> str:
         f"{resp.model.tension}, Vb = {p['Vb']:g} m/s: period {f.period:.6g} s, "
         f"{f.n_reversals} reversals and {f.n_sticks} sticks {per}, Newton "
         f"{resp.iterations} iterations (residual {resp.residual:.1e}), "
-        f"{f.engine} path (beltmdsm/periodic/periodmap.py)"
+        f"{f.engine} path (beltmdsm/periodic/engines.py)"
     ]
     if f.grazing is not None:
         lines.append(
@@ -91,7 +91,7 @@ def cycle(f: Floquet) -> str:
 def _isolation(f) -> str:
     """What a multiplier 1 (to `ISOLATION_TOL`) means: the response is not isolated and
     its multipliers cannot decide its stability."""
-    from ...periodic.periodmap import ISOLATION_TOL
+    from ...periodic.newton import ISOLATION_TOL
 
     mus = np.asarray(f.multipliers, dtype=complex)
     if mus.size and np.min(np.abs(mus - 1.0)) <= ISOLATION_TOL:

@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 from ...continuation.band import floquet_band
 from ...continuation.band_result import Band
 from ...model import Model
-from ...periodic.periodmap import engine_of
+from ...periodic.engines import engine_of
 from .laws import VB_RANGE, Law
 
 __all__ = ["ForcedStability", "forced_stability"]

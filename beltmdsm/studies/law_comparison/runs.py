@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ...intervals import runs
 from ...model import Model, initial_state
-from ...periodic.floquet import PERTURBATION
+from ...periodic.start import PERTURBATION
 from ...settings import SolverSettings
 from ...simulation import simulate
 from .laws import FORCED_STARTS, RUN_SETTINGS, STARTS, Law

@@ -254,7 +254,7 @@ RUNS = (
     (
         "periodic",
         "periodic start",
-        "on the periodic response plus `beltmdsm.periodic.floquet.PERTURBATION` in X1",
+        "on the periodic response plus `beltmdsm.periodic.start.PERTURBATION` in X1",
     ),
     ("up", "up sweep", "continued upwards in Vb, from rest at the lowest point"),
     ("down", "down sweep", "continued downwards in Vb, from rest at the highest point"),

@@ -37,10 +37,10 @@ from typing import Literal
 import numpy as np
 
 from ...attractors.classification import classify
+from ...errors import NoPeriodicResponse
 from ...model import Model
-from ...periodic.floquet import NoPeriodicResponse
+from ...periodic.engines import period_map
 from ...periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods
-from ...periodic.periodmap import period_map
 from ...run.summary import TRANSIENT_DECAYED
 from ...settings import SolverSettings
 from ..coexistence import Coexistence, ResponseBranch

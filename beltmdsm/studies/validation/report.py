@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ...periodic.floquet import PERTURBATION
 from ...periodic.locked import LOCK_LIMIT
+from ...periodic.start import PERTURBATION
 from ...run.summary import PEAK_PRESENT_RATIO, TRANSIENT_DECAYED
 from ..coexistence import DEFAULT_STEP
 from .cases import ANALYSES, DEFINITIONS, FLOQUET_DEFINITIONS, FLOQUET_TOL

@@ -30,8 +30,9 @@ from numpy.typing import ArrayLike
 
 from ... import intervals
 from ...continuation.band_result import Band
+from ...errors import NoPeriodicResponse
 from ...model import Model, as_model
-from ...periodic.floquet import NoPeriodicResponse, floquet
+from ...periodic.floquet import floquet
 from ...run.summary import TRANSIENT_DECAYED
 
 #: The Floquet verdict on the periodic response at a grid point: `Floquet.verdict`
@@ -65,7 +66,7 @@ def floquet_verdicts(
     """The Floquet verdict on the periodic response at each grid point.
 
     Each point is computed as the run started on the periodic response finds it
-    (`beltmdsm.periodic.floquet.periodic_response` without a guess), so the verdict
+    (`beltmdsm.periodic.shooting.periodic_response` without a guess), so the verdict
     belongs to the orbit that run starts on.
 
     Parameters

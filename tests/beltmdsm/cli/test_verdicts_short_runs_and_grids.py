@@ -113,7 +113,8 @@ def _end_accuracy(band_edges, value, lo, hi):
 def test_floquet_band_default_grid_agrees_with_a_fine_grid_and_with_floquet():
     from beltmdsm.continuation.band import floquet_band
     from beltmdsm.continuation.edges import KINDS
-    from beltmdsm.periodic.floquet import NoPeriodicResponse, floquet
+    from beltmdsm.errors import NoPeriodicResponse
+    from beltmdsm.periodic.floquet import floquet
 
     argv = ["floquet-band", "--param", "Vb", "--from", "0", "--to", "40", "--omega1", "12"]
     r = _run(*argv, "--no-progress", "--json")

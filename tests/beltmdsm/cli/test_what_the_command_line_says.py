@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from beltmdsm.model import Model
+from beltmdsm.periodic.engines import period_map
 from beltmdsm.periodic.floquet import floquet
-from beltmdsm.periodic.periodmap import period_map
 
 ROOT = Path(__file__).resolve().parents[3]
 ENV = {**os.environ, "PYTHONPATH": str(ROOT)}

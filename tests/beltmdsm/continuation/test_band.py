@@ -17,7 +17,8 @@ from beltmdsm.continuation.band_result import Band
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.integrate.switching import SURFACE_INDEX, Mode, Switching
 from beltmdsm.model import Model
-from beltmdsm.periodic import floquet as F
+from beltmdsm.periodic.floquet import floquet
+from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.settings import SolverSettings
 
 # The tangency of the T-periodic response at the base set: where its reversal from
@@ -37,11 +38,11 @@ def test_band_edges_are_located_and_match_pointwise_verdicts(base_band):
     for e in band.edges:
         assert e.bracket[1] - e.bracket[0] <= 1e-3
     # the lower edge is a multiplier crossing: |mu| - 1 changes sign across it
-    below, above = F.floquet(Vb=lo - 2e-3), F.floquet(Vb=lo + 2e-3)
+    below, above = floquet(Vb=lo - 2e-3), floquet(Vb=lo + 2e-3)
     assert below.stable and not above.stable
     # the upper edge is the grazing point of the sliding orbit: its largest velocity
     # equals Vb there (the sliding orbit does not depend on Vb)
-    sliding = F.periodic_response(Vb=12.0)
+    sliding = periodic_response(Vb=12.0)
     t = np.linspace(0, sliding.period, 4001)
     run = sliding._engine.engine.run(0.0, *sliding.state0[:2], sliding.period)
     vmax = run.segments(t, np.zeros(t.size, dtype=int))[1].max()
@@ -56,7 +57,7 @@ def test_the_sliding_grazing_point_is_exact_where_the_grid_finds_nothing_below_i
     band = floquet_band("Vb", 0.5, 12.0)
     assert any(f.value == 6.25 for f in band.failed)
     (edge,) = [e for e in band.edges if e.kind == "grazing"]
-    sliding = F.periodic_response(Vb=12.0)
+    sliding = periodic_response(Vb=12.0)
     run = sliding._engine.engine.run(0.0, *sliding.state0[:2], sliding.period)
 
     def velocity(t):
@@ -85,7 +86,7 @@ def test_every_edge_is_labelled_with_its_bifurcation_and_the_kind_of_before(base
     ]
     ns = base_band.edges[0]
     # the critical pair of the unstable side, near omega1 = 1 (modulo Omega = 4)
-    assert ns.frequency == pytest.approx(F.floquet(Vb=ns.value + 1e-3).frequency, rel=1e-3)
+    assert ns.frequency == pytest.approx(floquet(Vb=ns.value + 1e-3).frequency, rel=1e-3)
     assert 0.9 < ns.frequency < 1.1
     out = base_band.as_dict()
     assert set(out) == {
@@ -154,9 +155,9 @@ def _reversal_rate(model, run):
 
 def test_the_existence_edge_is_the_tangency_of_the_events_orbit(base_band):
     values, rates = [6.149, 6.153, 6.157, 6.161], []
-    guess = F.periodic_response(Vb=6.14)
+    guess = periodic_response(Vb=6.14)
     for vb in values:
-        guess = F.periodic_response(Vb=vb, guess=guess)
+        guess = periodic_response(Vb=vb, guess=guess)
         rates.append(_reversal_rate(guess.model, _events_orbit(guess.model, guess.state0)))
     # the belt speed against the rate is smooth up to the tangency: the cubic's value at
     # zero rate, with the quadratic's distance to it as the reference's error bound

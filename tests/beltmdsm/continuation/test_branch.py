@@ -12,7 +12,8 @@ import pytest
 
 from beltmdsm.continuation.band import floquet_band
 from beltmdsm.continuation.branch import branch, continue_branch
-from beltmdsm.periodic.floquet import floquet, periodic_response
+from beltmdsm.periodic.floquet import floquet
+from beltmdsm.periodic.shooting import periodic_response
 
 
 def test_the_4T_branch_is_stable_from_a_grazing_to_a_fold_and_ends_at_a_tangency():

@@ -14,8 +14,8 @@ import pytest
 from beltmdsm import Model, branch
 from beltmdsm.cycles.cycle import cycle
 from beltmdsm.errors import Refused
-from beltmdsm.periodic.floquet import periodic_response
-from beltmdsm.periodic.periodmap import NEWTON_TOL
+from beltmdsm.periodic.newton import NEWTON_TOL
+from beltmdsm.periodic.shooting import periodic_response
 
 NS = Model(beta1=0.3, Vb=5.3)  # a Neimark-Sacker point at Vb = 5.45
 

@@ -11,8 +11,9 @@ import pytest
 from beltmdsm.continuation.band import floquet_band
 from beltmdsm.continuation.floquet_map import floquet_map
 from beltmdsm.continuation.map_linear import LINEAR_POINTS
+from beltmdsm.errors import NoPeriodicResponse
 from beltmdsm.model import Model
-from beltmdsm.periodic.floquet import NoPeriodicResponse, floquet
+from beltmdsm.periodic.floquet import floquet
 from generated import stability
 
 
@@ -140,7 +141,7 @@ def test_a_touch_of_the_belt_speed_that_keeps_the_mode_leaves_the_jacobian_smoot
     # decides whether the scan also reports a touch that keeps the mode (S = I, which
     # asked for a saltation variant that does not exist) 1e-13 s after the reversal:
     # either way the modes chain and the Jacobian is the map's
-    from beltmdsm.periodic.periodmap import TangentialMap
+    from beltmdsm.periodic.tangential import TangentialMap
 
     pmap = TangentialMap(Model(omega1=6.59090909090909, Vb=2.3549836562893516), 1)
     x = np.array([-0.2732120331036181, 2.354983656289352])
@@ -158,7 +159,7 @@ def test_a_flat_secant_reports_the_step_that_reached_its_edge(monkeypatch):
     # log max|mu| the same at both points of the secant: no slope to go on with, so the
     # edge is the point reached, its accuracy the step that reached it (not zero)
     from beltmdsm.continuation import map_tracker as module
-    from beltmdsm.periodic.periodmap import MapFamily
+    from beltmdsm.periodic.family import MapFamily
 
     model = Model(beta1=0.3)
     state = floquet(model.replace(Vb=5.48)).response.shooting_state

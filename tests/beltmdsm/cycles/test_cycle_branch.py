@@ -268,7 +268,7 @@ def test_the_onset_from_the_stick_side_is_the_same(cycles):
 
 def test_continue_branch_of_a_cycle_goes_both_ways():
     from beltmdsm.continuation.branch import continue_branch
-    from beltmdsm.periodic.floquet import periodic_response
+    from beltmdsm.periodic.shooting import periodic_response
 
     start = periodic_response(BASE.replace(Vb=1.0))
     found = continue_branch(start, "Vb", 0.9, 1.1)

@@ -25,10 +25,12 @@ from scipy.optimize import brentq
 
 from beltmdsm.cli import main
 from beltmdsm.cycles.cycle import Cycle, cycle, seed_cycle, unstable_pair
+from beltmdsm.errors import NoPeriodicResponse
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.model import Model, is_autonomous
-from beltmdsm.periodic.floquet import floquet, periodic_response, periodic_start
-from beltmdsm.periodic.periodmap import NoPeriodicResponse
+from beltmdsm.periodic.floquet import floquet
+from beltmdsm.periodic.shooting import periodic_response
+from beltmdsm.periodic.start import periodic_start
 from beltmdsm.settings import SolverSettings
 from generated import unforced
 

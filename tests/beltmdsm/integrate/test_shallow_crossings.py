@@ -2,7 +2,7 @@
 
 Reference: the backward-sliding orbit of the base set does not depend on ``Vb`` (the
 friction is ``mu_s Fn`` whatever the slip), so its largest velocity in contact ``g``
-(`beltmdsm.periodic.floquet.largest_sliding_velocity`, found by a bounded scalar
+(`beltmdsm.periodic.tangential.largest_sliding_velocity`, found by a bounded scalar
 minimisation on the closed form) is the belt speed at which it grazes. Started on
 that orbit at ``Vb = g - delta``, a run must reverse its slip within one excitation
 period, however small ``delta``: the relative velocity dips below zero for a time of
@@ -16,9 +16,11 @@ method found the sliding response 2.9e-7 m/s below its grazing point, and
 import numpy as np
 import pytest
 
+from beltmdsm.errors import NoPeriodicResponse
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.integrate.superposition import integrate_superposed
-from beltmdsm.periodic import floquet as F
+from beltmdsm.periodic.floquet import floquet
+from beltmdsm.periodic.tangential import largest_sliding_velocity
 from beltmdsm.settings import SolverSettings
 
 INTEGRATORS = {"events": integrate_events, "superposition": integrate_superposed}
@@ -26,9 +28,9 @@ INTEGRATORS = {"events": integrate_events, "superposition": integrate_superposed
 
 @pytest.fixture(scope="module")
 def sliding():
-    found = F.floquet(Vb=8.0)
+    found = floquet(Vb=8.0)
     assert (found.n_reversals, found.n_sticks) == (0, 0)
-    return found.response, F.largest_sliding_velocity(found.response._engine)
+    return found.response, largest_sliding_velocity(found.response._engine)
 
 
 def _reversals(integrate, model, state0):
@@ -59,8 +61,8 @@ def test_no_sliding_response_below_its_grazing_point(sliding):
     _, g = sliding
     for delta in (1e-7, 3e-7):
         try:
-            found = F.floquet(Vb=g - delta)
-        except F.NoPeriodicResponse:
+            found = floquet(Vb=g - delta)
+        except NoPeriodicResponse:
             continue
         # Newton's method may land on another response, never on the sliding one
         assert (found.n_reversals, found.n_sticks) != (0, 0)

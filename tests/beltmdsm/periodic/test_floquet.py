@@ -16,7 +16,10 @@ from scipy.integrate import solve_ivp
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.integrate.normal import NormalMotion
 from beltmdsm.model import Model
-from beltmdsm.periodic import floquet as F
+from beltmdsm.periodic.floquet import floquet
+from beltmdsm.periodic.normal import normal_orbit
+from beltmdsm.periodic.shooting import periodic_response
+from beltmdsm.periodic.start import periodic_start
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
 from generated import dynamics
@@ -28,7 +31,7 @@ PERIODIC = 1e-9
 
 def test_normal_orbit_is_periodic_and_its_monodromy_is_the_flow_jacobian():
     m = Model()
-    orbit = F.normal_orbit(m)
+    orbit = normal_orbit(m)
     T = orbit.period
     rhs = dynamics.bind_normal_rhs(backend="python", **m.params)
 
@@ -49,8 +52,8 @@ def test_normal_orbit_is_periodic_and_its_monodromy_is_the_flow_jacobian():
     assert np.all(np.abs(orbit.multipliers) < 0.9)
     # kept per normal parameter set: the tangential parameters, mu_s and Vb are not in
     # the normal equation (a map over beta1 computes one normal orbit)
-    assert F.normal_orbit(Model(beta1=0.3, omega1=2.0, mu_s=0.2, Vb=7.0)) is orbit
-    assert F.normal_orbit(Model(omega2=0.6)) is not orbit
+    assert normal_orbit(Model(beta1=0.3, omega1=2.0, mu_s=0.2, Vb=7.0)) is orbit
+    assert normal_orbit(Model(omega2=0.6)) is not orbit
 
 
 @pytest.mark.parametrize(
@@ -65,7 +68,7 @@ def test_normal_orbit_that_loses_contact_has_the_monodromy_of_its_flow(laws):
     (beltmdsm.periodic.variational.graded_pieces). Reference: central differences of
     the package's normal motion, integrated at 1e-13 with its switches located."""
     m = Model(**laws)
-    orbit = F.normal_orbit(m)
+    orbit = normal_orbit(m)
     assert {s for _, _, _, s in orbit.switches} >= {"penetration"}
     T = orbit.period
 
@@ -93,7 +96,7 @@ def test_normal_orbit_that_loses_contact_has_the_monodromy_of_its_flow(laws):
 def test_periodic_response_closes_under_the_other_integrator_and_its_monodromy_is_the_flow_jacobian(
     case,
 ):
-    resp = F.periodic_response(**case)
+    resp = periodic_response(**case)
     T, x0 = resp.period, resp.state0
     settings = SolverSettings(t_end=T, rtol=1e-13, atol=1e-13, dt=T / 100)
 
@@ -129,7 +132,7 @@ def test_without_reversals_the_multipliers_are_the_damped_oscillators():
         dict(Vb=12.0, beta1=0.3, omega1=1.7),
         dict(Vb=4.0, tension="clipped"),
     ):
-        f = F.floquet(**case)
+        f = floquet(**case)
         p = f.response.model.params
         assert f.n_reversals == 0 and f.n_sticks == 0
         lam = complex(-p["beta1"] * p["omega1"], p["omega1"] * math.sqrt(1 - p["beta1"] ** 2))
@@ -143,13 +146,13 @@ def test_without_reversals_the_multipliers_are_the_damped_oscillators():
 
 
 def test_the_paper_point_and_the_issue_examples():
-    unstable = F.floquet(Vb=6.0)
+    unstable = floquet(Vb=6.0)
     assert not unstable.stable and unstable.max_abs_multiplier > 1
     assert unstable.n_reversals == 2
     # the critical pair oscillates near omega1 (= 1 rad/s at the base set)
     assert 0.8 < unstable.frequency < 1.2
     # Omega = 6, Vb = 12: the periodic sliding response is stable (issue 13)
-    stable = F.floquet(Vb=12.0, Omega=6.0)
+    stable = floquet(Vb=12.0, Omega=6.0)
     assert stable.stable and stable.n_reversals == 0
     # the verdict text of the band and the validation
     assert (unstable.verdict, stable.verdict) == ("unstable", "stable")
@@ -157,7 +160,7 @@ def test_the_paper_point_and_the_issue_examples():
 
 
 def test_a_stick_phase_makes_the_tangential_monodromy_singular():
-    f = F.floquet(Vb=0.1, alpha=0.05)
+    f = floquet(Vb=0.1, alpha=0.05)
     assert f.n_sticks >= 1
     assert abs(np.linalg.det(f.response.monodromy_tangential)) < 1e-12
     assert min(abs(f.multipliers[:2])) < 1e-12
@@ -169,7 +172,7 @@ def test_clipped_contact_is_stable_wherever_the_response_exists():
     the unit circle."""
     for case in (dict(), dict(Omega=6.0), dict(Omega=10.0), dict(beta1=0.05)):
         for Vb in (1.0, 4.0, 8.0):
-            f = F.floquet(Vb=Vb, tension="clipped", **case)
+            f = floquet(Vb=Vb, tension="clipped", **case)
             assert f.stable and np.all(np.abs(f.multipliers[:2]) < 1)
 
 
@@ -177,10 +180,10 @@ def test_a_run_started_on_the_perturbed_periodic_response_follows_the_verdict():
     """Unstable (Vb = 6): the perturbation grows into the omega1 oscillation; stable
     (Omega = 6, Vb = 12): it decays although a run from rest finds the oscillation."""
     unstable = Model(Vb=6.0)
-    grows = simulate(unstable, y0=F.periodic_start(unstable), t_end=300.0).summary
+    grows = simulate(unstable, y0=periodic_start(unstable), t_end=300.0).summary
     assert grows.omega1_peak_present
     stable = Model(Vb=12.0, Omega=6.0)
-    decays = simulate(stable, y0=F.periodic_start(stable), t_end=300.0).summary
+    decays = simulate(stable, y0=periodic_start(stable), t_end=300.0).summary
     assert decays.omega1_peak_present is False
 
     with pytest.raises(TypeError, match="periodic_start"):
@@ -189,10 +192,10 @@ def test_a_run_started_on_the_perturbed_periodic_response_follows_the_verdict():
 
 def test_bad_input_is_refused_by_name():
     with pytest.raises(ValueError, match="tension"):
-        F.floquet(tension="loose")
+        floquet(tension="loose")
     with pytest.raises(ValueError, match="incommensurate"):
-        F.floquet(Omega_t=4.0 * math.sqrt(2), Omega_n=4.0)
+        floquet(Omega_t=4.0 * math.sqrt(2), Omega_n=4.0)
     with pytest.raises(ValueError, match="perturbation"):
-        F.periodic_start(Model(), float("nan"))
+        periodic_start(Model(), float("nan"))
     with pytest.raises(ValueError, match="'mu_s'"):
-        F.floquet(mu_s=-1.0)
+        floquet(mu_s=-1.0)

@@ -12,10 +12,13 @@ import math
 import numpy as np
 import pytest
 
+from beltmdsm.errors import NoPeriodicResponse
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.periodic import locked as L
-from beltmdsm.periodic.floquet import NoPeriodicResponse, floquet, periodic_response
-from beltmdsm.periodic.periodmap import TangentialMap, fixed_point
+from beltmdsm.periodic.floquet import floquet
+from beltmdsm.periodic.newton import fixed_point
+from beltmdsm.periodic.shooting import periodic_response
+from beltmdsm.periodic.tangential import TangentialMap
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
 

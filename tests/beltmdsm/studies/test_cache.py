@@ -182,7 +182,12 @@ def test_the_code_hash_covers_what_a_row_imports_and_not_the_rest():
         "beltmdsm/studies/row.py",
         # issue 28: they decide a row's `resolved` and its periodic start, and a hand
         # list had left them out
-        "beltmdsm/periodic/periodmap.py",
+        "beltmdsm/periodic/base.py",
+        "beltmdsm/periodic/tangential.py",
+        "beltmdsm/periodic/general.py",
+        "beltmdsm/periodic/newton.py",
+        "beltmdsm/periodic/shooting.py",
+        "beltmdsm/periodic/start.py",
         "beltmdsm/periodic/variational.py",
         "beltmdsm/periodic/locked.py",
     } <= names
@@ -242,9 +247,9 @@ def test_changing_any_imported_source_changes_the_code_hash(tmp_path, monkeypatc
 
 def test_a_changed_period_map_serves_no_stale_row(tmp_path, monkeypatch):
     # issue 28: sweep("Vb", [3, 5], start="periodic", cache_dir=D), then NEWTON_TOL =
-    # 1e-300 in periodmap.py: the rerun served 2 cached sliding rows where the new code
+    # 1e-300 in newton.py: the rerun served 2 cached sliding rows where the new code
     # finds no periodic response
-    from beltmdsm.periodic import periodmap
+    from beltmdsm.periodic import newton
 
     settings = SolverSettings(t_end=20.0)
 
@@ -263,12 +268,12 @@ def test_a_changed_period_map_serves_no_stale_row(tmp_path, monkeypatch):
     assert list(first.table["status"]) == ["done", "done"]
     # the edit, on disk (a copy of the tree) and in the running code
     root = _copy_tree(tmp_path)
-    source = root / "beltmdsm/periodic/periodmap.py"
+    source = root / "beltmdsm/periodic/newton.py"
     text = source.read_text()
     assert "\nNEWTON_TOL = 1e-11\n" in text
     source.write_text(text.replace("\nNEWTON_TOL = 1e-11\n", "\nNEWTON_TOL = 1e-300\n"))
     monkeypatch.setattr(cache_module, "_ROOT", root)
-    monkeypatch.setattr(periodmap, "NEWTON_TOL", 1e-300)
+    monkeypatch.setattr(newton, "NEWTON_TOL", 1e-300)
     cache_module.code_hash.cache_clear()
     try:
         fresh = run(None)

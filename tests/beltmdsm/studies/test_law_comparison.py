@@ -23,7 +23,7 @@ import pytest
 
 from beltmdsm.intervals import runs
 from beltmdsm.model import excitation_period
-from beltmdsm.periodic.floquet import periodic_response
+from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.run.summary import free_decay_rate
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate

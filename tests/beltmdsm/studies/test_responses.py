@@ -10,8 +10,8 @@ same orbit).
 import pytest
 
 from beltmdsm.model import Model
-from beltmdsm.periodic.floquet import periodic_response
 from beltmdsm.periodic.locked import same_phases
+from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.studies import responses as R
 from beltmdsm.studies.seeds import ladder_stroboscope, run_stroboscope
 

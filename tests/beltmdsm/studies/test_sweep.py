@@ -360,7 +360,7 @@ def test_a_sweep_started_on_the_periodic_response(tmp_path):
 
     settings = SolverSettings(t_end=300.0)
     kw = dict(settings=settings, executor="serial", progress=False)
-    # 3: stable, 5: unstable (Floquet); 6.3: no periodic response (periodic/floquet.py)
+    # 3: stable, 5: unstable (Floquet); 6.3: no periodic response (periodic/shooting.py)
     table = sweep("Vb", [3.0, 5.0, 6.3], start="periodic", cache_dir=tmp_path, **kw).table
     assert floquet(Vb=3.0).stable is True and floquet(Vb=5.0).stable is False
     assert list(table["omega1_peak_present"]) == [False, True, False]
