@@ -8,7 +8,8 @@ contact and tension laws, with their parameters), ``units`` (the contact law's u
 ``fit`` (Eqs. 16-17), ``mdsm`` (Eqs. 13-21, A1-A2), ``averaging`` (a law over a fast
 period), ``friction`` (Eqs. 23-25), ``stability`` (Eqs. 22, 26-28, A3-A8),
 ``correlation`` (the consistent MDSM), ``contraction``, ``capabilities`` (what each
-choice of laws allows), ``modules`` (what generated/ contains), ``codegen`` (writes
+choice of laws allows), ``dop853`` (the integrator's tableau, as published),
+``modules`` (what generated/ contains), ``codegen`` (writes
 generated/), ``paper`` and ``paper_check`` (the paper check),
 ``cli`` (``python -m derive``).
 """

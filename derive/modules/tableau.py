@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from .. import dop853
 from ..codegen import ModuleSpec
 
 __all__ = ["build"]
@@ -10,35 +11,30 @@ __all__ = ["build"]
 def build() -> ModuleSpec:
     """The Dormand-Prince 8(5,3) tableau of the runtime's integrator, as data.
 
-    Copied from ``scipy.integrate`` when generated/ is written, so that the runtime's
-    integrator (beltmdsm/integrate/_dop853.py) starts without importing
+    Hairer's published constants (`derive.dop853`), written into generated/ so that
+    the runtime's integrator (beltmdsm/integrate/_dop853.py) starts without importing
     ``scipy.integrate``, which costs half a second of every run's start.
     """
-    from scipy.integrate._ivp import dop853_coefficients as c
-
-    def data(a):
-        return tuple(data(row) for row in a) if a.ndim > 1 else tuple(float(x) for x in a)
-
     constants = (
-        ("N_STAGES", int(c.N_STAGES), "Stages of a step (the 8th-order solution)."),
+        ("N_STAGES", dop853.N_STAGES, "Stages of a step (the 8th-order solution)."),
         (
             "N_STAGES_EXTENDED",
-            int(c.N_STAGES_EXTENDED),
+            dop853.N_STAGES_EXTENDED,
             "Stages with those of the dense output.",
         ),
-        ("INTERPOLATOR_POWER", int(c.INTERPOLATOR_POWER), "Rows of a step's dense output."),
-        ("A", data(c.A), "The Runge-Kutta matrix, extended stages included."),
-        ("B", data(c.B), "The weights of the 8th-order solution."),
-        ("C", data(c.C), "The nodes, extended stages included."),
-        ("E3", data(c.E3), "The 3rd-order error estimate's weights."),
-        ("E5", data(c.E5), "The 5th-order error estimate's weights."),
-        ("D", data(c.D), "The dense output's coefficients."),
+        ("INTERPOLATOR_POWER", dop853.INTERPOLATOR_POWER, "Rows of a step's dense output."),
+        ("A", dop853.A, "The Runge-Kutta matrix, extended stages included."),
+        ("B", dop853.B, "The weights of the 8th-order solution."),
+        ("C", dop853.C, "The nodes, extended stages included."),
+        ("E3", dop853.E3, "The 3rd-order error estimate's weights."),
+        ("E5", dop853.E5, "The 5th-order error estimate's weights."),
+        ("D", dop853.D, "The dense output's coefficients."),
     )
     return ModuleSpec(
         "tableau",
-        """The Dormand-Prince 8(5,3) tableau (Hairer, Norsett and Wanner) of ``scipy.integrate``.
+        """The Dormand-Prince 8(5,3) tableau (Hairer, Norsett and Wanner), as dop853.f prints it.
 
-Copied when generated/ is written, so that the runtime's integrator
+Typed in derive/dop853.py and written here, so that the runtime's integrator
 (beltmdsm/integrate/_dop853.py) starts without importing ``scipy.integrate``.
 """,
         (),
