@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .. import contraction as ctr
+from .. import contraction_energy as ctr
 from ..codegen import FunctionSpec, ModuleSpec
 
 __all__ = ["build"]
