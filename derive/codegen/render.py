@@ -216,10 +216,11 @@ def _parameters_module() -> str:
     static = {
         c: (sp.sstr(static_coefficient(c)), sp.sstr(rest_coefficient(c))) for c in with_static
     }
-    shortfalls = []
+    shortfalls, involved = [], {}
     for c in with_static:
         excess = rest_coefficient(c) - static_coefficient(c)
-        names = ", ".join(sorted(str(x) for x in excess.free_symbols))
+        involved[c] = tuple(sorted(str(x) for x in excess.free_symbols))
+        names = ", ".join(involved[c])
         shortfalls.append(f"    {c!r}: lambda {names}, **_: {sp.pycode(excess)},")
     shortfall = "\n".join(shortfalls)
     rules = ", ".join(
@@ -245,7 +246,9 @@ def _parameters_module() -> str:
         "``STATIC_BOUNDS``: friction law -> ``(static bound, slip coefficient at rest)``\n"
         "of the laws that bound stick by a static coefficient of their own\n"
         "(derive/laws.py, ``FrictionLaw.static``); ``static_shortfall`` how far the slip\n"
-        "coefficient at rest exceeds that bound for given parameters.\n"
+        "coefficient at rest exceeds that bound for given parameters, and\n"
+        "``STATIC_PARAMETERS`` the parameters it depends on (a change of another one\n"
+        "cannot change it).\n"
         "\n"
         "``DOMAIN_RULES``: each domain as (lower bound, bound excluded, the text of a\n"
         "failure); ``within(domain, x)`` applies it (NaN is never within).\n"
@@ -268,6 +271,7 @@ def _parameters_module() -> str:
         f"LAW_PARAMETERS = {_literal(owners)}\n"
         f"LAW_UNITS = {_literal(units)}\n"
         f"STATIC_BOUNDS = {_literal(static)}\n"
+        f"STATIC_PARAMETERS = {_literal(involved)}\n"
         f"_SHORTFALL = {{\n{shortfall}\n}}\n"
         "\n"
         f"DOMAIN_RULES = {{{rules}}}\n"

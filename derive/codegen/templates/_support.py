@@ -19,9 +19,16 @@ from .parameters import DEFAULT_FROM, DEFAULTS, DOMAIN_RULES, DOMAINS, KNOWN, wi
 # it checks an array in two reductions and no temporary array, and NaN fails both
 # (comparisons with NaN are False).
 
+#: The keyword under which a caller passes the parameters it has checked already: a
+#: mapping of scalar values (``beltmdsm.model.Model.arguments`` passes its own). A
+#: parameter whose value *is* that checked object is not checked again; any other
+#: value (one the caller put in its place, an array of a grid) is. So a model checked
+#: once is not checked at every call of a generated function.
+CHECKED = "_checked"
+
 
 def _reject_unknown(function, extra):
-    unknown = sorted(set(extra) - KNOWN)
+    unknown = sorted(set(extra) - KNOWN - {CHECKED})
     if unknown:
         raise TypeError(
             f"{function}() got unexpected keyword argument(s) "
@@ -71,7 +78,7 @@ def arguments(function, names, params):
         like the others (a bad value is an error wherever it is passed) and take
         part in broadcasting, so a grid of any parameter gives outputs of the
         grid's shape. ``None`` (an optional parameter left at its default) is
-        skipped.
+        skipped, and so is a scalar the caller checked (`CHECKED`).
 
     Raises
     ------
@@ -81,9 +88,25 @@ def arguments(function, names, params):
         Naming the parameter, for NaN, inf or a value outside its domain.
     """
     _reject_unknown(function, params)
-    values = [param(function, n, _lookup(function, n, params)) for n in names]
-    extra = [param(function, k, v) for k, v in params.items() if k not in names and v is not None]
+    checked = params.get(CHECKED) or {}
+    values = []
+    for n in names:
+        v = _lookup(function, n, params)
+        values.append(
+            numpy.asarray(v, dtype=float) if _is_checked(checked, n, v) else param(function, n, v)
+        )
+    extra = [
+        param(function, k, v)
+        for k, v in params.items()
+        if k not in names and k != CHECKED and v is not None and not _is_checked(checked, k, v)
+    ]
     return values, extra
+
+
+def _is_checked(checked, name, value):
+    """Whether ``value`` is the scalar the caller checked for ``name`` (`CHECKED`):
+    the same object, a float (a scalar has no shape to broadcast)."""
+    return checked.get(name) is value and type(value) is float
 
 
 def _scalar_arguments(function, names, params):
@@ -94,10 +117,13 @@ def _scalar_arguments(function, names, params):
     the checks of `arguments`, which name what is wrong.
     """
     _reject_unknown(function, params)
+    checked = params.get(CHECKED) or {}
     values = []
     for n in names:
         v = _lookup(function, n, params)
-        if type(v) is float and math.isfinite(v) and within(DOMAINS[n], v):
+        if _is_checked(checked, n, v) or (
+            type(v) is float and math.isfinite(v) and within(DOMAINS[n], v)
+        ):
             values.append(v)
             continue
         x = param(function, n, v)
@@ -107,7 +133,9 @@ def _scalar_arguments(function, names, params):
     for k, v in params.items():
         if (
             k not in names
+            and k != CHECKED
             and v is not None
+            and not _is_checked(checked, k, v)
             and not (type(v) is float and math.isfinite(v) and within(DOMAINS[k], v))
         ):
             param(function, k, v)
@@ -119,7 +147,7 @@ def mp_arguments(function, names, params):
     _reject_unknown(function, params)
     values = [mp_param(function, n, _lookup(function, n, params)) for n in names]
     for k, v in params.items():
-        if k not in names and v is not None:
+        if k not in names and k != CHECKED and v is not None:
             mp_param(function, k, v)
     return values
 
@@ -700,6 +728,7 @@ def choose(function, table, **options):
 
 
 __all__ = [
+    "CHECKED",
     "arguments",
     "mp_arguments",
     "param",
