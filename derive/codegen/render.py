@@ -300,7 +300,8 @@ def render_all(modules) -> dict[str, str]:
         ),
         "mp/__init__.py": HEADER + '"""mpmath variants of the generated modules."""\n',
         "parameters.py": _parameters_module(),
-        "_support.py": HEADER + (TEMPLATES / "_support.py").read_text(),
+        # the runtime support, copied: `_support` and the modules it reaches
+        **{path.name: HEADER + path.read_text() for path in sorted(TEMPLATES.glob("*.py"))},
     }
     for m in modules:
         files[f"{m.name}.py"] = render(m)

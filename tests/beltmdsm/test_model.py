@@ -266,11 +266,12 @@ def test_a_replaced_model_is_the_model_built_whole(start, kw):
 
 @pytest.fixture
 def generated_checks(monkeypatch):
-    """The parameters a generated function checks (``_support.param``, ``within``)."""
-    from generated import _support
+    """The parameters a generated function checks (``generated._checks``: ``param``,
+    ``within``)."""
+    from generated import _checks
 
     seen = []
-    param, within = _support.param, _support.within
+    param, within = _checks.param, _checks.within
 
     def counting_param(function, name, value, *a, **k):
         seen.append(("param", name))
@@ -280,8 +281,8 @@ def generated_checks(monkeypatch):
         seen.append(("within", domain))
         return within(domain, x)
 
-    monkeypatch.setattr(_support, "param", counting_param)
-    monkeypatch.setattr(_support, "within", counting_within)
+    monkeypatch.setattr(_checks, "param", counting_param)
+    monkeypatch.setattr(_checks, "within", counting_within)
     return seen
 
 
