@@ -12,8 +12,10 @@ against the one domain table (``generated.parameters.DOMAINS``); it is frozen an
 hashable, and `Model.digest` keys the sweep cache. The public functions of the
 package take a `Model` or the keywords it is built from (`as_model`), convert once at
 the boundary and pass the `Model` down; nothing inside checks a parameter again.
-`Model.arguments` gives a generated function the keywords it takes: every parameter
-and the options it declares.
+`Model.replace` checks only what it changes (with what follows it and the
+constraints that involve it). `Model.arguments` gives a generated function the
+keywords it takes: every parameter and the options it declares, marked as checked
+(``generated._support.CHECKED``), so that the function does not check them again.
 
 `require` is how an analysis checks a structural fact of the chosen laws that SymPy
 decided (``generated.capabilities``): it raises `Unsupported`, naming the law and the
@@ -41,6 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from generated import parameters as _table
+from generated._support import CHECKED
 from generated.parameters import (
     BASE,
     DEFAULT_FROM,
@@ -127,6 +130,26 @@ def check_domain(name: str, value: float) -> str | None:
     """What is wrong with ``value`` for parameter ``name`` ("must be > 0"), or None."""
     domain = DOMAINS[name]
     return None if within(domain, value) else f"must be {DOMAIN_RULES[domain][2]}"
+
+
+def _check(name: str, value: float) -> None:
+    """Raise ValueError naming ``name`` where ``value`` is outside its domain."""
+    problem = check_domain(name, value)
+    if problem:
+        raise ValueError(f"parameter {name!r} {problem}; got {value!r}")
+
+
+def _check_static(friction: str, params: Mapping[str, float]) -> None:
+    """Raise ValueError where the friction law's static bound is below its slip
+    coefficient at rest (``generated.parameters.static_shortfall``)."""
+    excess = _table.static_shortfall(friction, **params)
+    if excess > 0:
+        static, rest = _table.STATIC_BOUNDS[friction]
+        raise ValueError(
+            f"friction={friction!r}: its slip coefficient at rest {rest} "
+            f"exceeds its static bound {static} by {excess:.6g}: stick would hold less "
+            f"than slip does; choose {rest} <= {static}"
+        )
 
 
 def _number(name: str, value: object) -> float:
@@ -219,18 +242,13 @@ class Model:
         for name, source in DEFAULT_FROM.items():
             params.setdefault(name, params[source])
         for name, value in params.items():
-            problem = check_domain(name, value)
-            if problem:
-                raise ValueError(f"parameter {name!r} {problem}; got {value!r}")
-        excess = _table.static_shortfall(options["friction"], **params)
-        if excess > 0:
-            static, rest = _table.STATIC_BOUNDS[options["friction"]]
-            raise ValueError(
-                f"friction={options['friction']!r}: its slip coefficient at rest {rest} "
-                f"exceeds its static bound {static} by {excess:.6g}: stick would hold less "
-                f"than slip does; choose {rest} <= {static}"
-            )
+            _check(name, value)
+        _check_static(options["friction"], params)
         ordered = {name: params[name] for name in MODEL_PARAMETERS if name in params}
+        self._set(given, ordered, options)
+
+    def _set(self, given: dict[str, float], ordered: dict[str, float], options: dict) -> None:
+        """Hold a checked parameter set (``ordered``: in the table's order)."""
         setattr_ = object.__setattr__
         setattr_(self, "_given", MappingProxyType(given))
         setattr_(self, "_params", MappingProxyType(ordered))
@@ -254,11 +272,62 @@ class Model:
 
         The parameters given when this model was built stay given; the others
         follow their defaults (``alpha_t`` follows ``alpha`` unless it was given).
-        A law's own parameters go with the law where another is chosen.
+        A law's own parameters go with the law where another is chosen. Where only
+        parameters of this model change, only they are checked (with the
+        parameters that follow them and the constraints that involve them,
+        ``generated.parameters.STATIC_PARAMETERS``): the rest were checked when
+        this model was built. An option change builds and checks the model whole.
+
+        Parameters
+        ----------
+        **kw
+            Parameters and options, as `Model` takes them.
+
+        Returns
+        -------
+        Model
+
+        Raises
+        ------
+        ValueError
+            Naming the parameter or option, as `Model` does.
+
+        See Also
+        --------
+        Model, as_model
+
+        Examples
+        --------
+        >>> m = Model(Vb=5)
+        >>> m.replace(alpha=3)["alpha_t"], m.replace(alpha=3).replace(Vb=6)["Vb"]
+        (3.0, 6.0)
+        >>> m.replace(Vb=-1)
+        Traceback (most recent call last):
+        ...
+        ValueError: parameter 'Vb' must be >= 0; got -1.0
         """
-        options = {**self._options, **{k: v for k, v in kw.items() if k in OPTIONS}}
-        given = {k: v for k, v in self._given.items() if _owned(k, options)}
-        return Model(**{**given, **options, **kw})
+        if not all(k in self._params and v is not None for k, v in kw.items()):
+            # an option, a parameter of another law, None (back to the default), an
+            # unknown name: built and checked whole
+            options = {**self._options, **{k: v for k, v in kw.items() if k in OPTIONS}}
+            given = {k: v for k, v in self._given.items() if _owned(k, options)}
+            return Model(**{**given, **options, **kw})
+        # parameters of this model only: the changed ones are checked, with those that
+        # follow them (alpha_t follows alpha unless given) and the constraints that
+        # involve them; the rest were checked when this model was built
+        changed = {k: _number(k, v) for k, v in kw.items()}
+        given = {**self._given, **changed}
+        for name, source in DEFAULT_FROM.items():
+            if source in changed and name not in given:
+                changed[name] = changed[source]
+        for name, value in changed.items():
+            _check(name, value)
+        params = {**self._params, **changed}
+        if not changed.keys().isdisjoint(_table.STATIC_PARAMETERS.get(self.friction, ())):
+            _check_static(self.friction, params)
+        new = object.__new__(Model)
+        new._set(given, params, dict(self._options))
+        return new
 
     def __setattr__(self, name: str, value: object) -> None:
         raise AttributeError("Model is immutable; use replace()")
@@ -321,9 +390,13 @@ class Model:
 
     def arguments(self, function: Callable[..., Any]) -> dict[str, Any]:
         """The keywords a generated function takes of this model: the options it declares
-        (``friction=``, ``contact=``, ...) and every parameter (the generated functions
-        accept every known parameter and check them)."""
-        return {**{k: self._options[k] for k in _declared_options(function)}, **self._params}
+        (``friction=``, ``contact=``, ...), every parameter (the generated functions
+        accept every known parameter) and, under ``generated._support.CHECKED``, the
+        parameters as this model checked them: the function does not check them again.
+        A value put in the place of one (``{**m.arguments(f), "Vb": grid}``) is checked.
+        """
+        options = {k: self._options[k] for k in _declared_options(function)}
+        return {**options, **self._params, CHECKED: self._params}
 
     def as_dict(self) -> dict[str, Any]:
         """``{"params": {...}, <option>: <choice>, ...}``, for JSON."""

@@ -7,8 +7,10 @@ contact and tension laws, with their parameters), ``units`` (the contact law's u
 (Eq. 4 for simulation), ``hybrid`` (modes, surfaces, saltation), ``oscillator``,
 ``fit`` (Eqs. 16-17), ``mdsm`` (Eqs. 13-21, A1-A2), ``averaging`` (a law over a fast
 period), ``friction`` (Eqs. 23-25), ``stability`` (Eqs. 22, 26-28, A3-A8),
-``correlation`` (the consistent MDSM), ``contraction``, ``capabilities`` (what each
-choice of laws allows), ``modules`` (what generated/ contains), ``codegen`` (writes
+``correlation`` (the consistent MDSM), ``contraction`` (with ``contraction_energy``
+and ``contraction_sign``, its steps), ``capabilities`` (what each
+choice of laws allows), ``dop853`` (the integrator's tableau, as published),
+``modules`` (what generated/ contains), ``codegen`` (writes
 generated/), ``paper`` and ``paper_check`` (the paper check),
 ``cli`` (``python -m derive``).
 """

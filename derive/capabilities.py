@@ -16,7 +16,7 @@ assumed, and the code generator writes the table to ``generated/capabilities.py`
 * ``friction_monotone``: the signed friction coefficient ``sgn(Vr) mu(|Vr|)`` is
   non-decreasing in ``Vr`` (``mu' >= 0`` and ``mu(0) >= 0``), which the contraction
   claim needs; where it fails the reason names the range of ``Vr``
-  (`derive.contraction.monotonicity`);
+  (`derive.contraction_sign.monotonicity`);
 * ``closed_form_average``: the friction law's average over a harmonic fast motion is
   a closed form (`derive.averaging.closed_form`), which the MDSM's closed forms
   (the critical belt speed of `generated.stability`) need; without it the averages
@@ -28,7 +28,7 @@ from __future__ import annotations
 import itertools
 
 from . import averaging, dynamics, hybrid, laws
-from .contraction import monotonicity
+from .contraction_sign import monotonicity
 from .model import X1, Y1
 
 __all__ = [

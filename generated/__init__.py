@@ -11,7 +11,7 @@
 * ``hybrid``: Eq. (4) as a hybrid system (derive/hybrid.py).
 * ``oscillator``: The tangential oscillator of Eq. (4) in closed form.
 * ``capabilities``: What each combination of laws allows: facts SymPy decided (derive/capabilities.py).
-* ``tableau``: The Dormand-Prince 8(5,3) tableau (Hairer, Norsett and Wanner) of ``scipy.integrate``.
+* ``tableau``: The Dormand-Prince 8(5,3) tableau (Hairer, Norsett and Wanner), as dop853.f prints it.
 * ``contraction``: The energy of the difference of two tangential motions under one normal motion.
 
 Importing them never imports SymPy.

@@ -19,7 +19,9 @@ parameters; ``PARAMETERS`` has those of the default contact law).
 ``STATIC_BOUNDS``: friction law -> ``(static bound, slip coefficient at rest)``
 of the laws that bound stick by a static coefficient of their own
 (derive/laws.py, ``FrictionLaw.static``); ``static_shortfall`` how far the slip
-coefficient at rest exceeds that bound for given parameters.
+coefficient at rest exceeds that bound for given parameters, and
+``STATIC_PARAMETERS`` the parameters it depends on (a change of another one
+cannot change it).
 
 ``DOMAIN_RULES``: each domain as (lower bound, bound excluded, the text of a
 failure); ``within(domain, x)`` applies it (NaN is never within).
@@ -124,6 +126,7 @@ LAW_UNITS = {('contact', 'hertz_damp'): {'beta2': '1/m^(5/4)', 'omega2': 'rad/(m
  ('contact', 'hunt_crossley'): {'beta2': '1/m^((n_h + 1)/2)',
                                 'omega2': 'rad m^((1 - n_h)/2)/s'}}
 STATIC_BOUNDS = {'static_kinetic': ('mu_s', 'mu_k')}
+STATIC_PARAMETERS = {'static_kinetic': ('mu_k', 'mu_s')}
 _SHORTFALL = {
     'static_kinetic': lambda mu_k, mu_s, **_: mu_k - mu_s,
 }

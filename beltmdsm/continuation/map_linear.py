@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from generated import stability
+from generated._support import CHECKED
 
 from ..intervals import runs as true_intervals
 
@@ -31,6 +32,7 @@ def _linear(rows, x, xs):
         block = {
             k: v if isinstance(v, str) else np.array([a[k] for a in args])[:, None]
             for k, v in args[0].items()
+            if k != CHECKED  # the rows' values are stacked here: checked as a block
         }
         stable = np.asarray(stability.is_stable(**{**block, x: xs[None, :]}), bool)
         out += [[[float(a), float(b)] for a, b in true_intervals(xs, ~s)] for s in stable]

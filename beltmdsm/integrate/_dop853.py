@@ -1,8 +1,8 @@
 """A compiled Dormand-Prince 8(5,3) integrator of one smooth mode, stopping at switches.
 
 The method and its step-size control are SciPy's ``DOP853`` (Hairer, Norsett and
-Wanner, *Solving ODEs I*, Sect. II.10; the coefficients are SciPy's own,
-``generated.tableau``, copied from ``scipy.integrate``), with the 7th-order dense output
+Wanner, *Solving ODEs I*, Sect. II.10; the coefficients are Hairer's, as SciPy's,
+``generated.tableau`` from derive/dop853.py), with the 7th-order dense output
 computed for every step, because a trajectory is sampled, integrated
 (energy balance) and searched for switches between the steps.
 

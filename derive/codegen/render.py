@@ -4,7 +4,8 @@ A generated module is described by a `ModuleSpec` of `FunctionSpec` entries (bui
 in `derive.modules`); `render` turns the specs into source text, deterministically
 (common-subexpression elimination over all outputs of a function together,
 canonical ordering, parameters in table order), `render_all` gives every file of
-``generated/`` (`derive.codegen.files` writes them).
+``generated/`` (`derive.codegen.files` writes them). The implementations are
+`derive.codegen.variants`', the docstrings `derive.codegen.docstrings`'.
 
 The layers of a generated function (PyDy's generator / printer / wrapper):
 
@@ -30,12 +31,9 @@ The layers of a generated function (PyDy's generator / printer / wrapper):
 
 from __future__ import annotations
 
-import functools
 import math
 import pprint
 import re
-import textwrap
-from dataclasses import dataclass
 from pathlib import Path
 
 import sympy as sp
@@ -43,556 +41,25 @@ import sympy as sp
 from .. import laws
 from ..model import PARAMETERS, rest_coefficient, static_coefficient
 from ..parameters import DOMAINS as DOMAIN_RULES
-from ..statespace import Quadratic
 from ..units import contact_units
+from .docstrings import _bind_docstring, _docstring
 from .files import HEADER
-from .printers import Mpmath, NumPy, Scalar, hoisted_roots, lift_integrals, root_line
-from .specs import FunctionSpec, ModuleSpec, Refusal
+from .specs import ModuleSpec
+from .variants import (
+    _KERNEL_RESULT,
+    _domain_of,
+    _indent,
+    _mp_impl,
+    _numpy_impl,
+    _prep_impl,
+    _scalar_impl,
+    _table,
+    _variants,
+)
 
 __all__ = ["render", "render_all"]
 
 TEMPLATES = Path(__file__).resolve().parent / "templates"
-
-_TABLE = {p.name: p for p in PARAMETERS}
-_ORDER = {p.name: i for i, p in enumerate(PARAMETERS)}
-
-
-# --------------------------------------------------------------------------- helpers
-
-
-def _flat(returns, outputs):
-    """Outputs as a flat list of expressions, plus the shape to rebuild."""
-    if returns == "value":
-        return [sp.sympify(outputs)], None
-    if returns in ("tuple", "vector"):
-        return [sp.sympify(e) for e in outputs], len(outputs)
-    if returns == "matrix":
-        M = sp.Matrix(outputs)
-        return list(M), M.shape
-    if returns in ("roots", "growth"):
-        flat = []
-        for quad in outputs:
-            assert isinstance(quad, Quadratic)
-            flat += [quad.p / 2, quad.q, quad.disc]
-        return flat, len(outputs)
-    if returns == "stable":
-        return [sp.sympify(e) for e in outputs], len(outputs)
-    raise ValueError(f"unknown returns kind {returns!r}")
-
-
-def _combine(returns, out, flavor):
-    """One output per point from the printed outputs: a value, the largest growth
-    rate of the factors, or the Routh-Hurwitz verdict (every output positive).
-
-    ``flavor`` is ``"numpy"``, ``"scalar"`` or ``"mp"``; a NaN wins the maximum in
-    each, as in ``numpy.maximum``.
-    """
-    if returns == "value":
-        return out[0]
-    if returns == "stable":
-        return (" & " if flavor == "numpy" else " and ").join(f"({o} > 0)" for o in out)
-    if flavor == "numpy":
-        return functools.reduce(lambda a, b: f"numpy.maximum({a}, {b})", out)
-    if flavor == "mp":
-        return f"max({', '.join(out)})"
-    # scalar: `out` are names (see `_growth_lines`), each printed more than once
-    return functools.reduce(lambda a, b: f"({a} if ({a} >= {b} or {a} != {a}) else {b})", out)
-
-
-def _growth_lines(out, printer):
-    """Name ``h, q, disc`` of each quadratic factor and select its growth rate.
-
-    The selection is `Quadratic.largest_real_part` printed in symbols named after
-    the lines, so every printer prints the one definition.
-    Returns the lines and the names of the per-factor growth rates.
-    """
-    lines, names = [], []
-    for k in range(len(out) // 3):
-        h, q, d = (sp.Symbol(f"_{c}{k}", real=True) for c in "hqd")
-        lines.append(f"{h}, {q}, {d} = {', '.join(out[3 * k : 3 * k + 3])}")
-        lines.append(f"_g{k} = {printer.doprint(Quadratic.largest_real_part(h, q, d))}")
-        names.append(f"_g{k}")
-    return lines, names
-
-
-def _impl_params(exprs, args, where):
-    """Parameters an implementation takes, in table order.
-
-    Raises
-    ------
-    ValueError
-        Naming ``where`` (the function and variant), for a symbol that is neither a
-        positional argument nor a parameter.
-    """
-    names = {s.name for e in exprs for s in e.free_symbols} - {a.name for a in args}
-    unknown = names - set(_ORDER)
-    if unknown:
-        raise ValueError(
-            f"{where}: expressions use symbols that are neither arguments "
-            f"({', '.join(a.name for a in args) or 'none'}) nor parameters: {sorted(unknown)}"
-        )
-    return sorted(names, key=_ORDER.__getitem__)
-
-
-def _doc_params(exprs, args):
-    """Parameters a user may pass: those used, and those their defaults come from."""
-    names = set(_impl_params(exprs, args, "docstring"))
-    names |= {_TABLE[n].default_from for n in names if _TABLE[n].default_from}
-    return sorted(names, key=_ORDER.__getitem__)
-
-
-def _domain_of(symbol):
-    """A positional argument's domain: the parameter table's, else its assumptions."""
-    if symbol.name in _TABLE:
-        return _TABLE[symbol.name].domain
-    if symbol.is_positive:
-        return "positive"
-    return "nonnegative" if symbol.is_nonnegative else "real"
-
-
-def _errstate(flat, body):
-    """``body`` under ``numpy.errstate`` where the expressions have a Piecewise."""
-    if not any(e.has(sp.Piecewise) for e in flat):
-        return body
-    # numpy evaluates every branch of a select (and a compiled kernel may evaluate
-    # both sides of a branch): silence the unused ones.
-    return ['with numpy.errstate(divide="ignore", invalid="ignore"):'] + [
-        "    " + b.replace("\n", "\n    ") for b in body
-    ]
-
-
-def _indent(lines):
-    return [("    " + line.replace("\n", "\n    ")).rstrip() for line in lines]
-
-
-@functools.cache
-def _eliminate(flat: tuple) -> tuple:
-    """``sp.cse`` of ``flat``, once: the numpy, scalar and mpmath printings of a
-    variant share it (it does not depend on the printer)."""
-    return sp.cse(list(flat), symbols=sp.numbered_symbols("_x"), order="canonical")
-
-
-def _cse(flat, printer):
-    """Common subexpressions of ``flat`` as lines, and the reduced outputs.
-
-    Quadratures come first, one statement each (`lift_integrals`).
-    """
-    lines, flat = lift_integrals(flat, printer)
-    repl, reduced = _eliminate(tuple(flat))
-    return lines + [f"{sym} = {printer.doprint(e)}" for sym, e in repl], reduced
-
-
-# --------------------------------------------------------------------------- variants
-
-
-@dataclass
-class _Variant:
-    """One implementation of a function: the option keys that share it, its names."""
-
-    fn: FunctionSpec
-    keys: list
-    outputs: object
-
-    @property
-    def key(self):
-        return self.keys[0]
-
-    @property
-    def impl(self):
-        if not self.fn.options:
-            return f"_{self.fn.name}__impl"
-        return f"_{self.fn.name}__{'__'.join(map(str, self.key))}"
-
-    @functools.cached_property
-    def flat(self):
-        return _flat(self.fn.returns, self.outputs)[0]
-
-    @functools.cached_property
-    def shape(self):
-        return _flat(self.fn.returns, self.outputs)[1]
-
-    @functools.cached_property
-    def params(self):
-        return _impl_params(self.flat, self.fn.args, f"{self.fn.name}{self.key}")
-
-    @functools.cached_property
-    def roots(self):
-        return hoisted_roots(self.flat, self.fn.args)
-
-    @property
-    def has_scalar(self):
-        return self.fn.accelerate or self.fn.bind
-
-    @property
-    def prep(self):
-        return f"{self.impl}__roots" if self.roots and self.has_scalar else None
-
-
-def _variants(fn):
-    """The implementations of ``fn``: variants with equal outputs share one, refusals none.
-
-    Returns
-    -------
-    variants : list of _Variant
-    refused : dict
-        Key -> `Refusal`.
-    """
-    shared, refused = {}, {}
-    for key, outputs in fn.variants.items():
-        if isinstance(outputs, Refusal):
-            refused[key] = outputs
-            continue
-        flat, shape = _flat(fn.returns, outputs)
-        same = shared.get((tuple(flat), shape))
-        if same is None:
-            shared[(tuple(flat), shape)] = _Variant(fn, [key], outputs)
-        else:
-            same.keys.append(key)
-    return list(shared.values()), refused
-
-
-def _numpy_impl(v):
-    """The unchecked numpy implementation of one variant.
-
-    An accelerated function's implementation is its array kernel (roots as inputs,
-    one output per point, shaped by the caller); the others take the broadcast
-    shape first and compute their roots themselves.
-    """
-    fn, args = v.fn, [a.name for a in v.fn.args]
-    roots = v.roots
-    printer = NumPy(roots)
-    if fn.accelerate:
-        sig = args + v.params + [r for r, _, _ in roots]
-        extra = ", ".join(f"{r} = {base}**(1/{d})" for r, base, d in roots) or "none"
-        doc = [
-            f'"""numpy kernel of `{fn.name}` (``_support.blockwise``).',
-            "",
-            f"Extra arguments: {extra}.",
-            '"""',
-        ]
-        lines, reduced = _cse(v.flat, printer)
-        out = [
-            f"numpy.copy({e.name})" if e.is_Symbol and e.name in sig else printer.doprint(e)
-            for e in reduced
-        ]
-        if fn.returns == "growth":
-            more, out = _growth_lines(out, printer)
-            lines += more
-        body = lines + [f"return {_combine(fn.returns, out, 'numpy')}"]
-        return "\n".join(
-            [f"def {v.impl}({', '.join(sig)}):"] + _indent(doc) + _indent(_errstate(v.flat, body))
-        )
-    body = [root_line(r, base, d, printer) for r, base, d in roots]
-    lines, reduced = _cse(v.flat, printer)
-    body += lines
-    inputs = set(args) | set(v.params)
-    # An output that is an input unchanged is copied: the caller's array must not
-    # come back as (an alias of) a result.
-    out = [
-        f"numpy.copy({e.name})" if e.is_Symbol and e.name in inputs else printer.doprint(e)
-        for e in reduced
-    ]
-    body += _assemble(fn.returns, out, v.shape, mp=False)
-    sig = ["_shape"] + args + v.params
-    return "\n".join([f"def {v.impl}({', '.join(sig)}):"] + _indent(_errstate(v.flat, body)))
-
-
-def _branches(flat):
-    """``[(condition, outputs), ...]`` where every Piecewise of ``flat`` has one condition list.
-
-    Then a scalar implementation evaluates only the branch it takes: common
-    subexpressions of the other branches (a square root of a negative number, a
-    division by zero at critical damping) are never computed, where Python and
-    mpmath would raise. None where the Piecewise terms differ in their conditions
-    (those implementations guard their branches themselves, e.g. ``max(X2, 0)``).
-    """
-    pieces = {p for e in flat for p in e.atoms(sp.Piecewise)}
-    conditions = {tuple(c for _, c in p.args) for p in pieces}
-    if len(conditions) != 1:
-        return None
-    (conds,) = conditions
-    out = []
-    for i, cond in enumerate(conds):
-        branch = list(flat)
-        while any(e.has(sp.Piecewise) for e in branch):
-            branch = [
-                e.replace(lambda x: isinstance(x, sp.Piecewise), lambda x, i=i: x.args[i].expr)
-                for e in branch
-            ]
-        out.append((cond, branch))
-    return out
-
-
-def _branched_body(flat, printer, finish):
-    """Source lines: CSE per branch of `_branches` (or over all), then ``finish(out)``."""
-    branches = _branches(flat)
-    if branches is None:
-        lines, reduced = _cse(flat, printer)
-        return lines + finish([printer.doprint(e) for e in reduced])
-    body = []
-    for k, (cond, outputs) in enumerate(branches):
-        lines, reduced = _cse(outputs, printer)
-        inner = _indent(lines + finish([printer.doprint(e) for e in reduced]))
-        if cond is sp.true:
-            body += (["else:"] if k else []) + (inner if k else [line[4:] for line in inner])
-        else:
-            body += [f"{'if' if k == 0 else 'elif'} {printer.doprint(cond)}:"] + inner
-    return body
-
-
-def _mp_impl(v):
-    fn, args = v.fn, [a.name for a in v.fn.args]
-    printer = Mpmath()
-    body = _branched_body(v.flat, printer, lambda out: _assemble(fn.returns, out, v.shape, mp=True))
-    return "\n".join([f"def {v.impl}({', '.join(args + v.params)}):"] + _indent(body))
-
-
-def _scalar_impl(v):
-    """The scalar ``math`` twin of a variant: for numba (ufunc or njit) and bound kernels."""
-    fn, args = v.fn, [a.name for a in v.fn.args]
-    roots = v.roots
-    printer = Scalar(roots)
-    sig = args + v.params + [r for r, _, _ in roots]
-
-    def finish(out):
-        if fn.returns == "growth":
-            more, names = _growth_lines(out, printer)
-            return more + [f"return {_combine(fn.returns, names, 'scalar')}"]
-        if fn.returns in _KERNEL_RESULT:
-            return [f"return {_combine(fn.returns, out, 'scalar')}"]
-        return [f"return {out[0] if fn.returns == 'value' else '(' + ', '.join(out) + ',)'}"]
-
-    body = _branched_body(v.flat, printer, finish)
-    extra = ", ".join(f"{r} = {base}**(1/{d})" for r, base, d in roots) or "none"
-    doc = [
-        f'"""Scalar kernel of `{fn.name}` (``_support.compiled``, ``_support.Bound``).',
-        "",
-        f"Extra arguments: {extra}.",
-        '"""',
-    ]
-    return "\n".join([f"def {v.impl}__scalar({', '.join(sig)}):"] + _indent(doc) + _indent(body))
-
-
-def _prep_impl(v):
-    """``impl__roots(params) -> roots``: the hoisted roots of a variant's parameters."""
-    printer = NumPy()
-    lines = [f"    {root_line(r, base, d, printer)}" for r, base, d in v.roots]
-    names = ", ".join(r for r, _, _ in v.roots)
-    return "\n".join([f"def {v.prep}({', '.join(v.params)}):"] + lines + [f"    return ({names},)"])
-
-
-def _assemble(returns, out, shape, mp):
-    if returns in _KERNEL_RESULT:
-        lines = []
-        if returns == "growth":
-            lines, out = _growth_lines(out, Mpmath() if mp else NumPy())
-        if mp:
-            one = _combine(returns, out, "mp")
-            return lines + [f"return bool({one})" if returns == "stable" else f"return {one}"]
-        return lines + [f"return _support.full(_shape, {_combine(returns, out, 'numpy')})"]
-    if returns == "tuple":
-        items = ", ".join(out)
-        return [f"return ({items},)" if mp else f"return _support.tuple_of(_shape, {items})"]
-    if returns == "vector":
-        items = ", ".join(out)
-        return [f"return [{items}]" if mp else f"return _support.vector(_shape, [{items}])"]
-    if returns == "matrix":
-        n, m = shape
-        rows = ["[" + ", ".join(out[i * m : (i + 1) * m]) + "]" for i in range(n)]
-        joined = (",\n" + " " * 8).join(rows)
-        if mp:
-            return [f"return mpmath.matrix([\n        {joined},\n    ])"]
-        return [f"return _support.matrix(_shape, [\n        {joined},\n    ])"]
-    if returns == "roots":
-        fn = "_support.mp_quadratic_roots" if mp else "_support.quadratic_roots"
-        calls = [f"{fn}({out[3 * k]}, {out[3 * k + 1]}, {out[3 * k + 2]})" for k in range(shape)]
-        lines = [f"_r{k} = {c}" for k, c in enumerate(calls)]
-        items = ", ".join(f"*_r{k}" for k in range(shape))
-        if mp:
-            return lines + [f"return [{items}]"]
-        return lines + [f"return _support.vector(_shape, [{items}])"]
-    raise ValueError(returns)
-
-
-_KERNEL_RESULT = {"value": "float64", "growth": "float64", "stable": "boolean"}
-
-
-def _table(fn, variants, refused, mp):
-    """``_NAME = {key: _support.Variant(...)}``: what the public function dispatches on.
-
-    Keys in the order of ``fn.variants``; a refused key maps to ``_support.Refused``.
-    """
-    entries = {}
-    for v in variants:
-        names = "(" + "".join(f"{n!r}, " for n in v.params) + ")"
-        parts = [v.impl, names]
-        if not mp and v.has_scalar:
-            parts += [f"{v.impl}__scalar", v.prep or "None"]
-        for key in v.keys:
-            entries[key] = f"_support.Variant({', '.join(parts)})"
-    for key, refusal in refused.items():
-        entries[key] = f"_support.Refused({refusal.reason!r})"
-    rows = [f"    {key!r}: {entries[key]}," for key in fn.variants]
-    return f"_{fn.name.upper()} = {{\n" + "\n".join(rows) + "\n}"
-
-
-# --------------------------------------------------------------------------- docstrings
-
-
-def _unit(p):
-    """``[unit]``, or the unit under each contact law for a parameter whose unit it sets."""
-    if not p.derived_unit:
-        return f"[{p.unit}]"
-    per_law = "; ".join(f"{c}: {contact_units(c)[p.name]}" for c in laws.choices("contact"))
-    return f"[{per_law}]"
-
-
-def _param_docs(params, kind):
-    doc = []
-    for n in params:
-        p = _TABLE[n]
-        default = ""
-        if p.default_from:
-            default = f", default: ``{p.default_from}``"
-        elif n.startswith("phase"):
-            default = f", default {p.base!r}"
-        owner = ""
-        if p.law:
-            owner = " Only for " + " or ".join(f"{o}={c!r}" for o, c in laws.owners(n)) + "."
-        text = f"{p.description} {_unit(p)}, {p.domain}{default}.{owner}"
-        doc += [f"{n} : {kind}"] + ["    " + line for line in textwrap.wrap(text, 80)]
-    return doc
-
-
-def _option_docs(fn):
-    doc = []
-    for name, choices, default, what in fn.options:
-        doc += [f"{name} : {choices}, default {default!r}"]
-        doc += ["    " + line for line in textwrap.wrap(what, 80)]
-    return doc
-
-
-def _expressions(fn):
-    """Every expression of every variant that is not refused."""
-    return [
-        e
-        for outs in fn.variants.values()
-        if not isinstance(outs, Refusal)
-        for e in _flat(fn.returns, outs)[0]
-    ]
-
-
-def _docstring(fn, mp):
-    exprs = _expressions(fn)
-    params = _doc_params(exprs, fn.args)
-    kind = "mpmath number" if mp else "array_like"
-    doc = [fn.summary, "", f"Implements {fn.equations} of the paper."]
-    if fn.notes:
-        doc += [""] + textwrap.wrap(fn.notes, 84)
-    if mp:
-        doc += ["", "mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits."]
-    doc += ["", "Parameters", "----------"]
-    for a in fn.args:
-        doc += [f"{a.name} : {kind}", f"    {fn.arg_docs.get(a.name, 'state variable')}"]
-    doc += _param_docs(params, kind)
-    doc += _option_docs(fn)
-    if fn.vhat:
-        doc += [
-            'vhat_model : {"tangential", "coupled"}, optional',
-            "    How ``Vhat`` is computed (``generated.friction.vhat``) when it is not",
-            '    passed; default "tangential". Passing both is an error.',
-        ]
-    if fn.accelerate and not mp:
-        doc += [
-            'backend : {"numpy", "numba"}, optional',
-            "    numpy array operations, or a numba ufunc compiled from the same",
-            "    expressions (one pass over the points; compiled on first use and",
-            "    cached on disk). Default: numba if it is installed (the ``fast``",
-            "    extra), else numpy. Both give the same results to rounding.",
-        ]
-    doc += [
-        "**params",
-        "    Any other model parameter (accepted and ignored); an unknown",
-        "    name raises TypeError.",
-        "",
-        "Returns",
-        "-------",
-    ]
-    doc += fn.returns_doc.strip("\n").split("\n")
-    doc += _raises(fn.accelerate and not mp, _refusals(fn))
-    return _quote(doc)
-
-
-def _refusals(fn):
-    """The option values for which ``fn`` refuses, with their reasons."""
-    return [(key, v.reason) for key, v in fn.variants.items() if isinstance(v, Refusal)]
-
-
-def _raises(numba, refusals=()):
-    doc = [
-        "",
-        "Raises",
-        "------",
-        "ValueError",
-        "    If an input is NaN, infinite or outside its domain (the message names",
-        "    it), or an option value is unknown.",
-        "TypeError",
-        "    If a keyword is not a model parameter, or a parameter is missing (also",
-        "    a parameter of the chosen law).",
-    ]
-    if refusals:
-        reasons = sorted({reason for _, reason in refusals})
-        doc += [
-            "_support.Unsupported",
-            "    A ValueError, for a choice of laws without the property this needs:",
-        ]
-        doc += ["    " + line for r in reasons for line in textwrap.wrap("- " + r, 80)]
-    if numba:
-        doc += ["ImportError", '    For backend="numba" when numba is not installed.']
-    return doc
-
-
-def _quote(doc):
-    body = "\n".join(("    " + line).rstrip() for line in doc)
-    return f'    """{body.lstrip()}\n    """'
-
-
-def _bind_docstring(fn):
-    params = _doc_params(_expressions(fn), fn.args)
-    args = ", ".join(a.name for a in fn.args)
-    result = {
-        "value": "a float",
-        "tuple": "a tuple of floats",
-        "vector": "a tuple of floats",
-        "matrix": "the entries as a flat tuple, row by row",
-    }[fn.returns]
-    doc = [
-        f"`{fn.name}` as a scalar kernel with the parameters checked once and bound.",
-        "",
-        f"``bind_{fn.name}(**params)({args})`` equals ``{fn.name}({args}, **params)``",
-        f"for scalar inputs and returns {result}. For the inner loops of an",
-        "integrator: the arguments are checked here, not on every call.",
-        "",
-        "Parameters",
-        "----------",
-    ]
-    doc += _param_docs(params, "float")
-    doc += _option_docs(fn)
-    doc += [
-        'backend : {"python", "numba"}, optional',
-        "    The kernel as plain Python, or compiled by ``numba.njit`` (on first call;",
-        "    cached on disk). Default: numba if it is installed, else python.",
-        "**params",
-        "    Any other model parameter (accepted and ignored).",
-        "",
-        "Returns",
-        "-------",
-        "_support.Bound",
-        f"    Call it as ``kernel({args})``; ``.kernel`` and ``.args`` are the raw kernel",
-        "    and the bound values, for a caller that compiles its own loop.",
-    ]
-    doc += _raises(True, _refusals(fn))
-    return _quote(doc)
 
 
 # --------------------------------------------------------------------------- functions
@@ -749,10 +216,11 @@ def _parameters_module() -> str:
     static = {
         c: (sp.sstr(static_coefficient(c)), sp.sstr(rest_coefficient(c))) for c in with_static
     }
-    shortfalls = []
+    shortfalls, involved = [], {}
     for c in with_static:
         excess = rest_coefficient(c) - static_coefficient(c)
-        names = ", ".join(sorted(str(x) for x in excess.free_symbols))
+        involved[c] = tuple(sorted(str(x) for x in excess.free_symbols))
+        names = ", ".join(involved[c])
         shortfalls.append(f"    {c!r}: lambda {names}, **_: {sp.pycode(excess)},")
     shortfall = "\n".join(shortfalls)
     rules = ", ".join(
@@ -778,7 +246,9 @@ def _parameters_module() -> str:
         "``STATIC_BOUNDS``: friction law -> ``(static bound, slip coefficient at rest)``\n"
         "of the laws that bound stick by a static coefficient of their own\n"
         "(derive/laws.py, ``FrictionLaw.static``); ``static_shortfall`` how far the slip\n"
-        "coefficient at rest exceeds that bound for given parameters.\n"
+        "coefficient at rest exceeds that bound for given parameters, and\n"
+        "``STATIC_PARAMETERS`` the parameters it depends on (a change of another one\n"
+        "cannot change it).\n"
         "\n"
         "``DOMAIN_RULES``: each domain as (lower bound, bound excluded, the text of a\n"
         "failure); ``within(domain, x)`` applies it (NaN is never within).\n"
@@ -801,6 +271,7 @@ def _parameters_module() -> str:
         f"LAW_PARAMETERS = {_literal(owners)}\n"
         f"LAW_UNITS = {_literal(units)}\n"
         f"STATIC_BOUNDS = {_literal(static)}\n"
+        f"STATIC_PARAMETERS = {_literal(involved)}\n"
         f"_SHORTFALL = {{\n{shortfall}\n}}\n"
         "\n"
         f"DOMAIN_RULES = {{{rules}}}\n"
@@ -829,7 +300,8 @@ def render_all(modules) -> dict[str, str]:
         ),
         "mp/__init__.py": HEADER + '"""mpmath variants of the generated modules."""\n',
         "parameters.py": _parameters_module(),
-        "_support.py": HEADER + (TEMPLATES / "_support.py").read_text(),
+        # the runtime support, copied: `_support` and the modules it reaches
+        **{path.name: HEADER + path.read_text() for path in sorted(TEMPLATES.glob("*.py"))},
     }
     for m in modules:
         files[f"{m.name}.py"] = render(m)

@@ -167,3 +167,151 @@ def test_minus_zero_is_zero():
     a, b = Model(phase_t=-0.0, Vb=-0.0), Model(phase_t=0.0, Vb=0.0)
     assert a == b and hash(a) == hash(b) and a.digest() == b.digest()
     assert math.copysign(1.0, a["phase_t"]) == 1.0
+
+
+# A Model is checked once (issue 30, item 5) ---------------------------------------------
+
+
+@pytest.fixture
+def checks(monkeypatch):
+    """The parameter names that the model's domain check sees, in order."""
+    import beltmdsm.model as model_module
+
+    seen, real = [], model_module.check_domain
+
+    def counting(name, value):
+        seen.append(name)
+        return real(name, value)
+
+    monkeypatch.setattr(model_module, "check_domain", counting)
+    return seen
+
+
+def test_replace_checks_only_the_changed_parameters(checks):
+    m = Model(Vb=5)
+    assert sorted(checks) == sorted(m.params)  # built: every parameter once
+    checks.clear()
+    assert m.replace(Vb=6)["Vb"] == 6.0 and checks == ["Vb"]
+    checks.clear()
+    # what follows a changed parameter changes with it, and is checked with it
+    assert m.replace(alpha=3)["alpha_n"] == 3.0
+    assert sorted(checks) == ["alpha", "alpha_n", "alpha_t"]
+    checks.clear()
+    Model(alpha_t=2.5).replace(alpha=3)
+    assert sorted(checks[-2:]) == ["alpha", "alpha_n"]  # alpha_t was given: it stays
+    checks.clear()
+    m.replace(friction="stribeck")  # an option: the model is built whole
+    assert len(checks) == len(Model(friction="stribeck").params)
+
+
+def test_replace_checks_a_constraint_only_where_it_is_involved(monkeypatch):
+    import beltmdsm.model as model_module
+
+    calls = []
+    real = model_module._table.static_shortfall
+    monkeypatch.setattr(
+        model_module._table,
+        "static_shortfall",
+        lambda *a, **k: calls.append(a) or real(*a, **k),
+    )
+    m = Model(friction="static_kinetic", mu_s=0.6, mu_k=0.4)
+    calls.clear()
+    m.replace(Vb=2.0)  # mu_k <= mu_s does not involve Vb
+    assert calls == []
+    m.replace(mu_k=0.5)
+    assert len(calls) == 1
+    with pytest.raises(ValueError, match="static bound mu_s"):
+        m.replace(mu_k=0.7)
+
+
+@pytest.mark.parametrize(
+    "kw, text",
+    [
+        ({"Vb": -1.0}, "parameter 'Vb' must be >= 0; got -1.0"),
+        ({"omega1": 0}, "parameter 'omega1' must be > 0"),
+        ({"Vb": math.nan}, "parameter 'Vb' must be finite"),
+        ({"beta1": True}, "parameter 'beta1' must be a number"),
+        ({"alpha": -2.0}, "parameter 'alpha"),
+        ({"Vhat": 1.0}, "Vhat is an input"),
+        ({"mu_k": 0.3}, "parameter 'mu_k' belongs to the friction law"),
+    ],
+)
+def test_a_bad_replace_value_is_refused_naming_it(kw, text):
+    m = Model(Vb=5)
+    with pytest.raises(ValueError, match=text.replace("(", r"\(")):
+        m.replace(**kw)
+    assert m == Model(Vb=5)  # unchanged
+
+
+@pytest.mark.parametrize(
+    "start, kw",
+    [
+        ({}, {"Vb": 6.0}),
+        ({}, {"alpha": 3, "Omega": 4}),
+        ({"alpha_t": 2.5}, {"alpha": 3}),
+        ({"alpha": 3}, {"alpha_t": 3}),
+        ({"tension": "clipped"}, {"phase_n": 0.5, "Vb": -0.0}),
+        ({"friction": "static_kinetic", "mu_s": 0.6, "mu_k": 0.4}, {"mu_k": 0.6}),
+        ({"friction": "stribeck", "mu_k": 0.2}, {"v_s": 0.3}),
+    ],
+)
+def test_a_replaced_model_is_the_model_built_whole(start, kw):
+    # the checked part is not all: parameters, what was given, options, identity
+    fast = Model(**start).replace(**kw)
+    whole = Model(**{**start, **kw})
+    assert fast == whole and fast.digest() == whole.digest() and hash(fast) == hash(whole)
+    assert list(fast.params.items()) == list(whole.params.items()) and repr(fast) == repr(whole)
+    assert fast.replace(alpha=1.5) == whole.replace(alpha=1.5)
+
+
+@pytest.fixture
+def generated_checks(monkeypatch):
+    """The parameters a generated function checks (``generated._checks``: ``param``,
+    ``within``)."""
+    from generated import _checks
+
+    seen = []
+    param, within = _checks.param, _checks.within
+
+    def counting_param(function, name, value, *a, **k):
+        seen.append(("param", name))
+        return param(function, name, value, *a, **k)
+
+    def counting_within(domain, x):
+        seen.append(("within", domain))
+        return within(domain, x)
+
+    monkeypatch.setattr(_checks, "param", counting_param)
+    monkeypatch.setattr(_checks, "within", counting_within)
+    return seen
+
+
+def test_generated_functions_do_not_check_a_checked_model_again(generated_checks):
+    from generated import hybrid, unforced
+
+    m = Model(Vb=5, friction="stribeck")
+    bind = hybrid.bind_vector_field
+    checked = bind(backend="python", **m.arguments(bind))
+    assert generated_checks == []
+    eq = unforced.equilibrium(**m.arguments(unforced.equilibrium))
+    assert generated_checks == []
+    # the same values, checked, give the same results
+    unchecked = bind(backend="python", friction="stribeck", **m.params)
+    assert len(generated_checks) >= len(unchecked.params)
+    assert checked.args == unchecked.args
+    assert eq == unforced.equilibrium(friction="stribeck", **m.params)
+
+
+def test_a_value_put_in_the_place_of_a_checked_one_is_checked(generated_checks):
+    from generated import unforced
+
+    m = Model(Vb=5)
+    grid = np.array([1.0, 2.0, 3.0])
+    eq = unforced.equilibrium(**{**m.arguments(unforced.equilibrium), "Vb": grid})
+    assert [c for c in generated_checks if c[0] == "param"] == [("param", "Vb")]
+    assert np.shape(eq[0]) == (3,)
+    with pytest.raises(ValueError, match="parameter 'Vb' must be"):
+        unforced.equilibrium(**{**m.arguments(unforced.equilibrium), "Vb": -1.0})
+    with pytest.raises(ValueError, match="parameter 'omega1' must be"):
+        bind = dynamics.bind_normal_force
+        bind(backend="python", **{**m.arguments(bind), "omega1": 0.0})

@@ -204,7 +204,7 @@ laws.register(
     ),
 )
 from derive import codegen, modules
-mods = (modules.unforced(), modules.friction(), modules.capabilities())
+mods = (modules.unforced.build(), modules.friction.build(), modules.capabilities.build())
 codegen.write(codegen.render_all(mods), Path(sys.argv[1]) / "generated")
 """
 
@@ -308,7 +308,7 @@ laws.register(
     ),
 )
 from derive import codegen, modules
-codegen.write(codegen.render_all((modules.unforced(),)), Path(sys.argv[1]) / "generated")
+codegen.write(codegen.render_all((modules.unforced.build(),)), Path(sys.argv[1]) / "generated")
 """
 
 CUBIC_CHECK = """

@@ -424,7 +424,7 @@ laws.register(
     ),
 )
 from derive import codegen, modules
-mods = (modules.unforced(), modules.friction(), modules.capabilities())
+mods = (modules.unforced.build(), modules.friction.build(), modules.capabilities.build())
 codegen.write(codegen.render_all(mods), Path(sys.argv[1]) / "generated")
 """
 

@@ -1,4 +1,11 @@
-"""Runtime support shared by the generated modules: argument checks and array shaping.
+"""Runtime support shared by the generated modules: the one module their code calls.
+
+Array shaping of the results, the variant tables and their dispatch (`choose`), the
+accelerated backends (`blockwise`, numba's `compiled` ufuncs and `jit` kernels) and
+the bound kernels (`bind`), and the failures of the generated modules
+(`BeltmdsmError`, `Unsupported`). The argument checks (`generated._checks`), the
+quadrature (`generated._quadrature`) and the cache folders (`generated._cache`) are
+modules of their own, reached through this one.
 
 Copied verbatim into ``generated/_support.py`` by ``python -m derive``; edit the
 template in ``derive/codegen/templates/`` and regenerate. Plain numpy and mpmath: importing
@@ -8,167 +15,20 @@ functions starts without it.
 """
 
 import math
-import os
-import tempfile
 
 import numpy
 
-from .parameters import DEFAULT_FROM, DEFAULTS, DOMAIN_RULES, DOMAINS, KNOWN, within
-
-# A domain (`within`) is a test of the smallest value; together with ``largest < inf``
-# it checks an array in two reductions and no temporary array, and NaN fails both
-# (comparisons with NaN are False).
-
-
-def _reject_unknown(function, extra):
-    unknown = sorted(set(extra) - KNOWN)
-    if unknown:
-        raise TypeError(
-            f"{function}() got unexpected keyword argument(s) "
-            f"{', '.join(map(repr, unknown))}; known parameters: "
-            f"{', '.join(sorted(KNOWN))}"
-        )
-
-
-def _missing(function, name):
-    return TypeError(f"{function}() missing required parameter {name!r}")
-
-
-def _lookup(function, name, params):
-    """The value of parameter ``name``: given, else its default, else its source's."""
-    value = params.get(name)
-    if value is None:
-        if name in DEFAULTS:
-            return DEFAULTS[name]
-        source = DEFAULT_FROM.get(name)
-        value = None if source is None else params.get(source)
-        if value is None:
-            raise _missing(function, source or name)
-    return value
-
-
-def arguments(function, names, params):
-    """Check the parameters of a call once: those the variant uses, then the rest.
-
-    Parameters
-    ----------
-    function : str
-        Public name, for the messages.
-    names : tuple of str
-        The parameters the chosen implementation takes, in its order.
-    params : dict
-        The keywords of the call.
-
-    Returns
-    -------
-    values : list of ndarray
-        The checked parameters in the order of ``names`` (defaults filled in:
-        ``DEFAULTS`` for the phases, ``DEFAULT_FROM`` for the per-direction
-        excitation).
-    extra : list of ndarray
-        The other known parameters passed. A single dict of parameters serves every
-        generated function: those a function does not use are accepted, checked
-        like the others (a bad value is an error wherever it is passed) and take
-        part in broadcasting, so a grid of any parameter gives outputs of the
-        grid's shape. ``None`` (an optional parameter left at its default) is
-        skipped.
-
-    Raises
-    ------
-    TypeError
-        For an unknown keyword or a missing parameter.
-    ValueError
-        Naming the parameter, for NaN, inf or a value outside its domain.
-    """
-    _reject_unknown(function, params)
-    values = [param(function, n, _lookup(function, n, params)) for n in names]
-    extra = [param(function, k, v) for k, v in params.items() if k not in names and v is not None]
-    return values, extra
-
-
-def _scalar_arguments(function, names, params):
-    """`arguments` for scalar parameters (a kernel's): floats, checked without arrays.
-
-    Binding happens in inner loops of parameter studies (a Floquet band binds at
-    every value): Python floats pass a test of their domain; anything else takes
-    the checks of `arguments`, which name what is wrong.
-    """
-    _reject_unknown(function, params)
-    values = []
-    for n in names:
-        v = _lookup(function, n, params)
-        if type(v) is float and math.isfinite(v) and within(DOMAINS[n], v):
-            values.append(v)
-            continue
-        x = param(function, n, v)
-        if x.ndim:
-            raise ValueError(f"{function}(): parameter {n!r} must be a scalar; got shape {x.shape}")
-        values.append(float(x))
-    for k, v in params.items():
-        if (
-            k not in names
-            and v is not None
-            and not (type(v) is float and math.isfinite(v) and within(DOMAINS[k], v))
-        ):
-            param(function, k, v)
-    return tuple(values)
-
-
-def mp_arguments(function, names, params):
-    """`arguments` for the mpmath variants: the checked values as ``mpf``."""
-    _reject_unknown(function, params)
-    values = [mp_param(function, n, _lookup(function, n, params)) for n in names]
-    for k, v in params.items():
-        if k not in names and v is not None:
-            mp_param(function, k, v)
-    return values
-
-
-def _fail(function, name, domain, why):
-    return ValueError(
-        f"{function}(): parameter {name!r} must be {why}" + (f" ({domain})" if domain else "")
-    )
-
-
-def param(function, name, value, domain=None, why=None):
-    """``value`` as a float array, checked against ``domain``.
-
-    Parameters and states are finite physical numbers: an infinite input is
-    refused like NaN (outputs may still be infinite, e.g. the slope of the
-    effective friction at ``Vb = Vhat``).
-
-    Raises
-    ------
-    ValueError
-        Naming the parameter, if any element is NaN, infinite or outside the domain.
-    """
-    domain = domain or DOMAINS[name]
-    x = numpy.asarray(value, dtype=float)
-    text = DOMAIN_RULES[domain][2]
-    if x.size and not (within(domain, x.min()) and x.max() < math.inf):
-        # Tell the reasons apart only on failure, so valid input costs two reductions.
-        if numpy.isnan(x).any():
-            raise _fail(function, name, None, "a number, not NaN")
-        if numpy.isinf(x).any():
-            raise _fail(function, name, None, "finite, not inf")
-        raise _fail(function, name, why, text)
-    return x
-
-
-def mp_param(function, name, value, domain=None, why=None):
-    """`param` for the mpmath variants: a scalar ``mpf``."""
-    import mpmath
-
-    domain = domain or DOMAINS[name]
-    x = mpmath.mpf(value)
-    if mpmath.isnan(x):
-        raise _fail(function, name, None, "a number, not NaN")
-    if mpmath.isinf(x):
-        raise _fail(function, name, None, "finite, not inf")
-    text = DOMAIN_RULES[domain][2]
-    if not within(domain, x):
-        raise _fail(function, name, why, text)
-    return x
+from ._cache import CACHE_NAME, CacheFolderWarning, cache_root, user_cache
+from ._checks import (
+    CHECKED,
+    _reject_unknown,
+    _scalar_arguments,
+    arguments,
+    mp_arguments,
+    mp_param,
+    param,
+)
+from ._quadrature import BLOCK, QUAD_NODES, QUAD_WEIGHTS, quad
 
 
 def shape_of(*arrays):
@@ -279,60 +139,6 @@ def resolve_vhat(function, params, vhat_model, vhat, **laws):
     return {**params, "Vhat": value}
 
 
-def _graded_gauss_legendre(nodes, levels):
-    """Composite Gauss-Legendre on [-1, 1], panels halving towards both ends.
-
-    Panel edges at ``+-(1 - 2^-j)``, ``j = 1..levels``, and 0: a function with a
-    boundary layer at an end (the decay of ``exp(-|Vr|/v_s)`` from a reversal of the
-    friction, where a fast average splits its period) is resolved down to a width of
-    ``2^-levels`` of the interval, and the inner panels see a smooth function.
-    """
-    x, w = numpy.polynomial.legendre.leggauss(nodes)
-    half = numpy.concatenate([[0.0], 1 - 2.0 ** -numpy.arange(1, levels + 1), [1.0]])
-    edges = numpy.unique(numpy.concatenate([-half, half]))
-    lo, hi = edges[:-1, None], edges[1:, None]
-    return (lo + hi) / 2 + (hi - lo) / 2 * x, (hi - lo) / 2 * w
-
-
-#: The quadrature rule of `quad` (and of the scalar kernels' inline loop): nodes and
-#: weights on [-1, 1], 28 panels of 10 Gauss-Legendre nodes (`_graded_gauss_legendre`).
-#: Against mpmath it integrates the averages of Stribeck's law to about 1e-14
-#: relative for V / v_s up to 1e3 (tests/generated/test_friction.py has the error model).
-_QUAD_PANELS = _graded_gauss_legendre(10, 14)
-QUAD_NODES = _QUAD_PANELS[0].ravel()
-QUAD_WEIGHTS = _QUAD_PANELS[1].ravel()
-
-
-def quad(integrand, lo, hi, *args):
-    """``integral of integrand(x, *args) dx`` from ``lo`` to ``hi``, broadcast over arrays.
-
-    The rule of `QUAD_NODES` one panel at a time (memory of ten evaluations of the
-    integrand), nodes on a leading axis; ``args`` are the integrand's other inputs,
-    which set the broadcast shape with the limits. Where all the nodes at all the
-    points fit in a `BLOCK`, in one evaluation: a scalar quadrature (a root-finder's
-    iterate) then costs one call of the integrand instead of one a panel, 8 times
-    less time.
-    """
-    lo, hi = numpy.asarray(lo, dtype=float), numpy.asarray(hi, dtype=float)
-    shape = numpy.broadcast_shapes(lo.shape, hi.shape, *(numpy.shape(a) for a in args))
-    mid, half = (lo + hi) / 2, (hi - lo) / 2
-    if math.prod(shape) * QUAD_NODES.size <= BLOCK:
-        x = QUAD_NODES.reshape((-1,) + (1,) * len(shape))
-        values = numpy.broadcast_to(integrand(mid + half * x, *args), x.shape[:1] + shape)
-        return half * numpy.tensordot(QUAD_WEIGHTS, values, axes=1)
-    total = numpy.zeros(shape)
-    for x, w in zip(*_QUAD_PANELS):
-        x = x.reshape((-1,) + (1,) * len(shape))
-        values = numpy.broadcast_to(integrand(mid + half * x, *args), x.shape[:1] + shape)
-        total = total + numpy.tensordot(w, values, axes=1)
-    return half * total
-
-
-#: Points per block in `blockwise`: a chain of array operations on 2**15 float64
-#: values keeps its temporaries (256 KiB each) in cache.
-BLOCK = 2**15
-
-
 def blockwise(kernel, *args, block=BLOCK):
     """``kernel(*args)`` for array arguments, evaluated on blocks of ``block`` points.
 
@@ -373,75 +179,6 @@ _numba = None
 #: Whether numba may cache compiled code on disk (`import_numba`): False where no
 #: private cache folder can be made; the code is then compiled in every process.
 DISK_CACHE = True
-
-#: The folder of the package's caches inside the user's cache folder. Not named like
-#: a package: a folder "beltmdsm" in the current directory would be imported as a
-#: namespace package in place of the installed one.
-CACHE_NAME = "beltmdsm-cache"
-
-
-def cache_root():
-    """The folder of every cache of the package (the sweeps' and the compiled code's).
-
-    ``$BELTMDSM_CACHE`` where set and not empty, else ``$XDG_CACHE_HOME/beltmdsm-cache``
-    where that is an absolute path, else ``~/.cache/beltmdsm-cache`` (an empty variable
-    counts as unset, as the XDG base directory specification has it). Nothing else:
-    no shared temporary folder.
-    """
-    given = os.environ.get("BELTMDSM_CACHE")
-    if given:
-        return os.path.abspath(given)
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    if not (xdg and os.path.isabs(xdg)):
-        xdg = os.path.join(os.path.expanduser("~"), ".cache")
-    return os.path.join(xdg, CACHE_NAME)
-
-
-def user_cache(name):
-    """A private folder ``cache_root()/name`` for what is compiled at run time: code
-    that is imported, and numba's cache, which it unpickles.
-
-    Outside the package (an installed package's files belong to its installer, and a
-    file left in it survives ``pip uninstall``), and private: created with mode 0700,
-    then checked to be a folder (not a link) owned by this user that no one else can
-    write, in a folder that no one else can rename it in (else another user could
-    put code there that this process runs). A test file of a unique name (per
-    process and thread) is written and removed.
-
-    Raises
-    ------
-    OSError
-        One line naming the folder and why, when it cannot be made private.
-    """
-    import stat
-
-    folder = os.path.join(cache_root(), name)
-    try:
-        os.makedirs(folder, mode=0o700, exist_ok=True)
-        info = os.lstat(folder)
-        if not stat.S_ISDIR(info.st_mode):
-            raise OSError("it is not a folder")
-        if hasattr(os, "geteuid"):
-            if info.st_uid != os.geteuid():
-                raise OSError(f"it belongs to user id {info.st_uid}, not to this one")
-            if info.st_mode & 0o077:
-                os.chmod(folder, 0o700)
-            parent = os.stat(os.path.dirname(folder))
-            if parent.st_mode & 0o022 and not parent.st_mode & stat.S_ISVTX:
-                raise OSError("others may write its parent folder, and rename it")
-        fd, probe = tempfile.mkstemp(dir=folder, prefix=".probe-")
-        os.close(fd)
-        os.remove(probe)
-    except OSError as err:
-        raise OSError(
-            f"no private cache folder {folder}: {err.strerror or err}; set BELTMDSM_CACHE "
-            "to a folder of yours"
-        ) from None
-    return folder
-
-
-class CacheFolderWarning(UserWarning):
-    """No private cache folder: what is compiled is not kept between runs."""
 
 
 def import_numba(required):
@@ -700,6 +437,7 @@ def choose(function, table, **options):
 
 
 __all__ = [
+    "CHECKED",
     "arguments",
     "mp_arguments",
     "param",
@@ -726,4 +464,9 @@ __all__ = [
     "BeltmdsmError",
     "Unsupported",
     "Refused",
+    "cache_root",
+    "user_cache",
+    "CacheFolderWarning",
+    "CACHE_NAME",
+    "import_numba",
 ]

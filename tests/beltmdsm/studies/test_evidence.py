@@ -21,6 +21,8 @@ import sympy as sp
 
 from beltmdsm.studies import evidence as S
 from derive import contraction as C
+from derive import contraction_energy as CE
+from derive import contraction_sign as CS
 from derive.model import CONTACT_LAWS, FRICTION_LAWS, TENSION_LAWS, X2, Y2, P, normal_force
 
 TOL = 1e-10
@@ -34,7 +36,7 @@ b1, w1, b2, w2, mu = (P[k] for k in ("beta1", "omega1", "beta2", "omega2", "mu_s
 
 
 def test_difference_energy_is_the_tangential_oscillator_energy():
-    assert sp.expand(C.difference_energy() - (C.ep**2 / 2 + w1**2 * C.e**2 / 2)) == 0
+    assert sp.expand(CE.difference_energy() - (CE.ep**2 / 2 + w1**2 * CE.e**2 / 2)) == 0
 
 
 @pytest.mark.parametrize(
@@ -45,10 +47,10 @@ def test_difference_energy_is_the_tangential_oscillator_energy():
     ],
 )
 def test_difference_power_against_the_hand_typed_formula(contact, F):
-    de = C.Ya - C.Yb
-    hand = -2 * b1 * w1 * de**2 - mu * (C.sa - C.sb) * F * de
-    split = C.power_split(contact, "allowed")
-    assert sp.expand(C.difference_power(contact, "allowed") - hand) == 0
+    de = CE.Ya - CE.Yb
+    hand = -2 * b1 * w1 * de**2 - mu * (CE.sa - CE.sb) * F * de
+    split = CE.power_split(contact, "allowed")
+    assert sp.expand(CE.difference_power(contact, "allowed") - hand) == 0
     assert split.exact and sp.expand(split.c1 - 2 * b1 * w1) == 0
     assert sp.expand(split.friction - (hand + 2 * b1 * w1 * de**2)) == 0
 
@@ -56,8 +58,8 @@ def test_difference_power_against_the_hand_typed_formula(contact, F):
 def test_clipped_difference_power_has_the_clipped_force():
     """max(F, 0) of Eq. (1): equal to the hand-typed form where F > 0 and where F < 0."""
     F = (w2**2 + 2 * b2 * w2 * Y2) * X2 ** sp.Rational(3, 2)
-    de = C.Ya - C.Yb
-    split = C.power_split("hertz_damp", "clipped")
+    de = CE.Ya - CE.Yb
+    split = CE.power_split("hertz_damp", "clipped")
     assert split.exact
     base = {
         b1: sp.Rational(1, 10),
@@ -66,22 +68,22 @@ def test_clipped_difference_power_has_the_clipped_force():
         w2: sp.Rational(1, 2),
         mu: sp.Rational(2, 5),
         X2: 2,
-        C.Ya: 3,
-        C.Yb: -1,
-        C.sa: 1,
-        C.sb: -1,
+        CE.Ya: 3,
+        CE.Yb: -1,
+        CE.sa: 1,
+        CE.sb: -1,
     }
     for y2, clipped in ((sp.Integer(1), F), (sp.Integer(-5), 0)):  # F > 0, F < 0
         point = {**base, Y2: y2}
         assert (F.subs(point) > 0) == (clipped != 0)
-        hand = (-2 * b1 * w1 * de**2 - mu * (C.sa - C.sb) * clipped * de).subs(point)
+        hand = (-2 * b1 * w1 * de**2 - mu * (CE.sa - CE.sb) * clipped * de).subs(point)
         assert sp.simplify(split.total.subs(point) - hand) == 0
 
 
 def test_every_sign_case_is_proved_and_covers_the_graph_of_sgn():
-    cases = C.friction_power_sign_cases()
+    cases = CS.friction_power_sign_cases()
     assert len(cases) == 25  # (1 + 3 + 1)^2: stick at -1, inside, +1
-    assert {(c.state_a, c.state_b) for c in cases} == {(a, b) for a in C.STATES for b in C.STATES}
+    assert {(c.state_a, c.state_b) for c in cases} == {(a, b) for a in CS.STATES for b in CS.STATES}
     assert all(c.proved and c.sign in ("= 0", "> 0", ">= 0") for c in cases)
     by = {(c.state_a, c.state_b, str(c.s_a), str(c.s_b)): c for c in cases}
     opposite = by[("slip_forward", "slip_back", "1", "-1")]
@@ -94,24 +96,24 @@ def test_every_sign_case_is_proved_and_covers_the_graph_of_sgn():
 def test_the_sign_decision_fails_for_an_anti_monotone_law():
     """Negative control: with s = -sgn(Vr) the product is negative and is not proved."""
     ua, ub = sp.symbols("u_a u_b", positive=True)
-    sign, proved = C._decide((-1 - 1) * (ua + ub))
+    sign, proved = CS._decide((-1 - 1) * (ua + ub))
     assert not proved and sign == "undecided"
 
 
 def test_couplings_stick_and_clipped_force():
-    coupling = C.one_way_coupling()
+    coupling = CE.one_way_coupling()
     assert all(coupling.values()) and len(coupling) == len(CONTACT_LAWS) * len(TENSION_LAWS)
     for contact in CONTACT_LAWS:
         for friction in FRICTION_LAWS:
-            assert C.stick_is_set_valued(contact, friction), (contact, friction)
-        assert C.clipped_force_nonnegative(contact)
+            assert CE.stick_is_set_valued(contact, friction), (contact, friction)
+        assert CS.clipped_force_nonnegative(contact)
     # the law as printed is not: Eq. (1) at X2 = 1, X2' = -10 (base set) pulls
     pull = normal_force().subs({X2: 1, Y2: -10, b2: sp.Rational(3, 20), w2: sp.Rational(1, 2)})
     assert pull < 0
 
 
 def test_signs_conclusion_and_converse():
-    signs = C.sign_of_friction_power()
+    signs = CS.sign_of_friction_power()
     assert all(signs.values()) and len(signs) == 6
 
 
@@ -280,7 +282,7 @@ def test_clipped_motions_converge_in_every_figure_case(name, overrides, contact)
 def test_monotonicity_of_each_friction_law():
     """Coulomb's law is proved non-decreasing; Stribeck's falls at every |Vr| > 0 where
     mu_k < mu_s, and the claim says so (not proved for it)."""
-    coulomb, stribeck = C.monotonicity("coulomb"), C.monotonicity("stribeck")
+    coulomb, stribeck = CS.monotonicity("coulomb"), CS.monotonicity("stribeck")
     assert coulomb.holds and coulomb.slope == 0
     assert not stribeck.holds
     assert stribeck.falls == "every |Vr| > 0 (0 < |Vr| < oo) where mu_k < mu_s"
@@ -292,7 +294,7 @@ def test_monotonicity_of_each_friction_law():
     assert [s.name for s in failed] == ["friction law non-decreasing"]
     assert "mu_k < mu_s" in failed[0].detail
     # static above kinetic: constant in slip, but the static bound falls to mu_k at Vr = 0
-    jump = C.monotonicity("static_kinetic")
+    jump = CS.monotonicity("static_kinetic")
     assert not jump.holds and jump.slope == 0
     assert jump.falls == "Vr = 0, where mu_k < mu_s"
     failed = [s for s in C.claim("static_kinetic").steps if not s.proved]
@@ -304,4 +306,4 @@ def test_the_power_split_holds_for_every_law():
     """dE_d/dt = -c1 e'^2 - (f_a - f_b) F e' with the law's signed coefficient per run."""
     for friction in FRICTION_LAWS:
         for contact in CONTACT_LAWS:
-            assert C.power_split(contact, "clipped", friction).exact, (friction, contact)
+            assert CE.power_split(contact, "clipped", friction).exact, (friction, contact)
