@@ -2,13 +2,13 @@
 
 `Model` is the value every analysis of the package takes: the model options (`OPTIONS`:
 the friction, contact and tension laws of the registry, derive/laws.py, as
-``generated.parameters`` lists them), held as a mapping of named options so that a new
+``beltmdsm.generated.parameters`` lists them), held as a mapping of named options so that a new
 option or law is added, not wired, and the parameters of Eq. (4) with the chosen
-laws (the paper's base set, ``generated.parameters.BASE``, updated by what the caller
+laws (the paper's base set, ``beltmdsm.generated.parameters.BASE``, updated by what the caller
 gives, with the per-direction excitation filled in from ``alpha`` and ``Omega`` as
 Eq. (4) has it; a law's own parameters, ``mu_k`` of Stribeck's friction, belong to
 the model only where that law is chosen). It is checked once, when it is built,
-against the one domain table (``generated.parameters.DOMAINS``); it is frozen and
+against the one domain table (``beltmdsm.generated.parameters.DOMAINS``); it is frozen and
 hashable, and `Model.digest` keys the sweep cache. The public functions of the
 package take a `Model` or the keywords it is built from (`as_model`), convert once at
 the boundary and pass the `Model` down; nothing inside checks a parameter again.
@@ -16,7 +16,7 @@ the boundary and pass the `Model` down; nothing inside checks a parameter again.
 and the options it declares.
 
 `require` is how an analysis checks a structural fact of the chosen laws that SymPy
-decided (``generated.capabilities``): it raises `Unsupported`, naming the law and the
+decided (``beltmdsm.generated.capabilities``): it raises `Unsupported`, naming the law and the
 missing property, where the fact does not hold.
 
 `initial_state` is the default start of a run (the unforced equilibrium of Eq. 9),
@@ -40,8 +40,8 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from generated import parameters as _table
-from generated.parameters import (
+from beltmdsm.generated import parameters as _table
+from beltmdsm.generated.parameters import (
     BASE,
     DEFAULT_FROM,
     DEFAULTS,
@@ -52,7 +52,7 @@ from generated.parameters import (
     within,
 )
 
-# generated._support's class (beltmdsm.errors): one class of one name, so that
+# beltmdsm.generated._support's class (beltmdsm.errors): one class of one name, so that
 # ``except Unsupported`` catches a refusal of the generated modules too
 from .errors import Unsupported
 
@@ -83,7 +83,7 @@ __all__ = [
 ]
 
 #: The model options and their choices, the default first (the registry of laws,
-#: derive/laws.py, through ``generated.parameters``).
+#: derive/laws.py, through ``beltmdsm.generated.parameters``).
 OPTIONS: Mapping[str, tuple[str, ...]] = MappingProxyType(dict(_table.OPTIONS))
 OPTION_DEFAULTS: Mapping[str, str] = MappingProxyType(dict(_table.OPTION_DEFAULTS))
 #: Option -> choice -> one line, for the command line's help and the site's laws page.
@@ -146,7 +146,7 @@ class Model:
     Parameters
     ----------
     **kw
-        Model parameters by name (``generated.parameters``; missing ones take the
+        Model parameters by name (``beltmdsm.generated.parameters``; missing ones take the
         base set, ``None`` leaves one at its default) and options (`OPTIONS`:
         ``friction="stribeck"``, ``contact="kelvin_voigt"``, ``tension="clipped"``).
         A law's own parameter (`LAW_OF`) is part of the model where its law is
@@ -165,7 +165,7 @@ class Model:
         number (a bool, a string, an array), NaN, infinite or outside its domain, an
         unknown choice of an option, a value for a parameter of a law not chosen
         (it would be ignored), or a friction law's static bound below its slip
-        coefficient at rest (``generated.parameters.static_shortfall``: ``mu_k > mu_s``
+        coefficient at rest (``beltmdsm.generated.parameters.static_shortfall``: ``mu_k > mu_s``
         under ``static_kinetic``).
 
     Examples
@@ -192,7 +192,8 @@ class Model:
             elif name == "Vhat":
                 raise ValueError(
                     "Vhat is an input of the effective friction of Eq. (23) "
-                    "(generated.stability, generated.friction), not a parameter of the model"
+                    "(beltmdsm.generated.stability, beltmdsm.generated.friction), not a "
+                    "parameter of the model"
                 )
             elif name not in KNOWN:
                 raise ValueError(
@@ -314,8 +315,8 @@ class Model:
 
     def fact(self, name: str) -> tuple[bool, str]:
         """``(holds, reason)``: a capability of this model's laws that SymPy decided
-        (``generated.capabilities``; ``name`` one of its ``FACTS``)."""
-        from generated.capabilities import CAPABILITIES
+        (``beltmdsm.generated.capabilities``; ``name`` one of its ``FACTS``)."""
+        from beltmdsm.generated.capabilities import CAPABILITIES
 
         return CAPABILITIES[(self.friction, self.contact, self.tension)][name]
 
@@ -348,7 +349,7 @@ def _declared_options(function: Callable[..., Any]) -> tuple[str, ...]:
 
 
 def require(model: Model, fact: str, analysis: str) -> None:
-    """Raise `Unsupported` unless ``fact`` (``generated.capabilities.FACTS``) holds.
+    """Raise `Unsupported` unless ``fact`` (``beltmdsm.generated.capabilities.FACTS``) holds.
 
     The message names the analysis, the law and the property, in one line:
     ``"superposition: friction='stribeck': the slip-mode friction depends on X1'"``.
@@ -380,7 +381,7 @@ def initial_state(model: Model) -> NDArray[np.float64]:
     ``g / omega2^2`` (Kelvin-Voigt), zero velocities; the excitation is switched on at
     t = 0. For ``Vb > 0`` the mass starts sliding backwards relative to the belt.
     """
-    from generated import unforced
+    from beltmdsm.generated import unforced
 
     state = unforced.equilibrium(**model.arguments(unforced.equilibrium))
     return np.array([float(v) for v in state])

@@ -4,7 +4,7 @@ One argparse tree::
 
     python -m derive [--check]        derive everything, regenerate generated/ (or check it)
     python -m derive check-paper      compare the paper with the derivation
-    python -m derive simulate|sweep|...   the runtime commands (beltmdsm.cli)
+    python -m beltmdsm simulate|sweep|...   the runtime commands (beltmdsm.cli)
 
 This module holds the top of the tree and the derive commands; `main` takes an
 ``extend`` hook that hangs more commands on it (the runtime's, `beltmdsm.cli`, whose
@@ -14,8 +14,8 @@ Nothing symbolic is imported until a derive command runs, so the runtime command
 never load SymPy.
 
 The regeneration prints one line per module on stderr as it derives it, with its time
-(stdout keeps the summary). A law that `derive.laws.register` refuses
-(`derive.lawcheck.UnsupportedLaw`) is one line too, exit status 2.
+(stdout keeps the summary). A law that `beltmdsm.derive.laws.register` refuses
+(`beltmdsm.derive.lawcheck.UnsupportedLaw`) is one line too, exit status 2.
 
 Every error in a command line is one line on stderr and exit status 2 (`Parser`);
 `main` returns the exit status, which ``python -m derive`` and the console script
@@ -173,7 +173,7 @@ def build_parser(prog=None, extend=None, evidence=None):
     """The command-line tree (`Parser`); ``extend(commands)`` adds more commands.
 
     ``evidence`` returns the simulated numbers of the paper check
-    (`derive.paper_check.claims.claims`); the runtime's command line hands it over.
+    (`beltmdsm.derive.paper_check.claims.claims`); the runtime's command line hands it over.
 
     The runtime's commands import ``generated/``, which ``python -m derive`` may be
     about to regenerate, or which may be absent from a copy of ``derive/`` alone: if

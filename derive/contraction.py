@@ -20,17 +20,17 @@ The excitation cancels. With the energy of the difference ``E_d = e'^2/2 + k1 e^
 
 What this module proves with SymPy (each a function returning the result):
 
-1. `one_way_coupling`: the normal equation of `derive.dynamics.normal_rhs` is free of
+1. `one_way_coupling`: the normal equation of `beltmdsm.derive.dynamics.normal_rhs` is free of
    ``X1, Y1`` for both contact laws and both tension laws, so one normal motion
    serves both runs.
 2. `difference_energy`, `difference_power`: ``E_d`` is the tangential part of the
-   mechanical energy of `derive.dynamics.energy` evaluated at the difference, and
-   its rate along the two motions (accelerations of `derive.dynamics.accelerations`,
+   mechanical energy of `beltmdsm.derive.dynamics.energy` evaluated at the difference, and
+   its rate along the two motions (accelerations of `beltmdsm.derive.dynamics.accelerations`,
    friction directions ``s_a, s_b``) is identically ``-c1 e'^2 - (f_a - f_b) F e'``
    with ``c1 = -d a_free/d X1'`` and ``f`` the signed friction coefficient of each
-   run (`derive.model.friction_coefficient`: ``mu_s s`` for Coulomb's law, Eq. 3),
+   run (`beltmdsm.derive.model.friction_coefficient`: ``mu_s s`` for Coulomb's law, Eq. 3),
    ``F`` the contact force of the tension law.
-3. `stick_is_set_valued`: the stick field of `derive.hybrid` (``Y1' = 0``) is the slip
+3. `stick_is_set_valued`: the stick field of `beltmdsm.derive.hybrid` (``Y1' = 0``) is the slip
    field at ``Vr = 0`` with ``s = a_free / (mu(0) F)``, which lies in ``[-1, 1]``
    exactly while the stick guard ``|a_free| <= mu(0) F`` holds.
 4. `friction_power_sign_cases`: ``(s_a - s_b)(v_a - v_b) >= 0`` in each of the nine
@@ -43,7 +43,7 @@ What this module proves with SymPy (each a function returning the result):
    ``mu(0) >= 0`` and ``mu' >= 0`` (Coulomb's constant ``mu_s``); it fails for
    Stribeck's law, which falls at every ``|Vr| > 0`` where ``mu_k < mu_s``, and then
    the claim does not hold (`claim` per friction law says so).
-5. `clipped_force_nonnegative`: ``max(F, 0)`` of `derive.model.contact_force` with
+5. `clipped_force_nonnegative`: ``max(F, 0)`` of `beltmdsm.derive.model.contact_force` with
    ``tension="clipped"`` is ``>= 0`` on each branch.
 6. `sign_of_friction_power`: from 4, ``mu_s >= 0`` and ``F >= 0`` the friction term
    is ``<= 0``, so ``dE_d/dt <= -c1 e'^2 <= 0``; with ``F < 0`` it is ``>= 0``
@@ -175,7 +175,7 @@ def _run(expr, X, Y):
 def one_way_coupling() -> dict[tuple[str, str], bool]:
     """Whether the normal equation is free of the tangential state, per (contact, tension).
 
-    `derive.dynamics.normal_rhs` is ``(X2', Y2')`` of Eq. (4) with loss of contact; a
+    `beltmdsm.derive.dynamics.normal_rhs` is ``(X2', Y2')`` of Eq. (4) with loss of contact; a
     True means SymPy finds neither ``X1`` nor ``Y1`` among its free symbols.
     """
     return {
@@ -189,7 +189,7 @@ def one_way_coupling() -> dict[tuple[str, str], bool]:
 def difference_energy() -> sp.Expr:
     """``E_d(e, e')``: the tangential part of the mechanical energy at the difference.
 
-    The mechanical energy of `derive.dynamics.energy` (per unit mass, Eq. 4) splits
+    The mechanical energy of `beltmdsm.derive.dynamics.energy` (per unit mass, Eq. 4) splits
     into a tangential part in ``(X1, Y1)`` and a normal part; the tangential part,
     evaluated at ``(e, e')``, is ``e'^2/2 + omega1^2 e^2/2``.
 
@@ -215,7 +215,7 @@ def tangential_acceleration(
 ) -> sp.Expr:
     """``X1''`` of Eq. (4) in contact for the tangential state ``(X, Y)`` and direction ``s``.
 
-    `derive.dynamics.accelerations` with ``direction=s``; ``s`` is any element of
+    `beltmdsm.derive.dynamics.accelerations` with ``direction=s``; ``s`` is any element of
     ``Sgn(Y - Vb)`` (in stick ``s = a_free / (mu(0) F)``, `stick_is_set_valued`).
     """
     acc = dynamics.accelerations(contact, direction=s, tension=tension, friction=friction)
@@ -246,8 +246,8 @@ def difference_power(
 class PowerSplit:
     """``dE_d/dt = viscous + friction``, and whether SymPy proved the identity.
 
-    ``c1`` is ``-d a_free / d X1'`` of `derive.dynamics.free_acceleration`; ``force`` the
-    contact force of the tension law (`derive.model.contact_force`);
+    ``c1`` is ``-d a_free / d X1'`` of `beltmdsm.derive.dynamics.free_acceleration`; ``force`` the
+    contact force of the tension law (`beltmdsm.derive.model.contact_force`);
     ``friction = friction_factor * force``.
     """
 
@@ -286,11 +286,11 @@ def power_split(
 def stick_is_set_valued(contact: str = _CONTACT, friction: str = _FRICTION) -> bool:
     """Whether the stick mode is the slip field at ``Vr = 0`` with ``s = a_free / (mu_st F)``.
 
-    `derive.hybrid.field_of_mode`: the ``Y1'`` entry of the ``slip_forward`` field at
+    `beltmdsm.derive.hybrid.field_of_mode`: the ``Y1'`` entry of the ``slip_forward`` field at
     ``X1' = Vb`` with its friction ``mu(0) F`` replaced by ``s mu_st F`` (``mu_st`` the
-    static bound, `derive.model.static_coefficient`; ``mu(0)`` the slip law's value at
+    static bound, `beltmdsm.derive.model.static_coefficient`; ``mu(0)`` the slip law's value at
     rest) equals the stick field's ``0`` at that ``s``. The stick guard
-    ``mu_st F -+ a_free >= 0`` (`derive.hybrid.surfaces`) is ``-1 <= s <= 1``.
+    ``mu_st F -+ a_free >= 0`` (`beltmdsm.derive.hybrid.surfaces`) is ``-1 <= s <= 1``.
     """
     at_rest = {Y1: P["Vb"]}
     slip = hybrid.field_of_mode("slip_forward", contact, friction)[1].subs(at_rest)
@@ -619,7 +619,7 @@ def claim(friction: str = _FRICTION) -> ContractionClaim:
             "one-way coupling",
             "SymPy",
             all(coupling.values()),
-            "the normal equation (derive.dynamics.normal_rhs) is free of X1, X1' for "
+            "the normal equation (beltmdsm.derive.dynamics.normal_rhs) is free of X1, X1' for "
             f"{len(coupling)} (contact, tension) combinations",
         ),
         Step(
@@ -648,7 +648,7 @@ def claim(friction: str = _FRICTION) -> ContractionClaim:
             "clipped force >= 0",
             "SymPy",
             all(clipped.values()),
-            "max(F, 0) of derive.model.contact_force is >= 0 on each branch",
+            "max(F, 0) of beltmdsm.derive.model.contact_force is >= 0 on each branch",
         ),
         Step(
             "sign of the friction power",

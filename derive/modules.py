@@ -3,7 +3,7 @@
 This is the pipeline's last pure step: it calls the derivations and packages their
 expressions as `codegen.FunctionSpec` specs. Nothing here writes files. The options
 ``friction=``, ``contact=`` and ``tension=`` of every function are the choices of the
-registry (`derive.laws`), one variant per choice, and a function takes an option
+registry (`beltmdsm.derive.laws`), one variant per choice, and a function takes an option
 only where its law enters.
 """
 
@@ -71,7 +71,7 @@ def law_options(*options: str) -> tuple:
 
 def _or_refuse(expr, reason: str):
     """``expr``, or a `Refusal` with ``reason`` where the derivation claims no closed form
-    (with the budget's reason where a step ran past its budget, `derive.budget`)."""
+    (with the budget's reason where a step ran past its budget, `beltmdsm.derive.budget`)."""
     if isinstance(expr, budget.NoClosedForm):
         return Refusal(f"{reason.split(':')[0]}: {expr.reason}; no closed-form boundary is claimed")
     return Refusal(reason) if expr is None else expr
@@ -193,7 +193,7 @@ def unforced() -> ModuleSpec:
         """The unforced system at its equilibrium (Sect. 4.1, Eqs. 9-12).
 
 Every friction and contact law of the registry (``friction=``, ``contact=``; the
-choices are ``generated.parameters.OPTIONS``, the defaults the paper's Eqs. 1 and 3).
+choices are ``beltmdsm.generated.parameters.OPTIONS``, the defaults the paper's Eqs. 1 and 3).
 Every function takes the parameters as keywords.
 """,
         functions,
@@ -293,7 +293,7 @@ def dynamics() -> ModuleSpec:
             normal,
             STATE_DOCS,
             notes="The normal equation contains neither X1, X1', Vb nor a friction "
-            "parameter (the one-way coupling of Eq. 4; generated.capabilities).",
+            "parameter (the one-way coupling of Eq. 4; beltmdsm.generated.capabilities).",
             bind=True,
         ),
         FunctionSpec(
@@ -460,7 +460,7 @@ def hybrid() -> ModuleSpec:
             "the normal equation: the normal motion does not depend on the "
             "tangential one, so the superposition integrator integrates this "
             "once. Friction laws whose slip-mode friction depends on the tangential "
-            "state cannot use it (generated.capabilities).",
+            "state cannot use it (beltmdsm.generated.capabilities).",
             bind=True,
         ),
         FunctionSpec(
@@ -567,7 +567,7 @@ and contact laws of the registry (``friction=``, ``contact=``).
     )
 
 
-#: The arguments of `generated.oscillator.tangential_state` after ``tau``.
+#: The arguments of `beltmdsm.generated.oscillator.tangential_state` after ``tau``.
 SUPERPOSITION_DOCS = {
     "X1_0": "tangential displacement at the switch t0 [m]",
     "Y1_0": "tangential velocity X1' at the switch t0 [m/s]",
@@ -639,7 +639,7 @@ def oscillator() -> ModuleSpec:
             notes="Phi(tau) (x0 - f(t0)) + f(t) with f = zf - mu sgn z: the free motion "
             "from the state at the switch and the forced responses, zf to the "
             "excitation (`excitation_response`) and z to the contact force (integrated "
-            "with the normal motion, generated.hybrid.response_field), both from rest "
+            "with the normal motion, beltmdsm.generated.hybrid.response_field), both from rest "
             "at t = 0 (derive/oscillator.py). Exact for a friction law whose slip-mode "
             "friction mu sgn F does not depend on the tangential state.",
             bind=True,
@@ -762,8 +762,8 @@ def friction() -> ModuleSpec:
     }
     quadrature = (
         "For a friction law whose fast average has no closed form (Stribeck's; "
-        "generated.capabilities) the law's part beyond mu(0) is a quadrature of the "
-        "same expression (generated._support.quad)."
+        "beltmdsm.generated.capabilities) the law's part beyond mu(0) is a quadrature of the "
+        "same expression (beltmdsm.generated._support.quad)."
     )
     vhat_opts = (
         (
@@ -813,7 +813,7 @@ def friction() -> ModuleSpec:
             (Vb, Vh, mu),
             docs,
             notes="The same in both sign conventions: they differ in how the slope "
-            "enters the slow equations (generated.stability). " + quadrature,
+            "enters the slow equations (beltmdsm.generated.stability). " + quadrature,
         ),
         FunctionSpec(
             "vhat",
@@ -1011,7 +1011,7 @@ def stability() -> ModuleSpec:
             notes="With the quartic = (l^2 + p l + q)(l^2 + r l + s) and q, s > 0 "
             "(proved by SymPy on the parameter domains), all of H1..H4 > 0 "
             "holds exactly when p > 0 and r > 0 "
-            "(derive.stability.stability_conditions): two sign tests, no "
+            "(beltmdsm.derive.stability.stability_conditions): two sign tests, no "
             "determinant, root or power.",
             accelerate=True,
         ),
@@ -1071,8 +1071,8 @@ def correlation() -> ModuleSpec:
     }
     quadrature = (
         "For a friction law whose fast average has no closed form (Stribeck's; "
-        "generated.capabilities) the law's part beyond mu(0) is a quadrature of the "
-        "same expression (generated._support.quad)."
+        "beltmdsm.generated.capabilities) the law's part beyond mu(0) is a quadrature of the "
+        "same expression (beltmdsm.generated._support.quad)."
     )
 
     def amplitude_phase(re_im):

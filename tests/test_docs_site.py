@@ -154,7 +154,7 @@ def test_the_reference_covers_the_public_api_and_the_command_line(site):
 
     import beltmdsm
     from beltmdsm.cli.tree import add_commands
-    from derive.cli import build_parser
+    from beltmdsm.derive.cli import build_parser
 
     for name in beltmdsm.__all__:
         assert (site / "reference" / "api" / f"beltmdsm.{name}.html").is_file(), name
@@ -172,11 +172,11 @@ def test_the_reference_covers_the_public_api_and_the_command_line(site):
 
 
 def test_the_laws_page_is_the_registry(site):
-    """Every law of ``generated.parameters`` with its summary and own parameters, and
+    """Every law of ``beltmdsm.generated.parameters`` with its summary and own parameters, and
     every parameter, on the page of laws (the README's table of laws, moved here)."""
     import html as html_module
 
-    from generated.parameters import LAW_PARAMETERS, OPTION_DOCS, OPTIONS, PARAMETERS
+    from beltmdsm.generated.parameters import LAW_PARAMETERS, OPTION_DOCS, OPTIONS, PARAMETERS
 
     page = (site / "reference" / "laws.html").read_text(encoding="utf-8")
     rows = [

@@ -166,7 +166,7 @@ def test_installed_runs_write_outside_the_package_and_uninstall_is_clean(install
         [
             python,
             "-c",
-            "import derive.paper_check as p, beltmdsm; print(p.report_path()); "
+            "import beltmdsm.derive.paper_check as p, beltmdsm; print(p.report_path()); "
             "print(beltmdsm.__file__)",
         ],
         capture_output=True,

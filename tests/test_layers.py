@@ -10,7 +10,7 @@ beltmdsm.{periodic, continuation, cycles} -> beltmdsm.run -> beltmdsm.prediction
 beltmdsm.attractors -> beltmdsm.simulation -> beltmdsm.studies -> beltmdsm.cli
 
 A module imports only modules of its own layer or below, with no cycle; derive/ and
-generated/ import no beltmdsm module, except ``derive.__main__`` (``python -m derive``),
+generated/ import no beltmdsm module, except ``beltmdsm.derive.__main__`` (``python -m derive``),
 which hands the command line to ``beltmdsm.cli``; generated/ imports nothing of derive/
 (it must run where only it is installed); and beltmdsm imports derive only in its
 command line (the derive commands of the one tree).
@@ -46,7 +46,7 @@ LAYERS = {
     "beltmdsm.__main__": 7,
 }
 #: The one entry point allowed to reach up the layers.
-ENTRY_POINTS = {("derive.__main__", "beltmdsm.cli")}
+ENTRY_POINTS = {("beltmdsm.derive.__main__", "beltmdsm.cli")}
 
 
 def modules():
@@ -169,9 +169,9 @@ def test_a_layer_violation_is_found():
     assert violations({("beltmdsm.periodic.floquet", "beltmdsm.cli.flags")}) == [
         "beltmdsm.periodic.floquet -> beltmdsm.cli.flags: imports a higher layer"
     ]
-    assert violations({("derive.paper_check", "beltmdsm.simulation")})
-    assert violations({("beltmdsm.simulation", "derive.model")})
-    assert not violations({("beltmdsm.cli.tree", "derive.cli")})
+    assert violations({("beltmdsm.derive.paper_check", "beltmdsm.simulation")})
+    assert violations({("beltmdsm.simulation", "beltmdsm.derive.model")})
+    assert not violations({("beltmdsm.cli.tree", "beltmdsm.derive.cli")})
     assert not violations(ENTRY_POINTS)
 
 

@@ -1,4 +1,4 @@
-"""The tree of commands: `derive.cli`'s top and derive commands, and the runtime commands.
+"""The tree of commands: `beltmdsm.derive.cli`'s top and derive commands, and the runtime commands.
 
 `COMMANDS` lists the runtime commands and the module of each (`beltmdsm.cli.commands`);
 `main` runs a command line. The command modules are imported when the tree is built
@@ -12,7 +12,7 @@ import importlib
 import sys
 from collections.abc import Sequence
 
-from derive import cli as derive_cli
+from beltmdsm.derive import cli as derive_cli
 
 __all__ = ["COMMANDS", "add_commands", "main"]
 

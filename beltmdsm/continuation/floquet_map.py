@@ -38,7 +38,7 @@ band, the band's (`beltmdsm.continuation.band.Band.unstable`; a curve of a secon
 response that coexists with a stable one then bounds nothing); on the rows between,
 it follows from the curves' edges and from which of their sides is unstable, which
 assumes one periodic response at each ``x``. The paper's linear analysis
-(`generated.stability.is_stable`, the options of the paper) is evaluated on the same
+(`beltmdsm.generated.stability.is_stable`, the options of the paper) is evaluated on the same
 rows for comparison, on a grid of ``x`` fine enough to show it (`LINEAR_POINTS`).
 ``floquet-map --png`` draws the result (`beltmdsm.cli.figure`).
 """
@@ -53,7 +53,7 @@ from typing import Any
 
 import numpy as np
 
-from generated import stability
+from beltmdsm.generated import stability
 
 from .._calling import mapped
 from .._tables import DataFrame
@@ -677,7 +677,7 @@ def _row_unstable(edges, lo, hi):
 
 
 def _linear(rows, x, xs):
-    """Per row, where the paper's linear analysis says unstable (`generated.stability`).
+    """Per row, where the paper's linear analysis says unstable (`beltmdsm.generated.stability`).
 
     One evaluation for `_LINEAR_BLOCK` rows at a time: a call costs about as much as
     its 2001 points (0.15 ms), which for a 100-row map is 4 % of its time.

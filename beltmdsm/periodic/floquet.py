@@ -4,7 +4,7 @@ The MDSM and the paper's analysis (Sects. 4.2-4.3) linearise about a slow equili
 that stands for the response of period ``T = 2 pi / Omega``; the exact counterpart is
 the Floquet stability of that periodic response (docs/modelling.md#what-unstable-means).
 This module computes it, on the period map of `beltmdsm.periodic.periodmap`, by one of
-two engines that the facts of the model's laws choose (``generated.capabilities``,
+two engines that the facts of the model's laws choose (``beltmdsm.generated.capabilities``,
 `beltmdsm.periodic.periodmap.engine_of`), never by assumption:
 
 * ``closed_form`` (`beltmdsm.periodic.periodmap.TangentialMap`), where the slip-mode
@@ -630,7 +630,7 @@ class Floquet:
         )
 
     def as_dict(self) -> dict:
-        """The JSON-able summary (the keys of ``python -m derive floquet --json``).
+        """The JSON-able summary (the keys of ``python -m beltmdsm floquet --json``).
 
         ``autonomous`` says whether it is a self-excited cycle; a cycle adds the keys of
         `beltmdsm.cycles.cycle.Cycle.as_dict` (``trivial_multiplier``, ``x1_range``,

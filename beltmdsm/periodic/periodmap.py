@@ -9,7 +9,7 @@ excitation periods later, its Jacobian, the switches on the way and the `Margin`
 every feature of the orbit that a parameter change could remove), plus the
 multipliers of the directions that are not part of the shooting state. Two engines
 implement it (`ENGINES`), and `period_map` chooses by the structural facts of the
-model's laws that SymPy decided (``generated.capabilities``), never by assumption:
+model's laws that SymPy decided (``beltmdsm.generated.capabilities``), never by assumption:
 
 * `TangentialMap` (``"closed_form"``), the fast special case, where the slip-mode
   friction does not depend on the tangential state and the normal equation is free
@@ -30,13 +30,13 @@ model's laws that SymPy decided (``generated.capabilities``), never by assumptio
   what the normal equation contains (not on ``Vb``, ``mu_s`` or the tangential
   parameters): `normal_orbit` computes it once per normal parameter set (cached), by
   shooting on the normal period map with the variational equation (the normal block
-  of `generated.hybrid.mode_jacobian`, through the integrator's own steps) and the
+  of `beltmdsm.generated.hybrid.mode_jacobian`, through the integrator's own steps) and the
   normal blocks of the saltation matrices.
 * **Tangential block.** Between switches the tangential variational flow is the
   closed-form state-transition matrix of the tangential oscillator
-  (`generated.oscillator.state_transition`; the identity while sticking, where
+  (`beltmdsm.generated.oscillator.state_transition`; the identity while sticking, where
   ``X1' = Vb`` holds whatever the perturbation); across a switch it jumps by the
-  tangential block of the saltation matrix (`generated.hybrid.saltation`). So over
+  tangential block of the saltation matrix (`beltmdsm.generated.hybrid.saltation`). So over
   one period ``M_t = Phi(T - t_n) S_n ... Phi(t_2 - t_1) S_1 Phi(t_1)``, on the
   closed-form superposition of the tangential motion
   (`beltmdsm.integrate.superposition.Superposition`). A stick phase makes ``M_t``
@@ -60,7 +60,7 @@ Margins (how far an orbit is from changing its switch structure; positive away
 from the change, dimensionless):
 
 * ``crossing``: the rate of a switching function at a crossing, along the mode
-  before, over the function's rounding scale (`generated.hybrid.surface_rates`,
+  before, over the function's rounding scale (`beltmdsm.generated.hybrid.surface_rates`,
   `surface_scales`). It vanishes where a crossing becomes tangential: a
   **tangency**, where the saltation matrix and the multipliers diverge.
 * ``approach``: the closest approach of a segment to a surface it does not cross
@@ -84,7 +84,7 @@ from typing import Any, ClassVar, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from generated import dynamics, hybrid
+from beltmdsm.generated import dynamics, hybrid
 
 from ..errors import NoPeriodicResponse  # its home; importable here as before
 from ..integrate import _compiled, _dop853
@@ -292,7 +292,7 @@ def normal_orbit(model: Model) -> NormalOrbit:
     """The periodic orbit of the normal motion (cached per normal parameter set).
 
     The key is what the normal equation contains (the parameters of
-    `generated.dynamics.normal_rhs` and ``normal_jacobian``), the excitation period
+    `beltmdsm.generated.dynamics.normal_rhs` and ``normal_jacobian``), the excitation period
     and the laws: a band or a map over ``beta1``, ``omega1``, ``mu_s`` or ``Vb``
     computes one normal orbit.
 
@@ -358,7 +358,7 @@ class OnePeriodMap:
 
         Sliding back in contact and free of friction in flight or separation (where the
         response ``z`` to the contact force has no forcing), the tangential motion is
-        one superposition with ``sgn = -1`` (`generated.oscillator.tangential_state`),
+        one superposition with ``sgn = -1`` (`beltmdsm.generated.oscillator.tangential_state`),
         affine in the start: ``x(T) = Phi(T) x0 + c`` with ``c`` the motion from
         ``x0 = 0``, whose fixed point solves ``(I - Phi(T)) x0 = c``.
         """
@@ -381,7 +381,8 @@ class OnePeriodMap:
         return np.linalg.solve(np.eye(2) - Phi, c)
 
     def saltation(self, before: Mode, after: Mode, surface: str) -> Any:
-        """The bound saltation matrix of one switch (`generated.hybrid.saltation`), kept."""
+        """The bound saltation matrix of one switch (`beltmdsm.generated.hybrid.saltation`),
+        kept."""
         key = (before, after, surface)
         if key not in self._saltation:
             self._saltation[key] = hybrid.bind_saltation(
@@ -438,7 +439,7 @@ class Margin:
     kind : {"crossing", "approach", "decision"}
         See the module docstring.
     surface : str
-        The switching surface (`generated.hybrid.SURFACES`).
+        The switching surface (`beltmdsm.generated.hybrid.SURFACES`).
     mode : Mode
         The mode before the crossing, or of the segment.
     t : float
@@ -807,7 +808,7 @@ class TangentialMap(PeriodMap):
 
     The closed-form path (module docstring): the shooting state is ``(X1, X1')`` at
     phase 0, the normal motion the cached periodic orbit (`normal_orbit`). It needs the
-    facts `CLOSED_FORM_FACTS` of the model's laws (``generated.capabilities``) and
+    facts `CLOSED_FORM_FACTS` of the model's laws (``beltmdsm.generated.capabilities``) and
     refuses a model without them.
 
     Parameters
@@ -988,7 +989,7 @@ class GeneralMap(PeriodMap):
     def sliding_guess(self) -> NDArray[np.float64]:
         """The periodic orbit of the backward-sliding field alone, by Newton's method.
 
-        The field of the mode ``slip_back`` (`generated.hybrid.vector_field`; without
+        The field of the mode ``slip_back`` (`beltmdsm.generated.hybrid.vector_field`; without
         its contact force where ``X2 < 0``, as in flight) is integrated over one period
         with no switch watched (the compiled DOP853 of `beltmdsm.integrate._dop853`),
         its Jacobian by the step propagators of `beltmdsm.periodic.variational`, from
@@ -1059,7 +1060,7 @@ def _periods(periods):
     return int(periods)
 
 
-#: The facts of the laws (``generated.capabilities``) that the closed-form path needs,
+#: The facts of the laws (``beltmdsm.generated.capabilities``) that the closed-form path needs,
 #: those of the superposition it runs on: the slip-mode friction free of the
 #: tangential state (the tangential motion is linear between switches) and the normal
 #: equation free of it (the cached normal orbit, the block-triangular monodromy).

@@ -32,7 +32,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from generated._support import cache_root
+from beltmdsm.generated._support import cache_root
 
 from ..model import Model
 from ..settings import SolverSettings
@@ -85,7 +85,7 @@ class Problem:
 
 
 def default_cache_dir() -> Path:
-    """``sweeps`` in the folder of the package's caches (`generated._support.cache_root`,
+    """``sweeps`` in the folder of the package's caches (`beltmdsm.generated._support.cache_root`,
     one rule for every cache): ``$BELTMDSM_CACHE/sweeps``, else
     ``$XDG_CACHE_HOME/beltmdsm-cache/sweeps``, else ``~/.cache/beltmdsm-cache/sweeps``
     (an empty variable counts as unset)."""

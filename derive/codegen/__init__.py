@@ -2,10 +2,10 @@
 
 One module per concept:
 
-* `derive.codegen.specs`: what a generated function and module contain (data);
-* `derive.codegen.printers`: the numpy, scalar and mpmath printers (roots, quadratures);
-* `derive.codegen.render`: specs to source text, deterministically;
-* `derive.codegen.files`: where ``generated/`` is, writing it and the staleness check
+* `beltmdsm.derive.codegen.specs`: what a generated function and module contain (data);
+* `beltmdsm.derive.codegen.printers`: the numpy, scalar and mpmath printers (roots, quadratures);
+* `beltmdsm.derive.codegen.render`: specs to source text, deterministically;
+* `beltmdsm.derive.codegen.files`: where ``generated/`` is, writing it and the staleness check
   (the only place in the package that writes files).
 """
 

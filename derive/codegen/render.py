@@ -1,10 +1,10 @@
 """Rendering: function specs to the source text of the generated modules.
 
 A generated module is described by a `ModuleSpec` of `FunctionSpec` entries (built
-in `derive.modules`); `render` turns the specs into source text, deterministically
+in `beltmdsm.derive.modules`); `render` turns the specs into source text, deterministically
 (common-subexpression elimination over all outputs of a function together,
 canonical ordering, parameters in table order), `render_all` gives every file of
-``generated/`` (`derive.codegen.files` writes them).
+``generated/`` (`beltmdsm.derive.codegen.files` writes them).
 
 The layers of a generated function (PyDy's generator / printer / wrapper):
 
@@ -17,7 +17,7 @@ The layers of a generated function (PyDy's generator / printer / wrapper):
   for NaN, inf or a value outside its domain, ``TypeError`` for an unknown keyword
   or a missing parameter of the chosen law), and calls the implementation; the
   numpy variant broadcasts over arrays, the mpmath variant (same name in
-  ``generated.mp``) computes at ``mpmath.mp.dps``;
+  ``beltmdsm.generated.mp``) computes at ``mpmath.mp.dps``;
 * for a spec with ``bind=True``, ``bind_<name>(options, **params)``: it checks the
   parameters once, as SciPy's ``check_arguments`` does, and returns a
   ``_support.Bound`` scalar kernel (plain ``math`` code; compiled by
@@ -499,7 +499,7 @@ def _docstring(fn, mp):
     if fn.vhat:
         doc += [
             'vhat_model : {"tangential", "coupled"}, optional',
-            "    How ``Vhat`` is computed (``generated.friction.vhat``) when it is not",
+            "    How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not",
             '    passed; default "tangential". Passing both is an error.',
         ]
     if fn.accelerate and not mp:
@@ -824,7 +824,7 @@ def render_all(modules) -> dict[str, str]:
     files = {
         "__init__.py": (
             HEADER + '"""Code-generated numeric modules (numpy; mpmath variants in '
-            "``generated.mp``).\n\n" + listing + "\n\nImporting them never "
+            "``beltmdsm.generated.mp``).\n\n" + listing + "\n\nImporting them never "
             'imports SymPy.\n"""\n'
         ),
         "mp/__init__.py": HEADER + '"""mpmath variants of the generated modules."""\n',

@@ -76,7 +76,7 @@ def equilibrium(*, friction='coulomb', contact='hertz_damp', convention='paper',
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -332,7 +332,7 @@ def jacobian(*, friction='coulomb', contact='hertz_damp', convention='paper', vh
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -734,7 +734,7 @@ def coefficients(*, friction='coulomb', contact='hertz_damp', convention='paper'
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -1386,7 +1386,7 @@ def hurwitz(*, friction='coulomb', contact='hertz_damp', convention='paper', vha
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -2019,7 +2019,7 @@ def eigenvalues(*, friction='coulomb', contact='hertz_damp', convention='paper',
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -2588,7 +2588,7 @@ def growth_rate(*, friction='coulomb', contact='hertz_damp', convention='paper',
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -3220,8 +3220,8 @@ def is_stable(*, friction='coulomb', contact='hertz_damp', convention='paper', v
 
     With the quartic = (l^2 + p l + q)(l^2 + r l + s) and q, s > 0 (proved by SymPy on
     the parameter domains), all of H1..H4 > 0 holds exactly when p > 0 and r > 0
-    (derive.stability.stability_conditions): two sign tests, no determinant, root or
-    power.
+    (beltmdsm.derive.stability.stability_conditions): two sign tests, no determinant,
+    root or power.
 
     mpmath variant: scalar arguments, computed at ``mpmath.mp.dps`` digits.
 
@@ -3268,7 +3268,7 @@ def is_stable(*, friction='coulomb', contact='hertz_damp', convention='paper', v
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -3485,7 +3485,7 @@ def critical_belt_speed(*, friction='coulomb', contact='hertz_damp', convention=
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -3603,7 +3603,7 @@ def unstable_interval(*, friction='coulomb', contact='hertz_damp', convention='p
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown

@@ -7,9 +7,9 @@ import sys
 import numpy as np
 import pytest
 
+from beltmdsm.generated import dynamics
+from beltmdsm.generated.parameters import BASE
 from beltmdsm.model import LAW_OF, OPTIONS, Model, as_model, excitation_period, initial_state
-from generated import dynamics
-from generated.parameters import BASE
 
 
 def test_the_base_model_is_the_base_set_with_the_excitation_of_eq4():

@@ -88,7 +88,7 @@ FAILURES = {
 }
 #: The modules that defined a failure before beltmdsm.errors held them all.
 OLD_HOMES = {
-    "Unsupported": ["beltmdsm.model", "generated._support"],
+    "Unsupported": ["beltmdsm.model", "beltmdsm.generated._support"],
     "NoPeriodicResponse": ["beltmdsm.periodic.periodmap", "beltmdsm.periodic.floquet"],
     "NoEdge": ["beltmdsm.continuation.edges"],
     "NotApplicable": ["beltmdsm.integrate.superposition"],
@@ -107,8 +107,8 @@ def test_one_hierarchy_one_class_per_name(name):
 
 
 def test_a_refusal_of_the_generated_modules_is_beltmdsm_unsupported():
+    from beltmdsm.generated import oscillator
     from beltmdsm.model import Model
-    from generated import oscillator
 
     p = Model(friction="stribeck").params
     with pytest.raises(beltmdsm.Unsupported, match="stribeck"):

@@ -1,7 +1,7 @@
 """The textbook laws of issue 29 derive completely, with the default budgets (slow).
 
 Three one-entry friction laws a user would write, registered in a fresh process with
-`derive.laws.register` and derived with ``python -m derive --out DIR`` (every module):
+`beltmdsm.derive.laws.register` and derived with ``python -m derive --out DIR`` (every module):
 
 * rational velocity weakening ``mu_s / (1 + delta_l s)`` (Risch's algorithm ran for
   minutes into tens of GB before the budgets);
@@ -29,15 +29,15 @@ from pathlib import Path
 import mpmath
 import pytest
 
-from generated.parameters import BASE
+from beltmdsm.generated.parameters import BASE
 
 ROOT = Path(__file__).resolve().parents[2]
 
 REGISTER = """
 import sys
 import sympy as sp
-from derive import laws
-from derive.parameters import Parameter
+from beltmdsm.derive import laws
+from beltmdsm.derive.parameters import Parameter
 
 def law(name, summary, parameters, coefficient):
     laws.register("friction", laws.FrictionLaw(
@@ -55,7 +55,7 @@ law("exponential", "mu_d + (mu_s - mu_d) exp(-|Vr|/v_e)",
     (Parameter("mu_d", "1", 0.2, "nonnegative", "kinetic coefficient"),
      Parameter("v_e", "m/s", 0.5, "positive", "decay speed")),
     lambda P, s: P["mu_d"] + (P["mu_s"] - P["mu_d"]) * sp.exp(-s / P["v_e"]))
-from derive import cli
+from beltmdsm.derive import cli
 sys.exit(cli.main(["--out", sys.argv[1]]))
 """
 
@@ -63,9 +63,9 @@ CHECK = """
 import json, sys
 sys.path.insert(0, sys.argv[1])
 import mpmath
-from generated import capabilities, friction, unforced
-from generated.mp import friction as mp_friction
-from generated.parameters import BASE
+from beltmdsm.generated import capabilities, friction, unforced
+from beltmdsm.generated.mp import friction as mp_friction
+from beltmdsm.generated.parameters import BASE
 out = {}
 cases = [(-0.3, 0.8), (0.5, 0.8), (2.0, 0.8), (-1.5, 0.4)]
 for law in ("rational", "cubic", "exponential"):

@@ -636,7 +636,7 @@ class Unsupported(BeltmdsmError, ValueError):
     """A choice of laws without a property that the function needs.
 
     The message is one line naming the law and the missing property (from
-    ``generated.capabilities``): the function refuses rather than computing with
+    ``beltmdsm.generated.capabilities``): the function refuses rather than computing with
     the physics of another law. ``beltmdsm.errors.Unsupported`` (and
     ``beltmdsm.model.Unsupported``) is this class.
     """

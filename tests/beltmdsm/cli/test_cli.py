@@ -13,9 +13,9 @@ from pathlib import Path
 import pytest
 
 from beltmdsm.cli import flags, main, tree
+from beltmdsm.derive import cli as derive_cli
 from beltmdsm.model import OPTIONS
 from beltmdsm.prediction import predict as predict_module
-from derive import cli as derive_cli
 
 ROOT = Path(__file__).resolve().parents[3]
 
