@@ -38,12 +38,11 @@ SITE_PAGES = {
 
 
 def parser() -> argparse.ArgumentParser:
-    """The command line's argparse tree (for sphinx-argparse): derive's top and derive
-    commands with the runtime commands of ``beltmdsm.cli.tree``."""
-    from beltmdsm.cli.tree import add_commands
-    from beltmdsm.derive.cli import build_parser
+    """The command line's argparse tree (for sphinx-argparse): ``beltmdsm.cli.tree``'s,
+    the derive commands and the runtime commands."""
+    from beltmdsm.cli.tree import build_parser
 
-    built = build_parser(extend=add_commands)
+    built = build_parser()
     built.prog = "beltmdsm"
     # sphinx-argparse reads the help texts as reStructuredText
     stack = [built]
