@@ -14,5 +14,14 @@
 * ``tableau``: The Dormand-Prince 8(5,3) tableau (Hairer, Norsett and Wanner) of ``scipy.integrate``.
 * ``contraction``: The energy of the difference of two tangential motions under one normal motion.
 
-Importing them never imports SymPy.
+Importing them never imports SymPy. A source checkout keeps generated/ beside beltmdsm/ and an
+installed package inside it; either way it is imported as
+``beltmdsm.generated`` (beltmdsm/_layout.py). By another name it refuses: a
+second name would load a second copy of every module.
 """
+
+if __name__ != "beltmdsm.generated":
+    raise ImportError(
+        f"generated/ is the package beltmdsm.generated: import it by that name, not as "
+        f"{__name__!r} (a second name would load a second copy of every module)"
+    )

@@ -44,16 +44,9 @@ from . import _dop853, _roots, _superpose
 
 __all__ = ["advance", "scan"]
 
-_ROOT = Path(__file__).resolve().parents[2]
-_SOURCES = (
-    "generated/hybrid.py",
-    "generated/oscillator.py",
-    "generated/_support.py",
-    "beltmdsm/integrate/_dop853.py",
-    "beltmdsm/integrate/_superpose.py",
-    "beltmdsm/integrate/_roots.py",
-    "beltmdsm/integrate/_compiled.py",
-)
+#: The modules whose sources key the compiled modules (read from their files, wherever
+#: the package is: beltmdsm.generated sits beside beltmdsm/ in a source checkout).
+_SOURCES = (hybrid, oscillator, _support, _dop853, _superpose, _roots)
 _FIELDS = {"vector_field": hybrid.bind_vector_field, "response_field": hybrid.bind_response_field}
 #: The integrators: their module, their functions (the entry point last), their kernels,
 #: and the functions of other modules they call (compiled beside them).
@@ -148,8 +141,8 @@ def _python(integrator, kernels):
 @functools.cache
 def _digest(numba_version):
     digest = hashlib.sha256(numba_version.encode())
-    for rel in _SOURCES:
-        digest.update((_ROOT / rel).read_bytes())
+    for module in (*_SOURCES, sys.modules[__name__]):
+        digest.update(Path(module.__file__).read_bytes())
     return digest.hexdigest()[:20]
 
 

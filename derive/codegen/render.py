@@ -818,6 +818,16 @@ def _parameters_module() -> str:
     )
 
 
+#: The package's refusal of any name but its own (beltmdsm/_layout.py).
+_GUARD = """
+if __name__ != "beltmdsm.generated":
+    raise ImportError(
+        f"generated/ is the package beltmdsm.generated: import it by that name, not as "
+        f"{__name__!r} (a second name would load a second copy of every module)"
+    )
+"""
+
+
 def render_all(modules) -> dict[str, str]:
     """Every file of ``generated/``: relative path -> text."""
     listing = "\n".join(f"* ``{m.name}``: {m.doc.strip().splitlines()[0]}" for m in modules)
@@ -825,7 +835,10 @@ def render_all(modules) -> dict[str, str]:
         "__init__.py": (
             HEADER + '"""Code-generated numeric modules (numpy; mpmath variants in '
             "``beltmdsm.generated.mp``).\n\n" + listing + "\n\nImporting them never "
-            'imports SymPy.\n"""\n'
+            "imports SymPy. A source checkout keeps generated/ beside beltmdsm/ and an\n"
+            "installed package inside it; either way it is imported as\n"
+            "``beltmdsm.generated`` (beltmdsm/_layout.py). By another name it refuses: a\n"
+            'second name would load a second copy of every module.\n"""\n' + _GUARD
         ),
         "mp/__init__.py": HEADER + '"""mpmath variants of the generated modules."""\n',
         "parameters.py": _parameters_module(),

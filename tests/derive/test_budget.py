@@ -29,6 +29,7 @@ from pathlib import Path
 import mpmath
 import pytest
 import sympy as sp
+from checkout import as_checkout
 
 from beltmdsm.derive import budget, laws
 from beltmdsm.derive.lawcheck import UnsupportedLaw
@@ -170,9 +171,9 @@ def test_python_m_derive_refuses_such_a_law_in_one_line(tmp_path):
                 """
             )
         )
-    # the copied derive/ first, this checkout's runtime and generated/ after it
-    path = f"{tmp_path}{os.pathsep}{ROOT}"
-    env = {**os.environ, "PYTHONPATH": path, "PYTHONDONTWRITEBYTECODE": "1"}
+    # a checkout of its own: the copied derive/ beside a link to this one's beltmdsm/
+    as_checkout(tmp_path)
+    env = {**os.environ, "PYTHONPATH": str(tmp_path), "PYTHONDONTWRITEBYTECODE": "1"}
     out = subprocess.run(
         [sys.executable, "-m", "derive", "--out", str(tmp_path / "out")],
         cwd=tmp_path, env=env, capture_output=True, text=True,
@@ -262,6 +263,7 @@ def test_a_law_past_its_budget_falls_back_to_quadrature_and_says_so(tmp_path):
     source = (tmp_path / "generated" / "friction.py").read_text()
     rational = source[source.index("def _mu_bar__rational") :].split("\n\n\n")[0]
     assert "_support.quad(" in rational
+    as_checkout(tmp_path)  # its generated/ is beltmdsm.generated there
     out = subprocess.run(
         [sys.executable, "-c", RATIONAL_CHECK, str(tmp_path)], cwd=ROOT, env=env,
         capture_output=True, text=True,
@@ -332,6 +334,7 @@ def test_the_unforced_critical_speed_of_a_cubic_law_is_its_nonnegative_root(tmp_
         text=True,
     )  # fmt: skip
     assert made.returncode == 0, made.stderr
+    as_checkout(tmp_path)  # its generated/ is beltmdsm.generated there
     out = subprocess.run(
         [sys.executable, "-c", CUBIC_CHECK, str(tmp_path)], cwd=ROOT, env=env,
         capture_output=True, text=True,

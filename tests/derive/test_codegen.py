@@ -14,6 +14,7 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
+from checkout import as_checkout
 
 from beltmdsm.derive.codegen import printers
 from beltmdsm.generated import _support
@@ -55,6 +56,7 @@ def test_output_is_identical_across_hash_seeds():
 def test_check_names_a_hand_edited_file(tmp_path):
     for part in ("derive", "generated"):
         shutil.copytree(ROOT / part, tmp_path / part, ignore=shutil.ignore_patterns("__pycache__"))
+    as_checkout(tmp_path)  # beside a link to beltmdsm/, the copies are beltmdsm.derive/.generated
     target = tmp_path / "generated" / "unforced.py"
     text = target.read_text()
     target.write_text(text.replace("g*mu_s/omega1**2", "g*mu_s/omega1**3", 1))
@@ -466,6 +468,7 @@ def test_a_law_registered_in_a_test_is_derived_into_every_function(tmp_path):
     source = (tmp_path / "generated" / "friction.py").read_text()
     viscous = source[source.index("def _mu_bar__viscous") :].split("\n\n\n")[0]
     assert "_support.quad(" not in viscous
+    as_checkout(tmp_path)  # its generated/ is beltmdsm.generated there
     out = _run(["-c", TOY_CHECK, str(tmp_path)])
     assert out.returncode == 0, out.stderr
     got = __import__("json").loads(out.stdout)

@@ -43,6 +43,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from checkout import as_checkout
 
 from beltmdsm.cli.tree import COMMANDS
 from beltmdsm.generated.parameters import BASE, FRICTION_LAWS
@@ -69,9 +70,9 @@ laws.register(
         coefficient=lambda P, s: P["mu_s"] - P["c_f"] * s,
     ),
 )
-from beltmdsm.derive import cli
+from beltmdsm.cli import main
 
-sys.exit(cli.main(["--out", sys.argv[1]]))
+sys.exit(main(["--out", sys.argv[1]]))
 """
 
 #: The model's base values (the toy law adds only c_f).
@@ -100,14 +101,14 @@ def toy(tmp_path_factory):
     assert made.returncode == 0, made.stdout + made.stderr
     assert "wrote 24 changed file(s) of 24" in made.stdout, made.stdout
     print(f"regenerated with the toy law in {time.perf_counter() - start:.1f} s")
-    return root
+    return as_checkout(root)  # its generated/ is beltmdsm.generated there
 
 
 def _run(toy, args, **kw):
     args = [str(a) for a in args]
     env = {
         **os.environ,
-        "PYTHONPATH": f"{toy}{os.pathsep}{ROOT}",
+        "PYTHONPATH": str(toy),
         "BELTMDSM_CACHE": str(toy / "cache"),
         "PYTHONDONTWRITEBYTECODE": "1",
     }
