@@ -4,8 +4,8 @@ The command line is `beltmdsm.cli`'s, one tree (beltmdsm/cli/tree.py) whose top 
 derivation (``[--check] [--out DIR]``, ``check-paper``) and whose commands are the
 runtime's. derive/ imports no runtime module: this file runs the runtime's entry point
 as a program, as the shell would run ``python -m beltmdsm`` (its ``--help`` says
-``python -m beltmdsm``). The package ``derive``, imported by its old name to find
-this file, is dropped first, so that nothing of derive/ is loaded under two names.
+``python -m beltmdsm``). The package, imported by its old top-level name to find this
+file, is dropped first, so that nothing of derive/ is loaded under two names.
 """
 
 import runpy

@@ -11,7 +11,7 @@ installed (not editable) into a fresh virtual environment, run from another fold
   choose where their reports go, and the documents the help texts cite print from the
   installed package;
 * uninstalling leaves nothing behind (no stray ``generated/PAPER_CHECK.md`` that
-  would make ``generated`` a broken namespace package).
+  would make ``beltmdsm.generated`` a broken namespace package).
 """
 
 from __future__ import annotations

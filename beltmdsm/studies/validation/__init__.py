@@ -63,7 +63,7 @@ Modules, one concept each:
   the sweeps on an executor;
 * `beltmdsm.studies.validation.report`: `render_markdown`.
 
-Studies layer: imports ``generated``, the lower layers of ``beltmdsm``, numpy and
+Studies layer: imports ``beltmdsm.generated``, the lower layers of ``beltmdsm``, numpy and
 scipy, never SymPy or the command line.
 """
 
