@@ -19,6 +19,9 @@ which alone builds the argparse tree (derive/ imports no argparse).
 """
 
 import ast
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -214,3 +217,24 @@ def test_derive_builds_no_command_line():
             elif isinstance(node, ast.ImportFrom) and not node.level:
                 imported.add((node.module or "").split(".")[0])
     assert "argparse" not in imported and "beltmdsm" not in imported
+
+
+@pytest.mark.parametrize(
+    "old, new", [("generated", "beltmdsm.generated"), ("derive", "beltmdsm.derive")]
+)
+def test_an_old_top_level_name_refuses_in_one_line(old, new):
+    """From the checkout's root (first on ``sys.path``) the folder would import under
+    its old name too, a second copy of every module (and of the law registry): it
+    refuses, naming the one name."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    done = subprocess.run(
+        [sys.executable, "-c", f"import {old}"], cwd=ROOT, env=env, capture_output=True, text=True
+    )
+    assert done.returncode == 1
+    last = done.stderr.strip().splitlines()[-1]
+    assert last.startswith(f"ImportError: {old}/ is the package {new}: import it by that name")
+    both = f"import {new}, sys; print(sorted(m for m in sys.modules if m.startswith('{old}')))"
+    done = subprocess.run(
+        [sys.executable, "-c", both], cwd=ROOT, env=env, capture_output=True, text=True
+    )
+    assert done.returncode == 0 and done.stdout.strip() == "[]", done.stderr
