@@ -849,6 +849,13 @@ rest of the law (a quadrature for Stribeck's, derive/averaging.py).
     )
 
 
+#: The imports of the Examples of `stability`'s functions.
+_STABILITY_IMPORTS = (
+    ">>> from beltmdsm.generated import stability\n"
+    ">>> from beltmdsm.generated.parameters import BASE\n"
+)
+
+
 def stability() -> ModuleSpec:
     """Sects. 4.2-4.3: forced Jacobian, quartic, Hurwitz, eigenvalues, boundary."""
     opts = (
@@ -999,6 +1006,10 @@ def stability() -> ModuleSpec:
             each(quads),
             **common,
             accelerate=True,
+            examples=_STABILITY_IMPORTS
+            + '>>> sigma = stability.growth_rate(**{**BASE, "Vb": [5.0, 12.0]}, backend="numpy")\n'
+            + ">>> [round(float(s), 4) for s in sigma]  # unstable at 5 m/s, stable at 12\n"
+            + "[0.081, -0.1]",
         ),
         FunctionSpec(
             "is_stable",
@@ -1014,6 +1025,9 @@ def stability() -> ModuleSpec:
             "(beltmdsm.derive.stability.stability_conditions): two sign tests, no "
             "determinant, root or power.",
             accelerate=True,
+            examples=_STABILITY_IMPORTS
+            + '>>> stability.is_stable(**{**BASE, "Vb": [5.0, 12.0]}, backend="numpy").tolist()\n'
+            + "[False, True]",
         ),
         FunctionSpec(
             "critical_belt_speed",
@@ -1026,6 +1040,9 @@ def stability() -> ModuleSpec:
             "    Only where the effective friction's slope has a closed form.",
             each(boundary),
             **common,
+            examples=_STABILITY_IMPORTS
+            + '>>> round(float(stability.critical_belt_speed(**{**BASE, "mu_s": 0.1})), 4)\n'
+            + "7.9285",
         ),
         FunctionSpec(
             "unstable_interval",
@@ -1037,6 +1054,10 @@ def stability() -> ModuleSpec:
             "(critical_belt_speed = Vhat:\n    mu_s = 0); consistent: (NaN, NaN), empty.",
             each(lambda f, c, cv: boundary(f, c, cv, upper=True)),
             **common,
+            examples=_STABILITY_IMPORTS
+            + '>>> lower, upper = stability.unstable_interval(**{**BASE, "mu_s": 0.1})\n'
+            + ">>> round(float(lower), 4), round(float(upper), 4)\n"
+            + "(7.9285, 8.5212)",
         ),
     )
     return ModuleSpec(

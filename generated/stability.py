@@ -1895,6 +1895,14 @@ def growth_rate(*, friction='coulomb', contact='hertz_damp', convention='paper',
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> sigma = stability.growth_rate(**{**BASE, "Vb": [5.0, 12.0]}, backend="numpy")
+    >>> [round(float(s), 4) for s in sigma]  # unstable at 5 m/s, stable at 12
+    [0.081, -0.1]
     """
     params = _support.resolve_vhat("growth_rate", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("growth_rate", _GROWTH_RATE, friction=friction, contact=contact, convention=convention)
@@ -3167,6 +3175,13 @@ def is_stable(*, friction='coulomb', contact='hertz_damp', convention='paper', v
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> stability.is_stable(**{**BASE, "Vb": [5.0, 12.0]}, backend="numpy").tolist()
+    [False, True]
     """
     params = _support.resolve_vhat("is_stable", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("is_stable", _IS_STABLE, friction=friction, contact=contact, convention=convention)
@@ -3672,6 +3687,13 @@ def critical_belt_speed(*, friction='coulomb', contact='hertz_damp', convention=
         it); its average is a quadrature); the pointwise functions (growth_rate,
         is_stable, hurwitz) take it, and beltmdsm.prediction.predict.paper_intervals
         finds the unstable belt speeds numerically from growth_rate
+
+    Examples
+    --------
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> round(float(stability.critical_belt_speed(**{**BASE, "mu_s": 0.1})), 4)
+    7.9285
     """
     params = _support.resolve_vhat("critical_belt_speed", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("critical_belt_speed", _CRITICAL_BELT_SPEED, friction=friction, contact=contact, convention=convention)
@@ -3784,6 +3806,14 @@ def unstable_interval(*, friction='coulomb', contact='hertz_damp', convention='p
         it); its average is a quadrature); the pointwise functions (growth_rate,
         is_stable, hurwitz) take it, and beltmdsm.prediction.predict.paper_intervals
         finds the unstable belt speeds numerically from growth_rate
+
+    Examples
+    --------
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> lower, upper = stability.unstable_interval(**{**BASE, "mu_s": 0.1})
+    >>> round(float(lower), 4), round(float(upper), 4)
+    (7.9285, 8.5212)
     """
     params = _support.resolve_vhat("unstable_interval", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("unstable_interval", _UNSTABLE_INTERVAL, friction=friction, contact=contact, convention=convention)

@@ -520,6 +520,8 @@ def _docstring(fn, mp):
     ]
     doc += fn.returns_doc.strip("\n").split("\n")
     doc += _raises(fn.accelerate and not mp, _refusals(fn))
+    if fn.examples and not mp:
+        doc += ["", "Examples", "--------"] + fn.examples.strip("\n").split("\n")
     return _quote(doc)
 
 

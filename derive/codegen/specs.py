@@ -68,6 +68,10 @@ class FunctionSpec:
         scalar kernel (numpy variant only; ``returns`` in ``"value"``, ``"tuple"``,
         ``"vector"``, ``"matrix"``: the kernel returns a float or a flat tuple,
         row-major for a matrix).
+    examples : str
+        The numpydoc ``Examples`` section body of the public (numpy) function:
+        doctest lines that run as written (tests/test_examples.py), printing rounded
+        numbers.
     """
 
     name: str
@@ -84,6 +88,7 @@ class FunctionSpec:
     vhat: bool = False
     accelerate: bool = False
     bind: bool = False
+    examples: str = ""
 
 
 @dataclass(frozen=True)
