@@ -140,7 +140,7 @@ def test_the_site_builds_and_its_internal_links_resolve(site):
         "index.html",
         "reference/api/beltmdsm.floquet_band.html",
         "reference/commands.html",
-        "reference/gen/generated.stability.html",
+        "reference/gen/beltmdsm.generated.stability.html",
         "reference/json.html",
         "tutorials/first_hour.html",
         "modelling.html",

@@ -697,7 +697,8 @@ def render(module: ModuleSpec, mp: bool = False) -> str:
     public += [name for name, _, _ in module.constants]
     names = ", ".join(repr(n) for n in public)
     variant = (
-        f"mpmath variant (same names, arbitrary precision) of ``generated.{module.name}``.\n\n"
+        "mpmath variant (same names, arbitrary precision) of "
+        f"``beltmdsm.generated.{module.name}``.\n\n"
         if mp
         else ""
     )

@@ -126,7 +126,7 @@ def generated_page() -> str:
         "   :template: autosummary/generated_module.rst",
         "",
     ]
-    lines += [f"   generated.{name}" for name in modules] + [""]
+    lines += [f"   beltmdsm.generated.{name}" for name in modules] + [""]
     return "\n".join(lines)
 
 
@@ -327,9 +327,7 @@ def public_reference(app, env, node, contnode):
     that defines it (``beltmdsm.continuation.band.floquet_band``) links to its page under
     the public name (``beltmdsm.floquet_band``); one to an object that exists but has no
     page (a private helper) reads as text. A name that names nothing stays an error."""
-    if node.get("refdomain") != "py" or not node.get("reftarget", "").startswith(
-        ("beltmdsm.", "generated.")
-    ):
+    if node.get("refdomain") != "py" or not node.get("reftarget", "").startswith("beltmdsm."):
         return None
     try:
         obj = _resolve_object(node["reftarget"])
