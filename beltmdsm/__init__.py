@@ -51,6 +51,12 @@ from the stub ``__init__.pyi`` beside this file (the package ships ``py.typed``)
 from importlib import import_module
 from typing import TYPE_CHECKING
 
+from ._layout import map_siblings
+
+# beltmdsm.generated and beltmdsm.derive: inside an installed package, beside it in a
+# source checkout (beltmdsm/_layout.py)
+map_siblings(__name__, __path__[0])
+
 #: Each public name and the module that holds it.
 _API = {
     "Model": "model",

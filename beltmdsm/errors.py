@@ -24,7 +24,7 @@ The command line reports each in one line, exit status 2 (`beltmdsm.cli.flags`).
 model) and `NoEdge` (a `RuntimeError`: no margin closes where a response is lost) are
 raised and caught inside the package; they are here so that every failure has one home.
 
-`BeltmdsmError` and `Unsupported` are defined in ``generated._support`` and re-exported
+`BeltmdsmError` and `Unsupported` are defined in ``beltmdsm.generated._support`` and re-exported
 here (the same classes): the generated modules raise `Unsupported` and cannot import
 beltmdsm (the layers point derive -> generated -> beltmdsm), and one class of one name
 is what ``except Unsupported`` needs to catch a refusal of either layer. The classes
@@ -51,7 +51,7 @@ this analysis: friction='stribeck': dmu/d|Vr| ... the coefficient falls with the
 
 from __future__ import annotations
 
-from generated._support import BeltmdsmError, Unsupported
+from beltmdsm.generated._support import BeltmdsmError, Unsupported
 
 __all__ = [
     "BeltmdsmError",

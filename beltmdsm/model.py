@@ -2,23 +2,23 @@
 
 `Model` is the value every analysis of the package takes: the model options (`OPTIONS`:
 the friction, contact and tension laws of the registry, derive/laws.py, as
-``generated.parameters`` lists them), held as a mapping of named options so that a new
+``beltmdsm.generated.parameters`` lists them), held as a mapping of named options so that a new
 option or law is added, not wired, and the parameters of Eq. (4) with the chosen
-laws (the paper's base set, ``generated.parameters.BASE``, updated by what the caller
+laws (the paper's base set, ``beltmdsm.generated.parameters.BASE``, updated by what the caller
 gives, with the per-direction excitation filled in from ``alpha`` and ``Omega`` as
 Eq. (4) has it; a law's own parameters, ``mu_k`` of Stribeck's friction, belong to
 the model only where that law is chosen). It is checked once, when it is built,
-against the one domain table (``generated.parameters.DOMAINS``); it is frozen and
+against the one domain table (``beltmdsm.generated.parameters.DOMAINS``); it is frozen and
 hashable, and `Model.digest` keys the sweep cache. The public functions of the
 package take a `Model` or the keywords it is built from (`as_model`), convert once at
 the boundary and pass the `Model` down; nothing inside checks a parameter again.
 `Model.replace` checks only what it changes (with what follows it and the
 constraints that involve it). `Model.arguments` gives a generated function the
 keywords it takes: every parameter and the options it declares, marked as checked
-(``generated._support.CHECKED``), so that the function does not check them again.
+(``beltmdsm.generated._support.CHECKED``), so that the function does not check them again.
 
 `require` is how an analysis checks a structural fact of the chosen laws that SymPy
-decided (``generated.capabilities``): it raises `Unsupported`, naming the law and the
+decided (``beltmdsm.generated.capabilities``): it raises `Unsupported`, naming the law and the
 missing property, where the fact does not hold.
 
 `initial_state` is the default start of a run (the unforced equilibrium of Eq. 9),
@@ -42,9 +42,9 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from generated import parameters as _table
-from generated._support import CHECKED
-from generated.parameters import (
+from beltmdsm.generated import parameters as _table
+from beltmdsm.generated._support import CHECKED
+from beltmdsm.generated.parameters import (
     BASE,
     DEFAULT_FROM,
     DEFAULTS,
@@ -55,7 +55,7 @@ from generated.parameters import (
     within,
 )
 
-# generated._support's class (beltmdsm.errors): one class of one name, so that
+# beltmdsm.generated._support's class (beltmdsm.errors): one class of one name, so that
 # ``except Unsupported`` catches a refusal of the generated modules too
 from .errors import Unsupported
 
@@ -86,7 +86,7 @@ __all__ = [
 ]
 
 #: The model options and their choices, the default first (the registry of laws,
-#: derive/laws.py, through ``generated.parameters``).
+#: derive/laws.py, through ``beltmdsm.generated.parameters``).
 OPTIONS: Mapping[str, tuple[str, ...]] = MappingProxyType(dict(_table.OPTIONS))
 OPTION_DEFAULTS: Mapping[str, str] = MappingProxyType(dict(_table.OPTION_DEFAULTS))
 #: Option -> choice -> one line, for the command line's help and the site's laws page.
@@ -141,7 +141,7 @@ def _check(name: str, value: float) -> None:
 
 def _check_static(friction: str, params: Mapping[str, float]) -> None:
     """Raise ValueError where the friction law's static bound is below its slip
-    coefficient at rest (``generated.parameters.static_shortfall``)."""
+    coefficient at rest (``beltmdsm.generated.parameters.static_shortfall``)."""
     excess = _table.static_shortfall(friction, **params)
     if excess > 0:
         static, rest = _table.STATIC_BOUNDS[friction]
@@ -169,7 +169,7 @@ class Model:
     Parameters
     ----------
     **kw
-        Model parameters by name (``generated.parameters``; missing ones take the
+        Model parameters by name (``beltmdsm.generated.parameters``; missing ones take the
         base set, ``None`` leaves one at its default) and options (`OPTIONS`:
         ``friction="stribeck"``, ``contact="kelvin_voigt"``, ``tension="clipped"``).
         A law's own parameter (`LAW_OF`) is part of the model where its law is
@@ -188,7 +188,7 @@ class Model:
         number (a bool, a string, an array), NaN, infinite or outside its domain, an
         unknown choice of an option, a value for a parameter of a law not chosen
         (it would be ignored), or a friction law's static bound below its slip
-        coefficient at rest (``generated.parameters.static_shortfall``: ``mu_k > mu_s``
+        coefficient at rest (``beltmdsm.generated.parameters.static_shortfall``: ``mu_k > mu_s``
         under ``static_kinetic``).
 
     Examples
@@ -215,7 +215,8 @@ class Model:
             elif name == "Vhat":
                 raise ValueError(
                     "Vhat is an input of the effective friction of Eq. (23) "
-                    "(generated.stability, generated.friction), not a parameter of the model"
+                    "(beltmdsm.generated.stability, beltmdsm.generated.friction), not a "
+                    "parameter of the model"
                 )
             elif name not in KNOWN:
                 raise ValueError(
@@ -275,7 +276,7 @@ class Model:
         A law's own parameters go with the law where another is chosen. Where only
         parameters of this model change, only they are checked (with the
         parameters that follow them and the constraints that involve them,
-        ``generated.parameters.STATIC_PARAMETERS``): the rest were checked when
+        ``beltmdsm.generated.parameters.STATIC_PARAMETERS``): the rest were checked when
         this model was built. An option change builds and checks the model whole.
 
         Parameters
@@ -383,15 +384,15 @@ class Model:
 
     def fact(self, name: str) -> tuple[bool, str]:
         """``(holds, reason)``: a capability of this model's laws that SymPy decided
-        (``generated.capabilities``; ``name`` one of its ``FACTS``)."""
-        from generated.capabilities import CAPABILITIES
+        (``beltmdsm.generated.capabilities``; ``name`` one of its ``FACTS``)."""
+        from beltmdsm.generated.capabilities import CAPABILITIES
 
         return CAPABILITIES[(self.friction, self.contact, self.tension)][name]
 
     def arguments(self, function: Callable[..., Any]) -> dict[str, Any]:
         """The keywords a generated function takes of this model: the options it declares
         (``friction=``, ``contact=``, ...), every parameter (the generated functions
-        accept every known parameter) and, under ``generated._support.CHECKED``, the
+        accept every known parameter) and, under ``beltmdsm.generated._support.CHECKED``, the
         parameters as this model checked them: the function does not check them again.
         A value put in the place of one (``{**m.arguments(f), "Vb": grid}``) is checked.
         """
@@ -421,7 +422,7 @@ def _declared_options(function: Callable[..., Any]) -> tuple[str, ...]:
 
 
 def require(model: Model, fact: str, analysis: str) -> None:
-    """Raise `Unsupported` unless ``fact`` (``generated.capabilities.FACTS``) holds.
+    """Raise `Unsupported` unless ``fact`` (``beltmdsm.generated.capabilities.FACTS``) holds.
 
     The message names the analysis, the law and the property, in one line:
     ``"superposition: friction='stribeck': the slip-mode friction depends on X1'"``.
@@ -453,7 +454,7 @@ def initial_state(model: Model) -> NDArray[np.float64]:
     ``g / omega2^2`` (Kelvin-Voigt), zero velocities; the excitation is switched on at
     t = 0. For ``Vb > 0`` the mass starts sliding backwards relative to the belt.
     """
-    from generated import unforced
+    from beltmdsm.generated import unforced
 
     state = unforced.equilibrium(**model.arguments(unforced.equilibrium))
     return np.array([float(v) for v in state])

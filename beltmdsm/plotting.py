@@ -2,7 +2,7 @@
 
 Each function draws one result on matplotlib axes (new ones where ``ax`` is None) and
 returns the axes; the results' ``plot`` methods call them. Every axis names its
-quantity and its unit (the parameter table's units, ``generated.parameters``, with the
+quantity and its unit (the parameter table's units, ``beltmdsm.generated.parameters``, with the
 units each contact law gives, ``LAW_UNITS``); each symbol has one spelling (``X1'``
 the tangential velocity, ``Vr = X1' - Vb`` the relative one). Special points carry
 the labels of the continuation literature (`beltmdsm._display.LABELS`: NS, PD, LP, GR,
@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from generated.parameters import LAW_UNITS, PARAMETERS
+from beltmdsm.generated.parameters import LAW_UNITS, PARAMETERS
 
 from ._display import LABELS
 

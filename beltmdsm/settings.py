@@ -15,7 +15,7 @@ from typing import Literal
 
 import numpy as np
 
-from generated import unforced
+from beltmdsm.generated import unforced
 
 from .errors import Refused
 from .model import Backend, Model, is_real
@@ -240,7 +240,7 @@ def fastest_rate(model: Model) -> float:
 
     The largest of the excitation frequencies ``Omega_t``, ``Omega_n``, ``omega1`` and
     the moduli of the unforced eigenvalues at the equilibrium
-    (`generated.unforced.eigenvalues`: the stiffness and damping of the contact).
+    (`beltmdsm.generated.unforced.eigenvalues`: the stiffness and damping of the contact).
     """
     p = model.params
     lam = np.abs(unforced.eigenvalues(contact=model.contact, **p))
@@ -268,7 +268,7 @@ def _overflows(model: Model) -> str | None:
     """
     import warnings
 
-    from generated import hybrid
+    from beltmdsm.generated import hybrid
 
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore", RuntimeWarning)
@@ -298,7 +298,7 @@ def check_finite(model: Model) -> None:
 
     A state or rate that overflows to inf or NaN (``omega1 = 1e-200``: the equilibrium
     ``X1 = mu_s g / omega1^2``) would be integrated as NaN; the parameters responsible
-    are those whose base value (``generated.parameters.BASE``) makes it finite.
+    are those whose base value (``beltmdsm.generated.parameters.BASE``) makes it finite.
 
     Raises
     ------
@@ -308,7 +308,7 @@ def check_finite(model: Model) -> None:
     problem = _overflows(model)
     if problem is None:
         return
-    from generated.parameters import BASE
+    from beltmdsm.generated.parameters import BASE
 
     names = [
         k

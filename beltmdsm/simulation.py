@@ -41,7 +41,7 @@ __all__ = ["Simulation", "simulate", "START_PERTURBATION", "equilibrium_start"]
 
 #: How far a run without excitation is moved off steady sliding where that is unstable
 #: (the max-norm of the move along the unstable eigenvector of
-#: `generated.unforced.jacobian_at_equilibrium`, in the state's units, m and m/s).
+#: `beltmdsm.generated.unforced.jacobian_at_equilibrium`, in the state's units, m and m/s).
 #: Started exactly on it, a run stays there up to rounding (a cubic law at Vb = 0.48
 #: for 20 000 s, called "continuous_sliding, omega1 peak absent", issue 29): 1e-6 is ten
 #: orders above the rounding of a state of order 1-10, and a millionth of the cycle
@@ -147,7 +147,7 @@ def simulate(
     ----------
     model : Model or dict, optional
         the model (`beltmdsm.Model`), or a dict of parameters and options; missing
-        parameters come from the base set ``generated.parameters.BASE``
+        parameters come from the base set ``beltmdsm.generated.parameters.BASE``
     settings : SolverSettings, optional
     y0 : array_like, optional
         initial state (X1, Y1, X2, Y2) at t = 0; default the unforced equilibrium,
@@ -200,12 +200,12 @@ def equilibrium_start(model: Model) -> tuple[NDArray[np.float64] | None, float]:
     """``(y0, size)``: where a run from the unforced equilibrium starts, and how far off.
 
     Without excitation, at ``Vb > 0`` and where steady sliding is unstable (an
-    eigenvalue of `generated.unforced.jacobian_at_equilibrium` with a positive real
+    eigenvalue of `beltmdsm.generated.unforced.jacobian_at_equilibrium` with a positive real
     part), the equilibrium moved by `START_PERTURBATION` along the real part of that
     eigenvalue's eigenvector (its X1' component made positive); else ``(None, 0.0)``:
     the equilibrium itself (`beltmdsm.model.initial_state`).
     """
-    from generated import unforced
+    from beltmdsm.generated import unforced
 
     from .model import initial_state
 

@@ -2,12 +2,12 @@
 
 A band evaluates `beltmdsm.floquet` at every value of its parameter: a `Model.replace`
 of that value, then the generated functions the analysis binds or calls
-(``generated.hybrid.bind_*``, ``generated.oscillator.bind_*``,
-``generated.unforced.equilibrium``, ...). Each part is timed both ways, in the same run:
+(``beltmdsm.generated.hybrid.bind_*``, ``beltmdsm.generated.oscillator.bind_*``,
+``beltmdsm.generated.unforced.equilibrium``, ...). Each part is timed both ways, in the same run:
 
 * **ours**: `Model.replace` checks only the changed parameter; the generated functions
   take `Model.arguments`, whose parameters are marked as checked
-  (``generated._support.CHECKED``), and do not check them again;
+  (``beltmdsm.generated._support.CHECKED``), and do not check them again;
 * **baseline (checked again)**: the model built and checked whole from what it was
   built from (what `Model.replace` did before), and the generated functions given the
   same keywords without the mark, so that they check every parameter.
@@ -22,7 +22,7 @@ from __future__ import annotations
 import time
 
 from beltmdsm import Model, floquet
-from generated import _support
+from beltmdsm.generated import _support
 
 REPEAT = 2000
 

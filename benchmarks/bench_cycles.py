@@ -168,7 +168,7 @@ def main(argv: list[str] | None = None) -> None:
 
 def unstable_cycle(dv=0.05):
     """The pure-slip cycle at Vb = Vc + dv: shooting, and a run started on it."""
-    from generated import unforced
+    from beltmdsm.generated import unforced
 
     probe = _model(1.0)
     vc = float(unforced.critical_belt_speed(**probe.arguments(unforced.critical_belt_speed)))

@@ -31,9 +31,9 @@ from dataclasses import dataclass
 import mpmath
 import numpy as np
 
-from generated import friction, stability
-from generated.mp import stability as mp_stability
-from generated.parameters import BASE
+from beltmdsm.generated import friction, stability
+from beltmdsm.generated.mp import stability as mp_stability
+from beltmdsm.generated.parameters import BASE
 
 MODEL = ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g")
 

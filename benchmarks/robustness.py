@@ -74,7 +74,7 @@ def command(task):
     """A command line that reproduces one run."""
     flags = " ".join(f"--{k} {v!r}" for k, v in task["overrides"].items())
     return (
-        f"python -m derive simulate --json --Vb {task['Vb']:g} {flags} --contact "
+        f"python -m beltmdsm simulate --json --Vb {task['Vb']:g} {flags} --contact "
         f"{task['contact']} --tension {task['tension']} --solver {task['solver']} "
         f"--t-end {task['t_end']:g}"
     ).replace("  ", " ")

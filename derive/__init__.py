@@ -8,9 +8,23 @@ contact and tension laws, with their parameters), ``units`` (the contact law's u
 ``fit`` (Eqs. 16-17), ``mdsm`` (Eqs. 13-21, A1-A2), ``averaging`` (a law over a fast
 period), ``friction`` (Eqs. 23-25), ``stability`` (Eqs. 22, 26-28, A3-A8),
 ``correlation`` (the consistent MDSM), ``contraction`` (with ``contraction_energy``
-and ``contraction_sign``, its steps), ``capabilities`` (what each
-choice of laws allows), ``dop853`` (the integrator's tableau, as published),
-``modules`` (what generated/ contains), ``codegen`` (writes
-generated/), ``paper`` and ``paper_check`` (the paper check),
-``cli`` (``python -m derive``).
+and ``contraction_sign``, its steps), ``capabilities`` (what each choice of laws
+allows), ``dop853`` (the integrator's tableau, as published), ``modules`` (what
+generated/ contains), ``codegen`` (writes
+generated/), ``paper`` and ``paper_check`` (the paper check), ``commands`` (what
+the command line's derive commands run: `beltmdsm.cli.tree`).
+
+A source checkout keeps derive/ beside beltmdsm/ and an installed package inside it;
+either way it is imported as ``beltmdsm.derive`` (beltmdsm/_layout.py). By its old
+top-level name it refuses: a second name would load a second copy of every module, and
+of the law registry. ``python -m derive`` from a checkout's root still runs (its
+``__main__`` runs ``python -m beltmdsm``, importing nothing of derive/ by the old name).
 """
+
+import sys
+
+if __name__ != "beltmdsm.derive" and not (__name__ == "derive" and sys.argv[:1] == ["-m"]):
+    raise ImportError(
+        f"derive/ is the package beltmdsm.derive: import it by that name, not as "
+        f"{__name__!r} (a second name would load a second copy of the law registry)"
+    )

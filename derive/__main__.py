@@ -1,16 +1,16 @@
-"""``python -m derive``: the package's command line.
+"""``python -m derive``, from a source checkout's root: ``python -m beltmdsm``.
 
-The derive commands (regenerate ``generated/``, ``--check``, ``check-paper``) are
-`derive.cli`'s; the runtime commands (simulate, sweep, ...) are `beltmdsm.cli`'s, which
-builds on it. This entry point is the one place in derive/ that reaches the runtime:
-where it cannot be imported (a copy of derive/ alone), the derive commands still run.
+The command line is `beltmdsm.cli`'s, one tree (beltmdsm/cli/tree.py) whose top is the
+derivation (``[--check] [--out DIR]``, ``check-paper``) and whose commands are the
+runtime's. derive/ imports no runtime module: this file runs the runtime's entry point
+as a program, as the shell would run ``python -m beltmdsm`` (its ``--help`` says
+``python -m beltmdsm``). The package, imported by its old top-level name to find this
+file, is dropped first, so that nothing of derive/ is loaded under two names.
 """
 
+import runpy
 import sys
 
-try:
-    from beltmdsm.cli import main
-except ImportError:
-    from .cli import main
-
-sys.exit(main())
+if __package__ == "derive":
+    del sys.modules["derive"]
+runpy.run_module("beltmdsm", run_name="__main__", alter_sys=True)

@@ -1,7 +1,7 @@
 """A friction law averaged over a harmonic fast motion: what is closed form, what is a quadrature.
 
 The MDSM replaces the friction of Eq. (4) by its average over a fast period (Eq. 23;
-`derive.mdsm`). For a relative velocity ``v = u + V sin(phi)`` (slow part ``u``, fast
+`beltmdsm.derive.mdsm`). For a relative velocity ``v = u + V sin(phi)`` (slow part ``u``, fast
 amplitude ``V``) the friction coefficient with its direction is
 ``f(v) = sgn(v) mu(|v|)``. Split the law at rest, ``mu(s) = mu(0) + r(s)`` with
 ``r(0) = 0``:
@@ -9,12 +9,12 @@ amplitude ``V``) the friction coefficient with its direction is
     < f(v) w > = mu(0) < sgn(v) w > + < sgn(v) r(|v|) w >
 
 for a weight ``w(phi)`` (1 for the effective friction of Eq. 23; the fast normal force,
-and its products with ``sin``, ``cos`` for the consistent MDSM, `derive.correlation`).
-Here ``mu(0)`` is the slip law's value at rest (`derive.model.rest_coefficient`): the
+and its products with ``sin``, ``cos`` for the consistent MDSM, `beltmdsm.derive.correlation`).
+Here ``mu(0)`` is the slip law's value at rest (`beltmdsm.derive.model.rest_coefficient`): the
 fast motion is taken to pass ``Vr = 0`` without sticking, so a static bound above it
 (``static_kinetic``'s ``mu_s``) enters no average. The first term is the set-valued
-sign's average, the framework's closed form (Eq. 23: an arc-cosine; `derive.friction`,
-`derive.correlation`). The second is the law's own:
+sign's average, the framework's closed form (Eq. 23: an arc-cosine; `beltmdsm.derive.friction`,
+`beltmdsm.derive.correlation`). The second is the law's own:
 
 * zero for Coulomb's law (``r = 0``);
 * a closed form where ``r(u + V sin phi)`` has an elementary antiderivative: SymPy's
@@ -22,7 +22,7 @@ sign's average, the framework's closed form (Eq. 23: an arc-cosine; `derive.fric
   ``x = tan(phi/2)`` that makes the integrand rational in ``x`` and its exponentials
   (the Risch implementation has no trigonometric extensions);
 * otherwise a quadrature, ``Integral`` objects that the code generator prints as a
-  Gauss-Legendre rule (`generated._support.quad`) and as ``mpmath.quad``. Stribeck's
+  Gauss-Legendre rule (`beltmdsm.generated._support.quad`) and as ``mpmath.quad``. Stribeck's
   ``exp(-|v|/v_s)`` is such a case: ``exp(-k sin)`` has no elementary antiderivative
   (SymPy proves it), and its average over a period is a Bessel function only where
   the sign does not change.
@@ -96,7 +96,7 @@ def closed_form(friction: str) -> tuple[bool, str]:
     gives a closed form; a proof that there is none (``NonElementaryIntegral``), or
     a case the implementation cannot decide, gives a quadrature. Risch's algorithm and
     then the definite integrals of the average and its slope run under the budget of
-    `derive.budget`; past it the average is a quadrature too, and the reason says so.
+    `beltmdsm.derive.budget`; past it the average is a quadrature too, and the reason says so.
     """
     r = remainder(friction)
     if sp.simplify(r) == 0:
@@ -149,7 +149,7 @@ _FALLBACKS: dict[str, list[str]] = {}
 
 
 def fallbacks(friction: str) -> tuple[str, ...]:
-    """The weighted averages of ``friction`` (the consistent MDSM's, `derive.correlation`)
+    """The weighted averages of ``friction`` (the consistent MDSM's, `beltmdsm.derive.correlation`)
     that ran past their budget and are quadratures, each as one phrase; `capabilities`
     appends them to the reason of ``closed_form_average`` (derived after the MDSM)."""
     return tuple(_FALLBACKS.get(friction, ()))

@@ -5,21 +5,21 @@ and fail for others; each is decided here from the registry's expressions, never
 assumed, and the code generator writes the table to ``generated/capabilities.py``:
 
 * ``slip_friction_state_independent``: within a slip mode the friction force does
-  not depend on the tangential state ``(X1, X1')`` (`derive.hybrid.field_of_mode`).
+  not depend on the tangential state ``(X1, X1')`` (`beltmdsm.derive.hybrid.field_of_mode`).
   Then the tangential motion between switches is a linear oscillator driven by the
   contact force, which the superposition integrator and the closed-form Floquet
   path solve in closed form;
 * ``one_way_coupling``: the normal equation is free of ``X1`` and ``X1'``
-  (`derive.dynamics.normal_rhs`), so one normal motion serves every tangential
+  (`beltmdsm.derive.dynamics.normal_rhs`), so one normal motion serves every tangential
   motion: the cached normal orbit, the block-triangular monodromy matrix and the
-  contraction argument (`derive.contraction`) rely on it;
+  contraction argument (`beltmdsm.derive.contraction`) rely on it;
 * ``friction_monotone``: the signed friction coefficient ``sgn(Vr) mu(|Vr|)`` is
   non-decreasing in ``Vr`` (``mu' >= 0`` and ``mu(0) >= 0``), which the contraction
   claim needs; where it fails the reason names the range of ``Vr``
-  (`derive.contraction_sign.monotonicity`);
+  (`beltmdsm.derive.contraction_sign.monotonicity`);
 * ``closed_form_average``: the friction law's average over a harmonic fast motion is
-  a closed form (`derive.averaging.closed_form`), which the MDSM's closed forms
-  (the critical belt speed of `generated.stability`) need; without it the averages
+  a closed form (`beltmdsm.derive.averaging.closed_form`), which the MDSM's closed forms
+  (the critical belt speed of `beltmdsm.generated.stability`) need; without it the averages
   are quadratures.
 """
 
@@ -49,7 +49,7 @@ FACTS = {
     "friction_monotone": "sgn(Vr) mu(|Vr|) is non-decreasing in Vr: the contraction claim "
     "(no self-excited vibration when the contact cannot pull)",
     "closed_form_average": "the friction law's average over a harmonic fast motion is a "
-    "closed form: the MDSM's closed-form boundaries (generated.stability)",
+    "closed form: the MDSM's closed-form boundaries (beltmdsm.generated.stability)",
 }
 
 
@@ -91,7 +91,7 @@ def friction_monotone(friction: str) -> tuple[bool, str]:
 def closed_form_average(friction: str) -> tuple[bool, str]:
     """Whether the law's average over a harmonic fast motion is a closed form (Risch), with
     the weighted averages of the consistent MDSM that ran past their budget
-    (`derive.averaging.fallbacks`; ``python -m derive`` derives them first)."""
+    (`beltmdsm.derive.averaging.fallbacks`; ``python -m derive`` derives them first)."""
     holds, why = averaging.closed_form(friction)
     return holds, "; ".join((why, *averaging.fallbacks(friction)))
 

@@ -19,19 +19,20 @@ The excitation cancels. With the energy of the difference ``E_d = e'^2/2 + k1 e^
     dE_d/dt = -c1 e'^2 - mu_s F (s_a - s_b)(v_a - v_b),     v = X1'.
 
 What SymPy proves (each a function returning the result; steps 1-3 in
-`derive.contraction_energy`, 4-6 in `derive.contraction_sign`, the conclusion here):
+`beltmdsm.derive.contraction_energy`, 4-6 in `beltmdsm.derive.contraction_sign`, the
+conclusion here):
 
-1. `one_way_coupling`: the normal equation of `derive.dynamics.normal_rhs` is free of
+1. `one_way_coupling`: the normal equation of `beltmdsm.derive.dynamics.normal_rhs` is free of
    ``X1, Y1`` for both contact laws and both tension laws, so one normal motion
    serves both runs.
 2. `difference_energy`, `difference_power`: ``E_d`` is the tangential part of the
-   mechanical energy of `derive.dynamics.energy` evaluated at the difference, and
-   its rate along the two motions (accelerations of `derive.dynamics.accelerations`,
+   mechanical energy of `beltmdsm.derive.dynamics.energy` evaluated at the difference, and
+   its rate along the two motions (accelerations of `beltmdsm.derive.dynamics.accelerations`,
    friction directions ``s_a, s_b``) is identically ``-c1 e'^2 - (f_a - f_b) F e'``
    with ``c1 = -d a_free/d X1'`` and ``f`` the signed friction coefficient of each
-   run (`derive.model.friction_coefficient`: ``mu_s s`` for Coulomb's law, Eq. 3),
+   run (`beltmdsm.derive.model.friction_coefficient`: ``mu_s s`` for Coulomb's law, Eq. 3),
    ``F`` the contact force of the tension law.
-3. `stick_is_set_valued`: the stick field of `derive.hybrid` (``Y1' = 0``) is the slip
+3. `stick_is_set_valued`: the stick field of `beltmdsm.derive.hybrid` (``Y1' = 0``) is the slip
    field at ``Vr = 0`` with ``s = a_free / (mu(0) F)``, which lies in ``[-1, 1]``
    exactly while the stick guard ``|a_free| <= mu(0) F`` holds.
 4. `friction_power_sign_cases`: ``(s_a - s_b)(v_a - v_b) >= 0`` in each of the nine
@@ -44,7 +45,7 @@ What SymPy proves (each a function returning the result; steps 1-3 in
    ``mu(0) >= 0`` and ``mu' >= 0`` (Coulomb's constant ``mu_s``); it fails for
    Stribeck's law, which falls at every ``|Vr| > 0`` where ``mu_k < mu_s``, and then
    the claim does not hold (`claim` per friction law says so).
-5. `clipped_force_nonnegative`: ``max(F, 0)`` of `derive.model.contact_force` with
+5. `clipped_force_nonnegative`: ``max(F, 0)`` of `beltmdsm.derive.model.contact_force` with
    ``tension="clipped"`` is ``>= 0`` on each branch.
 6. `sign_of_friction_power`: from 4, ``mu_s >= 0`` and ``F >= 0`` the friction term
    is ``<= 0``, so ``dE_d/dt <= -c1 e'^2 <= 0``; with ``F < 0`` it is ``>= 0``
@@ -254,7 +255,7 @@ def claim(friction: str = _FRICTION) -> ContractionClaim:
             "one-way coupling",
             "SymPy",
             all(coupling.values()),
-            "the normal equation (derive.dynamics.normal_rhs) is free of X1, X1' for "
+            "the normal equation (beltmdsm.derive.dynamics.normal_rhs) is free of X1, X1' for "
             f"{len(coupling)} (contact, tension) combinations",
         ),
         Step(
@@ -283,7 +284,7 @@ def claim(friction: str = _FRICTION) -> ContractionClaim:
             "clipped force >= 0",
             "SymPy",
             all(clipped.values()),
-            "max(F, 0) of derive.model.contact_force is >= 0 on each branch",
+            "max(F, 0) of beltmdsm.derive.model.contact_force is >= 0 on each branch",
         ),
         Step(
             "sign of the friction power",

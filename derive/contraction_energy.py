@@ -61,7 +61,7 @@ def _run(expr, X, Y):
 def one_way_coupling() -> dict[tuple[str, str], bool]:
     """Whether the normal equation is free of the tangential state, per (contact, tension).
 
-    `derive.dynamics.normal_rhs` is ``(X2', Y2')`` of Eq. (4) with loss of contact; a
+    `beltmdsm.derive.dynamics.normal_rhs` is ``(X2', Y2')`` of Eq. (4) with loss of contact; a
     True means SymPy finds neither ``X1`` nor ``Y1`` among its free symbols.
     """
     return {
@@ -75,7 +75,7 @@ def one_way_coupling() -> dict[tuple[str, str], bool]:
 def difference_energy() -> sp.Expr:
     """``E_d(e, e')``: the tangential part of the mechanical energy at the difference.
 
-    The mechanical energy of `derive.dynamics.energy` (per unit mass, Eq. 4) splits
+    The mechanical energy of `beltmdsm.derive.dynamics.energy` (per unit mass, Eq. 4) splits
     into a tangential part in ``(X1, Y1)`` and a normal part; the tangential part,
     evaluated at ``(e, e')``, is ``e'^2/2 + omega1^2 e^2/2``.
 
@@ -101,7 +101,7 @@ def tangential_acceleration(
 ) -> sp.Expr:
     """``X1''`` of Eq. (4) in contact for the tangential state ``(X, Y)`` and direction ``s``.
 
-    `derive.dynamics.accelerations` with ``direction=s``; ``s`` is any element of
+    `beltmdsm.derive.dynamics.accelerations` with ``direction=s``; ``s`` is any element of
     ``Sgn(Y - Vb)`` (in stick ``s = a_free / (mu(0) F)``, `stick_is_set_valued`).
     """
     acc = dynamics.accelerations(contact, direction=s, tension=tension, friction=friction)
@@ -132,8 +132,8 @@ def difference_power(
 class PowerSplit:
     """``dE_d/dt = viscous + friction``, and whether SymPy proved the identity.
 
-    ``c1`` is ``-d a_free / d X1'`` of `derive.dynamics.free_acceleration`; ``force`` the
-    contact force of the tension law (`derive.model.contact_force`);
+    ``c1`` is ``-d a_free / d X1'`` of `beltmdsm.derive.dynamics.free_acceleration`; ``force`` the
+    contact force of the tension law (`beltmdsm.derive.model.contact_force`);
     ``friction = friction_factor * force``.
     """
 
@@ -172,11 +172,11 @@ def power_split(
 def stick_is_set_valued(contact: str = _CONTACT, friction: str = _FRICTION) -> bool:
     """Whether the stick mode is the slip field at ``Vr = 0`` with ``s = a_free / (mu_st F)``.
 
-    `derive.hybrid.field_of_mode`: the ``Y1'`` entry of the ``slip_forward`` field at
+    `beltmdsm.derive.hybrid.field_of_mode`: the ``Y1'`` entry of the ``slip_forward`` field at
     ``X1' = Vb`` with its friction ``mu(0) F`` replaced by ``s mu_st F`` (``mu_st`` the
-    static bound, `derive.model.static_coefficient`; ``mu(0)`` the slip law's value at
+    static bound, `beltmdsm.derive.model.static_coefficient`; ``mu(0)`` the slip law's value at
     rest) equals the stick field's ``0`` at that ``s``. The stick guard
-    ``mu_st F -+ a_free >= 0`` (`derive.hybrid.surfaces`) is ``-1 <= s <= 1``.
+    ``mu_st F -+ a_free >= 0`` (`beltmdsm.derive.hybrid.surfaces`) is ``-1 <= s <= 1``.
     """
     at_rest = {Y1: P["Vb"]}
     slip = hybrid.field_of_mode("slip_forward", contact, friction)[1].subs(at_rest)

@@ -4,7 +4,7 @@ Steps 4-6 of the contraction argument (derive/contraction.py, its docstring has 
 whole argument): `friction_power_sign_cases` (``(s_a - s_b)(Vr_a - Vr_b) >= 0``: the
 set-valued sign is monotone), `monotonicity` (whether a friction law beyond the sign
 is non-decreasing in ``Vr``), `clipped_force_nonnegative` (``max(F, 0) >= 0``) and
-`sign_of_friction_power` (the friction part of `derive.contraction_energy.power_split`
+`sign_of_friction_power` (the friction part of `beltmdsm.derive.contraction_energy.power_split`
 never adds energy while the contact pushes).
 """
 
@@ -45,7 +45,7 @@ STATES = ("slip_back", "stick", "slip_forward")
 _FRICTION, _CONTACT, _TENSION = (laws.default(o) for o in laws.OPTIONS)
 #: The set-valued part of every friction law, mu(0) Sgn(Vr): the steps on the sign
 #: (`friction_power_sign_cases`, `sign_of_friction_power`,
-#: `derive.contraction.breaking_conditions`) are derived for Coulomb's law, whose
+#: `beltmdsm.derive.contraction.breaking_conditions`) are derived for Coulomb's law, whose
 #: mu(0) = mu_s stands for any nonnegative mu(0) (`monotonicity` checks mu(0) >= 0
 #: of each law).
 _SIGN_LAW = laws.default("friction")

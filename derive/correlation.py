@@ -2,7 +2,7 @@
 
 The paper's slow equations keep ``mu_bar N(Z)`` and drop the correlation of the fast
 friction direction with the fast normal force (docs/modelling.md#averaging;
-`derive.mdsm` labels it). For a harmonic fast motion, relative sliding velocity
+`beltmdsm.derive.mdsm` labels it). For a harmonic fast motion, relative sliding velocity
 ``u + V sin(tau)`` and normal force ``N0 + N1 sin(tau + theta)``, the average of
 Coulomb friction over a fast period is a closed form, derived here by integrating over
 the arcs where the sign of the sliding velocity is constant (``a = asin(u/V)``):
@@ -24,7 +24,7 @@ harmonic balance of the fast tangential motion when the friction reverses within
 fast cycle (``Vb < V``); with ``|u| >= V`` it is the friction times the fast normal force.
 
 These are the set-valued sign's averages. A friction law enters as its value at rest
-``mu(0)`` times them plus the average of the law beyond it (`derive.averaging`:
+``mu(0)`` times them plus the average of the law beyond it (`beltmdsm.derive.averaging`:
 nothing for Coulomb's law, a quadrature for Stribeck's): `friction_average`,
 `friction_average_slope` and `friction_harmonic`. From them the pieces of the
 consistent MDSM: `slow_damping`, the damping of the slow tangential motion at the
@@ -179,7 +179,7 @@ def friction_average(friction: str = _FRICTION) -> sp.Expr:
 @cache
 def friction_average_slope(friction: str = _FRICTION) -> sp.Expr:
     """``d/du`` of `friction_average`: the sign's slope (`averaged_friction_slope`) times
-    ``mu(0)`` plus the slope of the law beyond it (`derive.averaging.remainder_slope`)."""
+    ``mu(0)`` plus the slope of the law beyond it (`beltmdsm.derive.averaging.remainder_slope`)."""
     return _with_law(friction, averaged_friction_slope(), _normal(), 1 / (2 * sp.pi), True)
 
 
@@ -228,7 +228,7 @@ def transfer_function() -> tuple[sp.Expr, sp.Expr]:
     """``(Re, Im)`` of ``q(i Omega_t)`` of the tangential oscillator without friction.
 
     ``q(lambda) = lambda^2 + 2 beta1 omega1 lambda + omega1^2`` is the characteristic
-    polynomial of `derive.oscillator.system_matrix`: a displacement ``x e^(iWt)``
+    polynomial of `beltmdsm.derive.oscillator.system_matrix`: a displacement ``x e^(iWt)``
     needs the force ``q(iW) x``. The fast tangential motion's harmonic balance
     (`harmonic_balance`) divides the excitation's phasor by it.
     """
@@ -241,7 +241,7 @@ def harmonic_balance(friction: str = _FRICTION) -> tuple[sp.Expr, sp.Expr]:
 
     For ``X1' - Z1' = V sin(W t + phi)`` and the normal force ``<N> + N1 sin(W t +
     psi)`` at one excitation frequency ``W = Omega_t``: with the tangential
-    oscillator's ``q(iW)`` (`derive.oscillator.system_matrix`), the excitation's
+    oscillator's ``q(iW)`` (`beltmdsm.derive.oscillator.system_matrix`), the excitation's
     phasor ``F_t`` and the first harmonic ``s1 + i c1`` of the friction force
     (`friction_harmonic` at ``u = -Vb``, ``theta = psi - phi``),
 

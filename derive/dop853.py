@@ -5,7 +5,7 @@ Springer 1993, Sect. II.10; the constants are those of Hairer's Fortran code
 ``dop853.f`` (http://www.unige.ch/~hairer/prog/nonstiff/dop853.f), typed here name
 by name as printed there (``D`` exponents written ``E``), 30 significant digits where
 the code has them. The runtime's integrator (beltmdsm/integrate/_dop853.py) reads them from
-``generated/tableau.py`` (`derive.modules.tableau`), so that it starts without
+``generated/tableau.py`` (`beltmdsm.derive.modules.tableau`), so that it starts without
 importing ``scipy.integrate``; tests/derive/test_dop853.py checks the order
 conditions and compares them with the copy SciPy ships.
 

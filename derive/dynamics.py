@@ -5,8 +5,8 @@ quantity is derived on both branches and joined entrywise, so the Jacobian of th
 simulated system is the derivative of each branch, not of a kink. The friction
 direction is either ``sgn(X1' - Vb)`` (Eq. 3) or a given value ``sgn`` (the
 simulator's branch; ``sgn = 0`` gives the force that sticking must supply). The
-friction, contact and tension laws come from the registry (`derive.laws`,
-`derive.model`): the coefficient ``mu(|Vr|)`` of the friction law, the contact law's
+friction, contact and tension laws come from the registry (`beltmdsm.derive.laws`,
+`beltmdsm.derive.model`): the coefficient ``mu(|Vr|)`` of the friction law, the contact law's
 force, and Eq. (1) as printed or a contact that cannot pull.
 
 The mechanical energy and the power balance let a simulation check itself (the

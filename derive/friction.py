@@ -8,10 +8,10 @@ which SymPy proves equal and which keeps full accuracy as ``Vb -> V_hat``.
 
 Every friction law of the registry gets its effective friction: the sign's average
 times the law's value at rest ``mu(0)`` (Eq. 23 with ``mu(0)`` for ``mu_s``) plus the
-average of the rest of the law (`derive.averaging`), which is zero for Coulomb's law
-and a quadrature for Stribeck's. ``mu(0)`` is the slip law's (`derive.model.rest_coefficient`:
-the kinetic ``mu_k`` of ``static_kinetic``): the fast motion passes ``Vr = 0`` without
-sticking, so a static bound does not enter.
+average of the rest of the law (`beltmdsm.derive.averaging`), which is zero for Coulomb's law
+and a quadrature for Stribeck's. ``mu(0)`` is the slip law's
+(`beltmdsm.derive.model.rest_coefficient`: the kinetic ``mu_k`` of ``static_kinetic``):
+the fast motion passes ``Vr = 0`` without sticking, so a static bound does not enter.
 
 ``V_hat`` is "the amplitude of the velocity response obtained for linear contact
 properties" (below Eq. 23); the paper gives no formula (docs/modelling.md#vhat).
@@ -68,7 +68,7 @@ def mu_bar_eq_23(Vr=Vr, friction: str = DEFAULT["friction"]) -> sp.Expr:
 
     ``mu(0) (1 - 2/pi acos(Vr/V_hat))`` for ``|Vr| <= V_hat`` and ``mu(0) sgn(Vr)``
     outside (Eq. 23 with the law's static coefficient), plus the average of the law
-    beyond it (`derive.averaging`; zero for Coulomb's law).
+    beyond it (`beltmdsm.derive.averaging`; zero for Coulomb's law).
     """
     mu, Vh = rest_coefficient(friction), P["Vhat"]
     inside, outside = _beyond_rest(friction, False, Vr, Vh)
@@ -99,7 +99,7 @@ def mu_bar_slope_eq_25(friction: str = DEFAULT["friction"]) -> sp.Expr:
     a documented non-NaN value) if ``mu(0) > 0``; ``Vb > V_hat``: 0 for Coulomb's
     constant value. Without friction at rest (``mu(0) = 0``) the sign's part vanishes
     and so does its slope, also at ``Vb = V_hat`` (not ``0 * oo``). The slope of the
-    law's part beyond ``mu(0)`` (`derive.averaging.remainder_slope`) adds on both
+    law's part beyond ``mu(0)`` (`beltmdsm.derive.averaging.remainder_slope`) adds on both
     sides.
     """
     mu, Vh, Vb = rest_coefficient(friction), P["Vhat"], P["Vb"]

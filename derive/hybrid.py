@@ -15,7 +15,7 @@ Floquet analysis all work on the same description, derived here:
   contact law would pull; docs/modelling.md#tension), both with the free field;
 * **switching surfaces** ``h(t, x) = 0``: ``relative_velocity`` ``Y1 - Vb``;
   ``stick_forward`` and ``stick_back`` ``mu_st F -+ a_free`` (the stick cone: the
-  friction law's static bound ``mu_st``, `derive.model.static_coefficient`, ``mu_s`` for
+  friction law's static bound ``mu_st``, `beltmdsm.derive.model.static_coefficient`, ``mu_s`` for
   every shipped law, while the slip modes take the law's coefficient, ``mu_k`` below it
   for ``static_kinetic``: leaving stick then has ``S != I``; ``a_free`` the tangential
   acceleration without friction); ``penetration`` ``X2``;
@@ -129,7 +129,7 @@ _SEPARATING_GUARDS = {
 def pulls(tension: str) -> bool:
     """Whether the tension law lets the contact pull: its force for a negative ``F`` is not 0.
 
-    Decided by SymPy on the law's expression (`derive.laws.TensionLaw.acting`).
+    Decided by SymPy on the law's expression (`beltmdsm.derive.laws.TensionLaw.acting`).
     """
     F = sp.Symbol("F", negative=True)
     return sp.simplify(laws.get("tension", tension).acting(F)) != 0
@@ -248,7 +248,7 @@ def surfaces(contact: str, friction: str = laws.default("friction")) -> dict[str
     """The switching functions ``h(t, x)`` of `SURFACES`, by name.
 
     The stick surfaces bound the holding force by the friction law's static bound
-    (`derive.model.static_coefficient`: its ``static`` where it gives one, else
+    (`beltmdsm.derive.model.static_coefficient`: its ``static`` where it gives one, else
     ``mu(0)``).
     """
     F = contact_force_in_contact(contact)

@@ -1,4 +1,4 @@
-"""What a law may not contain: the cheap structural check `derive.laws.register` runs.
+"""What a law may not contain: the cheap structural check `beltmdsm.derive.laws.register` runs.
 
 The derivation takes a law as an expression in its arguments and the parameter table.
 A law that the framework cannot take is refused when it is registered, in one line
@@ -18,7 +18,7 @@ SymPy traceback minutes into ``python -m derive``:
   scalar kernels, mpmath) lacks, in the law or in its derivative.
 
 The check is structural: a law it accepts may still have no closed form for some
-derived quantity, which the budgets of `derive.budget` turn into a quadrature or a
+derived quantity, which the budgets of `beltmdsm.derive.budget` turn into a quadrature or a
 numeric root.
 """
 
@@ -31,7 +31,7 @@ from sympy.printing.pycode import MpmathPrinter, PythonCodePrinter
 
 __all__ = ["UnsupportedLaw", "check"]
 
-#: Assumptions of the parameter symbols (as `derive.model.P` makes them).
+#: Assumptions of the parameter symbols (as `beltmdsm.derive.model.P` makes them).
 _ASSUMPTIONS = {
     "positive": {"positive": True},
     "nonnegative": {"nonnegative": True},
@@ -64,7 +64,7 @@ def check(option: str, law, table) -> None:
     Parameters
     ----------
     option : {"friction", "contact", "tension"}
-    law : derive.laws.Law
+    law : beltmdsm.derive.laws.Law
     table : tuple of Parameter
         The parameter table the law may use (the model's, the registered laws' and its own).
 

@@ -1,14 +1,14 @@
 """The registry of laws: friction, contact and tension laws, one entry each.
 
 Every derivation in `derive/` and every generated module takes its laws from here:
-the model (`derive.model`) builds Eq. (4) from the chosen entries, the code
+the model (`beltmdsm.derive.model`) builds Eq. (4) from the chosen entries, the code
 generator writes one variant per choice (``friction=``, ``contact=``, ``tension=``)
 and copies the choice lists, their documentation and the laws' parameters into
 ``generated/parameters.py``. Adding a law is adding one entry with `register`
 (docs/extending.md); nothing else is edited.
 
 An entry holds the law's expression, as a function of the parameter symbols (the
-dict ``P`` of `derive.model`) and its arguments, its parameters (rows of the
+dict ``P`` of `beltmdsm.derive.model`) and its arguments, its parameters (rows of the
 parameter table, with domain, unit, base value and description), the paper's
 equations it reproduces and its documentation:
 
@@ -145,7 +145,7 @@ def register(option: str, law: Law) -> Law:
     ValueError
         For an unknown option, a law of the wrong kind, a name taken already, or a
         parameter name of the table whose row differs (naming the fields), or that is
-        one of the model's own; `derive.lawcheck.UnsupportedLaw` (a ValueError) for a
+        one of the model's own; `beltmdsm.derive.lawcheck.UnsupportedLaw` (a ValueError) for a
         construct the framework cannot take (docs/extending.md).
     """
     if option not in _KIND:

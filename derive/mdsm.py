@@ -1,7 +1,7 @@
 """The Method of Direct Separation of Motion: Eqs. (13)-(21) and (A1)-(A2).
 
 Eq. (4) with the polynomial contact force of Eq. (16) (the contact law's power of the
-penetration replaced by the cubic of `derive.fit`; nothing to replace for the linear
+penetration replaced by the cubic of `beltmdsm.derive.fit`; nothing to replace for the linear
 law of Fig. 16) is written for
 ``X = Z(tau) + Omega^-1 Phi(tau, theta)``, ``theta = Omega tau`` (Eqs. 13-14), so that
 
@@ -15,9 +15,9 @@ The average over the fast period (Eq. 15), with ``<Phi> = 0``, is applied term b
   averages to zero, and so does ``Phi^k Phi_theta`` (an exact theta-derivative);
 * every other product stays as an unevaluated average ``avg(...)``;
 * the friction term ``mu(Vr) N`` (``mu`` the friction law with its direction, any
-  law of `derive.laws`; ``N`` the normal force of the total motion) becomes
+  law of `beltmdsm.derive.laws`; ``N`` the normal force of the total motion) becomes
   ``mu_bar <N> + cov(mu, N)``, with ``mu_bar = <mu(Vr)>`` the effective friction of
-  Eq. (23) (`derive.friction` derives it for each law).
+  Eq. (23) (`beltmdsm.derive.friction` derives it for each law).
 
 Each term of the averaged equations is labelled with what the paper does with it
 (docs/modelling.md#averaging): Eqs. (18)-(19) keep the slow terms and
@@ -292,7 +292,8 @@ def fast_normal_amplitude(contact: str = _CONTACT) -> sp.Expr:
     """Displacement amplitude of the fast normal motion, linearised at Eq. (9).
 
     The normal block of Eq. (11) forced by ``-alpha_n Omega_n^2 sin``
-    (`derive.friction.normal_block`): ``alpha_n Omega_n^2 / |s - Omega_n^2 + i r Omega_n|``.
+    (`beltmdsm.derive.friction.normal_block`):
+    ``alpha_n Omega_n^2 / |s - Omega_n^2 + i r Omega_n|``.
     """
     a, b = frequency_response(normal_block(contact), P["Omega_n"])
     return P["alpha_n"] * P["Omega_n"] ** 2 / sp.sqrt(a**2 + b**2)

@@ -3,13 +3,13 @@
 Implements Eqs. (1)-(4) of the paper. The equations of motion are assembled from
 parts so that each part is a choice:
 
-* the contact law (`derive.laws`): Hertz-Damp, Eq. (1) (``"hertz_damp"``), the
+* the contact law (`beltmdsm.derive.laws`): Hertz-Damp, Eq. (1) (``"hertz_damp"``), the
   linear Kelvin-Voigt law of Fig. 16 (``"kelvin_voigt"``), Hunt-Crossley with a
   symbolic exponent (``"hunt_crossley"``), or any registered law;
-* the tension law (`derive.laws`): Eq. (1) as printed, whose force turns negative
+* the tension law (`beltmdsm.derive.laws`): Eq. (1) as printed, whose force turns negative
   (tensile) when the damping term outweighs the stiffness term (``"allowed"``), or a
   contact that cannot pull, ``max(F, 0)`` (``"clipped"``; docs/modelling.md#tension);
-* the friction law (`derive.laws`): the coefficient ``mu(|Vr|)``, Coulomb's constant
+* the friction law (`beltmdsm.derive.laws`): the coefficient ``mu(|Vr|)``, Coulomb's constant
   ``mu_s`` of Eq. (3) (``"coulomb"``) or Stribeck's falling one (``"stribeck"``),
   with the direction applied here: ``sgn(Vr)`` as in Eq. (3), or a fixed branch
   (``-1`` while the mass is slower than the belt, the branch of Eqs. 5-8);
@@ -86,7 +86,7 @@ _DEFAULT = {option: laws.default(option) for option in laws.OPTIONS}
 def coefficient(friction=_DEFAULT["friction"], speed=SPEED) -> sp.Expr:
     """The friction law's coefficient ``mu(speed)`` at the sliding speed ``speed = |Vr|``.
 
-    ``friction`` is the name of a law of `derive.laws`, or a function of the speed
+    ``friction`` is the name of a law of `beltmdsm.derive.laws`, or a function of the speed
     (a derivation's stand-in for a law, e.g. its expansion at an operating point).
     """
     if callable(friction):
@@ -99,7 +99,7 @@ def static_coefficient(friction: str = _DEFAULT["friction"]) -> sp.Expr:
 
     At ``Vr = 0`` the set-valued sign of Eq. (3) lets friction take any value in
     ``[-mu_st F, mu_st F]``: ``mu_st`` is the law's ``static`` where it gives one
-    (`derive.laws.FrictionLaw`; ``mu_s`` of ``static_kinetic``), else `rest_coefficient`
+    (`beltmdsm.derive.laws.FrictionLaw`; ``mu_s`` of ``static_kinetic``), else `rest_coefficient`
     (``mu_s`` of ``coulomb`` and ``stribeck``).
     """
     law = laws.get("friction", friction)
@@ -112,7 +112,7 @@ def rest_coefficient(friction: str = _DEFAULT["friction"]) -> sp.Expr:
     """``mu(0)``: the slip law's coefficient at rest, its limit as ``|Vr| -> 0+``.
 
     What a slip mode's friction is at ``Vr = 0`` and what the averages of the slip
-    friction over a fast motion multiply the sign's average by (`derive.averaging`);
+    friction over a fast motion multiply the sign's average by (`beltmdsm.derive.averaging`);
     it differs from `static_coefficient` where the law has a static bound of its own.
     """
     return sp.simplify(coefficient(friction, sp.Integer(0)))
@@ -132,7 +132,7 @@ def normal_force(contact: str = _DEFAULT["contact"], X2=X2, Y2=Y2) -> sp.Expr:
 def contact_force(
     contact: str = _DEFAULT["contact"], tension: str = _DEFAULT["tension"], X2=X2, Y2=Y2
 ) -> sp.Expr:
-    """The normal force in contact under a tension law (`derive.laws`).
+    """The normal force in contact under a tension law (`beltmdsm.derive.laws`).
 
     ``allowed``: Eq. (1) as printed (`normal_force`), negative when the damping term
     outweighs the stiffness term. ``clipped``: ``max(F, 0)``, a contact that cannot
@@ -204,7 +204,7 @@ def equations_of_motion(
     Parameters
     ----------
     contact : str
-        A contact law of `derive.laws`.
+        A contact law of `beltmdsm.derive.laws`.
     direction : None, -1 or +1
         Friction direction; see `friction_coefficient`.
     forced : bool
@@ -212,7 +212,7 @@ def equations_of_motion(
     general : bool
         Per-direction excitation (``True``) or the single one of Eq. (4).
     friction : str
-        A friction law of `derive.laws`.
+        A friction law of `beltmdsm.derive.laws`.
     """
     b1, w1, g = P["beta1"], P["omega1"], P["g"]
     Fn = normal_force(contact)

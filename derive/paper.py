@@ -3,7 +3,7 @@
 Each equation is a text constant ``EQ_<number>`` (``EQ_A4`` for the appendix) in
 SymPy syntax, next to the function that parses it. Nothing here is derived: the
 texts are copied from the paper, including what looks wrong, so that
-`derive.paper_check` can compare them with the derivation and report every
+`beltmdsm.derive.paper_check` can compare them with the derivation and report every
 difference instead of silently fixing it.
 
 The texts use the paper's notation in ASCII:

@@ -14,9 +14,9 @@ exactly.
 
 The friction and contact laws bring parameters of their own (``mu_k``, ``v_s`` of
 Stribeck's law, ``n_h`` of Hunt-Crossley's): they are entries of the laws in
-`derive.laws`, and `derive.laws.parameter_table` appends them to `MODEL`. The units of
-``omega2`` and ``beta2`` depend on the contact law (`derived_unit`): `derive.units`
-derives them from its force.
+`beltmdsm.derive.laws`, and `beltmdsm.derive.laws.parameter_table` appends them to
+`MODEL`. The units of ``omega2`` and ``beta2`` depend on the contact law (`derived_unit`):
+`beltmdsm.derive.units` derives them from its force.
 
 This module is plain Python (no SymPy): the code generator copies the full table into
 ``generated/parameters.py`` so the runtime layer can read it without SymPy.
@@ -31,7 +31,7 @@ __all__ = ["Parameter", "MODEL", "DOMAINS", "base_values"]
 
 #: The domains of the parameter table, each as ``(lower bound, whether the bound itself
 #: is excluded, the text of a failure)``: the one rule that the generated argument
-#: checks and the runtime's `Model` both apply (``generated.parameters.within``).
+#: checks and the runtime's `Model` both apply (``beltmdsm.generated.parameters.within``).
 DOMAINS: dict[str, tuple[float, bool, str]] = {
     "positive": (0.0, True, "> 0"),
     "nonnegative": (0.0, False, ">= 0"),
@@ -49,7 +49,7 @@ class Parameter:
         ASCII name used as keyword argument everywhere.
     unit : str
         SI unit. For a parameter with `derived_unit` the unit under the linear
-        contact law of Fig. 16; `derive.units` derives it for each contact law.
+        contact law of Fig. 16; `beltmdsm.derive.units` derives it for each contact law.
     base : float or None
         Value of the paper's base set (Fig. 2); ``None`` for an optional parameter
         that defaults to another one (see `default_from`).

@@ -12,7 +12,7 @@ The slow equations (Eqs. 20-21, state-space form A3-A6) carry the effective fric
   entry becomes ``-2 beta1 omega1 - mu_bar' g`` and ``Z1^0 > 0``.
 
 The friction law enters only through ``mu_bar^0`` and ``mu_bar'`` (`with_friction`,
-`derive.friction`): the slow equations, their Jacobian, quartic and Hurwitz
+`beltmdsm.derive.friction`): the slow equations, their Jacobian, quartic and Hurwitz
 determinants are derived once per contact law in the symbols ``mu0, mu1``.
 Derivations are cached (pure functions of the option strings; SymPy objects are
 immutable). The forced Jacobian is block triangular, so its quartic is the product of a
@@ -214,10 +214,10 @@ def critical_belt_speed(
     -------
     sympy.Expr, None or budget.NoClosedForm
         None where the slope of the law's effective friction is a quadrature
-        (`derive.averaging.closed_form`), or where SymPy's roots of ``p(Vb) = 0`` are
+        (`beltmdsm.derive.averaging.closed_form`), or where SymPy's roots of ``p(Vb) = 0`` are
         not one root of the form above; `NoClosedForm` where ``p`` depends on ``Vb``
         otherwise than through ``V_hat^2 - Vb^2`` (no root of that form: `sympy.solve`
-        is not called) or `sympy.solve` ran past its budget (`derive.budget`): then no
+        is not called) or `sympy.solve` ran past its budget (`beltmdsm.derive.budget`): then no
         closed-form boundary is claimed.
     """
     slope = mu_bar_slope_eq_25(friction).args[0][0]
@@ -230,7 +230,7 @@ def critical_belt_speed(
 def _root_below_vhat(p_of_vb: sp.Expr) -> sp.Expr | None | budget.NoClosedForm:
     """`critical_belt_speed` of the tangential damping ``p(Vb)`` (the same for every
     contact law: the normal block does not enter it), found under the budget of
-    `derive.budget` (`NoClosedForm` past it)."""
+    `beltmdsm.derive.budget` (`NoClosedForm` past it)."""
     try:
         return budget.within("p(Vb) = 0 below Vhat", _solve_below_vhat, p_of_vb)
     except budget.OverBudget as over:

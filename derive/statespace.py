@@ -1,7 +1,7 @@
 """State-space form, equilibrium, Jacobian and characteristic polynomial (Sect. 4.1).
 
 Implements Eqs. (5)-(12) of the paper for every friction and contact law of the
-registry (`derive.laws`): the first-order form on the sliding branch ``X1' < Vb``,
+registry (`beltmdsm.derive.laws`): the first-order form on the sliding branch ``X1' < Vb``,
 ``X2 > 0`` (Eqs. 5-8), the equilibrium solved by SymPy (Eq. 9), the Jacobian
 (Eq. 10) and its value at equilibrium (Eq. 11), the characteristic polynomial
 (Eq. 12) and its exact factorisation into the tangential and normal quadratics.
@@ -302,7 +302,7 @@ def critical_belt_speed(
     no belt speed), steady sliding is unstable for ``0 <= Vb < Vb_c`` where ``Vb_c >
     0``, and NaN stands for "no unstable belt speed" where the root is not positive.
     Without a root (Coulomb: ``p = 2 beta1 omega1`` whatever ``Vb``) the value is NaN.
-    `sympy.solve` runs under the budget of `derive.budget`.
+    `sympy.solve` runs under the budget of `beltmdsm.derive.budget`.
 
     Returns
     -------

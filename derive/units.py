@@ -6,7 +6,7 @@ makes ``omega2*`` a stiffness in rad/(m^(1/4) s) and ``beta2*`` a damping in
 Hunt-Crossley law units that depend on its exponent. Each follows from one
 requirement: every term of the force per unit mass is an acceleration (m/s^2).
 `contact_units` solves the exponents of metre and second of each parameter with
-`derive.parameters.Parameter.derived_unit` from that requirement (SymPy), so no unit
+`beltmdsm.derive.parameters.Parameter.derived_unit` from that requirement (SymPy), so no unit
 string is typed per law.
 """
 

@@ -4,7 +4,7 @@
 
 `quad` integrates a generated integrand on composite Gauss-Legendre panels
 (`QUAD_NODES`, `QUAD_WEIGHTS`; the scalar kernels loop over the same rule inline).
-Reached through `generated._support`.
+Reached through `beltmdsm.generated._support`.
 
 Copied verbatim into ``generated/_quadrature.py`` by ``python -m derive``; edit the
 template in ``derive/codegen/templates/`` and regenerate.
@@ -14,7 +14,7 @@ import math
 
 import numpy
 
-#: Points per block (`quad`, `generated._support.blockwise`): a chain of array
+#: Points per block (`quad`, `beltmdsm.generated._support.blockwise`): a chain of array
 #: operations on 2**15 float64 values keeps its temporaries (256 KiB each) in cache.
 BLOCK = 2**15
 

@@ -5,9 +5,9 @@
 Array shaping of the results, the variant tables and their dispatch (`choose`), the
 accelerated backends (`blockwise`, numba's `compiled` ufuncs and `jit` kernels) and
 the bound kernels (`bind`), and the failures of the generated modules
-(`BeltmdsmError`, `Unsupported`). The argument checks (`generated._checks`), the
-quadrature (`generated._quadrature`) and the cache folders (`generated._cache`) are
-modules of their own, reached through this one.
+(`BeltmdsmError`, `Unsupported`). The argument checks (`beltmdsm.generated._checks`),
+the quadrature (`beltmdsm.generated._quadrature`) and the cache folders
+(`beltmdsm.generated._cache`) are modules of their own, reached through this one.
 
 Copied verbatim into ``generated/_support.py`` by ``python -m derive``; edit the
 template in ``derive/codegen/templates/`` and regenerate. Plain numpy and mpmath: importing
@@ -375,7 +375,7 @@ class Unsupported(BeltmdsmError, ValueError):
     """A choice of laws without a property that the function needs.
 
     The message is one line naming the law and the missing property (from
-    ``generated.capabilities``): the function refuses rather than computing with
+    ``beltmdsm.generated.capabilities``): the function refuses rather than computing with
     the physics of another law. ``beltmdsm.errors.Unsupported`` (and
     ``beltmdsm.model.Unsupported``) is this class.
     """

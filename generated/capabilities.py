@@ -26,7 +26,8 @@ FACT_DOCS = {'slip_friction_state_independent': 'within a slip mode the friction
  'friction_monotone': 'sgn(Vr) mu(|Vr|) is non-decreasing in Vr: the contraction claim (no '
                       'self-excited vibration when the contact cannot pull)',
  'closed_form_average': "the friction law's average over a harmonic fast motion is a closed "
-                        "form: the MDSM's closed-form boundaries (generated.stability)"}
+                        "form: the MDSM's closed-form boundaries "
+                        '(beltmdsm.generated.stability)'}
 
 #: (friction, contact, tension) -> fact -> (holds, reason).
 CAPABILITIES = {('coulomb', 'hertz_damp', 'allowed'): {'slip_friction_state_independent': (True,

@@ -734,8 +734,8 @@ def friction_average(u, V, N0, N1, theta, *, friction='coulomb', **params):
     Implements Eq. (23) generalised (docs/modelling.md#averaging) of the paper.
 
     For a friction law whose fast average has no closed form (Stribeck's;
-    generated.capabilities) the law's part beyond mu(0) is a quadrature of the same
-    expression (generated._support.quad).
+    beltmdsm.generated.capabilities) the law's part beyond mu(0) is a quadrature of the
+    same expression (beltmdsm.generated._support.quad).
 
     Parameters
     ----------
@@ -831,8 +831,8 @@ def friction_average_slope(u, V, N0, N1, theta, *, friction='coulomb', **params)
     Implements Eq. (25) generalised of the paper.
 
     For a friction law whose fast average has no closed form (Stribeck's;
-    generated.capabilities) the law's part beyond mu(0) is a quadrature of the same
-    expression (generated._support.quad).
+    beltmdsm.generated.capabilities) the law's part beyond mu(0) is a quadrature of the
+    same expression (beltmdsm.generated._support.quad).
 
     Parameters
     ----------
@@ -923,8 +923,8 @@ def friction_harmonic(u, V, N0, N1, theta, *, friction='coulomb', **params):
     Implements harmonic balance of Eq. (A1) of the paper.
 
     For a friction law whose fast average has no closed form (Stribeck's;
-    generated.capabilities) the law's part beyond mu(0) is a quadrature of the same
-    expression (generated._support.quad).
+    beltmdsm.generated.capabilities) the law's part beyond mu(0) is a quadrature of the
+    same expression (beltmdsm.generated._support.quad).
 
     Parameters
     ----------
@@ -1050,8 +1050,9 @@ def slow_damping(V, N1, theta, *, friction='coulomb', **params):
 
     The linearisation of the averaged friction at frozen fast amplitude and phase
     (beltmdsm.prediction.predict's consistent MDSM). For a friction law whose fast
-    average has no closed form (Stribeck's; generated.capabilities) the law's part
-    beyond mu(0) is a quadrature of the same expression (generated._support.quad).
+    average has no closed form (Stribeck's; beltmdsm.generated.capabilities) the law's
+    part beyond mu(0) is a quadrature of the same expression
+    (beltmdsm.generated._support.quad).
 
     Parameters
     ----------
@@ -1200,8 +1201,9 @@ def harmonic_balance(V, phi, N1, psi, *, friction='coulomb', **params):
     s1 + i c1 is the first harmonic of the friction force (`friction_harmonic` at u =
     -Vb, N0 = g, theta = psi - phi): with the fast normal force (`fast_normal_force`)
     its roots give the fast motion of the consistent MDSM. For a friction law whose fast
-    average has no closed form (Stribeck's; generated.capabilities) the law's part
-    beyond mu(0) is a quadrature of the same expression (generated._support.quad).
+    average has no closed form (Stribeck's; beltmdsm.generated.capabilities) the law's
+    part beyond mu(0) is a quadrature of the same expression
+    (beltmdsm.generated._support.quad).
 
     Parameters
     ----------

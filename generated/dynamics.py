@@ -1823,7 +1823,7 @@ def normal_rhs(t, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
     Implements Eq. (4), second row of the paper.
 
     The normal equation contains neither X1, X1', Vb nor a friction parameter (the one-
-    way coupling of Eq. 4; generated.capabilities).
+    way coupling of Eq. 4; beltmdsm.generated.capabilities).
 
     Parameters
     ----------

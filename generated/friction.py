@@ -24,8 +24,9 @@ def mu_bar(Vr, Vhat, mu_s, *, friction='coulomb', **params):
 
     mu(0) (1 - 2/pi acos(Vr/Vhat)) inside |Vr| <= Vhat, mu(0) sgn(Vr) outside (Eq. 23),
     plus the average of mu(|Vr + Vhat sin|) - mu(0). For a friction law whose fast
-    average has no closed form (Stribeck's; generated.capabilities) the law's part
-    beyond mu(0) is a quadrature of the same expression (generated._support.quad).
+    average has no closed form (Stribeck's; beltmdsm.generated.capabilities) the law's
+    part beyond mu(0) is a quadrature of the same expression
+    (beltmdsm.generated._support.quad).
 
     Parameters
     ----------
@@ -107,8 +108,8 @@ def mu_bar0(Vb, Vhat, mu_s, *, friction='coulomb', **params):
     Implements Eq. (25), mu_bar^0 of the paper.
 
     For a friction law whose fast average has no closed form (Stribeck's;
-    generated.capabilities) the law's part beyond mu(0) is a quadrature of the same
-    expression (generated._support.quad).
+    beltmdsm.generated.capabilities) the law's part beyond mu(0) is a quadrature of the
+    same expression (beltmdsm.generated._support.quad).
 
     Parameters
     ----------
@@ -190,9 +191,9 @@ def mu_bar_slope(Vb, Vhat, mu_s, *, friction='coulomb', **params):
     Implements Eqs. (24)-(25) of the paper.
 
     The same in both sign conventions: they differ in how the slope enters the slow
-    equations (generated.stability). For a friction law whose fast average has no closed
-    form (Stribeck's; generated.capabilities) the law's part beyond mu(0) is a
-    quadrature of the same expression (generated._support.quad).
+    equations (beltmdsm.generated.stability). For a friction law whose fast average has
+    no closed form (Stribeck's; beltmdsm.generated.capabilities) the law's part beyond
+    mu(0) is a quadrature of the same expression (beltmdsm.generated._support.quad).
 
     Parameters
     ----------

@@ -1189,7 +1189,8 @@ def response_field(t, z, v, X2, Y2, mode, *, contact='hertz_damp', **params):
     z'' + 2 beta1 omega1 z' + omega1^2 z = F(mode) from rest, beside the normal
     equation: the normal motion does not depend on the tangential one, so the
     superposition integrator integrates this once. Friction laws whose slip-mode
-    friction depends on the tangential state cannot use it (generated.capabilities).
+    friction depends on the tangential state cannot use it
+    (beltmdsm.generated.capabilities).
 
     Parameters
     ----------

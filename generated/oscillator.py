@@ -410,9 +410,9 @@ def tangential_state(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, *
     Phi(tau) (x0 - f(t0)) + f(t) with f = zf - mu sgn z: the free motion from the state
     at the switch and the forced responses, zf to the excitation (`excitation_response`)
     and z to the contact force (integrated with the normal motion,
-    generated.hybrid.response_field), both from rest at t = 0 (derive/oscillator.py).
-    Exact for a friction law whose slip-mode friction mu sgn F does not depend on the
-    tangential state.
+    beltmdsm.generated.hybrid.response_field), both from rest at t = 0
+    (derive/oscillator.py). Exact for a friction law whose slip-mode friction mu sgn F
+    does not depend on the tangential state.
 
     Parameters
     ----------

@@ -73,7 +73,7 @@ def equilibrium(*, friction='coulomb', contact='hertz_damp', convention='paper',
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -304,7 +304,7 @@ def jacobian(*, friction='coulomb', contact='hertz_damp', convention='paper', vh
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -735,7 +735,7 @@ def coefficients(*, friction='coulomb', contact='hertz_damp', convention='paper'
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -1144,7 +1144,7 @@ def hurwitz(*, friction='coulomb', contact='hertz_damp', convention='paper', vha
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -1528,7 +1528,7 @@ def eigenvalues(*, friction='coulomb', contact='hertz_damp', convention='paper',
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -1868,7 +1868,7 @@ def growth_rate(*, friction='coulomb', contact='hertz_damp', convention='paper',
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     backend : {"numpy", "numba"}, optional
         numpy array operations, or a numba ufunc compiled from the same
@@ -1895,6 +1895,14 @@ def growth_rate(*, friction='coulomb', contact='hertz_damp', convention='paper',
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> sigma = stability.growth_rate(**{**BASE, "Vb": [5.0, 12.0]}, backend="numpy")
+    >>> [round(float(s), 4) for s in sigma]  # unstable at 5 m/s, stable at 12
+    [0.081, -0.1]
     """
     params = _support.resolve_vhat("growth_rate", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("growth_rate", _GROWTH_RATE, friction=friction, contact=contact, convention=convention)
@@ -3096,8 +3104,8 @@ def is_stable(*, friction='coulomb', contact='hertz_damp', convention='paper', v
 
     With the quartic = (l^2 + p l + q)(l^2 + r l + s) and q, s > 0 (proved by SymPy on
     the parameter domains), all of H1..H4 > 0 holds exactly when p > 0 and r > 0
-    (derive.stability.stability_conditions): two sign tests, no determinant, root or
-    power.
+    (beltmdsm.derive.stability.stability_conditions): two sign tests, no determinant,
+    root or power.
 
     Parameters
     ----------
@@ -3142,7 +3150,7 @@ def is_stable(*, friction='coulomb', contact='hertz_damp', convention='paper', v
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     backend : {"numpy", "numba"}, optional
         numpy array operations, or a numba ufunc compiled from the same
@@ -3167,6 +3175,13 @@ def is_stable(*, friction='coulomb', contact='hertz_damp', convention='paper', v
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> stability.is_stable(**{**BASE, "Vb": [5.0, 12.0]}, backend="numpy").tolist()
+    [False, True]
     """
     params = _support.resolve_vhat("is_stable", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("is_stable", _IS_STABLE, friction=friction, contact=contact, convention=convention)
@@ -3641,7 +3656,7 @@ def critical_belt_speed(*, friction='coulomb', contact='hertz_damp', convention=
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -3672,6 +3687,13 @@ def critical_belt_speed(*, friction='coulomb', contact='hertz_damp', convention=
         it); its average is a quadrature); the pointwise functions (growth_rate,
         is_stable, hurwitz) take it, and beltmdsm.prediction.predict.paper_intervals
         finds the unstable belt speeds numerically from growth_rate
+
+    Examples
+    --------
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> round(float(stability.critical_belt_speed(**{**BASE, "mu_s": 0.1})), 4)
+    7.9285
     """
     params = _support.resolve_vhat("critical_belt_speed", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("critical_belt_speed", _CRITICAL_BELT_SPEED, friction=friction, contact=contact, convention=convention)
@@ -3754,7 +3776,7 @@ def unstable_interval(*, friction='coulomb', contact='hertz_damp', convention='p
         sign of the effective friction in Eq. (A4): as printed, or as Eq. (4) implies
         (docs/modelling.md#friction-sign)
     vhat_model : {"tangential", "coupled"}, optional
-        How ``Vhat`` is computed (``generated.friction.vhat``) when it is not
+        How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not
         passed; default "tangential". Passing both is an error.
     **params
         Any other model parameter (accepted and ignored); an unknown
@@ -3784,6 +3806,14 @@ def unstable_interval(*, friction='coulomb', contact='hertz_damp', convention='p
         it); its average is a quadrature); the pointwise functions (growth_rate,
         is_stable, hurwitz) take it, and beltmdsm.prediction.predict.paper_intervals
         finds the unstable belt speeds numerically from growth_rate
+
+    Examples
+    --------
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> lower, upper = stability.unstable_interval(**{**BASE, "mu_s": 0.1})
+    >>> round(float(lower), 4), round(float(upper), 4)
+    (7.9285, 8.5212)
     """
     params = _support.resolve_vhat("unstable_interval", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("unstable_interval", _UNSTABLE_INTERVAL, friction=friction, contact=contact, convention=convention)

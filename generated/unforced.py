@@ -3,7 +3,7 @@
 """The unforced system at its equilibrium (Sect. 4.1, Eqs. 9-12).
 
 Every friction and contact law of the registry (``friction=``, ``contact=``; the
-choices are ``generated.parameters.OPTIONS``, the defaults the paper's Eqs. 1 and 3).
+choices are ``beltmdsm.generated.parameters.OPTIONS``, the defaults the paper's Eqs. 1 and 3).
 Every function takes the parameters as keywords.
 """
 

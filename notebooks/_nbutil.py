@@ -11,8 +11,8 @@ Figures go to `FIGURES`: ``notebooks/figures/`` in full mode, a temporary folder
 quick mode, or ``BELTMDSM_FIGURES`` when it is set.
 
 Importing this module also puts the repository root on ``sys.path``: nbmake runs a
-notebook with its own folder as working directory, where ``generated``, ``beltmdsm``
-and ``benchmarks`` are importable only through an editable install (and
+notebook with its own folder as working directory, where ``beltmdsm`` (with
+``beltmdsm.generated``) and ``benchmarks`` are importable only through an editable install (and
 ``benchmarks`` never is, since it is not a package of the distribution).
 """
 

@@ -4,7 +4,7 @@ import mpmath
 import numpy as np
 import pytest
 
-from generated.parameters import BASE
+from beltmdsm.generated.parameters import BASE
 
 #: Parameters of the paper's Eq. (4) (the per-direction excitation defaults to these).
 MODEL = ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g", "Vb")

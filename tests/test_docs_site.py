@@ -140,7 +140,7 @@ def test_the_site_builds_and_its_internal_links_resolve(site):
         "index.html",
         "reference/api/beltmdsm.floquet_band.html",
         "reference/commands.html",
-        "reference/gen/generated.stability.html",
+        "reference/gen/beltmdsm.generated.stability.html",
         "reference/json.html",
         "tutorials/first_hour.html",
         "modelling.html",
@@ -153,14 +153,13 @@ def test_the_reference_covers_the_public_api_and_the_command_line(site):
     import argparse
 
     import beltmdsm
-    from beltmdsm.cli.tree import add_commands
-    from derive.cli import build_parser
+    from beltmdsm.cli.tree import build_parser
 
     for name in beltmdsm.__all__:
         assert (site / "reference" / "api" / f"beltmdsm.{name}.html").is_file(), name
     page = (site / "reference" / "commands.html").read_text(encoding="utf-8")
     commands = {f for kbd in re.findall(r"<kbd>([^<]*)</kbd>", page) for f in kbd.split(", ")}
-    parser = build_parser(extend=add_commands)
+    parser = build_parser()
     (sub,) = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
     for command, subparser in sub.choices.items():
         assert f'id="beltmdsm-{command}"' in page, command
@@ -172,11 +171,11 @@ def test_the_reference_covers_the_public_api_and_the_command_line(site):
 
 
 def test_the_laws_page_is_the_registry(site):
-    """Every law of ``generated.parameters`` with its summary and own parameters, and
+    """Every law of ``beltmdsm.generated.parameters`` with its summary and own parameters, and
     every parameter, on the page of laws (the README's table of laws, moved here)."""
     import html as html_module
 
-    from generated.parameters import LAW_PARAMETERS, OPTION_DOCS, OPTIONS, PARAMETERS
+    from beltmdsm.generated.parameters import LAW_PARAMETERS, OPTION_DOCS, OPTIONS, PARAMETERS
 
     page = (site / "reference" / "laws.html").read_text(encoding="utf-8")
     rows = [

@@ -1,6 +1,7 @@
 """The Examples sections of the package's docstrings run and print what they say
-(issue 32, item 3: doctests collected by the test run). Every module of beltmdsm/ whose
-docstrings hold an example is found here, so a new one is checked without a list."""
+(issue 32, item 3: doctests collected by the test run). Every module of beltmdsm/ and of
+generated/ (``beltmdsm.generated``, its Examples written by derive/) whose docstrings
+hold an example is found here, so a new one is checked without a list."""
 
 import doctest
 import importlib
@@ -9,15 +10,19 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
+#: Each package and its folder in a source checkout (beltmdsm/_layout.py).
+FOLDERS = {"beltmdsm": "beltmdsm", "beltmdsm.generated": "generated"}
 MODULES = sorted(
-    ".".join(p.relative_to(ROOT).with_suffix("").parts)
-    for p in (ROOT / "beltmdsm").rglob("*.py")
+    ".".join((package, *p.relative_to(ROOT / folder).with_suffix("").parts))
+    for package, folder in FOLDERS.items()
+    for p in (ROOT / folder).rglob("*.py")
     if ">>> " in p.read_text(encoding="utf-8")
 )
 
 
 def test_the_examples_are_found():
-    assert {"beltmdsm.model", "beltmdsm.cycles.cycle", "beltmdsm.studies.basins"} <= set(MODULES)
+    found = {"beltmdsm.model", "beltmdsm.cycles.cycle", "beltmdsm.studies.basins"}
+    assert found | {"beltmdsm.generated.stability"} <= set(MODULES)
 
 
 @pytest.mark.parametrize("name", MODULES)

@@ -2,17 +2,23 @@
 installed (not editable) into a fresh virtual environment, run from another folder.
 
 * every folder holding modules is in pyproject.toml's package list (it is listed so
-  that docs/ ships inside the package; tests/test_docs.py checks that what the sources
-  cite exists);
-* installed, ``python -m derive`` refuses to regenerate the installed generated/ in one
-  line, ``check-paper --out`` and ``validate --out`` choose where their reports go,
-  and the documents the help texts cite print from the installed package;
+  that docs/, generated/ and derive/ ship inside the package; tests/test_docs.py checks
+  that what the sources cite exists);
+* the wheel installs one top-level name, ``beltmdsm``: run from a folder that holds a
+  user's own ``generated/`` package and ``derive.py``, nothing of theirs is imported;
+* installed, the derivation (``beltmdsm`` with no command) refuses to regenerate the
+  installed generated/ in one line, ``check-paper --out`` and ``validate --out``
+  choose where their reports go, and the documents the help texts cite print from the
+  installed package;
 * uninstalling leaves nothing behind (no stray ``generated/PAPER_CHECK.md`` that
-  would make ``generated`` a broken namespace package).
+  would make ``beltmdsm.generated`` a broken namespace package).
 """
 
 from __future__ import annotations
 
+import functools
+import json
+import os
 import re
 import shutil
 import site
@@ -24,7 +30,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-SOURCES = ("derive", "generated", "beltmdsm")
+#: Each package and its folder in the checkout (pyproject.toml's package-dir).
+SOURCES = {"beltmdsm": "beltmdsm", "beltmdsm.derive": "derive", "beltmdsm.generated": "generated"}
 
 
 def test_every_module_folder_is_a_listed_package():
@@ -33,9 +40,9 @@ def test_every_module_folder_is_a_listed_package():
         tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["packages"]
     )
     folders = {
-        ".".join(path.parent.relative_to(ROOT).parts)
-        for top in SOURCES
-        for path in (ROOT / top).rglob("*.py")
+        ".".join((package, *path.parent.relative_to(ROOT / folder).parts))
+        for package, folder in SOURCES.items()
+        for path in (ROOT / folder).rglob("*.py")
         if "__pycache__" not in path.parts
     }
     assert folders | {"beltmdsm.docs"} == listed
@@ -93,27 +100,92 @@ def installed(tmp_path_factory):
     return python, pip, env_site, work
 
 
+#: The environment of the installed runs: no PYTHONPATH (a checkout on it would be
+#: imported instead of the installed package).
+ENV = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+
+
 def _run(installed, *args):
     python, _, _, work = installed
     return subprocess.run(
-        [python, "-m", *args], capture_output=True, text=True, cwd=work, timeout=600
+        [python, "-m", *args], capture_output=True, text=True, cwd=work, timeout=600, env=ENV
     )
 
 
 def test_the_installed_package_is_the_wheel(installed):
     _, _, purelib, _ = installed
-    assert purelib != ROOT and (purelib / "generated" / "stability.py").is_file()
-    assert (purelib / "derive" / "codegen" / "templates" / "_support.py").is_file()
+    package = purelib / "beltmdsm"
+    assert purelib != ROOT and (package / "generated" / "stability.py").is_file()
+    assert (package / "derive" / "codegen" / "templates" / "_support.py").is_file()
 
 
-def test_installed_derive_refuses_to_regenerate_the_package(installed):
+def test_the_wheel_installs_one_top_level_name(installed):
+    """Everything a user imports is under ``beltmdsm`` (issue 30): the wheel's files
+    (its RECORD) are the package and its dist-info, and the console script."""
     _, _, purelib, _ = installed
-    before = {p: p.stat().st_mtime_ns for p in (purelib / "generated").rglob("*.py")}
-    done = _run(installed, "derive")
+    (dist,) = purelib.glob("beltmdsm-*.dist-info")
+    names = [line.split(",")[0] for line in (dist / "RECORD").read_text().splitlines()]
+    tops = {name.split("/")[0] for name in names if not name.startswith("..")}
+    assert tops == {"beltmdsm", dist.name}
+    assert not (purelib / "generated").exists() and not (purelib / "derive").exists()
+
+
+#: A user's folder: a ``generated/`` package of their own, and a ``derive.py`` that
+#: fails loudly if imported.
+USER_FILES = {
+    "generated/__init__.py": "",
+    "derive.py": "raise RuntimeError('the user\\'s own derive.py was imported')\n",
+}
+
+#: Touches beltmdsm.generated (the model's parameters, the unforced equilibrium),
+#: printing where they came from.
+USER_SCRIPT = """
+import json, sys
+import beltmdsm
+from beltmdsm.generated import unforced
+model = beltmdsm.Model(Vb=5)
+print(json.dumps(dict(
+    generated=beltmdsm.generated.__file__,
+    X1=float(unforced.equilibrium(**model.arguments(unforced.equilibrium))[0]),
+    params=dict(model.params),
+    user=sorted(m for m in sys.modules if m.split(".")[0] in ("generated", "derive")),
+)))
+"""
+
+
+def test_a_users_own_generated_and_derive_do_not_shadow_the_package(installed, tmp_path):
+    """Issue 30: run from a folder holding ``generated/`` and ``derive.py`` (the first
+    entry of ``sys.path`` for ``python -m`` and ``-c``), the installed package imports
+    its own modules and none of the user's."""
+    python, _, purelib, _ = installed
+    for rel, text in USER_FILES.items():
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / rel).write_text(text)
+    run = functools.partial(
+        subprocess.run, capture_output=True, text=True, cwd=tmp_path, env=ENV, timeout=600
+    )
+    help_ = run([python, "-m", "beltmdsm", "--help"])
+    assert help_.returncode == 0, help_.stderr
+    assert "simulate" in help_.stdout and "check-paper" in help_.stdout
+    done = run([python, "-c", USER_SCRIPT])
+    assert done.returncode == 0, done.stderr
+    got = json.loads(done.stdout)
+    assert Path(got["generated"]).parent == purelib / "beltmdsm" / "generated"
+    assert got["user"] == []
+    # the unforced equilibrium of Coulomb's law, X1 = mu_s g / omega1^2 (Eq. 9)
+    p = got["params"]
+    assert got["X1"] == pytest.approx(p["mu_s"] * p["g"] / p["omega1"] ** 2, rel=1e-14)
+
+
+def test_installed_derivation_refuses_to_regenerate_the_package(installed):
+    _, _, purelib, _ = installed
+    generated = purelib / "beltmdsm" / "generated"
+    before = {p: p.stat().st_mtime_ns for p in generated.rglob("*.py")}
+    done = _run(installed, "beltmdsm")
     assert done.returncode == 2
     assert done.stderr.count("\n") == 1 and "needs a source checkout" in done.stderr
     assert "--out DIR" in done.stderr
-    assert before == {p: p.stat().st_mtime_ns for p in (purelib / "generated").rglob("*.py")}
+    assert before == {p: p.stat().st_mtime_ns for p in generated.rglob("*.py")}
 
 
 def test_installed_help_cites_documents_that_print(installed):
@@ -141,7 +213,7 @@ def test_installed_package_is_typed_licensed_and_versioned(installed):
     assert license_.read_text() == (ROOT / "LICENSE").read_text()
     version = subprocess.run(
         [python, "-c", "import beltmdsm; print(beltmdsm.__version__)"],
-        capture_output=True, text=True, check=True, cwd=work,
+        capture_output=True, text=True, check=True, cwd=work, env=ENV,
     ).stdout.strip()  # fmt: skip
     assert f"Version: {version}\n" in meta and version == _declared_version()
 
@@ -166,18 +238,19 @@ def test_installed_runs_write_outside_the_package_and_uninstall_is_clean(install
         [
             python,
             "-c",
-            "import derive.paper_check as p, beltmdsm; print(p.report_path()); "
+            "import beltmdsm.derive.paper_check as p, beltmdsm; print(p.report_path()); "
             "print(beltmdsm.__file__)",
         ],
         capture_output=True,
         text=True,
         check=True,
         cwd=work,
+        env=ENV,
     ).stdout.split()
     assert (work / where[0]).resolve() == work.resolve() / "PAPER_CHECK.md"
     assert Path(where[1]).is_relative_to(purelib)
     done = _run(installed, "beltmdsm", "validate", "--out", str(work / "nowhere" / "V.md"))
     assert done.returncode == 2 and "--out" in done.stderr
     subprocess.run([*pip, "uninstall", "-q", "-y", "beltmdsm"], check=True)
-    left = [p for top in SOURCES if (purelib / top).exists() for p in (purelib / top).rglob("*")]
+    left = list((purelib / "beltmdsm").rglob("*"))
     assert left == []

@@ -1,32 +1,38 @@
-"""The import graph of derive/, generated/ and beltmdsm/: no cycle, one direction of layers.
+"""The import graph of beltmdsm/ and of derive/ and generated/ (the packages
+beltmdsm.derive and beltmdsm.generated): no cycle, one direction of layers.
 
 Every ``import`` and ``from ... import`` counts, at module level or inside a function
 (a function-local import hides a cycle from Python, not from this test), as an edge to
 the package module it names (a name imported from a package is an edge to its
 submodule where one exists). The layers, lowest first:
 
-derive -> generated -> beltmdsm.{model, settings, intervals} -> beltmdsm.integrate ->
+beltmdsm.derive -> beltmdsm.generated -> beltmdsm.{model, settings, intervals} ->
+beltmdsm.integrate ->
 beltmdsm.{periodic, continuation, cycles} -> beltmdsm.run -> beltmdsm.prediction ->
 beltmdsm.attractors -> beltmdsm.simulation -> beltmdsm.studies -> beltmdsm.cli
 
-A module imports only modules of its own layer or below, with no cycle; derive/ and
-generated/ import no beltmdsm module, except ``derive.__main__`` (``python -m derive``),
-which hands the command line to ``beltmdsm.cli``; generated/ imports nothing of derive/
-(it must run where only it is installed); and beltmdsm imports derive only in its
-command line (the derive commands of the one tree).
+A module imports only modules of its own layer or below, with no cycle: derive/ and
+generated/ import no other beltmdsm module (``python -m derive`` runs ``python -m
+beltmdsm`` as a program, derive/__main__.py); generated/ imports nothing of derive/ (it
+must run where only it is installed); beltmdsm imports derive only in its command line,
+which alone builds the argparse tree (derive/ imports no argparse).
 """
 
 import ast
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("derive", "generated", "beltmdsm")
+#: Each package's folder in a source checkout (beltmdsm/_layout.py).
+PACKAGES = {"beltmdsm.derive": "derive", "beltmdsm.generated": "generated", "beltmdsm": "beltmdsm"}
 #: Layer of each module, by the longest prefix that names it.
 LAYERS = {
-    "derive": 0,
-    "generated": 1,
+    "beltmdsm.derive": 0,
+    "beltmdsm.generated": 1,
     "beltmdsm": 2,  # the package: its public names are imported lazily (importlib)
     "beltmdsm.model": 2,
     "beltmdsm.settings": 2,
@@ -45,17 +51,15 @@ LAYERS = {
     "beltmdsm.cli": 7,
     "beltmdsm.__main__": 7,
 }
-#: The one entry point allowed to reach up the layers.
-ENTRY_POINTS = {("derive.__main__", "beltmdsm.cli")}
 
 
 def modules():
     """``{module name: path}`` of every module of the packages."""
     out = {}
-    for package in PACKAGES:
-        for path in sorted((ROOT / package).rglob("*.py")):
-            name = path.relative_to(ROOT).with_suffix("").as_posix().replace("/", ".")
-            out[name.removesuffix(".__init__")] = path
+    for package, folder in PACKAGES.items():
+        for path in sorted((ROOT / folder).rglob("*.py")):
+            parts = path.relative_to(ROOT / folder).with_suffix("").parts
+            out[".".join((package, *parts)).removesuffix(".__init__")] = path
     return out
 
 
@@ -94,6 +98,11 @@ def edges(known=None):
                 if resolved and resolved != module:
                     out.add((module, resolved))
     return out
+
+
+def _package(module):
+    """The package of ``module``: beltmdsm.derive, beltmdsm.generated or beltmdsm."""
+    return next(p for p in PACKAGES if module == p or module.startswith(p + "."))
 
 
 def layer(module):
@@ -138,14 +147,14 @@ def violations(graph):
     """Edges against the layer order, and the cross-package edges the rules forbid."""
     bad = []
     for a, b in sorted(graph):
-        if (a, b) in ENTRY_POINTS:
-            continue
-        top_a, top_b = a.split(".")[0], b.split(".")[0]
+        top_a, top_b = _package(a), _package(b)
         if layer(b) > layer(a):
             bad.append(f"{a} -> {b}: imports a higher layer")
-        elif top_a == "generated" and top_b == "derive":
+        elif top_a == "beltmdsm.generated" and top_b == "beltmdsm.derive":
             bad.append(f"{a} -> {b}: generated/ must run without derive/")
-        elif top_a == "beltmdsm" and top_b == "derive" and not a.startswith("beltmdsm.cli"):
+        elif (
+            top_a == "beltmdsm" and top_b == "beltmdsm.derive" and not a.startswith("beltmdsm.cli")
+        ):
             bad.append(f"{a} -> {b}: only the command line imports derive/")
     return bad
 
@@ -169,10 +178,11 @@ def test_a_layer_violation_is_found():
     assert violations({("beltmdsm.periodic.floquet", "beltmdsm.cli.flags")}) == [
         "beltmdsm.periodic.floquet -> beltmdsm.cli.flags: imports a higher layer"
     ]
-    assert violations({("derive.paper_check", "beltmdsm.simulation")})
-    assert violations({("beltmdsm.simulation", "derive.model")})
-    assert not violations({("beltmdsm.cli.tree", "derive.cli")})
-    assert not violations(ENTRY_POINTS)
+    assert violations({("beltmdsm.derive.paper_check", "beltmdsm.simulation")})
+    assert violations({("beltmdsm.simulation", "beltmdsm.derive.model")})
+    assert not violations({("beltmdsm.cli.tree", "beltmdsm.derive.commands")})
+    assert violations({("beltmdsm.derive.__main__", "beltmdsm.cli")})
+    assert violations({("beltmdsm.generated.stability", "beltmdsm.derive.model")})
 
 
 def test_every_module_has_a_layer():
@@ -192,3 +202,39 @@ def test_no_import_cycle(graph):
 def test_imports_follow_the_layers(graph):
     bad = violations(graph)
     assert not bad, "\n".join(bad)
+
+
+def test_derive_builds_no_command_line():
+    """One owner of the argparse tree (beltmdsm/cli/tree.py): derive/ imports no argparse,
+    and reaches the runtime only as a program (``python -m derive``)."""
+    imported = set()
+    for module, path in modules().items():
+        if _package(module) != "beltmdsm.derive":
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Import):
+                imported |= {a.name.split(".")[0] for a in node.names}
+            elif isinstance(node, ast.ImportFrom) and not node.level:
+                imported.add((node.module or "").split(".")[0])
+    assert "argparse" not in imported and "beltmdsm" not in imported
+
+
+@pytest.mark.parametrize(
+    "old, new", [("generated", "beltmdsm.generated"), ("derive", "beltmdsm.derive")]
+)
+def test_an_old_top_level_name_refuses_in_one_line(old, new):
+    """From the checkout's root (first on ``sys.path``) the folder would import under
+    its old name too, a second copy of every module (and of the law registry): it
+    refuses, naming the one name."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    done = subprocess.run(
+        [sys.executable, "-c", f"import {old}"], cwd=ROOT, env=env, capture_output=True, text=True
+    )
+    assert done.returncode == 1
+    last = done.stderr.strip().splitlines()[-1]
+    assert last.startswith(f"ImportError: {old}/ is the package {new}: import it by that name")
+    both = f"import {new}, sys; print(sorted(m for m in sys.modules if m.startswith('{old}')))"
+    done = subprocess.run(
+        [sys.executable, "-c", both], cwd=ROOT, env=env, capture_output=True, text=True
+    )
+    assert done.returncode == 0 and done.stdout.strip() == "[]", done.stderr

@@ -41,7 +41,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from generated import unforced
+from beltmdsm.generated import unforced
 
 from ..arguments import state
 from ..errors import StepTooSmall
@@ -147,7 +147,7 @@ def chunk_length(model: Model) -> tuple[float, int]:
     """The base period and the number ``n`` of chunks it is cut into: ``tau = base / n``.
 
     The base period is one excitation period, or without excitation the period of the
-    slowest oscillation of steady sliding (`generated.unforced.eigenvalues`)
+    slowest oscillation of steady sliding (`beltmdsm.generated.unforced.eigenvalues`)
     (the averages are taken over whole base periods, so that the phase of the forcing
     does not enter their spread). ``n`` is the least integer that keeps ``tau`` times
     the fastest rate (`beltmdsm.settings.fastest_rate`) within `SPREAD`: within one

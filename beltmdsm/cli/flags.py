@@ -2,7 +2,7 @@
 
 Declared once, as parent parsers:
 
-* `model_parent`: every model parameter (``generated.parameters``) as a flag (``--mu_s``
+* `model_parent`: every model parameter (``beltmdsm.generated.parameters``) as a flag (``--mu_s``
   and ``--mu-s``), checked against its domain (`beltmdsm.model.check_domain`), and the
   model options (`beltmdsm.model.OPTIONS`) with their choices;
 * `solver_parent`: the fields of `beltmdsm.settings.SolverSettings`;
@@ -14,7 +14,7 @@ Declared once, as parent parsers:
 `model_from` builds the `beltmdsm.Model` of a command line once; `settings_from` its
 `SolverSettings`. Every flag is checked when it is parsed (finite numbers, domains,
 ranges, existing output folders); a bad one is a one-line error naming it, exit status
-2 (`derive.cli.Parser`).
+2 (`beltmdsm.cli.parser.Parser`).
 """
 
 from __future__ import annotations
@@ -30,12 +30,12 @@ from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
-from derive.cli import writable_file
-from generated.parameters import PARAMETERS
+from beltmdsm.generated.parameters import PARAMETERS
 
 from ..errors import NoPeriodicResponse, StepTooSmall
 from ..model import OPTION_DEFAULTS, OPTION_DOCS, OPTIONS, Model, check_domain
 from ..settings import CONTACT_LOSS, DEFAULT_T_END, METHODS, SOLVERS, SolverSettings
+from .parser import writable_file
 
 __all__ = [
     "register",
@@ -174,7 +174,7 @@ def _dispatch(args):
         print(f"{args.parser.prog}: error: {err}", file=sys.stderr)
         return 2
     except BrokenPipeError:
-        raise  # the reader went away (`| head`): derive.cli.main ends quietly
+        raise  # the reader went away (`| head`): beltmdsm.cli.tree.main ends quietly
     except OSError as err:
         print(f"{args.parser.prog}: error: {err}", file=sys.stderr)
         return 1
@@ -240,7 +240,7 @@ def integer(minimum: int, maximum: int | None = None) -> Callable[[str], int]:
 def output_file(s: str) -> str:
     """A file to write: its folder must exist, it must not be a folder, and it is
     written to (a sibling temporary file) before anything is computed
-    (`derive.cli.writable_file`)."""
+    (`beltmdsm.cli.parser.writable_file`)."""
     return writable_file(s)
 
 
@@ -271,7 +271,7 @@ def model_parent(
     Parameters
     ----------
     parameters : bool
-        add a flag per model parameter of ``generated.parameters.PARAMETERS``
+        add a flag per model parameter of ``beltmdsm.generated.parameters.PARAMETERS``
     exclude : tuple of str
         parameters without a flag (``predict`` scans ``Vb`` itself)
     options : tuple of str, optional

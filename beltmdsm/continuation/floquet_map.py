@@ -38,7 +38,7 @@ band, the band's (`beltmdsm.continuation.band_result.Band.unstable`; a curve of 
 response that coexists with a stable one then bounds nothing); on the rows between,
 it follows from the curves' edges and from which of their sides is unstable, which
 assumes one periodic response at each ``x``. The paper's linear analysis
-(`generated.stability.is_stable`, the options of the paper) is evaluated on the same
+(`beltmdsm.generated.stability.is_stable`, the options of the paper) is evaluated on the same
 rows for comparison, on a grid of ``x`` fine enough to show it (`LINEAR_POINTS`).
 ``floquet-map --png`` draws the result (`beltmdsm.cli.figure`).
 """

@@ -1,6 +1,6 @@
 """The paper's linear verdict on the rows of a Floquet map, for comparison.
 
-`beltmdsm.continuation.floquet_map.floquet_map` evaluates `generated.stability.is_stable`
+`beltmdsm.continuation.floquet_map.floquet_map` evaluates `beltmdsm.generated.stability.is_stable`
 (the options of the paper) on each row over `LINEAR_POINTS` values of ``x``, many rows
 in one call.
 """
@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from generated import stability
-from generated._support import CHECKED
+from beltmdsm.generated import stability
+from beltmdsm.generated._support import CHECKED
 
 from ..intervals import runs as true_intervals
 
@@ -21,7 +21,7 @@ _LINEAR_BLOCK = 64
 
 
 def _linear(rows, x, xs):
-    """Per row, where the paper's linear analysis says unstable (`generated.stability`).
+    """Per row, where the paper's linear analysis says unstable (`beltmdsm.generated.stability`).
 
     One evaluation for `_LINEAR_BLOCK` rows at a time: a call costs about as much as
     its 2001 points (0.15 ms), which for a 100-row map is 4 % of its time.

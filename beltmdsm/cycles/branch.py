@@ -141,7 +141,7 @@ def _hopf_start(hopf, amplitude, backend, lo=None, hi=None):
 
 
 def _equilibrium_k(hopf, p):
-    from generated import unforced
+    from beltmdsm.generated import unforced
 
     model = hopf.model.replace(**{hopf.param: p})
     return float(unforced.equilibrium(**model.arguments(unforced.equilibrium))[_coordinate(hopf)])

@@ -3,7 +3,7 @@
 Without excitation (``alpha_t Omega_t = alpha_n Omega_n = 0``, `beltmdsm.model.is_autonomous`)
 Eq. (4) is autonomous: a friction that falls with the sliding speed makes steady
 sliding unstable below a belt speed (the Hopf point of the unforced Jacobian,
-`generated.unforced.eigenvalues`), and the motion settles on a self-excited cycle,
+`beltmdsm.generated.unforced.eigenvalues`), and the motion settles on a self-excited cycle,
 pure slip close to the Hopf point, stick-slip further from it. Its period is not
 given by any excitation: it is an unknown of the shooting problem, as in AUTO, COCO's
 ``po`` toolbox or BifurcationKit.
@@ -18,8 +18,8 @@ bordered system
 
 with ``M = d phi_T / dx`` the monodromy of the run by its variational equations and a
 saltation matrix at every switch (`beltmdsm.periodic.variational`), ``f`` the generated
-field of the mode where the run ends (`generated.hybrid.vector_field`) and ``grad g``
-from the mode's generated Jacobian (`generated.hybrid.mode_jacobian`).
+field of the mode where the run ends (`beltmdsm.generated.hybrid.vector_field`) and ``grad g``
+from the mode's generated Jacobian (`beltmdsm.generated.hybrid.mode_jacobian`).
 
 **The section.** ``g(x) = X1''(x)``, the acceleration in the slip mode of ``x``, at the
 extremum of ``X1'`` where the mass slides fastest against the belt: the minimum of
@@ -66,7 +66,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from generated import hybrid, unforced
+from beltmdsm.generated import hybrid, unforced
 
 from ..errors import NoPeriodicResponse
 from ..integrate.events import StepTooSmall, integrate_events
@@ -443,7 +443,7 @@ def _multipliers(model, M, f):
     """``(trivial, others)``: the multiplier along the flow ``f`` and the others.
 
     Where the normal equation is free of the tangential state (the laws' fact
-    ``one_way_coupling``, ``generated.capabilities``) the monodromy is block upper
+    ``one_way_coupling``, ``beltmdsm.generated.capabilities``) the monodromy is block upper
     triangular, and its eigenvalues are those of the diagonal blocks: computed so, the
     stick's 0 and the trivial 1 of the tangential block keep the rounding of that
     block, not that of the coupling block (which grows like 1e4 at small ``Vb``, where

@@ -1,10 +1,10 @@
 """The Hopf point of steady sliding: where a self-excited cycle is born.
 
 Without excitation, Eq. (4) has the equilibrium of steady sliding (Eq. 9,
-`generated.unforced.equilibrium`), and its Jacobian ``J^0``
-(`generated.unforced.jacobian_at_equilibrium`) is block triangular: its eigenvalues
+`beltmdsm.generated.unforced.equilibrium`), and its Jacobian ``J^0``
+(`beltmdsm.generated.unforced.jacobian_at_equilibrium`) is block triangular: its eigenvalues
 are a tangential pair and a normal pair, each the roots of a quadratic, in closed form
-(`generated.unforced.eigenvalues`, derived by SymPy from the chosen laws). A Hopf point
+(`beltmdsm.generated.unforced.eigenvalues`, derived by SymPy from the chosen laws). A Hopf point
 in a parameter ``p`` is a value where one complex pair crosses the imaginary axis:
 its real part changes sign while its imaginary part stays away from 0 (a real pair
 that crosses 0 is a fold of equilibria, not a Hopf point, and is not reported).
@@ -33,7 +33,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
-from generated import unforced
+from beltmdsm.generated import unforced
 
 from ..model import MODEL_PARAMETERS, Model
 
@@ -54,7 +54,7 @@ SCAN_POINTS = 401
 #: A pair is complex at a crossing when its imaginary part exceeds this share of
 #: ``|lambda|`` (a real pair crossing 0 is a fold of equilibria).
 _COMPLEX_SHARE = 1e-8
-#: The pairs of `generated.unforced.eigenvalues`, in its order.
+#: The pairs of `beltmdsm.generated.unforced.eigenvalues`, in its order.
 PAIRS = ("tangential", "normal")
 
 
@@ -74,7 +74,7 @@ class HopfPoint:
     accuracy : float
         A bound of the error of ``value`` (Brent's bracket).
     pair : str
-        ``"tangential"`` or ``"normal"``: which pair of `generated.unforced.eigenvalues`.
+        ``"tangential"`` or ``"normal"``: which pair of `beltmdsm.generated.unforced.eigenvalues`.
     frequency : float
         ``omega_H = Im lambda`` at ``p_H`` [rad/s]; the small cycle's period is
         ``2 pi / omega_H``.
@@ -214,7 +214,7 @@ def hopf_point(model: Model, param: str, lo: float, hi: float) -> HopfPoint:
     raise NoHopfPoint(
         f"no Hopf point of steady sliding for {param} in [{lo:g}, {hi:g}] "
         f"({model.friction} friction, {model.contact} contact): no complex pair of the "
-        f"unforced eigenvalues (generated.unforced.eigenvalues) crosses the imaginary "
+        f"unforced eigenvalues (beltmdsm.generated.unforced.eigenvalues) crosses the imaginary "
         f"axis; largest real parts {ends}"
     )
 

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from generated import unforced
+from beltmdsm.generated import unforced
 
 from ..errors import NoPeriodicResponse
 from ..integrate.events import StepTooSmall, integrate_events
@@ -109,7 +109,7 @@ def seed_cycle(
 
     The run starts at the unforced equilibrium (Eq. 9) moved by ``perturbation``, or
     where none is given along the real part of the eigenvector of the most unstable
-    eigenvalue of steady sliding (`generated.unforced.jacobian_at_equilibrium`), its
+    eigenvalue of steady sliding (`beltmdsm.generated.unforced.jacobian_at_equilibrium`), its
     velocity by `SEED_AMPLITUDE` of ``|Vb|``. Where steady sliding is stable and no
     perturbation is given, the run starts where a stick ends instead (`stick_end`):
     every stick-slip cycle passes there, so a stick-slip cycle that coexists with
@@ -191,7 +191,7 @@ def stick_end(model: Model) -> NDArray[np.float64] | None:
     on the section's side (the mass leaves against the belt's motion), the normal
     motion at its equilibrium. None where the cone has no such edge.
 
-    The edge's switching function (`generated.hybrid.surfaces`, ``stick_back`` for
+    The edge's switching function (`beltmdsm.generated.hybrid.surfaces`, ``stick_back`` for
     ``Vb > 0``) is affine in ``X1`` (the spring's force); its root is found by two
     secant steps and checked.
     """

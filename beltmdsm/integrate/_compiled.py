@@ -2,14 +2,15 @@
 
 `beltmdsm.integrate._dop853` (one mode, stopping at switches) and
 `beltmdsm.integrate._superpose` (the scan of the closed-form tangential motion) call the
-generated scalar kernels (`generated.hybrid`, `generated.oscillator`) through module globals
+generated scalar kernels (`beltmdsm.generated.hybrid`, `beltmdsm.generated.oscillator`)
+through module globals
 (``_field_kernel``, ``_surface_kernel``, ...). This module binds them:
 
 * in plain Python, as copies of the integrators' functions whose globals hold the
   kernels (`advance`, `scan` with ``backend="python"``);
 * compiled, as a small module per integrator and kernel set, written to a cache
   folder: the integrators' source with the kernels as numba-compiled globals, cached
-  on disk by numba, in a private folder (`generated._support.user_cache`); where none
+  on disk by numba, in a private folder (`beltmdsm.generated._support.user_cache`); where none
   can be made, compiled in memory, every run (said once).
 
 Two properties of numba's disk cache shape the compiled form: a signature that holds
@@ -35,24 +36,17 @@ import types
 import warnings
 from pathlib import Path
 
-from generated import _support, hybrid, oscillator
-from generated._support import CacheFolderWarning, import_numba, user_cache
+from beltmdsm.generated import _support, hybrid, oscillator
+from beltmdsm.generated._support import CacheFolderWarning, import_numba, user_cache
 
 from ..model import Backend, Model
 from . import _dop853, _roots, _superpose
 
 __all__ = ["advance", "scan"]
 
-_ROOT = Path(__file__).resolve().parents[2]
-_SOURCES = (
-    "generated/hybrid.py",
-    "generated/oscillator.py",
-    "generated/_support.py",
-    "beltmdsm/integrate/_dop853.py",
-    "beltmdsm/integrate/_superpose.py",
-    "beltmdsm/integrate/_roots.py",
-    "beltmdsm/integrate/_compiled.py",
-)
+#: The modules whose sources key the compiled modules (read from their files, wherever
+#: the package is: beltmdsm.generated sits beside beltmdsm/ in a source checkout).
+_SOURCES = (hybrid, oscillator, _support, _dop853, _superpose, _roots)
 _FIELDS = {"vector_field": hybrid.bind_vector_field, "response_field": hybrid.bind_response_field}
 #: The integrators: their module, their functions (the entry point last), their kernels,
 #: and the functions of other modules they call (compiled beside them).
@@ -147,8 +141,8 @@ def _python(integrator, kernels):
 @functools.cache
 def _digest(numba_version):
     digest = hashlib.sha256(numba_version.encode())
-    for rel in _SOURCES:
-        digest.update((_ROOT / rel).read_bytes())
+    for module in (*_SOURCES, sys.modules[__name__]):
+        digest.update(Path(module.__file__).read_bytes())
     return digest.hexdigest()[:20]
 
 
@@ -224,9 +218,10 @@ def _compiled(integrator, kernels, name, numba_version):
 
 @functools.cache
 def _folder() -> Path | None:
-    """The private folder of the compiled modules (`generated._support.user_cache`), or
-    None where none can be made: said once (a `generated._support.CacheFolderWarning`, unless
-    `generated._support.import_numba` said it for numba's cache)."""
+    """The private folder of the compiled modules (`beltmdsm.generated._support.user_cache`),
+    or None where none can be made: said once (a
+    `beltmdsm.generated._support.CacheFolderWarning`, unless
+    `beltmdsm.generated._support.import_numba` said it for numba's cache)."""
     try:
         return Path(user_cache("compiled"))
     except OSError as err:

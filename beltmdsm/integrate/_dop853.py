@@ -2,13 +2,13 @@
 
 The method and its step-size control are SciPy's ``DOP853`` (Hairer, Norsett and
 Wanner, *Solving ODEs I*, Sect. II.10; the coefficients are Hairer's, as SciPy's,
-``generated.tableau`` from derive/dop853.py), with the 7th-order dense output
+``beltmdsm.generated.tableau`` from derive/dop853.py), with the 7th-order dense output
 computed for every step, because a trajectory is sampled, integrated
 (energy balance) and searched for switches between the steps.
 
 `advance` integrates the field of one mode from ``t0`` until ``t_end`` or until one
 of the watched switching functions crosses zero in its stated direction. The
-functions are generated kernels (`generated.hybrid`: ``vector_field``, ``surfaces``,
+functions are generated kernels (`beltmdsm.generated.hybrid`: ``vector_field``, ``surfaces``,
 ``surface_rates``) called with their bound parameters, so this module holds no
 physics: only the Runge-Kutta scheme and the search for the first crossing.
 
@@ -30,8 +30,8 @@ import types
 
 import numpy as np
 
-from generated import tableau as _coef
-from generated._support import import_numba
+from beltmdsm.generated import tableau as _coef
+from beltmdsm.generated._support import import_numba
 
 from ._roots import GOLDEN, GOLDEN_STEPS, converged, golden, illinois, secant
 

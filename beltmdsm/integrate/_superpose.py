@@ -1,13 +1,13 @@
 """The scan of the superposition integrator: the first switch of a closed-form tangential motion.
 
 Between switches the tangential motion of a slip mode, in flight or in separation
-is the generated superposition `generated.oscillator.tangential_state` of the state at
+is the generated superposition `beltmdsm.generated.oscillator.tangential_state` of the state at
 the switch ``t0``, the excitation response and the response to the contact force
 (`beltmdsm.integrate.normal`) with the mode's friction direction (0 out of contact),
 while sticking ``X1 = X1(t0) + Vb (t - t0)``. `scan` walks a uniform grid from ``t0`` to ``tc`` (the
 end of the normal motion's current segment), evaluates the watched switching
-functions there (`generated.hybrid.surfaces`, at the full state) with their rates
-along the mode (`generated.hybrid.surface_rates`), and where a sign changes or the
+functions there (`beltmdsm.generated.hybrid.surfaces`, at the full state) with their rates
+along the mode (`beltmdsm.generated.hybrid.surface_rates`), and where a sign changes or the
 rates show a minimum inside a cell, samples the cell and refines the crossing on the
 exact motion (the normal motion's dense output, the closed forms), as
 `beltmdsm.integrate._dop853` does between its steps. No formula of the model is here.

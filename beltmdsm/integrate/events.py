@@ -3,8 +3,8 @@
 The general integrator of the package, and the fallback of
 `beltmdsm.integrate.superposition`. It runs the compiled Dormand-Prince 8(5,3)
 integrator (`beltmdsm.integrate._dop853`) on the generated field of the current mode
-(`generated.hybrid.vector_field`) until one of the mode's guard surfaces is crossed
-(`generated.hybrid.GUARDS`), then lets `beltmdsm.integrate.switching` choose the next
+(`beltmdsm.generated.hybrid.vector_field`) until one of the mode's guard surfaces is crossed
+(`beltmdsm.generated.hybrid.GUARDS`), then lets `beltmdsm.integrate.switching` choose the next
 mode, and goes on. Nothing is stepped over: the run is a sequence of smooth segments
 joined at located switches. Accumulating switches are handled by
 `beltmdsm.integrate.zeno`.

@@ -3,7 +3,7 @@
 The normal equation of Eq. (4) contains neither ``X1``, ``X1'``, ``Vb`` nor
 ``mu_s``: the normal motion is fixed by the excitation alone. `NormalMotion`
 integrates it once, together with ``z``, the response of the tangential oscillator
-(from rest) to the contact force (`generated.hybrid.response_field`), mode by mode
+(from rest) to the contact force (`beltmdsm.generated.hybrid.response_field`), mode by mode
 with located switches (loss of contact and touchdown; separation and recontact
 under the clipped tension law), on the compiled DOP853 integrator of
 `beltmdsm.integrate._dop853`. Every run of a sweep over ``Vb`` or ``mu_s`` reuses it
@@ -23,7 +23,7 @@ from collections.abc import Iterable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from generated import hybrid, oscillator
+from beltmdsm.generated import hybrid, oscillator
 
 from ..model import Backend, Model
 from . import _compiled, _dop853

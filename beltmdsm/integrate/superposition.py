@@ -9,7 +9,7 @@ sweep). The tangential equation is linear in each mode, so between switches
 
 with ``Phi`` the closed-form state-transition matrix and ``zf`` the closed-form
 response to the tangential excitation: the generated superposition
-`generated.oscillator.tangential_state` (derived in derive/oscillator.py), with
+`beltmdsm.generated.oscillator.tangential_state` (derived in derive/oscillator.py), with
 ``sgn = 0`` in flight and separation (no friction), while sticking ``X1' = Vb``. Every
 tangential switch is located on these closed forms (`beltmdsm.integrate._superpose.scan`),
 every normal switch comes from the normal motion, and the mode after a switch is
@@ -18,7 +18,7 @@ chosen by the same rules as in the event-driven integrator (`beltmdsm.integrate.
 Where its closed forms do not exist, it raises `NotApplicable` with the reason, and
 `beltmdsm.simulation.simulate` hands the run to `beltmdsm.integrate.events`: where the
 model's laws lack a fact it needs (`FACTS`, decided by SymPy in
-``generated.capabilities``: the slip-mode friction free of the tangential state, as
+``beltmdsm.generated.capabilities``: the slip-mode friction free of the tangential state, as
 Coulomb's is and Stribeck's is not, and the normal equation free of it), and at
 undamped resonance of the tangential oscillator (``beta1 = 0``, ``Omega_t = omega1``,
 where the excitation response grows without bound).
@@ -33,7 +33,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from generated import oscillator
+from beltmdsm.generated import oscillator
 
 from ..errors import NotApplicable  # its home; importable here as before
 from ..model import Backend, Model, Unsupported, initial_state, require
@@ -57,7 +57,7 @@ __all__ = [
 ]
 
 
-#: The facts of the laws (``generated.capabilities``) that the superposition needs: the
+#: The facts of the laws (``beltmdsm.generated.capabilities``) that the superposition needs: the
 #: tangential equation linear in each slip mode, the normal motion integrated alone.
 FACTS = ("slip_friction_state_independent", "one_way_coupling")
 
@@ -212,7 +212,7 @@ class Superposition:
     def start(self, t0: float, X1: float, Y1: float) -> tuple[float, ...]:
         """``(X1, X1', zf, zf', z, z')`` at ``t0``: the state at a switch and the two
         responses there, the start of `self.state <Superposition>` (the superposition,
-        `generated.oscillator.tangential_state`)."""
+        `beltmdsm.generated.oscillator.tangential_state`)."""
         z, v = self.normal.at(t0)[:2]
         zf, vf = self.exc(t0)
         return (float(X1), float(Y1), float(zf), float(vf), float(z), float(v))

@@ -1,6 +1,6 @@
 """Which mode follows a switch: the guard table and Filippov's rules, on generated kernels.
 
-Eq. (4) is a hybrid system (derive/hybrid.py, `generated.hybrid`): modes with smooth
+Eq. (4) is a hybrid system (derive/hybrid.py, `beltmdsm.generated.hybrid`): modes with smooth
 vector fields, switching surfaces, and a guard table per tension law saying which
 surface ends which mode and what follows. Two targets of the table are rules, not
 modes, and they live here, written in terms of the generated switching functions
@@ -26,7 +26,7 @@ only (no formula of the model):
   ``Vr = 0``.
 
 Ties are decided with a tolerance: a switching function is taken as zero within
-`TIE_ULPS` ulps of its rounding scale (`generated.hybrid.surface_scales`, the sum of
+`TIE_ULPS` ulps of its rounding scale (`beltmdsm.generated.hybrid.surface_scales`, the sum of
 the absolute values of its terms). At a tie the rate of the function along the
 candidate mode decides: a mass at the friction limit sticks if the margin grows and
 slips if it shrinks. This is what makes a one-ulp difference between ``|a_free|``
@@ -40,7 +40,7 @@ from enum import IntEnum
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from generated import hybrid
+from beltmdsm.generated import hybrid
 
 from ..model import Model
 
@@ -48,7 +48,7 @@ __all__ = ["Mode", "MODE_NAMES", "SURFACE_INDEX", "TIE_ULPS", "EVENT_KINDS", "Sw
 
 Mode = IntEnum("Mode", {name.upper(): code for name, code in hybrid.MODE_CODES.items()})
 Mode.__doc__ = (
-    "Modes of Eq. (4) as a hybrid system (`generated.hybrid.MODE_CODES`); the "
+    "Modes of Eq. (4) as a hybrid system (`beltmdsm.generated.hybrid.MODE_CODES`); the "
     "slip codes are the friction direction sgn(Vr) of Eq. (3)."
 )
 #: Short names used in summaries and tables.
@@ -95,7 +95,7 @@ class Switching:
     guards : dict
         ``Mode -> (watch, dirs, targets)``: the indices of the surfaces that end the
         mode (int64 array), their crossing directions (float array) and the guard
-        targets (mode names or rule names) of `generated.hybrid.GUARDS`.
+        targets (mode names or rule names) of `beltmdsm.generated.hybrid.GUARDS`.
     """
 
     def __init__(self, model: Model) -> None:

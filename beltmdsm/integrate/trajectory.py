@@ -5,7 +5,7 @@ Both integrators (`beltmdsm.integrate.events` with the compiled DOP853,
 `Trajectory`, its events and how it ended. Everything computed from a run (samples,
 friction force, energy balance of Sect. 3, cycle averages of Sect. 5) integrates or
 evaluates segment by segment, never across a switch, and uses the generated
-functions of ``generated.dynamics`` for the physics so that they stay the reference.
+functions of ``beltmdsm.generated.dynamics`` for the physics so that they stay the reference.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from generated import dynamics
+from beltmdsm.generated import dynamics
 
 from ..model import Model
 from .switching import Mode
@@ -168,7 +168,7 @@ class Trajectory:
     def energy_balance(self, t0: float | None = None, t1: float | None = None) -> dict[str, float]:
         """Energy balance of Sect. 3 over [t0, t1] from the generated power terms.
 
-        dE/dt = P_input - P_viscous - P_friction (``generated.dynamics.power_balance``);
+        dE/dt = P_input - P_viscous - P_friction (``beltmdsm.generated.dynamics.power_balance``);
         while sticking the friction power is ``Vb a_free`` (the holding force times
         the velocity Vb). Returns a dict with the change of E (``energy_change``:
         kinetic, spring, Hertz and gravity), the three works (``work_input``,

@@ -14,7 +14,7 @@ and the margins are read here from the runs of the ``k`` periods, whatever the e
 
 Two engines implement it (`beltmdsm.periodic.engines.ENGINES`), and
 `beltmdsm.periodic.engines.period_map` chooses by the structural facts of the model's
-laws that SymPy decided (``generated.capabilities``), never by assumption:
+laws that SymPy decided (``beltmdsm.generated.capabilities``), never by assumption:
 
 * `beltmdsm.periodic.tangential.TangentialMap` (``"closed_form"``), the fast special
   case, where the slip-mode friction does not depend on the tangential state and the

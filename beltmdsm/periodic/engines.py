@@ -2,7 +2,7 @@
 
 `period_map` is the ``k``-fold period map of a model (`beltmdsm.periodic.base.PeriodMap`):
 the closed-form one (`beltmdsm.periodic.tangential.TangentialMap`) where the model's laws
-have every fact of `CLOSED_FORM_FACTS` (``generated.capabilities``, decided by SymPy),
+have every fact of `CLOSED_FORM_FACTS` (``beltmdsm.generated.capabilities``, decided by SymPy),
 else the general one (`beltmdsm.periodic.general.GeneralMap`), or the one asked for.
 """
 
@@ -39,7 +39,7 @@ def engine_of(model: Model) -> str:
     Raises
     ------
     KeyError
-        For laws that ``generated.capabilities`` does not know (a model checks its
+        For laws that ``beltmdsm.generated.capabilities`` does not know (a model checks its
         options, so not for a `beltmdsm.model.Model`).
 
     See Also

@@ -5,7 +5,7 @@ that stands for the response of period ``T = 2 pi / Omega``; the exact counterpa
 the Floquet stability of that periodic response (docs/modelling.md#what-unstable-means).
 `floquet` computes it: the response by shooting on the period map
 (`beltmdsm.periodic.shooting.periodic_response`), by one of two engines that the facts
-of the model's laws choose (``generated.capabilities``,
+of the model's laws choose (``beltmdsm.generated.capabilities``,
 `beltmdsm.periodic.engines.engine_of`), never by assumption:
 
 * ``closed_form`` (`beltmdsm.periodic.tangential.TangentialMap`), where the slip-mode
@@ -265,7 +265,7 @@ class Floquet:
         )
 
     def as_dict(self) -> dict:
-        """The JSON-able summary (the keys of ``python -m derive floquet --json``).
+        """The JSON-able summary (the keys of ``python -m beltmdsm floquet --json``).
 
         ``autonomous`` says whether it is a self-excited cycle; a cycle adds the keys of
         `beltmdsm.cycles.cycle.Cycle.as_dict` (``trivial_multiplier``, ``x1_range``,

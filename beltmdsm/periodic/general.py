@@ -198,7 +198,7 @@ class GeneralMap(PeriodMap):
     def sliding_guess(self) -> NDArray[np.float64]:
         """The periodic orbit of the backward-sliding field alone, by Newton's method.
 
-        The field of the mode ``slip_back`` (`generated.hybrid.vector_field`; without
+        The field of the mode ``slip_back`` (`beltmdsm.generated.hybrid.vector_field`; without
         its contact force where ``X2 < 0``, as in flight) is integrated over one period
         with no switch watched (the compiled DOP853 of `beltmdsm.integrate._dop853`),
         its Jacobian by the step propagators of `beltmdsm.periodic.variational`, from

@@ -4,8 +4,8 @@ Margins are positive away from the change and dimensionless (`Margin`); a period
 reads them from the runs of its orbit (`beltmdsm.periodic.base.MapImage.margins`):
 
 * ``crossing``: the rate of a switching function at a crossing, along the mode
-  before, over the function's rounding scale (`generated.hybrid.surface_rates`,
-  `generated.hybrid.surface_scales`). It vanishes where a crossing becomes tangential: a
+  before, over the function's rounding scale (`beltmdsm.generated.hybrid.surface_rates`,
+  `beltmdsm.generated.hybrid.surface_scales`). It vanishes where a crossing becomes tangential: a
   **tangency**, where the saltation matrix and the multipliers diverge.
 * ``approach``: the closest approach of a segment to a surface it does not cross
   (an interior maximum of ``Vr`` while sliding back, a minimum while sliding
@@ -33,7 +33,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from generated import hybrid
+from beltmdsm.generated import hybrid
 
 from ..integrate.switching import SURFACE_INDEX, Mode, Switching
 
@@ -80,7 +80,7 @@ def crossing_ratio(sw: Switching, t: float, state: ArrayLike, before: Mode, surf
     before : Mode
         The mode before it.
     surface : str
-        The surface crossed (`generated.hybrid.SURFACES`).
+        The surface crossed (`beltmdsm.generated.hybrid.SURFACES`).
 
     Returns
     -------
@@ -91,7 +91,7 @@ def crossing_ratio(sw: Switching, t: float, state: ArrayLike, before: Mode, surf
     Raises
     ------
     KeyError
-        For a surface that is not one of `generated.hybrid.SURFACES`.
+        For a surface that is not one of `beltmdsm.generated.hybrid.SURFACES`.
 
     See Also
     --------
@@ -120,7 +120,7 @@ class Margin:
     kind : {"crossing", "approach", "decision"}
         See the module docstring.
     surface : str
-        The switching surface (`generated.hybrid.SURFACES`).
+        The switching surface (`beltmdsm.generated.hybrid.SURFACES`).
     mode : Mode
         The mode before the crossing, or of the segment.
     t : float

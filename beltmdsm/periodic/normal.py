@@ -1,13 +1,13 @@
 """The periodic orbit of the normal motion: the orbit the closed-form period map runs on.
 
 Where the normal equation of Eq. (4) does not contain the tangential state (the fact
-``one_way_coupling`` of ``generated.capabilities``), the monodromy matrix of the
+``one_way_coupling`` of ``beltmdsm.generated.capabilities``), the monodromy matrix of the
 response is block triangular, ``[[M_t, M_tn], [0, M_n]]``, and the normal block ``M_n``
 belongs to the periodic orbit of the (overdamped) normal motion alone, which depends
 only on what the normal equation contains (not on ``Vb``, ``mu_s`` or the tangential
 parameters). `normal_orbit` computes it once per normal parameter set (cached), by
 shooting on the normal period map with the variational equation (the normal block of
-`generated.hybrid.mode_jacobian`, through the integrator's own steps) and the normal
+`beltmdsm.generated.hybrid.mode_jacobian`, through the integrator's own steps) and the normal
 blocks of the saltation matrices. `beltmdsm.periodic.tangential` runs on it.
 """
 
@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from generated import dynamics
+from beltmdsm.generated import dynamics
 
 from ..errors import NoPeriodicResponse
 from ..integrate.normal import NormalMotion
@@ -175,7 +175,7 @@ def normal_orbit(model: Model) -> NormalOrbit:
     """The periodic orbit of the normal motion (cached per normal parameter set).
 
     The key is what the normal equation contains (the parameters of
-    `generated.dynamics.normal_rhs` and ``normal_jacobian``), the excitation period
+    `beltmdsm.generated.dynamics.normal_rhs` and ``normal_jacobian``), the excitation period
     and the laws: a band or a map over ``beta1``, ``omega1``, ``mu_s`` or ``Vb``
     computes one normal orbit.
 

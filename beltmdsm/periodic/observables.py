@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from generated import dynamics
+from beltmdsm.generated import dynamics
 
 from ..integrate.switching import Mode
 

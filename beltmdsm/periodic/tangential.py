@@ -14,9 +14,9 @@ Coulomb friction with every contact and tension law); it refuses a model without
   cached per normal parameter set).
 * **Tangential block.** Between switches the tangential variational flow is the
   closed-form state-transition matrix of the tangential oscillator
-  (`generated.oscillator.state_transition`; the identity while sticking, where
+  (`beltmdsm.generated.oscillator.state_transition`; the identity while sticking, where
   ``X1' = Vb`` holds whatever the perturbation); across a switch it jumps by the
-  tangential block of the saltation matrix (`generated.hybrid.saltation`). So over
+  tangential block of the saltation matrix (`beltmdsm.generated.hybrid.saltation`). So over
   one period ``M_t = Phi(T - t_n) S_n ... Phi(t_2 - t_1) S_1 Phi(t_1)``, on the
   closed-form superposition of the tangential motion
   (`beltmdsm.integrate.superposition.Superposition`). A stick phase makes ``M_t``
@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from generated import hybrid
+from beltmdsm.generated import hybrid
 
 from ..errors import NoPeriodicResponse
 from ..integrate.normal import normal_motion
@@ -56,7 +56,7 @@ __all__ = [
     "largest_sliding_velocity",
 ]
 
-#: The facts of the laws (``generated.capabilities``) that the closed-form path needs,
+#: The facts of the laws (``beltmdsm.generated.capabilities``) that the closed-form path needs,
 #: those of the superposition it runs on: the slip-mode friction free of the
 #: tangential state (the tangential motion is linear between switches) and the normal
 #: equation free of it (the cached normal orbit, the block-triangular monodromy).
@@ -122,7 +122,7 @@ class OnePeriodMap:
 
         Sliding back in contact and free of friction in flight or separation (where the
         response ``z`` to the contact force has no forcing), the tangential motion is
-        one superposition with ``sgn = -1`` (`generated.oscillator.tangential_state`),
+        one superposition with ``sgn = -1`` (`beltmdsm.generated.oscillator.tangential_state`),
         affine in the start: ``x(T) = Phi(T) x0 + c`` with ``c`` the motion from
         ``x0 = 0``, whose fixed point solves ``(I - Phi(T)) x0 = c``.
         """
@@ -145,7 +145,8 @@ class OnePeriodMap:
         return np.linalg.solve(np.eye(2) - Phi, c)
 
     def saltation(self, before: Mode, after: Mode, surface: str) -> Any:
-        """The bound saltation matrix of one switch (`generated.hybrid.saltation`), kept."""
+        """The bound saltation matrix of one switch (`beltmdsm.generated.hybrid.saltation`),
+        kept."""
         key = (before, after, surface)
         if key not in self._saltation:
             self._saltation[key] = hybrid.bind_saltation(
@@ -189,7 +190,7 @@ class TangentialMap(PeriodMap):
 
     The closed-form path (module docstring): the shooting state is ``(X1, X1')`` at
     phase 0, the normal motion the cached periodic orbit (`normal_orbit`). It needs the
-    facts `CLOSED_FORM_FACTS` of the model's laws (``generated.capabilities``) and
+    facts `CLOSED_FORM_FACTS` of the model's laws (``beltmdsm.generated.capabilities``) and
     refuses a model without them.
 
     Parameters

@@ -1,7 +1,7 @@
 """Predicted unstable belt speeds: the paper's analysis and a consistent MDSM.
 
 The paper (Sects. 4.2-4.3) linearises the slow equations with the slope ``mu_bar'`` of
-Eq. (25); `generated.stability` gives its unstable interval in closed form. The
+Eq. (25); `beltmdsm.generated.stability` gives its unstable interval in closed form. The
 consistent analysis here keeps what the paper drops (docs/modelling.md#averaging): the
 correlation between the fast friction direction and the fast normal force.
 
@@ -10,21 +10,21 @@ generated function the options it declares), and neither computes with another l
 physics. For a belt speed ``Vb`` the consistent MDSM
 
 1. takes the fast normal force ``N(t) = g + N1 sin(Omega t + psi)`` from the linear
-   normal response (`generated.correlation.fast_normal_force`; the normal motion does
+   normal response (`beltmdsm.generated.correlation.fast_normal_force`; the normal motion does
    not depend on the tangential one, the capability ``one_way_coupling``, checked);
 2. finds the fast relative velocity ``V sin(Omega t + phi)`` by harmonic balance of the
-   tangential equation (Eq. A1, `generated.correlation.harmonic_balance`: the
+   tangential equation (Eq. A1, `beltmdsm.generated.correlation.harmonic_balance`: the
    transfer function of the tangential oscillator, the excitation and the first
    harmonic of the law's friction force, `friction_harmonic`). Without a reversal of
    the friction within a fast cycle (``V <= Vb``) and a friction coefficient that is
    constant in slip (the capability ``slip_friction_state_independent``: Coulomb's
    law) the balance is linear and its solution the coupled ``V_hat``
-   (`generated.correlation.fast_tangential_velocity`); otherwise (a reversal, or a
+   (`beltmdsm.generated.correlation.fast_tangential_velocity`); otherwise (a reversal, or a
    coefficient that varies with the sliding speed, Stribeck's) it is a two-unknown
    nonlinear system, solved by Newton iterations continued in ``Vb``;
 3. linearises the averaged friction ``<mu(|v|) sgn(v) N>`` in the slow velocity at
    frozen fast amplitude and phase: the tangential damping is
-   `generated.correlation.slow_damping`, ``2 beta1 omega1 + d<...>/du`` (for
+   `beltmdsm.generated.correlation.slow_damping`, ``2 beta1 omega1 + d<...>/du`` (for
    Coulomb's law ``2 beta1 omega1 + mu_s dF/du``), unstable when negative (the normal
    block is that of Eq. 22 and always stable). For a law without a closed-form fast
    average (Stribeck's) the averages are quadratures of the same expression.
@@ -36,7 +36,7 @@ The paper's closed forms (Eqs. 25, 28) need the law's fast average in closed for
 capability ``closed_form_average``) and a ``V_hat`` that does not depend on ``Vb``;
 where either fails (Stribeck's law) `paper_intervals` finds the same analysis' unstable
 set numerically (`paper_numeric`): the sign of the pointwise
-`generated.stability.growth_rate` (its effective friction a quadrature of the law's
+`beltmdsm.generated.stability.growth_rate` (its effective friction a quadrature of the law's
 expression) on a grid of ``Vb``, each edge refined by ``brentq``, with ``V_hat`` of the
 chosen reading evaluated at each ``Vb`` (the fast amplitude frozen in the slow
 linearisation: the slope is ``d mu_bar / d Vr`` at fixed ``V_hat``), and
@@ -70,8 +70,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import optimize
 
-from generated import _support, correlation, friction, stability, unforced
-from generated.parameters import STATIC_BOUNDS
+from beltmdsm.generated import _support, correlation, friction, stability, unforced
+from beltmdsm.generated.parameters import STATIC_BOUNDS
 
 from .. import intervals
 from ..errors import Refused
@@ -145,7 +145,7 @@ def _single_frequency(p):
 
 def _linear_without_reversal(model: Model) -> bool:
     """Whether the fast motion without a reversal of the friction is the linear response
-    (`generated.correlation.fast_tangential_velocity`, exact): where the slip friction
+    (`beltmdsm.generated.correlation.fast_tangential_velocity`, exact): where the slip friction
     does not depend on the tangential state (Coulomb's constant coefficient), it is a
     linear function of the normal force. Otherwise the harmonic balance is solved."""
     return model.fact("slip_friction_state_independent")[0]
@@ -154,16 +154,16 @@ def _linear_without_reversal(model: Model) -> bool:
 class _Balance:
     """The harmonic balance of the fast tangential motion at one belt speed.
 
-    ``residual((V, phi))`` is `generated.correlation.harmonic_balance` (relative to the
+    ``residual((V, phi))`` is `beltmdsm.generated.correlation.harmonic_balance` (relative to the
     excitation's size) with the model's friction law and the fast normal force
-    ``N1, psi`` (`generated.correlation.fast_normal_force`).
+    ``N1, psi`` (`beltmdsm.generated.correlation.fast_normal_force`).
     """
 
     def __init__(self, model: Model, N1: float, psi: float) -> None:
         if model["alpha_t"] == 0:
             raise ValueError(
                 "alpha_t = 0: the residual of the harmonic balance "
-                "(generated.correlation.harmonic_balance) is relative to the tangential "
+                "(beltmdsm.generated.correlation.harmonic_balance) is relative to the tangential "
                 "excitation alpha_t Omega_t^2, which is 0 here"
             )
         self.kw = model.arguments(correlation.harmonic_balance)
@@ -333,11 +333,12 @@ def fast_motion(model: Model, guess: FastMotion | None = None) -> FastMotion:
 
 
 def consistent_mdsm_damping(model: Model, fast: FastMotion | None = None) -> float:
-    """Tangential damping of the slow motion at ``-Vb`` (`generated.correlation.slow_damping`,
-    with the model's friction law; for Coulomb's ``2 beta1 omega1 + mu_s dF/du``).
+    """Tangential damping of the slow motion at ``-Vb``
+    (`beltmdsm.generated.correlation.slow_damping`, with the model's friction law; for
+    Coulomb's ``2 beta1 omega1 + mu_s dF/du``).
 
     Without fast motion (no excitation) it is the damping of the unforced equilibrium,
-    ``-J[1, 1]`` of `generated.unforced.jacobian_at_equilibrium` (for Coulomb's law
+    ``-J[1, 1]`` of `beltmdsm.generated.unforced.jacobian_at_equilibrium` (for Coulomb's law
     ``2 beta1 omega1``: the average of friction of constant direction does not depend
     on the slow velocity).
     """
@@ -460,7 +461,7 @@ def unstable_intervals(
         the grid of belt speeds (at least 2, at most `MAX_VB_POINTS`, finite, >= 0);
         default: ``points`` speeds up to 1.05 times the onset of reversal; for a
         friction coefficient that varies in slip up to 1.05 times the onset plus the
-        unforced critical belt speed (`generated.unforced.critical_belt_speed`, where
+        unforced critical belt speed (`beltmdsm.generated.unforced.critical_belt_speed`, where
         it is finite: above the onset the fast motion still sweeps the falling part
         of the law), doubled up to 3 times while a band reaches the top
     points : int
@@ -642,7 +643,7 @@ UNFORCED_SCAN = (1e-8, 1e8, 100)
 
 
 def unforced_rate(model: Model | Mapping[str, Any] | None, vb: ArrayLike) -> NDArray:
-    """The largest real part of `generated.unforced.eigenvalues` at each belt speed:
+    """The largest real part of `beltmdsm.generated.unforced.eigenvalues` at each belt speed:
     steady sliding is unstable where it is positive."""
     model = as_model(model)
     fn = unforced.eigenvalues
@@ -655,7 +656,7 @@ def unforced_edges(model: Model | Mapping[str, Any] | None = None, **kw: Any) ->
 
     The roots of `unforced_rate` over `UNFORCED_SCAN` (a geometric grid), each sign
     change refined by ``brentq`` to 1e-12 relative: the path where the law's closed
-    form (`generated.unforced.critical_belt_speed`) is refused. A band narrower than
+    form (`beltmdsm.generated.unforced.critical_belt_speed`) is refused. A band narrower than
     the scan's ratio (2.3 %) can be missed.
     """
     model = as_model(model, **kw)
@@ -677,7 +678,7 @@ def unforced_edges(model: Model | Mapping[str, Any] | None = None, **kw: Any) ->
 
 
 def _unforced_edge(model: Model) -> float:
-    """The unforced critical belt speed (`generated.unforced.critical_belt_speed`) where it
+    """The unforced critical belt speed (`beltmdsm.generated.unforced.critical_belt_speed`) where it
     is finite and positive; where the law's closed form is refused, the largest of
     `unforced_edges`; else 0."""
     fn = unforced.critical_belt_speed
@@ -723,8 +724,8 @@ def paper_intervals(
 ) -> dict[str, list[tuple[float, float]] | None]:
     """The paper's unstable interval ``(Vb_c, Vhat]`` for each ``V_hat`` reading (Eq. 25, 28).
 
-    With the model's laws (`generated.stability.unstable_interval` and
-    `generated.friction.vhat` get ``friction=`` and ``contact=``). Where the closed form
+    With the model's laws (`beltmdsm.generated.stability.unstable_interval` and
+    `beltmdsm.generated.friction.vhat` get ``friction=`` and ``contact=``). Where the closed form
     does not exist (the law's fast average is no closed form, the capability
     ``closed_form_average``, Stribeck's; or ``V_hat`` depends on ``Vb``) the same
     analysis is solved numerically (`paper_numeric`).
@@ -735,13 +736,13 @@ def paper_intervals(
         the parameter set (or the keywords ``**kw`` it is built from)
     convention : {"paper", "consistent"}
         the sign of the effective friction in Eq. (A4): as printed, or as Eq. (4)
-        implies (`generated.stability.unstable_interval`, docs/modelling.md#friction-sign)
+        implies (`beltmdsm.generated.stability.unstable_interval`, docs/modelling.md#friction-sign)
 
     Returns
     -------
     dict
         ``{"tangential": [(lower, upper), ...], "coupled": [...]}``; an empty interval
-        (NaN from `generated.stability.unstable_interval`) is ``[]``, and a reading
+        (NaN from `beltmdsm.generated.stability.unstable_interval`) is ``[]``, and a reading
         without an answer is ``None``: ``V_hat`` is 0 (no excitation, where Eqs. 23-25
         have no meaning). `paper_reasons` says why, or how a numeric set was found.
     """
@@ -755,7 +756,7 @@ def paper_reasons(
     **kw: Any,
 ) -> dict[str, str]:
     """``{reading: why}`` for each ``V_hat`` reading whose `paper_intervals` is None
-    (`NO_VHAT`, or the refusal of `generated.stability.unstable_interval`) or was found
+    (`NO_VHAT`, or the refusal of `beltmdsm.generated.stability.unstable_interval`) or was found
     numerically (`PAPER_NUMERIC`: why there is no closed form, the grid and the
     tolerance): one line each."""
     return _paper(as_model(model, **kw), convention)[1]
@@ -801,10 +802,10 @@ def paper_numeric(
 ) -> tuple[list[tuple[float, float]], dict[str, Any]]:
     """The unstable belt speeds of the paper's analysis without its closed form.
 
-    The set where `generated.stability.growth_rate` (Eq. 26 with Eqs. 23-25; the
+    The set where `beltmdsm.generated.stability.growth_rate` (Eq. 26 with Eqs. 23-25; the
     effective friction and its slope a quadrature of the law's expression where the
     law has no closed-form fast average) is positive, with ``V_hat`` of ``reading``
-    (`generated.friction.vhat`) evaluated at each ``Vb``: the reading implemented is
+    (`beltmdsm.generated.friction.vhat`) evaluated at each ``Vb``: the reading implemented is
     the fast amplitude of the equilibrium at that belt speed, held fixed in the slow
     linearisation (the slope is ``d mu_bar / d Vr`` at fixed ``V_hat``, not the total
     derivative in ``Vb``). For Coulomb's law it is the closed form's set, to the
@@ -931,7 +932,7 @@ NO_EXCITATION = (
 #: varies in slip (formatted with the law).
 NO_FAST_MOTION = (
     "no fast tangential motion: the slow damping is the unforced equilibrium's, "
-    "2 beta1 omega1 + g dmu/d|Vr| at |Vr| = Vb (generated.unforced), which varies "
+    "2 beta1 omega1 + g dmu/d|Vr| at |Vr| = Vb (beltmdsm.generated.unforced), which varies "
     "with Vb under friction={friction!r}"
 )
 NO_VHAT = "V_hat = 0 (no fast tangential motion): Eqs. (23)-(25) need V_hat > 0"
@@ -939,7 +940,7 @@ NO_VHAT = "V_hat = 0 (no fast tangential motion): Eqs. (23)-(25) need V_hat > 0"
 #: there is none, the reading and `paper_numeric`'s grid).
 PAPER_NUMERIC = (
     "numeric ({without}: Eqs. (25), (28) have no closed form): Vb where "
-    "generated.stability.growth_rate > 0 with V_hat ({reading} reading) at each Vb, "
+    "beltmdsm.generated.stability.growth_rate > 0 with V_hat ({reading} reading) at each Vb, "
     "{points} points in [0, {top:.4g}] m/s, edges by brentq to {xtol:.0e} m/s (a root, "
     "or V_hat(Vb) = Vb where the slope of Eq. (25) jumps); a band narrower than "
     "{step:.2g} m/s can be missed"
@@ -959,7 +960,7 @@ GRID_COARSE = (
 UNFORCED_NUMERIC = (
     "the unforced critical belt speed has no closed form ({why}); steady sliding "
     "changes stability at Vb = {edges} m/s, the roots of the largest real part of "
-    "generated.unforced.eigenvalues over 1e-8..1e8 m/s (100 speeds a decade, brentq "
+    "beltmdsm.generated.unforced.eigenvalues over 1e-8..1e8 m/s (100 speeds a decade, brentq "
     "to 1e-12 relative; a band narrower than 2.3 % can be missed)"
 )
 #: The note on a band of the consistent MDSM that reaches an end of its grid.
@@ -983,7 +984,7 @@ CLIPPED_MDSM_INACTIVE = (
     "it and the harmonic balance is the same as under 'allowed'"
 )
 #: The note on every analysis under a friction law with a static bound of its own
-#: (``generated.parameters.STATIC_BOUNDS``; formatted with the law and both bounds).
+#: (``beltmdsm.generated.parameters.STATIC_BOUNDS``; formatted with the law and both bounds).
 STATIC_BOUND = (
     "friction={friction!r}: averaged is the slip law (mu(0) = {rest}) over a fast "
     "motion that passes Vr = 0 without sticking; the static bound {static} bounds "
@@ -1005,7 +1006,7 @@ def clip_acts(model: Model) -> tuple[bool, float]:
     """``(acts, N1)``: whether the clip cuts the linear fast normal force ``g + N1 sin``.
 
     True when ``N1 >= g`` (the force would reach zero within a fast cycle), with
-    ``N1`` from `generated.correlation.fast_normal_force`.
+    ``N1`` from `beltmdsm.generated.correlation.fast_normal_force`.
     """
     N1 = _normal(model)[0]
     return N1 >= model["g"], N1

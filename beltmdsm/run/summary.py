@@ -231,12 +231,12 @@ def _floquet_decay(model, settings, t0):
 def free_decay_rate(model: Model) -> float:
     """``sigma``: the slowest rate of the free tangential transient about steady sliding.
 
-    The largest real part of the tangential pair of `generated.unforced.eigenvalues`
+    The largest real part of the tangential pair of `beltmdsm.generated.unforced.eigenvalues`
     for the model's laws: ``-beta1 omega1`` for Coulomb friction (``beta1 < 1``);
     ``-beta1 omega1 + g dmu/d|Vr| / 2`` at ``|Vr| = Vb`` for a friction that falls with
     speed, which is >= 0 where steady sliding is unstable (the transient grows).
     """
-    from generated import unforced
+    from beltmdsm.generated import unforced
 
     lam = unforced.eigenvalues(**model.arguments(unforced.eigenvalues))
     return float(np.max(np.real(lam[:2])))

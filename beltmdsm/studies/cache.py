@@ -32,8 +32,9 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from generated._support import cache_root
+from beltmdsm.generated._support import cache_root
 
+from .._layout import SIBLINGS
 from ..model import Model
 from ..settings import SolverSettings
 
@@ -64,9 +65,9 @@ _ROOT = _PACKAGE.parent
 #: list can leave a module out (issue 28: the period map, the variational equations
 #: and the lock detection decided a row's ``resolved`` and start, and were not hashed).
 NUMERIC_SOURCES = ("beltmdsm.studies.row",)
-#: The packages whose modules are hashed; numpy, scipy and numba enter by the
-#: package version only.
-CODE_PACKAGES = ("beltmdsm", "generated")
+#: The packages whose modules are hashed (beltmdsm.generated among them); numpy, scipy
+#: and numba enter by the package version only.
+CODE_PACKAGES = ("beltmdsm",)
 
 
 class CacheWarning(UserWarning):
@@ -85,7 +86,7 @@ class Problem:
 
 
 def default_cache_dir() -> Path:
-    """``sweeps`` in the folder of the package's caches (`generated._support.cache_root`,
+    """``sweeps`` in the folder of the package's caches (`beltmdsm.generated._support.cache_root`,
     one rule for every cache): ``$BELTMDSM_CACHE/sweeps``, else
     ``$XDG_CACHE_HOME/beltmdsm-cache/sweeps``, else ``~/.cache/beltmdsm-cache/sweeps``
     (an empty variable counts as unset)."""
@@ -122,6 +123,8 @@ def _module_file(name: str) -> Path | None:
     if parts[0] not in CODE_PACKAGES:
         return None
     base = _ROOT.joinpath(*parts)
+    if len(parts) > 1 and parts[1] in SIBLINGS and not (_ROOT / parts[0] / parts[1]).is_dir():
+        base = _ROOT.joinpath(*parts[1:])  # a source checkout: beside beltmdsm/ (_layout)
     for path in (base / "__init__.py", base.with_suffix(".py")):
         if path.is_file():
             return path

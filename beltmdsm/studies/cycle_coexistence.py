@@ -2,7 +2,7 @@
 
 Without excitation the attractors of Eq. (4) are steady sliding (Eq. 9) and the
 self-excited cycles. Steady sliding is stable where every eigenvalue of ``J^0``
-(`generated.unforced.eigenvalues`) has a negative real part; its stability changes at
+(`beltmdsm.generated.unforced.eigenvalues`) has a negative real part; its stability changes at
 the Hopf points (`beltmdsm.cycles.hopf.hopf_points`) and where a real eigenvalue
 crosses 0 (placed by Brent's method on the largest real part). The cycles are the
 branch born at the first Hopf point of the range

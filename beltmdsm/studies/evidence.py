@@ -10,7 +10,7 @@ derive/ never imports the runtime):
   distance (a free phase) or converges to it (a forced response), and the sign of
   the contact force at the friction reversals;
 * the numerical side of derive/contraction.py: the energy ``E_d`` of the difference of
-  the two runs (`generated.contraction.difference_energy`) and its balance, split by
+  the two runs (`beltmdsm.generated.contraction.difference_energy`) and its balance, split by
   the sign of the contact force.
 
 `difference_runs`, `difference_works` and `reversals_by_force_sign` are the tools.
@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from generated import contraction
+from beltmdsm.generated import contraction
 
 from ..integrate.switching import Mode
 from ..model import Model, initial_state
@@ -58,7 +58,7 @@ class DifferenceRun:
 
     ``a`` starts at the default state (Eq. 9 at rest), ``b`` at the same normal state
     with ``(X1, X1')`` shifted by ``shift``; ``energy`` is
-    `generated.contraction.difference_energy` at the samples ``t`` of both runs.
+    `beltmdsm.generated.contraction.difference_energy` at the samples ``t`` of both runs.
     """
 
     a: Simulation = field(repr=False)
@@ -120,7 +120,7 @@ def difference_works(
     """The energy balance of the difference over ``[t0, t1]`` by quadrature.
 
     ``dE_d/dt = -c1 e'^2 + (f_a - f_b) e'`` (derive/contraction.py; ``c1`` from
-    `generated.contraction.difference_damping`, ``f`` the friction force of each run,
+    `beltmdsm.generated.contraction.difference_damping`, ``f`` the friction force of each run,
     `beltmdsm.integrate.trajectory.Trajectory.forces`: ``-mu s F`` with ``s`` in Sgn,
     the holding force in stick and 0 without contact). Integrated with
     `Trajectory.integrate` (Gauss-Legendre on the pieces of run ``a``, split at run

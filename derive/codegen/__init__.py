@@ -2,13 +2,13 @@
 
 One module per concept:
 
-* `derive.codegen.specs`: what a generated function and module contain (data);
-* `derive.codegen.printers`: the numpy, scalar and mpmath printers (roots, quadratures);
-* `derive.codegen.variants`: a function's implementations, one per distinct variant
+* `beltmdsm.derive.codegen.specs`: what a generated function and module contain (data);
+* `beltmdsm.derive.codegen.printers`: the numpy, scalar and mpmath printers (roots, quadratures);
+* `beltmdsm.derive.codegen.variants`: a function's implementations, one per distinct variant
   (CSE, numpy, scalar and mpmath code) and its dispatch table;
-* `derive.codegen.docstrings`: the numpydoc docstrings of a function and its binder;
-* `derive.codegen.render`: the public functions and whole modules, deterministically;
-* `derive.codegen.files`: where ``generated/`` is, writing it and the staleness check
+* `beltmdsm.derive.codegen.docstrings`: the numpydoc docstrings of a function and its binder;
+* `beltmdsm.derive.codegen.render`: the public functions and whole modules, deterministically;
+* `beltmdsm.derive.codegen.files`: where ``generated/`` is, writing it and the staleness check
   (the only place in the package that writes files).
 """
 

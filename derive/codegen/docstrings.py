@@ -75,7 +75,7 @@ def _docstring(fn, mp):
     if fn.vhat:
         doc += [
             'vhat_model : {"tangential", "coupled"}, optional',
-            "    How ``Vhat`` is computed (``generated.friction.vhat``) when it is not",
+            "    How ``Vhat`` is computed (``beltmdsm.generated.friction.vhat``) when it is not",
             '    passed; default "tangential". Passing both is an error.',
         ]
     if fn.accelerate and not mp:
@@ -96,6 +96,8 @@ def _docstring(fn, mp):
     ]
     doc += fn.returns_doc.strip("\n").split("\n")
     doc += _raises(fn.accelerate and not mp, _refusals(fn))
+    if fn.examples and not mp:
+        doc += ["", "Examples", "--------"] + fn.examples.strip("\n").split("\n")
     return _quote(doc)
 
 

@@ -8,7 +8,7 @@ precision). On top of SymPy's printers they
   half-integer powers through ``sqrt`` (`RootPrinting`);
 * print a quadrature, ``Integral(f, (x, a, b))`` of a friction law whose fast average
   has no closed form (derive/averaging.py), as one statement per flavour
-  (`Quadrature`): `generated._support.quad` for numpy, an inline loop over the same
+  (`Quadrature`): `beltmdsm.generated._support.quad` for numpy, an inline loop over the same
   nodes for the scalar kernels (numba compiles it), ``mpmath.quad`` for mpmath. The
   integrals are lifted out of the expressions before common-subexpression
   elimination (`lift_integrals`), which would otherwise move pieces of the

@@ -1,11 +1,11 @@
 """Rendering: function specs to the source text of the generated modules.
 
 A generated module is described by a `ModuleSpec` of `FunctionSpec` entries (built
-in `derive.modules`); `render` turns the specs into source text, deterministically
+in `beltmdsm.derive.modules`); `render` turns the specs into source text, deterministically
 (common-subexpression elimination over all outputs of a function together,
 canonical ordering, parameters in table order), `render_all` gives every file of
-``generated/`` (`derive.codegen.files` writes them). The implementations are
-`derive.codegen.variants`', the docstrings `derive.codegen.docstrings`'.
+``generated/`` (`beltmdsm.derive.codegen.files` writes them). The implementations are
+`beltmdsm.derive.codegen.variants`', the docstrings `beltmdsm.derive.codegen.docstrings`'.
 
 The layers of a generated function (PyDy's generator / printer / wrapper):
 
@@ -18,7 +18,7 @@ The layers of a generated function (PyDy's generator / printer / wrapper):
   for NaN, inf or a value outside its domain, ``TypeError`` for an unknown keyword
   or a missing parameter of the chosen law), and calls the implementation; the
   numpy variant broadcasts over arrays, the mpmath variant (same name in
-  ``generated.mp``) computes at ``mpmath.mp.dps``;
+  ``beltmdsm.generated.mp``) computes at ``mpmath.mp.dps``;
 * for a spec with ``bind=True``, ``bind_<name>(options, **params)``: it checks the
   parameters once, as SciPy's ``check_arguments`` does, and returns a
   ``_support.Bound`` scalar kernel (plain ``math`` code; compiled by
@@ -162,7 +162,8 @@ def render(module: ModuleSpec, mp: bool = False) -> str:
     public += [name for name, _, _ in module.constants]
     names = ", ".join(repr(n) for n in public)
     variant = (
-        f"mpmath variant (same names, arbitrary precision) of ``generated.{module.name}``.\n\n"
+        "mpmath variant (same names, arbitrary precision) of "
+        f"``beltmdsm.generated.{module.name}``.\n\n"
         if mp
         else ""
     )
@@ -289,14 +290,27 @@ def _parameters_module() -> str:
     )
 
 
+#: The package's refusal of any name but its own (beltmdsm/_layout.py).
+_GUARD = """
+if __name__ != "beltmdsm.generated":
+    raise ImportError(
+        f"generated/ is the package beltmdsm.generated: import it by that name, not as "
+        f"{__name__!r} (a second name would load a second copy of every module)"
+    )
+"""
+
+
 def render_all(modules) -> dict[str, str]:
     """Every file of ``generated/``: relative path -> text."""
     listing = "\n".join(f"* ``{m.name}``: {m.doc.strip().splitlines()[0]}" for m in modules)
     files = {
         "__init__.py": (
             HEADER + '"""Code-generated numeric modules (numpy; mpmath variants in '
-            "``generated.mp``).\n\n" + listing + "\n\nImporting them never "
-            'imports SymPy.\n"""\n'
+            "``beltmdsm.generated.mp``).\n\n" + listing + "\n\nImporting them never "
+            "imports SymPy. A source checkout keeps generated/ beside beltmdsm/ and an\n"
+            "installed package inside it; either way it is imported as\n"
+            "``beltmdsm.generated`` (beltmdsm/_layout.py). By another name it refuses: a\n"
+            'second name would load a second copy of every module.\n"""\n' + _GUARD
         ),
         "mp/__init__.py": HEADER + '"""mpmath variants of the generated modules."""\n',
         "parameters.py": _parameters_module(),

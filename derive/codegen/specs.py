@@ -1,6 +1,7 @@
 """What a generated module contains, as data: `FunctionSpec`, `ModuleSpec`, `Refusal`.
 
-`derive.modules` builds these from the derivations; `derive.codegen.render` prints them.
+`beltmdsm.derive.modules` builds these from the derivations;
+`beltmdsm.derive.codegen.render` prints them.
 """
 
 from __future__ import annotations
@@ -54,12 +55,12 @@ class FunctionSpec:
         Extra docstring paragraph.
     vhat : bool
         The public function resolves ``Vhat`` from ``vhat_model`` (via
-        ``generated.friction.vhat``, with the function's law options) unless
+        ``beltmdsm.generated.friction.vhat``, with the function's law options) unless
         ``Vhat`` is passed.
     accelerate : bool
         Put the arithmetic in two kernels, numpy code run by
-        ``generated._support.blockwise`` and scalar code that
-        ``generated._support.compiled`` turns into a numba ufunc, selected by the
+        ``beltmdsm.generated._support.blockwise`` and scalar code that
+        ``beltmdsm.generated._support.compiled`` turns into a numba ufunc, selected by the
         ``backend=`` keyword (for one output per point: ``returns`` in ``"value"``,
         ``"growth"``, ``"stable"``).
     bind : bool
@@ -67,6 +68,10 @@ class FunctionSpec:
         scalar kernel (numpy variant only; ``returns`` in ``"value"``, ``"tuple"``,
         ``"vector"``, ``"matrix"``: the kernel returns a float or a flat tuple,
         row-major for a matrix).
+    examples : str
+        The numpydoc ``Examples`` section body of the public (numpy) function:
+        doctest lines that run as written (tests/test_examples.py), printing rounded
+        numbers.
     """
 
     name: str
@@ -83,6 +88,7 @@ class FunctionSpec:
     vhat: bool = False
     accelerate: bool = False
     bind: bool = False
+    examples: str = ""
 
 
 @dataclass(frozen=True)

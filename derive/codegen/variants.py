@@ -6,7 +6,7 @@ outputs together, as an unchecked numpy function (`_numpy_impl`), its scalar
 ``math`` twin for numba and the bound kernels (`_scalar_impl`, with the hoisted
 roots of its parameters, `_prep_impl`), or an mpmath function (`_mp_impl`); `_table`
 writes the ``{key: _support.Variant(...)}`` table the public function dispatches on
-(`derive.codegen.render`).
+(`beltmdsm.derive.codegen.render`).
 """
 
 from __future__ import annotations

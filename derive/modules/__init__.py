@@ -4,9 +4,9 @@ This is the pipeline's last pure step: each spec module's ``build()`` calls the
 derivations and packages their expressions as `codegen.FunctionSpec` specs of one
 generated module (``derive/modules/unforced.py`` for ``generated/unforced.py``, ...).
 Nothing here writes files. The options ``friction=``, ``contact=`` and ``tension=``
-of every function are the choices of the registry (`derive.laws`), one variant per
+of every function are the choices of the registry (`beltmdsm.derive.laws`), one variant per
 choice, and a function takes an option only where its law enters
-(`derive.modules._shared`).
+(`beltmdsm.derive.modules._shared`).
 """
 
 from __future__ import annotations

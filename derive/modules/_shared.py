@@ -34,7 +34,7 @@ def law_options(*options: str) -> tuple:
 
 def _or_refuse(expr, reason: str):
     """``expr``, or a `Refusal` with ``reason`` where the derivation claims no closed form
-    (with the budget's reason where a step ran past its budget, `derive.budget`)."""
+    (with the budget's reason where a step ran past its budget, `beltmdsm.derive.budget`)."""
     if isinstance(expr, budget.NoClosedForm):
         return Refusal(f"{reason.split(':')[0]}: {expr.reason}; no closed-form boundary is claimed")
     return Refusal(reason) if expr is None else expr

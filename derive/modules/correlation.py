@@ -28,8 +28,8 @@ def build() -> ModuleSpec:
     }
     quadrature = (
         "For a friction law whose fast average has no closed form (Stribeck's; "
-        "generated.capabilities) the law's part beyond mu(0) is a quadrature of the "
-        "same expression (generated._support.quad)."
+        "beltmdsm.generated.capabilities) the law's part beyond mu(0) is a quadrature of the "
+        "same expression (beltmdsm.generated._support.quad)."
     )
 
     def amplitude_phase(re_im):

@@ -108,7 +108,7 @@ def build() -> ModuleSpec:
             normal,
             STATE_DOCS,
             notes="The normal equation contains neither X1, X1', Vb nor a friction "
-            "parameter (the one-way coupling of Eq. 4; generated.capabilities).",
+            "parameter (the one-way coupling of Eq. 4; beltmdsm.generated.capabilities).",
             bind=True,
         ),
         FunctionSpec(

@@ -26,8 +26,8 @@ def build() -> ModuleSpec:
     }
     quadrature = (
         "For a friction law whose fast average has no closed form (Stribeck's; "
-        "generated.capabilities) the law's part beyond mu(0) is a quadrature of the "
-        "same expression (generated._support.quad)."
+        "beltmdsm.generated.capabilities) the law's part beyond mu(0) is a quadrature of the "
+        "same expression (beltmdsm.generated._support.quad)."
     )
     vhat_opts = (
         (
@@ -77,7 +77,7 @@ def build() -> ModuleSpec:
             (Vb, Vh, mu),
             docs,
             notes="The same in both sign conventions: they differ in how the slope "
-            "enters the slow equations (generated.stability). " + quadrature,
+            "enters the slow equations (beltmdsm.generated.stability). " + quadrature,
         ),
         FunctionSpec(
             "vhat",

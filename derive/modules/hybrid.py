@@ -89,7 +89,7 @@ def build() -> ModuleSpec:
             "the normal equation: the normal motion does not depend on the "
             "tangential one, so the superposition integrator integrates this "
             "once. Friction laws whose slip-mode friction depends on the tangential "
-            "state cannot use it (generated.capabilities).",
+            "state cannot use it (beltmdsm.generated.capabilities).",
             bind=True,
         ),
         FunctionSpec(

@@ -16,7 +16,7 @@ from ._shared import (
 __all__ = ["build"]
 
 
-#: The arguments of `generated.oscillator.tangential_state` after ``tau``.
+#: The arguments of `beltmdsm.generated.oscillator.tangential_state` after ``tau``.
 SUPERPOSITION_DOCS = {
     "X1_0": "tangential displacement at the switch t0 [m]",
     "Y1_0": "tangential velocity X1' at the switch t0 [m/s]",
@@ -88,7 +88,7 @@ def build() -> ModuleSpec:
             notes="Phi(tau) (x0 - f(t0)) + f(t) with f = zf - mu sgn z: the free motion "
             "from the state at the switch and the forced responses, zf to the "
             "excitation (`excitation_response`) and z to the contact force (integrated "
-            "with the normal motion, generated.hybrid.response_field), both from rest "
+            "with the normal motion, beltmdsm.generated.hybrid.response_field), both from rest "
             "at t = 0 (derive/oscillator.py). Exact for a friction law whose slip-mode "
             "friction mu sgn F does not depend on the tangential state.",
             bind=True,

@@ -19,6 +19,13 @@ from ._shared import (
 __all__ = ["build"]
 
 
+#: The imports of the Examples of `stability`'s functions.
+_STABILITY_IMPORTS = (
+    ">>> from beltmdsm.generated import stability\n"
+    ">>> from beltmdsm.generated.parameters import BASE\n"
+)
+
+
 def build() -> ModuleSpec:
     """Sects. 4.2-4.3: forced Jacobian, quartic, Hurwitz, eigenvalues, boundary."""
     opts = (
@@ -169,6 +176,10 @@ def build() -> ModuleSpec:
             each(quads),
             **common,
             accelerate=True,
+            examples=_STABILITY_IMPORTS
+            + '>>> sigma = stability.growth_rate(**{**BASE, "Vb": [5.0, 12.0]}, backend="numpy")\n'
+            + ">>> [round(float(s), 4) for s in sigma]  # unstable at 5 m/s, stable at 12\n"
+            + "[0.081, -0.1]",
         ),
         FunctionSpec(
             "is_stable",
@@ -181,9 +192,12 @@ def build() -> ModuleSpec:
             notes="With the quartic = (l^2 + p l + q)(l^2 + r l + s) and q, s > 0 "
             "(proved by SymPy on the parameter domains), all of H1..H4 > 0 "
             "holds exactly when p > 0 and r > 0 "
-            "(derive.stability.stability_conditions): two sign tests, no "
+            "(beltmdsm.derive.stability.stability_conditions): two sign tests, no "
             "determinant, root or power.",
             accelerate=True,
+            examples=_STABILITY_IMPORTS
+            + '>>> stability.is_stable(**{**BASE, "Vb": [5.0, 12.0]}, backend="numpy").tolist()\n'
+            + "[False, True]",
         ),
         FunctionSpec(
             "critical_belt_speed",
@@ -196,6 +210,9 @@ def build() -> ModuleSpec:
             "    Only where the effective friction's slope has a closed form.",
             each(boundary),
             **common,
+            examples=_STABILITY_IMPORTS
+            + '>>> round(float(stability.critical_belt_speed(**{**BASE, "mu_s": 0.1})), 4)\n'
+            + "7.9285",
         ),
         FunctionSpec(
             "unstable_interval",
@@ -207,6 +224,10 @@ def build() -> ModuleSpec:
             "(critical_belt_speed = Vhat:\n    mu_s = 0); consistent: (NaN, NaN), empty.",
             each(lambda f, c, cv: boundary(f, c, cv, upper=True)),
             **common,
+            examples=_STABILITY_IMPORTS
+            + '>>> lower, upper = stability.unstable_interval(**{**BASE, "mu_s": 0.1})\n'
+            + ">>> round(float(lower), 4), round(float(upper), 4)\n"
+            + "(7.9285, 8.5212)",
         ),
     )
     return ModuleSpec(

@@ -11,7 +11,7 @@ __all__ = ["build"]
 def build() -> ModuleSpec:
     """The Dormand-Prince 8(5,3) tableau of the runtime's integrator, as data.
 
-    Hairer's published constants (`derive.dop853`), written into generated/ so that
+    Hairer's published constants (`beltmdsm.derive.dop853`), written into generated/ so that
     the runtime's integrator (beltmdsm/integrate/_dop853.py) starts without importing
     ``scipy.integrate``, which costs half a second of every run's start.
     """

@@ -1,18 +1,19 @@
 """``python -m derive check-paper``: the paper's equations and claims against the derivation.
 
-Every numbered equation transcribed in `derive.paper` is compared with the
+Every numbered equation transcribed in `beltmdsm.derive.paper` is compared with the
 expression the package derives, symbolically or, where SymPy cannot decide, with
 mpmath at 50 digits at seeded points (a difference is always a numeric
 counterexample); the paper's claims in words are re-derived; both are checked for
 every friction law of the registry, so that a row or claim that holds for
 Coulomb's law only says so. One module per concept:
 
-* `derive.paper_check.engine`: the comparison of a printed and a derived object,
+* `beltmdsm.derive.paper_check.engine`: the comparison of a printed and a derived object,
   the variants of a row and their status;
-* `derive.paper_check.rows`: the rows, one per numbered equation, in paper order;
-* `derive.paper_check.claims`: the claims in words (two of them read the simulation's
+* `beltmdsm.derive.paper_check.rows`: the rows, one per numbered equation, in paper order;
+* `beltmdsm.derive.paper_check.claims`: the claims in words (two of them read the simulation's
   numbers, handed in by the command line: beltmdsm/studies/evidence.py);
-* `derive.paper_check.report`: the Markdown report (`report`, `write_report`, `report_path`).
+* `beltmdsm.derive.paper_check.report`: the Markdown report (`report`, `write_report`,
+  `report_path`).
 """
 
 from .claims import Claim, ClaimResult, check_claim, claims

@@ -2,7 +2,7 @@
 
 Each `Claim` has a check that returns the readings under which it holds and one line of
 evidence computed from the derivation, and a statement of the friction laws it holds
-for (the paper's model has Coulomb's law; `derive.laws` has more). Two claims also need
+for (the paper's model has Coulomb's law; `beltmdsm.derive.laws` has more). Two claims also need
 the simulation of Eq. (4): its numbers come in as ``evidence``, a function that returns
 them per tension law (``beltmdsm.studies.evidence.paper_evidence``, handed over by the
 command line, ``python -m derive check-paper``: derive/ never imports the runtime).
@@ -95,7 +95,7 @@ def _laws_mu_s() -> str:
 
 def _laws_only_slope() -> str:
     return (
-        "every law: a1..a4 are derived in mu_bar^0, mu_bar' (derive.stability), whatever "
+        "every law: a1..a4 are derived in mu_bar^0, mu_bar' (beltmdsm.derive.stability), whatever "
         "law mu_bar averages"
     )
 
@@ -145,7 +145,7 @@ def _claim_fit():
         f"(RMS `{sp.sstr(err.rms)}`): {_n(rel, 3)} of `X2max^(3/2)`, which rounds to "
         f'1e{order(rel)} ("about 1e-2" read as the nearest power of ten); in absolute '
         f"terms at the base set's fitted range `X2max = {_n(top, 4)}` m "
-        f"(`derive.mdsm.x2max`) it is {_n(absolute, 3)} m^(3/2)."
+        f"(`beltmdsm.derive.mdsm.x2max`) it is {_n(absolute, 3)} m^(3/2)."
     )
 
 

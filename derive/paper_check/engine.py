@@ -14,7 +14,7 @@ unexplained, and a reason given for a variant that matches is stale.
 
 The paper's model has Coulomb friction (Eq. 3). A variant whose derivation takes a
 friction law (``derived_for``) is also derived for every other law of the registry
-(`derive.laws`): where that derivation differs, the row holds for the laws whose
+(`beltmdsm.derive.laws`): where that derivation differs, the row holds for the laws whose
 derivation equals Coulomb's only, and the report says so.
 """
 
@@ -71,7 +71,7 @@ class Variant:
     ----------
     printed, derived : callable
         Return the two SymPy objects (expressions or matrices of equal shape).
-        ``derived`` may take a friction law (`derive.laws`) as its one argument: it is
+        ``derived`` may take a friction law (`beltmdsm.derive.laws`) as its one argument: it is
         then called with the default law (Coulomb's, Eq. 3) for the comparison with
         the paper, and with every other law to find the laws the row holds for.
     label : str

@@ -1,8 +1,8 @@
 """The report of the paper check and its command: ``python -m derive check-paper``.
 
-`run` checks every row (`derive.paper_check.rows`) and every claim
-(`derive.paper_check.claims`); `report` writes the Markdown report, deterministic
-(seeded points, rows in paper order, no timings), through `derive.codegen.write`;
+`run` checks every row (`beltmdsm.derive.paper_check.rows`) and every claim
+(`beltmdsm.derive.paper_check.claims`); `report` writes the Markdown report, deterministic
+(seeded points, rows in paper order, no timings), through `beltmdsm.derive.codegen.write`;
 `main` is the command with its own argparse.
 """
 
@@ -24,7 +24,7 @@ __all__ = ["run", "report", "report_path", "write_report"]
 
 def run(selected: tuple[str, ...] | None = None, evidence=None):
     """Check the rows (all, or those whose key is in ``selected``) and every claim
-    (``evidence``: the simulated numbers, `derive.paper_check.claims.claims`)."""
+    (``evidence``: the simulated numbers, `beltmdsm.derive.paper_check.claims.claims`)."""
     results = tuple(check_row(r) for r in rows() if selected is None or r.key in selected)
     claim_results = tuple(check_claim(c) for c in claims(evidence)) if selected is None else ()
     return results, claim_results
@@ -117,7 +117,7 @@ def report(results, claim_results) -> str:
         "Eq. 27 the printed `a1..a4`, so they inherit any difference of those.",
         "- Eq. A4's `mu_bar` has no printed argument; it is Eq. 23's `mu_bar(Z1' - Vb)`. "
         "In Eqs. 18-21 and A1-A2 `mu_bar` is the MDSM's average of the friction law "
-        "(`derive.mdsm`; the paper's is Coulomb's), `mu` the law itself.",
+        "(`beltmdsm.derive.mdsm`; the paper's is Coulomb's), `mu` the law itself.",
         "- Eq. 15 defines the average; it is checked by applying the printed integral "
         "to harmonic fast motions `Phi_i = A_i sin(theta + phi_i)` (which satisfy "
         "`<Phi> = 0`) and comparing with the averages the MDSM derivation uses.",

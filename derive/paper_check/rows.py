@@ -1,7 +1,7 @@
 """The rows of the paper check: every numbered equation with its derivation, in paper order.
 
-Each row pairs a transcription of `derive.paper` (typed by hand exactly as printed)
-with the expression the package derives; `derive.paper_check.engine` compares them.
+Each row pairs a transcription of `beltmdsm.derive.paper` (typed by hand exactly as printed)
+with the expression the package derives; `beltmdsm.derive.paper_check.engine` compares them.
 Rows whose derivation takes the friction law (``by_law=True``) are also derived for
 every other law of the registry: Eqs. 4, 6, 9-12 and 23-25 hold for Coulomb's law
 only (the MDSM rows are written in the effective friction ``mu_bar``, whatever law it

@@ -38,12 +38,11 @@ SITE_PAGES = {
 
 
 def parser() -> argparse.ArgumentParser:
-    """The command line's argparse tree (for sphinx-argparse): derive's top and derive
-    commands with the runtime commands of ``beltmdsm.cli.tree``."""
-    from beltmdsm.cli.tree import add_commands
-    from derive.cli import build_parser
+    """The command line's argparse tree (for sphinx-argparse): ``beltmdsm.cli.tree``'s,
+    the derive commands and the runtime commands."""
+    from beltmdsm.cli.tree import build_parser
 
-    built = build_parser(extend=add_commands)
+    built = build_parser()
     built.prog = "beltmdsm"
     # sphinx-argparse reads the help texts as reStructuredText
     stack = [built]
@@ -103,11 +102,11 @@ def api_page() -> str:
 
 def generated_page() -> str:
     """``reference/generated.rst``: the modules ``python -m derive`` writes."""
-    import generated
+    import beltmdsm.generated
 
     modules = sorted(
         m.name
-        for m in pkgutil.iter_modules(generated.__path__)
+        for m in pkgutil.iter_modules(beltmdsm.generated.__path__)
         if not m.name.startswith("_") and not m.ispkg
     )
     lines = [
@@ -118,15 +117,16 @@ def generated_page() -> str:
         "",
         "``python -m derive`` writes these plain numpy modules from the derivations of",
         "``derive/`` (never edit them by hand; ``python -m derive --check`` fails when they",
-        "are stale). Each module of ``generated`` has an mpmath twin in ``generated.mp``",
-        "with the same functions at arbitrary precision, where the module lists one.",
+        "are stale). Each module of ``beltmdsm.generated`` has an mpmath twin in",
+        "``beltmdsm.generated.mp`` with the same functions at arbitrary precision, where the",
+        "module lists one.",
         "",
         ".. autosummary::",
         "   :toctree: gen",
         "   :template: autosummary/generated_module.rst",
         "",
     ]
-    lines += [f"   generated.{name}" for name in modules] + [""]
+    lines += [f"   beltmdsm.generated.{name}" for name in modules] + [""]
     return "\n".join(lines)
 
 
@@ -137,9 +137,9 @@ def _rst_text(text: str) -> str:
 
 def laws_page() -> str:
     """``reference/laws.rst``: the laws of the registry and every parameter, from
-    ``generated.parameters`` (derive/laws.py wrote it), so that a law joins the page
+    ``beltmdsm.generated.parameters`` (derive/laws.py wrote it), so that a law joins the page
     when ``python -m derive`` adds it."""
-    from generated.parameters import (
+    from beltmdsm.generated.parameters import (
         LAW_PARAMETERS,
         OPTION_DEFAULTS,
         OPTION_DOCS,
@@ -148,7 +148,7 @@ def laws_page() -> str:
     )
 
     lines = [
-        ".. This page is written by docs/_ext/beltmdsm_site.py from generated.parameters.",
+        ".. This page is written by docs/_ext/beltmdsm_site.py from beltmdsm.generated.parameters.",
         "",
         "Laws and parameters",
         "===================",
@@ -327,9 +327,7 @@ def public_reference(app, env, node, contnode):
     that defines it (``beltmdsm.continuation.band.floquet_band``) links to its page under
     the public name (``beltmdsm.floquet_band``); one to an object that exists but has no
     page (a private helper) reads as text. A name that names nothing stays an error."""
-    if node.get("refdomain") != "py" or not node.get("reftarget", "").startswith(
-        ("beltmdsm.", "generated.")
-    ):
+    if node.get("refdomain") != "py" or not node.get("reftarget", "").startswith("beltmdsm."):
         return None
     try:
         obj = _resolve_object(node["reftarget"])

@@ -4,7 +4,7 @@ Stribeck friction with ``mu_k = mu_s`` is Coulomb friction, and Hunt-Crossley co
 with ``n_h = 3/2`` is Hertz-Damp (derive/laws.py): the same equations, computed through
 other generated functions and, for Stribeck, through the other Floquet engine
 (beltmdsm/periodic/general.py). Every parameter set is built from the registry's base
-values (`beltmdsm.Model`, ``generated.parameters.BASE``), so a new law cannot break
+values (`beltmdsm.Model`, ``beltmdsm.generated.parameters.BASE``), so a new law cannot break
 these tests through a missing name.
 """
 
@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 
 from beltmdsm.continuation.band import floquet_band
+from beltmdsm.generated.parameters import BASE
 from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.prediction.predict import predict
 from beltmdsm.simulation import simulate
-from generated.parameters import BASE
 
 #: The law that coincides with the default one, and what it is compared with.
 VARIANTS = {

@@ -7,9 +7,9 @@ import sys
 import numpy as np
 import pytest
 
+from beltmdsm.generated import dynamics
+from beltmdsm.generated.parameters import BASE
 from beltmdsm.model import LAW_OF, OPTIONS, Model, as_model, excitation_period, initial_state
-from generated import dynamics
-from generated.parameters import BASE
 
 
 def test_the_base_model_is_the_base_set_with_the_excitation_of_eq4():
@@ -266,9 +266,9 @@ def test_a_replaced_model_is_the_model_built_whole(start, kw):
 
 @pytest.fixture
 def generated_checks(monkeypatch):
-    """The parameters a generated function checks (``generated._checks``: ``param``,
+    """The parameters a generated function checks (``beltmdsm.generated._checks``: ``param``,
     ``within``)."""
-    from generated import _checks
+    from beltmdsm.generated import _checks
 
     seen = []
     param, within = _checks.param, _checks.within
@@ -287,7 +287,7 @@ def generated_checks(monkeypatch):
 
 
 def test_generated_functions_do_not_check_a_checked_model_again(generated_checks):
-    from generated import hybrid, unforced
+    from beltmdsm.generated import hybrid, unforced
 
     m = Model(Vb=5, friction="stribeck")
     bind = hybrid.bind_vector_field
@@ -303,7 +303,7 @@ def test_generated_functions_do_not_check_a_checked_model_again(generated_checks
 
 
 def test_a_value_put_in_the_place_of_a_checked_one_is_checked(generated_checks):
-    from generated import unforced
+    from beltmdsm.generated import unforced
 
     m = Model(Vb=5)
     grid = np.array([1.0, 2.0, 3.0])

@@ -1,4 +1,4 @@
-"""The runtime types no physics: every formula of the model comes from ``generated``.
+"""The runtime types no physics: every formula of the model comes from ``beltmdsm.generated``.
 
 A module of beltmdsm/ must not define a right-hand side, a force law or a transfer
 function of its own. The test reads every ``beltmdsm/**/*.py`` as a syntax tree and

@@ -1,10 +1,10 @@
 """A derivation that terminates for every law (issue 29, item 1).
 
-* `derive.budget.within` runs a step in a forked worker under a CPU-time and a memory
+* `beltmdsm.derive.budget.within` runs a step in a forked worker under a CPU-time and a memory
   budget: its value comes back, its exception is raised again, a step past either
   budget raises `OverBudget` and leaves no worker behind;
-* `derive.laws.register` refuses, in one line naming the law and the construct, a law
-  the framework cannot take (`derive.lawcheck`), and ``python -m derive`` turns that
+* `beltmdsm.derive.laws.register` refuses, in one line naming the law and the construct, a law
+  the framework cannot take (`beltmdsm.derive.lawcheck`), and ``python -m derive`` turns that
   into one line on stderr and exit 2;
 * a rational law derived under a budget too tight for Risch's algorithm records the
   fallback in ``generated/capabilities.py`` and averages by quadrature, whose values
@@ -29,10 +29,11 @@ from pathlib import Path
 import mpmath
 import pytest
 import sympy as sp
+from checkout import as_checkout
 
-from derive import budget, laws
-from derive.lawcheck import UnsupportedLaw
-from generated.parameters import BASE
+from beltmdsm.derive import budget, laws
+from beltmdsm.derive.lawcheck import UnsupportedLaw
+from beltmdsm.generated.parameters import BASE
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -103,7 +104,7 @@ def test_a_step_past_its_memory_budget_is_stopped(monkeypatch):
 
 
 def test_the_budgets_are_read_from_the_environment():
-    code = "from derive import budget; print(budget.SECONDS, budget.MEMORY_MB)"
+    code = "from beltmdsm.derive import budget; print(budget.SECONDS, budget.MEMORY_MB)"
     env = {**os.environ, "BELTMDSM_DERIVE_SECONDS": "2.5", "BELTMDSM_DERIVE_MEMORY_MB": "700"}
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
     assert out.stdout.split() == ["2.5", "700.0"]
@@ -170,9 +171,9 @@ def test_python_m_derive_refuses_such_a_law_in_one_line(tmp_path):
                 """
             )
         )
-    # the copied derive/ first, this checkout's runtime and generated/ after it
-    path = f"{tmp_path}{os.pathsep}{ROOT}"
-    env = {**os.environ, "PYTHONPATH": path, "PYTHONDONTWRITEBYTECODE": "1"}
+    # a checkout of its own: the copied derive/ beside a link to this one's beltmdsm/
+    as_checkout(tmp_path)
+    env = {**os.environ, "PYTHONPATH": str(tmp_path), "PYTHONDONTWRITEBYTECODE": "1"}
     out = subprocess.run(
         [sys.executable, "-m", "derive", "--out", str(tmp_path / "out")],
         cwd=tmp_path, env=env, capture_output=True, text=True,
@@ -190,8 +191,8 @@ def test_python_m_derive_refuses_such_a_law_in_one_line(tmp_path):
 RATIONAL = """
 import sys
 from pathlib import Path
-from derive import laws
-from derive.parameters import Parameter
+from beltmdsm.derive import laws
+from beltmdsm.derive.parameters import Parameter
 laws.register(
     "friction",
     laws.FrictionLaw(
@@ -203,7 +204,7 @@ laws.register(
         coefficient=lambda P, s: P["mu_s"] / (1 + P["delta_l"] * s),
     ),
 )
-from derive import codegen, modules
+from beltmdsm.derive import codegen, modules
 mods = (modules.unforced.build(), modules.friction.build(), modules.capabilities.build())
 codegen.write(codegen.render_all(mods), Path(sys.argv[1]) / "generated")
 """
@@ -212,9 +213,9 @@ RATIONAL_CHECK = """
 import json, sys
 sys.path.insert(0, sys.argv[1])
 import mpmath
-from generated import capabilities, friction, unforced
-from generated.mp import friction as mp_friction
-from generated.parameters import BASE
+from beltmdsm.generated import capabilities, friction, unforced
+from beltmdsm.generated.mp import friction as mp_friction
+from beltmdsm.generated.parameters import BASE
 p = {**BASE, "delta_l": 3.0}
 cases = [(-0.3, 0.8), (0.5, 0.8), (2.0, 0.8), (-1.5, 0.4)]
 with mpmath.workdps(30):
@@ -262,6 +263,7 @@ def test_a_law_past_its_budget_falls_back_to_quadrature_and_says_so(tmp_path):
     source = (tmp_path / "generated" / "friction.py").read_text()
     rational = source[source.index("def _mu_bar__rational") :].split("\n\n\n")[0]
     assert "_support.quad(" in rational
+    as_checkout(tmp_path)  # its generated/ is beltmdsm.generated there
     out = subprocess.run(
         [sys.executable, "-c", RATIONAL_CHECK, str(tmp_path)], cwd=ROOT, env=env,
         capture_output=True, text=True,
@@ -294,8 +296,8 @@ def test_a_law_past_its_budget_falls_back_to_quadrature_and_says_so(tmp_path):
 CUBIC = """
 import sys
 from pathlib import Path
-from derive import laws
-from derive.parameters import Parameter
+from beltmdsm.derive import laws
+from beltmdsm.derive.parameters import Parameter
 laws.register(
     "friction",
     laws.FrictionLaw(
@@ -307,15 +309,15 @@ laws.register(
         coefficient=lambda P, s: P["mu_s"] - P["c_1"] * s + P["c_3"] * s**3,
     ),
 )
-from derive import codegen, modules
+from beltmdsm.derive import codegen, modules
 codegen.write(codegen.render_all((modules.unforced.build(),)), Path(sys.argv[1]) / "generated")
 """
 
 CUBIC_CHECK = """
 import json, sys
 sys.path.insert(0, sys.argv[1])
-from generated import unforced
-from generated.parameters import BASE
+from beltmdsm.generated import unforced
+from beltmdsm.generated.parameters import BASE
 c1 = [0.3, 0.021, 0.005, 0.0]
 print(json.dumps([float(unforced.critical_belt_speed(friction="cubic", **{**BASE, "c_1": c}))
                   for c in c1]))
@@ -332,6 +334,7 @@ def test_the_unforced_critical_speed_of_a_cubic_law_is_its_nonnegative_root(tmp_
         text=True,
     )  # fmt: skip
     assert made.returncode == 0, made.stderr
+    as_checkout(tmp_path)  # its generated/ is beltmdsm.generated there
     out = subprocess.run(
         [sys.executable, "-c", CUBIC_CHECK, str(tmp_path)], cwd=ROOT, env=env,
         capture_output=True, text=True,

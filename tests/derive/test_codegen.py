@@ -14,18 +14,19 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
+from checkout import as_checkout
 
-from derive.codegen import printers
-from generated import _support
-from generated import dynamics as _dynamics
-from generated import hybrid as _hybrid
-from generated import oscillator as _osc
-from generated.parameters import BASE, DOMAINS, FRICTION_LAWS
+from beltmdsm.derive.codegen import printers
+from beltmdsm.generated import _support
+from beltmdsm.generated import dynamics as _dynamics
+from beltmdsm.generated import hybrid as _hybrid
+from beltmdsm.generated import oscillator as _osc
+from beltmdsm.generated.parameters import BASE, DOMAINS, FRICTION_LAWS
 
 ROOT = Path(__file__).resolve().parents[2]
 
 DIGEST = (
-    "import hashlib, sys; from derive import codegen, modules; "
+    "import hashlib, sys; from beltmdsm.derive import codegen, modules; "
     "files = codegen.render_all(modules.all_modules()); "
     "h = hashlib.sha256(); "
     "[h.update(k.encode() + v.encode()) for k, v in sorted(files.items())]; "
@@ -55,6 +56,7 @@ def test_output_is_identical_across_hash_seeds():
 def test_check_names_a_hand_edited_file(tmp_path):
     for part in ("derive", "generated"):
         shutil.copytree(ROOT / part, tmp_path / part, ignore=shutil.ignore_patterns("__pycache__"))
+    as_checkout(tmp_path)  # beside a link to beltmdsm/, the copies are beltmdsm.derive/.generated
     target = tmp_path / "generated" / "unforced.py"
     text = target.read_text()
     target.write_text(text.replace("g*mu_s/omega1**2", "g*mu_s/omega1**3", 1))
@@ -75,14 +77,21 @@ def test_every_generated_file_has_the_do_not_edit_header():
 
 @pytest.mark.parametrize(
     "module",
-    ["generated.unforced", "generated.dynamics", "generated.mp.unforced", "generated.mp.dynamics"],
+    [
+        "beltmdsm.generated.unforced",
+        "beltmdsm.generated.dynamics",
+        "beltmdsm.generated.mp.unforced",
+        "beltmdsm.generated.mp.dynamics",
+    ],
 )
 def test_importing_generated_code_does_not_import_sympy(module):
     code = f"import sys, {module}; print('sympy' in sys.modules)"
     assert _run(["-c", code]).stdout.strip() == "False"
 
 
-@pytest.mark.parametrize("module", ["generated.stability", "generated.mp.stability"])
+@pytest.mark.parametrize(
+    "module", ["beltmdsm.generated.stability", "beltmdsm.generated.mp.stability"]
+)
 def test_importing_generated_code_does_not_import_numba(module):
     """numba is loaded on the first accelerated call, not at import (it takes a while)."""
     code = f"import sys, {module}; print('numba' in sys.modules)"
@@ -405,13 +414,13 @@ def test_bind_default_backend_is_numba_when_installed():
 # A law registered inside a test: adding a law is adding one entry --------------------
 
 #: The viscous-plus-Coulomb law of docs/extending.md, registered in a fresh process
-#: (before derive.model builds its symbols), and three modules regenerated into a
+#: (before beltmdsm.derive.model builds its symbols), and three modules regenerated into a
 #: temporary folder: nothing else in derive/ or generated/ is touched.
 TOY_LAW = """
 import sys
 from pathlib import Path
-from derive import laws
-from derive.parameters import Parameter
+from beltmdsm.derive import laws
+from beltmdsm.derive.parameters import Parameter
 laws.register(
     "friction",
     laws.FrictionLaw(
@@ -423,7 +432,7 @@ laws.register(
         coefficient=lambda P, s: P["mu_s"] + P["c_v"] * s,
     ),
 )
-from derive import codegen, modules
+from beltmdsm.derive import codegen, modules
 mods = (modules.unforced.build(), modules.friction.build(), modules.capabilities.build())
 codegen.write(codegen.render_all(mods), Path(sys.argv[1]) / "generated")
 """
@@ -431,8 +440,8 @@ codegen.write(codegen.render_all(mods), Path(sys.argv[1]) / "generated")
 TOY_CHECK = """
 import json, sys
 sys.path.insert(0, sys.argv[1])
-from generated import capabilities, friction, unforced
-from generated.parameters import BASE, LAW_PARAMETERS, OPTIONS
+from beltmdsm.generated import capabilities, friction, unforced
+from beltmdsm.generated.parameters import BASE, LAW_PARAMETERS, OPTIONS
 p = {**BASE, "c_v": 0.05, "Vb": 3.0}
 Vr = [-9.0, -3.0, 0.5, 7.0]
 print(json.dumps(dict(
@@ -459,6 +468,7 @@ def test_a_law_registered_in_a_test_is_derived_into_every_function(tmp_path):
     source = (tmp_path / "generated" / "friction.py").read_text()
     viscous = source[source.index("def _mu_bar__viscous") :].split("\n\n\n")[0]
     assert "_support.quad(" not in viscous
+    as_checkout(tmp_path)  # its generated/ is beltmdsm.generated there
     out = _run(["-c", TOY_CHECK, str(tmp_path)])
     assert out.returncode == 0, out.stderr
     got = __import__("json").loads(out.stdout)

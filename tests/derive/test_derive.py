@@ -3,11 +3,11 @@
 import pytest
 import sympy as sp
 
-from derive import dynamics as dyn
-from derive import oscillator as osc
-from derive import stability as st
-from derive import statespace as ss
-from derive.model import (
+from beltmdsm.derive import dynamics as dyn
+from beltmdsm.derive import oscillator as osc
+from beltmdsm.derive import stability as st
+from beltmdsm.derive import statespace as ss
+from beltmdsm.derive.model import (
     CONTACT_LAWS,
     FRICTION_LAWS,
     STATE,
@@ -88,7 +88,7 @@ def test_reduced_verdict_is_the_hurwitz_test():
     """With q, s > 0: every H_k > 0 exactly when p > 0 and r > 0.
 
     If p, r > 0 each factored H_k is a sum of products of positive terms (SymPy proves
-    it); the converse (a root argument, see derive.stability) is checked in exact
+    it); the converse (a root argument, see beltmdsm.derive.stability) is checked in exact
     arithmetic on a grid of signs
     and magnitudes."""
     pos = sp.symbols("p q r s", positive=True)
@@ -120,8 +120,8 @@ def test_stability_conditions_are_p_and_r_with_q_and_s_positive(convention, cont
 
 
 def test_registry_refuses_a_clash_and_a_wrong_kind():
-    from derive import laws
-    from derive.parameters import Parameter
+    from beltmdsm.derive import laws
+    from beltmdsm.derive.parameters import Parameter
 
     coulomb = laws.get("friction", "coulomb")
     with pytest.raises(ValueError, match="registered already"):
@@ -142,7 +142,7 @@ def test_registry_shares_a_parameter_name_only_where_it_means_the_same():
     table, every owner in `laws.owners`); a row that differs is refused by name."""
     from dataclasses import replace
 
-    from derive import laws
+    from beltmdsm.derive import laws
 
     (mu_k,) = [p for p in laws.get("friction", "static_kinetic").parameters if p.name == "mu_k"]
     assert laws.owners("mu_k") == (("friction", "stribeck"), ("friction", "static_kinetic"))
@@ -165,11 +165,11 @@ def test_registry_shares_a_parameter_name_only_where_it_means_the_same():
 
 
 def test_static_coefficient_is_mu_s_for_every_shipped_law():
-    from derive.model import static_coefficient
+    from beltmdsm.derive.model import static_coefficient
 
     assert all(static_coefficient(f) == P["mu_s"] for f in FRICTION_LAWS)
     # the slip law at rest: mu_s but for static_kinetic, whose slip is at mu_k
-    from derive.model import rest_coefficient
+    from beltmdsm.derive.model import rest_coefficient
 
     assert rest_coefficient("static_kinetic") == P["mu_k"]
     assert all(rest_coefficient(f) == P["mu_s"] for f in ("coulomb", "stribeck"))
@@ -177,7 +177,7 @@ def test_static_coefficient_is_mu_s_for_every_shipped_law():
 
 @pytest.mark.parametrize("contact", CONTACT_LAWS)
 def test_exponent_of_the_contact_law(contact):
-    from derive.fit import exponent
+    from beltmdsm.derive.fit import exponent
 
     assert (
         exponent(contact)
@@ -192,7 +192,7 @@ def test_exponent_of_the_contact_law(contact):
 def test_the_fast_average_is_closed_form_exactly_for_a_constant_or_polynomial_law():
     """Risch decides: Coulomb's (nothing beyond mu_s) and a polynomial remainder are
     elementary; Stribeck's exp(-|v|/v_s) is not (a quadrature)."""
-    from derive import averaging
+    from beltmdsm.derive import averaging
 
     assert averaging.closed_form("coulomb")[0]
     holds, why = averaging.closed_form("stribeck")

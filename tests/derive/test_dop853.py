@@ -7,8 +7,8 @@ import mpmath
 import numpy as np
 import pytest
 
-import generated.tableau as gen
-from derive import dop853
+import beltmdsm.generated.tableau as gen
+from beltmdsm.derive import dop853
 
 A = np.array(dop853.A)
 B = np.array(dop853.B)

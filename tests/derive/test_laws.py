@@ -25,10 +25,19 @@ import mpmath
 import numpy as np
 import pytest
 
-from derive import laws
-from derive.units import contact_units
-from generated import _support, correlation, dynamics, fit, friction, hybrid, stability, unforced
-from generated.parameters import (
+from beltmdsm.derive import laws
+from beltmdsm.derive.units import contact_units
+from beltmdsm.generated import (
+    _support,
+    correlation,
+    dynamics,
+    fit,
+    friction,
+    hybrid,
+    stability,
+    unforced,
+)
+from beltmdsm.generated.parameters import (
     BASE,
     CONTACT_LAWS,
     FRICTION_LAWS,
@@ -193,7 +202,7 @@ def _same_function(label, m, name, args, params_a, params_b, opts_a, opts_b):
     keep_b = {k: v for k, v in params_b.items() if k not in positional}
     a = _flat(_evaluate(getattr(m, name), args, keep, **opts_a))
     b = _flat(_evaluate(getattr(m, name), args, keep_b, **opts_b))
-    mp_module = importlib.import_module(f"generated.mp.{m.__name__.split('.')[-1]}")
+    mp_module = importlib.import_module(f"beltmdsm.generated.mp.{m.__name__.split('.')[-1]}")
     with mpmath.workdps(30):
         mp_args = [mpmath.mpf(x) for x in args]
         ref_a = _flat(_evaluate(getattr(mp_module, name), mp_args, keep, **opts_a), mp=True)
@@ -255,7 +264,7 @@ def test_hunt_crossley_with_exponent_three_halves_is_hertz_damp(case):
 
 
 def test_capabilities_cover_every_combination_with_every_fact():
-    from generated import capabilities
+    from beltmdsm.generated import capabilities
 
     combos = set(itertools.product(FRICTION_LAWS, CONTACT_LAWS, TENSION_LAWS))
     assert set(capabilities.CAPABILITIES) == combos
@@ -285,7 +294,7 @@ def _mu(law, speeds):
 
 
 def test_capabilities_of_the_shipped_laws():
-    from generated import capabilities
+    from beltmdsm.generated import capabilities
 
     for key, facts in capabilities.CAPABILITIES.items():
         if key[0] not in SHIPPED_FACTS or key[1] not in SHIPPED_CONTACTS:
@@ -313,7 +322,7 @@ def test_capabilities_agree_with_the_laws_values(law):
     average is a quadrature has a quadrature in generated/friction.py, a closed form none."""
     import inspect as _inspect
 
-    from generated import capabilities
+    from beltmdsm.generated import capabilities
 
     facts = capabilities.CAPABILITIES[(law, CONTACT_LAWS[0], TENSION_LAWS[0])]
     holds = {name: h for name, (h, _) in facts.items()}
@@ -352,7 +361,7 @@ def test_bound_kernels_of_the_new_laws_equal_their_public_functions(m, name, pub
     against its public function, both against the mpmath variant: the kernel's error is
     at most four times the public function's, or 16 ulps of max(1, |value|) (the same
     expressions; only libm and numpy round their elementary functions differently)."""
-    from generated._support import Refused
+    from beltmdsm.generated._support import Refused
 
     if isinstance(getattr(m, "_" + name[5:].upper())[tuple(options.values())], Refused):
         return
@@ -371,7 +380,7 @@ def test_bound_kernels_of_the_new_laws_equal_their_public_functions(m, name, pub
         got = np.ravel(np.asarray(bound(*args), dtype=float))
         with np.errstate(all="ignore"):
             ref_np = np.ravel(np.asarray(public(*args, **options, **params), dtype=float))
-        mp_module = importlib.import_module(f"generated.mp.{m.__name__.split('.')[-1]}")
+        mp_module = importlib.import_module(f"beltmdsm.generated.mp.{m.__name__.split('.')[-1]}")
         with mpmath.workdps(30):
             exact = _flat(
                 getattr(mp_module, name[5:])(*map(mpmath.mpf, args), **options, **params), mp=True

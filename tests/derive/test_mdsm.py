@@ -4,10 +4,10 @@ import mpmath
 import pytest
 import sympy as sp
 
-from derive import mdsm
-from derive.fit import X2max, coefficients_eq_17
-from derive.model import P
-from generated.parameters import BASE
+from beltmdsm.derive import mdsm
+from beltmdsm.derive.fit import X2max, coefficients_eq_17
+from beltmdsm.derive.model import P
+from beltmdsm.generated.parameters import BASE
 
 b1, w1, b2, w2, g = (P[k] for k in ("beta1", "omega1", "beta2", "omega2", "g"))
 Z1, Z2, tau = mdsm.Z1, mdsm.Z2, mdsm.tau

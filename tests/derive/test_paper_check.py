@@ -1,4 +1,5 @@
-"""The paper check (derive.paper, derive.paper_check): engine, transcriptions, findings."""
+"""The paper check (beltmdsm.derive.paper, beltmdsm.derive.paper_check): engine,
+transcriptions, findings."""
 
 import re
 
@@ -7,11 +8,11 @@ import pytest
 import sympy as sp
 from sympy.parsing.sympy_parser import TokenError
 
+from beltmdsm.derive import codegen, paper, paper_check, stability
+from beltmdsm.derive.model import FRICTION_LAWS, P
+from beltmdsm.derive.statespace import jacobian_at_equilibrium_eq_11
 from beltmdsm.model import Model
 from beltmdsm.studies import evidence
-from derive import codegen, paper, paper_check, stability
-from derive.model import FRICTION_LAWS, P
-from derive.statespace import jacobian_at_equilibrium_eq_11
 
 #: Every numbered equation the report must cover (issue 4).
 REQUIRED = (
@@ -72,7 +73,7 @@ def test_wrong_exponent_is_reported_as_differs():
 
 def test_numeric_path_reports_a_wrong_piecewise_transcription():
     """Eq. 23 with arccos replaced by arcsin: only the numeric comparison can decide."""
-    from derive.friction import mu_bar_eq_23
+    from beltmdsm.derive.friction import mu_bar_eq_23
 
     wrong = paper.EQ_23.replace("arccos", "arcsin")
     result = paper_check.check_row(

@@ -1,7 +1,7 @@
 """A friction law registered inside this test reaches every command (issue 19, item 4).
 
 The toy law, ``mu(|Vr|) = mu_s - c_f |Vr|`` (linear falling, one new parameter ``c_f``),
-is registered in a fresh process with `derive.laws.register` (nothing in the package
+is registered in a fresh process with `beltmdsm.derive.laws.register` (nothing in the package
 is edited) and ``python -m derive --out DIR`` writes a complete ``generated/`` for it
 into a temporary folder. Each command of the command line (`beltmdsm.cli.tree.COMMANDS`
 and ``check-paper``) then runs in a subprocess with that ``generated/`` first on the path
@@ -43,9 +43,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from checkout import as_checkout
 
 from beltmdsm.cli.tree import COMMANDS
-from generated.parameters import BASE, FRICTION_LAWS
+from beltmdsm.generated.parameters import BASE, FRICTION_LAWS
 
 ROOT = Path(__file__).resolve().parents[2]
 #: The law's name and its parameter's base value (as registered below).
@@ -54,8 +55,8 @@ F = ["--friction", LAW]
 
 REGISTER = f"""
 import sys
-from derive import laws
-from derive.parameters import Parameter
+from beltmdsm.derive import laws
+from beltmdsm.derive.parameters import Parameter
 
 laws.register(
     "friction",
@@ -69,9 +70,9 @@ laws.register(
         coefficient=lambda P, s: P["mu_s"] - P["c_f"] * s,
     ),
 )
-from derive import cli
+from beltmdsm.cli import main
 
-sys.exit(cli.main(["--out", sys.argv[1]]))
+sys.exit(main(["--out", sys.argv[1]]))
 """
 
 #: The model's base values (the toy law adds only c_f).
@@ -100,14 +101,14 @@ def toy(tmp_path_factory):
     assert made.returncode == 0, made.stdout + made.stderr
     assert "wrote 24 changed file(s) of 24" in made.stdout, made.stdout
     print(f"regenerated with the toy law in {time.perf_counter() - start:.1f} s")
-    return root
+    return as_checkout(root)  # its generated/ is beltmdsm.generated there
 
 
 def _run(toy, args, **kw):
     args = [str(a) for a in args]
     env = {
         **os.environ,
-        "PYTHONPATH": f"{toy}{os.pathsep}{ROOT}",
+        "PYTHONPATH": str(toy),
         "BELTMDSM_CACHE": str(toy / "cache"),
         "PYTHONDONTWRITEBYTECODE": "1",
     }
@@ -152,7 +153,7 @@ def test_the_law_is_an_option_of_every_model_command_and_its_parameter_a_flag(to
         toy,
         """
         import json
-        from generated import capabilities, parameters
+        from beltmdsm.generated import capabilities, parameters
         print(json.dumps(dict(
             options=parameters.OPTIONS["friction"],
             owner=parameters.LAW_PARAMETERS[("friction", "falling")],

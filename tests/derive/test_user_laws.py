@@ -1,7 +1,7 @@
 """The textbook laws of issue 29 derive completely, with the default budgets (slow).
 
 Three one-entry friction laws a user would write, registered in a fresh process with
-`derive.laws.register` and derived with ``python -m derive --out DIR`` (every module):
+`beltmdsm.derive.laws.register` and derived with ``python -m derive --out DIR`` (every module):
 
 * rational velocity weakening ``mu_s / (1 + delta_l s)`` (Risch's algorithm ran for
   minutes into tens of GB before the budgets);
@@ -28,16 +28,17 @@ from pathlib import Path
 
 import mpmath
 import pytest
+from checkout import as_checkout
 
-from generated.parameters import BASE
+from beltmdsm.generated.parameters import BASE
 
 ROOT = Path(__file__).resolve().parents[2]
 
 REGISTER = """
 import sys
 import sympy as sp
-from derive import laws
-from derive.parameters import Parameter
+from beltmdsm.derive import laws
+from beltmdsm.derive.parameters import Parameter
 
 def law(name, summary, parameters, coefficient):
     laws.register("friction", laws.FrictionLaw(
@@ -55,17 +56,17 @@ law("exponential", "mu_d + (mu_s - mu_d) exp(-|Vr|/v_e)",
     (Parameter("mu_d", "1", 0.2, "nonnegative", "kinetic coefficient"),
      Parameter("v_e", "m/s", 0.5, "positive", "decay speed")),
     lambda P, s: P["mu_d"] + (P["mu_s"] - P["mu_d"]) * sp.exp(-s / P["v_e"]))
-from derive import cli
-sys.exit(cli.main(["--out", sys.argv[1]]))
+from beltmdsm.cli import main
+sys.exit(main(["--out", sys.argv[1]]))
 """
 
 CHECK = """
 import json, sys
 sys.path.insert(0, sys.argv[1])
 import mpmath
-from generated import capabilities, friction, unforced
-from generated.mp import friction as mp_friction
-from generated.parameters import BASE
+from beltmdsm.generated import capabilities, friction, unforced
+from beltmdsm.generated.mp import friction as mp_friction
+from beltmdsm.generated.parameters import BASE
 out = {}
 cases = [(-0.3, 0.8), (0.5, 0.8), (2.0, 0.8), (-1.5, 0.4)]
 for law in ("rational", "cubic", "exponential"):
@@ -133,7 +134,7 @@ def derived(tmp_path_factory):
     peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
     print(f"derived the three laws in {time.perf_counter() - start:.0f} s, peak {peak:.0f} MB")
     assert made.returncode == 0, made.stdout + made.stderr
-    return root, made
+    return as_checkout(root), made  # its generated/ is beltmdsm.generated there
 
 
 @pytest.mark.slow

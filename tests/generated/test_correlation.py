@@ -1,12 +1,12 @@
-"""generated.correlation: closed forms against mpmath quadrature."""
+"""beltmdsm.generated.correlation: closed forms against mpmath quadrature."""
 
 import mpmath
 import numpy as np
 import pytest
 
-from generated import correlation, friction, unforced
-from generated.mp import correlation as mp_correlation
-from generated.parameters import BASE
+from beltmdsm.generated import correlation, friction, unforced
+from beltmdsm.generated.mp import correlation as mp_correlation
+from beltmdsm.generated.parameters import BASE
 
 CASES = [
     (-4.0, 8.0, 9.81, 27.0, 3.9),
@@ -124,7 +124,7 @@ def quad_law(u, V, N0, N1, th, p, weight=lambda t: 1, harmonic=False):
 
 
 LAW = {"mu_s": mpmath.mpf("0.4"), "mu_k": mpmath.mpf("0.25"), "v_s": mpmath.mpf("0.8")}
-#: generated._support.quad's error for these integrands (test_friction.QUAD_TOL) times the
+#: beltmdsm.generated._support.quad's error for these integrands (test_friction.QUAD_TOL) times the
 #: integral's scale (mu_s - mu_k)(|N0| + |N1|), plus a few ulps of the closed part.
 QUAD_TOL = 1e-13
 

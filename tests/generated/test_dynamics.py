@@ -1,4 +1,4 @@
-"""generated.dynamics against Eq. (4) typed by hand and against the mpmath variant."""
+"""beltmdsm.generated.dynamics against Eq. (4) typed by hand and against the mpmath variant."""
 
 import hand_eq4 as H
 import mpmath
@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from conftest import random_params, rel_err
 
-from generated import dynamics, unforced
-from generated.mp import dynamics as mp_dynamics
+from beltmdsm.generated import dynamics, unforced
+from beltmdsm.generated.mp import dynamics as mp_dynamics
 
 
 def eq4_rhs(t, X1, Y1, X2, Y2, p, contact="hertz_damp"):

@@ -1,11 +1,11 @@
-"""generated.fit against Eq. (17) typed by hand and against mpmath quadrature."""
+"""beltmdsm.generated.fit against Eq. (17) typed by hand and against mpmath quadrature."""
 
 import mpmath
 import numpy as np
 import pytest
 
-from generated import fit
-from generated.mp import fit as mp_fit
+from beltmdsm.generated import fit
+from beltmdsm.generated.mp import fit as mp_fit
 
 
 def eq17(X):
@@ -97,7 +97,7 @@ def test_x2max_of_the_mdsm_scene_is_equilibrium_plus_fast_amplitude(rng):
     """X2max = X2^0 (Eq. 9) + |linear normal response| (normal block of Eq. 11)."""
     from conftest import random_params
 
-    from generated import unforced
+    from beltmdsm.generated import unforced
 
     for contact in ("hertz_damp", "kelvin_voigt"):
         p = random_params(rng)
@@ -186,7 +186,7 @@ def test_the_fit_and_its_range_use_the_same_exponent(base):
     for n in (1.2, 1.5, 2.5):
         p = {**base, "n_h": n}
         top = fit.mdsm_fit_range(contact="hunt_crossley", **p)
-        from generated import unforced
+        from beltmdsm.generated import unforced
 
         X20 = unforced.equilibrium(contact="hunt_crossley", **p)[2]
         assert X20 == pytest.approx((p["g"] / p["omega2"] ** 2) ** (1 / n), rel=1e-14)

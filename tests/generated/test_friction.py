@@ -1,12 +1,13 @@
-"""generated.friction against Eqs. (23)-(25) typed by hand, their definition, and mpmath."""
+"""beltmdsm.generated.friction against Eqs. (23)-(25) typed by hand, their definition and
+mpmath."""
 
 import mpmath
 import numpy as np
 import pytest
 from conftest import random_params
 
-from generated import friction, unforced
-from generated.mp import friction as mp_friction
+from beltmdsm.generated import friction, unforced
+from beltmdsm.generated.mp import friction as mp_friction
 
 
 def eq23(Vr, Vhat, mu_s):
@@ -194,7 +195,7 @@ def mp_average(f, Vr, Vhat):
     return mpmath.quad(lambda th: f(Vr + Vhat * mpmath.sin(th)), points) / (2 * mpmath.pi)
 
 
-#: Quadrature error of generated._support.quad (28 graded panels of 10 Gauss-Legendre
+#: Quadrature error of beltmdsm.generated._support.quad (28 graded panels of 10 Gauss-Legendre
 #: nodes) for these integrands, measured against mpmath over Vhat/v_s in [0.1, 1e3]:
 #: below 1e-13 of the integral's scale mu_s - mu_k; rounding adds a few ulps of mu_s.
 QUAD_TOL = 1e-13
@@ -203,7 +204,7 @@ QUAD_TOL = 1e-13
 @pytest.mark.parametrize("kappa", [0.5, 5.0, 50.0, 500.0])
 @pytest.mark.parametrize("Vr", [-9.0, -7.99, -4.0, -0.3, 0.0, 2.5, 11.0])
 def test_stribeck_mu_bar_is_the_average_of_the_law_over_a_harmonic_cycle(mp50, Vr, kappa):
-    """friction.mu_bar(friction="stribeck") (numpy: the quadrature of generated._support;
+    """friction.mu_bar(friction="stribeck") (numpy: the quadrature of beltmdsm.generated._support;
     mpmath: mpmath.quad) against the cycle average by mpmath of the law typed here."""
     Vhat, mu_s, mu_k = mpmath.mpf(8), mpmath.mpf("0.4"), mpmath.mpf("0.25")
     v_s = Vhat / kappa

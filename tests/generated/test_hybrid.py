@@ -1,4 +1,4 @@
-"""generated.hybrid: modes, switching surfaces, guards and saltation matrices of Eq. (4).
+"""beltmdsm.generated.hybrid: modes, switching surfaces, guards and saltation matrices of Eq. (4).
 
 References, all independent of the generated code: the fields, surfaces and the
 saltation formula typed by hand (tests/hand_eq4.py) and evaluated with mpmath at 30
@@ -22,9 +22,9 @@ import pytest
 from conftest import random_params
 from scipy.integrate import solve_ivp
 
-from generated import dynamics, hybrid
-from generated.mp import hybrid as mp_hybrid
-from generated.parameters import BASE
+from beltmdsm.generated import dynamics, hybrid
+from beltmdsm.generated.mp import hybrid as mp_hybrid
+from beltmdsm.generated.parameters import BASE
 
 EPS = H.EPS
 ULPS = 16

@@ -1,4 +1,4 @@
-"""generated.oscillator: the tangential oscillator of Eq. (4) in closed form.
+"""beltmdsm.generated.oscillator: the tangential oscillator of Eq. (4) in closed form.
 
 References: the matrix exponential expm(A tau) of A = [[0, 1], [-omega1^2,
 -2 beta1 omega1]] by mpmath at 40 digits (and scipy where it is accurate), and the
@@ -19,9 +19,9 @@ import pytest
 import scipy.linalg
 from scipy.integrate import solve_ivp
 
-from generated import hybrid, oscillator
-from generated.mp import oscillator as mp_oscillator
-from generated.parameters import BASE
+from beltmdsm.generated import hybrid, oscillator
+from beltmdsm.generated.mp import oscillator as mp_oscillator
+from beltmdsm.generated.parameters import BASE
 
 EPS = np.finfo(float).eps
 TAUS = (0.0, 1e-3, 0.5, 3.0, 30.0, 300.0, 1000.0)
@@ -303,7 +303,7 @@ def test_slip_motion_is_free_plus_forced_plus_contact_response(mode, contact):
     without the last term. Reference: the mode's vector_field integrated directly.
     Both integrations by DOP853 at rtol = 1e-12, atol = 1e-12: each within ~1e-10 of the
     states' size over these 3 s; tolerance 1e-9 of it."""
-    from generated.parameters import BASE
+    from beltmdsm.generated.parameters import BASE
 
     p = dict(BASE, alpha=0.5, phase_t=0.3)
     code = hybrid.MODE_CODES[mode]
@@ -370,7 +370,7 @@ def test_tangential_state_is_its_parts_and_its_mpmath_twin(beta1):
 
 
 def test_tangential_state_refuses_a_friction_law_that_depends_on_the_speed():
-    from generated._support import Unsupported
+    from beltmdsm.generated._support import Unsupported
 
     with pytest.raises(Unsupported, match="no superposition"):
         oscillator.tangential_state(1.0, *[0.0] * 10, -1.0, friction="stribeck", **BASE)

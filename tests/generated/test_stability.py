@@ -1,4 +1,4 @@
-"""generated.stability against Eqs. (22), (25), (28), (A7), (A8) typed by hand and mpmath.
+"""beltmdsm.generated.stability against Eqs. (22), (25), (28), (A7), (A8) typed by hand and mpmath.
 
 Includes the hard cases: next to the stability boundary, double roots, Vb -> Vhat, and
 parameters from 1e-6 to 1e6.
@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 from conftest import random_params, rel_err
 
-from generated import _support, friction, stability, unforced
-from generated.mp import friction as mp_friction
-from generated.mp import stability as mp_stability
-from generated.parameters import BASE
+from beltmdsm.generated import _support, friction, stability, unforced
+from beltmdsm.generated.mp import friction as mp_friction
+from beltmdsm.generated.mp import stability as mp_stability
+from beltmdsm.generated.parameters import BASE
 
 CONVENTIONS = ("paper", "consistent")
 CONTACTS = ("hertz_damp", "kelvin_voigt")
@@ -576,7 +576,7 @@ def growth_rate_bound(p, lam, contact):
     p : dict of float
         One parameter set (exact doubles), with ``Vb < Vhat`` or ``Vb > Vhat``.
     lam : list of 4 mpmath.mpc
-        `generated.mp.stability.eigenvalues` at >= 30 digits: the tangential pair,
+        `beltmdsm.generated.mp.stability.eigenvalues` at >= 30 digits: the tangential pair,
         then the normal pair.
     contact : {"hertz_damp", "kelvin_voigt"}
 

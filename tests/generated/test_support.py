@@ -1,9 +1,9 @@
-"""generated._support: blockwise evaluation and the numba backend switch."""
+"""beltmdsm.generated._support: blockwise evaluation and the numba backend switch."""
 
 import numpy as np
 import pytest
 
-from generated import _support
+from beltmdsm.generated import _support
 
 
 def kernel(a, b, c):
@@ -78,8 +78,8 @@ def test_compiled_numba_ufunc_broadcasts_and_is_cached():
 @pytest.mark.parametrize("value", [np.inf, -np.inf, [1.0, np.inf]])
 def test_infinite_parameters_are_refused_by_name(value):
     """Parameters are finite physical numbers; infinity was once passed straight through."""
-    from generated import friction, stability, unforced
-    from generated.parameters import BASE
+    from beltmdsm.generated import friction, stability, unforced
+    from beltmdsm.generated.parameters import BASE
 
     with pytest.raises(ValueError, match=r"equilibrium\(\): parameter 'mu_s' must be finite"):
         unforced.equilibrium(**{**BASE, "mu_s": value})
@@ -94,8 +94,8 @@ def test_infinite_parameters_are_refused_by_name(value):
 def test_infinite_parameters_are_refused_by_the_mpmath_variants():
     import mpmath
 
-    from generated.mp import stability, unforced
-    from generated.parameters import BASE
+    from beltmdsm.generated.mp import stability, unforced
+    from beltmdsm.generated.parameters import BASE
 
     with pytest.raises(ValueError, match="'mu_s' must be finite"):
         unforced.equilibrium(**{**BASE, "mu_s": mpmath.inf})
@@ -104,8 +104,8 @@ def test_infinite_parameters_are_refused_by_the_mpmath_variants():
 
 
 def test_nan_and_domain_messages_are_unchanged_and_an_empty_array_passes():
-    from generated import unforced
-    from generated.parameters import BASE
+    from beltmdsm.generated import unforced
+    from beltmdsm.generated.parameters import BASE
 
     with pytest.raises(ValueError, match="'omega1' must be a number, not NaN"):
         unforced.equilibrium(**{**BASE, "omega1": [1.0, np.nan, np.inf]})
@@ -115,14 +115,14 @@ def test_nan_and_domain_messages_are_unchanged_and_an_empty_array_passes():
 
 
 def test_infinite_outputs_are_still_allowed():
-    from generated import friction
+    from beltmdsm.generated import friction
 
     assert friction.mu_bar_slope(8.5, 8.5, 0.4) == np.inf
 
 
 def test_an_infinite_computed_vhat_is_reported_as_such():
-    from generated import stability
-    from generated.parameters import BASE
+    from beltmdsm.generated import stability
+    from beltmdsm.generated.parameters import BASE
 
     resonant = {**BASE, "beta1": 0.0, "Omega": BASE["omega1"]}
     with pytest.raises(

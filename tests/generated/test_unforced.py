@@ -1,12 +1,13 @@
-"""generated.unforced against Eqs. (9)-(12) typed by hand and against mpmath at 50 digits."""
+"""beltmdsm.generated.unforced against Eqs. (9)-(12) typed by hand and against mpmath at 50
+digits."""
 
 import mpmath
 import numpy as np
 import pytest
 from conftest import random_params, rel_err
 
-from generated import unforced
-from generated.mp import unforced as mp_unforced
+from beltmdsm.generated import unforced
+from beltmdsm.generated.mp import unforced as mp_unforced
 
 CONTACTS = ("hertz_damp", "kelvin_voigt")
 

@@ -5,12 +5,12 @@ unforced and at the base excitation, under both tension laws (``allowed``: Eq. (
 printed, the contact can pull; ``clipped``: ``max(F, 0)``), this package computes
 
 (a) where steady sliding is unstable (`steady_sliding`): the closed form
-    `generated.unforced.critical_belt_speed` (SymPy's root of the tangential damping
+    `beltmdsm.generated.unforced.critical_belt_speed` (SymPy's root of the tangential damping
     ``2 beta1 omega1 + g dmu/d|Vr|`` of the linearisation at ``|Vr| = Vb``) beside the
-    sign change of the largest real part of `generated.unforced.eigenvalues`, and the
+    sign change of the largest real part of `beltmdsm.generated.unforced.eigenvalues`, and the
     eigenvalues of the whole Jacobian against those of its tangential and normal blocks
     (the normal coupling does not move them: the normal equation is free of the
-    tangential state, ``one_way_coupling`` of `generated.capabilities`);
+    tangential state, ``one_way_coupling`` of `beltmdsm.generated.capabilities`);
 (b) where the ``T``-periodic forced response is unstable (`forced_stability`: the Floquet
     band of `beltmdsm.continuation.band.floquet_band` over ``Vb``, its labelled edges and the
     growth rate ``log max|mu| / T`` at every evaluated value);

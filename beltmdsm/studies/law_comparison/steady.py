@@ -1,12 +1,12 @@
 """Item 8a: where steady sliding is unstable without excitation (`steady_sliding`).
 
-The closed form `generated.unforced.critical_belt_speed` (SymPy's root of the
+The closed form `beltmdsm.generated.unforced.critical_belt_speed` (SymPy's root of the
 tangential damping ``2 beta1 omega1 + g dmu/d|Vr|`` of the linearisation at
 ``|Vr| = Vb``) beside the sign change of the largest real part of
-`generated.unforced.eigenvalues`, and the eigenvalues of the whole Jacobian against
+`beltmdsm.generated.unforced.eigenvalues`, and the eigenvalues of the whole Jacobian against
 those of its tangential and normal blocks (the normal coupling does not move them: the
 normal equation is free of the tangential state, ``one_way_coupling`` of
-`generated.capabilities`).
+`beltmdsm.generated.capabilities`).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
-from generated import unforced
+from beltmdsm.generated import unforced
 
 from ...model import Model
 from .laws import VB_RANGE, Law
@@ -40,13 +40,13 @@ class SteadySliding:
     ----------
     law : Law
     critical_speed : float
-        `generated.unforced.critical_belt_speed`: steady sliding is unstable for
+        `beltmdsm.generated.unforced.critical_belt_speed`: steady sliding is unstable for
         ``Vb`` below it; NaN where no belt speed is (Coulomb's law, ``mu_k >= mu_s``, or a
         fall too weak to beat ``2 beta1 omega1`` even at ``Vb = 0``).
     unstable : list of (lo, hi)
         ``[(0, critical_speed)]``, or empty.
     eigenvalue_speed : float
-        Where the largest real part of `generated.unforced.eigenvalues` changes sign in
+        Where the largest real part of `beltmdsm.generated.unforced.eigenvalues` changes sign in
         ``Vb`` (Brent's method from the grid's sign change); NaN without a sign change.
     vb : ndarray
         The grid [m/s].
@@ -54,14 +54,14 @@ class SteadySliding:
         The largest real part of the eigenvalues on the grid [1/s].
     damping : ndarray
         The tangential damping of the linearisation, minus the ``(X1', X1')`` entry of
-        `generated.unforced.jacobian_at_equilibrium` (``2 beta1 omega1 + g dmu/d|Vr|`` at
+        `beltmdsm.generated.unforced.jacobian_at_equilibrium` (``2 beta1 omega1 + g dmu/d|Vr|`` at
         ``|Vr| = Vb``) [1/s].
     block_gap : float
         The largest distance between the eigenvalues of the whole Jacobian and those of
         its tangential and normal 2 x 2 blocks over the grid (``numpy.linalg.eigvals``):
         rounding, because the normal coupling does not change them.
     closed_form_gap : float
-        The largest distance between `generated.unforced.eigenvalues` and
+        The largest distance between `beltmdsm.generated.unforced.eigenvalues` and
         ``numpy.linalg.eigvals`` of the Jacobian over the grid.
     wall_s : float
     """

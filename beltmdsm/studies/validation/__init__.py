@@ -30,7 +30,7 @@ and, as before Floquet, against the run from rest:
   leaves stick-slip out of Figs. 19b, c; so are the runs that cannot tell the peak,
   ``resolved`` False, which are never "no peak");
 * the predicted ranges: the paper's analysis (Eqs. 22-28, closed form in
-  `generated.stability.unstable_interval`) for each ``V_hat`` reading and each sign
+  `beltmdsm.generated.stability.unstable_interval`) for each ``V_hat`` reading and each sign
   convention, and the consistent MDSM (`beltmdsm.prediction.predict.unstable_intervals`);
 * the differences of the edges, their mean absolute error per analysis and the
   length of the belt-speed set where prediction and simulation disagree.
@@ -42,7 +42,7 @@ cuts its harmonic fast normal force (`beltmdsm.prediction.predict.CLIPPED_MDSM`)
 column says so instead of counting as "predicts nothing".
 
 `render_markdown` writes ``VALIDATION.md``; ``python -m beltmdsm validate`` (or
-``python -m derive validate``) runs it. The edge rules are stated in `DEFINITIONS`
+``python -m beltmdsm validate``) runs it. The edge rules are stated in `DEFINITIONS`
 (and in the file): they were fixed before the numbers were looked at.
 
 Modules, one concept each:
@@ -65,7 +65,7 @@ Modules, one concept each:
   file in `beltmdsm.studies.validation.floquet_report` and the text of each cell in
   `beltmdsm.studies.validation.cells`.
 
-Studies layer: imports ``generated``, the lower layers of ``beltmdsm``, numpy and
+Studies layer: imports ``beltmdsm.generated``, the lower layers of ``beltmdsm``, numpy and
 scipy, never SymPy or the command line.
 """
 

@@ -32,7 +32,7 @@ from ...settings import MAX_POINTS, SolverSettings
 class Case:
     """One parameter set of the paper's numerical validation.
 
-    ``overrides`` changes the base set (Fig. 2, ``generated.parameters.BASE``);
+    ``overrides`` changes the base set (Fig. 2, ``beltmdsm.generated.parameters.BASE``);
     ``paper`` is what the paper reports for it (Appendix A.5 or Sect. 4.1).
     """
 

@@ -77,7 +77,7 @@ def render_markdown(results: Validation, quick: bool) -> str:
     step = res.step
     tension = results.tension
     command = (
-        "python -m derive validate"
+        "python -m beltmdsm validate"
         + (" --quick" if quick else "")
         + (f" --tension {tension}" if tension != "allowed" else "")
     )

@@ -1,6 +1,6 @@
 """The private folders of what is compiled at run time (numba's cache, the compiled
 modules) and of the package's other caches: `cache_root`, `user_cache`.
-Reached through `generated._support`.
+Reached through `beltmdsm.generated._support`.
 
 Copied verbatim into ``generated/_cache.py`` by ``python -m derive``; edit the
 template in ``derive/codegen/templates/`` and regenerate.

@@ -4,7 +4,7 @@ Every public generated function checks its arguments once (`arguments`, `param`;
 `mp_arguments`, `mp_param` for the mpmath variants, `_scalar_arguments` for a bound
 kernel): ``TypeError`` for an unknown keyword or a missing parameter, ``ValueError``
 naming the parameter for NaN, inf or a value outside its domain. `CHECKED` lets a
-caller pass what it checked already. Reached through `generated._support`.
+caller pass what it checked already. Reached through `beltmdsm.generated._support`.
 
 Copied verbatim into ``generated/_checks.py`` by ``python -m derive``; edit the
 template in ``derive/codegen/templates/`` and regenerate.

@@ -13,12 +13,12 @@ import numpy as np
 import pytest
 
 from beltmdsm.attractors.lyapunov import BLOCKS, chunk_length, lyapunov
+from beltmdsm.generated import hybrid, unforced
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.model import Model
 from beltmdsm.periodic import variational
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.settings import SolverSettings
-from generated import hybrid, unforced
 
 ROOT = Path(__file__).resolve().parents[3]
 

@@ -1,5 +1,6 @@
-"""The one command line (derive/cli.py, beltmdsm/cli/): flags checked, one-line errors,
-the shared parents, the executor factory, the console script, predict's edge cases."""
+"""The one command line (beltmdsm/cli/, the derive commands of derive/commands.py): flags
+checked, one-line errors, the shared parents, the executor factory, the console script,
+predict's edge cases."""
 
 import concurrent.futures as cf
 import json
@@ -13,9 +14,9 @@ from pathlib import Path
 import pytest
 
 from beltmdsm.cli import flags, main, tree
+from beltmdsm.cli.parser import Parser, UsageError
 from beltmdsm.model import OPTIONS
 from beltmdsm.prediction import predict as predict_module
-from derive import cli as derive_cli
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -164,11 +165,6 @@ def test_both_spellings_of_a_parameter_flag_work(capsys):
         assert json.loads(capsys.readouterr().out)["params"]["mu_s"] == 0.3
 
 
-def test_derive_alone_knows_only_its_own_commands(capsys):
-    assert derive_cli.main(["simulate", "--Vb", "3"]) == 2
-    assert "invalid choice: 'simulate'" in capsys.readouterr().err
-
-
 def test_help_returns_0(capsys):
     assert main(["sweep", "--help"]) == 0
     out = capsys.readouterr().out
@@ -259,11 +255,26 @@ def test_the_console_script_is_declared_and_resolves_to_main():
 
 def test_the_program_name_follows_the_console_script(monkeypatch):
     monkeypatch.setattr(sys, "argv", ["/usr/bin/beltmdsm"])
-    assert derive_cli.build_parser().prog == "beltmdsm"
-    monkeypatch.setattr(sys, "argv", ["/x/derive/__main__.py"])
-    assert derive_cli.build_parser().prog == "python -m derive"
+    assert tree.build_parser(runtime=False).prog == "beltmdsm"
     monkeypatch.setattr(sys, "argv", ["/x/beltmdsm/__main__.py"])
-    assert derive_cli.build_parser().prog == "python -m beltmdsm"
+    assert tree.build_parser(runtime=False).prog == "python -m beltmdsm"
+
+
+def test_python_m_derive_runs_python_m_beltmdsm_and_says_so():
+    """The old spelling, from the checkout's root: the same tree, its usage naming the
+    new spelling; of derive/ only the package itself is imported by its old name (to
+    find its __main__), no module of it and nothing of generated/."""
+    r = subprocess.run(
+        [sys.executable, "-X", "importtime", "-m", "derive", "--help"],
+        capture_output=True, text=True, cwd=ROOT,
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith("usage: python -m beltmdsm [-h] [--check] [--out DIR]")
+    assert "simulate" in r.stdout and "check-paper" in r.stdout
+    imported = {line.rsplit("|", 1)[1].strip() for line in r.stderr.splitlines() if "|" in line}
+    assert "beltmdsm.derive.commands" in imported and "beltmdsm.generated" in imported
+    old = {m for m in imported if m.split(".")[0] in ("derive", "generated")}
+    assert old == {"derive"}, old
 
 
 # ---------------------------------------------------------------- shared parents
@@ -275,7 +286,7 @@ def _subparser(parser, name):
 
 
 def _parser():
-    return derive_cli.build_parser(extend=tree.add_commands)
+    return tree.build_parser()
 
 
 def test_every_runtime_command_takes_the_model_flags_it_should():
@@ -307,7 +318,7 @@ def test_every_model_option_is_a_flag_of_every_command_but_validate():
             assert getattr(args, option) == choices[-1]
             args = parser.parse_args([command] + extra.get(command, []))
             assert getattr(args, option) == choices[0]
-            with pytest.raises(derive_cli.UsageError, match=f"--{option}"):
+            with pytest.raises(UsageError, match=f"--{option}"):
                 parser.parse_args([command, f"--{option}", "nonsense"])
 
 
@@ -315,7 +326,7 @@ def test_every_model_option_is_a_flag_of_every_command_but_validate():
 
 
 def _executor_args(jobs=None, scheduler=None):
-    return Namespace(jobs=jobs, scheduler=scheduler, parser=derive_cli.Parser(prog="test"))
+    return Namespace(jobs=jobs, scheduler=scheduler, parser=Parser(prog="test"))
 
 
 def test_executor_factory_serial_pool_default():
@@ -354,7 +365,7 @@ def test_executor_factory_dask_client_is_closed_and_failures_name_the_flag(monke
     with flags.executor_from(_executor_args(jobs=4, scheduler="tcp://h:8786")) as ex:
         assert isinstance(ex, FakeExecutor)
     assert events == ["tcp://h:8786", "shutdown", "close"]
-    with pytest.raises(derive_cli.UsageError, match="--scheduler: cannot connect"):
+    with pytest.raises(UsageError, match="--scheduler: cannot connect"):
         with flags.executor_from(_executor_args(scheduler="tcp://127.0.0.1:9")):
             pass
 
@@ -454,11 +465,13 @@ def test_regeneration_and_check_paper_do_not_load_the_runtime(monkeypatch):
     def refuse(*args, **kwargs):
         raise AssertionError("the runtime was loaded")
 
-    assert not derive_cli._needs_runtime([]) and not derive_cli._needs_runtime(["--check"])
-    assert not derive_cli._needs_runtime(["check-paper"])
-    assert derive_cli._needs_runtime(["--help"]) and derive_cli._needs_runtime(["simulate"])
-    monkeypatch.setattr(derive_cli, "_generate", lambda args: 0)
-    assert derive_cli.main(["--check"], extend=refuse) == 0
+    assert not tree._needs_runtime([]) and not tree._needs_runtime(["--check"])
+    assert not tree._needs_runtime(["check-paper"])
+    assert not tree._needs_runtime(["--out", "d"]) and not tree._needs_runtime(["--out=d"])
+    assert tree._needs_runtime(["--help"]) and tree._needs_runtime(["simulate"])
+    monkeypatch.setattr(tree.derive, "generate", lambda args: 0)
+    monkeypatch.setattr(tree, "add_commands", refuse)
+    assert tree.main(["--check"]) == 0
 
 
 # ---------------------------------------------------------------- help (issue 17)

@@ -1,4 +1,4 @@
-"""``python -m derive simulate|sweep`` (dispatched to runtime.cli.main)."""
+"""``python -m beltmdsm simulate|sweep`` (dispatched to runtime.cli.main)."""
 
 import json
 import math

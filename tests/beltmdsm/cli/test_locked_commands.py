@@ -1,4 +1,4 @@
-"""``python -m derive responses|branch|coexistence|floquet-map`` and ``--periods``."""
+"""``python -m beltmdsm responses|branch|coexistence|floquet-map`` and ``--periods``."""
 
 import json
 

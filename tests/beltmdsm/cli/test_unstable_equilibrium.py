@@ -74,7 +74,7 @@ def test_simulate_on_unstable_sliding_is_moved_off_it_and_says_it_has_not_left()
 
 
 def test_the_start_moves_along_the_unstable_plane_only_where_sliding_is_unstable():
-    from generated import unforced
+    from beltmdsm.generated import unforced
 
     for Vb, unstable in ((1.0, True), (1.9, True), (2.5, False)):
         model = Model(friction="stribeck", alpha=0.0, Vb=Vb)
@@ -130,8 +130,8 @@ def test_predict_without_excitation_finds_the_critical_speed_of_the_closed_form(
 def test_predict_finds_the_unforced_edges_numerically_where_the_closed_form_is_refused(
     monkeypatch,
 ):
+    from beltmdsm.generated import unforced
     from beltmdsm.prediction import predict
-    from generated import unforced
 
     model = Model(friction="stribeck", alpha=0.0)
     F = _static_normal_force(model)

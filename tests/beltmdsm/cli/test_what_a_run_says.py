@@ -234,7 +234,7 @@ def test_predict_on_a_coarse_grid_keeps_the_band(capsys):
 
 def test_predict_without_friction_reports_no_zero_width_band(capsys):
     # the report: "unstable Vb in [8.521, 8.521]" for both paper readings with --mu_s 0,
-    # while generated.stability.is_stable(mu_s=0, Vb=8.521) is True
+    # while beltmdsm.generated.stability.is_stable(mu_s=0, Vb=8.521) is True
     assert main(["predict", "--mu_s", "0", "--no-progress"]) == 0
     text = capsys.readouterr().out
     assert "8.521" not in text

@@ -2,7 +2,7 @@
 
 References: `beltmdsm.continuation.band.floquet_band` on the map's rows, `floquet()` from
 scratch at points of a coarse grid, and the closed-form interval of the paper's linear
-analysis (`generated.stability.unstable_interval`).
+analysis (`beltmdsm.generated.stability.unstable_interval`).
 """
 
 import numpy as np
@@ -12,9 +12,9 @@ from beltmdsm.continuation.band import floquet_band
 from beltmdsm.continuation.floquet_map import floquet_map
 from beltmdsm.continuation.map_linear import LINEAR_POINTS
 from beltmdsm.errors import NoPeriodicResponse
+from beltmdsm.generated import stability
 from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
-from generated import stability
 
 
 def test_the_map_rows_are_the_bands_and_the_verdicts_of_floquet():
@@ -40,7 +40,7 @@ def test_the_map_rows_are_the_bands_and_the_verdicts_of_floquet():
                 verdict = True
             assert verdict == (unstable[0][0] <= x <= unstable[0][1]), (y, x)
     # the paper's linear analysis on the same rows, against its closed-form interval
-    # (generated.stability.unstable_interval), to the map's grid of x
+    # (beltmdsm.generated.stability.unstable_interval), to the map's grid of x
     resolution = (12.0 - 0.5) / (LINEAR_POINTS - 1)
     for y, linear in zip(result.rows, result.linear):
         lower, upper = stability.unstable_interval(**Model(beta1=float(y)).params)

@@ -26,13 +26,13 @@ from scipy.optimize import brentq
 from beltmdsm.cli import main
 from beltmdsm.cycles.cycle import Cycle, cycle, seed_cycle, unstable_pair
 from beltmdsm.errors import NoPeriodicResponse
+from beltmdsm.generated import unforced
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.model import Model, is_autonomous
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.periodic.start import periodic_start
 from beltmdsm.settings import SolverSettings
-from generated import unforced
 
 P = dict(beta1=0.1, omega1=1.0, mu_s=0.4, mu_k=0.25, v_s=1.0, g=9.81)
 

@@ -40,9 +40,9 @@ import pytest
 
 import beltmdsm
 from beltmdsm.cli import main
+from beltmdsm.generated import hybrid, unforced
 from beltmdsm.model import Model, initial_state
 from beltmdsm.periodic.floquet import floquet
-from generated import hybrid, unforced
 
 G = 9.81
 TIGHT = dict(rtol=1e-12, atol=1e-12, solver="events", t_discard=0.0)

@@ -1,6 +1,6 @@
 """The caches' folders: one rule for both, private, never shared or shadowing (issue 28).
 
-`generated._support.cache_root` and `user_cache` (the compiled code and numba's cache),
+`beltmdsm.generated._support.cache_root` and `user_cache` (the compiled code and numba's cache),
 `beltmdsm.studies.cache.default_cache_dir` (the sweeps).
 """
 
@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pytest
 
+from beltmdsm.generated import _support
 from beltmdsm.studies.cache import default_cache_dir
-from generated import _support
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -131,7 +131,7 @@ def test_without_a_home_nothing_goes_to_the_shared_temporary_folder(tmp_path):
     # world-writable folder that then shadowed the package for every user
     code = (
         "import warnings, numpy\n"
-        "from generated import _support\n"
+        "from beltmdsm.generated import _support\n"
         "try:\n"
         "    _support.user_cache('compiled')\n"
         "except OSError as err:\n"

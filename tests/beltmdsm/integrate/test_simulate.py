@@ -3,11 +3,11 @@
 import numpy as np
 import pytest
 
+from beltmdsm.generated import dynamics
 from beltmdsm.integrate.switching import Mode
 from beltmdsm.run.summary import REGIMES
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
-from generated import dynamics
 
 FLIGHT, SLIP_BACK, SLIP_FORWARD, STICK = Mode.FLIGHT, Mode.SLIP_BACK, Mode.SLIP_FORWARD, Mode.STICK
 

@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
+from beltmdsm.generated import hybrid, oscillator
 from beltmdsm.integrate import _compiled, _dop853, normal, superposition
 from beltmdsm.model import Model
 from beltmdsm.simulation import simulate
-from generated import hybrid, oscillator
 
 
 def _line_kernels(offset):

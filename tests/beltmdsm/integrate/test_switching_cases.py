@@ -23,9 +23,9 @@ import warnings
 import numpy as np
 import pytest
 
+from beltmdsm.generated import dynamics
 from beltmdsm.integrate.switching import TIE_ULPS, Mode, Switching
 from beltmdsm.simulation import simulate
-from generated import dynamics
 
 T_END = 100.0
 STATE_TOL = 1e-6

@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 from conftest import random_params
 
-from generated import dynamics
-from generated.mp import dynamics as mp_dynamics
+from beltmdsm.generated import dynamics
+from beltmdsm.generated.mp import dynamics as mp_dynamics
 
 EPS = H.EPS
 ULPS = 16

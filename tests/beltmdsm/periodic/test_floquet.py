@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+from beltmdsm.generated import dynamics
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.integrate.normal import NormalMotion
 from beltmdsm.model import Model
@@ -22,7 +23,6 @@ from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.periodic.start import periodic_start
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
-from generated import dynamics
 
 # Newton stops at 1e-11 of the state's scale; the event-driven run at rtol = atol =
 # 1e-12 over one period adds a few 1e-12: the orbit closes to ~1e-10 there.

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from scipy import linalg
 
+from beltmdsm.generated.capabilities import CAPABILITIES
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.model import CONTACTS, FRICTIONS, TENSIONS, Model, Unsupported
 from beltmdsm.periodic.base import RTOL
@@ -19,7 +20,6 @@ from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.periodic.tangential import CLOSED_FORM_FACTS, TangentialMap
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
-from generated.capabilities import CAPABILITIES
 
 #: Coulomb friction, where both paths apply: a point of each switch structure and law.
 BOTH = {

@@ -7,12 +7,12 @@ import numpy as np
 import pytest
 
 from beltmdsm.cli import main
+from beltmdsm.generated import correlation, friction, stability
+from beltmdsm.generated.parameters import BASE
 from beltmdsm.model import Model
 from beltmdsm.prediction import predict
 from beltmdsm.prediction.predict import Prediction
 from beltmdsm.settings import MAX_VB_POINTS
-from generated import correlation, friction, stability
-from generated.parameters import BASE
 
 
 def test_linear_fast_motion_is_the_coupled_vhat():
@@ -242,7 +242,7 @@ def test_the_paper_analysis_of_stribeck_is_numeric_and_says_so():
     """Stribeck's law has no closed-form fast average (closed_form_average): the paper's
     analysis is solved numerically from the pointwise growth rate, never with Coulomb's
     closed form, and the reason says so with its grid and tolerance."""
-    from generated.capabilities import CAPABILITIES
+    from beltmdsm.generated.capabilities import CAPABILITIES
 
     holds, _ = CAPABILITIES[("stribeck", "hertz_damp", "allowed")]["closed_form_average"]
     assert not holds

@@ -203,7 +203,7 @@ def _copy_tree(tmp_path):
     import shutil
 
     root = tmp_path / "tree"
-    for package in cache_module.CODE_PACKAGES:
+    for package in ("beltmdsm", "generated"):  # a checkout: generated/ beside beltmdsm/
         shutil.copytree(
             cache_module._ROOT / package, root / package, ignore=shutil.ignore_patterns("*.pyc")
         )

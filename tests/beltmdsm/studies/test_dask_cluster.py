@@ -1,7 +1,7 @@
 """Sweeps on a real dask.distributed cluster: a scheduler and two worker processes.
 
 `tests/beltmdsm/studies/test_sweep.py` runs a sweep on an in-process dask client; here the
-sweep goes through ``python -m derive sweep --scheduler tcp://127.0.0.1:PORT`` to a ``dask
+sweep goes through ``python -m beltmdsm sweep --scheduler tcp://127.0.0.1:PORT`` to a ``dask
 scheduler`` and two ``dask worker`` processes on this machine, as it would to a
 cluster, once undisturbed and once with a worker killed (SIGKILL) in the middle.
 Marked slow (starting the processes takes seconds): ``python -m pytest -m slow

@@ -19,11 +19,11 @@ import numpy as np
 import pytest
 import sympy as sp
 
+from beltmdsm.derive import contraction as C
+from beltmdsm.derive import contraction_energy as CE
+from beltmdsm.derive import contraction_sign as CS
+from beltmdsm.derive.model import CONTACT_LAWS, FRICTION_LAWS, TENSION_LAWS, X2, Y2, P, normal_force
 from beltmdsm.studies import evidence as S
-from derive import contraction as C
-from derive import contraction_energy as CE
-from derive import contraction_sign as CS
-from derive.model import CONTACT_LAWS, FRICTION_LAWS, TENSION_LAWS, X2, Y2, P, normal_force
 
 TOL = 1e-10
 K = 10.0

@@ -21,6 +21,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from beltmdsm.generated.parameters import BASE
 from beltmdsm.intervals import runs
 from beltmdsm.model import excitation_period
 from beltmdsm.periodic.shooting import periodic_response
@@ -36,7 +37,6 @@ from beltmdsm.studies.law_comparison import (
     runs_from_rest,
     steady_sliding,
 )
-from generated.parameters import BASE
 
 STRIBECK = [LAWS["stribeck_A"], LAWS["stribeck_B"]]
 #: Short runs: the omega1 vibration of an unforced Stribeck law settles in about 100 s.

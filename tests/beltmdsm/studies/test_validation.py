@@ -10,6 +10,7 @@ import pytest
 
 from beltmdsm.cli import main
 from beltmdsm.continuation.band_result import Band, Edge
+from beltmdsm.generated import stability, unforced
 from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.prediction.predict import fast_motion, unstable_intervals
@@ -32,7 +33,6 @@ from beltmdsm.studies.validation import (
     validate,
     vb_grid,
 )
-from generated import stability, unforced
 
 H = 0.5  # grid step of the constructed sweeps
 
@@ -308,10 +308,10 @@ def test_render_markdown_says_how_it_was_made_and_lists_every_analysis(quick_bas
     assert quick_base.tension == "allowed"
     assert "Tension law (docs/modelling.md#tension): `allowed`" in text
     clipped = render_markdown(dataclasses.replace(quick_base, tension="clipped"), True)
-    assert "python -m derive validate --quick --tension clipped" in clipped
+    assert "python -m beltmdsm validate --quick --tension clipped" in clipped
     assert "Tension law (docs/modelling.md#tension): `clipped`" in clipped
     assert text.startswith("# Validation")
-    assert "python -m derive validate --quick" in text and "do not edit by hand" in text
+    assert "python -m beltmdsm validate --quick" in text and "do not edit by hand" in text
     for _, label, _ in ANALYSES:
         assert f"| {label} |" in text
     assert "| base |" in text and "Fig. 2b" in text
@@ -351,7 +351,7 @@ def test_harmonic_balance_amplitude_matches_the_simulated_fast_amplitude_above_v
     """Vb = 12 > V_hat: the friction never reverses, the tangential equation is linear.
 
     The only approximation left in `fast_motion` is the linearised Hertz contact
-    (`generated.correlation.fast_normal_force`). The first harmonic of the Hertz force
+    (`beltmdsm.generated.correlation.fast_normal_force`). The first harmonic of the Hertz force
     of Eq. (1) differs from the linear one by O(eps^2) relative, eps = the normal
     displacement amplitude over the static penetration X2^0 (Eq. 9); it reaches the
     tangential velocity through mu_s N1 Omega / |D|. The tolerance is that bound with
