@@ -26,7 +26,7 @@ from .periodic.floquet import (
     periodic_response,
     periodic_start,
 )
-from .prediction.predict import Prediction, predict
+from .prediction.prediction import Prediction, predict
 from .run.summary import Summary
 from .settings import SolverSettings
 from .simulation import Simulation, simulate

@@ -894,7 +894,7 @@ def stability() -> ModuleSpec:
             return Refusal(
                 f"friction={f!r} has no closed-form critical belt speed: {lower.reason}; the "
                 "pointwise functions (growth_rate, is_stable, hurwitz) take it, and "
-                "beltmdsm.prediction.predict.paper_intervals finds the unstable belt speeds "
+                "beltmdsm.prediction.paper.paper_intervals finds the unstable belt speeds "
                 "numerically from growth_rate"
             )
         if lower is None:
@@ -908,7 +908,7 @@ def stability() -> ModuleSpec:
                     f"(closed_form_average: {why})"
                 )
                 + "; the pointwise functions (growth_rate, is_stable, hurwitz) take it, and "
-                "beltmdsm.prediction.predict.paper_intervals finds the unstable belt speeds "
+                "beltmdsm.prediction.paper.paper_intervals finds the unstable belt speeds "
                 "numerically from growth_rate"
             )
         if not upper:
@@ -1050,7 +1050,7 @@ Jacobian is block triangular: the quartic factors into a tangential and a normal
 quadratic, so eigenvalues, Hurwitz determinants and the critical belt speed are
 closed forms in the effective friction's value and slope (a quadrature for a
 friction law without a closed-form fast average; the critical belt speed and the
-unstable interval then refuse, and ``beltmdsm.prediction.predict.paper_intervals``
+unstable interval then refuse, and ``beltmdsm.prediction.paper.paper_intervals``
 finds the unstable belt speeds numerically from the pointwise ``growth_rate``, with
 ``V_hat`` of the chosen reading at each ``Vb``). A stability map needs only ``is_stable`` (a sign),
 not eigenvalues.
@@ -1199,7 +1199,7 @@ def correlation() -> ModuleSpec:
             (cr.V, cr.N1, cr.theta),
             {**docs, **balance_docs},
             notes="The linearisation of the averaged friction at frozen fast amplitude and "
-            "phase (beltmdsm.prediction.predict's consistent MDSM). " + quadrature,
+            "phase (beltmdsm.prediction.mdsm's consistent MDSM). " + quadrature,
         ),
         FunctionSpec(
             "transfer_function",
@@ -1241,7 +1241,7 @@ fast tangential motion, and the fast normal force. ``averaged_friction``,
 averages; ``friction_average``, ``friction_average_slope`` and ``friction_harmonic``
 those of a friction law (``friction=``), and ``slow_damping`` and
 ``harmonic_balance`` the pieces of the consistent MDSM built from them.
-``beltmdsm.prediction.predict`` builds the stability prediction from them.
+``beltmdsm.prediction`` builds the stability prediction from them.
 """,
         functions,
     )

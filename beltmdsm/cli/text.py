@@ -21,7 +21,7 @@ if TYPE_CHECKING:
     from ..continuation.floquet_map import FloquetMap
     from ..model import Model
     from ..periodic.floquet import Floquet
-    from ..prediction.predict import Prediction
+    from ..prediction.prediction import Prediction
     from ..run.summary import Summary
     from ..simulation import Simulation
     from ..studies.coexistence import Coexistence

@@ -14,7 +14,7 @@ import pytest
 from beltmdsm.continuation.band import floquet_band
 from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
-from beltmdsm.prediction.predict import predict
+from beltmdsm.prediction.prediction import predict
 from beltmdsm.simulation import simulate
 from generated.parameters import BASE
 

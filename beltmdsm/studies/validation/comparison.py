@@ -28,7 +28,9 @@ from numpy.typing import ArrayLike
 from ... import intervals
 from ...continuation.band import Band
 from ...model import Model
-from ...prediction.predict import clip_acts, paper_intervals, unstable_intervals
+from ...prediction.mdsm import clip_acts
+from ...prediction.paper import paper_intervals
+from ...prediction.scan import unstable_intervals
 from .cases import SLIDING, UNRESOLVED
 
 #: How an analysis' prediction and its reference (the simulation or the Floquet band)
