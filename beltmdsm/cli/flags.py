@@ -406,7 +406,7 @@ def solver_parent() -> argparse.ArgumentParser:
         default=1e-10,
         help="relative tolerance of the integrators' local error per step, > 0; the "
         "noise floor of the spectrum and the bound of the energy residual follow it "
-        "(beltmdsm/run/summary.py) (default: 1e-10)",
+        "(beltmdsm/run/tolerances.py) (default: 1e-10)",
     )
     s.add_argument(
         "--atol",
