@@ -1,13 +1,14 @@
 """The disk cache of sweep points: one JSON file per point, named by its key.
 
-A point's summary row is cached as a small JSON file named by `cache_key`, a SHA-256 of
-what the row depends on: the model (`beltmdsm.Model.digest`: parameters and options),
-the solver settings, the start state of a continued point, the cache format, the
-package version and the code that computes a row (`code_hash` over `code_files`: the
-modules that a row's entry module, `NUMERIC_SOURCES`, imports, read from the sources:
-the generated model, the integrators, the run's summary, the period map; not the
-command line, the reports or the sweep's orchestration, whose edits change no number).
-No pickles are stored.
+A point's row (`beltmdsm.studies.row.Row.as_dict`, read back by
+`beltmdsm.studies.row.Row.from_dict`) is cached as a small JSON file named by
+`cache_key`, a SHA-256 of what the row depends on: the model (`beltmdsm.Model.digest`:
+parameters and options), the solver settings, the start state of a continued point,
+the cache format, the package version and the code that computes a row (`code_hash`
+over `code_files`: the modules that a row's entry module, `NUMERIC_SOURCES`, imports,
+read from the sources: the generated model, the integrators, the run's summary, the
+period map; not the command line, the reports or the sweep's orchestration, whose edits
+change no number). No pickles are stored.
 
 The cache is safe to share between processes and hosts (dask workers on several
 machines): a file is written under a unique temporary name and renamed into place, so

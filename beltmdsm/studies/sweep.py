@@ -19,7 +19,6 @@ the first from rest. Such a sweep is sequential by nature and runs in this proce
 from __future__ import annotations
 
 import concurrent.futures as cf
-import csv
 import math
 import os
 import signal
@@ -50,7 +49,18 @@ from .cache import (
     writable_folder,
     write_cached,
 )
-from .row import STARTS, Start, columns, failed_row, run_point
+from .row import (
+    STARTS,
+    Row,
+    Start,
+    columns,
+    failed_row,
+    records,
+    run_point,
+    table_from_csv,
+    table_to_csv,
+    to_table,
+)
 
 __all__ = [
     "sweep",
@@ -117,8 +127,8 @@ class Sweep:
         The model of the other parameters and the options.
     settings : SolverSettings
     table : numpy structured array
-        One row per value, ascending, the swept parameter first, then
-        `beltmdsm.studies.row.COLUMNS`.
+        One record per value, ascending: the swept parameter, then the columns of
+        its `beltmdsm.studies.row.Row` (`beltmdsm.studies.row.to_table`).
     continuation : {None, "up", "down"}
     start : {"rest", "periodic"}
     n_cached : int
@@ -152,11 +162,11 @@ class Sweep:
         (needs pandas, imported here)."""
         from .._tables import frame
 
-        return frame(self.table)
+        return frame(records(self.table), self.table.dtype.names)
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON of ``sweep --json`` (keys in docs/reference/json.md)."""
-        rows = [dict(zip(self.table.dtype.names, r.tolist())) for r in self.table]
+        rows = records(self.table)
         model = self.model.as_dict()
         del model["params"][self.param]  # its values are the rows'
         return {
@@ -178,7 +188,7 @@ class Sweep:
 def _cached_run(
     model, settings, modulation, cache_dir, continuation=None, y0=None, period=None, start="rest"
 ):
-    """One point through the cache: ``(row, cached, problem)``.
+    """One point through the cache: ``(row, cached, problem)``, ``row`` a `Row`.
 
     ``problem`` (a `Problem` or None) says what was wrong with a cache file that was
     recomputed (the caller reports it: a warning in a worker process would be lost).
@@ -192,9 +202,9 @@ def _cached_run(
         path = Path(cache_dir) / f"{cache_key(ident)}.json"
         needed = [n for n, _ in columns(modulation)]
         needed += ["restart_t", "restart_state"] if continuation else []
-        row, reason = read_cached(path, ident, needed)
-        if row is not None:
-            return row, True, None
+        stored, reason = read_cached(path, ident, needed)
+        if stored is not None:
+            return Row.from_dict(stored), True, None
         problem = None if reason is None else Problem(str(path), reason)
     try:
         row = run_point(model, settings, modulation, y0=y0, restart_period=period, start=start)
@@ -205,7 +215,7 @@ def _cached_run(
         # (a rerun tries again)
         return failed_row(model, settings, modulation, err), False, problem
     if cache_dir is not None:
-        write_cached(path, ident, row)
+        write_cached(path, ident, row.as_dict())
     return row, False, problem
 
 
@@ -371,8 +381,8 @@ def sweep(
             if own:
                 executor.shutdown()
     rows, n_cached, problems = collected
-    table = _table(((param, "f8"),) + columns(modulation), param, unique, rows)
-    return Sweep(param, model, settings, table, continuation, start, n_cached, problems, dropped)
+    found = to_table(param, unique, rows, modulation)
+    return Sweep(param, model, settings, found, continuation, start, n_cached, problems, dropped)
 
 
 def _continuation_period(model, settings, param):
@@ -398,7 +408,7 @@ def _continued(points, periods, order, settings, modulation, cache_dir, continua
             points[i], settings, modulation, cache_dir, continuation, y0, periods[i]
         )
         yield i, result
-        y0 = result[0]["restart_state"]
+        y0 = result[0].restart_state
 
 
 def _ignore_interrupt():
@@ -482,29 +492,6 @@ def _interruptible(results):
         ):
             raise KeyboardInterrupt from None
         raise
-
-
-def _table(cols, param, values, rows):
-    table = np.zeros(len(rows), dtype=list(cols))
-    for i, (v, row) in enumerate(zip(values, rows)):
-        table[i][param] = v
-        for name, _ in cols[1:]:
-            table[i][name] = row.get(name, np.nan)
-    return table
-
-
-def table_to_csv(table: NDArray[np.void], path: os.PathLike | str) -> None:
-    """Write a sweep table as CSV with a header line."""
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(table.dtype.names)
-        for row in table:
-            w.writerow([repr(float(x)) if isinstance(x, np.floating) else x for x in row.tolist()])
-
-
-def table_from_csv(path: os.PathLike | str) -> NDArray[np.void]:
-    """Read a table written by `table_to_csv` back into a structured array."""
-    return np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")
 
 
 def resolved_mask(

@@ -383,3 +383,45 @@ def test_a_periodic_start_is_refused_where_it_means_nothing():
         sweep("Vb", [1.0], start="equilibrium", **kw)
     with pytest.raises(ValueError, match="continued sweep.*start must be 'rest'"):
         sweep("Vb", [1.0], start="periodic", continuation="up", **kw)
+
+
+def test_a_row_has_one_shape_from_the_run_to_the_table(tmp_path):
+    # issue 30 item 5: the run's Row is what the cache stores, what the table holds,
+    # what --json prints and what to_pandas gives, with the same keys and values
+    from beltmdsm.simulation import simulate
+    from beltmdsm.studies.row import COLUMNS, MODULATION_COLUMNS, Row, run_point
+
+    m = Model(Vb=4.0)
+    row = run_point(m, SHORT, modulation=True)
+    assert isinstance(row, Row) and set(row.modulation) == {n for n, _ in MODULATION_COLUMNS}
+    stored = row.as_dict()
+    assert list(stored) == [n for n, _ in COLUMNS + MODULATION_COLUMNS]
+    # plain JSON values: a round trip through the cache's JSON changes nothing
+    assert Row.from_dict(json.loads(json.dumps(stored))) == row
+    # the summary's numbers, as a run of its own gives them (wall_s aside)
+    summary = simulate(m, settings=SHORT).summary
+    for name, _ in COLUMNS:
+        if name not in ("wall_s", "error", "omega1_peak_present"):
+            assert stored[name] == getattr(summary, name), name
+    # an unresolved peak (None) is stored as False beside resolved False: a bool column
+    assert stored["omega1_peak_present"] is bool(summary.omega1_peak_present)
+    assert stored["error"] == ""
+    result = sweep(
+        "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False,
+        modulation=True,
+    )  # fmt: skip
+    (cached,) = tmp_path.glob("*.json")
+    on_disk = json.loads(cached.read_text())["row"]
+    (json_row,) = result.as_dict()["rows"]
+    (record,) = row_module.records(result.table)
+    assert json_row == record == {"Vb": 4.0, **on_disk}
+    assert on_disk.keys() == stored.keys()
+    again = sweep(
+        "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False,
+        modulation=True,
+    )  # fmt: skip
+    assert again.n_cached == 1 and row_module.records(again.table) == [json_row]
+    pandas = pytest.importorskip("pandas")
+    frame = again.to_pandas()
+    assert isinstance(frame, pandas.DataFrame) and list(frame.columns) == list(json_row)
+    assert frame.iloc[0].to_dict() == json_row
