@@ -112,10 +112,44 @@ class _Refused(Exception):
 class Prediction:
     """The predicted unstable ``Vb`` intervals of each analysis (``predict --json`` keys).
 
-    Each of ``paper_tangential_vhat``, ``paper_coupled_vhat`` and ``consistent_mdsm``
-    is a list of ``(lower, upper)``, or None where the analysis has no answer;
-    ``reasons`` maps an analysis to the sentence that says why it has none, or why
-    its list is empty or what it assumed (no excitation, the tension law).
+    Parameters
+    ----------
+    paper_tangential_vhat, paper_coupled_vhat : list of (float, float) or None
+        The paper's unstable intervals with the tangential and the coupled reading of
+        ``V_hat`` (`beltmdsm.prediction.paper.paper_intervals`), in m/s; None where
+        that analysis has no answer.
+    consistent_mdsm : list of (float, float) or None
+        The consistent MDSM's unstable intervals
+        (`beltmdsm.prediction.scan.unstable_intervals`); None where it has no answer.
+    reasons : dict of str
+        For an analysis, the sentence that says why it has no answer, why its list is
+        empty, or what it assumed (no excitation, the tension law, a numeric path).
+    tension, contact, friction : str
+        The model's laws.
+
+    Attributes
+    ----------
+    ANALYSES : tuple of str
+        The three analyses, in the order they are printed.
+
+    See Also
+    --------
+    predict : what returns it.
+    beltmdsm.cli.text : how ``beltmdsm predict`` prints it.
+
+    Examples
+    --------
+    >>> from beltmdsm import predict
+    >>> result = predict(Omega_n=7.0, points=20)  # two excitation frequencies
+    >>> result.consistent_mdsm is None
+    True
+    >>> print(result.reasons["consistent_mdsm"])
+    the harmonic balance needs one excitation frequency: Omega_t = 4.0 != Omega_n = 7.0
+    >>> [(round(lo, 3), round(hi, 3)) for lo, hi in result.paper_tangential_vhat]
+    [(0.0, 8.521)]
+    >>> sorted(result.as_dict())  # doctest: +NORMALIZE_WHITESPACE
+    ['consistent_mdsm', 'contact', 'friction', 'paper_coupled_vhat',
+     'paper_tangential_vhat', 'reasons', 'tension']
     """
 
     paper_tangential_vhat: list[tuple[float, float]] | None
@@ -130,6 +164,7 @@ class Prediction:
     ANALYSES = ("paper_tangential_vhat", "paper_coupled_vhat", "consistent_mdsm")
 
     def as_dict(self) -> dict[str, Any]:
+        """The prediction as plain values by field name (``predict --json``)."""
         return asdict(self)
 
 
@@ -147,27 +182,68 @@ def predict(
     Parameters
     ----------
     model : Model or dict, optional
-        ``tension`` (docs/modelling.md#tension): the paper's closed forms do not
-        change with it (a note in ``reasons`` says why); the consistent MDSM under
-        ``"clipped"`` has no prediction where the clip cuts its fast normal force
-        (`clip_acts`, `CLIPPED_MDSM`) and a note where it does not.
-    vb, points, progress, vb_max
-        the ``Vb`` grid of the consistent MDSM and its progress bar
-        (`unstable_intervals`). Where a band of the consistent MDSM reaches the
-        lowest point of the grid above 0, ``reasons`` says that it may extend below;
-        where ``vb_max`` makes the grid coarser than the default's, what it cannot
-        resolve (`grid_note`); where the law's unforced critical belt speed has no
-        closed form, that its edges were found numerically (`unforced_edges`).
+        The parameters and the laws (default: the base set); ``**kw`` too. Under
+        ``tension="clipped"`` (docs/modelling.md#tension) the paper's closed forms do
+        not change (a note in ``reasons`` says why); the consistent MDSM has no
+        prediction where the clip cuts its fast normal force (`clip_acts`,
+        `CLIPPED_MDSM`) and a note where it does not.
+    vb : array_like, optional
+        The consistent MDSM's grid of belt speeds (`unstable_intervals`; default:
+        ``points`` speeds up to past the onset of friction reversal).
+    points : int
+        The size of the default grid (2 to `MAX_VB_POINTS`).
+    progress : bool
+        Show a progress bar on stderr once the grid takes more than 2 s.
+    vb_max : float, optional
+        The top of the default grid instead of its own. Where a band of the
+        consistent MDSM reaches the lowest point of the grid above 0, ``reasons``
+        says that it may extend below; where ``vb_max`` makes the grid coarser than
+        the default's, what it cannot resolve (`grid_note`); where the law's unforced
+        critical belt speed has no closed form, that its edges were found
+        numerically (`unforced_edges`).
+    **kw
+        Parameters (``Vb=4``) and options (``friction="stribeck"``) of the model.
 
     Returns
     -------
     Prediction
+        The unstable intervals of the paper's analysis (both ``V_hat`` readings) and
+        of the consistent MDSM, each None where that analysis has no answer, with the
+        reasons.
 
     Raises
     ------
     ValueError
-        For bad parameters, a bad option or a bad grid (naming them);
-        `beltmdsm.errors.Refused` for more than `MAX_VB_POINTS` points.
+        For bad parameters, a bad option or a bad grid (naming them).
+    beltmdsm.errors.Refused
+        For more than `MAX_VB_POINTS` points (a ValueError too).
+
+    See Also
+    --------
+    beltmdsm.prediction.paper.paper_intervals : the paper's intervals alone.
+    beltmdsm.prediction.scan.unstable_intervals : the consistent MDSM's, with its table.
+    beltmdsm.floquet_band : the exact answer, from the Floquet multipliers.
+
+    Examples
+    --------
+    The base set: the paper's analysis (as printed, tangential ``V_hat``) predicts
+    instability from 0 up to 8.52 m/s, the consistent MDSM between 4.68 and 6.38 m/s.
+
+    >>> from beltmdsm import predict
+    >>> result = predict(points=20)
+    >>> for name in result.ANALYSES:
+    ...     print(name, [(round(lo, 3), round(hi, 3)) for lo, hi in getattr(result, name)])
+    paper_tangential_vhat [(0.0, 8.521)]
+    paper_coupled_vhat [(0.0, 6.375)]
+    consistent_mdsm [(4.682, 6.375)]
+
+    Without excitation there is no fast motion, and each analysis says so:
+
+    >>> quiet = predict(alpha=0.0, points=20)
+    >>> quiet.consistent_mdsm, quiet.paper_tangential_vhat
+    ([], None)
+    >>> print(quiet.reasons["paper_tangential_vhat"])
+    V_hat = 0 (no fast tangential motion): Eqs. (23)-(25) need V_hat > 0
     """
     model = as_model(model, **kw)
     p, tension = model.params, model.tension

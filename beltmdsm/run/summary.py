@@ -135,6 +135,75 @@ class Summary:
     along its unstable direction (without excitation, where steady sliding is
     unstable: `beltmdsm.simulation.equilibrium_start`; 0.0 elsewhere). Such a run that
     still slides steadily at its end is unresolved, the instability named.
+
+    Parameters
+    ----------
+    status, message, solver : str
+        The run's end (``"done"``, ``"contact_lost"``, ...), its words, the integrator
+        that ran it.
+    tension, regime : str
+        The tension law; the regime of the steady window (one of `REGIMES`).
+    t_end, t_discard : float
+        The run's end and the start of the steady window [s].
+    omega1_band : (float, float) or None
+        Where the omega1 peak is read [rad/s] (`omega1_band`).
+    peak_omega1, omega1_peak_at, peak_Omega, peak_Omega_n : float
+        Amplitudes of X1' [m/s] in the omega1 band and at the excitation lines, and
+        where the omega1 peak is [rad/s]; NaN where not read.
+    noise_floor : float
+        See above (`beltmdsm.run.tolerances.noise_floor`) [m/s].
+    forced_peak, resolved : bool
+        See above.
+    omega1_peak_present : bool or None
+        Whether the omega1 peak reaches `PEAK_PRESENT_RATIO` of the forced peak and
+        the noise floor; None where unresolved.
+    unresolved_reason : str
+        Why the window cannot tell ("" where resolved).
+    energy_residual, energy_bound : float
+        The energy balance's residual (relative to the total work) and its bound.
+    energy_ok : bool
+        Whether the residual is within its bound.
+    warnings : tuple of str
+        One sentence per problem.
+    energy : EnergyBalance
+        The terms of the energy balance of Sect. 3.
+    n_switches, n_reversals, n_sticks, n_contact_losses, n_separations, n_zeno : int
+        Counts of the run's switches, by kind.
+    time_fraction : dict of float
+        The share of the steady window spent in each mode.
+    min_normal_force, tension_fraction, mean_friction : float
+        The least contact force [m/s^2 per unit mass], the share of the window where
+        it pulls, the mean friction force.
+    final_state : tuple of float
+        (X1, Y1, X2, Y2) at ``t_end``.
+    vr_min, vr_max : float
+        The range of the relative velocity ``Vr = X1' - Vb`` in the window [m/s].
+    wall_s : float
+        The wall-clock time of the run [s].
+    start_perturbation : float
+        See above.
+
+    See Also
+    --------
+    summarize : what computes it from a run.
+    beltmdsm.simulate : a run and its summary.
+    beltmdsm.studies.row.Row : the columns of a sweep's table, taken from it.
+
+    Examples
+    --------
+    >>> from beltmdsm import simulate
+    >>> s = simulate(Vb=4.0, t_end=300.0).summary
+    >>> s.regime, s.resolved, s.omega1_peak_present, s.energy_ok
+    ('sliding_with_reversals', True, True, True)
+    >>> round(s.peak_omega1, 1), round(s.omega1_peak_at, 2)
+    (4.9, 1.0)
+    >>> short = simulate(Vb=4.0, t_end=40.0, t_discard=10.0).summary
+    >>> short.resolved, short.omega1_peak_present
+    (False, None)
+    >>> print(short.unresolved_reason)  # doctest: +ELLIPSIS
+    the tangential transient has not decayed in the steady window ...; lengthen --t-end
+    >>> short.as_dict()["regime"]
+    'sliding_with_reversals'
     """
 
     status: str

@@ -137,6 +137,27 @@ class Sweep:
         Cache files that failed their checks and were recomputed.
     dropped : list of float
         Duplicate values given, computed once.
+
+    See Also
+    --------
+    sweep : what returns it.
+    beltmdsm.studies.row.Row : one row of its table.
+    beltmdsm.floquet_band : where the periodic response is unstable, from its multipliers.
+
+    Examples
+    --------
+    >>> from beltmdsm import sweep
+    >>> result = sweep("Vb", [1.0, 4.0, 4.0], t_end=300.0, executor="serial",
+    ...                cache_dir=None, progress=False)
+    >>> result.table["Vb"].tolist(), result.dropped
+    ([1.0, 4.0], [4.0])
+    >>> result.table["regime"].tolist()
+    ['sliding_with_reversals', 'sliding_with_reversals']
+    >>> result.omega1_peak_ranges(), result.unresolved_values()
+    ([(4.0, 4.0)], [])
+    >>> rows = result.as_dict()["rows"]  # the rows of ``sweep --json``
+    >>> list(rows[0])[:4]
+    ['Vb', 'regime', 'peak_omega1', 'omega1_peak_at']
     """
 
     param: str
@@ -283,15 +304,44 @@ def sweep(
         many ``values``, a bad parameter value, the swept parameter also given as a
         fixed one, a bad executor, a bad ``continuation`` or one that cannot be done
         (an executor given, no periodic excitation, a period longer than ``t_end``),
-        a cache folder that cannot be written; `beltmdsm.errors.Refused` (a
-        ValueError) for a point that `beltmdsm.settings.check_request` refuses
+        a cache folder that cannot be written.
+    beltmdsm.errors.Refused
+        A ValueError too: for a point that `beltmdsm.settings.check_request` refuses
         (a sampling step that aliases, a run that would not fit in memory).
+    KeyboardInterrupt
+        On Ctrl-C, saying how many points were done (each is kept in the cache).
 
     Warns
     -----
     CacheWarning
         For each cache file that failed its checks, naming the file; the point is
         recomputed and the file rewritten.
+
+    See Also
+    --------
+    beltmdsm.simulate : one run.
+    linear_values : a range of values as the command line makes it.
+    beltmdsm.studies.cache : the disk cache.
+
+    Examples
+    --------
+    Two belt speeds, in this process and without the disk cache; a run too short to
+    tell the omega1 peak says so instead of reporting it absent:
+
+    >>> from beltmdsm import sweep
+    >>> result = sweep("Vb", [1.0, 4.0], t_end=40.0, t_discard=10.0, executor="serial",
+    ...                cache_dir=None, progress=False)
+    >>> result.table["resolved"].tolist(), result.unresolved_values()
+    ([False, False], [1.0, 4.0])
+    >>> int(result.table["n_reversals"][1]) > 0
+    True
+
+    The swept parameter cannot be given as a fixed one too:
+
+    >>> sweep("Vb", [1.0], Vb=3.0, executor="serial", cache_dir=None, progress=False)
+    Traceback (most recent call last):
+    ...
+    ValueError: Vb is swept: give its values, not a fixed Vb as well
     """
     if param not in SWEEPABLE:
         raise ValueError(f"cannot sweep {param!r}: param must be one of {', '.join(SWEEPABLE)}")
