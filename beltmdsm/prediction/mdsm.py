@@ -60,9 +60,32 @@ class FastMotion:
 
     ``v = V sin(Omega t + phi)``, ``N = g + N1 sin(Omega t + psi)``.
 
-    ``reverses`` is True when the friction changes direction within a fast cycle
-    (``V > Vb``); ``theta = psi - phi`` is the phase of the normal force ahead of the
-    velocity; ``residual`` the relative residual of the harmonic balance.
+    Parameters
+    ----------
+    V, phi : float
+        Amplitude [m/s] and phase [rad] of the fast relative velocity.
+    N1, psi : float
+        Amplitude [m/s^2, per unit mass] and phase [rad] of the fast normal force.
+    reverses : bool
+        True when the friction changes direction within a fast cycle (``V > Vb``).
+    residual : float
+        The relative residual of the harmonic balance (0 for the linear solution).
+
+    Attributes
+    ----------
+    theta : float
+        ``psi - phi``, the phase of the normal force ahead of the velocity.
+
+    See Also
+    --------
+    fast_motion : what finds it.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> fast = fast_motion(Model(Vb=5.0))
+    >>> round(fast.V, 4), fast.reverses, round(fast.theta, 4)
+    (6.6571, True, 3.8977)
     """
 
     V: float
@@ -193,10 +216,18 @@ def fast_motion(model: Model, guess: FastMotion | None = None) -> FastMotion:
 
     Parameters
     ----------
+    model : Model
+        The parameters and the laws (one excitation frequency, ``Omega_t == Omega_n``).
     guess : FastMotion, optional
         Start of the Newton iterations (continuation from a neighbouring ``Vb``), whose
         kind (reversing or not) is tried first; default: the linear solution, and the
         solution without reversal first (the one Coulomb's law has wherever it exists).
+
+    Returns
+    -------
+    FastMotion
+        The linear response where the friction does not reverse and its coefficient is
+        constant in slip; else the solution of the harmonic balance.
 
     Raises
     ------
@@ -205,6 +236,24 @@ def fast_motion(model: Model, guess: FastMotion | None = None) -> FastMotion:
     ValueError
         Two excitation frequencies, or laws whose normal motion depends on the
         tangential one (`beltmdsm.model.Unsupported`, naming the law).
+
+    See Also
+    --------
+    consistent_mdsm_damping : the slow damping at this fast motion.
+    reversal_onset : the belt speed where the friction starts to reverse.
+
+    Examples
+    --------
+    Below the onset of reversal (6.375 m/s at the base set) the friction reverses
+    within a fast cycle, above it not:
+
+    >>> from beltmdsm import Model
+    >>> [fast_motion(Model(Vb=vb)).reverses for vb in (5.0, 8.0)]
+    [True, False]
+    >>> fast_motion(Model(Vb=5.0, Omega_n=7.0))
+    Traceback (most recent call last):
+    ...
+    ValueError: the harmonic balance needs one excitation frequency: Omega_t = 4.0 != Omega_n = 7.0
     """
     p = model.params
     _single_frequency(p)
@@ -285,6 +334,36 @@ def consistent_mdsm_damping(model: Model, fast: FastMotion | None = None) -> flo
     ``-J[1, 1]`` of `generated.unforced.jacobian_at_equilibrium` (for Coulomb's law
     ``2 beta1 omega1``: the average of friction of constant direction does not depend
     on the slow velocity).
+
+    Parameters
+    ----------
+    model : Model
+        The parameters and the laws.
+    fast : FastMotion, optional
+        The fast motion at the model's ``Vb`` (default: `fast_motion` of the model).
+
+    Returns
+    -------
+    float
+        The damping [1/s]; steady sliding is unstable in the consistent MDSM where it
+        is negative.
+
+    Raises
+    ------
+    ValueError, RuntimeError
+        Those of `fast_motion`, where ``fast`` is not given.
+
+    See Also
+    --------
+    beltmdsm.prediction.scan.unstable_intervals : its sign over a grid of ``Vb``.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> round(consistent_mdsm_damping(Model(Vb=5.0)), 4)  # unstable
+    -0.0918
+    >>> round(consistent_mdsm_damping(Model(Vb=8.0)), 4)  # 2 beta1 omega1: stable
+    0.2
     """
     fast = fast or fast_motion(model)
     if fast.V == 0:
@@ -303,10 +382,35 @@ def reversal_onset(model: Model, start: float | None = None) -> float:
     harmonic balance at ``V = Vb`` is solved for ``(Vb, phi)``, from ``start`` (default:
     the linear amplitude at the linear amplitude). 0 without fast motion.
 
+    Parameters
+    ----------
+    model : Model
+        The parameters and the laws (its ``Vb`` is not used).
+    start : float, optional
+        The belt speed to start the iterations from.
+
+    Returns
+    -------
+    float
+        The belt speed [m/s] where ``V(Vb) = Vb``.
+
     Raises
     ------
     RuntimeError
         If the balance does not converge (naming the belt speed it started from).
+
+    See Also
+    --------
+    fast_motion : the fast motion at one belt speed.
+
+    Examples
+    --------
+    For Coulomb's law the onset is the linear amplitude, the upper end of the
+    consistent MDSM's band at the base set:
+
+    >>> from beltmdsm import Model
+    >>> round(reversal_onset(Model()), 4)
+    6.3754
     """
     V_lin, phi_lin = _linear(model if start is None else model.replace(Vb=start))
     if _linear_without_reversal(model) or V_lin == 0:
@@ -334,8 +438,28 @@ def reversal_onset(model: Model, start: float | None = None) -> float:
 def clip_acts(model: Model) -> tuple[bool, float]:
     """``(acts, N1)``: whether the clip cuts the linear fast normal force ``g + N1 sin``.
 
-    True when ``N1 >= g`` (the force would reach zero within a fast cycle), with
-    ``N1`` from `generated.correlation.fast_normal_force`.
+    Parameters
+    ----------
+    model : Model
+        The parameters and the laws.
+
+    Returns
+    -------
+    acts : bool
+        True when ``N1 >= g`` (the force would reach zero within a fast cycle).
+    N1 : float
+        The amplitude from `generated.correlation.fast_normal_force`.
+
+    See Also
+    --------
+    beltmdsm.prediction.prediction.predict : no consistent MDSM where the clip acts.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> acts, N1 = clip_acts(Model())
+    >>> acts, round(N1, 2)
+    (True, 27.17)
     """
     N1 = _normal(model)[0]
     return N1 >= model["g"], N1

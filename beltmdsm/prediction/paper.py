@@ -59,6 +59,28 @@ def paper_intervals(
         (NaN from `generated.stability.unstable_interval`) is ``[]``, and a reading
         without an answer is ``None``: ``V_hat`` is 0 (no excitation, where Eqs. 23-25
         have no meaning). `paper_reasons` says why, or how a numeric set was found.
+
+    Raises
+    ------
+    ValueError
+        For bad parameters or options (naming them).
+
+    See Also
+    --------
+    paper_reasons : why a reading has no answer, or how it was found.
+    beltmdsm.prediction.paper_numeric.paper_numeric : the path without closed forms.
+    beltmdsm.predict : this and the consistent MDSM.
+
+    Examples
+    --------
+    At the base set the tangential reading is unstable from 0 up to ``V_hat``; with
+    the sign of the friction that Eq. (4) implies, nowhere:
+
+    >>> found = paper_intervals()
+    >>> {k: [(round(lo, 4), round(hi, 4)) for lo, hi in v] for k, v in found.items()}
+    {'tangential': [(0.0, 8.5212)], 'coupled': [(0.0, 6.3754)]}
+    >>> paper_intervals(convention="consistent")
+    {'tangential': [], 'coupled': []}
     """
     return _paper(as_model(model, **kw), convention)[0]
 
@@ -72,7 +94,37 @@ def paper_reasons(
     """``{reading: why}`` for each ``V_hat`` reading whose `paper_intervals` is None
     (`NO_VHAT`, or the refusal of `generated.stability.unstable_interval`) or was found
     numerically (`PAPER_NUMERIC`: why there is no closed form, the grid and the
-    tolerance): one line each."""
+    tolerance): one line each.
+
+    Parameters
+    ----------
+    model : Model, mapping or None
+        The parameter set (or the keywords ``**kw`` it is built from).
+    convention : {"paper", "consistent"}
+        As for `paper_intervals`.
+
+    Returns
+    -------
+    dict of str
+        By reading (``"tangential"``, ``"coupled"``); empty where both have closed
+        forms.
+
+    Raises
+    ------
+    ValueError
+        For bad parameters or options (naming them).
+
+    See Also
+    --------
+    paper_intervals : the intervals these reasons are about.
+
+    Examples
+    --------
+    >>> paper_reasons()
+    {}
+    >>> print(paper_reasons(alpha=0.0)["tangential"])
+    V_hat = 0 (no fast tangential motion): Eqs. (23)-(25) need V_hat > 0
+    """
     return _paper(as_model(model, **kw), convention)[1]
 
 

@@ -79,9 +79,22 @@ def paper_numeric(
     Eq. 25 jumps there), else a root of the growth rate refined by brentq to
     `PAPER_XTOL`. A band narrower than the grid step can be missed.
 
+    Parameters
+    ----------
+    model : Model, mapping or None
+        The parameter set (or the keywords ``**kw`` it is built from).
+    reading : {"tangential", "coupled"}
+        The reading of ``V_hat`` (`generated.friction.vhat`).
+    convention : {"paper", "consistent"}
+        The sign of the effective friction in Eq. (A4), as for
+        `beltmdsm.prediction.paper.paper_intervals`.
+    points : int
+        The grid's size before the points at the crossings are added.
+
     Returns
     -------
     intervals : list of (lower, upper)
+        The unstable belt speeds [m/s].
     info : dict
         ``top`` (the grid's end), ``points``, ``step``, ``crossings`` (the belt speeds
         where ``V_hat(Vb) = Vb``), ``reaches_top`` (a band ends at the grid's end).
@@ -91,6 +104,21 @@ def paper_numeric(
     ValueError
         Where ``V_hat`` is not positive on the grid (no fast motion: Eqs. 23-25
         need ``V_hat > 0``; the message is `NO_VHAT`).
+
+    See Also
+    --------
+    beltmdsm.prediction.paper.paper_intervals : the closed forms, where they exist.
+
+    Examples
+    --------
+    Stribeck's law has no closed-form fast average; the tangential reading is
+    unstable from 3.805 m/s up to the crossing ``V_hat(Vb) = Vb``:
+
+    >>> found, info = paper_numeric(friction="stribeck", mu_k=0.25, v_s=1.0, points=200)
+    >>> [(round(lo, 3), round(hi, 3)) for lo, hi in found]
+    [(3.805, 8.521)]
+    >>> [round(c, 3) for c in info["crossings"]], info["reaches_top"]
+    ([8.521], False)
     """
     model = as_model(model, **kw)
     grow, fv = stability.growth_rate, friction.vhat

@@ -146,6 +146,22 @@ def unstable_intervals(
         `beltmdsm.errors.Refused` for a grid of more than `MAX_VB_POINTS` points.
     RuntimeError
         If the harmonic balance does not converge at a belt speed.
+
+    See Also
+    --------
+    beltmdsm.prediction.mdsm.consistent_mdsm_damping : the damping at one belt speed.
+    beltmdsm.predict : both analyses, with the reasons.
+
+    Examples
+    --------
+    The base set's band: below the onset of reversal (6.375 m/s, the upper edge) the
+    damping is negative down to 4.682 m/s, on a grid of 20 speeds as of 400:
+
+    >>> found, table = unstable_intervals(points=20)
+    >>> [(round(lo, 4), round(hi, 4)) for lo, hi in found]
+    [(4.6816, 6.3754)]
+    >>> sorted(table), table["Vb"].size
+    (['V', 'Vb', 'damping', 'reverses', 'theta'], 20)
     """
     model = as_model(model, **kw)
     _check_points(points)
@@ -278,6 +294,37 @@ def grid_note(
     Where ``vb_max`` lies above the default grid's top, `unstable_intervals` keeps the
     default grid below that top; above it the step is ``vb_max / points``, and a band
     narrower than that there can be missed.
+
+    Parameters
+    ----------
+    model : Model or dict, optional
+        The parameters and the laws (default: the base set); ``**kw`` too.
+    vb_max : float
+        The top of the grid [m/s].
+    points : int
+        The number of speeds up to it.
+
+    Returns
+    -------
+    str
+        `GRID_COARSE` filled in, or "" where the grid is as fine as the default's.
+
+    Raises
+    ------
+    RuntimeError
+        Where the onset of friction reversal is not found (`reversal_onset`).
+
+    See Also
+    --------
+    unstable_intervals : the grid it describes (``vb_max``).
+
+    Examples
+    --------
+    >>> grid_note(vb_max=5.0)
+    ''
+    >>> print(grid_note(vb_max=3000.0))  # doctest: +NORMALIZE_WHITESPACE
+    the grid keeps the default's step 0.0167 m/s up to 6.694 m/s; above it the step
+    is 7.5 m/s, and a band narrower than that there can be missed
     """
     model = as_model(model, **kw)
     onset = reversal_onset(model)

@@ -34,7 +34,32 @@ UNFORCED_SCAN = (1e-8, 1e8, 100)
 
 def unforced_rate(model: Model | Mapping[str, Any] | None, vb: ArrayLike) -> NDArray:
     """The largest real part of `generated.unforced.eigenvalues` at each belt speed:
-    steady sliding is unstable where it is positive."""
+    steady sliding is unstable where it is positive.
+
+    Parameters
+    ----------
+    model : Model or dict or None
+        The parameters and the laws (None: the base set).
+    vb : array_like
+        Belt speeds [m/s].
+
+    Returns
+    -------
+    ndarray
+        The rate [1/s] at each belt speed, of the shape of ``vb``.
+
+    See Also
+    --------
+    unforced_edges : its roots.
+
+    Examples
+    --------
+    Under Stribeck's law steady sliding grows at 0.5 m/s and decays at 5 m/s:
+
+    >>> rate = unforced_rate({"friction": "stribeck", "mu_k": 0.25, "v_s": 1.0}, [0.5, 5.0])
+    >>> [round(float(r), 4) for r in rate]
+    [0.3463, -0.095]
+    """
     model = as_model(model)
     fn = unforced.eigenvalues
     args = {**model.arguments(fn), "Vb": np.asarray(vb, dtype=float)}
@@ -48,6 +73,28 @@ def unforced_edges(model: Model | Mapping[str, Any] | None = None, **kw: Any) ->
     change refined by ``brentq`` to 1e-12 relative: the path where the law's closed
     form (`generated.unforced.critical_belt_speed`) is refused. A band narrower than
     the scan's ratio (2.3 %) can be missed.
+
+    Parameters
+    ----------
+    model : Model or dict, optional
+        The parameters and the laws (default: the base set); ``**kw`` too.
+
+    Returns
+    -------
+    list of float
+        The belt speeds [m/s], ascending; empty where steady sliding keeps its
+        stability over the scan.
+
+    See Also
+    --------
+    unforced_rate : the rate whose roots they are.
+
+    Examples
+    --------
+    >>> [round(v, 6) for v in unforced_edges(friction="stribeck", mu_k=0.25, v_s=1.0)]
+    [1.99572]
+    >>> unforced_edges()  # Coulomb's law: steady sliding is stable at every belt speed
+    []
     """
     model = as_model(model, **kw)
     lo, hi, per_decade = UNFORCED_SCAN
