@@ -114,7 +114,9 @@ class Row:
         for name, dtype in COLUMNS:
             object.__setattr__(self, name, _PYTHON[dtype[0]](getattr(self, name)))
         if self.modulation is not None:
-            mod = {name: float(self.modulation[name]) for name, _ in MODULATION_COLUMNS}
+            # a period that is not there (Omega_t = 0) has no cycles: NaN, as a period
+            # longer than the window
+            mod = {n: float(self.modulation.get(n, math.nan)) for n, _ in MODULATION_COLUMNS}
             object.__setattr__(self, "modulation", mod)
         if self.restart_state is not None:
             object.__setattr__(self, "restart_state", tuple(map(float, self.restart_state)))

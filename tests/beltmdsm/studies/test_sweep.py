@@ -425,3 +425,14 @@ def test_a_row_has_one_shape_from_the_run_to_the_table(tmp_path):
     frame = again.to_pandas()
     assert isinstance(frame, pandas.DataFrame) and list(frame.columns) == list(json_row)
     assert frame.iloc[0].to_dict() == json_row
+
+
+def test_a_modulation_row_without_a_period_is_served_from_the_cache(tmp_path):
+    # Omega_t = 0: no cycles of 2 pi / Omega_t, whose columns are NaN; the row once
+    # lacked them, and its cache file was recomputed (and warned about) on every rerun
+    kw = dict(settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False)
+    first = sweep("Vb", [2.0], Omega_t=0.0, Omega_n=0.0, modulation=True, **kw)
+    assert np.isnan(first.table["mu_eff_Omega_mean"][0])
+    assert first.table["mu_eff_omega1_mean"][0] == pytest.approx(Model()["mu_s"], rel=1e-12)
+    again = sweep("Vb", [2.0], Omega_t=0.0, Omega_n=0.0, modulation=True, **kw)
+    assert again.n_cached == 1 and again.problems == []
