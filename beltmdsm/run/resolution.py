@@ -94,6 +94,28 @@ def free_decay_rate(model: Model) -> float:
     for the model's laws: ``-beta1 omega1`` for Coulomb friction (``beta1 < 1``);
     ``-beta1 omega1 + g dmu/d|Vr| / 2`` at ``|Vr| = Vb`` for a friction that falls with
     speed, which is >= 0 where steady sliding is unstable (the transient grows).
+
+    Parameters
+    ----------
+    model : Model
+        The parameters and the laws, at its ``Vb``.
+
+    Returns
+    -------
+    float
+        ``sigma`` [1/s].
+
+    See Also
+    --------
+    beltmdsm.prediction.sliding.unforced_rate : the largest rate of all four.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> free_decay_rate(Model())  # -beta1 omega1 = -0.1 * 1
+    -0.1
+    >>> round(free_decay_rate(Model(friction="stribeck", mu_k=0.25, v_s=1.0, Vb=0.5)), 4)
+    0.3463
     """
     from generated import unforced
 

@@ -76,6 +76,29 @@ def classify_regime(trajectory: Trajectory, t0: float, t1: float) -> str:
     (both slip directions) > continuous_sliding. Separation under the clipped tension
     law (``X2 > 0``, no force) is part of the contact cycle and does not enter; its
     share is in the summary's ``time_fraction``.
+
+    Parameters
+    ----------
+    trajectory : beltmdsm.integrate.trajectory.Trajectory
+        The run's trajectory.
+    t0, t1 : float
+        The window [s].
+
+    Returns
+    -------
+    str
+        One of `REGIMES`.
+
+    See Also
+    --------
+    summarize : the summary that holds it.
+
+    Examples
+    --------
+    >>> from beltmdsm import simulate
+    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> classify_regime(sim.trajectory, 10.0, 40.0)
+    'sliding_with_reversals'
     """
     spent = trajectory.time_in_modes(t0, t1)
     if spent[Mode.FLIGHT] > 0:
@@ -92,6 +115,27 @@ def omega1_band(p: Mapping[str, float]) -> tuple[float, float] | None:
 
     Half-width 0.25 omega1, narrowed to keep clear of the excitation lines
     ``Omega_t`` and ``Omega_n``; ``None`` when an excitation line sits at omega1.
+
+    Parameters
+    ----------
+    p : mapping
+        The model's parameters (``omega1``, ``Omega_t``, ``Omega_n``).
+
+    Returns
+    -------
+    (float, float) or None
+
+    See Also
+    --------
+    beltmdsm.run.spectra.peak_amplitudes : what reads the peak in it.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> omega1_band(Model().params)  # omega1 = 1 rad/s, the excitation at 4 rad/s
+    (0.75, 1.25)
+    >>> omega1_band(Model(Omega_t=1.0, Omega_n=1.0).params) is None
+    True
     """
     w1 = p["omega1"]
     half = 0.25 * w1
@@ -103,7 +147,34 @@ def omega1_band(p: Mapping[str, float]) -> tuple[float, float] | None:
 
 @dataclass(frozen=True)
 class EnergyBalance:
-    """The energy balance of Sect. 3 over a run (`Trajectory.energy_balance`)."""
+    """The energy balance of Sect. 3 over a run (`Trajectory.energy_balance`).
+
+    Parameters
+    ----------
+    energy_change : float
+        The change of the energy E (kinetic, spring, Hertz and gravity) over the run.
+    work_input, work_viscous, work_friction : float
+        The work of the excitation, and the work dissipated by damping and friction.
+    imbalance : float
+        ``energy_change - work_input + work_viscous + work_friction``.
+    residual : float
+        ``|imbalance| / work_total``.
+    work_total : float
+        The sum of the absolute works, the residual's scale.
+    energy_level : float
+        ``max |E|`` at the two ends (the scale of the rounding of ``energy_change``).
+
+    See Also
+    --------
+    beltmdsm.run.tolerances.energy_bound : the residual a run may leave.
+
+    Examples
+    --------
+    >>> from beltmdsm import simulate
+    >>> e = simulate(Vb=4.0, t_end=40.0, t_discard=10.0).summary.energy
+    >>> e.residual < 1e-8, e.work_input > e.work_friction > 0
+    (True, True)
+    """
 
     energy_change: float
     work_input: float
@@ -285,8 +356,37 @@ def summarize(
 ) -> Summary:
     """Regime, spectral peaks, energy balance and counts of a run.
 
-    ``start_perturbation``: how far the run's start was moved off an unstable steady
-    sliding (`beltmdsm.simulation.equilibrium_start`), stated in the summary.
+    Parameters
+    ----------
+    model : Model
+        The model that was run.
+    settings : SolverSettings
+        Its settings (the steady window, the tolerances, the sampling step).
+    run : beltmdsm.integrate.trajectory.Run
+        The integrated run.
+    samples : beltmdsm.integrate.trajectory.Samples
+        The run sampled every ``settings.dt``.
+    wall_s : float
+        The run's wall-clock time [s], stated in the summary.
+    start_perturbation : float
+        How far the run's start was moved off an unstable steady sliding
+        (`beltmdsm.simulation.equilibrium_start`), stated in the summary.
+
+    Returns
+    -------
+    Summary
+
+    See Also
+    --------
+    beltmdsm.simulate : a run with its summary.
+
+    Examples
+    --------
+    >>> from beltmdsm import simulate
+    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> s = summarize(sim.model, sim.settings, sim.run, sim.samples)
+    >>> s.regime, s.n_reversals == sim.summary.n_reversals
+    ('sliding_with_reversals', True)
     """
     p = model.params
     t0, t1 = settings.window_start, run.trajectory.t_end

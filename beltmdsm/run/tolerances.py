@@ -56,7 +56,23 @@ def noise_floor(rtol: float, atol: float, y: NDArray[np.float64], v: NDArray[np.
     Returns
     -------
     float
-        ``4 NOISE_GLOBAL_FACTOR 2 (atol + rtol max|y|) + 2 N eps max|v|`` [m/s]
+        ``4 NOISE_GLOBAL_FACTOR 2 (atol + rtol max|y|) + 2 N eps max|v|`` [m/s]; NaN
+        for no samples.
+
+    See Also
+    --------
+    energy_bound : the other bound a run's tolerances set.
+
+    Examples
+    --------
+    A state of size 1 at rtol = atol = 1e-10: ``4 x 8 x 2 (1e-10 + 1e-10)``, and the
+    rounding of 1000 samples:
+
+    >>> import numpy as np
+    >>> v = np.sin(np.linspace(0.0, 20.0, 1000))
+    >>> y = np.vstack([v, v, v, v])
+    >>> f"{noise_floor(1e-10, 1e-10, y, v):.4g}"
+    '1.28e-08'
     """
     if v.size == 0:
         return float("nan")
@@ -111,6 +127,24 @@ def energy_bound(
         ``max |E|`` at the ends of the run (`EnergyBalance.energy_level`).
     work_total : float
         The total absolute work (`EnergyBalance.work_total`), the residual's scale.
+
+    Returns
+    -------
+    float
+        The bound, relative to the total work.
+
+    See Also
+    --------
+    noise_floor : the other bound a run's tolerances set.
+
+    Examples
+    --------
+    >>> energy_bound(1e-10, 1e-10)  # the floor
+    1e-08
+    >>> round(energy_bound(1e-6, 1e-10), 12)  # 64 tol
+    6.4e-05
+    >>> energy_bound(1e-2, 1e-10)  # a tolerance too loose to trust: the cap
+    0.0001
     """
     tol = max(rtol, atol)
     ratio = energy_level / work_total if work_total > 0 else math.inf
