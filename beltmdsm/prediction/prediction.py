@@ -167,6 +167,20 @@ class Prediction:
         """The prediction as plain values by field name (``predict --json``)."""
         return asdict(self)
 
+    def __repr__(self) -> str:
+        from .._display import block, intervals
+
+        lines = []
+        for name in self.ANALYSES:
+            found = getattr(self, name)
+            if found is None:
+                lines.append(f"{name}: no prediction ({self.reasons.get(name, '')})")
+            else:
+                note = " (a note in reasons)" if name in self.reasons else ""
+                lines.append(f"{name}: unstable Vb in {intervals(found)}{note}")
+        head = f"Prediction({self.friction} friction, {self.contact}, tension {self.tension})"
+        return block(head, lines)
+
 
 def predict(
     model: Model | Mapping[str, Any] | None = None,
@@ -231,6 +245,11 @@ def predict(
 
     >>> from beltmdsm import predict
     >>> result = predict(points=20)
+    >>> result
+    Prediction(coulomb friction, hertz_damp, tension allowed)
+      paper_tangential_vhat: unstable Vb in [0, 8.52122]
+      paper_coupled_vhat: unstable Vb in [0, 6.37537]
+      consistent_mdsm: unstable Vb in [4.68158, 6.37537]
     >>> for name in result.ANALYSES:
     ...     print(name, [(round(lo, 3), round(hi, 3)) for lo, hi in getattr(result, name)])
     paper_tangential_vhat [(0.0, 8.521)]

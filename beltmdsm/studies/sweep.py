@@ -149,6 +149,10 @@ class Sweep:
     >>> from beltmdsm import sweep
     >>> result = sweep("Vb", [1.0, 4.0, 4.0], t_end=300.0, executor="serial",
     ...                cache_dir=None, progress=False)
+    >>> result  # doctest: +NORMALIZE_WHITESPACE
+    Sweep(Vb over 2 values in [1, 4]; coulomb friction, hertz_damp, tension allowed;
+          from rest; 0 from the cache)
+      omega1 peak present in [4, 4]
     >>> result.table["Vb"].tolist(), result.dropped
     ([1.0, 4.0], [4.0])
     >>> result.table["regime"].tolist()
@@ -177,6 +181,27 @@ class Sweep:
     def unresolved_values(self) -> list[float]:
         """Values whose run could not tell the omega1 peak (`unresolved_values`)."""
         return unresolved_values(self.table, self.param)
+
+    def __repr__(self) -> str:
+        from .._display import block, intervals, laws
+
+        x = self.table[self.param]
+        span = f" in [{x.min():g}, {x.max():g}]" if x.size else ""
+        how = f"continued {self.continuation}" if self.continuation else f"from {self.start}"
+        head = (
+            f"Sweep({self.param} over {x.size} values{span}; {laws(self.model)}; "
+            f"{how}; {self.n_cached} from the cache)"
+        )
+        lines = [f"omega1 peak present in {intervals(self.omega1_peak_ranges())}"]
+        unresolved = self.unresolved_values()
+        if unresolved:
+            lines.append(f"unresolved at {self.param} = {', '.join(f'{v:g}' for v in unresolved)}")
+        failed = int(np.isin(self.table["status"], ("failed", "no_periodic")).sum())
+        if failed:
+            lines.append(f"{failed} points not run or failed (their error column says why)")
+        if self.problems:
+            lines.append(f"{len(self.problems)} cache files failed their checks, recomputed")
+        return block(head, lines)
 
     def to_pandas(self) -> DataFrame:
         """The table as a `pandas.DataFrame`: one row per value, the columns of `table`

@@ -422,3 +422,18 @@ def test_the_grid_has_a_cap():
     assert err.value.names == ("points",)
     with pytest.raises(Refused, match="MAX_VB_POINTS"):
         scan.unstable_intervals(vb=np.linspace(1, 2, MAX_VB_POINTS + 1))
+
+
+def test_the_repr_of_a_prediction_says_what_it_holds():
+    # issue 30 item 3: a short repr, in the words of the command line
+    from beltmdsm._display import intervals
+
+    result = prediction.predict(Omega_n=7.0, points=20)
+    lines = repr(result).splitlines()
+    assert lines[0] == "Prediction(coulomb friction, hertz_damp, tension allowed)"
+    assert (
+        lines[1]
+        == f"  paper_tangential_vhat: unstable Vb in {intervals(result.paper_tangential_vhat)}"
+    )
+    assert lines[3] == f"  consistent_mdsm: no prediction ({result.reasons['consistent_mdsm']})"
+    assert len(lines) == 4
