@@ -193,7 +193,28 @@ Start = Literal["rest", "periodic"]
 
 
 def columns(modulation: bool) -> tuple[tuple[str, str], ...]:
-    """The row's columns and their numpy types."""
+    """The row's columns and their numpy types.
+
+    Parameters
+    ----------
+    modulation : bool
+        Whether the friction modulation columns (`MODULATION_COLUMNS`) follow.
+
+    Returns
+    -------
+    tuple of (str, str)
+
+    See Also
+    --------
+    Row : whose fields they are.
+
+    Examples
+    --------
+    >>> columns(False)[:2]
+    (('regime', 'U24'), ('peak_omega1', 'f8'))
+    >>> len(columns(False)), len(columns(True))
+    (24, 30)
+    """
     return COLUMNS + (MODULATION_COLUMNS if modulation else ())
 
 
@@ -226,6 +247,29 @@ def run_point(
         `NO_PERIODIC_RESPONSE`, ``resolved`` False, ``status`` "no_periodic" and NaN
         (or 0) in the numeric columns: the point cannot be run, and never counts as a
         point without the peak.
+
+    Returns
+    -------
+    Row
+
+    Raises
+    ------
+    ValueError, ArithmeticError, RuntimeError
+        Those of `beltmdsm.simulate` (a sweep makes them a `failed_row`).
+
+    See Also
+    --------
+    beltmdsm.sweep : a point for each value of one parameter.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, SolverSettings
+    >>> short = SolverSettings(t_end=40.0, t_discard=10.0)
+    >>> row = run_point(Model(Vb=4.0), short, restart_period=1.5)
+    >>> row.regime, row.status, row.error
+    ('sliding_with_reversals', 'done', '')
+    >>> row.restart_t, len(row.restart_state)  # the last multiple of 1.5 s
+    (39.0, 4)
     """
     if start == "periodic":
         try:
@@ -264,7 +308,33 @@ def _one_field(text: str) -> str:
 def failed_row(model: Model, settings: SolverSettings, modulation: bool, err: Exception) -> Row:
     """The row of a point whose run failed: ``status`` "failed", ``error`` the reason,
     NaN (or 0) in the numeric columns, ``resolved`` False (it never counts as a point
-    without the peak)."""
+    without the peak).
+
+    Parameters
+    ----------
+    model, settings : Model, SolverSettings
+        The point's.
+    modulation : bool
+        Whether the row holds the modulation columns (NaN).
+    err : Exception
+        Why the run failed.
+
+    Returns
+    -------
+    Row
+
+    See Also
+    --------
+    run_point : the row of a run.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, SolverSettings
+    >>> short = SolverSettings(t_end=40.0, t_discard=10.0)
+    >>> row = failed_row(Model(), short, False, RuntimeError("stopped, at t = 3 s"))
+    >>> row.status, row.resolved, row.n_switches, row.error  # one CSV field: no comma
+    ('failed', False, 0, 'RuntimeError: stopped; at t = 3 s')
+    """
     return Row.empty(
         model,
         settings,
@@ -279,7 +349,35 @@ def to_table(
     param: str, values: ArrayLike, rows: Sequence[Row], modulation: bool = False
 ) -> NDArray[np.void]:
     """The sweep's table: one record per row, ``param`` (its ``values``) first, then
-    `columns` (a modulation column NaN for a row without it)."""
+    `columns` (a modulation column NaN for a row without it).
+
+    Parameters
+    ----------
+    param : str
+        The swept parameter.
+    values : array_like
+        Its value at each row.
+    rows : sequence of Row
+    modulation : bool
+        Whether the table holds the modulation columns.
+
+    Returns
+    -------
+    numpy structured array
+
+    See Also
+    --------
+    records : the table's rows as dicts.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, SolverSettings
+    >>> short = SolverSettings(t_end=40.0, t_discard=10.0)
+    >>> failed = failed_row(Model(), short, False, RuntimeError("no"))
+    >>> table = to_table("Vb", [4.0], [failed])
+    >>> table.dtype.names[:3], table["status"].tolist()
+    (('Vb', 'regime', 'peak_omega1'), ['failed'])
+    """
     cols = ((param, "f8"),) + columns(modulation)
     out = np.zeros(len(rows), dtype=list(cols))
     for i, (value, row) in enumerate(zip(values, rows)):
@@ -289,12 +387,63 @@ def to_table(
 
 
 def records(table: NDArray[np.void]) -> list[dict[str, Any]]:
-    """The table's rows as plain dicts by column (``sweep --json``'s ``rows``)."""
+    """The table's rows as plain dicts by column (``sweep --json``'s ``rows``).
+
+    Parameters
+    ----------
+    table : numpy structured array
+        A sweep's table (`to_table`).
+
+    Returns
+    -------
+    list of dict
+        Plain Python values by column, in the table's order.
+
+    See Also
+    --------
+    to_table : the table.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, SolverSettings
+    >>> short = SolverSettings(t_end=40.0, t_discard=10.0)
+    >>> table = to_table("Vb", [4.0], [failed_row(Model(), short, False, RuntimeError("no"))])
+    >>> (row,) = records(table)
+    >>> row["Vb"], row["status"], row["error"]
+    (4.0, 'failed', 'RuntimeError: no')
+    """
     return [dict(zip(table.dtype.names, r.tolist())) for r in table]
 
 
 def table_to_csv(table: NDArray[np.void], path: os.PathLike | str) -> None:
-    """Write a sweep table as CSV with a header line."""
+    """Write a sweep table as CSV with a header line.
+
+    Parameters
+    ----------
+    table : numpy structured array
+        A sweep's table.
+    path : path
+        The file written.
+
+    See Also
+    --------
+    table_from_csv : reads it back.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from beltmdsm import Model, SolverSettings
+    >>> short = SolverSettings(t_end=40.0, t_discard=10.0)
+    >>> failed = failed_row(Model(), short, False, RuntimeError("no"))
+    >>> table = to_table("Vb", [4.0, 5.0], [failed, failed])
+    >>> path = os.path.join(tempfile.mkdtemp(), "sweep.csv")
+    >>> table_to_csv(table, path)
+    >>> open(path).readline().split(",")[:3]
+    ['Vb', 'regime', 'peak_omega1']
+    >>> back = table_from_csv(path)
+    >>> back.dtype.names == table.dtype.names, back["Vb"].tolist(), back["status"].tolist()
+    (True, [4.0, 5.0], ['failed', 'failed'])
+    """
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(table.dtype.names)
@@ -303,5 +452,20 @@ def table_to_csv(table: NDArray[np.void], path: os.PathLike | str) -> None:
 
 
 def table_from_csv(path: os.PathLike | str) -> NDArray[np.void]:
-    """Read a table written by `table_to_csv` back into a structured array."""
+    """Read a table written by `table_to_csv` back into a structured array.
+
+    Parameters
+    ----------
+    path : path
+        A file `table_to_csv` wrote.
+
+    Returns
+    -------
+    numpy structured array
+        The columns by name, their types read from the text.
+
+    See Also
+    --------
+    table_to_csv : writes it (its Examples read one back).
+    """
     return np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")

@@ -93,11 +93,34 @@ def linear_values(start: float, stop: float, step: float) -> NDArray[np.float64]
     The values are ``start + step * k``, as the command line has always computed
     them (they key the sweep cache, so they must not change by a rounding).
 
+    Parameters
+    ----------
+    start, stop, step : float
+        The first value, the last one (reached within 1e-9 steps) and the step.
+
+    Returns
+    -------
+    ndarray
+        The values, ascending.
+
     Raises
     ------
     ValueError
         Naming ``start``, ``stop`` or ``step``: not finite, ``step <= 0``,
         ``stop < start``, or more than `MAX_POINTS` values.
+
+    See Also
+    --------
+    sweep : what takes them.
+
+    Examples
+    --------
+    >>> linear_values(1.0, 2.0, 0.25).tolist()
+    [1.0, 1.25, 1.5, 1.75, 2.0]
+    >>> linear_values(1.0, 2.0, 0.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: step must be > 0; got 0.0
     """
     for name, value in (("start", start), ("stop", stop), ("step", step)):
         if not (isinstance(value, (int, float, np.integer, np.floating)) and math.isfinite(value)):
@@ -495,7 +518,28 @@ def _ignore_interrupt():
 
 def process_pool(workers: int | None) -> cf.ProcessPoolExecutor:
     """A process pool for sweeps whose workers leave Ctrl-C to this process, which
-    stops them (`stop_process_pool`)."""
+    stops them (`stop_process_pool`).
+
+    Parameters
+    ----------
+    workers : int or None
+        The number of worker processes (None: the number of CPUs).
+
+    Returns
+    -------
+    concurrent.futures.ProcessPoolExecutor
+
+    See Also
+    --------
+    sweep : its default executor is one of these.
+
+    Examples
+    --------
+    >>> pool = process_pool(1)
+    >>> pool.submit(sum, [1, 2, 3]).result()
+    6
+    >>> stop_process_pool(pool)
+    """
     return cf.ProcessPoolExecutor(max_workers=workers, initializer=_ignore_interrupt)
 
 
@@ -505,6 +549,26 @@ def stop_process_pool(executor: cf.ProcessPoolExecutor, futures=()) -> None:
 
     A second Ctrl-C meanwhile is ignored, so that it cannot leave the pool half shut
     (the permanent hang of a shutdown interrupted while it joins its threads).
+
+    Parameters
+    ----------
+    executor : concurrent.futures.ProcessPoolExecutor
+        The pool (`process_pool`).
+    futures : iterable of concurrent.futures.Future
+        Its futures, cancelled first.
+
+    See Also
+    --------
+    process_pool : the pool it stops.
+
+    Examples
+    --------
+    >>> pool = process_pool(1)
+    >>> stop_process_pool(pool)
+    >>> pool.submit(sum, [1])
+    Traceback (most recent call last):
+    ...
+    RuntimeError: cannot schedule new futures after shutdown
     """
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
@@ -574,8 +638,32 @@ def resolved_mask(
 ) -> NDArray[np.bool_]:
     """The ``resolved`` column of a sweep table; all True for a table without one.
 
-    ``table``: a structured array (`sweep`) or a dict of columns (the notebooks'
-    scans); ``param`` names a column whose length counts the points of a dict.
+    Parameters
+    ----------
+    table : structured array or dict of arrays
+        A sweep's table (`Sweep.table`) or a dict of columns (the notebooks' scans).
+    param : str, optional
+        A column whose length counts the points of a dict without ``resolved``.
+
+    Returns
+    -------
+    ndarray of bool
+
+    See Also
+    --------
+    unresolved_values : the values where it is False.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> table = np.zeros(4, dtype=[("Vb", "f8"), ("omega1_peak_present", "?"), ("resolved", "?")])
+    >>> table["Vb"] = [1.0, 2.0, 3.0, 4.0]
+    >>> table["omega1_peak_present"] = [False, True, True, False]
+    >>> table["resolved"] = [True, True, True, False]
+    >>> resolved_mask(table).tolist()
+    [True, True, True, False]
+    >>> resolved_mask({"Vb": [1.0, 2.0]}, "Vb").tolist()
+    [True, True]
     """
     names = (
         table.keys()
@@ -598,11 +686,62 @@ def omega1_peak_ranges(
     an excluded point of the validation: it is not a point with the peak, so it
     ends a range, and it is not a point without it either; `unresolved_values`
     lists them, so that a reader never takes the gap for "no peak".
+
+    Parameters
+    ----------
+    table : structured array or dict of arrays
+        A sweep's table, ascending in ``param``.
+    param : str
+        The swept parameter.
+
+    Returns
+    -------
+    list of (float, float)
+
+    See Also
+    --------
+    Sweep.omega1_peak_ranges : the same, of a sweep.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> table = np.zeros(4, dtype=[("Vb", "f8"), ("omega1_peak_present", "?"), ("resolved", "?")])
+    >>> table["Vb"] = [1.0, 2.0, 3.0, 4.0]
+    >>> table["omega1_peak_present"] = [False, True, True, False]
+    >>> table["resolved"] = [True, True, True, False]
+    >>> omega1_peak_ranges(table)
+    [(2.0, 3.0)]
     """
     present = np.asarray(table["omega1_peak_present"], dtype=bool) & resolved_mask(table, param)
     return intervals.runs(table[param], present)
 
 
 def unresolved_values(table: NDArray[np.void] | dict[str, Any], param: str = "Vb") -> list[float]:
-    """Values of ``param`` whose run could not tell the omega1 peak (ascending)."""
+    """Values of ``param`` whose run could not tell the omega1 peak (ascending).
+
+    Parameters
+    ----------
+    table : structured array or dict of arrays
+        A sweep's table.
+    param : str
+        The swept parameter.
+
+    Returns
+    -------
+    list of float
+
+    See Also
+    --------
+    resolved_mask : the column it reads.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> table = np.zeros(4, dtype=[("Vb", "f8"), ("omega1_peak_present", "?"), ("resolved", "?")])
+    >>> table["Vb"] = [1.0, 2.0, 3.0, 4.0]
+    >>> table["omega1_peak_present"] = [False, True, True, False]
+    >>> table["resolved"] = [True, True, True, False]
+    >>> unresolved_values(table)
+    [4.0]
+    """
     return sorted(float(v) for v in np.asarray(table[param])[~resolved_mask(table, param)])
