@@ -281,14 +281,11 @@ def predict(
         consistent, table = unstable_intervals(
             model, vb=vb, points=points, progress=progress, vb_max=vb_max
         )
-    except _Refused as err:
-        consistent, reasons["consistent_mdsm"] = None, str(err)
-    except RuntimeError as err:
-        consistent, reasons["consistent_mdsm"] = None, str(err)
-    except ValueError as err:
-        # the parameters and the grid are checked above: what is left is the
+    except (_Refused, RuntimeError, ValueError) as err:
+        # the parameters and the grid are checked above: a ValueError left is the
         # analysis' own limit (one excitation frequency, laws whose normal motion
-        # depends on the tangential one: beltmdsm.model.Unsupported)
+        # depends on the tangential one: beltmdsm.model.Unsupported); a RuntimeError a
+        # harmonic balance that did not converge
         consistent, reasons["consistent_mdsm"] = None, str(err)
     else:
         if _linear(model)[0] == 0:
