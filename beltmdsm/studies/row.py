@@ -4,22 +4,22 @@
 from the periodic response (``start="periodic"``), and returns a `Row`. A `Row` is
 what every later stage holds: the disk cache stores `Row.as_dict` and reads it back
 with `Row.from_dict` (`beltmdsm.studies.cache`), the sweep's table stacks the rows
-(`to_table`), and the table's records (`records`) are the rows of ``sweep --json``, its
-CSV (`table_to_csv`) and `beltmdsm.studies.sweep.Sweep.to_pandas`. The columns, their
-numpy types and their conversions are defined here once: the fields of `Row`.
+(`beltmdsm.studies.table.to_table`), and the table's records
+(`beltmdsm.studies.table.records`) are the rows of ``sweep --json``, its CSV
+(`beltmdsm.studies.table.table_to_csv`) and `beltmdsm.studies.sweep.Sweep.to_pandas`.
+The columns, their numpy types and their conversions are defined here once: the
+fields of `Row`.
 """
 
 from __future__ import annotations
 
-import csv
 import math
-import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from typing import Any, Literal
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
 from ..model import Model
 from ..periodic.floquet import NoPeriodicResponse, periodic_start
@@ -37,10 +37,6 @@ __all__ = [
     "columns",
     "failed_row",
     "run_point",
-    "to_table",
-    "records",
-    "table_to_csv",
-    "table_from_csv",
 ]
 
 
@@ -300,8 +296,8 @@ def run_point(
 
 
 def _one_field(text: str) -> str:
-    """``text`` as one CSV field that `table_from_csv` reads back (numpy's reader splits
-    at every comma, quoted or not)."""
+    """``text`` as one CSV field that `beltmdsm.studies.table.table_from_csv` reads
+    back (numpy's reader splits at every comma, quoted or not)."""
     return " ".join(str(text).replace(",", ";").split())[:400]
 
 
@@ -343,129 +339,3 @@ def failed_row(model: Model, settings: SolverSettings, modulation: bool, err: Ex
         status="failed",
         error=_one_field(f"{type(err).__name__}: {err}"),
     )
-
-
-def to_table(
-    param: str, values: ArrayLike, rows: Sequence[Row], modulation: bool = False
-) -> NDArray[np.void]:
-    """The sweep's table: one record per row, ``param`` (its ``values``) first, then
-    `columns` (a modulation column NaN for a row without it).
-
-    Parameters
-    ----------
-    param : str
-        The swept parameter.
-    values : array_like
-        Its value at each row.
-    rows : sequence of Row
-    modulation : bool
-        Whether the table holds the modulation columns.
-
-    Returns
-    -------
-    numpy structured array
-
-    See Also
-    --------
-    records : the table's rows as dicts.
-
-    Examples
-    --------
-    >>> from beltmdsm import Model, SolverSettings
-    >>> short = SolverSettings(t_end=40.0, t_discard=10.0)
-    >>> failed = failed_row(Model(), short, False, RuntimeError("no"))
-    >>> table = to_table("Vb", [4.0], [failed])
-    >>> table.dtype.names[:3], table["status"].tolist()
-    (('Vb', 'regime', 'peak_omega1'), ['failed'])
-    """
-    cols = ((param, "f8"),) + columns(modulation)
-    out = np.zeros(len(rows), dtype=list(cols))
-    for i, (value, row) in enumerate(zip(values, rows)):
-        data = row.as_dict()
-        out[i] = (value, *(data.get(name, np.nan) for name, _ in cols[1:]))
-    return out
-
-
-def records(table: NDArray[np.void]) -> list[dict[str, Any]]:
-    """The table's rows as plain dicts by column (``sweep --json``'s ``rows``).
-
-    Parameters
-    ----------
-    table : numpy structured array
-        A sweep's table (`to_table`).
-
-    Returns
-    -------
-    list of dict
-        Plain Python values by column, in the table's order.
-
-    See Also
-    --------
-    to_table : the table.
-
-    Examples
-    --------
-    >>> from beltmdsm import Model, SolverSettings
-    >>> short = SolverSettings(t_end=40.0, t_discard=10.0)
-    >>> table = to_table("Vb", [4.0], [failed_row(Model(), short, False, RuntimeError("no"))])
-    >>> (row,) = records(table)
-    >>> row["Vb"], row["status"], row["error"]
-    (4.0, 'failed', 'RuntimeError: no')
-    """
-    return [dict(zip(table.dtype.names, r.tolist())) for r in table]
-
-
-def table_to_csv(table: NDArray[np.void], path: os.PathLike | str) -> None:
-    """Write a sweep table as CSV with a header line.
-
-    Parameters
-    ----------
-    table : numpy structured array
-        A sweep's table.
-    path : path
-        The file written.
-
-    See Also
-    --------
-    table_from_csv : reads it back.
-
-    Examples
-    --------
-    >>> import os, tempfile
-    >>> from beltmdsm import Model, SolverSettings
-    >>> short = SolverSettings(t_end=40.0, t_discard=10.0)
-    >>> failed = failed_row(Model(), short, False, RuntimeError("no"))
-    >>> table = to_table("Vb", [4.0, 5.0], [failed, failed])
-    >>> path = os.path.join(tempfile.mkdtemp(), "sweep.csv")
-    >>> table_to_csv(table, path)
-    >>> open(path).readline().split(",")[:3]
-    ['Vb', 'regime', 'peak_omega1']
-    >>> back = table_from_csv(path)
-    >>> back.dtype.names == table.dtype.names, back["Vb"].tolist(), back["status"].tolist()
-    (True, [4.0, 5.0], ['failed', 'failed'])
-    """
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(table.dtype.names)
-        for row in table:
-            w.writerow([repr(float(x)) if isinstance(x, np.floating) else x for x in row.tolist()])
-
-
-def table_from_csv(path: os.PathLike | str) -> NDArray[np.void]:
-    """Read a table written by `table_to_csv` back into a structured array.
-
-    Parameters
-    ----------
-    path : path
-        A file `table_to_csv` wrote.
-
-    Returns
-    -------
-    numpy structured array
-        The columns by name, their types read from the text.
-
-    See Also
-    --------
-    table_to_csv : writes it (its Examples read one back).
-    """
-    return np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")

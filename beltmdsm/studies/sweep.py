@@ -21,9 +21,6 @@ from __future__ import annotations
 import concurrent.futures as cf
 import math
 import os
-import signal
-import sys
-import warnings
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -32,7 +29,6 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import intervals
 from .._calling import settings_keywords, valued
 from .._tables import DataFrame
 from ..arguments import flag, reals, settings_of
@@ -49,34 +45,18 @@ from .cache import (
     writable_folder,
     write_cached,
 )
-from .row import (
-    STARTS,
-    Row,
-    Start,
-    columns,
-    failed_row,
-    records,
-    run_point,
-    table_from_csv,
-    table_to_csv,
-    to_table,
-)
+from .pool import _collect, process_pool, stop_process_pool
+from .row import STARTS, Row, Start, columns, failed_row, run_point
+from .table import omega1_peak_ranges, records, to_table, unresolved_values
 
 __all__ = [
     "sweep",
     "Sweep",
     "linear_values",
-    "table_to_csv",
-    "table_from_csv",
-    "omega1_peak_ranges",
-    "resolved_mask",
-    "unresolved_values",
     "MAX_POINTS",
     "SWEEPABLE",
     "CONTINUATIONS",
     "CacheWarning",
-    "process_pool",
-    "stop_process_pool",
 ]
 
 #: Directions of a continued sweep (`sweep`'s ``continuation``).
@@ -198,11 +178,12 @@ class Sweep:
     dropped: list[float] = field(default_factory=list)
 
     def omega1_peak_ranges(self) -> list[tuple[float, float]]:
-        """Where the omega1 peak is present (`omega1_peak_ranges`)."""
+        """Where the omega1 peak is present (`beltmdsm.studies.table.omega1_peak_ranges`)."""
         return omega1_peak_ranges(self.table, self.param)
 
     def unresolved_values(self) -> list[float]:
-        """Values whose run could not tell the omega1 peak (`unresolved_values`)."""
+        """Values whose run could not tell the omega1 peak
+        (`beltmdsm.studies.table.unresolved_values`)."""
         return unresolved_values(self.table, self.param)
 
     def __repr__(self) -> str:
@@ -507,241 +488,3 @@ def _continued(points, periods, order, settings, modulation, cache_dir, continua
         )
         yield i, result
         y0 = result[0].restart_state
-
-
-def _ignore_interrupt():
-    """A pool worker's initializer: Ctrl-C (SIGINT to the terminal's process group) is
-    the sweep's to handle; a worker that raised KeyboardInterrupt itself would leave
-    the pool waiting on it."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
-def process_pool(workers: int | None) -> cf.ProcessPoolExecutor:
-    """A process pool for sweeps whose workers leave Ctrl-C to this process, which
-    stops them (`stop_process_pool`).
-
-    Parameters
-    ----------
-    workers : int or None
-        The number of worker processes (None: the number of CPUs).
-
-    Returns
-    -------
-    concurrent.futures.ProcessPoolExecutor
-
-    See Also
-    --------
-    sweep : its default executor is one of these.
-
-    Examples
-    --------
-    >>> pool = process_pool(1)
-    >>> pool.submit(sum, [1, 2, 3]).result()
-    6
-    >>> stop_process_pool(pool)
-    """
-    return cf.ProcessPoolExecutor(max_workers=workers, initializer=_ignore_interrupt)
-
-
-def stop_process_pool(executor: cf.ProcessPoolExecutor, futures=()) -> None:
-    """Stop a process pool now (Ctrl-C): the queued points cancelled, the running
-    ones ended (their workers terminated), nothing waited for but the workers' exit.
-
-    A second Ctrl-C meanwhile is ignored, so that it cannot leave the pool half shut
-    (the permanent hang of a shutdown interrupted while it joins its threads).
-
-    Parameters
-    ----------
-    executor : concurrent.futures.ProcessPoolExecutor
-        The pool (`process_pool`).
-    futures : iterable of concurrent.futures.Future
-        Its futures, cancelled first.
-
-    See Also
-    --------
-    process_pool : the pool it stops.
-
-    Examples
-    --------
-    >>> pool = process_pool(1)
-    >>> stop_process_pool(pool)
-    >>> pool.submit(sum, [1])
-    Traceback (most recent call last):
-    ...
-    RuntimeError: cannot schedule new futures after shutdown
-    """
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-    try:
-        for fut in futures:
-            fut.cancel()
-        workers = list((getattr(executor, "_processes", None) or {}).values())
-        executor.shutdown(wait=False, cancel_futures=True)
-        for worker in workers:
-            worker.terminate()
-        for worker in workers:
-            worker.join(timeout=5)
-    finally:
-        signal.signal(signal.SIGINT, previous)
-
-
-def _collect(results, n, desc, progress, cache_dir=None):
-    """``(rows, n_cached, problems)`` from ``(index, (row, cached, problem))`` results,
-    with a progress bar; each problem is warned about once, by the file's name.
-
-    Interrupted (Ctrl-C), it raises KeyboardInterrupt saying how many points it had
-    received (each finished point is in the cache, written by the process that
-    computed it: a worker may have written one more than it had sent).
-    """
-    from tqdm import tqdm
-
-    rows, n_cached, problems = [None] * n, 0, []
-    bar = tqdm(total=n, desc=desc, disable=not progress, file=sys.stderr)
-    done = 0
-    try:
-        for i, (row, cached, problem) in _interruptible(results):
-            done += 1
-            rows[i] = row
-            n_cached += bool(cached)
-            if problem is not None:
-                problems.append(problem)
-                # stacklevel 4: the caller of sweep (sweep -> _collect -> warn)
-                warnings.warn(str(problem), CacheWarning, stacklevel=3)
-            bar.update()
-    except KeyboardInterrupt:
-        kept = (
-            f"; every point finished is kept in the cache ({cache_dir})"
-            if cache_dir is not None
-            else " (no cache: nothing kept)"
-        )
-        raise KeyboardInterrupt(f"{desc}: stopped after {done} of {n} points{kept}") from None
-    finally:
-        bar.close()
-    return rows, n_cached, problems
-
-
-def _interruptible(results):
-    """``results``, with the SystemError that numba raises where Ctrl-C lands inside a
-    compiled function ("returned a result with an exception set") read as the
-    KeyboardInterrupt it wraps."""
-    try:
-        yield from results
-    except SystemError as err:
-        if isinstance(err.__context__, KeyboardInterrupt) or isinstance(
-            err.__cause__, KeyboardInterrupt
-        ):
-            raise KeyboardInterrupt from None
-        raise
-
-
-def resolved_mask(
-    table: NDArray[np.void] | dict[str, Any], param: str | None = None
-) -> NDArray[np.bool_]:
-    """The ``resolved`` column of a sweep table; all True for a table without one.
-
-    Parameters
-    ----------
-    table : structured array or dict of arrays
-        A sweep's table (`Sweep.table`) or a dict of columns (the notebooks' scans).
-    param : str, optional
-        A column whose length counts the points of a dict without ``resolved``.
-
-    Returns
-    -------
-    ndarray of bool
-
-    See Also
-    --------
-    unresolved_values : the values where it is False.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> table = np.zeros(4, dtype=[("Vb", "f8"), ("omega1_peak_present", "?"), ("resolved", "?")])
-    >>> table["Vb"] = [1.0, 2.0, 3.0, 4.0]
-    >>> table["omega1_peak_present"] = [False, True, True, False]
-    >>> table["resolved"] = [True, True, True, False]
-    >>> resolved_mask(table).tolist()
-    [True, True, True, False]
-    >>> resolved_mask({"Vb": [1.0, 2.0]}, "Vb").tolist()
-    [True, True]
-    """
-    names = (
-        table.keys()
-        if isinstance(table, dict)
-        else getattr(getattr(table, "dtype", None), "names", None) or ()
-    )
-    if "resolved" in names:
-        return np.asarray(table["resolved"], dtype=bool)
-    n = len(table[param]) if isinstance(table, dict) else len(table)
-    return np.ones(n, dtype=bool)
-
-
-def omega1_peak_ranges(
-    table: NDArray[np.void] | dict[str, Any], param: str = "Vb"
-) -> list[tuple[float, float]]:
-    """Contiguous ranges of ``param`` where the omega1 peak is present: [(lo, hi), ...].
-
-    `beltmdsm.intervals.runs` of ``omega1_peak_present`` at resolved points. An
-    unresolved point (``resolved`` False: the run could not tell) is treated like
-    an excluded point of the validation: it is not a point with the peak, so it
-    ends a range, and it is not a point without it either; `unresolved_values`
-    lists them, so that a reader never takes the gap for "no peak".
-
-    Parameters
-    ----------
-    table : structured array or dict of arrays
-        A sweep's table, ascending in ``param``.
-    param : str
-        The swept parameter.
-
-    Returns
-    -------
-    list of (float, float)
-
-    See Also
-    --------
-    Sweep.omega1_peak_ranges : the same, of a sweep.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> table = np.zeros(4, dtype=[("Vb", "f8"), ("omega1_peak_present", "?"), ("resolved", "?")])
-    >>> table["Vb"] = [1.0, 2.0, 3.0, 4.0]
-    >>> table["omega1_peak_present"] = [False, True, True, False]
-    >>> table["resolved"] = [True, True, True, False]
-    >>> omega1_peak_ranges(table)
-    [(2.0, 3.0)]
-    """
-    present = np.asarray(table["omega1_peak_present"], dtype=bool) & resolved_mask(table, param)
-    return intervals.runs(table[param], present)
-
-
-def unresolved_values(table: NDArray[np.void] | dict[str, Any], param: str = "Vb") -> list[float]:
-    """Values of ``param`` whose run could not tell the omega1 peak (ascending).
-
-    Parameters
-    ----------
-    table : structured array or dict of arrays
-        A sweep's table.
-    param : str
-        The swept parameter.
-
-    Returns
-    -------
-    list of float
-
-    See Also
-    --------
-    resolved_mask : the column it reads.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> table = np.zeros(4, dtype=[("Vb", "f8"), ("omega1_peak_present", "?"), ("resolved", "?")])
-    >>> table["Vb"] = [1.0, 2.0, 3.0, 4.0]
-    >>> table["omega1_peak_present"] = [False, True, True, False]
-    >>> table["resolved"] = [True, True, True, False]
-    >>> unresolved_values(table)
-    [4.0]
-    """
-    return sorted(float(v) for v in np.asarray(table[param])[~resolved_mask(table, param)])

@@ -11,8 +11,10 @@ from beltmdsm.run.summary import PEAK_PRESENT_RATIO
 from beltmdsm.settings import SolverSettings
 from beltmdsm.studies import row as row_module
 from beltmdsm.studies import sweep as sweep_module
+from beltmdsm.studies import table as table_module
 from beltmdsm.studies.cache import cache_key, identity
-from beltmdsm.studies.sweep import omega1_peak_ranges, sweep, table_from_csv, table_to_csv
+from beltmdsm.studies.sweep import sweep
+from beltmdsm.studies.table import omega1_peak_ranges, table_from_csv, table_to_csv
 
 SHORT = SolverSettings(t_end=40.0, t_discard=10.0)
 VALUES = [2.0, 4.0, 12.0]
@@ -229,7 +231,7 @@ def test_unresolved_points_are_false_and_flagged_and_break_the_peak_ranges(seria
     t["omega1_peak_present"] = [True, True, False, True, True, False]
     t["resolved"] = [True, False, True, True, True, False]
     assert omega1_peak_ranges(t) == [(1.0, 1.0), (4.0, 5.0)]
-    assert sweep_module.unresolved_values(t) == [2.0, 6.0]
+    assert table_module.unresolved_values(t) == [2.0, 6.0]
     # a dict of columns (the notebooks' scans), with and without the resolved column
     scan = {name: t[name] for name in t.dtype.names}
     assert omega1_peak_ranges(scan) == [(1.0, 1.0), (4.0, 5.0)]
@@ -413,14 +415,14 @@ def test_a_row_has_one_shape_from_the_run_to_the_table(tmp_path):
     (cached,) = tmp_path.glob("*.json")
     on_disk = json.loads(cached.read_text())["row"]
     (json_row,) = result.as_dict()["rows"]
-    (record,) = row_module.records(result.table)
+    (record,) = table_module.records(result.table)
     assert json_row == record == {"Vb": 4.0, **on_disk}
     assert on_disk.keys() == stored.keys()
     again = sweep(
         "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False,
         modulation=True,
     )  # fmt: skip
-    assert again.n_cached == 1 and row_module.records(again.table) == [json_row]
+    assert again.n_cached == 1 and table_module.records(again.table) == [json_row]
     pandas = pytest.importorskip("pandas")
     frame = again.to_pandas()
     assert isinstance(frame, pandas.DataFrame) and list(frame.columns) == list(json_row)
