@@ -83,7 +83,7 @@ class Simulation:
 
     See Also
     --------
-    simulate : what returns it.
+    beltmdsm.simulate : what returns it.
     beltmdsm.plotting.simulation : its figures (`plot`).
 
     Examples

@@ -134,7 +134,7 @@ class Prediction:
 
     See Also
     --------
-    predict : what returns it.
+    beltmdsm.predict : what returns it.
     beltmdsm.cli.text : how ``beltmdsm predict`` prints it.
 
     Examples

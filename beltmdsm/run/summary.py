@@ -256,7 +256,7 @@ class Summary:
 
     See Also
     --------
-    summarize : what computes it from a run.
+    beltmdsm.run.summary.summarize : what computes it from a run.
     beltmdsm.simulate : a run and its summary.
     beltmdsm.studies.row.Row : the columns of a sweep's table, taken from it.
 

@@ -143,7 +143,7 @@ class Sweep:
 
     See Also
     --------
-    sweep : what returns it.
+    beltmdsm.sweep : what returns it.
     beltmdsm.studies.row.Row : one row of its table.
     beltmdsm.floquet_band : where the periodic response is unstable, from its multipliers.
 
@@ -349,7 +349,7 @@ def sweep(
     See Also
     --------
     beltmdsm.simulate : one run.
-    linear_values : a range of values as the command line makes it.
+    beltmdsm.studies.sweep.linear_values : a range of values as the command line makes it.
     beltmdsm.studies.cache : the disk cache.
 
     Examples
