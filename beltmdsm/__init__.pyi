@@ -25,7 +25,7 @@ from .periodic.floquet import Floquet, floquet
 from .periodic.response import PeriodicResponse
 from .periodic.shooting import periodic_response
 from .periodic.start import periodic_start
-from .prediction.predict import Prediction, predict
+from .prediction.prediction import Prediction, predict
 from .run.summary import Summary
 from .settings import SolverSettings
 from .simulation import Simulation, simulate

@@ -3,7 +3,7 @@
 Sweeps, predictions and the validation all turn values on a grid into sets of
 intervals and compare such sets. An interval is a pair ``(lo, hi)`` of floats with
 ``lo <= hi``, closed; a set is a list of intervals. The functions here are pure
-and small; `beltmdsm.studies.sweep`, `beltmdsm.prediction.predict`,
+and small; `beltmdsm.studies.sweep`, `beltmdsm.prediction`,
 `beltmdsm.studies.validation` and the notebooks' ``_nbutil`` call them.
 
 Runtime layer: numpy only.

@@ -206,7 +206,7 @@ BYTES_PER_SAMPLE = 128
 #: with a worker per core of a small machine fits in its memory. At the base set and
 #: the default tolerances this is about 7 x 10^4 s of simulated time.
 MAX_RUN_BYTES = 4 * 2**30
-#: Most belt speeds of one grid of `beltmdsm.prediction.predict` (``points``, or the
+#: Most belt speeds of one grid of `beltmdsm.prediction.scan` (``points``, or the
 #: size of ``vb``): the harmonic
 #: balance takes 1.3 to 2 ms a point (measured at the base set: 400 points in 0.8 s,
 #: 4000 in 5.2 s, 30000 in 60 s with the other core busy), so 10^5 points take two to

@@ -51,7 +51,52 @@ START_PERTURBATION = 1e-6
 
 @dataclass
 class Simulation:
-    """A run: the model, the settings, the run, its samples on a uniform grid, the summary."""
+    """A run: the model, the settings, the run, its samples on a uniform grid, the summary.
+
+    Parameters
+    ----------
+    model : Model
+        The model that was run.
+    settings : SolverSettings
+        The solver settings it was run with.
+    run : beltmdsm.integrate.trajectory.Run
+        The integrated run: its `Trajectory` (dense output, mode by mode), switch
+        events, status and message.
+    samples : beltmdsm.integrate.trajectory.Samples
+        The run sampled every ``settings.dt``: ``t``, the state ``y`` (X1, Y1, X2,
+        Y2), the contact force and the friction force.
+    summary : Summary
+        What the run says (`beltmdsm.run.summary.summarize`).
+    wall_s : float
+        The wall-clock time of the run [s].
+
+    Attributes
+    ----------
+    t, y, normal_force, friction : ndarray
+        The samples' (`samples`).
+    window : ndarray of bool
+        The samples in the steady window (``t >= settings.window_start``).
+    params, contact, tension : mapping, str, str
+        The model's.
+    trajectory, events, status, message, solver_used
+        The run's.
+
+    See Also
+    --------
+    beltmdsm.simulate : what returns it.
+    beltmdsm.plotting.simulation : its figures (`plot`).
+
+    Examples
+    --------
+    >>> from beltmdsm import simulate
+    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> sim.status, sim.solver_used, sim.params["Vb"]
+    ('done', 'events', 4.0)
+    >>> sim.y.shape  # X1, Y1, X2, Y2 every dt = 0.02 s
+    (4, 2001)
+    >>> float(sim.t[-1]), int(sim.window.sum())  # the steady window: t >= 10 s
+    (40.0, 1501)
+    """
 
     model: Model
     settings: SolverSettings
@@ -164,7 +209,8 @@ def simulate(
 
     Returns
     -------
-    Simulation, with ``summary`` filled in (`beltmdsm.run.summary.summarize`).
+    Simulation
+        The run, its samples and its ``summary`` (`beltmdsm.run.summary.summarize`).
 
     Raises
     ------
@@ -176,6 +222,33 @@ def simulate(
         (`beltmdsm.settings.check_request`).
     beltmdsm.errors.StepTooSmall
         Where the integrator cannot go on at the tolerances given.
+    TypeError
+        For ``start=`` or ``perturbation=``: the start state is ``y0``.
+
+    See Also
+    --------
+    beltmdsm.sweep : a run for each value of one parameter.
+    beltmdsm.periodic_response : the periodic response itself, without a transient.
+    beltmdsm.lyapunov, beltmdsm.classify : what a run settles on.
+
+    Examples
+    --------
+    >>> from beltmdsm import simulate
+    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> sim.status, sim.summary.regime
+    ('done', 'sliding_with_reversals')
+    >>> s = sim.summary
+    >>> s.n_reversals > 0, s.n_sticks, s.energy_ok
+    (True, 0, True)
+    >>> round(s.vr_min, 1), round(s.vr_max, 1)  # Vr = X1' - Vb in the steady window
+    (-15.6, 9.5)
+
+    A bad value is named:
+
+    >>> simulate(Vb=-1.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: parameter 'Vb' must be >= 0; got -1.0
     """
     clock = time.perf_counter()
     if "start" in kw or "perturbation" in kw:

@@ -11,7 +11,7 @@ fast tangential motion, and the fast normal force. ``averaged_friction``,
 averages; ``friction_average``, ``friction_average_slope`` and ``friction_harmonic``
 those of a friction law (``friction=``), and ``slow_damping`` and
 ``harmonic_balance`` the pieces of the consistent MDSM built from them.
-``beltmdsm.prediction.predict`` builds the stability prediction from them.
+``beltmdsm.prediction`` builds the stability prediction from them.
 """
 
 import numpy
@@ -1049,9 +1049,9 @@ def slow_damping(V, N1, theta, *, friction='coulomb', **params):
     Implements Eqs. (20), (23)-(25) generalised of the paper.
 
     The linearisation of the averaged friction at frozen fast amplitude and phase
-    (beltmdsm.prediction.predict's consistent MDSM). For a friction law whose fast
-    average has no closed form (Stribeck's; beltmdsm.generated.capabilities) the law's
-    part beyond mu(0) is a quadrature of the same expression
+    (beltmdsm.prediction.mdsm's consistent MDSM). For a friction law whose fast average
+    has no closed form (Stribeck's; beltmdsm.generated.capabilities) the law's part
+    beyond mu(0) is a quadrature of the same expression
     (beltmdsm.generated._support.quad).
 
     Parameters

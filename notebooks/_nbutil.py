@@ -32,7 +32,7 @@ if str(ROOT) not in sys.path:
 from beltmdsm import SolverSettings, simulate  # noqa: E402
 from beltmdsm.intervals import format_intervals, jaccard  # noqa: E402
 from beltmdsm.run.spectra import amplitude_spectrum  # noqa: E402
-from beltmdsm.studies.sweep import omega1_peak_ranges  # noqa: E402
+from beltmdsm.studies.table import omega1_peak_ranges  # noqa: E402
 
 __all__ = [
     "FULL",

@@ -401,7 +401,7 @@ def solver_parent() -> argparse.ArgumentParser:
         default=1e-10,
         help="relative tolerance of the integrators' local error per step, > 0; the "
         "noise floor of the spectrum and the bound of the energy residual follow it "
-        "(beltmdsm/run/summary.py) (default: 1e-10)",
+        "(beltmdsm/run/tolerances.py) (default: 1e-10)",
     )
     s.add_argument(
         "--atol",
@@ -507,7 +507,7 @@ def executor_from(args: argparse.Namespace) -> Iterator[cf.Executor | str | None
     elif args.jobs == 1:
         yield "serial"
     elif args.jobs:
-        from ..studies.sweep import process_pool, stop_process_pool
+        from ..studies.pool import process_pool, stop_process_pool
 
         pool = process_pool(args.jobs)
         try:

@@ -25,7 +25,28 @@ __all__ = ["friction_loop", "cycle_averages", "modulation_scatter", "Simulated"]
 
 
 class Simulated(Protocol):
-    """What these analyses read of a run (`beltmdsm.simulation.Simulation` has it)."""
+    """What these analyses read of a run (`beltmdsm.simulation.Simulation` has it).
+
+    Attributes
+    ----------
+    params : mapping
+        The model's parameters.
+    trajectory : beltmdsm.integrate.trajectory.Trajectory
+        The run's trajectory.
+    settings : SolverSettings
+        The run's settings (the steady window).
+
+    See Also
+    --------
+    beltmdsm.simulation.Simulation : the run that has them.
+
+    Examples
+    --------
+    >>> from beltmdsm import simulate
+    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> sim.params["Vb"], sim.trajectory.t_end, sim.settings.window_start
+    (4.0, 40.0, 10.0)
+    """
 
     @property
     def params(self) -> Mapping[str, float]: ...
@@ -49,10 +70,33 @@ def friction_loop(
         default ``2 pi / omega1`` as in Fig. 3b
     t_stop : float, optional
         end of the period shown; default the end of the run
+    n : int
+        the number of points
 
     Returns
     -------
     t, Vr, friction : ndarray (n,)
+        times [s], relative velocity ``X1' - Vb`` [m/s], friction force per unit mass
+        [m/s^2]
+
+    Raises
+    ------
+    ValueError
+        Where ``period`` is not positive or does not fit in the run before ``t_stop``.
+
+    See Also
+    --------
+    beltmdsm.simulation.Simulation.plot : draws it (``kind="friction"``).
+
+    Examples
+    --------
+    >>> from beltmdsm import simulate
+    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> t, vr, friction = friction_loop(sim)  # the last 2 pi / omega1 of the run
+    >>> t.shape, round(float(t[-1] - t[0]), 4)
+    ((2000,), 6.2832)
+    >>> bool(vr.min() < 0 < vr.max())  # the friction reverses
+    True
     """
     period = 2 * np.pi / sim.params["omega1"] if period is None else float(period)
     t_stop = sim.trajectory.t_end if t_stop is None else float(t_stop)
@@ -74,9 +118,39 @@ def cycle_averages(
     Cycles start at the first multiple of ``period`` after ``t_start`` (default the
     start of the steady window), so they keep a fixed phase to the excitation.
 
+    Parameters
+    ----------
+    sim : beltmdsm.simulation.Simulation
+    period : float
+        the cycle's length [s]
+    t_start : float, optional
+        where the cycles may start [s]
+
     Returns
     -------
     dict of arrays: ``t0`` (cycle starts), ``friction``, ``normal_force``, ``mu_eff``
+
+    Raises
+    ------
+    ValueError
+        Where ``period`` is not positive, or no full cycle fits (naming the times).
+
+    See Also
+    --------
+    modulation_scatter : their mean and scatter over the steady window.
+
+    Examples
+    --------
+    Cycles of the excitation period 2 pi / 4 s from the first multiple after 10 s:
+
+    >>> import math
+    >>> from beltmdsm import simulate
+    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> cycles = cycle_averages(sim, 2 * math.pi / 4.0)
+    >>> sorted(cycles), cycles["t0"].size
+    (['friction', 'mu_eff', 'normal_force', 't0'], 18)
+    >>> round(float(cycles["t0"][0]), 4)  # 7 periods
+    10.9956
     """
     if not period > 0:
         raise ValueError(f"period must be > 0; got {period!r}")
@@ -107,6 +181,32 @@ def modulation_scatter(sim: Simulated) -> dict[str, float]:
     cycles of the steady window and its scatter (standard deviation and range). Where
     no full cycle of a period fits in the steady window, its three numbers are NaN and
     ``"modulation_error"`` says why (the run and the other period are kept).
+
+    Parameters
+    ----------
+    sim : beltmdsm.simulation.Simulation
+
+    Returns
+    -------
+    dict of float
+        ``mu_eff_{Omega,omega1}_{mean,std,range}`` (a period of 0 left out), and
+        ``modulation_error`` where a period did not fit.
+
+    See Also
+    --------
+    cycle_averages : the averages of each cycle.
+    beltmdsm.studies.row.Row : the sweep columns that hold them.
+
+    Examples
+    --------
+    >>> from beltmdsm import simulate
+    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> scatter = modulation_scatter(sim)
+    >>> sorted(scatter)  # doctest: +NORMALIZE_WHITESPACE
+    ['mu_eff_Omega_mean', 'mu_eff_Omega_range', 'mu_eff_Omega_std',
+     'mu_eff_omega1_mean', 'mu_eff_omega1_range', 'mu_eff_omega1_std']
+    >>> round(scatter["mu_eff_Omega_mean"], 3)  # above mu_s = 0.4
+    0.486
     """
     out, missing = {}, []
     for tag, omega in (("Omega", sim.params["Omega_t"]), ("omega1", sim.params["omega1"])):

@@ -50,6 +50,8 @@ def amplitude_spectrum(
     ----------
     x : array_like
         samples, spacing ``dt`` [s]
+    dt : float
+        the sampling step [s]
     window : str
         a `scipy.signal.get_window` name
     pad : int
@@ -59,6 +61,27 @@ def amplitude_spectrum(
     -------
     omega : ndarray [rad/s]
     amplitude : ndarray, same unit as ``x``
+
+    Raises
+    ------
+    ValueError
+        For fewer than 8 samples, a signal that is not 1-D, or ``dt <= 0``.
+
+    See Also
+    --------
+    peak_amplitudes : a peak's amplitude, refined off the frequency grid.
+    spectrogram : the spectrum over time.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> dt = 0.01
+    >>> t = np.arange(0.0, 100.0, dt)
+    >>> x = 2.0 * np.sin(3.0 * t) + 0.5 * np.sin(7.3 * t)
+    >>> omega, amplitude = amplitude_spectrum(x, dt)
+    >>> k = int(np.argmax(amplitude))
+    >>> round(float(omega[k]), 2), round(float(amplitude[k]), 2)
+    (3.0, 2.0)
     """
     x = np.asarray(x, dtype=float)
     if x.ndim != 1 or x.size < 8:
@@ -102,9 +125,39 @@ def peak_amplitudes(
     amplitude A at any frequency inside a band reads A (up to the window's leakage
     from other components).
 
+    Parameters
+    ----------
+    x : array_like
+        Samples, spacing ``dt`` [s].
+    dt : float
+        The sampling step [s].
+    bands : iterable of (float, float)
+        The bands ``(lo, hi)`` [rad/s], ``0 <= lo < hi``.
+    window : str
+        A `scipy.signal.get_window` name.
+
     Returns
     -------
     list of (omega_peak, amplitude), one per band
+
+    Raises
+    ------
+    ValueError
+        For fewer than 8 samples, a bad band, or a band that holds no frequency of
+        the spectrum (naming its resolution and Nyquist frequency).
+
+    See Also
+    --------
+    amplitude_spectrum : the whole spectrum on the FFT's grid.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> dt = 0.01
+    >>> t = np.arange(0.0, 100.0, dt)
+    >>> x = 2.0 * np.sin(3.0 * t) + 0.5 * np.sin(7.3 * t)
+    >>> [(round(w, 4), round(a, 4)) for w, a in peak_amplitudes(x, dt, [(2, 4), (6, 8)])]
+    [(3.0, 2.0), (7.3, 0.5)]
     """
     x = np.asarray(x, dtype=float)
     if x.ndim != 1 or x.size < 8:
@@ -169,7 +222,37 @@ def _refine_peak(xw, wsum, dt, centre, step, lo, hi):
 def peak_amplitude(
     x: ArrayLike, dt: float, band: tuple[float, float], window: str = "hann"
 ) -> tuple[float, float]:
-    """`peak_amplitudes` for one band: (omega_peak, amplitude)."""
+    """`peak_amplitudes` for one band: (omega_peak, amplitude).
+
+    Parameters
+    ----------
+    x, dt, window
+        As for `peak_amplitudes`.
+    band : (float, float)
+        The band ``(lo, hi)`` [rad/s].
+
+    Returns
+    -------
+    (float, float)
+        The peak's frequency [rad/s] and amplitude.
+
+    Raises
+    ------
+    ValueError
+        As `peak_amplitudes`.
+
+    See Also
+    --------
+    peak_amplitudes : several bands at once.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(0.0, 100.0, 0.01)
+    >>> omega, amplitude = peak_amplitude(0.5 * np.sin(7.3 * t), 0.01, (6.0, 8.0))
+    >>> round(omega, 4), round(amplitude, 4)
+    (7.3, 0.5)
+    """
     return peak_amplitudes(x, dt, [band], window)[0]
 
 
@@ -178,12 +261,45 @@ def spectrogram(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Spectrogram of ``x`` (Fig. 2c): amplitude against time and frequency.
 
+    Parameters
+    ----------
+    x : array_like
+        Samples, spacing ``dt`` [s].
+    dt : float
+        The sampling step [s].
+    segment_s : float
+        The length of a segment [s] (at least 8 samples, at most the signal).
+    overlap : float
+        The overlap of neighbouring segments, a fraction in [0, 1).
+    window : str
+        A `scipy.signal.get_window` name.
+
     Returns
     -------
     t_mid : ndarray [s], centres of the segments (from the first sample)
     omega : ndarray [rad/s]
     amplitude : ndarray, shape (omega.size, t_mid.size), normalised as
         `amplitude_spectrum`
+
+    Raises
+    ------
+    ValueError
+        For a segment shorter than 8 samples or longer than the signal, or a bad
+        ``overlap``.
+
+    See Also
+    --------
+    amplitude_spectrum : one spectrum of the whole signal.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> dt = 0.01
+    >>> t = np.arange(0.0, 100.0, dt)
+    >>> x = 2.0 * np.sin(3.0 * t) + 0.5 * np.sin(7.3 * t)
+    >>> t_mid, omega, amplitude = spectrogram(x, dt, segment_s=20.0)
+    >>> t_mid[:3].tolist(), amplitude.shape
+    ([10.0, 20.0, 30.0], (1001, 9))
     """
     x = np.asarray(x, dtype=float)
     nper = int(round(segment_s / dt))

@@ -1,13 +1,14 @@
 """The disk cache of sweep points: one JSON file per point, named by its key.
 
-A point's summary row is cached as a small JSON file named by `cache_key`, a SHA-256 of
-what the row depends on: the model (`beltmdsm.Model.digest`: parameters and options),
-the solver settings, the start state of a continued point, the cache format, the
-package version and the code that computes a row (`code_hash` over `code_files`: the
-modules that a row's entry module, `NUMERIC_SOURCES`, imports, read from the sources:
-the generated model, the integrators, the run's summary, the period map; not the
-command line, the reports or the sweep's orchestration, whose edits change no number).
-No pickles are stored.
+A point's row (`beltmdsm.studies.row.Row.as_dict`, read back by
+`beltmdsm.studies.row.Row.from_dict`) is cached as a small JSON file named by
+`cache_key`, a SHA-256 of what the row depends on: the model (`beltmdsm.Model.digest`:
+parameters and options), the solver settings, the start state of a continued point,
+the cache format, the package version and the code that computes a row (`code_hash`
+over `code_files`: the modules that a row's entry module, `NUMERIC_SOURCES`, imports,
+read from the sources: the generated model, the integrators, the run's summary, the
+period map; not the command line, the reports or the sweep's orchestration, whose edits
+change no number). No pickles are stored.
 
 The cache is safe to share between processes and hosts (dask workers on several
 machines): a file is written under a unique temporary name and renamed into place, so
@@ -71,12 +72,39 @@ CODE_PACKAGES = ("beltmdsm",)
 
 
 class CacheWarning(UserWarning):
-    """A sweep cache file failed its checks; it was recomputed and rewritten."""
+    """A sweep cache file failed its checks; it was recomputed and rewritten.
+
+    See Also
+    --------
+    Problem : what the warning says.
+
+    Examples
+    --------
+    >>> issubclass(CacheWarning, UserWarning)
+    True
+    """
 
 
 @dataclass(frozen=True)
 class Problem:
-    """A cache file that failed its checks: its path and what is wrong with it."""
+    """A cache file that failed its checks: its path and what is wrong with it.
+
+    Parameters
+    ----------
+    path : str
+        The file.
+    reason : str
+        What is wrong with it (`read_cached`'s phrase).
+
+    See Also
+    --------
+    CacheWarning : the warning that carries it.
+
+    Examples
+    --------
+    >>> print(Problem("ab12.json", "not valid JSON"))
+    sweep cache file ab12.json: not valid JSON; recomputed and rewritten
+    """
 
     path: str
     reason: str
@@ -89,18 +117,56 @@ def default_cache_dir() -> Path:
     """``sweeps`` in the folder of the package's caches (`beltmdsm.generated._support.cache_root`,
     one rule for every cache): ``$BELTMDSM_CACHE/sweeps``, else
     ``$XDG_CACHE_HOME/beltmdsm-cache/sweeps``, else ``~/.cache/beltmdsm-cache/sweeps``
-    (an empty variable counts as unset)."""
+    (an empty variable counts as unset).
+
+    Returns
+    -------
+    pathlib.Path
+
+    See Also
+    --------
+    writable_folder : the check a sweep makes of it.
+
+    Examples
+    --------
+    >>> default_cache_dir().name
+    'sweeps'
+    """
     return Path(cache_root()) / "sweeps"
 
 
 def writable_folder(folder: os.PathLike | str) -> Path:
     """``folder``, created if need be, after a test write.
 
+    Parameters
+    ----------
+    folder : path
+
+    Returns
+    -------
+    pathlib.Path
+
     Raises
     ------
     ValueError
         Naming the folder, where it cannot be created or written (checked before a
         sweep computes anything, so that no computed point is lost).
+
+    See Also
+    --------
+    default_cache_dir : the folder of a sweep's ``cache_dir="default"``.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> root = tempfile.mkdtemp()
+    >>> writable_folder(os.path.join(root, "sweeps")).is_dir()
+    True
+    >>> open(os.path.join(root, "a_file"), "w").close()
+    >>> writable_folder(os.path.join(root, "a_file", "sweeps"))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: cache folder .../a_file/sweeps cannot be written (...); give another --cache-dir ...
     """
     folder = Path(folder)
     probe = folder / f".probe-{uuid.uuid4().hex}"
@@ -170,7 +236,22 @@ def _imported(name: str, path: Path) -> set[str]:
 def code_files() -> list[Path]:
     """The sources of the modules that importing `NUMERIC_SOURCES` executes within
     `CODE_PACKAGES` (the import graph, read from the sources), sorted by path (their
-    hash must not depend on the order they are found in)."""
+    hash must not depend on the order they are found in).
+
+    Returns
+    -------
+    list of pathlib.Path
+
+    See Also
+    --------
+    code_hash : their hash, part of every key.
+
+    Examples
+    --------
+    >>> names = {path.name for path in code_files()}
+    >>> {"row.py", "summary.py", "hybrid.py"} <= names, "sweep.py" in names
+    (True, False)
+    """
     seen: dict[str, Path] = {}
     # an entry and the packages above it, which Python imports first
     todo = [e.rsplit(".", k)[0] for e in NUMERIC_SOURCES for k in range(e.count(".") + 1)]
@@ -192,6 +273,20 @@ def code_hash() -> str:
 
     Part of `cache_key`: a change of the generated model or of the integrator gives
     new keys, so that no stale result is served.
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits.
+
+    See Also
+    --------
+    code_files : the files hashed.
+
+    Examples
+    --------
+    >>> len(code_hash()), code_hash() == code_hash()
+    (64, True)
     """
     digest = hashlib.sha256()
     for path in code_files():
@@ -205,7 +300,21 @@ def code_hash() -> str:
 
 @functools.cache
 def package_version() -> str:
-    """The installed version of beltmdsm, else the version in ``pyproject.toml``."""
+    """The installed version of beltmdsm, else the version in ``pyproject.toml``.
+
+    Returns
+    -------
+    str
+
+    See Also
+    --------
+    cache_key : which it enters.
+
+    Examples
+    --------
+    >>> isinstance(package_version(), str)
+    True
+    """
     from importlib import metadata
 
     try:
@@ -232,6 +341,40 @@ def identity(
     A continued point (``continuation`` "up" or "down") is another run than the
     point from rest: its direction and its start state ``y0`` (None: from rest)
     belong to it; so does the start on the periodic response (``start``).
+
+    Parameters
+    ----------
+    model : Model
+        The point's model.
+    settings : SolverSettings
+        Its solver settings.
+    modulation : bool
+        Whether its row holds the modulation columns.
+    continuation : {None, "up", "down"}
+        The direction of a continued sweep.
+    y0 : sequence of float, optional
+        A continued point's start state.
+    start : {"rest", "periodic"}
+        Where a point that is not continued starts.
+
+    Returns
+    -------
+    dict
+        Plain JSON values: the model's `Model.as_dict`, ``settings``, ``modulation``,
+        and ``start``, ``continuation`` and ``y0`` where they apply.
+
+    See Also
+    --------
+    cache_key : its key.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, SolverSettings
+    >>> ident = identity(Model(Vb=4.0), SolverSettings(t_end=40.0))
+    >>> sorted(ident)
+    ['contact', 'friction', 'modulation', 'params', 'settings', 'tension']
+    >>> "continuation" in identity(Model(Vb=4.0), SolverSettings(), continuation="up")
+    True
     """
     ident = {
         **model.as_dict(),
@@ -247,7 +390,32 @@ def identity(
 
 
 def cache_key(ident: dict[str, Any]) -> str:
-    """SHA-256 of a point's `identity`, the cache format, the version and the code."""
+    """SHA-256 of a point's `identity`, the cache format, the version and the code.
+
+    Parameters
+    ----------
+    ident : dict
+        The point's `identity`.
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits, the name of the point's file.
+
+    See Also
+    --------
+    identity : what it hashes besides the code.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, SolverSettings
+    >>> ident = identity(Model(Vb=4.0), SolverSettings(t_end=40.0))
+    >>> key = cache_key(ident)
+    >>> len(key), key == cache_key(identity(Model(Vb=4), SolverSettings(t_end=40)))
+    (64, True)
+    >>> key == cache_key(identity(Model(Vb=4.5), SolverSettings(t_end=40.0)))
+    False
+    """
     blob = json.dumps(
         {
             "format": CACHE_FORMAT,
@@ -269,6 +437,15 @@ def read_cached(
 ) -> tuple[dict[str, Any] | None, str | None]:
     """The row stored at ``path`` for the point ``ident``, after checking the file.
 
+    Parameters
+    ----------
+    path : path
+        The point's file.
+    ident : dict
+        The point's `identity`: the file must hold the same.
+    columns : iterable of str
+        The columns the row must hold.
+
     Returns
     -------
     (row, problem)
@@ -276,6 +453,10 @@ def read_cached(
         (a short phrase) for a file that cannot be read, is not UTF-8 or not JSON,
         lacks a key or one of ``columns``, belongs to another point, or whose row
         does not match its checksum; ``(None, None)`` for no file.
+
+    See Also
+    --------
+    write_cached : writes the file (its Examples read one back).
     """
     path = Path(path)
     try:
@@ -313,6 +494,31 @@ def write_cached(path: os.PathLike | str, ident: dict[str, Any], row: dict[str, 
     The temporary name holds a random UUID, unique across processes and hosts that
     share the folder; ``os.replace`` is atomic, so a reader (or a writer of the
     same point) never sees a partial file.
+
+    Parameters
+    ----------
+    path : path
+        The point's file, named by its `cache_key`.
+    ident : dict
+        The point's `identity`, stored to be checked on reading.
+    row : dict
+        The point's row (`beltmdsm.studies.row.Row.as_dict`).
+
+    See Also
+    --------
+    read_cached : reads it back, checked.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from beltmdsm import Model, SolverSettings
+    >>> ident = identity(Model(Vb=4.0), SolverSettings(t_end=40.0))
+    >>> path = os.path.join(tempfile.mkdtemp(), cache_key(ident) + ".json")
+    >>> write_cached(path, ident, {"regime": "stick_slip"})
+    >>> read_cached(path, ident, ["regime"])
+    ({'regime': 'stick_slip'}, None)
+    >>> read_cached(path, ident, ["regime", "resolved"])
+    (None, 'its row lacks resolved')
     """
     path = Path(path)
     text = json.dumps({"key": path.stem, **ident, "row": row, "checksum": _checksum(row)})

@@ -19,12 +19,8 @@ the first from rest. Such a sweep is sequential by nature and runs in this proce
 from __future__ import annotations
 
 import concurrent.futures as cf
-import csv
 import math
 import os
-import signal
-import sys
-import warnings
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -33,7 +29,6 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import intervals
 from .._calling import settings_keywords, valued
 from .._tables import DataFrame
 from ..arguments import flag, reals, settings_of
@@ -50,23 +45,18 @@ from .cache import (
     writable_folder,
     write_cached,
 )
-from .row import STARTS, Start, columns, failed_row, run_point
+from .pool import _collect, process_pool, stop_process_pool
+from .row import STARTS, Row, Start, columns, failed_row, run_point
+from .table import omega1_peak_ranges, records, to_table, unresolved_values
 
 __all__ = [
     "sweep",
     "Sweep",
     "linear_values",
-    "table_to_csv",
-    "table_from_csv",
-    "omega1_peak_ranges",
-    "resolved_mask",
-    "unresolved_values",
     "MAX_POINTS",
     "SWEEPABLE",
     "CONTINUATIONS",
     "CacheWarning",
-    "process_pool",
-    "stop_process_pool",
 ]
 
 #: Directions of a continued sweep (`sweep`'s ``continuation``).
@@ -83,11 +73,34 @@ def linear_values(start: float, stop: float, step: float) -> NDArray[np.float64]
     The values are ``start + step * k``, as the command line has always computed
     them (they key the sweep cache, so they must not change by a rounding).
 
+    Parameters
+    ----------
+    start, stop, step : float
+        The first value, the last one (reached within 1e-9 steps) and the step.
+
+    Returns
+    -------
+    ndarray
+        The values, ascending.
+
     Raises
     ------
     ValueError
         Naming ``start``, ``stop`` or ``step``: not finite, ``step <= 0``,
         ``stop < start``, or more than `MAX_POINTS` values.
+
+    See Also
+    --------
+    sweep : what takes them.
+
+    Examples
+    --------
+    >>> linear_values(1.0, 2.0, 0.25).tolist()
+    [1.0, 1.25, 1.5, 1.75, 2.0]
+    >>> linear_values(1.0, 2.0, 0.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: step must be > 0; got 0.0
     """
     for name, value in (("start", start), ("stop", stop), ("step", step)):
         if not (isinstance(value, (int, float, np.integer, np.floating)) and math.isfinite(value)):
@@ -117,8 +130,8 @@ class Sweep:
         The model of the other parameters and the options.
     settings : SolverSettings
     table : numpy structured array
-        One row per value, ascending, the swept parameter first, then
-        `beltmdsm.studies.row.COLUMNS`.
+        One record per value, ascending: the swept parameter, then the columns of
+        its `beltmdsm.studies.row.Row` (`beltmdsm.studies.row.to_table`).
     continuation : {None, "up", "down"}
     start : {"rest", "periodic"}
     n_cached : int
@@ -127,6 +140,31 @@ class Sweep:
         Cache files that failed their checks and were recomputed.
     dropped : list of float
         Duplicate values given, computed once.
+
+    See Also
+    --------
+    beltmdsm.sweep : what returns it.
+    beltmdsm.studies.row.Row : one row of its table.
+    beltmdsm.floquet_band : where the periodic response is unstable, from its multipliers.
+
+    Examples
+    --------
+    >>> from beltmdsm import sweep
+    >>> result = sweep("Vb", [1.0, 4.0, 4.0], t_end=300.0, executor="serial",
+    ...                cache_dir=None, progress=False)
+    >>> result  # doctest: +NORMALIZE_WHITESPACE
+    Sweep(Vb over 2 values in [1, 4]; coulomb friction, hertz_damp, tension allowed;
+          from rest; 0 from the cache)
+      omega1 peak present in [4, 4]
+    >>> result.table["Vb"].tolist(), result.dropped
+    ([1.0, 4.0], [4.0])
+    >>> result.table["regime"].tolist()
+    ['sliding_with_reversals', 'sliding_with_reversals']
+    >>> result.omega1_peak_ranges(), result.unresolved_values()
+    ([(4.0, 4.0)], [])
+    >>> rows = result.as_dict()["rows"]  # the rows of ``sweep --json``
+    >>> list(rows[0])[:4]
+    ['Vb', 'regime', 'peak_omega1', 'omega1_peak_at']
     """
 
     param: str
@@ -140,23 +178,45 @@ class Sweep:
     dropped: list[float] = field(default_factory=list)
 
     def omega1_peak_ranges(self) -> list[tuple[float, float]]:
-        """Where the omega1 peak is present (`omega1_peak_ranges`)."""
+        """Where the omega1 peak is present (`beltmdsm.studies.table.omega1_peak_ranges`)."""
         return omega1_peak_ranges(self.table, self.param)
 
     def unresolved_values(self) -> list[float]:
-        """Values whose run could not tell the omega1 peak (`unresolved_values`)."""
+        """Values whose run could not tell the omega1 peak
+        (`beltmdsm.studies.table.unresolved_values`)."""
         return unresolved_values(self.table, self.param)
+
+    def __repr__(self) -> str:
+        from .._display import block, intervals, laws
+
+        x = self.table[self.param]
+        span = f" in [{x.min():g}, {x.max():g}]" if x.size else ""
+        how = f"continued {self.continuation}" if self.continuation else f"from {self.start}"
+        head = (
+            f"Sweep({self.param} over {x.size} values{span}; {laws(self.model)}; "
+            f"{how}; {self.n_cached} from the cache)"
+        )
+        lines = [f"omega1 peak present in {intervals(self.omega1_peak_ranges())}"]
+        unresolved = self.unresolved_values()
+        if unresolved:
+            lines.append(f"unresolved at {self.param} = {', '.join(f'{v:g}' for v in unresolved)}")
+        failed = int(np.isin(self.table["status"], ("failed", "no_periodic")).sum())
+        if failed:
+            lines.append(f"{failed} points not run or failed (their error column says why)")
+        if self.problems:
+            lines.append(f"{len(self.problems)} cache files failed their checks, recomputed")
+        return block(head, lines)
 
     def to_pandas(self) -> DataFrame:
         """The table as a `pandas.DataFrame`: one row per value, the columns of `table`
         (needs pandas, imported here)."""
         from .._tables import frame
 
-        return frame(self.table)
+        return frame(records(self.table), self.table.dtype.names)
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON of ``sweep --json`` (keys in docs/reference/json.md)."""
-        rows = [dict(zip(self.table.dtype.names, r.tolist())) for r in self.table]
+        rows = records(self.table)
         model = self.model.as_dict()
         del model["params"][self.param]  # its values are the rows'
         return {
@@ -178,7 +238,7 @@ class Sweep:
 def _cached_run(
     model, settings, modulation, cache_dir, continuation=None, y0=None, period=None, start="rest"
 ):
-    """One point through the cache: ``(row, cached, problem)``.
+    """One point through the cache: ``(row, cached, problem)``, ``row`` a `Row`.
 
     ``problem`` (a `Problem` or None) says what was wrong with a cache file that was
     recomputed (the caller reports it: a warning in a worker process would be lost).
@@ -192,9 +252,9 @@ def _cached_run(
         path = Path(cache_dir) / f"{cache_key(ident)}.json"
         needed = [n for n, _ in columns(modulation)]
         needed += ["restart_t", "restart_state"] if continuation else []
-        row, reason = read_cached(path, ident, needed)
-        if row is not None:
-            return row, True, None
+        stored, reason = read_cached(path, ident, needed)
+        if stored is not None:
+            return Row.from_dict(stored), True, None
         problem = None if reason is None else Problem(str(path), reason)
     try:
         row = run_point(model, settings, modulation, y0=y0, restart_period=period, start=start)
@@ -205,7 +265,7 @@ def _cached_run(
         # (a rerun tries again)
         return failed_row(model, settings, modulation, err), False, problem
     if cache_dir is not None:
-        write_cached(path, ident, row)
+        write_cached(path, ident, row.as_dict())
     return row, False, problem
 
 
@@ -273,15 +333,44 @@ def sweep(
         many ``values``, a bad parameter value, the swept parameter also given as a
         fixed one, a bad executor, a bad ``continuation`` or one that cannot be done
         (an executor given, no periodic excitation, a period longer than ``t_end``),
-        a cache folder that cannot be written; `beltmdsm.errors.Refused` (a
-        ValueError) for a point that `beltmdsm.settings.check_request` refuses
+        a cache folder that cannot be written.
+    beltmdsm.errors.Refused
+        A ValueError too: for a point that `beltmdsm.settings.check_request` refuses
         (a sampling step that aliases, a run that would not fit in memory).
+    KeyboardInterrupt
+        On Ctrl-C, saying how many points were done (each is kept in the cache).
 
     Warns
     -----
     CacheWarning
         For each cache file that failed its checks, naming the file; the point is
         recomputed and the file rewritten.
+
+    See Also
+    --------
+    beltmdsm.simulate : one run.
+    beltmdsm.studies.sweep.linear_values : a range of values as the command line makes it.
+    beltmdsm.studies.cache : the disk cache.
+
+    Examples
+    --------
+    Two belt speeds, in this process and without the disk cache; a run too short to
+    tell the omega1 peak says so instead of reporting it absent:
+
+    >>> from beltmdsm import sweep
+    >>> result = sweep("Vb", [1.0, 4.0], t_end=40.0, t_discard=10.0, executor="serial",
+    ...                cache_dir=None, progress=False)
+    >>> result.table["resolved"].tolist(), result.unresolved_values()
+    ([False, False], [1.0, 4.0])
+    >>> int(result.table["n_reversals"][1]) > 0
+    True
+
+    The swept parameter cannot be given as a fixed one too:
+
+    >>> sweep("Vb", [1.0], Vb=3.0, executor="serial", cache_dir=None, progress=False)
+    Traceback (most recent call last):
+    ...
+    ValueError: Vb is swept: give its values, not a fixed Vb as well
     """
     if param not in SWEEPABLE:
         raise ValueError(f"cannot sweep {param!r}: param must be one of {', '.join(SWEEPABLE)}")
@@ -371,8 +460,8 @@ def sweep(
             if own:
                 executor.shutdown()
     rows, n_cached, problems = collected
-    table = _table(((param, "f8"),) + columns(modulation), param, unique, rows)
-    return Sweep(param, model, settings, table, continuation, start, n_cached, problems, dropped)
+    found = to_table(param, unique, rows, modulation)
+    return Sweep(param, model, settings, found, continuation, start, n_cached, problems, dropped)
 
 
 def _continuation_period(model, settings, param):
@@ -398,149 +487,4 @@ def _continued(points, periods, order, settings, modulation, cache_dir, continua
             points[i], settings, modulation, cache_dir, continuation, y0, periods[i]
         )
         yield i, result
-        y0 = result[0]["restart_state"]
-
-
-def _ignore_interrupt():
-    """A pool worker's initializer: Ctrl-C (SIGINT to the terminal's process group) is
-    the sweep's to handle; a worker that raised KeyboardInterrupt itself would leave
-    the pool waiting on it."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
-def process_pool(workers: int | None) -> cf.ProcessPoolExecutor:
-    """A process pool for sweeps whose workers leave Ctrl-C to this process, which
-    stops them (`stop_process_pool`)."""
-    return cf.ProcessPoolExecutor(max_workers=workers, initializer=_ignore_interrupt)
-
-
-def stop_process_pool(executor: cf.ProcessPoolExecutor, futures=()) -> None:
-    """Stop a process pool now (Ctrl-C): the queued points cancelled, the running
-    ones ended (their workers terminated), nothing waited for but the workers' exit.
-
-    A second Ctrl-C meanwhile is ignored, so that it cannot leave the pool half shut
-    (the permanent hang of a shutdown interrupted while it joins its threads).
-    """
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-    try:
-        for fut in futures:
-            fut.cancel()
-        workers = list((getattr(executor, "_processes", None) or {}).values())
-        executor.shutdown(wait=False, cancel_futures=True)
-        for worker in workers:
-            worker.terminate()
-        for worker in workers:
-            worker.join(timeout=5)
-    finally:
-        signal.signal(signal.SIGINT, previous)
-
-
-def _collect(results, n, desc, progress, cache_dir=None):
-    """``(rows, n_cached, problems)`` from ``(index, (row, cached, problem))`` results,
-    with a progress bar; each problem is warned about once, by the file's name.
-
-    Interrupted (Ctrl-C), it raises KeyboardInterrupt saying how many points it had
-    received (each finished point is in the cache, written by the process that
-    computed it: a worker may have written one more than it had sent).
-    """
-    from tqdm import tqdm
-
-    rows, n_cached, problems = [None] * n, 0, []
-    bar = tqdm(total=n, desc=desc, disable=not progress, file=sys.stderr)
-    done = 0
-    try:
-        for i, (row, cached, problem) in _interruptible(results):
-            done += 1
-            rows[i] = row
-            n_cached += bool(cached)
-            if problem is not None:
-                problems.append(problem)
-                # stacklevel 4: the caller of sweep (sweep -> _collect -> warn)
-                warnings.warn(str(problem), CacheWarning, stacklevel=3)
-            bar.update()
-    except KeyboardInterrupt:
-        kept = (
-            f"; every point finished is kept in the cache ({cache_dir})"
-            if cache_dir is not None
-            else " (no cache: nothing kept)"
-        )
-        raise KeyboardInterrupt(f"{desc}: stopped after {done} of {n} points{kept}") from None
-    finally:
-        bar.close()
-    return rows, n_cached, problems
-
-
-def _interruptible(results):
-    """``results``, with the SystemError that numba raises where Ctrl-C lands inside a
-    compiled function ("returned a result with an exception set") read as the
-    KeyboardInterrupt it wraps."""
-    try:
-        yield from results
-    except SystemError as err:
-        if isinstance(err.__context__, KeyboardInterrupt) or isinstance(
-            err.__cause__, KeyboardInterrupt
-        ):
-            raise KeyboardInterrupt from None
-        raise
-
-
-def _table(cols, param, values, rows):
-    table = np.zeros(len(rows), dtype=list(cols))
-    for i, (v, row) in enumerate(zip(values, rows)):
-        table[i][param] = v
-        for name, _ in cols[1:]:
-            table[i][name] = row.get(name, np.nan)
-    return table
-
-
-def table_to_csv(table: NDArray[np.void], path: os.PathLike | str) -> None:
-    """Write a sweep table as CSV with a header line."""
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(table.dtype.names)
-        for row in table:
-            w.writerow([repr(float(x)) if isinstance(x, np.floating) else x for x in row.tolist()])
-
-
-def table_from_csv(path: os.PathLike | str) -> NDArray[np.void]:
-    """Read a table written by `table_to_csv` back into a structured array."""
-    return np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")
-
-
-def resolved_mask(
-    table: NDArray[np.void] | dict[str, Any], param: str | None = None
-) -> NDArray[np.bool_]:
-    """The ``resolved`` column of a sweep table; all True for a table without one.
-
-    ``table``: a structured array (`sweep`) or a dict of columns (the notebooks'
-    scans); ``param`` names a column whose length counts the points of a dict.
-    """
-    names = (
-        table.keys()
-        if isinstance(table, dict)
-        else getattr(getattr(table, "dtype", None), "names", None) or ()
-    )
-    if "resolved" in names:
-        return np.asarray(table["resolved"], dtype=bool)
-    n = len(table[param]) if isinstance(table, dict) else len(table)
-    return np.ones(n, dtype=bool)
-
-
-def omega1_peak_ranges(
-    table: NDArray[np.void] | dict[str, Any], param: str = "Vb"
-) -> list[tuple[float, float]]:
-    """Contiguous ranges of ``param`` where the omega1 peak is present: [(lo, hi), ...].
-
-    `beltmdsm.intervals.runs` of ``omega1_peak_present`` at resolved points. An
-    unresolved point (``resolved`` False: the run could not tell) is treated like
-    an excluded point of the validation: it is not a point with the peak, so it
-    ends a range, and it is not a point without it either; `unresolved_values`
-    lists them, so that a reader never takes the gap for "no peak".
-    """
-    present = np.asarray(table["omega1_peak_present"], dtype=bool) & resolved_mask(table, param)
-    return intervals.runs(table[param], present)
-
-
-def unresolved_values(table: NDArray[np.void] | dict[str, Any], param: str = "Vb") -> list[float]:
-    """Values of ``param`` whose run could not tell the omega1 peak (ascending)."""
-    return sorted(float(v) for v in np.asarray(table[param])[~resolved_mask(table, param)])
+        y0 = result[0].restart_state

@@ -156,7 +156,7 @@ def build() -> ModuleSpec:
             (cr.V, cr.N1, cr.theta),
             {**docs, **balance_docs},
             notes="The linearisation of the averaged friction at frozen fast amplitude and "
-            "phase (beltmdsm.prediction.predict's consistent MDSM). " + quadrature,
+            "phase (beltmdsm.prediction.mdsm's consistent MDSM). " + quadrature,
         ),
         FunctionSpec(
             "transfer_function",
@@ -198,7 +198,7 @@ fast tangential motion, and the fast normal force. ``averaged_friction``,
 averages; ``friction_average``, ``friction_average_slope`` and ``friction_harmonic``
 those of a friction law (``friction=``), and ``slow_damping`` and
 ``harmonic_balance`` the pieces of the consistent MDSM built from them.
-``beltmdsm.prediction.predict`` builds the stability prediction from them.
+``beltmdsm.prediction`` builds the stability prediction from them.
 """,
         functions,
     )

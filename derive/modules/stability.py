@@ -71,7 +71,7 @@ def build() -> ModuleSpec:
             return Refusal(
                 f"friction={f!r} has no closed-form critical belt speed: {lower.reason}; the "
                 "pointwise functions (growth_rate, is_stable, hurwitz) take it, and "
-                "beltmdsm.prediction.predict.paper_intervals finds the unstable belt speeds "
+                "beltmdsm.prediction.paper.paper_intervals finds the unstable belt speeds "
                 "numerically from growth_rate"
             )
         if lower is None:
@@ -85,7 +85,7 @@ def build() -> ModuleSpec:
                     f"(closed_form_average: {why})"
                 )
                 + "; the pointwise functions (growth_rate, is_stable, hurwitz) take it, and "
-                "beltmdsm.prediction.predict.paper_intervals finds the unstable belt speeds "
+                "beltmdsm.prediction.paper.paper_intervals finds the unstable belt speeds "
                 "numerically from growth_rate"
             )
         if not upper:
@@ -241,7 +241,7 @@ Jacobian is block triangular: the quartic factors into a tangential and a normal
 quadratic, so eigenvalues, Hurwitz determinants and the critical belt speed are
 closed forms in the effective friction's value and slope (a quadrature for a
 friction law without a closed-form fast average; the critical belt speed and the
-unstable interval then refuse, and ``beltmdsm.prediction.predict.paper_intervals``
+unstable interval then refuse, and ``beltmdsm.prediction.paper.paper_intervals``
 finds the unstable belt speeds numerically from the pointwise ``growth_rate``, with
 ``V_hat`` of the chosen reading at each ``Vb``). A stability map needs only ``is_stable`` (a sign),
 not eigenvalues.

@@ -15,7 +15,7 @@ from beltmdsm.continuation.band import floquet_band
 from beltmdsm.generated.parameters import BASE
 from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
-from beltmdsm.prediction.predict import predict
+from beltmdsm.prediction.prediction import predict
 from beltmdsm.simulation import simulate
 
 #: The law that coincides with the default one, and what it is compared with.

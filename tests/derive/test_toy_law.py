@@ -252,7 +252,7 @@ def check_predict(toy):
         f"""
         import json
         import mpmath
-        from beltmdsm.prediction import predict
+        from beltmdsm.prediction import mdsm
         from beltmdsm.model import Model
         mpmath.mp.dps = 30
 
@@ -286,9 +286,9 @@ def check_predict(toy):
         rows = []
         for Vb in (1.0, 4.0, {lo!r}, 6.0, {hi!r}, {hi!r} * 0.999, 9.0):
             m = Model(friction="falling", Vb=Vb)
-            fast = predict.fast_motion(m)
+            fast = mdsm.fast_motion(m)
             r, d = reference(m, fast)
-            rows.append((Vb, fast.V, fast.reverses, r, d, predict.consistent_mdsm_damping(m, fast)))
+            rows.append((Vb, fast.V, fast.reverses, r, d, mdsm.consistent_mdsm_damping(m, fast)))
         print(json.dumps(rows))
         """,
     )

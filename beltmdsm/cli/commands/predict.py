@@ -1,4 +1,4 @@
-"""``predict``: the predicted unstable belt speeds (`beltmdsm.prediction.predict`)."""
+"""``predict``: the predicted unstable belt speeds (`beltmdsm.prediction`)."""
 
 from __future__ import annotations
 
@@ -46,7 +46,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...prediction.predict import predict
+    from ...prediction.prediction import predict
     from .. import text
 
     result = predict(

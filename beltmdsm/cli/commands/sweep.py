@@ -92,7 +92,8 @@ def _values(args):
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.sweep import sweep, table_to_csv
+    from ...studies.sweep import sweep
+    from ...studies.table import table_to_csv
     from .. import text
 
     values = _values(args)

@@ -15,7 +15,7 @@ import numpy as np
 from ...intervals import format_intervals
 
 if TYPE_CHECKING:
-    from ...prediction.predict import Prediction
+    from ...prediction.prediction import Prediction
     from ...run.summary import Summary
     from ...simulation import Simulation
     from ...studies.sweep import Sweep

@@ -31,14 +31,14 @@ and, as before Floquet, against the run from rest:
   ``resolved`` False, which are never "no peak");
 * the predicted ranges: the paper's analysis (Eqs. 22-28, closed form in
   `beltmdsm.generated.stability.unstable_interval`) for each ``V_hat`` reading and each sign
-  convention, and the consistent MDSM (`beltmdsm.prediction.predict.unstable_intervals`);
+  convention, and the consistent MDSM (`beltmdsm.prediction.scan.unstable_intervals`);
 * the differences of the edges, their mean absolute error per analysis and the
   length of the belt-speed set where prediction and simulation disagree.
 
 The simulations use one tension law (``tension=``, docs/modelling.md#tension), named
 in the file. The paper's closed forms linearise at the equilibrium and are the same
 under both; under ``"clipped"`` the consistent MDSM has no prediction where the clip
-cuts its harmonic fast normal force (`beltmdsm.prediction.predict.CLIPPED_MDSM`), and its
+cuts its harmonic fast normal force (`beltmdsm.prediction.prediction.CLIPPED_MDSM`), and its
 column says so instead of counting as "predicts nothing".
 
 `render_markdown` writes ``VALIDATION.md``; ``python -m beltmdsm validate`` (or

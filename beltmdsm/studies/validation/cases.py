@@ -8,7 +8,7 @@ module holds what the validation compares and by which rules:
   what the paper reports for it;
 * `ANALYSES`: the predictions compared: the paper's analysis (Eqs. 22-28) for each
   ``V_hat`` reading (Eq. 23) and each sign convention of Eq. (A4), and the consistent
-  MDSM (`beltmdsm.prediction.predict`);
+  MDSM (`beltmdsm.prediction`);
 * `RUNS`: the five runs of each grid point;
 * `Resolution` (`FULL`, `QUICK`) and `vb_grid`: the belt-speed grid and run length;
 * `harmonic_in_band`: where a forced harmonic of Eq. (4) reads as the omega1 peak
@@ -111,8 +111,7 @@ ANALYSES = (
     (
         "consistent_mdsm",
         "MDSM",
-        "consistent MDSM with the friction-normal-force correlation "
-        "(`beltmdsm.prediction.predict`)",
+        "consistent MDSM with the friction-normal-force correlation (`beltmdsm.prediction`)",
     ),
 )
 
@@ -184,8 +183,8 @@ DEFINITIONS = """\
   simulated lower edge (at or above the lowest simulated Vb = h).
 * **No prediction.** Where an analysis gives no prediction (the consistent MDSM under
   the clipped tension law when the clip cuts its harmonic fast normal force:
-  `beltmdsm.prediction.predict.CLIPPED_MDSM`), its cells read *n/a* and the case counts in none of
-  its columns.
+  `beltmdsm.prediction.prediction.CLIPPED_MDSM`), its cells read *n/a* and the case counts
+  in none of its columns.
 * **Mean absolute error (MAE)** of an analysis: the mean of |Δ| over every paired edge
   whose simulated edge is not censored, over all comparable cases (0, 1 or 2 edges per
   case; *n* is their number). A case where the analysis predicts no unstable range

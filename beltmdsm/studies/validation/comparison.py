@@ -2,8 +2,8 @@
 
 * `predicted_intervals`: each analysis of `ANALYSES`: the closed form of Eqs. (25),
   (28) for each ``V_hat`` reading and sign convention of Eq. (A4)
-  (`beltmdsm.prediction.predict.paper_intervals`), and the consistent MDSM
-  (`beltmdsm.prediction.predict.unstable_intervals`);
+  (`beltmdsm.prediction.paper.paper_intervals`), and the consistent MDSM
+  (`beltmdsm.prediction.scan.unstable_intervals`);
 * `simulated_ranges`: where a sweep from rest shows the omega1 peak of X1' while the
   mass slides (Figs. 2b, 17-21), each edge within half a grid step (`SimulatedRanges`);
 * `compare` (against the simulated ranges) and `compare_floquet` (against the exact
@@ -28,7 +28,9 @@ from numpy.typing import ArrayLike
 from ... import intervals
 from ...continuation.band_result import Band
 from ...model import Model
-from ...prediction.predict import clip_acts, paper_intervals, unstable_intervals
+from ...prediction.mdsm import clip_acts
+from ...prediction.paper import paper_intervals
+from ...prediction.scan import unstable_intervals
 from .cases import SLIDING, UNRESOLVED
 
 #: How an analysis' prediction and its reference (the simulation or the Floquet band)
@@ -169,12 +171,12 @@ def predicted_intervals(model: Model) -> dict[str, list[tuple[float, float]] | N
     One entry for each key of `ANALYSES`, in its order. The paper's analysis is the
     closed form of Eqs. (25), (28) for each ``V_hat`` reading and sign convention, or
     its numeric solution where there is none (Stribeck's law;
-    `beltmdsm.prediction.predict.paper_intervals`: an empty interval is ``[]``, None
+    `beltmdsm.prediction.paper.paper_intervals`: an empty interval is ``[]``, None
     where ``V_hat`` is 0), the same under both tension laws (a linearisation at the
     equilibrium, where the contact force is positive); the
-    consistent MDSM is `beltmdsm.prediction.predict.unstable_intervals`, and None (no
+    consistent MDSM is `beltmdsm.prediction.scan.unstable_intervals`, and None (no
     prediction) under ``tension="clipped"`` where the clip cuts its fast normal force
-    (`beltmdsm.prediction.predict.clip_acts`).
+    (`beltmdsm.prediction.mdsm.clip_acts`).
     """
     paper = {c: paper_intervals(model, convention=c) for c in ("paper", "consistent")}
     out = {

@@ -112,7 +112,7 @@ def render_markdown(results: Validation, quick: bool) -> str:
         + (
             " The consistent MDSM assumes a harmonic fast normal force, which the "
             "clip makes non-harmonic where it cuts it: n/a there "
-            "(`beltmdsm.prediction.predict.CLIPPED_MDSM`)."
+            "(`beltmdsm.prediction.prediction.CLIPPED_MDSM`)."
             if tension == "clipped"
             else ""
         ),

@@ -129,7 +129,7 @@ def validate(
     --------
     beltmdsm.studies.validation.report.render_markdown : ``VALIDATION.md`` from the result.
     beltmdsm.continuation.band.floquet_band : the Floquet band of one case.
-    beltmdsm.prediction.predict.predict : the analyses' predicted ranges.
+    beltmdsm.prediction.prediction.predict : the analyses' predicted ranges.
 
     Examples
     --------

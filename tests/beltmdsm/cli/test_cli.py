@@ -16,7 +16,7 @@ import pytest
 from beltmdsm.cli import flags, main, tree
 from beltmdsm.cli.parser import Parser, UsageError
 from beltmdsm.model import OPTIONS
-from beltmdsm.prediction import predict as predict_module
+from beltmdsm.prediction import prediction, scan
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -390,7 +390,7 @@ def test_predict_without_excitation_says_so(capsys):
     assert main(["predict", "--alpha", "0", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["consistent_mdsm"] == [] and out["paper_coupled_vhat"] is None
-    assert out["reasons"]["consistent_mdsm"] == predict_module.NO_EXCITATION
+    assert out["reasons"]["consistent_mdsm"] == prediction.NO_EXCITATION
 
 
 def test_predict_with_two_excitation_frequencies_keeps_the_closed_forms(capsys):
@@ -411,7 +411,7 @@ def test_predict_reports_a_harmonic_balance_that_does_not_converge(capsys, monke
     def diverge(model, guess=None):
         raise RuntimeError(f"harmonic balance did not converge at Vb = {model['Vb']}")
 
-    monkeypatch.setattr(predict_module, "fast_motion", diverge)
+    monkeypatch.setattr(scan, "fast_motion", diverge)
     assert main(["predict"]) == 0
     assert (
         "no prediction for consistent_mdsm: harmonic balance did not converge"
@@ -428,7 +428,7 @@ def test_predict_clipped_keeps_the_closed_forms_and_refuses_the_harmonic_balance
     # the linearisation at the equilibrium (force g > 0) does not see the law
     for key in ("paper_tangential_vhat", "paper_coupled_vhat"):
         assert clipped[key] == allowed[key]
-        assert clipped["reasons"][key] == predict_module.CLIPPED_PAPER
+        assert clipped["reasons"][key] == prediction.CLIPPED_PAPER
     # the base set's fast normal force g + N1 sin has N1 = 27.2 > g: the clip cuts it
     assert allowed["consistent_mdsm"] and clipped["consistent_mdsm"] is None
     assert "non-harmonic" in clipped["reasons"]["consistent_mdsm"]
@@ -442,23 +442,23 @@ def test_predict_clipped_keeps_the_closed_forms_and_refuses_the_harmonic_balance
 
 def test_predict_clipped_where_the_clip_does_not_act_keeps_the_mdsm_with_a_note():
     # alpha = 0.3: N1 = 4.08 < g, so the linear fast normal force never reaches zero
-    allowed = predict_module.predict(alpha=0.3)
-    clipped = predict_module.predict(alpha=0.3, tension="clipped")
+    allowed = prediction.predict(alpha=0.3)
+    clipped = prediction.predict(alpha=0.3, tension="clipped")
     assert clipped.consistent_mdsm == allowed.consistent_mdsm
     assert "the clip does not act on it" in clipped.reasons["consistent_mdsm"]
     with pytest.raises(ValueError, match="tension must be one of"):
-        predict_module.predict(tension="pulling")
+        prediction.predict(tension="pulling")
 
 
 def test_vb_points_sets_the_default_grid_too():
-    _, table = predict_module.unstable_intervals(points=50)
+    _, table = scan.unstable_intervals(points=50)
     assert table["Vb"].size == 50
     with pytest.raises(ValueError, match="points must be an integer >= 2"):
-        predict_module.predict(points=1)
+        prediction.predict(points=1)
     with pytest.raises(ValueError, match="vb must be a 1-D grid of at least 2"):
-        predict_module.predict(vb=[3.0])
+        prediction.predict(vb=[3.0])
     with pytest.raises(ValueError, match="finite belt speeds >= 0"):
-        predict_module.unstable_intervals(vb=[-1.0, 2.0])
+        scan.unstable_intervals(vb=[-1.0, 2.0])
 
 
 def test_regeneration_and_check_paper_do_not_load_the_runtime(monkeypatch):

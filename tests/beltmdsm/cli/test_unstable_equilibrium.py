@@ -131,7 +131,7 @@ def test_predict_finds_the_unforced_edges_numerically_where_the_closed_form_is_r
     monkeypatch,
 ):
     from beltmdsm.generated import unforced
-    from beltmdsm.prediction import predict
+    from beltmdsm.prediction import prediction, sliding
 
     model = Model(friction="stribeck", alpha=0.0)
     F = _static_normal_force(model)
@@ -145,12 +145,12 @@ def test_predict_finds_the_unforced_edges_numerically_where_the_closed_form_is_r
         raise ValueError("friction='stribeck': no closed form (refused in this test)")
 
     monkeypatch.setattr(unforced, "critical_belt_speed", refused)
-    (edge,) = predict.unforced_edges(model)
+    (edge,) = sliding.unforced_edges(model)
     assert edge == pytest.approx(critical, rel=1e-11)
     # the largest real part of the unforced eigenvalues changes sign there
-    below, above = predict.unforced_rate(model, [edge * (1 - 1e-6), edge * (1 + 1e-6)])
+    below, above = sliding.unforced_rate(model, [edge * (1 - 1e-6), edge * (1 + 1e-6)])
     assert below > 0 > above
-    result = predict.predict(model)
+    result = prediction.predict(model)
     ((lo, hi),) = result.consistent_mdsm
     assert hi == pytest.approx(critical, abs=1e-9)
     assert "no closed form (friction='stribeck'" in result.reasons["consistent_mdsm"]

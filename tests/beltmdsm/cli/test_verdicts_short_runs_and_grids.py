@@ -194,7 +194,7 @@ def test_coexistence_refuses_a_step_that_leaves_no_seed_inside():
 
 
 def test_predict_with_a_coarse_vb_max_keeps_the_band_and_says_what_it_cannot_resolve():
-    from beltmdsm.prediction.predict import unstable_intervals
+    from beltmdsm.prediction.scan import unstable_intervals
 
     r = _run("predict", "--vb-max", "3000", "--no-progress", "--json")
     assert r.returncode == 0, r.stderr

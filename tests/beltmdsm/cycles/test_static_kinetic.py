@@ -251,7 +251,7 @@ def test_predict_averages_the_kinetic_coefficient_and_says_what_it_leaves_out():
     """The MDSM averages the slip law over a fast motion that passes Vr = 0: static above
     kinetic predicts what Coulomb's law with mu_s = mu_k does, and each analysis notes
     the static bound it cannot see."""
-    from beltmdsm.prediction.predict import predict
+    from beltmdsm.prediction.prediction import predict
 
     got = predict(friction="static_kinetic", mu_s=0.4, mu_k=0.25, points=60)
     coulomb = predict(friction="coulomb", mu_s=0.25, points=60)

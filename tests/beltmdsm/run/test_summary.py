@@ -1,4 +1,4 @@
-"""beltmdsm.run.summary: what a run can tell is bounded by its tolerances.
+"""beltmdsm.run: what a run can tell is bounded by its tolerances.
 
 The noise floor and the energy bound are error models; these tests check each against
 what runs at a far tighter tolerance show, so that a bound that stops holding fails.
@@ -7,7 +7,7 @@ what runs at a far tighter tolerance show, so that a bound that stops holding fa
 import numpy as np
 import pytest
 
-from beltmdsm.run import summary
+from beltmdsm.run import resolution, tolerances
 from beltmdsm.simulation import simulate
 
 
@@ -31,21 +31,21 @@ def test_without_excitation_every_peak_is_below_the_floor_at_every_tolerance():
 def test_the_noise_floor_grows_with_the_tolerances_and_the_window():
     y = np.full((4, 1000), 10.0)
     v = np.full(1000, 2.0)
-    base = summary.noise_floor(1e-10, 1e-10, y, v)
-    assert summary.noise_floor(1e-8, 1e-10, y, v) > 50 * base
-    assert summary.noise_floor(1e-10, 1e-8, y, v) > 5 * base
-    assert np.isnan(summary.noise_floor(1e-10, 1e-10, y[:, :0], v[:0]))
+    base = tolerances.noise_floor(1e-10, 1e-10, y, v)
+    assert tolerances.noise_floor(1e-8, 1e-10, y, v) > 50 * base
+    assert tolerances.noise_floor(1e-10, 1e-8, y, v) > 5 * base
+    assert np.isnan(tolerances.noise_floor(1e-10, 1e-10, y[:, :0], v[:0]))
 
 
 def test_the_energy_bound_follows_the_tolerance_between_its_floor_and_cap():
-    b = summary.energy_bound
-    assert b(1e-10, 1e-10) == summary.ENERGY_RESIDUAL_FLOOR
-    assert b(1e-7, 1e-10) == pytest.approx(summary.ENERGY_RESIDUAL_FACTOR * 1e-7)
+    b = tolerances.energy_bound
+    assert b(1e-10, 1e-10) == tolerances.ENERGY_RESIDUAL_FLOOR
+    assert b(1e-7, 1e-10) == pytest.approx(tolerances.ENERGY_RESIDUAL_FACTOR * 1e-7)
     assert b(1e-10, 1e-7) == b(1e-7, 1e-10)
-    assert b(0.1, 1e-10) == summary.ENERGY_RESIDUAL_MAX
+    assert b(0.1, 1e-10) == tolerances.ENERGY_RESIDUAL_MAX
     # where the work is of the order of the integration error, the cap
-    assert b(1e-10, 1e-10, energy_level=100.0, work_total=1e-11) == summary.ENERGY_RESIDUAL_MAX
-    assert b(1e-10, 1e-10, energy_level=100.0, work_total=0.0) == summary.ENERGY_RESIDUAL_MAX
+    assert b(1e-10, 1e-10, energy_level=100.0, work_total=1e-11) == tolerances.ENERGY_RESIDUAL_MAX
+    assert b(1e-10, 1e-10, energy_level=100.0, work_total=0.0) == tolerances.ENERGY_RESIDUAL_MAX
 
 
 @pytest.mark.parametrize("solver", ["events", "superposition"])
@@ -76,7 +76,7 @@ def test_the_free_decay_rate_is_the_slower_root_of_the_tangential_oscillator(bet
     from beltmdsm.model import Model
 
     w1 = 1.3
-    rate = summary.free_decay_rate(Model(beta1=beta1, omega1=w1))
+    rate = resolution.free_decay_rate(Model(beta1=beta1, omega1=w1))
     # the roots of l^2 + 2 beta1 w1 l + w1^2: -beta1 w1 (+-) w1 sqrt(beta1^2 - 1)
     slower = -beta1 * w1 + (w1 * np.sqrt(beta1**2 - 1) if beta1 > 1 else 0.0)
     assert rate == pytest.approx(slower, rel=1e-13)
@@ -95,13 +95,13 @@ def test_under_excitation_a_speed_dependent_friction_decays_at_the_floquet_rate(
     # the latter's rate (docs/stribeck.md: +0.0094/s against -0.076/s)
     m = Model(friction="stribeck", mu_k=0.1, v_s=3.0, Vb=4.5)
     f = floquet(m)
-    sigma, what = summary._transient_rate(m, settings, forced=True)
-    assert summary.free_decay_rate(m) > 0 > sigma
+    sigma, what = resolution._transient_rate(m, settings, forced=True)
+    assert resolution.free_decay_rate(m) > 0 > sigma
     assert sigma == pytest.approx(math.log(f.max_abs_multiplier) / f.period, rel=1e-12)
     assert "Floquet" in what
     # without excitation, and under Coulomb friction, the free rate is the rate
-    assert summary._transient_rate(m, settings, forced=False)[0] == summary.free_decay_rate(m)
+    assert resolution._transient_rate(m, settings, forced=False)[0] == resolution.free_decay_rate(m)
     coulomb = Model(Vb=4.5)
-    assert summary._transient_rate(coulomb, settings, forced=True)[0] == pytest.approx(
+    assert resolution._transient_rate(coulomb, settings, forced=True)[0] == pytest.approx(
         -coulomb["beta1"] * coulomb["omega1"], rel=1e-14
     )

@@ -179,6 +179,9 @@ def test_the_code_hash_covers_what_a_row_imports_and_not_the_rest():
         "beltmdsm/integrate/superposition.py",
         "beltmdsm/integrate/_dop853.py",
         "beltmdsm/run/summary.py",
+        # the summary's resolution and tolerance bounds decide a row's columns too
+        "beltmdsm/run/resolution.py",
+        "beltmdsm/run/tolerances.py",
         "beltmdsm/studies/row.py",
         # issue 28: they decide a row's `resolved` and its periodic start, and a hand
         # list had left them out

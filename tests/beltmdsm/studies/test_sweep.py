@@ -11,8 +11,10 @@ from beltmdsm.run.summary import PEAK_PRESENT_RATIO
 from beltmdsm.settings import SolverSettings
 from beltmdsm.studies import row as row_module
 from beltmdsm.studies import sweep as sweep_module
+from beltmdsm.studies import table as table_module
 from beltmdsm.studies.cache import cache_key, identity
-from beltmdsm.studies.sweep import omega1_peak_ranges, sweep, table_from_csv, table_to_csv
+from beltmdsm.studies.sweep import sweep
+from beltmdsm.studies.table import omega1_peak_ranges, table_from_csv, table_to_csv
 
 SHORT = SolverSettings(t_end=40.0, t_discard=10.0)
 VALUES = [2.0, 4.0, 12.0]
@@ -229,7 +231,7 @@ def test_unresolved_points_are_false_and_flagged_and_break_the_peak_ranges(seria
     t["omega1_peak_present"] = [True, True, False, True, True, False]
     t["resolved"] = [True, False, True, True, True, False]
     assert omega1_peak_ranges(t) == [(1.0, 1.0), (4.0, 5.0)]
-    assert sweep_module.unresolved_values(t) == [2.0, 6.0]
+    assert table_module.unresolved_values(t) == [2.0, 6.0]
     # a dict of columns (the notebooks' scans), with and without the resolved column
     scan = {name: t[name] for name in t.dtype.names}
     assert omega1_peak_ranges(scan) == [(1.0, 1.0), (4.0, 5.0)]
@@ -383,3 +385,56 @@ def test_a_periodic_start_is_refused_where_it_means_nothing():
         sweep("Vb", [1.0], start="equilibrium", **kw)
     with pytest.raises(ValueError, match="continued sweep.*start must be 'rest'"):
         sweep("Vb", [1.0], start="periodic", continuation="up", **kw)
+
+
+def test_a_row_has_one_shape_from_the_run_to_the_table(tmp_path):
+    # issue 30 item 5: the run's Row is what the cache stores, what the table holds,
+    # what --json prints and what to_pandas gives, with the same keys and values
+    from beltmdsm.simulation import simulate
+    from beltmdsm.studies.row import COLUMNS, MODULATION_COLUMNS, Row, run_point
+
+    m = Model(Vb=4.0)
+    row = run_point(m, SHORT, modulation=True)
+    assert isinstance(row, Row) and set(row.modulation) == {n for n, _ in MODULATION_COLUMNS}
+    stored = row.as_dict()
+    assert list(stored) == [n for n, _ in COLUMNS + MODULATION_COLUMNS]
+    # plain JSON values: a round trip through the cache's JSON changes nothing
+    assert Row.from_dict(json.loads(json.dumps(stored))) == row
+    # the summary's numbers, as a run of its own gives them (wall_s aside)
+    summary = simulate(m, settings=SHORT).summary
+    for name, _ in COLUMNS:
+        if name not in ("wall_s", "error", "omega1_peak_present"):
+            assert stored[name] == getattr(summary, name), name
+    # an unresolved peak (None) is stored as False beside resolved False: a bool column
+    assert stored["omega1_peak_present"] is bool(summary.omega1_peak_present)
+    assert stored["error"] == ""
+    result = sweep(
+        "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False,
+        modulation=True,
+    )  # fmt: skip
+    (cached,) = tmp_path.glob("*.json")
+    on_disk = json.loads(cached.read_text())["row"]
+    (json_row,) = result.as_dict()["rows"]
+    (record,) = table_module.records(result.table)
+    assert json_row == record == {"Vb": 4.0, **on_disk}
+    assert on_disk.keys() == stored.keys()
+    again = sweep(
+        "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False,
+        modulation=True,
+    )  # fmt: skip
+    assert again.n_cached == 1 and table_module.records(again.table) == [json_row]
+    pandas = pytest.importorskip("pandas")
+    frame = again.to_pandas()
+    assert isinstance(frame, pandas.DataFrame) and list(frame.columns) == list(json_row)
+    assert frame.iloc[0].to_dict() == json_row
+
+
+def test_a_modulation_row_without_a_period_is_served_from_the_cache(tmp_path):
+    # Omega_t = 0: no cycles of 2 pi / Omega_t, whose columns are NaN; the row once
+    # lacked them, and its cache file was recomputed (and warned about) on every rerun
+    kw = dict(settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False)
+    first = sweep("Vb", [2.0], Omega_t=0.0, Omega_n=0.0, modulation=True, **kw)
+    assert np.isnan(first.table["mu_eff_Omega_mean"][0])
+    assert first.table["mu_eff_omega1_mean"][0] == pytest.approx(Model()["mu_s"], rel=1e-12)
+    again = sweep("Vb", [2.0], Omega_t=0.0, Omega_n=0.0, modulation=True, **kw)
+    assert again.n_cached == 1 and again.problems == []

@@ -13,7 +13,8 @@ from beltmdsm.continuation.band_result import Band, Edge
 from beltmdsm.generated import stability, unforced
 from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
-from beltmdsm.prediction.predict import fast_motion, unstable_intervals
+from beltmdsm.prediction.mdsm import fast_motion
+from beltmdsm.prediction.scan import unstable_intervals
 from beltmdsm.simulation import simulate
 from beltmdsm.studies import validation
 from beltmdsm.studies.coexistence import coexistence
@@ -283,7 +284,7 @@ def test_quick_grid_contains_every_predicted_edge_and_closes_the_simulated_range
 
 def test_quick_base_set_shows_the_peak_where_the_consistent_mdsm_predicts_it(quick_base):
     # Fig. 2b: the omega1 peak at the base set; the consistent MDSM interval
-    # (beltmdsm.prediction.predict) must meet the simulated range.
+    # (beltmdsm.prediction) must meet the simulated range.
     (case,) = quick_base.cases
     ((lo, hi),) = case.predicted["consistent_mdsm"]
     ranges = case.simulated.ranges

@@ -1,0 +1,143 @@
+"""Running a sweep's points on a process pool: Ctrl-C, and collecting the results.
+
+A sweep's default executor is a `process_pool` whose workers leave Ctrl-C to this
+process, which stops them (`stop_process_pool`) without the hang of a shutdown
+interrupted while it joins its threads; `_collect` gathers the points as they finish,
+with a progress bar, warns of each cache file that failed its checks, and says how
+many points were done when interrupted.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import signal
+import sys
+import warnings
+
+from .cache import CacheWarning
+
+__all__ = ["process_pool", "stop_process_pool"]
+
+
+def _ignore_interrupt():
+    """A pool worker's initializer: Ctrl-C (SIGINT to the terminal's process group) is
+    the sweep's to handle; a worker that raised KeyboardInterrupt itself would leave
+    the pool waiting on it."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def process_pool(workers: int | None) -> cf.ProcessPoolExecutor:
+    """A process pool for sweeps whose workers leave Ctrl-C to this process, which
+    stops them (`stop_process_pool`).
+
+    Parameters
+    ----------
+    workers : int or None
+        The number of worker processes (None: the number of CPUs).
+
+    Returns
+    -------
+    concurrent.futures.ProcessPoolExecutor
+
+    See Also
+    --------
+    beltmdsm.sweep : its default executor is one of these.
+
+    Examples
+    --------
+    >>> pool = process_pool(1)
+    >>> pool.submit(sum, [1, 2, 3]).result()
+    6
+    >>> stop_process_pool(pool)
+    """
+    return cf.ProcessPoolExecutor(max_workers=workers, initializer=_ignore_interrupt)
+
+
+def stop_process_pool(executor: cf.ProcessPoolExecutor, futures=()) -> None:
+    """Stop a process pool now (Ctrl-C): the queued points cancelled, the running
+    ones ended (their workers terminated), nothing waited for but the workers' exit.
+
+    A second Ctrl-C meanwhile is ignored, so that it cannot leave the pool half shut
+    (the permanent hang of a shutdown interrupted while it joins its threads).
+
+    Parameters
+    ----------
+    executor : concurrent.futures.ProcessPoolExecutor
+        The pool (`process_pool`).
+    futures : iterable of concurrent.futures.Future
+        Its futures, cancelled first.
+
+    See Also
+    --------
+    process_pool : the pool it stops.
+
+    Examples
+    --------
+    >>> pool = process_pool(1)
+    >>> stop_process_pool(pool)
+    >>> pool.submit(sum, [1])
+    Traceback (most recent call last):
+    ...
+    RuntimeError: cannot schedule new futures after shutdown
+    """
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        for fut in futures:
+            fut.cancel()
+        workers = list((getattr(executor, "_processes", None) or {}).values())
+        executor.shutdown(wait=False, cancel_futures=True)
+        for worker in workers:
+            worker.terminate()
+        for worker in workers:
+            worker.join(timeout=5)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _collect(results, n, desc, progress, cache_dir=None):
+    """``(rows, n_cached, problems)`` from ``(index, (row, cached, problem))`` results,
+    with a progress bar; each problem is warned about once, by the file's name.
+
+    Interrupted (Ctrl-C), it raises KeyboardInterrupt saying how many points it had
+    received (each finished point is in the cache, written by the process that
+    computed it: a worker may have written one more than it had sent).
+    """
+    from tqdm import tqdm
+
+    rows, n_cached, problems = [None] * n, 0, []
+    bar = tqdm(total=n, desc=desc, disable=not progress, file=sys.stderr)
+    done = 0
+    try:
+        for i, (row, cached, problem) in _interruptible(results):
+            done += 1
+            rows[i] = row
+            n_cached += bool(cached)
+            if problem is not None:
+                problems.append(problem)
+                # stacklevel 4: the caller of sweep (sweep -> _collect -> warn)
+                warnings.warn(str(problem), CacheWarning, stacklevel=3)
+            bar.update()
+    except KeyboardInterrupt:
+        kept = (
+            f"; every point finished is kept in the cache ({cache_dir})"
+            if cache_dir is not None
+            else " (no cache: nothing kept)"
+        )
+        raise KeyboardInterrupt(f"{desc}: stopped after {done} of {n} points{kept}") from None
+    finally:
+        bar.close()
+    return rows, n_cached, problems
+
+
+def _interruptible(results):
+    """``results``, with the SystemError that numba raises where Ctrl-C lands inside a
+    compiled function ("returned a result with an exception set") read as the
+    KeyboardInterrupt it wraps."""
+    try:
+        yield from results
+    except SystemError as err:
+        if isinstance(err.__context__, KeyboardInterrupt) or isinstance(
+            err.__cause__, KeyboardInterrupt
+        ):
+            raise KeyboardInterrupt from None
+        raise
