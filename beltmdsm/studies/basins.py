@@ -4,19 +4,37 @@ The question an engineer asks where stable responses coexist: how large a distur
 starts the vibration. `basins` starts the model on a grid of a plane of states at the
 excitation's phase 0 (default ``X1`` and ``X1'``, the normal state on its periodic
 orbit) and iterates the period map (`beltmdsm.periodic.periodmap.period_map`, the
-closed-form map where the laws allow it) from each start until the state stays within
-`IDENTIFY_TOL` of a known attractor's stroboscopic points for two cycles of them,
-contracting towards them (`_land`): a start is stopped as soon as it is identified,
-as Attractors.jl's recurrence approach does, instead of being run to the end and
-classified by its spectrum.
+closed-form map where the laws allow it) from each start only until a known attractor
+claims it (`_land`), as Attractors.jl's recurrence approach does, instead of running it
+to the end and classifying it by its spectrum:
 
-Attractors are found and named by `beltmdsm.attractors.classification.classify`: first the
-one the run from rest reaches, the T-periodic response where it is stable (shooting and
-Floquet) and any the caller gives, then, round by round, the
-one each start that no known attractor claims settles on (classified from its state
-after `MAX_PERIODS`; the first such start in grid order). The rounds depend on the
-grid only, never on the order in which workers finish: the map and its labels are the
-same on one process, a pool or a dask cluster. Labels are ordered by kind, period
+* a periodic attractor of ``k`` points claims a start that comes within its claim
+  radius of one of them and is closer still one cycle (``k`` periods) later: the
+  contraction its neighbourhood shows, which a trajectory passing by on its way
+  elsewhere does not;
+* the claim radius is measured on the map, not assumed: a pilot of the starts (every
+  `PILOT`-th on each axis) is claimed within `IDENTIFY_TOL` only, and each periodic
+  attractor's radius is then half the closest approach to its points of any pilot
+  trajectory that went elsewhere (`_radii`; at most `LARGEST`): the edge of its basin
+  is at least that far. At the base set, Vb = 3.88, the 4T lock's radius is 0.2 and the
+  T-periodic response's 0.064 (a trajectory bound for the 4T lock passes 0.13 from it),
+  and a start is claimed after 27 periods on average instead of 63, with the same
+  labels (benchmarks/bench_basins.py). A quadratic Lyapunov function of the orbit's
+  monodromy (the linearised neighbourhood) was tried first: the closed-form map is
+  linear only within 0.003 of the 4T orbit (a stick-slip decision near its third
+  point), far inside `IDENTIFY_TOL`;
+* any other attractor (a closed curve, a cloud) claims a start after `CONFIRM`
+  consecutive periods within its tolerance.
+
+Attractors are found and named first the one the run from rest reaches (by its returns
+and Floquet multipliers where it locks,
+`beltmdsm.attractors.classification.periodic_attractor`, else
+`beltmdsm.attractors.classification.classify`), the T-periodic response where it is
+stable (shooting and Floquet) and any the caller gives, then, round by round, the one
+each start that no known attractor claims settles on (classified from its state after
+`MAX_PERIODS`; the first such start in grid order). The pilot and the rounds depend on
+the grid only, never on the order in which workers finish: the map and its labels are
+the same on one process, a pool or a dask cluster. Labels are ordered by kind, period
 and state, not by discovery.
 
 Each start is a pure function of the model, the start, the known attractors and the
@@ -38,7 +56,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..attractors.classification import KINDS, Attractor, classify
+from ..attractors.classification import KINDS, Attractor, classify, periodic_attractor
 from ..errors import Refused
 from ..model import Model, as_model, excitation_period
 from ..periodic.floquet import floquet
@@ -51,6 +69,8 @@ __all__ = [
     "basins",
     "AXES",
     "IDENTIFY_TOL",
+    "LARGEST",
+    "PILOT",
     "MAX_PERIODS",
     "MAX_ROUNDS",
     "MAX_STARTS",
@@ -61,11 +81,14 @@ AXES = ("X1", "Y1", "X2", "Y2")
 #: Consecutive periods a start must stay on an attractor that is not a periodic
 #: response (a curve or a cloud of points) to be claimed by it.
 CONFIRM = 20
-#: A state within this distance of a periodic attractor's point (relative to
-#: ``1 + |x|``) for two cycles of its points, closer after the second, is on it
-#: (`_land`). The basins here are O(1) wide (the T-periodic response's at Vb = 3.88
-#: about 2 m by 3 m/s, 30 times this at |x| = 6).
+#: The claim radius (relative to ``1 + |x|``) of an attractor before the pilot has
+#: measured one, and the least (`_land`, `_radii`). The basins here are O(1) wide (the
+#: T-periodic response's at Vb = 3.88 about 2 m by 3 m/s, 30 times this at |x| = 6).
 IDENTIFY_TOL = 1e-2
+#: The largest claim radius of a periodic attractor (relative, as `IDENTIFY_TOL`).
+LARGEST = 0.2
+#: Every PILOT-th start on each axis is a pilot (`_radii`).
+PILOT = 3
 #: Periods a start is iterated before it is handed to the classification.
 MAX_PERIODS = 2000
 #: Rounds of classifying the first unclaimed start.
@@ -170,53 +193,73 @@ def _map(model, general=False):
     return period_map(model, engine="general" if general else None)
 
 
-def _claim(x, known):
-    """``(label, distance)`` of the first known attractor whose points ``x`` is within
-    tolerance of (the distance relative to ``1 + |x|``), or ``(None, inf)``."""
+def _distances(x, known):
+    """The relative distance (to ``1 + |x|``) of ``x`` from each known attractor's points."""
     scale = 1.0 + float(np.max(np.abs(x)))
-    for label, points, tol, _ in known:
-        d = float(np.min(np.max(np.abs(points - x), axis=1))) / scale
-        if d <= tol:
-            return label, d
-    return None, np.inf
+    return [float(np.min(np.max(np.abs(points - x), axis=1))) / scale for _, points, *_ in known]
 
 
 def _land(model, general, start, known, max_periods):
     """Iterate the period map from ``start`` until a known attractor claims it.
 
-    A periodic attractor of ``k`` phases claims a start that stays within its tolerance
-    for two whole cycles (``2 k`` periods) and comes closer over the second: the
-    contraction a stable orbit's neighbourhood shows, which a trajectory passing by on
-    its way to another attractor does not. Any other attractor claims after `CONFIRM`
-    periods within its tolerance.
+    ``known`` holds ``(label, points, radius, k)``. A periodic attractor of ``k`` phases
+    (``k > 0``) claims a start that comes within its radius and is closer still one
+    cycle (``k`` periods) later: the contraction its neighbourhood shows, which a
+    trajectory passing by on its way elsewhere does not. Any other attractor claims
+    after `CONFIRM` consecutive periods within its radius.
 
-    Returns ``{"label", "periods", "final", "failed"}``: the label (None if unclaimed
-    after ``max_periods``), the periods iterated, the shooting state reached.
+    Returns ``{"label", "periods", "final", "failed", "approach"}``: the label (None if
+    unclaimed after ``max_periods``), the periods iterated, the shooting state reached,
+    and the closest approach to each known attractor on the way (`_radii` reads it).
     """
     pmap = _map(model, general)
     x = pmap.guess(np.asarray(start, dtype=float))
-    cycle = {label: k for label, _, _, k in known}
-    run_label, run, last = None, 0, np.inf
+    approach = [np.inf] * len(known)
+    candidate, run = None, [0] * len(known)  # (index, period, distance); runs of k = 0
+
+    def row(label, n, final, failed=None):
+        return {
+            "label": label,
+            "periods": n,
+            "final": final,
+            "failed": failed,
+            "approach": [float(a) for a in approach],
+        }
+
     for n in range(1, max_periods + 1):
         try:
             x = pmap.step(x)
         except NoPeriodicResponse as err:
-            return {"label": None, "periods": n, "final": None, "failed": str(err)}
-        label, d = _claim(x, known)
-        run = run + 1 if label is not None and label == run_label else int(label is not None)
-        run_label = label
-        if label is None:
-            continue
-        k = cycle[label]
-        if k == 0:  # not periodic
-            done = run >= CONFIRM
-        elif run % k == 0:
-            done, last = run >= 2 * k and d < last, d
-        else:
-            done = False
-        if done:
-            return {"label": label, "periods": n, "final": x.tolist(), "failed": None}
-    return {"label": None, "periods": max_periods, "final": x.tolist(), "failed": None}
+            return row(None, n, None, str(err))
+        d = _distances(x, known)
+        approach = [min(a, b) for a, b in zip(approach, d)]
+        if candidate is not None:
+            i, n0, d0 = candidate
+            if n == n0 + known[i][3]:
+                if d[i] < d0:
+                    return row(known[i][0], n, x.tolist())
+                candidate = None
+        for i, (label, _, radius, k) in enumerate(known):
+            inside = d[i] <= radius
+            run[i] = run[i] + 1 if inside else 0
+            if k == 0 and run[i] >= CONFIRM:
+                return row(label, n, x.tolist())
+            if k > 0 and inside and candidate is None:
+                candidate = (i, n, d[i])
+    return row(None, max_periods, x.tolist())
+
+
+def _radii(known, rows):
+    """The claim radius of each periodic attractor: half the closest approach to its
+    points of any pilot trajectory that ended elsewhere or nowhere (the basin's edge is
+    at least that far), within [`IDENTIFY_TOL`, `LARGEST`]; the others keep theirs."""
+    out = []
+    for i, (label, points, radius, k) in enumerate(known):
+        if k > 0:
+            foreign = [r["approach"][i] for r in rows if r["label"] != label]
+            radius = min(max(0.5 * min(foreign, default=np.inf), IDENTIFY_TOL), LARGEST)
+        out.append((label, points, radius, k))
+    return out
 
 
 def _known_digest(known):
@@ -238,7 +281,7 @@ def _cached_land(model, general, start, known, max_periods, cache_dir):
         "max_periods": int(max_periods),
     }
     path = Path(cache_dir) / f"{cache.cache_key(ident)}.json"
-    row, _ = cache.read_cached(path, ident, ("label", "periods", "final", "failed"))
+    row, _ = cache.read_cached(path, ident, ("label", "periods", "final", "failed", "approach"))
     if row is None:
         row = _land(model, general, start, known, max_periods)
         cache.write_cached(path, ident, row)
@@ -279,9 +322,12 @@ def _same(a, pa, b, pb):
     return max(near) <= max(tol, 1e-6 * scale)
 
 
-#: Starts per task sent to an executor (about): a start lands in milliseconds, so one
+#: Starts per task sent to an executor (at most): a start lands in milliseconds, so one
 #: task per start spends more on scheduling than on the map (2 dask workers were 1.3x one).
 CHUNK = 16
+#: Tasks a call is cut into at least (while it has that many starts): a small call, the
+#: pilot's, would otherwise be one task on one worker.
+MIN_TASKS = 8
 
 
 def _chunk(fn, items):
@@ -293,7 +339,9 @@ def _map_all(fn, items, executor):
         return [fn(*it) for it in items]
     # interleaved, not consecutive: neighbouring starts cost alike (a slowly attracting
     # basin is a region of the grid), so every task gets its share of the slow ones
-    n = -(-len(items) // CHUNK)
+    n = min(max(-(-len(items) // CHUNK), MIN_TASKS), len(items))
+    if n == 0:
+        return []
     futures = [executor.submit(_chunk, fn, items[j::n]) for j in range(n)]
     out = [None] * len(items)
     for j, f in enumerate(futures):
@@ -390,8 +438,12 @@ def basins(
 
     general = x in ("X2", "Y2") or y in ("X2", "Y2")
     pmap = _map(model, general)
-    found = [classify(model, t_end=t_end), *_periodic_response(model), *(attractors or [])]
-    found_points = [_points(pmap, a) for a in found]
+    found, found_points = [], []
+    for a in [_seed(model, None, t_end), *_periodic_response(model), *(attractors or [])]:
+        p = _points(pmap, a)
+        if not any(_same(b, q, a, p) for b, q in zip(found, found_points)):
+            found.append(a)
+            found_points.append(p)
     base = np.asarray(found[0].state, dtype=float)
     ix, iy = AXES.index(x), AXES.index(y)
     xs = np.linspace(*_range("x_range", x_range, found, ix), points)
@@ -405,13 +457,13 @@ def basins(
 
     labels = np.full(len(starts), -1)
     periods = np.zeros(len(starts), dtype=int)
-    todo = list(range(len(starts)))
-    current = {i: starts[i] for i in todo}
-    for _ in range(MAX_ROUNDS):
-        known = [
-            (j, p, _tolerance(a, p), a.periods if a.kind == "periodic" else 0)
-            for j, (a, p) in enumerate(zip(found, found_points))
-        ]
+    current = dict(enumerate(starts))
+    known = [
+        (j, p, _tolerance(a, p), a.periods if a.kind == "periodic" else 0)
+        for j, (a, p) in enumerate(zip(found, found_points))
+    ]
+
+    def land(todo):
         rows = _map_all(
             _cached_land,
             [(model, general, current[i], known, max_periods, cache_dir) for i in todo],
@@ -425,16 +477,39 @@ def basins(
             elif row["final"] is not None:
                 current[i] = pmap.full_state(row["final"])
                 left.append(i)
+        return rows, left
+
+    # the pilot: every PILOT-th start on each axis, claimed within IDENTIFY_TOL only; its
+    # trajectories set the claim radii of the rest (_radii)
+    pilot = [i for i in range(len(starts)) if (i // points) % PILOT == 0 and i % PILOT == 0]
+    rows, left = land(pilot)
+    known = _radii(known, rows)
+    piloted = set(pilot)
+    _, more = land([i for i in range(len(starts)) if i not in piloted])
+    left = sorted(left + more)
+    for _ in range(MAX_ROUNDS):
         if not left:
             break
-        new = classify(model, y0=current[left[0]], t_end=t_end)
+        new = _seed(model, current[left[0]], t_end)
         new_points = _points(pmap, new)
         if any(_same(a, p, new, new_points) for a, p in zip(found, found_points)):
             break  # the unclaimed starts approach a known attractor too slowly: stop
         found.append(new)
         found_points.append(new_points)
-        todo = left
+        k = new.periods if new.kind == "periodic" else 0
+        known.append((len(found) - 1, new_points, _tolerance(new, new_points), k))
+        _, left = land(left)
     return _result(pmap, model, x, y, xs, ys, labels, periods, found, found_points)
+
+
+def _seed(model, y0, t_end):
+    """The attractor the run from ``y0`` (None: rest) settles on: by its returns and
+    Floquet where it locks (`beltmdsm.attractors.classification.periodic_attractor`, a
+    fifth of the cost), else by `classify`."""
+    try:
+        return periodic_attractor(model, y0=y0, t_end=t_end)
+    except NoPeriodicResponse:
+        return classify(model, y0=y0, t_end=t_end)
 
 
 def _periodic_response(model):
