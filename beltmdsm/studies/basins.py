@@ -5,26 +5,12 @@ starts the vibration. `basins` starts the model on a grid of a plane of states a
 excitation's phase 0 (default ``X1`` and ``X1'``, the normal state on its periodic
 orbit) and iterates the period map (`beltmdsm.periodic.periodmap.period_map`, the
 closed-form map where the laws allow it) from each start only until a known attractor
-claims it (`_land`), as Attractors.jl's recurrence approach does, instead of running it
-to the end and classifying it by its spectrum:
-
-* a periodic attractor of ``k`` points claims a start that comes within its claim
-  radius of one of them and is closer still one cycle (``k`` periods) later: the
-  contraction its neighbourhood shows, which a trajectory passing by on its way
-  elsewhere does not;
-* the claim radius is measured on the map, not assumed: a pilot of the starts (every
-  `PILOT`-th on each axis) is claimed within `IDENTIFY_TOL` only, and each periodic
-  attractor's radius is then half the closest approach to its points of any pilot
-  trajectory that went elsewhere (`_radii`; at most `LARGEST`): the edge of its basin
-  is at least that far. At the base set, Vb = 3.88, the 4T lock's radius is 0.2 and the
-  T-periodic response's 0.064 (a trajectory bound for the 4T lock passes 0.13 from it),
-  and a start is claimed after 27 periods on average instead of 63, with the same
-  labels (benchmarks/bench_basins.py). A quadratic Lyapunov function of the orbit's
-  monodromy (the linearised neighbourhood) was tried first: the closed-form map is
-  linear only within 0.003 of the 4T orbit (a stick-slip decision near its third
-  point), far inside `IDENTIFY_TOL`;
-* any other attractor (a closed curve, a cloud) claims a start after `CONFIRM`
-  consecutive periods within its tolerance.
+claims it (`beltmdsm.attractors.landing.land`: within a claim radius of a periodic
+attractor's points and closer one cycle later), instead of running it to the end and
+classifying it by its spectrum. The claim radii are measured on the map: a pilot of
+the starts (every `PILOT`-th on each axis, in grid order) lands first within
+`IDENTIFY_TOL` only, and each periodic attractor's radius is then half the closest
+approach of any pilot trajectory bound elsewhere (`beltmdsm.attractors.landing.claim_radii`).
 
 Attractors are found and named first the one the run from rest reaches (by its returns
 and Floquet multipliers where it locks,
@@ -59,12 +45,12 @@ from ..attractors.classification import KINDS, Attractor, classify, periodic_att
 from ..attractors.landing import (
     IDENTIFY_TOL,
     LARGEST,
-    _land,
-    _map,
-    _points,
-    _radii,
-    _same,
-    _tolerance,
+    attractor_points,
+    claim_radii,
+    land,
+    one_period_map,
+    same_attractor,
+    tolerance,
 )
 from ..errors import Refused
 from ..model import Model, as_model, excitation_period
@@ -87,7 +73,7 @@ __all__ = [
 
 #: The axes of the plane: the state's components at phase 0.
 AXES = ("X1", "Y1", "X2", "Y2")
-#: Every PILOT-th start on each axis is a pilot (`_radii`).
+#: Every PILOT-th start on each axis is a pilot (`claim_radii`).
 PILOT = 3
 #: Periods a start is iterated before it is handed to the classification.
 MAX_PERIODS = 2000
@@ -196,7 +182,7 @@ def _known_digest(known):
 
 def _cached_land(model, general, start, known, max_periods, cache_dir):
     if cache_dir is None:
-        return _land(model, general, start, known, max_periods)
+        return land(model, general, start, known, max_periods)
     ident = {
         "basin": model.as_dict(),
         "general": bool(general),
@@ -207,7 +193,7 @@ def _cached_land(model, general, start, known, max_periods, cache_dir):
     path = Path(cache_dir) / f"{cache.cache_key(ident)}.json"
     row, _ = cache.read_cached(path, ident, ("label", "periods", "final", "failed", "approach"))
     if row is None:
-        row = _land(model, general, start, known, max_periods)
+        row = land(model, general, start, known, max_periods)
         cache.write_cached(path, ident, row)
     return row
 
@@ -327,11 +313,11 @@ def basins(
         cache_dir = cache.writable_folder(cache_dir)
 
     general = x in ("X2", "Y2") or y in ("X2", "Y2")
-    pmap = _map(model, general)
+    pmap = one_period_map(model, general)
     found, found_points = [], []
     for a in [_seed(model, None, t_end), *_periodic_response(model), *(attractors or [])]:
-        p = _points(pmap, a)
-        if not any(_same(b, q, a, p) for b, q in zip(found, found_points)):
+        p = attractor_points(pmap, a)
+        if not any(same_attractor(b, q, a, p) for b, q in zip(found, found_points)):
             found.append(a)
             found_points.append(p)
     base = np.asarray(found[0].state, dtype=float)
@@ -349,11 +335,11 @@ def basins(
     periods = np.zeros(len(starts), dtype=int)
     current = dict(enumerate(starts))
     known = [
-        (j, p, _tolerance(a, p), a.periods if a.kind == "periodic" else 0)
+        (j, p, tolerance(a, p), a.periods if a.kind == "periodic" else 0)
         for j, (a, p) in enumerate(zip(found, found_points))
     ]
 
-    def land(todo):
+    def run(todo):
         rows = _map_all(
             _cached_land,
             [(model, general, current[i], known, max_periods, cache_dir) for i in todo],
@@ -370,25 +356,25 @@ def basins(
         return rows, left
 
     # the pilot: every PILOT-th start on each axis, claimed within IDENTIFY_TOL only; its
-    # trajectories set the claim radii of the rest (_radii)
+    # trajectories set the claim radii of the rest (claim_radii)
     pilot = [i for i in range(len(starts)) if (i // points) % PILOT == 0 and i % PILOT == 0]
-    rows, left = land(pilot)
-    known = _radii(known, rows)
+    rows, left = run(pilot)
+    known = claim_radii(known, rows)
     piloted = set(pilot)
-    _, more = land([i for i in range(len(starts)) if i not in piloted])
+    _, more = run([i for i in range(len(starts)) if i not in piloted])
     left = sorted(left + more)
     for _ in range(MAX_ROUNDS):
         if not left:
             break
         new = _seed(model, current[left[0]], t_end)
-        new_points = _points(pmap, new)
-        if any(_same(a, p, new, new_points) for a, p in zip(found, found_points)):
+        new_points = attractor_points(pmap, new)
+        if any(same_attractor(a, p, new, new_points) for a, p in zip(found, found_points)):
             break  # the unclaimed starts approach a known attractor too slowly: stop
         found.append(new)
         found_points.append(new_points)
         k = new.periods if new.kind == "periodic" else 0
-        known.append((len(found) - 1, new_points, _tolerance(new, new_points), k))
-        _, left = land(left)
+        known.append((len(found) - 1, new_points, tolerance(new, new_points), k))
+        _, left = run(left)
     return _result(pmap, model, x, y, xs, ys, labels, periods, found, found_points)
 
 

@@ -80,7 +80,7 @@ def test_an_interrupted_map_resumes_from_its_cache(tmp_path, monkeypatch):
     def boom(*args):
         raise AssertionError("a cached start was computed again")
 
-    monkeypatch.setattr(basins_module, "_land", boom)
+    monkeypatch.setattr(basins_module, "land", boom)
     again = basins(MODEL, cache_dir=tmp_path, **small)
     assert _signature(again) == _signature(first)
 
