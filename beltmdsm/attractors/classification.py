@@ -106,6 +106,21 @@ class Attractor:
         A state on the attractor at phase 0 (the fixed point where periodic).
     points : ndarray (n, 4)
         Its stroboscopic samples.
+
+    See Also
+    --------
+    classify : names the attractor a run settles on.
+    periodic_attractor : the fast path where it locks.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> a = periodic_attractor(Model(Vb=3.88), t_end=300.0)
+    >>> a  # doctest: +ELLIPSIS
+    Attractor(periodic (4T), largest exponent -0.0951 +- ... 1/s, rotation -0.250000)
+    >>> d = a.as_dict()
+    >>> d["kind"], d["periods"], d["rotation_number"]
+    ('periodic', 4, -0.25)
     """
 
     kind: Literal["periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified"]

@@ -129,6 +129,22 @@ class Basins:
     attractors : list of BasinAttractor
     periods : ndarray (len(ys), len(xs))
         The periods each start was iterated before it was identified.
+
+    See Also
+    --------
+    basins : computes it.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> b = basins(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    >>> b  # doctest: +NORMALIZE_WHITESPACE
+    Basins(9 starts on (X1, Y1): [BasinAttractor(0: periodic 1T, 11.1% of the starts),
+        BasinAttractor(1: periodic 4T, 88.9% of the starts)])
+    >>> b.labels.tolist()
+    [[1, 1, 1], [1, 0, 1], [1, 1, 1]]
+    >>> sorted(b.as_dict()), b.as_dict()["grid"]["x"]
+    (['attractors', 'grid', 'unidentified'], 'X1')
     """
 
     model: Model = field(repr=False)
