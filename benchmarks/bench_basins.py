@@ -4,8 +4,9 @@ loop, and the speed-up of 2 dask workers over 1.
 * **ours**: `beltmdsm.studies.basins.basins` on a ``points x points`` grid of (X1, X1')
   at the base set, Vb = 3.88, where the T-periodic response and the 4T lock coexist:
   each start iterated on the closed-form period map and stopped once an attractor
-  claims it. Timed whole (the attractors' classification included) and its landing
-  rounds alone.
+  claims it (within a claim radius measured from a pilot of the starts, and closer
+  one cycle later: `beltmdsm.attractors.landing`). Timed whole (the attractors'
+  seeding included) and its landing alone (the pilot's and the rest's).
 * **naive baseline**: one `beltmdsm.simulate` per start (the default 1000 s run with its
   summary), the attractor told by the omega1 peak of the spectrum (present: the 4T
   lock, the self-excited component at Omega / 4; absent: the T-periodic response), on a
