@@ -12,7 +12,8 @@ start of a grid on its executors and caches it.
 * The claim radius is measured on the map, not assumed (`claim_radii`): a pilot of the
   starts is claimed within `IDENTIFY_TOL` only, and each periodic attractor's radius is
   then half the closest approach to its points of any pilot trajectory that went
-  elsewhere or nowhere (at most `LARGEST`): the edge of its basin is at least that far.
+  elsewhere or nowhere, or of another known attractor's points (at most `LARGEST`):
+  the edge of its basin is at least that far.
   At the base set, Vb = 3.88, the 4T lock's radius is 0.2 and the T-periodic
   response's 0.064 (a trajectory bound for the 4T lock passes 0.13 from it), and a
   start is claimed after 27 periods on average instead of 63, with the same labels
@@ -219,8 +220,9 @@ def claim_radii(known: list, rows: list[dict]) -> list:
     """``known`` with each periodic attractor's claim radius measured from pilot landings.
 
     Half the closest approach to its points of any pilot trajectory that ended
-    elsewhere or nowhere (the basin's edge is at least that far), within
-    [`IDENTIFY_TOL`, `LARGEST`]; the other attractors keep theirs.
+    elsewhere or nowhere, or of another known attractor's points (states bound
+    elsewhere too): the basin's edge is at least that far. Within [`IDENTIFY_TOL`,
+    `LARGEST`]; the other attractors keep theirs.
 
     Parameters
     ----------
@@ -244,15 +246,20 @@ def claim_radii(known: list, rows: list[dict]) -> list:
     Examples
     --------
     >>> import numpy as np
-    >>> known = [(0, np.zeros((1, 2)), IDENTIFY_TOL, 1)]
-    >>> rows = [{"label": 0, "approach": [0.0]}, {"label": None, "approach": [0.3]}]
-    >>> claim_radii(known, rows)[0][2]
-    0.15
+    >>> known = [(0, np.zeros((1, 2)), IDENTIFY_TOL, 1), (1, np.ones((1, 2)), 0.05, 0)]
+    >>> rows = [{"label": 0, "approach": [0.0, 0.5]}, {"label": None, "approach": [0.3, 0.4]}]
+    >>> [round(r, 6) for _, _, r, _ in claim_radii(known, rows)]
+    [0.15, 0.05]
     """
     out = []
     for i, (label, points, radius, k) in enumerate(known):
         if k > 0:
             foreign = [r["approach"][i] for r in rows if r["label"] != label]
+            foreign += [
+                min(distances(x, [known[i]])[0] for x in other)
+                for j, (_, other, _, _) in enumerate(known)
+                if j != i
+            ]
             radius = min(max(0.5 * min(foreign, default=np.inf), IDENTIFY_TOL), LARGEST)
         out.append((label, points, radius, k))
     return out

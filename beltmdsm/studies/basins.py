@@ -10,7 +10,8 @@ attractor's points and closer one cycle later), instead of running it to the end
 classifying it by its spectrum. The claim radii are measured on the map: a pilot of
 the starts (every `PILOT`-th on each axis, in grid order) lands first within
 `IDENTIFY_TOL` only, and each periodic attractor's radius is then half the closest
-approach of any pilot trajectory bound elsewhere (`beltmdsm.attractors.landing.claim_radii`).
+approach of any pilot trajectory bound elsewhere or of another attractor's points
+(`beltmdsm.attractors.landing.claim_radii`).
 
 Attractors are found and named first the one the run from rest reaches (by its returns
 and Floquet multipliers where it locks,

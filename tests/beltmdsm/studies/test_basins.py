@@ -79,11 +79,11 @@ def test_every_start_claimed_early_is_where_an_independent_run_ends(serial):
 
 
 def test_the_pilot_measures_each_periodic_attractors_claim_radius():
-    # half the closest approach of a pilot trajectory bound elsewhere (or nowhere),
-    # within [IDENTIFY_TOL, LARGEST]; an attractor no foreign trajectory came near gets
-    # LARGEST; one that is not periodic keeps its own
-    pts = np.zeros((1, 2))
-    known = [(0, pts, 0.01, 4), (1, pts, 0.01, 1), (2, pts, 0.07, 0)]
+    # half the closest approach of a pilot trajectory bound elsewhere (or nowhere) or of
+    # another attractor's points, within [IDENTIFY_TOL, LARGEST]; one that is not
+    # periodic keeps its own
+    far = np.full((1, 2), 1e3)  # relative distances from the others about 1
+    known = [(0, np.zeros((1, 2)), 0.01, 4), (1, far, 0.01, 1), (2, -far, 0.07, 0)]
     rows = [
         {"label": 0, "approach": [0.0, 0.13, 0.5]},
         {"label": 1, "approach": [0.6, 0.0, 0.5]},
@@ -93,6 +93,10 @@ def test_the_pilot_measures_each_periodic_attractors_claim_radius():
     assert radii == [LARGEST, IDENTIFY_TOL, 0.07]
     rows[1]["approach"][0] = 0.3
     assert claim_radii(known, rows[:2])[0][2] == pytest.approx(0.15)
+    # no pilot came near: the other attractors' points bound it (0.5 of 0.2 here)
+    near = np.array([[0.25, 0.0]])  # 0.2 of 1 + 0.25 from the origin
+    known[1] = (1, near, 0.01, 1)
+    assert claim_radii(known, rows[:1])[0][2] == pytest.approx(0.1)
 
 
 def test_the_map_is_the_same_on_a_process_pool_and_on_a_dask_cluster(serial):
