@@ -374,7 +374,9 @@ def basins(
 
     # the pilot: every PILOT-th start on each axis, claimed within IDENTIFY_TOL only; its
     # trajectories set the claim radii of the rest (claim_radii)
-    pilot = [i for i in range(len(starts)) if (i // points) % PILOT == 0 and i % PILOT == 0]
+    pilot = [
+        i for i in range(len(starts)) if (i // points) % PILOT == 0 and (i % points) % PILOT == 0
+    ]
     rows, left = run(pilot)
     known = claim_radii(known, rows)
     piloted = set(pilot)
