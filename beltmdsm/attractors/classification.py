@@ -80,6 +80,9 @@ ZERO_FLOOR = 1e-3
 #: Added to ``SIGNIFICANCE`` errors where an exponent is judged zero [1/s]: a torus's
 #: exponent converges like 1/t, which the block spread does not see.
 ZERO_TOL = 5e-4
+#: The absolute accuracy of a Floquet multiplier (the two period-map engines agree to
+#: this: beltmdsm/periodic/periodmap.py), the error of `periodic_attractor`'s exponent.
+_MULTIPLIER_TOL = 1e-9
 
 
 @dataclass
@@ -341,8 +344,8 @@ def periodic_attractor(
             p / k,
             0.0,
             float(exponents[0]),
-            # the multipliers' relative error: about Newton's residual or the runs' tolerance
-            max(resp.residual, RTOL) / f.period,
+            # d ln|mu| = d|mu| / |mu|, the multiplier's error or Newton's residual
+            max(resp.residual, _MULTIPLIER_TOL) / (max(mu[0], 1e-300) * f.period),
             exponents,
             f"the samples return after {k} excitation periods, Newton's method on the "
             f"{k}-fold period map converges from them (residual {resp.residual:.1e}) and "
