@@ -4,17 +4,26 @@ loop, and the speed-up of 2 dask workers over 1.
 * **ours**: `beltmdsm.studies.basins.basins` on a ``points x points`` grid of (X1, X1')
   at the base set, Vb = 3.88, where the T-periodic response and the 4T lock coexist:
   each start iterated on the closed-form period map and stopped once an attractor
-  claims it. Timed whole (the attractors' classification included) and its landing
-  rounds alone.
+  claims it (within a claim radius measured from a pilot of the starts, and closer
+  one cycle later: `beltmdsm.attractors.landing`). Timed whole (the attractors'
+  seeding included) and its landing alone (the pilot's and the rest's).
 * **naive baseline**: one `beltmdsm.simulate` per start (the default 1000 s run with its
   summary), the attractor told by the omega1 peak of the spectrum (present: the 4T
   lock, the self-excited component at Omega / 4; absent: the T-periodic response), on a
   subsample of the starts. Its labels are compared with ours.
-* **dask**: the same map on a ``distributed.LocalCluster`` of 1 and of 2 single-threaded
-  worker processes (warmed by a small map first, so that no compile is timed).
+* **dask**: the same map (``--dask-points``, default 24 x 24: a 12 x 12 map is under a
+  second of work, too little to time a split) on a ``distributed.LocalCluster`` of 1 and
+  of 2 single-threaded worker processes (warmed by a small map first, so that no
+  compile is timed), each timed ``--repeat`` times (the best kept). Besides the wall
+  time, the CPU seconds each worker spent (psutil): where the machine's cores are
+  shared with other work, a worker gets a fraction of a core and the wall-time
+  speed-up says more about the load than about the split; the CPU seconds show
+  whether the split itself adds work or leaves a worker idle (the speed-up on free
+  cores: 1-worker CPU over the busiest of the 2 workers' CPU).
 
 Run from the repository root: ``python -m benchmarks.bench_basins [--points N]
-[--naive N] [--no-dask]``. The figures depend on the machine and its load: run it alone.
+[--naive N] [--no-dask] [--dask-points N] [--repeat N]``. The figures depend on the
+machine and its load: run it alone.
 """
 
 from __future__ import annotations
@@ -43,6 +52,8 @@ def main(argv=None) -> None:
     ap.add_argument("--points", type=int, default=12)
     ap.add_argument("--naive", type=int, default=12, help="starts of the naive baseline")
     ap.add_argument("--no-dask", action="store_true")
+    ap.add_argument("--dask-points", type=int, default=24)
+    ap.add_argument("--repeat", type=int, default=2)
     args = ap.parse_args(argv)
 
     basins(MODEL, points=2, **PLANE)  # compile the kernels outside the timed region
@@ -90,9 +101,12 @@ def main(argv=None) -> None:
 
     if args.no_dask:
         return
+    import os
+
+    import psutil
     from distributed import Client, LocalCluster
 
-    times = {}
+    best = {}
     for workers in (1, 2):
         with (
             LocalCluster(
@@ -101,16 +115,32 @@ def main(argv=None) -> None:
             Client(cluster) as client,
         ):
             ex = client.get_executor()
-            basins(MODEL, points=2, executor=ex, **PLANE)  # warm the workers
-            landing.clear()
-            basins_module._map_all = timed_map_all
-            try:
-                basins(MODEL, points=args.points, executor=ex, **PLANE)
-            finally:
-                basins_module._map_all = real_map_all
-            times[workers] = sum(landing)
-            print(f"  dask, {workers} worker(s), landing: {times[workers]:8.2f} s")
-    print(f"  speed-up of 2 workers over 1: {times[1] / times[2]:.2f}x")
+            basins(MODEL, points=3, executor=ex, **PLANE)  # warm the workers
+            procs = [psutil.Process(pid) for pid in client.run(os.getpid).values()]
+            for _ in range(args.repeat):
+                cpu0 = [sum(p.cpu_times()[:2]) for p in procs]
+                landing.clear()
+                basins_module._map_all = timed_map_all
+                try:
+                    basins(MODEL, points=args.dask_points, executor=ex, **PLANE)
+                finally:
+                    basins_module._map_all = real_map_all
+                cpu = [sum(p.cpu_times()[:2]) - c for p, c in zip(procs, cpu0)]
+                wall = sum(landing)
+                share = sum(cpu) / (wall * workers)
+                print(
+                    f"  dask, {workers} worker(s), {args.dask_points**2} starts: landing "
+                    f"{wall:6.2f} s, worker CPU {', '.join(f'{c:.2f}' for c in cpu)} s "
+                    f"({100 * share:.0f}% of a core each), load {os.getloadavg()[0]:.1f}"
+                )
+                if workers not in best or wall < best[workers][0]:
+                    best[workers] = (wall, cpu)
+    (w1, c1), (w2, c2) = best[1], best[2]
+    print(f"  speed-up of 2 workers over 1: {w1 / w2:.2f}x wall")
+    print(
+        f"  on free cores (1 worker's CPU over the busiest of 2): {c1[0] / max(c2):.2f}x; "
+        f"work added by the split: {100 * (sum(c2) / c1[0] - 1):+.0f}%"
+    )
 
 
 if __name__ == "__main__":

@@ -42,16 +42,21 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..arguments import state
 from ..errors import NoPeriodicResponse
-from ..model import Backend, Model, as_model, excitation_period
+from ..integrate.events import integrate_events
+from ..model import Backend, Model, as_model, excitation_period, initial_state
+from ..periodic.floquet import Floquet
 from ..periodic.locked import NotLocked, stroboscope
 from ..periodic.shooting import periodic_response
-from .lyapunov import lyapunov
+from ..settings import SolverSettings
+from .lyapunov import RTOL, lyapunov
 
 __all__ = [
     "Attractor",
     "KINDS",
     "classify",
+    "periodic_attractor",
     "rotation_number",
     "RETURN_TOL",
     "SIGNIFICANCE",
@@ -76,6 +81,9 @@ ZERO_FLOOR = 1e-3
 #: Added to ``SIGNIFICANCE`` errors where an exponent is judged zero [1/s]: a torus's
 #: exponent converges like 1/t, which the block spread does not see.
 ZERO_TOL = 5e-4
+#: The absolute accuracy of a Floquet multiplier (the two period-map engines agree to
+#: this: beltmdsm/periodic/periodmap.py), the error of `periodic_attractor`'s exponent.
+_MULTIPLIER_TOL = 1e-9
 
 
 @dataclass
@@ -102,6 +110,21 @@ class Attractor:
         A state on the attractor at phase 0 (the fixed point where periodic).
     points : ndarray (n, 4)
         Its stroboscopic samples.
+
+    See Also
+    --------
+    classify : names the attractor a run settles on.
+    periodic_attractor : the fast path where it locks.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> a = periodic_attractor(Model(Vb=3.88), t_end=300.0)
+    >>> a  # doctest: +ELLIPSIS
+    Attractor(periodic (4T), largest exponent -0.0951 +- ... 1/s, rotation -0.250000)
+    >>> d = a.as_dict()
+    >>> d["kind"], d["periods"], d["rotation_number"]
+    ('periodic', 4, -0.25)
     """
 
     kind: Literal["periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified"]
@@ -230,6 +253,112 @@ def classify(
     except ValueError:
         return _unforced(model, spec)
     return _forced(model, spec, backend)
+
+
+def periodic_attractor(
+    model: Model | None = None,
+    *,
+    y0: ArrayLike | None = None,
+    t_end: float = 2000.0,
+    backend: Backend | None = None,
+    **params: float | str,
+) -> Attractor:
+    """The stable periodic attractor the run from ``y0`` settles on, without a Lyapunov run.
+
+    The fast path of `classify` where the run locks: a plain run (no variational
+    equations, a fifth of `beltmdsm.attractors.lyapunov.lyapunov`'s cost), its
+    stroboscopic samples after the first 30 % searched for returns as `classify` does,
+    Newton's method on the ``k``-fold map from the last, and the exponents
+    ``ln |mu_i| / (k T)`` of the response's Floquet multipliers: exactly what the
+    Lyapunov spectrum of a run on it converges to (tests/beltmdsm/attractors/test_lyapunov.py),
+    with the multipliers' accuracy instead of an average's error.
+
+    Parameters
+    ----------
+    model : Model, optional
+        Or the keywords it is built from; it must have a periodic excitation.
+    y0 : array_like (4,), optional
+        The start; default the unforced equilibrium at rest.
+    t_end : float
+        The run [s].
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    Attractor
+        Of kind ``periodic``.
+
+    Raises
+    ------
+    NoPeriodicResponse
+        Where the samples do not return, Newton's method does not converge from them or
+        the response is not stable: `classify` then names the attractor.
+    ValueError
+        For a bad ``t_end`` or ``y0``, or no excitation.
+
+    See Also
+    --------
+    classify : every kind, from the Lyapunov spectrum.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> a = periodic_attractor(Model(Vb=3.88), t_end=300.0)
+    >>> a.kind, a.periods, round(a.lyapunov, 4)
+    ('periodic', 4, -0.0951)
+    """
+    model = as_model(model, **params)
+    T = excitation_period(model)
+    if not (np.isfinite(t_end) and t_end >= 10 * T):
+        raise ValueError(f"t_end must be at least 10 excitation periods ({10 * T:.4g} s)")
+    y = initial_state(model) if y0 is None else state("y0", y0, (4,), "X1, Y1, X2, Y2")
+    first = T * np.ceil(0.3 * t_end / T)
+    times = first + T * np.arange(int((t_end - first) / T + 1e-9) + 1)
+    settings = SolverSettings(
+        t_end=float(times[-1]), rtol=RTOL, atol=RTOL, dt=T, t_discard=0.0, backend=backend
+    )
+    run = integrate_events(model, settings, y0=y)
+    if run.status != "done":
+        raise NoPeriodicResponse(f"periodic_attractor: the run stopped: {run.message}")
+    samples = run.trajectory.state(times).T
+    for k in _returns(samples, RETURN_TOL)[:_CANDIDATES]:
+        try:
+            resp = periodic_response(
+                model, periods=k, guess=samples[-1], forward=0, backend=backend
+            )
+        except NoPeriodicResponse:
+            continue
+        f = Floquet.of(resp)
+        if not f.stable:  # unstable, or grazing (stable None): classify decides
+            raise NoPeriodicResponse(
+                f"the {k}T response the run returns to is not stable by its Floquet "
+                f"multipliers (stable: {f.stable})"
+            )
+        mu = np.sort(np.abs(f.multipliers))[::-1]
+        with np.errstate(divide="ignore"):
+            exponents = np.log(mu) / f.period
+        turns = np.angle(np.exp(1j * np.diff(_angles(samples[-(k + 1) :]))))
+        p = int(round(float(np.sum(turns)) / (2 * np.pi)))
+        return Attractor(
+            "periodic",
+            k,
+            p / k,
+            0.0,
+            float(exponents[0]),
+            # d ln|mu| = d|mu| / |mu|, the multiplier's error or Newton's residual
+            max(resp.residual, _MULTIPLIER_TOL) / (max(mu[0], 1e-300) * f.period),
+            exponents,
+            f"the samples return after {k} excitation periods, Newton's method on the "
+            f"{k}-fold period map converges from them (residual {resp.residual:.1e}) and "
+            f"the Floquet multipliers are inside the unit circle (largest {mu[0]:.6g}): the "
+            "exponents are ln|mu| / (k T)",
+            resp.state0,
+            samples,
+        )
+    raise NoPeriodicResponse(
+        f"the run's samples do not return to {RETURN_TOL:g} within {len(samples) // 3} "
+        "periods onto a periodic response"
+    )
 
 
 def _attractor(kind, spec, evidence, periods=None, rotation=None, accuracy=None, state=None):

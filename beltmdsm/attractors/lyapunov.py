@@ -100,6 +100,19 @@ class Lyapunov:
         The state at the end of each base period of the window (`chunk_length`): with
         excitation, the stroboscopic samples at phase 0 (`beltmdsm.attractors.classification`
         reads the attractor's kind from them).
+
+    See Also
+    --------
+    lyapunov : computes it.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> spec = lyapunov(Model(Vb=5.0), t_end=60.0)  # the 4T lock, stable
+    >>> spec  # doctest: +ELLIPSIS
+    Lyapunov([-0.09...+-..., ...] 1/s over 32.9867 s, 20 switches, 0 collapsed)
+    >>> bool(spec.largest < 0), spec.exponents.shape, sorted(spec.as_dict())[:3]
+    (True, (4,), ['collapsed', 'error', 'exponents'])
     """
 
     model: Model = field(repr=False)

@@ -4,19 +4,24 @@ The question an engineer asks where stable responses coexist: how large a distur
 starts the vibration. `basins` starts the model on a grid of a plane of states at the
 excitation's phase 0 (default ``X1`` and ``X1'``, the normal state on its periodic
 orbit) and iterates the period map (`beltmdsm.periodic.engines.period_map`, the
-closed-form map where the laws allow it) from each start until the state stays within
-`IDENTIFY_TOL` of a known attractor's stroboscopic points for two cycles of them,
-contracting towards them (`_land`): a start is stopped as soon as it is identified,
-as Attractors.jl's recurrence approach does, instead of being run to the end and
-classified by its spectrum.
+closed-form map where the laws allow it) from each start only until a known attractor
+claims it (`beltmdsm.attractors.landing.land`: within a claim radius of a periodic
+attractor's points and closer one cycle later), instead of running it to the end and
+classifying it by its spectrum. The claim radii are measured on the map: a pilot of
+the starts (every `PILOT`-th on each axis, in grid order) lands first within
+`IDENTIFY_TOL` only, and each periodic attractor's radius is then half the closest
+approach of any pilot trajectory bound elsewhere or of another attractor's points
+(`beltmdsm.attractors.landing.claim_radii`).
 
-Attractors are found and named by `beltmdsm.attractors.classification.classify`: first the
-one the run from rest reaches, the T-periodic response where it is stable (shooting and
-Floquet) and any the caller gives, then, round by round, the
-one each start that no known attractor claims settles on (classified from its state
-after `MAX_PERIODS`; the first such start in grid order). The rounds depend on the
-grid only, never on the order in which workers finish: the map and its labels are the
-same on one process, a pool or a dask cluster. Labels are ordered by kind, period
+Attractors are found and named first the one the run from rest reaches (by its returns
+and Floquet multipliers where it locks,
+`beltmdsm.attractors.classification.periodic_attractor`, else
+`beltmdsm.attractors.classification.classify`), the T-periodic response where it is
+stable (shooting and Floquet) and any the caller gives, then, round by round, the one
+each start that no known attractor claims settles on (classified from its state after
+`MAX_PERIODS`; the first such start in grid order). The pilot and the rounds depend on
+the grid only, never on the order in which workers finish: the map and its labels are
+the same on one process, a pool or a dask cluster. Labels are ordered by kind, period
 and state, not by discovery.
 
 Each start is a pure function of the model, the start, the known attractors and the
@@ -27,7 +32,6 @@ interrupted map resumes from its cache.
 from __future__ import annotations
 
 import concurrent.futures as cf
-import functools
 import hashlib
 import json
 import os
@@ -38,10 +42,19 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..attractors.classification import KINDS, Attractor, classify
+from ..attractors.classification import KINDS, Attractor, classify, periodic_attractor
+from ..attractors.landing import (
+    IDENTIFY_TOL,
+    LARGEST,
+    attractor_points,
+    claim_radii,
+    land,
+    one_period_map,
+    same_attractor,
+    tolerance,
+)
 from ..errors import NoPeriodicResponse, Refused
 from ..model import Model, as_model, excitation_period
-from ..periodic.engines import period_map
 from ..periodic.floquet import floquet
 from . import cache
 
@@ -51,6 +64,8 @@ __all__ = [
     "basins",
     "AXES",
     "IDENTIFY_TOL",
+    "LARGEST",
+    "PILOT",
     "MAX_PERIODS",
     "MAX_ROUNDS",
     "MAX_STARTS",
@@ -58,14 +73,8 @@ __all__ = [
 
 #: The axes of the plane: the state's components at phase 0.
 AXES = ("X1", "Y1", "X2", "Y2")
-#: Consecutive periods a start must stay on an attractor that is not a periodic
-#: response (a curve or a cloud of points) to be claimed by it.
-CONFIRM = 20
-#: A state within this distance of a periodic attractor's point (relative to
-#: ``1 + |x|``) for two cycles of its points, closer after the second, is on it
-#: (`_land`). The basins here are O(1) wide (the T-periodic response's at Vb = 3.88
-#: about 2 m by 3 m/s, 30 times this at |x| = 6).
-IDENTIFY_TOL = 1e-2
+#: Every PILOT-th start on each axis is a pilot (`claim_radii`).
+PILOT = 3
 #: Periods a start is iterated before it is handed to the classification.
 MAX_PERIODS = 2000
 #: Rounds of classifying the first unclaimed start.
@@ -120,6 +129,22 @@ class Basins:
     attractors : list of BasinAttractor
     periods : ndarray (len(ys), len(xs))
         The periods each start was iterated before it was identified.
+
+    See Also
+    --------
+    basins : computes it.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> b = basins(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    >>> b  # doctest: +NORMALIZE_WHITESPACE
+    Basins(9 starts on (X1, Y1): [BasinAttractor(0: periodic 1T, 11.1% of the starts),
+        BasinAttractor(1: periodic 4T, 88.9% of the starts)])
+    >>> b.labels.tolist()
+    [[1, 1, 1], [1, 0, 1], [1, 1, 1]]
+    >>> sorted(b.as_dict()), b.as_dict()["grid"]["x"]
+    (['attractors', 'grid', 'unidentified'], 'X1')
     """
 
     model: Model = field(repr=False)
@@ -163,62 +188,6 @@ class Basins:
         return draw(self, ax)
 
 
-@functools.lru_cache(maxsize=4)
-def _map(model, general=False):
-    """The one-period map; the general engine where the plane has a normal axis (the
-    closed-form map keeps the normal motion on its periodic orbit)."""
-    return period_map(model, engine="general" if general else None)
-
-
-def _claim(x, known):
-    """``(label, distance)`` of the first known attractor whose points ``x`` is within
-    tolerance of (the distance relative to ``1 + |x|``), or ``(None, inf)``."""
-    scale = 1.0 + float(np.max(np.abs(x)))
-    for label, points, tol, _ in known:
-        d = float(np.min(np.max(np.abs(points - x), axis=1))) / scale
-        if d <= tol:
-            return label, d
-    return None, np.inf
-
-
-def _land(model, general, start, known, max_periods):
-    """Iterate the period map from ``start`` until a known attractor claims it.
-
-    A periodic attractor of ``k`` phases claims a start that stays within its tolerance
-    for two whole cycles (``2 k`` periods) and comes closer over the second: the
-    contraction a stable orbit's neighbourhood shows, which a trajectory passing by on
-    its way to another attractor does not. Any other attractor claims after `CONFIRM`
-    periods within its tolerance.
-
-    Returns ``{"label", "periods", "final", "failed"}``: the label (None if unclaimed
-    after ``max_periods``), the periods iterated, the shooting state reached.
-    """
-    pmap = _map(model, general)
-    x = pmap.guess(np.asarray(start, dtype=float))
-    cycle = {label: k for label, _, _, k in known}
-    run_label, run, last = None, 0, np.inf
-    for n in range(1, max_periods + 1):
-        try:
-            x = pmap.step(x)
-        except NoPeriodicResponse as err:
-            return {"label": None, "periods": n, "final": None, "failed": str(err)}
-        label, d = _claim(x, known)
-        run = run + 1 if label is not None and label == run_label else int(label is not None)
-        run_label = label
-        if label is None:
-            continue
-        k = cycle[label]
-        if k == 0:  # not periodic
-            done = run >= CONFIRM
-        elif run % k == 0:
-            done, last = run >= 2 * k and d < last, d
-        else:
-            done = False
-        if done:
-            return {"label": label, "periods": n, "final": x.tolist(), "failed": None}
-    return {"label": None, "periods": max_periods, "final": x.tolist(), "failed": None}
-
-
 def _known_digest(known):
     h = hashlib.sha256()
     for label, points, tol, need in known:
@@ -229,7 +198,7 @@ def _known_digest(known):
 
 def _cached_land(model, general, start, known, max_periods, cache_dir):
     if cache_dir is None:
-        return _land(model, general, start, known, max_periods)
+        return land(model, general, start, known, max_periods)
     ident = {
         "basin": model.as_dict(),
         "general": bool(general),
@@ -238,50 +207,19 @@ def _cached_land(model, general, start, known, max_periods, cache_dir):
         "max_periods": int(max_periods),
     }
     path = Path(cache_dir) / f"{cache.cache_key(ident)}.json"
-    row, _ = cache.read_cached(path, ident, ("label", "periods", "final", "failed"))
+    row, _ = cache.read_cached(path, ident, ("label", "periods", "final", "failed", "approach"))
     if row is None:
-        row = _land(model, general, start, known, max_periods)
+        row = land(model, general, start, known, max_periods)
         cache.write_cached(path, ident, row)
     return row
 
 
-def _points(pmap, attractor):
-    """An attractor's stroboscopic points in the map's shooting state."""
-    if attractor.kind == "periodic":
-        x = pmap.guess(attractor.state)
-        out = [x]
-        for _ in range(attractor.periods - 1):
-            x = pmap.step(x)
-            out.append(x)
-        return np.array(out)
-    return pmap.shooting(attractor.points)
-
-
-def _tolerance(attractor, points):
-    """Periodic: `IDENTIFY_TOL`; a curve or a cloud: twice its largest gap between
-    neighbours as well (its points are samples, not the whole set)."""
-    if attractor.kind == "periodic" or len(points) < 2:
-        return IDENTIFY_TOL
-    from scipy.spatial import cKDTree
-
-    d, _ = cKDTree(points).query(points, k=2)
-    scale = 1.0 + float(np.max(np.abs(points)))
-    return max(IDENTIFY_TOL, 2.0 * float(np.max(d[:, 1])) / scale)
-
-
-def _same(a, pa, b, pb):
-    """Whether two classified attractors are one (kind, period and points agree)."""
-    if a.kind != b.kind or a.periods != b.periods:
-        return False
-    scale = 1.0 + float(np.max(np.abs(pa)))
-    tol = max(_tolerance(a, pa), _tolerance(b, pb)) * scale
-    near = [float(np.min(np.max(np.abs(pa - x), axis=1))) for x in pb]
-    return max(near) <= max(tol, 1e-6 * scale)
-
-
-#: Starts per task sent to an executor (about): a start lands in milliseconds, so one
+#: Starts per task sent to an executor (at most): a start lands in milliseconds, so one
 #: task per start spends more on scheduling than on the map (2 dask workers were 1.3x one).
 CHUNK = 16
+#: Tasks a call is cut into at least (while it has that many starts): a small call, the
+#: pilot's, would otherwise be one task on one worker.
+MIN_TASKS = 8
 
 
 def _chunk(fn, items):
@@ -293,7 +231,9 @@ def _map_all(fn, items, executor):
         return [fn(*it) for it in items]
     # interleaved, not consecutive: neighbouring starts cost alike (a slowly attracting
     # basin is a region of the grid), so every task gets its share of the slow ones
-    n = -(-len(items) // CHUNK)
+    n = min(max(-(-len(items) // CHUNK), MIN_TASKS), len(items))
+    if n == 0:
+        return []
     futures = [executor.submit(_chunk, fn, items[j::n]) for j in range(n)]
     out = [None] * len(items)
     for j, f in enumerate(futures):
@@ -389,9 +329,13 @@ def basins(
         cache_dir = cache.writable_folder(cache_dir)
 
     general = x in ("X2", "Y2") or y in ("X2", "Y2")
-    pmap = _map(model, general)
-    found = [classify(model, t_end=t_end), *_periodic_response(model), *(attractors or [])]
-    found_points = [_points(pmap, a) for a in found]
+    pmap = one_period_map(model, general)
+    found, found_points = [], []
+    for a in [_seed(model, None, t_end), *_periodic_response(model), *(attractors or [])]:
+        p = attractor_points(pmap, a)
+        if not any(same_attractor(b, q, a, p) for b, q in zip(found, found_points)):
+            found.append(a)
+            found_points.append(p)
     base = np.asarray(found[0].state, dtype=float)
     ix, iy = AXES.index(x), AXES.index(y)
     xs = np.linspace(*_range("x_range", x_range, found, ix), points)
@@ -405,13 +349,13 @@ def basins(
 
     labels = np.full(len(starts), -1)
     periods = np.zeros(len(starts), dtype=int)
-    todo = list(range(len(starts)))
-    current = {i: starts[i] for i in todo}
-    for _ in range(MAX_ROUNDS):
-        known = [
-            (j, p, _tolerance(a, p), a.periods if a.kind == "periodic" else 0)
-            for j, (a, p) in enumerate(zip(found, found_points))
-        ]
+    current = dict(enumerate(starts))
+    known = [
+        (j, p, tolerance(a, p), a.periods if a.kind == "periodic" else 0)
+        for j, (a, p) in enumerate(zip(found, found_points))
+    ]
+
+    def run(todo):
         rows = _map_all(
             _cached_land,
             [(model, general, current[i], known, max_periods, cache_dir) for i in todo],
@@ -425,16 +369,41 @@ def basins(
             elif row["final"] is not None:
                 current[i] = pmap.full_state(row["final"])
                 left.append(i)
+        return rows, left
+
+    # the pilot: every PILOT-th start on each axis, claimed within IDENTIFY_TOL only; its
+    # trajectories set the claim radii of the rest (claim_radii)
+    pilot = [
+        i for i in range(len(starts)) if (i // points) % PILOT == 0 and (i % points) % PILOT == 0
+    ]
+    rows, left = run(pilot)
+    known = claim_radii(known, rows)
+    piloted = set(pilot)
+    _, more = run([i for i in range(len(starts)) if i not in piloted])
+    left = sorted(left + more)
+    for _ in range(MAX_ROUNDS):
         if not left:
             break
-        new = classify(model, y0=current[left[0]], t_end=t_end)
-        new_points = _points(pmap, new)
-        if any(_same(a, p, new, new_points) for a, p in zip(found, found_points)):
+        new = _seed(model, current[left[0]], t_end)
+        new_points = attractor_points(pmap, new)
+        if any(same_attractor(a, p, new, new_points) for a, p in zip(found, found_points)):
             break  # the unclaimed starts approach a known attractor too slowly: stop
         found.append(new)
         found_points.append(new_points)
-        todo = left
+        k = new.periods if new.kind == "periodic" else 0
+        known.append((len(found) - 1, new_points, tolerance(new, new_points), k))
+        _, left = run(left)
     return _result(pmap, model, x, y, xs, ys, labels, periods, found, found_points)
+
+
+def _seed(model, y0, t_end):
+    """The attractor the run from ``y0`` (None: rest) settles on: by its returns and
+    Floquet where it locks (`beltmdsm.attractors.classification.periodic_attractor`, a
+    fifth of the cost), else by `classify`."""
+    try:
+        return periodic_attractor(model, y0=y0, t_end=t_end)
+    except NoPeriodicResponse:
+        return classify(model, y0=y0, t_end=t_end)
 
 
 def _periodic_response(model):

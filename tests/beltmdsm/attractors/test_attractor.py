@@ -1,7 +1,9 @@
 """Attractors named (beltmdsm/attractors/classification.py): the runs VALIDATION.md called "not
 locked" are long-period locks, found by their return and confirmed by Newton's method and
-Floquet; the weighted Birkhoff rotation number against closed forms; a run too short to
-tell says so instead of naming a kind."""
+Floquet; a forced stick-slip cycle that does not lock is a torus (quasi-periodic), checked
+by an independent run; the weighted Birkhoff rotation number against closed forms; a run
+too short to tell says so instead of naming a kind; the fast periodic path agrees with
+the spectrum's."""
 
 import json
 import os
@@ -12,9 +14,18 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from beltmdsm.attractors.classification import KINDS, classify, rotation_number
+from beltmdsm.attractors.classification import (
+    KINDS,
+    ZERO_TOL,
+    classify,
+    periodic_attractor,
+    rotation_number,
+)
+from beltmdsm.errors import NoPeriodicResponse
+from beltmdsm.integrate.events import integrate_events
 from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
+from beltmdsm.settings import SolverSettings
 
 
 def test_the_base_set_at_vb_3_5_is_a_59_period_lock_not_quasi_periodic():
@@ -46,6 +57,67 @@ def test_a_run_too_short_to_show_the_lock_is_unclassified_and_says_run_longer():
     a = classify(Model(Vb=3.5), t_end=300.0)
     assert a.kind == "unclassified" and a.periods is None
     assert "run longer" in a.evidence
+
+
+#: A stick-slip cycle of Stribeck friction (period 6.654 s without excitation, the
+#: example of beltmdsm.cycles.cycle.cycle) under weak forcing at Omega = 1.53 rad/s.
+TORUS = Model(friction="stribeck", Vb=1.5, alpha=0.05, Omega=1.53)
+
+
+def _strobe(model, y0, n):
+    """``n`` stroboscopic samples of an independent plain run from ``y0`` at phase 0."""
+    T = 2 * np.pi / model.params["Omega"]
+    s = SolverSettings(t_end=n * T, rtol=1e-10, atol=1e-10, dt=T, t_discard=0.0)
+    return integrate_events(model, s, y0=y0).trajectory.state(T * np.arange(1, n + 1)).T
+
+
+def test_a_weakly_forced_stick_slip_cycle_that_does_not_lock_is_a_torus():
+    a = classify(TORUS, t_end=1500.0)
+    assert a.kind == "quasi_periodic" and a.periods is None
+    assert abs(a.lyapunov) <= 3 * a.lyapunov_error + ZERO_TOL < 3e-3
+    assert a.exponents[1] < -0.1  # the curve attracts
+    assert a.rotation_accuracy < 1e-6
+    # an independent run of 1000 periods from a state on it (integrate_events alone)
+    n = 1000
+    y = _strobe(TORUS, a.state, n)
+    # the rotation number: the plain mean of the angle turned per period about the
+    # samples' centre errs like 1/n; the weighted average converges: 250 samples give
+    # what 1000 give, and both the classification's value
+    w = (y[:, :2] - y[:, :2].mean(0)) / y[:, :2].std(0)
+    turn = np.unwrap(np.arctan2(w[:, 1], w[:, 0]))
+    assert (turn[-1] - turn[0]) / (2 * np.pi * (n - 1)) == pytest.approx(
+        a.rotation_number, abs=1.0 / n
+    )
+    early, late = rotation_number(y[:250])[0], rotation_number(y)[0]
+    assert early == pytest.approx(late, abs=1e-6)
+    assert late == pytest.approx(a.rotation_number, abs=1e-6)
+    # no lock: the last sample returns after no k up to n / 3 periods (a lock's would to
+    # rounding, 1e-10)
+    scale = 1 + np.max(np.abs(y))
+    returns = [np.max(np.abs(y[-1] - y[-1 - k])) / scale for k in range(1, n // 3)]
+    assert min(returns) > 1e-4
+    # the largest exponent zero: a neighbour's separation along the curve neither grows
+    # nor shrinks over 1000 periods (6300 s); a lock contracting at 1e-3 1/s would
+    # shrink it 500-fold, chaos at 1e-3 1/s grow it so
+    y0 = a.state.copy()
+    y0[0] += 1e-4
+    d = np.max(np.abs(_strobe(TORUS, y0, n) - y), axis=1)
+    assert 0.2 < d[-1] / d[0] < 5
+
+
+def test_the_fast_periodic_path_agrees_with_the_spectrum():
+    # returns, Newton and Floquet (no variational run) against classify's Lyapunov run
+    m = Model(Vb=5.0)
+    fast, slow = periodic_attractor(m, t_end=400.0), classify(m, t_end=400.0)
+    assert (fast.kind, fast.periods, fast.rotation_number) == ("periodic", 4, -0.25)
+    assert np.max(np.abs(fast.state - slow.state)) < 1e-9
+    # the largest exponent: Floquet's rate within the average's error (the smallest
+    # multipliers, near rounding, carry no such accuracy: only the largest is claimed)
+    assert abs(fast.lyapunov - slow.lyapunov) <= 3 * slow.lyapunov_error
+    assert fast.lyapunov_error < 1e-6 < slow.lyapunov_error
+    # the torus has no return: the fast path refuses, classify names it
+    with pytest.raises(NoPeriodicResponse, match="do not return"):
+        periodic_attractor(TORUS, t_end=600.0)
 
 
 def _ellipse(rho, n, phase=0.3):

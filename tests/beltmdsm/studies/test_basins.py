@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from beltmdsm.attractors.landing import IDENTIFY_TOL, LARGEST, claim_radii
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.model import Model
 from beltmdsm.settings import SolverSettings
@@ -60,6 +61,44 @@ def test_both_coexisting_responses_have_a_basin_and_each_label_is_where_a_long_r
         assert np.min(np.max(np.abs(points - end[:, 0]), axis=1)) < 1e-4
 
 
+def test_every_start_claimed_early_is_where_an_independent_run_ends(serial):
+    # the claim radii are measured from the pilot's trajectories (0.2 for the 4T lock
+    # here, twenty times the fixed 1e-2): every start, claimed after a few periods, is
+    # checked against a plain run of 600 periods (940 s) from it, whose end at phase 0
+    # is near its label's attractor and far from the other
+    assert np.mean(serial.periods) < 40
+    T = np.pi / 2
+    settings = SolverSettings(t_end=600 * T, rtol=1e-10, atol=1e-10, dt=T / 4, t_discard=0.0)
+    base = serial.attractors[0].points[0]
+    for (i, j), label in np.ndenumerate(serial.labels):
+        start = base.copy()
+        start[:2] = serial.xs[j], serial.ys[i]
+        end = integrate_events(MODEL, settings, y0=start).trajectory.state(np.array([600 * T]))
+        near = [np.min(np.max(np.abs(a.points - end[:, 0]), axis=1)) for a in serial.attractors]
+        assert near[label] < 0.05 < min(d for k, d in enumerate(near) if k != label)
+
+
+def test_the_pilot_measures_each_periodic_attractors_claim_radius():
+    # half the closest approach of a pilot trajectory bound elsewhere (or nowhere) or of
+    # another attractor's points, within [IDENTIFY_TOL, LARGEST]; one that is not
+    # periodic keeps its own
+    far = np.full((1, 2), 1e3)  # relative distances from the others about 1
+    known = [(0, np.zeros((1, 2)), 0.01, 4), (1, far, 0.01, 1), (2, -far, 0.07, 0)]
+    rows = [
+        {"label": 0, "approach": [0.0, 0.13, 0.5]},
+        {"label": 1, "approach": [0.6, 0.0, 0.5]},
+        {"label": None, "approach": [0.9, 0.004, 0.5]},
+    ]
+    radii = [r for _, _, r, _ in claim_radii(known, rows)]
+    assert radii == [LARGEST, IDENTIFY_TOL, 0.07]
+    rows[1]["approach"][0] = 0.3
+    assert claim_radii(known, rows[:2])[0][2] == pytest.approx(0.15)
+    # no pilot came near: the other attractors' points bound it (0.5 of 0.2 here)
+    near = np.array([[0.25, 0.0]])  # 0.2 of 1 + 0.25 from the origin
+    known[1] = (1, near, 0.01, 1)
+    assert claim_radii(known, rows[:1])[0][2] == pytest.approx(0.1)
+
+
 def test_the_map_is_the_same_on_a_process_pool_and_on_a_dask_cluster(serial):
     with cf.ProcessPoolExecutor(max_workers=2) as pool:
         pooled = basins(MODEL, executor=pool, **PLANE)
@@ -80,7 +119,7 @@ def test_an_interrupted_map_resumes_from_its_cache(tmp_path, monkeypatch):
     def boom(*args):
         raise AssertionError("a cached start was computed again")
 
-    monkeypatch.setattr(basins_module, "_land", boom)
+    monkeypatch.setattr(basins_module, "land", boom)
     again = basins(MODEL, cache_dir=tmp_path, **small)
     assert _signature(again) == _signature(first)
 
