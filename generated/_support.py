@@ -368,6 +368,16 @@ class BeltmdsmError(Exception):
     (``beltmdsm.errors``, which re-exports this class) and the generated modules'
     `Unsupported` form one hierarchy: ``except beltmdsm.errors.BeltmdsmError`` catches
     them all. Each failure also keeps its builtin base (`ValueError`, ...).
+
+    See Also
+    --------
+    beltmdsm.errors : the runtime's failures, each a subclass of this one.
+
+    Examples
+    --------
+    >>> from beltmdsm.errors import BeltmdsmError, Refused, StepTooSmall, Unsupported
+    >>> all(issubclass(e, BeltmdsmError) for e in (Refused, StepTooSmall, Unsupported))
+    True
     """
 
 
@@ -378,6 +388,25 @@ class Unsupported(BeltmdsmError, ValueError):
     ``beltmdsm.generated.capabilities``): the function refuses rather than computing with
     the physics of another law. ``beltmdsm.errors.Unsupported`` (and
     ``beltmdsm.model.Unsupported``) is this class.
+
+    See Also
+    --------
+    beltmdsm.generated.capabilities : the facts each choice of laws has, and why not.
+
+    Examples
+    --------
+    Stribeck friction has no closed-form critical belt speed (its effective friction
+    is a quadrature), so the closed form refuses and says what to use instead:
+
+    >>> from beltmdsm.errors import Unsupported
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> params = {**BASE, "mu_k": 0.2, "v_s": 1.0}
+    >>> try:
+    ...     stability.critical_belt_speed(**params, friction="stribeck")
+    ... except Unsupported as err:
+    ...     print(isinstance(err, ValueError), "no closed-form critical belt speed" in str(err))
+    True True
     """
 
 

@@ -153,6 +153,24 @@ class Cycle:
 
     Two cycles are equal only when they are the same object (arrays have no one truth
     value); compare ``period`` and ``state`` to a tolerance instead.
+
+    See Also
+    --------
+    beltmdsm.cycles.cycle.cycle : finds one.
+    beltmdsm.periodic.floquet.Floquet : the same multipliers as `floquet` reports them.
+
+    Examples
+    --------
+    The stick-slip cycle of Stribeck friction at Vb = 1.5 m/s: one stick a period, the
+    trivial multiplier 1 to rounding, and a stick phase that collapses two multipliers
+    to 0:
+
+    >>> from beltmdsm import Model, cycle
+    >>> c = cycle(Model(friction="stribeck", alpha=0.0, Vb=1.5))
+    >>> c.n_sticks, round(c.stick_time, 2), abs(c.trivial_multiplier - 1) < 1e-9
+    (1, 1.52, True)
+    >>> [float(round(abs(mu), 3)) for mu in c.multipliers]
+    [0.224, 0.0, 0.0]
     """
 
     model: Model

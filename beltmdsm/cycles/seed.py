@@ -143,6 +143,24 @@ def seed_cycle(
         Naming why: steady sliding is stable and no perturbation is given (a run from it
         decays to it), the run decays to steady sliding, stops, or does not settle on
         a cycle within ``t_end``.
+
+    See Also
+    --------
+    beltmdsm.cycles.cycle.cycle : the cycle itself, by shooting from this seed.
+    beltmdsm.cycles.hopf.hopf_point : where steady sliding loses stability.
+
+    Examples
+    --------
+    A run off unstable steady sliding under Stribeck friction settles on the stick-slip
+    cycle; `cycle` then shoots it exactly from the seed:
+
+    >>> from beltmdsm import Model, cycle, seed_cycle
+    >>> model = Model(friction="stribeck", alpha=0.0, Vb=1.5)
+    >>> state, period = seed_cycle(model)
+    >>> state.shape, round(period, 1)
+    ((4,), 6.7)
+    >>> round(cycle(model, guess=state, period=period).period, 3)
+    6.654
     """
     model = as_model(model)
     require_autonomous(model, "seed_cycle")
