@@ -55,7 +55,37 @@ _STYLES = {True: "-", False: "--", None: ":"}
 
 
 def unit(name: str, model: Any = None) -> str:
-    """The unit of parameter ``name`` (under the model's contact law, where it has one)."""
+    """The unit of parameter ``name`` (under the model's contact law, where it has one).
+
+    Parameters
+    ----------
+    name : str
+        a parameter of the model (``beltmdsm.generated.parameters``)
+    model : beltmdsm.model.Model, optional
+        whose contact law may give the parameter another unit
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    KeyError
+        if ``name`` is not a parameter.
+
+    See Also
+    --------
+    beltmdsm.plotting.axis_label
+
+    Examples
+    --------
+    The contact stiffness ``beta2`` is dimensionless in the Kelvin-Voigt law, not in
+    the Hertz law of the default model:
+
+    >>> from beltmdsm import Model
+    >>> unit("Vb"), unit("beta2"), unit("beta2", Model(contact="kelvin_voigt"))
+    ('m/s', '1/m^(5/4)', '1')
+    """
     if model is not None:
         for (option, choice), units in LAW_UNITS.items():
             if getattr(model, option, None) == choice and name in units:
@@ -64,7 +94,28 @@ def unit(name: str, model: Any = None) -> str:
 
 
 def axis_label(name: str, unit_: str) -> str:
-    """``"Vb [m/s]"``; a dimensionless quantity ``"[-]"``."""
+    """``"Vb [m/s]"``; a dimensionless quantity ``"[-]"``.
+
+    Parameters
+    ----------
+    name : str
+        the quantity
+    unit_ : str
+        its unit; ``"1"`` for a dimensionless one
+
+    Returns
+    -------
+    str
+
+    See Also
+    --------
+    beltmdsm.plotting.unit
+
+    Examples
+    --------
+    >>> axis_label("Vb", "m/s"), axis_label("beta1", "1")
+    ('Vb [m/s]', 'beta1 [-]')
+    """
     return f"{name} [{'-' if unit_ == '1' else unit_}]"
 
 
@@ -83,6 +134,45 @@ def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str = "X1
     ``normal_force``, the forces per unit mass) against time, the samples of the run.
     ``kind="friction"``: the friction loop (Fig. 3b), friction per unit mass against
     ``Vr = X1' - Vb``, over the steady window (``sim.window``).
+
+    Parameters
+    ----------
+    sim : beltmdsm.simulation.Simulation
+        the run
+    ax : matplotlib.axes.Axes, optional
+        where to draw; new axes where None
+    kind : {"time", "friction"}
+    variable : str
+        what ``kind="time"`` draws
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Raises
+    ------
+    ValueError
+        if ``kind`` or ``variable`` is none of the above.
+
+    See Also
+    --------
+    beltmdsm.simulation.simulate
+
+    Examples
+    --------
+    One line holding every sample of the run, axes named with their units:
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from beltmdsm import simulate
+    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> ax = simulation(sim)
+    >>> ax.get_xlabel(), ax.get_ylabel(), len(ax.lines)
+    ('t [s]', "X1' [m/s]", 1)
+    >>> bool(len(ax.lines[0].get_xdata()) == sim.t.size)
+    True
+    >>> simulation(sim, kind="friction").get_xlabel()
+    "Vr = X1' - Vb [m/s]"
     """
     ax = _axes(ax)
     if kind == "time":
@@ -113,7 +203,37 @@ def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str = "X1
 def band(result: Any, ax: Any = None) -> Any:
     """A Floquet band (`beltmdsm.continuation.band_result.Band`): the largest multiplier's modulus
     at each evaluated value, the unit circle's 1, the unstable ranges shaded and each
-    edge marked with its label."""
+    edge marked with its label.
+
+    Parameters
+    ----------
+    result : beltmdsm.continuation.band_result.Band
+        the band
+    ax : matplotlib.axes.Axes, optional
+        where to draw; new axes where None
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    See Also
+    --------
+    beltmdsm.continuation.band.floquet_band
+
+    Examples
+    --------
+    The band of ``beta1 = 0.3`` over 5.2-5.8 m/s has one edge, a Neimark-Sacker one,
+    and one unstable range shaded:
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from beltmdsm import Model, floquet_band
+    >>> ax = band(floquet_band(Model(beta1=0.3), "Vb", 5.2, 5.8, points=4))
+    >>> ax.get_xlabel(), ax.get_ylabel()
+    ('Vb [m/s]', 'max |mu| [-]')
+    >>> [t.get_text() for t in ax.texts], len(ax.patches)
+    (['NS'], 1)
+    """
     ax = _axes(ax)
     x, y = [], []
     for g in result.grid:
@@ -164,7 +284,51 @@ def branch(
 ) -> Any:  # fmt: skip
     """A bifurcation diagram (`beltmdsm.continuation.branch.Branch`): ``observable`` (a
     column of ``result.observables()``) against the parameter; stable parts solid,
-    unstable dashed, grazing dotted; the special points marked with their labels."""
+    unstable dashed, grazing dotted; the special points marked with their labels.
+
+    Parameters
+    ----------
+    result : beltmdsm.continuation.branch.Branch
+        the branch
+    ax : matplotlib.axes.Axes, optional
+        where to draw; new axes where None
+    observable : str
+        a column of ``result.observables()``
+    labels : bool
+        whether to write the special points' labels
+    colour : str
+        the branch's colour
+    name : str, optional
+        the response's name, before each line's label
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Raises
+    ------
+    ValueError
+        if ``observable`` is not a column of the branch's observables.
+
+    See Also
+    --------
+    beltmdsm.continuation.branch.branch, beltmdsm.plotting.observable_label
+
+    Examples
+    --------
+    The branch of ``beta1 = 0.3`` loses stability at a Neimark-Sacker point: a solid
+    line, then a dashed one, and the point marked NS:
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from beltmdsm import Model
+    >>> from beltmdsm import branch as continue_
+    >>> ax = branch(continue_(Model(beta1=0.3, Vb=5.3), lo=5.3, hi=5.6))
+    >>> [(line.get_gid(), line.get_linestyle()) for line in ax.lines[:2]]
+    [('branch:stable:0', '-'), ('branch:unstable:1', '--')]
+    >>> ax.get_ylabel(), [t.get_text() for t in ax.texts]
+    ("X1' amplitude [m/s]", ['NS'])
+    """
     ax = _axes(ax)
     table = result.observables()
     if observable not in table or observable == result.param:
@@ -186,7 +350,28 @@ def branch(
 def observable_label(name: str) -> str:
     """The axis label of an observable of `beltmdsm.periodic.observables` (units: m for
     X1, m/s for X1' and Vr, m/s^2 for a force per unit mass); a column of a user's
-    ``record`` is labelled by its name."""
+    ``record`` is labelled by its name.
+
+    Parameters
+    ----------
+    name : str
+        a column of a branch's observables
+
+    Returns
+    -------
+    str
+
+    See Also
+    --------
+    beltmdsm.plotting.branch
+
+    Examples
+    --------
+    >>> observable_label("X1'_amplitude"), observable_label("mu_eff")
+    ("X1' amplitude [m/s]", 'mu_eff = <Ff>/<Fn> [-]')
+    >>> observable_label("energy")
+    'energy (recorded)'
+    """
     if name.startswith("X1_"):
         return axis_label(name.replace("_", " ", 1), "m")
     if name.startswith("X1'_"):
@@ -202,7 +387,37 @@ def observable_label(name: str) -> str:
 
 def coexistence(result: Any, ax: Any = None, observable: str = "X1'_amplitude") -> Any:
     """Where stable responses coexist (`beltmdsm.studies.coexistence.Coexistence`): each
-    response's branch as in `branch`, one colour each, the coexistence ranges shaded."""
+    response's branch as in `branch`, one colour each, the coexistence ranges shaded.
+
+    Parameters
+    ----------
+    result : beltmdsm.studies.coexistence.Coexistence
+        the responses found and where they coexist
+    ax : matplotlib.axes.Axes, optional
+        where to draw; new axes where None
+    observable : str
+        as in `branch`
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    See Also
+    --------
+    beltmdsm.studies.coexistence.coexistence
+
+    Examples
+    --------
+    With no response found nothing is drawn, over the result's range:
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.studies.coexistence import Coexistence
+    >>> ax = coexistence(Coexistence("Vb", 1.0, 2.0, Model(), [], [], [], [], wall_s=0.1))
+    >>> len(ax.lines), tuple(float(v) for v in ax.get_xlim())
+    (0, (1.0, 2.0))
+    """
     ax = _axes(ax)
     colours = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]
     for i, r in enumerate(result.responses):
@@ -218,7 +433,38 @@ def floquet_map(result: Any, ax: Any = None, linear: bool = True) -> Any:
     """A Floquet map (`beltmdsm.continuation.map_result.FloquetMap`): shaded where no
     stable periodic response is found, row by row; the boundary curves coloured by kind
     (`KIND_COLOURS`) and labelled; hatched blue (``linear``): where the paper's linear
-    analysis says unstable on the same rows."""
+    analysis says unstable on the same rows.
+
+    Parameters
+    ----------
+    result : beltmdsm.continuation.map_result.FloquetMap
+        the map
+    ax : matplotlib.axes.Axes, optional
+        where to draw; new axes where None
+    linear : bool
+        whether to hatch the linear analysis's unstable region
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    See Also
+    --------
+    beltmdsm.continuation.floquet_map.floquet_map
+
+    Examples
+    --------
+    Three rows of ``beta1`` draw one Neimark-Sacker curve through three points:
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from beltmdsm import floquet_map as compute
+    >>> ax = floquet_map(compute("Vb", 5.3, 5.7, "beta1", 0.29, 0.31, rows=3))
+    >>> [(line.get_label(), len(line.get_xdata())) for line in ax.lines]
+    [('NS (neimark_sacker)', 3)]
+    >>> ax.get_xlabel(), ax.get_ylabel()
+    ('Vb [m/s]', 'beta1 [-]')
+    """
     ax = _axes(ax)
     dy = (result.rows[1] - result.rows[0]) if result.rows.size > 1 else 1.0
     for value, intervals in zip(result.rows, result.unstable):
@@ -252,7 +498,38 @@ _BASIN_AXES = {"X1": "X1", "Y1": "X1'", "X2": "X2", "Y2": "X2'"}
 def basins(result: Any, ax: Any = None) -> Any:
     """A basin map (`beltmdsm.studies.basins.Basins`): one colour per attractor (grey where
     none was identified), its stroboscopic points marked, a legend with its kind and
-    share of the starts."""
+    share of the starts.
+
+    Parameters
+    ----------
+    result : beltmdsm.studies.basins.Basins
+        the basin map
+    ax : matplotlib.axes.Axes, optional
+        where to draw; new axes where None
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    See Also
+    --------
+    beltmdsm.studies.basins.basins
+
+    Examples
+    --------
+    Nine starts at 3.88 m/s land on two attractors, one legend entry each:
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from beltmdsm import Model
+    >>> from beltmdsm import basins as compute
+    >>> b = compute(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    >>> ax = basins(b)
+    >>> [t.get_text() for t in ax.get_legend().get_texts()]
+    ['0: periodic 1T, 11.1% of the starts', '1: periodic 4T, 88.9% of the starts']
+    >>> ax.get_xlabel(), ax.get_ylabel()
+    ('X1 [m]', "X1' [m/s]")
+    """
     import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap
 

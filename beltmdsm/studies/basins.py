@@ -85,7 +85,36 @@ MAX_STARTS = 90_000
 
 @dataclass
 class BasinAttractor:
-    """An attractor of a basin map: its classification, label and share of the starts."""
+    """An attractor of a basin map: its classification, label and share of the starts.
+
+    Attributes
+    ----------
+    label : int
+        its value in `Basins.labels`
+    attractor : beltmdsm.attractors.classification.Attractor
+        what it is (periodic, quasi-periodic, chaotic) and the evidence
+    fraction : float
+        the share of the grid's starts that reach it
+    points : ndarray (n, 4)
+        its stroboscopic points (one per excitation period of a periodic one)
+
+    See Also
+    --------
+    beltmdsm.studies.basins.basins : computes the map and its attractors.
+
+    Examples
+    --------
+    At 3.88 m/s eight of nine starts (88.9%) land on the response locked at four
+    excitation periods, drawn by its four stroboscopic points:
+
+    >>> from beltmdsm import Model, basins
+    >>> b = basins(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    >>> a = b.attractors[1]
+    >>> a
+    BasinAttractor(1: periodic 4T, 88.9% of the starts)
+    >>> a.points.shape, a.as_dict()["periods"], round(a.as_dict()["fraction"], 3)
+    ((4, 4), 4, 0.889)
+    """
 
     label: int
     attractor: Attractor = field(repr=False)

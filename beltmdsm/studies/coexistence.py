@@ -99,6 +99,26 @@ class ResponseBranch:
         Where it is stable (merged where two parts touch at a grazing).
     sources : list of str
         The seeds that found it.
+
+    See Also
+    --------
+    beltmdsm.studies.overlay.stable_parts : its stable parts.
+    beltmdsm.studies.coexistence.coexistence : what finds the branches.
+
+    Examples
+    --------
+    The ``T``-periodic branch of ``beta1 = 0.3`` is stable from 5.3 m/s up to a
+    Neimark-Sacker point near 5.45 m/s:
+
+    >>> from beltmdsm import Model, periodic_response
+    >>> from beltmdsm.continuation.branch import continue_branch
+    >>> from beltmdsm.studies.overlay import stable_parts
+    >>> b = continue_branch(periodic_response(Model(beta1=0.3, Vb=5.3)), "Vb", 5.3, 5.6)
+    >>> r = ResponseBranch("T", b, stable_parts(b), ["run from rest"])
+    >>> r  # doctest: +ELLIPSIS
+    ResponseBranch('T', Vb from 5.3 to 5.6, stable in [5.3, 5.44...])
+    >>> [(s["lower"], s["upper"]) for s in r.as_dict()["stable"]]
+    [('range', 'neimark_sacker')]
     """
 
     name: str
@@ -131,7 +151,32 @@ class ResponseBranch:
 
 @dataclass(frozen=True)
 class Unlocked:
-    """A seed attractor that does not lock within the limit: where, and the evidence."""
+    """A seed attractor that does not lock within the limit: where, and the evidence.
+
+    Attributes
+    ----------
+    value : float
+        the parameter's value of the seed
+    evidence : beltmdsm.periodic.locked.NotLocked
+        why it is not locked (rotation number, closed curve, dimension)
+
+    See Also
+    --------
+    beltmdsm.periodic.locked.NotLocked : the evidence.
+
+    Examples
+    --------
+    Samples that turn by 0.1234 of a circle per period lock at no period:
+
+    >>> import numpy as np
+    >>> from beltmdsm.periodic.locked import NotLocked, stroboscope
+    >>> angle = 2 * np.pi * 0.1234 * np.arange(300)
+    >>> s = stroboscope(np.c_[np.cos(angle), np.sin(angle)], "a torus")
+    >>> u = Unlocked(6.0, NotLocked.of(s))
+    >>> d = u.as_dict()
+    >>> d["value"], d["closed_curve"], round(d["rotation_number"], 4)
+    (6.0, True, 0.1234)
+    """
 
     value: float
     evidence: NotLocked
@@ -143,7 +188,26 @@ class Unlocked:
 
 @dataclass(frozen=True)
 class Unexplained:
-    """A seed that locks but whose orbit Newton's method does not find."""
+    """A seed that locks but whose orbit Newton's method does not find.
+
+    Attributes
+    ----------
+    value : float
+        the parameter's value of the seed
+    source : str
+        the seed (``run from rest``, a ladder)
+    reason : str
+        why Newton's method failed
+
+    See Also
+    --------
+    beltmdsm.studies.coexistence.Coexistence : lists them.
+
+    Examples
+    --------
+    >>> Unexplained(6.0, "run from rest", "Newton's method diverges").as_dict()
+    {'value': 6.0, 'source': 'run from rest', 'reason': "Newton's method diverges"}
+    """
 
     value: float
     source: str

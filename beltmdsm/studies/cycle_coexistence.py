@@ -65,6 +65,31 @@ class CycleCoexistence:
     reason : str
         Why there is none, where there is none.
     wall_s : float
+
+    See Also
+    --------
+    beltmdsm.studies.cycle_coexistence.cycle_coexistence : what builds it.
+    beltmdsm.studies.coexistence.Coexistence : its twin with excitation.
+
+    Examples
+    --------
+    Built by hand: steady sliding stable over the whole range, no cycle, no coexistence.
+
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.studies.overlay import StablePart
+    >>> found = CycleCoexistence("Vb", 1.0, 3.0, Model(alpha=0), [],
+    ...                          [StablePart((1.0, 3.0), "range", "range")], None, [],
+    ...                          "no Hopf point", 0.1)
+    >>> print(found)
+    CycleCoexistence(Vb in [1, 3], coulomb friction, hertz_damp, tension allowed, 0.1 s)
+      Hopf points: none
+      steady sliding stable in [1, 3]
+      cycles stable in none
+      coexist in none
+      reason: no Hopf point
+    >>> d = found.as_dict()
+    >>> d["autonomous"], d["sliding_stable"], d["criticality"]
+    (True, [{'range': [1.0, 3.0], 'lower': 'range', 'upper': 'range'}], None)
     """
 
     param: str
@@ -187,6 +212,26 @@ def cycle_coexistence(
     Returns
     -------
     CycleCoexistence
+        Where no cycle is found, or none coexists with stable steady sliding,
+        ``reason`` says why.
+
+    See Also
+    --------
+    beltmdsm.cycles.hopf.hopf_points : where steady sliding changes stability.
+    beltmdsm.cycles.branch.cycle_branch : the cycles born at a Hopf point.
+    beltmdsm.studies.coexistence.coexistence : what calls it without excitation.
+
+    Examples
+    --------
+    Under Coulomb friction without excitation steady sliding is stable over 1-3 m/s,
+    with no Hopf point and no cycle seeded where a stick ends:
+
+    >>> from beltmdsm import Model
+    >>> found = cycle_coexistence("Vb", 1.0, 3.0, Model(alpha=0))
+    >>> found.hopf, [s.range for s in found.sliding], found.branch, found.ranges
+    ([], [(1.0, 3.0)], None, [])
+    >>> print(found.reason)  # doctest: +ELLIPSIS
+    no Hopf point of steady sliding for Vb in [1, 3], and no cycle seeded where a stick ends ...
     """
     clock = time.perf_counter()
     hopf = hopf_points(model, param, lo, hi)

@@ -59,6 +59,32 @@ class DifferenceRun:
     ``a`` starts at the default state (Eq. 9 at rest), ``b`` at the same normal state
     with ``(X1, X1')`` shifted by ``shift``; ``energy`` is
     `beltmdsm.generated.contraction.difference_energy` at the samples ``t`` of both runs.
+
+    Attributes
+    ----------
+    a, b : beltmdsm.simulation.Simulation
+        the two runs
+    shift : (float, float)
+        ``(dX1, dX1')`` of ``b``'s initial state from ``a``'s
+    t : ndarray
+        the samples' times [s]
+    energy : ndarray
+        ``E_d`` at each sample
+
+    See Also
+    --------
+    beltmdsm.studies.evidence.difference_runs : what builds it.
+
+    Examples
+    --------
+    Both runs see one normal motion, bit for bit; ``E_d`` starts at 17 for the shift
+    ``(5, -3)``:
+
+    >>> run = difference_runs((5.0, -3.0), Vb=4.0, t_end=20.0)
+    >>> run
+    DifferenceRun(shift=(5.0, -3.0))
+    >>> bool((run.a.y[2] == run.b.y[2]).all()), round(float(run.energy[0]), 6)
+    (True, 17.0)
     """
 
     a: Simulation = field(repr=False)
@@ -83,6 +109,26 @@ def difference_runs(
         ``tension="clipped"``, ``rtol=1e-10``). The solver is the superposition
         integrator unless given: it integrates the normal motion once, so both runs
         see the same ``F(t)``, bit for bit, as the argument has it.
+
+    Returns
+    -------
+    DifferenceRun
+
+    See Also
+    --------
+    beltmdsm.studies.evidence.difference_works : the energy balance of the difference.
+    beltmdsm.simulation.simulate : each run.
+
+    Examples
+    --------
+    A 20 s pair at 4 m/s, the second run shifted by ``(5, -3)``: 1001 samples each,
+    the normal states equal throughout:
+
+    >>> run = difference_runs((5.0, -3.0), Vb=4.0, t_end=20.0)
+    >>> run.a.solver_used, run.t.size
+    ('superposition', 1001)
+    >>> float(abs(run.a.y[2] - run.b.y[2]).max())
+    0.0
     """
     settings = {k: kw.pop(k) for k in list(kw) if k in SolverSettings.names()}
     settings.setdefault("solver", "superposition")
@@ -134,6 +180,22 @@ def difference_works(
         friction part while ``F >= 0`` and while ``F < 0``), ``imbalance``
         (change minus the three works) and ``scale`` (the integral of the absolute
         values of both parts, for tolerances).
+
+    See Also
+    --------
+    beltmdsm.studies.evidence.difference_runs : the two runs.
+
+    Examples
+    --------
+    The change of ``E_d`` over 20 s equals the three works to within 1e-9 of their
+    scale (the quadrature's error, not a tolerance of the physics):
+
+    >>> w = difference_works(difference_runs((5.0, -3.0), Vb=4.0, t_end=20.0))
+    >>> sorted(w)  # doctest: +NORMALIZE_WHITESPACE
+    ['energy_change', 'imbalance', 'scale', 'work_friction_pull', 'work_friction_push',
+     'work_viscous']
+    >>> bool(abs(w["imbalance"]) < 1e-9 * w["scale"]), w["work_viscous"] < 0
+    (True, True)
     """
     a, b = run.a.trajectory, run.b.trajectory
     model = run.a.model
@@ -182,6 +244,20 @@ def reversals_by_force_sign(sim: Simulation, t0: float = 0.0) -> dict[str, tuple
     -------
     dict
         ``{"slip_forward": (n with F < 0, n with F >= 0), "slip_back": (...)}``.
+
+    See Also
+    --------
+    beltmdsm.run.summary.summarize : counts the reversals of a run.
+
+    Examples
+    --------
+    Over the last 10 s of a 20 s run at 4 m/s (tension allowed), every reversal to
+    forward slip comes while the contact force pulls (``F < 0``), every one back while
+    it pushes:
+
+    >>> from beltmdsm import simulate
+    >>> reversals_by_force_sign(simulate(Vb=4.0, t_end=20.0), 10.0)
+    {'slip_forward': (4, 0), 'slip_back': (0, 4)}
     """
     out = {}
     for name, mode in (("slip_forward", Mode.SLIP_FORWARD), ("slip_back", Mode.SLIP_BACK)):
@@ -202,6 +278,21 @@ class Evidence:
     ``largest_rise`` describe ``E_d`` over the run (the largest increase between two
     samples); ``works`` is `difference_works`, ``reversals`` `reversals_by_force_sign`
     in the steady window.
+
+    See Also
+    --------
+    beltmdsm.studies.evidence.paper_evidence : builds one per tension law (1000 s runs).
+
+    Examples
+    --------
+    Built by hand from a 20 s pair (the paper check's runs last 1000 s):
+
+    >>> run = difference_runs((5.0, -3.0), Vb=4.0, t_end=20.0)
+    >>> e = Evidence("allowed", 4.0, 20.0, run.shift, 0.1, 0.0, False,
+    ...              float(run.energy[0]), float(run.energy[-1]), 0.0,
+    ...              difference_works(run), reversals_by_force_sign(run.a, 10.0))
+    >>> e.tension, round(e.energy_start, 6), e.reversals["slip_back"]
+    ('allowed', 17.0, (0, 4))
     """
 
     tension: str

@@ -78,6 +78,27 @@ class Response:
         state on the section).
     x1_range : tuple of float or None
         The smallest and largest ``X1`` over the orbit [m].
+
+    See Also
+    --------
+    beltmdsm.studies.responses.responses : what finds them.
+    beltmdsm.periodic.floquet.Floquet : the multipliers.
+
+    Examples
+    --------
+    At ``Vb = 5`` m/s the run from rest locks on a stable response of four excitation
+    periods; its four phase-0 states are the fixed point of the 4-fold map:
+
+    >>> from beltmdsm import responses
+    >>> locked = responses(Vb=5.0, ladder=0.0, t_end=300.0).responses[1]
+    >>> locked.periods, locked.floquet.stable, len(locked.phases)
+    (4, True, 4)
+    >>> round(locked.floquet.max_abs_multiplier, 3), round(locked.amplitude, 1)
+    (0.587, 12.1)
+    >>> bool(locked.lyapunov < 0 and locked.run_distance < 1e-6)
+    True
+    >>> locked.same_orbit(4, locked.phases[2]), locked.same_orbit(1, locked.phases[0])
+    (True, False)
     """
 
     periods: int
@@ -129,7 +150,24 @@ class Response:
 
 @dataclass(frozen=True)
 class SeedFailure:
-    """A seed whose shooting failed: where it came from, and why."""
+    """A seed whose shooting failed: where it came from, and why.
+
+    Attributes
+    ----------
+    source : str
+        the seed (``run from rest``, ``ladder up``)
+    reason : str
+        the failure's message
+
+    See Also
+    --------
+    beltmdsm.studies.responses.ResponseSet : lists them in ``failed``.
+
+    Examples
+    --------
+    >>> SeedFailure("ladder up", "the ladder from Vb = 3 stops on the way").as_dict()
+    {'source': 'ladder up', 'reason': 'the ladder from Vb = 3 stops on the way'}
+    """
 
     source: str
     reason: str
@@ -458,6 +496,38 @@ def cycle_responses(
     is stable at ``Vb`` and a stick-slip cycle coexists with it (a subcritical Hopf
     point), the ladder from below finds the cycle. Cycles found from several seeds are
     listed once, with every source; a seed that fails is listed in ``failed``.
+
+    Parameters
+    ----------
+    model : Model
+        Without excitation.
+    limit : int
+        Reported in the result only (a cycle's period is found, not a multiple of ``T``).
+    ladder : float
+        The distance in ``Vb`` of the ladders' seeds [m/s]; 0: none.
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    ResponseSet
+        Each cycle as a `Response` of one period (its own).
+
+    See Also
+    --------
+    beltmdsm.cycles.cycle.cycle : one cycle by Newton's method.
+    beltmdsm.studies.responses.responses : what calls it without excitation.
+
+    Examples
+    --------
+    Stribeck friction without excitation at 1 m/s: steady sliding is unstable and its
+    run settles on a stable stick-slip cycle:
+
+    >>> from beltmdsm import Model
+    >>> found = cycle_responses(Model(alpha=0, friction="stribeck", Vb=1.0), ladder=0.0)
+    >>> [(r.floquet.stable, r.sources) for r in found.responses]
+    [(True, ['the run off perturbed steady sliding'])]
+    >>> round(found.responses[0].amplitude, 2), found.failed
+    (1.34, [])
     """
     from ..cycles.cycle import cycle, seed_cycle
 

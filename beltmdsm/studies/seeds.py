@@ -66,7 +66,32 @@ LADDER_PERIODS = 150
 
 def run_samples(model: Model, t_end: float) -> int:
     """The number of stroboscopic samples of `run_stroboscope` for a run of ``t_end``
-    seconds: the excitation periods of its last `WINDOW`, both ends counted."""
+    seconds: the excitation periods of its last `WINDOW`, both ends counted.
+
+    Parameters
+    ----------
+    model : Model
+        With excitation (its period ``T``).
+    t_end : float
+        The run's duration [s].
+
+    Returns
+    -------
+    int
+
+    See Also
+    --------
+    beltmdsm.studies.seeds.check_limit : the refusal of a limit they cannot decide.
+
+    Examples
+    --------
+    With ``T = pi / 2`` s, a 1000 s run has 636 whole periods; the last 40% of them,
+    from period 382 to 636, are 255 samples:
+
+    >>> from beltmdsm import Model
+    >>> run_samples(Model(), 1000.0), run_samples(Model(), 200.0)
+    (255, 51)
+    """
     n_end = int(math.floor(t_end / excitation_period(model) + 1e-9))
     return n_end - max(int(math.ceil((1.0 - WINDOW) * n_end)), 0) + 1
 
@@ -84,10 +109,37 @@ def check_limit(
     (`LADDER_PERIODS` a rung). ``t_end_is_given``: the caller's argument (named in
     the message), not a constant of the study.
 
+    Parameters
+    ----------
+    limit : int
+        The largest ``k`` looked for.
+    models : sequence of Model
+        The points of the runs.
+    t_end : float
+        The runs' duration [s].
+    ladder : bool
+        Whether ladders are run too.
+    t_end_is_given : bool
+        Whether the message may ask for a longer ``t_end``.
+
     Raises
     ------
     beltmdsm.errors.Refused
         Naming ``limit`` (and ``t_end`` where a longer run would do) and the bound.
+
+    See Also
+    --------
+    beltmdsm.studies.seeds.run_samples
+
+    Examples
+    --------
+    A 50 s run has 13 samples, too few to decide a lock at 12 periods:
+
+    >>> from beltmdsm import Model
+    >>> check_limit(6, [Model()], 50.0, ladder=False)  # 13 > 2 * 6: passes
+    >>> check_limit(12, [Model()], 50.0, ladder=False)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    beltmdsm.errors.Refused: a run of 50 s has 13 stroboscopic samples ... or limit <= 6
     """
     if ladder and 2 * limit >= LADDER_PERIODS:
         raise Refused(
@@ -128,11 +180,44 @@ def run_stroboscope(
     settings are ``settings`` where given (its ``t_end`` and ``backend`` then replace
     the arguments), else ``SolverSettings(t_end=t_end, backend=backend)``.
 
+    Parameters
+    ----------
+    model : Model
+        With excitation.
+    start : {"rest", "periodic"}
+        From rest, or from the perturbed periodic response.
+    t_end : float
+        The run's duration [s].
+    limit : int
+        The largest lock looked for.
+    backend : {"python", "numba", None}
+    settings : SolverSettings, optional
+        The run's settings.
+
+    Returns
+    -------
+    beltmdsm.periodic.locked.Stroboscope
+        The samples (shooting states) and the lock they show, if any.
+
     Raises
     ------
     NoPeriodicResponse
         For ``start="periodic"`` where there is no periodic response to start on, or a
         run that stops before ``t_end``.
+
+    See Also
+    --------
+    beltmdsm.studies.seeds.shoot : the fixed point from the last sample.
+
+    Examples
+    --------
+    A 300 s run from rest at 5 m/s locks at four excitation periods (77 samples of the
+    two tangential coordinates):
+
+    >>> from beltmdsm import Model
+    >>> s = run_stroboscope(Model(Vb=5.0), t_end=300.0)
+    >>> s.source, s.candidate, s.samples.shape
+    ('run from rest', 4, (77, 2))
     """
     T = excitation_period(model)
     if settings is None:
@@ -164,6 +249,36 @@ def ladder(
     ``values[0]`` and is carried from rung to rung, as ``sweep --continue`` carries a
     run's state; at each rung `LADDER_PERIODS` periods settle it and as many more are
     the samples. A rung where the period map fails ends the ladder.
+
+    Parameters
+    ----------
+    model : Model
+        The other parameters and the options.
+    param : str
+        The parameter stepped.
+    values : sequence of float
+        The rungs, in the order climbed.
+    limit : int
+        The largest lock looked for.
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    list of beltmdsm.periodic.locked.Stroboscope
+        One per rung reached.
+
+    See Also
+    --------
+    beltmdsm.studies.seeds.ladder_stroboscope : the last rung of a ladder in ``Vb``.
+
+    Examples
+    --------
+    Up from 4.5 to 5 m/s every rung is on the response of four periods:
+
+    >>> from beltmdsm import Model
+    >>> rungs = ladder(Model(), "Vb", [4.5, 4.75, 5.0])
+    >>> [s.candidate for s in rungs], rungs[0].source
+    ([4, 4, 4], 'continued up from Vb = 4.5')
     """
     values = [float(v) for v in values]
     first = model.replace(**{param: values[0]})
@@ -192,12 +307,42 @@ def ladder_stroboscope(
 ) -> Stroboscope:
     """The last rung of a `ladder` in ``Vb`` that ends at ``model``, from ``span`` below or above.
 
+    Parameters
+    ----------
+    model : Model
+        The point reached.
+    direction : {"up", "down"}
+        From below or from above.
+    span : float
+        How far below or above it starts [m/s] (not below 0).
+    limit : int
+        The largest lock looked for.
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    beltmdsm.periodic.locked.Stroboscope
+
     Raises
     ------
     ValueError
         For a direction other than "up" or "down".
     NoPeriodicResponse
         Where the ladder does not reach ``model`` (the period map fails on the way).
+
+    See Also
+    --------
+    beltmdsm.studies.seeds.ladder
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> s = ladder_stroboscope(Model(Vb=5.0), "up", span=0.5)
+    >>> s.candidate, s.source
+    (4, 'continued up from Vb = 4.5')
+    >>> ladder_stroboscope(Model(Vb=5.0), "sideways")
+    Traceback (most recent call last):
+    ValueError: direction must be 'up' or 'down'; got 'sideways'
     """
     if direction not in ("up", "down"):
         raise ValueError(f"direction must be 'up' or 'down'; got {direction!r}")
@@ -215,10 +360,41 @@ def shoot(
 ) -> tuple[PeriodMap, FixedPoint]:
     """The ``periods``-fold map of ``model`` and its fixed point from ``guess`` (Newton).
 
+    Parameters
+    ----------
+    model : Model
+    periods : int
+        ``k`` of the ``k``-fold map.
+    guess : array_like
+        A shooting state (a stroboscopic sample).
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    (PeriodMap, FixedPoint)
+
     Raises
     ------
     NoPeriodicResponse
         Where Newton's method fails.
+
+    See Also
+    --------
+    beltmdsm.periodic.newton.fixed_point : Newton's method.
+
+    Examples
+    --------
+    The fixed point of the 4-fold map from a run's last sample is where the map
+    returns, to Newton's tolerance:
+
+    >>> import numpy as np
+    >>> from beltmdsm import Model
+    >>> model = Model(Vb=5.0)
+    >>> pmap, point = shoot(model, 4, run_stroboscope(model, t_end=300.0).samples[-1])
+    >>> pmap.periods, point.state.shape
+    (4, (2,))
+    >>> bool(np.max(np.abs(point.image.phases[0] - point.state)) < 1e-8)
+    True
     """
     pmap = period_map(model, periods, backend)
     return pmap, fixed_point(pmap, pmap.guess(guess))

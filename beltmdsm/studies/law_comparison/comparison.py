@@ -54,6 +54,22 @@ class Answer:
     vibration_without_tension : bool
         Whether an unforced run shows the vibration while its normal force never turned
         negative: a self-excited vibration that needs no pulling contact.
+
+    See Also
+    --------
+    beltmdsm.studies.law_comparison.comparison.answer : what builds it.
+
+    Examples
+    --------
+    Built by hand (the ranges are those of `answer`'s example):
+
+    >>> from beltmdsm.studies.law_comparison import LAWS
+    >>> a = Answer(LAWS["stribeck_A"], "allowed", [(0.0, 1.996)], [(5.705, 6.0)],
+    ...            [(0.2, 1.996)], [(5.705, 6.0)], [(1.0, 2.0)], [(1.0, 1.0)],
+    ...            [(2.0, 2.0)], True)
+    >>> d = a.as_dict()
+    >>> d["law"], d["stabilised"], d["quenched"], d["vibration_without_tension"]
+    ('stribeck A', [[0.2, 1.996]], [[2.0, 2.0]], True)
     """
 
     law: Law
@@ -99,6 +115,57 @@ def answer(
     The stabilised and destabilised ranges are set differences of the unstable ranges
     within ``vb_range``, where both are computed (`beltmdsm.intervals.difference`:
     pieces of positive length).
+
+    Parameters
+    ----------
+    steady : SteadySliding
+        part (a)
+    forced : ForcedStability
+        part (b)
+    unforced_runs, forced_runs : sequence of RunScan
+        part (c), a scan per start, on one grid
+    vb_range : (float, float)
+        the belt speeds compared [m/s]
+
+    Returns
+    -------
+    Answer
+
+    Raises
+    ------
+    ValueError
+        if the released and the vibrating scans are on different grids.
+
+    See Also
+    --------
+    beltmdsm.intervals.difference : the set difference used.
+    beltmdsm.studies.law_comparison.comparison.compare : every law and tension law.
+
+    Examples
+    --------
+    Stribeck's law A: sliding unstable unforced below 1.996 m/s, the forced response
+    unstable from 5.705 m/s (a band over 5.5-6 m/s); the scans are built by hand, the
+    unforced vibration at 2 m/s quenched by the excitation, the normal force positive:
+
+    >>> import numpy as np
+    >>> from beltmdsm.studies.law_comparison import (
+    ...     LAWS, RunScan, answer, forced_stability, steady_sliding)
+    >>> law = LAWS["stribeck_A"]
+    >>> steady = steady_sliding(law, vb=np.linspace(0.2, 12.0, 60))
+    >>> forced = forced_stability(law, "allowed", lo=5.5, hi=6.0, points=3)
+    >>> def scan(forced, start, present):  # runs at 1, 2, 3 m/s, by hand
+    ...     return RunScan(law, "allowed", forced, start, np.array([1.0, 2.0, 3.0]),
+    ...                    np.array(present, dtype=object), np.zeros(3), np.full(3, 0.5),
+    ...                    np.array(["stick_slip"] * 3), np.ones(3, dtype=bool), 0.0)
+    >>> released = scan(False, "released", [True, True, False])
+    >>> vibrating = scan(True, "vibrating", [True, False, False])
+    >>> a = answer(steady, forced, [released], [vibrating], vb_range=(0.2, 6.0))
+    >>> [(lo, round(hi, 3)) for lo, hi in a.stabilised]
+    [(0.2, 1.996)]
+    >>> [(round(lo, 3), hi) for lo, hi in a.destabilised]
+    [(5.705, 6.0)]
+    >>> a.unforced_vibration, a.quenched, a.vibration_without_tension
+    ([(1.0, 2.0)], [(2.0, 2.0)], True)
     """
     lo, hi = vb_range
     free = clip(steady.unstable, lo, hi)
@@ -153,6 +220,40 @@ class LawComparison:
     wall_s : dict of str to float
         The wall time of each part: ``steady``, ``floquet``, ``forced_runs``,
         ``unforced_runs``.
+
+    See Also
+    --------
+    beltmdsm.studies.law_comparison.comparison.compare : what builds it.
+
+    Examples
+    --------
+    Built by hand from the parts of `answer`'s example; ``table`` is a row per
+    tension law:
+
+    >>> import numpy as np
+    >>> from beltmdsm.studies.law_comparison import (
+    ...     LAWS, RunScan, answer, forced_stability, steady_sliding)
+    >>> law = LAWS["stribeck_A"]
+    >>> steady = steady_sliding(law, vb=np.linspace(0.2, 12.0, 60))
+    >>> forced = forced_stability(law, "allowed", lo=5.5, hi=6.0, points=3)
+    >>> def scan(forced, start, present):  # runs at 1, 2, 3 m/s, by hand
+    ...     return RunScan(law, "allowed", forced, start, np.array([1.0, 2.0, 3.0]),
+    ...                    np.array(present, dtype=object), np.zeros(3), np.full(3, 0.5),
+    ...                    np.array(["stick_slip"] * 3), np.ones(3, dtype=bool), 0.0)
+    >>> released = scan(False, "released", [True, True, False])
+    >>> vibrating = scan(True, "vibrating", [True, False, False])
+    >>> key = ("stribeck_A", "allowed")
+    >>> a = answer(steady, forced, [released], [vibrating], vb_range=(0.2, 6.0))
+    >>> result = LawComparison({"stribeck_A": steady}, {key: forced},
+    ...                        {(*key, "vibrating"): vibrating},
+    ...                        {(*key, "released"): released}, {key: a}, {"steady": 0.0})
+    >>> row = result.table("stribeck_A").splitlines()[-1].strip("| ").split(" | ")
+    >>> row[:4]
+    ['allowed', '[0.000, 1.996]', '[5.705, 6.000]', '5.705 neimark_sacker']
+    >>> row[6:]
+    ['[0.200, 1.996]', '[5.705, 6.000]', '[2.00, 2.00]']
+    >>> sorted(result.as_dict()["answers"])
+    ['stribeck_A/allowed']
     """
 
     steady: dict[str, SteadySliding]

@@ -43,6 +43,23 @@ class ForcedStability:
         Reversals per period of the response at each value.
     wall_s : float
         The band's wall time [s].
+
+    See Also
+    --------
+    beltmdsm.studies.law_comparison.forced.forced_stability : what builds it.
+
+    Examples
+    --------
+    At ``beta1 = 0.3`` under Coulomb's law the response loses stability at a
+    Neimark-Sacker point near 5.45 m/s; the growth rate changes sign there:
+
+    >>> from beltmdsm.studies.law_comparison import LAWS
+    >>> f = forced_stability(LAWS["coulomb"], "allowed", {"beta1": 0.3},
+    ...                      lo=5.2, hi=5.8, points=4)
+    >>> f.engine, [(round(v, 3), kind) for v, kind in f.edges]
+    ('closed_form', [(5.45, 'neimark_sacker')])
+    >>> bool(f.growth_at(5.2) < 0 < f.growth_at(5.8)), f.growth_at(5.3)
+    (True, nan)
     """
 
     law: Law
@@ -109,6 +126,26 @@ def forced_stability(
     Returns
     -------
     ForcedStability
+
+    Raises
+    ------
+    ValueError
+        for an unknown tension law or a bad parameter (from the model).
+
+    See Also
+    --------
+    beltmdsm.continuation.band.floquet_band : the band.
+    beltmdsm.studies.law_comparison.steady.steady_sliding : the unforced side (a).
+
+    Examples
+    --------
+    Stribeck's law A at the base set: the forced response is unstable from a
+    Neimark-Sacker point near 5.705 m/s to the top of the range:
+
+    >>> from beltmdsm.studies.law_comparison import LAWS
+    >>> f = forced_stability(LAWS["stribeck_A"], "allowed", lo=5.5, hi=6.0, points=3)
+    >>> [(round(lo, 3), hi) for lo, hi in f.unstable], [k for _, k in f.edges]
+    ([(5.705, 6.0)], ['neimark_sacker'])
     """
     m = law.model(model, tension=tension)
     start = time.perf_counter()

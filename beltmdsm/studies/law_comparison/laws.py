@@ -28,6 +28,23 @@ class Law:
     friction : {"coulomb", "stribeck"}
     mu_k, v_s : float or None
         Stribeck's kinetic coefficient and velocity (None for Coulomb).
+
+    See Also
+    --------
+    beltmdsm.studies.law_comparison.laws.LAWS : the laws compared.
+    beltmdsm.studies.law_comparison.comparison.compare : the comparison.
+
+    Examples
+    --------
+    A law gives its model, with the other parameters passed on:
+
+    >>> law = Law("stribeck B", "stribeck", mu_k=0.1, v_s=3.0)
+    >>> law.label()
+    'stribeck B (mu_k = 0.1, v_s = 3 m/s)'
+    >>> law.model(Vb=2.0)
+    Model(Vb=2.0, mu_k=0.1, v_s=3.0, friction='stribeck')
+    >>> Law("coulomb").model().friction
+    'coulomb'
     """
 
     name: str

@@ -53,6 +53,27 @@ class RunScan:
         Whether each run's energy balance closes.
     wall_s : float
         The scan's wall time [s].
+
+    See Also
+    --------
+    beltmdsm.studies.law_comparison.runs.runs_from_rest : what builds it.
+
+    Examples
+    --------
+    Built by hand: the peak is present at 1 and 2 m/s, absent at 3, and the run at
+    4 m/s cannot tell, so it stays out of the ranges:
+
+    >>> import numpy as np
+    >>> from beltmdsm.studies.law_comparison import LAWS
+    >>> scan = RunScan(LAWS["coulomb"], "allowed", True, "rest",
+    ...                np.array([1.0, 2.0, 3.0, 4.0]),
+    ...                np.array([True, True, False, None], dtype=object),
+    ...                np.zeros(4), np.full(4, 1.0), np.array(["stick_slip"] * 4),
+    ...                np.ones(4, dtype=bool), 0.1)
+    >>> scan.present_ranges, scan.unresolved
+    ([(1.0, 2.0)], [4.0])
+    >>> scan.as_dict()["min_normal_force"], scan.as_dict()["energy_ok"]
+    (1.0, True)
     """
 
     law: Law
@@ -139,6 +160,31 @@ def runs_from_rest(
     Returns
     -------
     RunScan
+
+    Raises
+    ------
+    ValueError
+        for a start that is not one of the kind of run's starts.
+
+    See Also
+    --------
+    beltmdsm.simulation.simulate : each run.
+    beltmdsm.studies.law_comparison.laws.STARTS : where unforced runs start.
+
+    Examples
+    --------
+    Without excitation, Stribeck's law B sticks and slips at 2 m/s (steady sliding is
+    unstable there) and slides at 6 m/s; 100 s runs:
+
+    >>> from beltmdsm import SolverSettings
+    >>> from beltmdsm.studies.law_comparison import LAWS
+    >>> scan = runs_from_rest(LAWS["stribeck_B"], "allowed", [2.0, 6.0], forced=False,
+    ...                       settings=SolverSettings(t_end=100.0))
+    >>> scan.start, scan.regime.tolist(), scan.present_ranges
+    ('perturbed', ['stick_slip', 'continuous_sliding'], [(2.0, 2.0)])
+    >>> runs_from_rest(LAWS["coulomb"], "allowed", [2.0], start="released")
+    Traceback (most recent call last):
+    ValueError: a forced run starts from one of ('rest', 'vibrating'); got start='released'
     """
     start = start or ("rest" if forced else "perturbed")
     if forced and start not in FORCED_STARTS:

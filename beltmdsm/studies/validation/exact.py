@@ -83,6 +83,19 @@ class Explanation:
         `range_tolerance` of the runs.
     reason : str
         Why the run is unexplained ("" where it is explained).
+
+    See Also
+    --------
+    beltmdsm.studies.validation.exact.explain_coexistence : what builds them.
+
+    Examples
+    --------
+    Built by hand:
+
+    >>> e = Explanation(5.4, "up", "explained", "T", "T", 1e-3, 1.6e-3, "")
+    >>> e.explained, Explanation(5.4, "rest", "unexplained", None, None, None, 1.6e-3,
+    ...                          "no stable computed response at this Vb").explained
+    (True, False)
     """
 
     Vb: float
@@ -117,6 +130,23 @@ def range_tolerance(model: Model, dt: float) -> float:
         Its highest excitation frequency is used (``Omega_t``, ``Omega_n``).
     dt : float
         The runs' sampling step [s].
+
+    Returns
+    -------
+    float
+        ``(Omega dt)^2 / 4``
+
+    See Also
+    --------
+    beltmdsm.studies.validation.exact.explain_coexistence : where it is used.
+
+    Examples
+    --------
+    At the base set (``Omega = 4`` rad/s) and ``dt = 0.02`` s, ``(0.08)^2 / 4``:
+
+    >>> from beltmdsm import Model
+    >>> round(range_tolerance(Model(), 0.02), 10)
+    0.0016
     """
     p = model.params
     omega = max(p["Omega_t"], p["Omega_n"])
@@ -300,6 +330,43 @@ def explain_coexistence(
     -------
     list of Explanation
         In the order of ``points``, then of the runs.
+
+    See Also
+    --------
+    beltmdsm.studies.coexistence.coexistence : the exact side.
+    beltmdsm.studies.validation.exact.range_tolerance : how close "on a response" is.
+
+    Examples
+    --------
+    The ``T``-periodic response of ``beta1 = 0.3`` is stable at 5.4 m/s. A run whose
+    ``X1'`` spans its range to 1e-3 of the amplitude is explained by it; one whose
+    range is 3 m/s wider on each side is not, and the response's slow attraction
+    (``|mu| = 0.979`` a period) says why:
+
+    >>> from beltmdsm import Model, SolverSettings, periodic_response
+    >>> from beltmdsm.continuation.branch import continue_branch
+    >>> from beltmdsm.periodic.engines import period_map
+    >>> from beltmdsm.studies.coexistence import Coexistence, ResponseBranch
+    >>> from beltmdsm.studies.overlay import stable_parts
+    >>> from beltmdsm.studies.validation.verdicts import Run
+    >>> model = Model(beta1=0.3, Vb=5.3)
+    >>> b = continue_branch(periodic_response(model), "Vb", 5.3, 5.6)
+    >>> exact = Coexistence("Vb", 5.3, 5.6, model, [ResponseBranch("T", b, stable_parts(b))],
+    ...                     [], [], [], wall_s=0.0)
+    >>> at = model.replace(Vb=5.4)
+    >>> lo, hi = period_map(at, 1, None)(periodic_response(at).shooting_state).velocity_range()
+    >>> def run(x1_dot_range):  # a continued sweep at the one grid point 5.4, by hand
+    ...     return Run([True], [True], ["stick_slip"], [1.0], [], [], [x1_dot_range])
+    >>> settings = SolverSettings(t_end=100.0)  # dt = 0.02 s: tolerance 1.6e-3
+    >>> (e,) = explain_coexistence([5.4], {5.4: ["up"]}, {"up": run((lo, hi + 5e-4 * (hi - lo)))},
+    ...                            [5.4], exact, settings, seed_step=0.5)
+    >>> e.status, e.response, round(e.deviation, 6), e.tolerance
+    ('explained', 'T', 0.001, 0.0016)
+    >>> (e,) = explain_coexistence([5.4], {5.4: ["up"]}, {"up": run((lo - 3, hi + 3))},
+    ...                            [5.4], exact, settings, seed_step=0.5)
+    >>> e.status, e.closest, print(e.reason)  # doctest: +ELLIPSIS
+    not settled: the closest stable response, T (...), attracts with |mu| = 0.9794 per 1.571 s, ...
+    ('not_settled', 'T', None)
     """
     grid = [float(v) for v in vb]
     window = settings.window_start
