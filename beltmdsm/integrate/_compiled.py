@@ -10,7 +10,10 @@ generated scalar kernels (`generated.hybrid`, `generated.oscillator`) through mo
 * compiled, as a small module per integrator and kernel set, written to a cache
   folder: the integrators' source with the kernels as numba-compiled globals, cached
   on disk by numba, in a private folder (`generated._support.user_cache`); where none
-  can be made, compiled in memory, every run (said once).
+  can be made, compiled in memory, every run (said once). Made at the first call
+  (`beltmdsm.integrate._background.Lazy`): where numba's cache does not hold it yet,
+  the plain-Python copy runs (the same numbers) while a child process compiles it,
+  unless ``backend="numba"`` asks for the compiled code at once.
 
 Two properties of numba's disk cache shape the compiled form: a signature that holds
 a kernel passed as an argument (a dispatcher object) cannot be saved in a process
@@ -25,7 +28,6 @@ afresh, and nothing stale is served.
 from __future__ import annotations
 
 import functools
-import hashlib
 import importlib.util
 import inspect
 import os
@@ -39,7 +41,7 @@ from generated import _support, hybrid, oscillator
 from generated._support import CacheFolderWarning, import_numba, user_cache
 
 from ..model import Backend, Model
-from . import _dop853, _roots, _superpose
+from . import _background, _dop853, _roots, _superpose
 
 __all__ = ["advance", "scan"]
 
@@ -52,6 +54,7 @@ _SOURCES = (
     "beltmdsm/integrate/_superpose.py",
     "beltmdsm/integrate/_roots.py",
     "beltmdsm/integrate/_compiled.py",
+    "beltmdsm/integrate/_background.py",
 )
 _FIELDS = {"vector_field": hybrid.bind_vector_field, "response_field": hybrid.bind_response_field}
 #: The integrators: their module, their functions (the entry point last), their kernels,
@@ -125,11 +128,40 @@ def scan(model: Model, backend: Backend | None = None):
 
 
 def _bound(integrator, kernels, name, backend):
-    if backend != "python":
-        numba = import_numba(backend == "numba")
-        if numba is not None:
-            return _compiled(integrator, kernels, name, numba.__version__)
-    return _python(integrator, kernels)
+    if backend == "numba":
+        import_numba(True)
+    elif backend == "python" or not _background.numba_installed():
+        return _python(integrator, kernels)
+    return _lazy(integrator, kernels, name, backend == "numba")
+
+
+#: The integrators by name, for the child that compiles them (`beltmdsm.integrate._background`).
+_INTEGRATORS = {"advance": _ADVANCE, "scan": _SCAN}
+
+
+@functools.cache
+def _lazy(integrator, kernels, name, foreground):
+    """The compiled entry point, made at its first call (`_background.Lazy`): loaded from
+    numba's cache, or run as plain Python while a child compiles it (``foreground``:
+    compiled at once, as ``backend="numba"`` asks)."""
+    which = next(k for k, v in _INTEGRATORS.items() if v is integrator)
+    version = numba_version()
+    stem = f"beltmdsm_{name}_{_digest(version)}"
+    spec = (_compiled_entry, (which, kernels, name, version))
+    return _background.Lazy(spec, stem, _python(integrator, kernels), foreground)
+
+
+def _compiled_entry(which, kernels, name, numba_version):
+    """`_compiled` by the integrator's name (picklable: the child makes it so)."""
+    return _compiled(_INTEGRATORS[which], kernels, name, numba_version)
+
+
+@functools.cache
+def numba_version() -> str:
+    """numba's version, from its metadata: without importing it (about a second)."""
+    from importlib.metadata import version
+
+    return version("numba")
 
 
 @functools.cache
@@ -146,10 +178,16 @@ def _python(integrator, kernels):
 
 @functools.cache
 def _digest(numba_version):
-    digest = hashlib.sha256(numba_version.encode())
-    for rel in _SOURCES:
-        digest.update((_ROOT / rel).read_bytes())
-    return digest.hexdigest()[:20]
+    return _background.digest(numba_version, *_SOURCES)
+
+
+def scalar_backend(backend: Backend | None) -> Backend:
+    """The backend of a bound kernel that Python calls (`generated._support.bind`):
+    plain Python unless numba is asked for by name. From Python, a numba kernel's
+    dispatch costs about what the Python evaluation does (4 against 6 us,
+    `beltmdsm.integrate.switching`), and it would import numba (about a second) and
+    compile or load the kernel (0.4 to 1.4 s each when the cache is cold)."""
+    return "numba" if backend == "numba" else "python"
 
 
 @functools.cache

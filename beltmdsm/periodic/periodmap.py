@@ -388,7 +388,7 @@ class OnePeriodMap:
                 before=before.name.lower(),
                 after=after.name.lower(),
                 surface=surface,
-                backend=self.backend,
+                backend=_compiled.scalar_backend(self.backend),
                 **self.model.arguments(hybrid.bind_saltation),
             )
         return self._saltation[key]
