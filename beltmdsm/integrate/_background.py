@@ -1,7 +1,7 @@
 """The first run: compiled integrators compiled once, in a process of their own.
 
 numba compiles the integrators of one set of laws (`beltmdsm.integrate._compiled`) in
-about 15 s of one core, once: its disk cache serves every later process. A process
+about 30 s of one core, once: its disk cache serves every later process. A process
 that finds them not cached (a new installation, a new dask worker, CI with a fresh
 ``NUMBA_CACHE_DIR``) does not wait for them. It runs the same source as plain Python
 (the same numbers, bit for bit: tests/beltmdsm/integrate/test_first_run.py) and hands
@@ -22,6 +22,7 @@ in numba's cache folder, so that emptying that cache forgets it too. The check c
 
 from __future__ import annotations
 
+import atexit
 import functools
 import hashlib
 import importlib.util
@@ -29,6 +30,7 @@ import os
 import pickle
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -37,19 +39,22 @@ import numpy as np
 from generated import _support
 from generated._support import cache_root, import_numba, user_cache
 
-__all__ = ["Lazy", "compile_seconds", "ready"]
+__all__ = ["Lazy", "compile_seconds", "digest", "numba_installed", "numba_version", "ready"]
 
 _ROOT = Path(__file__).resolve().parents[2]
 #: How long a claim on a compile (`_claim`) holds before another process may take it
 #: over (a child that was killed leaves its claim behind).
 CLAIM_S = 600.0
-#: The compile time quoted by the notices: the integrators of one law set, one core of
-#: the 2-core reference machine (benchmarks/bench_start.py measures it).
-ABOUT_S = 15
+#: The compile time quoted by the notices: what the integrators of one law set took on
+#: the 2-core reference machine (issue 30: about 10 s before a first simulate, 20 s
+#: more before a first floquet; 2-3 times that when its other engineers run too).
+ABOUT_S = 30
 
 _said: set = set()
 _clock = [0.0]
 _child: list = []
+#: One job at a time down the child's pipe (threads of a process share the child).
+_lock = threading.Lock()
 
 
 def compile_seconds() -> float:
@@ -60,6 +65,14 @@ def compile_seconds() -> float:
 
 def numba_installed() -> bool:
     return "numba" in sys.modules or importlib.util.find_spec("numba") is not None
+
+
+@functools.cache
+def numba_version() -> str:
+    """numba's version, from its metadata: without importing it (about a second)."""
+    from importlib.metadata import version
+
+    return version("numba")
 
 
 @functools.cache
@@ -215,6 +228,11 @@ def _submit(spec, stem: str, args) -> bool:
     """Hand the compile to the child (started at the first job); False where no child
     can be started (then the caller compiles)."""
     job = pickle.dumps((spec, stem, _describe(args)))
+    with _lock:
+        return _send(job)
+
+
+def _send(job: bytes) -> bool:
     for _ in range(2):
         if not _child or _child[0].poll() is not None:
             env = dict(os.environ, NUMBA_CACHE_DIR=_numba_cache(), BELTMDSM_CACHE=cache_root())
@@ -231,6 +249,7 @@ def _submit(spec, stem: str, args) -> bool:
             except OSError:
                 return False
             _child[:] = [child]
+            atexit.register(_leave, child)
         try:
             _child[0].stdin.write(job)
             _child[0].stdin.flush()
@@ -244,6 +263,18 @@ def _submit(spec, stem: str, args) -> bool:
         )
         return True
     return False
+
+
+def _leave(child) -> None:
+    """At this process's end: the child reads the end of its jobs and finishes them,
+    on its own (it outlives this process by design: not waited for, and marked done
+    so that `subprocess.Popen` does not warn of a child still running)."""
+    try:
+        child.stdin.close()
+    except OSError:
+        pass
+    if child.poll() is None:
+        child.returncode = 0
 
 
 def _claim(stem: str) -> Path | None:

@@ -145,7 +145,7 @@ def _lazy(integrator, kernels, name, foreground):
     numba's cache, or run as plain Python while a child compiles it (``foreground``:
     compiled at once, as ``backend="numba"`` asks)."""
     which = next(k for k, v in _INTEGRATORS.items() if v is integrator)
-    version = numba_version()
+    version = _background.numba_version()
     stem = f"beltmdsm_{name}_{_digest(version)}"
     spec = (_compiled_entry, (which, kernels, name, version))
     return _background.Lazy(spec, stem, _python(integrator, kernels), foreground)
@@ -154,14 +154,6 @@ def _lazy(integrator, kernels, name, foreground):
 def _compiled_entry(which, kernels, name, numba_version):
     """`_compiled` by the integrator's name (picklable: the child makes it so)."""
     return _compiled(_INTEGRATORS[which], kernels, name, numba_version)
-
-
-@functools.cache
-def numba_version() -> str:
-    """numba's version, from its metadata: without importing it (about a second)."""
-    from importlib.metadata import version
-
-    return version("numba")
 
 
 @functools.cache

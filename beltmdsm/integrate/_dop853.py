@@ -515,10 +515,8 @@ def _evaluate_compiled():
     if not _COMPILED_EVALUATE:
         lazy = None
         if _background.numba_installed():
-            from importlib.metadata import version
-
             stem = "beltmdsm_evaluate_" + _background.digest(
-                version("numba"), "beltmdsm/integrate/_dop853.py", "generated/tableau.py"
+                _background.numba_version(), "beltmdsm/integrate/_dop853.py", "generated/tableau.py"
             )
             lazy = _background.Lazy((_evaluate_numba, ()), stem, None)
         _COMPILED_EVALUATE.append(lazy)
