@@ -51,6 +51,9 @@ CLAIM_S = 600.0
 ABOUT_S = 30
 
 _said: set = set()
+#: Whether this process has asked for compiled code at once (``backend="numba"``): the
+#: functions without a backend of their own (the dense output's loop) follow it.
+_eager = [False]
 _clock = [0.0]
 _child: list = []
 #: One job at a time down the child's pipe (threads of a process share the child).
@@ -198,7 +201,9 @@ class Lazy:
         if self.waiting:
             if not ready(self.stem):
                 return None
-        elif not self.foreground and not ready(self.stem) and _marker(self.stem) is not None:
+        elif self.foreground:
+            _eager[0] = True
+        elif not _eager[0] and not ready(self.stem) and _marker(self.stem) is not None:
             self.waiting = _submit(self.spec, self.stem, args)
             if self.waiting:
                 return None
