@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .arguments import flag, settings_of, state
+from .integrate import _background
 from .integrate.events import integrate_events
 from .integrate.superposition import NotApplicable, integrate_superposed
 from .integrate.trajectory import Run, Samples, Trajectory
@@ -316,7 +317,16 @@ def _simulate(
         "time [{elapsed}<{remaining}]",
     )
 
+    made = [_background.compile_seconds()]
+
     def reached(t):
+        # numba's code made during the run (compiled, or loaded from its cache) is no
+        # part of the run: the bar's clock leaves it out, so its time left is the run's
+        now = _background.compile_seconds()
+        if now != made[0] and not bar.disable:
+            bar.start_t += now - made[0]
+            bar.last_print_t += now - made[0]
+        made[0] = now
         bar.update(t - bar.n)
 
     moved = 0.0

@@ -11,6 +11,7 @@ import argparse
 import os
 import tempfile
 from pathlib import Path
+from typing import NoReturn
 
 __all__ = ["Parser", "UsageError", "folder", "writable_file", "writable_folder"]
 
@@ -27,18 +28,18 @@ class Parser(argparse.ArgumentParser):
     shows the usage. Raising (instead of exiting) lets `main` return the status.
     """
 
-    def error(self, message):
+    def error(self, message: str) -> NoReturn:
         raise UsageError(f"{self.prog}: error: {message} (--help for usage)")
 
 
-def folder(s):
+def folder(s: str) -> str:
     """A folder to write into: created if missing; not an existing file."""
     if Path(s).exists() and not Path(s).is_dir():
         raise argparse.ArgumentTypeError(f"{s} exists and is not a folder")
     return s
 
 
-def writable_folder(folder):
+def writable_folder(folder: str | os.PathLike) -> str | None:
     """Why ``folder`` (created if missing) cannot be written, or None: a test file of a
     unique name is created in it and removed, since ``os.access`` passes for root
     where writing fails (``/proc``)."""
@@ -52,7 +53,7 @@ def writable_folder(folder):
     return None
 
 
-def writable_file(s):
+def writable_file(s: str) -> str:
     """An argparse type: a file to write, checked by writing before anything is computed.
 
     Its folder must exist and it must not be a folder; an existing file is opened for

@@ -11,7 +11,10 @@ through module globals
 * compiled, as a small module per integrator and kernel set, written to a cache
   folder: the integrators' source with the kernels as numba-compiled globals, cached
   on disk by numba, in a private folder (`beltmdsm.generated._support.user_cache`); where none
-  can be made, compiled in memory, every run (said once).
+  can be made, compiled in memory, every run (said once). Made at the first call
+  (`beltmdsm.integrate._background.Lazy`): where numba's cache does not hold it yet,
+  the plain-Python copy runs (the same numbers) while a child process compiles it,
+  unless ``backend="numba"`` asks for the compiled code at once.
 
 Two properties of numba's disk cache shape the compiled form: a signature that holds
 a kernel passed as an argument (a dispatcher object) cannot be saved in a process
@@ -26,7 +29,6 @@ afresh, and nothing stale is served.
 from __future__ import annotations
 
 import functools
-import hashlib
 import importlib.util
 import inspect
 import os
@@ -40,7 +42,7 @@ from beltmdsm.generated import _support, hybrid, oscillator
 from beltmdsm.generated._support import CacheFolderWarning, import_numba, user_cache
 
 from ..model import Backend, Model
-from . import _dop853, _roots, _superpose
+from . import _background, _dop853, _roots, _superpose
 
 __all__ = ["advance", "scan"]
 
@@ -119,11 +121,32 @@ def scan(model: Model, backend: Backend | None = None):
 
 
 def _bound(integrator, kernels, name, backend):
-    if backend != "python":
-        numba = import_numba(backend == "numba")
-        if numba is not None:
-            return _compiled(integrator, kernels, name, numba.__version__)
-    return _python(integrator, kernels)
+    if backend == "numba":
+        import_numba(True)
+    elif backend == "python" or not _background.numba_installed():
+        return _python(integrator, kernels)
+    return _lazy(integrator, kernels, name, backend == "numba")
+
+
+#: The integrators by name, for the child that compiles them (`beltmdsm.integrate._background`).
+_INTEGRATORS = {"advance": _ADVANCE, "scan": _SCAN}
+
+
+@functools.cache
+def _lazy(integrator, kernels, name, foreground):
+    """The compiled entry point, made at its first call (`_background.Lazy`): loaded from
+    numba's cache, or run as plain Python while a child compiles it (``foreground``:
+    compiled at once, as ``backend="numba"`` asks)."""
+    which = next(k for k, v in _INTEGRATORS.items() if v is integrator)
+    version = _background.numba_version()
+    stem = f"beltmdsm_{name}_{_digest(version)}"
+    spec = (_compiled_entry, (which, kernels, name, version))
+    return _background.Lazy(spec, stem, _python(integrator, kernels), foreground)
+
+
+def _compiled_entry(which, kernels, name, numba_version):
+    """`_compiled` by the integrator's name (picklable: the child makes it so)."""
+    return _compiled(_INTEGRATORS[which], kernels, name, numba_version)
 
 
 @functools.cache
@@ -140,10 +163,17 @@ def _python(integrator, kernels):
 
 @functools.cache
 def _digest(numba_version):
-    digest = hashlib.sha256(numba_version.encode())
-    for module in (*_SOURCES, sys.modules[__name__]):
-        digest.update(Path(module.__file__).read_bytes())
-    return digest.hexdigest()[:20]
+    files = (*_SOURCES, sys.modules[__name__], _background)
+    return _background.digest(numba_version, *(module.__file__ for module in files))
+
+
+def scalar_backend(backend: Backend | None) -> Backend:
+    """The backend of a bound kernel that Python calls (`beltmdsm.generated._support.bind`):
+    plain Python unless numba is asked for by name. From Python, a numba kernel's
+    dispatch costs about what the Python evaluation does (4 against 6 us,
+    `beltmdsm.integrate.switching`), and it would import numba (about a second) and
+    compile or load the kernel (0.4 to 1.4 s each when the cache is cold)."""
+    return "numba" if backend == "numba" else "python"
 
 
 @functools.cache

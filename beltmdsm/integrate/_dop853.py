@@ -25,6 +25,7 @@ entry points of `beltmdsm.integrate._compiled`.
 
 from __future__ import annotations
 
+import functools
 import math
 import types
 
@@ -33,6 +34,7 @@ import numpy as np
 from beltmdsm.generated import tableau as _coef
 from beltmdsm.generated._support import import_numba
 
+from . import _background
 from ._roots import GOLDEN, GOLDEN_STEPS, converged, golden, illinois, secant
 
 __all__ = [
@@ -477,7 +479,9 @@ def evaluate(t_steps, h_steps, y_steps, F_steps, t):
         y += F[:, N_DENSE - 1 - j, :]
         y *= (x if j % 2 == 0 else 1.0 - x)[:, None]
     y += y_steps[k]
-    return y.T
+    # C order, as the compiled loop's: an array passed on to a compiled integrator has
+    # the layout its cached signature holds
+    return np.ascontiguousarray(y.T)
 
 
 def _evaluate_loop(t_steps, h_steps, y_steps, F_steps, t, out):
@@ -492,18 +496,43 @@ def _evaluate_loop(t_steps, h_steps, y_steps, F_steps, t, out):
             out[i, m] = tmp[i]
 
 
+def _evaluate_numba():
+    """`_evaluate_loop` compiled by numba (no kernels in it: cached on disk as it is)."""
+    numba = import_numba(True)
+    dense = numba.njit(cache=True)(_dense)
+    loop = types.FunctionType(
+        _evaluate_loop.__code__, {**globals(), "_dense": dense}, "_evaluate_loop"
+    )
+    return numba.njit(cache=True)(loop)
+
+
 _COMPILED_EVALUATE = []
 
 
 def _evaluate_compiled():
+    """The compiled loop of `evaluate` where it is ready; None where numba is not
+    installed, or while it compiles in the background (`_background.Lazy`)."""
     if not _COMPILED_EVALUATE:
-        numba = import_numba(False)
-        if numba is None:
-            _COMPILED_EVALUATE.append(None)
-        else:
-            dense = numba.njit(cache=True)(_dense)
-            loop = types.FunctionType(
-                _evaluate_loop.__code__, {**globals(), "_dense": dense}, "_evaluate_loop"
+        lazy = None
+        if _background.numba_installed():
+            stem = "beltmdsm_evaluate_" + _background.digest(
+                _background.numba_version(), __file__, _coef.__file__
             )
-            _COMPILED_EVALUATE.append(numba.njit(cache=True)(loop))
-    return _COMPILED_EVALUATE[0]
+            lazy = _background.Lazy((_evaluate_numba, ()), stem, None)
+        _COMPILED_EVALUATE.append(lazy)
+    lazy = _COMPILED_EVALUATE[0]
+    return None if lazy is None else lazy.fn or lazy.compiled(_evaluate_types())
+
+
+@functools.cache
+def _evaluate_types():
+    """Arguments of the types of `_evaluate_loop`'s (`_background` compiles for their
+    types; a function, not a constant, which `beltmdsm.integrate._compiled` would copy)."""
+    return (
+        np.zeros(1),
+        np.ones(1),
+        np.zeros((1, 4)),
+        np.zeros((1, N_DENSE, 4)),
+        np.zeros(1),
+        np.empty((4, 1)),
+    )

@@ -103,7 +103,8 @@ class NormalMotion:
     ) -> None:
         self.model, self.t_end = model, float(t_end)
         field = hybrid.bind_response_field(
-            backend=backend, **model.arguments(hybrid.bind_response_field)
+            backend=_compiled.scalar_backend(backend),
+            **model.arguments(hybrid.bind_response_field),
         )
         sw = Switching(model)
         advance = _compiled.advance("response_field", model, backend)

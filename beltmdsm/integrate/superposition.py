@@ -167,11 +167,11 @@ class Superposition:
         self.model, self.normal = model, normal
         stm, exc = oscillator.bind_state_transition, oscillator.bind_excitation_response
         state = oscillator.bind_tangential_state
-        self.stm = stm(backend=backend, **model.arguments(stm))
-        self.exc = exc(backend=backend, **model.arguments(exc))
+        self.stm = stm(backend=_compiled.scalar_backend(backend), **model.arguments(stm))
+        self.exc = exc(backend=_compiled.scalar_backend(backend), **model.arguments(exc))
         #: the superposition: ``state(tau, *start, zf, vf, z, v, sgn)`` is ``(X1, X1')``
         #: at ``t0 + tau`` of a mode entered at ``t0`` (`start`)
-        self.state = state(backend=backend, **model.arguments(state))
+        self.state = state(backend=_compiled.scalar_backend(backend), **model.arguments(state))
         # the scalar kernel answers inf or NaN where the closed form does not exist, as
         # the array implementation does, at a fraction of its cost
         with np.errstate(divide="ignore", invalid="ignore"):

@@ -39,6 +39,7 @@ from numpy.typing import ArrayLike, NDArray
 from beltmdsm.generated import hybrid
 
 from ..errors import NoPeriodicResponse
+from ..integrate import _compiled
 from ..integrate.normal import normal_motion
 from ..integrate.superposition import FACTS as SUPERPOSITION_FACTS
 from ..integrate.superposition import Superposition, TangentialRun, friction_direction
@@ -153,7 +154,7 @@ class OnePeriodMap:
                 before=before.name.lower(),
                 after=after.name.lower(),
                 surface=surface,
-                backend=self.backend,
+                backend=_compiled.scalar_backend(self.backend),
                 **self.model.arguments(hybrid.bind_saltation),
             )
         return self._saltation[key]

@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 
 from beltmdsm.generated import hybrid
 
-from ..integrate import _dop853
+from ..integrate import _compiled, _dop853
 from ..integrate.events import StepSegment
 from ..integrate.switching import Mode
 from ..integrate.trajectory import Run
@@ -323,7 +323,7 @@ def saltation(
         before=before.name.lower(),
         after=after.name.lower(),
         surface=surface,
-        backend=backend,
+        backend=_compiled.scalar_backend(backend),
         **model.arguments(hybrid.bind_saltation),
     )
 

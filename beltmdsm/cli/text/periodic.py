@@ -17,6 +17,7 @@ from .common import laws, response_name
 if TYPE_CHECKING:
     from ...periodic.floquet import Floquet
     from ...studies.coexistence import Coexistence
+    from ...studies.cycle_coexistence import CycleCoexistence
     from ...studies.responses import ResponseSet
 
 __all__ = ["floquet", "cycle", "responses", "coexistence", "cycle_coexistence"]
@@ -180,7 +181,7 @@ def coexistence(found: Coexistence) -> str:
     return "\n".join(lines)
 
 
-def cycle_coexistence(found) -> str:
+def cycle_coexistence(found: CycleCoexistence) -> str:
     """The readable summary of ``coexistence`` without excitation
     (`beltmdsm.studies.cycle_coexistence.CycleCoexistence`)."""
     param, b = found.param, found.branch
