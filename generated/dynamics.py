@@ -561,7 +561,7 @@ def bind_rhs_branch(*, friction='coulomb', contact='hertz_damp', tension='allowe
     >>> import numpy as np
     >>> from beltmdsm.generated import dynamics
     >>> from beltmdsm.generated.parameters import BASE
-    >>> x = (0.0, 1.0, 0.5, 11.5, 0.0, -1.0,)
+    >>> x = (0.0, 1.0, 0.5, 11.5, 0.0, -1.0)
     >>> kernel = dynamics.bind_rhs_branch(**BASE, backend="python")
     >>> np.round(np.ravel(kernel(*x)), 4).tolist()
     [0.5, 2.7998, 0.0, 0.0604]
@@ -1571,7 +1571,7 @@ def bind_normal_force(*, contact='hertz_damp', tension='allowed', backend=None, 
     >>> import numpy as np
     >>> from beltmdsm.generated import dynamics
     >>> from beltmdsm.generated.parameters import BASE
-    >>> x = (11.5, 0.1,)
+    >>> x = (11.5, 0.1)
     >>> kernel = dynamics.bind_normal_force(**BASE, backend="python")
     >>> np.round(np.ravel(kernel(*x)), 4).tolist()
     [10.3346]
@@ -2054,7 +2054,7 @@ def bind_normal_rhs(*, contact='hertz_damp', tension='allowed', backend=None, **
     >>> import numpy as np
     >>> from beltmdsm.generated import dynamics
     >>> from beltmdsm.generated.parameters import BASE
-    >>> x = (0.3, 11.5, 0.1,)
+    >>> x = (0.3, 11.5, 0.1)
     >>> kernel = dynamics.bind_normal_rhs(**BASE, backend="python")
     >>> np.round(np.ravel(kernel(*x)), 4).tolist()
     [0.1, -30.3498]
@@ -2307,7 +2307,7 @@ def bind_normal_jacobian(*, contact='hertz_damp', tension='allowed', backend=Non
     >>> import numpy as np
     >>> from beltmdsm.generated import dynamics
     >>> from beltmdsm.generated.parameters import BASE
-    >>> x = (0.3, 11.5, 0.1,)
+    >>> x = (0.3, 11.5, 0.1)
     >>> kernel = dynamics.bind_normal_jacobian(**BASE, backend="python")
     >>> np.round(np.ravel(kernel(*x)), 4).tolist()
     [0.0, 1.0, -1.348, -5.8498]
@@ -2602,7 +2602,7 @@ def bind_free_acceleration(*, backend=None, **params):
     >>> import numpy as np
     >>> from beltmdsm.generated import dynamics
     >>> from beltmdsm.generated.parameters import BASE
-    >>> x = (0.3, 1.0, 0.5,)
+    >>> x = (0.3, 1.0, 0.5)
     >>> kernel = dynamics.bind_free_acceleration(**BASE, backend="python")
     >>> np.round(np.ravel(kernel(*x)), 4).tolist()
     [28.7253]
@@ -2917,7 +2917,7 @@ def bind_energy(*, contact='hertz_damp', tension='allowed', backend=None, **para
     >>> import numpy as np
     >>> from beltmdsm.generated import dynamics
     >>> from beltmdsm.generated.parameters import BASE
-    >>> x = (1.0, 0.5, 11.5, 0.1,)
+    >>> x = (1.0, 0.5, 11.5, 0.1)
     >>> kernel = dynamics.bind_energy(**BASE, backend="python")
     >>> np.round(np.ravel(kernel(*x)), 4).tolist()
     [-67.3368]
@@ -3204,7 +3204,7 @@ def bind_power_balance(*, friction='coulomb', contact='hertz_damp', tension='all
     >>> import numpy as np
     >>> from beltmdsm.generated import dynamics
     >>> from beltmdsm.generated.parameters import BASE
-    >>> x = (0.3, 1.0, 0.5, 11.5, 0.1, -1.0,)
+    >>> x = (0.3, 1.0, 0.5, 11.5, 0.1, -1.0)
     >>> kernel = dynamics.bind_power_balance(**BASE, backend="python")
     >>> np.round(np.ravel(kernel(*x)), 4).tolist()
     [11.9301, 0.1085, -2.0669]
