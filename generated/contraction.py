@@ -44,6 +44,15 @@ def difference_energy(e, e_dot, **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    (e'^2 + omega1^2 e^2) / 2 = (4 + 1) / 2 at e = 1, e' = 2:
+
+    >>> from beltmdsm.generated import contraction
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> float(contraction.difference_energy(1.0, 2.0, **BASE))
+    2.5
     """
     _variant = _support.choose("difference_energy", _DIFFERENCE_ENERGY)
     _values, _extra = _support.arguments("difference_energy", _variant.names, params)
@@ -90,6 +99,15 @@ def difference_damping(**params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    The dashpot's 2 beta1 omega1:
+
+    >>> from beltmdsm.generated import contraction
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> round(float(contraction.difference_damping(**BASE)), 4)
+    0.2
     """
     _variant = _support.choose("difference_damping", _DIFFERENCE_DAMPING)
     _values, _extra = _support.arguments("difference_damping", _variant.names, params)

@@ -14,6 +14,7 @@ those of a friction law (``friction=``), and ``slow_damping`` and
 ``beltmdsm.prediction`` builds the stability prediction from them.
 """
 
+import math
 import numpy
 
 from . import _support
@@ -58,6 +59,15 @@ def averaged_friction(u, V, N0, N1, theta, **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    With a constant normal force (N0 = 1, N1 = 0) it is Eq. (23) over mu_s:
+    (2/pi) asin(1/2) = 1/3:
+
+    >>> from beltmdsm.generated import correlation
+    >>> round(float(correlation.averaged_friction(0.5, 1.0, 1.0, 0.0, 0.0)), 4)
+    0.3333
     """
     _variant = _support.choose("averaged_friction", _AVERAGED_FRICTION)
     _values, _extra = _support.arguments("averaged_friction", _variant.names, params)
@@ -115,6 +125,16 @@ def averaged_friction_slope(u, V, N0, N1, theta, **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    With N0 = 1, N1 = 0 at u = 0.6, V = 1: 2 / (pi sqrt(1 - 0.6^2)) = 2.5/pi:
+
+    >>> from beltmdsm.generated import correlation
+    >>> import math
+    >>> s = correlation.averaged_friction_slope(0.6, 1.0, 1.0, 0.0, 0.0)
+    >>> round(float(s), 4), round(2.5 / math.pi, 4)
+    (0.7958, 0.7958)
     """
     _variant = _support.choose("averaged_friction_slope", _AVERAGED_FRICTION_SLOPE)
     _values, _extra = _support.arguments("averaged_friction_slope", _variant.names, params)
@@ -171,6 +191,16 @@ def first_harmonic(u, V, N0, N1, theta, **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    sgn(sin t) (u = 0, N0 = 1, N1 = 0) is a square wave: s1 = 4/pi, c1 = 0:
+
+    >>> from beltmdsm.generated import correlation
+    >>> import math
+    >>> s1, c1 = correlation.first_harmonic(0.0, 1.0, 1.0, 0.0, 0.0)
+    >>> round(float(s1), 4), round(float(c1), 4), round(4 / math.pi, 4)
+    (1.2732, 0.0, 1.2732)
     """
     _variant = _support.choose("first_harmonic", _FIRST_HARMONIC)
     _values, _extra = _support.arguments("first_harmonic", _variant.names, params)
@@ -256,6 +286,20 @@ def fast_normal_force(*, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Kelvin-Voigt: the penetration alpha Omega^2 / |omega2^2 - Omega^2 + 2i beta2
+    omega2 Omega| times the contact's |omega2^2 + 2i beta2 omega2 Omega|:
+
+    >>> from beltmdsm.generated import correlation
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> N1, psi = correlation.fast_normal_force(**BASE, contact="kelvin_voigt")
+    >>> w2, b2, W = 0.5, 0.15, 4.0
+    >>> contact = abs(w2**2 + 2j * b2 * w2 * W)
+    >>> X2 = 2.0 * W**2 / abs(w2**2 - W**2 + 2j * b2 * w2 * W)
+    >>> round(float(N1), 4), round(X2 * contact, 4)
+    (1.3197, 1.3197)
     """
     _variant = _support.choose("fast_normal_force", _FAST_NORMAL_FORCE, contact=contact)
     _values, _extra = _support.arguments("fast_normal_force", _variant.names, params)
@@ -418,6 +462,17 @@ def fast_tangential_velocity(*, friction='coulomb', contact='hertz_damp', **para
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    V is the coupled V_hat of `beltmdsm.generated.friction.vhat`:
+
+    >>> from beltmdsm.generated import correlation
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> from beltmdsm.generated import friction
+    >>> V, phi = correlation.fast_tangential_velocity(**BASE)
+    >>> round(float(V), 4), round(float(friction.vhat(**BASE, model="coupled")), 4)
+    (6.3754, 6.3754)
     """
     _variant = _support.choose("fast_tangential_velocity", _FAST_TANGENTIAL_VELOCITY, friction=friction, contact=contact)
     _values, _extra = _support.arguments("fast_tangential_velocity", _variant.names, params)
@@ -782,6 +837,18 @@ def friction_average(u, V, N0, N1, theta, *, friction='coulomb', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Coulomb's law: mu_s times `averaged_friction`:
+
+    >>> from beltmdsm.generated import correlation
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.5, 1.0, 9.81, 1.0, 0.3)
+    >>> F = correlation.friction_average(*x, **BASE)
+    >>> F0 = correlation.averaged_friction(*x)
+    >>> round(float(F), 4), round(0.4 * float(F0), 4)
+    (1.5187, 1.5187)
     """
     _variant = _support.choose("friction_average", _FRICTION_AVERAGE, friction=friction)
     _values, _extra = _support.arguments("friction_average", _variant.names, params)
@@ -877,6 +944,18 @@ def friction_average_slope(u, V, N0, N1, theta, *, friction='coulomb', **params)
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Coulomb's law: mu_s times `averaged_friction_slope`:
+
+    >>> from beltmdsm.generated import correlation
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.5, 1.0, 9.81, 1.0, 0.3)
+    >>> s = correlation.friction_average_slope(*x, **BASE)
+    >>> s0 = correlation.averaged_friction_slope(*x)
+    >>> round(float(s), 4), round(0.4 * float(s0), 4)
+    (2.7441, 2.7441)
     """
     _variant = _support.choose("friction_average_slope", _FRICTION_AVERAGE_SLOPE, friction=friction)
     _values, _extra = _support.arguments("friction_average_slope", _variant.names, params)
@@ -970,6 +1049,18 @@ def friction_harmonic(u, V, N0, N1, theta, *, friction='coulomb', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Coulomb's law: mu_s times `first_harmonic`:
+
+    >>> from beltmdsm.generated import correlation
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.5, 1.0, 9.81, 1.0, 0.3)
+    >>> [round(float(h), 4) for h in correlation.friction_harmonic(*x, **BASE)]
+    [4.3489, 0.072]
+    >>> [round(0.4 * float(h), 4) for h in correlation.first_harmonic(*x)]
+    [4.3489, 0.072]
     """
     _variant = _support.choose("friction_harmonic", _FRICTION_HARMONIC, friction=friction)
     _values, _extra = _support.arguments("friction_harmonic", _variant.names, params)
@@ -1103,6 +1194,19 @@ def slow_damping(V, N1, theta, *, friction='coulomb', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Without a normal fluctuation (N1 = 0): 2 beta1 omega1 + g times the slope of
+    Eq. (25) at Vb = 4, V = 5 (Coulomb):
+
+    >>> from beltmdsm.generated import correlation
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> from beltmdsm.generated import friction
+    >>> p = correlation.slow_damping(5.0, 0.0, 0.0, **BASE)
+    >>> slope = friction.mu_bar_slope(4.0, 5.0, 0.4)
+    >>> round(float(p), 4), round(0.2 + 9.81 * float(slope), 4)
+    (1.0327, 1.0327)
     """
     _variant = _support.choose("slow_damping", _SLOW_DAMPING, friction=friction)
     _values, _extra = _support.arguments("slow_damping", _variant.names, params)
@@ -1177,6 +1281,15 @@ def transfer_function(**params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    (omega1^2 - Omega_t^2, 2 beta1 omega1 Omega_t) = (1 - 16, 0.8):
+
+    >>> from beltmdsm.generated import correlation
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> [round(float(q), 4) for q in correlation.transfer_function(**BASE)]
+    [-15.0, 0.8]
     """
     _variant = _support.choose("transfer_function", _TRANSFER_FUNCTION)
     _values, _extra = _support.arguments("transfer_function", _variant.names, params)
@@ -1268,6 +1381,19 @@ def harmonic_balance(V, phi, N1, psi, *, friction='coulomb', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    The linear responses solve it where friction never reverses (Vb = 10 > V):
+
+    >>> from beltmdsm.generated import correlation
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> P = {**BASE, "Vb": 10.0}
+    >>> V, phi = correlation.fast_tangential_velocity(**P)
+    >>> N1, psi = correlation.fast_normal_force(**P)
+    >>> res = correlation.harmonic_balance(V, phi, N1, psi, **P)
+    >>> [round(float(r), 10) + 0.0 for r in res]
+    [0.0, 0.0]
     """
     _variant = _support.choose("harmonic_balance", _HARMONIC_BALANCE, friction=friction)
     _values, _extra = _support.arguments("harmonic_balance", _variant.names, params)

@@ -117,6 +117,16 @@ def rhs(t, X1, Y1, X2, Y2, *, friction='coulomb', contact='hertz_damp', tension=
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    At t = 0 (no excitation) the unforced equilibrium is a rest point:
+
+    >>> from beltmdsm.generated import dynamics, unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> dstate = dynamics.rhs(0.0, *unforced.equilibrium(**BASE), **BASE)
+    >>> dstate.shape, bool(abs(dstate).max() < 1e-12)
+    ((4,), True)
     """
     _variant = _support.choose("rhs", _RHS, friction=friction, contact=contact, tension=tension)
     _values, _extra = _support.arguments("rhs", _variant.names, params)
@@ -428,6 +438,17 @@ def rhs_branch(t, X1, Y1, X2, Y2, sgn, *, friction='coulomb', contact='hertz_dam
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    With sgn = 0 the second entry is the acceleration without friction:
+
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> d = dynamics.rhs_branch(0.0, 1.0, 0.0, 11.5, 0.0, 0.0, **BASE)
+    >>> a_free = dynamics.free_acceleration(0.0, 1.0, 0.0, **BASE)
+    >>> round(float(d[1]), 4), round(float(a_free), 4)
+    (-1.0, -1.0)
     """
     _variant = _support.choose("rhs_branch", _RHS_BRANCH, friction=friction, contact=contact, tension=tension)
     _values, _extra = _support.arguments("rhs_branch", _variant.names, params)
@@ -532,6 +553,21 @@ def bind_rhs_branch(*, friction='coulomb', contact='hertz_damp', tension='allowe
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `rhs_branch` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.0, 1.0, 0.5, 11.5, 0.0, -1.0)
+    >>> kernel = dynamics.bind_rhs_branch(**BASE, backend="python")
+    >>> np.round(np.ravel(kernel(*x)), 4).tolist()
+    [0.5, 2.7998, 0.0, 0.0604]
+    >>> ref = dynamics.rhs_branch(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_rhs_branch", _RHS_BRANCH, friction=friction, contact=contact, tension=tension)
     return _support.bind("rhs_branch", _variant, params, backend)
@@ -1030,6 +1066,18 @@ def jacobian_branch(t, X1, Y1, X2, Y2, sgn, *, friction='coulomb', contact='hert
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    On the branch sgn = -1 at the unforced equilibrium it is J^0 (Eq. 11):
+
+    >>> from beltmdsm.generated import dynamics, unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> import numpy as np
+    >>> eq = unforced.equilibrium(**BASE)
+    >>> J = dynamics.jacobian_branch(0.0, *eq, -1.0, **BASE)
+    >>> bool(np.allclose(J, unforced.jacobian_at_equilibrium(**BASE)))
+    True
     """
     _variant = _support.choose("jacobian_branch", _JACOBIAN_BRANCH, friction=friction, contact=contact, tension=tension)
     _values, _extra = _support.arguments("jacobian_branch", _variant.names, params)
@@ -1446,6 +1494,16 @@ def normal_force(X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    At the equilibrium penetration it carries gravity, g; out of contact it is 0:
+
+    >>> from beltmdsm.generated import dynamics, unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> X2 = float(unforced.equilibrium(**BASE)[2])
+    >>> dynamics.normal_force([X2, -1.0], 0.0, **BASE).round(4).tolist()
+    [9.81, 0.0]
     """
     _variant = _support.choose("normal_force", _NORMAL_FORCE, contact=contact, tension=tension)
     _values, _extra = _support.arguments("normal_force", _variant.names, params)
@@ -1505,6 +1563,21 @@ def bind_normal_force(*, contact='hertz_damp', tension='allowed', backend=None, 
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `normal_force` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (11.5, 0.1)
+    >>> kernel = dynamics.bind_normal_force(**BASE, backend="python")
+    >>> np.round(np.ravel(kernel(*x)), 4).tolist()
+    [10.3346]
+    >>> ref = dynamics.normal_force(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_normal_force", _NORMAL_FORCE, contact=contact, tension=tension)
     return _support.bind("normal_force", _variant, params, backend)
@@ -1685,6 +1758,16 @@ def friction_force(Y1, X2, Y2, sgn, *, friction='coulomb', contact='hertz_damp',
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Sliding backwards (sgn = -1) at the equilibrium penetration: mu_s g:
+
+    >>> from beltmdsm.generated import dynamics, unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> X2 = float(unforced.equilibrium(**BASE)[2])
+    >>> round(float(dynamics.friction_force(0.0, X2, 0.0, -1.0, **BASE)), 4)
+    3.924
     """
     _variant = _support.choose("friction_force", _FRICTION_FORCE, friction=friction, contact=contact, tension=tension)
     _values, _extra = _support.arguments("friction_force", _variant.names, params)
@@ -1880,6 +1963,17 @@ def normal_rhs(t, X2, Y2, *, contact='hertz_damp', tension='allowed', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Kelvin-Voigt at rest at X2 = g / omega2^2 (t = 0: no excitation):
+
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> X2 = 9.81 / 0.5**2
+    >>> dn = dynamics.normal_rhs(0.0, X2, 0.0, **BASE, contact="kelvin_voigt")
+    >>> [round(abs(float(v)), 10) for v in dn]
+    [0.0, 0.0]
     """
     _variant = _support.choose("normal_rhs", _NORMAL_RHS, contact=contact, tension=tension)
     _values, _extra = _support.arguments("normal_rhs", _variant.names, params)
@@ -1952,6 +2046,21 @@ def bind_normal_rhs(*, contact='hertz_damp', tension='allowed', backend=None, **
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `normal_rhs` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.3, 11.5, 0.1)
+    >>> kernel = dynamics.bind_normal_rhs(**BASE, backend="python")
+    >>> np.round(np.ravel(kernel(*x)), 4).tolist()
+    [0.1, -30.3498]
+    >>> ref = dynamics.normal_rhs(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_normal_rhs", _NORMAL_RHS, contact=contact, tension=tension)
     return _support.bind("normal_rhs", _variant, params, backend)
@@ -2120,6 +2229,16 @@ def normal_jacobian(t, X2, Y2, *, contact='hertz_damp', tension='allowed', **par
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Kelvin-Voigt is linear: [[0, 1], [-omega2^2, -2 beta2 omega2]]:
+
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> J = dynamics.normal_jacobian(0.0, 1.0, 0.0, **BASE, contact="kelvin_voigt")
+    >>> J.round(4).tolist()
+    [[0.0, 1.0], [-0.25, -0.15]]
     """
     _variant = _support.choose("normal_jacobian", _NORMAL_JACOBIAN, contact=contact, tension=tension)
     _values, _extra = _support.arguments("normal_jacobian", _variant.names, params)
@@ -2180,6 +2299,21 @@ def bind_normal_jacobian(*, contact='hertz_damp', tension='allowed', backend=Non
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `normal_jacobian` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.3, 11.5, 0.1)
+    >>> kernel = dynamics.bind_normal_jacobian(**BASE, backend="python")
+    >>> np.round(np.ravel(kernel(*x)), 4).tolist()
+    [0.0, 1.0, -1.348, -5.8498]
+    >>> ref = dynamics.normal_jacobian(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_normal_jacobian", _NORMAL_JACOBIAN, contact=contact, tension=tension)
     return _support.bind("normal_jacobian", _variant, params, backend)
@@ -2394,6 +2528,15 @@ def free_acceleration(t, X1, Y1, **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    -omega1^2 X1 - 2 beta1 omega1 X1' at t = 0 (no excitation):
+
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> round(float(dynamics.free_acceleration(0.0, 1.0, 0.5, **BASE)), 4)
+    -1.1
     """
     _variant = _support.choose("free_acceleration", _FREE_ACCELERATION)
     _values, _extra = _support.arguments("free_acceleration", _variant.names, params)
@@ -2451,6 +2594,21 @@ def bind_free_acceleration(*, backend=None, **params):
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `free_acceleration` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.3, 1.0, 0.5)
+    >>> kernel = dynamics.bind_free_acceleration(**BASE, backend="python")
+    >>> np.round(np.ravel(kernel(*x)), 4).tolist()
+    [28.7253]
+    >>> ref = dynamics.free_acceleration(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_free_acceleration", _FREE_ACCELERATION)
     return _support.bind("free_acceleration", _variant, params, backend)
@@ -2519,6 +2677,17 @@ def excitation(t, **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    At Omega t = pi/2 both reach their amplitude alpha Omega^2 = 2 * 4^2:
+
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> import math
+    >>> f_t, f_n = dynamics.excitation(math.pi / 8, **BASE)
+    >>> round(float(f_t), 4), round(float(f_n), 4)
+    (32.0, -32.0)
     """
     _variant = _support.choose("excitation", _EXCITATION)
     _values, _extra = _support.arguments("excitation", _variant.names, params)
@@ -2576,6 +2745,21 @@ def bind_excitation(*, backend=None, **params):
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `excitation` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.3,)
+    >>> kernel = dynamics.bind_excitation(**BASE, backend="python")
+    >>> np.round(np.ravel(kernel(*x)), 4).tolist()
+    [29.8253, -29.8253]
+    >>> ref = dynamics.excitation(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_excitation", _EXCITATION)
     return _support.bind("excitation", _variant, params, backend)
@@ -2652,6 +2836,17 @@ def energy(X1, Y1, X2, Y2, *, contact='hertz_damp', tension='allowed', **params)
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Spring energy omega1^2 X1^2 / 2 and kinetic energy X1'^2 / 2:
+
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> float(dynamics.energy(1.0, 0.0, 0.0, 0.0, **BASE))
+    0.5
+    >>> float(dynamics.energy(0.0, 2.0, 0.0, 0.0, **BASE))
+    2.0
     """
     _variant = _support.choose("energy", _ENERGY, contact=contact, tension=tension)
     _values, _extra = _support.arguments("energy", _variant.names, params)
@@ -2714,6 +2909,21 @@ def bind_energy(*, contact='hertz_damp', tension='allowed', backend=None, **para
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `energy` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (1.0, 0.5, 11.5, 0.1)
+    >>> kernel = dynamics.bind_energy(**BASE, backend="python")
+    >>> np.round(np.ravel(kernel(*x)), 4).tolist()
+    [-67.3368]
+    >>> ref = dynamics.energy(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_energy", _ENERGY, contact=contact, tension=tension)
     return _support.bind("energy", _variant, params, backend)
@@ -2872,6 +3082,18 @@ def power_balance(t, X1, Y1, X2, Y2, sgn, *, friction='coulomb', contact='hertz_
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Sliding at X1' = 1 against the belt (sgn = -1), at t = 0: no input,
+    viscous 2 beta1 omega1 X1'^2 = 0.2, and friction -mu_s g X1' (it feeds energy):
+
+    >>> from beltmdsm.generated import dynamics, unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> X2 = float(unforced.equilibrium(**BASE)[2])
+    >>> P = dynamics.power_balance(0.0, 0.0, 1.0, X2, 0.0, -1.0, **BASE)
+    >>> [round(float(p), 4) for p in P]
+    [0.0, 0.2, -3.924]
     """
     _variant = _support.choose("power_balance", _POWER_BALANCE, friction=friction, contact=contact, tension=tension)
     _values, _extra = _support.arguments("power_balance", _variant.names, params)
@@ -2974,6 +3196,21 @@ def bind_power_balance(*, friction='coulomb', contact='hertz_damp', tension='all
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `power_balance` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import dynamics
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.3, 1.0, 0.5, 11.5, 0.1, -1.0)
+    >>> kernel = dynamics.bind_power_balance(**BASE, backend="python")
+    >>> np.round(np.ravel(kernel(*x)), 4).tolist()
+    [11.9301, 0.1085, -2.0669]
+    >>> ref = dynamics.power_balance(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_power_balance", _POWER_BALANCE, friction=friction, contact=contact, tension=tension)
     return _support.bind("power_balance", _variant, params, backend)

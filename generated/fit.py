@@ -56,6 +56,16 @@ def coefficients(X2max, *, contact='hertz_damp', degree=3, **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Eq. (17) on [0, 1]: c0 = -8/1155; Kelvin-Voigt's X2^1 is fitted exactly:
+
+    >>> from beltmdsm.generated import fit
+    >>> [round(float(c), 4) for c in fit.coefficients(1.0)]
+    [-0.0069, 0.3117, 0.9351, -0.2424]
+    >>> [float(c) for c in fit.coefficients(1.0, contact="kelvin_voigt")]
+    [0.0, 1.0, 0.0, 0.0]
     """
     _variant = _support.choose("coefficients", _COEFFICIENTS, contact=contact, degree=degree)
     _values, _extra = _support.arguments("coefficients", _variant.names, params)
@@ -340,6 +350,14 @@ def max_error(X2max, *, contact='hertz_damp', degree=3, **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Degree 3 for Eq. (1): 8/1155 X2max^(3/2):
+
+    >>> from beltmdsm.generated import fit
+    >>> round(float(fit.max_error(4.0)), 6), round(8 / 1155 * 4.0**1.5, 6)
+    (0.055411, 0.055411)
     """
     _variant = _support.choose("max_error", _MAX_ERROR, contact=contact, degree=degree)
     _values, _extra = _support.arguments("max_error", _variant.names, params)
@@ -491,6 +509,14 @@ def max_error_location(X2max, *, contact='hertz_damp', degree=3, **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    For Eq. (17) the largest error sits at X2 = 0, where it is |c0|:
+
+    >>> from beltmdsm.generated import fit
+    >>> float(fit.max_error_location(1.0))
+    0.0
     """
     _variant = _support.choose("max_error_location", _MAX_ERROR_LOCATION, contact=contact, degree=degree)
     _values, _extra = _support.arguments("max_error_location", _variant.names, params)
@@ -617,6 +643,19 @@ def rms_error(X2max, *, contact='hertz_damp', degree=3, **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Against the mean square error on a dense grid of [0, 1]:
+
+    >>> from beltmdsm.generated import fit
+    >>> import numpy as np
+    >>> x = np.linspace(0.0, 1.0, 200001)
+    >>> c = fit.coefficients(1.0)
+    >>> err = x**1.5 - sum(ck * x**k for k, ck in enumerate(c))
+    >>> rms = np.sqrt(np.mean(err**2))
+    >>> round(float(fit.rms_error(1.0)), 6), round(float(rms), 6)
+    (0.001299, 0.001299)
     """
     _variant = _support.choose("rms_error", _RMS_ERROR, contact=contact, degree=degree)
     _values, _extra = _support.arguments("rms_error", _variant.names, params)
@@ -773,6 +812,19 @@ def mdsm_fit_range(*, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Without excitation (alpha = 0) it is the equilibrium penetration X2^0:
+
+    >>> from beltmdsm.generated import fit, unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> round(float(fit.mdsm_fit_range(**BASE)), 4)
+    12.6998
+    >>> calm = {**BASE, "alpha": 0.0}
+    >>> X2 = unforced.equilibrium(**calm)[2]
+    >>> round(float(fit.mdsm_fit_range(**calm)), 4), round(float(X2), 4)
+    (11.5474, 11.5474)
     """
     _variant = _support.choose("mdsm_fit_range", _MDSM_FIT_RANGE, contact=contact)
     _values, _extra = _support.arguments("mdsm_fit_range", _variant.names, params)

@@ -64,6 +64,15 @@ def mu_bar(Vr, Vhat, mu_s, *, friction='coulomb', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Coulomb's law (Vhat = 1, mu_s = 0.4): -mu_s and mu_s outside |Vr| <= Vhat,
+    0 at Vr = 0, and mu_s (1 - 2/pi acos(1/2)) = mu_s / 3 at Vr = 1/2:
+
+    >>> from beltmdsm.generated import friction
+    >>> friction.mu_bar([-2.0, 0.0, 0.5, 2.0], 1.0, 0.4).round(4).tolist()
+    [-0.4, 0.0, 0.1333, 0.4]
     """
     _variant = _support.choose("mu_bar", _MU_BAR, friction=friction)
     _values, _extra = _support.arguments("mu_bar", _variant.names, params)
@@ -148,6 +157,16 @@ def mu_bar0(Vb, Vhat, mu_s, *, friction='coulomb', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    It is mu_bar at Vr = -Vb:
+
+    >>> from beltmdsm.generated import friction
+    >>> round(float(friction.mu_bar0(0.5, 1.0, 0.4)), 4)
+    -0.1333
+    >>> round(float(friction.mu_bar(-0.5, 1.0, 0.4)), 4)
+    -0.1333
     """
     _variant = _support.choose("mu_bar0", _MU_BAR0, friction=friction)
     _values, _extra = _support.arguments("mu_bar0", _variant.names, params)
@@ -234,6 +253,15 @@ def mu_bar_slope(Vb, Vhat, mu_s, *, friction='coulomb', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Coulomb's law (Vhat = 1, mu_s = 0.4): 2 mu_s / (pi sqrt(1 - 0.6^2)) = 1/pi
+    at Vb = 0.6, +inf at Vb = Vhat, 0 beyond:
+
+    >>> from beltmdsm.generated import friction
+    >>> friction.mu_bar_slope([0.6, 1.0, 2.0], 1.0, 0.4).round(4).tolist()
+    [0.3183, inf, 0.0]
     """
     _variant = _support.choose("mu_bar_slope", _MU_BAR_SLOPE, friction=friction)
     _values, _extra = _support.arguments("mu_bar_slope", _variant.names, params)
@@ -359,6 +387,18 @@ def vhat(*, friction='coulomb', contact='hertz_damp', model='tangential', **para
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    The tangential reading at the base set (Coulomb) is
+    alpha Omega^3 / |omega1^2 - Omega^2 + 2i beta1 omega1 Omega|:
+
+    >>> from beltmdsm.generated import friction
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> round(float(friction.vhat(**BASE)), 4)
+    8.5212
+    >>> round(2.0 * 4.0**3 / abs(1.0 - 4.0**2 + 2j * 0.1 * 4.0), 4)
+    8.5212
     """
     _variant = _support.choose("vhat", _VHAT, friction=friction, contact=contact, model=model)
     _values, _extra = _support.arguments("vhat", _variant.names, params)

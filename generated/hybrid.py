@@ -179,6 +179,19 @@ def vector_field(t, X1, Y1, X2, Y2, mode, *, friction='coulomb', contact='hertz_
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Sticking (mode 0) the mass moves with the belt, X1' = Vb and X1'' = 0; in
+    flight (mode 2, X2 < 0) only the spring, damper and gravity act:
+
+    >>> from beltmdsm.generated import hybrid
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> hybrid.vector_field(0.0, 1.0, 4.0, 11.5, 0.0, 0, **BASE)[:2].tolist()
+    [4.0, 0.0]
+    >>> d = hybrid.vector_field(0.0, 1.0, 0.5, -1.0, 0.1, 2, **BASE)
+    >>> d.round(4).tolist()
+    [0.5, -1.1, 0.1, 9.81]
     """
     _variant = _support.choose("vector_field", _VECTOR_FIELD, friction=friction, contact=contact)
     _values, _extra = _support.arguments("vector_field", _variant.names, params)
@@ -279,6 +292,21 @@ def bind_vector_field(*, friction='coulomb', contact='hertz_damp', backend=None,
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `vector_field` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import hybrid
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.3, 1.0, 0.5, 11.5, 0.1, -1)
+    >>> kernel = hybrid.bind_vector_field(**BASE, backend="python")
+    >>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()
+    [0.5, 32.8591, 0.1, -30.3498]
+    >>> ref = hybrid.vector_field(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_vector_field", _VECTOR_FIELD, friction=friction, contact=contact)
     return _support.bind("vector_field", _variant, params, backend)
@@ -675,6 +703,17 @@ def mode_jacobian(t, X1, Y1, X2, Y2, mode, *, friction='coulomb', contact='hertz
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Sliding back (mode -1) at the unforced equilibrium it is J^0 (Eq. 11):
+
+    >>> from beltmdsm.generated import hybrid, unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> import numpy as np
+    >>> J = hybrid.mode_jacobian(0.0, *unforced.equilibrium(**BASE), -1, **BASE)
+    >>> bool(np.allclose(J, unforced.jacobian_at_equilibrium(**BASE)))
+    True
     """
     _variant = _support.choose("mode_jacobian", _MODE_JACOBIAN, friction=friction, contact=contact)
     _values, _extra = _support.arguments("mode_jacobian", _variant.names, params)
@@ -755,6 +794,21 @@ def bind_mode_jacobian(*, friction='coulomb', contact='hertz_damp', backend=None
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `mode_jacobian` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import hybrid
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.3, 1.0, 0.5, 11.5, 0.1, -1)
+    >>> kernel = hybrid.bind_mode_jacobian(**BASE, backend="python")
+    >>> (np.round(np.ravel(kernel(*x)), 4) + 0.0)[4:8].tolist()  # row 2
+    [-1.0, -0.2, 0.5392, 2.3399]
+    >>> ref = hybrid.mode_jacobian(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_mode_jacobian", _MODE_JACOBIAN, friction=friction, contact=contact)
     return _support.bind("mode_jacobian", _variant, params, backend)
@@ -1254,6 +1308,18 @@ def response_field(t, z, v, X2, Y2, mode, *, contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    From rest (z = z' = 0) at the equilibrium penetration, sliding back, the
+    response is driven by the contact force, g:
+
+    >>> from beltmdsm.generated import hybrid, unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> X2 = float(unforced.equilibrium(**BASE)[2])
+    >>> d = hybrid.response_field(0.0, 0.0, 0.0, X2, 0.0, -1, **BASE)
+    >>> round(float(d[0]), 4), round(float(d[1]), 4)
+    (0.0, 9.81)
     """
     _variant = _support.choose("response_field", _RESPONSE_FIELD, contact=contact)
     _values, _extra = _support.arguments("response_field", _variant.names, params)
@@ -1329,6 +1395,21 @@ def bind_response_field(*, contact='hertz_damp', backend=None, **params):
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `response_field` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import hybrid
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.3, 0.0, 0.0, 11.5, 0.1, -1)
+    >>> kernel = hybrid.bind_response_field(**BASE, backend="python")
+    >>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()
+    [0.0, 10.3346, 0.1, -30.3498]
+    >>> ref = hybrid.response_field(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_response_field", _RESPONSE_FIELD, contact=contact)
     return _support.bind("response_field", _variant, params, backend)
@@ -1474,6 +1555,17 @@ def surfaces(t, X1, Y1, X2, Y2, *, friction='coulomb', contact='hertz_damp', **p
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    The relative velocity X1' - Vb and the penetration X2 (SURFACES order):
+
+    >>> from beltmdsm.generated import hybrid
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> h = hybrid.surfaces(0.0, 1.0, 0.5, 11.5, 0.1, **BASE)
+    >>> named = {k: round(float(v), 4) for k, v in zip(hybrid.SURFACES, h)}
+    >>> named["relative_velocity"], named["penetration"]
+    (-3.5, 11.5)
     """
     _variant = _support.choose("surfaces", _SURFACES, friction=friction, contact=contact)
     _values, _extra = _support.arguments("surfaces", _variant.names, params)
@@ -1558,6 +1650,21 @@ def bind_surfaces(*, friction='coulomb', contact='hertz_damp', backend=None, **p
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `surfaces` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import hybrid
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.3, 1.0, 0.5, 11.5, 0.1)
+    >>> kernel = hybrid.bind_surfaces(**BASE, backend="python")
+    >>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()
+    [-3.5, -24.5914, 32.8591, 11.5, 0.53]
+    >>> ref = hybrid.surfaces(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_surfaces", _SURFACES, friction=friction, contact=contact)
     return _support.bind("surfaces", _variant, params, backend)
@@ -1722,6 +1829,16 @@ def surface_scales(t, X1, Y1, X2, Y2, *, friction='coulomb', contact='hertz_damp
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    One positive scale per surface (SURFACES order):
+
+    >>> from beltmdsm.generated import hybrid
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> s = hybrid.surface_scales(0.0, 1.0, 0.5, 11.5, 0.1, **BASE)
+    >>> len(s) == len(hybrid.SURFACES), all(float(v) > 0 for v in s)
+    (True, True)
     """
     _variant = _support.choose("surface_scales", _SURFACE_SCALES, friction=friction, contact=contact)
     _values, _extra = _support.arguments("surface_scales", _variant.names, params)
@@ -1806,6 +1923,21 @@ def bind_surface_scales(*, friction='coulomb', contact='hertz_damp', backend=Non
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `surface_scales` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import hybrid
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.3, 1.0, 0.5, 11.5, 0.1)
+    >>> kernel = hybrid.bind_surface_scales(**BASE, backend="python")
+    >>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()
+    [4.5, 48.9736, 48.9736, 11.5, 0.53]
+    >>> ref = hybrid.surface_scales(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_surface_scales", _SURFACE_SCALES, friction=friction, contact=contact)
     return _support.bind("surface_scales", _variant, params, backend)
@@ -1991,6 +2123,21 @@ def surface_rates(t, X1, Y1, X2, Y2, mode, *, friction='coulomb', contact='hertz
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Along mode -1 the relative velocity changes at X1'' of that mode, the
+    penetration at X2':
+
+    >>> from beltmdsm.generated import hybrid
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> r = hybrid.surface_rates(0.0, 1.0, 0.5, 11.5, 0.1, -1, **BASE)
+    >>> f = hybrid.vector_field(0.0, 1.0, 0.5, 11.5, 0.1, -1, **BASE)
+    >>> named = dict(zip(hybrid.SURFACES, r))
+    >>> round(float(named["relative_velocity"]), 4) == round(float(f[1]), 4)
+    True
+    >>> round(float(named["penetration"]), 4)
+    0.1
     """
     _variant = _support.choose("surface_rates", _SURFACE_RATES, friction=friction, contact=contact)
     _values, _extra = _support.arguments("surface_rates", _variant.names, params)
@@ -2091,6 +2238,21 @@ def bind_surface_rates(*, friction='coulomb', contact='hertz_damp', backend=None
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `surface_rates` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import hybrid
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.3, 1.0, 0.5, 11.5, 0.1, -1)
+    >>> kernel = hybrid.bind_surface_rates(**BASE, backend="python")
+    >>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()
+    [32.8591, -110.2717, -31.6518, 0.1, -9.1049]
+    >>> ref = hybrid.surface_rates(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_surface_rates", _SURFACE_RATES, friction=friction, contact=contact)
     return _support.bind("surface_rates", _variant, params, backend)
@@ -3021,6 +3183,21 @@ def saltation(t, X1, Y1, X2, Y2, *, friction='coulomb', contact='hertz_damp', be
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Slip back to slip forward at Vr = 0 (the defaults): det S is the ratio of
+    the accelerations X1'' after and before the switch:
+
+    >>> from beltmdsm.generated import hybrid, unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> import numpy as np
+    >>> x = (0.0, 1.0, 4.0, float(unforced.equilibrium(**BASE)[2]), 0.0)
+    >>> S = hybrid.saltation(*x, **BASE)
+    >>> a_before = hybrid.vector_field(*x, -1, **BASE)[1]
+    >>> a_after = hybrid.vector_field(*x, 1, **BASE)[1]
+    >>> round(float(np.linalg.det(S)), 4), round(float(a_after / a_before), 4)
+    (-2.6949, -2.6949)
     """
     _variant = _support.choose("saltation", _SALTATION, friction=friction, contact=contact, before=before, after=after, surface=surface)
     _values, _extra = _support.arguments("saltation", _variant.names, params)
@@ -3126,6 +3303,21 @@ def bind_saltation(*, friction='coulomb', contact='hertz_damp', before='slip_bac
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `saltation` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import hybrid
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.3, 1.0, 4.0, 11.5, 0.0)
+    >>> kernel = hybrid.bind_saltation(**BASE, backend="python")
+    >>> (np.round(np.ravel(kernel(*x)), 4) + 0.0)[4:8].tolist()  # row 2
+    [0.0, 0.7557, 0.0, 0.0]
+    >>> ref = hybrid.saltation(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_saltation", _SALTATION, friction=friction, contact=contact, before=before, after=after, surface=surface)
     return _support.bind("saltation", _variant, params, backend)

@@ -49,6 +49,21 @@ def state_transition(tau, **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Its determinant is exp(-2 beta1 omega1 tau) (Liouville); critically damped
+    (beta1 = 1) Phi[0, 0] = (1 + tau) exp(-tau):
+
+    >>> from beltmdsm.generated import oscillator
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> import math, numpy as np
+    >>> Phi = oscillator.state_transition(2.0, **BASE)
+    >>> round(float(np.linalg.det(Phi)), 4), round(math.exp(-2 * 0.1 * 2.0), 4)
+    (0.6703, 0.6703)
+    >>> Phi = oscillator.state_transition(1.0, **{**BASE, "beta1": 1.0})
+    >>> round(float(Phi[0, 0]), 4), round(2 * math.exp(-1.0), 4)
+    (0.7358, 0.7358)
     """
     _variant = _support.choose("state_transition", _STATE_TRANSITION)
     _values, _extra = _support.arguments("state_transition", _variant.names, params)
@@ -92,6 +107,21 @@ def bind_state_transition(*, backend=None, **params):
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `state_transition` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import oscillator
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.7,)
+    >>> kernel = oscillator.bind_state_transition(**BASE, backend="python")
+    >>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()
+    [0.7754, 0.6012, -0.6012, 0.6551]
+    >>> ref = oscillator.state_transition(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_state_transition", _STATE_TRANSITION)
     return _support.bind("state_transition", _variant, params, backend)
@@ -213,6 +243,21 @@ def excitation_response(t, **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    From rest at t = 0, and Y1 is the rate of X1 (a central difference):
+
+    >>> from beltmdsm.generated import oscillator
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> [float(v) for v in oscillator.excitation_response(0.0, **BASE)]
+    [0.0, 0.0]
+    >>> X1, Y1 = oscillator.excitation_response(1.0, **BASE)
+    >>> h = 1e-5
+    >>> Xp, _ = oscillator.excitation_response(1.0 + h, **BASE)
+    >>> Xm, _ = oscillator.excitation_response(1.0 - h, **BASE)
+    >>> round(float(Y1), 4), round(float((Xp - Xm) / (2 * h)), 4)
+    (8.6753, 8.6753)
     """
     _variant = _support.choose("excitation_response", _EXCITATION_RESPONSE)
     _values, _extra = _support.arguments("excitation_response", _variant.names, params)
@@ -268,6 +313,21 @@ def bind_excitation_response(*, backend=None, **params):
         a parameter of the chosen law).
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `excitation_response` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import oscillator
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.7,)
+    >>> kernel = oscillator.bind_excitation_response(**BASE, backend="python")
+    >>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()
+    [4.5977, 13.6758]
+    >>> ref = oscillator.excitation_response(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_excitation_response", _EXCITATION_RESPONSE)
     return _support.bind("excitation_response", _variant, params, backend)
@@ -477,6 +537,18 @@ def tangential_state(tau, X1_0, Y1_0, zf_0, vf_0, z_0, v_0, zf, vf, z, v, sgn, *
         A ValueError, for a choice of laws without the property this needs:
         - friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' through
         Vr = X1' - Vb: the tangential motion of a slip mode is no superposition
+
+    Examples
+    --------
+    Without forcing (every response 0, sgn = 0) it is the free motion
+    Phi(tau) (X1_0, Y1_0):
+
+    >>> from beltmdsm.generated import oscillator
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> X1, Y1 = oscillator.tangential_state(2.0, 1.0, 0.0, *[0.0] * 8, 0, **BASE)
+    >>> Phi = oscillator.state_transition(2.0, **BASE)
+    >>> [round(float(v), 4) for v in (X1, Y1)], Phi[:, 0].round(4).tolist()
+    ([-0.2581, -0.7516], [-0.2581, -0.7516])
     """
     _variant = _support.choose("tangential_state", _TANGENTIAL_STATE, friction=friction)
     _values, _extra = _support.arguments("tangential_state", _variant.names, params)
@@ -547,6 +619,21 @@ def bind_tangential_state(*, friction='coulomb', backend=None, **params):
         Vr = X1' - Vb: the tangential motion of a slip mode is no superposition
     ImportError
         For backend="numba" when numba is not installed.
+
+    Examples
+    --------
+    The kernel at one point gives `tangential_state` there:
+
+    >>> import numpy as np
+    >>> from beltmdsm.generated import oscillator
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> x = (0.7, 1.0, 0.5, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, -1)
+    >>> kernel = oscillator.bind_tangential_state(**BASE, backend="python")
+    >>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()
+    [1.4689, 0.5428]
+    >>> ref = oscillator.tangential_state(*x, **BASE)
+    >>> bool(np.allclose(kernel(*x), np.ravel(ref)))
+    True
     """
     _variant = _support.choose("bind_tangential_state", _TANGENTIAL_STATE, friction=friction)
     return _support.bind("tangential_state", _variant, params, backend)

@@ -135,7 +135,18 @@ DOMAIN_RULES = {'positive': (0.0, True, '> 0'), 'nonnegative': (0.0, False, '>= 
 
 
 def within(domain, x):
-    """Whether ``x`` (a number, or the least of an array) lies in ``domain``."""
+    """Whether ``x`` (a number, or the least of an array) lies in ``domain``.
+
+    Examples
+    --------
+    mu_s may be 0 (nonnegative), omega1 may not (positive):
+
+    >>> from beltmdsm.generated.parameters import DOMAINS, within
+    >>> DOMAINS["mu_s"], DOMAINS["omega1"]
+    ('nonnegative', 'positive')
+    >>> within("nonnegative", 0.0), within("positive", 0.0)
+    (True, False)
+    """
     bound, excluded, _ = DOMAIN_RULES[domain]
     return x > bound if excluded else x >= bound
 
@@ -143,5 +154,17 @@ def within(domain, x):
 def static_shortfall(friction, **params):
     """The friction law's slip coefficient at rest minus its static bound
     (``STATIC_BOUNDS``) at ``params``: positive where the stick cone would hold less
-    than slip does; 0 for a law without a static bound of its own."""
+    than slip does; 0 for a law without a static bound of its own.
+
+    Examples
+    --------
+    Static above kinetic with mu_k = 0.5 > mu_s = 0.4 slips harder than stick
+    holds, by mu_k - mu_s; Coulomb's law has no bound of its own:
+
+    >>> from beltmdsm.generated.parameters import BASE, static_shortfall
+    >>> round(float(static_shortfall("static_kinetic", **{**BASE, "mu_k": 0.5})), 4)
+    0.1
+    >>> float(static_shortfall("coulomb", **BASE))
+    0.0
+    """
     return _SHORTFALL[friction](**params) if friction in _SHORTFALL else 0.0

@@ -91,6 +91,20 @@ def equilibrium(*, friction='coulomb', contact='hertz_damp', convention='paper',
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Z1 = mu_bar^0 g / omega1^2 as printed (negative), the opposite sign in the
+    consistent convention; mu_bar^0 at the base set's V_hat:
+
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> from beltmdsm.generated import friction
+    >>> mu0 = friction.mu_bar0(4.0, friction.vhat(**BASE), 0.4)
+    >>> Z1 = stability.equilibrium(**BASE)[0]
+    >>> Z1c = stability.equilibrium(**BASE, convention="consistent")[0]
+    >>> round(float(Z1), 4), round(float(Z1c), 4), round(float(mu0) * 9.81, 4)
+    (-1.2206, 1.2206, -1.2206)
     """
     params = _support.resolve_vhat("equilibrium", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("equilibrium", _EQUILIBRIUM, friction=friction, contact=contact, convention=convention)
@@ -322,6 +336,21 @@ def jacobian(*, friction='coulomb', contact='hertz_damp', convention='paper', vh
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Block triangular; its tangential damping entry is -2 beta1 omega1 + g mu_bar'
+    (the paper's sign), positive at Vb = 4: negative damping:
+
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> from beltmdsm.generated import friction
+    >>> J = stability.jacobian(**BASE)
+    >>> slope = friction.mu_bar_slope(4.0, friction.vhat(**BASE), 0.4)
+    >>> round(float(J[1, 1]), 4), round(-0.2 + 9.81 * float(slope), 4)
+    (0.132, 0.132)
+    >>> J[2:, :2].tolist()
+    [[0.0, 0.0], [0.0, 0.0]]
     """
     params = _support.resolve_vhat("jacobian", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("jacobian", _JACOBIAN, friction=friction, contact=contact, convention=convention)
@@ -753,6 +782,18 @@ def coefficients(*, friction='coulomb', contact='hertz_damp', convention='paper'
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Those of det(lambda I - J) (numpy.poly):
+
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> import numpy as np
+    >>> [round(float(a), 4) for a in stability.coefficients(**BASE)]
+    [5.754, 1.4973, 5.7178, 1.2743]
+    >>> np.poly(stability.jacobian(**BASE))[1:].round(4).tolist()
+    [5.754, 1.4973, 5.7178, 1.2743]
     """
     params = _support.resolve_vhat("coefficients", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("coefficients", _COEFFICIENTS, friction=friction, contact=contact, convention=convention)
@@ -1165,6 +1206,17 @@ def hurwitz(*, friction='coulomb', contact='hertz_damp', convention='paper', vha
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    H1 = a1; H3 < 0 at Vb = 4, so the slow equilibrium is unstable:
+
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> [round(float(h), 4) for h in stability.hurwitz(**BASE)]
+    [5.754, 2.8975, -25.6231, -32.6517]
+    >>> bool(stability.is_stable(**BASE, backend="numpy"))
+    False
     """
     params = _support.resolve_vhat("hurwitz", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("hurwitz", _HURWITZ, friction=friction, contact=contact, convention=convention)
@@ -1547,6 +1599,19 @@ def eigenvalues(*, friction='coulomb', contact='hertz_damp', convention='paper',
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    The largest real part is `growth_rate`; the tangential pair comes first:
+
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> lam = stability.eigenvalues(**BASE)
+    >>> sigma = stability.growth_rate(**BASE, backend="numpy")
+    >>> round(float(lam.real.max()), 4), round(float(sigma), 4)
+    (0.066, 0.066)
+    >>> [complex(round(z.real, 4), round(z.imag, 4)) for z in lam[:2]]
+    [(0.066+0.9978j), (0.066-0.9978j)]
     """
     params = _support.resolve_vhat("eigenvalues", params, vhat_model, _friction.vhat, friction=friction, contact=contact)
     _variant = _support.choose("eigenvalues", _EIGENVALUES, friction=friction, contact=contact, convention=convention)

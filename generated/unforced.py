@@ -7,6 +7,7 @@ choices are ``beltmdsm.generated.parameters.OPTIONS``, the defaults the paper's 
 Every function takes the parameters as keywords.
 """
 
+import math
 import numpy
 
 from . import _support
@@ -74,6 +75,17 @@ def equilibrium(*, friction='coulomb', contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    At the base set, X1 = mu_s g / omega1^2 = 0.4 * 9.81 / 1^2 (Coulomb), and
+    X2 = (g / omega2^2)^(2/3) (Hertz-Damp):
+
+    >>> from beltmdsm.generated import unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> X1, Y1, X2, Y2 = unforced.equilibrium(**BASE)
+    >>> round(float(X1), 4), round(float(X2), 4), round((9.81 / 0.5**2) ** (2 / 3), 4)
+    (3.924, 11.5474, 11.5474)
     """
     _variant = _support.choose("equilibrium", _EQUILIBRIUM, friction=friction, contact=contact)
     _values, _extra = _support.arguments("equilibrium", _variant.names, params)
@@ -204,6 +216,17 @@ def jacobian(X1, Y1, X2, Y2, *, friction='coulomb', contact='hertz_damp', **para
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Evaluated at the equilibrium, it is J^0 (Eq. 11):
+
+    >>> from beltmdsm.generated import unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> import numpy as np
+    >>> J = unforced.jacobian(*unforced.equilibrium(**BASE), **BASE)
+    >>> J.shape, bool(np.allclose(J, unforced.jacobian_at_equilibrium(**BASE)))
+    ((4, 4), True)
     """
     _variant = _support.choose("jacobian", _JACOBIAN, friction=friction, contact=contact)
     _values, _extra = _support.arguments("jacobian", _variant.names, params)
@@ -413,6 +436,17 @@ def jacobian_at_equilibrium(*, friction='coulomb', contact='hertz_damp', **param
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Block triangular; for Coulomb's law the tangential block is
+    [[0, 1], [-omega1^2, -2 beta1 omega1]], with no friction slope:
+
+    >>> from beltmdsm.generated import unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> J0 = unforced.jacobian_at_equilibrium(**BASE)
+    >>> J0[:2, :2].round(4).tolist(), J0[2:, :2].tolist()
+    ([[0.0, 1.0], [-1.0, -0.2]], [[0.0, 0.0], [0.0, 0.0]])
     """
     _variant = _support.choose("jacobian_at_equilibrium", _JACOBIAN_AT_EQUILIBRIUM, friction=friction, contact=contact)
     _values, _extra = _support.arguments("jacobian_at_equilibrium", _variant.names, params)
@@ -618,6 +652,18 @@ def charpoly(*, friction='coulomb', contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    mu_s does not change the coefficients for Coulomb's law (the claim below
+    Eq. 12):
+
+    >>> from beltmdsm.generated import unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> [round(float(a), 4) for a in unforced.charpoly(**BASE)]
+    [6.086, 3.4515, 6.1409, 1.2743]
+    >>> [round(float(a), 4) for a in unforced.charpoly(**{**BASE, "mu_s": 0.1})]
+    [6.086, 3.4515, 6.1409, 1.2743]
     """
     _variant = _support.choose("charpoly", _CHARPOLY, friction=friction, contact=contact)
     _values, _extra = _support.arguments("charpoly", _variant.names, params)
@@ -793,6 +839,17 @@ def eigenvalues(*, friction='coulomb', contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    For Coulomb's law the tangential pair is
+    -beta1 omega1 +- i omega1 sqrt(1 - beta1^2) = -0.1 +- 0.995i at the base set:
+
+    >>> from beltmdsm.generated import unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> lam = unforced.eigenvalues(**BASE)
+    >>> [complex(round(z.real, 4), round(z.imag, 4)) for z in lam[:2]]
+    [(-0.1+0.995j), (-0.1-0.995j)]
     """
     _variant = _support.choose("eigenvalues", _EIGENVALUES, friction=friction, contact=contact)
     _values, _extra = _support.arguments("eigenvalues", _variant.names, params)
@@ -927,6 +984,21 @@ def critical_belt_speed(*, friction='coulomb', contact='hertz_damp', **params):
     TypeError
         If a keyword is not a model parameter, or a parameter is missing (also
         a parameter of the chosen law).
+
+    Examples
+    --------
+    Stribeck's law at the base set:
+    v_s log(g (mu_s - mu_k) / (2 beta1 omega1 v_s)) = log(9.81 * 0.15 / 0.2);
+    Coulomb's law has none (NaN):
+
+    >>> from beltmdsm.generated import unforced
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> round(float(unforced.critical_belt_speed(**BASE, friction="stribeck")), 4)
+    1.9957
+    >>> import math; round(math.log(9.81 * 0.15 / 0.2), 4)
+    1.9957
+    >>> float(unforced.critical_belt_speed(**BASE))
+    nan
     """
     _variant = _support.choose("critical_belt_speed", _CRITICAL_BELT_SPEED, friction=friction, contact=contact)
     _values, _extra = _support.arguments("critical_belt_speed", _variant.names, params)

@@ -5,6 +5,7 @@ hold an example is found here, so a new one is checked without a list."""
 
 import doctest
 import importlib
+import inspect
 from pathlib import Path
 
 import pytest
@@ -29,3 +30,34 @@ def test_the_examples_are_found():
 def test_the_examples_run(name):
     result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0, result
+
+
+def _public_functions(module):
+    """The functions that ``module`` defines under a public name."""
+    return [
+        name
+        for name, obj in vars(module).items()
+        if not name.startswith("_")
+        and inspect.isfunction(obj)
+        and obj.__module__ == module.__name__
+    ]
+
+
+@pytest.mark.parametrize(
+    "name",
+    sorted(
+        f"beltmdsm.generated.{p.stem}"
+        for p in (ROOT / "generated").glob("*.py")
+        if not p.stem.startswith("_")
+    ),
+)
+def test_every_generated_function_has_an_example(name):
+    """derive/modules/<module>.py types them (``FunctionSpec.examples`` and
+    ``bind_examples``); a new generated function needs one too."""
+    module = importlib.import_module(name)
+    bare = [
+        f
+        for f in _public_functions(module)
+        if ">>> " not in (getattr(module, f).__doc__ or "").partition("Examples\n")[2]
+    ]
+    assert not bare, f"{name}: no Examples section for {bare}"

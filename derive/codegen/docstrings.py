@@ -170,4 +170,6 @@ def _bind_docstring(fn):
         "    and the bound values, for a caller that compiles its own loop.",
     ]
     doc += _raises(True, _refusals(fn))
+    if fn.bind_examples:
+        doc += ["", "Examples", "--------"] + fn.bind_examples.strip("\n").split("\n")
     return _quote(doc)

@@ -278,14 +278,37 @@ def _parameters_module() -> str:
         f"DOMAIN_RULES = {{{rules}}}\n"
         "\n\n"
         "def within(domain, x):\n"
-        '    """Whether ``x`` (a number, or the least of an array) lies in ``domain``."""\n'
+        '    """Whether ``x`` (a number, or the least of an array) lies in ``domain``.\n'
+        "\n"
+        "    Examples\n"
+        "    --------\n"
+        "    mu_s may be 0 (nonnegative), omega1 may not (positive):\n"
+        "\n"
+        "    >>> from beltmdsm.generated.parameters import DOMAINS, within\n"
+        '    >>> DOMAINS["mu_s"], DOMAINS["omega1"]\n'
+        "    ('nonnegative', 'positive')\n"
+        '    >>> within("nonnegative", 0.0), within("positive", 0.0)\n'
+        "    (True, False)\n"
+        '    """\n'
         "    bound, excluded, _ = DOMAIN_RULES[domain]\n"
         "    return x > bound if excluded else x >= bound\n"
         "\n\n"
         "def static_shortfall(friction, **params):\n"
         '    """The friction law\'s slip coefficient at rest minus its static bound\n'
         "    (``STATIC_BOUNDS``) at ``params``: positive where the stick cone would hold less\n"
-        '    than slip does; 0 for a law without a static bound of its own."""\n'
+        "    than slip does; 0 for a law without a static bound of its own.\n"
+        "\n"
+        "    Examples\n"
+        "    --------\n"
+        "    Static above kinetic with mu_k = 0.5 > mu_s = 0.4 slips harder than stick\n"
+        "    holds, by mu_k - mu_s; Coulomb's law has no bound of its own:\n"
+        "\n"
+        "    >>> from beltmdsm.generated.parameters import BASE, static_shortfall\n"
+        '    >>> round(float(static_shortfall("static_kinetic", **{**BASE, "mu_k": 0.5})), 4)\n'
+        "    0.1\n"
+        '    >>> float(static_shortfall("coulomb", **BASE))\n'
+        "    0.0\n"
+        '    """\n'
         "    return _SHORTFALL[friction](**params) if friction in _SHORTFALL else 0.0\n"
     )
 

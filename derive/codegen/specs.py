@@ -72,6 +72,8 @@ class FunctionSpec:
         The numpydoc ``Examples`` section body of the public (numpy) function:
         doctest lines that run as written (tests/test_examples.py), printing rounded
         numbers.
+    bind_examples : str
+        The same for ``bind_<name>`` (with ``bind``).
     """
 
     name: str
@@ -89,6 +91,7 @@ class FunctionSpec:
     accelerate: bool = False
     bind: bool = False
     examples: str = ""
+    bind_examples: str = ""
 
 
 @dataclass(frozen=True)

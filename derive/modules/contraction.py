@@ -27,6 +27,14 @@ def build() -> ModuleSpec:
             docs,
             notes="Two runs under one normal motion: dE_d/dt = -c1 e'^2 - (f_a - f_b) F e' "
             "(`difference_damping`), the evidence of the contraction claim.",
+            examples=(
+                "(e'^2 + omega1^2 e^2) / 2 = (4 + 1) / 2 at e = 1, e' = 2:\n"
+                "\n"
+                ">>> from beltmdsm.generated import contraction\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> float(contraction.difference_energy(1.0, 2.0, **BASE))\n"
+                "2.5"
+            ),
         ),
         FunctionSpec(
             "difference_damping",
@@ -35,6 +43,14 @@ def build() -> ModuleSpec:
             "value",
             "c1 : ndarray\n    -d a_free / d X1'.",
             {(): ctr.power_split().c1},
+            examples=(
+                "The dashpot's 2 beta1 omega1:\n"
+                "\n"
+                ">>> from beltmdsm.generated import contraction\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> round(float(contraction.difference_damping(**BASE)), 4)\n"
+                "0.2"
+            ),
         ),
     )
     return ModuleSpec(

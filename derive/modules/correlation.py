@@ -56,6 +56,14 @@ def build() -> ModuleSpec:
             args,
             docs,
             notes="With N1 = 0 and N0 = 1 this is Eq. (23) divided by mu_s.",
+            examples=(
+                "With a constant normal force (N0 = 1, N1 = 0) it is Eq. (23) over mu_s:\n"
+                "(2/pi) asin(1/2) = 1/3:\n"
+                "\n"
+                ">>> from beltmdsm.generated import correlation\n"
+                ">>> round(float(correlation.averaged_friction(0.5, 1.0, 1.0, 0.0, 0.0)), 4)\n"
+                "0.3333"
+            ),
         ),
         FunctionSpec(
             "averaged_friction_slope",
@@ -68,6 +76,15 @@ def build() -> ModuleSpec:
             (),
             args,
             docs,
+            examples=(
+                "With N0 = 1, N1 = 0 at u = 0.6, V = 1: 2 / (pi sqrt(1 - 0.6^2)) = 2.5/pi:\n"
+                "\n"
+                ">>> from beltmdsm.generated import correlation\n"
+                ">>> import math\n"
+                ">>> s = correlation.averaged_friction_slope(0.6, 1.0, 1.0, 0.0, 0.0)\n"
+                ">>> round(float(s), 4), round(2.5 / math.pi, 4)\n"
+                "(0.7958, 0.7958)"
+            ),
         ),
         FunctionSpec(
             "first_harmonic",
@@ -79,6 +96,15 @@ def build() -> ModuleSpec:
             (),
             args,
             docs,
+            examples=(
+                "sgn(sin t) (u = 0, N0 = 1, N1 = 0) is a square wave: s1 = 4/pi, c1 = 0:\n"
+                "\n"
+                ">>> from beltmdsm.generated import correlation\n"
+                ">>> import math\n"
+                ">>> s1, c1 = correlation.first_harmonic(0.0, 1.0, 1.0, 0.0, 0.0)\n"
+                ">>> round(float(s1), 4), round(float(c1), 4), round(4 / math.pi, 4)\n"
+                "(1.2732, 0.0, 1.2732)"
+            ),
         ),
         FunctionSpec(
             "fast_normal_force",
@@ -89,6 +115,19 @@ def build() -> ModuleSpec:
             "from the\n    linear response of the normal block of Eq. (11).",
             _per(lambda c: amplitude_phase(cr.fast_normal_force(c)), "contact"),
             CONTACT,
+            examples=(
+                "Kelvin-Voigt: the penetration alpha Omega^2 / |omega2^2 - Omega^2 + 2i beta2\n"
+                "omega2 Omega| times the contact's |omega2^2 + 2i beta2 omega2 Omega|:\n"
+                "\n"
+                ">>> from beltmdsm.generated import correlation\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                '>>> N1, psi = correlation.fast_normal_force(**BASE, contact="kelvin_voigt")\n'
+                ">>> w2, b2, W = 0.5, 0.15, 4.0\n"
+                ">>> contact = abs(w2**2 + 2j * b2 * w2 * W)\n"
+                ">>> X2 = 2.0 * W**2 / abs(w2**2 - W**2 + 2j * b2 * w2 * W)\n"
+                ">>> round(float(N1), 4), round(X2 * contact, 4)\n"
+                "(1.3197, 1.3197)"
+            ),
         ),
         FunctionSpec(
             "fast_tangential_velocity",
@@ -105,6 +144,16 @@ def build() -> ModuleSpec:
             ),
             LAWS_FC,
             notes="The friction law enters through its value and slope at Vb.",
+            examples=(
+                "V is the coupled V_hat of `beltmdsm.generated.friction.vhat`:\n"
+                "\n"
+                ">>> from beltmdsm.generated import correlation\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> from beltmdsm.generated import friction\n"
+                ">>> V, phi = correlation.fast_tangential_velocity(**BASE)\n"
+                '>>> round(float(V), 4), round(float(friction.vhat(**BASE, model="coupled")), 4)\n'
+                "(6.3754, 6.3754)"
+            ),
         ),
         FunctionSpec(
             "friction_average",
@@ -118,6 +167,17 @@ def build() -> ModuleSpec:
             args,
             docs,
             notes=quadrature,
+            examples=(
+                "Coulomb's law: mu_s times `averaged_friction`:\n"
+                "\n"
+                ">>> from beltmdsm.generated import correlation\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.5, 1.0, 9.81, 1.0, 0.3)\n"
+                ">>> F = correlation.friction_average(*x, **BASE)\n"
+                ">>> F0 = correlation.averaged_friction(*x)\n"
+                ">>> round(float(F), 4), round(0.4 * float(F0), 4)\n"
+                "(1.5187, 1.5187)"
+            ),
         ),
         FunctionSpec(
             "friction_average_slope",
@@ -130,6 +190,17 @@ def build() -> ModuleSpec:
             args,
             docs,
             notes=quadrature,
+            examples=(
+                "Coulomb's law: mu_s times `averaged_friction_slope`:\n"
+                "\n"
+                ">>> from beltmdsm.generated import correlation\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.5, 1.0, 9.81, 1.0, 0.3)\n"
+                ">>> s = correlation.friction_average_slope(*x, **BASE)\n"
+                ">>> s0 = correlation.averaged_friction_slope(*x)\n"
+                ">>> round(float(s), 4), round(0.4 * float(s0), 4)\n"
+                "(2.7441, 2.7441)"
+            ),
         ),
         FunctionSpec(
             "friction_harmonic",
@@ -143,6 +214,17 @@ def build() -> ModuleSpec:
             args,
             docs,
             notes=quadrature,
+            examples=(
+                "Coulomb's law: mu_s times `first_harmonic`:\n"
+                "\n"
+                ">>> from beltmdsm.generated import correlation\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.5, 1.0, 9.81, 1.0, 0.3)\n"
+                ">>> [round(float(h), 4) for h in correlation.friction_harmonic(*x, **BASE)]\n"
+                "[4.3489, 0.072]\n"
+                ">>> [round(0.4 * float(h), 4) for h in correlation.first_harmonic(*x)]\n"
+                "[4.3489, 0.072]"
+            ),
         ),
         FunctionSpec(
             "slow_damping",
@@ -157,6 +239,18 @@ def build() -> ModuleSpec:
             {**docs, **balance_docs},
             notes="The linearisation of the averaged friction at frozen fast amplitude and "
             "phase (beltmdsm.prediction.mdsm's consistent MDSM). " + quadrature,
+            examples=(
+                "Without a normal fluctuation (N1 = 0): 2 beta1 omega1 + g times the slope of\n"
+                "Eq. (25) at Vb = 4, V = 5 (Coulomb):\n"
+                "\n"
+                ">>> from beltmdsm.generated import correlation\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> from beltmdsm.generated import friction\n"
+                ">>> p = correlation.slow_damping(5.0, 0.0, 0.0, **BASE)\n"
+                ">>> slope = friction.mu_bar_slope(4.0, 5.0, 0.4)\n"
+                ">>> round(float(p), 4), round(0.2 + 9.81 * float(slope), 4)\n"
+                "(1.0327, 1.0327)"
+            ),
         ),
         FunctionSpec(
             "transfer_function",
@@ -167,6 +261,14 @@ def build() -> ModuleSpec:
             "x e^(i W t)\n    needs the force q(i W) x.",
             {(): list(cr.transfer_function())},
             notes="The transfer function of the harmonic balance (`harmonic_balance`).",
+            examples=(
+                "(omega1^2 - Omega_t^2, 2 beta1 omega1 Omega_t) = (1 - 16, 0.8):\n"
+                "\n"
+                ">>> from beltmdsm.generated import correlation\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> [round(float(q), 4) for q in correlation.transfer_function(**BASE)]\n"
+                "[-15.0, 0.8]"
+            ),
         ),
         FunctionSpec(
             "harmonic_balance",
@@ -183,6 +285,18 @@ def build() -> ModuleSpec:
             "at u = -Vb, N0 = g, theta = psi - phi): with the fast normal force "
             "(`fast_normal_force`) its roots give the fast motion of the consistent MDSM. "
             + quadrature,
+            examples=(
+                "The linear responses solve it where friction never reverses (Vb = 10 > V):\n"
+                "\n"
+                ">>> from beltmdsm.generated import correlation\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                '>>> P = {**BASE, "Vb": 10.0}\n'
+                ">>> V, phi = correlation.fast_tangential_velocity(**P)\n"
+                ">>> N1, psi = correlation.fast_normal_force(**P)\n"
+                ">>> res = correlation.harmonic_balance(V, phi, N1, psi, **P)\n"
+                ">>> [round(float(r), 10) + 0.0 for r in res]\n"
+                "[0.0, 0.0]"
+            ),
         ),
     )
     return ModuleSpec(

@@ -37,6 +37,15 @@ def build() -> ModuleSpec:
             STATE_DOCS,
             notes="Friction -mu(|Vr|) sgn(Vr) F with the sign of Eq. (3); zero normal "
             "force when X2 <= 0 (loss of contact, Eq. 1).",
+            examples=(
+                "At t = 0 (no excitation) the unforced equilibrium is a rest point:\n"
+                "\n"
+                ">>> from beltmdsm.generated import dynamics, unforced\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> dstate = dynamics.rhs(0.0, *unforced.equilibrium(**BASE), **BASE)\n"
+                ">>> dstate.shape, bool(abs(dstate).max() < 1e-12)\n"
+                "((4,), True)"
+            ),
         ),
         FunctionSpec(
             "rhs_branch",
@@ -56,6 +65,30 @@ def build() -> ModuleSpec:
             "whether sticking holds. On branch sgn the friction coefficient is "
             "mu(sgn Vr), |Vr| on the branch.",
             bind=True,
+            examples=(
+                "With sgn = 0 the second entry is the acceleration without friction:\n"
+                "\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> d = dynamics.rhs_branch(0.0, 1.0, 0.0, 11.5, 0.0, 0.0, **BASE)\n"
+                ">>> a_free = dynamics.free_acceleration(0.0, 1.0, 0.0, **BASE)\n"
+                ">>> round(float(d[1]), 4), round(float(a_free), 4)\n"
+                "(-1.0, -1.0)"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `rhs_branch` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.0, 1.0, 0.5, 11.5, 0.0, -1.0)\n"
+                '>>> kernel = dynamics.bind_rhs_branch(**BASE, backend="python")\n'
+                ">>> np.round(np.ravel(kernel(*x)), 4).tolist()\n"
+                "[0.5, 2.7998, 0.0, 0.0604]\n"
+                ">>> ref = dynamics.rhs_branch(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "jacobian_branch",
@@ -69,6 +102,17 @@ def build() -> ModuleSpec:
             LAWS_FCT,
             state_t + (dyn.sgn,),
             STATE_DOCS,
+            examples=(
+                "On the branch sgn = -1 at the unforced equilibrium it is J^0 (Eq. 11):\n"
+                "\n"
+                ">>> from beltmdsm.generated import dynamics, unforced\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> import numpy as np\n"
+                ">>> eq = unforced.equilibrium(**BASE)\n"
+                ">>> J = dynamics.jacobian_branch(0.0, *eq, -1.0, **BASE)\n"
+                ">>> bool(np.allclose(J, unforced.jacobian_at_equilibrium(**BASE)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "normal_force",
@@ -81,6 +125,29 @@ def build() -> ModuleSpec:
             (dyn.X2r, Y2),
             STATE_DOCS,
             bind=True,
+            examples=(
+                "At the equilibrium penetration it carries gravity, g; out of contact it is 0:\n"
+                "\n"
+                ">>> from beltmdsm.generated import dynamics, unforced\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> X2 = float(unforced.equilibrium(**BASE)[2])\n"
+                ">>> dynamics.normal_force([X2, -1.0], 0.0, **BASE).round(4).tolist()\n"
+                "[9.81, 0.0]"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `normal_force` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (11.5, 0.1)\n"
+                '>>> kernel = dynamics.bind_normal_force(**BASE, backend="python")\n'
+                ">>> np.round(np.ravel(kernel(*x)), 4).tolist()\n"
+                "[10.3346]\n"
+                ">>> ref = dynamics.normal_force(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "friction_force",
@@ -96,6 +163,15 @@ def build() -> ModuleSpec:
             "on a slip branch (positive along the belt). While sticking the force that "
             "holds the mass is -a_free (`free_acceleration`). Coulomb's law does not use "
             "X1'; every law takes it, so that one call serves all.",
+            examples=(
+                "Sliding backwards (sgn = -1) at the equilibrium penetration: mu_s g:\n"
+                "\n"
+                ">>> from beltmdsm.generated import dynamics, unforced\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> X2 = float(unforced.equilibrium(**BASE)[2])\n"
+                ">>> round(float(dynamics.friction_force(0.0, X2, 0.0, -1.0, **BASE)), 4)\n"
+                "3.924"
+            ),
         ),
         FunctionSpec(
             "normal_rhs",
@@ -110,6 +186,30 @@ def build() -> ModuleSpec:
             notes="The normal equation contains neither X1, X1', Vb nor a friction "
             "parameter (the one-way coupling of Eq. 4; beltmdsm.generated.capabilities).",
             bind=True,
+            examples=(
+                "Kelvin-Voigt at rest at X2 = g / omega2^2 (t = 0: no excitation):\n"
+                "\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> X2 = 9.81 / 0.5**2\n"
+                '>>> dn = dynamics.normal_rhs(0.0, X2, 0.0, **BASE, contact="kelvin_voigt")\n'
+                ">>> [round(abs(float(v)), 10) for v in dn]\n"
+                "[0.0, 0.0]"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `normal_rhs` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.3, 11.5, 0.1)\n"
+                '>>> kernel = dynamics.bind_normal_rhs(**BASE, backend="python")\n'
+                ">>> np.round(np.ravel(kernel(*x)), 4).tolist()\n"
+                "[0.1, -30.3498]\n"
+                ">>> ref = dynamics.normal_rhs(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "normal_jacobian",
@@ -124,6 +224,29 @@ def build() -> ModuleSpec:
             notes="The variational equation of the normal motion, for the "
             "normal block of the monodromy matrix.",
             bind=True,
+            examples=(
+                "Kelvin-Voigt is linear: [[0, 1], [-omega2^2, -2 beta2 omega2]]:\n"
+                "\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                '>>> J = dynamics.normal_jacobian(0.0, 1.0, 0.0, **BASE, contact="kelvin_voigt")\n'
+                ">>> J.round(4).tolist()\n"
+                "[[0.0, 1.0], [-0.25, -0.15]]"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `normal_jacobian` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.3, 11.5, 0.1)\n"
+                '>>> kernel = dynamics.bind_normal_jacobian(**BASE, backend="python")\n'
+                ">>> np.round(np.ravel(kernel(*x)), 4).tolist()\n"
+                "[0.0, 1.0, -1.348, -5.8498]\n"
+                ">>> ref = dynamics.normal_jacobian(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "free_acceleration",
@@ -139,6 +262,28 @@ def build() -> ModuleSpec:
             "|a_free| <= mu_st F_n, mu_st the law's static bound (mu_s for every "
             "shipped friction law; static_kinetic slips at mu_k below it).",
             bind=True,
+            examples=(
+                "-omega1^2 X1 - 2 beta1 omega1 X1' at t = 0 (no excitation):\n"
+                "\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> round(float(dynamics.free_acceleration(0.0, 1.0, 0.5, **BASE)), 4)\n"
+                "-1.1"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `free_acceleration` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.3, 1.0, 0.5)\n"
+                '>>> kernel = dynamics.bind_free_acceleration(**BASE, backend="python")\n'
+                ">>> np.round(np.ravel(kernel(*x)), 4).tolist()\n"
+                "[28.7253]\n"
+                ">>> ref = dynamics.free_acceleration(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "excitation",
@@ -154,6 +299,30 @@ def build() -> ModuleSpec:
             "-alpha_n Omega_n^2 sin(Omega_n t + phase_n); by default "
             "both directions use alpha, Omega and zero phase, as in Eq. (4).",
             bind=True,
+            examples=(
+                "At Omega t = pi/2 both reach their amplitude alpha Omega^2 = 2 * 4^2:\n"
+                "\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> import math\n"
+                ">>> f_t, f_n = dynamics.excitation(math.pi / 8, **BASE)\n"
+                ">>> round(float(f_t), 4), round(float(f_n), 4)\n"
+                "(32.0, -32.0)"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `excitation` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.3,)\n"
+                '>>> kernel = dynamics.bind_excitation(**BASE, backend="python")\n'
+                ">>> np.round(np.ravel(kernel(*x)), 4).tolist()\n"
+                "[29.8253, -29.8253]\n"
+                ">>> ref = dynamics.excitation(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "energy",
@@ -168,6 +337,30 @@ def build() -> ModuleSpec:
             notes="Kinetic + tangential spring + contact potential - g X2. The same "
             "for both tension laws (the clip is booked in power_balance).",
             bind=True,
+            examples=(
+                "Spring energy omega1^2 X1^2 / 2 and kinetic energy X1'^2 / 2:\n"
+                "\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> float(dynamics.energy(1.0, 0.0, 0.0, 0.0, **BASE))\n"
+                "0.5\n"
+                ">>> float(dynamics.energy(0.0, 2.0, 0.0, 0.0, **BASE))\n"
+                "2.0"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `energy` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (1.0, 0.5, 11.5, 0.1)\n"
+                '>>> kernel = dynamics.bind_energy(**BASE, backend="python")\n'
+                ">>> np.round(np.ravel(kernel(*x)), 4).tolist()\n"
+                "[-67.3368]\n"
+                ">>> ref = dynamics.energy(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "power_balance",
@@ -185,6 +378,31 @@ def build() -> ModuleSpec:
             state_t + (dyn.sgn,),
             STATE_DOCS,
             bind=True,
+            examples=(
+                "Sliding at X1' = 1 against the belt (sgn = -1), at t = 0: no input,\n"
+                "viscous 2 beta1 omega1 X1'^2 = 0.2, and friction -mu_s g X1' (it feeds energy):\n"
+                "\n"
+                ">>> from beltmdsm.generated import dynamics, unforced\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> X2 = float(unforced.equilibrium(**BASE)[2])\n"
+                ">>> P = dynamics.power_balance(0.0, 0.0, 1.0, X2, 0.0, -1.0, **BASE)\n"
+                ">>> [round(float(p), 4) for p in P]\n"
+                "[0.0, 0.2, -3.924]"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `power_balance` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import dynamics\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.3, 1.0, 0.5, 11.5, 0.1, -1.0)\n"
+                '>>> kernel = dynamics.bind_power_balance(**BASE, backend="python")\n'
+                ">>> np.round(np.ravel(kernel(*x)), 4).tolist()\n"
+                "[11.9301, 0.1085, -2.0669]\n"
+                ">>> ref = dynamics.power_balance(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
     )
     return ModuleSpec(

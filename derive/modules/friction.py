@@ -14,6 +14,9 @@ from ._shared import (
 
 __all__ = ["build"]
 
+#: The imports of the Examples of `friction`'s functions.
+_IMPORTS = ">>> from beltmdsm.generated import friction\n"
+
 
 def build() -> ModuleSpec:
     """Eqs. (23)-(25) and the two readings of V_hat."""
@@ -51,6 +54,11 @@ def build() -> ModuleSpec:
             docs,
             notes="mu(0) (1 - 2/pi acos(Vr/Vhat)) inside |Vr| <= Vhat, mu(0) sgn(Vr) outside "
             "(Eq. 23), plus the average of mu(|Vr + Vhat sin|) - mu(0). " + quadrature,
+            examples="Coulomb's law (Vhat = 1, mu_s = 0.4): -mu_s and mu_s outside |Vr| <= Vhat,\n"
+            "0 at Vr = 0, and mu_s (1 - 2/pi acos(1/2)) = mu_s / 3 at Vr = 1/2:\n\n"
+            + _IMPORTS
+            + ">>> friction.mu_bar([-2.0, 0.0, 0.5, 2.0], 1.0, 0.4).round(4).tolist()\n"
+            + "[-0.4, 0.0, 0.1333, 0.4]",
         ),
         FunctionSpec(
             "mu_bar0",
@@ -63,6 +71,12 @@ def build() -> ModuleSpec:
             (Vb, Vh, mu),
             docs,
             notes=quadrature,
+            examples="It is mu_bar at Vr = -Vb:\n\n"
+            + _IMPORTS
+            + ">>> round(float(friction.mu_bar0(0.5, 1.0, 0.4)), 4)\n"
+            + "-0.1333\n"
+            + ">>> round(float(friction.mu_bar(-0.5, 1.0, 0.4)), 4)\n"
+            + "-0.1333",
         ),
         FunctionSpec(
             "mu_bar_slope",
@@ -78,6 +92,11 @@ def build() -> ModuleSpec:
             docs,
             notes="The same in both sign conventions: they differ in how the slope "
             "enters the slow equations (beltmdsm.generated.stability). " + quadrature,
+            examples="Coulomb's law (Vhat = 1, mu_s = 0.4): 2 mu_s / (pi sqrt(1 - 0.6^2)) = 1/pi\n"
+            "at Vb = 0.6, +inf at Vb = Vhat, 0 beyond:\n\n"
+            + _IMPORTS
+            + ">>> friction.mu_bar_slope([0.6, 1.0, 2.0], 1.0, 0.4).round(4).tolist()\n"
+            + "[0.3183, inf, 0.0]",
         ),
         FunctionSpec(
             "vhat",
@@ -96,6 +115,14 @@ def build() -> ModuleSpec:
             "omega1 + g mu'(Vb)/2) Omega_t| (Coulomb: mu' = 0). coupled: the normal "
             "response drives the tangential one through mu(Vb) times the normal force "
             "fluctuation; with Omega_t != Omega_n the two amplitudes add.",
+            examples="The tangential reading at the base set (Coulomb) is\n"
+            "alpha Omega^3 / |omega1^2 - Omega^2 + 2i beta1 omega1 Omega|:\n\n"
+            + _IMPORTS
+            + ">>> from beltmdsm.generated.parameters import BASE\n"
+            + ">>> round(float(friction.vhat(**BASE)), 4)\n"
+            + "8.5212\n"
+            + ">>> round(2.0 * 4.0**3 / abs(1.0 - 4.0**2 + 2j * 0.1 * 4.0), 4)\n"
+            + "8.5212",
         ),
     )
     return ModuleSpec(

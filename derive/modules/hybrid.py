@@ -55,6 +55,32 @@ def build() -> ModuleSpec:
             "friction law's coefficient at sgn Vr, stick holds X1' = Vb, flight and "
             "separated are free of contact.",
             bind=True,
+            examples=(
+                "Sticking (mode 0) the mass moves with the belt, X1' = Vb and X1'' = 0; in\n"
+                "flight (mode 2, X2 < 0) only the spring, damper and gravity act:\n"
+                "\n"
+                ">>> from beltmdsm.generated import hybrid\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> hybrid.vector_field(0.0, 1.0, 4.0, 11.5, 0.0, 0, **BASE)[:2].tolist()\n"
+                "[4.0, 0.0]\n"
+                ">>> d = hybrid.vector_field(0.0, 1.0, 0.5, -1.0, 0.1, 2, **BASE)\n"
+                ">>> d.round(4).tolist()\n"
+                "[0.5, -1.1, 0.1, 9.81]"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `vector_field` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import hybrid\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.3, 1.0, 0.5, 11.5, 0.1, -1)\n"
+                '>>> kernel = hybrid.bind_vector_field(**BASE, backend="python")\n'
+                ">>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()\n"
+                "[0.5, 32.8591, 0.1, -30.3498]\n"
+                ">>> ref = hybrid.vector_field(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "mode_jacobian",
@@ -70,6 +96,30 @@ def build() -> ModuleSpec:
             "a switch the variation jumps by `saltation`. For a general Floquet "
             "analysis along an event-driven run (every friction law).",
             bind=True,
+            examples=(
+                "Sliding back (mode -1) at the unforced equilibrium it is J^0 (Eq. 11):\n"
+                "\n"
+                ">>> from beltmdsm.generated import hybrid, unforced\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> import numpy as np\n"
+                ">>> J = hybrid.mode_jacobian(0.0, *unforced.equilibrium(**BASE), -1, **BASE)\n"
+                ">>> bool(np.allclose(J, unforced.jacobian_at_equilibrium(**BASE)))\n"
+                "True"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `mode_jacobian` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import hybrid\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.3, 1.0, 0.5, 11.5, 0.1, -1)\n"
+                '>>> kernel = hybrid.bind_mode_jacobian(**BASE, backend="python")\n'
+                ">>> (np.round(np.ravel(kernel(*x)), 4) + 0.0)[4:8].tolist()  # row 2\n"
+                "[-1.0, -0.2, 0.5392, 2.3399]\n"
+                ">>> ref = hybrid.mode_jacobian(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "response_field",
@@ -91,6 +141,31 @@ def build() -> ModuleSpec:
             "once. Friction laws whose slip-mode friction depends on the tangential "
             "state cannot use it (beltmdsm.generated.capabilities).",
             bind=True,
+            examples=(
+                "From rest (z = z' = 0) at the equilibrium penetration, sliding back, the\n"
+                "response is driven by the contact force, g:\n"
+                "\n"
+                ">>> from beltmdsm.generated import hybrid, unforced\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> X2 = float(unforced.equilibrium(**BASE)[2])\n"
+                ">>> d = hybrid.response_field(0.0, 0.0, 0.0, X2, 0.0, -1, **BASE)\n"
+                ">>> round(float(d[0]), 4), round(float(d[1]), 4)\n"
+                "(0.0, 9.81)"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `response_field` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import hybrid\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.3, 0.0, 0.0, 11.5, 0.1, -1)\n"
+                '>>> kernel = hybrid.bind_response_field(**BASE, backend="python")\n'
+                ">>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()\n"
+                "[0.0, 10.3346, 0.1, -30.3498]\n"
+                ">>> ref = hybrid.response_field(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "surfaces",
@@ -106,6 +181,30 @@ def build() -> ModuleSpec:
             "mu(0) F -+ a_free (the stick cone of the friction law); penetration X2; "
             "contact_force: the sign of F (F over its factors positive in contact).",
             bind=True,
+            examples=(
+                "The relative velocity X1' - Vb and the penetration X2 (SURFACES order):\n"
+                "\n"
+                ">>> from beltmdsm.generated import hybrid\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> h = hybrid.surfaces(0.0, 1.0, 0.5, 11.5, 0.1, **BASE)\n"
+                ">>> named = {k: round(float(v), 4) for k, v in zip(hybrid.SURFACES, h)}\n"
+                '>>> named["relative_velocity"], named["penetration"]\n'
+                "(-3.5, 11.5)"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `surfaces` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import hybrid\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.3, 1.0, 0.5, 11.5, 0.1)\n"
+                '>>> kernel = hybrid.bind_surfaces(**BASE, backend="python")\n'
+                ">>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()\n"
+                "[-3.5, -24.5914, 32.8591, 11.5, 0.53]\n"
+                ">>> ref = hybrid.surfaces(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "surface_scales",
@@ -125,6 +224,29 @@ def build() -> ModuleSpec:
             "is within a few ulps of it, so a sign decision at a tie uses a "
             "tolerance proportional to it.",
             bind=True,
+            examples=(
+                "One positive scale per surface (SURFACES order):\n"
+                "\n"
+                ">>> from beltmdsm.generated import hybrid\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> s = hybrid.surface_scales(0.0, 1.0, 0.5, 11.5, 0.1, **BASE)\n"
+                ">>> len(s) == len(hybrid.SURFACES), all(float(v) > 0 for v in s)\n"
+                "(True, True)"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `surface_scales` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import hybrid\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.3, 1.0, 0.5, 11.5, 0.1)\n"
+                '>>> kernel = hybrid.bind_surface_scales(**BASE, backend="python")\n'
+                ">>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()\n"
+                "[4.5, 48.9736, 48.9736, 11.5, 0.53]\n"
+                ">>> ref = hybrid.surface_scales(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "surface_rates",
@@ -144,6 +266,34 @@ def build() -> ModuleSpec:
             "surface the field of a mode points to (Filippov's rule), and the "
             "denominator of the saltation matrix.",
             bind=True,
+            examples=(
+                "Along mode -1 the relative velocity changes at X1'' of that mode, the\n"
+                "penetration at X2':\n"
+                "\n"
+                ">>> from beltmdsm.generated import hybrid\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> r = hybrid.surface_rates(0.0, 1.0, 0.5, 11.5, 0.1, -1, **BASE)\n"
+                ">>> f = hybrid.vector_field(0.0, 1.0, 0.5, 11.5, 0.1, -1, **BASE)\n"
+                ">>> named = dict(zip(hybrid.SURFACES, r))\n"
+                '>>> round(float(named["relative_velocity"]), 4) == round(float(f[1]), 4)\n'
+                "True\n"
+                '>>> round(float(named["penetration"]), 4)\n'
+                "0.1"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `surface_rates` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import hybrid\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.3, 1.0, 0.5, 11.5, 0.1, -1)\n"
+                '>>> kernel = hybrid.bind_surface_rates(**BASE, backend="python")\n'
+                ">>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()\n"
+                "[32.8591, -110.2717, -31.6518, 0.1, -9.1049]\n"
+                ">>> ref = hybrid.surface_rates(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "saltation",
@@ -159,6 +309,34 @@ def build() -> ModuleSpec:
             "state on the surface. It diverges as (dh/dt)- -> 0 (grazing). "
             "Valid (before, after, surface) triples: TRANSITIONS.",
             bind=True,
+            examples=(
+                "Slip back to slip forward at Vr = 0 (the defaults): det S is the ratio of\n"
+                "the accelerations X1'' after and before the switch:\n"
+                "\n"
+                ">>> from beltmdsm.generated import hybrid, unforced\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> import numpy as np\n"
+                ">>> x = (0.0, 1.0, 4.0, float(unforced.equilibrium(**BASE)[2]), 0.0)\n"
+                ">>> S = hybrid.saltation(*x, **BASE)\n"
+                ">>> a_before = hybrid.vector_field(*x, -1, **BASE)[1]\n"
+                ">>> a_after = hybrid.vector_field(*x, 1, **BASE)[1]\n"
+                ">>> round(float(np.linalg.det(S)), 4), round(float(a_after / a_before), 4)\n"
+                "(-2.6949, -2.6949)"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `saltation` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import hybrid\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.3, 1.0, 4.0, 11.5, 0.0)\n"
+                '>>> kernel = hybrid.bind_saltation(**BASE, backend="python")\n'
+                ">>> (np.round(np.ravel(kernel(*x)), 4) + 0.0)[4:8].tolist()  # row 2\n"
+                "[0.0, 0.7557, 0.0, 0.0]\n"
+                ">>> ref = hybrid.saltation(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
     )
     guards = {tl: {m: tuple(g) for m, g in sorted(gs.items())} for tl, gs in hy.GUARDS.items()}

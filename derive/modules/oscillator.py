@@ -52,6 +52,34 @@ def build() -> ModuleSpec:
             notes="Under-, over- and critically damped closed forms; exact at "
             "beta1 = 1, no overflow for long tau (derive/oscillator.py).",
             bind=True,
+            examples=(
+                "Its determinant is exp(-2 beta1 omega1 tau) (Liouville); critically damped\n"
+                "(beta1 = 1) Phi[0, 0] = (1 + tau) exp(-tau):\n"
+                "\n"
+                ">>> from beltmdsm.generated import oscillator\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> import math, numpy as np\n"
+                ">>> Phi = oscillator.state_transition(2.0, **BASE)\n"
+                ">>> round(float(np.linalg.det(Phi)), 4), round(math.exp(-2 * 0.1 * 2.0), 4)\n"
+                "(0.6703, 0.6703)\n"
+                '>>> Phi = oscillator.state_transition(1.0, **{**BASE, "beta1": 1.0})\n'
+                ">>> round(float(Phi[0, 0]), 4), round(2 * math.exp(-1.0), 4)\n"
+                "(0.7358, 0.7358)"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `state_transition` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import oscillator\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.7,)\n"
+                '>>> kernel = oscillator.bind_state_transition(**BASE, backend="python")\n'
+                ">>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()\n"
+                "[0.7754, 0.6012, -0.6012, 0.6551]\n"
+                ">>> ref = oscillator.state_transition(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "excitation_response",
@@ -67,6 +95,34 @@ def build() -> ModuleSpec:
             "initial value. Not finite at undamped resonance (beta1 = 0, "
             "Omega_t = omega1).",
             bind=True,
+            examples=(
+                "From rest at t = 0, and Y1 is the rate of X1 (a central difference):\n"
+                "\n"
+                ">>> from beltmdsm.generated import oscillator\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> [float(v) for v in oscillator.excitation_response(0.0, **BASE)]\n"
+                "[0.0, 0.0]\n"
+                ">>> X1, Y1 = oscillator.excitation_response(1.0, **BASE)\n"
+                ">>> h = 1e-5\n"
+                ">>> Xp, _ = oscillator.excitation_response(1.0 + h, **BASE)\n"
+                ">>> Xm, _ = oscillator.excitation_response(1.0 - h, **BASE)\n"
+                ">>> round(float(Y1), 4), round(float((Xp - Xm) / (2 * h)), 4)\n"
+                "(8.6753, 8.6753)"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `excitation_response` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import oscillator\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.7,)\n"
+                '>>> kernel = oscillator.bind_excitation_response(**BASE, backend="python")\n'
+                ">>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()\n"
+                "[4.5977, 13.6758]\n"
+                ">>> ref = oscillator.excitation_response(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
         FunctionSpec(
             "tangential_state",
@@ -92,6 +148,31 @@ def build() -> ModuleSpec:
             "at t = 0 (derive/oscillator.py). Exact for a friction law whose slip-mode "
             "friction mu sgn F does not depend on the tangential state.",
             bind=True,
+            examples=(
+                "Without forcing (every response 0, sgn = 0) it is the free motion\n"
+                "Phi(tau) (X1_0, Y1_0):\n"
+                "\n"
+                ">>> from beltmdsm.generated import oscillator\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> X1, Y1 = oscillator.tangential_state(2.0, 1.0, 0.0, *[0.0] * 8, 0, **BASE)\n"
+                ">>> Phi = oscillator.state_transition(2.0, **BASE)\n"
+                ">>> [round(float(v), 4) for v in (X1, Y1)], Phi[:, 0].round(4).tolist()\n"
+                "([-0.2581, -0.7516], [-0.2581, -0.7516])"
+            ),
+            bind_examples=(
+                "The kernel at one point gives `tangential_state` there:\n"
+                "\n"
+                ">>> import numpy as np\n"
+                ">>> from beltmdsm.generated import oscillator\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> x = (0.7, 1.0, 0.5, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, -1)\n"
+                '>>> kernel = oscillator.bind_tangential_state(**BASE, backend="python")\n'
+                ">>> (np.round(np.ravel(kernel(*x)), 4) + 0.0).tolist()\n"
+                "[1.4689, 0.5428]\n"
+                ">>> ref = oscillator.tangential_state(*x, **BASE)\n"
+                ">>> bool(np.allclose(kernel(*x), np.ravel(ref)))\n"
+                "True"
+            ),
         ),
     )
     return ModuleSpec(

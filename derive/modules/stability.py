@@ -117,6 +117,19 @@ def build() -> ModuleSpec:
             **common,
             notes="paper: Z1 = mu_bar^0 g / omega1^2 with mu_bar^0 < 0 (Eq. A7 as "
             "printed); consistent: Z1 = -mu_bar^0 g / omega1^2 > 0.",
+            examples=(
+                "Z1 = mu_bar^0 g / omega1^2 as printed (negative), the opposite sign in the\n"
+                "consistent convention; mu_bar^0 at the base set's V_hat:\n"
+                "\n"
+                ">>> from beltmdsm.generated import stability\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> from beltmdsm.generated import friction\n"
+                ">>> mu0 = friction.mu_bar0(4.0, friction.vhat(**BASE), 0.4)\n"
+                ">>> Z1 = stability.equilibrium(**BASE)[0]\n"
+                '>>> Z1c = stability.equilibrium(**BASE, convention="consistent")[0]\n'
+                ">>> round(float(Z1), 4), round(float(Z1c), 4), round(float(mu0) * 9.81, 4)\n"
+                "(-1.2206, 1.2206, -1.2206)"
+            ),
         ),
         FunctionSpec(
             "jacobian",
@@ -130,6 +143,20 @@ def build() -> ModuleSpec:
                 )
             ),
             **common,
+            examples=(
+                "Block triangular; its tangential damping entry is -2 beta1 omega1 + g mu_bar'\n"
+                "(the paper's sign), positive at Vb = 4: negative damping:\n"
+                "\n"
+                ">>> from beltmdsm.generated import stability\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> from beltmdsm.generated import friction\n"
+                ">>> J = stability.jacobian(**BASE)\n"
+                ">>> slope = friction.mu_bar_slope(4.0, friction.vhat(**BASE), 0.4)\n"
+                ">>> round(float(J[1, 1]), 4), round(-0.2 + 9.81 * float(slope), 4)\n"
+                "(0.132, 0.132)\n"
+                ">>> J[2:, :2].tolist()\n"
+                "[[0.0, 0.0], [0.0, 0.0]]"
+            ),
         ),
         FunctionSpec(
             "coefficients",
@@ -140,6 +167,17 @@ def build() -> ModuleSpec:
             each(lambda f, c, cv: [st.with_friction(a, f) for a in st.coefficients_A8(cv, c)]),
             **common,
             notes="Only the slope mu_bar' enters, not mu_bar^0 (Sect. 4.3).",
+            examples=(
+                "Those of det(lambda I - J) (numpy.poly):\n"
+                "\n"
+                ">>> from beltmdsm.generated import stability\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> import numpy as np\n"
+                ">>> [round(float(a), 4) for a in stability.coefficients(**BASE)]\n"
+                "[5.754, 1.4973, 5.7178, 1.2743]\n"
+                ">>> np.poly(stability.jacobian(**BASE))[1:].round(4).tolist()\n"
+                "[5.754, 1.4973, 5.7178, 1.2743]"
+            ),
         ),
         FunctionSpec(
             "hurwitz",
@@ -155,6 +193,16 @@ def build() -> ModuleSpec:
             "printed Eq. 28 has a1 a4^2 where the determinant has a1^2 a4^2). "
             "The factored form keeps the sign of H3 next to the boundary p = 0, "
             "where a1 a2 a3 - a3^2 - a4 a1^2 cancels.",
+            examples=(
+                "H1 = a1; H3 < 0 at Vb = 4, so the slow equilibrium is unstable:\n"
+                "\n"
+                ">>> from beltmdsm.generated import stability\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> [round(float(h), 4) for h in stability.hurwitz(**BASE)]\n"
+                "[5.754, 2.8975, -25.6231, -32.6517]\n"
+                '>>> bool(stability.is_stable(**BASE, backend="numpy"))\n'
+                "False"
+            ),
         ),
         FunctionSpec(
             "eigenvalues",
@@ -164,6 +212,18 @@ def build() -> ModuleSpec:
             "lam : complex ndarray, shape (..., 4)\n    Tangential pair, then normal pair.",
             each(quads),
             **common,
+            examples=(
+                "The largest real part is `growth_rate`; the tangential pair comes first:\n"
+                "\n"
+                ">>> from beltmdsm.generated import stability\n"
+                ">>> from beltmdsm.generated.parameters import BASE\n"
+                ">>> lam = stability.eigenvalues(**BASE)\n"
+                '>>> sigma = stability.growth_rate(**BASE, backend="numpy")\n'
+                ">>> round(float(lam.real.max()), 4), round(float(sigma), 4)\n"
+                "(0.066, 0.066)\n"
+                ">>> [complex(round(z.real, 4), round(z.imag, 4)) for z in lam[:2]]\n"
+                "[(0.066+0.9978j), (0.066-0.9978j)]"
+            ),
         ),
         FunctionSpec(
             "growth_rate",

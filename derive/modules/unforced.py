@@ -15,6 +15,12 @@ from ._shared import (
 
 __all__ = ["build"]
 
+#: The imports of the Examples of `unforced`'s functions.
+_IMPORTS = (
+    ">>> from beltmdsm.generated import unforced\n"
+    ">>> from beltmdsm.generated.parameters import BASE\n"
+)
+
 
 def build() -> ModuleSpec:
     """Sect. 4.1: equilibrium, Jacobian and characteristic polynomial (Eqs. 9-12)."""
@@ -31,6 +37,12 @@ def build() -> ModuleSpec:
             LAWS_FC,
             notes="X1 = mu(Vb) g / omega1^2: the friction coefficient at the sliding "
             "speed Vb (mu_s for Coulomb's law, as printed).",
+            examples="At the base set, X1 = mu_s g / omega1^2 = 0.4 * 9.81 / 1^2 (Coulomb), and\n"
+            "X2 = (g / omega2^2)^(2/3) (Hertz-Damp):\n\n"
+            + _IMPORTS
+            + ">>> X1, Y1, X2, Y2 = unforced.equilibrium(**BASE)\n"
+            + ">>> round(float(X1), 4), round(float(X2), 4), round((9.81 / 0.5**2) ** (2 / 3), 4)\n"
+            + "(3.924, 11.5474, 11.5474)",
         ),
         FunctionSpec(
             "jacobian",
@@ -43,6 +55,12 @@ def build() -> ModuleSpec:
             STATE,
             STATE_DOCS,
             IN_CONTACT,
+            examples="Evaluated at the equilibrium, it is J^0 (Eq. 11):\n\n"
+            + _IMPORTS
+            + ">>> import numpy as np\n"
+            + ">>> J = unforced.jacobian(*unforced.equilibrium(**BASE), **BASE)\n"
+            + ">>> J.shape, bool(np.allclose(J, unforced.jacobian_at_equilibrium(**BASE)))\n"
+            + "((4, 4), True)",
         ),
         FunctionSpec(
             "jacobian_at_equilibrium",
@@ -54,6 +72,12 @@ def build() -> ModuleSpec:
             LAWS_FC,
             notes="The tangential damping entry is -(2 beta1 omega1 + g mu'(Vb)) with "
             "the slope of the friction law at the sliding speed (0 for Coulomb).",
+            examples="Block triangular; for Coulomb's law the tangential block is\n"
+            "[[0, 1], [-omega1^2, -2 beta1 omega1]], with no friction slope:\n\n"
+            + _IMPORTS
+            + ">>> J0 = unforced.jacobian_at_equilibrium(**BASE)\n"
+            + ">>> J0[:2, :2].round(4).tolist(), J0[2:, :2].tolist()\n"
+            + "([[0.0, 1.0], [-1.0, -0.2]], [[0.0, 0.0], [0.0, 0.0]])",
         ),
         FunctionSpec(
             "charpoly",
@@ -66,6 +90,13 @@ def build() -> ModuleSpec:
             LAWS_FC,
             notes="mu_s does not appear for Coulomb's law (the claim below Eq. 12); a "
             "friction law that depends on the speed enters through its slope mu'(Vb).",
+            examples="mu_s does not change the coefficients for Coulomb's law (the claim below\n"
+            "Eq. 12):\n\n"
+            + _IMPORTS
+            + ">>> [round(float(a), 4) for a in unforced.charpoly(**BASE)]\n"
+            + "[6.086, 3.4515, 6.1409, 1.2743]\n"
+            + '>>> [round(float(a), 4) for a in unforced.charpoly(**{**BASE, "mu_s": 0.1})]\n'
+            + "[6.086, 3.4515, 6.1409, 1.2743]",
         ),
         FunctionSpec(
             "eigenvalues",
@@ -81,6 +112,12 @@ def build() -> ModuleSpec:
             "tangential and a normal quadratic; their roots are computed "
             "without cancellation from factored discriminants, which keeps "
             "full accuracy at a double root (beta1 = 1).",
+            examples="For Coulomb's law the tangential pair is\n"
+            "-beta1 omega1 +- i omega1 sqrt(1 - beta1^2) = -0.1 +- 0.995i at the base set:\n\n"
+            + _IMPORTS
+            + ">>> lam = unforced.eigenvalues(**BASE)\n"
+            + ">>> [complex(round(z.real, 4), round(z.imag, 4)) for z in lam[:2]]\n"
+            + "[(-0.1+0.995j), (-0.1-0.995j)]",
         ),
         FunctionSpec(
             "critical_belt_speed",
@@ -102,6 +139,16 @@ def build() -> ModuleSpec:
             LAWS_FC,
             notes="Stribeck's law: Vb_c = v_s log(g (mu_s - mu_k) / (2 beta1 omega1 v_s)), "
             "solved by SymPy from p(Vb) = 0.",
+            examples="Stribeck's law at the base set:\n"
+            "v_s log(g (mu_s - mu_k) / (2 beta1 omega1 v_s)) = log(9.81 * 0.15 / 0.2);\n"
+            "Coulomb's law has none (NaN):\n\n"
+            + _IMPORTS
+            + '>>> round(float(unforced.critical_belt_speed(**BASE, friction="stribeck")), 4)\n'
+            + "1.9957\n"
+            + ">>> import math; round(math.log(9.81 * 0.15 / 0.2), 4)\n"
+            + "1.9957\n"
+            + ">>> float(unforced.critical_belt_speed(**BASE))\n"
+            + "nan",
         ),
     )
     return ModuleSpec(
