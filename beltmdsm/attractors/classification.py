@@ -113,8 +113,8 @@ class Attractor:
 
     See Also
     --------
-    classify : names the attractor a run settles on.
-    periodic_attractor : the fast path where it locks.
+    beltmdsm.attractors.classification.classify : names the attractor a run settles on.
+    beltmdsm.attractors.classification.periodic_attractor : the fast path where it locks.
 
     Examples
     --------
@@ -327,7 +327,7 @@ def periodic_attractor(
 
     See Also
     --------
-    classify : every kind, from the Lyapunov spectrum.
+    beltmdsm.attractors.classification.classify : every kind, from the Lyapunov spectrum.
 
     Examples
     --------

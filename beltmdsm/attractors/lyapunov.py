@@ -103,7 +103,7 @@ class Lyapunov:
 
     See Also
     --------
-    lyapunov : computes it.
+    beltmdsm.attractors.lyapunov.lyapunov : computes it.
 
     Examples
     --------
