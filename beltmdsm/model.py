@@ -243,6 +243,11 @@ class Model:
         coefficient at rest (``beltmdsm.generated.parameters.static_shortfall``: ``mu_k > mu_s``
         under ``static_kinetic``).
 
+    See Also
+    --------
+    beltmdsm.model.as_model : The model a public function's arguments describe.
+    beltmdsm.model.check_domain : The domain check of one parameter.
+
     Examples
     --------
     >>> m = Model(Vb=5, tension="clipped")
@@ -668,12 +673,26 @@ def excitation_period(model: Model) -> float:
     where ``Omega_t / Omega_n = a / b`` in lowest terms. A direction whose force is
     zero (``alpha = 0`` or ``Omega = 0``) is absent and does not enter.
 
+    Parameters
+    ----------
+    model : Model
+        A forced model.
+
+    Returns
+    -------
+    float
+        ``T`` [s].
+
     Raises
     ------
     ValueError
         Without excitation (no force in either direction: no phase to take), or for
         frequencies ``Omega_t``, ``Omega_n`` whose ratio is not a fraction with a
         denominator up to 1000 within 1e-12 (incommensurate: no common period).
+
+    See Also
+    --------
+    beltmdsm.model.excited_directions : The frequencies that enter.
 
     Examples
     --------

@@ -257,6 +257,11 @@ def lyapunov(
     beltmdsm.errors.StepTooSmall
         Where a run cannot go on at the tolerance.
 
+    See Also
+    --------
+    beltmdsm.attractors.classification.classify : Names the attractor from the spectrum.
+    beltmdsm.attractors.lyapunov.chunk_length : The chunks the frame is carried over.
+
     Examples
     --------
     >>> from beltmdsm import Model
