@@ -352,7 +352,7 @@ class Model:
 
         See Also
         --------
-        Model, as_model
+        beltmdsm.model.Model, beltmdsm.model.as_model
 
         Examples
         --------
