@@ -189,6 +189,27 @@ class ShorterPeriod(NoPeriodicResponse):
         The periods of the response found, a divisor of ``asked``.
     how : str
         How it was found (the message goes on with ``periods``).
+
+    Attributes
+    ----------
+    asked, periods, how : int, int, str
+        The arguments, for a caller that goes on with ``periods``.
+
+    See Also
+    --------
+    beltmdsm.errors.NoPeriodicResponse : The failure this one refines.
+
+    Examples
+    --------
+    A period-1 response also repeats after 2 periods; asked for period 2, the
+    message says which ``periods`` computes it:
+
+    >>> error = ShorterPeriod(2, 1, "the fixed point of the map has")
+    >>> print(error)  # doctest: +NORMALIZE_WHITESPACE
+    no response of minimal period 2 periods found: the fixed point of the map has
+    1 period, whose orbit repeats after 2 too (periods=1 computes it)
+    >>> error.periods, isinstance(error, NoPeriodicResponse)
+    (1, True)
     """
 
     def __init__(self, asked: int, periods: int, how: str) -> None:

@@ -122,12 +122,64 @@ def _owned(name: str, options: Mapping[str, str]) -> bool:
 
 
 def is_real(value: object) -> bool:
-    """True for a real number (int, float, numpy scalar), False for a bool or anything else."""
+    """True for a real number (int, float, numpy scalar), False for a bool or anything else.
+
+    Parameters
+    ----------
+    value : object
+        What a caller passed where a number belongs.
+
+    Returns
+    -------
+    bool
+        Whether ``value`` is a real number; ``True`` (a flag) is not one.
+
+    See Also
+    --------
+    beltmdsm.model.check_domain : Whether a number lies in a parameter's domain.
+
+    Examples
+    --------
+    A flag is no number, although ``float(True)`` is 1.0:
+
+    >>> is_real(2), is_real(1.5), is_real(True), is_real("2")
+    (True, True, False, False)
+    """
     return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
 
 
 def check_domain(name: str, value: float) -> str | None:
-    """What is wrong with ``value`` for parameter ``name`` ("must be > 0"), or None."""
+    """What is wrong with ``value`` for parameter ``name`` ("must be > 0"), or None.
+
+    Parameters
+    ----------
+    name : str
+        A parameter of Eq. (4) or of a law (``beltmdsm.model.MODEL_PARAMETERS``).
+    value : float
+        The value to check.
+
+    Returns
+    -------
+    str or None
+        The rule ``value`` breaks, worded to follow the parameter's name, or None where
+        it lies in the domain.
+
+    Raises
+    ------
+    KeyError
+        For a name that is no parameter.
+
+    See Also
+    --------
+    beltmdsm.model.Model : Checks every parameter this way when it is built.
+
+    Examples
+    --------
+    The belt speed ``Vb`` may be zero but not negative:
+
+    >>> check_domain("Vb", -1.0), check_domain("Vb", 0.0)
+    ('must be >= 0', None)
+    """
     domain = DOMAINS[name]
     return None if within(domain, value) else f"must be {DOMAIN_RULES[domain][2]}"
 
@@ -190,6 +242,11 @@ class Model:
         (it would be ignored), or a friction law's static bound below its slip
         coefficient at rest (``beltmdsm.generated.parameters.static_shortfall``: ``mu_k > mu_s``
         under ``static_kinetic``).
+
+    See Also
+    --------
+    beltmdsm.model.as_model : The model a public function's arguments describe.
+    beltmdsm.model.check_domain : The domain check of one parameter.
 
     Examples
     --------
@@ -295,7 +352,7 @@ class Model:
 
         See Also
         --------
-        Model, as_model
+        beltmdsm.model.Model, beltmdsm.model.as_model
 
         Examples
         --------
@@ -426,6 +483,39 @@ def require(model: Model, fact: str, analysis: str) -> None:
 
     The message names the analysis, the law and the property, in one line:
     ``"superposition: friction='stribeck': the slip-mode friction depends on X1'"``.
+
+    Parameters
+    ----------
+    model : Model
+        The model the analysis is asked for.
+    fact : str
+        A property of the model's laws, a key of
+        ``beltmdsm.generated.capabilities.FACTS``.
+    analysis : str
+        The analysis that needs the fact, named first in the message.
+
+    Raises
+    ------
+    Unsupported
+        Where the fact does not hold for the model's laws.
+    KeyError
+        For a fact that is not in the table.
+
+    See Also
+    --------
+    beltmdsm.model.Model.fact : Whether a fact holds, and why not.
+
+    Examples
+    --------
+    Coulomb's slip friction does not depend on the state; Stribeck's depends on the
+    slip speed, so an analysis that needs the first fact refuses it in one line:
+
+    >>> require(Model(friction="coulomb"), "slip_friction_state_independent", "sketch")
+    >>> try:
+    ...     require(Model(friction="stribeck"), "slip_friction_state_independent", "sketch")
+    ... except Unsupported as refusal:
+    ...     print(refusal)
+    sketch: friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' ...
     """
     holds, reason = model.fact(fact)
     if not holds:
@@ -441,6 +531,36 @@ def as_model(model: Model | Mapping[str, Any] | None = None, **kw: Any) -> Model
 
     A `Model` is passed through as it is (``kw`` replaces some of its entries); a
     mapping of parameters and options, or keywords, build one.
+
+    Parameters
+    ----------
+    model : Model or Mapping or None
+        A model, a mapping of parameters and options, or None for the defaults.
+    **kw
+        Parameters and options that replace or add to ``model``'s.
+
+    Returns
+    -------
+    Model
+        The checked model.
+
+    Raises
+    ------
+    ValueError
+        For an unknown name or a value outside its domain, naming the parameter.
+
+    See Also
+    --------
+    beltmdsm.model.Model : The checked parameter set.
+
+    Examples
+    --------
+    >>> as_model({"Vb": 2})["Vb"], as_model(Model(), Vb=3)["Vb"]
+    (2.0, 3.0)
+    >>> as_model(Vb=-1)
+    Traceback (most recent call last):
+    ...
+    ValueError: parameter 'Vb' must be >= 0; got -1...
     """
     if isinstance(model, Model):
         return model.replace(**kw) if kw else model
@@ -453,6 +573,27 @@ def initial_state(model: Model) -> NDArray[np.float64]:
     ``X1 = mu_s g / omega1^2``, ``X2 = (g / omega2*^2)^(2/3)`` (Hertz-Damp) or
     ``g / omega2^2`` (Kelvin-Voigt), zero velocities; the excitation is switched on at
     t = 0. For ``Vb > 0`` the mass starts sliding backwards relative to the belt.
+
+    Parameters
+    ----------
+    model : Model
+        The model whose equilibrium is taken.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``[X1, X1', X2, X2']``.
+
+    See Also
+    --------
+    beltmdsm.simulation.equilibrium_start : The start of a run near steady sliding.
+
+    Examples
+    --------
+    With the defaults ``mu_s = 0.4``, ``g = 9.81``, ``omega1 = 1``, ``X1 = 3.924``:
+
+    >>> [round(float(v), 4) for v in initial_state(Model())]
+    [3.924, 0.0, 11.5474, 0.0]
     """
     from beltmdsm.generated import unforced
 
@@ -463,7 +604,31 @@ def initial_state(model: Model) -> NDArray[np.float64]:
 def excited_directions(model: Model) -> list[float]:
     """The frequencies ``Omega_t``, ``Omega_n`` of the directions whose excitation force is
     present (``alpha != 0`` and ``Omega != 0``), tangential first: the one place that
-    decides whether Eq. (4) is forced."""
+    decides whether Eq. (4) is forced.
+
+    Parameters
+    ----------
+    model : Model
+        The model whose excitation is read.
+
+    Returns
+    -------
+    list of float
+        The frequencies of the excited directions, tangential first; empty where
+        Eq. (4) is autonomous.
+
+    See Also
+    --------
+    beltmdsm.model.is_autonomous : Whether the list is empty.
+    beltmdsm.model.excitation_period : The common period of the excited directions.
+
+    Examples
+    --------
+    >>> excited_directions(Model(alpha_t=2, Omega_t=6, alpha_n=0))
+    [6.0]
+    >>> excited_directions(Model(alpha=0.0))
+    []
+    """
     p = model.params
     return [p[f"Omega_{d}"] for d in ("t", "n") if p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0]
 
@@ -471,7 +636,27 @@ def excited_directions(model: Model) -> list[float]:
 def is_autonomous(model: Model) -> bool:
     """True where no excitation is present (``alpha_t Omega_t = alpha_n Omega_n = 0``):
     Eq. (4) is then autonomous, and its periodic orbits are self-excited cycles whose
-    period is found, not given (`beltmdsm.cycles.cycle`)."""
+    period is found, not given (`beltmdsm.cycles.cycle`).
+
+    Parameters
+    ----------
+    model : Model
+        The model whose excitation is read.
+
+    Returns
+    -------
+    bool
+        Whether no direction is excited.
+
+    See Also
+    --------
+    beltmdsm.model.excited_directions : The excited directions' frequencies.
+
+    Examples
+    --------
+    >>> is_autonomous(Model(alpha=0.0)), is_autonomous(Model())
+    (True, False)
+    """
     return not excited_directions(model)
 
 
@@ -488,12 +673,26 @@ def excitation_period(model: Model) -> float:
     where ``Omega_t / Omega_n = a / b`` in lowest terms. A direction whose force is
     zero (``alpha = 0`` or ``Omega = 0``) is absent and does not enter.
 
+    Parameters
+    ----------
+    model : Model
+        A forced model.
+
+    Returns
+    -------
+    float
+        ``T`` [s].
+
     Raises
     ------
     ValueError
         Without excitation (no force in either direction: no phase to take), or for
         frequencies ``Omega_t``, ``Omega_n`` whose ratio is not a fraction with a
         denominator up to 1000 within 1e-12 (incommensurate: no common period).
+
+    See Also
+    --------
+    beltmdsm.model.excited_directions : The frequencies that enter.
 
     Examples
     --------

@@ -241,6 +241,28 @@ def fastest_rate(model: Model) -> float:
     The largest of the excitation frequencies ``Omega_t``, ``Omega_n``, ``omega1`` and
     the moduli of the unforced eigenvalues at the equilibrium
     (`beltmdsm.generated.unforced.eigenvalues`: the stiffness and damping of the contact).
+
+    Parameters
+    ----------
+    model : Model
+        The model whose rates are compared.
+
+    Returns
+    -------
+    float
+        The fastest rate.
+
+    See Also
+    --------
+    beltmdsm.settings.run_bytes : The memory estimate this rate scales.
+
+    Examples
+    --------
+    With the defaults the contact's eigenvalue of modulus 5.6609 is the fastest (the
+    excitation turns at 4 rad/s); at ``Omega_t = 50`` the excitation is:
+
+    >>> round(fastest_rate(Model()), 4), fastest_rate(Model(Omega_t=50))
+    (5.6609, 50.0)
     """
     p = model.params
     lam = np.abs(unforced.eigenvalues(contact=model.contact, **p))
@@ -253,6 +275,31 @@ def run_bytes(model: Model, settings: SolverSettings) -> float:
     ``BYTES_PER_PERIOD`` per period ``2 pi / w`` of the fastest rate (`fastest_rate`),
     scaled by ``(1e-10 / tol)^(1/8)`` for a tolerance ``tol = min(rtol, atol)`` below
     1e-10, plus ``BYTES_PER_SAMPLE`` per sample (``t_end / dt``).
+
+    Parameters
+    ----------
+    model : Model
+        The model to run.
+    settings : SolverSettings
+        Its length ``t_end``, sampling step ``dt`` and tolerances.
+
+    Returns
+    -------
+    float
+        The estimate in bytes.
+
+    See Also
+    --------
+    beltmdsm.settings.check_request : Refuses a run above ``MAX_RUN_BYTES``.
+    beltmdsm.settings.fastest_rate : The rate that sets the steps per second.
+
+    Examples
+    --------
+    Both terms grow with ``t_end``: a run ten times as long holds ten times as much.
+
+    >>> short = run_bytes(Model(), SolverSettings(t_end=100.0))
+    >>> round(run_bytes(Model(), SolverSettings(t_end=1000.0)) / short, 9)
+    10.0
     """
     periods = settings.t_end * fastest_rate(model) / (2 * math.pi)
     tol = min(settings.rtol, settings.atol)
@@ -300,10 +347,31 @@ def check_finite(model: Model) -> None:
     ``X1 = mu_s g / omega1^2``) would be integrated as NaN; the parameters responsible
     are those whose base value (``beltmdsm.generated.parameters.BASE``) makes it finite.
 
+    Parameters
+    ----------
+    model : Model
+        The model whose start is checked.
+
     Raises
     ------
     beltmdsm.errors.Refused
         Naming those parameters.
+
+    See Also
+    --------
+    beltmdsm.settings.check_request : Calls this check first.
+
+    Examples
+    --------
+    ``omega1 = 1e-200`` puts the equilibrium ``X1 = mu_s g / omega1^2`` at inf; the
+    refusal names ``omega1``:
+
+    >>> check_finite(Model())
+    >>> try:
+    ...     check_finite(Model(omega1=1e-200))
+    ... except Refused as refusal:
+    ...     print(refusal.names, refusal)
+    ('omega1',) the unforced equilibrium (Eq. 9) has X1 = inf: beyond floating point ...
     """
     problem = _overflows(model)
     if problem is None:
@@ -327,12 +395,39 @@ def check_finite(model: Model) -> None:
 def check_request(model: Model, settings: SolverSettings) -> None:
     """Refuse a run that could not be read or would not fit, before it computes anything.
 
+    Parameters
+    ----------
+    model : Model
+        The model to run.
+    settings : SolverSettings
+        How it is to be run.
+
     Raises
     ------
     beltmdsm.errors.Refused
         Naming ``t_end`` where `run_bytes` exceeds `MAX_RUN_BYTES`, and ``dt`` where
         ``pi / dt`` is below `NYQUIST_MULTIPLE` times the fastest of ``Omega_t``,
         ``Omega_n`` and ``omega1`` (its harmonics would alias into the omega1 band).
+        Naming the parameters, as `check_finite` does, where the start overflows.
+
+    See Also
+    --------
+    beltmdsm.settings.run_bytes : The memory estimate checked here.
+    beltmdsm.settings.check_finite : The check of the start, made first.
+
+    Examples
+    --------
+    A step of 1 s samples up to pi rad/s, below 8 times ``Omega_t = 4`` rad/s; a
+    run of 10^5 s would hold several GiB:
+
+    >>> check_request(Model(), SolverSettings(t_end=10.0))
+    >>> for bad in (SolverSettings(dt=1.0), SolverSettings(t_end=1e5)):
+    ...     try:
+    ...         check_request(Model(), bad)
+    ...     except Refused as refusal:
+    ...         print(refusal.names, refusal)
+    ('dt',) dt = 1 s samples up to pi/dt = 3.142 rad/s, below 8 x Omega_t = 32 rad/s: ...
+    ('t_end',) t_end = 100000 s would hold about 6.1 GiB ...
     """
     check_finite(model)
     need = run_bytes(model, settings)

@@ -278,6 +278,37 @@ def equilibrium_start(model: Model) -> tuple[NDArray[np.float64] | None, float]:
     part), the equilibrium moved by `START_PERTURBATION` along the real part of that
     eigenvalue's eigenvector (its X1' component made positive); else ``(None, 0.0)``:
     the equilibrium itself (`beltmdsm.model.initial_state`).
+
+    Parameters
+    ----------
+    model : Model
+        The model to run.
+
+    Returns
+    -------
+    y0 : numpy.ndarray or None
+        The start ``[X1, X1', X2, X2']``, or None for the equilibrium itself.
+    size : float
+        How far ``y0`` is from the equilibrium (its largest component), 0.0 for None.
+
+    See Also
+    --------
+    beltmdsm.model.initial_state : The unforced equilibrium.
+    beltmdsm.simulation.START_PERTURBATION : The size of the step off it.
+
+    Examples
+    --------
+    Under Stribeck friction at ``Vb = 1.5`` steady sliding is unstable (eigenvalues
+    ``0.0642 +- 0.9979 i``), so a run starts 1e-6 off it; under Coulomb friction it is
+    stable, and a run starts on it:
+
+    >>> from beltmdsm.model import initial_state
+    >>> m = Model(friction="stribeck", alpha=0.0, Vb=1.5)
+    >>> y0, size = equilibrium_start(m)
+    >>> size, [round(float(v), 4) for v in (y0 - initial_state(m)) / size]
+    (1e-06, [1.0, 0.0642, 0.0, 0.0])
+    >>> equilibrium_start(Model(friction="coulomb", alpha=0.0, Vb=1.5))
+    (None, 0.0)
     """
     from beltmdsm.generated import unforced
 

@@ -113,8 +113,8 @@ class Attractor:
 
     See Also
     --------
-    classify : names the attractor a run settles on.
-    periodic_attractor : the fast path where it locks.
+    beltmdsm.attractors.classification.classify : names the attractor a run settles on.
+    beltmdsm.attractors.classification.periodic_attractor : the fast path where it locks.
 
     Examples
     --------
@@ -175,12 +175,41 @@ def rotation_number(samples: ArrayLike) -> tuple[float, float]:
     centre (module docstring), and its difference from the same average over the first
     half of the samples.
 
+    Parameters
+    ----------
+    samples : array_like, shape (n, 2) or (n, 4)
+        The states once per period, ``n >= 64``; the angle is taken in the plane of
+        the first two components.
+
+    Returns
+    -------
+    rotation : float
+        The turns per period, in ``(-1/2, 1/2]``.
+    error : float
+        The difference of the two averages, an estimate of its error.
+
     Raises
     ------
     ValueError
         For fewer than 64 samples (below that the two averages are not yet in their
         fast convergence, and their difference understates the error:
         benchmarks/bench_lyapunov.py).
+
+    See Also
+    --------
+    beltmdsm.attractors.classification.classify : Names a torus by this number.
+
+    Examples
+    --------
+    Samples that turn by ``rho = (sqrt(5) - 1) / 4`` (irrational) each period about
+    their centre: the weighted average finds ``rho`` to 1e-9 from 200 samples.
+
+    >>> rho = (np.sqrt(5) - 1) / 4
+    >>> k = np.arange(200)
+    >>> ring = np.c_[1 + np.cos(2 * np.pi * rho * k), np.sin(2 * np.pi * rho * k)]
+    >>> turns, error = rotation_number(ring)
+    >>> round(turns, 9), round(float(rho), 9), error < 1e-9
+    (0.309016994, 0.309016994, True)
     """
     y = np.asarray(samples, dtype=float)
     if y.ndim != 2 or y.shape[0] < 64:
@@ -298,7 +327,7 @@ def periodic_attractor(
 
     See Also
     --------
-    classify : every kind, from the Lyapunov spectrum.
+    beltmdsm.attractors.classification.classify : every kind, from the Lyapunov spectrum.
 
     Examples
     --------

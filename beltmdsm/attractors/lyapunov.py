@@ -103,7 +103,7 @@ class Lyapunov:
 
     See Also
     --------
-    lyapunov : computes it.
+    beltmdsm.attractors.lyapunov.lyapunov : computes it.
 
     Examples
     --------
@@ -167,6 +167,31 @@ def chunk_length(model: Model) -> tuple[float, int]:
     chunk the frame's directions separate by at most ``exp(2 SPREAD)`` (the exponents
     lie within the fastest rate of zero), so the smallest ``R_ii`` keeps about
     ``16 - 2 SPREAD / ln 10`` digits, 9 at `SPREAD` = 8.
+
+    Parameters
+    ----------
+    model : Model
+        The model whose exponents are computed.
+
+    Returns
+    -------
+    base : float
+        The base period [s].
+    n : int
+        The chunks per base period.
+
+    See Also
+    --------
+    beltmdsm.attractors.lyapunov.lyapunov : Integrates the frame chunk by chunk.
+
+    Examples
+    --------
+    With the defaults the base is the excitation period ``2 pi / 4``, and the
+    contact's rate 5.6609 gives ``ceil(1.5708 x 5.6609 / 8) = 2`` chunks:
+
+    >>> base, n = chunk_length(Model())
+    >>> round(base, 6), n
+    (1.570796, 2)
     """
     try:
         base = excitation_period(model)
@@ -231,6 +256,11 @@ def lyapunov(
         fewer than ``2 * BLOCKS`` base periods (`chunk_length`).
     beltmdsm.errors.StepTooSmall
         Where a run cannot go on at the tolerance.
+
+    See Also
+    --------
+    beltmdsm.attractors.classification.classify : Names the attractor from the spectrum.
+    beltmdsm.attractors.lyapunov.chunk_length : The chunks the frame is carried over.
 
     Examples
     --------

@@ -79,6 +79,32 @@ class CycleBranch(Branch):
 
     ``hopf``: the Hopf point it is born at (None where it starts from a cycle);
     ``criticality``: ``"supercritical"``, ``"subcritical"`` or None.
+
+    Attributes
+    ----------
+    hopf : HopfPoint or None
+        Where the branch is born.
+    criticality : str or None
+        Which side of the Hopf point the cycles exist on.
+    wall_s : float
+        The time the continuation took [s].
+
+    See Also
+    --------
+    beltmdsm.cycles.branch.cycle_branch : Computes it.
+    beltmdsm.continuation.branch_parts.Branch : The points, special points and parts.
+
+    Examples
+    --------
+    Stribeck friction: the cycles born at ``Vb = 1.9957`` exist above it, where steady
+    sliding is stable (subcritical), and they are unstable there:
+
+    >>> from beltmdsm.model import Model
+    >>> branch = cycle_branch(Model(friction="stribeck", alpha=0.0), lo=1.9, hi=2.1)
+    >>> branch  # doctest: +ELLIPSIS
+    CycleBranch(Vb: hopf 1.99572, subcritical -> range 2.1, ... points, 0 special points inside)
+    >>> round(branch.hopf.value, 4), any(point.stable for point in branch.points)
+    (1.9957, False)
     """
 
     hopf: HopfPoint | None = None
@@ -111,10 +137,40 @@ def hopf_cycle(hopf: HopfPoint, amplitude: float, *, backend: Backend | None = N
     Newton's method on the cycle's equations and ``x_k - x_eq,k(p) = -amplitude``, the
     parameter free, from the first-order cycle (module docstring).
 
+    Parameters
+    ----------
+    hopf : HopfPoint
+        The Hopf point.
+    amplitude : float
+        How far ``x_k`` on the section lies below steady sliding's.
+    backend : {"python", "numba", None}
+        The kernels; None: numba if installed.
+
+    Returns
+    -------
+    CyclePoint
+        The cycle, at the parameter value Newton's method finds.
+
     Raises
     ------
     NoPeriodicResponse
         Where Newton's method does not converge.
+
+    See Also
+    --------
+    beltmdsm.cycles.hopf.hopf_point : The Hopf point.
+
+    Examples
+    --------
+    A small cycle near the Stribeck Hopf point has the crossing's period
+    ``2 pi / omega_H = 2 pi``, and lies above ``Vb = 1.9957`` (subcritical):
+
+    >>> from beltmdsm.cycles.hopf import hopf_point
+    >>> from beltmdsm.model import Model
+    >>> hopf = hopf_point(Model(friction="stribeck", alpha=0.0), "Vb", 0.5, 5.0)
+    >>> small = hopf_cycle(hopf, 0.01)
+    >>> round(small.period, 4), round(small.amplitude, 6), small.value > hopf.value
+    (6.2832, 0.01, True)
     """
     cont, z = _hopf_start(hopf, float(amplitude), backend)
     x, T, p, img, J, _ = cont.correct(z, _amplitude_row(cont, hopf, amplitude))
@@ -181,12 +237,16 @@ def cycle_branch(
         Without excitation; its value of ``param`` is used only where the range holds
         no Hopf point (the branch then goes both ways through the cycle there).
     param : str
+        A model parameter.
     lo, hi : float
+        The range.
     backend : {"python", "numba", None}
+        The kernels; None: numba if installed.
 
     Returns
     -------
     CycleBranch
+        From the Hopf point, or both ways through the model's cycle.
 
     Raises
     ------
@@ -195,6 +255,26 @@ def cycle_branch(
     NoPeriodicResponse
         Where no cycle is found: none near the Hopf point, or, without a Hopf point in
         the range, none at the model's value (the message gives both reasons).
+
+    See Also
+    --------
+    beltmdsm.cycles.branch.cycle_branch_from : From a given cycle.
+    beltmdsm.cycles.hopf.hopf_point : Where the branch is born.
+
+    Examples
+    --------
+    Near the Stribeck Hopf point the period stays near ``2 pi`` while the amplitude
+    of ``X1'`` grows to 0.92 at ``Vb = 2.1``; a forced model is refused:
+
+    >>> from beltmdsm.model import Model
+    >>> branch = cycle_branch(Model(friction="stribeck", alpha=0.0), lo=1.9, hi=2.1)
+    >>> end = branch.points[-1]
+    >>> end.value, round(end.period, 3), round(end.amplitude, 2)
+    (2.1, 6.292, 0.92)
+    >>> cycle_branch(Model(), lo=1.0, hi=2.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: a branch of self-excited cycles needs a model without excitation
     """
     clock = time.perf_counter()
     if param not in MODEL_PARAMETERS:
@@ -252,10 +332,48 @@ def cycle_branch_from(
 ) -> CycleBranch:
     """The branch of cycles through ``start`` in ``param`` over ``[lo, hi]``, both ways.
 
+    Parameters
+    ----------
+    start : Cycle
+        A cycle (`beltmdsm.cycles.cycle.cycle`).
+    param : str
+        A model parameter.
+    lo, hi : float
+        The range, holding the start's value.
+    backend : {"python", "numba", None}
+        The kernels; None: numba if installed.
+
+    Returns
+    -------
+    CycleBranch
+        Without a Hopf point; its points run from ``lo`` to ``hi``.
+
     Raises
     ------
     ValueError
         For an unknown parameter, a bad range or a start outside it.
+
+    See Also
+    --------
+    beltmdsm.cycles.branch.cycle_branch : From a Hopf point.
+
+    Examples
+    --------
+    Both ways from the stick-slip cycle at ``Vb = 1.5`` (period 6.654 s): a faster belt
+    shortens it.
+
+    >>> from beltmdsm.cycles.cycle import cycle
+    >>> from beltmdsm.model import Model
+    >>> model = Model(friction="stribeck", alpha=0.0, Vb=1.5)
+    >>> x = np.array([2.902211983923, -2.033757676987, 11.547447572261, 0.0])
+    >>> start = cycle(model, guess=x, period=6.654341995080)
+    >>> branch = cycle_branch_from(start, "Vb", 1.48, 1.52)
+    >>> [(p.value, round(p.period, 4)) for p in (branch.points[0], branch.points[-1])]
+    [(1.48, 6.6672), (1.52, 6.6419)]
+    >>> cycle_branch_from(start, "Vb", 1.6, 1.7)
+    Traceback (most recent call last):
+    ...
+    ValueError: the start's Vb = 1.5 must lie in [1.6, 1.7]
     """
     clock = time.perf_counter()
     model = start.model

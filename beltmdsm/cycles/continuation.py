@@ -69,6 +69,33 @@ class CyclePoint:
     recorded : dict of str to float
         What the ``record`` callable of `beltmdsm.continuation.branch.branch` returned
         here (empty without one).
+
+    See Also
+    --------
+    beltmdsm.cycles.continuation.Continuation.point : Builds it.
+    beltmdsm.cycles.branch.CycleBranch : A branch of them.
+
+    Examples
+    --------
+    The stick-slip cycle of Stribeck friction at ``Vb = 1.5`` (period 6.654 s, one
+    stick phase of 1.52 s), corrected at ``p = 1.5`` fixed:
+
+    >>> from beltmdsm.model import Model
+    >>> x = np.array([2.902211983923, -2.033757676987, 11.547447572261, 0.0])
+    >>> T = 6.654341995080
+    >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
+    >>> cont = Continuation(flow, 1.45, 1.55, 1.0 + 11.55, T, x, 1.5)
+    >>> z, row = cont.z_of(x, T, 1.5), np.eye(6)[5]
+    >>> x, T, p, image, J, _ = cont.correct(z, lambda q: (float(q[5] - z[5]), row))
+    >>> tangent = cont.tangent(J, sign=1.0)
+    >>> tangent = tangent if tangent[-1] > 0 else -tangent
+    >>> first = cont.point(x, T, p, image, tangent[-1], J)
+    >>> round(first.period, 4), first.stable, first.n_sticks, round(first.stick_time, 3)
+    (6.6543, True, 1, 1.52)
+    >>> round(first.max_abs_multiplier, 4), round(abs(first.trivial_multiplier - 1), 9)
+    (0.2236, 0.0)
+    >>> round(first.observables(1.5)["max_abs_Vr"], 4)  # 1.5 + 2.0338
+    3.5338
     """
 
     value: float
@@ -131,7 +158,45 @@ class CyclePoint:
 
 
 class Continuation:
-    """Pseudo-arclength continuation in ``z = (x/sx, T/sT, p/sp)`` (module docstring)."""
+    """Pseudo-arclength continuation in ``z = (x/sx, T/sT, p/sp)`` (module docstring).
+
+    Parameters
+    ----------
+    flow : CycleFlow
+        The flow in the parameter.
+    lo, hi : float
+        The parameter's range (``sp`` is a tenth of it).
+    sx, sT : float
+        The scales of the state and the period.
+    x : array_like, shape (4,)
+        A state, where the section's gradient sets the scale of ``h``.
+    p : float
+        The parameter there.
+
+    See Also
+    --------
+    beltmdsm.cycles.continuation.walk : The walk along a branch.
+    beltmdsm.cycles.branch.cycle_branch : The public entry.
+
+    Examples
+    --------
+    From the stick-slip cycle at ``Vb = 1.5``, corrected with ``p`` fixed, a step of
+    0.05 along the tangent lands on the cycle at ``Vb = 1.5005``, slightly shorter:
+
+    >>> from beltmdsm.model import Model
+    >>> x = np.array([2.902211983923, -2.033757676987, 11.547447572261, 0.0])
+    >>> T = 6.654341995080
+    >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
+    >>> cont = Continuation(flow, 1.45, 1.55, 1.0 + 11.55, T, x, 1.5)
+    >>> z, row = cont.z_of(x, T, 1.5), np.eye(6)[5]
+    >>> x, T, p, image, J, _ = cont.correct(z, lambda q: (float(q[5] - z[5]), row))
+    >>> tangent = cont.tangent(J, sign=1.0)
+    >>> tangent = tangent if tangent[-1] > 0 else -tangent
+    >>> first = cont.point(x, T, p, image, tangent[-1], J)
+    >>> step = cont.trial(first, tangent, 0.05)
+    >>> round(step.value, 4), round(step.period, 4), step.n_sticks
+    (1.5005, 6.654, 1)
+    """
 
     def __init__(self, flow: CycleFlow, lo: float, hi: float, sx: float, sT: float, x, p):
         self.flow, self.lo, self.hi = flow, lo, hi
@@ -281,7 +346,53 @@ def _at_value(cont, point, value):
 
 
 def walk(cont, first, tangent, period0):
-    """Continue from ``first`` along ``tangent`` to the range's end or a failure."""
+    """Continue from ``first`` along ``tangent`` to the range's end or a failure.
+
+    Parameters
+    ----------
+    cont : Continuation
+        The continuation.
+    first : CyclePoint
+        The first cycle.
+    tangent : numpy.ndarray, shape (6,)
+        The unit tangent there, in the direction to go.
+    period0 : float
+        The reference period of `PERIOD_LIMIT`.
+
+    Returns
+    -------
+    points : list of CyclePoint
+        From ``first`` on.
+    special : list of SpecialPoint
+        The special points passed, and how the walk ended (``"range"`` or ``"failed"``).
+
+    See Also
+    --------
+    beltmdsm.cycles.stick.cross_stick : Crosses the stick onset on the way.
+    beltmdsm.cycles.branch.cycle_branch : Walks both ways from a Hopf point or a cycle.
+
+    Examples
+    --------
+    Up from the stick-slip cycle at ``Vb = 1.5`` to the end of the range, 1.55: the
+    cycle stays stable, with one stick phase, its period shortening to 6.624 s:
+
+    >>> from beltmdsm.model import Model
+    >>> x = np.array([2.902211983923, -2.033757676987, 11.547447572261, 0.0])
+    >>> T = 6.654341995080
+    >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
+    >>> cont = Continuation(flow, 1.45, 1.55, 1.0 + 11.55, T, x, 1.5)
+    >>> z, row = cont.z_of(x, T, 1.5), np.eye(6)[5]
+    >>> x, T, p, image, J, _ = cont.correct(z, lambda q: (float(q[5] - z[5]), row))
+    >>> tangent = cont.tangent(J, sign=1.0)
+    >>> tangent = tangent if tangent[-1] > 0 else -tangent
+    >>> first = cont.point(x, T, p, image, tangent[-1], J)
+    >>> points, special = walk(cont, first, tangent, T)
+    >>> [(s.kind, s.value) for s in special]
+    [('range', 1.55)]
+    >>> end = points[-1]
+    >>> end.value, round(end.period, 3), end.stable, end.n_sticks
+    (1.55, 6.624, True, 1)
+    """
     points, special = [first], []
     ds = STEP_FIRST
     while True:

@@ -52,7 +52,36 @@ def split_multipliers(M, f) -> tuple[complex, NDArray[np.complex128]]:
     """``(trivial, others)``: the trivial multiplier of a cycle's monodromy ``M``, the one
     whose eigenvector is closest in direction to the field ``f`` on the section (as
     `beltmdsm.cycles.cycle` picks it: near a Hopf point another multiplier lies
-    as close to 1), and the others by decreasing modulus."""
+    as close to 1), and the others by decreasing modulus.
+
+    Parameters
+    ----------
+    M : numpy.ndarray, shape (4, 4)
+        The monodromy of a cycle.
+    f : numpy.ndarray, shape (4,)
+        The field at the cycle's state on the section.
+
+    Returns
+    -------
+    trivial : complex
+        The multiplier of the flow's direction (1 up to the error of the cycle).
+    others : numpy.ndarray, complex
+        The rest, by decreasing modulus.
+
+    See Also
+    --------
+    beltmdsm.cycles.flow.CycleFlow.image : The monodromy and the field.
+
+    Examples
+    --------
+    Along a shear that keeps the flow's direction ``f = e_1`` the trivial multiplier is
+    1, although another one (0.999) lies closer to 1 than the largest of the rest:
+
+    >>> M = np.array([[1.0, 0.5], [0.0, 0.999]])
+    >>> trivial, others = split_multipliers(M, np.array([1.0, 0.0]))
+    >>> trivial, np.round(others, 6).tolist()
+    ((1+0j), [(0.999+0j)])
+    """
     mu, V = np.linalg.eig(M)
     cosines = np.abs(np.conj(V).T @ (f / np.linalg.norm(f))) / np.linalg.norm(V, axis=0)
     k = int(np.argmax(cosines))
@@ -62,7 +91,39 @@ def split_multipliers(M, f) -> tuple[complex, NDArray[np.complex128]]:
 
 @dataclass
 class FlowImage:
-    """The end of a run of length ``T`` from ``x``: ``phi``, ``d phi/dx`` and ``f(phi)``."""
+    """The end of a run of length ``T`` from ``x``: ``phi``, ``d phi/dx`` and ``f(phi)``.
+
+    Attributes
+    ----------
+    state : numpy.ndarray, shape (4,)
+        ``phi_T(x; p)``.
+    monodromy : numpy.ndarray, shape (4, 4), or None
+        ``d phi/dx`` (None where not asked for).
+    field : numpy.ndarray, shape (4,)
+        The field at ``state``.
+    run : Run
+        The run itself.
+
+    See Also
+    --------
+    beltmdsm.cycles.flow.CycleFlow.image : Returns it.
+
+    Examples
+    --------
+    The stick-slip cycle of Stribeck friction at ``Vb = 1.5`` (period 6.654 s) closes
+    on itself; its stick phase forgets the velocity's perturbation, so a change of
+    ``X1`` comes back unchanged and one of ``X1'`` comes back as one of ``X1`` alone
+    (the first two columns of the monodromy, in modulus):
+
+    >>> from beltmdsm.model import Model
+    >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
+    >>> x = np.array([2.902211983923, -2.033757676987, 11.547447572261, 0.0])
+    >>> image = flow.image(x, 6.654341995080, 1.5)
+    >>> bool(np.abs(image.state - x).max() < 1e-9)
+    True
+    >>> np.round(np.abs(image.monodromy[:, :2]), 3).tolist()
+    [[1.0, 0.765], [0.0, 0.0], [0.0, 0.0], [0.0, 0.0]]
+    """
 
     state: NDArray[np.float64]
     monodromy: NDArray[np.float64] | None
@@ -79,6 +140,24 @@ class Observables:
     ``X1' = Vb`` holds exactly while sticking); ``amplitude``: half the range of
     ``X1'``; ``n_sticks``, ``n_reversals``: stick phases and direct crossings of
     ``Vr = 0``; ``stick_time``: the time stuck per period [s].
+
+    See Also
+    --------
+    beltmdsm.cycles.flow.orbit_observables : Reads them from a run.
+
+    Examples
+    --------
+    On the stick-slip cycle at ``Vb = 1.5`` the fastest the mass moves is the belt's
+    speed, while stuck (1.52 s of the 6.654 s period):
+
+    >>> from beltmdsm.model import Model
+    >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
+    >>> x = np.array([2.902211983923, -2.033757676987, 11.547447572261, 0.0])
+    >>> seen = orbit_observables(flow.run(x, 6.654341995080, 1.5), 1.5)
+    >>> [round(v, 4) for v in seen.velocity_range], seen.max_relative_velocity
+    ([-2.0338, 1.5], 0.0)
+    >>> seen.n_sticks, seen.n_reversals, round(seen.stick_time, 3)
+    (1, 0, 1.52)
     """
 
     x1_range: tuple[float, float]
@@ -109,7 +188,36 @@ def _extreme(tr, T, i, sign):
 
 
 def orbit_observables(run: Run, Vb: float) -> Observables:
-    """The `Observables` of a run over one period of a cycle."""
+    """The `Observables` of a run over one period of a cycle.
+
+    Parameters
+    ----------
+    run : Run
+        A run over one period, from ``t = 0``.
+    Vb : float
+        The belt speed.
+
+    Returns
+    -------
+    Observables
+        The extremes refined on the dense output, the stick phases and reversals.
+
+    See Also
+    --------
+    beltmdsm.cycles.flow.Observables : What it reads.
+
+    Examples
+    --------
+    The stick-slip cycle at ``Vb = 1.5``: ``X1`` spans 0.81 to 4.88, half the range of
+    ``X1'`` is ``(1.5 + 2.0338) / 2``:
+
+    >>> from beltmdsm.model import Model
+    >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
+    >>> x = np.array([2.902211983923, -2.033757676987, 11.547447572261, 0.0])
+    >>> seen = orbit_observables(flow.run(x, 6.654341995080, 1.5), 1.5)
+    >>> [round(v, 4) for v in seen.x1_range], round(seen.amplitude, 4)
+    ([0.8117, 4.8822], 1.7669)
+    """
     tr = run.trajectory
     T = tr.t_end
     x1 = (_extreme(tr, T, 0, -1), _extreme(tr, T, 0, 1))
@@ -134,6 +242,36 @@ class CycleFlow:
     k : int
         The coordinate whose smallest value is the section (1: ``X1'``).
     backend : {"python", "numba", None}
+        The kernels; None: numba if installed.
+
+    Raises
+    ------
+    ValueError
+        For a model with excitation.
+
+    See Also
+    --------
+    beltmdsm.cycles.continuation.Continuation : Continues cycles on it.
+    beltmdsm.cycles.flow.FlowImage : What `image` returns.
+
+    Examples
+    --------
+    The stick-slip cycle at ``Vb = 1.5`` lies on the section (the minimum of ``X1'``:
+    its rate is 0 there) and has multipliers 1 (the flow's direction) and 0.2236:
+
+    >>> from beltmdsm.model import Model
+    >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
+    >>> x = np.array([2.902211983923, -2.033757676987, 11.547447572261, 0.0])
+    >>> round(abs(flow.section(x, 1.5)), 9)
+    0.0
+    >>> image = flow.image(x, 6.654341995080, 1.5)
+    >>> trivial, others = split_multipliers(image.monodromy, image.field)
+    >>> round(abs(trivial), 6), round(float(abs(others[0])), 4)
+    (1.0, 0.2236)
+    >>> CycleFlow(Model(), "Vb")
+    Traceback (most recent call last):
+    ...
+    ValueError: a cycle's flow needs a model without excitation (alpha = 0)
     """
 
     _KEPT = 8

@@ -59,7 +59,23 @@ PAIRS = ("tangential", "normal")
 
 
 class NoHopfPoint(ValueError):
-    """No complex pair of steady sliding crosses the imaginary axis in the range."""
+    """No complex pair of steady sliding crosses the imaginary axis in the range.
+
+    See Also
+    --------
+    beltmdsm.cycles.hopf.hopf_point : Raises it.
+
+    Examples
+    --------
+    Under Coulomb friction the tangential pair of steady sliding is the damped
+    oscillator's, ``-0.1 +- 0.995 i``, whatever the belt speed: no Hopf point.
+
+    >>> try:
+    ...     hopf_point(Model(alpha=0.0), "Vb", 0.5, 5.0)
+    ... except NoHopfPoint as refusal:
+    ...     print(refusal)
+    no Hopf point of steady sliding for Vb in [0.5, 5] (coulomb friction, ...
+    """
 
 
 @dataclass(frozen=True)
@@ -89,6 +105,23 @@ class HopfPoint:
         Steady sliding at ``p_H`` (Eq. 9).
     model : Model
         At ``p_H``.
+
+    See Also
+    --------
+    beltmdsm.cycles.hopf.hopf_points : Finds them.
+    beltmdsm.cycles.branch.hopf_cycle : The small cycle born there.
+
+    Examples
+    --------
+    Stribeck friction: the falling friction coefficient undoes the tangential damping
+    at ``Vb = 1.9957``, where the tangential pair crosses at ``omega1 = 1`` rad/s;
+    steady sliding is unstable below (slower belt, steeper fall):
+
+    >>> h = hopf_point(Model(friction="stribeck", alpha=0.0), "Vb", 0.5, 5.0)
+    >>> round(h.value, 4), h.pair, round(h.frequency, 6), round(h.period, 4)
+    (1.9957, 'tangential', 1.0, 6.2832)
+    >>> h.unstable_side, round(h.transversality, 4), h.accuracy
+    ('below', -0.1, 1e-10)
     """
 
     param: str
@@ -131,7 +164,39 @@ class HopfPoint:
 
 
 def eigenvalues_over(model: Model, param: str, values) -> NDArray[np.complex128]:
-    """``(len(values), 4)`` eigenvalues of ``J^0`` with ``param`` at ``values`` (one call)."""
+    """``(len(values), 4)`` eigenvalues of ``J^0`` with ``param`` at ``values`` (one call).
+
+    Parameters
+    ----------
+    model : Model
+        The other parameters and the options.
+    param : str
+        A model parameter.
+    values : array_like
+        Its values.
+
+    Returns
+    -------
+    numpy.ndarray, shape (len(values), 4)
+        The tangential pair, then the normal pair, at each value.
+
+    See Also
+    --------
+    beltmdsm.cycles.hopf.hopf_points : Scans them for a crossing.
+
+    Examples
+    --------
+    Under Coulomb friction the tangential pair is that of the damped oscillator,
+    ``-beta1 omega1 +- i omega1 sqrt(1 - beta1^2) = -0.1 +- 0.995 i``; under Stribeck
+    friction at ``Vb = 1.5`` it has crossed into the right half plane:
+
+    >>> lam = eigenvalues_over(Model(alpha=0.0), "Vb", [1.5, 3.0])
+    >>> np.round(lam[:, 0], 4).tolist()
+    [(-0.1+0.995j), (-0.1+0.995j)]
+    >>> lam = eigenvalues_over(Model(friction="stribeck", alpha=0.0), "Vb", [1.5, 3.0])
+    >>> np.round(lam[:, 0], 4).tolist()
+    [(0.0642+0.9979j), (-0.0634+0.998j)]
+    """
     kw = model.arguments(unforced.eigenvalues)
     kw[param] = np.asarray(values, dtype=float)
     return np.asarray(unforced.eigenvalues(**kw)).reshape(-1, 4)
@@ -163,6 +228,23 @@ def hopf_points(model: Model, param: str, lo: float, hi: float) -> list[HopfPoin
     ------
     ValueError
         For an unknown parameter or a bad range (naming it).
+
+    See Also
+    --------
+    beltmdsm.cycles.hopf.hopf_point : The lowest one, or a refusal.
+    beltmdsm.cycles.hopf.eigenvalues_over : The eigenvalues scanned.
+
+    Examples
+    --------
+    >>> model = Model(friction="stribeck", alpha=0.0)
+    >>> [round(h.value, 4) for h in hopf_points(model, "Vb", 0.5, 5.0)]
+    [1.9957]
+    >>> hopf_points(model, "Vb", 3.0, 5.0)
+    []
+    >>> hopf_points(model, "Vb", -1.0, 5.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: parameter 'Vb' must be >= 0; got -1.0
     """
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")
@@ -195,6 +277,16 @@ def hopf_points(model: Model, param: str, lo: float, hi: float) -> list[HopfPoin
 def hopf_point(model: Model, param: str, lo: float, hi: float) -> HopfPoint:
     """The Hopf point of steady sliding in ``param`` over ``[lo, hi]`` (the lowest, if several).
 
+    Parameters
+    ----------
+    model, param, lo, hi
+        As for `hopf_points`.
+
+    Returns
+    -------
+    HopfPoint
+        The lowest in the range.
+
     Raises
     ------
     NoHopfPoint
@@ -202,6 +294,16 @@ def hopf_point(model: Model, param: str, lo: float, hi: float) -> HopfPoint:
         real parts at its ends.
     ValueError
         For an unknown parameter or a bad range.
+
+    See Also
+    --------
+    beltmdsm.cycles.hopf.hopf_points : Every one in the range.
+
+    Examples
+    --------
+    >>> h = hopf_point(Model(friction="stribeck", alpha=0.0), "Vb", 0.5, 5.0)
+    >>> round(h.value, 4), round(abs(h.eigenvalue.real), 9)
+    (1.9957, 0.0)
     """
     found = hopf_points(model, param, lo, hi)
     if found:

@@ -65,7 +65,40 @@ _DEEP = 1e-3
 
 
 def require_autonomous(model: Model, analysis: str = "a self-excited cycle") -> None:
-    """Raise ValueError (one line) unless the model has no excitation and a moving belt."""
+    """Raise ValueError (one line) unless the model has no excitation and a moving belt.
+
+    Parameters
+    ----------
+    model : Model
+        The model.
+    analysis : str
+        The analysis that asks, named in the message.
+
+    Raises
+    ------
+    ValueError
+        For a forced model (its periodic responses have the excitation's period).
+    beltmdsm.errors.NoPeriodicResponse
+        At ``Vb = 0``: nothing feeds a self-excited cycle.
+
+    See Also
+    --------
+    beltmdsm.model.is_autonomous : Whether the model is forced.
+
+    Examples
+    --------
+    >>> require_autonomous(Model(alpha=0.0, Vb=1.5))
+    >>> try:
+    ...     require_autonomous(Model(), "demo")
+    ... except ValueError as refusal:
+    ...     print(refusal)
+    demo: the model is forced (alpha_t Omega_t or alpha_n Omega_n is not zero): ...
+    >>> try:
+    ...     require_autonomous(Model(alpha=0.0, Vb=0.0), "demo")
+    ... except NoPeriodicResponse as refusal:
+    ...     print(refusal)
+    no self-excited cycle at Vb = 0: the belt is at rest and nothing feeds one (demo)
+    """
     if not is_autonomous(model):
         raise ValueError(
             f"{analysis}: the model is forced (alpha_t Omega_t or alpha_n Omega_n is not "
@@ -83,12 +116,58 @@ def section_direction(model: Model) -> int:
     """``sgn(Vr)`` while sliding steadily, ``-sgn(Vb)``: the slip mode code of the section.
 
     The section is the extremum of ``X1'`` on this side: a minimum for ``Vb > 0``.
+
+    Parameters
+    ----------
+    model : Model
+        The model.
+
+    Returns
+    -------
+    int
+        -1 (slip back) for ``Vb > 0``, else 1.
+
+    See Also
+    --------
+    beltmdsm.cycles.seed.stick_end : The edge of the friction cone on this side.
+
+    Examples
+    --------
+    >>> section_direction(Model(alpha=0.0, Vb=1.5)), section_direction(Model(alpha=0.0, Vb=0.0))
+    (-1, 1)
     """
     return -1 if model["Vb"] > 0 else 1
 
 
 def unstable_pair(model: Model) -> tuple[complex, NDArray[np.complex128]]:
-    """The eigenvalue of steady sliding with the largest real part and its eigenvector."""
+    """The eigenvalue of steady sliding with the largest real part and its eigenvector.
+
+    Parameters
+    ----------
+    model : Model
+        Without excitation.
+
+    Returns
+    -------
+    eigenvalue : complex
+        Of `beltmdsm.generated.unforced.jacobian_at_equilibrium`.
+    eigenvector : numpy.ndarray, shape (4,), complex
+        Unit 2-norm (numpy's normalisation).
+
+    See Also
+    --------
+    beltmdsm.cycles.hopf.eigenvalues_over : The closed-form eigenvalues.
+
+    Examples
+    --------
+    Stribeck friction at ``Vb = 1.5``, below its Hopf point (1.9957): the tangential
+    pair grows at 0.0642 1/s, and its eigenvector has no normal component (``J^0`` is
+    block triangular):
+
+    >>> lam, v = unstable_pair(Model(friction="stribeck", alpha=0.0, Vb=1.5))
+    >>> round(lam.real, 4), round(abs(lam.imag), 4), np.round(np.abs(v[2:]), 12).tolist()
+    (0.0642, 0.9979, [0.0, 0.0])
+    """
     J = np.array(
         unforced.jacobian_at_equilibrium(**model.arguments(unforced.jacobian_at_equilibrium)),
         dtype=float,
@@ -212,6 +291,29 @@ def stick_end(model: Model) -> NDArray[np.float64] | None:
     The edge's switching function (`beltmdsm.generated.hybrid.surfaces`, ``stick_back`` for
     ``Vb > 0``) is affine in ``X1`` (the spring's force); its root is found by two
     secant steps and checked.
+
+    Parameters
+    ----------
+    model : Model
+        The model.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        ``[X1, X1', X2, X2']``, or None.
+
+    See Also
+    --------
+    beltmdsm.cycles.seed.seed_cycle : Starts there where steady sliding is stable.
+
+    Examples
+    --------
+    At ``Vb = 1.5`` the spring and the damper moving with the belt pull the mass
+    back with ``omega1^2 X1 + 2 beta1 omega1 Vb``, held by ``mu_s g``: the stick ends at
+    ``X1 = (0.4 x 9.81 - 2 x 0.1 x 1.5) / 1 = 3.624``:
+
+    >>> [round(float(v), 4) for v in stick_end(Model(friction="stribeck", alpha=0.0, Vb=1.5))]
+    [3.624, 1.5, 11.5474, 0.0]
     """
     sw = Switching(model)
     index = SURFACE_INDEX["stick_back" if section_direction(model) < 0 else "stick_forward"]

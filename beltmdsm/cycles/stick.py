@@ -27,12 +27,87 @@ __all__ = ["measure", "stick_ahead", "locate", "cross_stick", "sticks"]
 
 
 def sticks(img) -> int:
+    """The stick phases entered in a cycle's run.
+
+    Parameters
+    ----------
+    img : FlowImage
+        The end of a run over one period (`beltmdsm.cycles.flow.CycleFlow.image`).
+
+    Returns
+    -------
+    int
+        How many switches enter stick.
+
+    See Also
+    --------
+    beltmdsm.cycles.flow.orbit_observables : Counts them too, with the reversals.
+
+    Examples
+    --------
+    The cycle at ``Vb = 1.5`` (period 6.654 s) sticks once a period:
+
+    >>> from beltmdsm.cycles.flow import CycleFlow
+    >>> from beltmdsm.model import Model
+    >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
+    >>> x = np.array([2.902211983923, -2.033757676987, 11.547447572261, 0.0])
+    >>> sticks(flow.image(x, 6.654341995080, 1.5, monodromy=False))
+    1
+    """
     return sum(1 for _, _, new in img.run.events if Mode(int(new)) == Mode.STICK)
 
 
 def stick_ahead(cont, points, ds) -> float | None:
     """The arclength ahead at which `measure` of the last two cycles (one side),
-    extrapolated, reaches 0, where that is within ``2 ds``; else None."""
+    extrapolated, reaches 0, where that is within ``2 ds``; else None.
+
+    Parameters
+    ----------
+    cont : Continuation
+        The continuation.
+    points : list of CyclePoint
+        The branch so far; the last two are extrapolated.
+    ds : float
+        The current arclength step.
+
+    Returns
+    -------
+    float or None
+        The scaled arclength from the last point to the onset.
+
+    See Also
+    --------
+    beltmdsm.cycles.stick.cross_stick : Crosses it.
+
+    Examples
+    --------
+    On the subcritical Stribeck branch (born at ``Vb = 1.9957``) the sliding cycles'
+    largest ``Vr`` rises to 0 at ``Vb = 2.9004``: two sliding cycles just below it,
+    continued in a `beltmdsm.cycles.continuation.Continuation` as
+    `beltmdsm.cycles.branch.cycle_branch` does:
+
+    >>> import math
+    >>> from beltmdsm.cycles.continuation import Continuation
+    >>> from beltmdsm.cycles.flow import CycleFlow
+    >>> from beltmdsm.model import Model
+    >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
+    >>> x1 = [3.033451549774, -2.881366210888, 11.547447572261, 0.0]
+    >>> x2 = [3.040910146986, -2.919995555294, 11.547447572261, 0.0]
+    >>> cont = Continuation(flow, 1.99, 3.0, 12.5474, 2 * math.pi, x2, 2.889932446323)
+    >>> def cycle_at(x, T, p):  # the cycle at p fixed, and the tangent towards a larger p
+    ...     z, row = cont.z_of(x, T, p), np.eye(6)[5]
+    ...     x, T, p, image, J, _ = cont.correct(z, lambda q: (float(q[5] - z[5]), row))
+    ...     tangent = cont.tangent(J, sign=1.0)
+    ...     tangent = tangent if tangent[-1] > 0 else -tangent
+    ...     return cont.point(x, T, p, image, tangent[-1], J), tangent
+    >>> q1, _ = cycle_at(x1, 6.342539720071, 2.869734936938)
+    >>> q2, tangent = cycle_at(x2, 6.343660474058, 2.889932446323)
+    >>> round(measure(q1, False), 4), round(measure(q2, False), 4)
+    (-0.0254, -0.0086)
+    >>> ahead = stick_ahead(cont, [q1, q2], 0.1)
+    >>> round(ahead, 3), stick_ahead(cont, [q1, q2], 0.01)  # too far for a step of 0.01
+    (0.102, None)
+    """
     if len(points) < 2 or (points[-2].n_sticks > 0) != (points[-1].n_sticks > 0):
         return None
     (q1, q2) = points[-2:]
@@ -49,7 +124,35 @@ def measure(point, sticking: bool) -> float:
     """How far a cycle is from the stick onset, negative on its side and 0 there: the
     largest Vr of a sliding cycle; minus the squared stick time of a stick-slip one
     (the stick phase of a grazing-sliding orbit lasts as the square root of the
-    distance)."""
+    distance).
+
+    Parameters
+    ----------
+    point : CyclePoint or Observables
+        A cycle (its ``max_relative_velocity`` and ``stick_time``).
+    sticking : bool
+        Whether the cycle has a stick phase.
+
+    Returns
+    -------
+    float
+        Negative on the cycle's side of the onset, 0 at it.
+
+    See Also
+    --------
+    beltmdsm.cycles.stick.stick_ahead : Extrapolates it.
+
+    Examples
+    --------
+    A sliding cycle whose largest ``Vr`` is -0.0086, and a stick-slip one stuck for
+    1.52 s a period (the cycle at ``Vb = 1.5``):
+
+    >>> from types import SimpleNamespace
+    >>> measure(SimpleNamespace(max_relative_velocity=-0.0086, stick_time=0.0), False)
+    -0.0086
+    >>> round(measure(SimpleNamespace(max_relative_velocity=0.0, stick_time=1.52), True), 4)
+    -2.3104
+    """
     return -(point.stick_time**2) if sticking else point.max_relative_velocity
 
 
@@ -69,8 +172,53 @@ def locate(cont, prev, tangent, s_onset):
     through the nearest two. The distances shrink by 4 until it is below
     ``LOCATE_TOL / 10``.
 
-    Returns ``(value, accuracy, nearest point of prev's side, scaled state at the
-    onset)``, or None where fewer than three such cycles are found.
+    Parameters
+    ----------
+    cont : Continuation
+        The continuation.
+    prev : CyclePoint
+        The last cycle before the onset.
+    tangent : numpy.ndarray, shape (6,)
+        The unit tangent there.
+    s_onset : float
+        The estimate of `stick_ahead`.
+
+    Returns
+    -------
+    tuple or None
+        ``(value, accuracy, nearest point of prev's side, scaled state at the
+        onset)``, or None where fewer than three such cycles are found.
+
+    See Also
+    --------
+    beltmdsm.cycles.stick.cross_stick : Goes on to the other side.
+
+    Examples
+    --------
+    On the subcritical Stribeck branch (born at ``Vb = 1.9957``) the sliding cycles'
+    largest ``Vr`` rises to 0 at ``Vb = 2.9004``: two sliding cycles just below it,
+    continued in a `beltmdsm.cycles.continuation.Continuation` as
+    `beltmdsm.cycles.branch.cycle_branch` does:
+
+    >>> import math
+    >>> from beltmdsm.cycles.continuation import Continuation
+    >>> from beltmdsm.cycles.flow import CycleFlow
+    >>> from beltmdsm.model import Model
+    >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
+    >>> x1 = [3.033451549774, -2.881366210888, 11.547447572261, 0.0]
+    >>> x2 = [3.040910146986, -2.919995555294, 11.547447572261, 0.0]
+    >>> cont = Continuation(flow, 1.99, 3.0, 12.5474, 2 * math.pi, x2, 2.889932446323)
+    >>> def cycle_at(x, T, p):  # the cycle at p fixed, and the tangent towards a larger p
+    ...     z, row = cont.z_of(x, T, p), np.eye(6)[5]
+    ...     x, T, p, image, J, _ = cont.correct(z, lambda q: (float(q[5] - z[5]), row))
+    ...     tangent = cont.tangent(J, sign=1.0)
+    ...     tangent = tangent if tangent[-1] > 0 else -tangent
+    ...     return cont.point(x, T, p, image, tangent[-1], J), tangent
+    >>> q1, _ = cycle_at(x1, 6.342539720071, 2.869734936938)
+    >>> q2, tangent = cycle_at(x2, 6.343660474058, 2.889932446323)
+    >>> value, accuracy, near, z_onset = locate(cont, q2, tangent, stick_ahead(cont, [q1, q2], 0.1))
+    >>> round(value, 6), accuracy < 1e-6, near.n_sticks
+    (2.900393, True, 0)
     """
     sticking = prev.n_sticks > 0
     s_g, D = s_onset, min(0.5 * s_onset, 4e-3)
@@ -122,8 +270,60 @@ def cross_stick(cont, prev, tangent, s_onset):
     one along the branch so far goes first (the branch goes on), the other second (it
     turns back at the onset: a nonsmooth fold).
 
-    Returns ``(special point, nearest point before, first point after, tangent)``, or
-    None.
+    Parameters
+    ----------
+    cont : Continuation
+        The continuation.
+    prev : CyclePoint
+        The last cycle before the onset.
+    tangent : numpy.ndarray, shape (6,)
+        The unit tangent there.
+    s_onset : float
+        The estimate of `stick_ahead`.
+
+    Returns
+    -------
+    tuple or None
+        ``(special point, nearest point before, first point after, tangent)``, or
+        None.
+
+    See Also
+    --------
+    beltmdsm.cycles.stick.locate : The onset itself.
+    beltmdsm.cycles.continuation.walk : Calls it where a step changes the stick phases.
+
+    Examples
+    --------
+    On the subcritical Stribeck branch (born at ``Vb = 1.9957``) the sliding cycles'
+    largest ``Vr`` rises to 0 at ``Vb = 2.9004``: two sliding cycles just below it,
+    continued in a `beltmdsm.cycles.continuation.Continuation` as
+    `beltmdsm.cycles.branch.cycle_branch` does:
+
+    >>> import math
+    >>> from beltmdsm.cycles.continuation import Continuation
+    >>> from beltmdsm.cycles.flow import CycleFlow
+    >>> from beltmdsm.model import Model
+    >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
+    >>> x1 = [3.033451549774, -2.881366210888, 11.547447572261, 0.0]
+    >>> x2 = [3.040910146986, -2.919995555294, 11.547447572261, 0.0]
+    >>> cont = Continuation(flow, 1.99, 3.0, 12.5474, 2 * math.pi, x2, 2.889932446323)
+    >>> def cycle_at(x, T, p):  # the cycle at p fixed, and the tangent towards a larger p
+    ...     z, row = cont.z_of(x, T, p), np.eye(6)[5]
+    ...     x, T, p, image, J, _ = cont.correct(z, lambda q: (float(q[5] - z[5]), row))
+    ...     tangent = cont.tangent(J, sign=1.0)
+    ...     tangent = tangent if tangent[-1] > 0 else -tangent
+    ...     return cont.point(x, T, p, image, tangent[-1], J), tangent
+    >>> q1, _ = cycle_at(x1, 6.342539720071, 2.869734936938)
+    >>> q2, tangent = cycle_at(x2, 6.343660474058, 2.889932446323)
+    >>> found = cross_stick(cont, q2, tangent, stick_ahead(cont, [q1, q2], 0.1))
+    >>> onset, before, after, new_tangent = found
+    >>> onset.kind, round(onset.value, 6), onset.stable_before, onset.stable_after
+    ('stick_onset', 2.900393, False, True)
+    >>> after.n_sticks, bool(new_tangent[-1] < 0)  # stick-slip cycles, back to lower Vb
+    (1, True)
+    >>> print(onset.detail)  # doctest: +NORMALIZE_WHITESPACE
+    the largest Vr reaches 0: a stick phase appears (grazing-sliding);
+    the branch turns back there (a nonsmooth fold)
     """
     sticking = prev.n_sticks > 0
     located = locate(cont, prev, tangent, s_onset)

@@ -34,6 +34,37 @@ def check_status(code: int, t: float, where: str, rtol: float, atol: float) -> N
     time, a state that is not finite, more than `_dop853.MAX_STEPS` steps).
 
     ``where`` says where the run is (``"in mode slip_back"``, ``"in the normal motion"``).
+
+    Parameters
+    ----------
+    code : int
+        The status of ``advance`` (``_dop853.STATUS_*``).
+    t : float
+        The time reached [s].
+    where : str
+        Where the run is, for the message.
+    rtol, atol : float
+        The run's tolerances, for the message and the exception.
+
+    Raises
+    ------
+    beltmdsm.errors.StepTooSmall
+        For a status of failure, naming the time, ``where`` and the tolerances.
+
+    See Also
+    --------
+    beltmdsm.errors.StepTooSmall : The failure raised.
+
+    Examples
+    --------
+    The end of a step passes; a state that is no longer finite is a failure:
+
+    >>> check_status(_dop853.STATUS_END, 3.0, "in mode slip_back", 1e-10, 1e-10)
+    >>> try:
+    ...     check_status(_dop853.STATUS_NOT_FINITE, 3.0, "in mode slip_back", 1e-10, 1e-10)
+    ... except StepTooSmall as failure:
+    ...     print(failure)
+    the state is not finite (NaN or an overflow) at t = 3 s in mode slip_back: ...
     """
     if code == _dop853.STATUS_STEP_TOO_SMALL:
         raise StepTooSmall(
@@ -68,6 +99,29 @@ class StepSegment:
 
     Built over the steps of all segments of a run (they follow each other in time,
     each switch starting a new step), it evaluates the whole trajectory at once.
+
+    Parameters
+    ----------
+    t_steps, h_steps : numpy.ndarray
+        The start and length of each step [s].
+    y_steps, F_steps : numpy.ndarray
+        The state at each step's start and the coefficients of its dense output.
+
+    See Also
+    --------
+    beltmdsm.integrate.trajectory.Trajectory : Holds it as its ``evaluator``.
+
+    Examples
+    --------
+    A run's evaluator gives back its start, the unforced equilibrium at rest:
+
+    >>> from beltmdsm.settings import SolverSettings
+    >>> run = integrate_events(Model(Vb=1.5), SolverSettings(t_end=2.0, backend="python"))
+    >>> dense = run.trajectory.evaluator
+    >>> isinstance(dense, StepSegment)
+    True
+    >>> [round(float(v), 4) for v in dense(np.array([0.0]))[:, 0]]
+    [3.924, 0.0, 11.5474, 0.0]
     """
 
     __slots__ = ("t_steps", "h_steps", "y_steps", "F_steps")
@@ -123,6 +177,26 @@ def integrate_events(
     beltmdsm.errors.StepTooSmall
         Where the step size falls below the rounding of the time (tolerances too
         loose or too tight for the field there), naming the time and the mode.
+
+    See Also
+    --------
+    beltmdsm.integrate.superposition.integrate_superposed : The other integrator.
+    beltmdsm.simulation.simulate : A run with its summary, from the public API.
+
+    Examples
+    --------
+    A run restarted from its own state at ``t = 2`` (``y0``, ``t0``) ends where it
+    ends, to the tolerances (1e-10):
+
+    >>> from beltmdsm.settings import SolverSettings
+    >>> settings = SolverSettings(t_end=4.0, backend="python")
+    >>> run = integrate_events(Model(Vb=1.5), settings)
+    >>> middle = run.trajectory.state(np.array([2.0]))[:, 0]
+    >>> rest = integrate_events(Model(Vb=1.5), settings, y0=middle, t0=2.0)
+    >>> end = np.array([4.0])
+    >>> gap = np.abs(rest.trajectory.state(end) - run.trajectory.state(end)).max()
+    >>> run.status, bool(gap < 1e-8)
+    ('done', True)
     """
     sw = Switching(model)
     advance = _compiled.advance("vector_field", model, settings.backend)

@@ -46,6 +46,29 @@ def normal_key(model: Model) -> tuple:
     tangential response to its force) and the tangential excitation response take,
     as the generated code declares them, with the contact and tension laws: ``Vb``
     and ``mu_s`` are not among them, so a sweep over either shares one normal motion.
+
+    Parameters
+    ----------
+    model : Model
+        The model.
+
+    Returns
+    -------
+    tuple
+        The model's options, then ``(name, value)`` of each parameter the normal
+        motion depends on, sorted by name.
+
+    See Also
+    --------
+    beltmdsm.integrate.normal.normal_motion : Keeps normal motions by this key.
+
+    Examples
+    --------
+    >>> key = normal_key(Model(Vb=1.5))
+    >>> key[:3], [name for name, _ in key[3]][:4]
+    (('coulomb', 'hertz_damp', 'allowed'), ['Omega_n', 'Omega_t', 'alpha_n', 'alpha_t'])
+    >>> key == normal_key(Model(Vb=3.0, mu_s=0.3)), key == normal_key(Model(alpha_n=1.0))
+    (True, False)
     """
     p = model.params
     names = _normal_names(model)
@@ -89,6 +112,47 @@ class NormalMotion:
         Uniform times, ``GRID_STEP`` apart (the segment boundaries added).
     on_grid : float array (6, n)
         ``z, z', X2, X2'`` and the excitation response ``zf, zf'`` at ``grid``.
+
+    Parameters
+    ----------
+    model : Model
+        The model (its normal motion does not depend on ``Vb`` or ``mu_s``).
+    t_end : float
+        The end [s].
+    rtol, atol : float
+        The integrator's tolerances.
+    y0_normal : iterable of float
+        The normal start ``X2, X2'``.
+    backend : {"numba", "python"}, optional
+        The kernels; None: numba if installed.
+    grid_step : float
+        The step of ``grid`` [s].
+
+    Raises
+    ------
+    beltmdsm.errors.StepTooSmall
+        Where the integrator fails (`beltmdsm.integrate.events.check_status`).
+
+    See Also
+    --------
+    beltmdsm.integrate.normal.normal_motion : The same, kept for reuse.
+    beltmdsm.integrate.superposition.Superposition : Builds the tangential motion on it.
+
+    Examples
+    --------
+    A normal excitation of ``alpha_n = 8`` lifts the mass off the belt: contact and
+    flight alternate, each switch a lift-off or a touchdown.
+
+    >>> from beltmdsm.model import initial_state
+    >>> model = Model(Vb=1.5, alpha_n=8.0)
+    >>> y0 = initial_state(model)
+    >>> motion = NormalMotion(model, 3.0, 1e-10, 1e-10, y0[2:], backend="python")
+    >>> [round(float(t), 4) for t in motion.switch_t]
+    [0.0, 0.7236, 1.5773, 2.4522, 2.8034, 3.0]
+    >>> motion.switch_kind
+    ['lift_off', 'touch_down', 'lift_off', 'touch_down']
+    >>> [mode.name for mode in motion.switch_mode][:2]
+    ['SLIP_BACK', 'FLIGHT']
     """
 
     def __init__(
@@ -230,6 +294,32 @@ def normal_motion(
 
     ``mu_s`` and ``Vb`` do not enter the normal motion or ``z``: a sweep over either
     reuses one.
+
+    Parameters
+    ----------
+    model, t_end, rtol, atol, y0_normal, backend
+        As for `NormalMotion`.
+
+    Returns
+    -------
+    NormalMotion
+        The one kept for these arguments, or a new one.
+
+    See Also
+    --------
+    beltmdsm.integrate.normal.normal_key : What the motion depends on.
+    beltmdsm.integrate.normal.clear_cache : Forgets the kept ones.
+
+    Examples
+    --------
+    Runs at two belt speeds share one normal motion:
+
+    >>> from beltmdsm.model import initial_state
+    >>> model = Model(Vb=1.5)
+    >>> y0 = initial_state(model)[2:]
+    >>> first = normal_motion(model, 2.0, 1e-10, 1e-10, y0, backend="python")
+    >>> first is normal_motion(model.replace(Vb=3.0), 2.0, 1e-10, 1e-10, y0, backend="python")
+    True
     """
     key = (
         normal_key(model),
@@ -250,5 +340,20 @@ def normal_motion(
 
 
 def clear_cache() -> None:
-    """Forget the normal motions kept for the last parameter sets."""
+    """Forget the normal motions kept for the last parameter sets.
+
+    See Also
+    --------
+    beltmdsm.integrate.normal.normal_motion : Keeps them.
+
+    Examples
+    --------
+    >>> from beltmdsm.model import initial_state
+    >>> model = Model(Vb=1.5)
+    >>> y0 = initial_state(model)[2:]
+    >>> first = normal_motion(model, 2.0, 1e-10, 1e-10, y0, backend="python")
+    >>> clear_cache()
+    >>> first is normal_motion(model, 2.0, 1e-10, 1e-10, y0, backend="python")
+    False
+    """
     _KEEP.clear()

@@ -64,7 +64,35 @@ FACTS = ("slip_friction_state_independent", "one_way_coupling")
 
 def check_applicable(model: Model) -> None:
     """Raise `NotApplicable` where a fact of `FACTS` fails for the model's laws (the
-    law and the property, `beltmdsm.model.require`)."""
+    law and the property, `beltmdsm.model.require`).
+
+    Parameters
+    ----------
+    model : Model
+        The model to run.
+
+    Raises
+    ------
+    NotApplicable
+        Naming the law and the property it lacks.
+
+    See Also
+    --------
+    beltmdsm.model.require : The check of one fact.
+    beltmdsm.integrate.superposition.FACTS : The facts checked.
+
+    Examples
+    --------
+    Coulomb's slip friction is a constant times the contact force; Stribeck's depends
+    on the slip speed, so the tangential equation is not linear in a slip mode:
+
+    >>> check_applicable(Model(friction="coulomb"))
+    >>> try:
+    ...     check_applicable(Model(friction="stribeck"))
+    ... except NotApplicable as refusal:
+    ...     print(refusal)
+    superposition: friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' ...
+    """
     for fact in FACTS:
         try:
             require(model, fact, "superposition")
@@ -127,6 +155,26 @@ class TangentialRun:
     n_zeno : int
     final : ndarray (4,)
         The state where the run stopped.
+
+    See Also
+    --------
+    beltmdsm.integrate.superposition.Superposition.run : Returns it.
+
+    Examples
+    --------
+    Coulomb friction at ``Vb = 1.5`` from rest: slip back and slip forward alternate,
+    each segment starting where the last ends.
+
+    >>> from beltmdsm.integrate.normal import normal_motion
+    >>> from beltmdsm.model import initial_state
+    >>> model = Model(Vb=1.5)
+    >>> y0 = initial_state(model)
+    >>> normal = normal_motion(model, 4.0, 1e-10, 1e-10, y0[2:], backend="python")
+    >>> tangential = Superposition(model, normal, "python").run(0.0, y0[0], y0[1], 4.0)
+    >>> [mode.name for mode in tangential.modes[:3]], tangential.starts[1:] == tangential.ends[:-1]
+    (['SLIP_BACK', 'SLIP_FORWARD', 'SLIP_BACK'], True)
+    >>> round(tangential.starts[1], 6), [round(float(v), 4) for v in tangential.final]
+    (0.166042, [2.2746, 3.5045, 9.7574, -1.5597])
     """
 
     segments: _Segments = field(repr=False)
@@ -147,14 +195,34 @@ class Superposition:
     Parameters
     ----------
     model : Model
+        The model; its laws must have the facts of `FACTS`.
     normal : beltmdsm.integrate.normal.NormalMotion
+        The normal motion the tangential one is built on.
     backend : {"python", "numba", None}
+        The kernels; None: numba if installed.
 
     Raises
     ------
     NotApplicable
         Where the model's laws lack a fact of `FACTS`, and at undamped resonance,
         where the excitation response has no closed form.
+
+    See Also
+    --------
+    beltmdsm.integrate.superposition.integrate_superposed : A whole run on it.
+    beltmdsm.integrate.superposition.TangentialRun : What `run` returns.
+
+    Examples
+    --------
+    Undamped (``beta1 = 0``) and excited at its natural frequency
+    (``Omega_t = omega1``), the tangential response grows like ``t sin t``: it has no
+    closed form of the kind used here.
+
+    >>> try:
+    ...     Superposition(Model(beta1=0.0, Omega_t=1.0), None)
+    ... except NotApplicable as refusal:
+    ...     print(refusal)
+    no closed-form excitation response at undamped resonance (beta1 = 0, Omega_t = omega1)
     """
 
     def __init__(
@@ -299,11 +367,45 @@ def integrate_superposed(
     ``progress``, if given, is called with the time reached after every segment of
     the tangential motion (the normal motion is integrated first, in one call).
 
+    Parameters
+    ----------
+    model : Model
+        The model to run; its laws must have the facts of `FACTS`.
+    settings : SolverSettings
+        ``t_end``, ``rtol``, ``atol``, ``on_contact_loss``, ``backend``.
+    y0 : array_like, optional
+        The state at ``t = 0``; default the unforced equilibrium at rest.
+    progress : callable, optional
+        Called with the time reached.
+
+    Returns
+    -------
+    Run
+        With ``solver="superposition"``.
+
     Raises
     ------
     NotApplicable
         Where the closed forms do not exist (the reason); the event-driven
         integrator applies there.
+
+    See Also
+    --------
+    beltmdsm.integrate.events.integrate_events : The general integrator.
+
+    Examples
+    --------
+    The closed forms and the event-driven integrator agree on the same run, to the
+    tolerances (1e-10), switch for switch:
+
+    >>> from beltmdsm.integrate.events import integrate_events
+    >>> settings = SolverSettings(t_end=4.0, backend="python")
+    >>> closed = integrate_superposed(Model(Vb=1.5), settings)
+    >>> stepped = integrate_events(Model(Vb=1.5), settings)
+    >>> end = np.array([4.0])
+    >>> gap = np.abs(closed.trajectory.state(end) - stepped.trajectory.state(end)).max()
+    >>> closed.solver, len(closed.events) == len(stepped.events), bool(gap < 1e-7)
+    ('superposition', True, True)
     """
     check_applicable(model)
     y = initial_state(model) if y0 is None else np.array(y0, dtype=float)

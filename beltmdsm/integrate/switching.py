@@ -47,10 +47,23 @@ from ..model import Model
 __all__ = ["Mode", "MODE_NAMES", "SURFACE_INDEX", "TIE_ULPS", "EVENT_KINDS", "Switching"]
 
 Mode = IntEnum("Mode", {name.upper(): code for name, code in hybrid.MODE_CODES.items()})
-Mode.__doc__ = (
-    "Modes of Eq. (4) as a hybrid system (`beltmdsm.generated.hybrid.MODE_CODES`); the "
-    "slip codes are the friction direction sgn(Vr) of Eq. (3)."
-)
+Mode.__doc__ = """Modes of Eq. (4) as a hybrid system (`beltmdsm.generated.hybrid.MODE_CODES`).
+
+The slip codes are the friction direction sgn(Vr) of Eq. (3); a run's segments and
+events carry these codes.
+
+See Also
+--------
+beltmdsm.integrate.switching.MODE_NAMES : The short names used in tables.
+beltmdsm.integrate.switching.Switching : Which mode follows a switch.
+
+Examples
+--------
+>>> [(mode.name, int(mode)) for mode in Mode][:3]
+[('SLIP_BACK', -1), ('STICK', 0), ('SLIP_FORWARD', 1)]
+>>> MODE_NAMES[Mode.STICK], Mode(1) is Mode.SLIP_FORWARD
+('stick', True)
+"""
 #: Short names used in summaries and tables.
 MODE_NAMES = {
     Mode.SLIP_BACK: "slip-",
@@ -83,6 +96,7 @@ class Switching:
     Parameters
     ----------
     model : Model
+        The parameters, contact law and tension law whose rules these are.
 
     Attributes
     ----------
@@ -96,6 +110,24 @@ class Switching:
         ``Mode -> (watch, dirs, targets)``: the indices of the surfaces that end the
         mode (int64 array), their crossing directions (float array) and the guard
         targets (mode names or rule names) of `beltmdsm.generated.hybrid.GUARDS`.
+
+    See Also
+    --------
+    beltmdsm.integrate.zeno.Zeno : What an accumulation of switches means.
+    beltmdsm.integrate.events.integrate_events : The integrator these rules drive.
+
+    Examples
+    --------
+    At rest on the unforced equilibrium, a belt at rest leaves the mass stuck
+    (``Vr = 0`` inside the friction cone); at ``Vb = 4`` it slips backward
+    (``Vr = -4``):
+
+    >>> from beltmdsm.model import initial_state
+    >>> for Vb in (0.0, 4.0):
+    ...     model = Model(Vb=Vb, alpha=0.0)
+    ...     print(Vb, Switching(model).initial_mode(0.0, initial_state(model)).name)
+    0.0 STICK
+    4.0 SLIP_BACK
     """
 
     def __init__(self, model: Model) -> None:

@@ -28,6 +28,34 @@ def cone_holds(sw: Switching, t: float, y: ArrayLike) -> bool:
 
     Chattering on ``Vr = 0`` converges to Filippov's sliding motion only there; a run
     that chatters outside the cone is not chattering in exact arithmetic, and stops.
+
+    Parameters
+    ----------
+    sw : Switching
+        The model's switching rules.
+    t : float
+        The time [s].
+    y : array_like
+        The state ``[X1, X1', X2, X2']``.
+
+    Returns
+    -------
+    bool
+        Whether the state lies in the friction cone.
+
+    See Also
+    --------
+    beltmdsm.integrate.zeno.Zeno : Enters stick where this holds.
+
+    Examples
+    --------
+    At the unforced equilibrium static friction holds the mass; without friction
+    (``mu_s = 0``) the cone is empty:
+
+    >>> from beltmdsm.model import Model, initial_state
+    >>> y = initial_state(Model(Vb=0.0, alpha=0.0))
+    >>> [cone_holds(Switching(Model(Vb=0.0, alpha=0.0, mu_s=mu_s)), 0.0, y) for mu_s in (0.4, 0.0)]
+    [True, False]
     """
     h, tol = sw.ties(t, y)
     return bool(h[1] + h[2] > tol[1] + tol[2] and h[1] >= -tol[1] and h[2] >= -tol[2])
@@ -37,6 +65,33 @@ class Zeno:
     """The last `ZENO_SWITCHES` switch times of a run, and what an accumulation means.
 
     ``entered`` counts the chattering limits resolved as stick (a run's ``n_zeno``).
+
+    Parameters
+    ----------
+    sw : Switching
+        The model's switching rules.
+
+    See Also
+    --------
+    beltmdsm.integrate.zeno.cone_holds : Where chattering becomes stick.
+
+    Examples
+    --------
+    Eight switches on ``Vr = 0`` within 1e-11 s at a state inside the friction cone:
+    the eighth enters stick; at a state outside it, the run stops with a message.
+
+    >>> from beltmdsm.model import Model, initial_state
+    >>> model = Model(Vb=0.0, alpha=0.0)
+    >>> y = initial_state(model)
+    >>> zeno = Zeno(Switching(model))
+    >>> modes = [zeno.after(1 + k * 1e-12, "vr_zero", "relative_velocity", y, Mode.SLIP_BACK)
+    ...          for k in range(8)]
+    >>> modes[-1].name, zeno.entered
+    ('STICK', 1)
+    >>> zeno = Zeno(Switching(model.replace(mu_s=0.0)))
+    >>> print([zeno.after(1 + k * 1e-12, "vr_zero", "relative_velocity", y, Mode.SLIP_BACK)
+    ...        for k in range(8)][-1])
+    switches accumulate on the relative_velocity surface at t = 1 s (8 within 7e-12 s); stopped
     """
 
     def __init__(self, sw: Switching) -> None:
