@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -250,6 +250,7 @@ class Superposition:
                 "(beta1 = 0, Omega_t = omega1)"
             )
         self.sw = sw = Switching(model)
+        self.backend = backend
         self.scan = _compiled.scan(model, backend)
         self.watch = {}
         for mode in (Mode.SLIP_BACK, Mode.SLIP_FORWARD, Mode.STICK):
@@ -276,6 +277,16 @@ class Superposition:
             sw.surfaces.args,
             sw.rates.args,
         )
+
+    def __getstate__(self) -> dict[str, Any]:
+        # the scan is a function compiled (or being compiled) for the model's laws, which
+        # does not pickle: made again where the object arrives (results travel to other
+        # processes with their period map)
+        return {k: v for k, v in self.__dict__.items() if k != "scan"}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        self.scan = _compiled.scan(self.model, self.backend)
 
     def start(self, t0: float, X1: float, Y1: float) -> tuple[float, ...]:
         """``(X1, X1', zf, zf', z, z')`` at ``t0``: the state at a switch and the two

@@ -24,6 +24,7 @@ import importlib
 import os
 import pkgutil
 import re
+import shutil
 from pathlib import Path
 
 DOCS = Path(__file__).resolve().parents[1]
@@ -259,7 +260,11 @@ def notebook_index() -> str:
 def generate(app, config=None) -> None:
     """config-inited: write the generated pages and links before Sphinx looks for its
     source files (at builder-inited, a fresh checkout's api.rst would be written after
-    the search, and autosummary would find no page to write stubs for)."""
+    the search, and autosummary would find no page to write stubs for). The stubs of
+    an earlier build go first: autosummary writes the current ones and removes none, and
+    a stub of a module that moved (``generated.tableau`` became
+    ``beltmdsm.generated.tableau``) would fail the build."""
+    shutil.rmtree(DOCS / "reference" / "gen", ignore_errors=True)
     _write(DOCS / "reference" / "api.rst", api_page())
     _write(DOCS / "reference" / "generated.rst", generated_page())
     _write(DOCS / "reference" / "laws.rst", laws_page())
