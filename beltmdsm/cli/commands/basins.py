@@ -16,8 +16,8 @@ from ..flags import (
     model_parent,
     number,
     output_file,
-    register,
 )
+from ..running import register
 
 _AXES = ("X1", "Y1", "X2", "Y2")
 

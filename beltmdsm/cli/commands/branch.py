@@ -15,8 +15,8 @@ from ..flags import (
     periods_parent,
     range_flags,
     range_from,
-    register,
 )
+from ..running import register
 
 
 def add(commands, name: str) -> None:

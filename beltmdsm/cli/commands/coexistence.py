@@ -15,9 +15,9 @@ from ..flags import (
     output_file,
     range_flags,
     range_from,
-    register,
     swept,
 )
+from ..running import register
 
 
 def add(commands, name: str) -> None:

@@ -14,7 +14,7 @@ import argparse
 import re
 from pathlib import Path
 
-from ..flags import register
+from ..running import register
 
 _PACKAGE = Path(__file__).resolve().parents[2]
 

@@ -17,9 +17,9 @@ from ..flags import (
     periods_parent,
     range_flags,
     range_from,
-    register,
     swept,
 )
+from ..running import register
 
 
 def add(commands, name: str) -> None:

@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..flags import json_parent, model_from, model_parent, number, register
+from ..flags import json_parent, model_from, model_parent, number
+from ..running import register
 
 
 def add(commands, name: str) -> None:

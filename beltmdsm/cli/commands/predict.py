@@ -6,7 +6,8 @@ import argparse
 import json
 
 from ...settings import MAX_VB_POINTS
-from ..flags import POSITIVE, integer, json_parent, model_from, model_parent, register
+from ..flags import POSITIVE, integer, json_parent, model_from, model_parent
+from ..running import register
 
 
 def add(commands, name: str) -> None:

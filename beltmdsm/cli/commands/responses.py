@@ -12,8 +12,8 @@ from ..flags import (
     lock_parent,
     model_from,
     model_parent,
-    register,
 )
+from ..running import register
 
 
 def add(commands, name: str) -> None:

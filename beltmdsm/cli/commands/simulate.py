@@ -12,10 +12,10 @@ from ..flags import (
     npz_file,
     number,
     output_file,
-    register,
     settings_from,
     solver_parent,
 )
+from ..running import register
 
 
 def add(commands, name: str) -> None:

@@ -19,11 +19,11 @@ from ..flags import (
     model_parent,
     number,
     output_file,
-    register,
     settings_from,
     solver_parent,
     swept,
 )
+from ..running import register
 
 
 def add(commands, name: str) -> None:

@@ -12,8 +12,8 @@ from ..flags import (
     executor_parent,
     model_parent,
     output_file,
-    register,
 )
+from ..running import register
 
 
 def add(commands, name: str) -> None:
