@@ -277,7 +277,7 @@ def equilibrium_start(model: Model) -> tuple[NDArray[np.float64] | None, float]:
     eigenvalue of `beltmdsm.generated.unforced.jacobian_at_equilibrium` with a positive real
     part), the equilibrium moved by `START_PERTURBATION` along the real part of that
     eigenvalue's eigenvector (its X1' component made positive); else ``(None, 0.0)``:
-    the equilibrium itself (`beltmdsm.model.initial_state`).
+    the equilibrium itself (`beltmdsm.excitation.initial_state`).
 
     Parameters
     ----------
@@ -293,7 +293,7 @@ def equilibrium_start(model: Model) -> tuple[NDArray[np.float64] | None, float]:
 
     See Also
     --------
-    beltmdsm.model.initial_state : The unforced equilibrium.
+    beltmdsm.excitation.initial_state : The unforced equilibrium.
     beltmdsm.simulation.START_PERTURBATION : The size of the step off it.
 
     Examples
@@ -302,7 +302,7 @@ def equilibrium_start(model: Model) -> tuple[NDArray[np.float64] | None, float]:
     ``0.0642 +- 0.9979 i``), so a run starts 1e-6 off it; under Coulomb friction it is
     stable, and a run starts on it:
 
-    >>> from beltmdsm.model import initial_state
+    >>> from beltmdsm.excitation import initial_state
     >>> m = Model(friction="stribeck", alpha=0.0, Vb=1.5)
     >>> y0, size = equilibrium_start(m)
     >>> size, [round(float(v), 4) for v in (y0 - initial_state(m)) / size]
@@ -312,7 +312,7 @@ def equilibrium_start(model: Model) -> tuple[NDArray[np.float64] | None, float]:
     """
     from beltmdsm.generated import unforced
 
-    from .model import initial_state
+    from .excitation import initial_state
 
     p = model.params
     excited = any(p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0 for d in ("t", "n"))

@@ -39,9 +39,10 @@ import numpy as np
 
 from beltmdsm.cycles.cycle import cycle
 from beltmdsm.cycles.seed import SEED_AMPLITUDE, unstable_pair
+from beltmdsm.excitation import initial_state
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.integrate.switching import Switching
-from beltmdsm.model import Model, initial_state
+from beltmdsm.model import Model
 from beltmdsm.settings import SolverSettings
 
 SPEEDS = (0.5, 1.0, 1.5, 1.9)

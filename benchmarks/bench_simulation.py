@@ -44,8 +44,9 @@ from scipy.integrate import solve_ivp
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from beltmdsm.continuation.band import floquet_band  # noqa: E402
+from beltmdsm.excitation import initial_state
 from beltmdsm.integrate import superposition  # noqa: E402
-from beltmdsm.model import Model, initial_state  # noqa: E402
+from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.run.spectra import peak_amplitudes  # noqa: E402
 from beltmdsm.run.summary import PEAK_PRESENT_RATIO, omega1_band  # noqa: E402

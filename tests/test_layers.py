@@ -35,6 +35,7 @@ LAYERS = {
     "beltmdsm.generated": 1,
     "beltmdsm": 2,  # the package: its public names are imported lazily (importlib)
     "beltmdsm.model": 2,
+    "beltmdsm.excitation": 2,
     "beltmdsm.settings": 2,
     "beltmdsm.intervals": 2,
     "beltmdsm.integrate": 3,

@@ -44,8 +44,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..arguments import state
 from ..errors import NoPeriodicResponse
+from ..excitation import excitation_period, initial_state
 from ..integrate.events import integrate_events
-from ..model import Backend, Model, as_model, excitation_period, initial_state
+from ..model import Backend, Model, as_model
 from ..periodic.floquet import Floquet
 from ..periodic.locked import NotLocked, stroboscope
 from ..periodic.shooting import periodic_response

@@ -45,9 +45,10 @@ from beltmdsm.generated import unforced
 
 from ..arguments import state
 from ..errors import StepTooSmall
+from ..excitation import excitation_period, initial_state
 from ..integrate.events import integrate_events
 from ..integrate.switching import Mode
-from ..model import Backend, Model, as_model, excitation_period, initial_state
+from ..model import Backend, Model, as_model
 from ..periodic import variational
 from ..settings import SolverSettings, fastest_rate
 

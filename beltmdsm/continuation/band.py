@@ -27,7 +27,8 @@ import numpy as np
 
 from .._calling import ranged
 from ..errors import NoPeriodicResponse, Refused
-from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain, excitation_period
+from ..excitation import excitation_period
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain
 from ..periodic.floquet import floquet
 from ..periodic.shooting import FORWARD_PERIODS
 from ..settings import MAX_BAND_POINTS, MIN_TOL_ULPS

@@ -43,7 +43,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import Refused
-from ..model import MODEL_PARAMETERS, Backend, Model, as_model, is_autonomous
+from ..excitation import is_autonomous
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model
 from ..periodic.family import MapFamily
 from ..periodic.response import PeriodicResponse
 from ..periodic.shooting import periodic_response
@@ -169,7 +170,7 @@ def branch(
 
     The response is found as `beltmdsm.periodic.shooting.periodic_response` finds it
     (``periods > 1``: seeded from the attractor of the period map). Without excitation
-    (`beltmdsm.model.is_autonomous`) it is the branch of self-excited cycles born at
+    (`beltmdsm.excitation.is_autonomous`) it is the branch of self-excited cycles born at
     the Hopf point of steady sliding in ``[lo, hi]``
     (`beltmdsm.cycles.branch.cycle_branch`: a `CycleBranch`).
 

@@ -54,7 +54,8 @@ import numpy as np
 
 from .._calling import mapped
 from ..errors import NoPeriodicResponse, Refused
-from ..model import MODEL_PARAMETERS, Backend, Model, as_model, excitation_period
+from ..excitation import excitation_period
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model
 from ..periodic.family import MapFamily
 from ..settings import MAX_MAP_ROWS
 from .band import floquet_band

@@ -47,7 +47,8 @@ import numpy as np
 
 from ..continuation.branch_parts import Branch, SpecialPoint
 from ..errors import NoPeriodicResponse
-from ..model import MODEL_PARAMETERS, Backend, Model, is_autonomous
+from ..excitation import is_autonomous
+from ..model import MODEL_PARAMETERS, Backend, Model
 from .continuation import PERIOD_LIMIT, Continuation, CyclePoint, walk
 from .cycle import Cycle, cycle
 from .flow import CycleFlow

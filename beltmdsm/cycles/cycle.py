@@ -1,6 +1,6 @@
 """Self-excited cycles: the periodic orbits of Eq. (4) where the excitation is absent.
 
-Without excitation (``alpha_t Omega_t = alpha_n Omega_n = 0``, `beltmdsm.model.is_autonomous`)
+Without excitation (``alpha_t Omega_t = alpha_n Omega_n = 0``, `beltmdsm.excitation.is_autonomous`)
 Eq. (4) is autonomous: a friction that falls with the sliding speed makes steady
 sliding unstable below a belt speed (the Hopf point of the unforced Jacobian,
 `beltmdsm.generated.unforced.eigenvalues`), and the motion settles on a self-excited cycle,
@@ -331,7 +331,7 @@ def cycle(
     Parameters
     ----------
     model : Model or dict
-        Without excitation (`beltmdsm.model.is_autonomous`).
+        Without excitation (`beltmdsm.excitation.is_autonomous`).
     guess : array_like (4,), optional
         A full state near the section (the extremum of ``X1'`` of largest ``|Vr|``);
         None: `seed_cycle` (a run from perturbed steady sliding).

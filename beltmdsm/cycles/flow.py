@@ -30,10 +30,11 @@ from numpy.typing import NDArray
 from scipy.optimize import minimize_scalar
 
 from ..errors import NoPeriodicResponse, StepTooSmall
+from ..excitation import is_autonomous
 from ..integrate.events import integrate_events
 from ..integrate.switching import Mode, Switching
 from ..integrate.trajectory import Run
-from ..model import Backend, Model, is_autonomous
+from ..model import Backend, Model
 from ..periodic import variational
 from ..periodic.base import RTOL
 from ..settings import SolverSettings

@@ -20,9 +20,10 @@ from numpy.typing import ArrayLike, NDArray
 from beltmdsm.generated import unforced
 
 from ..errors import NoPeriodicResponse
+from ..excitation import initial_state, is_autonomous
 from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.switching import SURFACE_INDEX, Switching
-from ..model import Backend, Model, as_model, initial_state, is_autonomous
+from ..model import Backend, Model, as_model
 from ..settings import SolverSettings
 
 __all__ = [
@@ -83,7 +84,7 @@ def require_autonomous(model: Model, analysis: str = "a self-excited cycle") -> 
 
     See Also
     --------
-    beltmdsm.model.is_autonomous : Whether the model is forced.
+    beltmdsm.excitation.is_autonomous : Whether the model is forced.
 
     Examples
     --------

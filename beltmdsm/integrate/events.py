@@ -18,7 +18,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import StepTooSmall
-from ..model import Model, initial_state
+from ..excitation import initial_state
+from ..model import Model
 from ..settings import SolverSettings
 from . import _compiled, _dop853
 from .switching import Switching

@@ -143,7 +143,7 @@ class NormalMotion:
     A normal excitation of ``alpha_n = 8`` lifts the mass off the belt: contact and
     flight alternate, each switch a lift-off or a touchdown.
 
-    >>> from beltmdsm.model import initial_state
+    >>> from beltmdsm.excitation import initial_state
     >>> model = Model(Vb=1.5, alpha_n=8.0)
     >>> y0 = initial_state(model)
     >>> motion = NormalMotion(model, 3.0, 1e-10, 1e-10, y0[2:], backend="python")
@@ -314,7 +314,7 @@ def normal_motion(
     --------
     Runs at two belt speeds share one normal motion:
 
-    >>> from beltmdsm.model import initial_state
+    >>> from beltmdsm.excitation import initial_state
     >>> model = Model(Vb=1.5)
     >>> y0 = initial_state(model)[2:]
     >>> first = normal_motion(model, 2.0, 1e-10, 1e-10, y0, backend="python")
@@ -348,7 +348,7 @@ def clear_cache() -> None:
 
     Examples
     --------
-    >>> from beltmdsm.model import initial_state
+    >>> from beltmdsm.excitation import initial_state
     >>> model = Model(Vb=1.5)
     >>> y0 = initial_state(model)[2:]
     >>> first = normal_motion(model, 2.0, 1e-10, 1e-10, y0, backend="python")

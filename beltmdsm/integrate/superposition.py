@@ -36,7 +36,8 @@ from numpy.typing import ArrayLike, NDArray
 from beltmdsm.generated import oscillator
 
 from ..errors import NotApplicable  # its home; importable here as before
-from ..model import Backend, Model, Unsupported, initial_state, require
+from ..excitation import initial_state
+from ..model import Backend, Model, Unsupported, require
 from ..settings import SolverSettings
 from . import _compiled
 from .normal import GRID_STEP, NormalMotion, clear_cache, normal_motion
@@ -166,7 +167,7 @@ class TangentialRun:
     each segment starting where the last ends.
 
     >>> from beltmdsm.integrate.normal import normal_motion
-    >>> from beltmdsm.model import initial_state
+    >>> from beltmdsm.excitation import initial_state
     >>> model = Model(Vb=1.5)
     >>> y0 = initial_state(model)
     >>> normal = normal_motion(model, 4.0, 1e-10, 1e-10, y0[2:], backend="python")

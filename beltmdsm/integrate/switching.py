@@ -122,7 +122,7 @@ class Switching:
     (``Vr = 0`` inside the friction cone); at ``Vb = 4`` it slips backward
     (``Vr = -4``):
 
-    >>> from beltmdsm.model import initial_state
+    >>> from beltmdsm.excitation import initial_state
     >>> for Vb in (0.0, 4.0):
     ...     model = Model(Vb=Vb, alpha=0.0)
     ...     print(Vb, Switching(model).initial_mode(0.0, initial_state(model)).name)

@@ -52,7 +52,9 @@ def cone_holds(sw: Switching, t: float, y: ArrayLike) -> bool:
     At the unforced equilibrium static friction holds the mass; without friction
     (``mu_s = 0``) the cone is empty:
 
-    >>> from beltmdsm.model import Model, initial_state
+    >>> from beltmdsm.model import Model
+
+    >>> from beltmdsm.excitation import initial_state
     >>> y = initial_state(Model(Vb=0.0, alpha=0.0))
     >>> [cone_holds(Switching(Model(Vb=0.0, alpha=0.0, mu_s=mu_s)), 0.0, y) for mu_s in (0.4, 0.0)]
     [True, False]
@@ -80,7 +82,9 @@ class Zeno:
     Eight switches on ``Vr = 0`` within 1e-11 s at a state inside the friction cone:
     the eighth enters stick; at a state outside it, the run stops with a message.
 
-    >>> from beltmdsm.model import Model, initial_state
+    >>> from beltmdsm.model import Model
+
+    >>> from beltmdsm.excitation import initial_state
     >>> model = Model(Vb=0.0, alpha=0.0)
     >>> y = initial_state(model)
     >>> zeno = Zeno(Switching(model))

@@ -22,7 +22,7 @@ The results say which (``engine``); where both apply they agree to 1e-9.
 * **Phase-locked responses** (``periods = k > 1``): the multipliers are those of the
   ``k``-fold map (the eigenvalues of the product of the ``k`` one-period Jacobians,
   and on the closed-form path the normal block's to the power ``k``).
-* **Without excitation** (`beltmdsm.model.is_autonomous`): the self-excited cycle's
+* **Without excitation** (`beltmdsm.excitation.is_autonomous`): the self-excited cycle's
   (`beltmdsm.cycles.cycle`), with ``autonomous`` set, its multipliers without the
   trivial one (along the flow, reported as ``trivial_multiplier``) and a multiplier 0
   for a stick phase.

@@ -19,11 +19,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import NoPeriodicResponse
+from ..excitation import excitation_period, initial_state
 from ..integrate import _compiled, _dop853
 from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.switching import Mode, Switching
 from ..integrate.trajectory import Run
-from ..model import Backend, Model, excitation_period, initial_state
+from ..model import Backend, Model
 from ..settings import SolverSettings
 from . import variational
 from .base import RTOL, PeriodMap, _periods

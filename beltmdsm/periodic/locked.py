@@ -195,7 +195,7 @@ def map_stroboscope(
     Examples
     --------
     >>> from beltmdsm import Model
-    >>> from beltmdsm.model import initial_state
+    >>> from beltmdsm.excitation import initial_state
     >>> from beltmdsm.periodic.engines import period_map
     >>> m = Model(Vb=5.0)
     >>> pmap = period_map(m)

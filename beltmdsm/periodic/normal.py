@@ -20,8 +20,9 @@ import numpy as np
 from beltmdsm.generated import dynamics
 
 from ..errors import NoPeriodicResponse
+from ..excitation import excitation_period, initial_state
 from ..integrate.normal import NormalMotion
-from ..model import Model, excitation_period, initial_state, require
+from ..model import Model, require
 from . import variational
 from .base import RTOL
 from .newton import NEWTON_TOL

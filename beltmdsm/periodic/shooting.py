@@ -13,7 +13,7 @@
   period map iterated from rest (`beltmdsm.periodic.locked.map_stroboscope`,
   `SEED_PERIODS`), where that attractor locks at ``k`` periods
   (docs/modelling.md#bifurcations).
-* **Without excitation** (`beltmdsm.model.is_autonomous`) there is no period to take
+* **Without excitation** (`beltmdsm.excitation.is_autonomous`) there is no period to take
   the phase from: `periodic_response` computes the self-excited cycle instead
   (`beltmdsm.cycles.cycle`: the period found by shooting with a phase condition), with
   ``autonomous`` set (`beltmdsm.periodic.response.response_of_cycle`).
@@ -28,7 +28,8 @@ import numpy as np
 
 from ..arguments import count, state
 from ..errors import NoPeriodicResponse, Refused, ShorterPeriod
-from ..model import Backend, Model, as_model, excitation_period, initial_state, is_autonomous
+from ..excitation import excitation_period, initial_state, is_autonomous
+from ..model import Backend, Model, as_model
 from .base import Engine
 from .engines import period_map
 from .locked import LOCK_LIMIT, NotLocked, map_stroboscope, minimal_periods
@@ -130,7 +131,7 @@ def periodic_response(
         The period map (`beltmdsm.periodic.engines.period_map`); None: the one the
         model's laws allow.
 
-    Without excitation (`beltmdsm.model.is_autonomous`) the response is the self-excited
+    Without excitation (`beltmdsm.excitation.is_autonomous`) the response is the self-excited
     cycle (`beltmdsm.cycles.cycle.cycle`, ``autonomous`` set): seeded from a run off
     unstable steady sliding, or from ``guess`` (a `PeriodicResponse` of a cycle or a
     `beltmdsm.cycles.cycle.Cycle`: a neighbour); ``forward`` does not apply.

@@ -15,7 +15,8 @@ import math
 
 import numpy as np
 
-from ..model import Model, excitation_period
+from ..excitation import excitation_period
+from ..model import Model
 from . import spectra
 
 __all__ = [

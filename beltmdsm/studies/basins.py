@@ -54,7 +54,8 @@ from ..attractors.landing import (
     tolerance,
 )
 from ..errors import NoPeriodicResponse, Refused
-from ..model import Model, as_model, excitation_period
+from ..excitation import excitation_period
+from ..model import Model, as_model
 from ..periodic.floquet import floquet
 from . import cache
 

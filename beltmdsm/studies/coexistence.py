@@ -23,7 +23,7 @@ exactly:
    edges (the bifurcations where a response starts or stops being stable, or the end of
    the range).
 
-Without excitation (`beltmdsm.model.is_autonomous`) the attractors are steady sliding
+Without excitation (`beltmdsm.excitation.is_autonomous`) the attractors are steady sliding
 and the self-excited cycles: `beltmdsm.studies.cycle_coexistence` gives where they
 coexist (hysteresis at a subcritical Hopf point), or why they do not.
 
@@ -47,15 +47,8 @@ from .._calling import ranged
 from ..arguments import count
 from ..continuation.branch import Branch, continue_branch
 from ..errors import NoPeriodicResponse, Refused
-from ..model import (
-    MODEL_PARAMETERS,
-    Backend,
-    Model,
-    as_model,
-    excitation_period,
-    is_autonomous,
-    is_real,
-)
+from ..excitation import excitation_period, is_autonomous
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model, is_real
 from ..periodic.engines import engine_of
 from ..periodic.floquet import floquet
 from ..periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods
@@ -397,7 +390,7 @@ def coexistence(
     Coexistence
         Each response's branch and stable parts, the ranges where two or more are
         stable, the attractors not locked. Without excitation
-        (`beltmdsm.model.is_autonomous`) a
+        (`beltmdsm.excitation.is_autonomous`) a
         `beltmdsm.studies.cycle_coexistence.CycleCoexistence`: steady sliding and the
         self-excited cycles.
 

@@ -27,8 +27,9 @@ from numpy.typing import NDArray
 
 from beltmdsm.generated import contraction
 
+from ..excitation import initial_state
 from ..integrate.switching import Mode
-from ..model import Model, initial_state
+from ..model import Model
 from ..run.summary import PEAK_PRESENT_RATIO
 from ..settings import SolverSettings
 from ..simulation import Simulation, simulate

@@ -12,7 +12,7 @@ that seed the search are `beltmdsm.studies.seeds`.
   responses``): the periodic one of period ``T`` and every locked one up to a limit,
   each with its multipliers, the amplitude of ``X1'`` and where it was found; the
   attractors that do not lock, with the evidence (`beltmdsm.periodic.locked.NotLocked`).
-  Without excitation (`beltmdsm.model.is_autonomous`): the self-excited cycles
+  Without excitation (`beltmdsm.excitation.is_autonomous`): the self-excited cycles
   (`beltmdsm.cycles.cycle`), from the run off perturbed steady sliding and from
   cycles continued up and down in ``Vb`` (a cycle that coexists with stable steady
   sliding is found only so).
@@ -30,7 +30,8 @@ from numpy.typing import ArrayLike, NDArray
 from ..arguments import count
 from ..attractors.classification import classify
 from ..errors import NoPeriodicResponse
-from ..model import Backend, Model, as_model, excitation_period, is_autonomous, is_real
+from ..excitation import excitation_period, is_autonomous
+from ..model import Backend, Model, as_model, is_real
 from ..periodic.engines import period_map
 from ..periodic.floquet import Floquet, floquet
 from ..periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods, same_phases

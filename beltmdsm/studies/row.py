@@ -233,9 +233,9 @@ def run_point(
     modulation : bool
         add the friction modulation columns (`beltmdsm.run.modulation`)
     y0 : sequence of 4 floats, optional
-        start state (default: from rest, `beltmdsm.model.initial_state`)
+        start state (default: from rest, `beltmdsm.excitation.initial_state`)
     restart_period : float, optional
-        the excitation period ``T`` (`beltmdsm.model.excitation_period`); the row then
+        the excitation period ``T`` (`beltmdsm.excitation.excitation_period`); the row then
         also holds ``restart_t``, the last multiple of ``T`` within the run, and
         ``restart_state``, the state there (where a continued sweep starts its next
         point; not table columns).

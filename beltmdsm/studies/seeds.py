@@ -29,7 +29,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import NoPeriodicResponse, Refused
-from ..model import Backend, Model, excitation_period, initial_state
+from ..excitation import excitation_period, initial_state
+from ..model import Backend, Model
 from ..periodic.base import PeriodMap
 from ..periodic.engines import ENGINES, engine_of, period_map
 from ..periodic.locked import LOCK_LIMIT, Stroboscope, map_stroboscope, stroboscope

@@ -33,7 +33,8 @@ from .._calling import settings_keywords, valued
 from .._tables import DataFrame
 from ..arguments import flag, reals, settings_of
 from ..errors import Refused
-from ..model import MODEL_PARAMETERS, Model, as_model, excitation_period
+from ..excitation import excitation_period
+from ..model import MODEL_PARAMETERS, Model, as_model
 from ..settings import MAX_POINTS, SolverSettings, check_request
 from .cache import (
     CacheWarning,

@@ -7,9 +7,10 @@ import sys
 import numpy as np
 import pytest
 
+from beltmdsm.excitation import excitation_period, initial_state
 from beltmdsm.generated import dynamics
 from beltmdsm.generated.parameters import BASE
-from beltmdsm.model import LAW_OF, OPTIONS, Model, as_model, excitation_period, initial_state
+from beltmdsm.model import LAW_OF, OPTIONS, Model, as_model
 
 
 def test_the_base_model_is_the_base_set_with_the_excitation_of_eq4():

@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 import json
 
-from ...model import MODEL_PARAMETERS, is_autonomous
+from ...excitation import is_autonomous
+from ...model import MODEL_PARAMETERS
 from ..flags import (
     json_parent,
     model_from,

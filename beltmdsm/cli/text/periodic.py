@@ -102,7 +102,7 @@ def _isolation(f) -> str:
 
 def responses(found: ResponseSet) -> str:
     """The readable list of ``responses``."""
-    from ...model import is_autonomous
+    from ...excitation import is_autonomous
 
     m = found.model
     autonomous = any(r.floquet.autonomous for r in found.responses) or is_autonomous(m)

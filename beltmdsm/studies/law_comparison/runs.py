@@ -14,8 +14,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ...excitation import initial_state
 from ...intervals import runs
-from ...model import Model, initial_state
+from ...model import Model
 from ...periodic.start import PERTURBATION
 from ...settings import SolverSettings
 from ...simulation import simulate

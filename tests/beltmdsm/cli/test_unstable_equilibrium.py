@@ -17,7 +17,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from beltmdsm.model import Model, initial_state
+from beltmdsm.excitation import initial_state
+from beltmdsm.model import Model
 from beltmdsm.simulation import START_PERTURBATION, equilibrium_start, simulate
 
 ROOT = Path(__file__).resolve().parents[3]

@@ -26,9 +26,10 @@ from scipy.optimize import brentq
 from beltmdsm.cli import main
 from beltmdsm.cycles.cycle import Cycle, cycle, seed_cycle, unstable_pair
 from beltmdsm.errors import NoPeriodicResponse
+from beltmdsm.excitation import is_autonomous
 from beltmdsm.generated import unforced
 from beltmdsm.integrate.events import integrate_events
-from beltmdsm.model import Model, is_autonomous
+from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.periodic.start import periodic_start

@@ -40,8 +40,9 @@ import pytest
 
 import beltmdsm
 from beltmdsm.cli import main
+from beltmdsm.excitation import initial_state
 from beltmdsm.generated import hybrid, unforced
-from beltmdsm.model import Model, initial_state
+from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
 
 G = 9.81

@@ -21,9 +21,9 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from beltmdsm.excitation import excitation_period
 from beltmdsm.generated.parameters import BASE
 from beltmdsm.intervals import runs
-from beltmdsm.model import excitation_period
 from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.run.summary import free_decay_rate
 from beltmdsm.settings import SolverSettings
