@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from beltmdsm.generated import unforced
 
+from .._tables import DataFrame
 from ..arguments import state
 from ..errors import StepTooSmall
 from ..excitation import excitation_period, initial_state
@@ -142,6 +143,23 @@ class Lyapunov:
             f"Lyapunov([{parts}] 1/s over {self.t_average:g} s, "
             f"{self.switches} switches, {self.collapsed} collapsed)"
         )
+
+    def to_pandas(self) -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas) of the spectrum, largest first: one row per
+        exponent, ``exponent`` [1/s] (``-inf`` where stick removes a direction) and its
+        ``error``.
+
+        Examples
+        --------
+        >>> from beltmdsm import Model
+        >>> table = lyapunov(Model(Vb=5.0), t_end=60.0).to_pandas()
+        >>> list(table), len(table), bool(table["exponent"].iloc[0] < 0)
+        (['exponent', 'error'], 4, True)
+        """
+        from .._tables import frame
+
+        rows = {"exponent": self.exponents, "error": self.error}
+        return frame(rows, list(rows))
 
     def as_dict(self) -> dict:
         """The spectrum as JSON-ready numbers (``-inf`` stays a float: callers map it)."""

@@ -112,6 +112,11 @@ class CycleBranch(Branch):
     criticality: str | None = None
     wall_s: float = 0.0
 
+    @property
+    def response(self) -> str:
+        """``"self-excited cycles"`` (figure titles)."""
+        return "self-excited cycles"
+
     def __repr__(self) -> str:
         a, b = self.ends
         crit = f", {self.criticality}" if self.criticality else ""

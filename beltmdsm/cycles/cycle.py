@@ -68,6 +68,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from beltmdsm.generated import hybrid, unforced
 
+from .._tables import DataFrame
 from ..errors import NoPeriodicResponse
 from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.switching import Mode, Switching
@@ -210,6 +211,24 @@ class Cycle:
             f"stable={self.stable}, sticks={self.n_sticks}, reversals={self.n_reversals}, "
             f"|mu_1 - 1|={abs(self.trivial_multiplier - 1):.1e}, residual={self.residual:.1e})"
         )
+
+    def to_pandas(self) -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas) of the three multipliers of the Poincare
+        map (the trivial one left out), as `beltmdsm.periodic.floquet.Floquet.to_pandas`:
+        ``multiplier``, ``abs``, ``angle`` [rad], ``rate = log|mu| / period`` [1/s].
+
+        Examples
+        --------
+        A stick phase collapses two of them to 0 (to rounding):
+
+        >>> from beltmdsm import Model, cycle
+        >>> table = cycle(Model(alpha=0.0, friction="stribeck", Vb=1.5)).to_pandas()
+        >>> table["abs"].round(3).tolist(), round(float(table["rate"].iloc[0]), 4)
+        ([0.224, 0.0, 0.0], -0.2251)
+        """
+        from .._tables import multiplier_frame
+
+        return multiplier_frame(self.multipliers, self.period)
 
     def as_dict(self) -> dict:
         """For JSON: the keys of ``floquet --json`` for a cycle (``autonomous: true``)."""

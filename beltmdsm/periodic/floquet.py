@@ -45,6 +45,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from .._tables import DataFrame
 from ..integrate.switching import Mode
 from ..model import Backend, Model, as_model
 from .base import Engine
@@ -263,6 +264,24 @@ class Floquet:
                 f"{self.n_reversals} reversals and {self.n_sticks} sticks per orbit",
             ],
         )
+
+    def to_pandas(self) -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas) of the multipliers, one row each in the
+        order of ``multipliers``: ``multiplier``, ``abs``, ``angle`` [rad] and ``rate =
+        log|mu| / period`` [1/s] (`beltmdsm._tables.multiplier_frame`).
+
+        Examples
+        --------
+        >>> from beltmdsm import floquet
+        >>> table = floquet(Vb=12.0).to_pandas()
+        >>> list(table), len(table)
+        (['multiplier', 'abs', 'angle', 'rate'], 4)
+        >>> round(float(table["rate"].max()), 3)  # the growth rate
+        -0.1
+        """
+        from .._tables import multiplier_frame
+
+        return multiplier_frame(self.multipliers, self.period)
 
     def as_dict(self) -> dict:
         """The JSON-able summary (the keys of ``python -m beltmdsm floquet --json``).

@@ -44,6 +44,7 @@ from typing import Any
 import numpy as np
 
 from .._calling import ranged
+from .._tables import DataFrame
 from ..arguments import count
 from ..continuation.branch import Branch, continue_branch
 from ..errors import NoPeriodicResponse, Refused
@@ -302,6 +303,56 @@ class Coexistence:
             f"{laws(self.model)}; {len(self.responses)} responses): coexisting in {coexist}",
             lines,
         )
+
+    def to_pandas(self, table: str = "stable") -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas) of the ``"stable"`` parts (one row per
+        stable part of each response: ``response``, ``periods``, ``lo``, ``hi`` and the
+        kinds of its ``lower`` and ``upper`` edges) or of the coexistence ``"ranges"``
+        (``lo``, ``hi``, ``responses`` joined by commas, ``lower``, ``upper``).
+
+        Raises
+        ------
+        ValueError
+            For another ``table``.
+
+        Examples
+        --------
+        >>> from beltmdsm import Model
+        >>> empty = Coexistence("Vb", 1.0, 2.0, Model(), [], [], [], [], wall_s=0.1)
+        >>> list(empty.to_pandas())
+        ['response', 'periods', 'lo', 'hi', 'lower', 'upper']
+        >>> list(empty.to_pandas("ranges"))
+        ['lo', 'hi', 'responses', 'lower', 'upper']
+        """
+        from .._tables import frame
+
+        if table == "stable":
+            rows = [
+                {
+                    "response": r.name,
+                    "periods": r.branch.periods,
+                    "lo": p.range[0],
+                    "hi": p.range[1],
+                    "lower": p.lower,
+                    "upper": p.upper,
+                }  # fmt: skip
+                for r in self.responses
+                for p in r.stable
+            ]
+            return frame(rows, ["response", "periods", "lo", "hi", "lower", "upper"])
+        if table == "ranges":
+            rows = [
+                {
+                    "lo": c.range[0],
+                    "hi": c.range[1],
+                    "responses": ", ".join(c.responses),
+                    "lower": c.lower,
+                    "upper": c.upper,
+                }  # fmt: skip
+                for c in self.ranges
+            ]
+            return frame(rows, ["lo", "hi", "responses", "lower", "upper"])
+        raise ValueError(f"table must be 'stable' or 'ranges'; got {table!r}")
 
     def plot(self, ax: Any = None, observable: str = "X1'_amplitude") -> Any:
         """Each response's bifurcation diagram (``observable`` against the parameter,
