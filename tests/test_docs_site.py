@@ -295,5 +295,5 @@ def test_the_site_reads_offline_its_math_drawn_at_build(site):
         if link.startswith(("http:", "https:", "//")) and link.endswith(".js")
     ]
     assert remote == []
-    page = (site / "notebooks" / "fig05_floquet.html").read_text(encoding="utf-8")
+    page = (site / "tutorials" / "notebooks" / "fig05_floquet.html").read_text(encoding="utf-8")
     assert '<span class="math" title="V_b"><svg' in page and "$V_b$" not in page
