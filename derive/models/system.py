@@ -95,7 +95,7 @@ def defaults(rows) -> dict[str, float]:
     return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class System:
     """The derived equations of one model under one friction law (module docstring).
 
