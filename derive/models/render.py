@@ -24,7 +24,7 @@ from .registry import MODELS
 from .steady import NUMERIC, coefficient_symbols, hurwitz, steady
 from .system import MODES, defaults, law_parameters, model_parameters, system
 
-__all__ = ["render_model", "render_init", "files", "KERNELS", "PAPER_PIECES"]
+__all__ = ["render_model", "render_entry", "render_init", "files", "KERNELS", "PAPER_PIECES"]
 
 #: The kernels of every model, in the order of the `Kernels` tuple.
 KERNELS = (
@@ -349,7 +349,12 @@ def _literal(value) -> str:
 
 def render_model(name: str) -> str:
     """The source text of generated/models/<name>.py."""
-    entry = MODELS[name]
+    return render_entry(MODELS[name])
+
+
+def render_entry(entry) -> str:
+    """The source text of the module of ``entry``, registered or not (a check's)."""
+    name = entry.name
     friction_laws = entry.friction_laws or laws.choices("friction")
     systems = {law: system(entry, law) for law in friction_laws}
     s0 = systems[friction_laws[0]]

@@ -75,7 +75,7 @@ def test_models_list_paper_first():
 def test_fields_and_jacobians_per_mode(law):
     k = paper.kernels(law)
     for t, y, kw, p in _points(law):
-        for name, mode in NAMES.items():
+        for mode in NAMES.values():
             z = y.copy()
             if mode == 0:
                 z[1] = kw["Vb"]  # stick: on its manifold
