@@ -1,4 +1,4 @@
-"""generated/models/<name>.py: a registered model's numeric module (MODEL_CONTRACT.md).
+"""generated/models/<name>.py: a registered model's numeric module.
 
 One module per model, plain ``math`` and numpy (no SymPy), deterministic text: every
 kernel is printed by the scalar printer of `beltmdsm.derive.codegen.printers` after
@@ -401,7 +401,7 @@ def render_entry(entry) -> str:
     doc = (
         f'"""{entry.summary} (the model ``{name}``, derive/models/entries.py).\n\n'
         f"{_wrap(entry.doc)}\n\n"
-        "Generated from its registry entry by derive/models/ (MODEL_CONTRACT.md): "
+        "Generated from its registry entry by derive/models/: "
         "``kernels(friction)`` gives\nthe model's functions under one friction law, "
         "each taking ``(t, state, params)`` (and a\nmode: 1 slip with v_r > 0, -1 slip "
         "with v_r < 0, 0 stick, 2 flight), ``state`` in the\norder of STATES, ``params`` "
@@ -417,7 +417,7 @@ def render_entry(entry) -> str:
             f"#: {comment}\n{cname} = {_literal(value)}" for cname, value, comment in constants
         ),
         "class Kernels(NamedTuple):\n"
-        '    """The functions of one friction law (MODEL_CONTRACT.md); ``gap`` is None '
+        '    """The functions of one friction law; ``gap`` is None '
         'where\n    the contact is bilateral."""\n\n'
         + "\n".join(f"    {k}: object" for k in KERNELS),
         _hurwitz_function(len(s0.state)),
@@ -441,7 +441,7 @@ def render_init() -> str:
     """generated/models/__init__.py: ``MODELS`` and ``load``."""
     return (
         HEADER
-        + '"""The registered models\' numeric modules (derive/models/, MODEL_CONTRACT.md).\n\n'
+        + '"""The registered models\' numeric modules (derive/models/).\n\n'
         "``MODELS`` lists the models, the default (``paper``) first; ``load(name)`` imports "
         'one.\n"""\n\n'
         "import importlib\n\n"

@@ -9,7 +9,7 @@ sin(Omega_n t + phase_n) (the paper's normal excitation acting on the load; cons
 by default). It is the paper's model with the normal direction held at its equilibrium
 (alpha_n = 0 there).
 
-Generated from its registry entry by derive/models/ (MODEL_CONTRACT.md): ``kernels(friction)`` gives
+Generated from its registry entry by derive/models/: ``kernels(friction)`` gives
 the model's functions under one friction law, each taking ``(t, state, params)`` (and a
 mode: 1 slip with v_r > 0, -1 slip with v_r < 0, 0 stick, 2 flight), ``state`` in the
 order of STATES, ``params`` in the order of PARAMETERS[friction].
@@ -160,7 +160,7 @@ ABSENT = {'cubic_fit': 'the cubic fit of the contact force (Eqs. 16-17, derive/f
 
 
 class Kernels(NamedTuple):
-    """The functions of one friction law (MODEL_CONTRACT.md); ``gap`` is None where
+    """The functions of one friction law; ``gap`` is None where
     the contact is bilateral."""
 
     field: object

@@ -14,7 +14,7 @@ part cancel in the y equation, which keeps -k_c y). Friction mu N acts along x, 
 stiffness mu k_c (the mode-coupling, or flutter, instability): without damping it is
 unstable where mu > ((k1 - k2 - k_c)^2 + k3^2) / (2 k3 k_c).
 
-Generated from its registry entry by derive/models/ (MODEL_CONTRACT.md): ``kernels(friction)`` gives
+Generated from its registry entry by derive/models/: ``kernels(friction)`` gives
 the model's functions under one friction law, each taking ``(t, state, params)`` (and a
 mode: 1 slip with v_r > 0, -1 slip with v_r < 0, 0 stick, 2 flight), ``state`` in the
 order of STATES, ``params`` in the order of PARAMETERS[friction].
@@ -149,7 +149,7 @@ ABSENT = {'cubic_fit': 'the cubic fit of the contact force (Eqs. 16-17, derive/f
 
 
 class Kernels(NamedTuple):
-    """The functions of one friction law (MODEL_CONTRACT.md); ``gap`` is None where
+    """The functions of one friction law; ``gap`` is None where
     the contact is bilateral."""
 
     field: object

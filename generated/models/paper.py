@@ -8,7 +8,7 @@ sgn(Vr) F, X2'' = g + f_n - F, with F the contact law's force on the penetration
 order (X1, Y1, X2, Y2). Its own pieces (the cubic fit, the MDSM, the correlation
 averages, the paper check) are derived in derive/ beside it.
 
-Generated from its registry entry by derive/models/ (MODEL_CONTRACT.md): ``kernels(friction)`` gives
+Generated from its registry entry by derive/models/: ``kernels(friction)`` gives
 the model's functions under one friction law, each taking ``(t, state, params)`` (and a
 mode: 1 slip with v_r > 0, -1 slip with v_r < 0, 0 stick, 2 flight), ``state`` in the
 order of STATES, ``params`` in the order of PARAMETERS[friction].
@@ -169,7 +169,7 @@ ABSENT = {}
 
 
 class Kernels(NamedTuple):
-    """The functions of one friction law (MODEL_CONTRACT.md); ``gap`` is None where
+    """The functions of one friction law; ``gap`` is None where
     the contact is bilateral."""
 
     field: object
