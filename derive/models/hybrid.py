@@ -19,7 +19,18 @@ import sympy as sp
 from ..model import t
 from .system import System
 
-__all__ = ["SWITCHES", "surfaces", "switches", "saltation", "jacobian", "rate", "d"]
+__all__ = [
+    "SWITCHES",
+    "DECIDE_SLIP",
+    "DECIDE_CONTACT",
+    "guards",
+    "surfaces",
+    "switches",
+    "saltation",
+    "jacobian",
+    "rate",
+    "d",
+]
 
 #: (mode before, mode after) -> the surface crossed; flight pairs only where unilateral.
 SWITCHES = {
@@ -36,6 +47,27 @@ SWITCHES = {
     (2, -1): "gap",
     (2, 0): "gap",
 }
+
+
+#: Guard target: Filippov's rule at v_r = 0 (stick, or slip the other way).
+DECIDE_SLIP = "decide_slip"
+#: Guard target: entering contact (slip by the sign of v_r, or DECIDE_SLIP at v_r = 0).
+DECIDE_CONTACT = "decide_contact"
+
+
+def guards(s: System) -> dict[int, tuple]:
+    """mode -> ((surface, crossing direction, target), ...): a mode ends where one of its
+    surfaces is crossed in the stated direction (+1: h rises through 0, -1: falls)."""
+    out = {
+        1: (("slip_velocity", -1, DECIDE_SLIP),),
+        -1: (("slip_velocity", 1, DECIDE_SLIP),),
+        0: (("stick_forward", -1, 1), ("stick_back", -1, -1)),
+    }
+    if s.gap is None:
+        return out
+    out = {m: g + (("gap", 1, 2),) for m, g in out.items()}
+    out[2] = (("gap", -1, DECIDE_CONTACT),)
+    return out
 
 
 def d(expr, x) -> sp.Expr:

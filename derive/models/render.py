@@ -39,6 +39,7 @@ KERNELS = (
     "stick_limit",
     "gap",
     "surfaces",
+    "surface_rates",
     "saltation",
     "equilibrium",
     "characteristic",
@@ -229,6 +230,18 @@ def _kernels(s, law) -> tuple[list[str], dict[str, str]]:
             None,
         ),
     )
+    add(
+        "surface_rates",
+        _function(
+            f"_surface_rates{tag}",
+            sig_m,
+            "dh/dt of the switching functions (SURFACES) along the field of ``mode``.",
+            per_mode(lambda m: [hy.rate(s, h, m) for h in surf.values()]),
+            len(surf),
+            s,
+            bad_mode,
+        ),
+    )
     pairs = hy.switches(s)
     add(
         "saltation",
@@ -386,6 +399,13 @@ def render_entry(entry) -> str:
         ("SURFACES", tuple(hy.surfaces(s0)), "The switching functions of `surfaces`, in order."),
         ("SWITCHES", {k: v for k, v in hy.switches(s0).items()}, "(before, after) -> surface."),
         (
+            "GUARDS",
+            hy.guards(s0),
+            "mode -> ((surface, crossing direction, target), ...): +1 rising, -1 falling.",
+        ),
+        ("DECIDE_SLIP", hy.DECIDE_SLIP, "Guard target: Filippov's rule at v_r = 0."),
+        ("DECIDE_CONTACT", hy.DECIDE_CONTACT, "Guard target: entering contact."),
+        (
             "EQUILIBRIUM",
             {law: steady(systems[law]).path for law in friction_laws},
             "How the equilibrium is computed, per friction law.",
@@ -440,8 +460,7 @@ def _wrap(text, width=88):
 def render_init() -> str:
     """generated/models/__init__.py: ``MODELS`` and ``load``."""
     return (
-        HEADER
-        + '"""The registered models\' numeric modules (derive/models/).\n\n'
+        HEADER + '"""The registered models\' numeric modules (derive/models/).\n\n'
         "``MODELS`` lists the models, the default (``paper``) first; ``load(name)`` imports "
         'one.\n"""\n\n'
         "import importlib\n\n"

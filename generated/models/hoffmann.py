@@ -27,7 +27,7 @@ from typing import NamedTuple
 import numpy
 
 
-__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "EQUILIBRIUM", "ABSENT"]
+__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "GUARDS", "DECIDE_SLIP", "DECIDE_CONTACT", "EQUILIBRIUM", "ABSENT"]
 
 
 #: The model's name in the registry.
@@ -134,6 +134,17 @@ SWITCHES = {(1, -1): 'slip_velocity',
  (0, 1): 'stick_forward',
  (0, -1): 'stick_back'}
 
+#: mode -> ((surface, crossing direction, target), ...): +1 rising, -1 falling.
+GUARDS = {1: (('slip_velocity', -1, 'decide_slip'),),
+ -1: (('slip_velocity', 1, 'decide_slip'),),
+ 0: (('stick_forward', -1, 1), ('stick_back', -1, -1))}
+
+#: Guard target: Filippov's rule at v_r = 0.
+DECIDE_SLIP = 'decide_slip'
+
+#: Guard target: entering contact.
+DECIDE_CONTACT = 'decide_contact'
+
 #: How the equilibrium is computed, per friction law.
 EQUILIBRIUM = {'coulomb': 'closed form', 'stribeck': 'closed form', 'static_kinetic': 'closed form'}
 
@@ -163,6 +174,7 @@ class Kernels(NamedTuple):
     stick_limit: object
     gap: object
     surfaces: object
+    surface_rates: object
     saltation: object
     equilibrium: object
     characteristic: object
@@ -393,6 +405,60 @@ def _surfaces__coulomb(t, state, params):
     _x1 = (1/2)*k3
     _x2 = _x1*x + _x1*y + c1*x_dot + k1*x
     return numpy.array((-Vb + x_dot, _x0*mu_s + _x2, _x0*mu_s - _x2,), dtype=numpy.float64)
+
+
+def _surface_rates__coulomb(t, state, params, mode):
+    """dh/dt of the switching functions (SURFACES) along the field of ``mode``."""
+    if mode == 1:
+        x = state[0]
+        y = state[1]
+        x_dot = state[2]
+        y_dot = state[3]
+        m = params[0]
+        k1 = params[1]
+        k3 = params[3]
+        k_c = params[4]
+        F_pre = params[5]
+        c1 = params[6]
+        mu_s = params[9]
+        _x0 = (1/2)*k3
+        _x1 = _x0 + k1
+        _x2 = (-_x0*y - _x1*x - c1*x_dot - mu_s*(F_pre + k_c*y))/m
+        _x3 = _x2*c1
+        return numpy.array((_x2, _x1*x_dot + _x3 + y_dot*(_x0 + k_c*mu_s), -_x1*x_dot - _x3 + y_dot*(-_x0 + k_c*mu_s),), dtype=numpy.float64)
+    if mode == -1:
+        x = state[0]
+        y = state[1]
+        x_dot = state[2]
+        y_dot = state[3]
+        m = params[0]
+        k1 = params[1]
+        k3 = params[3]
+        k_c = params[4]
+        F_pre = params[5]
+        c1 = params[6]
+        mu_s = params[9]
+        _x0 = (1/2)*k3
+        _x1 = _x0 + k1
+        _x2 = (-_x0*y - _x1*x - c1*x_dot + mu_s*(F_pre + k_c*y))/m
+        _x3 = _x2*c1
+        return numpy.array((_x2, _x1*x_dot + _x3 + y_dot*(_x0 + k_c*mu_s), -_x1*x_dot - _x3 + y_dot*(-_x0 + k_c*mu_s),), dtype=numpy.float64)
+    if mode == 0:
+        x = state[0]
+        x_dot = state[2]
+        y_dot = state[3]
+        m = params[0]
+        k1 = params[1]
+        k3 = params[3]
+        k_c = params[4]
+        c1 = params[6]
+        mu_s = params[9]
+        _x0 = (1/2)*k3
+        _x1 = _x0 + k1
+        _x2 = (_x0*x - _x1*x + k1*x)/m
+        _x3 = _x2*c1
+        return numpy.array((_x2, _x1*x_dot + _x3 + y_dot*(_x0 + k_c*mu_s), -_x1*x_dot - _x3 + y_dot*(-_x0 + k_c*mu_s),), dtype=numpy.float64)
+    raise ValueError('mode must be one of (1, -1, 0)')
 
 
 def _saltation__coulomb(t, state, params, mode_before, mode_after):
@@ -802,6 +868,66 @@ def _surfaces__stribeck(t, state, params):
     _x1 = (1/2)*k3
     _x2 = _x1*x + _x1*y + c1*x_dot + k1*x
     return numpy.array((-Vb + x_dot, _x0*mu_s + _x2, _x0*mu_s - _x2,), dtype=numpy.float64)
+
+
+def _surface_rates__stribeck(t, state, params, mode):
+    """dh/dt of the switching functions (SURFACES) along the field of ``mode``."""
+    if mode == 1:
+        x = state[0]
+        y = state[1]
+        x_dot = state[2]
+        y_dot = state[3]
+        m = params[0]
+        k1 = params[1]
+        k3 = params[3]
+        k_c = params[4]
+        F_pre = params[5]
+        c1 = params[6]
+        Vb = params[8]
+        mu_s = params[9]
+        mu_k = params[10]
+        v_s = params[11]
+        _x0 = (1/2)*k3
+        _x1 = _x0 + k1
+        _x2 = (-_x0*y - _x1*x - c1*x_dot + (F_pre + k_c*y)*(-mu_k - (-mu_k + mu_s)*math.exp((Vb - x_dot)/v_s)))/m
+        _x3 = _x2*c1
+        return numpy.array((_x2, _x1*x_dot + _x3 + y_dot*(_x0 + k_c*mu_s), -_x1*x_dot - _x3 + y_dot*(-_x0 + k_c*mu_s),), dtype=numpy.float64)
+    if mode == -1:
+        x = state[0]
+        y = state[1]
+        x_dot = state[2]
+        y_dot = state[3]
+        m = params[0]
+        k1 = params[1]
+        k3 = params[3]
+        k_c = params[4]
+        F_pre = params[5]
+        c1 = params[6]
+        Vb = params[8]
+        mu_s = params[9]
+        mu_k = params[10]
+        v_s = params[11]
+        _x0 = (1/2)*k3
+        _x1 = _x0 + k1
+        _x2 = (-_x0*y - _x1*x - c1*x_dot + (F_pre + k_c*y)*(mu_k + (-mu_k + mu_s)*math.exp((-Vb + x_dot)/v_s)))/m
+        _x3 = _x2*c1
+        return numpy.array((_x2, _x1*x_dot + _x3 + y_dot*(_x0 + k_c*mu_s), -_x1*x_dot - _x3 + y_dot*(-_x0 + k_c*mu_s),), dtype=numpy.float64)
+    if mode == 0:
+        x = state[0]
+        x_dot = state[2]
+        y_dot = state[3]
+        m = params[0]
+        k1 = params[1]
+        k3 = params[3]
+        k_c = params[4]
+        c1 = params[6]
+        mu_s = params[9]
+        _x0 = (1/2)*k3
+        _x1 = _x0 + k1
+        _x2 = (_x0*x - _x1*x + k1*x)/m
+        _x3 = _x2*c1
+        return numpy.array((_x2, _x1*x_dot + _x3 + y_dot*(_x0 + k_c*mu_s), -_x1*x_dot - _x3 + y_dot*(-_x0 + k_c*mu_s),), dtype=numpy.float64)
+    raise ValueError('mode must be one of (1, -1, 0)')
 
 
 def _saltation__stribeck(t, state, params, mode_before, mode_after):
@@ -1218,6 +1344,62 @@ def _surfaces__static_kinetic(t, state, params):
     return numpy.array((-Vb + x_dot, _x0*mu_s + _x2, _x0*mu_s - _x2,), dtype=numpy.float64)
 
 
+def _surface_rates__static_kinetic(t, state, params, mode):
+    """dh/dt of the switching functions (SURFACES) along the field of ``mode``."""
+    if mode == 1:
+        x = state[0]
+        y = state[1]
+        x_dot = state[2]
+        y_dot = state[3]
+        m = params[0]
+        k1 = params[1]
+        k3 = params[3]
+        k_c = params[4]
+        F_pre = params[5]
+        c1 = params[6]
+        mu_s = params[9]
+        mu_k = params[10]
+        _x0 = (1/2)*k3
+        _x1 = _x0 + k1
+        _x2 = (-_x0*y - _x1*x - c1*x_dot - mu_k*(F_pre + k_c*y))/m
+        _x3 = _x2*c1
+        return numpy.array((_x2, _x1*x_dot + _x3 + y_dot*(_x0 + k_c*mu_s), -_x1*x_dot - _x3 + y_dot*(-_x0 + k_c*mu_s),), dtype=numpy.float64)
+    if mode == -1:
+        x = state[0]
+        y = state[1]
+        x_dot = state[2]
+        y_dot = state[3]
+        m = params[0]
+        k1 = params[1]
+        k3 = params[3]
+        k_c = params[4]
+        F_pre = params[5]
+        c1 = params[6]
+        mu_s = params[9]
+        mu_k = params[10]
+        _x0 = (1/2)*k3
+        _x1 = _x0 + k1
+        _x2 = (-_x0*y - _x1*x - c1*x_dot + mu_k*(F_pre + k_c*y))/m
+        _x3 = _x2*c1
+        return numpy.array((_x2, _x1*x_dot + _x3 + y_dot*(_x0 + k_c*mu_s), -_x1*x_dot - _x3 + y_dot*(-_x0 + k_c*mu_s),), dtype=numpy.float64)
+    if mode == 0:
+        x = state[0]
+        x_dot = state[2]
+        y_dot = state[3]
+        m = params[0]
+        k1 = params[1]
+        k3 = params[3]
+        k_c = params[4]
+        c1 = params[6]
+        mu_s = params[9]
+        _x0 = (1/2)*k3
+        _x1 = _x0 + k1
+        _x2 = (_x0*x - _x1*x + k1*x)/m
+        _x3 = _x2*c1
+        return numpy.array((_x2, _x1*x_dot + _x3 + y_dot*(_x0 + k_c*mu_s), -_x1*x_dot - _x3 + y_dot*(-_x0 + k_c*mu_s),), dtype=numpy.float64)
+    raise ValueError('mode must be one of (1, -1, 0)')
+
+
 def _saltation__static_kinetic(t, state, params, mode_before, mode_after):
     """I + (f+ - f-) n^T / (n^T f-) of the switch across its surface (SWITCHES)."""
     if mode_before == 1 and mode_after == -1:
@@ -1378,9 +1560,9 @@ def _hurwitz__static_kinetic(params):
 
 #: Friction law -> its kernels.
 _KERNELS = {
-    'coulomb': Kernels(field=_field__coulomb, jacobian=_jacobian__coulomb, slip_velocity=_slip_velocity__coulomb, slip_gradient=_slip_gradient__coulomb, slip_acceleration=_slip_acceleration__coulomb, normal_force=_normal_force__coulomb, friction_force=_friction_force__coulomb, holding_force=_holding_force__coulomb, stick_limit=_stick_limit__coulomb, gap=None, surfaces=_surfaces__coulomb, saltation=_saltation__coulomb, equilibrium=_equilibrium__coulomb, characteristic=_characteristic__coulomb, hurwitz=_hurwitz__coulomb),
-    'stribeck': Kernels(field=_field__stribeck, jacobian=_jacobian__stribeck, slip_velocity=_slip_velocity__stribeck, slip_gradient=_slip_gradient__stribeck, slip_acceleration=_slip_acceleration__stribeck, normal_force=_normal_force__stribeck, friction_force=_friction_force__stribeck, holding_force=_holding_force__stribeck, stick_limit=_stick_limit__stribeck, gap=None, surfaces=_surfaces__stribeck, saltation=_saltation__stribeck, equilibrium=_equilibrium__stribeck, characteristic=_characteristic__stribeck, hurwitz=_hurwitz__stribeck),
-    'static_kinetic': Kernels(field=_field__static_kinetic, jacobian=_jacobian__static_kinetic, slip_velocity=_slip_velocity__static_kinetic, slip_gradient=_slip_gradient__static_kinetic, slip_acceleration=_slip_acceleration__static_kinetic, normal_force=_normal_force__static_kinetic, friction_force=_friction_force__static_kinetic, holding_force=_holding_force__static_kinetic, stick_limit=_stick_limit__static_kinetic, gap=None, surfaces=_surfaces__static_kinetic, saltation=_saltation__static_kinetic, equilibrium=_equilibrium__static_kinetic, characteristic=_characteristic__static_kinetic, hurwitz=_hurwitz__static_kinetic),
+    'coulomb': Kernels(field=_field__coulomb, jacobian=_jacobian__coulomb, slip_velocity=_slip_velocity__coulomb, slip_gradient=_slip_gradient__coulomb, slip_acceleration=_slip_acceleration__coulomb, normal_force=_normal_force__coulomb, friction_force=_friction_force__coulomb, holding_force=_holding_force__coulomb, stick_limit=_stick_limit__coulomb, gap=None, surfaces=_surfaces__coulomb, surface_rates=_surface_rates__coulomb, saltation=_saltation__coulomb, equilibrium=_equilibrium__coulomb, characteristic=_characteristic__coulomb, hurwitz=_hurwitz__coulomb),
+    'stribeck': Kernels(field=_field__stribeck, jacobian=_jacobian__stribeck, slip_velocity=_slip_velocity__stribeck, slip_gradient=_slip_gradient__stribeck, slip_acceleration=_slip_acceleration__stribeck, normal_force=_normal_force__stribeck, friction_force=_friction_force__stribeck, holding_force=_holding_force__stribeck, stick_limit=_stick_limit__stribeck, gap=None, surfaces=_surfaces__stribeck, surface_rates=_surface_rates__stribeck, saltation=_saltation__stribeck, equilibrium=_equilibrium__stribeck, characteristic=_characteristic__stribeck, hurwitz=_hurwitz__stribeck),
+    'static_kinetic': Kernels(field=_field__static_kinetic, jacobian=_jacobian__static_kinetic, slip_velocity=_slip_velocity__static_kinetic, slip_gradient=_slip_gradient__static_kinetic, slip_acceleration=_slip_acceleration__static_kinetic, normal_force=_normal_force__static_kinetic, friction_force=_friction_force__static_kinetic, holding_force=_holding_force__static_kinetic, stick_limit=_stick_limit__static_kinetic, gap=None, surfaces=_surfaces__static_kinetic, surface_rates=_surface_rates__static_kinetic, saltation=_saltation__static_kinetic, equilibrium=_equilibrium__static_kinetic, characteristic=_characteristic__static_kinetic, hurwitz=_hurwitz__static_kinetic),
 }
 
 

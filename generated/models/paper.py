@@ -21,7 +21,7 @@ from typing import NamedTuple
 import numpy
 
 
-__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "EQUILIBRIUM", "ABSENT"]
+__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "GUARDS", "DECIDE_SLIP", "DECIDE_CONTACT", "EQUILIBRIUM", "ABSENT"]
 
 
 #: The model's name in the registry.
@@ -161,6 +161,18 @@ SWITCHES = {(1, -1): 'slip_velocity',
  (2, -1): 'gap',
  (2, 0): 'gap'}
 
+#: mode -> ((surface, crossing direction, target), ...): +1 rising, -1 falling.
+GUARDS = {1: (('slip_velocity', -1, 'decide_slip'), ('gap', 1, 2)),
+ -1: (('slip_velocity', 1, 'decide_slip'), ('gap', 1, 2)),
+ 0: (('stick_forward', -1, 1), ('stick_back', -1, -1), ('gap', 1, 2)),
+ 2: (('gap', -1, 'decide_contact'),)}
+
+#: Guard target: Filippov's rule at v_r = 0.
+DECIDE_SLIP = 'decide_slip'
+
+#: Guard target: entering contact.
+DECIDE_CONTACT = 'decide_contact'
+
 #: How the equilibrium is computed, per friction law.
 EQUILIBRIUM = {'coulomb': 'closed form', 'stribeck': 'closed form', 'static_kinetic': 'closed form'}
 
@@ -183,6 +195,7 @@ class Kernels(NamedTuple):
     stick_limit: object
     gap: object
     surfaces: object
+    surface_rates: object
     saltation: object
     equilibrium: object
     characteristic: object
@@ -454,6 +467,124 @@ def _surfaces__coulomb(t, state, params):
     _x2 = Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t)
     _x3 = mu_s*(2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     return numpy.array((-Vb + Y1, _x0 + _x1 - _x2 + _x3, -_x0 - _x1 + _x2 + _x3, -X2,), dtype=numpy.float64)
+
+
+def _surface_rates__coulomb(t, state, params, mode):
+    """dh/dt of the switching functions (SURFACES) along the field of ``mode``."""
+    if mode == 1:
+        X1 = state[0]
+        Y1 = state[1]
+        X2 = state[2]
+        Y2 = state[3]
+        beta1 = params[0]
+        omega1 = params[1]
+        g = params[2]
+        alpha_t = params[4]
+        Omega_t = params[5]
+        phase_t = params[6]
+        alpha_n = params[7]
+        Omega_n = params[8]
+        phase_n = params[9]
+        beta2 = params[10]
+        omega2 = params[11]
+        mu_s = params[12]
+        _x0 = omega1**2
+        _x1 = 2*beta1*omega1
+        _x2 = Omega_t*t + phase_t
+        _x3 = max(0, X2)
+        _x4 = _x3**(3/2)
+        _x5 = 2*beta2*omega2
+        _x6 = Y2*_x5 + omega2**2
+        _x7 = _x4*_x6
+        _x8 = Omega_t**2*alpha_t*math.sin(_x2) - X1*_x0 - Y1*_x1 - _x7*mu_s
+        _x9 = Y1*_x0
+        _x10 = Omega_t**3*alpha_t*math.cos(_x2)
+        _x11 = _x1*_x8
+        _x12 = (3/2)*Y2*math.sqrt(_x3)*_x6*mu_s*(1.0 if (X2) > 0 else 0.0) + _x4*_x5*mu_s*(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x7 + g)
+        return numpy.array((_x8, -_x10 + _x11 + _x12 + _x9, _x10 - _x11 + _x12 - _x9, -Y2,), dtype=numpy.float64)
+    if mode == -1:
+        X1 = state[0]
+        Y1 = state[1]
+        X2 = state[2]
+        Y2 = state[3]
+        beta1 = params[0]
+        omega1 = params[1]
+        g = params[2]
+        alpha_t = params[4]
+        Omega_t = params[5]
+        phase_t = params[6]
+        alpha_n = params[7]
+        Omega_n = params[8]
+        phase_n = params[9]
+        beta2 = params[10]
+        omega2 = params[11]
+        mu_s = params[12]
+        _x0 = 2*beta1*omega1
+        _x1 = omega1**2
+        _x2 = Omega_t*t + phase_t
+        _x3 = max(0, X2)
+        _x4 = _x3**(3/2)
+        _x5 = 2*beta2*omega2
+        _x6 = Y2*_x5 + omega2**2
+        _x7 = _x4*_x6
+        _x8 = Omega_t**2*alpha_t*math.sin(_x2) - X1*_x1 - Y1*_x0 + _x7*mu_s
+        _x9 = Y1*_x1
+        _x10 = Omega_t**3*alpha_t*math.cos(_x2)
+        _x11 = _x0*_x8
+        _x12 = (3/2)*Y2*math.sqrt(_x3)*_x6*mu_s*(1.0 if (X2) > 0 else 0.0) + _x4*_x5*mu_s*(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x7 + g)
+        return numpy.array((_x8, -_x10 + _x11 + _x12 + _x9, _x10 - _x11 + _x12 - _x9, -Y2,), dtype=numpy.float64)
+    if mode == 0:
+        Y1 = state[1]
+        X2 = state[2]
+        Y2 = state[3]
+        omega1 = params[1]
+        g = params[2]
+        alpha_t = params[4]
+        Omega_t = params[5]
+        phase_t = params[6]
+        alpha_n = params[7]
+        Omega_n = params[8]
+        phase_n = params[9]
+        beta2 = params[10]
+        omega2 = params[11]
+        mu_s = params[12]
+        _x0 = Y1*omega1**2
+        _x1 = Omega_t**3*alpha_t*math.cos(Omega_t*t + phase_t)
+        _x2 = max(0, X2)
+        _x3 = _x2**(3/2)
+        _x4 = 2*beta2*omega2
+        _x5 = Y2*_x4 + omega2**2
+        _x6 = (3/2)*Y2*math.sqrt(_x2)*_x5*mu_s*(1.0 if (X2) > 0 else 0.0) + _x3*_x4*mu_s*(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x3*_x5 + g)
+        return numpy.array((0.0, _x0 - _x1 + _x6, -_x0 + _x1 + _x6, -Y2,), dtype=numpy.float64)
+    if mode == 2:
+        X1 = state[0]
+        Y1 = state[1]
+        X2 = state[2]
+        Y2 = state[3]
+        beta1 = params[0]
+        omega1 = params[1]
+        g = params[2]
+        alpha_t = params[4]
+        Omega_t = params[5]
+        phase_t = params[6]
+        alpha_n = params[7]
+        Omega_n = params[8]
+        phase_n = params[9]
+        beta2 = params[10]
+        omega2 = params[11]
+        mu_s = params[12]
+        _x0 = omega1**2
+        _x1 = 2*beta1*omega1
+        _x2 = Omega_t*t + phase_t
+        _x3 = Omega_t**2*alpha_t*math.sin(_x2) - X1*_x0 - Y1*_x1
+        _x4 = Y1*_x0
+        _x5 = Omega_t**3*alpha_t*math.cos(_x2)
+        _x6 = _x1*_x3
+        _x7 = max(0, X2)
+        _x8 = 2*beta2*omega2
+        _x9 = (3/2)*Y2*math.sqrt(_x7)*mu_s*(Y2*_x8 + omega2**2)*(1.0 if (X2) > 0 else 0.0) + _x7**(3/2)*_x8*mu_s*(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g)
+        return numpy.array((_x3, _x4 - _x5 + _x6 + _x9, -_x4 + _x5 - _x6 + _x9, -Y2,), dtype=numpy.float64)
+    raise ValueError('mode must be one of (1, -1, 0, 2)')
 
 
 def _saltation__coulomb(t, state, params, mode_before, mode_after):
@@ -968,6 +1099,130 @@ def _surfaces__stribeck(t, state, params):
     _x2 = Omega_t**2*alpha_t*math.sin(Omega_t*t + phase_t)
     _x3 = mu_s*(2*Y2*beta2*omega2 + omega2**2)*(max(0, X2)*math.sqrt(max(0, X2)))
     return numpy.array((-Vb + Y1, _x0 + _x1 - _x2 + _x3, -_x0 - _x1 + _x2 + _x3, -X2,), dtype=numpy.float64)
+
+
+def _surface_rates__stribeck(t, state, params, mode):
+    """dh/dt of the switching functions (SURFACES) along the field of ``mode``."""
+    if mode == 1:
+        X1 = state[0]
+        Y1 = state[1]
+        X2 = state[2]
+        Y2 = state[3]
+        beta1 = params[0]
+        omega1 = params[1]
+        g = params[2]
+        Vb = params[3]
+        alpha_t = params[4]
+        Omega_t = params[5]
+        phase_t = params[6]
+        alpha_n = params[7]
+        Omega_n = params[8]
+        phase_n = params[9]
+        beta2 = params[10]
+        omega2 = params[11]
+        mu_s = params[12]
+        mu_k = params[13]
+        v_s = params[14]
+        _x0 = 2*beta1*omega1
+        _x1 = omega1**2
+        _x2 = Omega_t*t + phase_t
+        _x3 = max(0, X2)
+        _x4 = _x3**(3/2)
+        _x5 = 2*beta2*omega2
+        _x6 = Y2*_x5 + omega2**2
+        _x7 = _x4*_x6
+        _x8 = Omega_t**2*alpha_t*math.sin(_x2) - X1*_x1 - Y1*_x0 + _x7*(-mu_k - (-mu_k + mu_s)*math.exp((Vb - Y1)/v_s))
+        _x9 = Y1*_x1
+        _x10 = Omega_t**3*alpha_t*math.cos(_x2)
+        _x11 = _x0*_x8
+        _x12 = (3/2)*Y2*math.sqrt(_x3)*_x6*mu_s*(1.0 if (X2) > 0 else 0.0) + _x4*_x5*mu_s*(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x7 + g)
+        return numpy.array((_x8, -_x10 + _x11 + _x12 + _x9, _x10 - _x11 + _x12 - _x9, -Y2,), dtype=numpy.float64)
+    if mode == -1:
+        X1 = state[0]
+        Y1 = state[1]
+        X2 = state[2]
+        Y2 = state[3]
+        beta1 = params[0]
+        omega1 = params[1]
+        g = params[2]
+        Vb = params[3]
+        alpha_t = params[4]
+        Omega_t = params[5]
+        phase_t = params[6]
+        alpha_n = params[7]
+        Omega_n = params[8]
+        phase_n = params[9]
+        beta2 = params[10]
+        omega2 = params[11]
+        mu_s = params[12]
+        mu_k = params[13]
+        v_s = params[14]
+        _x0 = 2*beta1*omega1
+        _x1 = omega1**2
+        _x2 = Omega_t*t + phase_t
+        _x3 = max(0, X2)
+        _x4 = _x3**(3/2)
+        _x5 = 2*beta2*omega2
+        _x6 = Y2*_x5 + omega2**2
+        _x7 = _x4*_x6
+        _x8 = Omega_t**2*alpha_t*math.sin(_x2) - X1*_x1 - Y1*_x0 + _x7*(mu_k + (-mu_k + mu_s)*math.exp((-Vb + Y1)/v_s))
+        _x9 = Y1*_x1
+        _x10 = Omega_t**3*alpha_t*math.cos(_x2)
+        _x11 = _x0*_x8
+        _x12 = (3/2)*Y2*math.sqrt(_x3)*_x6*mu_s*(1.0 if (X2) > 0 else 0.0) + _x4*_x5*mu_s*(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x7 + g)
+        return numpy.array((_x8, -_x10 + _x11 + _x12 + _x9, _x10 - _x11 + _x12 - _x9, -Y2,), dtype=numpy.float64)
+    if mode == 0:
+        Y1 = state[1]
+        X2 = state[2]
+        Y2 = state[3]
+        omega1 = params[1]
+        g = params[2]
+        alpha_t = params[4]
+        Omega_t = params[5]
+        phase_t = params[6]
+        alpha_n = params[7]
+        Omega_n = params[8]
+        phase_n = params[9]
+        beta2 = params[10]
+        omega2 = params[11]
+        mu_s = params[12]
+        _x0 = Y1*omega1**2
+        _x1 = Omega_t**3*alpha_t*math.cos(Omega_t*t + phase_t)
+        _x2 = max(0, X2)
+        _x3 = _x2**(3/2)
+        _x4 = 2*beta2*omega2
+        _x5 = Y2*_x4 + omega2**2
+        _x6 = (3/2)*Y2*math.sqrt(_x2)*_x5*mu_s*(1.0 if (X2) > 0 else 0.0) + _x3*_x4*mu_s*(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x3*_x5 + g)
+        return numpy.array((0.0, _x0 - _x1 + _x6, -_x0 + _x1 + _x6, -Y2,), dtype=numpy.float64)
+    if mode == 2:
+        X1 = state[0]
+        Y1 = state[1]
+        X2 = state[2]
+        Y2 = state[3]
+        beta1 = params[0]
+        omega1 = params[1]
+        g = params[2]
+        alpha_t = params[4]
+        Omega_t = params[5]
+        phase_t = params[6]
+        alpha_n = params[7]
+        Omega_n = params[8]
+        phase_n = params[9]
+        beta2 = params[10]
+        omega2 = params[11]
+        mu_s = params[12]
+        _x0 = omega1**2
+        _x1 = 2*beta1*omega1
+        _x2 = Omega_t*t + phase_t
+        _x3 = Omega_t**2*alpha_t*math.sin(_x2) - X1*_x0 - Y1*_x1
+        _x4 = Y1*_x0
+        _x5 = Omega_t**3*alpha_t*math.cos(_x2)
+        _x6 = _x1*_x3
+        _x7 = max(0, X2)
+        _x8 = 2*beta2*omega2
+        _x9 = (3/2)*Y2*math.sqrt(_x7)*mu_s*(Y2*_x8 + omega2**2)*(1.0 if (X2) > 0 else 0.0) + _x7**(3/2)*_x8*mu_s*(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g)
+        return numpy.array((_x3, _x4 - _x5 + _x6 + _x9, -_x4 + _x5 - _x6 + _x9, -Y2,), dtype=numpy.float64)
+    raise ValueError('mode must be one of (1, -1, 0, 2)')
 
 
 def _saltation__stribeck(t, state, params, mode_before, mode_after):
@@ -1501,6 +1756,126 @@ def _surfaces__static_kinetic(t, state, params):
     return numpy.array((-Vb + Y1, _x0 + _x1 - _x2 + _x3, -_x0 - _x1 + _x2 + _x3, -X2,), dtype=numpy.float64)
 
 
+def _surface_rates__static_kinetic(t, state, params, mode):
+    """dh/dt of the switching functions (SURFACES) along the field of ``mode``."""
+    if mode == 1:
+        X1 = state[0]
+        Y1 = state[1]
+        X2 = state[2]
+        Y2 = state[3]
+        beta1 = params[0]
+        omega1 = params[1]
+        g = params[2]
+        alpha_t = params[4]
+        Omega_t = params[5]
+        phase_t = params[6]
+        alpha_n = params[7]
+        Omega_n = params[8]
+        phase_n = params[9]
+        beta2 = params[10]
+        omega2 = params[11]
+        mu_s = params[12]
+        mu_k = params[13]
+        _x0 = omega1**2
+        _x1 = 2*beta1*omega1
+        _x2 = Omega_t*t + phase_t
+        _x3 = max(0, X2)
+        _x4 = _x3**(3/2)
+        _x5 = 2*beta2*omega2
+        _x6 = Y2*_x5 + omega2**2
+        _x7 = _x4*_x6
+        _x8 = Omega_t**2*alpha_t*math.sin(_x2) - X1*_x0 - Y1*_x1 - _x7*mu_k
+        _x9 = Y1*_x0
+        _x10 = Omega_t**3*alpha_t*math.cos(_x2)
+        _x11 = _x1*_x8
+        _x12 = (3/2)*Y2*math.sqrt(_x3)*_x6*mu_s*(1.0 if (X2) > 0 else 0.0) + _x4*_x5*mu_s*(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x7 + g)
+        return numpy.array((_x8, -_x10 + _x11 + _x12 + _x9, _x10 - _x11 + _x12 - _x9, -Y2,), dtype=numpy.float64)
+    if mode == -1:
+        X1 = state[0]
+        Y1 = state[1]
+        X2 = state[2]
+        Y2 = state[3]
+        beta1 = params[0]
+        omega1 = params[1]
+        g = params[2]
+        alpha_t = params[4]
+        Omega_t = params[5]
+        phase_t = params[6]
+        alpha_n = params[7]
+        Omega_n = params[8]
+        phase_n = params[9]
+        beta2 = params[10]
+        omega2 = params[11]
+        mu_s = params[12]
+        mu_k = params[13]
+        _x0 = 2*beta1*omega1
+        _x1 = omega1**2
+        _x2 = Omega_t*t + phase_t
+        _x3 = max(0, X2)
+        _x4 = _x3**(3/2)
+        _x5 = 2*beta2*omega2
+        _x6 = Y2*_x5 + omega2**2
+        _x7 = _x4*_x6
+        _x8 = Omega_t**2*alpha_t*math.sin(_x2) - X1*_x1 - Y1*_x0 + _x7*mu_k
+        _x9 = Y1*_x1
+        _x10 = Omega_t**3*alpha_t*math.cos(_x2)
+        _x11 = _x0*_x8
+        _x12 = (3/2)*Y2*math.sqrt(_x3)*_x6*mu_s*(1.0 if (X2) > 0 else 0.0) + _x4*_x5*mu_s*(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x7 + g)
+        return numpy.array((_x8, -_x10 + _x11 + _x12 + _x9, _x10 - _x11 + _x12 - _x9, -Y2,), dtype=numpy.float64)
+    if mode == 0:
+        Y1 = state[1]
+        X2 = state[2]
+        Y2 = state[3]
+        omega1 = params[1]
+        g = params[2]
+        alpha_t = params[4]
+        Omega_t = params[5]
+        phase_t = params[6]
+        alpha_n = params[7]
+        Omega_n = params[8]
+        phase_n = params[9]
+        beta2 = params[10]
+        omega2 = params[11]
+        mu_s = params[12]
+        _x0 = Y1*omega1**2
+        _x1 = Omega_t**3*alpha_t*math.cos(Omega_t*t + phase_t)
+        _x2 = max(0, X2)
+        _x3 = _x2**(3/2)
+        _x4 = 2*beta2*omega2
+        _x5 = Y2*_x4 + omega2**2
+        _x6 = (3/2)*Y2*math.sqrt(_x2)*_x5*mu_s*(1.0 if (X2) > 0 else 0.0) + _x3*_x4*mu_s*(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) - _x3*_x5 + g)
+        return numpy.array((0.0, _x0 - _x1 + _x6, -_x0 + _x1 + _x6, -Y2,), dtype=numpy.float64)
+    if mode == 2:
+        X1 = state[0]
+        Y1 = state[1]
+        X2 = state[2]
+        Y2 = state[3]
+        beta1 = params[0]
+        omega1 = params[1]
+        g = params[2]
+        alpha_t = params[4]
+        Omega_t = params[5]
+        phase_t = params[6]
+        alpha_n = params[7]
+        Omega_n = params[8]
+        phase_n = params[9]
+        beta2 = params[10]
+        omega2 = params[11]
+        mu_s = params[12]
+        _x0 = omega1**2
+        _x1 = 2*beta1*omega1
+        _x2 = Omega_t*t + phase_t
+        _x3 = Omega_t**2*alpha_t*math.sin(_x2) - X1*_x0 - Y1*_x1
+        _x4 = Y1*_x0
+        _x5 = Omega_t**3*alpha_t*math.cos(_x2)
+        _x6 = _x1*_x3
+        _x7 = max(0, X2)
+        _x8 = 2*beta2*omega2
+        _x9 = (3/2)*Y2*math.sqrt(_x7)*mu_s*(Y2*_x8 + omega2**2)*(1.0 if (X2) > 0 else 0.0) + _x7**(3/2)*_x8*mu_s*(-Omega_n**2*alpha_n*math.sin(Omega_n*t + phase_n) + g)
+        return numpy.array((_x3, _x4 - _x5 + _x6 + _x9, -_x4 + _x5 - _x6 + _x9, -Y2,), dtype=numpy.float64)
+    raise ValueError('mode must be one of (1, -1, 0, 2)')
+
+
 def _saltation__static_kinetic(t, state, params, mode_before, mode_after):
     """I + (f+ - f-) n^T / (n^T f-) of the switch across its surface (SWITCHES)."""
     if mode_before == 1 and mode_after == -1:
@@ -1723,9 +2098,9 @@ def _hurwitz__static_kinetic(params):
 
 #: Friction law -> its kernels.
 _KERNELS = {
-    'coulomb': Kernels(field=_field__coulomb, jacobian=_jacobian__coulomb, slip_velocity=_slip_velocity__coulomb, slip_gradient=_slip_gradient__coulomb, slip_acceleration=_slip_acceleration__coulomb, normal_force=_normal_force__coulomb, friction_force=_friction_force__coulomb, holding_force=_holding_force__coulomb, stick_limit=_stick_limit__coulomb, gap=_gap__coulomb, surfaces=_surfaces__coulomb, saltation=_saltation__coulomb, equilibrium=_equilibrium__coulomb, characteristic=_characteristic__coulomb, hurwitz=_hurwitz__coulomb),
-    'stribeck': Kernels(field=_field__stribeck, jacobian=_jacobian__stribeck, slip_velocity=_slip_velocity__stribeck, slip_gradient=_slip_gradient__stribeck, slip_acceleration=_slip_acceleration__stribeck, normal_force=_normal_force__stribeck, friction_force=_friction_force__stribeck, holding_force=_holding_force__stribeck, stick_limit=_stick_limit__stribeck, gap=_gap__stribeck, surfaces=_surfaces__stribeck, saltation=_saltation__stribeck, equilibrium=_equilibrium__stribeck, characteristic=_characteristic__stribeck, hurwitz=_hurwitz__stribeck),
-    'static_kinetic': Kernels(field=_field__static_kinetic, jacobian=_jacobian__static_kinetic, slip_velocity=_slip_velocity__static_kinetic, slip_gradient=_slip_gradient__static_kinetic, slip_acceleration=_slip_acceleration__static_kinetic, normal_force=_normal_force__static_kinetic, friction_force=_friction_force__static_kinetic, holding_force=_holding_force__static_kinetic, stick_limit=_stick_limit__static_kinetic, gap=_gap__static_kinetic, surfaces=_surfaces__static_kinetic, saltation=_saltation__static_kinetic, equilibrium=_equilibrium__static_kinetic, characteristic=_characteristic__static_kinetic, hurwitz=_hurwitz__static_kinetic),
+    'coulomb': Kernels(field=_field__coulomb, jacobian=_jacobian__coulomb, slip_velocity=_slip_velocity__coulomb, slip_gradient=_slip_gradient__coulomb, slip_acceleration=_slip_acceleration__coulomb, normal_force=_normal_force__coulomb, friction_force=_friction_force__coulomb, holding_force=_holding_force__coulomb, stick_limit=_stick_limit__coulomb, gap=_gap__coulomb, surfaces=_surfaces__coulomb, surface_rates=_surface_rates__coulomb, saltation=_saltation__coulomb, equilibrium=_equilibrium__coulomb, characteristic=_characteristic__coulomb, hurwitz=_hurwitz__coulomb),
+    'stribeck': Kernels(field=_field__stribeck, jacobian=_jacobian__stribeck, slip_velocity=_slip_velocity__stribeck, slip_gradient=_slip_gradient__stribeck, slip_acceleration=_slip_acceleration__stribeck, normal_force=_normal_force__stribeck, friction_force=_friction_force__stribeck, holding_force=_holding_force__stribeck, stick_limit=_stick_limit__stribeck, gap=_gap__stribeck, surfaces=_surfaces__stribeck, surface_rates=_surface_rates__stribeck, saltation=_saltation__stribeck, equilibrium=_equilibrium__stribeck, characteristic=_characteristic__stribeck, hurwitz=_hurwitz__stribeck),
+    'static_kinetic': Kernels(field=_field__static_kinetic, jacobian=_jacobian__static_kinetic, slip_velocity=_slip_velocity__static_kinetic, slip_gradient=_slip_gradient__static_kinetic, slip_acceleration=_slip_acceleration__static_kinetic, normal_force=_normal_force__static_kinetic, friction_force=_friction_force__static_kinetic, holding_force=_holding_force__static_kinetic, stick_limit=_stick_limit__static_kinetic, gap=_gap__static_kinetic, surfaces=_surfaces__static_kinetic, surface_rates=_surface_rates__static_kinetic, saltation=_saltation__static_kinetic, equilibrium=_equilibrium__static_kinetic, characteristic=_characteristic__static_kinetic, hurwitz=_hurwitz__static_kinetic),
 }
 
 

@@ -152,3 +152,33 @@ def test_equilibrium_characteristic_hurwitz(law):
         scales.append(abs(a4) * scales[2])
         for mine, theirs, scale in zip(k.hurwitz(p), typed, scales):
             _close(mine, theirs, 4 * scale)
+
+
+@pytest.mark.parametrize("law", LAWS)
+def test_surface_rates(law):
+    k = paper.kernels(law)
+    for t, y, kw, p in _points(law, count=4):
+        for mode in NAMES.values():
+            z = y.copy()
+            if mode == 0:
+                z[1] = kw["Vb"]
+            ref = hybrid.surface_rates(t, *z, mode, friction=law, contact="hertz_damp", **kw)
+            ref = np.array([*ref[:3], -ref[3]], float)
+            mine = k.surface_rates(t, z, p, mode)
+            for a, b in zip(mine, ref):
+                _close(a, b, np.max(np.abs(ref)))
+            assert mine[0] == pytest.approx(k.slip_acceleration(t, z, p, mode), rel=1e-14)
+
+
+def test_guards_are_todays_under_a_contact_that_pulls():
+    """Today's GUARDS of the tension law ``allowed`` (the paper's), in mode codes and with
+    the gap (-X2) for the penetration (crossings reversed)."""
+    surface = {"relative_velocity": "slip_velocity", "penetration": "gap"}
+    target = {**NAMES, hybrid.DECIDE_SLIP: paper.DECIDE_SLIP}
+    target[hybrid.DECIDE_CONTACT] = paper.DECIDE_CONTACT
+    for before, guards in hybrid.GUARDS["allowed"].items():
+        mine = {
+            (surface.get(h, h), -sign if h == "penetration" else sign, target[to])
+            for h, sign, to in guards
+        }
+        assert mine == set(paper.GUARDS[NAMES[before]]), before
