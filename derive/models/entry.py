@@ -53,6 +53,16 @@ class Excitation:
         Names of the parameters ``A``, ``W`` and ``phase``.
     sign : {1, -1}
         The term's sign (the paper's normal excitation is ``-alpha_n Omega_n^2 sin``).
+
+    See Also
+    --------
+    Oscillator : the model that lists its terms.
+
+    Examples
+    --------
+    >>> from beltmdsm.derive.models import get
+    >>> [(x.target, x.amplitude, x.sign) for x in get("paper").excitation]
+    [('X1', 'alpha_t', 1), ('X2', 'alpha_n', -1)]
     """
 
     target: str
@@ -82,6 +92,16 @@ class Contact:
     direction : callable or None
         ``direction(P)``: the generalized friction direction ``d``, a dict by
         coordinate name; None: ``d = w``.
+
+    See Also
+    --------
+    Oscillator : the model that has it.
+
+    Examples
+    --------
+    >>> from beltmdsm.derive.models import get
+    >>> get("paper").contact.unilateral, get("hoffmann").contact.unilateral
+    (True, False)
     """
 
     slip: Callable[[Mapping], Mapping]
@@ -129,6 +149,17 @@ class Oscillator:
         coordinates, then their rates).
     friction_laws : tuple of str or None
         The friction laws generated for it (None: every registered law).
+
+    See Also
+    --------
+    beltmdsm.derive.models.register : adds an entry (docs/howto/own_model.md).
+
+    Examples
+    --------
+    >>> from beltmdsm.derive.models import get
+    >>> hoffmann = get("hoffmann")
+    >>> hoffmann.coordinates, hoffmann.state_names
+    (('x', 'y'), ('x', 'y', 'x_dot', 'y_dot'))
     """
 
     name: str

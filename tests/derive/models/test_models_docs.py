@@ -69,3 +69,13 @@ def test_the_models_page_lists_every_model_and_parameter():
         for state in m.STATES:
             assert f"``{state}``" in body
         assert ("unilateral" in body) == m.UNILATERAL
+
+
+def test_the_entry_examples_run():
+    import doctest
+    import importlib
+
+    for name in ("entry", "registry"):
+        module = importlib.import_module(f"beltmdsm.derive.models.{name}")
+        result = doctest.testmod(module)
+        assert result.attempted > 0 and result.failed == 0, (name, result)
