@@ -394,6 +394,16 @@ def render_entry(entry) -> str:
         ("DEFAULTS", defaults(rows), "A default value for every parameter."),
         ("UNITS", {r.name: r.unit for r in rows}, "The unit of every parameter."),
         ("DESCRIPTIONS", {r.name: r.description for r in rows}, "One line per parameter."),
+        (
+            "DOMAINS",
+            {r.name: r.domain for r in rows},
+            "The domain of every parameter (beltmdsm.generated.parameters.DOMAINS' names).",
+        ),
+        (
+            "DEFAULT_FROM",
+            {r.name: r.default_from for r in rows if r.default_from},
+            "A parameter whose default is another's value, when that one is given.",
+        ),
         ("EXCITATION", excitation, "(target, amplitude, frequency, phase) per term."),
         ("MODES", {k: v for k, v in MODES.items() if unilateral or v != 2}, "Mode codes."),
         ("SURFACES", tuple(hy.surfaces(s0)), "The switching functions of `surfaces`, in order."),

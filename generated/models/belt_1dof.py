@@ -22,7 +22,7 @@ from typing import NamedTuple
 import numpy
 
 
-__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "GUARDS", "DECIDE_SLIP", "DECIDE_CONTACT", "EQUILIBRIUM", "ABSENT"]
+__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "DOMAINS", "DEFAULT_FROM", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "GUARDS", "DECIDE_SLIP", "DECIDE_CONTACT", "EQUILIBRIUM", "ABSENT"]
 
 
 #: The model's name in the registry.
@@ -127,6 +127,24 @@ DESCRIPTIONS = {'beta1': 'tangential damping ratio C1/(2 M omega1), Eq. (4)',
  'mu_k': 'kinetic friction coefficient: mu while slipping (static_kinetic), the limit '
          'at high |Vr| (stribeck)',
  'v_s': 'Stribeck velocity: the speed over which mu falls from mu_s towards mu_k'}
+
+#: The domain of every parameter (beltmdsm.generated.parameters.DOMAINS' names).
+DOMAINS = {'beta1': 'nonnegative',
+ 'omega1': 'positive',
+ 'g': 'positive',
+ 'Vb': 'nonnegative',
+ 'alpha_t': 'nonnegative',
+ 'Omega_t': 'nonnegative',
+ 'phase_t': 'real',
+ 'alpha_n': 'nonnegative',
+ 'Omega_n': 'nonnegative',
+ 'phase_n': 'real',
+ 'mu_s': 'nonnegative',
+ 'mu_k': 'nonnegative',
+ 'v_s': 'positive'}
+
+#: A parameter whose default is another's value, when that one is given.
+DEFAULT_FROM = {}
 
 #: (target, amplitude, frequency, phase) per term.
 EXCITATION = (('x', 'alpha_t', 'Omega_t', 'phase_t'), ('normal', 'alpha_n', 'Omega_n', 'phase_n'))

@@ -27,7 +27,7 @@ from typing import NamedTuple
 import numpy
 
 
-__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "GUARDS", "DECIDE_SLIP", "DECIDE_CONTACT", "EQUILIBRIUM", "ABSENT"]
+__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "DOMAINS", "DEFAULT_FROM", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "GUARDS", "DECIDE_SLIP", "DECIDE_CONTACT", "EQUILIBRIUM", "ABSENT"]
 
 
 #: The model's name in the registry.
@@ -116,6 +116,23 @@ DESCRIPTIONS = {'m': 'mass',
  'mu_k': 'kinetic friction coefficient: mu while slipping (static_kinetic), the limit '
          'at high |Vr| (stribeck)',
  'v_s': 'Stribeck velocity: the speed over which mu falls from mu_s towards mu_k'}
+
+#: The domain of every parameter (beltmdsm.generated.parameters.DOMAINS' names).
+DOMAINS = {'m': 'positive',
+ 'k1': 'positive',
+ 'k2': 'positive',
+ 'k3': 'positive',
+ 'k_c': 'positive',
+ 'F_pre': 'nonnegative',
+ 'c1': 'nonnegative',
+ 'c2': 'nonnegative',
+ 'Vb': 'nonnegative',
+ 'mu_s': 'nonnegative',
+ 'mu_k': 'nonnegative',
+ 'v_s': 'positive'}
+
+#: A parameter whose default is another's value, when that one is given.
+DEFAULT_FROM = {}
 
 #: (target, amplitude, frequency, phase) per term.
 EXCITATION = ()

@@ -33,3 +33,24 @@ def test_step_kernels_compile_with_numba(name):
         for kernel in kernels:
             f = getattr(k, kernel)
             np.testing.assert_allclose(numba.njit(f)(*args), f(*args), rtol=1e-13)
+
+
+@pytest.mark.parametrize("name", MODELS)
+def test_every_parameter_has_a_default_in_its_domain(name):
+    from beltmdsm.generated.parameters import within
+
+    m = load(name)
+    names = {n for law in m.FRICTION_LAWS for n in m.PARAMETERS[law]}
+    assert set(m.DEFAULTS) == names == set(m.DOMAINS) == set(m.UNITS)
+    for n, value in m.DEFAULTS.items():
+        assert within(m.DOMAINS[n], value), (n, value)
+    if name == "paper":  # the per-direction excitation defaults to Eq. (4)'s alpha, Omega
+        from beltmdsm.generated.parameters import BASE
+
+        assert m.DEFAULT_FROM == {
+            "alpha_t": "alpha",
+            "Omega_t": "Omega",
+            "alpha_n": "alpha",
+            "Omega_n": "Omega",
+        }
+        assert all(m.DEFAULTS[n] == BASE[src] for n, src in m.DEFAULT_FROM.items())
