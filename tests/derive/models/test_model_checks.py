@@ -356,3 +356,47 @@ def test_generated_text_independent_of_hash_seed():
         for seed in ("0", "1")
     }
     assert len(out) == 1
+
+
+# --------------------------------------------------------------------------- finite differences
+
+
+def _fd(f, x, h):
+    """Central differences of ``f`` at ``x``, one column per entry of ``x``."""
+    cols = []
+    for i in range(len(x)):
+        e = np.zeros_like(x)
+        e[i] = h * max(1.0, abs(x[i]))
+        cols.append((np.asarray(f(x + e)) - np.asarray(f(x - e))) / (2 * e[i]))
+    return np.array(cols).T
+
+
+@pytest.mark.parametrize("name", ["belt_1dof", "hoffmann", "paper"])
+def test_jacobians_and_saltation_against_finite_differences(name):
+    """Each mode's Jacobian against central differences of its field, and each switch's
+    saltation matrix assembled here from the fields and the switching function's
+    finite-difference gradient and time rate: I + (f+ - f-) n^T / (h_t + n . f-)."""
+    m = load(name)
+    law = m.FRICTION_LAWS[1]
+    k = m.kernels(law)
+    p = _p(m, law, alpha_t=0.5, alpha_n=0.2) if name != "hoffmann" else _p(m, law)
+    rng = np.random.default_rng(5)
+    index = {s: i for i, s in enumerate(m.SURFACES)}
+    for _ in range(3):
+        t = rng.uniform(0, 5)
+        y = k.equilibrium(p) + rng.normal(0, 0.3, len(m.STATES))
+        for mode in m.MODES.values():
+            J = k.jacobian(t, y, p, mode)
+            ref = _fd(lambda z: k.field(t, z, p, mode), y, 1e-6)
+            assert np.allclose(J, ref, rtol=1e-6, atol=1e-6 * np.max(np.abs(ref))), mode
+        for (before, after), surface in m.SWITCHES.items():
+            i = index[surface]
+            n = _fd(lambda z: [k.surfaces(t, z, p)[i]], y, 1e-6)[0]
+            dt = 1e-6 * max(1.0, t)
+            h_t = (k.surfaces(t + dt, y, p)[i] - k.surfaces(t - dt, y, p)[i]) / (2 * dt)
+            f_minus, f_plus = k.field(t, y, p, before), k.field(t, y, p, after)
+            S = np.eye(len(y)) + np.outer(f_plus - f_minus, n) / (h_t + n @ f_minus)
+            got = k.saltation(t, y, p, before, after)
+            assert np.allclose(got, S, rtol=1e-5, atol=1e-5 * np.max(np.abs(S))), (before, after)
+            rate = k.surface_rates(t, y, p, before)[i]
+            assert rate == pytest.approx(h_t + n @ f_minus, rel=1e-5, abs=1e-8)
