@@ -19,7 +19,7 @@ Steady sliding is the rest state of the unforced system with the belt moving: ``
   and the equilibrium.
 * **Hurwitz determinants** ``H_1 .. H_m`` in the coefficients ``a_1 .. a_m`` (the leading
   minors of the Hurwitz matrix, ``H_m = a_m H_(m-1)``), any order: a handful of
-  operations where, written in the parameters, they explode (docs: LESSONS.md).
+  operations where, written in the parameters, they explode.
 """
 
 from __future__ import annotations
