@@ -25,10 +25,11 @@ def test_step_kernels_compile_with_numba(name):
     k = m.kernels(law)
     p = np.array([m.DEFAULTS[x] for x in m.PARAMETERS[law]])
     y = k.equilibrium(p) + 0.1
+    # one kernel of each output kind: a vector per mode, a matrix per switch, a float
     for args, kernels in (
-        ((0.3, y, p, -1), ("field", "jacobian", "slip_acceleration")),
+        ((0.3, y, p, -1), ("field",)),
         ((0.3, y, p, -1, 0), ("saltation",)),
-        ((0.3, y, p), ("holding_force", "surfaces")),
+        ((0.3, y, p), ("holding_force",)),
     ):
         for kernel in kernels:
             f = getattr(k, kernel)
