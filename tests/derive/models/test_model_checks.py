@@ -400,3 +400,31 @@ def test_jacobians_and_saltation_against_finite_differences(name):
             assert np.allclose(got, S, rtol=1e-5, atol=1e-5 * np.max(np.abs(S))), (before, after)
             rate = k.surface_rates(t, y, p, before)[i]
             assert rate == pytest.approx(h_t + n @ f_minus, rel=1e-5, abs=1e-8)
+
+
+@pytest.mark.parametrize("law", ["coulomb", "stribeck", "static_kinetic"])
+def test_belt_1dof_is_the_paper_with_its_normal_direction_at_rest(law):
+    """With no normal excitation the paper's normal motion stays at its equilibrium
+    (F = g), and its tangential equation is belt_1dof's: the fields, holding forces and
+    stick limits agree there, in every mode of contact."""
+    paper, belt = load("paper"), load("belt_1dof")
+    kp, kb = paper.kernels(law), belt.kernels(law)
+    rng = np.random.default_rng(9)
+    for _ in range(10):
+        v = {
+            n: rng.uniform(0.2, 2.0) for n in set(paper.PARAMETERS[law]) | set(belt.PARAMETERS[law])
+        }
+        v["alpha_n"] = 0.0
+        v["mu_k"] = v["mu_s"] * 0.6
+        pp = np.array([v[n] for n in paper.PARAMETERS[law]])
+        pb = np.array([v[n] for n in belt.PARAMETERS[law]])
+        X2 = kp.equilibrium(pp)[2]
+        t, x, xd = rng.uniform(0, 5), rng.normal(), rng.normal()
+        yp, yb = np.array([x, xd, X2, 0.0]), np.array([x, xd])
+        assert kp.normal_force(t, yp, pp) == pytest.approx(v["g"], rel=1e-14)
+        for mode in (1, -1, 0):
+            fp, fb = kp.field(t, yp, pp, mode), kb.field(t, yb, pb, mode)
+            np.testing.assert_allclose(fp[:2], fb, rtol=1e-13, atol=1e-13 * np.max(np.abs(fb)))
+            assert abs(fp[3]) <= 1e-13 * v["g"]  # the normal direction stays at rest
+        assert kp.holding_force(t, yp, pp) == pytest.approx(kb.holding_force(t, yb, pb), rel=1e-13)
+        assert kp.stick_limit(t, yp, pp) == pytest.approx(kb.stick_limit(t, yb, pb), rel=1e-13)
