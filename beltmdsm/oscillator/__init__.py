@@ -14,9 +14,9 @@ every analysis here reads the model through its kernels alone:
   with its multipliers.
 """
 
-from .cycles import Cycle, self_excited_cycle
+from .cycles import Cycle, self_excited_cycle, stick_onset
 from .equilibria import Equilibrium, hopf_points, steady_sliding
-
+from .forced import Response, forced_response
 from .hybrid import Trajectory, simulate
 from .system import System, load_model
 
@@ -30,6 +30,7 @@ __all__ = [
     "hopf_points",
     "self_excited_cycle",
     "Cycle",
-
-
+    "stick_onset",
+    "forced_response",
+    "Response",
 ]

@@ -12,8 +12,10 @@ at every switch (`beltmdsm.oscillator.hybrid.flow`), ``f`` the derived field at 
   single point of the orbit): the run from there goes to the ``k``-th end of a stick
   (``x_T``), and ``c`` is that surface, ``|holding_force| - stick_limit`` (its gradient
   by central differences of the two kernels: it steers Newton's steps only);
-* **pure slip**: a Poincare section, the plane through the seed normal to the field
-  there; the run goes over ``T``.
+* **pure slip**: a Poincare section where the slip speed ``m v_r`` is least
+  (``slip_acceleration = 0``, the point of the orbit closest to stick: its slip
+  velocity there measures the distance to the stick onset, `stick_onset`); the run
+  goes over ``T``.
 
 The period reported is the least: no proper divisor of the ``k`` sticks (or ``T/j``,
 ``j <= 6``, of a pure-slip cycle) returns to the state. The multipliers are the
@@ -35,7 +37,7 @@ from .equilibria import steady_sliding
 from .hybrid import Switch, flow
 from .system import STICK, System
 
-__all__ = ["Cycle", "self_excited_cycle", "NEWTON_TOL"]
+__all__ = ["Cycle", "self_excited_cycle", "stick_onset", "NEWTON_TOL"]
 
 #: Newton's method stops when the run returns to its start to this (relative to the
 #: state's scale).
@@ -44,6 +46,8 @@ NEWTON_TOL = 1e-10
 _RETURN_TOL = 1e-6
 #: Divisors of a pure-slip cycle's period checked for a return.
 _DIVISORS = 6
+#: Halvings of a Newton step before the method counts as stalled.
+_HALVINGS = 10
 
 
 @dataclass(repr=False)
@@ -167,8 +171,7 @@ def self_excited_cycle(
         )
     tol = dict(rtol=rtol, atol=atol)
     if guess is not None and period is not None:
-        x = np.asarray(guess, dtype=float)
-        return _shoot_slip(system, x, float(period), x.copy(), max_iter, tol)
+        return _shoot_slip(system, guess, float(period), max_iter, tol)
     if guess is None:
         eq = steady_sliding(system)
         J = np.asarray(system.kernels.jacobian(0.0, eq.state, system.p, eq.mode))
@@ -255,44 +258,59 @@ def _newton_stick(system, x, mode, k, max_iter, tol):
 
 
 def _seed_slip(system, x, max_iter, tol):
-    """A pure-slip seed: the period from the last maxima of the slip velocity."""
+    """A pure-slip seed: the last point of a run where the slip speed ``m v_r`` is
+    least, the period from its last two minima."""
     k_, p = system.kernels, system.p
     samples: list = []
     end = flow(system, 0.0, x, 100.0, dt=0.01, samples=samples, **tol)
     if end.switches:
         raise NoPeriodicResponse(f"{system!r}: the seed run switches without sticking")
-    ts = np.array([s[0] for s in samples])
-    acc = np.array([k_.slip_acceleration(s[0], s[1], p, s[2]) for s in samples])
-    ups = ts[1:][(acc[:-1] > 0.0) & (acc[1:] <= 0.0)]
-    if len(ups) < 3:
+    mode = samples[-1][2]
+    speed = np.array([mode * k_.slip_velocity(t, y, p) for t, y, _ in samples])
+    low = np.flatnonzero((speed[1:-1] < speed[:-2]) & (speed[1:-1] <= speed[2:])) + 1
+    if len(low) < 3:
         raise NoPeriodicResponse(f"{system!r}: the seed run settles on no cycle")
-    T = float(ups[-1] - ups[-2])
-    x = np.asarray(samples[-1][1], dtype=float)
-    return _shoot_slip(system, x, T, x.copy(), max_iter, tol)
+    T = samples[low[-1]][0] - samples[low[-2]][0]
+    return _shoot_slip(system, samples[low[-1]][1], T, max_iter, tol)
 
 
-def _shoot_slip(system, x, T, anchor, max_iter, tol):
+def _shoot_slip(system, x, T, max_iter, tol):
+    """Newton's method on ``(x, T)``, the section where the slip speed is least
+    (``slip_acceleration = 0``: its gradient ``J^T w`` by the derived Jacobian)."""
     k_, p = system.kernels, system.p
+    x = np.asarray(x, dtype=float)
     m = x.size
     mode = _mode(system, x)
-    normal = np.asarray(k_.field(0.0, anchor, p, mode), dtype=float)
     scale = 1.0 + np.abs(x).max()
-    residual = np.inf
+    run = flow(system, 0.0, x, T, mode=mode, variational=True, **tol)
+    if run.switches:
+        raise NoPeriodicResponse(
+            f"{system!r}: the run from the guess switches at t = {run.switches[0][0]:.6g} s: "
+            "no pure-slip cycle through it"
+        )
     for _ in range(max_iter):
-        run = flow(system, 0.0, x, T, mode=mode, variational=True, **tol)
         r = run.y - x
         residual = float(np.abs(r).max())
-        if residual <= NEWTON_TOL * scale and not run.switches:
+        if residual <= NEWTON_TOL * scale:
             break
-        if run.switches:
-            raise NoPeriodicResponse(
-                f"{system!r}: the pure-slip cycle's run switches at t = {run.switches[0][0]:.6g} s"
-            )
+        w = np.asarray(k_.slip_gradient(0.0, x, p), dtype=float)
+        grad = np.asarray(k_.jacobian(0.0, x, p, mode), dtype=float).T @ w
         f = np.asarray(k_.field(T, run.y, p, mode), dtype=float)
-        A = np.block([[run.monodromy - np.eye(m), f[:, None]], [normal[None, :], np.zeros((1, 1))]])
-        b = -np.concatenate((r, [normal @ (x - anchor)]))
+        A = np.block([[run.monodromy - np.eye(m), f[:, None]], [grad[None, :], np.zeros((1, 1))]])
+        b = -np.concatenate((r, [k_.slip_acceleration(0.0, x, p, mode)]))
         step = np.linalg.solve(A, b)
-        x, T = x + step[:m], T + step[m]
+        # damped: a step that reaches a switch or does not reduce the residual is halved
+        for _ in range(_HALVINGS):
+            trial = flow(system, 0.0, x + step[:m], T + step[m], mode=mode, variational=True, **tol)
+            if not trial.switches and np.abs(trial.y - x - step[:m]).max() < residual:
+                break
+            step = 0.5 * step
+        else:
+            raise NoPeriodicResponse(
+                f"{system!r}: no slip cycle found: Newton's method stalled at a residual "
+                f"{residual:.2e} (no step of {_HALVINGS} halvings reduces it)"
+            )
+        x, T, run = x + step[:m], T + step[m], trial
     else:
         raise NoPeriodicResponse(
             f"{system!r}: no slip cycle found: Newton's method left a residual "
@@ -301,7 +319,7 @@ def _shoot_slip(system, x, T, anchor, max_iter, tol):
     for j in range(_DIVISORS, 1, -1):
         back = flow(system, 0.0, x, T / j, mode=mode, **tol)
         if np.allclose(back.y, x, rtol=_RETURN_TOL, atol=_RETURN_TOL):
-            return _shoot_slip(system, x, T / j, anchor, max_iter, tol)
+            return _shoot_slip(system, x, T / j, max_iter, tol)
     return _cycle(system, x, mode, run, residual)
 
 
@@ -321,3 +339,80 @@ def _cycle(system, x, mode, run, residual):
     rest = rest[np.argsort(-np.abs(rest), kind="stable")]
     sticks = sum(1 for _, _, after in run.switches if after == STICK)
     return Cycle(system, x, mode, run.t, rest, complex(w[i]), M, run.switches, sticks, residual)
+
+
+def stick_onset(
+    cycle: Cycle, parameter: str, step: float, *, tol: float = 1e-12, max_iter: int = 40
+) -> Cycle:
+    """The pure-slip cycle where its least slip speed reaches 0: the onset of stick.
+
+    From ``cycle`` (pure slip) the parameter moves by ``step`` towards the onset, then
+    by the secant of the least slip speed ``m v_r`` (the slip velocity on the cycle's
+    section), each cycle shot from the one before; a value where no pure-slip cycle is
+    found (past the onset) is halved back.
+
+    Parameters
+    ----------
+    cycle : Cycle
+        A pure-slip cycle.
+    parameter : str
+    step : float
+        The first step in the parameter, towards the onset.
+    tol : float
+        The least slip speed at the onset, relative to ``1 + |state|``.
+    max_iter : int
+
+    Returns
+    -------
+    Cycle
+        The grazing cycle; ``cycle.system.params[parameter]`` is the onset.
+
+    Raises
+    ------
+    ValueError
+        A cycle with a stick, or an unknown parameter.
+    NoPeriodicResponse
+        No onset within ``max_iter`` steps.
+
+    See Also
+    --------
+    self_excited_cycle : the cycle to start from.
+
+    Examples
+    --------
+    >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
+    >>> import reference_belt_1dof as belt
+    >>> from beltmdsm.oscillator import System
+    >>> slip = self_excited_cycle(System(belt, friction="stribeck", Vb=2.5),
+    ...                           [3.0182035, 2.0991444], 6.3203187)
+    >>> onset = stick_onset(slip, "Vb", 0.2)
+    >>> round(onset.system.params["Vb"], 6)
+    2.900393
+    """
+    if cycle.sticks or cycle.switches:
+        raise ValueError("cycle: has switches; the stick onset starts from a pure-slip cycle")
+    if parameter not in cycle.system.params:
+        raise ValueError(f"parameter={parameter!r}: not a parameter of {cycle.system!r}")
+
+    def speed(c):
+        k = c.system.kernels
+        return c.mode * k.slip_velocity(0.0, c.state, c.system.p)
+
+    good = [(cycle.system.params[parameter], speed(cycle), cycle)]
+    value = good[-1][0] + step
+    for _ in range(max_iter):
+        last = good[-1][2]
+        try:
+            c = _shoot_slip(last.system.replace(**{parameter: value}), last.state, last.period,
+                            30, dict(rtol=1e-11, atol=1e-11))
+        except NoPeriodicResponse:
+            value = 0.5 * (value + good[-1][0])
+            continue
+        good.append((value, speed(c), c))
+        if abs(good[-1][1]) <= tol * (1.0 + np.abs(c.state).max()):
+            return c
+        (v0, s0, _), (v1, s1, _) = good[-2], good[-1]
+        value = v1 - s1 * (v1 - v0) / (s1 - s0)
+    raise NoPeriodicResponse(
+        f"{cycle.system!r}: no stick onset in {parameter} found in {max_iter} steps"
+    )
