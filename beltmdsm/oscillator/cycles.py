@@ -21,8 +21,10 @@ The period reported is the least: no proper divisor of the ``k`` sticks (or ``T/
 ``j <= 6``, of a pure-slip cycle) returns to the state. The multipliers are the
 eigenvalues of ``M``; the trivial one (its eigenvector closest to the field, ``M f =
 f``) is reported apart, its distance from 1 measuring the accuracy; a stick gives a
-multiplier 0. A seed is a run from steady sliding moved along its least stable
-direction (or from ``guess``), settled over ``settle`` seconds.
+multiplier 0. A seed is a run settled over ``settle`` seconds from ``guess``, else
+from steady sliding moved along its least stable direction (where it grows) and then
+from the stick state over steady sliding (where a stick-slip cycle coexists with
+stable sliding, as under Stribeck's law above its Hopf point).
 """
 
 from __future__ import annotations
@@ -34,7 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import NoPeriodicResponse, Unsupported
 from .equilibria import steady_sliding
-from .hybrid import Switch, flow
+from .hybrid import Switch, _to_stick, flow
 from .system import STICK, System
 
 __all__ = ["Cycle", "self_excited_cycle", "stick_onset", "NEWTON_TOL"]
@@ -172,16 +174,38 @@ def self_excited_cycle(
     tol = dict(rtol=rtol, atol=atol)
     if guess is not None and period is not None:
         return _shoot_slip(system, guess, float(period), max_iter, tol)
-    if guess is None:
-        eq = steady_sliding(system)
+    for start in [guess] if guess is not None else _starts(system):
+        seed = flow(system, 0.0, start, settle, **tol)
+        if sum(1 for s in seed.switches if s[1] == STICK) >= 3:
+            return _shoot_stick_slip(system, seed, max_iter, tol)
+        if not seed.switches and _moving(system, seed):
+            return _seed_slip(system, seed.y, max_iter, tol)
+    raise NoPeriodicResponse(
+        f"{system!r}: no self-excited cycle found: the runs from "
+        f"{'the guess' if guess is not None else 'steady sliding and from stick'} "
+        f"settle on no cycle within {settle:g} s"
+    )
+
+
+def _starts(system):
+    """Steady sliding moved along its least stable direction, where it grows; and the
+    stick state over steady sliding (its position, the slip velocity 0), from which a
+    stick-slip cycle coexisting with stable sliding is reached."""
+    eq = steady_sliding(system)
+    out = []
+    if eq.growth_rate > 1e-9 * np.abs(eq.eigenvalues).max():
         J = np.asarray(system.kernels.jacobian(0.0, eq.state, system.p, eq.mode))
         w, V = np.linalg.eig(J)
         v = np.real(V[:, np.argmax(w.real)])
-        guess = eq.state + 1e-3 * (1.0 + np.abs(eq.state).max()) * v / np.abs(v).max()
-    seed = flow(system, 0.0, guess, settle, **tol)
-    if sum(1 for s in seed.switches if s[1] == STICK) >= 3:
-        return _shoot_stick_slip(system, seed, max_iter, tol)
-    return _seed_slip(system, seed.y, max_iter, tol)
+        out.append(eq.state + 1e-3 * (1.0 + np.abs(eq.state).max()) * v / np.abs(v).max())
+    out.append(_to_stick(system, 0.0, eq.state))
+    return out
+
+
+def _moving(system, seed):
+    """Whether a run ends away from steady sliding (not decayed onto it)."""
+    eq = steady_sliding(system)
+    return np.abs(seed.y - eq.state).max() > 1e-6 * (1.0 + np.abs(eq.state).max())
 
 
 def _shoot_stick_slip(system, seed, max_iter, tol):
@@ -190,9 +214,7 @@ def _shoot_stick_slip(system, seed, max_iter, tol):
     start = flow(system, seed.t, seed.y, np.inf, mode=seed.mode, stop=_nth_end(1), **tol)
     x, mode = start.y, start.mode
     states = _end_states(system, x, mode, 6, tol)
-    k = next(
-        (j for j, y in enumerate(states, 1) if np.allclose(y, x, rtol=1e-5, atol=1e-7)), 1
-    )
+    k = next((j for j, y in enumerate(states, 1) if np.allclose(y, x, rtol=1e-5, atol=1e-7)), 1)
     return _newton_stick(system, x, mode, k, max_iter, tol)
 
 
@@ -252,7 +274,7 @@ def _newton_stick(system, x, mode, k, max_iter, tol):
         )
     for j in (j for j in range(1, k) if k % j == 0):
         back = _end_states(system, x, mode, j, tol)
-        if len(back) == j and np.allclose(back[-1], x, rtol=_RETURN_TOL, atol=_RETURN_TOL):
+        if len(back) == j and np.abs(back[-1] - x).max() <= _RETURN_TOL * scale:
             return _newton_stick(system, x, mode, j, max_iter, tol)
     return _cycle(system, x, mode, run, residual)
 
@@ -316,9 +338,11 @@ def _shoot_slip(system, x, T, max_iter, tol):
             f"{system!r}: no slip cycle found: Newton's method left a residual "
             f"{residual:.2e} after {max_iter} iterations"
         )
+    # the scale of the orbit: the distance the flow covers in a period
+    size = np.abs(np.asarray(k_.field(0.0, x, p, mode), dtype=float)).max() * T
     for j in range(_DIVISORS, 1, -1):
         back = flow(system, 0.0, x, T / j, mode=mode, **tol)
-        if np.allclose(back.y, x, rtol=_RETURN_TOL, atol=_RETURN_TOL):
+        if np.abs(back.y - x).max() <= _RETURN_TOL * size:
             return _shoot_slip(system, x, T / j, max_iter, tol)
     return _cycle(system, x, mode, run, residual)
 
@@ -403,8 +427,13 @@ def stick_onset(
     for _ in range(max_iter):
         last = good[-1][2]
         try:
-            c = _shoot_slip(last.system.replace(**{parameter: value}), last.state, last.period,
-                            30, dict(rtol=1e-11, atol=1e-11))
+            c = _shoot_slip(
+                last.system.replace(**{parameter: value}),
+                last.state,
+                last.period,
+                30,
+                dict(rtol=1e-11, atol=1e-11),
+            )
         except NoPeriodicResponse:
             value = 0.5 * (value + good[-1][0])
             continue

@@ -278,7 +278,7 @@ def flow(
         u_old = [u(t, y) for u in surfaces]
         armed = [v > 0.0 for v in u_old]
         f = fun(t, z)
-        if h_abs <= 0.0:
+        if h_abs <= 0.0 and t < t_end:
             h_abs = _stepper.initial_step(fun, t, z, f, t_end, rtol, atol, t_end - t)
         hit, t_hit = -1, math.inf
         while t < t_end:
