@@ -251,7 +251,7 @@ def _newton_stick(system, x, mode, k, max_iter, tol):
         return abs(k_.holding_force(0.0, y, p)) - k_.stick_limit(0.0, y, p)
 
     scale = 1.0 + np.abs(x).max()
-    for iteration in range(max_iter):
+    for _ in range(max_iter):
         run = flow(system, 0.0, x, np.inf, mode=mode, variational=True, stop=_nth_end(k), **tol)
         if run.status != "stopped":
             raise NoPeriodicResponse(f"{system!r}: the run from a stick end does not stick again")

@@ -1,7 +1,5 @@
 """The generic runtime's system object and hybrid run on the hand-typed belt_1dof module."""
 
-import math
-
 import numpy as np
 import pytest
 import reference_belt_1dof as belt
