@@ -301,6 +301,7 @@ def flow(
                 break
             t, z, f = st.t + st.h, st.y_new, st.f_new
             u_old = [u(t, z[:m]) for u in surfaces]
+        t = float(t)
         y = z[:m].copy()
         if variational:
             Phi = z[m:].reshape(m, m).copy()
