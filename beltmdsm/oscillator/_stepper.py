@@ -44,6 +44,15 @@ class Step:
         """The dense output at ``t`` inside the step."""
         return dense(self.F, self.y, (t - self.t) / self.h)
 
+    def many(self, t: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The dense output at the times ``t`` inside the step: (len(t), m)."""
+        x = ((t - self.t) / self.h)[:, None]
+        out = np.zeros((t.size, self.y.size))
+        for k in range(self.F.shape[0]):
+            out += self.F[self.F.shape[0] - 1 - k]
+            out *= x if k % 2 == 0 else 1.0 - x
+        return out + self.y
+
 
 def dense(F: NDArray[np.float64], y_old: NDArray[np.float64], x: float) -> NDArray[np.float64]:
     """DOP853's dense output at ``x = (t - t_old) / h`` (SciPy's Dop853DenseOutput)."""

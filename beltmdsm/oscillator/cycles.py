@@ -287,13 +287,14 @@ def _seed_slip(system, x, max_iter, tol):
     end = flow(system, 0.0, x, 100.0, dt=0.01, samples=samples, **tol)
     if end.switches:
         raise NoPeriodicResponse(f"{system!r}: the seed run switches without sticking")
-    mode = samples[-1][2]
-    speed = np.array([mode * k_.slip_velocity(t, y, p) for t, y, _ in samples])
+    mode = end.mode
+    ts = np.concatenate([t for t, _, _ in samples])
+    ys = np.concatenate([y for _, y, _ in samples])
+    speed = np.array([mode * k_.slip_velocity(t, y, p) for t, y in zip(ts, ys)])
     low = np.flatnonzero((speed[1:-1] < speed[:-2]) & (speed[1:-1] <= speed[2:])) + 1
     if len(low) < 3:
         raise NoPeriodicResponse(f"{system!r}: the seed run settles on no cycle")
-    T = samples[low[-1]][0] - samples[low[-2]][0]
-    return _shoot_slip(system, samples[low[-1]][1], T, max_iter, tol)
+    return _shoot_slip(system, ys[low[-1]], ts[low[-1]] - ts[low[-2]], max_iter, tol)
 
 
 def _shoot_slip(system, x, T, max_iter, tol):

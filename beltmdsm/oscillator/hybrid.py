@@ -243,7 +243,8 @@ def flow(
     """Run from ``(t0, y0)`` to ``t_end``, or to the first switch where ``stop(switch,
     count)`` holds (``count`` switches so far, this one included).
 
-    ``samples``: a list to which ``(t, y, mode)`` every ``dt`` from ``t0`` is appended.
+    ``samples``: a list to which ``(t, y, mode)`` of the samples every ``dt`` from ``t0``
+    are appended, step by step (``t`` (k,), ``y`` (k, 2n)).
     """
     k, p = system.kernels, system.p
     m = len(system.states)
@@ -292,9 +293,14 @@ def flow(
                 if tc is not None and tc < t_hit:
                     hit, t_hit = j, tc
             t_stop = t_hit if hit >= 0 else st.t + st.h
-            while samples is not None and next_sample <= t_stop:
-                samples.append((next_sample, st.at(next_sample)[:m], mode))
-                next_sample = t0 + dt * (round((next_sample - t0) / dt) + 1)
+            if samples is not None and next_sample <= t_stop:
+                k0 = round((next_sample - t0) / dt)
+                k1 = math.floor((t_stop - t0) / dt + 1e-9)
+                ts = t0 + dt * np.arange(k0, k1 + 1)
+                ts = ts[ts <= t_stop]
+                if ts.size:
+                    samples.append((ts, st.many(ts)[:, :m], mode))
+                    next_sample = t0 + dt * (k0 + ts.size)
             if hit >= 0:
                 z = st.at(t_hit) if t_hit > st.t else st.y
                 t = t_hit
@@ -332,8 +338,8 @@ def flow(
         if stop is not None and stop(switches[-1], len(switches)):
             status = "stopped"
             break
-    if samples is not None and samples and samples[-1][0] < t:
-        samples.append((t, y.copy(), mode))
+    if samples is not None and (not samples or samples[-1][0][-1] < t):
+        samples.append((np.array([t]), y[None, :].copy(), mode))
     return Flow(t, y, mode, switches, Phi, status, message)
 
 
@@ -400,7 +406,7 @@ def simulate(
         raise ValueError(f"y0: not {m} finite numbers ({', '.join(system.states)})")
     samples: list = []
     end = flow(system, 0.0, y0, float(t_end), dt=float(dt), rtol=rtol, atol=atol, samples=samples)
-    t = np.array([s[0] for s in samples])
-    y = np.array([s[1] for s in samples]).T.reshape(m, len(samples))
-    modes = np.array([s[2] for s in samples], dtype=np.int64)
+    t = np.concatenate([ts for ts, _, _ in samples])
+    y = np.concatenate([ys for _, ys, _ in samples]).T
+    modes = np.concatenate([np.full(ts.size, md, dtype=np.int64) for ts, _, md in samples])
     return Trajectory(system, t, y, modes, end.switches, end.status, end.message)
