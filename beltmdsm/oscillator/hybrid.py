@@ -39,7 +39,8 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import StepTooSmall
 from ..integrate._roots import converged, illinois, secant
 from ..integrate.zeno import ZENO_SWITCHES, ZENO_WINDOW
-from . import _stepper
+from ..model import Backend
+from . import _compiled, _stepper
 from .system import FLIGHT, STICK, System
 
 __all__ = ["Trajectory", "simulate", "flow", "Flow", "initial_mode"]
@@ -239,17 +240,31 @@ def flow(
     rtol: float = 1e-10,
     atol: float = 1e-10,
     samples: list | None = None,
+    backend: Backend | None = None,
 ) -> Flow:
     """Run from ``(t0, y0)`` to ``t_end``, or to the first switch where ``stop(switch,
     count)`` holds (``count`` switches so far, this one included).
 
     ``samples``: a list to which ``(t, y, mode)`` of the samples every ``dt`` from ``t0``
-    are appended, step by step (``t`` (k,), ``y`` (k, 2n)).
+    are appended, step by step (``t`` (k,), ``y`` (k, 2n)). ``backend``: "python",
+    "numba" or None (numba where installed and the kernels compile); the variational
+    run is plain Python.
     """
     k, p = system.kernels, system.p
     m = len(system.states)
     y = np.array(y0, dtype=float)
     t = float(t0)
+    fast = None
+    if backend != "python" and not variational:
+        fast = _compiled.compiled(system.module, system.friction)
+        if fast is None and backend == "numba":
+            raise ValueError("backend='numba': numba is not installed or cannot compile the model")
+    if fast is not None and dt is not None and math.isfinite(t_end):
+        out_t = np.empty(int((t_end - t0) / dt) + 2)
+        out_y = np.empty((out_t.size, m))
+    else:
+        out_t, out_y = np.empty(0), np.empty((0, m))
+    k_next = 0
     mode = initial_mode(system, t, y) if mode is None else int(mode)
     if mode == STICK:
         y = _to_stick(system, t, y)
@@ -282,7 +297,22 @@ def flow(
         if h_abs <= 0.0 and t < t_end:
             h_abs = _stepper.initial_step(fun, t, z, f, t_end, rtol, atol, t_end - t)
         hit, t_hit = -1, math.inf
-        while t < t_end:
+        if fast is not None:
+            k_prev = k_next
+            status_, t, z, hit, h_abs, k_next = fast(
+                p, mode, len(surfaces), t, z, t_end, h_abs, rtol, atol,
+                dt if out_t.size else 0.0, t0, k_next, out_t, out_y,
+            )  # fmt: skip
+            if status_ == _compiled.STATUS_STEP_TOO_SMALL:
+                raise StepTooSmall(
+                    f"{system.name}: the step fell below the rounding of t = {t:.9g} s "
+                    f"in mode {mode}",
+                    rtol,
+                    atol,
+                )
+            if samples is not None and k_next > k_prev:
+                samples.append((out_t[k_prev:k_next], out_y[k_prev:k_next], mode))
+        while fast is None and t < t_end:
             try:
                 st, h_abs = _stepper.step(fun, t, z, f, h_abs, t_end, rtol, atol, math.inf)
             except ArithmeticError as err:
@@ -351,6 +381,7 @@ def simulate(
     dt: float = 0.02,
     rtol: float = 1e-10,
     atol: float = 1e-10,
+    backend: Backend | None = None,
 ) -> Trajectory:
     """A run of the model's hybrid system from ``y0`` over ``[0, t_end]``.
 
@@ -366,6 +397,10 @@ def simulate(
         The sampling step [s], > 0.
     rtol, atol : float
         The integrator's tolerances, > 0.
+    backend : {"python", "numba", None}
+        None: compiled by numba where it is installed and compiles the model's kernels
+        (`beltmdsm.oscillator._compiled`: cached on disk after the first run), else
+        plain Python; the same method and numbers to the tolerances.
 
     Returns
     -------
@@ -405,7 +440,10 @@ def simulate(
     if y0.shape != (m,) or not np.all(np.isfinite(y0)):
         raise ValueError(f"y0: not {m} finite numbers ({', '.join(system.states)})")
     samples: list = []
-    end = flow(system, 0.0, y0, float(t_end), dt=float(dt), rtol=rtol, atol=atol, samples=samples)
+    end = flow(
+        system, 0.0, y0, float(t_end), dt=float(dt), rtol=rtol, atol=atol, samples=samples,
+        backend=backend,
+    )  # fmt: skip
     t = np.concatenate([ts for ts, _, _ in samples])
     y = np.concatenate([ys for _, ys, _ in samples]).T
     modes = np.concatenate([np.full(ts.size, md, dtype=np.int64) for ts, _, md in samples])
