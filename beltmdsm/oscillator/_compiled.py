@@ -68,7 +68,7 @@ def _u(t, y, p, mode, j):
         if mode == 2:
             return gap(t, y, p)
         if j == 1:
-            return normal_force(t, y, p)
+            return -gap(t, y, p)
     if mode == 0:
         return stick_limit(t, y, p) - abs(holding_force(t, y, p))
     return mode * slip_velocity(t, y, p)

@@ -11,8 +11,9 @@ contract's, read through the model's kernels only:
 * stick ends where ``|holding_force|`` exceeds ``stick_limit``; the slip starts in the
   sign in which the free motion accelerates (``-sgn(holding_force)``, the friction
   then acting as the holding force did);
-* where the module is ``UNILATERAL``, contact ends where ``normal_force`` falls to 0
-  (flight) and flight ends where ``gap`` falls to 0.
+* where the module is ``UNILATERAL``, contact ends where ``gap`` rises through 0
+  (take-off: flight) and flight ends where it falls to 0 (landing: slip in the sign of
+  the slip velocity, or stick at 0 inside the friction cone).
 
 Entering stick, the state is projected onto ``v_r = 0`` along the slip velocity's
 gradient (the form is linear), so a long stick does not drift off it. Accumulating
@@ -160,7 +161,7 @@ def _surfaces(system: System, mode: int) -> tuple[Callable, ...]:
     else:
         first = lambda t, y: mode * k.slip_velocity(t, y, p)  # noqa: E731
     if system.unilateral:
-        return (first, lambda t, y: k.normal_force(t, y, p))
+        return (first, lambda t, y: -k.gap(t, y, p))
     return (first,)
 
 
