@@ -10,10 +10,14 @@ Illinois method of `beltmdsm.integrate._roots`) run as one numba function, with 
 model's kernels compiled into it.
 
 The kernels are the module's plain functions: each is compiled by numba with every
-function it calls (its globals and closure cells) compiled too. A module whose kernels
-numba cannot compile runs in plain Python, said once (`CompileWarning`). The compiled
-function is built once per module and friction law in a process (numba compiles it in
-memory, a few seconds: benchmarks/bench_oscillator.py prints cold and warm times).
+function it calls (its globals and closure cells) compiled too. The compiled module is
+written to the private cache folder and cached on disk by numba, once per model module
+and friction law (its name holds a digest of the sources): made at the first run as the
+paper's integrators are (`beltmdsm.integrate._background`: plain Python while a child
+process compiles it, unless ``backend="numba"`` asks for it at once; about a minute on a
+loaded 2-core machine, then loaded in a second or two). A module whose kernels numba
+cannot compile runs in plain Python, said once (`CompileWarning`);
+benchmarks/bench_oscillator.py prints cold and warm times.
 """
 
 from __future__ import annotations
@@ -36,7 +40,7 @@ from beltmdsm.generated import tableau as _coef
 from beltmdsm.generated._support import import_numba, user_cache
 
 from ..integrate import _roots
-from ..integrate._background import digest
+from ..integrate._background import Lazy, digest, numba_installed, numba_version
 
 __all__ = ["advance", "CompileWarning"]
 
@@ -353,25 +357,50 @@ def _load(module, friction: str, numba_version: str):
     return entry.advance
 
 
+def _make(module_name: str, friction: str, numba_version: str):
+    """The dispatcher of a module's law (in this process or `_background`'s child)."""
+    return _load(importlib.import_module(module_name), friction, numba_version)
+
+
 @functools.cache
-def compiled(module, friction: str):
-    """The compiled `advance` of a model module's law, or None (numba absent, or the
-    kernels not compilable: said once)."""
-    numba = import_numba(False)
-    if not numba:
+def _lazy(module, friction: str, foreground: bool) -> Lazy:
+    version = numba_version()
+    files = [__file__, _roots.__file__, module.__file__]
+    stem = f"beltmdsm_model_{module.NAME}_{friction}_" + digest(version, *files)
+    return Lazy((_make, (module.__name__, friction, version)), stem, None, foreground)
+
+
+def _types(m: int) -> tuple:
+    """Arguments of `advance`'s types, for a state of ``m``."""
+    return (np.zeros(1), -1, 1, 0.0, np.zeros(m), 1.0, 0.1, 1e-10, 1e-10, 0.0, 0.0, 0,
+            np.empty(0), np.empty((0, m)))  # fmt: skip
+
+
+def compiled(module, friction: str, foreground: bool = False):
+    """The compiled `advance` of a model module's law, or None: numba not installed, the
+    module not importable by its name (made at run time), the kernels not compilable
+    (said once), or, not ``foreground``, while `beltmdsm.integrate._background`'s child
+    compiles it (the first run of a new model: plain Python meanwhile, the same method)."""
+    if not numba_installed() or not getattr(module, "__file__", None):
         return None
     try:
-        entry = _load(module, friction, numba.__version__)
-        m = len(module.STATES)
-        p = np.array([float(module.DEFAULTS[n]) for n in module.PARAMETERS[friction]])
-        entry(p, -1, 1, 0.0, np.zeros(m), 0.0, 0.1, 1e-10, 1e-10, 0.0, 0.0, 0,
-              np.empty(0), np.empty((0, m)))  # fmt: skip
-    except Exception as err:  # noqa: BLE001 (numba's typing errors have no common base)
-        warnings.warn(
-            f"model {module.NAME!r}: numba cannot compile its kernels ({type(err).__name__}: "
-            f"{str(err).splitlines()[0] if str(err) else ''}); its runs take plain Python",
-            CompileWarning,
-            stacklevel=3,
-        )
+        if importlib.import_module(module.__name__) is not module:
+            return None
+    except ImportError:
         return None
-    return entry
+    lazy = _lazy(module, friction, foreground)
+    try:
+        return lazy.compiled(_types(len(module.STATES)))
+    except Exception as err:  # noqa: BLE001 (numba's typing errors have no common base)
+        _refused(module, friction, err)
+        return None
+
+
+@functools.cache
+def _refused(module, friction, err) -> None:
+    warnings.warn(
+        f"model {module.NAME!r}, friction={friction!r}: numba cannot compile its kernels "
+        f"({type(err).__name__}); its runs take plain Python",
+        CompileWarning,
+        stacklevel=4,
+    )

@@ -257,9 +257,12 @@ def flow(
     t = float(t0)
     fast = None
     if backend != "python" and not variational:
-        fast = _compiled.compiled(system.module, system.friction)
+        fast = _compiled.compiled(system.module, system.friction, backend == "numba")
         if fast is None and backend == "numba":
-            raise ValueError("backend='numba': numba is not installed or cannot compile the model")
+            raise ValueError(
+                "backend='numba': numba is not installed, the model's module is not "
+                "importable by its name, or numba cannot compile its kernels"
+            )
     if fast is not None and dt is not None and math.isfinite(t_end):
         out_t = np.empty(int((t_end - t0) / dt) + 2)
         out_y = np.empty((out_t.size, m))
