@@ -92,3 +92,47 @@ def test_bad_run_arguments_are_named():
         simulate(s, -1)
     with pytest.raises(ValueError, match="y0: not 2 finite numbers"):
         simulate(s, 1.0, [0.0, 0.0, 0.0])
+
+
+def _chattering_module():
+    """A toy model to the contract: both slips accelerate towards v_r = 0 and the
+    friction never holds (a negative stick limit): reversals accumulate."""
+    import types
+
+    module = types.ModuleType("chattering")
+    module.NAME, module.COORDINATES, module.STATES = "chattering", ("x",), ("x", "x_dot")
+    module.UNILATERAL, module.FRICTION_LAWS = False, ("coulomb",)
+    module.PARAMETERS, module.DEFAULTS, module.EXCITATION = {"coulomb": ("Vb",)}, {"Vb": 1.0}, ()
+
+    def kernels(friction):
+        return types.SimpleNamespace(
+            field=lambda t, y, p, mode: np.array([y[1], -float(mode)]),
+            slip_velocity=lambda t, y, p: y[1] - p[0],
+            slip_gradient=lambda t, y, p: np.array([0.0, 1.0]),
+            slip_acceleration=lambda t, y, p, mode: -float(mode),
+            holding_force=lambda t, y, p: 0.0,
+            stick_limit=lambda t, y, p: -1.0,
+            normal_force=lambda t, y, p: 1.0,
+        )
+
+    module.kernels = kernels
+    return module
+
+
+def test_accumulating_switches_outside_the_friction_cone_stop_the_run():
+    run = simulate(System(_chattering_module()), 10.0, [0.0, 0.5], backend="python")
+    assert run.status == "zeno"
+    assert "switches within" in run.message and "outside the friction cone" in run.message
+    assert run.switches[-1][0] == pytest.approx(0.5, abs=1e-9)  # where v_r first reaches 0
+    assert run.t[-1] < 10.0
+
+
+def test_numba_and_python_backends_agree():
+    pytest.importorskip("numba")
+    s = System(belt, friction="stribeck", Vb=1.5)
+    fast = simulate(s, 100.0, backend="numba")
+    slow = simulate(s, 100.0, backend="python")
+    assert [(a, b) for _, a, b in fast.switches] == [(a, b) for _, a, b in slow.switches]
+    # the same method and steps; sums in another order: rounding, grown over 100 s
+    assert np.allclose([t for t, _, _ in fast.switches], [t for t, _, _ in slow.switches], atol=1e-9)
+    assert np.allclose(fast.y, slow.y, atol=1e-9)
