@@ -145,6 +145,8 @@ def self_excited_cycle(
 
     Raises
     ------
+    ValueError
+        ``guess`` not ``2n`` finite numbers, ``period`` not positive.
     Unsupported
         A forced model (`beltmdsm.oscillator.forced_response` computes its response).
     NoPeriodicResponse
@@ -172,6 +174,13 @@ def self_excited_cycle(
             "the forced response"
         )
     tol = dict(rtol=rtol, atol=atol)
+    m = len(system.states)
+    if guess is not None:
+        guess = np.asarray(guess, dtype=float)
+        if guess.shape != (m,) or not np.all(np.isfinite(guess)):
+            raise ValueError(f"guess: not {m} finite numbers ({', '.join(system.states)})")
+    if period is not None and not (np.isfinite(period) and period > 0):
+        raise ValueError(f"period={period!r}: not a positive number")
     if guess is not None and period is not None:
         return _shoot_slip(system, guess, float(period), max_iter, tol)
     for start in [guess] if guess is not None else _starts(system):

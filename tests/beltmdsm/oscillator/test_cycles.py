@@ -182,6 +182,11 @@ def test_stick_onset_agrees_with_the_paper_model():
     assert paper_onset == pytest.approx(vb, abs=1e-8)
 
 
-def test_forced_model_is_refused():
+def test_forced_model_and_bad_guesses_are_refused():
     with pytest.raises(Unsupported, match="self-excited cycle needs the autonomous model"):
         self_excited_cycle(System(belt, alpha_t=1.0))
+    s = System(belt, friction="stribeck")
+    with pytest.raises(ValueError, match=r"guess: not 2 finite numbers \(x, x_dot\)"):
+        self_excited_cycle(s, [1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match="period=-1"):
+        self_excited_cycle(s, [1.0, 2.0], -1)
