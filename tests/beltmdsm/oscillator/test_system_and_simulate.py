@@ -134,5 +134,6 @@ def test_numba_and_python_backends_agree():
     slow = simulate(s, 100.0, backend="python")
     assert [(a, b) for _, a, b in fast.switches] == [(a, b) for _, a, b in slow.switches]
     # the same method and steps; sums in another order: rounding, grown over 100 s
-    assert np.allclose([t for t, _, _ in fast.switches], [t for t, _, _ in slow.switches], atol=1e-9)
+    times = [t for t, _, _ in fast.switches], [t for t, _, _ in slow.switches]
+    assert np.allclose(*times, atol=1e-9)
     assert np.allclose(fast.y, slow.y, atol=1e-9)
