@@ -80,6 +80,17 @@ class Cycle:
     See Also
     --------
     self_excited_cycle : makes it.
+
+    Examples
+    --------
+    >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
+    >>> import reference_belt_1dof as belt
+    >>> from beltmdsm.oscillator import System
+    >>> c = self_excited_cycle(System(belt, friction="static_kinetic", Vb=0.5))
+    >>> c  # doctest: +ELLIPSIS
+    Cycle(System('belt_1dof', friction='static_kinetic', Vb=0.5); stick_slip, period ... s, 1 sticks; |multipliers| 0; stable)
+    >>> c.kind, c.stable
+    ('stick_slip', True)
     """
 
     system: System

@@ -48,6 +48,15 @@ class Response:
     See Also
     --------
     forced_response : makes it.
+
+    Examples
+    --------
+    >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
+    >>> import reference_belt_1dof as belt
+    >>> from beltmdsm.oscillator import System
+    >>> r = forced_response(System(belt, Vb=0.0, mu_s=0.02, alpha_t=1.0, Omega_t=2.0))
+    >>> r.periods, r.sticks, r.stable
+    (1, 0, True)
     """
 
     system: System
