@@ -87,8 +87,9 @@ class Cycle:
     >>> import reference_belt_1dof as belt
     >>> from beltmdsm.oscillator import System
     >>> c = self_excited_cycle(System(belt, friction="static_kinetic", Vb=0.5))
-    >>> c  # doctest: +ELLIPSIS
-    Cycle(System('belt_1dof', friction='static_kinetic', Vb=0.5); stick_slip, period ... s, 1 sticks; |multipliers| 0; stable)
+    >>> c  # doctest: +ELLIPSIS +NORMALIZE_WHITESPACE
+    Cycle(System('belt_1dof', friction='static_kinetic', Vb=0.5); stick_slip,
+    period ... s, 1 sticks; |multipliers| 0; stable)
     >>> c.kind, c.stable
     ('stick_slip', True)
     """

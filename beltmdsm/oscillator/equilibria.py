@@ -52,8 +52,9 @@ class Equilibrium:
     >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
     >>> import reference_belt_1dof as belt
     >>> eq = steady_sliding(System(belt, friction="stribeck", Vb=2.5))
-    >>> eq  # doctest: +ELLIPSIS
-    Equilibrium(System('belt_1dof', friction='stribeck', Vb=2.5); x=2.57329, x_dot=0; stable, growth rate -0.03961)
+    >>> eq  # doctest: +NORMALIZE_WHITESPACE
+    Equilibrium(System('belt_1dof', friction='stribeck', Vb=2.5); x=2.57329, x_dot=0;
+    stable, growth rate -0.03961)
     >>> [bool(h > 0) for h in eq.hurwitz]
     [True, True]
     """

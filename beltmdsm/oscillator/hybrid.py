@@ -106,8 +106,9 @@ class Trajectory:
     >>> import reference_belt_1dof as belt
     >>> from beltmdsm.oscillator import System
     >>> run = simulate(System(belt, friction="static_kinetic", Vb=1.0), 10.0)
-    >>> run  # doctest: +ELLIPSIS
-    Trajectory(System('belt_1dof', ...); 501 samples of x, x_dot to t = 10 s; 3 switches, 2 sticks; done)
+    >>> run  # doctest: +ELLIPSIS +NORMALIZE_WHITESPACE
+    Trajectory(System('belt_1dof', ...); 501 samples of x, x_dot to t = 10 s;
+    3 switches, 2 sticks; done)
     >>> run["x"].shape, sorted({int(m) for m in run.modes})
     ((501,), [-1, 0])
     """
