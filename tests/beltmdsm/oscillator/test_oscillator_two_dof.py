@@ -15,6 +15,7 @@ from beltmdsm.oscillator import (
     simulate,
     steady_sliding,
 )
+from beltmdsm.oscillator import cycles as _cycles
 from beltmdsm.oscillator.hybrid import flow
 
 
@@ -130,6 +131,16 @@ def test_self_excited_cycle_beyond_flutter():
     assert np.allclose(c.monodromy, M_fd, atol=1e-5)
     w = np.linalg.eigvals(M_fd)
     assert sorted(abs(w)) == pytest.approx(sorted([*abs(c.multipliers), 1.0]), abs=1e-5)
+    # and of the return map to the next end of a stick (the section: the trivial
+    # multiplier becomes 0 there, the others stay)
+    P = []
+    for e in np.eye(4):
+        ends = [
+            _cycles._end_states(s, c.state + sign * 1e-5 * e, c.mode, 1, {})[0] for sign in (1, -1)
+        ]
+        P.append((ends[0] - ends[1]) / 2e-5)
+    w = np.linalg.eigvals(np.array(P).T)
+    assert sorted(abs(w))[-2:] == pytest.approx(sorted(abs(c.multipliers))[-2:], abs=1e-5)
 
 
 def test_forced_response_below_flutter():
