@@ -10,8 +10,14 @@ every analysis here reads the model through its kernels alone:
   and derived Hurwitz determinants, the Hopf points along a parameter;
 * `self_excited_cycle` (`Cycle`): a cycle of the unforced model by shooting, at its
   least period, with its Floquet multipliers (saltation matrices at every switch);
+  `stick_onset`: a pure-slip cycle followed in a parameter to where it first touches
+  ``v_r = 0``;
 * `forced_response` (`Response`): the periodic response of the excitation's period,
   with its multipliers.
+
+A run is compiled by numba with the model's kernels where they compile
+(`beltmdsm.oscillator._compiled`, cached on disk like the paper's integrators); the
+shooting's variational runs are plain numpy. See docs/howto/oscillator.md.
 """
 
 from .cycles import Cycle, self_excited_cycle, stick_onset
