@@ -378,10 +378,15 @@ def _types(m: int) -> tuple:
 
 def compiled(module, friction: str, foreground: bool = False):
     """The compiled `advance` of a model module's law, or None: numba not installed, the
-    module not importable by its name (made at run time), the kernels not compilable
+    module not importable by its name (made at run time), not ``foreground`` and not a
+    module of the package (``beltmdsm.generated.models``), the kernels not compilable
     (said once), or, not ``foreground``, while `beltmdsm.integrate._background`'s child
     compiles it (the first run of a new model: plain Python meanwhile, the same method)."""
     if not numba_installed() or not getattr(module, "__file__", None):
+        return None
+    if not foreground and not module.__name__.startswith("beltmdsm."):
+        # the child that compiles in the background imports the package's modules
+        # only: a module of the caller's (a model typed by hand) is compiled when asked
         return None
     try:
         if importlib.import_module(module.__name__) is not module:
