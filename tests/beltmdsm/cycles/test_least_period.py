@@ -95,20 +95,36 @@ def reference_cycle(law, Vb, mu_s=0.4):
     return t_in + stick, 1, (float(y[0].min()), float(y[0].max())), float(y[1].min())
 
 
-@pytest.mark.parametrize("Vb", [0.26, 0.31, 0.36, 0.45])
-def test_static_kinetic_cycle_is_reported_at_its_least_period(Vb):
-    # issue 36 item 1: 0.31 and 0.36 were reported at twice the period with 2 sticks,
-    # 0.26 and 0.45 refused ("Newton stalled")
-    period, n_sticks, x1_range, v_min = reference_cycle("static_kinetic", Vb)
-    found = _cli_json("floquet", "--alpha", "0", "--friction", "static_kinetic", "--Vb", str(Vb))
-    assert found["period"] == pytest.approx(period, rel=1e-8)
+def _check(found, period, n_sticks, x1_range, v_min, rel=1e-8):
+    assert found["period"] == pytest.approx(period, rel=rel)
     assert found["n_sticks"] == n_sticks
-    assert found["x1_range"][0] == pytest.approx(x1_range[0], rel=1e-8)
-    assert found["x1_range"][1] == pytest.approx(x1_range[1], rel=1e-8)
-    assert found["velocity_range"][0] == pytest.approx(v_min, rel=1e-8)
+    assert found["x1_range"][0] == pytest.approx(x1_range[0], rel=rel)
+    assert found["x1_range"][1] == pytest.approx(x1_range[1], rel=rel)
+    assert found["velocity_range"][0] == pytest.approx(v_min, rel=rel)
+
+
+@pytest.mark.parametrize("Vb", [0.31, 0.45])
+def test_static_kinetic_cycle_is_reported_at_its_least_period(Vb):
+    # issue 36 item 1: 0.31 was reported at twice the period with 2 sticks, 0.45 refused
+    # ("Newton stalled")
+    found = _cli_json("floquet", "--alpha", "0", "--friction", "static_kinetic", "--Vb", str(Vb))
+    _check(found, *reference_cycle("static_kinetic", Vb))
     # the stick's multiplier 0 (rounding), the trivial one 1
     assert min(math.hypot(*mu) for mu in found["multipliers"]) < 1e-12
     assert abs(complex(*found["trivial_multiplier"]) - 1) < 1e-8
+
+
+@pytest.mark.parametrize("Vb", [0.26, 0.36])
+def test_static_kinetic_cycle_in_process(Vb):
+    # 0.36 was reported at twice the period, 0.26 refused
+    c = cycle(Model(alpha=0.0, friction="static_kinetic", Vb=Vb))
+    found = {
+        "period": c.period,
+        "n_sticks": c.n_sticks,
+        "x1_range": c.x1_range,
+        "velocity_range": c.velocity_range,
+    }
+    _check(found, *reference_cycle("static_kinetic", Vb))
 
 
 def test_the_reference_period_of_the_issue():
@@ -126,17 +142,61 @@ def test_a_cycle_shot_at_a_multiple_of_its_period_comes_back_at_the_least_one():
         assert found.n_sticks == 1
 
 
-@pytest.mark.parametrize("mu_s", [5.0, 20.0, 40.0, 100.0])
+def test_responses_report_the_least_period():
+    # issue 36 item 1: `responses` said 22.9211 s and 2 sticks
+    argv = ["--alpha", "0", "--friction", "static_kinetic", "--Vb", "0.31"]
+    (r,) = _cli_json("responses", *argv)["responses"]
+    _check(r, *reference_cycle("static_kinetic", 0.31))
+    # steady sliding is stable there: the seed's run starts where a stick ends
+    assert r["sources"][0] == "the run from the end of a stick"
+
+
+def test_coexistence_finds_no_period_doubling_on_stick_slip_cycles():
+    # issue 36 item 1: a period_doubling at 0.301738 and branch points on a cycle whose
+    # stick gives a multiplier 0 (and cannot period-double)
+    argv = ["--alpha", "0", "--friction", "static_kinetic", "--param", "Vb"]
+    found = _cli_json("coexistence", *argv, "--from", "0.2", "--to", "3")
+    kinds = [s["kind"] for s in found["special_points"]]
+    assert "period_doubling" not in kinds and "branch_point" not in kinds
+    (stable,) = found["cycle_stable"]
+    assert stable["range"][0] == 0.2
+    # the cycles end where the reference no longer catches up with the belt (its
+    # events see sign changes at step ends only, so it may stop short of a grazing)
+    assert reference_cycle("static_kinetic", 1.00087)[1] == 1
+    assert 1.00087 <= stable["range"][1] <= 1.001
+    # every cycle on the way: one stick, a multiplier 0
+    for s in found["special_points"]:
+        assert min(math.hypot(*mu) for mu in s["multipliers"]) < 1e-12
+
+
+@pytest.mark.parametrize("mu_s", [5.0, 100.0])
 def test_a_long_stick_is_a_stick_slip_cycle_not_steady_sliding(mu_s):
-    # issue 36 item 4: mu_s 40 and 100 were read as steady sliding, 5 and 20 refused
-    period, n_sticks, x1_range, v_min = reference_cycle("stribeck", 1.5, mu_s)
+    # issue 36 item 4: mu_s 100 was read as steady sliding, 5 refused ("Newton stalled")
     argv = ["--alpha", "0", "--friction", "stribeck", "--Vb", "1.5", "--mu_s", str(mu_s)]
     found = _cli_json("floquet", *argv)
-    assert found["autonomous"] is True
-    rel = 1e-8 if mu_s < 40 else 1e-6
-    assert found["period"] == pytest.approx(period, rel=rel)
-    assert found["n_sticks"] == n_sticks
+    assert found["autonomous"] is True and found["stable"] is True
+    _check(found, *reference_cycle("stribeck", 1.5, mu_s), rel=1e-8 if mu_s < 40 else 1e-6)
     assert found["stick_time"] / found["period"] > 0.9
-    assert found["x1_range"][0] == pytest.approx(x1_range[0], rel=rel)
-    assert found["velocity_range"][0] == pytest.approx(v_min, rel=rel)
-    assert found["stable"] is True
+
+
+@pytest.mark.parametrize("mu_s", [20.0, 40.0])
+def test_a_long_stick_in_process(mu_s):
+    c = cycle(Model(alpha=0.0, friction="stribeck", Vb=1.5, mu_s=mu_s))
+    found = {
+        "period": c.period,
+        "n_sticks": c.n_sticks,
+        "x1_range": c.x1_range,
+        "velocity_range": c.velocity_range,
+    }
+    _check(found, *reference_cycle("stribeck", 1.5, mu_s), rel=1e-8 if mu_s < 40 else 1e-6)
+    assert c.stable
+
+
+def test_a_branch_out_to_1e300_is_the_branch_that_ends_inside():
+    # issue 36 item 9: brentq's RuntimeError traceback (cycles/hopf.py)
+    argv = ["--alpha", "0", "--friction", "stribeck", "--param", "Vb", "--from", "0.5"]
+    wide = _cli_json("branch", *argv, "--to", "1e300")
+    near = _cli_json("branch", *argv, "--to", "5")
+    kinds = [(s["kind"], round(s["value"], 5)) for s in wide["special_points"]]
+    assert kinds == [(s["kind"], round(s["value"], 5)) for s in near["special_points"]]
+    assert ("stick_onset", 2.90039) in kinds and ("range", 0.5) in kinds
