@@ -33,6 +33,11 @@ STEP_MIN = 1e-7
 STEP_MAX = 0.2
 #: The parameter's scale is at most this many times the start's value (or 1).
 P_SCALE = 2.0
+#: A branch ends where a cycle's largest multiplier exceeds this: single shooting's
+#: corrector converges only within about ``1 / |mu|`` of the cycle (Stribeck's law at
+#: ``v_s = 0.12``: ``|mu| = 6e3``, steps of 1e-6 in ``v_s``, 2000 points without reaching
+#: the stick onset); the branches of the shipped laws in ``Vb`` stay below 20.
+MULTIPLIER_LIMIT = 1e3
 #: A branch ends where the period exceeds this many times the first one (the Hopf period).
 PERIOD_LIMIT = 50.0
 _CORRECTOR_ITER = 12
@@ -475,6 +480,18 @@ def walk(cont, first, tangent, period0):
                 continue
         points.append(new)
         tangent = t_new
+        if new.max_abs_multiplier > MULTIPLIER_LIMIT:
+            special.append(
+                _end(
+                    "failed",
+                    new,
+                    f"the cycle's largest multiplier reaches {new.max_abs_multiplier:.3g}: "
+                    "shooting over one period amplifies the run's rounding by it, and the "
+                    "corrector's steps shrink towards nothing (a cycle this unstable needs "
+                    "multiple shooting)",
+                )
+            )
+            return points, special
         if T > PERIOD_LIMIT * period0:
             special.append(
                 _end(
