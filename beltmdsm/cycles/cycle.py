@@ -347,6 +347,9 @@ def cycle(
     Returns
     -------
     Cycle
+        At its least period: where the orbit passes its state on the section earlier
+        (``period`` a multiple of it), it is shot again with the shorter one
+        (`beltmdsm.cycles.returns.first_return`).
 
     Raises
     ------

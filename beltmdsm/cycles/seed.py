@@ -193,10 +193,13 @@ def seed_cycle(
     perturbation is given, the run starts where a stick ends instead (`stick_end`):
     every stick-slip cycle passes there, so a stick-slip cycle that coexists with
     stable sliding is found (it is superstable: one slip phase later the run is on it),
-    and where none does the run decays. It goes on in chunks until its returns to the
-    section (module docstring) repeat to `SETTLE_TOL`; the period is the time between
-    the last two returns that match (several turns where the cycle has several extrema
-    of the same depth).
+    and where none does the run decays. Once the run sticks, the cycle is the run from
+    that stick end to the next (`beltmdsm.cycles.returns.stick_slip_start`: one state,
+    the least period); a chunk spent sticking has not decayed. Otherwise the run goes
+    on in chunks until its returns to the section (module docstring) repeat to
+    `SETTLE_TOL`; the period is the time between the last two returns that match
+    (several turns where the cycle has several extrema of the same depth; `cycle`
+    shortens a multiple of the least period).
 
     Parameters
     ----------
