@@ -31,9 +31,10 @@ def add(commands, name: str) -> None:
     sub.add_argument(
         "--perturbation",
         type=number(),
-        default=1e-2,
+        default=None,
         metavar="DX1",
-        help="with --start periodic: the move of X1 from the periodic response [m] (default 1e-2)",
+        help="the move of X1 from the periodic response [m], with --start periodic only "
+        "(default 1e-2)",
     )
     sub.add_argument(
         "--t-end",
@@ -55,11 +56,18 @@ def run(args: argparse.Namespace) -> int:
     from ...attractors.lyapunov import lyapunov
     from .. import text
 
+    if args.perturbation is not None and args.start != "periodic":
+        args.parser.error(
+            "argument --perturbation: moves the start on the periodic response; "
+            "give --start periodic, or drop it"
+        )
     model = model_from(args)
     y0 = None
     if args.start == "periodic":
-        from ...periodic.start import periodic_start
+        from ...periodic.start import PERTURBATION, periodic_start
 
+        if args.perturbation is None:
+            args.perturbation = PERTURBATION
         y0 = periodic_start(model, args.perturbation)
     spec = lyapunov(model, y0=y0, t_end=args.t_end, t_transient=args.t_transient)
     out = spec.as_dict()
