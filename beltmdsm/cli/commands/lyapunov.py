@@ -25,8 +25,9 @@ def add(commands, name: str) -> None:
         "--start",
         choices=("rest", "periodic"),
         default="rest",
-        help="start from the equilibrium at rest (default), or on the periodic response "
-        "with X1 moved by --perturbation",
+        help="start from the equilibrium at rest (default; without excitation where steady "
+        "sliding is unstable, moved 1e-6 off it along its unstable direction, as simulate), "
+        "or on the periodic response with X1 moved by --perturbation",
     )
     sub.add_argument(
         "--perturbation",
@@ -70,7 +71,13 @@ def run(args: argparse.Namespace) -> int:
             args.perturbation = PERTURBATION
         y0 = periodic_start(model, args.perturbation)
     spec = lyapunov(model, y0=y0, t_end=args.t_end, t_transient=args.t_transient)
+    from ...attractors.classification import unstable_set
+
+    # a positive exponent of a run that stays on an unstable invariant set is its
+    # instability: say which set (beltmdsm/attractors/classification.py)
+    unstable = unstable_set(model, spec) if spec.largest > 0 else None
     out = spec.as_dict()
+    out["unstable_set"] = None if unstable is None else unstable[0]
     out["start"] = args.start
     if args.start == "periodic":
         out["perturbation"] = args.perturbation
@@ -79,6 +86,13 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(text.jsonable(out)))
     else:
         print(repr(spec))
+        if spec.start_perturbation:
+            print(
+                f"start: steady sliding is unstable here; the run starts on it moved by "
+                f"{spec.start_perturbation:g} along its unstable direction (as simulate's)"
+            )
+        if unstable is not None:
+            print(f"not chaos: {unstable[0]}")
         print(
             f"error from the spread over {8} blocks and the drift of the running mean; "
             f"{spec.collapsed} direction(s) removed by stick (exponent -inf)"
