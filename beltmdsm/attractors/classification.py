@@ -441,7 +441,9 @@ def unstable_set(
 
     Without excitation: steady sliding (`beltmdsm.excitation.initial_state`) where its
     eigenvalues (`beltmdsm.generated.unforced.eigenvalues`) have a positive real part
-    ``sigma`` and the window's first sample lies within `NEAR` of it. With excitation:
+    ``sigma``, the window's first sample lies within `NEAR` of it and the run stands
+    on it or leaves it (its distance at least doubles over the window: a small cycle
+    about it keeps its distance). With excitation:
     a ``k``-periodic response onto which the window's first samples return (to
     `RETURN_TOL`, ``k`` up to four) and Newton's method converges, its Floquet
     multipliers outside the unit circle. A positive exponent of such a run is the
@@ -490,8 +492,11 @@ def unstable_set(
         lam = np.asarray(unforced.eigenvalues(**model.arguments(unforced.eigenvalues)))
         sigma = float(np.max(lam.real))
         eq = initial_state(model)
-        d0 = float(np.max(np.abs(y[0] - eq)))
-        if not (sigma > 0 and d0 <= NEAR * scale):
+        d = np.max(np.abs(y - eq), axis=1)
+        d0, floor = float(d[0]), np.finfo(float).eps * scale
+        # near it and leaving it (or standing on it): a small cycle about it is neither
+        leaving = d[-1] >= 2 * max(d0, floor) or float(np.max(d)) <= 16 * floor
+        if not (sigma > 0 and d0 <= NEAR * scale and leaving):
             return None
         leave = math.log(scale / max(d0, np.finfo(float).eps * scale)) / sigma
         return (
@@ -646,7 +651,7 @@ def _unforced(model, spec):
             f"the state stands still (to {RETURN_TOL:g}) and every exponent is negative "
             f"(largest {lam:+.3g} 1/s): steady sliding, stable",
         )
-    if lam > max(bound, ZERO_FLOOR) or (still and lam >= -bound):
+    if lam >= -bound:  # not stable: is the run on (or leaving) unstable sliding?
         unstable = unstable_set(model, spec)
         if unstable is not None:
             evidence, _, on = unstable

@@ -22,13 +22,14 @@ from ..excitation import initial_state
 from ..model import Model
 from ..settings import SolverSettings, fastest_rate
 from . import _compiled, _dop853
-from .switching import Switching
+from .switching import Mode, Switching
 from .trajectory import Run, Segment, Trajectory
 from .zeno import Zeno
 
 __all__ = ["integrate_events", "StepSegment", "StepTooSmall", "check_status", "REST_STEP"]
 
-#: The longest step times the fastest rate of the model (`beltmdsm.settings.fastest_rate`).
+#: The longest step in stick times the fastest rate of the model
+#: (`beltmdsm.settings.fastest_rate`).
 #: The step control sees the state only: at rest (a mass stuck without excitation) the
 #: steps grew to 114 s, far outside DOP853's stability region for the contact's
 #: oscillation (rate 5.66 1/s), which then amplified the rounding of the state to
@@ -173,9 +174,9 @@ def integrate_events(
     progress : callable, optional
         Called with the time reached after every smooth segment (a progress bar).
     max_step : float
-        The longest step [s], at most `REST_STEP` over the fastest rate. The step
-        control sees the state only: where it rests (an equilibrium) the steps grow
-        without bound, and a variational equation
+        The longest step [s]; in stick at most `REST_STEP` over the fastest rate. The
+        step control sees the state only: where it rests (an equilibrium) the steps
+        grow without bound, and a variational equation
         carried on them (`beltmdsm.periodic.variational`) leaves the method's region
         of accuracy; `beltmdsm.attractors.lyapunov` bounds them.
 
@@ -220,7 +221,8 @@ def integrate_events(
     h_next = 0.0
     held = -np.inf  # the time friction last held the mass at a crossed stick limit
     n_steps = 0
-    max_step = min(float(max_step), REST_STEP / fastest_rate(model))
+    max_step = float(max_step)
+    rest_step = min(max_step, REST_STEP / fastest_rate(model))
     field, surf, rates = sw.field, sw.surfaces, sw.rates
     while t < t_end:
         watch, dirs, _ = sw.guards[mode]
@@ -237,7 +239,7 @@ def integrate_events(
             h_next,
             settings.rtol,
             settings.atol,
-            max_step,
+            rest_step if mode == Mode.STICK else max_step,
             _dop853.MAX_STEPS - n_steps,
         )
         check_status(code, t_stop, f"in mode {mode.name.lower()}", settings.rtol, settings.atol)

@@ -49,7 +49,8 @@ def add(commands, name: str) -> None:
         type=number(lambda x: x >= 0, "nonnegative"),
         default=None,
         metavar="T",
-        help="time run before averaging [s] (default 30 %% of --t-end)",
+        help="time run before averaging [s] (default 30 %% of --t-end, or from a start "
+        "moved off unstable steady sliding the time to leave it, where --t-end allows)",
     )
 
 

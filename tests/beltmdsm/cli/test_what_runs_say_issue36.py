@@ -207,5 +207,6 @@ def test_coexistence_does_not_list_a_run_converging_onto_the_t_response_as_unloc
     assert out.returncode == 0, out.stderr
     d = json.loads(out.stdout)
     assert 4.0 not in {u["value"] for u in d["unlocked"]}
-    # a torus stays listed: Vb = 3.5 from rest, samples on a closed curve
+    # a long lock stays listed: Vb = 3.5 from rest, 59T (docs/explanation/attractors.md),
+    # its samples on a closed curve and their returns not falling
     assert any(u["value"] == 3.5 and u["closed_curve"] for u in d["unlocked"])
