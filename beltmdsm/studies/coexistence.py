@@ -75,6 +75,14 @@ __all__ = [
 DEFAULT_STEP = 0.5
 #: Duration of the runs from rest that seed the branches [s].
 SEED_T_END = 600.0
+#: A run whose ``k``-returns ``|y(nT + kT) - y(nT)|`` fall from each quarter of its
+#: samples to the next, and by this factor or more from the first to the last, is still
+#: converging onto a ``k T`` response (`_converging`; Newton's method from its last
+#: sample then decides): at Vb = 4 the ladder continued up from 2.5 spirals into the T
+#: response (|mu| = 0.995 per period: its 1-returns fall from 0.066 to 0.038 over 150
+#: periods) and is not yet within `beltmdsm.periodic.locked.LOCK_TOL`; the returns of
+#: a torus (Vb = 3.5 from rest: 4.43 and 4.39) do not fall.
+_CONVERGING = 0.8
 #: A seed lies on a known branch when the branch, interpolated between its points,
 #: comes this close (relative) to it; Newton's method from there then decides.
 _NEAR = 1e-2
@@ -384,6 +392,22 @@ class Coexistence:
         }
 
 
+def _converging(samples, limit):
+    """The least ``k <= limit`` whose returns fall from quarter to quarter of the samples,
+    by `_CONVERGING` in all (a run still converging onto a ``k T`` response), or None."""
+    y = np.asarray(samples, dtype=float)
+    for k in range(1, limit + 1):
+        r = np.max(np.abs(y[k:] - y[:-k]), axis=1)
+        q = r.size // 4
+        if q < 2:
+            continue
+        quarters = [float(np.median(r[i * q : (i + 1) * q])) for i in range(4)]
+        falling = all(b < a for a, b in zip(quarters, quarters[1:]))
+        if falling and quarters[-1] <= _CONVERGING * quarters[0]:
+            return k
+    return None
+
+
 def _on_branch(branch, value, k, phases):
     """Whether the orbit with these phase-0 states at ``value`` lies on ``branch``."""
     if branch.periods != k:
@@ -539,10 +563,18 @@ def coexistence(
             break
 
     def examine(v, strobe):
-        if strobe.candidate is None:
+        k = strobe.candidate
+        if k is None:  # still converging onto a lock, where Newton's method converges
+            k = _converging(strobe.samples, limit)
+            try:
+                if k is not None:
+                    shoot(model.replace(**{param: float(v)}), k, strobe.samples[-1], backend)
+            except NoPeriodicResponse:
+                k = None
+        if k is None:
             unlocked.append(Unlocked(float(v), NotLocked.of(strobe)))
         else:
-            seeds.append((float(v), strobe.candidate, strobe.samples[-1], strobe.source))
+            seeds.append((float(v), k, strobe.samples[-1], strobe.source))
 
     for v in grid:
         at = model.replace(**{param: float(v)})
