@@ -307,20 +307,24 @@ class Floquet:
     def to_pandas(self) -> DataFrame:
         """A `pandas.DataFrame` (needs pandas) of the multipliers, one row each in the
         order of ``multipliers``: ``multiplier``, ``abs``, ``angle`` [rad] and ``rate =
-        log|mu| / period`` [1/s] (`beltmdsm._tables.multiplier_frame`).
+        log|mu| / period`` [1/s] (`beltmdsm._tables.multiplier_frame`), and
+        ``below_floor``: the modulus is under the computation's error floor (`floor`),
+        so that only its bound is known.
 
         Examples
         --------
         >>> from beltmdsm import floquet
         >>> table = floquet(Vb=12.0).to_pandas()
         >>> list(table), len(table)
-        (['multiplier', 'abs', 'angle', 'rate'], 4)
+        (['multiplier', 'abs', 'angle', 'rate', 'below_floor'], 4)
         >>> round(float(table["rate"].max()), 3)  # the growth rate
         -0.1
         """
         from .._tables import multiplier_frame
 
-        return multiplier_frame(self.multipliers, self.period)
+        table = multiplier_frame(self.multipliers, self.period)
+        table["below_floor"] = self.below_floor
+        return table
 
     def multipliers_text(self) -> str:
         """The multipliers, those below the error floor as ``|mu| < floor``."""
