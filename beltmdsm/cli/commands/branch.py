@@ -17,6 +17,7 @@ from ..flags import (
     range_flags,
     range_from,
 )
+from .. import generic
 from ..running import register
 
 
@@ -26,6 +27,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), periods_parent(), json_parent()],
+        models=generic.branch,
         help="continue a periodic response in one parameter",
         description="The branch of the response of --periods excitation periods at the "
         "point the model flags give, continued in --param over [--from, --to] by "

@@ -15,6 +15,7 @@ from ..flags import (
     settings_from,
     solver_parent,
 )
+from .. import generic
 from ..running import register
 
 
@@ -24,6 +25,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), solver_parent(), json_parent()],
+        models=generic.simulate,
         help="simulate Eq. (4) and summarise the run",
         description="Simulate Eq. (4) and summarise the run.",
     )
