@@ -14,9 +14,8 @@ from __future__ import annotations
 import argparse
 
 from beltmdsm.generated.models import MODELS, load
-from beltmdsm.generated.parameters import PARAMETERS as _PAPER
-
 from beltmdsm.generated.parameters import DOMAIN_RULES, within
+from beltmdsm.generated.parameters import PARAMETERS as _PAPER
 
 from ..model import OPTIONS
 from .flags import number, params_from

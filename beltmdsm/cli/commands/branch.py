@@ -7,6 +7,7 @@ import json
 
 from ...excitation import is_autonomous
 from ...model import MODEL_PARAMETERS
+from .. import generic
 from ..flags import (
     json_parent,
     model_from,
@@ -17,7 +18,6 @@ from ..flags import (
     range_flags,
     range_from,
 )
-from .. import generic
 from ..running import register
 
 

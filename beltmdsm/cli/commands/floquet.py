@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..flags import json_parent, model_from, model_parent, periods_parent
 from .. import generic
+from ..flags import json_parent, model_from, model_parent, periods_parent
 from ..running import register
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from .. import generic
 from ..flags import (
     json_parent,
     model_from,
@@ -15,7 +16,6 @@ from ..flags import (
     settings_from,
     solver_parent,
 )
-from .. import generic
 from ..running import register
 
 
