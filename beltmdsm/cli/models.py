@@ -20,7 +20,15 @@ from beltmdsm.generated.parameters import PARAMETERS as _PAPER
 from ..model import OPTIONS
 from .flags import number, params_from
 
-__all__ = ["MODELS", "model_flag", "other_params", "system_from", "refusal", "refuse_flags"]
+__all__ = [
+    "MODELS",
+    "model_flag",
+    "other_params",
+    "system_from",
+    "refusal",
+    "refuse_flags",
+    "refuse_other_params",
+]
 
 _PAPER_NAMES = {p["name"] for p in _PAPER}
 
@@ -100,6 +108,16 @@ def refuse_flags(args: argparse.Namespace, dests) -> None:
             flag = "--" + dest.replace("_", "-")
             args.parser.error(
                 f"argument {flag}: applies to the paper's model, not to --model {args.model}"
+            )
+
+
+def refuse_other_params(args: argparse.Namespace) -> None:
+    """Exit 2 naming a parameter of another model given to the paper's (never ignored)."""
+    for name, text in other_params().items():
+        if getattr(args, name, None) is not None:
+            owner = text.rsplit("(--model ", 1)[1].rstrip(")")
+            args.parser.error(
+                f"argument --{name}: a parameter of --model {owner}, not of the paper's model"
             )
 
 

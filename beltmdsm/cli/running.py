@@ -118,9 +118,11 @@ def _interrupted(args):
 
 def _handler(args):
     """The command's handler of ``--model`` (the paper's, or the other models')."""
-    from .models import MODELS, refusal
+    from .models import MODELS, refusal, refuse_other_params
 
     if args.model == MODELS[0]:
+        if args.other_models is not None:
+            refuse_other_params(args)
         return args.handler
     if args.other_models is None:
         args.parser.error(refusal(args))

@@ -120,6 +120,14 @@ def test_simulate_names_the_models_states(tmp_path):
     assert text.returncode == 0 and "x_dot" in text.stdout and "X1" not in text.stdout
 
 
+def test_another_models_parameter_is_refused_for_the_paper():
+    done = _cli("simulate", "--k_c", "2", "--t-end", "1")
+    assert done.returncode == 2 and done.stdout == ""
+    assert "argument --k_c: a parameter of --model hoffmann, not of the paper's model" in (
+        done.stderr
+    )
+
+
 @pytest.mark.parametrize(
     "argv, said",
     [
