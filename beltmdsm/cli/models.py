@@ -34,7 +34,17 @@ _PAPER_NAMES = {p["name"] for p in _PAPER}
 
 
 def other_params() -> dict[str, str]:
-    """The other models' parameters that are not the paper's: name -> help."""
+    """The other models' parameters that are not the paper's: name -> help.
+
+    See Also
+    --------
+    model_flag : makes them flags.
+
+    Examples
+    --------
+    >>> sorted(other_params())[:3]
+    ['F_pre', 'c1', 'c2']
+    """
     found: dict[str, str] = {}
     for name in MODELS[1:]:
         module = load(name)
@@ -46,7 +56,19 @@ def other_params() -> dict[str, str]:
 
 
 def model_flag(others: bool) -> argparse.ArgumentParser:
-    """Parent parser: ``--model``; with ``others``, the other models' own parameters."""
+    """Parent parser: ``--model``; with ``others``, the other models' own parameters.
+
+    See Also
+    --------
+    system_from : the `beltmdsm.oscillator.System` of the flags.
+
+    Examples
+    --------
+    >>> args = argparse.ArgumentParser(parents=[model_flag(True)]).parse_args(
+    ...     ["--model", "hoffmann", "--k_c", "2"])
+    >>> args.model, args.k_c
+    ('hoffmann', 2.0)
+    """
     parent = argparse.ArgumentParser(add_help=False)
     parent.add_argument(
         "--model",
