@@ -20,19 +20,27 @@ __all__ = ["simulate", "floquet", "branch"]
 
 
 def _jsonable(x):
+    """``x`` for JSON: numpy as Python, a complex number as ``[re, im]``, NaN as None."""
     if isinstance(x, dict):
         return {k: _jsonable(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):
         return [_jsonable(v) for v in x]
     if isinstance(x, (np.ndarray, np.generic)):
         return _jsonable(x.tolist())
-    if isinstance(x, complex):
-        return {"re": x.real, "im": x.imag}
+    if isinstance(x, complex):  # as the paper's floquet writes its multipliers
+        return [_jsonable(x.real), _jsonable(x.imag)]
+    if isinstance(x, float) and not np.isfinite(x):
+        return None
     return x
 
 
 def _print(args, out: dict, lines: list[str]) -> None:
     print(json.dumps(_jsonable(out)) if args.json else "\n".join(lines))
+
+
+def _pairs(values) -> list[list[float]]:
+    """Multipliers or eigenvalues as ``[re, im]`` pairs (the paper's floquet's JSON)."""
+    return [[float(z.real), float(z.imag)] for z in np.asarray(values, dtype=complex)]
 
 
 def _named(states, values) -> dict[str, float]:
@@ -90,8 +98,8 @@ def _cycle(c) -> dict:
         "kind": c.kind,
         "period": c.period,
         "state": _named(c.system.states, c.state),
-        "multipliers": list(c.multipliers),
-        "trivial_multiplier": c.trivial_multiplier,
+        "multipliers": _pairs(c.multipliers),
+        "trivial_multiplier": _pairs([c.trivial_multiplier])[0],
         "stable": c.stable,
         "sticks": c.sticks,
         "switches": _switches(c.switches),
@@ -132,7 +140,7 @@ def floquet(args: argparse.Namespace) -> int:
             "period": r.period,
             "periods": r.periods,
             "state": _named(system.states, r.state),
-            "multipliers": list(r.multipliers),
+            "multipliers": _pairs(r.multipliers),
             "stable": r.stable,
             "sticks": r.sticks,
             "switches": _switches(r.switches),
@@ -178,7 +186,7 @@ def branch(args: argparse.Namespace) -> int:
                 "state": _named(system.states, eq.state),
                 "stable": eq.stable,
                 "growth_rate": eq.growth_rate,
-                "eigenvalues": list(eq.eigenvalues),
+                "eigenvalues": _pairs(eq.eigenvalues),
             }
         )
     out = {

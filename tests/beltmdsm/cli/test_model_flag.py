@@ -106,6 +106,9 @@ def test_hoffmann_flutter_threshold_and_cycle():
     cycle = _json("floquet", "--model", "hoffmann", *HOFFMANN, "--mu_s", "0.4")
     assert cycle["kind"] == "stick_slip" and cycle["state"]["x_dot"] == pytest.approx(1.0)
     assert set(cycle["state"]) == {"x", "y", "x_dot", "y_dot"} and len(cycle["multipliers"]) == 3
+    # [re, im] pairs, as the paper's floquet writes them; the stick's multiplier is 0
+    assert min(math.hypot(*m) for m in cycle["multipliers"]) < 1e-10
+    assert math.hypot(*cycle["trivial_multiplier"]) == pytest.approx(1.0, abs=1e-9)
 
 
 def test_simulate_names_the_models_states(tmp_path):
