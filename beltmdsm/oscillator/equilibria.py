@@ -49,9 +49,7 @@ class Equilibrium:
 
     Examples
     --------
-    >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
-    >>> import reference_belt_1dof as belt
-    >>> eq = steady_sliding(System(belt, friction="stribeck", Vb=2.5))
+    >>> eq = steady_sliding(System("belt_1dof", friction="stribeck", Vb=2.5))
     >>> eq  # doctest: +NORMALIZE_WHITESPACE
     Equilibrium(System('belt_1dof', friction='stribeck', Vb=2.5); x=2.57329, x_dot=0;
     stable, growth rate -0.03961)
@@ -100,9 +98,7 @@ def steady_sliding(system: System) -> Equilibrium:
 
     Examples
     --------
-    >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
-    >>> import reference_belt_1dof as belt
-    >>> eq = steady_sliding(System(belt, friction="stribeck", Vb=1.5))
+    >>> eq = steady_sliding(System("belt_1dof", friction="stribeck", Vb=1.5))
     >>> eq.stable, eq.mode, round(eq.growth_rate, 4)
     (False, -1, 0.0642)
     """
@@ -158,9 +154,7 @@ def hopf_points(
 
     Examples
     --------
-    >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
-    >>> import reference_belt_1dof as belt
-    >>> s = System(belt, friction="stribeck")
+    >>> s = System("belt_1dof", friction="stribeck")
     >>> [round(float(v), 6) for v in hopf_points(s, "Vb", 0.5, 5.0)]
     [1.99572]
     """

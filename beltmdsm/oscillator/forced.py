@@ -51,10 +51,8 @@ class Response:
 
     Examples
     --------
-    >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
-    >>> import reference_belt_1dof as belt
     >>> from beltmdsm.oscillator import System
-    >>> r = forced_response(System(belt, Vb=0.0, mu_s=0.02, alpha_t=1.0, Omega_t=2.0))
+    >>> r = forced_response(System("belt_1dof", Vb=0.0, mu_s=0.02, alpha_t=1.0, Omega_t=2.0))
     >>> r.periods, r.sticks, r.stable
     (1, 0, True)
     """
@@ -148,10 +146,9 @@ def forced_response(
     --------
     Den Hartog's non-stop motion under Coulomb friction (the belt at rest):
 
-    >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
-    >>> import reference_belt_1dof as belt
     >>> from beltmdsm.oscillator import System
-    >>> s = System(belt, Vb=0.0, beta1=0.0, mu_s=0.03, alpha_t=1.0, Omega_t=0.8)
+    >>> s = System("belt_1dof", Vb=0.0, beta1=0.0, mu_s=0.03, alpha_t=1.5625,
+    ...            Omega_t=0.8, phase_t=np.pi / 2)
     >>> r = forced_response(s)
     >>> round(float(np.abs(r.state).max()), 6), len(r.switches), r.sticks
     (2.472633, 2, 0)

@@ -102,10 +102,8 @@ class Trajectory:
 
     Examples
     --------
-    >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
-    >>> import reference_belt_1dof as belt
     >>> from beltmdsm.oscillator import System
-    >>> run = simulate(System(belt, friction="static_kinetic", Vb=1.0), 10.0)
+    >>> run = simulate(System("belt_1dof", friction="static_kinetic", Vb=1.0), 10.0)
     >>> run  # doctest: +ELLIPSIS +NORMALIZE_WHITESPACE
     Trajectory(System('belt_1dof', ...); 501 samples of x, x_dot to t = 10 s;
     3 switches, 2 sticks; done)
@@ -437,10 +435,8 @@ def simulate(
 
     Examples
     --------
-    >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
-    >>> import reference_belt_1dof as belt
     >>> from beltmdsm.oscillator import System, simulate
-    >>> run = simulate(System(belt, friction="stribeck", Vb=1.5), t_end=40.0)
+    >>> run = simulate(System("belt_1dof", friction="stribeck", Vb=1.5), t_end=40.0)
     >>> run.states, run.y.shape
     (('x', 'x_dot'), (2, 2001))
     >>> run.status, any(after == 0 for _, _, after in run.switches)  # it sticks

@@ -145,16 +145,14 @@ class System:
 
     Examples
     --------
-    A model typed by hand to the contract (here the tests' reference of ``belt_1dof``):
+    The generated 1-DOF belt oscillator (``beltmdsm.generated.models.belt_1dof``):
 
-    >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
-    >>> import reference_belt_1dof as belt
-    >>> s = System(belt, friction="stribeck", Vb=1.5)
+    >>> s = System("belt_1dof", friction="stribeck", Vb=1.5)
     >>> s
     System('belt_1dof', friction='stribeck', Vb=1.5)
     >>> s.states, s.params["mu_k"]
     (('x', 'x_dot'), 0.25)
-    >>> System(belt, friction="stribeck", vb=1.5)
+    >>> System("belt_1dof", friction="stribeck", vb=1.5)
     Traceback (most recent call last):
     ...
     ValueError: vb: not a parameter of belt_1dof with friction='stribeck'; did you mean 'Vb'?
@@ -206,9 +204,7 @@ class System:
 
         Examples
         --------
-        >>> import sys; sys.path.insert(0, "tests/beltmdsm/oscillator")
-        >>> import reference_belt_1dof as belt
-        >>> System(belt, Vb=2.0).replace(Vb=3.0).params["Vb"]
+        >>> System("belt_1dof", Vb=2.0).replace(Vb=3.0).params["Vb"]
         3.0
         """
         return System(self.module, self.friction, **{**self._given, **params})

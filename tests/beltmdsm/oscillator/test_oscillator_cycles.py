@@ -1,6 +1,7 @@
-"""Self-excited cycles of the hand-typed belt_1dof: closed forms, finite differences, and
-the paper's model where its normal direction decouples (alpha = 0: the normal motion
-sits at its equilibrium, Fn = g, and X1 is the 1-DOF oscillator)."""
+"""Self-excited cycles of belt_1dof (the hand-typed reference and the generated module):
+closed forms, finite differences, and the paper's model where its normal direction
+decouples (alpha = 0: the normal motion sits at its equilibrium, Fn = g, and X1 is the
+1-DOF oscillator)."""
 
 import math
 
@@ -14,6 +15,9 @@ from beltmdsm.errors import Unsupported
 from beltmdsm.oscillator import System, self_excited_cycle, stick_onset
 from beltmdsm.oscillator import cycles as _cycles
 from beltmdsm.oscillator.hybrid import flow
+
+#: The hand-typed reference and the generated module (the same model, the same checks).
+BELTS = [pytest.param(belt, id="reference"), pytest.param("belt_1dof", id="generated")]
 
 #: The paper's normal equilibrium at the base set (X2 = (g / omega2^2)^(2/3)).
 X2_EQ = (9.81 / 0.5**2) ** (2 / 3)
@@ -56,8 +60,9 @@ def _static_kinetic_period(p):
     return ts + (xe - (xk + u(ts))) / Vb
 
 
+@pytest.mark.parametrize("belt", BELTS)
 @pytest.mark.parametrize("beta1", [0.0, 0.05])
-def test_static_kinetic_stick_slip_period_is_the_closed_form(beta1):
+def test_static_kinetic_stick_slip_period_is_the_closed_form(belt, beta1):
     s = System(belt, friction="static_kinetic", Vb=0.5, beta1=beta1)
     c = self_excited_cycle(s)
     assert c.kind == "stick_slip" and c.sticks == 1
@@ -71,7 +76,8 @@ def test_static_kinetic_stick_slip_period_is_the_closed_form(beta1):
     assert c.stable
 
 
-def test_no_proper_divisor_returns():
+@pytest.mark.parametrize("belt", BELTS)
+def test_no_proper_divisor_returns(belt):
     s = System(belt, friction="static_kinetic", Vb=0.5)
     c = self_excited_cycle(s)
     # asked for two sticks a period, the shooting reports the least period (one)
@@ -89,7 +95,8 @@ def _fd_monodromy(system, x, T, mode, delta=1e-5):
     return np.array(cols).T
 
 
-def test_stribeck_stick_slip_agrees_with_the_paper_model_and_finite_differences():
+@pytest.mark.parametrize("belt", BELTS)
+def test_stribeck_stick_slip_agrees_with_the_paper_model_and_finite_differences(belt):
     s = System(belt, friction="stribeck", Vb=1.5)
     c = self_excited_cycle(s)
     paper = beltmdsm.cycle(beltmdsm.Model(friction="stribeck", alpha=0.0, Vb=1.5))
@@ -107,7 +114,7 @@ def test_stribeck_stick_slip_agrees_with_the_paper_model_and_finite_differences(
     assert np.allclose(c.monodromy, M_fd, atol=1e-5)
 
 
-def _slip_cycle(vb):
+def _slip_cycle(vb, belt="belt_1dof"):
     """The unstable pure-slip cycle, seeded at the section x = x_eq, x' = 0.8 Y with the
     first-order averaged amplitude Y^2 = 8 v_s (e^(Vb - Vb_H) - 1) (docs/modelling.md)."""
     s = System(belt, friction="stribeck", Vb=vb)
@@ -118,8 +125,9 @@ def _slip_cycle(vb):
     return self_excited_cycle(s, [mu * p["g"] / p["omega1"] ** 2, 0.8 * Y], 2 * math.pi)
 
 
-def test_unstable_slip_cycle_agrees_with_the_paper_model_and_finite_differences():
-    c = _slip_cycle(2.5)
+@pytest.mark.parametrize("belt", BELTS)
+def test_unstable_slip_cycle_agrees_with_the_paper_model_and_finite_differences(belt):
+    c = _slip_cycle(2.5, belt)
     assert c.kind == "slip" and not c.stable
     paper = beltmdsm.cycle(
         beltmdsm.Model(friction="stribeck", alpha=0.0, Vb=2.5),
@@ -182,7 +190,8 @@ def test_stick_onset_agrees_with_the_paper_model():
     assert paper_onset == pytest.approx(vb, abs=1e-8)
 
 
-def test_forced_model_and_bad_guesses_are_refused():
+@pytest.mark.parametrize("belt", BELTS)
+def test_forced_model_and_bad_guesses_are_refused(belt):
     with pytest.raises(Unsupported, match="self-excited cycle needs the autonomous model"):
         self_excited_cycle(System(belt, alpha_t=1.0))
     s = System(belt, friction="stribeck")

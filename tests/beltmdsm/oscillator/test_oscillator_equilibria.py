@@ -1,4 +1,5 @@
-"""Steady sliding and Hopf points of the hand-typed belt_1dof, against closed forms."""
+"""Steady sliding and Hopf points of belt_1dof (the hand-typed reference and the generated
+module), against closed forms."""
 
 import math
 
@@ -9,12 +10,16 @@ import reference_belt_1dof as belt
 from beltmdsm.errors import Unsupported
 from beltmdsm.oscillator import System, hopf_points, steady_sliding
 
+#: The hand-typed reference and the generated module (the same model, the same checks).
+BELTS = [pytest.param(belt, id="reference"), pytest.param("belt_1dof", id="generated")]
 
+
+@pytest.mark.parametrize("belt", BELTS)
 @pytest.mark.parametrize(
     "changes",
     [{}, {"omega1": 2.0, "beta1": 0.05}, {"g": 5.0, "v_s": 0.5, "mu_k": 0.1}],
 )
-def test_stribeck_hopf_point_is_the_closed_form(changes):
+def test_stribeck_hopf_point_is_the_closed_form(belt, changes):
     s = System(belt, friction="stribeck", **changes)
     p = s.params
     # d/dVb of the damping 2 beta1 omega1 + g mu'(Vb) = 0, mu' = -(mu_s - mu_k)/v_s e^(-Vb/v_s)
@@ -33,7 +38,8 @@ def test_stribeck_hopf_point_is_the_closed_form(changes):
     assert abs(at.growth_rate) < 1e-12
 
 
-def test_equilibrium_eigenvalues_and_hurwitz_agree_with_the_closed_form():
+@pytest.mark.parametrize("belt", BELTS)
+def test_equilibrium_eigenvalues_and_hurwitz_agree_with_the_closed_form(belt):
     s = System(belt, friction="stribeck", Vb=1.2)
     p = s.params
     eq = steady_sliding(s)

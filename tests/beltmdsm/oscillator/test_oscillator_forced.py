@@ -1,4 +1,5 @@
-"""Forced periodic responses of the hand-typed belt_1dof: Den Hartog's non-stop motion."""
+"""Forced periodic responses of belt_1dof (the hand-typed reference and the generated
+module): Den Hartog's non-stop motion."""
 
 import math
 
@@ -9,6 +10,17 @@ import reference_belt_1dof as belt
 from beltmdsm.errors import Unsupported
 from beltmdsm.oscillator import System, forced_response
 from beltmdsm.oscillator.hybrid import flow
+
+#: The hand-typed reference and the generated module (the same model, the same checks).
+BELTS = [pytest.param(belt, id="reference"), pytest.param("belt_1dof", id="generated")]
+
+
+def tangential(model, a, W):
+    """The parameters of the force a cos(W t): the reference types alpha_t cos(Omega_t t +
+    phase_t), the generated module the paper's alpha_t Omega_t^2 sin(Omega_t t + phase_t)."""
+    if model is belt:
+        return {"alpha_t": a, "Omega_t": W}
+    return {"alpha_t": a / W**2, "Omega_t": W, "phase_t": math.pi / 2}
 
 
 def den_hartog_amplitude(r, U):
@@ -37,8 +49,9 @@ def _fd_monodromy(system, x, T, delta=1e-5):
     return np.array(cols).T
 
 
+@pytest.mark.parametrize("belt", BELTS)
 @pytest.mark.parametrize("r, U, omega1", [(0.8, 0.3, 1.0), (2.0, 0.3, 1.0), (1.5, 0.2, 2.0)])
-def test_den_hartog_non_stop_solution(r, U, omega1):
+def test_den_hartog_non_stop_solution(belt, r, U, omega1):
     a, g = 1.0, 9.81
     s = System(
         belt,
@@ -47,8 +60,7 @@ def test_den_hartog_non_stop_solution(r, U, omega1):
         beta1=0.0,
         omega1=omega1,
         mu_s=U * a / g,
-        alpha_t=a,
-        Omega_t=r * omega1,
+        **tangential(belt, a, r * omega1),
     )
     resp = forced_response(s)
     assert resp.period == pytest.approx(2 * math.pi / (r * omega1), rel=1e-15)
@@ -70,7 +82,8 @@ def test_den_hartog_non_stop_solution(r, U, omega1):
     )
 
 
-def test_unforced_model_is_refused():
+@pytest.mark.parametrize("belt", BELTS)
+def test_unforced_model_is_refused(belt):
     with pytest.raises(Unsupported, match="every excitation amplitude is 0"):
         forced_response(System(belt))
     with pytest.raises(ValueError, match="periods=0"):

@@ -1,4 +1,5 @@
-"""The generic runtime's system object and hybrid run on the hand-typed belt_1dof module."""
+"""The generic runtime's system object and hybrid run on belt_1dof (the hand-typed module,
+and the generated one where marked)."""
 
 import numpy as np
 import pytest
@@ -7,6 +8,9 @@ from scipy.integrate import solve_ivp
 
 from beltmdsm.errors import Unsupported
 from beltmdsm.oscillator import System, load_model, simulate
+
+#: The hand-typed reference and the generated module (the same model, the same checks).
+BELTS = [pytest.param(belt, id="reference"), pytest.param("belt_1dof", id="generated")]
 
 
 def test_parameters_are_checked_where_they_enter():
@@ -60,7 +64,8 @@ def _reference_run(p, y0, t_end):
     return y, events
 
 
-def test_stick_slip_run_agrees_with_a_solve_ivp_reference():
+@pytest.mark.parametrize("belt", BELTS)
+def test_stick_slip_run_agrees_with_a_solve_ivp_reference(belt):
     s = System(belt, friction="static_kinetic", Vb=1.0)
     run = simulate(s, 30.0, dt=0.01)
     y_ref, events = _reference_run(s.params, [0.0, 0.0], 30.0)
@@ -127,7 +132,8 @@ def test_accumulating_switches_outside_the_friction_cone_stop_the_run():
     assert run.t[-1] < 10.0
 
 
-def test_numba_and_python_backends_agree():
+@pytest.mark.parametrize("belt", BELTS)
+def test_numba_and_python_backends_agree(belt):
     pytest.importorskip("numba")
     s = System(belt, friction="stribeck", Vb=1.5)
     fast = simulate(s, 100.0, backend="numba")
