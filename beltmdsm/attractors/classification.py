@@ -468,7 +468,7 @@ def unstable_set(
     See Also
     --------
     beltmdsm.attractors.classification.classify : Calls such a run ``unstable``.
-    beltmdsm.simulation.equilibrium_start : The default start, off unstable sliding.
+    beltmdsm.excitation.equilibrium_start : The default start, off unstable sliding.
 
     Examples
     --------

@@ -46,13 +46,12 @@ from beltmdsm.generated import unforced
 from .._tables import DataFrame
 from ..arguments import state
 from ..errors import Refused, StepTooSmall
-from ..excitation import excitation_period, initial_state
+from ..excitation import START_PERTURBATION, equilibrium_start, excitation_period, initial_state
 from ..integrate.events import integrate_events
 from ..integrate.switching import Mode
 from ..model import Backend, Model, as_model
 from ..periodic import variational
 from ..settings import MAX_RUN_BYTES, SolverSettings, fastest_rate
-from ..simulation import START_PERTURBATION, equilibrium_start
 
 __all__ = [
     "Lyapunov",
@@ -126,7 +125,7 @@ class Lyapunov:
         reads the attractor's kind from them).
     start_perturbation : float
         How far the default start was moved off unstable steady sliding
-        (`beltmdsm.simulation.equilibrium_start`), 0.0 where it was not.
+        (`beltmdsm.excitation.equilibrium_start`), 0.0 where it was not.
 
     See Also
     --------
@@ -399,8 +398,8 @@ def lyapunov(
     y0 : array_like (4,), optional
         The start; default as `beltmdsm.simulation.simulate`'s: the unforced equilibrium
         at rest, or without excitation where steady sliding is unstable that
-        equilibrium moved by `beltmdsm.simulation.START_PERTURBATION` along its unstable
-        direction (`beltmdsm.simulation.equilibrium_start`; the result's
+        equilibrium moved by `beltmdsm.excitation.START_PERTURBATION` along its unstable
+        direction (`beltmdsm.excitation.equilibrium_start`; the result's
         ``start_perturbation``): a run started exactly on it stays there, and its
         exponents would be the equilibrium's instability, not the attractor's. To
         start on the periodic response pass `beltmdsm.periodic.start.periodic_start`.

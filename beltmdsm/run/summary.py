@@ -204,7 +204,7 @@ class Summary:
 
     ``start_perturbation`` is how far the run's start was moved off steady sliding
     along its unstable direction (without excitation, where steady sliding is
-    unstable: `beltmdsm.simulation.equilibrium_start`; 0.0 elsewhere). Such a run that
+    unstable: `beltmdsm.excitation.equilibrium_start`; 0.0 elsewhere). Such a run that
     still slides steadily at its end is unresolved, the instability named.
 
     Parameters
@@ -370,7 +370,7 @@ def summarize(
         The run's wall-clock time [s], stated in the summary.
     start_perturbation : float
         How far the run's start was moved off an unstable steady sliding
-        (`beltmdsm.simulation.equilibrium_start`), stated in the summary.
+        (`beltmdsm.excitation.equilibrium_start`), stated in the summary.
 
     Returns
     -------
