@@ -1,0 +1,465 @@
+"""The attractors of the autonomous model and the regions of the plane each one claims.
+
+Without excitation (`beltmdsm.excitation.is_autonomous`) the invariant sets of Eq. (4)
+are steady sliding (the unforced equilibrium, Eq. 9) and the self-excited cycles
+(`beltmdsm.cycles`). The normal motion ``(X2, X2')`` does not depend on the tangential
+state and sits at its equilibrium on every one of them, so a start with the normal
+state at its equilibrium moves in the plane ``(X1, X1')``, where every cycle is a
+closed curve around steady sliding. `landscape` computes the sets at one parameter
+value: the equilibrium and its eigenvalues, and the cycles near the branch's points
+(`beltmdsm.cycles.branch.cycle_branch`, corrected by `beltmdsm.cycles.cycle.cycle`) or
+given, each sampled over one period (`ORBIT_SAMPLES`).
+
+A start is decided as soon as it provably lands (`Landscape.decide`, `Landscape.land`):
+
+* **By region.** The cycles, nested around the equilibrium, cut the plane into
+  rings. A ring is invariant (a trajectory cannot cross a cycle in the plane), and by
+  Poincare-Bendixson a bounded trajectory in it ends on one of its boundaries; a ring
+  whose boundaries hold exactly one attractor (the unstable cycle between steady
+  sliding and the stick-slip cycle, say) belongs to it. The outermost region goes to
+  the outermost cycle where it is stable. Starts within `BAND` of a cycle are not
+  decided by region (the sampled curve's error): they are run.
+* **By stick.** A stick phase ends at one state (`beltmdsm.cycles.seed.stick_end`,
+  normal motion at its equilibrium): every start that sticks goes on from there, so
+  its fate is that state's, computed once. This is exact: a stick-slip cycle passes
+  through that state.
+* Otherwise the start is run (`beltmdsm.integrate.events`, exact switching) in chunks
+  until one of the two applies to a state on its way, or `T_MAX` (undecided, -1).
+
+The region rule rests on two facts stated here: the plane is invariant (the normal
+state at its equilibrium; a start off it is run until the normal motion has settled
+to `NORMAL_TOL`) and the cycles given are all the cycles at this value (those of the
+branch through the Hopf point and of the seed from the stick end; an isolated branch
+that neither reaches would be missed, and a ring with two stable or two unstable
+boundaries is then left to the runs, not guessed).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.spatial import cKDTree
+
+from ..errors import NoPeriodicResponse, StepTooSmall
+from ..excitation import initial_state
+from ..integrate.events import integrate_events
+from ..integrate.switching import Mode
+from ..model import Model
+from ..settings import SolverSettings
+
+__all__ = [
+    "InvariantSet",
+    "Landscape",
+    "landscape",
+    "BAND",
+    "ORBIT_SAMPLES",
+    "T_MAX",
+    "NORMAL_TOL",
+]
+
+#: Samples of a cycle's orbit over one period (the curve the regions are cut by).
+ORBIT_SAMPLES = 8000
+#: Starts this close to a cycle's sampled curve (relative to ``1 + |x|``) are run,
+#: not decided by region: the chord error of `ORBIT_SAMPLES` on these orbits is below
+#: 1e-6, the cycle's own error (Newton's residual) below 1e-9.
+BAND = 1e-5
+#: Longest run of a start [s] (the peers' horizon, pyBasin's t = 500).
+T_MAX = 500.0
+#: The normal state is at its equilibrium within this (relative) for the plane's rules:
+#: above the runs' own drift of it (their tolerance, `RTOL`).
+NORMAL_TOL = 1e-6
+#: Tolerances of the runs (the period maps' are 1e-10; a decision needs less).
+RTOL, ATOL = 1e-8, 1e-10
+#: States checked per chunk of a run (one chunk: the period of the equilibrium's pair).
+_CHECKS = 32
+
+
+@dataclass
+class InvariantSet:
+    """An equilibrium or a cycle of the autonomous model.
+
+    Attributes
+    ----------
+    kind : {"equilibrium", "cycle"}
+    stable : bool
+    state : ndarray (4,)
+        The equilibrium, or the cycle's state on its section.
+    period : float or None
+        The cycle's period [s].
+    n_sticks : int
+        Stick phases per period (0: pure slip).
+    orbit : ndarray (m, 4)
+        One period sampled (the equilibrium: its state).
+    leading : float
+        The largest real part of the eigenvalues (equilibrium) or the largest
+        ``|multiplier|`` but the trivial one (cycle).
+
+    See Also
+    --------
+    landscape : computes them.
+
+    Examples
+    --------
+    >>> s = InvariantSet("equilibrium", True, np.zeros(4), None, 0, np.zeros((1, 4)), -0.1)
+    >>> s
+    InvariantSet(stable equilibrium)
+    """
+
+    kind: str
+    stable: bool
+    state: NDArray[np.float64] = field(repr=False)
+    period: float | None
+    n_sticks: int
+    orbit: NDArray[np.float64] = field(repr=False)
+    leading: float = field(repr=False)
+
+    def __repr__(self) -> str:
+        what = "stable" if self.stable else "unstable"
+        if self.kind == "equilibrium":
+            return f"InvariantSet({what} equilibrium)"
+        slip = "stick-slip" if self.n_sticks else "pure-slip"
+        return f"InvariantSet({what} {slip} cycle, period {self.period:.6g} s)"
+
+    @property
+    def name(self) -> str:
+        """``steady sliding``, ``stick-slip cycle`` or ``pure-slip cycle``."""
+        if self.kind == "equilibrium":
+            return "steady sliding"
+        return "stick-slip cycle" if self.n_sticks else "pure-slip cycle"
+
+
+def _polygon_area(xy):
+    x, y = xy[:, 0], xy[:, 1]
+    return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+
+
+def _inside(xy, curve):
+    """Whether each point of ``xy`` lies inside the closed polygon ``curve``."""
+    from matplotlib.path import Path
+
+    return Path(curve, closed=False).contains_points(xy)
+
+
+def _segment_distance(xy, curve, tree):
+    """The distance of each point from the closed polyline ``curve``: to the two
+    segments at its nearest vertex (exact wherever the spacing is below the distance
+    to every other part of the curve)."""
+    _, i = tree.query(xy)
+    n = len(curve)
+    out = np.full(len(xy), np.inf)
+    for a, b in ((i - 1) % n, i), (i, (i + 1) % n):
+        p, q = curve[a], curve[b]
+        d = q - p
+        t = np.clip(np.sum((xy - p) * d, axis=1) / np.maximum(np.sum(d * d, axis=1), 1e-300), 0, 1)
+        out = np.minimum(out, np.linalg.norm(xy - p - t[:, None] * d, axis=1))
+    return out
+
+
+@dataclass
+class Landscape:
+    """The invariant sets of an autonomous model at one parameter value and the rules
+    that decide a start (module docstring).
+
+    Attributes
+    ----------
+    model : Model
+    equilibrium : InvariantSet
+    cycles : list of InvariantSet
+        By enclosed area, smallest first.
+    attractors : list of InvariantSet
+        The stable ones, in the order of the labels: steady sliding first, then the
+        cycles from the inside out.
+    nested : bool
+        The cycles are nested around the equilibrium (the region rule holds).
+    stick_end : ndarray (4,) or None
+        Where every stick phase ends (`beltmdsm.cycles.seed.stick_end`).
+    stick_label : int or None
+        The label of the attractor the stick end lands on (None: undecided, or no
+        stick end).
+
+    See Also
+    --------
+    landscape : computes it.
+    beltmdsm.studies.basin_stability.basin_stability : samples starts with it.
+    """
+
+    model: Model = field(repr=False)
+    equilibrium: InvariantSet
+    cycles: list[InvariantSet]
+    attractors: list[InvariantSet] = field(repr=False)
+    nested: bool = field(repr=False)
+    stick_end: NDArray[np.float64] | None = field(repr=False)
+    stick_label: int | None = field(repr=False, default=None)
+    _trees: list = field(repr=False, default_factory=list)
+    _rules: list = field(repr=False, default_factory=list)
+
+    def __post_init__(self):
+        self._trees = [cKDTree(c.orbit[:, :2]) for c in self.cycles]
+        self._rules = self._region_rules()
+
+    def _label(self, s: InvariantSet) -> int:
+        return next(i for i, a in enumerate(self.attractors) if a is s)
+
+    def _region_rules(self):
+        """The label of each ring from the inside out (None: not decided by region)."""
+        if not self.nested or not self.cycles:
+            return []
+        rules = []
+        bounds = [self.equilibrium, *self.cycles, None]
+        for inner, outer in zip(bounds[:-1], bounds[1:]):
+            stable = [s for s in (inner, outer) if s is not None and s.stable]
+            rules.append(self._label(stable[0]) if len(stable) == 1 else None)
+        return rules
+
+    def decide(self, states: ArrayLike) -> NDArray[np.int_]:
+        """The label each state is decided to land on by region alone, -1 where the
+        region rule does not decide it (near a cycle, off the plane, or a ring without
+        exactly one attracting boundary).
+
+        Parameters
+        ----------
+        states : array_like (n, 4)
+
+        Returns
+        -------
+        ndarray (n,) of int
+        """
+        y = np.atleast_2d(np.asarray(states, dtype=float))
+        out = np.full(len(y), -1)
+        if not self._rules:
+            return out
+        eq = self.equilibrium.state
+        planar = np.all(np.abs(y[:, 2:] - eq[2:]) <= NORMAL_TOL * (1.0 + np.abs(eq[2:])), axis=1)
+        xy = y[:, :2]
+        scale = 1.0 + np.max(np.abs(xy), axis=1)
+        near = np.zeros(len(y), dtype=bool)
+        ring = np.zeros(len(y), dtype=int)  # the cycles that do not contain it: 0 innermost
+        for c, tree in zip(self.cycles, self._trees):
+            curve = c.orbit[:, :2]
+            near |= _segment_distance(xy, curve, tree) <= BAND * scale
+            ring += ~_inside(xy, curve)
+        rules = np.array([-1 if r is None else r for r in self._rules])
+        ok = planar & ~near
+        out[ok] = rules[ring[ok]]
+        return out
+
+    def land(self, start: ArrayLike, t_max: float = T_MAX) -> dict[str, Any]:
+        """Decide ``start``: by region at once, else by a run that stops as soon as a
+        state on its way sticks or is decided by region (module docstring).
+
+        Parameters
+        ----------
+        start : array_like (4,)
+        t_max : float
+            The longest run [s].
+
+        Returns
+        -------
+        dict
+            ``{"label", "how", "t"}``: the label (-1: undecided), ``"region"``,
+            ``"stick"`` or ``"none"``, and the time run [s]. JSON-ready.
+        """
+        y = np.asarray(start, dtype=float)
+        label = int(self.decide(y[None, :])[0])
+        if label >= 0:
+            return {"label": label, "how": "region", "t": 0.0}
+        return self._run(y, t_max, self.stick_label)
+
+    def _run(self, y, t_max, stick_label):
+        chunk = _chunk_length(self)
+        t = 0.0
+        eq = self.equilibrium.state
+        while t < t_max:
+            span = min(chunk, t_max - t)
+            settings = SolverSettings(
+                t_end=t + span, rtol=RTOL, atol=ATOL, dt=span / 100, t_discard=0.0
+            )
+            try:
+                run = integrate_events(self.model, settings, y0=y, t0=t)
+            except StepTooSmall:
+                return {"label": -1, "how": "none", "t": t}
+            sticks = [
+                e[0]
+                for e in run.events
+                if Mode(int(e[2])) == Mode.STICK
+                and np.all(
+                    np.abs(run.trajectory.state(np.array([e[0]]))[2:, 0] - eq[2:])
+                    <= NORMAL_TOL * (1.0 + np.abs(eq[2:]))
+                )
+            ]
+            end = run.trajectory.t_end
+            if sticks and stick_label is not None:
+                return {"label": int(stick_label), "how": "stick", "t": float(sticks[0])}
+            ts = np.linspace(t, end, _CHECKS + 1)[1:]
+            if sticks:
+                ts = ts[ts < sticks[0]]
+            labels = self.decide(run.trajectory.state(ts).T)
+            hit = np.flatnonzero(labels >= 0)
+            if hit.size:
+                return {"label": int(labels[hit[0]]), "how": "region", "t": float(ts[hit[0]])}
+            if run.status != "done":
+                return {"label": -1, "how": "none", "t": float(end)}
+            y, t = run.trajectory.state(np.array([end]))[:, 0], float(end)
+        return {"label": -1, "how": "none", "t": t}
+
+
+def _chunk_length(ls):
+    period = [c.period for c in ls.cycles if c.period]
+    return float(min(period)) if period else 2 * math.pi
+
+
+def _equilibrium(model):
+    from beltmdsm.generated import unforced
+
+    state = initial_state(model)
+    J = np.asarray(
+        unforced.jacobian_at_equilibrium(**model.arguments(unforced.jacobian_at_equilibrium)),
+        dtype=float,
+    ).reshape(4, 4)
+    lead = float(np.max(np.linalg.eigvals(J).real))
+    return InvariantSet("equilibrium", lead < 0, state, None, 0, state[None, :], lead)
+
+
+def _orbit(model, c):
+    settings = SolverSettings(t_end=c.period, rtol=1e-10, atol=1e-12, dt=c.period / 100, t_discard=0.0)
+    run = integrate_events(model, settings, y0=c.state)
+    ts = np.linspace(0.0, c.period, ORBIT_SAMPLES, endpoint=False)
+    return run.trajectory.state(ts).T
+
+
+def _as_set(model, c):
+    lead = float(np.max(np.abs(c.multipliers))) if len(c.multipliers) else 0.0
+    stable = bool(c.stable) if c.stable is not None else False
+    return InvariantSet(
+        "cycle", stable, np.asarray(c.state), float(c.period), int(c.n_sticks),
+        _orbit(model, c), lead,
+    )  # fmt: skip
+
+
+def _distinct(sets, new):
+    for s in sets:
+        if abs(s.period - new.period) <= 1e-6 * s.period:
+            d = np.min(np.max(np.abs(s.orbit[:, :2] - new.state[:2]), axis=1))
+            if d <= 1e-5 * (1.0 + np.max(np.abs(new.state[:2]))):
+                return False
+    return True
+
+
+def landscape(
+    model: Model,
+    *,
+    guesses: list[tuple[ArrayLike, float]] | None = None,
+    seed: bool = True,
+) -> Landscape:
+    """The equilibrium and the cycles of the autonomous ``model``, and the rules that
+    decide a start (module docstring).
+
+    Parameters
+    ----------
+    model : Model
+        Without excitation.
+    guesses : list of (state, period), optional
+        Cycles to correct (`beltmdsm.cycles.cycle.cycle`): the points of a branch at
+        or near the model's value (`cycles_near`). Those that do not converge are left
+        out.
+    seed : bool
+        Also the cycle seeded from the stick end or unstable sliding
+        (`beltmdsm.cycles.seed.seed_cycle`).
+
+    Returns
+    -------
+    Landscape
+
+    Raises
+    ------
+    ValueError
+        For a model with excitation.
+
+    See Also
+    --------
+    cycles_near : the guesses from a branch.
+    beltmdsm.cycles.cycle.cycle : corrects each.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.cycles.branch import cycle_branch
+    >>> m = Model(alpha=0.0, omega1=1.0, beta1=0.05, g=1.0, friction="stribeck",
+    ...           mu_s=1.0, mu_k=0.5, v_s=0.5, Vb=1.5)
+    >>> ls = landscape(m, guesses=cycles_near(cycle_branch(m, lo=1.0, hi=2.0), 1.5))
+    >>> ls.equilibrium, ls.cycles  # doctest: +NORMALIZE_WHITESPACE
+    (InvariantSet(stable equilibrium), [InvariantSet(unstable pure-slip cycle,
+    period 6.2952 s), InvariantSet(stable stick-slip cycle, period 6.31684 s)])
+    >>> ls.decide([[0.55, 0.5, *ls.equilibrium.state[2:]], [0.55, 1.9, *ls.equilibrium.state[2:]]])
+    array([0, 1])
+    """
+    from ..cycles.cycle import cycle
+    from ..cycles.seed import require_autonomous, stick_end
+
+    require_autonomous(model, "basins without excitation")
+    eq = _equilibrium(model)
+    found = []
+    tries = [(g, p) for g, p in (guesses or [])]
+    if seed:
+        tries.append((None, None))
+    for guess, period in tries:
+        try:
+            c = cycle(model, guess, period)
+        except NoPeriodicResponse:
+            continue
+        if c.grazing if hasattr(c, "grazing") else False:
+            continue
+        s = _as_set(model, c)
+        if _distinct(found, s):
+            found.append(s)
+    found.sort(key=lambda s: _polygon_area(s.orbit[:, :2]))
+    nested = all(bool(_inside(eq.state[None, :2], c.orbit[:, :2])[0]) for c in found) and all(
+        bool(np.all(_inside(a.orbit[:, :2], b.orbit[:, :2]))) for a, b in zip(found, found[1:])
+    )
+    attractors = [s for s in [eq, *found] if s.stable]
+    ls = Landscape(model, eq, found, attractors, nested, stick_end(model))
+    if ls.stick_end is not None:
+        ls.stick_label = _stick_label(ls)
+    return ls
+
+
+def _stick_label(ls):
+    """The label of the attractor the stick end lands on: the stable stick-slip cycle
+    that passes through it (exact), else the stick end's run."""
+    xy = ls.stick_end[None, :2]
+    for c, tree in zip(ls.cycles, ls._trees):
+        d = _segment_distance(xy, c.orbit[:, :2], tree)[0]
+        if c.stable and c.n_sticks and d <= BAND * (1.0 + float(np.max(np.abs(xy)))):
+            return ls._label(c)
+    label = ls._run(ls.stick_end, T_MAX, None)["label"]
+    return None if label < 0 else label
+
+
+def cycles_near(branch: Any, value: float) -> list[tuple[NDArray[np.float64], float]]:
+    """Guesses ``(state, period)`` of the cycles of ``branch`` at ``value``: the point
+    nearest to it on each stretch of the branch that passes it.
+
+    Parameters
+    ----------
+    branch : beltmdsm.cycles.branch.CycleBranch
+    value : float
+
+    Returns
+    -------
+    list of (ndarray (4,), float)
+
+    See Also
+    --------
+    landscape
+    """
+    pts = branch.points
+    out = []
+    for a, b in zip(pts, pts[1:]):
+        if (a.value - value) * (b.value - value) <= 0:
+            p = a if abs(a.value - value) <= abs(b.value - value) else b
+            out.append((np.array(p.state, dtype=float), float(p.period)))
+    return out
