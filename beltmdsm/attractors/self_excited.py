@@ -159,6 +159,24 @@ def _segment_distance(xy, curve, tree):
     return out
 
 
+def _polar(curve, centre):
+    """``(theta, r, sine)`` of a closed curve seen from ``centre`` where every ray from
+    it meets the curve once (its angle turns one way), sorted by angle; ``sine`` the
+    least sine of the angle between the curve and a ray (a radial distance ``d`` is a
+    distance of at least ``d * sine``). None for a curve that is not star-shaped."""
+    d = curve - centre
+    theta = np.arctan2(d[:, 1], d[:, 0])
+    turn = np.diff(np.unwrap(np.append(theta, theta[0])))
+    if not (np.all(turn > 0) or np.all(turn < 0)):
+        return None
+    r = np.hypot(d[:, 0], d[:, 1])
+    chord = np.roll(curve, -1, axis=0) - curve
+    cross = np.abs(d[:, 0] * chord[:, 1] - d[:, 1] * chord[:, 0])
+    sine = float(np.min(cross / np.maximum(r * np.hypot(chord[:, 0], chord[:, 1]), 1e-300)))
+    order = np.argsort(theta)
+    return theta[order], r[order], sine
+
+
 @dataclass
 class Landscape:
     """The invariant sets of an autonomous model at one parameter value and the rules
@@ -195,11 +213,29 @@ class Landscape:
     stick_end: NDArray[np.float64] | None = field(repr=False)
     stick_label: int | None = field(repr=False, default=None)
     _trees: list = field(repr=False, default_factory=list)
+    _polars: list = field(repr=False, default_factory=list)
     _rules: list = field(repr=False, default_factory=list)
 
     def __post_init__(self):
         self._trees = [cKDTree(c.orbit[:, :2]) for c in self.cycles]
+        centre = self.equilibrium.state[:2]
+        self._polars = [_polar(c.orbit[:, :2], centre) for c in self.cycles]
         self._rules = self._region_rules()
+
+    def _near_inside(self, xy, i, band):
+        """Within ``band`` of cycle ``i``, and inside it: by its polar table where it is
+        star-shaped about the equilibrium (a start costs a bisection), else by the
+        polygon and the distance to its segments."""
+        polar = self._polars[i]
+        if polar is None:
+            curve = self.cycles[i].orbit[:, :2]
+            near = _segment_distance(xy, curve, self._trees[i]) <= band
+            return near, _inside(xy, curve)
+        theta, r, sine = polar
+        d = xy - self.equilibrium.state[:2]
+        rc = np.interp(np.arctan2(d[:, 1], d[:, 0]), theta, r, period=2 * np.pi)
+        gap = np.hypot(d[:, 0], d[:, 1]) - rc
+        return np.abs(gap) * sine <= band, gap < 0
 
     def _label(self, s: InvariantSet) -> int:
         return next(i for i, a in enumerate(self.attractors) if a is s)
@@ -238,10 +274,10 @@ class Landscape:
         scale = 1.0 + np.max(np.abs(xy), axis=1)
         near = np.zeros(len(y), dtype=bool)
         ring = np.zeros(len(y), dtype=int)  # the cycles that do not contain it: 0 innermost
-        for c, tree in zip(self.cycles, self._trees):
-            curve = c.orbit[:, :2]
-            near |= _segment_distance(xy, curve, tree) <= BAND * scale
-            ring += ~_inside(xy, curve)
+        for i in range(len(self.cycles)):
+            close, inside = self._near_inside(xy, i, BAND * scale)
+            near |= close
+            ring += ~inside
         rules = np.array([-1 if r is None else r for r in self._rules])
         ok = planar & ~near
         out[ok] = rules[ring[ok]]
