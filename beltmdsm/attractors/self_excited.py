@@ -361,7 +361,9 @@ def _equilibrium(model):
 
 
 def _orbit(model, c):
-    settings = SolverSettings(t_end=c.period, rtol=1e-10, atol=1e-12, dt=c.period / 100, t_discard=0.0)
+    settings = SolverSettings(
+        t_end=c.period, rtol=1e-10, atol=1e-12, dt=c.period / 100, t_discard=0.0
+    )
     run = integrate_events(model, settings, y0=c.state)
     ts = np.linspace(0.0, c.period, ORBIT_SAMPLES, endpoint=False)
     return run.trajectory.state(ts).T

@@ -248,7 +248,9 @@ def _checked_region(region):
         except (TypeError, ValueError):
             lo, hi = math.nan, math.nan
         if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
-            raise ValueError(f"region[{axis!r}] must be two finite numbers, low < high; got {span!r}")
+            raise ValueError(
+                f"region[{axis!r}] must be two finite numbers, low < high; got {span!r}"
+            )
         out[axis] = (lo, hi)
     return out
 
