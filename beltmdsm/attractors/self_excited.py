@@ -23,6 +23,13 @@ A start is decided as soon as it provably lands (`Landscape.decide`, `Landscape.
   normal motion at its equilibrium): every start that sticks goes on from there, so
   its fate is that state's, computed once. This is exact: a stick-slip cycle passes
   through that state.
+* **By the linearised focus.** Where steady sliding is stable, a quadratic Lyapunov
+  function of its tangential Jacobian ``A`` (``A^T P + P A = -I``) has sublevel
+  ellipses ``(x - x_eq)^T P (x - x_eq) < c``; the largest ``c`` (of a ladder) whose
+  ellipse stays in the slip mode of steady sliding and on which the field decreases
+  the function (checked on `FOCUS_GRID` points of the ellipse, the generated field) is
+  steady sliding's. It decides the starts where no cycle bounds steady sliding's
+  basin (past the stick onset, say).
 * Otherwise the start is run (`beltmdsm.integrate.events`, exact switching) in chunks
   until one of the two applies to a state on its way, or `T_MAX` (undecided, -1).
 
@@ -74,6 +81,8 @@ T_MAX = 500.0
 NORMAL_TOL = 1e-6
 #: Tolerances of the runs (the period maps' are 1e-10; a decision needs less).
 RTOL, ATOL = 1e-8, 1e-10
+#: Radii x angles of the points of a focus ellipse where the field is checked.
+FOCUS_GRID = (40, 128)
 #: States checked per chunk of a run (one chunk: the period of the equilibrium's pair).
 _CHECKS = 32
 
@@ -212,6 +221,7 @@ class Landscape:
     nested: bool = field(repr=False)
     stick_end: NDArray[np.float64] | None = field(repr=False)
     stick_label: int | None = field(repr=False, default=None)
+    focus: tuple | None = field(repr=False, default=None)
     _trees: list = field(repr=False, default_factory=list)
     _polars: list = field(repr=False, default_factory=list)
     _rules: list = field(repr=False, default_factory=list)
@@ -266,10 +276,10 @@ class Landscape:
         """
         y = np.atleast_2d(np.asarray(states, dtype=float))
         out = np.full(len(y), -1)
-        if not self._rules:
-            return out
         eq = self.equilibrium.state
         planar = np.all(np.abs(y[:, 2:] - eq[2:]) <= NORMAL_TOL * (1.0 + np.abs(eq[2:])), axis=1)
+        if not self._rules:
+            return self._in_focus(y, planar, out)
         xy = y[:, :2]
         scale = 1.0 + np.max(np.abs(xy), axis=1)
         near = np.zeros(len(y), dtype=bool)
@@ -281,6 +291,15 @@ class Landscape:
         rules = np.array([-1 if r is None else r for r in self._rules])
         ok = planar & ~near
         out[ok] = rules[ring[ok]]
+        return self._in_focus(y, planar, out)
+
+    def _in_focus(self, y, planar, out):
+        if self.focus is None:
+            return out
+        P, c = self.focus
+        d = y[:, :2] - self.equilibrium.state[:2]
+        inside = planar & (out < 0) & (np.einsum("ni,ij,nj->n", d, P, d) < c)
+        out[inside] = self._label(self.equilibrium)
         return out
 
     def land(self, start: ArrayLike, t_max: float = T_MAX) -> dict[str, Any]:
@@ -348,16 +367,53 @@ def _chunk_length(ls):
     return float(min(period)) if period else 2 * math.pi
 
 
-def _equilibrium(model):
+def _jacobian(model):
     from beltmdsm.generated import unforced
 
-    state = initial_state(model)
-    J = np.asarray(
+    return np.asarray(
         unforced.jacobian_at_equilibrium(**model.arguments(unforced.jacobian_at_equilibrium)),
         dtype=float,
     ).reshape(4, 4)
-    lead = float(np.max(np.linalg.eigvals(J).real))
+
+
+def _equilibrium(model):
+    state = initial_state(model)
+    lead = float(np.max(np.linalg.eigvals(_jacobian(model)).real))
     return InvariantSet("equilibrium", lead < 0, state, None, 0, state[None, :], lead)
+
+
+def _focus(model, eq):
+    """``(P, c)``: the largest sublevel ellipse of steady sliding's quadratic Lyapunov
+    function that stays in its slip mode and on whose `FOCUS_GRID` points the field
+    decreases it (module docstring); None where none of the ladder does."""
+    from scipy.linalg import solve_continuous_lyapunov
+
+    from beltmdsm.generated import hybrid
+
+    from ..cycles.seed import section_direction
+
+    A = _jacobian(model)[:2, :2]
+    P = solve_continuous_lyapunov(A.T, -np.eye(2))
+    Q = np.linalg.inv(P)
+    vb = abs(float(model["Vb"])) - abs(float(eq.state[1]))
+    c = 0.9 * vb**2 / Q[1, 1]  # the ellipse's reach in X1' is sqrt(c Q_11)
+    L = np.linalg.cholesky(Q)
+    radii, angles = FOCUS_GRID
+    r = np.linspace(1.0 / radii, 1.0, radii)[:, None]
+    a = np.linspace(0.0, 2 * np.pi, angles, endpoint=False)[None, :]
+    unit = np.stack([(r * np.cos(a)).ravel(), (r * np.sin(a)).ravel()])
+    mode = section_direction(model)  # the slip mode of steady sliding
+    args = model.arguments(hybrid.vector_field)
+    for _ in range(30):
+        d = np.sqrt(c) * (L @ unit)
+        x1, y1 = eq.state[0] + d[0], eq.state[1] + d[1]
+        n = np.ones_like(x1)
+        f = hybrid.vector_field(0.0, x1, y1, eq.state[2] * n, eq.state[3] * n, mode, **args)
+        f = np.asarray(f, dtype=float).reshape(len(x1), 4).T[:2]  # rows: one state each
+        if np.all(np.einsum("in,ij,jn->n", d, P, f) < 0):
+            return P, c
+        c *= 0.5
+    return None
 
 
 def _orbit(model, c):
@@ -459,7 +515,8 @@ def landscape(
         bool(np.all(_inside(a.orbit[:, :2], b.orbit[:, :2]))) for a, b in zip(found, found[1:])
     )
     attractors = [s for s in [eq, *found] if s.stable]
-    ls = Landscape(model, eq, found, attractors, nested, stick_end(model))
+    focus = _focus(model, eq) if eq.stable else None
+    ls = Landscape(model, eq, found, attractors, nested, stick_end(model), None, focus)
     if ls.stick_end is not None:
         ls.stick_label = _stick_label(ls)
     return ls

@@ -157,15 +157,19 @@ class BasinStability:
         }
 
 
-def branch_range(model: Model, values: list[float] | None = None) -> tuple[float, float] | None:
-    """The range of ``Vb`` the branch of cycles is continued over for ``values`` (the
-    model's ``Vb`` by default): theirs and the Hopf points' within ``[v/4, 4 v]``, 10 %
-    wider; None where there is no Hopf point."""
+def branch_range(
+    model: Model, param: str = "Vb", values: list[float] | None = None
+) -> tuple[float, float] | None:
+    """The range of ``param`` the branch of cycles is continued over for ``values`` (the
+    model's value by default): theirs and the Hopf points' within ``[v/4, 4 v]`` (of
+    positive values), 10 % wider; None where there is no Hopf point."""
     from ..cycles.hopf import hopf_points
 
-    values = [float(model["Vb"])] if values is None else [float(v) for v in values]
+    values = [float(model[param])] if values is None else [float(v) for v in values]
     lo, hi = min(values), max(values)
-    hopf = [h.value for h in hopf_points(model, "Vb", 0.25 * lo, 4.0 * hi)]
+    if not 0 < lo:
+        return None
+    hopf = [h.value for h in hopf_points(model, param, 0.25 * lo, 4.0 * hi)]
     if not hopf:
         return None
     a, b = min(lo, *hopf), max(hi, *hopf)
@@ -179,9 +183,9 @@ def landscape_of(model: Model, branch: Any = None) -> Landscape:
     from ..cycles.branch import cycle_branch
 
     if branch is None:
-        span = branch_range(model)
+        span = branch_range(model, "Vb")
         branch = None if span is None else cycle_branch(model, lo=span[0], hi=span[1])
-    guesses = [] if branch is None else cycles_near(branch, float(model["Vb"]))
+    guesses = [] if branch is None else cycles_near(branch, float(model[branch.param]))
     return landscape(model, guesses=guesses)
 
 
