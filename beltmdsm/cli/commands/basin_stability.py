@@ -47,8 +47,9 @@ def add(commands, name: str) -> None:
         "--points", type=integer(2, 200), default=5, help="values of the parameter (default 5)"
     )
     for axis, default in (("x", "X1"), ("y", "Y1")):
-        sub.add_argument(f"--{axis}", choices=_AXES, default=default,
-                         help=f"the {axis} axis of the box (default {default}; Y1 is X1')")  # fmt: skip
+        sub.add_argument(
+            f"--{axis}", choices=_AXES, default=default, help=f"the {axis} axis (default {default})"
+        )
         sub.add_argument(f"--{axis}-from", type=number(), required=True, metavar="A",
                          help="its low end")  # fmt: skip
         sub.add_argument(f"--{axis}-to", type=number(), required=True, metavar="B",
