@@ -81,6 +81,10 @@ T_MAX = 500.0
 NORMAL_TOL = 1e-6
 #: Tolerances of the runs (the period maps' are 1e-10; a decision needs less).
 RTOL, ATOL = 1e-8, 1e-10
+#: The backward runs of `backward_seed`: their starts' offsets from steady sliding (in
+#: ``X1'``, times ``Vb``) and their length in periods of steady sliding's pair.
+BACKWARD_OFFSETS = (0.5, 0.25, 0.1, 0.03)
+BACKWARD_PERIODS = 15
 #: Radii x angles of the points of a focus ellipse where the field is checked.
 FOCUS_GRID = (40, 128)
 #: States checked per chunk of a run (one chunk: the period of the equilibrium's pair).
@@ -139,6 +143,74 @@ class InvariantSet:
         if self.kind == "equilibrium":
             return "steady sliding"
         return "stick-slip cycle" if self.n_sticks else "pure-slip cycle"
+
+
+def backward_seed(model: Model, eq: InvariantSet) -> list[tuple[NDArray[np.float64], float]]:
+    """A guess ``[(state, period)]`` of the unstable pure-slip cycle around a stable
+    steady sliding (``[]`` where none is found): backwards in time the focus repels
+    and that cycle attracts, so a backward run of steady sliding's slip mode (the
+    generated field, smooth there) from inside it settles on it. Runs from ``X1'``
+    offsets of `BACKWARD_OFFSETS` times ``Vb``, largest first; a run that leaves the
+    slip mode (it started outside the cycle, or there is none) or does not settle is
+    dropped. Its last extremum of ``X1'`` and the time between two is the guess
+    `beltmdsm.cycles.cycle.cycle` corrects.
+
+    Parameters
+    ----------
+    model : Model
+    eq : InvariantSet
+        Steady sliding.
+
+    Returns
+    -------
+    list of (ndarray (4,), float)
+
+    See Also
+    --------
+    landscape
+    """
+    from scipy.integrate import solve_ivp
+
+    from beltmdsm.generated import hybrid
+
+    from ..cycles.seed import section_direction
+
+    if not eq.stable:
+        return []
+    mode = section_direction(model)
+    kernel = hybrid.bind_vector_field(**model.arguments(hybrid.bind_vector_field))
+    vb = float(model["Vb"])
+    lam = np.linalg.eigvals(_jacobian(model)[:2, :2])
+    period = 2 * np.pi / max(float(np.max(np.abs(lam.imag))), 1e-12)
+
+    x2, y2 = eq.state[2:]
+
+    def field(t, y):  # the plane only: backwards the damped normal motion would blow up
+        return kernel(0.0, y[0], y[1], x2, y2, mode)[:2]
+
+    def leaves(t, y):  # V_r reaches 0: the slip mode ends
+        return y[1] - vb
+
+    leaves.terminal = True
+    for share in BACKWARD_OFFSETS:
+        y0 = eq.state[:2].copy()
+        y0[1] -= share * vb
+        span = BACKWARD_PERIODS * period
+        sol = solve_ivp(field, (0.0, -span), y0, events=leaves, rtol=1e-8, atol=1e-10,
+                        dense_output=True)  # fmt: skip
+        if sol.status != 0:
+            continue
+        ts = np.linspace(-span + 3 * period, -span, 4000)
+        v = sol.sol(ts)[1]
+        low = [i for i in range(1, len(v) - 1) if v[i] <= v[i - 1] and v[i] <= v[i + 1]]
+        if len(low) < 2:
+            continue
+        amplitude = float(np.ptp(v))
+        if amplitude < 1e-6 * (1.0 + abs(vb)):
+            continue  # decayed onto steady sliding: no cycle from here
+        i, j = low[-2], low[-1]
+        return [(np.array([*sol.sol(ts[j]), x2, y2]), float(abs(ts[j] - ts[i])))]
+    return []
 
 
 def _polygon_area(xy):

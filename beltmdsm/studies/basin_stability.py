@@ -178,15 +178,30 @@ def branch_range(
 
 def landscape_of(model: Model, branch: Any = None) -> Landscape:
     """The `Landscape` of an autonomous model: its cycles from ``branch`` (a
-    `beltmdsm.cycles.branch.CycleBranch`; computed over `branch_range` where None) and
-    the seed from the stick end."""
+    `beltmdsm.cycles.branch.CycleBranch` through the model's value) and the seeds.
+
+    Without a branch, first the seeds alone: the unstable cycle by a backward run
+    (`beltmdsm.attractors.self_excited.backward_seed`) and the one from the stick end;
+    where they leave a ring of the plane without exactly one attractor on its
+    boundary (a cycle missed), or none is found while steady sliding is unstable, the
+    branch through the Hopf point (over `branch_range`) is computed and its cycles
+    added.
+    """
+    from ..attractors.self_excited import _equilibrium, backward_seed
     from ..cycles.branch import cycle_branch
 
-    if branch is None:
-        span = branch_range(model, "Vb")
-        branch = None if span is None else cycle_branch(model, lo=span[0], hi=span[1])
-    guesses = [] if branch is None else cycles_near(branch, float(model[branch.param]))
-    return landscape(model, guesses=guesses)
+    if branch is not None:
+        guesses = cycles_near(branch, float(model[branch.param]))
+        return landscape(model, guesses=guesses + backward_seed(model, _equilibrium(model)))
+    seeds = backward_seed(model, _equilibrium(model))
+    ls = landscape(model, guesses=seeds)
+    if ls.cycles and all(r is not None for r in ls._rules):
+        return ls
+    span = branch_range(model, "Vb")
+    if span is None:
+        return ls
+    branch = cycle_branch(model, lo=span[0], hi=span[1])
+    return landscape(model, guesses=cycles_near(branch, float(model["Vb"])) + seeds)
 
 
 def draw_starts(
