@@ -106,7 +106,7 @@ def _estimate(labels, label):
 def _warm(ls):
     """Run on every worker before the timing: load the integrator's kernels (numba's
     disk cache) with one run, which a chunk decided by region alone never needs."""
-    ls.land(ls.equilibrium.state + np.array([0.0, 1.9, 0.0, 0.0]), 20.0)
+    ls._run(ls.equilibrium.state + np.array([0.0, 1.9, 0.0, 0.0]), 20.0, None)
 
 
 def _dask(model, ls, samples, seed):

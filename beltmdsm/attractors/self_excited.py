@@ -533,8 +533,9 @@ def landscape(
         or near the model's value (`cycles_near`). Those that do not converge are left
         out.
     seed : bool
-        Also the cycle seeded from the stick end or unstable sliding
-        (`beltmdsm.cycles.seed.seed_cycle`).
+        Also the cycles seeded by a backward run from stable steady sliding
+        (`backward_seed`: the unstable cycle around it) and from the stick end or
+        unstable sliding (`beltmdsm.cycles.seed.seed_cycle`).
 
     Returns
     -------
@@ -552,16 +553,20 @@ def landscape(
 
     Examples
     --------
+    The friction oscillator of bSTAB and pyBasin at ``Vb = 1.5``: steady sliding is
+    stable, inside an unstable pure-slip cycle, itself inside the stable stick-slip
+    cycle; a start near steady sliding is its, one near the belt's speed the cycle's:
+
     >>> from beltmdsm import Model
-    >>> from beltmdsm.cycles.branch import cycle_branch
     >>> m = Model(alpha=0.0, omega1=1.0, beta1=0.05, g=1.0, friction="stribeck",
     ...           mu_s=1.0, mu_k=0.5, v_s=0.5, Vb=1.5)
-    >>> ls = landscape(m, guesses=cycles_near(cycle_branch(m, lo=1.0, hi=2.0), 1.5))
+    >>> ls = landscape(m)
     >>> ls.equilibrium, ls.cycles  # doctest: +NORMALIZE_WHITESPACE
     (InvariantSet(stable equilibrium), [InvariantSet(unstable pure-slip cycle,
-    period 6.2952 s), InvariantSet(stable stick-slip cycle, period 6.31684 s)])
-    >>> ls.decide([[0.55, 0.5, *ls.equilibrium.state[2:]], [0.55, 1.9, *ls.equilibrium.state[2:]]])
-    array([0, 1])
+    period 6.29533 s), InvariantSet(stable stick-slip cycle, period 6.31631 s)])
+    >>> normal = list(ls.equilibrium.state[2:])
+    >>> ls.decide([[0.55, 0.5, *normal], [0.55, 1.9, *normal]]).tolist()
+    [0, 1]
     """
     from ..cycles.cycle import cycle
     from ..cycles.seed import require_autonomous, stick_end
@@ -571,7 +576,7 @@ def landscape(
     found = []
     tries = [(g, p) for g, p in (guesses or [])]
     if seed:
-        tries.append((None, None))
+        tries += backward_seed(model, eq) + [(None, None)]
     for guess, period in tries:
         try:
             c = cycle(model, guess, period)

@@ -185,23 +185,24 @@ def landscape_of(model: Model, branch: Any = None) -> Landscape:
     where they leave a ring of the plane without exactly one attractor on its
     boundary (a cycle missed), or none is found while steady sliding is unstable, the
     branch through the Hopf point (over `branch_range`) is computed and its cycles
-    added.
+    added. Where none is found and steady sliding is stable, no start is decided by
+    region (the focus, sticking and runs decide), so a cycle missed would cost runs,
+    not a wrong label.
     """
-    from ..attractors.self_excited import _equilibrium, backward_seed
     from ..cycles.branch import cycle_branch
 
     if branch is not None:
-        guesses = cycles_near(branch, float(model[branch.param]))
-        return landscape(model, guesses=guesses + backward_seed(model, _equilibrium(model)))
-    seeds = backward_seed(model, _equilibrium(model))
-    ls = landscape(model, guesses=seeds)
+        return landscape(model, guesses=cycles_near(branch, float(model[branch.param])))
+    ls = landscape(model)
     if ls.cycles and all(r is not None for r in ls._rules):
         return ls
+    if not ls.cycles and ls.equilibrium.stable:
+        return ls  # no ring is decided by region: a cycle missed would cost runs, no label
     span = branch_range(model, "Vb")
     if span is None:
         return ls
     branch = cycle_branch(model, lo=span[0], hi=span[1])
-    return landscape(model, guesses=cycles_near(branch, float(model["Vb"])) + seeds)
+    return landscape(model, guesses=cycles_near(branch, float(model["Vb"])))
 
 
 def draw_starts(
