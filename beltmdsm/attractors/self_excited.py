@@ -168,6 +168,15 @@ def backward_seed(model: Model, eq: InvariantSet) -> list[tuple[NDArray[np.float
     See Also
     --------
     landscape
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> m = Model(alpha=0.0, omega1=1.0, beta1=0.05, g=1.0, friction="stribeck",
+    ...           mu_s=1.0, mu_k=0.5, v_s=0.5, Vb=1.5)
+    >>> [(state, period)] = backward_seed(m, _equilibrium(m))
+    >>> round(period, 2), round(float(state[1]), 2)  # the cycle: 6.295 s, X1' >= -1.252
+    (6.29, -1.25)
     """
     from scipy.integrate import solve_ivp
 
@@ -627,6 +636,13 @@ def cycles_near(branch: Any, value: float) -> list[tuple[NDArray[np.float64], fl
     See Also
     --------
     landscape
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as P
+    >>> b = P(points=[P(value=v, state=np.full(4, v), period=6.0) for v in (1.0, 2.0, 1.5)])
+    >>> [(float(x[0]), T) for x, T in cycles_near(b, 1.9)]
+    [(2.0, 6.0), (2.0, 6.0)]
     """
     pts = branch.points
     out = []

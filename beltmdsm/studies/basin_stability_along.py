@@ -47,6 +47,15 @@ class Edge:
         The bifurcation: ``hopf``, ``stick_onset``, ``fold``...
     event : {"born", "dies"}
         Along increasing values of the parameter.
+
+    See Also
+    --------
+    basin_stability_along : lists them.
+
+    Examples
+    --------
+    >>> Edge("steady sliding", 1.151293, "hopf", "born").as_dict()["kind"]
+    'hopf'
     """
 
     attractor: str
@@ -228,6 +237,21 @@ def basin_stability_along(
     --------
     beltmdsm.studies.basin_stability.basin_stability : at one value.
     beltmdsm.cycles.branch.cycle_branch : the branch the cycles are matched on.
+
+    Examples
+    --------
+    The friction oscillator of bSTAB and pyBasin: steady sliding becomes stable at the
+    Hopf point (``0.5 ln 10``), the stick-slip cycle ends at the stick onset:
+
+    >>> from beltmdsm import Model
+    >>> m = Model(alpha=0.0, omega1=1.0, beta1=0.05, g=1.0, friction="stribeck",
+    ...           mu_s=1.0, mu_k=0.5, v_s=0.5)
+    >>> r = basin_stability_along(m, {"X1": (-2.0, 2.0), "Y1": (0.0, 2.0)}, lo=1.0, hi=2.0,
+    ...                           points=3, samples=50)
+    >>> [(e.kind, round(e.value, 6), e.event) for e in r.edges]
+    [('hopf', 1.151293, 'born'), ('stick_onset', 1.836601, 'dies')]
+    >>> r.fractions[:, r.names.index("steady sliding")].tolist()
+    [0.0, 0.34, 1.0]
     """
     from ..cycles.branch import cycle_branch
     from ..cycles.hopf import hopf_points

@@ -30,7 +30,14 @@ MARKS = 48
 def as_attractor(s: InvariantSet) -> Attractor:
     """An `InvariantSet` as the `Attractor` a basin map lists: steady sliding
     (``equilibrium``, its eigenvalues' real parts as exponents) or a cycle
-    (``periodic``, ``ln |mu| / T`` of its multipliers)."""
+    (``periodic``, ``ln |mu| / T`` of its multipliers).
+
+    Examples
+    --------
+    >>> s = InvariantSet("equilibrium", True, np.zeros(4), None, 0, np.zeros((1, 4)), -0.1)
+    >>> as_attractor(s).kind, as_attractor(s).lyapunov
+    ('equilibrium', -0.1)
+    """
     if s.kind == "equilibrium":
         return Attractor(
             "equilibrium", None, None, None, s.leading, 0.0, np.array([s.leading]),
