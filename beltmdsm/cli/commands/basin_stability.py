@@ -50,12 +50,15 @@ def add(commands, name: str) -> None:
         sub.add_argument(
             f"--{axis}", choices=_AXES, default=default, help=f"the {axis} axis (default {default})"
         )
-        sub.add_argument(f"--{axis}-from", type=number(), required=True, metavar="A",
-                         help="its low end")  # fmt: skip
-        sub.add_argument(f"--{axis}-to", type=number(), required=True, metavar="B",
-                         help="its high end")  # fmt: skip
-    sampling_flags(sub)
-    sub.set_defaults(samples=1000)
+        for end, meta, word in (("from", "A", "low"), ("to", "B", "high")):
+            sub.add_argument(
+                f"--{axis}-{end}",
+                type=number(),
+                required=True,
+                metavar=meta,
+                help=f"the box's {word} end on the {axis} axis",
+            )
+    sampling_flags(sub, 1000)
     sub.add_argument(
         "--png", metavar="FILE", type=output_file, help="draw the stacked fractions to FILE"
     )

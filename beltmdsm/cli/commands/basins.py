@@ -72,17 +72,18 @@ def add(commands, name: str) -> None:
     sampling_flags(sub)
 
 
-def sampling_flags(sub) -> None:
+def sampling_flags(sub, samples: int | None = None) -> None:
     """``--samples N --seed S --no-progress``: basin stability by sampling (shared with
-    ``basin-stability``)."""
+    ``basin-stability``, where ``samples`` is the default)."""
     g = sub.add_argument_group("basin stability by sampling (without excitation)")
     g.add_argument(
         "--samples",
         type=integer(1, 10_000_000),
-        default=None,
+        default=samples,
         metavar="N",
-        help="uniform random starts in the box of --x-from..--y-to instead of a grid; "
-        "each attractor's fraction with its standard error sqrt(p (1 - p) / N)",
+        help="uniform random starts in the box of --x-from..--y-to"
+        + (f" (default {samples})" if samples else " instead of a grid")
+        + "; each attractor's fraction with its standard error sqrt(p (1 - p) / N)",
     )
     g.add_argument(
         "--seed", type=integer(0), default=0, metavar="S", help="of the random starts (default 0)"
