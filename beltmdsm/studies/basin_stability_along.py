@@ -251,7 +251,7 @@ def basin_stability_along(
     >>> [(e.kind, round(e.value, 6), e.event) for e in r.edges]
     [('hopf', 1.151293, 'born'), ('stick_onset', 1.836601, 'dies')]
     >>> r.fractions[:, r.names.index("steady sliding")].tolist()
-    [0.0, 0.34, 1.0]
+    [0.0, 0.32, 1.0]
     """
     from ..cycles.branch import cycle_branch
     from ..cycles.hopf import hopf_points
