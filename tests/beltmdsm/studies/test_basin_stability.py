@@ -101,14 +101,15 @@ def _stick_end_fate(vb, t_end):
     return _FATES[vb]
 
 
-def test_every_sampled_start_is_classified_like_the_filippov_reference(ls15):
-    b = basin_stability(Model(**CASE, Vb=1.5), BOX, samples=200, seed=3, landscape=ls15)
+@pytest.mark.parametrize("samples", [40, pytest.param(200, marks=pytest.mark.slow)])
+def test_every_sampled_start_is_classified_like_the_filippov_reference(ls15, samples):
+    b = basin_stability(Model(**CASE, Vb=1.5), BOX, samples=samples, seed=3, landscape=ls15)
     names = [a.name for a in b.attractors]
     assert names == ["steady sliding", "stick-slip cycle"]
     mine = ["sliding" if label == 0 else "cycle" for label in b.labels]
     ref = [_reference(x, v, 1.5) for x, v in b.starts[:, :2]]
     assert mine == ref
-    assert 0.2 < ref.count("sliding") / 200 < 0.45  # both basins are sampled
+    assert 0.15 < ref.count("sliding") / samples < 0.5  # both basins are sampled
 
 
 def test_the_estimate_has_its_standard_error_and_is_reproducible_by_seed(ls15):
