@@ -268,3 +268,23 @@ def test_a_forced_models_basins_at_vb_4_are_unchanged():
     ]
     np.testing.assert_allclose(b.xs, [-10.41013643060684, 4.174740165364508, 18.759616761335856])
     assert not b.boundaries
+
+
+def test_a_box_in_all_four_states_lands_where_a_plain_run_ends(ls15):
+    """Starts off the plane (the normal motion disturbed) are run until the normal motion
+    has settled; each label is where a plain 500 s run of the full model ends."""
+    from beltmdsm.integrate.events import integrate_events
+    from beltmdsm.settings import SolverSettings
+
+    m = Model(**CASE, Vb=1.5)
+    x2 = ls15.equilibrium.state[2]
+    box = {**BOX, "X2": (0.9 * x2, 1.1 * x2), "Y2": (-0.1, 0.1)}
+    b = basin_stability(m, box, samples=12, seed=0, landscape=ls15)
+    assert b.decided["stick"] > 0 and np.ptp(b.starts[:, 3]) > 0
+    settings = SolverSettings(t_end=500.0, rtol=1e-10, atol=1e-12, dt=1.0, t_discard=0.0)
+    eq = ls15.equilibrium.state
+    for start, label in zip(b.starts, b.labels):
+        tr = integrate_events(m, settings, y0=start).trajectory
+        tail = tr.state(np.linspace(490.0, 500.0, 50))
+        resting = np.max(np.abs(tail[:2] - eq[:2, None])) < 1e-3
+        assert label == (0 if resting else 1)
