@@ -412,7 +412,10 @@ def _run_chunks(ls, chunks, t_max, executor, cache_dir, progress):
             for f in cf.as_completed(futures):
                 rows[futures[f]] = f.result()
                 bar.update(len(chunks[futures[f]]))
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, SystemError) as err:
+        # numba wraps a Ctrl-C that lands inside compiled code in a SystemError
+        if isinstance(err, SystemError) and not isinstance(err.__context__, KeyboardInterrupt):
+            raise
         for f in futures:
             f.cancel()
         return rows, True

@@ -288,3 +288,27 @@ def test_a_box_in_all_four_states_lands_where_a_plain_run_ends(ls15):
         tail = tr.state(np.linspace(490.0, 500.0, 50))
         resting = np.max(np.abs(tail[:2] - eq[:2, None])) < 1e-3
         assert label == (0 if resting else 1)
+
+
+def test_ctrl_c_on_the_command_prints_the_estimate_of_the_starts_finished():
+    import signal
+    import time
+
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    p = subprocess.Popen(
+        [sys.executable, "-m", "beltmdsm", "basins", *FLAGS, "--Vb", "1.5", "--x-from", "-2",
+         "--x-to", "2", "--y-from", "0", "--y-to", "2", "--samples", "2000000", "--jobs", "1",
+         "--no-cache"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT, env=env,
+    )  # fmt: skip
+    clock = time.monotonic()
+    seen = ""
+    while "basin stability:" not in seen and time.monotonic() - clock < 240:
+        seen += p.stderr.read(1)  # the progress bar starts once the sets are computed
+    time.sleep(2.0)
+    p.send_signal(signal.SIGINT)
+    out, _ = p.communicate(timeout=120)
+    assert p.returncode == 130, out
+    assert "interrupted: the estimate is of the" in out
+    n = int(out.split("BasinStability(")[1].split(" starts")[0])
+    assert 0 < n < 2_000_000 and n % CHUNK == 0
