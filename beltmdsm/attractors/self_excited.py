@@ -84,9 +84,11 @@ RTOL, ATOL = 1e-8, 1e-10
 #: The backward runs of `backward_seed`: their starts' offsets from steady sliding (in
 #: ``X1'``, times ``Vb``) and their length in periods of steady sliding's pair.
 BACKWARD_OFFSETS = (0.5, 0.25, 0.1, 0.03)
-BACKWARD_PERIODS = 15
+BACKWARD_PERIODS = 12
 #: Radii x angles of the points of a focus ellipse where the field is checked.
 FOCUS_GRID = (40, 128)
+#: Every this many points of an orbit are checked to lie inside the next cycle.
+_NEST_STRIDE = 400
 #: States checked per chunk of a run (one chunk: the period of the equilibrium's pair).
 _CHECKS = 32
 
@@ -205,7 +207,7 @@ def backward_seed(model: Model, eq: InvariantSet) -> list[tuple[NDArray[np.float
         y0 = eq.state[:2].copy()
         y0[1] -= share * vb
         span = BACKWARD_PERIODS * period
-        sol = solve_ivp(field, (0.0, -span), y0, events=leaves, rtol=1e-8, atol=1e-10,
+        sol = solve_ivp(field, (0.0, -span), y0, events=leaves, rtol=1e-7, atol=1e-9,
                         dense_output=True)  # fmt: skip
         if sol.status != 0:
             continue
@@ -609,8 +611,11 @@ def landscape(
         if _distinct(found, s):
             found.append(s)
     found.sort(key=lambda s: _polygon_area(s.orbit[:, :2]))
+    # two periodic orbits of the plane never cross: a few points of one decide whether it
+    # lies inside the other
     nested = all(bool(_inside(eq.state[None, :2], c.orbit[:, :2])[0]) for c in found) and all(
-        bool(np.all(_inside(a.orbit[:, :2], b.orbit[:, :2]))) for a, b in zip(found, found[1:])
+        bool(np.all(_inside(a.orbit[::_NEST_STRIDE, :2], b.orbit[:, :2])))
+        for a, b in zip(found, found[1:])
     )
     attractors = [s for s in [eq, *found] if s.stable]
     focus = _focus(model, eq) if eq.stable else None
