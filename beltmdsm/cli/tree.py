@@ -50,6 +50,7 @@ COMMANDS = {
     "floquet-map": "floquet_map",
     "lyapunov": "lyapunov",
     "basins": "basins",
+    "basin-stability": "basin_stability",
     "validate": "validate",
     "docs": "docs",
 }

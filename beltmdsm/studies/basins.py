@@ -27,6 +27,11 @@ and state, not by discovery.
 Each start is a pure function of the model, the start, the known attractors and the
 settings, cached on disk (`beltmdsm.studies.cache`) when a cache folder is given: an
 interrupted map resumes from its cache.
+
+Without excitation there is no period map: `beltmdsm.studies.self_excited_basins`
+maps the basins of steady sliding and the self-excited cycles, each start decided by
+the region the computed cycles assign it to or by sticking
+(`beltmdsm.attractors.self_excited`).
 """
 
 from __future__ import annotations
@@ -55,7 +60,7 @@ from ..attractors.landing import (
     tolerance,
 )
 from ..errors import NoPeriodicResponse, Refused
-from ..excitation import excitation_period
+from ..excitation import excitation_period, is_autonomous
 from ..model import Model, as_model
 from ..periodic.floquet import floquet
 from . import cache
@@ -98,7 +103,11 @@ class BasinAttractor:
     fraction : float
         the share of the grid's starts that reach it
     points : ndarray (n, 4)
-        its stroboscopic points (one per excitation period of a periodic one)
+        its stroboscopic points (one per excitation period of a periodic one); of a
+        self-excited cycle, points along its orbit
+    period : float or None
+        A self-excited cycle's period [s] (None for a forced model's attractors, whose
+        ``periods`` counts excitation periods)
 
     See Also
     --------
@@ -122,10 +131,14 @@ class BasinAttractor:
     attractor: Attractor = field(repr=False)
     fraction: float
     points: NDArray[np.float64] = field(repr=False)
+    period: float | None = field(repr=False, default=None)
 
     def __repr__(self) -> str:
         a = self.attractor
-        what = a.kind + (f" {a.periods}T" if a.periods else "")
+        if self.period is not None:  # a self-excited cycle: its period in seconds
+            what = f"{a.kind} {self.period:.4g} s"
+        else:
+            what = a.kind + (f" {a.periods}T" if a.periods else "")
         return f"BasinAttractor({self.label}: {what}, {100 * self.fraction:.1f}% of the starts)"
 
     def as_dict(self) -> dict:
@@ -134,6 +147,7 @@ class BasinAttractor:
             "label": self.label,
             "kind": a["kind"],
             "periods": a["periods"],
+            "period": self.period,
             "rotation_number": a["rotation_number"],
             "lyapunov": a["lyapunov"],
             "lyapunov_error": a["lyapunov_error"],
@@ -159,7 +173,10 @@ class Basins:
         identified within the rounds.
     attractors : list of BasinAttractor
     periods : ndarray (len(ys), len(xs))
-        The periods each start was iterated before it was identified.
+        The periods each start was iterated before it was identified (0 without
+        excitation: no period map is iterated).
+    boundaries : list of ndarray (m, 4)
+        Without excitation: the unstable cycles that bound the basins, one period each.
 
     See Also
     --------
@@ -186,6 +203,7 @@ class Basins:
     labels: NDArray[np.int_] = field(repr=False)
     attractors: list[BasinAttractor]
     periods: NDArray[np.int_] = field(repr=False)
+    boundaries: list = field(repr=False, default_factory=list)
 
     def __repr__(self) -> str:
         shares = ", ".join(repr(a) for a in self.attractors)
@@ -251,7 +269,14 @@ class Basins:
         (`beltmdsm.plotting.basins`)."""
         from ..plotting import basins as draw
 
-        return draw(self, ax)
+        ax = draw(self, ax)
+        ix, iy = AXES.index(self.x), AXES.index(self.y)
+        for k, orbit in enumerate(self.boundaries):
+            ax.plot(orbit[:, ix], orbit[:, iy], "k--", lw=1.2,
+                    label="unstable cycle (basin boundary)" if k == 0 else None)  # fmt: skip
+        if self.boundaries:
+            ax.legend(loc="best", fontsize="small")
+        return ax
 
 
 def _known_digest(known):
@@ -327,7 +352,9 @@ def basins(
     Parameters
     ----------
     model : Model, optional
-        Or the keywords it is built from; it must have a periodic excitation.
+        Or the keywords it is built from. Without excitation the starts are states
+        (the other components at steady sliding's) and the attractors steady sliding
+        and the stable self-excited cycles (`beltmdsm.studies.self_excited_basins`).
     x, y : {"X1", "Y1", "X2", "Y2"}
         The axes of the plane (``Y1`` is ``X1'``); the other components are those of the
         first attractor's state at phase 0 (for the default plane: the normal state on
@@ -356,7 +383,7 @@ def basins(
     Raises
     ------
     ValueError
-        For a bad axis, range, ``points`` or ``max_periods``, or no excitation.
+        For a bad axis, range, ``points`` or ``max_periods``.
     beltmdsm.errors.Refused
         For more than `MAX_STARTS` starts.
 
@@ -373,7 +400,9 @@ def basins(
     [('periodic', 1), ('periodic', 4)]
     """
     model = as_model(model, **params)
-    excitation_period(model)  # a map needs a period: refuse before anything runs
+    autonomous = is_autonomous(model)
+    if not autonomous:
+        excitation_period(model)  # a map needs a period: refuse before anything runs
     for name, axis in (("x", x), ("y", y)):
         if axis not in AXES:
             raise ValueError(f"{name} must be one of {AXES}; got {axis!r}")
@@ -393,6 +422,8 @@ def basins(
     y_range = _checked("y_range", y_range)
     if cache_dir is not None:
         cache_dir = cache.writable_folder(cache_dir)
+    if autonomous:
+        return _self_excited(model, x, x_range, y, y_range, points, executor, cache_dir)
 
     general = x in ("X2", "Y2") or y in ("X2", "Y2")
     pmap = one_period_map(model, general)
@@ -460,6 +491,26 @@ def basins(
         known.append((len(found) - 1, new_points, tolerance(new, new_points), k))
         _, left = run(left)
     return _result(pmap, model, x, y, xs, ys, labels, periods, found, found_points)
+
+
+def _self_excited(model, x, x_range, y, y_range, points, executor, cache_dir):
+    """Without excitation: steady sliding and the self-excited cycles
+    (`beltmdsm.studies.self_excited_basins`)."""
+    from .self_excited_basins import self_excited_basins
+
+    grid = self_excited_basins(
+        model, x=x, x_range=x_range, y=y, y_range=y_range, points=points,
+        executor=executor, cache_dir=cache_dir,
+    )  # fmt: skip
+    attractors = [
+        BasinAttractor(i, a, fraction, pts, period)
+        for i, (a, fraction, pts, period) in enumerate(grid["attractors"])
+    ]
+    shape = grid["labels"].shape
+    return Basins(
+        model, x, y, grid["xs"], grid["ys"], grid["labels"], attractors,
+        np.zeros(shape, dtype=int), grid["boundaries"],
+    )  # fmt: skip
 
 
 def _seed(model, y0, t_end):
