@@ -42,6 +42,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._calling import public
 from ..arguments import state
 from ..errors import NoPeriodicResponse
 from ..excitation import excitation_period, initial_state
@@ -239,6 +240,7 @@ def _returns(samples, tol):
     ]
 
 
+@public()
 def classify(
     model: Model | None = None,
     *,
@@ -246,7 +248,6 @@ def classify(
     t_end: float = 2000.0,
     t_transient: float | None = None,
     backend: Backend | None = None,
-    **params: float | str,
 ) -> Attractor:
     """The attractor the run from ``y0`` settles on, named (module docstring).
 
@@ -276,7 +277,7 @@ def classify(
     >>> classify(Model(Vb=9.0), t_end=300.0).kind
     'periodic'
     """
-    model = as_model(model, **params)
+    model = as_model(model)
     spec = lyapunov(model, y0=y0, t_end=t_end, t_transient=t_transient, backend=backend)
     try:
         excitation_period(model)
@@ -285,13 +286,13 @@ def classify(
     return _forced(model, spec, backend)
 
 
+@public()
 def periodic_attractor(
     model: Model | None = None,
     *,
     y0: ArrayLike | None = None,
     t_end: float = 2000.0,
     backend: Backend | None = None,
-    **params: float | str,
 ) -> Attractor:
     """The stable periodic attractor the run from ``y0`` settles on, without a Lyapunov run.
 
@@ -337,7 +338,7 @@ def periodic_attractor(
     >>> a.kind, a.periods, round(a.lyapunov, 4)
     ('periodic', 4, -0.0951)
     """
-    model = as_model(model, **params)
+    model = as_model(model)
     T = excitation_period(model)
     if not (np.isfinite(t_end) and t_end >= 10 * T):
         raise ValueError(f"t_end must be at least 10 excitation periods ({10 * T:.4g} s)")

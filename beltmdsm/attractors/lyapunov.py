@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from beltmdsm.generated import unforced
 
+from .._calling import public
 from ..arguments import state
 from ..errors import StepTooSmall
 from ..excitation import excitation_period, initial_state
@@ -218,6 +219,7 @@ def _chunk(model, settings, y, t0, max_step, backend):
     return end, m.matrix, m.switches
 
 
+@public()
 def lyapunov(
     model: Model | None = None,
     *,
@@ -226,7 +228,6 @@ def lyapunov(
     t_transient: float | None = None,
     rtol: float = RTOL,
     backend: Backend | None = None,
-    **params: float | str,
 ) -> Lyapunov:
     """The Lyapunov spectrum of the run from ``y0`` (module docstring).
 
@@ -270,7 +271,7 @@ def lyapunov(
     >>> bool(spec.largest < 0)   # steady sliding, stable under Coulomb friction
     True
     """
-    model = as_model(model, **params)
+    model = as_model(model)
     t_end = _positive("t_end", t_end)
     rtol = _positive("rtol", rtol)
     base, cuts = chunk_length(model)

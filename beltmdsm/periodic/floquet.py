@@ -45,6 +45,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from .._calling import public
 from ..integrate.switching import Mode
 from ..model import Backend, Model, as_model
 from .base import Engine
@@ -298,6 +299,7 @@ class Floquet:
         }
 
 
+@public()
 def floquet(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -306,7 +308,6 @@ def floquet(
     backend: Backend | None = None,
     periods: int = 1,
     engine: Engine | None = None,
-    **kw: Any,
 ) -> Floquet:
     """Floquet multipliers of the periodic response of Eq. (4) (module docstring).
 
@@ -373,7 +374,7 @@ def floquet(
     >>> f4.verdict, f4.n_reversals, round(f4.period, 4)
     ('stable', 4, 6.2832)
     """
-    model = as_model(model, **kw)
+    model = as_model(model)
     return Floquet.of(
         periodic_response(
             model, guess=guess, forward=forward, backend=backend, periods=periods, engine=engine

@@ -33,6 +33,7 @@ from numpy.typing import ArrayLike
 
 from beltmdsm.generated.parameters import STATIC_BOUNDS
 
+from .._calling import public
 from ..model import OPTION_DEFAULTS, Model, as_model
 from .mdsm import _linear, _linear_without_reversal, clip_acts
 from .paper import _paper
@@ -182,6 +183,7 @@ class Prediction:
         return block(head, lines)
 
 
+@public()
 def predict(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -189,7 +191,6 @@ def predict(
     points: int | np.integer = 400,
     progress: bool = False,
     vb_max: float | None = None,
-    **kw: Any,
 ) -> Prediction:
     """Both analyses' predicted unstable ``Vb`` intervals.
 
@@ -264,7 +265,7 @@ def predict(
     >>> print(quiet.reasons["paper_tangential_vhat"])
     V_hat = 0 (no fast tangential motion): Eqs. (23)-(25) need V_hat > 0
     """
-    model = as_model(model, **kw)
+    model = as_model(model)
     p, tension = model.params, model.tension
     _check_points(points)
     if vb is not None:

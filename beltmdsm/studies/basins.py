@@ -42,6 +42,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from .._calling import public
 from ..attractors.classification import KINDS, Attractor, classify, periodic_attractor
 from ..attractors.landing import (
     IDENTIFY_TOL,
@@ -271,6 +272,7 @@ def _map_all(fn, items, executor):
     return out
 
 
+@public()
 def basins(
     model: Model | None = None,
     *,
@@ -284,7 +286,6 @@ def basins(
     attractors: list[Attractor] | None = None,
     max_periods: int = MAX_PERIODS,
     t_end: float = 2000.0,
-    **params: float | str,
 ) -> Basins:
     """The basins of attraction on a ``points x points`` grid of a plane (module docstring).
 
@@ -336,7 +337,7 @@ def basins(
     >>> [(a.attractor.kind, a.attractor.periods) for a in b.attractors]
     [('periodic', 1), ('periodic', 4)]
     """
-    model = as_model(model, **params)
+    model = as_model(model)
     excitation_period(model)  # a map needs a period: refuse before anything runs
     for name, axis in (("x", x), ("y", y)):
         if axis not in AXES:

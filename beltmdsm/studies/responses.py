@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._calling import public
 from ..arguments import count
 from ..attractors.classification import classify
 from ..errors import NoPeriodicResponse
@@ -266,6 +267,7 @@ def _run_distance(strobe, phases):
     )
 
 
+@public()
 def responses(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -273,7 +275,6 @@ def responses(
     ladder: float = LADDER_SPAN,
     t_end: float = RUN_T_END,
     backend: Backend | None = None,
-    **kw: Any,
 ) -> ResponseSet:
     """Every periodic response found at one point: the ``T``-periodic one and the locked ones.
 
@@ -338,7 +339,7 @@ def responses(
     limit = count("limit", limit, 1)
     if not (is_real(ladder) and ladder >= 0 and is_real(t_end) and t_end > 0):
         raise ValueError(f"ladder must be >= 0 and t_end > 0; got {ladder!r}, {t_end!r}")
-    model = as_model(model, **kw)
+    model = as_model(model)
     if is_autonomous(model):
         return cycle_responses(model, limit=limit, ladder=ladder, backend=backend)
     excitation_period(model)
