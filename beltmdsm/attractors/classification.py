@@ -36,14 +36,15 @@ is found as a cycle (``periods`` 1).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._calling import public
-from ..arguments import state
+from ..arguments import number, state
 from ..errors import NoPeriodicResponse
 from ..excitation import excitation_period, initial_state
 from ..integrate.events import integrate_events
@@ -242,7 +243,7 @@ def _returns(samples, tol):
 
 @public()
 def classify(
-    model: Model | None = None,
+    model: Model | Mapping[str, Any] | None = None,
     *,
     y0: ArrayLike | None = None,
     t_end: float = 2000.0,
@@ -288,7 +289,7 @@ def classify(
 
 @public()
 def periodic_attractor(
-    model: Model | None = None,
+    model: Model | Mapping[str, Any] | None = None,
     *,
     y0: ArrayLike | None = None,
     t_end: float = 2000.0,
@@ -340,7 +341,8 @@ def periodic_attractor(
     """
     model = as_model(model)
     T = excitation_period(model)
-    if not (np.isfinite(t_end) and t_end >= 10 * T):
+    t_end = number("t_end", t_end, above=0)
+    if not t_end >= 10 * T:
         raise ValueError(f"t_end must be at least 10 excitation periods ({10 * T:.4g} s)")
     y = initial_state(model) if y0 is None else state("y0", y0, (4,), "X1, Y1, X2, Y2")
     first = T * np.ceil(0.3 * t_end / T)

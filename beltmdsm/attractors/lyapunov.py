@@ -36,7 +36,9 @@ runs' tolerance, which no average removes (benchmarks/bench_lyapunov.py: errors 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -44,7 +46,7 @@ from numpy.typing import ArrayLike, NDArray
 from beltmdsm.generated import unforced
 
 from .._calling import public
-from ..arguments import state
+from ..arguments import number, state
 from ..errors import StepTooSmall
 from ..excitation import excitation_period, initial_state
 from ..integrate.events import integrate_events
@@ -221,7 +223,7 @@ def _chunk(model, settings, y, t0, max_step, backend):
 
 @public()
 def lyapunov(
-    model: Model | None = None,
+    model: Model | Mapping[str, Any] | None = None,
     *,
     y0: ArrayLike | None = None,
     t_end: float = 1000.0,
@@ -233,8 +235,8 @@ def lyapunov(
 
     Parameters
     ----------
-    model : Model, optional
-        Or the keywords it is built from (``**params``).
+    model : Model or dict, optional
+        The model, or a dict of its parameters and options (None: the base set).
     y0 : array_like (4,), optional
         The start; default the unforced equilibrium at rest (as `simulate`). To start
         on the periodic response pass `beltmdsm.periodic.start.periodic_start`.
@@ -272,13 +274,15 @@ def lyapunov(
     True
     """
     model = as_model(model)
-    t_end = _positive("t_end", t_end)
-    rtol = _positive("rtol", rtol)
+    t_end = number("t_end", t_end, above=0)
+    rtol = number("rtol", rtol, above=0)
+    if t_transient is not None:
+        t_transient = number(
+            "t_transient", t_transient, at_least=0, below=t_end, below_name="t_end"
+        )
     base, cuts = chunk_length(model)
     tau = base / cuts
-    t_transient = 0.3 * t_end if t_transient is None else float(t_transient)
-    if not (math.isfinite(t_transient) and 0 <= t_transient < t_end):
-        raise ValueError(f"t_transient must be in [0, t_end); got {t_transient!r}")
+    t_transient = 0.3 * t_end if t_transient is None else t_transient
     # whole base periods, so that the samples are at the excitation's phase 0
     t_transient = base * math.floor(t_transient / base + 1e-9)
     n_periods = int((t_end - t_transient) / base + 1e-9)
@@ -361,13 +365,3 @@ def _spectrum(model, logs, collapsed, base, tau, rtol, t_transient, switches, sa
         samples[-1].copy(),
         samples,
     )
-
-
-def _positive(name, value):
-    if isinstance(value, bool) or not (
-        isinstance(value, (int, float, np.floating, np.integer))
-        and math.isfinite(value)
-        and value > 0
-    ):
-        raise ValueError(f"{name} must be a positive finite number; got {value!r}")
-    return float(value)

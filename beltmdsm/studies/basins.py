@@ -35,14 +35,16 @@ import concurrent.futures as cf
 import hashlib
 import json
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
-from .._calling import public
+from .._calling import Rename, public
+from ..arguments import cache_dir_of, count, executor_of, items_of, number
 from ..attractors.classification import KINDS, Attractor, classify, periodic_attractor
 from ..attractors.landing import (
     IDENTIFY_TOL,
@@ -59,6 +61,7 @@ from ..excitation import excitation_period
 from ..model import Model, as_model
 from ..periodic.floquet import floquet
 from . import cache
+from .pool import process_pool, stop_process_pool
 
 __all__ = [
     "Basins",
@@ -110,7 +113,8 @@ class BasinAttractor:
     excitation periods, drawn by its four stroboscopic points:
 
     >>> from beltmdsm import Model, basins
-    >>> b = basins(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    >>> b = basins(Model(Vb=3.88), points=3, x_lo=3.0, x_hi=7.0, y_lo=-8.5, y_hi=-4.5,
+    ...            cache_dir=None)
     >>> a = b.attractors[1]
     >>> a
     BasinAttractor(1: periodic 4T, 88.9% of the starts)
@@ -168,7 +172,8 @@ class Basins:
     Examples
     --------
     >>> from beltmdsm import Model
-    >>> b = basins(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    >>> b = basins(Model(Vb=3.88), points=3, x_lo=3.0, x_hi=7.0, y_lo=-8.5, y_hi=-4.5,
+    ...            cache_dir=None)
     >>> b  # doctest: +NORMALIZE_WHITESPACE
     Basins(9 starts on (X1, Y1): [BasinAttractor(0: periodic 1T, 11.1% of the starts),
         BasinAttractor(1: periodic 4T, 88.9% of the starts)])
@@ -272,17 +277,31 @@ def _map_all(fn, items, executor):
     return out
 
 
-@public()
+def _range_to_ends(axis: str) -> Rename:
+    """``x_range=(lo, hi)`` (before) as ``x_lo=lo, x_hi=hi``."""
+
+    def convert(given: Any, _: Mapping[str, Any]) -> dict[str, Any]:
+        if given is None:
+            return {}
+        lo, hi = _checked(f"{axis}_range", given)
+        return {f"{axis}_lo": lo, f"{axis}_hi": hi}
+
+    return f"{axis}_lo/{axis}_hi", convert
+
+
+@public(renamed={"x_range": _range_to_ends("x"), "y_range": _range_to_ends("y")})
 def basins(
-    model: Model | None = None,
+    model: Model | Mapping[str, Any] | None = None,
     *,
     x: str = "X1",
-    x_range: tuple[float, float] | None = None,
+    x_lo: float | None = None,
+    x_hi: float | None = None,
     y: str = "Y1",
-    y_range: tuple[float, float] | None = None,
+    y_lo: float | None = None,
+    y_hi: float | None = None,
     points: int = 21,
-    executor: cf.Executor | str | None = "serial",
-    cache_dir: os.PathLike | str | None = None,
+    executor: cf.Executor | Literal["serial"] | None = "serial",
+    cache_dir: os.PathLike | str | None = "default",
     attractors: list[Attractor] | None = None,
     max_periods: int = MAX_PERIODS,
     t_end: float = 2000.0,
@@ -297,15 +316,20 @@ def basins(
         The axes of the plane (``Y1`` is ``X1'``); the other components are those of the
         first attractor's state at phase 0 (for the default plane: the normal state on
         its periodic orbit).
-    x_range, y_range : (float, float), optional
-        Default: the known attractors' points, widened threefold about their centre.
+    x_lo, x_hi, y_lo, y_hi : float, optional
+        The ranges of the axes, both ends or neither (``x_range=(lo, hi)`` before:
+        deprecated). Default: the known attractors' points, widened threefold about
+        their centre.
     points : int
         Starts per axis.
     executor : concurrent.futures.Executor, "serial" or None
-        Where the starts run (a process pool, ``Client.get_executor()`` of a dask
-        cluster); the result does not depend on it.
-    cache_dir : path, optional
-        The disk cache of the starts (resume after an interruption).
+        Where the starts run: "serial" in this process, None a process pool over the
+        local cores (closed afterwards), otherwise as given (a process pool,
+        ``Client.get_executor()`` of a dask cluster; `beltmdsm.arguments.executor_of`);
+        the result does not depend on it.
+    cache_dir : path, "default" or None
+        The disk cache of the starts (resume after an interruption): None disables it;
+        "default" is `beltmdsm.studies.cache.default_cache_dir`, as for `beltmdsm.sweep`.
     attractors : list of Attractor, optional
         Known attractors (`beltmdsm.attractors.classification.classify`), besides the run
         from rest's.
@@ -333,7 +357,8 @@ def basins(
     Examples
     --------
     >>> from beltmdsm import Model, basins
-    >>> b = basins(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    >>> b = basins(Model(Vb=3.88), points=3, x_lo=3.0, x_hi=7.0, y_lo=-8.5, y_hi=-4.5,
+    ...            cache_dir=None)
     >>> [(a.attractor.kind, a.attractor.periods) for a in b.attractors]
     [('periodic', 1), ('periodic', 4)]
     """
@@ -344,20 +369,44 @@ def basins(
             raise ValueError(f"{name} must be one of {AXES}; got {axis!r}")
     if x == y:
         raise ValueError(f"x and y must differ; got {x!r} twice")
-    if isinstance(points, bool) or not isinstance(points, int) or points < 2:
-        raise ValueError(f"points must be an integer >= 2; got {points!r}")
+    points = count("points", points, 2)
     if points * points > MAX_STARTS:
         raise Refused(
             f"points = {points} gives {points * points} starts, more than MAX_STARTS = "
             f"{MAX_STARTS} (beltmdsm/studies/basins.py)",
             "points",
         )
-    if isinstance(max_periods, bool) or not isinstance(max_periods, int) or max_periods < 1:
-        raise ValueError(f"max_periods must be an integer >= 1; got {max_periods!r}")
-    x_range = _checked("x_range", x_range)
-    y_range = _checked("y_range", y_range)
+    max_periods = count("max_periods", max_periods, 1)
+    t_end = number("t_end", t_end, above=0)
+    x_range, y_range = _ends("x", x_lo, x_hi), _ends("y", y_lo, y_hi)
+    executor = executor_of(executor)
+    attractors = items_of("attractors", attractors, Attractor, "beltmdsm.Attractor")
+    cache_dir = cache.default_cache_dir() if cache_dir_of(cache_dir) == "default" else cache_dir
     if cache_dir is not None:
         cache_dir = cache.writable_folder(cache_dir)
+    if executor is None:  # a pool of this call's own, as in beltmdsm.sweep
+        pool = process_pool(os.cpu_count())
+        try:
+            found = basins(
+                model,
+                x=x,
+                x_lo=x_lo,
+                x_hi=x_hi,
+                y=y,
+                y_lo=y_lo,
+                y_hi=y_hi,
+                points=points,
+                executor=pool,
+                cache_dir=cache_dir,
+                attractors=attractors,
+                max_periods=max_periods,
+                t_end=t_end,
+            )
+        except BaseException:
+            stop_process_pool(pool)
+            raise
+        pool.shutdown()
+        return found
 
     general = x in ("X2", "Y2") or y in ("X2", "Y2")
     pmap = one_period_map(model, general)
@@ -464,6 +513,16 @@ def _periodic_response(model):
             state[None, :],
         )
     ]
+
+
+def _ends(axis, lo, hi):
+    """``(lo, hi)`` of an axis, checked, or None where neither is given."""
+    if lo is None and hi is None:
+        return None
+    if lo is None or hi is None:
+        raise ValueError(f"{axis}_lo and {axis}_hi go together: give both or neither")
+    lo = number(f"{axis}_lo", lo)
+    return lo, number(f"{axis}_hi", hi, above=lo)
 
 
 def _checked(name, given):

@@ -89,9 +89,11 @@ def run(args: argparse.Namespace) -> int:
         result = basins(
             model_from(args),
             x=args.x,
-            x_range=xr,
+            x_lo=xr and xr[0],
+            x_hi=xr and xr[1],
             y=args.y,
-            y_range=yr,
+            y_lo=yr and yr[0],
+            y_hi=yr and yr[1],
             points=args.points,
             executor=executor,
             cache_dir=cache_dir,
