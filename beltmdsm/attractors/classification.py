@@ -287,6 +287,25 @@ def classify(
     return _forced(model, spec, backend)
 
 
+#: The shortest run of `periodic_attractor`, in excitation periods: its samples start
+#: after 30 % of the run, one a period, and the run's settings need 20 of them
+#: (`beltmdsm.settings.SolverSettings`).
+MIN_PERIODS = 22
+
+
+def run_length(t_end: Any, period: float) -> float:
+    """``t_end`` checked as the length of a `periodic_attractor` run of a model of
+    excitation period ``period``: at least `MIN_PERIODS` of them (a ValueError naming
+    ``t_end`` otherwise, before anything runs)."""
+    t_end = number("t_end", t_end, above=0)
+    if not t_end >= MIN_PERIODS * period:
+        raise ValueError(
+            f"t_end must be at least {MIN_PERIODS} excitation periods "
+            f"({MIN_PERIODS * period:.4g} s); got {t_end:g}"
+        )
+    return t_end
+
+
 @public()
 def periodic_attractor(
     model: Model | Mapping[str, Any] | None = None,
@@ -341,9 +360,7 @@ def periodic_attractor(
     """
     model = as_model(model)
     T = excitation_period(model)
-    t_end = number("t_end", t_end, above=0)
-    if not t_end >= 10 * T:
-        raise ValueError(f"t_end must be at least 10 excitation periods ({10 * T:.4g} s)")
+    t_end = run_length(t_end, T)
     y = initial_state(model) if y0 is None else state("y0", y0, (4,), "X1, Y1, X2, Y2")
     first = T * np.ceil(0.3 * t_end / T)
     times = first + T * np.arange(int((t_end - first) / T + 1e-9) + 1)

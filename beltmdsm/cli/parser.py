@@ -9,11 +9,17 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import tempfile
+from collections.abc import Sequence
 from pathlib import Path
-from typing import NoReturn
+from typing import Any, NoReturn
 
-__all__ = ["Parser", "UsageError", "folder", "writable_file", "writable_folder"]
+__all__ = ["Parser", "UsageError", "folder", "in_flags", "writable_file", "writable_folder"]
+
+
+#: A negative number as a flag's value: ``-1``, ``-0.5``, ``-.5``, ``-1e-3``, ``-2.5E+4``.
+NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
 
 
 class UsageError(Exception):
@@ -28,8 +34,51 @@ class Parser(argparse.ArgumentParser):
     shows the usage. Raising (instead of exiting) lets `main` return the status.
     """
 
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        # a negative number in scientific notation is a value, not a flag
+        # (``--phase_t -1e-3``): argparse's own pattern takes only ``-1`` and ``-.5``
+        self._negative_number_matcher = NEGATIVE_NUMBER
+
     def error(self, message: str) -> NoReturn:
         raise UsageError(f"{self.prog}: error: {message} (--help for usage)")
+
+
+def in_flags(message: str, parser: argparse.ArgumentParser, names: Sequence[str] = ()) -> str:
+    """``message`` of a Python function with the arguments it names written as the
+    flags of ``parser`` (``t_end`` as ``--t-end``): on the command line an error names
+    the flags the user typed (issue 36). A name with an underscore is an argument
+    wherever it stands; a plain word (``points``) only where the error says it is one
+    (``names``), where the message starts with it or where its value follows (``dt
+    (0.02)``), so that prose stays prose.
+
+    Examples
+    --------
+    >>> p = Parser(prog="lyapunov")
+    >>> _ = p.add_argument("--t-end"), p.add_argument("--t-transient"), p.add_argument("--dt")
+    >>> in_flags("t_transient must be >= 0 and < t_end (100); got 500", p)
+    '--t-transient must be >= 0 and < --t-end (100); got 500'
+    >>> in_flags("20 samples of dt (0.02): the dt of a run", p)
+    '20 samples of --dt (0.02): the dt of a run'
+    """
+    flags = {
+        option.lstrip("-").replace("-", "_"): option
+        for action in parser._actions
+        for option in action.option_strings
+        if option.startswith("--")
+    }
+
+    def replace(match: re.Match[str]) -> str:
+        word = match[1]
+        flag = flags.get(word)
+        if flag is None:
+            return word
+        plain = "_" not in word and word not in names
+        if plain and match.start() != 0 and not message.startswith(" (", match.end()):
+            return word
+        return flag
+
+    return re.sub(r"(?<![-\w.'\"=])([A-Za-z]\w*)(?![\w'\"=(])", replace, message)
 
 
 def folder(s: str) -> str:

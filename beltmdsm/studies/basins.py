@@ -45,7 +45,13 @@ from numpy.typing import NDArray
 
 from .._calling import Rename, public
 from ..arguments import cache_dir_of, count, executor_of, items_of, number
-from ..attractors.classification import KINDS, Attractor, classify, periodic_attractor
+from ..attractors.classification import (
+    KINDS,
+    Attractor,
+    classify,
+    periodic_attractor,
+    run_length,
+)
 from ..attractors.landing import (
     IDENTIFY_TOL,
     LARGEST,
@@ -363,7 +369,8 @@ def basins(
     [('periodic', 1), ('periodic', 4)]
     """
     model = as_model(model)
-    excitation_period(model)  # a map needs a period: refuse before anything runs
+    # a map needs a period, and its runs some periods of it: refuse before anything runs
+    t_end = run_length(t_end, excitation_period(model))
     for name, axis in (("x", x), ("y", y)):
         if axis not in AXES:
             raise ValueError(f"{name} must be one of {AXES}; got {axis!r}")
@@ -377,7 +384,6 @@ def basins(
             "points",
         )
     max_periods = count("max_periods", max_periods, 1)
-    t_end = number("t_end", t_end, above=0)
     x_range, y_range = _ends("x", x_lo, x_hi), _ends("y", y_lo, y_hi)
     executor = executor_of(executor)
     attractors = items_of("attractors", attractors, Attractor, "beltmdsm.Attractor")
