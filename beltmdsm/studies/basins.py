@@ -66,6 +66,7 @@ from ..errors import NoPeriodicResponse, Refused
 from ..excitation import excitation_period
 from ..model import Model, as_model
 from ..periodic.floquet import floquet
+from ..settings import fastest_rate
 from . import cache
 from .pool import process_pool, stop_process_pool
 
@@ -73,6 +74,7 @@ __all__ = [
     "Basins",
     "BasinAttractor",
     "basins",
+    "axis_range",
     "AXES",
     "IDENTIFY_TOL",
     "LARGEST",
@@ -384,7 +386,8 @@ def basins(
             "points",
         )
     max_periods = count("max_periods", max_periods, 1)
-    x_range, y_range = _ends("x", x_lo, x_hi), _ends("y", y_lo, y_hi)
+    x_range = axis_range(model, "x", x, x_lo, x_hi)
+    y_range = axis_range(model, "y", y, y_lo, y_hi)
     executor = executor_of(executor)
     attractors = items_of("attractors", attractors, Attractor, "beltmdsm.Attractor")
     cache_dir = cache.default_cache_dir() if cache_dir_of(cache_dir) == "default" else cache_dir
@@ -521,14 +524,67 @@ def _periodic_response(model):
     ]
 
 
-def _ends(axis, lo, hi):
-    """``(lo, hi)`` of an axis, checked, or None where neither is given."""
+def axis_range(model: Model, axis: str, state: str, lo: Any, hi: Any) -> tuple | None:
+    """``(lo, hi)`` of axis ``axis`` ("x" or "y", the state ``state``), checked: both
+    finite numbers, ``lo < hi``, or neither (None); and each end within floating point
+    for the model: ``(r s)^2`` finite, ``r`` its fastest rate
+    (`beltmdsm.settings.fastest_rate`), since the runs square the state (the energy,
+    the spring forces). A start at ``X1 = 1e300`` was iterated for 36 s and reported
+    "4 unidentified" with no reason (issue 36).
+
+    Parameters
+    ----------
+    model : Model
+        The model of the map.
+    axis : {"x", "y"}
+        The axis, for the message (``x_lo``, ``x_hi``).
+    state : str
+        The state component on that axis, for the message.
+    lo, hi : float or None
+        The ends given.
+
+    Returns
+    -------
+    tuple of float or None
+        ``(lo, hi)``, or None where neither is given.
+
+    Raises
+    ------
+    ValueError
+        Naming ``{axis}_lo``/``{axis}_hi``; a `beltmdsm.errors.Refused` where an end is
+        beyond floating point.
+
+    See Also
+    --------
+    beltmdsm.studies.basins.basins : Takes the ranges.
+
+    Examples
+    --------
+    >>> axis_range(Model(), "x", "X1", 1e300, 1e301)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    beltmdsm.errors.Refused: x_lo/x_hi: a start at X1 = 1e+300 is beyond floating point...
+    """
     if lo is None and hi is None:
         return None
     if lo is None or hi is None:
         raise ValueError(f"{axis}_lo and {axis}_hi go together: give both or neither")
     lo = number(f"{axis}_lo", lo)
-    return lo, number(f"{axis}_hi", hi, above=lo)
+    hi = number(f"{axis}_hi", hi, above=lo)
+    rate = fastest_rate(model)
+    for end in (lo, hi):
+        with np.errstate(over="ignore"):
+            energy = (np.float64(end) * rate) ** 2
+        if not np.isfinite(energy):
+            raise Refused(
+                f"{axis}_lo/{axis}_hi: a start at {state} = {end:g} is beyond floating "
+                f"point: the runs square it (the energy balance, the forces; rate "
+                f"{rate:.3g} 1/s) and would be integrated as inf or NaN; choose "
+                f"|{state}| < {np.sqrt(np.finfo(float).max) / rate:.3g}",
+                f"{axis}_lo",
+                f"{axis}_hi",
+            )
+    return lo, hi
 
 
 def _checked(name, given):
