@@ -107,7 +107,7 @@ class Floquet:
     Examples
     --------
     >>> from beltmdsm import floquet
-    >>> f = floquet(Vb=12.0)
+    >>> f = floquet(Model(Vb=12.0))
     >>> f.verdict, f.engine, round(f.max_abs_multiplier, 3), round(f.growth_rate, 3)
     ('stable', 'closed_form', 0.855, -0.1)
     >>> f.n_reversals, f.n_sticks, f.response.periods
@@ -156,7 +156,7 @@ class Floquet:
         Examples
         --------
         >>> from beltmdsm import Floquet, periodic_response
-        >>> f = Floquet.of(periodic_response(Vb=5.0, periods=4))
+        >>> f = Floquet.of(periodic_response(Model(Vb=5.0), periods=4))
         >>> f.verdict, f.response.periods, round(f.max_abs_multiplier, 3)
         ('stable', 4, 0.587)
         """
@@ -333,7 +333,7 @@ def floquet(
         The period map (`beltmdsm.periodic.engines.period_map`); None: the one the
         model's laws allow.
     **kw
-        Parameters and options of the model (``floquet(Vb=5)``).
+        Parameters and options of the model (``floquet(Model(Vb=5))``).
 
     Returns
     -------
@@ -362,7 +362,7 @@ def floquet(
     Examples
     --------
     >>> from beltmdsm import floquet
-    >>> f = floquet(Vb=5.0)
+    >>> f = floquet(Model(Vb=5.0))
     >>> f.verdict, round(f.max_abs_multiplier, 3), round(f.growth_rate, 3)
     ('unstable', 1.12, 0.072)
     >>> round(f.frequency, 3), round(f.period, 4)  # omega1 = 1 rad/s, T = 2 pi / 4
@@ -370,7 +370,7 @@ def floquet(
 
     The response of 4 excitation periods, locked at ``omega1 = Omega / 4``:
 
-    >>> f4 = floquet(Vb=5.0, periods=4)
+    >>> f4 = floquet(Model(Vb=5.0), periods=4)
     >>> f4.verdict, f4.n_reversals, round(f4.period, 4)
     ('stable', 4, 6.2832)
     """

@@ -142,7 +142,7 @@ class Prediction:
     Examples
     --------
     >>> from beltmdsm import predict
-    >>> result = predict(Omega_n=7.0, points=20)  # two excitation frequencies
+    >>> result = predict(Model(Omega_n=7.0), points=20)  # two excitation frequencies
     >>> result.consistent_mdsm is None
     True
     >>> print(result.reasons["consistent_mdsm"])
@@ -259,7 +259,7 @@ def predict(
 
     Without excitation there is no fast motion, and each analysis says so:
 
-    >>> quiet = predict(alpha=0.0, points=20)
+    >>> quiet = predict(Model(alpha=0.0), points=20)
     >>> quiet.consistent_mdsm, quiet.paper_tangential_vhat
     ([], None)
     >>> print(quiet.reasons["paper_tangential_vhat"])

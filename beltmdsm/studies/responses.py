@@ -92,7 +92,7 @@ class Response:
     periods; its four phase-0 states are the fixed point of the 4-fold map:
 
     >>> from beltmdsm import responses
-    >>> locked = responses(Vb=5.0, ladder=0.0, t_end=300.0).responses[1]
+    >>> locked = responses(Model(Vb=5.0), ladder=0.0, t_end=300.0).responses[1]
     >>> locked.periods, locked.floquet.stable, len(locked.phases)
     (4, True, 4)
     >>> round(locked.floquet.max_abs_multiplier, 3), round(locked.amplitude, 1)
@@ -330,7 +330,7 @@ def responses(
     run from rest locks at four excitation periods, on a stable response:
 
     >>> from beltmdsm import responses
-    >>> found = responses(Vb=5.0, ladder=0.0)
+    >>> found = responses(Model(Vb=5.0), ladder=0.0)
     >>> [(r.periods, r.floquet.stable) for r in found.responses]
     [(1, False), (4, True)]
     >>> found.responses[1].sources
