@@ -67,6 +67,8 @@ def test_the_public_api_has_no_any_for_mypy(tmp_path):
         "beltmdsm.attractors.lyapunov.Lyapunov",
         "beltmdsm.attractors.classification.Attractor",
         "beltmdsm.studies.basins.Basins",
+        "beltmdsm.attractors.lyapunov.Lyapunov",  # a dict for the model (issue 37)
+        "beltmdsm.continuation.band_result.Band",
     ]
 
 
