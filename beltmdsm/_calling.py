@@ -149,6 +149,7 @@ def _wrap(
 
     @functools.wraps(function)
     def call(*args: Any, **kw: Any) -> Any:
+        notes = []  # what of the call is spelt as before: one warning line for all
         if old_order and args and isinstance(args[0], str):
             n = len(old_order)
             if len(args) > n + 1:
@@ -158,37 +159,36 @@ def _wrap(
                     raise TypeError(f"{name}() got the model twice (positional and {first}=)")
                 kw[first] = args[n]
             given = ", ".join(old_order)
-            _deprecated(
-                f"{name}({given}, model) is deprecated and goes in the next release: "
-                f"pass the model first, {name}(model, {given})"
-            )
+            notes.append(f"{name}({given}, model): pass the model first, {name}(model, {given})")
             args = (kw.pop(first, None), *args[:n])
         elif old_order and not args and first not in kw:
             kw[first] = None  # the model was optional when it came last
-        moved: dict[str, Any] = {}
-        model_names = None
-        for key in [k for k in kw if k not in own]:
+        extra = [k for k in kw if k not in own]
+        model_names = _model_names() if extra else ()
+        for key in extra:
             if key in hints:
                 raise TypeError(f"{name}() {hints[key]}")
-            if key in renamed:
-                new, convert = renamed[key]
-                _deprecated(f"{name}({key}=...) is deprecated: use {new}=")
-                for k, v in convert(kw.pop(key), kw).items():
-                    if k in kw:
-                        raise TypeError(f"{name}() got {k} twice (as {k}= and {key}=)")
-                    kw[k] = v
-                continue
-            model_names = model_names or _model_names()
-            if key in model_names:
-                moved[key] = kw.pop(key)
-                continue
-            raise unexpected(name, key, own)
+            if key not in renamed and key not in model_names:
+                raise unexpected(name, key, own)
+        old = [k for k in extra if k in renamed]
+        if old:
+            new = ", ".join(f"{renamed[k][0]}=" for k in old)
+            notes.append(f"{name}({'=..., '.join(old)}=...): use {new}")
+        moved = {k: kw.pop(k) for k in extra if k not in renamed}
         if moved:
             listed = ", ".join(f"{k}={v!r}" for k, v in moved.items())
-            _deprecated(
-                f"{name}({listed}) is deprecated: pass the parameters in the model, "
+            notes.append(
+                f"{name}({listed}): pass the parameters in the model, "
                 f"Model({listed}) or model.replace({listed})"
             )
+        if notes:
+            _deprecated("deprecated, and gone in the next release: " + "; ".join(notes))
+        for key in old:
+            for k, v in renamed[key][1](kw.pop(key), kw).items():
+                if k in kw:
+                    raise TypeError(f"{name}() got {k} twice (as {k}= and {key}=)")
+                kw[k] = v
+        if moved:
             if args:
                 args = (_with(args[0], moved), *args[1:])
             else:
