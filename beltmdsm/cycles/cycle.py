@@ -69,6 +69,7 @@ from numpy.typing import ArrayLike, NDArray
 from beltmdsm.generated import hybrid, unforced
 
 from .. import arguments
+from .._calling import public
 from ..arguments import count, number
 from ..errors import NoPeriodicResponse
 from ..integrate.events import StepTooSmall, integrate_events
@@ -320,6 +321,7 @@ class _Shooting:
         return float(self.sw.scales(0.0, *x)[1])
 
 
+@public()
 def cycle(
     model: Model | Mapping[str, Any],
     guess: ArrayLike | None = None,

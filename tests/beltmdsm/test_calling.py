@@ -50,9 +50,13 @@ def one_deprecation(record, *words):
 
 @pytest.mark.parametrize("name", FUNCTIONS)
 def test_the_model_comes_first_and_every_keyword_is_named(name):
-    params = list(inspect.signature(getattr(beltmdsm, name)).parameters.values())
+    function = getattr(beltmdsm, name)
+    params = list(inspect.signature(function).parameters.values())
     assert params[0].name == "model", name
     assert not any(p.kind is p.VAR_KEYWORD for p in params), name
+    # through beltmdsm/_calling.py: an unknown keyword gets "did you mean"
+    with pytest.raises(TypeError, match=f"{name}\\(\\) got an unexpected keyword argument 'modle'"):
+        function(M, modle=M)
 
 
 @pytest.mark.parametrize(
