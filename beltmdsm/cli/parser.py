@@ -48,9 +48,9 @@ def in_flags(message: str, parser: argparse.ArgumentParser, names: Sequence[str]
     """``message`` of a Python function with the arguments it names written as the
     flags of ``parser`` (``t_end`` as ``--t-end``): on the command line an error names
     the flags the user typed (issue 36). A name with an underscore is an argument
-    wherever it stands; a plain word (``points``) only where the error says it is one
-    (``names``), where the message starts with it or where its value follows (``dt
-    (0.02)``), so that prose stays prose.
+    wherever it stands; a plain word (``dt``, ``limit``) only where its value follows
+    (``dt (0.02)``, ``limit = 12``, ``limit <= 1``), so that prose stays prose ("256 periods of the period map"). The
+    arguments a failure names (``names``) are the caller's prefix ("argument --dt:").
 
     Examples
     --------
@@ -73,9 +73,9 @@ def in_flags(message: str, parser: argparse.ArgumentParser, names: Sequence[str]
         flag = flags.get(word)
         if flag is None:
             return word
-        plain = "_" not in word and word not in names
-        if plain and match.start() != 0 and not message.startswith(" (", match.end()):
-            return word
+        valued = any(message.startswith(v, match.end()) for v in (" (", " = ", " <= ", " >= "))
+        if "_" not in word and not valued:
+            return word  # a plain word is prose unless its value follows
         return flag
 
     return re.sub(r"(?<![-\w.'\"=])([A-Za-z]\w*)(?![\w'\"=(])", replace, message)
