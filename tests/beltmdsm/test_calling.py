@@ -167,11 +167,12 @@ def test_the_same_names_mean_the_same_everywhere():
 
 
 @pytest.mark.parametrize("bad", ["proces", "threads", 2])
-@pytest.mark.parametrize("name", ["sweep", "basins"])
+@pytest.mark.parametrize("name", ["sweep", "basins", "validate"])
 def test_a_bad_executor_is_one_line_naming_the_choices(name, bad):
     call = {
         "sweep": lambda: beltmdsm.sweep(M, "Vb", [3.0], executor=bad, cache_dir=None),
         "basins": lambda: beltmdsm.basins(M, executor=bad, cache_dir=None),
+        "validate": lambda: beltmdsm.validate(True, executor=bad, cache_dir=None, cases=[]),
     }[name]
     with pytest.raises(ValueError) as caught:
         call()

@@ -21,6 +21,7 @@ from typing import Literal
 
 import numpy as np
 
+from ...arguments import cache_dir_of, executor_of, flag
 from ...continuation.band import floquet_band
 from ...model import TENSIONS, Model, Tension
 from ..coexistence import DEFAULT_STEP, coexistence
@@ -153,6 +154,8 @@ def validate(
         raise ValueError(
             f"tension must be one of {', '.join(map(repr, TENSIONS))}; got {tension!r}"
         )
+    quick, progress = flag("quick", quick), flag("progress", progress)
+    executor, cache_dir = executor_of(executor), cache_dir_of(cache_dir)
     resolution = QUICK if quick else FULL
     by_name = {c.name: c for c in CASES}
     unknown = [c for c in cases or () if isinstance(c, str) and c not in by_name]
