@@ -4,8 +4,13 @@ The command line checks every flag when it parses it (`beltmdsm.cli.flags`); the
 Python functions check their arguments once, at the boundary, with these: a bad value
 is one `ValueError` naming the argument, before anything is computed (issue 28: a
 bool taken for a count, ``max_iter=-1`` reported "after -1 iterations", a complex
-state a `TypeError` from deep inside, a dict of settings an `AttributeError`). Model
-parameters are `beltmdsm.model.Model`'s.
+state a `TypeError` from deep inside, a dict of settings an `AttributeError`). One
+check per kind of argument, used by every public function, so that a value gets the
+same answer everywhere (issue 36): `count` (an integer, numpy's too; not a bool, 3.0 or
+a Fraction), `number` (a finite real, Fraction and numpy scalars too; not a bool or a
+string), `flag`, `reals`, `state`, `settings_of`, `executor_of`, `cache_dir_of` and
+`items_of`. Model parameters are `beltmdsm.model.Model`'s; an unknown keyword is
+`beltmdsm._calling`'s.
 """
 
 from __future__ import annotations
