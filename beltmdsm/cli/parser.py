@@ -49,8 +49,9 @@ def in_flags(message: str, parser: argparse.ArgumentParser, names: Sequence[str]
     flags of ``parser`` (``t_end`` as ``--t-end``): on the command line an error names
     the flags the user typed (issue 36). A name with an underscore is an argument
     wherever it stands; a plain word (``dt``, ``limit``) only where its value follows
-    (``dt (0.02)``, ``limit = 12``, ``limit <= 1``), so that prose stays prose ("256 periods of the period map"). The
-    arguments a failure names (``names``) are the caller's prefix ("argument --dt:").
+    (``dt (0.02)``, ``limit = 12``, ``limit <= 1``), so that prose stays prose ("256
+    periods of the period map"). The arguments a failure names (``names``) are the
+    caller's prefix ("argument --dt:").
 
     Examples
     --------

@@ -144,8 +144,9 @@ def floquet_band(
     """
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")
-    lo = number("lo", lo)
-    hi = number("hi", hi, above=lo)
+    lo, hi = number("lo", lo), number("hi", hi)
+    if not lo < hi:
+        raise ValueError(f"the range must have lo < hi; got [{lo:g}, {hi:g}]")
     for end in (lo, hi):
         problem = check_domain(param, end)
         if problem:

@@ -504,8 +504,9 @@ def coexistence(
     clock = time.perf_counter()
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")
-    lo = number("lo", lo)
-    hi = number("hi", hi, above=lo)
+    lo, hi = number("lo", lo), number("hi", hi)
+    if not lo < hi:
+        raise ValueError(f"the range must have lo < hi; got [{lo:g}, {hi:g}]")
     limit, progress = count("limit", limit, 1), flag("progress", progress)
     if points is None or isinstance(points, _Spacing):
         points = seed_points(lo, hi, DEFAULT_STEP if points is None else float(points))

@@ -62,9 +62,9 @@ def test_the_model_comes_first_and_every_keyword_is_named(name):
 @pytest.mark.parametrize(
     "name, old, new, error",
     [
-        # the range reversed: a ValueError naming hi shows the values reached hi
-        ("floquet_band", ("Vb", 5.0, 1.0, M), "floquet_band(model, param, lo, hi)", "hi must"),
-        ("coexistence", ("Vb", 5.0, 1.0, M), "coexistence(model, param, lo, hi)", "hi must"),
+        # the range reversed: a ValueError naming lo < hi shows the values reached them
+        ("floquet_band", ("Vb", 5.0, 1.0, M), "floquet_band(model, param, lo, hi)", "lo < hi"),
+        ("coexistence", ("Vb", 5.0, 1.0, M), "coexistence(model, param, lo, hi)", "lo < hi"),
         (
             "floquet_map",
             ("Vb", 5.0, 1.0, "beta1", 0.1, 0.2, M),
