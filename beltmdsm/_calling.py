@@ -3,7 +3,8 @@
 Every public function takes the model first (``floquet_band(model, "Vb", 1, 8)``) and
 names each keyword in its signature, so that a misspelt keyword fails in a type
 checker and at run time (issue 37). `public` wraps such a function; for one release it
-keeps the old spellings working, each with one `DeprecationWarning` line naming the new:
+keeps the old spellings working, with one `DeprecationWarning` line per call naming the
+new spelling of each:
 
 * the model after the range (``floquet_band("Vb", 1, 8, model)``): the varied
   parameter is a string, so a first positional argument that is a string is the old
