@@ -15,7 +15,15 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, NoReturn
 
-__all__ = ["Parser", "UsageError", "folder", "in_flags", "writable_file", "writable_folder"]
+__all__ = [
+    "Parser",
+    "UsageError",
+    "folder",
+    "flag_names",
+    "in_flags",
+    "writable_file",
+    "writable_folder",
+]
 
 
 #: A negative number as a flag's value: ``-1``, ``-0.5``, ``-.5``, ``-1e-3``, ``-2.5E+4``.
@@ -42,6 +50,17 @@ class Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> NoReturn:
         raise UsageError(f"{self.prog}: error: {message} (--help for usage)")
+
+
+def flag_names(parser: argparse.ArgumentParser, name: str) -> str:
+    """The flags of ``parser`` that set the argument called ``name`` in Python, as typed
+    (``points``: ``--points/--rows`` where ``--rows`` is its other spelling); ``--name``
+    where the parser has no such flag."""
+    flag = "--" + name.replace("_", "-")
+    for action in parser._actions:
+        if flag in action.option_strings or f"--{name}" in action.option_strings:
+            return "/".join(o for o in action.option_strings if o.startswith("--"))
+    return flag
 
 
 def in_flags(message: str, parser: argparse.ArgumentParser, names: Sequence[str] = ()) -> str:
