@@ -81,9 +81,18 @@ def in_flags(message: str, parser: argparse.ArgumentParser, names: Sequence[str]
     >>> in_flags("20 samples of dt (0.02): the dt of a run", p)
     '20 samples of --dt (0.02): the dt of a run'
     """
+    # a model parameter's name is the model's word ("at Vb = 3" of a sweep point), not
+    # the flag's, unless the failure names it
+    model = {
+        a.dest
+        for g in parser._action_groups
+        if (g.title or "").startswith("model ")
+        for a in g._group_actions
+    }
     flags = {
         option.lstrip("-").replace("-", "_"): option
         for action in parser._actions
+        if action.dest not in model or action.dest in names
         for option in action.option_strings
         if option.startswith("--")
     }
