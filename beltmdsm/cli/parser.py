@@ -107,7 +107,8 @@ def in_flags(message: str, parser: argparse.ArgumentParser, names: Sequence[str]
             return word  # a plain word is prose unless its value follows
         return flag
 
-    return re.sub(r"(?<![-\w.'\"=])([A-Za-z]\w*)(?![\w'\"=(])", replace, message)
+    # not inside a name, a quotation, a path or a formula (pi/dt)
+    return re.sub(r"(?<![-\w.'\"=/*])([A-Za-z]\w*)(?![\w'\"=(/])", replace, message)
 
 
 def folder(s: str) -> str:

@@ -56,6 +56,12 @@ def test_a_negative_number_in_scientific_notation_is_a_value():
             ["t_discard", "t_end=", "None"],
         ),
         (
+            # a model parameter stays the model's word, a formula stays a formula
+            ("sweep", "--param", "Vb", "--values", "3", "--dt", "0.7", "--t-end", "50"),
+            ["argument --dt: at Vb = 3: --dt = 0.7 s", "pi/dt = ", "use --dt <= 0.09817"],
+            ["--Vb", "pi/--dt"],
+        ),
+        (
             ("basins", "--t-end", "16", "--no-cache"),
             ["--t-end must be at least 22 excitation periods", "got 16"],
             ["t_discard", "t_end"],
