@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._calling import public
 from ._tables import DataFrame
 from .arguments import flag, settings_of, state
 from .excitation import START_PERTURBATION, equilibrium_start
@@ -38,7 +39,15 @@ from .integrate.superposition import NotApplicable, integrate_superposed
 from .integrate.trajectory import Run, Samples, Trajectory
 from .model import Model, as_model
 from .run.summary import Summary, summarize
-from .settings import SolverSettings, check_request
+from .settings import (
+    Backend,
+    ContactLoss,
+    Method,
+    Solver,
+    SolverSettings,
+    check_request,
+    with_fields,
+)
 
 __all__ = ["Simulation", "simulate", "START_PERTURBATION", "equilibrium_start"]
 
@@ -82,8 +91,8 @@ class Simulation:
 
     Examples
     --------
-    >>> from beltmdsm import simulate
-    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> from beltmdsm import Model, simulate
+    >>> sim = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0)
     >>> sim.status, sim.solver_used, sim.params["Vb"]
     ('done', 'events', 4.0)
     >>> sim.y.shape  # X1, Y1, X2, Y2 every dt = 0.02 s
@@ -169,8 +178,8 @@ class Simulation:
 
         Examples
         --------
-        >>> from beltmdsm import simulate
-        >>> table = simulate(Vb=4.0, t_end=40.0, t_discard=10.0).to_pandas()
+        >>> from beltmdsm import Model, simulate
+        >>> table = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0).to_pandas()
         >>> list(table), len(table)
         (['t', 'X1', "X1'", 'X2', "X2'", 'normal_force', 'friction'], 2001)
         """
@@ -190,13 +199,30 @@ class Simulation:
         return head + "\n" + "\n".join("  " + line for line in repr(self.summary).splitlines())
 
 
+#: simulate's start state is ``y0``: the keywords of `beltmdsm.cli`'s ``--start``.
+_START_HINTS = dict.fromkeys(
+    ("start", "perturbation"),
+    "takes the start state as y0: for a start on the periodic response pass "
+    "y0=beltmdsm.periodic.start.periodic_start(model, perturbation)",
+)
+
+
+@public(hints=_START_HINTS)
 def simulate(
     model: Model | Mapping[str, Any] | None = None,
     *,
     settings: SolverSettings | None = None,
     y0: ArrayLike | None = None,
     progress: bool = False,
-    **kw: Any,
+    t_end: float | None = None,
+    t_discard: float | None = None,
+    dt: float | None = None,
+    rtol: float | None = None,
+    atol: float | None = None,
+    solver: Solver | None = None,
+    method: Method | None = None,
+    on_contact_loss: ContactLoss | None = None,
+    backend: Backend | None = None,
 ) -> Simulation:
     """Simulate Eq. (4) and summarise the run.
 
@@ -216,9 +242,9 @@ def simulate(
     progress : bool
         show the simulated time on stderr (tqdm) once the run takes more than 2 s;
         it advances at every switch (a run without switches shows its elapsed time)
-    **kw
-        parameters (``Vb=4``), options (``tension="clipped"``) or solver settings
-        (``t_end=500``, ``solver="events"``)
+    t_end, t_discard, dt, rtol, atol, solver, method, on_contact_loss, backend : optional
+        the fields of `SolverSettings` (``t_end=500``, ``solver="events"``), in place
+        of ``settings``' where given (None: ``settings``' own)
 
     Returns
     -------
@@ -246,8 +272,8 @@ def simulate(
 
     Examples
     --------
-    >>> from beltmdsm import simulate
-    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> from beltmdsm import Model, simulate
+    >>> sim = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0)
     >>> sim.status, sim.summary.regime
     ('done', 'sliding_with_reversals')
     >>> s = sim.summary
@@ -256,26 +282,32 @@ def simulate(
     >>> round(s.vr_min, 1), round(s.vr_max, 1)  # Vr = X1' - Vb in the steady window
     (-15.6, 9.5)
 
-    A bad value is named:
+    A bad value is named, and so is a misspelt keyword:
 
-    >>> simulate(Vb=-1.0)
+    >>> simulate(Model(Vb=-1.0))
     Traceback (most recent call last):
     ...
     ValueError: parameter 'Vb' must be >= 0; got -1.0
+    >>> simulate(Model(), t_edn=10)
+    Traceback (most recent call last):
+    ...
+    TypeError: simulate() got an unexpected keyword argument 't_edn'; did you mean 't_end'?
     """
     clock = time.perf_counter()
-    if "start" in kw or "perturbation" in kw:
-        raise TypeError(
-            "simulate() takes the start state as y0: for a start on the periodic "
-            "response pass y0=beltmdsm.periodic.start.periodic_start(model, perturbation)"
-        )
-    names = SolverSettings.names()
-    changes = {k: kw.pop(k) for k in list(kw) if k in names}
-    settings = settings_of(settings)
+    settings = with_fields(
+        settings_of(settings),
+        t_end=t_end,
+        t_discard=t_discard,
+        dt=dt,
+        rtol=rtol,
+        atol=atol,
+        solver=solver,
+        method=method,
+        on_contact_loss=on_contact_loss,
+        backend=backend,
+    )
     progress = flag("progress", progress)
-    if changes:
-        settings = SolverSettings(**{**settings.__dict__, **changes})
-    model = as_model(model, **kw)
+    model = as_model(model)
     if y0 is not None:
         y0 = state("y0", y0, (4,), "X1, Y1, X2, Y2")
     check_request(model, settings)

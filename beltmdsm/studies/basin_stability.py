@@ -39,8 +39,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..attractors.self_excited import T_MAX, Landscape, cycles_near, landscape
+from ..arguments import cache_dir_of, count, executor_of
 from ..model import Model, as_model
 from . import cache
+from .pool import process_pool, stop_process_pool
 
 __all__ = [
     "BasinStability",
@@ -299,12 +301,11 @@ def basin_stability(
     samples: int = 1000,
     seed: int = 0,
     executor: cf.Executor | str | None = "serial",
-    cache_dir: os.PathLike | str | None = None,
+    cache_dir: os.PathLike | str | None = "default",
     progress: bool = False,
     branch: Any = None,
     t_max: float = T_MAX,
     landscape: Landscape | None = None,
-    **params: float | str,
 ) -> BasinStability:
     """Basin stability by sampling ``samples`` uniform starts in ``region`` (module
     docstring).
@@ -312,15 +313,16 @@ def basin_stability(
     Parameters
     ----------
     model : Model, optional
-        Without excitation; or the keywords it is built from.
+        Without excitation (`beltmdsm.Model`; a dict of its keywords is taken too).
     region : dict of str to (float, float)
         The box: axes among `AXES` (``Y1`` is ``X1'``); the others at steady sliding.
     samples : int
     seed : int
         Of ``numpy.random.default_rng``.
     executor : concurrent.futures.Executor, "serial" or None
-        Where the chunks of starts run; the result does not depend on it.
-    cache_dir : path, optional
+        Where the chunks of starts run (None: a process pool over this machine's
+        cores, started and stopped by the call); the result does not depend on it.
+    cache_dir : path, "default" or None
         One file per chunk: a rerun or an interrupted one resumes from it.
     progress : bool
         A progress bar on stderr.
@@ -358,13 +360,13 @@ def basin_stability(
     """
     from ..cycles.seed import require_autonomous
 
-    model = as_model(model, **params)
+    model = as_model(model)
     require_autonomous(model, "basin stability by sampling")
     region = _checked_region(region)
-    if isinstance(samples, bool) or not isinstance(samples, int) or not 1 <= samples <= MAX_SAMPLES:
-        raise ValueError(f"samples must be an integer in [1, {MAX_SAMPLES}]; got {samples!r}")
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise ValueError(f"seed must be an integer >= 0; got {seed!r}")
+    samples = count("samples", samples, 1, MAX_SAMPLES)
+    seed = count("seed", seed, 0)
+    executor = executor_of(executor)
+    cache_dir = cache.default_cache_dir() if cache_dir_of(cache_dir) == "default" else cache_dir
     if cache_dir is not None:
         cache_dir = cache.writable_folder(cache_dir)
     ls = landscape if landscape is not None else landscape_of(model, branch)
@@ -401,8 +403,11 @@ def _run_chunks(ls, chunks, t_max, executor, cache_dir, progress):
     bar = tqdm(total=sum(len(c) for c in chunks), disable=not progress, file=sys.stderr,
                desc="basin stability")  # fmt: skip
     futures = []
+    own = executor is None  # a pool of this call's own, as in beltmdsm.sweep
+    if own:
+        executor = process_pool(os.cpu_count())
     try:
-        if executor is None or executor == "serial":
+        if executor == "serial":
             for j, c in enumerate(chunks):
                 rows[j] = _cached_chunk(ls, c, t_max, cache_dir)
                 bar.update(len(c))
@@ -416,9 +421,14 @@ def _run_chunks(ls, chunks, t_max, executor, cache_dir, progress):
         # numba wraps a Ctrl-C that lands inside compiled code in a SystemError
         if isinstance(err, SystemError) and not isinstance(err.__context__, KeyboardInterrupt):
             raise
+        if own:
+            stop_process_pool(executor, futures)
+            own = False
         for f in futures:
             f.cancel()
         return rows, True
     finally:
         bar.close()
+        if own:
+            executor.shutdown()
     return rows, False

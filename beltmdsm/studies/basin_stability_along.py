@@ -19,7 +19,9 @@ where its features look alike (bSTAB clusters features; Attractors.jl's
 
 from __future__ import annotations
 
+import concurrent.futures as cf
 import math
+import os
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -201,10 +203,9 @@ def basin_stability_along(
     points: int = 5,
     samples: int = 1000,
     seed: int = 0,
-    executor=None,
-    cache_dir=None,
+    executor: cf.Executor | str | None = "serial",
+    cache_dir: os.PathLike | str | None = "default",
     progress: bool = False,
-    **params: float | str,
 ) -> BasinStabilityAlong:
     """Basin stability at ``points`` values of ``param`` in ``[lo, hi]`` (module
     docstring).
@@ -212,7 +213,7 @@ def basin_stability_along(
     Parameters
     ----------
     model : Model, optional
-        Without excitation; or the keywords it is built from.
+        Without excitation (`beltmdsm.Model`; a dict of its keywords is taken too).
     region : dict of str to (float, float)
         The box of starts (`beltmdsm.studies.basin_stability.basin_stability`).
     param : str
@@ -257,7 +258,7 @@ def basin_stability_along(
     from ..cycles.hopf import hopf_points
     from ..cycles.seed import require_autonomous
 
-    model = as_model(model, **params)
+    model = as_model(model)
     require_autonomous(model, "basin stability along a parameter")
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")

@@ -122,13 +122,19 @@ def print_estimate(result, as_json: bool) -> None:
         print(f"  interrupted: the estimate is of the {result.samples} starts finished")
 
 
-def _range(args, axis):
+def _range(args, axis, model):
+    from ...studies.basins import axis_range
+
     lo, hi = getattr(args, f"{axis}_from"), getattr(args, f"{axis}_to")
     if (lo is None) != (hi is None):
         args.parser.error(f"argument --{axis}-from/--{axis}-to: give both or neither")
     if lo is not None and not lo < hi:
         args.parser.error(f"argument --{axis}-to: must be above --{axis}-from; got {hi} <= {lo}")
-    return None if lo is None else (lo, hi)
+    try:
+        return axis_range(model, axis, getattr(args, axis), lo, hi)
+    except ValueError as err:  # beyond floating point, named by the flags
+        said = str(err).removeprefix(f"{axis}_lo/{axis}_hi: ")
+        args.parser.error(f"argument --{axis}-from/--{axis}-to: {said}")
 
 
 def _sample(args) -> int:
@@ -163,17 +169,20 @@ def run(args: argparse.Namespace) -> int:
         return _sample(args)
     if args.x == args.y:
         args.parser.error(f"argument --y: must differ from --x; got {args.y} twice")
-    xr, yr = _range(args, "x"), _range(args, "y")
+    model = model_from(args)
+    xr, yr = _range(args, "x", model), _range(args, "y", model)
     cache_dir = cache_dir_from(args)
     if cache_dir == "default":
         cache_dir = default_cache_dir()
     with executor_from(args) as executor:
         result = basins(
-            model_from(args),
+            model,
             x=args.x,
-            x_range=xr,
+            x_lo=xr and xr[0],
+            x_hi=xr and xr[1],
             y=args.y,
-            y_range=yr,
+            y_lo=yr and yr[0],
+            y_hi=yr and yr[1],
             points=args.points,
             executor=executor,
             cache_dir=cache_dir,
