@@ -38,8 +38,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..attractors.self_excited import T_MAX, Landscape, cycles_near, landscape
 from ..arguments import cache_dir_of, count, executor_of
+from ..attractors.self_excited import T_MAX, Landscape, cycles_near, landscape
 from ..model import Model, as_model
 from . import cache
 from .pool import process_pool, stop_process_pool
