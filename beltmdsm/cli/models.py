@@ -12,6 +12,8 @@ refuses them in one line (`refusal`): never the paper's physics under another na
 from __future__ import annotations
 
 import argparse
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 from beltmdsm.generated.models import MODELS, load
 from beltmdsm.generated.parameters import DOMAIN_RULES, within
@@ -19,6 +21,9 @@ from beltmdsm.generated.parameters import PARAMETERS as _PAPER
 
 from ..model import OPTIONS
 from .flags import number, params_from
+
+if TYPE_CHECKING:
+    from ..oscillator import System
 
 __all__ = [
     "MODELS",
@@ -123,7 +128,7 @@ def refusal(args: argparse.Namespace) -> str:
     )
 
 
-def refuse_flags(args: argparse.Namespace, dests) -> None:
+def refuse_flags(args: argparse.Namespace, dests: Iterable[str]) -> None:
     """Exit 2 naming the first of ``dests`` given (not at its default): the paper's only."""
     for dest in dests:
         if getattr(args, dest, None) != args.parser.get_default(dest):
@@ -143,7 +148,7 @@ def refuse_other_params(args: argparse.Namespace) -> None:
             )
 
 
-def system_from(args: argparse.Namespace):
+def system_from(args: argparse.Namespace) -> System:
     """The `beltmdsm.oscillator.System` of ``--model``, ``--friction`` and the parameter
     flags given (one the model lacks, or a paper option changed: exit 2, named)."""
     from ..oscillator import System

@@ -158,7 +158,9 @@ class System:
     ValueError: vb: not a parameter of belt_1dof with friction='stribeck'; did you mean 'Vb'?
     """
 
-    def __init__(self, model: str | ModuleType, friction: str | None = None, **params: float):
+    def __init__(
+        self, model: str | ModuleType, friction: str | None = None, **params: float
+    ) -> None:
         module = load_model(model)
         laws = tuple(module.FRICTION_LAWS)
         if friction is None:

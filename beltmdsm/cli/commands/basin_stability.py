@@ -69,7 +69,8 @@ def run(args: argparse.Namespace) -> int:
     from .. import text
 
     lo, hi = range_from(args)
-    region = region_from(args)
+    model = model_from(args, skip=(args.param,))
+    region = region_from(args, model)
     cache_dir = cache_dir_from(args)
     if cache_dir == "default":
         from ...studies.cache import default_cache_dir
@@ -77,7 +78,7 @@ def run(args: argparse.Namespace) -> int:
         cache_dir = default_cache_dir()
     with executor_from(args) as executor:
         result = basin_stability_along(
-            model_from(args, skip=(args.param,)),
+            model,
             region,
             param=args.param,
             lo=lo,

@@ -91,9 +91,10 @@ def sampling_flags(sub, samples: int | None = None) -> None:
     g.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
 
 
-def region_from(args) -> dict:
-    """The box of starts: ``--x-from .. --y-to``, all four required."""
-    xr, yr = _range(args, "x"), _range(args, "y")
+def region_from(args, model) -> dict:
+    """The box of starts: ``--x-from .. --y-to``, all four required, each end within
+    floating point for ``model`` (`beltmdsm.studies.basins.axis_range`)."""
+    xr, yr = _range(args, "x", model), _range(args, "y", model)
     if xr is None or yr is None:
         args.parser.error("argument --samples: needs the box, --x-from/--x-to and --y-from/--y-to")
     if args.x == args.y:
@@ -140,7 +141,8 @@ def _range(args, axis, model):
 def _sample(args) -> int:
     from ...studies.basin_stability import basin_stability
 
-    region = region_from(args)
+    model = model_from(args)
+    region = region_from(args, model)
     cache_dir = cache_dir_from(args)
     if cache_dir == "default":
         from ...studies.cache import default_cache_dir
@@ -148,7 +150,7 @@ def _sample(args) -> int:
         cache_dir = default_cache_dir()
     with executor_from(args) as executor:
         result = basin_stability(
-            model_from(args),
+            model,
             region,
             samples=args.samples,
             seed=args.seed,
