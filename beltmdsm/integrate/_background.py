@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import atexit
 import functools
+import glob
 import hashlib
 import importlib.util
 import os
@@ -168,12 +169,53 @@ def _standin(described):
 
 def _compile(spec, args) -> object:
     """The compiled function of ``spec`` (``(maker, maker_args)``), compiled (or loaded
-    from numba's cache) for the types of ``args``."""
+    from numba's cache) for the types of ``args``.
+
+    A cache file that cannot be read (truncated by a full disk or a killed process:
+    numba raises UnpicklingError or EOFError, in every run after) is removed and the
+    function compiled afresh, said once (issue 36 item 6).
+    """
     numba = import_numba(True)
     maker, maker_args = spec
     fn = maker(*maker_args)
-    fn.compile(tuple(numba.typeof(a) for a in args))
+    signature = tuple(numba.typeof(a) for a in args)
+    for _ in range(MAX_UNREADABLE):
+        try:
+            fn.compile(signature)
+            return fn
+        except Exception as err:  # noqa: BLE001 (numba's loader raises what unpickling raises)
+            files = _unreadable(err)
+            if not files:
+                raise  # not a cache file: a real failure
+            for path in files:
+                path.unlink(missing_ok=True)
+            _say(
+                "unreadable",
+                f"numba's cache of the compiled integrators was unreadable ({files[0]}: "
+                f"{type(err).__name__}: {err}); removed it and compiling again (~{ABOUT_S} s)",
+            )
+    fn.compile(signature)
     return fn
+
+
+#: Unreadable cache files (each the index of one compiled function, found one per try)
+#: `_compile` removes before it lets the error through.
+MAX_UNREADABLE = 16
+
+
+def _unreadable(err: BaseException) -> list[Path]:
+    """The files of the numba cache entry whose loading raised ``err`` (its index first),
+    [] where ``err`` was not raised in loading one: the entry is the loader object
+    (``numba.core.caching.IndexDataCacheFile``) in the frames of the traceback."""
+    tb = err.__traceback__
+    while tb is not None:
+        loader = tb.tb_frame.f_locals.get("self")
+        if type(loader).__name__ == "IndexDataCacheFile":
+            index = Path(loader._index_path)
+            base = glob.escape(index.name.removesuffix(".nbi"))
+            return [index, *sorted(index.parent.glob(f"{base}.*.nbc"))]
+        tb = tb.tb_next
+    return []
 
 
 class Lazy:
