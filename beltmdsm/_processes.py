@@ -25,15 +25,19 @@ __all__ = ["end_with_parent", "POLL_S"]
 POLL_S = 0.25
 
 
-def end_with_parent(on_end=None) -> None:
+def end_with_parent(on_end=None, parent: int | None = None) -> None:
     """End this process (exit status 1, nothing flushed or joined) once its parent dies.
 
     Parameters
     ----------
     on_end : callable, optional
         Called first (a claim on a compile released); its failures are ignored.
+    parent : int, optional
+        The parent's pid as the parent knew it (default: the parent now). Given, a
+        parent that died while this process was still starting ends it at once.
     """
-    parent = os.getppid()
+    if parent is None:
+        parent = os.getppid()
 
     def watch():
         while os.getppid() == parent:
