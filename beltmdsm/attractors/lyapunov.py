@@ -36,10 +36,12 @@ runs' tolerance, which no average removes (benchmarks/bench_lyapunov.py: errors 
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from tqdm import tqdm
 
 from beltmdsm.generated import unforced
 
@@ -291,10 +293,19 @@ def lyapunov(
         )
     y = initial_state(model) if y0 is None else state("y0", y0, (4,), "X1, Y1, X2, Y2")
 
+    # simulated time on stderr, on a terminal, once the run has taken 2 s (issue 36 item 12)
+    bar = tqdm(total=t_end, desc="lyapunov", unit="s", delay=2, leave=False, disable=None,
+               file=sys.stderr, bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.0f}/{total:.0f}"
+               " s of simulated time [{elapsed}<{remaining}]")  # fmt: skip
     # the transient: a plain run, its phase kept (t = 0 is the excitation's phase 0)
     t = 0.0
     if t_transient > 0:
-        run = integrate_events(model, _settings(0.0, t_transient, rtol, backend), y0=y)
+        run = integrate_events(
+            model,
+            _settings(0.0, t_transient, rtol, backend),
+            y0=y,
+            progress=lambda now: bar.update(now - bar.n),
+        )
         if run.status != "done":
             raise StepTooSmall(f"lyapunov: the transient stopped: {run.message}", rtol, rtol)
         y, t = run.trajectory.state(np.array([t_transient]))[:, 0], t_transient
@@ -321,6 +332,8 @@ def lyapunov(
                 logs[k - n_align] += np.log(d)
         if k >= n_align:
             samples[k - n_align] = y
+        bar.update(t - bar.n)
+    bar.close()
     return _spectrum(model, logs, collapsed, base, tau, rtol, t_transient, switches, samples)
 
 
