@@ -38,6 +38,8 @@ Subpackages, in the order of their layers (each imports only those before it):
 `beltmdsm.periodic` (the period map, Newton's method, Floquet, locks),
 `beltmdsm.continuation` (edges, branches, bands, two-parameter maps),
 `beltmdsm.cycles` (self-excited cycles: shooting, Hopf points, their branches),
+`beltmdsm.oscillator` (any derived model of ``generated/models/``: runs, steady sliding
+and Hopf points, cycles and forced responses with Floquet multipliers; issue 39),
 `beltmdsm.prediction` (the paper's and the consistent MDSM's predictions),
 `beltmdsm.attractors` (Lyapunov spectra, the classification of what a run settles on),
 `beltmdsm.studies` (sweeps and their cache, responses at a point, coexistence, basins,

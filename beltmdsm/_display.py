@@ -22,8 +22,10 @@ __all__ = ["MAX_LINES", "LABELS", "label", "laws", "intervals", "block"]
 MAX_LINES = 12
 #: The short label of each kind of special point (AUTO's and BifurcationKit's names:
 #: NS Neimark-Sacker, PD period doubling, LP limit point (fold), GR grazing, BP branch
-#: point, HB Hopf); kinds not listed print in full.
+#: point, HB Hopf; SL, sliding, COCO's and di Bernardo's name for the onset of stick on
+#: a slip cycle, grazing-sliding); kinds not listed print in full.
 LABELS = {
+    "stick_onset": "SL",
     "neimark_sacker": "NS",
     "period_doubling": "PD",
     "fold": "LP",

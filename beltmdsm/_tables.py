@@ -14,7 +14,10 @@ if TYPE_CHECKING:
 else:  # pandas is optional: the annotations name its DataFrame for type checkers only
     DataFrame = Any
 
-__all__ = ["DataFrame", "frame"]
+__all__ = ["DataFrame", "STATE_COLUMNS", "frame", "multiplier_frame"]
+
+#: The columns of the state ``(X1, Y1, X2, Y2)`` in a table (``Y1`` is ``X1'``).
+STATE_COLUMNS = ("X1", "X1'", "X2", "X2'")
 
 
 def frame(
@@ -35,3 +38,22 @@ def frame(
             "pip install pandas (or beltmdsm[pandas])"
         ) from err
     return pandas.DataFrame(rows, columns=list(columns) if columns is not None else None)
+
+
+def multiplier_frame(multipliers: Sequence[complex], period: float) -> DataFrame:
+    """One row per Floquet multiplier: ``multiplier`` (complex), ``abs``, ``angle``
+    [rad] and ``rate = log|mu| / period`` [1/s] (``-inf`` for a multiplier 0, as a
+    stick phase gives), in the result's order.
+
+    Examples
+    --------
+    >>> multiplier_frame([0.5j, 0.0], 2.0)[["abs", "rate"]].round(4).values.tolist()
+    [[0.5, -0.3466], [0.0, -inf]]
+    """
+    import numpy as np
+
+    mu = np.asarray(multipliers, dtype=complex)
+    with np.errstate(divide="ignore"):
+        rate = np.log(np.abs(mu)) / period
+    rows = {"multiplier": mu, "abs": np.abs(mu), "angle": np.angle(mu), "rate": rate}
+    return frame(rows, list(rows))

@@ -2,12 +2,15 @@
 
 Each function draws one result on matplotlib axes (new ones where ``ax`` is None) and
 returns the axes; the results' ``plot`` methods call them. Every axis names its
-quantity and its unit (the parameter table's units, ``beltmdsm.generated.parameters``, with the
-units each contact law gives, ``LAW_UNITS``); each symbol has one spelling (``X1'``
-the tangential velocity, ``Vr = X1' - Vb`` the relative one). Special points carry
-the labels of the continuation literature (`beltmdsm._display.LABELS`: NS, PD, LP, GR,
-BP, HB). The lines drawn are the result's own arrays (tests/beltmdsm/test_plotting.py
-reads them back), so a figure shows what the result holds and nothing recomputed.
+quantity and its unit (the parameter table's units, ``beltmdsm.generated.parameters``,
+with the units each contact law gives, ``LAW_UNITS``); each symbol has one spelling
+(``X1'`` the tangential velocity, ``Vr = X1' - Vb`` the relative one). Special points
+carry the labels of the continuation literature (`beltmdsm._display.LABELS`: NS, PD,
+LP, GR, BP, HB, SL), each kind in a colour of its own (`KIND_COLOURS`); every figure
+has a legend and a title saying which response or run it draws and at which point of
+the model; a multiplier's modulus is drawn on a log scale. The lines drawn are the
+result's own arrays (tests/beltmdsm/test_plotting.py reads them back), so a figure
+shows what the result holds and nothing recomputed.
 
 The results are taken as they are (typed ``Any``): this module sits below the analyses
 in the layers of the package (tests/test_layers.py) and imports none of them.
@@ -33,6 +36,7 @@ __all__ = [
     "floquet_map",
     "basins",
     "observable_label",
+    "response_name",
     "KIND_COLOURS",
     "STATE",
 ]
@@ -46,6 +50,7 @@ KIND_COLOURS = {
     "tangency": "k",
     "branch_point": "tab:brown",
     "hopf": "tab:pink",
+    "stick_onset": "tab:cyan",
 }
 #: The rows of a run's state and their units.
 STATE = {"X1": ("m", 0), "X1'": ("m/s", 1), "X2": ("m", 2), "X2'": ("m/s", 3)}
@@ -119,6 +124,11 @@ def axis_label(name: str, unit_: str) -> str:
     return f"{name} [{'-' if unit_ == '1' else unit_}]"
 
 
+def response_name(periods: int) -> str:
+    """``"T"`` or ``"4T"``: a response of ``periods`` excitation periods."""
+    return "T" if periods == 1 else f"{periods}T"
+
+
 def _axes(ax: Any) -> Any:
     if ax is not None:
         return ax
@@ -186,17 +196,19 @@ def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str = "X1
                 f"variable must be one of {', '.join([*STATE, 'friction', 'normal_force'])}; "
                 f"got {variable!r}"
             )
-        ax.plot(sim.t, y, lw=0.8)
+        ax.plot(sim.t, y, lw=0.8, label=variable)
         ax.set_xlabel(axis_label("t", "s"))
         ax.set_ylabel(axis_label(variable, u))
     elif kind == "friction":
         w = sim.window
-        ax.plot(sim.y[1][w] - sim.params["Vb"], sim.friction[w], lw=0.6)
+        ax.plot(sim.y[1][w] - sim.params["Vb"], sim.friction[w], lw=0.6,
+                label="friction loop, steady window")  # fmt: skip
         ax.set_xlabel(axis_label("Vr = X1' - Vb", "m/s"))
         ax.set_ylabel(axis_label("friction per unit mass", "m/s^2"))
     else:
         raise ValueError(f"kind must be 'time' or 'friction'; got {kind!r}")
-    ax.set_title(f"{sim.model!r}", fontsize=8)
+    ax.set_title(f"a run to t = {sim.settings.t_end:g} s: {sim.model!r}", fontsize=8)
+    ax.legend(loc="best", fontsize="small")
     return ax
 
 
@@ -249,8 +261,11 @@ def band(result: Any, ax: Any = None) -> Any:
         ax.axvline(e.value, color=KIND_COLOURS.get(e.kind, "0.3"), lw=1)
         ax.annotate(LABELS.get(e.kind, e.kind), (e.value, 1.0), xytext=(2, 4),
                     textcoords="offset points", fontsize=8)  # fmt: skip
+    ax.set_yscale("log")
     ax.set_xlabel(axis_label(result.param, unit(result.param, result.model)))
     ax.set_ylabel(axis_label("max |mu|", "1"))
+    ax.set_title(f"the {response_name(result.periods)} response: {result.model!r}", fontsize=8)
+    ax.legend(loc="best", fontsize="small")
     return ax
 
 
@@ -344,6 +359,8 @@ def branch(
     _special_markers(ax, x, y, result.special, labels)
     ax.set_xlabel(axis_label(result.param, unit(result.param, result.model)))
     ax.set_ylabel(observable_label(observable))
+    ax.set_title(f"{name or result.response}: {result.model!r}", fontsize=8)
+    ax.legend(loc="best", fontsize="small")
     return ax
 
 
@@ -426,6 +443,9 @@ def coexistence(result: Any, ax: Any = None, observable: str = "X1'_amplitude") 
         ax.axvspan(*c.range, color="0.9", lw=0, zorder=0,
                    label="stable responses coexist" if i == 0 else None)  # fmt: skip
     ax.set_xlim(result.lo, result.hi)
+    ax.set_title(f"stable responses along {result.param}: {result.model!r}", fontsize=8)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="best", fontsize="small")
     return ax
 
 
@@ -488,6 +508,8 @@ def floquet_map(result: Any, ax: Any = None, linear: bool = True) -> Any:
     ax.set_ylim(*result.y_range)
     ax.set_xlabel(axis_label(result.x, unit(result.x, result.model)))
     ax.set_ylabel(axis_label(result.y, unit(result.y, result.model)))
+    ax.set_title(f"where no stable periodic response is: {result.model!r}", fontsize=8)
+    ax.legend(loc="best", fontsize="small")
     return ax
 
 
@@ -547,7 +569,11 @@ def basins(result: Any, ax: Any = None) -> Any:
             a.points[:, STATE[x][1]], a.points[:, STATE[y][1]], "o", ms=6, mec="k", color=c,
             label=repr(a).removeprefix("BasinAttractor(").rstrip(")"),
         )  # fmt: skip
+    # the mesh's cells reach half a step past the outer starts: clip to the starts
+    ax.set_xlim(result.xs[0], result.xs[-1])
+    ax.set_ylim(result.ys[0], result.ys[-1])
     ax.set_xlabel(axis_label(x, STATE[x][0]))
     ax.set_ylabel(axis_label(y, STATE[y][0]))
+    ax.set_title(f"basins at {result.model!r}", fontsize=8)
     ax.legend(loc="best", fontsize="small")
     return ax

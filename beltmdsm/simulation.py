@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._tables import DataFrame
 from .arguments import flag, settings_of, state
 from .integrate import _background
 from .integrate.events import integrate_events
@@ -168,6 +169,24 @@ class Simulation:
         from .plotting import simulation as draw
 
         return draw(self, ax, kind, variable)
+
+    def to_pandas(self) -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas) of the samples: ``t``, the state
+        (``X1``, ``X1'``, ``X2``, ``X2'``), ``normal_force`` and ``friction`` (per unit
+        mass), one row per sample.
+
+        Examples
+        --------
+        >>> from beltmdsm import simulate
+        >>> table = simulate(Vb=4.0, t_end=40.0, t_discard=10.0).to_pandas()
+        >>> list(table), len(table)
+        (['t', 'X1', "X1'", 'X2', "X2'", 'normal_force', 'friction'], 2001)
+        """
+        from ._tables import STATE_COLUMNS, frame
+
+        rows = {"t": self.t, **dict(zip(STATE_COLUMNS, self.y)),
+                "normal_force": self.normal_force, "friction": self.friction}  # fmt: skip
+        return frame(rows, list(rows))
 
     def __repr__(self) -> str:
         from ._display import laws

@@ -42,6 +42,7 @@ def generate(args) -> int:
     """
     try:
         from . import codegen, modules
+        from .models import render as models_render
     except ValueError as err:  # a law refused at `register` (lawcheck.UnsupportedLaw)
         if type(err).__name__ != "UnsupportedLaw":
             raise
@@ -56,6 +57,7 @@ def generate(args) -> int:
     start = time.perf_counter()
     mods = modules.all_modules(progress=_progress)
     files = codegen.render_all(mods)
+    files.update(models_render.files())  # generated/models/ (issue 39)
     elapsed = time.perf_counter() - start
     if args.check:
         stale = codegen.stale(files, root)

@@ -25,13 +25,14 @@ release = version = "0.1.0"
 extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
-    "sphinx.ext.mathjax",
     "sphinx.ext.intersphinx",
     "numpydoc",
     "myst_nb",
     "sphinxarg.ext",
     "beltmdsm_site",  # docs/_ext/beltmdsm_site.py: the pages generated from the package
+    "mathtext_math",  # docs/_ext/mathtext_math.py: math drawn at build, read offline
 ]
+html_math_renderer = "mathtext"
 
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
 root_doc = "index"

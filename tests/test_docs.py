@@ -199,3 +199,47 @@ def test_modelling_notes_are_cited():
 # The README is one screen; the site holds the command list and the laws table, checked by
 # tests/test_docs_site.py (test_the_reference_covers_the_public_api_and_the_command_line,
 # test_the_laws_page_is_the_registry).
+
+
+def _headings():
+    """``(file, heading)`` of every Markdown heading of docs/ and of the notebooks."""
+    for path in sorted((ROOT / "docs").rglob("*.md")):
+        fence = False
+        for line in path.read_text(encoding="utf-8").splitlines():
+            fence ^= line.startswith("```")
+            if not fence and line.startswith("#"):
+                yield path.relative_to(ROOT).as_posix(), line
+    for path in sorted((ROOT / "notebooks").glob("*.ipynb")):
+        for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]:
+            if cell["cell_type"] == "markdown":
+                for line in cell["source"]:
+                    if line.startswith("#"):
+                        yield path.relative_to(ROOT).as_posix(), line.rstrip()
+
+
+def test_headings_are_plain_text():
+    """Issue 37 item 4: a heading is a page title and a sidebar entry, where TeX shows
+    raw (``\\(V_b\\)``): headings spell symbols as the package does (``Vb``, ``X1'``)."""
+    assert [h for h in _headings() if "$" in h[1] or "\\(" in h[1]] == []
+
+
+def test_every_formula_of_the_notebooks_is_drawn_at_build():
+    """The site pre-renders math with matplotlib's mathtext (docs/_ext/mathtext_math.py):
+    a formula it cannot parse would fail the build, so each is tried here, offline."""
+    import sys
+
+    pytest.importorskip("matplotlib")
+    sys.path.insert(0, str(ROOT / "docs" / "_ext"))
+    from mathtext_math import svg
+
+    formulas = {
+        a or b
+        for path in sorted((ROOT / "notebooks").glob("*.ipynb"))
+        for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]
+        if cell["cell_type"] == "markdown"
+        for a, b in re.findall(r"\$\$(.+?)\$\$|\$(.+?)\$", "".join(cell["source"]), re.S)
+    }
+    assert len(formulas) > 50
+    drawn = {f: svg(f) for f in formulas}
+    assert all(s.startswith("<svg") and "<path" in s for s in drawn.values())
+    assert svg("V_b") == svg("V_b")  # the same text at every build

@@ -283,3 +283,17 @@ def test_every_notebook_renders_with_its_figures(tmp_path):
         page = (built / "tutorials" / "notebooks" / f"{notebook.stem}.html").read_text()
         assert "<img" in page and ".png" in page, notebook.name
         assert "Traceback" not in page, notebook.name
+
+
+def test_the_site_reads_offline_its_math_drawn_at_build(site):
+    """Issue 37 item 4: no page loads a script from the network (MathJax's CDN was one),
+    and the notebooks' formulas are drawn into the page (docs/_ext/mathtext_math.py)."""
+    remote = [
+        (page.relative_to(site).as_posix(), link)
+        for page in site.rglob("*.html")
+        for link in _parse(page).links
+        if link.startswith(("http:", "https:", "//")) and link.endswith(".js")
+    ]
+    assert remote == []
+    page = (site / "tutorials" / "notebooks" / "fig05_floquet.html").read_text(encoding="utf-8")
+    assert '<span class="math" title="V_b"><svg' in page and "$V_b$" not in page

@@ -8,7 +8,7 @@ submodule where one exists). The layers, lowest first:
 
 beltmdsm.derive -> beltmdsm.generated -> beltmdsm.{model, settings, intervals} ->
 beltmdsm.integrate ->
-beltmdsm.{periodic, continuation, cycles} -> beltmdsm.run -> beltmdsm.prediction ->
+beltmdsm.{periodic, continuation, cycles, oscillator} -> beltmdsm.run -> beltmdsm.prediction ->
 beltmdsm.attractors -> beltmdsm.simulation -> beltmdsm.studies -> beltmdsm.cli
 
 A module imports only modules of its own layer or below, with no cycle: derive/ and
@@ -44,6 +44,8 @@ LAYERS = {
     "beltmdsm.periodic": 4.0,
     "beltmdsm.continuation": 4.0,
     "beltmdsm.cycles": 4.0,
+    # any derived model (issue 39): its runs, cycles and forced responses, beside them
+    "beltmdsm.oscillator": 4.0,
     "beltmdsm.run": 4.1,
     "beltmdsm.prediction": 4.2,
     "beltmdsm.attractors": 4.3,

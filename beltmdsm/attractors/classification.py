@@ -21,9 +21,21 @@ one per excitation period):
   accuracy the difference between the averages over all samples and over the first
   half. The second exponent says whether the curve attracts.
 * ``chaotic``: the largest exponent positive beyond `SIGNIFICANCE` times its error and
-  beyond `ZERO_FLOOR`.
+  beyond `ZERO_FLOOR`, on a run that is neither on an equilibrium nor on a periodic
+  response (``unstable`` below).
 * ``equilibrium``: without excitation, the samples standing still and every exponent
   negative (steady sliding).
+* ``unstable``: the run begins its averaging window on (or within `NEAR` of) an
+  invariant set that is unstable: steady sliding whose eigenvalues have a positive
+  real part, or a ``k``-periodic response (the first samples return, Newton's method
+  converges from them) whose Floquet multipliers leave the unit circle
+  (`unstable_set`). A positive exponent there is that set's instability, not chaos;
+  ``periods`` is ``k`` (None for steady sliding) and the evidence names the set, its
+  growth rate against the exponent, and how long the run would take to leave it.
+  A careful researcher's start is off such a set: `lyapunov` and this function by
+  default start as `beltmdsm.simulation.simulate` does (moved off unstable steady
+  sliding along its unstable direction, with the transient the run takes to leave
+  it where ``t_end`` allows); an explicit ``y0`` on the set is honoured and named.
 * ``unclassified``: none of these holds; the evidence says which test failed (a
   negative exponent without a return: a lock longer than the run can show; a zero
   exponent off a closed curve).
@@ -36,22 +48,23 @@ is found as a cycle (``periods`` 1).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from beltmdsm.generated import unforced
+
 from ..arguments import state
-from ..errors import NoPeriodicResponse
+from ..errors import NoPeriodicResponse, StepTooSmall
 from ..excitation import excitation_period, initial_state
-from ..integrate.events import integrate_events
 from ..model import Backend, Model, as_model
 from ..periodic.floquet import Floquet
 from ..periodic.locked import NotLocked, stroboscope
 from ..periodic.shooting import periodic_response
-from ..settings import SolverSettings
-from .lyapunov import RTOL, lyapunov
+from .lyapunov import Lyapunov, advance, check_length, lyapunov
 
 __all__ = [
     "Attractor",
@@ -59,6 +72,8 @@ __all__ = [
     "classify",
     "periodic_attractor",
     "rotation_number",
+    "unstable_set",
+    "NEAR",
     "RETURN_TOL",
     "SIGNIFICANCE",
     "ZERO_FLOOR",
@@ -66,12 +81,20 @@ __all__ = [
 ]
 
 #: The kinds of attractor, in the order of the module docstring.
-KINDS = ("periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified")
+KINDS = ("periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified", "unstable")
 #: A return after ``k`` periods closer than this (relative to the state's scale) is a
 #: candidate period; Newton's method on the ``k``-fold map decides.
 RETURN_TOL = 1e-6
 #: Candidate periods tried by Newton's method before the exponents decide.
 _CANDIDATES = 3
+#: A window whose first sample lies within this distance (relative to the state's
+#: scale, as `RETURN_TOL`) of unstable steady sliding begins in its linear
+#: neighbourhood: at Stribeck's Vb = 1.5 (sigma = 0.064 1/s) a start 1e-6 off it is
+#: 3e-3 off after 150 s and on the stick-slip cycle only after about 215 s.
+NEAR = 1e-2
+#: Samples at the start of the window searched for a return onto a periodic response
+#: (`unstable_set`): periods up to four.
+_HEAD = 14
 #: An exponent is nonzero where it is more than this many errors from zero.
 SIGNIFICANCE = 3.0
 #: The largest error with which a zero exponent names a torus, and the least positive
@@ -93,9 +116,10 @@ class Attractor:
 
     Attributes
     ----------
-    kind : {"periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified"}
+    kind : {"periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified", "unstable"}
     periods : int or None
-        Excitation periods of a periodic attractor (minimal).
+        Excitation periods of a periodic attractor (minimal), or of the unstable
+        periodic response an ``unstable`` run sits on.
     rotation_number : float or None
         Mean turn per period about the samples' centre [turns]; ``p / k`` where periodic.
     rotation_accuracy : float or None
@@ -111,6 +135,10 @@ class Attractor:
         A state on the attractor at phase 0 (the fixed point where periodic).
     points : ndarray (n, 4)
         Its stroboscopic samples.
+    exponent_floor : float or None
+        From Floquet multipliers (`periodic_attractor`): the bound below which the
+        exponents of multipliers under the computation's error floor lie (those are
+        NaN, `beltmdsm.periodic.floquet.FLOOR_FACTOR`); None where every one is resolved.
 
     See Also
     --------
@@ -128,7 +156,9 @@ class Attractor:
     ('periodic', 4, -0.25)
     """
 
-    kind: Literal["periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified"]
+    kind: Literal[
+        "periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified", "unstable"
+    ]
     periods: int | None
     rotation_number: float | None
     rotation_accuracy: float | None
@@ -138,6 +168,7 @@ class Attractor:
     evidence: str = field(repr=False)
     state: NDArray[np.float64] = field(repr=False)
     points: NDArray[np.float64] = field(repr=False)
+    exponent_floor: float | None = field(default=None, repr=False)
 
     def __repr__(self) -> str:
         what = self.kind + (f" ({self.periods}T)" if self.periods else "")
@@ -159,6 +190,7 @@ class Attractor:
             "exponents": [float(x) for x in self.exponents],
             "evidence": self.evidence,
             "state": [float(x) for x in self.state],
+            "exponent_floor": self.exponent_floor,
         }
 
 
@@ -341,16 +373,14 @@ def periodic_attractor(
     T = excitation_period(model)
     if not (np.isfinite(t_end) and t_end >= 10 * T):
         raise ValueError(f"t_end must be at least 10 excitation periods ({10 * T:.4g} s)")
+    check_length(model, t_end)
     y = initial_state(model) if y0 is None else state("y0", y0, (4,), "X1, Y1, X2, Y2")
     first = T * np.ceil(0.3 * t_end / T)
     times = first + T * np.arange(int((t_end - first) / T + 1e-9) + 1)
-    settings = SolverSettings(
-        t_end=float(times[-1]), rtol=RTOL, atol=RTOL, dt=T, t_discard=0.0, backend=backend
-    )
-    run = integrate_events(model, settings, y0=y)
-    if run.status != "done":
-        raise NoPeriodicResponse(f"periodic_attractor: the run stopped: {run.message}")
-    samples = run.trajectory.state(times).T
+    try:  # in pieces: only the samples are kept
+        _, samples = advance(model, y, 0.0, float(times[-1]), backend=backend, times=times)
+    except StepTooSmall as err:
+        raise NoPeriodicResponse(f"periodic_attractor: {err}") from None
     for k in _returns(samples, RETURN_TOL)[:_CANDIDATES]:
         try:
             resp = periodic_response(
@@ -367,6 +397,17 @@ def periodic_attractor(
         mu = np.sort(np.abs(f.multipliers))[::-1]
         with np.errstate(divide="ignore"):
             exponents = np.log(mu) / f.period
+        # below the multipliers' error floor an exponent is no number: only its bound
+        bound = math.log(f.floor) / f.period
+        exponents = np.where((mu < f.floor) & (mu > 0), np.nan, exponents)
+        low = int(np.sum(np.isnan(exponents)))
+        floor_note = (
+            f"; {low} multiplier(s) below the computation's error floor {f.floor:.1e} "
+            f"(beltmdsm/periodic/floquet.py): their exponents are below {bound:.4g} 1/s "
+            "(NaN), not numbers"
+            if low
+            else ""
+        )
         turns = np.angle(np.exp(1j * np.diff(_angles(samples[-(k + 1) :]))))
         p = int(round(float(np.sum(turns)) / (2 * np.pi)))
         return Attractor(
@@ -375,19 +416,128 @@ def periodic_attractor(
             p / k,
             0.0,
             float(exponents[0]),
-            # d ln|mu| = d|mu| / |mu|, the multiplier's error or Newton's residual
-            max(resp.residual, _MULTIPLIER_TOL) / (max(mu[0], 1e-300) * f.period),
+            # d ln|mu| = d|mu| / |mu|: the multiplier's error (its floor, the engines'
+            # agreement) or Newton's residual
+            max(resp.residual, _MULTIPLIER_TOL, f.floor) / (max(mu[0], 1e-300) * f.period),
             exponents,
             f"the samples return after {k} excitation periods, Newton's method on the "
             f"{k}-fold period map converges from them (residual {resp.residual:.1e}) and "
             f"the Floquet multipliers are inside the unit circle (largest {mu[0]:.6g}): the "
-            "exponents are ln|mu| / (k T)",
+            "exponents are ln|mu| / (k T)" + floor_note,
             resp.state0,
             samples,
+            bound if low else None,
         )
     raise NoPeriodicResponse(
         f"the run's samples do not return to {RETURN_TOL:g} within {len(samples) // 3} "
         "periods onto a periodic response"
+    )
+
+
+def unstable_set(
+    model: Model, spec: Lyapunov, backend: Backend | None = None
+) -> tuple[str, int | None, NDArray[np.float64]] | None:
+    """The unstable invariant set a run's averaging window begins on, if any.
+
+    Without excitation: steady sliding (`beltmdsm.excitation.initial_state`) where its
+    eigenvalues (`beltmdsm.generated.unforced.eigenvalues`) have a positive real part
+    ``sigma``, the window's first sample lies within `NEAR` of it and the run stands
+    on it or leaves it (its distance at least doubles over the window: a small cycle
+    about it keeps its distance). With excitation:
+    a ``k``-periodic response onto which the window's first samples return (to
+    `RETURN_TOL`, ``k`` up to four) and Newton's method converges, its Floquet
+    multipliers outside the unit circle. A positive exponent of such a run is the
+    set's instability (``sigma``, ``ln |mu| / (k T)``), not chaos.
+
+    Parameters
+    ----------
+    model : Model
+        The model that was run.
+    spec : Lyapunov
+        The run's spectrum and samples (`beltmdsm.attractors.lyapunov.lyapunov`).
+    backend : {"python", "numba", None}
+
+    Returns
+    -------
+    tuple or None
+        ``(evidence, periods, state)``: a sentence naming the set, its growth rate
+        against the run's exponent and how long the run would take to leave it;
+        ``k`` (None for steady sliding); a state on the set. None where the window
+        does not begin on an unstable invariant set.
+
+    See Also
+    --------
+    beltmdsm.attractors.classification.classify : Calls such a run ``unstable``.
+    beltmdsm.simulation.equilibrium_start : The default start, off unstable sliding.
+
+    Examples
+    --------
+    Stribeck's law at ``Vb = 1.9`` without excitation, started exactly on steady
+    sliding: the run stays there, and its exponent is the equilibrium's ``sigma``:
+
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.attractors.lyapunov import lyapunov
+    >>> from beltmdsm.excitation import initial_state
+    >>> m = Model(alpha=0.0, friction="stribeck", Vb=1.9)
+    >>> spec = lyapunov(m, y0=initial_state(m), t_end=200.0)
+    >>> evidence, periods, _ = unstable_set(m, spec)
+    >>> periods, "off steady sliding, which is unstable" in evidence
+    (None, True)
+    """
+    y = spec.samples
+    scale = 1.0 + float(np.max(np.abs(y)))
+    try:
+        excitation_period(model)
+    except ValueError:
+        lam = np.asarray(unforced.eigenvalues(**model.arguments(unforced.eigenvalues)))
+        sigma = float(np.max(lam.real))
+        eq = initial_state(model)
+        d = np.max(np.abs(y - eq), axis=1)
+        d0, floor = float(d[0]), np.finfo(float).eps * scale
+        # near it and leaving it (or standing on it): a small cycle about it is neither
+        leaving = d[-1] >= 2 * max(d0, floor) or float(np.max(d)) <= 16 * floor
+        if not (sigma > 0 and d0 <= NEAR * scale and leaving):
+            return None
+        leave = math.log(scale / max(d0, np.finfo(float).eps * scale)) / sigma
+        return (
+            f"the run begins its averaging window {d0:.1e} off steady sliding, which is "
+            f"unstable (the largest real part of its eigenvalues sigma = {sigma:.4g} 1/s; "
+            f"the run's largest exponent {spec.largest:+.4g} 1/s): the exponent is that "
+            f"instability, not chaos; the run needs about {leave:.3g} s more to leave it "
+            "(raise t_end; a start exactly on it never leaves it, and the default start, "
+            "as simulate's, is moved off it along its unstable direction)",
+            None,
+            eq,
+        )
+    head = y[: min(len(y), _HEAD)]
+    for k in _returns(head, RETURN_TOL)[:_CANDIDATES]:
+        try:
+            resp = periodic_response(model, periods=k, guess=head[-1], forward=0, backend=backend)
+        except NoPeriodicResponse:
+            continue
+        return _unstable_response(resp, spec, "begins its averaging window on")
+    return None
+
+
+def _unstable_response(resp, spec, where):
+    """``unstable_set``'s answer for a converged response, or None where it is stable
+    (or grazing: its stability is not known)."""
+    f = Floquet.of(resp)
+    if f.stable is not False:
+        return None
+    k = resp.periods
+    mu = float(np.max(np.abs(f.multipliers)))
+    rate = math.log(mu) / f.period
+    return (
+        f"the run {where} the {k}T-periodic response (its samples return after {k} "
+        f"excitation periods to {RETURN_TOL:g}, Newton's method converges from them, "
+        f"residual {resp.residual:.1e}), which is unstable: its largest Floquet "
+        f"multiplier |mu| = {mu:.6g}, ln|mu| / ({k} T) = {rate:+.4g} 1/s against the run's "
+        f"largest exponent {spec.largest:+.4g} 1/s: the exponent is that response's "
+        "instability, not chaos (start off it: beltmdsm.periodic.start.periodic_start "
+        "with a perturbation, and run until it has left)",
+        k,
+        resp.state0,
     )
 
 
@@ -418,6 +568,10 @@ def _forced(model, spec, backend):
         except NoPeriodicResponse:
             tried.append(str(k))
             continue
+        unstable = _unstable_response(resp, spec, "ends its averaging window on")
+        if unstable is not None:
+            evidence, k, on = unstable
+            return _attractor("unstable", spec, evidence, periods=k, state=on)
         turns = np.angle(np.exp(1j * np.diff(_angles(spec.samples[-(k + 1) :]))))
         p = int(round(float(np.sum(turns)) / (2 * np.pi)))
         return _attractor(
@@ -437,11 +591,16 @@ def _forced(model, spec, backend):
         else ""
     )
     if lam > max(bound, ZERO_FLOOR):
+        unstable = unstable_set(model, spec, backend)
+        if unstable is not None:
+            evidence, k, on = unstable
+            return _attractor("unstable", spec, evidence + note, periods=k, state=on)
         return _attractor(
             "chaotic",
             spec,
             f"the largest Lyapunov exponent {lam:+.4g} 1/s is positive beyond "
-            f"{SIGNIFICANCE:g} times its error {err:.1g} and {ZERO_FLOOR:g} 1/s" + note,
+            f"{SIGNIFICANCE:g} times its error {err:.1g} and {ZERO_FLOOR:g} 1/s, on a run "
+            "that begins its window on no equilibrium or periodic response" + note,
         )
     notlocked = NotLocked.of(stroboscope(spec.samples, "run", limit=1))
     precise = err <= ZERO_FLOOR
@@ -492,12 +651,18 @@ def _unforced(model, spec):
             f"the state stands still (to {RETURN_TOL:g}) and every exponent is negative "
             f"(largest {lam:+.3g} 1/s): steady sliding, stable",
         )
+    if lam >= -bound:  # not stable: is the run on (or leaving) unstable sliding?
+        unstable = unstable_set(model, spec)
+        if unstable is not None:
+            evidence, _, on = unstable
+            return _attractor("unstable", spec, evidence, state=on)
     if lam > max(bound, ZERO_FLOOR):
         return _attractor(
             "chaotic",
             spec,
             f"the largest Lyapunov exponent {lam:+.4g} 1/s is positive beyond "
-            f"{SIGNIFICANCE:g} times its error {err:.1g} and {ZERO_FLOOR:g} 1/s",
+            f"{SIGNIFICANCE:g} times its error {err:.1g} and {ZERO_FLOOR:g} 1/s, on a run "
+            "that does not begin its window near steady sliding",
         )
     if abs(lam) <= bound and not still and spec.exponents[1] < -bound:
         return _attractor(

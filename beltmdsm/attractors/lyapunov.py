@@ -45,16 +45,31 @@ from tqdm import tqdm
 
 from beltmdsm.generated import unforced
 
+from .._tables import DataFrame
 from ..arguments import state
-from ..errors import StepTooSmall
+from ..errors import Refused, StepTooSmall
 from ..excitation import excitation_period, initial_state
 from ..integrate.events import integrate_events
 from ..integrate.switching import Mode
 from ..model import Backend, Model, as_model
 from ..periodic import variational
-from ..settings import SolverSettings, fastest_rate
+from ..settings import MAX_RUN_BYTES, SolverSettings, fastest_rate
+from ..simulation import START_PERTURBATION, equilibrium_start
 
-__all__ = ["Lyapunov", "lyapunov", "chunk_length", "BLOCKS", "COLLAPSE", "RTOL", "SPREAD", "STEP"]
+__all__ = [
+    "Lyapunov",
+    "lyapunov",
+    "advance",
+    "chunk_length",
+    "check_length",
+    "BLOCKS",
+    "BYTES_PER_BASE",
+    "COLLAPSE",
+    "PIECE",
+    "RTOL",
+    "SPREAD",
+    "STEP",
+]
 
 #: Blocks of the averaging window whose spread estimates the error.
 BLOCKS = 8
@@ -69,6 +84,14 @@ SPREAD = 8.0
 STEP = 0.25
 #: Tolerance of the runs (the monodromy carries about this relative accuracy).
 RTOL = 1e-10
+#: The memory the average keeps per base period (`chunk_length`): the period's
+#: ``log |R_ii|``, its sample, the running means and the work arrays of `_spectrum`,
+#: six rows of four floats, rounded up. A run of ``t_end`` is refused where its base
+#: periods would need more than `beltmdsm.settings.MAX_RUN_BYTES` so (`check_length`).
+BYTES_PER_BASE = 256
+#: Base periods a plain run (the transient) is cut into: its dense output (about 21 kB
+#: a simulated second at the base set) is dropped after each piece, only the state kept.
+PIECE = 64
 #: Chunks with the frame turning but nothing averaged, by default: the frame aligns
 #: with the Lyapunov vectors at the rate of the gaps between the exponents.
 _ALIGN = 20
@@ -103,6 +126,9 @@ class Lyapunov:
         The state at the end of each base period of the window (`chunk_length`): with
         excitation, the stroboscopic samples at phase 0 (`beltmdsm.attractors.classification`
         reads the attractor's kind from them).
+    start_perturbation : float
+        How far the default start was moved off unstable steady sliding
+        (`beltmdsm.simulation.equilibrium_start`), 0.0 where it was not.
 
     See Also
     --------
@@ -129,6 +155,7 @@ class Lyapunov:
     running: NDArray[np.float64] = field(repr=False)
     state: NDArray[np.float64] = field(repr=False)
     samples: NDArray[np.float64] = field(repr=False)
+    start_perturbation: float = field(default=0.0, repr=False)
 
     @property
     def largest(self) -> float:
@@ -145,6 +172,23 @@ class Lyapunov:
             f"{self.switches} switches, {self.collapsed} collapsed)"
         )
 
+    def to_pandas(self) -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas) of the spectrum, largest first: one row per
+        exponent, ``exponent`` [1/s] (``-inf`` where stick removes a direction) and its
+        ``error``.
+
+        Examples
+        --------
+        >>> from beltmdsm import Model
+        >>> table = lyapunov(Model(Vb=5.0), t_end=60.0).to_pandas()
+        >>> list(table), len(table), bool(table["exponent"].iloc[0] < 0)
+        (['exponent', 'error'], 4, True)
+        """
+        from .._tables import frame
+
+        rows = {"exponent": self.exponents, "error": self.error}
+        return frame(rows, list(rows))
+
     def as_dict(self) -> dict:
         """The spectrum as JSON-ready numbers (``-inf`` stays a float: callers map it)."""
         return {
@@ -156,6 +200,7 @@ class Lyapunov:
             "tau": self.tau,
             "collapsed": self.collapsed,
             "switches": self.switches,
+            "start_perturbation": self.start_perturbation,
         }
 
 
@@ -206,6 +251,123 @@ def chunk_length(model: Model) -> tuple[float, int]:
     return base, max(1, math.ceil(base * fastest_rate(model) / SPREAD))
 
 
+def check_length(model: Model, t_end: float, name: str = "t_end") -> None:
+    """Refuse a run of ``t_end`` whose base periods the averages could not keep.
+
+    A run keeps `BYTES_PER_BASE` bytes per base period (`chunk_length`), nothing of
+    its transient's dense output (`advance`); more periods than
+    `beltmdsm.settings.MAX_RUN_BYTES` holds so are refused before anything runs.
+
+    Parameters
+    ----------
+    model : Model
+        The model to run.
+    t_end : float
+        The run's length [s].
+    name : str
+        The argument named in the refusal.
+
+    Raises
+    ------
+    beltmdsm.errors.Refused
+        Naming ``name``, with the longest run that fits.
+
+    See Also
+    --------
+    beltmdsm.settings.check_request : The same rule for `beltmdsm.simulation.simulate`.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> check_length(Model(), 1e5)
+    >>> try:
+    ...     check_length(Model(), 1e300)
+    ... except Refused as refusal:
+    ...     print(refusal.names, str(refusal)[:48])
+    ('t_end',) t_end = 1e+300 s holds 6.37e+299 base periods of
+    """
+    base, _ = chunk_length(model)
+    periods = t_end / base
+    if periods * BYTES_PER_BASE > MAX_RUN_BYTES:
+        top = base * MAX_RUN_BYTES / BYTES_PER_BASE
+        raise Refused(
+            f"{name} = {t_end:g} s holds {periods:.3g} base periods of {base:.4g} s, and "
+            f"the averages keep {BYTES_PER_BASE} bytes a period: more than MAX_RUN_BYTES "
+            f"= {MAX_RUN_BYTES / 2**30:g} GiB (beltmdsm/settings.py, "
+            f"beltmdsm/attractors/lyapunov.py); shorten {name} to at most about {top:.3g} s",
+            name,
+        )
+
+
+def advance(
+    model: Model,
+    y: ArrayLike,
+    t0: float,
+    t1: float,
+    *,
+    rtol: float = RTOL,
+    backend: Backend | None = None,
+    times: ArrayLike = (),
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The state at ``t1`` of the run from ``y`` at ``t0``, and its states at ``times``.
+
+    The run goes in pieces of `PIECE` base periods (`chunk_length`) and keeps only the
+    state between them: its memory does not grow with ``t1 - t0``.
+
+    Parameters
+    ----------
+    model : Model
+    y : array_like (4,)
+        The state at ``t0``.
+    t0, t1 : float
+        The run's ends [s] (``t = 0`` is the excitation's phase 0).
+    rtol : float
+        Its tolerance (also its ``atol``).
+    backend : {"python", "numba", None}
+    times : array_like, optional
+        Increasing times in ``[t0, t1]`` at which the state is wanted.
+
+    Returns
+    -------
+    end : ndarray (4,)
+    states : ndarray (len(times), 4)
+
+    Raises
+    ------
+    beltmdsm.errors.StepTooSmall
+        Where the run cannot go on at the tolerance.
+
+    See Also
+    --------
+    beltmdsm.attractors.lyapunov.lyapunov : Runs its transient so.
+
+    Examples
+    --------
+    Two pieces end where one run ends, to its tolerance:
+
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.excitation import initial_state
+    >>> m = Model(Vb=4.0)
+    >>> end, at = advance(m, initial_state(m), 0.0, 250.0, times=[100.0, 250.0])
+    >>> bool(np.abs(at[-1] - end).max() < 1e-12), at.shape
+    (True, (2, 4))
+    """
+    base, _ = chunk_length(model)
+    times = np.asarray(times, dtype=float)
+    out = np.zeros((times.size, 4))
+    y, t, k = np.array(y, dtype=float), float(t0), 0
+    while t < t1:
+        t_next = min(t + PIECE * base, t1)
+        run = integrate_events(model, _settings(t, t_next, rtol, backend), y0=y, t0=t)
+        if run.status != "done":
+            raise StepTooSmall(f"the run stopped: {run.message}", rtol, rtol)
+        j = k + int(np.searchsorted(times[k:], t_next, side="right"))
+        if j > k:
+            out[k:j] = run.trajectory.state(times[k:j]).T
+        y, t, k = run.trajectory.state(np.array([t_next]))[:, 0], t_next, j
+    return y, out
+
+
 def _chunk(model, settings, y, t0, max_step, backend):
     """One chunk from ``t0`` to ``settings.t_end``: ``(end state, monodromy, switches)``."""
     run = integrate_events(model, settings, y0=y, t0=t0, max_step=max_step)
@@ -237,13 +399,21 @@ def lyapunov(
     model : Model, optional
         Or the keywords it is built from (``**params``).
     y0 : array_like (4,), optional
-        The start; default the unforced equilibrium at rest (as `simulate`). To start
-        on the periodic response pass `beltmdsm.periodic.start.periodic_start`.
+        The start; default as `beltmdsm.simulation.simulate`'s: the unforced equilibrium
+        at rest, or without excitation where steady sliding is unstable that
+        equilibrium moved by `beltmdsm.simulation.START_PERTURBATION` along its unstable
+        direction (`beltmdsm.simulation.equilibrium_start`; the result's
+        ``start_perturbation``): a run started exactly on it stays there, and its
+        exponents would be the equilibrium's instability, not the attractor's. To
+        start on the periodic response pass `beltmdsm.periodic.start.periodic_start`.
     t_end : float
         The whole run [s]: the transient, the alignment of the frame, the average.
     t_transient : float, optional
-        Time run before the frame starts turning [s]; default 30 % of ``t_end``; cut
-        down to whole base periods (`chunk_length`).
+        Time run before the frame starts turning [s]; default 30 % of ``t_end``, or
+        from a start moved off unstable steady sliding the time it takes to leave it,
+        ``ln(1 / START_PERTURBATION) / sigma`` (``sigma`` the largest real part of its
+        eigenvalues), where ``t_end`` leaves the average its ``2 BLOCKS`` periods
+        after it; cut down to whole base periods (`chunk_length`).
     rtol : float
         Tolerance of the runs (also their ``atol``).
     backend : {"python", "numba", None}
@@ -257,6 +427,9 @@ def lyapunov(
     ValueError
         For a bad ``t_end``, ``t_transient``, ``rtol`` or ``y0``, or a window of
         fewer than ``2 * BLOCKS`` base periods (`chunk_length`).
+    beltmdsm.errors.Refused
+        Naming ``t_end``, for a run whose averages would not fit in memory
+        (`check_length`).
     beltmdsm.errors.StepTooSmall
         Where a run cannot go on at the tolerance.
 
@@ -277,7 +450,16 @@ def lyapunov(
     rtol = _positive("rtol", rtol)
     base, cuts = chunk_length(model)
     tau = base / cuts
-    t_transient = 0.3 * t_end if t_transient is None else float(t_transient)
+    check_length(model, t_end)
+    moved = 0.0
+    if y0 is None:
+        start, moved = equilibrium_start(model)
+        y0 = initial_state(model) if start is None else start
+    else:
+        y0 = state("y0", y0, (4,), "X1, Y1, X2, Y2")
+    if t_transient is None:
+        t_transient = max(0.3 * t_end, _escape(model, base, t_end) if moved else 0.0)
+    t_transient = float(t_transient)
     if not (math.isfinite(t_transient) and 0 <= t_transient < t_end):
         raise ValueError(f"t_transient must be in [0, t_end); got {t_transient!r}")
     # whole base periods, so that the samples are at the excitation's phase 0
@@ -291,7 +473,7 @@ def lyapunov(
             f"{base:.4g} s: at least {2 * BLOCKS + n_align} are needed for the average and "
             f"its error; raise t_end"
         )
-    y = initial_state(model) if y0 is None else state("y0", y0, (4,), "X1, Y1, X2, Y2")
+    y = y0
 
     # simulated time on stderr, on a terminal, once the run has taken 2 s (issue 36 item 12)
     bar = tqdm(total=t_end, desc="lyapunov", unit="s", delay=2, leave=False, disable=None,
@@ -300,15 +482,12 @@ def lyapunov(
     # the transient: a plain run, its phase kept (t = 0 is the excitation's phase 0)
     t = 0.0
     if t_transient > 0:
-        run = integrate_events(
-            model,
-            _settings(0.0, t_transient, rtol, backend),
-            y0=y,
-            progress=lambda now: bar.update(now - bar.n),
-        )
-        if run.status != "done":
-            raise StepTooSmall(f"lyapunov: the transient stopped: {run.message}", rtol, rtol)
-        y, t = run.trajectory.state(np.array([t_transient]))[:, 0], t_transient
+        try:
+            y, _ = advance(model, y, 0.0, t_transient, rtol=rtol, backend=backend)
+        except StepTooSmall as err:
+            raise StepTooSmall(f"lyapunov: the transient stopped: {err}", rtol, rtol) from None
+        t = t_transient
+        bar.update(t)
 
     max_step = STEP / fastest_rate(model)
     Q = np.eye(4)
@@ -334,7 +513,20 @@ def lyapunov(
             samples[k - n_align] = y
         bar.update(t - bar.n)
     bar.close()
-    return _spectrum(model, logs, collapsed, base, tau, rtol, t_transient, switches, samples)
+    spec = _spectrum(model, logs, collapsed, base, tau, rtol, t_transient, switches, samples)
+    spec.start_perturbation = moved
+    return spec
+
+
+def _escape(model, base, t_end):
+    """The time a run started `START_PERTURBATION` off unstable steady sliding takes to
+    leave it, ``ln(1 / START_PERTURBATION) / sigma`` (to a disturbance of order one),
+    where ``t_end`` leaves the average its ``2 BLOCKS`` base periods after it, else 0."""
+    lam = np.asarray(unforced.eigenvalues(**model.arguments(unforced.eigenvalues)))
+    sigma = float(np.max(lam.real))
+    t = math.log(1.0 / START_PERTURBATION) / sigma
+    n = int((t_end - base * math.ceil(t / base)) / base)
+    return t if n - min(_ALIGN, n // 4) >= 2 * BLOCKS else 0.0
 
 
 def _settings(t0, t1, rtol, backend):

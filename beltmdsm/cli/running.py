@@ -27,6 +27,7 @@ def register(
     name: str,
     run: Callable[[argparse.Namespace], int],
     parents: Sequence[argparse.ArgumentParser],
+    models: Callable[[argparse.Namespace], int] | None = None,
     **kwargs: Any,
 ) -> argparse.ArgumentParser:
     """Add command ``name`` to ``commands`` (an argparse subparsers action), run by ``run``.
@@ -39,9 +40,16 @@ def register(
     response that is not found (`beltmdsm.errors.NoPeriodicResponse`). The
     system refusing (an OSError): one line, exit status 1. A warning while it runs
     (a cache file recomputed) is one line on stderr, ``PROG: warning: ...``.
+
+    Every command takes ``--model`` (`beltmdsm.cli.models`): ``run`` runs the paper's
+    model, ``models`` (where given) the others; without it, another model is refused
+    in one line naming the command and the model (exit 2).
     """
-    sub = commands.add_parser(name, parents=list(parents), **kwargs)
-    sub.set_defaults(run=_run, handler=run, parser=sub)
+    from .models import model_flag
+
+    parents = [*parents, model_flag(others=models is not None)]
+    sub = commands.add_parser(name, parents=parents, **kwargs)
+    sub.set_defaults(run=_run, handler=run, parser=sub, other_models=models)
     return sub
 
 
@@ -108,9 +116,22 @@ def _interrupted(args):
             signal.signal(signal.SIGINT, previous)
 
 
+def _handler(args):
+    """The command's handler of ``--model`` (the paper's, or the other models')."""
+    from .models import MODELS, refusal, refuse_other_params
+
+    if args.model == MODELS[0]:
+        if args.other_models is not None:
+            refuse_other_params(args)
+        return args.handler
+    if args.other_models is None:
+        args.parser.error(refusal(args))
+    return args.other_models
+
+
 def _dispatch(args):
     try:
-        return args.handler(args)
+        return _handler(args)(args)
     except ValueError as err:
         names = getattr(err, "names", ())
         where = "/".join(flag_of(n) for n in names)

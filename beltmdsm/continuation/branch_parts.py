@@ -178,6 +178,11 @@ class Branch:
     special: list[SpecialPoint]
 
     @property
+    def response(self) -> str:
+        """What the branch continues, in words (figure titles): ``"the 4T response"``."""
+        return "the T response" if self.periods == 1 else f"the {self.periods}T response"
+
+    @property
     def ends(self) -> tuple[SpecialPoint, SpecialPoint]:
         """The first and the last special point: where the branch ends both ways."""
         return self.special[0], self.special[-1]
@@ -271,10 +276,10 @@ class Branch:
             For another ``table``.
         """
         from .._display import label
-        from .._tables import frame
+        from .._tables import STATE_COLUMNS, frame
 
         if table == "points":
-            names = ["X1", "X1'", "X2", "X2'"][: len(self.points[0].state) if self.points else 4]
+            names = list(STATE_COLUMNS[: len(self.points[0].state) if self.points else 4])
             rows = [
                 {
                     self.param: p.value,

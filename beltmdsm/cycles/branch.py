@@ -29,9 +29,10 @@ scaled by the state's, the period's and the range's size:
   stability changes).
 * **Ends**: the range's bounds (``range``), or ``failed`` with the reason (no corrector
   converges even at the smallest step; the period grows past `PERIOD_LIMIT` times the
-  Hopf period, as towards a homoclinic orbit). A branch that shrinks back to a second
-  Hopf point is not recognised as such: it ends ``failed`` where the corrector no
-  longer converges near zero amplitude.
+  Hopf period, as towards a homoclinic orbit; the largest multiplier passes
+  `beltmdsm.cycles.continuation.MULTIPLIER_LIMIT`, beyond single shooting). A branch
+  that shrinks back to a second Hopf point is not recognised as such: it ends
+  ``failed`` where the corrector no longer converges near zero amplitude.
 
 Without a Hopf point in the range, the branch goes both ways through the cycle found
 at the model's value of the parameter (`beltmdsm.cycles.cycle.cycle`).
@@ -111,6 +112,11 @@ class CycleBranch(Branch):
     hopf: HopfPoint | None = None
     criticality: str | None = None
     wall_s: float = 0.0
+
+    @property
+    def response(self) -> str:
+        """``"self-excited cycles"`` (figure titles)."""
+        return "self-excited cycles"
 
     def __repr__(self) -> str:
         a, b = self.ends

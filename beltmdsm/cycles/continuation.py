@@ -31,6 +31,13 @@ __all__ = ["CyclePoint", "Continuation", "walk", "STEP_FIRST", "STEP_MIN", "STEP
 STEP_FIRST = 0.02
 STEP_MIN = 1e-7
 STEP_MAX = 0.2
+#: The parameter's scale is at most this many times the start's value (or 1).
+P_SCALE = 2.0
+#: A branch ends where a cycle's largest multiplier exceeds this: single shooting's
+#: corrector converges only within about ``1 / |mu|`` of the cycle (Stribeck's law at
+#: ``v_s = 0.12``: ``|mu| = 6e3``, steps of 1e-6 in ``v_s``, 2000 points without reaching
+#: the stick onset); the branches of the shipped laws in ``Vb`` stay below 20.
+MULTIPLIER_LIMIT = 1e3
 #: A branch ends where the period exceeds this many times the first one (the Hopf period).
 PERIOD_LIMIT = 50.0
 _CORRECTOR_ITER = 12
@@ -200,7 +207,12 @@ class Continuation:
 
     def __init__(self, flow: CycleFlow, lo: float, hi: float, sx: float, sT: float, x, p):
         self.flow, self.lo, self.hi = flow, lo, hi
-        self.sx, self.sT, self.sp = sx, sT, max((hi - lo) / 10.0, 1e-12)
+        # the parameter's scale: a tenth of the range, but at most `P_SCALE` times the
+        # start's size: a range out to 1e300 would otherwise make every step jump by
+        # 1e298 (issue 36, item 9); the branch then ends where it ends, as in a range
+        # that holds it
+        span = min((hi - lo) / 10.0, P_SCALE * max(1.0, abs(float(p))))
+        self.sx, self.sT, self.sp = sx, sT, max(span, 1e-12)
         self.hs = float(np.linalg.norm(flow.section_gradient(x, p))) * sx or 1.0
 
     def z(self, point) -> NDArray[np.float64]:
@@ -468,6 +480,18 @@ def walk(cont, first, tangent, period0):
                 continue
         points.append(new)
         tangent = t_new
+        if new.max_abs_multiplier > MULTIPLIER_LIMIT:
+            special.append(
+                _end(
+                    "failed",
+                    new,
+                    f"the cycle's largest multiplier reaches {new.max_abs_multiplier:.3g}: "
+                    "shooting over one period amplifies the run's rounding by it, and the "
+                    "corrector's steps shrink towards nothing (a cycle this unstable needs "
+                    "multiple shooting)",
+                )
+            )
+            return points, special
         if T > PERIOD_LIMIT * period0:
             special.append(
                 _end(

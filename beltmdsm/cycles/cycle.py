@@ -66,8 +66,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from beltmdsm.generated import hybrid, unforced
+from beltmdsm.generated import hybrid
 
+from .._tables import DataFrame
 from ..errors import NoPeriodicResponse
 from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.switching import Mode, Switching
@@ -78,6 +79,7 @@ from ..periodic.general import EventPeriod
 from ..periodic.margins import GRAZING_RATIO, crossing_ratio, orbit_range
 from ..periodic.newton import NEWTON_TOL
 from ..settings import SolverSettings
+from .returns import first_return, rest_step
 from .seed import (
     SEED_AMPLITUDE,
     SEED_PERIODS,
@@ -106,6 +108,8 @@ _DENSE_SAMPLES = 50
 #: over which the residual must halve (as `beltmdsm.periodic.newton.fixed_point`).
 _LINE_SEARCH = 8
 _STAGNATION = 2
+#: The most times a period is shortened to the least one (`beltmdsm.cycles.returns.first_return`).
+_DIVISIONS = 4
 
 
 @dataclass(repr=False, eq=False)
@@ -211,6 +215,24 @@ class Cycle:
             f"|mu_1 - 1|={abs(self.trivial_multiplier - 1):.1e}, residual={self.residual:.1e})"
         )
 
+    def to_pandas(self) -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas) of the three multipliers of the Poincare
+        map (the trivial one left out), as `beltmdsm.periodic.floquet.Floquet.to_pandas`:
+        ``multiplier``, ``abs``, ``angle`` [rad], ``rate = log|mu| / period`` [1/s].
+
+        Examples
+        --------
+        A stick phase collapses two of them to 0 (to rounding):
+
+        >>> from beltmdsm import Model, cycle
+        >>> table = cycle(Model(alpha=0.0, friction="stribeck", Vb=1.5)).to_pandas()
+        >>> table["abs"].round(3).tolist(), round(float(table["rate"].iloc[0]), 4)
+        ([0.224, 0.0, 0.0], -0.2251)
+        """
+        from .._tables import multiplier_frame
+
+        return multiplier_frame(self.multipliers, self.period)
+
     def as_dict(self) -> dict:
         """For JSON: the keys of ``floquet --json`` for a cycle (``autonomous: true``)."""
         stick = (
@@ -258,14 +280,11 @@ class _Shooting:
             backend="python", **model.arguments(hybrid.bind_mode_jacobian)
         )
         self.direction = section_direction(model)
-        # the variational equation in pieces of h |lambda| <= 1 for the eigenvalues of
-        # steady sliding: over a long stick the normal motion sits still and the run's
-        # steps grow to seconds (`beltmdsm.periodic.variational.split_pieces`)
-        J = np.array(
-            unforced.jacobian_at_equilibrium(**model.arguments(unforced.jacobian_at_equilibrium)),
-            dtype=float,
-        ).reshape(4, 4)
-        self.max_piece = 1.0 / max(float(np.max(np.abs(np.linalg.eigvals(J)))), model["omega1"])
+        # the run's steps and the variational equation's pieces keep h |lambda| <= 1 for
+        # the motion that rests while the mass sticks (`beltmdsm.cycles.returns.rest_step`):
+        # over a long stick the steps would grow to seconds; in slip the state moves,
+        # and the step control bounds them
+        self.max_step = self.max_piece = rest_step(model)
 
     def flow(self, x: NDArray[np.float64], T: float):
         """``(phi_T(x), M, period, f(phi_T(x)))``: the run of ``T`` from ``x`` and its monodromy."""
@@ -280,7 +299,7 @@ class _Shooting:
             backend=self.backend,
         )
         try:
-            run = integrate_events(self.model, settings, y0=x)
+            run = integrate_events(self.model, settings, y0=x, max_step=self.max_step)
         except StepTooSmall as err:
             raise NoPeriodicResponse(f"no self-excited cycle found: {err}") from None
         if run.status != "done":
@@ -299,7 +318,11 @@ class _Shooting:
         whether ``x`` lies on the section's side (`_on_side`)."""
         mode = self.mode(x)
         f = np.array(self.sw.field(0.0, *x, float(mode)), dtype=float)
-        grad = np.array(self.jacobian(0.0, *x, float(mode)), dtype=float).reshape(4, 4)[1]
+        # the generated Jacobian evaluates every mode's branch: Stribeck's exp(|Vr| / v_s)
+        # of the other slip direction overflows far from the belt's speed, unused
+        with np.errstate(over="ignore"):
+            jac = np.array(self.jacobian(0.0, *x, float(mode)), dtype=float)
+        grad = jac.reshape(4, 4)[1]
         return float(f[1]), grad, self._on_side(mode, f, grad)
 
     def _on_side(self, mode: Mode, f: NDArray[np.float64], grad: NDArray[np.float64]) -> bool:
@@ -343,6 +366,9 @@ def cycle(
     Returns
     -------
     Cycle
+        At its least period: where the orbit passes its state on the section earlier
+        (``period`` a multiple of it), it is shot again with the shorter one
+        (`beltmdsm.cycles.returns.first_return`).
 
     Raises
     ------
@@ -376,6 +402,16 @@ def cycle(
         raise ValueError(f"period must be a finite number > 0 with a guess; got {period!r}")
     shoot = _Shooting(model, backend)
     x, T, (end, M, run, f_end), residual, iterations = _newton(shoot, x, float(period), max_iter)
+    # the least period: where the orbit passes its state earlier, T is a multiple of it
+    for _ in range(_DIVISIONS):
+        shorter = first_return(shoot.sw, run, x, shoot.direction, T)
+        if shorter is None:
+            break
+        try:
+            x, T, (end, M, run, f_end), residual, more = _newton(shoot, x, shorter, max_iter)
+        except NoPeriodicResponse:
+            break  # passes close by, without closing (near a period doubling)
+        iterations += more
     return _cycle_of(shoot, x, T, M, run, residual, iterations)
 
 

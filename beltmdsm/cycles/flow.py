@@ -38,6 +38,7 @@ from ..model import Backend, Model
 from ..periodic import variational
 from ..periodic.base import RTOL
 from ..settings import SolverSettings
+from .returns import rest_step
 
 __all__ = ["CycleFlow", "FlowImage", "Observables", "orbit_observables", "split_multipliers"]
 
@@ -311,7 +312,9 @@ class CycleFlow:
             t_end=float(T), rtol=RTOL, atol=RTOL, dt=T / 50, t_discard=0.0, backend=self.backend
         )
         try:
-            run = integrate_events(model, settings, y0=np.array(x, dtype=float))
+            run = integrate_events(
+                model, settings, y0=np.array(x, dtype=float), max_step=rest_step(model)
+            )
         except StepTooSmall as err:
             raise NoPeriodicResponse(f"cycle's flow: {err}") from None
         if run.status != "done":

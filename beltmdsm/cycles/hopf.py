@@ -266,7 +266,16 @@ def hopf_points(model: Model, param: str, lo: float, hi: float) -> list[HopfPoin
                 return float(_real_part(eigenvalues_over(model, param, [v]), k)[0])
 
             a, b = grid[i], grid[i + 1]
-            value = a if re[i] == 0 else b if re[i + 1] == 0 else brentq(f, a, b, xtol=HOPF_TOL)
+            # Brent's method halves a bracket at worst every other step: enough steps
+            # for any bracket down to HOPF_TOL (a range up to 1e300 takes ~2000)
+            n = 2 * math.ceil(math.log2(max((b - a) / HOPF_TOL, 2.0))) + 100
+            value = (
+                a
+                if re[i] == 0
+                else b
+                if re[i + 1] == 0
+                else brentq(f, a, b, xtol=HOPF_TOL, maxiter=n)
+            )
             accuracy = (b - a) if re[i] == 0 else HOPF_TOL
             point = _at(model, param, float(value), k, name, accuracy, (lo, hi))
             if point is not None:

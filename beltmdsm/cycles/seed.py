@@ -21,10 +21,9 @@ from beltmdsm.generated import unforced
 
 from ..errors import NoPeriodicResponse
 from ..excitation import initial_state, is_autonomous
-from ..integrate.events import StepTooSmall, integrate_events
-from ..integrate.switching import SURFACE_INDEX, Switching
+from ..integrate.switching import SURFACE_INDEX, Mode, Switching
 from ..model import Backend, Model, as_model
-from ..settings import SolverSettings
+from .returns import run_from, section_returns, stick_slip_start
 
 __all__ = [
     "seed_cycle",
@@ -194,10 +193,13 @@ def seed_cycle(
     perturbation is given, the run starts where a stick ends instead (`stick_end`):
     every stick-slip cycle passes there, so a stick-slip cycle that coexists with
     stable sliding is found (it is superstable: one slip phase later the run is on it),
-    and where none does the run decays. It goes on in chunks until its returns to the
-    section (module docstring) repeat to `SETTLE_TOL`; the period is the time between
-    the last two returns that match (several turns where the cycle has several extrema
-    of the same depth).
+    and where none does the run decays. Once the run sticks, the cycle is the run from
+    that stick end to the next (`beltmdsm.cycles.returns.stick_slip_start`: one state,
+    the least period); a chunk spent sticking has not decayed. Otherwise the run goes
+    on in chunks until its returns to the section (module docstring) repeat to
+    `SETTLE_TOL`; the period is the time between the last two returns that match
+    (several turns where the cycle has several extrema of the same depth; `cycle`
+    shortens a multiple of the least period).
 
     Parameters
     ----------
@@ -338,35 +340,45 @@ def stick_end(model: Model) -> NDArray[np.float64] | None:
 
 
 def _settle(model, y, start, t_end, turn, backend):
-    """Run from ``y`` until the returns to the section repeat: ``(state, period)``."""
+    """Run from ``y`` until the returns to the section repeat: ``(state, period)``.
+
+    A run that sticks is on the stick-slip cycle through the stick end, if any
+    (`beltmdsm.cycles.returns.stick_slip_start`): that cycle is shot from there, at its
+    least period. A chunk spent sticking has ``X1'`` at the belt's speed throughout:
+    it has not decayed to steady sliding.
+    """
     vb = float(model["Vb"])
     x0 = initial_state(model)
     sw = Switching(model)
     d = section_direction(model)
     chunk = 10 * turn
-    t, returns, first_amplitude = 0.0, [], None
+    t, returns, first_amplitude, tried_stick = 0.0, [], None, False
     while t < t_end:
         t1 = min(t + chunk, t_end)
         chunk = min(2 * chunk, _SEED_CHUNK * turn)
-        settings = SolverSettings(
-            t_end=t1, rtol=1e-10, atol=1e-10, dt=(t1 - t) / 400, t_discard=t, backend=backend
-        )
         try:
-            run = integrate_events(model, settings, y0=y, t0=t)
-        except StepTooSmall as err:
-            raise NoPeriodicResponse(f"no self-excited cycle from {start}: {err}") from None
-        if run.status != "done":
-            raise NoPeriodicResponse(f"no self-excited cycle from {start}: {run.message}")
+            run = run_from(model, y, t, t1, backend, 1e-10)
+        except NoPeriodicResponse as err:
+            why = str(err).replace("no self-excited cycle found: ", "")
+            raise NoPeriodicResponse(f"no self-excited cycle from {start}: {why}") from None
         tr = run.trajectory
+        stuck = tr.time_in_modes(t, t1)[Mode.STICK] > 0
+        if stuck and not tried_stick:
+            tried_stick = True
+            end = stick_end(model)
+            found = None if end is None else stick_slip_start(model, end, d, t_end, backend)
+            if found is not None:
+                return found
         amplitude = _velocity_spread(tr, turn)
         if first_amplitude is None:
             first_amplitude = amplitude
-        if amplitude <= _DECAYED * abs(vb):
+        if amplitude <= _DECAYED * abs(vb) and not stuck:
             raise NoPeriodicResponse(
                 f"no self-excited cycle from {start}: the run decays to steady sliding at "
                 f"Vb={vb:g} (X1' varies by {amplitude:.1e} m/s at t = {t1:g} s)"
             )
-        returns += _section_returns(sw, tr, d, turn)
+        spans = [(seg.t0, seg.t1, seg.mode) for seg in tr.segments]
+        returns += section_returns(sw, tr.state, spans, d, turn / _SECTION_SAMPLES)
         found = _settled(returns, amplitude, x0)
         if found is not None:
             return found
@@ -388,42 +400,6 @@ def _velocity_spread(tr, turn):
     t = np.linspace(t0, tr.t_end, int((tr.t_end - t0) / turn * 16) + 2)
     v = tr.state(t)[1]
     return float(np.max(v) - np.min(v))
-
-
-def _section_returns(sw, tr, d, turn):
-    """``(t, state, depth)`` of the interior extrema of ``X1'`` in the slip mode ``d``.
-
-    ``depth`` is ``d X1'``: the largest is the section's point (module docstring).
-    """
-    out = []
-    step = turn / _SECTION_SAMPLES
-    for seg in tr.segments:
-        if seg.mode != d or seg.t1 - seg.t0 < 2 * step:
-            continue
-        t = np.linspace(seg.t0, seg.t1, int((seg.t1 - seg.t0) / step) + 2)
-        w = d * tr.state(t)[1]
-        for k in np.flatnonzero((w[1:-1] > w[:-2]) & (w[1:-1] >= w[2:])) + 1:
-            s = _extremum(sw, tr, d, t[k - 1], t[k + 1])
-            state = tr.state(np.array([s]))[:, 0]
-            out.append((s, state, d * state[1]))
-    return out
-
-
-def _extremum(sw, tr, d, a, b):
-    """Where ``X1''`` vanishes in ``[a, b]`` (slip mode ``d``), by bisection on the field."""
-
-    def accel(s):
-        return float(sw.field(s, *tr.state(np.array([s]))[:, 0], float(d))[1])
-
-    fa = accel(a)
-    while b - a > 1e-13 * max(1.0, abs(b)):
-        m = 0.5 * (a + b)
-        fm = accel(m)
-        if (fm > 0) == (fa > 0):
-            a, fa = m, fm
-        else:
-            b = m
-    return 0.5 * (a + b)
 
 
 def _settled(returns, amplitude, equilibrium):

@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 from beltmdsm.generated import hybrid
 
 from ..model import Model
+from ..settings import fastest_rate
 
 __all__ = ["Mode", "MODE_NAMES", "SURFACE_INDEX", "TIE_ULPS", "EVENT_KINDS", "Switching"]
 
@@ -142,6 +143,7 @@ class Switching:
             )
         )
         self.Vb = model["Vb"]
+        self.rate = fastest_rate(model)
         self.guards = {}
         for name, guards in hybrid.GUARDS[model.tension].items():
             self.guards[Mode[name.upper()]] = (
@@ -218,6 +220,35 @@ class Switching:
         if target == hybrid.DECIDE_CONTACT:
             return self.decide_contact(t, y)
         return Mode[target.upper()]
+
+    def holds(self, mode: Mode, guard: int, t: float, y: ArrayLike) -> NDArray[np.float64] | None:
+        """Where friction still holds a mass whose stick limit was crossed: the state put
+        back inside the limit, or None where the mass slips.
+
+        A crossing lies on its limit within the tie; where the limit's rate along stick
+        is not negative beyond its rounding (`TIE_ULPS` ulps of the limit's scale per
+        ``1 / fastest_rate``), the margin is not shrinking: a mass at rest exactly on
+        the friction limit, the rounding of the normal motion taking the margin an ulp
+        below zero and back, stays stuck. The state is then moved by the fewest ulps of
+        ``X1`` (at most `TIE_ULPS`) that make the margin positive, as `project` puts a
+        crossing exactly on its surface, so that the integrator starts inside the mode.
+        """
+        surface = self.guards[mode][2][guard][0]
+        if mode != Mode.STICK or surface not in ("stick_forward", "stick_back"):
+            return None
+        i = SURFACE_INDEX[surface]
+        h, tol = self.ties(t, y)
+        if h[1] + h[2] <= tol[1] + tol[2] or abs(h[i]) > tol[i]:
+            return None
+        if self.rates(t, *y, float(Mode.STICK))[i] < -tol[i] * self.rate:
+            return None
+        for direction in (np.inf, -np.inf):
+            moved = np.array(y, dtype=float)
+            for _ in range(TIE_ULPS):
+                moved[0] = np.nextafter(moved[0], direction)
+                if self.surfaces(t, *moved)[i] > 0:
+                    return moved
+        return None
 
     def project(self, mode: Mode, guard: int, y: ArrayLike) -> NDArray[np.float64]:
         """``y`` put exactly on the surface it has crossed, where that is a coordinate.

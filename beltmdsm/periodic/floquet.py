@@ -30,6 +30,18 @@ The results say which (``engine``); where both apply they agree to 1e-9.
   (`beltmdsm.periodic.margins.GRAZING_RATIO`) is reported as grazing, and no
   multiplier is returned for it.
 
+* **The error floor.** The monodromy is a product of the propagators of the run's
+  steps, each good to about the orbits' tolerance ``RTOL``
+  (`beltmdsm.periodic.base.RTOL`) of the largest transition it carries; over a period
+  of ``T`` the steps number about ``T`` times the model's fastest rate
+  (`beltmdsm.settings.fastest_rate`), and their errors add, unamplified where the flow
+  contracts. A multiplier below ``floor = FLOOR_FACTOR RTOL (1 + T rate)
+  max(1, |mu|_max)`` is not resolved: it is reported as below the floor
+  (``below_floor``; the text prints ``|mu| < floor``, and a growth rate whose
+  multiplier is below it is ``growth rate < ln(floor) / (k T)``), not as a number.
+  At ``Omega = 0.001`` the normal block's multiplier came out 2.98e-7 where it is
+  ``exp(-0.225 T) = 1e-614``.
+
 `floquet` reports the multipliers, the largest modulus, the growth rate per unit time
 ``log|mu| / (k T)``, the frequency of the critical pair ``|arg mu| / (k T)`` (to
 compare with omega1; it is defined modulo ``2 pi / (k T)``) and the verdict. The
@@ -45,16 +57,25 @@ from typing import Any, Literal
 
 import numpy as np
 
+from .._tables import DataFrame
 from ..integrate.switching import Mode
 from ..model import Backend, Model, as_model
-from .base import Engine
+from ..settings import fastest_rate
+from .base import RTOL, Engine
 from .response import PeriodicResponse
 from .shooting import FORWARD_PERIODS, periodic_response
 
 __all__ = [
     "Floquet",
     "floquet",
+    "FLOOR_FACTOR",
 ]
+
+#: The error of the multipliers per ``RTOL (1 + T rate)`` (module docstring): measured
+#: at most 8.4 over the base set at Omega = 0.001 to 0.05 (closed-form path, normal
+#: block against its exact ``exp(lambda T)``; at Omega = 0.001 its 2.98e-7 against
+#: 0), rounded up to 64.
+FLOOR_FACTOR = 64.0
 
 
 @dataclass
@@ -96,6 +117,10 @@ class Floquet:
         A self-excited cycle of a model without excitation.
     trivial_multiplier : complex or None
         A cycle's multiplier along the flow.
+    floor : float
+        The multipliers' error floor (module docstring, `FLOOR_FACTOR`): a multiplier
+        below it is not resolved (``below_floor``; ``growth_bound`` where the largest
+        is). 0.0 for a cycle (its multipliers are `beltmdsm.cycles.cycle`'s).
 
     See Also
     --------
@@ -112,7 +137,7 @@ class Floquet:
     >>> f.n_reversals, f.n_sticks, f.response.periods
     (0, 0, 1)
     >>> sorted(f.as_dict())[:4]
-    ['autonomous', 'engine', 'frequency', 'grazing']
+    ['autonomous', 'below_floor', 'engine', 'floor']
     """
 
     multipliers: np.ndarray
@@ -127,6 +152,20 @@ class Floquet:
     response: PeriodicResponse = field(repr=False)
     autonomous: bool = False
     trivial_multiplier: complex | None = None
+    floor: float = 0.0
+
+    @property
+    def below_floor(self) -> np.ndarray:
+        """Which multipliers lie below the error floor (``floor``): not resolved."""
+        return np.abs(self.multipliers) < self.floor
+
+    @property
+    def growth_bound(self) -> float | None:
+        """``ln(floor) / (k T)`` where even the largest multiplier is below the floor
+        (the growth rate is below it, no number), else None."""
+        if not self.max_abs_multiplier < self.floor:
+            return None
+        return math.log(self.floor) / self.period
 
     @classmethod
     def of(cls, resp: PeriodicResponse) -> Floquet:
@@ -191,6 +230,8 @@ class Floquet:
         k = int(np.argmax(np.abs(mu)))
         biggest = float(abs(mu[k]))
         growth = math.log(biggest) / resp.period if biggest > 0 else -math.inf
+        steps = 1.0 + resp.period * fastest_rate(resp.model)
+        floor = FLOOR_FACTOR * RTOL * steps * max(1.0, biggest)
         return cls(
             mu,
             biggest,
@@ -202,6 +243,7 @@ class Floquet:
             None,
             resp.period,
             resp,
+            floor=floor,
         )
 
     @classmethod
@@ -253,16 +295,53 @@ class Floquet:
         )
         if self.stable is None:
             return block(head, [f"grazing: {self.grazing}"])
-        mus = ", ".join(f"{z.real:.6g}{z.imag:+.6g}j" for z in self.multipliers)
         return block(
             head,
             [
-                f"max |mu| = {self.max_abs_multiplier:.6g}, growth rate "
-                f"{self.growth_rate:.6g} 1/s, critical pair at {self.frequency:.6g} rad/s",
-                f"multipliers: {mus}",
+                f"{self.largest_text()}, critical pair at {self.frequency:.6g} rad/s",
+                f"multipliers: {self.multipliers_text()}",
                 f"{self.n_reversals} reversals and {self.n_sticks} sticks per orbit",
             ],
         )
+
+    def to_pandas(self) -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas) of the multipliers, one row each in the
+        order of ``multipliers``: ``multiplier``, ``abs``, ``angle`` [rad] and ``rate =
+        log|mu| / period`` [1/s] (`beltmdsm._tables.multiplier_frame`), and
+        ``below_floor``: the modulus is under the computation's error floor (`floor`),
+        so that only its bound is known.
+
+        Examples
+        --------
+        >>> from beltmdsm import floquet
+        >>> table = floquet(Vb=12.0).to_pandas()
+        >>> list(table), len(table)
+        (['multiplier', 'abs', 'angle', 'rate', 'below_floor'], 4)
+        >>> round(float(table["rate"].max()), 3)  # the growth rate
+        -0.1
+        """
+        from .._tables import multiplier_frame
+
+        table = multiplier_frame(self.multipliers, self.period)
+        table["below_floor"] = self.below_floor
+        return table
+
+    def multipliers_text(self) -> str:
+        """The multipliers, those below the error floor as ``|mu| < floor``."""
+        return ", ".join(
+            f"|mu| < {self.floor:.1e}" if low else f"{z.real:.6g}{z.imag:+.6g}j"
+            for z, low in zip(self.multipliers, self.below_floor)
+        )
+
+    def largest_text(self) -> str:
+        """The largest modulus and the growth rate, or the bound where below the floor."""
+        bound = self.growth_bound
+        if bound is not None:
+            return (
+                f"max |mu| below the error floor {self.floor:.1e} of the computation: "
+                f"growth rate < {bound:.6g} 1/s"
+            )
+        return f"max |mu| = {self.max_abs_multiplier:.6g}, growth rate {self.growth_rate:.6g} 1/s"
 
     def as_dict(self) -> dict:
         """The JSON-able summary (the keys of ``python -m beltmdsm floquet --json``).
@@ -281,8 +360,11 @@ class Floquet:
             }
         return {
             "multipliers": [[float(z.real), float(z.imag)] for z in self.multipliers],
+            "floor": self.floor,
+            "below_floor": [bool(b) for b in self.below_floor],
             "max_abs_multiplier": self.max_abs_multiplier,
-            "growth_rate": self.growth_rate,
+            "growth_rate": None if self.growth_bound is not None else self.growth_rate,
+            "growth_rate_below": self.growth_bound,
             "frequency": self.frequency,
             "stable": self.stable,
             "n_reversals": self.n_reversals,

@@ -204,10 +204,13 @@ def orbit_range(runs: list, component: int = 1) -> tuple[float, float]:
             for sign in (1.0, -1.0):
                 k = int(np.argmax(sign * v))
                 extreme = float(v[k])
-                if 0 < k < v.size - 1:
+                # refined also at an end sample: the extreme may lie between it and its
+                # neighbour (X1's least value 1.3 ms before a stick begins, issue 36)
+                a, b = t[max(k - 1, 0)], t[min(k + 1, v.size - 1)]
+                if b > a:
                     res = optimize.minimize_scalar(
                         lambda s, run=run, index=index, sign=sign: -sign * value(run, index, s),
-                        bounds=(t[k - 1], t[k + 1]),
+                        bounds=(a, b),
                         method="bounded",
                         options={"xatol": 1e-12},
                     )

@@ -112,9 +112,12 @@ def energy_bound(
     the energy by about ``tol`` of the energy level; relative to the total work, the
     imbalance is then of the order of ``tol (1 + energy_level / work_total)``. The
     bound is ``ENERGY_RESIDUAL_FACTOR`` times that, at least
-    `ENERGY_RESIDUAL_FLOOR` and at most `ENERGY_RESIDUAL_MAX`. (Where nothing moves
-    but the integration error, without excitation, the total work is of the order
-    of the error and the ratio carries no information: the bound is then the cap.)
+    `ENERGY_RESIDUAL_FLOOR` and at most `ENERGY_RESIDUAL_MAX`, but where nothing
+    moves but the integration error (a mass at rest without excitation: the total
+    work at or below ``ENERGY_RESIDUAL_FACTOR tol`` of the energy level), where it is
+    not capped: the imbalance is then held to the error of the energy itself,
+    ``|imbalance| <= ENERGY_RESIDUAL_FACTOR tol (energy_level + work_total)``, and a
+    work of the order of that error divides nothing into a residual that means anything.
     A larger residual means the run did not keep its tolerances, or they are too
     loose to trust: `summarize` then sets ``energy_ok`` False and says so in
     ``warnings``.
@@ -145,8 +148,15 @@ def energy_bound(
     6.4e-05
     >>> energy_bound(1e-2, 1e-10)  # a tolerance too loose to trust: the cap
     0.0001
+    >>> at_rest = energy_bound(1e-10, 1e-10, energy_level=100.0, work_total=1e-11)
+    >>> round(at_rest * 1e-11, 12)  # the imbalance allowed: 64 tol of the energy level
+    6.4e-07
     """
     tol = max(rtol, atol)
     ratio = energy_level / work_total if work_total > 0 else math.inf
     scaled = ENERGY_RESIDUAL_FACTOR * tol * (1.0 + ratio)
+    if ratio * ENERGY_RESIDUAL_FACTOR * tol >= 1.0:
+        # nothing moves but the integration error: the imbalance against the error of
+        # the energy itself, uncapped
+        return float(max(ENERGY_RESIDUAL_FLOOR, scaled))
     return float(max(ENERGY_RESIDUAL_FLOOR, min(scaled, ENERGY_RESIDUAL_MAX)))

@@ -42,6 +42,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from .._tables import DataFrame
 from ..attractors.classification import KINDS, Attractor, classify, periodic_attractor
 from ..attractors.landing import (
     IDENTIFY_TOL,
@@ -209,6 +210,41 @@ class Basins:
             },
             "unidentified": int(np.sum(self.labels < 0)),
         }
+
+    def to_pandas(self, table: str = "starts") -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas) of the ``"starts"`` (one row per start of
+        the grid: its two coordinates, named by the axes, the ``label`` of the attractor
+        it reaches, -1 where none, and the ``periods`` it was iterated) or of the
+        ``"attractors"`` (``label``, ``kind``, ``periods``, ``rotation_number``,
+        ``lyapunov``, ``lyapunov_error``, ``fraction``).
+
+        Raises
+        ------
+        ValueError
+            For another ``table``.
+
+        Examples
+        --------
+        >>> from beltmdsm import Model, basins
+        >>> b = basins(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+        >>> starts = b.to_pandas()
+        >>> list(starts), len(starts), starts["label"].tolist()[:3]
+        (['X1', 'Y1', 'label', 'periods'], 9, [1, 1, 1])
+        >>> b.to_pandas("attractors")[["kind", "periods"]].values.tolist()
+        [['periodic', 1], ['periodic', 4]]
+        """
+        from .._tables import frame
+
+        if table == "starts":
+            xx, yy = np.meshgrid(self.xs, self.ys)
+            rows = {self.x: xx.ravel(), self.y: yy.ravel(), "label": self.labels.ravel(),
+                    "periods": self.periods.ravel()}  # fmt: skip
+            return frame(rows, list(rows))
+        if table == "attractors":
+            columns = ["label", "kind", "periods", "rotation_number", "lyapunov",
+                       "lyapunov_error", "fraction"]  # fmt: skip
+            return frame([a.as_dict() for a in self.attractors], columns)
+        raise ValueError(f"table must be 'starts' or 'attractors'; got {table!r}")
 
     def plot(self, ax: Any = None) -> Any:
         """The basin map: one colour per attractor, a legend with its kind and share, on

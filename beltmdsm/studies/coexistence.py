@@ -44,6 +44,7 @@ from typing import Any
 import numpy as np
 
 from .._calling import ranged
+from .._tables import DataFrame
 from ..arguments import count
 from ..continuation.branch import Branch, continue_branch
 from ..errors import NoPeriodicResponse, Refused
@@ -74,6 +75,14 @@ __all__ = [
 DEFAULT_STEP = 0.5
 #: Duration of the runs from rest that seed the branches [s].
 SEED_T_END = 600.0
+#: A run whose ``k``-returns ``|y(nT + kT) - y(nT)|`` fall from each quarter of its
+#: samples to the next, and by this factor or more from the first to the last, is still
+#: converging onto a ``k T`` response (`_converging`; Newton's method from its last
+#: sample then decides): at Vb = 4 the ladder continued up from 2.5 spirals into the T
+#: response (|mu| = 0.995 per period: its 1-returns fall from 0.066 to 0.038 over 150
+#: periods) and is not yet within `beltmdsm.periodic.locked.LOCK_TOL`; the returns of
+#: a torus (Vb = 3.5 from rest: 4.43 and 4.39) do not fall.
+_CONVERGING = 0.8
 #: A seed lies on a known branch when the branch, interpolated between its points,
 #: comes this close (relative) to it; Newton's method from there then decides.
 _NEAR = 1e-2
@@ -303,6 +312,56 @@ class Coexistence:
             lines,
         )
 
+    def to_pandas(self, table: str = "stable") -> DataFrame:
+        """A `pandas.DataFrame` (needs pandas) of the ``"stable"`` parts (one row per
+        stable part of each response: ``response``, ``periods``, ``lo``, ``hi`` and the
+        kinds of its ``lower`` and ``upper`` edges) or of the coexistence ``"ranges"``
+        (``lo``, ``hi``, ``responses`` joined by commas, ``lower``, ``upper``).
+
+        Raises
+        ------
+        ValueError
+            For another ``table``.
+
+        Examples
+        --------
+        >>> from beltmdsm import Model
+        >>> empty = Coexistence("Vb", 1.0, 2.0, Model(), [], [], [], [], wall_s=0.1)
+        >>> list(empty.to_pandas())
+        ['response', 'periods', 'lo', 'hi', 'lower', 'upper']
+        >>> list(empty.to_pandas("ranges"))
+        ['lo', 'hi', 'responses', 'lower', 'upper']
+        """
+        from .._tables import frame
+
+        if table == "stable":
+            rows = [
+                {
+                    "response": r.name,
+                    "periods": r.branch.periods,
+                    "lo": p.range[0],
+                    "hi": p.range[1],
+                    "lower": p.lower,
+                    "upper": p.upper,
+                }  # fmt: skip
+                for r in self.responses
+                for p in r.stable
+            ]
+            return frame(rows, ["response", "periods", "lo", "hi", "lower", "upper"])
+        if table == "ranges":
+            rows = [
+                {
+                    "lo": c.range[0],
+                    "hi": c.range[1],
+                    "responses": ", ".join(c.responses),
+                    "lower": c.lower,
+                    "upper": c.upper,
+                }  # fmt: skip
+                for c in self.ranges
+            ]
+            return frame(rows, ["lo", "hi", "responses", "lower", "upper"])
+        raise ValueError(f"table must be 'stable' or 'ranges'; got {table!r}")
+
     def plot(self, ax: Any = None, observable: str = "X1'_amplitude") -> Any:
         """Each response's bifurcation diagram (``observable`` against the parameter,
         stable solid, unstable dashed), the coexistence ranges shaded, on matplotlib
@@ -331,6 +390,22 @@ class Coexistence:
             "seed_step": self.seed_step,
             "n_seeds": self.n_seeds,
         }
+
+
+def _converging(samples, limit):
+    """The least ``k <= limit`` whose returns fall from quarter to quarter of the samples,
+    by `_CONVERGING` in all (a run still converging onto a ``k T`` response), or None."""
+    y = np.asarray(samples, dtype=float)
+    for k in range(1, limit + 1):
+        r = np.max(np.abs(y[k:] - y[:-k]), axis=1)
+        q = r.size // 4
+        if q < 2:
+            continue
+        quarters = [float(np.median(r[i * q : (i + 1) * q])) for i in range(4)]
+        falling = all(b < a for a, b in zip(quarters, quarters[1:]))
+        if falling and quarters[-1] <= _CONVERGING * quarters[0]:
+            return k
+    return None
 
 
 def _on_branch(branch, value, k, phases):
@@ -488,10 +563,18 @@ def coexistence(
             break
 
     def examine(v, strobe):
-        if strobe.candidate is None:
+        k = strobe.candidate
+        if k is None:  # still converging onto a lock, where Newton's method converges
+            k = _converging(strobe.samples, limit)
+            try:
+                if k is not None:
+                    shoot(model.replace(**{param: float(v)}), k, strobe.samples[-1], backend)
+            except NoPeriodicResponse:
+                k = None
+        if k is None:
             unlocked.append(Unlocked(float(v), NotLocked.of(strobe)))
         else:
-            seeds.append((float(v), strobe.candidate, strobe.samples[-1], strobe.source))
+            seeds.append((float(v), k, strobe.samples[-1], strobe.source))
 
     for v in grid:
         at = model.replace(**{param: float(v)})

@@ -13,9 +13,8 @@ that seed the search are `beltmdsm.studies.seeds`.
   each with its multipliers, the amplitude of ``X1'`` and where it was found; the
   attractors that do not lock, with the evidence (`beltmdsm.periodic.locked.NotLocked`).
   Without excitation (`beltmdsm.excitation.is_autonomous`): the self-excited cycles
-  (`beltmdsm.cycles.cycle`), from the run off perturbed steady sliding and from
-  cycles continued up and down in ``Vb`` (a cycle that coexists with stable steady
-  sliding is found only so).
+  (`beltmdsm.cycles.cycle`), from the run off perturbed steady sliding (where that is
+  stable, from the end of a stick) and from cycles continued up and down in ``Vb``.
 """
 
 from __future__ import annotations
@@ -530,7 +529,7 @@ def cycle_responses(
     >>> round(found.responses[0].amplitude, 2), found.failed
     (1.34, [])
     """
-    from ..cycles.cycle import cycle, seed_cycle
+    from ..cycles.cycle import cycle, seed_cycle, unstable_pair
 
     found, failed = [], []
 
@@ -541,7 +540,13 @@ def cycle_responses(
         else:
             known.sources.append(source)
 
-    source = "the run off perturbed steady sliding"
+    # where steady sliding is stable the seed's run starts where a stick ends
+    # (`beltmdsm.cycles.seed.seed_cycle`)
+    source = (
+        "the run off perturbed steady sliding"
+        if unstable_pair(model)[0].real > 0
+        else "the run from the end of a stick"
+    )
     try:
         x, T = seed_cycle(model, backend=backend)
         c = cycle(model, x, T, backend=backend)

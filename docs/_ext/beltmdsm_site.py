@@ -4,6 +4,7 @@
   the module that holds it, so that a name added to the public API joins the reference
   without an edit here;
 * ``reference/laws.rst``: the laws of the registry and every parameter;
+* ``reference/models.rst``: the registered models, their parameters and modes;
 * ``reference/generated.rst``: an autosummary of every module of ``generated/`` (what
   ``python -m derive`` writes), each with its functions;
 * ``tutorials/notebooks.rst``, and in ``tutorials/notebooks/`` links to
@@ -214,6 +215,68 @@ def laws_page() -> str:
     return "\n".join(lines + [""])
 
 
+def models_page() -> str:
+    """``reference/models.rst``: the registered models, their parameters and what each
+    supports, from ``beltmdsm.generated.models`` (derive/models/ wrote it), so that a model
+    joins the page when ``python -m derive`` adds it."""
+    from beltmdsm.generated.models import MODELS, load
+
+    lines = [
+        ".. This page is written by docs/_ext/beltmdsm_site.py from beltmdsm.generated.models.",
+        "",
+        "Models",
+        "======",
+        "",
+        "The registered models, one entry each in ``derive/models/entries.py``",
+        "(:doc:`../howto/own_model` adds one), the default first. Each has a generated",
+        "module ``beltmdsm.generated.models.<name>`` with its hybrid system (modes, surfaces,",
+        "saltation matrices, mode Jacobians, the derived holding force of stick) and its",
+        "steady sliding (equilibrium, characteristic polynomial, Hurwitz determinants).",
+    ]
+    for name in MODELS:
+        m = load(name)
+        modes = ", ".join(f"``{k}`` ({v})" for k, v in m.MODES.items())
+        excitation = ", ".join(
+            f"``{x[0]}`` (``{x[1]}``, ``{x[2]}``, ``{x[3]}``)" for x in m.EXCITATION
+        )
+        absent = ", ".join(f"``{k}``" for k in m.ABSENT) or "none"
+        default = " (default)" if name == MODELS[0] else ""
+        title = f"``{name}``{default}"
+        lines += [
+            "",
+            title,
+            "-" * len(title),
+            "",
+            _rst_text(m.SUMMARY) + ".",
+            "",
+            f"* states: {', '.join(f'``{s}``' for s in m.STATES)}",
+            f"* contact: {'unilateral (flight possible)' if m.UNILATERAL else 'bilateral'}",
+            f"* modes: {modes}",
+            f"* friction laws: {', '.join(f'``{law}``' for law in m.FRICTION_LAWS)}",
+            f"* excitation: {excitation or 'none'}",
+            "* equilibrium: "
+            + "; ".join(f"``{law}``: {_rst_text(path)}" for law, path in m.EQUILIBRIUM.items()),
+            f"* the paper's own pieces absent: {absent}",
+            "",
+            ".. list-table::",
+            "   :header-rows: 1",
+            "   :widths: 14 10 10 66",
+            "",
+            "   * - parameter",
+            "     - unit",
+            "     - default",
+            "     - meaning",
+        ]
+        for p in m.DEFAULTS:
+            lines += [
+                f"   * - ``{p}``",
+                f"     - {_rst_text(m.UNITS[p])}",
+                f"     - {m.DEFAULTS[p]:g}",
+                f"     - {_rst_text(m.DESCRIPTIONS[p])}",
+            ]
+    return "\n".join(lines + [""])
+
+
 def link_notebooks() -> None:
     """Link ``notebooks/*.ipynb`` and ``_nbutil.py`` into ``tutorials/notebooks/``.
 
@@ -268,6 +331,7 @@ def generate(app, config=None) -> None:
     _write(DOCS / "reference" / "api.rst", api_page())
     _write(DOCS / "reference" / "generated.rst", generated_page())
     _write(DOCS / "reference" / "laws.rst", laws_page())
+    _write(DOCS / "reference" / "models.rst", models_page())
     _write(DOCS / "tutorials" / "notebooks.rst", notebook_index())
     link_notebooks()
 

@@ -157,3 +157,82 @@ def test_the_command_line_draws_a_png(argv, tmp_path, capsys):
     assert main([*argv, "--png", str(path)]) == 0
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert f"drawn to {path}" in capsys.readouterr().out
+
+
+def _title_and_legend(ax):
+    legend = ax.get_legend()
+    return ax.get_title(), [t.get_text() for t in legend.get_texts()] if legend else None
+
+
+def test_every_figure_has_a_legend_and_a_title_naming_what_it_draws(small_results, ax):
+    """Issue 37 item 3: a figure is read alone, so it says which response (or run) it
+    draws and at which point of the model, and each line is in its legend."""
+    fig = ax.figure
+    wants = {
+        "simulation": ("a run to t = 50 s", "X1'"),
+        "band": ("the T response", "max |mu|"),
+        "branch": ("the T response", "stable"),
+        "coexistence": ("stable responses along Vb", None),
+        "map": ("where no stable periodic response is", "no stable periodic response"),
+    }
+    for name, (title, entry) in wants.items():
+        ax.clear()
+        small_results[name].plot(ax)
+        got, entries = _title_and_legend(ax)
+        assert got.startswith(title) and "Model(" in got, (name, got)
+        assert entries, name
+        assert entry is None or entry in entries, (name, entries)
+    fig.clear()
+
+
+def test_a_multipliers_modulus_is_drawn_on_a_log_scale(small_results, ax):
+    small_results["band"].plot(ax)
+    assert ax.get_yscale() == "log"
+
+
+def test_a_stick_onset_is_marked_sl_in_its_own_colour(small_results, ax):
+    """Every kind of special point the package reports has a label and a colour: a
+    stick onset (grazing-sliding, `beltmdsm.cycles.stick`) was drawn unmarked."""
+    from dataclasses import replace
+
+    from beltmdsm._display import LABELS
+    from beltmdsm.continuation.branch_parts import SpecialPoint
+    from beltmdsm.plotting import KIND_COLOURS
+
+    assert set(LABELS) == set(KIND_COLOURS)
+    branch = small_results["branch"]
+    mid = branch.points[len(branch.points) // 2].value
+    onset = SpecialPoint("stick_onset", mid, 1e-6, None, np.zeros(3), False, True)
+    replace(branch, special=[*branch.special, onset]).plot(ax)
+    assert "SL" in [t.get_text() for t in ax.texts]
+    (marker,) = [ln for ln in ax.get_lines() if ln.get_marker() == "o" and ln.get_xdata()[0] == mid]
+    assert marker.get_color() == KIND_COLOURS["stick_onset"]
+
+
+def test_a_basin_map_is_clipped_to_its_starts_and_names_its_point(ax):
+    b = beltmdsm.basins(beltmdsm.Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    b.plot(ax)
+    assert ax.get_xlim() == (3.0, 7.0) and ax.get_ylim() == (-8.5, -4.5)
+    assert ax.get_title() == f"basins at {b.model!r}" and "Vb=3.88" in ax.get_title()
+
+
+def test_the_tables_are_the_results_own_numbers(small_results):
+    """Issue 37 item 3: ``to_pandas()`` of Floquet, Cycle, Lyapunov, Basins, Simulation
+    and Coexistence, read against the results' attributes."""
+    pytest.importorskip("pandas")
+    sim = small_results["simulation"]
+    table = sim.to_pandas()
+    np.testing.assert_array_equal(table["t"], sim.t)
+    np.testing.assert_array_equal(table["X2'"], sim.y[3])
+    np.testing.assert_array_equal(table["friction"], sim.friction)
+    f = small_results["floquet"]
+    table = f.to_pandas()
+    np.testing.assert_array_equal(table["multiplier"], f.multipliers)
+    assert table["abs"].max() == pytest.approx(f.max_abs_multiplier, rel=1e-15)
+    assert table["rate"].max() == pytest.approx(f.growth_rate, rel=1e-12)
+    found = small_results["coexistence"]
+    table = found.to_pandas()
+    assert len(table) == sum(len(r.stable) for r in found.responses)
+    assert len(found.to_pandas("ranges")) == len(found.ranges)
+    with pytest.raises(ValueError, match="table must be"):
+        found.to_pandas("points")

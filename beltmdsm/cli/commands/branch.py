@@ -7,6 +7,7 @@ import json
 
 from ...excitation import is_autonomous
 from ...model import MODEL_PARAMETERS
+from .. import generic
 from ..flags import (
     json_parent,
     model_from,
@@ -26,6 +27,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), periods_parent(), json_parent()],
+        models=generic.branch,
         help="continue a periodic response in one parameter",
         description="The branch of the response of --periods excitation periods at the "
         "point the model flags give, continued in --param over [--from, --to] by "

@@ -65,6 +65,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [],
+        models=run,  # the documents are every model's
         help="print a document the help texts cite (docs/*.md)",
         description="Print a page of docs/ or one of its sections, as the help texts cite "
         "them (docs/modelling.md#tension, or modelling#tension); without a name, list "

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from .. import generic
 from ..flags import json_parent, model_from, model_parent, periods_parent
 from ..running import register
 
@@ -15,6 +16,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), periods_parent(), json_parent()],
+        models=generic.floquet,
         help="Floquet multipliers of the periodic response",
         description="The periodic response of Eq. (4) by shooting and its Floquet "
         "multipliers, with saltation matrices at the switches "

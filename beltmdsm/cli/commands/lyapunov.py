@@ -25,15 +25,17 @@ def add(commands, name: str) -> None:
         "--start",
         choices=("rest", "periodic"),
         default="rest",
-        help="start from the equilibrium at rest (default), or on the periodic response "
-        "with X1 moved by --perturbation",
+        help="start from the equilibrium at rest (default; without excitation where steady "
+        "sliding is unstable, moved 1e-6 off it along its unstable direction, as simulate), "
+        "or on the periodic response with X1 moved by --perturbation",
     )
     sub.add_argument(
         "--perturbation",
         type=number(),
-        default=1e-2,
+        default=None,
         metavar="DX1",
-        help="with --start periodic: the move of X1 from the periodic response [m] (default 1e-2)",
+        help="the move of X1 from the periodic response [m], with --start periodic only "
+        "(default 1e-2)",
     )
     sub.add_argument(
         "--t-end",
@@ -47,7 +49,8 @@ def add(commands, name: str) -> None:
         type=number(lambda x: x >= 0, "nonnegative"),
         default=None,
         metavar="T",
-        help="time run before averaging [s] (default 30 %% of --t-end)",
+        help="time run before averaging [s] (default 30 %% of --t-end, or from a start "
+        "moved off unstable steady sliding the time to leave it, where --t-end allows)",
     )
 
 
@@ -55,14 +58,27 @@ def run(args: argparse.Namespace) -> int:
     from ...attractors.lyapunov import lyapunov
     from .. import text
 
+    if args.perturbation is not None and args.start != "periodic":
+        args.parser.error(
+            "argument --perturbation: moves the start on the periodic response; "
+            "give --start periodic, or drop it"
+        )
     model = model_from(args)
     y0 = None
     if args.start == "periodic":
-        from ...periodic.start import periodic_start
+        from ...periodic.start import PERTURBATION, periodic_start
 
+        if args.perturbation is None:
+            args.perturbation = PERTURBATION
         y0 = periodic_start(model, args.perturbation)
     spec = lyapunov(model, y0=y0, t_end=args.t_end, t_transient=args.t_transient)
+    from ...attractors.classification import unstable_set
+
+    # a positive exponent of a run that stays on an unstable invariant set is its
+    # instability: say which set (beltmdsm/attractors/classification.py)
+    unstable = unstable_set(model, spec) if spec.largest > 0 else None
     out = spec.as_dict()
+    out["unstable_set"] = None if unstable is None else unstable[0]
     out["start"] = args.start
     if args.start == "periodic":
         out["perturbation"] = args.perturbation
@@ -71,6 +87,13 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(text.jsonable(out)))
     else:
         print(repr(spec))
+        if spec.start_perturbation:
+            print(
+                f"start: steady sliding is unstable here; the run starts on it moved by "
+                f"{spec.start_perturbation:g} along its unstable direction (as simulate's)"
+            )
+        if unstable is not None:
+            print(f"not chaos: {unstable[0]}")
         print(
             f"error from the spread over {8} blocks and the drift of the running mean; "
             f"{spec.collapsed} direction(s) removed by stick (exponent -inf)"

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from .. import generic
 from ..flags import (
     json_parent,
     model_from,
@@ -24,6 +25,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), solver_parent(), json_parent()],
+        models=generic.simulate,
         help="simulate Eq. (4) and summarise the run",
         description="Simulate Eq. (4) and summarise the run.",
     )

@@ -29,7 +29,6 @@ def floquet(f: Floquet) -> str:
         return cycle(f)
     resp = f.response
     p = resp.model.params
-    mus = ", ".join(f"{z.real:.6g}{z.imag:+.6g}j" for z in f.multipliers)
     per = "per period" if resp.periods == 1 else f"per {resp.periods} periods"
     lines = [
         f"periodic response of Eq. (4), {resp.model.friction} friction, "
@@ -47,10 +46,9 @@ def floquet(f: Floquet) -> str:
         )
     else:
         lines += [
-            f"Floquet multipliers: {mus}",
-            f"largest |mu| = {f.max_abs_multiplier:.6g}: "
-            f"{'stable' if f.stable else 'UNSTABLE'}{_isolation(f)}; growth rate "
-            f"{f.growth_rate:.6g} 1/s, critical pair at {f.frequency:.6g} rad/s "
+            f"Floquet multipliers: {f.multipliers_text()}",
+            f"{'stable' if f.stable else 'UNSTABLE'}{_isolation(f)}: {f.largest_text()}, "
+            f"critical pair at {f.frequency:.6g} rad/s "
             f"(omega1 = {p['omega1']:g}; modulo {2 * math.pi / f.period:.6g})",
         ]
     return "\n".join(lines)

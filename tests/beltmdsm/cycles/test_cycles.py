@@ -323,8 +323,9 @@ def test_responses_find_the_cycle_that_coexists_with_stable_sliding():
     found = responses(stribeck(Vb=2.2), ladder=1.0)
     (r,) = found.responses
     assert r.floquet.autonomous and r.floquet.stable and r.floquet.n_sticks == 1
+    # steady sliding is stable at 2.2: the seed's run starts where a stick ends
     assert r.sources == [
-        "the run off perturbed steady sliding",
+        "the run from the end of a stick",
         "cycles continued up from Vb = 1.2",
     ]
     # the same cycle as continued here by hand from the seed at 1.99

@@ -1,0 +1,187 @@
+"""``--model NAME`` on every command: the paper's model (the default) or another
+registered model, run by the generic runtime (`beltmdsm.oscillator`).
+
+`model_flag` is the parent parser of ``--model`` (choices: the registry's,
+``beltmdsm.generated.models.MODELS``) and of the parameters of the other models that
+the paper's flags do not name (Hoffmann's ``--k1``, ``--k_c``, ...). A command
+registered with a handler for the other models (`beltmdsm.cli.running.register`'s
+``models``) runs it on `system_from`'s `beltmdsm.oscillator.System`; every other command
+refuses them in one line (`refusal`): never the paper's physics under another name.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from beltmdsm.generated.models import MODELS, load
+from beltmdsm.generated.parameters import DOMAIN_RULES, within
+from beltmdsm.generated.parameters import PARAMETERS as _PAPER
+
+from ..model import OPTIONS
+from .flags import number, params_from
+
+__all__ = [
+    "MODELS",
+    "model_flag",
+    "other_params",
+    "system_from",
+    "refusal",
+    "refuse_flags",
+    "refuse_other_params",
+]
+
+_PAPER_NAMES = {p["name"] for p in _PAPER}
+
+
+def other_params() -> dict[str, str]:
+    """The other models' parameters that are not the paper's: name -> help.
+
+    See Also
+    --------
+    model_flag : makes them flags.
+
+    Examples
+    --------
+    >>> sorted(other_params())[:3]
+    ['F_pre', 'c1', 'c2']
+    """
+    found: dict[str, str] = {}
+    for name in MODELS[1:]:
+        module = load(name)
+        for law in module.FRICTION_LAWS:
+            for p in module.PARAMETERS[law]:
+                if p not in _PAPER_NAMES and p not in found:
+                    found[p] = f"{module.DESCRIPTIONS[p]} [{module.UNITS[p]}] (--model {name})"
+    return found
+
+
+def model_flag(others: bool) -> argparse.ArgumentParser:
+    """Parent parser: ``--model``; with ``others``, the other models' own parameters.
+
+    See Also
+    --------
+    system_from : the `beltmdsm.oscillator.System` of the flags.
+
+    Examples
+    --------
+    >>> args = argparse.ArgumentParser(parents=[model_flag(True)]).parse_args(
+    ...     ["--model", "hoffmann", "--k_c", "2"])
+    >>> args.model, args.k_c
+    ('hoffmann', 2.0)
+    """
+    parent = argparse.ArgumentParser(add_help=False)
+    parent.add_argument(
+        "--model",
+        choices=MODELS,
+        default=MODELS[0],
+        help="the registered model (derive/models/entries.py): "
+        f"{', '.join(MODELS)} (default: {MODELS[0]}); "
+        + (
+            f"another than {MODELS[0]} runs on the generic runtime (beltmdsm/oscillator/), "
+            "with its own parameters and states"
+            if others
+            else f"this command runs {MODELS[0]} only and refuses another, naming what it lacks"
+        ),
+    )
+    if others:
+        group = parent.add_argument_group("parameters of the other models (--model)")
+        for name, text in other_params().items():
+            group.add_argument(
+                f"--{name}",
+                dest=name,
+                type=number(),
+                default=None,
+                metavar="X",
+                help=text.replace("%", "%%"),
+            )
+    return parent
+
+
+#: What the generic runtime lacks for a command that runs the paper's model only.
+_LACKS = {
+    "sweep": "beltmdsm.oscillator has no sweep of the steady-state statistics",
+    "floquet-band": "beltmdsm.oscillator has no band of unstable responses over a range",
+    "responses": "beltmdsm.oscillator has no search of the coexisting forced responses",
+    "coexistence": "beltmdsm.oscillator has no search of the coexisting forced responses",
+    "floquet-map": "beltmdsm.oscillator has no two-parameter map of the response's stability",
+    "lyapunov": "beltmdsm.oscillator has no Lyapunov spectrum",
+    "basins": "beltmdsm.oscillator has no basins of attraction",
+}
+#: The paper's own pieces (a model's ``ABSENT``) a command needs.
+_NEEDS = {"predict": "mdsm", "validate": "paper_check"}
+
+
+def refusal(args: argparse.Namespace) -> str:
+    """The one line of a command that does not run ``args.model``: what is missing."""
+    absent = load(args.model).ABSENT
+    piece = _NEEDS.get(args.command)
+    missing = absent.get(piece) if piece else None
+    missing = missing or _LACKS.get(args.command, "the generic runtime does not run it")
+    return (
+        f"argument --model: {args.command} does not run model {args.model!r}: {missing}; "
+        f"it runs the paper's model only (--model {MODELS[0]})"
+    )
+
+
+def refuse_flags(args: argparse.Namespace, dests) -> None:
+    """Exit 2 naming the first of ``dests`` given (not at its default): the paper's only."""
+    for dest in dests:
+        if getattr(args, dest, None) != args.parser.get_default(dest):
+            flag = "--" + dest.replace("_", "-")
+            args.parser.error(
+                f"argument {flag}: applies to the paper's model, not to --model {args.model}"
+            )
+
+
+def refuse_other_params(args: argparse.Namespace) -> None:
+    """Exit 2 naming a parameter of another model given to the paper's (never ignored)."""
+    for name, text in other_params().items():
+        if getattr(args, name, None) is not None:
+            owner = text.rsplit("(--model ", 1)[1].rstrip(")")
+            args.parser.error(
+                f"argument --{name}: a parameter of --model {owner}, not of the paper's model"
+            )
+
+
+def system_from(args: argparse.Namespace):
+    """The `beltmdsm.oscillator.System` of ``--model``, ``--friction`` and the parameter
+    flags given (one the model lacks, or a paper option changed: exit 2, named)."""
+    from ..oscillator import System
+
+    module = load(args.model)
+    refuse_flags(args, [o for o in OPTIONS if o != "friction"])
+    if args.friction not in module.FRICTION_LAWS:
+        args.parser.error(
+            f"argument --friction: model {args.model!r} has the laws "
+            f"{', '.join(module.FRICTION_LAWS)}; got {args.friction}"
+        )
+    given = params_from(args)
+    given.update(
+        {n: getattr(args, n) for n in other_params() if getattr(args, n, None) is not None}
+    )
+    names = module.PARAMETERS[args.friction]
+    for name, value in given.items():
+        if name not in names:
+            args.parser.error(
+                f"argument --{name}: not a parameter of model {args.model!r} with friction "
+                f"{args.friction!r} ({', '.join(names)})"
+            )
+        domain = module.DOMAINS[name]
+        if not within(domain, value):
+            args.parser.error(
+                f"argument --{name}: must be {DOMAIN_RULES[domain][2]}; got {value:g}"
+            )
+    try:
+        return System(args.model, friction=args.friction, **given)
+    except ValueError as err:
+        args.parser.error(str(err))
+
+
+def describe(system) -> dict:
+    """The model's part of a JSON output: ``model``, ``friction``, ``params``, ``states``."""
+    return {
+        "model": system.name,
+        "friction": system.friction,
+        "params": dict(system.params),
+        "states": list(system.states),
+    }

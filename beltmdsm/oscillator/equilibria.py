@@ -1,0 +1,189 @@
+"""Steady sliding of any model, its stability, and its Hopf points along a parameter.
+
+Steady sliding is the module's ``equilibrium`` (the state where the field of its slip
+mode vanishes: the mass at rest, the belt moving). Its stability is read twice from
+what the derivation gives: the eigenvalues of the derived Jacobian of that slip mode
+(numpy), and the derived Hurwitz determinants ``H_1..H_2n`` of its characteristic
+polynomial (stable where all are positive, Routh-Hurwitz). A Hopf point along a
+parameter is a root of ``H_{2n-1}`` where ``a_{2n}`` and ``H_1..H_{2n-2}`` are positive
+(a complex pair on the imaginary axis), bracketed on a grid and refined by Brent's
+method.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import brentq
+
+from ..errors import Unsupported
+from .system import System
+
+__all__ = ["Equilibrium", "steady_sliding", "hopf_points"]
+
+
+@dataclass(repr=False)
+class Equilibrium:
+    """Steady sliding of a model and its stability.
+
+    Attributes
+    ----------
+    system : System
+    state : ndarray (2n,)
+    mode : int
+        The slip mode (the sign of the slip velocity there).
+    eigenvalues : ndarray (2n,) complex
+        Of the derived Jacobian, by numpy, largest real part first.
+    characteristic : ndarray (2n+1,)
+        ``1, a_1 .. a_2n`` of ``det(lambda I - J)``, derived.
+    hurwitz : ndarray (2n,)
+        ``H_1 .. H_2n``, derived.
+    stable : bool
+        All Hurwitz determinants positive.
+
+    See Also
+    --------
+    steady_sliding : makes it.
+
+    Examples
+    --------
+    >>> eq = steady_sliding(System("belt_1dof", friction="stribeck", Vb=2.5))
+    >>> eq  # doctest: +NORMALIZE_WHITESPACE
+    Equilibrium(System('belt_1dof', friction='stribeck', Vb=2.5); x=2.57329, x_dot=0;
+    stable, growth rate -0.03961)
+    >>> [bool(h > 0) for h in eq.hurwitz]
+    [True, True]
+    """
+
+    system: System
+    state: NDArray[np.float64]
+    mode: int
+    eigenvalues: NDArray[np.complex128]
+    characteristic: NDArray[np.float64]
+    hurwitz: NDArray[np.float64]
+    stable: bool
+
+    @property
+    def growth_rate(self) -> float:
+        """The largest real part of the eigenvalues [1/s]."""
+        return float(self.eigenvalues.real.max())
+
+    def __repr__(self) -> str:
+        word = "stable" if self.stable else "unstable"
+        state = ", ".join(f"{n}={v:.6g}" for n, v in zip(self.system.states, self.state))
+        return f"Equilibrium({self.system!r}; {state}; {word}, growth rate {self.growth_rate:.4g})"
+
+
+def steady_sliding(system: System) -> Equilibrium:
+    """Steady sliding of the model, its eigenvalues and Hurwitz determinants.
+
+    Parameters
+    ----------
+    system : System
+
+    Returns
+    -------
+    Equilibrium
+
+    Raises
+    ------
+    Unsupported
+        Where the slip velocity vanishes there (no slip mode: the belt at rest).
+
+    See Also
+    --------
+    hopf_points : where it loses stability along a parameter.
+
+    Examples
+    --------
+    >>> eq = steady_sliding(System("belt_1dof", friction="stribeck", Vb=1.5))
+    >>> eq.stable, eq.mode, round(eq.growth_rate, 4)
+    (False, -1, 0.0642)
+    """
+    k, p = system.kernels, system.p
+    state = np.asarray(k.equilibrium(p), dtype=float)
+    v = k.slip_velocity(0.0, state, p)
+    if v == 0.0:
+        raise Unsupported(
+            f"model {system.name!r}: the slip velocity vanishes at steady sliding "
+            "(Vb = 0?): it has no slip mode"
+        )
+    mode = 1 if v > 0.0 else -1
+    J = np.asarray(k.jacobian(0.0, state, p, mode), dtype=float)
+    eig = np.linalg.eigvals(J)
+    eig = eig[np.argsort(-eig.real, kind="stable")]
+    H = np.asarray(k.hurwitz(p), dtype=float)
+    a = np.asarray(k.characteristic(p), dtype=float)
+    return Equilibrium(system, state, mode, eig, a, H, bool(np.all(H > 0.0)))
+
+
+def hopf_points(
+    system: System, parameter: str, lo: float, hi: float, points: int = 64
+) -> NDArray[np.float64]:
+    """The Hopf points of steady sliding along one parameter in ``[lo, hi]``.
+
+    Roots of the derived ``H_{2n-1}`` where ``a_{2n} > 0`` and ``H_1 .. H_{2n-2} > 0``,
+    bracketed on ``points`` values and refined by Brent's method to rounding.
+
+    Parameters
+    ----------
+    system : System
+    parameter : str
+        One of the system's parameters.
+    lo, hi : float
+        The range, ``lo < hi``.
+    points : int
+        The grid that brackets the roots (two roots closer than its spacing may be
+        missed).
+
+    Returns
+    -------
+    ndarray
+        The Hopf points, increasing (empty where there is none).
+
+    Raises
+    ------
+    ValueError
+        An unknown parameter or an empty range.
+
+    See Also
+    --------
+    steady_sliding : the stability at one point.
+
+    Examples
+    --------
+    >>> s = System("belt_1dof", friction="stribeck")
+    >>> [round(float(v), 6) for v in hopf_points(s, "Vb", 0.5, 5.0)]
+    [1.99572]
+    """
+    if parameter not in system.params:
+        raise ValueError(f"parameter={parameter!r}: not a parameter of {system!r}")
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi) or points < 2:
+        raise ValueError(f"[{lo}, {hi}] with {points} points: not a range")
+    k = system.kernels
+    i = list(system.params).index(parameter)
+    p = system.p.copy()
+
+    def H(value):
+        p[i] = value
+        return np.asarray(k.hurwitz(p), dtype=float), np.asarray(k.characteristic(p), dtype=float)
+
+    def crit(value):
+        return H(value)[0][-2]
+
+    grid = np.linspace(lo, hi, points)
+    values = np.array([crit(v) for v in grid])
+    roots = []
+    for a, b, fa, fb in zip(grid[:-1], grid[1:], values[:-1], values[1:]):
+        if fa == 0.0:
+            root = a
+        elif fa * fb < 0.0:
+            root = brentq(crit, a, b, xtol=1e-15, rtol=1e-15)
+        else:
+            continue
+        hurwitz, char = H(root)
+        if char[-1] > 0.0 and np.all(hurwitz[:-2] > 0.0):
+            roots.append(root)
+    return np.array(roots)
