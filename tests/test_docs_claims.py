@@ -40,7 +40,7 @@ def test_the_readme_states_what_derive_prints_and_installs_the_fast_package():
     for text in (readme, (ROOT / "docs" / "howto" / "regenerate.md").read_text()):
         (n,) = re.findall(r"wrote 0 changed file\(s\) of (\d+)\.", text)
         assert int(n) == written
-    assert "about 20 s" not in readme and "about 50 s" in readme
+    assert "about 20 s" not in readme and "about a minute of one core" in readme
     deps = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["dependencies"]
     names = {re.match(r"[\w-]+", d)[0] for d in deps}
     assert {"numba", "matplotlib", "sympy", "numpy", "scipy", "tqdm"} <= names
