@@ -184,4 +184,6 @@ if not TYPE_CHECKING:  # the stub has none: to a type checker a misspelt name is
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+    # the public names only: not the helpers this file imports (TYPE_CHECKING,
+    # import_module, map_siblings) nor the subpackages loaded so far
+    return sorted([*__all__, "__version__"])

@@ -4,13 +4,19 @@ The command line checks every flag when it parses it (`beltmdsm.cli.flags`); the
 Python functions check their arguments once, at the boundary, with these: a bad value
 is one `ValueError` naming the argument, before anything is computed (issue 28: a
 bool taken for a count, ``max_iter=-1`` reported "after -1 iterations", a complex
-state a `TypeError` from deep inside, a dict of settings an `AttributeError`). Model
-parameters are `beltmdsm.model.Model`'s.
+state a `TypeError` from deep inside, a dict of settings an `AttributeError`). One
+check per kind of argument, used by every public function, so that a value gets the
+same answer everywhere (issue 36): `count` (an integer, numpy's too; not a bool, 3.0 or
+a Fraction), `number` (a finite real, Fraction and numpy scalars too; not a bool or a
+string), `flag`, `reals`, `state`, `settings_of`, `executor_of`, `cache_dir_of` and
+`items_of`. Model parameters are `beltmdsm.model.Model`'s; an unknown keyword is
+`beltmdsm._calling`'s.
 """
 
 from __future__ import annotations
 
 import numbers
+import os
 from collections.abc import Sequence
 from typing import Any
 
@@ -20,7 +26,23 @@ from numpy.typing import NDArray
 from .model import is_real
 from .settings import SolverSettings
 
-__all__ = ["count", "flag", "state", "reals", "settings_of"]
+__all__ = [
+    "count",
+    "number",
+    "flag",
+    "state",
+    "reals",
+    "settings_of",
+    "executor_of",
+    "cache_dir_of",
+    "items_of",
+]
+
+#: What ``executor=`` takes, the same in every function that takes one.
+EXECUTORS = (
+    "None (a process pool over this machine's cores), 'serial' (in this process) "
+    "or a concurrent.futures.Executor (Client.get_executor() of dask)"
+)
 
 
 def count(name: str, value: Any, minimum: int, maximum: int | None = None) -> int:
@@ -244,3 +266,209 @@ def settings_of(settings: Any) -> SolverSettings:
             f"None; got {type(settings).__name__}"
         )
     return settings
+
+
+def number(
+    name: str,
+    value: Any,
+    *,
+    above: float | None = None,
+    at_least: float | None = None,
+    below: float | None = None,
+    below_name: str | None = None,
+) -> float:
+    """``value`` as a float: a finite real number (an int, a float, a numpy scalar, a
+    `fractions.Fraction`; not a bool or a string) in the bounds given.
+
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the message.
+    value : object
+        What the caller passed.
+    above, at_least : float, optional
+        A strict and a non-strict lower bound.
+    below : float, optional
+        A strict upper bound, named ``below_name`` in the message where given.
+    below_name : str, optional
+        What ``below`` is (another argument), for the message.
+
+    Returns
+    -------
+    float
+        ``value``.
+
+    Raises
+    ------
+    ValueError
+        Naming ``name``, for anything else.
+
+    See Also
+    --------
+    beltmdsm.arguments.count : The check of a count.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> number("period", Fraction(13, 2), above=0)
+    6.5
+    >>> for bad in ("6", -1, float("nan"), True):
+    ...     try:
+    ...         number("period", bad, above=0)
+    ...     except ValueError as error:
+    ...         print(error)
+    period must be a finite number > 0; got '6'
+    period must be a finite number > 0; got -1
+    period must be a finite number > 0; got nan
+    period must be a finite number > 0; got True
+    >>> number("t_transient", 500, at_least=0, below=100, below_name="t_end")
+    Traceback (most recent call last):
+    ...
+    ValueError: t_transient must be a finite number >= 0 and < t_end (100); got 500
+    """
+    bounds = []
+    if above is not None:
+        bounds.append(f"> {above:g}")
+    if at_least is not None:
+        bounds.append(f">= {at_least:g}")
+    if below is not None:
+        bounds.append(f"< {below_name} ({below:g})" if below_name else f"< {below:g}")
+    what = f"{name} must be a finite number" + (f" {' and '.join(bounds)}" if bounds else "")
+    if not is_real(value):
+        raise ValueError(f"{what}; got {value!r}")
+    x = float(value)
+    if (
+        not np.isfinite(x)
+        or (above is not None and not x > above)
+        or (at_least is not None and not x >= at_least)
+        or (below is not None and not x < below)
+    ):
+        raise ValueError(f"{what}; got {value!r}")
+    return x
+
+
+def executor_of(value: Any) -> Any:
+    """``value`` where it names where the work runs: None (a process pool over this
+    machine's cores, which the function starts and stops), ``"serial"`` (in this
+    process) or an object with ``submit`` (a `concurrent.futures.Executor`).
+
+    Parameters
+    ----------
+    value : object
+        What the caller passed as ``executor``.
+
+    Returns
+    -------
+    concurrent.futures.Executor or str or None
+        ``value``.
+
+    Raises
+    ------
+    ValueError
+        In one line naming the choices, for anything else.
+
+    See Also
+    --------
+    beltmdsm.studies.pool.process_pool : The pool that None stands for.
+
+    Examples
+    --------
+    >>> executor_of("serial")
+    'serial'
+    >>> executor_of("proces")
+    Traceback (most recent call last):
+    ...
+    ValueError: executor must be None (a process pool ...), 'serial' (in this process) or ...
+    """
+    if value is None or value == "serial" or callable(getattr(value, "submit", None)):
+        return value
+    raise ValueError(f"executor must be {EXECUTORS}; got {value!r}")
+
+
+def cache_dir_of(value: Any) -> Any:
+    """``value`` where it names a cache: ``"default"`` (the user's cache folder,
+    ``$BELTMDSM_CACHE`` or the platform's), a folder (a str or a path) or None (no cache).
+
+    Parameters
+    ----------
+    value : object
+        What the caller passed as ``cache_dir``.
+
+    Returns
+    -------
+    str or os.PathLike or None
+        ``value``.
+
+    Raises
+    ------
+    ValueError
+        For anything else, naming its type.
+
+    See Also
+    --------
+    beltmdsm.studies.cache.default_cache_dir : Where ``"default"`` is.
+
+    Examples
+    --------
+    >>> cache_dir_of(123)
+    Traceback (most recent call last):
+    ...
+    ValueError: cache_dir must be 'default', a folder (str or os.PathLike) or None; got int 123
+    """
+    if value is None or isinstance(value, (str, os.PathLike)):
+        return value
+    raise ValueError(
+        "cache_dir must be 'default', a folder (str or os.PathLike) or None; "
+        f"got {type(value).__name__} {value!r}"
+    )
+
+
+def items_of(name: str, value: Any, kind: type, what: str) -> list[Any]:
+    """``value`` as a list of ``kind`` (``what`` names it for the message), or an empty
+    list for None.
+
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the message.
+    value : iterable or None
+        What the caller passed.
+    kind : type
+        The type of each item.
+    what : str
+        How the message names ``kind``.
+
+    Returns
+    -------
+    list
+        The items.
+
+    Raises
+    ------
+    ValueError
+        Naming ``name``, where ``value`` is not an iterable of ``kind``.
+
+    See Also
+    --------
+    beltmdsm.arguments.reals : Real numbers in any shape.
+
+    Examples
+    --------
+    >>> items_of("attractors", [1], str, "beltmdsm.Attractor")
+    Traceback (most recent call last):
+    ...
+    ValueError: attractors must be a list of beltmdsm.Attractor or None; got [1]
+    """
+    if value is None:
+        return []
+    try:
+        items = list(value)
+    except TypeError:
+        items = None
+    if (
+        items is None
+        or isinstance(value, (str, bytes))
+        or not all(isinstance(v, kind) for v in items)
+    ):
+        raise ValueError(f"{name} must be a list of {what} or None; got {value!r}")
+    return items

@@ -89,10 +89,10 @@ class Refused(BeltmdsmError, ValueError):
     --------
     A sampling step that would alias the excitation's harmonics into the omega1 band:
 
-    >>> from beltmdsm import simulate
+    >>> from beltmdsm import Model, simulate
     >>> from beltmdsm.errors import Refused
     >>> try:
-    ...     simulate(Vb=5, dt=0.7, t_end=50)
+    ...     simulate(Model(Vb=5), dt=0.7, t_end=50)
     ... except Refused as err:
     ...     print(err.names, err)
     ('dt',) dt = 0.7 s samples up to pi/dt = 4.488 rad/s, below 8 x Omega_t = 32 rad/s: ...

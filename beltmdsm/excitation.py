@@ -16,7 +16,23 @@ from numpy.typing import NDArray
 
 from .model import Model
 
-__all__ = ["initial_state", "excited_directions", "is_autonomous", "excitation_period"]
+__all__ = [
+    "initial_state",
+    "excited_directions",
+    "is_autonomous",
+    "excitation_period",
+    "START_PERTURBATION",
+    "equilibrium_start",
+]
+
+#: How far a run without excitation is moved off steady sliding where that is unstable
+#: (the max-norm of the move along the unstable eigenvector of
+#: `beltmdsm.generated.unforced.jacobian_at_equilibrium`, in the state's units, m and m/s).
+#: Started exactly on it, a run stays there up to rounding (a cubic law at Vb = 0.48
+#: for 20 000 s, called "continuous_sliding, omega1 peak absent", issue 29): 1e-6 is ten
+#: orders above the rounding of a state of order 1-10, and a millionth of the cycle
+#: it grows into. The summary states it (``start_perturbation``).
+START_PERTURBATION = 1e-6
 
 
 def initial_state(model: Model) -> NDArray[np.float64]:
@@ -38,7 +54,7 @@ def initial_state(model: Model) -> NDArray[np.float64]:
 
     See Also
     --------
-    beltmdsm.simulation.equilibrium_start : The start of a run near steady sliding.
+    beltmdsm.excitation.equilibrium_start : The start of a run near steady sliding.
 
     Examples
     --------
@@ -170,3 +186,61 @@ def excitation_period(model: Model) -> float:
             "excitation has no common period"
         )
     return 2 * math.pi * ratio.numerator / w_t
+
+
+def equilibrium_start(model: Model) -> tuple[NDArray[np.float64] | None, float]:
+    """``(y0, size)``: where a run from the unforced equilibrium starts, and how far off.
+
+    Without excitation, at ``Vb > 0`` and where steady sliding is unstable (an
+    eigenvalue of `beltmdsm.generated.unforced.jacobian_at_equilibrium` with a positive real
+    part), the equilibrium moved by `START_PERTURBATION` along the real part of that
+    eigenvalue's eigenvector (its X1' component made positive); else ``(None, 0.0)``:
+    the equilibrium itself (`beltmdsm.excitation.initial_state`).
+
+    Parameters
+    ----------
+    model : Model
+        The model to run.
+
+    Returns
+    -------
+    y0 : numpy.ndarray or None
+        The start ``[X1, X1', X2, X2']``, or None for the equilibrium itself.
+    size : float
+        How far ``y0`` is from the equilibrium (its largest component), 0.0 for None.
+
+    See Also
+    --------
+    beltmdsm.excitation.initial_state : The unforced equilibrium.
+    beltmdsm.excitation.START_PERTURBATION : The size of the step off it.
+
+    Examples
+    --------
+    Under Stribeck friction at ``Vb = 1.5`` steady sliding is unstable (eigenvalues
+    ``0.0642 +- 0.9979 i``), so a run starts 1e-6 off it; under Coulomb friction it is
+    stable, and a run starts on it:
+
+    >>> from beltmdsm import Model
+    >>> m = Model(friction="stribeck", alpha=0.0, Vb=1.5)
+    >>> y0, size = equilibrium_start(m)
+    >>> size, [round(float(v), 4) for v in (y0 - initial_state(m)) / size]
+    (1e-06, [1.0, 0.0642, 0.0, 0.0])
+    >>> equilibrium_start(Model(friction="coulomb", alpha=0.0, Vb=1.5))
+    (None, 0.0)
+    """
+    from beltmdsm.generated import unforced
+
+    p = model.params
+    excited = any(p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0 for d in ("t", "n"))
+    if excited or not p["Vb"] > 0:
+        return None, 0.0
+    fn = unforced.jacobian_at_equilibrium
+    lam, vec = np.linalg.eig(np.asarray(fn(**model.arguments(fn)), dtype=float))
+    k = int(np.argmax(lam.real))
+    if not lam[k].real > 0:
+        return None, 0.0
+    v = vec[:, k].real if np.max(np.abs(vec[:, k].real)) > 0 else vec[:, k].imag
+    v = v / np.max(np.abs(v))
+    if v[1] < 0 or (v[1] == 0 and v[0] < 0):
+        v = -v
+    return initial_state(model) + START_PERTURBATION * v, START_PERTURBATION

@@ -174,8 +174,8 @@ def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str = "X1
 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
-    >>> from beltmdsm import simulate
-    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> from beltmdsm import Model, simulate
+    >>> sim = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0)
     >>> ax = simulation(sim)
     >>> ax.get_xlabel(), ax.get_ylabel(), len(ax.lines)
     ('t [s]', "X1' [m/s]", 1)
@@ -479,7 +479,7 @@ def floquet_map(result: Any, ax: Any = None, linear: bool = True) -> Any:
     >>> import matplotlib
     >>> matplotlib.use("Agg")
     >>> from beltmdsm import floquet_map as compute
-    >>> ax = floquet_map(compute("Vb", 5.3, 5.7, "beta1", 0.29, 0.31, rows=3))
+    >>> ax = floquet_map(compute(None, "Vb", 5.3, 5.7, "beta1", 0.29, 0.31, points=3))
     >>> [(line.get_label(), len(line.get_xdata())) for line in ax.lines]
     [('NS (neimark_sacker)', 3)]
     >>> ax.get_xlabel(), ax.get_ylabel()
@@ -545,7 +545,8 @@ def basins(result: Any, ax: Any = None) -> Any:
     >>> matplotlib.use("Agg")
     >>> from beltmdsm import Model
     >>> from beltmdsm import basins as compute
-    >>> b = compute(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    >>> b = compute(Model(Vb=3.88), points=3, x_lo=3.0, x_hi=7.0, y_lo=-8.5, y_hi=-4.5,
+    ...             cache_dir=None)
     >>> ax = basins(b)
     >>> [t.get_text() for t in ax.get_legend().get_texts()]
     ['0: periodic 1T, 11.1% of the starts', '1: periodic 4T, 88.9% of the starts']

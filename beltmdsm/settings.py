@@ -41,7 +41,16 @@ __all__ = [
     "run_bytes",
     "check_request",
     "check_finite",
+    "with_fields",
+    "Solver",
+    "Method",
+    "ContactLoss",
 ]
+
+#: The choices of the settings' fields, as types.
+Solver = Literal["events", "superposition"]
+Method = Literal["DOP853"]
+ContactLoss = Literal["continue", "stop"]
 
 #: The integrators: `beltmdsm.integrate.events` and `beltmdsm.integrate.superposition`.
 SOLVERS = ("events", "superposition")
@@ -117,14 +126,14 @@ class SolverSettings:
     ValueError: dt must be a finite number > 0; got 0
     """
 
-    solver: Literal["events", "superposition"] = "events"
-    method: Literal["DOP853"] = "DOP853"
+    solver: Solver = "events"
+    method: Method = "DOP853"
     rtol: float = 1e-10
     atol: float = 1e-10
     t_end: float = DEFAULT_T_END
     t_discard: float | None = None
     dt: float = 0.02
-    on_contact_loss: Literal["continue", "stop"] = "continue"
+    on_contact_loss: ContactLoss = "continue"
     backend: Backend | None = None
 
     def __post_init__(self) -> None:
@@ -157,9 +166,15 @@ class SolverSettings:
                 "shorten t_end or sample with a larger dt"
             )
         if not 0 <= self.window_start < self.t_end - 20 * self.dt:
+            start = (
+                "the default t_discard (0.3 t_end)"
+                if self.t_discard is None
+                else f"t_discard ({self.t_discard:g})"
+            )
             raise ValueError(
-                f"t_discard={self.t_discard!r} must be >= 0 and leave a steady "
-                f"window before t_end={self.t_end!r}"
+                f"t_discard must be >= 0 and leave a steady window of 20 samples of dt "
+                f"({self.dt:g}) before t_end ({self.t_end:g}); {start} leaves "
+                f"{max(self.t_end - self.window_start, 0):g} s"
             )
 
     @property
@@ -455,3 +470,34 @@ def check_request(model: Model, settings: SolverSettings) -> None:
             f"{math.pi / (NYQUIST_MULTIPLE * fastest):.4g} s",
             "dt",
         )
+
+
+def with_fields(settings: SolverSettings, **fields_: object) -> SolverSettings:
+    """``settings`` with the fields given (not None) in place of its own: the keywords
+    ``t_end=``, ``dt=``, ... of a public function that takes ``settings=`` too.
+
+    Parameters
+    ----------
+    settings : SolverSettings
+        The settings the caller passed (or the defaults).
+    **fields_
+        Fields of `SolverSettings`; None leaves one as ``settings`` has it.
+
+    Returns
+    -------
+    SolverSettings
+        ``settings`` itself where nothing is given, else new checked settings.
+
+    See Also
+    --------
+    beltmdsm.simulation.simulate : Takes the fields as keywords.
+
+    Examples
+    --------
+    >>> with_fields(SolverSettings(dt=0.05), t_end=50.0, rtol=None)
+    SolverSettings(...t_end=50.0, t_discard=None, dt=0.05, ...)
+    """
+    changes = {k: v for k, v in fields_.items() if v is not None}
+    if not changes:
+        return settings
+    return SolverSettings(**{**settings.__dict__, **changes})  # type: ignore[arg-type]

@@ -29,26 +29,27 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._calling import public
 from ._tables import DataFrame
 from .arguments import flag, settings_of, state
+from .excitation import START_PERTURBATION, equilibrium_start
 from .integrate import _background
 from .integrate.events import integrate_events
 from .integrate.superposition import NotApplicable, integrate_superposed
 from .integrate.trajectory import Run, Samples, Trajectory
 from .model import Model, as_model
 from .run.summary import Summary, summarize
-from .settings import SolverSettings, check_request
+from .settings import (
+    Backend,
+    ContactLoss,
+    Method,
+    Solver,
+    SolverSettings,
+    check_request,
+    with_fields,
+)
 
 __all__ = ["Simulation", "simulate", "START_PERTURBATION", "equilibrium_start"]
-
-#: How far a run without excitation is moved off steady sliding where that is unstable
-#: (the max-norm of the move along the unstable eigenvector of
-#: `beltmdsm.generated.unforced.jacobian_at_equilibrium`, in the state's units, m and m/s).
-#: Started exactly on it, a run stays there up to rounding (a cubic law at Vb = 0.48
-#: for 20 000 s, called "continuous_sliding, omega1 peak absent", issue 29): 1e-6 is ten
-#: orders above the rounding of a state of order 1-10, and a millionth of the cycle
-#: it grows into. The summary states it (``start_perturbation``).
-START_PERTURBATION = 1e-6
 
 
 @dataclass
@@ -90,8 +91,8 @@ class Simulation:
 
     Examples
     --------
-    >>> from beltmdsm import simulate
-    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> from beltmdsm import Model, simulate
+    >>> sim = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0)
     >>> sim.status, sim.solver_used, sim.params["Vb"]
     ('done', 'events', 4.0)
     >>> sim.y.shape  # X1, Y1, X2, Y2 every dt = 0.02 s
@@ -177,8 +178,8 @@ class Simulation:
 
         Examples
         --------
-        >>> from beltmdsm import simulate
-        >>> table = simulate(Vb=4.0, t_end=40.0, t_discard=10.0).to_pandas()
+        >>> from beltmdsm import Model, simulate
+        >>> table = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0).to_pandas()
         >>> list(table), len(table)
         (['t', 'X1', "X1'", 'X2', "X2'", 'normal_force', 'friction'], 2001)
         """
@@ -198,13 +199,30 @@ class Simulation:
         return head + "\n" + "\n".join("  " + line for line in repr(self.summary).splitlines())
 
 
+#: simulate's start state is ``y0``: the keywords of `beltmdsm.cli`'s ``--start``.
+_START_HINTS = dict.fromkeys(
+    ("start", "perturbation"),
+    "takes the start state as y0: for a start on the periodic response pass "
+    "y0=beltmdsm.periodic.start.periodic_start(model, perturbation)",
+)
+
+
+@public(hints=_START_HINTS)
 def simulate(
     model: Model | Mapping[str, Any] | None = None,
     *,
     settings: SolverSettings | None = None,
     y0: ArrayLike | None = None,
     progress: bool = False,
-    **kw: Any,
+    t_end: float | None = None,
+    t_discard: float | None = None,
+    dt: float | None = None,
+    rtol: float | None = None,
+    atol: float | None = None,
+    solver: Solver | None = None,
+    method: Method | None = None,
+    on_contact_loss: ContactLoss | None = None,
+    backend: Backend | None = None,
 ) -> Simulation:
     """Simulate Eq. (4) and summarise the run.
 
@@ -217,15 +235,16 @@ def simulate(
     y0 : array_like, optional
         initial state (X1, Y1, X2, Y2) at t = 0; default the unforced equilibrium,
         Eq. (9), or, without excitation where steady sliding is unstable, that
-        equilibrium moved by `START_PERTURBATION` along its unstable direction
-        (`equilibrium_start`; the summary's ``start_perturbation``). To start on the
+        equilibrium moved by `beltmdsm.excitation.START_PERTURBATION` along its unstable
+        direction (`beltmdsm.excitation.equilibrium_start`; the summary's
+        ``start_perturbation``). To start on the
         periodic response, pass `beltmdsm.periodic.start.periodic_start` of the model.
     progress : bool
         show the simulated time on stderr (tqdm) once the run takes more than 2 s;
         it advances at every switch (a run without switches shows its elapsed time)
-    **kw
-        parameters (``Vb=4``), options (``tension="clipped"``) or solver settings
-        (``t_end=500``, ``solver="events"``)
+    t_end, t_discard, dt, rtol, atol, solver, method, on_contact_loss, backend : optional
+        the fields of `SolverSettings` (``t_end=500``, ``solver="events"``), in place
+        of ``settings``' where given (None: ``settings``' own)
 
     Returns
     -------
@@ -253,8 +272,8 @@ def simulate(
 
     Examples
     --------
-    >>> from beltmdsm import simulate
-    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> from beltmdsm import Model, simulate
+    >>> sim = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0)
     >>> sim.status, sim.summary.regime
     ('done', 'sliding_with_reversals')
     >>> s = sim.summary
@@ -263,90 +282,36 @@ def simulate(
     >>> round(s.vr_min, 1), round(s.vr_max, 1)  # Vr = X1' - Vb in the steady window
     (-15.6, 9.5)
 
-    A bad value is named:
+    A bad value is named, and so is a misspelt keyword:
 
-    >>> simulate(Vb=-1.0)
+    >>> simulate(Model(Vb=-1.0))
     Traceback (most recent call last):
     ...
     ValueError: parameter 'Vb' must be >= 0; got -1.0
+    >>> simulate(Model(), t_edn=10)
+    Traceback (most recent call last):
+    ...
+    TypeError: simulate() got an unexpected keyword argument 't_edn'; did you mean 't_end'?
     """
     clock = time.perf_counter()
-    if "start" in kw or "perturbation" in kw:
-        raise TypeError(
-            "simulate() takes the start state as y0: for a start on the periodic "
-            "response pass y0=beltmdsm.periodic.start.periodic_start(model, perturbation)"
-        )
-    names = SolverSettings.names()
-    changes = {k: kw.pop(k) for k in list(kw) if k in names}
-    settings = settings_of(settings)
+    settings = with_fields(
+        settings_of(settings),
+        t_end=t_end,
+        t_discard=t_discard,
+        dt=dt,
+        rtol=rtol,
+        atol=atol,
+        solver=solver,
+        method=method,
+        on_contact_loss=on_contact_loss,
+        backend=backend,
+    )
     progress = flag("progress", progress)
-    if changes:
-        settings = SolverSettings(**{**settings.__dict__, **changes})
-    model = as_model(model, **kw)
+    model = as_model(model)
     if y0 is not None:
         y0 = state("y0", y0, (4,), "X1, Y1, X2, Y2")
     check_request(model, settings)
     return _simulate(model, settings, y0, clock, progress)
-
-
-def equilibrium_start(model: Model) -> tuple[NDArray[np.float64] | None, float]:
-    """``(y0, size)``: where a run from the unforced equilibrium starts, and how far off.
-
-    Without excitation, at ``Vb > 0`` and where steady sliding is unstable (an
-    eigenvalue of `beltmdsm.generated.unforced.jacobian_at_equilibrium` with a positive real
-    part), the equilibrium moved by `START_PERTURBATION` along the real part of that
-    eigenvalue's eigenvector (its X1' component made positive); else ``(None, 0.0)``:
-    the equilibrium itself (`beltmdsm.excitation.initial_state`).
-
-    Parameters
-    ----------
-    model : Model
-        The model to run.
-
-    Returns
-    -------
-    y0 : numpy.ndarray or None
-        The start ``[X1, X1', X2, X2']``, or None for the equilibrium itself.
-    size : float
-        How far ``y0`` is from the equilibrium (its largest component), 0.0 for None.
-
-    See Also
-    --------
-    beltmdsm.excitation.initial_state : The unforced equilibrium.
-    beltmdsm.simulation.START_PERTURBATION : The size of the step off it.
-
-    Examples
-    --------
-    Under Stribeck friction at ``Vb = 1.5`` steady sliding is unstable (eigenvalues
-    ``0.0642 +- 0.9979 i``), so a run starts 1e-6 off it; under Coulomb friction it is
-    stable, and a run starts on it:
-
-    >>> from beltmdsm.excitation import initial_state
-    >>> m = Model(friction="stribeck", alpha=0.0, Vb=1.5)
-    >>> y0, size = equilibrium_start(m)
-    >>> size, [round(float(v), 4) for v in (y0 - initial_state(m)) / size]
-    (1e-06, [1.0, 0.0642, 0.0, 0.0])
-    >>> equilibrium_start(Model(friction="coulomb", alpha=0.0, Vb=1.5))
-    (None, 0.0)
-    """
-    from beltmdsm.generated import unforced
-
-    from .excitation import initial_state
-
-    p = model.params
-    excited = any(p[f"alpha_{d}"] != 0 and p[f"Omega_{d}"] != 0 for d in ("t", "n"))
-    if excited or not p["Vb"] > 0:
-        return None, 0.0
-    fn = unforced.jacobian_at_equilibrium
-    lam, vec = np.linalg.eig(np.asarray(fn(**model.arguments(fn)), dtype=float))
-    k = int(np.argmax(lam.real))
-    if not lam[k].real > 0:
-        return None, 0.0
-    v = vec[:, k].real if np.max(np.abs(vec[:, k].real)) > 0 else vec[:, k].imag
-    v = v / np.max(np.abs(v))
-    if v[1] < 0 or (v[1] == 0 and v[0] < 0):
-        v = -v
-    return initial_state(model) + START_PERTURBATION * v, START_PERTURBATION
 
 
 def _simulate(

@@ -13,4 +13,6 @@ import sys
 
 if __package__ == "derive":
     del sys.modules["derive"]
+if sys.argv[1:] == []:  # `python -m derive` regenerates; a bare `beltmdsm` prints its help
+    sys.argv.append("--regenerate")
 runpy.run_module("beltmdsm", run_name="__main__", alter_sys=True)

@@ -143,7 +143,8 @@ def spectrum_scan(
     keep = omega <= omega_max
     spectra, summaries = [], []
     for v in values:
-        sim = simulate({**(params or {}), param: float(v)}, contact=contact, settings=solver)
+        model = {**(params or {}), param: float(v), "contact": contact}
+        sim = simulate(model, settings=solver)
         if sim.window.sum() == n_window:
             spectra.append(amplitude_spectrum(sim.y[1, sim.window], solver.dt, pad=1)[1][keep])
         else:

@@ -49,15 +49,17 @@ is found as a cycle (``periods`` 1).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from beltmdsm.generated import unforced
 
-from ..arguments import state
+from .._calling import public
+from ..arguments import number, state
 from ..errors import NoPeriodicResponse, StepTooSmall
 from ..excitation import excitation_period, initial_state
 from ..model import Backend, Model, as_model
@@ -271,14 +273,14 @@ def _returns(samples, tol):
     ]
 
 
+@public()
 def classify(
-    model: Model | None = None,
+    model: Model | Mapping[str, Any] | None = None,
     *,
     y0: ArrayLike | None = None,
     t_end: float = 2000.0,
     t_transient: float | None = None,
     backend: Backend | None = None,
-    **params: float | str,
 ) -> Attractor:
     """The attractor the run from ``y0`` settles on, named (module docstring).
 
@@ -308,7 +310,7 @@ def classify(
     >>> classify(Model(Vb=9.0), t_end=300.0).kind
     'periodic'
     """
-    model = as_model(model, **params)
+    model = as_model(model)
     spec = lyapunov(model, y0=y0, t_end=t_end, t_transient=t_transient, backend=backend)
     try:
         excitation_period(model)
@@ -317,13 +319,32 @@ def classify(
     return _forced(model, spec, backend)
 
 
+#: The shortest run of `periodic_attractor`, in excitation periods: its samples start
+#: after 30 % of the run, one a period, and the run's settings need 20 of them
+#: (`beltmdsm.settings.SolverSettings`).
+MIN_PERIODS = 22
+
+
+def run_length(t_end: Any, period: float) -> float:
+    """``t_end`` checked as the length of a `periodic_attractor` run of a model of
+    excitation period ``period``: at least `MIN_PERIODS` of them (a ValueError naming
+    ``t_end`` otherwise, before anything runs)."""
+    t_end = number("t_end", t_end, above=0)
+    if not t_end >= MIN_PERIODS * period:
+        raise ValueError(
+            f"t_end must be at least {MIN_PERIODS} excitation periods "
+            f"({MIN_PERIODS * period:.4g} s); got {t_end:g}"
+        )
+    return t_end
+
+
+@public()
 def periodic_attractor(
-    model: Model | None = None,
+    model: Model | Mapping[str, Any] | None = None,
     *,
     y0: ArrayLike | None = None,
     t_end: float = 2000.0,
     backend: Backend | None = None,
-    **params: float | str,
 ) -> Attractor:
     """The stable periodic attractor the run from ``y0`` settles on, without a Lyapunov run.
 
@@ -369,10 +390,9 @@ def periodic_attractor(
     >>> a.kind, a.periods, round(a.lyapunov, 4)
     ('periodic', 4, -0.0951)
     """
-    model = as_model(model, **params)
+    model = as_model(model)
     T = excitation_period(model)
-    if not (np.isfinite(t_end) and t_end >= 10 * T):
-        raise ValueError(f"t_end must be at least 10 excitation periods ({10 * T:.4g} s)")
+    t_end = run_length(t_end, T)
     check_length(model, t_end)
     y = initial_state(model) if y0 is None else state("y0", y0, (4,), "X1, Y1, X2, Y2")
     first = T * np.ceil(0.3 * t_end / T)
@@ -468,7 +488,7 @@ def unstable_set(
     See Also
     --------
     beltmdsm.attractors.classification.classify : Calls such a run ``unstable``.
-    beltmdsm.simulation.equilibrium_start : The default start, off unstable sliding.
+    beltmdsm.excitation.equilibrium_start : The default start, off unstable sliding.
 
     Examples
     --------

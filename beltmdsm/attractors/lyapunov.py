@@ -37,7 +37,9 @@ from __future__ import annotations
 
 import math
 import sys
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -45,16 +47,16 @@ from tqdm import tqdm
 
 from beltmdsm.generated import unforced
 
+from .._calling import public
 from .._tables import DataFrame
-from ..arguments import state
+from ..arguments import number, state
 from ..errors import Refused, StepTooSmall
-from ..excitation import excitation_period, initial_state
+from ..excitation import START_PERTURBATION, equilibrium_start, excitation_period, initial_state
 from ..integrate.events import integrate_events
 from ..integrate.switching import Mode
 from ..model import Backend, Model, as_model
 from ..periodic import variational
 from ..settings import MAX_RUN_BYTES, SolverSettings, fastest_rate
-from ..simulation import START_PERTURBATION, equilibrium_start
 
 __all__ = [
     "Lyapunov",
@@ -128,7 +130,7 @@ class Lyapunov:
         reads the attractor's kind from them).
     start_perturbation : float
         How far the default start was moved off unstable steady sliding
-        (`beltmdsm.simulation.equilibrium_start`), 0.0 where it was not.
+        (`beltmdsm.excitation.equilibrium_start`), 0.0 where it was not.
 
     See Also
     --------
@@ -382,27 +384,27 @@ def _chunk(model, settings, y, t0, max_step, backend):
     return end, m.matrix, m.switches
 
 
+@public()
 def lyapunov(
-    model: Model | None = None,
+    model: Model | Mapping[str, Any] | None = None,
     *,
     y0: ArrayLike | None = None,
     t_end: float = 1000.0,
     t_transient: float | None = None,
     rtol: float = RTOL,
     backend: Backend | None = None,
-    **params: float | str,
 ) -> Lyapunov:
     """The Lyapunov spectrum of the run from ``y0`` (module docstring).
 
     Parameters
     ----------
-    model : Model, optional
-        Or the keywords it is built from (``**params``).
+    model : Model or dict, optional
+        The model, or a dict of its parameters and options (None: the base set).
     y0 : array_like (4,), optional
         The start; default as `beltmdsm.simulation.simulate`'s: the unforced equilibrium
         at rest, or without excitation where steady sliding is unstable that
-        equilibrium moved by `beltmdsm.simulation.START_PERTURBATION` along its unstable
-        direction (`beltmdsm.simulation.equilibrium_start`; the result's
+        equilibrium moved by `beltmdsm.excitation.START_PERTURBATION` along its unstable
+        direction (`beltmdsm.excitation.equilibrium_start`; the result's
         ``start_perturbation``): a run started exactly on it stays there, and its
         exponents would be the equilibrium's instability, not the attractor's. To
         start on the periodic response pass `beltmdsm.periodic.start.periodic_start`.
@@ -445,9 +447,13 @@ def lyapunov(
     >>> bool(spec.largest < 0)   # steady sliding, stable under Coulomb friction
     True
     """
-    model = as_model(model, **params)
-    t_end = _positive("t_end", t_end)
-    rtol = _positive("rtol", rtol)
+    model = as_model(model)
+    t_end = number("t_end", t_end, above=0)
+    rtol = number("rtol", rtol, above=0)
+    if t_transient is not None:
+        t_transient = number(
+            "t_transient", t_transient, at_least=0, below=t_end, below_name="t_end"
+        )
     base, cuts = chunk_length(model)
     tau = base / cuts
     check_length(model, t_end)
@@ -565,13 +571,3 @@ def _spectrum(model, logs, collapsed, base, tau, rtol, t_transient, switches, sa
         samples[-1].copy(),
         samples,
     )
-
-
-def _positive(name, value):
-    if isinstance(value, bool) or not (
-        isinstance(value, (int, float, np.floating, np.integer))
-        and math.isfinite(value)
-        and value > 0
-    ):
-        raise ValueError(f"{name} must be a positive finite number; got {value!r}")
-    return float(value)

@@ -30,7 +30,7 @@ from beltmdsm.generated.parameters import PARAMETERS
 
 from ..model import OPTION_DEFAULTS, OPTION_DOCS, OPTIONS, Model, check_domain
 from ..settings import CONTACT_LOSS, DEFAULT_T_END, METHODS, SOLVERS, SolverSettings
-from .parser import writable_file
+from .parser import in_flags, writable_file
 
 __all__ = [
     "number",
@@ -331,7 +331,8 @@ def settings_from(args: argparse.Namespace) -> SolverSettings:
         )
     except ValueError as err:
         # every field is checked alone when parsed: what is left is how they fit together
-        args.parser.error(f"argument --t-end/--t-discard/--dt: {err}")
+        said = in_flags(str(err), args.parser, ("t_end", "t_discard", "dt"))
+        args.parser.error(f"argument --t-end/--t-discard/--dt: {said}")
 
 
 def executor_parent() -> argparse.ArgumentParser:

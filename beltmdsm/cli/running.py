@@ -18,6 +18,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from ..errors import NoPeriodicResponse, StepTooSmall
+from .parser import flag_names, in_flags
 
 __all__ = ["register", "flag_of"]
 
@@ -134,8 +135,9 @@ def _dispatch(args):
         return _handler(args)(args)
     except ValueError as err:
         names = getattr(err, "names", ())
-        where = "/".join(flag_of(n) for n in names)
-        args.parser.error(f"argument {where}: {err}" if where else str(err))
+        where = "/".join(flag_names(args.parser, n) for n in names)
+        said = in_flags(str(err), args.parser, names)  # the flags, not Python's names
+        args.parser.error(f"argument {where}: {said}" if where else said)
     except StepTooSmall as err:
         print(f"{args.parser.prog}: error: argument --rtol/--atol: {err}", file=sys.stderr)
         return 2

@@ -50,6 +50,7 @@ COMMANDS = {
     "floquet-map": "floquet_map",
     "lyapunov": "lyapunov",
     "basins": "basins",
+    "basin-stability": "basin_stability",
     "validate": "validate",
     "docs": "docs",
 }
@@ -96,7 +97,14 @@ def build_parser(prog: str | None = None, runtime: bool = True) -> Parser:
     parser = Parser(
         prog=prog or _prog(),
         description="Derive the model symbolically and regenerate generated/ "
-        "(no command), or run one of the commands.",
+        "(--regenerate, --check, --out), or run one of the commands.",
+    )
+    parser.add_argument(
+        "--regenerate",
+        action="store_true",
+        help="regenerate generated/ from the derivations (a source checkout; what "
+        "`python -m derive` does); without it, --check or --out, `beltmdsm` alone prints "
+        "this help",
     )
     parser.add_argument(
         "--check",
@@ -146,7 +154,7 @@ def _needs_runtime(argv):
     rest = list(argv)
     if "--out" in rest[:-1]:
         del rest[rest.index("--out") : rest.index("--out") + 2]
-    rest = [a for a in rest if a != "--check" and not a.startswith("--out=")]
+    rest = [a for a in rest if a not in ("--check", "--regenerate") and not a.startswith("--out=")]
     return not (rest == [] or rest[:1] == ["check-paper"])
 
 
@@ -171,7 +179,10 @@ def _run(argv: list[str]) -> int:
     parser = build_parser(runtime=_needs_runtime(argv))
     try:
         args = parser.parse_args(argv)
-        if args.command is None:
+        if args.command is None and not (args.regenerate or args.check or args.out):
+            parser.print_help()  # a bare `beltmdsm` derives nothing (issue 37)
+            status = 0
+        elif args.command is None:
             args.parser = parser
             status = _generate(args)
         else:

@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 
 from .._calling import ranged
+from ..arguments import count, flag, number
 from ..errors import NoPeriodicResponse, Refused
 from ..excitation import excitation_period
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain
@@ -48,19 +49,18 @@ from .band_result import Band, BandFailure, BandPoint
 __all__ = ["floquet_band"]
 
 
-@ranged
+@ranged()
 def floquet_band(
+    model: Model | Mapping[str, Any] | None,
     param: str,
     lo: float,
     hi: float,
-    model: Model | Mapping[str, Any] | None = None,
     *,
     points: int = 17,
     tol: float = 1e-3,
     backend: Backend | None = None,
     periods: int = 1,
     progress: bool = False,
-    **kw: Any,
 ) -> Band:
     """Ranges of ``param`` in ``[lo, hi]`` where the periodic response is unstable.
 
@@ -85,12 +85,12 @@ def floquet_band(
 
     Parameters
     ----------
+    model : Model or dict or None
+        The other parameters and the options (None: the base set).
     param : str
         A model parameter.
     lo, hi : float
         The range, inside the parameter's domain.
-    model : Model or dict, optional
-        The other parameters and the options (default: the base set); ``**kw`` too.
     points : int
         Grid values walked before the refinement, 2 to
         `beltmdsm.settings.MAX_BAND_POINTS`.
@@ -144,17 +144,18 @@ def floquet_band(
     """
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")
-    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
-        raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
+    lo, hi = number("lo", lo), number("hi", hi)
+    if not lo < hi:
+        raise ValueError(f"the range must have lo < hi; got [{lo:g}, {hi:g}]")
     for end in (lo, hi):
         problem = check_domain(param, end)
         if problem:
             raise ValueError(f"the range [{lo:g}, {hi:g}] leaves the domain: {param} {problem}")
-    model = as_model(model, **kw)
+    model = as_model(model)
     excitation_period(model)  # a band of the forced response (not of self-excited cycles)
-    if int(points) < 2 or not tol > 0:
-        raise ValueError(f"points must be >= 2 and tol > 0; got {points}, {tol}")
-    _check_band_request(lo, hi, int(points), tol)
+    points, tol = count("points", points, 2), number("tol", tol, above=0)
+    periods, progress = count("periods", periods, 1), flag("progress", progress)
+    _check_band_request(lo, hi, points, tol)
     from tqdm import tqdm
 
     bar = tqdm(

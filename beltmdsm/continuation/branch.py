@@ -42,6 +42,7 @@ from typing import Any
 
 import numpy as np
 
+from .._calling import public
 from ..errors import Refused
 from ..excitation import is_autonomous
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model
@@ -155,6 +156,7 @@ def continue_branch(
     return record_points(Branch(param, start.periods, model, points, special), record)
 
 
+@public()
 def branch(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -164,7 +166,6 @@ def branch(
     hi: float,
     backend: Backend | None = None,
     record: Callable[[Any], float | Mapping[str, float]] | None = None,
-    **kw: Any,
 ) -> Branch:
     """The branch of the response of ``periods`` periods at a point (`continue_branch`).
 
@@ -233,7 +234,7 @@ def branch(
     True
     """
     _check_record(record)
-    model = as_model(model, **kw)
+    model = as_model(model)
     if is_autonomous(model):
         from ..cycles.branch import cycle_branch
 

@@ -10,7 +10,7 @@ import math
 import numbers
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -20,7 +20,7 @@ from ..errors import Refused
 from ..model import Model
 from ..periodic.engines import engine_of
 
-__all__ = ["LOCATE_TOL", "SpecialPoint", "BranchPart", "Branch", "record_points"]
+__all__ = ["LOCATE_TOL", "SpecialPoint", "BranchPart", "Branch", "Hopf", "record_points"]
 
 #: Special points are located to this in the parameter.
 LOCATE_TOL = 1e-6
@@ -133,6 +133,22 @@ class BranchPart:
         }
 
 
+class Hopf(Protocol):
+    """What a type checker knows of a branch's Hopf point (`beltmdsm.cycles.hopf.HopfPoint`,
+    a layer above this one)."""
+
+    @property
+    def param(self) -> str: ...
+    @property
+    def value(self) -> float: ...
+    @property
+    def accuracy(self) -> float: ...
+    @property
+    def frequency(self) -> float: ...
+    @property
+    def transversality(self) -> float: ...
+
+
 @dataclass
 class Branch:
     """A branch of responses of ``periods`` excitation periods in one parameter.
@@ -147,6 +163,8 @@ class Branch:
         In arclength order, from the start's lower end.
     special : list of SpecialPoint
         In arclength order; the first and the last are the ends.
+    hopf : Hopf or None
+        Where a branch of self-excited cycles is born; None for forced responses.
 
     See Also
     --------
@@ -176,6 +194,11 @@ class Branch:
     model: Model
     points: list[Any]
     special: list[SpecialPoint]
+    #: Where a branch of self-excited cycles is born (`beltmdsm.cycles.hopf.HopfPoint`,
+    #: set by `beltmdsm.cycles.branch.CycleBranch`); None for a branch of forced
+    #: responses. Declared here so that ``branch(...).hopf`` type-checks whichever
+    #: ``branch`` returns (issue 37).
+    hopf: Hopf | None = None
 
     @property
     def response(self) -> str:

@@ -52,7 +52,8 @@ from typing import Any
 
 import numpy as np
 
-from .._calling import mapped
+from .._calling import mapped, rename
+from ..arguments import count, flag, number
 from ..errors import NoPeriodicResponse, Refused
 from ..excitation import excitation_period
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model
@@ -91,34 +92,42 @@ def _row_unstable(edges, lo, hi):
     return out
 
 
-@mapped
+@mapped(
+    renamed={
+        "x_from": rename("x_lo"),
+        "x_to": rename("x_hi"),
+        "y_from": rename("y_lo"),
+        "y_to": rename("y_hi"),
+        "rows": rename("points"),
+    }
+)
 def floquet_map(
+    model: Model | Mapping[str, Any] | None,
     x: str,
-    x_from: float,
-    x_to: float,
+    x_lo: float,
+    x_hi: float,
     y: str,
-    y_from: float,
-    y_to: float,
-    model: Model | Mapping[str, Any] | None = None,
+    y_lo: float,
+    y_hi: float,
     *,
-    rows: int = 100,
+    points: int = 100,
     check_every: int = 50,
     backend: Backend | None = None,
     progress: bool = False,
-    **kw: Any,
 ) -> FloquetMap:
     """The region of ``(x, y)`` where the periodic response is unstable, its boundary traced.
 
     Parameters
     ----------
+    model : Model or dict or None
+        The other parameters and the options (None: the base set).
     x, y : str
         Two different model parameters.
-    x_from, x_to, y_from, y_to : float
-        Their ranges.
-    model : Model or dict, optional
-        The other parameters and the options (default: the base set); ``**kw`` too.
-    rows : int
-        Values of ``y`` (>= 2), evenly spaced.
+    x_lo, x_hi, y_lo, y_hi : float
+        Their ranges (``x_from=`` ... before: deprecated).
+    points : int
+        Values of ``y`` (>= 2), evenly spaced: the rows of the map (``rows=`` before:
+        deprecated).
     check_every : int
         A band finds the edges afresh on every such row (>= 1), besides where a curve
         cannot be continued and where no curve is followed.
@@ -134,10 +143,10 @@ def floquet_map(
     Raises
     ------
     ValueError
-        For unknown or equal parameters, bad ranges, ``rows < 2`` or ``check_every < 1``,
-        or a model without excitation.
+        For unknown or equal parameters, bad ranges, ``points < 2`` or
+        ``check_every < 1``, or a model without excitation.
     beltmdsm.errors.Refused
-        For more than `beltmdsm.settings.MAX_MAP_ROWS` rows.
+        For more than `beltmdsm.settings.MAX_MAP_ROWS` points.
 
     See Also
     --------
@@ -149,7 +158,7 @@ def floquet_map(
     The Neimark-Sacker curve in ``(Vb, beta1)`` over three rows:
 
     >>> from beltmdsm import floquet_map
-    >>> m = floquet_map("Vb", 5.3, 5.7, "beta1", 0.29, 0.31, rows=3)
+    >>> m = floquet_map(None, "Vb", 5.3, 5.7, "beta1", 0.29, 0.31, points=3)
     >>> [(c.kind, len(c.x)) for c in m.curves]
     [('neimark_sacker', 3)]
     >>> [round(x, 3) for x in m.curves[0].x]
@@ -163,23 +172,22 @@ def floquet_map(
             raise ValueError(f"a map's axes must be model parameters; got {name!r}")
     if x == y:
         raise ValueError(f"the two axes must differ; got {x!r} twice")
-    for a, b in ((x_from, x_to), (y_from, y_to)):
-        if not (np.isfinite(a) and np.isfinite(b) and a < b):
-            raise ValueError(f"each range must be finite with from < to; got [{a}, {b}]")
-    if int(rows) < 2 or int(check_every) < 1:
-        raise ValueError(f"rows must be >= 2 and check_every >= 1; got {rows}, {check_every}")
-    if int(rows) > MAX_MAP_ROWS:
+    x_lo, y_lo = number("x_lo", x_lo), number("y_lo", y_lo)
+    x_hi, y_hi = number("x_hi", x_hi, above=x_lo), number("y_hi", y_hi, above=y_lo)
+    points, check_every = count("points", points, 2), count("check_every", check_every, 1)
+    progress = flag("progress", progress)
+    if points > MAX_MAP_ROWS:
         raise Refused(
-            f"rows = {int(rows)} is more than MAX_MAP_ROWS = {MAX_MAP_ROWS} "
+            f"points = {points} is more than MAX_MAP_ROWS = {MAX_MAP_ROWS} "
             "(beltmdsm/settings.py; a row is a continuation step of every curve, every "
-            f"{int(check_every)}th a band): use rows <= {MAX_MAP_ROWS}",
-            "rows",
+            f"{check_every}th a band): use points <= {MAX_MAP_ROWS}",
+            "points",
         )
-    base = as_model(model, **kw).replace(**{x: x_from, y: y_from})
+    base = as_model(model).replace(**{x: x_lo, y: y_lo})
     excitation_period(base)
-    span = x_to - x_from
-    ys = np.linspace(y_from, y_to, int(rows))
-    xs = np.linspace(x_from, x_to, LINEAR_POINTS)
+    span = x_hi - x_lo
+    ys = np.linspace(y_lo, y_hi, points)
+    xs = np.linspace(x_lo, x_hi, LINEAR_POINTS)
     curves, trackers, unstable, models, band_rows = [], [], [], [], []
     from tqdm import tqdm
 
@@ -205,7 +213,7 @@ def floquet_map(
                 lost.append(tracker)
                 continue
             c = tracker.curve
-            if not x_from <= at <= x_to:
+            if not x_lo <= at <= x_hi:
                 c.ended = f"leaves the range of {x} at {y} = {value:g}"
                 continue
             if kind != c.kind:  # a new kind: a new curve from the same point
@@ -241,8 +249,8 @@ def floquet_map(
         band = None
         if i == 0 or not live or len(live) < len(trackers) or i % int(check_every) == 0:
             # the band's tol is at most its grid's step (17 points)
-            tol = min(1e-3, (x_to - x_from) / 16)
-            band = floquet_band(x, x_from, x_to, row, tol=tol, backend=backend)
+            tol = min(1e-3, (x_hi - x_lo) / 16)
+            band = floquet_band(row, x, x_lo, x_hi, tol=tol, backend=backend)
             band_rows.append(float(value))
             followed = [t.curve.x[-1] for t in live if t.curve.y[-1] == float(value)]
             for e in band.edges:
@@ -274,7 +282,7 @@ def floquet_map(
             if t.curve.y and t.curve.y[-1] == float(value)
         ]
         if band is None:
-            unstable.append(_row_unstable(edges, x_from, x_to))
+            unstable.append(_row_unstable(edges, x_lo, x_hi))
         else:  # where no stable response is found, also beside an unstable one
             unstable.append([[float(a), float(b)] for a, b in band.unstable])
         models.append(row)
@@ -282,8 +290,8 @@ def floquet_map(
     return FloquetMap(
         x,
         y,
-        [float(x_from), float(x_to)],
-        [float(y_from), float(y_to)],
+        [float(x_lo), float(x_hi)],
+        [float(y_lo), float(y_hi)],
         ys,
         base,
         curves,

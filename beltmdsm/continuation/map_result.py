@@ -43,7 +43,7 @@ class Curve:
     Examples
     --------
     >>> from beltmdsm import floquet_map
-    >>> m = floquet_map("Vb", 5.3, 5.7, "beta1", 0.29, 0.31, rows=3)
+    >>> m = floquet_map(None, "Vb", 5.3, 5.7, "beta1", 0.29, 0.31, points=3)
     >>> curve = m.curves[0]
     >>> curve.kind, curve.y, curve.ended
     ('neimark_sacker', [0.29, 0.3, 0.31], '')
@@ -117,7 +117,7 @@ class FloquetMap:
     Examples
     --------
     >>> from beltmdsm import floquet_map
-    >>> m = floquet_map("Vb", 5.3, 5.7, "beta1", 0.29, 0.31, rows=3)
+    >>> m = floquet_map(None, "Vb", 5.3, 5.7, "beta1", 0.29, 0.31, points=3)
     >>> m  # doctest: +ELLIPSIS
     FloquetMap('Vb' in [5.3, 5.7], 'beta1' in [0.29, 0.31], ...; 3 rows, ... s): 1 boundary curves
       Curve('neimark_sacker' (NS), 3 points: y 0.29..0.31, x 5.42...5.47..., to ...)

@@ -68,7 +68,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from beltmdsm.generated import hybrid
 
+from .. import arguments
+from .._calling import public
 from .._tables import DataFrame
+from ..arguments import count, number
 from ..errors import NoPeriodicResponse
 from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.switching import Mode, Switching
@@ -341,6 +344,7 @@ class _Shooting:
         return float(self.sw.scales(0.0, *x)[1])
 
 
+@public()
 def cycle(
     model: Model | Mapping[str, Any],
     guess: ArrayLike | None = None,
@@ -392,14 +396,19 @@ def cycle(
     (6.654, 1, True)
     """
     model = as_model(model)
+    max_iter = count("max_iter", max_iter, 1)
+    if period is not None:
+        period = number("period", period, above=0)
+        if guess is None:
+            raise ValueError("period is the period of the guess: give guess= too, or neither")
+    if guess is not None:
+        guess = arguments.state("guess", guess, (4,), "X1, X1', X2, X2'")
+        if period is None:
+            raise ValueError("period must be a finite number > 0 with a guess; got None")
     require_autonomous(model)
     if guess is None:
         guess, period = seed_cycle(model, backend=backend)
     x = np.array(guess, dtype=float).ravel()
-    if x.size != 4 or not np.all(np.isfinite(x)):
-        raise ValueError(f"guess must be 4 finite numbers (X1, X1', X2, X2'); got {guess!r}")
-    if period is None or not (math.isfinite(period) and period > 0):
-        raise ValueError(f"period must be a finite number > 0 with a guess; got {period!r}")
     shoot = _Shooting(model, backend)
     x, T, (end, M, run, f_end), residual, iterations = _newton(shoot, x, float(period), max_iter)
     # the least period: where the orbit passes its state earlier, T is a multiple of it

@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from beltmdsm.generated import unforced
 
+from .._calling import public
 from ..errors import NoPeriodicResponse
 from ..excitation import initial_state, is_autonomous
 from ..integrate.switching import SURFACE_INDEX, Mode, Switching
@@ -177,6 +178,7 @@ def unstable_pair(model: Model) -> tuple[complex, NDArray[np.complex128]]:
     return complex(lam[k]), V[:, k]
 
 
+@public()
 def seed_cycle(
     model: Model | Mapping[str, Any],
     *,

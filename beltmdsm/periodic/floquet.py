@@ -57,6 +57,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from .._calling import public
 from .._tables import DataFrame
 from ..integrate.switching import Mode
 from ..model import Backend, Model, as_model
@@ -131,7 +132,7 @@ class Floquet:
     Examples
     --------
     >>> from beltmdsm import floquet
-    >>> f = floquet(Vb=12.0)
+    >>> f = floquet(Model(Vb=12.0))
     >>> f.verdict, f.engine, round(f.max_abs_multiplier, 3), round(f.growth_rate, 3)
     ('stable', 'closed_form', 0.855, -0.1)
     >>> f.n_reversals, f.n_sticks, f.response.periods
@@ -194,7 +195,7 @@ class Floquet:
         Examples
         --------
         >>> from beltmdsm import Floquet, periodic_response
-        >>> f = Floquet.of(periodic_response(Vb=5.0, periods=4))
+        >>> f = Floquet.of(periodic_response(Model(Vb=5.0), periods=4))
         >>> f.verdict, f.response.periods, round(f.max_abs_multiplier, 3)
         ('stable', 4, 0.587)
         """
@@ -313,8 +314,8 @@ class Floquet:
 
         Examples
         --------
-        >>> from beltmdsm import floquet
-        >>> table = floquet(Vb=12.0).to_pandas()
+        >>> from beltmdsm import Model, floquet
+        >>> table = floquet(Model(Vb=12.0)).to_pandas()
         >>> list(table), len(table)
         (['multiplier', 'abs', 'angle', 'rate', 'below_floor'], 4)
         >>> round(float(table["rate"].max()), 3)  # the growth rate
@@ -380,6 +381,7 @@ class Floquet:
         }
 
 
+@public()
 def floquet(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -388,7 +390,6 @@ def floquet(
     backend: Backend | None = None,
     periods: int = 1,
     engine: Engine | None = None,
-    **kw: Any,
 ) -> Floquet:
     """Floquet multipliers of the periodic response of Eq. (4) (module docstring).
 
@@ -414,7 +415,7 @@ def floquet(
         The period map (`beltmdsm.periodic.engines.period_map`); None: the one the
         model's laws allow.
     **kw
-        Parameters and options of the model (``floquet(Vb=5)``).
+        Parameters and options of the model (``floquet(Model(Vb=5))``).
 
     Returns
     -------
@@ -443,7 +444,7 @@ def floquet(
     Examples
     --------
     >>> from beltmdsm import floquet
-    >>> f = floquet(Vb=5.0)
+    >>> f = floquet(Model(Vb=5.0))
     >>> f.verdict, round(f.max_abs_multiplier, 3), round(f.growth_rate, 3)
     ('unstable', 1.12, 0.072)
     >>> round(f.frequency, 3), round(f.period, 4)  # omega1 = 1 rad/s, T = 2 pi / 4
@@ -451,11 +452,11 @@ def floquet(
 
     The response of 4 excitation periods, locked at ``omega1 = Omega / 4``:
 
-    >>> f4 = floquet(Vb=5.0, periods=4)
+    >>> f4 = floquet(Model(Vb=5.0), periods=4)
     >>> f4.verdict, f4.n_reversals, round(f4.period, 4)
     ('stable', 4, 6.2832)
     """
-    model = as_model(model, **kw)
+    model = as_model(model)
     return Floquet.of(
         periodic_response(
             model, guess=guess, forward=forward, backend=backend, periods=periods, engine=engine

@@ -135,7 +135,7 @@ class GeneralMap(PeriodMap):
     >>> pmap = GeneralMap(Model(Vb=5.0))
     >>> point = fixed_point(pmap, pmap.sliding_guess())
     >>> mu = np.linalg.eigvals(point.image.jacobian)
-    >>> closed_form = floquet(Vb=5.0).max_abs_multiplier
+    >>> closed_form = floquet(Model(Vb=5.0)).max_abs_multiplier
     >>> bool(abs(np.max(np.abs(mu)) - closed_form) < 1e-8)
     True
     """

@@ -143,7 +143,7 @@ class PeriodicResponse:
         Examples
         --------
         >>> from beltmdsm import periodic_response
-        >>> x1, v1 = periodic_response(Vb=5.0).ranges()
+        >>> x1, v1 = periodic_response(Model(Vb=5.0)).ranges()
         >>> [round(v, 3) for v in x1 + v1]
         [3.373, 6.623, -6.412, 6.985]
         """

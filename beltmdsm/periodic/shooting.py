@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from .._calling import public
 from ..arguments import count, state
 from ..errors import NoPeriodicResponse, Refused, ShorterPeriod
 from ..excitation import excitation_period, initial_state, is_autonomous
@@ -89,6 +90,7 @@ def _cycle_response(model, guess, max_iter, backend, periods, engine):
     return response_of_cycle(cycle(model, max_iter=max(max_iter, 30), backend=backend))
 
 
+@public()
 def periodic_response(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -98,7 +100,6 @@ def periodic_response(
     backend: Backend | None = None,
     periods: int = 1,
     engine: Engine | None = None,
-    **kw: Any,
 ) -> PeriodicResponse:
     """The periodic response of Eq. (4) by shooting (module docstring).
 
@@ -188,7 +189,7 @@ def periodic_response(
     ...
     beltmdsm.errors.ShorterPeriod: no response of minimal period 8 periods found: ... 4 periods, ...
     """
-    model = as_model(model, **kw)
+    model = as_model(model)
     periods = count("periods", periods, 1)
     max_iter = count("max_iter", max_iter, 1)
     forward = count("forward", forward, 0)

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+from .._calling import public
 from ..model import Backend, Model
 from .shooting import periodic_response
 
@@ -23,6 +24,7 @@ __all__ = [
 PERTURBATION = 1e-2
 
 
+@public()
 def periodic_start(
     model: Model, perturbation: float = PERTURBATION, backend: Backend | None = None
 ) -> np.ndarray:

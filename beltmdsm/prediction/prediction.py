@@ -33,6 +33,8 @@ from numpy.typing import ArrayLike
 
 from beltmdsm.generated.parameters import STATIC_BOUNDS
 
+from .._calling import public, rename
+from ..arguments import number
 from ..model import OPTION_DEFAULTS, Model, as_model
 from .mdsm import _linear, _linear_without_reversal, clip_acts
 from .paper import _paper
@@ -140,7 +142,7 @@ class Prediction:
     Examples
     --------
     >>> from beltmdsm import predict
-    >>> result = predict(Omega_n=7.0, points=20)  # two excitation frequencies
+    >>> result = predict(Model(Omega_n=7.0), points=20)  # two excitation frequencies
     >>> result.consistent_mdsm is None
     True
     >>> print(result.reasons["consistent_mdsm"])
@@ -182,21 +184,21 @@ class Prediction:
         return block(head, lines)
 
 
+@public(renamed={"vb_max": rename("hi")})
 def predict(
     model: Model | Mapping[str, Any] | None = None,
     *,
     vb: ArrayLike | None = None,
     points: int | np.integer = 400,
     progress: bool = False,
-    vb_max: float | None = None,
-    **kw: Any,
+    hi: float | None = None,
 ) -> Prediction:
     """Both analyses' predicted unstable ``Vb`` intervals.
 
     Parameters
     ----------
     model : Model or dict, optional
-        The parameters and the laws (default: the base set); ``**kw`` too. Under
+        The parameters and the laws (default: the base set). Under
         ``tension="clipped"`` (docs/modelling.md#tension) the paper's closed forms do
         not change (a note in ``reasons`` says why); the consistent MDSM has no
         prediction where the clip cuts its fast normal force (`clip_acts`,
@@ -208,15 +210,14 @@ def predict(
         The size of the default grid (2 to `MAX_VB_POINTS`).
     progress : bool
         Show a progress bar on stderr once the grid takes more than 2 s.
-    vb_max : float, optional
-        The top of the default grid instead of its own. Where a band of the
+    hi : float, optional
+        The top of the default grid instead of its own (``vb_max=`` before:
+        deprecated). Where a band of the
         consistent MDSM reaches the lowest point of the grid above 0, ``reasons``
-        says that it may extend below; where ``vb_max`` makes the grid coarser than
+        says that it may extend below; where ``hi`` makes the grid coarser than
         the default's, what it cannot resolve (`grid_note`); where the law's unforced
         critical belt speed has no closed form, that its edges were found
         numerically (`unforced_edges`).
-    **kw
-        Parameters (``Vb=4``) and options (``friction="stribeck"``) of the model.
 
     Returns
     -------
@@ -258,15 +259,16 @@ def predict(
 
     Without excitation there is no fast motion, and each analysis says so:
 
-    >>> quiet = predict(alpha=0.0, points=20)
+    >>> quiet = predict(Model(alpha=0.0), points=20)
     >>> quiet.consistent_mdsm, quiet.paper_tangential_vhat
     ([], None)
     >>> print(quiet.reasons["paper_tangential_vhat"])
     V_hat = 0 (no fast tangential motion): Eqs. (23)-(25) need V_hat > 0
     """
-    model = as_model(model, **kw)
+    model = as_model(model)
     p, tension = model.params, model.tension
     _check_points(points)
+    vb_max = None if hi is None else number("hi", hi, above=0)
     if vb is not None:
         vb = _check_grid(vb)
     reasons = {}

@@ -18,6 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy import optimize
 
 from .. import intervals
+from ..arguments import count
 from ..errors import Refused
 from ..model import Model, as_model, require
 from ..settings import MAX_VB_POINTS
@@ -66,8 +67,7 @@ ONSET_STEP = 1e-4
 
 
 def _check_points(points):
-    if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < 2:
-        raise ValueError(f"points must be an integer >= 2; got {points!r}")
+    points = count("points", points, 2)
     if points > MAX_VB_POINTS:
         raise Refused(
             f"points = {points} is more than MAX_VB_POINTS = {MAX_VB_POINTS:.0e} "

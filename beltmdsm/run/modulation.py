@@ -42,8 +42,8 @@ class Simulated(Protocol):
 
     Examples
     --------
-    >>> from beltmdsm import simulate
-    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> from beltmdsm import Model, simulate
+    >>> sim = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0)
     >>> sim.params["Vb"], sim.trajectory.t_end, sim.settings.window_start
     (4.0, 40.0, 10.0)
     """
@@ -90,8 +90,8 @@ def friction_loop(
 
     Examples
     --------
-    >>> from beltmdsm import simulate
-    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> from beltmdsm import Model, simulate
+    >>> sim = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0)
     >>> t, vr, friction = friction_loop(sim)  # the last 2 pi / omega1 of the run
     >>> t.shape, round(float(t[-1] - t[0]), 4)
     ((2000,), 6.2832)
@@ -144,8 +144,8 @@ def cycle_averages(
     Cycles of the excitation period 2 pi / 4 s from the first multiple after 10 s:
 
     >>> import math
-    >>> from beltmdsm import simulate
-    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> from beltmdsm import Model, simulate
+    >>> sim = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0)
     >>> cycles = cycle_averages(sim, 2 * math.pi / 4.0)
     >>> sorted(cycles), cycles["t0"].size
     (['friction', 'mu_eff', 'normal_force', 't0'], 18)
@@ -199,8 +199,8 @@ def modulation_scatter(sim: Simulated) -> dict[str, float]:
 
     Examples
     --------
-    >>> from beltmdsm import simulate
-    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> from beltmdsm import Model, simulate
+    >>> sim = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0)
     >>> scatter = modulation_scatter(sim)
     >>> sorted(scatter)  # doctest: +NORMALIZE_WHITESPACE
     ['mu_eff_Omega_mean', 'mu_eff_Omega_range', 'mu_eff_Omega_std',

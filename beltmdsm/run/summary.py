@@ -96,7 +96,7 @@ def classify_regime(trajectory: Trajectory, t0: float, t1: float) -> str:
     Examples
     --------
     >>> from beltmdsm import simulate
-    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> sim = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0)
     >>> classify_regime(sim.trajectory, 10.0, 40.0)
     'sliding_with_reversals'
     """
@@ -171,7 +171,7 @@ class EnergyBalance:
     Examples
     --------
     >>> from beltmdsm import simulate
-    >>> e = simulate(Vb=4.0, t_end=40.0, t_discard=10.0).summary.energy
+    >>> e = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0).summary.energy
     >>> e.residual < 1e-8, e.work_input > e.work_friction > 0
     (True, True)
     """
@@ -204,7 +204,7 @@ class Summary:
 
     ``start_perturbation`` is how far the run's start was moved off steady sliding
     along its unstable direction (without excitation, where steady sliding is
-    unstable: `beltmdsm.simulation.equilibrium_start`; 0.0 elsewhere). Such a run that
+    unstable: `beltmdsm.excitation.equilibrium_start`; 0.0 elsewhere). Such a run that
     still slides steadily at its end is unresolved, the instability named.
 
     Parameters
@@ -263,12 +263,12 @@ class Summary:
     Examples
     --------
     >>> from beltmdsm import simulate
-    >>> s = simulate(Vb=4.0, t_end=300.0).summary
+    >>> s = simulate(Model(Vb=4.0), t_end=300.0).summary
     >>> s.regime, s.resolved, s.omega1_peak_present, s.energy_ok
     ('sliding_with_reversals', True, True, True)
     >>> round(s.peak_omega1, 1), round(s.omega1_peak_at, 2)
     (4.9, 1.0)
-    >>> short = simulate(Vb=4.0, t_end=40.0, t_discard=10.0).summary
+    >>> short = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0).summary
     >>> short.resolved, short.omega1_peak_present
     (False, None)
     >>> print(short.unresolved_reason)  # doctest: +ELLIPSIS
@@ -370,7 +370,7 @@ def summarize(
         The run's wall-clock time [s], stated in the summary.
     start_perturbation : float
         How far the run's start was moved off an unstable steady sliding
-        (`beltmdsm.simulation.equilibrium_start`), stated in the summary.
+        (`beltmdsm.excitation.equilibrium_start`), stated in the summary.
 
     Returns
     -------
@@ -383,7 +383,7 @@ def summarize(
     Examples
     --------
     >>> from beltmdsm import simulate
-    >>> sim = simulate(Vb=4.0, t_end=40.0, t_discard=10.0)
+    >>> sim = simulate(Model(Vb=4.0), t_end=40.0, t_discard=10.0)
     >>> s = summarize(sim.model, sim.settings, sim.run, sim.samples)
     >>> s.regime, s.n_reversals == sim.summary.n_reversals
     ('sliding_with_reversals', True)

@@ -27,6 +27,11 @@ and state, not by discovery.
 Each start is a pure function of the model, the start, the known attractors and the
 settings, cached on disk (`beltmdsm.studies.cache`) when a cache folder is given: an
 interrupted map resumes from its cache.
+
+Without excitation there is no period map: `beltmdsm.studies.self_excited_basins`
+maps the basins of steady sliding and the self-excited cycles, each start decided by
+the region the computed cycles assign it to or by sticking
+(`beltmdsm.attractors.self_excited`).
 """
 
 from __future__ import annotations
@@ -35,15 +40,24 @@ import concurrent.futures as cf
 import hashlib
 import json
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
+from .._calling import Rename, public
 from .._tables import DataFrame
-from ..attractors.classification import KINDS, Attractor, classify, periodic_attractor
+from ..arguments import cache_dir_of, count, executor_of, items_of, number
+from ..attractors.classification import (
+    KINDS,
+    Attractor,
+    classify,
+    periodic_attractor,
+    run_length,
+)
 from ..attractors.landing import (
     IDENTIFY_TOL,
     LARGEST,
@@ -55,16 +69,18 @@ from ..attractors.landing import (
     tolerance,
 )
 from ..errors import NoPeriodicResponse, Refused
-from ..excitation import excitation_period
+from ..excitation import excitation_period, is_autonomous
 from ..model import Model, as_model
 from ..periodic.floquet import floquet
+from ..settings import fastest_rate
 from . import cache
-from .pool import Tally
+from .pool import Tally, process_pool, stop_process_pool
 
 __all__ = [
     "Basins",
     "BasinAttractor",
     "basins",
+    "axis_range",
     "AXES",
     "IDENTIFY_TOL",
     "LARGEST",
@@ -99,7 +115,11 @@ class BasinAttractor:
     fraction : float
         the share of the grid's starts that reach it
     points : ndarray (n, 4)
-        its stroboscopic points (one per excitation period of a periodic one)
+        its stroboscopic points (one per excitation period of a periodic one); of a
+        self-excited cycle, points along its orbit
+    period : float or None
+        A self-excited cycle's period [s] (None for a forced model's attractors, whose
+        ``periods`` counts excitation periods)
 
     See Also
     --------
@@ -111,7 +131,8 @@ class BasinAttractor:
     excitation periods, drawn by its four stroboscopic points:
 
     >>> from beltmdsm import Model, basins
-    >>> b = basins(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    >>> b = basins(Model(Vb=3.88), points=3, x_lo=3.0, x_hi=7.0, y_lo=-8.5, y_hi=-4.5,
+    ...            cache_dir=None)
     >>> a = b.attractors[1]
     >>> a
     BasinAttractor(1: periodic 4T, 88.9% of the starts)
@@ -123,10 +144,14 @@ class BasinAttractor:
     attractor: Attractor = field(repr=False)
     fraction: float
     points: NDArray[np.float64] = field(repr=False)
+    period: float | None = field(repr=False, default=None)
 
     def __repr__(self) -> str:
         a = self.attractor
-        what = a.kind + (f" {a.periods}T" if a.periods else "")
+        if self.period is not None:  # a self-excited cycle: its period in seconds
+            what = f"{a.kind} {self.period:.4g} s"
+        else:
+            what = a.kind + (f" {a.periods}T" if a.periods else "")
         return f"BasinAttractor({self.label}: {what}, {100 * self.fraction:.1f}% of the starts)"
 
     def as_dict(self) -> dict:
@@ -135,6 +160,7 @@ class BasinAttractor:
             "label": self.label,
             "kind": a["kind"],
             "periods": a["periods"],
+            "period": self.period,
             "rotation_number": a["rotation_number"],
             "lyapunov": a["lyapunov"],
             "lyapunov_error": a["lyapunov_error"],
@@ -160,7 +186,10 @@ class Basins:
         identified within the rounds.
     attractors : list of BasinAttractor
     periods : ndarray (len(ys), len(xs))
-        The periods each start was iterated before it was identified.
+        The periods each start was iterated before it was identified (0 without
+        excitation: no period map is iterated).
+    boundaries : list of ndarray (m, 4)
+        Without excitation: the unstable cycles that bound the basins, one period each.
 
     See Also
     --------
@@ -169,7 +198,8 @@ class Basins:
     Examples
     --------
     >>> from beltmdsm import Model
-    >>> b = basins(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    >>> b = basins(Model(Vb=3.88), points=3, x_lo=3.0, x_hi=7.0, y_lo=-8.5, y_hi=-4.5,
+    ...            cache_dir=None)
     >>> b  # doctest: +NORMALIZE_WHITESPACE
     Basins(9 starts on (X1, Y1): [BasinAttractor(0: periodic 1T, 11.1% of the starts),
         BasinAttractor(1: periodic 4T, 88.9% of the starts)])
@@ -187,6 +217,7 @@ class Basins:
     labels: NDArray[np.int_] = field(repr=False)
     attractors: list[BasinAttractor]
     periods: NDArray[np.int_] = field(repr=False)
+    boundaries: list = field(repr=False, default_factory=list)
 
     def __repr__(self) -> str:
         shares = ", ".join(repr(a) for a in self.attractors)
@@ -226,7 +257,8 @@ class Basins:
         Examples
         --------
         >>> from beltmdsm import Model, basins
-        >>> b = basins(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+        >>> b = basins(Model(Vb=3.88), points=3, x_lo=3.0, x_hi=7.0, y_lo=-8.5, y_hi=-4.5,
+        ...            cache_dir=None)
         >>> starts = b.to_pandas()
         >>> list(starts), len(starts), starts["label"].tolist()[:3]
         (['X1', 'Y1', 'label', 'periods'], 9, [1, 1, 1])
@@ -252,7 +284,14 @@ class Basins:
         (`beltmdsm.plotting.basins`)."""
         from ..plotting import basins as draw
 
-        return draw(self, ax)
+        ax = draw(self, ax)
+        ix, iy = AXES.index(self.x), AXES.index(self.y)
+        for k, orbit in enumerate(self.boundaries):
+            ax.plot(orbit[:, ix], orbit[:, iy], "k--", lw=1.2,
+                    label="unstable cycle (basin boundary)" if k == 0 else None)  # fmt: skip
+        if self.boundaries:
+            ax.legend(loc="best", fontsize="small")
+        return ax
 
 
 def _known_digest(known):
@@ -316,40 +355,61 @@ def _map_all(fn, items, executor, tally):
     return out
 
 
+def _range_to_ends(axis: str) -> Rename:
+    """``x_range=(lo, hi)`` (before) as ``x_lo=lo, x_hi=hi``."""
+
+    def convert(given: Any, _: Mapping[str, Any]) -> dict[str, Any]:
+        if given is None:
+            return {}
+        lo, hi = _checked(f"{axis}_range", given)
+        return {f"{axis}_lo": lo, f"{axis}_hi": hi}
+
+    return f"{axis}_lo/{axis}_hi", convert
+
+
+@public(renamed={"x_range": _range_to_ends("x"), "y_range": _range_to_ends("y")})
 def basins(
-    model: Model | None = None,
+    model: Model | Mapping[str, Any] | None = None,
     *,
     x: str = "X1",
-    x_range: tuple[float, float] | None = None,
+    x_lo: float | None = None,
+    x_hi: float | None = None,
     y: str = "Y1",
-    y_range: tuple[float, float] | None = None,
+    y_lo: float | None = None,
+    y_hi: float | None = None,
     points: int = 21,
-    executor: cf.Executor | str | None = "serial",
-    cache_dir: os.PathLike | str | None = None,
+    executor: cf.Executor | Literal["serial"] | None = "serial",
+    cache_dir: os.PathLike | str | None = "default",
     attractors: list[Attractor] | None = None,
     max_periods: int = MAX_PERIODS,
     t_end: float = 2000.0,
-    **params: float | str,
 ) -> Basins:
     """The basins of attraction on a ``points x points`` grid of a plane (module docstring).
 
     Parameters
     ----------
     model : Model, optional
-        Or the keywords it is built from; it must have a periodic excitation.
+        Or the keywords it is built from. Without excitation the starts are states
+        (the other components at steady sliding's) and the attractors steady sliding
+        and the stable self-excited cycles (`beltmdsm.studies.self_excited_basins`).
     x, y : {"X1", "Y1", "X2", "Y2"}
         The axes of the plane (``Y1`` is ``X1'``); the other components are those of the
         first attractor's state at phase 0 (for the default plane: the normal state on
         its periodic orbit).
-    x_range, y_range : (float, float), optional
-        Default: the known attractors' points, widened threefold about their centre.
+    x_lo, x_hi, y_lo, y_hi : float, optional
+        The ranges of the axes, both ends or neither (``x_range=(lo, hi)`` before:
+        deprecated). Default: the known attractors' points, widened threefold about
+        their centre.
     points : int
         Starts per axis.
     executor : concurrent.futures.Executor, "serial" or None
-        Where the starts run (a process pool, ``Client.get_executor()`` of a dask
-        cluster); the result does not depend on it.
-    cache_dir : path, optional
-        The disk cache of the starts (resume after an interruption).
+        Where the starts run: "serial" in this process, None a process pool over the
+        local cores (closed afterwards), otherwise as given (a process pool,
+        ``Client.get_executor()`` of a dask cluster; `beltmdsm.arguments.executor_of`);
+        the result does not depend on it.
+    cache_dir : path, "default" or None
+        The disk cache of the starts (resume after an interruption): None disables it;
+        "default" is `beltmdsm.studies.cache.default_cache_dir`, as for `beltmdsm.sweep`.
     attractors : list of Attractor, optional
         Known attractors (`beltmdsm.attractors.classification.classify`), besides the run
         from rest's.
@@ -365,7 +425,7 @@ def basins(
     Raises
     ------
     ValueError
-        For a bad axis, range, ``points`` or ``max_periods``, or no excitation.
+        For a bad axis, range, ``points`` or ``max_periods``.
     beltmdsm.errors.Refused
         For more than `MAX_STARTS` starts.
 
@@ -377,31 +437,61 @@ def basins(
     Examples
     --------
     >>> from beltmdsm import Model, basins
-    >>> b = basins(Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    >>> b = basins(Model(Vb=3.88), points=3, x_lo=3.0, x_hi=7.0, y_lo=-8.5, y_hi=-4.5,
+    ...            cache_dir=None)
     >>> [(a.attractor.kind, a.attractor.periods) for a in b.attractors]
     [('periodic', 1), ('periodic', 4)]
     """
-    model = as_model(model, **params)
-    excitation_period(model)  # a map needs a period: refuse before anything runs
+    model = as_model(model)
+    autonomous = is_autonomous(model)
+    if not autonomous:
+        # a map needs a period, and its runs some periods of it: refuse before anything runs
+        t_end = run_length(t_end, excitation_period(model))
     for name, axis in (("x", x), ("y", y)):
         if axis not in AXES:
             raise ValueError(f"{name} must be one of {AXES}; got {axis!r}")
     if x == y:
         raise ValueError(f"x and y must differ; got {x!r} twice")
-    if isinstance(points, bool) or not isinstance(points, int) or points < 2:
-        raise ValueError(f"points must be an integer >= 2; got {points!r}")
+    points = count("points", points, 2)
     if points * points > MAX_STARTS:
         raise Refused(
             f"points = {points} gives {points * points} starts, more than MAX_STARTS = "
             f"{MAX_STARTS} (beltmdsm/studies/basins.py)",
             "points",
         )
-    if isinstance(max_periods, bool) or not isinstance(max_periods, int) or max_periods < 1:
-        raise ValueError(f"max_periods must be an integer >= 1; got {max_periods!r}")
-    x_range = _checked("x_range", x_range)
-    y_range = _checked("y_range", y_range)
+    max_periods = count("max_periods", max_periods, 1)
+    x_range = axis_range(model, "x", x, x_lo, x_hi)
+    y_range = axis_range(model, "y", y, y_lo, y_hi)
+    executor = executor_of(executor)
+    attractors = items_of("attractors", attractors, Attractor, "beltmdsm.Attractor")
+    cache_dir = cache.default_cache_dir() if cache_dir_of(cache_dir) == "default" else cache_dir
     if cache_dir is not None:
         cache_dir = cache.writable_folder(cache_dir)
+    if executor is None:  # a pool of this call's own, as in beltmdsm.sweep
+        pool = process_pool(os.cpu_count())
+        try:
+            found = basins(
+                model,
+                x=x,
+                x_lo=x_lo,
+                x_hi=x_hi,
+                y=y,
+                y_lo=y_lo,
+                y_hi=y_hi,
+                points=points,
+                executor=pool,
+                cache_dir=cache_dir,
+                attractors=attractors,
+                max_periods=max_periods,
+                t_end=t_end,
+            )
+        except BaseException:
+            stop_process_pool(pool)
+            raise
+        pool.shutdown()
+        return found
+    if autonomous:
+        return _self_excited(model, x, x_range, y, y_range, points, executor, cache_dir)
 
     general = x in ("X2", "Y2") or y in ("X2", "Y2")
     pmap = one_period_map(model, general)
@@ -475,6 +565,26 @@ def basins(
     return _result(pmap, model, x, y, xs, ys, labels, periods, found, found_points)
 
 
+def _self_excited(model, x, x_range, y, y_range, points, executor, cache_dir):
+    """Without excitation: steady sliding and the self-excited cycles
+    (`beltmdsm.studies.self_excited_basins`)."""
+    from .self_excited_basins import self_excited_basins
+
+    grid = self_excited_basins(
+        model, x=x, x_range=x_range, y=y, y_range=y_range, points=points,
+        executor=executor, cache_dir=cache_dir,
+    )  # fmt: skip
+    attractors = [
+        BasinAttractor(i, a, fraction, pts, period)
+        for i, (a, fraction, pts, period) in enumerate(grid["attractors"])
+    ]
+    shape = grid["labels"].shape
+    return Basins(
+        model, x, y, grid["xs"], grid["ys"], grid["labels"], attractors,
+        np.zeros(shape, dtype=int), grid["boundaries"],
+    )  # fmt: skip
+
+
 def _seed(model, y0, t_end):
     """The attractor the run from ``y0`` (None: rest) settles on: by its returns and
     Floquet where it locks (`beltmdsm.attractors.classification.periodic_attractor`, a
@@ -512,6 +622,69 @@ def _periodic_response(model):
             state[None, :],
         )
     ]
+
+
+def axis_range(model: Model, axis: str, state: str, lo: Any, hi: Any) -> tuple | None:
+    """``(lo, hi)`` of axis ``axis`` ("x" or "y", the state ``state``), checked: both
+    finite numbers, ``lo < hi``, or neither (None); and each end within floating point
+    for the model: ``(r s)^2`` finite, ``r`` its fastest rate
+    (`beltmdsm.settings.fastest_rate`), since the runs square the state (the energy,
+    the spring forces). A start at ``X1 = 1e300`` was iterated for 36 s and reported
+    "4 unidentified" with no reason (issue 36).
+
+    Parameters
+    ----------
+    model : Model
+        The model of the map.
+    axis : {"x", "y"}
+        The axis, for the message (``x_lo``, ``x_hi``).
+    state : str
+        The state component on that axis, for the message.
+    lo, hi : float or None
+        The ends given.
+
+    Returns
+    -------
+    tuple of float or None
+        ``(lo, hi)``, or None where neither is given.
+
+    Raises
+    ------
+    ValueError
+        Naming ``{axis}_lo``/``{axis}_hi``; a `beltmdsm.errors.Refused` where an end is
+        beyond floating point.
+
+    See Also
+    --------
+    beltmdsm.studies.basins.basins : Takes the ranges.
+
+    Examples
+    --------
+    >>> axis_range(Model(), "x", "X1", 1e300, 1e301)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    beltmdsm.errors.Refused: x_lo/x_hi: a start at X1 = 1e+300 is beyond floating point...
+    """
+    if lo is None and hi is None:
+        return None
+    if lo is None or hi is None:
+        raise ValueError(f"{axis}_lo and {axis}_hi go together: give both or neither")
+    lo = number(f"{axis}_lo", lo)
+    hi = number(f"{axis}_hi", hi, above=lo)
+    rate = fastest_rate(model)
+    for end in (lo, hi):
+        with np.errstate(over="ignore"):
+            energy = (np.float64(end) * rate) ** 2
+        if not np.isfinite(energy):
+            raise Refused(
+                f"{axis}_lo/{axis}_hi: a start at {state} = {end:g} is beyond floating "
+                f"point: the runs square it (the energy balance, the forces; rate "
+                f"{rate:.3g} 1/s) and would be integrated as inf or NaN; choose "
+                f"|{state}| < {np.sqrt(np.finfo(float).max) / rate:.3g}",
+                f"{axis}_lo",
+                f"{axis}_hi",
+            )
+    return lo, hi
 
 
 def _checked(name, given):

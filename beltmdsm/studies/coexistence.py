@@ -45,7 +45,7 @@ import numpy as np
 
 from .._calling import ranged
 from .._tables import DataFrame
-from ..arguments import count
+from ..arguments import count, flag, number
 from ..continuation.branch import Branch, continue_branch
 from ..errors import NoPeriodicResponse, Refused
 from ..excitation import excitation_period, is_autonomous
@@ -67,6 +67,7 @@ __all__ = [
     "Unlocked",
     "Unexplained",
     "Coexistence",
+    "seed_points",
     "coexistence",
     "overlay",
 ]
@@ -424,41 +425,114 @@ def _on_branch(branch, value, k, phases):
     return False
 
 
-@ranged
-def coexistence(
-    param: str,
-    lo: float,
-    hi: float,
-    model: Model | Mapping[str, Any] | None = None,
-    *,
-    step: float = DEFAULT_STEP,
-    limit: int = LOCK_LIMIT,
-    backend: Backend | None = None,
-    progress: bool = False,
-    **kw: Any,
-) -> Coexistence:
-    """Where two or more stable periodic responses coexist in ``param`` over ``[lo, hi]``.
-
-    Seeds on a grid of ``step``, each continued as a branch, the stable parts overlaid.
+def seed_points(lo: float, hi: float, step: float) -> int:
+    """The points of the seeds' grid over ``[lo, hi]`` spaced by about ``step`` (the
+    command line's ``--step``), checked as `coexistence` checks ``points``.
 
     Parameters
     ----------
+    lo, hi : float
+        The range.
+    step : float
+        The spacing, > 0.
+
+    Returns
+    -------
+    int
+        ``round((hi - lo) / step) + 1``.
+
+    Raises
+    ------
+    ValueError
+        For a step that is not a number > 0.
+    beltmdsm.errors.Refused
+        Naming ``step``, where the grid has no point inside the range or more than
+        `beltmdsm.settings.MAX_SEED_POINTS` + 1 points.
+
+    See Also
+    --------
+    beltmdsm.studies.coexistence.coexistence : Takes the points.
+
+    Examples
+    --------
+    >>> seed_points(0.5, 12.0, 0.5)
+    24
+    """
+    if not (is_real(step) and step > 0):
+        raise ValueError(f"step must be a number > 0; got {step!r}")
+    points = max(int(round((hi - lo) / step)), 1) + 1
+    return _check_points(lo, hi, points, f"step = {step:g}", "step")
+
+
+def _check_points(lo: float, hi: float, points: int, said: str, name: str) -> int:
+    if points < 3:
+        # two seeds, the ends: a response stable only inside is never seeded
+        raise Refused(
+            f"{said} leaves no seed inside [{lo:g}, {hi:g}]: the seeds would be "
+            f"the two ends only, and a response stable only between them is never found "
+            f"(--step 20 over Vb 0.5..12 said 'coexistence: none' where the 4T response "
+            f"coexists on 3.87..4.06 and 6.42..7.67); at least 3 points, a step of at "
+            f"most (hi - lo) / 2 = {(hi - lo) / 2:g}",
+            name,
+        )
+    if points - 1 > MAX_SEED_POINTS:
+        raise Refused(
+            f"{said} makes {points} seeds' grid points on [{lo:g}, {hi:g}], more "
+            f"than MAX_SEED_POINTS = {MAX_SEED_POINTS} (beltmdsm/settings.py; each a "
+            f"shooting, a run and two ladders); use points <= {MAX_SEED_POINTS + 1}, a "
+            f"step >= {(hi - lo) / MAX_SEED_POINTS:.3g}",
+            name,
+        )
+    return points
+
+
+def _step_to_points(step: Any, given: Mapping[str, Any]) -> dict[str, Any]:
+    """``step=`` (before: the seeds' spacing) as the ``points`` of that spacing; the
+    range is in ``given`` (``lo``, ``hi``) or, in a positional call, checked later."""
+    if not (is_real(step) and step > 0):
+        raise ValueError(f"step must be a number > 0; got {step!r}")
+    return {"points": _Spacing(float(step))}
+
+
+class _Spacing(float):
+    """A deprecated ``step=``, made ``points`` once the range is known."""
+
+
+@ranged(renamed={"step": ("points", _step_to_points)})
+def coexistence(
+    model: Model | Mapping[str, Any] | None,
+    param: str,
+    lo: float,
+    hi: float,
+    *,
+    points: int | None = None,
+    limit: int = LOCK_LIMIT,
+    backend: Backend | None = None,
+    progress: bool = False,
+) -> Coexistence:
+    """Where two or more stable periodic responses coexist in ``param`` over ``[lo, hi]``.
+
+    Seeds on a grid of ``points`` values, each continued as a branch, the stable parts
+    overlaid.
+
+    Parameters
+    ----------
+    model : Model or dict or None
+        The other parameters and the options (None: the base set).
     param : str
         A model parameter.
     lo, hi : float
         The range, ``lo < hi``, both finite.
-    model : Model or dict, optional
-        The other parameters and the options (default: the base set); ``**kw`` too.
-    step : float
-        Spacing of the seeds' grid (at most ``(hi - lo) / 2``).
+    points : int, optional
+        Values of the seeds' grid, the ends included: at least 3 (a seed inside the
+        range) and at most `beltmdsm.settings.MAX_SEED_POINTS` + 1; default one every
+        `DEFAULT_STEP`. ``step=`` (the grid's spacing, before) is deprecated.
     limit : int
         The longest period looked for, in excitation periods.
     backend : {"python", "numba", None}
         The kernels: compiled by numba, plain Python, or numba where installed.
     progress : bool
         Show the seeds on stderr (tqdm) once they take more than 2 s.
-    **kw
-        Model parameters and options (``tension="clipped"``).
 
     Returns
     -------
@@ -472,10 +546,11 @@ def coexistence(
     Raises
     ------
     ValueError
-        For an unknown parameter, a bad range, ``step <= 0`` or ``limit < 1``.
+        For an unknown parameter, a bad range, ``points`` not an integer or
+        ``limit < 1``.
     beltmdsm.errors.Refused
-        For ``step > (hi - lo) / 2`` (no seed inside the range), or a step that makes
-        more than `beltmdsm.settings.MAX_SEED_POINTS` grid points.
+        For ``points < 3`` (no seed inside the range), or more than
+        `beltmdsm.settings.MAX_SEED_POINTS` + 1 points.
 
     See Also
     --------
@@ -489,7 +564,7 @@ def coexistence(
     excitation periods are both stable (seeds every 0.5 m/s, locks up to 4 periods):
 
     >>> from beltmdsm import coexistence
-    >>> found = coexistence("Vb", 6.5, 7.5, step=0.5, limit=4)
+    >>> found = coexistence(None, "Vb", 6.5, 7.5, points=3, limit=4)
     >>> [r.name for r in found.responses]
     ['T', '4T']
     >>> [(c.range, c.responses) for c in found.ranges]
@@ -497,43 +572,28 @@ def coexistence(
 
     A grid without a seed inside the range is refused, naming the argument:
 
-    >>> coexistence("Vb", 1.0, 2.0, step=1.0)  # doctest: +ELLIPSIS
+    >>> coexistence(None, "Vb", 1.0, 2.0, points=2)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
-    beltmdsm.errors.Refused: step = 1 leaves no seed inside [1, 2]: ...
+    beltmdsm.errors.Refused: points = 2 leaves no seed inside [1, 2]: ...
     """
     clock = time.perf_counter()
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")
-    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
-        raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
-    limit = count("limit", limit, 1)
-    if not (is_real(step) and step > 0):
-        raise ValueError(f"step must be a number > 0; got {step!r}")
-    if step > (hi - lo) / 2:
-        # two seeds, the ends: a response stable only inside is never seeded
-        raise Refused(
-            f"step = {step:g} leaves no seed inside [{lo:g}, {hi:g}]: the seeds would be "
-            f"the two ends only, and a response stable only between them is never found "
-            f"(--step 20 over Vb 0.5..12 said 'coexistence: none' where the 4T response "
-            f"coexists on 3.87..4.06 and 6.42..7.67); at most (hi - lo) / 2 = "
-            f"{(hi - lo) / 2:g}",
-            "step",
-        )
-    points = (hi - lo) / step
-    if points > MAX_SEED_POINTS:
-        raise Refused(
-            f"step = {step:g} makes {points:.3g} seeds' grid points on [{lo:g}, {hi:g}], more "
-            f"than MAX_SEED_POINTS = {MAX_SEED_POINTS} (beltmdsm/settings.py; each a shooting, "
-            f"a run and two ladders); use step >= {(hi - lo) / MAX_SEED_POINTS:.3g}",
-            "step",
-        )
-    model = as_model(model, **kw).replace(**{param: lo})
+    lo, hi = number("lo", lo), number("hi", hi)
+    if not lo < hi:
+        raise ValueError(f"the range must have lo < hi; got [{lo:g}, {hi:g}]")
+    limit, progress = count("limit", limit, 1), flag("progress", progress)
+    if points is None or isinstance(points, _Spacing):
+        points = seed_points(lo, hi, DEFAULT_STEP if points is None else float(points))
+    else:
+        points = _check_points(lo, hi, count("points", points, 1), f"points = {points}", "points")
+    model = as_model(model).replace(**{param: lo})
     if is_autonomous(model):
         from .cycle_coexistence import cycle_coexistence
 
         return cycle_coexistence(param, lo, hi, model, backend=backend)
     excitation_period(model)
-    grid = np.linspace(lo, hi, max(int(round((hi - lo) / step)), 1) + 1)
+    grid = np.linspace(lo, hi, points)
     # the seeds: a run of SEED_T_END at each value, and ladders
     at = [model.replace(**{param: float(v)}) for v in grid]
     check_limit(limit, at, SEED_T_END, ladder=True, t_end_is_given=False)

@@ -257,7 +257,7 @@ def reversals_by_force_sign(sim: Simulation, t0: float = 0.0) -> dict[str, tuple
     it pushes:
 
     >>> from beltmdsm import simulate
-    >>> reversals_by_force_sign(simulate(Vb=4.0, t_end=20.0), 10.0)
+    >>> reversals_by_force_sign(simulate(Model(Vb=4.0), t_end=20.0), 10.0)
     {'slip_forward': (4, 0), 'slip_back': (0, 4)}
     """
     out = {}

@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._calling import public
 from ..arguments import count
 from ..attractors.classification import classify
 from ..errors import NoPeriodicResponse
@@ -90,7 +91,7 @@ class Response:
     periods; its four phase-0 states are the fixed point of the 4-fold map:
 
     >>> from beltmdsm import responses
-    >>> locked = responses(Vb=5.0, ladder=0.0, t_end=300.0).responses[1]
+    >>> locked = responses(Model(Vb=5.0), ladder=0.0, t_end=300.0).responses[1]
     >>> locked.periods, locked.floquet.stable, len(locked.phases)
     (4, True, 4)
     >>> round(locked.floquet.max_abs_multiplier, 3), round(locked.amplitude, 1)
@@ -265,6 +266,7 @@ def _run_distance(strobe, phases):
     )
 
 
+@public()
 def responses(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -272,7 +274,6 @@ def responses(
     ladder: float = LADDER_SPAN,
     t_end: float = RUN_T_END,
     backend: Backend | None = None,
-    **kw: Any,
 ) -> ResponseSet:
     """Every periodic response found at one point: the ``T``-periodic one and the locked ones.
 
@@ -328,7 +329,7 @@ def responses(
     run from rest locks at four excitation periods, on a stable response:
 
     >>> from beltmdsm import responses
-    >>> found = responses(Vb=5.0, ladder=0.0)
+    >>> found = responses(Model(Vb=5.0), ladder=0.0)
     >>> [(r.periods, r.floquet.stable) for r in found.responses]
     [(1, False), (4, True)]
     >>> found.responses[1].sources
@@ -337,7 +338,7 @@ def responses(
     limit = count("limit", limit, 1)
     if not (is_real(ladder) and ladder >= 0 and is_real(t_end) and t_end > 0):
         raise ValueError(f"ladder must be >= 0 and t_end > 0; got {ladder!r}, {t_end!r}")
-    model = as_model(model, **kw)
+    model = as_model(model)
     if is_autonomous(model):
         return cycle_responses(model, limit=limit, ladder=ladder, backend=backend)
     excitation_period(model)

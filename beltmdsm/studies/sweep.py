@@ -29,13 +29,21 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._calling import settings_keywords, valued
+from .._calling import valued
 from .._tables import DataFrame
-from ..arguments import flag, reals, settings_of
+from ..arguments import cache_dir_of, executor_of, flag, reals, settings_of
 from ..errors import Refused
 from ..excitation import excitation_period
-from ..model import MODEL_PARAMETERS, Model, as_model
-from ..settings import MAX_POINTS, SolverSettings, check_request
+from ..model import MODEL_PARAMETERS, Backend, Model, as_model
+from ..settings import (
+    MAX_POINTS,
+    ContactLoss,
+    Method,
+    Solver,
+    SolverSettings,
+    check_request,
+    with_fields,
+)
 from .cache import (
     CacheWarning,
     Problem,
@@ -151,7 +159,7 @@ class Sweep:
     Examples
     --------
     >>> from beltmdsm import sweep
-    >>> result = sweep("Vb", [1.0, 4.0, 4.0], t_end=300.0, executor="serial",
+    >>> result = sweep(None, "Vb", [1.0, 4.0, 4.0], t_end=300.0, executor="serial",
     ...                cache_dir=None, progress=False)
     >>> result  # doctest: +NORMALIZE_WHITESPACE
     Sweep(Vb over 2 values in [1, 4]; coulomb friction, hertz_damp, tension allowed;
@@ -270,12 +278,11 @@ def _cached_run(
     return row, False, problem
 
 
-@valued
-@settings_keywords
+@valued()
 def sweep(
+    model: Model | Mapping[str, Any] | None,
     param: str,
     values: ArrayLike,
-    model: Model | Mapping[str, Any] | None = None,
     *,
     settings: SolverSettings | None = None,
     executor: cf.Executor | Literal["serial"] | None = None,
@@ -284,26 +291,34 @@ def sweep(
     modulation: bool = False,
     continuation: Continuation | None = None,
     start: Start = "rest",
-    **kw: Any,
+    t_end: float | None = None,
+    t_discard: float | None = None,
+    dt: float | None = None,
+    rtol: float | None = None,
+    atol: float | None = None,
+    solver: Solver | None = None,
+    method: Method | None = None,
+    on_contact_loss: ContactLoss | None = None,
+    backend: Backend | None = None,
 ) -> Sweep:
     """Run one point for each value of one parameter.
 
     Parameters
     ----------
+    model : Model or dict or None
+        the other parameters and the options (None: the base set). The swept
+        parameter must not be among the parameters given.
     param : str
         the swept model parameter (e.g. "Vb"; one of `SWEEPABLE`)
     values : array_like
         at most `MAX_POINTS` finite values (`linear_values` makes a range); sorted,
         duplicates computed once
-    model : Model or dict, optional
-        the other parameters and the options (default: the base set); ``**kw`` too.
-        The swept parameter must not be among them.
     settings : SolverSettings, optional
-        Its fields may also be given as keywords (``t_end=50``), as to `simulate`.
+        How each run is computed.
     executor : concurrent.futures.Executor, "serial" or None
         None: a process pool over the local cores (closed afterwards); "serial":
         in this process; otherwise used as given (and left open), e.g. a dask
-        ``Client.get_executor()``.
+        ``Client.get_executor()`` (`beltmdsm.arguments.executor_of`).
     cache_dir : path, "default" or None
         None disables the cache; "default" is `beltmdsm.studies.cache.default_cache_dir`.
     progress : bool
@@ -322,6 +337,9 @@ def sweep(
         ``T <= t_end``.
     start : {"rest", "periodic"}
         where each (not continued) run starts (`beltmdsm.studies.row.run_point`)
+    t_end, t_discard, dt, rtol, atol, solver, method, on_contact_loss, backend : optional
+        the fields of `SolverSettings`, in place of ``settings``' where given, as in
+        `beltmdsm.simulate`
 
     Returns
     -------
@@ -359,8 +377,8 @@ def sweep(
     tell the omega1 peak says so instead of reporting it absent:
 
     >>> from beltmdsm import sweep
-    >>> result = sweep("Vb", [1.0, 4.0], t_end=40.0, t_discard=10.0, executor="serial",
-    ...                cache_dir=None, progress=False)
+    >>> result = sweep(None, "Vb", [1.0, 4.0], t_end=40.0, t_discard=10.0,
+    ...                executor="serial", cache_dir=None, progress=False)
     >>> result.table["resolved"].tolist(), result.unresolved_values()
     ([False, False], [1.0, 4.0])
     >>> int(result.table["n_reversals"][1]) > 0
@@ -368,7 +386,7 @@ def sweep(
 
     The swept parameter cannot be given as a fixed one too:
 
-    >>> sweep("Vb", [1.0], Vb=3.0, executor="serial", cache_dir=None, progress=False)
+    >>> sweep({"Vb": 3.0}, "Vb", [1.0], executor="serial", cache_dir=None, progress=False)
     Traceback (most recent call last):
     ...
     ValueError: Vb is swept: give its values, not a fixed Vb as well
@@ -376,10 +394,22 @@ def sweep(
     if param not in SWEEPABLE:
         raise ValueError(f"cannot sweep {param!r}: param must be one of {', '.join(SWEEPABLE)}")
     given = model.params if isinstance(model, Model) else (model or {})
-    if param in kw or (not isinstance(model, Model) and param in given):
+    if not isinstance(model, Model) and param in given:
         raise ValueError(f"{param} is swept: give its values, not a fixed {param} as well")
     values = np.atleast_1d(reals("values", values))
-    settings = settings_of(settings)
+    settings = with_fields(
+        settings_of(settings),
+        t_end=t_end,
+        t_discard=t_discard,
+        dt=dt,
+        rtol=rtol,
+        atol=atol,
+        solver=solver,
+        method=method,
+        on_contact_loss=on_contact_loss,
+        backend=backend,
+    )
+    cache_dir = cache_dir_of(cache_dir)
     progress, modulation = flag("progress", progress), flag("modulation", modulation)
     if values.ndim != 1 or values.size == 0:
         raise ValueError("values must be a non-empty 1-D sequence")
@@ -388,12 +418,7 @@ def sweep(
             f"{values.size} values are more than MAX_POINTS = {MAX_POINTS:.0e} "
             "(beltmdsm/settings.py)"
         )
-    if not (
-        executor is None or executor == "serial" or callable(getattr(executor, "submit", None))
-    ):
-        raise ValueError(
-            f"executor must be None, 'serial' or a concurrent.futures.Executor; got {executor!r}"
-        )
+    executor = executor_of(executor)
     if start not in STARTS:
         raise ValueError(f"start must be one of {', '.join(map(repr, STARTS))}; got {start!r}")
     if continuation is not None:
@@ -410,7 +435,7 @@ def sweep(
                 "from the previous point's state), in this process: executor "
                 f"must be None or 'serial'; got {executor!r}"
             )
-    model = as_model(model, **kw)
+    model = as_model(model)
     unique = np.unique(values)
     dropped = sorted(float(v) for v in values if (values == v).sum() > 1)
     dropped = sorted(set(dropped))

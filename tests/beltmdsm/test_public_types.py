@@ -67,6 +67,8 @@ def test_the_public_api_has_no_any_for_mypy(tmp_path):
         "beltmdsm.attractors.lyapunov.Lyapunov",
         "beltmdsm.attractors.classification.Attractor",
         "beltmdsm.studies.basins.Basins",
+        "beltmdsm.attractors.lyapunov.Lyapunov",  # a dict for the model (issue 37)
+        "beltmdsm.continuation.band_result.Band",
     ]
 
 
@@ -147,3 +149,53 @@ def test_failures_pickle_with_what_they_carry():
         4,
     )
     assert "locks at 4 periods, whose orbit repeats after 8 too" in str(back)
+
+
+@pytest.mark.slow
+def test_mypy_reads_the_types_of_the_readmes_editable_install(tmp_path):
+    """Issue 37: under the README's ``pip install -e . --config-settings
+    editable_mode=strict`` mypy finds the package (with a plain ``-e .`` setuptools maps
+    it by an import hook that mypy cannot follow: "Cannot find implementation", Any)."""
+    import shutil
+    import site
+    import venv
+
+    pytest.importorskip("mypy", reason="mypy is in the test extra (pyproject.toml)")
+    readme = (ROOT / "README.md").read_text()
+    assert "pip install -e . --config-settings editable_mode=strict" in readme
+    listed = subprocess.run(
+        ["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
+        cwd=ROOT, capture_output=True, check=True,
+    ).stdout.decode().split("\0")  # fmt: skip
+    source = tmp_path / "source"  # a copy: the strict mode writes build/ beside it
+    for rel in filter(None, listed):
+        if (ROOT / rel).is_file():
+            (source / rel).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(ROOT / rel, source / rel)
+    venv.create(tmp_path / "env", with_pip=False)
+    python = tmp_path / "env" / "bin" / "python"
+    env_site = Path(
+        subprocess.run(
+            [python, "-c", "import sysconfig; print(sysconfig.get_path('purelib'))"],
+            capture_output=True, text=True, check=True,
+        ).stdout.strip()
+    )  # fmt: skip
+    # this environment's dependencies as plain paths (its .pth files stay unread)
+    (env_site / "dependencies.pth").write_text("\n".join(site.getsitepackages()) + "\n")
+    install = subprocess.run(
+        [sys.executable, "-m", "pip", "--python", python, "install", "-q", "--no-deps", "-e",
+         source, "--config-settings", "editable_mode=strict"],
+        capture_output=True, text=True,
+    )  # fmt: skip
+    if install.returncode and "setuptools" in install.stderr:
+        pytest.skip("pip cannot fetch setuptools to build the install (no package index)")
+    assert install.returncode == 0, install.stderr
+    script = tmp_path / "study.py"
+    script.write_text("import beltmdsm\nreveal_type(beltmdsm.floquet(beltmdsm.Model()))\n")
+    done = subprocess.run(
+        [python, "-m", "mypy", "--no-incremental", "--cache-dir=/dev/null", str(script)],
+        capture_output=True, text=True, cwd=tmp_path, timeout=300,
+        env={k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "MYPYPATH")},
+    )  # fmt: skip
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert 'Revealed type is "beltmdsm.periodic.floquet.Floquet"' in done.stdout

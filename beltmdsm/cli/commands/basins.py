@@ -28,12 +28,18 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), executor_parent(), cache_parent(), json_parent()],
-        help="basins of attraction on a plane of initial states",
+        help="basins of attraction on a plane of initial states, or basin stability by "
+        "sampling (--samples)",
         description="Starts on a grid of a plane of states at the excitation's phase 0 "
         "(default X1 and X1' = Y1, the normal state on its periodic orbit), each iterated "
         "on the period map until a known attractor claims it; attractors named by their "
         "kind, period, rotation number and largest Lyapunov exponent "
-        "(beltmdsm/studies/basins.py, beltmdsm/attractors/classification.py).",
+        "(beltmdsm/studies/basins.py, beltmdsm/attractors/classification.py). Without "
+        "excitation the starts are states (the others at steady sliding's) and the "
+        "attractors steady sliding and the stable self-excited cycles, each start decided "
+        "by the region the computed cycles assign it to or by sticking "
+        "(beltmdsm/attractors/self_excited.py); --samples N draws N uniform starts in the "
+        "box instead (beltmdsm/studies/basin_stability.py).",
     )
     for axis, default in (("x", "X1"), ("y", "Y1")):
         sub.add_argument(
@@ -63,15 +69,95 @@ def add(commands, name: str) -> None:
         help="the length of each classification run [s] (default 2000)",
     )
     sub.add_argument("--png", metavar="FILE", type=output_file, help="draw the map to FILE")
+    sampling_flags(sub)
 
 
-def _range(args, axis):
+def sampling_flags(sub, samples: int | None = None) -> None:
+    """``--samples N --seed S --no-progress``: basin stability by sampling (shared with
+    ``basin-stability``, where ``samples`` is the default)."""
+    g = sub.add_argument_group("basin stability by sampling (without excitation)")
+    g.add_argument(
+        "--samples",
+        type=integer(1, 10_000_000),
+        default=samples,
+        metavar="N",
+        help="uniform random starts in the box of --x-from..--y-to"
+        + (f" (default {samples})" if samples else " instead of a grid")
+        + "; each attractor's fraction with its standard error sqrt(p (1 - p) / N)",
+    )
+    g.add_argument(
+        "--seed", type=integer(0), default=0, metavar="S", help="of the random starts (default 0)"
+    )
+    g.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+
+
+def region_from(args) -> dict:
+    """The box of starts: ``--x-from .. --y-to``, all four required."""
+    xr, yr = _range(args, "x"), _range(args, "y")
+    if xr is None or yr is None:
+        args.parser.error("argument --samples: needs the box, --x-from/--x-to and --y-from/--y-to")
+    if args.x == args.y:
+        args.parser.error(f"argument --y: must differ from --x; got {args.y} twice")
+    return {args.x: xr, args.y: yr}
+
+
+def print_estimate(result, as_json: bool) -> None:
+    """A `beltmdsm.studies.basin_stability.BasinStability` as text or JSON."""
+    from .. import text
+
+    if as_json:
+        print(json.dumps(text.jsonable({**result.as_dict(), **result.model.as_dict()})))
+        return
+    print(repr(result))
+    for i, a in enumerate(result.attractors):
+        p, e = result.fraction(i)
+        period = f", period {a.period:.6g} s" if a.period else ""
+        print(f"  {i}: {a.name}{period}: {p:.4f} +- {e:.4f} ({int(result.counts[i])} starts)")
+    d = result.decided
+    print(
+        f"  decided by region at once: {d['region']}; by a run until it stuck: "
+        f"{d['stick']}; undecided after the longest run: {d['none']}"
+    )
+    if result.interrupted:
+        print(f"  interrupted: the estimate is of the {result.samples} starts finished")
+
+
+def _range(args, axis, model):
+    from ...studies.basins import axis_range
+
     lo, hi = getattr(args, f"{axis}_from"), getattr(args, f"{axis}_to")
     if (lo is None) != (hi is None):
         args.parser.error(f"argument --{axis}-from/--{axis}-to: give both or neither")
     if lo is not None and not lo < hi:
         args.parser.error(f"argument --{axis}-to: must be above --{axis}-from; got {hi} <= {lo}")
-    return None if lo is None else (lo, hi)
+    try:
+        return axis_range(model, axis, getattr(args, axis), lo, hi)
+    except ValueError as err:  # beyond floating point, named by the flags
+        said = str(err).removeprefix(f"{axis}_lo/{axis}_hi: ")
+        args.parser.error(f"argument --{axis}-from/--{axis}-to: {said}")
+
+
+def _sample(args) -> int:
+    from ...studies.basin_stability import basin_stability
+
+    region = region_from(args)
+    cache_dir = cache_dir_from(args)
+    if cache_dir == "default":
+        from ...studies.cache import default_cache_dir
+
+        cache_dir = default_cache_dir()
+    with executor_from(args) as executor:
+        result = basin_stability(
+            model_from(args),
+            region,
+            samples=args.samples,
+            seed=args.seed,
+            executor=executor,
+            cache_dir=cache_dir,
+            progress=not args.no_progress,
+        )
+    print_estimate(result, args.json)
+    return 130 if result.interrupted else 0
 
 
 def run(args: argparse.Namespace) -> int:
@@ -79,19 +165,24 @@ def run(args: argparse.Namespace) -> int:
     from ...studies.cache import default_cache_dir
     from .. import text
 
+    if args.samples is not None:
+        return _sample(args)
     if args.x == args.y:
         args.parser.error(f"argument --y: must differ from --x; got {args.y} twice")
-    xr, yr = _range(args, "x"), _range(args, "y")
+    model = model_from(args)
+    xr, yr = _range(args, "x", model), _range(args, "y", model)
     cache_dir = cache_dir_from(args)
     if cache_dir == "default":
         cache_dir = default_cache_dir()
     with executor_from(args) as executor:
         result = basins(
-            model_from(args),
+            model,
             x=args.x,
-            x_range=xr,
+            x_lo=xr and xr[0],
+            x_hi=xr and xr[1],
             y=args.y,
-            y_range=yr,
+            y_lo=yr and yr[0],
+            y_hi=yr and yr[1],
             points=args.points,
             executor=executor,
             cache_dir=cache_dir,

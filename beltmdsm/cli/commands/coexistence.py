@@ -55,16 +55,16 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.coexistence import coexistence
+    from ...studies.coexistence import coexistence, seed_points
     from .. import text
 
     lo, hi = range_from(args)
     found = coexistence(
+        model_from(args, skip=(swept(args),)),
         args.param,
         lo,
         hi,
-        model_from(args, skip=(swept(args),)),
-        step=args.step,
+        points=seed_points(lo, hi, args.step),
         limit=args.limit,
         progress=not args.no_progress,
     )

@@ -73,10 +73,10 @@ def run(args: argparse.Namespace) -> int:
 
     lo, hi = range_from(args)
     band = floquet_band(
+        model_from(args, skip=(swept(args),)),
         args.param,
         lo,
         hi,
-        model_from(args, skip=(swept(args),)),
         points=args.points,
         tol=args.tol,
         periods=args.periods,

@@ -37,10 +37,13 @@ def add(commands, name: str) -> None:
         )
         range_flags(sub, axis)
     sub.add_argument(
+        "--points",
         "--rows",
+        dest="rows",
         type=integer(2),
         default=100,
-        help="values of --y, >= 2 and at most MAX_MAP_ROWS = 10^4 (default 100)",
+        help="values of --y (the map's rows; --rows is the same flag), >= 2 and at most "
+        "MAX_MAP_ROWS = 10^4 (default 100)",
     )
     sub.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     sub.add_argument(
@@ -56,14 +59,14 @@ def run(args: argparse.Namespace) -> int:
     if args.x == args.y:
         args.parser.error(f"argument --y: must differ from --x ({args.x})")
     result = floquet_map(
+        model_from(args, skip=(swept(args, "x"), swept(args, "y"))),
         args.x,
         x_lo,
         x_hi,
         args.y,
         y_lo,
         y_hi,
-        model_from(args, skip=(swept(args, "x"), swept(args, "y"))),
-        rows=args.rows,
+        points=args.rows,
         progress=not args.no_progress,
     )
     if args.png:

@@ -54,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
         model_from(args),
         points=args.vb_points,
         progress=not args.no_progress,
-        vb_max=args.vb_max,
+        hi=args.vb_max,
     )
     if args.json:
         print(json.dumps(text.jsonable(result.as_dict())))

@@ -106,9 +106,9 @@ def run(args: argparse.Namespace) -> int:
     model = model_from(args, skip=(swept(args),))
     with contextlib.nullcontext("serial") if args.continuation else executor_from(args) as executor:
         result = sweep(
+            model,
             args.param,
             values,
-            model,
             settings=settings_from(args),
             executor=executor,
             cache_dir=cache_dir_from(args),

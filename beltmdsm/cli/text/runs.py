@@ -99,7 +99,7 @@ def simulation(sim: Simulation, out: dict, modulation: bool) -> str:
             [
                 f"start: steady sliding is unstable here; the run starts on it moved by "
                 f"{s.start_perturbation:g} along its unstable direction "
-                "(beltmdsm/simulation.py, START_PERTURBATION)"
+                "(beltmdsm/excitation.py, START_PERTURBATION)"
             ]
             if s.start_perturbation > 0
             else []

@@ -149,7 +149,7 @@ def forced_stability(
     """
     m = law.model(model, tension=tension)
     start = time.perf_counter()
-    band = floquet_band("Vb", lo, hi, m, points=points, tol=tol)
+    band = floquet_band(m, "Vb", lo, hi, points=points, tol=tol)
     wall = time.perf_counter() - start
     rows = sorted(band.grid, key=lambda r: r.value)
     return ForcedStability(

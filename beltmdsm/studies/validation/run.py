@@ -21,6 +21,7 @@ from typing import Literal
 
 import numpy as np
 
+from ...arguments import cache_dir_of, executor_of, flag
 from ...continuation.band import floquet_band
 from ...model import TENSIONS, Model, Tension
 from ..coexistence import DEFAULT_STEP, coexistence
@@ -68,9 +69,9 @@ def _case_sweep(
         executor=executor,
         cache_dir=cache_dir,
         progress=progress,
-        tension=tension,
     )
-    table = sweep("Vb", grid, case.overrides, **kwargs).table
+    model = {**case.overrides, "tension": tension}
+    table = sweep(model, "Vb", grid, **kwargs).table
     while True:
         last = table[-1]
         # an unresolved top point does not close the range: it cannot tell
@@ -83,7 +84,7 @@ def _case_sweep(
             return table
         top = min(resolution.vb_cap, resolution.extend_factor * last["Vb"])
         new = vb_grid(step, top, start=last["Vb"] + step)
-        table = np.concatenate([table, sweep("Vb", new, case.overrides, **kwargs).table])
+        table = np.concatenate([table, sweep(model, "Vb", new, **kwargs).table])
 
 
 def validate(
@@ -153,6 +154,8 @@ def validate(
         raise ValueError(
             f"tension must be one of {', '.join(map(repr, TENSIONS))}; got {tension!r}"
         )
+    quick, progress = flag("quick", quick), flag("progress", progress)
+    executor, cache_dir = executor_of(executor), cache_dir_of(cache_dir)
     resolution = QUICK if quick else FULL
     by_name = {c.name: c for c in CASES}
     unknown = [c for c in cases or () if isinstance(c, str) and c not in by_name]
@@ -202,7 +205,9 @@ def _validate_case(case, resolution, tension, executor, cache_dir, progress):
     )
     pending = _other_runs(case, vb, resolution, executor, cache_dir, progress, tension)
     # the exact study runs here while the executor runs the sweeps
-    exact = coexistence("Vb", step / 2, float(vb[-1]) + step / 2, model, step=DEFAULT_STEP)
+    lo, hi = step / 2, float(vb[-1]) + step / 2
+    points = max(int(round((hi - lo) / DEFAULT_STEP)), 1) + 1
+    exact = coexistence(model, "Vb", lo, hi, points=points)
     tables = {key: table_of() for key, table_of in pending.items()}
     tables["rest"] = table
     runs = {key: Run.from_table(tables[key], step) for key, _, _ in RUNS}
@@ -250,7 +255,7 @@ def _floquet_band(model, resolution):
     """
     lo, hi = resolution.step / 2, resolution.vb_cap
     points = math.ceil((hi - lo) / FLOQUET_SPACING) + 1
-    return floquet_band("Vb", lo, hi, model, points=points, tol=FLOQUET_TOL)
+    return floquet_band(model, "Vb", lo, hi, points=points, tol=FLOQUET_TOL)
 
 
 def _other_runs(case, vb, resolution, executor, cache_dir, progress, tension):
@@ -265,25 +270,31 @@ def _other_runs(case, vb, resolution, executor, cache_dir, progress, tension):
     other = {"allowed": "clipped", "clipped": "allowed"}[tension]
     common = dict(settings=resolution.settings, cache_dir=cache_dir)
     plans = {
-        "periodic": dict(start="periodic", tension=tension),
-        "up": dict(continuation="up", tension=tension),
-        "down": dict(continuation="down", tension=tension),
-        "rest_other": dict(tension=other),
+        "periodic": (tension, dict(start="periodic")),
+        "up": (tension, dict(continuation="up")),
+        "down": (tension, dict(continuation="down")),
+        "rest_other": (other, {}),
     }
     if executor == "serial":
 
-        def later(kw):
+        def later(law, kw):
+            model = {**case.overrides, "tension": law}
             return lambda: (
-                sweep(
-                    "Vb", vb, case.overrides, executor="serial", progress=progress, **common, **kw
-                ).table
+                sweep(model, "Vb", vb, executor="serial", progress=progress, **common, **kw).table
             )
 
-        return {key: later(kw) for key, kw in plans.items()}
+        return {key: later(law, kw) for key, (law, kw) in plans.items()}
     futures = {
         key: executor.submit(
-            sweep, "Vb", vb, case.overrides, executor="serial", progress=False, **common, **kw
+            sweep,
+            {**case.overrides, "tension": law},
+            "Vb",
+            vb,
+            executor="serial",
+            progress=False,
+            **common,
+            **kw,
         )
-        for key, kw in plans.items()
+        for key, (law, kw) in plans.items()
     }
     return {key: (lambda fut=fut: fut.result().table) for key, fut in futures.items()}

@@ -166,4 +166,5 @@ def test_the_command_prints_the_spectrum_as_json_and_refuses_in_one_line():
     assert ex[0] >= ex[1] >= ex[2] and ex[0] < 0 and len(out["error"]) == 4
     r = _cli("--Vb", "9", "--t-end", "20")
     assert r.returncode == 2 and "Traceback" not in r.stderr
-    assert len(r.stderr.strip().splitlines()) == 1 and "t_end" in r.stderr
+    # the flag typed, not the Python argument (issue 36, item 15)
+    assert len(r.stderr.strip().splitlines()) == 1 and "--t-end" in r.stderr

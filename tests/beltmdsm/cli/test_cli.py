@@ -277,7 +277,8 @@ def test_python_m_derive_runs_python_m_beltmdsm_and_says_so():
         capture_output=True, text=True, cwd=ROOT,
     )  # fmt: skip
     assert r.returncode == 0, r.stderr
-    assert r.stdout.startswith("usage: python -m beltmdsm [-h] [--check] [--out DIR]")
+    usage = "usage: python -m beltmdsm [-h] [--regenerate] [--check] [--out DIR]"
+    assert r.stdout.startswith(usage)
     assert "simulate" in r.stdout and "check-paper" in r.stdout
     imported = {line.rsplit("|", 1)[1].strip() for line in r.stderr.splitlines() if "|" in line}
     assert "beltmdsm.derive.commands" in imported and "beltmdsm.generated" in imported

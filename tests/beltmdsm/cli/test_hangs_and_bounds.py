@@ -314,7 +314,7 @@ def test_stribeck_with_a_small_velocity_scale_stays_bounded():
         (
             ["floquet-map", "--x", "Vb", "--x-from", "0.5", "--x-to", "12", "--y", "beta1"]
             + ["--y-from", "0.5", "--y-to", "2", "--rows", "1000000"],
-            "--rows",
+            "--points/--rows",  # --rows is --points' other spelling (issue 37)
         ),
     ],
 )

@@ -86,7 +86,8 @@ def test_responses_and_coexistence_limits_name_the_flag_and_the_bound():
     line = _refused("responses", "--t-end", "10")
     assert "argument --limit/--t-end: a run of 10 s has 3 stroboscopic samples" in line, line
     need = np.ceil(25 / 0.4) * np.pi / 2
-    assert f"give t_end >= {need:.6g} s or limit <= 1" in line, line
+    # the flags, not the Python arguments (issue 36, item 15)
+    assert f"give --t-end >= {need:.6g} s or --limit <= 1" in line, line
 
 
 # -------------------------------------------------------- a lock at a divisor of K

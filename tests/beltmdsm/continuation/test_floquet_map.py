@@ -73,7 +73,8 @@ def test_bad_axes_are_refused():
         floquet_map("Vb", 1.0, 2.0, "Vb", 1.0, 2.0)
     with pytest.raises(ValueError, match="model parameters"):
         floquet_map("Vbelt", 1.0, 2.0, "beta1", 0.1, 0.2)
-    with pytest.raises(ValueError, match="rows"):
+    # rows= is points= now (issue 37): the message names the one spelling
+    with pytest.raises(ValueError, match="points"), pytest.warns(DeprecationWarning):
         floquet_map("Vb", 1.0, 2.0, "beta1", 0.1, 0.2, rows=1)
 
 

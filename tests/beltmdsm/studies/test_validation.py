@@ -413,9 +413,10 @@ def test_quick_validation_runs_every_sweep_under_the_law_it_names(monkeypatch):
             if kwargs.get("start") == "periodic"
             else kwargs.get("continuation") or "rest"
         )
-        laws.append((kind, kwargs["tension"]))
+        law = args[0]["tension"]  # the model comes first (issue 37), a dict here
+        laws.append((kind, law))
         result = real(*args, **kwargs)
-        assert set(result.table["tension"]) == {kwargs["tension"]}
+        assert set(result.table["tension"]) == {law}
         return result
 
     monkeypatch.setattr(validation.run, "sweep", recording)

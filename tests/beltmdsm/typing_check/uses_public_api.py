@@ -44,5 +44,11 @@ reveal_type(lyapunov(model, t_end=300.0))
 largest: float = lyapunov(model, t_end=300.0).largest
 reveal_type(classify(model))
 reveal_type(basins(model, points=3))
+# issue 37: a cycle branch's Hopf point; lyapunov takes a dict as at run time
+hopf = branch(Model(friction="stribeck", alpha=0.0), lo=1.9, hi=2.1).hopf
+born: float = hopf.value if hopf is not None else 0.0
+params: dict[str, float] = {"Vb": 5.0}
+reveal_type(lyapunov(params, y0=[0.0, 0.0, 1.0, 0.0], t_end=300, t_transient=0))
+reveal_type(floquet_band(model, "Vb", 1.0, 8.0, points=5))
 version: str = beltmdsm.__version__
 failures: tuple[type[BeltmdsmError], ...] = (Refused, Unsupported, StepTooSmall, NoPeriodicResponse)
