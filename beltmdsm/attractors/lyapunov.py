@@ -36,12 +36,14 @@ runs' tolerance, which no average removes (benchmarks/bench_lyapunov.py: errors 
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from tqdm import tqdm
 
 from beltmdsm.generated import unforced
 
@@ -479,6 +481,10 @@ def lyapunov(
         )
     y = y0
 
+    # simulated time on stderr, on a terminal, once the run has taken 2 s (issue 36 item 12)
+    bar = tqdm(total=t_end, desc="lyapunov", unit="s", delay=2, leave=False, disable=None,
+               file=sys.stderr, bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.0f}/{total:.0f}"
+               " s of simulated time [{elapsed}<{remaining}]")  # fmt: skip
     # the transient: a plain run, its phase kept (t = 0 is the excitation's phase 0)
     t = 0.0
     if t_transient > 0:
@@ -487,6 +493,7 @@ def lyapunov(
         except StepTooSmall as err:
             raise StepTooSmall(f"lyapunov: the transient stopped: {err}", rtol, rtol) from None
         t = t_transient
+        bar.update(t)
 
     max_step = STEP / fastest_rate(model)
     Q = np.eye(4)
@@ -510,6 +517,8 @@ def lyapunov(
                 logs[k - n_align] += np.log(d)
         if k >= n_align:
             samples[k - n_align] = y
+        bar.update(t - bar.n)
+    bar.close()
     spec = _spectrum(model, logs, collapsed, base, tau, rtol, t_transient, switches, samples)
     spec.start_perturbation = moved
     return spec

@@ -355,6 +355,10 @@ def executor_parent() -> argparse.ArgumentParser:
     return parent
 
 
+#: How long an interrupted command waits for the dask scheduler to take back its tasks [s].
+CLOSE_S = 1
+
+
 @contextlib.contextmanager
 def executor_from(args: argparse.Namespace) -> Iterator[cf.Executor | str | None]:
     """The executor that ``--scheduler``/``--jobs`` ask for, closed when the block ends.
@@ -379,9 +383,15 @@ def executor_from(args: argparse.Namespace) -> Iterator[cf.Executor | str | None
         executor = client.get_executor()
         try:
             yield executor
-        finally:
-            executor.shutdown()
-            client.close()
+        except BaseException:
+            # Ctrl-C or a failure: the tasks not finished are cancelled, not waited for
+            # (a shutdown that waits ran the whole round on: 308 s, issue 36 item 3);
+            # what the workers finished is in the cache already
+            executor.shutdown(wait=False)
+            client.close(timeout=CLOSE_S)
+            raise
+        executor.shutdown()
+        client.close()
     elif args.jobs == 1:
         yield "serial"
     elif args.jobs:

@@ -7,8 +7,13 @@ that finds them not cached (a new installation, a new dask worker, CI with a fre
 (the same numbers, bit for bit: tests/beltmdsm/integrate/test_first_run.py) and hands
 the compile to one child process, which fills the cache and says so by a file
 (`ready`); the integrator switches to the compiled code at its first call after that.
-The child outlives a short run (it reads its jobs until the parent's end, then
-finishes them), so the run after is compiled. One line on stderr says so, once.
+One line on stderr says so, once.
+
+No process outlives the command the user ran (issue 37 item 1: an orphaned compile ran
+45 s after its command had returned). At its end, a process whose child still compiles
+waits for it, saying so in one line, so that the run after is compiled; Ctrl-C there,
+or a command ended by Ctrl-C, stops the child instead (the next run compiles again).
+A parent that dies (``kill -9``) takes the child with it (`beltmdsm._processes`).
 
 Asked for by name (``backend="numba"``), or where nothing can be cached on disk, the
 compile is done in the process (`Lazy` with ``foreground``), said once too, and its
@@ -24,10 +29,12 @@ from __future__ import annotations
 
 import atexit
 import functools
+import glob
 import hashlib
 import importlib.util
 import os
 import pickle
+import signal
 import subprocess
 import sys
 import threading
@@ -38,6 +45,8 @@ import numpy as np
 
 from beltmdsm.generated import _support
 from beltmdsm.generated._support import cache_root, import_numba, user_cache
+
+from .._processes import end_with_parent
 
 __all__ = ["Lazy", "compile_seconds", "digest", "numba_installed", "numba_version", "ready"]
 
@@ -168,12 +177,53 @@ def _standin(described):
 
 def _compile(spec, args) -> object:
     """The compiled function of ``spec`` (``(maker, maker_args)``), compiled (or loaded
-    from numba's cache) for the types of ``args``."""
+    from numba's cache) for the types of ``args``.
+
+    A cache file that cannot be read (truncated by a full disk or a killed process:
+    numba raises UnpicklingError or EOFError, in every run after) is removed and the
+    function compiled afresh, said once (issue 36 item 6).
+    """
     numba = import_numba(True)
     maker, maker_args = spec
     fn = maker(*maker_args)
-    fn.compile(tuple(numba.typeof(a) for a in args))
+    signature = tuple(numba.typeof(a) for a in args)
+    for _ in range(MAX_UNREADABLE):
+        try:
+            fn.compile(signature)
+            return fn
+        except Exception as err:  # noqa: BLE001 (numba's loader raises what unpickling raises)
+            files = _unreadable(err)
+            if not files:
+                raise  # not a cache file: a real failure
+            for path in files:
+                path.unlink(missing_ok=True)
+            _say(
+                "unreadable",
+                f"numba's cache of the compiled integrators was unreadable ({files[0]}: "
+                f"{type(err).__name__}: {err}); removed it and compiling again (~{ABOUT_S} s)",
+            )
+    fn.compile(signature)
     return fn
+
+
+#: Unreadable cache files (each the index of one compiled function, found one per try)
+#: `_compile` removes before it lets the error through.
+MAX_UNREADABLE = 16
+
+
+def _unreadable(err: BaseException) -> list[Path]:
+    """The files of the numba cache entry whose loading raised ``err`` (its index first),
+    [] where ``err`` was not raised in loading one: the entry is the loader object
+    (``numba.core.caching.IndexDataCacheFile``) in the frames of the traceback."""
+    tb = err.__traceback__
+    while tb is not None:
+        loader = tb.tb_frame.f_locals.get("self")
+        if type(loader).__name__ == "IndexDataCacheFile":
+            index = Path(loader._index_path)
+            base = glob.escape(index.name.removesuffix(".nbi"))
+            return [index, *sorted(index.parent.glob(f"{base}.*.nbc"))]
+        tb = tb.tb_next
+    return []
 
 
 class Lazy:
@@ -227,7 +277,7 @@ class Lazy:
 
 _CHILD_CODE = (
     "import sys; sys.path[0] = sys.argv[1]; "
-    "from beltmdsm.integrate._background import _serve; _serve()"
+    "from beltmdsm.integrate._background import _serve; _serve(int(sys.argv[2]))"
 )
 
 
@@ -245,13 +295,14 @@ def _send(job: bytes) -> bool:
             env = dict(os.environ, NUMBA_CACHE_DIR=_numba_cache(), BELTMDSM_CACHE=cache_root())
             try:
                 child = subprocess.Popen(
-                    [sys.executable, "-c", _CHILD_CODE, str(_ROOT)],
+                    [sys.executable, "-c", _CHILD_CODE, str(_ROOT), str(os.getpid())],
                     stdin=subprocess.PIPE,
                     stdout=subprocess.DEVNULL,
                     stderr=subprocess.DEVNULL,
                     env=env,
                     cwd=_ROOT,
-                    start_new_session=True,  # a Ctrl-C of the run does not stop the compile
+                    # a Ctrl-C of the run does not stop the compile (_leave decides)
+                    start_new_session=True,
                 )
             except OSError:
                 return False
@@ -273,15 +324,29 @@ def _send(job: bytes) -> bool:
 
 
 def _leave(child) -> None:
-    """At this process's end: the child reads the end of its jobs and finishes them,
-    on its own (it outlives this process by design: not waited for, and marked done
-    so that `subprocess.Popen` does not warn of a child still running)."""
+    """At this process's end: the child reads the end of its jobs, finishes them and
+    ends; this process waits for that, said in one line, unless it is ending by Ctrl-C
+    (`beltmdsm.cli.running` then ignores a second one) or gets one while it waits:
+    then the child is stopped, and the next run compiles again."""
     try:
         child.stdin.close()
     except OSError:
         pass
-    if child.poll() is None:
-        child.returncode = 0
+    if child.poll() is not None:
+        return
+    if signal.getsignal(signal.SIGINT) is not signal.SIG_IGN:
+        _say(
+            "wait",
+            "waiting for the compile of the integrator kernels to end, so that the next "
+            "run is compiled (Ctrl-C stops it; the next run then compiles again)",
+        )
+        try:
+            child.wait(timeout=CLAIM_S)
+            return
+        except (KeyboardInterrupt, subprocess.TimeoutExpired):
+            pass
+    child.terminate()
+    child.wait()
 
 
 def _claim(stem: str) -> Path | None:
@@ -295,10 +360,11 @@ def _claim(stem: str) -> Path | None:
             fd = os.open(claim, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o600)
         except FileExistsError:
             try:
-                if time.time() - claim.stat().st_mtime < CLAIM_S:
+                holder = int(claim.read_text() or 0)
+                if time.time() - claim.stat().st_mtime < CLAIM_S and _running(holder):
                     return None
-                claim.unlink()
-            except FileNotFoundError:
+                claim.unlink()  # old, or its process ended without removing it
+            except (FileNotFoundError, ValueError):
                 pass
             continue
         os.write(fd, str(os.getpid()).encode())
@@ -307,8 +373,22 @@ def _claim(stem: str) -> Path | None:
     return None
 
 
-def _serve() -> None:
-    """The child: compile each job read from stdin (until its end), mark it ready."""
+def _running(pid: int) -> bool:
+    """Whether process ``pid`` exists (a claim's holder)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:
+        return True  # exists, another user's
+    return pid > 0
+
+
+def _serve(parent: int) -> None:
+    """The child of process ``parent``: compile each job read from stdin (until its
+    end), mark it ready; end with the parent, releasing its claim."""
+    held: list[Path] = []
+    end_with_parent(lambda: [c.unlink(missing_ok=True) for c in held], parent)
     stdin = sys.stdin.buffer
     while True:
         try:
@@ -320,6 +400,7 @@ def _serve() -> None:
         claim = _claim(stem)
         if claim is None:
             continue  # another process compiles it
+        held.append(claim)
         try:
             _compile(spec, _standin(described))
             _mark(stem)
@@ -327,3 +408,4 @@ def _serve() -> None:
             pass
         finally:
             claim.unlink(missing_ok=True)
+            held.remove(claim)

@@ -74,7 +74,7 @@ from ..model import Model, as_model
 from ..periodic.floquet import floquet
 from ..settings import fastest_rate
 from . import cache
-from .pool import process_pool, stop_process_pool
+from .pool import Tally, process_pool, stop_process_pool
 
 __all__ = [
     "Basins",
@@ -332,18 +332,26 @@ def _chunk(fn, items):
     return [fn(*it) for it in items]
 
 
-def _map_all(fn, items, executor):
+def _map_all(fn, items, executor, tally):
+    """``[fn(*it) for it in items]`` on the executor, counted by ``tally``
+    (`beltmdsm.studies.pool.Tally`) as they finish."""
     if executor is None or executor == "serial":
-        return [fn(*it) for it in items]
+        out = []
+        for it in items:
+            out.append(fn(*it))
+            tally.update()
+        return out
     # interleaved, not consecutive: neighbouring starts cost alike (a slowly attracting
     # basin is a region of the grid), so every task gets its share of the slow ones
     n = min(max(-(-len(items) // CHUNK), MIN_TASKS), len(items))
     if n == 0:
         return []
-    futures = [executor.submit(_chunk, fn, items[j::n]) for j in range(n)]
+    futures = {executor.submit(_chunk, fn, items[j::n]): j for j in range(n)}
     out = [None] * len(items)
-    for j, f in enumerate(futures):
+    for f in cf.as_completed(futures):
+        j = futures[f]
         out[j::n] = f.result()
+        tally.update(len(out[j::n]))
     return out
 
 
@@ -517,6 +525,7 @@ def basins(
             _cached_land,
             [(model, general, current[i], known, max_periods, cache_dir) for i in todo],
             executor,
+            tally,
         )
         left = []
         for i, row in zip(todo, rows):
@@ -533,23 +542,26 @@ def basins(
     pilot = [
         i for i in range(len(starts)) if (i // points) % PILOT == 0 and (i % points) % PILOT == 0
     ]
-    rows, left = run(pilot)
-    known = claim_radii(known, rows)
-    piloted = set(pilot)
-    _, more = run([i for i in range(len(starts)) if i not in piloted])
-    left = sorted(left + more)
-    for _ in range(MAX_ROUNDS):
-        if not left:
-            break
-        new = _seed(model, current[left[0]], t_end)
-        new_points = attractor_points(pmap, new)
-        if any(same_attractor(a, p, new, new_points) for a, p in zip(found, found_points)):
-            break  # the unclaimed starts approach a known attractor too slowly: stop
-        found.append(new)
-        found_points.append(new_points)
-        k = new.periods if new.kind == "periodic" else 0
-        known.append((len(found) - 1, new_points, tolerance(new, new_points), k))
-        _, left = run(left)
+    # Ctrl-C says how many starts finished and where they are kept (issue 36 item 12)
+    with Tally(len(starts), "starts", "basins", cache_dir) as tally:
+        rows, left = run(pilot)
+        known = claim_radii(known, rows)
+        piloted = set(pilot)
+        _, more = run([i for i in range(len(starts)) if i not in piloted])
+        left = sorted(left + more)
+        for _ in range(MAX_ROUNDS):
+            if not left:
+                break
+            new = _seed(model, current[left[0]], t_end)
+            new_points = attractor_points(pmap, new)
+            if any(same_attractor(a, p, new, new_points) for a, p in zip(found, found_points)):
+                break  # the unclaimed starts approach a known attractor too slowly: stop
+            found.append(new)
+            found_points.append(new_points)
+            k = new.periods if new.kind == "periodic" else 0
+            known.append((len(found) - 1, new_points, tolerance(new, new_points), k))
+            tally.grow(len(left))
+            _, left = run(left)
     return _result(pmap, model, x, y, xs, ys, labels, periods, found, found_points)
 
 

@@ -14,21 +14,24 @@ import signal
 import sys
 import warnings
 
+from .._processes import end_with_parent
 from .cache import CacheWarning
 
-__all__ = ["process_pool", "stop_process_pool"]
+__all__ = ["process_pool", "stop_process_pool", "Tally"]
 
 
-def _ignore_interrupt():
+def _worker_start():
     """A pool worker's initializer: Ctrl-C (SIGINT to the terminal's process group) is
-    the sweep's to handle; a worker that raised KeyboardInterrupt itself would leave
-    the pool waiting on it."""
+    the sweep's to handle (a worker that raised KeyboardInterrupt itself would leave
+    the pool waiting on it), and the worker ends when the sweep's process dies
+    (``kill -9``: issue 36 item 13), which cannot stop it then."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    end_with_parent()
 
 
 def process_pool(workers: int | None) -> cf.ProcessPoolExecutor:
     """A process pool for sweeps whose workers leave Ctrl-C to this process, which
-    stops them (`stop_process_pool`).
+    stops them (`stop_process_pool`), and end when it dies.
 
     Parameters
     ----------
@@ -50,7 +53,7 @@ def process_pool(workers: int | None) -> cf.ProcessPoolExecutor:
     6
     >>> stop_process_pool(pool)
     """
-    return cf.ProcessPoolExecutor(max_workers=workers, initializer=_ignore_interrupt)
+    return cf.ProcessPoolExecutor(max_workers=workers, initializer=_worker_start)
 
 
 def stop_process_pool(executor: cf.ProcessPoolExecutor, futures=()) -> None:
@@ -141,3 +144,53 @@ def _interruptible(results):
         ):
             raise KeyboardInterrupt from None
         raise
+
+
+class Tally:
+    """The progress of a study's tasks (``n`` of them, ``unit`` each) on stderr, shown
+    on a terminal once it has taken 2 s, and what an interrupt keeps.
+
+    Used as a context manager: Ctrl-C inside it raises KeyboardInterrupt saying how
+    many were finished and where they are kept (each task's result is in the cache,
+    written by the process that computed it), one line for the command line.
+
+    Examples
+    --------
+    >>> with Tally(3, "starts", "basins", cache_dir=None) as tally:
+    ...     tally.update(3)
+    >>> tally.done
+    3
+    """
+
+    def __init__(self, n: int, unit: str, desc: str, cache_dir=None) -> None:
+        from tqdm import tqdm
+
+        self.unit, self.desc, self.cache_dir, self.done = unit, desc, cache_dir, 0
+        # disable=None: shown on a terminal only, not in a pipe or a captured stream
+        self.bar = tqdm(
+            total=n, desc=desc, unit=unit[:-1], delay=2, leave=False, disable=None, file=sys.stderr
+        )
+
+    def update(self, k: int = 1) -> None:
+        self.done += k
+        self.bar.update(k)
+
+    def grow(self, k: int) -> None:
+        """``k`` more tasks (another round over those left)."""
+        self.bar.total += k
+        self.bar.refresh()
+
+    def __enter__(self) -> Tally:
+        return self
+
+    def __exit__(self, kind, err, tb) -> None:
+        self.bar.close()
+        if kind is not None and issubclass(kind, KeyboardInterrupt) and not str(err):
+            kept = (
+                f"; every {self.unit[:-1]} finished is kept in the cache ({self.cache_dir})"
+                if self.cache_dir is not None
+                else " (no cache: nothing kept)"
+            )
+            raise KeyboardInterrupt(
+                f"{self.desc}: stopped after {self.done} of {self.bar.total} {self.unit}{kept}"
+            ) from None

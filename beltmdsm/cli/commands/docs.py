@@ -75,13 +75,18 @@ def add(commands, name: str) -> None:
         "name",
         nargs="?",
         default=None,
-        help="a page or a section: docs/PAGE.md#SECTION, PAGE#SECTION or PAGE",
+        help="a page or a section: docs/PAGE.md#SECTION, PAGE#SECTION or PAGE (PAGE as "
+        "reference/json for a page in a folder)",
     )
 
 
 def run(args: argparse.Namespace) -> int:
     docs = folder()
-    pages = {path.stem: path for path in sorted(docs.glob("*.md"))}
+    # the pages of docs/ and of its folders, by their path: modelling, reference/json
+    pages = {
+        path.relative_to(docs).with_suffix("").as_posix(): path
+        for path in sorted(docs.glob("*.md")) + sorted(docs.glob("*/*.md"))
+    }
     if args.name is None:
         print(f"documents in {docs}:")
         for stem, path in pages.items():

@@ -8,8 +8,10 @@ No test here times anything: benchmarks/bench_start.py measures the cold and war
 
 import json
 import os
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -186,3 +188,93 @@ def test_the_progress_bar_leaves_the_compile_out(monkeypatch):
         clock.update(t=0.0, made=0.0, calls=0, compiling=compiling)
         simulate(Vb=4.0, t_end=8.0, t_discard=2.0, progress=True, backend="python")
         assert clock["calls"] > 2 and bars[-1].format_dict["elapsed"] == elapsed
+
+
+# ------------------------------------------- no process outlives its command (issue 37)
+
+
+def _compile_child(proc, limit=120):
+    """The pid of the child compiling for ``proc`` (Linux's /proc), once it has started."""
+    deadline = time.monotonic() + limit
+    while time.monotonic() < deadline:
+        assert proc.poll() is None, proc.communicate()
+        for stat in Path("/proc").glob("[0-9]*/stat"):
+            try:
+                ppid = int(stat.read_text().rsplit(")", 1)[1].split()[1])
+                cmd = (stat.parent / "cmdline").read_bytes()
+            except (OSError, ValueError):
+                continue
+            if ppid == proc.pid and b"_serve" in cmd:
+                return int(stat.parent.name)
+        time.sleep(0.05)
+    raise AssertionError("no compile child started")
+
+
+def _alive(pid):
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def _gone_within(pid, seconds):
+    deadline = time.monotonic() + seconds
+    while _alive(pid) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    alive = _alive(pid)
+    if alive:
+        os.kill(pid, signal.SIGKILL)
+    return not alive
+
+
+#: A cold command that runs long enough to be stopped while its child compiles.
+_LONG = [sys.executable, "-m", "beltmdsm", "simulate", "--Vb", "4", "--t-end", "3000"]
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads Linux's /proc")
+@pytest.mark.parametrize("how", ["kill -9", "Ctrl-C"])
+def test_a_command_stopped_while_its_child_compiles_takes_the_child_with_it(tmp_path, how):
+    """Issue 37 item 1: a cold first run left an orphaned compile (parent 1) running
+    about 45 s after the command had returned."""
+    proc = subprocess.Popen(
+        _LONG,
+        env=_fresh(tmp_path),
+        cwd=ROOT,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
+    try:
+        child = _compile_child(proc)
+        if how == "kill -9":
+            proc.kill()
+        else:
+            os.killpg(proc.pid, signal.SIGINT)
+        _, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    assert _gone_within(child, 10.0), f"the compile outlived its command ({how})"
+    if how == "Ctrl-C":
+        assert proc.returncode == 130 and "waiting" not in err
+    # its claim on the compile is released: the next run may compile at once
+    assert not list((tmp_path / "numba").rglob("*.compiling"))
+
+
+@pytest.mark.slow
+def test_a_cold_command_waits_for_its_compile_says_so_once_and_leaves_nothing(tmp_path):
+    env = _fresh(tmp_path)
+    argv = [sys.executable, "-m", "beltmdsm", "simulate", "--Vb", "4", "--t-end", "8"]
+    proc = subprocess.Popen(
+        argv, env=env, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    child = _compile_child(proc)
+    _, err = proc.communicate(timeout=600)
+    assert proc.returncode == 0, err
+    assert not _alive(child)  # it ended before its command did
+    waits = [line for line in err.splitlines() if "waiting for the compile" in line]
+    assert len(waits) == 1 and "Ctrl-C stops it" in waits[0]
+    warm = subprocess.run(argv, env=env, cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert warm.returncode == 0 and warm.stderr == "", warm.stderr
