@@ -127,7 +127,8 @@ def _friction(name, coefficient, parameters=()):
         (lambda P, s: P["mu_s"] * sp.Heaviside(s), "Heaviside(s) (s = |Vr| >= 0"),
         (
             lambda P, s: P["mu_s"] + sp.Function("z")(sp.Symbol("t")),
-            "undefined function z(t) (an internal state, as LuGre's",
+            "undefined function z(t) (laws with internal state (LuGre's bristle deflection) "
+            "are not supported yet",
         ),
         (lambda P, s: P["mu_s"] * sp.exp(-s * sp.Symbol("t")), "symbol t is neither"),
         (lambda P, s: P["mu_s"] - P["nowhere"] * s, "P['nowhere'] is neither a parameter"),
