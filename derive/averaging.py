@@ -76,8 +76,12 @@ def _risch(friction: str):
     integrand = r.subs(SPEED, u + V * 2 * x / (1 + x**2)) * 2 / (1 + x**2)
     try:
         result = risch_integrate(integrand, x)
-    except NotImplementedError as err:
-        return False, f"{friction}: SymPy's Risch algorithm cannot decide ({err})"
+    except NotImplementedError:  # SymPy's own words name its internals: not shown
+        return False, (
+            f"{friction}: SymPy's Risch algorithm does not decide whether mu(|Vr + V sin|) - "
+            "mu(0) has an elementary antiderivative over the fast phase (its implementation "
+            "lacks the case); its average is a quadrature"
+        )
     if isinstance(result, NonElementaryIntegral):
         return False, (
             f"{friction}: mu(|Vr + V sin|) - mu(0) = {sp.sstr(r.subs(SPEED, sp.Symbol('s')))} "
@@ -102,8 +106,8 @@ def closed_form(friction: str) -> tuple[bool, str]:
     if sp.simplify(r) == 0:
         return True, f"{friction}: mu(|Vr|) = mu(0) is constant, its average is Eq. (23)'s"
     try:
-        elementary, why = budget.within(f"{friction}: Risch", _risch, friction)
-    except budget.OverBudget as over:
+        elementary, why = budget.within(f"{friction}: Risch", _risch, friction, inputs=r)
+    except budget.Undecided as over:
         return False, (
             f"{friction}: {over.reason} (SymPy's Risch algorithm on mu(|Vr + V sin|) - "
             "mu(0)); its average is a quadrature"
@@ -111,8 +115,8 @@ def closed_form(friction: str) -> tuple[bool, str]:
     if not elementary:
         return False, why
     try:
-        _EXACT.update(budget.within(f"{friction}: averages", _exact_averages, friction))
-    except budget.OverBudget as over:
+        _EXACT.update(budget.within(f"{friction}: averages", _exact_averages, friction, inputs=r))
+    except budget.Undecided as over:
         return False, (
             f"{friction}: mu(|Vr + V sin|) has an elementary antiderivative (Risch), but its "
             f"integrals over the pieces of the fast period: {over.reason}; its average "
@@ -175,9 +179,11 @@ def _average(friction: str, weight, scale, slope: bool):
     if key not in _EXACT:
         try:
             _EXACT[key] = budget.within(
-                f"{friction}: average", _pieces_sum, friction, weight, scale, slope, True
-            )
-        except budget.OverBudget as over:
+                f"{friction}: average",
+                _pieces_sum, friction, weight, scale, slope, True,
+                inputs=(remainder(friction), weight, scale, slope),
+            )  # fmt: skip
+        except budget.Undecided as over:
             note = (
                 f"a weighted average of the consistent MDSM (derive/correlation.py): "
                 f"{over.reason}, a quadrature"

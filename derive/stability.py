@@ -233,7 +233,7 @@ def _root_below_vhat(p_of_vb: sp.Expr) -> sp.Expr | None | budget.NoClosedForm:
     `beltmdsm.derive.budget` (`NoClosedForm` past it)."""
     try:
         return budget.within("p(Vb) = 0 below Vhat", _solve_below_vhat, p_of_vb)
-    except budget.OverBudget as over:
+    except budget.Undecided as over:
         return budget.NoClosedForm(f"SymPy's roots of p(Vb) = 0: {over.reason}")
 
 

@@ -318,7 +318,7 @@ def critical_belt_speed(
         return sp.nan
     try:
         roots = budget.within(f"{friction}: p(Vb) = 0", sp.solve, p, Vb)
-    except budget.OverBudget as over:
+    except budget.Undecided as over:
         return budget.NoClosedForm(f"SymPy's roots of the tangential damping p(Vb): {over.reason}")
     roots = [r for r in roots if not never_positive(r)]
     if len(roots) != 1 or p.subs(Vb, 0).is_positive:
