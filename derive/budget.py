@@ -196,6 +196,9 @@ def _work(conn, fn, args, seconds, memory_bytes):
 _RECORDED: dict = {}
 #: The decisions of this derivation, in the same form (`render_record`).
 _DECIDED: dict = {}
+#: ``(returned, value or exception)`` of the steps that finished in this derivation: a
+#: step met again (the same unforced root for each contact law) is not computed twice.
+_VALUES: dict = {}
 
 
 def _text(x) -> str:
@@ -218,6 +221,7 @@ def use_record(path: Path | None) -> None:
     file: none) and start a new record."""
     _RECORDED.clear()
     _DECIDED.clear()
+    _VALUES.clear()
     if path is None or not Path(path).is_file():
         return
     tree = ast.parse(Path(path).read_text())
@@ -275,7 +279,12 @@ def within(what: str, fn: Callable, *args, seconds: float | None = None, inputs=
         except NotImplementedError:
             raise Unimplemented(what) from None
     key = _key(what, args if inputs is None else inputs)
-    recorded = _RECORDED.get(key)
+    if key in _VALUES:  # the same step with the same inputs, decided in this derivation
+        finished, value = _VALUES[key]
+        if not finished:
+            raise value
+        return value
+    recorded = _DECIDED.get(key, _RECORDED.get(key))
     if recorded is not None and recorded != "done":
         kind, amount = recorded
         if kind == "memory" or amount >= seconds:  # a larger budget decides afresh
@@ -287,10 +296,10 @@ def within(what: str, fn: Callable, *args, seconds: float | None = None, inputs=
     except OverBudget as over:
         _DECIDED[key] = ("memory", MEMORY_MB) if over.memory else ("time", seconds)
         raise OverBudget(what, seconds, over.memory) from None
-    except BaseException:
-        _DECIDED[key] = "done"
+    except Exception as err:  # what fn raised: the same every time
+        _DECIDED[key], _VALUES[key] = "done", (False, err)
         raise
-    _DECIDED[key] = "done"
+    _DECIDED[key], _VALUES[key] = "done", (True, value)
     return value
 
 
