@@ -14,8 +14,8 @@ in ``generated/capabilities.py`` or in the refusal of the generated function.
 
 The time budget is CPU time (``RLIMIT_CPU`` in the worker): the wall clock of a busy
 shared machine runs several times faster than a step's CPU clock, and a budget in wall
-time would make the generated code depend on the load (with a wall-clock limit of
-`WALL_FACTOR` times the budget as a safety net).
+time would make the generated code depend on the load (the wall clock ends only a
+worker that used almost no CPU time in `WALL_FACTOR` times its budget: one that stopped).
 
 A worker is a ``fork`` of the derivation: it starts with SymPy's caches and every
 derived expression, and sends back one picklable result (tens of ms for the fork and
@@ -90,8 +90,9 @@ SECONDS = _setting("BELTMDSM_DERIVE_SECONDS", 20.0)
 #: The memory a step may add to the derivation's address space, in MB.
 MEMORY_MB = _setting("BELTMDSM_DERIVE_MEMORY_MB", 1536.0)
 
-#: The wall-clock limit of a step, in multiples of its CPU budget: a safety net for a
-#: worker that stops computing (the CPU budget is the one that ends a long search).
+#: The wall-clock safety net of a step, in multiples of its CPU budget: a worker that used
+#: no CPU time for that long has stopped computing (the CPU budget is the one that ends a
+#: long search; a worker that a busy machine starves is waited for).
 WALL_FACTOR = 10
 #: A step recorded as finished within its budget runs again under this many times the
 #: budget (CPU time and memory): a slower or busier machine still reproduces it.
@@ -303,6 +304,31 @@ def within(what: str, fn: Callable, *args, seconds: float | None = None, inputs=
     return value
 
 
+def _cpu_of(pid: int) -> float | None:
+    """The CPU seconds process ``pid`` has used (Linux's /proc; None where unknown)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return None
+
+
+def _answers(receive, pid: int, limit: float) -> bool:
+    """Whether the worker answers: its CPU limit ends a long computation; the wall clock
+    ends only a worker that stopped computing (no CPU time in `WALL_FACTOR` times its
+    budget of wall time). A worker that a busy machine starves of CPU (7% of a core on a
+    shared machine: a 20 s step takes minutes) is waited for, or its outcome would depend
+    on the load."""
+    last = _cpu_of(pid)
+    while not receive.poll(WALL_FACTOR * limit):
+        now = _cpu_of(pid)
+        if now is None or last is None or now - last < 0.01 * limit:
+            return False
+        last = now
+    return True
+
+
 def _run(what: str, fn: Callable, args, seconds: float, safety: float):
     """`within`'s worker: ``fn(*args)`` under ``safety`` times the budgets."""
     used = _address_space()
@@ -318,7 +344,7 @@ def _run(what: str, fn: Callable, args, seconds: float, safety: float):
     worker.start()
     send.close()
     try:
-        if not receive.poll(WALL_FACTOR * limit):  # a worker that waits, not computes
+        if not _answers(receive, worker.pid, limit):  # a worker that waits, not computes
             raise OverBudget(what, seconds)
         try:
             status, value = receive.recv()

@@ -138,6 +138,17 @@ def test_a_decision_is_recorded_and_read_back_whatever_the_machine_takes(tmp_pat
     assert budget.within("spin", _spin, n, seconds=budget.SAFETY * 2) == sum(range(n))
 
 
+def test_the_wall_clock_ends_only_a_worker_that_stopped_computing():
+    """A worker starved of CPU by a busy machine is waited for (the cubic law's Risch step
+    got 7% of a core and was cut at 10 times its budget of wall time, so its outcome
+    depended on the load); one that uses no CPU time at all (here: asleep) is ended."""
+    start = time.perf_counter()
+    with pytest.raises(budget.OverBudget):
+        budget.within("sleep", time.sleep, 60, seconds=0.2)
+    assert time.perf_counter() - start < 30
+    assert budget._cpu_of(os.getpid()) > 0  # /proc tells a worker's CPU time
+
+
 def test_sympys_not_implemented_is_a_named_fallback():
     """Issue 41 item 2: solve on the Gaussian law's damping raised NotImplementedError
     (multiple generators) through the budget; it is `Unimplemented`, an `Undecided`
