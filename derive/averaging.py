@@ -159,19 +159,26 @@ def _trig_polynomial(integrand) -> sp.Expr | None:
     return expanded
 
 
+def _sided(expr):
+    """`_SIDE` as ``sgn(u)`` (its even powers 1)."""
+    return expr.subs(_SIDE**2, 1).subs(_SIDE, sp.sign(u))
+
+
 def _integrate(integrand, lo, hi, exact: bool):
-    integrand = integrand.subs(_SIDE**2, 1).subs(_SIDE, sp.sign(u))
-    if not exact:
-        return sp.Integral(integrand, (PHASE, lo, hi))
-    polynomial = _trig_polynomial(integrand)
-    if polynomial is None:
+    polynomial = _trig_polynomial(integrand) if exact else None
+    if polynomial is not None:
+        # A polynomial in sin and cos has an antiderivative of the same kind (plus a
+        # multiple of the phase), continuous everywhere: the limits go in directly. SymPy's
+        # definite integral reaches the same value through its general machinery, 10-20 s
+        # for a cubic law's weighted averages (the budget's limit, issue 41); with sgn(u)
+        # in the integrand even the antiderivative ran for minutes, so `_SIDE` stays a
+        # symbol until the limits are in.
+        antiderivative = sp.integrate(polynomial, PHASE)
+        return _sided(antiderivative.subs(PHASE, hi) - antiderivative.subs(PHASE, lo))
+    integrand = _sided(integrand)
+    if exact:
         return sp.integrate(integrand, (PHASE, lo, hi))
-    # A polynomial in sin and cos has an antiderivative of the same kind (plus a multiple
-    # of the phase), continuous everywhere: the limits go in directly. SymPy's definite
-    # integral reaches the same value through its general machinery, 10-20 s for a cubic
-    # law's weighted averages (the budget's limit, issue 41).
-    antiderivative = sp.integrate(polynomial, PHASE)
-    return antiderivative.subs(PHASE, hi) - antiderivative.subs(PHASE, lo)
+    return sp.Integral(integrand, (PHASE, lo, hi))
 
 
 #: The exact averages computed under the budget: ``{(friction, weight, scale, slope): (inside,
