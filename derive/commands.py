@@ -41,7 +41,7 @@ def generate(args) -> int:
     elsewhere), a law that `beltmdsm.derive.laws.register` refuses.
     """
     try:
-        from . import codegen, modules
+        from . import budget, codegen, modules
         from .models import render as models_render
     except ValueError as err:  # a law refused at `register` (lawcheck.UnsupportedLaw)
         if type(err).__name__ != "UnsupportedLaw":
@@ -54,10 +54,15 @@ def generate(args) -> int:
             f"regenerating generated/ needs a source checkout: this one is installed "
             f"({codegen.GENERATED.parent}); give --out DIR to write a complete copy there"
         )
+    # the budgeted decisions recorded with generated/ (beltmdsm.derive.budget): a copy
+    # written elsewhere starts from the package's own record
+    recorded = root / budget.RECORD
+    budget.use_record(recorded if recorded.is_file() else codegen.GENERATED / budget.RECORD)
     start = time.perf_counter()
     mods = modules.all_modules(progress=_progress)
     files = codegen.render_all(mods)
     files.update(models_render.files())  # generated/models/ (issue 39)
+    files[budget.RECORD] = budget.render_record(codegen.HEADER)
     elapsed = time.perf_counter() - start
     if args.check:
         stale = codegen.stale(files, root)

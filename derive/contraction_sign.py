@@ -15,7 +15,7 @@ from functools import cache
 
 import sympy as sp
 
-from . import laws
+from . import budget, laws
 from .contraction_energy import Ya, Yb, ep, power_split, sa, sb
 from .model import (
     SPEED,
@@ -126,8 +126,15 @@ def monotonicity(friction: str = _FRICTION) -> Monotonicity:
     if SPEED not in remaining.free_symbols:
         falls = f"every |Vr| > 0 (0 < |Vr| < oo) where {_inequality(remaining)}"
     else:
-        roots = sp.solve(slope, SPEED)
-        falls = f"|Vr| where {sp.sstr(shown)} < 0 (roots at {sp.sstr(roots)})"
+        # a root provably <= 0 is no sliding speed inside (0, oo) (the cubic law's
+        # -sqrt(mu_1/(3 mu_3))): only the others bound where the law falls
+        try:
+            found = budget.within(f"{friction}: dmu/d|Vr| = 0", sp.solve, slope, SPEED)
+        except budget.Undecided as why:
+            falls = f"|Vr| where {sp.sstr(shown)} < 0 (its roots: {why.reason})"
+        else:
+            roots = [r for r in found if r.is_nonpositive is not True]
+            falls = f"|Vr| where {sp.sstr(shown)} < 0 (roots at {sp.sstr(roots)})"
     why = (
         f"friction={friction!r}: dmu/d|Vr| = {sp.sstr(shown)} < 0 for {falls}: the "
         "coefficient falls with the sliding speed there, so sgn(Vr) mu(|Vr|) is not "

@@ -24,6 +24,7 @@ from __future__ import annotations
 import sympy as sp
 
 from . import laws
+from .lawcheck import value_at_rest
 from .parameters import base_values
 
 __all__ = [
@@ -115,7 +116,7 @@ def rest_coefficient(friction: str = _DEFAULT["friction"]) -> sp.Expr:
     friction over a fast motion multiply the sign's average by (`beltmdsm.derive.averaging`);
     it differs from `static_coefficient` where the law has a static bound of its own.
     """
-    return sp.simplify(coefficient(friction, sp.Integer(0)))
+    return sp.simplify(value_at_rest(coefficient(friction, SPEED), SPEED))
 
 
 def normal_force(contact: str = _DEFAULT["contact"], X2=X2, Y2=Y2) -> sp.Expr:

@@ -56,7 +56,10 @@ def build() -> ModuleSpec:
 
     def _below(expr, bound):
         """``expr < bound`` as a condition (a Piecewise ``expr`` taken branch by branch:
-        the printers' conditions are plain relations, not Piecewise values)."""
+        the printers' conditions are plain relations, not Piecewise values). NaN (no
+        boundary) is below nothing."""
+        if expr is sp.nan:
+            return sp.false
         if not isinstance(expr, sp.Piecewise):
             return sp.StrictLessThan(expr, bound)
         terms, others = [], sp.true

@@ -415,7 +415,9 @@ def test_bind_default_backend_is_numba_when_installed():
 
 #: The viscous-plus-Coulomb law of docs/extending.md, registered in a fresh process
 #: (before beltmdsm.derive.model builds its symbols), and three modules regenerated into a
-#: temporary folder: nothing else in derive/ or generated/ is touched.
+#: temporary folder: nothing else in derive/ or generated/ is touched. Its name and
+#: parameter are the test's own (toy_viscous, c_toy): a user who adds the docs' example
+#: (viscous, c_v) to derive/laws.py keeps this test passing.
 TOY_LAW = """
 import sys
 from pathlib import Path
@@ -424,12 +426,12 @@ from beltmdsm.derive.parameters import Parameter
 laws.register(
     "friction",
     laws.FrictionLaw(
-        "viscous",
-        "viscous plus Coulomb friction: mu(|Vr|) = mu_s + c_v |Vr|",
+        "toy_viscous",
+        "viscous plus Coulomb friction: mu(|Vr|) = mu_s + c_toy |Vr|",
         "Coulomb's static coefficient plus a viscous part.",
-        "Eq. (3) for c_v = 0",
-        (Parameter("c_v", "s/m", 0.02, "nonnegative", "viscous friction coefficient"),),
-        coefficient=lambda P, s: P["mu_s"] + P["c_v"] * s,
+        "Eq. (3) for c_toy = 0",
+        (Parameter("c_toy", "s/m", 0.02, "nonnegative", "viscous friction coefficient"),),
+        coefficient=lambda P, s: P["mu_s"] + P["c_toy"] * s,
     ),
 )
 from beltmdsm.derive import codegen, modules
@@ -442,43 +444,43 @@ import json, sys
 sys.path.insert(0, sys.argv[1])
 from beltmdsm.generated import capabilities, friction, unforced
 from beltmdsm.generated.parameters import BASE, LAW_PARAMETERS, OPTIONS
-p = {**BASE, "c_v": 0.05, "Vb": 3.0}
+p = {**BASE, "c_toy": 0.05, "Vb": 3.0}
 Vr = [-9.0, -3.0, 0.5, 7.0]
 print(json.dumps(dict(
     options=OPTIONS["friction"],
-    owner=LAW_PARAMETERS[("friction", "viscous")],
-    base=BASE["c_v"],
-    X1=float(unforced.equilibrium(friction="viscous", **p)[0]),
-    J11=float(unforced.jacobian_at_equilibrium(friction="viscous", **p)[1, 1]),
-    critical=float(unforced.critical_belt_speed(friction="viscous", **p)),
-    mu_bar=[float(friction.mu_bar(v, 8.0, 0.4, friction="viscous", c_v=0.05)) for v in Vr],
+    owner=LAW_PARAMETERS[("friction", "toy_viscous")],
+    base=BASE["c_toy"],
+    X1=float(unforced.equilibrium(friction="toy_viscous", **p)[0]),
+    J11=float(unforced.jacobian_at_equilibrium(friction="toy_viscous", **p)[1, 1]),
+    critical=float(unforced.critical_belt_speed(friction="toy_viscous", **p)),
+    mu_bar=[float(friction.mu_bar(v, 8.0, 0.4, friction="toy_viscous", c_toy=0.05)) for v in Vr],
     coulomb=[float(friction.mu_bar(v, 8.0, 0.4)) for v in Vr],
-    facts=capabilities.CAPABILITIES[("viscous", "hertz_damp", "allowed")],
+    facts=capabilities.CAPABILITIES[("toy_viscous", "hertz_damp", "allowed")],
 )))
 """
 
 
 def test_a_law_registered_in_a_test_is_derived_into_every_function(tmp_path):
-    """The toy law's functions against closed forms typed here: X1^0 = (mu_s + c_v Vb) g /
-    omega1^2, the damping 2 beta1 omega1 + g c_v of J^0 (no unforced boundary), the
-    effective friction Eq. (23) + c_v Vr (sgn(v) c_v |v| = c_v v averages to c_v Vr: a
+    """The toy law's functions against closed forms typed here: X1^0 = (mu_s + c_toy Vb) g /
+    omega1^2, the damping 2 beta1 omega1 + g c_toy of J^0 (no unforced boundary), the
+    effective friction Eq. (23) + c_toy Vr (sgn(v) c_toy |v| = c_toy v averages to c_toy Vr: a
     closed form that SymPy's Risch algorithm finds, no quadrature), and its facts."""
     made = _run(["-c", TOY_LAW, str(tmp_path)])
     assert made.returncode == 0, made.stderr
     source = (tmp_path / "generated" / "friction.py").read_text()
-    viscous = source[source.index("def _mu_bar__viscous") :].split("\n\n\n")[0]
+    viscous = source[source.index("def _mu_bar__toy_viscous") :].split("\n\n\n")[0]
     assert "_support.quad(" not in viscous
     as_checkout(tmp_path)  # its generated/ is beltmdsm.generated there
     out = _run(["-c", TOY_CHECK, str(tmp_path)])
     assert out.returncode == 0, out.stderr
     got = __import__("json").loads(out.stdout)
-    p = {**BASE, "c_v": 0.05, "Vb": 3.0}
-    assert got["options"] == [*FRICTION_LAWS, "viscous"]  # the registry's, then the new law
-    assert got["owner"] == ["c_v"] and got["base"] == 0.02
+    p = {**BASE, "c_toy": 0.05, "Vb": 3.0}
+    assert got["options"] == [*FRICTION_LAWS, "toy_viscous"]  # the registry's, then the new law
+    assert got["owner"] == ["c_toy"] and got["base"] == 0.02
     # a product and a quotient of rounded inputs: a few ulps
-    X1 = (p["mu_s"] + p["c_v"] * p["Vb"]) * p["g"] / p["omega1"] ** 2
+    X1 = (p["mu_s"] + p["c_toy"] * p["Vb"]) * p["g"] / p["omega1"] ** 2
     assert got["X1"] == pytest.approx(X1, rel=4 * EPS)
-    damping = 2 * p["beta1"] * p["omega1"] + p["g"] * p["c_v"]
+    damping = 2 * p["beta1"] * p["omega1"] + p["g"] * p["c_toy"]
     assert got["J11"] == pytest.approx(-damping, rel=4 * EPS)
     assert math.isnan(got["critical"])
     for v, mu_bar, coulomb in zip((-9.0, -3.0, 0.5, 7.0), got["mu_bar"], got["coulomb"]):
@@ -490,4 +492,4 @@ def test_a_law_registered_in_a_test_is_derived_into_every_function(tmp_path):
         "friction_monotone": True,
         "closed_form_average": True,
     }
-    assert "viscous" in got["facts"]["slip_friction_state_independent"][1]
+    assert "toy_viscous" in got["facts"]["slip_friction_state_independent"][1]
