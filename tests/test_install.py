@@ -181,7 +181,7 @@ def test_installed_derivation_refuses_to_regenerate_the_package(installed):
     _, _, purelib, _ = installed
     generated = purelib / "beltmdsm" / "generated"
     before = {p: p.stat().st_mtime_ns for p in generated.rglob("*.py")}
-    done = _run(installed, "beltmdsm")
+    done = _run(installed, "beltmdsm", "--regenerate")
     assert done.returncode == 2
     assert done.stderr.count("\n") == 1 and "needs a source checkout" in done.stderr
     assert "--out DIR" in done.stderr

@@ -54,7 +54,8 @@ def svg(latex: str) -> str:
             raise ValueError(f"mathtext cannot draw ${latex}$: {err}") from err
     body = buffer.getvalue().decode()
     body = body[body.index("<svg") :]
-    return re.sub(r"<metadata>.*?</metadata>", "", body, flags=re.S)
+    # matplotlib writes the TeX as a comment too: the page shows the drawing only
+    return re.sub(r"<metadata>.*?</metadata>|<!--.*?-->", "", body, flags=re.S)
 
 
 def visit_inline(self, node: nodes.math) -> None:

@@ -391,6 +391,23 @@ def check_basins(toy):
     assert abs(a["lyapunov"] - _growth(C_F)) <= a["lyapunov_error"] + 1e-6
 
 
+def check_basin_stability(toy):
+    # without excitation the toy law's steady sliding decays at D_TOY / 2 > 0 at every
+    # belt speed (its slope c_f is the same at every Vr): an attractor at each value, no
+    # Hopf point in the range, and the shares and the unidentified starts add up to all
+    line = (
+        "basin-stability --alpha 0 --param Vb --from 2 --to 4 --points 2 --samples 40 "
+        "--x-from 0 --x-to 2 --y-from -1 --y-to 1 --no-cache --jobs 1"
+    )
+    out = json.loads(cli(toy, line, "--json"))
+    (sliding,) = [a for a in out["attractors"] if a["name"] == "steady sliding"]
+    assert D_TOY > 0 and all(f > 0 for f in sliding["fraction"])
+    for k, left in enumerate(out["unidentified"]):
+        shares = sum(a["fraction"][k] for a in out["attractors"])
+        assert abs(shares + left / 40 - 1) < 1e-12
+    assert not [e for e in out["edges"] if e["kind"] == "hopf"]
+
+
 #: The commands that take no model: they refuse the flag by name.
 WITHOUT_MODEL = ("validate", "docs", "check-paper")
 
@@ -414,6 +431,7 @@ CHECKS = {
     "floquet-map": check_floquet_map,
     "lyapunov": check_lyapunov,
     "basins": check_basins,
+    "basin-stability": check_basin_stability,
     **{name: (lambda toy, name=name: check_without_model(toy, name)) for name in WITHOUT_MODEL},
 }
 

@@ -139,7 +139,7 @@ def test_lyapunov_refuses_a_run_it_cannot_keep_in_one_line_naming_the_flag():
     out = _run("lyapunov", "--t-end", "1e300", timeout=60)
     assert out.returncode == 2
     lines = out.stderr.strip().splitlines()
-    assert len(lines) == 1 and "lyapunov: error: argument --t-end: t_end = 1e+300 s" in lines[0]
+    assert len(lines) == 1 and "lyapunov: error: argument --t-end: --t-end = 1e+300 s" in lines[0]
     assert "MAX_RUN_BYTES" in lines[0] and out.stdout == ""
 
 
