@@ -162,7 +162,7 @@ class NoPeriodicResponse(BeltmdsmError, RuntimeError):
     See Also
     --------
     beltmdsm.periodic.floquet.floquet : raises it where there is no periodic response.
-    beltmdsm.studies.responses.responses : lists the seeds that failed with it.
+    beltmdsm.multistability.responses.responses : lists the seeds that failed with it.
 
     Examples
     --------

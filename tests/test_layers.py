@@ -9,7 +9,9 @@ submodule where one exists). The layers, lowest first:
 beltmdsm.derive -> beltmdsm.generated -> beltmdsm.{model, settings, intervals} ->
 beltmdsm.integrate ->
 beltmdsm.{periodic, continuation, cycles, oscillator} -> beltmdsm.run -> beltmdsm.prediction ->
-beltmdsm.attractors -> beltmdsm.simulation -> beltmdsm.studies -> beltmdsm.cli
+beltmdsm.attractors -> beltmdsm.simulation -> beltmdsm.starts -> beltmdsm.multistability ->
+beltmdsm.batch -> beltmdsm.basin -> beltmdsm.paper_reports -> beltmdsm.studies (old paths) ->
+beltmdsm.cli
 
 A module imports only modules of its own layer or below, with no cycle: derive/ and
 generated/ import no other beltmdsm module (``python -m derive`` runs ``python -m
@@ -50,7 +52,16 @@ LAYERS = {
     "beltmdsm.prediction": 4.2,
     "beltmdsm.attractors": 4.3,
     "beltmdsm.simulation": 5,
-    "beltmdsm.studies": 6,
+    # issue 38: studies/ cut by role. Where runs and searches start (they run simulate);
+    # the responses at a point and their coexistence; the batch engine (its rows start
+    # runs at the periodic start); basins (on the batch engine's cache and pool); the
+    # paper's reports (on all of them); the old paths, thin re-exports
+    "beltmdsm.starts": 5.1,
+    "beltmdsm.multistability": 5.2,
+    "beltmdsm.batch": 5.3,
+    "beltmdsm.basin": 5.4,
+    "beltmdsm.paper_reports": 6,
+    "beltmdsm.studies": 6.5,
     "beltmdsm.cli": 7,
     "beltmdsm.__main__": 7,
 }

@@ -410,7 +410,7 @@ def executor_from(args: argparse.Namespace) -> Iterator[cf.Executor | str | None
 
 
 def cache_parent() -> argparse.ArgumentParser:
-    """Parent parser: the sweep cache (`beltmdsm.studies.cache`)."""
+    """Parent parser: the sweep cache (`beltmdsm.batch.cache`)."""
     parent = argparse.ArgumentParser(add_help=False)
     g = parent.add_argument_group("cache")
     g.add_argument(

@@ -37,7 +37,7 @@ def add(commands, name: str) -> None:
         "uniform random starts in the box --x-from..--y-to (the same starts at every value) "
         "that each attractor claims, with its standard error; steady sliding and the stable "
         "self-excited cycles matched across values by continuation, each birth or death "
-        "named by its bifurcation (beltmdsm/studies/basin_stability_along.py).",
+        "named by its bifurcation (beltmdsm/basin/basin_stability_along.py).",
     )
     sub.add_argument(
         "--param", choices=MODEL_PARAMETERS, default="Vb", help="the parameter (default Vb)"

@@ -34,12 +34,12 @@ def add(commands, name: str) -> None:
         "(default X1 and X1' = Y1, the normal state on its periodic orbit), each iterated "
         "on the period map until a known attractor claims it; attractors named by their "
         "kind, period, rotation number and largest Lyapunov exponent "
-        "(beltmdsm/studies/basins.py, beltmdsm/attractors/classification.py). Without "
+        "(beltmdsm/basin/basins.py, beltmdsm/attractors/classification.py). Without "
         "excitation the starts are states (the others at steady sliding's) and the "
         "attractors steady sliding and the stable self-excited cycles, each start decided "
         "by the region the computed cycles assign it to or by sticking "
         "(beltmdsm/attractors/self_excited.py); --samples N draws N uniform starts in the "
-        "box instead (beltmdsm/studies/basin_stability.py).",
+        "box instead (beltmdsm/basin/basin_stability.py).",
     )
     for axis, default in (("x", "X1"), ("y", "Y1")):
         sub.add_argument(
@@ -93,7 +93,7 @@ def sampling_flags(sub, samples: int | None = None) -> None:
 
 def region_from(args, model) -> dict:
     """The box of starts: ``--x-from .. --y-to``, all four required, each end within
-    floating point for ``model`` (`beltmdsm.studies.basins.axis_range`)."""
+    floating point for ``model`` (`beltmdsm.basin.basins.axis_range`)."""
     xr, yr = _range(args, "x", model), _range(args, "y", model)
     if xr is None or yr is None:
         args.parser.error("argument --samples: needs the box, --x-from/--x-to and --y-from/--y-to")
@@ -103,7 +103,7 @@ def region_from(args, model) -> dict:
 
 
 def print_estimate(result, as_json: bool) -> None:
-    """A `beltmdsm.studies.basin_stability.BasinStability` as text or JSON."""
+    """A `beltmdsm.basin.basin_stability.BasinStability` as text or JSON."""
     from .. import text
 
     if as_json:

@@ -1,4 +1,4 @@
-"""``sweep``: one parameter of Eq. (4) over a range (`beltmdsm.studies.sweep`)."""
+"""``sweep``: one parameter of Eq. (4) over a range (`beltmdsm.batch.sweep`)."""
 
 from __future__ import annotations
 
@@ -33,7 +33,7 @@ def add(commands, name: str) -> None:
         run,
         [model_parent(), solver_parent(), executor_parent(), cache_parent(), json_parent()],
         help="sweep one parameter of Eq. (4)",
-        description="Sweep one parameter of Eq. (4) (beltmdsm/studies/sweep.py; at most "
+        description="Sweep one parameter of Eq. (4) (beltmdsm/batch/sweep.py; at most "
         f"{MAX_POINTS:.0e} points).",
     )
     grid = sub.add_argument_group("the swept parameter")

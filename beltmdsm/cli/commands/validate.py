@@ -1,4 +1,4 @@
-"""``validate``: write VALIDATION.md (`beltmdsm.studies.validation`)."""
+"""``validate``: write VALIDATION.md (`beltmdsm.paper_reports.validation`)."""
 
 from __future__ import annotations
 

@@ -181,7 +181,7 @@ def coexistence(found: Coexistence) -> str:
 
 def cycle_coexistence(found: CycleCoexistence) -> str:
     """The readable summary of ``coexistence`` without excitation
-    (`beltmdsm.studies.cycle_coexistence.CycleCoexistence`)."""
+    (`beltmdsm.multistability.cycle_coexistence.CycleCoexistence`)."""
     param, b = found.param, found.branch
 
     def parts(ps):
