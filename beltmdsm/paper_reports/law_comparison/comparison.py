@@ -1,10 +1,14 @@
-"""Item 8d: the answer for each law and tension law, and `compare`, which does (a)-(d).
+"""Whether friction that falls with speed self-excites without tension: `answer`, `compare`.
 
-`answer`: whether a self-excited vibration exists without tension once friction falls
-with speed, and where the excitation stabilises or destabilises steady sliding (the
-question of Thomsen and of Michaux et al. that the paper's introduction cites), from
-the parts (a)-(c). `compare`: all of it for the laws of `LAWS` and both tension laws,
-timing each expensive call.
+`answer`, per friction law and tension law: whether a self-excited vibration exists
+without tension once friction falls with speed, and where the excitation stabilises or
+destabilises steady sliding (the question of Thomsen and of Michaux et al. that the
+paper's introduction cites), from the three computed parts: (a) where steady sliding is
+unstable (`beltmdsm.paper_reports.law_comparison.steady`), (b) where the forced
+response is (`beltmdsm.paper_reports.law_comparison.forced`) and (c) where runs from
+rest show the ``omega1`` vibration (`beltmdsm.paper_reports.law_comparison.runs`).
+`compare`: all of it for the laws of `LAWS` and both tension laws, timing each
+expensive call.
 """
 
 from __future__ import annotations
@@ -107,7 +111,7 @@ def answer(
     forced_runs: Sequence[RunScan],
     vb_range: tuple[float, float] = VB_RANGE,
 ) -> Answer:
-    """Item 8d for one law and tension law, from (a), (b) and (c).
+    """The answer for one law and tension law, from (a), (b) and (c).
 
     ``unforced_runs`` and ``forced_runs`` are the scans of each start (`STARTS`,
     `FORCED_STARTS`), on one grid.

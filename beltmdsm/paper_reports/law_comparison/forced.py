@@ -1,4 +1,4 @@
-"""Item 8b: where the ``T``-periodic forced response is unstable (`forced_stability`).
+"""Where the ``T``-periodic forced response is unstable, per friction law (`forced_stability`).
 
 The Floquet band of `beltmdsm.continuation.band.floquet_band` over ``Vb``, its labelled
 edges and the growth rate ``log max|mu| / T`` at every evaluated value.
@@ -26,7 +26,7 @@ __all__ = ["ForcedStability", "forced_stability"]
 
 @dataclass(frozen=True)
 class ForcedStability:
-    """Where the ``T``-periodic forced response is unstable, by Floquet (item 8b).
+    """Where the ``T``-periodic forced response is unstable, by Floquet (part (b)).
 
     Attributes
     ----------
@@ -110,7 +110,7 @@ def forced_stability(
     points: int = 49,
     tol: float = 1e-3,
 ) -> ForcedStability:
-    """The Floquet band of the forced response over ``Vb`` (item 8b).
+    """The Floquet band of the forced response over ``Vb`` (part (b)).
 
     Parameters
     ----------

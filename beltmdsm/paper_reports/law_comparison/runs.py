@@ -1,4 +1,4 @@
-"""Item 8c: where runs from rest show the ``omega1`` vibration (`runs_from_rest`).
+"""Where runs from rest show the ``omega1`` vibration, per friction law (`runs_from_rest`).
 
 The ``omega1_peak_present`` of `beltmdsm.simulation.simulate`'s summaries on a grid of
 ``Vb``, forced or not, from each start of `STARTS` and `FORCED_STARTS`.
@@ -27,7 +27,7 @@ __all__ = ["RunScan", "runs_from_rest"]
 
 @dataclass(frozen=True)
 class RunScan:
-    """Runs on a grid of ``Vb`` and where they show the ``omega1`` vibration (item 8c).
+    """Runs on a grid of ``Vb`` and where they show the ``omega1`` vibration (part (c)).
 
     Attributes
     ----------
@@ -140,7 +140,7 @@ def runs_from_rest(
     start: str | None = None,
     settings: SolverSettings | None = None,
 ) -> RunScan:
-    """Runs of Eq. (4) on a grid of ``Vb``, serially, and their ``omega1`` peak (item 8c).
+    """Runs of Eq. (4) on a grid of ``Vb``, serially, and their ``omega1`` peak (part (c)).
 
     Parameters
     ----------

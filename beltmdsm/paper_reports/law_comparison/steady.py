@@ -1,4 +1,4 @@
-"""Item 8a: where steady sliding is unstable without excitation (`steady_sliding`).
+"""Where steady sliding is unstable without excitation, per friction law (`steady_sliding`).
 
 The closed form `beltmdsm.generated.unforced.critical_belt_speed` (SymPy's root of the
 tangential damping ``2 beta1 omega1 + g dmu/d|Vr|`` of the linearisation at
@@ -123,7 +123,7 @@ def steady_sliding(
     *,
     vb: ArrayLike | None = None,
 ) -> SteadySliding:
-    """Where steady sliding is unstable, unforced: closed form and eigenvalues (item 8a).
+    """Where steady sliding is unstable, unforced: closed form and eigenvalues (part (a)).
 
     Parameters
     ----------
