@@ -56,6 +56,7 @@ class Attractor:
     Examples
     --------
     >>> from beltmdsm import Model
+    >>> from beltmdsm.attractors.classification import periodic_attractor
     >>> a = periodic_attractor(Model(Vb=3.88), t_end=300.0)
     >>> a  # doctest: +ELLIPSIS
     Attractor(periodic (4T), largest exponent -0.0951 +- ... 1/s, rotation -0.250000)

@@ -112,11 +112,11 @@ class Basins:
 
     See Also
     --------
-    basins : computes it.
+    beltmdsm.basin.basins.basins : computes it.
 
     Examples
     --------
-    >>> from beltmdsm import Model
+    >>> from beltmdsm import Model, basins
     >>> b = basins(Model(Vb=3.88), points=3, x_lo=3.0, x_hi=7.0, y_lo=-8.5, y_hi=-4.5,
     ...            cache_dir=None)
     >>> b  # doctest: +NORMALIZE_WHITESPACE

@@ -150,6 +150,36 @@ class Row:
             out["restart_state"] = list(self.restart_state)
         return out
 
+    def record(self, modulation: bool) -> tuple[Any, ...]:
+        """The row's values in the order of `columns` (``modulation``: with the
+        `MODULATION_COLUMNS`, NaN where not computed): a record of the sweep's table.
+
+        Examples
+        --------
+        >>> row = Row.from_dict({name: 0 for name, _ in COLUMNS} | {"regime": "stick_slip"})
+        >>> row.record(False)[:3], len(row.record(True))
+        (('stick_slip', 0.0, 0.0), 30)
+        """
+        mod = self.modulation or {}
+        return (
+            *(getattr(self, name) for name, _ in COLUMNS),
+            *(mod.get(name, math.nan) for name, _ in (MODULATION_COLUMNS if modulation else ())),
+        )
+
+    def json_row(self, param: str, value: float, modulation: bool) -> dict[str, Any]:
+        """The row of ``sweep --json``: ``param`` (``value``) first, then `columns`,
+        NaN and infinity as None (JSON has neither).
+
+        Examples
+        --------
+        >>> row = Row.from_dict({name: 0 for name, _ in COLUMNS} | {"wall_s": float("nan")})
+        >>> out = row.json_row("Vb", 4.0, False)
+        >>> list(out)[:3], out["wall_s"]
+        (['Vb', 'regime', 'peak_omega1'], None)
+        """
+        names = (param, *(name for name, _ in columns(modulation)))
+        return dict(zip(names, map(_json, (float(value), *self.record(modulation)))))
+
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> Row:
         """The row of `as_dict`'s values (the modulation columns where all are there).
@@ -294,6 +324,11 @@ def run_point(
         extra["restart_t"] = t_k
         extra["restart_state"] = sim.trajectory.state(np.array([t_k]))[:, 0]
     return Row.from_summary(sim.summary, **extra)
+
+
+def _json(value: Any) -> Any:
+    """``value`` as JSON holds it: a float that is not finite as None."""
+    return None if isinstance(value, float) and not math.isfinite(value) else value
 
 
 def _one_field(text: str) -> str:

@@ -55,7 +55,7 @@ from .cache import (
     write_cached,
 )
 from .pool import _collect, process_pool, stop_process_pool
-from .row import STARTS, Row, Start, columns, failed_row, run_point
+from .row import MODULATION_COLUMNS, STARTS, Row, Start, columns, failed_row, run_point
 from .table import omega1_peak_ranges, records, to_table, unresolved_values
 
 __all__ = [
@@ -149,6 +149,9 @@ class Sweep:
         Cache files that failed their checks and were recomputed.
     dropped : list of float
         Duplicate values given, computed once.
+    rows : list of `beltmdsm.batch.row.Row`
+        The row of each record of ``table``, in its order: ``sweep --json`` writes them
+        (`beltmdsm.batch.row.Row.json_row`), each as it was computed.
 
     See Also
     --------
@@ -185,6 +188,7 @@ class Sweep:
     n_cached: int = 0
     problems: list[Problem] = field(default_factory=list)
     dropped: list[float] = field(default_factory=list)
+    rows: list[Row] = field(default_factory=list, repr=False)
 
     def omega1_peak_ranges(self) -> list[tuple[float, float]]:
         """Where the omega1 peak is present (`beltmdsm.batch.table.omega1_peak_ranges`)."""
@@ -225,7 +229,17 @@ class Sweep:
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON of ``sweep --json`` (keys in docs/reference/json.md)."""
-        rows = records(self.table)
+        # each row as it was computed, in one step (not through the table's records)
+        if len(self.rows) != len(self.table):
+            raise ValueError(
+                f"a Sweep's rows are the rows of its table: {len(self.rows)} rows for "
+                f"{len(self.table)} records"
+            )
+        modulation = MODULATION_COLUMNS[0][0] in (self.table.dtype.names or ())
+        rows = [
+            row.json_row(self.param, value, modulation)
+            for value, row in zip(self.table[self.param].tolist(), self.rows)
+        ]
         model = self.model.as_dict()
         del model["params"][self.param]  # its values are the rows'
         return {
@@ -487,7 +501,9 @@ def sweep(
                 executor.shutdown()
     rows, n_cached, problems = collected
     found = to_table(param, unique, rows, modulation)
-    return Sweep(param, model, settings, found, continuation, start, n_cached, problems, dropped)
+    return Sweep(
+        param, model, settings, found, continuation, start, n_cached, problems, dropped, rows
+    )
 
 
 def _continuation_period(model, settings, param):

@@ -1,8 +1,9 @@
 """A sweep's table: its rows stacked, as records, as CSV, and what it says.
 
-`to_table` stacks the `beltmdsm.batch.row.Row` of each point into a numpy structured
-array (the swept parameter first, then the row's columns); `records` gives its rows
-back as the plain dicts of ``sweep --json`` and `beltmdsm.batch.sweep.Sweep.to_pandas`,
+`to_table` stacks the `beltmdsm.batch.row.Row.record` of each point into a numpy
+structured array (the swept parameter first, then the row's columns); `records` gives
+its rows back as plain dicts (`beltmdsm.batch.sweep.Sweep.to_pandas`; ``sweep --json``
+writes the rows themselves, `beltmdsm.batch.row.Row.json_row`),
 `table_to_csv` and `table_from_csv` the CSV of ``sweep --out``. `omega1_peak_ranges`
 and `unresolved_values` read where the omega1 peak is present and where a run could
 not tell; they take the notebooks' dicts of columns too.
@@ -69,13 +70,12 @@ def to_table(
     cols = ((param, "f8"),) + columns(modulation)
     out = np.zeros(len(rows), dtype=list(cols))
     for i, (value, row) in enumerate(zip(values, rows)):
-        data = row.as_dict()
-        out[i] = (value, *(data.get(name, np.nan) for name, _ in cols[1:]))
+        out[i] = (value, *row.record(modulation))
     return out
 
 
 def records(table: NDArray[np.void]) -> list[dict[str, Any]]:
-    """The table's rows as plain dicts by column (``sweep --json``'s ``rows``).
+    """The table's rows as plain dicts by column (the rows of `Sweep.to_pandas`).
 
     Parameters
     ----------
