@@ -395,7 +395,7 @@ def executor_from(args: argparse.Namespace) -> Iterator[cf.Executor | str | None
     elif args.jobs == 1:
         yield "serial"
     elif args.jobs:
-        from ..studies.pool import process_pool, stop_process_pool
+        from ..batch.pool import process_pool, stop_process_pool
 
         pool = process_pool(args.jobs)
         try:

@@ -146,3 +146,36 @@ def test_warnings_filter_is_left_as_found():
     before = list(warnings.filters)
     importlib.import_module("beltmdsm._moved").install()
     assert warnings.filters == before
+
+
+def _imported(path, package):
+    """The absolute module names ``path`` imports from (relative ones resolved)."""
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Import):
+            yield from (a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                parts = package.split(".")
+                base = ".".join(parts[: len(parts) - node.level + 1])
+                source = f"{base}.{node.module}" if node.module else base
+            else:
+                source = node.module or ""
+            yield source
+            yield from (f"{source}.{a.name}" for a in node.names)
+
+
+def test_nothing_of_the_package_imports_an_old_path():
+    """The old paths are for users: the package, its tests and benchmarks use the new ones
+    (an old one would warn, and hide a layer from tests/test_layers.py)."""
+    old = []
+    for folder in ("beltmdsm", "tests", "benchmarks", "notebooks"):
+        for path in sorted((ROOT / folder).rglob("*.py")):
+            rel = path.relative_to(ROOT)
+            if rel.parts[:2] == ("beltmdsm", "studies") or path == Path(__file__):
+                continue
+            parts = rel.with_suffix("").parts
+            package = ".".join(parts if path.name == "__init__.py" else parts[:-1])
+            for name in _imported(path, package):
+                if any(name == k or name.startswith(k + ".") for k in MOVED):
+                    old.append(f"{rel}: {name}")
+    assert not old, old

@@ -65,7 +65,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.basin_stability_along import basin_stability_along
+    from ...basin.basin_stability_along import basin_stability_along
     from .. import text
 
     lo, hi = range_from(args)
@@ -73,7 +73,7 @@ def run(args: argparse.Namespace) -> int:
     region = region_from(args, model)
     cache_dir = cache_dir_from(args)
     if cache_dir == "default":
-        from ...studies.cache import default_cache_dir
+        from ...batch.cache import default_cache_dir
 
         cache_dir = default_cache_dir()
     with executor_from(args) as executor:

@@ -124,7 +124,7 @@ def print_estimate(result, as_json: bool) -> None:
 
 
 def _range(args, axis, model):
-    from ...studies.basins import axis_range
+    from ...basin.basins import axis_range
 
     lo, hi = getattr(args, f"{axis}_from"), getattr(args, f"{axis}_to")
     if (lo is None) != (hi is None):
@@ -139,13 +139,13 @@ def _range(args, axis, model):
 
 
 def _sample(args) -> int:
-    from ...studies.basin_stability import basin_stability
+    from ...basin.basin_stability import basin_stability
 
     model = model_from(args)
     region = region_from(args, model)
     cache_dir = cache_dir_from(args)
     if cache_dir == "default":
-        from ...studies.cache import default_cache_dir
+        from ...batch.cache import default_cache_dir
 
         cache_dir = default_cache_dir()
     with executor_from(args) as executor:
@@ -163,8 +163,8 @@ def _sample(args) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.basins import basins
-    from ...studies.cache import default_cache_dir
+    from ...basin.basins import basins
+    from ...batch.cache import default_cache_dir
     from .. import text
 
     if args.samples is not None:

@@ -56,7 +56,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.coexistence import coexistence, seed_points
+    from ...multistability.coexistence import coexistence, seed_points
     from .. import text
 
     lo, hi = range_from(args)

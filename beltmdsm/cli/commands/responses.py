@@ -41,7 +41,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.responses import responses
+    from ...multistability.responses import responses
     from .. import text
 
     found = responses(model_from(args), limit=args.limit, ladder=args.ladder, t_end=args.t_end)

@@ -73,7 +73,7 @@ def add(commands, name: str) -> None:
 def _values(args):
     import numpy as np
 
-    from ...studies.sweep import linear_values
+    from ...batch.sweep import linear_values
 
     if args.values:
         grid = (("--from", args.start), ("--to", args.stop), ("--step", args.step))
@@ -92,8 +92,8 @@ def _values(args):
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.sweep import sweep
-    from ...studies.table import table_to_csv
+    from ...batch.sweep import sweep
+    from ...batch.table import table_to_csv
     from .. import text
 
     values = _values(args)
