@@ -144,7 +144,7 @@ class NoHopfPoint(BeltmdsmError, ValueError):
     >>> try:
     ...     hopf_point(Model(alpha=0.0), "Vb", 0.5, 5.0)
     ... except NoHopfPoint as refusal:
-    ...     print(isinstance(refusal, BeltmdsmError), str(refusal)[:39])
+    ...     print(isinstance(refusal, BeltmdsmError), str(refusal)[:38])
     True no Hopf point of steady sliding for Vb
     """
 
