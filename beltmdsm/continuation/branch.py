@@ -29,9 +29,11 @@ with the smallest step: at a **tangency** or a **grazing** (the margin that clos
 located by `beltmdsm.continuation.edges.locate_end`), or, where no margin closes, as ``failed``
 with the reason.
 
-The point and the corrector are `beltmdsm.continuation.arclength`'s, the special points
-`beltmdsm.continuation.special`'s (shared with the self-excited cycles), the walk one way
-and its ends `beltmdsm.continuation.branch_walk`'s, the result (`Branch`)
+The problem (its point, residual, Jacobian and the hooks of its switch structure) is
+`beltmdsm.continuation.forced.ForcedProblem`; the walk, its step control, special
+points and range ends the one driver's (`beltmdsm.continuation.driver`, shared with the
+self-excited cycles and steady sliding), its settings a
+`beltmdsm.continuation.settings.ContinuationSettings`; the result (`Branch`)
 `beltmdsm.continuation.branch_parts`'s.
 """
 
@@ -49,9 +51,11 @@ from ..model import MODEL_PARAMETERS, Backend, Model, as_model
 from ..periodic.family import MapFamily
 from ..periodic.response import PeriodicResponse
 from ..periodic.shooting import periodic_response
-from .arclength import _Continuation
-from .branch_parts import Branch, SpecialPoint, _recorded_rows, record_points
-from .branch_walk import _walk
+from .branch_parts import Branch, _recorded_rows, record_points
+from .driver import join, walk
+from .forced import ForcedProblem
+from .problem import range_end
+from .settings import ContinuationSettings, as_settings
 
 __all__ = ["continue_branch", "branch"]
 
@@ -64,6 +68,7 @@ def continue_branch(
     *,
     backend: Backend | None = None,
     record: Callable[[Any], float | Mapping[str, float]] | None = None,
+    settings: ContinuationSettings | None = None,
 ) -> Branch:
     """The branch through a response in ``param`` over ``[lo, hi]``, both ways from the start.
 
@@ -80,6 +85,9 @@ def continue_branch(
     backend : {"python", "numba", None}
     record : callable, optional
         ``record(point)`` at each point of the branch, stored there (`branch`).
+    settings : ContinuationSettings, optional
+        The driver's steps and tolerances (`beltmdsm.continuation.settings`); default
+        the problem's (`FORCED_SETTINGS`, a cycle's `CYCLE_SETTINGS`).
 
     Returns
     -------
@@ -90,6 +98,8 @@ def continue_branch(
     ------
     ValueError
         For an unknown parameter, a bad range or a start outside it.
+    TypeError
+        For ``settings`` that is not a ContinuationSettings.
     beltmdsm.errors.Refused
         Naming ``record`` where it is not callable, raises, or returns anything but a
         real number or a mapping of names to real numbers
@@ -110,6 +120,7 @@ def continue_branch(
     [('range', 5.3), ('neimark_sacker', 5.45), ('range', 5.6)]
     """
     _check_record(record)
+    as_settings(settings, ForcedProblem.default_settings)  # checked before anything runs
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")
     if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
@@ -118,42 +129,32 @@ def continue_branch(
     if getattr(start, "autonomous", False):
         from ..cycles.branch import cycle_branch_from
 
-        return record_points(cycle_branch_from(start.cycle, param, lo, hi, backend=backend), record)
+        cycles = cycle_branch_from(start.cycle, param, lo, hi, backend=backend, settings=settings)
+        return record_points(cycles, record)
     v0 = float(model[param])
     if not lo <= v0 <= hi:
         raise ValueError(f"the start's {param} = {v0:g} is outside [{lo:g}, {hi:g}]")
     family = MapFamily(model, param, start.periods, backend)
     x0 = np.asarray(start.shooting_state, dtype=float)
-    cont = _Continuation(family, float(lo), float(hi), 1.0 + float(np.max(np.abs(x0))))
+    kT = start.periods * family(v0).period
+    problem = ForcedProblem(family, float(lo), float(hi), 1.0 + float(np.max(np.abs(x0))), kT)
+    problem.settings = as_settings(settings, problem.default_settings)
     image = family(v0)(x0)
     if record is not None:  # one that fails is refused before the continuation runs
-        _recorded_rows(record, [cont.point(x0, v0, 1.0, image)], param)
-    kT = start.periods * family(v0).period
+        _recorded_rows(record, [problem.point_at(x0, v0, 1.0, image)], param)
     walks = []
     for direction in (1.0, -1.0):
-        first = cont.point(x0, v0, direction, image)
+        first, tangent = problem.start(x0, v0, direction, image)
         bound = hi if direction > 0 else lo
         if v0 == bound:  # a start on a bound ends there that way
-            end = SpecialPoint(
-                "range",
-                v0,
-                0.0,
-                None,
-                first.multipliers,
-                first.stable,
-                None,
-                "the end of the requested range",
-            )
-            walks.append(([first], [end]))
+            first = problem.point_at(x0, v0, direction, image)
+            walks.append(([first], [range_end(first, v0)]))
         else:
-            walks.append(_walk(cont, first, direction, kT))
-    (up, up_special), (down, down_special) = walks
-    points = list(reversed(down[1:])) + up
-    special = list(reversed(down_special)) + up_special
-    # along the arclength from the lower end: 'before' and 'after' of the reversed half swap
-    for s in reversed(down_special):
-        s.stable_before, s.stable_after = s.stable_after, s.stable_before
-    return record_points(Branch(param, start.periods, model, points, special), record)
+            walks.append(walk(problem, first, tangent))
+    points, special = join(*walks)
+    return record_points(
+        Branch(param, start.periods, model, points, special, kind="forced"), record
+    )
 
 
 @public()
@@ -166,6 +167,7 @@ def branch(
     hi: float,
     backend: Backend | None = None,
     record: Callable[[Any], float | Mapping[str, float]] | None = None,
+    settings: ContinuationSettings | None = None,
 ) -> Branch:
     """The branch of the response of ``periods`` periods at a point (`continue_branch`).
 
@@ -197,6 +199,9 @@ def branch(
         the same names at every point. Stored as the point's ``recorded``, they are
         columns of `Branch.observables` and `Branch.to_pandas`. It is tried at the
         start first: one that fails there is refused before the continuation runs.
+    settings : ContinuationSettings, optional
+        The driver's steps and tolerances (`beltmdsm.continuation.settings`); default
+        the problem's.
 
     Returns
     -------
@@ -208,6 +213,8 @@ def branch(
     ------
     ValueError
         For bad parameters or range.
+    TypeError
+        For ``settings`` that is not a ContinuationSettings.
     NoPeriodicResponse
         Where no response of ``periods`` periods is found at the point.
     beltmdsm.errors.Refused
@@ -234,6 +241,7 @@ def branch(
     True
     """
     _check_record(record)
+    as_settings(settings, ForcedProblem.default_settings)  # checked before anything runs
     model = as_model(model)
     if is_autonomous(model):
         from ..cycles.branch import cycle_branch
@@ -244,10 +252,11 @@ def branch(
                 f"excitation period to count); got {periods!r}"
             )
         return record_points(
-            cycle_branch(model, param=param, lo=lo, hi=hi, backend=backend), record
+            cycle_branch(model, param=param, lo=lo, hi=hi, backend=backend, settings=settings),
+            record,
         )
     start = periodic_response(model, periods=periods, backend=backend)
-    return continue_branch(start, param, lo, hi, backend=backend, record=record)
+    return continue_branch(start, param, lo, hi, backend=backend, record=record, settings=settings)
 
 
 def _check_record(record: Any) -> None:

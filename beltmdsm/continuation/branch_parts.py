@@ -151,7 +151,8 @@ class Hopf(Protocol):
 
 @dataclass
 class Branch:
-    """A branch of responses of ``periods`` excitation periods in one parameter.
+    """A branch of one continuation problem in one parameter: forced responses of
+    ``periods`` excitation periods, self-excited cycles, or steady sliding (``kind``).
 
     Attributes
     ----------
@@ -159,12 +160,21 @@ class Branch:
     periods : int
     model : Model
         The other parameters and the options (``param`` at the start's value).
-    points : list of BranchPoint (`beltmdsm.continuation.arclength`) or CyclePoint
+    points : list of BranchPoint (`beltmdsm.continuation.forced`) or CyclePoint
         In arclength order, from the start's lower end.
     special : list of SpecialPoint
         In arclength order; the first and the last are the ends.
     hopf : Hopf or None
         Where a branch of self-excited cycles is born; None for forced responses.
+    criticality : str or None
+        A branch of cycles from a Hopf point: ``"supercritical"`` or ``"subcritical"``
+        (which side of it the cycles exist on).
+    wall_s : float
+        The time the continuation took [s] (a branch of cycles; 0 otherwise).
+    kind : str
+        The problem continued (`beltmdsm.continuation.problem.Problem.kind`):
+        ``"forced"``, ``"cycle"`` (self-excited cycles: what ``CycleBranch`` was
+        before issue 38) or ``"equilibrium"``.
 
     See Also
     --------
@@ -194,15 +204,18 @@ class Branch:
     model: Model
     points: list[Any]
     special: list[SpecialPoint]
-    #: Where a branch of self-excited cycles is born (`beltmdsm.cycles.hopf.HopfPoint`,
-    #: set by `beltmdsm.cycles.branch.CycleBranch`); None for a branch of forced
-    #: responses. Declared here so that ``branch(...).hopf`` type-checks whichever
-    #: ``branch`` returns (issue 37).
+    #: Where a branch of self-excited cycles is born (`beltmdsm.cycles.hopf.HopfPoint`);
+    #: None for a branch of forced responses.
     hopf: Hopf | None = None
+    criticality: str | None = None
+    wall_s: float = 0.0
+    kind: str = "forced"
 
     @property
     def response(self) -> str:
         """What the branch continues, in words (figure titles): ``"the 4T response"``."""
+        if self.kind != "forced":
+            return "self-excited cycles" if self.kind == "cycle" else "steady sliding"
         return "the T response" if self.periods == 1 else f"the {self.periods}T response"
 
     @property
@@ -329,6 +342,15 @@ class Branch:
     def __repr__(self) -> str:
         from .._display import block, intervals, label, laws
 
+        if self.kind == "cycle":
+            a, b = self.ends
+            crit = f", {self.criticality}" if self.criticality else ""
+            return (
+                f"CycleBranch({self.param}: {a.kind} {a.value:.6g}{crit} -> {b.kind} "
+                f"{b.value:.6g}, {len(self.points)} points, "
+                f"{len(self.special) - 2} special points inside)"
+            )
+
         lo, hi = self.value_range() if self.points else (math.nan, math.nan)
         what = "T" if self.periods == 1 else f"{self.periods}T"
         lines = [
@@ -347,8 +369,9 @@ class Branch:
     def as_dict(self) -> dict:
         """For JSON: ``param``, ``periods``, ``contact``, ``tension``, ``friction``,
         ``engine``, ``range``, ``parts``, ``stable_ranges``, ``special_points``,
-        ``points``."""
-        return {
+        ``points``; a branch of cycles adds ``autonomous: true``, ``hopf``,
+        ``criticality``, ``wall_s``."""
+        out = {
             "param": self.param,
             "periods": self.periods,
             "contact": self.model.contact,
@@ -361,6 +384,12 @@ class Branch:
             "special_points": [s.as_dict() for s in self.special],
             "points": [p.as_dict() for p in self.points],
         }
+        if self.kind == "cycle":
+            out["autonomous"] = True
+            out["hopf"] = None if self.hopf is None else self.hopf.as_dict()
+            out["criticality"] = self.criticality
+            out["wall_s"] = self.wall_s
+        return out
 
 
 #: Columns of `Branch.to_pandas` that a recorded name may not take.
