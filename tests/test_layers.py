@@ -8,7 +8,8 @@ submodule where one exists). The layers, lowest first:
 
 beltmdsm.derive -> beltmdsm.generated -> beltmdsm.{model, settings, intervals} ->
 beltmdsm.integrate ->
-beltmdsm.{periodic, continuation, cycles, oscillator} -> beltmdsm.run -> beltmdsm.prediction ->
+beltmdsm.{periodic, oscillator} -> beltmdsm.continuation -> beltmdsm.cycles -> beltmdsm.run ->
+beltmdsm.prediction ->
 beltmdsm.attractors -> beltmdsm.simulation -> beltmdsm.studies -> beltmdsm.cli
 
 A module imports only modules of its own layer or below, with no cycle: derive/ and
@@ -39,16 +40,16 @@ LAYERS = {
     "beltmdsm.settings": 2,
     "beltmdsm.intervals": 2,
     "beltmdsm.integrate": 3,
-    # periodic orbits, their continuation and the self-excited cycles are one layer:
-    # floquet and branch hand an autonomous model to cycles/, which builds on both
+    # periodic orbits, then their continuation (one driver, docs/explanation/layout.md),
+    # then the self-excited cycles, a problem of that driver (issue 38)
     "beltmdsm.periodic": 4.0,
-    "beltmdsm.continuation": 4.0,
-    "beltmdsm.cycles": 4.0,
     # any derived model (issue 39): its runs, cycles and forced responses, beside them
     "beltmdsm.oscillator": 4.0,
-    "beltmdsm.run": 4.1,
-    "beltmdsm.prediction": 4.2,
-    "beltmdsm.attractors": 4.3,
+    "beltmdsm.continuation": 4.1,
+    "beltmdsm.cycles": 4.2,
+    "beltmdsm.run": 4.3,
+    "beltmdsm.prediction": 4.4,
+    "beltmdsm.attractors": 4.5,
     "beltmdsm.simulation": 5,
     "beltmdsm.studies": 6,
     "beltmdsm.cli": 7,
@@ -146,10 +147,21 @@ def cycles(graph):
     return found
 
 
+#: The two arrows still running up among periodic/, continuation/ and cycles/ (issue 38,
+#: item 2 left open): entries that pick the self-excited cycle for a model without
+#: excitation. periodic_response hands it to cycles/cycle.py, which moves under periodic/
+#: with the one seed module (item 3); branch hands it to cycles/branch.py. Listed so
+#: that no other arrow joins them (`test_the_arrows_up_are_only_the_known_ones`).
+KNOWN_UP = {
+    ("beltmdsm.periodic.shooting", "beltmdsm.cycles.cycle"),
+    ("beltmdsm.continuation.branch", "beltmdsm.cycles.branch"),
+}
+
+
 def violations(graph):
     """Edges against the layer order, and the cross-package edges the rules forbid."""
     bad = []
-    for a, b in sorted(graph):
+    for a, b in sorted(set(graph) - KNOWN_UP):
         top_a, top_b = _package(a), _package(b)
         if layer(b) > layer(a):
             bad.append(f"{a} -> {b}: imports a higher layer")
@@ -200,6 +212,16 @@ def graph():
 
 def test_no_import_cycle(graph):
     assert not cycles(graph), cycles(graph)
+
+
+def test_the_arrows_up_are_only_the_known_ones(graph):
+    """periodic -> continuation -> cycles: three layers; the known arrows up still exist
+    (remove them here when they go) and no other runs up."""
+    assert KNOWN_UP <= graph
+    up = {(a, b) for a, b in graph if layer(b) > layer(a)}
+    assert up == KNOWN_UP, sorted(up - KNOWN_UP)
+    assert layer("beltmdsm.periodic.floquet") < layer("beltmdsm.continuation.driver")
+    assert layer("beltmdsm.continuation.driver") < layer("beltmdsm.cycles.branch")
 
 
 def test_imports_follow_the_layers(graph):

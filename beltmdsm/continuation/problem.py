@@ -11,7 +11,7 @@ A problem's unknowns, in scaled coordinates, are ``z = (u, p)``: ``n`` unknowns 
 (a state, a state and a period) and the parameter ``p`` last. Its equations are ``n``
 residuals ``F(z) = 0``; the driver adds one equation of its own (the arclength's
 hyperplane, or a pinned parameter) and solves the ``n + 1`` by Newton's method
-(`beltmdsm.continuation.driver.newton`).
+(`beltmdsm.continuation.corrector.newton`).
 
 The implementations:
 
@@ -35,6 +35,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .branch_parts import SpecialPoint
+from .corrector import newton
 from .settings import FORCED_SETTINGS, ContinuationSettings
 
 __all__ = ["Problem", "Residual", "Step", "range_end"]
@@ -207,9 +208,7 @@ class Problem(ABC):
 
     def solve(self, z_pred, extra, column=None, fresh=False) -> Step:
         """Newton's method on ``F = 0`` and ``extra(z) = (value, row)`` from ``z_pred``
-        (`beltmdsm.continuation.driver.newton`); raises NoPeriodicResponse."""
-        from .driver import newton
-
+        (`beltmdsm.continuation.corrector.newton`); raises NoPeriodicResponse."""
         return newton(self, z_pred, extra, column, fresh)
 
     @staticmethod
