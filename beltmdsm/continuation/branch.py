@@ -52,7 +52,8 @@ from ..periodic.family import MapFamily
 from ..periodic.response import PeriodicResponse
 from ..periodic.shooting import periodic_response
 from .branch_parts import Branch, _recorded_rows, record_points
-from .driver import join, walk
+from .driver import join
+from .driver import walk as _walk  # the name tests patch
 from .forced import ForcedProblem
 from .problem import range_end
 from .settings import ContinuationSettings, as_settings
@@ -150,7 +151,7 @@ def continue_branch(
             first = problem.point_at(x0, v0, direction, image)
             walks.append(([first], [range_end(first, v0)]))
         else:
-            walks.append(walk(problem, first, tangent))
+            walks.append(_walk(problem, first, tangent))
     points, special = join(*walks)
     return record_points(
         Branch(param, start.periods, model, points, special, kind="forced"), record
