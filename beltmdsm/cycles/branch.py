@@ -51,9 +51,9 @@ from ..continuation.settings import ContinuationSettings, as_settings
 from ..errors import NoPeriodicResponse
 from ..excitation import is_autonomous
 from ..model import MODEL_PARAMETERS, Backend, Model
+from ..periodic.cycle import Cycle, cycle
+from ..periodic.cycle_flow import CycleFlow
 from .continuation import PERIOD_LIMIT, Continuation, CyclePoint, walk
-from .cycle import Cycle, cycle
-from .flow import CycleFlow
 from .hopf import HopfPoint, NoHopfPoint, hopf_point
 
 __all__ = [

@@ -23,8 +23,8 @@ from ..continuation.driver import walk as drive
 from ..continuation.problem import Problem, Residual, Step, range_end
 from ..continuation.settings import CYCLE_SETTINGS, ContinuationSettings
 from ..errors import NoPeriodicResponse
+from ..periodic.cycle_flow import CycleFlow, FlowImage, orbit_observables, split_multipliers
 from ..periodic.newton import NEWTON_TOL
-from .flow import CycleFlow, FlowImage, orbit_observables, split_multipliers
 from .stick import cross_stick, stick_ahead, sticks
 
 __all__ = ["CyclePoint", "CycleProblem", "Continuation", "walk"]
