@@ -8,8 +8,8 @@ submodule where one exists). The layers, lowest first:
 
 beltmdsm.derive -> beltmdsm.generated -> beltmdsm.{model, settings, intervals} ->
 beltmdsm.integrate ->
-beltmdsm.{periodic, oscillator} -> beltmdsm.continuation -> beltmdsm.cycles -> beltmdsm.run ->
-beltmdsm.prediction ->
+beltmdsm.{periodic, oscillator} -> beltmdsm.continuation -> beltmdsm.cycles ->
+beltmdsm.branches -> beltmdsm.run -> beltmdsm.prediction ->
 beltmdsm.attractors -> beltmdsm.simulation -> beltmdsm.studies -> beltmdsm.cli
 
 A module imports only modules of its own layer or below, with no cycle: derive/ and
@@ -47,6 +47,8 @@ LAYERS = {
     "beltmdsm.oscillator": 4.0,
     "beltmdsm.continuation": 4.1,
     "beltmdsm.cycles": 4.2,
+    # the branch of any model: picks the problem above every problem (issue 38)
+    "beltmdsm.branches": 4.25,
     "beltmdsm.run": 4.3,
     "beltmdsm.prediction": 4.4,
     "beltmdsm.attractors": 4.5,
@@ -147,16 +149,10 @@ def cycles(graph):
     return found
 
 
-#: The arrow still running up among periodic/, continuation/ and cycles/ (issue 38, item 4
-#: left open): `branch` hands a model without excitation to cycles/branch.py. Listed so
-#: that no other arrow joins it (`test_the_arrows_up_are_only_the_known_ones`).
-KNOWN_UP = {("beltmdsm.continuation.branch", "beltmdsm.cycles.branch")}
-
-
 def violations(graph):
     """Edges against the layer order, and the cross-package edges the rules forbid."""
     bad = []
-    for a, b in sorted(set(graph) - KNOWN_UP):
+    for a, b in sorted(graph):
         top_a, top_b = _package(a), _package(b)
         if layer(b) > layer(a):
             bad.append(f"{a} -> {b}: imports a higher layer")
@@ -209,14 +205,21 @@ def test_no_import_cycle(graph):
     assert not cycles(graph), cycles(graph)
 
 
-def test_the_arrows_up_are_only_the_known_ones(graph):
-    """periodic -> continuation -> cycles: three layers; the known arrows up still exist
-    (remove them here when they go) and no other runs up."""
-    assert KNOWN_UP <= graph
-    up = {(a, b) for a, b in graph if layer(b) > layer(a)}
-    assert up == KNOWN_UP, sorted(up - KNOWN_UP)
-    assert layer("beltmdsm.periodic.floquet") < layer("beltmdsm.continuation.driver")
-    assert layer("beltmdsm.continuation.driver") < layer("beltmdsm.cycles.branch")
+def test_periodic_continuation_and_cycles_are_three_layers(graph):
+    """periodic -> continuation -> cycles, no arrow back up (issue 38); the entry that
+    picks the problem for a model (beltmdsm/branches.py) sits above all three."""
+    order = ["beltmdsm.periodic", "beltmdsm.continuation", "beltmdsm.cycles", "beltmdsm.branches"]
+    assert [layer(m) for m in order] == sorted({layer(m) for m in order})
+    rank = {m: i for i, m in enumerate(order)}
+    top = {a: next((m for m in order if a == m or a.startswith(m + ".")), None) for a, _ in graph}
+    up = [
+        (a, b)
+        for a, b in graph
+        for ta, tb in [(top[a], next((m for m in order if b == m or b.startswith(m + ".")), None))]
+        if ta and tb and rank[tb] > rank[ta]
+    ]
+    assert not up, sorted(up)
+    assert ("beltmdsm.continuation.problem", "beltmdsm.continuation.corrector") in graph
 
 
 def test_imports_follow_the_layers(graph):

@@ -76,7 +76,7 @@ def floquet_band(
     tangency, a grazing or a fold, located exactly (to about 1e-6; `Edge.accuracy`).
     For ``param = "Vb"`` the grazing point of the backward-sliding response is
     computed exactly: it is that response's largest velocity in contact, which does
-    not depend on ``Vb`` (`beltmdsm.periodic.tangential.largest_sliding_velocity`).
+    not depend on ``Vb`` (`beltmdsm.periodic.closed_form.largest_sliding_velocity`).
 
     Changes closer together than ``tol`` cannot be told apart at that tolerance: they
     are one edge, whose sides are the outer sides of the first and the last, and the

@@ -23,7 +23,7 @@ from ..periodic.newton import FixedPoint, fixed_point
 from ..periodic.response import response_from
 from .band_result import Edge
 from .branch import continue_branch
-from .branch_parts import SpecialPoint
+from .branch_result import SpecialPoint
 from .edges import (
     KINDS,
     OLD_KINDS,

@@ -34,7 +34,7 @@ The problem (its point, residual, Jacobian and the hooks of its switch structure
 points and range ends the one driver's (`beltmdsm.continuation.driver`, shared with the
 self-excited cycles and steady sliding), its settings a
 `beltmdsm.continuation.settings.ContinuationSettings`; the result (`Branch`)
-`beltmdsm.continuation.branch_parts`'s.
+`beltmdsm.continuation.branch_result`'s.
 """
 
 from __future__ import annotations
@@ -51,7 +51,7 @@ from ..model import MODEL_PARAMETERS, Backend, Model, as_model
 from ..periodic.family import MapFamily
 from ..periodic.response import PeriodicResponse
 from ..periodic.shooting import periodic_response
-from .branch_parts import Branch, _recorded_rows, record_points
+from .branch_result import Branch, _recorded_rows, record_points
 from .driver import join
 from .driver import walk as _walk  # the name tests patch
 from .forced import ForcedProblem
@@ -76,9 +76,9 @@ def continue_branch(
     Parameters
     ----------
     start : PeriodicResponse
-        A response (`beltmdsm.periodic.shooting.periodic_response`, ``periods=k`` for a
-        locked one; a self-excited cycle's, without excitation, continues as a
-        branch of cycles, `beltmdsm.cycles.branch.cycle_branch_from`).
+        A forced response (`beltmdsm.periodic.shooting.periodic_response`,
+        ``periods=k`` for a locked one). A self-excited cycle's continues as a branch
+        of cycles one layer up: `beltmdsm.branches.continue_branch` picks the problem.
     param : str
         A model parameter.
     lo, hi : float
@@ -98,13 +98,14 @@ def continue_branch(
     Raises
     ------
     ValueError
-        For an unknown parameter, a bad range or a start outside it.
+        For an unknown parameter, a bad range or a start outside it; for a self-excited
+        cycle, naming `beltmdsm.branches.continue_branch` (moved there, issue 38).
     TypeError
         For ``settings`` that is not a ContinuationSettings.
     beltmdsm.errors.Refused
         Naming ``record`` where it is not callable, raises, or returns anything but a
         real number or a mapping of names to real numbers
-        (`beltmdsm.continuation.branch_parts.record_points`).
+        (`beltmdsm.continuation.branch_result.record_points`).
 
     See Also
     --------
@@ -122,16 +123,12 @@ def continue_branch(
     """
     _check_record(record)
     as_settings(settings, ForcedProblem.default_settings)  # checked before anything runs
-    if param not in MODEL_PARAMETERS:
-        raise ValueError(f"param must be a model parameter; got {param!r}")
-    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
-        raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
+    _check_range(param, lo, hi)
     model = start.model
     if getattr(start, "autonomous", False):
-        from ..cycles.branch import cycle_branch_from
-
-        cycles = cycle_branch_from(start.cycle, param, lo, hi, backend=backend, settings=settings)
-        return record_points(cycles, record)
+        raise ValueError(
+            _CYCLES.format(what="the start is a self-excited cycle", f="continue_branch")
+        )
     v0 = float(model[param])
     if not lo <= v0 <= hi:
         raise ValueError(f"the start's {param} = {v0:g} is outside [{lo:g}, {hi:g}]")
@@ -174,9 +171,9 @@ def branch(
 
     The response is found as `beltmdsm.periodic.shooting.periodic_response` finds it
     (``periods > 1``: seeded from the attractor of the period map). Without excitation
-    (`beltmdsm.excitation.is_autonomous`) it is the branch of self-excited cycles born at
-    the Hopf point of steady sliding in ``[lo, hi]``
-    (`beltmdsm.cycles.branch.cycle_branch`: a `CycleBranch`).
+    (`beltmdsm.excitation.is_autonomous`) the branch is of self-excited cycles, one
+    layer up: `beltmdsm.branches.branch` (``beltmdsm.branch``) picks the problem for
+    any model; this one refuses such a model, naming it (issue 38).
 
     Parameters
     ----------
@@ -226,6 +223,7 @@ def branch(
     See Also
     --------
     beltmdsm.continuation.branch.continue_branch : the same from a response already found.
+    beltmdsm.branches.branch : the same for any model (self-excited cycles too).
     beltmdsm.continuation.band.floquet_band : the unstable ranges on a grid, edges located.
     beltmdsm.continuation.floquet_map.floquet_map : the edges traced over two parameters.
 
@@ -245,19 +243,24 @@ def branch(
     as_settings(settings, ForcedProblem.default_settings)  # checked before anything runs
     model = as_model(model)
     if is_autonomous(model):
-        from ..cycles.branch import cycle_branch
-
-        if periods != 1:
-            raise ValueError(
-                f"periods must be 1 without excitation (a self-excited cycle has no "
-                f"excitation period to count); got {periods!r}"
-            )
-        return record_points(
-            cycle_branch(model, param=param, lo=lo, hi=hi, backend=backend, settings=settings),
-            record,
-        )
+        raise ValueError(_CYCLES.format(what="the model has no excitation", f="branch"))
     start = periodic_response(model, periods=periods, backend=backend)
     return continue_branch(start, param, lo, hi, backend=backend, record=record, settings=settings)
+
+
+#: The refusal of a self-excited cycle: its branch is continued one layer up.
+_CYCLES = (
+    "{what}: its branch is of self-excited cycles, continued by beltmdsm.branches.{f} "
+    "(moved there from beltmdsm.continuation.branch, issue 38)"
+)
+
+
+def _check_range(param: str, lo: float, hi: float) -> None:
+    """Refuse an unknown parameter or a range that is not finite with ``lo < hi``."""
+    if param not in MODEL_PARAMETERS:
+        raise ValueError(f"param must be a model parameter; got {param!r}")
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+        raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
 
 
 def _check_record(record: Any) -> None:

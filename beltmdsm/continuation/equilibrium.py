@@ -9,7 +9,7 @@ multipliers are ``exp(lambda)`` of the eigenvalues ``lambda`` of the Jacobian th
 that the driver's special-point hook (a multiplier pair through the unit circle) sees a
 complex pair of eigenvalues cross the imaginary axis: `EquilibriumProblem` names it a
 **Hopf** point, its frequency the pair's imaginary part, located by the driver's regula
-falsi to `beltmdsm.continuation.branch_parts.LOCATE_TOL` in the parameter.
+falsi to `beltmdsm.continuation.branch_result.LOCATE_TOL` in the parameter.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..model import MODEL_PARAMETERS, Model
-from .branch_parts import Branch, SpecialPoint
+from .branch_result import Branch, SpecialPoint
 from .driver import join, walk
 from .problem import Problem, Residual, Step, range_end
 from .settings import ContinuationSettings, as_settings

@@ -27,7 +27,7 @@ continuation in ``y``, row by row, not on a grid of pixels:
   of the tolerance). A fold is continued by a short branch
   (`beltmdsm.continuation.branch.continue_branch`) across the predicted fold. Where ``x`` is
   ``Vb`` and the response slides back throughout, its grazing point is exact: its
-  largest velocity in contact (`beltmdsm.periodic.tangential.largest_sliding_velocity`,
+  largest velocity in contact (`beltmdsm.periodic.closed_form.largest_sliding_velocity`,
   as the band finds it).
 * A curve that cannot be continued on a row ends there; a band on that row, on every
   row where no curve is followed, and on every ``check_every``-th row, finds the
@@ -61,7 +61,7 @@ from ..periodic.family import MapFamily
 from ..settings import MAX_MAP_ROWS
 from .band import floquet_band
 from .edges import NoEdge
-from .map_linear import LINEAR_POINTS, _linear
+from .linear_verdict import LINEAR_POINTS, _linear
 from .map_result import Curve, FloquetMap
 from .map_tracker import EDGE_TOL, _extrapolate, _trackers_from_band
 

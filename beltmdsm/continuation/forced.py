@@ -23,7 +23,7 @@ from ..integrate.switching import Mode
 from ..periodic.base import MapImage
 from ..periodic.family import MapFamily
 from ..periodic.newton import NEWTON_TOL, FixedPoint, fixed_point
-from .branch_parts import LOCATE_TOL, SpecialPoint
+from .branch_result import LOCATE_TOL, SpecialPoint
 from .edges import NoEdge, locate_end
 from .problem import Problem, Residual, Step, range_end
 
@@ -65,7 +65,7 @@ class BranchPoint:
 
     See Also
     --------
-    beltmdsm.continuation.branch_parts.Branch : its ``points``.
+    beltmdsm.continuation.branch_result.Branch : its ``points``.
     beltmdsm.cycles.continuation.CyclePoint : a point of a branch of cycles.
 
     Examples

@@ -15,11 +15,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import NoPeriodicResponse
+from ..periodic.closed_form import largest_sliding_velocity
 from ..periodic.engines import engine_of
 from ..periodic.margins import MARGIN_KINDS, Margin
 from ..periodic.newton import fixed_point
 from ..periodic.response import response_from
-from ..periodic.tangential import largest_sliding_velocity
 from .band_result import Band
 from .branch import continue_branch
 from .edges import (

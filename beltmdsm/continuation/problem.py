@@ -34,7 +34,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
-from .branch_parts import SpecialPoint
+from .branch_result import SpecialPoint
 from .corrector import newton
 from .settings import FORCED_SETTINGS, ContinuationSettings
 
@@ -133,7 +133,7 @@ class Problem(ABC):
     Attributes
     ----------
     kind : str
-        What a branch of it holds (`beltmdsm.continuation.branch_parts.Branch.kind`).
+        What a branch of it holds (`beltmdsm.continuation.branch_result.Branch.kind`).
     default_settings : ContinuationSettings
         Used where the caller passes none.
     diverge_after : int

@@ -45,7 +45,7 @@ import time
 
 import numpy as np
 
-from ..continuation.branch_parts import Branch, SpecialPoint
+from ..continuation.branch_result import Branch, SpecialPoint
 from ..continuation.driver import join
 from ..continuation.settings import ContinuationSettings, as_settings
 from ..errors import NoPeriodicResponse
@@ -88,7 +88,7 @@ class _KindOfBranch(type):
 
 class CycleBranch(metaclass=_KindOfBranch):
     """Moved (issue 38): a branch of self-excited cycles is a
-    `beltmdsm.continuation.branch_parts.Branch` of ``kind = "cycle"``.
+    `beltmdsm.continuation.branch_result.Branch` of ``kind = "cycle"``.
 
     ``CycleBranch(...)`` builds that `Branch` (the arguments in the order they had:
     ``param, periods, model, points, special, hopf, criticality, wall_s``), and
@@ -96,7 +96,7 @@ class CycleBranch(metaclass=_KindOfBranch):
 
     See Also
     --------
-    beltmdsm.continuation.branch_parts.Branch : The one branch type.
+    beltmdsm.continuation.branch_result.Branch : The one branch type.
     beltmdsm.cycles.branch.cycle_branch : Computes it.
 
     Examples

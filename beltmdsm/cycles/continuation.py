@@ -122,7 +122,7 @@ class CyclePoint:
     def observables(self, vb: float) -> dict[str, float]:
         """The ranges of ``X1'`` and ``X1``, the largest ``|Vr| = |X1' - vb|`` (at an
         end of the range of ``X1'``, which the orbit passes continuously) and the
-        period [s]: the columns of `beltmdsm.continuation.branch_parts.Branch.observables`
+        period [s]: the columns of `beltmdsm.continuation.branch_result.Branch.observables`
         for a cycle (the forced responses' names; no mean friction)."""
         (v_lo, v_hi), (x_lo, x_hi) = self.velocity_range, self.x1_range
         return {

@@ -9,5 +9,6 @@ itself (its names, private ones included, and what a test patches in it).
 import sys
 
 from ..periodic import cycle as _moved
+from ..periodic.cycle import *  # noqa: F403  (the names, for type checkers)
 
 sys.modules[__name__] = _moved

@@ -89,7 +89,7 @@ from .cycle_seed import (
     seed_cycle,
     unstable_pair,
 )
-from .general import EventPeriod
+from .general_map import EventPeriod
 from .margins import GRAZING_RATIO, crossing_ratio, orbit_range
 from .newton import NEWTON_TOL
 
@@ -105,7 +105,7 @@ __all__ = [
     "SETTLE_TOL",
 ]
 
-#: Dense samples per period of a shooting run (as `beltmdsm.periodic.general.GeneralMap`).
+#: Dense samples per period of a shooting run (as `beltmdsm.periodic.general_map.GeneralMap`).
 _DENSE_SAMPLES = 50
 #: Halvings of a Newton step before the method counts as stalled, and the iterations
 #: over which the residual must halve (as `beltmdsm.periodic.newton.fixed_point`).

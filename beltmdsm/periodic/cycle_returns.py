@@ -269,7 +269,7 @@ def first_return(sw: Switching, period, x, d: int, T: float) -> float | None:
     ----------
     sw : Switching
         The model's switching rules.
-    period : beltmdsm.periodic.general.EventPeriod
+    period : beltmdsm.periodic.general_map.EventPeriod
         The run of ``T`` from ``x``.
     x : numpy.ndarray, shape (4,)
         The cycle's state on the section.
@@ -294,7 +294,7 @@ def first_return(sw: Switching, period, x, d: int, T: float) -> float | None:
 
     >>> from beltmdsm.cycles.seed import stick_end
     >>> from beltmdsm.model import Model
-    >>> from beltmdsm.periodic.general import EventPeriod
+    >>> from beltmdsm.periodic.general_map import EventPeriod
     >>> model = Model(friction="static_kinetic", alpha=0.0, Vb=0.31)
     >>> x, T = stick_slip_start(model, stick_end(model), -1, 1e3, "python")
     >>> run = run_from(model, x, 0.0, 2 * T, "python", 1e-12)

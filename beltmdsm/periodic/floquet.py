@@ -8,11 +8,11 @@ the Floquet stability of that periodic response (docs/modelling.md#what-unstable
 of the model's laws choose (``beltmdsm.generated.capabilities``,
 `beltmdsm.periodic.engines.engine_of`), never by assumption:
 
-* ``closed_form`` (`beltmdsm.periodic.tangential.TangentialMap`), where the slip-mode
+* ``closed_form`` (`beltmdsm.periodic.closed_form.ClosedFormMap`), where the slip-mode
   friction is free of the tangential state and the normal equation too (Coulomb
   friction): the tangential map on the cached normal orbit, closed-form state
   transitions and saltation matrices, the normal block's multipliers apart;
-* ``general`` (`beltmdsm.periodic.general.GeneralMap`), every law (Stribeck
+* ``general`` (`beltmdsm.periodic.general_map.GeneralMap`), every law (Stribeck
   friction): the full state shot with the event-driven integrator, the monodromy by
   the variational equations with the generated Jacobians of the modes and the
   saltation matrices (`beltmdsm.periodic.variational`; Leine and Nijmeijer 2004).

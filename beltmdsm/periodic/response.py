@@ -19,7 +19,7 @@ from ..integrate.superposition import Superposition
 from ..model import Model
 from .base import RTOL, PeriodMap
 from .engines import ENGINES, period_map
-from .general import GeneralMap
+from .general_map import GeneralMap
 from .newton import FixedPoint
 
 __all__ = [
