@@ -302,17 +302,17 @@ def floquet_band(
         if f is not None
     ]
     return Band(
-        param,
-        model,
-        int(periods),
-        unstable,
-        edges,
-        sorted(grazing_points),
-        gaps,
-        table,
-        failed,
-        float(tol),
-        merged_away,
+        param=param,
+        model=model,
+        periods=int(periods),
+        unstable=unstable,
+        edges=edges,
+        grazing_points=sorted(grazing_points),
+        no_periodic_response=gaps,
+        grid=table,
+        failed=failed,
+        tol=float(tol),
+        merged_away=merged_away,
     )
 
 
