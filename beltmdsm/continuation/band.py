@@ -45,6 +45,7 @@ from .band_grid import (
     _unclassified_edge,
 )
 from .band_result import Band, BandFailure, BandPoint
+from .settings import FORCED_SETTINGS, ContinuationSettings, as_settings
 
 __all__ = ["floquet_band"]
 
@@ -61,6 +62,7 @@ def floquet_band(
     backend: Backend | None = None,
     periods: int = 1,
     progress: bool = False,
+    settings: ContinuationSettings | None = None,
 ) -> Band:
     """Ranges of ``param`` in ``[lo, hi]`` where the periodic response is unstable.
 
@@ -107,6 +109,9 @@ def floquet_band(
         `beltmdsm.periodic.shooting.periodic_response`).
     progress : bool
         Show the evaluations on stderr (tqdm) once they take more than 2 s.
+    settings : ContinuationSettings, optional
+        The driver's steps and tolerances where a response is continued across an
+        interval by pseudo-arclength (`beltmdsm.continuation.settings`).
 
     Returns
     -------
@@ -156,6 +161,7 @@ def floquet_band(
     points, tol = count("points", points, 2), number("tol", tol, above=0)
     periods, progress = count("periods", periods, 1), flag("progress", progress)
     _check_band_request(lo, hi, points, tol)
+    as_settings(settings, FORCED_SETTINGS)  # checked where it enters
     from tqdm import tqdm
 
     bar = tqdm(
@@ -209,7 +215,7 @@ def floquet_band(
             )
             return refine(g + tol / 4, above, b, fb)
         if (fa is None) != (fb is None):
-            end = _band_existence(param, a, fa, b, fb, backend, tol)
+            end = _band_existence(param, a, fa, b, fb, backend, tol, settings)
             edges.extend(end.edges)
             for v, f in end.solved:
                 seen.setdefault(v, f)

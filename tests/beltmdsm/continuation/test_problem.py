@@ -83,6 +83,16 @@ def test_settings_are_checked_where_they_enter(kw, word):
         branch(Model(beta1=0.3, Vb=5.3), lo=5.3, hi=5.6, settings={"step_max": 0.1})
 
 
+@pytest.mark.parametrize("analysis", ["floquet_band", "coexistence", "floquet_map"])
+def test_every_continuation_takes_settings_checked_where_they_enter(analysis):
+    import beltmdsm
+
+    call = getattr(beltmdsm, analysis)
+    args = ("Vb", 5.3, 5.6, "beta1", 0.3, 0.31) if analysis == "floquet_map" else ("Vb", 5.3, 5.6)
+    with pytest.raises(TypeError, match="settings must be a ContinuationSettings"):
+        call(Model(beta1=0.3), *args, settings=0.1)
+
+
 def test_settings_reach_the_driver():
     """Shorter steps: more points, the same Neimark-Sacker point within its accuracy."""
     model = Model(beta1=0.3, Vb=5.3)
