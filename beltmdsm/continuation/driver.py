@@ -18,7 +18,7 @@ import numpy as np
 
 from ..errors import NoPeriodicResponse
 from .corrector import newton  # noqa: F401  (one corrector for every problem)
-from .problem import Problem
+from .problem import Problem, failed
 from .settings import ContinuationSettings
 from .special import regula_falsi
 
@@ -133,7 +133,7 @@ def walk(problem: Problem, first, tangent, settings: ContinuationSettings | None
         prev = points[-1]
         if len(points) >= s.max_points:
             stopped = f"stopped after {s.max_points} points"
-            special.append(Problem.give_up(problem, [prev], stopped, "")[0])
+            special.append(failed(prev, stopped))
             return points, special
         z_pred = problem.z(prev) + ds * tangent
         try:

@@ -38,7 +38,7 @@ from .branch_result import SpecialPoint
 from .corrector import newton
 from .settings import FORCED_SETTINGS, ContinuationSettings
 
-__all__ = ["Problem", "Residual", "Step", "range_end"]
+__all__ = ["Problem", "Residual", "Step", "failed", "null_vector", "range_end"]
 
 
 @dataclass
@@ -87,6 +87,58 @@ class Step:
     J: NDArray[np.float64]
     iterations: int
     data: Any
+
+
+def null_vector(J) -> NDArray[np.float64]:
+    """The unit null vector of ``J`` (n x n+1), its sign as the SVD gives it.
+
+    Parameters
+    ----------
+    J : ndarray (n, n + 1)
+
+    Returns
+    -------
+    ndarray (n + 1,)
+
+    See Also
+    --------
+    beltmdsm.continuation.problem.Problem.tangent : signs it.
+
+    Examples
+    --------
+    >>> t = null_vector(np.array([[1.0, -1.0]]))
+    >>> bool(np.allclose(abs(t), [2**-0.5, 2**-0.5]))
+    True
+    """
+    return np.linalg.svd(J)[2][-1]
+
+
+def failed(point: Any, detail: str) -> SpecialPoint:
+    """The end ``failed`` at ``point``, the reason in ``detail``.
+
+    Parameters
+    ----------
+    point
+        The last point of the branch.
+    detail : str
+
+    Returns
+    -------
+    SpecialPoint
+
+    See Also
+    --------
+    beltmdsm.continuation.problem.Problem.give_up : its default.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> failed(SimpleNamespace(value=1.0, multipliers=np.zeros(1), stable=True), "why").kind
+    'failed'
+    """
+    return SpecialPoint(
+        "failed", point.value, 0.0, None, point.multipliers, point.stable, None, detail
+    )
 
 
 def range_end(point: Any, bound: float) -> SpecialPoint:
@@ -201,7 +253,7 @@ class Problem(ABC):
     @staticmethod
     def tangent(J, previous=None, direction=1.0) -> NDArray[np.float64]:
         """The unit null vector of ``J``, along ``previous`` (or signed by ``direction``)."""
-        t = np.linalg.svd(J)[2][-1]
+        t = null_vector(J)
         if previous is not None:
             return t if float(t @ previous) >= 0 else -t
         return t if t[-1] * direction >= 0 else -t
@@ -276,10 +328,7 @@ class Problem(ABC):
     def give_up(self, stretch, failure: str, stage: str) -> tuple[SpecialPoint, list]:
         """The end where no step converges (``stage``: "step", "range" or "special"):
         the special point and points to append."""
-        last = stretch[-1]
-        return SpecialPoint(
-            "failed", last.value, 0.0, None, last.multipliers, last.stable, None, failure
-        ), []
+        return failed(stretch[-1], failure), []
 
     def stop(self, new) -> SpecialPoint | None:
         """An end that ``new`` reaches (a limit of the problem), or None."""

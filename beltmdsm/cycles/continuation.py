@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..continuation.driver import walk as drive
-from ..continuation.problem import Problem, Residual, Step, range_end
+from ..continuation.problem import Problem, Residual, Step, failed, null_vector, range_end
 from ..continuation.settings import CYCLE_SETTINGS, ContinuationSettings
 from ..errors import NoPeriodicResponse
 from ..periodic.cycle_flow import CycleFlow, FlowImage, orbit_observables, split_multipliers
@@ -283,7 +283,7 @@ class CycleProblem(Problem):
         (``direction``: by the sign of its parameter component, as the driver asks)."""
         if direction is not None:
             return Problem.tangent(J, previous, direction)
-        t = np.linalg.svd(J)[2][-1]
+        t = null_vector(J)
         if previous is not None:
             return t if float(t @ previous) >= 0 else -t
         return t if sign >= 0 else -t
@@ -363,7 +363,7 @@ class CycleProblem(Problem):
 
     def stop(self, new):
         if new.max_abs_multiplier > MULTIPLIER_LIMIT:
-            return _failed(
+            return failed(
                 new,
                 f"the cycle's largest multiplier reaches {new.max_abs_multiplier:.3g}: "
                 "shooting over one period amplifies the run's rounding by it, and the "
@@ -371,7 +371,7 @@ class CycleProblem(Problem):
                 "multiple shooting)",
             )
         if new.period > PERIOD_LIMIT * self.period0:
-            return _failed(
+            return failed(
                 new,
                 f"the period ({new.period:.4g} s) grows past {PERIOD_LIMIT:g} times the Hopf "
                 "period: towards a homoclinic orbit or a standstill",
@@ -381,10 +381,6 @@ class CycleProblem(Problem):
 
 #: The name before issue 38.
 Continuation = CycleProblem
-
-
-def _failed(point, detail):
-    return Problem.give_up(None, [point], detail, "")[0]
 
 
 def _at_value(cont, point, value):
