@@ -14,6 +14,7 @@ forced responses; its defaults here are
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -451,3 +452,19 @@ def walk(cont, first, tangent, period0, settings: ContinuationSettings | None = 
     """
     cont.period0 = period0
     return drive(cont, first, tangent, settings)
+
+
+#: Names this module had before issue 38, and where they went.
+_MOVED = {"STEP_FIRST": "step_first", "STEP_MIN": "step_min", "STEP_MAX": "step_max"}
+
+
+def __getattr__(name: str):
+    if name in _MOVED:
+        warnings.warn(
+            f"beltmdsm.cycles.continuation.{name} is now "
+            f"beltmdsm.continuation.settings.CYCLE_SETTINGS.{_MOVED[name]} (issue 38)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return getattr(CYCLE_SETTINGS, _MOVED[name])
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
