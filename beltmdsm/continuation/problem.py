@@ -182,6 +182,18 @@ class Problem(ABC):
     decide stability, as multipliers: inside the unit circle is stable), ``stable`` and
     ``column`` (the Jacobian's parameter column, reused by the next correction).
 
+    The special points and the hooks that give them:
+
+    * fold, period doubling, Neimark-Sacker, branch point: `special_between` (the
+      driver's regula falsi on the tangent's turn and on the critical multiplier);
+    * Hopf: `special_between` of a problem whose multipliers are ``exp(lambda)``
+      (`beltmdsm.continuation.equilibrium.EquilibriumProblem`);
+    * grazing: `check_structure` and `crossing`; tangency: `give_up` and `near_end`
+      (`beltmdsm.continuation.forced.ForcedProblem`);
+    * stick onset: `check_step` and `rescue` (`beltmdsm.cycles.continuation.CycleProblem`);
+    * range end: `range_specials` and `at_bound` (the driver clamps to the range);
+    * a problem's own limits: `stop`.
+
     Attributes
     ----------
     kind : str
