@@ -20,7 +20,18 @@ __all__ = ["Circle", "CirclePoint"]
 
 @dataclass
 class CirclePoint:
-    """A point of the circle: ``u`` at the parameter ``value``."""
+    """A point of the circle: ``u`` at the parameter ``value``.
+
+    See Also
+    --------
+    beltmdsm.continuation.circle.Circle : the problem.
+
+    Examples
+    --------
+    >>> first, _ = Circle(-1.0, 1.0).start(0.6)
+    >>> round(first.u, 12), first.value, first.stable
+    (0.8, 0.6, False)
+    """
 
     value: float
     u: float

@@ -45,6 +45,18 @@ class EquilibriumPoint:
     stable : bool
     tangent : float
         The parameter component of the unit tangent.
+
+    See Also
+    --------
+    beltmdsm.continuation.equilibrium.equilibrium_branch : a branch of them.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> b = equilibrium_branch(Model(friction="stribeck", alpha=0.0, Vb=1.5), lo=1.4, hi=1.6)
+    >>> p = b.points[0]
+    >>> p.value, p.stable, p.state.shape, round(p.observables(p.value)["growth_rate"], 4)
+    (1.4, False, (4,), 0.0814)
     """
 
     value: float
@@ -156,6 +168,11 @@ class EquilibriumProblem(Problem):
                 )  # fmt: skip
             out.append(s)
         return out
+
+    def at_bound(self, end, bound):
+        """Steady sliding at the bound itself (it is explicit: nothing to solve)."""
+        last = self.point(self.solution(self._at(bound), 0), end.tangent)
+        return last, range_end(last, bound)
 
     def _at(self, p):
         return np.asarray(self.at(p)[0], float), float(p)
