@@ -67,7 +67,8 @@ CLOSED_FORM_FACTS = SUPERPOSITION_FACTS
 
 
 class OnePeriodMap:
-    """The tangential period map over one excitation period on the periodic normal motion.
+    """One excitation period of `ClosedFormMap` (its step, not another engine): the
+    tangential period map over one period on the periodic normal motion.
 
     ``map(x)`` is ``(P(x), M_t, run, grazing)``: the image of the tangential state
     ``x`` at phase 0, the Jacobian of the map there (module docstring), the
