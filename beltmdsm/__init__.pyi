@@ -11,10 +11,11 @@ from .basin.basins import Basins, basins
 from .batch.sweep import Sweep, sweep
 from .continuation.band import floquet_band
 from .continuation.band_result import Band, Edge
-from .continuation.branch import Branch, branch
+from .branches import branch
+from .continuation.branch import Branch
 from .continuation.floquet_map import floquet_map
 from .continuation.map_result import FloquetMap
-from .cycles.cycle import Cycle, cycle, seed_cycle
+from .periodic.cycle import Cycle, cycle, seed_cycle
 from .errors import (
     BeltmdsmError,
     NoPeriodicResponse,

@@ -9,10 +9,10 @@ submodule where one exists). The layers, lowest first:
 beltmdsm.derive -> beltmdsm.errors -> beltmdsm.generated -> beltmdsm.{model, settings,
 intervals} ->
 beltmdsm.integrate ->
-beltmdsm.{periodic, continuation, cycles, oscillator} -> beltmdsm.run -> beltmdsm.prediction ->
-beltmdsm.attractors -> beltmdsm.simulation -> beltmdsm.starts -> beltmdsm.multistability ->
-beltmdsm.batch -> beltmdsm.basin -> beltmdsm.paper_reports -> beltmdsm.studies (old paths) ->
-beltmdsm.cli
+beltmdsm.{periodic, oscillator} -> beltmdsm.continuation -> beltmdsm.cycles ->
+beltmdsm.branches -> beltmdsm.run -> beltmdsm.prediction -> beltmdsm.attractors ->
+beltmdsm.simulation -> beltmdsm.starts -> beltmdsm.multistability -> beltmdsm.batch ->
+beltmdsm.basin -> beltmdsm.paper_reports -> beltmdsm.studies (old paths) -> beltmdsm.cli
 
 A module imports only modules of its own layer or below, with no cycle: derive/ imports
 no other beltmdsm module, generated/ none but beltmdsm.errors (the root failures, which
@@ -49,16 +49,18 @@ LAYERS = {
     "beltmdsm.settings": 2,
     "beltmdsm.intervals": 2,
     "beltmdsm.integrate": 3,
-    # periodic orbits, their continuation and the self-excited cycles are one layer:
-    # floquet and branch hand an autonomous model to cycles/, which builds on both
+    # periodic orbits, then their continuation (one driver, docs/explanation/layout.md),
+    # then the self-excited cycles, a problem of that driver (issue 38)
     "beltmdsm.periodic": 4.0,
-    "beltmdsm.continuation": 4.0,
-    "beltmdsm.cycles": 4.0,
     # any derived model (issue 39): its runs, cycles and forced responses, beside them
     "beltmdsm.oscillator": 4.0,
-    "beltmdsm.run": 4.1,
-    "beltmdsm.prediction": 4.2,
-    "beltmdsm.attractors": 4.3,
+    "beltmdsm.continuation": 4.1,
+    "beltmdsm.cycles": 4.2,
+    # the branch of any model: picks the problem above every problem (issue 38)
+    "beltmdsm.branches": 4.25,
+    "beltmdsm.run": 4.3,
+    "beltmdsm.prediction": 4.4,
+    "beltmdsm.attractors": 4.5,
     "beltmdsm.simulation": 5,
     # issue 38: studies/ cut by role. Where runs and searches start (they run simulate);
     # the responses at a point and their coexistence; the batch engine (its rows start
@@ -219,6 +221,23 @@ def graph():
 
 def test_no_import_cycle(graph):
     assert not cycles(graph), cycles(graph)
+
+
+def test_periodic_continuation_and_cycles_are_three_layers(graph):
+    """periodic -> continuation -> cycles, no arrow back up (issue 38); the entry that
+    picks the problem for a model (beltmdsm/branches.py) sits above all three."""
+    order = ["beltmdsm.periodic", "beltmdsm.continuation", "beltmdsm.cycles", "beltmdsm.branches"]
+    assert [layer(m) for m in order] == sorted({layer(m) for m in order})
+    rank = {m: i for i, m in enumerate(order)}
+    top = {a: next((m for m in order if a == m or a.startswith(m + ".")), None) for a, _ in graph}
+    up = [
+        (a, b)
+        for a, b in graph
+        for ta, tb in [(top[a], next((m for m in order if b == m or b.startswith(m + ".")), None))]
+        if ta and tb and rank[tb] > rank[ta]
+    ]
+    assert not up, sorted(up)
+    assert ("beltmdsm.continuation.problem", "beltmdsm.continuation.corrector") in graph
 
 
 def test_imports_follow_the_layers(graph):

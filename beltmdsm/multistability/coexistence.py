@@ -43,7 +43,8 @@ import numpy as np
 
 from .._calling import ranged
 from ..arguments import count, flag, number
-from ..continuation.branch import continue_branch
+from ..continuation.branch import Branch, continue_branch
+from ..continuation.settings import FORCED_SETTINGS, ContinuationSettings, as_settings
 from ..errors import NoPeriodicResponse, Refused
 from ..excitation import excitation_period, is_autonomous
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, is_real
@@ -202,6 +203,7 @@ def coexistence(
     limit: int = LOCK_LIMIT,
     backend: Backend | None = None,
     progress: bool = False,
+    settings: ContinuationSettings | None = None,
 ) -> Coexistence:
     """Where two or more stable periodic responses coexist in ``param`` over ``[lo, hi]``.
 
@@ -226,6 +228,9 @@ def coexistence(
         The kernels: compiled by numba, plain Python, or numba where installed.
     progress : bool
         Show the seeds on stderr (tqdm) once they take more than 2 s.
+    settings : ContinuationSettings, optional
+        The continuation driver's steps and tolerances for each branch
+        (`beltmdsm.continuation.settings`).
 
     Returns
     -------
@@ -276,6 +281,7 @@ def coexistence(
     if not lo < hi:
         raise ValueError(f"the range must have lo < hi; got [{lo:g}, {hi:g}]")
     limit, progress = count("limit", limit, 1), flag("progress", progress)
+    as_settings(settings, FORCED_SETTINGS)  # checked where it enters
     if points is None or isinstance(points, _Spacing):
         points = seed_points(lo, hi, DEFAULT_STEP if points is None else float(points))
     else:
@@ -284,7 +290,7 @@ def coexistence(
     if is_autonomous(model):
         from .cycle_coexistence import cycle_coexistence
 
-        return cycle_coexistence(param, lo, hi, model, backend=backend)
+        return cycle_coexistence(param, lo, hi, model, backend=backend, settings=settings)
     excitation_period(model)
     grid = np.linspace(lo, hi, points)
     # the seeds: a run of SEED_T_END at each value, and ladders
@@ -356,7 +362,8 @@ def coexistence(
         known = next((i for i, b in enumerate(branches) if _on_branch(b, v, k, phases)), None)
         if known is None:
             start = response_from(pmap, point)
-            branches.append(continue_branch(start, param, lo, hi, backend=backend))
+            found = continue_branch(start, param, lo, hi, backend=backend, settings=settings)
+            branches.append(found)
             sources.append([])
             known = len(branches) - 1
         label = f"{source} at {param} = {v:g}"

@@ -197,7 +197,7 @@ def _unborn(model, param, lo, hi, backend):
 
 
 def cycle_coexistence(
-    param: str, lo: float, hi: float, model: Model, *, backend=None
+    param: str, lo: float, hi: float, model: Model, *, backend=None, settings=None
 ) -> CycleCoexistence:
     """Where a stable self-excited cycle and stable steady sliding coexist in ``param``.
 
@@ -208,6 +208,8 @@ def cycle_coexistence(
     model : Model
         Without excitation; the other parameters and the options.
     backend : {"python", "numba", None}
+    settings : ContinuationSettings, optional
+        The continuation driver's, for the branch of cycles.
 
     Returns
     -------
@@ -244,7 +246,9 @@ def cycle_coexistence(
         branch, reason = _unborn(model, param, lo, hi, backend)
     else:
         try:
-            branch = cycle_branch(model, param=param, lo=lo, hi=hi, backend=backend)
+            branch = cycle_branch(
+                model, param=param, lo=lo, hi=hi, backend=backend, settings=settings
+            )
         except NoPeriodicResponse as err:
             reason = f"no cycle found from the Hopf point: {err}"
     ranges = []

@@ -6,7 +6,7 @@ repeat with a period ``k T``; the omega1 peak of the spectra of Fig. 2b is then 
 of the ``k T``-periodic response. At the base set the run from rest locks at ``4 T`` for ``Vb`` in
 [3.87, 7.67] (``omega1 = 1 = Omega / 4``), and at ``Omega = 6`` at ``6 T``. A locked
 response is a fixed point of the ``k``-fold period map
-(`beltmdsm.periodic.tangential.TangentialMap`), which shooting computes exactly
+(`beltmdsm.periodic.closed_form.ClosedFormMap`), which shooting computes exactly
 (``periodic_response(..., periods=k)``, `beltmdsm.periodic.shooting`).
 
 * `Stroboscope` (`stroboscope`): the samples of one attractor, with the distance of

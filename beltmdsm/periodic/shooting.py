@@ -65,7 +65,7 @@ MAX_SEED_PERIODS = (SEED_PERIODS[1] - 1) // 2
 
 def _cycle_response(model, guess, max_iter, backend, periods, engine):
     """`periodic_response` without excitation: the self-excited cycle."""
-    from ..cycles.cycle import Cycle, cycle
+    from .cycle import Cycle, cycle
 
     if periods != 1:
         raise ValueError(

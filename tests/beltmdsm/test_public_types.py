@@ -59,11 +59,11 @@ def test_the_public_api_has_no_any_for_mypy(tmp_path):
         "beltmdsm.periodic.floquet.Floquet",
         "beltmdsm.continuation.band_result.Band",  # the model first
         "beltmdsm.continuation.band_result.Band",  # the model last, as before
-        "beltmdsm.continuation.branch_parts.Branch",  # defined there, shared with cycles
+        "beltmdsm.continuation.branch_result.Branch",  # branch_parts.py before issue 38
         "beltmdsm.multistability.coexistence_result.Coexistence",  # split (issue 38)
         "beltmdsm.batch.sweep.Sweep",
         "beltmdsm.continuation.map_result.FloquetMap",
-        "beltmdsm.cycles.cycle.Cycle",
+        "beltmdsm.periodic.cycle.Cycle",  # moved from cycles/cycle.py (issue 38)
         "beltmdsm.attractors.lyapunov.Lyapunov",
         "beltmdsm.attractors.attractor.Attractor",
         "beltmdsm.basin.basins_result.Basins",

@@ -40,17 +40,17 @@ H = 0.5  # grid step of the constructed sweeps
 
 def _band(unstable, edges=()):
     """A constructed Floquet band in Vb: its unstable ranges and the values of its edges."""
-    return Band(
-        "Vb",
-        Model(),
-        1,
-        [list(r) for r in unstable],
-        [Edge(v, "grazing", "grazing", (v, v), 0.0, None, True, True) for v in edges],
-        [],
-        [],
-        [],
-        [],
-        1e-3,
+    return Band(  # by keyword: Band is keyword-only (issue 38 item 5)
+        param="Vb",
+        model=Model(),
+        periods=1,
+        unstable=[list(r) for r in unstable],
+        edges=[Edge(v, "grazing", "grazing", (v, v), 0.0, None, True, True) for v in edges],
+        grazing_points=[],
+        no_periodic_response=[],
+        grid=[],
+        failed=[],
+        tol=1e-3,
     )
 
 
