@@ -151,21 +151,25 @@ class _Timed:
         return self.inner.submit(me._timed_call, fn, *args)
 
 
-def _dask(model, ls, samples, seed):
+def _dask(model, ls, samples, seed, profiler=True):
     """Per number of single-threaded dask workers (1, 2): the wall seconds of the
     estimate (sets given, workers warmed, no cache), the CPU seconds each worker
     process spent meanwhile, this process's (the client and the LocalCluster's
-    scheduler, which runs here), the tasks sent, and each worker's first run (numba's
+    scheduler, which runs here), and each worker's first run (numba's
     kernels loaded: wall, CPU)."""
+    import dask
     from distributed import Client, LocalCluster
 
     from benchmarks import bench_basin_stability as me  # see _Timed.submit
 
     out = {}
     for n in (1, 2):
-        cluster = LocalCluster(
-            n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None
-        )
+        # the workers' statistical profiler samples the task thread every 10 ms (dask's
+        # default); --no-worker-profiler measures without it
+        with dask.config.set({"distributed.worker.profile.enabled": profiler}):
+            cluster = LocalCluster(
+                n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None
+            )
         with cluster, Client(cluster) as client:
             ex = _Timed(client)
             first = list(client.run(_warm, ls).values())
@@ -177,22 +181,27 @@ def _dask(model, ls, samples, seed):
                             cache_dir=None)  # fmt: skip
             wall = time.perf_counter() - t0
             w1, p1 = client.run(me._cpu), time.process_time()
-        cpu = sorted(((w1[k][0] - w0[k][0], w1[k][1] - w0[k][1]) for k in w0), reverse=True)
-        out[n] = dict(wall=wall, workers=[c for c, _ in cpu], tasks=[b for _, b in cpu],
+        # (tasks, process) of each worker, the busiest first
+        cpu = sorted(((w1[k][1] - w0[k][1], w1[k][0] - w0[k][0]) for k in w0), reverse=True)
+        out[n] = dict(wall=wall, workers=[c for _, c in cpu], tasks=[b for b, _ in cpu],
                       parent=p1 - p0, first=first)  # fmt: skip
     return out
 
 
 def _idle(t, overhead=True):
     """The wall time of the run on an idle machine, a core per worker: the busiest
-    worker's task CPU (``overhead=False``: the split alone); with the overhead, at
-    least all the CPU measured (workers' processes and this one, whose event loops
-    spend in proportion to the wall time, so under load this overstates it) spread
-    over the cores."""
+    worker's task CPU (``overhead=False``: the split alone). With the overhead: the
+    event loops of the workers and of this process spend CPU per second of wall time
+    (heartbeats, the scheduler's and profiler's periodic work), measured here as rates
+    (under load the wall time is longer, so their seconds are not what an idle run
+    spends); the run then takes the longer of the busiest worker's tasks with its own
+    loop's rate, and all the tasks spread over the cores left by every loop's rate."""
     if not overhead:
         return t["tasks"][0]
     cores = os.cpu_count() or 1
-    return max(t["workers"][0], (sum(t["workers"]) + t["parent"]) / cores)
+    loops = [(w - c) / t["wall"] for w, c in zip(t["workers"], t["tasks"])]
+    rate = sum(loops) + t["parent"] / t["wall"]
+    return max(t["tasks"][0] / (1.0 - loops[0]), sum(t["tasks"]) / (cores - rate))
 
 
 def main(argv=None) -> None:
@@ -202,6 +211,8 @@ def main(argv=None) -> None:
     ap.add_argument("--dask", action="store_true")
     ap.add_argument("--no-baseline", action="store_true")
     ap.add_argument("--dask-only", action="store_true", help="only the dask scaling")
+    ap.add_argument("--no-worker-profiler", action="store_true",
+                    help="dask workers without their statistical profiler")  # fmt: skip
     ap.add_argument("--dask-vb", type=float, nargs="+", default=[1.5, 2.0],
                     help="the belt speeds of the dask scaling")  # fmt: skip
     args = ap.parse_args(argv)
@@ -265,9 +276,10 @@ def main(argv=None) -> None:
                 np.sum(sets.decide(draw_starts(sets.equilibrium.state, BOX, n, args.seed)) < 0)
             )
             print(f"dask LocalCluster at Vb = {vb}, N = {n} ({run} starts run, {n - run} decided "
-                  f"by region at once), sets given, no cache:")  # fmt: skip
+                  f"by region at once), sets given, no cache, workers' profiler "
+                  f"{'off' if args.no_worker_profiler else 'on'}:")  # fmt: skip
             print(f"  uptime: {os.popen('uptime').read().strip()}")
-            t = _dask(at, sets, n, args.seed)
+            t = _dask(at, sets, n, args.seed, profiler=not args.no_worker_profiler)
             for k in (1, 2):
                 r = t[k]
                 first = ", ".join(f"{w:.2f}/{c:.2f}" for w, c in r["first"])
@@ -279,8 +291,8 @@ def main(argv=None) -> None:
             print(f"  2 workers against 1: {t[1]['wall'] / t[2]['wall']:.2f}x wall (under this "
                   f"load); idle estimates from the CPU seconds: "
                   f"{_idle(t[1], False) / _idle(t[2], False):.2f}x the split of the tasks "
-                  f"alone, {_idle(t[1]) / _idle(t[2]):.2f}x with every overhead as measured "
-                  f"here")  # fmt: skip
+                  f"alone, {_idle(t[1]) / _idle(t[2]):.2f}x with the event loops' CPU per "
+                  f"second measured here")  # fmt: skip
             print(f"  uptime: {os.popen('uptime').read().strip()}")
 
 
