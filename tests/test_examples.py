@@ -22,7 +22,7 @@ MODULES = sorted(
 
 
 def test_the_examples_are_found():
-    found = {"beltmdsm.model", "beltmdsm.cycles.cycle", "beltmdsm.studies.basins"}
+    found = {"beltmdsm.model", "beltmdsm.cycles.cycle", "beltmdsm.basin.basins"}
     assert found | {"beltmdsm.generated.stability"} <= set(MODULES)
 
 

@@ -439,7 +439,7 @@ def floquet(
     beltmdsm.periodic.shooting.periodic_response : the response alone.
     beltmdsm.continuation.band.floquet_band : the ranges of a parameter where it is unstable.
     beltmdsm.continuation.branch.branch : the response continued in a parameter.
-    beltmdsm.studies.responses.responses : every response at one point, locked ones too.
+    beltmdsm.multistability.responses.responses : every response at one point, locked ones too.
 
     Examples
     --------

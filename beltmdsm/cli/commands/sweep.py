@@ -1,4 +1,4 @@
-"""``sweep``: one parameter of Eq. (4) over a range (`beltmdsm.studies.sweep`)."""
+"""``sweep``: one parameter of Eq. (4) over a range (`beltmdsm.batch.sweep`)."""
 
 from __future__ import annotations
 
@@ -33,7 +33,7 @@ def add(commands, name: str) -> None:
         run,
         [model_parent(), solver_parent(), executor_parent(), cache_parent(), json_parent()],
         help="sweep one parameter of Eq. (4)",
-        description="Sweep one parameter of Eq. (4) (beltmdsm/studies/sweep.py; at most "
+        description="Sweep one parameter of Eq. (4) (beltmdsm/batch/sweep.py; at most "
         f"{MAX_POINTS:.0e} points).",
     )
     grid = sub.add_argument_group("the swept parameter")
@@ -73,7 +73,7 @@ def add(commands, name: str) -> None:
 def _values(args):
     import numpy as np
 
-    from ...studies.sweep import linear_values
+    from ...batch.sweep import linear_values
 
     if args.values:
         grid = (("--from", args.start), ("--to", args.stop), ("--step", args.step))
@@ -92,8 +92,8 @@ def _values(args):
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.sweep import sweep
-    from ...studies.table import table_to_csv
+    from ...batch.sweep import sweep
+    from ...batch.table import table_to_csv
     from .. import text
 
     values = _values(args)
