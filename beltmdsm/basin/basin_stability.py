@@ -11,11 +11,18 @@ those; the counts of each way are reported (`BasinStability.decided`).
 The starts are a pure function of the box, ``samples`` and ``seed``
 (``numpy.random.default_rng(seed)``): a run is reproducible, and the same seed at
 another parameter value draws the same starts (common random numbers, so a change of
-the fractions along a parameter is not sampling noise). They go out in chunks of
-`CHUNK` to an executor (a process pool, a dask cluster's ``Client.get_executor()``),
-each chunk cached on disk (`beltmdsm.batch.cache`) when a folder is given; Ctrl-C
-keeps the chunks finished and the estimate is made from them
-(``BasinStability.interrupted``).
+the fractions along a parameter is not sampling noise). They go out in chunks to an
+executor (a process pool, a dask cluster's ``Client.get_executor()``), each chunk
+cached on disk (`beltmdsm.batch.cache`) when a folder is given; Ctrl-C keeps the
+chunks finished and the estimate is made from them (``BasinStability.interrupted``).
+
+How the work is split (measured in ``benchmarks/bench_basin_stability.py``): a chunk
+whose starts the region rule decides all at once costs well under a millisecond here,
+less than sending it, so this process decides it and only chunks with starts to run
+go out; those are sized to the workers (`TASKS_PER_WORKER` each, at most `CHUNK`
+starts) so that the last task leaves no worker long idle; the invariant sets travel
+pickled once per call and are unpickled once per worker process (`_landscape_in`),
+not once per task (their tables take tens of milliseconds to rebuild).
 
 Without excitation the cycles come from the branch through the Hopf point
 (`beltmdsm.cycles.branch.cycle_branch`, over `branch_range`) and the seed from the stick
@@ -30,6 +37,7 @@ import hashlib
 import json
 import math
 import os
+import pickle
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -41,7 +49,7 @@ from numpy.typing import NDArray
 from ..arguments import cache_dir_of, count, executor_of
 from ..attractors.self_excited import T_MAX, Landscape, cycles_near, landscape
 from ..batch import cache
-from ..batch.pool import process_pool, stop_process_pool
+from ..batch.pool import process_pool, stop_process_pool, workers_of
 from ..model import Model, as_model
 
 __all__ = [
@@ -52,13 +60,19 @@ __all__ = [
     "branch_range",
     "AXES",
     "CHUNK",
+    "TASKS_PER_WORKER",
     "MAX_SAMPLES",
 ]
 
 #: The states a box may span.
 AXES = ("X1", "Y1", "X2", "Y2")
-#: Starts per task sent to an executor and per cached file.
+#: Most starts per task sent to an executor and per cached file.
 CHUNK = 500
+#: Tasks per worker of an executor (fewer where a task would have under `MIN_CHUNK`
+#: starts): the last one to finish leaves the others idle for about half a task.
+TASKS_PER_WORKER = 8
+#: Fewest starts per task of an executor (a task's overhead is milliseconds).
+MIN_CHUNK = 25
 #: Most starts of one estimate.
 MAX_SAMPLES = 10_000_000
 
@@ -371,7 +385,8 @@ def basin_stability(
         cache_dir = cache.writable_folder(cache_dir)
     ls = landscape if landscape is not None else landscape_of(model, branch)
     starts = draw_starts(ls.equilibrium.state, region, samples, seed)
-    chunks = [starts[i : i + CHUNK] for i in range(0, samples, CHUNK)]
+    size = chunk_size(samples, executor)
+    chunks = [starts[i : i + size] for i in range(0, samples, size)]
     rows, interrupted = _run_chunks(ls, chunks, t_max, executor, cache_dir, progress)
     done = [j for j, r in enumerate(rows) if r is not None]
     kept = np.concatenate([chunks[j] for j in done]) if done else np.zeros((0, 4))
@@ -394,9 +409,59 @@ def basin_stability(
     )
 
 
+def chunk_size(samples: int, executor) -> int:
+    """Starts per task: `CHUNK` in this process; on an executor, enough tasks for
+    `TASKS_PER_WORKER` per worker (`workers_of`), of `MIN_CHUNK` to `CHUNK` starts:
+    the last task to finish leaves the other workers idle for about half a task, so
+    2 workers with 8 tasks of 500 starts lost about 1/16 of the run.
+
+    Parameters
+    ----------
+    samples : int
+    executor : concurrent.futures.Executor, "serial" or None
+
+    Returns
+    -------
+    int
+
+    See Also
+    --------
+    beltmdsm.batch.pool.workers_of : the workers it counts.
+
+    Examples
+    --------
+    >>> chunk_size(4000, "serial"), chunk_size(100_000, "serial")
+    (500, 500)
+    """
+    if executor == "serial":
+        return CHUNK
+    tasks = TASKS_PER_WORKER * workers_of(executor)
+    return min(CHUNK, max(MIN_CHUNK, -(-samples // tasks)))
+
+
+#: This worker process's invariant sets, by the digest of their pickle (one entry).
+_LANDSCAPES: dict = {}
+
+
+def _landscape_in(key: str, blob: bytes) -> Landscape:
+    """The sets pickled in ``blob``, unpickled once per process (their tables rebuilt
+    once, not once per task)."""
+    ls = _LANDSCAPES.get(key)
+    if ls is None:
+        ls = pickle.loads(blob)
+        _LANDSCAPES.clear()
+        _LANDSCAPES[key] = ls
+    return ls
+
+
+def _remote_chunk(key, blob, starts, t_max, cache_dir):
+    return _cached_chunk(_landscape_in(key, blob), starts, t_max, cache_dir)
+
+
 def _run_chunks(ls, chunks, t_max, executor, cache_dir, progress):
     """Each chunk's row (None for those not finished when Ctrl-C came) and whether it
-    came."""
+    came. On an executor, the chunks the region rule decides whole are done here
+    while the workers run the others (module docstring)."""
     from tqdm import tqdm
 
     rows = [None] * len(chunks)
@@ -412,8 +477,18 @@ def _run_chunks(ls, chunks, t_max, executor, cache_dir, progress):
                 rows[j] = _cached_chunk(ls, c, t_max, cache_dir)
                 bar.update(len(c))
         else:
-            futures = {executor.submit(_cached_chunk, ls, c, t_max, cache_dir): j
-                       for j, c in enumerate(chunks)}  # fmt: skip
+            here, futures, blob = [], {}, None
+            for j, c in enumerate(chunks):
+                if np.all(ls.decide(c) >= 0):
+                    here.append(j)
+                    continue
+                if blob is None:
+                    blob = pickle.dumps(ls, protocol=pickle.HIGHEST_PROTOCOL)
+                    key = hashlib.sha256(blob).hexdigest()
+                futures[executor.submit(_remote_chunk, key, blob, c, t_max, cache_dir)] = j
+            for j in here:
+                rows[j] = _cached_chunk(ls, chunks[j], t_max, cache_dir)
+                bar.update(len(chunks[j]))
             for f in cf.as_completed(futures):
                 rows[futures[f]] = f.result()
                 bar.update(len(chunks[futures[f]]))

@@ -10,6 +10,7 @@ many points were done when interrupted.
 from __future__ import annotations
 
 import concurrent.futures as cf
+import os
 import signal
 import sys
 import warnings
@@ -17,7 +18,7 @@ import warnings
 from .._processes import end_with_parent
 from .cache import CacheWarning
 
-__all__ = ["process_pool", "stop_process_pool", "Tally"]
+__all__ = ["process_pool", "stop_process_pool", "workers_of", "Tally"]
 
 
 def _worker_start():
@@ -95,6 +96,38 @@ def stop_process_pool(executor: cf.ProcessPoolExecutor, futures=()) -> None:
             worker.join(timeout=5)
     finally:
         signal.signal(signal.SIGINT, previous)
+
+
+def workers_of(executor) -> int:
+    """How many tasks ``executor`` runs at once: 1 for ``"serial"``; a process or
+    thread pool's workers; a dask ``Client.get_executor()``'s threads; else (None, a
+    pool of the call's own) the CPUs.
+
+    Parameters
+    ----------
+    executor : concurrent.futures.Executor, "serial" or None
+
+    Returns
+    -------
+    int
+
+    See Also
+    --------
+    beltmdsm.basin.basin_stability.chunk_size : the starts per task it sizes.
+
+    Examples
+    --------
+    >>> import concurrent.futures as cf
+    >>> with cf.ThreadPoolExecutor(3) as pool:
+    ...     workers_of(pool), workers_of("serial")
+    (3, 1)
+    """
+    if executor == "serial":
+        return 1
+    client = getattr(executor, "_client", None)  # distributed's ClientExecutor
+    if client is not None:
+        return max(1, sum(client.nthreads().values()))
+    return max(1, getattr(executor, "_max_workers", None) or os.cpu_count() or 1)
 
 
 def _collect(results, n, desc, progress, cache_dir=None):

@@ -162,6 +162,48 @@ def test_a_cached_estimate_is_not_computed_again_and_a_pool_agrees(ls15, tmp_pat
     np.testing.assert_array_equal(again.labels, first.labels)
 
 
+class _Counting:
+    """An executor of 2 workers that runs each task here, at once, and counts them."""
+
+    _max_workers = 2
+
+    def __init__(self):
+        self.tasks = []
+
+    def submit(self, fn, *args):
+        import concurrent.futures as cf
+
+        self.tasks.append(len(args[2]))
+        f = cf.Future()
+        f.set_result(fn(*args))
+        return f
+
+
+def test_an_executor_gets_only_chunks_with_starts_to_run_sized_to_its_workers(ls15):
+    # issue 40 item 4: at Vb = 1.5 the region rule decides the starts at once (0.01 ms
+    # each), less than sending them: nothing goes out; past the stick onset most starts
+    # are run, in tasks sized to the workers (8 each), the sets unpickled once per process
+    m = Model(**CASE, Vb=1.5)
+    ex = _Counting()
+    b = basin_stability(m, BOX, samples=400, seed=1, landscape=ls15, executor=ex, cache_dir=None)
+    serial = basin_stability(m, BOX, samples=400, seed=1, landscape=ls15, cache_dir=None)
+    assert b.decided["region"] == 400 and ex.tasks == []
+    np.testing.assert_array_equal(b.labels, serial.labels)
+
+    at = Model(**CASE, Vb=2.0)
+    ls = landscape_of(at)
+    ex = _Counting()
+    bs_module._LANDSCAPES.clear()
+    b = basin_stability(at, BOX, samples=160, seed=1, landscape=ls, executor=ex, cache_dir=None)
+    assert ex.tasks == [bs_module.MIN_CHUNK] * 6 + [10]  # 160 starts, at least 25 per task
+    assert len(bs_module._LANDSCAPES) == 1  # unpickled once for the 7 tasks
+    (copy,) = bs_module._LANDSCAPES.values()
+    assert copy is not ls and copy.model == ls.model
+    serial = basin_stability(at, BOX, samples=160, seed=1, landscape=ls, cache_dir=None)
+    np.testing.assert_array_equal(b.labels, serial.labels)
+    assert bs_module.chunk_size(4000, ex) == 250 and bs_module.chunk_size(10**6, ex) == CHUNK
+
+
 def test_bad_requests_are_refused_naming_the_argument():
     m = Model(**CASE, Vb=1.5)
     with pytest.raises(ValueError, match="region"):
