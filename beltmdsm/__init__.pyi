@@ -9,13 +9,12 @@ from .attractors.classification import Attractor, classify
 from .attractors.lyapunov import Lyapunov, lyapunov
 from .basin.basins import Basins, basins
 from .batch.sweep import Sweep, sweep
+from .branches import branch
 from .continuation.band import floquet_band
 from .continuation.band_result import Band, Edge
-from .branches import branch
 from .continuation.branch import Branch
 from .continuation.floquet_map import floquet_map
 from .continuation.map_result import FloquetMap
-from .periodic.cycle import Cycle, cycle, seed_cycle
 from .errors import (
     BeltmdsmError,
     NoPeriodicResponse,
@@ -27,6 +26,7 @@ from .model import Model
 from .multistability.coexistence import Coexistence, coexistence
 from .multistability.responses import ResponseSet, responses
 from .paper_reports.validation import Validation, validate
+from .periodic.cycle import Cycle, cycle, seed_cycle
 from .periodic.floquet import Floquet, floquet
 from .periodic.response import PeriodicResponse
 from .periodic.shooting import periodic_response

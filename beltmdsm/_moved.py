@@ -59,6 +59,18 @@ MOVED = {
     # renamed for what they hold
     "beltmdsm.attractors.landing": "beltmdsm.attractors.recurrence",
     "beltmdsm.integrate._superpose": "beltmdsm.integrate._switch_scan",
+    # issue 38's continuation core: the self-excited cycle's finder is a periodic orbit,
+    # below the continuation that follows it; modules renamed for what they hold
+    "beltmdsm.cycles.cycle": "beltmdsm.periodic.cycle",
+    "beltmdsm.cycles.flow": "beltmdsm.periodic.cycle_flow",
+    "beltmdsm.cycles.returns": "beltmdsm.periodic.cycle_returns",
+    "beltmdsm.cycles.seed": "beltmdsm.periodic.cycle_seed",
+    "beltmdsm.continuation.branch_parts": "beltmdsm.continuation.branch_result",
+    "beltmdsm.continuation.map_linear": "beltmdsm.continuation.linear_verdict",
+    "beltmdsm.continuation.arclength": "beltmdsm.continuation.forced",
+    "beltmdsm.periodic.general": "beltmdsm.periodic.general_map",
+    "beltmdsm.periodic.normal": "beltmdsm.periodic.normal_orbit",
+    "beltmdsm.periodic.tangential": "beltmdsm.periodic.closed_form",
 }
 
 

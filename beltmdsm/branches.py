@@ -18,7 +18,7 @@ from typing import Any
 
 from ._calling import public
 from .continuation import branch as forced
-from .continuation.branch_parts import Branch, record_points
+from .continuation.branch_result import Branch, record_points
 from .continuation.settings import ContinuationSettings
 from .cycles.branch import cycle_branch, cycle_branch_from
 from .excitation import is_autonomous

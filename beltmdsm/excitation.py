@@ -104,7 +104,7 @@ def excited_directions(model: Model) -> list[float]:
 def is_autonomous(model: Model) -> bool:
     """True where no excitation is present (``alpha_t Omega_t = alpha_n Omega_n = 0``):
     Eq. (4) is then autonomous, and its periodic orbits are self-excited cycles whose
-    period is found, not given (`beltmdsm.cycles.cycle`).
+    period is found, not given (`beltmdsm.periodic.cycle`).
 
     Parameters
     ----------

@@ -23,7 +23,7 @@ point of the ``k``-fold period map (`beltmdsm.periodic.newton.fixed_point`).
 
 `beltmdsm.multistability.responses` and `beltmdsm.multistability.coexistence` seed their
 searches here (this module was ``beltmdsm.studies.seeds``). The seed of a self-excited
-cycle stays in `beltmdsm.cycles.seed`: `beltmdsm.cycles.cycle` needs it, one layer below
+cycle stays in `beltmdsm.periodic.cycle_seed`: `beltmdsm.periodic.cycle` needs it, one layer below
 `beltmdsm.simulation`, which the runs here use (tests/test_layers.py).
 """
 

@@ -4,7 +4,7 @@ The branch of the Stribeck base set without excitation, ``Vb`` over 0.5-3 (born 
 Hopf point, through the stick onset to the range's end: about 100 points), timed in
 process after one run not counted (numba compiles and caches the kernels), the
 median of ``--repeat`` runs, against a baseline measured in the same run: the same
-cycles by natural-parameter continuation with `beltmdsm.cycles.cycle.cycle` at each
+cycles by natural-parameter continuation with `beltmdsm.periodic.cycle.cycle` at each
 point's value, each seeded from the one before (the straightforward way; it cannot
 pass the nonsmooth fold at the stick onset, so it walks each part of the branch on its
 own from the branch's first point of that part). Points per second for both, and the
@@ -18,8 +18,8 @@ import statistics
 import time
 
 from beltmdsm.continuation.branch import branch
-from beltmdsm.cycles.cycle import cycle
 from beltmdsm.model import Model
+from beltmdsm.periodic.cycle import cycle
 
 MODEL = Model(friction="stribeck", alpha=0)
 

@@ -4,7 +4,7 @@ Stribeck friction without excitation (``alpha = 0``, mu_k = 0.25, v_s = 1 m/s, t
 base set otherwise) at belt speeds where steady sliding is unstable. Times, on one
 core (the code is single-threaded):
 
-* **shooting**, `beltmdsm.cycles.cycle.cycle`: cold (the first call in a fresh
+* **shooting**, `beltmdsm.periodic.cycle.cycle`: cold (the first call in a fresh
   process, kernels loaded from numba's cache), warm from scratch (the seed's run off
   steady sliding, then Newton's method with the monodromy; the median of
   ``--repeat`` calls) and warm from a neighbour's cycle (as a branch calls it); the
@@ -37,12 +37,12 @@ import time
 
 import numpy as np
 
-from beltmdsm.cycles.cycle import cycle
-from beltmdsm.cycles.seed import SEED_AMPLITUDE, unstable_pair
 from beltmdsm.excitation import initial_state
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.integrate.switching import Switching
 from beltmdsm.model import Model
+from beltmdsm.periodic.cycle import cycle
+from beltmdsm.periodic.cycle_seed import SEED_AMPLITUDE, unstable_pair
 from beltmdsm.settings import SolverSettings
 
 SPEEDS = (0.5, 1.0, 1.5, 1.9)
@@ -120,7 +120,7 @@ def by_simulation(vb, tol):
 def _cold(vb):
     """The first call of ``cycle`` in a fresh process [s] (imports apart)."""
     code = (
-        "import time; from beltmdsm.cycles.cycle import cycle; "
+        "import time; from beltmdsm.periodic.cycle import cycle; "
         "from beltmdsm.model import Model; c = time.perf_counter(); "
         f"cycle(Model(Vb={vb}, friction='stribeck', alpha=0.0)); "
         "print(time.perf_counter() - c)"

@@ -1,8 +1,8 @@
 """Cost of the general Floquet path against the closed-form one (issue 19, item 5).
 
 Times, in one run on one core, after compiling the kernels
-(beltmdsm/periodic/tangential.py: `TangentialMap` is the closed-form path;
-beltmdsm/periodic/general.py: `GeneralMap` the general one on beltmdsm/periodic/variational.py):
+(beltmdsm/periodic/closed_form.py: `TangentialMap` is the closed-form path;
+beltmdsm/periodic/general_map.py: `GeneralMap` the general one on beltmdsm/periodic/variational.py):
 
 * ``floquet()`` from scratch at belt speeds over [0.5, 12] (the sliding guess, Newton's
   method, and forward iteration where Newton fails), Coulomb friction on the

@@ -22,7 +22,7 @@ MODULES = sorted(
 
 
 def test_the_examples_are_found():
-    # beltmdsm.periodic.cycle: beltmdsm.cycles.cycle before issue 38
+    # beltmdsm.periodic.cycle: beltmdsm.periodic.cycle before issue 38
     found = {"beltmdsm.model", "beltmdsm.periodic.cycle", "beltmdsm.basin.basins"}
     assert found | {"beltmdsm.generated.stability"} <= set(MODULES)
 

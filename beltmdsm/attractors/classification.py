@@ -93,7 +93,7 @@ ZERO_FLOOR = 1e-3
 #: exponent converges like 1/t, which the block spread does not see.
 ZERO_TOL = 5e-4
 #: The absolute accuracy of a Floquet multiplier (the two period-map engines agree to
-#: this: beltmdsm/periodic/general.py), the error of `periodic_attractor`'s exponent.
+#: this: beltmdsm/periodic/general_map.py), the error of `periodic_attractor`'s exponent.
 _MULTIPLIER_TOL = 1e-9
 
 

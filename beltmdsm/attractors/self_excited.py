@@ -7,7 +7,7 @@ state and sits at its equilibrium on every one of them, so a start with the norm
 state at its equilibrium moves in the plane ``(X1, X1')``, where every cycle is a
 closed curve around steady sliding. `landscape` computes the sets at one parameter
 value: the equilibrium and its eigenvalues, and the cycles near the branch's points
-(`beltmdsm.cycles.branch.cycle_branch`, corrected by `beltmdsm.cycles.cycle.cycle`) or
+(`beltmdsm.cycles.branch.cycle_branch`, corrected by `beltmdsm.periodic.cycle.cycle`) or
 given, each sampled over one period (`ORBIT_SAMPLES`).
 
 A start is decided as soon as it provably lands (`Landscape.decide`, `Landscape.land`):
@@ -19,7 +19,7 @@ A start is decided as soon as it provably lands (`Landscape.decide`, `Landscape.
   sliding and the stick-slip cycle, say) belongs to it. The outermost region goes to
   the outermost cycle where it is stable. Starts within `BAND` of a cycle are not
   decided by region (the sampled curve's error): they are run.
-* **By stick.** A stick phase ends at one state (`beltmdsm.cycles.seed.stick_end`,
+* **By stick.** A stick phase ends at one state (`beltmdsm.periodic.cycle_seed.stick_end`,
   normal motion at its equilibrium): every start that sticks goes on from there, so
   its fate is that state's, computed once. This is exact: a stick-slip cycle passes
   through that state.
@@ -94,7 +94,7 @@ def backward_seed(model: Model, eq: InvariantSet) -> list[tuple[NDArray[np.float
     offsets of `BACKWARD_OFFSETS` times ``Vb``, largest first; a run that leaves the
     slip mode (it started outside the cycle, or there is none) or does not settle is
     dropped. Its last extremum of ``X1'`` and the time between two is the guess
-    `beltmdsm.cycles.cycle.cycle` corrects.
+    `beltmdsm.periodic.cycle.cycle` corrects.
 
     Parameters
     ----------
@@ -123,7 +123,7 @@ def backward_seed(model: Model, eq: InvariantSet) -> list[tuple[NDArray[np.float
 
     from beltmdsm.generated import hybrid
 
-    from ..cycles.seed import section_direction
+    from ..periodic.cycle_seed import section_direction
 
     if not eq.stable:
         return []
@@ -186,7 +186,7 @@ def _focus(model, eq):
 
     from beltmdsm.generated import hybrid
 
-    from ..cycles.seed import section_direction
+    from ..periodic.cycle_seed import section_direction
 
     A = _jacobian(model)[:2, :2]
     P = solve_continuous_lyapunov(A.T, -np.eye(2))
@@ -253,13 +253,13 @@ def landscape(
     model : Model
         Without excitation.
     guesses : list of (state, period), optional
-        Cycles to correct (`beltmdsm.cycles.cycle.cycle`): the points of a branch at
+        Cycles to correct (`beltmdsm.periodic.cycle.cycle`): the points of a branch at
         or near the model's value (`cycles_near`). Those that do not converge are left
         out.
     seed : bool
         Also the cycles seeded by a backward run from stable steady sliding
         (`backward_seed`: the unstable cycle around it) and from the stick end or
-        unstable sliding (`beltmdsm.cycles.seed.seed_cycle`).
+        unstable sliding (`beltmdsm.periodic.cycle_seed.seed_cycle`).
 
     Returns
     -------
@@ -273,7 +273,7 @@ def landscape(
     See Also
     --------
     cycles_near : the guesses from a branch.
-    beltmdsm.cycles.cycle.cycle : corrects each.
+    beltmdsm.periodic.cycle.cycle : corrects each.
 
     Examples
     --------
@@ -292,8 +292,8 @@ def landscape(
     >>> ls.decide([[0.55, 0.5, *normal], [0.55, 1.9, *normal]]).tolist()
     [0, 1]
     """
-    from ..cycles.cycle import cycle
-    from ..cycles.seed import require_autonomous, stick_end
+    from ..periodic.cycle import cycle
+    from ..periodic.cycle_seed import require_autonomous, stick_end
 
     require_autonomous(model, "basins without excitation")
     eq = _equilibrium(model)

@@ -50,7 +50,7 @@ def as_attractor(s: InvariantSet) -> Attractor:
     return Attractor(
         "periodic", 1, None, None, lyap, 0.0, np.array([0.0, lyap]),
         f"a stable {slip} self-excited cycle of period {s.period:.6g} s (shooting with a "
-        "phase condition, beltmdsm/cycles/cycle.py)", s.state, s.orbit[::step],
+        "phase condition, beltmdsm/periodic/cycle.py)", s.state, s.orbit[::step],
     )  # fmt: skip
 
 

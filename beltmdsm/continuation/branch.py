@@ -189,7 +189,7 @@ def branch(
     record : callable, optional
         As BifurcationKit's ``record_from_solution``: ``record(point)`` is called at
         each point of the branch once it is continued, with the point (a
-        `beltmdsm.continuation.arclength.BranchPoint`: ``value``, ``state`` the
+        `beltmdsm.continuation.forced.BranchPoint`: ``value``, ``state`` the
         shooting state at phase 0 (``X1, X1'`` first), ``multipliers``, ``image``
         the period map's image with the orbit's runs; on a branch of cycles a
         `beltmdsm.cycles.continuation.CyclePoint`, with ``period`` too), and returns a

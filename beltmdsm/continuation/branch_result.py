@@ -445,7 +445,7 @@ def record_points(branch: Branch, record: Callable[[Any], Any] | None) -> Branch
     """Store ``record(point)`` on each point of ``branch`` (``point.recorded``); returns it.
 
     As BifurcationKit's ``record_from_solution``: ``record`` takes a point of the branch
-    (a `beltmdsm.continuation.arclength.BranchPoint`: ``value``, ``state``, ``image``
+    (a `beltmdsm.continuation.forced.BranchPoint`: ``value``, ``state``, ``image``
     with the orbit's runs, ``multipliers``; a cycle's
     `beltmdsm.cycles.continuation.CyclePoint`: also ``period``) and returns a real number
     (the column ``"record"``) or a mapping of names to real numbers, the same names at

@@ -8,7 +8,7 @@ below `GRAZING_STEP` and passes a **grazing**; where no step converges the branc
 at a **tangency** or a **grazing** located by `beltmdsm.continuation.edges.locate_end`
 (also where a crawl of small steps approaches one), or as ``failed``. The driver
 (`beltmdsm.continuation.driver.walk`) does the rest. Moved here from
-beltmdsm/continuation/arclength.py and branch_walk.py (issue 38).
+beltmdsm/continuation/forced.py and branch_walk.py (issue 38).
 """
 
 from __future__ import annotations

@@ -6,7 +6,7 @@ classified by the critical multiplier (`beltmdsm.continuation.edges.multiplier_k
 Each is located by regula falsi (Illinois) to `LOCATE_TOL` in the parameter.
 
 One source for both kinds of branch: the forced responses'
-(`beltmdsm.continuation.branch_walk`, on `beltmdsm.continuation.arclength`'s corrector)
+(`beltmdsm.continuation.branch_walk`, on `beltmdsm.continuation.forced`'s corrector)
 and the self-excited cycles' (`beltmdsm.cycles.continuation`). A continuation hands in
 ``cont.trial(start, tangent, s)``, the corrected point at arclength ``s`` from ``start``
 along ``tangent`` (raising `NoPeriodicResponse` where its corrector fails); a point has

@@ -1,7 +1,7 @@
 """Branches of self-excited cycles, born at the Hopf point of steady sliding.
 
 Without excitation a cycle is a zero of ``phi_T(x; p) - x`` closed by a phase condition
-``h(x) = 0`` (`beltmdsm.cycles.flow`: the section through the smallest
+``h(x) = 0`` (`beltmdsm.periodic.cycle_flow`: the section through the smallest
 ``X1'``); its period ``T`` is an unknown. `cycle_branch` follows the curve of zeros in
 ``(x, T, p)`` by pseudo-arclength continuation, as `beltmdsm.continuation.branch` does
 for forced responses (the same steps, special points and parts), in coordinates
@@ -35,7 +35,7 @@ scaled by the state's, the period's and the range's size:
   ``failed`` where the corrector no longer converges near zero amplitude.
 
 Without a Hopf point in the range, the branch goes both ways through the cycle found
-at the model's value of the parameter (`beltmdsm.cycles.cycle.cycle`).
+at the model's value of the parameter (`beltmdsm.periodic.cycle.cycle`).
 """
 
 from __future__ import annotations
@@ -332,7 +332,7 @@ def cycle_branch_from(
     Parameters
     ----------
     start : Cycle
-        A cycle (`beltmdsm.cycles.cycle.cycle`).
+        A cycle (`beltmdsm.periodic.cycle.cycle`).
     param : str
         A model parameter.
     lo, hi : float
@@ -362,7 +362,7 @@ def cycle_branch_from(
     Both ways from the stick-slip cycle at ``Vb = 1.5`` (period 6.654 s): a faster belt
     shortens it.
 
-    >>> from beltmdsm.cycles.cycle import cycle
+    >>> from beltmdsm.periodic.cycle import cycle
     >>> from beltmdsm.model import Model
     >>> model = Model(friction="stribeck", alpha=0.0, Vb=1.5)
     >>> x = np.array([2.902211983923, -2.033757676987, 11.547447572261, 0.0])

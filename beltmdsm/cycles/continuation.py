@@ -1,6 +1,6 @@
 """The self-excited cycle as a continuation problem (`beltmdsm.continuation.problem`).
 
-The curve of zeros of ``(phi_T(x; p) - x, h(x))`` (`beltmdsm.cycles.flow`) in
+The curve of zeros of ``(phi_T(x; p) - x, h(x))`` (`beltmdsm.periodic.cycle_flow`) in
 ``z = (x / sx, T / sT, p / sp)``: the period is unknown and the section ``h`` is the
 phase condition. `CycleProblem` states the residual and the 5 x 6 Jacobian ``[M - I, f,
 dphi/dp; grad h, 0, dh/dp]``, the point (`CyclePoint`, its multipliers without the

@@ -32,7 +32,7 @@ def sticks(img) -> int:
     Parameters
     ----------
     img : FlowImage
-        The end of a run over one period (`beltmdsm.cycles.flow.CycleFlow.image`).
+        The end of a run over one period (`beltmdsm.periodic.cycle_flow.CycleFlow.image`).
 
     Returns
     -------
@@ -41,13 +41,13 @@ def sticks(img) -> int:
 
     See Also
     --------
-    beltmdsm.cycles.flow.orbit_observables : Counts them too, with the reversals.
+    beltmdsm.periodic.cycle_flow.orbit_observables : Counts them too, with the reversals.
 
     Examples
     --------
     The cycle at ``Vb = 1.5`` (period 6.654 s) sticks once a period:
 
-    >>> from beltmdsm.cycles.flow import CycleFlow
+    >>> from beltmdsm.periodic.cycle_flow import CycleFlow
     >>> from beltmdsm.model import Model
     >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
     >>> x = np.array([2.902211983923, -2.033757676987, 11.547447572261, 0.0])
@@ -88,7 +88,7 @@ def stick_ahead(cont, points, ds) -> float | None:
 
     >>> import math
     >>> from beltmdsm.cycles.continuation import Continuation
-    >>> from beltmdsm.cycles.flow import CycleFlow
+    >>> from beltmdsm.periodic.cycle_flow import CycleFlow
     >>> from beltmdsm.model import Model
     >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
     >>> x1 = [3.033451549774, -2.881366210888, 11.547447572261, 0.0]
@@ -202,7 +202,7 @@ def locate(cont, prev, tangent, s_onset):
 
     >>> import math
     >>> from beltmdsm.cycles.continuation import Continuation
-    >>> from beltmdsm.cycles.flow import CycleFlow
+    >>> from beltmdsm.periodic.cycle_flow import CycleFlow
     >>> from beltmdsm.model import Model
     >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
     >>> x1 = [3.033451549774, -2.881366210888, 11.547447572261, 0.0]
@@ -301,7 +301,7 @@ def cross_stick(cont, prev, tangent, s_onset):
 
     >>> import math
     >>> from beltmdsm.cycles.continuation import Continuation
-    >>> from beltmdsm.cycles.flow import CycleFlow
+    >>> from beltmdsm.periodic.cycle_flow import CycleFlow
     >>> from beltmdsm.model import Model
     >>> flow = CycleFlow(Model(friction="stribeck", alpha=0.0), "Vb")
     >>> x1 = [3.033451549774, -2.881366210888, 11.547447572261, 0.0]

@@ -43,7 +43,7 @@ import numpy as np
 
 from .._calling import ranged
 from ..arguments import count, flag, number
-from ..continuation.branch import Branch, continue_branch
+from ..continuation.branch import continue_branch
 from ..continuation.settings import FORCED_SETTINGS, ContinuationSettings, as_settings
 from ..errors import NoPeriodicResponse, Refused
 from ..excitation import excitation_period, is_autonomous

@@ -13,7 +13,7 @@ that seed the search are `beltmdsm.starts`.
   each with its multipliers, the amplitude of ``X1'`` and where it was found; the
   attractors that do not lock, with the evidence (`beltmdsm.periodic.locked.NotLocked`).
   Without excitation (`beltmdsm.excitation.is_autonomous`): the self-excited cycles
-  (`beltmdsm.cycles.cycle`), from the run off perturbed steady sliding (where that is
+  (`beltmdsm.periodic.cycle`), from the run off perturbed steady sliding (where that is
   stable, from the end of a stick) and from cycles continued up and down in ``Vb``.
 """
 
@@ -447,7 +447,7 @@ def _classified(model, strobe, backend):
 
 
 def _cycle_response(c, source, distance=None):
-    """The `Response` of a self-excited cycle (`beltmdsm.cycles.cycle.Cycle`)."""
+    """The `Response` of a self-excited cycle (`beltmdsm.periodic.cycle.Cycle`)."""
     from ..periodic.response import response_of_cycle
 
     return Response(
@@ -465,7 +465,7 @@ def _continued_cycle(model, first, last, backend):
     """The cycle seeded at ``Vb = first`` and continued to ``Vb = last`` by Newton's method
     from each step's cycle: steps of `LADDER_STEP`, halved where Newton's method fails
     (down to 1/64 of it) and doubled again after each success."""
-    from ..cycles.cycle import cycle
+    from ..periodic.cycle import cycle
 
     c = cycle(model.replace(Vb=float(first)), backend=backend)
     v, step = float(first), LADDER_STEP * np.sign(last - first)
@@ -489,9 +489,9 @@ def cycle_responses(
     ladder: float = LADDER_SPAN,
     backend: Backend | None = None,
 ) -> ResponseSet:
-    """The self-excited cycles of the model without excitation (`beltmdsm.cycles.cycle`).
+    """The self-excited cycles of the model without excitation (`beltmdsm.periodic.cycle`).
 
-    The cycle from the run off perturbed steady sliding (`beltmdsm.cycles.cycle.seed_cycle`:
+    The cycle from the run off perturbed steady sliding (`beltmdsm.periodic.cycle.seed_cycle`:
     ``run_distance`` is how far the run's settled return lies from the cycle), and the
     cycles continued in ``Vb`` from ``ladder`` m/s below and above (seeded there, then
     Newton's method from each step's cycle, `_continued_cycle`): where steady sliding
@@ -516,7 +516,7 @@ def cycle_responses(
 
     See Also
     --------
-    beltmdsm.cycles.cycle.cycle : one cycle by Newton's method.
+    beltmdsm.periodic.cycle.cycle : one cycle by Newton's method.
     beltmdsm.multistability.responses.responses : what calls it without excitation.
 
     Examples
@@ -531,7 +531,7 @@ def cycle_responses(
     >>> round(found.responses[0].amplitude, 2), found.failed
     (1.34, [])
     """
-    from ..cycles.cycle import cycle, seed_cycle, unstable_pair
+    from ..periodic.cycle import cycle, seed_cycle, unstable_pair
 
     found, failed = [], []
 
@@ -543,7 +543,7 @@ def cycle_responses(
             known.sources.append(source)
 
     # where steady sliding is stable the seed's run starts where a stick ends
-    # (`beltmdsm.cycles.seed.seed_cycle`)
+    # (`beltmdsm.periodic.cycle_seed.seed_cycle`)
     source = (
         "the run off perturbed steady sliding"
         if unstable_pair(model)[0].real > 0

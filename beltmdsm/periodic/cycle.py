@@ -111,7 +111,8 @@ _DENSE_SAMPLES = 50
 #: over which the residual must halve (as `beltmdsm.periodic.newton.fixed_point`).
 _LINE_SEARCH = 8
 _STAGNATION = 2
-#: The most times a period is shortened to the least one (`beltmdsm.cycles.returns.first_return`).
+#: The most times a period is shortened to the least one
+#: (`beltmdsm.periodic.cycle_returns.first_return`).
 _DIVISIONS = 4
 
 
@@ -163,7 +164,7 @@ class Cycle:
 
     See Also
     --------
-    beltmdsm.cycles.cycle.cycle : finds one.
+    beltmdsm.periodic.cycle.cycle : finds one.
     beltmdsm.periodic.floquet.Floquet : the same multipliers as `floquet` reports them.
 
     Examples
@@ -284,7 +285,7 @@ class _Shooting:
         )
         self.direction = section_direction(model)
         # the run's steps and the variational equation's pieces keep h |lambda| <= 1 for
-        # the motion that rests while the mass sticks (`beltmdsm.cycles.returns.rest_step`):
+        # the motion that rests while the mass sticks (`beltmdsm.periodic.cycle_returns.rest_step`):
         # over a long stick the steps would grow to seconds; in slip the state moves,
         # and the step control bounds them
         self.max_step = self.max_piece = rest_step(model)
@@ -372,7 +373,7 @@ def cycle(
     Cycle
         At its least period: where the orbit passes its state on the section earlier
         (``period`` a multiple of it), it is shot again with the shorter one
-        (`beltmdsm.cycles.returns.first_return`).
+        (`beltmdsm.periodic.cycle_returns.first_return`).
 
     Raises
     ------

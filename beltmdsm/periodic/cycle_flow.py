@@ -53,7 +53,7 @@ _SAMPLES = 256
 def split_multipliers(M, f) -> tuple[complex, NDArray[np.complex128]]:
     """``(trivial, others)``: the trivial multiplier of a cycle's monodromy ``M``, the one
     whose eigenvector is closest in direction to the field ``f`` on the section (as
-    `beltmdsm.cycles.cycle` picks it: near a Hopf point another multiplier lies
+    `beltmdsm.periodic.cycle` picks it: near a Hopf point another multiplier lies
     as close to 1), and the others by decreasing modulus.
 
     Parameters
@@ -72,7 +72,7 @@ def split_multipliers(M, f) -> tuple[complex, NDArray[np.complex128]]:
 
     See Also
     --------
-    beltmdsm.cycles.flow.CycleFlow.image : The monodromy and the field.
+    beltmdsm.periodic.cycle_flow.CycleFlow.image : The monodromy and the field.
 
     Examples
     --------
@@ -108,7 +108,7 @@ class FlowImage:
 
     See Also
     --------
-    beltmdsm.cycles.flow.CycleFlow.image : Returns it.
+    beltmdsm.periodic.cycle_flow.CycleFlow.image : Returns it.
 
     Examples
     --------
@@ -145,7 +145,7 @@ class Observables:
 
     See Also
     --------
-    beltmdsm.cycles.flow.orbit_observables : Reads them from a run.
+    beltmdsm.periodic.cycle_flow.orbit_observables : Reads them from a run.
 
     Examples
     --------
@@ -206,7 +206,7 @@ def orbit_observables(run: Run, Vb: float) -> Observables:
 
     See Also
     --------
-    beltmdsm.cycles.flow.Observables : What it reads.
+    beltmdsm.periodic.cycle_flow.Observables : What it reads.
 
     Examples
     --------
@@ -254,7 +254,7 @@ class CycleFlow:
     See Also
     --------
     beltmdsm.cycles.continuation.Continuation : Continues cycles on it.
-    beltmdsm.cycles.flow.FlowImage : What `image` returns.
+    beltmdsm.periodic.cycle_flow.FlowImage : What `image` returns.
 
     Examples
     --------

@@ -1,8 +1,8 @@
 """The seed of a self-excited cycle: a run off unstable steady sliding, read on the section.
 
-`seed_cycle` gives `beltmdsm.cycles.cycle.cycle` its first guess where none is
+`seed_cycle` gives `beltmdsm.periodic.cycle.cycle` its first guess where none is
 given: the state on the section (the extremum of ``X1'`` of largest ``|Vr|``,
-`beltmdsm.cycles.cycle`) and the period, from a run of the autonomous model that
+`beltmdsm.periodic.cycle`) and the period, from a run of the autonomous model that
 starts at steady sliding (the unforced equilibrium, Eq. 9) moved along its unstable
 direction and goes on until its returns to the section repeat. `require_autonomous`
 and `section_direction` are the checks and the orientation both share.
@@ -130,7 +130,7 @@ def section_direction(model: Model) -> int:
 
     See Also
     --------
-    beltmdsm.cycles.seed.stick_end : The edge of the friction cone on this side.
+    beltmdsm.periodic.cycle_seed.stick_end : The edge of the friction cone on this side.
 
     Examples
     --------
@@ -196,7 +196,7 @@ def seed_cycle(
     every stick-slip cycle passes there, so a stick-slip cycle that coexists with
     stable sliding is found (it is superstable: one slip phase later the run is on it),
     and where none does the run decays. Once the run sticks, the cycle is the run from
-    that stick end to the next (`beltmdsm.cycles.returns.stick_slip_start`: one state,
+    that stick end to the next (`beltmdsm.periodic.cycle_returns.stick_slip_start`: one state,
     the least period); a chunk spent sticking has not decayed. Otherwise the run goes
     on in chunks until its returns to the section (module docstring) repeat to
     `SETTLE_TOL`; the period is the time between the last two returns that match
@@ -230,7 +230,7 @@ def seed_cycle(
 
     See Also
     --------
-    beltmdsm.cycles.cycle.cycle : the cycle itself, by shooting from this seed.
+    beltmdsm.periodic.cycle.cycle : the cycle itself, by shooting from this seed.
     beltmdsm.cycles.hopf.hopf_point : where steady sliding loses stability.
 
     Examples
@@ -309,7 +309,7 @@ def stick_end(model: Model) -> NDArray[np.float64] | None:
 
     See Also
     --------
-    beltmdsm.cycles.seed.seed_cycle : Starts there where steady sliding is stable.
+    beltmdsm.periodic.cycle_seed.seed_cycle : Starts there where steady sliding is stable.
 
     Examples
     --------
@@ -345,7 +345,7 @@ def _settle(model, y, start, t_end, turn, backend):
     """Run from ``y`` until the returns to the section repeat: ``(state, period)``.
 
     A run that sticks is on the stick-slip cycle through the stick end, if any
-    (`beltmdsm.cycles.returns.stick_slip_start`): that cycle is shot from there, at its
+    (`beltmdsm.periodic.cycle_returns.stick_slip_start`): that cycle is shot from there, at its
     least period. A chunk spent sticking has ``X1'`` at the belt's speed throughout:
     it has not decayed to steady sliding.
     """

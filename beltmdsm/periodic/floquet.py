@@ -23,7 +23,7 @@ The results say which (``engine``); where both apply they agree to 1e-9.
   ``k``-fold map (the eigenvalues of the product of the ``k`` one-period Jacobians,
   and on the closed-form path the normal block's to the power ``k``).
 * **Without excitation** (`beltmdsm.excitation.is_autonomous`): the self-excited cycle's
-  (`beltmdsm.cycles.cycle`), with ``autonomous`` set, its multipliers without the
+  (`beltmdsm.periodic.cycle`), with ``autonomous`` set, its multipliers without the
   trivial one (along the flow, reported as ``trivial_multiplier``) and a multiplier 0
   for a stick phase.
 * **Grazing.** A switch reached with a vanishing rate
@@ -121,7 +121,7 @@ class Floquet:
     floor : float
         The multipliers' error floor (module docstring, `FLOOR_FACTOR`): a multiplier
         below it is not resolved (``below_floor``; ``growth_bound`` where the largest
-        is). 0.0 for a cycle (its multipliers are `beltmdsm.cycles.cycle`'s).
+        is). 0.0 for a cycle (its multipliers are `beltmdsm.periodic.cycle`'s).
 
     See Also
     --------
@@ -348,7 +348,7 @@ class Floquet:
         """The JSON-able summary (the keys of ``python -m beltmdsm floquet --json``).
 
         ``autonomous`` says whether it is a self-excited cycle; a cycle adds the keys of
-        `beltmdsm.cycles.cycle.Cycle.as_dict` (``trivial_multiplier``, ``x1_range``,
+        `beltmdsm.periodic.cycle.Cycle.as_dict` (``trivial_multiplier``, ``x1_range``,
         ``velocity_range``, ``stick_time``, ``stick_collapses``, ...).
         """
         if self.autonomous:

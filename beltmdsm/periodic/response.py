@@ -4,7 +4,7 @@
 and what the Floquet multipliers are read from (`beltmdsm.periodic.floquet.Floquet`):
 built from a fixed point of a ``k``-fold period map by `response_from` (either engine,
 `beltmdsm.periodic.engines.ENGINES`), or from a self-excited cycle of a model without
-excitation by `response_of_cycle` (`beltmdsm.cycles.cycle.Cycle`).
+excitation by `response_of_cycle` (`beltmdsm.periodic.cycle.Cycle`).
 """
 
 from __future__ import annotations
@@ -64,7 +64,7 @@ class PeriodicResponse:
     autonomous : bool
         A self-excited cycle of the model without excitation (`response_of_cycle`):
         ``period`` was found, ``state0`` lies on its section, ``cycle`` is the
-        `beltmdsm.cycles.cycle.Cycle`.
+        `beltmdsm.periodic.cycle.Cycle`.
 
     See Also
     --------
@@ -192,14 +192,14 @@ def _coupling_block(resp):
 
 
 def response_of_cycle(c: Any) -> PeriodicResponse:
-    """The `PeriodicResponse` of a self-excited cycle (`beltmdsm.cycles.cycle.Cycle`).
+    """The `PeriodicResponse` of a self-excited cycle (`beltmdsm.periodic.cycle.Cycle`).
 
     Its ``state0`` is the cycle's state on the section, ``period`` the one found, the
     monodromy the whole one of the general path (``engine="general"``).
 
     Parameters
     ----------
-    c : beltmdsm.cycles.cycle.Cycle
+    c : beltmdsm.periodic.cycle.Cycle
 
     Returns
     -------
@@ -209,11 +209,11 @@ def response_of_cycle(c: Any) -> PeriodicResponse:
     Raises
     ------
     AttributeError
-        Where ``c`` is not a cycle (it lacks what a `beltmdsm.cycles.cycle.Cycle` has).
+        Where ``c`` is not a cycle (it lacks what a `beltmdsm.periodic.cycle.Cycle` has).
 
     See Also
     --------
-    beltmdsm.cycles.cycle.cycle : the cycle by shooting with a phase condition.
+    beltmdsm.periodic.cycle.cycle : the cycle by shooting with a phase condition.
     beltmdsm.periodic.shooting.periodic_response : calls it for a model without excitation.
 
     Examples

@@ -15,7 +15,7 @@
   (docs/modelling.md#bifurcations).
 * **Without excitation** (`beltmdsm.excitation.is_autonomous`) there is no period to take
   the phase from: `periodic_response` computes the self-excited cycle instead
-  (`beltmdsm.cycles.cycle`: the period found by shooting with a phase condition), with
+  (`beltmdsm.periodic.cycle`: the period found by shooting with a phase condition), with
   ``autonomous`` set (`beltmdsm.periodic.response.response_of_cycle`).
 """
 
@@ -85,7 +85,7 @@ def _cycle_response(model, guess, max_iter, backend, periods, engine):
     if guess is not None:
         raise ValueError(
             "a guess of a self-excited cycle needs its period: pass a PeriodicResponse "
-            "or a beltmdsm.cycles.cycle.Cycle, or call beltmdsm.cycles.cycle.cycle"
+            "or a beltmdsm.periodic.cycle.Cycle, or call beltmdsm.periodic.cycle.cycle"
         )
     return response_of_cycle(cycle(model, max_iter=max(max_iter, 30), backend=backend))
 
@@ -133,9 +133,9 @@ def periodic_response(
         model's laws allow.
 
     Without excitation (`beltmdsm.excitation.is_autonomous`) the response is the self-excited
-    cycle (`beltmdsm.cycles.cycle.cycle`, ``autonomous`` set): seeded from a run off
+    cycle (`beltmdsm.periodic.cycle.cycle`, ``autonomous`` set): seeded from a run off
     unstable steady sliding, or from ``guess`` (a `PeriodicResponse` of a cycle or a
-    `beltmdsm.cycles.cycle.Cycle`: a neighbour); ``forward`` does not apply.
+    `beltmdsm.periodic.cycle.Cycle`: a neighbour); ``forward`` does not apply.
 
     Returns
     -------
@@ -165,7 +165,7 @@ def periodic_response(
     beltmdsm.periodic.floquet.floquet : the response's multipliers.
     beltmdsm.starts.periodic_start : a run's start on it.
     beltmdsm.continuation.branch.branch : the response continued in a parameter.
-    beltmdsm.cycles.cycle.cycle : the self-excited cycle of a model without excitation.
+    beltmdsm.periodic.cycle.cycle : the self-excited cycle of a model without excitation.
 
     Examples
     --------

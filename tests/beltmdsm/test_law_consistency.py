@@ -3,7 +3,7 @@
 Stribeck friction with ``mu_k = mu_s`` is Coulomb friction, and Hunt-Crossley contact
 with ``n_h = 3/2`` is Hertz-Damp (derive/laws.py): the same equations, computed through
 other generated functions and, for Stribeck, through the other Floquet engine
-(beltmdsm/periodic/general.py). Every parameter set is built from the registry's base
+(beltmdsm/periodic/general_map.py). Every parameter set is built from the registry's base
 values (`beltmdsm.Model`, ``beltmdsm.generated.parameters.BASE``), so a new law cannot break
 these tests through a missing name.
 """

@@ -196,7 +196,7 @@ def test_a_stick_onset_is_marked_sl_in_its_own_colour(small_results, ax):
     from dataclasses import replace
 
     from beltmdsm._display import LABELS
-    from beltmdsm.continuation.branch_parts import SpecialPoint
+    from beltmdsm.continuation.branch_result import SpecialPoint
     from beltmdsm.plotting import KIND_COLOURS
 
     assert set(LABELS) == set(KIND_COLOURS)

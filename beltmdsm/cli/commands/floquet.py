@@ -24,7 +24,7 @@ def add(commands, name: str) -> None:
         "periods, by shooting on the K-fold period map (an attractor locked at a divisor d of K "
         "is reported as the dT response it is). Without excitation (--alpha 0) "
         "the self-excited cycle, its period found by shooting with a phase condition "
-        "(beltmdsm/cycles/cycle.py); --json then says autonomous: true and gives "
+        "(beltmdsm/periodic/cycle.py); --json then says autonomous: true and gives "
         "the trivial multiplier apart.",
     )
 

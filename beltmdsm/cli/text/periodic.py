@@ -64,7 +64,7 @@ def cycle(f: Floquet) -> str:
         f"{m.contact}, Vb = {m['Vb']:g} m/s: period {c.period:.8g} s (found), "
         f"{c.n_reversals} reversals and {c.n_sticks} sticks per period (stick "
         f"{c.stick_time:.6g} s), Newton {c.iterations} iterations (residual "
-        f"{c.residual:.1e}) (beltmdsm/cycles/cycle.py)",
+        f"{c.residual:.1e}) (beltmdsm/periodic/cycle.py)",
         f"X1 in [{c.x1_range[0]:.6g}, {c.x1_range[1]:.6g}] m, X1' in "
         f"[{c.velocity_range[0]:.6g}, {c.velocity_range[1]:.6g}] m/s, largest Vr "
         f"{c.max_relative_velocity:.6g} m/s",

@@ -108,7 +108,7 @@ def edges_text(band: Band) -> str:
 
 #: The kinds at the ends of a response's stable part besides the bifurcations: the end
 #: of the range studied, a real multiplier through +1 without a turn, a continuation
-#: that stopped (`beltmdsm.continuation.branch_parts.SpecialPoint`).
+#: that stopped (`beltmdsm.continuation.branch_result.SpecialPoint`).
 END_ABBREVIATIONS = {
     "range": ("end", "the end of the range"),
     "branch_point": ("BP", "branch point"),

@@ -60,7 +60,7 @@ def test_a_run_too_short_to_show_the_lock_is_unclassified_and_says_run_longer():
 
 
 #: A stick-slip cycle of Stribeck friction (period 6.654 s without excitation, the
-#: example of beltmdsm.cycles.cycle.cycle) under weak forcing at Omega = 1.53 rad/s.
+#: example of beltmdsm.periodic.cycle.cycle) under weak forcing at Omega = 1.53 rad/s.
 TORUS = Model(friction="stribeck", Vb=1.5, alpha=0.05, Omega=1.53)
 
 

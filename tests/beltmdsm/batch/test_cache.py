@@ -186,8 +186,8 @@ def test_the_code_hash_covers_what_a_row_imports_and_not_the_rest():
         # issue 28: they decide a row's `resolved` and its periodic start, and a hand
         # list had left them out
         "beltmdsm/periodic/base.py",
-        "beltmdsm/periodic/tangential.py",
-        "beltmdsm/periodic/general.py",
+        "beltmdsm/periodic/closed_form.py",
+        "beltmdsm/periodic/general_map.py",
         "beltmdsm/periodic/newton.py",
         "beltmdsm/periodic/shooting.py",
         "beltmdsm/starts.py",

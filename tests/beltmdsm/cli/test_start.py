@@ -109,4 +109,4 @@ def test_a_run_imports_only_what_it_runs(argv):
     modules = loaded(argv)
     assert offending(modules, NOT_FOR_A_RUN) == []
     if "3.5" in argv:
-        assert "beltmdsm.periodic.tangential" in modules
+        assert "beltmdsm.periodic.closed_form" in modules

@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from beltmdsm import Model, branch
-from beltmdsm.cycles.cycle import cycle
 from beltmdsm.errors import Refused
+from beltmdsm.periodic.cycle import cycle
 from beltmdsm.periodic.newton import NEWTON_TOL
 from beltmdsm.periodic.shooting import periodic_response
 

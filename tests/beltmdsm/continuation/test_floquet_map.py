@@ -10,7 +10,7 @@ import pytest
 
 from beltmdsm.continuation.band import floquet_band
 from beltmdsm.continuation.floquet_map import floquet_map
-from beltmdsm.continuation.map_linear import LINEAR_POINTS
+from beltmdsm.continuation.linear_verdict import LINEAR_POINTS
 from beltmdsm.errors import NoPeriodicResponse
 from beltmdsm.generated import stability
 from beltmdsm.model import Model
@@ -142,7 +142,7 @@ def test_a_touch_of_the_belt_speed_that_keeps_the_mode_leaves_the_jacobian_smoot
     # decides whether the scan also reports a touch that keeps the mode (S = I, which
     # asked for a saltation variant that does not exist) 1e-13 s after the reversal:
     # either way the modes chain and the Jacobian is the map's
-    from beltmdsm.periodic.tangential import TangentialMap
+    from beltmdsm.periodic.closed_form import TangentialMap
 
     pmap = TangentialMap(Model(omega1=6.59090909090909, Vb=2.3549836562893516), 1)
     x = np.array([-0.2732120331036181, 2.354983656289352])

@@ -15,7 +15,7 @@ import pytest
 
 from beltmdsm import Model
 from beltmdsm.continuation.branch import branch
-from beltmdsm.continuation.branch_parts import LOCATE_TOL, Branch
+from beltmdsm.continuation.branch_result import LOCATE_TOL, Branch
 from beltmdsm.continuation.circle import Circle
 from beltmdsm.continuation.driver import walk
 from beltmdsm.continuation.equilibrium import EquilibriumProblem, equilibrium_branch

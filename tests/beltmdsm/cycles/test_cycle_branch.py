@@ -37,9 +37,9 @@ from beltmdsm.cycles.branch import (
     cycle_branch_from,
     hopf_cycle,
 )
-from beltmdsm.cycles.cycle import cycle
 from beltmdsm.cycles.hopf import NoHopfPoint, hopf_point
 from beltmdsm.model import Model
+from beltmdsm.periodic.cycle import cycle
 
 BASE = Model(friction="stribeck", alpha=0)
 

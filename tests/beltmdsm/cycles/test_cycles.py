@@ -1,4 +1,4 @@
-"""Self-excited cycles without excitation (beltmdsm/cycles/cycle.py), against references.
+"""Self-excited cycles without excitation (beltmdsm/periodic/cycle.py), against references.
 
 References, independent of the package's shooting: the Hopf speed of steady sliding by
 hand, a stick-slip cycle computed here with scipy's ``solve_ivp`` and events on the
@@ -24,12 +24,12 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from beltmdsm.cli import main
-from beltmdsm.cycles.cycle import Cycle, cycle, seed_cycle, unstable_pair
 from beltmdsm.errors import NoPeriodicResponse
 from beltmdsm.excitation import is_autonomous
 from beltmdsm.generated import unforced
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.model import Model
+from beltmdsm.periodic.cycle import Cycle, cycle, seed_cycle, unstable_pair
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.settings import SolverSettings

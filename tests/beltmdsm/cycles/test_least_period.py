@@ -33,8 +33,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from beltmdsm.cycles.cycle import cycle
 from beltmdsm.model import Model
+from beltmdsm.periodic.cycle import cycle
 
 ROOT = Path(__file__).resolve().parents[3]
 ENV = {**os.environ, "PYTHONPATH": str(ROOT)}

@@ -91,7 +91,7 @@ def test_the_undamped_belt_oscillators_stick_slip_cycle_is_the_closed_form(solve
 
 
 def test_the_self_excited_cycle_by_shooting_is_the_closed_form():
-    # issue 29: the autonomous cycle of beltmdsm.cycles.cycle (period unknown, phase
+    # issue 29: the autonomous cycle of beltmdsm.periodic.cycle (period unknown, phase
     # condition) on the same oscillator, against the same closed form; its stick phase
     # gives a multiplier 0, and it coexists with steady sliding (constant mu_k: stable
     # for beta1 > 0, neutral here), which the static bound alone makes possible

@@ -2,7 +2,7 @@
 
 Reference: the backward-sliding orbit of the base set does not depend on ``Vb`` (the
 friction is ``mu_s Fn`` whatever the slip), so its largest velocity in contact ``g``
-(`beltmdsm.periodic.tangential.largest_sliding_velocity`, found by a bounded scalar
+(`beltmdsm.periodic.closed_form.largest_sliding_velocity`, found by a bounded scalar
 minimisation on the closed form) is the belt speed at which it grazes. Started on
 that orbit at ``Vb = g - delta``, a run must reverse its slip within one excitation
 period, however small ``delta``: the relative velocity dips below zero for a time of
@@ -19,8 +19,8 @@ import pytest
 from beltmdsm.errors import NoPeriodicResponse
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.integrate.superposition import integrate_superposed
+from beltmdsm.periodic.closed_form import largest_sliding_velocity
 from beltmdsm.periodic.floquet import floquet
-from beltmdsm.periodic.tangential import largest_sliding_velocity
 from beltmdsm.settings import SolverSettings
 
 INTEGRATORS = {"events": integrate_events, "superposition": integrate_superposed}

@@ -18,7 +18,7 @@ from beltmdsm.integrate.events import integrate_events
 from beltmdsm.integrate.normal import NormalMotion
 from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
-from beltmdsm.periodic.normal import normal_orbit
+from beltmdsm.periodic.normal_orbit import normal_orbit
 from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate

@@ -1,4 +1,4 @@
-"""The general Floquet path (beltmdsm/periodic/general.py `GeneralMap`, on
+"""The general Floquet path (beltmdsm/periodic/general_map.py `GeneralMap`, on
 beltmdsm/periodic/variational.py): the engine the laws' facts choose, its agreement with
 the closed-form path where both apply, its monodromy against finite differences of the
 simulated period map under Stribeck friction, and the closed-form path's refusal."""
@@ -13,11 +13,11 @@ from beltmdsm.generated.capabilities import CAPABILITIES
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.model import CONTACTS, FRICTIONS, TENSIONS, Model, Unsupported
 from beltmdsm.periodic.base import RTOL
+from beltmdsm.periodic.closed_form import CLOSED_FORM_FACTS, TangentialMap
 from beltmdsm.periodic.engines import engine_of, period_map
 from beltmdsm.periodic.floquet import floquet
-from beltmdsm.periodic.general import GeneralMap
+from beltmdsm.periodic.general_map import GeneralMap
 from beltmdsm.periodic.shooting import periodic_response
-from beltmdsm.periodic.tangential import CLOSED_FORM_FACTS, TangentialMap
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
 

@@ -15,10 +15,10 @@ import pytest
 from beltmdsm.errors import NoPeriodicResponse
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.periodic import locked as L
+from beltmdsm.periodic.closed_form import TangentialMap
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.periodic.newton import fixed_point
 from beltmdsm.periodic.shooting import periodic_response
-from beltmdsm.periodic.tangential import TangentialMap
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
 
