@@ -68,3 +68,23 @@ def cli(*argv: str, env: dict | None = None) -> subprocess.CompletedProcess:
     return subprocess.CompletedProcess(
         ["python", "-m", "beltmdsm", *argv], code, out.getvalue(), err.getvalue()
     )
+
+
+def once(monkeypatch, module, name: str) -> None:
+    """Replace ``module.name``, a function that a command imports when it runs, for the
+    rest of the test by one that computes each distinct call once (``progress`` aside).
+
+    A test that reads a command's text and then its ``--json`` pays one computation; the
+    command's own code, from the flags to the text, runs each time, and the function's
+    result depends on its arguments alone.
+    """
+    real = getattr(module, name)
+    kept = {}
+
+    def compute_once(*args, **kwargs):
+        key = (args, tuple(sorted((k, v) for k, v in kwargs.items() if k != "progress")))
+        if key not in kept:
+            kept[key] = real(*args, **kwargs)
+        return kept[key]
+
+    monkeypatch.setattr(module, name, compute_once)
