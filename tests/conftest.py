@@ -1,10 +1,17 @@
 """Shared fixtures: parameter sets drawn at random around the paper's base set."""
 
+import shutil
+import tempfile
+from pathlib import Path
+
 import mpmath
 import numpy as np
 import pytest
 
 from beltmdsm.generated.parameters import BASE
+
+#: tests/derive/test_codegen.py's derivations started at collection: (module, folder).
+_DERIVATIONS = pytest.StashKey[tuple]()
 
 #: Parameters of the paper's Eq. (4) (the per-direction excitation defaults to these).
 MODEL = ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g", "Vb")
@@ -72,3 +79,28 @@ def small_results():
             m, "Vb", [3.0, 4.0], t_end=50.0, executor="serial", cache_dir=None, progress=False
         ),
     }
+
+
+def pytest_collection_finish(session):
+    """Start tests/derive/test_codegen.py's two derivations (two minutes of SymPy in
+    processes of their own) as soon as the tests are collected, when one of the tests
+    that read them is selected: they then run on a second core beside the rest of the
+    suite instead of after it (`start_derivations`)."""
+    if session.config.option.collectonly:
+        return
+    for item in session.items:
+        if "derivations" in getattr(item, "fixturenames", ()):
+            module = item.module
+            folder = Path(tempfile.mkdtemp(prefix="beltmdsm-derivations-"))
+            module.STARTED["runs"] = module.start_derivations(folder)
+            session.config.stash[_DERIVATIONS] = (module, folder)
+            return
+
+
+def pytest_sessionfinish(session):
+    module, folder = session.config.stash.get(_DERIVATIONS, (None, None))
+    if module is not None:
+        runs = module.STARTED.pop("runs", None)
+        if runs:  # not read: the session stopped before the tests that read them
+            module.stop_derivations(runs)
+        shutil.rmtree(folder, ignore_errors=True)

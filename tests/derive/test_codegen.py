@@ -38,19 +38,24 @@ def _run(args, cwd=ROOT, seed="0", **kw):
 EDITED = ("g*mu_s/omega1**2", "g*mu_s/omega1**3")
 
 
-@pytest.fixture(scope="module")
-def derivations(tmp_path_factory):
-    """The two derivations the three tests below read, run at once (each is a minute of
-    SymPy in a process of its own; together they take the time of one on two cores):
+#: The derivations `start_derivations` started when the session began, if it did
+#: (tests/conftest.py, when a test that reads `derivations` is selected).
+STARTED = {}
+
+
+def start_derivations(folder):
+    """Start the two derivations that the three tests below read (each a minute of SymPy
+    in a process of its own), at once, writing into ``folder``; the processes.
 
     * ``"root"``: ``python -m derive --check`` in this checkout, ``PYTHONHASHSEED=0``;
     * ``"edited"``: the same in a copy of derive/ and generated/ (`as_checkout`) with
       generated/unforced.py edited by hand (`EDITED`) and a stray generated/leftover.py,
       ``PYTHONHASHSEED=4242``.
 
-    Each is ``(returncode, stdout, stderr)``.
+    tests/conftest.py starts them when the session's tests are collected, so that on a
+    machine of two cores they run beside the rest of the suite; else `derivations` does.
     """
-    copy = tmp_path_factory.mktemp("checkout")
+    copy = folder / "checkout"
     for part in ("derive", "generated"):
         shutil.copytree(ROOT / part, copy / part, ignore=shutil.ignore_patterns("__pycache__"))
     as_checkout(copy)  # beside a link to beltmdsm/, the copies are beltmdsm.derive/.generated
@@ -59,27 +64,39 @@ def derivations(tmp_path_factory):
     assert text.count(EDITED[0]) >= 1
     target.write_text(text.replace(*EDITED, 1))
     (copy / "generated" / "leftover.py").write_text("x = 1\n")
-    logs = tmp_path_factory.mktemp("logs")
     runs = {}
     for name, cwd, seed in (("root", ROOT, "0"), ("edited", copy, "4242")):
         env = {**os.environ, "PYTHONHASHSEED": seed, "PYTHONDONTWRITEBYTECODE": "1"}
-        out, err = (open(logs / f"{name}.{s}", "w+") for s in ("out", "err"))
+        out, err = (open(folder / f"{name}.{s}", "w+") for s in ("out", "err"))
         cmd = [sys.executable, "-m", "derive", "--check"]
         proc = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=out, stderr=err, text=True)
         runs[name] = (proc, out, err)
-    done = {}
-    for name, (proc, out, err) in runs.items():
-        try:
-            code = proc.wait(timeout=900)
-        except subprocess.TimeoutExpired:
-            for other, _, _ in runs.values():
-                other.kill()
-            raise
-        out.seek(0)
-        err.seek(0)
-        done[name] = (code, out.read(), err.read())
+    return runs
+
+
+def stop_derivations(runs):
+    """Kill what is still running of ``runs`` and close its files."""
+    for proc, out, err in runs.values():
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
         out.close()
         err.close()
+
+
+@pytest.fixture(scope="module")
+def derivations(tmp_path_factory):
+    """`start_derivations`' two runs, finished: each ``(returncode, stdout, stderr)``."""
+    runs = STARTED.pop("runs", None) or start_derivations(tmp_path_factory.mktemp("derive"))
+    done = {}
+    try:
+        for name, (proc, out, err) in runs.items():
+            code = proc.wait()  # a minute each on an idle machine, many under load
+            out.seek(0)
+            err.seek(0)
+            done[name] = (code, out.read(), err.read())
+    finally:
+        stop_derivations(runs)
     return done
 
 
