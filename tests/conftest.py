@@ -10,8 +10,15 @@ import pytest
 
 from beltmdsm.generated.parameters import BASE
 
-#: tests/derive/test_codegen.py's derivations started at collection: (module, folder).
-_DERIVATIONS = pytest.StashKey[tuple]()
+#: Module fixtures whose work runs in processes of their own, started when the tests are
+#: collected (`pytest_collection_finish`): fixture -> its test module's functions that
+#: start it (into a folder; None: nothing to start) and that stop what was started.
+EARLY = {
+    "derivations": ("start_derivations", "stop_derivations"),  # tests/derive/test_codegen.py
+    "site": ("start_site", "stop_site"),  # tests/test_docs_site.py
+}
+#: What `pytest_collection_finish` started: (module, fixture, stop, folder).
+_STARTED = pytest.StashKey[list]()
 
 #: Parameters of the paper's Eq. (4) (the per-direction excitation defaults to these).
 MODEL = ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g", "Vb")
@@ -82,25 +89,31 @@ def small_results():
 
 
 def pytest_collection_finish(session):
-    """Start tests/derive/test_codegen.py's two derivations (two minutes of SymPy in
-    processes of their own) as soon as the tests are collected, when one of the tests
-    that read them is selected: they then run on a second core beside the rest of the
-    suite instead of after it (`start_derivations`)."""
+    """Start the fixtures in `EARLY` as soon as the tests are collected, when a selected
+    test reads one: they are work in processes of their own (minutes of SymPy, of
+    Sphinx), which then runs on a second core beside the rest of the suite instead of
+    after it. Each test module keeps what it started in its ``STARTED``, by fixture."""
     if session.config.option.collectonly:
         return
+    started = session.config.stash.setdefault(_STARTED, [])
+    seen = set()
     for item in session.items:
-        if "derivations" in getattr(item, "fixturenames", ()):
+        for name in set(getattr(item, "fixturenames", ())) & EARLY.keys():
             module = item.module
-            folder = Path(tempfile.mkdtemp(prefix="beltmdsm-derivations-"))
-            module.STARTED["runs"] = module.start_derivations(folder)
-            session.config.stash[_DERIVATIONS] = (module, folder)
-            return
+            start, stop = (getattr(module, f, None) for f in EARLY[name])
+            if start is None or (module, name) in seen:
+                continue
+            seen.add((module, name))
+            folder = Path(tempfile.mkdtemp(prefix=f"beltmdsm-{name}-"))
+            work = start(folder)
+            if work is not None:
+                module.STARTED[name] = work
+            started.append((module, name, stop, folder))
 
 
 def pytest_sessionfinish(session):
-    module, folder = session.config.stash.get(_DERIVATIONS, (None, None))
-    if module is not None:
-        runs = module.STARTED.pop("runs", None)
-        if runs:  # not read: the session stopped before the tests that read them
-            module.stop_derivations(runs)
+    for module, name, stop, folder in session.config.stash.get(_STARTED, []):
+        work = module.STARTED.pop(name, None)
+        if work is not None:  # not read: the session stopped before the tests that read it
+            stop(work)
         shutil.rmtree(folder, ignore_errors=True)

@@ -87,7 +87,7 @@ def stop_derivations(runs):
 @pytest.fixture(scope="module")
 def derivations(tmp_path_factory):
     """`start_derivations`' two runs, finished: each ``(returncode, stdout, stderr)``."""
-    runs = STARTED.pop("runs", None) or start_derivations(tmp_path_factory.mktemp("derive"))
+    runs = STARTED.pop("derivations", None) or start_derivations(tmp_path_factory.mktemp("derive"))
     done = {}
     try:
         for name, (proc, out, err) in runs.items():
