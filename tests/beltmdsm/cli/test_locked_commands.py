@@ -47,7 +47,7 @@ def test_responses_json_lists_every_response_with_the_contract_keys(capsys):
 
 
 def test_branch_text_and_json(capsys, monkeypatch):
-    from beltmdsm.continuation import branch as branch_module
+    from beltmdsm import branches as branch_module
 
     once(monkeypatch, branch_module, "branch")  # the text and the JSON: one computation
     args = ["branch", "--Vb", "5", "--periods", "4", "--param", "Vb", "--from", "2", "--to", "9"]
