@@ -1,10 +1,24 @@
 """Shared fixtures: parameter sets drawn at random around the paper's base set."""
 
+import shutil
+import tempfile
+from pathlib import Path
+
 import mpmath
 import numpy as np
 import pytest
 
 from beltmdsm.generated.parameters import BASE
+
+#: Module fixtures whose work runs in processes of their own, started when the tests are
+#: collected (`pytest_collection_finish`): fixture -> its test module's functions that
+#: start it (into a folder; None: nothing to start) and that stop what was started.
+EARLY = {
+    "derivations": ("start_derivations", "stop_derivations"),  # tests/derive/test_codegen.py
+    "site": ("start_site", "stop_site"),  # tests/test_docs_site.py
+}
+#: What `pytest_collection_finish` started: (module, fixture, stop, folder).
+_STARTED = pytest.StashKey[list]()
 
 #: Parameters of the paper's Eq. (4) (the per-direction excitation defaults to these).
 MODEL = ("beta1", "omega1", "beta2", "omega2", "alpha", "Omega", "mu_s", "g", "Vb")
@@ -72,3 +86,34 @@ def small_results():
             m, "Vb", [3.0, 4.0], t_end=50.0, executor="serial", cache_dir=None, progress=False
         ),
     }
+
+
+def pytest_collection_finish(session):
+    """Start the fixtures in `EARLY` as soon as the tests are collected, when a selected
+    test reads one: they are work in processes of their own (minutes of SymPy, of
+    Sphinx), which then runs on a second core beside the rest of the suite instead of
+    after it. Each test module keeps what it started in its ``STARTED``, by fixture."""
+    if session.config.option.collectonly:
+        return
+    started = session.config.stash.setdefault(_STARTED, [])
+    seen = set()
+    for item in session.items:
+        for name in set(getattr(item, "fixturenames", ())) & EARLY.keys():
+            module = item.module
+            start, stop = (getattr(module, f, None) for f in EARLY[name])
+            if start is None or (module, name) in seen:
+                continue
+            seen.add((module, name))
+            folder = Path(tempfile.mkdtemp(prefix=f"beltmdsm-{name}-"))
+            work = start(folder)
+            if work is not None:
+                module.STARTED[name] = work
+            started.append((module, name, stop, folder))
+
+
+def pytest_sessionfinish(session):
+    for module, name, stop, folder in session.config.stash.get(_STARTED, []):
+        work = module.STARTED.pop(name, None)
+        if work is not None:  # not read: the session stopped before the tests that read it
+            stop(work)
+        shutil.rmtree(folder, ignore_errors=True)

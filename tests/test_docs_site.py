@@ -16,6 +16,7 @@
 from __future__ import annotations
 
 import html.parser
+import importlib.util
 import os
 import re
 import shutil
@@ -31,30 +32,77 @@ ROOT = Path(__file__).resolve().parents[1]
 TOOLS = ("sphinx", "numpydoc", "myst_nb", "sphinxarg", "pydata_sphinx_theme")
 
 
+def start_build(out: Path, execute: str):
+    """Start building the site from docs/ into ``out`` (notebooks: ``nb_execution_mode``
+    ``execute``, in quick mode): the process and the file of its stderr."""
+    env = {**os.environ, "BELTMDSM_DOCS_EXECUTE": execute, "PYTHONPATH": str(ROOT)}
+    env.pop("BELTMDSM_FULL", None)
+    out.mkdir(parents=True, exist_ok=True)
+    err = open(out / "sphinx.err", "w+")
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "sphinx", "-W", "-n", "--keep-going", "-q", "-b", "html"]
+        + ["-D", f"nb_execution_cache_path={out / 'jupyter_cache'}", "docs", str(out / "html")],
+        cwd=ROOT,
+        stdout=subprocess.DEVNULL,
+        stderr=err,
+        text=True,
+        env=env,
+    )
+    return proc, err
+
+
+def finish_build(started, out: Path) -> Path:
+    """Wait for `start_build`'s process; the folder of the site's HTML."""
+    proc, err = started
+    try:
+        proc.wait(timeout=900)
+    finally:
+        stop_site((started, out))
+    err.seek(0)
+    stderr = err.read()
+    err.close()
+    assert proc.returncode == 0, f"the site does not build:\n{stderr[-6000:]}"
+    return out / "html"
+
+
 def build(out: Path, execute: str) -> Path:
     """Build the site from docs/ into ``out`` (notebooks: ``nb_execution_mode``
     ``execute``, in quick mode); the folder of its HTML."""
     for tool in TOOLS:
         pytest.importorskip(tool, reason=f"{tool} is not installed (pip install -e '.[docs]')")
-    env = {**os.environ, "BELTMDSM_DOCS_EXECUTE": execute, "PYTHONPATH": str(ROOT)}
-    env.pop("BELTMDSM_FULL", None)
-    done = subprocess.run(
-        [sys.executable, "-m", "sphinx", "-W", "-n", "--keep-going", "-q", "-b", "html"]
-        + ["-D", f"nb_execution_cache_path={out / 'jupyter_cache'}", "docs", str(out / "html")],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        env=env,
-        timeout=900,
-    )
-    assert done.returncode == 0, f"the site does not build:\n{done.stderr[-6000:]}"
-    return out / "html"
+    return finish_build(start_build(out, execute), out)
+
+
+#: The build of `site` started when the session began, if it did (tests/conftest.py,
+#: when a test that reads `site` is selected).
+STARTED = {}
+
+
+def start_site(folder: Path):
+    """Start `site`'s build into ``folder`` (none where a tool is missing: `site` then
+    skips): two minutes of Sphinx in a process of its own, which tests/conftest.py
+    starts when the session's tests are collected, so that on a machine of two cores it
+    runs beside the rest of the suite."""
+    if any(importlib.util.find_spec(tool) is None for tool in TOOLS):
+        return None
+    return start_build(folder, "off"), folder
+
+
+def stop_site(started):
+    """Kill `start_site`'s build if it still runs."""
+    (proc, _), _ = started
+    if proc.poll() is None:
+        proc.kill()
+        proc.wait()
 
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
     """The site built without running the paper's notebooks; its HTML folder."""
-    return build(tmp_path_factory.mktemp("site"), "off")
+    started = STARTED.pop("site", None)
+    if started is None:
+        return build(tmp_path_factory.mktemp("site"), "off")
+    return finish_build(*started)
 
 
 class _Links(html.parser.HTMLParser):

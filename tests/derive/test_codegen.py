@@ -25,14 +25,6 @@ from beltmdsm.generated.parameters import BASE, DOMAINS, FRICTION_LAWS
 
 ROOT = Path(__file__).resolve().parents[2]
 
-DIGEST = (
-    "import hashlib, sys; from beltmdsm.derive import codegen, modules; "
-    "files = codegen.render_all(modules.all_modules()); "
-    "h = hashlib.sha256(); "
-    "[h.update(k.encode() + v.encode()) for k, v in sorted(files.items())]; "
-    "print(h.hexdigest())"
-)
-
 
 def _run(args, cwd=ROOT, seed="0", **kw):
     env = {**os.environ, "PYTHONHASHSEED": seed, "PYTHONDONTWRITEBYTECODE": "1"}
@@ -41,31 +33,109 @@ def _run(args, cwd=ROOT, seed="0", **kw):
     )
 
 
-def test_generated_is_up_to_date():
-    result = _run(["-m", "derive", "--check"])
-    assert result.returncode == 0, result.stdout + result.stderr
-    assert "up to date" in result.stdout
+#: The hand edit of the copy that `derivations` checks: one line of one file, and a file
+#: that no derivation produces.
+EDITED = ("g*mu_s/omega1**2", "g*mu_s/omega1**3")
 
 
-def test_output_is_identical_across_hash_seeds():
-    digests = {seed: _run(["-c", DIGEST], seed=seed).stdout.strip() for seed in ("0", "4242")}
-    assert len(digests["0"]) == 64
-    assert digests["0"] == digests["4242"]
+#: The derivations `start_derivations` started when the session began, if it did
+#: (tests/conftest.py, when a test that reads `derivations` is selected).
+STARTED = {}
 
 
-def test_check_names_a_hand_edited_file(tmp_path):
+def start_derivations(folder):
+    """Start the two derivations that the three tests below read (each a minute of SymPy
+    in a process of its own), at once, writing into ``folder``; the processes.
+
+    * ``"root"``: ``python -m derive --check`` in this checkout, ``PYTHONHASHSEED=0``;
+    * ``"edited"``: the same in a copy of derive/ and generated/ (`as_checkout`) with
+      generated/unforced.py edited by hand (`EDITED`) and a stray generated/leftover.py,
+      ``PYTHONHASHSEED=4242``.
+
+    tests/conftest.py starts them when the session's tests are collected, so that on a
+    machine of two cores they run beside the rest of the suite; else `derivations` does.
+    """
+    copy = folder / "checkout"
     for part in ("derive", "generated"):
-        shutil.copytree(ROOT / part, tmp_path / part, ignore=shutil.ignore_patterns("__pycache__"))
-    as_checkout(tmp_path)  # beside a link to beltmdsm/, the copies are beltmdsm.derive/.generated
-    target = tmp_path / "generated" / "unforced.py"
+        shutil.copytree(ROOT / part, copy / part, ignore=shutil.ignore_patterns("__pycache__"))
+    as_checkout(copy)  # beside a link to beltmdsm/, the copies are beltmdsm.derive/.generated
+    target = copy / "generated" / "unforced.py"
     text = target.read_text()
-    target.write_text(text.replace("g*mu_s/omega1**2", "g*mu_s/omega1**3", 1))
-    (tmp_path / "generated" / "leftover.py").write_text("x = 1\n")
-    result = _run(["-m", "derive", "--check"], cwd=tmp_path)
-    assert result.returncode == 1
-    assert "STALE generated/unforced.py" in result.stdout
-    assert "omega1**3" in result.stdout  # the diff is shown
-    assert "generated/leftover.py" in result.stdout
+    assert text.count(EDITED[0]) >= 1
+    target.write_text(text.replace(*EDITED, 1))
+    (copy / "generated" / "leftover.py").write_text("x = 1\n")
+    runs = {}
+    for name, cwd, seed in (("root", ROOT, "0"), ("edited", copy, "4242")):
+        env = {**os.environ, "PYTHONHASHSEED": seed, "PYTHONDONTWRITEBYTECODE": "1"}
+        out, err = (open(folder / f"{name}.{s}", "w+") for s in ("out", "err"))
+        cmd = [sys.executable, "-m", "derive", "--check"]
+        proc = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=out, stderr=err, text=True)
+        runs[name] = (proc, out, err)
+    return runs
+
+
+def stop_derivations(runs):
+    """Kill what is still running of ``runs`` and close its files."""
+    for proc, out, err in runs.values():
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+        out.close()
+        err.close()
+
+
+@pytest.fixture(scope="module")
+def derivations(tmp_path_factory):
+    """`start_derivations`' two runs, finished: each ``(returncode, stdout, stderr)``."""
+    runs = STARTED.pop("derivations", None) or start_derivations(tmp_path_factory.mktemp("derive"))
+    done = {}
+    try:
+        for name, (proc, out, err) in runs.items():
+            code = proc.wait()  # a minute each on an idle machine, many under load
+            out.seek(0)
+            err.seek(0)
+            done[name] = (code, out.read(), err.read())
+    finally:
+        stop_derivations(runs)
+    return done
+
+
+def test_generated_is_up_to_date(derivations):
+    code, out, err = derivations["root"]
+    assert code == 0, out + err
+    assert "up to date" in out
+
+
+def test_output_is_identical_across_hash_seeds(derivations):
+    """The derivation at ``PYTHONHASHSEED=0`` equals generated/ byte for byte
+    (`test_generated_is_up_to_date`); at 4242 it equals the edited copy of generated/
+    in every file but the two edited ones, and in the edited one it differs by the
+    edited line alone: both seeds derive the same files."""
+    code, out, err = derivations["root"]
+    assert code == 0, out + err
+    code, out, err = derivations["edited"]
+    assert code == 1, out + err
+    stale = re.findall(r"^STALE (generated/\S+?):", out, flags=re.M)
+    assert sorted(stale) == ["generated/leftover.py", "generated/unforced.py"], out
+    assert "2 generated file(s) differ" in err
+    diff = out.split("STALE generated/unforced.py:", 1)[1].split("STALE ", 1)[0]
+    changed = [
+        line
+        for line in diff.splitlines()
+        if line[:1] in ("+", "-") and not line.startswith(("+++", "---"))
+    ]
+    assert len(changed) == 2, diff
+    assert changed[0].startswith("-") and EDITED[1] in changed[0], diff
+    assert changed[1].startswith("+") and EDITED[0] in changed[1], diff
+    assert changed[0][1:].replace(*EDITED[::-1], 1) == changed[1][1:], diff
+
+
+def test_check_names_a_hand_edited_file(derivations):
+    code, out, err = derivations["edited"]
+    assert code == 1
+    assert "STALE generated/unforced.py" in out
+    assert "omega1**3" in out  # the diff is shown
+    assert "generated/leftover.py" in out
 
 
 def test_every_generated_file_has_the_do_not_edit_header():

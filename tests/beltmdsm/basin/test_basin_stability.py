@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from inprocess import cli
 from scipy.integrate import solve_ivp
 
 from beltmdsm.basin import basin_stability as bs_module
@@ -235,22 +236,20 @@ def test_the_map_without_excitation_has_both_basins_split_by_the_unstable_cycle(
 
 def test_the_command_maps_and_samples_without_excitation(tmp_path):
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    base = [sys.executable, "-m", "beltmdsm", "basins", *FLAGS, "--Vb", "1.5"]
+    argv = ["basins", *FLAGS, "--Vb", "1.5"]
+    base = [sys.executable, "-m", "beltmdsm", *argv]
     box = ["--x-from", "-2", "--x-to", "2", "--y-from", "0", "--y-to", "2"]
     png = tmp_path / "map.png"
-    r = subprocess.run(
-        base + box + ["--points", "4", "--jobs", "1", "--no-cache", "--json", "--png", str(png)],
-        capture_output=True, text=True, cwd=ROOT, env=env, timeout=600,
-    )  # fmt: skip
+    # the two runs in the test's process (tests/inprocess.py), the refusal in a real one
+    r = cli(*argv, *box, "--points", "4", "--jobs", "1", "--no-cache", "--json", "--png",
+            str(png))  # fmt: skip
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     assert [a["kind"] for a in out["attractors"]] == ["equilibrium", "periodic"]
     assert {"kind", "period", "fraction"} <= set(out["attractors"][1])
     assert len(out["grid"]["labels"]) == 4 and png.stat().st_size > 0
-    r = subprocess.run(
-        base + box + ["--samples", "300", "--seed", "2", "--jobs", "1", "--no-cache", "--json"],
-        capture_output=True, text=True, cwd=ROOT, env=env, timeout=600,
-    )  # fmt: skip
+    r = cli(*argv, *box, "--samples", "300", "--seed", "2", "--jobs", "1", "--no-cache",
+            "--json")  # fmt: skip
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     fr = [a["fraction"] for a in out["attractors"]]
@@ -283,15 +282,11 @@ def test_along_the_belt_speed_the_edges_are_the_hopf_point_and_the_stick_onset()
 
 
 def test_the_along_command_prints_the_edges(tmp_path):
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
     png = tmp_path / "along.png"
-    r = subprocess.run(
-        [sys.executable, "-m", "beltmdsm", "basin-stability", *FLAGS, "--param", "Vb",
-         "--from", "1.4", "--to", "1.6", "--points", "2", "--samples", "100",
-         "--x-from", "-2", "--x-to", "2", "--y-from", "0", "--y-to", "2", "--jobs", "1",
-         "--no-cache", "--no-progress", "--json", "--png", str(png)],
-        capture_output=True, text=True, cwd=ROOT, env=env, timeout=600,
-    )  # fmt: skip
+    r = cli("basin-stability", *FLAGS, "--param", "Vb",
+            "--from", "1.4", "--to", "1.6", "--points", "2", "--samples", "100",
+            "--x-from", "-2", "--x-to", "2", "--y-from", "0", "--y-to", "2", "--jobs", "1",
+            "--no-cache", "--no-progress", "--json", "--png", str(png))  # fmt: skip
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     assert out["values"] == [1.4, 1.6] and out["samples"] == 100

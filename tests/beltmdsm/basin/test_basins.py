@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from inprocess import cli
 
 from beltmdsm.attractors.recurrence import IDENTIFY_TOL, LARGEST, claim_radii
 from beltmdsm.basin import basins as basins_module
@@ -150,15 +151,11 @@ def test_bad_requests_are_refused_naming_the_argument():
 def test_the_command_prints_attractors_and_grid_as_json(tmp_path):
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     png = tmp_path / "basins.png"
-    r = subprocess.run(
-        [sys.executable, "-m", "beltmdsm", "basins", "--Vb", "3.88", "--points", "2"]
-        + ["--x-from", "3", "--x-to", "7", "--y-from", "-8.5", "--y-to", "-4.5"]
-        + ["--t-end", "600", "--jobs", "1", "--no-cache", "--json", "--png", str(png)],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
-        env=env,
-        timeout=600,
+    # the map in the test's process (tests/inprocess.py), the refusal in a real one
+    r = cli(
+        *["basins", "--Vb", "3.88", "--points", "2"],
+        *["--x-from", "3", "--x-to", "7", "--y-from", "-8.5", "--y-to", "-4.5"],
+        *["--t-end", "600", "--jobs", "1", "--no-cache", "--json", "--png", str(png)],
     )
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)

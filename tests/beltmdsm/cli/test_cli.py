@@ -12,6 +12,7 @@ from argparse import Namespace
 from pathlib import Path
 
 import pytest
+from inprocess import once
 
 from beltmdsm.cli import flags, main, tree
 from beltmdsm.cli.parser import Parser, UsageError
@@ -391,7 +392,8 @@ def test_predict_at_resonance_of_the_tangential_oscillator(capsys):
     assert out["paper_tangential_vhat"][0][1] == pytest.approx(2.0 / 0.2)
 
 
-def test_predict_without_excitation_says_so(capsys):
+def test_predict_without_excitation_says_so(capsys, monkeypatch):
+    once(monkeypatch, prediction, "predict")  # the text and the JSON: one computation
     assert main(["predict", "--alpha", "0"]) == 0
     text = capsys.readouterr().out
     assert "consistent_mdsm: unstable Vb in none; no fast tangential motion" in text
@@ -402,7 +404,8 @@ def test_predict_without_excitation_says_so(capsys):
     assert out["reasons"]["consistent_mdsm"] == prediction.NO_EXCITATION
 
 
-def test_predict_with_two_excitation_frequencies_keeps_the_closed_forms(capsys):
+def test_predict_with_two_excitation_frequencies_keeps_the_closed_forms(capsys, monkeypatch):
+    once(monkeypatch, prediction, "predict")  # the text and the JSON: one computation
     assert main(["predict", "--Omega_t", "6", "--Omega_n", "4"]) == 0
     text = capsys.readouterr().out
     assert (
@@ -428,7 +431,10 @@ def test_predict_reports_a_harmonic_balance_that_does_not_converge(capsys, monke
     )
 
 
-def test_predict_clipped_keeps_the_closed_forms_and_refuses_the_harmonic_balance(capsys):
+def test_predict_clipped_keeps_the_closed_forms_and_refuses_the_harmonic_balance(
+    capsys, monkeypatch
+):
+    once(monkeypatch, prediction, "predict")  # the text and the JSON: one computation
     assert main(["predict", "--json"]) == 0
     allowed = json.loads(capsys.readouterr().out)
     assert main(["predict", "--tension", "clipped", "--json"]) == 0

@@ -5,6 +5,8 @@ import math
 import subprocess
 import sys
 
+from inprocess import once
+
 from beltmdsm.cli import main
 
 
@@ -164,7 +166,10 @@ def test_floquet_readable_summary(capsys):
     assert "Floquet multipliers:" in text and "stable" in text and "UNSTABLE" not in text
 
 
-def test_floquet_band_text_and_json_agree(capsys):
+def test_floquet_band_text_and_json_agree(capsys, monkeypatch):
+    from beltmdsm.continuation import band as band_module
+
+    once(monkeypatch, band_module, "floquet_band")  # the text and the JSON: one computation
     args = ["floquet-band", "--param", "Vb", "--from", "3", "--to", "7", "--points", "9"]
     assert main(args) == 0
     text = capsys.readouterr().out
@@ -199,7 +204,10 @@ def test_simulate_from_the_periodic_response(capsys):
     assert json.loads(capsys.readouterr().out)["omega1_peak_present"] is False
 
 
-def test_floquet_band_names_the_sides_of_an_edge_between_two_stable_ranges(capsys):
+def test_floquet_band_names_the_sides_of_an_edge_between_two_stable_ranges(capsys, monkeypatch):
+    from beltmdsm.continuation import band as band_module
+
+    once(monkeypatch, band_module, "floquet_band")  # the text and the JSON: one computation
     # clipped: the sliding response grazes at a Vb where both sides are stable
     args = ["floquet-band", "--param", "Vb", "--from", "0.5", "--to", "16", "--tension", "clipped"]
     assert main(args + ["--json"]) == 0

@@ -4,7 +4,10 @@ solver's hand-over named with its reason."""
 
 import json
 
+from inprocess import once
+
 from beltmdsm.cli import main
+from beltmdsm.prediction import prediction
 
 STRIBECK = ["--friction", "stribeck", "--mu_k", "0.25", "--v_s", "1"]
 
@@ -55,13 +58,14 @@ def test_simulate_from_the_periodic_response_under_stribeck_friction(capsys):
     assert out["start"] == "periodic" and out["regime"] == "sliding_with_reversals"
 
 
-def test_predict_under_stribeck_prints_numeric_paper_intervals(capsys):
+def test_predict_under_stribeck_prints_numeric_paper_intervals(capsys, monkeypatch):
     """Issue 19: predict followed Coulomb's law whatever the model's (the paper's
     intervals of Coulomb's closed form under Stribeck's name). Now the paper's
     analysis, which has no closed form under Stribeck's law (closed_form_average), is
     solved numerically from the pointwise growth rate, each row saying so, and the
     consistent MDSM computes with Stribeck's averages: the band [5.878, 7.083], not
-    Coulomb's [4.682, 6.375]."""
+    Coulomb's [4.682, 6.375]. (The text and the JSON of one prediction, computed once.)"""
+    once(monkeypatch, prediction, "predict")
     assert main(["predict", *STRIBECK, "--no-progress"]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
     assert len(lines) == 3

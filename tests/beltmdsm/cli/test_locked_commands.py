@@ -3,12 +3,16 @@
 import json
 
 import pytest
+from inprocess import once
 
 from beltmdsm.cli import flags, main
 from beltmdsm.periodic.locked import LOCK_LIMIT
 
 
-def test_floquet_of_four_periods_keeps_the_keys_of_floquet(capsys):
+def test_floquet_of_four_periods_keeps_the_keys_of_floquet(capsys, monkeypatch):
+    from beltmdsm.periodic import floquet as floquet_module
+
+    once(monkeypatch, floquet_module, "floquet")  # the text and the JSON: one computation
     assert main(["floquet", "--Vb", "5", "--json"]) == 0
     one = json.loads(capsys.readouterr().out)
     assert main(["floquet", "--Vb", "5", "--periods", "4", "--json"]) == 0
@@ -42,7 +46,10 @@ def test_responses_json_lists_every_response_with_the_contract_keys(capsys):
     assert "59T" in text and "run from rest (classified)" in text
 
 
-def test_branch_text_and_json(capsys):
+def test_branch_text_and_json(capsys, monkeypatch):
+    from beltmdsm import branches as branch_module
+
+    once(monkeypatch, branch_module, "branch")  # the text and the JSON: one computation
     args = ["branch", "--Vb", "5", "--periods", "4", "--param", "Vb", "--from", "2", "--to", "9"]
     assert main(args + ["--json"]) == 0
     out = json.loads(capsys.readouterr().out)

@@ -1,29 +1,19 @@
-"""``--model NAME`` through the command line (subprocess ``python -m beltmdsm``): the
-other models run on the generic runtime with their own parameters and states, each
-number against a reference typed here; every command that runs the paper's model only
-refuses them in one line."""
+"""``--model NAME`` through the command line (``python -m beltmdsm``, run in the test's
+process: tests/inprocess.py): the other models run on the generic runtime with their own
+parameters and states, each number against a reference typed here; every command that
+runs the paper's model only refuses them in one line."""
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
+from inprocess import cli as _cli
 from scipy.optimize import brentq
 
 #: reference_two_dof's base set in hoffmann's names (tests/beltmdsm/oscillator/).
 HOFFMANN = ["--k1", "1.25", "--k2", "0.25", "--k3", "0.5", "--k_c", "1", "--F_pre", "1"]
 HOFFMANN += ["--c1", "0.05", "--c2", "0.05", "--Vb", "1"]
-
-
-def _cli(*argv, timeout=240):
-    return subprocess.run(
-        [sys.executable, "-m", "beltmdsm", *argv],
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-    )
 
 
 def _json(*argv):
@@ -145,7 +135,7 @@ def test_another_models_parameter_is_refused_for_the_paper():
 )
 def test_what_another_model_lacks_is_refused_in_one_line(argv, said, tmp_path):
     argv = [a.format(tmp=tmp_path) for a in argv]
-    done = _cli(argv[0], "--model", "belt_1dof", *argv[1:], timeout=120)
+    done = _cli(argv[0], "--model", "belt_1dof", *argv[1:])
     assert done.returncode == 2 and done.stdout == ""
     assert said in done.stderr and len(done.stderr.strip().splitlines()) == 1
     assert "error: argument --" in done.stderr

@@ -8,32 +8,17 @@ the static normal force per unit mass, ``g`` in Eq. 4), where the tangential dam
 
 import json
 import math
-import os
 import re
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
+from inprocess import cli as _run
 
 from beltmdsm.excitation import initial_state
 from beltmdsm.model import Model
 from beltmdsm.simulation import START_PERTURBATION, equilibrium_start, simulate
 
-ROOT = Path(__file__).resolve().parents[3]
 LAW = ["--friction", "stribeck", "--alpha", "0"]
-
-
-def _run(*argv, timeout=240):
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run(
-        [sys.executable, "-m", "beltmdsm", *argv],
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-    )
 
 
 def _by_hand(Vb, beta1=0.1, omega1=1.0, mu_s=0.4, mu_k=0.25, v_s=1.0, g=9.81):

@@ -1,33 +1,18 @@
 """Issue 28 section 1: a run or a grid that cannot tell says so, end to end.
 
-Each command-line report is reproduced through ``python -m beltmdsm`` in a real
-subprocess; the verdicts are checked against independent references (a long run, an
-independent transform of the window's halves, independent `floquet` calls).
+Each command-line report is reproduced through ``python -m beltmdsm`` (run in the
+test's process, tests/inprocess.py); the verdicts are checked against independent
+references (a long run, an independent transform of the window's halves, independent
+`floquet` calls).
 """
 
 import json
-import os
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
+from inprocess import cli as _run
 
 from beltmdsm.simulation import simulate
-
-ROOT = Path(__file__).resolve().parents[3]
-
-
-def _run(*argv, timeout=240):
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run(
-        [sys.executable, "-m", "beltmdsm", *argv],
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-    )
 
 
 def _band_amplitude(v, dt, band):

@@ -1,7 +1,8 @@
 """Issue 36, items 2, 5, 7, 11, 16 and 17: what a run says must be true, end to end.
 
-Each test reproduces the report through the command line (or the public function the
-report names) and checks the answer against an independent reference: a closed form
+Each test reproduces the report through the command line (in the test's process,
+tests/inprocess.py; a real process where a hang is bounded in time) or the public
+function the report names, and checks the answer against an independent reference: a closed form
 typed here, an independent scipy ``solve_ivp`` run, or ``ln |mu| / T`` of an orbit.
 """
 
@@ -13,12 +14,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from inprocess import cli as _run
 
 ROOT = Path(__file__).resolve().parents[3]
 
 
-def _run(*argv, timeout=300, env=None):
-    env = {**os.environ, "PYTHONPATH": str(ROOT), **(env or {})}
+def _process(*argv, timeout):
+    """``python -m beltmdsm argv`` in a real process, bounded in time (a hang fails)."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
     return subprocess.run(
         [sys.executable, "-m", "beltmdsm", *argv],
         env=env,
@@ -59,7 +62,7 @@ def test_a_mass_at_rest_on_the_friction_limit_stays_at_rest(tmp_path):
 
 
 def test_lyapunov_refuses_a_perturbation_without_a_periodic_start():
-    out = _run("lyapunov", "--perturbation", "5", "--t-end", "100", timeout=60)
+    out = _process("lyapunov", "--perturbation", "5", "--t-end", "100", timeout=60)
     assert out.returncode == 2
     last = out.stderr.strip().splitlines()[-1]
     assert "--perturbation" in last and "--start periodic" in last, out.stderr
@@ -136,7 +139,7 @@ def test_classify_on_the_unstable_periodic_response_names_it():
 
 
 def test_lyapunov_refuses_a_run_it_cannot_keep_in_one_line_naming_the_flag():
-    out = _run("lyapunov", "--t-end", "1e300", timeout=60)
+    out = _process("lyapunov", "--t-end", "1e300", timeout=60)
     assert out.returncode == 2
     lines = out.stderr.strip().splitlines()
     assert len(lines) == 1 and "lyapunov: error: argument --t-end: --t-end = 1e+300 s" in lines[0]
@@ -149,7 +152,7 @@ def test_classify_and_basins_refuse_it_too():
 
     with pytest.raises(Refused, match="t_end = 1e.300 s holds"):
         beltmdsm.classify(beltmdsm.Model(), t_end=1e300)
-    out = _run("basins", "--Vb", "3.88", "--points", "2", "--t-end", "1e300", timeout=60)
+    out = _process("basins", "--Vb", "3.88", "--points", "2", "--t-end", "1e300", timeout=60)
     assert out.returncode == 2 and "--t-end" in out.stderr.splitlines()[-1], out.stderr
     assert "Traceback" not in out.stderr
 
