@@ -33,6 +33,7 @@ __all__ = [
     "refusal",
     "refuse_flags",
     "refuse_other_params",
+    "named",
 ]
 
 _PAPER_NAMES = {p["name"] for p in _PAPER}
@@ -190,3 +191,9 @@ def describe(system) -> dict:
         "params": dict(system.params),
         "states": list(system.states),
     }
+
+
+def named(out: dict) -> dict:
+    """A command's JSON with the model it ran named first (``"model": NAME``; the
+    paper's where the output does not name one)."""
+    return {"model": out.get("model", MODELS[0]), **out}

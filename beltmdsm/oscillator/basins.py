@@ -4,8 +4,10 @@ Each start of a ``points x points`` grid (the other states at steady sliding's, 
 rest where the model is forced) runs until it provably lands (Attractors.jl's
 recurrence, with the exact events of `beltmdsm.oscillator.hybrid.flow`):
 
-* unforced, on **steady sliding** where it is within ``tol`` of the equilibrium and
-  the equilibrium is stable (its derived Hurwitz determinants);
+* unforced, on **steady sliding** where it is within ``1e-4`` (relative) of the
+  equilibrium, in its slip mode, and the equilibrium is stable (its derived Hurwitz
+  determinants): there the slip velocity is ``-Vb`` to ``1e-4``, the run stays in the
+  smooth slip mode and the linearisation's error is of order ``1e-8``;
 * unforced, on a **stick-slip cycle** where the state at the end of a stick recurs:
   a stick-slip cycle passes through one stick-end state per stick, so the recurrence
   is exact up to ``tol`` and gives the number of sticks per period;
@@ -34,6 +36,9 @@ from .hybrid import flow
 from .system import STICK, System
 
 __all__ = ["Basins", "BasinAttractor", "basins", "land"]
+
+#: Within this of stable steady sliding (relative), a start has landed on it.
+_NEAR = 1e-4
 
 
 @dataclass(frozen=True)
@@ -147,7 +152,7 @@ def land(
                     cycle = [s for _, s in ends[j:]]
                     return BasinAttractor("stick_slip", len(cycle), _least(cycle))
             ends.append((t, y.copy()))
-        elif eq.stable and mode == eq.mode and _close(y, eq.state, tol):
+        elif eq.stable and mode == eq.mode and _close(y, eq.state, _NEAR):
             return BasinAttractor("steady_sliding", 1, tuple(float(v) for v in eq.state))
     if not ends or ends[-1][0] < t - 5 * chunk:
         # no stick for a while: a slip cycle, named by the range of the first state

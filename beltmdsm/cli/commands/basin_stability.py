@@ -20,6 +20,7 @@ from ..flags import (
     range_flags,
     range_from,
 )
+from ..models import named
 from ..running import register
 from .basins import region_from, sampling_flags
 
@@ -95,7 +96,7 @@ def run(args: argparse.Namespace) -> int:
 
         save(lambda ax: result.plot(ax), args.png, f"basin stability in {result.param}")
     if args.json:
-        print(json.dumps(text.jsonable(result.as_dict())))
+        print(json.dumps(text.jsonable(named(result.as_dict()))))
         return 0
     print(repr(result))
     head = f"{result.param:>10}  " + "  ".join(f"{n[:28]:>28}" for n in result.names)

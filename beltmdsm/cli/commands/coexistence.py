@@ -17,6 +17,7 @@ from ..flags import (
     range_from,
     swept,
 )
+from ..models import named
 from ..running import register
 
 
@@ -77,7 +78,7 @@ def run(args: argparse.Namespace) -> int:
             f"stable responses in {found.param} ({found.model!r})",
         )
     if args.json:
-        print(json.dumps(text.jsonable(found.as_dict())))
+        print(json.dumps(text.jsonable(named(found.as_dict()))))
     else:
         print(text.coexistence(found))
         if args.png:

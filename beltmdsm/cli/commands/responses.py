@@ -13,6 +13,7 @@ from ..flags import (
     model_from,
     model_parent,
 )
+from ..models import named
 from ..running import register
 
 
@@ -46,7 +47,7 @@ def run(args: argparse.Namespace) -> int:
 
     found = responses(model_from(args), limit=args.limit, ladder=args.ladder, t_end=args.t_end)
     if args.json:
-        print(json.dumps(text.jsonable(found.as_dict())))
+        print(json.dumps(text.jsonable(named(found.as_dict()))))
     else:
         print(text.responses(found))
     return 0

@@ -8,6 +8,7 @@ import json
 
 from ...model import MODEL_PARAMETERS
 from ...settings import MAX_POINTS
+from .. import generic_studies
 from ..flags import (
     POSITIVE,
     cache_dir_from,
@@ -23,6 +24,7 @@ from ..flags import (
     solver_parent,
     swept,
 )
+from ..models import named, other_params
 from ..running import register
 
 
@@ -32,13 +34,17 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), solver_parent(), executor_parent(), cache_parent(), json_parent()],
+        models=generic_studies.sweep,
         help="sweep one parameter of Eq. (4)",
         description="Sweep one parameter of Eq. (4) (beltmdsm/studies/sweep.py; at most "
         f"{MAX_POINTS:.0e} points).",
     )
     grid = sub.add_argument_group("the swept parameter")
     grid.add_argument(
-        "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter swept"
+        "--param",
+        required=True,
+        choices=(*MODEL_PARAMETERS, *other_params()),
+        help="the parameter swept (of --model's parameters)",
     )
     grid.add_argument(
         "--from", dest="start", type=number(), metavar="X", help="first value (with --to, --step)"
@@ -119,7 +125,7 @@ def run(args: argparse.Namespace) -> int:
     if args.out:
         table_to_csv(result.table, args.out)
     if args.json:
-        print(json.dumps(text.jsonable(result.as_dict())))
+        print(json.dumps(text.jsonable(named(result.as_dict()))))
     else:
         print(text.sweep(result, args.out))
     return 0

@@ -1,0 +1,144 @@
+"""The studies of a model other than the paper's (``--model NAME``) on the generic
+runtime: ``sweep`` (`beltmdsm.oscillator.sweep`), ``lyapunov``
+(`beltmdsm.oscillator.lyapunov`) and ``basins`` (`beltmdsm.oscillator.basins`).
+
+As `beltmdsm.cli.generic`: each reads `system_from`'s `System`, refuses in one line the
+flags that apply to the paper's model only, names states as the model does, and its
+JSON and CSV name the model (``"model": NAME``).
+"""
+
+from __future__ import annotations
+
+import argparse
+
+import numpy as np
+
+from .generic import _head, _print
+from .models import describe, refuse_flags, system_from
+
+__all__ = ["sweep", "lyapunov", "basins", "STATES"]
+
+
+def _states() -> tuple[str, ...]:
+    from beltmdsm.generated.models import MODELS, load
+
+    names: list[str] = []
+    for model in MODELS:
+        names += [s for s in load(model).STATES if s not in names]
+    return tuple(names)
+
+
+#: Every registered model's states (the choices of ``basins --x/--y``).
+STATES = _states()
+
+
+def sweep(args: argparse.Namespace) -> int:
+    """``sweep --model NAME``: a run per value of ``--param`` and what it settles on."""
+    from ..oscillator.sweep import sweep as run
+    from .commands.sweep import _values
+    from .flags import executor_from, swept
+
+    refuse_flags(args, ("continuation", "modulation", "solver", "on_contact_loss"))
+    name = swept(args)
+    system = system_from(args)
+    if name not in system.params:
+        args.parser.error(
+            f"argument --param: not a parameter of model {system.name!r} "
+            f"({', '.join(system.params)}); got {name}"
+        )
+    values = _values(args)
+    with executor_from(args) as executor:
+        result = run(
+            system, name, values, t_end=args.t_end, t_discard=args.t_discard, dt=args.dt,
+            rtol=args.rtol, atol=args.atol,
+            executor=None if executor in (None, "serial") else executor,
+        )  # fmt: skip
+    if args.out:
+        result.to_csv(args.out)
+    out = {**result.as_dict(), **({"saved": args.out} if args.out else {})}
+    lines = [_head(system), f"sweep of {name} over {len(result.rows)} values:"]
+    for row in result.rows:
+        ranges = ", ".join(
+            f"{s} in [{row[f'{s}_min']:.6g}, {row[f'{s}_max']:.6g}]" for s in system.states
+        )
+        lines.append(
+            f"  {name} = {row[name]:.6g}: {row['regime']}, {row['sticks']} sticks; {ranges}"
+        )
+    if args.out:
+        lines.append(f"table written to {args.out}")
+    _print(args, out, lines)
+    return 0
+
+
+def lyapunov(args: argparse.Namespace) -> int:
+    """``lyapunov --model NAME``: the spectrum of a run through the switches, from rest
+    or from the periodic orbit (forced response or self-excited cycle) moved by
+    ``--perturbation`` along the first state."""
+    from ..oscillator import forced_response, self_excited_cycle
+    from ..oscillator.lyapunov import lyapunov as spectrum
+
+    system = system_from(args)
+    y0 = None
+    if args.start == "periodic":
+        orbit = (
+            self_excited_cycle(system)
+            if system.excitation_period() is None
+            else forced_response(system)
+        )
+        y0 = orbit.state.copy()
+        y0[0] += 1e-2 if args.perturbation is None else args.perturbation
+    elif args.perturbation is not None:
+        args.parser.error(
+            "argument --perturbation: moves the start on the periodic response; "
+            "give --start periodic, or drop it"
+        )
+    spec = spectrum(system, y0, t_end=args.t_end, t_transient=args.t_transient)
+    out = {**describe(system), **spec.as_dict(), "start": args.start}
+    lines = [
+        _head(system),
+        repr(spec),
+        "exponents: " + ", ".join(f"{v:.6g}" for v in spec.exponents),
+        f"{spec.collapsed} direction(s) removed by stick (exponent -inf)",
+    ]
+    _print(args, out, lines)
+    return 0
+
+
+def basins(args: argparse.Namespace) -> int:
+    """``basins --model NAME``: which attractor each start of a plane of two of the
+    model's states lands on (steady sliding, stick-slip or slip cycles, forced
+    responses)."""
+    from ..oscillator.basins import basins as run
+    from .flags import executor_from
+
+    refuse_flags(args, ("png", "samples"))
+    system = system_from(args)
+    n = len(system.coordinates)
+    x = system.states[0] if args.x == "X1" else args.x
+    y = system.states[n] if args.y == "Y1" else args.y
+    for axis, state in (("x", x), ("y", y)):
+        if state not in system.states:
+            args.parser.error(
+                f"argument --{axis}: not a state of model {system.name!r} "
+                f"({', '.join(system.states)}); got {state}"
+            )
+    ends = (args.x_from, args.x_to, args.y_from, args.y_to)
+    if None in ends:
+        args.parser.error(
+            f"argument --x-from: model {system.name!r} needs the plane's box: "
+            "--x-from, --x-to, --y-from and --y-to"
+        )
+    with executor_from(args) as executor:
+        result = run(
+            system, x, ends[:2], y, ends[2:], points=args.points, t_end=args.t_end,
+            executor=None if executor in (None, "serial") else executor,
+        )  # fmt: skip
+    lines = [_head(system), repr(result)]
+    for i, (a, share) in enumerate(zip(result.attractors, result.shares())):
+        state = ", ".join(f"{v:.6g}" for v in a.state)
+        lines.append(f"  {i}: {a.kind} ({a.periods}), {share:.1%} of the starts; at ({state})")
+    unresolved = float(np.mean(result.labels < 0))
+    if unresolved:
+        lines.append(f"  unresolved: {unresolved:.1%} of the starts")
+    _print(args, result.as_dict(), lines)
+    return 0
