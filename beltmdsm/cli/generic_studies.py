@@ -16,7 +16,7 @@ import numpy as np
 from .generic import _head, _print
 from .models import describe, refuse_flags, system_from
 
-__all__ = ["sweep", "lyapunov", "basins", "STATES"]
+__all__ = ["sweep", "lyapunov", "basins", "STATES", "sweep_values"]
 
 
 def _states() -> tuple[str, ...]:
@@ -32,10 +32,30 @@ def _states() -> tuple[str, ...]:
 STATES = _states()
 
 
+def sweep_values(args):
+    """The values of ``--from/--to/--step`` or ``--values`` (a bad grid: exit 2)."""
+
+    from ...studies.sweep import linear_values
+
+    if args.values:
+        grid = (("--from", args.start), ("--to", args.stop), ("--step", args.step))
+        given = [flag for flag, value in grid if value is not None]
+        if given:
+            args.parser.error(f"argument --values: give --values or {', '.join(given)}, not both")
+        return np.asarray(args.values)
+    if None in (args.start, args.stop, args.step):
+        args.parser.error("give --from, --to and --step, or --values")
+    if args.stop < args.start:
+        args.parser.error(f"argument --to: must be >= --from ({args.start:g}); got {args.stop:g}")
+    try:
+        return linear_values(args.start, args.stop, args.step)
+    except ValueError as err:
+        args.parser.error(f"argument --step: {err}")
+
+
 def sweep(args: argparse.Namespace) -> int:
     """``sweep --model NAME``: a run per value of ``--param`` and what it settles on."""
     from ..oscillator.sweep import sweep as run
-    from .commands.sweep import _values
     from .flags import executor_from, swept
 
     refuse_flags(args, ("continuation", "modulation", "solver", "on_contact_loss"))
@@ -46,7 +66,7 @@ def sweep(args: argparse.Namespace) -> int:
             f"argument --param: not a parameter of model {system.name!r} "
             f"({', '.join(system.params)}); got {name}"
         )
-    values = _values(args)
+    values = sweep_values(args)
     with executor_from(args) as executor:
         result = run(
             system, name, values, t_end=args.t_end, t_discard=args.t_discard, dt=args.dt,

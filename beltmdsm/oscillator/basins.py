@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from concurrent.futures import Executor
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
@@ -35,7 +35,10 @@ from .equilibria import steady_sliding
 from .hybrid import flow
 from .system import STICK, System
 
-__all__ = ["Basins", "BasinAttractor", "basins", "land"]
+__all__ = [
+    "Basins", "BasinAttractor", "basins", "land", "merge", "run_starts", "Stability",
+    "basin_stability",
+]  # fmt: skip
 
 #: Within this of stable steady sliding (relative), a start has landed on it.
 _NEAR = 1e-4
@@ -54,12 +57,16 @@ class BasinAttractor:
         Sticks per period (stick-slip), excitation periods (forced), else 1 (0 where
         unresolved).
     state : tuple of float
-        Its representative state.
+        Its representative state (a stick-slip cycle's stick-end state, a forced
+        response's state at phase 0; a slip cycle's range of its first state).
+    seed : tuple of float
+        A state on it, where a shooting can start (not part of its identity).
     """
 
     kind: str
     periods: int
     state: tuple[float, ...]
+    seed: tuple[float, ...] = field(default=(), compare=False, repr=False)
 
 
 @dataclass(repr=False)
@@ -150,10 +157,12 @@ def land(
             for j in range(len(ends) - 1, max(-1, len(ends) - 1 - max_periods), -1):
                 if _close(y, ends[j][1], tol):
                     cycle = [s for _, s in ends[j:]]
-                    return BasinAttractor("stick_slip", len(cycle), _least(cycle))
+                    least = _least(cycle)
+                    return BasinAttractor("stick_slip", len(cycle), least, least)
             ends.append((t, y.copy()))
         elif eq.stable and mode == eq.mode and _close(y, eq.state, _NEAR):
-            return BasinAttractor("steady_sliding", 1, tuple(float(v) for v in eq.state))
+            state = tuple(float(v) for v in eq.state)
+            return BasinAttractor("steady_sliding", 1, state, state)
     if not ends or ends[-1][0] < t - 5 * chunk:
         # no stick for a while: a slip cycle, named by the range of the first state
         samples: list = []
@@ -161,7 +170,7 @@ def land(
         first = np.concatenate([ys[:, 0] for _, ys, _ in samples])
         lo, hi = round(float(first.min()), 3), round(float(first.max()), 3)
         if hi - lo > 10 * tol * (1.0 + abs(hi)):
-            return BasinAttractor("slip_cycle", 1, (lo, hi))
+            return BasinAttractor("slip_cycle", 1, (lo, hi), tuple(map(float, y)))
     return BasinAttractor("unresolved", 0, ())
 
 
@@ -175,7 +184,8 @@ def _land_forced(system, y, T, t_end, tol, max_periods):
             break
         for p in range(1, min(max_periods, len(strobe)) + 1):
             if _close(y, strobe[-p], tol):
-                return BasinAttractor("periodic", p, _least(strobe[-p:]))
+                least = _least(strobe[-p:])
+                return BasinAttractor("periodic", p, least, least)
         strobe.append(y.copy())
     return BasinAttractor("unresolved", 0, ())
 
@@ -239,6 +249,24 @@ def basins(
     >>> [a.kind for a in b.attractors]
     ['steady_sliding', 'stick_slip']
     """
+    _check_plane(system, x, x_range, y, y_range)
+    if not (isinstance(points, int) and points >= 2):
+        raise ValueError(f"points={points!r}: not a whole number >= 2")
+    base = _base(system)
+    xs, ys = np.linspace(*x_range, points), np.linspace(*y_range, points)
+    ix, iy = system.states.index(x), system.states.index(y)
+    starts = []
+    for vy in ys:
+        for vx in xs:
+            s = base.copy()
+            s[ix], s[iy] = vx, vy
+            starts.append(s)
+    found = run_starts(system, starts, t_end, tol, max_periods, executor)
+    merged, labels = merge(found, tol)
+    return Basins(system, x, y, xs, ys, labels.reshape(points, points), merged)
+
+
+def _check_plane(system, x, x_range, y, y_range) -> None:
     for axis, name in (("x", x), ("y", y)):
         if name not in system.states:
             raise ValueError(
@@ -248,31 +276,33 @@ def basins(
     for axis, (lo, hi) in (("x_range", x_range), ("y_range", y_range)):
         if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
             raise ValueError(f"{axis}=({lo!r}, {hi!r}): not lo < hi")
-    if not (isinstance(points, int) and points >= 2):
-        raise ValueError(f"points={points!r}: not a whole number >= 2")
-    base = (
-        steady_sliding(system).state
-        if system.excitation_period() is None
-        else np.zeros(len(system.states))
-    )
-    xs, ys = np.linspace(*x_range, points), np.linspace(*y_range, points)
-    ix, iy = system.states.index(x), system.states.index(y)
-    starts = []
-    for vy in ys:
-        for vx in xs:
-            s = base.copy()
-            s[ix], s[iy] = vx, vy
-            starts.append(s)
+
+
+def _base(system) -> NDArray[np.float64]:
+    """The start's other states: steady sliding's (unforced), else rest."""
+    if system.excitation_period() is None:
+        return steady_sliding(system).state.copy()
+    return np.zeros(len(system.states))
+
+
+def run_starts(system, starts, t_end, tol, max_periods, executor) -> list[BasinAttractor]:
+    """`land` of every start, here or on ``executor`` (each worker rebuilds the
+    `System` from plain values: a `System` holds a module)."""
     args = (system.name, system.friction, dict(system.params))
     jobs = [(*args, s, t_end, tol, max_periods) for s in starts]
     if executor is None:
-        found = [_start(*job) for job in jobs]
-    else:
-        found = list(executor.map(_start, *zip(*jobs)))
+        return [_start(*job) for job in jobs]
+    return list(executor.map(_start, *zip(*jobs)))
+
+
+def merge(found, tol) -> tuple[list[BasinAttractor], NDArray[np.int64]]:
+    """The distinct attractors of ``found``, sorted by kind and state, and each start's
+    index into them (-1: unresolved). Two representatives within ``100 tol`` of each
+    other are one attractor (found from two starts)."""
     known = sorted({a for a in found if a.kind != "unresolved"}, key=lambda a: (a.kind, a.state))
     merged: list[BasinAttractor] = []
     index = {}
-    for a in known:  # the same attractor found from two starts: states within tol
+    for a in known:
         same = next(
             (j for j, b in enumerate(merged) if b.kind == a.kind and b.periods == a.periods
              and len(a.state) == len(b.state)
@@ -283,5 +313,132 @@ def basins(
             merged.append(a)
             same = len(merged) - 1
         index[a] = same
-    labels = np.array([index.get(a, -1) for a in found], dtype=np.int64).reshape(points, points)
-    return Basins(system, x, y, xs, ys, labels, merged)
+    return merged, np.array([index.get(a, -1) for a in found], dtype=np.int64)
+
+
+@dataclass(repr=False)
+class Stability:
+    """Basin stability by sampling: each attractor's share of random starts.
+
+    Attributes
+    ----------
+    system : System
+    x, y : str
+        The states of the box's axes.
+    box : ((float, float), (float, float))
+    samples : int
+    attractors : list of BasinAttractor
+    fractions, errors : ndarray (len(attractors),)
+        Each share and its standard error ``sqrt(p (1 - p) / N)`` (bSTAB, pyBasin).
+    unresolved : float
+        The share of starts that landed on nothing within ``t_end``.
+
+    See Also
+    --------
+    basin_stability : makes it.
+    """
+
+    system: System
+    x: str
+    y: str
+    box: tuple
+    samples: int
+    attractors: list[BasinAttractor]
+    fractions: NDArray[np.float64]
+    errors: NDArray[np.float64]
+    unresolved: float
+
+    def __repr__(self) -> str:
+        parts = ", ".join(
+            f"{a.kind}({a.periods}) {p:.3f} +- {e:.3f}"
+            for a, p, e in zip(self.attractors, self.fractions, self.errors)
+        )
+        return f"Stability({self.system!r}; {self.samples} starts: {parts})"
+
+    def as_dict(self) -> dict:
+        return {
+            "model": self.system.name,
+            "friction": self.system.friction,
+            "params": dict(self.system.params),
+            "states": list(self.system.states),
+            "x": self.x,
+            "y": self.y,
+            "box": [list(self.box[0]), list(self.box[1])],
+            "samples": self.samples,
+            "attractors": [
+                {
+                    "kind": a.kind,
+                    "periods": a.periods,
+                    "state": list(a.state),
+                    "fraction": float(p),
+                    "error": float(e),
+                }
+                for a, p, e in zip(self.attractors, self.fractions, self.errors)
+            ],  # fmt: skip
+            "unresolved": self.unresolved,
+        }
+
+
+def basin_stability(
+    system: System,
+    x: str,
+    x_range: tuple[float, float],
+    y: str,
+    y_range: tuple[float, float],
+    *,
+    samples: int = 100,
+    seed: int = 0,
+    t_end: float = 500.0,
+    tol: float = 1e-6,
+    max_periods: int = 8,
+    executor: Executor | None = None,
+) -> Stability:
+    """Each attractor's share of ``samples`` uniform random starts in a box of two
+    states (the others as `basins` sets them), with its standard error.
+
+    Parameters
+    ----------
+    system, x, x_range, y, y_range, t_end, tol, max_periods, executor
+        As `basins`.
+    samples : int
+        Starts, >= 1.
+    seed : int
+        Of the random starts (numpy's default generator): the same starts for the same
+        seed, whatever the system.
+
+    Returns
+    -------
+    Stability
+
+    See Also
+    --------
+    basins : the same on a grid.
+
+    Examples
+    --------
+    >>> from beltmdsm.oscillator import System
+    >>> s = System("belt_1dof", friction="stribeck", Vb=1.5)
+    >>> r = basin_stability(s, "x", (0.0, 4.0), "x_dot", (-3.0, 1.0), samples=3)
+    >>> [(a.kind, float(p)) for a, p in zip(r.attractors, r.fractions)]
+    [('stick_slip', 1.0)]
+    """
+    _check_plane(system, x, x_range, y, y_range)
+    if not (isinstance(samples, int) and samples >= 1):
+        raise ValueError(f"samples={samples!r}: not a whole number >= 1")
+    draws = np.random.default_rng(seed).random((samples, 2))
+    base = _base(system)
+    ix, iy = system.states.index(x), system.states.index(y)
+    starts = []
+    for u, v in draws:
+        s = base.copy()
+        s[ix] = x_range[0] + u * (x_range[1] - x_range[0])
+        s[iy] = y_range[0] + v * (y_range[1] - y_range[0])
+        starts.append(s)
+    found = run_starts(system, starts, t_end, tol, max_periods, executor)
+    merged, labels = merge(found, tol)
+    p = np.array([np.mean(labels == i) for i in range(len(merged))])
+    errors = np.sqrt(p * (1.0 - p) / samples)
+    return Stability(
+        system, x, y, (tuple(x_range), tuple(y_range)), samples, merged, p, errors,
+        float(np.mean(labels < 0)),
+    )  # fmt: skip

@@ -24,6 +24,7 @@ from ..flags import (
     solver_parent,
     swept,
 )
+from ..generic_studies import sweep_values
 from ..models import named, other_params
 from ..running import register
 
@@ -76,33 +77,12 @@ def add(commands, name: str) -> None:
     sub.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
 
 
-def _values(args):
-    import numpy as np
-
-    from ...studies.sweep import linear_values
-
-    if args.values:
-        grid = (("--from", args.start), ("--to", args.stop), ("--step", args.step))
-        given = [flag for flag, value in grid if value is not None]
-        if given:
-            args.parser.error(f"argument --values: give --values or {', '.join(given)}, not both")
-        return np.asarray(args.values)
-    if None in (args.start, args.stop, args.step):
-        args.parser.error("give --from, --to and --step, or --values")
-    if args.stop < args.start:
-        args.parser.error(f"argument --to: must be >= --from ({args.start:g}); got {args.stop:g}")
-    try:
-        return linear_values(args.start, args.stop, args.step)
-    except ValueError as err:
-        args.parser.error(f"argument --step: {err}")
-
-
 def run(args: argparse.Namespace) -> int:
     from ...studies.sweep import sweep
     from ...studies.table import table_to_csv
     from .. import text
 
-    values = _values(args)
+    values = sweep_values(args)
     if args.continuation and (args.scheduler or (args.jobs or 1) > 1):
         args.parser.error(
             "argument --continue: a continued sweep runs its points one after "
