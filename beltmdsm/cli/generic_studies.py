@@ -16,7 +16,10 @@ import numpy as np
 from .generic import _head, _print
 from .models import describe, refuse_flags, system_from
 
-__all__ = ["sweep", "lyapunov", "basins", "STATES", "sweep_values"]
+__all__ = [
+    "sweep", "lyapunov", "basins", "responses", "coexistence", "basin_stability", "STATES",
+    "sweep_values",
+]  # fmt: skip
 
 
 def _states() -> tuple[str, ...]:
@@ -35,7 +38,7 @@ STATES = _states()
 def sweep_values(args):
     """The values of ``--from/--to/--step`` or ``--values`` (a bad grid: exit 2)."""
 
-    from ...studies.sweep import linear_values
+    from ..studies.sweep import linear_values
 
     if args.values:
         grid = (("--from", args.start), ("--to", args.stop), ("--step", args.step))
@@ -161,4 +164,119 @@ def basins(args: argparse.Namespace) -> int:
     if unresolved:
         lines.append(f"  unresolved: {unresolved:.1%} of the starts")
     _print(args, result.as_dict(), lines)
+    return 0
+
+
+def _found_lines(found) -> list[str]:
+    lines = []
+    for f in found.found:
+        a, o = f.attractor, f.orbit
+        head = f"  {a.kind} ({a.periods}), {f.share:.0%} of the starts"
+        if o is None:
+            lines.append(f"{head}: shooting failed: {f.failure}")
+        elif hasattr(o, "multipliers"):
+            mults = ", ".join(f"{abs(z):.6g}" for z in o.multipliers)
+            word = "stable" if o.stable else "unstable"
+            lines.append(f"{head}: period {o.period:.10g} s, |multipliers| {mults}; {word}")
+        else:
+            lines.append(f"{head}: growth rate {o.growth_rate:.6g}")
+    return lines
+
+
+def responses(args: argparse.Namespace) -> int:
+    """``responses --model NAME``: the stable attractors that runs from a grid of starts
+    land on, each shot exactly with its Floquet multipliers (or eigenvalues)."""
+    from ..oscillator.responses import responses as find
+
+    refuse_flags(args, ("ladder",))
+    system = system_from(args)
+    found = find(system, t_end=args.t_end, limit=args.limit)
+    lines = [_head(system), repr(found), *_found_lines(found)]
+    if found.unresolved:
+        lines.append(f"  unresolved: {found.unresolved:.0%} of the starts")
+    _print(args, found.as_dict(), lines)
+    return 0
+
+
+def coexistence(args: argparse.Namespace) -> int:
+    """``coexistence --model NAME``: the stable attractors at points of ``--param``
+    spaced by about ``--step``, and the ranges where two or more coexist."""
+    from ..studies.coexistence import seed_points
+    from ..oscillator.responses import coexistence as walk
+    from .flags import range_from, swept
+
+    refuse_flags(args, ("png",))
+    name = swept(args)
+    system = system_from(args)
+    if name not in system.params:
+        args.parser.error(
+            f"argument --param: not a parameter of model {system.name!r} "
+            f"({', '.join(system.params)}); got {name}"
+        )
+    lo, hi = range_from(args)
+    try:
+        points = seed_points(lo, hi, args.step)
+    except ValueError as err:
+        args.parser.error(f"argument --step: {err}")
+    result = walk(system, name, np.linspace(lo, hi, points), limit=args.limit)
+    lines = [_head(system), repr(result)]
+    for p in result.points:
+        kinds = ", ".join(
+            f"{f.attractor.kind}({f.attractor.periods})"
+            for f in p.found
+            if f.orbit is not None and f.orbit.stable
+        )
+        lines.append(f"  {name} = {p.system.params[name]:.6g}: {kinds or 'none'}")
+    _print(args, result.as_dict(), lines)
+    return 0
+
+
+def basin_stability(args: argparse.Namespace) -> int:
+    """``basin-stability --model NAME``: at ``--points`` values of ``--param``, each
+    attractor's share of ``--samples`` random starts in the box, with its standard
+    error (the same starts at every value)."""
+    from ..oscillator.basins import basin_stability as shares
+    from .flags import executor_from, range_from
+
+    refuse_flags(args, ("png",))
+    system = system_from(args)
+    if args.param not in system.params:
+        args.parser.error(
+            f"argument --param: not a parameter of model {system.name!r} "
+            f"({', '.join(system.params)}); got {args.param}"
+        )
+    lo, hi = range_from(args)
+    n = len(system.coordinates)
+    x = system.states[0] if args.x == "X1" else args.x
+    y = system.states[n] if args.y == "Y1" else args.y
+    for axis, state in (("x", x), ("y", y)):
+        if state not in system.states:
+            args.parser.error(
+                f"argument --{axis}: not a state of model {system.name!r} "
+                f"({', '.join(system.states)}); got {state}"
+            )
+    rows = []
+    with executor_from(args) as executor:
+        for value in np.linspace(lo, hi, args.points):
+            rows.append(
+                shares(
+                    system.replace(**{args.param: float(value)}), x, (args.x_from, args.x_to),
+                    y, (args.y_from, args.y_to), samples=args.samples, seed=args.seed,
+                    executor=None if executor in (None, "serial") else executor,
+                )
+            )  # fmt: skip
+    out = {
+        **describe(system),
+        "param": args.param,
+        "values": [r.system.params[args.param] for r in rows],
+        "points": [r.as_dict() for r in rows],
+    }
+    lines = [_head(system)]
+    for r in rows:
+        cells = ", ".join(
+            f"{a.kind}({a.periods}) {p:.4f} +- {e:.4f}"
+            for a, p, e in zip(r.attractors, r.fractions, r.errors)
+        )
+        lines.append(f"  {args.param} = {r.system.params[args.param]:.6g}: {cells}")
+    _print(args, out, lines)
     return 0

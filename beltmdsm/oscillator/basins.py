@@ -42,6 +42,8 @@ __all__ = [
 
 #: Within this of stable steady sliding (relative), a start has landed on it.
 _NEAR = 1e-4
+#: A slip cycle's range of its first state agrees over two windows to this (relative).
+_SAME = 1e-3
 
 
 @dataclass(frozen=True)
@@ -164,13 +166,22 @@ def land(
             state = tuple(float(v) for v in eq.state)
             return BasinAttractor("steady_sliding", 1, state, state)
     if not ends or ends[-1][0] < t - 5 * chunk:
-        # no stick for a while: a slip cycle, named by the range of the first state
-        samples: list = []
-        flow(system, t, y, t + 5 * chunk, mode=mode, dt=0.01, samples=samples)
-        first = np.concatenate([ys[:, 0] for _, ys, _ in samples])
-        lo, hi = round(float(first.min()), 3), round(float(first.max()), 3)
-        if hi - lo > 10 * tol * (1.0 + abs(hi)):
-            return BasinAttractor("slip_cycle", 1, (lo, hi), tuple(map(float, y)))
+        # no stick for a while: a slip cycle where the range of the first state is the
+        # same over two windows (1e-3), named by it; else still on its way: unresolved
+        spans = []
+        for _ in range(2):
+            samples: list = []
+            end = flow(system, t, y, t + 5 * chunk, mode=mode, dt=0.01, samples=samples)
+            first = np.concatenate([ys[:, 0] for _, ys, _ in samples])
+            spans.append((float(first.min()), float(first.max())))
+            t, y, mode = end.t, end.y, end.mode
+        (lo0, hi0), (lo, hi) = spans
+        width = hi - lo
+        steady = max(abs(lo - lo0), abs(hi - hi0)) <= _SAME * max(width, tol)
+        if steady and width > 10 * tol * (1.0 + abs(hi)) and not end.switches:
+            return BasinAttractor(
+                "slip_cycle", 1, (round(lo, 3), round(hi, 3)), tuple(map(float, y))
+            )
     return BasinAttractor("unresolved", 0, ())
 
 

@@ -133,7 +133,12 @@ def _shoot(system: System, a: BasinAttractor):
         return steady_sliding(system)
     if a.kind == "periodic":
         return forced_response(system, np.array(a.seed), periods=a.periods, settle=0.0)
-    return self_excited_cycle(system, np.array(a.seed), settle=50.0)
+    cycle = self_excited_cycle(system, np.array(a.seed), settle=50.0)
+    if (cycle.kind == "slip") != (a.kind == "slip_cycle"):
+        raise NoPeriodicResponse(
+            f"the shooting from the {a.kind} found by the runs converged on a {cycle.kind} cycle"
+        )
+    return cycle
 
 
 def responses(

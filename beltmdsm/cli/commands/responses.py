@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from .. import generic_studies
 from ..flags import (
     NONNEGATIVE,
     POSITIVE,
@@ -23,6 +24,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), lock_parent(), json_parent()],
+        models=generic_studies.responses,
         help="every periodic response found at one point, locked ones included",
         description="The periodic responses of Eq. (4) at one point: the one of the "
         "excitation period T and every one locked at k T (k up to --limit), found from "
