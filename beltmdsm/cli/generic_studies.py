@@ -201,8 +201,8 @@ def responses(args: argparse.Namespace) -> int:
 def coexistence(args: argparse.Namespace) -> int:
     """``coexistence --model NAME``: the stable attractors at points of ``--param``
     spaced by about ``--step``, and the ranges where two or more coexist."""
-    from ..studies.coexistence import seed_points
     from ..oscillator.responses import coexistence as walk
+    from ..studies.coexistence import seed_points
     from .flags import range_from, swept
 
     refuse_flags(args, ("png",))
