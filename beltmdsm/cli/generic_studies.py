@@ -35,7 +35,7 @@ def _states() -> tuple[str, ...]:
 STATES = _states()
 
 
-def sweep_values(args):
+def sweep_values(args: argparse.Namespace) -> np.ndarray:
     """The values of ``--from/--to/--step`` or ``--values`` (a bad grid: exit 2)."""
 
     from ..studies.sweep import linear_values

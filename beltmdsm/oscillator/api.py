@@ -10,11 +10,22 @@ the paper's integrators, a state the model lacks) it refuses in one line.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+from numpy.typing import ArrayLike
 
 from ..errors import Unsupported
 from ..model import Model
 from .system import System
+
+if TYPE_CHECKING:
+    from ..settings import SolverSettings
+    from .basins import Basins
+    from .cycles import Cycle
+    from .forced import Response
+    from .hybrid import Trajectory
+    from .lyapunov import Spectrum
+    from .sweep import Sweep
 
 __all__ = ["system_of", "simulate", "periodic_response", "cycle", "lyapunov", "sweep", "basins"]
 
@@ -34,7 +45,7 @@ def _paper_keywords(analysis: str, model: Model, **given: Any) -> None:
             )
 
 
-def simulate(model: Model, settings, y0):
+def simulate(model: Model, settings: SolverSettings, y0: ArrayLike | None) -> Trajectory:
     """`beltmdsm.simulate` of another model: `beltmdsm.oscillator.simulate`."""
     from .hybrid import simulate as run
 
@@ -49,7 +60,9 @@ def simulate(model: Model, settings, y0):
     )  # fmt: skip
 
 
-def periodic_response(model: Model, guess, periods: int, **paper: Any):
+def periodic_response(
+    model: Model, guess: ArrayLike | None, periods: int, **paper: Any
+) -> Response | Cycle:
     """`beltmdsm.floquet` / `periodic_response` of another model: the forced response
     of ``periods`` excitation periods, or without excitation its self-excited cycle
     (both carry their Floquet multipliers)."""
@@ -68,21 +81,25 @@ def periodic_response(model: Model, guess, periods: int, **paper: Any):
     return forced_response(system, guess, periods=periods)
 
 
-def cycle(model: Model, guess, period, max_iter: int):
+def cycle(model: Model, guess: ArrayLike | None, period: float | None, max_iter: int) -> Cycle:
     """`beltmdsm.cycle` of another model: `beltmdsm.oscillator.self_excited_cycle`."""
     from .cycles import self_excited_cycle
 
     return self_excited_cycle(system_of(model), guess, period, max_iter=max_iter)
 
 
-def lyapunov(model: Model, y0, t_end: float, t_transient, rtol: float):
+def lyapunov(
+    model: Model, y0: ArrayLike | None, t_end: float, t_transient: float | None, rtol: float
+) -> Spectrum:
     """`beltmdsm.lyapunov` of another model: `beltmdsm.oscillator.lyapunov.lyapunov`."""
     from .lyapunov import lyapunov as spectrum
 
     return spectrum(system_of(model), y0, t_end=t_end, t_transient=t_transient, rtol=rtol)
 
 
-def sweep(model: Model, param: str, values, settings, executor):
+def sweep(
+    model: Model, param: str, values: ArrayLike, settings: SolverSettings, executor: Any
+) -> Sweep:
     """`beltmdsm.sweep` of another model: `beltmdsm.oscillator.sweep.sweep` (an
     executor that is a `concurrent.futures.Executor` runs the points)."""
     from .sweep import sweep as run
@@ -94,7 +111,18 @@ def sweep(model: Model, param: str, values, settings, executor):
     )  # fmt: skip
 
 
-def basins(model: Model, x, x_lo, x_hi, y, y_lo, y_hi, points: int, executor, t_end: float):
+def basins(
+    model: Model,
+    x: str,
+    x_lo: float | None,
+    x_hi: float | None,
+    y: str,
+    y_lo: float | None,
+    y_hi: float | None,
+    points: int,
+    executor: Any,
+    t_end: float,
+) -> Basins:
     """`beltmdsm.basins` of another model: `beltmdsm.oscillator.basins.basins`, on the
     plane of two of its states (the paper's defaults X1, Y1 read as the first
     coordinate and its rate)."""

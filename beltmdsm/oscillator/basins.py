@@ -29,7 +29,7 @@ from concurrent.futures import Executor
 from dataclasses import dataclass, field
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from .equilibria import steady_sliding
 from .hybrid import flow
@@ -138,7 +138,7 @@ def _least(states) -> tuple[float, ...]:
 
 
 def land(
-    system: System, y0, *, t_end: float = 500.0, tol: float = 1e-6, max_periods: int = 8
+    system: System, y0: ArrayLike, *, t_end: float = 500.0, tol: float = 1e-6, max_periods: int = 8
 ) -> BasinAttractor:
     """The attractor the run from ``y0`` lands on (module docstring)."""
     y0 = np.asarray(y0, dtype=float)
@@ -296,7 +296,14 @@ def _base(system) -> NDArray[np.float64]:
     return np.zeros(len(system.states))
 
 
-def run_starts(system, starts, t_end, tol, max_periods, executor) -> list[BasinAttractor]:
+def run_starts(
+    system: System,
+    starts: list[NDArray[np.float64]],
+    t_end: float,
+    tol: float,
+    max_periods: int,
+    executor: Executor | None,
+) -> list[BasinAttractor]:
     """`land` of every start, here or on ``executor`` (each worker rebuilds the
     `System` from plain values: a `System` holds a module)."""
     args = (system.name, system.friction, dict(system.params))
@@ -306,7 +313,9 @@ def run_starts(system, starts, t_end, tol, max_periods, executor) -> list[BasinA
     return list(executor.map(_start, *zip(*jobs)))
 
 
-def merge(found, tol) -> tuple[list[BasinAttractor], NDArray[np.int64]]:
+def merge(
+    found: list[BasinAttractor], tol: float
+) -> tuple[list[BasinAttractor], NDArray[np.int64]]:
     """The distinct attractors of ``found``, sorted by kind and state, and each start's
     index into them (-1: unresolved). Two representatives within ``100 tol`` of each
     other are one attractor (found from two starts)."""

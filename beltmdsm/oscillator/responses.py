@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from concurrent.futures import Executor
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -251,7 +252,7 @@ def _stable(found: Found) -> bool:
     return found.orbit is not None and bool(found.orbit.stable)
 
 
-def coexistence(system: System, param: str, values: ArrayLike, **options) -> Coexistence:
+def coexistence(system: System, param: str, values: ArrayLike, **options: Any) -> Coexistence:
     """`responses` at each value of ``param``, and the ranges of values where two or
     more stable attractors coexist (sampled at the values).
 
