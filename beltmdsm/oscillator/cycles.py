@@ -472,6 +472,8 @@ def stick_onset(
         if abs(good[-1][1]) <= tol * (1.0 + np.abs(c.state).max()):
             return c
         (v0, s0, _), (v1, s1, _) = good[-2], good[-1]
+        if abs(v1 - v0) <= _BRACKET * (1.0 + abs(v1)):
+            return c  # the secant moves below the parameter's resolution: at the onset
         value = v1 - s1 * (v1 - v0) / (s1 - s0)
     raise NoPeriodicResponse(
         f"{cycle.system!r}: no stick onset in {parameter} found in {max_iter} steps"

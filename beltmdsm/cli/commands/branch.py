@@ -18,7 +18,7 @@ from ..flags import (
     range_flags,
     range_from,
 )
-from ..models import named
+from ..models import named, other_params
 from ..running import register
 
 
@@ -40,7 +40,10 @@ def add(commands, name: str) -> None:
         "(beltmdsm/cycles/branch.py); no start value is needed.",
     )
     sub.add_argument(
-        "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter continued in"
+        "--param",
+        required=True,
+        choices=(*MODEL_PARAMETERS, *other_params()),
+        help="the parameter continued in (of --model's parameters)",
     )
     range_flags(sub)
     sub.add_argument(

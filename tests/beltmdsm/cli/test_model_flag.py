@@ -43,6 +43,15 @@ def test_belt_1dof_hopf_point_is_the_closed_form():
     )
     assert out["model"] == "belt_1dof" and out["states"] == ["x", "x_dot"]
     assert out["hopf_points"] == pytest.approx([typed], abs=1e-10)
+    # the cycles born there: unstable pure slip (subcritical) up to the stick onset,
+    # docs/modelling.md's 2.900393 (checked against the paper's model in
+    # tests/beltmdsm/oscillator/test_oscillator_cycles.py), where the cycle grazes v_r = 0
+    (born,) = out["cycle_branches"]
+    assert born["criticality"] == "subcritical" and born["side"] == 1
+    assert born["stick_onset"] == pytest.approx(2.900393, abs=1e-6)
+    last = born["cycles"][-1]
+    assert last["state"]["x_dot"] == pytest.approx(born["stick_onset"], abs=1e-9)
+    assert all(not c["stable"] for c in born["cycles"])
 
 
 def test_belt_1dof_stick_slip_cycle_is_the_closed_form():
