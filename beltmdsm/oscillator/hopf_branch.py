@@ -53,6 +53,16 @@ class HopfBranch:
         The grazing cycle (``onset.system.params[param]`` the onset of stick).
     failure : str
         Why the branch or its onset was not found, if so.
+
+    See Also
+    --------
+    hopf_branch : makes it.
+
+    Examples
+    --------
+    >>> b = HopfBranch("mu_s", 0.63375, 0, failure="no pure-slip cycle found near it")
+    >>> b.criticality, b.onset is None, b.failure
+    ('', True, 'no pure-slip cycle found near it')
     """
 
     param: str
