@@ -145,10 +145,11 @@ def hopf_branch(system: System, param: str, hopf: float, span: float) -> HopfBra
 
     Examples
     --------
-    >>> from beltmdsm.oscillator import System
     The subcritical branch of the Stribeck belt (about 30 s: each cycle is shot with
-    its variational equations in Python; tests/beltmdsm/oscillator/
-    test_oscillator_studies.py runs it):
+    its variational equations in Python; ``branch --model belt_1dof`` in
+    tests/beltmdsm/cli/test_model_flag.py runs it):
+
+    >>> from beltmdsm.oscillator import System
 
     >>> b = hopf_branch(System("belt_1dof", friction="stribeck"), "Vb", 1.9957202, 4.5)
     ... # doctest: +SKIP
