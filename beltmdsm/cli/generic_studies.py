@@ -56,10 +56,39 @@ def sweep_values(args: argparse.Namespace) -> np.ndarray:
         args.parser.error(f"argument --step: {err}")
 
 
+class DiskCache:
+    """A generic sweep's rows on the sweeps' disk cache (beltmdsm/studies/cache.py: one
+    checked JSON file per point, named by the SHA-256 of its identity, the package's
+    version and its code), for `beltmdsm.oscillator.sweep.sweep`'s ``cache``."""
+
+    def __init__(self, folder) -> None:
+        from pathlib import Path
+
+        self.folder = Path(folder)
+
+    def _path(self, ident: dict):
+        from ..studies.cache import cache_key
+
+        return self.folder / f"{cache_key({'generic': ident})}.json"
+
+    def get(self, ident: dict) -> dict | None:
+        from ..studies.cache import read_cached
+
+        row, _ = read_cached(self._path(ident), {"generic": ident}, ("regime",))
+        return row
+
+    def put(self, ident: dict, row: dict) -> None:
+        from ..studies.cache import write_cached
+
+        self.folder.mkdir(parents=True, exist_ok=True)
+        write_cached(self._path(ident), {"generic": ident}, row)
+
+
 def sweep(args: argparse.Namespace) -> int:
     """``sweep --model NAME``: a run per value of ``--param`` and what it settles on."""
     from ..oscillator.sweep import sweep as run
-    from .flags import executor_from, swept
+    from ..studies.cache import default_cache_dir
+    from .flags import cache_dir_from, executor_from, swept
 
     refuse_flags(args, ("continuation", "modulation", "solver", "on_contact_loss"))
     name = swept(args)
@@ -70,16 +99,23 @@ def sweep(args: argparse.Namespace) -> int:
             f"({', '.join(system.params)}); got {name}"
         )
     values = sweep_values(args)
+    folder = cache_dir_from(args)
+    if folder == "default":
+        folder = default_cache_dir()
     with executor_from(args) as executor:
         result = run(
             system, name, values, t_end=args.t_end, t_discard=args.t_discard, dt=args.dt,
             rtol=args.rtol, atol=args.atol,
             executor=None if executor in (None, "serial") else executor,
+            cache=None if folder is None else DiskCache(folder),
         )  # fmt: skip
     if args.out:
         result.to_csv(args.out)
     out = {**result.as_dict(), **({"saved": args.out} if args.out else {})}
-    lines = [_head(system), f"sweep of {name} over {len(result.rows)} values:"]
+    lines = [
+        _head(system),
+        f"sweep of {name} over {len(result.rows)} values ({result.n_cached} from the cache):",
+    ]
     for row in result.rows:
         ranges = ", ".join(
             f"{s} in [{row[f'{s}_min']:.6g}, {row[f'{s}_max']:.6g}]" for s in system.states

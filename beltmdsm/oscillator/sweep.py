@@ -15,6 +15,7 @@ import csv
 import os
 from concurrent.futures import Executor
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -22,13 +23,21 @@ from numpy.typing import ArrayLike
 from .hybrid import simulate
 from .system import STICK, System
 
-__all__ = ["Sweep", "sweep", "REGIMES"]
+__all__ = ["Sweep", "sweep", "REGIMES", "Cache"]
 
 #: What a run settles on, as a row names it.
 REGIMES = ("steady_sliding", "slip", "slip_reversal", "stick_slip")
 #: A state whose range over the kept window is below this, relative to ``1 + |state|``,
 #: is still (steady sliding).
 _STILL = 1e-6
+
+
+class Cache(Protocol):
+    """Where rows are kept between sweeps, by their point's identity."""
+
+    def get(self, ident: dict) -> dict | None: ...
+
+    def put(self, ident: dict, row: dict) -> None: ...
 
 
 @dataclass(repr=False)
@@ -45,6 +54,8 @@ class Sweep:
         ``reversals`` after ``t_discard``, ``<state>_min``/``<state>_max`` over the
         kept window and ``<state>_final`` for every state of the model.
     t_end, t_discard, dt : float
+    n_cached : int
+        Rows read from the cache.
 
     See Also
     --------
@@ -57,6 +68,7 @@ class Sweep:
     t_end: float
     t_discard: float
     dt: float
+    n_cached: int = 0
 
     @property
     def columns(self) -> list[str]:
@@ -80,6 +92,7 @@ class Sweep:
             "dt": self.dt,
             "rows": self.rows,
             "n_points": len(self.rows),
+            "n_cached": self.n_cached,
         }
 
     def to_csv(self, path: os.PathLike | str) -> None:
@@ -107,6 +120,7 @@ def sweep(
     executor: Executor | None = None,
     rtol: float = 1e-10,
     atol: float = 1e-10,
+    cache: Cache | None = None,
 ) -> Sweep:
     """A run of ``system`` for each value of ``param`` (module docstring).
 
@@ -127,6 +141,10 @@ def sweep(
     executor : concurrent.futures.Executor, optional
         Where the points run (None: here, one after another).
     rtol, atol : float
+    cache : Cache, optional
+        Rows already computed, by the point's identity (its model, law, parameters and
+        settings): ``get`` each point before running it and ``put`` each new row (the
+        command line passes one on the sweeps' disk cache, beltmdsm/studies/cache.py).
 
     Returns
     -------
@@ -164,14 +182,30 @@ def sweep(
     systems = [system.replace(**{param: float(v)}) for v in values]  # checked here, once
     jobs = [
         (s.name, s.friction, dict(s.params), param, float(t_end), float(t_discard), float(dt),
-         None if y0 is None else np.asarray(y0, dtype=float), rtol, atol)
+         None if y0 is None else [float(v) for v in np.asarray(y0, dtype=float)], rtol, atol)
         for s in systems
     ]  # fmt: skip
+    rows: list[dict | None] = [None] * len(jobs)
+    if cache is not None:
+        rows = [cache.get(_identity(job)) for job in jobs]
+    todo = [i for i, row in enumerate(rows) if row is None]
     if executor is None:
-        rows = [_row(*job) for job in jobs]
+        done = [_row(*jobs[i]) for i in todo]
     else:
-        rows = list(executor.map(_row, *zip(*jobs)))
-    return Sweep(systems[0], param, rows, float(t_end), float(t_discard), float(dt))
+        done = list(executor.map(_row, *zip(*(jobs[i] for i in todo)))) if todo else []
+    for i, row in zip(todo, done):
+        rows[i] = row
+        if cache is not None:
+            cache.put(_identity(jobs[i]), row)
+    result = Sweep(systems[0], param, rows, float(t_end), float(t_discard), float(dt))
+    result.n_cached = len(jobs) - len(todo)
+    return result
+
+
+def _identity(job) -> dict:
+    """What a point's row depends on, as plain JSON values (the cache's key)."""
+    names = ("model", "friction", "params", "param", "t_end", "t_discard", "dt", "y0")
+    return {**dict(zip(names, job)), "rtol": job[8], "atol": job[9]}
 
 
 def _row(name, friction, params, param, t_end, t_discard, dt, y0, rtol, atol) -> dict:

@@ -47,6 +47,16 @@ def test_sweep_of_belt_1dof_meets_the_undamped_stick_slip_cycle(tmp_path):
     assert float(rows[1]["x_max"]) == out["rows"][1]["x_max"]
 
 
+def test_sweep_of_another_model_reads_its_points_back_from_the_cache(tmp_path):
+    argv = ["sweep", "--model", "belt_1dof", "--param", "Vb", "--values", "1", "2"]
+    argv += ["--t-end", "20", "--cache-dir", str(tmp_path)]
+    first, again = _json(*argv), _json(*argv)
+    assert (first["n_cached"], again["n_cached"]) == (0, 2)
+    assert again["rows"] == first["rows"] and len(list(tmp_path.glob("*.json"))) == 2
+    # another law is another point
+    assert _json(*argv, "--friction", "stribeck")["n_cached"] == 0
+
+
 def test_sweep_of_hoffmann_is_named_by_its_states():
     done = _cli(
         "sweep", "--model", "hoffmann", "--param", "k_c", "--values", "1", "2", "--t-end", "20"
