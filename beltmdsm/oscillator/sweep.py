@@ -23,7 +23,7 @@ from numpy.typing import ArrayLike
 from .hybrid import simulate
 from .system import STICK, System
 
-__all__ = ["Sweep", "sweep", "REGIMES", "Cache"]
+__all__ = ["Sweep", "sweep", "REGIMES"]
 
 #: What a run settles on, as a row names it.
 REGIMES = ("steady_sliding", "slip", "slip_reversal", "stick_slip")
@@ -32,7 +32,7 @@ REGIMES = ("steady_sliding", "slip", "slip_reversal", "stick_slip")
 _STILL = 1e-6
 
 
-class Cache(Protocol):
+class _Cache(Protocol):
     """Where rows are kept between sweeps, by their point's identity."""
 
     def get(self, ident: dict) -> dict | None: ...
@@ -120,7 +120,7 @@ def sweep(
     executor: Executor | None = None,
     rtol: float = 1e-10,
     atol: float = 1e-10,
-    cache: Cache | None = None,
+    cache: _Cache | None = None,
 ) -> Sweep:
     """A run of ``system`` for each value of ``param`` (module docstring).
 
@@ -141,7 +141,7 @@ def sweep(
     executor : concurrent.futures.Executor, optional
         Where the points run (None: here, one after another).
     rtol, atol : float
-    cache : Cache, optional
+    cache : object with get(ident) and put(ident, row), optional
         Rows already computed, by the point's identity (its model, law, parameters and
         settings): ``get`` each point before running it and ``put`` each new row (the
         command line passes one on the sweeps' disk cache, beltmdsm/studies/cache.py).
