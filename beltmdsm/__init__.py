@@ -42,8 +42,13 @@ Subpackages, in the order of their layers (each imports only those before it):
 and Hopf points, cycles and forced responses with Floquet multipliers; issue 39),
 `beltmdsm.prediction` (the paper's and the consistent MDSM's predictions),
 `beltmdsm.attractors` (Lyapunov spectra, the classification of what a run settles on),
-`beltmdsm.studies` (sweeps and their cache, responses at a point, coexistence, basins,
-validation), `beltmdsm.cli` (the command line); beside them `beltmdsm.errors` (the failures) and
+`beltmdsm.starts` (where runs and the search for responses start),
+`beltmdsm.multistability` (the responses at a point, where stable ones coexist),
+`beltmdsm.batch` (sweeps, their rows, table, cache and process pool),
+`beltmdsm.basin` (basins of attraction, basin stability),
+`beltmdsm.paper_reports` (the validation of the paper's figures, the law comparison,
+the contraction evidence), `beltmdsm.cli` (the command line); beside them
+`beltmdsm.errors` (the failures) and
 `beltmdsm.plotting` (the figures of the results, matplotlib imported when drawing).
 The names below are imported when first used, so
 that ``import beltmdsm`` and the command line start fast; a type checker reads them
@@ -54,10 +59,13 @@ from importlib import import_module
 from typing import TYPE_CHECKING
 
 from ._layout import map_siblings
+from ._moved import install as install_old_paths
 
 # beltmdsm.generated and beltmdsm.derive: inside an installed package, beside it in a
 # source checkout (beltmdsm/_layout.py)
 map_siblings(__name__, __path__[0])
+# the old paths of the modules that moved (beltmdsm.studies.sweep, ...): the same modules
+install_old_paths()
 
 #: Each public name and the module that holds it.
 _API = {
@@ -66,37 +74,37 @@ _API = {
     "simulate": "simulation",
     "Simulation": "simulation",
     "Summary": "run.summary",
-    "sweep": "studies.sweep",
-    "Sweep": "studies.sweep",
+    "sweep": "batch.sweep",
+    "Sweep": "batch.sweep",
     "periodic_response": "periodic.shooting",
     "PeriodicResponse": "periodic.response",
     "floquet": "periodic.floquet",
     "Floquet": "periodic.floquet",
-    "periodic_start": "periodic.start",
-    "cycle": "cycles.cycle",
-    "Cycle": "cycles.cycle",
-    "seed_cycle": "cycles.cycle",
+    "periodic_start": "starts",
+    "cycle": "periodic.cycle",
+    "Cycle": "periodic.cycle",
+    "seed_cycle": "periodic.cycle",
     "floquet_band": "continuation.band",
     "Band": "continuation.band_result",
     "Edge": "continuation.band_result",
-    "branch": "continuation.branch",
+    "branch": "branches",
     "Branch": "continuation.branch",
     "floquet_map": "continuation.floquet_map",
     "FloquetMap": "continuation.map_result",
-    "responses": "studies.responses",
-    "ResponseSet": "studies.responses",
-    "coexistence": "studies.coexistence",
-    "Coexistence": "studies.coexistence",
+    "responses": "multistability.responses",
+    "ResponseSet": "multistability.responses",
+    "coexistence": "multistability.coexistence",
+    "Coexistence": "multistability.coexistence",
     "lyapunov": "attractors.lyapunov",
     "Lyapunov": "attractors.lyapunov",
     "classify": "attractors.classification",
     "Attractor": "attractors.classification",
-    "basins": "studies.basins",
-    "Basins": "studies.basins",
+    "basins": "basin.basins",
+    "Basins": "basin.basins",
     "predict": "prediction.prediction",
     "Prediction": "prediction.prediction",
-    "validate": "studies.validation",
-    "Validation": "studies.validation",
+    "validate": "paper_reports.validation",
+    "Validation": "paper_reports.validation",
     "BeltmdsmError": "errors",
     "Refused": "errors",
     "Unsupported": "errors",
@@ -185,5 +193,5 @@ if not TYPE_CHECKING:  # the stub has none: to a type checker a misspelt name is
 
 def __dir__() -> list[str]:
     # the public names only: not the helpers this file imports (TYPE_CHECKING,
-    # import_module, map_siblings) nor the subpackages loaded so far
+    # import_module, map_siblings, install_old_paths) nor the subpackages loaded so far
     return sorted([*__all__, "__version__"])

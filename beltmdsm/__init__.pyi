@@ -7,12 +7,15 @@ layer of beltmdsm (tests/test_layers.py), and these names live in every layer ab
 
 from .attractors.classification import Attractor, classify
 from .attractors.lyapunov import Lyapunov, lyapunov
+from .basin.basins import Basins, basins
+from .batch.sweep import Sweep, sweep
 from .continuation.band import floquet_band
 from .continuation.band_result import Band, Edge
-from .continuation.branch import Branch, branch
+from .branches import branch
+from .continuation.branch import Branch
 from .continuation.floquet_map import floquet_map
 from .continuation.map_result import FloquetMap
-from .cycles.cycle import Cycle, cycle, seed_cycle
+from .periodic.cycle import Cycle, cycle, seed_cycle
 from .errors import (
     BeltmdsmError,
     NoPeriodicResponse,
@@ -21,19 +24,17 @@ from .errors import (
     Unsupported,
 )
 from .model import Model
+from .multistability.coexistence import Coexistence, coexistence
+from .multistability.responses import ResponseSet, responses
+from .paper_reports.validation import Validation, validate
 from .periodic.floquet import Floquet, floquet
 from .periodic.response import PeriodicResponse
 from .periodic.shooting import periodic_response
-from .periodic.start import periodic_start
 from .prediction.prediction import Prediction, predict
 from .run.summary import Summary
 from .settings import SolverSettings
 from .simulation import Simulation, simulate
-from .studies.basins import Basins, basins
-from .studies.coexistence import Coexistence, coexistence
-from .studies.responses import ResponseSet, responses
-from .studies.sweep import Sweep, sweep
-from .studies.validation import Validation, validate
+from .starts import periodic_start
 
 __version__: str
 __all__ = [

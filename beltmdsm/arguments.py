@@ -369,7 +369,7 @@ def executor_of(value: Any) -> Any:
 
     See Also
     --------
-    beltmdsm.studies.pool.process_pool : The pool that None stands for.
+    beltmdsm.batch.pool.process_pool : The pool that None stands for.
 
     Examples
     --------
@@ -406,7 +406,7 @@ def cache_dir_of(value: Any) -> Any:
 
     See Also
     --------
-    beltmdsm.studies.cache.default_cache_dir : Where ``"default"`` is.
+    beltmdsm.batch.cache.default_cache_dir : Where ``"default"`` is.
 
     Examples
     --------

@@ -13,6 +13,8 @@ form one hierarchy under `BeltmdsmError`, and each keeps its builtin base, so th
   line can name its flags.
 * `Unsupported` (a `ValueError`): an analysis that the chosen laws do not allow,
   naming the law and the missing property.
+* `NoHopfPoint` (a `ValueError`): no pair of steady sliding's eigenvalues crosses the
+  imaginary axis in the range given.
 * `StepTooSmall` (an `ArithmeticError`): an integrator cannot go on at the
   tolerances given.
 * `NoPeriodicResponse` (a `RuntimeError`): no periodic response is found;
@@ -22,16 +24,26 @@ form one hierarchy under `BeltmdsmError`, and each keeps its builtin base, so th
 The command line reports each in one line, exit status 2 (`beltmdsm.cli.flags`).
 `NotApplicable` (a `ValueError`: the superposition's closed forms do not exist for a
 model) and `NoEdge` (a `RuntimeError`: no margin closes where a response is lost) are
-raised and caught inside the package; they are here so that every failure has one home.
+and `NoPrediction` (a `ValueError`: an analysis that gives no prediction) are raised and
+caught inside the package; they are here so that every failure has one home.
 
-`BeltmdsmError` and `Unsupported` are defined in ``beltmdsm.generated._support`` and re-exported
-here (the same classes): the generated modules raise `Unsupported` and cannot import
-beltmdsm (the layers point derive -> generated -> beltmdsm), and one class of one name
-is what ``except Unsupported`` needs to catch a refusal of either layer. The classes
-are also importable from the modules that raised them before (`beltmdsm.model`,
-`beltmdsm.continuation.edges`, `beltmdsm.integrate.superposition`): the same objects.
+Every class is defined here, and this module imports nothing of beltmdsm (only the
+standard library): it is the lowest layer of the package (tests/test_layers.py), below
+``beltmdsm.generated``, whose modules raise `Unsupported` too and import it from here
+(``beltmdsm.generated._support``, written from derive/codegen/templates/_support.py),
+so that one class of one name catches a refusal of either layer. The classes are also
+importable from the modules that raised them before (`beltmdsm.model`,
+`beltmdsm.continuation.edges`, `beltmdsm.integrate.superposition`,
+`beltmdsm.cycles.hopf`, ``beltmdsm.generated._support``): the same objects.
 `NoPeriodicResponse` is imported from here alone (it was defined in
 ``beltmdsm.periodic.periodmap``, now cut by concept).
+
+Three names that sound alike are three things: `Refused` (this module: a request
+refused before anything is computed), `NoPrediction` (this module: an analysis of
+`beltmdsm.prediction` that has no answer, caught there and reported as its reason) and
+``beltmdsm.derive.codegen.NoVariant`` (derive/: a variant of a generated function that
+does not exist, written as the table entry ``beltmdsm.generated._support.NoVariant``,
+on which the function raises `Unsupported`).
 
 Examples
 --------
@@ -51,18 +63,113 @@ this analysis: friction='stribeck': dmu/d|Vr| ... the coefficient falls with the
 
 from __future__ import annotations
 
-from beltmdsm.generated._support import BeltmdsmError, Unsupported
-
 __all__ = [
     "BeltmdsmError",
     "Refused",
     "Unsupported",
+    "NoHopfPoint",
+    "NoPrediction",
     "StepTooSmall",
     "NoPeriodicResponse",
     "ShorterPeriod",
     "NotApplicable",
     "NoEdge",
 ]
+
+
+class BeltmdsmError(Exception):
+    """The base of every named failure of beltmdsm and of its generated modules.
+
+    Each failure also keeps its builtin base (`ValueError`, ...), so that an ``except``
+    written for that still catches it.
+
+    See Also
+    --------
+    beltmdsm.errors : the failures, each a subclass of this one.
+
+    Examples
+    --------
+    >>> from beltmdsm.errors import BeltmdsmError, Refused, StepTooSmall, Unsupported
+    >>> all(issubclass(e, BeltmdsmError) for e in (Refused, StepTooSmall, Unsupported))
+    True
+    """
+
+
+class Unsupported(BeltmdsmError, ValueError):
+    """A choice of laws without a property that the function needs.
+
+    The message is one line naming the law and the missing property (from
+    ``beltmdsm.generated.capabilities``): the function refuses rather than computing with
+    the physics of another law. ``beltmdsm.generated._support.Unsupported``, which the
+    generated functions raise, and ``beltmdsm.model.Unsupported`` are this class.
+
+    See Also
+    --------
+    beltmdsm.generated.capabilities : the facts each choice of laws has, and why not.
+
+    Examples
+    --------
+    Stribeck friction has no closed-form critical belt speed (its effective friction
+    is a quadrature), so the closed form refuses and says what to use instead:
+
+    >>> from beltmdsm.errors import Unsupported
+    >>> from beltmdsm.generated import stability
+    >>> from beltmdsm.generated.parameters import BASE
+    >>> params = {**BASE, "mu_k": 0.2, "v_s": 1.0}
+    >>> try:
+    ...     stability.critical_belt_speed(**params, friction="stribeck")
+    ... except Unsupported as err:
+    ...     print(isinstance(err, ValueError), "no closed-form critical belt speed" in str(err))
+    True True
+    """
+
+
+class NoHopfPoint(BeltmdsmError, ValueError):
+    """No complex pair of steady sliding crosses the imaginary axis in the range.
+
+    A `ValueError`: the range given holds no Hopf point to start a branch of
+    self-excited cycles from.
+
+    See Also
+    --------
+    beltmdsm.cycles.hopf.hopf_point : Raises it.
+
+    Examples
+    --------
+    Under Coulomb friction the tangential pair of steady sliding is the damped
+    oscillator's, ``-0.1 +- 0.995 i``, whatever the belt speed: no Hopf point.
+
+    >>> from beltmdsm import Model
+    >>> from beltmdsm.cycles.hopf import hopf_point
+    >>> try:
+    ...     hopf_point(Model(alpha=0.0), "Vb", 0.5, 5.0)
+    ... except NoHopfPoint as refusal:
+    ...     print(isinstance(refusal, BeltmdsmError), str(refusal)[:38])
+    True no Hopf point of steady sliding for Vb
+    """
+
+
+class NoPrediction(BeltmdsmError, ValueError):
+    """An analysis of `beltmdsm.prediction.predict` that gives no prediction, with why.
+
+    Raised and caught inside the package: the analysis' list is then None and the
+    message its reason (``Prediction.reasons``).
+
+    Parameters
+    ----------
+    message : str
+        Why the analysis has no answer (the law and the assumption).
+
+    See Also
+    --------
+    beltmdsm.prediction.prediction.Prediction : ``reasons`` holds the message.
+
+    Examples
+    --------
+    >>> from beltmdsm.errors import NoPrediction
+    >>> issubclass(NoPrediction, ValueError) and issubclass(NoPrediction, BeltmdsmError)
+    True
+    """
 
 
 class Refused(BeltmdsmError, ValueError):
@@ -162,7 +269,7 @@ class NoPeriodicResponse(BeltmdsmError, RuntimeError):
     See Also
     --------
     beltmdsm.periodic.floquet.floquet : raises it where there is no periodic response.
-    beltmdsm.studies.responses.responses : lists the seeds that failed with it.
+    beltmdsm.multistability.responses.responses : lists the seeds that failed with it.
 
     Examples
     --------

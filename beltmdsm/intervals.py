@@ -3,8 +3,8 @@
 Sweeps, predictions and the validation all turn values on a grid into sets of
 intervals and compare such sets. An interval is a pair ``(lo, hi)`` of floats with
 ``lo <= hi``, closed; a set is a list of intervals. The functions here are pure
-and small; `beltmdsm.studies.sweep`, `beltmdsm.prediction`,
-`beltmdsm.studies.validation` and the notebooks' ``_nbutil`` call them.
+and small; `beltmdsm.batch.sweep`, `beltmdsm.prediction`,
+`beltmdsm.paper_reports.validation` and the notebooks' ``_nbutil`` call them.
 
 Runtime layer: numpy only.
 """

@@ -403,12 +403,12 @@ def observable_label(name: str) -> str:
 
 
 def coexistence(result: Any, ax: Any = None, observable: str = "X1'_amplitude") -> Any:
-    """Where stable responses coexist (`beltmdsm.studies.coexistence.Coexistence`): each
+    """Where stable responses coexist (`beltmdsm.multistability.coexistence.Coexistence`): each
     response's branch as in `branch`, one colour each, the coexistence ranges shaded.
 
     Parameters
     ----------
-    result : beltmdsm.studies.coexistence.Coexistence
+    result : beltmdsm.multistability.coexistence.Coexistence
         the responses found and where they coexist
     ax : matplotlib.axes.Axes, optional
         where to draw; new axes where None
@@ -421,7 +421,7 @@ def coexistence(result: Any, ax: Any = None, observable: str = "X1'_amplitude") 
 
     See Also
     --------
-    beltmdsm.studies.coexistence.coexistence
+    beltmdsm.multistability.coexistence.coexistence
 
     Examples
     --------
@@ -430,7 +430,7 @@ def coexistence(result: Any, ax: Any = None, observable: str = "X1'_amplitude") 
     >>> import matplotlib
     >>> matplotlib.use("Agg")
     >>> from beltmdsm import Model
-    >>> from beltmdsm.studies.coexistence import Coexistence
+    >>> from beltmdsm.multistability.coexistence import Coexistence
     >>> ax = coexistence(Coexistence("Vb", 1.0, 2.0, Model(), [], [], [], [], wall_s=0.1))
     >>> len(ax.lines), tuple(float(v) for v in ax.get_xlim())
     (0, (1.0, 2.0))
@@ -513,18 +513,18 @@ def floquet_map(result: Any, ax: Any = None, linear: bool = True) -> Any:
     return ax
 
 
-#: The state's names of `beltmdsm.studies.basins.AXES` (``Y1`` is ``X1'``).
+#: The state's names of `beltmdsm.basin.basins.AXES` (``Y1`` is ``X1'``).
 _BASIN_AXES = {"X1": "X1", "Y1": "X1'", "X2": "X2", "Y2": "X2'"}
 
 
 def basins(result: Any, ax: Any = None) -> Any:
-    """A basin map (`beltmdsm.studies.basins.Basins`): one colour per attractor (grey where
+    """A basin map (`beltmdsm.basin.basins.Basins`): one colour per attractor (grey where
     none was identified), its stroboscopic points marked, a legend with its kind and
     share of the starts.
 
     Parameters
     ----------
-    result : beltmdsm.studies.basins.Basins
+    result : beltmdsm.basin.basins.Basins
         the basin map
     ax : matplotlib.axes.Axes, optional
         where to draw; new axes where None
@@ -535,7 +535,7 @@ def basins(result: Any, ax: Any = None) -> Any:
 
     See Also
     --------
-    beltmdsm.studies.basins.basins
+    beltmdsm.basin.basins.basins
 
     Examples
     --------

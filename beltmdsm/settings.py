@@ -63,7 +63,7 @@ CONTACT_LOSS = ("continue", "stop")
 #: returned arrays, so this caps them near 0.6 GB, and an absurd request fails before
 #: anything is allocated.
 MAX_SAMPLES = 10**7
-#: Most points of one sweep (`beltmdsm.studies.sweep`). A sweep of 10^6 runs of a second
+#: Most points of one sweep (`beltmdsm.batch.sweep`). A sweep of 10^6 runs of a second
 #: each is eleven days on one core; a larger one is a mistake (a step of 1e-15), refused
 #: before anything is allocated.
 MAX_POINTS = 10**6
@@ -113,7 +113,7 @@ class SolverSettings:
     See Also
     --------
     beltmdsm.simulation.simulate : a run with these settings (its keywords are the fields too).
-    beltmdsm.studies.sweep.sweep : runs over a parameter; the settings are in the cache key.
+    beltmdsm.batch.sweep.sweep : runs over a parameter; the settings are in the cache key.
 
     Examples
     --------
@@ -196,7 +196,7 @@ class SolverSettings:
 #: harmonics above about ``2 x 8 - 1.25 = 14.75`` times the fastest line fold into the
 #: omega1 band, and they carry less than 1/14.75^2 = 0.5 % of the fundamental, half
 #: the criterion of a present peak (`beltmdsm.run.summary.PEAK_PRESENT_RATIO`).
-#: Measured over the 16 cases of `beltmdsm.studies.validation.CASES` at Vb = 0.5, 2,
+#: Measured over the 16 cases of `beltmdsm.paper_reports.validation.CASES` at Vb = 0.5, 2,
 #: 4, 6, 10 and 16 m/s (600 s runs): against a reference sampled at dt = 0.005 s, the
 #: omega1 peak moves by at most 32 % of the present threshold at ``pi/dt = 4 w``, 11 %
 #: at 6 w, 5.8 % at 8 w and 3.7 % at 10 w (the rest is the window's own leakage). The
@@ -234,7 +234,7 @@ MAX_VB_POINTS = 10**5
 #: (6 ms where no periodic response is found; measured at the base set over Vb in
 #: [1, 9]), so 10^4 points take 20 s to a minute.
 MAX_BAND_POINTS = 10**4
-#: Most seeds' grid points of `beltmdsm.studies.coexistence.coexistence` (its range
+#: Most seeds' grid points of `beltmdsm.multistability.coexistence.coexistence` (its range
 #: over ``step``): a point is a shooting, a 600 s run from rest and two continued
 #: ladders, 0.5 to 2 s (measured at the base set over Vb in [3, 5]), so 10^3 points
 #: take ten to thirty minutes; a smaller step is a mistake (``--step 1e-6``: millions

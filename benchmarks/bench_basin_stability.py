@@ -10,12 +10,12 @@ ensemble, side by side on the same starts.
   velocity stays within 1e-2 of 0 over t in [450, 500] (saved at 50 points), else the
   stick-slip cycle. Needs the ``bench`` extra (``pip install -e '.[bench]'``: jax,
   diffrax), never a dependency of the package.
-* **ours**: `beltmdsm.studies.basin_stability.basin_stability` on the same model
+* **ours**: `beltmdsm.basin.basin_stability.basin_stability` on the same model
   (``--alpha 0 --omega1 1 --beta1 0.05 --g 1 --friction stribeck --mu_s 1.0 --mu_k 0.5
   --v_s 0.5``, Vb = 1.5): each start decided as soon as it provably lands, by the
   region the computed cycles assign it to, or by sticking, else by a run
   (`beltmdsm.attractors.self_excited`). Timed with the invariant sets computed
-  (`beltmdsm.studies.basin_stability.landscape_of`: the branch of cycles, their orbits,
+  (`beltmdsm.basin.basin_stability.landscape_of`: the branch of cycles, their orbits,
   the stick end's fate) and without (the starts alone, the sets given).
 
 "Cold" is the first call in the process (the JIT compile of the baseline; our kernels
@@ -40,8 +40,8 @@ import time
 
 import numpy as np
 
+from beltmdsm.basin.basin_stability import basin_stability, draw_starts, landscape_of
 from beltmdsm.model import Model
-from beltmdsm.studies.basin_stability import basin_stability, draw_starts, landscape_of
 
 CASE = dict(alpha=0.0, omega1=1.0, beta1=0.05, g=1.0, friction="stribeck", mu_s=1.0, mu_k=0.5,
             v_s=0.5, Vb=1.5)  # fmt: skip

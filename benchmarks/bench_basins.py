@@ -1,11 +1,11 @@
 """Speed of the basin map (issue 31, item 5): starts per second per core against the naive
 loop, and the speed-up of 2 dask workers over 1.
 
-* **ours**: `beltmdsm.studies.basins.basins` on a ``points x points`` grid of (X1, X1')
+* **ours**: `beltmdsm.basin.basins.basins` on a ``points x points`` grid of (X1, X1')
   at the base set, Vb = 3.88, where the T-periodic response and the 4T lock coexist:
   each start iterated on the closed-form period map and stopped once an attractor
   claims it (within a claim radius measured from a pilot of the starts, and closer
-  one cycle later: `beltmdsm.attractors.landing`). Timed whole (the attractors'
+  one cycle later: `beltmdsm.attractors.recurrence`). Timed whole (the attractors'
   seeding included) and its landing alone (the pilot's and the rest's).
 * **naive baseline**: one `beltmdsm.simulate` per start (the default 1000 s run with its
   summary), the attractor told by the omega1 peak of the spectrum (present: the 4T
@@ -34,8 +34,8 @@ import time
 import numpy as np
 
 from beltmdsm import Model, simulate
-from beltmdsm.studies import basins as basins_module
-from beltmdsm.studies.basins import basins
+from beltmdsm.basin import basins as basins_module
+from beltmdsm.basin.basins import basins
 
 MODEL = Model(Vb=3.88)
 PLANE = dict(x_range=(1.0, 9.0), y_range=(-10.5, -2.5), t_end=1000.0)

@@ -5,7 +5,7 @@ laws, completes 1000 s with status `done` in under 10 s on one core."
 
 The cases (`CASES` below):
 
-* `beltmdsm.studies.validation.CASES`: the base set (Fig. 2) and the 15 cases of Figs. 17-21;
+* `beltmdsm.paper_reports.validation.CASES`: the base set (Fig. 2) and the 15 cases of Figs. 17-21;
 * the excitations of Figs. 14-15: ``Omega = 4.5``; ``alpha_t = 2, Omega_t = 6,
   alpha_n = 2, Omega_n = 4``; ``phase_t = pi/2``;
 * the linear contact of Fig. 16: ``contact="kelvin_voigt", omega2 = 0.5, beta2 = 3``.
@@ -54,7 +54,7 @@ RESIDUAL_LIMIT = 1e-8
 
 def cases():
     """``[(name, overrides, contact), ...]``: the paper's figures (module docstring)."""
-    from beltmdsm.studies.validation import CASES
+    from beltmdsm.paper_reports.validation import CASES
 
     out = [(c.name, dict(c.overrides), "hertz_damp") for c in CASES]
     out += [

@@ -75,9 +75,10 @@ them, as ``omega1 = 12 = 3 Omega`` of Fig. 20c). No self-excited vibration (a fr
 oscillation near ``omega1``, with a free phase) and no coexistence of tangential
 responses are possible, for every parameter set with ``beta1 > 0`` and ``Vb > 0``.
 
-The runtime checks this with the simulation (beltmdsm/studies/evidence.py): two runs with one normal
-motion, the energy balance of their difference split by the sign of ``F``, and the
-sign of ``F`` at the reversals of the friction.
+The runtime checks this with the simulation
+(beltmdsm/paper_reports/contraction_evidence.py): two runs with one normal motion, the
+energy balance of their difference split by the sign of ``F``, and the sign of ``F`` at
+the reversals of the friction.
 
 Conditions, each shown by `breaking_conditions` to be needed:
 

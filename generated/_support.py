@@ -5,7 +5,8 @@
 Array shaping of the results, the variant tables and their dispatch (`choose`), the
 accelerated backends (`blockwise`, numba's `compiled` ufuncs and `jit` kernels) and
 the bound kernels (`bind`), and the failures of the generated modules
-(`BeltmdsmError`, `Unsupported`). The argument checks (`beltmdsm.generated._checks`),
+(`BeltmdsmError`, `Unsupported`, imported from `beltmdsm.errors`, where they are
+defined). The argument checks (`beltmdsm.generated._checks`),
 the quadrature (`beltmdsm.generated._quadrature`) and the cache folders
 (`beltmdsm.generated._cache`) are modules of their own, reached through this one.
 
@@ -19,6 +20,11 @@ functions starts without it.
 import math
 
 import numpy
+
+# the root failures, defined in beltmdsm/errors.py (standard library only, the package's
+# lowest layer: tests/test_layers.py) and re-exported here, so that a generated
+# function's refusal and the runtime's are one class
+from beltmdsm.errors import BeltmdsmError, Unsupported
 
 from ._cache import CACHE_NAME, CacheFolderWarning, cache_root, user_cache
 from ._checks import (
@@ -361,57 +367,10 @@ def bind(function, variant, params, backend):
     )
 
 
-class BeltmdsmError(Exception):
-    """The base of every named failure of beltmdsm and of its generated modules.
-
-    Defined here, in the lowest layer that raises one, so that the runtime's failures
-    (``beltmdsm.errors``, which re-exports this class) and the generated modules'
-    `Unsupported` form one hierarchy: ``except beltmdsm.errors.BeltmdsmError`` catches
-    them all. Each failure also keeps its builtin base (`ValueError`, ...).
-
-    See Also
-    --------
-    beltmdsm.errors : the runtime's failures, each a subclass of this one.
-
-    Examples
-    --------
-    >>> from beltmdsm.errors import BeltmdsmError, Refused, StepTooSmall, Unsupported
-    >>> all(issubclass(e, BeltmdsmError) for e in (Refused, StepTooSmall, Unsupported))
-    True
-    """
-
-
-class Unsupported(BeltmdsmError, ValueError):
-    """A choice of laws without a property that the function needs.
-
-    The message is one line naming the law and the missing property (from
-    ``beltmdsm.generated.capabilities``): the function refuses rather than computing with
-    the physics of another law. ``beltmdsm.errors.Unsupported`` (and
-    ``beltmdsm.model.Unsupported``) is this class.
-
-    See Also
-    --------
-    beltmdsm.generated.capabilities : the facts each choice of laws has, and why not.
-
-    Examples
-    --------
-    Stribeck friction has no closed-form critical belt speed (its effective friction
-    is a quadrature), so the closed form refuses and says what to use instead:
-
-    >>> from beltmdsm.errors import Unsupported
-    >>> from beltmdsm.generated import stability
-    >>> from beltmdsm.generated.parameters import BASE
-    >>> params = {**BASE, "mu_k": 0.2, "v_s": 1.0}
-    >>> try:
-    ...     stability.critical_belt_speed(**params, friction="stribeck")
-    ... except Unsupported as err:
-    ...     print(isinstance(err, ValueError), "no closed-form critical belt speed" in str(err))
-    True True
-    """
-
-
-class Refused:
-    """A table entry for option values the function refuses (`Unsupported`), with why."""
+class NoVariant:
+    """A table entry for option values without a variant: the function raises
+    `Unsupported` with ``reason`` (not `beltmdsm.errors.Refused`, a request refused by
+    the runtime)."""
 
     __slots__ = ("reason",)
 
@@ -461,7 +420,7 @@ def choose(function, table, **options):
         given = ", ".join(f"{k}={v!r}" for k, v in options.items())
         raise ValueError(f"{function}(): no variant for {given}")
     entry = table[key]
-    if isinstance(entry, Refused):
+    if isinstance(entry, NoVariant):
         given = ", ".join(f"{k}={v!r}" for k, v in options.items())
         raise Unsupported(f"{function}(): not available for {given}: {entry.reason}")
     return entry
@@ -494,7 +453,7 @@ __all__ = [
     "QUAD_WEIGHTS",
     "BeltmdsmError",
     "Unsupported",
-    "Refused",
+    "NoVariant",
     "cache_root",
     "user_cache",
     "CacheFolderWarning",

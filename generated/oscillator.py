@@ -805,6 +805,6 @@ def _tangential_state__static_kinetic__scalar(tau, X1_0, Y1_0, zf_0, vf_0, z_0, 
 
 _TANGENTIAL_STATE = {
     ('coulomb',): _support.Variant(_tangential_state__coulomb, ('beta1', 'omega1', 'mu_s', ), _tangential_state__coulomb__scalar, None),
-    ('stribeck',): _support.Refused("friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' through Vr = X1' - Vb: the tangential motion of a slip mode is no superposition"),
+    ('stribeck',): _support.NoVariant("friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' through Vr = X1' - Vb: the tangential motion of a slip mode is no superposition"),
     ('static_kinetic',): _support.Variant(_tangential_state__static_kinetic, ('beta1', 'omega1', 'mu_k', ), _tangential_state__static_kinetic__scalar, None),
 }

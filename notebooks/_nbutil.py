@@ -30,9 +30,9 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 from beltmdsm import SolverSettings, simulate  # noqa: E402
+from beltmdsm.batch.table import omega1_peak_ranges  # noqa: E402
 from beltmdsm.intervals import format_intervals, jaccard  # noqa: E402
 from beltmdsm.run.spectra import amplitude_spectrum  # noqa: E402
-from beltmdsm.studies.table import omega1_peak_ranges  # noqa: E402
 
 __all__ = [
     "FULL",
@@ -159,7 +159,7 @@ def spectrum_scan(
         "summaries": summaries,
         param: values,
         # a summary's None (unresolved) would make an object array: False beside
-        # resolved = False, as beltmdsm.studies.sweep stores it
+        # resolved = False, as beltmdsm.batch.sweep stores it
         "omega1_peak_present": np.array(
             [bool(s.resolved and s.omega1_peak_present) for s in summaries]
         ),

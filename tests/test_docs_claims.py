@@ -11,7 +11,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_the_dask_page_names_the_cache_folder_the_code_uses(monkeypatch, tmp_path):
-    from beltmdsm.studies.cache import default_cache_dir
+    from beltmdsm.batch.cache import default_cache_dir
 
     text = (ROOT / "docs" / "howto" / "dask.md").read_text()
     monkeypatch.delenv("BELTMDSM_CACHE", raising=False)

@@ -6,13 +6,17 @@ Every ``import`` and ``from ... import`` counts, at module level or inside a fun
 the package module it names (a name imported from a package is an edge to its
 submodule where one exists). The layers, lowest first:
 
-beltmdsm.derive -> beltmdsm.generated -> beltmdsm.{model, settings, intervals} ->
+beltmdsm.derive -> beltmdsm.errors -> beltmdsm.generated -> beltmdsm.{model, settings,
+intervals} ->
 beltmdsm.integrate ->
-beltmdsm.{periodic, continuation, cycles, oscillator} -> beltmdsm.run -> beltmdsm.prediction ->
-beltmdsm.attractors -> beltmdsm.simulation -> beltmdsm.studies -> beltmdsm.cli
+beltmdsm.{periodic, oscillator} -> beltmdsm.continuation -> beltmdsm.cycles ->
+beltmdsm.branches -> beltmdsm.run -> beltmdsm.prediction -> beltmdsm.attractors ->
+beltmdsm.simulation -> beltmdsm.starts -> beltmdsm.multistability -> beltmdsm.batch ->
+beltmdsm.basin -> beltmdsm.paper_reports -> beltmdsm.studies (old paths) -> beltmdsm.cli
 
-A module imports only modules of its own layer or below, with no cycle: derive/ and
-generated/ import no other beltmdsm module (``python -m derive`` runs ``python -m
+A module imports only modules of its own layer or below, with no cycle: derive/ imports
+no other beltmdsm module, generated/ none but beltmdsm.errors (the root failures, which
+import nothing) (``python -m derive`` runs ``python -m
 beltmdsm`` as a program, derive/__main__.py); generated/ imports nothing of derive/ (it
 must run where only it is installed); beltmdsm imports derive only in its command line,
 which alone builds the argparse tree (derive/ imports no argparse).
@@ -32,25 +36,42 @@ PACKAGES = {"beltmdsm.derive": "derive", "beltmdsm.generated": "generated", "bel
 #: Layer of each module, by the longest prefix that names it.
 LAYERS = {
     "beltmdsm.derive": 0,
+    # the failures (issue 38): standard library only, so that the generated modules
+    # raise the runtime's own `Unsupported` (one class, one hierarchy)
+    "beltmdsm.errors": 0.5,
     "beltmdsm.generated": 1,
+    # the templates of generated/'s support modules, copied there by derive/codegen/render.py
+    # (never imported by derive/): generated/'s layer
+    "beltmdsm.derive.codegen.templates": 1,
     "beltmdsm": 2,  # the package: its public names are imported lazily (importlib)
     "beltmdsm.model": 2,
     "beltmdsm.excitation": 2,
     "beltmdsm.settings": 2,
     "beltmdsm.intervals": 2,
     "beltmdsm.integrate": 3,
-    # periodic orbits, their continuation and the self-excited cycles are one layer:
-    # floquet and branch hand an autonomous model to cycles/, which builds on both
+    # periodic orbits, then their continuation (one driver, docs/explanation/layout.md),
+    # then the self-excited cycles, a problem of that driver (issue 38)
     "beltmdsm.periodic": 4.0,
-    "beltmdsm.continuation": 4.0,
-    "beltmdsm.cycles": 4.0,
     # any derived model (issue 39): its runs, cycles and forced responses, beside them
     "beltmdsm.oscillator": 4.0,
-    "beltmdsm.run": 4.1,
-    "beltmdsm.prediction": 4.2,
-    "beltmdsm.attractors": 4.3,
+    "beltmdsm.continuation": 4.1,
+    "beltmdsm.cycles": 4.2,
+    # the branch of any model: picks the problem above every problem (issue 38)
+    "beltmdsm.branches": 4.25,
+    "beltmdsm.run": 4.3,
+    "beltmdsm.prediction": 4.4,
+    "beltmdsm.attractors": 4.5,
     "beltmdsm.simulation": 5,
-    "beltmdsm.studies": 6,
+    # issue 38: studies/ cut by role. Where runs and searches start (they run simulate);
+    # the responses at a point and their coexistence; the batch engine (its rows start
+    # runs at the periodic start); basins (on the batch engine's cache and pool); the
+    # paper's reports (on all of them); the old paths, thin re-exports
+    "beltmdsm.starts": 5.1,
+    "beltmdsm.multistability": 5.2,
+    "beltmdsm.batch": 5.3,
+    "beltmdsm.basin": 5.4,
+    "beltmdsm.paper_reports": 6,
+    "beltmdsm.studies": 6.5,
     "beltmdsm.cli": 7,
     "beltmdsm.__main__": 7,
 }
@@ -202,6 +223,23 @@ def test_no_import_cycle(graph):
     assert not cycles(graph), cycles(graph)
 
 
+def test_periodic_continuation_and_cycles_are_three_layers(graph):
+    """periodic -> continuation -> cycles, no arrow back up (issue 38); the entry that
+    picks the problem for a model (beltmdsm/branches.py) sits above all three."""
+    order = ["beltmdsm.periodic", "beltmdsm.continuation", "beltmdsm.cycles", "beltmdsm.branches"]
+    assert [layer(m) for m in order] == sorted({layer(m) for m in order})
+    rank = {m: i for i, m in enumerate(order)}
+    top = {a: next((m for m in order if a == m or a.startswith(m + ".")), None) for a, _ in graph}
+    up = [
+        (a, b)
+        for a, b in graph
+        for ta, tb in [(top[a], next((m for m in order if b == m or b.startswith(m + ".")), None))]
+        if ta and tb and rank[tb] > rank[ta]
+    ]
+    assert not up, sorted(up)
+    assert ("beltmdsm.continuation.problem", "beltmdsm.continuation.corrector") in graph
+
+
 def test_imports_follow_the_layers(graph):
     bad = violations(graph)
     assert not bad, "\n".join(bad)
@@ -212,8 +250,8 @@ def test_derive_builds_no_command_line():
     and reaches the runtime only as a program (``python -m derive``)."""
     imported = set()
     for module, path in modules().items():
-        if _package(module) != "beltmdsm.derive":
-            continue
+        if _package(module) != "beltmdsm.derive" or layer(module) != 0:
+            continue  # the templates of generated/ (layer 1) are copied, not run by derive/
         for node in ast.walk(ast.parse(path.read_text())):
             if isinstance(node, ast.Import):
                 imported |= {a.name.split(".")[0] for a in node.names}

@@ -50,13 +50,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
-
-from beltmdsm.generated import unforced
+from numpy.typing import ArrayLike
 
 from .._calling import public
 from ..arguments import number, state
@@ -66,7 +63,10 @@ from ..model import Backend, Model, as_model
 from ..periodic.floquet import Floquet
 from ..periodic.locked import NotLocked, stroboscope
 from ..periodic.shooting import periodic_response
-from .lyapunov import Lyapunov, advance, check_length, lyapunov
+from .attractor import KINDS, Attractor
+from .lyapunov import advance, check_length, lyapunov
+from .rotation import _CANDIDATES, NEAR, RETURN_TOL, _angles, _returns, rotation_number
+from .unstable_set import _unstable_response, unstable_set
 
 __all__ = [
     "Attractor",
@@ -82,21 +82,6 @@ __all__ = [
     "ZERO_TOL",
 ]
 
-#: The kinds of attractor, in the order of the module docstring.
-KINDS = ("periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified", "unstable")
-#: A return after ``k`` periods closer than this (relative to the state's scale) is a
-#: candidate period; Newton's method on the ``k``-fold map decides.
-RETURN_TOL = 1e-6
-#: Candidate periods tried by Newton's method before the exponents decide.
-_CANDIDATES = 3
-#: A window whose first sample lies within this distance (relative to the state's
-#: scale, as `RETURN_TOL`) of unstable steady sliding begins in its linear
-#: neighbourhood: at Stribeck's Vb = 1.5 (sigma = 0.064 1/s) a start 1e-6 off it is
-#: 3e-3 off after 150 s and on the stick-slip cycle only after about 215 s.
-NEAR = 1e-2
-#: Samples at the start of the window searched for a return onto a periodic response
-#: (`unstable_set`): periods up to four.
-_HEAD = 14
 #: An exponent is nonzero where it is more than this many errors from zero.
 SIGNIFICANCE = 3.0
 #: The largest error with which a zero exponent names a torus, and the least positive
@@ -110,167 +95,6 @@ ZERO_TOL = 5e-4
 #: The absolute accuracy of a Floquet multiplier (the two period-map engines agree to
 #: this: beltmdsm/periodic/general.py), the error of `periodic_attractor`'s exponent.
 _MULTIPLIER_TOL = 1e-9
-
-
-@dataclass
-class Attractor:
-    """An attractor, its kind and the evidence.
-
-    Attributes
-    ----------
-    kind : {"periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified", "unstable"}
-    periods : int or None
-        Excitation periods of a periodic attractor (minimal), or of the unstable
-        periodic response an ``unstable`` run sits on.
-    rotation_number : float or None
-        Mean turn per period about the samples' centre [turns]; ``p / k`` where periodic.
-    rotation_accuracy : float or None
-        Its accuracy (quasi-periodic: module docstring; periodic: exact, 0).
-    lyapunov : float
-        The largest Lyapunov exponent [1/s].
-    lyapunov_error : float
-    exponents : ndarray (4,)
-        The spectrum, largest first (``-inf`` for a direction stick removes).
-    evidence : str
-        Why this kind, in one sentence.
-    state : ndarray (4,)
-        A state on the attractor at phase 0 (the fixed point where periodic).
-    points : ndarray (n, 4)
-        Its stroboscopic samples.
-    exponent_floor : float or None
-        From Floquet multipliers (`periodic_attractor`): the bound below which the
-        exponents of multipliers under the computation's error floor lie (those are
-        NaN, `beltmdsm.periodic.floquet.FLOOR_FACTOR`); None where every one is resolved.
-
-    See Also
-    --------
-    beltmdsm.attractors.classification.classify : names the attractor a run settles on.
-    beltmdsm.attractors.classification.periodic_attractor : the fast path where it locks.
-
-    Examples
-    --------
-    >>> from beltmdsm import Model
-    >>> a = periodic_attractor(Model(Vb=3.88), t_end=300.0)
-    >>> a  # doctest: +ELLIPSIS
-    Attractor(periodic (4T), largest exponent -0.0951 +- ... 1/s, rotation -0.250000)
-    >>> d = a.as_dict()
-    >>> d["kind"], d["periods"], d["rotation_number"]
-    ('periodic', 4, -0.25)
-    """
-
-    kind: Literal[
-        "periodic", "quasi_periodic", "chaotic", "equilibrium", "unclassified", "unstable"
-    ]
-    periods: int | None
-    rotation_number: float | None
-    rotation_accuracy: float | None
-    lyapunov: float
-    lyapunov_error: float
-    exponents: NDArray[np.float64] = field(repr=False)
-    evidence: str = field(repr=False)
-    state: NDArray[np.float64] = field(repr=False)
-    points: NDArray[np.float64] = field(repr=False)
-    exponent_floor: float | None = field(default=None, repr=False)
-
-    def __repr__(self) -> str:
-        what = self.kind + (f" ({self.periods}T)" if self.periods else "")
-        rot = "" if self.rotation_number is None else f", rotation {self.rotation_number:+.6f}"
-        return (
-            f"Attractor({what}, largest exponent {self.lyapunov:+.3g} +- "
-            f"{self.lyapunov_error:.1g} 1/s{rot})"
-        )
-
-    def as_dict(self) -> dict:
-        """JSON-ready: kind, periods, rotation number, exponents and the evidence."""
-        return {
-            "kind": self.kind,
-            "periods": self.periods,
-            "rotation_number": self.rotation_number,
-            "rotation_accuracy": self.rotation_accuracy,
-            "lyapunov": self.lyapunov,
-            "lyapunov_error": self.lyapunov_error,
-            "exponents": [float(x) for x in self.exponents],
-            "evidence": self.evidence,
-            "state": [float(x) for x in self.state],
-            "exponent_floor": self.exponent_floor,
-        }
-
-
-def _angles(samples):
-    """The angle of each sample about the samples' centre in ``(X1, X1')``, scaled."""
-    y = samples[:, :2]
-    w = (y - y.mean(axis=0)) / np.where(y.std(axis=0) > 0, y.std(axis=0), 1.0)
-    return np.arctan2(w[:, 1], w[:, 0])
-
-
-def rotation_number(samples: ArrayLike) -> tuple[float, float]:
-    """The rotation number of stroboscopic samples [turns per period] and its accuracy.
-
-    The weighted Birkhoff average of the angle turned per period about the samples'
-    centre (module docstring), and its difference from the same average over the first
-    half of the samples.
-
-    Parameters
-    ----------
-    samples : array_like, shape (n, 2) or (n, 4)
-        The states once per period, ``n >= 64``; the angle is taken in the plane of
-        the first two components.
-
-    Returns
-    -------
-    rotation : float
-        The turns per period, in ``(-1/2, 1/2]``.
-    error : float
-        The difference of the two averages, an estimate of its error.
-
-    Raises
-    ------
-    ValueError
-        For fewer than 64 samples (below that the two averages are not yet in their
-        fast convergence, and their difference understates the error:
-        benchmarks/bench_lyapunov.py).
-
-    See Also
-    --------
-    beltmdsm.attractors.classification.classify : Names a torus by this number.
-
-    Examples
-    --------
-    Samples that turn by ``rho = (sqrt(5) - 1) / 4`` (irrational) each period about
-    their centre: the weighted average finds ``rho`` to 1e-9 from 200 samples.
-
-    >>> rho = (np.sqrt(5) - 1) / 4
-    >>> k = np.arange(200)
-    >>> ring = np.c_[1 + np.cos(2 * np.pi * rho * k), np.sin(2 * np.pi * rho * k)]
-    >>> turns, error = rotation_number(ring)
-    >>> round(turns, 9), round(float(rho), 9), error < 1e-9
-    (0.309016994, 0.309016994, True)
-    """
-    y = np.asarray(samples, dtype=float)
-    if y.ndim != 2 or y.shape[0] < 64:
-        raise ValueError(f"samples must be (n, 2+) with n >= 64; got {y.shape}")
-    turn = np.angle(np.exp(1j * np.diff(_angles(y)))) / (2 * np.pi)
-
-    def average(x):
-        t = (np.arange(x.size) + 0.5) / x.size
-        w = np.exp(-1.0 / (t * (1.0 - t)))
-        return float(np.sum(w * x) / np.sum(w))
-
-    full, half = average(turn), average(turn[: turn.size // 2])
-    return full, abs(full - half)
-
-
-def _returns(samples, tol):
-    """The ``k`` (increasing, up to a third of the samples) after which the last two
-    samples repeat to ``tol``: the candidate periods."""
-    y = samples
-    scale = 1.0 + float(np.max(np.abs(y)))
-    n = y.shape[0]
-    return [
-        k
-        for k in range(1, n // 3 + 1)
-        if float(np.max(np.abs(y[n - 2 :] - y[n - 2 - k : n - k]))) <= tol * scale
-    ]
 
 
 @public()
@@ -451,113 +275,6 @@ def periodic_attractor(
     raise NoPeriodicResponse(
         f"the run's samples do not return to {RETURN_TOL:g} within {len(samples) // 3} "
         "periods onto a periodic response"
-    )
-
-
-def unstable_set(
-    model: Model, spec: Lyapunov, backend: Backend | None = None
-) -> tuple[str, int | None, NDArray[np.float64]] | None:
-    """The unstable invariant set a run's averaging window begins on, if any.
-
-    Without excitation: steady sliding (`beltmdsm.excitation.initial_state`) where its
-    eigenvalues (`beltmdsm.generated.unforced.eigenvalues`) have a positive real part
-    ``sigma``, the window's first sample lies within `NEAR` of it and the run stands
-    on it or leaves it (its distance at least doubles over the window: a small cycle
-    about it keeps its distance). With excitation:
-    a ``k``-periodic response onto which the window's first samples return (to
-    `RETURN_TOL`, ``k`` up to four) and Newton's method converges, its Floquet
-    multipliers outside the unit circle. A positive exponent of such a run is the
-    set's instability (``sigma``, ``ln |mu| / (k T)``), not chaos.
-
-    Parameters
-    ----------
-    model : Model
-        The model that was run.
-    spec : Lyapunov
-        The run's spectrum and samples (`beltmdsm.attractors.lyapunov.lyapunov`).
-    backend : {"python", "numba", None}
-
-    Returns
-    -------
-    tuple or None
-        ``(evidence, periods, state)``: a sentence naming the set, its growth rate
-        against the run's exponent and how long the run would take to leave it;
-        ``k`` (None for steady sliding); a state on the set. None where the window
-        does not begin on an unstable invariant set.
-
-    See Also
-    --------
-    beltmdsm.attractors.classification.classify : Calls such a run ``unstable``.
-    beltmdsm.excitation.equilibrium_start : The default start, off unstable sliding.
-
-    Examples
-    --------
-    Stribeck's law at ``Vb = 1.9`` without excitation, started exactly on steady
-    sliding: the run stays there, and its exponent is the equilibrium's ``sigma``:
-
-    >>> from beltmdsm import Model
-    >>> from beltmdsm.attractors.lyapunov import lyapunov
-    >>> from beltmdsm.excitation import initial_state
-    >>> m = Model(alpha=0.0, friction="stribeck", Vb=1.9)
-    >>> spec = lyapunov(m, y0=initial_state(m), t_end=200.0)
-    >>> evidence, periods, _ = unstable_set(m, spec)
-    >>> periods, "off steady sliding, which is unstable" in evidence
-    (None, True)
-    """
-    y = spec.samples
-    scale = 1.0 + float(np.max(np.abs(y)))
-    try:
-        excitation_period(model)
-    except ValueError:
-        lam = np.asarray(unforced.eigenvalues(**model.arguments(unforced.eigenvalues)))
-        sigma = float(np.max(lam.real))
-        eq = initial_state(model)
-        d = np.max(np.abs(y - eq), axis=1)
-        d0, floor = float(d[0]), np.finfo(float).eps * scale
-        # near it and leaving it (or standing on it): a small cycle about it is neither
-        leaving = d[-1] >= 2 * max(d0, floor) or float(np.max(d)) <= 16 * floor
-        if not (sigma > 0 and d0 <= NEAR * scale and leaving):
-            return None
-        leave = math.log(scale / max(d0, np.finfo(float).eps * scale)) / sigma
-        return (
-            f"the run begins its averaging window {d0:.1e} off steady sliding, which is "
-            f"unstable (the largest real part of its eigenvalues sigma = {sigma:.4g} 1/s; "
-            f"the run's largest exponent {spec.largest:+.4g} 1/s): the exponent is that "
-            f"instability, not chaos; the run needs about {leave:.3g} s more to leave it "
-            "(raise t_end; a start exactly on it never leaves it, and the default start, "
-            "as simulate's, is moved off it along its unstable direction)",
-            None,
-            eq,
-        )
-    head = y[: min(len(y), _HEAD)]
-    for k in _returns(head, RETURN_TOL)[:_CANDIDATES]:
-        try:
-            resp = periodic_response(model, periods=k, guess=head[-1], forward=0, backend=backend)
-        except NoPeriodicResponse:
-            continue
-        return _unstable_response(resp, spec, "begins its averaging window on")
-    return None
-
-
-def _unstable_response(resp, spec, where):
-    """``unstable_set``'s answer for a converged response, or None where it is stable
-    (or grazing: its stability is not known)."""
-    f = Floquet.of(resp)
-    if f.stable is not False:
-        return None
-    k = resp.periods
-    mu = float(np.max(np.abs(f.multipliers)))
-    rate = math.log(mu) / f.period
-    return (
-        f"the run {where} the {k}T-periodic response (its samples return after {k} "
-        f"excitation periods to {RETURN_TOL:g}, Newton's method converges from them, "
-        f"residual {resp.residual:.1e}), which is unstable: its largest Floquet "
-        f"multiplier |mu| = {mu:.6g}, ln|mu| / ({k} T) = {rate:+.4g} 1/s against the run's "
-        f"largest exponent {spec.largest:+.4g} 1/s: the exponent is that response's "
-        "instability, not chaos (start off it: beltmdsm.periodic.start.periodic_start "
-        "with a perturbation, and run until it has left)",
-        k,
-        resp.state0,
     )
 
 

@@ -395,7 +395,7 @@ def executor_from(args: argparse.Namespace) -> Iterator[cf.Executor | str | None
     elif args.jobs == 1:
         yield "serial"
     elif args.jobs:
-        from ..studies.pool import process_pool, stop_process_pool
+        from ..batch.pool import process_pool, stop_process_pool
 
         pool = process_pool(args.jobs)
         try:
@@ -410,7 +410,7 @@ def executor_from(args: argparse.Namespace) -> Iterator[cf.Executor | str | None
 
 
 def cache_parent() -> argparse.ArgumentParser:
-    """Parent parser: the sweep cache (`beltmdsm.studies.cache`)."""
+    """Parent parser: the sweep cache (`beltmdsm.batch.cache`)."""
     parent = argparse.ArgumentParser(add_help=False)
     g = parent.add_argument_group("cache")
     g.add_argument(

@@ -38,7 +38,7 @@ STATES = _states()
 def sweep_values(args: argparse.Namespace) -> np.ndarray:
     """The values of ``--from/--to/--step`` or ``--values`` (a bad grid: exit 2)."""
 
-    from ..studies.sweep import linear_values
+    from ..batch.sweep import linear_values
 
     if args.values:
         grid = (("--from", args.start), ("--to", args.stop), ("--step", args.step))
@@ -57,7 +57,7 @@ def sweep_values(args: argparse.Namespace) -> np.ndarray:
 
 
 class DiskCache:
-    """A generic sweep's rows on the sweeps' disk cache (beltmdsm/studies/cache.py: one
+    """A generic sweep's rows on the sweeps' disk cache (beltmdsm/batch/cache.py: one
     checked JSON file per point, named by the SHA-256 of its identity, the package's
     version and its code), for `beltmdsm.oscillator.sweep.sweep`'s ``cache``."""
 
@@ -67,18 +67,18 @@ class DiskCache:
         self.folder = Path(folder)
 
     def _path(self, ident: dict):
-        from ..studies.cache import cache_key
+        from ..batch.cache import cache_key
 
         return self.folder / f"{cache_key({'generic': ident})}.json"
 
     def get(self, ident: dict) -> dict | None:
-        from ..studies.cache import read_cached
+        from ..batch.cache import read_cached
 
         row, _ = read_cached(self._path(ident), {"generic": ident}, ("regime",))
         return row
 
     def put(self, ident: dict, row: dict) -> None:
-        from ..studies.cache import write_cached
+        from ..batch.cache import write_cached
 
         self.folder.mkdir(parents=True, exist_ok=True)
         write_cached(self._path(ident), {"generic": ident}, row)
@@ -86,8 +86,8 @@ class DiskCache:
 
 def sweep(args: argparse.Namespace) -> int:
     """``sweep --model NAME``: a run per value of ``--param`` and what it settles on."""
+    from ..batch.cache import default_cache_dir
     from ..oscillator.sweep import sweep as run
-    from ..studies.cache import default_cache_dir
     from .flags import cache_dir_from, executor_from, swept
 
     refuse_flags(args, ("continuation", "modulation", "solver", "on_contact_loss"))
@@ -237,8 +237,8 @@ def responses(args: argparse.Namespace) -> int:
 def coexistence(args: argparse.Namespace) -> int:
     """``coexistence --model NAME``: the stable attractors at points of ``--param``
     spaced by about ``--step``, and the ranges where two or more coexist."""
+    from ..multistability.coexistence import seed_points
     from ..oscillator.responses import coexistence as walk
-    from ..studies.coexistence import seed_points
     from .flags import range_from, swept
 
     refuse_flags(args, ("png",))

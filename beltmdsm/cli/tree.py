@@ -63,8 +63,8 @@ def add_commands(commands: argparse._SubParsersAction) -> None:
 
 
 def _paper_evidence():
-    """The simulated numbers of the paper check (`beltmdsm.studies.evidence`)."""
-    from ..studies.evidence import paper_evidence
+    """The simulated numbers of the paper check (`beltmdsm.paper_reports.contraction_evidence`)."""
+    from ..paper_reports.contraction_evidence import paper_evidence
 
     return paper_evidence()
 

@@ -45,6 +45,7 @@ from .band_grid import (
     _unclassified_edge,
 )
 from .band_result import Band, BandFailure, BandPoint
+from .settings import FORCED_SETTINGS, ContinuationSettings, as_settings
 
 __all__ = ["floquet_band"]
 
@@ -61,6 +62,7 @@ def floquet_band(
     backend: Backend | None = None,
     periods: int = 1,
     progress: bool = False,
+    settings: ContinuationSettings | None = None,
 ) -> Band:
     """Ranges of ``param`` in ``[lo, hi]`` where the periodic response is unstable.
 
@@ -76,7 +78,7 @@ def floquet_band(
     tangency, a grazing or a fold, located exactly (to about 1e-6; `Edge.accuracy`).
     For ``param = "Vb"`` the grazing point of the backward-sliding response is
     computed exactly: it is that response's largest velocity in contact, which does
-    not depend on ``Vb`` (`beltmdsm.periodic.tangential.largest_sliding_velocity`).
+    not depend on ``Vb`` (`beltmdsm.periodic.closed_form.largest_sliding_velocity`).
 
     Changes closer together than ``tol`` cannot be told apart at that tolerance: they
     are one edge, whose sides are the outer sides of the first and the last, and the
@@ -107,6 +109,9 @@ def floquet_band(
         `beltmdsm.periodic.shooting.periodic_response`).
     progress : bool
         Show the evaluations on stderr (tqdm) once they take more than 2 s.
+    settings : ContinuationSettings, optional
+        The driver's steps and tolerances where a response is continued across an
+        interval by pseudo-arclength (`beltmdsm.continuation.settings`).
 
     Returns
     -------
@@ -156,6 +161,7 @@ def floquet_band(
     points, tol = count("points", points, 2), number("tol", tol, above=0)
     periods, progress = count("periods", periods, 1), flag("progress", progress)
     _check_band_request(lo, hi, points, tol)
+    as_settings(settings, FORCED_SETTINGS)  # checked where it enters
     from tqdm import tqdm
 
     bar = tqdm(
@@ -209,7 +215,7 @@ def floquet_band(
             )
             return refine(g + tol / 4, above, b, fb)
         if (fa is None) != (fb is None):
-            end = _band_existence(param, a, fa, b, fb, backend, tol)
+            end = _band_existence(param, a, fa, b, fb, backend, tol, settings)
             edges.extend(end.edges)
             for v, f in end.solved:
                 seen.setdefault(v, f)
@@ -302,17 +308,17 @@ def floquet_band(
         if f is not None
     ]
     return Band(
-        param,
-        model,
-        int(periods),
-        unstable,
-        edges,
-        sorted(grazing_points),
-        gaps,
-        table,
-        failed,
-        float(tol),
-        merged_away,
+        param=param,
+        model=model,
+        periods=int(periods),
+        unstable=unstable,
+        edges=edges,
+        grazing_points=sorted(grazing_points),
+        no_periodic_response=gaps,
+        grid=table,
+        failed=failed,
+        tol=float(tol),
+        merged_away=merged_away,
     )
 
 

@@ -23,7 +23,7 @@ from ..periodic.newton import FixedPoint, fixed_point
 from ..periodic.response import response_from
 from .band_result import Edge
 from .branch import continue_branch
-from .branch_parts import SpecialPoint
+from .branch_result import SpecialPoint
 from .edges import (
     KINDS,
     OLD_KINDS,
@@ -206,7 +206,7 @@ def _verdict(pmap, point):
     return bool(np.max(np.abs(mu)) < 1.0)
 
 
-def _band_existence(param, a, fa, b, fb, backend, tol):
+def _band_existence(param, a, fa, b, fb, backend, tol, settings=None):
     """Continue the response found at ``a`` or ``b`` across ``[a, b]``: a `_BandEnd`.
 
     Exactly one of ``fa``, ``fb`` (`beltmdsm.periodic.floquet.Floquet`) is None. The
@@ -256,7 +256,7 @@ def _band_existence(param, a, fa, b, fb, backend, tol):
         at = r.model.replace(**{param: far})
         reached_f = floquet(at, guess=guess, forward=0, backend=backend, periods=r.periods)
         return _BandEnd([], reached_f, solved)
-    branch = continue_branch(r, param, min(a, b), max(a, b), backend=backend)
+    branch = continue_branch(r, param, min(a, b), max(a, b), backend=backend, settings=settings)
     solved = [
         (q.value, floquet_at(q.value, FixedPoint(q.state, q.image, 0.0, 0)))
         for q in _towards(branch.points, value, far)

@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from ..periodic.tangential import largest_sliding_velocity
+from ..periodic.closed_form import largest_sliding_velocity
 from .band_result import Edge
 from .edges import multiplier_kind
 

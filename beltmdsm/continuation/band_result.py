@@ -160,7 +160,7 @@ class BandFailure:
         return dataclasses.asdict(self)
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Band:
     """The ranges of one parameter where the periodic response is unstable (`floquet_band`).
 

@@ -29,10 +29,12 @@ with the smallest step: at a **tangency** or a **grazing** (the margin that clos
 located by `beltmdsm.continuation.edges.locate_end`), or, where no margin closes, as ``failed``
 with the reason.
 
-The point and the corrector are `beltmdsm.continuation.arclength`'s, the special points
-`beltmdsm.continuation.special`'s (shared with the self-excited cycles), the walk one way
-and its ends `beltmdsm.continuation.branch_walk`'s, the result (`Branch`)
-`beltmdsm.continuation.branch_parts`'s.
+The problem (its point, residual, Jacobian and the hooks of its switch structure) is
+`beltmdsm.continuation.forced.ForcedProblem`; the walk, its step control, special
+points and range ends the one driver's (`beltmdsm.continuation.driver`, shared with the
+self-excited cycles and steady sliding), its settings a
+`beltmdsm.continuation.settings.ContinuationSettings`; the result (`Branch`)
+`beltmdsm.continuation.branch_result`'s.
 """
 
 from __future__ import annotations
@@ -49,9 +51,12 @@ from ..model import MODEL_PARAMETERS, Backend, Model, as_model
 from ..periodic.family import MapFamily
 from ..periodic.response import PeriodicResponse
 from ..periodic.shooting import periodic_response
-from .arclength import _Continuation
-from .branch_parts import Branch, SpecialPoint, _recorded_rows, record_points
-from .branch_walk import _walk
+from .branch_result import Branch, _recorded_rows, record_points
+from .driver import join
+from .driver import walk as _walk  # the name tests patch
+from .forced import ForcedProblem
+from .problem import range_end
+from .settings import ContinuationSettings, as_settings
 
 __all__ = ["continue_branch", "branch"]
 
@@ -64,15 +69,16 @@ def continue_branch(
     *,
     backend: Backend | None = None,
     record: Callable[[Any], float | Mapping[str, float]] | None = None,
+    settings: ContinuationSettings | None = None,
 ) -> Branch:
     """The branch through a response in ``param`` over ``[lo, hi]``, both ways from the start.
 
     Parameters
     ----------
     start : PeriodicResponse
-        A response (`beltmdsm.periodic.shooting.periodic_response`, ``periods=k`` for a
-        locked one; a self-excited cycle's, without excitation, continues as a
-        branch of cycles, `beltmdsm.cycles.branch.cycle_branch_from`).
+        A forced response (`beltmdsm.periodic.shooting.periodic_response`,
+        ``periods=k`` for a locked one). A self-excited cycle's continues as a branch
+        of cycles one layer up: `beltmdsm.branches.continue_branch` picks the problem.
     param : str
         A model parameter.
     lo, hi : float
@@ -80,6 +86,9 @@ def continue_branch(
     backend : {"python", "numba", None}
     record : callable, optional
         ``record(point)`` at each point of the branch, stored there (`branch`).
+    settings : ContinuationSettings, optional
+        The driver's steps and tolerances (`beltmdsm.continuation.settings`); default
+        the problem's (`FORCED_SETTINGS`, a cycle's `CYCLE_SETTINGS`).
 
     Returns
     -------
@@ -89,11 +98,14 @@ def continue_branch(
     Raises
     ------
     ValueError
-        For an unknown parameter, a bad range or a start outside it.
+        For an unknown parameter, a bad range or a start outside it; for a self-excited
+        cycle, naming `beltmdsm.branches.continue_branch` (moved there, issue 38).
+    TypeError
+        For ``settings`` that is not a ContinuationSettings.
     beltmdsm.errors.Refused
         Naming ``record`` where it is not callable, raises, or returns anything but a
         real number or a mapping of names to real numbers
-        (`beltmdsm.continuation.branch_parts.record_points`).
+        (`beltmdsm.continuation.branch_result.record_points`).
 
     See Also
     --------
@@ -110,50 +122,37 @@ def continue_branch(
     [('range', 5.3), ('neimark_sacker', 5.45), ('range', 5.6)]
     """
     _check_record(record)
-    if param not in MODEL_PARAMETERS:
-        raise ValueError(f"param must be a model parameter; got {param!r}")
-    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
-        raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
+    as_settings(settings, ForcedProblem.default_settings)  # checked before anything runs
+    _check_range(param, lo, hi)
     model = start.model
     if getattr(start, "autonomous", False):
-        from ..cycles.branch import cycle_branch_from
-
-        return record_points(cycle_branch_from(start.cycle, param, lo, hi, backend=backend), record)
+        raise ValueError(
+            _CYCLES.format(what="the start is a self-excited cycle", f="continue_branch")
+        )
     v0 = float(model[param])
     if not lo <= v0 <= hi:
         raise ValueError(f"the start's {param} = {v0:g} is outside [{lo:g}, {hi:g}]")
     family = MapFamily(model, param, start.periods, backend)
     x0 = np.asarray(start.shooting_state, dtype=float)
-    cont = _Continuation(family, float(lo), float(hi), 1.0 + float(np.max(np.abs(x0))))
+    kT = start.periods * family(v0).period
+    problem = ForcedProblem(family, float(lo), float(hi), 1.0 + float(np.max(np.abs(x0))), kT)
+    problem.settings = as_settings(settings, problem.default_settings)
     image = family(v0)(x0)
     if record is not None:  # one that fails is refused before the continuation runs
-        _recorded_rows(record, [cont.point(x0, v0, 1.0, image)], param)
-    kT = start.periods * family(v0).period
+        _recorded_rows(record, [problem.point_at(x0, v0, 1.0, image)], param)
     walks = []
     for direction in (1.0, -1.0):
-        first = cont.point(x0, v0, direction, image)
+        first, tangent = problem.start(x0, v0, direction, image)
         bound = hi if direction > 0 else lo
         if v0 == bound:  # a start on a bound ends there that way
-            end = SpecialPoint(
-                "range",
-                v0,
-                0.0,
-                None,
-                first.multipliers,
-                first.stable,
-                None,
-                "the end of the requested range",
-            )
-            walks.append(([first], [end]))
+            first = problem.point_at(x0, v0, direction, image)
+            walks.append(([first], [range_end(first, v0)]))
         else:
-            walks.append(_walk(cont, first, direction, kT))
-    (up, up_special), (down, down_special) = walks
-    points = list(reversed(down[1:])) + up
-    special = list(reversed(down_special)) + up_special
-    # along the arclength from the lower end: 'before' and 'after' of the reversed half swap
-    for s in reversed(down_special):
-        s.stable_before, s.stable_after = s.stable_after, s.stable_before
-    return record_points(Branch(param, start.periods, model, points, special), record)
+            walks.append(_walk(problem, first, tangent))
+    points, special = join(*walks)
+    return record_points(
+        Branch(param, start.periods, model, points, special, kind="forced"), record
+    )
 
 
 @public()
@@ -166,14 +165,15 @@ def branch(
     hi: float,
     backend: Backend | None = None,
     record: Callable[[Any], float | Mapping[str, float]] | None = None,
+    settings: ContinuationSettings | None = None,
 ) -> Branch:
     """The branch of the response of ``periods`` periods at a point (`continue_branch`).
 
     The response is found as `beltmdsm.periodic.shooting.periodic_response` finds it
     (``periods > 1``: seeded from the attractor of the period map). Without excitation
-    (`beltmdsm.excitation.is_autonomous`) it is the branch of self-excited cycles born at
-    the Hopf point of steady sliding in ``[lo, hi]``
-    (`beltmdsm.cycles.branch.cycle_branch`: a `CycleBranch`).
+    (`beltmdsm.excitation.is_autonomous`) the branch is of self-excited cycles, one
+    layer up: `beltmdsm.branches.branch` (``beltmdsm.branch``) picks the problem for
+    any model; this one refuses such a model, naming it (issue 38).
 
     Parameters
     ----------
@@ -197,6 +197,9 @@ def branch(
         the same names at every point. Stored as the point's ``recorded``, they are
         columns of `Branch.observables` and `Branch.to_pandas`. It is tried at the
         start first: one that fails there is refused before the continuation runs.
+    settings : ContinuationSettings, optional
+        The driver's steps and tolerances (`beltmdsm.continuation.settings`); default
+        the problem's.
 
     Returns
     -------
@@ -208,6 +211,8 @@ def branch(
     ------
     ValueError
         For bad parameters or range.
+    TypeError
+        For ``settings`` that is not a ContinuationSettings.
     NoPeriodicResponse
         Where no response of ``periods`` periods is found at the point.
     beltmdsm.errors.Refused
@@ -218,6 +223,7 @@ def branch(
     See Also
     --------
     beltmdsm.continuation.branch.continue_branch : the same from a response already found.
+    beltmdsm.branches.branch : the same for any model (self-excited cycles too).
     beltmdsm.continuation.band.floquet_band : the unstable ranges on a grid, edges located.
     beltmdsm.continuation.floquet_map.floquet_map : the edges traced over two parameters.
 
@@ -234,20 +240,27 @@ def branch(
     True
     """
     _check_record(record)
+    as_settings(settings, ForcedProblem.default_settings)  # checked before anything runs
     model = as_model(model)
     if is_autonomous(model):
-        from ..cycles.branch import cycle_branch
-
-        if periods != 1:
-            raise ValueError(
-                f"periods must be 1 without excitation (a self-excited cycle has no "
-                f"excitation period to count); got {periods!r}"
-            )
-        return record_points(
-            cycle_branch(model, param=param, lo=lo, hi=hi, backend=backend), record
-        )
+        raise ValueError(_CYCLES.format(what="the model has no excitation", f="branch"))
     start = periodic_response(model, periods=periods, backend=backend)
-    return continue_branch(start, param, lo, hi, backend=backend, record=record)
+    return continue_branch(start, param, lo, hi, backend=backend, record=record, settings=settings)
+
+
+#: The refusal of a self-excited cycle: its branch is continued one layer up.
+_CYCLES = (
+    "{what}: its branch is of self-excited cycles, continued by beltmdsm.branches.{f} "
+    "(moved there from beltmdsm.continuation.branch, issue 38)"
+)
+
+
+def _check_range(param: str, lo: float, hi: float) -> None:
+    """Refuse an unknown parameter or a range that is not finite with ``lo < hi``."""
+    if param not in MODEL_PARAMETERS:
+        raise ValueError(f"param must be a model parameter; got {param!r}")
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+        raise ValueError(f"the range must be finite with lo < hi; got [{lo}, {hi}]")
 
 
 def _check_record(record: Any) -> None:

@@ -27,7 +27,7 @@ continuation in ``y``, row by row, not on a grid of pixels:
   of the tolerance). A fold is continued by a short branch
   (`beltmdsm.continuation.branch.continue_branch`) across the predicted fold. Where ``x`` is
   ``Vb`` and the response slides back throughout, its grazing point is exact: its
-  largest velocity in contact (`beltmdsm.periodic.tangential.largest_sliding_velocity`,
+  largest velocity in contact (`beltmdsm.periodic.closed_form.largest_sliding_velocity`,
   as the band finds it).
 * A curve that cannot be continued on a row ends there; a band on that row, on every
   row where no curve is followed, and on every ``check_every``-th row, finds the
@@ -61,9 +61,10 @@ from ..periodic.family import MapFamily
 from ..settings import MAX_MAP_ROWS
 from .band import floquet_band
 from .edges import NoEdge
-from .map_linear import LINEAR_POINTS, _linear
+from .linear_verdict import LINEAR_POINTS, _linear
 from .map_result import Curve, FloquetMap
 from .map_tracker import EDGE_TOL, _extrapolate, _trackers_from_band
+from .settings import FORCED_SETTINGS, ContinuationSettings, as_settings
 
 __all__ = ["floquet_map"]
 
@@ -114,6 +115,7 @@ def floquet_map(
     check_every: int = 50,
     backend: Backend | None = None,
     progress: bool = False,
+    settings: ContinuationSettings | None = None,
 ) -> FloquetMap:
     """The region of ``(x, y)`` where the periodic response is unstable, its boundary traced.
 
@@ -134,6 +136,9 @@ def floquet_map(
     backend : {"python", "numba", None}
     progress : bool
         Show the rows on stderr (tqdm) once they take more than 2 s.
+    settings : ContinuationSettings, optional
+        The driver's steps and tolerances, for the bands of the rows and the branches
+        across a fold (`beltmdsm.continuation.settings`).
 
     Returns
     -------
@@ -183,6 +188,7 @@ def floquet_map(
             f"{check_every}th a band): use points <= {MAX_MAP_ROWS}",
             "points",
         )
+    as_settings(settings, FORCED_SETTINGS)  # checked where it enters
     base = as_model(model).replace(**{x: x_lo, y: y_lo})
     excitation_period(base)
     span = x_hi - x_lo
@@ -250,13 +256,13 @@ def floquet_map(
         if i == 0 or not live or len(live) < len(trackers) or i % int(check_every) == 0:
             # the band's tol is at most its grid's step (17 points)
             tol = min(1e-3, (x_hi - x_lo) / 16)
-            band = floquet_band(row, x, x_lo, x_hi, tol=tol, backend=backend)
+            band = floquet_band(row, x, x_lo, x_hi, tol=tol, backend=backend, settings=settings)
             band_rows.append(float(value))
             followed = [t.curve.x[-1] for t in live if t.curve.y[-1] == float(value)]
             for e in band.edges:
                 if any(abs(e.value - f) <= 1e-3 * span for f in followed):
                     continue
-                new = _trackers_from_band(band, [e], family, value, span)
+                new = _trackers_from_band(band, [e], family, value, span, settings)
                 for t in new:
                     # an edge the row before's curve of its kind lost: the same curve
                     before = [

@@ -15,11 +15,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import NoPeriodicResponse
+from ..periodic.closed_form import largest_sliding_velocity
 from ..periodic.engines import engine_of
 from ..periodic.margins import MARGIN_KINDS, Margin
 from ..periodic.newton import fixed_point
 from ..periodic.response import response_from
-from ..periodic.tangential import largest_sliding_velocity
 from .band_result import Band
 from .branch import continue_branch
 from .edges import (
@@ -31,6 +31,7 @@ from .edges import (
     multiplier_kind,
 )
 from .map_result import Curve
+from .settings import ContinuationSettings
 
 #: Curves are located to this share of the ``x`` range on every row.
 EDGE_TOL = 1e-6
@@ -114,6 +115,8 @@ class _Tracker:
     # four responses measured that shape, and the closing margin on the last row
     shapes: list = field(default_factory=list)
     margin: Margin | None = None
+    # the driver's settings for the branches across a fold (`floquet_map`'s settings=)
+    settings: ContinuationSettings | None = None
 
     def record(self, y, x):
         """The edge located at ``x`` on row ``y`` (the responses already kept by `step`)."""
@@ -355,7 +358,8 @@ class _Tracker:
         guess = _extrapolate(self.ys, [s[0] for s in self.states], y)
         point = fixed_point(family(x), guess)
         lo, hi = sorted((x, x_fold + self.side * offset))
-        branch = continue_branch(response_from(family(x), point), family.param, lo, hi)
+        start = response_from(family(x), point)
+        branch = continue_branch(start, family.param, lo, hi, settings=self.settings)
         folds = [s for s in branch.special if s.kind == "fold"]
         if not folds:
             raise NoEdge("no fold within the window")
@@ -367,7 +371,7 @@ class _Tracker:
 # ---------------------------------------------------------------- seeding from a band
 
 
-def _trackers_from_band(band: Band, edges, family, y, span):
+def _trackers_from_band(band: Band, edges, family, y, span, settings=None):
     """A tracker for each of ``edges`` of a band row (with the responses it needs)."""
     gaps = band.no_periodic_response
     out = []
@@ -395,7 +399,7 @@ def _trackers_from_band(band: Band, edges, family, y, span):
         closed = engine_of(family.model) == "closed_form"
         if kind == "grazing" and family.param == "Vb" and sliding and closed:
             role = "sliding"
-        tracker = _Tracker(curve, role, side, _margin_kinds(kind))
+        tracker = _Tracker(curve, role, side, _margin_kinds(kind), settings=settings)
         try:
             if role == "sliding":
                 pass

@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import NoPeriodicResponse
-from .branch_parts import LOCATE_TOL, SpecialPoint
+from .branch_result import LOCATE_TOL, SpecialPoint
 from .edges import multiplier_kind
 
 __all__ = ["count_outside", "critical", "regula_falsi", "special_between"]

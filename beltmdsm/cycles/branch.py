@@ -42,17 +42,18 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
 
 import numpy as np
 
-from ..continuation.branch_parts import Branch, SpecialPoint
+from ..continuation.branch_result import Branch, SpecialPoint
+from ..continuation.driver import join
+from ..continuation.settings import ContinuationSettings, as_settings
 from ..errors import NoPeriodicResponse
 from ..excitation import is_autonomous
 from ..model import MODEL_PARAMETERS, Backend, Model
+from ..periodic.cycle import Cycle, cycle
+from ..periodic.cycle_flow import CycleFlow
 from .continuation import PERIOD_LIMIT, Continuation, CyclePoint, walk
-from .cycle import Cycle, cycle
-from .flow import CycleFlow
 from .hopf import HopfPoint, NoHopfPoint, hopf_point
 
 __all__ = [
@@ -75,26 +76,28 @@ def _scale(state) -> float:
     return 1.0 + float(np.max(np.abs(state)))
 
 
-@dataclass(repr=False)
-class CycleBranch(Branch):
-    """A branch of self-excited cycles (`Branch`, ``periods = 1``, points `CyclePoint`).
+class _KindOfBranch(type):
+    """``isinstance(b, CycleBranch)``: a `Branch` of kind ``"cycle"``."""
 
-    ``hopf``: the Hopf point it is born at (None where it starts from a cycle);
-    ``criticality``: ``"supercritical"``, ``"subcritical"`` or None.
+    def __instancecheck__(cls, obj) -> bool:
+        return isinstance(obj, Branch) and obj.kind == "cycle"
 
-    Attributes
-    ----------
-    hopf : HopfPoint or None
-        Where the branch is born.
-    criticality : str or None
-        Which side of the Hopf point the cycles exist on.
-    wall_s : float
-        The time the continuation took [s].
+    def __call__(cls, *args, **kwargs) -> Branch:
+        return Branch(*args, **kwargs, kind="cycle")
+
+
+class CycleBranch(metaclass=_KindOfBranch):
+    """Moved (issue 38): a branch of self-excited cycles is a
+    `beltmdsm.continuation.branch_result.Branch` of ``kind = "cycle"``.
+
+    ``CycleBranch(...)`` builds that `Branch` (the arguments in the order they had:
+    ``param, periods, model, points, special, hopf, criticality, wall_s``), and
+    ``isinstance(b, CycleBranch)`` asks ``b.kind == "cycle"``.
 
     See Also
     --------
+    beltmdsm.continuation.branch_result.Branch : The one branch type.
     beltmdsm.cycles.branch.cycle_branch : Computes it.
-    beltmdsm.continuation.branch_parts.Branch : The points, special points and parts.
 
     Examples
     --------
@@ -107,35 +110,9 @@ class CycleBranch(Branch):
     CycleBranch(Vb: hopf 1.99572, subcritical -> range 2.1, ... points, 0 special points inside)
     >>> round(branch.hopf.value, 4), any(point.stable for point in branch.points)
     (1.9957, False)
+    >>> type(branch).__name__, branch.kind, isinstance(branch, CycleBranch)
+    ('Branch', 'cycle', True)
     """
-
-    hopf: HopfPoint | None = None
-    criticality: str | None = None
-    wall_s: float = 0.0
-
-    @property
-    def response(self) -> str:
-        """``"self-excited cycles"`` (figure titles)."""
-        return "self-excited cycles"
-
-    def __repr__(self) -> str:
-        a, b = self.ends
-        crit = f", {self.criticality}" if self.criticality else ""
-        return (
-            f"CycleBranch({self.param}: {a.kind} {a.value:.6g}{crit} -> {b.kind} "
-            f"{b.value:.6g}, {len(self.points)} points, "
-            f"{len(self.special) - 2} special points inside)"
-        )
-
-    def as_dict(self) -> dict:
-        """`Branch.as_dict` with ``autonomous: true``, ``hopf``, ``criticality``,
-        ``wall_s``."""
-        out = super().as_dict()
-        out["autonomous"] = True
-        out["hopf"] = None if self.hopf is None else self.hopf.as_dict()
-        out["criticality"] = self.criticality
-        out["wall_s"] = self.wall_s
-        return out
 
 
 def hopf_cycle(hopf: HopfPoint, amplitude: float, *, backend: Backend | None = None) -> CyclePoint:
@@ -235,7 +212,8 @@ def cycle_branch(
     lo: float,
     hi: float,
     backend: Backend | None = None,
-) -> CycleBranch:
+    settings: ContinuationSettings | None = None,
+) -> Branch:
     """The branch of self-excited cycles in ``param`` over ``[lo, hi]`` (module docstring).
 
     Parameters
@@ -249,11 +227,15 @@ def cycle_branch(
         The range.
     backend : {"python", "numba", None}
         The kernels; None: numba if installed.
+    settings : ContinuationSettings, optional
+        The driver's steps and tolerances; default
+        `beltmdsm.continuation.settings.CYCLE_SETTINGS`.
 
     Returns
     -------
-    CycleBranch
-        From the Hopf point, or both ways through the model's cycle.
+    Branch
+        Of ``kind = "cycle"``: from the Hopf point, or both ways through the model's
+        cycle.
 
     Raises
     ------
@@ -284,6 +266,7 @@ def cycle_branch(
     ValueError: a branch of self-excited cycles needs a model without excitation
     """
     clock = time.perf_counter()
+    settings = as_settings(settings, Continuation.default_settings)
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")
     if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
@@ -293,7 +276,7 @@ def cycle_branch(
     try:
         hopf = hopf_point(model, param, lo, hi)
     except NoHopfPoint as err:
-        return _from_cycle(model, param, float(lo), float(hi), backend, str(err))
+        return _from_cycle(model, param, float(lo), float(hi), backend, str(err), settings)
     amplitude = HOPF_AMPLITUDE * _scale(hopf.equilibrium)
     cont, z = _hopf_start(hopf, amplitude, backend, float(lo), float(hi))
     try:
@@ -321,8 +304,8 @@ def cycle_branch(
         f"{hopf.frequency:.6g} rad/s; {criticality}: the cycles exist where sliding is "
         + ("unstable" if criticality == "supercritical" else "stable"),
     )
-    points, special = walk(cont, first, tangent, hopf.period)
-    return CycleBranch(
+    points, special = walk(cont, first, tangent, hopf.period, settings)
+    return Branch(
         param,
         1,
         hopf.model,
@@ -331,12 +314,19 @@ def cycle_branch(
         hopf,
         criticality,
         time.perf_counter() - clock,
+        kind="cycle",
     )
 
 
 def cycle_branch_from(
-    start: Cycle, param: str, lo: float, hi: float, *, backend: Backend | None = None
-) -> CycleBranch:
+    start: Cycle,
+    param: str,
+    lo: float,
+    hi: float,
+    *,
+    backend: Backend | None = None,
+    settings: ContinuationSettings | None = None,
+) -> Branch:
     """The branch of cycles through ``start`` in ``param`` over ``[lo, hi]``, both ways.
 
     Parameters
@@ -349,11 +339,14 @@ def cycle_branch_from(
         The range, holding the start's value.
     backend : {"python", "numba", None}
         The kernels; None: numba if installed.
+    settings : ContinuationSettings, optional
+        The driver's steps and tolerances; default
+        `beltmdsm.continuation.settings.CYCLE_SETTINGS`.
 
     Returns
     -------
-    CycleBranch
-        Without a Hopf point; its points run from ``lo`` to ``hi``.
+    Branch
+        Of ``kind = "cycle"``, without a Hopf point; its points run from ``lo`` to ``hi``.
 
     Raises
     ------
@@ -383,6 +376,7 @@ def cycle_branch_from(
     ValueError: the start's Vb = 1.5 must lie in [1.6, 1.7]
     """
     clock = time.perf_counter()
+    settings = as_settings(settings, Continuation.default_settings)
     model = start.model
     v0 = float(model[param])
     if param not in MODEL_PARAMETERS:
@@ -400,23 +394,13 @@ def cycle_branch_from(
         t = cont.tangent(J, sign=1.0)
         t = t if t[-1] * sign >= 0 else -t
         first = cont.point(x, T, p, img, t[-1], J)
-        walks.append(walk(cont, first, t, start.period))
-    (up, up_special), (down, down_special) = walks
-    for s in down_special:
-        s.stable_before, s.stable_after = s.stable_after, s.stable_before
-    return CycleBranch(
-        param,
-        1,
-        model,
-        list(reversed(down[1:])) + up,
-        list(reversed(down_special)) + up_special,
-        None,
-        None,
-        time.perf_counter() - clock,
-    )
+        walks.append(walk(cont, first, t, start.period, settings))
+    points, special = join(*walks)
+    wall = time.perf_counter() - clock
+    return Branch(param, 1, model, points, special, None, None, wall, kind="cycle")
 
 
-def _from_cycle(model, param, lo, hi, backend, no_hopf):
+def _from_cycle(model, param, lo, hi, backend, no_hopf, settings):
     """The branch both ways through the cycle at the model's value of ``param``."""
     v0 = float(model[param])
     if not lo <= v0 <= hi:
@@ -427,4 +411,4 @@ def _from_cycle(model, param, lo, hi, backend, no_hopf):
         found = cycle(model, backend=backend)
     except NoPeriodicResponse as err:
         raise NoPeriodicResponse(f"{no_hopf}; and no cycle at {param} = {v0:g}: {err}") from None
-    return cycle_branch_from(found, param, lo, hi, backend=backend)
+    return cycle_branch_from(found, param, lo, hi, backend=backend, settings=settings)

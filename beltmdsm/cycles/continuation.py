@@ -1,36 +1,35 @@
-"""The pseudo-arclength continuation of self-excited cycles (`beltmdsm.cycles.branch`).
+"""The self-excited cycle as a continuation problem (`beltmdsm.continuation.problem`).
 
 The curve of zeros of ``(phi_T(x; p) - x, h(x))`` (`beltmdsm.cycles.flow`) in
-``z = (x / sx, T / sT, p / sp)``: a secant predictor along the unit tangent (the null
-vector of the 5 x 6 Jacobian ``[M - I, f, dphi/dp; grad h, 0, dh/dp]``), a corrector by
-Newton's method on the cycle's equations and the hyperplane normal to the tangent,
-a step that grows after easy steps and halves after failed ones; the special points
-between accepted points (`beltmdsm.continuation.special.special_between`, shared with the
-forced responses' branches; the stick onset by `beltmdsm.cycles.stick.cross_stick`) and
-the walk to an end (`walk`), as `beltmdsm.continuation.branch` does for forced responses.
+``z = (x / sx, T / sT, p / sp)``: the period is unknown and the section ``h`` is the
+phase condition. `CycleProblem` states the residual and the 5 x 6 Jacobian ``[M - I, f,
+dphi/dp; grad h, 0, dh/dp]``, the point (`CyclePoint`, its multipliers without the
+trivial one) and its hooks: a step whose stick count changes is refused, and the stick
+onset crossed (`beltmdsm.cycles.stick.cross_stick`); a cycle whose largest multiplier
+passes `MULTIPLIER_LIMIT` or whose period passes `PERIOD_LIMIT` times the first ends
+the branch. The one driver (`beltmdsm.continuation.driver`) does the rest, as for the
+forced responses; its defaults here are
+`beltmdsm.continuation.settings.CYCLE_SETTINGS`.
 """
 
 from __future__ import annotations
 
-import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ..continuation.branch_parts import SpecialPoint
-from ..continuation.special import regula_falsi, special_between
+from ..continuation.driver import walk as drive
+from ..continuation.problem import Problem, Residual, Step, failed, null_vector, range_end
+from ..continuation.settings import CYCLE_SETTINGS, ContinuationSettings
 from ..errors import NoPeriodicResponse
+from ..periodic.cycle_flow import CycleFlow, FlowImage, orbit_observables, split_multipliers
 from ..periodic.newton import NEWTON_TOL
-from .flow import CycleFlow, FlowImage, orbit_observables, split_multipliers
 from .stick import cross_stick, stick_ahead, sticks
 
-__all__ = ["CyclePoint", "Continuation", "walk", "STEP_FIRST", "STEP_MIN", "STEP_MAX"]
+__all__ = ["CyclePoint", "CycleProblem", "Continuation", "walk"]
 
-#: Arclength steps (scaled coordinates): first, smallest, largest.
-STEP_FIRST = 0.02
-STEP_MIN = 1e-7
-STEP_MAX = 0.2
 #: The parameter's scale is at most this many times the start's value (or 1).
 P_SCALE = 2.0
 #: A branch ends where a cycle's largest multiplier exceeds this: single shooting's
@@ -40,9 +39,6 @@ P_SCALE = 2.0
 MULTIPLIER_LIMIT = 1e3
 #: A branch ends where the period exceeds this many times the first one (the Hopf period).
 PERIOD_LIMIT = 50.0
-_CORRECTOR_ITER = 12
-_EASY = 4
-MAX_POINTS = 2000
 #: The section's residual (relative to its gradient times the state's scale).
 _SECTION_TOL = 1e-11
 
@@ -127,7 +123,7 @@ class CyclePoint:
     def observables(self, vb: float) -> dict[str, float]:
         """The ranges of ``X1'`` and ``X1``, the largest ``|Vr| = |X1' - vb|`` (at an
         end of the range of ``X1'``, which the orbit passes continuously) and the
-        period [s]: the columns of `beltmdsm.continuation.branch_parts.Branch.observables`
+        period [s]: the columns of `beltmdsm.continuation.branch_result.Branch.observables`
         for a cycle (the forced responses' names; no mean friction)."""
         (v_lo, v_hi), (x_lo, x_hi) = self.velocity_range, self.x1_range
         return {
@@ -164,8 +160,8 @@ class CyclePoint:
         }
 
 
-class Continuation:
-    """Pseudo-arclength continuation in ``z = (x/sx, T/sT, p/sp)`` (module docstring).
+class CycleProblem(Problem):
+    """A self-excited cycle continued in ``z = (x/sx, T/sT, p/sp)`` (module docstring).
 
     Parameters
     ----------
@@ -182,6 +178,7 @@ class Continuation:
 
     See Also
     --------
+    beltmdsm.continuation.problem.Problem : The contract it fills in.
     beltmdsm.cycles.continuation.walk : The walk along a branch.
     beltmdsm.cycles.branch.cycle_branch : The public entry.
 
@@ -205,8 +202,13 @@ class Continuation:
     (1.5005, 6.654, 1)
     """
 
+    kind = "cycle"
+    default_settings = CYCLE_SETTINGS
+    diverge_after = 2
+
     def __init__(self, flow: CycleFlow, lo: float, hi: float, sx: float, sT: float, x, p):
         self.flow, self.lo, self.hi = flow, lo, hi
+        self.period0 = sT  # the reference period of `PERIOD_LIMIT`
         # the parameter's scale: a tenth of the range, but at most `P_SCALE` times the
         # start's size: a range out to 1e300 would otherwise make every step jump by
         # 1e298 (issue 36, item 9); the branch then ends where it ends, as in a range
@@ -226,8 +228,27 @@ class Continuation:
     def unpack(self, z):
         return z[:4] * self.sx, float(z[4] * self.sT), float(z[5] * self.sp)
 
-    def jacobian(self, x, T, p, img, column=None) -> NDArray[np.float64]:
-        """``d(G, H)/dz`` (5 x 6); ``column``: the scaled ``p`` column, if known."""
+    def residual(self, z, extra, iteration) -> Residual:
+        x, T, p = self.unpack(z)
+        img = self.flow.image(x, T, p)
+        G = (img.state - x) / self.sx
+        H = self.flow.section(x, p) / self.hs
+        size = max(float(np.max(np.abs(G))), abs(H), abs(extra))
+        converged = (
+            size * self.sx <= NEWTON_TOL * (1.0 + float(np.max(np.abs(x))))
+            and abs(H) <= _SECTION_TOL
+            and iteration > 1
+        )
+        return Residual(np.append(G, H), size, converged, (x, T, p, img))
+
+    def jacobian(self, *args, column=None) -> NDArray[np.float64]:  # type: ignore[override]
+        """``d(G, H)/dz`` (5 x 6) at ``(x, T, p, image)`` (or ``data``, that tuple, as the
+        driver calls it); ``column``: the scaled ``p`` column, if known."""
+        if len(args) <= 2:  # (data[, column])
+            (x, T, p, img), column = args[0], args[1] if len(args) == 2 else column
+        else:  # (x, T, p, img[, column])
+            x, T, p, img = args[:4]
+            column = args[4] if len(args) == 5 else column
         J = np.zeros((5, 6))
         J[:4, :4] = img.monodromy - np.eye(4)
         J[:4, 4] = img.field * self.sT / self.sx
@@ -238,8 +259,13 @@ class Continuation:
         J[:, 5] = column
         return J
 
+    def solution(self, data, iteration) -> Step:
+        x, T, p, _ = data
+        return Step(self.z_of(x, T, p), p, self.jacobian(data), iteration, data)
+
     def correct(self, z_pred, extra, column=None, fresh=False):
-        """Newton's method on ``G = 0``, ``H = 0`` and ``extra(z) = (value, row)``.
+        """Newton's method on ``G = 0``, ``H = 0`` and ``extra(z) = (value, row)``
+        (`beltmdsm.continuation.driver.newton`).
 
         ``column``: the ``p`` column of a point nearby, kept through the iterations
         (computed at the first where not given) unless ``fresh`` (across a kink of the
@@ -248,48 +274,31 @@ class Continuation:
         Returns ``(x, T, p, image, J, iterations)``, ``J`` (5 x 6) with the ``p``
         column at the result; raises NoPeriodicResponse.
         """
-        z, last = z_pred.copy(), math.inf
-        for iteration in range(1, _CORRECTOR_ITER + 1):
-            x, T, p = self.unpack(z)
-            img = self.flow.image(x, T, p)
-            G = (img.state - x) / self.sx
-            H = self.flow.section(x, p) / self.hs
-            e, row = extra(z)
-            size = max(float(np.max(np.abs(G))), abs(H), abs(e))
-            if (
-                size * self.sx <= NEWTON_TOL * (1.0 + float(np.max(np.abs(x))))
-                and abs(H) <= _SECTION_TOL
-                and iteration > 1
-            ):
-                return x, T, p, img, self.jacobian(x, T, p, img), iteration
-            if size >= last and iteration > 2:
-                raise NoPeriodicResponse(f"the corrector diverges (residual {size:.2e})")
-            last = size
-            J = self.jacobian(x, T, p, img, None if fresh else column)
-            column = J[:, 5].copy()
-            try:
-                z = z + np.linalg.solve(np.vstack([J, row]), -np.append(np.append(G, H), e))
-            except np.linalg.LinAlgError:
-                raise NoPeriodicResponse("the corrector's matrix is singular") from None
-        raise NoPeriodicResponse(f"the corrector leaves a residual {last:.2e}")
-
-    def trial(self, start, tangent, s) -> CyclePoint:
-        """The corrected point at arclength ``s`` from ``start`` along ``tangent``."""
-        z_pred = self.z(start) + s * tangent
-        x, T, p, img, J, _ = self.correct(z_pred, self.arclength(z_pred, tangent), start.column)
-        return self.point(x, T, p, img, self.tangent(J, tangent)[-1], J)
-
-    def arclength(self, z_pred, tangent):
-        return lambda z: (float(tangent @ (z - z_pred)), tangent)
+        step = self.solve(z_pred, extra, column, fresh)
+        x, T, p, img = step.data
+        return x, T, p, img, step.J, step.iterations
 
     @staticmethod
-    def tangent(J, previous=None, sign=1.0):
-        t = np.linalg.svd(J)[2][-1]
+    def tangent(J, previous=None, sign=1.0, direction=None):
+        """The unit null vector of ``J``: along ``previous``, else signed by ``sign``
+        (``direction``: by the sign of its parameter component, as the driver asks)."""
+        if direction is not None:
+            return Problem.tangent(J, previous, direction)
+        t = null_vector(J)
         if previous is not None:
             return t if float(t @ previous) >= 0 else -t
         return t if sign >= 0 else -t
 
-    def point(self, x, T, p, img, tangent_p, J=None) -> CyclePoint:
+    def point(self, *args, **kw) -> CyclePoint:  # type: ignore[override]
+        """``point(x, T, p, image, tangent_p, J=None)``, or ``point(step, tangent_p)``
+        (the driver's form)."""
+        if isinstance(args[0], Step):
+            step, tangent_p = args
+            return self.point_at(*step.data, tangent_p, step.J)
+        return self.point_at(*args, **kw)
+
+    def point_at(self, x, T, p, img, tangent_p, J=None) -> CyclePoint:
+        """The cycle with state ``x`` on the section, period ``T``, at ``p``."""
         trivial, rest = split_multipliers(img.monodromy, self.flow.field(p, x))
         biggest = float(np.abs(rest[0])) if rest.size else 0.0
         model, _ = self.flow.at(p)
@@ -314,32 +323,65 @@ class Continuation:
             None if J is None else J[:, 5].copy(),
         )
 
+    # -- the hooks: the stick onset, the limits of single shooting
 
-# ---------------------------------------------------------------- special points
+    def period(self, point):
+        """The period of a located cycle, for the frequency of a Neimark-Sacker pair."""
+        return point.period
 
-#: A special point's regula falsi stops at brackets below this (scaled arclength).
-_S_TOL = 1e-13
+    def check_step(self, prev, step, jumped):
+        if jumped:
+            return "the corrector jumps to another branch"
+        if (prev.n_sticks == 0) != (sticks(step.data[3]) == 0):
+            return "a stick phase " + ("disappears" if prev.n_sticks else "appears")
+        return None
+
+    def same_structure(self, prev, new):
+        return (prev.n_sticks, prev.n_reversals) == (new.n_sticks, new.n_reversals)
+
+    def range_specials(self, prev, end, tangent, ds, bound, settings):
+        if end.n_sticks != prev.n_sticks:
+            return []
+        lo, hi = min(prev.value, bound), max(prev.value, bound)
+        found = self.special_between(prev, end, tangent, ds, settings)
+        return [s for s in found if lo <= s.value <= hi]
+
+    def at_bound(self, end, bound):
+        return _at_value(self, end, bound), range_end(end, bound)
+
+    def rescue(self, points, prev, tangent, ds):
+        """Across the stick onset ahead (`beltmdsm.cycles.stick`), where one is."""
+        ahead = stick_ahead(self, points, ds)
+        crossed = None if ahead is None else cross_stick(self, prev, tangent, ahead)
+        if crossed is None:
+            return None
+        sp, near, first, tangent = crossed
+        return sp, [near, first], tangent
+
+    def give_up(self, stretch, failure, stage):
+        detail = f"no step converges: {failure}" if stage == "step" else failure
+        return super().give_up(stretch, detail, stage)
+
+    def stop(self, new):
+        if new.max_abs_multiplier > MULTIPLIER_LIMIT:
+            return failed(
+                new,
+                f"the cycle's largest multiplier reaches {new.max_abs_multiplier:.3g}: "
+                "shooting over one period amplifies the run's rounding by it, and the "
+                "corrector's steps shrink towards nothing (a cycle this unstable needs "
+                "multiple shooting)",
+            )
+        if new.period > PERIOD_LIMIT * self.period0:
+            return failed(
+                new,
+                f"the period ({new.period:.4g} s) grows past {PERIOD_LIMIT:g} times the Hopf "
+                "period: towards a homoclinic orbit or a standstill",
+            )
+        return None
 
 
-def _period(point):
-    """The period of a located cycle, for the frequency of a Neimark-Sacker pair."""
-    return point.period
-
-
-def _end(kind, point, detail, value=None, accuracy=0.0):
-    return SpecialPoint(
-        kind,
-        point.value if value is None else value,
-        accuracy,
-        None,
-        point.multipliers,
-        point.stable,
-        None,
-        detail,
-    )
-
-
-# ---------------------------------------------------------------- the walk
+#: The name before issue 38.
+Continuation = CycleProblem
 
 
 def _at_value(cont, point, value):
@@ -357,7 +399,7 @@ def _at_value(cont, point, value):
     return cont.point(x, T, p, img, t[-1] if t[-1] * point.tangent >= 0 else -t[-1], J)
 
 
-def walk(cont, first, tangent, period0):
+def walk(cont, first, tangent, period0, settings: ContinuationSettings | None = None):
     """Continue from ``first`` along ``tangent`` to the range's end or a failure.
 
     Parameters
@@ -370,6 +412,8 @@ def walk(cont, first, tangent, period0):
         The unit tangent there, in the direction to go.
     period0 : float
         The reference period of `PERIOD_LIMIT`.
+    settings : ContinuationSettings, optional
+        The driver's; default `beltmdsm.continuation.settings.CYCLE_SETTINGS`.
 
     Returns
     -------
@@ -380,6 +424,7 @@ def walk(cont, first, tangent, period0):
 
     See Also
     --------
+    beltmdsm.continuation.driver.walk : The driver it hands the problem to.
     beltmdsm.cycles.stick.cross_stick : Crosses the stick onset on the way.
     beltmdsm.cycles.branch.cycle_branch : Walks both ways from a Hopf point or a cycle.
 
@@ -405,102 +450,21 @@ def walk(cont, first, tangent, period0):
     >>> end.value, round(end.period, 3), end.stable, end.n_sticks
     (1.55, 6.624, True, 1)
     """
-    points, special = [first], []
-    ds = STEP_FIRST
-    while True:
-        prev = points[-1]
-        if len(points) >= MAX_POINTS:
-            special.append(_end("failed", prev, f"stopped after {MAX_POINTS} points"))
-            return points, special
-        z_pred = cont.z(prev) + ds * tangent
-        failure = None
-        try:
-            x, T, p, img, J, iterations = cont.correct(
-                z_pred, cont.arclength(z_pred, tangent), prev.column
-            )
-            if np.max(np.abs(cont.z_of(x, T, p) - z_pred)) > 10 * ds:
-                failure = "the corrector jumps to another branch"
-        except NoPeriodicResponse as err:
-            failure = str(err)
-        if failure is None and (prev.n_sticks == 0) != (sticks(img) == 0):
-            failure = "a stick phase " + ("disappears" if prev.n_sticks else "appears")
-        if failure is not None:
-            ahead = stick_ahead(cont, points, ds)
-            if ahead is not None:
-                crossed = cross_stick(cont, prev, tangent, ahead)
-                if crossed is not None:
-                    sp, near, first, tangent = crossed
-                    special.append(sp)
-                    points += [near, first]
-                    ds = STEP_FIRST
-                    continue
-            ds *= 0.5
-            if ds < STEP_MIN:
-                special.append(_end("failed", prev, f"no step converges: {failure}"))
-                return points, special
-            continue
-        t_new = cont.tangent(J, tangent)
-        new = cont.point(x, T, p, img, t_new[-1], J)
-        if not cont.lo <= p <= cont.hi:
-            bound = cont.hi if p > cont.hi else cont.lo
-            try:
-                end, _ = regula_falsi(
-                    cont,
-                    prev,
-                    tangent,
-                    ds,
-                    lambda q, b=bound: q.value - b,
-                    prev.value - bound,
-                    p - bound,
-                    s_tol=_S_TOL,
-                )
-            except NoPeriodicResponse as err:
-                ds *= 0.5
-                if ds < STEP_MIN:
-                    special.append(_end("failed", prev, f"locating the range's end: {err}"))
-                    return points, special
-                continue
-            if end.n_sticks == prev.n_sticks:
-                special += [
-                    s
-                    for s in special_between(cont, prev, end, tangent, ds, _period, s_tol=_S_TOL)
-                    if min(prev.value, bound) <= s.value <= max(prev.value, bound)
-                ]
-            points.append(_at_value(cont, end, bound))
-            special.append(_end("range", end, "the end of the requested range", bound))
-            return points, special
-        if (prev.n_sticks, prev.n_reversals) == (new.n_sticks, new.n_reversals):
-            try:
-                special += special_between(cont, prev, new, tangent, ds, _period, s_tol=_S_TOL)
-            except NoPeriodicResponse:
-                ds *= 0.5
-                if ds < STEP_MIN:
-                    special.append(_end("failed", prev, "a special point cannot be located"))
-                    return points, special
-                continue
-        points.append(new)
-        tangent = t_new
-        if new.max_abs_multiplier > MULTIPLIER_LIMIT:
-            special.append(
-                _end(
-                    "failed",
-                    new,
-                    f"the cycle's largest multiplier reaches {new.max_abs_multiplier:.3g}: "
-                    "shooting over one period amplifies the run's rounding by it, and the "
-                    "corrector's steps shrink towards nothing (a cycle this unstable needs "
-                    "multiple shooting)",
-                )
-            )
-            return points, special
-        if T > PERIOD_LIMIT * period0:
-            special.append(
-                _end(
-                    "failed",
-                    new,
-                    f"the period ({T:.4g} s) grows past {PERIOD_LIMIT:g} times the Hopf "
-                    "period: towards a homoclinic orbit or a standstill",
-                )
-            )
-            return points, special
-        if iterations <= _EASY:
-            ds = min(ds * 1.5, STEP_MAX)
+    cont.period0 = period0
+    return drive(cont, first, tangent, settings)
+
+
+#: Names this module had before issue 38, and where they went.
+_MOVED = {"STEP_FIRST": "step_first", "STEP_MIN": "step_min", "STEP_MAX": "step_max"}
+
+
+def __getattr__(name: str):
+    if name in _MOVED:
+        warnings.warn(
+            f"beltmdsm.cycles.continuation.{name} is now "
+            f"beltmdsm.continuation.settings.CYCLE_SETTINGS.{_MOVED[name]} (issue 38)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return getattr(CYCLE_SETTINGS, _MOVED[name])
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

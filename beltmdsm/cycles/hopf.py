@@ -35,6 +35,7 @@ from scipy.optimize import brentq
 
 from beltmdsm.generated import unforced
 
+from ..errors import NoHopfPoint  # defined there (issue 38): one hierarchy
 from ..model import MODEL_PARAMETERS, Model
 
 __all__ = [
@@ -56,26 +57,6 @@ SCAN_POINTS = 401
 _COMPLEX_SHARE = 1e-8
 #: The pairs of `beltmdsm.generated.unforced.eigenvalues`, in its order.
 PAIRS = ("tangential", "normal")
-
-
-class NoHopfPoint(ValueError):
-    """No complex pair of steady sliding crosses the imaginary axis in the range.
-
-    See Also
-    --------
-    beltmdsm.cycles.hopf.hopf_point : Raises it.
-
-    Examples
-    --------
-    Under Coulomb friction the tangential pair of steady sliding is the damped
-    oscillator's, ``-0.1 +- 0.995 i``, whatever the belt speed: no Hopf point.
-
-    >>> try:
-    ...     hopf_point(Model(alpha=0.0), "Vb", 0.5, 5.0)
-    ... except NoHopfPoint as refusal:
-    ...     print(refusal)
-    no Hopf point of steady sliding for Vb in [0.5, 5] (coulomb friction, ...
-    """
 
 
 @dataclass(frozen=True)

@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from ..continuation.branch_parts import LOCATE_TOL, SpecialPoint
+from ..continuation.branch_result import LOCATE_TOL, SpecialPoint
 from ..errors import NoPeriodicResponse
 from ..integrate.switching import Mode
 

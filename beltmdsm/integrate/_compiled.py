@@ -1,7 +1,7 @@
 """The integrators bound to their generated kernels: plain Python, or compiled by numba.
 
 `beltmdsm.integrate._dop853` (one mode, stopping at switches) and
-`beltmdsm.integrate._superpose` (the scan of the closed-form tangential motion) call the
+`beltmdsm.integrate._switch_scan` (the scan of the closed-form tangential motion) call the
 generated scalar kernels (`beltmdsm.generated.hybrid`, `beltmdsm.generated.oscillator`)
 through module globals
 (``_field_kernel``, ``_surface_kernel``, ...). This module binds them:
@@ -42,13 +42,13 @@ from beltmdsm.generated import _support, hybrid, oscillator
 from beltmdsm.generated._support import CacheFolderWarning, import_numba, user_cache
 
 from ..model import Backend, Model
-from . import _background, _dop853, _roots, _superpose
+from . import _background, _dop853, _roots, _switch_scan
 
 __all__ = ["advance", "scan"]
 
 #: The modules whose sources key the compiled modules (read from their files, wherever
 #: the package is: beltmdsm.generated sits beside beltmdsm/ in a source checkout).
-_SOURCES = (hybrid, oscillator, _support, _dop853, _superpose, _roots)
+_SOURCES = (hybrid, oscillator, _support, _dop853, _switch_scan, _roots)
 _FIELDS = {"vector_field": hybrid.bind_vector_field, "response_field": hybrid.bind_response_field}
 #: The integrators: their module, their functions (the entry point last), their kernels,
 #: and the functions of other modules they call (compiled beside them).
@@ -70,7 +70,7 @@ _ADVANCE = (
     (_roots.converged, _roots.secant, _roots.illinois, _roots.golden),
 )
 _SCAN = (
-    _superpose,
+    _switch_scan,
     ("tangential_state", "_normal_at", "_inside_at", "_refine", "_dip", "scan"),
     ("_state_kernel", "_exc_kernel", "_surface_kernel", "_rate_kernel"),
     (_dop853._dense, _roots.converged, _roots.secant, _roots.illinois, _roots.golden),
@@ -108,7 +108,7 @@ def advance(field: str, model: Model, backend: Backend | None = None):
 
 
 def scan(model: Model, backend: Backend | None = None):
-    """`beltmdsm.integrate._superpose.scan` for the model's laws: ``f(mode, stick, sgn,
+    """`beltmdsm.integrate._switch_scan.scan` for the model's laws: ``f(mode, stick, sgn,
     watch, dirs, t0, tc, start, Vb, grid, on_grid, ts, hs, ys, Fs, state_a, exc_a, surf_a,
     rate_a)``."""
     kernels = (

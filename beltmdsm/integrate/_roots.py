@@ -1,7 +1,7 @@
 """The Illinois method and the golden-section search, written once for both integrators.
 
 `beltmdsm.integrate._dop853` refines a crossing on a step's dense output,
-`beltmdsm.integrate._superpose` on the closed-form tangential motion; both keep a
+`beltmdsm.integrate._switch_scan` on the closed-form tangential motion; both keep a
 bracket ``[a, b]`` with ``fa > 0 >= fb`` and call these three steps in the same loop.
 Where a switching function dips inside a step without a sample below zero, both look
 for its minimum with `golden` steps: a dip shallower than the samples' spacing (an

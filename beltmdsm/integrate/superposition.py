@@ -11,7 +11,7 @@ with ``Phi`` the closed-form state-transition matrix and ``zf`` the closed-form
 response to the tangential excitation: the generated superposition
 `beltmdsm.generated.oscillator.tangential_state` (derived in derive/oscillator.py), with
 ``sgn = 0`` in flight and separation (no friction), while sticking ``X1' = Vb``. Every
-tangential switch is located on these closed forms (`beltmdsm.integrate._superpose.scan`),
+tangential switch is located on these closed forms (`beltmdsm.integrate._switch_scan.scan`),
 every normal switch comes from the normal motion, and the mode after a switch is
 chosen by the same rules as in the event-driven integrator (`beltmdsm.integrate.switching`).
 

@@ -144,7 +144,7 @@ def sweep(
     cache : object with get(ident) and put(ident, row), optional
         Rows already computed, by the point's identity (its model, law, parameters and
         settings): ``get`` each point before running it and ``put`` each new row (the
-        command line passes one on the sweeps' disk cache, beltmdsm/studies/cache.py).
+        command line passes one on the sweeps' disk cache, beltmdsm/batch/cache.py).
 
     Returns
     -------

@@ -16,12 +16,12 @@ Two engines implement it (`beltmdsm.periodic.engines.ENGINES`), and
 `beltmdsm.periodic.engines.period_map` chooses by the structural facts of the model's
 laws that SymPy decided (``beltmdsm.generated.capabilities``), never by assumption:
 
-* `beltmdsm.periodic.tangential.TangentialMap` (``"closed_form"``), the fast special
+* `beltmdsm.periodic.closed_form.ClosedFormMap` (``"closed_form"``), the fast special
   case, where the slip-mode friction does not depend on the tangential state and the
   normal equation is free of it (Coulomb friction with every contact and tension law):
-  the tangential map on the cached periodic normal motion (`beltmdsm.periodic.normal`);
+  the tangential map on the cached periodic normal motion (`beltmdsm.periodic.normal_orbit`);
   it refuses a model without them (`beltmdsm.errors.Unsupported`).
-* `beltmdsm.periodic.general.GeneralMap` (``"general"``), every law: the event-driven
+* `beltmdsm.periodic.general_map.GeneralMap` (``"general"``), every law: the event-driven
   run in the full state ``(X1, X1', X2, X2')`` and its monodromy by the variational
   equations (`beltmdsm.periodic.variational`). Where both apply they agree to 1e-9 in
   the multipliers (tests/beltmdsm/periodic/test_general.py).
@@ -203,8 +203,8 @@ class PeriodMap(abc.ABC):
 
     See Also
     --------
-    beltmdsm.periodic.tangential.TangentialMap : the closed-form engine.
-    beltmdsm.periodic.general.GeneralMap : the general engine.
+    beltmdsm.periodic.closed_form.ClosedFormMap : the closed-form engine.
+    beltmdsm.periodic.general_map.GeneralMap : the general engine.
     beltmdsm.periodic.engines.period_map : the engine the model's laws allow.
     beltmdsm.periodic.newton.fixed_point : Newton's method on a map.
 

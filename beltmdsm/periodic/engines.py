@@ -1,9 +1,9 @@
 """The period maps by engine, and the choice between them by the facts of the model's laws.
 
 `period_map` is the ``k``-fold period map of a model (`beltmdsm.periodic.base.PeriodMap`):
-the closed-form one (`beltmdsm.periodic.tangential.TangentialMap`) where the model's laws
+the closed-form one (`beltmdsm.periodic.closed_form.ClosedFormMap`) where the model's laws
 have every fact of `CLOSED_FORM_FACTS` (``beltmdsm.generated.capabilities``, decided by SymPy),
-else the general one (`beltmdsm.periodic.general.GeneralMap`), or the one asked for.
+else the general one (`beltmdsm.periodic.general_map.GeneralMap`), or the one asked for.
 """
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ from __future__ import annotations
 from ..model import Backend, Model
 from ..settings import check_finite
 from .base import Engine, PeriodMap
-from .general import GeneralMap
-from .tangential import CLOSED_FORM_FACTS, TangentialMap
+from .closed_form import CLOSED_FORM_FACTS, ClosedFormMap
+from .general_map import GeneralMap
 
 __all__ = [
     "ENGINES",
@@ -21,7 +21,7 @@ __all__ = [
 ]
 
 #: The period maps by engine name.
-ENGINES: dict[str, type[PeriodMap]] = {"closed_form": TangentialMap, "general": GeneralMap}
+ENGINES: dict[str, type[PeriodMap]] = {"closed_form": ClosedFormMap, "general": GeneralMap}
 
 
 def engine_of(model: Model) -> str:
@@ -97,7 +97,7 @@ def period_map(
     --------
     >>> from beltmdsm import Model
     >>> type(period_map(Model(Vb=5.0))).__name__, period_map(Model(Vb=5.0), 4).periods
-    ('TangentialMap', 4)
+    ('ClosedFormMap', 4)
     >>> period_map(Model(Vb=5.0), engine="general").dimension  # the full state
     4
     >>> period_map(Model(), engine="fast")

@@ -8,11 +8,11 @@ the Floquet stability of that periodic response (docs/modelling.md#what-unstable
 of the model's laws choose (``beltmdsm.generated.capabilities``,
 `beltmdsm.periodic.engines.engine_of`), never by assumption:
 
-* ``closed_form`` (`beltmdsm.periodic.tangential.TangentialMap`), where the slip-mode
+* ``closed_form`` (`beltmdsm.periodic.closed_form.ClosedFormMap`), where the slip-mode
   friction is free of the tangential state and the normal equation too (Coulomb
   friction): the tangential map on the cached normal orbit, closed-form state
   transitions and saltation matrices, the normal block's multipliers apart;
-* ``general`` (`beltmdsm.periodic.general.GeneralMap`), every law (Stribeck
+* ``general`` (`beltmdsm.periodic.general_map.GeneralMap`), every law (Stribeck
   friction): the full state shot with the event-driven integrator, the monodromy by
   the variational equations with the generated Jacobians of the modes and the
   saltation matrices (`beltmdsm.periodic.variational`; Leine and Nijmeijer 2004).
@@ -79,7 +79,7 @@ __all__ = [
 FLOOR_FACTOR = 64.0
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Floquet:
     """Floquet multipliers of the periodic response and what they say.
 
@@ -210,16 +210,16 @@ class Floquet:
         if resp.grazing is not None:
             nan = float("nan")
             return cls(
-                np.full(4, complex(nan, nan)),
-                nan,
-                nan,
-                nan,
-                None,
-                n_rev,
-                n_stick,
-                resp.grazing,
-                resp.period,
-                resp,
+                multipliers=np.full(4, complex(nan, nan)),
+                max_abs_multiplier=nan,
+                growth_rate=nan,
+                frequency=nan,
+                stable=None,
+                n_reversals=n_rev,
+                n_sticks=n_stick,
+                grazing=resp.grazing,
+                period=resp.period,
+                response=resp,
             )
         if resp.engine == "closed_form":
             mt = np.linalg.eigvals(resp.monodromy_tangential)
@@ -234,16 +234,16 @@ class Floquet:
         steps = 1.0 + resp.period * fastest_rate(resp.model)
         floor = FLOOR_FACTOR * RTOL * steps * max(1.0, biggest)
         return cls(
-            mu,
-            biggest,
-            growth,
-            abs(float(np.angle(mu[k]))) / resp.period,
-            bool(biggest < 1.0),
-            n_rev,
-            n_stick,
-            None,
-            resp.period,
-            resp,
+            multipliers=mu,
+            max_abs_multiplier=biggest,
+            growth_rate=growth,
+            frequency=abs(float(np.angle(mu[k]))) / resp.period,
+            stable=bool(biggest < 1.0),
+            n_reversals=n_rev,
+            n_sticks=n_stick,
+            grazing=None,
+            period=resp.period,
+            response=resp,
             floor=floor,
         )
 
@@ -260,18 +260,18 @@ class Floquet:
             growth = math.log(biggest) / c.period if biggest > 0 else -math.inf
             frequency = abs(float(np.angle(mu[k]))) / c.period
         return cls(
-            mu,
-            biggest,
-            growth,
-            frequency,
-            c.stable,
-            c.n_reversals,
-            c.n_sticks,
-            c.grazing,
-            c.period,
-            resp,
-            True,
-            complex(c.trivial_multiplier),
+            multipliers=mu,
+            max_abs_multiplier=biggest,
+            growth_rate=growth,
+            frequency=frequency,
+            stable=c.stable,
+            n_reversals=c.n_reversals,
+            n_sticks=c.n_sticks,
+            grazing=c.grazing,
+            period=c.period,
+            response=resp,
+            autonomous=True,
+            trivial_multiplier=complex(c.trivial_multiplier),
         )
 
     @property
@@ -439,7 +439,7 @@ def floquet(
     beltmdsm.periodic.shooting.periodic_response : the response alone.
     beltmdsm.continuation.band.floquet_band : the ranges of a parameter where it is unstable.
     beltmdsm.continuation.branch.branch : the response continued in a parameter.
-    beltmdsm.studies.responses.responses : every response at one point, locked ones too.
+    beltmdsm.multistability.responses.responses : every response at one point, locked ones too.
 
     Examples
     --------

@@ -6,7 +6,7 @@ repeat with a period ``k T``; the omega1 peak of the spectra of Fig. 2b is then 
 of the ``k T``-periodic response. At the base set the run from rest locks at ``4 T`` for ``Vb`` in
 [3.87, 7.67] (``omega1 = 1 = Omega / 4``), and at ``Omega = 6`` at ``6 T``. A locked
 response is a fixed point of the ``k``-fold period map
-(`beltmdsm.periodic.tangential.TangentialMap`), which shooting computes exactly
+(`beltmdsm.periodic.closed_form.ClosedFormMap`), which shooting computes exactly
 (``periodic_response(..., periods=k)``, `beltmdsm.periodic.shooting`).
 
 * `Stroboscope` (`stroboscope`): the samples of one attractor, with the distance of
@@ -16,7 +16,7 @@ response is a fixed point of the ``k``-fold period map
 * `map_stroboscope`: the samples of the attractor of the period map itself, iterated
   from a state (the tangential motion on the periodic normal motion, in closed form):
   the seed of ``periodic_response(..., periods=k)``. The runs of Eq. (4) from rest and
-  the ladders continued in a parameter are studies (`beltmdsm.studies.seeds`).
+  the ladders continued in a parameter are studies (`beltmdsm.starts`).
 * `NotLocked`: where no ``k`` within the limit locks, the evidence: the closest return,
   the rotation number of the samples about their centre and whether they lie on a
   closed curve (an invariant torus of the stroboscopic map: quasi-periodic motion, or
@@ -128,7 +128,7 @@ def stroboscope(samples: ArrayLike, source: str, limit: int = LOCK_LIMIT) -> Str
     See Also
     --------
     map_stroboscope : the samples of the period map's attractor.
-    beltmdsm.studies.responses.responses : the samples of runs of Eq. (4).
+    beltmdsm.multistability.responses.responses : the samples of runs of Eq. (4).
 
     Examples
     --------

@@ -155,7 +155,7 @@ def orbit_range(runs: list, component: int = 1) -> tuple[float, float]:
 
     ``runs`` are periods as `beltmdsm.periodic.base.PeriodMap` reads them (``starts``,
     ``ends`` and ``segments(t, index) -> (4, n)``: a
-    `beltmdsm.periodic.general.EventPeriod` or a tangential run); ``component`` 0 is
+    `beltmdsm.periodic.general_map.EventPeriod` or a tangential run); ``component`` 0 is
     ``X1``, 1 ``X1'``. Each segment is sampled (`_SAMPLES_PER_S`) and an interior
     extreme is refined by a bounded search to 1e-12 s.
 

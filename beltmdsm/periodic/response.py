@@ -19,7 +19,7 @@ from ..integrate.superposition import Superposition
 from ..model import Model
 from .base import RTOL, PeriodMap
 from .engines import ENGINES, period_map
-from .general import GeneralMap
+from .general_map import GeneralMap
 from .newton import FixedPoint
 
 __all__ = [
@@ -29,7 +29,7 @@ __all__ = [
 ]
 
 
-@dataclass
+@dataclass(kw_only=True)
 class PeriodicResponse:
     """The periodic response of period ``period`` and its monodromy.
 
@@ -225,23 +225,23 @@ def response_of_cycle(c: Any) -> PeriodicResponse:
     """
     M = np.array(c.monodromy, dtype=float)
     return PeriodicResponse(
-        c.model,
-        c.period,
-        np.array(c.state, dtype=float),
-        list(c.switches),
-        list(c.segments),
-        M[:2, :2],
-        M[2:, 2:],
-        c.grazing,
-        c.residual,
-        c.iterations,
-        None,
-        1,
-        "general",
-        M,
-        True,
-        c,
-        (c.x1_range, c.velocity_range),
+        model=c.model,
+        period=c.period,
+        state0=np.array(c.state, dtype=float),
+        switches=list(c.switches),
+        segments=list(c.segments),
+        monodromy_tangential=M[:2, :2],
+        monodromy_normal=M[2:, 2:],
+        grazing=c.grazing,
+        residual=c.residual,
+        iterations=c.iterations,
+        _engine=None,
+        periods=1,
+        engine="general",
+        _monodromy=M,
+        autonomous=True,
+        cycle=c,
+        _ranges=(c.x1_range, c.velocity_range),
     )
 
 
@@ -288,17 +288,18 @@ def response_from(pmap: PeriodMap, point: FixedPoint) -> PeriodicResponse:
         blocks = (image.jacobian, np.linalg.matrix_power(pmap.one.orbit.monodromy, k))
         full, engine = None, pmap.one
     return PeriodicResponse(
-        pmap.model,
-        k * pmap.period,
-        pmap.full_state(point.state),
-        list(image.switches),
-        list(image.segments),
-        *blocks,
-        image.grazing,
-        point.residual,
-        point.iterations,
-        engine,
-        k,
-        pmap.engine,
-        full,
+        model=pmap.model,
+        period=k * pmap.period,
+        state0=pmap.full_state(point.state),
+        switches=list(image.switches),
+        segments=list(image.segments),
+        monodromy_tangential=blocks[0],
+        monodromy_normal=blocks[1],
+        grazing=image.grazing,
+        residual=point.residual,
+        iterations=point.iterations,
+        _engine=engine,
+        periods=k,
+        engine=pmap.engine,
+        _monodromy=full,
     )

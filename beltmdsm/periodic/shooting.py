@@ -65,7 +65,7 @@ MAX_SEED_PERIODS = (SEED_PERIODS[1] - 1) // 2
 
 def _cycle_response(model, guess, max_iter, backend, periods, engine):
     """`periodic_response` without excitation: the self-excited cycle."""
-    from ..cycles.cycle import Cycle, cycle
+    from .cycle import Cycle, cycle
 
     if periods != 1:
         raise ValueError(
@@ -163,7 +163,7 @@ def periodic_response(
     See Also
     --------
     beltmdsm.periodic.floquet.floquet : the response's multipliers.
-    beltmdsm.periodic.start.periodic_start : a run's start on it.
+    beltmdsm.starts.periodic_start : a run's start on it.
     beltmdsm.continuation.branch.branch : the response continued in a parameter.
     beltmdsm.cycles.cycle.cycle : the self-excited cycle of a model without excitation.
 

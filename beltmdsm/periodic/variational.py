@@ -8,8 +8,8 @@ saltation matrix ``S = I + (f+ - f-) n^T / (dh/dt)-`` (`beltmdsm.generated.hybri
 Leine and Nijmeijer, *Dynamics and Bifurcations of Non-Smooth Mechanical Systems*,
 2004, Sect. 7.2). Nothing here assumes a structure of the model: the friction may
 depend on the tangential state (Stribeck) and the normal motion on the tangential
-one. It is the engine of `beltmdsm.periodic.general.GeneralMap`, the path every
-law takes where the closed forms of `beltmdsm.periodic.tangential.TangentialMap`
+one. It is the engine of `beltmdsm.periodic.general_map.GeneralMap`, the path every
+law takes where the closed forms of `beltmdsm.periodic.closed_form.ClosedFormMap`
 (friction independent of the state within a slip mode, one-way coupling) do not hold.
 
 Each step of the run is integrated again for the perturbation, with the same step
@@ -171,7 +171,7 @@ def propagators(
     >>> ends = np.minimum(s.t_steps + s.h_steps, np.append(s.t_steps[1:], T))
     >>> modes = run.trajectory.mode(0.5 * (s.t_steps + ends))
     >>> R = propagators(m, s.t_steps, s.h_steps, s.y_steps, s.F_steps, ends, modes)
-    >>> from beltmdsm.periodic.tangential import OnePeriodMap
+    >>> from beltmdsm.periodic.closed_form import OnePeriodMap
     >>> stm = OnePeriodMap(m).stm
     >>> Phi = np.array([np.reshape(stm(h), (2, 2)) for h in ends - s.t_steps])
     >>> bool(np.abs(R[:, :2, :2] - Phi).max() < 1e-12)
@@ -408,7 +408,7 @@ def monodromy(
 
     See Also
     --------
-    beltmdsm.periodic.general.GeneralMap : the period map built on it.
+    beltmdsm.periodic.general_map.GeneralMap : the period map built on it.
     propagators : its steps.
 
     Examples

@@ -35,6 +35,7 @@ from beltmdsm.generated.parameters import STATIC_BOUNDS
 
 from .._calling import public, rename
 from ..arguments import number
+from ..errors import NoPrediction
 from ..model import OPTION_DEFAULTS, Model, as_model
 from .mdsm import _linear, _linear_without_reversal, clip_acts
 from .paper import _paper
@@ -104,10 +105,6 @@ CLIPPED_PAPER = (
     "tension='clipped': the same as under 'allowed', since the analysis "
     "linearises at the equilibrium, where the contact force g > 0 does not pull"
 )
-
-
-class _Refused(Exception):
-    """An analysis that gives no prediction, with the reason."""
 
 
 @dataclass(frozen=True)
@@ -279,11 +276,11 @@ def predict(
         note = (CLIPPED_MDSM if clipped else CLIPPED_MDSM_INACTIVE).format(N1=N1, g=p["g"])
     try:
         if clipped:
-            raise _Refused(note)
+            raise NoPrediction(note)
         consistent, table = unstable_intervals(
             model, vb=vb, points=points, progress=progress, vb_max=vb_max
         )
-    except (_Refused, RuntimeError, ValueError) as err:
+    except (RuntimeError, ValueError) as err:  # NoPrediction is a ValueError
         # the parameters and the grid are checked above: a ValueError left is the
         # analysis' own limit (one excitation frequency, laws whose normal motion
         # depends on the tangential one: beltmdsm.model.Unsupported); a RuntimeError a

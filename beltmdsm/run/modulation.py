@@ -195,7 +195,7 @@ def modulation_scatter(sim: Simulated) -> dict[str, float]:
     See Also
     --------
     cycle_averages : the averages of each cycle.
-    beltmdsm.studies.row.Row : the sweep columns that hold them.
+    beltmdsm.batch.row.Row : the sweep columns that hold them.
 
     Examples
     --------

@@ -258,7 +258,7 @@ class Summary:
     --------
     beltmdsm.run.summary.summarize : what computes it from a run.
     beltmdsm.simulate : a run and its summary.
-    beltmdsm.studies.row.Row : the columns of a sweep's table, taken from it.
+    beltmdsm.batch.row.Row : the columns of a sweep's table, taken from it.
 
     Examples
     --------

@@ -83,7 +83,7 @@ def noise_floor(rtol: float, atol: float, y: NDArray[np.float64], v: NDArray[np.
 
 #: The energy residual per unit tolerance that a run may leave (`energy_bound`):
 #: measured at most 5.2 x max(rtol, atol) over the 16 cases of
-#: `beltmdsm.studies.validation.CASES` at Vb = 0.5, 4, 10 m/s, both solvers, both
+#: `beltmdsm.paper_reports.validation.CASES` at Vb = 0.5, 4, 10 m/s, both solvers, both
 #: tension laws, rtol = atol from 1e-3 to 1e-10 (960 runs of 300 s), but for the
 #: one below the floor; rounded up to 64.
 ENERGY_RESIDUAL_FACTOR = 64.0

@@ -14,12 +14,12 @@ One module per concept:
 
 from .files import GENERATED, HEADER, source_checkout, stale, write
 from .render import render, render_all
-from .specs import FunctionSpec, ModuleSpec, Refusal
+from .specs import FunctionSpec, ModuleSpec, NoVariant
 
 __all__ = [
     "FunctionSpec",
     "ModuleSpec",
-    "Refusal",
+    "NoVariant",
     "render",
     "render_all",
     "write",

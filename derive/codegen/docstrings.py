@@ -11,7 +11,7 @@ import textwrap
 
 from .. import laws
 from ..units import contact_units
-from .specs import Refusal
+from .specs import NoVariant
 from .variants import _TABLE, _doc_params, _flat
 
 
@@ -53,7 +53,7 @@ def _expressions(fn):
     return [
         e
         for outs in fn.variants.values()
-        if not isinstance(outs, Refusal)
+        if not isinstance(outs, NoVariant)
         for e in _flat(fn.returns, outs)[0]
     ]
 
@@ -103,7 +103,7 @@ def _docstring(fn, mp):
 
 def _refusals(fn):
     """The option values for which ``fn`` refuses, with their reasons."""
-    return [(key, v.reason) for key, v in fn.variants.items() if isinstance(v, Refusal)]
+    return [(key, v.reason) for key, v in fn.variants.items() if isinstance(v, NoVariant)]
 
 
 def _raises(numba, refusals=()):

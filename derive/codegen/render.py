@@ -13,7 +13,7 @@ The layers of a generated function (PyDy's generator / printer / wrapper):
   (``_name__opt1__opt2``; variants with equal expressions share one): the printed
   expressions, positional arguments only;
 * the public function: it picks the variant (``_support.choose``, which raises
-  ``_support.Unsupported`` for a `Refusal`), checks every argument once
+  ``_support.Unsupported`` for a `NoVariant`), checks every argument once
   (``_support.arguments``, ``_support.param``: ``ValueError`` naming the parameter
   for NaN, inf or a value outside its domain, ``TypeError`` for an unknown keyword
   or a missing parameter of the chosen law), and calls the implementation; the

@@ -1,4 +1,4 @@
-"""What a generated module contains, as data: `FunctionSpec`, `ModuleSpec`, `Refusal`.
+"""What a generated module contains, as data: `FunctionSpec`, `ModuleSpec`, `NoVariant`.
 
 `beltmdsm.derive.modules` builds these from the derivations;
 `beltmdsm.derive.codegen.render` prints them.
@@ -8,11 +8,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-__all__ = ["FunctionSpec", "ModuleSpec", "Refusal"]
+__all__ = ["FunctionSpec", "ModuleSpec", "NoVariant"]
 
 
 @dataclass(frozen=True)
-class Refusal:
+class NoVariant:
     """A variant that does not exist, and why: the generated function raises
     ``_support.Unsupported`` with ``reason`` (one line naming the law and the missing
     property) instead of computing with other physics."""
@@ -42,7 +42,7 @@ class FunctionSpec:
         The ``Returns`` section body.
     variants : dict
         Outputs keyed by a tuple of option values (``()`` without options), or a
-        `Refusal`. Variants with equal outputs share one implementation.
+        `NoVariant`. Variants with equal outputs share one implementation.
     options : tuple of (name, choices-doc, default, description)
         Keyword options that select the variant, in the order of the keys.
     args : tuple of sympy.Symbol

@@ -19,7 +19,7 @@ import sympy as sp
 from ..model import PARAMETERS
 from ..statespace import Quadratic
 from .printers import Mpmath, NumPy, Scalar, hoisted_roots, lift_integrals, root_line
-from .specs import FunctionSpec, Refusal
+from .specs import FunctionSpec, NoVariant
 
 _TABLE = {p.name: p for p in PARAMETERS}
 _ORDER = {p.name: i for i, p in enumerate(PARAMETERS)}
@@ -203,11 +203,11 @@ def _variants(fn):
     -------
     variants : list of _Variant
     refused : dict
-        Key -> `Refusal`.
+        Key -> `NoVariant`.
     """
     shared, refused = {}, {}
     for key, outputs in fn.variants.items():
-        if isinstance(outputs, Refusal):
+        if isinstance(outputs, NoVariant):
             refused[key] = outputs
             continue
         flat, shape = _flat(fn.returns, outputs)
@@ -388,7 +388,7 @@ _KERNEL_RESULT = {"value": "float64", "growth": "float64", "stable": "boolean"}
 def _table(fn, variants, refused, mp):
     """``_NAME = {key: _support.Variant(...)}``: what the public function dispatches on.
 
-    Keys in the order of ``fn.variants``; a refused key maps to ``_support.Refused``.
+    Keys in the order of ``fn.variants``; a refused key maps to ``_support.NoVariant``.
     """
     entries = {}
     for v in variants:
@@ -399,6 +399,6 @@ def _table(fn, variants, refused, mp):
         for key in v.keys:
             entries[key] = f"_support.Variant({', '.join(parts)})"
     for key, refusal in refused.items():
-        entries[key] = f"_support.Refused({refusal.reason!r})"
+        entries[key] = f"_support.NoVariant({refusal.reason!r})"
     rows = [f"    {key!r}: {entries[key]}," for key in fn.variants]
     return f"_{fn.name.upper()} = {{\n" + "\n".join(rows) + "\n}"

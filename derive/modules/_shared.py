@@ -6,7 +6,7 @@ from __future__ import annotations
 import itertools
 
 from .. import budget, laws
-from ..codegen import Refusal
+from ..codegen import NoVariant
 
 _WHAT = {
     "friction": "friction law (derive/laws.py)",
@@ -33,11 +33,13 @@ def law_options(*options: str) -> tuple:
 
 
 def _or_refuse(expr, reason: str):
-    """``expr``, or a `Refusal` with ``reason`` where the derivation claims no closed form
+    """``expr``, or a `NoVariant` with ``reason`` where the derivation claims no closed form
     (with the budget's reason where a step ran past its budget, `beltmdsm.derive.budget`)."""
     if isinstance(expr, budget.NoClosedForm):
-        return Refusal(f"{reason.split(':')[0]}: {expr.reason}; no closed-form boundary is claimed")
-    return Refusal(reason) if expr is None else expr
+        return NoVariant(
+            f"{reason.split(':')[0]}: {expr.reason}; no closed-form boundary is claimed"
+        )
+    return NoVariant(reason) if expr is None else expr
 
 
 def _per(build, *options: str) -> dict:

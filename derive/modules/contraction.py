@@ -58,7 +58,8 @@ def build() -> ModuleSpec:
         """The energy of the difference of two tangential motions under one normal motion.
 
 derive/contraction.py proves with SymPy that it never rises while the contact cannot
-pull; these functions let a simulation show it (beltmdsm/studies/evidence.py).
+pull; these functions let a simulation show it
+(beltmdsm/paper_reports/contraction_evidence.py).
 """,
         functions,
     )

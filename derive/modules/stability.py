@@ -10,7 +10,7 @@ from .. import budget, laws
 from .. import capabilities as cap
 from .. import stability as st
 from .. import statespace as ss
-from ..codegen import FunctionSpec, ModuleSpec, Refusal
+from ..codegen import FunctionSpec, ModuleSpec, NoVariant
 from ..model import P
 from ._shared import (
     LAWS_FC,
@@ -71,7 +71,7 @@ def build() -> ModuleSpec:
     def boundary(f, c, cv, upper=False):
         lower = st.critical_belt_speed(cv, c, f)
         if isinstance(lower, budget.NoClosedForm):
-            return Refusal(
+            return NoVariant(
                 f"friction={f!r} has no closed-form critical belt speed: {lower.reason}; the "
                 "pointwise functions (growth_rate, is_stable, hurwitz) take it, and "
                 "beltmdsm.prediction.paper.paper_intervals finds the unstable belt speeds "
@@ -79,7 +79,7 @@ def build() -> ModuleSpec:
             )
         if lower is None:
             closed, why = cap.closed_form_average(f)
-            return Refusal(
+            return NoVariant(
                 f"friction={f!r} has no closed-form critical belt speed: "
                 + (
                     "SymPy's roots of p(Vb) = 0 are not one root sqrt(Vhat^2 - m^2)"

@@ -11,7 +11,7 @@ Coulomb's law only says so. One module per concept:
   the variants of a row and their status;
 * `beltmdsm.derive.paper_check.rows`: the rows, one per numbered equation, in paper order;
 * `beltmdsm.derive.paper_check.claims`: the claims in words (two of them read the simulation's
-  numbers, handed in by the command line: beltmdsm/studies/evidence.py);
+  numbers, handed in by the command line: beltmdsm/paper_reports/contraction_evidence.py);
 * `beltmdsm.derive.paper_check.report`: the Markdown report (`report`, `write_report`,
   `report_path`).
 """

@@ -4,9 +4,9 @@ Each `Claim` has a check that returns the readings under which it holds and one 
 evidence computed from the derivation, and a statement of the friction laws it holds
 for (the paper's model has Coulomb's law; `beltmdsm.derive.laws` has more). Two claims also need
 the simulation of Eq. (4): its numbers come in as ``evidence``, a function that returns
-them per tension law (``beltmdsm.studies.evidence.paper_evidence``, handed over by the
-command line, ``python -m derive check-paper``: derive/ never imports the runtime).
-Without it those two claims say that they were not checked.
+them per tension law (``beltmdsm.paper_reports.contraction_evidence.paper_evidence``,
+handed over by the command line, ``python -m derive check-paper``: derive/ never imports
+the runtime). Without it those two claims say that they were not checked.
 """
 
 from __future__ import annotations
@@ -292,7 +292,8 @@ def _claim_state_space():
 
 
 #: E_d "never rises" when no step between samples exceeds this fraction of E_d(0) (the
-#: runs' tolerance is 1e-10; tests/beltmdsm/studies/test_evidence.py bounds it finer).
+#: runs' tolerance is 1e-10; tests/beltmdsm/paper_reports/test_contraction_evidence.py
+#: bounds it finer).
 RISE_TOLERANCE = 1e-9
 #: E_d has "decayed" below this fraction of E_d(0) at the end of a run.
 DECAYED = 1e-12

@@ -5,7 +5,8 @@
 The energy of the difference of two tangential motions under one normal motion.
 
 derive/contraction.py proves with SymPy that it never rises while the contact cannot
-pull; these functions let a simulation show it (beltmdsm/studies/evidence.py).
+pull; these functions let a simulation show it
+(beltmdsm/paper_reports/contraction_evidence.py).
 """
 
 import mpmath

@@ -182,7 +182,7 @@ def test_a_bad_executor_is_one_line_naming_the_choices(name, bad):
 
 
 def test_executor_none_is_a_process_pool_in_basins_as_in_sweep(monkeypatch):
-    from beltmdsm.studies import basins as basins_module
+    from beltmdsm.basin import basins as basins_module
 
     class Started(Exception):
         pass

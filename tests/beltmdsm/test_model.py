@@ -125,7 +125,7 @@ def test_importing_the_runtime_does_not_import_sympy():
     code = (
         "import sys, beltmdsm, beltmdsm.simulation, beltmdsm.integrate.superposition, "
         "beltmdsm.run.spectra, beltmdsm.run.modulation, beltmdsm.periodic.floquet, "
-        "beltmdsm.prediction.prediction, beltmdsm.studies.sweep, beltmdsm.studies.validation, "
+        "beltmdsm.prediction.prediction, beltmdsm.batch.sweep, beltmdsm.paper_reports.validation, "
         "beltmdsm.cli; "
         "sys.exit(1 if any(m == 'sympy' or m.startswith('sympy.') for m in sys.modules) else 0)"
     )

@@ -59,14 +59,14 @@ def test_the_public_api_has_no_any_for_mypy(tmp_path):
         "beltmdsm.periodic.floquet.Floquet",
         "beltmdsm.continuation.band_result.Band",  # the model first
         "beltmdsm.continuation.band_result.Band",  # the model last, as before
-        "beltmdsm.continuation.branch_parts.Branch",  # defined there, shared with cycles
-        "beltmdsm.studies.coexistence.Coexistence",
-        "beltmdsm.studies.sweep.Sweep",
+        "beltmdsm.continuation.branch_result.Branch",  # branch_parts.py before issue 38
+        "beltmdsm.multistability.coexistence_result.Coexistence",  # split (issue 38)
+        "beltmdsm.batch.sweep.Sweep",
         "beltmdsm.continuation.map_result.FloquetMap",
-        "beltmdsm.cycles.cycle.Cycle",
+        "beltmdsm.periodic.cycle.Cycle",  # moved from cycles/cycle.py (issue 38)
         "beltmdsm.attractors.lyapunov.Lyapunov",
-        "beltmdsm.attractors.classification.Attractor",
-        "beltmdsm.studies.basins.Basins",
+        "beltmdsm.attractors.attractor.Attractor",
+        "beltmdsm.basin.basins_result.Basins",
         "beltmdsm.attractors.lyapunov.Lyapunov",  # a dict for the model (issue 37)
         "beltmdsm.continuation.band_result.Band",
     ]

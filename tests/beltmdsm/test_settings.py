@@ -55,7 +55,7 @@ def test_the_sample_limit_is_what_the_arrays_would_need():
 
 def test_the_default_sampling_passes_every_case_of_the_paper():
     from beltmdsm.model import Model
-    from beltmdsm.studies.validation import CASES
+    from beltmdsm.paper_reports.validation import CASES
 
     cases = [Model(**c.overrides) for c in CASES]
     assert max(max(m["Omega_t"], m["omega1"]) for m in cases) == 12.0  # omega1 = 12, Omega 10

@@ -99,9 +99,9 @@ def test_public_api_is_annotated(name):
 
 def test_option_types_match_the_checked_options():
     """The Literal types of the annotations are the sets the code checks against."""
+    from beltmdsm.batch.row import STARTS, Start
+    from beltmdsm.batch.sweep import CONTINUATIONS, Continuation
     from beltmdsm.model import OPTIONS, Contact, Tension
-    from beltmdsm.studies.row import STARTS, Start
-    from beltmdsm.studies.sweep import CONTINUATIONS, Continuation
 
     assert typing.get_args(Contact) == OPTIONS["contact"]
     assert typing.get_args(Tension) == OPTIONS["tension"]

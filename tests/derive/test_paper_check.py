@@ -12,7 +12,7 @@ from beltmdsm.derive import codegen, paper, paper_check, stability
 from beltmdsm.derive.model import FRICTION_LAWS, P
 from beltmdsm.derive.statespace import jacobian_at_equilibrium_eq_11
 from beltmdsm.model import Model
-from beltmdsm.studies import evidence
+from beltmdsm.paper_reports import contraction_evidence as evidence
 
 #: Every numbered equation the report must cover (issue 4).
 REQUIRED = (

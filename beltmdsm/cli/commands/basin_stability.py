@@ -40,7 +40,7 @@ def add(commands, name: str) -> None:
         "uniform random starts in the box --x-from..--y-to (the same starts at every value) "
         "that each attractor claims, with its standard error; steady sliding and the stable "
         "self-excited cycles matched across values by continuation, each birth or death "
-        "named by its bifurcation (beltmdsm/studies/basin_stability_along.py).",
+        "named by its bifurcation (beltmdsm/basin/basin_stability_along.py).",
     )
     sub.add_argument(
         "--param",
@@ -75,7 +75,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.basin_stability_along import basin_stability_along
+    from ...basin.basin_stability_along import basin_stability_along
     from .. import text
 
     lo, hi = range_from(args)
@@ -83,7 +83,7 @@ def run(args: argparse.Namespace) -> int:
     region = region_from(args, model)
     cache_dir = cache_dir_from(args)
     if cache_dir == "default":
-        from ...studies.cache import default_cache_dir
+        from ...batch.cache import default_cache_dir
 
         cache_dir = default_cache_dir()
     with executor_from(args) as executor:

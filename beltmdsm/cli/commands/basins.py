@@ -37,12 +37,12 @@ def add(commands, name: str) -> None:
         "(default X1 and X1' = Y1, the normal state on its periodic orbit), each iterated "
         "on the period map until a known attractor claims it; attractors named by their "
         "kind, period, rotation number and largest Lyapunov exponent "
-        "(beltmdsm/studies/basins.py, beltmdsm/attractors/classification.py). Without "
+        "(beltmdsm/basin/basins.py, beltmdsm/attractors/classification.py). Without "
         "excitation the starts are states (the others at steady sliding's) and the "
         "attractors steady sliding and the stable self-excited cycles, each start decided "
         "by the region the computed cycles assign it to or by sticking "
         "(beltmdsm/attractors/self_excited.py); --samples N draws N uniform starts in the "
-        "box instead (beltmdsm/studies/basin_stability.py).",
+        "box instead (beltmdsm/basin/basin_stability.py).",
     )
     for axis, default in (("x", "X1"), ("y", "Y1")):
         sub.add_argument(
@@ -97,7 +97,7 @@ def sampling_flags(sub, samples: int | None = None) -> None:
 
 def region_from(args, model) -> dict:
     """The box of starts: ``--x-from .. --y-to``, all four required, each end within
-    floating point for ``model`` (`beltmdsm.studies.basins.axis_range`)."""
+    floating point for ``model`` (`beltmdsm.basin.basins.axis_range`)."""
     xr, yr = _range(args, "x", model), _range(args, "y", model)
     if xr is None or yr is None:
         args.parser.error("argument --samples: needs the box, --x-from/--x-to and --y-from/--y-to")
@@ -107,7 +107,7 @@ def region_from(args, model) -> dict:
 
 
 def print_estimate(result, as_json: bool) -> None:
-    """A `beltmdsm.studies.basin_stability.BasinStability` as text or JSON."""
+    """A `beltmdsm.basin.basin_stability.BasinStability` as text or JSON."""
     from .. import text
 
     if as_json:
@@ -128,7 +128,7 @@ def print_estimate(result, as_json: bool) -> None:
 
 
 def _range(args, axis, model):
-    from ...studies.basins import axis_range
+    from ...basin.basins import axis_range
 
     lo, hi = getattr(args, f"{axis}_from"), getattr(args, f"{axis}_to")
     if (lo is None) != (hi is None):
@@ -143,13 +143,13 @@ def _range(args, axis, model):
 
 
 def _sample(args) -> int:
-    from ...studies.basin_stability import basin_stability
+    from ...basin.basin_stability import basin_stability
 
     model = model_from(args)
     region = region_from(args, model)
     cache_dir = cache_dir_from(args)
     if cache_dir == "default":
-        from ...studies.cache import default_cache_dir
+        from ...batch.cache import default_cache_dir
 
         cache_dir = default_cache_dir()
     with executor_from(args) as executor:
@@ -167,8 +167,8 @@ def _sample(args) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.basins import basins
-    from ...studies.cache import default_cache_dir
+    from ...basin.basins import basins
+    from ...batch.cache import default_cache_dir
     from .. import text
 
     if args.samples is not None:

@@ -56,7 +56,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...continuation.branch import branch
+    from ...branches import branch
     from .. import text
 
     lo, hi = range_from(args)

@@ -1,4 +1,5 @@
-"""``coexistence``: where stable periodic responses coexist (`beltmdsm.studies.coexistence`)."""
+"""``coexistence``: where stable periodic responses coexist
+(`beltmdsm.multistability.coexistence`)."""
 
 from __future__ import annotations
 
@@ -33,7 +34,7 @@ def add(commands, name: str) -> None:
         description="The ranges of one parameter where two or more stable periodic "
         "responses (the T-periodic one and phase-locked ones) coexist, each edge with "
         "its bifurcation: seeds from shooting, runs from rest and continued ladders, "
-        "each continued as a branch (beltmdsm/studies/coexistence.py).",
+        "each continued as a branch (beltmdsm/multistability/coexistence.py).",
     )
     sub.add_argument(
         "--param",
@@ -61,7 +62,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.coexistence import coexistence, seed_points
+    from ...multistability.coexistence import coexistence, seed_points
     from .. import text
 
     lo, hi = range_from(args)

@@ -1,4 +1,4 @@
-"""``responses``: every periodic response at one point (`beltmdsm.studies.responses`)."""
+"""``responses``: every periodic response at one point (`beltmdsm.multistability.responses`)."""
 
 from __future__ import annotations
 
@@ -30,7 +30,7 @@ def add(commands, name: str) -> None:
         "excitation period T and every one locked at k T (k up to --limit), found from "
         "the run from rest, the run from the perturbed periodic response and ladders "
         "continued up and down in Vb, each by shooting on the k-fold period map, with "
-        "its Floquet multipliers (beltmdsm/studies/responses.py).",
+        "its Floquet multipliers (beltmdsm/multistability/responses.py).",
     )
     sub.add_argument(
         "--ladder",
@@ -44,7 +44,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.responses import responses
+    from ...multistability.responses import responses
     from .. import text
 
     found = responses(model_from(args), limit=args.limit, ladder=args.ladder, t_end=args.t_end)

@@ -1,4 +1,4 @@
-"""``sweep``: one parameter of Eq. (4) over a range (`beltmdsm.studies.sweep`)."""
+"""``sweep``: one parameter of Eq. (4) over a range (`beltmdsm.batch.sweep`)."""
 
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ def add(commands, name: str) -> None:
         [model_parent(), solver_parent(), executor_parent(), cache_parent(), json_parent()],
         models=generic_studies.sweep,
         help="sweep one parameter of Eq. (4)",
-        description="Sweep one parameter of Eq. (4) (beltmdsm/studies/sweep.py; at most "
+        description="Sweep one parameter of Eq. (4) (beltmdsm/batch/sweep.py; at most "
         f"{MAX_POINTS:.0e} points).",
     )
     grid = sub.add_argument_group("the swept parameter")
@@ -78,8 +78,8 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies.sweep import sweep
-    from ...studies.table import table_to_csv
+    from ...batch.sweep import sweep
+    from ...batch.table import table_to_csv
     from .. import text
 
     values = sweep_values(args)

@@ -1,4 +1,4 @@
-"""``validate``: write VALIDATION.md (`beltmdsm.studies.validation`)."""
+"""``validate``: write VALIDATION.md (`beltmdsm.paper_reports.validation`)."""
 
 from __future__ import annotations
 
@@ -42,7 +42,7 @@ def add(commands, name: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ...studies import validation
+    from ...paper_reports import validation
     from .. import text
 
     with executor_from(args) as executor:

@@ -65,7 +65,7 @@ def band(result: Band, lo: float, hi: float) -> str:
 def branch(found: Branch) -> str:
     """The readable summary of ``branch`` (of a forced response or of self-excited cycles)."""
     lo, hi = found.value_range()
-    cycles = getattr(found, "hopf", None) is not None or hasattr(found, "criticality")
+    cycles = found.kind == "cycle"
     what = (
         "self-excited cycles (no excitation)"
         if cycles

@@ -15,10 +15,10 @@ import numpy as np
 from .common import laws, response_name
 
 if TYPE_CHECKING:
+    from ...multistability.coexistence import Coexistence
+    from ...multistability.cycle_coexistence import CycleCoexistence
+    from ...multistability.responses import ResponseSet
     from ...periodic.floquet import Floquet
-    from ...studies.coexistence import Coexistence
-    from ...studies.cycle_coexistence import CycleCoexistence
-    from ...studies.responses import ResponseSet
 
 __all__ = ["floquet", "cycle", "responses", "coexistence", "cycle_coexistence"]
 
@@ -181,7 +181,7 @@ def coexistence(found: Coexistence) -> str:
 
 def cycle_coexistence(found: CycleCoexistence) -> str:
     """The readable summary of ``coexistence`` without excitation
-    (`beltmdsm.studies.cycle_coexistence.CycleCoexistence`)."""
+    (`beltmdsm.multistability.cycle_coexistence.CycleCoexistence`)."""
     param, b = found.param, found.branch
 
     def parts(ps):
@@ -201,7 +201,7 @@ def cycle_coexistence(found: CycleCoexistence) -> str:
             + (f": {b.criticality}" if b is not None and b.hopf and b.hopf.value == h.value else "")
         )
     if b is not None:
-        from ...studies.overlay import stable_parts
+        from ...multistability.stable_ranges import stable_parts
 
         lines.append(f"  cycle: stable in {parts(stable_parts(b))}")
     if found.ranges:

@@ -15,11 +15,11 @@ import numpy as np
 from ...intervals import format_intervals
 
 if TYPE_CHECKING:
+    from ...batch.sweep import Sweep
+    from ...paper_reports.validation import Validation
     from ...prediction.prediction import Prediction
     from ...run.summary import Summary
     from ...simulation import Simulation
-    from ...studies.sweep import Sweep
-    from ...studies.validation import Validation
 
 __all__ = [
     "peak_verdict",
@@ -254,7 +254,7 @@ def prediction(result: Prediction) -> str:
 
 def validation(results: Validation, out_file: str) -> str:
     """What ``validate`` prints after writing its file."""
-    from ...studies.validation import ANALYSES
+    from ...paper_reports.validation import ANALYSES
 
     lines = []
     for key, lab, _ in ANALYSES:

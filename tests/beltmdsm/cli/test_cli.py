@@ -117,7 +117,7 @@ def test_a_bad_flag_is_one_line_naming_it_and_exit_2(capsys, argv, names):
 
 
 def test_the_sweep_checks_its_output_before_it_computes(capsys, monkeypatch, tmp_path):
-    from beltmdsm.studies import sweep
+    from beltmdsm.batch import sweep
 
     def never(*args, **kwargs):
         raise AssertionError("computed before checking --out")

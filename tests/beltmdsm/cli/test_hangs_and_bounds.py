@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from beltmdsm.integrate import _compiled, _dop853, _roots, _superpose
+from beltmdsm.integrate import _compiled, _dop853, _roots, _switch_scan
 
 ROOT = Path(__file__).resolve().parents[3]
 ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
@@ -64,7 +64,7 @@ def _counted(f, limit=10_000):
     return g, calls
 
 
-@pytest.mark.parametrize("module", ["_dop853", "_superpose"])
+@pytest.mark.parametrize("module", ["_dop853", "_switch_scan"])
 def test_dip_ends_at_ulp_resolution_late_in_a_long_run(module):
     # the report: at t ~ 1000 s a step of 1e-6 s asks the golden section for a
     # bracket of 1e-8 h = 1e-14 s, below one ulp of t (1.1e-13): it never ended
@@ -75,8 +75,8 @@ def test_dip_ends_at_ulp_resolution_late_in_a_long_run(module):
         dip = types.FunctionType(_dop853._dip.__code__, namespace)
         t, ft = dip(None, None, None, 0, None, None, lo, hi - lo, lo, hi, None)
     else:
-        namespace = {**vars(_superpose), "_inside_at": lambda t, j, ctx: f(t)}
-        dip = types.FunctionType(_superpose._dip.__code__, namespace)
+        namespace = {**vars(_switch_scan), "_inside_at": lambda t, j, ctx: f(t)}
+        dip = types.FunctionType(_switch_scan._dip.__code__, namespace)
         t, ft = dip(lo, hi, 0, None)
     assert calls[0] <= _roots.GOLDEN_STEPS + 2
     # the minimum located to a few ulps of t (the closed form: t = tm)
@@ -370,9 +370,9 @@ def test_simulate_keeps_its_run_and_says_what_it_could_not_compute():
 
 
 def test_a_point_whose_run_fails_is_a_row_that_says_why(monkeypatch):
+    from beltmdsm.batch import row, sweep
     from beltmdsm.errors import StepTooSmall
     from beltmdsm.settings import SolverSettings
-    from beltmdsm.studies import row, sweep
 
     real = row.simulate
 

@@ -375,7 +375,7 @@ def test_a_cache_file_that_is_not_utf8_is_named_recomputed_and_rewritten(capsys,
 
 
 def test_a_cache_folder_that_cannot_be_written_is_refused_before_computing(capsys, monkeypatch):
-    from beltmdsm.studies import sweep as sweep_module
+    from beltmdsm.batch import sweep as sweep_module
 
     def never(*args, **kwargs):
         raise AssertionError("computed before checking --cache-dir")
@@ -401,8 +401,8 @@ def test_sweep_values_are_sorted_and_duplicates_run_once(capsys):
 
 
 def test_python_and_the_command_line_share_cache_entries(capsys, tmp_path):
+    from beltmdsm.batch.sweep import sweep
     from beltmdsm.settings import SolverSettings
-    from beltmdsm.studies.sweep import sweep
 
     # integers from Python, floats from the command line: one key
     sweep(
@@ -474,7 +474,7 @@ def test_short_runs_print_no_python_warnings():
 
 def test_validate_writes_into_the_current_folder(capsys, monkeypatch, tmp_path):
     from beltmdsm.cli import text
-    from beltmdsm.studies import validation
+    from beltmdsm.paper_reports import validation
 
     monkeypatch.setattr(validation, "validate", lambda *a, **k: {"stub": True})
     monkeypatch.setattr(validation, "render_markdown", lambda results, quick: "# stub\n")

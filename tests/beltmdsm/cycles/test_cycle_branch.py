@@ -29,8 +29,8 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import fsolve
 
 import beltmdsm
+from beltmdsm.branches import branch  # moved from beltmdsm.continuation.branch (issue 38)
 from beltmdsm.cli import main
-from beltmdsm.continuation.branch import branch
 from beltmdsm.cycles.branch import (
     CycleBranch,
     cycle_branch,
@@ -267,7 +267,7 @@ def test_the_onset_from_the_stick_side_is_the_same(cycles):
 
 
 def test_continue_branch_of_a_cycle_goes_both_ways():
-    from beltmdsm.continuation.branch import continue_branch
+    from beltmdsm.branches import continue_branch  # moved from continuation.branch (issue 38)
     from beltmdsm.periodic.shooting import periodic_response
 
     start = periodic_response(BASE.replace(Vb=1.0))

@@ -32,8 +32,8 @@ from beltmdsm.integrate.events import integrate_events
 from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.periodic.shooting import periodic_response
-from beltmdsm.periodic.start import periodic_start
 from beltmdsm.settings import SolverSettings
+from beltmdsm.starts import periodic_start
 
 P = dict(beta1=0.1, omega1=1.0, mu_s=0.4, mu_k=0.25, v_s=1.0, g=9.81)
 
@@ -318,7 +318,7 @@ def test_forced_floquet_json_gains_the_ranges_of_its_orbit(capsys):
 
 
 def test_responses_find_the_cycle_that_coexists_with_stable_sliding():
-    from beltmdsm.studies.responses import responses
+    from beltmdsm.multistability.responses import responses
 
     found = responses(stribeck(Vb=2.2), ladder=1.0)
     (r,) = found.responses

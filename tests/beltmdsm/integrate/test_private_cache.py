@@ -1,7 +1,7 @@
 """The caches' folders: one rule for both, private, never shared or shadowing (issue 28).
 
 `beltmdsm.generated._support.cache_root` and `user_cache` (the compiled code and numba's cache),
-`beltmdsm.studies.cache.default_cache_dir` (the sweeps).
+`beltmdsm.batch.cache.default_cache_dir` (the sweeps).
 """
 
 import os
@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pytest
 
+from beltmdsm.batch.cache import default_cache_dir
 from beltmdsm.generated import _support
-from beltmdsm.studies.cache import default_cache_dir
 
 ROOT = Path(__file__).resolve().parents[3]
 

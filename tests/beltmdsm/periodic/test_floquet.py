@@ -20,9 +20,9 @@ from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.periodic.normal import normal_orbit
 from beltmdsm.periodic.shooting import periodic_response
-from beltmdsm.periodic.start import periodic_start
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
+from beltmdsm.starts import periodic_start
 
 # Newton stops at 1e-11 of the state's scale; the event-driven run at rtol = atol =
 # 1e-12 over one period adds a few 1e-12: the orbit closes to ~1e-10 there.
