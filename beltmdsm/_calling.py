@@ -137,11 +137,24 @@ def _with(model: Any, params: dict[str, Any]) -> Any:
     return as_model(model, **params)  # refused there, naming the type
 
 
+def _paper_only(name: str, model: Any) -> None:
+    """Refuse another registered model than the paper's (``Model(model=...)``) in one
+    line naming the model and what it lacks, for a function that runs the paper's only."""
+    from .errors import Unsupported
+    from .model import PAPER, Model, as_model
+
+    if isinstance(model, Mapping) and model.get("model", PAPER) != PAPER:
+        model = as_model(model)
+    if isinstance(model, Model) and model.model != PAPER:
+        raise Unsupported(model.refusal(name))
+
+
 def _wrap(
     function: Callable[..., Any],
     old_order: tuple[str, ...],
     renamed: Mapping[str, Rename],
     hints: Mapping[str, str],
+    models: bool = False,
 ) -> Callable[..., Any]:
     name = function.__name__
     parameters = inspect.signature(function).parameters
@@ -194,6 +207,8 @@ def _wrap(
                 args = (_with(args[0], moved), *args[1:])
             else:
                 kw[first] = _with(kw.get(first), moved)
+        if not models:
+            _paper_only(name, args[0] if args else kw.get(first))
         return function(*args, **kw)
 
     return call
@@ -203,14 +218,17 @@ def public(
     *,
     renamed: Mapping[str, Rename] | None = None,
     hints: Mapping[str, str] | None = None,
+    models: bool = False,
 ) -> Callable[[Callable[P, F]], Callable[P, F]]:
     """A public function with the model first and only its own keywords, that takes
     the model's parameters as keywords (deprecated), ``renamed`` keywords (deprecated)
     and refuses any other keyword with "did you mean" (``hints``: a keyword's own
-    message, ``simulate(start=...)``)."""
+    message, ``simulate(start=...)``). Without ``models`` it runs the paper's model
+    only and refuses another (``Model(model="belt_1dof")``) in one line, naming what
+    the model lacks (`beltmdsm.model.OtherModel.capabilities`)."""
 
     def decorate(function: Callable[P, F]) -> Callable[P, F]:
-        return _wrap(function, (), renamed or {}, hints or {})  # type: ignore[return-value]
+        return _wrap(function, (), renamed or {}, hints or {}, models)  # type: ignore[return-value]
 
     return decorate
 
@@ -227,12 +245,13 @@ def ranged(
 
 
 def valued(
-    *, renamed: Mapping[str, Rename] | None = None
+    *, renamed: Mapping[str, Rename] | None = None, models: bool = False
 ) -> Callable[[Callable[P, F]], Valued[P, F]]:
     """`public`, also taking the old order ``f(param, values, model, ...)``."""
 
     def decorate(function: Callable[P, F]) -> Valued[P, F]:
-        return _wrap(function, ("param", "values"), renamed or {}, {})  # type: ignore[return-value]
+        order = ("param", "values")
+        return _wrap(function, order, renamed or {}, {}, models)  # type: ignore[return-value]
 
     return decorate
 

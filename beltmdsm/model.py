@@ -27,6 +27,7 @@ What a model's excitation implies (its start, its period, whether there is any) 
 
 from __future__ import annotations
 
+import difflib
 import functools
 import hashlib
 import inspect
@@ -58,6 +59,9 @@ from .errors import Unsupported
 
 __all__ = [
     "Model",
+    "OtherModel",
+    "PAPER",
+    "GENERIC",
     "as_model",
     "OPTIONS",
     "OPTION_DEFAULTS",
@@ -104,6 +108,38 @@ LAW_OWNERS: Mapping[str, tuple[tuple[str, str], ...]] = MappingProxyType(
     {
         name: tuple(key for key, names in _table.LAW_PARAMETERS.items() if name in names)
         for name in LAW_OF
+    }
+)
+
+
+#: The default mechanical model, ``beltmdsm.generated.models.MODELS[0]``.
+PAPER = "paper"
+#: The public analyses (``beltmdsm.<name>``) that take a model.
+ANALYSES = (
+    "simulate", "periodic_response", "floquet", "periodic_start", "cycle", "seed_cycle",
+    "floquet_band", "branch", "floquet_map", "responses", "coexistence", "lyapunov",
+    "classify", "basins", "basin_stability", "predict", "validate", "sweep",
+)  # fmt: skip
+#: Those the generic runtime (beltmdsm/oscillator/) runs for any registered model.
+GENERIC = ("simulate", "periodic_response", "floquet", "cycle", "sweep", "lyapunov", "basins")
+#: Why the generic runtime does not run the others: the paper's own piece (a key of a
+#: model module's ``ABSENT``) or what beltmdsm/oscillator/ lacks.
+LACKS: Mapping[str, str] = MappingProxyType(
+    {
+        "predict": "ABSENT:mdsm",
+        "validate": "ABSENT:paper_check",
+        "periodic_start": "beltmdsm.oscillator starts a run where it is asked (y0), "
+        "it has no start on the periodic response",
+        "seed_cycle": "beltmdsm.oscillator seeds its cycles itself (beltmdsm.cycle)",
+        "floquet_band": "beltmdsm.oscillator has no band of unstable responses over a range",
+        "branch": "beltmdsm.oscillator has no continuation through folds of a forced response",
+        "floquet_map": "beltmdsm.oscillator has no two-parameter map of the response's stability",
+        "responses": "beltmdsm.oscillator has no search of the coexisting forced responses",
+        "coexistence": "beltmdsm.oscillator has no search of the coexisting forced responses",
+        "classify": "beltmdsm.oscillator has no classification of what a run settles on "
+        "(beltmdsm.basins labels equilibrium and cycles)",
+        "basin_stability": "beltmdsm.oscillator has no basin stability by sampling "
+        "(beltmdsm.basins maps a plane of starts)",
     }
 )
 
@@ -252,7 +288,16 @@ class Model:
 
     __slots__ = ("_given", "_params", "_options", "_pinned", "_key")
 
+    def __new__(cls, **kw: Any) -> Model:
+        # another registered model (issue 39) is an `OtherModel`: its own parameters,
+        # run by the generic runtime
+        if cls is Model and kw.get("model", PAPER) != PAPER:
+            return object.__new__(OtherModel)
+        return object.__new__(cls)
+
     def __init__(self, **kw: Any) -> None:
+        if kw.pop("model", PAPER) != PAPER:
+            raise ValueError(f"model must be {PAPER!r} here")  # OtherModel's, by __new__
         given, options = {}, dict(OPTION_DEFAULTS)
         for name, value in kw.items():
             if name in OPTIONS:
@@ -393,6 +438,16 @@ class Model:
         return self._params
 
     @property
+    def model(self) -> str:
+        """The registered mechanical model (``generated/models/``): the paper's here."""
+        return PAPER
+
+    @property
+    def capabilities(self) -> Mapping[str, tuple[bool, str]]:
+        """Public analysis -> ``(runs, why not)``: every one runs the paper's model."""
+        return MappingProxyType({name: (True, "") for name in ANALYSES})
+
+    @property
     def options(self) -> Mapping[str, str]:
         """The model options (`OPTIONS`)."""
         return self._options
@@ -462,6 +517,163 @@ class Model:
             sort_keys=True,
         )
         return hashlib.sha256(text.encode()).hexdigest()
+
+
+class OtherModel(Model):
+    """A registered model other than the paper's, with its friction law and parameters.
+
+    Made by ``Model(model=NAME, ...)``: the model's own parameters (its generated module
+    ``beltmdsm.generated.models.<NAME>``: ``PARAMETERS[friction]``, ``DEFAULTS``,
+    ``DOMAINS``), checked once here. The analyses of `GENERIC` run it on the generic
+    runtime (beltmdsm/oscillator/); the others refuse it in one line naming the model
+    and what it lacks (`capabilities`). The paper's options (contact, tension) and its
+    generated functions (`Model.arguments`, `Model.fact`) are not its: asked for, they
+    refuse, so that no paper physics runs under another model's name.
+
+    Examples
+    --------
+    >>> m = Model(model="belt_1dof", friction="stribeck", Vb=1.5)
+    >>> m, m.model, m["mu_k"]
+    (Model(model='belt_1dof', friction='stribeck', Vb=1.5), 'belt_1dof', 0.25)
+    >>> m.capabilities["predict"][0], m.capabilities["simulate"][0]
+    (False, True)
+    >>> Model(model="belt_1dof", k1=2.0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: k1: not a parameter of model 'belt_1dof' with friction='coulomb' (beta1, ...)
+    """
+
+    __slots__ = ()
+
+    def __init__(self, **kw: Any) -> None:
+        name = kw.pop("model")
+        module = _model_module(name)
+        laws = tuple(module.FRICTION_LAWS)
+        friction = kw.pop("friction", None) or laws[0]
+        if friction not in laws:
+            raise ValueError(
+                f"friction must be one of {', '.join(map(repr, laws))} for model "
+                f"{name!r}; got {friction!r}"
+            )
+        names = tuple(module.PARAMETERS[friction])
+        given = {}
+        for key, value in kw.items():
+            if key in OPTIONS:
+                raise ValueError(
+                    f"{key}: an option of the paper's model; model {name!r} derives its "
+                    "normal force in its registry entry (derive/models/entries.py)"
+                )
+            if key not in names:
+                raise ValueError(
+                    f"{key}: not a parameter of model {name!r} with friction={friction!r} "
+                    f"({', '.join(names)})"
+                )
+            if value is None:
+                continue
+            number = _number(key, value)
+            if not within(module.DOMAINS[key], number):
+                rule = DOMAIN_RULES[module.DOMAINS[key]][2]
+                raise ValueError(f"parameter {key!r} must be {rule}; got {number!r}")
+            given[key] = number
+        params = {n: given.get(n, float(module.DEFAULTS[n])) for n in names}
+        setattr_ = object.__setattr__
+        setattr_(self, "_given", MappingProxyType(given))
+        setattr_(self, "_params", MappingProxyType(params))
+        setattr_(self, "_options", MappingProxyType({"model": name, "friction": friction}))
+        setattr_(self, "_pinned", ())
+        setattr_(self, "_key", (name, friction, tuple(params.items())))
+
+    def replace(self, **kw: Any) -> Model:
+        """The same model with some parameters changed, or another law or model (a law's
+        parameters that the new law lacks are dropped)."""
+        options = {**self._options, **{k: kw.pop(k) for k in ("model", "friction") if k in kw}}
+        if options["model"] != self.model:
+            return Model(**options, **kw)
+        names = _model_module(self.model).PARAMETERS[options["friction"]]
+        given = {k: v for k, v in self._given.items() if k in names}
+        return Model(**options, **{**given, **kw})
+
+    def __reduce__(self):
+        return (_rebuild_other, (dict(self._given), dict(self._options)))
+
+    @property
+    def model(self) -> str:
+        return self._options["model"]
+
+    @property
+    def states(self) -> tuple[str, ...]:
+        """The model's states, in its order (its module's ``STATES``)."""
+        return tuple(_model_module(self.model).STATES)
+
+    @property
+    def capabilities(self) -> Mapping[str, tuple[bool, str]]:
+        absent = _model_module(self.model).ABSENT
+        out = {}
+        for name in ANALYSES:
+            why = LACKS.get(name, "")
+            if why.startswith("ABSENT:"):
+                why = absent[why.removeprefix("ABSENT:")]
+            out[name] = (name in GENERIC, why)
+        return MappingProxyType(out)
+
+    def refusal(self, analysis: str) -> str:
+        """The one line of an analysis that does not run this model."""
+        return (
+            f"{analysis}: model {self.model!r}: {self.capabilities[analysis][1]}; "
+            f"it runs the paper's model only (model={PAPER!r})"
+        )
+
+    def _paper_only(self, what: str):
+        raise Unsupported(
+            f"model {self.model!r}: {what} belongs to the paper's model; this analysis "
+            f"runs the paper's model only (model={PAPER!r})"
+        )
+
+    @property
+    def contact(self) -> Contact:  # type: ignore[override]
+        self._paper_only("the contact law")
+
+    @property
+    def tension(self) -> Tension:  # type: ignore[override]
+        self._paper_only("the tension law")
+
+    def fact(self, name: str) -> tuple[bool, str]:
+        self._paper_only(f"the capability {name!r} of the paper's laws")
+
+    def arguments(self, function: Callable[..., Any]) -> dict[str, Any]:
+        self._paper_only(f"the generated function {function.__name__}")
+
+    def __repr__(self) -> str:
+        module = _model_module(self.model)
+        changed = {k: v for k, v in self._params.items() if v != module.DEFAULTS[k]}
+        args = ", ".join(f"{k}={v!r}" for k, v in changed.items())
+        law = f", friction={self.friction!r}" if self.friction != module.FRICTION_LAWS[0] else ""
+        return f"Model(model={self.model!r}{law}{', ' if args else ''}{args})"
+
+    def as_dict(self) -> dict[str, Any]:
+        """``{"model": NAME, "params": {...}, "friction": LAW}``, for JSON."""
+        return {"model": self.model, "params": dict(self._params), "friction": self.friction}
+
+    def digest(self) -> str:
+        text = json.dumps(self.as_dict(), sort_keys=True)
+        return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _model_module(name: str):
+    """The generated module of a registered model (ValueError naming the registered)."""
+    from beltmdsm.generated import models
+
+    if name not in models.MODELS:
+        close = difflib.get_close_matches(str(name), models.MODELS, n=1)
+        hint = f"; did you mean {close[0]!r}?" if close else ""
+        raise ValueError(
+            f"model must be one of {', '.join(map(repr, models.MODELS))}; got {name!r}{hint}"
+        )
+    return models.load(name)
+
+
+def _rebuild_other(given: dict[str, float], options: dict[str, str]) -> Model:
+    return Model(**options, **given)
 
 
 @functools.cache

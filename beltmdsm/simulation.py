@@ -207,7 +207,7 @@ _START_HINTS = dict.fromkeys(
 )
 
 
-@public(hints=_START_HINTS)
+@public(hints=_START_HINTS, models=True)
 def simulate(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -308,6 +308,10 @@ def simulate(
     )
     progress = flag("progress", progress)
     model = as_model(model)
+    if model.model != "paper":  # another registered model: the generic runtime
+        from .oscillator import api
+
+        return api.simulate(model, settings, y0)
     if y0 is not None:
         y0 = state("y0", y0, (4,), "X1, Y1, X2, Y2")
     check_request(model, settings)

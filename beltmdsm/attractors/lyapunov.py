@@ -384,7 +384,7 @@ def _chunk(model, settings, y, t0, max_step, backend):
     return end, m.matrix, m.switches
 
 
-@public()
+@public(models=True)
 def lyapunov(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -450,6 +450,10 @@ def lyapunov(
     model = as_model(model)
     t_end = number("t_end", t_end, above=0)
     rtol = number("rtol", rtol, above=0)
+    if model.model != "paper":  # another registered model: the generic runtime
+        from ..oscillator import api
+
+        return api.lyapunov(model, y0, t_end, t_transient, rtol)
     if t_transient is not None:
         t_transient = number(
             "t_transient", t_transient, at_least=0, below=t_end, below_name="t_end"

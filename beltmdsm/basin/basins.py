@@ -171,7 +171,7 @@ def _range_to_ends(axis: str) -> Rename:
     return f"{axis}_lo/{axis}_hi", convert
 
 
-@public(renamed={"x_range": _range_to_ends("x"), "y_range": _range_to_ends("y")})
+@public(renamed={"x_range": _range_to_ends("x"), "y_range": _range_to_ends("y")}, models=True)
 def basins(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -247,6 +247,10 @@ def basins(
     [('periodic', 1), ('periodic', 4)]
     """
     model = as_model(model)
+    if model.model != "paper":  # another registered model: the generic runtime
+        from ..oscillator import api
+
+        return api.basins(model, x, x_lo, x_hi, y, y_lo, y_hi, points, executor, t_end)
     autonomous = is_autonomous(model)
     if not autonomous:
         # a map needs a period, and its runs some periods of it: refuse before anything runs

@@ -292,7 +292,7 @@ def _cached_run(
     return row, False, problem
 
 
-@valued()
+@valued(models=True)
 def sweep(
     model: Model | Mapping[str, Any] | None,
     param: str,
@@ -405,6 +405,12 @@ def sweep(
     ...
     ValueError: Vb is swept: give its values, not a fixed Vb as well
     """
+    if isinstance(model, Model) and model.model != "paper":  # the generic runtime
+        from ..oscillator import api
+
+        fields = dict(t_end=t_end, t_discard=t_discard, dt=dt, rtol=rtol, atol=atol)
+        return api.sweep(model, param, values, with_fields(settings_of(settings), **fields),
+                         executor_of(executor))  # fmt: skip
     if param not in SWEEPABLE:
         raise ValueError(f"cannot sweep {param!r}: param must be one of {', '.join(SWEEPABLE)}")
     given = model.params if isinstance(model, Model) else (model or {})

@@ -158,8 +158,11 @@ def floquet(args: argparse.Namespace) -> int:
 
 def branch(args: argparse.Namespace) -> int:
     """``branch --model NAME``: steady sliding over ``--param`` in ``[--from, --to]``, its
-    Hopf points by the derived Hurwitz determinants and its stability on each side."""
+    Hopf points by the derived Hurwitz determinants and its stability on each side; the
+    pure-slip cycles born at each Hopf point, followed to their stick onset
+    (`beltmdsm.oscillator.hopf_branch`)."""
     from ..oscillator import hopf_points, steady_sliding
+    from ..oscillator.hopf_branch import hopf_branch
 
     refuse_flags(args, ("png",))
     lo, hi = args.start, args.stop
@@ -189,12 +192,14 @@ def branch(args: argparse.Namespace) -> int:
                 "eigenvalues": _pairs(eq.eigenvalues),
             }
         )
+    branches = [hopf_branch(system, args.param, float(h), hi - lo) for h in points]
     out = {
         **describe(system),
         "param": args.param,
         "range": [lo, hi],
         "hopf_points": [float(v) for v in points],
         "steady_sliding": rows,
+        "cycle_branches": [_branch(b) for b in branches],
     }
     lines = [
         _head(system),
@@ -206,6 +211,28 @@ def branch(args: argparse.Namespace) -> int:
             + f", growth rate {r['growth_rate']:.6g}"
             for i, r in enumerate(rows)
         ),
+        *(f"  cycles born at {args.param} = {b.hopf:.10g}: {b!r}" for b in branches),
     ]
     _print(args, out, lines)
     return 0
+
+
+def _branch(b) -> dict:
+    """A `beltmdsm.oscillator.hopf_branch.HopfBranch` for JSON."""
+    return {
+        "hopf": b.hopf,
+        "side": b.side,
+        "criticality": b.criticality,
+        "cycles": [
+            {
+                b.param: c.system.params[b.param],
+                "period": c.period,
+                "stable": c.stable,
+                "multipliers": _pairs(c.multipliers),
+                "state": _named(c.system.states, c.state),
+            }
+            for c in b.cycles
+        ],  # fmt: skip
+        "stick_onset": None if b.onset is None else b.onset.system.params[b.param],
+        "failure": b.failure,
+    }

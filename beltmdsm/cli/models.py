@@ -19,7 +19,7 @@ from beltmdsm.generated.models import MODELS, load
 from beltmdsm.generated.parameters import DOMAIN_RULES, within
 from beltmdsm.generated.parameters import PARAMETERS as _PAPER
 
-from ..model import OPTIONS
+from ..model import LACKS, OPTIONS
 from .flags import number, params_from
 
 if TYPE_CHECKING:
@@ -33,6 +33,7 @@ __all__ = [
     "refusal",
     "refuse_flags",
     "refuse_other_params",
+    "named",
 ]
 
 _PAPER_NAMES = {p["name"] for p in _PAPER}
@@ -102,28 +103,14 @@ def model_flag(others: bool) -> argparse.ArgumentParser:
     return parent
 
 
-#: What the generic runtime lacks for a command that runs the paper's model only.
-_LACKS = {
-    "sweep": "beltmdsm.oscillator has no sweep of the steady-state statistics",
-    "floquet-band": "beltmdsm.oscillator has no band of unstable responses over a range",
-    "responses": "beltmdsm.oscillator has no search of the coexisting forced responses",
-    "coexistence": "beltmdsm.oscillator has no search of the coexisting forced responses",
-    "floquet-map": "beltmdsm.oscillator has no two-parameter map of the response's stability",
-    "lyapunov": "beltmdsm.oscillator has no Lyapunov spectrum",
-    "basins": "beltmdsm.oscillator has no basins of attraction",
-}
-#: The paper's own pieces (a model's ``ABSENT``) a command needs.
-_NEEDS = {"predict": "mdsm", "validate": "paper_check"}
-
-
 def refusal(args: argparse.Namespace) -> str:
-    """The one line of a command that does not run ``args.model``: what is missing."""
-    absent = load(args.model).ABSENT
-    piece = _NEEDS.get(args.command)
-    missing = absent.get(piece) if piece else None
-    missing = missing or _LACKS.get(args.command, "the generic runtime does not run it")
+    """The one line of a command that does not run ``args.model``: what is missing (the
+    model's ``ABSENT`` piece, or what the generic runtime lacks: `beltmdsm.model.LACKS`)."""
+    why = LACKS.get(args.command.replace("-", "_"), "the generic runtime does not run it")
+    if why.startswith("ABSENT:"):
+        why = load(args.model).ABSENT[why.removeprefix("ABSENT:")]
     return (
-        f"argument --model: {args.command} does not run model {args.model!r}: {missing}; "
+        f"argument --model: {args.command} does not run model {args.model!r}: {why}; "
         f"it runs the paper's model only (--model {MODELS[0]})"
     )
 
@@ -132,7 +119,8 @@ def refuse_flags(args: argparse.Namespace, dests: Iterable[str]) -> None:
     """Exit 2 naming the first of ``dests`` given (not at its default): the paper's only."""
     for dest in dests:
         if getattr(args, dest, None) != args.parser.get_default(dest):
-            flag = "--" + dest.replace("_", "-")
+            flags = [a.option_strings for a in args.parser._actions if a.dest == dest]
+            flag = flags[0][0] if flags and flags[0] else "--" + dest.replace("_", "-")
             args.parser.error(
                 f"argument {flag}: applies to the paper's model, not to --model {args.model}"
             )
@@ -190,3 +178,9 @@ def describe(system) -> dict:
         "params": dict(system.params),
         "states": list(system.states),
     }
+
+
+def named(out: dict) -> dict:
+    """A command's JSON with the model it ran named first (``"model": NAME``; the
+    paper's where the output does not name one)."""
+    return {"model": out.get("model", MODELS[0]), **out}

@@ -358,6 +358,10 @@ def _shoot_slip(system, x, T, max_iter, tol):
         )
     # the scale of the orbit: the distance the flow covers in a period
     size = np.abs(np.asarray(k_.field(0.0, x, p, mode), dtype=float)).max() * T
+    if size <= NEWTON_TOL * scale:  # every T returns there: no least period to test
+        raise NoPeriodicResponse(
+            f"{system!r}: Newton's method converged on steady sliding, not on a cycle"
+        )
     for j in range(_DIVISORS, 1, -1):
         back = flow(system, 0.0, x, T / j, mode=mode, **tol)
         if np.abs(back.y - x).max() <= _RETURN_TOL * size:
@@ -383,6 +387,10 @@ def _cycle(system, x, mode, run, residual):
     return Cycle(
         system, x, mode, float(run.t), rest, complex(w[i]), M, run.switches, sticks, residual
     )
+
+
+#: The bracket of the stick onset, relative, where the last pure-slip cycle is taken.
+_BRACKET = 1e-10
 
 
 def stick_onset(
@@ -453,12 +461,19 @@ def stick_onset(
                 dict(rtol=1e-11, atol=1e-11),
             )
         except NoPeriodicResponse:
+            # past the onset (the run grazes or sticks): bisect back; a bracket that has
+            # shrunk to 1e-10 leaves the last pure-slip cycle as the grazing one (its
+            # least slip speed is then below the integration's resolution of a switch)
+            if abs(value - good[-1][0]) <= _BRACKET * (1.0 + abs(value)):
+                return good[-1][2]
             value = 0.5 * (value + good[-1][0])
             continue
         good.append((value, speed(c), c))
         if abs(good[-1][1]) <= tol * (1.0 + np.abs(c.state).max()):
             return c
         (v0, s0, _), (v1, s1, _) = good[-2], good[-1]
+        if abs(v1 - v0) <= _BRACKET * (1.0 + abs(v1)):
+            return c  # the secant moves below the parameter's resolution: at the onset
         value = v1 - s1 * (v1 - v0) / (s1 - s0)
     raise NoPeriodicResponse(
         f"{cycle.system!r}: no stick onset in {parameter} found in {max_iter} steps"

@@ -345,7 +345,7 @@ class _Shooting:
         return float(self.sw.scales(0.0, *x)[1])
 
 
-@public()
+@public(models=True)
 def cycle(
     model: Model | Mapping[str, Any],
     guess: ArrayLike | None = None,
@@ -398,6 +398,10 @@ def cycle(
     """
     model = as_model(model)
     max_iter = count("max_iter", max_iter, 1)
+    if model.model != "paper":  # another registered model: the generic runtime
+        from ..oscillator import api
+
+        return api.cycle(model, guess, period, max_iter)
     if period is not None:
         period = number("period", period, above=0)
         if guess is None:

@@ -381,7 +381,7 @@ class Floquet:
         }
 
 
-@public()
+@public(models=True)
 def floquet(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -457,6 +457,10 @@ def floquet(
     ('stable', 4, 6.2832)
     """
     model = as_model(model)
+    if model.model != "paper":  # another registered model: the generic runtime
+        from ..oscillator import api
+
+        return api.periodic_response(model, guess, periods, engine=engine)
     return Floquet.of(
         periodic_response(
             model, guess=guess, forward=forward, backend=backend, periods=periods, engine=engine

@@ -90,7 +90,7 @@ def _cycle_response(model, guess, max_iter, backend, periods, engine):
     return response_of_cycle(cycle(model, max_iter=max(max_iter, 30), backend=backend))
 
 
-@public()
+@public(models=True)
 def periodic_response(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -191,6 +191,10 @@ def periodic_response(
     """
     model = as_model(model)
     periods = count("periods", periods, 1)
+    if model.model != "paper":  # another registered model: the generic runtime
+        from ..oscillator import api
+
+        return api.periodic_response(model, guess, periods, engine=engine)
     max_iter = count("max_iter", max_iter, 1)
     forward = count("forward", forward, 0)
     if is_autonomous(model):

@@ -6,6 +6,7 @@ import argparse
 import json
 
 from ...model import MODEL_PARAMETERS
+from .. import generic_studies
 from ..flags import (
     cache_dir_from,
     cache_parent,
@@ -20,6 +21,7 @@ from ..flags import (
     range_flags,
     range_from,
 )
+from ..models import named, other_params
 from ..running import register
 from .basins import region_from, sampling_flags
 
@@ -32,6 +34,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), executor_parent(), cache_parent(), json_parent()],
+        models=generic_studies.basin_stability,
         help="basin stability by sampling, along a parameter (without excitation)",
         description="At --points values of --param in [--from, --to], the share of --samples "
         "uniform random starts in the box --x-from..--y-to (the same starts at every value) "
@@ -40,7 +43,10 @@ def add(commands, name: str) -> None:
         "named by its bifurcation (beltmdsm/basin/basin_stability_along.py).",
     )
     sub.add_argument(
-        "--param", choices=MODEL_PARAMETERS, default="Vb", help="the parameter (default Vb)"
+        "--param",
+        choices=(*MODEL_PARAMETERS, *other_params()),
+        default="Vb",
+        help="the parameter (default Vb; of --model's parameters)",
     )
     range_flags(sub)
     sub.add_argument(
@@ -48,7 +54,11 @@ def add(commands, name: str) -> None:
     )
     for axis, default in (("x", "X1"), ("y", "Y1")):
         sub.add_argument(
-            f"--{axis}", choices=_AXES, default=default, help=f"the {axis} axis (default {default})"
+            f"--{axis}",
+            choices=(*_AXES, *(s for s in generic_studies.STATES if s not in _AXES)),
+            default=default,
+            help=f"the {axis} axis (default {default}; with --model, one of its states, X1 "
+            "and Y1 its first coordinate and its rate)",
         )
         for end, meta, word in (("from", "A", "low"), ("to", "B", "high")):
             sub.add_argument(
@@ -95,7 +105,7 @@ def run(args: argparse.Namespace) -> int:
 
         save(lambda ax: result.plot(ax), args.png, f"basin stability in {result.param}")
     if args.json:
-        print(json.dumps(text.jsonable(result.as_dict())))
+        print(json.dumps(text.jsonable(named(result.as_dict()))))
         return 0
     print(repr(result))
     head = f"{result.param:>10}  " + "  ".join(f"{n[:28]:>28}" for n in result.names)

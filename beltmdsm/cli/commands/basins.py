@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from .. import generic_studies
 from ..flags import (
     cache_dir_from,
     cache_parent,
@@ -17,6 +18,7 @@ from ..flags import (
     number,
     output_file,
 )
+from ..models import named
 from ..running import register
 
 _AXES = ("X1", "Y1", "X2", "Y2")
@@ -28,6 +30,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), executor_parent(), cache_parent(), json_parent()],
+        models=generic_studies.basins,
         help="basins of attraction on a plane of initial states, or basin stability by "
         "sampling (--samples)",
         description="Starts on a grid of a plane of states at the excitation's phase 0 "
@@ -44,9 +47,10 @@ def add(commands, name: str) -> None:
     for axis, default in (("x", "X1"), ("y", "Y1")):
         sub.add_argument(
             f"--{axis}",
-            choices=_AXES,
+            choices=(*_AXES, *(s for s in generic_studies.STATES if s not in _AXES)),
             default=default,
-            help=f"the {axis} axis of the plane (default {default}; Y1 is X1')",
+            help=f"the {axis} axis of the plane (default {default}; Y1 is X1'; with "
+            "--model, one of its states, X1 and Y1 its first coordinate and its rate)",
         )
         sub.add_argument(
             f"--{axis}-from",
@@ -107,7 +111,7 @@ def print_estimate(result, as_json: bool) -> None:
     from .. import text
 
     if as_json:
-        print(json.dumps(text.jsonable({**result.as_dict(), **result.model.as_dict()})))
+        print(json.dumps(text.jsonable(named({**result.as_dict(), **result.model.as_dict()}))))
         return
     print(repr(result))
     for i, a in enumerate(result.attractors):
@@ -197,7 +201,7 @@ def run(args: argparse.Namespace) -> int:
         ax = result.plot()
         ax.figure.savefig(args.png, dpi=120, bbox_inches="tight")
     if args.json:
-        print(json.dumps(text.jsonable({**result.as_dict(), **result.model.as_dict()})))
+        print(json.dumps(text.jsonable(named({**result.as_dict(), **result.model.as_dict()}))))
     else:
         print(repr(result))
         for a in result.attractors:

@@ -18,6 +18,7 @@ from ..flags import (
     range_flags,
     range_from,
 )
+from ..models import named, other_params
 from ..running import register
 
 
@@ -39,7 +40,10 @@ def add(commands, name: str) -> None:
         "(beltmdsm/cycles/branch.py); no start value is needed.",
     )
     sub.add_argument(
-        "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter continued in"
+        "--param",
+        required=True,
+        choices=(*MODEL_PARAMETERS, *other_params()),
+        help="the parameter continued in (of --model's parameters)",
     )
     range_flags(sub)
     sub.add_argument(
@@ -61,7 +65,9 @@ def run(args: argparse.Namespace) -> int:
     if is_autonomous(model):
         # the cycles are born at the Hopf point in the range: no start to give
         found = branch(model, periods=args.periods, param=args.param, lo=lo, hi=hi)
-        print(json.dumps(text.jsonable(found.as_dict())) if args.json else text.branch(found))
+        print(
+            json.dumps(text.jsonable(named(found.as_dict()))) if args.json else text.branch(found)
+        )
         return 0
     if value is None:
         args.parser.error(f"argument --{args.param}: give the start's {args.param} as well")
@@ -75,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
 
         save(lambda ax: found.plot(ax), args.png, f"branch in {found.param} ({found.model!r})")
     if args.json:
-        print(json.dumps(text.jsonable(found.as_dict())))
+        print(json.dumps(text.jsonable(named(found.as_dict()))))
     else:
         print(text.branch(found))
         if args.png:

@@ -7,6 +7,7 @@ import argparse
 import json
 
 from ...model import MODEL_PARAMETERS
+from .. import generic_studies
 from ..flags import (
     POSITIVE,
     json_parent,
@@ -18,6 +19,7 @@ from ..flags import (
     range_from,
     swept,
 )
+from ..models import named, other_params
 from ..running import register
 
 
@@ -27,6 +29,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), lock_parent(), json_parent()],
+        models=generic_studies.coexistence,
         help="where two or more stable periodic responses coexist",
         description="The ranges of one parameter where two or more stable periodic "
         "responses (the T-periodic one and phase-locked ones) coexist, each edge with "
@@ -34,7 +37,10 @@ def add(commands, name: str) -> None:
         "each continued as a branch (beltmdsm/multistability/coexistence.py).",
     )
     sub.add_argument(
-        "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter walked"
+        "--param",
+        required=True,
+        choices=(*MODEL_PARAMETERS, *other_params()),
+        help="the parameter walked (of --model's parameters)",
     )
     range_flags(sub)
     sub.add_argument(
@@ -78,7 +84,7 @@ def run(args: argparse.Namespace) -> int:
             f"stable responses in {found.param} ({found.model!r})",
         )
     if args.json:
-        print(json.dumps(text.jsonable(found.as_dict())))
+        print(json.dumps(text.jsonable(named(found.as_dict()))))
     else:
         print(text.coexistence(found))
         if args.png:

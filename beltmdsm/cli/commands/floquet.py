@@ -7,6 +7,7 @@ import json
 
 from .. import generic
 from ..flags import json_parent, model_from, model_parent, periods_parent
+from ..models import named
 from ..running import register
 
 
@@ -52,7 +53,7 @@ def run(args: argparse.Namespace) -> int:
         for t, b, a, s in f.response.switches
     ]
     if args.json:
-        print(json.dumps(text.jsonable(out)))
+        print(json.dumps(text.jsonable(named(out))))
     else:
         got = f.response.periods
         if got != args.periods:

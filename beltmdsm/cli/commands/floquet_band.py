@@ -19,6 +19,7 @@ from ..flags import (
     range_from,
     swept,
 )
+from ..models import named
 from ..running import register
 
 
@@ -87,7 +88,7 @@ def run(args: argparse.Namespace) -> int:
 
         save(lambda ax: band.plot(ax), args.png, f"Floquet band in {band.param} ({band.model!r})")
     if args.json:
-        print(json.dumps(text.jsonable(band.as_dict())))
+        print(json.dumps(text.jsonable(named(band.as_dict()))))
     else:
         print(text.band(band, lo, hi))
         if args.png:

@@ -16,6 +16,7 @@ from ..flags import (
     range_from,
     swept,
 )
+from ..models import named
 from ..running import register
 
 
@@ -74,7 +75,7 @@ def run(args: argparse.Namespace) -> int:
 
         draw(result, args.png)
     if args.json:
-        print(json.dumps(text.jsonable(result.as_dict())))
+        print(json.dumps(text.jsonable(named(result.as_dict()))))
     else:
         print(text.floquet_map(result, args.png))
     return 0

@@ -5,7 +5,9 @@ from __future__ import annotations
 import argparse
 import json
 
+from .. import generic_studies
 from ..flags import json_parent, model_from, model_parent, number
+from ..models import named
 from ..running import register
 
 
@@ -15,6 +17,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), json_parent()],
+        models=generic_studies.lyapunov,
         help="Lyapunov exponents of a run (saltation matrices at every switch)",
         description="The Lyapunov spectrum of a run of Eq. (4), largest first, by the "
         "variational equations with the saltation matrix at every switch and QR "
@@ -84,7 +87,7 @@ def run(args: argparse.Namespace) -> int:
         out["perturbation"] = args.perturbation
     out.update(model.as_dict())
     if args.json:
-        print(json.dumps(text.jsonable(out)))
+        print(json.dumps(text.jsonable(named(out))))
     else:
         print(repr(spec))
         if spec.start_perturbation:

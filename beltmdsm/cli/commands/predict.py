@@ -7,6 +7,7 @@ import json
 
 from ...settings import MAX_VB_POINTS
 from ..flags import POSITIVE, integer, json_parent, model_from, model_parent
+from ..models import named
 from ..running import register
 
 
@@ -57,7 +58,7 @@ def run(args: argparse.Namespace) -> int:
         hi=args.vb_max,
     )
     if args.json:
-        print(json.dumps(text.jsonable(result.as_dict())))
+        print(json.dumps(text.jsonable(named(result.as_dict()))))
     else:
         print(text.prediction(result))
     return 0

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from .. import generic_studies
 from ..flags import (
     NONNEGATIVE,
     POSITIVE,
@@ -13,6 +14,7 @@ from ..flags import (
     model_from,
     model_parent,
 )
+from ..models import named
 from ..running import register
 
 
@@ -22,6 +24,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), lock_parent(), json_parent()],
+        models=generic_studies.responses,
         help="every periodic response found at one point, locked ones included",
         description="The periodic responses of Eq. (4) at one point: the one of the "
         "excitation period T and every one locked at k T (k up to --limit), found from "
@@ -46,7 +49,7 @@ def run(args: argparse.Namespace) -> int:
 
     found = responses(model_from(args), limit=args.limit, ladder=args.ladder, t_end=args.t_end)
     if args.json:
-        print(json.dumps(text.jsonable(found.as_dict())))
+        print(json.dumps(text.jsonable(named(found.as_dict()))))
     else:
         print(text.responses(found))
     return 0

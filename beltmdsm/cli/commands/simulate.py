@@ -16,6 +16,7 @@ from ..flags import (
     settings_from,
     solver_parent,
 )
+from ..models import named
 from ..running import register
 
 
@@ -135,7 +136,7 @@ def run(args: argparse.Namespace) -> int:
 
         save(draw, args.png, f"Eq. (4), {model!r}: X1' and the friction loop", panels=2)
     if args.json:
-        print(json.dumps(text.jsonable(out)))
+        print(json.dumps(text.jsonable(named(out))))
     else:
         print(text.simulation(sim, out, args.modulation))
         if attractor is not None:

@@ -8,6 +8,7 @@ import json
 
 from ...model import MODEL_PARAMETERS
 from ...settings import MAX_POINTS
+from .. import generic_studies
 from ..flags import (
     POSITIVE,
     cache_dir_from,
@@ -23,6 +24,8 @@ from ..flags import (
     solver_parent,
     swept,
 )
+from ..generic_studies import sweep_values
+from ..models import named, other_params
 from ..running import register
 
 
@@ -32,13 +35,17 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), solver_parent(), executor_parent(), cache_parent(), json_parent()],
+        models=generic_studies.sweep,
         help="sweep one parameter of Eq. (4)",
         description="Sweep one parameter of Eq. (4) (beltmdsm/batch/sweep.py; at most "
         f"{MAX_POINTS:.0e} points).",
     )
     grid = sub.add_argument_group("the swept parameter")
     grid.add_argument(
-        "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter swept"
+        "--param",
+        required=True,
+        choices=(*MODEL_PARAMETERS, *other_params()),
+        help="the parameter swept (of --model's parameters)",
     )
     grid.add_argument(
         "--from", dest="start", type=number(), metavar="X", help="first value (with --to, --step)"
@@ -70,33 +77,12 @@ def add(commands, name: str) -> None:
     sub.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
 
 
-def _values(args):
-    import numpy as np
-
-    from ...batch.sweep import linear_values
-
-    if args.values:
-        grid = (("--from", args.start), ("--to", args.stop), ("--step", args.step))
-        given = [flag for flag, value in grid if value is not None]
-        if given:
-            args.parser.error(f"argument --values: give --values or {', '.join(given)}, not both")
-        return np.asarray(args.values)
-    if None in (args.start, args.stop, args.step):
-        args.parser.error("give --from, --to and --step, or --values")
-    if args.stop < args.start:
-        args.parser.error(f"argument --to: must be >= --from ({args.start:g}); got {args.stop:g}")
-    try:
-        return linear_values(args.start, args.stop, args.step)
-    except ValueError as err:
-        args.parser.error(f"argument --step: {err}")
-
-
 def run(args: argparse.Namespace) -> int:
     from ...batch.sweep import sweep
     from ...batch.table import table_to_csv
     from .. import text
 
-    values = _values(args)
+    values = sweep_values(args)
     if args.continuation and (args.scheduler or (args.jobs or 1) > 1):
         args.parser.error(
             "argument --continue: a continued sweep runs its points one after "
@@ -119,7 +105,7 @@ def run(args: argparse.Namespace) -> int:
     if args.out:
         table_to_csv(result.table, args.out)
     if args.json:
-        print(json.dumps(text.jsonable(result.as_dict())))
+        print(json.dumps(text.jsonable(named(result.as_dict()))))
     else:
         print(text.sweep(result, args.out))
     return 0

@@ -423,6 +423,7 @@ def test_python_and_the_command_line_share_cache_entries(capsys, tmp_path):
 def test_sweep_json_holds_what_the_text_says(capsys):
     out = _json(capsys, _sweep_argv("--values", "4", "12", "--no-cache"))
     assert set(out) == {
+        "model",  # every command's JSON names its model (issue 39)
         "param",
         "params",
         "contact",

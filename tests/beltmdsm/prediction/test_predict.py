@@ -75,6 +75,7 @@ def test_predict_cli_json(capsys):
     assert main(["predict", "--beta1", "0.4", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert set(out) == {
+        "model",  # every command's JSON names its model (issue 39)
         "paper_tangential_vhat",
         "paper_coupled_vhat",
         "consistent_mdsm",

@@ -1,0 +1,143 @@
+"""The public API on another model than the paper's: ``beltmdsm.simulate(Model(model=
+"belt_1dof", ...))`` and the other analyses of `beltmdsm.model.GENERIC` come here.
+
+Each public function of the paper's model hands a `beltmdsm.model.OtherModel` to its
+twin below, which builds the model's `System` and runs the generic runtime; the
+results are the runtime's (`Trajectory`, `Response`, `Cycle`, `Spectrum`, `Sweep`,
+`Basins`), their states named by the model. What a twin cannot honour (a keyword of
+the paper's integrators, a state the model lacks) it refuses in one line.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from numpy.typing import ArrayLike
+
+from ..errors import Unsupported
+from ..model import Model
+from .system import System
+
+if TYPE_CHECKING:
+    from ..settings import SolverSettings
+    from .basins import Basins
+    from .cycles import Cycle
+    from .forced import Response
+    from .hybrid import Trajectory
+    from .lyapunov import Spectrum
+    from .sweep import Sweep
+
+__all__ = ["system_of", "simulate", "periodic_response", "cycle", "lyapunov", "sweep", "basins"]
+
+
+def system_of(model: Model) -> System:
+    """The `System` of a `beltmdsm.model.OtherModel` (checked there already)."""
+    return System(model.model, model.friction, **model._given)
+
+
+def _paper_keywords(analysis: str, model: Model, **given: Any) -> None:
+    """Refuse a keyword that only the paper's integrators or analyses read."""
+    for name, value in given.items():
+        if value is not None:
+            raise Unsupported(
+                f"{analysis}: {name}={value!r} applies to the paper's model, not to "
+                f"model {model.model!r} (the generic runtime, beltmdsm/oscillator/)"
+            )
+
+
+def simulate(model: Model, settings: SolverSettings, y0: ArrayLike | None) -> Trajectory:
+    """`beltmdsm.simulate` of another model: `beltmdsm.oscillator.simulate`."""
+    from .hybrid import simulate as run
+
+    if settings.solver != "events":
+        raise Unsupported(
+            f"simulate: solver={settings.solver!r} is the paper's; model {model.model!r} "
+            "runs on the generic event-driven integrator"
+        )
+    return run(
+        system_of(model), settings.t_end, y0, dt=settings.dt, rtol=settings.rtol,
+        atol=settings.atol, backend=settings.backend,
+    )  # fmt: skip
+
+
+def periodic_response(
+    model: Model, guess: ArrayLike | None, periods: int, **paper: Any
+) -> Response | Cycle:
+    """`beltmdsm.floquet` / `periodic_response` of another model: the forced response
+    of ``periods`` excitation periods, or without excitation its self-excited cycle
+    (both carry their Floquet multipliers)."""
+    from .cycles import self_excited_cycle
+    from .forced import forced_response
+
+    _paper_keywords("floquet", model, **paper)
+    system = system_of(model)
+    if system.excitation_period() is None:
+        if periods != 1:
+            raise ValueError(
+                f"periods={periods!r}: model {model.model!r} is unforced here; its "
+                "self-excited cycle has no excitation period"
+            )
+        return self_excited_cycle(system, guess)
+    return forced_response(system, guess, periods=periods)
+
+
+def cycle(model: Model, guess: ArrayLike | None, period: float | None, max_iter: int) -> Cycle:
+    """`beltmdsm.cycle` of another model: `beltmdsm.oscillator.self_excited_cycle`."""
+    from .cycles import self_excited_cycle
+
+    return self_excited_cycle(system_of(model), guess, period, max_iter=max_iter)
+
+
+def lyapunov(
+    model: Model, y0: ArrayLike | None, t_end: float, t_transient: float | None, rtol: float
+) -> Spectrum:
+    """`beltmdsm.lyapunov` of another model: `beltmdsm.oscillator.lyapunov.lyapunov`."""
+    from .lyapunov import lyapunov as spectrum
+
+    return spectrum(system_of(model), y0, t_end=t_end, t_transient=t_transient, rtol=rtol)
+
+
+def sweep(
+    model: Model, param: str, values: ArrayLike, settings: SolverSettings, executor: Any
+) -> Sweep:
+    """`beltmdsm.sweep` of another model: `beltmdsm.oscillator.sweep.sweep` (an
+    executor that is a `concurrent.futures.Executor` runs the points)."""
+    from .sweep import sweep as run
+
+    return run(
+        system_of(model), param, values, t_end=settings.t_end, t_discard=settings.t_discard,
+        dt=settings.dt, rtol=settings.rtol, atol=settings.atol,
+        executor=None if executor in (None, "serial") else executor,
+    )  # fmt: skip
+
+
+def basins(
+    model: Model,
+    x: str,
+    x_lo: float | None,
+    x_hi: float | None,
+    y: str,
+    y_lo: float | None,
+    y_hi: float | None,
+    points: int,
+    executor: Any,
+    t_end: float,
+) -> Basins:
+    """`beltmdsm.basins` of another model: `beltmdsm.oscillator.basins.basins`, on the
+    plane of two of its states (the paper's defaults X1, Y1 read as the first
+    coordinate and its rate)."""
+    from .basins import basins as run
+
+    system = system_of(model)
+    n = len(system.coordinates)
+    x = system.states[0] if x == "X1" else x
+    y = system.states[n] if y == "Y1" else y
+    if None in (x_lo, x_hi, y_lo, y_hi):
+        raise ValueError(
+            f"basins: give x_lo, x_hi, y_lo and y_hi for model {model.model!r} (the ranges "
+            "of its states' plane)"
+        )
+    return run(
+        system, x, (x_lo, x_hi), y, (y_lo, y_hi), points=points, t_end=t_end,
+        executor=None if executor in (None, "serial") else executor,
+    )  # fmt: skip
