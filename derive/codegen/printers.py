@@ -81,7 +81,28 @@ def hoisted_roots(flat, args=()):
     return [(f"_root{k}", base, d) for k, (base, d) in enumerate(found)]
 
 
-class RootPrinting:
+@functools.cache
+def _ordered_terms(expr, order) -> tuple:
+    return tuple(expr.as_ordered_terms(order=order))
+
+
+class OrderedTerms:
+    """The terms of a sum in SymPy's printing order, computed once per sum and order.
+
+    Ordering a sum's terms (``Expr.as_ordered_terms``) is most of a printer's time, and
+    one sum is printed many times: by the numpy, scalar and mpmath printers of a
+    variant, and in every variant of a function that shares it. The order is a
+    function of the sum alone, so the printed text is unchanged.
+    """
+
+    def _as_ordered_terms(self, expr, order=None):
+        order = order or self.order
+        if order in ("old", "none"):
+            return super()._as_ordered_terms(expr, order=order)
+        return list(_ordered_terms(expr, order))
+
+
+class RootPrinting(OrderedTerms):
     """Print ``b**(n/d)`` as ``b**(n//d) * _rootk**(n % d)`` (reciprocal for ``n < 0``)."""
 
     def __init__(self, roots=()):
@@ -150,7 +171,7 @@ class NumPy(RootPrinting, NumPyPrinter):
         ]
 
 
-class Mpmath(MpmathPrinter):
+class Mpmath(OrderedTerms, MpmathPrinter):
     def _print_Heaviside(self, expr):
         return f"(1 if ({self._print(expr.args[0])}) > 0 else 0)"
 
