@@ -69,6 +69,12 @@ def hoisted_roots(flat, args=()):
     -------
     list of (name, base, d), in a canonical order.
     """
+    return list(_roots(tuple(flat), tuple(args)))
+
+
+@functools.cache
+def _roots(flat: tuple, args: tuple) -> tuple:
+    """`hoisted_roots`, found once for every printing of ``flat``."""
     found = sorted(
         {
             (e.base, int(e.exp.q))
@@ -78,7 +84,7 @@ def hoisted_roots(flat, args=()):
         },
         key=lambda bd: (sp.default_sort_key(bd[0]), bd[1]),
     )
-    return [(f"_root{k}", base, d) for k, (base, d) in enumerate(found)]
+    return tuple((f"_root{k}", base, d) for k, (base, d) in enumerate(found))
 
 
 @functools.cache
@@ -218,9 +224,19 @@ def lift_integrals(flat, printer):
     The integrals are replaced by the names of those statements, ``_quad0, _quad1,
     ...`` in a canonical order.
     """
-    found = sorted({i for e in flat for i in e.atoms(sp.Integral)}, key=sp.default_sort_key)
+    found, lifted = _integrals(tuple(flat))
     if not found:
         return [], flat
+    lines = [line for name, i in found for line in printer.quadrature(name, i)]
+    return lines, list(lifted)
+
+
+@functools.cache
+def _integrals(flat: tuple) -> tuple:
+    """``((name, integral), ...)`` of `lift_integrals` and the outputs with the names in
+    place, found once for the numpy, scalar and mpmath printings of ``flat``."""
+    found = sorted({i for e in flat for i in e.atoms(sp.Integral)}, key=sp.default_sort_key)
+    if not found:
+        return (), flat
     names = {i: sp.Symbol(f"_quad{k}", real=True) for k, i in enumerate(found)}
-    lines = [line for i in found for line in printer.quadrature(names[i].name, i)]
-    return lines, [e.xreplace(names) for e in flat]
+    return tuple((names[i].name, i) for i in found), tuple(e.xreplace(names) for e in flat)
