@@ -184,9 +184,11 @@ def scaled_error(degree: int = 3, n=HERTZ) -> FitError:
     candidates = [sp.Integer(0), sp.Integer(1)]
     if not stationary.is_zero:
         candidates += [r**q for r in stationary.real_roots() if 0 < r < 1]
-    values = [(sp.Abs(err.subs(s, c)), c) for c in candidates]
-    best, where = max(values, key=lambda v: sp.N(v[0], 50))
-    return FitError(best, where, rms, ends)
+    # compared at 50 digits; only the largest becomes a closed form (SymPy's Abs of an
+    # expression in algebraic numbers tries to decide its sign, seconds at degree 8)
+    values = [err.subs(s, c) for c in candidates]
+    k = max(range(len(values)), key=lambda i: abs(sp.N(values[i], 50)))
+    return FitError(sp.Abs(values[k]), candidates[k], rms, ends)
 
 
 def fit_error(degree: int = 3, contact: str = _CONTACT) -> FitError:

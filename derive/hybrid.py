@@ -263,11 +263,13 @@ def surfaces(contact: str, friction: str = laws.default("friction")) -> dict[str
     }
 
 
+@cache
 def _d(expr, x) -> sp.Expr:
     """``d expr / d x`` with powers of one base merged: SymPy differentiates ``X2**n`` of a
     symbolic exponent to ``n X2**n / X2``, which is 0/0 where ``max(X2, 0)`` is 0 (in
     flight); ``n X2**(n - 1)`` is finite there (rational exponents merge by
-    themselves, so the paper's laws are unchanged)."""
+    themselves, so the paper's laws are unchanged). Cached: a surface's gradient enters
+    its rate in every mode and every saltation matrix across it."""
     return sp.powsimp(sp.diff(expr, x), combine="exp")
 
 

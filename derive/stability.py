@@ -109,6 +109,13 @@ def _linearise(expr):
 
 def slow_equilibrium_A7(convention: str = "paper", contact: str = _CONTACT) -> dict:
     """Equilibrium of Eqs. (A3)-(A6), solved by SymPy, in terms of ``mu0``, Eq. (A7)."""
+    return dict(_slow_equilibrium(convention, contact))
+
+
+@cache
+def _slow_equilibrium(convention: str, contact: str) -> dict:
+    """`slow_equilibrium_A7`, solved once per convention and contact law (every friction
+    law's equilibrium is this one with its ``mu0``)."""
     rhs = slow_state_space_A3_A6(convention, contact).subs(S1, 0).subs(mu_bar(-P["Vb"]), mu0)
     sol = sp.solve(list(rhs), [Z1, Z2, S2], dict=True)
     if len(sol) != 1:

@@ -262,6 +262,30 @@ def free_of(expr, symbol: sp.Symbol) -> bool:
     return symbol not in sp.sympify(expr).free_symbols
 
 
+def _largest_irreducible_degree(expr: sp.Expr, x: sp.Symbol) -> int:
+    """The largest degree in ``x`` of an irreducible factor of ``expr = 0`` cleared of its
+    denominators and radicals (SymPy's `unrad`); 0 where it is not algebraic in ``x``.
+
+    A cheap test of what `sympy.solve` would find: above 2 its roots are Cardano's or
+    Ferrari's formulas in the parameters, or none (degree 5 and up), and more than one
+    of them may be positive, so no closed form is claimed from them. The rational-root
+    law's ``p(Vb) = 0`` is a cubic in ``Vb**2``: solving it ran to the budget of
+    `beltmdsm.derive.budget`; this test decides it in a tenth of a second.
+    """
+    from sympy.polys.polyerrors import BasePolynomialError
+    from sympy.solvers.solvers import unrad
+
+    numerator = sp.numer(sp.together(expr))
+    try:
+        cleared = unrad(numerator, x)
+        if cleared is not None and cleared[1]:  # a change of variable: not a polynomial in x
+            return 0
+        poly = sp.Poly(numerator if cleared is None else cleared[0], x)
+    except (BasePolynomialError, NotImplementedError, ValueError):
+        return 0
+    return max((f.degree() for f, _ in poly.factor_list()[1]), default=0)
+
+
 def never_positive(root: sp.Expr) -> bool:
     """Whether ``root`` is provably ``<= 0`` wherever it is real (no belt speed then).
 
@@ -317,6 +341,8 @@ def critical_belt_speed(
     Vb = P["Vb"]
     if Vb not in p.free_symbols:
         return sp.nan
+    if _largest_irreducible_degree(p, Vb) > 2:
+        return None  # several roots, none proved the only positive one: not solved
     try:
         roots = budget.within(f"{friction}: p(Vb) = 0", sp.solve, p, Vb)
     except budget.Undecided as over:

@@ -69,6 +69,12 @@ def hoisted_roots(flat, args=()):
     -------
     list of (name, base, d), in a canonical order.
     """
+    return list(_roots(tuple(flat), tuple(args)))
+
+
+@functools.cache
+def _roots(flat: tuple, args: tuple) -> tuple:
+    """`hoisted_roots`, found once for every printing of ``flat``."""
     found = sorted(
         {
             (e.base, int(e.exp.q))
@@ -78,10 +84,31 @@ def hoisted_roots(flat, args=()):
         },
         key=lambda bd: (sp.default_sort_key(bd[0]), bd[1]),
     )
-    return [(f"_root{k}", base, d) for k, (base, d) in enumerate(found)]
+    return tuple((f"_root{k}", base, d) for k, (base, d) in enumerate(found))
 
 
-class RootPrinting:
+@functools.cache
+def _ordered_terms(expr, order) -> tuple:
+    return tuple(expr.as_ordered_terms(order=order))
+
+
+class OrderedTerms:
+    """The terms of a sum in SymPy's printing order, computed once per sum and order.
+
+    Ordering a sum's terms (``Expr.as_ordered_terms``) is most of a printer's time, and
+    one sum is printed many times: by the numpy, scalar and mpmath printers of a
+    variant, and in every variant of a function that shares it. The order is a
+    function of the sum alone, so the printed text is unchanged.
+    """
+
+    def _as_ordered_terms(self, expr, order=None):
+        order = order or self.order
+        if order in ("old", "none"):
+            return super()._as_ordered_terms(expr, order=order)
+        return list(_ordered_terms(expr, order))
+
+
+class RootPrinting(OrderedTerms):
     """Print ``b**(n/d)`` as ``b**(n//d) * _rootk**(n % d)`` (reciprocal for ``n < 0``)."""
 
     def __init__(self, roots=()):
@@ -150,7 +177,7 @@ class NumPy(RootPrinting, NumPyPrinter):
         ]
 
 
-class Mpmath(MpmathPrinter):
+class Mpmath(OrderedTerms, MpmathPrinter):
     def _print_Heaviside(self, expr):
         return f"(1 if ({self._print(expr.args[0])}) > 0 else 0)"
 
@@ -197,9 +224,19 @@ def lift_integrals(flat, printer):
     The integrals are replaced by the names of those statements, ``_quad0, _quad1,
     ...`` in a canonical order.
     """
-    found = sorted({i for e in flat for i in e.atoms(sp.Integral)}, key=sp.default_sort_key)
+    found, lifted = _integrals(tuple(flat))
     if not found:
         return [], flat
+    lines = [line for name, i in found for line in printer.quadrature(name, i)]
+    return lines, list(lifted)
+
+
+@functools.cache
+def _integrals(flat: tuple) -> tuple:
+    """``((name, integral), ...)`` of `lift_integrals` and the outputs with the names in
+    place, found once for the numpy, scalar and mpmath printings of ``flat``."""
+    found = sorted({i for e in flat for i in e.atoms(sp.Integral)}, key=sp.default_sort_key)
+    if not found:
+        return (), flat
     names = {i: sp.Symbol(f"_quad{k}", real=True) for k, i in enumerate(found)}
-    lines = [line for i in found for line in printer.quadrature(names[i].name, i)]
-    return lines, [e.xreplace(names) for e in flat]
+    return tuple((names[i].name, i) for i in found), tuple(e.xreplace(names) for e in flat)

@@ -92,7 +92,7 @@ def _impl_params(exprs, args, where):
         Naming ``where`` (the function and variant), for a symbol that is neither a
         positional argument nor a parameter.
     """
-    names = {s.name for e in exprs for s in e.free_symbols} - {a.name for a in args}
+    names = _free_names(tuple(exprs)) - {a.name for a in args}
     unknown = names - set(_ORDER)
     if unknown:
         raise ValueError(
@@ -100,6 +100,12 @@ def _impl_params(exprs, args, where):
             f"({', '.join(a.name for a in args) or 'none'}) nor parameters: {sorted(unknown)}"
         )
     return sorted(names, key=_ORDER.__getitem__)
+
+
+@functools.cache
+def _free_names(exprs: tuple) -> frozenset:
+    """The names of the free symbols of ``exprs``, found once per variant."""
+    return frozenset(s.name for e in exprs for s in e.free_symbols)
 
 
 def _doc_params(exprs, args):
@@ -265,14 +271,16 @@ def _numpy_impl(v):
     return "\n".join([f"def {v.impl}({', '.join(sig)}):"] + _indent(_errstate(v.flat, body)))
 
 
-def _branches(flat):
-    """``[(condition, outputs), ...]`` where every Piecewise of ``flat`` has one condition list.
+@functools.cache
+def _branches(flat: tuple):
+    """``((condition, outputs), ...)`` where every Piecewise of ``flat`` has one condition list.
 
     Then a scalar implementation evaluates only the branch it takes: common
     subexpressions of the other branches (a square root of a negative number, a
     division by zero at critical damping) are never computed, where Python and
     mpmath would raise. None where the Piecewise terms differ in their conditions
     (those implementations guard their branches themselves, e.g. ``max(X2, 0)``).
+    Cached: the scalar and mpmath printings of a variant split it alike.
     """
     pieces = {p for e in flat for p in e.atoms(sp.Piecewise)}
     conditions = {tuple(c for _, c in p.args) for p in pieces}
@@ -287,13 +295,13 @@ def _branches(flat):
                 e.replace(lambda x: isinstance(x, sp.Piecewise), lambda x, i=i: x.args[i].expr)
                 for e in branch
             ]
-        out.append((cond, branch))
-    return out
+        out.append((cond, tuple(branch)))
+    return tuple(out)
 
 
 def _branched_body(flat, printer, finish):
     """Source lines: CSE per branch of `_branches` (or over all), then ``finish(out)``."""
-    branches = _branches(flat)
+    branches = _branches(tuple(flat))
     if branches is None:
         lines, reduced = _cse(flat, printer)
         return lines + finish([printer.doprint(e) for e in reduced])

@@ -14,6 +14,8 @@ From the mode fields of `beltmdsm.derive.models.system`:
 
 from __future__ import annotations
 
+from functools import cache
+
 import sympy as sp
 
 from ..model import t
@@ -70,9 +72,11 @@ def guards(s: System) -> dict[int, tuple]:
     return out
 
 
+@cache
 def d(expr, x) -> sp.Expr:
     """``d expr / d x`` with powers of one base merged (derive/hybrid.py's ``_d``: a
-    symbolic exponent's ``n X**n / X`` is 0/0 at ``max(X, 0) = 0``)."""
+    symbolic exponent's ``n X**n / X`` is 0/0 at ``max(X, 0) = 0``). Cached: a surface's
+    gradient enters its rate in every mode and every saltation matrix across it."""
     return sp.powsimp(sp.diff(expr, x), combine="exp")
 
 
