@@ -249,7 +249,8 @@ def code_files() -> list[Path]:
     Examples
     --------
     >>> names = {path.name for path in code_files()}
-    >>> {"row.py", "summary.py", "hybrid.py"} <= names, "sweep.py" in names
+    >>> parents = {path.parent.name + "/" + path.name for path in code_files()}
+    >>> {"row.py", "summary.py", "hybrid.py"} <= names, "batch/sweep.py" in parents
     (True, False)
     """
     seen: dict[str, Path] = {}

@@ -49,7 +49,7 @@ def start_derivations(folder):
 
     * ``"root"``: ``python -m derive --check`` in this checkout, ``PYTHONHASHSEED=0``;
     * ``"edited"``: the same in a copy of derive/ and generated/ (`as_checkout`) with
-      generated/unforced.py edited by hand (`EDITED`) and a stray generated/leftover.py,
+      generated/unforced.py edited by hand (`EDITED`) and a stray file leftover.py in generated,
       ``PYTHONHASHSEED=4242``.
 
     tests/conftest.py starts them when the session's tests are collected, so that on a
