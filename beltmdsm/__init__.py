@@ -16,7 +16,8 @@ The runtime of the package: it imports the generated model (``generated/``, writ
   excitation, its period found by shooting with a phase condition, and its seed.
 * `floquet_band` (`Band`, `Edge`): the ranges of one parameter where it is unstable,
   each edge with its bifurcation; `branch` (`Branch`): a response continued in one
-  parameter through folds; `floquet_map` (`FloquetMap`): the two-parameter map of
+  parameter through folds, its steps set by `ContinuationSettings` (``settings=`` of
+  every continuation); `floquet_map` (`FloquetMap`): the two-parameter map of
   where it is unstable, its boundary curves traced.
 * `responses` (`ResponseSet`): every periodic response found at one point, locked
   ones included; `coexistence` (`Coexistence`): where stable responses coexist.
@@ -89,6 +90,7 @@ _API = {
     "Edge": "continuation.band_result",
     "branch": "branches",
     "Branch": "continuation.branch",
+    "ContinuationSettings": "continuation.settings",
     "floquet_map": "continuation.floquet_map",
     "FloquetMap": "continuation.map_result",
     "responses": "multistability.responses",
@@ -134,6 +136,7 @@ __all__ = [
     "Edge",
     "branch",
     "Branch",
+    "ContinuationSettings",
     "floquet_map",
     "FloquetMap",
     "responses",

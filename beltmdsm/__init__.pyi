@@ -13,6 +13,7 @@ from .branches import branch
 from .continuation.band import floquet_band
 from .continuation.band_result import Band, Edge
 from .continuation.branch import Branch
+from .continuation.settings import ContinuationSettings
 from .continuation.floquet_map import floquet_map
 from .continuation.map_result import FloquetMap
 from .errors import (
@@ -58,6 +59,7 @@ __all__ = [
     "Edge",
     "branch",
     "Branch",
+    "ContinuationSettings",
     "floquet_map",
     "FloquetMap",
     "responses",
