@@ -13,9 +13,9 @@ from .branches import branch
 from .continuation.band import floquet_band
 from .continuation.band_result import Band, Edge
 from .continuation.branch import Branch
-from .continuation.settings import ContinuationSettings
 from .continuation.floquet_map import floquet_map
 from .continuation.map_result import FloquetMap
+from .continuation.settings import ContinuationSettings
 from .errors import (
     BeltmdsmError,
     NoPeriodicResponse,

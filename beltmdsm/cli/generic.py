@@ -14,7 +14,7 @@ import json
 
 import numpy as np
 
-from .models import describe, refuse_flags, system_from
+from .models import refuse_flags, system_from
 
 __all__ = ["simulate", "floquet", "branch"]
 
@@ -69,7 +69,7 @@ def simulate(args: argparse.Namespace) -> int:
     system = system_from(args)
     sim = run(system, args.t_end, dt=args.dt, rtol=args.rtol, atol=args.atol)
     out = {
-        **describe(system),
+        **system.as_dict(),
         "t_end": float(sim.t[-1]),
         "status": sim.status,
         "message": sim.message,
@@ -124,7 +124,7 @@ def floquet(args: argparse.Namespace) -> int:
                 "its self-excited cycle has no excitation period"
             )
         c = self_excited_cycle(system)
-        out = {**describe(system), "autonomous": True, **_cycle(c)}
+        out = {**system.as_dict(), "autonomous": True, **_cycle(c)}
         lines = [
             _head(system),
             repr(c),
@@ -135,7 +135,7 @@ def floquet(args: argparse.Namespace) -> int:
     else:
         r = forced_response(system, periods=args.periods)
         out = {
-            **describe(system),
+            **system.as_dict(),
             "autonomous": False,
             "period": r.period,
             "periods": r.periods,
@@ -194,7 +194,7 @@ def branch(args: argparse.Namespace) -> int:
         )
     branches = [hopf_branch(system, args.param, float(h), hi - lo) for h in points]
     out = {
-        **describe(system),
+        **system.as_dict(),
         "param": args.param,
         "range": [lo, hi],
         "hopf_points": [float(v) for v in points],

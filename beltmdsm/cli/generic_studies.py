@@ -14,7 +14,7 @@ import argparse
 import numpy as np
 
 from .generic import _head, _print
-from .models import describe, refuse_flags, system_from
+from .models import refuse_flags, system_from
 
 __all__ = [
     "sweep", "lyapunov", "basins", "responses", "coexistence", "basin_stability", "STATES",
@@ -152,7 +152,7 @@ def lyapunov(args: argparse.Namespace) -> int:
             "give --start periodic, or drop it"
         )
     spec = spectrum(system, y0, t_end=args.t_end, t_transient=args.t_transient)
-    out = {**describe(system), **spec.as_dict(), "start": args.start}
+    out = {**system.as_dict(), **spec.as_dict(), "start": args.start}
     lines = [
         _head(system),
         repr(spec),
@@ -302,7 +302,7 @@ def basin_stability(args: argparse.Namespace) -> int:
                 )
             )  # fmt: skip
     out = {
-        **describe(system),
+        **system.as_dict(),
         "param": args.param,
         "values": [r.system.params[args.param] for r in rows],
         "points": [r.as_dict() for r in rows],

@@ -170,16 +170,6 @@ def system_from(args: argparse.Namespace) -> System:
         args.parser.error(str(err))
 
 
-def describe(system) -> dict:
-    """The model's part of a JSON output: ``model``, ``friction``, ``params``, ``states``."""
-    return {
-        "model": system.name,
-        "friction": system.friction,
-        "params": dict(system.params),
-        "states": list(system.states),
-    }
-
-
 def named(out: dict) -> dict:
     """A command's JSON with the model it ran named first (``"model": NAME``; the
     paper's where the output does not name one)."""

@@ -113,10 +113,7 @@ class Basins:
 
     def as_dict(self) -> dict:
         return {
-            "model": self.system.name,
-            "friction": self.system.friction,
-            "params": dict(self.system.params),
-            "states": list(self.system.states),
+            **self.system.as_dict(),
             "x": self.x,
             "y": self.y,
             "xs": self.xs.tolist(),
@@ -377,10 +374,7 @@ class Stability:
 
     def as_dict(self) -> dict:
         return {
-            "model": self.system.name,
-            "friction": self.system.friction,
-            "params": dict(self.system.params),
-            "states": list(self.system.states),
+            **self.system.as_dict(),
             "x": self.x,
             "y": self.y,
             "box": [list(self.box[0]), list(self.box[1])],

@@ -99,10 +99,7 @@ class Attractors:
 
     def as_dict(self) -> dict:
         return {
-            "model": self.system.name,
-            "friction": self.system.friction,
-            "params": dict(self.system.params),
-            "states": list(self.system.states),
+            **self.system.as_dict(),
             "starts": self.starts,
             "unresolved": self.unresolved,
             "attractors": [f.as_dict() for f in self.found],
@@ -233,12 +230,8 @@ class Coexistence:
         return f"Coexistence({self.system.name}, {self.param}; coexisting in {spans})"
 
     def as_dict(self) -> dict:
-        params = {k: v for k, v in self.system.params.items() if k != self.param}
         return {
-            "model": self.system.name,
-            "friction": self.system.friction,
-            "params": params,
-            "states": list(self.system.states),
+            **self.system.as_dict(without=self.param),
             "param": self.param,
             "ranges": [list(r) for r in self.ranges],
             "points": [

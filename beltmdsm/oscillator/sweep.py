@@ -80,12 +80,8 @@ class Sweep:
 
     def as_dict(self) -> dict:
         """Plain JSON values: the model, the swept parameter and the rows."""
-        params = {k: v for k, v in self.system.params.items() if k != self.param}
         return {
-            "model": self.system.name,
-            "friction": self.system.friction,
-            "params": params,
-            "states": list(self.system.states),
+            **self.system.as_dict(without=self.param),
             "param": self.param,
             "t_end": self.t_end,
             "t_discard": self.t_discard,

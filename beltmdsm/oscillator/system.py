@@ -211,6 +211,24 @@ class System:
         """
         return System(self.module, self.friction, **{**self._given, **params})
 
+    def as_dict(self, without: str | None = None) -> dict:
+        """The model's part of every JSON output: ``model``, ``friction``, ``params`` (less
+        ``without``, a swept parameter that the output lists per point) and ``states``.
+
+        Examples
+        --------
+        >>> d = System("belt_1dof", Vb=2.0).as_dict(without="Vb")
+        >>> d["model"], "Vb" in d["params"], d["states"][0]
+        ('belt_1dof', False, 'x')
+        """
+        params = {k: v for k, v in self.params.items() if k != without}
+        return {
+            "model": self.name,
+            "friction": self.friction,
+            "params": params,
+            "states": list(self.states),
+        }
+
     def excitation_period(self) -> float | None:
         """The period of the excitation, or None where every amplitude is 0 (autonomous).
 
