@@ -22,6 +22,21 @@ __all__ = [
 ]  # fmt: skip
 
 
+def _plane(args: argparse.Namespace, system) -> tuple[str, str]:
+    """The two states of ``--x`` and ``--y``, named as the model names them (the paper's
+    defaults X1 and Y1: the first coordinate and its velocity), checked once."""
+    n = len(system.coordinates)
+    x = system.states[0] if args.x == "X1" else args.x
+    y = system.states[n] if args.y == "Y1" else args.y
+    for axis, state in (("x", x), ("y", y)):
+        if state not in system.states:
+            args.parser.error(
+                f"argument --{axis}: not a state of model {system.name!r} "
+                f"({', '.join(system.states)}); got {state}"
+            )
+    return x, y
+
+
 def _states() -> tuple[str, ...]:
     from beltmdsm.generated.models import MODELS, load
 
@@ -172,15 +187,7 @@ def basins(args: argparse.Namespace) -> int:
 
     refuse_flags(args, ("png", "samples"))
     system = system_from(args)
-    n = len(system.coordinates)
-    x = system.states[0] if args.x == "X1" else args.x
-    y = system.states[n] if args.y == "Y1" else args.y
-    for axis, state in (("x", x), ("y", y)):
-        if state not in system.states:
-            args.parser.error(
-                f"argument --{axis}: not a state of model {system.name!r} "
-                f"({', '.join(system.states)}); got {state}"
-            )
+    x, y = _plane(args, system)
     ends = (args.x_from, args.x_to, args.y_from, args.y_to)
     if None in ends:
         args.parser.error(
@@ -282,15 +289,7 @@ def basin_stability(args: argparse.Namespace) -> int:
             f"({', '.join(system.params)}); got {args.param}"
         )
     lo, hi = range_from(args)
-    n = len(system.coordinates)
-    x = system.states[0] if args.x == "X1" else args.x
-    y = system.states[n] if args.y == "Y1" else args.y
-    for axis, state in (("x", x), ("y", y)):
-        if state not in system.states:
-            args.parser.error(
-                f"argument --{axis}: not a state of model {system.name!r} "
-                f"({', '.join(system.states)}); got {state}"
-            )
+    x, y = _plane(args, system)
     rows = []
     with executor_from(args) as executor:
         for value in np.linspace(lo, hi, args.points):
