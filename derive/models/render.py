@@ -286,7 +286,9 @@ def _steady(s, tag, fl=NUMPY) -> list[str]:
         res = list(st.residual)
         jac = st.residual_jacobian
         q_of = {x: f"q[{i}]" for i, x in enumerate(s.q)}
-        bind = [f"{x.name} = {fl.read(q_of[x])}" for x in s.q]
+        # one assignment: a coordinate named ``q`` must not shadow ``q`` before all are read
+        names = ", ".join(x.name for x in s.q)
+        bind = [f"{names}, = ({', '.join(fl.read(q_of[x]) for x in s.q)},)"]
         for name, exprs, shape in (
             ("_residual", res, len(res)),
             ("_residual_jacobian", jac, jac.shape),

@@ -25,6 +25,7 @@ import itertools
 import os
 import subprocess
 import sys
+from dataclasses import replace
 
 import mpmath
 import numpy as np
@@ -330,6 +331,16 @@ WELL = Oscillator(
 )
 
 
+#: WELL with a second coordinate after one named ``q`` (the Newton step reads ``q[1]``).
+WELL2 = replace(
+    WELL,
+    name="well2",
+    coordinates=("q", "r"),
+    stiffness=lambda P: [[P["k"], 0], [0, P["k"]]],
+    forces=lambda P, q, v, t: {"q": -P["k2"] * q["q"] ** 2 - P["F0"], "r": -P["k2"] * q["r"] ** 2},
+)
+
+
 def module_of(entry, mp):
     namespace = {"__name__": f"user_{entry.name}{'_mp' if mp else ''}"}
     exec(compile(render_entry(entry, mp=mp), entry.name, "exec"), namespace)
@@ -354,6 +365,13 @@ def test_numeric_path_twin_solves_at_the_working_precision_or_refuses_by_name(mp
     assert abs(k.equilibrium(p)[0] - root) <= 1e-14 * (1 + abs(root))
     a = km.characteristic(p)
     assert faddeev_leverrier(km.jacobian(0.0, y, p, -1)) == pytest.approx(a, abs=1e-45)
+    # a second coordinate read after the one named q: the same root, r = 0
+    two = (
+        module_of(WELL2, False)["kernels"]("coulomb"),
+        module_of(WELL2, True)["kernels"]("coulomb"),
+    )
+    for kernels_ in two:
+        assert [float(x) for x in kernels_.equilibrium(p)] == pytest.approx([float(root), 0, 0, 0])
     # a pull the friction cannot balance: no equilibrium, and both paths say so by name
     v["F0"] = 10.0
     p = np.array([v[n] for n in names])
