@@ -64,7 +64,7 @@ def _stribeck_shoot(p, W, guess):
     def P(x):
         return solve_ivp(field, (0, T), x, rtol=1e-13, atol=1e-13, method="DOP853").y[:, -1]
 
-    x = fsolve(lambda x: P(x) - x, guess, xtol=1e-14)
+    x = fsolve(lambda x: P(x) - x, guess, xtol=1e-12)
     M = np.array([(P(x + 1e-6 * e) - P(x - 1e-6 * e)) / 2e-6 for e in np.eye(2)]).T
     return x, M
 
@@ -116,7 +116,7 @@ def test_stick_onset_is_located_against_the_closed_form():
     b = beltmdsm.branch(m, param="Omega_t", lo=0.7, hi=1.1)
     (sl,) = [s for s in b.special if s.kind == "stick_onset"]
     # bisection on the closed form: the slip velocity's amplitude reaches Vb
-    onset = brentq(lambda W: 0.7 * W**3 / abs(1 - W * W + 0.2j * W) - 3.0, 0.7, 1.0, xtol=1e-14)
+    onset = brentq(lambda W: 0.7 * W**3 / abs(1 - W * W + 0.2j * W) - 3.0, 0.7, 1.0, xtol=1e-12)
     assert sl.value == pytest.approx(onset, abs=1e-7)
     assert b.points[-1].n_sticks == 1 and b.points[0].n_sticks == 0
     assert b.special[-1].kind == "range" and b.special[-1].value == 1.1
