@@ -14,9 +14,11 @@ response's Floquet multipliers (the eigenvalues of ``M``) and its observables
 The special points it detects: **fold**, **period doubling**, **Neimark-Sacker** and
 **branch point** by the driver (`beltmdsm.continuation.special`); a change of switch
 structure (switches per orbit: slip reversals, stick phases) as **stick_onset** where a
-stick phase appears on an orbit that had none, else **grazing**, located on the slip
-velocity's margin (`beltmdsm.oscillator.orbit.slip_margin`) by the secant where the
-orbit slips throughout, by bisection on the structure otherwise. It does not detect a
+stick phase appears on an orbit that had none, else **grazing**, located by the secant
+on the margin that closes there: the slip velocity's where the orbit slips throughout
+(`beltmdsm.oscillator.orbit.slip_margin`), the holding force's against the stick limit
+at the reversals where its switches are all slip reversals; by bisection on the
+structure otherwise. It does not detect a
 tangency or a flight onset (no such margin here): where the corrector fails the
 branch ends as ``failed``, its reason said.
 """
@@ -304,7 +306,12 @@ class OscillatorForcedProblem(Problem):
         value, accuracy = self._locate(prev, new)
         kind = "stick_onset" if prev.n_sticks == 0 and new.n_sticks > 0 else "grazing"
         what = {
-            "stick_onset": "a stick phase appears: the slip velocity grazes 0 where stick holds",
+            "stick_onset": "a stick phase appears: "
+            + (
+                "the holding force at a slip reversal reaches the stick limit"
+                if prev.switches
+                else "the slip velocity grazes 0 where stick holds"
+            ),
             "grazing": "the switch structure changes "
             f"({len(prev.switches)} to {len(new.switches)} switches an orbit)",
         }[kind]
@@ -358,15 +365,38 @@ class OscillatorForcedProblem(Problem):
             return None
         return at.state, at.image.run
 
+    def _margin(self, signature):
+        """The margin that vanishes where an orbit of ``signature`` changes structure,
+        ``margin(value, x)``: the slip margin of a pure-slip orbit
+        (`beltmdsm.oscillator.orbit.slip_margin`), ``|H| - mu(0) N`` (the holding force
+        against the stick limit, least over the reversals) of an orbit whose switches
+        are all slip reversals; None for another structure (located by bisection)."""
+        if not signature:
+            return lambda v, x: slip_margin(orbit_observables(self.at(v), x, self.kT(v)))
+        if all({b, a} == {1, -1} for b, a in signature):
+            return self._reversal_margin
+        return None
+
+    def _reversal_margin(self, value, x) -> float:
+        system, k = self.at(value), self.system.kernels
+        least = np.inf
+        for n in range(1, len(self.run(x, value, variational=False).switches) + 1):
+            r = flow(system, 0.0, x, self.kT(value), stop=lambda sw, c, n=n: c == n,
+                     rtol=TOL, atol=TOL)  # fmt: skip
+            hold = abs(float(k.holding_force(r.t, r.y, system.p)))
+            least = min(least, hold - float(k.stick_limit(r.t, r.y, system.p)))
+        return float(least)
+
     def _locate(self, prev, new) -> tuple[float, float]:
         """Where the structure of ``prev`` ends between ``prev`` and ``new``: the secant
-        on the slip margin of a pure-slip orbit, kept inside the bracket (bisection where
-        a secant step leaves it or the orbit has switches); to `LOCATE_TOL` of the range."""
+        on the structure's margin (`_margin`), kept inside the bracket (bisection where
+        a secant step leaves it, or where the structure has no margin here); to
+        `LOCATE_TOL` of the range (the secant's last step where it converges)."""
         inside, outside = prev.value, new.value
         x_in = prev.state
         sig = prev.signature
-        margin = (lambda obs: slip_margin(obs)) if not sig else None
-        history = [(inside, margin(prev.observables()))] if margin else []
+        margin = self._margin(sig)
+        history = [(inside, margin(inside, x_in))] if margin else []
         tol = LOCATE_TOL * max(self.hi - self.lo, 1.0)
         for _ in range(60):
             width = abs(outside - inside)
@@ -385,8 +415,13 @@ class OscillatorForcedProblem(Problem):
                 continue
             x_in, inside = found[0], v
             if margin:
-                m = margin(orbit_observables(self.at(v), found[0], self.kT(v)))
-                history.append((v, m))
-                if len(history) >= 2 and abs(history[-1][0] - history[-2][0]) <= tol:
-                    return v, abs(history[-1][0] - history[-2][0])
+                history.append((v, margin(v, found[0])))
+                if abs(history[-1][0] - history[-2][0]) <= tol:
+                    break
+        if len(history) >= 2 and history[-1][1] != history[-2][1]:
+            # the secant's zero of the smooth margin (the structure itself flips within
+            # the integrator's accuracy of it); bounded by the last step
+            (v0, m0), (v1, m1) = history[-2:]
+            zero = v1 - m1 * (v1 - v0) / (m1 - m0)
+            return zero, max(abs(zero - v1), 1e-15)
         return 0.5 * (inside + outside), 0.5 * abs(outside - inside)

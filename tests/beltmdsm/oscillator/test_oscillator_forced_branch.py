@@ -122,6 +122,43 @@ def test_stick_onset_is_located_against_the_closed_form():
     assert b.special[-1].kind == "range" and b.special[-1].value == 1.1
 
 
+def test_den_hartog_stick_onset_is_where_the_reversal_holds():
+    """Below the onset the non-stop motion sticks at its turning points: there (x' = 0,
+    x = -X, W t = psi) the holding force is a cos(psi) + w^2 X = W^2 X (with Den Hartog's
+    X = -C cos(psi), C = a / (w^2 - W^2)), and stick holds once W^2 X <= F = mu g."""
+    mu = 0.3 / G
+    m = Model(model="belt_1dof", Vb=0.0, beta1=0.0, mu_s=mu, alpha_t=0.25, Omega_t=2.0,
+              phase_t=math.pi / 2)  # fmt: skip
+    b = beltmdsm.branch(m, param="Omega_t", lo=1.2, hi=2.0)
+    (sl,) = [s for s in b.special if s.kind == "stick_onset"]
+
+    def holding_minus_limit(W):
+        a = 0.25 * W * W
+        return W * W * den_hartog_amplitude(W, 0.3 / a) * a - 0.3
+
+    onset = brentq(holding_minus_limit, 1.3, 1.4, xtol=1e-14)
+    assert sl.value == pytest.approx(onset, abs=1e-9)
+    assert "holding force at a slip reversal" in sl.detail
+    assert b.point_near(1.25).n_sticks == 2 and b.point_near(1.9).n_reversals == 2
+
+
+@pytest.mark.parametrize("periods", [1, 2])
+def test_normal_load_modulation_branch_is_the_linear_closed_form(periods):
+    """N = g - alpha_n W^2 sin(W t + f): in backward slip the friction +mu N is a force
+    of the time alone, x = mu g / w^2 - Im(mu alpha_n W^2 e^{i(W t + f)} / (w^2 - W^2 +
+    2 i b w W)); the response of 2 periods is the same orbit, its multipliers squared."""
+    m = Model(model="belt_1dof", Vb=3.0, mu_s=0.2, alpha_n=0.5, Omega_n=1.5, phase_n=0.7)
+    b = beltmdsm.branch(m, periods=periods, param="Omega_n", lo=1.45, hi=1.55)
+    for point in b.points[::5]:
+        W = point.value
+        A = 0.2 * 0.5 * W * W * np.exp(0.7j) / (1 - W * W + 0.2j * W)
+        ref = np.array([0.2 * G - A.imag, -W * A.real])
+        assert point.state == pytest.approx(ref, abs=1e-8)
+        T = periods * 2 * math.pi / W
+        assert np.abs(point.multipliers) == pytest.approx([math.exp(-0.1 * T)] * 2, rel=1e-8)
+    assert b.periods == periods and b.as_dict()["periods"] == periods
+
+
 def test_floquet_map_against_point_by_point_floquet():
     m = Model(model="belt_1dof", friction="stribeck", Vb=2.2, alpha_t=0.05, Omega_t=4.0)
     fm = beltmdsm.floquet_map(m, "Vb", 1.9, 2.1, "beta1", 0.1, 0.11, points=2)
