@@ -164,7 +164,6 @@ def branch(args: argparse.Namespace) -> int:
     from ..oscillator import hopf_points, steady_sliding
     from ..oscillator.hopf_branch import hopf_branch
 
-    refuse_flags(args, ("png",))
     lo, hi = args.start, args.stop
     if not hi > lo:
         args.parser.error(f"argument --to: must be > --from ({lo:g}); got {hi:g}")
@@ -173,6 +172,7 @@ def branch(args: argparse.Namespace) -> int:
         from .generic_forced import branch as forced
 
         return forced(args)
+    refuse_flags(args, ("png",))
     if args.param not in system.params:
         args.parser.error(
             f"argument --param: not a parameter of model {system.name!r} "

@@ -184,14 +184,15 @@ def test_an_unforced_model_still_refuses_by_name():
         beltmdsm.floquet_band(Model(model="belt_1dof", alpha_t=0.1), "Vb", 1, 2, backend="numba")
 
 
-def test_the_commands_name_the_model_and_its_states():
+def test_the_commands_name_the_model_and_its_states(tmp_path):
     argv = ["--model", "belt_1dof", "--Vb", "3", "--mu_s", "0.1", "--alpha_t", "0.5"]
+    png = tmp_path / "branch.png"
     done = cli("branch", *argv, "--Omega_t", "2", "--param", "Omega_t", "--from", "1.95",
-               "--to", "2.05", "--json")  # fmt: skip
+               "--to", "2.05", "--json", "--png", str(png))  # fmt: skip
     assert done.returncode == 0, done.stderr
     out = json.loads(done.stdout)
     assert out["model"] == "belt_1dof" and out["states"] == ["x", "x_dot"]
-    assert out["kind"] == "forced" and "X1" not in done.stdout
+    assert out["kind"] == "forced" and "X1" not in done.stdout and png.stat().st_size > 0
     first = out["points"][0]
     assert first["state0"] == pytest.approx(linear_state({**out["params"], "Omega_t": 1.95}, 1.95)
                                              .tolist(), abs=1e-8)  # fmt: skip
@@ -204,3 +205,18 @@ def test_the_commands_name_the_model_and_its_states():
                "--x-to", "2", "--y", "beta1", "--y-from", "0.1", "--y-to", "0.2")  # fmt: skip
     assert done.returncode == 2 and "floquet-map does not run model 'belt_1dof'" in done.stderr
     assert "without excitation" in done.stderr
+
+
+def test_the_plot_names_the_models_observables():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    m = Model(model="belt_1dof", Vb=3.0, mu_s=0.1, alpha_t=0.7, Omega_t=0.9)
+    b = beltmdsm.branch(m, param="Omega_t", lo=0.9, hi=1.0)
+    ax = b.plot()
+    assert ax.get_ylabel() == "x dot amplitude" and ax.get_xlabel() == "Omega_t"
+    assert [t.get_text() for t in ax.texts] == ["SL"]
+    table = b.to_pandas()
+    assert list(table.columns[:3]) == ["Omega_t", "x", "x_dot"]
+    with pytest.raises(ValueError, match="observable must be one of"):
+        b.plot(observable="X1'_amplitude")
