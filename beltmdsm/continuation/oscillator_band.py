@@ -218,7 +218,7 @@ def oscillator_band(
             Edge(
                 0.5 * (a + b),
                 kind,
-                OLD_KINDS.get(kind, "existence" if not detail else "grazing"),
+                OLD_KINDS.get(kind, "grazing" if kind == "stick_onset" else "existence"),
                 (a, b),
                 0.5 * (b - a),
                 frequency,

@@ -120,6 +120,10 @@ def test_stick_onset_is_located_against_the_closed_form():
     assert sl.value == pytest.approx(onset, abs=1e-7)
     assert b.points[-1].n_sticks == 1 and b.points[0].n_sticks == 0
     assert b.special[-1].kind == "range" and b.special[-1].value == 1.1
+    band = beltmdsm.floquet_band(m, "Omega_t", 0.7, 1.1, points=3, tol=1e-4)
+    (edge,) = band.edges
+    assert edge.kind == "stick_onset" and edge.bracket[0] <= onset <= edge.bracket[1]
+    assert edge.bracket[1] - edge.bracket[0] <= 1e-4 and band.unstable == []
 
 
 def test_den_hartog_stick_onset_is_where_the_reversal_holds():
