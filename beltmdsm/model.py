@@ -121,7 +121,10 @@ ANALYSES = (
     "classify", "basins", "basin_stability", "predict", "validate", "sweep",
 )  # fmt: skip
 #: Those the generic runtime (beltmdsm/oscillator/) runs for any registered model.
-GENERIC = ("simulate", "periodic_response", "floquet", "cycle", "sweep", "lyapunov", "basins")
+GENERIC = (
+    "simulate", "periodic_response", "floquet", "cycle", "sweep", "lyapunov", "basins",
+    "branch", "floquet_band", "floquet_map",
+)  # fmt: skip
 #: Why the generic runtime does not run the others: the paper's own piece (a key of a
 #: model module's ``ABSENT``) or what beltmdsm/oscillator/ lacks.
 LACKS: Mapping[str, str] = MappingProxyType(
@@ -131,9 +134,15 @@ LACKS: Mapping[str, str] = MappingProxyType(
         "periodic_start": "beltmdsm.oscillator starts a run where it is asked (y0), "
         "it has no start on the periodic response",
         "seed_cycle": "beltmdsm.oscillator seeds its cycles itself (beltmdsm.cycle)",
-        "floquet_band": "beltmdsm.oscillator has no band of unstable responses over a range",
-        "branch": "beltmdsm.oscillator has no continuation through folds of a forced response",
-        "floquet_map": "beltmdsm.oscillator has no two-parameter map of the response's stability",
+        # branch, floquet_band, floquet_map: another model's forced response (issue 39
+        # item 4); what follows is why a model without excitation is refused
+        "floquet_band": "beltmdsm.oscillator has no band of unstable responses over a range "
+        "without excitation (set an excitation amplitude: the band of the forced response)",
+        "branch": "beltmdsm.oscillator has no continuation through folds of a response "
+        "without excitation (set an excitation amplitude: the forced response's branch; "
+        "`branch --model` continues steady sliding and its self-excited cycles)",
+        "floquet_map": "beltmdsm.oscillator has no two-parameter map of the response's "
+        "stability without excitation (set an excitation amplitude)",
         "responses": "beltmdsm.oscillator has no search of the coexisting forced responses",
         "coexistence": "beltmdsm.oscillator has no search of the coexisting forced responses",
         "classify": "beltmdsm.oscillator has no classification of what a run settles on "

@@ -164,16 +164,15 @@ def branch(args: argparse.Namespace) -> int:
     from ..oscillator import hopf_points, steady_sliding
     from ..oscillator.hopf_branch import hopf_branch
 
-    refuse_flags(args, ("png",))
     lo, hi = args.start, args.stop
     if not hi > lo:
         args.parser.error(f"argument --to: must be > --from ({lo:g}); got {hi:g}")
     system = system_from(args)
-    if system.excitation_period() is not None:
-        args.parser.error(
-            f"argument --model: branch of model {system.name!r} continues steady sliding and "
-            "its self-excited cycles (unforced); set every excitation amplitude to 0"
-        )
+    if system.excitation_period() is not None:  # its forced response, continued
+        from .generic_forced import branch as forced
+
+        return forced(args)
+    refuse_flags(args, ("png",))
     if args.param not in system.params:
         args.parser.error(
             f"argument --param: not a parameter of model {system.name!r} "
