@@ -121,23 +121,22 @@ ANALYSES = (
     "classify", "basins", "basin_stability", "predict", "validate", "sweep",
 )  # fmt: skip
 #: Those the generic runtime (beltmdsm/oscillator/) runs for any registered model.
-GENERIC = ("simulate", "periodic_response", "floquet", "cycle", "sweep", "lyapunov", "basins")
+GENERIC = (
+    "simulate", "periodic_response", "floquet", "cycle", "sweep", "lyapunov", "basins",
+    "responses", "coexistence", "classify", "periodic_start",
+)  # fmt: skip
 #: Why the generic runtime does not run the others: the paper's own piece (a key of a
 #: model module's ``ABSENT``) or what beltmdsm/oscillator/ lacks.
 LACKS: Mapping[str, str] = MappingProxyType(
     {
         "predict": "ABSENT:mdsm",
         "validate": "ABSENT:paper_check",
-        "periodic_start": "beltmdsm.oscillator starts a run where it is asked (y0), "
-        "it has no start on the periodic response",
-        "seed_cycle": "beltmdsm.oscillator seeds its cycles itself (beltmdsm.cycle)",
+        "seed_cycle": "beltmdsm.oscillator seeds a cycle inside beltmdsm.cycle (a run "
+        "from steady sliding moved along its least stable direction, shot from its stick "
+        "end or least slip speed); pass guess= (and period=) to beltmdsm.cycle instead",
         "floquet_band": "beltmdsm.oscillator has no band of unstable responses over a range",
         "branch": "beltmdsm.oscillator has no continuation through folds of a forced response",
         "floquet_map": "beltmdsm.oscillator has no two-parameter map of the response's stability",
-        "responses": "beltmdsm.oscillator has no search of the coexisting forced responses",
-        "coexistence": "beltmdsm.oscillator has no search of the coexisting forced responses",
-        "classify": "beltmdsm.oscillator has no classification of what a run settles on "
-        "(beltmdsm.basins labels equilibrium and cycles)",
         "basin_stability": "beltmdsm.oscillator has no basin stability by sampling "
         "(beltmdsm.basins maps a plane of starts)",
     }

@@ -226,14 +226,25 @@ def _found_lines(found) -> list[str]:
     return lines
 
 
+def _model(args: argparse.Namespace):
+    """The `System` of the flags (`system_from`: checked, exit 2 named) and the
+    `beltmdsm.Model` of the same model, which the public functions take: a command runs
+    the Python API's function, one path for both."""
+    from ..model import Model
+
+    system = system_from(args)
+    return system, Model(model=system.name, friction=system.friction, **system._given)
+
+
 def responses(args: argparse.Namespace) -> int:
-    """``responses --model NAME``: the stable attractors that runs from a grid of starts
-    land on, each shot exactly with its Floquet multipliers (or eigenvalues)."""
-    from ..oscillator.responses import responses as find
+    """``responses --model NAME``: `beltmdsm.responses` of the model, the stable
+    attractors that runs from a grid of starts land on, each shot exactly with its
+    Floquet multipliers (or eigenvalues)."""
+    from ..multistability.responses import responses as find
 
     refuse_flags(args, ("ladder",))
-    system = system_from(args)
-    found = find(system, t_end=args.t_end, limit=args.limit)
+    system, model = _model(args)
+    found = find(model, t_end=args.t_end, limit=args.limit)
     lines = [_head(system), repr(found), *_found_lines(found)]
     if found.unresolved:
         lines.append(f"  unresolved: {found.unresolved:.0%} of the starts")
@@ -242,15 +253,16 @@ def responses(args: argparse.Namespace) -> int:
 
 
 def coexistence(args: argparse.Namespace) -> int:
-    """``coexistence --model NAME``: the stable attractors at points of ``--param``
-    spaced by about ``--step``, and the ranges where two or more coexist."""
+    """``coexistence --model NAME``: `beltmdsm.coexistence` of the model, the stable
+    attractors at points of ``--param`` spaced by about ``--step``, and the ranges where
+    two or more coexist."""
+    from ..multistability.coexistence import coexistence as walk
     from ..multistability.coexistence import seed_points
-    from ..oscillator.responses import coexistence as walk
     from .flags import range_from, swept
 
     refuse_flags(args, ("png",))
     name = swept(args)
-    system = system_from(args)
+    system, model = _model(args)
     if name not in system.params:
         args.parser.error(
             f"argument --param: not a parameter of model {system.name!r} "
@@ -261,7 +273,7 @@ def coexistence(args: argparse.Namespace) -> int:
         points = seed_points(lo, hi, args.step)
     except ValueError as err:
         args.parser.error(f"argument --step: {err}")
-    result = walk(system, name, np.linspace(lo, hi, points), limit=args.limit)
+    result = walk(model, name, lo, hi, points=points, limit=args.limit)
     lines = [_head(system), repr(result)]
     for p in result.points:
         kinds = ", ".join(

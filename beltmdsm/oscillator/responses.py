@@ -27,7 +27,9 @@ from .equilibria import steady_sliding
 from .forced import forced_response
 from .system import System
 
-__all__ = ["Found", "Attractors", "responses", "Coexistence", "coexistence"]
+__all__ = [
+    "Found", "Attractors", "responses", "Coexistence", "coexistence", "shoot_attractor",
+]  # fmt: skip
 
 
 @dataclass(repr=False)
@@ -126,7 +128,10 @@ def _starts(system: System, points: int):
     return out
 
 
-def _shoot(system: System, a: BasinAttractor):
+def shoot_attractor(system: System, a: BasinAttractor):
+    """The set a run landed on (`beltmdsm.oscillator.basins.land`), exactly: steady
+    sliding, the forced response of ``a.periods`` periods, or the self-excited cycle
+    (NoPeriodicResponse where the shooting fails or finds another kind of cycle)."""
     if a.kind == "steady_sliding":
         return steady_sliding(system)
     if a.kind == "periodic":
@@ -195,7 +200,7 @@ def responses(
     for i, a in enumerate(merged):
         share = float(np.mean(labels == i))
         try:
-            found.append(Found(a, _shoot(system, a), share))
+            found.append(Found(a, shoot_attractor(system, a), share))
         except NoPeriodicResponse as err:
             found.append(Found(a, None, share, str(err)))
     return Attractors(system, found, len(starts), float(np.mean(labels < 0)))
