@@ -162,6 +162,7 @@ def branch(args: argparse.Namespace) -> int:
     pure-slip cycles born at each Hopf point, followed to their stick onset
     (`beltmdsm.oscillator.hopf_branch`)."""
     from ..oscillator import hopf_points, steady_sliding
+    from ..oscillator.equilibria import no_hopf_reason
     from ..oscillator.hopf_branch import hopf_branch
 
     refuse_flags(args, ("png",))
@@ -192,19 +193,21 @@ def branch(args: argparse.Namespace) -> int:
                 "eigenvalues": _pairs(eq.eigenvalues),
             }
         )
-    branches = [hopf_branch(system, args.param, float(h), hi - lo) for h in points]
+    branches = [hopf_branch(system, args.param, float(h), hi - lo, (lo, hi)) for h in points]
+    none = "" if len(points) else no_hopf_reason(system, args.param, lo, hi)
     out = {
         **system.as_dict(),
         "param": args.param,
         "range": [lo, hi],
         "hopf_points": [float(v) for v in points],
+        **({"no_hopf_point": none} if none else {}),
         "steady_sliding": rows,
         "cycle_branches": [_branch(b) for b in branches],
     }
     lines = [
         _head(system),
         f"steady sliding over {args.param} in [{lo:g}, {hi:g}]: Hopf points "
-        + (", ".join(f"{v:.10g}" for v in points) or "none"),
+        + (", ".join(f"{v:.10g}" for v in points) or f"none: {none}"),
         *(
             f"  {args.param} = {r[args.param]:.10g}: "
             + ("Hopf point" if i and i < len(rows) - 1 else "stable" if r["stable"] else "unstable")
@@ -235,4 +238,5 @@ def _branch(b) -> dict:
         ],  # fmt: skip
         "stick_onset": None if b.onset is None else b.onset.system.params[b.param],
         "failure": b.failure,
+        **({"degenerate": True, "note": b.note} if b.degenerate else {}),
     }
