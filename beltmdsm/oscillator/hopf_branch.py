@@ -153,14 +153,16 @@ def _linear_slip(system: System, eq) -> bool:
     J0 = np.asarray(k.jacobian(0.0, eq.state, p, eq.mode), dtype=float)
     scale = 1.0 + np.abs(eq.state).max()
     rng = np.random.default_rng(0)  # fixed: the same answer on every run
-    for _ in range(4):
-        y = eq.state + 0.1 * scale * rng.standard_normal(eq.state.size)
+    checked = 0
+    for size in (0.1, 0.1, 0.1, 0.1, 0.01, 0.01, 0.01, 0.01):
+        y = eq.state + size * scale * rng.standard_normal(eq.state.size)
         if np.sign(k.slip_velocity(0.0, y, p)) != eq.mode:
             continue
         J = np.asarray(k.jacobian(0.0, y, p, eq.mode), dtype=float)
         if np.abs(J - J0).max() > 1e-12 * (1.0 + np.abs(J0).max()):
             return False
-    return True
+        checked += 1
+    return checked >= 2
 
 
 def _grazing_orbit(system: System, eq) -> NDArray[np.float64]:
