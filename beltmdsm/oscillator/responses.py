@@ -22,9 +22,9 @@ from numpy.typing import ArrayLike
 
 from ..errors import NoPeriodicResponse
 from .basins import BasinAttractor, merge, run_starts
-from .cycles import self_excited_cycle
-from .equilibria import steady_sliding
-from .forced import forced_response
+from .cycles import Cycle, self_excited_cycle
+from .equilibria import Equilibrium, steady_sliding
+from .forced import Response, forced_response
 from .system import System
 
 __all__ = [
@@ -128,7 +128,7 @@ def _starts(system: System, points: int):
     return out
 
 
-def shoot_attractor(system: System, a: BasinAttractor):
+def shoot_attractor(system: System, a: BasinAttractor) -> Equilibrium | Response | Cycle:
     """The set a run landed on (`beltmdsm.oscillator.basins.land`), exactly: steady
     sliding, the forced response of ``a.periods`` periods, or the self-excited cycle
     (NoPeriodicResponse where the shooting fails or finds another kind of cycle)."""
