@@ -14,7 +14,7 @@ import json
 
 import numpy as np
 
-from .models import refuse_flags, system_from
+from .models import model_of, refuse_flags, system_from
 
 __all__ = ["simulate", "floquet", "branch"]
 
@@ -63,11 +63,12 @@ def simulate(args: argparse.Namespace) -> int:
 
     refuse_flags(
         args,
-        ("start", "perturbation", "modulation", "png", "classify", "solver", "t_discard")
+        ("start", "perturbation", "modulation", "png", "solver", "t_discard")
         + ("on_contact_loss",),
     )
     system = system_from(args)
     sim = run(system, args.t_end, dt=args.dt, rtol=args.rtol, atol=args.atol)
+    attractor = _classified(args, system, sim.y[:, 0]) if args.classify else None
     out = {
         **system.as_dict(),
         "t_end": float(sim.t[-1]),
@@ -89,8 +90,19 @@ def simulate(args: argparse.Namespace) -> int:
     ]
     if args.save:
         lines.append(f"samples written to {args.save}")
+    if attractor is not None:
+        out["attractor"] = attractor.as_dict()
+        lines += [f"settles on: {attractor!r}", f"  {attractor.evidence}"]
     _print(args, out, lines)
     return 0 if sim.status == "done" else 2
+
+
+def _classified(args: argparse.Namespace, system, y0):
+    """``--classify``: `beltmdsm.classify` of the model from the run's start, over at
+    least 2000 s (as the paper's ``simulate --classify``)."""
+    from ..attractors.classification import classify
+
+    return classify(model_of(system), y0=y0, t_end=max(2000.0, args.t_end))
 
 
 def _cycle(c) -> dict:

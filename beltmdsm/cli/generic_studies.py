@@ -14,7 +14,7 @@ import argparse
 import numpy as np
 
 from .generic import _head, _print
-from .models import refuse_flags, system_from
+from .models import model_of, refuse_flags, system_from
 
 __all__ = [
     "sweep", "lyapunov", "basins", "responses", "coexistence", "basin_stability", "STATES",
@@ -226,16 +226,6 @@ def _found_lines(found) -> list[str]:
     return lines
 
 
-def _model(args: argparse.Namespace):
-    """The `System` of the flags (`system_from`: checked, exit 2 named) and the
-    `beltmdsm.Model` of the same model, which the public functions take: a command runs
-    the Python API's function, one path for both."""
-    from ..model import Model
-
-    system = system_from(args)
-    return system, Model(model=system.name, friction=system.friction, **system._given)
-
-
 def responses(args: argparse.Namespace) -> int:
     """``responses --model NAME``: `beltmdsm.responses` of the model, the stable
     attractors that runs from a grid of starts land on, each shot exactly with its
@@ -243,7 +233,8 @@ def responses(args: argparse.Namespace) -> int:
     from ..multistability.responses import responses as find
 
     refuse_flags(args, ("ladder",))
-    system, model = _model(args)
+    system = system_from(args)
+    model = model_of(system)
     found = find(model, t_end=args.t_end, limit=args.limit)
     lines = [_head(system), repr(found), *_found_lines(found)]
     if found.unresolved:
@@ -262,7 +253,8 @@ def coexistence(args: argparse.Namespace) -> int:
 
     refuse_flags(args, ("png",))
     name = swept(args)
-    system, model = _model(args)
+    system = system_from(args)
+    model = model_of(system)
     if name not in system.params:
         args.parser.error(
             f"argument --param: not a parameter of model {system.name!r} "

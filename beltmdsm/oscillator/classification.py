@@ -109,9 +109,10 @@ class Settled:
         )
 
     def as_dict(self) -> dict:
-        """JSON-ready: the model, the kind, the exponents (``-inf`` as None), the evidence."""
+        """JSON-ready: the kind, the exponents (``-inf`` as None), the evidence (as the
+        paper's `beltmdsm.attractors.attractor.Attractor.as_dict`; the model is the
+        caller's to name)."""
         return {
-            **self.system.as_dict(),
             "kind": self.kind,
             "cycle": self.cycle,
             "periods": self.periods,

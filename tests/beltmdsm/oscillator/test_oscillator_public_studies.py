@@ -185,3 +185,16 @@ def test_periodic_start_of_an_unforced_model_is_on_its_cycle():
     m = Model(**STRIBECK, Vb=1.5)
     period, x_end = _stick_slip_period(m.params)
     assert beltmdsm.periodic_start(m, 0.0) == pytest.approx([x_end, 1.5], abs=1e-8)
+
+
+def test_simulate_classify_of_another_model_runs_beltmdsm_classify():
+    """``simulate --model NAME --classify`` names what the run settles on by
+    `beltmdsm.classify` (from the run's start, over 2000 s, as the paper's)."""
+    out = _json("simulate", "--model", "belt_1dof", "--friction", "stribeck", "--Vb", "1.5",
+                "--t-end", "50", "--classify")  # fmt: skip
+    a = out["attractor"]
+    assert (a["kind"], a["cycle"], a["periods"]) == ("periodic", "stick_slip", 1)
+    period, x_end = _stick_slip_period(Model(**STRIBECK, Vb=1.5).params)
+    assert a["state"] == pytest.approx([x_end, 1.5], abs=1e-8)
+    assert f"period {period:.7g} s" in a["evidence"]
+    assert a["exponents"][-1] is None  # -inf: the direction the stick removes
