@@ -223,7 +223,9 @@ def classify(
     t_end, t_transient : float
         The run and the part of it before the exponents are averaged
         (`beltmdsm.oscillator.lyapunov.lyapunov`, whose checks apply); the landing from
-        the run's last state runs at most ``t_end`` again.
+        the run's last state runs at most ``t_end`` again. Where the model is forced,
+        both are cut down to whole excitation periods (the landing starts at phase 0),
+        ``t_end`` at least two.
     limit : int
         The most excitation periods (or sticks per period) looked for.
 
@@ -245,6 +247,14 @@ def classify(
     >>> classify(s, steady_sliding(s).state, t_end=100.0).kind  # on unstable sliding
     'unstable'
     """
+    T = system.excitation_period()
+    if T is not None:  # whole periods: the run ends at phase 0, where the landing starts
+        if not t_end >= 2 * T:
+            raise ValueError(f"t_end={t_end!r}: shorter than two excitation periods ({T:g} s)")
+        t_end = T * math.floor(t_end / T)
+        if t_transient is not None and not 0 <= t_transient < t_end:
+            raise ValueError(f"t_transient={t_transient!r}: not in [0, t_end = {t_end:g})")
+        t_transient = T * math.floor((0.3 * t_end if t_transient is None else t_transient) / T)
     spec = lyapunov(system, y0, t_end=t_end, t_transient=t_transient)
     found = _on_sliding(spec) or _landed(spec, t_end, limit)
     if found is not None:

@@ -198,3 +198,28 @@ def test_simulate_classify_of_another_model_runs_beltmdsm_classify():
     assert a["state"] == pytest.approx([x_end, 1.5], abs=1e-8)
     assert f"period {period:.7g} s" in a["evidence"]
     assert a["exponents"][-1] is None  # -inf: the direction the stick removes
+
+
+def test_a_run_on_an_unstable_forced_response_is_unstable_not_chaotic():
+    """Issue 36 item 2, forced: weakly forced (alpha_t = 1e-3) unstable steady sliding
+    has a T-periodic pure-slip response next to it whose multipliers are those of the
+    unforced linearisation, exp(lambda T), lambda = -c / 2 + i sqrt(w^2 - c^2 / 4), to
+    the forcing's order; a run started on it stays on it (the excitation period does not
+    divide t_end: classify cuts the run to whole periods)."""
+    from beltmdsm.oscillator import System, forced_response
+
+    forcing = dict(alpha_t=1e-3, Omega_t=4.0)
+    s = System("belt_1dof", friction="stribeck", Vb=1.5, **forcing)
+    p = s.params
+    x_eq = _stribeck(p, p["Vb"]) * p["g"] / p["omega1"] ** 2
+    on = forced_response(s, [x_eq, 0.0], settle=0.0)
+    a = beltmdsm.classify(Model(**STRIBECK, Vb=1.5, **forcing), y0=on.state, t_end=60.0)
+    assert (a.kind, a.cycle, a.periods) == ("unstable", "forced", 1)
+    assert "not chaos" in a.evidence
+    slope = (p["mu_s"] - p["mu_k"]) / p["v_s"] * math.exp(-p["Vb"] / p["v_s"])
+    c = 2 * p["beta1"] * p["omega1"] - p["g"] * slope
+    lam = complex(-c / 2, math.sqrt(p["omega1"] ** 2 - c * c / 4))
+    T = 2 * math.pi / p["Omega_t"]
+    typed = abs(np.exp(lam * T))
+    assert np.abs(a.orbit.multipliers) == pytest.approx([typed, typed], rel=1e-4)
+    assert a.lyapunov == pytest.approx(-c / 2, abs=0.01)
