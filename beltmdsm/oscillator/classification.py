@@ -86,6 +86,16 @@ class Settled:
     See Also
     --------
     classify : makes it.
+
+    Examples
+    --------
+    A run started on unstable steady sliding sits on it (its exponent is the
+    equilibrium's growth rate):
+
+    >>> from beltmdsm.oscillator import System, steady_sliding
+    >>> s = System("belt_1dof", friction="stribeck", Vb=1.5)
+    >>> classify(s, steady_sliding(s).state, t_end=100.0)  # doctest: +ELLIPSIS
+    Settled(System('belt_1dof', friction='stribeck', Vb=1.5); unstable, largest exponent +0.06...)
     """
 
     system: System
@@ -242,8 +252,9 @@ def classify(
     --------
     >>> from beltmdsm.oscillator import System, steady_sliding
     >>> s = System("belt_1dof", friction="stribeck", Vb=1.5)
-    >>> classify(s, t_end=200.0).kind, classify(s, t_end=200.0).cycle
-    ('periodic', 'stick_slip')
+    >>> a = classify(s, t_end=200.0)
+    >>> a.kind, a.cycle, round(a.orbit.period, 6)
+    ('periodic', 'stick_slip', 6.654342)
     >>> classify(s, steady_sliding(s).state, t_end=100.0).kind  # on unstable sliding
     'unstable'
     """
