@@ -254,7 +254,44 @@ def no_hopf_reason(system: System, parameter: str, lo: float, hi: float, points:
             f"rate {eq.growth_rate:.6g}); its stability depends on {', '.join(names)}{where}"
         )
     end = steady_sliding(system.replace(**{parameter: float(hi)}))
+    flutter = _flutter(system, parameter, eq, end)
+    if flutter is not None:
+        return flutter
     return (
         f"steady sliding is {word} over {parameter} in [{lo:g}, {hi:g}] (growth rate "
         f"{eq.growth_rate:.6g} to {end.growth_rate:.6g}): no Hopf point there"
+    )
+
+
+def _flutter(system: System, parameter: str, a: Equilibrium, b: Equilibrium) -> str | None:
+    """Where steady sliding is marginal (eigenvalues on the imaginary axis: no damping)
+    at one end and unstable at the other: the value where a pair leaves the axis, by
+    bisection on the growth rate (a flutter: the Hurwitz determinant ``H_{2n-1}``
+    vanishes on the whole marginal side, so it has no sign change to find)."""
+
+    def tiny(eq: Equilibrium) -> float:
+        return 1e-9 * (1.0 + float(np.abs(eq.eigenvalues).max()))
+
+    if abs(a.growth_rate) <= tiny(a) < b.growth_rate:
+        x0, x1 = a.system.params[parameter], b.system.params[parameter]
+    elif abs(b.growth_rate) <= tiny(b) < a.growth_rate:
+        x0, x1 = b.system.params[parameter], a.system.params[parameter]
+    else:
+        return None
+    lo, hi = x0, x1  # marginal at lo, unstable at hi
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        eq = steady_sliding(system.replace(**{parameter: mid}))
+        if eq.growth_rate > tiny(eq):
+            hi = mid
+        else:
+            lo = mid
+    return (
+        f"steady sliding is marginally stable (eigenvalues on the imaginary axis: no "
+        f"damping) from {parameter} = {x0:g} to {parameter} = {hi:.12g}, "
+        "where two of them meet and leave the axis (a flutter, mode coupling); no Hopf "
+        "point (the Hurwitz determinant that changes sign at one vanishes on the whole "
+        "marginal side)"
     )

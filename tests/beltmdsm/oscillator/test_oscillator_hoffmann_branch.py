@@ -22,6 +22,7 @@ at c = 0 the mode-coupling (flutter) threshold ((K11 - K22 - k_c)^2 / 4 + K12 K2
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -231,3 +232,20 @@ def test_the_branch_starts_from_the_grazing_orbit_of_the_linear_centre():
     assert 0 < gaps[0][0] < 1e-3 and -1e-2 < gaps[0][1] < 0
     assert gaps[1][0] > 3 * gaps[0][0]
     assert gaps[1][1] / gaps[0][1] == pytest.approx(4.0, rel=0.05)
+
+
+def test_the_undamped_flutter_point_is_named_and_is_the_closed_form():
+    """Without damping steady sliding is marginal below the threshold (no Hurwitz sign
+    change: no Hopf point); the line names where the pair leaves the axis."""
+    p = System("hoffmann", **BASE).params
+    out = _json("branch", "--model", "hoffmann", "--param", "mu_s", "--from", "0.1",
+                "--to", "0.6", *FLAGS, "--c1", "0", "--c2", "0")  # fmt: skip
+    assert out["hopf_points"] == [] and out["cycle_branches"] == []
+    why = out["no_hopf_point"]
+    assert why.startswith("steady sliding is marginally stable") and "flutter" in why
+    found = float(re.search(r"to mu_s = ([0-9.e+-]+), where two", why).group(1))
+    assert found == pytest.approx(_threshold(p, 0.0), abs=1e-8)
+    # numpy's eigenvalues of the typed Jacobian leave the axis there
+    for d, grows in ((-1e-6, False), (1e-6, True)):
+        growth = np.linalg.eigvals(_jacobian({**p, "c1": 0.0}, found + d)).real.max()
+        assert (growth > 1e-6) == grows
