@@ -223,3 +223,24 @@ def test_a_run_on_an_unstable_forced_response_is_unstable_not_chaotic():
     typed = abs(np.exp(lam * T))
     assert np.abs(a.orbit.multipliers) == pytest.approx([typed, typed], rel=1e-4)
     assert a.lyapunov == pytest.approx(-c / 2, abs=0.01)
+
+
+def test_a_stick_that_ends_and_begins_at_once_is_no_cycle():
+    """The shooting behind responses and classify never reports a cycle whose period is
+    far below every time scale of steady sliding (Hoffmann's model at mu_s = 1: Newton's
+    method from the default seed converges on a stick end that sticks again at once,
+    period 5e-12 s)."""
+    from beltmdsm.errors import NoPeriodicResponse
+    from beltmdsm.oscillator import System, self_excited_cycle, steady_sliding
+    from beltmdsm.oscillator.basins import BasinAttractor
+    from beltmdsm.oscillator.responses import shoot_attractor
+
+    s = System("hoffmann", mu_s=1.0)
+    seed = tuple(self_excited_cycle(s).state)
+    shortest = 1.0 / np.abs(steady_sliding(s).eigenvalues).max()
+    try:
+        c = shoot_attractor(s, BasinAttractor("stick_slip", 1, seed, seed))
+    except NoPeriodicResponse as err:
+        assert "a stick that ends and begins at once, no cycle" in str(err)
+    else:
+        assert c.period > 1e-6 * shortest
