@@ -109,13 +109,9 @@ def test_sweep_lyapunov_and_basins_take_another_model():
     "call, missing",
     [
         (lambda m: beltmdsm.predict(m), "the MDSM split"),
-        (lambda m: beltmdsm.responses(m), "no search of the coexisting forced responses"),
-        (lambda m: beltmdsm.coexistence(m, "Vb", 1.0, 2.0), "no search of the coexisting"),
         (lambda m: beltmdsm.floquet_band(m, "Vb", 1.0, 2.0), "no band of unstable responses"),
         (lambda m: beltmdsm.branch(m, lo=1.0, hi=2.0), "no continuation through folds"),
-        (lambda m: beltmdsm.classify(m), "no classification of what a run settles on"),
-        (lambda m: beltmdsm.periodic_start(m), "no start on the periodic response"),
-        (lambda m: beltmdsm.seed_cycle(m), "seeds its cycles itself"),
+        (lambda m: beltmdsm.seed_cycle(m), "seeds a cycle inside beltmdsm.cycle"),
         (
             lambda m: beltmdsm.floquet_map(m, "Vb", 1.0, 2.0, "alpha", 0.0, 1.0),
             "no two-parameter map",
