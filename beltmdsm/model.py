@@ -121,6 +121,9 @@ GENERIC = (
     "branch", "floquet_band", "floquet_map", "responses", "coexistence", "classify",
     "periodic_start",
 )  # fmt: skip
+#: Those of `GENERIC` that follow a forced response: they run another model where one
+#: of its excitation amplitudes is not 0 (`OtherModel.capabilities`).
+FORCED = ("branch", "floquet_band", "floquet_map")
 #: Why the generic runtime does not run the others: the paper's own piece (a key of a
 #: model module's ``ABSENT``) or what beltmdsm/oscillator/ lacks.
 LACKS: Mapping[str, str] = MappingProxyType(
@@ -130,15 +133,15 @@ LACKS: Mapping[str, str] = MappingProxyType(
         "seed_cycle": "beltmdsm.oscillator seeds a cycle inside beltmdsm.cycle (a run "
         "from steady sliding moved along its least stable direction, shot from its stick "
         "end or least slip speed); pass guess= (and period=) to beltmdsm.cycle instead",
-        # branch, floquet_band, floquet_map: another model's forced response (issue 39
-        # item 4); what follows is why a model without excitation is refused
+        # `FORCED`: why a model without excitation is refused (`OtherModel.capabilities`
+        # adds how to excite it, or that its entry has no excitation terms)
         "floquet_band": "beltmdsm.oscillator has no band of unstable responses over a range "
-        "without excitation (set an excitation amplitude: the band of the forced response)",
+        "without excitation",
         "branch": "beltmdsm.oscillator has no continuation through folds of a response "
-        "without excitation (set an excitation amplitude: the forced response's branch; "
-        "`branch --model` continues steady sliding and its self-excited cycles)",
+        "without excitation (`branch --model` continues steady sliding and its "
+        "self-excited cycles)",
         "floquet_map": "beltmdsm.oscillator has no two-parameter map of the response's "
-        "stability without excitation (set an excitation amplitude)",
+        "stability without excitation",
         "basin_stability": "beltmdsm.oscillator has no basin stability by sampling "
         "(beltmdsm.basins maps a plane of starts)",
     }
@@ -488,13 +491,23 @@ class OtherModel(OtherParameters, Model):
 
     @property
     def capabilities(self) -> Mapping[str, tuple[bool, str]]:
-        absent = model_module(self.model).ABSENT
+        """Public analysis -> ``(runs, why not)`` for this model at these parameters: the
+        forced analyses (`FORCED`) run where an excitation amplitude is not 0."""
+        module = model_module(self.model)
+        excited = any(self._params.get(amplitude) for _, amplitude, _, _ in module.EXCITATION)
         out = {}
         for name in ANALYSES:
-            why = LACKS.get(name, "")
+            runs = name in GENERIC and (excited or name not in FORCED)
+            why = "" if runs else LACKS.get(name, "")
             if why.startswith("ABSENT:"):
-                why = absent[why.removeprefix("ABSENT:")]
-            out[name] = (name in GENERIC, why)
+                why = module.ABSENT[why.removeprefix("ABSENT:")]
+            elif name in FORCED and not runs:
+                why += (
+                    ": set an excitation amplitude"
+                    if module.EXCITATION
+                    else ": the model has no excitation terms (derive/models/entries.py)"
+                )
+            out[name] = (runs, why)
         return MappingProxyType(out)
 
     def refusal(self, analysis: str) -> str:

@@ -36,6 +36,17 @@ def test_the_paper_model_is_unchanged_and_named():
     assert all(ok for ok, _ in Model().capabilities.values())
 
 
+def test_the_forced_analyses_run_another_model_only_where_it_is_excited():
+    unforced, forced = Model(model="belt_1dof"), Model(model="belt_1dof", alpha_t=0.1)
+    for name in ("branch", "floquet_band", "floquet_map"):
+        assert forced.capabilities[name] == (True, "")
+        ok, why = unforced.capabilities[name]
+        assert not ok and "set an excitation amplitude" in why
+        ok, why = Model(model="hoffmann").capabilities[name]
+        assert not ok and "no excitation terms" in why
+    assert unforced.capabilities["cycle"] == (True, "")
+
+
 def test_another_model_holds_its_own_parameters_checked_once():
     m = Model(model="belt_1dof", friction="stribeck", Vb=1.5)
     assert repr(m) == "Model(model='belt_1dof', friction='stribeck', Vb=1.5)"
