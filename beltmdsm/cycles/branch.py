@@ -53,8 +53,9 @@ from ..excitation import is_autonomous
 from ..model import MODEL_PARAMETERS, Backend, Model
 from ..periodic.cycle import Cycle, cycle
 from ..periodic.cycle_flow import CycleFlow
-from .continuation import PERIOD_LIMIT, Continuation, CyclePoint, walk
+from .continuation import PERIOD_LIMIT, Continuation, CyclePoint
 from .hopf import HopfPoint, NoHopfPoint, hopf_point
+from .multiple import walk
 
 __all__ = [
     "CyclePoint",

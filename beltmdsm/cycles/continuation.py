@@ -72,6 +72,9 @@ class CyclePoint:
     recorded : dict of str to float
         What the ``record`` callable of `beltmdsm.continuation.branch.branch` returned
         here (empty without one).
+    segments : ndarray (m, 4) or None
+        The states at ``t = i T / m`` where the cycle was solved by multiple shooting
+        (`beltmdsm.cycles.multiple`); None for single shooting.
 
     See Also
     --------
@@ -119,6 +122,7 @@ class CyclePoint:
     image: FlowImage = field(repr=False, default=None)
     column: NDArray[np.float64] | None = field(repr=False, default=None)
     recorded: dict[str, float] = field(repr=False, default_factory=dict)
+    segments: NDArray[np.float64] | None = field(repr=False, default=None)
 
     def observables(self, vb: float) -> dict[str, float]:
         """The ranges of ``X1'`` and ``X1``, the largest ``|Vr| = |X1' - vb|`` (at an
@@ -371,6 +375,10 @@ class CycleProblem(Problem):
                 "corrector's steps shrink towards nothing (a cycle this unstable needs "
                 "multiple shooting)",
             )
+        return self.period_stop(new)
+
+    def period_stop(self, new):
+        """The end where the period passes `PERIOD_LIMIT` times the first (or None)."""
         if new.period > PERIOD_LIMIT * self.period0:
             return failed(
                 new,
