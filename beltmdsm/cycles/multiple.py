@@ -43,10 +43,14 @@ SEGMENTS = 16
 HAND_BACK = MULTIPLIER_LIMIT / 10
 #: Hand-overs on one walk at most.
 MAX_HANDOVERS = 6
-#: Newton's iterations on the grazing cycle.
+#: Secant iterations per cycle of a given largest ``Vr``.
 GRAZING_ITER = 8
 #: The largest ``|max Vr|`` [m/s] of the sliding cycles extrapolated to the grazing one.
-GRAZING_VR = 4e-4
+GRAZING_VR = 1e-4
+#: How closely the secant method meets ``max Vr = -d`` [m/s]: the largest ``Vr`` is
+#: read off a run over the period from ``x_0``, which amplifies its error (1e-12) by
+#: up to ``|mu|`` (5e4 near the onset): 1e-10 leaves a margin above that.
+GRAZING_VR_TOL = 1e-10
 HANDED_BACK = "handed back to single shooting"
 
 
@@ -151,68 +155,77 @@ class MultipleCycleProblem(CycleProblem):
     # -- the stick onset solved as the grazing cycle
 
     def rescue(self, points, prev, tangent, ds):
-        """`CycleProblem.rescue`, the onset then solved as the cycle whose largest
-        ``Vr`` is 0 (`grazing`), where the branch comes from the sliding side: the
-        extrapolation of `beltmdsm.cycles.stick.locate` stays about 1e-4 off here."""
+        """`CycleProblem.rescue`, the onset then solved from the sliding side
+        (`grazing`): the extrapolation of `beltmdsm.cycles.stick.locate` stays about
+        1e-4 off on these cycles (its trial points fall on both sides of a nonsmooth
+        fold)."""
         crossed = super().rescue(points, prev, tangent, ds)
         if crossed is None or crossed[1][0].n_sticks:
             return crossed
-        solved = self.grazing(crossed[1][0])
+        sliding = [q for q in points if q.n_sticks == 0 and q.segments is not None]
+        solved = self.grazing(sliding[-2:] + [crossed[1][0]])
         if solved is not None:
             crossed[0].value, crossed[0].accuracy = solved
         return crossed
 
-    def grazing(self, near):
-        """``(p, accuracy)`` of the grazing cycle (largest ``Vr = 0``) next to the
-        sliding cycle ``near``, or None.
+    def grazing(self, sliding):
+        """``(p, accuracy)`` of the grazing cycle (largest ``Vr = 0``) beyond the
+        sliding cycles ``sliding`` (the last two or more of the branch), or None.
 
         ``max Vr = 0`` holds on every stick-slip cycle too (``X1' = Vb`` while stuck),
         and beyond a nonsmooth fold those lie next to the sliding ones, so the grazing
         cycle is not solved for itself: the sliding cycles with ``max Vr = -d`` for
-        three ``d`` (`_sliding_at`) are, and their ``p``, smooth in ``d`` on the sliding
-        side, is extrapolated to ``d = 0`` by a quadratic; the accuracy is its
-        difference from the line through the nearest two.
+        three ``d`` are, by the secant method in ``p`` on cycles corrected at ``p``
+        fixed (`_pinned`), and their ``p``, smooth in ``d`` on the sliding side, is
+        extrapolated to ``d = 0`` by a quadratic; the accuracy is its difference from
+        the line through the nearest two.
         """
-        d0 = min(GRAZING_VR, abs(near.max_relative_velocity))
-        z, found = self.z(near), []
-        for d in (d0, d0 / 2, d0 / 4):
-            z = self._sliding_at(z, -d)
-            if z is None:
+        if len(sliding) < 2:
+            return None
+        known = [(q.value, q.max_relative_velocity, self.z(q)) for q in sliding[-2:]]
+        found = []
+        for d in (GRAZING_VR, GRAZING_VR / 2, GRAZING_VR / 4):
+            for _ in range(GRAZING_ITER):
+                p1, v1, z1 = known[-1]
+                if abs(v1 + d) <= GRAZING_VR_TOL:
+                    break
+                # the secant through a cycle far enough for its slope to stand above
+                # the noise of max Vr (1e-10 over 1e-6 of p)
+                far = [k for k in known[:-1] if abs(k[0] - p1) >= 1e-6 * max(1.0, abs(p1))]
+                if not far:
+                    return None
+                p0, v0, z0 = far[-1]
+                if v1 == v0 or p1 == p0:
+                    return None
+                p2 = p1 + (-d - v1) * (p1 - p0) / (v1 - v0)
+                # predicted along the secant of the last two cycles
+                got = self._pinned(z1 + (p2 - p1) / (p1 - p0) * (z1 - z0), p2)
+                if got is None:
+                    return None
+                known.append((p2, got[1], got[0]))
+            else:
                 return None
-            found.append((d, float(z[-1] * self.sp)))
+            found.append((d, known[-1][0]))
         d, p = np.array(found).T
         value = float(np.polyval(np.polyfit(d, p, 2), 0.0))
         accuracy = abs(value - float(np.polyval(np.polyfit(d[1:], p[1:], 1), 0.0)))
         return value, accuracy
 
-    def _sliding_at(self, z, target):
-        """The scaled unknowns of the sliding cycle with ``max Vr = target`` (< 0),
-        Newton's method from ``z`` on the segments' equations and that one (its
-        gradient by central differences in ``x_0``, ``T`` and ``p``, the unknowns it
-        depends on); None where it does not converge or lands on a stick-slip cycle."""
-        n = z.size
-        for _ in range(GRAZING_ITER):
-            try:
-                r = self.residual(z, 0.0, 0)
-                J = self.jacobian(r.data)
-                vr = self.flow.largest_vr(*self.unpack(z)) - target
-                row = np.zeros(n)
-                for i in (0, 1, 2, 3, n - 2, n - 1):
-                    e = np.zeros(n)
-                    e[i] = 1e-7 * max(1.0, abs(z[i]))
-                    up = self.flow.largest_vr(*self.unpack(z + e))
-                    down = self.flow.largest_vr(*self.unpack(z - e))
-                    row[i] = (up - down) / (2 * e[i])
-                dz = np.linalg.solve(np.vstack([J, row]), -np.append(r.F, vr))
-            except (NoPeriodicResponse, np.linalg.LinAlgError):
-                return None
-            z = z + dz
-            if float(np.max(np.abs(dz))) * self.sx <= NEWTON_TOL * 10 * (1 + self.sx):
-                x, T, p = self.unpack(z)
-                run = self.flow.run(x, T, p)
-                stuck = any(int(new) == 0 for _, _, new in run.events)
-                return None if stuck else z
-        return None
+    def _pinned(self, z, p):
+        """``(z, max Vr)`` of the sliding cycle at ``p`` fixed, Newton's method from
+        ``z``; None where it fails or the cycle sticks."""
+        z = np.array(z, float)
+        z[-1] = p / self.sp
+        row = np.zeros(z.size)
+        row[-1] = 1.0
+        try:
+            step = self.solve(z, lambda q: (float(q[-1] - z[-1]), row))
+        except NoPeriodicResponse:
+            return None
+        x, T, p, img = step.data
+        if any(int(new) == 0 for *_, new in img.run.events):
+            return None
+        return step.z, self.flow.largest_vr(x, T, p)
 
     # -- its limits
 
