@@ -44,7 +44,9 @@ HAND_BACK = MULTIPLIER_LIMIT / 10
 #: Hand-overs on one walk at most.
 MAX_HANDOVERS = 6
 #: Secant iterations per cycle of a given largest ``Vr``.
-GRAZING_ITER = 8
+GRAZING_ITER = 16
+#: Halvings of a secant step whose cycle Newton's method does not reach.
+GRAZING_HALVINGS = 6
 #: The largest ``|max Vr|`` [m/s] of the sliding cycles extrapolated to the grazing one.
 GRAZING_VR = 1e-4
 #: How closely the secant method meets ``max Vr = -d`` [m/s]: the largest ``Vr`` is
@@ -162,7 +164,7 @@ class MultipleCycleProblem(CycleProblem):
         crossed = super().rescue(points, prev, tangent, ds)
         if crossed is None or crossed[1][0].n_sticks:
             return crossed
-        sliding = [q for q in points if q.n_sticks == 0 and q.segments is not None]
+        sliding = [q for q in points if q.n_sticks == 0]
         solved = self.grazing(sliding[-2:] + [crossed[1][0]])
         if solved is not None:
             crossed[0].value, crossed[0].accuracy = solved
@@ -197,10 +199,16 @@ class MultipleCycleProblem(CycleProblem):
                 p0, v0, z0 = far[-1]
                 if v1 == v0 or p1 == p0:
                     return None
-                p2 = p1 + (-d - v1) * (p1 - p0) / (v1 - v0)
-                # predicted along the secant of the last two cycles
-                got = self._pinned(z1 + (p2 - p1) / (p1 - p0) * (z1 - z0), p2)
-                if got is None:
+                step = (-d - v1) * (p1 - p0) / (v1 - v0)
+                p2 = p1 + float(np.clip(step, -2 * abs(p1 - p0), 2 * abs(p1 - p0)))
+                for _ in range(GRAZING_HALVINGS):
+                    # predicted along the secant; where Newton's method fails from
+                    # there (far from the onset, the cycle changes fast), half as far
+                    got = self._pinned(z1 + (p2 - p1) / (p1 - p0) * (z1 - z0), p2)
+                    if got is not None:
+                        break
+                    p2 = p1 + 0.5 * (p2 - p1)
+                else:
                     return None
                 known.append((p2, got[1], got[0]))
             else:
@@ -225,6 +233,8 @@ class MultipleCycleProblem(CycleProblem):
         x, T, p, img = step.data
         if any(int(new) == 0 for *_, new in img.run.events):
             return None
+        if np.ptp(img.states[:, 1]) <= 1e-6 * (1.0 + abs(self.flow.at(p)[0]["Vb"])):
+            return None  # steady sliding: a solution of the segments' equations too
         return step.z, self.flow.largest_vr(x, T, p)
 
     # -- its limits
