@@ -19,7 +19,12 @@ largest ``Vr`` agree to 1e-7; the stick onset, where ``d(max Vr)/d v_s = -0.38``
 to the onset's stated accuracy plus 1e-6.
 """
 
+import json
 import math
+import os
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -33,6 +38,8 @@ from beltmdsm.model import Model
 from beltmdsm.periodic.cycle_flow import CycleFlow
 from beltmdsm.periodic.cycle_segments import split_run
 
+ROOT = Path(__file__).resolve().parents[3]
+ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
 P = dict(beta1=0.1, omega1=1.0, mu_s=0.4, mu_k=0.25, g=9.81)
 VB = 1.5
 
@@ -166,21 +173,29 @@ def test_the_reference_onset_is_where_the_largest_vr_of_the_sliding_cycle_reache
 
 @pytest.mark.slow
 def test_the_branch_in_v_s_reaches_the_stick_onset_of_a_reference():
-    """The command of the report, through the Python API (the command line prints the
-    same branch): `beltmdsm.branch` in ``v_s`` from 0.1 to 3 at ``Vb = 1.5``."""
-    from beltmdsm.branches import branch
-
-    found = branch(Model(friction="stribeck", alpha=0.0, Vb=VB), param="v_s", lo=0.1, hi=3.0)
-    kinds = [s.kind for s in found.special]
-    assert "failed" not in kinds, [s.detail for s in found.special]
-    onset = next(s for s in found.special if s.kind == "stick_onset")
+    """The report's command: ``branch --alpha 0 --friction stribeck --Vb 1.5 --param v_s
+    --from 0.1 --to 3`` ran 2 min 40 s to "stopped after 2000 points", then ended at
+    v_s = 0.142 where the largest multiplier passed 1e3. Now multiple shooting goes on
+    to the stick onset (v_s = 0.1027581, |mu| = 5e4 there) and the stick-slip cycles
+    beyond it to the range's end (23 s of CPU, 1-2 min on a loaded machine)."""
+    argv = ["branch", "--alpha", "0", "--friction", "stribeck", "--Vb", "1.5"]
+    argv += ["--param", "v_s", "--from", "0.1", "--to", "3", "--json"]
+    out = subprocess.run(
+        [sys.executable, "-m", "beltmdsm", *argv],
+        capture_output=True, text=True, timeout=900, cwd=ROOT, env=ENV,
+    )  # fmt: skip
+    assert out.returncode == 0, out.stderr
+    found = json.loads(out.stdout)
+    kinds = [s["kind"] for s in found["special_points"]]
+    assert kinds == ["hopf", "stick_onset", "range"], found["special_points"]
+    onset = found["special_points"][1]
     reference = brentq(lambda vs: reference_cycle(vs)[1], 0.1, 0.12, xtol=1e-13)
-    assert abs(onset.value - reference) <= onset.accuracy + 1e-6, (onset.value, reference)
-    assert onset.accuracy <= 1e-6
+    assert onset["accuracy"] <= 1e-6
+    assert abs(onset["value"] - reference) <= onset["accuracy"] + 1e-7, (onset, reference)
     # the sliding cycles along the branch, those past single shooting's limit too
-    sliding = [p for p in found.points if p.n_sticks == 0 and p.value < 0.59]
-    assert any(p.segments is not None for p in sliding)
-    for p in sliding[:: max(1, len(sliding) // 6)]:
-        _, vr_max, T = reference_cycle(p.value)
-        assert p.period == pytest.approx(T, rel=1e-8), p.value
-        assert p.max_relative_velocity == pytest.approx(vr_max, abs=1e-7), p.value
+    sliding = [q for q in found["points"] if q["n_sticks"] == 0 and q["value"] < 0.59]
+    assert any(q["max_abs_multiplier"] > 1e4 for q in sliding)
+    for q in sliding[:: max(1, len(sliding) // 8)]:
+        _, vr_max, T = reference_cycle(q["value"])
+        assert q["period"] == pytest.approx(T, rel=1e-8), q["value"]
+        assert q["max_relative_velocity"] == pytest.approx(vr_max, abs=1e-7), q["value"]
