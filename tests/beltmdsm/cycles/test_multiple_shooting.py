@@ -193,7 +193,9 @@ def test_the_branch_in_v_s_reaches_the_stick_onset_of_a_reference():
     assert onset["accuracy"] <= 1e-6
     assert abs(onset["value"] - reference) <= onset["accuracy"] + 1e-7, (onset, reference)
     # the sliding cycles along the branch, those past single shooting's limit too
-    sliding = [q for q in found["points"] if q["n_sticks"] == 0 and q["value"] < 0.59]
+    # (where |mu| > 10: the reference's backward map contracts by 1/|mu| per turn; near
+    # the Hopf point it barely contracts)
+    sliding = [q for q in found["points"] if q["n_sticks"] == 0 and q["max_abs_multiplier"] > 10]
     assert any(q["max_abs_multiplier"] > 1e4 for q in sliding)
     for q in sliding[:: max(1, len(sliding) // 8)]:
         _, vr_max, T = reference_cycle(q["value"])
