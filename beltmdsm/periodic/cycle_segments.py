@@ -26,7 +26,16 @@ from numpy.typing import NDArray
 
 from .cycle_flow import P_STEP, CycleFlow, FlowImage
 
-__all__ = ["SegmentImages", "segment_images", "continuity", "segment_jacobian"]
+__all__ = [
+    "SegmentImages",
+    "segment_images",
+    "continuity",
+    "product_monodromy",
+    "segment_jacobian",
+    "p_column",
+    "whole",
+    "split_run",
+]
 
 
 @dataclass
@@ -55,14 +64,36 @@ def segment_images(flow: CycleFlow, states, T: float, p: float, monodromy=True) 
 
 
 def continuity(states, images) -> NDArray[np.float64]:
-    """``G_i = phi_{T/m}(x_i) - x_{i+1}`` (``x_m = x_0``), shape (m, 4)."""
+    """``G_i = phi_{T/m}(x_i) - x_{i+1}`` (``x_m = x_0``), shape (m, 4).
+
+    Examples
+    --------
+    Three segments whose images land on the next start close up, but for the last:
+
+    >>> from types import SimpleNamespace
+    >>> xs = np.arange(12.0).reshape(3, 4)
+    >>> images = [SimpleNamespace(state=xs[1]), SimpleNamespace(state=xs[2]),
+    ...           SimpleNamespace(state=xs[0] + 1e-3)]
+    >>> np.round(continuity(xs, images), 12).tolist()[2]
+    [0.001, 0.001, 0.001, 0.001]
+    """
     states = np.asarray(states, float)
     ends = np.array([img.state for img in images])
     return ends - np.roll(states, -1, axis=0)
 
 
 def product_monodromy(images) -> NDArray[np.float64]:
-    """``M_{m-1} ... M_0``: the monodromy of the whole period."""
+    """``M_{m-1} ... M_0``: the monodromy of the whole period.
+
+    Examples
+    --------
+    Two segments that each double the first coordinate and halve the second:
+
+    >>> from types import SimpleNamespace
+    >>> half = SimpleNamespace(monodromy=np.diag([2.0, 0.5, 1.0, 1.0]))
+    >>> np.diag(product_monodromy([half, half])).tolist()
+    [4.0, 0.25, 1.0, 1.0]
+    """
     M = np.eye(4)
     for img in images:
         M = img.monodromy @ M
