@@ -27,6 +27,7 @@ __all__ = [
     "CONTACT_LOSS",
     "MAX_SAMPLES",
     "MAX_POINTS",
+    "MAX_RTOL",
     "DEFAULT_T_END",
     "NYQUIST_MULTIPLE",
     "BYTES_PER_PERIOD",
@@ -67,6 +68,17 @@ MAX_SAMPLES = 10**7
 #: each is eleven days on one core; a larger one is a mistake (a step of 1e-15), refused
 #: before anything is allocated.
 MAX_POINTS = 10**6
+#: The loosest relative tolerance a run accepts. DOP853 keeps each step's estimated error
+#: below ``atol + rtol |y|``, and that estimate (the difference of two embedded
+#: solutions, the leading term of an expansion in the step) bounds the error only while
+#: the error is small against the state. Above a tenth of the state not one significant
+#: digit is kept, and the sign of a switching function (``Vr``, the stick limits), which
+#: decides the mode, is not determined by the step: such a run cannot be resolved, and
+#: it failed wherever the integrator met it (rtol = 0.5 and 1 ended with the step below
+#: the rounding of the time at t = 181.7 s and 5.96 s, and the superposition with a
+#: bounded normal step ran rtol = 1 to "done" with a meaningless energy balance). At
+#: rtol = 0.1 a run still has a digit, and its energy balance says whether it closes.
+MAX_RTOL = 0.1
 DEFAULT_T_END = 1000.0
 
 
@@ -87,7 +99,8 @@ class SolverSettings:
     method : {"DOP853"}
         The Runge-Kutta method (the only one).
     rtol, atol : float
-        The integrator's relative and absolute tolerances, > 0.
+        The integrator's relative and absolute tolerances, > 0; ``rtol`` at most
+        `MAX_RTOL` (a looser one keeps no significant digit).
     t_end : float
         The duration of a run [s] (default `DEFAULT_T_END`).
     t_discard : float or None
@@ -153,6 +166,13 @@ class SolverSettings:
             if not (is_real(value) and math.isfinite(value) and value > 0):
                 raise ValueError(f"{name} must be a finite number > 0; got {value!r}")
             object.__setattr__(self, name, float(value))
+        if self.rtol > MAX_RTOL:
+            raise Refused(
+                f"rtol must be <= MAX_RTOL = {MAX_RTOL:g} (beltmdsm/settings.py): a "
+                "looser relative tolerance keeps no significant digit of a step, so the "
+                f"sign of a switching function is not resolved; got {self.rtol:g}",
+                "rtol",
+            )
         if self.t_discard is not None:
             if not (is_real(self.t_discard) and math.isfinite(self.t_discard)):
                 raise ValueError(

@@ -29,7 +29,14 @@ from pathlib import Path
 from beltmdsm.generated.parameters import PARAMETERS
 
 from ..model import OPTION_DEFAULTS, OPTION_DOCS, OPTIONS, Model, check_domain
-from ..settings import CONTACT_LOSS, DEFAULT_T_END, METHODS, SOLVERS, SolverSettings
+from ..settings import (
+    CONTACT_LOSS,
+    DEFAULT_T_END,
+    MAX_RTOL,
+    METHODS,
+    SOLVERS,
+    SolverSettings,
+)
 from .parser import in_flags, writable_file
 
 __all__ = [
@@ -274,9 +281,15 @@ def solver_parent() -> argparse.ArgumentParser:
     )
     s.add_argument(
         "--rtol",
-        type=POSITIVE,
+        type=number(
+            lambda x: 0 < x <= MAX_RTOL,
+            f"> 0 and <= MAX_RTOL = {MAX_RTOL:g} (beltmdsm/settings.py): a looser relative "
+            "tolerance keeps no significant digit of a step, so the sign of a switching "
+            "function is not resolved",
+        ),
         default=1e-10,
-        help="relative tolerance of the integrators' local error per step, > 0; the "
+        help=f"relative tolerance of the integrators' local error per step, > 0 and <= "
+        f"{MAX_RTOL:g} (MAX_RTOL, beltmdsm/settings.py); the "
         "noise floor of the spectrum and the bound of the energy residual follow it "
         "(beltmdsm/run/tolerances.py) (default: 1e-10)",
     )

@@ -29,8 +29,10 @@ scaled by the state's, the period's and the range's size:
   stability changes).
 * **Ends**: the range's bounds (``range``), or ``failed`` with the reason (no corrector
   converges even at the smallest step; the period grows past `PERIOD_LIMIT` times the
-  Hopf period, as towards a homoclinic orbit; the largest multiplier passes
-  `beltmdsm.cycles.continuation.MULTIPLIER_LIMIT`, beyond single shooting). A branch
+  Hopf period, as towards a homoclinic orbit; a segment of multiple shooting
+  amplifies by more than `beltmdsm.cycles.continuation.MULTIPLIER_LIMIT`). Where the
+  largest multiplier passes that limit the walk goes on by multiple shooting
+  (`beltmdsm.cycles.multiple`), and back to single shooting below a tenth of it. A branch
   that shrinks back to a second Hopf point is not recognised as such: it ends
   ``failed`` where the corrector no longer converges near zero amplitude.
 
@@ -53,8 +55,9 @@ from ..excitation import is_autonomous
 from ..model import MODEL_PARAMETERS, Backend, Model
 from ..periodic.cycle import Cycle, cycle
 from ..periodic.cycle_flow import CycleFlow
-from .continuation import PERIOD_LIMIT, Continuation, CyclePoint, walk
+from .continuation import PERIOD_LIMIT, Continuation, CyclePoint
 from .hopf import HopfPoint, NoHopfPoint, hopf_point
+from .multiple import walk
 
 __all__ = [
     "CyclePoint",

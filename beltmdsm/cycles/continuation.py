@@ -6,8 +6,9 @@ phase condition. `CycleProblem` states the residual and the 5 x 6 Jacobian ``[M 
 dphi/dp; grad h, 0, dh/dp]``, the point (`CyclePoint`, its multipliers without the
 trivial one) and its hooks: a step whose stick count changes is refused, and the stick
 onset crossed (`beltmdsm.cycles.stick.cross_stick`); a cycle whose largest multiplier
-passes `MULTIPLIER_LIMIT` or whose period passes `PERIOD_LIMIT` times the first ends
-the branch. The one driver (`beltmdsm.continuation.driver`) does the rest, as for the
+passes `MULTIPLIER_LIMIT` ends single shooting (the walk goes on by multiple shooting,
+`beltmdsm.cycles.multiple`), and one whose period passes `PERIOD_LIMIT` times the
+first ends the branch. The one driver (`beltmdsm.continuation.driver`) does the rest, as for the
 forced responses; its defaults here are
 `beltmdsm.continuation.settings.CYCLE_SETTINGS`.
 """
@@ -32,10 +33,11 @@ __all__ = ["CyclePoint", "CycleProblem", "Continuation", "walk"]
 
 #: The parameter's scale is at most this many times the start's value (or 1).
 P_SCALE = 2.0
-#: A branch ends where a cycle's largest multiplier exceeds this: single shooting's
-#: corrector converges only within about ``1 / |mu|`` of the cycle (Stribeck's law at
-#: ``v_s = 0.12``: ``|mu| = 6e3``, steps of 1e-6 in ``v_s``, 2000 points without reaching
-#: the stick onset); the branches of the shipped laws in ``Vb`` stay below 20.
+#: Single shooting ends where a cycle's largest multiplier exceeds this (and
+#: `beltmdsm.cycles.multiple` takes the branch on, in segments): its corrector converges
+#: only within about ``1 / |mu|`` of the cycle (Stribeck's law at ``v_s = 0.12``: ``|mu|
+#: = 6e3``, steps of 1e-6 in ``v_s``, 2000 points without reaching the stick onset); the
+#: branches of the shipped laws in ``Vb`` stay below 20.
 MULTIPLIER_LIMIT = 1e3
 #: A branch ends where the period exceeds this many times the first one (the Hopf period).
 PERIOD_LIMIT = 50.0
@@ -72,6 +74,9 @@ class CyclePoint:
     recorded : dict of str to float
         What the ``record`` callable of `beltmdsm.continuation.branch.branch` returned
         here (empty without one).
+    segments : ndarray (m, 4) or None
+        The states at ``t = i T / m`` where the cycle was solved by multiple shooting
+        (`beltmdsm.cycles.multiple`); None for single shooting.
 
     See Also
     --------
@@ -119,6 +124,7 @@ class CyclePoint:
     image: FlowImage = field(repr=False, default=None)
     column: NDArray[np.float64] | None = field(repr=False, default=None)
     recorded: dict[str, float] = field(repr=False, default_factory=dict)
+    segments: NDArray[np.float64] | None = field(repr=False, default=None)
 
     def observables(self, vb: float) -> dict[str, float]:
         """The ranges of ``X1'`` and ``X1``, the largest ``|Vr| = |X1' - vb|`` (at an
@@ -371,6 +377,10 @@ class CycleProblem(Problem):
                 "corrector's steps shrink towards nothing (a cycle this unstable needs "
                 "multiple shooting)",
             )
+        return self.period_stop(new)
+
+    def period_stop(self, new):
+        """The end where the period passes `PERIOD_LIMIT` times the first (or None)."""
         if new.period > PERIOD_LIMIT * self.period0:
             return failed(
                 new,

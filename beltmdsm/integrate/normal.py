@@ -26,8 +26,9 @@ from numpy.typing import ArrayLike, NDArray
 from beltmdsm.generated import hybrid, oscillator
 
 from ..model import Backend, Model
+from ..settings import fastest_rate
 from . import _compiled, _dop853
-from .events import check_status
+from .events import REST_STEP, check_status
 from .switching import EVENT_KINDS, SURFACE_INDEX, Mode, Switching
 
 __all__ = ["NormalMotion", "normal_motion", "normal_key", "clear_cache", "GRID_STEP"]
@@ -203,7 +204,10 @@ class NormalMotion:
                 h_next,
                 rtol,
                 atol,
-                np.inf,
+                # at rest the steps grew without bound and amplified the rounding (to
+                # 1e-9 m by t = 200 s at Vb = 0: a held mass then slipped; issue 36
+                # item 11), as events.py found
+                REST_STEP / fastest_rate(model),
                 _dop853.MAX_STEPS - n_steps,
             )
             check_status(code, t_stop, "in the normal motion", rtol, atol)
@@ -322,7 +326,7 @@ def normal_motion(
     True
     """
     key = (
-        normal_key(model),
+        (normal_key(model), fastest_rate(model)),  # the steps' bound (NormalMotion)
         float(t_end),
         float(rtol),
         float(atol),

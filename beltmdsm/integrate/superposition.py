@@ -318,6 +318,7 @@ class Superposition:
         t = float(t0)
         mode = _mode_in(sw, normal, normal.segment_at(t), t, X1, Y1)
         status, message = "done", "reached t_end"
+        held = -np.inf  # the time friction last held the mass at a crossed stick limit
         while t < t_end:
             k = normal.segment_at(t)
             tc = min(float(normal.switch_t[k + 1]), t_end)
@@ -336,6 +337,12 @@ class Superposition:
                 break
             if hit >= 0:
                 guard = rows[hit]
+                inside = sw.holds(mode, guard, t_stop, state) if t_stop > held else None
+                if inside is not None:
+                    # a stick limit crossed within its rounding, the margin not shrinking:
+                    # the mass stays stuck, no switch (as in events.py, once per time)
+                    held, t, X1, Y1 = t_stop, t_stop, float(inside[0]), float(inside[1])
+                    continue
                 surface = sw.guards[mode][2][guard][0]
                 kind = sw.kind(mode, guard)
                 state = sw.project(mode, guard, state)

@@ -15,6 +15,7 @@ from inprocess import once
 
 from beltmdsm.cli import main
 from beltmdsm.prediction import prediction
+from beltmdsm.settings import SolverSettings
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -167,10 +168,18 @@ def test_no_periodic_response_is_one_line(capsys, argv):
 
 
 def test_tolerances_the_integrator_cannot_keep_are_one_line(capsys):
+    # refused where they enter (MAX_RTOL, beltmdsm/settings.py), not by the integrator
+    # failing somewhere in the run: --rtol 1 stopped the events solver at t = 5.96 s and
+    # ran the superposition to "done" once its normal steps were bounded (issue 36)
     for solver in ("events", "superposition"):
-        argv = ["simulate", "--rtol", "1", "--solver", solver, "--no-progress"]
-        line = _one_line_error(capsys, argv, "--rtol/--atol", "rtol = 1")
-        assert "step fell below the rounding of the time" in line
+        for rtol in ("1", "0.5", "0.100001"):
+            argv = ["simulate", "--rtol", rtol, "--solver", solver, "--no-progress"]
+            line = _one_line_error(capsys, argv, "argument --rtol:", "MAX_RTOL = 0.1", rtol)
+            assert "no significant digit" in line
+    with pytest.raises(ValueError, match="rtol must be <= MAX_RTOL = 0.1"):
+        SolverSettings(rtol=1.0)
+    # the bound itself is a run (one digit), whose energy balance says whether it closes
+    assert SolverSettings(rtol=0.1).rtol == 0.1
 
 
 # ---------------------------------------------------------------- 7. bounded work
@@ -197,7 +206,7 @@ def test_a_real_process_refuses_in_one_line_without_a_traceback():
         (["simulate", "--Vb", "1", "--dt", "0.7"], "--dt"),
         (["simulate", "--t-end", "1e7", "--dt", "1"], "--t-end"),
         # (no progress bar: under load the run may pass the 2 s after which it shows)
-        (["simulate", "--rtol", "1", "--no-progress"], "--rtol/--atol"),
+        (["simulate", "--rtol", "1", "--no-progress"], "--rtol"),
         (["floquet", "--mu_s", "1"], "no periodic response"),
     ):
         r = subprocess.run(

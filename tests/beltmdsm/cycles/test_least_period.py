@@ -202,32 +202,6 @@ def test_a_branch_out_to_1e300_is_the_branch_that_ends_inside():
     assert ("stick_onset", 2.90039) in kinds and ("range", 0.5) in kinds
 
 
-def test_a_branch_in_v_s_ends_in_time_with_its_reason():
-    # issue 36 item 8: 2 min 40 s, 2000 points, "stopped after 2000 points". The
-    # pure-slip cycles born at the Hopf point (v_s = 0.5974) grow unstable as v_s falls
-    # (Stribeck's slope at Vr = 0 is (mu_s - mu_k) g / v_s): the branch ends where the
-    # largest multiplier passes 1e3, saying so
-    argv = ["--alpha", "0", "--friction", "stribeck", "--Vb", "1.5", "--param", "v_s"]
-    found = _cli_json("branch", *argv, "--from", "0.1", "--to", "3", timeout=120)
-    end = found["special_points"][-1]
-    assert end["kind"] == "failed" and "largest multiplier" in end["detail"]
-    assert len(found["points"]) < 200
-    last = found["points"][-1]
-    assert 1e3 < last["max_abs_multiplier"] and last["n_sticks"] == 0
-    # the reference: the last cycle, run once round by solve_ivp, closes on itself
-    # (its error grows by |mu| ~ 1e3 over the period: 1e-12 -> 1e-9) and slips back
-    # throughout
-    v_s, Vb, mu_s = last["value"], 1.5, 0.4
-
-    def slip(t, y):
-        mu = MU_K + (mu_s - MU_K) * math.exp(-abs(y[1] - Vb) / v_s)
-        return [y[1], -2 * BETA1 * OMEGA1 * y[1] - OMEGA1**2 * y[0] + mu * G]
-
-    x0 = np.array(last["state0"][:2])
-    sol = solve_ivp(
-        slip, (0.0, last["period"]), x0, method="DOP853", rtol=1e-12, atol=1e-12, dense_output=True
-    )
-    assert np.max(np.abs(sol.y[:, -1] - x0)) < 1e-7
-    v = sol.sol(np.linspace(0.0, last["period"], 20001))[1]
-    assert v.max() < Vb
-    assert v.max() - Vb == pytest.approx(last["max_relative_velocity"], abs=1e-6)
+# issue 36 item 8, the branch in v_s (was: it ends where the largest multiplier passes
+# 1e3): it now reaches its stick onset by multiple shooting,
+# tests/beltmdsm/cycles/test_multiple_shooting.py
