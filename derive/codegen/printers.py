@@ -32,6 +32,7 @@ __all__ = [
     "Mpmath",
     "root_line",
     "lift_integrals",
+    "atoms_of",
 ]
 
 
@@ -73,13 +74,20 @@ def hoisted_roots(flat, args=()):
 
 
 @functools.cache
+def atoms_of(expr, kind) -> frozenset:
+    """``expr.atoms(kind)``, once per expression: one expression is an output of many
+    variants and functions, and each walk of its tree costs as much as printing it."""
+    return frozenset(expr.atoms(kind))
+
+
+@functools.cache
 def _roots(flat: tuple, args: tuple) -> tuple:
     """`hoisted_roots`, found once for every printing of ``flat``."""
     found = sorted(
         {
             (e.base, int(e.exp.q))
             for x in flat
-            for e in x.atoms(sp.Pow)
+            for e in atoms_of(x, sp.Pow)
             if is_root(e) and not (e.base.free_symbols & set(args))
         },
         key=lambda bd: (sp.default_sort_key(bd[0]), bd[1]),
@@ -269,7 +277,7 @@ def lift_integrals(flat, printer):
 def _integrals(flat: tuple) -> tuple:
     """``((name, integral), ...)`` of `lift_integrals` and the outputs with the names in
     place, found once for the numpy, scalar and mpmath printings of ``flat``."""
-    found = sorted({i for e in flat for i in e.atoms(sp.Integral)}, key=sp.default_sort_key)
+    found = sorted({i for e in flat for i in atoms_of(e, sp.Integral)}, key=sp.default_sort_key)
     if not found:
         return (), flat
     names = {i: sp.Symbol(f"_quad{k}", real=True) for k, i in enumerate(found)}
