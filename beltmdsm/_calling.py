@@ -234,12 +234,13 @@ def public(
 
 
 def ranged(
-    *, renamed: Mapping[str, Rename] | None = None
+    *, renamed: Mapping[str, Rename] | None = None, models: bool = False
 ) -> Callable[[Callable[P, F]], Ranged[P, F]]:
     """`public`, also taking the old order ``f(param, lo, hi, model, ...)``."""
 
     def decorate(function: Callable[P, F]) -> Ranged[P, F]:
-        return _wrap(function, ("param", "lo", "hi"), renamed or {}, {})  # type: ignore[return-value]
+        order = ("param", "lo", "hi")
+        return _wrap(function, order, renamed or {}, {}, models)  # type: ignore[return-value]
 
     return decorate
 
@@ -257,12 +258,12 @@ def valued(
 
 
 def mapped(
-    *, renamed: Mapping[str, Rename] | None = None
+    *, renamed: Mapping[str, Rename] | None = None, models: bool = False
 ) -> Callable[[Callable[P, F]], Mapped[P, F]]:
     """`public`, also taking the old order ``f(x, x_lo, x_hi, y, y_lo, y_hi, model, ...)``."""
 
     def decorate(function: Callable[P, F]) -> Mapped[P, F]:
         order = ("x", "x_lo", "x_hi", "y", "y_lo", "y_hi")
-        return _wrap(function, order, renamed or {}, {})  # type: ignore[return-value]
+        return _wrap(function, order, renamed or {}, {}, models)  # type: ignore[return-value]
 
     return decorate

@@ -19,16 +19,18 @@ from typing import Any
 from ._calling import public
 from .continuation import branch as forced
 from .continuation.branch_result import Branch, record_points
+from .continuation.oscillator_branch import oscillator_branch
 from .continuation.settings import ContinuationSettings
 from .cycles.branch import cycle_branch, cycle_branch_from
 from .excitation import is_autonomous
 from .model import Backend, Model, as_model
+from .oscillator.api import _paper_keywords
 from .periodic.response import PeriodicResponse
 
 __all__ = ["branch", "continue_branch"]
 
 
-@public()
+@public(models=True)
 def branch(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -101,6 +103,11 @@ def branch(
     """
     forced._check_record(record)
     model = as_model(model)
+    if model.model != "paper":  # another registered model: its forced response
+        _paper_keywords("branch", model, backend=backend)
+        return oscillator_branch(
+            model, periods=periods, param=param, lo=lo, hi=hi, record=record, settings=settings
+        )
     if not is_autonomous(model):
         return forced.branch(
             model, periods=periods, param=param, lo=lo, hi=hi, backend=backend,

@@ -17,9 +17,10 @@ constraints that involve it). `Model.arguments` gives a generated function the
 keywords it takes: every parameter and the options it declares, marked as checked
 (``beltmdsm.generated._support.CHECKED``), so that the function does not check them again.
 
-`require` is how an analysis checks a structural fact of the chosen laws that SymPy
-decided (``beltmdsm.generated.capabilities``): it raises `Unsupported`, naming the law and the
-missing property, where the fact does not hold.
+`require` (beltmdsm/facts.py) is how an analysis checks a structural fact of the chosen
+laws that SymPy decided (``beltmdsm.generated.capabilities``); the checks of one value
+(`is_real`, `check_domain`) are beltmdsm/domains.py's, and another registered model's
+parameters (`OtherModel`) beltmdsm/other_model.py's: all re-exported here.
 
 What a model's excitation implies (its start, its period, whether there is any) is
 `beltmdsm.excitation`'s.
@@ -27,18 +28,13 @@ What a model's excitation implies (its start, its period, whether there is any) 
 
 from __future__ import annotations
 
-import difflib
 import functools
 import hashlib
 import inspect
 import json
-import math
-import numbers
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
 from typing import Any, Literal
-
-import numpy as np
 
 from beltmdsm.generated import parameters as _table
 from beltmdsm.generated._support import CHECKED
@@ -46,16 +42,17 @@ from beltmdsm.generated.parameters import (
     BASE,
     DEFAULT_FROM,
     DEFAULTS,
-    DOMAIN_RULES,
     DOMAINS,
     KNOWN,
     PARAMETERS,
-    within,
 )
 
 # beltmdsm.generated._support's class (beltmdsm.errors): one class of one name, so that
 # ``except Unsupported`` catches a refusal of the generated modules too
+from .domains import check_domain, is_real, real_number
 from .errors import Unsupported
+from .facts import require
+from .other_model import PAPER, OtherParameters, model_module
 
 __all__ = [
     "Model",
@@ -112,8 +109,6 @@ LAW_OWNERS: Mapping[str, tuple[tuple[str, str], ...]] = MappingProxyType(
 )
 
 
-#: The default mechanical model, ``beltmdsm.generated.models.MODELS[0]``.
-PAPER = "paper"
 #: The public analyses (``beltmdsm.<name>``) that take a model.
 ANALYSES = (
     "simulate", "periodic_response", "floquet", "periodic_start", "cycle", "seed_cycle",
@@ -121,23 +116,32 @@ ANALYSES = (
     "classify", "basins", "basin_stability", "predict", "validate", "sweep",
 )  # fmt: skip
 #: Those the generic runtime (beltmdsm/oscillator/) runs for any registered model.
-GENERIC = ("simulate", "periodic_response", "floquet", "cycle", "sweep", "lyapunov", "basins")
+GENERIC = (
+    "simulate", "periodic_response", "floquet", "cycle", "sweep", "lyapunov", "basins",
+    "branch", "floquet_band", "floquet_map", "responses", "coexistence", "classify",
+    "periodic_start",
+)  # fmt: skip
+#: Those of `GENERIC` that follow a forced response: they run another model where one
+#: of its excitation amplitudes is not 0 (`OtherModel.capabilities`).
+FORCED = ("branch", "floquet_band", "floquet_map")
 #: Why the generic runtime does not run the others: the paper's own piece (a key of a
 #: model module's ``ABSENT``) or what beltmdsm/oscillator/ lacks.
 LACKS: Mapping[str, str] = MappingProxyType(
     {
         "predict": "ABSENT:mdsm",
         "validate": "ABSENT:paper_check",
-        "periodic_start": "beltmdsm.oscillator starts a run where it is asked (y0), "
-        "it has no start on the periodic response",
-        "seed_cycle": "beltmdsm.oscillator seeds its cycles itself (beltmdsm.cycle)",
-        "floquet_band": "beltmdsm.oscillator has no band of unstable responses over a range",
-        "branch": "beltmdsm.oscillator has no continuation through folds of a forced response",
-        "floquet_map": "beltmdsm.oscillator has no two-parameter map of the response's stability",
-        "responses": "beltmdsm.oscillator has no search of the coexisting forced responses",
-        "coexistence": "beltmdsm.oscillator has no search of the coexisting forced responses",
-        "classify": "beltmdsm.oscillator has no classification of what a run settles on "
-        "(beltmdsm.basins labels equilibrium and cycles)",
+        "seed_cycle": "beltmdsm.oscillator seeds a cycle inside beltmdsm.cycle (a run "
+        "from steady sliding moved along its least stable direction, shot from its stick "
+        "end or least slip speed); pass guess= (and period=) to beltmdsm.cycle instead",
+        # `FORCED`: why a model without excitation is refused (`OtherModel.capabilities`
+        # adds how to excite it, or that its entry has no excitation terms)
+        "floquet_band": "beltmdsm.oscillator has no band of unstable responses over a range "
+        "without excitation",
+        "branch": "beltmdsm.oscillator has no continuation through folds of a response "
+        "without excitation (`branch --model` continues steady sliding and its "
+        "self-excited cycles)",
+        "floquet_map": "beltmdsm.oscillator has no two-parameter map of the response's "
+        "stability without excitation",
         "basin_stability": "beltmdsm.oscillator has no basin stability by sampling "
         "(beltmdsm.basins maps a plane of starts)",
     }
@@ -148,69 +152,6 @@ def _owned(name: str, options: Mapping[str, str]) -> bool:
     """Whether parameter ``name`` is part of a model with these options: a model
     parameter, or one of a chosen law's own."""
     return name not in LAW_OWNERS or any(options.get(o) == c for o, c in LAW_OWNERS[name])
-
-
-def is_real(value: object) -> bool:
-    """True for a real number (int, float, numpy scalar), False for a bool or anything else.
-
-    Parameters
-    ----------
-    value : object
-        What a caller passed where a number belongs.
-
-    Returns
-    -------
-    bool
-        Whether ``value`` is a real number; ``True`` (a flag) is not one.
-
-    See Also
-    --------
-    beltmdsm.model.check_domain : Whether a number lies in a parameter's domain.
-
-    Examples
-    --------
-    A flag is no number, although ``float(True)`` is 1.0:
-
-    >>> is_real(2), is_real(1.5), is_real(True), is_real("2")
-    (True, True, False, False)
-    """
-    return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
-
-
-def check_domain(name: str, value: float) -> str | None:
-    """What is wrong with ``value`` for parameter ``name`` ("must be > 0"), or None.
-
-    Parameters
-    ----------
-    name : str
-        A parameter of Eq. (4) or of a law (``beltmdsm.model.MODEL_PARAMETERS``).
-    value : float
-        The value to check.
-
-    Returns
-    -------
-    str or None
-        The rule ``value`` breaks, worded to follow the parameter's name, or None where
-        it lies in the domain.
-
-    Raises
-    ------
-    KeyError
-        For a name that is no parameter.
-
-    See Also
-    --------
-    beltmdsm.model.Model : Checks every parameter this way when it is built.
-
-    Examples
-    --------
-    The belt speed ``Vb`` may be zero but not negative:
-
-    >>> check_domain("Vb", -1.0), check_domain("Vb", 0.0)
-    ('must be >= 0', None)
-    """
-    domain = DOMAINS[name]
-    return None if within(domain, value) else f"must be {DOMAIN_RULES[domain][2]}"
 
 
 def _check(name: str, value: float) -> None:
@@ -231,17 +172,6 @@ def _check_static(friction: str, params: Mapping[str, float]) -> None:
             f"exceeds its static bound {static} by {excess:.6g}: stick would hold less "
             f"than slip does; choose {rest} <= {static}"
         )
-
-
-def _number(name: str, value: object) -> float:
-    # float(True) is 1.0: a flag passed where a number belongs is a mistake
-    if not is_real(value):
-        raise ValueError(f"parameter {name!r} must be a number; got {value!r}")
-    value = float(value)
-    if not math.isfinite(value):
-        raise ValueError(f"parameter {name!r} must be finite; got {value!r}")
-    # -0.0 + 0.0 is 0.0: the two zeros are one value, with one digest
-    return value + 0.0
 
 
 class Model:
@@ -319,7 +249,7 @@ class Model:
                     f"options: {', '.join(OPTIONS)}"
                 )
             elif value is not None:
-                given[name] = _number(name, value)
+                given[name] = real_number(name, value)
         for name in [n for n in given if not _owned(n, options)]:
             if given.pop(name) != BASE.get(name):
                 by = LAW_OWNERS[name]
@@ -411,7 +341,7 @@ class Model:
         # parameters of this model only: the changed ones are checked, with those that
         # follow them (alpha_t follows alpha unless given) and the constraints that
         # involve them; the rest were checked when this model was built
-        changed = {k: _number(k, v) for k, v in kw.items()}
+        changed = {k: real_number(k, v) for k, v in kw.items()}
         given = {**self._given, **changed}
         for name, source in DEFAULT_FROM.items():
             if source in changed and name not in given:
@@ -519,12 +449,13 @@ class Model:
         return hashlib.sha256(text.encode()).hexdigest()
 
 
-class OtherModel(Model):
+class OtherModel(OtherParameters, Model):
     """A registered model other than the paper's, with its friction law and parameters.
 
     Made by ``Model(model=NAME, ...)``: the model's own parameters (its generated module
     ``beltmdsm.generated.models.<NAME>``: ``PARAMETERS[friction]``, ``DEFAULTS``,
-    ``DOMAINS``), checked once here. The analyses of `GENERIC` run it on the generic
+    ``DOMAINS``), checked once (`beltmdsm.other_model.OtherParameters`, which holds them
+    and refuses the paper's pieces). The analyses of `GENERIC` run it on the generic
     runtime (beltmdsm/oscillator/); the others refuse it in one line naming the model
     and what it lacks (`capabilities`). The paper's options (contact, tension) and its
     generated functions (`Model.arguments`, `Model.fact`) are not its: asked for, they
@@ -545,51 +476,13 @@ class OtherModel(Model):
 
     __slots__ = ()
 
-    def __init__(self, **kw: Any) -> None:
-        name = kw.pop("model")
-        module = _model_module(name)
-        laws = tuple(module.FRICTION_LAWS)
-        friction = kw.pop("friction", None) or laws[0]
-        if friction not in laws:
-            raise ValueError(
-                f"friction must be one of {', '.join(map(repr, laws))} for model "
-                f"{name!r}; got {friction!r}"
-            )
-        names = tuple(module.PARAMETERS[friction])
-        given = {}
-        for key, value in kw.items():
-            if key in OPTIONS:
-                raise ValueError(
-                    f"{key}: an option of the paper's model; model {name!r} derives its "
-                    "normal force in its registry entry (derive/models/entries.py)"
-                )
-            if key not in names:
-                raise ValueError(
-                    f"{key}: not a parameter of model {name!r} with friction={friction!r} "
-                    f"({', '.join(names)})"
-                )
-            if value is None:
-                continue
-            number = _number(key, value)
-            if not within(module.DOMAINS[key], number):
-                rule = DOMAIN_RULES[module.DOMAINS[key]][2]
-                raise ValueError(f"parameter {key!r} must be {rule}; got {number!r}")
-            given[key] = number
-        params = {n: given.get(n, float(module.DEFAULTS[n])) for n in names}
-        setattr_ = object.__setattr__
-        setattr_(self, "_given", MappingProxyType(given))
-        setattr_(self, "_params", MappingProxyType(params))
-        setattr_(self, "_options", MappingProxyType({"model": name, "friction": friction}))
-        setattr_(self, "_pinned", ())
-        setattr_(self, "_key", (name, friction, tuple(params.items())))
-
     def replace(self, **kw: Any) -> Model:
         """The same model with some parameters changed, or another law or model (a law's
         parameters that the new law lacks are dropped)."""
         options = {**self._options, **{k: kw.pop(k) for k in ("model", "friction") if k in kw}}
         if options["model"] != self.model:
             return Model(**options, **kw)
-        names = _model_module(self.model).PARAMETERS[options["friction"]]
+        names = model_module(self.model).PARAMETERS[options["friction"]]
         given = {k: v for k, v in self._given.items() if k in names}
         return Model(**options, **{**given, **kw})
 
@@ -597,23 +490,24 @@ class OtherModel(Model):
         return (_rebuild_other, (dict(self._given), dict(self._options)))
 
     @property
-    def model(self) -> str:
-        return self._options["model"]
-
-    @property
-    def states(self) -> tuple[str, ...]:
-        """The model's states, in its order (its module's ``STATES``)."""
-        return tuple(_model_module(self.model).STATES)
-
-    @property
     def capabilities(self) -> Mapping[str, tuple[bool, str]]:
-        absent = _model_module(self.model).ABSENT
+        """Public analysis -> ``(runs, why not)`` for this model at these parameters: the
+        forced analyses (`FORCED`) run where an excitation amplitude is not 0."""
+        module = model_module(self.model)
+        excited = any(self._params.get(amplitude) for _, amplitude, _, _ in module.EXCITATION)
         out = {}
         for name in ANALYSES:
-            why = LACKS.get(name, "")
+            runs = name in GENERIC and (excited or name not in FORCED)
+            why = "" if runs else LACKS.get(name, "")
             if why.startswith("ABSENT:"):
-                why = absent[why.removeprefix("ABSENT:")]
-            out[name] = (name in GENERIC, why)
+                why = module.ABSENT[why.removeprefix("ABSENT:")]
+            elif name in FORCED and not runs:
+                why += (
+                    ": set an excitation amplitude"
+                    if module.EXCITATION
+                    else ": the model has no excitation terms (derive/models/entries.py)"
+                )
+            out[name] = (runs, why)
         return MappingProxyType(out)
 
     def refusal(self, analysis: str) -> str:
@@ -622,54 +516,6 @@ class OtherModel(Model):
             f"{analysis}: model {self.model!r}: {self.capabilities[analysis][1]}; "
             f"it runs the paper's model only (model={PAPER!r})"
         )
-
-    def _paper_only(self, what: str):
-        raise Unsupported(
-            f"model {self.model!r}: {what} belongs to the paper's model; this analysis "
-            f"runs the paper's model only (model={PAPER!r})"
-        )
-
-    @property
-    def contact(self) -> Contact:  # type: ignore[override]
-        self._paper_only("the contact law")
-
-    @property
-    def tension(self) -> Tension:  # type: ignore[override]
-        self._paper_only("the tension law")
-
-    def fact(self, name: str) -> tuple[bool, str]:
-        self._paper_only(f"the capability {name!r} of the paper's laws")
-
-    def arguments(self, function: Callable[..., Any]) -> dict[str, Any]:
-        self._paper_only(f"the generated function {function.__name__}")
-
-    def __repr__(self) -> str:
-        module = _model_module(self.model)
-        changed = {k: v for k, v in self._params.items() if v != module.DEFAULTS[k]}
-        args = ", ".join(f"{k}={v!r}" for k, v in changed.items())
-        law = f", friction={self.friction!r}" if self.friction != module.FRICTION_LAWS[0] else ""
-        return f"Model(model={self.model!r}{law}{', ' if args else ''}{args})"
-
-    def as_dict(self) -> dict[str, Any]:
-        """``{"model": NAME, "params": {...}, "friction": LAW}``, for JSON."""
-        return {"model": self.model, "params": dict(self._params), "friction": self.friction}
-
-    def digest(self) -> str:
-        text = json.dumps(self.as_dict(), sort_keys=True)
-        return hashlib.sha256(text.encode()).hexdigest()
-
-
-def _model_module(name: str):
-    """The generated module of a registered model (ValueError naming the registered)."""
-    from beltmdsm.generated import models
-
-    if name not in models.MODELS:
-        close = difflib.get_close_matches(str(name), models.MODELS, n=1)
-        hint = f"; did you mean {close[0]!r}?" if close else ""
-        raise ValueError(
-            f"model must be one of {', '.join(map(repr, models.MODELS))}; got {name!r}{hint}"
-        )
-    return models.load(name)
 
 
 def _rebuild_other(given: dict[str, float], options: dict[str, str]) -> Model:
@@ -681,50 +527,6 @@ def _declared_options(function: Callable[..., Any]) -> tuple[str, ...]:
     """The model options among a function's keyword-only parameters."""
     kinds = inspect.signature(function).parameters.items()
     return tuple(name for name, p in kinds if p.kind is p.KEYWORD_ONLY and name in OPTIONS)
-
-
-def require(model: Model, fact: str, analysis: str) -> None:
-    """Raise `Unsupported` unless ``fact`` (``beltmdsm.generated.capabilities.FACTS``) holds.
-
-    The message names the analysis, the law and the property, in one line:
-    ``"superposition: friction='stribeck': the slip-mode friction depends on X1'"``.
-
-    Parameters
-    ----------
-    model : Model
-        The model the analysis is asked for.
-    fact : str
-        A property of the model's laws, a key of
-        ``beltmdsm.generated.capabilities.FACTS``.
-    analysis : str
-        The analysis that needs the fact, named first in the message.
-
-    Raises
-    ------
-    Unsupported
-        Where the fact does not hold for the model's laws.
-    KeyError
-        For a fact that is not in the table.
-
-    See Also
-    --------
-    beltmdsm.model.Model.fact : Whether a fact holds, and why not.
-
-    Examples
-    --------
-    Coulomb's slip friction does not depend on the state; Stribeck's depends on the
-    slip speed, so an analysis that needs the first fact refuses it in one line:
-
-    >>> require(Model(friction="coulomb"), "slip_friction_state_independent", "sketch")
-    >>> try:
-    ...     require(Model(friction="stribeck"), "slip_friction_state_independent", "sketch")
-    ... except Unsupported as refusal:
-    ...     print(refusal)
-    sketch: friction='stribeck': the slip-mode friction mu(|Vr|) F depends on X1' ...
-    """
-    holds, reason = model.fact(fact)
-    if not holds:
-        raise Unsupported(f"{analysis}: {reason}")
 
 
 def _rebuild(given: dict[str, float], options: dict[str, str]) -> Model:

@@ -39,7 +39,7 @@ from numpy.typing import ArrayLike
 from ._calling import public
 from .errors import NoPeriodicResponse, Refused
 from .excitation import excitation_period, initial_state
-from .model import Backend, Model
+from .model import Backend, Model, as_model
 from .periodic.base import PeriodMap
 from .periodic.engines import ENGINES, engine_of, period_map
 from .periodic.locked import LOCK_LIMIT, Stroboscope, map_stroboscope, stroboscope
@@ -68,7 +68,7 @@ __all__ = [
 PERTURBATION = 1e-2
 
 
-@public()
+@public(models=True)
 def periodic_start(
     model: Model, perturbation: float = PERTURBATION, backend: Backend | None = None
 ) -> np.ndarray:
@@ -89,6 +89,9 @@ def periodic_start(
     ndarray (4,)
         ``(X1, X1', X2, X2')`` at ``t = 0``: the response's state at phase 0 with
         ``X1`` moved.
+        Another registered model: its ``2n`` states (`beltmdsm.oscillator.api.periodic_start`:
+        the forced response at phase 0, or without excitation the self-excited cycle's
+        shooting state, the first state moved).
 
     Raises
     ------
@@ -113,6 +116,11 @@ def periodic_start(
     """
     if not (isinstance(perturbation, (int, float)) and math.isfinite(perturbation)):
         raise ValueError(f"perturbation must be a finite number; got {perturbation!r}")
+    model = as_model(model)
+    if model.model != "paper":  # another registered model: the generic runtime
+        from .oscillator import api
+
+        return api.periodic_start(model, float(perturbation), backend=backend)
     state = periodic_response(model, backend=backend).state0
     return state + np.array([perturbation, 0.0, 0.0, 0.0])
 

@@ -97,7 +97,7 @@ ZERO_TOL = 5e-4
 _MULTIPLIER_TOL = 1e-9
 
 
-@public()
+@public(models=True)
 def classify(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -122,6 +122,10 @@ def classify(
     Returns
     -------
     Attractor
+        For another registered model (``Model(model="belt_1dof")``) a
+        `beltmdsm.oscillator.classification.Settled`: the same kinds, from the generic
+        runtime's spectrum and where its run lands (its default start: rest;
+        ``backend`` is refused).
 
     See Also
     --------
@@ -135,6 +139,11 @@ def classify(
     'periodic'
     """
     model = as_model(model)
+    if model.model != "paper":  # another registered model: the generic runtime
+        from ..oscillator import api
+
+        t_end = number("t_end", t_end, above=0)
+        return api.classify(model, y0, t_end, t_transient, backend=backend)
     spec = lyapunov(model, y0=y0, t_end=t_end, t_transient=t_transient, backend=backend)
     try:
         excitation_period(model)

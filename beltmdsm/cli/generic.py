@@ -14,7 +14,7 @@ import json
 
 import numpy as np
 
-from .models import refuse_flags, system_from
+from .models import model_of, refuse_flags, system_from
 
 __all__ = ["simulate", "floquet", "branch"]
 
@@ -63,11 +63,12 @@ def simulate(args: argparse.Namespace) -> int:
 
     refuse_flags(
         args,
-        ("start", "perturbation", "modulation", "png", "classify", "solver", "t_discard")
+        ("start", "perturbation", "modulation", "png", "solver", "t_discard")
         + ("on_contact_loss",),
     )
     system = system_from(args)
     sim = run(system, args.t_end, dt=args.dt, rtol=args.rtol, atol=args.atol)
+    attractor = _classified(args, system, sim.y[:, 0]) if args.classify else None
     out = {
         **system.as_dict(),
         "t_end": float(sim.t[-1]),
@@ -89,8 +90,19 @@ def simulate(args: argparse.Namespace) -> int:
     ]
     if args.save:
         lines.append(f"samples written to {args.save}")
+    if attractor is not None:
+        out["attractor"] = attractor.as_dict()
+        lines += [f"settles on: {attractor!r}", f"  {attractor.evidence}"]
     _print(args, out, lines)
     return 0 if sim.status == "done" else 2
+
+
+def _classified(args: argparse.Namespace, system, y0):
+    """``--classify``: `beltmdsm.classify` of the model from the run's start, over at
+    least 2000 s (as the paper's ``simulate --classify``)."""
+    from ..attractors.classification import classify
+
+    return classify(model_of(system), y0=y0, t_end=max(2000.0, args.t_end))
 
 
 def _cycle(c) -> dict:
@@ -162,18 +174,18 @@ def branch(args: argparse.Namespace) -> int:
     pure-slip cycles born at each Hopf point, followed to their stick onset
     (`beltmdsm.oscillator.hopf_branch`)."""
     from ..oscillator import hopf_points, steady_sliding
+    from ..oscillator.equilibria import no_hopf_reason
     from ..oscillator.hopf_branch import hopf_branch
 
-    refuse_flags(args, ("png",))
     lo, hi = args.start, args.stop
     if not hi > lo:
         args.parser.error(f"argument --to: must be > --from ({lo:g}); got {hi:g}")
     system = system_from(args)
-    if system.excitation_period() is not None:
-        args.parser.error(
-            f"argument --model: branch of model {system.name!r} continues steady sliding and "
-            "its self-excited cycles (unforced); set every excitation amplitude to 0"
-        )
+    if system.excitation_period() is not None:  # its forced response, continued
+        from .generic_forced import branch as forced
+
+        return forced(args)
+    refuse_flags(args, ("png",))
     if args.param not in system.params:
         args.parser.error(
             f"argument --param: not a parameter of model {system.name!r} "
@@ -192,19 +204,21 @@ def branch(args: argparse.Namespace) -> int:
                 "eigenvalues": _pairs(eq.eigenvalues),
             }
         )
-    branches = [hopf_branch(system, args.param, float(h), hi - lo) for h in points]
+    branches = [hopf_branch(system, args.param, float(h), hi - lo, (lo, hi)) for h in points]
+    none = "" if len(points) else no_hopf_reason(system, args.param, lo, hi)
     out = {
         **system.as_dict(),
         "param": args.param,
         "range": [lo, hi],
         "hopf_points": [float(v) for v in points],
+        **({"no_hopf_point": none} if none else {}),
         "steady_sliding": rows,
         "cycle_branches": [_branch(b) for b in branches],
     }
     lines = [
         _head(system),
         f"steady sliding over {args.param} in [{lo:g}, {hi:g}]: Hopf points "
-        + (", ".join(f"{v:.10g}" for v in points) or "none"),
+        + (", ".join(f"{v:.10g}" for v in points) or f"none: {none}"),
         *(
             f"  {args.param} = {r[args.param]:.10g}: "
             + ("Hopf point" if i and i < len(rows) - 1 else "stable" if r["stable"] else "unstable")
@@ -235,4 +249,5 @@ def _branch(b) -> dict:
         ],  # fmt: skip
         "stick_onset": None if b.onset is None else b.onset.system.params[b.param],
         "failure": b.failure,
+        **({"degenerate": True, "note": b.note} if b.degenerate else {}),
     }

@@ -14,7 +14,7 @@ import argparse
 import numpy as np
 
 from .generic import _head, _print
-from .models import refuse_flags, system_from
+from .models import model_of, refuse_flags, system_from
 
 __all__ = [
     "sweep", "lyapunov", "basins", "responses", "coexistence", "basin_stability", "STATES",
@@ -227,13 +227,15 @@ def _found_lines(found) -> list[str]:
 
 
 def responses(args: argparse.Namespace) -> int:
-    """``responses --model NAME``: the stable attractors that runs from a grid of starts
-    land on, each shot exactly with its Floquet multipliers (or eigenvalues)."""
-    from ..oscillator.responses import responses as find
+    """``responses --model NAME``: `beltmdsm.responses` of the model, the stable
+    attractors that runs from a grid of starts land on, each shot exactly with its
+    Floquet multipliers (or eigenvalues)."""
+    from ..multistability.responses import responses as find
 
     refuse_flags(args, ("ladder",))
     system = system_from(args)
-    found = find(system, t_end=args.t_end, limit=args.limit)
+    model = model_of(system)
+    found = find(model, t_end=args.t_end, limit=args.limit)
     lines = [_head(system), repr(found), *_found_lines(found)]
     if found.unresolved:
         lines.append(f"  unresolved: {found.unresolved:.0%} of the starts")
@@ -242,15 +244,17 @@ def responses(args: argparse.Namespace) -> int:
 
 
 def coexistence(args: argparse.Namespace) -> int:
-    """``coexistence --model NAME``: the stable attractors at points of ``--param``
-    spaced by about ``--step``, and the ranges where two or more coexist."""
+    """``coexistence --model NAME``: `beltmdsm.coexistence` of the model, the stable
+    attractors at points of ``--param`` spaced by about ``--step``, and the ranges where
+    two or more coexist."""
+    from ..multistability.coexistence import coexistence as walk
     from ..multistability.coexistence import seed_points
-    from ..oscillator.responses import coexistence as walk
     from .flags import range_from, swept
 
     refuse_flags(args, ("png",))
     name = swept(args)
     system = system_from(args)
+    model = model_of(system)
     if name not in system.params:
         args.parser.error(
             f"argument --param: not a parameter of model {system.name!r} "
@@ -261,7 +265,7 @@ def coexistence(args: argparse.Namespace) -> int:
         points = seed_points(lo, hi, args.step)
     except ValueError as err:
         args.parser.error(f"argument --step: {err}")
-    result = walk(system, name, np.linspace(lo, hi, points), limit=args.limit)
+    result = walk(model, name, lo, hi, points=points, limit=args.limit)
     lines = [_head(system), repr(result)]
     for p in result.points:
         kinds = ", ".join(

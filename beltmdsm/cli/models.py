@@ -23,6 +23,7 @@ from ..model import LACKS, OPTIONS
 from .flags import number, params_from
 
 if TYPE_CHECKING:
+    from ..model import Model
     from ..oscillator import System
 
 __all__ = [
@@ -30,6 +31,7 @@ __all__ = [
     "model_flag",
     "other_params",
     "system_from",
+    "model_of",
     "refusal",
     "refuse_flags",
     "refuse_other_params",
@@ -168,6 +170,15 @@ def system_from(args: argparse.Namespace) -> System:
         return System(args.model, friction=args.friction, **given)
     except ValueError as err:
         args.parser.error(str(err))
+
+
+def model_of(system: System) -> Model:
+    """The `beltmdsm.Model` of a `System` from `system_from` (its flags checked there),
+    which the public functions take: a command runs the Python API's function, one
+    path for both (``responses``, ``coexistence``, ``simulate --classify``)."""
+    from ..model import Model
+
+    return Model(model=system.name, friction=system.friction, **system._given)
 
 
 def named(out: dict) -> dict:

@@ -30,6 +30,7 @@ from ..arguments import count, flag, number
 from ..errors import NoPeriodicResponse, Refused
 from ..excitation import excitation_period
 from ..model import MODEL_PARAMETERS, Backend, Model, as_model, check_domain
+from ..oscillator.api import _paper_keywords
 from ..periodic.floquet import floquet
 from ..periodic.shooting import FORWARD_PERIODS
 from ..settings import MAX_BAND_POINTS, MIN_TOL_ULPS
@@ -50,7 +51,7 @@ from .settings import FORCED_SETTINGS, ContinuationSettings, as_settings
 __all__ = ["floquet_band"]
 
 
-@ranged()
+@ranged(models=True)
 def floquet_band(
     model: Model | Mapping[str, Any] | None,
     param: str,
@@ -147,6 +148,12 @@ def floquet_band(
     >>> [(e.kind, round(e.value, 3), e.unstable_below, e.unstable_above) for e in band.edges]
     [('neimark_sacker', 5.45, False, True)]
     """
+    model = as_model(model)
+    if model.model != "paper":  # another registered model: its forced response
+        from .oscillator_band import oscillator_band
+
+        _paper_keywords("floquet_band", model, backend=backend, settings=settings)
+        return oscillator_band(model, param, lo, hi, points=points, tol=tol, periods=periods)
     if param not in MODEL_PARAMETERS:
         raise ValueError(f"param must be a model parameter; got {param!r}")
     lo, hi = number("lo", lo), number("hi", hi)
@@ -156,7 +163,6 @@ def floquet_band(
         problem = check_domain(param, end)
         if problem:
             raise ValueError(f"the range [{lo:g}, {hi:g}] leaves the domain: {param} {problem}")
-    model = as_model(model)
     excitation_period(model)  # a band of the forced response (not of self-excited cycles)
     points, tol = count("points", points, 2), number("tol", tol, above=0)
     periods, progress = count("periods", periods, 1), flag("progress", progress)

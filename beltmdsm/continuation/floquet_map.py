@@ -100,7 +100,8 @@ def _row_unstable(edges, lo, hi):
         "y_from": rename("y_lo"),
         "y_to": rename("y_hi"),
         "rows": rename("points"),
-    }
+    },
+    models=True,
 )
 def floquet_map(
     model: Model | Mapping[str, Any] | None,
@@ -172,6 +173,12 @@ def floquet_map(
     [[5.43, 5.7], [5.45, 5.7], [5.47, 5.7]]
     """
     clock = time.perf_counter()
+    if (other := as_model(model)).model != "paper":  # another model: its forced response
+        from ..oscillator.api import _paper_keywords
+        from .oscillator_band import oscillator_map
+
+        _paper_keywords("floquet_map", other, backend=backend, settings=settings)
+        return oscillator_map(other, x, x_lo, x_hi, y, y_lo, y_hi, points=points)
     for name in (x, y):
         if name not in MODEL_PARAMETERS:
             raise ValueError(f"a map's axes must be model parameters; got {name!r}")

@@ -21,6 +21,8 @@ The implementations:
   unknown and a phase condition (``F = (phi_T(x) - x, h(x))``);
 * `beltmdsm.continuation.equilibrium.EquilibriumProblem`: steady sliding
   (``F = f(x, p)``), its Hopf points.
+* `beltmdsm.continuation.oscillator_forced.OscillatorForcedProblem`: another derived
+  model's forced response (``F = P_p(x) - x`` of its hybrid run), its stick onset.
 
 How to add one: docs/explanation/layout.md, "Adding a continuation problem".
 """

@@ -192,7 +192,7 @@ class _Spacing(float):
     """A deprecated ``step=``, made ``points`` once the range is known."""
 
 
-@ranged(renamed={"step": ("points", _step_to_points)})
+@ranged(renamed={"step": ("points", _step_to_points)}, models=True)
 def coexistence(
     model: Model | Mapping[str, Any] | None,
     param: str,
@@ -240,6 +240,10 @@ def coexistence(
         (`beltmdsm.excitation.is_autonomous`) a
         `beltmdsm.multistability.cycle_coexistence.CycleCoexistence`: steady sliding and the
         self-excited cycles.
+        Another registered model (``Model(model="belt_1dof")``): as ``coexistence
+        --model NAME``, `beltmdsm.oscillator.responses.coexistence` at the ``points``
+        values (the stable attractors at each, sampled, not continued; ``backend``,
+        ``progress`` and ``settings`` are refused).
 
     Raises
     ------
@@ -275,8 +279,11 @@ def coexistence(
     beltmdsm.errors.Refused: points = 2 leaves no seed inside [1, 2]: ...
     """
     clock = time.perf_counter()
-    if param not in MODEL_PARAMETERS:
-        raise ValueError(f"param must be a model parameter; got {param!r}")
+    model = as_model(model)
+    other = model.model != "paper"  # another registered model: the generic runtime
+    if param not in (model.params if other else MODEL_PARAMETERS):
+        of = f" of model {model.model!r} ({', '.join(model.params)})" if other else ""
+        raise ValueError(f"param must be a model parameter{of}; got {param!r}")
     lo, hi = number("lo", lo), number("hi", hi)
     if not lo < hi:
         raise ValueError(f"the range must have lo < hi; got [{lo:g}, {hi:g}]")
@@ -286,7 +293,12 @@ def coexistence(
         points = seed_points(lo, hi, DEFAULT_STEP if points is None else float(points))
     else:
         points = _check_points(lo, hi, count("points", points, 1), f"points = {points}", "points")
-    model = as_model(model).replace(**{param: lo})
+    if other:
+        from ..oscillator import api
+
+        paper = dict(backend=backend, progress=progress or None, settings=settings)
+        return api.coexistence(model, param, lo, hi, points, limit, **paper)
+    model = model.replace(**{param: lo})
     if is_autonomous(model):
         from .cycle_coexistence import cycle_coexistence
 

@@ -266,7 +266,7 @@ def _run_distance(strobe, phases):
     )
 
 
-@public()
+@public(models=True)
 def responses(
     model: Model | Mapping[str, Any] | None = None,
     *,
@@ -285,6 +285,12 @@ def responses(
     are listed with the evidence (`beltmdsm.periodic.locked.NotLocked`). Without
     excitation, the self-excited cycles (`cycle_responses`; ``limit`` and ``t_end`` do
     not apply).
+
+    Another registered model (``Model(model="belt_1dof")``) runs on the generic runtime,
+    as ``responses --model NAME`` does: the stable attractors that runs from a grid of
+    starts land on, each shot exactly (`beltmdsm.oscillator.responses.responses`, an
+    ``Attractors``); it has no ladders (``ladder`` other than 0 or its default, or a
+    ``backend``, is refused).
 
     Parameters
     ----------
@@ -340,6 +346,11 @@ def responses(
     if not (is_real(ladder) and ladder >= 0 and is_real(t_end) and t_end > 0):
         raise ValueError(f"ladder must be >= 0 and t_end > 0; got {ladder!r}, {t_end!r}")
     model = as_model(model)
+    if model.model != "paper":  # another registered model: the generic runtime
+        from ..oscillator import api
+
+        no_ladder = None if ladder in (0.0, LADDER_SPAN) else ladder
+        return api.responses(model, limit, t_end, ladder=no_ladder, backend=backend)
     if is_autonomous(model):
         return cycle_responses(model, limit=limit, ladder=ladder, backend=backend)
     excitation_period(model)

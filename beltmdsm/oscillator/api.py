@@ -4,15 +4,17 @@
 Each public function of the paper's model hands a `beltmdsm.model.OtherModel` to its
 twin below, which builds the model's `System` and runs the generic runtime; the
 results are the runtime's (`Trajectory`, `Response`, `Cycle`, `Spectrum`, `Sweep`,
-`Basins`), their states named by the model. What a twin cannot honour (a keyword of
-the paper's integrators, a state the model lacks) it refuses in one line.
+`Basins`, `Attractors`, `Coexistence`, `Settled`), their states named by the model.
+What a twin cannot honour (a keyword of the paper's integrators, a state the model
+lacks) it refuses in one line.
 """
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from numpy.typing import ArrayLike
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ..errors import Unsupported
 from ..model import Model
@@ -21,13 +23,18 @@ from .system import System
 if TYPE_CHECKING:
     from ..settings import SolverSettings
     from .basins import Basins
+    from .classification import Settled
     from .cycles import Cycle
     from .forced import Response
     from .hybrid import Trajectory
     from .lyapunov import Spectrum
+    from .responses import Attractors, Coexistence
     from .sweep import Sweep
 
-__all__ = ["system_of", "simulate", "periodic_response", "cycle", "lyapunov", "sweep", "basins"]
+__all__ = [
+    "system_of", "simulate", "periodic_response", "periodic_start", "cycle", "lyapunov",
+    "sweep", "basins", "responses", "coexistence", "classify",
+]  # fmt: skip
 
 
 def system_of(model: Model) -> System:
@@ -141,3 +148,43 @@ def basins(
         system, x, (x_lo, x_hi), y, (y_lo, y_hi), points=points, t_end=t_end,
         executor=None if executor in (None, "serial") else executor,
     )  # fmt: skip
+
+
+def periodic_start(model: Model, perturbation: float, **paper: Any) -> NDArray[np.float64]:
+    """`beltmdsm.periodic_start` of another model: the state of its periodic orbit
+    (`periodic_response`: the forced response at phase 0, or without excitation the
+    self-excited cycle's shooting state) with its first state moved by ``perturbation``."""
+    _paper_keywords("periodic_start", model, **paper)
+    state = periodic_response(model, None, 1).state.copy()
+    state[0] += perturbation
+    return state
+
+
+def responses(model: Model, limit: int, t_end: float, **paper: Any) -> Attractors:
+    """`beltmdsm.responses` of another model: the stable attractors that runs from a
+    grid of starts land on, each shot exactly (`beltmdsm.oscillator.responses`)."""
+    from .responses import responses as find
+
+    _paper_keywords("responses", model, **paper)
+    return find(system_of(model), t_end=t_end, limit=limit)
+
+
+def coexistence(
+    model: Model, param: str, lo: float, hi: float, points: int, limit: int, **paper: Any
+) -> Coexistence:
+    """`beltmdsm.coexistence` of another model: `responses` at ``points`` values of
+    ``param`` over ``[lo, hi]``, and where two or more stable attractors coexist."""
+    from .responses import coexistence as walk
+
+    _paper_keywords("coexistence", model, **paper)
+    return walk(system_of(model), param, np.linspace(lo, hi, points), limit=limit)
+
+
+def classify(
+    model: Model, y0: ArrayLike | None, t_end: float, t_transient: float | None, **paper: Any
+) -> Settled:
+    """`beltmdsm.classify` of another model: `beltmdsm.oscillator.classification.classify`."""
+    from .classification import classify as name
+
+    _paper_keywords("classify", model, **paper)
+    return name(system_of(model), y0, t_end=t_end, t_transient=t_transient)

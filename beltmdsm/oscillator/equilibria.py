@@ -21,7 +21,7 @@ from scipy.optimize import brentq
 from ..errors import Unsupported
 from .system import System
 
-__all__ = ["Equilibrium", "steady_sliding", "hopf_points"]
+__all__ = ["Equilibrium", "steady_sliding", "hopf_points", "no_hopf_reason"]
 
 
 @dataclass(repr=False)
@@ -187,3 +187,111 @@ def hopf_points(
         if char[-1] > 0.0 and np.all(hurwitz[:-2] > 0.0):
             roots.append(root)
     return np.array(roots)
+
+
+def no_hopf_reason(system: System, parameter: str, lo: float, hi: float, points: int = 64) -> str:
+    """Why steady sliding has no Hopf point in ``parameter`` over ``[lo, hi]``, in one line.
+
+    Where its derived characteristic polynomial is the same at every value of the grid
+    (to rounding), its stability does not depend on the parameter at all (under Coulomb
+    friction a constant coefficient: the belt speed only moves the equilibrium); the
+    line then names the parameters the polynomial does depend on, where its thresholds
+    lie (Hoffmann's flutter threshold in the friction coefficient). Else it is stable,
+    or unstable, over the whole range.
+
+    Parameters
+    ----------
+    system : System
+    parameter : str
+    lo, hi : float
+        The range looked in, ``lo < hi``.
+    points : int
+        The grid (as `hopf_points`').
+
+    Returns
+    -------
+    str
+
+    See Also
+    --------
+    hopf_points : the Hopf points, where there are some.
+
+    Examples
+    --------
+    Under Coulomb friction Hoffmann's model has no Hopf point in the belt speed:
+
+    >>> why = no_hopf_reason(System("hoffmann", mu_s=1.0), "Vb", 0.5, 2.0)
+    >>> why.split(":")[0]
+    "steady sliding's characteristic polynomial does not depend on Vb (friction 'coulomb')"
+    >>> why.endswith("(its threshold in the friction coefficient mu_s)")
+    True
+    """
+    k = system.kernels
+    i = list(system.params).index(parameter)
+
+    def coefficients(p):
+        return np.asarray(k.characteristic(p), dtype=float)
+
+    base = system.p.copy()
+    a0 = coefficients(base)
+    scale = float(np.abs(a0).max())
+
+    def moved(j, value):
+        q = base.copy()
+        q[j] = value
+        return float(np.abs(coefficients(q) - a0).max()) > 1e-13 * scale
+
+    eq = steady_sliding(system.replace(**{parameter: float(lo)}))
+    word = "stable" if eq.stable else "unstable"
+    if not any(moved(i, v) for v in np.linspace(lo, hi, points)):
+        names = [n for j, n in enumerate(system.params) if moved(j, base[j] * 1.01 + 1e-3)]
+        laws = [n for n in system.module.PARAMETERS[system.friction] if n.startswith("mu")]
+        hint = [n for n in laws if n in names]
+        where = f" (its threshold in the friction coefficient {hint[0]})" if hint else ""
+        return (
+            f"steady sliding's characteristic polynomial does not depend on {parameter} "
+            f"(friction {system.friction!r}): it is {word} at every {parameter} (growth "
+            f"rate {eq.growth_rate:.6g}); its stability depends on {', '.join(names)}{where}"
+        )
+    end = steady_sliding(system.replace(**{parameter: float(hi)}))
+    flutter = _flutter(system, parameter, eq, end)
+    if flutter is not None:
+        return flutter
+    return (
+        f"steady sliding is {word} over {parameter} in [{lo:g}, {hi:g}] (growth rate "
+        f"{eq.growth_rate:.6g} to {end.growth_rate:.6g}): no Hopf point there"
+    )
+
+
+def _flutter(system: System, parameter: str, a: Equilibrium, b: Equilibrium) -> str | None:
+    """Where steady sliding is marginal (eigenvalues on the imaginary axis: no damping)
+    at one end and unstable at the other: the value where a pair leaves the axis, by
+    bisection on the growth rate (a flutter: the Hurwitz determinant ``H_{2n-1}``
+    vanishes on the whole marginal side, so it has no sign change to find)."""
+
+    def tiny(eq: Equilibrium) -> float:
+        return 1e-9 * (1.0 + float(np.abs(eq.eigenvalues).max()))
+
+    if abs(a.growth_rate) <= tiny(a) < b.growth_rate:
+        x0, x1 = a.system.params[parameter], b.system.params[parameter]
+    elif abs(b.growth_rate) <= tiny(b) < a.growth_rate:
+        x0, x1 = b.system.params[parameter], a.system.params[parameter]
+    else:
+        return None
+    lo, hi = x0, x1  # marginal at lo, unstable at hi
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        eq = steady_sliding(system.replace(**{parameter: mid}))
+        if eq.growth_rate > tiny(eq):
+            hi = mid
+        else:
+            lo = mid
+    return (
+        f"steady sliding is marginally stable (eigenvalues on the imaginary axis: no "
+        f"damping) from {parameter} = {x0:g} to {parameter} = {hi:.12g}, "
+        "where two of them meet and leave the axis (a flutter, mode coupling); no Hopf "
+        "point (the Hurwitz determinant that changes sign at one vanishes on the whole "
+        "marginal side)"
+    )

@@ -11,6 +11,15 @@ Newton's method from a small amplitude may fall back onto the equilibrium itself
 which is rejected (a cycle must stand off it). From the first cycle found, the branch
 is followed by shooting each value from the last to `stick_onset`, where the cycle
 first touches ``v_r = 0``.
+
+Where the slip mode's field is linear in the state (Coulomb friction, a constant
+coefficient, with a normal force linear in the state: Hoffmann's model; its Jacobian is
+then the same at every state, which is checked), the Hopf point is degenerate: there
+the pure-slip cycles form a linear centre, of every amplitude up to the one that
+grazes ``v_r = 0``, and off it none exists. The cycles born there stick at once: on the
+unstable side the branch is one of stick-slip cycles, seeded from the grazing orbit of
+the centre and followed away from the Hopf point (``degenerate``, the reason in
+``note``; its onset of stick is the Hopf point itself).
 """
 
 from __future__ import annotations
@@ -18,6 +27,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..errors import NoPeriodicResponse
 from .cycles import Cycle, _shoot_slip, self_excited_cycle, stick_onset
@@ -53,6 +63,11 @@ class HopfBranch:
         The grazing cycle (``onset.system.params[param]`` the onset of stick).
     failure : str
         Why the branch or its onset was not found, if so.
+    degenerate : bool
+        The slip field is linear (module docstring): the cycles are stick-slip ones,
+        born at the Hopf point from the grazing orbit of a linear centre.
+    note : str
+        Why, where ``degenerate``.
 
     See Also
     --------
@@ -71,19 +86,25 @@ class HopfBranch:
     cycles: list[Cycle] = field(default_factory=list)
     onset: Cycle | None = None
     failure: str = ""
+    degenerate: bool = False
+    note: str = ""
 
     @property
     def criticality(self) -> str:
         """``"subcritical"`` where the cycles are unstable, ``"supercritical"`` where
-        stable, ``""`` where none was found."""
+        stable, ``"degenerate"`` at a linear centre, ``""`` where none was found."""
         if not self.cycles:
             return ""
+        if self.degenerate:
+            return "degenerate"
         return "supercritical" if self.cycles[0].stable else "subcritical"
 
     def __repr__(self) -> str:
         onset = (
             f"stick onset at {self.param} = {self.onset.system.params[self.param]:.10g}"
             if self.onset is not None
+            else "stick-slip cycles from the Hopf point on (a linear centre there)"
+            if self.degenerate
             else f"no stick onset ({self.failure})"
         )
         return (
@@ -125,7 +146,76 @@ def _least_speed(c: Cycle) -> Cycle:
     return _shoot_slip(c.system, ys[int(np.argmin(speed))], c.period, 30, tol)
 
 
-def hopf_branch(system: System, param: str, hopf: float, span: float) -> HopfBranch:
+def _linear_slip(system: System, eq) -> bool:
+    """Whether the slip mode's Jacobian is the same at states around steady sliding, in
+    the same slip mode (to rounding): a field linear in the state."""
+    k, p = system.kernels, system.p
+    J0 = np.asarray(k.jacobian(0.0, eq.state, p, eq.mode), dtype=float)
+    scale = 1.0 + np.abs(eq.state).max()
+    rng = np.random.default_rng(0)  # fixed: the same answer on every run
+    checked = 0
+    for size in (0.1, 0.1, 0.1, 0.1, 0.01, 0.01, 0.01, 0.01):
+        y = eq.state + size * scale * rng.standard_normal(eq.state.size)
+        if np.sign(k.slip_velocity(0.0, y, p)) != eq.mode:
+            continue
+        J = np.asarray(k.jacobian(0.0, y, p, eq.mode), dtype=float)
+        if np.abs(J - J0).max() > 1e-12 * (1.0 + np.abs(J0).max()):
+            return False
+        checked += 1
+    return checked >= 2
+
+
+def _grazing_orbit(system: System, eq) -> NDArray[np.float64]:
+    """The state of the linear centre's orbit that grazes ``v_r = 0`` where its slip
+    velocity is largest: steady sliding plus ``A Re(v e^{i theta})`` along the critical
+    eigenvector ``v``, ``A |g . v| = |v_r|`` at steady sliding (``g`` the slip gradient)."""
+    k, p = system.kernels, system.p
+    w, V = np.linalg.eig(np.asarray(k.jacobian(0.0, eq.state, p, eq.mode), dtype=float))
+    pair = np.flatnonzero(np.abs(w.imag) > 1e-12)
+    v = V[:, pair[np.argmax(w.real[pair])]]  # the critical pair's
+    g = np.asarray(k.slip_gradient(0.0, eq.state, p), dtype=float)
+    gv = complex(g @ v)
+    turn = -eq.mode * np.conj(gv) / abs(gv)  # v_r's swing towards 0
+    amplitude = abs(k.slip_velocity(0.0, eq.state, p)) / abs(gv)
+    return eq.state + amplitude * (v * turn).real
+
+
+def _sticking_branch(system, param, hopf, stop) -> HopfBranch:
+    """The stick-slip cycles born at a degenerate Hopf point (module docstring), from
+    ``hopf`` towards ``stop`` on its unstable side."""
+    side = 1 if stop > hopf else -1
+    centre = steady_sliding(system.replace(**{param: hopf}))
+    seed = 0.999 * (_grazing_orbit(centre.system, centre) - centre.state) + centre.state
+    note = (
+        f"the slip field is linear in the state (friction {system.friction!r}): at "
+        f"{param} = {hopf:.10g} the pure-slip cycles form a linear centre up to the one "
+        "that grazes v_r = 0, and none exists off it; the cycles born there stick"
+    )
+    branch = HopfBranch(param, hopf, side, degenerate=True, note=note)
+    step = (stop - hopf) / 10
+    last = None
+    for j in range(1, 11):
+        value = hopf + j * step
+        try:
+            last = self_excited_cycle(
+                system.replace(**{param: float(value)}),
+                seed if last is None else last.state,
+                settle=50.0,
+            )
+        except NoPeriodicResponse as err:
+            branch.failure = f"at {param} = {value:.10g}: {err}"
+            break
+        branch.cycles.append(last)
+    return branch
+
+
+def hopf_branch(
+    system: System,
+    param: str,
+    hopf: float,
+    span: float,
+    bounds: tuple[float, float] | None = None,
+) -> HopfBranch:
     """The cycles born at ``hopf`` and their stick onset (module docstring).
 
     Parameters
@@ -138,6 +228,9 @@ def hopf_branch(system: System, param: str, hopf: float, span: float) -> HopfBra
     span : float
         The length of the range looked in, > 0 (the seeds sit 1 % and 3 % of it off the
         Hopf point; the branch is stepped along by 2 % of it).
+    bounds : (float, float), optional
+        The range looked in: a degenerate branch (module docstring) is followed to its
+        end on the Hopf point's unstable side (by default ``span`` beyond the Hopf point).
 
     Returns
     -------
@@ -157,6 +250,10 @@ def hopf_branch(system: System, param: str, hopf: float, span: float) -> HopfBra
     ('subcritical', 2.900393)
     """
     eq_above = steady_sliding(system.replace(**{param: hopf + 0.01 * span}))
+    if _linear_slip(eq_above.system, eq_above):
+        unstable = -1 if eq_above.stable else 1
+        end = hopf + unstable * span if bounds is None else bounds[unstable > 0]
+        return _sticking_branch(system, param, hopf, end)
     # the stable side first: a subcritical branch, which no run finds
     sides = (1, -1) if eq_above.stable else (-1, 1)
     for side in sides:

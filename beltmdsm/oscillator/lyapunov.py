@@ -47,6 +47,11 @@ class Spectrum:
         Switches of mode while averaging.
     status : str
         ``"done"``, or ``"zeno"`` where a run stopped on accumulating switches.
+    error : ndarray (2n,)
+        Half the difference of the exponents over the two halves of the window (0 for
+        a direction stick removed): how far the average has settled [1/s].
+    state : ndarray (2n,)
+        The run's last state, and ``mode`` its mode.
 
     See Also
     --------
@@ -61,6 +66,9 @@ class Spectrum:
     collapsed: int
     switches: int
     status: str = "done"
+    error: NDArray[np.float64] | None = None
+    state: NDArray[np.float64] | None = None
+    mode: int | None = None
 
     @property
     def largest(self) -> float:
@@ -159,6 +167,7 @@ def lyapunov(
     collapsed = np.zeros(m, dtype=bool)
     switches, status = 0, "done"
     n = max(1, round((t_end - t) / tau))
+    half, t_half = None, t
     for k in range(n):
         t1 = t_transient + (k + 1) * (t_end - t_transient) / n
         end = flow(system, t, y, t1, mode=mode, variational=True, **tol)
@@ -169,13 +178,20 @@ def lyapunov(
         collapsed |= gone
         logs += np.log(np.where(gone, 1.0, d))
         t, y, mode = end.t, end.y, end.mode
+        if k + 1 == n // 2:
+            half, t_half = logs.copy(), t
         if end.status != "done":
             status = end.status
             break
     span = t - t_transient
     exponents = np.where(collapsed, -np.inf, logs / max(span, 1e-300))
     order = np.argsort(-exponents, kind="stable")
+    error = np.zeros(m)
+    if half is not None and t > t_half > t_transient:  # the two halves' exponents
+        first = half / (t_half - t_transient)
+        second = (logs - half) / (t - t_half)
+        error = np.where(collapsed, 0.0, 0.5 * np.abs(second - first))
     return Spectrum(
         system, exponents[order], float(t_transient), float(span), float(tau),
-        int(collapsed.sum()), switches, status,
+        int(collapsed.sum()), switches, status, error[order], y.copy(), mode,
     )  # fmt: skip

@@ -22,12 +22,14 @@ from numpy.typing import ArrayLike
 
 from ..errors import NoPeriodicResponse
 from .basins import BasinAttractor, merge, run_starts
-from .cycles import self_excited_cycle
-from .equilibria import steady_sliding
-from .forced import forced_response
+from .cycles import Cycle, self_excited_cycle
+from .equilibria import Equilibrium, steady_sliding
+from .forced import Response, forced_response
 from .system import System
 
-__all__ = ["Found", "Attractors", "responses", "Coexistence", "coexistence"]
+__all__ = [
+    "Found", "Attractors", "responses", "Coexistence", "coexistence", "shoot_attractor",
+]  # fmt: skip
 
 
 @dataclass(repr=False)
@@ -126,7 +128,10 @@ def _starts(system: System, points: int):
     return out
 
 
-def _shoot(system: System, a: BasinAttractor):
+def shoot_attractor(system: System, a: BasinAttractor) -> Equilibrium | Response | Cycle:
+    """The set a run landed on (`beltmdsm.oscillator.basins.land`), exactly: steady
+    sliding, the forced response of ``a.periods`` periods, or the self-excited cycle
+    (NoPeriodicResponse where the shooting fails or finds another kind of cycle)."""
     if a.kind == "steady_sliding":
         return steady_sliding(system)
     if a.kind == "periodic":
@@ -135,6 +140,16 @@ def _shoot(system: System, a: BasinAttractor):
     if (cycle.kind == "slip") != (a.kind == "slip_cycle"):
         raise NoPeriodicResponse(
             f"the shooting from the {a.kind} found by the runs converged on a {cycle.kind} cycle"
+        )
+    # a period far below every time scale of steady sliding is a point where a stick
+    # ends and begins again at once, no cycle (Newton's method finds one on Hoffmann's
+    # model at mu_s = 1 from its default seed: period 5e-12 s, y' = -30.7 there)
+    shortest = 1.0 / float(np.abs(steady_sliding(system).eigenvalues).max())
+    if cycle.period < 1e-6 * shortest:
+        raise NoPeriodicResponse(
+            f"the shooting from the {a.kind} found by the runs converged on a cycle of "
+            f"period {cycle.period:.3g} s, below 1e-6 of steady sliding's shortest time "
+            f"scale {shortest:.3g} s: a stick that ends and begins at once, no cycle"
         )
     return cycle
 
@@ -195,7 +210,7 @@ def responses(
     for i, a in enumerate(merged):
         share = float(np.mean(labels == i))
         try:
-            found.append(Found(a, _shoot(system, a), share))
+            found.append(Found(a, shoot_attractor(system, a), share))
         except NoPeriodicResponse as err:
             found.append(Found(a, None, share, str(err)))
     return Attractors(system, found, len(starts), float(np.mean(labels < 0)))

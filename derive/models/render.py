@@ -1,4 +1,5 @@
-"""generated/models/<name>.py: a registered model's numeric module.
+"""generated/models/<name>.py: a registered model's numeric module, and its mpmath twin
+generated/mp/models/<name>.py (the same expressions, `beltmdsm.derive.models.flavours`).
 
 One module per model, plain ``math`` and numpy (no SymPy), deterministic text: every
 kernel is printed by the scalar printer of `beltmdsm.derive.codegen.printers` after
@@ -11,6 +12,7 @@ the models (``MODELS``, the default first) and loads one (``load``).
 
 from __future__ import annotations
 
+import functools
 import pprint
 import textwrap
 
@@ -18,8 +20,8 @@ import sympy as sp
 
 from .. import laws
 from ..codegen.files import HEADER
-from ..codegen.printers import Scalar
 from . import hybrid as hy
+from .flavours import MPMATH, NUMPY
 from .registry import MODELS
 from .steady import NUMERIC, coefficient_symbols, hurwitz, steady
 from .system import MODES, defaults, law_parameters, model_parameters, system
@@ -53,36 +55,43 @@ PAPER_PIECES = {
     "paper_check": "the check of the paper's claims (derive/paper_check/)",
 }
 
-_PRINTER = Scalar()
 _FAILED = f"equilibrium did not converge: {NUMERIC}"
 _IMPORTS = "import math  # noqa: F401 (the kernels')\nfrom typing import NamedTuple\n\nimport numpy"
+_MP_IMPORTS = "from typing import NamedTuple\n\nimport mpmath"
 
 
-def _number(e) -> str:
-    return repr(float(e)) if e.is_Number else _PRINTER.doprint(e)
-
-
-def _unpack(exprs, s, extra=()) -> list[str]:
+def _unpack(exprs, s, fl=NUMPY) -> list[str]:
     """Lines binding the states and parameters the expressions use, by index."""
     free = set().union(*[sp.sympify(e).free_symbols for e in exprs]) if exprs else set()
-    lines = [f"{x.name} = state[{i}]" for i, x in enumerate(s.state) if x in free]
-    lines += [f"{x.name} = params[{i}]" for i, x in enumerate(s.params) if x in free]
+    lines = ["t = mpmath.mpf(t)"] if fl.uses_time(exprs) else []
+    lines += [f"{x.name} = {fl.read(f'state[{i}]')}" for i, x in enumerate(s.state) if x in free]
+    lines += [f"{x.name} = {fl.read(f'params[{i}]')}" for i, x in enumerate(s.params) if x in free]
     return lines
 
 
-def _body(exprs, shape, prefix="_x") -> list[str]:
-    """CSE of the outputs together, then ``return`` of a float or a float array."""
-    repl, red = sp.cse(list(exprs), symbols=sp.numbered_symbols(prefix), order="canonical")
-    lines = [f"{x} = {_PRINTER.doprint(e)}" for x, e in repl]
-    out = [_number(e) for e in red]
+def _cse(exprs, prefix):
+    """Common subexpressions of the outputs together (canonical order): one pass, shared
+    by both flavours' printing."""
+    return _cse_cached(tuple(sp.sympify(e) for e in exprs), prefix)
+
+
+@functools.cache
+def _cse_cached(exprs, prefix):
+    return sp.cse(list(exprs), symbols=sp.numbered_symbols(prefix), order="canonical")
+
+
+def _body(exprs, shape, prefix="_x", fl=NUMPY) -> list[str]:
+    """CSE of the outputs together, then ``return`` of a number, a vector or a matrix."""
+    repl, red = _cse(exprs, prefix)
+    lines = [f"{x} = {fl.printer.doprint(e)}" for x, e in repl]
+    out = [fl.number(e) for e in red]
     if shape is None:
         lines.append(f"return {out[0]}")
     elif isinstance(shape, int):
-        lines.append(f"return numpy.array(({', '.join(out)},), dtype=numpy.float64)")
+        lines.append(fl.vector(out))
     else:
         r, c = shape
-        rows = ", ".join(f"({', '.join(out[i * c : (i + 1) * c])},)" for i in range(r))
-        lines.append(f"return numpy.array(({rows},), dtype=numpy.float64)")
+        lines.append(fl.matrix([out[i * c : (i + 1) * c] for i in range(r)]))
     return lines
 
 
@@ -91,12 +100,12 @@ def _indent(lines, n=1):
     return [(pad + line.replace("\n", "\n" + pad)).rstrip() for line in lines]
 
 
-def _function(name, signature, doc, cases, shape, s, fail):
+def _function(name, signature, doc, cases, shape, s, fail, fl=NUMPY):
     """A function whose body picks one case by a condition (``None``: the only case)."""
     lines = [f"def {name}({signature}):", f'    """{doc}"""']
     for condition, exprs in cases:
         flat = list(exprs) if shape is not None else [exprs]
-        body = _unpack(flat, s) + _body(flat, shape)
+        body = _unpack(flat, s, fl) + _body(flat, shape, fl=fl)
         if condition is None:
             lines += _indent(body)
         else:
@@ -110,7 +119,7 @@ def _modes_of(s):
     return sorted(s.fields, key=lambda m: (m != 1, m != -1, m != 0, m))
 
 
-def _kernels(s, law) -> tuple[list[str], dict[str, str]]:
+def _kernels(s, law, fl=NUMPY) -> tuple[list[str], dict[str, str]]:
     """The functions of one friction law, and the kernel name -> function name."""
     tag = f"__{law}"
     n2 = len(s.state)
@@ -121,8 +130,8 @@ def _kernels(s, law) -> tuple[list[str], dict[str, str]]:
     grad = [hy.d(s.slip, x) for x in s.state]
     out, names = [], {}
 
-    def add(kernel, text):
-        out.append(text)
+    def add(kernel, args):
+        out.append(_function(*args, fl=fl))
         names[kernel] = f"_{kernel}{tag}"
 
     def per_mode(build):
@@ -130,7 +139,7 @@ def _kernels(s, law) -> tuple[list[str], dict[str, str]]:
 
     add(
         "field",
-        _function(
+        (
             f"_field{tag}",
             sig_m,
             "The vector field of ``mode``.",
@@ -142,7 +151,7 @@ def _kernels(s, law) -> tuple[list[str], dict[str, str]]:
     )
     add(
         "jacobian",
-        _function(
+        (
             f"_jacobian{tag}",
             sig_m,
             "d field / d state of ``mode``.",
@@ -154,17 +163,15 @@ def _kernels(s, law) -> tuple[list[str], dict[str, str]]:
     )
     add(
         "slip_velocity",
-        _function(
-            f"_slip_velocity{tag}", sig, "v_r = w . q' - Vb.", [(None, s.slip)], None, s, None
-        ),
+        (f"_slip_velocity{tag}", sig, "v_r = w . q' - Vb.", [(None, s.slip)], None, s, None),
     )
     add(
         "slip_gradient",
-        _function(f"_slip_gradient{tag}", sig, "d v_r / d state.", [(None, grad)], n2, s, None),
+        (f"_slip_gradient{tag}", sig, "d v_r / d state.", [(None, grad)], n2, s, None),
     )
     add(
         "slip_acceleration",
-        _function(
+        (
             f"_slip_acceleration{tag}",
             sig_m,
             "d v_r / dt along the field of ``mode``.",
@@ -176,13 +183,11 @@ def _kernels(s, law) -> tuple[list[str], dict[str, str]]:
     )
     add(
         "normal_force",
-        _function(
-            f"_normal_force{tag}", sig, "The normal force N.", [(None, s.normal)], None, s, None
-        ),
+        (f"_normal_force{tag}", sig, "The normal force N.", [(None, s.normal)], None, s, None),
     )
     add(
         "friction_force",
-        _function(
+        (
             f"_friction_force{tag}",
             sig_m,
             "Friction along the friction direction: the law times N slipping, the holding "
@@ -195,7 +200,7 @@ def _kernels(s, law) -> tuple[list[str], dict[str, str]]:
     )
     add(
         "holding_force",
-        _function(
+        (
             f"_holding_force{tag}",
             sig,
             "The derived Lagrange multiplier that keeps d v_r / dt = 0 (stick).",
@@ -207,20 +212,16 @@ def _kernels(s, law) -> tuple[list[str], dict[str, str]]:
     )
     add(
         "stick_limit",
-        _function(
-            f"_stick_limit{tag}", sig, "The static limit mu_st N.", [(None, s.limit)], None, s, None
-        ),
+        (f"_stick_limit{tag}", sig, "The static limit mu_st N.", [(None, s.limit)], None, s, None),
     )
     if s.gap is not None:
         add(
             "gap",
-            _function(
-                f"_gap{tag}", sig, "-q_k: positive in flight.", [(None, s.gap)], None, s, None
-            ),
+            (f"_gap{tag}", sig, "-q_k: positive in flight.", [(None, s.gap)], None, s, None),
         )
     add(
         "surfaces",
-        _function(
+        (
             f"_surfaces{tag}",
             sig,
             "The switching functions (SURFACES).",
@@ -232,7 +233,7 @@ def _kernels(s, law) -> tuple[list[str], dict[str, str]]:
     )
     add(
         "surface_rates",
-        _function(
+        (
             f"_surface_rates{tag}",
             sig_m,
             "dh/dt of the switching functions (SURFACES) along the field of ``mode``.",
@@ -245,7 +246,7 @@ def _kernels(s, law) -> tuple[list[str], dict[str, str]]:
     pairs = hy.switches(s)
     add(
         "saltation",
-        _function(
+        (
             f"_saltation{tag}",
             "t, state, params, mode_before, mode_after",
             "I + (f+ - f-) n^T / (n^T f-) of the switch across its surface (SWITCHES).",
@@ -258,7 +259,7 @@ def _kernels(s, law) -> tuple[list[str], dict[str, str]]:
             f"no switch between these modes; the switches are {tuple(pairs)}",
         ),
     )
-    out.extend(_steady(s, tag))
+    out.extend(_steady(s, tag, fl))
     for k in ("equilibrium", "characteristic", "hurwitz"):
         names[k] = f"_{k}{tag}"
     return out, names
@@ -269,7 +270,7 @@ def _q_line(s, rows=None):
     return [f"{x.name} = state[{s.state.index(x)}]" for x in s.q]
 
 
-def _steady(s, tag) -> list[str]:
+def _steady(s, tag, fl=NUMPY) -> list[str]:
     st = steady(s)
     n2 = len(s.state)
     out = []
@@ -279,13 +280,15 @@ def _steady(s, tag) -> list[str]:
             f"def _equilibrium{tag}(params):",
             '    """Steady sliding (q\' = 0, mode -1, unforced): the closed form."""',
         ]
-        lines += _indent(_unpack(values, s) + _body(values, n2))
+        lines += _indent(_unpack(values, s, fl) + _body(values, n2, fl=fl))
         out.append("\n".join(lines))
     else:
         res = list(st.residual)
         jac = st.residual_jacobian
         q_of = {x: f"q[{i}]" for i, x in enumerate(s.q)}
-        bind = [f"{x.name} = {q_of[x]}" for x in s.q]
+        # one assignment: a coordinate named ``q`` must not shadow ``q`` before all are read
+        names = ", ".join(x.name for x in s.q)
+        bind = [f"{names}, = ({', '.join(fl.read(q_of[x]) for x in s.q)},)"]
         for name, exprs, shape in (
             ("_residual", res, len(res)),
             ("_residual_jacobian", jac, jac.shape),
@@ -293,13 +296,17 @@ def _steady(s, tag) -> list[str]:
             flat = list(exprs)
             lines = [f"def {name}{tag}(q, params):", '    """M q\'\' at rest (numeric path)."""']
             lines += _indent(
-                bind + [ln for ln in _unpack(flat, s) if "state[" not in ln] + _body(flat, shape)
+                bind
+                + [ln for ln in _unpack(flat, s, fl) if "state[" not in ln]
+                + _body(flat, shape, fl=fl)
             )
             out.append("\n".join(lines))
         start = [1.0 if s.gap is not None and x == -s.gap else 0.0 for x in s.q]
         idx = [s.state.index(x) for x in s.q]
         out.append(
-            "\n".join(
+            _mp_newton(s, tag, start, idx)
+            if fl.mp
+            else "\n".join(
                 [
                     f"def _equilibrium{tag}(params):",
                     f'    """Steady sliding by the {NUMERIC}."""',
@@ -327,11 +334,11 @@ def _steady(s, tag) -> list[str]:
         f"    state = _equilibrium{tag}(params)",
     ]
     values = [e for _, e in entries]
-    body = _unpack(values, s)
-    repl, red = sp.cse(values, symbols=sp.numbered_symbols("_x"), order="canonical")
-    body += [f"{x} = {_PRINTER.doprint(e)}" for x, e in repl]
-    body += [f"{sym.name} = {_number(e)}" for (sym, _), e in zip(entries, red)]
-    body += _body(st.coefficients, len(st.coefficients), prefix="_c")
+    body = _unpack(values, s, fl)
+    repl, red = _cse(values, "_x")
+    body += [f"{x} = {fl.printer.doprint(e)}" for x, e in repl]
+    body += [f"{sym.name} = {fl.number(e)}" for (sym, _), e in zip(entries, red)]
+    body += _body(st.coefficients, len(st.coefficients), prefix="_c", fl=fl)
     lines += _indent(body)
     out.append("\n".join(lines))
     out.append(
@@ -346,13 +353,41 @@ def _steady(s, tag) -> list[str]:
     return out
 
 
-def _hurwitz_function(m) -> str:
+def _mp_newton(s, tag, start, idx) -> str:
+    """The mpmath twin's numeric path: ``mpmath.findroot`` (Newton with the derived
+    Jacobian) at the working precision, from the numpy path's start; ArithmeticError
+    naming the path where it does not converge."""
+    n = len(s.q)
+    names = ", ".join(f"q{i}" for i in range(n))
+    lines = [
+        f"def _equilibrium{tag}(params):",
+        f'    """Steady sliding by the {NUMERIC} (mpmath.findroot at mpmath.mp.dps)."""',
+        f"    def residual({names}):",
+        f"        return _residual{tag}(({names},), params)",
+        "",
+        f"    def jacobian({names}):",
+        f"        return _residual_jacobian{tag}(({names},), params)",
+        "",
+        "    try:",
+        f"        q = mpmath.findroot(residual, {list(start)!r}, J=jacobian, maxsteps=60)",
+        "    except ValueError:",
+        f"        raise ArithmeticError({_FAILED!r}) from None",
+        "    q = q if isinstance(q, mpmath.matrix) else mpmath.matrix([q])",
+        f"    state = [mpmath.mpf(0)] * {len(s.state)}",
+    ]
+    lines += [f"    state[{j}] = q[{i}]" for i, j in enumerate(idx)]
+    lines.append("    return state")
+    return "\n".join(lines)
+
+
+def _hurwitz_function(m, fl=NUMPY) -> str:
     a = coefficient_symbols(m)
     lines = [
         f"def _hurwitz_{m}(a):",
         f'    """H_1 .. H_{m} of lambda^{m} + a[1] lambda^{m - 1} + ... + a[{m}]."""',
     ]
-    lines += _indent([f"{x.name} = a[{i + 1}]" for i, x in enumerate(a)] + _body(hurwitz(m), m))
+    read = [f"{x.name} = {fl.read(f'a[{i + 1}]')}" for i, x in enumerate(a)]
+    lines += _indent(read + _body(hurwitz(m), m, fl=fl))
     return "\n".join(lines)
 
 
@@ -360,13 +395,15 @@ def _literal(value) -> str:
     return pprint.pformat(value, width=88, sort_dicts=False)
 
 
-def render_model(name: str) -> str:
-    """The source text of generated/models/<name>.py."""
-    return render_entry(MODELS[name])
+def render_model(name: str, mp: bool = False) -> str:
+    """The source text of generated/models/<name>.py (``mp``: generated/mp/models/<name>.py)."""
+    return render_entry(MODELS[name], mp)
 
 
-def render_entry(entry) -> str:
-    """The source text of the module of ``entry``, registered or not (a check's)."""
+def render_entry(entry, mp: bool = False) -> str:
+    """The source text of the module of ``entry``, registered or not (a check's); with
+    ``mp``, of its mpmath twin."""
+    fl = MPMATH if mp else NUMPY
     name = entry.name
     friction_laws = entry.friction_laws or laws.choices("friction")
     systems = {law: system(entry, law) for law in friction_laws}
@@ -424,12 +461,20 @@ def render_entry(entry) -> str:
     )
     functions, tables = [], []
     for law in friction_laws:
-        funcs, names = _kernels(systems[law], law)
+        funcs, names = _kernels(systems[law], law, fl)
         functions += funcs
         fields = ", ".join(f"{k}={names.get(k, 'None')}" for k in KERNELS)
         tables.append(f"    {law!r}: Kernels({fields}),")
+    twin = (
+        f"mpmath variant (same names, arbitrary precision) of "
+        f"``beltmdsm.generated.models.{name}``:\nevery kernel computes at ``mpmath.mp.dps`` "
+        "digits (inputs converted to ``mpf``; vectors as\nlists, matrices as "
+        "``mpmath.matrix``); the numeric equilibrium path by ``mpmath.findroot``.\n\n"
+        if mp
+        else ""
+    )
     doc = (
-        f'"""{entry.summary} (the model ``{name}``, derive/models/entries.py).\n\n'
+        f'"""{twin}{entry.summary} (the model ``{name}``, derive/models/entries.py).\n\n'
         f"{_wrap(entry.doc)}\n\n"
         "Generated from its registry entry by derive/models/: "
         "``kernels(friction)`` gives\nthe model's functions under one friction law, "
@@ -439,7 +484,7 @@ def render_entry(entry) -> str:
     )
     parts = [
         HEADER + doc,
-        _IMPORTS,
+        _MP_IMPORTS if mp else _IMPORTS,
         '__all__ = ["kernels", "Kernels"'
         + "".join(f", {c[0]!r}" for c in constants).replace("'", '"')
         + "]",
@@ -450,7 +495,7 @@ def render_entry(entry) -> str:
         '    """The functions of one friction law; ``gap`` is None '
         'where\n    the contact is bilateral."""\n\n'
         + "\n".join(f"    {k}: object" for k in KERNELS),
-        _hurwitz_function(len(s0.state)),
+        _hurwitz_function(len(s0.state), fl),
         *functions,
         "#: Friction law -> its kernels.\n_KERNELS = {\n" + "\n".join(tables) + "\n}",
         "def kernels(friction):\n"
@@ -467,10 +512,12 @@ def _wrap(text, width=88):
     return textwrap.fill(text, width)
 
 
-def render_init() -> str:
-    """generated/models/__init__.py: ``MODELS`` and ``load``."""
+def render_init(mp: bool = False) -> str:
+    """generated/models/__init__.py (``mp``: generated/mp/models/__init__.py): ``MODELS``
+    and ``load``."""
+    what = "mpmath twins" if mp else "numeric modules"
     return (
-        HEADER + '"""The registered models\' numeric modules (derive/models/).\n\n'
+        HEADER + f'"""The registered models\' {what} (derive/models/).\n\n'
         "``MODELS`` lists the models, the default (``paper``) first; ``load(name)`` imports "
         'one.\n"""\n\n'
         "import importlib\n\n"
@@ -485,8 +532,10 @@ def render_init() -> str:
 
 
 def files() -> dict[str, str]:
-    """Every file of generated/models/, by path relative to generated/."""
-    out = {"models/__init__.py": render_init()}
+    """Every file of generated/models/ and generated/mp/models/, by path relative to
+    generated/."""
+    out = {"models/__init__.py": render_init(), "mp/models/__init__.py": render_init(mp=True)}
     for name in MODELS:
         out[f"models/{name}.py"] = render_model(name)
+        out[f"mp/models/{name}.py"] = render_model(name, mp=True)
     return out

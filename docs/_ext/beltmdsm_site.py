@@ -231,7 +231,9 @@ def models_page() -> str:
         "(:doc:`../howto/own_model` adds one), the default first. Each has a generated",
         "module ``beltmdsm.generated.models.<name>`` with its hybrid system (modes, surfaces,",
         "saltation matrices, mode Jacobians, the derived holding force of stick) and its",
-        "steady sliding (equilibrium, characteristic polynomial, Hurwitz determinants).",
+        "steady sliding (equilibrium, characteristic polynomial, Hurwitz determinants),",
+        "and an mpmath twin ``beltmdsm.generated.mp.models.<name>`` (the same kernels at",
+        "``mpmath.mp.dps`` digits, the tests' reference).",
     ]
     for name in MODELS:
         m = load(name)

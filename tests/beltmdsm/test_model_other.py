@@ -36,6 +36,17 @@ def test_the_paper_model_is_unchanged_and_named():
     assert all(ok for ok, _ in Model().capabilities.values())
 
 
+def test_the_forced_analyses_run_another_model_only_where_it_is_excited():
+    unforced, forced = Model(model="belt_1dof"), Model(model="belt_1dof", alpha_t=0.1)
+    for name in ("branch", "floquet_band", "floquet_map"):
+        assert forced.capabilities[name] == (True, "")
+        ok, why = unforced.capabilities[name]
+        assert not ok and "set an excitation amplitude" in why
+        ok, why = Model(model="hoffmann").capabilities[name]
+        assert not ok and "no excitation terms" in why
+    assert unforced.capabilities["cycle"] == (True, "")
+
+
 def test_another_model_holds_its_own_parameters_checked_once():
     m = Model(model="belt_1dof", friction="stribeck", Vb=1.5)
     assert repr(m) == "Model(model='belt_1dof', friction='stribeck', Vb=1.5)"
@@ -109,13 +120,9 @@ def test_sweep_lyapunov_and_basins_take_another_model():
     "call, missing",
     [
         (lambda m: beltmdsm.predict(m), "the MDSM split"),
-        (lambda m: beltmdsm.responses(m), "no search of the coexisting forced responses"),
-        (lambda m: beltmdsm.coexistence(m, "Vb", 1.0, 2.0), "no search of the coexisting"),
         (lambda m: beltmdsm.floquet_band(m, "Vb", 1.0, 2.0), "no band of unstable responses"),
         (lambda m: beltmdsm.branch(m, lo=1.0, hi=2.0), "no continuation through folds"),
-        (lambda m: beltmdsm.classify(m), "no classification of what a run settles on"),
-        (lambda m: beltmdsm.periodic_start(m), "no start on the periodic response"),
-        (lambda m: beltmdsm.seed_cycle(m), "seeds its cycles itself"),
+        (lambda m: beltmdsm.seed_cycle(m), "seeds a cycle inside beltmdsm.cycle"),
         (
             lambda m: beltmdsm.floquet_map(m, "Vb", 1.0, 2.0, "alpha", 0.0, 1.0),
             "no two-parameter map",

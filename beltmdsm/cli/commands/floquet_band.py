@@ -7,6 +7,7 @@ import json
 
 from ...model import MODEL_PARAMETERS
 from ...settings import MAX_BAND_POINTS, MIN_TOL_ULPS
+from .. import generic_forced
 from ..flags import (
     POSITIVE,
     integer,
@@ -19,7 +20,7 @@ from ..flags import (
     range_from,
     swept,
 )
-from ..models import named
+from ..models import named, other_params
 from ..running import register
 
 
@@ -29,13 +30,17 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), periods_parent(), json_parent()],
+        models=generic_forced.floquet_band,
         help="ranges of a parameter where the periodic response is unstable",
         description="Ranges of one parameter where the periodic response is "
         "unstable, every edge located and labelled with its bifurcation "
         "(beltmdsm/continuation/band.py, docs/modelling.md#bifurcations).",
     )
     sub.add_argument(
-        "--param", required=True, choices=MODEL_PARAMETERS, help="the parameter walked"
+        "--param",
+        required=True,
+        choices=(*MODEL_PARAMETERS, *other_params()),
+        help="the parameter walked",
     )
     range_flags(sub)
     sub.add_argument(

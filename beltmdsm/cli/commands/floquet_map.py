@@ -6,6 +6,7 @@ import argparse
 import json
 
 from ...model import MODEL_PARAMETERS
+from .. import generic_forced
 from ..flags import (
     integer,
     json_parent,
@@ -16,7 +17,7 @@ from ..flags import (
     range_from,
     swept,
 )
-from ..models import named
+from ..models import named, other_params
 from ..running import register
 
 
@@ -26,6 +27,7 @@ def add(commands, name: str) -> None:
         name,
         run,
         [model_parent(), json_parent()],
+        models=generic_forced.floquet_map,
         help="two-parameter map of where the periodic response is unstable",
         description="The region of two parameters where the periodic response of "
         "period T is unstable or absent, its boundary curves (by bifurcation) traced "
@@ -34,7 +36,10 @@ def add(commands, name: str) -> None:
     )
     for axis in ("x", "y"):
         sub.add_argument(
-            f"--{axis}", required=True, choices=MODEL_PARAMETERS, help=f"the parameter of {axis}"
+            f"--{axis}",
+            required=True,
+            choices=(*MODEL_PARAMETERS, *other_params()),
+            help=f"the parameter of {axis}",
         )
         range_flags(sub, axis)
     sub.add_argument(

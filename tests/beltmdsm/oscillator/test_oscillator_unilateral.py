@@ -14,7 +14,7 @@ from beltmdsm.oscillator import System, forced_response, simulate
 def test_flight_stick_and_reversals_agree_with_the_paper_model(backend):
     if backend == "numba":
         pytest.importorskip("numba")
-    paper = beltmdsm.simulate(contact="kelvin_voigt", omega2=3.0, t_end=30.0)
+    paper = beltmdsm.simulate(beltmdsm.Model(contact="kelvin_voigt", omega2=3.0), t_end=30.0)
     order = [0, 2, 1, 3]  # the paper's (X1, Y1, X2, Y2) as (X1, X2, X1', X2')
     run = simulate(System(kv), 30.0, paper.y[order, 0], backend=backend)
     assert run.status == "done"

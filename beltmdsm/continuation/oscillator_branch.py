@@ -1,0 +1,250 @@
+"""The branch of a derived model's forced response (``beltmdsm.branch`` of another model).
+
+`oscillator_branch` shoots the response at the model's value of the parameter
+(`beltmdsm.oscillator.forced.forced_response`) and walks
+`beltmdsm.continuation.oscillator_forced.OscillatorForcedProblem` both ways on the one
+driver (`beltmdsm.continuation.driver`). The result is a `Branch` of ``kind =
+"forced"``: `OscillatorBranch`, whose JSON, table, ``repr`` and plot name the model and
+its states (``x``, ``x_dot``), never the paper's X1, X2.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import numpy as np
+
+from ..errors import Unsupported
+from ..model import Model
+from ..oscillator.api import system_of
+from ..oscillator.forced import forced_response
+from ..oscillator.system import System
+from .branch_result import Branch, record_points
+from .driver import join, walk
+from .oscillator_forced import OscillatorForcedProblem
+from .problem import range_end
+from .settings import FORCED_SETTINGS, ContinuationSettings, as_settings
+
+__all__ = ["OscillatorBranch", "oscillator_branch", "forced_system"]
+
+
+class OscillatorBranch(Branch):
+    """A `Branch` of a derived model's forced responses: its points are
+    `beltmdsm.continuation.oscillator_forced.OscillatorPoint`; its output names the model
+    and its states (module docstring).
+
+    Examples
+    --------
+    >>> from beltmdsm import Model, branch
+    >>> b = branch(Model(model="belt_1dof", Vb=3.0, mu_s=0.1, alpha_t=0.5, Omega_t=2.0),
+    ...            param="Omega_t", lo=1.9, hi=2.1)
+    >>> isinstance(b, Branch), b.kind, [s.kind for s in b.special]
+    (True, 'forced', ['range', 'range'])
+    >>> d = b.as_dict()
+    >>> d["model"], d["states"], "X1" in str(d)
+    ('belt_1dof', ['x', 'x_dot'], False)
+    """
+
+    @property
+    def system(self) -> System:
+        return system_of(self.model)
+
+    def __repr__(self) -> str:
+        from .._display import block, intervals, label
+
+        lo, hi = self.value_range() if self.points else (math.nan, math.nan)
+        what = "T" if self.periods == 1 else f"{self.periods}T"
+        lines = [
+            f"{label(s.kind)} at {self.param} = {s.value:.6g} (+- {s.accuracy:.0e})"
+            + (f", {s.frequency:.4g} rad/s" if s.frequency is not None else "")
+            + (f": {s.detail}" if s.detail else "")
+            for s in self.special
+        ]
+        return block(
+            f"Branch({self.param!r}, {what}-periodic response, {self.model!r}; "
+            f"{self.model.friction} friction; {len(self.points)} points, {self.param} from "
+            f"{lo:.6g} to {hi:.6g}): stable in {intervals(self.stable_ranges())}",
+            lines,
+        )
+
+    def as_dict(self) -> dict:
+        """For JSON: the model's part (``model``, ``friction``, ``params`` less ``param``,
+        ``states``), then ``param``, ``periods``, ``kind``, ``range``, ``parts``,
+        ``stable_ranges``, ``special_points``, ``points`` and ``detects`` (the special
+        points this problem looks for)."""
+        return {
+            **self.system.as_dict(without=self.param),
+            "param": self.param,
+            "periods": self.periods,
+            "kind": self.kind,
+            "detects": list(DETECTS),
+            "range": self.value_range(),
+            "parts": [p.as_dict() for p in self.parts()],
+            "stable_ranges": self.stable_ranges(),
+            "special_points": [s.as_dict() for s in self.special],
+            "points": [p.as_dict() for p in self.points],
+        }
+
+    def to_pandas(self, table: str = "points"):
+        """As `Branch.to_pandas`, the points' states named by the model."""
+        if table != "points":
+            return super().to_pandas(table)
+        from .._tables import frame
+
+        names = list(self.system.states)
+        rows = [
+            {
+                self.param: p.value,
+                **dict(zip(names, map(float, p.state))),
+                "max_abs_multiplier": p.max_abs_multiplier,
+                "stable": p.stable,
+                "n_reversals": p.n_reversals,
+                "n_sticks": p.n_sticks,
+            }
+            for p in self.points
+        ]
+        tail = ["max_abs_multiplier", "stable", "n_reversals", "n_sticks"]
+        out = frame(rows, [self.param, *names, *tail])
+        for key, column in list(self.observables().items())[1:]:
+            out[key] = column
+        return out
+
+    def plot(self, ax: Any = None, observable: str | None = None, labels: bool = True) -> Any:
+        """The bifurcation diagram: ``observable`` (a column of `observables`; default the
+        amplitude of the first rate, ``x_dot_amplitude``) against ``param``, stable solid,
+        unstable dashed, the special points marked; on matplotlib axes ``ax`` (new ones if
+        None), which it returns."""
+        from ..plotting import _STYLES, _axes, _special_markers, _stability_runs
+
+        states = self.system.states
+        observable = observable or f"{states[len(states) // 2]}_amplitude"
+        table = self.observables()
+        if observable not in table or observable == self.param:
+            raise ValueError(
+                f"observable must be one of {', '.join(list(table)[1:])}; got {observable!r}"
+            )
+        ax = _axes(ax)
+        x, y = table[self.param], table[observable]
+        for n, (a, b, s) in enumerate(_stability_runs([p.stable for p in self.points])):
+            tag = {True: "stable", False: "unstable", None: "grazing"}[s]
+            ax.plot(x[a:b], y[a:b], _STYLES[s], color="tab:blue", label=tag,
+                    gid=f"branch:{tag}:{n}")  # fmt: skip
+        _special_markers(ax, x, y, self.special, labels)
+        ax.set_xlabel(self.param)
+        ax.set_ylabel(observable.replace("_", " "))
+        ax.set_title(f"{self.response} of model {self.model.model}: {self.model!r}", fontsize=8)
+        ax.legend(loc="best", fontsize="small")
+        return ax
+
+
+#: The special points that `OscillatorForcedProblem` detects (module docstring of
+#: beltmdsm/continuation/oscillator_forced.py); it detects no tangency and no flight onset.
+DETECTS = (
+    "fold", "period_doubling", "neimark_sacker", "branch_point", "stick_onset", "grazing",
+)  # fmt: skip
+
+
+def forced_system(model: Model, analysis: str, params: tuple[str, ...] = ()) -> System:
+    """The `System` of another model for a forced analysis: refused in one line where
+    the model has no excitation (its line in `beltmdsm.model.LACKS`), a ValueError for
+    a parameter it lacks."""
+    system = system_of(model)
+    if system.excitation_period() is None:
+        raise Unsupported(model.refusal(analysis))
+    for name in params:
+        if name not in system.params:
+            raise ValueError(
+                f"param must be a parameter of model {model.model!r} "
+                f"({', '.join(system.params)}); got {name!r}"
+            )
+    return system
+
+
+def _check_forced(system: System, param: str, lo: float, hi: float) -> None:
+    """The excitation must keep one period over the whole range."""
+    for end in (lo, hi):
+        if system.replace(**{param: end}).excitation_period() is None:
+            raise ValueError(
+                f"the range of {param} reaches {end:g}, where model {system.name!r} has no "
+                "excitation (every amplitude 0): a forced response needs one throughout"
+            )
+
+
+def oscillator_branch(
+    model: Model,
+    *,
+    periods: int = 1,
+    param: str,
+    lo: float,
+    hi: float,
+    record: Callable[[Any], float | Mapping[str, float]] | None = None,
+    settings: ContinuationSettings | None = None,
+) -> OscillatorBranch:
+    """The branch of a derived model's forced response in ``param`` over ``[lo, hi]``.
+
+    Parameters
+    ----------
+    model : Model
+        Another registered model than the paper's (``Model(model="belt_1dof", ...)``),
+        with excitation; its value of ``param`` is the start, both ways.
+    periods : int
+        ``k``: the response of ``k`` excitation periods.
+    param : str
+        One of the model's parameters.
+    lo, hi : float
+        The range, holding the model's value.
+    record : callable, optional
+        As for `beltmdsm.branches.branch`.
+    settings : ContinuationSettings, optional
+        Default `beltmdsm.continuation.settings.FORCED_SETTINGS`.
+
+    Returns
+    -------
+    OscillatorBranch
+
+    Raises
+    ------
+    beltmdsm.errors.Unsupported
+        A model without excitation.
+    ValueError
+        An unknown parameter, a range that does not hold the model's value or reaches
+        a value without excitation.
+    NoPeriodicResponse
+        Where shooting finds no response at the start.
+
+    See Also
+    --------
+    beltmdsm.branches.branch : the public entry, which routes another model here.
+
+    Examples
+    --------
+    >>> from beltmdsm import Model
+    >>> m = Model(model="belt_1dof", Vb=3.0, mu_s=0.1, alpha_t=0.5, Omega_t=2.0)
+    >>> b = oscillator_branch(m, param="Omega_t", lo=1.9, hi=2.1)
+    >>> b.stable_ranges()
+    [[1.9, 2.1]]
+    """
+    system = forced_system(model, "branch", (param,))
+    if not isinstance(periods, int) or isinstance(periods, bool) or periods < 1:
+        raise ValueError(f"periods must be a whole number >= 1; got {periods!r}")
+    lo, hi = float(lo), float(hi)
+    p0 = system.params[param]
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo <= p0 <= hi and lo < hi):
+        raise ValueError(f"the model's {param} = {p0:g} must lie in [{lo:g}, {hi:g}]")
+    _check_forced(system, param, lo, hi)
+    settings = as_settings(settings, FORCED_SETTINGS)
+    start = forced_response(system, periods=periods)
+    problem = OscillatorForcedProblem(
+        system, param, periods, lo, hi, 1.0 + float(np.max(np.abs(start.state)))
+    )
+    problem.settings = settings
+    walks = []
+    for direction, bound in ((1.0, hi), (-1.0, lo)):
+        first, tangent = problem.start(start.state, p0, direction)
+        done = p0 == bound  # a start on a bound ends there that way
+        walks.append(([first], [range_end(first, p0)]) if done else walk(problem, first, tangent))
+    points, special = join(*walks)
+    found = OscillatorBranch(param, periods, model, points, special, kind="forced")
+    return record_points(found, record)
