@@ -42,7 +42,7 @@ from functools import cache
 import sympy as sp
 from sympy.integrals.risch import NonElementaryIntegral, risch_integrate
 
-from . import budget
+from . import budget, memo
 from .lawcheck import value_at_rest
 from .model import SPEED, coefficient, rest_coefficient
 
@@ -104,7 +104,7 @@ def closed_form(friction: str) -> tuple[bool, str]:
     `beltmdsm.derive.budget`; past it the average is a quadrature too, and the reason says so.
     """
     r = remainder(friction)
-    if sp.simplify(r) == 0:
+    if memo.simplify(r) == 0:
         return True, f"{friction}: mu(|Vr|) = mu(0) is constant, its average is Eq. (23)'s"
     try:
         if r.is_polynomial(SPEED):  # a polynomial in sin: elementary, no search needed
@@ -246,7 +246,7 @@ def remainder_average(friction: str, weight=_ONE, scale=1 / (2 * sp.pi)):
         For ``|u| <= V`` (the friction reverses within the period) and ``|u| >= V``;
         ``(0, 0)`` for Coulomb's law. ``weight`` is a function of `PHASE`.
     """
-    if sp.simplify(remainder(friction)) == 0:
+    if memo.simplify(remainder(friction)) == 0:
         return sp.Integer(0), sp.Integer(0)
     return _average(friction, weight, scale, False)
 
@@ -264,7 +264,7 @@ def remainder_slope(friction: str, weight=_ONE, scale=1 / (2 * sp.pi)):
     AssertionError
         If a boundary term does not vanish (a law with ``r(0) != 0``).
     """
-    if sp.simplify(remainder(friction)) == 0:
+    if memo.simplify(remainder(friction)) == 0:
         return sp.Integer(0), sp.Integer(0)
     r = remainder(friction)
     for inside in (True, False):

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from functools import cache
 
 import sympy as sp
+from sympy.core.exprtools import _keep_coeff
 
 from . import laws
 from .model import X2, normal_force
@@ -95,7 +96,21 @@ def _cofactors(degree: int, n) -> tuple[sp.Poly, list]:
 
 def _over(numerator: sp.Poly, denominator: sp.Poly) -> sp.Expr:
     """``numerator / denominator`` with both factored."""
-    return sp.factor(numerator.as_expr()) / sp.factor(denominator.as_expr())
+    return _factored(numerator) / _factored(denominator)
+
+
+def _factored(p: sp.Poly) -> sp.Expr:
+    """``sp.factor(p.as_expr())``, from the polynomial's own factorisation.
+
+    The same expression (``factor``'s content times the product of the factors' powers),
+    without ``factor``'s pass back through expressions (``together``, ``gcd_terms``:
+    half its time here). Where the generator is not a symbol (an exponent such as
+    ``2 m``), ``factor`` would factor in the symbols: it is called.
+    """
+    if not p.gen.is_Symbol:
+        return sp.factor(p.as_expr())
+    coeff, factors = p.factor_list()
+    return _keep_coeff(sp.sympify(coeff), sp.Mul(*(f.as_expr() ** k for f, k in factors)))
 
 
 @cache
@@ -179,16 +194,33 @@ def scaled_error(degree: int = 3, n=HERTZ) -> FitError:
     u = sp.Symbol("u", nonnegative=True)
     p, q = n.p, n.q
     # n s^(n-1) = p'(s) with s = u^q, multiplied through by u^(q-p) where n < 1
-    slope = n * u ** max(p - q, 0) - sp.diff(poly, s).subs(s, u**q) * u ** max(q - p, 0)
+    # (p'(u^q) written from the coefficients: sp.diff of the sum took longer than the rest)
+    derivative = sum(k * c * u ** (q * (k - 1)) for k, c in enumerate(d) if k)
+    slope = n * u ** max(p - q, 0) - derivative * u ** max(q - p, 0)
     stationary = sp.Poly(sp.expand(slope), u)
-    candidates = [sp.Integer(0), sp.Integer(1)]
+    roots = [sp.Integer(0), sp.Integer(1)]
     if not stationary.is_zero:
-        candidates += [r**q for r in stationary.real_roots() if 0 < r < 1]
-    # compared at 50 digits; only the largest becomes a closed form (SymPy's Abs of an
-    # expression in algebraic numbers tries to decide its sign, seconds at degree 8)
+        roots += [r for r in stationary.real_roots() if 0 < r < 1]
+    candidates = roots[:2] + [r**q for r in roots[2:]]
     values = [err.subs(s, c) for c in candidates]
-    k = max(range(len(values)), key=lambda i: abs(sp.N(values[i], 50)))
+    k = _largest(err, roots, q, values)
     return FitError(sp.Abs(values[k]), candidates[k], rms, ends)
+
+
+def _largest(err, roots, q, values) -> int:
+    """The index of the largest ``|err|`` at the candidates ``roots[i]**q`` (``values``).
+
+    Only the largest becomes a closed form (SymPy's Abs of an expression in algebraic
+    numbers tries to decide its sign, seconds at degree 8). The comparison is numerical:
+    each root evaluated once at 60 digits (evaluating the values at 50 digits refined
+    every root again for every power of it). Where the two largest agree to 30 digits,
+    the values themselves are compared at 50 digits, as before; the first largest wins.
+    """
+    at = [abs(err.subs(s, sp.Float(r.evalf(60), 60) ** q)) for r in roots]
+    order = sorted(range(len(at)), key=lambda i: (-at[i], i))
+    if len(order) == 1 or at[order[0]] - at[order[1]] > sp.Float("1e-30") * at[order[0]]:
+        return order[0]
+    return max(range(len(values)), key=lambda i: abs(sp.N(values[i], 50)))
 
 
 def fit_error(degree: int = 3, contact: str = _CONTACT) -> FitError:

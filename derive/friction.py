@@ -114,6 +114,7 @@ def mu_bar_slope_eq_25(friction: str = DEFAULT["friction"]) -> sp.Expr:
     )
 
 
+@cache
 def frequency_response(quad: Quadratic, W) -> tuple[sp.Expr, sp.Expr]:
     """Real and imaginary part of ``q(iW)`` for a quadratic ``lambda^2 + p lambda + q``.
 

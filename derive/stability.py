@@ -44,7 +44,7 @@ from functools import cache
 
 import sympy as sp
 
-from . import budget, laws
+from . import budget, laws, memo
 from .friction import mu_bar0_eq_25, mu_bar_slope_eq_25
 from .model import P, normal_force
 from .statespace import Quadratic, block_quadratics, charpoly_eq_12
@@ -128,7 +128,7 @@ def forced_jacobian_eq_22(convention: str = "paper", contact: str = _CONTACT) ->
     """Jacobian of Eqs. (A3)-(A6) at Eq. (A7), ``J_f^0`` of Eq. (22), in ``mu0, mu1``."""
     J = slow_state_space_A3_A6(convention, contact).jacobian(SLOW)
     eq = slow_equilibrium_A7(convention, contact)
-    return J.applyfunc(lambda e: sp.simplify(_linearise(e).subs(eq)))
+    return J.applyfunc(lambda e: memo.simplify(_linearise(e).subs(eq)))
 
 
 @dataclass(frozen=True)

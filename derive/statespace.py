@@ -186,10 +186,7 @@ class Quadratic:
     @classmethod
     def from_block(cls, block: sp.Matrix) -> Quadratic:
         """The characteristic polynomial of a 2x2 block."""
-        p = sp.simplify(-block.trace())
-        q = sp.simplify(block.det())
-        disc = sp.factor(sp.expand(p**2 / 4 - q))
-        return cls(p, q, sp.Mul(*(_grouped(f) for f in sp.Mul.make_args(disc))))
+        return _from_block(sp.ImmutableMatrix(block))
 
     def expr(self) -> sp.Expr:
         return lam**2 + self.p * lam + self.q
@@ -211,6 +208,15 @@ class Quadratic:
         """
         root = sp.sqrt(disc)
         return sp.Piecewise((-h, disc < 0), (q / (-(h + root)), h > 0), (root - h, True))
+
+
+@cache
+def _from_block(block: sp.ImmutableMatrix) -> Quadratic:
+    """`Quadratic.from_block`, once per block (the normal block is every friction law's)."""
+    p = sp.simplify(-block.trace())
+    q = sp.simplify(block.det())
+    disc = sp.factor(sp.expand(p**2 / 4 - q))
+    return Quadratic(p, q, sp.Mul(*(_grouped(f) for f in sp.Mul.make_args(disc))))
 
 
 def _grouped(factor: sp.Expr) -> sp.Expr:

@@ -32,6 +32,7 @@ __all__ = [
     "Mpmath",
     "root_line",
     "lift_integrals",
+    "atoms_of",
 ]
 
 
@@ -73,13 +74,20 @@ def hoisted_roots(flat, args=()):
 
 
 @functools.cache
+def atoms_of(expr, kind) -> frozenset:
+    """``expr.atoms(kind)``, once per expression: one expression is an output of many
+    variants and functions, and each walk of its tree costs as much as printing it."""
+    return frozenset(expr.atoms(kind))
+
+
+@functools.cache
 def _roots(flat: tuple, args: tuple) -> tuple:
     """`hoisted_roots`, found once for every printing of ``flat``."""
     found = sorted(
         {
             (e.base, int(e.exp.q))
             for x in flat
-            for e in x.atoms(sp.Pow)
+            for e in atoms_of(x, sp.Pow)
             if is_root(e) and not (e.base.free_symbols & set(args))
         },
         key=lambda bd: (sp.default_sort_key(bd[0]), bd[1]),
@@ -92,14 +100,48 @@ def _ordered_terms(expr, order) -> tuple:
     return tuple(expr.as_ordered_terms(order=order))
 
 
+#: ``(printer class, its settings and hoisted roots, expression) -> text`` (`OrderedTerms`).
+_PRINTED: dict = {}
+
+
 class OrderedTerms:
-    """The terms of a sum in SymPy's printing order, computed once per sum and order.
+    """The terms of a sum in SymPy's printing order, computed once per sum and order;
+    and each expression's text, printed once per printer.
 
     Ordering a sum's terms (``Expr.as_ordered_terms``) is most of a printer's time, and
     one sum is printed many times: by the numpy, scalar and mpmath printers of a
     variant, and in every variant of a function that shares it. The order is a
     function of the sum alone, so the printed text is unchanged.
+
+    Whole expressions recur as well (a 0 in every Jacobian, the growth rate's root
+    selection in every variant, the lines variants share: seven printings in eight
+    were repeats): ``doprint``'s text is a function of the printer's class, settings
+    and hoisted roots and of the expression, and is kept. Not for an expression with a
+    ``Float`` (equal Floats of different precisions print differently). SymPy's
+    ``doprint`` also rewrites ``re(...)`` nodes by a ``replace`` that walks and
+    rebuilds the whole tree: done only where there is one.
     """
+
+    def doprint(self, expr, assign_to=None):
+        if assign_to is not None or not isinstance(expr, sp.Basic) or expr.has(sp.Float):
+            return super().doprint(expr, assign_to)
+        key = (self._memo_key(), expr)
+        text = _PRINTED.get(key)
+        if text is None:
+            text = _PRINTED[key] = super().doprint(expr)
+        return text
+
+    def _memo_key(self):
+        if "_memo" not in self.__dict__:
+            roots = frozenset(getattr(self, "roots", {}).items())
+            self._memo = (type(self), repr(sorted(self._settings.items())), roots)
+        return self._memo
+
+    def _handle_UnevaluatedExpr(self, expr):
+        # without an ``re`` node SymPy's replace returns the expression unchanged
+        if isinstance(expr, sp.Basic) and not expr.has(sp.re):
+            return expr
+        return super()._handle_UnevaluatedExpr(expr)
 
     def _as_ordered_terms(self, expr, order=None):
         order = order or self.order
@@ -235,7 +277,7 @@ def lift_integrals(flat, printer):
 def _integrals(flat: tuple) -> tuple:
     """``((name, integral), ...)`` of `lift_integrals` and the outputs with the names in
     place, found once for the numpy, scalar and mpmath printings of ``flat``."""
-    found = sorted({i for e in flat for i in e.atoms(sp.Integral)}, key=sp.default_sort_key)
+    found = sorted({i for e in flat for i in atoms_of(e, sp.Integral)}, key=sp.default_sort_key)
     if not found:
         return (), flat
     names = {i: sp.Symbol(f"_quad{k}", real=True) for k, i in enumerate(found)}

@@ -18,7 +18,7 @@ import sympy as sp
 
 from ..model import PARAMETERS
 from ..statespace import Quadratic
-from .printers import Mpmath, NumPy, Scalar, hoisted_roots, lift_integrals, root_line
+from .printers import Mpmath, NumPy, Scalar, atoms_of, hoisted_roots, lift_integrals, root_line
 from .specs import FunctionSpec, NoVariant
 
 _TABLE = {p.name: p for p in PARAMETERS}
@@ -105,7 +105,15 @@ def _impl_params(exprs, args, where):
 @functools.cache
 def _free_names(exprs: tuple) -> frozenset:
     """The names of the free symbols of ``exprs``, found once per variant."""
-    return frozenset(s.name for e in exprs for s in e.free_symbols)
+    return frozenset().union(*map(_names_of, exprs))
+
+
+@functools.cache
+def _names_of(expr) -> frozenset:
+    """The names of the free symbols of one expression, found once (SymPy's
+    ``free_symbols`` walks the whole tree each time; an expression is an output of
+    many variants, and of a function's docstring)."""
+    return frozenset(s.name for s in expr.free_symbols)
 
 
 def _doc_params(exprs, args):
@@ -126,7 +134,7 @@ def _domain_of(symbol):
 
 def _errstate(flat, body):
     """``body`` under ``numpy.errstate`` where the expressions have a Piecewise."""
-    if not any(e.has(sp.Piecewise) for e in flat):
+    if not any(atoms_of(e, sp.Piecewise) for e in flat):
         return body
     # numpy evaluates every branch of a select (and a compiled kernel may evaluate
     # both sides of a branch): silence the unused ones.
@@ -282,7 +290,7 @@ def _branches(flat: tuple):
     (those implementations guard their branches themselves, e.g. ``max(X2, 0)``).
     Cached: the scalar and mpmath printings of a variant split it alike.
     """
-    pieces = {p for e in flat for p in e.atoms(sp.Piecewise)}
+    pieces = {p for e in flat for p in atoms_of(e, sp.Piecewise)}
     conditions = {tuple(c for _, c in p.args) for p in pieces}
     if len(conditions) != 1:
         return None
