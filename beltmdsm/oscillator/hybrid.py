@@ -217,7 +217,8 @@ def _crossing(u, du, step: _stepper.Step, m: int, u_old: float, armed: bool):
     t1 = t0 + h
     at = lambda t: u(t, step.at(t)[:m])  # noqa: E731
     u_new = u(t1, step.y_new[:m])
-    u_mid = at(t0 + 0.5 * h)
+    y_mid = step.at(t0 + 0.5 * h)[:m]
+    u_mid = u(t0 + 0.5 * h, y_mid)
     scan = True
     if armed and u_new > 0.0 and u_mid > 0.0:
         # a dip below 0 inside the step: the parabola through the three values
@@ -245,19 +246,27 @@ def _crossing(u, du, step: _stepper.Step, m: int, u_old: float, armed: bool):
     else:
         fa = u_new
     if du is not None and first < t1:
-        tc = _touch(at, lambda t: du(t, step.at(t)[:m]), first, f_first, t1)
+        rate = lambda t: du(t, step.at(t)[:m])  # noqa: E731
+        # the rates at the step's ends and middle from the states at hand (the cost)
+        rates = (
+            (du(t0, step.y[:m]), du(t0 + 0.5 * h, y_mid), du(t1, step.y_new[:m]))
+            if first == t0
+            else (rate(first), rate(0.5 * (first + t1)), du(t1, step.y_new[:m]))
+        )
+        tc = _touch(at, rate, first, f_first, t1, rates)
         if tc is not None:
             return tc, True
     return None, fa > 0.0 or armed
 
 
-def _touch(at, rate, a: float, fa: float, b: float) -> float | None:
+def _touch(at, rate, a: float, fa: float, b: float, rates) -> float | None:
     """The first fall of ``u`` to 0 in ``(a, b]`` (``fa = u(a) > 0``, ``u(b) > 0``)
     that no sample shows: a touch at a minimum of ``u``, where its ``rate`` rises
     through 0 (a sign change of the rate at ``a``, the middle and ``b`` brackets it;
-    the root of the rate found by the Illinois method, ``u`` tested there)."""
+    the root of the rate found by the Illinois method, ``u`` tested there). ``rates``:
+    the rate at ``a``, the middle and ``b``."""
     c = 0.5 * (a + b)
-    ra, rc, rb = rate(a), rate(c), rate(b)
+    ra, rc, rb = rates
     for lo, r_lo, hi, r_hi in ((a, ra, c, rc), (c, rc, b, rb)):
         if r_lo < 0.0 <= r_hi:
             tm = _refine(lambda t: -rate(t), lo, -r_lo, hi, -r_hi)
