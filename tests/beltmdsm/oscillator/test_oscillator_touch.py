@@ -52,3 +52,27 @@ def test_a_touch_between_samples_starts_the_stick(delta, backend):
     assert end.switches[0][0] == pytest.approx(touch, abs=e_v / slope)
     # the stick's end does not depend on where on the touch it began (x' = Vb both ways)
     assert end.switches[1][0] == pytest.approx(release, abs=e_v / VB)
+
+
+def test_the_forced_branch_goes_through_the_stick_onset():
+    """Just past the onset the stick is a touch of v_r = 0 shorter than the samples (the
+    period map of the old integrator alternated between it and none, and the branch
+    skipped 1e-3 of its range there): the branch now converges right past it."""
+    import beltmdsm
+    from beltmdsm import Model
+
+    m = Model(model="belt_1dof", Vb=3.0, mu_s=0.1, alpha_t=0.7, Omega_t=0.95)
+    b = beltmdsm.branch(m, param="Omega_t", lo=0.95, hi=0.97)
+    # the closed form (tests/beltmdsm/oscillator/test_oscillator_forced_branch.py): the
+    # harmonic response's slip-velocity amplitude reaches Vb
+    onset = brentq(lambda W: 0.7 * W**3 / abs(1 - W * W + 0.2j * W) - 3.0, 0.95, 0.97, xtol=1e-14)
+    (sl,) = [s for s in b.special if s.kind == "stick_onset"]
+    assert sl.value == pytest.approx(onset, abs=1e-7)
+    past = [q for q in b.points if q.value > onset]
+    assert past and all(q.n_sticks == 1 for q in past) and b.points[-1].value == 0.97
+    first = min(past, key=lambda q: q.value)
+    assert first.value - onset < 5e-6
+    # a response: one period returns to the state, through a stick
+    back = flow(first.system, 0.0, first.state, first.period, rtol=1e-11, atol=1e-11)
+    assert back.y == pytest.approx(first.state, abs=1e-8)
+    assert [(a, c) for _, a, c in back.switches].count((-1, 0)) == 1
