@@ -6,7 +6,8 @@ millisecond a step in numpy's small-array overheads. Here the same method (DOP85
 SciPy's step-size control, the coefficients of ``beltmdsm.generated.tableau``), the same
 surfaces (`beltmdsm.oscillator.hybrid`) and the same search for the first crossing
 (the step's midpoint, a parabola for a dip, 16 samples of the dense output, then the
-Illinois method of `beltmdsm.integrate._roots`) run as one numba function, with the
+Illinois method of `beltmdsm.integrate._roots`; a touch of the slip guard at its
+minimum, bracketed by its rate) run as one numba function, with the
 model's kernels compiled into it.
 
 The kernels are the module's plain functions: each is compiled by numba with every

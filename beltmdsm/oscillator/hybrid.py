@@ -3,8 +3,12 @@
 A run goes mode by mode (`beltmdsm.oscillator.system`: +-1 slip, 0 stick, 2 flight),
 each integrated by DOP853 (`beltmdsm.oscillator._stepper`) until the first crossing of
 a surface that ends it, located on the dense output by the Illinois method
-(`beltmdsm.integrate._roots`). The surfaces and the choice of the next mode are the
-contract's, read through the model's kernels only:
+(`beltmdsm.integrate._roots`). A touch of ``v_r = 0`` shorter than the samples (the start
+of a short stick) is found at the slip guard's minimum in the step, bracketed by a
+sign change of its rate ``m slip_acceleration`` (`_touch`); the stick and flight guards
+rely on the samples (their rates, ``surface_rates``, are not in every model's kernels).
+The surfaces and the choice of the next mode are the contract's, read through the
+model's kernels only:
 
 * slip in the sign ``m`` ends where ``m v_r`` falls to 0; there the mass sticks where
   ``|holding_force| <= stick_limit``, else the slip reverses;
