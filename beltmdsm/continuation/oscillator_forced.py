@@ -337,8 +337,12 @@ class OscillatorForcedProblem(Problem):
         if ahead < 0 or ahead > 4 * abs(ds) * self.sp or not self.lo < guess < self.hi:
             return None
         value, accuracy = self._locate(b, SimpleNamespace(value=guess + direction * ahead))
-        jump = value + direction * min(1e-3 * (self.hi - self.lo), 0.5 * abs(
-            (self.hi if direction > 0 else self.lo) - value))  # fmt: skip
+        # just past the onset, by the locating tolerance: the integrator finds the touch
+        # of v_r = 0 that starts the short stick there (`beltmdsm.oscillator.hybrid._touch`)
+        jump = value + direction * min(
+            LOCATE_TOL * max(self.hi - self.lo, 1.0) + accuracy,
+            0.5 * abs((self.hi if direction > 0 else self.lo) - value),
+        )
         found = self._solve(jump, b.state)
         if found is None:
             try:

@@ -6,7 +6,8 @@ millisecond a step in numpy's small-array overheads. Here the same method (DOP85
 SciPy's step-size control, the coefficients of ``beltmdsm.generated.tableau``), the same
 surfaces (`beltmdsm.oscillator.hybrid`) and the same search for the first crossing
 (the step's midpoint, a parabola for a dip, 16 samples of the dense output, then the
-Illinois method of `beltmdsm.integrate._roots`) run as one numba function, with the
+Illinois method of `beltmdsm.integrate._roots`; a touch of the slip guard at its
+minimum, bracketed by its rate) run as one numba function, with the
 model's kernels compiled into it.
 
 The kernels are the module's plain functions: each is compiled by numba with every
@@ -62,7 +63,8 @@ class CompileWarning(UserWarning):
 
 
 # the kernels, bound as globals of the functions below (`_build`)
-field = slip_velocity = holding_force = stick_limit = normal_force = gap = None
+field = slip_velocity = slip_acceleration = holding_force = stick_limit = normal_force = None
+gap = None
 UNILATERAL = False
 
 
@@ -76,6 +78,53 @@ def _u(t, y, p, mode, j):
     if mode == 0:
         return stick_limit(t, y, p) - abs(holding_force(t, y, p))
     return mode * slip_velocity(t, y, p)
+
+
+def _has_rate(mode, j):
+    """Whether surface ``j`` of the mode has a rate (`beltmdsm.oscillator.hybrid._rates`)."""
+    return (mode == 1 or mode == -1) and j == 0
+
+
+def _du(t, y, p, mode, j):
+    """The rate of surface ``j`` of a slip mode: ``mode * slip_acceleration``."""
+    return mode * slip_acceleration(t, y, p, mode)
+
+
+def _du_at(p, mode, j, F, y0, t0, h, t, tmp):
+    _dense(F, y0, (t - t0) / h, tmp)
+    return _du(t, tmp, p, mode, j)
+
+
+def _root(p, mode, j, F, y0, t0, h, a, fa, b, fb, tmp, rate):
+    """The Illinois method on the dense output: ``u`` (``rate`` False, ``fa > 0 >= fb``)
+    or minus its rate (``rate`` True)."""
+    side = 0
+    for _ in range(200):
+        if converged(a, b):
+            break
+        c = secant(a, fa, b, fb)
+        if rate:
+            fc = -_du_at(p, mode, j, F, y0, t0, h, c, tmp)
+        else:
+            fc = _u_at(p, mode, j, F, y0, t0, h, c, tmp)
+        a, fa, b, fb, side = illinois(a, fa, b, fb, c, fc, side)
+    return b
+
+
+def _touch(p, mode, j, F, y0, t0, h, a, fa, b, tmp):
+    """As `beltmdsm.oscillator.hybrid._touch`: the first fall to 0 at a minimum of the
+    surface between ``a`` and ``b`` that no sample shows, or -1."""
+    c = 0.5 * (a + b)
+    r = (_du_at(p, mode, j, F, y0, t0, h, a, tmp), _du_at(p, mode, j, F, y0, t0, h, c, tmp),
+         _du_at(p, mode, j, F, y0, t0, h, b, tmp))  # fmt: skip
+    ends = (a, c, b)
+    for k in range(2):
+        if r[k] < 0.0 <= r[k + 1]:
+            tm = _root(p, mode, j, F, y0, t0, h, ends[k], -r[k], ends[k + 1], -r[k + 1], tmp, True)
+            um = _u_at(p, mode, j, F, y0, t0, h, tm, tmp)
+            if um <= 0.0:
+                return _root(p, mode, j, F, y0, t0, h, a, fa, tm, um, tmp, False)
+    return -1.0
 
 
 def _dense(F, y0, x, out):
@@ -100,32 +149,36 @@ def _crossing(p, mode, j, F, y0, t0, h, u_old, u_new, armed, tmp):
     (time < 0: none); as `beltmdsm.oscillator.hybrid._crossing`."""
     t1 = t0 + h
     u_mid = _u_at(p, mode, j, F, y0, t0, h, t0 + 0.5 * h, tmp)
+    scan = True
     if armed and u_new > 0.0 and u_mid > 0.0:
         curv = u_old - 2.0 * u_mid + u_new
         if curv <= 0.0:
-            return -1.0, True
-        x = 0.5 - (u_new - u_old) / (4.0 * curv)
-        low = u_mid - (u_new - u_old) ** 2 / (8.0 * curv)
-        if not (0.0 < x < 1.0) or low > 0.5 * min(u_old, min(u_mid, u_new)):
-            return -1.0, True
+            scan = False
+        else:
+            x = 0.5 - (u_new - u_old) / (4.0 * curv)
+            low = u_mid - (u_new - u_old) ** 2 / (8.0 * curv)
+            scan = 0.0 < x < 1.0 and low <= 0.5 * min(u_old, min(u_mid, u_new))
     a = t0
     fa = u_old if armed else 0.0
-    for k in range(1, _SAMPLES + 1):
-        tk = t0 + h * k / _SAMPLES if k < _SAMPLES else t1
-        fk = u_new if k == _SAMPLES else _u_at(p, mode, j, F, y0, t0, h, tk, tmp)
-        if fa > 0.0 and fk <= 0.0:
-            b, fb, side = tk, fk, 0
-            for _ in range(200):
-                if converged(a, b):
-                    break
-                c = secant(a, fa, b, fb)
-                fc = _u_at(p, mode, j, F, y0, t0, h, c, tmp)
-                a, fa, b, fb, side = illinois(a, fa, b, fb, c, fc, side)
-            return b, True
-        if fk > 0.0:
-            a, fa = tk, fk
-    if fa <= 0.0 and not armed:
-        return t0, False
+    first, f_first = (t0, u_old) if armed else (math.inf, 0.0)
+    if scan:
+        for k in range(1, _SAMPLES + 1):
+            tk = t0 + h * k / _SAMPLES if k < _SAMPLES else t1
+            fk = u_new if k == _SAMPLES else _u_at(p, mode, j, F, y0, t0, h, tk, tmp)
+            if fa > 0.0 and fk <= 0.0:
+                return _root(p, mode, j, F, y0, t0, h, a, fa, tk, fk, tmp, False), True
+            if fk > 0.0:
+                a, fa = tk, fk
+                if first == math.inf:
+                    first, f_first = tk, fk
+        if fa <= 0.0 and not armed:
+            return t0, False
+    else:
+        fa = u_new
+    if _has_rate(mode, j) and first < t1:
+        tc = _touch(p, mode, j, F, y0, t0, h, first, f_first, t1, tmp)
+        if tc >= 0.0:
+            return tc, True
     return -1.0, fa > 0.0 or armed
 
 
@@ -251,8 +304,10 @@ def advance(p, mode, n_watch, t, y, t_end, h_abs, rtol, atol, dt, t_first, k_nex
 
 
 converged, secant, illinois = _roots.converged, _roots.secant, _roots.illinois
-_FUNCTIONS = ("_u", "_dense", "_u_at", "_crossing", "advance")
-_KERNELS = ("field", "slip_velocity", "holding_force", "stick_limit", "normal_force", "gap")
+_FUNCTIONS = ("_u", "_has_rate", "_du", "_dense", "_u_at", "_du_at", "_root", "_touch",
+              "_crossing", "advance")  # fmt: skip
+_KERNELS = ("field", "slip_velocity", "slip_acceleration", "holding_force", "stick_limit",
+            "normal_force", "gap")  # fmt: skip
 
 
 def _deep_jit(fn, numba, memo):

@@ -3,8 +3,12 @@
 A run goes mode by mode (`beltmdsm.oscillator.system`: +-1 slip, 0 stick, 2 flight),
 each integrated by DOP853 (`beltmdsm.oscillator._stepper`) until the first crossing of
 a surface that ends it, located on the dense output by the Illinois method
-(`beltmdsm.integrate._roots`). The surfaces and the choice of the next mode are the
-contract's, read through the model's kernels only:
+(`beltmdsm.integrate._roots`). A touch of ``v_r = 0`` shorter than the samples (the start
+of a short stick) is found at the slip guard's minimum in the step, bracketed by a
+sign change of its rate ``m slip_acceleration`` (`_touch`); the stick and flight guards
+rely on the samples (their rates, ``surface_rates``, are not in every model's kernels).
+The surfaces and the choice of the next mode are the contract's, read through the
+model's kernels only:
 
 * slip in the sign ``m`` ends where ``m v_r`` falls to 0; there the mass sticks where
   ``|holding_force| <= stick_limit``, else the slip reverses;
@@ -175,6 +179,17 @@ def _surfaces(system: System, mode: int) -> tuple[Callable, ...]:
     return (first,)
 
 
+def _rates(system: System, mode: int) -> tuple[Callable | None, ...]:
+    """The time derivatives of `_surfaces` along the mode's field, where the contract
+    gives one (``m slip_acceleration`` in slip ``m``), else None: the guards whose
+    grazing touches `_touch` finds between samples."""
+    k, p = system.kernels, system.p
+    first = None
+    if mode in (-1, 1):
+        first = lambda t, y: mode * k.slip_acceleration(t, y, p, mode)  # noqa: E731
+    return (first, None) if system.unilateral else (first,)
+
+
 def _next_mode(system: System, mode: int, surface: int, t: float, y) -> int:
     k, p = system.kernels, system.p
     if surface == 1 or (mode == FLIGHT and surface == 0):
@@ -198,34 +213,71 @@ def _to_stick(system: System, t, y):
     return y - w * (k.slip_velocity(t, y, p) / (w @ w))
 
 
-def _crossing(u, step: _stepper.Step, m: int, u_old: float, armed: bool):
+def _crossing(u, du, step: _stepper.Step, m: int, u_old: float, armed: bool):
     """The first time in the step where ``u`` falls to <= 0 after being > 0, or None;
-    with whether ``u`` has been > 0 (armed) by the step's end."""
+    with whether ``u`` has been > 0 (armed) by the step's end. ``du``: the rate of
+    ``u``, or None (a touch between samples is then missed)."""
     t0, h = step.t, step.h
     t1 = t0 + h
     at = lambda t: u(t, step.at(t)[:m])  # noqa: E731
     u_new = u(t1, step.y_new[:m])
-    u_mid = at(t0 + 0.5 * h)
+    y_mid = step.at(t0 + 0.5 * h)[:m]
+    u_mid = u(t0 + 0.5 * h, y_mid)
+    scan = True
     if armed and u_new > 0.0 and u_mid > 0.0:
         # a dip below 0 inside the step: the parabola through the three values
         curv = u_old - 2.0 * u_mid + u_new
         if curv <= 0.0:
-            return None, True
-        x = 0.5 - (u_new - u_old) / (4.0 * curv)
-        low = u_mid - (u_new - u_old) ** 2 / (8.0 * curv)
-        if not (0.0 < x < 1.0) or low > 0.5 * min(u_old, u_mid, u_new):
-            return None, True
+            scan = False
+        else:
+            x = 0.5 - (u_new - u_old) / (4.0 * curv)
+            low = u_mid - (u_new - u_old) ** 2 / (8.0 * curv)
+            scan = 0.0 < x < 1.0 and low <= 0.5 * min(u_old, u_mid, u_new)
     a, fa = t0, u_old if armed else 0.0
-    for j in range(1, _SAMPLES + 1):
-        tj = t0 + h * j / _SAMPLES if j < _SAMPLES else t1
-        fj = u_new if j == _SAMPLES else at(tj)
-        if fa > 0.0 and fj <= 0.0:
-            return _refine(at, a, fa, tj, fj), True
-        if fj > 0.0:
-            a, fa = tj, fj
-    if fa <= 0.0 and not armed:
-        return t0, False  # never inside: the field leaves through its own start surface
+    first, f_first = (t0, u_old) if armed else (math.inf, 0.0)
+    if scan:
+        for j in range(1, _SAMPLES + 1):
+            tj = t0 + h * j / _SAMPLES if j < _SAMPLES else t1
+            fj = u_new if j == _SAMPLES else at(tj)
+            if fa > 0.0 and fj <= 0.0:
+                return _refine(at, a, fa, tj, fj), True
+            if fj > 0.0:
+                a, fa = tj, fj
+                if first == math.inf:
+                    first, f_first = tj, fj
+        if fa <= 0.0 and not armed:
+            return t0, False  # never inside: the field leaves through its own start surface
+    else:
+        fa = u_new
+    if du is not None and first < t1:
+        rate = lambda t: du(t, step.at(t)[:m])  # noqa: E731
+        # the rates at the step's ends and middle from the states at hand (the cost)
+        rates = (
+            (du(t0, step.y[:m]), du(t0 + 0.5 * h, y_mid), du(t1, step.y_new[:m]))
+            if first == t0
+            else (rate(first), rate(0.5 * (first + t1)), du(t1, step.y_new[:m]))
+        )
+        tc = _touch(at, rate, first, f_first, t1, rates)
+        if tc is not None:
+            return tc, True
     return None, fa > 0.0 or armed
+
+
+def _touch(at, rate, a: float, fa: float, b: float, rates) -> float | None:
+    """The first fall of ``u`` to 0 in ``(a, b]`` (``fa = u(a) > 0``, ``u(b) > 0``)
+    that no sample shows: a touch at a minimum of ``u``, where its ``rate`` rises
+    through 0 (a sign change of the rate at ``a``, the middle and ``b`` brackets it;
+    the root of the rate found by the Illinois method, ``u`` tested there). ``rates``:
+    the rate at ``a``, the middle and ``b``."""
+    c = 0.5 * (a + b)
+    ra, rc, rb = rates
+    for lo, r_lo, hi, r_hi in ((a, ra, c, rc), (c, rc, b, rb)):
+        if r_lo < 0.0 <= r_hi:
+            tm = _refine(lambda t: -rate(t), lo, -r_lo, hi, -r_hi)
+            um = at(tm)
+            if um <= 0.0:
+                return _refine(at, a, fa, tm, um)
+    return None
 
 
 def _refine(at, a, fa, b, fb) -> float:
@@ -305,6 +357,7 @@ def flow(
 
             z = y
         surfaces = _surfaces(system, mode)
+        rates = _rates(system, mode)
         u_old = [u(t, y) for u in surfaces]
         armed = [v > 0.0 for v in u_old]
         f = fun(t, z)
@@ -333,7 +386,7 @@ def flow(
                 raise StepTooSmall(f"{system.name}: {err} in mode {mode}", rtol, atol) from None
             hit, t_hit = -1, math.inf
             for j, u in enumerate(surfaces):
-                tc, armed[j] = _crossing(u, st, m, u_old[j], armed[j])
+                tc, armed[j] = _crossing(u, rates[j], st, m, u_old[j], armed[j])
                 if tc is not None and tc < t_hit:
                     hit, t_hit = j, tc
             t_stop = t_hit if hit >= 0 else st.t + st.h
