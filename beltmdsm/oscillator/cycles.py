@@ -207,7 +207,7 @@ def self_excited_cycle(
     for start in [guess] if guess is not None else _starts(system):
         seed = flow(system, 0.0, start, settle, **tol)
         if sum(1 for s in seed.switches if s[1] == STICK) >= 3:
-            return _shoot_stick_slip(system, seed, max_iter, tol)
+            return _shoot_stick_slip(system, seed, settle, max_iter, tol)
         if not seed.switches and _moving(system, seed):
             return _seed_slip(system, seed.y, max_iter, tol)
     raise NoPeriodicResponse(
@@ -238,16 +238,20 @@ def _moving(system, seed):
     return np.abs(seed.y - eq.state).max() > 1e-6 * (1.0 + np.abs(eq.state).max())
 
 
-def _shoot_stick_slip(system, seed, max_iter, tol):
+def _shoot_stick_slip(system, seed, settle, max_iter, tol):
     """From a stick end of a settled run: ``k`` stick ends per period, the least ``k
     <= _MAX_STICKS`` after which the run's stick ends repeat (an end ``n`` equal to the
-    end ``n - k``, the first such ``n``; from the end ``n - k``)."""
+    end ``n - k``, the first such ``n``; from the end ``n - k``). A run that sticks no
+    more within ``settle`` seconds is refused (it would run on without end)."""
     ends: list = []
     y, mode = seed.y, seed.mode
     for n in range(_MAX_ENDS):
-        r = flow(system, 0.0, y, np.inf, mode=mode, stop=_nth_end(1), **tol)
+        r = flow(system, 0.0, y, settle, mode=mode, stop=_nth_end(1), **tol)
         if r.status != "stopped":
-            break
+            raise NoPeriodicResponse(
+                f"{system!r}: no stick-slip cycle found: the settled run sticks no more "
+                f"within {settle:g} s after {n} stick ends (no cycle with a stick there)"
+            )
         y, mode = r.y, r.mode
         k = next(
             (
