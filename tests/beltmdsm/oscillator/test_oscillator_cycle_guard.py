@@ -17,6 +17,9 @@ K = [[k1 + k3/2, k3/2], [k3/2, k2 + k3/2]]; stick (x' = Vb) holds while |H| <= m
 H = c1 Vb + K11 x + K12 y; it ends into the slip the net force points to.
 """
 
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -24,6 +27,7 @@ from scipy.integrate import solve_ivp
 import beltmdsm
 from beltmdsm.errors import NoPeriodicResponse
 from beltmdsm.oscillator import cycles as _cycles
+from beltmdsm.oscillator import steady_sliding
 from beltmdsm.oscillator.api import system_of
 
 MODEL = beltmdsm.Model(model="hoffmann", mu_s=1.0)
@@ -140,3 +144,22 @@ def test_the_trivial_return_is_refused():
     assert run.t < 1e-10
     with pytest.raises(NoPeriodicResponse, match="no self-excited cycle"):
         _cycles._cycle(s, TRIVIAL, -1, run, 0.0)
+
+
+def test_a_run_that_sticks_no_more_is_refused_in_bounded_time():
+    """Hoffmann's model at mu_s = 0.6 (steady sliding stable): the run from the stick
+    state sticks three times and decays onto steady sliding; the search for its next
+    stick end ran without end before (a run to t = inf), now it refuses in one line."""
+    code = (
+        "import beltmdsm\n"
+        "try:\n"
+        "    beltmdsm.cycle(beltmdsm.Model(model='hoffmann', mu_s=0.6))\n"
+        "except beltmdsm.errors.NoPeriodicResponse as err:\n"
+        "    print('REFUSED', err)\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True
+    ).stdout
+    line = next(s for s in out.splitlines() if s.startswith("REFUSED"))
+    assert "hoffmann" in line and "mu_s=0.6" in line and "sticks no more within 200 s" in line
+    assert steady_sliding(system_of(beltmdsm.Model(model="hoffmann", mu_s=0.6))).stable
