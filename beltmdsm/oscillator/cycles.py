@@ -18,7 +18,13 @@ at every switch (`beltmdsm.oscillator.hybrid.flow`), ``f`` the derived field at 
   goes over ``T``.
 
 The period reported is the least: no proper divisor of the ``k`` sticks (or ``T/j``,
-``j <= 6``, of a pure-slip cycle) returns to the state. The multipliers are the
+``j <= 6``, of a pure-slip cycle) returns to the state. ``k`` is the least number of
+stick ends after which the settled run's stick ends repeat (up to 32); a run whose
+stick ends repeat after none is refused, never shot with a guessed ``k``. Every cycle
+reported is a genuine return (`genuine`): it comes back in the mode it left, and a slip
+phase of it lasts at least ``1e-6`` of steady sliding's shortest time scale (the
+bordered system is also solved by the trivial return ``T -> 0`` at a point where a stick
+ends and begins again at once). The multipliers are the
 eigenvalues of ``M``; the trivial one (its eigenvector closest to the field, ``M f =
 f``) is reported apart, its distance from 1 measuring the accuracy; a stick gives a
 multiplier 0. A seed is a run settled over ``settle`` seconds from ``guess``, else
@@ -39,7 +45,7 @@ from .equilibria import steady_sliding
 from .hybrid import Switch, _to_stick, flow
 from .system import STICK, System
 
-__all__ = ["Cycle", "self_excited_cycle", "stick_onset", "NEWTON_TOL"]
+__all__ = ["Cycle", "self_excited_cycle", "stick_onset", "genuine", "NEWTON_TOL"]
 
 #: Newton's method stops when the run returns to its start to this (relative to the
 #: state's scale).
@@ -50,6 +56,13 @@ _RETURN_TOL = 1e-6
 _DIVISORS = 6
 #: Halvings of a Newton step before the method counts as stalled.
 _HALVINGS = 10
+#: The most stick ends per period looked for, and the most stick ends a settled run
+#: goes on for until they repeat (Hoffmann's model at mu_s = 1: 21 sticks a period,
+#: its ends repeating to 1e-5 after some 7 periods).
+_MAX_STICKS = 32
+_MAX_ENDS = 8 * _MAX_STICKS
+#: A slip phase shorter than this share of steady sliding's shortest time scale is none.
+_LEAST_PHASE = 1e-6
 
 
 @dataclass(repr=False)
@@ -194,7 +207,7 @@ def self_excited_cycle(
     for start in [guess] if guess is not None else _starts(system):
         seed = flow(system, 0.0, start, settle, **tol)
         if sum(1 for s in seed.switches if s[1] == STICK) >= 3:
-            return _shoot_stick_slip(system, seed, max_iter, tol)
+            return _shoot_stick_slip(system, seed, settle, max_iter, tol)
         if not seed.switches and _moving(system, seed):
             return _seed_slip(system, seed.y, max_iter, tol)
     raise NoPeriodicResponse(
@@ -225,14 +238,37 @@ def _moving(system, seed):
     return np.abs(seed.y - eq.state).max() > 1e-6 * (1.0 + np.abs(eq.state).max())
 
 
-def _shoot_stick_slip(system, seed, max_iter, tol):
-    """From the next stick end of a settled run: ``k`` stick ends per period, the
-    least ``k <= 6`` after which the run's stick ends repeat."""
-    start = flow(system, seed.t, seed.y, np.inf, mode=seed.mode, stop=_nth_end(1), **tol)
-    x, mode = start.y, start.mode
-    states = _end_states(system, x, mode, 6, tol)
-    k = next((j for j, y in enumerate(states, 1) if np.allclose(y, x, rtol=1e-5, atol=1e-7)), 1)
-    return _newton_stick(system, x, mode, k, max_iter, tol)
+def _shoot_stick_slip(system, seed, settle, max_iter, tol):
+    """From a stick end of a settled run: ``k`` stick ends per period, the least ``k
+    <= _MAX_STICKS`` after which the run's stick ends repeat (an end ``n`` equal to the
+    end ``n - k``, the first such ``n``; from the end ``n - k``). A run that sticks no
+    more within ``settle`` seconds is refused (it would run on without end)."""
+    ends: list = []
+    y, mode = seed.y, seed.mode
+    for n in range(_MAX_ENDS):
+        r = flow(system, 0.0, y, settle, mode=mode, stop=_nth_end(1), **tol)
+        if r.status != "stopped":
+            raise NoPeriodicResponse(
+                f"{system!r}: no stick-slip cycle found: the settled run sticks no more "
+                f"within {settle:g} s after {n} stick ends (no cycle with a stick there)"
+            )
+        y, mode = r.y, r.mode
+        k = next(
+            (
+                j
+                for j in range(1, min(n, _MAX_STICKS) + 1)
+                if ends[n - j][1] == mode and np.allclose(ends[n - j][0], y, rtol=1e-5, atol=1e-7)
+            ),
+            None,
+        )
+        if k is not None:
+            return _newton_stick(system, *ends[n - k], k, max_iter, tol)
+        ends.append((y, mode))
+    raise NoPeriodicResponse(
+        f"{system!r}: no stick-slip cycle found: the stick ends of the settled run repeat "
+        f"after no k <= {_MAX_STICKS} sticks within {len(ends)} sticks (it settles on no "
+        "cycle of so few sticks)"
+    )
 
 
 def _nth_end(k):
@@ -272,6 +308,10 @@ def _newton_stick(system, x, mode, k, max_iter, tol):
         run = flow(system, 0.0, x, np.inf, mode=mode, variational=True, stop=_nth_end(k), **tol)
         if run.status != "stopped":
             raise NoPeriodicResponse(f"{system!r}: the run from a stick end does not stick again")
+        # a step onto a stick end that sticks at once returns trivially (T -> 0)
+        why = _not_a_return(system, mode, run.t, run.switches)
+        if why:
+            raise NoPeriodicResponse(f"{system!r}: no stick-slip cycle found: Newton's {why}")
         r = run.y - x
         residual = float(np.abs(r).max())
         if residual <= NEWTON_TOL * scale:
@@ -374,6 +414,62 @@ def _mode(system, x):
     return 1 if v > 0.0 else -1
 
 
+def genuine(cycle: Cycle) -> Cycle:
+    """``cycle`` where it is a genuine return, else NoPeriodicResponse (the one check).
+
+    A genuine cycle leaves its state and comes back: in the mode it left, with a slip
+    phase of at least ``1e-6`` of steady sliding's shortest time scale (``1 / max
+    |eigenvalue|``). The bordered shooting system is also solved by ``T -> 0`` at a
+    point where a stick ends and begins again at once: no cycle.
+
+    Parameters
+    ----------
+    cycle : Cycle
+
+    Returns
+    -------
+    Cycle
+        ``cycle`` itself.
+
+    Raises
+    ------
+    NoPeriodicResponse
+        Naming the model, its parameters and the check that fails.
+
+    See Also
+    --------
+    self_excited_cycle : applies it to every cycle it returns.
+
+    Examples
+    --------
+    >>> from beltmdsm.oscillator import System
+    >>> c = self_excited_cycle(System("belt_1dof", friction="stribeck", Vb=1.5))
+    >>> genuine(c) is c
+    True
+    """
+    why = _not_a_return(cycle.system, cycle.mode, cycle.period, cycle.switches)
+    if why:
+        raise NoPeriodicResponse(f"{cycle.system!r}: no self-excited cycle: the {why}")
+    return cycle
+
+
+def _not_a_return(system, mode, period, switches):
+    """Why a run of ``period`` from ``mode`` with ``switches`` is no cycle ("" if it is)."""
+    shortest = 1.0 / float(np.abs(steady_sliding(system).eigenvalues).max())
+    times = [0.0] + [t for t, _, _ in switches] + [period]
+    modes = [mode] + [after for _, _, after in switches]
+    slip = max((b - a for a, b, md in zip(times, times[1:], modes) if md != STICK), default=0.0)
+    if modes[-1] != mode:
+        return f"run of period {period:.3g} s ends in mode {modes[-1]}, not in its mode {mode}"
+    if slip < _LEAST_PHASE * shortest:
+        return (
+            f"run of period {period:.3g} s slips for {slip:.3g} s at most, below "
+            f"{_LEAST_PHASE:g} of steady sliding's shortest time scale {shortest:.3g} s: "
+            "a stick that ends and begins at once, no cycle"
+        )
+    return ""
+
+
 def _cycle(system, x, mode, run, residual):
     M = run.monodromy
     f = np.asarray(system.kernels.field(0.0, x, system.p, mode), dtype=float)
@@ -384,8 +480,8 @@ def _cycle(system, x, mode, run, residual):
     rest = np.delete(w, i)
     rest = rest[np.argsort(-np.abs(rest), kind="stable")]
     sticks = sum(1 for _, _, after in run.switches if after == STICK)
-    return Cycle(
-        system, x, mode, float(run.t), rest, complex(w[i]), M, run.switches, sticks, residual
+    return genuine(
+        Cycle(system, x, mode, float(run.t), rest, complex(w[i]), M, run.switches, sticks, residual)
     )
 
 
