@@ -129,8 +129,9 @@ def pytest_sessionfinish(session):
 #: `EARLY` head the list: their tests wait for processes of their own (minutes of SymPy,
 #: of Sphinx), which then run beside the other worker's tests.
 FIRST = (
-    "tests/derive/test_codegen.py",  # `derivations`: two SymPy processes
-    "tests/test_docs_site.py",  # `site`: Sphinx
+    # the first test of each group that reads an `EARLY` fixture: the group goes with it
+    "tests/derive/test_codegen.py::test_generated_is_up_to_date",  # two SymPy processes
+    "tests/test_docs_site.py::test_the_site_builds_and_its_internal_links_resolve",  # Sphinx
     "notebooks/fig17_21_validation.ipynb",  # 119 s
     "notebooks/fig06_09_stability_maps.ipynb",  # 66 s
     "notebooks/stribeck_research.ipynb",  # 42 s
