@@ -33,12 +33,14 @@ if TYPE_CHECKING:
 else:
 
     def __getattr__(name: str) -> object:
-        for stem in _MODULES:
-            module = import_module(f".{stem}", __name__)
+        # a dunder (``__path__``, doctest's ``__test__``) is no public name: asked for
+        # while this file loads, an import here would recurse
+        for stem in () if name.startswith("__") else _MODULES:
+            module = import_module(f".{stem}", __package__)
             if name in module.__all__:
                 return getattr(module, name)
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def __dir__() -> list[str]:
-    return sorted({n for s in _MODULES for n in import_module(f".{s}", __name__).__all__})
+    return sorted({n for s in _MODULES for n in import_module(f".{s}", __package__).__all__})
