@@ -143,7 +143,7 @@ FIRST = (
 def pytest_xdist_auto_num_workers(config):
     """``-n auto`` (pyproject.toml's addopts): a worker per core, 8 at most, where the
     run names a folder (the whole suite, ``tests``, a subpackage's tests); none where it
-    names files or tests only, so that ``python -m pytest tests/test_x.py`` starts at once
+    names files or tests only, so that ``python -m pytest tests/test_layers.py`` starts at once
     (each worker imports and collects for seconds). ``PYTEST_XDIST_AUTO_NUM_WORKERS`` or
     ``-n N`` decide instead; ``-n 0`` runs in this process."""
     given = os.environ.get("PYTEST_XDIST_AUTO_NUM_WORKERS")
