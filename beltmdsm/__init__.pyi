@@ -27,7 +27,7 @@ from .model import Model
 from .multistability.coexistence import Coexistence, coexistence
 from .multistability.responses import ResponseSet, responses
 from .paper_reports.validation import Validation, validate
-from .periodic.cycle import Cycle, cycle, seed_cycle
+from .periodic.cycle import Cycle, cycle
 from .periodic.floquet import Floquet, floquet
 from .periodic.response import PeriodicResponse
 from .periodic.shooting import periodic_response
@@ -35,7 +35,8 @@ from .prediction.prediction import Prediction, predict
 from .run.summary import Summary
 from .settings import SolverSettings
 from .simulation import Simulation, simulate
-from .starts import periodic_start
+from .starts.cycle_seed import seed_cycle
+from .starts.forced import periodic_start
 
 __version__: str
 __all__ = [

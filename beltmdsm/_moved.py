@@ -44,9 +44,10 @@ MOVED = {
     "beltmdsm.studies.coexistence": "beltmdsm.multistability.coexistence",
     "beltmdsm.studies.cycle_coexistence": "beltmdsm.multistability.cycle_coexistence",
     "beltmdsm.studies.overlay": "beltmdsm.multistability.stable_ranges",
-    # starting states, one module
-    "beltmdsm.studies.seeds": "beltmdsm.starts",
-    "beltmdsm.periodic.start": "beltmdsm.starts",
+    # starting states, one package (its modules at their own layers)
+    "beltmdsm.studies.seeds": "beltmdsm.starts.forced",
+    "beltmdsm.periodic.start": "beltmdsm.starts.forced",
+    "beltmdsm.periodic.cycle_seed": "beltmdsm.starts.cycle_seed",
     # basins of attraction and basin stability
     "beltmdsm.studies.basins": "beltmdsm.basin.basins",
     "beltmdsm.studies.basin_stability": "beltmdsm.basin.basin_stability",
@@ -64,7 +65,7 @@ MOVED = {
     "beltmdsm.cycles.cycle": "beltmdsm.periodic.cycle",
     "beltmdsm.cycles.flow": "beltmdsm.periodic.cycle_flow",
     "beltmdsm.cycles.returns": "beltmdsm.periodic.cycle_returns",
-    "beltmdsm.cycles.seed": "beltmdsm.periodic.cycle_seed",
+    "beltmdsm.cycles.seed": "beltmdsm.starts.cycle_seed",
     "beltmdsm.continuation.branch_parts": "beltmdsm.continuation.branch_result",
     "beltmdsm.continuation.map_linear": "beltmdsm.continuation.linear_verdict",
     "beltmdsm.continuation.arclength": "beltmdsm.continuation.forced",

@@ -203,7 +203,7 @@ class Simulation:
 _START_HINTS = dict.fromkeys(
     ("start", "perturbation"),
     "takes the start state as y0: for a start on the periodic response pass "
-    "y0=beltmdsm.starts.periodic_start(model, perturbation)",
+    "y0=beltmdsm.starts.forced.periodic_start(model, perturbation)",
 )
 
 
@@ -238,7 +238,7 @@ def simulate(
         equilibrium moved by `beltmdsm.excitation.START_PERTURBATION` along its unstable
         direction (`beltmdsm.excitation.equilibrium_start`; the summary's
         ``start_perturbation``). To start on the
-        periodic response, pass `beltmdsm.starts.periodic_start` of the model.
+        periodic response, pass `beltmdsm.starts.forced.periodic_start` of the model.
     progress : bool
         show the simulated time on stderr (tqdm) once the run takes more than 2 s;
         it advances at every switch (a run without switches shows its elapsed time)

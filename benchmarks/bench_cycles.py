@@ -42,8 +42,8 @@ from beltmdsm.integrate.events import integrate_events
 from beltmdsm.integrate.switching import Switching
 from beltmdsm.model import Model
 from beltmdsm.periodic.cycle import cycle
-from beltmdsm.periodic.cycle_seed import SEED_AMPLITUDE, unstable_pair
 from beltmdsm.settings import SolverSettings
+from beltmdsm.starts.cycle_seed import SEED_AMPLITUDE, unstable_pair
 
 SPEEDS = (0.5, 1.0, 1.5, 1.9)
 LAW = dict(friction="stribeck", alpha=0.0)

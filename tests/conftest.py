@@ -1,5 +1,6 @@
 """Shared fixtures: parameter sets drawn at random around the paper's base set."""
 
+import os
 import shutil
 import tempfile
 from pathlib import Path
@@ -93,7 +94,10 @@ def pytest_collection_finish(session):
     test reads one: they are work in processes of their own (minutes of SymPy, of
     Sphinx), which then runs on a second core beside the rest of the suite instead of
     after it. Each test module keeps what it started in its ``STARTED``, by fixture."""
-    if session.config.option.collectonly:
+    if session.config.option.collectonly or hasattr(session.config, "workerinput"):
+        # under pytest-xdist every worker collects every test: each would start them.
+        # There the fixtures start their work when their first test runs, which
+        # `pytest_collection_modifyitems` puts first, beside the other workers' tests
         return
     started = session.config.stash.setdefault(_STARTED, [])
     seen = set()
@@ -117,3 +121,69 @@ def pytest_sessionfinish(session):
         if work is not None:  # not read: the session stopped before the tests that read it
             stop(work)
         shutil.rmtree(folder, ignore_errors=True)
+
+
+#: The tests (node id prefixes) that pytest-xdist hands out first, longest first, each
+#: with its measured wall time on 2 idle cores: a worker that takes a long test near the
+#: end of the run would leave the other core idle until it finishes. The fixtures of
+#: `EARLY` head the list: their tests wait for processes of their own (minutes of SymPy,
+#: of Sphinx), which then run beside the other worker's tests.
+FIRST = (
+    # the first test of each group that reads an `EARLY` fixture: the group goes with it
+    "tests/derive/test_codegen.py::test_generated_is_up_to_date",  # two SymPy processes
+    "tests/test_docs_site.py::test_the_site_builds_and_its_internal_links_resolve",  # Sphinx
+    "notebooks/fig17_21_validation.ipynb",  # 119 s
+    "notebooks/fig06_09_stability_maps.ipynb",  # 66 s
+    "notebooks/stribeck_research.ipynb",  # 42 s
+    "tests/beltmdsm/attractors/test_attractor.py",  # the locks and the torus: 36 + 30 + 18 + 12 s
+)
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_auto_num_workers(config):
+    """``-n auto`` (pyproject.toml's addopts): a worker per core, 8 at most, where the
+    run names a folder (the whole suite, ``tests``, a subpackage's tests); none where it
+    names files or tests only, so that ``python -m pytest tests/test_layers.py`` starts at once
+    (each worker imports and collects for seconds). ``PYTEST_XDIST_AUTO_NUM_WORKERS`` or
+    ``-n N`` decide instead; ``-n 0`` runs in this process."""
+    given = os.environ.get("PYTEST_XDIST_AUTO_NUM_WORKERS")
+    if given:
+        return int(given)
+    here = config.invocation_params.dir
+    if not any((here / arg.split("::")[0]).is_dir() for arg in config.args):
+        return 0
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    # one core: the `EARLY` processes give the overlap; more than 8 workers: each holds
+    # its own imports (hundreds of MB) and the tests' process pools already span the cores
+    return min(cores or 1, 8) if (cores or 1) > 1 else 0
+
+
+def _groups(item):
+    """The xdist groups of ``item``: a fixture of this suite's that outlives one test
+    (module, class or package scope: its module; session scope: its name) is computed
+    once per worker, so the tests that share it run on one worker (``--dist
+    loadgroup``); a test that shares none runs wherever a worker is free."""
+    info = getattr(item, "_fixtureinfo", None)  # a notebook has none
+    names = set()
+    for defs in info.name2fixturedefs.values() if info else ():
+        fixture = defs[-1]
+        if fixture.scope != "function" and fixture.baseid:  # "": pytest's or a plugin's
+            names.add(fixture.argname if fixture.scope == "session" else item.nodeid.split("::")[0])
+    return names
+
+
+@pytest.hookimpl(tryfirst=True)  # before xdist's, which reads the groups
+def pytest_collection_modifyitems(config, items):
+    """Under pytest-xdist: the groups of each test (`_groups`) and the longest tests
+    first (`FIRST`), in every worker alike (xdist checks that they collect the same)."""
+    if not hasattr(config, "workerinput"):
+        return
+    for item in items:
+        for name in sorted(_groups(item)):
+            item.add_marker(pytest.mark.xdist_group(name))
+    rank = {prefix: i for i, prefix in enumerate(FIRST)}
+
+    def first(item):
+        return next((i for p, i in rank.items() if item.nodeid.startswith(p)), len(FIRST))
+
+    items.sort(key=first)  # stable: the rest keep their order

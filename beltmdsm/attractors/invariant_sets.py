@@ -157,7 +157,7 @@ class Landscape:
     nested : bool
         The cycles are nested around the equilibrium (the region rule holds).
     stick_end : ndarray (4,) or None
-        Where every stick phase ends (`beltmdsm.periodic.cycle_seed.stick_end`).
+        Where every stick phase ends (`beltmdsm.starts.cycle_seed.stick_end`).
     stick_label : int or None
         The label of the attractor the stick end lands on (None: undecided, or no
         stick end).

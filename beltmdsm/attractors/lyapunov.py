@@ -407,7 +407,7 @@ def lyapunov(
         direction (`beltmdsm.excitation.equilibrium_start`; the result's
         ``start_perturbation``): a run started exactly on it stays there, and its
         exponents would be the equilibrium's instability, not the attractor's. To
-        start on the periodic response pass `beltmdsm.starts.periodic_start`.
+        start on the periodic response pass `beltmdsm.starts.forced.periodic_start`.
     t_end : float
         The whole run [s]: the transient, the alignment of the frame, the average.
     t_transient : float, optional

@@ -19,7 +19,7 @@ A start is decided as soon as it provably lands (`Landscape.decide`, `Landscape.
   sliding and the stick-slip cycle, say) belongs to it. The outermost region goes to
   the outermost cycle where it is stable. Starts within `BAND` of a cycle are not
   decided by region (the sampled curve's error): they are run.
-* **By stick.** A stick phase ends at one state (`beltmdsm.periodic.cycle_seed.stick_end`,
+* **By stick.** A stick phase ends at one state (`beltmdsm.starts.cycle_seed.stick_end`,
   normal motion at its equilibrium): every start that sticks goes on from there, so
   its fate is that state's, computed once. This is exact: a stick-slip cycle passes
   through that state.
@@ -123,7 +123,7 @@ def backward_seed(model: Model, eq: InvariantSet) -> list[tuple[NDArray[np.float
 
     from beltmdsm.generated import hybrid
 
-    from ..periodic.cycle_seed import section_direction
+    from ..starts.cycle_seed import section_direction
 
     if not eq.stable:
         return []
@@ -186,7 +186,7 @@ def _focus(model, eq):
 
     from beltmdsm.generated import hybrid
 
-    from ..periodic.cycle_seed import section_direction
+    from ..starts.cycle_seed import section_direction
 
     A = _jacobian(model)[:2, :2]
     P = solve_continuous_lyapunov(A.T, -np.eye(2))
@@ -259,7 +259,7 @@ def landscape(
     seed : bool
         Also the cycles seeded by a backward run from stable steady sliding
         (`backward_seed`: the unstable cycle around it) and from the stick end or
-        unstable sliding (`beltmdsm.periodic.cycle_seed.seed_cycle`).
+        unstable sliding (`beltmdsm.starts.cycle_seed.seed_cycle`).
 
     Returns
     -------
@@ -293,7 +293,7 @@ def landscape(
     [0, 1]
     """
     from ..periodic.cycle import cycle
-    from ..periodic.cycle_seed import require_autonomous, stick_end
+    from ..starts.cycle_seed import require_autonomous, stick_end
 
     require_autonomous(model, "basins without excitation")
     eq = _equilibrium(model)

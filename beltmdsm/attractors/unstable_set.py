@@ -122,7 +122,7 @@ def _unstable_response(resp, spec, where):
         f"residual {resp.residual:.1e}), which is unstable: its largest Floquet "
         f"multiplier |mu| = {mu:.6g}, ln|mu| / ({k} T) = {rate:+.4g} 1/s against the run's "
         f"largest exponent {spec.largest:+.4g} 1/s: the exponent is that response's "
-        "instability, not chaos (start off it: beltmdsm.starts.periodic_start "
+        "instability, not chaos (start off it: beltmdsm.starts.forced.periodic_start "
         "with a perturbation, and run until it has left)",
         k,
         resp.state0,

@@ -372,7 +372,7 @@ def basin_stability(
     >>> b.decided  # every start by the region the unstable cycle bounds, none run
     {'region': 400, 'stick': 0, 'none': 0}
     """
-    from ..periodic.cycle_seed import require_autonomous
+    from ..starts.cycle_seed import require_autonomous
 
     model = as_model(model)
     require_autonomous(model, "basin stability by sampling")

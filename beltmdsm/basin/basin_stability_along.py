@@ -256,7 +256,7 @@ def basin_stability_along(
     """
     from ..cycles.branch import cycle_branch
     from ..cycles.hopf import hopf_points
-    from ..periodic.cycle_seed import require_autonomous
+    from ..starts.cycle_seed import require_autonomous
 
     model = as_model(model)
     require_autonomous(model, "basin stability along a parameter")

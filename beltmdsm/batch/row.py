@@ -26,7 +26,7 @@ from ..model import Model
 from ..run.modulation import modulation_scatter
 from ..settings import SolverSettings
 from ..simulation import simulate
-from ..starts import periodic_start
+from ..starts.forced import periodic_start
 
 __all__ = [
     "Row",
@@ -214,7 +214,7 @@ MODULATION_COLUMNS = tuple(
 #: The regime of a point started on the periodic response where none is found.
 NO_PERIODIC_RESPONSE = "no_periodic_response"
 #: Where a (not continued) run starts: the unforced equilibrium, or the periodic
-#: response moved by `beltmdsm.starts.PERTURBATION` in X1.
+#: response moved by `beltmdsm.starts.forced.PERTURBATION` in X1.
 STARTS = ("rest", "periodic")
 Start = Literal["rest", "periodic"]
 

@@ -9,9 +9,9 @@ exactly:
 
 1. **Seeds.** On a grid of the parameter: the periodic response of period ``T``
    (`beltmdsm.periodic.floquet.floquet`, continued down the grid from its neighbour);
-   the attractor of a run from rest (`beltmdsm.starts.run_stroboscope`);
+   the attractor of a run from rest (`beltmdsm.starts.forced.run_stroboscope`);
    and those of two ladders, continued up and down the grid on the period map
-   (`beltmdsm.starts.ladder`). An attractor that locks at ``k`` periods
+   (`beltmdsm.starts.forced.ladder`). An attractor that locks at ``k`` periods
    (`beltmdsm.periodic.locked.LOCK_LIMIT` at most) is a seed; one that does not is
    listed with the evidence (`beltmdsm.periodic.locked.NotLocked`).
 2. **Branches.** Every seed that no branch found so far passes through (same ``k``,
@@ -52,7 +52,7 @@ from ..periodic.floquet import floquet
 from ..periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ..periodic.response import response_from
 from ..settings import MAX_SEED_POINTS
-from ..starts import check_limit, ladder, run_stroboscope, shoot
+from ..starts.forced import check_limit, ladder, run_stroboscope, shoot
 from .coexistence_result import Coexistence, ResponseBranch, Unexplained, Unlocked
 from .stable_ranges import CoexistenceRange, StablePart, overlay, stable_parts
 

@@ -36,7 +36,7 @@ from ..periodic.engines import period_map
 from ..periodic.floquet import Floquet, floquet
 from ..periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods, same_phases
 from ..periodic.response import response_from
-from ..starts import (
+from ..starts.forced import (
     LADDER_SPAN,
     LADDER_STEP,
     RUN_T_END,
@@ -300,9 +300,9 @@ def responses(
         The largest ``k`` looked for (>= 1).
     ladder : float
         Span of the continued ladders [m/s], >= 0 (0: no ladder; the default
-        `beltmdsm.starts.LADDER_SPAN`).
+        `beltmdsm.starts.forced.LADDER_SPAN`).
     t_end : float
-        Duration of the runs [s] (default `beltmdsm.starts.RUN_T_END`).
+        Duration of the runs [s] (default `beltmdsm.starts.forced.RUN_T_END`).
     backend : {"python", "numba", None}
         The kernels: compiled by numba, plain Python, or numba where installed.
     **kw
@@ -321,7 +321,7 @@ def responses(
         For bad parameters, ``limit < 1``, ``ladder < 0`` or ``t_end <= 0``.
     beltmdsm.errors.Refused
         For a ``limit`` that the samples cannot decide
-        (`beltmdsm.starts.check_limit`).
+        (`beltmdsm.starts.forced.check_limit`).
 
     See Also
     --------
@@ -554,7 +554,7 @@ def cycle_responses(
             known.sources.append(source)
 
     # where steady sliding is stable the seed's run starts where a stick ends
-    # (`beltmdsm.periodic.cycle_seed.seed_cycle`)
+    # (`beltmdsm.starts.cycle_seed.seed_cycle`)
     source = (
         "the run off perturbed steady sliding"
         if unstable_pair(model)[0].real > 0

@@ -77,10 +77,7 @@ from ..integrate.events import StepTooSmall, integrate_events
 from ..integrate.switching import Mode, Switching
 from ..model import Backend, Model, as_model
 from ..settings import SolverSettings
-from . import variational
-from .base import RTOL
-from .cycle_returns import first_return, rest_step
-from .cycle_seed import (
+from ..starts.cycle_seed import (
     SEED_AMPLITUDE,
     SEED_PERIODS,
     SETTLE_TOL,
@@ -89,6 +86,9 @@ from .cycle_seed import (
     seed_cycle,
     unstable_pair,
 )
+from . import variational
+from .base import RTOL
+from .cycle_returns import first_return, rest_step
 from .general_map import EventPeriod
 from .margins import GRAZING_RATIO, crossing_ratio, orbit_range
 from .newton import NEWTON_TOL

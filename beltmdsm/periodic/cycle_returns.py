@@ -10,7 +10,7 @@ after each, and shooting converges on either. Two facts give the least period:
   while the mass sticks ``X1' = Vb`` whatever came before, the normal motion sits at
   its equilibrium on the cycle (it is free of the tangential state: the laws' fact
   ``one_way_coupling``) and the stick ends where the spring's force leaves the friction
-  cone, ``beltmdsm.periodic.cycle_seed.stick_end``. The run from there to the next end of a
+  cone, ``beltmdsm.starts.cycle_seed.stick_end``. The run from there to the next end of a
   stick is one least period, found without Newton's method: the cycle is superstable
   (its multiplier 0), and a run that sticks once is on it.
 * **No proper divisor of the period returns** (`first_return`): where the orbit passes
@@ -46,7 +46,7 @@ RETURN_TOL = 1e-6
 _SAMPLES = 64
 #: A run that does not stick within this many turns, with ``X1'`` varying by less than
 #: `_DECAYED` of ``|Vb|`` over one of them, has decayed to steady sliding (as
-#: `beltmdsm.periodic.cycle_seed`).
+#: `beltmdsm.starts.cycle_seed`).
 _CHUNK_TURNS = 10
 _DECAYED = 1e-6
 
@@ -121,7 +121,7 @@ def section_returns(sw: Switching, state, spans, d: int, step: float) -> list:
     spans : iterable of (t0, t1, mode)
         The run's segments.
     d : int
-        The slip mode of the section (`beltmdsm.periodic.cycle_seed.section_direction`).
+        The slip mode of the section (`beltmdsm.starts.cycle_seed.section_direction`).
     step : float
         The spacing of the samples searched for extrema [s].
 
@@ -140,7 +140,7 @@ def section_returns(sw: Switching, state, spans, d: int, step: float) -> list:
     One period of the stick-slip cycle at ``Vb = 1.5`` from where its stick ends: the slip
     phase has one extremum of ``X1'``, at -2.0338 m/s:
 
-    >>> from beltmdsm.periodic.cycle_seed import stick_end
+    >>> from beltmdsm.starts.cycle_seed import stick_end
     >>> from beltmdsm.model import Model
     >>> model = Model(friction="stribeck", alpha=0.0, Vb=1.5)
     >>> tr = run_from(model, stick_end(model), 0.0, 6.654341995080, "python", 1e-12).trajectory
@@ -194,7 +194,7 @@ def stick_slip_start(
     model : Model
         Without excitation.
     end : numpy.ndarray, shape (4,)
-        The state where a stick ends (`beltmdsm.periodic.cycle_seed.stick_end`).
+        The state where a stick ends (`beltmdsm.starts.cycle_seed.stick_end`).
     d : int
         The slip mode of the section.
     t_end : float
@@ -210,14 +210,14 @@ def stick_slip_start(
 
     See Also
     --------
-    beltmdsm.periodic.cycle_seed.seed_cycle : Calls it where its run sticks.
+    beltmdsm.starts.cycle_seed.seed_cycle : Calls it where its run sticks.
 
     Examples
     --------
     Under static and kinetic friction at ``Vb = 0.31`` the cycle sticks once a period
     of 11.4605 s (a period twice as long closes too):
 
-    >>> from beltmdsm.periodic.cycle_seed import stick_end
+    >>> from beltmdsm.starts.cycle_seed import stick_end
     >>> from beltmdsm.model import Model
     >>> model = Model(friction="static_kinetic", alpha=0.0, Vb=0.31)
     >>> state, period = stick_slip_start(model, stick_end(model), -1, 1e3, "python")
@@ -292,7 +292,7 @@ def first_return(sw: Switching, period, x, d: int, T: float) -> float | None:
     The static and kinetic cycle at ``Vb = 0.31`` run over twice its period passes its
     state again at 11.4605 s:
 
-    >>> from beltmdsm.periodic.cycle_seed import stick_end
+    >>> from beltmdsm.starts.cycle_seed import stick_end
     >>> from beltmdsm.model import Model
     >>> from beltmdsm.periodic.general_map import EventPeriod
     >>> model = Model(friction="static_kinetic", alpha=0.0, Vb=0.31)

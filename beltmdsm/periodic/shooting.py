@@ -163,7 +163,7 @@ def periodic_response(
     See Also
     --------
     beltmdsm.periodic.floquet.floquet : the response's multipliers.
-    beltmdsm.starts.periodic_start : a run's start on it.
+    beltmdsm.starts.forced.periodic_start : a run's start on it.
     beltmdsm.continuation.branch.branch : the response continued in a parameter.
     beltmdsm.periodic.cycle.cycle : the self-excited cycle of a model without excitation.
 

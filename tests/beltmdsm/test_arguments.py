@@ -75,7 +75,7 @@ def test_a_lock_at_a_divisor_is_named_with_its_period():
 def test_the_limit_bound_counts_the_samples_a_run_has():
     from beltmdsm.excitation import excitation_period
     from beltmdsm.model import Model
-    from beltmdsm.starts import check_limit, run_samples, run_stroboscope
+    from beltmdsm.starts.forced import check_limit, run_samples, run_stroboscope
 
     m = Model()
     T = excitation_period(m)

@@ -54,10 +54,30 @@ def test_a_moved_packages_submodule_is_loaded_once():
 
 def test_studies_still_names_its_modules():
     out, err = _fresh("import beltmdsm.studies as s; print(s.sweep.__name__, s.seeds.__name__)")
-    assert out.split() == ["beltmdsm.batch.sweep", "beltmdsm.starts"]
-    assert "beltmdsm.studies.seeds moved to beltmdsm.starts" in err
+    assert out.split() == ["beltmdsm.batch.sweep", "beltmdsm.starts.forced"]
+    assert "beltmdsm.studies.seeds moved to beltmdsm.starts.forced" in err
     with pytest.raises(AttributeError, match="no attribute 'nothing'"):
         importlib.import_module("beltmdsm.studies").nothing  # noqa: B018
+
+
+def test_the_starting_states_are_one_package_without_an_arrow_up():
+    """Issue 38 item 3: studies/seeds.py, cycles/seed.py and periodic/start.py are one
+    place, `beltmdsm.starts`, whose modules sit at their own layers: a self-excited
+    cycle's seed (which `beltmdsm.periodic.cycle` shoots from) loads no simulation, and
+    the package gives every name of both as before."""
+    out, _ = _fresh(
+        "import sys, beltmdsm.periodic.cycle, beltmdsm.starts.cycle_seed as seed\n"
+        "print(seed.__name__, 'beltmdsm.simulation' in sys.modules,"
+        " 'beltmdsm.starts.forced' in sys.modules)\n"
+        "import beltmdsm.starts as starts, beltmdsm.starts.forced as forced\n"
+        "print(all(getattr(starts, n) is getattr(forced, n) for n in forced.__all__),"
+        " all(getattr(starts, n) is getattr(seed, n) for n in seed.__all__),"
+        " sorted(set(dir(starts))) == sorted(set(forced.__all__) | set(seed.__all__)))"
+    )
+    assert out.split() == ["beltmdsm.starts.cycle_seed", "False", "False", "True", "True", "True"]
+    for old in ("beltmdsm/starts.py", "beltmdsm/periodic/cycle_seed.py",
+                "beltmdsm/cycles/seed.py"):  # fmt: skip
+        assert not (ROOT / old).exists(), old
 
 
 def test_the_public_names_come_from_their_new_homes():
@@ -67,7 +87,8 @@ def test_the_public_names_come_from_their_new_homes():
         "coexistence": "beltmdsm.multistability.coexistence",
         "basins": "beltmdsm.basin.basins",
         "validate": "beltmdsm.paper_reports.validation.run",
-        "periodic_start": "beltmdsm.starts",
+        "periodic_start": "beltmdsm.starts.forced",
+        "seed_cycle": "beltmdsm.starts.cycle_seed",
     }
     for name, module in homes.items():
         assert getattr(beltmdsm, name).__module__ == module, name

@@ -69,7 +69,7 @@ def run(args: argparse.Namespace) -> int:
     model = model_from(args)
     y0 = None
     if args.start == "periodic":
-        from ...starts import PERTURBATION, periodic_start
+        from ...starts.forced import PERTURBATION, periodic_start
 
         if args.perturbation is None:
             args.perturbation = PERTURBATION

@@ -35,7 +35,7 @@ def add(commands, name: str) -> None:
         choices=("rest", "periodic"),
         default="rest",
         help="start from the equilibrium at rest (default), or on the periodic "
-        "response (beltmdsm/starts.py) with X1 moved by --perturbation",
+        "response (beltmdsm/starts/forced.py) with X1 moved by --perturbation",
     )
     sub.add_argument(
         "--perturbation",
@@ -94,7 +94,7 @@ def run(args: argparse.Namespace) -> int:
     check_request(model, settings)  # before the periodic start is computed
     y0 = None
     if args.start == "periodic":
-        from ...starts import PERTURBATION, periodic_start
+        from ...starts.forced import PERTURBATION, periodic_start
 
         if args.perturbation is None:
             args.perturbation = PERTURBATION

@@ -82,7 +82,7 @@ TENSIONS: tuple[str, ...] = ("allowed", "clipped")
 #: The belt speeds studied [m/s].
 VB_RANGE: tuple[float, float] = (0.2, 12.0)
 #: Where an unforced run starts (`runs_from_rest`): ``"perturbed"`` the equilibrium of
-#: Eq. (9) at rest with ``X1`` moved by `beltmdsm.starts.PERTURBATION` (the
+#: Eq. (9) at rest with ``X1`` moved by `beltmdsm.starts.forced.PERTURBATION` (the
 #: exact equilibrium is left only by rounding), ``"released"`` at rest with ``X1 = 0``
 #: (the spring relaxed: a large disturbance, which finds a stick-slip cycle where it
 #: coexists with stable sliding).

@@ -19,7 +19,7 @@ from ...intervals import runs
 from ...model import Model
 from ...settings import SolverSettings
 from ...simulation import simulate
-from ...starts import PERTURBATION
+from ...starts.forced import PERTURBATION
 from .laws import FORCED_STARTS, RUN_SETTINGS, STARTS, Law
 
 __all__ = ["RunScan", "runs_from_rest"]

@@ -253,7 +253,7 @@ RUNS = (
     (
         "periodic",
         "periodic start",
-        "on the periodic response plus `beltmdsm.starts.PERTURBATION` in X1",
+        "on the periodic response plus `beltmdsm.starts.forced.PERTURBATION` in X1",
     ),
     ("up", "up sweep", "continued upwards in Vb, from rest at the lowest point"),
     ("down", "down sweep", "continued downwards in Vb, from rest at the highest point"),

@@ -16,7 +16,7 @@ it by its steady window, the rule the runs apply to their own transient), *not l
 (the nearby seed runs of the exact study do not lock: quasi-periodic motion, or a
 longer period than `beltmdsm.periodic.locked.LOCK_LIMIT`), or *unexplained*. A run
 from rest that no computed response explains is run again with its settings and its
-stroboscope examined (`beltmdsm.starts.run_stroboscope`): where it locks,
+stroboscope examined (`beltmdsm.starts.forced.run_stroboscope`): where it locks,
 its response is computed by shooting and compared like the others (a response the
 exact study's seeds did not reach). Where it does not lock within the limit, the run is
 classified (`beltmdsm.attractors.classification.classify`: its Lyapunov spectrum and its
@@ -44,7 +44,7 @@ from ...periodic.engines import period_map
 from ...periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods
 from ...run.summary import TRANSIENT_DECAYED
 from ...settings import SolverSettings
-from ...starts import run_stroboscope, shoot
+from ...starts.forced import run_stroboscope, shoot
 from .verdicts import Run
 
 __all__ = ["SEED_SOURCES", "STATUSES", "Explanation", "range_tolerance", "explain_coexistence"]

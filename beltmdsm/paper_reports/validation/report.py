@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from ...multistability.coexistence import DEFAULT_STEP
 from ...periodic.locked import LOCK_LIMIT
 from ...run.summary import PEAK_PRESENT_RATIO, TRANSIENT_DECAYED
-from ...starts import PERTURBATION
+from ...starts.forced import PERTURBATION
 from .cases import ANALYSES, DEFINITIONS, FLOQUET_DEFINITIONS, FLOQUET_TOL
 from .cells import delta_text, num, points_text, ranges_text, runs_text, simulated_text
 from .comparison import regime_runs

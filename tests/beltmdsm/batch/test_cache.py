@@ -190,7 +190,7 @@ def test_the_code_hash_covers_what_a_row_imports_and_not_the_rest():
         "beltmdsm/periodic/general_map.py",
         "beltmdsm/periodic/newton.py",
         "beltmdsm/periodic/shooting.py",
-        "beltmdsm/starts.py",
+        "beltmdsm/starts/forced.py",
         "beltmdsm/periodic/variational.py",
         "beltmdsm/periodic/locked.py",
     } <= names

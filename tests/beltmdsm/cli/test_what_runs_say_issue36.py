@@ -123,7 +123,7 @@ def test_classify_on_the_unstable_periodic_response_names_it():
     response's largest Floquet multiplier, computed here by `floquet` apart."""
     import beltmdsm
     from beltmdsm import Model
-    from beltmdsm.starts import periodic_start
+    from beltmdsm.starts.forced import periodic_start
 
     m = Model(Vb=5.0)
     f = beltmdsm.floquet(m)
@@ -195,7 +195,7 @@ def test_coexistence_does_not_list_a_run_converging_onto_the_t_response_as_unloc
     (the reference), and Newton's method finds the response from its last sample."""
     import beltmdsm
     from beltmdsm import Model
-    from beltmdsm.starts import ladder
+    from beltmdsm.starts.forced import ladder
 
     mu = beltmdsm.floquet(Model(Vb=4.0)).max_abs_multiplier
     assert 0.99 < mu < 1.0

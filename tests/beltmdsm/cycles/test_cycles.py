@@ -33,7 +33,7 @@ from beltmdsm.periodic.cycle import Cycle, cycle, seed_cycle, unstable_pair
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.settings import SolverSettings
-from beltmdsm.starts import periodic_start
+from beltmdsm.starts.forced import periodic_start
 
 P = dict(beta1=0.1, omega1=1.0, mu_s=0.4, mu_k=0.25, v_s=1.0, g=9.81)
 

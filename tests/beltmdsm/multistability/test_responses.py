@@ -13,7 +13,7 @@ from beltmdsm.model import Model
 from beltmdsm.multistability import responses as R
 from beltmdsm.periodic.locked import same_phases
 from beltmdsm.periodic.shooting import periodic_response
-from beltmdsm.starts import ladder_stroboscope, run_stroboscope
+from beltmdsm.starts.forced import ladder_stroboscope, run_stroboscope
 
 
 @pytest.mark.parametrize(("case", "k"), [(dict(Vb=5.0), 4), (dict(Vb=6.3), 4), (dict(Vb=7.0), 4)])

@@ -22,7 +22,7 @@ from beltmdsm.periodic.normal_orbit import normal_orbit
 from beltmdsm.periodic.shooting import periodic_response
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
-from beltmdsm.starts import periodic_start
+from beltmdsm.starts.forced import periodic_start
 
 # Newton stops at 1e-11 of the state's scale; the event-driven run at rtol = atol =
 # 1e-12 over one period adds a few 1e-12: the orbit closes to ~1e-10 there.

@@ -70,7 +70,7 @@ def test_a_stable_periodic_response_does_not_make_a_growing_peak_unresolved():
     # Vb = 5 is inside the Floquet band: the periodic response is unstable, the
     # perturbation grows into the omega1 vibration, which is present and resolved
     from beltmdsm.model import Model
-    from beltmdsm.starts import periodic_start
+    from beltmdsm.starts.forced import periodic_start
 
     model = Model(Vb=5.0)
     s = simulate(model, y0=periodic_start(model), t_end=400.0).summary

@@ -6,6 +6,11 @@ given: the state on the section (the extremum of ``X1'`` of largest ``|Vr|``,
 starts at steady sliding (the unforced equilibrium, Eq. 9) moved along its unstable
 direction and goes on until its returns to the section repeat. `require_autonomous`
 and `section_direction` are the checks and the orientation both share.
+
+One of the starting states of `beltmdsm.starts`, at the layer of the periodic orbits
+(tests/test_layers.py): `beltmdsm.periodic.cycle` shoots from it, so it imports nothing
+above them. It was ``beltmdsm.periodic.cycle_seed`` and ``beltmdsm.cycles.seed`` before;
+those paths still import (issue 38).
 """
 
 from __future__ import annotations
@@ -24,7 +29,7 @@ from ..errors import NoPeriodicResponse
 from ..excitation import initial_state, is_autonomous
 from ..integrate.switching import SURFACE_INDEX, Mode, Switching
 from ..model import Backend, Model, as_model
-from .cycle_returns import run_from, section_returns, stick_slip_start
+from ..periodic.cycle_returns import run_from, section_returns, stick_slip_start
 
 __all__ = [
     "seed_cycle",
@@ -130,7 +135,7 @@ def section_direction(model: Model) -> int:
 
     See Also
     --------
-    beltmdsm.periodic.cycle_seed.stick_end : The edge of the friction cone on this side.
+    beltmdsm.starts.cycle_seed.stick_end : The edge of the friction cone on this side.
 
     Examples
     --------
@@ -309,7 +314,7 @@ def stick_end(model: Model) -> NDArray[np.float64] | None:
 
     See Also
     --------
-    beltmdsm.periodic.cycle_seed.seed_cycle : Starts there where steady sliding is stable.
+    beltmdsm.starts.cycle_seed.seed_cycle : Starts there where steady sliding is stable.
 
     Examples
     --------

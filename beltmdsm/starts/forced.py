@@ -1,10 +1,9 @@
-"""Where runs and the search for periodic responses start: one module for starting states.
+"""Where the runs and the searches of the forced model start (`beltmdsm.starts`).
 
 * `periodic_start`: a state on the periodic response with ``X1`` moved a little. A run
   from there shows the instability of an unstable periodic response (``simulate --start
   periodic``, `beltmdsm.simulation.simulate`), where a run from rest may settle
-  elsewhere; a stable response stays put. (It was ``beltmdsm.starts``; that
-  path still imports, issue 38.)
+  elsewhere; a stable response stays put.
 
 A run of Eq. (4) from rest (the runs of Fig. 2b and Figs. 17-21), a run from the
 perturbed periodic response or a sweep continued in a parameter ends on one attractor;
@@ -22,9 +21,8 @@ point of the ``k``-fold period map (`beltmdsm.periodic.newton.fixed_point`).
 * `shoot`: Newton's method on the ``k``-fold map from a sample.
 
 `beltmdsm.multistability.responses` and `beltmdsm.multistability.coexistence` seed their
-searches here (this module was ``beltmdsm.studies.seeds``). The seed of a self-excited
-cycle stays in `beltmdsm.periodic.cycle_seed`: `beltmdsm.periodic.cycle` needs it, one layer below
-`beltmdsm.simulation`, which the runs here use (tests/test_layers.py).
+searches here. It was ``beltmdsm.starts`` (one module), ``beltmdsm.studies.seeds`` and
+``beltmdsm.periodic.start`` before; those paths still import (issue 38).
 """
 
 from __future__ import annotations
@@ -36,17 +34,17 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._calling import public
-from .errors import NoPeriodicResponse, Refused
-from .excitation import excitation_period, initial_state
-from .model import Backend, Model, as_model
-from .periodic.base import PeriodMap
-from .periodic.engines import ENGINES, engine_of, period_map
-from .periodic.locked import LOCK_LIMIT, Stroboscope, map_stroboscope, stroboscope
-from .periodic.newton import FixedPoint, fixed_point
-from .periodic.shooting import periodic_response
-from .settings import SolverSettings
-from .simulation import simulate
+from .._calling import public
+from ..errors import NoPeriodicResponse, Refused
+from ..excitation import excitation_period, initial_state
+from ..model import Backend, Model, as_model
+from ..periodic.base import PeriodMap
+from ..periodic.engines import ENGINES, engine_of, period_map
+from ..periodic.locked import LOCK_LIMIT, Stroboscope, map_stroboscope, stroboscope
+from ..periodic.newton import FixedPoint, fixed_point
+from ..periodic.shooting import periodic_response
+from ..settings import SolverSettings
+from ..simulation import simulate
 
 __all__ = [
     "PERTURBATION",
@@ -154,7 +152,7 @@ def run_samples(model: Model, t_end: float) -> int:
 
     See Also
     --------
-    beltmdsm.starts.check_limit : the refusal of a limit they cannot decide.
+    beltmdsm.starts.forced.check_limit : the refusal of a limit they cannot decide.
 
     Examples
     --------
@@ -202,7 +200,7 @@ def check_limit(
 
     See Also
     --------
-    beltmdsm.starts.run_samples
+    beltmdsm.starts.forced.run_samples
 
     Examples
     --------
@@ -218,7 +216,7 @@ def check_limit(
         raise Refused(
             f"limit must be <= {(LADDER_PERIODS - 1) // 2}, since the ladders sample "
             f"{LADDER_PERIODS} periods a rung and a lock of k periods needs more than 2 k "
-            f"samples (LADDER_PERIODS, beltmdsm/starts.py); got {limit}"
+            f"samples (LADDER_PERIODS, beltmdsm/starts/forced.py); got {limit}"
             + (" (or give ladder 0 and a long enough t_end)" if t_end_is_given else ""),
             "limit",
         )
@@ -280,7 +278,7 @@ def run_stroboscope(
 
     See Also
     --------
-    beltmdsm.starts.shoot : the fixed point from the last sample.
+    beltmdsm.starts.forced.shoot : the fixed point from the last sample.
 
     Examples
     --------
@@ -342,7 +340,7 @@ def ladder(
 
     See Also
     --------
-    beltmdsm.starts.ladder_stroboscope : the last rung of a ladder in ``Vb``.
+    beltmdsm.starts.forced.ladder_stroboscope : the last rung of a ladder in ``Vb``.
 
     Examples
     --------
@@ -405,7 +403,7 @@ def ladder_stroboscope(
 
     See Also
     --------
-    beltmdsm.starts.ladder
+    beltmdsm.starts.forced.ladder
 
     Examples
     --------
