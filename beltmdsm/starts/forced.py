@@ -116,7 +116,7 @@ def periodic_start(
         raise ValueError(f"perturbation must be a finite number; got {perturbation!r}")
     model = as_model(model)
     if model.model != "paper":  # another registered model: the generic runtime
-        from .oscillator import api
+        from ..oscillator import api
 
         return api.periodic_start(model, float(perturbation), backend=backend)
     state = periodic_response(model, backend=backend).state0
