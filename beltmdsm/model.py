@@ -119,7 +119,7 @@ ANALYSES = (
 GENERIC = (
     "simulate", "periodic_response", "floquet", "cycle", "sweep", "lyapunov", "basins",
     "branch", "floquet_band", "floquet_map", "responses", "coexistence", "classify",
-    "periodic_start",
+    "periodic_start", "basin_stability",
 )  # fmt: skip
 #: Those of `GENERIC` that follow a forced response: they run another model where one
 #: of its excitation amplitudes is not 0 (`OtherModel.capabilities`).
@@ -142,8 +142,6 @@ LACKS: Mapping[str, str] = MappingProxyType(
         "self-excited cycles)",
         "floquet_map": "beltmdsm.oscillator has no two-parameter map of the response's "
         "stability without excitation",
-        "basin_stability": "beltmdsm.oscillator has no basin stability by sampling "
-        "(beltmdsm.basins maps a plane of starts)",
     }
 )
 

@@ -328,6 +328,9 @@ def basin_stability(
     ----------
     model : Model, optional
         Without excitation (`beltmdsm.Model`; a dict of its keywords is taken too).
+        Another registered model (``Model(model=NAME)``) runs on the generic runtime,
+        `beltmdsm.oscillator.basins.basin_stability`: ``region`` maps two of its states,
+        the result is that function's `Stability`, and nothing is cached.
     region : dict of str to (float, float)
         The box: axes among `AXES` (``Y1`` is ``X1'``); the others at steady sliding.
     samples : int
@@ -375,6 +378,15 @@ def basin_stability(
     from ..starts.cycle_seed import require_autonomous
 
     model = as_model(model)
+    if model.model != "paper":  # another registered model: the generic runtime
+        from ..oscillator import api
+
+        return api.basin_stability(  # type: ignore[return-value]
+            model, region, count("samples", samples, 1, MAX_SAMPLES), count("seed", seed, 0),
+            executor_of(executor), t_max, branch=branch, landscape=landscape,
+            cache_dir=None if cache_dir_of(cache_dir) in ("default", None) else cache_dir,
+            progress=progress or None,
+        )  # fmt: skip
     require_autonomous(model, "basin stability by sampling")
     region = _checked_region(region)
     samples = count("samples", samples, 1, MAX_SAMPLES)

@@ -22,7 +22,7 @@ from .system import System
 
 if TYPE_CHECKING:
     from ..settings import SolverSettings
-    from .basins import Basins
+    from .basins import Basins, Stability
     from .classification import Settled
     from .cycles import Cycle
     from .forced import Response
@@ -33,7 +33,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "system_of", "simulate", "periodic_response", "periodic_start", "cycle", "lyapunov",
-    "sweep", "basins", "responses", "coexistence", "classify",
+    "sweep", "basins", "basin_stability", "responses", "coexistence", "classify",
 ]  # fmt: skip
 
 
@@ -188,3 +188,31 @@ def classify(
 
     _paper_keywords("classify", model, **paper)
     return name(system_of(model), y0, t_end=t_end, t_transient=t_transient)
+
+
+def basin_stability(
+    model: Model,
+    region: Any,
+    samples: int,
+    seed: int,
+    executor: Any,
+    t_max: float,
+    **paper: Any,
+) -> Stability:
+    """`beltmdsm.basin.basin_stability.basin_stability` of another model:
+    `beltmdsm.oscillator.basins.basin_stability` on the box of two of its states
+    (``region``: state -> (low, high), in the plane's order x, y)."""
+    from .basins import basin_stability as shares
+
+    _paper_keywords("basin_stability", model, **paper)
+    system = system_of(model)
+    if not isinstance(region, dict) or len(region) != 2:
+        raise ValueError(
+            f"region must map two of model {model.model!r}'s states "
+            f"({', '.join(system.states)}) to (low, high); got {region!r}"
+        )
+    (x, x_range), (y, y_range) = region.items()
+    return shares(
+        system, x, tuple(x_range), y, tuple(y_range), samples=samples, seed=seed,
+        t_end=t_max, executor=None if executor in (None, "serial") else executor,
+    )  # fmt: skip

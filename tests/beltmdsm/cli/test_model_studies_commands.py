@@ -127,6 +127,30 @@ def test_coexistence_and_basin_stability_of_belt_1dof():
     assert sum(a["fraction"] for a in last["attractors"]) + last["unresolved"] == pytest.approx(1)
 
 
+def test_basin_stability_in_python_is_the_commands_for_another_model():
+    """beltmdsm.basin.basin_stability of another model: the command's numbers (one
+    path: the generic runtime's), its own refusals naming what it lacks."""
+    import beltmdsm
+    from beltmdsm.basin.basin_stability import basin_stability
+    from beltmdsm.errors import Unsupported
+
+    m = beltmdsm.Model(model="belt_1dof", friction="stribeck", Vb=2.5)
+    box = {"x": (1.5, 3.5), "x_dot": (-3.0, 0.5)}
+    r = basin_stability(m, box, samples=5, seed=3)
+    out = _json(
+        "basin-stability", "--model", "belt_1dof", "--friction", "stribeck", "--param",
+        "Vb", "--from", "2.5", "--to", "3.0", "--points", "2", "--x-from", "1.5",
+        "--x-to", "3.5", "--y-from", "-3", "--y-to", "0.5", "--samples", "5", "--seed", "3",
+    )  # fmt: skip
+    assert r.as_dict()["attractors"] == out["points"][0]["attractors"]
+    assert r.samples == 5 and (r.x, r.y) == ("x", "x_dot")
+    with pytest.raises(ValueError, match="region must map two of model 'belt_1dof'"):
+        basin_stability(m, {"x": (1.5, 3.5)}, samples=5)
+    with pytest.raises(Unsupported, match="landscape="):
+        basin_stability(m, box, samples=5, landscape=object())
+    assert m.capabilities["basin_stability"] == (True, "")
+
+
 def test_the_papers_json_names_its_model_too():
     out = _json("simulate", "--t-end", "5", "--t-discard", "1")
     assert out["model"] == "paper" and "friction" in out and "params" in out
