@@ -280,6 +280,10 @@ class Band:
         ``grazing_points``, ``no_periodic_response``, ``grid``, ``failed``, ``tol``,
         ``merged_away``, ``tension``, ``contact``, ``friction`` and ``engine`` (the
         period map of the model's laws, `beltmdsm.periodic.engines.engine_of`)."""
+        return {**self._band_dict(), **self._model_dict()}
+
+    def _band_dict(self) -> dict:
+        """The band's own part of `as_dict`, whatever the model."""
         return {
             "param": self.param,
             "unstable": [list(r) for r in self.unstable],
@@ -290,6 +294,11 @@ class Band:
             "failed": [f.as_dict() for f in self.failed],
             "tol": self.tol,
             "merged_away": [list(r) for r in self.merged_away],
+        }
+
+    def _model_dict(self) -> dict:
+        """The paper model's part of `as_dict`: its laws and period map."""
+        return {
             "tension": self.model.tension,
             "contact": self.model.contact,
             "friction": self.model.friction,

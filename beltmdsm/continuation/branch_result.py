@@ -299,6 +299,13 @@ class Branch:
 
         return draw(self, ax, observable, labels)
 
+    def _state_names(self) -> list[str]:
+        """The columns of the points' states: the paper's (another model's branch names
+        its own, `beltmdsm.continuation.oscillator_branch.OscillatorBranch`)."""
+        from .._tables import STATE_COLUMNS
+
+        return list(STATE_COLUMNS[: len(self.points[0].state) if self.points else 4])
+
     def to_pandas(self, table: str = "points") -> DataFrame:
         """A `pandas.DataFrame` (needs pandas, imported here) of the ``"points"`` (one row
         per `BranchPoint`: ``param``'s value, the shooting state at phase 0,
@@ -312,10 +319,10 @@ class Branch:
             For another ``table``.
         """
         from .._display import label
-        from .._tables import STATE_COLUMNS, frame
+        from .._tables import frame
 
         if table == "points":
-            names = list(STATE_COLUMNS[: len(self.points[0].state) if self.points else 4])
+            names = self._state_names()
             rows = [
                 {
                     self.param: p.value,

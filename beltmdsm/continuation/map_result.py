@@ -176,19 +176,28 @@ class FloquetMap:
         """For JSON: ``x``, ``y``, ``x_range``, ``y_range``, ``rows``, ``contact``,
         ``tension``, ``friction``, ``engine``, ``curves``, ``unstable``, ``linear``,
         ``band_rows``, ``wall_s``."""
+        return {**self._model_dict(), **self._map_dict()}
+
+    def _map_dict(self) -> dict:
+        """The map's own part of `as_dict`, whatever the model."""
         return {
             "x": self.x,
             "y": self.y,
             "x_range": self.x_range,
             "y_range": self.y_range,
             "rows": [float(v) for v in self.rows],
-            "contact": self.model.contact,
-            "tension": self.model.tension,
-            "friction": self.model.friction,
-            "engine": engine_of(self.model),
             "curves": [c.as_dict() for c in self.curves],
             "unstable": self.unstable,
             "linear": self.linear,
             "band_rows": self.band_rows,
             "wall_s": self.wall_s,
+        }
+
+    def _model_dict(self) -> dict:
+        """The paper model's part of `as_dict`: its laws and period map."""
+        return {
+            "contact": self.model.contact,
+            "tension": self.model.tension,
+            "friction": self.model.friction,
+            "engine": engine_of(self.model),
         }

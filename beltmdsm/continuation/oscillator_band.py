@@ -58,24 +58,12 @@ class OscillatorBand(Band):
             lines,
         )
 
-    def as_dict(self) -> dict:
-        """For JSON: the model's part (``model``, ``friction``, ``params``, ``states``),
-        ``periods``, then the band's (`Band.as_dict` less the paper's laws)."""
+    def _model_dict(self) -> dict:
+        """The model's part of `Band.as_dict` (``model``, ``friction``, ``params``,
+        ``states``) and ``periods``, in place of the paper's laws."""
         from ..oscillator.api import system_of
 
-        return {
-            **system_of(self.model).as_dict(without=self.param),
-            "param": self.param,
-            "periods": self.periods,
-            "unstable": [list(r) for r in self.unstable],
-            "edges": [e.as_dict() for e in self.edges],
-            "grazing_points": list(self.grazing_points),
-            "no_periodic_response": [list(r) for r in self.no_periodic_response],
-            "grid": [g.as_dict() for g in self.grid],
-            "failed": [f.as_dict() for f in self.failed],
-            "tol": self.tol,
-            "merged_away": [list(r) for r in self.merged_away],
-        }
+        return {**system_of(self.model).as_dict(without=self.param), "periods": self.periods}
 
 
 class OscillatorMap(FloquetMap):
@@ -92,23 +80,11 @@ class OscillatorMap(FloquetMap):
             [repr(c) for c in self.curves],
         )
 
-    def as_dict(self) -> dict:
-        """For JSON: the model's part, then `FloquetMap.as_dict` less the paper's laws."""
+    def _model_dict(self) -> dict:
+        """The model's part of `FloquetMap.as_dict`, in place of the paper's laws."""
         from ..oscillator.api import system_of
 
-        return {
-            **system_of(self.model).as_dict(),
-            "x": self.x,
-            "y": self.y,
-            "x_range": self.x_range,
-            "y_range": self.y_range,
-            "rows": [float(v) for v in self.rows],
-            "curves": [c.as_dict() for c in self.curves],
-            "unstable": self.unstable,
-            "linear": self.linear,
-            "band_rows": self.band_rows,
-            "wall_s": self.wall_s,
-        }
+        return system_of(self.model).as_dict()
 
 
 def _state(r: Response | None) -> tuple:

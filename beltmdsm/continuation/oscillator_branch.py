@@ -87,29 +87,9 @@ class OscillatorBranch(Branch):
             "points": [p.as_dict() for p in self.points],
         }
 
-    def to_pandas(self, table: str = "points"):
-        """As `Branch.to_pandas`, the points' states named by the model."""
-        if table != "points":
-            return super().to_pandas(table)
-        from .._tables import frame
-
-        names = list(self.system.states)
-        rows = [
-            {
-                self.param: p.value,
-                **dict(zip(names, map(float, p.state))),
-                "max_abs_multiplier": p.max_abs_multiplier,
-                "stable": p.stable,
-                "n_reversals": p.n_reversals,
-                "n_sticks": p.n_sticks,
-            }
-            for p in self.points
-        ]
-        tail = ["max_abs_multiplier", "stable", "n_reversals", "n_sticks"]
-        out = frame(rows, [self.param, *names, *tail])
-        for key, column in list(self.observables().items())[1:]:
-            out[key] = column
-        return out
+    def _state_names(self) -> list[str]:
+        """The points' state columns: the model's states."""
+        return list(self.system.states)
 
     def plot(self, ax: Any = None, observable: str | None = None, labels: bool = True) -> Any:
         """The bifurcation diagram: ``observable`` (a column of `observables`; default the
