@@ -15,7 +15,6 @@ formula is assumed.
 from __future__ import annotations
 
 import difflib
-import importlib
 import math
 from types import ModuleType
 
@@ -23,6 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import Unsupported
+from ..other_model import model_module
 
 __all__ = ["System", "load_model", "STICK", "FLIGHT"]
 
@@ -71,20 +71,11 @@ def load_model(model: str | ModuleType) -> ModuleType:
     >>> try:
     ...     load_model("no_such_model")
     ... except ValueError as err:
-    ...     print(str(err).split(":")[0])
-    model='no_such_model'
+    ...     print(str(err).split(";")[1])
+     got 'no_such_model'
     """
     if isinstance(model, str):
-        try:
-            module = importlib.import_module(f"beltmdsm.generated.models.{model}")
-        except ModuleNotFoundError as err:
-            known = _registered()
-            hint = difflib.get_close_matches(model, known, n=1)
-            said = f"; did you mean {hint[0]!r}?" if hint else ""
-            raise ValueError(
-                f"model={model!r}: not a registered model (registered: "
-                f"{', '.join(known) or 'none generated'}){said}"
-            ) from err
+        module = model_module(model)
     else:
         module = model
     missing = [name for name in _REQUIRED if not hasattr(module, name)]
@@ -94,13 +85,6 @@ def load_model(model: str | ModuleType) -> ModuleType:
             f"{', '.join(missing)} of the model contract"
         )
     return module
-
-
-def _registered() -> tuple[str, ...]:
-    try:
-        return tuple(importlib.import_module("beltmdsm.generated.models").MODELS)
-    except (ModuleNotFoundError, AttributeError):
-        return ()
 
 
 class System:

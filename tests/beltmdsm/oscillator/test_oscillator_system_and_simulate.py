@@ -26,7 +26,7 @@ def test_parameters_are_checked_where_they_enter():
         System(belt, friction="viscous")
     with pytest.raises(ValueError, match="Vb=nan: not a finite number"):
         System(belt, Vb=float("nan"))
-    with pytest.raises(ValueError, match="model='belt_1dfo': not a registered model"):
+    with pytest.raises(ValueError, match="got 'belt_1dfo'; did you mean 'belt_1dof'"):
         load_model("belt_1dfo")
     with pytest.raises(Unsupported, match="frequencies"):
         System(belt, alpha_t=1.0, alpha_n=0.1, Omega_n=2.0).excitation_period()
