@@ -9,6 +9,7 @@ a run computes anything: the sampling must resolve the model's frequencies
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, fields
 from typing import Literal
@@ -270,6 +271,10 @@ MAX_MAP_ROWS = 10**4
 MIN_TOL_ULPS = 64
 
 
+# a model is immutable and hashable; the runtime asks this for the same model at every
+# run, shooting and bound (tens of thousands of times in one study, each an eigenvalue
+# solve)
+@functools.lru_cache(maxsize=1024)
 def fastest_rate(model: Model) -> float:
     """The fastest rate of the model [rad/s or 1/s], which sets an integrator's steps.
 
