@@ -172,3 +172,56 @@ def test_an_excited_stick_ends_at_its_first_crossing(backend):
     tol = _stick_tol(ref, x, MU * 9.81 + 2 * abs(x), slope)
     assert end.switches[0][0] == pytest.approx(ref, abs=tol)
     assert 34.0 < ref < 34.2  # not the last minimum before it (33.6 s)
+
+
+# the paper's model (docs/modelling.md), slipping (v_r < 0), per unit mass: with the
+# penetration X2 and N = (W2^2 + 2 B2 W2 X2') max(X2, 0)^(3/2) (Hertz-Damp),
+#   X1'' = -W1^2 X1 - 2 B1 W1 X1' + MU N,   X2'' = G - AN ON^2 sin(ON t + PN) - N;
+# with X2 < 0, N = 0: the flight's equations, so one solve_ivp run covers a take-off
+# and its landing. The take-off is where X2 falls through 0.
+B1, W1, VB_P, B2, W2 = 0.1, 1.0, 20.0, 0.15, 3.0
+AN_P, ON_P, TM_P = 1.0, 4.0, 0.3
+PN_P = math.asin(0.3) - ON_P * TM_P  # at the graze, X2'' = G - 0.3 AN ON^2 = 5.0 > 0
+TOL_P = 1e-12
+
+
+def _paper_field(t, y):
+    X1, Y1, X2, Y2 = y
+    n = (W2**2 + 2 * B2 * W2 * Y2) * max(X2, 0.0) ** 1.5
+    return [Y1, -(W1**2) * X1 - 2 * B1 * W1 * Y1 + MU * n, Y2,
+            G - AN_P * ON_P**2 * math.sin(ON_P * t + PN_P) - n]  # fmt: skip
+
+
+@pytest.mark.parametrize("backend", _backends())
+@pytest.mark.parametrize("depth", [1e-6, 1e-9])
+def test_a_brief_take_off_between_samples_is_a_flight(depth, backend, monkeypatch):
+    s = System("paper", friction="coulomb", beta1=B1, omega1=W1, g=G, Vb=VB_P, alpha_t=0.0,
+               alpha_n=AN_P, Omega_n=ON_P, phase_n=PN_P, beta2=B2, omega2=W2, mu_s=MU)  # fmt: skip
+    assert s.states == ("X1", "Y1", "X2", "Y2")
+    # the start: back from the graze's lowest point (X2 = -depth, X2' = 0) at TM_P
+    back = solve_ivp(_paper_field, (TM_P, 0.0), [0.0, 0.0, -depth, 0.0], method="DOP853",
+                     rtol=1e-13, atol=1e-13)  # fmt: skip
+    y0 = back.y[:, -1]
+    assert y0[2] > 0.4 and y0[1] - VB_P < 0  # in contact, slipping back
+    take_off, t_min = _first_graze(_paper_field, y0, 1.0, lambda t, y: y[2], lambda t, y: y[3],
+                                   rtol=1e-13, atol=1e-13)  # fmt: skip
+    assert t_min == pytest.approx(TM_P, abs=1e-9)
+    sol = solve_ivp(_paper_field, (0.0, 1.0), y0, method="DOP853", rtol=1e-13, atol=1e-13,
+                    dense_output=True)  # fmt: skip
+    landing = brentq(lambda t: sol.sol(t)[2], t_min, 2 * t_min - take_off + 1e-3, xtol=1e-15)
+    end = flow(s, 0.0, y0, 1.0, mode=-1, backend=backend, rtol=TOL_P, atol=TOL_P,
+               stop=lambda sw, n: n == 2)  # fmt: skip
+    assert [(a, b) for _, a, b in end.switches] == [(-1, 2), (2, -1)]
+    # the error model: the runs' global error in X2, ~10 tol (1 + |y|), over the rate
+    # at which X2 crosses 0, sqrt(2 depth X2''), X2'' = 5 at the graze
+    e_x2 = 10 * TOL_P * (1 + np.abs(y0).max())
+    slope = abs(sol.sol(take_off)[3])
+    assert slope == pytest.approx(math.sqrt(2 * depth * 5.0), rel=0.05)
+    assert end.switches[0][0] == pytest.approx(take_off, abs=e_x2 / slope)
+    assert end.switches[1][0] == pytest.approx(landing, abs=e_x2 / slope)
+    # the samples alone step over the flight, 2 sqrt(2 depth / 5) long (4e-5 s at 1e-9)
+    if backend == "python" and depth < 1e-7:
+        _no_touch(monkeypatch)
+        late = flow(s, 0.0, y0, 1.0, mode=-1, backend="python", rtol=TOL_P, atol=TOL_P,
+                    stop=lambda sw, n: n == 2)  # fmt: skip
+        assert late.switches[0][0] > TM_P + 0.1
