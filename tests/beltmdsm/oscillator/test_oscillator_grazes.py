@@ -147,8 +147,9 @@ def test_a_stick_guard_excursion_between_samples_ends_the_stick(depth, backend, 
     terms = _limit(ref) + abs(_holding(ref, x)) + W**2 * abs(x)
     assert t_switch == pytest.approx(ref, abs=_stick_tol(ref, x, terms, slope))
     # the samples alone step over it (the stick then ends a period of the excitation
-    # later, at the next, deeper minimum)
-    if backend == "python":
+    # later, at the next, deeper minimum): below 0 for 2 sqrt(2 depth / u''), 1.8e-5 s at
+    # 1e-10, against samples ~1e-2 s apart
+    if backend == "python" and depth < 1e-8:
         _no_touch(monkeypatch)
         late = flow(s, 0.0, y0, 5.0, mode=0, backend="python", stop=lambda sw, n: True)
         assert late.switches[0][0] > tm + 0.5 * (2 * math.pi / OT)
