@@ -6,9 +6,9 @@ millisecond a step in numpy's small-array overheads. Here the same method (DOP85
 SciPy's step-size control, the coefficients of ``beltmdsm.generated.tableau``), the same
 surfaces (`beltmdsm.oscillator.hybrid`) and the same search for the first crossing
 (the step's midpoint, a parabola for a dip, 16 samples of the dense output, then the
-Illinois method of `beltmdsm.integrate._roots`; a touch of the slip guard at its
-minimum, bracketed by its rate) run as one numba function, with the
-model's kernels compiled into it.
+Illinois method of `beltmdsm.integrate._roots`; a touch of any guard at its minimum,
+bracketed by its derived rate; in stick, the two sides of the cone integrated beside
+the state) run as one numba function, with the model's kernels compiled into it.
 
 The kernels are the module's plain functions: each is compiled by numba with every
 function it calls (its globals and closure cells) compiled too. The compiled module is
@@ -64,8 +64,10 @@ class CompileWarning(UserWarning):
 
 # the kernels, bound as globals of the functions below (`_build`)
 field = slip_velocity = slip_acceleration = holding_force = stick_limit = normal_force = None
-gap = None
+gap = surfaces = surface_rates = None
 UNILATERAL = False
+#: positions in the module's SURFACES (`_source` binds the model's; -1: none)
+I_FORWARD, I_BACK, I_GAP = 1, 2, -1
 
 
 def _u(t, y, p, mode, j):
@@ -80,14 +82,31 @@ def _u(t, y, p, mode, j):
     return mode * slip_velocity(t, y, p)
 
 
-def _has_rate(mode, j):
-    """Whether surface ``j`` of the mode has a rate (`beltmdsm.oscillator.hybrid._rates`)."""
-    return (mode == 1 or mode == -1) and j == 0
-
-
 def _du(t, y, p, mode, j):
-    """The rate of surface ``j`` of a slip mode: ``mode * slip_acceleration``."""
+    """The rate of surface ``j`` of the mode along its field
+    (`beltmdsm.oscillator.hybrid._rates`)."""
+    if UNILATERAL:
+        if mode == 2:
+            return surface_rates(t, y, p, mode)[I_GAP]
+        if j == 1:
+            return -surface_rates(t, y, p, mode)[I_GAP]
+    if mode == 0:
+        r = surface_rates(t, y, p, mode)
+        return r[I_BACK] if holding_force(t, y, p) >= 0.0 else r[I_FORWARD]
     return mode * slip_acceleration(t, y, p, mode)
+
+
+def _rhs(t, y, p, mode, out):
+    """The mode's field into ``out``; where ``out`` is longer (stick), the rates of the
+    two sides of the cone after it (`beltmdsm.oscillator.hybrid._quadratures`)."""
+    f = field(t, y, p, mode)
+    n = f.shape[0]
+    for i in range(n):
+        out[i] = f[i]
+    if out.shape[0] > n:
+        r = surface_rates(t, y, p, mode)
+        out[n] = r[I_FORWARD]
+        out[n + 1] = r[I_BACK]
 
 
 def _du_at(p, mode, j, F, y0, t0, h, t, tmp):
@@ -175,7 +194,7 @@ def _crossing(p, mode, j, F, y0, t0, h, u_old, u_new, armed, tmp):
             return t0, False
     else:
         fa = u_new
-    if _has_rate(mode, j) and first < t1:
+    if first < t1:
         tc = _touch(p, mode, j, F, y0, t0, h, first, f_first, t1, tmp)
         if tc >= 0.0:
             return tc, True
@@ -185,9 +204,9 @@ def _crossing(p, mode, j, F, y0, t0, h, u_old, u_new, armed, tmp):
 def advance(p, mode, n_watch, t, y, t_end, h_abs, rtol, atol, dt, t_first, k_next, out_t, out_y):
     """Integrate ``mode`` from ``(t, y)`` to ``t_end`` or its first crossing.
 
-    Samples at ``t_first + k dt`` (``k >= k_next``) are written to ``out_t``, ``out_y``
-    from ``k_next`` on (``dt <= 0``: none). Returns ``(status, t, y, hit, h_abs,
-    k_next)``.
+    ``y``: the state, then (stick) the two sides of the cone (`_rhs`). Samples at
+    ``t_first + k dt`` (``k >= k_next``) are written to ``out_t``, ``out_y`` from
+    ``k_next`` on (``dt <= 0``: none). Returns ``(status, t, y, hit, h_abs, k_next)``.
     """
     m = y.shape[0]
     y = y.copy()
@@ -201,7 +220,8 @@ def advance(p, mode, n_watch, t, y, t_end, h_abs, rtol, atol, dt, t_first, k_nex
     for j in range(n_watch):
         u_old[j] = _u(t, y, p, mode, j)
         armed[j] = u_old[j] > 0.0
-    f = field(t, y, p, mode)
+    f = np.empty(m)
+    _rhs(t, y, p, mode, f)
     status, hit = STATUS_END, -1
     while t < t_end:
         rejected = False
@@ -221,13 +241,13 @@ def advance(p, mode, n_watch, t, y, t_end, h_abs, rtol, atol, dt, t_first, k_nex
                     for r in range(s):
                         acc += _A[s, r] * K[r, i]
                     tmp[i] = y[i] + h * acc
-                K[s] = field(t + _C[s] * h, tmp, p, mode)
+                _rhs(t + _C[s] * h, tmp, p, mode, K[s])
             for i in range(m):
                 acc = 0.0
                 for r in range(_NS):
                     acc += _B[r] * K[r, i]
                 y_new[i] = y[i] + h * acc
-            K[_NS] = field(t_new, y_new, p, mode)
+            _rhs(t_new, y_new, p, mode, K[_NS])
             e5 = 0.0
             e3 = 0.0
             for i in range(m):
@@ -258,7 +278,7 @@ def advance(p, mode, n_watch, t, y, t_end, h_abs, rtol, atol, dt, t_first, k_nex
                 for r in range(s):
                     acc += _A[s, r] * K[r, i]
                 tmp[i] = y[i] + h * acc
-            K[s] = field(t + _C[s] * h, tmp, p, mode)
+            _rhs(t + _C[s] * h, tmp, p, mode, K[s])
         for i in range(m):
             d = y_new[i] - y[i]
             F[0, i] = d
@@ -283,7 +303,7 @@ def advance(p, mode, n_watch, t, y, t_end, h_abs, rtol, atol, dt, t_first, k_nex
                     break
                 _dense(F, y, (ts - t) / h, tmp)
                 out_t[k_next] = ts
-                for i in range(m):
+                for i in range(out_y.shape[1]):
                     out_y[k_next, i] = tmp[i]
                 k_next += 1
         if hit >= 0:
@@ -304,10 +324,10 @@ def advance(p, mode, n_watch, t, y, t_end, h_abs, rtol, atol, dt, t_first, k_nex
 
 
 converged, secant, illinois = _roots.converged, _roots.secant, _roots.illinois
-_FUNCTIONS = ("_u", "_has_rate", "_du", "_dense", "_u_at", "_du_at", "_root", "_touch",
+_FUNCTIONS = ("_u", "_du", "_rhs", "_dense", "_u_at", "_du_at", "_root", "_touch",
               "_crossing", "advance")  # fmt: skip
 _KERNELS = ("field", "slip_velocity", "slip_acceleration", "holding_force", "stick_limit",
-            "normal_force", "gap")  # fmt: skip
+            "normal_force", "gap", "surfaces", "surface_rates")  # fmt: skip
 
 
 def _deep_jit(fn, numba, memo):
@@ -348,6 +368,7 @@ def kernels_jitted(module_name: str, friction: str) -> dict:
 
 def _source(module, friction: str, numba_version: str) -> str:
     """The text of the module that numba compiles and caches on disk."""
+    index = {name: i for i, name in enumerate(module.SURFACES)}
     constants = ("_NS", "_NX", "_NP", "_A", "_B", "_C", "_E3", "_E5", "_D", "_SAMPLES")
     lines = [
         f"# Written by beltmdsm/oscillator/_compiled.py (numba {numba_version}); do not edit.",
@@ -363,6 +384,8 @@ def _source(module, friction: str, numba_version: str) -> str:
         "illinois = numba.njit(_roots.illinois)",
         f"_K = kernels_jitted({module.__name__!r}, {friction!r})",
         f"UNILATERAL = {bool(module.UNILATERAL)}",
+        f"I_FORWARD, I_BACK, I_GAP = {index['stick_forward']}, {index['stick_back']}, "
+        f"{index.get('gap', -1)}",
     ]
     lines += [f"{name} = _K[{name!r}]" for name in _KERNELS if name != "gap" or module.UNILATERAL]
     if not module.UNILATERAL:

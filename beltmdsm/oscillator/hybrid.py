@@ -3,10 +3,17 @@
 A run goes mode by mode (`beltmdsm.oscillator.system`: +-1 slip, 0 stick, 2 flight),
 each integrated by DOP853 (`beltmdsm.oscillator._stepper`) until the first crossing of
 a surface that ends it, located on the dense output by the Illinois method
-(`beltmdsm.integrate._roots`). A touch of ``v_r = 0`` shorter than the samples (the start
-of a short stick) is found at the slip guard's minimum in the step, bracketed by a
-sign change of its rate ``m slip_acceleration`` (`_touch`); the stick and flight guards
-rely on the samples (their rates, ``surface_rates``, are not in every model's kernels).
+(`beltmdsm.integrate._roots`). A touch of a guard shorter than the samples (the
+start of a short stick, a brief excursion of the holding force past the static limit,
+a brief take-off) is found at the guard's minimum in the step, bracketed by a sign
+change of its rate along the mode's field (`_touch`): ``m slip_acceleration`` for the
+slip guard, and for the others the derived ``surface_rates`` of the module's
+``SURFACES`` (``stick_back`` or ``stick_forward`` by the sign of the holding force,
+``gap``). In stick the field does not see the excitation of the held direction, which
+moves the holding force: the two sides of the cone (``stick_forward``,
+``stick_back``) are integrated beside the state as quadratures of their rates, so that
+the step-size control resolves the stick guard as it does the state.
+
 The surfaces and the choice of the next mode are the contract's, read through the
 model's kernels only:
 
@@ -179,15 +186,44 @@ def _surfaces(system: System, mode: int) -> tuple[Callable, ...]:
     return (first,)
 
 
-def _rates(system: System, mode: int) -> tuple[Callable | None, ...]:
-    """The time derivatives of `_surfaces` along the mode's field, where the contract
-    gives one (``m slip_acceleration`` in slip ``m``), else None: the guards whose
-    grazing touches `_touch` finds between samples."""
+def _rates(system: System, mode: int) -> tuple[Callable, ...]:
+    """The time derivatives of `_surfaces` along the mode's field: ``m
+    slip_acceleration`` in slip ``m``; in stick, that of ``stick_limit -
+    |holding_force|``, the derived rate of ``stick_back`` where the holding force is >=
+    0, else of ``stick_forward``; the gap's (``surface_rates``): the rates by which
+    `_touch` finds grazing touches between samples."""
     k, p = system.kernels, system.p
-    first = None
-    if mode in (-1, 1):
+    index = _surface_index(system)
+    if mode == FLIGHT:
+        g = index["gap"]
+        return (lambda t, y: k.surface_rates(t, y, p, mode)[g],)
+    if mode == STICK:
+        fw, bk = index["stick_forward"], index["stick_back"]
+
+        def first(t, y):
+            r = k.surface_rates(t, y, p, mode)
+            return r[bk] if k.holding_force(t, y, p) >= 0.0 else r[fw]
+
+    else:
         first = lambda t, y: mode * k.slip_acceleration(t, y, p, mode)  # noqa: E731
-    return (first, None) if system.unilateral else (first,)
+    if system.unilateral:
+        g = index["gap"]
+        return (first, lambda t, y: -k.surface_rates(t, y, p, mode)[g])
+    return (first,)
+
+
+def _surface_index(system: System) -> dict[str, int]:
+    """Name -> position in the module's ``SURFACES`` (of ``surfaces``, ``surface_rates``)."""
+    return {name: i for i, name in enumerate(system.module.SURFACES)}
+
+
+def _quadratures(system: System, mode: int) -> list[int]:
+    """The positions in ``SURFACES`` of the surfaces integrated beside the state in
+    ``mode`` (stick: the two sides of the cone, module docstring), else none."""
+    if mode != STICK:
+        return []
+    index = _surface_index(system)
+    return [index["stick_forward"], index["stick_back"]]
 
 
 def _next_mode(system: System, mode: int, surface: int, t: float, y) -> int:
@@ -216,7 +252,8 @@ def _to_stick(system: System, t, y):
 def _crossing(u, du, step: _stepper.Step, m: int, u_old: float, armed: bool):
     """The first time in the step where ``u`` falls to <= 0 after being > 0, or None;
     with whether ``u`` has been > 0 (armed) by the step's end. ``du``: the rate of
-    ``u``, or None (a touch between samples is then missed)."""
+    ``u`` along the mode's field (`_rates`), by which `_touch` finds a touch between
+    the samples."""
     t0, h = step.t, step.h
     t1 = t0 + h
     at = lambda t: u(t, step.at(t)[:m])  # noqa: E731
@@ -249,7 +286,7 @@ def _crossing(u, du, step: _stepper.Step, m: int, u_old: float, armed: bool):
             return t0, False  # never inside: the field leaves through its own start surface
     else:
         fa = u_new
-    if du is not None and first < t1:
+    if first < t1:
         rate = lambda t: du(t, step.at(t)[:m])  # noqa: E731
         # the rates at the step's ends and middle from the states at hand (the cost)
         rates = (
@@ -341,21 +378,30 @@ def flow(
     next_sample = t if dt is not None else math.inf
     status, message = "done", ""
     while True:
-        md = mode
+        md, quad = mode, _quadratures(system, mode)
         if variational:
 
-            def fun(s, z, md=md):
-                Pz = z[m:].reshape(m, m)
+            def base(s, z, md=md):
+                Pz = z[m : m + m * m].reshape(m, m)
                 jac = np.asarray(k.jacobian(s, z[:m], p, md))
                 return np.concatenate((k.field(s, z[:m], p, md), (jac @ Pz).ravel()))
 
             z = np.concatenate((y, Phi.ravel()))
         else:
 
-            def fun(s, z, md=md):
-                return np.asarray(k.field(s, z, p, md), dtype=float)
+            def base(s, z, md=md):
+                return np.asarray(k.field(s, z[:m], p, md), dtype=float)
 
             z = y
+        if quad:
+            # the stick guard's sides as quadratures of their rates (module docstring)
+            def fun(s, z, base=base, md=md, quad=quad):
+                rates = np.asarray(k.surface_rates(s, z[:m], p, md), dtype=float)[quad]
+                return np.concatenate((base(s, z), rates))
+
+            z = np.concatenate((z, np.asarray(k.surfaces(t, y, p), dtype=float)[quad]))
+        else:
+            fun = base
         surfaces = _surfaces(system, mode)
         rates = _rates(system, mode)
         u_old = [u(t, y) for u in surfaces]
@@ -407,7 +453,7 @@ def flow(
         t = float(t)
         y = z[:m].copy()
         if variational:
-            Phi = z[m:].reshape(m, m).copy()
+            Phi = z[m : m + m * m].reshape(m, m).copy()
         if hit < 0:
             break
         after = _next_mode(system, mode, hit, t, y)

@@ -39,6 +39,7 @@ _REQUIRED = (
     "PARAMETERS",
     "DEFAULTS",
     "EXCITATION",
+    "SURFACES",
     "kernels",
 )
 

@@ -62,6 +62,7 @@ DEFAULTS = {
     "v_s": 1.0,
 }
 EXCITATION = (("x", "alpha_t", "Omega_t", "phase_t"), ("normal", "alpha_n", "Omega_n", "phase_n"))
+SURFACES = ("slip_velocity", "stick_forward", "stick_back")
 
 
 class Kernels(NamedTuple):
@@ -79,6 +80,8 @@ class Kernels(NamedTuple):
     equilibrium: object
     characteristic: object
     hurwitz: object
+    surfaces: object
+    surface_rates: object
 
 
 def kernels(friction: str) -> Kernels:
@@ -161,6 +164,18 @@ def kernels(friction: str) -> Kernels:
             rate = n @ f0
         return np.eye(2) + np.outer(f1 - f0, n) / rate
 
+    def surfaces(t, y, p):
+        v, L, H = slip_velocity(t, y, p), stick_limit(t, y, p), holding_force(t, y, p)
+        return np.array([v, L + H, L - H])
+
+    def surface_rates(t, y, p, mode):
+        # d/dt along the mode's field: x'' = a; H' = 2 b w a + w^2 x' - forcing', L' = mu_s N'
+        w, b = p[0], p[1]
+        a = field(t, y, p, mode)[1]
+        dH = 2.0 * b * w * a + w * w * y[1] - forcing_rate(t, p)
+        dL = p[4] * normal_rate(t, p)
+        return np.array([a, dL + dH, dL - dH])
+
     def equilibrium(p):
         # steady sliding, mode -1 (v_r = -Vb): omega1^2 x = mu(Vb) g
         m, _ = mu(p[3], p)
@@ -190,4 +205,6 @@ def kernels(friction: str) -> Kernels:
         equilibrium,
         characteristic,
         hurwitz,
+        surfaces,
+        surface_rates,
     )

@@ -58,6 +58,7 @@ DEFAULTS = {
     "phase_n": 0.0,
 }
 EXCITATION = (("X1", "alpha_t", "Omega_t", "phase_t"), ("X2", "alpha_n", "Omega_n", "phase_n"))
+SURFACES = ("slip_velocity", "stick_forward", "stick_back", "gap")
 
 
 class Kernels(NamedTuple):
@@ -75,6 +76,8 @@ class Kernels(NamedTuple):
     equilibrium: object
     characteristic: object
     hurwitz: object
+    surfaces: object
+    surface_rates: object
 
 
 def kernels(friction: str) -> Kernels:
@@ -153,6 +156,20 @@ def kernels(friction: str) -> Kernels:
             rate = n @ f0
         return np.eye(4) + np.outer(f1 - f0, n) / rate
 
+    def surfaces(t, y, p):
+        v, L, H = slip_velocity(t, y, p), stick_limit(t, y, p), holding_force(t, y, p)
+        return np.array([v, L + H, L - H, gap(t, y, p)])
+
+    def surface_rates(t, y, p, mode):
+        # d/dt along the mode's field (X1'' = a1, X2'' = a2):
+        # H' = 2 beta1 omega1 a1 + omega1^2 X1' - f_t', L' = mu_s (omega2^2 [X2 > 0] X2'
+        # + 2 beta2 omega2 a2), gap' = -X2'
+        _, _, a1, a2 = field(t, y, p, mode)
+        dH = 2.0 * p[0] * p[1] * a1 + p[1] ** 2 * y[2] - f_t_rate(t, p)
+        k2 = p[3] ** 2 if y[1] > 0.0 else 0.0
+        dL = p[4] * (k2 * y[3] + 2.0 * p[2] * p[3] * a2)
+        return np.array([a1, dL + dH, dL - dH, -y[3]])
+
     def equilibrium(p):
         return np.array([p[4] * p[5] / p[1] ** 2, p[5] / p[3] ** 2, 0.0, 0.0])
 
@@ -182,4 +199,6 @@ def kernels(friction: str) -> Kernels:
         equilibrium,
         characteristic,
         hurwitz,
+        surfaces,
+        surface_rates,
     )

@@ -59,6 +59,7 @@ DEFAULTS = {
     "phase_t": 0.0,
 }
 EXCITATION = (("x", "alpha_t", "Omega_t", "phase_t"),)
+SURFACES = ("slip_velocity", "stick_forward", "stick_back")
 
 
 class Kernels(NamedTuple):
@@ -76,6 +77,8 @@ class Kernels(NamedTuple):
     equilibrium: object
     characteristic: object
     hurwitz: object
+    surfaces: object
+    surface_rates: object
 
 
 def kernels(friction: str) -> Kernels:
@@ -149,6 +152,19 @@ def kernels(friction: str) -> Kernels:
             rate = n @ f0
         return np.eye(4) + np.outer(f1 - f0, n) / rate
 
+    def surfaces(t, y, p):
+        v, L, H = slip_velocity(t, y, p), stick_limit(t, y, p), holding_force(t, y, p)
+        return np.array([v, L + H, L - H])
+
+    def surface_rates(t, y, p, mode):
+        # d/dt along the mode's field: H' = c1 x'' + K11 x' + K12 y' - forcing',
+        # L' = -mu_s k_c y'
+        K11, K12, _, _ = stiff(p)
+        ax = field(t, y, p, mode)[2]
+        dH = p[5] * ax + K11 * y[2] + K12 * y[3] - forcing_rate(t, p)
+        dL = -p[8] * p[3] * y[3]
+        return np.array([ax, dL + dH, dL - dH])
+
     def _effective(p):
         """Stiffness at steady sliding, mode -1 (friction +mu_s N)."""
         K11, K12, K21, K22 = stiff(p)
@@ -188,4 +204,6 @@ def kernels(friction: str) -> Kernels:
         equilibrium,
         characteristic,
         hurwitz,
+        surfaces,
+        surface_rates,
     )

@@ -133,3 +133,55 @@ def _check_saltation(s, t, y):
         expected = np.eye(z.size) + np.outer(f1 - f0, n) / (n @ f0 + h_t)
         got = np.asarray(k.saltation(t, z, p, before, after))
         assert np.allclose(got, expected, rtol=1e-5, atol=1e-6), (before, after)
+
+
+@pytest.mark.parametrize("module, law", CASES, ids=lambda v: getattr(v, "NAME", v))
+def test_surface_rates_are_the_surfaces_rates_along_each_field(module, law):
+    """``surfaces`` are the runtime's switching functions (``SURFACES``: v_r, the static
+    limit plus and minus the holding force, the gap), and ``surface_rates`` their time
+    derivatives along each mode's field, explicit time included (both excitations on):
+    against the central difference along the field, ``(h(t + d, y + d f) - h(t - d,
+    y - d f)) / 2d``, whose error is its truncation, ~|D(d) - D(2d)| / 3, plus the
+    rounding of ``h``, ~64 eps of its terms over d."""
+    s = _system(module, law)
+    names = _params(module, law)
+    excite = {n: 0.3 for n in ("alpha_t", "alpha_n") if n in names}
+    s = s.replace(**excite, **{n: 1.7 for n in ("Omega_t", "Omega_n") if n in names})
+    k, p, mod = s.kernels, s.p, s.module
+    at = {name: i for i, name in enumerate(mod.SURFACES)}
+    expected = ["slip_velocity", "stick_forward", "stick_back"] + (["gap"] if s.unilateral else [])
+    assert list(mod.SURFACES) == expected
+    eq = np.asarray(k.equilibrium(p), dtype=float)
+    rng = np.random.default_rng(7)
+    modes = (-1, 0, 1, 2) if s.unilateral else (-1, 0, 1)
+    eps = np.finfo(float).eps
+    for _ in range(4):
+        t = float(rng.uniform(0, 10))
+        y = eq + 0.1 * rng.standard_normal(eq.size) * (1.0 + np.abs(eq))
+        h = np.asarray(k.surfaces(t, y, p), dtype=float)
+        L, H = k.stick_limit(t, y, p), k.holding_force(t, y, p)
+        terms = 1.0 + abs(L) + abs(H) + np.abs(y).max()
+        assert h[at["slip_velocity"]] == pytest.approx(
+            k.slip_velocity(t, y, p), abs=8 * eps * terms
+        )
+        assert h[at["stick_forward"]] == pytest.approx(L + H, abs=8 * eps * terms)
+        assert h[at["stick_back"]] == pytest.approx(L - H, abs=8 * eps * terms)
+        if s.unilateral:
+            assert h[at["gap"]] == k.gap(t, y, p)
+        for mode in modes:
+            f = np.asarray(k.field(t, y, p, mode), dtype=float)
+            d = 1e-5
+
+            def quotient(d, f=f):
+                up = np.asarray(k.surfaces(t + d, y + d * f, p), dtype=float)
+                down = np.asarray(k.surfaces(t - d, y - d * f, p), dtype=float)
+                return (up - down) / (2 * d)
+
+            D1, D2 = quotient(d), quotient(2 * d)
+            tol = np.abs(D1 - D2) + 64 * eps * terms * (1 + np.abs(f).max()) / d
+            got = np.asarray(k.surface_rates(t, y, p, mode), dtype=float)
+            assert np.all(np.abs(got - D1) <= tol), (mode, got, D1, tol)
+            # the slip guard's rate is the contract's slip acceleration
+            if mode != 2:
+                a = k.slip_acceleration(t, y, p, mode)
+                assert got[at["slip_velocity"]] == pytest.approx(a, rel=1e-12, abs=1e-12)

@@ -108,6 +108,7 @@ def _chattering_module():
     module.NAME, module.COORDINATES, module.STATES = "chattering", ("x",), ("x", "x_dot")
     module.UNILATERAL, module.FRICTION_LAWS = False, ("coulomb",)
     module.PARAMETERS, module.DEFAULTS, module.EXCITATION = {"coulomb": ("Vb",)}, {"Vb": 1.0}, ()
+    module.SURFACES = ("slip_velocity", "stick_forward", "stick_back")
 
     def kernels(friction):
         return types.SimpleNamespace(
@@ -118,6 +119,8 @@ def _chattering_module():
             holding_force=lambda t, y, p: 0.0,
             stick_limit=lambda t, y, p: -1.0,
             normal_force=lambda t, y, p: 1.0,
+            surfaces=lambda t, y, p: np.array([y[1] - p[0], -1.0, -1.0]),
+            surface_rates=lambda t, y, p, mode: np.array([-float(mode), 0.0, 0.0]),
         )
 
     module.kernels = kernels
