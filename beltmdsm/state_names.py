@@ -23,7 +23,7 @@ from typing import Any
 
 from .other_model import PAPER, model_module
 
-__all__ = ["names", "columns", "units", "column", "index", "rate_column"]
+__all__ = ["names", "columns", "units", "column", "index", "rate_column", "plane"]
 
 #: The unit of a position and of a rate (every registered model's coordinates are
 #: displacements).
@@ -139,5 +139,19 @@ def rate_column(model: Any = None, coordinate: int = 0) -> str:
     ("X1'", 'x_dot', 'y_dot')
     """
     module = _module(model)
-    rate = [s for s, q in _rates(module).items() if q == module.COORDINATES[coordinate]][0]
+    rate = next(s for s, q in _rates(module).items() if q == module.COORDINATES[coordinate])
     return column(model, rate)
+
+
+def plane(model: Any = None) -> tuple[str, str]:
+    """The states of the model's first coordinate and of its rate, as the model names
+    them: the default plane of a basin map.
+
+    Examples
+    --------
+    >>> plane(), plane("belt_1dof")
+    (('X1', 'Y1'), ('x', 'x_dot'))
+    """
+    module = _module(model)
+    rate = next(s for s, q in _rates(module).items() if q == module.COORDINATES[0])
+    return module.COORDINATES[0], rate
