@@ -23,7 +23,7 @@ from typing import Any
 
 from .other_model import PAPER, model_module
 
-__all__ = ["names", "columns", "units", "column", "index", "rate_column", "plane"]
+__all__ = ["names", "columns", "units", "column", "index", "rate_column", "rate_row", "plane"]
 
 #: The unit of a position and of a rate (every registered model's coordinates are
 #: displacements).
@@ -155,3 +155,14 @@ def plane(model: Any = None) -> tuple[str, str]:
     module = _module(model)
     rate = next(s for s, q in _rates(module).items() if q == module.COORDINATES[0])
     return module.COORDINATES[0], rate
+
+
+def rate_row(model: Any = None, coordinate: int = 0) -> int:
+    """The row of ``y`` of the rate of the model's ``coordinate``-th coordinate.
+
+    Examples
+    --------
+    >>> rate_row(), rate_row("hoffmann"), rate_row("hoffmann", 1)
+    (1, 2, 3)
+    """
+    return index(model, rate_column(model, coordinate))
