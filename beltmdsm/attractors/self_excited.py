@@ -40,9 +40,9 @@ branch through the Hopf point and of the seed from the stick end; an isolated br
 that neither reaches would be missed, and a ring with two stable or two unstable
 boundaries is then left to the runs, not guessed).
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -12,9 +12,9 @@ first ends the branch. The one driver (`beltmdsm.continuation.driver`) does the 
 forced responses; its defaults here are
 `beltmdsm.continuation.settings.CYCLE_SETTINGS`.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

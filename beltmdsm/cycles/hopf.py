@@ -23,9 +23,9 @@ order, with period ``2 pi / omega``; it exists on one side of ``p_H``: where ste
 sliding is unstable (supercritical) or where it is stable (subcritical). Which one is
 decided by the branch of cycles (`beltmdsm.cycles.branch`), not here.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -10,9 +10,9 @@ at ``v_s = 0.142``, the largest ``Vr`` still -0.02 m/s short of the stick onset)
 `beltmdsm.cycles.stick`). Its own limit: a segment whose monodromy's norm passes
 `MULTIPLIER_LIMIT` has single shooting's trouble again.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -9,9 +9,9 @@ mode, and goes on. Nothing is stepped over: the run is a sequence of smooth segm
 joined at located switches. Accumulating switches are handled by
 `beltmdsm.integrate.zeno`.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

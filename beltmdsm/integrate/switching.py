@@ -32,9 +32,9 @@ candidate mode decides: a mass at the friction limit sticks if the margin grows 
 slips if it shrinks. This is what makes a one-ulp difference between ``|a_free|``
 and ``mu_s F`` (the paper's ``Vb = 0`` from rest) stick instead of chattering.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -7,9 +7,9 @@ friction force, energy balance of Sect. 3, cycle averages of Sect. 5) integrates
 evaluates segment by segment, never across a switch, and uses the generated
 functions of ``beltmdsm.generated.dynamics`` for the physics so that they stay the reference.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -29,9 +29,9 @@ Coulomb friction with every contact and tension law); it refuses a model without
 `largest_sliding_velocity` is the largest velocity of the backward-sliding orbit in
 contact, where that orbit grazes the belt's speed.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

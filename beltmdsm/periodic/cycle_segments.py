@@ -16,9 +16,9 @@ monodromy ``M_i`` only, about ``|mu|^(1/m)``. The Jacobian is block-cyclic:
 by central differences; the Floquet multipliers are the eigenvalues of the product
 ``M_{m-1} ... M_0`` (the monodromy of the whole period, each factor well conditioned).
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

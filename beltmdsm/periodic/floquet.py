@@ -47,9 +47,9 @@ The results say which (``engine``); where both apply they agree to 1e-9.
 compare with omega1; it is defined modulo ``2 pi / (k T)``) and the verdict. The
 ranges of a parameter where the response is unstable are `beltmdsm.continuation.band`'s.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

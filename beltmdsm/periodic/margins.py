@@ -23,9 +23,9 @@ square-root singularity of grazing bifurcations). A switch whose crossing margin
 (`crossing_ratio`) is below `GRAZING_RATIO` is reported as grazing, and no multiplier
 is returned for it. `orbit_range` is the range of a state component over an orbit's runs.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -13,9 +13,9 @@ the switches, which end segments); the forces are those of a run
 (`beltmdsm.integrate.trajectory.Trajectory.forces`), per unit mass. This is what
 `beltmdsm.continuation.branch.Branch.observables` tabulates and its ``plot`` draws.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

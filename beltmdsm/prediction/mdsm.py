@@ -32,9 +32,9 @@ Only one excitation frequency is covered (``Omega_t == Omega_n``): with two freq
 a single harmonic balance does not apply and `fast_motion` raises. The scan of this
 damping over ``Vb`` is `beltmdsm.prediction.scan`.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -8,9 +8,9 @@ depend on ``Vb``; where either fails (Stribeck's law) `paper_intervals` finds th
 analysis' unstable set numerically (`beltmdsm.prediction.paper_numeric`), and
 `paper_reasons` says so with its grid and tolerance.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

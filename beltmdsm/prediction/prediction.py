@@ -21,9 +21,9 @@ local: where the static bound exceeds the kinetic coefficient a stick-slip cycle
 coexist with stable sliding, and `predict` says so in each analysis' note
 (`STATIC_BOUND`).
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -12,9 +12,9 @@ One of the starting states of `beltmdsm.starts`, at the layer of the periodic or
 above them. It was ``beltmdsm.periodic.cycle_seed`` and ``beltmdsm.cycles.seed`` before;
 those paths still import (issue 38).
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -33,9 +33,9 @@ Modules, one concept each: `beltmdsm.paper_reports.law_comparison.laws` (the law
 laws, belt speeds and starts compared), `.steady` (a), `.forced` (b), `.runs` (c),
 `.comparison` (d, and `compare`).
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from .comparison import Answer, LawComparison, answer, compare

@@ -10,9 +10,9 @@ rest show the ``omega1`` vibration (`beltmdsm.paper_reports.law_comparison.runs`
 `compare`: all of it for the laws of `LAWS` and both tension laws, timing each
 expensive call.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

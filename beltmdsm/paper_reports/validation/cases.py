@@ -15,9 +15,9 @@ module holds what the validation compares and by which rules:
   (a case that is not comparable);
 * `DEFINITIONS` and `FLOQUET_DEFINITIONS`: the rules, as ``VALIDATION.md`` states them.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -6,9 +6,9 @@ consistent MDSM) against the runs from rest, the regimes next to what the paper 
 in Appendix A.5, and the rules of `beltmdsm.paper_reports.validation.cases`; the text of each
 cell is `beltmdsm.paper_reports.validation.cells`.
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -7,9 +7,9 @@ Floquet" of ``VALIDATION.md``) are derived from them: `summarize` (the analyses,
 cases), `summarize_floquet` (against the exact Floquet band, over every case) and
 `summarize_mismatches` (the periodic-start run against Floquet).
 
-Part of the paper model's engine (issue 39): it runs the paper's model only, whose four
-states are X1, Y1, X2, Y2 (``beltmdsm.generated.models.paper.STATES``); another
-registered model runs on the generic runtime (beltmdsm/oscillator/).
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations
