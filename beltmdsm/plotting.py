@@ -3,8 +3,9 @@
 Each function draws one result on matplotlib axes (new ones where ``ax`` is None) and
 returns the axes; the results' ``plot`` methods call them. Every axis names its
 quantity and its unit (the parameter table's units, ``beltmdsm.generated.parameters``,
-with the units each contact law gives, ``LAW_UNITS``); each symbol has one spelling
-(``X1'`` the tangential velocity, ``Vr = X1' - Vb`` the relative one). Special points
+with the units each contact law gives, ``LAW_UNITS``); each symbol has one spelling: a
+state as the model's tables name it (`beltmdsm.state_names`: the paper's ``X1'`` its
+tangential velocity, ``Vr = X1' - Vb`` the relative one; belt_1dof's ``x_dot``). Special points
 carry the labels of the continuation literature (`beltmdsm._display.LABELS`: NS, PD,
 LP, GR, BP, HB, SL), each kind in a colour of its own (`KIND_COLOURS`); every figure
 has a legend and a title saying which response or run it draws and at which point of
