@@ -9,6 +9,8 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
+from .state_names import columns
+
 if TYPE_CHECKING:
     from pandas import DataFrame
 else:  # pandas is optional: the annotations name its DataFrame for type checkers only
@@ -16,8 +18,9 @@ else:  # pandas is optional: the annotations name its DataFrame for type checker
 
 __all__ = ["DataFrame", "STATE_COLUMNS", "frame", "multiplier_frame"]
 
-#: The columns of the state ``(X1, Y1, X2, Y2)`` in a table (``Y1`` is ``X1'``).
-STATE_COLUMNS = ("X1", "X1'", "X2", "X2'")
+#: The columns of the paper model's state in a table (`beltmdsm.state_names.columns`:
+#: its rates are named by their coordinates); another model's are its own.
+STATE_COLUMNS = columns()
 
 
 def frame(

@@ -3,8 +3,9 @@
 Each function draws one result on matplotlib axes (new ones where ``ax`` is None) and
 returns the axes; the results' ``plot`` methods call them. Every axis names its
 quantity and its unit (the parameter table's units, ``beltmdsm.generated.parameters``,
-with the units each contact law gives, ``LAW_UNITS``); each symbol has one spelling
-(``X1'`` the tangential velocity, ``Vr = X1' - Vb`` the relative one). Special points
+with the units each contact law gives, ``LAW_UNITS``); each symbol has one spelling: a
+state as the model's tables name it (`beltmdsm.state_names`: the paper's ``X1'`` its
+tangential velocity, ``Vr = X1' - Vb`` the relative one; belt_1dof's ``x_dot``). Special points
 carry the labels of the continuation literature (`beltmdsm._display.LABELS`: NS, PD,
 LP, GR, BP, HB, SL), each kind in a colour of its own (`KIND_COLOURS`); every figure
 has a legend and a title saying which response or run it draws and at which point of
@@ -24,6 +25,7 @@ import numpy as np
 
 from beltmdsm.generated.parameters import LAW_UNITS, PARAMETERS
 
+from . import state_names
 from ._display import LABELS
 
 __all__ = [
@@ -52,8 +54,25 @@ KIND_COLOURS = {
     "hopf": "tab:pink",
     "stick_onset": "tab:cyan",
 }
-#: The rows of a run's state and their units.
-STATE = {"X1": ("m", 0), "X1'": ("m/s", 1), "X2": ("m", 2), "X2'": ("m/s", 3)}
+
+
+def _model_of(result: Any) -> Any:
+    """The model a result was computed for: its ``model`` (a `beltmdsm.model.Model`), or
+    the ``system`` of a run of the generic runtime (`beltmdsm.oscillator.system.System`)."""
+    return result.model if hasattr(result, "model") else result.system
+
+
+def _state_rows(model: Any) -> dict[str, tuple[str, int]]:
+    """``{column: (unit, row of y)}`` of the model's states (`beltmdsm.state_names`)."""
+    return {
+        c: (u, i)
+        for i, (c, u) in enumerate(zip(state_names.columns(model), state_names.units(model)))
+    }
+
+
+#: The rows of a run of the paper's model and their units (another model's:
+#: `beltmdsm.state_names`).
+STATE = _state_rows(None)
 _UNITS = {p["name"]: p["unit"] for p in PARAMETERS}
 #: Line styles of a branch by stability: stable, unstable, grazing (no multiplier).
 _STYLES = {True: "-", False: "--", None: ":"}
@@ -137,23 +156,28 @@ def _axes(ax: Any) -> Any:
     return plt.subplots()[1]
 
 
-def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str = "X1'") -> Any:
-    """A run (`beltmdsm.simulation.Simulation`).
+def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str | None = None) -> Any:
+    """A run (`beltmdsm.simulation.Simulation`, or another model's
+    `beltmdsm.oscillator.hybrid.Trajectory`).
 
-    ``kind="time"``: ``variable`` (``X1``, ``X1'``, ``X2``, ``X2'``, ``friction`` or
-    ``normal_force``, the forces per unit mass) against time, the samples of the run.
-    ``kind="friction"``: the friction loop (Fig. 3b), friction per unit mass against
-    ``Vr = X1' - Vb``, over the steady window (``sim.window``).
+    ``kind="time"``: ``variable`` (a state of the run's model, named as its tables name
+    it, `beltmdsm.state_names.columns`, e.g. ``X1``, ``X1'``, ``X2``, ``X2'`` of the
+    paper's, or as the model names it; or, for a run of the paper's model,
+    ``friction`` or ``normal_force``, the forces per unit mass) against time, the samples
+    of the run. ``kind="friction"`` (the paper's model): the friction loop (Fig. 3b),
+    friction per unit mass against ``Vr = X1' - Vb``, over the steady window
+    (``sim.window``).
 
     Parameters
     ----------
-    sim : beltmdsm.simulation.Simulation
+    sim : beltmdsm.simulation.Simulation or beltmdsm.oscillator.hybrid.Trajectory
         the run
     ax : matplotlib.axes.Axes, optional
         where to draw; new axes where None
     kind : {"time", "friction"}
-    variable : str
-        what ``kind="time"`` draws
+    variable : str, optional
+        what ``kind="time"`` draws; default the rate of the model's first coordinate
+        (``X1'`` of the paper's)
 
     Returns
     -------
@@ -184,30 +208,39 @@ def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str = "X1
     >>> simulation(sim, kind="friction").get_xlabel()
     "Vr = X1' - Vb [m/s]"
     """
+    model = _model_of(sim)
+    rows = _state_rows(model)
+    forces = [f for f in ("friction", "normal_force") if hasattr(sim, f)]
+    rate = state_names.rate_column(model)
     ax = _axes(ax)
     if kind == "time":
-        if variable in STATE:
-            u, row = STATE[variable]
-            y = sim.y[row]
-        elif variable in ("friction", "normal_force"):
+        variable = rate if variable is None else variable
+        if variable in forces:
             u, y = "m/s^2", getattr(sim, variable)
         else:
-            raise ValueError(
-                f"variable must be one of {', '.join([*STATE, 'friction', 'normal_force'])}; "
-                f"got {variable!r}"
-            )
+            try:
+                i = state_names.index(model, variable)
+            except ValueError:
+                raise ValueError(
+                    f"variable must be one of {', '.join([*rows, *forces])}; got {variable!r}"
+                ) from None
+            variable = state_names.columns(model)[i]
+            u, y = rows[variable][0], sim.y[i]
         ax.plot(sim.t, y, lw=0.8, label=variable)
         ax.set_xlabel(axis_label("t", "s"))
         ax.set_ylabel(axis_label(variable, u))
-    elif kind == "friction":
+    elif kind == "friction" and "friction" in forces:
         w = sim.window
-        ax.plot(sim.y[1][w] - sim.params["Vb"], sim.friction[w], lw=0.6,
+        ax.plot(sim.y[rows[rate][1]][w] - sim.params["Vb"], sim.friction[w], lw=0.6,
                 label="friction loop, steady window")  # fmt: skip
-        ax.set_xlabel(axis_label("Vr = X1' - Vb", "m/s"))
+        ax.set_xlabel(axis_label(f"Vr = {rate} - Vb", "m/s"))
         ax.set_ylabel(axis_label("friction per unit mass", "m/s^2"))
+    elif kind == "friction":
+        raise ValueError("kind='friction' needs a run that holds its friction force")
     else:
         raise ValueError(f"kind must be 'time' or 'friction'; got {kind!r}")
-    ax.set_title(f"a run to t = {sim.settings.t_end:g} s: {sim.model!r}", fontsize=8)
+    t_end = sim.settings.t_end if hasattr(sim, "settings") else sim.t[-1]
+    ax.set_title(f"a run to t = {t_end:g} s: {model!r}", fontsize=8)
     ax.legend(loc="best", fontsize="small")
     return ax
 
@@ -294,7 +327,7 @@ def _stability_runs(stable: list) -> list[tuple[int, int, Any]]:
 
 
 def branch(
-    result: Any, ax: Any = None, observable: str = "X1'_amplitude", labels: bool = True,
+    result: Any, ax: Any = None, observable: str | None = None, labels: bool = True,
     colour: str = "tab:blue", name: str | None = None,
 ) -> Any:  # fmt: skip
     """A bifurcation diagram (`beltmdsm.continuation.branch.Branch`): ``observable`` (a
@@ -307,8 +340,9 @@ def branch(
         the branch
     ax : matplotlib.axes.Axes, optional
         where to draw; new axes where None
-    observable : str
-        a column of ``result.observables()``
+    observable : str, optional
+        a column of ``result.observables()``; default the amplitude of the rate of the
+        model's first coordinate (``X1'_amplitude`` of the paper's)
     labels : bool
         whether to write the special points' labels
     colour : str
@@ -346,6 +380,7 @@ def branch(
     """
     ax = _axes(ax)
     table = result.observables()
+    observable = observable or f"{state_names.rate_column(result.model)}_amplitude"
     if observable not in table or observable == result.param:
         raise ValueError(
             f"observable must be one of {', '.join(list(table)[1:])}; got {observable!r}"
@@ -358,21 +393,24 @@ def branch(
                 label=f"{name} {tag}" if name else tag, gid=f"branch:{tag}:{n}")  # fmt: skip
     _special_markers(ax, x, y, result.special, labels)
     ax.set_xlabel(axis_label(result.param, unit(result.param, result.model)))
-    ax.set_ylabel(observable_label(observable))
+    ax.set_ylabel(observable_label(observable, result.model))
     ax.set_title(f"{name or result.response}: {result.model!r}", fontsize=8)
     ax.legend(loc="best", fontsize="small")
     return ax
 
 
-def observable_label(name: str) -> str:
-    """The axis label of an observable of `beltmdsm.periodic.observables` (units: m for
-    X1, m/s for X1' and Vr, m/s^2 for a force per unit mass); a column of a user's
-    ``record`` is labelled by its name.
+def observable_label(name: str, model: Any = None) -> str:
+    """The axis label of an observable of `beltmdsm.periodic.observables` or of another
+    model's branch (``<state>_amplitude``, ``_min``, ``_max`` of a state of the model,
+    `beltmdsm.state_names.columns`: m for a position, m/s for a rate and Vr, m/s^2 for a
+    force per unit mass); a column of a user's ``record`` is labelled by its name.
 
     Parameters
     ----------
     name : str
         a column of a branch's observables
+    model : str or beltmdsm.model.Model, optional
+        the branch's model (None: the paper's)
 
     Returns
     -------
@@ -388,11 +426,13 @@ def observable_label(name: str) -> str:
     ("X1' amplitude [m/s]", 'mu_eff = <Ff>/<Fn> [-]')
     >>> observable_label("energy")
     'energy (recorded)'
+    >>> observable_label("x_dot_amplitude", "belt_1dof")
+    'x_dot amplitude [m/s]'
     """
-    if name.startswith("X1_"):
-        return axis_label(name.replace("_", " ", 1), "m")
-    if name.startswith("X1'_"):
-        return axis_label(name.replace("_", " ", 1), "m/s")
+    for column, (unit_, _) in _state_rows(model).items():
+        head, _, tail = name.rpartition("_")
+        if head == column and tail in ("amplitude", "min", "max"):
+            return axis_label(f"{column} {tail}", unit_)
     if name == "max_abs_Vr":
         return axis_label("max |Vr|", "m/s")
     if name == "mean_friction":
@@ -402,7 +442,7 @@ def observable_label(name: str) -> str:
     return f"{name} (recorded)"
 
 
-def coexistence(result: Any, ax: Any = None, observable: str = "X1'_amplitude") -> Any:
+def coexistence(result: Any, ax: Any = None, observable: str | None = None) -> Any:
     """Where stable responses coexist (`beltmdsm.multistability.coexistence.Coexistence`): each
     response's branch as in `branch`, one colour each, the coexistence ranges shaded.
 
@@ -412,7 +452,7 @@ def coexistence(result: Any, ax: Any = None, observable: str = "X1'_amplitude") 
         the responses found and where they coexist
     ax : matplotlib.axes.Axes, optional
         where to draw; new axes where None
-    observable : str
+    observable : str, optional
         as in `branch`
 
     Returns
@@ -513,18 +553,15 @@ def floquet_map(result: Any, ax: Any = None, linear: bool = True) -> Any:
     return ax
 
 
-#: The state's names of `beltmdsm.basin.basins.AXES` (``Y1`` is ``X1'``).
-_BASIN_AXES = {"X1": "X1", "Y1": "X1'", "X2": "X2", "Y2": "X2'"}
-
-
 def basins(result: Any, ax: Any = None) -> Any:
-    """A basin map (`beltmdsm.basin.basins.Basins`): one colour per attractor (grey where
-    none was identified), its stroboscopic points marked, a legend with its kind and
-    share of the starts.
+    """A basin map (`beltmdsm.basin.basins.Basins`, or another model's
+    `beltmdsm.oscillator.basins.Basins`): one colour per attractor (grey where none was
+    identified), its stroboscopic points (another model's: its state) marked, a legend
+    with its kind and share of the starts; the axes are the model's states.
 
     Parameters
     ----------
-    result : beltmdsm.basin.basins.Basins
+    result : beltmdsm.basin.basins.Basins or beltmdsm.oscillator.basins.Basins
         the basin map
     ax : matplotlib.axes.Axes, optional
         where to draw; new axes where None
@@ -564,17 +601,23 @@ def basins(result: Any, ax: Any = None) -> Any:
         result.xs, result.ys, result.labels + 1, cmap=cmap, vmin=0, vmax=n,
         shading="nearest", alpha=0.5,
     )  # fmt: skip
-    x, y = (_BASIN_AXES[a] for a in (result.x, result.y))
+    model = _model_of(result)
+    rows = _state_rows(model)
+    # the axes as the model names its states (the paper's Y1 is the column X1')
+    x, y = (state_names.column(model, a) for a in (result.x, result.y))
     for a, c in zip(result.attractors, colours):
+        # the stroboscopic points; an attractor of another model's map keeps its state
+        points = a.points if hasattr(a, "points") else np.atleast_2d(a.state)
         ax.plot(
-            a.points[:, STATE[x][1]], a.points[:, STATE[y][1]], "o", ms=6, mec="k", color=c,
+            points[:, rows[x][1]], points[:, rows[y][1]], "o", ms=6, mec="k", color=c,
             label=repr(a).removeprefix("BasinAttractor(").rstrip(")"),
         )  # fmt: skip
     # the mesh's cells reach half a step past the outer starts: clip to the starts
     ax.set_xlim(result.xs[0], result.xs[-1])
     ax.set_ylim(result.ys[0], result.ys[-1])
-    ax.set_xlabel(axis_label(x, STATE[x][0]))
-    ax.set_ylabel(axis_label(y, STATE[y][0]))
-    ax.set_title(f"basins at {result.model!r}", fontsize=8)
-    ax.legend(loc="best", fontsize="small")
+    ax.set_xlabel(axis_label(x, rows[x][0]))
+    ax.set_ylabel(axis_label(y, rows[y][0]))
+    ax.set_title(f"basins at {model!r}", fontsize=8)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="best", fontsize="small")
     return ax

@@ -20,6 +20,7 @@ from beltmdsm.generated import unforced
 
 from .errors import Refused
 from .model import Backend, Model, is_real
+from .state_names import columns
 
 __all__ = [
     "SolverSettings",
@@ -360,7 +361,7 @@ def _overflows(model: Model) -> str | None:
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore", RuntimeWarning)
         state = np.array(unforced.equilibrium(**model.arguments(unforced.equilibrium)), float)
-        for name, value in zip(("X1", "X1'", "X2", "X2'"), state):
+        for name, value in zip(columns(model), state):
             if not math.isfinite(value):
                 return f"the unforced equilibrium (Eq. 9) has {name} = {value:.3g}"
             if not math.isfinite(value * value):

@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from . import state_names
 from ._calling import public
 from ._tables import DataFrame
 from .arguments import flag, settings_of, state
@@ -162,9 +163,9 @@ class Simulation:
         """Boolean mask of the samples in the steady window."""
         return self.samples.t >= self.settings.window_start
 
-    def plot(self, ax: Any = None, kind: str = "time", variable: str = "X1'") -> Any:
-        """The run: ``variable`` against time (``kind="time"``), or the friction loop,
-        friction against Vr over the steady window (``kind="friction"``), on
+    def plot(self, ax: Any = None, kind: str = "time", variable: str | None = None) -> Any:
+        """The run: ``variable`` (default ``X1'``) against time (``kind="time"``), or the
+        friction loop, friction against Vr over the steady window (``kind="friction"``), on
         matplotlib axes ``ax`` (new ones if None), which it returns
         (`beltmdsm.plotting.simulation`; matplotlib is imported here)."""
         from .plotting import simulation as draw
@@ -313,7 +314,8 @@ def simulate(
 
         return api.simulate(model, settings, y0)
     if y0 is not None:
-        y0 = state("y0", y0, (4,), "X1, Y1, X2, Y2")
+        names = state_names.names(model)
+        y0 = state("y0", y0, (len(names),), ", ".join(names))
     check_request(model, settings)
     return _simulate(model, settings, y0, clock, progress)
 

@@ -55,6 +55,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .. import state_names
 from .._calling import public
 from ..arguments import number, state
 from ..errors import NoPeriodicResponse, StepTooSmall
@@ -227,7 +228,8 @@ def periodic_attractor(
     T = excitation_period(model)
     t_end = run_length(t_end, T)
     check_length(model, t_end)
-    y = initial_state(model) if y0 is None else state("y0", y0, (4,), "X1, Y1, X2, Y2")
+    names = state_names.names(model)
+    y = initial_state(model) if y0 is None else state("y0", y0, (len(names),), ", ".join(names))
     first = T * np.ceil(0.3 * t_end / T)
     times = first + T * np.arange(int((t_end - first) / T + 1e-9) + 1)
     try:  # in pieces: only the samples are kept

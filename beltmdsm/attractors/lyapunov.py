@@ -31,6 +31,10 @@ the whole window against the mean over its second half) and ``rtol / tau``: the 
 bounds the fluctuation, the second the transient left in the start, the third the
 runs' tolerance, which no average removes (benchmarks/bench_lyapunov.py: errors of
 6e-12 1/s on the stick orbit where the spread says 1e-14).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

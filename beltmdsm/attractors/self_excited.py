@@ -39,6 +39,10 @@ to `NORMAL_TOL`) and the cycles given are all the cycles at this value (those of
 branch through the Hopf point and of the seed from the stick end; an isolated branch
 that neither reaches would be missed, and a ring with two stable or two unstable
 boundaries is then left to the runs, not guessed).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import state_names
 from ..arguments import number
 from ..errors import Refused
 from ..model import Model
@@ -19,8 +20,12 @@ from ..settings import fastest_rate
 __all__ = ["AXES", "axis_range"]
 
 
-#: The axes of the plane: the state's components at phase 0.
-AXES = ("X1", "Y1", "X2", "Y2")
+#: The axes of the plane: the paper model's states at phase 0 (`beltmdsm.state_names`;
+#: another model's basins, `beltmdsm.oscillator.basins`, span its own).
+AXES = state_names.names()
+#: The default plane: the first coordinate and its rate; a plane on any other state
+#: needs the map that follows the normal dynamics too.
+TANGENTIAL = state_names.plane()
 
 
 def axis_range(model: Model, axis: str, state: str, lo: Any, hi: Any) -> tuple | None:

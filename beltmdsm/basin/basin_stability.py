@@ -51,6 +51,7 @@ from ..attractors.self_excited import T_MAX, Landscape, cycles_near, landscape
 from ..batch import cache
 from ..batch.pool import process_pool, stop_process_pool, workers_of
 from ..model import Model, as_model
+from .axes import AXES  # the states a box may span
 
 __all__ = [
     "BasinStability",
@@ -64,8 +65,6 @@ __all__ = [
     "MAX_SAMPLES",
 ]
 
-#: The states a box may span.
-AXES = ("X1", "Y1", "X2", "Y2")
 #: Most starts per task sent to an executor and per cached file.
 CHUNK = 500
 #: Tasks per worker of an executor (fewer where a task would have under `MIN_CHUNK`
@@ -401,7 +400,7 @@ def basin_stability(
     chunks = [starts[i : i + size] for i in range(0, samples, size)]
     rows, interrupted = _run_chunks(ls, chunks, t_max, executor, cache_dir, progress)
     done = [j for j, r in enumerate(rows) if r is not None]
-    kept = np.concatenate([chunks[j] for j in done]) if done else np.zeros((0, 4))
+    kept = np.concatenate([chunks[j] for j in done]) if done else np.zeros((0, len(AXES)))
     labels = np.array([v for j in done for v in rows[j]["labels"]], dtype=int)
     how = [v for j in done for v in rows[j]["how"]]
     counts = np.array([int(np.sum(labels == i)) for i in range(len(ls.attractors))], dtype=int)

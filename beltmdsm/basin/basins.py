@@ -71,7 +71,7 @@ from ..errors import NoPeriodicResponse, Refused
 from ..excitation import excitation_period, is_autonomous
 from ..model import Model, as_model
 from ..periodic.floquet import floquet
-from .axes import AXES, _checked, _range, axis_range
+from .axes import AXES, TANGENTIAL, _checked, _range, axis_range
 from .basins_result import BasinAttractor, Basins
 
 __all__ = [
@@ -175,10 +175,10 @@ def _range_to_ends(axis: str) -> Rename:
 def basins(
     model: Model | Mapping[str, Any] | None = None,
     *,
-    x: str = "X1",
+    x: str = TANGENTIAL[0],
     x_lo: float | None = None,
     x_hi: float | None = None,
-    y: str = "Y1",
+    y: str = TANGENTIAL[1],
     y_lo: float | None = None,
     y_hi: float | None = None,
     points: int = 21,
@@ -301,7 +301,7 @@ def basins(
     if autonomous:
         return _self_excited(model, x, x_range, y, y_range, points, executor, cache_dir)
 
-    general = x in ("X2", "Y2") or y in ("X2", "Y2")
+    general = not {x, y} <= set(TANGENTIAL)
     pmap = one_period_map(model, general)
     found, found_points = [], []
     for a in [_seed(model, None, t_end), *_periodic_response(model), *(attractors or [])]:

@@ -324,7 +324,8 @@ def solver_parent() -> argparse.ArgumentParser:
         "--on-contact-loss",
         choices=CONTACT_LOSS,
         default="continue",
-        help="on loss of contact (X2 = 0): go on in flight, or stop the run (default: continue)",
+        help="on loss of contact (the contact's gap closes to 0): go on in flight, or stop "
+        "the run (default: continue)",
     )
     return parent
 

@@ -13,6 +13,7 @@ import argparse
 
 import numpy as np
 
+from ..state_names import plane
 from .generic import _head, _print
 from .models import model_of, refuse_flags, system_from
 
@@ -24,10 +25,11 @@ __all__ = [
 
 def _plane(args: argparse.Namespace, system) -> tuple[str, str]:
     """The two states of ``--x`` and ``--y``, named as the model names them (the paper's
-    defaults X1 and Y1: the first coordinate and its velocity), checked once."""
-    n = len(system.coordinates)
-    x = system.states[0] if args.x == "X1" else args.x
-    y = system.states[n] if args.y == "Y1" else args.y
+    defaults X1 and Y1, `beltmdsm.state_names.plane`: the first coordinate and its
+    velocity), checked once."""
+    default, own = plane(), plane(system.name)
+    x = own[0] if args.x == default[0] else args.x
+    y = own[1] if args.y == default[1] else args.y
     for axis, state in (("x", x), ("y", y)):
         if state not in system.states:
             args.parser.error(

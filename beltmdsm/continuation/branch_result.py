@@ -15,10 +15,11 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import NDArray
 
-from .._tables import DataFrame
+from .._tables import STATE_COLUMNS, DataFrame
 from ..errors import Refused
 from ..model import Model
 from ..periodic.engines import engine_of
+from ..periodic.observables import OBSERVABLES
 
 __all__ = ["LOCATE_TOL", "SpecialPoint", "BranchPart", "Branch", "Hopf", "record_points"]
 
@@ -276,8 +277,6 @@ class Branch:
             Where ``record`` raises or returns anything but a real number or a mapping
             of names to real numbers (`record_points`).
         """
-        from ..periodic.observables import OBSERVABLES
-
         vb = [p.value if self.param == "Vb" else self.model["Vb"] for p in self.points]
         rows = [p.observables(v) for p, v in zip(self.points, vb)]
         out = {self.param: np.array([p.value for p in self.points], dtype=float)}
@@ -290,11 +289,12 @@ class Branch:
             out.update({k: np.array([r[k] for r in rows], dtype=float) for k in rows[0]})
         return out
 
-    def plot(self, ax: Any = None, observable: str = "X1'_amplitude", labels: bool = True) -> Any:
-        """The bifurcation diagram: ``observable`` (one of `observables`' columns)
-        against ``param``, stable solid, unstable dashed, grazing dotted, the special
-        points marked (NS, PD, LP, GR, BP, HB); on matplotlib axes ``ax`` (new ones
-        if None), which it returns (`beltmdsm.plotting.branch`)."""
+    def plot(self, ax: Any = None, observable: str | None = None, labels: bool = True) -> Any:
+        """The bifurcation diagram: ``observable`` (one of `observables`' columns; default
+        the amplitude of the model's first rate, ``X1'_amplitude``) against ``param``,
+        stable solid, unstable dashed, grazing dotted, the special points marked (NS, PD,
+        LP, GR, BP, HB); on matplotlib axes ``ax`` (new ones if None), which it returns
+        (`beltmdsm.plotting.branch`)."""
         from ..plotting import branch as draw
 
         return draw(self, ax, observable, labels)
@@ -302,9 +302,7 @@ class Branch:
     def _state_names(self) -> list[str]:
         """The columns of the points' states: the paper's (another model's branch names
         its own, `beltmdsm.continuation.oscillator_branch.OscillatorBranch`)."""
-        from .._tables import STATE_COLUMNS
-
-        return list(STATE_COLUMNS[: len(self.points[0].state) if self.points else 4])
+        return list(STATE_COLUMNS[: len(self.points[0].state) if self.points else None])
 
     def to_pandas(self, table: str = "points") -> DataFrame:
         """A `pandas.DataFrame` (needs pandas, imported here) of the ``"points"`` (one row
@@ -399,11 +397,11 @@ class Branch:
         return out
 
 
-#: Columns of `Branch.to_pandas` that a recorded name may not take.
+#: Columns of `Branch.to_pandas` that a recorded name may not take: the paper model's
+#: state columns, the point's verdicts and the observables.
 _RESERVED = frozenset(
-    ["X1", "X1'", "X2", "X2'", "max_abs_multiplier", "stable", "n_reversals", "n_sticks"]
-    + ["X1'_amplitude", "X1'_min", "X1'_max", "X1_amplitude", "X1_min", "X1_max"]
-    + ["max_abs_Vr", "mean_friction", "mu_eff", "period"]
+    [*STATE_COLUMNS, "max_abs_multiplier", "stable", "n_reversals", "n_sticks"]
+    + [*OBSERVABLES, "period"]
 )
 
 

@@ -11,6 +11,10 @@ passes `MULTIPLIER_LIMIT` ends single shooting (the walk goes on by multiple sho
 first ends the branch. The one driver (`beltmdsm.continuation.driver`) does the rest, as for the
 forced responses; its defaults here are
 `beltmdsm.continuation.settings.CYCLE_SETTINGS`.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

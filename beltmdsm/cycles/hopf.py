@@ -22,6 +22,10 @@ The small cycle near a Hopf point is ``x_eq + eps Re(v e^{i omega t})`` to first
 order, with period ``2 pi / omega``; it exists on one side of ``p_H``: where steady
 sliding is unstable (supercritical) or where it is stable (subcritical). Which one is
 decided by the branch of cycles (`beltmdsm.cycles.branch`), not here.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

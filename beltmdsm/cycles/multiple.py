@@ -9,6 +9,10 @@ at ``v_s = 0.142``, the largest ``Vr`` still -0.02 m/s short of the stick onset)
 ``|mu|^(1/m)``, on the same driver with the same hooks (the stick onset crossed by
 `beltmdsm.cycles.stick`). Its own limit: a segment whose monodromy's norm passes
 `MULTIPLIER_LIMIT` has single shooting's trouble again.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

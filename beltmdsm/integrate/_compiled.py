@@ -24,6 +24,10 @@ compiled functions take numbers, tuples and arrays only, and the module's file n
 holds a hash of every source it depends on (the generated kernels, the integrators,
 this file, numba's version): regenerating a kernel or changing an integrator compiles
 afresh, and nothing stale is served.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -21,6 +21,10 @@ only once it has been strictly inside the mode.
 
 The same source runs as plain Python or compiled by numba, with its kernels, in the
 entry points of `beltmdsm.integrate._compiled`.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -13,6 +13,10 @@ exact motion (the normal motion's dense output, the closed forms), as
 `beltmdsm.integrate._dop853` does between its steps. No formula of the model is here.
 
 Plain Python, or compiled by numba with its kernels (`beltmdsm.integrate._compiled`).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -8,6 +8,10 @@ integrator (`beltmdsm.integrate._dop853`) on the generated field of the current 
 mode, and goes on. Nothing is stepped over: the run is a sequence of smooth segments
 joined at located switches. Accumulating switches are handled by
 `beltmdsm.integrate.zeno`.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

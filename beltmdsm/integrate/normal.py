@@ -13,6 +13,10 @@ tangential motion on it in closed form.
 The motion is kept twice: as DOP853 dense output (exact to the integration
 tolerance at any time), and sampled on a uniform grid for the superposition's scan
 for switches.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

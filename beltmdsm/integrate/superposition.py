@@ -22,6 +22,10 @@ model's laws lack a fact it needs (`FACTS`, decided by SymPy in
 Coulomb's is and Stribeck's is not, and the normal equation free of it), and at
 undamped resonance of the tangential oscillator (``beta1 = 0``, ``Omega_t = omega1``,
 where the excitation response grows without bound).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -31,6 +31,10 @@ the absolute values of its terms). At a tie the rate of the function along the
 candidate mode decides: a mass at the friction limit sticks if the margin grows and
 slips if it shrinks. This is what makes a one-ulp difference between ``|a_free|``
 and ``mu_s F`` (the paper's ``Vb = 0`` from rest) stick instead of chattering.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -6,6 +6,10 @@ Both integrators (`beltmdsm.integrate.events` with the compiled DOP853,
 friction force, energy balance of Sect. 3, cycle averages of Sect. 5) integrates or
 evaluates segment by segment, never across a switch, and uses the generated
 functions of ``beltmdsm.generated.dynamics`` for the physics so that they stay the reference.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -82,6 +82,8 @@ SEED_T_END = 600.0
 #: periods) and is not yet within `beltmdsm.periodic.locked.LOCK_TOL`; the returns of
 #: a torus (Vb = 3.5 from rest: 4.43 and 4.39) do not fall.
 _CONVERGING = 0.8
+#: The returns are compared quarter by quarter (their medians falling).
+_QUARTERS = 4
 #: A seed lies on a known branch when the branch, interpolated between its points,
 #: comes this close (relative) to it; Newton's method from there then decides.
 _NEAR = 1e-2
@@ -93,10 +95,10 @@ def _converging(samples, limit):
     y = np.asarray(samples, dtype=float)
     for k in range(1, limit + 1):
         r = np.max(np.abs(y[k:] - y[:-k]), axis=1)
-        q = r.size // 4
+        q = r.size // _QUARTERS
         if q < 2:
             continue
-        quarters = [float(np.median(r[i * q : (i + 1) * q])) for i in range(4)]
+        quarters = [float(np.median(r[i * q : (i + 1) * q])) for i in range(_QUARTERS)]
         falling = all(b < a for a, b in zip(quarters, quarters[1:]))
         if falling and quarters[-1] <= _CONVERGING * quarters[0]:
             return k

@@ -293,7 +293,7 @@ class Coexistence:
             return frame(rows, ["lo", "hi", "responses", "lower", "upper"])
         raise ValueError(f"table must be 'stable' or 'ranges'; got {table!r}")
 
-    def plot(self, ax: Any = None, observable: str = "X1'_amplitude") -> Any:
+    def plot(self, ax: Any = None, observable: str | None = None) -> Any:
         """Each response's bifurcation diagram (``observable`` against the parameter,
         stable solid, unstable dashed), the coexistence ranges shaded, on matplotlib
         axes ``ax`` (new ones if None), which it returns

@@ -45,6 +45,7 @@ from ..starts.forced import (
     run_stroboscope,
     shoot,
 )
+from ..state_names import rate_column
 
 __all__ = [
     "Response",
@@ -118,7 +119,8 @@ class Response:
     def __repr__(self) -> str:
         return (
             f"Response({self.periods}T: {self.floquet.verdict}, max |mu| = "
-            f"{self.floquet.max_abs_multiplier:.5g}, amplitude of X1' {self.amplitude:.4g} m/s, "
+            f"{self.floquet.max_abs_multiplier:.5g}, amplitude of {rate_column()} "
+            f"{self.amplitude:.4g} m/s, "
             f"found by {', '.join(self.sources)})"
         )
 
@@ -229,7 +231,8 @@ class ResponseSet:
 
         lines = [
             f"{r.periods}T: {r.floquet.verdict}, max |mu| = {r.floquet.max_abs_multiplier:.5g}, "
-            f"amplitude of X1' {r.amplitude:.4g} m/s, found by {', '.join(r.sources)}"
+            f"amplitude of {rate_column(self.model)} {r.amplitude:.4g} m/s, found by "
+            f"{', '.join(r.sources)}"
             for r in self.responses
         ]
         lines += [f"not locked: {u.text()}" for u in self.unlocked]

@@ -14,6 +14,10 @@ derive/ never imports the runtime):
   the sign of the contact force.
 
 `difference_runs`, `difference_works` and `reversals_by_force_sign` are the tools.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -28,6 +28,10 @@ laws that SymPy decided (``beltmdsm.generated.capabilities``), never by assumpti
 
 Newton's method on the map's fixed points is `beltmdsm.periodic.newton`; the maps of one
 parameter's values, with their derivative in it, `beltmdsm.periodic.family`.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -28,6 +28,10 @@ Coulomb friction with every contact and tension law); it refuses a model without
 
 `largest_sliding_velocity` is the largest velocity of the backward-sliding orbit in
 contact, where that orbit grazes the belt's speed.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

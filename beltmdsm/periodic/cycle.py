@@ -54,6 +54,10 @@ See docs/modelling.md#self-excited-cycles.
 **Grazing.** A crossing of ``Vr = 0`` reached with a vanishing rate
 (`beltmdsm.periodic.margins.GRAZING_RATIO`) is reported as for forced responses:
 ``grazing`` set, no multiplier (NaN), ``stable`` None.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

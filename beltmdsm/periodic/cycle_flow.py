@@ -19,6 +19,10 @@ stick-slip cycles; its gradient is taken by central differences of the field.
 `orbit_observables` reads a run over one period: the extremes of ``X1`` and ``X1'``
 (each refined by Brent's method on the dense output), the stick phases and the
 reversals of the relative velocity.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -18,6 +18,10 @@ after each, and shooting converges on either. Two facts give the least period:
   shot again with that shorter period.
 
 `rest_step` bounds a run's steps where the state rests (a long stick): see there.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

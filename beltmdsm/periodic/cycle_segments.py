@@ -15,6 +15,10 @@ monodromy ``M_i`` only, about ``|mu|^(1/m)``. The Jacobian is block-cyclic:
 ``dG_i/dx_i = M_i``, ``dG_i/dx_{i+1} = -I``, ``dG_i/dT = f(phi_i) / m``, ``dG_i/dp``
 by central differences; the Floquet multipliers are the eigenvalues of the product
 ``M_{m-1} ... M_0`` (the monodromy of the whole period, each factor well conditioned).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

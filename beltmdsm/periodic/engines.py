@@ -4,6 +4,10 @@
 the closed-form one (`beltmdsm.periodic.closed_form.ClosedFormMap`) where the model's laws
 have every fact of `CLOSED_FORM_FACTS` (``beltmdsm.generated.capabilities``, decided by SymPy),
 else the general one (`beltmdsm.periodic.general_map.GeneralMap`), or the one asked for.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

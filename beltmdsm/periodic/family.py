@@ -4,6 +4,10 @@
 `beltmdsm.continuation.band`, `beltmdsm.continuation.floquet_map`): the map at each value
 (`beltmdsm.periodic.engines.period_map`, the last few kept) and ``dP/d param`` by
 central differences that keep the orbit's switch structure.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -46,6 +46,10 @@ The results say which (``engine``); where both apply they agree to 1e-9.
 ``log|mu| / (k T)``, the frequency of the critical pair ``|arg mu| / (k T)`` (to
 compare with omega1; it is defined modulo ``2 pi / (k T)``) and the verdict. The
 ranges of a parameter where the response is unstable are `beltmdsm.continuation.band`'s.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

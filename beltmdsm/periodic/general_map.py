@@ -8,6 +8,10 @@ saltation matrix at every switch; Leine and Nijmeijer 2004). Its multipliers are
 eigenvalues of it; the grazing test and the margins are read from its runs as from
 `beltmdsm.periodic.closed_form.ClosedFormMap`'s (the same switches, the same rules,
 `beltmdsm.periodic.base.PeriodMap`), a period of a run being an `EventPeriod`.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -23,6 +23,10 @@ response is a fixed point of the ``k``-fold period map
   a lock of a longer period).
 * `minimal_periods`: the smallest period, in excitation periods, of an orbit of the
   ``k``-fold map.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

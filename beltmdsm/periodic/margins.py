@@ -22,6 +22,10 @@ just touches the belt's), the saltation entry ``a_after / a_before`` diverges (t
 square-root singularity of grazing bifurcations). A switch whose crossing margin
 (`crossing_ratio`) is below `GRAZING_RATIO` is reported as grazing, and no multiplier
 is returned for it. `orbit_range` is the range of a state component over an orbit's runs.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -9,6 +9,10 @@ parameters). `normal_orbit` computes it once per normal parameter set (cached), 
 shooting on the normal period map with the variational equation (the normal block of
 `beltmdsm.generated.hybrid.mode_jacobian`, through the integrator's own steps) and the normal
 blocks of the saltation matrices. `beltmdsm.periodic.closed_form` runs on it.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -12,6 +12,10 @@ the ``k`` periods, by the trapezoidal rule on each segment (the friction jumps o
 the switches, which end segments); the forces are those of a run
 (`beltmdsm.integrate.trajectory.Trajectory.forces`), per unit mass. This is what
 `beltmdsm.continuation.branch.Branch.observables` tabulates and its ``plot`` draws.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

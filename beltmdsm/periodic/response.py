@@ -5,6 +5,10 @@ and what the Floquet multipliers are read from (`beltmdsm.periodic.floquet.Floqu
 built from a fixed point of a ``k``-fold period map by `response_from` (either engine,
 `beltmdsm.periodic.engines.ENGINES`), or from a self-excited cycle of a model without
 excitation by `response_of_cycle` (`beltmdsm.periodic.cycle.Cycle`).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -17,6 +17,10 @@
   the phase from: `periodic_response` computes the self-excited cycle instead
   (`beltmdsm.periodic.cycle`: the period found by shooting with a phase condition), with
   ``autonomous`` set (`beltmdsm.periodic.response.response_of_cycle`).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -21,6 +21,10 @@ propagator's error is that of an order-8 step on a field that the run's own step
 control keeps within its tolerance, so the monodromy carries about the run's
 relative accuracy (1e-12 at the tolerances of the period maps), not the 1e-6 of a
 finite difference.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -31,6 +31,10 @@ declares) and computes with no other law's physics. For a belt speed ``Vb`` it
 Only one excitation frequency is covered (``Omega_t == Omega_n``): with two frequencies
 a single harmonic balance does not apply and `fast_motion` raises. The scan of this
 damping over ``Vb`` is `beltmdsm.prediction.scan`.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -7,6 +7,10 @@ closed form (the capability ``closed_form_average``) and a ``V_hat`` that does n
 depend on ``Vb``; where either fails (Stribeck's law) `paper_intervals` finds the same
 analysis' unstable set numerically (`beltmdsm.prediction.paper_numeric`), and
 `paper_reasons` says so with its grid and tolerance.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

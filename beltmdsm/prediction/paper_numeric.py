@@ -7,6 +7,10 @@ effective friction a quadrature of the law's expression) on a grid of ``Vb``, ea
 edge refined by ``brentq``, with ``V_hat`` of the chosen reading evaluated at each
 ``Vb`` (the fast amplitude frozen in the slow linearisation: the slope is
 ``d mu_bar / d Vr`` at fixed ``V_hat``).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

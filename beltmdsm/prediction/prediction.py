@@ -20,6 +20,10 @@ kinetic coefficient and the static bound enters none of them. Their verdicts are
 local: where the static bound exceeds the kinetic coefficient a stick-slip cycle can
 coexist with stable sliding, and `predict` says so in each analysis' note
 (`STATIC_BOUND`).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -4,6 +4,10 @@
 grid of belt speeds, continuing the fast motion from high ``Vb`` down, and refines
 each change of sign: by ``brentq`` at a root of the damping, or at the onset of
 friction reversal (`beltmdsm.prediction.mdsm.reversal_onset`), where the damping jumps.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -6,6 +6,10 @@ reversal by the unforced critical belt speed, `beltmdsm.generated.unforced.criti
 where the law has it in closed form; where the closed form is refused, its edges are
 the roots of the largest real part of `beltmdsm.generated.unforced.eigenvalues`
 (`unforced_edges`).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -20,6 +20,7 @@ from numpy.typing import NDArray
 
 from ..integrate.trajectory import Trajectory
 from ..settings import SolverSettings
+from ..state_names import rate_row
 
 __all__ = ["friction_loop", "cycle_averages", "modulation_scatter", "Simulated"]
 
@@ -107,7 +108,7 @@ def friction_loop(
     t = np.linspace(t_stop - period, t_stop, n)
     y = sim.trajectory.state(t)
     _, friction = sim.trajectory.forces(t, y)
-    return t, y[1] - sim.params["Vb"], friction
+    return t, y[rate_row(sim.model)] - sim.params["Vb"], friction
 
 
 def cycle_averages(

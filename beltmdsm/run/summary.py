@@ -28,6 +28,7 @@ from ..integrate.switching import MODE_NAMES, Mode
 from ..integrate.trajectory import Run, Samples, Trajectory
 from ..model import Model
 from ..settings import SolverSettings
+from ..state_names import rate_row
 from . import spectra
 from .resolution import (
     PEAK_PRESENT_RATIO,
@@ -395,7 +396,7 @@ def summarize(
         # stopped (contact lost, Zeno) before the steady window: the counts and the
         # regime cover the whole run, there is no spectrum
         t0, win = 0.0, np.ones_like(win)
-    v = samples.y[1, win]
+    v = samples.y[rate_row(model), win]  # the first coordinate's rate (X1')
     out = {
         "t_end": float(t1),
         "t_discard": float(t0),

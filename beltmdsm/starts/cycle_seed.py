@@ -11,6 +11,10 @@ One of the starting states of `beltmdsm.starts`, at the layer of the periodic or
 (tests/test_layers.py): `beltmdsm.periodic.cycle` shoots from it, so it imports nothing
 above them. It was ``beltmdsm.periodic.cycle_seed`` and ``beltmdsm.cycles.seed`` before;
 those paths still import (issue 38).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

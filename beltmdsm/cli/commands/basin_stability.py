@@ -6,6 +6,7 @@ import argparse
 import json
 
 from ...model import MODEL_PARAMETERS
+from ...state_names import column, plane
 from .. import generic_studies
 from ..flags import (
     cache_dir_from,
@@ -25,7 +26,8 @@ from ..models import named, other_params
 from ..running import register
 from .basins import region_from, sampling_flags
 
-_AXES = ("X1", "Y1", "X2", "Y2")
+#: The paper's default plane: its first coordinate and that coordinate's rate.
+_X, _Y = plane()
 
 
 def add(commands, name: str) -> None:
@@ -52,13 +54,13 @@ def add(commands, name: str) -> None:
     sub.add_argument(
         "--points", type=integer(2, 200), default=5, help="values of the parameter (default 5)"
     )
-    for axis, default in (("x", "X1"), ("y", "Y1")):
+    for axis, default in (("x", _X), ("y", _Y)):
         sub.add_argument(
             f"--{axis}",
-            choices=(*_AXES, *(s for s in generic_studies.STATES if s not in _AXES)),
+            choices=generic_studies.STATES,
             default=default,
-            help=f"the {axis} axis (default {default}; with --model, one of its states, X1 "
-            "and Y1 its first coordinate and its rate)",
+            help=f"the {axis} axis (default {default}; {_Y} is {column(None, _Y)}; with "
+            f"--model, one of its states, {_X} and {_Y} its first coordinate and its rate)",
         )
         for end, meta, word in (("from", "A", "low"), ("to", "B", "high")):
             sub.add_argument(

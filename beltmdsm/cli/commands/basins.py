@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from ...state_names import column, plane
 from .. import generic_studies
 from ..flags import (
     cache_dir_from,
@@ -21,7 +22,8 @@ from ..flags import (
 from ..models import named
 from ..running import register
 
-_AXES = ("X1", "Y1", "X2", "Y2")
+#: The paper's default plane: its first coordinate and that coordinate's rate.
+_X, _Y = plane()
 
 
 def add(commands, name: str) -> None:
@@ -34,7 +36,8 @@ def add(commands, name: str) -> None:
         help="basins of attraction on a plane of initial states, or basin stability by "
         "sampling (--samples)",
         description="Starts on a grid of a plane of states at the excitation's phase 0 "
-        "(default X1 and X1' = Y1, the normal state on its periodic orbit), each iterated "
+        f"(default {_X} and {column(None, _Y)} = {_Y}, the normal state on its periodic orbit), "
+        "each iterated "
         "on the period map until a known attractor claims it; attractors named by their "
         "kind, period, rotation number and largest Lyapunov exponent "
         "(beltmdsm/basin/basins.py, beltmdsm/attractors/classification.py). Without "
@@ -44,13 +47,13 @@ def add(commands, name: str) -> None:
         "(beltmdsm/attractors/self_excited.py); --samples N draws N uniform starts in the "
         "box instead (beltmdsm/basin/basin_stability.py).",
     )
-    for axis, default in (("x", "X1"), ("y", "Y1")):
+    for axis, default in (("x", _X), ("y", _Y)):
         sub.add_argument(
             f"--{axis}",
-            choices=(*_AXES, *(s for s in generic_studies.STATES if s not in _AXES)),
+            choices=generic_studies.STATES,
             default=default,
-            help=f"the {axis} axis of the plane (default {default}; Y1 is X1'; with "
-            "--model, one of its states, X1 and Y1 its first coordinate and its rate)",
+            help=f"the {axis} axis (default {default}; {_Y} is {column(None, _Y)}; with "
+            f"--model, one of its states, {_X} and {_Y} its first coordinate and its rate)",
         )
         sub.add_argument(
             f"--{axis}-from",

@@ -7,6 +7,7 @@ import json
 
 from ...excitation import is_autonomous
 from ...model import MODEL_PARAMETERS
+from ...state_names import rate_column
 from .. import generic
 from ..flags import (
     json_parent,
@@ -50,8 +51,8 @@ def add(commands, name: str) -> None:
         "--png",
         metavar="FILE",
         type=output_file,
-        help="draw the bifurcation diagram (amplitude of X1' against --param) to FILE "
-        "(needs matplotlib)",
+        help=f"draw the bifurcation diagram (amplitude of {rate_column()}, the first "
+        "coordinate's rate, against --param) to FILE (needs matplotlib)",
     )
 
 

@@ -7,6 +7,7 @@ import argparse
 import json
 
 from ...model import MODEL_PARAMETERS
+from ...state_names import rate_column
 from .. import generic_studies
 from ..flags import (
     POSITIVE,
@@ -56,8 +57,8 @@ def add(commands, name: str) -> None:
         "--png",
         metavar="FILE",
         type=output_file,
-        help="draw each response's branch (amplitude of X1') and the coexistence ranges "
-        "to FILE (needs matplotlib)",
+        help=f"draw each response's branch (amplitude of {rate_column()}, the first "
+        "coordinate's rate) and the coexistence ranges to FILE (needs matplotlib)",
     )
 
 

@@ -5,10 +5,14 @@ from __future__ import annotations
 import argparse
 import json
 
+from ...state_names import columns
 from .. import generic_studies
 from ..flags import json_parent, model_from, model_parent, number
 from ..models import named
 from ..running import register
+
+#: The paper's first coordinate, which --perturbation moves.
+_X = columns()[0]
 
 
 def add(commands, name: str) -> None:
@@ -30,14 +34,14 @@ def add(commands, name: str) -> None:
         default="rest",
         help="start from the equilibrium at rest (default; without excitation where steady "
         "sliding is unstable, moved 1e-6 off it along its unstable direction, as simulate), "
-        "or on the periodic response with X1 moved by --perturbation",
+        f"or on the periodic response with {_X} moved by --perturbation",
     )
     sub.add_argument(
         "--perturbation",
         type=number(),
         default=None,
-        metavar="DX1",
-        help="the move of X1 from the periodic response [m], with --start periodic only "
+        metavar=f"D{_X}",
+        help=f"the move of {_X} from the periodic response [m], with --start periodic only "
         "(default 1e-2)",
     )
     sub.add_argument(

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 
+from ...state_names import columns, names, rate_column
 from .. import generic
 from ..flags import (
     json_parent,
@@ -18,6 +19,9 @@ from ..flags import (
 )
 from ..models import named
 from ..running import register
+
+#: The paper's first coordinate, which --perturbation moves.
+_X = columns()[0]
 
 
 def add(commands, name: str) -> None:
@@ -35,14 +39,14 @@ def add(commands, name: str) -> None:
         choices=("rest", "periodic"),
         default="rest",
         help="start from the equilibrium at rest (default), or on the periodic "
-        "response (beltmdsm/starts/forced.py) with X1 moved by --perturbation",
+        f"response (beltmdsm/starts/forced.py) with {_X} moved by --perturbation",
     )
     sub.add_argument(
         "--perturbation",
         type=number(),
         default=None,
-        metavar="DX1",
-        help="the move of X1 from the periodic response [m], with --start periodic only "
+        metavar=f"D{_X}",
+        help=f"the move of {_X} from the periodic response [m], with --start periodic only "
         "(default 1e-2)",
     )
     sub.add_argument(
@@ -52,14 +56,15 @@ def add(commands, name: str) -> None:
         "--save",
         metavar="NPZ",
         type=npz_file,
-        help="save the samples t, X1, Y1, X2, Y2, Fn, friction to this .npz file (.npz "
+        help=f"save the samples t, {', '.join(names())}, Fn, friction to this .npz file (.npz "
         "added to a name without it, as numpy.savez does; the name written is printed)",
     )
     sub.add_argument(
         "--png",
         metavar="FILE",
         type=output_file,
-        help="draw the run (X1' against time) and its friction loop to FILE (needs matplotlib)",
+        help=f"draw the run ({rate_column()} against time) and its friction loop to FILE "
+        "(needs matplotlib)",
     )
     sub.add_argument(
         "--classify",
@@ -119,10 +124,7 @@ def run(args: argparse.Namespace) -> int:
         np.savez(
             args.save,
             t=sim.t,
-            X1=sim.y[0],
-            Y1=sim.y[1],
-            X2=sim.y[2],
-            Y2=sim.y[3],
+            **dict(zip(names(model), sim.y)),
             Fn=sim.normal_force,
             friction=sim.friction,
         )
@@ -134,7 +136,8 @@ def run(args: argparse.Namespace) -> int:
             sim.plot(axes[0])
             sim.plot(axes[1], kind="friction")
 
-        save(draw, args.png, f"Eq. (4), {model!r}: X1' and the friction loop", panels=2)
+        title = f"Eq. (4), {model!r}: {rate_column(model)} and the friction loop"
+        save(draw, args.png, title, panels=2)
     if args.json:
         print(json.dumps(text.jsonable(named(out))))
     else:

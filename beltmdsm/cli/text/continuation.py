@@ -6,6 +6,7 @@ import math
 from typing import TYPE_CHECKING
 
 from ...intervals import format_intervals
+from ...state_names import rate_column
 from .common import kind, laws, response_name
 
 if TYPE_CHECKING:
@@ -102,7 +103,7 @@ def branch(found: Branch) -> str:
         for p in (found.points[0], found.points[-1]):
             lines.append(
                 f"  cycle at {found.param} = {p.value:.6g}: period {p.period:.6g} s, "
-                f"amplitude of X1' {p.amplitude:.4g} m/s, largest Vr "
+                f"amplitude of {rate_column(found.model)} {p.amplitude:.4g} m/s, largest Vr "
                 f"{p.max_relative_velocity:.3g} m/s, {p.n_sticks} sticks, "
                 f"{'stable' if p.stable else 'unstable'}"
             )

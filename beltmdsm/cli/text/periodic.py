@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ...state_names import columns, rate_column
 from .common import laws, response_name
 
 if TYPE_CHECKING:
@@ -65,7 +66,7 @@ def cycle(f: Floquet) -> str:
         f"{c.n_reversals} reversals and {c.n_sticks} sticks per period (stick "
         f"{c.stick_time:.6g} s), Newton {c.iterations} iterations (residual "
         f"{c.residual:.1e}) (beltmdsm/periodic/cycle.py)",
-        f"X1 in [{c.x1_range[0]:.6g}, {c.x1_range[1]:.6g}] m, X1' in "
+        f"{columns(m)[0]} in [{c.x1_range[0]:.6g}, {c.x1_range[1]:.6g}] m, {rate_column(m)} in "
         f"[{c.velocity_range[0]:.6g}, {c.velocity_range[1]:.6g}] m/s, largest Vr "
         f"{c.max_relative_velocity:.6g} m/s",
     ]
@@ -130,7 +131,7 @@ def responses(found: ResponseSet) -> str:
         )
         lines.append(
             f"  {name}: {verdict}; {f.n_reversals} reversals, {f.n_sticks} "
-            f"sticks per orbit; amplitude of X1' {r.amplitude:.4g} m/s; found by "
+            f"sticks per orbit; amplitude of {rate_column(m)} {r.amplitude:.4g} m/s; found by "
             + ", ".join(r.sources)
             + check
         )

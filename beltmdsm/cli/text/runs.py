@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...intervals import format_intervals
+from ...state_names import rate_column
 
 if TYPE_CHECKING:
     from ...batch.sweep import Sweep
@@ -68,7 +69,7 @@ def spectrum_line(sim: Simulation) -> str:
     """The line of the readable summary on the X1' spectrum and the omega1 verdict."""
     p, s = sim.params, sim.summary
     return (
-        f"X1' spectrum: omega1 peak {_peak(s.peak_omega1, s.omega1_peak_at)} "
+        f"{rate_column(sim.model)} spectrum: omega1 peak {_peak(s.peak_omega1, s.omega1_peak_at)} "
         f"(omega1 = {p['omega1']:g}), Omega peak {_peak(s.peak_Omega)} (Omega = "
         f"{p['Omega_t']:g}); omega1 peak {peak_verdict(s)}"
     )

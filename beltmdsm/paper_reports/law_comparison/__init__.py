@@ -32,6 +32,10 @@ an independent reference.
 Modules, one concept each: `beltmdsm.paper_reports.law_comparison.laws` (the laws, tension
 laws, belt speeds and starts compared), `.steady` (a), `.forced` (b), `.runs` (c),
 `.comparison` (d, and `compare`).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from .comparison import Answer, LawComparison, answer, compare

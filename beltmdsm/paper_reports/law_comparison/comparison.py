@@ -9,6 +9,10 @@ response is (`beltmdsm.paper_reports.law_comparison.forced`) and (c) where runs 
 rest show the ``omega1`` vibration (`beltmdsm.paper_reports.law_comparison.runs`).
 `compare`: all of it for the laws of `LAWS` and both tension laws, timing each
 expensive call.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

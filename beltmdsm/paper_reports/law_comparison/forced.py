@@ -2,6 +2,10 @@
 
 The Floquet band of `beltmdsm.continuation.band.floquet_band` over ``Vb``, its labelled
 edges and the growth rate ``log max|mu| / T`` at every evaluated value.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

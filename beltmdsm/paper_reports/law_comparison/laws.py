@@ -3,6 +3,10 @@
 The data of the comparison (`beltmdsm.paper_reports.law_comparison`): `Law` (a friction
 law with its parameters), `LAWS`, `TENSIONS`, `VB_RANGE`, `STARTS`, `FORCED_STARTS`
 and `RUN_SETTINGS`.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

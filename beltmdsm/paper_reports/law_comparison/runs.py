@@ -2,6 +2,10 @@
 
 The ``omega1_peak_present`` of `beltmdsm.simulation.simulate`'s summaries on a grid of
 ``Vb``, forced or not, from each start of `STARTS` and `FORCED_STARTS`.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -7,6 +7,10 @@ tangential damping ``2 beta1 omega1 + g dmu/d|Vr|`` of the linearisation at
 those of its tangential and normal blocks (the normal coupling does not move them: the
 normal equation is free of the tangential state, ``one_way_coupling`` of
 `beltmdsm.generated.capabilities`).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

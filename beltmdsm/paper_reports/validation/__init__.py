@@ -67,6 +67,10 @@ Modules, one concept each:
 
 Studies layer: imports ``beltmdsm.generated``, the lower layers of ``beltmdsm``, numpy and
 scipy, never SymPy or the command line.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from .cases import (

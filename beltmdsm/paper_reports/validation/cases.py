@@ -14,6 +14,10 @@ module holds what the validation compares and by which rules:
 * `harmonic_in_band`: where a forced harmonic of Eq. (4) reads as the omega1 peak
   (a case that is not comparable);
 * `DEFINITIONS` and `FLOQUET_DEFINITIONS`: the rules, as ``VALIDATION.md`` states them.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -4,6 +4,10 @@ The abbreviations of the edges' kinds in the Floquet and coexistence tables
 (`EDGE_ABBREVIATIONS`, `END_ABBREVIATIONS`) and their legends;
 `beltmdsm.paper_reports.validation.report` and
 `beltmdsm.paper_reports.validation.floquet_report` write the tables.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -13,6 +13,10 @@
   and the counts of misses and false alarms (`EdgeSummary`).
 
 The rules are `DEFINITIONS` and `FLOQUET_DEFINITIONS` (`beltmdsm.paper_reports.validation.cases`).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -25,6 +25,10 @@ Vb = 3.5) is computed and compared the same way; otherwise it is *not locked* wi
 classification's evidence (quasi-periodic, chaotic, or what could not be told). The
 continued sweeps cannot be rerun at one point: for them the seed of the exact study
 that stands for them (its ladders) is classified from its last state the same way.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

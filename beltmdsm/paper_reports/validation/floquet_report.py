@@ -1,5 +1,9 @@
 """The Floquet half of ``VALIDATION.md``: the runs against the band, the mismatches, the
 exact and simulated coexistence, and the analyses against Floquet (`floquet_sections`).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

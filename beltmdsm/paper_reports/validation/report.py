@@ -5,6 +5,10 @@ The Floquet band against the runs and the analyses (Sects. 4.2-4.3 exactly,
 consistent MDSM) against the runs from rest, the regimes next to what the paper reports
 in Appendix A.5, and the rules of `beltmdsm.paper_reports.validation.cases`; the text of each
 cell is `beltmdsm.paper_reports.validation.cells`.
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -6,6 +6,10 @@ Floquet" of ``VALIDATION.md``) are derived from them: `summarize` (the analyses,
 22-28 and the consistent MDSM, against the runs from rest, over the comparable
 cases), `summarize_floquet` (against the exact Floquet band, over every case) and
 `summarize_mismatches` (the periodic-start run against Floquet).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

@@ -9,6 +9,10 @@ cluster or ``"serial"``), the exact coexistence over the grid's cells
 sweeps), the Floquet verdict at each grid point, and sets them side by side
 (`beltmdsm.paper_reports.validation.comparison`, `beltmdsm.paper_reports.validation.verdicts`,
 `beltmdsm.paper_reports.validation.exact`).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations

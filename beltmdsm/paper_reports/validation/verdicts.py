@@ -16,6 +16,10 @@ of each case of Figs. 2b and 17-21:
 * `peak_ranges`: where a run shows the omega1 peak, whatever its regime.
 
 The rules are `FLOQUET_DEFINITIONS` (`beltmdsm.paper_reports.validation.cases`).
+
+Part of the paper model's engine (issue 39): it runs the paper's model only, on its
+states (``beltmdsm.generated.models.paper.STATES``); another registered model runs on
+the generic runtime (beltmdsm/oscillator/).
 """
 
 from __future__ import annotations
