@@ -23,9 +23,9 @@ from .continuation.oscillator_branch import continue_oscillator_branch, oscillat
 from .continuation.oscillator_forced import OscillatorPoint
 from .continuation.settings import ContinuationSettings
 from .cycles.branch import cycle_branch, cycle_branch_from
+from .errors import Unsupported
 from .excitation import is_autonomous
 from .model import Backend, Model, as_model
-from .errors import Unsupported
 from .oscillator.api import _paper_keywords
 from .oscillator.cycles import Cycle as OscillatorCycle
 from .oscillator.forced import Response
@@ -205,9 +205,7 @@ def continue_branch(
                 f"to model {start.system.name!r} (the generic runtime, beltmdsm/oscillator/)"
             )
         forced._check_record(record)
-        return continue_oscillator_branch(
-            start, param, lo, hi, record=record, settings=settings
-        )
+        return continue_oscillator_branch(start, param, lo, hi, record=record, settings=settings)
     if not getattr(start, "autonomous", False):
         return forced.continue_branch(
             start, param, lo, hi, backend=backend, record=record, settings=settings
