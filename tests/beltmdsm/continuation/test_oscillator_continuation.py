@@ -170,3 +170,19 @@ def test_continue_branch_of_another_model_refuses_what_it_cannot_run():
         continue_branch(cycle, "Vb", 1.4, 1.6)
     (line,) = str(err.value).splitlines()
     assert "model 'belt_1dof'" in line and "self-excited cycle" in line
+
+
+@pytest.mark.parametrize(
+    "model, why",
+    [
+        (dict(model="belt_1dof", friction="stribeck", Vb=1.5), "set an excitation amplitude"),
+        (dict(model="hoffmann"), "the model has no excitation terms"),
+    ],
+)
+def test_branch_of_an_unforced_model_is_refused_in_one_line(model, why):
+    """The self-excited kind of another model: no Branch to continue (`branch --model`
+    follows its cycles from the Hopf points instead)."""
+    with pytest.raises(Unsupported) as err:
+        beltmdsm.branch(Model(**model), param="Vb", lo=1.0, hi=2.0)
+    (line,) = str(err.value).splitlines()
+    assert f"model {model['model']!r}" in line and why in line
