@@ -173,3 +173,26 @@ def test_a_command_that_runs_another_model_names_it(command):
         assert out["model"] == model and "X1" not in done.stdout
     else:
         assert done.stdout
+
+
+def test_basins_samples_of_another_model_is_beltmdsm_basin_stability():
+    """``basins --samples N`` of another model ran nowhere (refused as the paper's flag):
+    it is `beltmdsm.basin_stability` of the model, each share with its standard error
+    sqrt(p (1 - p) / N) (bSTAB's)."""
+    import math
+
+    import beltmdsm
+
+    argv = ["--friction", "stribeck", "--Vb", "2.5", "--x-from", "1.5", "--x-to", "3.5"]
+    argv += ["--y-from", "-3", "--y-to", "0.5", "--samples", "6", "--seed", "3"]
+    done = cli("basins", "--model", "belt_1dof", *argv, "--json")
+    assert done.returncode == 0, done.stderr
+    out = json.loads(done.stdout)
+    m = beltmdsm.Model(model="belt_1dof", friction="stribeck", Vb=2.5)
+    r = beltmdsm.basin_stability(m, {"x": (1.5, 3.5), "x_dot": (-3.0, 0.5)}, samples=6, seed=3)
+    assert out["model"] == "belt_1dof" and out["attractors"] == r.as_dict()["attractors"]
+    assert {a["kind"] for a in out["attractors"]} == {"steady_sliding", "stick_slip"}
+    for a in out["attractors"]:
+        p = a["fraction"]
+        assert a["error"] == pytest.approx(math.sqrt(p * (1 - p) / 6), rel=1e-12)
+    assert sum(a["fraction"] for a in out["attractors"]) + out["unresolved"] == pytest.approx(1)
