@@ -11,6 +11,7 @@ kernels load once.
 """
 
 import json
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -179,8 +180,6 @@ def test_basins_samples_of_another_model_is_beltmdsm_basin_stability():
     """``basins --samples N`` of another model ran nowhere (refused as the paper's flag):
     it is `beltmdsm.basin_stability` of the model, each share with its standard error
     sqrt(p (1 - p) / N) (bSTAB's)."""
-    import math
-
     import beltmdsm
 
     argv = ["--friction", "stribeck", "--Vb", "2.5", "--x-from", "1.5", "--x-to", "3.5"]
@@ -196,3 +195,27 @@ def test_basins_samples_of_another_model_is_beltmdsm_basin_stability():
         p = a["fraction"]
         assert a["error"] == pytest.approx(math.sqrt(p * (1 - p) / 6), rel=1e-12)
     assert sum(a["fraction"] for a in out["attractors"]) + out["unresolved"] == pytest.approx(1)
+
+
+def test_a_swept_excitation_amplitude_excites_the_band_and_the_map():
+    """``floquet-band --param alpha_t`` of another model was refused as unforced: the
+    flags may not set the swept amplitude, so the model had none. The band walks the
+    range, as `beltmdsm.floquet_band` does from a model excited inside it."""
+    import beltmdsm
+
+    fixed = ["--Omega_t", "2", "--Vb", "3", "--mu_s", "0.1"]
+    done = cli("floquet-band", "--model", "belt_1dof", *fixed, "--param", "alpha_t",
+               "--from", "0.4", "--to", "0.5", "--points", "3", "--json")  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    out = json.loads(done.stdout)
+    m = beltmdsm.Model(model="belt_1dof", Vb=3.0, mu_s=0.1, Omega_t=2.0, alpha_t=0.45)
+    band = beltmdsm.floquet_band(m, "alpha_t", 0.4, 0.5, points=3)
+    assert out["model"] == "belt_1dof" and out["unstable"] == band.unstable == []
+    assert [g["max_abs_multiplier"] for g in out["grid"]] == pytest.approx(
+        [g.max_abs_multiplier for g in band.grid], rel=1e-12
+    )
+    # Coulomb friction in pure slip is a constant force: the multipliers are the linear
+    # oscillator's, exp(-beta1 omega1 T), T = 2 pi / Omega_t
+    assert [g["max_abs_multiplier"] for g in out["grid"]] == pytest.approx(
+        [math.exp(-0.1 * math.pi)] * 3, rel=1e-9
+    )
