@@ -128,6 +128,10 @@ def test_the_branch_reports_a_fold_where_a_multiplier_is_plus_one():
     # at a fold the multiplier moves linearly along the arclength while the parameter
     # moves quadratically: the accuracy's square root (6e-4), with room
     assert np.min(np.abs(fold.multipliers - 1.0)) < 3 * math.sqrt(fold.accuracy)
+    # continued again from its point nearest the fold: both ways round the same fold
+    again = continue_branch(near, "alpha_t", 0.01, 1.0)
+    assert [s.kind for s in again.special] == ["range", "fold", "range"]
+    assert abs(again.special[1].value - value) <= again.special[1].accuracy + REF_ERR
 
 
 def test_continuing_a_branch_from_its_end_gives_the_one_branch(pd_branch):
