@@ -24,7 +24,8 @@ The runtime of the package: it imports the generated model (``generated/``, writ
 * `lyapunov` (`Lyapunov`): the Lyapunov spectrum of a run through the switches;
   `classify` (`Attractor`): what a run settles on, named (periodic, quasi-periodic,
   chaotic, equilibrium); `basins` (`Basins`): which attractor each start of a plane
-  of initial states reaches.
+  of initial states reaches; `basin_stability` (`BasinStability`): the share of
+  random starts in a box that reaches each attractor, with its standard error.
 * `predict` (`Prediction`): the unstable belt speeds of the paper's analysis and of a
   consistent MDSM.
 * `validate` (`Validation`): the validation of Figs. 2 and 17-21 (``VALIDATION.md``).
@@ -103,6 +104,8 @@ _API = {
     "Attractor": "attractors.classification",
     "basins": "basin.basins",
     "Basins": "basin.basins",
+    "basin_stability": "basin.basin_stability",
+    "BasinStability": "basin.basin_stability",
     "predict": "prediction.prediction",
     "Prediction": "prediction.prediction",
     "validate": "paper_reports.validation",
@@ -149,6 +152,8 @@ __all__ = [
     "Attractor",
     "basins",
     "Basins",
+    "basin_stability",
+    "BasinStability",
     "predict",
     "Prediction",
     "validate",

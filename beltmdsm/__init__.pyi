@@ -7,6 +7,7 @@ layer of beltmdsm (tests/test_layers.py), and these names live in every layer ab
 
 from .attractors.classification import Attractor, classify
 from .attractors.lyapunov import Lyapunov, lyapunov
+from .basin.basin_stability import BasinStability, basin_stability
 from .basin.basins import Basins, basins
 from .batch.sweep import Sweep, sweep
 from .branches import branch
@@ -73,6 +74,8 @@ __all__ = [
     "Attractor",
     "basins",
     "Basins",
+    "basin_stability",
+    "BasinStability",
     "predict",
     "Prediction",
     "validate",

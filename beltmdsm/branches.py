@@ -19,12 +19,16 @@ from typing import Any
 from ._calling import public
 from .continuation import branch as forced
 from .continuation.branch_result import Branch, record_points
-from .continuation.oscillator_branch import oscillator_branch
+from .continuation.oscillator_branch import continue_oscillator_branch, oscillator_branch
+from .continuation.oscillator_forced import OscillatorPoint
 from .continuation.settings import ContinuationSettings
 from .cycles.branch import cycle_branch, cycle_branch_from
+from .errors import Unsupported
 from .excitation import is_autonomous
 from .model import Backend, Model, as_model
 from .oscillator.api import _paper_keywords
+from .oscillator.cycles import Cycle as OscillatorCycle
+from .oscillator.forced import Response
 from .periodic.response import PeriodicResponse
 
 __all__ = ["branch", "continue_branch"]
@@ -123,7 +127,7 @@ def branch(
 
 
 def continue_branch(
-    start: PeriodicResponse,
+    start: PeriodicResponse | Response | OscillatorPoint,
     param: str,
     lo: float,
     hi: float,
@@ -136,13 +140,18 @@ def continue_branch(
 
     Parameters
     ----------
-    start : PeriodicResponse
-        From `beltmdsm.periodic.shooting.periodic_response`.
+    start : PeriodicResponse, Response or OscillatorPoint
+        The paper's: from `beltmdsm.periodic.shooting.periodic_response`. Another
+        model's forced response: what ``beltmdsm.periodic_response`` returns for it
+        (`beltmdsm.oscillator.forced.Response`), or a point of its branch
+        (`beltmdsm.continuation.oscillator_forced.OscillatorPoint`: ``b.points[-1]``
+        continues ``b`` from its end, ``b.point_near(s.value)`` from a special point).
     param : str
         A model parameter.
     lo, hi : float
         The range; the start's value must lie in it.
     backend : {"python", "numba", None}
+        The paper's integrators only.
     record : callable, optional
         As for `branch`.
     settings : ContinuationSettings, optional
@@ -151,13 +160,17 @@ def continue_branch(
     Returns
     -------
     Branch
-        ``kind = "forced"`` (`beltmdsm.continuation.branch.continue_branch`) or
-        ``"cycle"`` (`beltmdsm.cycles.branch.cycle_branch_from`).
+        ``kind = "forced"`` (`beltmdsm.continuation.branch.continue_branch`; another
+        model's: `beltmdsm.continuation.oscillator_branch.continue_oscillator_branch`)
+        or ``"cycle"`` (`beltmdsm.cycles.branch.cycle_branch_from`).
 
     Raises
     ------
     ValueError
         For an unknown parameter, a bad range or a start outside it.
+    beltmdsm.errors.Unsupported
+        A self-excited cycle of another model than the paper's (the driver has no
+        cycle problem for the generic runtime); ``backend`` with another model.
 
     See Also
     --------
@@ -170,7 +183,29 @@ def continue_branch(
     >>> b = continue_branch(start, "Vb", 1.48, 1.52)
     >>> b.kind, [s.kind for s in b.special]
     ('cycle', ['range', 'range'])
+
+    Another model's branch continued from its end:
+
+    >>> m = Model(model="belt_1dof", Vb=3.0, mu_s=0.1, alpha_t=0.5, Omega_t=1.9)
+    >>> first = branch(m, param="Omega_t", lo=1.9, hi=2.0)
+    >>> more = continue_branch(first.points[-1], "Omega_t", 2.0, 2.1)
+    >>> more.kind, more.model.model, more.value_range()
+    ('forced', 'belt_1dof', [2.0, 2.1])
     """
+    if isinstance(start, OscillatorCycle):
+        raise Unsupported(
+            f"continue_branch: model {start.system.name!r}: a self-excited cycle of another "
+            "model than the paper's has no continuation problem on the driver "
+            "(`branch --model` follows its cycles from the Hopf points of steady sliding)"
+        )
+    if isinstance(start, (Response, OscillatorPoint)):
+        if backend is not None:
+            raise Unsupported(
+                f"continue_branch: backend={backend!r} applies to the paper's model, not "
+                f"to model {start.system.name!r} (the generic runtime, beltmdsm/oscillator/)"
+            )
+        forced._check_record(record)
+        return continue_oscillator_branch(start, param, lo, hi, record=record, settings=settings)
     if not getattr(start, "autonomous", False):
         return forced.continue_branch(
             start, param, lo, hi, backend=backend, record=record, settings=settings

@@ -46,6 +46,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from .._calling import public
 from ..arguments import cache_dir_of, count, executor_of
 from ..attractors.self_excited import T_MAX, Landscape, cycles_near, landscape
 from ..batch import cache
@@ -307,6 +308,7 @@ def _checked_region(region):
     return out
 
 
+@public(models=True)  # beltmdsm.basin_stability: keywords checked, other models run
 def basin_stability(
     model: Model | None = None,
     region: dict | None = None,

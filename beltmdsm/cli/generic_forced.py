@@ -20,23 +20,31 @@ __all__ = ["branch", "floquet_band", "floquet_map", "model_of"]
 
 
 def model_of(
-    args: argparse.Namespace, names: tuple[str, ...], swept: tuple[str, ...] = ()
+    args: argparse.Namespace,
+    names: tuple[str, ...],
+    swept: tuple[str, ...] = (),
+    ranges: tuple[tuple[float, float], ...] = (),
 ) -> Model:
     """The `Model` of ``--model`` and the flags (checked by `system_from`); ``names`` (the
     walked parameters) that the model lacks, or ``swept`` ones given as fixed ones too:
-    exit 2."""
+    exit 2. Where the flags leave the model without excitation, the swept parameters
+    take the middle of their ranges (``ranges``, in the order of ``swept``): the band
+    and the map walk the range, and an excitation amplitude that is swept (``--param
+    alpha_t``) excites the model there, though no flag may set it."""
     for name in swept:
         if getattr(args, name, None) is not None:
             args.parser.error(f"argument --{name}: {name} is the parameter walked; drop --{name}")
     system = system_from(args)
-    if system.excitation_period() is None:
-        args.parser.error(refusal(args))
     for name in names:
         if name not in system.params:
             args.parser.error(
                 f"argument --{'param' if args.command != 'floquet-map' else 'x/--y'}: not a "
                 f"parameter of model {system.name!r} ({', '.join(system.params)}); got {name}"
             )
+    if ranges and system.excitation_period() is None:
+        system = system.replace(**{n: 0.5 * (lo + hi) for n, (lo, hi) in zip(swept, ranges)})
+    if system.excitation_period() is None:
+        args.parser.error(refusal(args))
     return Model(model=system.name, friction=system.friction, **system._given)
 
 
@@ -68,7 +76,7 @@ def floquet_band(args: argparse.Namespace) -> int:
 
     refuse_flags(args, ("png",))
     lo, hi = range_from(args)
-    model = model_of(args, (args.param,), (args.param,))
+    model = model_of(args, (args.param,), (args.param,), ((lo, hi),))
     band = run(
         model, args.param, lo, hi, points=args.points, tol=args.tol,
         periods=args.periods,
@@ -85,7 +93,7 @@ def floquet_map(args: argparse.Namespace) -> int:
     if args.x == args.y:
         args.parser.error(f"argument --y: must differ from --x ({args.x})")
     (x_lo, x_hi), (y_lo, y_hi) = range_from(args, "x"), range_from(args, "y")
-    model = model_of(args, (args.x, args.y), (args.x, args.y))
+    model = model_of(args, (args.x, args.y), (args.x, args.y), ((x_lo, x_hi), (y_lo, y_hi)))
     result = run(
         model, args.x, x_lo, x_hi, args.y, y_lo, y_hi,
         points=args.rows,

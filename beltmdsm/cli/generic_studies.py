@@ -187,15 +187,17 @@ def basins(args: argparse.Namespace) -> int:
     from ..oscillator.basins import basins as run
     from .flags import executor_from
 
-    refuse_flags(args, ("png", "samples"))
+    refuse_flags(args, ("png",))
     system = system_from(args)
     x, y = _plane(args, system)
     ends = (args.x_from, args.x_to, args.y_from, args.y_to)
     if None in ends:
         args.parser.error(
-            f"argument --x-from: model {system.name!r} needs the plane's box: "
-            "--x-from, --x-to, --y-from and --y-to"
+            f"argument --{'samples' if args.samples is not None else 'x-from'}: model "
+            f"{system.name!r} needs the plane's box: --x-from, --x-to, --y-from and --y-to"
         )
+    if args.samples is not None:
+        return _sampled(args, system, x, y, ends)
     with executor_from(args) as executor:
         result = run(
             system, x, ends[:2], y, ends[2:], points=args.points, t_end=args.t_end,
@@ -208,6 +210,28 @@ def basins(args: argparse.Namespace) -> int:
     unresolved = float(np.mean(result.labels < 0))
     if unresolved:
         lines.append(f"  unresolved: {unresolved:.1%} of the starts")
+    _print(args, result.as_dict(), lines)
+    return 0
+
+
+def _sampled(args: argparse.Namespace, system, x: str, y: str, ends) -> int:
+    """``basins --model NAME --samples N``: `beltmdsm.basin_stability` of the model, each
+    attractor's share of ``N`` uniform starts in the box with its standard error (the
+    function ``basin-stability --model`` runs at each value of its parameter)."""
+    from ..basin.basin_stability import basin_stability
+    from .flags import executor_from
+
+    region = {x: tuple(ends[:2]), y: tuple(ends[2:])}
+    with executor_from(args) as executor:
+        result = basin_stability(
+            model_of(system), region, samples=args.samples, seed=args.seed,
+            executor=executor, cache_dir=None,
+        )  # fmt: skip
+    lines = [_head(system), repr(result)]
+    for a, p, e in zip(result.attractors, result.fractions, result.errors):
+        lines.append(f"  {a.kind} ({a.periods}): {p:.4f} +- {e:.4f}")
+    if result.unresolved:
+        lines.append(f"  unresolved: {result.unresolved:.1%} of the starts")
     _print(args, result.as_dict(), lines)
     return 0
 

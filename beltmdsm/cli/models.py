@@ -19,7 +19,7 @@ from beltmdsm.generated.models import MODELS, load
 from beltmdsm.generated.parameters import DOMAIN_RULES, within
 from beltmdsm.generated.parameters import PARAMETERS as _PAPER
 
-from ..model import LACKS, OPTIONS
+from ..model import FORCED, LACKS, OPTIONS
 from .flags import number, params_from
 
 if TYPE_CHECKING:
@@ -108,9 +108,19 @@ def model_flag(others: bool) -> argparse.ArgumentParser:
 def refusal(args: argparse.Namespace) -> str:
     """The one line of a command that does not run ``args.model``: what is missing (the
     model's ``ABSENT`` piece, or what the generic runtime lacks: `beltmdsm.model.LACKS`)."""
-    why = LACKS.get(args.command.replace("-", "_"), "the generic runtime does not run it")
+    analysis = args.command.replace("-", "_")
+    module = load(args.model)
+    why = LACKS.get(analysis, "the generic runtime does not run it")
     if why.startswith("ABSENT:"):
-        why = load(args.model).ABSENT[why.removeprefix("ABSENT:")]
+        why = module.ABSENT[why.removeprefix("ABSENT:")]
+    if analysis in FORCED:  # it runs the model with excitation: say how to get one
+        amplitudes = ", ".join(f"--{amplitude}" for _, amplitude, _, _ in module.EXCITATION)
+        how = (
+            f"set an excitation amplitude ({amplitudes})"
+            if amplitudes
+            else "the model has no excitation terms (derive/models/entries.py)"
+        )
+        return f"argument --model: {args.command} does not run model {args.model!r}: {why}: {how}"
     return (
         f"argument --model: {args.command} does not run model {args.model!r}: {why}; "
         f"it runs the paper's model only (--model {MODELS[0]})"

@@ -78,6 +78,30 @@ def _prog() -> str:
     return "beltmdsm"
 
 
+#: The paper's model: the one check-paper checks (``MODELS[0]`` of beltmdsm.generated.models,
+#: not imported here: check-paper's command line must not need generated/).
+PAPER = "paper"
+
+
+def _check_paper(args) -> int:
+    """`beltmdsm.derive.commands.check_paper` of the paper's model; ``--model`` another:
+    one line naming it and what it lacks (its module's ``ABSENT["paper_check"]``), exit 2."""
+    if args.model != PAPER:
+        from beltmdsm.generated.models import MODELS, load
+
+        if args.model not in MODELS:
+            args.parser.error(
+                f"argument --model: invalid choice: {args.model!r} (choose from "
+                f"{', '.join(MODELS)})"
+            )
+        why = load(args.model).ABSENT["paper_check"]
+        args.parser.error(
+            f"argument --model: check-paper does not run model {args.model!r}: {why}; "
+            f"it checks the paper's model only (--model {PAPER})"
+        )
+    return derive.check_paper(args)
+
+
 def _generate(args) -> int:
     """The top of the tree: `beltmdsm.derive.commands.generate`, its ``--out`` checked
     by writing first (not after a derivation of a minute)."""
@@ -135,7 +159,14 @@ def build_parser(prog: str | None = None, runtime: bool = True) -> Parser:
         help="the report (default: generated/PAPER_CHECK.md in a source checkout, else "
         "PAPER_CHECK.md in the current folder)",
     )
-    paper.set_defaults(run=derive.check_paper, evidence=_paper_evidence, parser=paper)
+    paper.add_argument(
+        "--model",
+        default=PAPER,
+        metavar="NAME",
+        help=f"the registered model (derive/models/entries.py; default: {PAPER}): the "
+        "paper's claims are its model's, so another is refused, naming what it lacks",
+    )
+    paper.set_defaults(run=_check_paper, evidence=_paper_evidence, parser=paper)
     parser.unavailable = None
     if runtime:
         try:

@@ -19,15 +19,15 @@ import numpy as np
 from ..errors import Unsupported
 from ..model import Model
 from ..oscillator.api import system_of
-from ..oscillator.forced import forced_response
+from ..oscillator.forced import Response, forced_response
 from ..oscillator.system import System
 from .branch_result import Branch, record_points
 from .driver import join, walk
-from .oscillator_forced import OscillatorForcedProblem
+from .oscillator_forced import OscillatorForcedProblem, OscillatorPoint
 from .problem import range_end
 from .settings import FORCED_SETTINGS, ContinuationSettings, as_settings
 
-__all__ = ["OscillatorBranch", "oscillator_branch", "forced_system"]
+__all__ = ["OscillatorBranch", "oscillator_branch", "continue_oscillator_branch", "forced_system"]
 
 
 class OscillatorBranch(Branch):
@@ -209,20 +209,98 @@ def oscillator_branch(
     system = forced_system(model, "branch", (param,))
     if not isinstance(periods, int) or isinstance(periods, bool) or periods < 1:
         raise ValueError(f"periods must be a whole number >= 1; got {periods!r}")
+    lo, hi = _checked_range(system, param, lo, hi, "the model's")
+    start = forced_response(system, periods=periods)
+    return _both_ways(model, system, start.state, periods, param, lo, hi, record, settings)
+
+
+def continue_oscillator_branch(
+    start: Response | OscillatorPoint,
+    param: str,
+    lo: float,
+    hi: float,
+    *,
+    record: Callable[[Any], float | Mapping[str, float]] | None = None,
+    settings: ContinuationSettings | None = None,
+) -> OscillatorBranch:
+    """The branch of a derived model's forced response through ``start``, both ways.
+
+    Parameters
+    ----------
+    start : Response or OscillatorPoint
+        A forced response (`beltmdsm.oscillator.forced.forced_response`, what
+        ``beltmdsm.periodic_response`` returns for another model) or a point of an
+        `OscillatorBranch` (``b.points[-1]`` continues ``b`` from its end; at a special
+        point, ``b.point_near(s.value)``); its state is the start, its ``k`` periods kept.
+    param : str
+        One of the model's parameters (not necessarily the one ``start``'s branch took).
+    lo, hi : float
+        The range, holding the start's value of ``param``.
+    record, settings
+        As for `oscillator_branch`.
+
+    Returns
+    -------
+    OscillatorBranch
+
+    Raises
+    ------
+    ValueError
+        An unknown parameter, a range that does not hold the start's value or reaches
+        a value without excitation.
+
+    See Also
+    --------
+    beltmdsm.branches.continue_branch : the public entry, which routes another model here.
+
+    Examples
+    --------
+    Continue a branch from its upper end; the two pieces meet at ``Omega_t = 2.0``:
+
+    >>> from beltmdsm import Model, branch
+    >>> m = Model(model="belt_1dof", Vb=3.0, mu_s=0.1, alpha_t=0.5, Omega_t=1.9)
+    >>> first = branch(m, param="Omega_t", lo=1.9, hi=2.0)
+    >>> more = continue_oscillator_branch(first.points[-1], "Omega_t", 2.0, 2.1)
+    >>> more.value_range(), more.model["Omega_t"]
+    ([2.0, 2.1], 2.0)
+    """
+    system = start.system
+    if param not in system.params:
+        raise ValueError(
+            f"param must be a parameter of model {system.name!r} "
+            f"({', '.join(system.params)}); got {param!r}"
+        )
+    periods = getattr(start, "periods", None)
+    if periods is None:  # a branch point: its period is k excitation periods
+        periods = int(round(start.period / system.excitation_period()))
+    lo, hi = _checked_range(system, param, lo, hi, "the start's")
+    model = Model(model=system.name, friction=system.friction, **system._given)
+    return _both_ways(model, system, start.state, periods, param, lo, hi, record, settings)
+
+
+def _checked_range(system: System, param: str, lo: float, hi: float, whose: str):
+    """``(lo, hi)`` as floats: finite, ordered, holding the system's value of
+    ``param``, with excitation throughout (`_check_forced`)."""
     lo, hi = float(lo), float(hi)
     p0 = system.params[param]
     if not (np.isfinite(lo) and np.isfinite(hi) and lo <= p0 <= hi and lo < hi):
-        raise ValueError(f"the model's {param} = {p0:g} must lie in [{lo:g}, {hi:g}]")
+        raise ValueError(f"{whose} {param} = {p0:g} must lie in [{lo:g}, {hi:g}]")
     _check_forced(system, param, lo, hi)
+    return lo, hi
+
+
+def _both_ways(model, system, state, periods, param, lo, hi, record, settings):
+    """Walk `OscillatorForcedProblem` from the fixed point ``state`` at the system's
+    value of ``param`` up to ``hi`` and down to ``lo`` on the one driver, joined."""
     settings = as_settings(settings, FORCED_SETTINGS)
-    start = forced_response(system, periods=periods)
+    p0 = system.params[param]
     problem = OscillatorForcedProblem(
-        system, param, periods, lo, hi, 1.0 + float(np.max(np.abs(start.state)))
+        system, param, periods, lo, hi, 1.0 + float(np.max(np.abs(state)))
     )
     problem.settings = settings
     walks = []
     for direction, bound in ((1.0, hi), (-1.0, lo)):
-        first, tangent = problem.start(start.state, p0, direction)
+        first, tangent = problem.start(state, p0, direction)
         done = p0 == bound  # a start on a bound ends there that way
         walks.append(([first], [range_end(first, p0)]) if done else walk(problem, first, tangent))
     points, special = join(*walks)

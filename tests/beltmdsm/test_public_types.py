@@ -199,3 +199,29 @@ def test_mypy_reads_the_types_of_the_readmes_editable_install(tmp_path):
     )  # fmt: skip
     assert done.returncode == 0, done.stdout + done.stderr
     assert 'Revealed type is "beltmdsm.periodic.floquet.Floquet"' in done.stdout
+
+
+def test_every_analysis_that_takes_a_model_is_a_top_level_name_with_its_docs_entry():
+    """``beltmdsm.model.ANALYSES`` names ``beltmdsm.<name>``: each is one (issue 39;
+    ``basin_stability`` was listed there but reachable only as
+    ``beltmdsm.basin.basin_stability.basin_stability``), and the reference's API page,
+    written from ``__all__`` by docs/_ext/beltmdsm_site.py, has its entry."""
+    import importlib.util
+
+    from beltmdsm.basin import basin_stability as home
+    from beltmdsm.model import ANALYSES
+
+    missing = [name for name in ANALYSES if name not in beltmdsm.__all__]
+    assert missing == []
+    assert beltmdsm.basin_stability is home.basin_stability
+    assert beltmdsm.BasinStability is home.BasinStability
+    with pytest.raises(TypeError, match="did you mean 'samples'"):
+        beltmdsm.basin_stability(beltmdsm.Model(), samlpes=3)
+    spec = importlib.util.spec_from_file_location(
+        "beltmdsm_site", ROOT / "docs" / "_ext" / "beltmdsm_site.py"
+    )
+    site = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(site)
+    page = site.api_page()
+    section = page.split("``beltmdsm.basin.basin_stability``\n")[1].split("\n``")[0]
+    assert "   basin_stability\n" in section and "   BasinStability\n" in section
