@@ -34,7 +34,7 @@ reveal_type(run.summary)
 growth: float = floquet(model).growth_rate
 reveal_type(floquet(model))
 reveal_type(floquet_band(model, "Vb", 1.0, 8.0))
-reveal_type(floquet_band(model, "Vb", 1.0, 8.0))
+reveal_type(floquet_band("Vb", 1.0, 8.0, model))
 reveal_type(branch(model, param="Vb", lo=1.0, hi=8.0))
 reveal_type(coexistence(model, "Vb", 1.0, 8.0))
 reveal_type(sweep(model, "Vb", [1.0, 2.0], t_end=50.0))
