@@ -143,7 +143,7 @@ def test_bad_requests_are_refused_naming_the_argument():
         basins(MODEL, points=1)
     with pytest.raises(ValueError, match="x must be one of"):
         basins(MODEL, x="Z")
-    with pytest.raises(ValueError, match="x_range"):
+    with pytest.raises(ValueError, match="x_hi must be a finite number > 2"):
         basins(MODEL, x_lo=2.0, x_hi=1.0)
     # without excitation the map is made (issue 40): tests/beltmdsm/basin/test_basin_stability.py
 

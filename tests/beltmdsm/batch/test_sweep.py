@@ -118,8 +118,6 @@ def test_bad_sweep_inputs_are_named():
     # the swept parameter is not a fixed one as well (the CLI's --param Vb --Vb 3)
     with pytest.raises(ValueError, match="Vb is swept"):
         sweep({"Vb": 3.0}, "Vb", [1.0], executor="serial", cache_dir=None, progress=False)
-    with pytest.raises(ValueError, match="Vb is swept"):
-        sweep(Model(Vb=3.0), "Vb", [1.0], executor="serial", cache_dir=None, progress=False)
 
 
 def test_values_are_sorted_and_duplicates_computed_once(serial):
