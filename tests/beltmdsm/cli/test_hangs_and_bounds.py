@@ -296,7 +296,11 @@ def test_stribeck_with_a_small_velocity_scale_stays_bounded():
         results.append(json.loads(out.stdout.strip().splitlines()[-1]))
     # the same stick-slip response at v_s = 1e-3, where the full sliding guess is cheap:
     # the law differs only within 1e-3 m/s of Vr = 0, which the orbit crosses at switches
-    ref = floquet(Model(friction="stribeck", v_s=1e-3)).max_abs_multiplier
+    # (numpy evaluates both slip directions' exp(+-(Vb - Y1) / v_s) before select picks
+    # one: the other overflows to inf, unused; generated/hybrid.py silences divide and
+    # invalid only)
+    with np.errstate(over="ignore"):
+        ref = floquet(Model(friction="stribeck", v_s=1e-3)).max_abs_multiplier
     assert results[0]["max_abs_multiplier"] == pytest.approx(ref, abs=1e-4)
     assert results[1]["status"] == "done"
 
