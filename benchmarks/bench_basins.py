@@ -38,7 +38,7 @@ from beltmdsm.basin import basins as basins_module
 from beltmdsm.basin.basins import basins
 
 MODEL = Model(Vb=3.88)
-PLANE = dict(x_range=(1.0, 9.0), y_range=(-10.5, -2.5), t_end=1000.0)
+PLANE = dict(x_lo=1.0, x_hi=9.0, y_lo=-10.5, y_hi=-2.5, t_end=1000.0)
 
 
 def _timed(fn):

@@ -29,6 +29,7 @@ import numpy as np
 
 from beltmdsm.continuation.floquet_map import floquet_map
 from beltmdsm.errors import NoPeriodicResponse
+from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
 
 X, X_RANGE = "Vb", (0.5, 12.0)
@@ -43,7 +44,7 @@ def grid_row(y, xs):
     out = np.empty(xs.size, dtype=bool)
     for i, x in enumerate(xs):
         try:
-            out[i] = floquet(**{X: float(x), Y: float(y)}).stable is not True
+            out[i] = floquet({X: float(x), Y: float(y)}).stable is not True
         except NoPeriodicResponse:
             out[i] = True
     return out
@@ -81,13 +82,13 @@ def main(argv=None):
     args = ap.parse_args(argv)
 
     # compile and warm every kernel outside the timed regions
-    floquet(Vb=5.0)
-    floquet_map(X, *X_RANGE, Y, *Y_RANGE, rows=3)
+    floquet(Model(Vb=5.0))
+    floquet_map(None, X, *X_RANGE, Y, *Y_RANGE, points=3)
 
     runs = []
     for _ in range(max(args.repeat, 1)):
         clock = time.perf_counter()
-        result = floquet_map(X, *X_RANGE, Y, *Y_RANGE, rows=ROWS)
+        result = floquet_map(None, X, *X_RANGE, Y, *Y_RANGE, points=ROWS)
         runs.append(time.perf_counter() - clock)
     t_map = float(np.median(runs))
 

@@ -11,7 +11,7 @@ beltmdsm/periodic/general_map.py: `GeneralMap` the general one on beltmdsm/perio
 * ``floquet()`` continued from the neighbouring response (``guess=``), as a band or a
   branch calls it;
 * one application of each period map at a periodic state;
-* ``floquet_band("Vb", 0.5, 12)`` (17 points, tol 1e-3) under Coulomb (closed form)
+* ``floquet_band(model, "Vb", 0.5, 12)`` (17 points, tol 1e-3) under Coulomb (closed form)
   and Stribeck (general).
 
 and prints the times and their ratios. Run from the repository root:
@@ -90,7 +90,7 @@ def main(argv: list[str] | None = None) -> None:
     bands = {}
     for name, law in (("Coulomb (closed form)", {}), ("Stribeck (general)", STRIBECK)):
         clock = time.perf_counter()
-        band = floquet_band("Vb", 0.5, 12.0, Model(**law))
+        band = floquet_band(Model(**law), "Vb", 0.5, 12.0)
         bands[name] = time.perf_counter() - clock
         print(
             f"floquet_band Vb 0.5..12, {name}: {bands[name]:.2f} s, {len(band.grid)} "

@@ -27,7 +27,10 @@ import sys
 import time
 
 T_END = 1000.0
-PAPER = "import beltmdsm; beltmdsm.simulate(friction='stribeck', alpha=0.0, Vb=1.5, t_end=1000.0)"
+PAPER = (
+    "import beltmdsm; "
+    "beltmdsm.simulate(beltmdsm.Model(friction='stribeck', alpha=0.0, Vb=1.5), t_end=1000.0)"
+)
 MODEL = """
 import sys
 sys.path.insert(0, 'tests/beltmdsm/oscillator')
@@ -81,7 +84,9 @@ def main() -> None:
     for backend in ("numba", "python"):
         simulate(s, 10.0, backend=backend)  # compiled (or loaded) before the cold runs
     paper_w = _warm(
-        lambda: beltmdsm.simulate(friction="stribeck", alpha=0.0, Vb=1.5, t_end=T_END),
+        lambda: beltmdsm.simulate(
+            beltmdsm.Model(friction="stribeck", alpha=0.0, Vb=1.5), t_end=T_END
+        ),
         args.repeat,
     )
     model_w = _warm(lambda: simulate(s, T_END, backend="numba"), args.repeat)

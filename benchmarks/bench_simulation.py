@@ -101,7 +101,7 @@ def baseline(Vb, t_end, dt, t_discard):
 
 
 def run(Vb, t_end, dt, config):
-    s = simulate(Vb=Vb, settings=SolverSettings(t_end=t_end, dt=dt, **config)).summary
+    s = simulate(Model(Vb=Vb), settings=SolverSettings(t_end=t_end, dt=dt, **config)).summary
     return {
         "peak_omega1": s.peak_omega1,
         "peak_Omega": s.peak_Omega,
@@ -159,7 +159,7 @@ def measure(points=64, t_end=1000.0, dt=0.02, python=False, progress=print):
         ]
     for _, cfg in configs + [("reference", REFERENCE)]:
         run(4.0, 20.0, dt, cfg)  # compile before timing
-    floquet(Vb=4.0)
+    floquet(Model(Vb=4.0))
     progress(f"[1] reference: events at rtol = atol = 1e-12 on {points} points of {t_end:g} s ...")
     ref = {Vb: run(Vb, t_end, dt, REFERENCE) for Vb in values}
     progress(f"    max energy residual {max(r['energy_residual'] for r in ref.values()):.2e}")
@@ -201,7 +201,7 @@ def measure(points=64, t_end=1000.0, dt=0.02, python=False, progress=print):
         wall, res = sweep_time(values, t_end, dt, cfg)
         rows.append(summary_row(name, wall, res, ref, values, base_wall))
     t0 = time.perf_counter()
-    band = floquet_band("Vb", float(values[0]), float(values[-1]))
+    band = floquet_band(None, "Vb", float(values[0]), float(values[-1]))
     band_wall = time.perf_counter() - t0
     return {
         "points": points,

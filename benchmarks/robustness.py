@@ -90,9 +90,12 @@ def run(task):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # unresolved peaks: not this study's question
             sim = simulate(
-                {**task["overrides"], "Vb": task["Vb"]},
-                contact=task["contact"],
-                tension=task["tension"],
+                {
+                    **task["overrides"],
+                    "Vb": task["Vb"],
+                    "contact": task["contact"],
+                    "tension": task["tension"],
+                },
                 solver=task["solver"],
                 t_end=task["t_end"],
             )
@@ -130,7 +133,9 @@ def _warm_up():
             for tension in ("allowed", "clipped"):
                 for contact in ("hertz_damp", "kelvin_voigt"):
                     simulate(
-                        {"Vb": 4.0}, contact=contact, tension=tension, solver=solver, t_end=20.0
+                        {"Vb": 4.0, "contact": contact, "tension": tension},
+                        solver=solver,
+                        t_end=20.0,
                     )
 
 

@@ -9,6 +9,7 @@ import pytest
 import beltmdsm
 from beltmdsm import arguments
 from beltmdsm.errors import Refused, ShorterPeriod
+from beltmdsm.model import Model
 from beltmdsm.periodic.shooting import MAX_SEED_PERIODS, SEED_PERIODS
 from beltmdsm.settings import SolverSettings
 
@@ -17,10 +18,10 @@ from beltmdsm.settings import SolverSettings
     "call, name",
     [
         # each was accepted, or failed with another exception, deep inside
-        (lambda: beltmdsm.sweep("Vb", [True, 3.0], cache_dir=None), "values"),
-        (lambda: beltmdsm.sweep("Vb", np.array([True, False]), cache_dir=None), "values"),
-        (lambda: beltmdsm.sweep("Vb", [3.0], settings={"t_end": 10}), "settings"),
-        (lambda: beltmdsm.sweep("Vb", [3.0], modulation=1, cache_dir=None), "modulation"),
+        (lambda: beltmdsm.sweep(None, "Vb", [True, 3.0], cache_dir=None), "values"),
+        (lambda: beltmdsm.sweep(None, "Vb", np.array([True, False]), cache_dir=None), "values"),
+        (lambda: beltmdsm.sweep(None, "Vb", [3.0], settings={"t_end": 10}), "settings"),
+        (lambda: beltmdsm.sweep(None, "Vb", [3.0], modulation=1, cache_dir=None), "modulation"),
         (lambda: beltmdsm.floquet(periods=True), "periods"),
         (lambda: beltmdsm.floquet(forward=-1), "forward"),
         (lambda: beltmdsm.floquet(forward=2.5), "forward"),
@@ -34,8 +35,8 @@ from beltmdsm.settings import SolverSettings
         (lambda: beltmdsm.simulate(settings={"t_end": 10}), "settings"),
         (lambda: beltmdsm.simulate(t_end=1.0, progress="yes"), "progress"),
         (lambda: beltmdsm.responses(limit=True), "limit"),
-        (lambda: beltmdsm.coexistence("Vb", 3.0, 4.0, limit=2.5), "limit"),
-        (lambda: beltmdsm.coexistence("Vb", 3.0, 4.0, step=True), "step"),
+        (lambda: beltmdsm.coexistence(None, "Vb", 3.0, 4.0, limit=2.5), "limit"),
+        (lambda: beltmdsm.coexistence(None, "Vb", 3.0, 4.0, points=True), "points"),
     ],
 )
 def test_a_bad_argument_is_one_value_error_naming_it(call, name):
@@ -65,11 +66,11 @@ def test_a_lock_at_a_divisor_is_named_with_its_period():
     # issue 28: "no response of 8 periods" where the 4T orbit is 8T-periodic, and
     # "locks at 1 periods"
     with pytest.raises(ShorterPeriod) as caught:
-        beltmdsm.periodic_response(Vb=5.0, periods=8)
+        beltmdsm.periodic_response(Model(Vb=5.0), periods=8)
     assert (caught.value.asked, caught.value.periods) == (8, 4)
     assert "locks at 4 periods, whose orbit repeats after 8 too" in str(caught.value)
     with pytest.raises(ShorterPeriod, match="locks at 1 period, whose orbit repeats after 2"):
-        beltmdsm.periodic_response(Vb=10.0, periods=2)
+        beltmdsm.periodic_response(Model(Vb=10.0), periods=2)
 
 
 def test_the_limit_bound_counts_the_samples_a_run_has():

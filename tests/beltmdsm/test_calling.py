@@ -151,6 +151,34 @@ def test_renamed_keywords_still_work_naming_the_new_one(call, new, error):
         one_deprecation(record, f"use {new}", "deprecated")
 
 
+@pytest.mark.parametrize(
+    "old, new, word",
+    [
+        (
+            lambda: beltmdsm.predict(M, vb_max=8.0, points=10),
+            lambda: beltmdsm.predict(M, hi=8.0, points=10),
+            "use hi=",
+        ),
+        (
+            lambda: beltmdsm.basins(
+                M, x_range=(3.0, 7.0), y_range=(-8.5, -4.5), points=2, cache_dir=None
+            ),
+            lambda: beltmdsm.basins(
+                M, x_lo=3.0, x_hi=7.0, y_lo=-8.5, y_hi=-4.5, points=2, cache_dir=None
+            ),
+            "use x_lo/x_hi=, y_lo/y_hi=",
+        ),
+    ],
+    ids=["vb_max", "x_range"],
+)
+def test_a_renamed_keyword_computes_what_the_new_one_does(old, new, word):
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        before = old()
+    one_deprecation(record, word, "deprecated")
+    assert before.as_dict() == new().as_dict()
+
+
 def test_the_same_names_mean_the_same_everywhere():
     signatures = {n: inspect.signature(getattr(beltmdsm, n)).parameters for n in FUNCTIONS}
     signatures["validate"] = inspect.signature(beltmdsm.validate).parameters

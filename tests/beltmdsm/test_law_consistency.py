@@ -91,8 +91,8 @@ def test_floquet_band_stribeck():
     located by continuation on the general path; the others are located alike.
     """
     kw = dict(points=9, tol=1e-3)
-    ref = floquet_band("Vb", 3.0, 8.0, Model(), **kw)
-    other = floquet_band("Vb", 3.0, 8.0, Model(**VARIANTS["stribeck_mu_k_eq_mu_s"]), **kw)
+    ref = floquet_band(Model(), "Vb", 3.0, 8.0, **kw)
+    other = floquet_band(Model(**VARIANTS["stribeck_mu_k_eq_mu_s"]), "Vb", 3.0, 8.0, **kw)
     assert other.as_dict()["engine"] == "general" and ref.as_dict()["engine"] == "closed_form"
     assert other.as_dict()["friction"] == "stribeck"
     assert [e.kind for e in other.edges] == [e.kind for e in ref.edges]

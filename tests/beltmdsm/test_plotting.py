@@ -210,7 +210,7 @@ def test_a_stick_onset_is_marked_sl_in_its_own_colour(small_results, ax):
 
 
 def test_a_basin_map_is_clipped_to_its_starts_and_names_its_point(ax):
-    b = beltmdsm.basins(beltmdsm.Model(Vb=3.88), points=3, x_range=(3.0, 7.0), y_range=(-8.5, -4.5))
+    b = beltmdsm.basins(beltmdsm.Model(Vb=3.88), points=3, x_lo=3.0, x_hi=7.0, y_lo=-8.5, y_hi=-4.5)
     b.plot(ax)
     assert ax.get_xlim() == (3.0, 7.0) and ax.get_ylim() == (-8.5, -4.5)
     assert ax.get_title() == f"basins at {b.model!r}" and "Vb=3.88" in ax.get_title()

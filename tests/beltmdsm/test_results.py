@@ -81,11 +81,8 @@ def test_floquet_runs_in_a_process_pool():
     np.testing.assert_array_equal(remote[0].response.monodromy_tangential, local)
 
 
-def test_the_model_comes_first_or_last(results):
-    # the model last, as before, for one release: a DeprecationWarning (issue 37)
-    with pytest.warns(DeprecationWarning, match=r"pass the model first, floquet_band\(model"):
-        old = beltmdsm.floquet_band("Vb", 3.0, 7.0, MODEL, points=9)
-    assert _same(old.as_dict(), results["band"].as_dict())
+def test_the_model_is_given_once():
+    # the model last (deprecated, issue 37) is tests/beltmdsm/test_calling.py's
     with pytest.raises(TypeError, match="multiple values for argument 'model'"):
         beltmdsm.floquet_band(MODEL, "Vb", 3.0, 7.0, model=MODEL)
     with pytest.raises(TypeError, match="model twice"):
@@ -96,7 +93,7 @@ def test_sweep_takes_the_settings_as_keywords(results):
     s = results["sweep"]
     assert s.settings.t_end == 50.0
     explicit = beltmdsm.sweep(
-        "Vb", [3.0, 4.0], MODEL, settings=beltmdsm.SolverSettings(t_end=50.0),
+        MODEL, "Vb", [3.0, 4.0], settings=beltmdsm.SolverSettings(t_end=50.0),
         executor="serial", cache_dir=None, progress=False,
     )  # fmt: skip
     for name in set(s.table.dtype.names) - {"wall_s"}:  # the run's time differs

@@ -56,7 +56,7 @@ def test_on_a_stable_periodic_response_the_exponents_are_ln_mu_over_the_period(n
     # the 4T lock) is lost in the rounding of the monodromy: no reference there, but
     # Benettin's chunks resolve it (the contact's rate of the T-periodic orbits)
     if name == "locked_4T":
-        assert spec.exponents[3] == pytest.approx(_floquet_exponents(floquet(Vb=9.0))[0][3])
+        assert spec.exponents[3] == pytest.approx(_floquet_exponents(floquet(Model(Vb=9.0)))[0][3])
     # within the error the method states for itself, which is small (a few 1e-3 at most)
     err = spec.error[finite]
     assert np.all(err < 3e-3)

@@ -220,7 +220,7 @@ def test_the_map_without_excitation_has_both_basins_split_by_the_unstable_cycle(
     import matplotlib
 
     matplotlib.use("Agg")
-    b = basins(Model(**CASE, Vb=1.5), points=9, x_range=(-2.0, 2.0), y_range=(0.0, 2.0))
+    b = basins(Model(**CASE, Vb=1.5), points=9, x_lo=-2.0, x_hi=2.0, y_lo=0.0, y_hi=2.0)
     kinds = [(a.attractor.kind, a.period is None) for a in b.attractors]
     assert kinds == [("equilibrium", True), ("periodic", False)]
     assert b.attractors[1].period == pytest.approx(ls15.cycles[1].period)

@@ -24,7 +24,7 @@ from beltmdsm.settings import SolverSettings
 
 ROOT = Path(__file__).resolve().parents[3]
 MODEL = Model(Vb=3.88)
-PLANE = dict(points=4, x_range=(3.0, 7.0), y_range=(-8.5, -4.5), t_end=600.0)
+PLANE = dict(points=4, x_lo=3.0, x_hi=7.0, y_lo=-8.5, y_hi=-4.5, t_end=600.0)
 
 
 @pytest.fixture(scope="module")
@@ -143,8 +143,8 @@ def test_bad_requests_are_refused_naming_the_argument():
         basins(MODEL, points=1)
     with pytest.raises(ValueError, match="x must be one of"):
         basins(MODEL, x="Z")
-    with pytest.raises(ValueError, match="x_range"):
-        basins(MODEL, x_range=(2.0, 1.0))
+    with pytest.raises(ValueError, match="x_hi must be a finite number > 2"):
+        basins(MODEL, x_lo=2.0, x_hi=1.0)
     # without excitation the map is made (issue 40): tests/beltmdsm/basin/test_basin_stability.py
 
 

@@ -25,7 +25,13 @@ def _key(model, settings=SHORT, **kw):
 
 def _sweep(cache_dir, values=(4.0,)):
     return sweep(
-        "Vb", list(values), settings=SHORT, executor="serial", cache_dir=cache_dir, progress=False
+        None,
+        "Vb",
+        list(values),
+        settings=SHORT,
+        executor="serial",
+        cache_dir=cache_dir,
+        progress=False,
     )
 
 
@@ -249,7 +255,7 @@ def test_changing_any_imported_source_changes_the_code_hash(tmp_path, monkeypatc
 
 
 def test_a_changed_period_map_serves_no_stale_row(tmp_path, monkeypatch):
-    # issue 28: sweep("Vb", [3, 5], start="periodic", cache_dir=D), then NEWTON_TOL =
+    # issue 28: sweep(None, "Vb", [3, 5], start="periodic", cache_dir=D), then NEWTON_TOL =
     # 1e-300 in newton.py: the rerun served 2 cached sliding rows where the new code
     # finds no periodic response
     from beltmdsm.periodic import newton
@@ -258,6 +264,7 @@ def test_a_changed_period_map_serves_no_stale_row(tmp_path, monkeypatch):
 
     def run(cache_dir):
         return sweep(
+            None,
             "Vb",
             [3.0, 5.0],
             start="periodic",

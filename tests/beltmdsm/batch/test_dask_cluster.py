@@ -154,6 +154,7 @@ def _cli_sweep(address, values, t_end, cache_dir=None):
 
 def _assert_same_as_serial(rows, values, t_end):
     serial = sweep(
+        None,
         "Vb",
         values,
         settings=SolverSettings(t_end=t_end),

@@ -41,14 +41,14 @@ def _key(model, settings=SHORT, **kw):
 @pytest.fixture(scope="module")
 def serial():
     return sweep(
-        "Vb", VALUES, settings=SHORT, executor="serial", cache_dir=None, progress=False
+        None, "Vb", VALUES, settings=SHORT, executor="serial", cache_dir=None, progress=False
     ).table
 
 
 def test_sweep_on_a_process_pool_equals_the_serial_sweep(serial):
     with cf.ProcessPoolExecutor(max_workers=2) as pool:
         pooled = sweep(
-            "Vb", VALUES, settings=SHORT, executor=pool, cache_dir=None, progress=False
+            None, "Vb", VALUES, settings=SHORT, executor=pool, cache_dir=None, progress=False
         ).table
     np.testing.assert_array_equal(pooled["Vb"], VALUES)
     _same(pooled, serial)
@@ -60,6 +60,7 @@ def test_sweep_on_a_dask_local_cluster_equals_the_serial_sweep(serial):
         processes=False, n_workers=1, threads_per_worker=2, dashboard_address=None
     ) as client:
         table = sweep(
+            None,
             "Vb",
             VALUES,
             settings=SHORT,
@@ -72,7 +73,7 @@ def test_sweep_on_a_dask_local_cluster_equals_the_serial_sweep(serial):
 
 def test_cache_returns_stored_rows_without_recomputing(tmp_path, serial, monkeypatch):
     first = sweep(
-        "Vb", VALUES, settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False
+        None, "Vb", VALUES, settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False
     )
     assert first.n_cached == 0
     files = sorted(tmp_path.glob("*.json"))
@@ -85,7 +86,7 @@ def test_cache_returns_stored_rows_without_recomputing(tmp_path, serial, monkeyp
 
     monkeypatch.setattr(sweep_module, "run_point", fail)
     again = sweep(
-        "Vb", VALUES, settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False
+        None, "Vb", VALUES, settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False
     )
     assert again.n_cached == len(VALUES)
     _same(again.table, first.table)
@@ -109,20 +110,19 @@ def test_omega1_peak_ranges_groups_contiguous_values():
 
 def test_bad_sweep_inputs_are_named():
     with pytest.raises(ValueError, match="Vbx"):
-        sweep("Vbx", [1.0], executor="serial", cache_dir=None, progress=False)
+        sweep(None, "Vbx", [1.0], executor="serial", cache_dir=None, progress=False)
     with pytest.raises(ValueError, match="Vb"):
-        sweep("Vb", [-1.0], executor="serial", cache_dir=None, progress=False)
+        sweep(None, "Vb", [-1.0], executor="serial", cache_dir=None, progress=False)
     with pytest.raises(ValueError, match="values"):
-        sweep("Vb", [], executor="serial", cache_dir=None, progress=False)
+        sweep(None, "Vb", [], executor="serial", cache_dir=None, progress=False)
     # the swept parameter is not a fixed one as well (the CLI's --param Vb --Vb 3)
     with pytest.raises(ValueError, match="Vb is swept"):
-        sweep("Vb", [1.0], {"Vb": 3.0}, executor="serial", cache_dir=None, progress=False)
-    with pytest.raises(ValueError, match="Vb is swept"):
-        sweep("Vb", [1.0], Vb=3.0, executor="serial", cache_dir=None, progress=False)
+        sweep({"Vb": 3.0}, "Vb", [1.0], executor="serial", cache_dir=None, progress=False)
 
 
 def test_values_are_sorted_and_duplicates_computed_once(serial):
     result = sweep(
+        None,
         "Vb",
         [12.0, 2.0, 12.0, 4.0],
         settings=SHORT,
@@ -136,7 +136,9 @@ def test_values_are_sorted_and_duplicates_computed_once(serial):
 
 
 def test_the_json_of_a_sweep_holds_what_the_text_says(serial):
-    result = sweep("Vb", VALUES, settings=SHORT, executor="serial", cache_dir=None, progress=False)
+    result = sweep(
+        None, "Vb", VALUES, settings=SHORT, executor="serial", cache_dir=None, progress=False
+    )
     out = result.as_dict()
     assert out["param"] == "Vb" and "Vb" not in out["params"]
     assert out["contact"] == "hertz_damp" and out["tension"] == "allowed"
@@ -164,9 +166,10 @@ def test_linear_values_are_the_cli_grid_and_refuse_absurd_ranges():
 
 def test_sweep_refuses_what_it_cannot_run_before_running(tmp_path):
     with pytest.raises(ValueError, match="cannot sweep 'Vhat'"):
-        sweep("Vhat", [1.0], executor="serial", cache_dir=None, progress=False)
+        sweep(None, "Vhat", [1.0], executor="serial", cache_dir=None, progress=False)
     with pytest.raises(ValueError, match="MAX_POINTS"):
         sweep(
+            None,
             "Vb",
             np.zeros(sweep_module.MAX_POINTS + 1),
             executor="serial",
@@ -174,14 +177,14 @@ def test_sweep_refuses_what_it_cannot_run_before_running(tmp_path):
             progress=False,
         )
     with pytest.raises(ValueError, match="executor must be"):
-        sweep("Vb", [1.0], executor="threads", cache_dir=None, progress=False)
+        sweep(None, "Vb", [1.0], executor="threads", cache_dir=None, progress=False)
     with pytest.raises(ValueError, match="'Vb' must be finite"):
-        sweep("Vb", [1.0, float("inf")], executor="serial", cache_dir=None, progress=False)
+        sweep(None, "Vb", [1.0, float("inf")], executor="serial", cache_dir=None, progress=False)
     # a cache folder that cannot be written is refused before any point is computed
     blocker = tmp_path / "file"
     blocker.write_text("")
     with pytest.raises(ValueError, match=f"cache folder {blocker / 'x'} cannot be written"):
-        sweep("Vb", [1.0], executor="serial", cache_dir=blocker / "x", progress=False)
+        sweep(None, "Vb", [1.0], executor="serial", cache_dir=blocker / "x", progress=False)
 
 
 # ------------------------------------------------------- tension law and resolution
@@ -192,7 +195,7 @@ def test_a_clipped_run_is_never_served_for_an_allowed_one(tmp_path, serial, monk
     assert _key(m) == _key(Model(Vb=4.0, tension="allowed"))
     assert _key(m) != _key(m.replace(tension="clipped"))
     allowed = sweep(
-        "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False
+        None, "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False
     ).table
     calls = []
     real = sweep_module.run_point
@@ -203,10 +206,10 @@ def test_a_clipped_run_is_never_served_for_an_allowed_one(tmp_path, serial, monk
 
     monkeypatch.setattr(sweep_module, "run_point", counting)
     clipped = sweep(
+        Model(tension="clipped"),
         "Vb",
         [4.0],
         settings=SHORT,
-        tension="clipped",
         executor="serial",
         cache_dir=tmp_path,
         progress=False,
@@ -216,7 +219,9 @@ def test_a_clipped_run_is_never_served_for_an_allowed_one(tmp_path, serial, monk
     # the laws differ at Vb = 4 (Eq. 1 pulls there 39 % of the time), so a mix-up shows
     assert clipped["n_switches"][0] != allowed["n_switches"][0]
     with pytest.raises(ValueError, match="tension must be one of 'allowed', 'clipped'"):
-        sweep("Vb", [4.0], tension="pulling", executor="serial", cache_dir=None, progress=False)
+        sweep(
+            Model(tension="pulling"), "Vb", [4.0], executor="serial", cache_dir=None, progress=False
+        )
 
 
 def test_unresolved_points_are_false_and_flagged_and_break_the_peak_ranges(serial):
@@ -242,16 +247,17 @@ def test_unresolved_points_are_false_and_flagged_and_break_the_peak_ranges(seria
 # ------------------------------------------------------- continuation (issue 13 item 3)
 
 
-HYSTERESIS = dict(
-    model={"Omega": 6.0}, settings=SolverSettings(t_end=300.0), executor="serial", progress=False
-)
+HYSTERESIS_MODEL = {"Omega": 6.0}
+HYSTERESIS = dict(settings=SolverSettings(t_end=300.0), executor="serial", progress=False)
 HYSTERESIS_VB = [12.0, 14.0, 16.0]
 
 
 @pytest.fixture(scope="module")
 def hysteresis():
     return {
-        d: sweep("Vb", HYSTERESIS_VB, cache_dir=None, continuation=d, **HYSTERESIS).table
+        d: sweep(
+            HYSTERESIS_MODEL, "Vb", HYSTERESIS_VB, cache_dir=None, continuation=d, **HYSTERESIS
+        ).table
         for d in (None, "up", "down")
     }
 
@@ -291,7 +297,7 @@ def test_a_continued_point_starts_at_its_predecessors_state_at_phase_zero(hyster
         return real(model, **kwargs)
 
     monkeypatch.setattr(row_module, "simulate", recording)
-    sweep("Vb", HYSTERESIS_VB, cache_dir=None, continuation="down", **HYSTERESIS)
+    sweep(HYSTERESIS_MODEL, "Vb", HYSTERESIS_VB, cache_dir=None, continuation="down", **HYSTERESIS)
     assert [vb for vb, _ in seen] == [16.0, 14.0, 12.0]  # descending
     assert seen[0][1] is None  # the first from rest
     first = real(dict(Vb=16.0, Omega=6.0), settings=HYSTERESIS["settings"])
@@ -311,7 +317,9 @@ def test_a_continued_point_starts_at_its_predecessors_state_at_phase_zero(hyster
 def test_a_continued_sweep_is_cached_by_direction_and_start_state(
     tmp_path, hysteresis, monkeypatch
 ):
-    up = sweep("Vb", HYSTERESIS_VB, cache_dir=tmp_path, continuation="up", **HYSTERESIS).table
+    up = sweep(
+        HYSTERESIS_MODEL, "Vb", HYSTERESIS_VB, cache_dir=tmp_path, continuation="up", **HYSTERESIS
+    ).table
     assert len(list(tmp_path.glob("*.json"))) == 3
     m = Model(Vb=12.0, Omega=6.0)
     s = HYSTERESIS["settings"]
@@ -327,27 +335,37 @@ def test_a_continued_sweep_is_cached_by_direction_and_start_state(
         raise AssertionError("recomputed a cached point")
 
     monkeypatch.setattr(sweep_module, "run_point", fail)
-    again = sweep("Vb", HYSTERESIS_VB, cache_dir=tmp_path, continuation="up", **HYSTERESIS)
+    again = sweep(
+        HYSTERESIS_MODEL, "Vb", HYSTERESIS_VB, cache_dir=tmp_path, continuation="up", **HYSTERESIS
+    )
     _same(again.table, up)
     _same(up, hysteresis["up"])
     # the other direction starts elsewhere: nothing of it is in the cache
     with pytest.raises(AssertionError, match="recomputed"):
-        sweep("Vb", HYSTERESIS_VB, cache_dir=tmp_path, continuation="down", **HYSTERESIS)
+        sweep(
+            HYSTERESIS_MODEL,
+            "Vb",
+            HYSTERESIS_VB,
+            cache_dir=tmp_path,
+            continuation="down",
+            **HYSTERESIS,
+        )
 
 
 def test_continuation_refuses_what_it_cannot_do():
     kw = dict(cache_dir=None, progress=False)
     with pytest.raises(ValueError, match="continuation must be None, 'up' or 'down'"):
-        sweep("Vb", [1.0], executor="serial", continuation="sideways", **kw)
+        sweep(None, "Vb", [1.0], executor="serial", continuation="sideways", **kw)
     with (
         cf.ThreadPoolExecutor(1) as pool,
         pytest.raises(ValueError, match="one after another.*executor must be None"),
     ):
-        sweep("Vb", [1.0], executor=pool, continuation="up", **kw)
+        sweep(None, "Vb", [1.0], executor=pool, continuation="up", **kw)
     with pytest.raises(ValueError, match="continuation at Vb = 1: no excitation"):
-        sweep("Vb", [1.0], {"Omega": 0.0}, executor="serial", continuation="up", **kw)
+        sweep({"Omega": 0.0}, "Vb", [1.0], executor="serial", continuation="up", **kw)
     with pytest.raises(ValueError, match="period 1.5708 s is longer than t_end = 1 s"):
         sweep(
+            None,
             "Vb",
             [1.0],
             settings=SolverSettings(t_end=1.0, dt=0.01),
@@ -363,16 +381,16 @@ def test_a_sweep_started_on_the_periodic_response(tmp_path):
     settings = SolverSettings(t_end=300.0)
     kw = dict(settings=settings, executor="serial", progress=False)
     # 3: stable, 5: unstable (Floquet); 6.3: no periodic response (periodic/shooting.py)
-    table = sweep("Vb", [3.0, 5.0, 6.3], start="periodic", cache_dir=tmp_path, **kw).table
-    assert floquet(Vb=3.0).stable is True and floquet(Vb=5.0).stable is False
+    table = sweep(None, "Vb", [3.0, 5.0, 6.3], start="periodic", cache_dir=tmp_path, **kw).table
+    assert floquet(Model(Vb=3.0)).stable is True and floquet(Model(Vb=5.0)).stable is False
     assert list(table["omega1_peak_present"]) == [False, True, False]
     assert list(table["resolved"]) == [True, True, False]
     assert table["regime"][2] == row_module.NO_PERIODIC_RESPONSE
     assert table["status"][2] == "no_periodic" and np.isnan(table["peak_omega1"][2])
     # the start is part of the point: the cache never serves a run from rest for it
-    rest = sweep("Vb", [3.0, 5.0, 6.3], cache_dir=tmp_path, **kw).table
+    rest = sweep(None, "Vb", [3.0, 5.0, 6.3], cache_dir=tmp_path, **kw).table
     assert list(rest["regime"]).count(row_module.NO_PERIODIC_RESPONSE) == 0
-    again = sweep("Vb", [3.0, 5.0, 6.3], start="periodic", cache_dir=tmp_path, **kw)
+    again = sweep(None, "Vb", [3.0, 5.0, 6.3], start="periodic", cache_dir=tmp_path, **kw)
     assert again.n_cached == 3
     np.testing.assert_array_equal(again.table["peak_Omega"], table["peak_Omega"])
     m = Model(Vb=3.0)
@@ -382,9 +400,9 @@ def test_a_sweep_started_on_the_periodic_response(tmp_path):
 def test_a_periodic_start_is_refused_where_it_means_nothing():
     kw = dict(cache_dir=None, progress=False, executor="serial")
     with pytest.raises(ValueError, match="start must be one of 'rest', 'periodic'"):
-        sweep("Vb", [1.0], start="equilibrium", **kw)
+        sweep(None, "Vb", [1.0], start="equilibrium", **kw)
     with pytest.raises(ValueError, match="continued sweep.*start must be 'rest'"):
-        sweep("Vb", [1.0], start="periodic", continuation="up", **kw)
+        sweep(None, "Vb", [1.0], start="periodic", continuation="up", **kw)
 
 
 def test_a_row_has_one_shape_from_the_run_to_the_table(tmp_path):
@@ -409,7 +427,7 @@ def test_a_row_has_one_shape_from_the_run_to_the_table(tmp_path):
     assert stored["omega1_peak_present"] is bool(summary.omega1_peak_present)
     assert stored["error"] == ""
     result = sweep(
-        "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False,
+        None, "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False,
         modulation=True,
     )  # fmt: skip
     (cached,) = tmp_path.glob("*.json")
@@ -419,7 +437,7 @@ def test_a_row_has_one_shape_from_the_run_to_the_table(tmp_path):
     assert json_row == record == {"Vb": 4.0, **on_disk}
     assert on_disk.keys() == stored.keys()
     again = sweep(
-        "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False,
+        None, "Vb", [4.0], settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False,
         modulation=True,
     )  # fmt: skip
     assert again.n_cached == 1 and table_module.records(again.table) == [json_row]
@@ -433,8 +451,8 @@ def test_a_modulation_row_without_a_period_is_served_from_the_cache(tmp_path):
     # Omega_t = 0: no cycles of 2 pi / Omega_t, whose columns are NaN; the row once
     # lacked them, and its cache file was recomputed (and warned about) on every rerun
     kw = dict(settings=SHORT, executor="serial", cache_dir=tmp_path, progress=False)
-    first = sweep("Vb", [2.0], Omega_t=0.0, Omega_n=0.0, modulation=True, **kw)
+    first = sweep(Model(Omega_t=0.0, Omega_n=0.0), "Vb", [2.0], modulation=True, **kw)
     assert np.isnan(first.table["mu_eff_Omega_mean"][0])
     assert first.table["mu_eff_omega1_mean"][0] == pytest.approx(Model()["mu_s"], rel=1e-12)
-    again = sweep("Vb", [2.0], Omega_t=0.0, Omega_n=0.0, modulation=True, **kw)
+    again = sweep(Model(Omega_t=0.0, Omega_n=0.0), "Vb", [2.0], modulation=True, **kw)
     assert again.n_cached == 1 and again.problems == []

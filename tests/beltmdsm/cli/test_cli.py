@@ -16,7 +16,7 @@ from inprocess import once
 
 from beltmdsm.cli import flags, main, tree
 from beltmdsm.cli.parser import Parser, UsageError
-from beltmdsm.model import OPTIONS
+from beltmdsm.model import OPTIONS, Model
 from beltmdsm.prediction import prediction, scan
 
 ROOT = Path(__file__).resolve().parents[3]
@@ -457,12 +457,12 @@ def test_predict_clipped_keeps_the_closed_forms_and_refuses_the_harmonic_balance
 
 def test_predict_clipped_where_the_clip_does_not_act_keeps_the_mdsm_with_a_note():
     # alpha = 0.3: N1 = 4.08 < g, so the linear fast normal force never reaches zero
-    allowed = prediction.predict(alpha=0.3)
-    clipped = prediction.predict(alpha=0.3, tension="clipped")
+    allowed = prediction.predict(Model(alpha=0.3))
+    clipped = prediction.predict(Model(alpha=0.3, tension="clipped"))
     assert clipped.consistent_mdsm == allowed.consistent_mdsm
     assert "the clip does not act on it" in clipped.reasons["consistent_mdsm"]
     with pytest.raises(ValueError, match="tension must be one of"):
-        prediction.predict(tension="pulling")
+        prediction.predict(Model(tension="pulling"))
 
 
 def test_vb_points_sets_the_default_grid_too():

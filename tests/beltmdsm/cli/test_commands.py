@@ -8,6 +8,7 @@ import sys
 from inprocess import once
 
 from beltmdsm.cli import main
+from beltmdsm.model import Model
 
 
 def test_simulate_json_has_the_documented_keys(capsys):
@@ -97,7 +98,7 @@ def test_readable_summary_names_the_modes_in_the_order_of_the_fractions(capsys):
 
     assert main(["simulate", "--Vb", "4", "--t-end", "300"]) == 0
     text = capsys.readouterr().out
-    frac = simulate(Vb=4.0, t_end=300.0).summary.time_fraction
+    frac = simulate(Model(Vb=4.0), t_end=300.0).summary.time_fraction
     line = next(s for s in text.splitlines() if s.startswith("regime:"))
     assert f"(time in {'/'.join(frac)}: " in line
     assert "/".join(f"{100 * v:.1f}%" for v in frac.values()) in line
@@ -153,7 +154,7 @@ def test_floquet_json_keys_and_verdict_match_the_api(capsys):
         "residual",
     ):
         assert key in out
-    f = floquet(Vb=5.0)
+    f = floquet(Model(Vb=5.0))
     assert out["stable"] is False and out["stable"] == f.stable
     assert abs(out["max_abs_multiplier"] - f.max_abs_multiplier) <= 1e-9
     # the growth rate is log|mu|max over the period, by definition

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from inprocess import cli as _run
 
+from beltmdsm.model import Model
 from beltmdsm.simulation import simulate
 
 
@@ -35,7 +36,7 @@ def test_simulate_vb8_t60_calls_the_decaying_transient_unresolved_not_present():
     out = json.loads(r.stdout)
     assert out["resolved"] is False and out["omega1_peak_present"] is None
     # the reason gives the halves of the window; an independent transform reads them
-    sim = simulate(Vb=8.0, t_end=60.0)
+    sim = simulate(Model(Vb=8.0), t_end=60.0)
     v = sim.y[1, sim.t >= 18.0]
     dt = sim.t[1] - sim.t[0]
     half = v.size // 2
@@ -50,11 +51,11 @@ def test_simulate_vb8_t60_calls_the_decaying_transient_unresolved_not_present():
 @pytest.mark.parametrize("Vb", [3.0, 8.0])
 def test_short_runs_never_call_the_transient_present_and_a_long_run_says_absent(Vb):
     # the reference: by 1000 s the transient has died out, the peak is absent
-    long = simulate(Vb=Vb, t_end=1000.0).summary
+    long = simulate(Model(Vb=Vb), t_end=1000.0).summary
     assert long.resolved and long.omega1_peak_present is False
     assert long.peak_omega1 < 1e-3 * long.peak_Omega
     for t_end in (40.0, 60.0, 80.0):
-        s = simulate(Vb=Vb, t_end=t_end).summary
+        s = simulate(Model(Vb=Vb), t_end=t_end).summary
         assert s.omega1_peak_present is not True, (Vb, t_end, s.peak_omega1)
         assert s.peak_omega1 > 10 * long.peak_omega1  # the transient is in the window
 
@@ -62,7 +63,7 @@ def test_short_runs_never_call_the_transient_present_and_a_long_run_says_absent(
 def test_a_settled_self_excited_oscillation_stays_present():
     # Vb = 4 from rest: the oscillation of constant amplitude (Fig. 2b); its halves
     # agree to 1e-3 by an independent transform
-    sim = simulate(Vb=4.0, t_end=300.0)
+    sim = simulate(Model(Vb=4.0), t_end=300.0)
     s = sim.summary
     assert s.resolved and s.omega1_peak_present is True
     v = sim.y[1, sim.t >= s.t_discard]
@@ -111,7 +112,7 @@ def test_floquet_band_default_grid_agrees_with_a_fine_grid_and_with_floquet():
         assert e["accuracy"] > 0 and e["bracket"][0] < e["value"] < e["bracket"][1], e
     assert all(b > a for a, b in out["unstable"]), out["unstable"]
     # the same ranges as a grid of 160 points, to the accuracies the two state
-    fine = floquet_band("Vb", 0.0, 40.0, omega1=12.0, points=160)
+    fine = floquet_band(Model(omega1=12.0), "Vb", 0.0, 40.0, points=160)
     fine_edges = [e.as_dict() for e in fine.edges]
     assert len(out["unstable"]) == len(fine.unstable) == 1
     for got, ref in zip(out["unstable"], fine.unstable):
@@ -123,11 +124,11 @@ def test_floquet_band_default_grid_agrees_with_a_fine_grid_and_with_floquet():
     for v in (0.05, 0.1, 0.2):
         assert lo <= v <= hi
         try:
-            assert floquet(Vb=v, omega1=12.0).stable is False
+            assert floquet(Model(Vb=v, omega1=12.0)).stable is False
         except NoPeriodicResponse:
             pass
     for v in (0.3, 0.5, 0.7, 2.0, 10.0, 30.0):
-        assert v > hi and floquet(Vb=v, omega1=12.0).stable is True
+        assert v > hi and floquet(Model(Vb=v, omega1=12.0)).stable is True
 
 
 # ------------------------------------------------ a large --tol erases bands
@@ -162,7 +163,7 @@ def test_merging_that_removes_a_range_says_so():
     assert "no periodic response in" not in text
     # at the default tol the range without a response, which the merging removed, lies
     # inside the merged bracket (to the 4 decimals printed)
-    fine = floquet_band("Vb", 10.0, 15.0, omega1=3.0)
+    fine = floquet_band(Model(omega1=3.0), "Vb", 10.0, 15.0)
     ((c, d),) = fine.no_periodic_response
     assert a - 1e-4 <= c < d <= b + 1e-4
 

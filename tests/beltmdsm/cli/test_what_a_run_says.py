@@ -418,6 +418,7 @@ def test_python_and_the_command_line_share_cache_entries(capsys, tmp_path):
 
     # integers from Python, floats from the command line: one key
     sweep(
+        None,
         "Vb",
         [4, 12],
         settings=SolverSettings(t_end=60),

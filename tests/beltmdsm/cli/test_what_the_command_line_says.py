@@ -101,7 +101,7 @@ def test_floquet_periods_8_reports_the_4t_response():
     assert first.startswith("the response of 8 periods is the 4T response"), first
     eight = json.loads(_cli("floquet", "--periods", "8", "--Vb", "5", "--json").stdout)
     assert (eight["periods"], eight["periods_asked"]) == (4, 8)
-    four = floquet(Vb=5.0, periods=4)
+    four = floquet(Model(Vb=5.0), periods=4)
     assert four.response.periods == 4 and eight["period"] == pytest.approx(four.period)
     got = np.array([complex(*z) for z in eight["multipliers"]])
     assert np.allclose(got, four.multipliers, atol=1e-9)

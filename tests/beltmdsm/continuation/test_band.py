@@ -28,7 +28,7 @@ TANGENCY = 6.164352
 
 @pytest.fixture(scope="module")
 def base_band() -> Band:
-    return floquet_band("Vb", 1.0, 9.0, points=17, tol=1e-3)
+    return floquet_band(None, "Vb", 1.0, 9.0, points=17, tol=1e-3)
 
 
 def test_band_edges_are_located_and_match_pointwise_verdicts(base_band):
@@ -38,11 +38,11 @@ def test_band_edges_are_located_and_match_pointwise_verdicts(base_band):
     for e in band.edges:
         assert e.bracket[1] - e.bracket[0] <= 1e-3
     # the lower edge is a multiplier crossing: |mu| - 1 changes sign across it
-    below, above = floquet(Vb=lo - 2e-3), floquet(Vb=lo + 2e-3)
+    below, above = floquet(Model(Vb=lo - 2e-3)), floquet(Model(Vb=lo + 2e-3))
     assert below.stable and not above.stable
     # the upper edge is the grazing point of the sliding orbit: its largest velocity
     # equals Vb there (the sliding orbit does not depend on Vb)
-    sliding = periodic_response(Vb=12.0)
+    sliding = periodic_response(Model(Vb=12.0))
     t = np.linspace(0, sliding.period, 4001)
     run = sliding._engine.engine.run(0.0, *sliding.state0[:2], sliding.period)
     vmax = run.segments(t, np.zeros(t.size, dtype=int))[1].max()
@@ -54,10 +54,10 @@ def test_band_edges_are_located_and_match_pointwise_verdicts(base_band):
 def test_the_sliding_grazing_point_is_exact_where_the_grid_finds_nothing_below_it():
     # on [0.5, 12] the grid point 6.25 (between the tangency and the grazing) finds no
     # response: the edge above it is still the sliding response's largest velocity
-    band = floquet_band("Vb", 0.5, 12.0)
+    band = floquet_band(None, "Vb", 0.5, 12.0)
     assert any(f.value == 6.25 for f in band.failed)
     (edge,) = [e for e in band.edges if e.kind == "grazing"]
-    sliding = periodic_response(Vb=12.0)
+    sliding = periodic_response(Model(Vb=12.0))
     run = sliding._engine.engine.run(0.0, *sliding.state0[:2], sliding.period)
 
     def velocity(t):
@@ -86,7 +86,7 @@ def test_every_edge_is_labelled_with_its_bifurcation_and_the_kind_of_before(base
     ]
     ns = base_band.edges[0]
     # the critical pair of the unstable side, near omega1 = 1 (modulo Omega = 4)
-    assert ns.frequency == pytest.approx(floquet(Vb=ns.value + 1e-3).frequency, rel=1e-3)
+    assert ns.frequency == pytest.approx(floquet(Model(Vb=ns.value + 1e-3)).frequency, rel=1e-3)
     assert 0.9 < ns.frequency < 1.1
     out = base_band.as_dict()
     assert set(out) == {
@@ -155,9 +155,9 @@ def _reversal_rate(model, run):
 
 def test_the_existence_edge_is_the_tangency_of_the_events_orbit(base_band):
     values, rates = [6.149, 6.153, 6.157, 6.161], []
-    guess = periodic_response(Vb=6.14)
+    guess = periodic_response(Model(Vb=6.14))
     for vb in values:
-        guess = periodic_response(Vb=vb, guess=guess)
+        guess = periodic_response(Model(Vb=vb), guess=guess)
         rates.append(_reversal_rate(guess.model, _events_orbit(guess.model, guess.state0)))
     # the belt speed against the rate is smooth up to the tangency: the cubic's value at
     # zero rate, with the quadratic's distance to it as the reference's error bound
@@ -175,15 +175,15 @@ def test_the_existence_edge_is_the_tangency_of_the_events_orbit(base_band):
 
 def test_bad_input_is_refused_by_name():
     with pytest.raises(ValueError, match="param"):
-        floquet_band("Vbelt", 1.0, 2.0)
+        floquet_band(None, "Vbelt", 1.0, 2.0)
     with pytest.raises(ValueError, match="lo < hi"):
-        floquet_band("Vb", 2.0, 1.0)
+        floquet_band(None, "Vb", 2.0, 1.0)
     with pytest.raises(ValueError, match=r"leaves the domain: Vb must be >= 0"):
-        floquet_band("Vb", -1.0, 9.0)
+        floquet_band(None, "Vb", -1.0, 9.0)
     with pytest.raises(ValueError, match=r"leaves the domain: omega1 must be > 0"):
-        floquet_band("omega1", 0.0, 9.0)
+        floquet_band(None, "omega1", 0.0, 9.0)
     with pytest.raises(ValueError, match="tension"):
-        floquet_band("Vb", 1.0, 2.0, Model(), tension="loose")
+        floquet_band(Model(tension="loose"), "Vb", 1.0, 2.0)
 
 
 # ------------------------------------------- issue 17, items 6 and 8: the text agrees
@@ -226,7 +226,7 @@ def test_the_band_text_agrees_with_itself_at_every_tolerance():
 
     previous = None
     for tol in (1e-3, 1e-4, 1e-6, 1e-7, 1e-9):
-        band = floquet_band("Vb", 1.0, 9.0, tol=tol)
+        band = floquet_band(None, "Vb", 1.0, 9.0, tol=tol)
         _check_consistent(band, 1.0, 9.0)
         printed = text.band(band, 1.0, 9.0)
         at = [line.split()[2] for line in printed.splitlines() if "edge at" in line]
@@ -262,7 +262,7 @@ def test_edges_closer_than_tol_are_one_with_the_outer_sides():
 
 
 def test_the_clipped_band_stays_consistent():
-    band = floquet_band("Vb", 0.5, 16.0, tension="clipped")
+    band = floquet_band(Model(tension="clipped"), "Vb", 0.5, 16.0)
     _check_consistent(band, 0.5, 16.0)
 
 
@@ -272,11 +272,11 @@ def test_a_tolerance_below_the_rounding_of_the_range_is_refused():
 
     # the report: RecursionError
     with pytest.raises(Refused, match="below what the rounding of the range") as err:
-        floquet_band("Vb", 1.0, 9.0, tol=1e-15)
+        floquet_band(None, "Vb", 1.0, 9.0, tol=1e-15)
     assert err.value.names == ("tol",)
     # at the finest tolerance the refinement still ends, consistent
-    band = floquet_band("Vb", 1.0, 9.0, tol=2 * MIN_TOL_ULPS * np.spacing(9.0))
+    band = floquet_band(None, "Vb", 1.0, 9.0, tol=2 * MIN_TOL_ULPS * np.spacing(9.0))
     _check_consistent(band, 1.0, 9.0)
     with pytest.raises(Refused, match="MAX_BAND_POINTS") as err:
-        floquet_band("Vb", 1.0, 9.0, points=MAX_BAND_POINTS + 1)
+        floquet_band(None, "Vb", 1.0, 9.0, points=MAX_BAND_POINTS + 1)
     assert err.value.names == ("points",)

@@ -12,12 +12,13 @@ import pytest
 
 from beltmdsm.continuation.band import floquet_band
 from beltmdsm.continuation.branch import branch, continue_branch
+from beltmdsm.model import Model
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.periodic.shooting import periodic_response
 
 
 def test_the_4T_branch_is_stable_from_a_grazing_to_a_fold_and_ends_at_a_tangency():
-    b = branch(Vb=5.0, periods=4, param="Vb", lo=2.0, hi=9.0)
+    b = branch(Model(Vb=5.0), periods=4, param="Vb", lo=2.0, hi=9.0)
     kinds = [s.kind for s in b.special]
     assert kinds == ["grazing", "fold", "tangency"]
     grazing, fold, tangency = b.special
@@ -42,11 +43,11 @@ def test_the_4T_branch_is_stable_from_a_grazing_to_a_fold_and_ends_at_a_tangency
 
 
 def test_the_periodic_branch_loses_stability_at_a_neimark_sacker_point_near_omega1():
-    b = continue_branch(periodic_response(Vb=3.0), "Vb", 1.0, 6.3)
+    b = continue_branch(periodic_response(Model(Vb=3.0)), "Vb", 1.0, 6.3)
     (ns,) = [s for s in b.special if s.kind == "neimark_sacker"]
     assert ns.stable_before is True and ns.stable_after is False
     assert 0.9 < ns.frequency < 1.1  # omega1 = 1, modulo Omega = 4
-    band = floquet_band("Vb", 1.0, 9.0)
+    band = floquet_band(None, "Vb", 1.0, 9.0)
     (edge,) = [e for e in band.edges if e.kind == "neimark_sacker"]
     assert abs(edge.value - ns.value) <= edge.accuracy + ns.accuracy
     assert edge.frequency == pytest.approx(ns.frequency, rel=1e-3)
@@ -58,6 +59,6 @@ def test_the_periodic_branch_loses_stability_at_a_neimark_sacker_point_near_omeg
 
 def test_a_branch_rejects_a_start_outside_its_range():
     with pytest.raises(ValueError, match="outside"):
-        continue_branch(periodic_response(Vb=3.0), "Vb", 4.0, 6.0)
+        continue_branch(periodic_response(Model(Vb=3.0)), "Vb", 4.0, 6.0)
     with pytest.raises(ValueError, match="param"):
-        continue_branch(periodic_response(Vb=3.0), "Vbelt", 1.0, 6.0)
+        continue_branch(periodic_response(Model(Vb=3.0)), "Vbelt", 1.0, 6.0)

@@ -18,11 +18,11 @@ from beltmdsm.periodic.floquet import floquet
 
 
 def test_the_map_rows_are_the_bands_and_the_verdicts_of_floquet():
-    result = floquet_map("Vb", 0.5, 12.0, "beta1", 0.05, 0.35, rows=4)
+    result = floquet_map(None, "Vb", 0.5, 12.0, "beta1", 0.05, 0.35, points=4)
     assert {c.kind for c in result.curves} == {"neimark_sacker", "tangency", "grazing"}
     assert all(len(c.y) == 4 for c in result.curves)
     for y, unstable in zip(result.rows, result.unstable):
-        band = floquet_band("Vb", 0.5, 12.0, beta1=float(y))
+        band = floquet_band(Model(beta1=float(y)), "Vb", 0.5, 12.0)
         assert len(unstable) == len(band.unstable) == 1
         edges = {e.kind: e for e in band.edges}
         # the map's edges to its accuracy, the band's to theirs
@@ -35,7 +35,7 @@ def test_the_map_rows_are_the_bands_and_the_verdicts_of_floquet():
             if min(abs(x - v) for v in unstable[0]) < 0.1:
                 continue
             try:
-                verdict = floquet(Vb=x, beta1=float(y)).stable is not True
+                verdict = floquet(Model(Vb=x, beta1=float(y))).stable is not True
             except NoPeriodicResponse:
                 verdict = True
             assert verdict == (unstable[0][0] <= x <= unstable[0][1]), (y, x)
@@ -57,25 +57,24 @@ def test_each_neimark_sacker_edge_lies_within_its_accuracy():
     # taken from the secant's last step without a period map of its own. floquet()
     # from scratch on either side, twice the accuracy away (at least 1e-5 m/s, so that
     # |mu| - 1 stands well above the multipliers' rounding), brackets |mu| = 1
-    result = floquet_map("Vb", 0.5, 12.0, "beta1", 0.05, 0.35, rows=10)
+    result = floquet_map(None, "Vb", 0.5, 12.0, "beta1", 0.05, 0.35, points=10)
     assert result.band_rows == [0.05]
     ns = next(c for c in result.curves if c.kind == "neimark_sacker")
     assert len(ns.y) == 10
     for y, x, accuracy in zip(ns.y, ns.x, ns.accuracy):
         assert accuracy <= 1e-6 * (12.0 - 0.5)  # the map's EDGE_TOL of the range
         d = max(2 * accuracy, 1e-5)
-        below, above = (floquet(Vb=x + s * d, beta1=y).max_abs_multiplier for s in (-1, 1))
+        below, above = (floquet(Model(Vb=x + s * d, beta1=y)).max_abs_multiplier for s in (-1, 1))
         assert below < 1 < above, (y, x, accuracy)
 
 
 def test_bad_axes_are_refused():
     with pytest.raises(ValueError, match="differ"):
-        floquet_map("Vb", 1.0, 2.0, "Vb", 1.0, 2.0)
+        floquet_map(None, "Vb", 1.0, 2.0, "Vb", 1.0, 2.0)
     with pytest.raises(ValueError, match="model parameters"):
-        floquet_map("Vbelt", 1.0, 2.0, "beta1", 0.1, 0.2)
-    # rows= is points= now (issue 37): the message names the one spelling
-    with pytest.raises(ValueError, match="points"), pytest.warns(DeprecationWarning):
-        floquet_map("Vb", 1.0, 2.0, "beta1", 0.1, 0.2, rows=1)
+        floquet_map(None, "Vbelt", 1.0, 2.0, "beta1", 0.1, 0.2)
+    with pytest.raises(ValueError, match="points"):
+        floquet_map(None, "Vb", 1.0, 2.0, "beta1", 0.1, 0.2, points=1)
 
 
 def _agrees_with_floquet(result, x, y, points, near):
@@ -87,7 +86,7 @@ def _agrees_with_floquet(result, x, y, points, near):
             if edges and min(abs(value - e) for e in edges) < near:
                 continue
             try:
-                verdict = floquet(**{x: float(value), y: float(row)}).stable is not True
+                verdict = floquet({x: float(value), y: float(row)}).stable is not True
             except NoPeriodicResponse:
                 verdict = True
             assert verdict == any(a <= value <= b for a, b in unstable), (row, value)
@@ -96,7 +95,7 @@ def _agrees_with_floquet(result, x, y, points, near):
 def test_a_curve_that_changes_kind_goes_on_from_its_edges_history():
     # omega1 from 1 to 2.6: the Neimark-Sacker pair of the base set becomes a multiplier
     # through -1 (period doubling), continued on the next row from the edge's history
-    result = floquet_map("Vb", 0.25, 20.0, "omega1", 1.0, 2.6, rows=5, check_every=1)
+    result = floquet_map(None, "Vb", 0.25, 20.0, "omega1", 1.0, 2.6, points=5, check_every=1)
     ns = next(c for c in result.curves if c.kind == "neimark_sacker")
     assert ns.ended.startswith("becomes period_doubling")
     pd = next(c for c in result.curves if c.kind == "period_doubling")
@@ -105,7 +104,7 @@ def test_a_curve_that_changes_kind_goes_on_from_its_edges_history():
     # critical multiplier real and below -1 (on the stable side, a complex pair near -1
     # that meets on the real axis just before the edge)
     y, x = pd.y[-1], pd.x[-1]
-    sides = [floquet(Vb=x + d, omega1=y) for d in (-0.02, 0.02)]
+    sides = [floquet(Model(Vb=x + d, omega1=y)) for d in (-0.02, 0.02)]
     assert sorted(f.max_abs_multiplier < 1 for f in sides) == [False, True]
     unstable = next(f for f in sides if f.max_abs_multiplier > 1)
     mu = unstable.multipliers[np.argmax(np.abs(unstable.multipliers))]
@@ -117,10 +116,10 @@ def test_a_row_with_a_band_takes_its_unstable_set_beside_a_coexisting_response()
     # beta2 from 0.036 to 0.09: a second periodic response (reversing) goes on past the
     # sliding one's grazing point and loses stability at a Neimark-Sacker point, while
     # the sliding one is stable there: that curve bounds nothing
-    result = floquet_map("Vb", 0.25, 16.0, "beta2", 0.036, 0.09, rows=3, check_every=1)
+    result = floquet_map(None, "Vb", 0.25, 16.0, "beta2", 0.036, 0.09, points=3, check_every=1)
     assert result.band_rows == [float(v) for v in result.rows]
     for y, unstable in zip(result.rows, result.unstable):
-        band = floquet_band("Vb", 0.25, 16.0, beta2=float(y))
+        band = floquet_band(Model(beta2=float(y)), "Vb", 0.25, 16.0)
         assert unstable == [[float(a), float(b)] for a, b in band.unstable]
     # (farther from every unstable range than the band's tolerance, 1e-3)
     apart = [
@@ -132,7 +131,7 @@ def test_a_row_with_a_band_takes_its_unstable_set_beside_a_coexisting_response()
             a - 1e-2 <= cx <= b + 1e-2 for a, b in result.unstable[list(result.rows).index(cy)]
         )
     ]
-    assert apart and all(floquet(Vb=cx + 0.1, beta2=cy).stable for cy, cx in apart)
+    assert apart and all(floquet(Model(Vb=cx + 0.1, beta2=cy)).stable for cy, cx in apart)
     _agrees_with_floquet(result, "Vb", "beta2", np.linspace(0.5, 15.5, 16), 0.3)
 
 
@@ -204,7 +203,7 @@ def test_rows_of_one_response_lie_within_their_accuracy(monkeypatch):
     # twice its accuracy away, brackets |mu| = 1; the band on each row, which continues
     # the response to its end itself, gives the tangency to its own accuracy
     counts = _count_rows_of_one_response(monkeypatch)
-    result = floquet_map("Vb", 0.5, 12.0, "beta1", 0.3, 0.36, rows=12)
+    result = floquet_map(None, "Vb", 0.5, 12.0, "beta1", 0.3, 0.36, points=12)
     assert counts["multiplier"] >= 5 and counts["end"] >= 5, counts
     ns = next(c for c in result.curves if c.kind == "neimark_sacker")
     tangency = next(c for c in result.curves if c.kind == "tangency")
@@ -212,11 +211,11 @@ def test_rows_of_one_response_lie_within_their_accuracy(monkeypatch):
     for y, x, accuracy in zip(ns.y, ns.x, ns.accuracy):
         assert accuracy <= 1e-6 * (12.0 - 0.5)
         d = max(2 * accuracy, 1e-5)
-        below, above = (floquet(Vb=x + s * d, beta1=y).max_abs_multiplier for s in (-1, 1))
+        below, above = (floquet(Model(Vb=x + s * d, beta1=y)).max_abs_multiplier for s in (-1, 1))
         assert below < 1 < above, (y, x, accuracy)
     for i, (y, x, accuracy) in enumerate(zip(tangency.y, tangency.x, tangency.accuracy)):
         # (the first row's edge is the band's, located to 1e-4)
         assert i == 0 or accuracy <= 1e-6 * (12.0 - 0.5)
-        band = floquet_band("Vb", 5.8, 6.6, beta1=y)
+        band = floquet_band(Model(beta1=y), "Vb", 5.8, 6.6)
         (edge,) = (e for e in band.edges if e.kind == "tangency")
         assert abs(x - edge.value) <= accuracy + edge.accuracy, (y, x, edge.value)

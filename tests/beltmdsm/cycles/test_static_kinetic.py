@@ -254,8 +254,8 @@ def test_predict_averages_the_kinetic_coefficient_and_says_what_it_leaves_out():
     the static bound it cannot see."""
     from beltmdsm.prediction.prediction import predict
 
-    got = predict(friction="static_kinetic", mu_s=0.4, mu_k=0.25, points=60)
-    coulomb = predict(friction="coulomb", mu_s=0.25, points=60)
+    got = predict(Model(friction="static_kinetic", mu_s=0.4, mu_k=0.25), points=60)
+    coulomb = predict(Model(friction="coulomb", mu_s=0.25), points=60)
     for key in got.ANALYSES:
         assert getattr(got, key) == getattr(coulomb, key), key
         assert "static bound mu_s bounds stick only" in got.reasons[key]

@@ -19,6 +19,7 @@ import pytest
 
 from beltmdsm import simulate
 from beltmdsm.integrate import _background
+from beltmdsm.model import Model
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -49,9 +50,9 @@ def _run(code, env, timeout=600):
 _TWO_RUNS = """
 import json, sys
 import numpy as np
-from beltmdsm import simulate
+from beltmdsm import Model, simulate
 from beltmdsm.integrate import _background
-runs = [simulate(Vb=4.0, t_end=8.0, t_discard=2.0) for _ in range(2)]
+runs = [simulate(Model(Vb=4.0), t_end=8.0, t_discard=2.0) for _ in range(2)]
 child = _background._child[0] if _background._child else None
 if child is not None and {stop_child}:
     child.kill()  # the compile itself is not this test's (the slow test waits for it)
@@ -78,7 +79,7 @@ def test_a_cold_process_runs_plain_python_says_so_once_and_hands_the_compile_on(
     ]
     # the plain-Python integrators' numbers, in both runs (the compiled ones agree with
     # them: test_superposition.py::test_compiled_and_python_scans_agree)
-    ref = simulate(Vb=4.0, t_end=8.0, t_discard=2.0, backend="python")
+    ref = simulate(Model(Vb=4.0), t_end=8.0, t_discard=2.0, backend="python")
     np.testing.assert_array_equal(np.array(got["y"]), ref.y)
     assert got["same"]
 
@@ -100,10 +101,10 @@ def test_after_the_child_the_next_process_is_compiled_and_says_nothing(tmp_path)
 def test_a_compile_asked_for_is_done_at_once_and_said_once(tmp_path):
     code = (
         "import json, sys\n"
-        "from beltmdsm import simulate\n"
+        "from beltmdsm import Model, simulate\n"
         "from beltmdsm.integrate import _background\n"
         "for _ in range(2):\n"
-        "    simulate(Vb=4.0, t_end=8.0, t_discard=2.0, backend='numba')\n"
+        "    simulate(Model(Vb=4.0), t_end=8.0, t_discard=2.0, backend='numba')\n"
         "print(json.dumps({'child': bool(_background._child),"
         " 'made': _background.compile_seconds() > 0}))\n"
     )
@@ -186,7 +187,7 @@ def test_the_progress_bar_leaves_the_compile_out(monkeypatch):
     monkeypatch.setattr(_background, "compile_seconds", made)
     for compiling, elapsed in ((True, 0.0), (False, 1000.0)):
         clock.update(t=0.0, made=0.0, calls=0, compiling=compiling)
-        simulate(Vb=4.0, t_end=8.0, t_discard=2.0, progress=True, backend="python")
+        simulate(Model(Vb=4.0), t_end=8.0, t_discard=2.0, progress=True, backend="python")
         assert clock["calls"] > 2 and bars[-1].format_dict["elapsed"] == elapsed
 
 

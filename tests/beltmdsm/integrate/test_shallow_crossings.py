@@ -19,6 +19,7 @@ import pytest
 from beltmdsm.errors import NoPeriodicResponse
 from beltmdsm.integrate.events import integrate_events
 from beltmdsm.integrate.superposition import integrate_superposed
+from beltmdsm.model import Model
 from beltmdsm.periodic.closed_form import largest_sliding_velocity
 from beltmdsm.periodic.floquet import floquet
 from beltmdsm.settings import SolverSettings
@@ -28,7 +29,7 @@ INTEGRATORS = {"events": integrate_events, "superposition": integrate_superposed
 
 @pytest.fixture(scope="module")
 def sliding():
-    found = floquet(Vb=8.0)
+    found = floquet(Model(Vb=8.0))
     assert (found.n_reversals, found.n_sticks) == (0, 0)
     return found.response, largest_sliding_velocity(found.response._engine)
 
@@ -61,7 +62,7 @@ def test_no_sliding_response_below_its_grazing_point(sliding):
     _, g = sliding
     for delta in (1e-7, 3e-7):
         try:
-            found = floquet(Vb=g - delta)
+            found = floquet(Model(Vb=g - delta))
         except NoPeriodicResponse:
             continue
         # Newton's method may land on another response, never on the sliding one

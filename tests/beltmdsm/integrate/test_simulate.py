@@ -5,6 +5,7 @@ import pytest
 
 from beltmdsm.generated import dynamics
 from beltmdsm.integrate.switching import Mode
+from beltmdsm.model import Model
 from beltmdsm.run.summary import REGIMES
 from beltmdsm.settings import SolverSettings
 from beltmdsm.simulation import simulate
@@ -17,7 +18,7 @@ T_SHORT = 150.0
 @pytest.fixture(scope="module")
 def reversing_tight():
     """Vb = 4 at the base set (reversals every cycle) at a far tighter tolerance."""
-    return simulate(Vb=4.0, solver="events", rtol=1e-12, atol=1e-12, t_end=T_SHORT)
+    return simulate(Model(Vb=4.0), solver="events", rtol=1e-12, atol=1e-12, t_end=T_SHORT)
 
 
 def _state_error(a, b):
@@ -29,7 +30,7 @@ def test_event_located_run_converges_to_a_far_tighter_run(reversing_tight):
     assert ref.summary.n_reversals > 10
     errs = []
     for tol in (1e-8, 1e-10):
-        run = simulate(Vb=4.0, solver="events", rtol=tol, atol=tol, t_end=T_SHORT)
+        run = simulate(Model(Vb=4.0), solver="events", rtol=tol, atol=tol, t_end=T_SHORT)
         # the same switches, located at the same times
         assert [k for _, k, _ in run.events] == [k for _, k, _ in ref.events]
         times = np.array([e[0] for e in run.events]) - np.array([e[0] for e in ref.events])
@@ -41,7 +42,7 @@ def test_event_located_run_converges_to_a_far_tighter_run(reversing_tight):
 
 
 def test_superposition_agrees_with_the_event_located_reference(reversing_tight):
-    fast = simulate(Vb=4.0, solver="superposition", t_end=T_SHORT)
+    fast = simulate(Model(Vb=4.0), solver="superposition", t_end=T_SHORT)
     assert fast.solver_used == "superposition"
     assert [k for _, k, _ in fast.events] == [k for _, k, _ in reversing_tight.events]
     # spline grid 0.005 s: (omega h)^4 / 384 of the signal, about 1e-8
@@ -52,7 +53,7 @@ def test_superposition_agrees_with_the_event_located_reference(reversing_tight):
 @pytest.mark.parametrize("solver", ["events", "superposition"])
 def test_frictionless_run_matches_the_forced_linear_oscillator(solver):
     """mu_s = 0: X1'' + 2 beta1 omega1 X1' + omega1^2 X1 = alpha Omega^2 sin(Omega t)."""
-    sim = simulate(mu_s=0.0, solver=solver, t_end=400.0)
+    sim = simulate(Model(mu_s=0.0), solver=solver, t_end=400.0)
     p = sim.params
     amp = (
         p["alpha"]
@@ -75,7 +76,7 @@ def test_frictionless_run_matches_the_forced_linear_oscillator(solver):
     ],
 )
 def test_regimes_and_energy_balance(solver, case, regime):
-    sim = simulate(solver=solver, t_end=T_SHORT, **case)
+    sim = simulate(case, solver=solver, t_end=T_SHORT)
     s = sim.summary
     assert s.regime == regime
     # against the independent generated power terms: quadrature and integration error only
@@ -93,7 +94,7 @@ def test_regimes_and_energy_balance(solver, case, regime):
 
 
 def test_sticking_holds_the_mass_within_the_friction_limit():
-    sim = simulate(Vb=0.1, alpha=0.05, solver="events", t_end=T_SHORT)
+    sim = simulate(Model(Vb=0.1, alpha=0.05), solver="events", t_end=T_SHORT)
     tr, p = sim.trajectory, sim.params
     sticks = [s for s in tr.segments if s.mode == STICK]
     assert sticks
@@ -120,7 +121,9 @@ def test_sticking_holds_the_mass_within_the_friction_limit():
 def test_contact_loss_is_detected_and_the_run_continues_in_flight(contact, extra, solver):
     # a stiff contact (omega2 = 5): the normal excitation alpha Omega^2 = 32 m/s^2 > g
     # lifts the mass
-    sim = simulate(omega2=5.0, contact=contact, t_end=60.0, t_discard=20.0, solver=solver, **extra)
+    sim = simulate(
+        Model(omega2=5.0, contact=contact, **extra), t_end=60.0, t_discard=20.0, solver=solver
+    )
     s = sim.summary
     assert sim.solver_used == solver  # flight is a mode of both integrators
     assert s.regime == "contact_loss" and s.n_contact_losses > 0
@@ -136,7 +139,7 @@ def test_contact_loss_is_detected_and_the_run_continues_in_flight(contact, extra
 
 
 def test_contact_loss_can_stop_the_run_with_a_message():
-    sim = simulate(omega2=5.0, on_contact_loss="stop", t_end=60.0)
+    sim = simulate(Model(omega2=5.0), on_contact_loss="stop", t_end=60.0)
     assert sim.status == "contact_lost"
     assert "contact lost" in sim.message and "t =" in sim.message
     assert sim.trajectory.t_end < 60.0
@@ -147,7 +150,7 @@ def test_contact_loss_can_stop_the_run_with_a_message():
 
 
 def test_negative_normal_force_is_reported_not_clipped():
-    sim = simulate(Vb=12.0, t_end=100.0)
+    sim = simulate(Model(Vb=12.0), t_end=100.0)
     p = sim.params
     Fn = dynamics.normal_force(sim.y[2], sim.y[3], **p)
     assert sim.summary.min_normal_force == Fn.min()
@@ -157,7 +160,7 @@ def test_negative_normal_force_is_reported_not_clipped():
 
 
 def test_summary_keys_and_regime_names():
-    s = simulate(Vb=8.0, t_end=100.0).summary
+    s = simulate(Model(Vb=8.0), t_end=100.0).summary
     for key in ("regime", "peak_omega1", "peak_Omega", "energy_residual", "n_switches", "wall_s"):
         assert key in s.as_dict()
     assert s.regime in REGIMES
@@ -170,7 +173,7 @@ def test_summary_keys_and_regime_names():
         ({"solver": "rk4"}, "solver"),
         ({"t_end": 10.0, "t_discard": 20.0}, "t_discard"),
         ({"on_contact_loss": "ignore"}, "on_contact_loss"),
-        ({"Vb": -2.0}, "Vb"),
+        ({"model": {"Vb": -2.0}}, "Vb"),
     ],
 )
 def test_bad_settings_raise_valueerror_naming_them(kwargs, name):
@@ -187,8 +190,8 @@ def test_settings_object_is_used():
 @pytest.mark.slow
 def test_omega1_peak_at_vb4_and_not_at_vb12_as_in_fig2b():
     """The paper's Fig. 2b statement, on full 1000 s runs."""
-    on = simulate(Vb=4.0).summary
-    off = simulate(Vb=12.0).summary
+    on = simulate(Model(Vb=4.0)).summary
+    off = simulate(Model(Vb=12.0)).summary
     assert on.omega1_peak_present and not off.omega1_peak_present
     assert max(on.energy_residual, off.energy_residual) < 1e-8
 
@@ -201,8 +204,10 @@ def test_omega1_peak_at_vb4_and_not_at_vb12_as_in_fig2b():
     ],
 )  # Fig. 15
 def test_general_excitation_agrees_between_integrators(excitation):
-    ref = simulate(Vb=3.0, solver="events", rtol=1e-12, atol=1e-12, t_end=100.0, **excitation)
-    fast = simulate(Vb=3.0, solver="superposition", t_end=100.0, **excitation)
+    ref = simulate(
+        Model(Vb=3.0, **excitation), solver="events", rtol=1e-12, atol=1e-12, t_end=100.0
+    )
+    fast = simulate(Model(Vb=3.0, **excitation), solver="superposition", t_end=100.0)
     assert fast.solver_used == "superposition"
     assert _state_error(fast, ref) < 1e-6
     assert ref.summary.energy_residual < 1e-8 and fast.summary.energy_residual < 1e-8

@@ -113,22 +113,24 @@ def _runs_kept():
 
 def test_normal_motion_cache_is_reused_and_cleared_without_changing_results():
     superposition.clear_cache()
-    first = simulate(Vb=4.0, solver="superposition", t_end=40.0)
+    first = simulate(Model(Vb=4.0), solver="superposition", t_end=40.0)
     kept = _runs_kept()
     assert len(kept) == 1
-    again = simulate(Vb=6.0, mu_s=0.3, solver="superposition", t_end=40.0)
+    again = simulate(Model(Vb=6.0, mu_s=0.3), solver="superposition", t_end=40.0)
     assert _runs_kept() == kept  # neither Vb nor mu_s enters it
-    simulate(Vb=4.0, beta2=0.2, solver="superposition", t_end=40.0)
+    simulate(Model(Vb=4.0, beta2=0.2), solver="superposition", t_end=40.0)
     assert len(_runs_kept()) == 2  # beta2 does
     superposition.clear_cache()
     assert not normal._KEEP
-    np.testing.assert_array_equal(simulate(Vb=4.0, solver="superposition", t_end=40.0).y, first.y)
+    np.testing.assert_array_equal(
+        simulate(Model(Vb=4.0), solver="superposition", t_end=40.0).y, first.y
+    )
     assert again.solver_used == "superposition"
 
 
 def test_superposition_hands_over_at_undamped_resonance_with_a_reason():
     sim = simulate(
-        beta1=0.0, Omega=1.0, omega1=1.0, t_end=30.0, t_discard=10.0, solver="superposition"
+        Model(beta1=0.0, Omega=1.0, omega1=1.0), t_end=30.0, t_discard=10.0, solver="superposition"
     )
     assert sim.solver_used == "events"
     assert "undamped resonance" in sim.message
@@ -138,8 +140,12 @@ def test_superposition_hands_over_at_undamped_resonance_with_a_reason():
 def test_compiled_and_python_scans_agree(backend):
     if backend == "numba":
         pytest.importorskip("numba")
-    ref = simulate(Vb=4.0, solver="superposition", t_end=30.0, backend="python", t_discard=10.0)
-    run = simulate(Vb=4.0, solver="superposition", t_end=30.0, backend=backend, t_discard=10.0)
+    ref = simulate(
+        Model(Vb=4.0), solver="superposition", t_end=30.0, backend="python", t_discard=10.0
+    )
+    run = simulate(
+        Model(Vb=4.0), solver="superposition", t_end=30.0, backend=backend, t_discard=10.0
+    )
     assert [k for _, k, _ in run.events] == [k for _, k, _ in ref.events]
     # the same arithmetic up to the math library's last bits (exp, sin, pow)
     np.testing.assert_allclose(run.y, ref.y, rtol=0, atol=1e-10)
@@ -156,7 +162,7 @@ def test_compiled_integrators_take_numbers_only_and_live_in_a_module_named_by_th
     assert _compiled._digest.cache_info().currsize >= 1
     digest = _compiled._digest.__wrapped__("0")
     assert digest != _compiled._digest.__wrapped__("1")  # numba's version counts
-    simulate(Vb=4.0, solver="events", t_end=20.0, t_discard=5.0, backend="numba")
+    simulate(Model(Vb=4.0), solver="events", t_end=20.0, t_discard=5.0, backend="numba")
     assert f.fn.__module__ == f.stem  # made at the first call, in the module of that name
     for signature in f.fn.signatures:
         assert all("Dispatcher" not in str(arg) for arg in signature)

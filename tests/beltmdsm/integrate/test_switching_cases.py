@@ -59,7 +59,7 @@ def runs():
             for tension in TENSIONS:
                 for solver in SOLVERS:
                     out[name, tension, solver] = simulate(
-                        params, tension=tension, solver=solver, t_end=T_END
+                        {**params, "tension": tension}, solver=solver, t_end=T_END
                     )
     return out
 

@@ -15,7 +15,7 @@ from beltmdsm.simulation import simulate
 
 
 def test_the_base_set_coexistence_is_two_ranges_with_their_bifurcations():
-    found = coexistence("Vb", 0.5, 12.0)
+    found = coexistence(None, "Vb", 0.5, 12.0)
     names = {r.name: r for r in found.responses}
     assert sorted(names) == ["4T", "T#1", "T#2"]
     ranges = [(c.range, sorted(c.responses), c.lower, c.upper) for c in found.ranges]
@@ -28,7 +28,7 @@ def test_the_base_set_coexistence_is_two_ranges_with_their_bifurcations():
     assert r1 == pytest.approx([3.869919, 4.057609], abs=1e-5)
     assert r2 == pytest.approx([6.415415, 7.673801], abs=1e-5)
     # the Floquet band's edges are the T-responses' (the same bifurcations, found apart)
-    band = floquet_band("Vb", 0.5, 12.0)
+    band = floquet_band(None, "Vb", 0.5, 12.0)
     lower, upper = band.unstable[0]
     assert abs(lower - r1[1]) < 2e-4 and abs(upper - r2[0]) < 1e-9
     # just below, the run from rest is not locked: listed, not explained by a response
@@ -39,7 +39,7 @@ def test_the_base_set_coexistence_is_two_ranges_with_their_bifurcations():
 
 @pytest.mark.parametrize("vb", [4.0, 7.0])
 def test_a_run_started_on_each_coexisting_response_stays_on_it(vb):
-    found = coexistence("Vb", vb - 0.5, vb + 0.5, step=0.5)
+    found = coexistence(None, "Vb", vb - 0.5, vb + 0.5, points=3)
     coexisting = [c for c in found.ranges if c.range[0] < vb < c.range[1]]
     assert coexisting
     for r in found.responses:
@@ -57,8 +57,8 @@ def test_a_run_started_on_each_coexisting_response_stays_on_it(vb):
 
 def test_bad_arguments_are_refused():
     with pytest.raises(ValueError, match="param"):
-        coexistence("Vbelt", 1.0, 2.0)
+        coexistence(None, "Vbelt", 1.0, 2.0)
     with pytest.raises(ValueError, match="lo < hi"):
-        coexistence("Vb", 2.0, 2.0)
-    with pytest.raises(ValueError, match="step"):
-        coexistence("Vb", 1.0, 2.0, step=0.0)
+        coexistence(None, "Vb", 2.0, 2.0)
+    with pytest.raises(ValueError, match="points = 2 leaves no seed"):
+        coexistence(None, "Vb", 1.0, 2.0, points=2)

@@ -35,7 +35,7 @@ def test_the_run_from_rest_locks_at_6T_at_omega_6():
 
 
 def test_responses_at_the_base_point_list_both_and_say_what_is_not_locked():
-    found = R.responses(Vb=5.0)
+    found = R.responses(Model(Vb=5.0))
     by_k = {r.periods: r for r in found.responses}
     assert set(by_k) == {1, 4}
     assert by_k[1].floquet.stable is False and by_k[4].floquet.stable is True
@@ -58,7 +58,7 @@ def test_responses_at_the_base_point_list_both_and_say_what_is_not_locked():
     # just below the lower band edge the run from rest does not lock within 12 periods
     # (its samples on a closed curve, rotation -0.254); classified, it is a 59T lock
     # (issue 31), shot and listed as a response with its Floquet rate as its exponent
-    below = R.responses(Vb=3.5, ladder=0.0)
+    below = R.responses(Model(Vb=3.5), ladder=0.0)
     assert [r.periods for r in below.responses] == [1, 59] and not below.unlocked
     lock = below.responses[1]
     assert lock.sources == ["run from rest (classified)"] and lock.floquet.stable
@@ -69,6 +69,6 @@ def test_responses_at_the_base_point_list_both_and_say_what_is_not_locked():
 def test_bad_arguments_are_refused():
     for kw in (dict(limit=0), dict(ladder=-1.0), dict(t_end=0.0)):
         with pytest.raises(ValueError):
-            R.responses(Vb=5.0, **kw)
+            R.responses(Model(Vb=5.0), **kw)
     with pytest.raises(ValueError, match="direction"):
         ladder_stroboscope(Model(), "sideways")

@@ -540,8 +540,8 @@ def test_quick_base_periodic_start_agrees_with_floquet_and_the_band_with_its_gri
     band = case.floquet.band
     ((lo, hi),) = band.unstable
     # an independent Floquet evaluation at the band's middle and outside it
-    assert floquet(Vb=0.5 * (lo + hi) - 0.5).stable is False
-    assert floquet(Vb=lo - 0.5).stable and floquet(Vb=hi + 0.5).stable
+    assert floquet(Model(Vb=0.5 * (lo + hi) - 0.5)).stable is False
+    assert floquet(Model(Vb=lo - 0.5)).stable and floquet(Model(Vb=hi + 0.5)).stable
     assert case.mismatches.checked >= 4 and case.mismatches.mismatches == []
     assert quick_base.mismatch_summary.checked == case.mismatches.checked
     assert case.band_disagreements == []
@@ -549,7 +549,7 @@ def test_quick_base_periodic_start_agrees_with_floquet_and_the_band_with_its_gri
     verdicts = {v.Vb: v for v in case.floquet.verdicts}
     assert list(verdicts) == case.Vb
     for vb, verdict in ((5.0, "unstable"), (2.0, "stable"), (9.0, "stable")):
-        f = floquet(Vb=vb)
+        f = floquet(Model(Vb=vb))
         assert verdicts[vb].verdict == f.verdict == verdict
         assert verdicts[vb].max_abs_multiplier == f.max_abs_multiplier
         assert verdicts[vb].growth_rate == f.growth_rate
@@ -583,7 +583,7 @@ def test_range_tolerance_bounds_the_sampling_deficit_of_a_harmonic_twice():
 
 def _explained(vb, runs_at, lo, hi):
     """`explain_coexistence` at one point ``vb`` for runs with the given X1' ranges."""
-    exact = coexistence("Vb", lo, hi, step=0.5)
+    exact = coexistence(None, "Vb", lo, hi, points=3)  # seeds 0.5 apart on 1-wide ranges
     runs = {
         key: dataclasses.replace(_run([True], [True]), velocity_range=[rng])
         for key, rng in runs_at.items()
@@ -603,7 +603,7 @@ def test_a_run_on_the_4t_response_is_explained_by_it_and_one_elsewhere_is_not():
     # the reference: the run from rest at Vb = 7 (on the 4T orbit, docs/modelling.md)
     # and a run started on the periodic response (which stays on it: Floquet stable)
     rest = _run_range(7.0)
-    on_t = _run_range(7.0, y0=floquet(Vb=7.0).response.state0)
+    on_t = _run_range(7.0, y0=floquet(Model(Vb=7.0)).response.state0)
     exact, (a, b) = _explained(7.0, {"rest": rest, "up": on_t}, 6.5, 7.5)
     assert a.explained and a.response == "4T" and a.deviation <= a.tolerance
     # the sampled window spans the computed range far inside the error model

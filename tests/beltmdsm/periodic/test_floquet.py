@@ -96,7 +96,7 @@ def test_normal_orbit_that_loses_contact_has_the_monodromy_of_its_flow(laws):
 def test_periodic_response_closes_under_the_other_integrator_and_its_monodromy_is_the_flow_jacobian(
     case,
 ):
-    resp = periodic_response(**case)
+    resp = periodic_response(case)
     T, x0 = resp.period, resp.state0
     settings = SolverSettings(t_end=T, rtol=1e-13, atol=1e-13, dt=T / 100)
 
@@ -132,7 +132,7 @@ def test_without_reversals_the_multipliers_are_the_damped_oscillators():
         dict(Vb=12.0, beta1=0.3, omega1=1.7),
         dict(Vb=4.0, tension="clipped"),
     ):
-        f = floquet(**case)
+        f = floquet(case)
         p = f.response.model.params
         assert f.n_reversals == 0 and f.n_sticks == 0
         lam = complex(-p["beta1"] * p["omega1"], p["omega1"] * math.sqrt(1 - p["beta1"] ** 2))
@@ -146,13 +146,13 @@ def test_without_reversals_the_multipliers_are_the_damped_oscillators():
 
 
 def test_the_paper_point_and_the_issue_examples():
-    unstable = floquet(Vb=6.0)
+    unstable = floquet(Model(Vb=6.0))
     assert not unstable.stable and unstable.max_abs_multiplier > 1
     assert unstable.n_reversals == 2
     # the critical pair oscillates near omega1 (= 1 rad/s at the base set)
     assert 0.8 < unstable.frequency < 1.2
     # Omega = 6, Vb = 12: the periodic sliding response is stable (issue 13)
-    stable = floquet(Vb=12.0, Omega=6.0)
+    stable = floquet(Model(Vb=12.0, Omega=6.0))
     assert stable.stable and stable.n_reversals == 0
     # the verdict text of the band and the validation
     assert (unstable.verdict, stable.verdict) == ("unstable", "stable")
@@ -160,7 +160,7 @@ def test_the_paper_point_and_the_issue_examples():
 
 
 def test_a_stick_phase_makes_the_tangential_monodromy_singular():
-    f = floquet(Vb=0.1, alpha=0.05)
+    f = floquet(Model(Vb=0.1, alpha=0.05))
     assert f.n_sticks >= 1
     assert abs(np.linalg.det(f.response.monodromy_tangential)) < 1e-12
     assert min(abs(f.multipliers[:2])) < 1e-12
@@ -172,7 +172,7 @@ def test_clipped_contact_is_stable_wherever_the_response_exists():
     the unit circle."""
     for case in (dict(), dict(Omega=6.0), dict(Omega=10.0), dict(beta1=0.05)):
         for Vb in (1.0, 4.0, 8.0):
-            f = floquet(Vb=Vb, tension="clipped", **case)
+            f = floquet(Model(Vb=Vb, tension="clipped", **case))
             assert f.stable and np.all(np.abs(f.multipliers[:2]) < 1)
 
 
@@ -187,15 +187,15 @@ def test_a_run_started_on_the_perturbed_periodic_response_follows_the_verdict():
     assert decays.omega1_peak_present is False
 
     with pytest.raises(TypeError, match="periodic_start"):
-        simulate(Vb=6.0, start="periodic")
+        simulate(Model(Vb=6.0), start="periodic")
 
 
 def test_bad_input_is_refused_by_name():
     with pytest.raises(ValueError, match="tension"):
-        floquet(tension="loose")
+        floquet(Model(tension="loose"))
     with pytest.raises(ValueError, match="incommensurate"):
-        floquet(Omega_t=4.0 * math.sqrt(2), Omega_n=4.0)
+        floquet(Model(Omega_t=4.0 * math.sqrt(2), Omega_n=4.0))
     with pytest.raises(ValueError, match="perturbation"):
         periodic_start(Model(), float("nan"))
     with pytest.raises(ValueError, match="'mu_s'"):
-        floquet(mu_s=-1.0)
+        floquet(Model(mu_s=-1.0))

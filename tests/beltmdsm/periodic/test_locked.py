@@ -14,6 +14,7 @@ import pytest
 
 from beltmdsm.errors import NoPeriodicResponse
 from beltmdsm.integrate.events import integrate_events
+from beltmdsm.model import Model
 from beltmdsm.periodic import locked as L
 from beltmdsm.periodic.closed_form import TangentialMap
 from beltmdsm.periodic.floquet import floquet
@@ -40,7 +41,7 @@ def _events_flow(model, y0, t_end):
 def test_the_locked_orbit_closes_under_the_other_integrator_and_its_multipliers_are_its_flows(
     case, k
 ):
-    resp = periodic_response(periods=k, **case)
+    resp = periodic_response(case, periods=k)
     assert resp.periods == k
     assert resp.period == pytest.approx(k * 2 * math.pi / resp.model["Omega"])
     m, kT, x0 = resp.model, resp.period, resp.state0
@@ -63,7 +64,7 @@ def test_the_locked_orbit_closes_under_the_other_integrator_and_its_multipliers_
 
 
 def test_floquet_of_k_periods_keeps_the_keys_and_raises_the_normal_block_to_the_power_k():
-    one, four = floquet(Vb=5.0), floquet(Vb=5.0, periods=4)
+    one, four = floquet(Model(Vb=5.0)), floquet(Model(Vb=5.0), periods=4)
     assert set(one.as_dict()) == set(four.as_dict())
     assert one.as_dict()["periods"] == 1 and four.as_dict()["periods"] == 4
     np.testing.assert_allclose(
@@ -78,7 +79,7 @@ def test_floquet_of_k_periods_keeps_the_keys_and_raises_the_normal_block_to_the_
 
 
 def test_a_run_started_on_the_stable_locked_orbit_stays_on_it():
-    resp = periodic_response(Vb=5.0, periods=4)
+    resp = periodic_response(Model(Vb=5.0), periods=4)
     T = resp.period / 4
     sim = simulate(resp.model, y0=resp.state0, t_end=200 * T, t_discard=10 * T)
     phases = [resp.state0[:2]] + [
@@ -113,17 +114,17 @@ def test_lock_detection_on_known_sequences():
 
 def test_a_response_of_the_wrong_period_is_refused_with_what_the_attractor_does():
     with pytest.raises(NoPeriodicResponse, match="locks at 4 periods"):
-        periodic_response(Vb=5.0, periods=3)
+        periodic_response(Model(Vb=5.0), periods=3)
     # just below the band the attractor rotates on a closed curve (docs/modelling.md)
     with pytest.raises(NoPeriodicResponse, match="not locked .* closed curve"):
-        periodic_response(Vb=3.5, periods=4)
+        periodic_response(Model(Vb=3.5), periods=4)
     for bad in (0, 2.5):
         with pytest.raises(ValueError, match="periods"):
-            periodic_response(Vb=5.0, periods=bad)
+            periodic_response(Model(Vb=5.0), periods=bad)
 
 
 def test_fixed_point_of_the_one_period_map_is_floquets_periodic_response():
-    f = floquet(Vb=4.0)
+    f = floquet(Model(Vb=4.0))
     pmap = TangentialMap(f.response.model)
     point = fixed_point(pmap, f.response.state0[:2] + 1e-3)
     np.testing.assert_allclose(point.state, f.response.state0[:2], rtol=0, atol=1e-10)

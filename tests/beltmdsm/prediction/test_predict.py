@@ -207,8 +207,8 @@ def test_stribeck_with_mu_k_equal_to_mu_s_is_coulomb(laws):
     """mu_k = mu_s: Stribeck's law is Coulomb's. The consistent MDSM takes the general
     path (harmonic balance without reversal, onset solved for) and reproduces the
     closed-form path to rounding."""
-    coulomb = prediction.predict(points=40, **laws)
-    stribeck = prediction.predict(points=40, friction="stribeck", mu_k=0.4, **laws)
+    coulomb = prediction.predict(laws, points=40)
+    stribeck = prediction.predict(Model(friction="stribeck", mu_k=0.4, **laws), points=40)
     assert len(coulomb.consistent_mdsm) == len(stribeck.consistent_mdsm)
     for a, b in zip(coulomb.consistent_mdsm, stribeck.consistent_mdsm):
         assert a == pytest.approx(b, rel=1e-13, abs=1e-13)
@@ -223,7 +223,7 @@ def test_stribeck_without_excitation_is_the_unforced_boundary():
     """No fast motion: the consistent MDSM is the unforced linearisation, unstable below
     the unforced critical belt speed (v_s ln(g (mu_s - mu_k) / (2 beta1 omega1 v_s)),
     1.996 m/s, by hand), not Coulomb's "no belt speed is unstable"."""
-    out = prediction.predict(alpha=0.0, **STRIBECK)
+    out = prediction.predict(Model(alpha=0.0, **STRIBECK))
     ((lower, upper),) = out.consistent_mdsm
     p = Model(**STRIBECK)
     by_hand = p["v_s"] * np.log(
@@ -232,7 +232,7 @@ def test_stribeck_without_excitation_is_the_unforced_boundary():
     assert upper == pytest.approx(by_hand, rel=1e-10)
     assert "unforced equilibrium" in out.reasons["consistent_mdsm"]
     assert "may extend below" in out.reasons["consistent_mdsm"]
-    coulomb = prediction.predict(alpha=0.0)
+    coulomb = prediction.predict(Model(alpha=0.0))
     assert (
         coulomb.consistent_mdsm == []
         and coulomb.reasons["consistent_mdsm"] == prediction.NO_EXCITATION
@@ -248,7 +248,7 @@ def test_the_paper_analysis_of_stribeck_is_numeric_and_says_so():
     holds, _ = CAPABILITIES[("stribeck", "hertz_damp", "allowed")]["closed_form_average"]
     assert not holds
     for contact in ("hertz_damp", "kelvin_voigt", "hunt_crossley"):
-        out = prediction.predict(contact=contact, points=10, **STRIBECK)
+        out = prediction.predict(Model(contact=contact, **STRIBECK), points=10)
         for key, reading in (
             ("paper_tangential_vhat", "tangential"),
             ("paper_coupled_vhat", "coupled"),
@@ -336,7 +336,7 @@ def test_the_contact_law_reaches_every_generated_function(contact):
 def test_without_friction_the_paper_intervals_are_empty():
     """Issue 17: ``predict --mu_s 0`` printed "unstable Vb in [8.521, 8.521]" while
     is_stable(mu_s=0, Vb=8.521) is True: the interval (Vb_c, Vhat] with Vb_c = Vhat."""
-    out = prediction.predict(mu_s=0.0, points=10)
+    out = prediction.predict(Model(mu_s=0.0), points=10)
     assert out.paper_tangential_vhat == [] and out.paper_coupled_vhat == []
     assert paper.paper_intervals(mu_s=0.0, convention="consistent") == {
         "tangential": [],
@@ -348,7 +348,7 @@ def test_without_friction_the_paper_intervals_are_empty():
 
 
 def test_a_balance_without_tangential_excitation_is_refused_by_name():
-    out = prediction.predict(alpha_t=0.0, points=10)
+    out = prediction.predict(Model(alpha_t=0.0), points=10)
     assert out.consistent_mdsm is None
     assert out.reasons["consistent_mdsm"].startswith("alpha_t = 0: the residual of the harmonic")
 
@@ -408,7 +408,7 @@ def test_at_resonance_the_onset_point_is_solved_too():
 
 
 def test_a_band_at_the_end_of_the_grid_says_it_may_extend_beyond():
-    out = prediction.predict(Omega=10.0, points=2)
+    out = prediction.predict(Model(Omega=10.0), points=2)
     assert "reaches the lowest belt speed of the grid" in out.reasons["consistent_mdsm"]
     out = prediction.predict(vb=[1.0, 5.0])
     assert "reaches the highest belt speed of the grid, 5 m/s" in out.reasons["consistent_mdsm"]
@@ -429,7 +429,7 @@ def test_the_repr_of_a_prediction_says_what_it_holds():
     # issue 30 item 3: a short repr, in the words of the command line
     from beltmdsm._display import intervals
 
-    result = prediction.predict(Omega_n=7.0, points=20)
+    result = prediction.predict(Model(Omega_n=7.0), points=20)
     lines = repr(result).splitlines()
     assert lines[0] == "Prediction(coulomb friction, hertz_damp, tension allowed)"
     assert (

@@ -3,18 +3,19 @@
 import numpy as np
 import pytest
 
+from beltmdsm.model import Model
 from beltmdsm.run.modulation import cycle_averages, friction_loop, modulation_scatter
 from beltmdsm.simulation import simulate
 
 
 @pytest.fixture(scope="module")
 def sliding():
-    return simulate(Vb=12.0, t_end=120.0, t_discard=40.0)
+    return simulate(Model(Vb=12.0), t_end=120.0, t_discard=40.0)
 
 
 @pytest.fixture(scope="module")
 def reversing():
-    return simulate(Vb=4.0, t_end=150.0, t_discard=60.0)
+    return simulate(Model(Vb=4.0), t_end=150.0, t_discard=60.0)
 
 
 def test_continuous_sliding_has_mu_eff_equal_to_mu_s(sliding):

@@ -7,6 +7,7 @@ what runs at a far tighter tolerance show, so that a bound that stops holding fa
 import numpy as np
 import pytest
 
+from beltmdsm.model import Model
 from beltmdsm.run import resolution, tolerances
 from beltmdsm.simulation import simulate
 
@@ -15,15 +16,15 @@ from beltmdsm.simulation import simulate
 def test_the_noise_floor_bounds_what_the_tolerance_changes_in_the_peaks(tol):
     # base set, Vb = 4 (reversing, the omega1 peak present) and Vb = 1 (absent)
     for Vb in (4.0, 1.0):
-        ref = simulate(Vb=Vb, rtol=1e-12, atol=1e-12, t_end=300.0).summary
-        run = simulate(Vb=Vb, rtol=tol, atol=tol, t_end=300.0).summary
+        ref = simulate(Model(Vb=Vb), rtol=1e-12, atol=1e-12, t_end=300.0).summary
+        run = simulate(Model(Vb=Vb), rtol=tol, atol=tol, t_end=300.0).summary
         assert abs(run.peak_omega1 - ref.peak_omega1) < run.noise_floor
         assert abs(run.peak_Omega - ref.peak_Omega) < run.noise_floor
 
 
 def test_without_excitation_every_peak_is_below_the_floor_at_every_tolerance():
     for tol in (1e-4, 1e-7, 1e-10, 1e-12):
-        s = simulate(alpha=0.0, rtol=tol, atol=tol, t_end=300.0).summary
+        s = simulate(Model(alpha=0.0), rtol=tol, atol=tol, t_end=300.0).summary
         assert max(s.peak_omega1, s.peak_Omega) < s.noise_floor
         assert s.forced_peak is False and s.omega1_peak_present is False
 
@@ -60,7 +61,7 @@ def test_runs_at_usual_tolerances_close_their_energy_balance(solver, tension):
     for kw in ({"Vb": 4.0}, {"Vb": 1.0, "Omega": 10.0}, {"Vb": 4.0, "omega2": 1.5}):
         for tol in (1e-6, 1e-10):
             s = simulate(
-                rtol=tol, atol=tol, t_end=300.0, solver=solver, tension=tension, **kw
+                Model(tension=tension, **kw), rtol=tol, atol=tol, t_end=300.0, solver=solver
             ).summary
             assert s.energy_ok, (kw, tol, s.energy_residual, s.energy_bound)
             assert s.warnings == ()
