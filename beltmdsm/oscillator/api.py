@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from ..settings import SolverSettings
     from .basins import Basins, Stability
     from .classification import Settled
-    from .cycles import Cycle
+    from .cycle import Cycle
     from .forced import Response
     from .hybrid import Trajectory
     from .lyapunov import Spectrum

@@ -30,9 +30,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import NoPeriodicResponse
-from .cycles import Cycle, _shoot_slip, self_excited_cycle, stick_onset
+from .cycle import Cycle
+from .cycles import self_excited_cycle
 from .equilibria import steady_sliding
 from .hybrid import flow
+from .onset import stick_onset
+from .slip_shooting import _shoot_slip
 from .system import System
 
 __all__ = ["HopfBranch", "hopf_branch"]
