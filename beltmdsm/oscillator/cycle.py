@@ -27,8 +27,9 @@ __all__ = ["Cycle", "genuine", "NEWTON_TOL"]
 NEWTON_TOL = 1e-10
 #: A proper divisor of the period "returns" where the state comes back to this.
 _RETURN_TOL = 1e-6
-#: A slip phase shorter than this share of steady sliding's shortest time scale is none.
-_LEAST_PHASE = 1e-6
+#: A slip phase is a rounding artefact where the state moves over it by no more than
+#: this many times the integration's tolerance (`genuine`'s error model).
+_ROUNDING = 100.0
 
 
 @dataclass(repr=False)
@@ -55,6 +56,8 @@ class Cycle:
         Stick phases per period.
     residual : float
         ``max |x_T - x|`` at the solution.
+    rtol, atol : float
+        The integrator's tolerances it was shot at (`genuine`'s error model).
 
     See Also
     --------
@@ -81,6 +84,8 @@ class Cycle:
     switches: list[Switch]
     sticks: int
     residual: float
+    rtol: float = 1e-11
+    atol: float = 1e-11
 
     @property
     def stable(self) -> bool:
@@ -104,9 +109,20 @@ def genuine(cycle: Cycle) -> Cycle:
     """``cycle`` where it is a genuine return, else NoPeriodicResponse (the one check).
 
     A genuine cycle leaves its state and comes back: in the mode it left, with a slip
-    phase of at least ``1e-6`` of steady sliding's shortest time scale (``1 / max
-    |eigenvalue|``). The bordered shooting system is also solved by ``T -> 0`` at a
-    point where a stick ends and begins again at once: no cycle.
+    phase longer than a rounding artefact of its integration. The bordered shooting
+    system is also solved by ``T -> 0`` at a point where a stick ends and begins again
+    at once: no cycle.
+
+    The error model of that artefact: the integrator holds the state to ``atol + rtol
+    |y|`` a step (the dense output that locates a switch to about the same), so a slip
+    phase over which the state moves by no more than that is indistinguishable from
+    none. The state moves at a speed of order ``scale / tau`` (``scale = 1 + max |x|``
+    of the cycle's state, ``tau = 1 / max |eigenvalue|`` steady sliding's shortest time
+    scale), so such a phase lasts up to ``(rtol + atol / scale) tau``. A phase counts
+    where it lasts longer than ``100 (rtol + atol / scale) tau``: a factor 10 for the
+    dense output's error over the step's at each of the phase's two switches, and 5
+    for a speed below ``scale / tau``. At the default tolerances (``1e-11``) and
+    ``scale`` of order 1 that is ``2e-9 tau``.
 
     Parameters
     ----------
@@ -133,30 +149,39 @@ def genuine(cycle: Cycle) -> Cycle:
     >>> genuine(c) is c
     True
     """
-    why = _not_a_return(cycle.system, cycle.mode, cycle.period, cycle.switches)
+    tol = dict(rtol=cycle.rtol, atol=cycle.atol)
+    why = _not_a_return(cycle.system, cycle.state, cycle.mode, cycle.period, cycle.switches, tol)
     if why:
         raise NoPeriodicResponse(f"{cycle.system!r}: no self-excited cycle: the {why}")
     return cycle
 
 
-def _not_a_return(system, mode, period, switches):
-    """Why a run of ``period`` from ``mode`` with ``switches`` is no cycle ("" if it is)."""
-    shortest = 1.0 / float(np.abs(steady_sliding(system).eigenvalues).max())
+def _least_phase(system, state, rtol, atol) -> float:
+    """The shortest slip phase that is no rounding artefact (`genuine`'s error model)."""
+    tau = 1.0 / float(np.abs(steady_sliding(system).eigenvalues).max())
+    scale = 1.0 + float(np.abs(state).max())
+    return _ROUNDING * (rtol + atol / scale) * tau
+
+
+def _not_a_return(system, state, mode, period, switches, tol):
+    """Why a run of ``period`` from ``(state, mode)`` with ``switches``, integrated at
+    ``tol`` (``rtol``, ``atol``), is no cycle ("" if it is)."""
     times = [0.0] + [t for t, _, _ in switches] + [period]
     modes = [mode] + [after for _, _, after in switches]
     slip = max((b - a for a, b, md in zip(times, times[1:], modes) if md != STICK), default=0.0)
     if modes[-1] != mode:
         return f"run of period {period:.3g} s ends in mode {modes[-1]}, not in its mode {mode}"
-    if slip < _LEAST_PHASE * shortest:
+    least = _least_phase(system, state, tol["rtol"], tol["atol"])
+    if slip <= least:
         return (
-            f"run of period {period:.3g} s slips for {slip:.3g} s at most, below "
-            f"{_LEAST_PHASE:g} of steady sliding's shortest time scale {shortest:.3g} s: "
-            "a stick that ends and begins at once, no cycle"
+            f"run of period {period:.3g} s slips for {slip:.3g} s at most, not above "
+            f"{least:.3g} s, the rounding of its integration (rtol={tol['rtol']:g}, "
+            f"atol={tol['atol']:g}): a stick that ends and begins at once, no cycle"
         )
     return ""
 
 
-def _cycle(system, x, mode, run, residual):
+def _cycle(system, x, mode, run, residual, tol):
     M = run.monodromy
     f = np.asarray(system.kernels.field(0.0, x, system.p, mode), dtype=float)
     w, V = np.linalg.eig(M)
@@ -166,6 +191,7 @@ def _cycle(system, x, mode, run, residual):
     rest = np.delete(w, i)
     rest = rest[np.argsort(-np.abs(rest), kind="stable")]
     sticks = sum(1 for _, _, after in run.switches if after == STICK)
+    T = float(run.t)
     return genuine(
-        Cycle(system, x, mode, float(run.t), rest, complex(w[i]), M, run.switches, sticks, residual)
+        Cycle(system, x, mode, T, rest, complex(w[i]), M, run.switches, sticks, residual, **tol)
     )

@@ -22,15 +22,21 @@ The period reported is the least: no proper divisor of the ``k`` sticks (or ``T/
 stick ends after which the settled run's stick ends repeat (up to 32); a run whose
 stick ends repeat after none is refused, never shot with a guessed ``k``. Every cycle
 reported is a genuine return (`genuine`): it comes back in the mode it left, and a slip
-phase of it lasts at least ``1e-6`` of steady sliding's shortest time scale (the
-bordered system is also solved by the trivial return ``T -> 0`` at a point where a stick
-ends and begins again at once). The multipliers are the
+phase of it lasts longer than a rounding artefact of its integration at ``rtol`` and
+``atol`` (the bordered system is also solved by the trivial return ``T -> 0`` at a
+point where a stick ends and begins again at once). The multipliers are the
 eigenvalues of ``M``; the trivial one (its eigenvector closest to the field, ``M f =
 f``) is reported apart, its distance from 1 measuring the accuracy; a stick gives a
-multiplier 0. A seed is a run settled over ``settle`` seconds from ``guess``, else
-from steady sliding moved along its least stable direction (where it grows) and then
-from the stick state over steady sliding (where a stick-slip cycle coexists with
-stable sliding, as under Stribeck's law above its Hopf point).
+multiplier 0. A seed (`beltmdsm.oscillator.cycle_seed`) is a run settled over
+``settle`` seconds from ``guess``, else from steady sliding moved along its least stable
+direction (where it grows) and then from the stick state over steady sliding (where a
+stick-slip cycle coexists with stable sliding, as under Stribeck's law above its Hopf
+point).
+
+The pieces, one module each: the result and its check (`beltmdsm.oscillator.cycle`),
+the seed (`beltmdsm.oscillator.cycle_seed`), the two shootings
+(`beltmdsm.oscillator.stick_slip_shooting`, `beltmdsm.oscillator.slip_shooting`) and the
+onset of stick (`beltmdsm.oscillator.onset`).
 """
 
 from __future__ import annotations
@@ -38,13 +44,13 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import NoPeriodicResponse, Unsupported
+from ..errors import Unsupported
 from .cycle import NEWTON_TOL, Cycle, genuine
-from .cycle_seed import _moving, _starts
+from .cycle_seed import Seed, _stick_ends, cycle_seed
 from .hybrid import flow
 from .onset import stick_onset
-from .slip_shooting import _seed_slip, _shoot_slip
-from .stick_slip_shooting import _shoot_stick_slip
+from .slip_shooting import _shoot_slip
+from .stick_slip_shooting import _newton_stick
 from .system import STICK, System
 
 __all__ = ["Cycle", "self_excited_cycle", "stick_onset", "genuine", "NEWTON_TOL"]
@@ -71,7 +77,9 @@ def self_excited_cycle(
         by default. A run of ``settle`` seconds from it seeds the shooting.
     period : float, optional
         With ``guess``: ``guess`` is then taken as the seed itself (a pure-slip cycle
-        near its unstable branch, where a run would leave it).
+        near its unstable branch, where a run would leave it; where the run from it
+        over ``period`` sticks, the stick-slip cycle is shot from its next stick ends,
+        as from `cycle_seed`'s state and period).
     settle : float
         The seed run's length [s].
     max_iter : int
@@ -119,15 +127,25 @@ def self_excited_cycle(
     if period is not None and not (np.isfinite(period) and period > 0):
         raise ValueError(f"period={period!r}: not a positive number")
     if guess is not None and period is not None:
-        return _shoot_slip(system, guess, float(period), max_iter, tol)
-    for start in [guess] if guess is not None else _starts(system):
-        seed = flow(system, 0.0, start, settle, **tol)
-        if sum(1 for s in seed.switches if s[1] == STICK) >= 3:
-            return _shoot_stick_slip(system, seed, settle, max_iter, tol)
-        if not seed.switches and _moving(system, seed):
-            return _seed_slip(system, seed.y, max_iter, tol)
-    raise NoPeriodicResponse(
-        f"{system!r}: no self-excited cycle found: the runs from "
-        f"{'the guess' if guess is not None else 'steady sliding and from stick'} "
-        f"settle on no cycle within {settle:g} s"
-    )
+        # a run over the period, up to where it first sticks (a stop, not its end: a
+        # stick that ends exactly at the end of a run is a case the stepper does not
+        # finish, as where the guess is a stick end and the period its estimate)
+        run = flow(system, 0.0, guess, float(period), stop=_sticks, **tol)
+        if run.status != "stopped":
+            return _shoot_slip(system, guess, float(period), max_iter, tol)
+        # a stick-slip seed: shot from its stick ends (`cycle_seed`), from the guess on
+        return _shoot(system, _stick_ends(system, guess, None, settle, tol), max_iter, tol)
+    return _shoot(system, cycle_seed(system, guess, settle=settle, **tol), max_iter, tol)
+
+
+def _sticks(switch, n) -> bool:
+    """A stop at the first switch into stick."""
+    return switch[2] == STICK
+
+
+def _shoot(system: System, seed: Seed, max_iter: int, tol: dict) -> Cycle:
+    """The cycle shot from ``seed``: from its stick end over its ``sticks``, or on the
+    section of least slip speed over its period."""
+    if seed.sticks:
+        return _newton_stick(system, seed.state, seed.mode, seed.sticks, max_iter, tol)
+    return _shoot_slip(system, seed.state, seed.period, max_iter, tol)

@@ -21,24 +21,6 @@ _DIVISORS = 6
 _HALVINGS = 10
 
 
-def _seed_slip(system, x, max_iter, tol):
-    """A pure-slip seed: the last point of a run where the slip speed ``m v_r`` is
-    least, the period from its last two minima."""
-    k_, p = system.kernels, system.p
-    samples: list = []
-    end = flow(system, 0.0, x, 100.0, dt=0.01, samples=samples, **tol)
-    if end.switches:
-        raise NoPeriodicResponse(f"{system!r}: the seed run switches without sticking")
-    mode = end.mode
-    ts = np.concatenate([t for t, _, _ in samples])
-    ys = np.concatenate([y for _, y, _ in samples])
-    speed = np.array([mode * k_.slip_velocity(t, y, p) for t, y in zip(ts, ys)])
-    low = np.flatnonzero((speed[1:-1] < speed[:-2]) & (speed[1:-1] <= speed[2:])) + 1
-    if len(low) < 3:
-        raise NoPeriodicResponse(f"{system!r}: the seed run settles on no cycle")
-    return _shoot_slip(system, ys[low[-1]], ts[low[-1]] - ts[low[-2]], max_iter, tol)
-
-
 def _shoot_slip(system, x, T, max_iter, tol):
     """Newton's method on ``(x, T)``, the section where the slip speed is least
     (``slip_acceleration = 0``: its gradient ``J^T w`` by the derived Jacobian)."""
@@ -91,7 +73,7 @@ def _shoot_slip(system, x, T, max_iter, tol):
         back = flow(system, 0.0, x, T / j, mode=mode, **tol)
         if np.abs(back.y - x).max() <= _RETURN_TOL * size:
             return _shoot_slip(system, x, T / j, max_iter, tol)
-    return _cycle(system, x, mode, run, residual)
+    return _cycle(system, x, mode, run, residual, tol)
 
 
 def _mode(system, x):

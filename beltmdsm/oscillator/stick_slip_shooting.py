@@ -4,10 +4,9 @@ A cycle with a stick is fixed by the state where a stick ends (a single point of
 orbit): the run from there goes to the ``k``-th end of a stick (``x_T``), and the phase
 condition ``c`` of the bordered system (`beltmdsm.oscillator.cycles`) is that surface,
 ``|holding_force| - stick_limit`` (its gradient by central differences of the two
-kernels: it steers Newton's steps only). ``k`` is the least number of stick ends after
-which the settled run's stick ends repeat (up to `_MAX_STICKS`); a run whose stick ends
-repeat after none is refused, never shot with a guessed ``k``. The period reported is
-the least: no proper divisor of the ``k`` sticks returns to the state.
+kernels: it steers Newton's steps only). ``k`` and the first state come from the seed
+(`beltmdsm.oscillator.cycle_seed`). The period reported is the least: no proper divisor
+of the ``k`` sticks returns to the state.
 """
 
 from __future__ import annotations
@@ -18,45 +17,6 @@ from ..errors import NoPeriodicResponse
 from .cycle import _RETURN_TOL, NEWTON_TOL, _cycle, _not_a_return
 from .hybrid import flow
 from .system import STICK
-
-#: The most stick ends per period looked for, and the most stick ends a settled run
-#: goes on for until they repeat (Hoffmann's model at mu_s = 1: 21 sticks a period,
-#: its ends repeating to 1e-5 after some 7 periods).
-_MAX_STICKS = 32
-_MAX_ENDS = 8 * _MAX_STICKS
-
-
-def _shoot_stick_slip(system, seed, settle, max_iter, tol):
-    """From a stick end of a settled run: ``k`` stick ends per period, the least ``k
-    <= _MAX_STICKS`` after which the run's stick ends repeat (an end ``n`` equal to the
-    end ``n - k``, the first such ``n``; from the end ``n - k``). A run that sticks no
-    more within ``settle`` seconds is refused (it would run on without end)."""
-    ends: list = []
-    y, mode = seed.y, seed.mode
-    for n in range(_MAX_ENDS):
-        r = flow(system, 0.0, y, settle, mode=mode, stop=_nth_end(1), **tol)
-        if r.status != "stopped":
-            raise NoPeriodicResponse(
-                f"{system!r}: no stick-slip cycle found: the settled run sticks no more "
-                f"within {settle:g} s after {n} stick ends (no cycle with a stick there)"
-            )
-        y, mode = r.y, r.mode
-        k = next(
-            (
-                j
-                for j in range(1, min(n, _MAX_STICKS) + 1)
-                if ends[n - j][1] == mode and np.allclose(ends[n - j][0], y, rtol=1e-5, atol=1e-7)
-            ),
-            None,
-        )
-        if k is not None:
-            return _newton_stick(system, *ends[n - k], k, max_iter, tol)
-        ends.append((y, mode))
-    raise NoPeriodicResponse(
-        f"{system!r}: no stick-slip cycle found: the stick ends of the settled run repeat "
-        f"after no k <= {_MAX_STICKS} sticks within {len(ends)} sticks (it settles on no "
-        "cycle of so few sticks)"
-    )
 
 
 def _nth_end(k):
@@ -97,7 +57,7 @@ def _newton_stick(system, x, mode, k, max_iter, tol):
         if run.status != "stopped":
             raise NoPeriodicResponse(f"{system!r}: the run from a stick end does not stick again")
         # a step onto a stick end that sticks at once returns trivially (T -> 0)
-        why = _not_a_return(system, mode, run.t, run.switches)
+        why = _not_a_return(system, x, mode, run.t, run.switches, tol)
         if why:
             raise NoPeriodicResponse(f"{system!r}: no stick-slip cycle found: Newton's {why}")
         r = run.y - x
@@ -121,4 +81,4 @@ def _newton_stick(system, x, mode, k, max_iter, tol):
         back = _end_states(system, x, mode, j, tol)
         if len(back) == j and np.abs(back[-1] - x).max() <= _RETURN_TOL * scale:
             return _newton_stick(system, x, mode, j, max_iter, tol)
-    return _cycle(system, x, mode, run, residual)
+    return _cycle(system, x, mode, run, residual, tol)

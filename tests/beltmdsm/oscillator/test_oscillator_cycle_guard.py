@@ -145,7 +145,7 @@ def test_the_trivial_return_is_refused():
     run = flow(s, 0.0, TRIVIAL, np.inf, mode=-1, variational=True, stop=_stick_slip._nth_end(1))
     assert run.t < 1e-10
     with pytest.raises(NoPeriodicResponse, match="no self-excited cycle"):
-        _cycle._cycle(s, TRIVIAL, -1, run, 0.0)
+        _cycle._cycle(s, TRIVIAL, -1, run, 0.0, dict(rtol=1e-11, atol=1e-11))
 
 
 def test_a_run_that_sticks_no_more_is_refused_in_bounded_time():
