@@ -60,6 +60,12 @@ class Seed:
     See Also
     --------
     cycle_seed : makes it.
+
+    Examples
+    --------
+    >>> from beltmdsm.oscillator import System
+    >>> cycle_seed(System("belt_1dof", friction="static_kinetic", Vb=0.5))
+    Seed(period 8.61101 s, 1 sticks, mode -1)
     """
 
     state: NDArray[np.float64]
