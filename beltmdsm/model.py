@@ -119,7 +119,7 @@ ANALYSES = (
 GENERIC = (
     "simulate", "periodic_response", "floquet", "cycle", "sweep", "lyapunov", "basins",
     "branch", "floquet_band", "floquet_map", "responses", "coexistence", "classify",
-    "periodic_start", "basin_stability",
+    "periodic_start", "basin_stability", "seed_cycle",
 )  # fmt: skip
 #: Those of `GENERIC` that follow a forced response: they run another model where one
 #: of its excitation amplitudes is not 0 (`OtherModel.capabilities`).
@@ -130,9 +130,6 @@ LACKS: Mapping[str, str] = MappingProxyType(
     {
         "predict": "ABSENT:mdsm",
         "validate": "ABSENT:paper_check",
-        "seed_cycle": "beltmdsm.oscillator seeds a cycle inside beltmdsm.cycle (a run "
-        "from steady sliding moved along its least stable direction, shot from its stick "
-        "end or least slip speed); pass guess= (and period=) to beltmdsm.cycle instead",
         # `FORCED`: why a model without excitation is refused (`OtherModel.capabilities`
         # adds how to excite it, or that its entry has no excitation terms)
         "floquet_band": "beltmdsm.oscillator has no band of unstable responses over a range "

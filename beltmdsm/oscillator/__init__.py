@@ -8,7 +8,8 @@ every analysis here reads the model through its kernels alone:
   flight where the contact is unilateral, and a Zeno guard;
 * `steady_sliding` (`Equilibrium`) and `hopf_points`: the equilibrium, its eigenvalues
   and derived Hurwitz determinants, the Hopf points along a parameter;
-* `self_excited_cycle` (`Cycle`): a cycle of the unforced model by shooting, at its
+* `cycle_seed` (`Seed`): where a settled run off steady sliding is on its cycle;
+  `self_excited_cycle` (`Cycle`): a cycle of the unforced model by shooting, at its
   least period, with its Floquet multipliers (saltation matrices at every switch);
   `stick_onset`: a pure-slip cycle followed in a parameter to where it first touches
   ``v_r = 0``;
@@ -20,6 +21,7 @@ A run is compiled by numba with the model's kernels where they compile
 shooting's variational runs are plain numpy. See docs/howto/oscillator.md.
 """
 
+from .cycle_seed import Seed, cycle_seed
 from .cycles import Cycle, self_excited_cycle, stick_onset
 from .equilibria import Equilibrium, hopf_points, steady_sliding
 from .forced import Response, forced_response
@@ -34,6 +36,8 @@ __all__ = [
     "steady_sliding",
     "Equilibrium",
     "hopf_points",
+    "cycle_seed",
+    "Seed",
     "self_excited_cycle",
     "Cycle",
     "stick_onset",

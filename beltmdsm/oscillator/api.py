@@ -24,7 +24,7 @@ if TYPE_CHECKING:
     from ..settings import SolverSettings
     from .basins import Basins, Stability
     from .classification import Settled
-    from .cycles import Cycle
+    from .cycle import Cycle
     from .forced import Response
     from .hybrid import Trajectory
     from .lyapunov import Spectrum
@@ -32,7 +32,8 @@ if TYPE_CHECKING:
     from .sweep import Sweep
 
 __all__ = [
-    "system_of", "simulate", "periodic_response", "periodic_start", "cycle", "lyapunov",
+    "system_of", "simulate", "periodic_response", "periodic_start", "cycle", "seed_cycle",
+    "lyapunov",
     "sweep", "basins", "basin_stability", "responses", "coexistence", "classify",
 ]  # fmt: skip
 
@@ -93,6 +94,42 @@ def cycle(model: Model, guess: ArrayLike | None, period: float | None, max_iter:
     from .cycles import self_excited_cycle
 
     return self_excited_cycle(system_of(model), guess, period, max_iter=max_iter)
+
+
+def seed_cycle(
+    model: Model, t_end: float | None, perturbation: ArrayLike | None, **paper: Any
+) -> tuple[NDArray[np.float64], float]:
+    """`beltmdsm.seed_cycle` of another model: `beltmdsm.oscillator.cycle_seed`'s state
+    and period, from a run of ``t_end`` seconds (200 by default) off steady sliding moved
+    by ``perturbation`` (by default along its least stable direction, then from the stick
+    state over it). ``beltmdsm.cycle(model, guess=state, period=period)`` shoots from it."""
+    from .cycle_seed import cycle_seed
+
+    _paper_keywords("seed_cycle", model, **paper)
+    system = system_of(model)
+    if system.excitation_period() is not None:
+        raise Unsupported(
+            f"seed_cycle: model {model.model!r}: the excitation is on (an amplitude is "
+            "not 0): a self-excited cycle needs the autonomous model; beltmdsm.floquet "
+            "computes the forced response"
+        )
+    settle = 200.0 if t_end is None else float(t_end)
+    if not (np.isfinite(settle) and settle > 0):
+        raise ValueError(f"t_end must be a finite number > 0; got {t_end!r}")
+    start = None
+    if perturbation is not None:
+        m = len(system.states)
+        offset = np.asarray(perturbation, dtype=float).ravel()
+        if offset.size != m or not np.all(np.isfinite(offset)):
+            raise ValueError(
+                f"perturbation must be {m} finite numbers ({', '.join(system.states)}); "
+                f"got {perturbation!r}"
+            )
+        from .equilibria import steady_sliding
+
+        start = steady_sliding(system).state + offset
+    seed = cycle_seed(system, start, settle=settle)
+    return seed.state.copy(), seed.period
 
 
 def lyapunov(

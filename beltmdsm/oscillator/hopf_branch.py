@@ -13,10 +13,10 @@ is followed by shooting each value from the last to `stick_onset`, where the cyc
 first touches ``v_r = 0``.
 
 Where the slip mode's field is linear in the state (Coulomb friction, a constant
-coefficient, with a normal force linear in the state: Hoffmann's model; its Jacobian is
-then the same at every state, which is checked), the Hopf point is degenerate: there
-the pure-slip cycles form a linear centre, of every amplitude up to the one that
-grazes ``v_r = 0``, and off it none exists. The cycles born there stick at once: on the
+coefficient, with a normal force linear in the state: Hoffmann's model; the model
+module's derived ``LINEAR_SLIP``, derive/models/linearity.py), the Hopf point is
+degenerate: there the pure-slip cycles form a linear centre, of every amplitude up to
+the one that grazes ``v_r = 0``, and off it none exists. The cycles born there stick at once: on the
 unstable side the branch is one of stick-slip cycles, seeded from the grazing orbit of
 the centre and followed away from the Hopf point (``degenerate``, the reason in
 ``note``; its onset of stick is the Hopf point itself).
@@ -29,10 +29,13 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import NoPeriodicResponse
-from .cycles import Cycle, _shoot_slip, self_excited_cycle, stick_onset
+from ..errors import NoPeriodicResponse, Unsupported
+from .cycle import Cycle
+from .cycles import self_excited_cycle
 from .equilibria import steady_sliding
 from .hybrid import flow
+from .onset import stick_onset
+from .slip_shooting import _shoot_slip
 from .system import System
 
 __all__ = ["HopfBranch", "hopf_branch"]
@@ -146,23 +149,18 @@ def _least_speed(c: Cycle) -> Cycle:
     return _shoot_slip(c.system, ys[int(np.argmin(speed))], c.period, 30, tol)
 
 
-def _linear_slip(system: System, eq) -> bool:
-    """Whether the slip mode's Jacobian is the same at states around steady sliding, in
-    the same slip mode (to rounding): a field linear in the state."""
-    k, p = system.kernels, system.p
-    J0 = np.asarray(k.jacobian(0.0, eq.state, p, eq.mode), dtype=float)
-    scale = 1.0 + np.abs(eq.state).max()
-    rng = np.random.default_rng(0)  # fixed: the same answer on every run
-    checked = 0
-    for size in (0.1, 0.1, 0.1, 0.1, 0.01, 0.01, 0.01, 0.01):
-        y = eq.state + size * scale * rng.standard_normal(eq.state.size)
-        if np.sign(k.slip_velocity(0.0, y, p)) != eq.mode:
-            continue
-        J = np.asarray(k.jacobian(0.0, y, p, eq.mode), dtype=float)
-        if np.abs(J - J0).max() > 1e-12 * (1.0 + np.abs(J0).max()):
-            return False
-        checked += 1
-    return checked >= 2
+def _linear_slip(system: System) -> bool:
+    """Whether the slip modes' fields are affine in the state under the system's law: the
+    model module's derived ``LINEAR_SLIP`` (derive/models/linearity.py); a module typed
+    by hand without it is refused, never guessed."""
+    flags = getattr(system.module, "LINEAR_SLIP", None)
+    if flags is None:
+        raise Unsupported(
+            f"hopf_branch: model {system.name!r}: its module has no LINEAR_SLIP "
+            "(MODEL_CONTRACT.md): whether its slip field is linear decides a degenerate "
+            "Hopf point"
+        )
+    return bool(flags[system.friction])
 
 
 def _grazing_orbit(system: System, eq) -> NDArray[np.float64]:
@@ -250,7 +248,7 @@ def hopf_branch(
     ('subcritical', 2.900393)
     """
     eq_above = steady_sliding(system.replace(**{param: hopf + 0.01 * span}))
-    if _linear_slip(eq_above.system, eq_above):
+    if _linear_slip(system):
         unstable = -1 if eq_above.stable else 1
         end = hopf + unstable * span if bounds is None else bounds[unstable > 0]
         return _sticking_branch(system, param, hopf, end)

@@ -22,7 +22,8 @@ from numpy.typing import ArrayLike
 
 from ..errors import NoPeriodicResponse
 from .basins import BasinAttractor, merge, run_starts
-from .cycles import Cycle, genuine, self_excited_cycle
+from .cycle import Cycle, genuine
+from .cycles import self_excited_cycle
 from .equilibria import Equilibrium, steady_sliding
 from .forced import Response, forced_response
 from .system import System

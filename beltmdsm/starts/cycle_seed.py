@@ -187,7 +187,7 @@ def unstable_pair(model: Model) -> tuple[complex, NDArray[np.complex128]]:
     return complex(lam[k]), V[:, k]
 
 
-@public()
+@public(models=True)
 def seed_cycle(
     model: Model | Mapping[str, Any],
     *,
@@ -211,6 +211,14 @@ def seed_cycle(
     `SETTLE_TOL`; the period is the time between the last two returns that match
     (several turns where the cycle has several extrema of the same depth; `cycle`
     shortens a multiple of the least period).
+
+    Another registered model than the paper's (``Model(model="belt_1dof")``) is seeded
+    by the generic runtime (`beltmdsm.oscillator.cycle_seed`): a run of ``t_end``
+    seconds (200 by default) off steady sliding, moved along its least stable direction
+    (or by ``perturbation``) and then from the stick state over it, read at a stick end
+    (its period the time over the sticks until they repeat) or at its least slip speed;
+    the state has the model's ``2n`` states, and ``backend`` (the paper's integrators')
+    is refused.
 
     Parameters
     ----------
@@ -256,6 +264,10 @@ def seed_cycle(
     6.654
     """
     model = as_model(model)
+    if model.model != "paper":  # another registered model: the generic runtime
+        from ..oscillator import api
+
+        return api.seed_cycle(model, t_end, perturbation, backend=backend)
     require_autonomous(model, "seed_cycle")
     vb = float(model["Vb"])
     lam, vec = unstable_pair(model)

@@ -12,6 +12,8 @@ A model is one ``register("model", Oscillator(...))`` beside the laws
   Jacobians;
 * `beltmdsm.derive.models.steady`: steady sliding, its Jacobian, characteristic
   polynomial and Hurwitz determinants;
+* `beltmdsm.derive.models.linearity`: whether the slip field is affine in the state
+  (a degenerate Hopf point);
 * `beltmdsm.derive.models.render`: generated/models/<name>.py;
 * `beltmdsm.derive.models.entries`: the shipped models, ``paper`` (the default),
   ``belt_1dof``, ``hoffmann``.

@@ -22,6 +22,7 @@ from .. import laws
 from ..codegen.files import HEADER
 from . import hybrid as hy
 from .flavours import MPMATH, NUMPY
+from .linearity import linear_slip
 from .registry import MODELS
 from .steady import NUMERIC, coefficient_symbols, hurwitz, steady
 from .system import MODES, defaults, law_parameters, model_parameters, system
@@ -458,6 +459,11 @@ def render_entry(entry, mp: bool = False) -> str:
             "How the equilibrium is computed, per friction law.",
         ),
         ("ABSENT", absent, "The paper's own pieces this model lacks, and why."),
+        (
+            "LINEAR_SLIP",
+            {law: linear_slip(systems[law]) for law in friction_laws},
+            "Friction law -> whether both slip modes' unforced fields are affine in the state.",
+        ),
     )
     functions, tables = [], []
     for law in friction_laws:

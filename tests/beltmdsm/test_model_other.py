@@ -122,7 +122,6 @@ def test_sweep_lyapunov_and_basins_take_another_model():
         (lambda m: beltmdsm.predict(m), "the MDSM split"),
         (lambda m: beltmdsm.floquet_band(m, "Vb", 1.0, 2.0), "no band of unstable responses"),
         (lambda m: beltmdsm.branch(m, lo=1.0, hi=2.0), "no continuation through folds"),
-        (lambda m: beltmdsm.seed_cycle(m), "seeds a cycle inside beltmdsm.cycle"),
         (
             lambda m: beltmdsm.floquet_map(m, "Vb", 1.0, 2.0, "alpha", 0.0, 1.0),
             "no two-parameter map",

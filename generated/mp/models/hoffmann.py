@@ -30,7 +30,7 @@ from typing import NamedTuple
 import mpmath
 
 
-__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "DOMAINS", "DEFAULT_FROM", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "GUARDS", "DECIDE_SLIP", "DECIDE_CONTACT", "EQUILIBRIUM", "ABSENT"]
+__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "DOMAINS", "DEFAULT_FROM", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "GUARDS", "DECIDE_SLIP", "DECIDE_CONTACT", "EQUILIBRIUM", "ABSENT", "LINEAR_SLIP"]
 
 
 #: The model's name in the registry.
@@ -177,6 +177,9 @@ ABSENT = {'cubic_fit': 'the cubic fit of the contact force (Eqs. 16-17, derive/f
                 "the paper's model's only",
  'paper_check': "the check of the paper's claims (derive/paper_check/) is the paper's "
                 "model's only"}
+
+#: Friction law -> whether both slip modes' unforced fields are affine in the state.
+LINEAR_SLIP = {'coulomb': True, 'stribeck': False, 'static_kinetic': True}
 
 
 class Kernels(NamedTuple):

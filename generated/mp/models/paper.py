@@ -24,7 +24,7 @@ from typing import NamedTuple
 import mpmath
 
 
-__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "DOMAINS", "DEFAULT_FROM", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "GUARDS", "DECIDE_SLIP", "DECIDE_CONTACT", "EQUILIBRIUM", "ABSENT"]
+__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "DOMAINS", "DEFAULT_FROM", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "GUARDS", "DECIDE_SLIP", "DECIDE_CONTACT", "EQUILIBRIUM", "ABSENT", "LINEAR_SLIP"]
 
 
 #: The model's name in the registry.
@@ -201,6 +201,9 @@ EQUILIBRIUM = {'coulomb': 'closed form', 'stribeck': 'closed form', 'static_kine
 
 #: The paper's own pieces this model lacks, and why.
 ABSENT = {}
+
+#: Friction law -> whether both slip modes' unforced fields are affine in the state.
+LINEAR_SLIP = {'coulomb': False, 'stribeck': False, 'static_kinetic': False}
 
 
 class Kernels(NamedTuple):

@@ -26,9 +26,11 @@ from scipy.integrate import solve_ivp
 
 import beltmdsm
 from beltmdsm.errors import NoPeriodicResponse
-from beltmdsm.oscillator import cycles as _cycles
+from beltmdsm.oscillator import cycle as _cycle
 from beltmdsm.oscillator import steady_sliding
+from beltmdsm.oscillator import stick_slip_shooting as _stick_slip
 from beltmdsm.oscillator.api import system_of
+from beltmdsm.oscillator.hybrid import flow
 
 MODEL = beltmdsm.Model(model="hoffmann", mu_s=1.0)
 #: The trivial return the shooting converged on before (state where a stick ends, mode
@@ -138,12 +140,12 @@ def test_the_trivial_return_is_refused():
     s = system_of(MODEL)
     # Newton's method from the old answer: its run returns at once, in another mode
     with pytest.raises(NoPeriodicResponse, match="hoffmann.*mu_s=1.0.*not in its mode -1"):
-        _cycles._newton_stick(s, TRIVIAL, -1, 1, 30, dict(rtol=1e-11, atol=1e-11))
+        _stick_slip._newton_stick(s, TRIVIAL, -1, 1, 30, dict(rtol=1e-11, atol=1e-11))
     # and the check itself on a cycle of that run
-    run = _cycles.flow(s, 0.0, TRIVIAL, np.inf, mode=-1, variational=True, stop=_cycles._nth_end(1))
+    run = flow(s, 0.0, TRIVIAL, np.inf, mode=-1, variational=True, stop=_stick_slip._nth_end(1))
     assert run.t < 1e-10
     with pytest.raises(NoPeriodicResponse, match="no self-excited cycle"):
-        _cycles._cycle(s, TRIVIAL, -1, run, 0.0)
+        _cycle._cycle(s, TRIVIAL, -1, run, 0.0, dict(rtol=1e-11, atol=1e-11))
 
 
 def test_a_run_that_sticks_no_more_is_refused_in_bounded_time():

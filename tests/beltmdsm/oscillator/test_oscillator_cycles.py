@@ -13,7 +13,8 @@ from scipy.optimize import brentq
 import beltmdsm
 from beltmdsm.errors import Unsupported
 from beltmdsm.oscillator import System, self_excited_cycle, stick_onset
-from beltmdsm.oscillator import cycles as _cycles
+from beltmdsm.oscillator import slip_shooting as _slip
+from beltmdsm.oscillator import stick_slip_shooting as _stick_slip
 from beltmdsm.oscillator.hybrid import flow
 
 #: The hand-typed reference and the generated module (the same model, the same checks).
@@ -81,7 +82,7 @@ def test_no_proper_divisor_returns(belt):
     s = System(belt, friction="static_kinetic", Vb=0.5)
     c = self_excited_cycle(s)
     # asked for two sticks a period, the shooting reports the least period (one)
-    twice = _cycles._newton_stick(s, c.state, c.mode, 2, 30, dict(rtol=1e-11, atol=1e-11))
+    twice = _stick_slip._newton_stick(s, c.state, c.mode, 2, 30, dict(rtol=1e-11, atol=1e-11))
     assert twice.sticks == 1 and twice.period == pytest.approx(c.period, rel=1e-12)
 
 
@@ -150,7 +151,7 @@ def test_unstable_slip_cycle_agrees_with_the_paper_model_and_finite_differences(
     assert off.real == pytest.approx(c.multipliers[0].real, rel=1e-6)
     assert np.allclose(M_fd @ f, f, atol=1e-6)
     # least period: the cycle asked with twice its period returns at half
-    again = _cycles._shoot_slip(s, c.state, 2 * c.period, 30, dict(rtol=1e-11, atol=1e-11))
+    again = _slip._shoot_slip(s, c.state, 2 * c.period, 30, dict(rtol=1e-11, atol=1e-11))
     assert again.period == pytest.approx(c.period, rel=1e-10)
 
 

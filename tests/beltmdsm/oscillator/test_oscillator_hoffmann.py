@@ -23,7 +23,7 @@ from scipy.optimize import brentq
 
 from beltmdsm.generated.models import hoffmann as gen
 from beltmdsm.oscillator import System, hopf_points, self_excited_cycle, simulate, steady_sliding
-from beltmdsm.oscillator import cycles as _cycles
+from beltmdsm.oscillator import stick_slip_shooting as _stick_slip
 from beltmdsm.oscillator.hybrid import flow
 
 #: reference_two_dof's base set, in the generated module's names (m = 1).
@@ -221,12 +221,14 @@ def test_self_excited_cycle_beyond_flutter():
     P = []
     for e in np.eye(4):
         ends = [
-            later(_cycles._end_states(s, half.y + sign * 1e-5 * e, half.mode, 1, {})[0], c.mode).y
+            later(
+                _stick_slip._end_states(s, half.y + sign * 1e-5 * e, half.mode, 1, {})[0], c.mode
+            ).y
             for sign in (1, -1)
         ]
         P.append((ends[0] - ends[1]) / 2e-5)
     w = np.linalg.eigvals(np.array(P).T)
     assert sorted(abs(w))[-2:] == pytest.approx(sorted(abs(c.multipliers))[-2:], abs=1e-5)
     # least period: asked for two sticks a period, the shooting reports one
-    twice = _cycles._newton_stick(s, c.state, c.mode, 2, 30, dict(rtol=1e-11, atol=1e-11))
+    twice = _stick_slip._newton_stick(s, c.state, c.mode, 2, 30, dict(rtol=1e-11, atol=1e-11))
     assert twice.sticks == 1 and twice.period == pytest.approx(c.period, rel=1e-12)

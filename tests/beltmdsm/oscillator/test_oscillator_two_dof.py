@@ -15,7 +15,7 @@ from beltmdsm.oscillator import (
     simulate,
     steady_sliding,
 )
-from beltmdsm.oscillator import cycles as _cycles
+from beltmdsm.oscillator import stick_slip_shooting as _stick_slip
 from beltmdsm.oscillator.hybrid import flow
 
 
@@ -136,7 +136,8 @@ def test_self_excited_cycle_beyond_flutter():
     P = []
     for e in np.eye(4):
         ends = [
-            _cycles._end_states(s, c.state + sign * 1e-5 * e, c.mode, 1, {})[0] for sign in (1, -1)
+            _stick_slip._end_states(s, c.state + sign * 1e-5 * e, c.mode, 1, {})[0]
+            for sign in (1, -1)
         ]
         P.append((ends[0] - ends[1]) / 2e-5)
     w = np.linalg.eigvals(np.array(P).T)

@@ -1,0 +1,207 @@
+"""The seed of a self-excited cycle of an unforced model: a settled run, read where the
+shooting starts (`Seed`).
+
+A run of ``settle`` seconds from a start (the guess, else steady sliding moved along its
+least stable direction where it grows, then the stick state over steady sliding, from
+which a stick-slip cycle coexisting with stable sliding is reached) is read:
+
+* where it sticks (three stick ends or more): from its last state, stick end after
+  stick end, until the ends repeat; ``k`` the least number of stick ends after which
+  one repeats (up to `_MAX_STICKS`), the seed the state of that earlier end and the
+  period the time over the ``k`` sticks. A run whose stick ends repeat after no such
+  ``k`` is refused, never shot with a guessed ``k``;
+* where it slips throughout and ends away from steady sliding: a run of 100 s more,
+  the seed its last point where the slip speed ``m v_r`` is least (the pure-slip
+  shooting's section, `beltmdsm.oscillator.slip_shooting`), the period the time between
+  its last two such minima.
+
+`beltmdsm.oscillator.self_excited_cycle` shoots from the seed; ``beltmdsm.seed_cycle``
+of another model than the paper's returns its state and period.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import NoPeriodicResponse
+from .equilibria import steady_sliding
+from .hybrid import _to_stick, flow
+from .stick_slip_shooting import _nth_end
+from .system import STICK, System
+
+__all__ = ["Seed", "cycle_seed"]
+
+#: The most stick ends per period looked for, and the most stick ends a settled run
+#: goes on for until they repeat (Hoffmann's model at mu_s = 1: 21 sticks a period,
+#: its ends repeating to 1e-5 after some 7 periods).
+_MAX_STICKS = 32
+_MAX_ENDS = 8 * _MAX_STICKS
+
+
+@dataclass(frozen=True, repr=False)
+class Seed:
+    """Where a self-excited cycle is shot from.
+
+    Attributes
+    ----------
+    state : ndarray (2n,)
+        Where a stick ends (``sticks > 0``), else the point of least slip speed.
+    mode : int
+        The mode at ``state`` (slip, ``1`` or ``-1``).
+    period : float
+        The estimate of the period [s]: the time over ``sticks`` stick ends, or between
+        two least slip speeds.
+    sticks : int
+        Stick ends per period; 0 for a pure-slip cycle.
+
+    See Also
+    --------
+    cycle_seed : makes it.
+
+    Examples
+    --------
+    >>> from beltmdsm.oscillator import System
+    >>> cycle_seed(System("belt_1dof", friction="static_kinetic", Vb=0.5))
+    Seed(period 8.61101 s, 1 sticks, mode -1)
+    """
+
+    state: NDArray[np.float64]
+    mode: int
+    period: float
+    sticks: int
+
+    def __repr__(self) -> str:
+        kind = f"{self.sticks} sticks" if self.sticks else "pure slip"
+        return f"Seed(period {self.period:.6g} s, {kind}, mode {self.mode})"
+
+
+def cycle_seed(
+    system: System,
+    guess: ArrayLike | None = None,
+    *,
+    settle: float = 200.0,
+    rtol: float = 1e-11,
+    atol: float = 1e-11,
+) -> Seed:
+    """The seed of the self-excited cycle of an unforced ``system`` (module docstring).
+
+    Parameters
+    ----------
+    system : System
+        Without excitation (checked by the caller).
+    guess : ndarray (2n,), optional
+        The start of the run (checked by the caller); by default steady sliding moved
+        along its least stable direction, then the stick state over steady sliding.
+    settle : float
+        The run's length [s].
+    rtol, atol : float
+        The integrator's tolerances.
+
+    Returns
+    -------
+    Seed
+
+    Raises
+    ------
+    NoPeriodicResponse
+        Naming why: the runs decay onto steady sliding (or switch without sticking), a
+        sticking run sticks no more, or its stick ends do not repeat.
+
+    See Also
+    --------
+    beltmdsm.oscillator.self_excited_cycle : shoots the cycle from it.
+
+    Examples
+    --------
+    >>> from beltmdsm.oscillator import System
+    >>> s = cycle_seed(System("belt_1dof", friction="stribeck", Vb=1.5))
+    >>> s.sticks, round(s.period, 4)
+    (1, 6.6543)
+    """
+    tol = dict(rtol=rtol, atol=atol)
+    for start in [guess] if guess is not None else _starts(system):
+        run = flow(system, 0.0, start, settle, **tol)
+        if sum(1 for s in run.switches if s[1] == STICK) >= 3:
+            return _stick_ends(system, run.y, run.mode, settle, tol)
+        if not run.switches and _moving(system, run):
+            return _least_slip(system, run.y, tol)
+    raise NoPeriodicResponse(
+        f"{system!r}: no self-excited cycle found: the runs from "
+        f"{'the guess' if guess is not None else 'steady sliding and from stick'} "
+        f"settle on no cycle within {settle:g} s"
+    )
+
+
+def _starts(system):
+    """Steady sliding moved along its least stable direction, where it grows; and the
+    stick state over steady sliding (its position, the slip velocity 0), from which a
+    stick-slip cycle coexisting with stable sliding is reached."""
+    eq = steady_sliding(system)
+    out = []
+    if eq.growth_rate > 1e-9 * np.abs(eq.eigenvalues).max():
+        J = np.asarray(system.kernels.jacobian(0.0, eq.state, system.p, eq.mode))
+        w, V = np.linalg.eig(J)
+        v = np.real(V[:, np.argmax(w.real)])
+        out.append(eq.state + 1e-3 * (1.0 + np.abs(eq.state).max()) * v / np.abs(v).max())
+    out.append(_to_stick(system, 0.0, eq.state))
+    return out
+
+
+def _moving(system, seed):
+    """Whether a run ends away from steady sliding (not decayed onto it)."""
+    eq = steady_sliding(system)
+    return np.abs(seed.y - eq.state).max() > 1e-6 * (1.0 + np.abs(eq.state).max())
+
+
+def _stick_ends(system, y, mode, settle, tol) -> Seed:
+    """From ``(y, mode)``, stick end after stick end: ``k`` stick ends per period, the
+    least ``k <= _MAX_STICKS`` after which the ends repeat (an end ``n`` equal to the end
+    ``n - k``, the first such ``n``; the seed is the end ``n - k``). A run that sticks no
+    more within ``settle`` seconds is refused (it would run on without end)."""
+    ends: list = []  # (state, mode, time from the end before)
+    for n in range(_MAX_ENDS):
+        r = flow(system, 0.0, y, settle, mode=mode, stop=_nth_end(1), **tol)
+        if r.status != "stopped":
+            raise NoPeriodicResponse(
+                f"{system!r}: no stick-slip cycle found: the settled run sticks no more "
+                f"within {settle:g} s after {n} stick ends (no cycle with a stick there)"
+            )
+        y, mode = r.y, r.mode
+        k = next(
+            (
+                j
+                for j in range(1, min(n, _MAX_STICKS) + 1)
+                if ends[n - j][1] == mode and np.allclose(ends[n - j][0], y, rtol=1e-5, atol=1e-7)
+            ),
+            None,
+        )
+        if k is not None:
+            period = sum(t for _, _, t in ends[n - k + 1 :]) + float(r.t)
+            return Seed(ends[n - k][0], ends[n - k][1], period, k)
+        ends.append((y, mode, float(r.t)))
+    raise NoPeriodicResponse(
+        f"{system!r}: no stick-slip cycle found: the stick ends of the settled run repeat "
+        f"after no k <= {_MAX_STICKS} sticks within {len(ends)} sticks (it settles on no "
+        "cycle of so few sticks)"
+    )
+
+
+def _least_slip(system, x, tol) -> Seed:
+    """A pure-slip seed: the last point of a run where the slip speed ``m v_r`` is
+    least, the period from its last two minima."""
+    k_, p = system.kernels, system.p
+    samples: list = []
+    end = flow(system, 0.0, x, 100.0, dt=0.01, samples=samples, **tol)
+    if end.switches:
+        raise NoPeriodicResponse(f"{system!r}: the seed run switches without sticking")
+    mode = end.mode
+    ts = np.concatenate([t for t, _, _ in samples])
+    ys = np.concatenate([y for _, y, _ in samples])
+    speed = np.array([mode * k_.slip_velocity(t, y, p) for t, y in zip(ts, ys)])
+    low = np.flatnonzero((speed[1:-1] < speed[:-2]) & (speed[1:-1] <= speed[2:])) + 1
+    if len(low) < 3:
+        raise NoPeriodicResponse(f"{system!r}: the seed run settles on no cycle")
+    return Seed(ys[low[-1]], mode, float(ts[low[-1]] - ts[low[-2]]), 0)
