@@ -506,10 +506,14 @@ class OtherModel(OtherParameters, Model):
         return MappingProxyType(out)
 
     def refusal(self, analysis: str) -> str:
-        """The one line of an analysis that does not run this model."""
+        """The one line of an analysis that does not run this model: one of `GENERIC`
+        refused for its parameters (`FORCED` without excitation) says how to run it, any
+        other that it runs the paper's model only."""
+        why = f"{analysis}: model {self.model!r}: {self.capabilities[analysis][1]}"
         return (
-            f"{analysis}: model {self.model!r}: {self.capabilities[analysis][1]}; "
-            f"it runs the paper's model only (model={PAPER!r})"
+            why
+            if analysis in GENERIC
+            else f"{why}; it runs the paper's model only (model={PAPER!r})"
         )
 
 

@@ -47,11 +47,6 @@ PAPER_ENGINE = {
     "cycles/multiple.py": "the paper's multiple shooting on its integrator",
     "starts/cycle_seed.py": "the paper's seed of a self-excited cycle: its generated "
     "Jacobian (another model: beltmdsm/oscillator/cycles.py)",
-    # not the paper's engine: the generic runtime, which another engineer edited in this
-    # session (issue 39); its two literals are the paper's default plane of basins, which
-    # `beltmdsm.state_names.plane` gives (as cli/generic_studies.py reads it)
-    "oscillator/api.py": "reads the paper's default plane (X1, Y1) of basins as the "
-    "model's first coordinate and its rate: to be read from state_names.plane()",
 }
 #: The modules of the generic runtime (not branches.py, which dispatches to either): what
 #: they import of the engine's folders is shared by every model and scanned

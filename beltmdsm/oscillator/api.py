@@ -18,6 +18,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import Unsupported
 from ..model import Model
+from ..other_model import PAPER
+from ..state_names import plane
 from .system import System
 
 if TYPE_CHECKING:
@@ -168,14 +170,15 @@ def basins(
     t_end: float,
 ) -> Basins:
     """`beltmdsm.basins` of another model: `beltmdsm.oscillator.basins.basins`, on the
-    plane of two of its states (the paper's defaults X1, Y1 read as the first
-    coordinate and its rate)."""
+    plane of two of its states (the paper's default plane read as the model's own,
+    `beltmdsm.state_names.plane`)."""
     from .basins import basins as run
 
     system = system_of(model)
-    n = len(system.coordinates)
-    x = system.states[0] if x == "X1" else x
-    y = system.states[n] if y == "Y1" else y
+    # the public defaults are the paper's plane: read as this model's own
+    default, own = plane(PAPER), plane(model.model)
+    x = own[0] if x == default[0] else x
+    y = own[1] if y == default[1] else y
     if None in (x_lo, x_hi, y_lo, y_hi):
         raise ValueError(
             f"basins: give x_lo, x_hi, y_lo and y_hi for model {model.model!r} (the ranges "

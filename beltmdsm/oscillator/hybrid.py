@@ -457,6 +457,16 @@ def flow(
         if hit < 0:
             break
         after = _next_mode(system, mode, hit, t, y)
+        if len(switches) >= 2 and switches[-1][0] == t and switches[-2][0] == t:
+            # the modes cycle at one instant: no step can decide the next one there
+            if t_end - t <= rtol * max(1.0, abs(t_end)):
+                break  # the time left is below the run's resolution: it ends here
+            status = "zeno"
+            message = (
+                f"the modes cycle at t = {t:.9g} s ({switches[-2][1]} -> {mode} -> "
+                f"{after}) without the time advancing: the run stops"
+            )
+            break
         recent.append(t)
         if len(recent) == ZENO_SWITCHES and recent[-1] - recent[0] <= ZENO_WINDOW * max(
             1.0, abs(t)

@@ -31,7 +31,7 @@ def _extreme(values: NDArray[np.float64], sign: float) -> float:
     i = int(np.argmax(v))
     a, b, c = v[i - 1], v[i], v[(i + 1) % v.size]
     curvature = a - 2.0 * b + c
-    if curvature >= 0.0:  # flat or a kink: the sample itself
+    if curvature >= 0.0 or a == b or c == b:  # flat, a kink, or a stick's plateau edge
         return float(sign * b)
     offset = 0.5 * (a - c) / curvature
     if abs(offset) > 1.0:
