@@ -457,16 +457,6 @@ def flow(
         if hit < 0:
             break
         after = _next_mode(system, mode, hit, t, y)
-        if len(switches) >= 2 and switches[-1][0] == t and switches[-2][0] == t:
-            # the modes cycle at one instant: no step can decide the next one there
-            if t_end - t <= rtol * max(1.0, abs(t_end)):
-                break  # the time left is below the run's resolution: it ends here
-            status = "zeno"
-            message = (
-                f"the modes cycle at t = {t:.9g} s ({switches[-2][1]} -> {mode} -> "
-                f"{after}) without the time advancing: the run stops"
-            )
-            break
         recent.append(t)
         if len(recent) == ZENO_SWITCHES and recent[-1] - recent[0] <= ZENO_WINDOW * max(
             1.0, abs(t)
@@ -482,6 +472,17 @@ def flow(
                     f"(mode {mode}, surface {hit}) outside the friction cone: the run stops"
                 )
                 break
+        if len(switches) >= ZENO_SWITCHES and all(s[0] == t for s in switches[-ZENO_SWITCHES:]):
+            # the modes cycle at one instant inside the cone (outside it the rule above
+            # stopped the run): no step can decide the next mode there
+            if t_end - t <= rtol * max(1.0, abs(t_end)):
+                break  # the time left is below the run's resolution: it ends here
+            status = "zeno"
+            message = (
+                f"{ZENO_SWITCHES} switches at t = {t:.9g} s without the time advancing "
+                f"(mode {mode} -> {after}): the run stops"
+            )
+            break
         if variational:
             Phi = np.asarray(k.saltation(t, y, p, mode, after)) @ Phi
         if after == STICK:
