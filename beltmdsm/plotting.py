@@ -13,6 +13,8 @@ the model; a multiplier's modulus is drawn on a log scale. The lines drawn are t
 result's own arrays (tests/beltmdsm/test_plotting.py reads them back), so a figure
 shows what the result holds and nothing recomputed.
 
+The labels' text is `beltmdsm.plot_labels` (re-exported here).
+
 The results are taken as they are (typed ``Any``): this module sits below the analyses
 in the layers of the package (tests/test_layers.py) and imports none of them.
 """
@@ -23,10 +25,17 @@ from typing import Any
 
 import numpy as np
 
-from beltmdsm.generated.parameters import LAW_UNITS, PARAMETERS
-
 from . import state_names
 from ._display import LABELS
+from .plot_labels import (
+    STATE,
+    _model_of,
+    _state_rows,
+    axis_label,
+    observable_label,
+    response_name,
+    unit,
+)
 
 __all__ = [
     "unit",
@@ -56,96 +65,8 @@ KIND_COLOURS = {
 }
 
 
-def _model_of(result: Any) -> Any:
-    """The model a result was computed for: its ``model`` (a `beltmdsm.model.Model`), or
-    the ``system`` of a run of the generic runtime (`beltmdsm.oscillator.system.System`)."""
-    return result.model if hasattr(result, "model") else result.system
-
-
-def _state_rows(model: Any) -> dict[str, tuple[str, int]]:
-    """``{column: (unit, row of y)}`` of the model's states (`beltmdsm.state_names`)."""
-    return {
-        c: (u, i)
-        for i, (c, u) in enumerate(zip(state_names.columns(model), state_names.units(model)))
-    }
-
-
-#: The rows of a run of the paper's model and their units (another model's:
-#: `beltmdsm.state_names`).
-STATE = _state_rows(None)
-_UNITS = {p["name"]: p["unit"] for p in PARAMETERS}
 #: Line styles of a branch by stability: stable, unstable, grazing (no multiplier).
 _STYLES = {True: "-", False: "--", None: ":"}
-
-
-def unit(name: str, model: Any = None) -> str:
-    """The unit of parameter ``name`` (under the model's contact law, where it has one).
-
-    Parameters
-    ----------
-    name : str
-        a parameter of the model (``beltmdsm.generated.parameters``)
-    model : beltmdsm.model.Model, optional
-        whose contact law may give the parameter another unit
-
-    Returns
-    -------
-    str
-
-    Raises
-    ------
-    KeyError
-        if ``name`` is not a parameter.
-
-    See Also
-    --------
-    beltmdsm.plotting.axis_label
-
-    Examples
-    --------
-    The contact stiffness ``beta2`` is dimensionless in the Kelvin-Voigt law, not in
-    the Hertz law of the default model:
-
-    >>> from beltmdsm import Model
-    >>> unit("Vb"), unit("beta2"), unit("beta2", Model(contact="kelvin_voigt"))
-    ('m/s', '1/m^(5/4)', '1')
-    """
-    if model is not None:
-        for (option, choice), units in LAW_UNITS.items():
-            if getattr(model, option, None) == choice and name in units:
-                return units[name]
-    return _UNITS[name]
-
-
-def axis_label(name: str, unit_: str) -> str:
-    """``"Vb [m/s]"``; a dimensionless quantity ``"[-]"``.
-
-    Parameters
-    ----------
-    name : str
-        the quantity
-    unit_ : str
-        its unit; ``"1"`` for a dimensionless one
-
-    Returns
-    -------
-    str
-
-    See Also
-    --------
-    beltmdsm.plotting.unit
-
-    Examples
-    --------
-    >>> axis_label("Vb", "m/s"), axis_label("beta1", "1")
-    ('Vb [m/s]', 'beta1 [-]')
-    """
-    return f"{name} [{'-' if unit_ == '1' else unit_}]"
-
-
-def response_name(periods: int) -> str:
-    """``"T"`` or ``"4T"``: a response of ``periods`` excitation periods."""
-    return "T" if periods == 1 else f"{periods}T"
 
 
 def _axes(ax: Any) -> Any:
@@ -397,49 +318,6 @@ def branch(
     ax.set_title(f"{name or result.response}: {result.model!r}", fontsize=8)
     ax.legend(loc="best", fontsize="small")
     return ax
-
-
-def observable_label(name: str, model: Any = None) -> str:
-    """The axis label of an observable of `beltmdsm.periodic.observables` or of another
-    model's branch (``<state>_amplitude``, ``_min``, ``_max`` of a state of the model,
-    `beltmdsm.state_names.columns`: m for a position, m/s for a rate and Vr, m/s^2 for a
-    force per unit mass); a column of a user's ``record`` is labelled by its name.
-
-    Parameters
-    ----------
-    name : str
-        a column of a branch's observables
-    model : str or beltmdsm.model.Model, optional
-        the branch's model (None: the paper's)
-
-    Returns
-    -------
-    str
-
-    See Also
-    --------
-    beltmdsm.plotting.branch
-
-    Examples
-    --------
-    >>> observable_label("X1'_amplitude"), observable_label("mu_eff")
-    ("X1' amplitude [m/s]", 'mu_eff = <Ff>/<Fn> [-]')
-    >>> observable_label("energy")
-    'energy (recorded)'
-    >>> observable_label("x_dot_amplitude", "belt_1dof")
-    'x_dot amplitude [m/s]'
-    """
-    for column, (unit_, _) in _state_rows(model).items():
-        head, _, tail = name.rpartition("_")
-        if head == column and tail in ("amplitude", "min", "max"):
-            return axis_label(f"{column} {tail}", unit_)
-    if name == "max_abs_Vr":
-        return axis_label("max |Vr|", "m/s")
-    if name == "mean_friction":
-        return axis_label("mean friction per unit mass", "m/s^2")
-    if name == "mu_eff":
-        return axis_label("mu_eff = <Ff>/<Fn>", "1")
-    return f"{name} (recorded)"
 
 
 def coexistence(result: Any, ax: Any = None, observable: str | None = None) -> Any:
