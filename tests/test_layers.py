@@ -9,7 +9,8 @@ submodule where one exists). The layers, lowest first:
 beltmdsm.derive -> beltmdsm.errors -> beltmdsm.generated -> beltmdsm.{model, settings,
 intervals} ->
 beltmdsm.integrate ->
-beltmdsm.{periodic, oscillator} -> beltmdsm.continuation -> beltmdsm.cycles ->
+beltmdsm.{periodic, oscillator} -> beltmdsm.continuation (then beltmdsm.oscillator.hopf_branch,
+which drives it) -> beltmdsm.cycles ->
 beltmdsm.branches -> beltmdsm.run -> beltmdsm.prediction -> beltmdsm.attractors ->
 beltmdsm.simulation -> beltmdsm.starts (but beltmdsm.starts.cycle_seed, at beltmdsm.periodic's
 layer) -> beltmdsm.multistability -> beltmdsm.batch ->
@@ -60,6 +61,8 @@ LAYERS = {
     # any derived model (issue 39): its runs, cycles and forced responses, beside them
     "beltmdsm.oscillator": 4.0,
     "beltmdsm.continuation": 4.1,
+    # the cycles born at a Hopf point of any model, walked on the one driver (issue 39)
+    "beltmdsm.oscillator.hopf_branch": 4.15,
     "beltmdsm.cycles": 4.2,
     # the branch of any model: picks the problem above every problem (issue 38)
     "beltmdsm.branches": 4.25,

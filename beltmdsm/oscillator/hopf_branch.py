@@ -9,8 +9,15 @@ moved along the real part of the critical eigenvector by amplitudes ``1 .. 0.01`
 units of the state's scale), with the period ``2 pi / omega`` of the critical pair;
 Newton's method from a small amplitude may fall back onto the equilibrium itself,
 which is rejected (a cycle must stand off it). From the first cycle found, the branch
-is followed by shooting each value from the last to `stick_onset`, where the cycle
-first touches ``v_r = 0``.
+is walked away from the Hopf point on the one continuation driver
+(`beltmdsm.continuation.driver`, the problem
+`beltmdsm.continuation.oscillator_cycle.OscillatorCycleProblem`): by pseudo-arclength,
+so that it passes a fold of cycles, with the folds, period doublings and
+Neimark-Sacker points of the cycles' multipliers located on the way (``special``), to
+the onset of stick, where the cycle first touches ``v_r = 0``.
+
+This module sits above the continuation layer (tests/test_layers.py): it drives the
+driver.
 
 Where the slip mode's field is linear in the state (Coulomb friction, a constant
 coefficient, with a normal force linear in the state: Hoffmann's model; the model
@@ -29,13 +36,13 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from ..continuation.driver import walk
+from ..continuation.oscillator_cycle import OscillatorCycleProblem
 from ..errors import NoPeriodicResponse, Unsupported
 from .cycle import Cycle
 from .cycles import self_excited_cycle
 from .equilibria import steady_sliding
-from .hybrid import flow
-from .onset import stick_onset
-from .slip_shooting import _shoot_slip
+from .slip_shooting import least_speed
 from .system import System
 
 __all__ = ["HopfBranch", "hopf_branch"]
@@ -46,8 +53,8 @@ _AMPLITUDES = (1.0, 0.3, 0.1, 0.03, 0.01)
 _OFFSETS = (0.01, 0.03)
 #: A cycle stands off the equilibrium by more than this (relative).
 _OFF = 1e-6
-#: The step along the branch, as a fraction of the range, and the most steps.
-_STEP, _MAX_STEPS = 0.02, 200
+#: The walk's range: this many times ``span`` either side of the Hopf point.
+_REACH = 4.0
 
 
 @dataclass(repr=False)
@@ -64,6 +71,9 @@ class HopfBranch:
         Along the branch, from the seed to the onset.
     onset : Cycle or None
         The grazing cycle (``onset.system.params[param]`` the onset of stick).
+    special : list of SpecialPoint
+        The special points of the walk along the branch
+        (`beltmdsm.continuation.oscillator_cycle.DETECTS`), its end last.
     failure : str
         Why the branch or its onset was not found, if so.
     degenerate : bool
@@ -89,6 +99,7 @@ class HopfBranch:
     cycles: list[Cycle] = field(default_factory=list)
     onset: Cycle | None = None
     failure: str = ""
+    special: list = field(default_factory=list)
     degenerate: bool = False
     note: str = ""
 
@@ -132,21 +143,8 @@ def _seed(system: System, param: str, value: float) -> Cycle | None:
         except NoPeriodicResponse:
             continue
         if c.kind == "slip" and np.abs(c.state - eq.state).max() > _OFF * scale:
-            return _least_speed(c)
+            return least_speed(c)
     return None
-
-
-def _least_speed(c: Cycle) -> Cycle:
-    """The cycle shot again from where its slip speed is least (the section
-    ``slip_acceleration = 0`` has a second point, where it is largest, which Newton's
-    method may have found; `stick_onset` follows the least)."""
-    k, p = c.system.kernels, c.system.p
-    samples: list = []
-    flow(c.system, 0.0, c.state, c.period, mode=c.mode, dt=c.period / 2000, samples=samples)
-    ys = np.concatenate([y for _, y, _ in samples])
-    speed = [c.mode * k.slip_velocity(0.0, y, p) for y in ys]
-    tol = dict(rtol=1e-11, atol=1e-11)
-    return _shoot_slip(c.system, ys[int(np.argmin(speed))], c.period, 30, tol)
 
 
 def _linear_slip(system: System) -> bool:
@@ -264,34 +262,24 @@ def hopf_branch(
     else:
         return HopfBranch(param, hopf, 0, failure="no pure-slip cycle found near it")
     branch = HopfBranch(param, hopf, side, [seed])
-    # march away from the Hopf point, each cycle shot from the last, the step halved
-    # where the shooting fails (near the Hopf point the amplitude grows like the root
-    # of the distance) and grown where it succeeds, until it fails at the least step
-    # (past the onset the run from the last cycle switches); then the onset by the
-    # secant of the least slip speed from the last cycle
-    h, h_max, h_min = side * _STEP * span, side * _STEP * span, side * _STEP * span / 8
-    last = seed
-    for _ in range(_MAX_STEPS):
-        value = last.system.params[param] + h
-        try:
-            last = _shoot_slip(
-                last.system.replace(**{param: float(value)}), last.state, last.period, 30,
-                dict(rtol=1e-11, atol=1e-11),
-            )  # fmt: skip
-        except NoPeriodicResponse:
-            if abs(h) <= abs(h_min):
-                break
-            h = 0.5 * h
-            continue
-        branch.cycles.append(last)
-        h = side * min(abs(h_max), 1.5 * abs(h))
-    # the secant from a cycle a few steps back, a full step away (right at the onset
-    # the least slip speed is too flat in the step to bracket it)
-    back = branch.cycles[max(0, len(branch.cycles) - 4)]
+    # walk away from the Hopf point on the driver, to the stick onset (or a fold, the
+    # range's end, a failure); the cycles as the shooting reports them
+    value = seed.system.params[param]
+    sx = 1.0 + float(np.abs(seed.state).max())
+    problem = OscillatorCycleProblem(
+        seed.system, param, seed.mode, hopf - _REACH * span, hopf + _REACH * span, sx,
+        seed.period,
+    )  # fmt: skip
     try:
-        branch.onset = stick_onset(back, param, h_max)
+        first, tangent = problem.start(seed.state, seed.period, value, side)
     except NoPeriodicResponse as err:
-        branch.failure = str(err)
+        branch.failure = f"the first cycle does not correct: {err}"
         return branch
-    branch.cycles.append(branch.onset)
+    points, special = problem.finish(*walk(problem, first, tangent))
+    branch.cycles += [p.cycle() for p in points[1:]]
+    branch.special = special
+    if special[-1].kind == "stick_onset":
+        branch.onset = branch.cycles[-1]
+    else:
+        branch.failure = f"no stick onset: the walk ends ({special[-1].kind}: {special[-1].detail})"
     return branch

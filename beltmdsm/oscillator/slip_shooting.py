@@ -76,6 +76,20 @@ def _shoot_slip(system, x, T, max_iter, tol):
     return _cycle(system, x, mode, run, residual, tol)
 
 
+def least_speed(c):
+    """The pure-slip cycle ``c`` shot again from where its slip speed is least (the
+    section ``slip_acceleration = 0`` has a second point, where it is largest, which
+    Newton's method may have found; the stick onset and the continuation of a cycle,
+    `beltmdsm.continuation.oscillator_cycle`, follow the least)."""
+    k, p = c.system.kernels, c.system.p
+    samples: list = []
+    flow(c.system, 0.0, c.state, c.period, mode=c.mode, dt=c.period / 2000, samples=samples)
+    ys = np.concatenate([y for _, y, _ in samples])
+    speed = [c.mode * k.slip_velocity(0.0, y, p) for y in ys]
+    tol = dict(rtol=1e-11, atol=1e-11)
+    return _shoot_slip(c.system, ys[int(np.argmin(speed))], c.period, 30, tol)
+
+
 def _mode(system, x):
     v = system.kernels.slip_velocity(0.0, x, system.p)
     return 1 if v > 0.0 else -1
