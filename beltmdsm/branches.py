@@ -19,7 +19,12 @@ from typing import Any
 from ._calling import public
 from .continuation import branch as forced
 from .continuation.branch_result import Branch, record_points
-from .continuation.oscillator_branch import continue_oscillator_branch, oscillator_branch
+from .continuation.oscillator_branch import (
+    continue_oscillator_branch,
+    continue_oscillator_cycle,
+    oscillator_branch,
+)
+from .continuation.oscillator_cycle import OscillatorCyclePoint
 from .continuation.oscillator_forced import OscillatorPoint
 from .continuation.settings import ContinuationSettings
 from .cycles.branch import cycle_branch, cycle_branch_from
@@ -140,12 +145,15 @@ def continue_branch(
 
     Parameters
     ----------
-    start : PeriodicResponse, Response or OscillatorPoint
+    start : PeriodicResponse, Response, OscillatorPoint, Cycle or OscillatorCyclePoint
         The paper's: from `beltmdsm.periodic.shooting.periodic_response`. Another
         model's forced response: what ``beltmdsm.periodic_response`` returns for it
         (`beltmdsm.oscillator.forced.Response`), or a point of its branch
         (`beltmdsm.continuation.oscillator_forced.OscillatorPoint`: ``b.points[-1]``
         continues ``b`` from its end, ``b.point_near(s.value)`` from a special point).
+        Another model's pure-slip self-excited cycle: what ``beltmdsm.cycle`` returns
+        for it (`beltmdsm.oscillator.cycle.Cycle`), or a point of its branch
+        (`beltmdsm.continuation.oscillator_cycle.OscillatorCyclePoint`).
     param : str
         A model parameter.
     lo, hi : float
@@ -162,15 +170,16 @@ def continue_branch(
     Branch
         ``kind = "forced"`` (`beltmdsm.continuation.branch.continue_branch`; another
         model's: `beltmdsm.continuation.oscillator_branch.continue_oscillator_branch`)
-        or ``"cycle"`` (`beltmdsm.cycles.branch.cycle_branch_from`).
+        or ``"cycle"`` (`beltmdsm.cycles.branch.cycle_branch_from`; another model's:
+        `beltmdsm.continuation.oscillator_branch.continue_oscillator_cycle`).
 
     Raises
     ------
     ValueError
         For an unknown parameter, a bad range or a start outside it.
     beltmdsm.errors.Unsupported
-        A self-excited cycle of another model than the paper's (the driver has no
-        cycle problem for the generic runtime); ``backend`` with another model.
+        A self-excited cycle of another model with a stick phase (the generic runtime's
+        cycle problem continues pure-slip cycles); ``backend`` with another model.
 
     See Also
     --------
@@ -192,19 +201,15 @@ def continue_branch(
     >>> more.kind, more.model.model, more.value_range()
     ('forced', 'belt_1dof', [2.0, 2.1])
     """
-    if isinstance(start, OscillatorCycle):
-        raise Unsupported(
-            f"continue_branch: model {start.system.name!r}: a self-excited cycle of another "
-            "model than the paper's has no continuation problem on the driver "
-            "(`branch --model` follows its cycles from the Hopf points of steady sliding)"
-        )
-    if isinstance(start, (Response, OscillatorPoint)):
+    if isinstance(start, (Response, OscillatorPoint, OscillatorCycle, OscillatorCyclePoint)):
         if backend is not None:
             raise Unsupported(
                 f"continue_branch: backend={backend!r} applies to the paper's model, not "
                 f"to model {start.system.name!r} (the generic runtime, beltmdsm/oscillator/)"
             )
         forced._check_record(record)
+        if isinstance(start, (OscillatorCycle, OscillatorCyclePoint)):
+            return continue_oscillator_cycle(start, param, lo, hi, record=record, settings=settings)
         return continue_oscillator_branch(start, param, lo, hi, record=record, settings=settings)
     if not getattr(start, "autonomous", False):
         return forced.continue_branch(

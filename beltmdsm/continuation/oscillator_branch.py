@@ -1,11 +1,14 @@
-"""The branch of a derived model's forced response (``beltmdsm.branch`` of another model).
+"""The branch of a derived model's forced response (``beltmdsm.branch`` of another model),
+and of its self-excited cycles (``beltmdsm.continue_branch`` of its cycle).
 
 `oscillator_branch` shoots the response at the model's value of the parameter
 (`beltmdsm.oscillator.forced.forced_response`) and walks
 `beltmdsm.continuation.oscillator_forced.OscillatorForcedProblem` both ways on the one
 driver (`beltmdsm.continuation.driver`). The result is a `Branch` of ``kind =
 "forced"``: `OscillatorBranch`, whose JSON, table, ``repr`` and plot name the model and
-its states (``x``, ``x_dot``), never the paper's X1, X2.
+its states (``x``, ``x_dot``), never the paper's X1, X2. `continue_oscillator_cycle`
+walks `beltmdsm.continuation.oscillator_cycle.OscillatorCycleProblem` both ways from a
+pure-slip cycle: an `OscillatorBranch` of ``kind = "cycle"``.
 """
 
 from __future__ import annotations
@@ -19,15 +22,22 @@ import numpy as np
 from ..errors import Unsupported
 from ..model import Model
 from ..oscillator.api import system_of
+from ..oscillator.cycle import Cycle
 from ..oscillator.forced import Response, forced_response
+from ..oscillator.slip_shooting import least_speed
 from ..oscillator.system import System
 from .branch_result import Branch, record_points
 from .driver import join, walk
+from .oscillator_cycle import DETECTS as CYCLE_DETECTS
+from .oscillator_cycle import OscillatorCyclePoint, OscillatorCycleProblem
 from .oscillator_forced import OscillatorForcedProblem, OscillatorPoint
 from .problem import range_end
 from .settings import FORCED_SETTINGS, ContinuationSettings, as_settings
 
-__all__ = ["OscillatorBranch", "oscillator_branch", "continue_oscillator_branch", "forced_system"]
+__all__ = [
+    "OscillatorBranch", "oscillator_branch", "continue_oscillator_branch",
+    "continue_oscillator_cycle", "forced_system",
+]  # fmt: skip
 
 
 class OscillatorBranch(Branch):
@@ -56,6 +66,7 @@ class OscillatorBranch(Branch):
 
         lo, hi = self.value_range() if self.points else (math.nan, math.nan)
         what = "T" if self.periods == 1 else f"{self.periods}T"
+        what = "self-excited cycles" if self.kind == "cycle" else f"{what}-periodic response"
         lines = [
             f"{label(s.kind)} at {self.param} = {s.value:.6g} (+- {s.accuracy:.0e})"
             + (f", {s.frequency:.4g} rad/s" if s.frequency is not None else "")
@@ -63,7 +74,7 @@ class OscillatorBranch(Branch):
             for s in self.special
         ]
         return block(
-            f"Branch({self.param!r}, {what}-periodic response, {self.model!r}; "
+            f"Branch({self.param!r}, {what}, {self.model!r}; "
             f"{self.model.friction} friction; {len(self.points)} points, {self.param} from "
             f"{lo:.6g} to {hi:.6g}): stable in {intervals(self.stable_ranges())}",
             lines,
@@ -79,7 +90,7 @@ class OscillatorBranch(Branch):
             "param": self.param,
             "periods": self.periods,
             "kind": self.kind,
-            "detects": list(DETECTS),
+            "detects": list(CYCLE_DETECTS if self.kind == "cycle" else DETECTS),
             "range": self.value_range(),
             "parts": [p.as_dict() for p in self.parts()],
             "stable_ranges": self.stable_ranges(),
@@ -306,3 +317,97 @@ def _both_ways(model, system, state, periods, param, lo, hi, record, settings):
     points, special = join(*walks)
     found = OscillatorBranch(param, periods, model, points, special, kind="forced")
     return record_points(found, record)
+
+
+def continue_oscillator_cycle(
+    start: Cycle | OscillatorCyclePoint,
+    param: str,
+    lo: float,
+    hi: float,
+    *,
+    record: Callable[[Any], float | Mapping[str, float]] | None = None,
+    settings: ContinuationSettings | None = None,
+) -> OscillatorBranch:
+    """The branch of a derived model's pure-slip self-excited cycle through ``start``,
+    both ways (`beltmdsm.continuation.oscillator_cycle.OscillatorCycleProblem`).
+
+    Each way ends at the range's bound, at the stick onset (the grazing cycle its last
+    point), at the Hopf point (the cycle shrinks onto steady sliding) or where no step
+    converges; folds, period doublings and Neimark-Sacker points are located on the way.
+
+    Parameters
+    ----------
+    start : Cycle or OscillatorCyclePoint
+        A pure-slip cycle (what ``beltmdsm.cycle`` returns for another model,
+        `beltmdsm.oscillator.cycles.self_excited_cycle`) or a point of such a branch.
+    param : str
+        One of the model's parameters.
+    lo, hi : float
+        The range, holding the start's value of ``param``.
+    record, settings
+        As for `oscillator_branch` (default
+        `beltmdsm.continuation.settings.CYCLE_SETTINGS`).
+
+    Returns
+    -------
+    OscillatorBranch
+        ``kind = "cycle"``.
+
+    Raises
+    ------
+    beltmdsm.errors.Unsupported
+        A cycle with a stick phase (its phase condition is the end of a stick, not this
+        problem's section).
+    ValueError
+        An unknown parameter, a range that does not hold the start's value.
+
+    See Also
+    --------
+    beltmdsm.branches.continue_branch : the public entry, which routes such a start here.
+
+    Examples
+    --------
+    The unstable slip cycles of the Stribeck belt, down to their Hopf point and up to
+    their stick onset:
+
+    >>> from beltmdsm import Model, cycle
+    >>> c = cycle(Model(model="belt_1dof", friction="stribeck", Vb=2.5),
+    ...           guess=[3.0182035, 2.0991444], period=6.3203187)
+    >>> b = continue_oscillator_cycle(c, "Vb", 1.5, 3.5)
+    >>> [(s.kind, round(s.value, 5)) for s in b.special]
+    [('hopf', 1.99572), ('stick_onset', 2.90039)]
+    >>> b.kind, b.stable_ranges()
+    ('cycle', [])
+    """
+    system = start.system
+    if param not in system.params:
+        raise ValueError(
+            f"param must be a parameter of model {system.name!r} "
+            f"({', '.join(system.params)}); got {param!r}"
+        )
+    if isinstance(start, Cycle):
+        if start.sticks or start.switches:
+            raise Unsupported(
+                f"continue_branch: model {system.name!r}: a self-excited cycle with "
+                f"{len(start.switches)} switches a period: the driver's cycle problem of "
+                "the generic runtime continues pure-slip cycles (its phase condition is the "
+                "section of least slip speed), not stick-slip ones"
+            )
+        start = least_speed(start)
+    lo, hi = float(lo), float(hi)
+    p0 = system.params[param]
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo <= p0 <= hi and lo < hi):
+        raise ValueError(f"the start's {param} = {p0:g} must lie in [{lo:g}, {hi:g}]")
+    sx = 1.0 + float(np.max(np.abs(start.state)))
+    problem = OscillatorCycleProblem(system, param, start.mode, lo, hi, sx, start.period)
+    problem.settings = as_settings(settings, problem.default_settings)
+    walks = []
+    for direction, bound in ((1.0, hi), (-1.0, lo)):
+        first, tangent = problem.start(start.state, start.period, p0, direction)
+        if p0 == bound:  # a start on a bound ends there that way
+            walks.append(([first], [range_end(first, p0)]))
+        else:
+            walks.append(problem.finish(*walk(problem, first, tangent)))
+    points, special = join(*walks)
+    model = Model(model=system.name, friction=system.friction, **system._given)
+    return record_points(OscillatorBranch(param, 1, model, points, special, kind="cycle"), record)

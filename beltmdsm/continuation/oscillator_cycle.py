@@ -147,7 +147,8 @@ class OscillatorCyclePoint:
 
     Examples
     --------
-    >>> from beltmdsm import Model, cycle, continue_branch
+    >>> from beltmdsm import Model, cycle
+    >>> from beltmdsm.branches import continue_branch
     >>> c = cycle(Model(model="belt_1dof", friction="stribeck", Vb=2.5),
     ...           guess=[3.0182035, 2.0991444], period=6.3203187)
     >>> p = continue_branch(c, "Vb", 2.45, 2.55).point_near(2.5)
@@ -383,18 +384,25 @@ class OscillatorCycleProblem(Problem):
         if new.curvature <= 0.0 < prev.curvature:
             self.end = (prev, self._hopf(prev, new))
             return []
-        if new.margin > 0.0 or prev.margin <= 0.0:
+        if new.margin > 0.0 or new.margin > prev.margin:
             return super().special_between(prev, new, tangent, ds, settings)
+        if prev.margin <= 0.0:  # from the grazing cycle itself, away from the slip side
+            self.end = (prev, self._onset_special(prev, prev, 0.0))
+            return []
         on = self._locate_onset(prev, tangent, ds, new, settings)
         s_on = float(tangent @ (self.z(on) - self.z(prev)))
         found = super().special_between(prev, on, tangent, s_on, settings) if s_on > 0 else []
-        sp = SpecialPoint(
-            "stick_onset", on.value, self._onset_accuracy, None, on.multipliers, prev.stable,
-            None, "the cycle grazes v_r = 0: past it the mass sticks (the branch of pure-slip "
-            "cycles ends)",
-        )  # fmt: skip
+        sp = self._onset_special(prev, on, self._onset_accuracy)
         self.end = (on, sp)
         return found
+
+    @staticmethod
+    def _onset_special(prev, on, accuracy) -> SpecialPoint:
+        return SpecialPoint(
+            "stick_onset", on.value, accuracy, None, on.multipliers, prev.stable, None,
+            "the cycle grazes v_r = 0: past it the mass sticks (the branch of pure-slip "
+            "cycles ends)",
+        )  # fmt: skip
 
     @staticmethod
     def _hopf(prev, new) -> SpecialPoint:
