@@ -248,6 +248,7 @@ def _branch(b) -> dict:
             for c in b.cycles
         ],  # fmt: skip
         "stick_onset": None if b.onset is None else b.onset.system.params[b.param],
+        "special_points": [s.as_dict() for s in b.special],
         "failure": b.failure,
         **({"degenerate": True, "note": b.note} if b.degenerate else {}),
     }
