@@ -22,7 +22,10 @@ The implementations:
 * `beltmdsm.continuation.equilibrium.EquilibriumProblem`: steady sliding
   (``F = f(x, p)``), its Hopf points.
 * `beltmdsm.continuation.oscillator_forced.OscillatorForcedProblem`: another derived
-  model's forced response (``F = P_p(x) - x`` of its hybrid run), its stick onset.
+  model's forced response (``F = P_p(x) - x`` of its hybrid run), its stick onset;
+* `beltmdsm.continuation.oscillator_cycle.OscillatorCycleProblem`: another derived
+  model's pure-slip self-excited cycle (``F = (phi_T(x) - x, h(x))``, the period
+  unknown), its stick onset and Hopf end.
 
 How to add one: docs/explanation/layout.md, "Adding a continuation problem".
 """

@@ -223,7 +223,7 @@ def hopf_branch(
         A Hopf point in ``param`` (`beltmdsm.oscillator.hopf_points`).
     span : float
         The length of the range looked in, > 0 (the seeds sit 1 % and 3 % of it off the
-        Hopf point; the branch is stepped along by 2 % of it).
+        Hopf point; the walk's range reaches `_REACH` times it either side).
     bounds : (float, float), optional
         The range looked in: a degenerate branch (module docstring) is followed to its
         end on the Hopf point's unstable side (by default ``span`` beyond the Hopf point).
@@ -234,11 +234,18 @@ def hopf_branch(
 
     Examples
     --------
-    The subcritical branch of the Stribeck belt (about 30 s: each cycle is shot with
-    its variational equations in Python; ``branch --model belt_1dof`` in
-    tests/beltmdsm/cli/test_model_flag.py runs it):
+    The subcritical branch of Hoffmann's model under Stribeck's law, walked to its stick
+    onset:
 
-    >>> from beltmdsm.oscillator import System
+    >>> from beltmdsm.oscillator import System, hopf_points
+    >>> s = System("hoffmann", friction="stribeck")
+    >>> b = hopf_branch(s, "Vb", float(hopf_points(s, "Vb", 0.2, 8.0)[0]), 0.1)
+    >>> b.criticality, [(p.kind, round(p.value, 6)) for p in b.special]
+    ('subcritical', [('stick_onset', 0.9689)])
+
+    The Stribeck belt's (about 7 s of CPU: each cycle is run with its variational
+    equations in Python; ``branch --model belt_1dof`` in
+    tests/beltmdsm/cli/test_model_flag.py runs it):
 
     >>> b = hopf_branch(System("belt_1dof", friction="stribeck"), "Vb", 1.9957202, 4.5)
     ... # doctest: +SKIP
