@@ -9,7 +9,8 @@ residual ``G = (phi_T(x) - x) / sx`` and the phase condition ``H = h(x) / hs``,
 `beltmdsm.oscillator.slip_shooting` shoots); the Jacobian ``[M - I, f(phi_T), dphi/dp;
 grad h, 0, dh/dp]``, ``M`` the monodromy by the variational equations, ``grad h = J^T
 w`` by the derived Jacobian and slip gradient, the parameter column by central
-differences (the generic runtime has no parametric sensitivities).
+differences (the generic runtime has no parametric sensitivities), fresh at every
+iterate of the corrector (`OscillatorCycleProblem.solve`).
 
 **The run.** A pure-slip cycle stays in its slip mode ``m``: the run is the slip mode's
 derived field, integrated by the hybrid flow's own DOP853 stepper
@@ -47,9 +48,11 @@ from numpy.typing import NDArray
 from ..errors import NoPeriodicResponse
 from ..oscillator import _stepper
 from ..oscillator.cycle import NEWTON_TOL, Cycle
+from ..oscillator.equilibria import hopf_points
 from ..oscillator.orbit import orbit_observables
 from ..oscillator.system import System
 from .branch_result import SpecialPoint
+from .corrector import newton
 from .problem import Problem, Residual, Step, failed, range_end
 from .settings import CYCLE_SETTINGS
 from .special import regula_falsi
@@ -336,6 +339,14 @@ class OscillatorCycleProblem(Problem):
         J[:, n + 1] = column
         return J
 
+    def solve(self, z_pred, extra, column=None, fresh=False) -> Step:
+        """The driver's corrector with the parameter column fresh at every iterate (two
+        plain runs): with a neighbour's column Newton's method converges only linearly
+        here (by a factor of the step's order: 6 to 7 iterations a step on the Stribeck
+        belt), never counts as easy, and the step never grows; fresh, 3 to 4 iterations
+        and a quarter of the steps (benchmarks/bench_oscillator_cycle_branch.py)."""
+        return newton(self, z_pred, extra, None, True)
+
     def solution(self, data, iteration) -> Step:
         x, T, value = data[:3]
         return Step(self.z_of(x, T, value), value, self.jacobian(data), iteration, data)
@@ -404,17 +415,31 @@ class OscillatorCycleProblem(Problem):
             "cycles ends)",
         )  # fmt: skip
 
-    @staticmethod
-    def _hopf(prev, new) -> SpecialPoint:
+    def _hopf(self, prev, new) -> SpecialPoint:
         """Through the Hopf point: the amplitude (the curvature of the slip speed at the
         section) passes 0 between ``prev`` and ``new`` and the section's point turns from
-        the least slip speed to the largest. Its value by the secant of the curvature;
-        its accuracy bounded by the step (the parameter turns there, as at a fold)."""
+        the least slip speed to the largest. The parameter is quadratic in the amplitude
+        there (it turns, as at a fold): its vertex through the two points estimates the
+        Hopf point, which steady sliding's derived Hurwitz determinant then gives to
+        rounding (`beltmdsm.oscillator.hopf_points`, within a step of the estimate);
+        where it has none there, the estimate stands, its accuracy the step."""
         a, b = prev.curvature, new.curvature
-        value = prev.value + a / (a - b) * (new.value - prev.value)
+        c = (prev.value - new.value) / (a * a - b * b)
+        guess = prev.value - c * a * a
+        width = max(abs(new.value - prev.value), abs(prev.value - guess), 1e-12)
+        found = hopf_points(self.system, self.param, guess - width, guess + width, 16)
+        if found.size:
+            value, accuracy = (
+                float(found[np.argmin(np.abs(found - guess))]),
+                1e-12 * max(1.0, abs(guess)),
+            )
+            how = "at steady sliding's Hopf point"
+        else:
+            value, accuracy = guess, width
+            how = "near a Hopf point (none of steady sliding's within the step)"
         return SpecialPoint(
-            "hopf", value, max(abs(new.value - prev.value), 1e-15), None, prev.multipliers,
-            prev.stable, None, "the cycle shrinks onto steady sliding: the branch ends",
+            "hopf", value, accuracy, None, prev.multipliers, prev.stable, None,
+            f"the cycle shrinks onto steady sliding {how}: the branch ends",
         )  # fmt: skip
 
     def _locate_onset(self, prev, tangent, ds, new, settings):
