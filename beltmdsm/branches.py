@@ -24,7 +24,7 @@ from .continuation.oscillator_branch import (
     continue_oscillator_cycle,
     oscillator_branch,
 )
-from .continuation.oscillator_cycle import OscillatorCyclePoint
+from .continuation.oscillator_cycle_point import OscillatorCyclePoint
 from .continuation.oscillator_forced import OscillatorPoint
 from .continuation.settings import ContinuationSettings
 from .cycles.branch import cycle_branch, cycle_branch_from
@@ -151,9 +151,9 @@ def continue_branch(
         (`beltmdsm.oscillator.forced.Response`), or a point of its branch
         (`beltmdsm.continuation.oscillator_forced.OscillatorPoint`: ``b.points[-1]``
         continues ``b`` from its end, ``b.point_near(s.value)`` from a special point).
-        Another model's pure-slip self-excited cycle: what ``beltmdsm.cycle`` returns
-        for it (`beltmdsm.oscillator.cycle.Cycle`), or a point of its branch
-        (`beltmdsm.continuation.oscillator_cycle.OscillatorCyclePoint`).
+        Another model's self-excited cycle: what ``beltmdsm.cycle`` returns for it
+        (`beltmdsm.oscillator.cycle.Cycle`), or a point of its branch
+        (`beltmdsm.continuation.oscillator_cycle_point.OscillatorCyclePoint`).
     param : str
         A model parameter.
     lo, hi : float
@@ -178,8 +178,7 @@ def continue_branch(
     ValueError
         For an unknown parameter, a bad range or a start outside it.
     beltmdsm.errors.Unsupported
-        A self-excited cycle of another model with a stick phase (the generic runtime's
-        cycle problem continues pure-slip cycles); ``backend`` with another model.
+        ``backend`` with another model.
 
     See Also
     --------

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -24,6 +25,7 @@ from ..model import Model
 from ..oscillator.api import system_of
 from ..oscillator.cycle import Cycle
 from ..oscillator.forced import Response, forced_response
+from ..oscillator.hybrid import flow
 from ..oscillator.slip_shooting import least_speed
 from ..oscillator.system import System
 from .branch_result import Branch, record_points
@@ -328,18 +330,21 @@ def continue_oscillator_cycle(
     record: Callable[[Any], float | Mapping[str, float]] | None = None,
     settings: ContinuationSettings | None = None,
 ) -> OscillatorBranch:
-    """The branch of a derived model's pure-slip self-excited cycle through ``start``,
-    both ways (`beltmdsm.continuation.oscillator_cycle.OscillatorCycleProblem`).
+    """The branch of a derived model's self-excited cycle through ``start``, both ways
+    (`beltmdsm.continuation.oscillator_cycle.OscillatorCycleProblem`).
 
-    Each way ends at the range's bound, at the stick onset (the grazing cycle its last
-    point), at the Hopf point (the cycle shrinks onto steady sliding) or where no step
-    converges; folds, period doublings and Neimark-Sacker points are located on the way.
+    Each way ends at the range's bound or where no step converges; a pure-slip branch
+    at its stick onset (the grazing cycle its last point) or its Hopf point (the cycle
+    shrinks onto steady sliding), a stick-slip one where its switches change
+    (``grazing``). Folds, period doublings and Neimark-Sacker points are located on
+    the way.
 
     Parameters
     ----------
     start : Cycle or OscillatorCyclePoint
-        A pure-slip cycle (what ``beltmdsm.cycle`` returns for another model,
-        `beltmdsm.oscillator.cycles.self_excited_cycle`) or a point of such a branch.
+        A cycle, pure slip or with stick phases (what ``beltmdsm.cycle`` returns for
+        another model, `beltmdsm.oscillator.cycles.self_excited_cycle`), or a point of
+        such a branch.
     param : str
         One of the model's parameters.
     lo, hi : float
@@ -355,11 +360,10 @@ def continue_oscillator_cycle(
 
     Raises
     ------
-    beltmdsm.errors.Unsupported
-        A cycle with a stick phase (its phase condition is the end of a stick, not this
-        problem's section).
     ValueError
         An unknown parameter, a range that does not hold the start's value.
+    NoPeriodicResponse
+        Where the start does not correct at its value.
 
     See Also
     --------
@@ -378,6 +382,13 @@ def continue_oscillator_cycle(
     [('hopf', 1.99572), ('stick_onset', 2.90039)]
     >>> b.kind, b.stable_ranges()
     ('cycle', [])
+
+    The stable stick-slip cycle of the same belt, one stick a period throughout:
+
+    >>> b = continue_oscillator_cycle(cycle(Model(model="belt_1dof", friction="stribeck",
+    ...                                           Vb=1.5)), "Vb", 1.4, 1.6)
+    >>> [s.kind for s in b.special], {p.n_sticks for p in b.points}, b.stable_ranges()
+    (['range', 'range'], {1}, [[1.4, 1.6]])
     """
     system = start.system
     if param not in system.params:
@@ -385,21 +396,17 @@ def continue_oscillator_cycle(
             f"param must be a parameter of model {system.name!r} "
             f"({', '.join(system.params)}); got {param!r}"
         )
+    hybrid = bool(start.switches)
     if isinstance(start, Cycle):
-        if start.sticks or start.switches:
-            raise Unsupported(
-                f"continue_branch: model {system.name!r}: a self-excited cycle with "
-                f"{len(start.switches)} switches a period: the driver's cycle problem of "
-                "the generic runtime continues pure-slip cycles (its phase condition is the "
-                "section of least slip speed), not stick-slip ones"
-            )
-        start = least_speed(start)
+        start = _on_section(start)
     lo, hi = float(lo), float(hi)
     p0 = system.params[param]
     if not (np.isfinite(lo) and np.isfinite(hi) and lo <= p0 <= hi and lo < hi):
         raise ValueError(f"the start's {param} = {p0:g} must lie in [{lo:g}, {hi:g}]")
     sx = 1.0 + float(np.max(np.abs(start.state)))
-    problem = OscillatorCycleProblem(system, param, start.mode, lo, hi, sx, start.period)
+    problem = OscillatorCycleProblem(
+        system, param, start.mode, lo, hi, sx, start.period, hybrid=hybrid
+    )
     problem.settings = as_settings(settings, problem.default_settings)
     walks = []
     for direction, bound in ((1.0, hi), (-1.0, lo)):
@@ -411,3 +418,22 @@ def continue_oscillator_cycle(
     points, special = join(*walks)
     model = Model(model=system.name, friction=system.friction, **system._given)
     return record_points(OscillatorBranch(param, 1, model, points, special, kind="cycle"), record)
+
+
+def _on_section(c: Cycle):
+    """``c`` on its problem's section: a pure-slip cycle shot again from where its slip
+    speed is least (`beltmdsm.oscillator.slip_shooting.least_speed`); one with a stick
+    phase at the sample of its run (T / 2000 apart) where the slip speed is largest,
+    its slip mode there (`OscillatorCycleProblem.start` corrects it)."""
+    if not c.switches:
+        return least_speed(c)
+    samples: list = []
+    flow(c.system, 0.0, c.state, c.period, mode=c.mode, dt=c.period / 2000, samples=samples,
+         rtol=1e-11, atol=1e-11)  # fmt: skip
+    k, p = c.system.kernels, c.system.p
+    best = max(
+        ((md * float(k.slip_velocity(0.0, y, p)), md, y) for _, ys, md in samples
+         if md in (1, -1) for y in ys),
+        key=lambda item: item[0],
+    )  # fmt: skip
+    return SimpleNamespace(state=best[2], mode=best[1], period=c.period, switches=c.switches)

@@ -1,45 +1,46 @@
-"""Another model's self-excited pure-slip cycle as a continuation problem (issue 39).
+"""Another model's self-excited cycle as a continuation problem (issue 39).
 
 `OscillatorCycleProblem` (`beltmdsm.continuation.problem.Problem`) continues a cycle of
-an unforced `beltmdsm.oscillator.System` that slips throughout, as
-`beltmdsm.cycles.continuation.CycleProblem` does the paper's: the unknowns ``z = (x /
-sx, T / sT, p / sp)``, a state on the cycle, its period and the parameter last; the
-residual ``G = (phi_T(x) - x) / sx`` and the phase condition ``H = h(x) / hs``,
-``h = slip_acceleration`` (the section where the slip speed ``m v_r`` is least, as
-`beltmdsm.oscillator.slip_shooting` shoots); the Jacobian ``[M - I, f(phi_T), dphi/dp;
-grad h, 0, dh/dp]``, ``M`` the monodromy by the variational equations, ``grad h = J^T
-w`` by the derived Jacobian and slip gradient, the parameter column by central
-differences (the generic runtime has no parametric sensitivities), fresh at every
-iterate of the corrector (`OscillatorCycleProblem.solve`).
+an unforced `beltmdsm.oscillator.System`, as `beltmdsm.cycles.continuation.CycleProblem`
+does the paper's: the unknowns ``z = (x / sx, T / sT, p / sp)``, a state on the cycle,
+its period and the parameter last; the residual ``G = (phi_T(x) - x) / sx`` and the
+phase condition ``H = h(x) / hs``, ``h = slip_acceleration`` (a section where the slip
+speed ``m v_r`` is extremal: its least on a pure-slip cycle, as
+`beltmdsm.oscillator.slip_shooting` shoots; its largest on a cycle with a stick phase,
+in the middle of a slip phase, away from every switch); the Jacobian ``[M - I,
+f(phi_T), dphi/dp; grad h, 0, dh/dp]``, ``M`` the monodromy by the variational
+equations, ``grad h = J^T w`` by the derived Jacobian and slip gradient, the parameter
+column by central differences (the generic runtime has no parametric sensitivities),
+fresh at every iterate of the corrector (`OscillatorCycleProblem.solve`).
 
-**The run.** A pure-slip cycle stays in its slip mode ``m``: the run is the slip mode's
-derived field, integrated by the hybrid flow's own DOP853 stepper
-(`beltmdsm.oscillator._stepper`, the steps `beltmdsm.oscillator.hybrid.flow` takes while
-no surface is crossed: the same numbers), with no switching surface armed. The field
-is smooth across ``v_r = 0``, so past the onset of stick the run goes on along the
-smooth continuation of the cycle (a *virtual* cycle, which the hybrid system does not
-have: there it sticks); the least slip speed ``margin = m v_r(x)`` then changes sign
-smoothly, and the driver locates its zero as it locates a fold (`regula_falsi` on the
-arclength), polished by the corrector with ``margin = 0`` in place of the arclength's
-equation. No saltation matrix enters: a pure-slip cycle switches nowhere.
+**The run.** A cycle with a stick phase (``hybrid``) is run by the hybrid flow
+(`beltmdsm.oscillator.hybrid.flow`), its monodromy with the saltation matrix at every
+switch, as `beltmdsm.continuation.oscillator_forced` runs a forced response; a change
+of its switch structure ends the branch (``grazing``, not followed across). A pure-slip
+cycle stays in its slip mode ``m``: the run is the slip mode's derived field,
+integrated by the hybrid flow's own DOP853 stepper (`beltmdsm.oscillator._stepper`, the
+steps `beltmdsm.oscillator.hybrid.flow` takes while no surface is crossed: the same
+numbers), with no switching surface armed. The field is smooth across ``v_r = 0``, so
+past the onset of stick the run goes on along the smooth continuation of the cycle (a
+*virtual* cycle, which the hybrid system does not have: there it sticks); the least
+slip speed ``margin = m v_r(x)`` then changes sign smoothly, and the driver locates its
+zero as it locates a fold (`regula_falsi` on the arclength), polished by the corrector
+with ``margin = 0`` in place of the arclength's equation.
 
 **Special points.** ``fold``, ``period_doubling``, ``neimark_sacker`` and
 ``branch_point`` by the driver (`beltmdsm.continuation.special`) on the multipliers
-without the trivial one; ``stick_onset`` (the cycle first touches ``v_r = 0``), which
-ends the branch at the grazing cycle (its points are real cycles of the hybrid system
-only up to there); ``failed`` where the largest multiplier passes `MULTIPLIER_LIMIT`
-(single shooting amplifies rounding by it) or the cycle shrinks onto steady sliding
-(the Hopf point: the phase condition degenerates there), or no step converges.
-
-A cycle with a stick phase is no cycle of this problem (its phase condition is the end
-of a stick, `beltmdsm.oscillator.stick_slip_shooting`); it is refused where it enters
-(`beltmdsm.continuation.oscillator_branch.continue_oscillator_cycle`).
+without the trivial one; on a pure-slip branch ``stick_onset`` (the cycle first touches
+``v_r = 0``), which ends it at the grazing cycle (its points are real cycles of the
+hybrid system only up to there), and ``hopf`` where the cycle shrinks onto steady
+sliding (the section's curvature passes 0; the phase condition degenerates there);
+``grazing`` where a stick-slip cycle's switches change; ``failed`` where the largest
+multiplier passes `MULTIPLIER_LIMIT` (single shooting amplifies rounding by it) or no
+step converges.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -47,20 +48,19 @@ from numpy.typing import NDArray
 
 from ..errors import NoPeriodicResponse
 from ..oscillator import _stepper
-from ..oscillator.cycle import NEWTON_TOL, Cycle
+from ..oscillator.cycle import NEWTON_TOL
 from ..oscillator.equilibria import hopf_points
-from ..oscillator.orbit import orbit_observables
+from ..oscillator.hybrid import flow
 from ..oscillator.system import System
 from .branch_result import SpecialPoint
 from .corrector import newton
+from .oscillator_cycle_point import TOL, OscillatorCyclePoint, split
 from .problem import Problem, Residual, Step, failed, range_end
 from .settings import CYCLE_SETTINGS
 from .special import regula_falsi
 
 __all__ = ["OscillatorCyclePoint", "OscillatorCycleProblem", "slip_run", "TOL", "DETECTS"]
 
-#: The integrator's tolerances (rtol = atol), as `beltmdsm.oscillator.slip_shooting`'s.
-TOL = 1e-11
 #: Single shooting ends where the largest multiplier passes this (as the paper's
 #: `beltmdsm.cycles.continuation.MULTIPLIER_LIMIT`).
 MULTIPLIER_LIMIT = 1e3
@@ -71,8 +71,13 @@ COLLAPSE = 1e-4
 _SECTION_TOL = 1e-11
 #: Relative step of the central differences in the parameter.
 _P_STEP = 1e-6
+#: Why a step is refused where the cycle's switches change.
+_RESTRUCTURED = "the switch structure changes"
 #: The special points this problem detects (module docstring).
-DETECTS = ("fold", "period_doubling", "neimark_sacker", "branch_point", "stick_onset")
+DETECTS = (
+    "fold", "period_doubling", "neimark_sacker", "branch_point", "stick_onset", "hopf",
+    "grazing",
+)  # fmt: skip
 
 
 def slip_run(system: System, x, T: float, mode: int, variational: bool = True):
@@ -106,120 +111,8 @@ def slip_run(system: System, x, T: float, mode: int, variational: bool = True):
     return z[:m].copy(), (z[m:].reshape(m, m).copy() if variational else None)
 
 
-def split(M, f) -> tuple[complex, NDArray[np.complex128]]:
-    """``(trivial, others)``: the multiplier whose eigenvector lies closest to the field
-    ``f`` (as `beltmdsm.oscillator.cycle` picks it) and the others by decreasing modulus."""
-    w, V = np.linalg.eig(M)
-    V = V / np.linalg.norm(V, axis=0)
-    i = int(np.argmax(np.abs(V.conj().T @ (f / np.linalg.norm(f)))))
-    rest = np.delete(w, i)
-    return complex(w[i]), rest[np.argsort(-np.abs(rest), kind="stable")]
-
-
-@dataclass
-class OscillatorCyclePoint:
-    """One pure-slip cycle of another model on a branch.
-
-    Attributes
-    ----------
-    value : float
-    state : ndarray (2n,)
-        On the section where the slip speed is least.
-    period : float
-    multipliers : ndarray (2n-1,) complex
-        Without the trivial one, by decreasing modulus.
-    trivial_multiplier : complex
-    max_abs_multiplier : float
-    stable : bool
-    margin : float
-        The least slip speed ``m v_r`` (at ``state``): 0 at the stick onset.
-    curvature : float
-        ``d^2 (m v_r) / dt^2`` at ``state``: > 0 at the least slip speed; 0 at the Hopf
-        point, where the cycle shrinks onto steady sliding.
-    tangent : float
-        The parameter component of the unit tangent.
-    mode : int
-        The slip mode (+1 or -1).
-    monodromy : ndarray (2n, 2n)
-    system : System
-        The model at ``value``.
-
-    See Also
-    --------
-    beltmdsm.continuation.oscillator_cycle.OscillatorCycleProblem : makes them.
-
-    Examples
-    --------
-    >>> from beltmdsm import Model, cycle
-    >>> from beltmdsm.branches import continue_branch
-    >>> c = cycle(Model(model="belt_1dof", friction="stribeck", Vb=2.5),
-    ...           guess=[3.0182035, 2.0991444], period=6.3203187)
-    >>> p = continue_branch(c, "Vb", 2.45, 2.55).point_near(2.5)
-    >>> p.value, round(p.period, 6), p.stable, p.n_sticks
-    (2.5, 6.320319, False, 0)
-    >>> round(p.observables()["period"], 6), round(p.margin, 6)
-    (6.320319, 0.400856)
-    """
-
-    value: float
-    state: NDArray[np.float64]
-    period: float
-    multipliers: NDArray[np.complex128] = field(repr=False)
-    trivial_multiplier: complex = field(repr=False)
-    max_abs_multiplier: float
-    stable: bool
-    margin: float
-    curvature: float = field(repr=False)
-    tangent: float = field(repr=False)
-    mode: int = field(repr=False)
-    monodromy: NDArray[np.float64] = field(repr=False)
-    system: System = field(repr=False)
-    column: NDArray[np.float64] | None = field(default=None, repr=False)
-    recorded: dict[str, float] = field(default_factory=dict, repr=False)
-    _observed: dict[str, float] | None = field(default=None, repr=False)
-
-    #: A pure-slip cycle: no switch, no stick, no reversal.
-    n_sticks, n_reversals, switches, signature = 0, 0, (), ()
-
-    def observables(self, vb: float | None = None) -> dict[str, float]:
-        """The orbit's extremes (`beltmdsm.oscillator.orbit.orbit_observables`: the
-        states' and the slip velocity's ranges, ``max_abs_v_r`` the largest slip speed),
-        then ``period`` and ``max_abs_multiplier``; computed once (``vb`` unread)."""
-        if self._observed is None:
-            found = orbit_observables(self.system, self.state, self.period)
-            found["period"] = self.period
-            found["max_abs_multiplier"] = self.max_abs_multiplier
-            self._observed = found
-        return self._observed
-
-    def cycle(self) -> Cycle:
-        """The `beltmdsm.oscillator.cycle.Cycle` this point is (no switch)."""
-        y, M = self.state, self.monodromy
-        return Cycle(self.system, y, self.mode, self.period, self.multipliers,
-                     self.trivial_multiplier, M, [], 0, 0.0, TOL, TOL)  # fmt: skip
-
-    def as_dict(self) -> dict:
-        """For JSON: ``value``, ``state0``, ``state`` (by name), ``period``,
-        ``multipliers`` (pairs), ``trivial_multiplier``, ``max_abs_multiplier``,
-        ``stable``, ``margin``, ``n_sticks``, ``n_reversals``, ``observables``."""
-        return {
-            "value": self.value,
-            "state0": [float(v) for v in self.state],
-            "state": {n: float(v) for n, v in zip(self.system.states, self.state)},
-            "period": self.period,
-            "multipliers": [[float(z.real), float(z.imag)] for z in self.multipliers],
-            "trivial_multiplier": [self.trivial_multiplier.real, self.trivial_multiplier.imag],
-            "max_abs_multiplier": self.max_abs_multiplier,
-            "stable": self.stable,
-            "margin": self.margin,
-            "n_sticks": 0,
-            "n_reversals": 0,
-            "observables": self.observables(),
-        }
-
-
 class OscillatorCycleProblem(Problem):
-    """A derived model's pure-slip cycle in one parameter (module docstring).
+    """A derived model's self-excited cycle in one parameter (module docstring).
 
     Parameters
     ----------
@@ -231,6 +124,8 @@ class OscillatorCycleProblem(Problem):
     lo, hi : float
     sx, sT : float
         The scales of the state and of the period.
+    hybrid : bool
+        The cycles stick (run by the hybrid flow, on the section of largest slip speed).
 
     See Also
     --------
@@ -259,8 +154,9 @@ class OscillatorCycleProblem(Problem):
     default_settings = CYCLE_SETTINGS
     diverge_after = 2
 
-    def __init__(self, system: System, param: str, mode: int, lo, hi, sx, sT):
+    def __init__(self, system: System, param: str, mode: int, lo, hi, sx, sT, hybrid=False):
         self.system, self.param, self.mode = system, param, int(mode)
+        self.hybrid = bool(hybrid)
         self.lo, self.hi, self.sx, self.sT = float(lo), float(hi), float(sx), float(sT)
         self.sp = max((self.hi - self.lo) / 10.0, 1e-12)
         self.hs = 1.0
@@ -293,6 +189,17 @@ class OscillatorCycleProblem(Problem):
         s = self.at(value)
         return self.mode * float(s.kernels.slip_velocity(0.0, x, s.p))
 
+    def run(self, x, T, value, variational: bool = True):
+        """``(y, M, switches)`` of the run over ``T`` from ``x`` at ``value``: the slip
+        mode's (module docstring), or the hybrid flow's where the cycle sticks."""
+        if not self.hybrid:
+            return (*slip_run(self.at(value), x, T, self.mode, variational), [])
+        r = flow(self.at(value), 0.0, x, T, mode=self.mode, variational=variational,
+                 rtol=TOL, atol=TOL)  # fmt: skip
+        if r.status != "done":
+            raise NoPeriodicResponse(f"the run from the cycle's state stops: {r.message}")
+        return r.y, r.monodromy, list(r.switches)
+
     # -- the unknowns, the equations and the points
 
     def z(self, point) -> NDArray[np.float64]:
@@ -310,7 +217,7 @@ class OscillatorCycleProblem(Problem):
         x, T, value = self.unpack(z)
         if not T > 0.0:
             raise NoPeriodicResponse(f"the corrector's period {T:.3g} s is not positive")
-        y, M = slip_run(self.at(value), x, T, self.mode)
+        y, M, switches = self.run(x, T, value)
         G = (y - x) / self.sx
         H = self.section(x, value) / self.hs
         size = max(float(np.max(np.abs(G))), abs(H), abs(extra))
@@ -319,10 +226,10 @@ class OscillatorCycleProblem(Problem):
             and abs(H) <= _SECTION_TOL
             and iteration > 1
         )
-        return Residual(np.append(G, H), size, converged, (x, T, value, y, M))
+        return Residual(np.append(G, H), size, converged, (x, T, value, y, M, switches))
 
     def jacobian(self, data, column=None) -> NDArray[np.float64]:
-        x, T, value, y, M = data
+        x, T, value, y, M, _ = data
         n = x.size
         s = self.at(value)
         J = np.zeros((n + 1, n + 2))
@@ -332,8 +239,8 @@ class OscillatorCycleProblem(Problem):
         J[n, :n] = self.section_gradient(x, value) * self.sx / self.hs
         if column is None:
             h = _P_STEP * max(1.0, abs(value))
-            up = slip_run(self.at(value + h), x, T, self.mode, False)[0]
-            down = slip_run(self.at(value - h), x, T, self.mode, False)[0]
+            up = self.run(x, T, value + h, False)[0]
+            down = self.run(x, T, value - h, False)[0]
             dh = self.section(x, value + h) - self.section(x, value - h)
             column = np.append((up - down) / self.sx, dh / self.hs) * self.sp / (2.0 * h)
         J[:, n + 1] = column
@@ -354,7 +261,7 @@ class OscillatorCycleProblem(Problem):
     def point(self, step, tangent_p) -> OscillatorCyclePoint:
         return self.point_at(*step.data, tangent_p)
 
-    def point_at(self, x, T, value, y, M, tangent_p) -> OscillatorCyclePoint:
+    def point_at(self, x, T, value, y, M, switches, tangent_p) -> OscillatorCyclePoint:
         s = self.at(value)
         f = np.asarray(s.kernels.field(0.0, x, s.p, self.mode), dtype=float)
         trivial, rest = split(M, f)
@@ -363,7 +270,7 @@ class OscillatorCycleProblem(Problem):
             float(value), np.array(x, float), float(T), rest, trivial, biggest,
             bool(biggest < 1.0), self.margin(x, value),
             self.mode * float(self.section_gradient(x, value) @ f), float(tangent_p),
-            self.mode, M, s,
+            self.mode, M, s, switches=switches,
         )  # fmt: skip
 
     def start(self, x, T, value, direction):
@@ -371,14 +278,26 @@ class OscillatorCycleProblem(Problem):
         corrected with the parameter pinned, and its unit tangent along ``direction``."""
         x = np.asarray(x, dtype=float)
         self.hs = float(np.linalg.norm(self.section_gradient(x, value))) * self.sx or 1.0
-        z0 = self.z_of(x, T, value)
-        row = np.zeros(z0.size)
-        row[-1] = 1.0
-        step = self.solve(z0, lambda z: (float(z[-1] - z0[-1]), row))
+        step = self._pin(x, T, value)
         tangent = self.tangent(step.J, direction=direction)
         first = self.point(step, float(tangent[-1]))
         first.column = step.J[:, -1].copy()
         return first, tangent
+
+    def _pin(self, x, T, value) -> Step:
+        z0 = self.z_of(x, T, value)
+        row = np.zeros(z0.size)
+        row[-1] = 1.0
+        return self.solve(z0, lambda z: (float(z[-1] - z0[-1]), row))
+
+    def pinned(self, x, T, value, direction) -> OscillatorCyclePoint:
+        """The cycle at ``value`` exactly, corrected from ``(x, T)``; its tangent's
+        parameter component signed by ``direction``."""
+        step = self._pin(np.asarray(x, dtype=float), T, value)
+        tangent = self.tangent(step.J, direction=direction)
+        point = self.point(step, float(tangent[-1]))
+        point.column = step.J[:, -1].copy()
+        return point
 
     # -- the hooks
 
@@ -388,10 +307,21 @@ class OscillatorCycleProblem(Problem):
     def check_step(self, prev, step, jumped):
         return "the corrector jumps to another branch" if jumped else None
 
+    def check_structure(self, prev, step, ds, jumped):
+        switches = step.data[5]
+        if tuple(sorted((int(b), int(a)) for _, b, a in switches)) != prev.signature:
+            return _RESTRUCTURED
+        return None
+
+    def same_structure(self, prev, new) -> bool:
+        return new.signature == prev.signature
+
     def special_between(self, prev, new, tangent, ds, settings) -> list[SpecialPoint]:
         """The folds and multiplier crossings; where ``new`` lies past the Hopf point or
         the stick onset, those before it, the end kept in ``end`` (for `stop` and
         `at_bound`)."""
+        if self.hybrid:
+            return super().special_between(prev, new, tangent, ds, settings)
         if new.curvature <= 0.0 < prev.curvature:
             self.end = (prev, self._hopf(prev, new))
             return []
@@ -493,9 +423,21 @@ class OscillatorCycleProblem(Problem):
     def at_bound(self, end, bound):
         if self.end is not None:  # the walk's end lies before the bound
             return self.end
+        try:  # the cycle at the bound itself, the parameter pinned
+            end = self.pinned(end.state, end.period, bound, end.tangent)
+        except NoPeriodicResponse:
+            pass
         return end, range_end(end, bound)
 
     def give_up(self, stretch, failure, stage):
+        if failure == _RESTRUCTURED:
+            last = stretch[-1]
+            return SpecialPoint(
+                "grazing", last.value, self.settings.step_min * self.sp, None,
+                last.multipliers, last.stable, None,
+                f"the switch structure changes ({len(last.switches)} switches a period "
+                "before): the branch ends (it is not followed across)",
+            ), []  # fmt: skip
         detail = f"no step converges: {failure}" if stage == "step" else failure
         return super().give_up(stretch, detail, stage)
 

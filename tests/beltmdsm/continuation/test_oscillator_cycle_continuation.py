@@ -30,7 +30,6 @@ from scipy.optimize import fsolve
 from beltmdsm import Model, cycle
 from beltmdsm.branches import continue_branch
 from beltmdsm.continuation.oscillator_cycle import TOL, OscillatorCycleProblem
-from beltmdsm.errors import Unsupported
 from beltmdsm.oscillator import System, hopf_points, self_excited_cycle, stick_onset
 from beltmdsm.oscillator.cycle import NEWTON_TOL
 from beltmdsm.oscillator.hopf_branch import hopf_branch
@@ -249,23 +248,43 @@ def test_down_from_a_cycle_the_branch_ends_at_the_hopf_point():
     assert down.points[0].max_abs_multiplier == pytest.approx(1.0, abs=1e-2)
 
 
-def test_a_stick_slip_cycle_is_refused_in_one_line_and_json_names_the_model():
-    stick_slip = cycle(Model(model="belt_1dof", friction="stribeck", Vb=1.5))
-    with pytest.raises(Unsupported) as err:
-        continue_branch(stick_slip, "Vb", 1.4, 1.6)
-    (line,) = str(err.value).splitlines()
-    assert "model 'belt_1dof'" in line and "pure-slip cycles" in line
-    c = cycle(
-        Model(model="belt_1dof", friction="stribeck", Vb=2.5),
-        guess=SLIP_GUESS[0],
-        period=SLIP_GUESS[1],
-    )
-    b = continue_branch(c, "Vb", 2.45, 2.55, record=lambda q: q.margin)
+def _static_kinetic_period(p):
+    """Undamped static/kinetic stick-slip, by hand: slip from the stick end x_e = mu_s g /
+    w^2 around x_k = mu_k g / w^2 on a circle of the phase plane back to x' = Vb, (2 pi
+    - 2 phi) / w later (phi = atan2(u0 w, Vb), u0 = x_e - x_k), then stick from x_k - u0
+    back to x_e at the belt's speed."""
+    w, Vb = p["omega1"], p["Vb"]
+    u0 = (p["mu_s"] - p["mu_k"]) * p["g"] / w**2
+    return (2 * math.pi - 2 * math.atan2(u0 * w, Vb)) / w + 2 * u0 / Vb
+
+
+def test_stick_slip_cycles_continue_on_the_hybrid_flow_to_their_closed_form():
+    """A cycle with a stick phase runs on the hybrid flow (its saltation matrices), on the
+    section of its largest slip speed: the static/kinetic belt's periods along Vb against
+    the closed form, its multipliers the stick's 0."""
+    c = cycle(Model(model="belt_1dof", friction="static_kinetic", Vb=0.5, beta1=0.0))
+    assert c.kind == "stick_slip"
+    b = continue_branch(c, "Vb", 0.4, 0.7, record=lambda q: q.n_sticks)
+    assert [sp.kind for sp in b.special] == ["range", "range"] and b.kind == "cycle"
+    assert b.value_range() == [0.4, 0.7] and len(b.points) >= 10
+    for q in b.points:
+        # the corrector's and the integrator's tolerances, a period of order 10 s
+        assert q.period == pytest.approx(_static_kinetic_period(q.system.params), rel=1e-10)
+        assert q.n_sticks == 1 and abs(q.multipliers[0]) < 1e-10 and q.stable
+        assert abs(q.trivial_multiplier - 1) < 1e-8
+    assert b.observables()["record"] == pytest.approx(1.0)
     d = b.as_dict()
-    assert d["model"] == "belt_1dof" and d["kind"] == "cycle" and "stick_onset" in d["detects"]
-    assert "self-excited cycles" in repr(b)
+    assert d["model"] == "belt_1dof" and d["kind"] == "cycle" and "grazing" in d["detects"]
+    assert "self-excited cycles" in repr(b) and d["points"][0]["n_sticks"] == 1
+
+
+def test_a_branch_point_continues_and_records():
+    b = continue_branch(_slip_cycle(), "Vb", 2.45, 2.55, record=lambda q: q.margin)
     # the least slip speed, recorded, is Vb minus the section's x'
     assert b.observables()["record"] == pytest.approx([q.value - q.state[1] for q in b.points])
+    again = continue_branch(b.points[-1], "Vb", 2.55, 2.6)
+    assert again.points[0].state == pytest.approx(b.points[-1].state, abs=1e-12)
+    assert again.special[-1].kind == "range" and again.value_range() == [2.55, 2.6]
 
 
 def test_branch_command_lists_the_special_points_of_the_cycle_branch():
