@@ -431,15 +431,28 @@ class OscillatorCycleProblem(Problem):
 
     def give_up(self, stretch, failure, stage):
         if failure == _RESTRUCTURED:
-            last = stretch[-1]
-            return SpecialPoint(
-                "grazing", last.value, self.settings.step_min * self.sp, None,
-                last.multipliers, last.stable, None,
-                f"the switch structure changes ({len(last.switches)} switches a period "
-                "before): the branch ends (it is not followed across)",
-            ), []  # fmt: skip
+            return self._grazing(stretch), []
         detail = f"no step converges: {failure}" if stage == "step" else failure
         return super().give_up(stretch, detail, stage)
+
+    def _grazing(self, stretch) -> SpecialPoint:
+        """Where a stick-slip branch's switches change: at its last cycle, or, where its
+        stick phases shrink towards it, where their time extrapolates linearly to 0 from
+        the last two cycles (a stick born at a grazing lasts in proportion to the
+        distance to it); the accuracy covers the extrapolation and the last step."""
+        last = stretch[-1]
+        value = last.value
+        step = 2.0 * self.settings.step_min * self.sp
+        prior = [q for q in stretch[:-1] if q.value != last.value]
+        what = f"the switch structure changes ({len(last.switches)} switches a period before)"
+        if prior and 0.0 < last.stick_time < prior[-1].stick_time:
+            a, b = prior[-1], last
+            value = b.value - b.stick_time * (b.value - a.value) / (b.stick_time - a.stick_time)
+            what = "the stick phase shrinks to nothing (the cycle grazes v_r = 0)"
+        return SpecialPoint(
+            "grazing", value, abs(value - last.value) + step, None, last.multipliers,
+            last.stable, None, f"{what}: the branch ends (it is not followed across)",
+        )  # fmt: skip
 
     def finish(self, points, special):
         """A walk's points and special points, its last point (past the end) replaced by

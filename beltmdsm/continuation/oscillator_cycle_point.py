@@ -108,6 +108,12 @@ class OscillatorCyclePoint:
         return sum(1 for _, b, a in self.switches if {b, a} == {1, -1})
 
     @property
+    def stick_time(self) -> float:
+        """Time stuck a period [s] (the run starts in slip, so every stick ends in it)."""
+        times = [t for t, _, _ in self.switches]
+        return float(sum(t1 - t0 for (t0, _, a), t1 in zip(self.switches, times[1:]) if a == STICK))
+
+    @property
     def signature(self) -> tuple:
         """The switch structure: the switches ``(before, after)``, sorted."""
         return tuple(sorted((int(b), int(a)) for _, b, a in self.switches))

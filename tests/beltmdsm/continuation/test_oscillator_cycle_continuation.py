@@ -295,3 +295,27 @@ def test_branch_command_lists_the_special_points_of_the_cycle_branch():
     (sp,) = born["special_points"]
     assert sp["kind"] == "stick_onset" and sp["value"] == born["stick_onset"]
     assert born["cycles"][-1]["state"]["x_dot"] == pytest.approx(sp["value"], abs=1e-9)
+
+
+def test_the_stable_stick_slip_cycles_turn_into_the_unstable_slip_cycles_at_the_grazing():
+    """The subcritical Stribeck belt has no smooth fold of cycles (no turn of the tangent
+    on its slip branch); its family turns at the stick onset instead, a non-smooth fold:
+    the stable stick-slip cycles (multiplier 0), their stick phase shrinking, end where
+    the unstable slip cycles (multiplier 2.86) end, on the one grazing cycle."""
+    slip = continue_branch(_slip_cycle(), "Vb", 2.5, 3.2)
+    stuck = continue_branch(cycle(Model(model="belt_1dof", friction="stribeck", Vb=2.5)),
+                            "Vb", 2.5, 3.2)  # fmt: skip
+    onset, graze = slip.special[-1], stuck.special[-1]
+    assert onset.kind == "stick_onset" and graze.kind == "grazing"
+    assert "stick phase shrinks" in graze.detail
+    assert abs(graze.value - onset.value) <= graze.accuracy + onset.accuracy
+    assert graze.accuracy < 1e-6
+    assert all(q.stable and q.n_sticks == 1 for q in stuck.points)
+    assert all(not q.stable and q.n_sticks == 0 for q in slip.points)
+    # the same cycle at the turn: the period, and the largest x' (the slip cycle's
+    # section; the stick-slip cycle's stick at x' = Vb), to the distance between them
+    a, b = slip.points[-1], stuck.points[-1]
+    gap = abs(a.value - b.value)
+    assert b.period == pytest.approx(a.period, abs=10 * gap + 1e-9)
+    assert b.observables()["x_dot_max"] == pytest.approx(a.state[1], abs=10 * gap + 1e-8)
+    assert b.stick_time < 1e-3 * b.period
