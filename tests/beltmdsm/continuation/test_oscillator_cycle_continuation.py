@@ -319,3 +319,71 @@ def test_the_stable_stick_slip_cycles_turn_into_the_unstable_slip_cycles_at_the_
     assert b.period == pytest.approx(a.period, abs=10 * gap + 1e-9)
     assert b.observables()["x_dot_max"] == pytest.approx(a.state[1], abs=10 * gap + 1e-8)
     assert b.stick_time < 1e-3 * b.period
+
+
+#: Hoffmann's model beyond its flutter threshold under Coulomb friction
+#: (tests/beltmdsm/oscillator/test_oscillator_hoffmann_branch.py: mu_c = 0.4124 here).
+HOFFMANN = dict(k1=1.25, k2=0.25, k3=0.5, k_c=1.0, F_pre=1.0, c1=0.05, c2=0.05, Vb=1.0)
+
+
+def _exact_stick(p, mu, z0, switches):
+    """Hoffmann's model under Coulomb friction with exact stick, by solve_ivp: slip back
+    (v_r < 0) until x' = Vb, stick (x' = Vb) while the holding force |c1 Vb + K11 x +
+    K12 y| stays below mu N; the state and time after ``switches`` switches from ``z0``
+    (in slip)."""
+    K = np.array([[p["k1"] + p["k3"] / 2, p["k3"] / 2], [p["k3"] / 2, p["k2"] + p["k3"] / 2]])
+    kc, F, c, Vb = p["k_c"], p["F_pre"], p["c1"], p["Vb"]
+
+    def normal(z):
+        return -p["c2"] * z[3] - K[1, 0] * z[0] - (K[1, 1] + kc) * z[1]
+
+    def slip(t, z):
+        return [z[2], z[3], -c * z[2] - K[0, 0] * z[0] - K[0, 1] * z[1] + mu * (F + kc * z[1]),
+                normal(z)]  # fmt: skip
+
+    def stick(t, z):
+        return [Vb, z[3], 0.0, normal(z)]
+
+    to_stick = lambda t, z: z[2] - Vb  # noqa: E731
+    to_stick.terminal, to_stick.direction = True, 1
+    to_slip = lambda t, z: abs(c * Vb + K[0, 0] * z[0] + K[0, 1] * z[1]) - mu * (F + kc * z[1])  # noqa: E731
+    to_slip.terminal, to_slip.direction = True, 1
+    t, z, mode = 0.0, np.array(z0, float), -1
+    for _ in range(switches):
+        fun, ev = (slip, to_stick) if mode == -1 else (stick, to_slip)
+        sol = solve_ivp(fun, (t, t + 100.0), z, method="DOP853", rtol=1e-12, atol=1e-13,
+                        events=ev)  # fmt: skip
+        assert sol.status == 1, "no switch within 100 s"
+        t, z = sol.t[-1], sol.y[:, -1].copy()
+        z[2], mode = (Vb, 0) if mode == -1 else (Vb - 1e-13, -1)
+    return z, t
+
+
+def test_hoffmann_stick_slip_cycles_continue_against_exact_stick():
+    """A 4-state stick-slip branch on the hybrid flow: the cycle at mu_s = 0.45 against
+    solve_ivp with exact stick, its multipliers against central differences of the
+    return map to the stick end."""
+    c = cycle(Model(model="hoffmann", mu_s=0.45, **HOFFMANN))
+    b = continue_branch(c, "mu_s", 0.44, 0.46)
+    assert [sp.kind for sp in b.special] == ["range", "range"]
+    assert all(q.n_sticks == 1 and q.stable for q in b.points)
+    q = b.point_near(0.45)
+    assert q.value == 0.45
+    p = q.system.params
+    end, _ = _exact_stick(p, 0.45, q.state, 2)  # from the section to the stick's end
+    back, T = _exact_stick(p, 0.45, end, 2)  # one period
+    assert T == pytest.approx(q.period, rel=1e-9)
+    assert back == pytest.approx(end, abs=1e-8)
+
+    def image(z0):
+        return _exact_stick(p, 0.45, z0, 2)[0]
+
+    cols = []
+    for j in (0, 1, 3):
+        e = np.zeros(4)
+        e[j] = 1e-5
+        cols.append((image(end + e) - image(end - e)) / 2e-5)
+    e = np.array([0.0, 0.0, 1e-5, 0.0])  # x' below Vb only: the start slips back
+    cols.insert(2, (image(end - e) - image(end - 2 * e)) / 1e-5)
+    w = np.linalg.eigvals(np.array(cols).T)
+    assert sorted(abs(w))[-2:] == pytest.approx(sorted(abs(q.multipliers))[-2:], abs=1e-5)
