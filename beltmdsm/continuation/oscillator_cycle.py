@@ -82,7 +82,37 @@ DETECTS = (
 
 def slip_run(system: System, x, T: float, mode: int, variational: bool = True):
     """The run of slip mode ``mode``'s field from ``x`` over ``T`` (module docstring):
-    ``(y, M)``, ``M`` the monodromy where ``variational`` (else None)."""
+    ``(y, M)``, ``M`` the monodromy where ``variational`` (else None).
+
+    Parameters
+    ----------
+    system : System
+    x : array_like (2n,)
+    T : float
+    mode : int
+        +1 or -1.
+    variational : bool
+
+    Returns
+    -------
+    y : ndarray (2n,)
+    M : ndarray (2n, 2n) or None
+
+    See Also
+    --------
+    beltmdsm.oscillator.hybrid.flow : the same steps while no surface is crossed.
+
+    Examples
+    --------
+    The unstable slip cycle of the Stribeck belt returns, its monodromy the shooting's:
+
+    >>> from beltmdsm.oscillator import System, self_excited_cycle
+    >>> c = self_excited_cycle(System("belt_1dof", friction="stribeck", Vb=2.5),
+    ...                        [3.0182035, 2.0991444], 6.3203187)
+    >>> y, M = slip_run(c.system, c.state, c.period, c.mode)
+    >>> bool(np.abs(y - c.state).max() < 1e-9), bool(np.allclose(M, c.monodromy, atol=1e-8))
+    (True, True)
+    """
     k, p = system.kernels, system.p
     x = np.asarray(x, dtype=float)
     m = x.size

@@ -22,7 +22,29 @@ TOL = 1e-11
 
 def split(M, f) -> tuple[complex, NDArray[np.complex128]]:
     """``(trivial, others)``: the multiplier whose eigenvector lies closest to the field
-    ``f`` (as `beltmdsm.oscillator.cycle` picks it) and the others by decreasing modulus."""
+    ``f`` (as `beltmdsm.oscillator.cycle` picks it) and the others by decreasing modulus.
+
+    Parameters
+    ----------
+    M : ndarray (m, m)
+        A cycle's monodromy.
+    f : ndarray (m,)
+        The field at the cycle's state.
+
+    Returns
+    -------
+    trivial : complex
+    others : ndarray
+
+    See Also
+    --------
+    beltmdsm.periodic.cycle_flow.split_multipliers : the paper's engine's.
+
+    Examples
+    --------
+    >>> split(np.array([[1.0, 0.5], [0.0, 0.3]]), np.array([1.0, 0.0]))
+    ((1+0j), array([0.3]))
+    """
     w, V = np.linalg.eig(M)
     V = V / np.linalg.norm(V, axis=0)
     i = int(np.argmax(np.abs(V.conj().T @ (f / np.linalg.norm(f)))))

@@ -80,7 +80,29 @@ def least_speed(c):
     """The pure-slip cycle ``c`` shot again from where its slip speed is least (the
     section ``slip_acceleration = 0`` has a second point, where it is largest, which
     Newton's method may have found; the stick onset and the continuation of a cycle,
-    `beltmdsm.continuation.oscillator_cycle`, follow the least)."""
+    `beltmdsm.continuation.oscillator_cycle`, follow the least).
+
+    Parameters
+    ----------
+    c : Cycle
+        Pure slip.
+
+    Returns
+    -------
+    Cycle
+
+    See Also
+    --------
+    beltmdsm.oscillator.onset.stick_onset : follows the least slip speed to 0.
+
+    Examples
+    --------
+    >>> from beltmdsm.oscillator import System, self_excited_cycle
+    >>> c = self_excited_cycle(System("belt_1dof", friction="stribeck", Vb=2.5),
+    ...                        [3.0182035, 2.0991444], 6.3203187)
+    >>> round(float(2.5 - least_speed(c).state[1]), 6)  # the least slip speed, Vb - x'
+    0.400856
+    """
     k, p = c.system.kernels, c.system.p
     samples: list = []
     flow(c.system, 0.0, c.state, c.period, mode=c.mode, dt=c.period / 2000, samples=samples)
