@@ -298,3 +298,25 @@ def test_a_stick_slip_run_against_solve_ivp(wheel):
     assert [(b, a) for _, b, a in run.switches] == [(b, a) for _, b, a in events]
     assert np.allclose([t for t, _, _ in run.switches], [t for t, _, _ in events], atol=1e-8)
     assert np.allclose(run.y[:, -1], z, atol=1e-8)
+
+
+def test_the_command_line_names_the_units():
+    """Another model's JSON names each state's unit (``state_units``) and a sweep each
+    column's (``units``); the text gives each range its unit (tests/inprocess.py: the
+    command in this process)."""
+    from inprocess import cli
+
+    def run(*argv):
+        done = cli(*argv)
+        assert done.returncode == 0, done.stderr[-2000:]
+        return done.stdout
+
+    text = run("simulate", "--model", "hoffmann", "--t-end", "1")
+    assert "y in [" in text and re.search(r"y_dot in \[[^]]*\] m/s$", text.strip())
+    out = json.loads(run("sweep", "--model", "belt_1dof", "--param", "Vb", "--values", "1",
+                         "--t-end", "4", "--no-cache", "--json"))  # fmt: skip
+    assert out["state_units"] == {"x": "m", "x_dot": "m/s"}
+    assert out["units"] == {
+        "Vb": "m/s", "x_min": "m", "x_max": "m", "x_dot_min": "m/s", "x_dot_max": "m/s",
+        "x_final": "m", "x_dot_final": "m/s",
+    }  # fmt: skip
