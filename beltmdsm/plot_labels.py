@@ -138,11 +138,17 @@ def observable_label(name: str, model: Any = None) -> str:
     'energy (recorded)'
     >>> observable_label("x_dot_amplitude", "belt_1dof")
     'x_dot amplitude [m/s]'
+    >>> observable_label("max_abs_v_r", "hoffmann")
+    'max |v_r| [m/s]'
     """
     for column, (unit_, _) in _state_rows(model).items():
         head, _, tail = name.rpartition("_")
         if head == column and tail in ("amplitude", "min", "max"):
             return axis_label(f"{column} {tail}", unit_)
+    if name in ("v_r_min", "v_r_max"):  # another model's orbit (beltmdsm/oscillator/orbit.py)
+        return axis_label(f"v_r {name[4:]}", state_names.slip_unit(model))
+    if name == "max_abs_v_r":
+        return axis_label("max |v_r|", state_names.slip_unit(model))
     if name == "max_abs_Vr":
         return axis_label("max |Vr|", "m/s")
     if name == "mean_friction":

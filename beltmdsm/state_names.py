@@ -32,6 +32,7 @@ __all__ = [
     "columns",
     "units",
     "module_units",
+    "slip_unit",
     "column",
     "index",
     "rate_column",
@@ -67,6 +68,10 @@ def module_units(module: ModuleType) -> tuple[str, ...]:
     ------
     ValueError
         Naming the module, where ``STATE_UNITS`` is not one unit string per state.
+
+    See Also
+    --------
+    units : the same of a model given by name or as a `beltmdsm.model.Model`.
 
     Examples
     --------
@@ -150,6 +155,19 @@ def units(model: Any = None) -> tuple[str, ...]:
     (('m', 'm/s', 'm', 'm/s'), ('m', 'm/s'))
     """
     return module_units(_module(model))
+
+
+def slip_unit(model: Any = None) -> str:
+    """The unit of the slip velocity ``v_r = w . q' - Vb``: the belt speed's (the module's
+    ``UNITS["Vb"]``), whatever the units of the coordinates (a rotational coordinate
+    enters ``v_r`` through its lever arm).
+
+    Examples
+    --------
+    >>> slip_unit("hoffmann")
+    'm/s'
+    """
+    return _module(model).UNITS["Vb"]
 
 
 def index(model: Any, name: str) -> int:

@@ -171,6 +171,9 @@ def test_the_units_reach_labels_csv_and_json(wheel, tmp_path):
     assert plotting.simulation(run, variable="theta").get_ylabel() == "theta [rad]"
     assert plotting.observable_label("theta_max", s) == "theta max [rad]"
     assert plotting.observable_label("theta_dot_amplitude", s) == "theta_dot amplitude [rad/s]"
+    # the slip velocity stays the contact's, in the unit of Vb
+    assert plotting.observable_label("max_abs_v_r", s) == "max |v_r| [m/s]"
+    assert plotting.observable_label("v_r_min", s) == "v_r min [m/s]"
     # JSON: the model's part names each state's unit; a sweep each column's
     result = sweep(s, "Vb", [1.0], t_end=4.0, t_discard=1.0)
     out = json.loads(json.dumps(result.as_dict()))
