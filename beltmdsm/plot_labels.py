@@ -146,7 +146,7 @@ def observable_label(name: str, model: Any = None) -> str:
         if head == column and tail in ("amplitude", "min", "max"):
             return axis_label(f"{column} {tail}", unit_)
     if name in ("v_r_min", "v_r_max"):  # another model's orbit (beltmdsm/oscillator/orbit.py)
-        return axis_label(f"v_r {name[4:]}", state_names.slip_unit(model))
+        return axis_label(f"v_r {name.removeprefix('v_r_')}", state_names.slip_unit(model))
     if name == "max_abs_v_r":
         return axis_label("max |v_r|", state_names.slip_unit(model))
     if name == "max_abs_Vr":
