@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from beltmdsm import plotting, state_names
+from beltmdsm import Model, plotting, state_names
 from beltmdsm.derive.models import dimensions, entries, get, register
 from beltmdsm.derive.models.registry import check
 from beltmdsm.derive.models.render import render_entry
@@ -82,6 +82,8 @@ def test_the_shipped_models_are_in_metres():
         assert get(name).units is None
         expected = tuple("m" if s in module.COORDINATES else "m/s" for s in module.STATES)
         assert module.STATE_UNITS == state_names.units(name) == expected
+        if name != "paper":
+            assert Model(model=name).state_units == expected
 
 
 @pytest.mark.parametrize(
