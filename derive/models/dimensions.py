@@ -29,7 +29,7 @@ _KG, _M, _S = sp.symbols("kg m s", positive=True)
 #: The unit words the slip form's check reads, in SI base units (``rad`` as 1).
 VOCABULARY = {"m": _M, "s": _S, "kg": _KG, "N": _KG * _M / _S**2, "rad": sp.Integer(1)}
 _WORD = re.compile(r"[A-Za-z_]\w*")
-_ALLOWED = re.compile(r"^[\w\s()/^.*+-]*$")
+_ALLOWED = re.compile(r"^[\w\s()/^.*-]*$")
 
 
 def rate_unit(unit: str) -> str:

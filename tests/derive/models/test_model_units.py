@@ -93,6 +93,20 @@ def test_a_rate_is_in_its_coordinates_unit_per_second(unit, rate):
     assert dimensions.rate_unit(unit) == rate
 
 
+def test_a_modal_amplitude_enters_through_its_mode_shape():
+    """A dimensionless modal coordinate ``a`` moves the contact point by ``phi a``: the
+    mode shape's value ``phi`` [m] makes its term a speed; without it, 1/s is refused."""
+    import sympy as sp
+
+    phi = sp.Symbol("phi")
+    units = {"a": "1", "x": "m"}
+    assert dimensions.slip_mismatch({"a": phi, "x": 1}, units, {phi: "m"}, "m/s") is None
+    assert "the term of a' is in 1/s" in dimensions.slip_mismatch({"a": 1}, units, {}, "m/s")
+    # units the check cannot read leave the term unchecked, not passed as right
+    assert dimensions.slip_mismatch({"a": phi}, units, {phi: "mm"}, "m/s") is None
+    assert dimensions.parse("m+s") is None and dimensions.parse("N m s/rad") is not None
+
+
 def test_the_dimension_examples_run():
     result = doctest.testmod(dimensions, optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0, result
