@@ -6,6 +6,8 @@ A model is one ``register("model", Oscillator(...))`` beside the laws
 * `beltmdsm.derive.models.entry`: what an entry gives (`Oscillator`, `Contact`,
   `Excitation`);
 * `beltmdsm.derive.models.registry`: `register` (models and laws), its checks;
+* `beltmdsm.derive.models.dimensions`: the units of the coordinates and their rates, the
+  slip form's dimension check;
 * `beltmdsm.derive.models.system`: the equations of motion of each mode, the derived
   holding force;
 * `beltmdsm.derive.models.hybrid`: switching surfaces, saltation matrices, mode

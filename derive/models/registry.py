@@ -15,8 +15,9 @@ import sympy as sp
 
 from .. import laws
 from ..model import t
+from .dimensions import slip_mismatch
 from .entry import NORMAL, Oscillator
-from .system import system
+from .system import law_parameters, model_parameters, system
 
 __all__ = ["MODELS", "register", "choices", "default", "get", "check", "RESERVED"]
 
@@ -124,6 +125,18 @@ def _names(entry):
         _refuse(entry, f"states: {entry.state_names} must order exactly {states}")
     if "Vb" not in params:
         _refuse(entry, "parameters: the belt speed Vb is missing (v_r = w . q' - Vb)")
+    _units(entry)
+
+
+def _units(entry):
+    units = entry.units or {}
+    if not hasattr(units, "items"):
+        _refuse(entry, f"units: a mapping of coordinate -> unit; got {type(units).__name__}")
+    for name, unit in units.items():
+        if name not in entry.coordinates:
+            _refuse(entry, f"units: {name!r} is not a coordinate {entry.coordinates}")
+        if not isinstance(unit, str) or not unit.strip() or not unit.isprintable():
+            _refuse(entry, f"units: {name!r} needs a one-line unit string; got {unit!r}")
 
 
 def _laws(entry):
@@ -176,6 +189,15 @@ def _expressions(entry):
         _refuse(entry, "contact.slip: the slip form's coefficients depend on the coordinates")
     if all(sp.diff(sys_.slip, v) == 0 for v in sys_.v):
         _refuse(entry, "contact.slip: all coefficients are zero (no slip velocity)")
+    rows = model_parameters(entry) + law_parameters(entry, friction)
+    wrong = slip_mismatch(
+        {q.name: sp.diff(sys_.slip, v) for q, v in zip(sys_.q, sys_.v)},
+        dict(zip(entry.coordinates, entry.coordinate_units)),
+        {sys_.P[r.name]: r.unit for r in rows},
+        next(r.unit for r in rows if r.name == "Vb"),
+    )
+    if wrong:
+        _refuse(entry, f"contact.slip: {wrong}")
 
 
 def check(entry: Oscillator) -> None:
