@@ -23,7 +23,7 @@ A model is one ``register("model", Oscillator(...))`` beside the laws
 
 from . import entries  # noqa: E402, F401  (registers the shipped models)
 from .entry import Contact, Excitation, Oscillator
-from .registry import MODELS, choices, default, get, register
+from .registry import MODELS, UnsupportedModel, choices, default, get, register
 
 __all__ = [
     "Oscillator",
@@ -31,6 +31,7 @@ __all__ = [
     "Excitation",
     "MODELS",
     "register",
+    "UnsupportedModel",
     "choices",
     "default",
     "get",

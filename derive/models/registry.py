@@ -19,7 +19,15 @@ from .dimensions import slip_mismatch
 from .entry import NORMAL, Oscillator
 from .system import law_parameters, model_parameters, system
 
-__all__ = ["MODELS", "register", "choices", "default", "get", "check", "RESERVED"]
+__all__ = [
+    "MODELS", "register", "choices", "default", "get", "check", "RESERVED", "UnsupportedModel",
+]  # fmt: skip
+
+
+class UnsupportedModel(ValueError):
+    """A model entry `register` refuses: one line naming the model and what is wrong
+    (``python -m derive`` prints it as one line, exit status 2)."""
+
 
 #: model name -> entry, in registration order (the default first).
 MODELS: dict[str, Oscillator] = {}
@@ -43,8 +51,9 @@ def register(option: str, entry):
 
     Raises
     ------
-    ValueError
-        One line naming the model and what is wrong (`check`), or a name taken.
+    UnsupportedModel
+        A ValueError: one line naming the model and what is wrong (`check`), or a name
+        taken.
 
     See Also
     --------
@@ -59,9 +68,9 @@ def register(option: str, entry):
     if option != "model":
         return laws.register(option, entry)
     if not isinstance(entry, Oscillator):
-        raise ValueError(f"a model must be an Oscillator; got {type(entry).__name__}")
+        raise UnsupportedModel(f"a model must be an Oscillator; got {type(entry).__name__}")
     if entry.name in MODELS:
-        raise ValueError(f"model {entry.name!r} is registered already")
+        raise UnsupportedModel(f"model {entry.name!r} is registered already")
     check(entry)
     MODELS[entry.name] = entry
     return entry
@@ -92,7 +101,7 @@ def get(name: str) -> Oscillator:
 
 
 def _refuse(entry, what):
-    raise ValueError(f"model {entry.name!r}: {what}")
+    raise UnsupportedModel(f"model {entry.name!r}: {what}")
 
 
 def _names(entry):
