@@ -19,6 +19,7 @@ from typing import Any
 from ._calling import public
 from .continuation import branch as forced
 from .continuation.branch_result import Branch, record_points
+from .continuation.forced import BranchPoint
 from .continuation.oscillator_branch import continue_oscillator_branch, oscillator_branch
 from .continuation.oscillator_forced import OscillatorPoint
 from .continuation.settings import ContinuationSettings
@@ -127,7 +128,7 @@ def branch(
 
 
 def continue_branch(
-    start: PeriodicResponse | Response | OscillatorPoint,
+    start: PeriodicResponse | BranchPoint | Response | OscillatorPoint,
     param: str,
     lo: float,
     hi: float,
@@ -140,8 +141,10 @@ def continue_branch(
 
     Parameters
     ----------
-    start : PeriodicResponse, Response or OscillatorPoint
-        The paper's: from `beltmdsm.periodic.shooting.periodic_response`. Another
+    start : PeriodicResponse, BranchPoint, Response or OscillatorPoint
+        The paper's: from `beltmdsm.periodic.shooting.periodic_response`, or a point of
+        its forced branch (`beltmdsm.continuation.forced.BranchPoint`: ``b.points[-1]``
+        continues ``b`` from its end, ``b.point_near(s.value)`` from a special point). Another
         model's forced response: what ``beltmdsm.periodic_response`` returns for it
         (`beltmdsm.oscillator.forced.Response`), or a point of its branch
         (`beltmdsm.continuation.oscillator_forced.OscillatorPoint`: ``b.points[-1]``
