@@ -15,13 +15,16 @@ the sum over the smallest singular value of ``dP/dx - I`` (the conditioning of t
 fixed point).
 """
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
-from beltmdsm import Model, branch
+from beltmdsm import Model, branch, periodic_response
 from beltmdsm.branches import continue_branch
-from beltmdsm.continuation.settings import ContinuationSettings
+from beltmdsm.continuation.settings import CYCLE_SETTINGS, ContinuationSettings
 from beltmdsm.periodic.base import RTOL
+from beltmdsm.periodic.cycle import cycle
 from beltmdsm.periodic.family import MapFamily
 from beltmdsm.periodic.newton import NEWTON_TOL, fixed_point
 
@@ -67,3 +70,28 @@ def test_a_branch_continues_from_its_point_near_a_special_point(whole):
     assert again.model["Vb"] == near.value
     assert [s.kind for s in again.special] == ["range", "neimark_sacker", "range"]
     assert abs(again.special[1].value - ns.value) <= again.special[1].accuracy + ns.accuracy
+
+
+def test_a_branch_of_cycles_continues_from_its_end():
+    """A point of a branch of self-excited cycles (`beltmdsm.cycles.continuation.CyclePoint`)
+    carries its model too: its cycle is shot again there and continued. Stribeck's
+    stick-slip cycle at Vb = 1.5 (the docstring of `beltmdsm.branches.continue_branch`):
+    every point of the second piece is the cycle shot at its value from the whole
+    branch's nearest point, to twice the shooting's residual and integration over the
+    distance of its nontrivial multipliers from 1 (the fixed point's conditioning)."""
+    coarse = replace(CYCLE_SETTINGS, step_first=0.1, step_max=1.0)
+    m = Model(friction="stribeck", alpha=0.0, Vb=1.5)
+    start = periodic_response(m)
+    whole = continue_branch(start, "Vb", 1.5, 1.52, settings=coarse)
+    first = continue_branch(start, "Vb", 1.5, 1.51, settings=coarse)
+    more = continue_branch(first.points[-1], "Vb", 1.51, 1.52, settings=coarse)
+    assert more.kind == "cycle" and more.model["Vb"] == 1.51
+    assert more.value_range() == [1.51, 1.52]
+    assert [s.kind for s in more.special] == ["range", "range"]
+    for q in more.points:
+        near = whole.point_near(q.value)
+        ref = cycle(m.replace(Vb=q.value), guess=near.state, period=near.period)
+        scale = 1.0 + float(np.max(np.abs(q.state)))
+        tol = 2 * (NEWTON_TOL + RTOL) * scale / float(np.min(np.abs(1.0 - q.multipliers)))
+        assert np.max(np.abs(ref.state - q.state)) <= tol, (q.value, ref.state - q.state, tol)
+        assert abs(ref.period - q.period) <= tol
