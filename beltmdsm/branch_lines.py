@@ -36,7 +36,20 @@ STYLES = {True: "-", False: "--", None: ":"}
 
 
 def new_axes(ax: Any) -> Any:
-    """``ax``, or new matplotlib axes where it is None."""
+    """``ax``, or new matplotlib axes where it is None.
+
+    See Also
+    --------
+    draw_branch : draws on them.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> ax = new_axes(None)
+    >>> new_axes(ax) is ax
+    True
+    """
     if ax is not None:
         return ax
     import matplotlib.pyplot as plt
@@ -47,6 +60,10 @@ def new_axes(ax: Any) -> Any:
 def stability_runs(stable: list) -> list[tuple[int, int, Any]]:
     """``(start, stop, stable)`` of the runs of equal stability; consecutive runs share
     their boundary point, so that the drawn line is unbroken.
+
+    See Also
+    --------
+    draw_branch : one line per run.
 
     Examples
     --------
