@@ -96,7 +96,7 @@ class BranchPoint:
     column: NDArray[np.float64] | None = field(default=None, repr=False)
     recorded: dict[str, float] = field(default_factory=dict, repr=False)
     model: Model | None = field(default=None, repr=False)
-    periods: int = 1
+    periods: int = field(default=1, repr=False)
 
     def observables(self, vb: float) -> dict[str, float]:
         """The `beltmdsm.periodic.observables.OBSERVABLES` of the orbit at belt speed
