@@ -19,16 +19,19 @@ from typing import Any
 from ._calling import public
 from .continuation import branch as forced
 from .continuation.branch_result import Branch, record_points
+from .continuation.forced import BranchPoint
 from .continuation.oscillator_branch import continue_oscillator_branch, oscillator_branch
 from .continuation.oscillator_forced import OscillatorPoint
 from .continuation.settings import ContinuationSettings
 from .cycles.branch import cycle_branch, cycle_branch_from
+from .cycles.continuation import CyclePoint
 from .errors import Unsupported
 from .excitation import is_autonomous
 from .model import Backend, Model, as_model
 from .oscillator.api import _paper_keywords
 from .oscillator.cycles import Cycle as OscillatorCycle
 from .oscillator.forced import Response
+from .periodic.cycle import cycle as shoot_cycle
 from .periodic.response import PeriodicResponse
 
 __all__ = ["branch", "continue_branch"]
@@ -127,7 +130,7 @@ def branch(
 
 
 def continue_branch(
-    start: PeriodicResponse | Response | OscillatorPoint,
+    start: PeriodicResponse | BranchPoint | CyclePoint | Response | OscillatorPoint,
     param: str,
     lo: float,
     hi: float,
@@ -140,8 +143,11 @@ def continue_branch(
 
     Parameters
     ----------
-    start : PeriodicResponse, Response or OscillatorPoint
-        The paper's: from `beltmdsm.periodic.shooting.periodic_response`. Another
+    start : PeriodicResponse, BranchPoint, CyclePoint, Response or OscillatorPoint
+        The paper's: from `beltmdsm.periodic.shooting.periodic_response`, or a point of
+        its branch (`beltmdsm.continuation.forced.BranchPoint`, or of a branch of cycles
+        `beltmdsm.cycles.continuation.CyclePoint`: ``b.points[-1]`` continues ``b``
+        from its end, ``b.point_near(s.value)`` from a special point). Another
         model's forced response: what ``beltmdsm.periodic_response`` returns for it
         (`beltmdsm.oscillator.forced.Response`), or a point of its branch
         (`beltmdsm.continuation.oscillator_forced.OscillatorPoint`: ``b.points[-1]``
@@ -206,11 +212,15 @@ def continue_branch(
             )
         forced._check_record(record)
         return continue_oscillator_branch(start, param, lo, hi, record=record, settings=settings)
-    if not getattr(start, "autonomous", False):
+    if not isinstance(start, CyclePoint) and not getattr(start, "autonomous", False):
         return forced.continue_branch(
             start, param, lo, hi, backend=backend, record=record, settings=settings
         )
     forced._check_record(record)
     forced._check_range(param, lo, hi)
-    found = cycle_branch_from(start.cycle, param, lo, hi, backend=backend, settings=settings)
+    if isinstance(start, CyclePoint):  # a point of a branch of cycles: its cycle, shot again
+        cycle = shoot_cycle(start.model, guess=start.state, period=start.period, backend=backend)
+    else:
+        cycle = start.cycle
+    found = cycle_branch_from(cycle, param, lo, hi, backend=backend, settings=settings)
     return record_points(found, record)
