@@ -19,6 +19,7 @@ from typing import Any
 from ._calling import public
 from .continuation import branch as forced
 from .continuation.branch_result import Branch, record_points
+from .continuation.forced import BranchPoint
 from .continuation.oscillator_branch import (
     continue_oscillator_branch,
     continue_oscillator_cycle,
@@ -28,12 +29,14 @@ from .continuation.oscillator_cycle_point import OscillatorCyclePoint
 from .continuation.oscillator_forced import OscillatorPoint
 from .continuation.settings import ContinuationSettings
 from .cycles.branch import cycle_branch, cycle_branch_from
+from .cycles.continuation import CyclePoint
 from .errors import Unsupported
 from .excitation import is_autonomous
 from .model import Backend, Model, as_model
 from .oscillator.api import _paper_keywords
 from .oscillator.cycles import Cycle as OscillatorCycle
 from .oscillator.forced import Response
+from .periodic.cycle import cycle as shoot_cycle
 from .periodic.response import PeriodicResponse
 
 __all__ = ["branch", "continue_branch"]
@@ -132,7 +135,13 @@ def branch(
 
 
 def continue_branch(
-    start: PeriodicResponse | Response | OscillatorPoint,
+    start: PeriodicResponse
+    | BranchPoint
+    | CyclePoint
+    | Response
+    | OscillatorPoint
+    | OscillatorCycle
+    | OscillatorCyclePoint,
     param: str,
     lo: float,
     hi: float,
@@ -145,8 +154,11 @@ def continue_branch(
 
     Parameters
     ----------
-    start : PeriodicResponse, Response, OscillatorPoint, Cycle or OscillatorCyclePoint
-        The paper's: from `beltmdsm.periodic.shooting.periodic_response`. Another
+    start : a response, a self-excited cycle or a point of a branch
+        The paper's: from `beltmdsm.periodic.shooting.periodic_response`, or a point of
+        its branch (`beltmdsm.continuation.forced.BranchPoint`, or of a branch of cycles
+        `beltmdsm.cycles.continuation.CyclePoint`: ``b.points[-1]`` continues ``b``
+        from its end, ``b.point_near(s.value)`` from a special point). Another
         model's forced response: what ``beltmdsm.periodic_response`` returns for it
         (`beltmdsm.oscillator.forced.Response`), or a point of its branch
         (`beltmdsm.continuation.oscillator_forced.OscillatorPoint`: ``b.points[-1]``
@@ -210,11 +222,15 @@ def continue_branch(
         if isinstance(start, (OscillatorCycle, OscillatorCyclePoint)):
             return continue_oscillator_cycle(start, param, lo, hi, record=record, settings=settings)
         return continue_oscillator_branch(start, param, lo, hi, record=record, settings=settings)
-    if not getattr(start, "autonomous", False):
+    if not isinstance(start, CyclePoint) and not getattr(start, "autonomous", False):
         return forced.continue_branch(
             start, param, lo, hi, backend=backend, record=record, settings=settings
         )
     forced._check_record(record)
     forced._check_range(param, lo, hi)
-    found = cycle_branch_from(start.cycle, param, lo, hi, backend=backend, settings=settings)
+    if isinstance(start, CyclePoint):  # a point of a branch of cycles: its cycle, shot again
+        cycle = shoot_cycle(start.model, guess=start.state, period=start.period, backend=backend)
+    else:
+        cycle = start.cycle
+    found = cycle_branch_from(cycle, param, lo, hi, backend=backend, settings=settings)
     return record_points(found, record)

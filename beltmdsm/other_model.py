@@ -146,6 +146,12 @@ class OtherParameters:
         """The model's states, in its order (its module's ``STATES``)."""
         return tuple(model_module(self.model).STATES)
 
+    @property
+    def state_units(self) -> tuple[str, ...]:
+        """The unit of each state, in the order of `states` (its module's ``STATE_UNITS``,
+        which derive/models/ writes from the entry's units of its coordinates)."""
+        return tuple(model_module(self.model).STATE_UNITS)
+
     def _paper_only(self, what: str) -> NoReturn:
         raise Unsupported(
             f"model {self.model!r}: {what} belongs to the paper's model; this analysis "

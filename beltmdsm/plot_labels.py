@@ -110,14 +110,16 @@ def response_name(periods: int) -> str:
 def observable_label(name: str, model: Any = None) -> str:
     """The axis label of an observable of `beltmdsm.periodic.observables` or of another
     model's branch (``<state>_amplitude``, ``_min``, ``_max`` of a state of the model,
-    `beltmdsm.state_names.columns`: m for a position, m/s for a rate and Vr, m/s^2 for a
-    force per unit mass); a column of a user's ``record`` is labelled by its name.
+    `beltmdsm.state_names.columns`, in the state's unit, `beltmdsm.state_names.units`: m
+    and m/s for a displacement and its rate, rad and rad/s for an angle; the paper's m/s
+    for Vr, m/s^2 for a force per unit mass); a column of a user's ``record`` is
+    labelled by its name.
 
     Parameters
     ----------
     name : str
         a column of a branch's observables
-    model : str or beltmdsm.model.Model, optional
+    model : str, beltmdsm.model.Model or beltmdsm.oscillator.System, optional
         the branch's model (None: the paper's)
 
     Returns
@@ -136,11 +138,17 @@ def observable_label(name: str, model: Any = None) -> str:
     'energy (recorded)'
     >>> observable_label("x_dot_amplitude", "belt_1dof")
     'x_dot amplitude [m/s]'
+    >>> observable_label("max_abs_v_r", "hoffmann")
+    'max |v_r| [m/s]'
     """
     for column, (unit_, _) in _state_rows(model).items():
         head, _, tail = name.rpartition("_")
         if head == column and tail in ("amplitude", "min", "max"):
             return axis_label(f"{column} {tail}", unit_)
+    if name in ("v_r_min", "v_r_max"):  # another model's orbit (beltmdsm/oscillator/orbit.py)
+        return axis_label(f"v_r {name.removeprefix('v_r_')}", state_names.slip_unit(model))
+    if name == "max_abs_v_r":
+        return axis_label("max |v_r|", state_names.slip_unit(model))
     if name == "max_abs_Vr":
         return axis_label("max |Vr|", "m/s")
     if name == "mean_friction":

@@ -13,7 +13,9 @@ the model; a multiplier's modulus is drawn on a log scale. The lines drawn are t
 result's own arrays (tests/beltmdsm/test_plotting.py reads them back), so a figure
 shows what the result holds and nothing recomputed.
 
-The labels' text is `beltmdsm.plot_labels` (re-exported here).
+The labels' text is `beltmdsm.plot_labels` (re-exported here); a branch's lines and
+special points, which another model's branch draws too, `beltmdsm.branch_lines`
+(``KIND_COLOURS`` re-exported here).
 
 The results are taken as they are (typed ``Any``): this module sits below the analyses
 in the layers of the package (tests/test_layers.py) and imports none of them.
@@ -27,6 +29,7 @@ import numpy as np
 
 from . import state_names
 from ._display import LABELS
+from .branch_lines import KIND_COLOURS, draw_branch, new_axes
 from .plot_labels import (
     STATE,
     _model_of,
@@ -51,30 +54,6 @@ __all__ = [
     "KIND_COLOURS",
     "STATE",
 ]
-
-#: The colour of each kind of special point or boundary curve.
-KIND_COLOURS = {
-    "neimark_sacker": "tab:red",
-    "period_doubling": "tab:purple",
-    "fold": "tab:orange",
-    "grazing": "tab:green",
-    "tangency": "k",
-    "branch_point": "tab:brown",
-    "hopf": "tab:pink",
-    "stick_onset": "tab:cyan",
-}
-
-
-#: Line styles of a branch by stability: stable, unstable, grazing (no multiplier).
-_STYLES = {True: "-", False: "--", None: ":"}
-
-
-def _axes(ax: Any) -> Any:
-    if ax is not None:
-        return ax
-    import matplotlib.pyplot as plt
-
-    return plt.subplots()[1]
 
 
 def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str | None = None) -> Any:
@@ -133,7 +112,7 @@ def simulation(sim: Any, ax: Any = None, kind: str = "time", variable: str | Non
     rows = _state_rows(model)
     forces = [f for f in ("friction", "normal_force") if hasattr(sim, f)]
     rate = state_names.rate_column(model)
-    ax = _axes(ax)
+    ax = new_axes(ax)
     if kind == "time":
         variable = rate if variable is None else variable
         if variable in forces:
@@ -200,7 +179,7 @@ def band(result: Any, ax: Any = None) -> Any:
     >>> [t.get_text() for t in ax.texts], len(ax.patches)
     (['NS'], 1)
     """
-    ax = _axes(ax)
+    ax = new_axes(ax)
     x, y = [], []
     for g in result.grid:
         # the line breaks (NaN) across a range with no periodic response
@@ -221,30 +200,6 @@ def band(result: Any, ax: Any = None) -> Any:
     ax.set_title(f"the {response_name(result.periods)} response: {result.model!r}", fontsize=8)
     ax.legend(loc="best", fontsize="small")
     return ax
-
-
-def _special_markers(ax: Any, param_values: Any, y: Any, special: Any, labels: bool) -> None:
-    """Mark each special point (not the ends of the range) at the nearest point."""
-    for s in special:
-        if s.kind not in LABELS or not len(param_values):
-            continue
-        i = int(np.argmin(np.abs(np.asarray(param_values) - s.value)))
-        colour = KIND_COLOURS.get(s.kind, "0.3")
-        ax.plot([s.value], [y[i]], "o", color=colour, ms=5, zorder=3)
-        if labels:
-            ax.annotate(LABELS[s.kind], (s.value, y[i]), xytext=(3, 3),
-                        textcoords="offset points", fontsize=8, color=colour)  # fmt: skip
-
-
-def _stability_runs(stable: list) -> list[tuple[int, int, Any]]:
-    """``(start, stop, stable)`` of the runs of equal stability; consecutive runs share
-    their boundary point, so that the drawn line is unbroken."""
-    runs, start = [], 0
-    for i in range(1, len(stable) + 1):
-        if i == len(stable) or stable[i] != stable[start]:
-            runs.append((start, min(i + 1, len(stable)), stable[start]))
-            start = i
-    return runs
 
 
 def branch(
@@ -299,7 +254,7 @@ def branch(
     >>> ax.get_ylabel(), [t.get_text() for t in ax.texts]
     ("X1' amplitude [m/s]", ['NS'])
     """
-    ax = _axes(ax)
+    ax = new_axes(ax)
     table = result.observables()
     observable = observable or f"{state_names.rate_column(result.model)}_amplitude"
     if observable not in table or observable == result.param:
@@ -308,11 +263,7 @@ def branch(
         )
     x, y = table[result.param], table[observable]
     stable = [p.stable for p in result.points]
-    for n, (a, b, s) in enumerate(_stability_runs(stable)):
-        tag = {True: "stable", False: "unstable", None: "grazing"}[s]
-        ax.plot(x[a:b], y[a:b], _STYLES[s], color=colour,
-                label=f"{name} {tag}" if name else tag, gid=f"branch:{tag}:{n}")  # fmt: skip
-    _special_markers(ax, x, y, result.special, labels)
+    draw_branch(ax, x, y, stable, result.special, labels=labels, colour=colour, name=name)
     ax.set_xlabel(axis_label(result.param, unit(result.param, result.model)))
     ax.set_ylabel(observable_label(observable, result.model))
     ax.set_title(f"{name or result.response}: {result.model!r}", fontsize=8)
@@ -353,7 +304,7 @@ def coexistence(result: Any, ax: Any = None, observable: str | None = None) -> A
     >>> len(ax.lines), tuple(float(v) for v in ax.get_xlim())
     (0, (1.0, 2.0))
     """
-    ax = _axes(ax)
+    ax = new_axes(ax)
     colours = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]
     for i, r in enumerate(result.responses):
         branch(r.branch, ax, observable, colour=colours[i % len(colours)], name=r.name)
@@ -403,7 +354,7 @@ def floquet_map(result: Any, ax: Any = None, linear: bool = True) -> Any:
     >>> ax.get_xlabel(), ax.get_ylabel()
     ('Vb [m/s]', 'beta1 [-]')
     """
-    ax = _axes(ax)
+    ax = new_axes(ax)
     dy = (result.rows[1] - result.rows[0]) if result.rows.size > 1 else 1.0
     for value, intervals in zip(result.rows, result.unstable):
         for a, b in intervals:
@@ -471,7 +422,7 @@ def basins(result: Any, ax: Any = None) -> Any:
     import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap
 
-    ax = _axes(ax)
+    ax = new_axes(ax)
     n = max(len(result.attractors), 1)
     colours = plt.get_cmap("tab10")(np.arange(n) % 10)
     cmap = ListedColormap(np.vstack([[0.85, 0.85, 0.85, 1.0], colours]))

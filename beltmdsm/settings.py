@@ -38,6 +38,7 @@ __all__ = [
     "MAX_VB_POINTS",
     "MAX_BAND_POINTS",
     "MAX_SEED_POINTS",
+    "SETTLE_TOL",
     "MAX_MAP_ROWS",
     "MIN_TOL_ULPS",
     "fastest_rate",
@@ -270,6 +271,14 @@ MAX_MAP_ROWS = 10**4
 #: larger end of the range: below, the midpoint of a bracket rounds to one of its ends
 #: and the bisection stops shrinking it.
 MIN_TOL_ULPS = 64
+
+
+#: A self-excited cycle's seed run has settled when its returns to the section repeat
+#: to within this, relative to their distance from steady sliding (a run that decays to
+#: steady sliding returns by a fixed share of that distance, and never settles):
+#: Newton's method converges from there. The paper's seed
+#: (`beltmdsm.starts.cycle_seed`) and another model's (`beltmdsm.oscillator.cycle_seed`).
+SETTLE_TOL = 1e-6
 
 
 # a model is immutable and hashable; the runtime asks this for the same model at every

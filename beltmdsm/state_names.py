@@ -9,11 +9,15 @@ column, a figure's axis label, the prefix of an observable such as ``<column>_am
 is its own name where the model names its rates ``<q>_dot`` (the models' contract,
 ``x_dot``), and ``<q>'`` where it names them otherwise: the paper's rates ``Y1`` and
 ``Y2`` are the columns ``X1'`` and ``X2'``, names its tables and JSON keep (a contract).
-Every registered model's coordinates are displacements: a position is in m, a rate in m/s.
+A state's unit is its module's ``STATE_UNITS`` (derived from the entry's unit of each
+coordinate: ``m`` by default, ``rad`` for an angle, ``1`` for a modal amplitude; a rate in
+its coordinate's unit per second); a module typed by hand without it has displacements
+(m and m/s), the entries' default. `module_units` reads and checks it.
 
 A model is given as its registered name, a `beltmdsm.model.Model` (its ``model``), an
-object naming it as ``name`` (`beltmdsm.oscillator.system.System`), or None for the
-paper's model.
+object holding its generated module as ``module`` (`beltmdsm.oscillator.system.System`,
+whose module need not be registered) or naming it as ``name``, the module itself, or
+None for the paper's model.
 """
 
 from __future__ import annotations
@@ -23,10 +27,21 @@ from typing import Any
 
 from .other_model import PAPER, model_module
 
-__all__ = ["names", "columns", "units", "column", "index", "rate_column", "rate_row", "plane"]
+__all__ = [
+    "names",
+    "columns",
+    "units",
+    "module_units",
+    "slip_unit",
+    "column",
+    "index",
+    "rate_column",
+    "rate_row",
+    "plane",
+]
 
-#: The unit of a position and of a rate (every registered model's coordinates are
-#: displacements).
+#: The unit of a position and of a rate of a module without ``STATE_UNITS`` (one typed by
+#: hand): displacements, the default of a model entry (derive/models/entry.py).
 POSITION_UNIT, RATE_UNIT = "m", "m/s"
 
 
@@ -35,8 +50,54 @@ def _module(model: Any) -> ModuleType:
         return model_module(PAPER)
     if isinstance(model, str):
         return model_module(model)
+    if isinstance(model, ModuleType):
+        return model
+    module = getattr(model, "module", None)
+    if isinstance(module, ModuleType):
+        return module
     name = getattr(model, "model", None)
     return model_module(name if isinstance(name, str) else model.name)
+
+
+def module_units(module: ModuleType) -> tuple[str, ...]:
+    """The unit of each state of a model module, in the order of its ``STATES``: its
+    ``STATE_UNITS``, checked (one non-empty string per state), or m and m/s where a
+    module typed by hand has none.
+
+    Raises
+    ------
+    ValueError
+        Naming the module, where ``STATE_UNITS`` is not one unit string per state.
+
+    See Also
+    --------
+    units : the same of a model given by name or as a `beltmdsm.model.Model`.
+
+    Examples
+    --------
+    >>> import types
+    >>> toy = types.SimpleNamespace(NAME="toy", COORDINATES=("x",), STATES=("x", "x_dot"))
+    >>> module_units(toy)
+    ('m', 'm/s')
+    >>> toy.STATE_UNITS = ("rad",)
+    >>> module_units(toy)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: model 'toy': STATE_UNITS must be one unit string per state ... got ('rad',)
+    """
+    given = getattr(module, "STATE_UNITS", None)
+    if given is None:
+        return tuple(POSITION_UNIT if s in module.COORDINATES else RATE_UNIT for s in module.STATES)
+    if (
+        not isinstance(given, (tuple, list))
+        or len(given) != len(module.STATES)
+        or not all(isinstance(u, str) and u.strip() for u in given)
+    ):
+        raise ValueError(
+            f"model {module.NAME!r}: STATE_UNITS must be one unit string per state of "
+            f"STATES ({', '.join(module.STATES)}); got {given!r}"
+        )
+    return tuple(given)
 
 
 def names(model: Any = None) -> tuple[str, ...]:
@@ -85,15 +146,28 @@ def columns(model: Any = None) -> tuple[str, ...]:
 
 
 def units(model: Any = None) -> tuple[str, ...]:
-    """The unit of each state, in the order of ``y`` (m for a position, m/s for a rate).
+    """The unit of each state, in the order of ``y`` (`module_units`: the model's
+    ``STATE_UNITS``).
 
     Examples
     --------
-    >>> units("belt_1dof")
-    ('m', 'm/s')
+    >>> units(), units("belt_1dof")
+    (('m', 'm/s', 'm', 'm/s'), ('m', 'm/s'))
     """
-    module = _module(model)
-    return tuple(POSITION_UNIT if s in module.COORDINATES else RATE_UNIT for s in module.STATES)
+    return module_units(_module(model))
+
+
+def slip_unit(model: Any = None) -> str:
+    """The unit of the slip velocity ``v_r = w . q' - Vb``: the belt speed's (the module's
+    ``UNITS["Vb"]``), whatever the units of the coordinates (a rotational coordinate
+    enters ``v_r`` through its lever arm).
+
+    Examples
+    --------
+    >>> slip_unit("hoffmann")
+    'm/s'
+    """
+    return _module(model).UNITS["Vb"]
 
 
 def index(model: Any, name: str) -> int:

@@ -9,7 +9,9 @@ runs, so the runtime commands never load SymPy.
 
 The regeneration prints one line per module on stderr as it derives it, with its time
 (stdout keeps the summary). A law that `beltmdsm.derive.laws.register` refuses
-(`beltmdsm.derive.lawcheck.UnsupportedLaw`) is one line too, exit status 2.
+(`beltmdsm.derive.lawcheck.UnsupportedLaw`), or a model entry that
+`beltmdsm.derive.models.register` refuses (`UnsupportedModel`), is one line too, exit
+status 2.
 
 Each command takes the parsed arguments (``args.parser`` is the parser that read
 them: a refusal is ``args.parser.error(...)``, one line and exit status 2) and
@@ -38,13 +40,13 @@ def generate(args) -> int:
 
     Refused (``args.parser.error``): writing the package's own generated/ outside a
     source checkout (an installed package is not rewritten; ``--out DIR`` writes
-    elsewhere), a law that `beltmdsm.derive.laws.register` refuses.
+    elsewhere), a law or a model entry that `register` refuses.
     """
     try:
         from . import budget, codegen, modules
         from .models import render as models_render
-    except ValueError as err:  # a law refused at `register` (lawcheck.UnsupportedLaw)
-        if type(err).__name__ != "UnsupportedLaw":
+    except ValueError as err:  # a law or a model refused at `register`
+        if type(err).__name__ not in ("UnsupportedLaw", "UnsupportedModel"):
             raise
         args.parser.exit(2, f"{args.parser.prog}: error: {err}\n")
 

@@ -86,7 +86,11 @@ def simulate(args: argparse.Namespace) -> int:
         _head(system),
         repr(sim),
         "final: " + ", ".join(f"{n} = {v:.10g}" for n, v in out["final"].items()),
-        "ranges: " + ", ".join(f"{n} in [{a:.6g}, {b:.6g}]" for n, (a, b) in out["ranges"].items()),
+        "ranges: "
+        + ", ".join(
+            f"{n} in [{a:.6g}, {b:.6g}] {u}"
+            for (n, (a, b)), u in zip(out["ranges"].items(), system.units)
+        ),
     ]
     if args.save:
         lines.append(f"samples written to {args.save}")

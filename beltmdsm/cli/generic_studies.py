@@ -135,7 +135,8 @@ def sweep(args: argparse.Namespace) -> int:
     ]
     for row in result.rows:
         ranges = ", ".join(
-            f"{s} in [{row[f'{s}_min']:.6g}, {row[f'{s}_max']:.6g}]" for s in system.states
+            f"{s} in [{row[f'{s}_min']:.6g}, {row[f'{s}_max']:.6g}] {u}"
+            for s, u in zip(system.states, system.units)
         )
         lines.append(
             f"  {name} = {row[name]:.6g}: {row['regime']}, {row['sticks']} sticks; {ranges}"

@@ -54,7 +54,7 @@ from ..periodic.shooting import periodic_response
 from .branch_result import Branch, _recorded_rows, record_points
 from .driver import join
 from .driver import walk as _walk  # the name tests patch
-from .forced import ForcedProblem
+from .forced import BranchPoint, ForcedProblem
 from .problem import range_end
 from .settings import ContinuationSettings, as_settings
 
@@ -62,7 +62,7 @@ __all__ = ["continue_branch", "branch"]
 
 
 def continue_branch(
-    start: PeriodicResponse,
+    start: PeriodicResponse | BranchPoint,
     param: str,
     lo: float,
     hi: float,
@@ -75,10 +75,13 @@ def continue_branch(
 
     Parameters
     ----------
-    start : PeriodicResponse
+    start : PeriodicResponse or BranchPoint
         A forced response (`beltmdsm.periodic.shooting.periodic_response`,
-        ``periods=k`` for a locked one). A self-excited cycle's continues as a branch
-        of cycles one layer up: `beltmdsm.branches.continue_branch` picks the problem.
+        ``periods=k`` for a locked one), or a point of a forced `Branch`
+        (`beltmdsm.continuation.forced.BranchPoint`: ``b.points[-1]`` continues ``b``
+        from its end, ``b.point_near(s.value)`` from a special point; its model and
+        ``k`` kept). A self-excited cycle's continues as a branch of cycles one layer
+        up: `beltmdsm.branches.continue_branch` picks the problem.
     param : str
         A model parameter.
     lo, hi : float
@@ -133,7 +136,8 @@ def continue_branch(
     if not lo <= v0 <= hi:
         raise ValueError(f"the start's {param} = {v0:g} is outside [{lo:g}, {hi:g}]")
     family = MapFamily(model, param, start.periods, backend)
-    x0 = np.asarray(start.shooting_state, dtype=float)
+    point = isinstance(start, BranchPoint)
+    x0 = np.asarray(start.state if point else start.shooting_state, dtype=float)
     kT = start.periods * family(v0).period
     problem = ForcedProblem(family, float(lo), float(hi), 1.0 + float(np.max(np.abs(x0))), kT)
     problem.settings = as_settings(settings, problem.default_settings)

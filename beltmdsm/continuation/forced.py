@@ -20,6 +20,7 @@ from numpy.typing import NDArray
 
 from ..errors import NoPeriodicResponse
 from ..integrate.switching import Mode
+from ..model import Model
 from ..periodic.base import MapImage
 from ..periodic.family import MapFamily
 from ..periodic.newton import NEWTON_TOL, FixedPoint, fixed_point
@@ -62,6 +63,11 @@ class BranchPoint:
     recorded : dict of str to float
         What the ``record`` callable of `beltmdsm.continuation.branch.branch` returned
         here (empty without one).
+    model : Model or None
+        The model at the point (the branch's parameter at ``value``), from which
+        `beltmdsm.branches.continue_branch` continues it.
+    periods : int
+        ``k``: the response of ``k`` excitation periods.
 
     See Also
     --------
@@ -89,6 +95,8 @@ class BranchPoint:
     image: MapImage = field(repr=False)
     column: NDArray[np.float64] | None = field(default=None, repr=False)
     recorded: dict[str, float] = field(default_factory=dict, repr=False)
+    model: Model | None = field(default=None, repr=False)
+    periods: int = field(default=1, repr=False)
 
     def observables(self, vb: float) -> dict[str, float]:
         """The `beltmdsm.periodic.observables.OBSERVABLES` of the orbit at belt speed
@@ -195,9 +203,11 @@ class ForcedProblem(Problem):
         )
         n_stick = sum(1 for _, _, a, _ in image.switches if a == Mode.STICK)
         stable = None if image.grazing is not None else bool(biggest < 1.0)
+        family = self.family
         return BranchPoint(
-            float(value), np.array(x, float), mu, biggest, stable, n_rev, n_stick, tangent_p, image
-        )
+            float(value), np.array(x, float), mu, biggest, stable, n_rev, n_stick, tangent_p,
+            image, model=family(value).model, periods=family.periods,
+        )  # fmt: skip
 
     def start(self, x, value, direction, image):
         """The first point of a walk and its unit tangent (``direction``: of the parameter)."""

@@ -109,7 +109,7 @@ class OscillatorBranch(Branch):
         amplitude of the first rate, ``x_dot_amplitude``) against ``param``, stable solid,
         unstable dashed, the special points marked; on matplotlib axes ``ax`` (new ones if
         None), which it returns."""
-        from ..plotting import _STYLES, _axes, _special_markers, _stability_runs
+        from ..branch_lines import draw_branch, new_axes
 
         states = self.system.states
         observable = observable or f"{states[len(states) // 2]}_amplitude"
@@ -118,13 +118,9 @@ class OscillatorBranch(Branch):
             raise ValueError(
                 f"observable must be one of {', '.join(list(table)[1:])}; got {observable!r}"
             )
-        ax = _axes(ax)
+        ax = new_axes(ax)
         x, y = table[self.param], table[observable]
-        for n, (a, b, s) in enumerate(_stability_runs([p.stable for p in self.points])):
-            tag = {True: "stable", False: "unstable", None: "grazing"}[s]
-            ax.plot(x[a:b], y[a:b], _STYLES[s], color="tab:blue", label=tag,
-                    gid=f"branch:{tag}:{n}")  # fmt: skip
-        _special_markers(ax, x, y, self.special, labels)
+        draw_branch(ax, x, y, [p.stable for p in self.points], self.special, labels=labels)
         ax.set_xlabel(self.param)
         ax.set_ylabel(observable.replace("_", " "))
         ax.set_title(f"{self.response} of model {self.model.model}: {self.model!r}", fontsize=8)

@@ -29,6 +29,7 @@ from ..continuation.driver import walk as drive
 from ..continuation.problem import Problem, Residual, Step, failed, null_vector, range_end
 from ..continuation.settings import CYCLE_SETTINGS, ContinuationSettings
 from ..errors import NoPeriodicResponse
+from ..model import Model
 from ..periodic.cycle_flow import CycleFlow, FlowImage, orbit_observables, split_multipliers
 from ..periodic.newton import NEWTON_TOL
 from .stick import cross_stick, stick_ahead, sticks
@@ -81,6 +82,9 @@ class CyclePoint:
     segments : ndarray (m, 4) or None
         The states at ``t = i T / m`` where the cycle was solved by multiple shooting
         (`beltmdsm.cycles.multiple`); None for single shooting.
+    model : Model or None
+        The model at the point (the branch's parameter at ``value``), from which
+        `beltmdsm.branches.continue_branch` continues it.
 
     See Also
     --------
@@ -129,6 +133,7 @@ class CyclePoint:
     column: NDArray[np.float64] | None = field(repr=False, default=None)
     recorded: dict[str, float] = field(repr=False, default_factory=dict)
     segments: NDArray[np.float64] | None = field(repr=False, default=None)
+    model: Model | None = field(repr=False, default=None)
 
     def observables(self, vb: float) -> dict[str, float]:
         """The ranges of ``X1'`` and ``X1``, the largest ``|Vr| = |X1' - vb|`` (at an
@@ -331,6 +336,7 @@ class CycleProblem(Problem):
             obs.stick_time,
             img,
             None if J is None else J[:, 5].copy(),
+            model=model,
         )
 
     # -- the hooks: the stick onset, the limits of single shooting

@@ -5,10 +5,10 @@
 millisecond a step in numpy's small-array overheads. Here the same method (DOP853 with
 SciPy's step-size control, the coefficients of ``beltmdsm.generated.tableau``), the same
 surfaces (`beltmdsm.oscillator.hybrid`) and the same search for the first crossing
-(the step's midpoint, a parabola for a dip, 16 samples of the dense output, then the
-Illinois method of `beltmdsm.integrate._roots`; a touch of any guard at its minimum,
-bracketed by its derived rate; in stick, the two sides of the cone integrated beside
-the state) run as one numba function, with the model's kernels compiled into it.
+(the guard at the step's Chebyshev-Lobatto points, its polynomial and error model of
+`beltmdsm.oscillator._dips` for a fall between them, then the Illinois method of
+`beltmdsm.integrate._roots`; in stick, the two sides of the cone integrated beside the
+state) run as one numba function, with the model's kernels compiled into it.
 
 The kernels are the module's plain functions: each is compiled by numba with every
 function it calls (its globals and closure cells) compiled too. The compiled module is
@@ -42,6 +42,7 @@ from beltmdsm.generated._support import import_numba, user_cache
 
 from ..integrate import _roots
 from ..integrate._background import Lazy, digest, numba_installed, numba_version
+from . import _dips
 
 __all__ = ["advance", "CompileWarning"]
 
@@ -54,7 +55,6 @@ _C = np.ascontiguousarray(_coef.C, dtype=float)
 _E3 = np.ascontiguousarray(_coef.E3, dtype=float)
 _E5 = np.ascontiguousarray(_coef.E5, dtype=float)
 _D = np.ascontiguousarray(_coef.D, dtype=float)
-_SAMPLES = 16
 STATUS_END, STATUS_EVENT, STATUS_STEP_TOO_SMALL = 0, 1, 2
 
 
@@ -130,19 +130,62 @@ def _root(p, mode, j, F, y0, t0, h, a, fa, b, fb, tmp, rate):
     return b
 
 
-def _touch(p, mode, j, F, y0, t0, h, a, fa, b, tmp):
-    """As `beltmdsm.oscillator.hybrid._touch`: the first fall to 0 at a minimum of the
-    surface between ``a`` and ``b`` that no sample shows, or -1."""
-    c = 0.5 * (a + b)
-    r = (_du_at(p, mode, j, F, y0, t0, h, a, tmp), _du_at(p, mode, j, F, y0, t0, h, c, tmp),
-         _du_at(p, mode, j, F, y0, t0, h, b, tmp))  # fmt: skip
-    ends = (a, c, b)
-    for k in range(2):
-        if r[k] < 0.0 <= r[k + 1]:
-            tm = _root(p, mode, j, F, y0, t0, h, ends[k], -r[k], ends[k + 1], -r[k + 1], tmp, True)
+def _touch(p, mode, j, F, y0, t0, h, values, first, last, ts, tmp):
+    """As `beltmdsm.oscillator.hybrid._touch`: the first fall to 0 between the nodes
+    ``first`` and ``last`` that no node shows, or -1."""
+    n = values.shape[0]
+    c = np.empty(n)
+    scratch = np.empty(n)
+    bernstein(values, c)
+    e = error(values)
+    xa, xb = NODES[first], NODES[last]
+    if xa > 0.0:
+        split(c, xa, scratch, c)
+    if xb < 1.0:
+        split(c, (xb - xa) / (1.0 - xa), c, scratch)
+    # depth-first, left first: at most one pending right half per level
+    stack = np.empty((DEPTH + 2, n))
+    lo_s = np.empty(DEPTH + 2)
+    hi_s = np.empty(DEPTH + 2)
+    depth_s = np.empty(DEPTH + 2, dtype=np.int64)
+    for i in range(n):
+        stack[0, i] = c[i]
+    lo_s[0], hi_s[0], depth_s[0] = xa, xb, 0
+    top = 1
+    t_pos, u_pos = ts[first], values[first]
+    while top > 0:
+        top -= 1
+        lo, hi, depth = lo_s[top], hi_s[top], depth_s[top]
+        for i in range(n):
+            c[i] = stack[top, i]
+        if lowest(c) > e:
+            continue
+        if depth < DEPTH:
+            mid = 0.5 * (lo + hi)
+            split(c, 0.5, c, scratch)
+            for i in range(n):
+                stack[top, i] = scratch[i]
+                stack[top + 1, i] = c[i]
+            lo_s[top], hi_s[top], depth_s[top] = mid, hi, depth + 1
+            lo_s[top + 1], hi_s[top + 1], depth_s[top + 1] = lo, mid, depth + 1
+            top += 2
+            continue
+        ta = t0 + h * lo if lo > xa else ts[first]
+        tb = t0 + h * hi if hi < xb else ts[last]
+        ua = u_pos if ta == t_pos else _u_at(p, mode, j, F, y0, t0, h, ta, tmp)
+        if ua <= 0.0:
+            return _root(p, mode, j, F, y0, t0, h, t_pos, u_pos, ta, ua, tmp, False)
+        ub = _u_at(p, mode, j, F, y0, t0, h, tb, tmp)
+        if ub <= 0.0:
+            return _root(p, mode, j, F, y0, t0, h, ta, ua, tb, ub, tmp, False)
+        ra = _du_at(p, mode, j, F, y0, t0, h, ta, tmp)
+        rb = _du_at(p, mode, j, F, y0, t0, h, tb, tmp)
+        if ra < 0.0 <= rb:
+            tm = _root(p, mode, j, F, y0, t0, h, ta, -ra, tb, -rb, tmp, True)
             um = _u_at(p, mode, j, F, y0, t0, h, tm, tmp)
             if um <= 0.0:
-                return _root(p, mode, j, F, y0, t0, h, a, fa, tm, um, tmp, False)
+                return _root(p, mode, j, F, y0, t0, h, ta, ua, tm, um, tmp, False)
+        t_pos, u_pos = tb, ub
     return -1.0
 
 
@@ -166,39 +209,40 @@ def _u_at(p, mode, j, F, y0, t0, h, t, tmp):
 def _crossing(p, mode, j, F, y0, t0, h, u_old, u_new, armed, tmp):
     """``(time, armed)``: the first fall of surface ``j`` to <= 0 inside the step
     (time < 0: none); as `beltmdsm.oscillator.hybrid._crossing`."""
-    t1 = t0 + h
-    u_mid = _u_at(p, mode, j, F, y0, t0, h, t0 + 0.5 * h, tmp)
-    scan = True
-    if armed and u_new > 0.0 and u_mid > 0.0:
-        curv = u_old - 2.0 * u_mid + u_new
-        if curv <= 0.0:
-            scan = False
-        else:
-            x = 0.5 - (u_new - u_old) / (4.0 * curv)
-            low = u_mid - (u_new - u_old) ** 2 / (8.0 * curv)
-            scan = 0.0 < x < 1.0 and low <= 0.5 * min(u_old, min(u_mid, u_new))
-    a = t0
-    fa = u_old if armed else 0.0
-    first, f_first = (t0, u_old) if armed else (math.inf, 0.0)
-    if scan:
-        for k in range(1, _SAMPLES + 1):
-            tk = t0 + h * k / _SAMPLES if k < _SAMPLES else t1
-            fk = u_new if k == _SAMPLES else _u_at(p, mode, j, F, y0, t0, h, tk, tmp)
-            if fa > 0.0 and fk <= 0.0:
-                return _root(p, mode, j, F, y0, t0, h, a, fa, tk, fk, tmp, False), True
-            if fk > 0.0:
-                a, fa = tk, fk
-                if first == math.inf:
-                    first, f_first = tk, fk
-        if fa <= 0.0 and not armed:
-            return t0, False
-    else:
-        fa = u_new
-    if first < t1:
-        tc = _touch(p, mode, j, F, y0, t0, h, first, f_first, t1, tmp)
+    n = NODES.shape[0]
+    ts = np.empty(n)
+    values = np.empty(n)
+    for i in range(n):
+        ts[i] = t0 + h * NODES[i]
+    ts[n - 1] = t0 + h
+    values[0], values[n - 1] = u_old, u_new
+    for i in range(1, n - 1):
+        values[i] = _u_at(p, mode, j, F, y0, t0, h, ts[i], tmp)
+    first = 0
+    if not armed:
+        first = -1
+        for i in range(n):
+            if values[i] > 0.0:
+                first = i
+                break
+        if first < 0:
+            return t0, False  # never inside: the field leaves through its own start surface
+    last = n - 1
+    fall = False
+    for i in range(first + 1, n):
+        if values[i] <= 0.0:
+            last = i - 1
+            fall = True
+            break
+    if last > first:
+        tc = _touch(p, mode, j, F, y0, t0, h, values, first, last, ts, tmp)
         if tc >= 0.0:
             return tc, True
-    return -1.0, fa > 0.0 or armed
+    if fall:
+        tc = _root(p, mode, j, F, y0, t0, h, ts[last], values[last], ts[last + 1],
+                   values[last + 1], tmp, False)  # fmt: skip
+        return tc, True
+    return -1.0, True
 
 
 def advance(p, mode, n_watch, t, y, t_end, h_abs, rtol, atol, dt, t_first, k_next, out_t, out_y):
@@ -324,6 +368,8 @@ def advance(p, mode, n_watch, t, y, t_end, h_abs, rtol, atol, dt, t_first, k_nex
 
 
 converged, secant, illinois = _roots.converged, _roots.secant, _roots.illinois
+bernstein, error, split, lowest = _dips.bernstein, _dips.error, _dips.split, _dips.lowest
+NODES, DEPTH = _dips.NODES, _dips.DEPTH
 _FUNCTIONS = ("_u", "_du", "_rhs", "_dense", "_u_at", "_du_at", "_root", "_touch",
               "_crossing", "advance")  # fmt: skip
 _KERNELS = ("field", "slip_velocity", "slip_acceleration", "holding_force", "stick_limit",
@@ -369,7 +415,7 @@ def kernels_jitted(module_name: str, friction: str) -> dict:
 def _source(module, friction: str, numba_version: str) -> str:
     """The text of the module that numba compiles and caches on disk."""
     index = {name: i for i, name in enumerate(module.SURFACES)}
-    constants = ("_NS", "_NX", "_NP", "_A", "_B", "_C", "_E3", "_E5", "_D", "_SAMPLES")
+    constants = ("_NS", "_NX", "_NP", "_A", "_B", "_C", "_E3", "_E5", "_D", "NODES", "DEPTH")
     lines = [
         f"# Written by beltmdsm/oscillator/_compiled.py (numba {numba_version}); do not edit.",
         "import math",
@@ -382,6 +428,11 @@ def _source(module, friction: str, numba_version: str) -> str:
         "converged = numba.njit(_roots.converged)",
         "secant = numba.njit(_roots.secant)",
         "illinois = numba.njit(_roots.illinois)",
+        "from beltmdsm.oscillator import _dips",
+        "bernstein = numba.njit(_dips.bernstein)",
+        "error = numba.njit(_dips.error)",
+        "split = numba.njit(_dips.split)",
+        "lowest = numba.njit(_dips.lowest)",
         f"_K = kernels_jitted({module.__name__!r}, {friction!r})",
         f"UNILATERAL = {bool(module.UNILATERAL)}",
         f"I_FORWARD, I_BACK, I_GAP = {index['stick_forward']}, {index['stick_back']}, "
@@ -402,7 +453,7 @@ def _load(module, friction: str, numba_version: str):
     caches it on disk beside it), or compiled in memory where the model's module is
     not importable by its name (a module made at run time)."""
     text = _source(module, friction, numba_version)
-    files = [__file__, _roots.__file__]
+    files = [__file__, _roots.__file__, _dips.__file__]
     if getattr(module, "__file__", None):
         files.append(module.__file__)
     stem = f"beltmdsm_model_{module.NAME}_{friction}_" + digest(numba_version, *files)
@@ -443,7 +494,7 @@ def _make(module_name: str, friction: str, numba_version: str):
 @functools.cache
 def _lazy(module, friction: str, foreground: bool) -> Lazy:
     version = numba_version()
-    files = [__file__, _roots.__file__, module.__file__]
+    files = [__file__, _roots.__file__, _dips.__file__, module.__file__]
     stem = f"beltmdsm_model_{module.NAME}_{friction}_" + digest(version, *files)
     return Lazy((_make, (module.__name__, friction, version)), stem, None, foreground)
 

@@ -5,12 +5,14 @@ each integrated by DOP853 (`beltmdsm.oscillator._stepper`) until the first cross
 a surface that ends it, located on the dense output by the Illinois method
 (`beltmdsm.integrate._roots`). A touch of a guard shorter than the samples (the
 start of a short stick, a brief excursion of the holding force past the static limit,
-a brief take-off) is found at the guard's minimum in the step, bracketed by a sign
-change of its rate along the mode's field (`_touch`): ``m slip_acceleration`` for the
-slip guard, and for the others the derived ``surface_rates`` of the module's
-``SURFACES`` (``stick_back`` or ``stick_forward`` by the sign of the holding force,
-``gap``). In stick the field does not see the excitation of the held direction, which
-moves the holding force: the two sides of the cone (``stick_forward``,
+a brief take-off) is found by an error model, not by samples (`_touch`): the guard's
+polynomial on the step and the error its values show (`beltmdsm.oscillator._dips`)
+clear what cannot reach 0; where it may, the guard's minimum is bracketed by a sign
+change of its rate along the mode's field: ``m slip_acceleration`` for the slip guard,
+and for the others the derived ``surface_rates`` of the module's ``SURFACES``
+(``stick_back`` or ``stick_forward`` by the sign of the holding force, ``gap``). In
+stick the field does not see the excitation of the held direction, which moves the
+holding force: the two sides of the cone (``stick_forward``,
 ``stick_back``) are integrated beside the state as quadratures of their rates, so that
 the step-size control resolves the stick guard as it does the state.
 
@@ -52,13 +54,11 @@ from ..errors import StepTooSmall
 from ..integrate._roots import converged, illinois, secant
 from ..integrate.zeno import ZENO_SWITCHES, ZENO_WINDOW
 from ..model import Backend
-from . import _compiled, _stepper
+from . import _compiled, _dips, _stepper
 from .system import FLIGHT, STICK, System
 
 __all__ = ["Trajectory", "simulate", "flow", "Flow", "initial_mode"]
 
-#: Samples of the dense output per step where a surface may dip below 0 inside it.
-_SAMPLES = 16
 #: Switch = (t, mode before, mode after).
 Switch = tuple[float, int, int]
 
@@ -251,69 +251,81 @@ def _to_stick(system: System, t, y):
 
 def _crossing(u, du, step: _stepper.Step, m: int, u_old: float, armed: bool):
     """The first time in the step where ``u`` falls to <= 0 after being > 0, or None;
-    with whether ``u`` has been > 0 (armed) by the step's end. ``du``: the rate of
-    ``u`` along the mode's field (`_rates`), by which `_touch` finds a touch between
-    the samples."""
+    with whether ``u`` has been > 0 (armed) by the step's end. ``u`` is taken at the
+    `_dips.NODES` of the step: a fall between two of them is refined by the Illinois
+    method, and before it (or anywhere, where none shows) `_touch` looks for a fall
+    that no node shows. ``du``: the rate of ``u`` along the mode's field (`_rates`)."""
     t0, h = step.t, step.h
     t1 = t0 + h
-    at = lambda t: u(t, step.at(t)[:m])  # noqa: E731
-    u_new = u(t1, step.y_new[:m])
-    y_mid = step.at(t0 + 0.5 * h)[:m]
-    u_mid = u(t0 + 0.5 * h, y_mid)
-    scan = True
-    if armed and u_new > 0.0 and u_mid > 0.0:
-        # a dip below 0 inside the step: the parabola through the three values
-        curv = u_old - 2.0 * u_mid + u_new
-        if curv <= 0.0:
-            scan = False
-        else:
-            x = 0.5 - (u_new - u_old) / (4.0 * curv)
-            low = u_mid - (u_new - u_old) ** 2 / (8.0 * curv)
-            scan = 0.0 < x < 1.0 and low <= 0.5 * min(u_old, u_mid, u_new)
-    a, fa = t0, u_old if armed else 0.0
-    first, f_first = (t0, u_old) if armed else (math.inf, 0.0)
-    if scan:
-        for j in range(1, _SAMPLES + 1):
-            tj = t0 + h * j / _SAMPLES if j < _SAMPLES else t1
-            fj = u_new if j == _SAMPLES else at(tj)
-            if fa > 0.0 and fj <= 0.0:
-                return _refine(at, a, fa, tj, fj), True
-            if fj > 0.0:
-                a, fa = tj, fj
-                if first == math.inf:
-                    first, f_first = tj, fj
-        if fa <= 0.0 and not armed:
+    ts = t0 + h * _dips.NODES
+    ts[-1] = t1
+    ys = step.many(ts[1:-1])[:, :m]
+    values = np.empty(ts.size)
+    values[0], values[-1] = u_old, u(t1, step.y_new[:m])
+    for i in range(1, ts.size - 1):
+        values[i] = u(ts[i], ys[i - 1])
+    first = 0
+    if not armed:
+        inside = np.flatnonzero(values > 0.0)
+        if not inside.size:
             return t0, False  # never inside: the field leaves through its own start surface
-    else:
-        fa = u_new
-    if first < t1:
+        first = int(inside[0])
+    falls = np.flatnonzero(values[first + 1 :] <= 0.0)
+    last = first + int(falls[0]) if falls.size else ts.size - 1
+    at = lambda t: u(t, step.at(t)[:m])  # noqa: E731
+    if last > first:
         rate = lambda t: du(t, step.at(t)[:m])  # noqa: E731
-        # the rates at the step's ends and middle from the states at hand (the cost)
-        rates = (
-            (du(t0, step.y[:m]), du(t0 + 0.5 * h, y_mid), du(t1, step.y_new[:m]))
-            if first == t0
-            else (rate(first), rate(0.5 * (first + t1)), du(t1, step.y_new[:m]))
-        )
-        tc = _touch(at, rate, first, f_first, t1, rates)
+        tc = _touch(at, rate, values, first, last, t0, h, ts)
         if tc is not None:
             return tc, True
-    return None, fa > 0.0 or armed
+    if falls.size:
+        return _refine(at, ts[last], values[last], ts[last + 1], values[last + 1]), True
+    return None, True
 
 
-def _touch(at, rate, a: float, fa: float, b: float, rates) -> float | None:
-    """The first fall of ``u`` to 0 in ``(a, b]`` (``fa = u(a) > 0``, ``u(b) > 0``)
-    that no sample shows: a touch at a minimum of ``u``, where its ``rate`` rises
-    through 0 (a sign change of the rate at ``a``, the middle and ``b`` brackets it;
-    the root of the rate found by the Illinois method, ``u`` tested there). ``rates``:
-    the rate at ``a``, the middle and ``b``."""
-    c = 0.5 * (a + b)
-    ra, rc, rb = rates
-    for lo, r_lo, hi, r_hi in ((a, ra, c, rc), (c, rc, b, rb)):
-        if r_lo < 0.0 <= r_hi:
-            tm = _refine(lambda t: -rate(t), lo, -r_lo, hi, -r_hi)
+def _touch(at, rate, values, first: int, last: int, t0: float, h: float, ts) -> float | None:
+    """The first fall of ``u`` to 0 between the nodes ``first`` and ``last`` (``u`` > 0
+    at both) that no node shows, or None: the guard's polynomial on the step
+    (`beltmdsm.oscillator._dips`) clears what its Bernstein hull holds above its error;
+    on a piece of ``1 / 2**DEPTH`` of the interval that it does not clear, the guard's
+    own values decide (a fall at the piece's end: refined by the Illinois method), or a
+    rise of its ``rate`` through 0 inside it (the minimum, found by the Illinois method
+    on the rate, ``u`` tested there)."""
+    c = _dips.TO_BERNSTEIN @ values
+    e = _dips.error(values)
+    xa, xb = _dips.NODES[first], _dips.NODES[last]
+    scratch = np.empty_like(c)
+    if xa > 0.0:
+        _dips.split(c, xa, scratch, c)
+    if xb < 1.0:
+        _dips.split(c, (xb - xa) / (1.0 - xa), c, scratch)
+    stack = [(xa, xb, c, 0)]
+    t_pos, u_pos = ts[first], values[first]  # the last time known inside
+    while stack:
+        lo, hi, c, depth = stack.pop()
+        if _dips.lowest(c) > e:
+            continue
+        if depth < _dips.DEPTH:
+            left, right = np.empty_like(c), np.empty_like(c)
+            _dips.split(c, 0.5, left, right)
+            mid = 0.5 * (lo + hi)
+            stack += [(mid, hi, right, depth + 1), (lo, mid, left, depth + 1)]
+            continue
+        ta = t0 + h * lo if lo > xa else ts[first]
+        tb = t0 + h * hi if hi < xb else ts[last]
+        ua = u_pos if ta == t_pos else at(ta)
+        if ua <= 0.0:
+            return _refine(at, t_pos, u_pos, ta, ua)
+        ub = at(tb)
+        if ub <= 0.0:
+            return _refine(at, ta, ua, tb, ub)
+        ra, rb = rate(ta), rate(tb)
+        if ra < 0.0 <= rb:
+            tm = _refine(lambda t: -rate(t), ta, -ra, tb, -rb)
             um = at(tm)
             if um <= 0.0:
-                return _refine(at, a, fa, tm, um)
+                return _refine(at, ta, ua, tm, um)
+        t_pos, u_pos = tb, ub
     return None
 
 

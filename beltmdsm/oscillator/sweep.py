@@ -79,7 +79,8 @@ class Sweep:
         return f"Sweep({self.system.name}, {self.param}; {regimes})"
 
     def as_dict(self) -> dict:
-        """Plain JSON values: the model, the swept parameter and the rows."""
+        """Plain JSON values: the model, the swept parameter, the rows and the unit of
+        each column that has one (``units``, `Sweep.units`)."""
         return {
             **self.system.as_dict(without=self.param),
             "param": self.param,
@@ -87,15 +88,28 @@ class Sweep:
             "t_discard": self.t_discard,
             "dt": self.dt,
             "rows": self.rows,
+            "units": self.units,
             "n_points": len(self.rows),
             "n_cached": self.n_cached,
         }
 
-    def to_csv(self, path: os.PathLike | str) -> None:
-        """The rows as CSV, a ``model`` column first (the model's name on every row)."""
+    @property
+    def units(self) -> dict[str, str]:
+        """The unit of each column that has one: the swept parameter's (the module's
+        ``UNITS``) and each state's columns (the module's ``STATE_UNITS``,
+        `beltmdsm.state_names.module_units`)."""
+        out = {self.param: self.system.module.UNITS[self.param]}
+        for state, unit in zip(self.system.states, self.system.units):
+            out.update({f"{state}_{k}": unit for k in ("min", "max", "final")})
+        return {c: out[c] for c in self.columns if c in out}
+
+    def to_csv(self, path: os.PathLike | str, units: bool = False) -> None:
+        """The rows as CSV, a ``model`` column first (the model's name on every row);
+        with ``units``, each header that has a unit (`Sweep.units`) as ``name [unit]``."""
         with open(path, "w", newline="") as fh:
             w = csv.writer(fh)
-            w.writerow(["model", *self.columns])
+            shown = self.units if units else {}
+            w.writerow(["model", *(f"{c} [{shown[c]}]" if c in shown else c for c in self.columns)])
             for row in self.rows:
                 w.writerow([self.system.name, *(_cell(v) for v in row.values())])
 
@@ -176,8 +190,11 @@ def sweep(
     if not (0 <= t_discard < t_end):
         raise ValueError(f"t_discard={t_discard!r}: not in [0, t_end = {t_end:g})")
     systems = [system.replace(**{param: float(v)}) for v in values]  # checked here, once
+    # a module not registered (made at run time) runs here only: a worker rebuilds the
+    # System from a registered model's name
     jobs = [
-        (s.name, s.friction, dict(s.params), param, float(t_end), float(t_discard), float(dt),
+        (s.module if executor is None else s.name, s.friction, dict(s.params), param,
+         float(t_end), float(t_discard), float(dt),
          None if y0 is None else [float(v) for v in np.asarray(y0, dtype=float)], rtol, atol)
         for s in systems
     ]  # fmt: skip
@@ -201,11 +218,13 @@ def sweep(
 def _identity(job) -> dict:
     """What a point's row depends on, as plain JSON values (the cache's key)."""
     names = ("model", "friction", "params", "param", "t_end", "t_discard", "dt", "y0")
-    return {**dict(zip(names, job)), "rtol": job[8], "atol": job[9]}
+    ident = {**dict(zip(names, job)), "rtol": job[8], "atol": job[9]}
+    return {**ident, "model": getattr(job[0], "NAME", job[0])}
 
 
 def _row(name, friction, params, param, t_end, t_discard, dt, y0, rtol, atol) -> dict:
-    """One point: built in the worker from plain values (a `System` holds a module)."""
+    """One point: built in the worker from plain values (a `System` holds a module), or
+    here from the model's module."""
     system = System(name, friction, **params)
     run = simulate(system, t_end, y0, dt=dt, rtol=rtol, atol=atol)
     keep = run.t >= t_discard

@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 
 from ..errors import Unsupported
 from ..other_model import model_module
+from ..state_names import module_units
 
 __all__ = ["System", "load_model", "STICK", "FLIGHT"]
 
@@ -60,8 +61,10 @@ def load_model(model: str | ModuleType) -> ModuleType:
     Raises
     ------
     ValueError
-        An unknown name (the registered ones listed, the closest suggested), or a module
-        that lacks a name of the contract.
+        An unknown name (the registered ones listed, the closest suggested), a module
+        that lacks a name of the contract, or one whose ``STATE_UNITS`` (optional: m and
+        m/s without it) is not one unit string per state
+        (`beltmdsm.state_names.module_units`).
 
     See Also
     --------
@@ -85,6 +88,7 @@ def load_model(model: str | ModuleType) -> ModuleType:
             f"model={getattr(module, '__name__', module)!r}: the module lacks "
             f"{', '.join(missing)} of the model contract"
         )
+    module_units(module)
     return module
 
 
@@ -108,6 +112,8 @@ class System:
     name, friction : str
     states, coordinates : tuple of str
         From the module (``2n`` states, ``n`` coordinates).
+    units : tuple of str
+        The unit of each state (the module's ``STATE_UNITS``; m and m/s without it).
     unilateral : bool
         Whether the contact can open (a flight mode).
     params : dict
@@ -176,6 +182,7 @@ class System:
         self.friction: str = friction
         self.states: tuple[str, ...] = tuple(module.STATES)
         self.coordinates: tuple[str, ...] = tuple(module.COORDINATES)
+        self.units: tuple[str, ...] = module_units(module)
         self.unilateral: bool = bool(module.UNILATERAL)
         self.params: dict[str, float] = {n: values.get(n, float(module.DEFAULTS[n])) for n in names}
         self._given = values
@@ -198,13 +205,14 @@ class System:
 
     def as_dict(self, without: str | None = None) -> dict:
         """The model's part of every JSON output: ``model``, ``friction``, ``params`` (less
-        ``without``, a swept parameter that the output lists per point) and ``states``.
+        ``without``, a swept parameter that the output lists per point), ``states`` and
+        ``state_units`` (state -> unit).
 
         Examples
         --------
         >>> d = System("belt_1dof", Vb=2.0).as_dict(without="Vb")
-        >>> d["model"], "Vb" in d["params"], d["states"][0]
-        ('belt_1dof', False, 'x')
+        >>> d["model"], "Vb" in d["params"], d["states"][0], d["state_units"]
+        ('belt_1dof', False, 'x', {'x': 'm', 'x_dot': 'm/s'})
         """
         params = {k: v for k, v in self.params.items() if k != without}
         return {
@@ -212,6 +220,7 @@ class System:
             "friction": self.friction,
             "params": params,
             "states": list(self.states),
+            "state_units": dict(zip(self.states, self.units)),
         }
 
     def excitation_period(self) -> float | None:

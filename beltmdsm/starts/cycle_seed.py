@@ -34,6 +34,7 @@ from ..excitation import initial_state, is_autonomous
 from ..integrate.switching import SURFACE_INDEX, Mode, Switching
 from ..model import Backend, Model, as_model
 from ..periodic.cycle_returns import run_from, section_returns, stick_slip_start
+from ..settings import SETTLE_TOL
 
 __all__ = [
     "seed_cycle",
@@ -57,11 +58,6 @@ SEED_AMPLITUDE = 1e-2
 #: reached in about 80 periods.
 SEED_PERIODS = 3000
 _SEED_CHUNK = 50
-#: The run has settled when the state at the section returns to within this, relative
-#: to the return's distance from steady sliding (a run that decays to steady sliding
-#: returns by a fixed share of that distance, and never settles): Newton's method
-#: converges from there.
-SETTLE_TOL = 1e-6
 #: The seed's run has decayed to steady sliding when ``X1'`` varies by less than this
 #: fraction of ``|Vb|`` over a chunk: far above the run's rounding (its tolerance, 1e-10,
 #: leaves X1' a floor of a few 1e-9), and a cycle that small exists only within about

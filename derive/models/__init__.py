@@ -6,6 +6,8 @@ A model is one ``register("model", Oscillator(...))`` beside the laws
 * `beltmdsm.derive.models.entry`: what an entry gives (`Oscillator`, `Contact`,
   `Excitation`);
 * `beltmdsm.derive.models.registry`: `register` (models and laws), its checks;
+* `beltmdsm.derive.models.dimensions`: the units of the coordinates and their rates, the
+  slip form's dimension check;
 * `beltmdsm.derive.models.system`: the equations of motion of each mode, the derived
   holding force;
 * `beltmdsm.derive.models.hybrid`: switching surfaces, saltation matrices, mode
@@ -21,7 +23,7 @@ A model is one ``register("model", Oscillator(...))`` beside the laws
 
 from . import entries  # noqa: E402, F401  (registers the shipped models)
 from .entry import Contact, Excitation, Oscillator
-from .registry import MODELS, choices, default, get, register
+from .registry import MODELS, UnsupportedModel, choices, default, get, register
 
 __all__ = [
     "Oscillator",
@@ -29,6 +31,7 @@ __all__ = [
     "Excitation",
     "MODELS",
     "register",
+    "UnsupportedModel",
     "choices",
     "default",
     "get",

@@ -27,9 +27,10 @@ take, in one line naming what is wrong.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from ..parameters import Parameter
+from .dimensions import LENGTH, rate_unit
 
 __all__ = ["Excitation", "Contact", "Oscillator"]
 
@@ -149,6 +150,14 @@ class Oscillator:
         coordinates, then their rates).
     friction_laws : tuple of str or None
         The friction laws generated for it (None: every registered law).
+    units : mapping or None
+        The unit of a coordinate, by name: ``"rad"`` for an angle, ``"1"`` for a
+        dimensionless modal amplitude, any unit string; a coordinate not named is a
+        length in ``"m"``. Its rate is in the coordinate's unit per second
+        (`beltmdsm.derive.models.dimensions.rate_unit`); the slip form's coefficients
+        must make ``v_r`` a speed in the unit of ``Vb`` (a lever arm: ``v_r = r
+        theta' - Vb``), checked where the units are readable
+        (`beltmdsm.derive.models.dimensions`).
 
     See Also
     --------
@@ -160,6 +169,8 @@ class Oscillator:
     >>> hoffmann = get("hoffmann")
     >>> hoffmann.coordinates, hoffmann.state_names
     (('x', 'y'), ('x', 'y', 'x_dot', 'y_dot'))
+    >>> hoffmann.state_units
+    ('m', 'm', 'm/s', 'm/s')
     """
 
     name: str
@@ -177,6 +188,9 @@ class Oscillator:
     rates: tuple[str, ...] | None = None
     states: tuple[str, ...] | None = None
     friction_laws: tuple[str, ...] | None = None
+    # a mapping is not hashable: the entry's hash (the derivation's cache key) leaves it
+    # out; equality keeps it
+    units: Mapping[str, str] | None = field(default=None, hash=False)
 
     @property
     def rate_names(self) -> tuple[str, ...]:
@@ -187,3 +201,17 @@ class Oscillator:
     def state_names(self) -> tuple[str, ...]:
         """The state vector's names, in order."""
         return self.states or (*self.coordinates, *self.rate_names)
+
+    @property
+    def coordinate_units(self) -> tuple[str, ...]:
+        """The unit of each coordinate, in order (``"m"`` where `units` names none)."""
+        given = self.units or {}
+        return tuple(given.get(q, LENGTH) for q in self.coordinates)
+
+    @property
+    def state_units(self) -> tuple[str, ...]:
+        """The unit of each state, in the order of `state_names` (a rate's: its
+        coordinate's per second)."""
+        of = dict(zip(self.coordinates, self.coordinate_units))
+        of.update((r, rate_unit(of[q])) for q, r in zip(self.coordinates, self.rate_names))
+        return tuple(of[s] for s in self.state_names)

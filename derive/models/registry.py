@@ -15,10 +15,19 @@ import sympy as sp
 
 from .. import laws
 from ..model import t
+from .dimensions import slip_mismatch
 from .entry import NORMAL, Oscillator
-from .system import system
+from .system import law_parameters, model_parameters, system
 
-__all__ = ["MODELS", "register", "choices", "default", "get", "check", "RESERVED"]
+__all__ = [
+    "MODELS", "register", "choices", "default", "get", "check", "RESERVED", "UnsupportedModel",
+]  # fmt: skip
+
+
+class UnsupportedModel(ValueError):
+    """A model entry `register` refuses: one line naming the model and what is wrong
+    (``python -m derive`` prints it as one line, exit status 2)."""
+
 
 #: model name -> entry, in registration order (the default first).
 MODELS: dict[str, Oscillator] = {}
@@ -42,8 +51,9 @@ def register(option: str, entry):
 
     Raises
     ------
-    ValueError
-        One line naming the model and what is wrong (`check`), or a name taken.
+    UnsupportedModel
+        A ValueError: one line naming the model and what is wrong (`check`), or a name
+        taken.
 
     See Also
     --------
@@ -58,9 +68,9 @@ def register(option: str, entry):
     if option != "model":
         return laws.register(option, entry)
     if not isinstance(entry, Oscillator):
-        raise ValueError(f"a model must be an Oscillator; got {type(entry).__name__}")
+        raise UnsupportedModel(f"a model must be an Oscillator; got {type(entry).__name__}")
     if entry.name in MODELS:
-        raise ValueError(f"model {entry.name!r} is registered already")
+        raise UnsupportedModel(f"model {entry.name!r} is registered already")
     check(entry)
     MODELS[entry.name] = entry
     return entry
@@ -91,7 +101,7 @@ def get(name: str) -> Oscillator:
 
 
 def _refuse(entry, what):
-    raise ValueError(f"model {entry.name!r}: {what}")
+    raise UnsupportedModel(f"model {entry.name!r}: {what}")
 
 
 def _names(entry):
@@ -124,6 +134,18 @@ def _names(entry):
         _refuse(entry, f"states: {entry.state_names} must order exactly {states}")
     if "Vb" not in params:
         _refuse(entry, "parameters: the belt speed Vb is missing (v_r = w . q' - Vb)")
+    _units(entry)
+
+
+def _units(entry):
+    units = entry.units or {}
+    if not hasattr(units, "items"):
+        _refuse(entry, f"units: a mapping of coordinate -> unit; got {type(units).__name__}")
+    for name, unit in units.items():
+        if name not in entry.coordinates:
+            _refuse(entry, f"units: {name!r} is not a coordinate {entry.coordinates}")
+        if not isinstance(unit, str) or not unit.strip() or not unit.isprintable():
+            _refuse(entry, f"units: {name!r} needs a one-line unit string; got {unit!r}")
 
 
 def _laws(entry):
@@ -176,6 +198,15 @@ def _expressions(entry):
         _refuse(entry, "contact.slip: the slip form's coefficients depend on the coordinates")
     if all(sp.diff(sys_.slip, v) == 0 for v in sys_.v):
         _refuse(entry, "contact.slip: all coefficients are zero (no slip velocity)")
+    rows = model_parameters(entry) + law_parameters(entry, friction)
+    wrong = slip_mismatch(
+        {q.name: sp.diff(sys_.slip, v) for q, v in zip(sys_.q, sys_.v)},
+        dict(zip(entry.coordinates, entry.coordinate_units)),
+        {sys_.P[r.name]: r.unit for r in rows},
+        next(r.unit for r in rows if r.name == "Vb"),
+    )
+    if wrong:
+        _refuse(entry, f"contact.slip: {wrong}")
 
 
 def check(entry: Oscillator) -> None:

@@ -426,6 +426,11 @@ def render_entry(entry, mp: bool = False) -> str:
         ("SUMMARY", entry.summary, "One line."),
         ("COORDINATES", entry.coordinates, "The generalized coordinates q."),
         ("STATES", entry.state_names, "The state vector's names, in order."),
+        (
+            "STATE_UNITS",
+            entry.state_units,
+            "The unit of each state, in the order of STATES (a rate's: its coordinate's per s).",
+        ),
         ("UNILATERAL", unilateral, "Whether flight (mode 2) exists."),
         ("FRICTION_LAWS", tuple(friction_laws), "The friction laws generated, the default first."),
         ("PARAMETERS", params, "Friction law -> names of params, in order."),

@@ -220,6 +220,7 @@ def models_page() -> str:
     supports, from ``beltmdsm.generated.models`` (derive/models/ wrote it), so that a model
     joins the page when ``python -m derive`` adds it."""
     from beltmdsm.generated.models import MODELS, load
+    from beltmdsm.state_names import module_units as state_units
 
     lines = [
         ".. This page is written by docs/_ext/beltmdsm_site.py from beltmdsm.generated.models.",
@@ -251,7 +252,8 @@ def models_page() -> str:
             "",
             _rst_text(m.SUMMARY) + ".",
             "",
-            f"* states: {', '.join(f'``{s}``' for s in m.STATES)}",
+            "* states: "
+            + ", ".join(f"``{s}`` [{_rst_text(u)}]" for s, u in zip(m.STATES, state_units(m))),
             f"* contact: {'unilateral (flight possible)' if m.UNILATERAL else 'bilateral'}",
             f"* modes: {modes}",
             f"* friction laws: {', '.join(f'``{law}``' for law in m.FRICTION_LAWS)}",

@@ -261,6 +261,41 @@ def test_python_m_derive_refuses_such_a_law_in_one_line(tmp_path):
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
 
 
+def test_python_m_derive_refuses_a_model_entry_in_one_line(tmp_path):
+    """A model entry added to derive/models/entries.py (the documented route) whose slip
+    form lacks its coordinate's lever arm (an angle's rate is not a speed): one line
+    naming the model and the slip form, exit 2, nothing written. Before, a traceback."""
+    shutil.copytree(
+        ROOT / "derive", tmp_path / "derive", ignore=shutil.ignore_patterns("__pycache__")
+    )
+    with open(tmp_path / "derive" / "models" / "entries.py", "a") as fh:
+        fh.write(
+            textwrap.dedent(
+                """
+                register(
+                    "model",
+                    Oscillator(
+                        "bad_disc", "a test model", "doc", ("theta",),
+                        (_ROW["Vb"],),
+                        Contact(slip=lambda P: {"theta": 1}, normal=lambda P, q, v, t: 1),
+                        units={"theta": "rad"},
+                    ),
+                )
+                """
+            )
+        )
+    as_checkout(tmp_path)
+    env = {**os.environ, "PYTHONPATH": str(tmp_path), "PYTHONDONTWRITEBYTECODE": "1"}
+    out = subprocess.run(
+        [sys.executable, "-m", "derive", "--out", str(tmp_path / "out")],
+        cwd=tmp_path, env=env, capture_output=True, text=True,
+    )  # fmt: skip
+    assert out.returncode == 2, out.stderr
+    assert out.stderr.count("\n") == 1 and "Traceback" not in out.stderr
+    assert "model 'bad_disc': contact.slip:" in out.stderr
+    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+
+
 # ---------------------------------------------------------------- fallbacks, recorded
 
 #: A rational law under a 1 s budget (Risch's algorithm needs more), in a fresh process,

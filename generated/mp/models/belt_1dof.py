@@ -25,7 +25,7 @@ from typing import NamedTuple
 import mpmath
 
 
-__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "DOMAINS", "DEFAULT_FROM", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "GUARDS", "DECIDE_SLIP", "DECIDE_CONTACT", "EQUILIBRIUM", "ABSENT", "LINEAR_SLIP"]
+__all__ = ["kernels", "Kernels", "NAME", "SUMMARY", "COORDINATES", "STATES", "STATE_UNITS", "UNILATERAL", "FRICTION_LAWS", "PARAMETERS", "DEFAULTS", "UNITS", "DESCRIPTIONS", "DOMAINS", "DEFAULT_FROM", "EXCITATION", "MODES", "SURFACES", "SWITCHES", "GUARDS", "DECIDE_SLIP", "DECIDE_CONTACT", "EQUILIBRIUM", "ABSENT", "LINEAR_SLIP"]
 
 
 #: The model's name in the registry.
@@ -39,6 +39,9 @@ COORDINATES = ('x',)
 
 #: The state vector's names, in order.
 STATES = ('x', 'x_dot')
+
+#: The unit of each state, in the order of STATES (a rate's: its coordinate's per s).
+STATE_UNITS = ('m', 'm/s')
 
 #: Whether flight (mode 2) exists.
 UNILATERAL = False

@@ -37,6 +37,7 @@ from beltmdsm.errors import NoPeriodicResponse, Unsupported
 from beltmdsm.oscillator.api import system_of
 from beltmdsm.oscillator.cycle import NEWTON_TOL
 from beltmdsm.oscillator.orbit import orbit_observables
+from beltmdsm.settings import SETTLE_TOL
 
 #: The reference has settled where its last two periods agree to this (relative).
 SETTLED = 1e-10
@@ -196,3 +197,29 @@ def test_a_perturbation_is_the_start():
     state, _ = beltmdsm.seed_cycle(m, perturbation=[0.0, 4.0])
     default, _ = beltmdsm.seed_cycle(m)
     assert state == pytest.approx(default, abs=1e-9)
+
+
+def test_a_slowly_decaying_run_is_no_pure_slip_seed():
+    """Just on the stable side of belt_1dof's Stribeck Hopf point (closed form, issue
+    39: Vb = v_s ln(g (mu_s - mu_k) / (2 beta1 omega1 v_s)) = 1.9957), a start off steady
+    sliding decays at its growth rate: its least slip speeds move by some 1e-3 a period,
+    far above SETTLE_TOL, so they never repeat. The paper's seed refuses such a run (it
+    never settles); another model's returned a "pure-slip seed" of it (its least slip
+    speed's point and the time between its last two)."""
+    m = Model(model="belt_1dof", friction="stribeck", Vb=2.0)
+    hopf = m["v_s"] * math.log(
+        m["g"] * (m["mu_s"] - m["mu_k"]) / (2 * m["beta1"] * m["omega1"] * m["v_s"])
+    )
+    assert hopf < m["Vb"] < hopf + 0.01
+    eigenvalues = np.linalg.eigvals([[0.0, 1.0], [-m["omega1"] ** 2, -2 * m["beta1"] * m["omega1"]
+                                      + m["g"] * (m["mu_s"] - m["mu_k"]) / m["v_s"]
+                                      * math.exp(-m["Vb"] / m["v_s"])]])  # fmt: skip
+    growth = eigenvalues.real.max()
+    # the least speed moves by 1 - exp(2 pi growth / omega) a period, ~2.7e-3
+    assert -1e-3 < growth < 0 and 1 - math.exp(2 * math.pi * growth) > 1e3 * SETTLE_TOL
+    with pytest.raises(NoPeriodicResponse) as refusal:
+        beltmdsm.seed_cycle(m, perturbation=[0.0, 0.05])
+    message = str(refusal.value)
+    assert "\n" not in message
+    assert message.startswith("model 'belt_1dof': no pure-slip cycle")
+    assert "decays slowly towards steady sliding" in message
