@@ -56,3 +56,34 @@ def test_the_notebook_pages_state_the_times_measured():
     assert '".[plot]"' not in first  # matplotlib comes with the package
     json_page = (ROOT / "docs" / "reference" / "json.md").read_text()
     assert "about 15 s" not in json_page and "about 30 s of one core" in json_page
+
+
+def test_the_readme_command_for_another_model_prints_what_the_readme_says():
+    """The README's paragraph on other friction oscillators: its command runs, and finds
+    the Hopf point and the onset of stick the paragraph states (the Hopf point is also the
+    closed form it quotes, with belt_1dof's defaults)."""
+    import math
+    import os
+    import subprocess
+    import sys
+
+    from beltmdsm.other_model import model_module
+
+    readme = (ROOT / "README.md").read_text()
+    (line,) = re.findall(r"^python -m beltmdsm branch --model belt_1dof.*$", readme, re.M)
+    done = subprocess.run(
+        [sys.executable, *line.split()[1:]], capture_output=True, text=True,
+        env={**os.environ, "MPLBACKEND": "Agg"}, timeout=300,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr[-2000:]
+    hopf = re.search(r"Vb = 1\.995720201 \(in closed form", readme)
+    onset = re.search(r"onset of stick at Vb = (\d\.\d+)\.", readme)
+    assert hopf and onset
+    assert "Hopf points 1.995720201" in done.stdout
+    printed = float(re.search(r"stick onset at Vb = ([\d.]+)", done.stdout).group(1))
+    assert round(printed, 4) == float(onset.group(1))
+    d = model_module("belt_1dof").DEFAULTS  # the closed form the README quotes
+    closed = d["v_s"] * math.log(
+        d["g"] * (d["mu_s"] - d["mu_k"]) / (2 * d["beta1"] * d["omega1"] * d["v_s"])
+    )
+    assert f"{closed:.9f}" == "1.995720201"
