@@ -33,6 +33,7 @@ the generic runtime (beltmdsm/oscillator/).
 from __future__ import annotations
 
 import functools
+import hashlib
 import importlib.util
 import inspect
 import os
@@ -81,14 +82,17 @@ _SCAN = (
 )
 
 
-def _kernel(bind, model):
+def _kernel(bind, model, **laws):
     """The plain-Python scalar kernel that the generated ``bind`` chooses for the model's
-    laws (the variant of its options): bound once per laws, since the kernel does not
-    depend on the parameters' values (a period map is built at every value of a band)."""
-    laws = tuple(model.options.items())
-    kernel = _KERNELS.get((bind, laws))
+    laws (the variant of its options), or for ``laws`` in place of some of them (those
+    that ``bind`` declares): bound once per laws, since the kernel does not depend on
+    the parameters' values (a period map is built at every value of a band)."""
+    key = (bind, tuple({**model.options, **laws}.items()))
+    kernel = _KERNELS.get(key)
     if kernel is None:
-        kernel = _KERNELS[bind, laws] = bind(backend="python", **model.arguments(bind)).kernel
+        arguments = model.arguments(bind)
+        arguments.update((k, v) for k, v in laws.items() if k in arguments)
+        kernel = _KERNELS[key] = bind(backend="python", **arguments).kernel
     return kernel
 
 
@@ -96,19 +100,23 @@ def _kernel(bind, model):
 _KERNELS: dict = {}
 
 
-def advance(field: str, model: Model, backend: Backend | None = None):
+def advance(field: str, model: Model, backend: Backend | None = None, **laws: str):
     """`beltmdsm.integrate._dop853.advance` on the ``field`` ("vector_field" or
     "response_field") of the model's laws: ``f(fa, sa, ra, mode, watch, dirs, t0, y0,
     t_end, h0, rtol, atol, max_step, max_steps)``.
 
-    ``backend``: "python", "numba" or None (numba if installed).
+    ``backend``: "python", "numba" or None (numba if installed). ``laws``: laws in place
+    of the model's for the surfaces and their rates (``friction=``: the normal motion,
+    `beltmdsm.integrate.normal.NORMAL_FRICTION`, watches surfaces that no friction law
+    enters, so that one compiled integrator serves every friction law). The arguments
+    ``sa`` and ``ra`` are then those of the kernels bound with these laws.
     """
     kernels = (
         _kernel(_FIELDS[field], model),
-        _kernel(hybrid.bind_surfaces, model),
-        _kernel(hybrid.bind_surface_rates, model),
+        _kernel(hybrid.bind_surfaces, model, **laws),
+        _kernel(hybrid.bind_surface_rates, model, **laws),
     )
-    return _bound(_ADVANCE, kernels, f"advance_{kernels[0].__name__}", backend)
+    return _bound(_ADVANCE, kernels, _name("advance", kernels), backend)
 
 
 def scan(model: Model, backend: Backend | None = None):
@@ -121,7 +129,17 @@ def scan(model: Model, backend: Backend | None = None):
         _kernel(hybrid.bind_surfaces, model),
         _kernel(hybrid.bind_surface_rates, model),
     )
-    return _bound(_SCAN, kernels, f"scan_{kernels[2].__name__}", backend)
+    return _bound(_SCAN, kernels, _name("scan", kernels), backend)
+
+
+def _name(which, kernels):
+    """The name of a compiled integrator: its first kernel and a digest of them all. A
+    name per kernel set, since the module of that name holds the kernels it compiles:
+    two sets under one name rewrote each other's module, and numba then compiled it
+    afresh (about 12 s) each time the other set came (the normal motion under two
+    friction laws did, before the friction law was taken out of it)."""
+    names = ",".join(k.__name__ for k in kernels)
+    return f"{which}_{kernels[0].__name__}_{hashlib.sha256(names.encode()).hexdigest()[:8]}"
 
 
 def _bound(integrator, kernels, name, backend):

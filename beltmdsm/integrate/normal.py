@@ -21,6 +21,7 @@ the generic runtime (beltmdsm/oscillator/).
 
 from __future__ import annotations
 
+import inspect
 from collections import OrderedDict
 from collections.abc import Iterable
 
@@ -42,6 +43,14 @@ GRID_STEP = 0.005
 _NORMAL_SURFACES = ("penetration", "contact_force")
 #: How many normal motions `normal_motion` keeps.
 _KEPT = 4
+#: The friction law of the surface kernels that the normal motion binds (the generated
+#: kernels' default). It watches the normal surfaces alone (penetration, contact force),
+#: whose rows of the generated ``surfaces`` and ``surface_rates`` are the same under
+#: every friction law (the normal equation is free of friction; tests/beltmdsm/integrate/
+#: test_normal_kernels.py compares them bit for bit): bound with one law, its compiled
+#: integrator is one per contact law, not one per friction and contact law (about 12 s of
+#: compiling each with a cold cache).
+NORMAL_FRICTION = inspect.signature(hybrid.bind_surface_rates).parameters["friction"].default
 
 
 def normal_key(model: Model) -> tuple:
@@ -176,7 +185,11 @@ class NormalMotion:
             **model.arguments(hybrid.bind_response_field),
         )
         sw = Switching(model)
-        advance = _compiled.advance("response_field", model, backend)
+        surfaces, rates = (
+            bind(backend="python", **{**model.arguments(bind), "friction": NORMAL_FRICTION})
+            for bind in (hybrid.bind_surfaces, hybrid.bind_surface_rates)
+        )
+        advance = _compiled.advance("response_field", model, backend, friction=NORMAL_FRICTION)
         guards = {}
         for mode in (Mode.SLIP_BACK, Mode.FLIGHT, Mode.SEPARATED):
             rows = [
@@ -197,8 +210,8 @@ class NormalMotion:
             watch, dirs, targets = guards[mode]
             (code, n, ts, hs, ys, Fs, t_stop, y_stop, hit, h_next) = advance(
                 field.args,
-                sw.surfaces.args,
-                sw.rates.args,
+                surfaces.args,
+                rates.args,
                 float(mode),
                 watch,
                 dirs,

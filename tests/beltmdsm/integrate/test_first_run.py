@@ -121,6 +121,9 @@ def test_a_compile_asked_for_is_done_at_once_and_said_once(tmp_path):
 def test_a_lazy_function_runs_python_until_the_child_marks_it_ready(monkeypatch, tmp_path):
     numba = pytest.importorskip("numba")
     monkeypatch.setattr(_background, "_numba_cache", lambda: str(tmp_path))
+    # as in a process that has not asked for compiled code at once (an earlier test of
+    # this worker with backend="numba" did: then everything compiles at once)
+    monkeypatch.setattr(_background, "_eager", [False])
     jobs = []
     monkeypatch.setattr(_background, "_submit", lambda *job: jobs.append(job) or True)
 
