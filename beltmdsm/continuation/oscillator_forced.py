@@ -338,7 +338,7 @@ class OscillatorForcedProblem(Problem):
             return None
         value, accuracy = self._locate(b, SimpleNamespace(value=guess + direction * ahead))
         # just past the onset, by the locating tolerance: the integrator finds the touch
-        # of v_r = 0 that starts the short stick there (`beltmdsm.oscillator.hybrid._touch`)
+        # of v_r = 0 that starts the short stick there (`beltmdsm.oscillator.guards.touch`)
         jump = value + direction * min(
             LOCATE_TOL * max(self.hi - self.lo, 1.0) + accuracy,
             0.5 * abs((self.hi if direction > 0 else self.lo) - value),

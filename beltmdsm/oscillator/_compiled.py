@@ -71,7 +71,7 @@ I_FORWARD, I_BACK, I_GAP = 1, 2, -1
 
 
 def _u(t, y, p, mode, j):
-    """Surface ``j`` of the mode, positive inside (`beltmdsm.oscillator.hybrid._surfaces`)."""
+    """Surface ``j`` of the mode, positive inside (`beltmdsm.oscillator.guards.surfaces`)."""
     if UNILATERAL:
         if mode == 2:
             return gap(t, y, p)
@@ -84,7 +84,7 @@ def _u(t, y, p, mode, j):
 
 def _du(t, y, p, mode, j):
     """The rate of surface ``j`` of the mode along its field
-    (`beltmdsm.oscillator.hybrid._rates`)."""
+    (`beltmdsm.oscillator.guards.rates`)."""
     if UNILATERAL:
         if mode == 2:
             return surface_rates(t, y, p, mode)[I_GAP]
@@ -98,7 +98,7 @@ def _du(t, y, p, mode, j):
 
 def _rhs(t, y, p, mode, out):
     """The mode's field into ``out``; where ``out`` is longer (stick), the rates of the
-    two sides of the cone after it (`beltmdsm.oscillator.hybrid._quadratures`)."""
+    two sides of the cone after it (`beltmdsm.oscillator.guards.quadratures`)."""
     f = field(t, y, p, mode)
     n = f.shape[0]
     for i in range(n):
@@ -131,7 +131,7 @@ def _root(p, mode, j, F, y0, t0, h, a, fa, b, fb, tmp, rate):
 
 
 def _touch(p, mode, j, F, y0, t0, h, values, first, last, ts, tmp):
-    """As `beltmdsm.oscillator.hybrid._touch`: the first fall to 0 between the nodes
+    """As `beltmdsm.oscillator.guards.touch`: the first fall to 0 between the nodes
     ``first`` and ``last`` that no node shows, or -1."""
     n = values.shape[0]
     c = np.empty(n)
@@ -208,7 +208,7 @@ def _u_at(p, mode, j, F, y0, t0, h, t, tmp):
 
 def _crossing(p, mode, j, F, y0, t0, h, u_old, u_new, armed, tmp):
     """``(time, armed)``: the first fall of surface ``j`` to <= 0 inside the step
-    (time < 0: none); as `beltmdsm.oscillator.hybrid._crossing`."""
+    (time < 0: none); as `beltmdsm.oscillator.guards.crossing`."""
     n = NODES.shape[0]
     ts = np.empty(n)
     values = np.empty(n)

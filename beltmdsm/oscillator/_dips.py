@@ -1,7 +1,7 @@
 """A guard along one accepted step as a polynomial, with the error the values show.
 
 Where a guard of a mode may fall to 0 inside an accepted step, without a sample below
-0 (a short excursion between them), `beltmdsm.oscillator.hybrid._touch` and its
+0 (a short excursion between them), `beltmdsm.oscillator.guards.touch` and its
 compiled twin look for it on this polynomial, not on a few samples of its rate.
 
 The error model. The step's dense output (DOP853's interpolant) is a polynomial of

@@ -32,7 +32,8 @@ from scipy.interpolate import CubicHermiteSpline
 from ..errors import NoPeriodicResponse
 from ..settings import SETTLE_TOL
 from .equilibria import steady_sliding
-from .hybrid import _to_stick, flow
+from .guards import to_stick
+from .hybrid import flow
 from .stick_slip_shooting import _nth_end
 from .system import STICK, System
 
@@ -152,7 +153,7 @@ def _starts(system):
         w, V = np.linalg.eig(J)
         v = np.real(V[:, np.argmax(w.real)])
         out.append(eq.state + 1e-3 * (1.0 + np.abs(eq.state).max()) * v / np.abs(v).max())
-    out.append(_to_stick(system, 0.0, eq.state))
+    out.append(to_stick(system, 0.0, eq.state))
     return out
 
 

@@ -5,7 +5,7 @@ each integrated by DOP853 (`beltmdsm.oscillator._stepper`) until the first cross
 a surface that ends it, located on the dense output by the Illinois method
 (`beltmdsm.integrate._roots`). A touch of a guard shorter than the samples (the
 start of a short stick, a brief excursion of the holding force past the static limit,
-a brief take-off) is found by an error model, not by samples (`_touch`): the guard's
+a brief take-off) is found by an error model, not by samples (`guards.touch`): the guard's
 polynomial on the step and the error its values show (`beltmdsm.oscillator._dips`)
 clear what cannot reach 0; where it may, the guard's minimum is bracketed by a sign
 change of its rate along the mode's field: ``m slip_acceleration`` for the slip guard,
@@ -51,11 +51,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import StepTooSmall
-from ..integrate._roots import converged, illinois, secant
 from ..integrate.zeno import ZENO_SWITCHES, ZENO_WINDOW
 from ..model import Backend
-from . import _compiled, _dips, _stepper
-from .system import FLIGHT, STICK, System
+from . import _compiled, _stepper, guards
+from .guards import initial_mode  # public here since issue 39 (its home: guards)
+from .system import STICK, System
 
 __all__ = ["Trajectory", "simulate", "flow", "Flow", "initial_mode"]
 
@@ -147,198 +147,6 @@ class Trajectory:
         )
 
 
-def initial_mode(system: System, t: float, y: ArrayLike) -> int:
-    """The mode of a state: flight where the gap is open (``UNILATERAL``), slip in the
-    sign of the slip velocity, stick at 0 slip velocity inside the friction cone."""
-    k, p = system.kernels, system.p
-    y = np.asarray(y, dtype=float)
-    if system.unilateral and k.gap(t, y, p) > 0.0:
-        return FLIGHT
-    v = k.slip_velocity(t, y, p)
-    if v != 0.0:
-        return 1 if v > 0.0 else -1
-    return _leave_stick(system, t, y, default_stick=True)
-
-
-def _leave_stick(system: System, t, y, default_stick: bool = False) -> int:
-    """Stick where the friction cone holds (``default_stick``), else the slip sign."""
-    k, p = system.kernels, system.p
-    H = k.holding_force(t, y, p)
-    if default_stick and abs(H) <= k.stick_limit(t, y, p):
-        return STICK
-    for m in (-1, 1) if H > 0.0 else (1, -1):
-        if m * k.slip_acceleration(t, y, p, m) > 0.0:
-            return m
-    return -1 if H > 0.0 else 1
-
-
-def _surfaces(system: System, mode: int) -> tuple[Callable, ...]:
-    """The functions ``u(t, y)``, positive inside the mode, whose fall to 0 ends it."""
-    k, p = system.kernels, system.p
-    if mode == FLIGHT:
-        return (lambda t, y: k.gap(t, y, p),)
-    if mode == STICK:
-        first = lambda t, y: k.stick_limit(t, y, p) - abs(k.holding_force(t, y, p))  # noqa: E731
-    else:
-        first = lambda t, y: mode * k.slip_velocity(t, y, p)  # noqa: E731
-    if system.unilateral:
-        return (first, lambda t, y: -k.gap(t, y, p))
-    return (first,)
-
-
-def _rates(system: System, mode: int) -> tuple[Callable, ...]:
-    """The time derivatives of `_surfaces` along the mode's field: ``m
-    slip_acceleration`` in slip ``m``; in stick, that of ``stick_limit -
-    |holding_force|``, the derived rate of ``stick_back`` where the holding force is >=
-    0, else of ``stick_forward``; the gap's (``surface_rates``): the rates by which
-    `_touch` finds grazing touches between samples."""
-    k, p = system.kernels, system.p
-    index = _surface_index(system)
-    if mode == FLIGHT:
-        g = index["gap"]
-        return (lambda t, y: k.surface_rates(t, y, p, mode)[g],)
-    if mode == STICK:
-        fw, bk = index["stick_forward"], index["stick_back"]
-
-        def first(t, y):
-            r = k.surface_rates(t, y, p, mode)
-            return r[bk] if k.holding_force(t, y, p) >= 0.0 else r[fw]
-
-    else:
-        first = lambda t, y: mode * k.slip_acceleration(t, y, p, mode)  # noqa: E731
-    if system.unilateral:
-        g = index["gap"]
-        return (first, lambda t, y: -k.surface_rates(t, y, p, mode)[g])
-    return (first,)
-
-
-def _surface_index(system: System) -> dict[str, int]:
-    """Name -> position in the module's ``SURFACES`` (of ``surfaces``, ``surface_rates``)."""
-    return {name: i for i, name in enumerate(system.module.SURFACES)}
-
-
-def _quadratures(system: System, mode: int) -> list[int]:
-    """The positions in ``SURFACES`` of the surfaces integrated beside the state in
-    ``mode`` (stick: the two sides of the cone, module docstring), else none."""
-    if mode != STICK:
-        return []
-    index = _surface_index(system)
-    return [index["stick_forward"], index["stick_back"]]
-
-
-def _next_mode(system: System, mode: int, surface: int, t: float, y) -> int:
-    k, p = system.kernels, system.p
-    if surface == 1 or (mode == FLIGHT and surface == 0):
-        if mode != FLIGHT:
-            return FLIGHT
-        return initial_mode(system, t, y) if k.gap(t, y, p) <= 0.0 else _slip_sign(system, t, y)
-    if mode == STICK:
-        return _leave_stick(system, t, y)
-    return STICK if abs(k.holding_force(t, y, p)) <= k.stick_limit(t, y, p) else -mode
-
-
-def _slip_sign(system, t, y):
-    v = system.kernels.slip_velocity(t, y, system.p)
-    return 1 if v >= 0.0 else -1
-
-
-def _to_stick(system: System, t, y):
-    """The state projected onto ``v_r = 0`` along the slip velocity's gradient."""
-    k, p = system.kernels, system.p
-    w = np.asarray(k.slip_gradient(t, y, p), dtype=float)
-    return y - w * (k.slip_velocity(t, y, p) / (w @ w))
-
-
-def _crossing(u, du, step: _stepper.Step, m: int, u_old: float, armed: bool):
-    """The first time in the step where ``u`` falls to <= 0 after being > 0, or None;
-    with whether ``u`` has been > 0 (armed) by the step's end. ``u`` is taken at the
-    `_dips.NODES` of the step: a fall between two of them is refined by the Illinois
-    method, and before it (or anywhere, where none shows) `_touch` looks for a fall
-    that no node shows. ``du``: the rate of ``u`` along the mode's field (`_rates`)."""
-    t0, h = step.t, step.h
-    t1 = t0 + h
-    ts = t0 + h * _dips.NODES
-    ts[-1] = t1
-    ys = step.many(ts[1:-1])[:, :m]
-    values = np.empty(ts.size)
-    values[0], values[-1] = u_old, u(t1, step.y_new[:m])
-    for i in range(1, ts.size - 1):
-        values[i] = u(ts[i], ys[i - 1])
-    first = 0
-    if not armed:
-        inside = np.flatnonzero(values > 0.0)
-        if not inside.size:
-            return t0, False  # never inside: the field leaves through its own start surface
-        first = int(inside[0])
-    falls = np.flatnonzero(values[first + 1 :] <= 0.0)
-    last = first + int(falls[0]) if falls.size else ts.size - 1
-    at = lambda t: u(t, step.at(t)[:m])  # noqa: E731
-    if last > first:
-        rate = lambda t: du(t, step.at(t)[:m])  # noqa: E731
-        tc = _touch(at, rate, values, first, last, t0, h, ts)
-        if tc is not None:
-            return tc, True
-    if falls.size:
-        return _refine(at, ts[last], values[last], ts[last + 1], values[last + 1]), True
-    return None, True
-
-
-def _touch(at, rate, values, first: int, last: int, t0: float, h: float, ts) -> float | None:
-    """The first fall of ``u`` to 0 between the nodes ``first`` and ``last`` (``u`` > 0
-    at both) that no node shows, or None: the guard's polynomial on the step
-    (`beltmdsm.oscillator._dips`) clears what its Bernstein hull holds above its error;
-    on a piece of ``1 / 2**DEPTH`` of the interval that it does not clear, the guard's
-    own values decide (a fall at the piece's end: refined by the Illinois method), or a
-    rise of its ``rate`` through 0 inside it (the minimum, found by the Illinois method
-    on the rate, ``u`` tested there)."""
-    c = _dips.TO_BERNSTEIN @ values
-    e = _dips.error(values)
-    xa, xb = _dips.NODES[first], _dips.NODES[last]
-    scratch = np.empty_like(c)
-    if xa > 0.0:
-        _dips.split(c, xa, scratch, c)
-    if xb < 1.0:
-        _dips.split(c, (xb - xa) / (1.0 - xa), c, scratch)
-    stack = [(xa, xb, c, 0)]
-    t_pos, u_pos = ts[first], values[first]  # the last time known inside
-    while stack:
-        lo, hi, c, depth = stack.pop()
-        if _dips.lowest(c) > e:
-            continue
-        if depth < _dips.DEPTH:
-            left, right = np.empty_like(c), np.empty_like(c)
-            _dips.split(c, 0.5, left, right)
-            mid = 0.5 * (lo + hi)
-            stack += [(mid, hi, right, depth + 1), (lo, mid, left, depth + 1)]
-            continue
-        ta = t0 + h * lo if lo > xa else ts[first]
-        tb = t0 + h * hi if hi < xb else ts[last]
-        ua = u_pos if ta == t_pos else at(ta)
-        if ua <= 0.0:
-            return _refine(at, t_pos, u_pos, ta, ua)
-        ub = at(tb)
-        if ub <= 0.0:
-            return _refine(at, ta, ua, tb, ub)
-        ra, rb = rate(ta), rate(tb)
-        if ra < 0.0 <= rb:
-            tm = _refine(lambda t: -rate(t), ta, -ra, tb, -rb)
-            um = at(tm)
-            if um <= 0.0:
-                return _refine(at, ta, ua, tm, um)
-        t_pos, u_pos = tb, ub
-    return None
-
-
-def _refine(at, a, fa, b, fb) -> float:
-    side = 0
-    for _ in range(200):
-        if converged(a, b):
-            break
-        c = secant(a, fa, b, fb)
-        a, fa, b, fb, side = illinois(a, fa, b, fb, c, at(c), side)
-    return b
-
-
 def flow(
     system: System,
     t0: float,
@@ -380,9 +188,9 @@ def flow(
     else:
         out_t, out_y = np.empty(0), np.empty((0, m))
     k_next = 0
-    mode = initial_mode(system, t, y) if mode is None else int(mode)
+    mode = guards.initial_mode(system, t, y) if mode is None else int(mode)
     if mode == STICK:
-        y = _to_stick(system, t, y)
+        y = guards.to_stick(system, t, y)
     Phi = np.eye(m) if variational else None
     switches: list[Switch] = []
     recent: deque[float] = deque(maxlen=ZENO_SWITCHES)
@@ -390,7 +198,7 @@ def flow(
     next_sample = t if dt is not None else math.inf
     status, message = "done", ""
     while True:
-        md, quad = mode, _quadratures(system, mode)
+        md, quad = mode, guards.quadratures(system, mode)
         if variational:
 
             def base(s, z, md=md):
@@ -414,8 +222,8 @@ def flow(
             z = np.concatenate((z, np.asarray(k.surfaces(t, y, p), dtype=float)[quad]))
         else:
             fun = base
-        surfaces = _surfaces(system, mode)
-        rates = _rates(system, mode)
+        surfaces = guards.surfaces(system, mode)
+        rates = guards.rates(system, mode)
         u_old = [u(t, y) for u in surfaces]
         armed = [v > 0.0 for v in u_old]
         f = fun(t, z)
@@ -444,7 +252,7 @@ def flow(
                 raise StepTooSmall(f"{system.name}: {err} in mode {mode}", rtol, atol) from None
             hit, t_hit = -1, math.inf
             for j, u in enumerate(surfaces):
-                tc, armed[j] = _crossing(u, rates[j], st, m, u_old[j], armed[j])
+                tc, armed[j] = guards.crossing(u, rates[j], st, m, u_old[j], armed[j])
                 if tc is not None and tc < t_hit:
                     hit, t_hit = j, tc
             t_stop = t_hit if hit >= 0 else st.t + st.h
@@ -468,7 +276,7 @@ def flow(
             Phi = z[m : m + m * m].reshape(m, m).copy()
         if hit < 0:
             break
-        after = _next_mode(system, mode, hit, t, y)
+        after = guards.next_mode(system, mode, hit, t, y)
         recent.append(t)
         if len(recent) == ZENO_SWITCHES and recent[-1] - recent[0] <= ZENO_WINDOW * max(
             1.0, abs(t)
@@ -498,7 +306,7 @@ def flow(
         if variational:
             Phi = np.asarray(k.saltation(t, y, p, mode, after)) @ Phi
         if after == STICK:
-            y = _to_stick(system, t, y)
+            y = guards.to_stick(system, t, y)
         switches.append((t, mode, after))
         mode = after
         if stop is not None and stop(switches[-1], len(switches)):

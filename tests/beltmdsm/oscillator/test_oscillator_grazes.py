@@ -4,7 +4,7 @@ excursion of the holding force past the static limit, or a brief take-off, was
 stepped over and the run went on in the wrong mode).
 
 The runtime now brackets such a touch by the guard's derived rate (``surface_rates``,
-`beltmdsm.oscillator.hybrid._rates`), and integrates the stick cone's sides beside the
+`beltmdsm.oscillator.guards.rates`), and integrates the stick cone's sides beside the
 state, so that the step-size control sees the excitation that moves the holding force
 (before, a stick of belt_1dof, whose field is constant, stepped over whole periods of
 the excitation: the stick ended 17 s late in plain Python, 4.5 s late compiled, on
@@ -23,7 +23,7 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from beltmdsm.oscillator import System, hybrid
+from beltmdsm.oscillator import System, guards
 from beltmdsm.oscillator.hybrid import flow
 
 EPS = np.finfo(float).eps
@@ -122,7 +122,7 @@ def _stick_tol(t, x, terms, slope):
 
 
 def _no_touch(monkeypatch):
-    monkeypatch.setattr(hybrid, "_touch", lambda *args: None)
+    monkeypatch.setattr(guards, "touch", lambda *args: None)
 
 
 @pytest.mark.parametrize("backend", _backends())
