@@ -66,3 +66,20 @@ def test_fastest_rate_does_not_check_the_models_parameters_again(kw, monkeypatch
     monkeypatch.setattr(_checks, "param", lambda *a: checked.append(a[1]) or real(*a))
     assert fastest_rate(model) == expected  # bit for bit
     assert checked == []
+
+
+def test_a_continuation_in_vb_shares_one_eigenvalue_solve(monkeypatch):
+    # the unforced eigenvalues under the default friction law do not take Vb or mu_s
+    # (the generated variant declares its parameters): one solve serves every Vb
+    calls = []
+    real = unforced.eigenvalues
+    monkeypatch.setattr(unforced, "eigenvalues", lambda **kw: calls.append(1) or real(**kw))
+    base = Model(beta1=0.3456789012)
+    rates = {fastest_rate(base.replace(Vb=v, mu_s=0.3)) for v in (0.5, 1.0, 7.0)}
+    assert len(calls) == 1 and len(rates) == 1
+    # a parameter it takes is a new solve, and the same number as from scratch
+    moved = base.replace(omega2=1.7)
+    p = moved.params
+    lam = np.abs(real(contact=moved.contact, **p))
+    assert fastest_rate(moved) == max(p["Omega_t"], p["Omega_n"], p["omega1"], float(lam.max()))
+    assert len(calls) == 2
