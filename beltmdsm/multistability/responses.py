@@ -36,6 +36,7 @@ from ..periodic.engines import period_map
 from ..periodic.floquet import Floquet, floquet
 from ..periodic.locked import LOCK_LIMIT, NotLocked, minimal_periods, same_phases
 from ..periodic.response import response_from
+from ..settings import check_finite
 from ..starts.forced import (
     LADDER_SPAN,
     LADDER_STEP,
@@ -358,10 +359,11 @@ def responses(
         return cycle_responses(model, limit=limit, ladder=ladder, backend=backend)
     excitation_period(model)
     check_limit(limit, [model], t_end, ladder=ladder > 0)
+    check_finite(model)  # once: the maps below are of this model
     found, unlocked, failed = [], [], []
     try:
         f = floquet(model, backend=backend)
-        image = period_map(model, 1, backend)(f.response.shooting_state)
+        image = period_map(model, 1, backend, check=False)(f.response.shooting_state)
         found.append(
             Response(
                 1,
@@ -401,7 +403,7 @@ def responses(
             strobe = replace(strobe, source=f"{strobe.source} (classified)")
         known = next((r for r in found if r.same_orbit(k, strobe.samples[-1])), None)
         if known is None and point is not None:
-            pmap = period_map(model, k, backend)
+            pmap = period_map(model, k, backend, check=False)
             known = Response(
                 k,
                 Floquet.of(response_from(pmap, point)),
@@ -448,7 +450,7 @@ def _classified(model, strobe, backend):
     Lyapunov spectrum): ``(k, FixedPoint, None)`` of a long lock it finds, else
     ``(None, None, NotLocked)`` with the classification as the evidence."""
     evidence = NotLocked.of(strobe)
-    pmap = period_map(model, 1, backend)
+    pmap = period_map(model, 1, backend, check=False)
     start = pmap.full_state(pmap.guess(strobe.samples[-1]))
     a = classify(model, y0=start, backend=backend)
     if a.kind == "periodic":

@@ -79,9 +79,11 @@ def period_map(
         engine (the general one applies to every law, and serves as a cross-check of
         the closed-form one).
     check : bool
-        Refuse a start beyond floating point (`beltmdsm.settings.check_finite`, 0.3 ms);
-        `beltmdsm.periodic.family.MapFamily` checks its model once instead of at every
-        value (an overflow there still ends its runs, with `beltmdsm.errors.StepTooSmall`).
+        Refuse a start beyond floating point (`beltmdsm.settings.check_finite`, 0.3 ms
+        the first time, its verdict then kept per model); False where the caller
+        checked the model where it entered: `beltmdsm.periodic.family.MapFamily` checks
+        its model once instead of at every value (an overflow there still ends its
+        runs, with `beltmdsm.errors.StepTooSmall`).
 
     Raises
     ------

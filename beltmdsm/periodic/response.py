@@ -155,7 +155,8 @@ class PeriodicResponse:
             if self.autonomous:
                 self._ranges = (self.cycle.x1_range, self.cycle.velocity_range)
             else:
-                pmap = period_map(self.model, self.periods, engine=self.engine)
+                # the model of a response found: checked where it entered
+                pmap = period_map(self.model, self.periods, engine=self.engine, check=False)
                 image = pmap(self.shooting_state)
                 self._ranges = (image.x1_range(), image.velocity_range())
         return self._ranges
