@@ -244,6 +244,30 @@ def test_the_laws_page_is_the_registry(site):
         assert any(row.startswith(parameter["name"] + " ") for row in rows), parameter["name"]
 
 
+def test_the_narrowed_examples_show_what_the_wide_ranges_showed(site):
+    """The first hour's coexistence runs over Vb 3..8 (0.5..12 before), json.md's branch
+    over 3..5 (2..9 before) and paper_figure.md's predict on 100 points (400), to cut
+    the site's build: the first hour still prints both ranges of coexistence that
+    tests/beltmdsm/multistability/test_coexistence.py pins over 0.5..12, the branch's
+    JSON still has special points to list the keys of, and the prediction's ranges are
+    those of the default grid."""
+    import html as html_module
+
+    def text(page):
+        raw = (site / page).read_text(encoding="utf-8")
+        return html_module.unescape(re.sub(r"<[^>]+>", "", raw))
+
+    first = text("tutorials/first_hour.html")
+    assert "[3.8699, 4.0576]: 4T, T#1 (grazing to neimark_sacker)" in first
+    assert "[6.4154, 7.6738]: 4T, T#2 (grazing to fold)" in first
+    json_page = text("reference/json.html")
+    branch = json_page[json_page.index("$ beltmdsm branch") :]
+    assert "special_points (list of objects): {kind, value, accuracy" in branch
+    figure = text("howto/paper_figure.html")
+    assert "paper's analysis (tangential V_hat): [[0.0, 8.521]]" in figure
+    assert "consistent MDSM: [[4.682, 6.375]]" in figure
+
+
 def test_the_search_index_holds_floquet_band(site):
     index = (site / "searchindex.js").read_text(encoding="utf-8")
     assert "floquet_band" in index
