@@ -113,6 +113,11 @@ def test_a_fold_of_self_excited_cycles_against_the_reference(module):
     s = System(module, friction="stribeck")
     p = s.params
     (h,) = hopf_points(s, "Vb", 0.5, 5.0)
+    # the damper leaves steady sliding (x' = 0) and so the belt's Hopf point alone
+    typed = p["v_s"] * math.log(
+        p["g"] * (p["mu_s"] - p["mu_k"]) / (2 * p["beta1"] * p["omega1"] * p["v_s"])
+    )
+    assert h == pytest.approx(typed, abs=1e-10)
     b = hopf_branch(s, "Vb", float(h), 0.1)
     assert b.criticality == "subcritical" and not b.failure
     assert [sp.kind for sp in b.special] == ["fold", "stick_onset"]
@@ -126,10 +131,15 @@ def test_a_fold_of_self_excited_cycles_against_the_reference(module):
     assert all(c.stable and abs(c.multipliers[0]) < 1 for c in b.cycles[i + 1 :])
     assert all(np.diff(values[: i + 1]) > 0) and all(np.diff(values[i:]) < 0)
     assert onset.value < fold.value and fold.value - onset.value > 0.05
+    # a smooth fold well before the stick onset: the least slip speed Vb - x' there
+    top = b.cycles[i]
+    assert top.system.params["Vb"] - top.state[1] > 0.5
+    # the fold's multiplier nearer +1 than any cycle's of the walk
+    assert abs(fold.multipliers[0] - 1) < min(abs(c.multipliers[0] - 1) for c in b.cycles)
     # the reference: the largest Vb along the branch parametrized by the section's x'
     best = minimize_scalar(lambda v: -_branch_value(p, v), bracket=(1.2, 1.45, 1.7),
                            tol=1e-8)  # fmt: skip
-    reference = -best.fun
+    reference = float(-best.fun)
     print(f"fold {fold.value!r} +- {fold.accuracy:.3g}; reference {reference!r} at x' = "
           f"{best.x:.8f}; error {fold.value - reference:.3g}")  # fmt: skip
     # the error model: the driver's reported accuracy (the located cycle's distance below
