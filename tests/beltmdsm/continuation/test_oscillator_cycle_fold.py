@@ -109,7 +109,19 @@ def _branch_value(p, v, lo=2.05, hi=2.2):
     return brentq(lambda Vb: _return_map(p, Vb)(v) - v, lo, hi, xtol=1e-14, rtol=1e-15)
 
 
-def test_a_fold_of_self_excited_cycles_against_the_reference(module):
+@pytest.fixture(scope="module")
+def reference(module):
+    """The fold's Vb: the largest Vb along the branch parametrized by the section's x'."""
+    p = System(module, friction="stribeck").params
+    best = minimize_scalar(lambda v: -_branch_value(p, v), bracket=(1.2, 1.45, 1.7), tol=1e-8)
+    return float(-best.fun)
+
+
+@pytest.mark.parametrize("span", [0.1, 0.5])
+def test_a_fold_of_self_excited_cycles_against_the_reference(module, reference, span):
+    """``span`` 0.5: steps long enough to throw a corrector's iterate across the fold
+    into a stiff field (the damper at large x'), where the stepper once rejected its
+    least step forever (beltmdsm/oscillator/_stepper.py)."""
     s = System(module, friction="stribeck")
     p = s.params
     (h,) = hopf_points(s, "Vb", 0.5, 5.0)
@@ -118,7 +130,7 @@ def test_a_fold_of_self_excited_cycles_against_the_reference(module):
         p["g"] * (p["mu_s"] - p["mu_k"]) / (2 * p["beta1"] * p["omega1"] * p["v_s"])
     )
     assert h == pytest.approx(typed, abs=1e-10)
-    b = hopf_branch(s, "Vb", float(h), 0.1)
+    b = hopf_branch(s, "Vb", float(h), span)
     assert b.criticality == "subcritical" and not b.failure
     assert [sp.kind for sp in b.special] == ["fold", "stick_onset"]
     fold, onset = b.special
@@ -136,12 +148,8 @@ def test_a_fold_of_self_excited_cycles_against_the_reference(module):
     assert top.system.params["Vb"] - top.state[1] > 0.5
     # the fold's multiplier nearer +1 than any cycle's of the walk
     assert abs(fold.multipliers[0] - 1) < min(abs(c.multipliers[0] - 1) for c in b.cycles)
-    # the reference: the largest Vb along the branch parametrized by the section's x'
-    best = minimize_scalar(lambda v: -_branch_value(p, v), bracket=(1.2, 1.45, 1.7),
-                           tol=1e-8)  # fmt: skip
-    reference = float(-best.fun)
-    print(f"fold {fold.value!r} +- {fold.accuracy:.3g}; reference {reference!r} at x' = "
-          f"{best.x:.8f}; error {fold.value - reference:.3g}")  # fmt: skip
+    print(f"fold {fold.value!r} +- {fold.accuracy:.3g}; reference {reference!r}; "
+          f"error {fold.value - reference:.3g}")  # fmt: skip
     # the error model: the driver's reported accuracy (the located cycle's distance below
     # the turn, `beltmdsm.continuation.special.regula_falsi`) plus the reference's: each
     # Vb by brentq to 1e-14 on a return map good to ~1e-12 (rtol 1e-12, a slope dP/dVb
@@ -149,3 +157,18 @@ def test_a_fold_of_self_excited_cycles_against_the_reference(module):
     assert fold.value == pytest.approx(reference, abs=fold.accuracy + 1e-11)
     # the accuracy is not the bracket's spread of Vb (both ends sit below the turn)
     assert fold.accuracy > 0 and abs(fold.value - reference) < 1e-7
+
+
+def test_a_slip_run_is_bounded_in_steps(module, monkeypatch):
+    """A slip run refuses past `MAX_STEPS` steps (a stiff iterate far off the cycle) in
+    one line, which the corrector takes as a failed step; an ordinary one takes ~40."""
+    from beltmdsm.continuation import oscillator_cycle
+    from beltmdsm.errors import NoPeriodicResponse
+
+    s = System(module, friction="stribeck", Vb=2.1)
+    x = np.array([1.0, 1.0])
+    y, _ = oscillator_cycle.slip_run(s, x, 6.3, -1)
+    assert np.all(np.isfinite(y))
+    monkeypatch.setattr(oscillator_cycle, "MAX_STEPS", 5)
+    with pytest.raises(NoPeriodicResponse, match="the slip run takes more than 5 steps"):
+        oscillator_cycle.slip_run(s, x, 6.3, -1)
