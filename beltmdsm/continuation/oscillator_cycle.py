@@ -71,6 +71,10 @@ COLLAPSE = 1e-4
 _SECTION_TOL = 1e-11
 #: Relative step of the central differences in the parameter.
 _P_STEP = 1e-6
+#: A slip run takes at most this many steps (the shipped cycles take about 40): a corrector's
+#: iterate thrown far off the branch (a step across a fold) can make the field stiff
+#: (a damper growing as x'^5), where the explicit stepper would crawl for minutes.
+MAX_STEPS = 20_000
 #: Why a step is refused where the cycle's switches change.
 _RESTRUCTURED = "the switch structure changes"
 #: The special points this problem detects (module docstring).
@@ -132,12 +136,18 @@ def slip_run(system: System, x, T: float, mode: int, variational: bool = True):
         z = x.copy()
     t, f = 0.0, fun(0.0, z)
     h = _stepper.initial_step(fun, t, z, f, T, TOL, TOL, T)
+    steps = 0
     while t < T:
+        if steps == MAX_STEPS:
+            raise NoPeriodicResponse(
+                f"{system!r}: the slip run takes more than {MAX_STEPS} steps by t = "
+                f"{t:.6g} s of {T:.6g} s (a stiff field: the iterate lies far off the cycle)"
+            )
         try:
             st, h = _stepper.step(fun, t, z, f, h, T, TOL, TOL, math.inf)
         except ArithmeticError as err:
             raise NoPeriodicResponse(f"{system!r}: the slip run fails: {err}") from None
-        t, z, f = st.t + st.h, st.y_new, st.f_new
+        t, z, f, steps = st.t + st.h, st.y_new, st.f_new, steps + 1
     return z[:m].copy(), (z[m:].reshape(m, m).copy() if variational else None)
 
 

@@ -96,6 +96,7 @@ def regula_falsi(
     fb: float,
     *,
     s_tol: float,
+    fold_scale: float | None = None,
 ) -> tuple[Any, float]:
     """The arclength ``s`` in ``[0, ds]`` from ``start`` along ``tangent`` where ``psi`` is zero.
 
@@ -121,12 +122,20 @@ def regula_falsi(
         ``psi`` at ``s = 0`` and ``s = ds``, of opposite signs.
     s_tol : float
         The smallest bracket in the arclength.
+    fold_scale : float, optional
+        Where ``psi`` is the parameter component of the unit tangent (a fold): the
+        parameter's scale ``sp`` (``dp/ds = sp psi``). The parameter is then extremal
+        inside the bracket, above (or below) both its ends, and the difference of the
+        ends' parameters says nothing of the error: the accuracy is the located point's
+        distance below the turn, ``sp psi^2 / (2 kappa)`` (``p`` a parabola in ``s``,
+        ``psi`` linear, ``kappa = |psi_a - psi_b| / (b - a)`` by the bracket's secant).
 
     Returns
     -------
     point, accuracy
         The located point and the accuracy in the parameter (inf where the zero's side
-        was never reached).
+        was never reached). For a fold, the accuracy is that distance and the caller
+        adds it to the point's value (`special_between`).
 
     Raises
     ------
@@ -161,6 +170,8 @@ def regula_falsi(
     a, b = 0.0, ds
     pa_value, pb_value = start.value, None
     located, side = start, 0
+    psi_a, psi_b = fa, fb  # the true values at the ends (Illinois halves fa, fb)
+    accuracy = math.inf
     for _ in range(60):
         s = b - fb * (b - a) / (fb - fa) if fb != fa else 0.5 * (a + b)
         s = min(max(s, a + 1e-3 * (b - a)), b - 1e-3 * (b - a))
@@ -171,21 +182,22 @@ def regula_falsi(
             pt = cont.trial(start, tangent, s)
         fs = psi(pt)
         if fs * fa > 0:
-            a, fa, pa_value = s, fs, pt.value
+            a, fa, pa_value, psi_a = s, fs, pt.value, fs
             if side == -1:
                 fb *= 0.5
             side = -1
         else:
-            b, fb, pb_value = s, fs, pt.value
+            b, fb, pb_value, psi_b = s, fs, pt.value, fs
             if side == 1:
                 fa *= 0.5
             side = 1
         located = pt
-        if pb_value is not None and abs(pb_value - pa_value) <= LOCATE_TOL:
+        if fold_scale is not None:
+            accuracy = fold_scale * fs * fs * (b - a) / (2.0 * abs(psi_a - psi_b))
+        elif pb_value is not None:
+            accuracy = abs(pb_value - pa_value)
+        if accuracy <= LOCATE_TOL or b - a <= s_tol:
             break
-        if b - a <= s_tol:
-            break
-    accuracy = abs(pb_value - pa_value) if pb_value is not None else math.inf
     return located, accuracy
 
 
@@ -240,6 +252,7 @@ def special_between(
     >>> import numpy as np
     >>> from types import SimpleNamespace
     >>> class Toy:
+    ...     sp = 1.0  # the parameter's scale: ``value`` unscaled
     ...     def at(self, s):
     ...         mu = np.array([-(0.4 + 0.5 * s)])
     ...         return SimpleNamespace(value=1 - (s - 1) ** 2, tangent=-2 * (s - 1),
@@ -254,13 +267,17 @@ def special_between(
     """
     out = []
     if prev.tangent * new.tangent < 0:
+        # the located point lies below the turn by ``acc`` (`regula_falsi`'s fold_scale):
+        # the turn is its value plus that, known to better than ``acc``
         pt, acc = regula_falsi(
-            cont, prev, tangent, ds, lambda q: q.tangent, prev.tangent, new.tangent, s_tol=s_tol
-        )
+            cont, prev, tangent, ds, lambda q: q.tangent, prev.tangent, new.tangent,
+            s_tol=s_tol, fold_scale=cont.sp,
+        )  # fmt: skip
+        turn = math.copysign(acc, prev.tangent) if math.isfinite(acc) else 0.0
         out.append(
             SpecialPoint(
                 "fold",
-                pt.value,
+                pt.value + turn,
                 acc,
                 None,
                 pt.multipliers,

@@ -109,8 +109,10 @@ def step(fun: Field, t, y, f, h_abs, t_end, rtol, atol, max_step) -> tuple[Step,
             if rejected:
                 factor = min(1.0, factor)
             break
-        if not math.isfinite(norm) and h <= min_step:
-            raise ArithmeticError(f"the state is not finite past t = {t:.9g} s")
+        if h <= min_step:
+            # rejected at the least step: a finite error norm too would repeat forever
+            what = "the state is not finite" if not math.isfinite(norm) else "no step is accepted"
+            raise ArithmeticError(f"{what} past t = {t:.9g} s")
         h_abs *= max(_MIN_FACTOR, _SAFETY * norm**-0.125) if math.isfinite(norm) else _MIN_FACTOR
         rejected = True
     for s in range(_NS + 1, _NX):
