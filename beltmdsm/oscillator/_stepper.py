@@ -91,13 +91,16 @@ def step(fun: Field, t, y, f, h_abs, t_end, rtol, atol, max_step) -> tuple[Step,
             raise ArithmeticError(f"the step fell below {min_step:.1e} s at t = {t:.9g} s")
         K[0] = f
         try:
-            for s in range(1, _NS):
-                K[s] = fun(t + _C[s] * h, y + h * (_A[s, :s] @ K[:s]))
-            y_new = y + h * (_B @ K[:_NS])
-            K[_NS] = fun(t_new, y_new)
-            sc = atol + np.maximum(np.abs(y), np.abs(y_new)) * rtol
-            e5 = np.sum(((_E5 @ K[: _NS + 1]) / sc) ** 2)
-            e3 = np.sum(((_E3 @ K[: _NS + 1]) / sc) ** 2)
+            # a trial step too long for a stiff field overflows: its norm is then not
+            # finite and the step is rejected below, so numpy's warnings say nothing
+            with np.errstate(over="ignore", invalid="ignore"):
+                for s in range(1, _NS):
+                    K[s] = fun(t + _C[s] * h, y + h * (_A[s, :s] @ K[:s]))
+                y_new = y + h * (_B @ K[:_NS])
+                K[_NS] = fun(t_new, y_new)
+                sc = atol + np.maximum(np.abs(y), np.abs(y_new)) * rtol
+                e5 = np.sum(((_E5 @ K[: _NS + 1]) / sc) ** 2)
+                e3 = np.sum(((_E3 @ K[: _NS + 1]) / sc) ** 2)
             norm = 0.0 if e5 == 0.0 and e3 == 0.0 else h * e5 / math.sqrt((e5 + 0.01 * e3) * m)
         except OverflowError:
             # a trial step far too long for the field (an exponential law overflows)
