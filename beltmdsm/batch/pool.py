@@ -94,6 +94,12 @@ def stop_process_pool(executor: cf.ProcessPoolExecutor, futures=()) -> None:
             worker.terminate()
         for worker in workers:
             worker.join(timeout=5)
+        # the pool's manager thread closes its wake-up pipe as it ends; joined here, not
+        # at exit, where CPython 3.11's `_python_exit` may write to that pipe as it
+        # closes ("Exception ignored ... Bad file descriptor" after the one line)
+        manager = getattr(executor, "_executor_manager_thread", None)
+        if manager is not None:
+            manager.join(timeout=5)
     finally:
         signal.signal(signal.SIGINT, previous)
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from ..integrate._roots import converged, illinois, secant
 from . import _dips, _stepper
@@ -29,6 +29,10 @@ __all__ = [
     "initial_mode", "leave_stick", "surfaces", "rates", "surface_index", "quadratures",
     "next_mode", "slip_sign", "to_stick", "crossing", "touch", "refine",
 ]  # fmt: skip
+
+#: A surface or its rate as a function of ``(t, y)``; one along a step, of ``t`` only.
+Guard = Callable[[float, NDArray], float]
+Along = Callable[[float], float]
 
 
 def initial_mode(system: System, t: float, y: ArrayLike) -> int:
@@ -44,7 +48,7 @@ def initial_mode(system: System, t: float, y: ArrayLike) -> int:
     return leave_stick(system, t, y, default_stick=True)
 
 
-def leave_stick(system: System, t, y, default_stick: bool = False) -> int:
+def leave_stick(system: System, t: float, y: NDArray, default_stick: bool = False) -> int:
     """Stick where the friction cone holds (``default_stick``), else the slip sign."""
     k, p = system.kernels, system.p
     H = k.holding_force(t, y, p)
@@ -110,7 +114,7 @@ def quadratures(system: System, mode: int) -> list[int]:
     return [index["stick_forward"], index["stick_back"]]
 
 
-def next_mode(system: System, mode: int, surface: int, t: float, y) -> int:
+def next_mode(system: System, mode: int, surface: int, t: float, y: NDArray) -> int:
     k, p = system.kernels, system.p
     if surface == 1 or (mode == FLIGHT and surface == 0):
         if mode != FLIGHT:
@@ -121,19 +125,21 @@ def next_mode(system: System, mode: int, surface: int, t: float, y) -> int:
     return STICK if abs(k.holding_force(t, y, p)) <= k.stick_limit(t, y, p) else -mode
 
 
-def slip_sign(system, t, y):
+def slip_sign(system: System, t: float, y: NDArray) -> int:
     v = system.kernels.slip_velocity(t, y, system.p)
     return 1 if v >= 0.0 else -1
 
 
-def to_stick(system: System, t, y):
+def to_stick(system: System, t: float, y: NDArray) -> NDArray:
     """The state projected onto ``v_r = 0`` along the slip velocity's gradient."""
     k, p = system.kernels, system.p
     w = np.asarray(k.slip_gradient(t, y, p), dtype=float)
     return y - w * (k.slip_velocity(t, y, p) / (w @ w))
 
 
-def crossing(u, du, step: _stepper.Step, m: int, u_old: float, armed: bool):
+def crossing(
+    u: Guard, du: Guard, step: _stepper.Step, m: int, u_old: float, armed: bool
+) -> tuple[float | None, bool]:
     """The first time in the step where ``u`` falls to <= 0 after being > 0, or None;
     with whether ``u`` has been > 0 (armed) by the step's end. ``u`` is taken at the
     `_dips.NODES` of the step: a fall between two of them is refined by the Illinois
@@ -167,7 +173,16 @@ def crossing(u, du, step: _stepper.Step, m: int, u_old: float, armed: bool):
     return None, True
 
 
-def touch(at, rate, values, first: int, last: int, t0: float, h: float, ts) -> float | None:
+def touch(
+    at: Along,
+    rate: Along,
+    values: NDArray,
+    first: int,
+    last: int,
+    t0: float,
+    h: float,
+    ts: NDArray,
+) -> float | None:
     """The first fall of ``u`` to 0 between the nodes ``first`` and ``last`` (``u`` > 0
     at both) that no node shows, or None: the guard's polynomial on the step
     (`beltmdsm.oscillator._dips`) clears what its Bernstein hull holds above its error;
@@ -213,7 +228,7 @@ def touch(at, rate, values, first: int, last: int, t0: float, h: float, ts) -> f
     return None
 
 
-def refine(at, a, fa, b, fb) -> float:
+def refine(at: Along, a: float, fa: float, b: float, fb: float) -> float:
     side = 0
     for _ in range(200):
         if converged(a, b):

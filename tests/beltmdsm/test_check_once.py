@@ -1,4 +1,4 @@
-"""A value is checked once, where it enters (GUIDE.md): the checks of a model's start
+"""A value is checked once, where it enters (the project's standard): the checks of a model's start
 (`beltmdsm.settings.check_finite`) and its parameters are not made again inside, and bad
 input is still refused where it enters."""
 
