@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from ..branch_lines import draw_branch, new_axes
 from ..errors import Unsupported
 from ..model import Model
 from ..oscillator.api import system_of
@@ -109,7 +110,6 @@ class OscillatorBranch(Branch):
         amplitude of the first rate, ``x_dot_amplitude``) against ``param``, stable solid,
         unstable dashed, the special points marked; on matplotlib axes ``ax`` (new ones if
         None), which it returns."""
-        from ..branch_lines import draw_branch, new_axes
 
         states = self.system.states
         observable = observable or f"{states[len(states) // 2]}_amplitude"

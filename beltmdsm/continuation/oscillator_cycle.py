@@ -55,6 +55,7 @@ from ..oscillator.system import System
 from .branch_result import SpecialPoint
 from .corrector import newton
 from .oscillator_cycle_point import TOL, OscillatorCyclePoint, split
+from .oscillator_forced import SystemAt
 from .problem import Problem, Residual, Step, failed, range_end
 from .settings import CYCLE_SETTINGS
 from .special import regula_falsi
@@ -151,7 +152,7 @@ def slip_run(system: System, x, T: float, mode: int, variational: bool = True):
     return z[:m].copy(), (z[m:].reshape(m, m).copy() if variational else None)
 
 
-class OscillatorCycleProblem(Problem):
+class OscillatorCycleProblem(SystemAt, Problem):
     """A derived model's self-excited cycle in one parameter (module docstring).
 
     Parameters
@@ -203,16 +204,7 @@ class OscillatorCycleProblem(Problem):
         self.end: tuple[Any, SpecialPoint] | None = None
         self._at: dict[float, System] = {}
 
-    # -- the model at a value, the phase condition, the margin
-
-    def at(self, value: float) -> System:
-        """The model at ``value`` (the last few kept)."""
-        value = float(value)
-        if value not in self._at:
-            if len(self._at) > 8:
-                self._at.clear()
-            self._at[value] = self.system.replace(**{self.param: value})
-        return self._at[value]
+    # -- the phase condition, the margin (the model at a value: `SystemAt.at`)
 
     def section(self, x, value) -> float:
         s = self.at(value)

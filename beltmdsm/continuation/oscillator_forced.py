@@ -148,7 +148,27 @@ class _PeriodMap:
         return SimpleNamespace(state=r.y, jacobian=r.monodromy, run=r)
 
 
-class OscillatorForcedProblem(Problem):
+class SystemAt:
+    """The model at a value of the continued parameter, the last few kept: what the
+    problems of another model (`OscillatorForcedProblem`,
+    `beltmdsm.continuation.oscillator_cycle.OscillatorCycleProblem`) share; each sets
+    ``system``, ``param`` and ``_at = {}``."""
+
+    system: System
+    param: str
+    _at: dict[float, System]
+
+    def at(self, value: float) -> System:
+        """The model at ``value`` (the last few kept)."""
+        value = float(value)
+        if value not in self._at:
+            if len(self._at) > 8:
+                self._at.clear()
+            self._at[value] = self.system.replace(**{self.param: value})
+        return self._at[value]
+
+
+class OscillatorForcedProblem(SystemAt, Problem):
     """A derived model's forced response of ``k`` periods in one parameter (module docstring).
 
     Parameters
@@ -188,15 +208,6 @@ class OscillatorForcedProblem(Problem):
         self._at: dict[float, System] = {}
 
     # -- the period map
-
-    def at(self, value: float) -> System:
-        """The model at ``value`` (the last few kept)."""
-        value = float(value)
-        if value not in self._at:
-            if len(self._at) > 8:
-                self._at.clear()
-            self._at[value] = self.system.replace(**{self.param: value})
-        return self._at[value]
 
     def kT(self, value: float) -> float:
         return self.periods * self.at(value).excitation_period()
